@@ -1,0 +1,163 @@
+// SPDX-License-Identifier: MIT
+#include "commands.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "cifs/errors.hpp"
+#include "cifs/io/shape.hpp"
+#include "cifs/nurbs/refine.hpp"
+
+namespace cifs::cli {
+namespace {
+
+using nlohmann::json;
+
+/// Largest sample grid we accept: beyond it the JSON output alone would exhaust memory.
+constexpr long long kMaxPoints = 50'000'000;
+
+double parse_number(std::string_view text, std::string_view option) {
+  double x = 0;
+  const auto* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, x);
+  if (ec != std::errc() || ptr != end || !std::isfinite(x))
+    throw InvalidInput(std::string(option) + " '" + std::string(text) + "': not a finite number");
+  return x;
+}
+
+json points_json(const Points& P) {
+  json rows = json::array();
+  for (Eigen::Index i = 0; i < P.rows(); ++i) {
+    json row = json::array();
+    for (Eigen::Index j = 0; j < P.cols(); ++j) row.push_back(P(i, j));
+    rows.push_back(std::move(row));
+  }
+  return json{{"points", std::move(rows)}};
+}
+
+void check_samples(long long count) {
+  if (count > kMaxPoints)
+    throw InvalidInput("--samples: " + std::to_string(count) + " points exceed the limit of " +
+                       std::to_string(kMaxPoints) + " (the output would not fit in memory)");
+}
+
+std::string eval_curve(const nurbs::Curve& c, const EvalOptions& o) {
+  std::vector<double> us;
+  for (const std::string& a : o.at) {
+    if (a.find(',') != std::string::npos)
+      throw InvalidInput("--at '" + a + "': a curve takes one parameter U");
+    us.push_back(parse_number(a, "--at"));
+  }
+  check_samples(o.samples);
+  const std::vector<double> grid = nurbs::uniform_parameters(nurbs::domain(c), o.samples);
+  us.insert(us.end(), grid.begin(), grid.end());
+  return points_json(nurbs::evaluate(c, us)).dump() + "\n";
+}
+
+std::string eval_surface(const nurbs::Surface& s, const EvalOptions& o) {
+  Points out(0, nurbs::dimension(s));
+  std::vector<Point> rows;
+  for (const std::string& a : o.at) {
+    const auto comma = a.find(',');
+    if (comma == std::string::npos) throw InvalidInput("--at '" + a + "': a surface takes U,V");
+    const double u = parse_number(std::string_view(a).substr(0, comma), "--at");
+    const double v = parse_number(std::string_view(a).substr(comma + 1), "--at");
+    rows.push_back(nurbs::evaluate(s, u, v));
+  }
+  check_samples(static_cast<long long>(o.samples) * o.samples);
+  const auto us = nurbs::uniform_parameters(nurbs::domain(s, nurbs::Direction::u), o.samples);
+  const auto vs = nurbs::uniform_parameters(nurbs::domain(s, nurbs::Direction::v), o.samples);
+  const Points grid = nurbs::evaluate_grid(s, us, vs);
+  out.resize(static_cast<Eigen::Index>(rows.size()) + grid.rows(), out.cols());
+  for (std::size_t i = 0; i < rows.size(); ++i) out.row(static_cast<Eigen::Index>(i)) = rows[i];
+  out.bottomRows(grid.rows()) = grid;
+  return points_json(out).dump() + "\n";
+}
+
+}  // namespace
+
+std::string eval(const EvalOptions& o) {
+  if (o.samples < 0) throw InvalidInput("--samples " + std::to_string(o.samples) + ": must be non-negative");
+  if (o.at.empty() && o.samples == 0) throw InvalidInput("eval: give --at U (repeatable) or --samples N");
+  const io::Shape shape = io::read_shape(o.shape);
+  if (const auto* c = std::get_if<nurbs::Curve>(&shape)) return eval_curve(*c, o);
+  return eval_surface(std::get<nurbs::Surface>(shape), o);
+}
+
+std::string insert(const InsertOptions& o) {
+  if (o.dir != "u" && o.dir != "v") throw InvalidInput("--dir '" + o.dir + "': expected u or v");
+  if (o.knots.empty() && !o.midpoints)
+    throw InvalidInput("insert: give --knot U (repeatable) or --midpoints");
+  const io::Shape shape = io::read_shape(o.shape);
+  if (const auto* c = std::get_if<nurbs::Curve>(&shape)) {
+    if (o.dir != "u") throw InvalidInput("--dir v: a curve has one direction");
+    nurbs::Curve out = nurbs::refine(*c, o.knots);
+    if (o.midpoints) out = nurbs::refine_midpoints(out);
+    return io::to_json(out);
+  }
+  const auto dir = o.dir == "u" ? nurbs::Direction::u : nurbs::Direction::v;
+  nurbs::Surface out = nurbs::refine(std::get<nurbs::Surface>(shape), dir, o.knots);
+  if (o.midpoints) out = nurbs::refine_midpoints(out);
+  return io::to_json(out);
+}
+
+std::string info(const std::filesystem::path& path) {
+  const io::Shape shape = io::read_shape(path);
+  json out;
+  if (const auto* c = std::get_if<nurbs::Curve>(&shape)) {
+    const nurbs::Domain dom = nurbs::domain(*c);
+    out = {{"type", "curve"},
+           {"degree", c->degree},
+           {"dimension", nurbs::dimension(*c)},
+           {"control_points", nurbs::distinct_count(*c)},
+           {"knots", nurbs::defining_knots(*c).size()},
+           {"rational", c->rational},
+           {"closed", c->closed},
+           {"domain", {dom.start, dom.end}},
+           {"segments", nurbs::segment_count(*c)}};
+  } else {
+    const auto& s = std::get<nurbs::Surface>(shape);
+    json domains = json::array(), segments = json::array();
+    for (auto dir : {nurbs::Direction::u, nurbs::Direction::v}) {
+      const nurbs::Domain dom = nurbs::domain(s, dir);
+      domains.push_back({dom.start, dom.end});
+      const auto& t = s.knots[static_cast<std::size_t>(dir)];
+      segments.push_back(nurbs::breakpoints(t, s.degree[static_cast<std::size_t>(dir)]).size() - 1);
+    }
+    out = {{"type", "surface"},
+           {"degree", s.degree},
+           {"dimension", nurbs::dimension(s)},
+           {"control_points", s.count},
+           {"knots", {s.knots[0].size(), s.knots[1].size()}},
+           {"rational", s.rational},
+           {"domain", domains},
+           {"segments", segments}};
+  }
+  return out.dump(1) + "\n";
+}
+
+std::string gallery(const std::filesystem::path& out) {
+  std::error_code ec;
+  std::filesystem::create_directories(out, ec);
+  if (ec) throw IoError(out.string() + ": cannot create the folder (" + ec.message() + ")");
+  // Built-in default until the renderer lands: the exact rational circle (nine points, quadratic),
+  // written as a shape and sampled at 257 parameters.
+  const double h = std::sqrt(0.5);
+  Points P(9, 2);
+  P << 1, 0, 1, 1, 0, 1, -1, 1, -1, 0, -1, -1, 0, -1, 1, -1, 1, 0;
+  Eigen::VectorXd w(9);
+  w << 1, h, 1, h, 1, h, 1, h, 1;
+  const nurbs::Curve circle = nurbs::make_curve(2, {0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4}, P, w);
+  const Points samples = nurbs::evaluate(circle, nurbs::uniform_parameters(nurbs::domain(circle), 257));
+  double radius_error = 0;
+  for (Eigen::Index i = 0; i < samples.rows(); ++i)
+    radius_error = std::max(radius_error, std::abs(samples.row(i).norm() - 1));
+  io::write_file_atomically(out / "circle.json", io::to_json(circle));
+  io::write_file_atomically(out / "circle.samples.json", points_json(samples).dump() + "\n");
+  return "gallery: wrote " + (out / "circle.json").string() + " and " +
+         (out / "circle.samples.json").string() +
+         " (257 samples, max |radius - 1| = " + std::to_string(radius_error) + ")\n";
+}
+
+}  // namespace cifs::cli

@@ -1,0 +1,254 @@
+// SPDX-License-Identifier: MIT
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "cifs/errors.hpp"
+#include "cifs/io/shape.hpp"
+
+namespace cifs::io {
+namespace {
+
+using nlohmann::json;
+
+/// Reads JSON values with the path of each value at hand for error messages.
+struct Reader {
+  std::string where;
+
+  [[noreturn]] void fail(const std::string& path, const std::string& what) const {
+    throw InvalidInput(where + ": " + path + ": " + what);
+  }
+
+  const json& member(const json& obj, const std::string& path, const char* key) const {
+    const auto it = obj.find(key);
+    if (it == obj.end()) fail(path, std::string("missing \"") + key + "\"");
+    return *it;
+  }
+
+  double number(const json& v, const std::string& path) const {
+    if (!v.is_number()) fail(path, "expected a number, got " + std::string(v.type_name()));
+    const double x = v.get<double>();
+    if (!std::isfinite(x)) fail(path, "number is not finite");
+    return x;
+  }
+
+  int integer(const json& v, const std::string& path) const {
+    if (!v.is_number_integer()) fail(path, "expected an integer, got " + v.dump());
+    const auto x = v.get<long long>();
+    if (x < -1000000 || x > 1000000) fail(path, "integer " + v.dump() + " is out of range");
+    return static_cast<int>(x);
+  }
+
+  const json& array(const json& v, const std::string& path) const {
+    if (!v.is_array()) fail(path, "expected an array, got " + std::string(v.type_name()));
+    return v;
+  }
+
+  std::vector<double> numbers(const json& v, const std::string& path) const {
+    array(v, path);
+    std::vector<double> out;
+    out.reserve(v.size());
+    for (std::size_t i = 0; i < v.size(); ++i)
+      out.push_back(number(v[i], path + "[" + std::to_string(i) + "]"));
+    return out;
+  }
+
+  /// Rows of equal length ≥ 1 appended to `rows` (dimension fixed by the first row seen).
+  void points(const json& v, const std::string& path, std::vector<std::vector<double>>& rows) const {
+    array(v, path);
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const std::string p = path + "[" + std::to_string(i) + "]";
+      rows.push_back(numbers(v[i], p));
+      if (rows.back().empty()) fail(p, "a point needs at least one coordinate");
+      if (rows.back().size() != rows.front().size())
+        fail(p, std::to_string(rows.back().size()) + " coordinates, the first point has " +
+                    std::to_string(rows.front().size()));
+    }
+  }
+
+  /// Runs a nurbs constructor, prefixing its validation messages with the file and the object.
+  template <class Make>
+  auto build(const std::string& object, Make&& make) const {
+    try {
+      return make();
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(where + ": " + object + "." + e.what());
+    }
+  }
+};
+
+Points to_points(const std::vector<std::vector<double>>& rows) {
+  Points P(static_cast<Eigen::Index>(rows.size()),
+           rows.empty() ? 0 : static_cast<Eigen::Index>(rows[0].size()));
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    for (std::size_t j = 0; j < rows[i].size(); ++j)
+      P(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = rows[i][j];
+  return P;
+}
+
+Eigen::VectorXd to_vector(const std::vector<double>& v) {
+  return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
+}
+
+nurbs::Curve read_curve(const Reader& r, const json& c) {
+  if (!c.is_object()) r.fail("curve", "expected an object");
+  const int degree = r.integer(r.member(c, "curve", "degree"), "curve.degree");
+  std::vector<double> knots = r.numbers(r.member(c, "curve", "knots"), "curve.knots");
+  std::vector<std::vector<double>> rows;
+  r.points(r.member(c, "curve", "points"), "curve.points", rows);
+  if (rows.empty()) r.fail("curve.points", "no control points");
+  std::vector<double> w;
+  if (c.contains("weights") && !c["weights"].is_null()) w = r.numbers(c["weights"], "curve.weights");
+  bool closed = false;
+  if (c.contains("closed")) {
+    if (!c["closed"].is_boolean()) r.fail("curve.closed", "expected true or false");
+    closed = c["closed"].get<bool>();
+  }
+  for (const auto& item : c.items())
+    if (item.key() != "degree" && item.key() != "knots" && item.key() != "points" &&
+        item.key() != "weights" && item.key() != "closed")
+      r.fail("curve." + item.key(), "unknown member");
+  return r.build("curve", [&] {
+    return closed ? nurbs::make_closed_curve(degree, std::move(knots), to_points(rows), to_vector(w))
+                  : nurbs::make_curve(degree, std::move(knots), to_points(rows), to_vector(w));
+  });
+}
+
+nurbs::Surface read_surface(const Reader& r, const json& s) {
+  if (!s.is_object()) r.fail("surface", "expected an object");
+  const json& deg = r.array(r.member(s, "surface", "degree"), "surface.degree");
+  if (deg.size() != 2) r.fail("surface.degree", "expected [du, dv]");
+  const std::array<int, 2> degree{r.integer(deg[0], "surface.degree[0]"),
+                                  r.integer(deg[1], "surface.degree[1]")};
+  const json& kn = r.array(r.member(s, "surface", "knots"), "surface.knots");
+  if (kn.size() != 2) r.fail("surface.knots", "expected [[u knots], [v knots]]");
+  std::array<nurbs::Knots, 2> knots{r.numbers(kn[0], "surface.knots[0]"),
+                                    r.numbers(kn[1], "surface.knots[1]")};
+  const json& net = r.array(r.member(s, "surface", "points"), "surface.points");
+  if (net.empty()) r.fail("surface.points", "no control points");
+  std::vector<std::vector<double>> rows;
+  std::size_t nv = 0;
+  for (std::size_t i = 0; i < net.size(); ++i) {
+    const std::string path = "surface.points[" + std::to_string(i) + "]";
+    r.array(net[i], path);
+    if (i == 0) nv = net[i].size();
+    if (net[i].size() != nv || nv == 0)
+      r.fail(path, std::to_string(net[i].size()) + " points, the first row has " + std::to_string(nv));
+    r.points(net[i], path, rows);
+  }
+  std::vector<double> w;
+  if (s.contains("weights") && !s["weights"].is_null()) {
+    const json& wn = r.array(s["weights"], "surface.weights");
+    if (wn.size() != net.size())
+      r.fail("surface.weights",
+             std::to_string(wn.size()) + " rows, the net has " + std::to_string(net.size()));
+    for (std::size_t i = 0; i < wn.size(); ++i) {
+      const std::string path = "surface.weights[" + std::to_string(i) + "]";
+      const std::vector<double> row = r.numbers(wn[i], path);
+      if (row.size() != nv)
+        r.fail(path, std::to_string(row.size()) + " weights, the net has " + std::to_string(nv));
+      w.insert(w.end(), row.begin(), row.end());
+    }
+  }
+  for (const auto& item : s.items())
+    if (item.key() != "degree" && item.key() != "knots" && item.key() != "points" && item.key() != "weights")
+      r.fail("surface." + item.key(), "unknown member");
+  const std::array<Eigen::Index, 2> count{static_cast<Eigen::Index>(net.size()),
+                                          static_cast<Eigen::Index>(nv)};
+  return r.build("surface", [&] {
+    return nurbs::make_surface(degree, std::move(knots), count, to_points(rows), to_vector(w));
+  });
+}
+
+json rows_json(const Points& P) {
+  json out = json::array();
+  for (Eigen::Index i = 0; i < P.rows(); ++i) {
+    json row = json::array();
+    for (Eigen::Index j = 0; j < P.cols(); ++j) row.push_back(P(i, j));
+    out.push_back(std::move(row));
+  }
+  return out;
+}
+
+/// Objects one member per line; arrays of numbers, and of arrays of numbers, on one line.
+void write_pretty(const json& v, int indent, std::string& out) {
+  const auto flat = [](const json& a) {
+    return a.is_array() && std::all_of(a.begin(), a.end(), [](const json& e) {
+             return e.is_primitive() || (e.is_array() && std::all_of(e.begin(), e.end(), [](const json& x) {
+                                           return x.is_primitive();
+                                         }));
+           });
+  };
+  const std::string pad(static_cast<std::size_t>(indent + 2), ' ');
+  if (v.is_object()) {
+    out += "{";
+    bool first = true;
+    for (const auto& item : v.items()) {
+      out += first ? "\n" : ",\n";
+      out += pad + json(item.key()).dump() + ": ";
+      write_pretty(item.value(), indent + 2, out);
+      first = false;
+    }
+    out += "\n" + std::string(static_cast<std::size_t>(indent), ' ') + "}";
+  } else if (v.is_array() && !flat(v)) {
+    out += "[";
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      out += (i ? ",\n" : "\n") + pad;
+      write_pretty(v[i], indent + 2, out);
+    }
+    out += "\n" + std::string(static_cast<std::size_t>(indent), ' ') + "]";
+  } else {
+    out += v.dump();
+  }
+}
+
+}  // namespace
+
+Shape parse_shape_json(std::string_view text, std::string_view where) {
+  const Reader r{std::string(where)};
+  json doc;
+  try {
+    doc = json::parse(text.begin(), text.end());
+  } catch (const json::parse_error& e) {
+    throw IoError(r.where + ": malformed JSON at byte " + std::to_string(e.byte) + ": " +
+                  std::string(e.what()).substr(std::string(e.what()).find(':') + 2));
+  }
+  if (!doc.is_object() || doc.size() != 1 || !(doc.contains("curve") || doc.contains("surface")))
+    throw InvalidInput(r.where + ": expected an object with one member, \"curve\" or \"surface\"");
+  if (doc.contains("curve")) return read_curve(r, doc["curve"]);
+  return read_surface(r, doc["surface"]);
+}
+
+std::string to_json(const Shape& shape) {
+  json doc;
+  if (const auto* c = std::get_if<nurbs::Curve>(&shape)) {
+    json& o = doc["curve"];
+    o["degree"] = c->degree;
+    o["knots"] = nurbs::defining_knots(*c);
+    o["points"] = rows_json(nurbs::cartesian_points(*c));
+    if (c->rational) {
+      const Eigen::VectorXd w = nurbs::weights(*c);
+      o["weights"] = std::vector<double>(w.data(), w.data() + w.size());
+    }
+    if (c->closed) o["closed"] = true;
+  } else {
+    const auto& s = std::get<nurbs::Surface>(shape);
+    json& o = doc["surface"];
+    o["degree"] = s.degree;
+    o["knots"] = s.knots;
+    const Points P = nurbs::cartesian_points(s);
+    const Eigen::VectorXd w = nurbs::weights(s);
+    json net = json::array(), wnet = json::array();
+    for (Eigen::Index i = 0; i < s.count[0]; ++i) {
+      net.push_back(rows_json(P.middleRows(i * s.count[1], s.count[1])));
+      wnet.push_back(std::vector<double>(w.data() + i * s.count[1], w.data() + (i + 1) * s.count[1]));
+    }
+    o["points"] = std::move(net);
+    if (s.rational) o["weights"] = std::move(wnet);
+  }
+  std::string out;
+  write_pretty(doc, 0, out);
+  return out + "\n";
+}
+
+}  // namespace cifs::io

@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: MIT
+// cifs — knot insertion, refinement, Bézier splitting, degree elevation and knot removal.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "cifs/nurbs/curve.hpp"
+
+namespace cifs::nurbs {
+
+/// Boehm insertion of `u` `times` times. The result is the same curve; throws InvalidInput when u
+/// is outside the domain or its multiplicity would exceed the degree.
+Curve insert_knot(const Curve& c, double u, int times = 1);
+
+/// Inserts many knots at once (any order, repeats allowed; Piegl–Tiller A5.4 for open curves,
+/// the blossom form `Q_j = b(t'_{j+1}, …, t'_{j+d})` for closed ones).
+Curve refine(const Curve& c, std::span<const double> new_knots);
+
+/// Inserts the midpoint of every non-empty span of the domain (one knot-doubling step).
+Curve refine_midpoints(const Curve& c);
+
+/// The polynomial pieces as clamped Bézier curves of the same degree, one per non-empty span, in order.
+std::vector<Curve> split_bezier(const Curve& c);
+
+/// Raises the degree by `times`; the curve is unchanged. Each knot value of the domain gains
+/// `times` in multiplicity; control points are blossoms of the raised degree.
+Curve elevate_degree(const Curve& c, int times = 1);
+
+/// Result of a knot removal: the curve and how many copies of the knot went.
+struct Removal {
+  Curve curve;
+  int removed = 0;
+  /// Proven bound on the distance between the old and the new curve over the domain.
+  double deviation_bound = 0;
+};
+
+/// Removes up to `times` copies of the interior knot `u` while the curve moves by at most
+/// `tolerance` (Piegl–Tiller A5.8, then a bound proven by re-inserting the removed knots).
+/// Open curves only: throws InvalidInput for closed curves and for knots that are not interior.
+Removal remove_knot(const Curve& c, double u, int times, double tolerance);
+
+}  // namespace cifs::nurbs

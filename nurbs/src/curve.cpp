@@ -1,0 +1,204 @@
+// SPDX-License-Identifier: MIT
+#include "cifs/nurbs/curve.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "cifs/errors.hpp"
+#include "detail.hpp"
+
+namespace cifs::nurbs {
+
+Curve make_curve(int degree, Knots knots, const Points& points, const Eigen::VectorXd& weights) {
+  Curve c{degree, std::move(knots), detail::homogeneous(points, weights, "points"), weights.size() > 0,
+          false};
+  validate(c);
+  return c;
+}
+
+Curve make_closed_curve(int degree, Knots breakpoints, const Points& points, const Eigen::VectorXd& weights) {
+  validate_degree(degree);
+  const Eigen::Index m = points.rows();
+  if (m < 2) detail::fail("points: a closed curve needs at least 2 control points, got ", m);
+  if (static_cast<Eigen::Index>(breakpoints.size()) != m + 1)
+    detail::fail("knots: a closed curve of ", m, " control points takes ", m + 1,
+                 " breakpoints (one period), got ", breakpoints.size());
+  for (std::size_t i = 0; i < breakpoints.size(); ++i) {
+    if (!std::isfinite(breakpoints[i])) detail::fail("knots[", i, "]: knot is not finite");
+    if (i > 0 && breakpoints[i] < breakpoints[i - 1])
+      detail::fail("knots[", i, "]: ", breakpoints[i], " is less than the previous knot ",
+                   breakpoints[i - 1]);
+  }
+  if (!(breakpoints.back() > breakpoints.front()))
+    detail::fail("knots: the period [", breakpoints.front(), ", ", breakpoints.back(), "] is empty");
+  const Points H = detail::homogeneous(points, weights, "points");
+  Points expanded(m + degree, H.cols());
+  for (Eigen::Index i = 0; i < expanded.rows(); ++i) expanded.row(i) = H.row(i % m);
+  Curve c{degree, periodic_knots(breakpoints, degree), std::move(expanded), weights.size() > 0, true};
+  validate(c);
+  return c;
+}
+
+void validate(const Curve& c) {
+  validate_knots(c.knots, c.degree, c.P.rows());
+  if (c.P.cols() < (c.rational ? 2 : 1)) detail::fail("points: control points have no coordinates");
+  for (Eigen::Index i = 0; i < c.P.rows(); ++i) {
+    for (Eigen::Index j = 0; j < c.P.cols(); ++j)
+      if (!std::isfinite(c.P(i, j))) detail::fail("points[", i, "][", j, "]: coordinate is not finite");
+    if (c.rational && !(c.P(i, c.P.cols() - 1) > 0))
+      detail::fail("weights[", i, "]: weight ", c.P(i, c.P.cols() - 1), " is not positive");
+  }
+  if (c.closed) {
+    const Eigen::Index m = c.P.rows() - c.degree;
+    for (Eigen::Index i = 0; i < c.degree; ++i)
+      if (c.P.row(m + i) != c.P.row(i % m))
+        detail::fail("points[", m + i, "]: a closed curve must repeat its first ", c.degree, " points");
+  }
+}
+
+Eigen::Index distinct_count(const Curve& c) noexcept {
+  return c.closed ? c.P.rows() - c.degree : c.P.rows();
+}
+
+Knots defining_knots(const Curve& c) {
+  if (!c.closed) return c.knots;
+  const auto first = c.knots.begin() + c.degree;
+  return Knots(first, first + distinct_count(c) + 1);
+}
+
+Points cartesian_points(const Curve& c) {
+  const Eigen::Index n = distinct_count(c);
+  const int dim = dimension(c);
+  if (!c.rational) return c.P.topRows(n);
+  Points out(n, dim);
+  for (Eigen::Index i = 0; i < n; ++i) out.row(i) = c.P.row(i).head(dim) / c.P(i, dim);
+  return out;
+}
+
+Eigen::VectorXd weights(const Curve& c) {
+  const Eigen::Index n = distinct_count(c);
+  if (!c.rational) return Eigen::VectorXd::Ones(n);
+  return c.P.col(c.P.cols() - 1).head(n);
+}
+
+int segment_count(const Curve& c) noexcept {
+  const Eigen::Index n = c.P.rows();
+  int count = 0;
+  for (Eigen::Index k = c.degree; k < n; ++k)
+    count += c.knots[static_cast<std::size_t>(k)] < c.knots[static_cast<std::size_t>(k + 1)];
+  return count;
+}
+
+double domain_parameter(const Curve& c, double u) {
+  const Domain dom = domain(c);
+  if (!std::isfinite(u)) detail::fail("parameter ", u, " is not finite");
+  if (c.closed) {
+    if (u >= dom.start && u <= dom.end) return u;
+    const double period = dom.end - dom.start;
+    const double wrapped = dom.start + (u - dom.start) - std::floor((u - dom.start) / period) * period;
+    return std::min(std::max(wrapped, dom.start), dom.end);
+  }
+  if (u < dom.start || u > dom.end)
+    detail::fail("parameter ", u, " is outside the domain [", dom.start, ", ", dom.end, "]");
+  return u;
+}
+
+Point to_cartesian(const Curve& c, const Point& row) {
+  if (!c.rational) return row;
+  const int dim = dimension(c);
+  return row.head(dim) / row(dim);
+}
+
+Point evaluate(const Curve& c, double u) {
+  // De Boor's triangle on the d+1 points of the span (the basis form is evaluate_basis).
+  u = domain_parameter(c, u);
+  const int p = c.degree;
+  const int span = find_span(c.knots, p, u);
+  Points d = c.P.middleRows(span - p, p + 1);
+  const double* t = c.knots.data();
+  for (int r = 1; r <= p; ++r)
+    for (int j = p; j >= r; --j) {
+      const int i = j + span - p;
+      const double alpha = (u - t[i]) / (t[i + p + 1 - r] - t[i]);
+      d.row(j) = (1.0 - alpha) * d.row(j - 1) + alpha * d.row(j);
+    }
+  return to_cartesian(c, d.row(p));
+}
+
+Point evaluate_basis(const Curve& c, double u) {
+  u = domain_parameter(c, u);
+  Point out(c.P.cols());
+  detail::evaluate_homogeneous(c.knots, c.degree, c.P, u, find_span(c.knots, c.degree, u), out.data());
+  return to_cartesian(c, out);
+}
+
+Points evaluate(const Curve& c, std::span<const double> us) {
+  const int dim = dimension(c);
+  const auto cols = c.P.cols();
+  Points out(static_cast<Eigen::Index>(us.size()), dim);
+  Point row(cols);
+  int span = c.degree;
+  for (std::size_t k = 0; k < us.size(); ++k) {
+    const double u = domain_parameter(c, us[k]);
+    span = find_span(c.knots, c.degree, u, span);
+    detail::evaluate_homogeneous(c.knots, c.degree, c.P, u, span, row.data());
+    const auto i = static_cast<Eigen::Index>(k);
+    if (c.rational)
+      out.row(i) = row.head(dim) / row(dim);
+    else
+      out.row(i) = row;
+  }
+  return out;
+}
+
+std::vector<double> uniform_parameters(Domain dom, int count) {
+  std::vector<double> us(static_cast<std::size_t>(std::max(count, 0)));
+  if (count == 1) us[0] = dom.start;
+  for (int i = 0; count > 1 && i < count; ++i)
+    us[static_cast<std::size_t>(i)] =
+        i == count - 1 ? dom.end : dom.start + (dom.end - dom.start) * i / (count - 1);
+  return us;
+}
+
+Points derivatives(const Curve& c, double u, int order) {
+  if (order < 0) detail::fail("derivative order ", order, " is negative");
+  u = domain_parameter(c, u);
+  const int p = c.degree;
+  const int span = find_span(c.knots, p, u);
+  const Eigen::MatrixXd ders = basis_derivatives(c.knots, p, span, u, order);
+  const Points H = ders * c.P.middleRows(span - p, p + 1);  // homogeneous derivatives
+  if (!c.rational) return H;
+  return detail::rational_derivatives(H, dimension(c));
+}
+
+Point blossom(const Curve& c, std::span<const double> args, int span) {
+  const int p = c.degree;
+  if (static_cast<int>(args.size()) != p)
+    detail::fail("blossom: ", args.size(), " arguments given, degree ", p, " takes ", p);
+  for (std::size_t i = 0; i < args.size(); ++i)
+    if (!std::isfinite(args[i])) detail::fail("blossom: argument ", i, " is not finite");
+  if (span < p || span >= c.P.rows() ||
+      !(c.knots[static_cast<std::size_t>(span)] < c.knots[static_cast<std::size_t>(span + 1)]))
+    detail::fail("blossom: span ", span, " is not a non-empty span of the domain");
+  return detail::blossom_row(c.knots, p, c.P, args, span);
+}
+
+Point blossom(const Curve& c, std::span<const double> args) {
+  const int p = c.degree;
+  if (static_cast<int>(args.size()) != p)
+    detail::fail("blossom: ", args.size(), " arguments given, degree ", p, " takes ", p);
+  double mean = 0;
+  for (double a : args) mean += a / p;
+  if (!std::isfinite(mean)) detail::fail("blossom: arguments are not finite");
+  std::vector<double> shifted(args.begin(), args.end());
+  if (c.closed) {
+    const double shift = domain_parameter(c, mean) - mean;  // a whole number of periods
+    for (double& a : shifted) a += shift;
+    mean += shift;
+  }
+  const Domain dom = domain(c);
+  const int span = find_span(c.knots, p, std::min(std::max(mean, dom.start), dom.end));
+  return detail::blossom_row(c.knots, p, c.P, shifted, span);
+}
+
+}  // namespace cifs::nurbs

@@ -1,0 +1,199 @@
+// SPDX-License-Identifier: MIT
+#include "cifs/nurbs/knots.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "cifs/errors.hpp"
+
+namespace cifs::nurbs {
+namespace {
+
+template <class... Parts>
+[[noreturn]] void fail(Parts&&... parts) {
+  std::ostringstream out;
+  out.precision(17);
+  (out << ... << parts);
+  throw InvalidInput(out.str());
+}
+
+}  // namespace
+
+void validate_degree(int degree, std::string_view where) {
+  if (degree < 1 || degree > kMaxDegree)
+    fail(where, ": degree ", degree, " is outside [1, ", kMaxDegree, "]");
+}
+
+void validate_knots(std::span<const double> knots, int degree, Eigen::Index count, std::string_view where) {
+  validate_degree(degree);
+  if (count < degree + 1)
+    fail(where, ": ", count, " control points are too few for degree ", degree, " (need at least ",
+         degree + 1, ")");
+  const auto expected = static_cast<std::size_t>(count + degree + 1);
+  if (knots.size() != expected)
+    fail(where, ": ", knots.size(), " knots given, ", count, " control points of degree ", degree, " need ",
+         expected);
+  int run = 1;
+  for (std::size_t i = 0; i < knots.size(); ++i) {
+    if (!std::isfinite(knots[i])) fail(where, "[", i, "]: knot is not finite");
+    if (i == 0) continue;
+    if (knots[i] < knots[i - 1])
+      fail(where, "[", i, "]: ", knots[i], " is less than the previous knot ", knots[i - 1]);
+    run = knots[i] == knots[i - 1] ? run + 1 : 1;
+    if (run > degree + 1)
+      fail(where, "[", i, "]: knot ", knots[i], " has multiplicity ", run, " > degree + 1 = ", degree + 1);
+  }
+  const Domain dom = domain(knots, degree);
+  if (!(dom.start < dom.end))
+    fail(where, ": empty domain [t_", degree, ", t_", count, "] = [", dom.start, ", ", dom.end, "]");
+}
+
+Domain domain(std::span<const double> knots, int degree) noexcept {
+  const auto n = static_cast<std::size_t>(control_count(knots, degree));
+  return {knots[static_cast<std::size_t>(degree)], knots[n]};
+}
+
+int find_span(std::span<const double> knots, int degree, double u) noexcept {
+  const int n = static_cast<int>(control_count(knots, degree));
+  if (u >= knots[static_cast<std::size_t>(n)]) {
+    // Domain end: the last non-empty span (knots at the end may repeat inside the domain).
+    int k = n - 1;
+    while (k > degree && knots[static_cast<std::size_t>(k)] == knots[static_cast<std::size_t>(n)]) --k;
+    return k;
+  }
+  // First knot in (t_{d+1} .. t_{n-1}) strictly greater than u; the span is the one before.
+  const auto first = knots.begin() + degree + 1;
+  const auto last = knots.begin() + n;
+  return static_cast<int>(std::upper_bound(first, last, u) - knots.begin()) - 1;
+}
+
+int find_span(std::span<const double> knots, int degree, double u, int hint) noexcept {
+  const int n = static_cast<int>(control_count(knots, degree));
+  if (hint < degree || hint >= n || u < knots[static_cast<std::size_t>(hint)] ||
+      u >= knots[static_cast<std::size_t>(n)])
+    return find_span(knots, degree, u);
+  int k = hint;
+  // Walk forward a few spans; fall back to bisection when the jump is long.
+  for (int steps = 0; steps < 8; ++steps) {
+    if (u < knots[static_cast<std::size_t>(k + 1)]) return k;
+    ++k;
+  }
+  return find_span(knots, degree, u);
+}
+
+int multiplicity(std::span<const double> knots, double u) noexcept {
+  const auto range = std::equal_range(knots.begin(), knots.end(), u);
+  return static_cast<int>(range.second - range.first);
+}
+
+std::vector<double> breakpoints(std::span<const double> knots, int degree) {
+  const auto n = static_cast<std::size_t>(control_count(knots, degree));
+  std::vector<double> out;
+  for (std::size_t i = static_cast<std::size_t>(degree); i <= n; ++i)
+    if (out.empty() || knots[i] != out.back()) out.push_back(knots[i]);
+  return out;
+}
+
+void basis_functions(std::span<const double> knots, int degree, int span, double u, double* N) noexcept {
+  double left[kMaxDegree + 1];
+  double right[kMaxDegree + 1];
+  const double* t = knots.data();
+  N[0] = 1.0;
+  for (int j = 1; j <= degree; ++j) {
+    left[j] = u - t[span + 1 - j];
+    right[j] = t[span + j] - u;
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r) {
+      const double temp = N[r] / (right[r + 1] + left[j - r]);
+      N[r] = saved + right[r + 1] * temp;
+      saved = left[j - r] * temp;
+    }
+    N[j] = saved;
+  }
+}
+
+void blossom_weights(std::span<const double> knots, int degree, int span, std::span<const double> args,
+                     double* W) noexcept {
+  const double* t = knots.data();
+  W[0] = 1.0;
+  for (int j = 1; j <= degree; ++j) {
+    const double x = args[static_cast<std::size_t>(j - 1)];
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r) {
+      const double lo = t[span + 1 - j + r], hi = t[span + 1 + r];
+      const double temp = W[r] / (hi - lo);
+      W[r] = saved + (hi - x) * temp;
+      saved = (x - lo) * temp;
+    }
+    W[j] = saved;
+  }
+}
+
+Eigen::MatrixXd basis_derivatives(std::span<const double> knots, int degree, int span, double u, int order) {
+  const int p = degree;
+  const double* t = knots.data();
+  Eigen::MatrixXd ders = Eigen::MatrixXd::Zero(order + 1, p + 1);
+  Eigen::MatrixXd ndu(p + 1, p + 1);  // basis values (upper triangle) and knot differences (lower)
+  Eigen::VectorXd left(p + 1), right(p + 1);
+  ndu(0, 0) = 1.0;
+  for (int j = 1; j <= p; ++j) {
+    left(j) = u - t[span + 1 - j];
+    right(j) = t[span + j] - u;
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r) {
+      ndu(j, r) = right(r + 1) + left(j - r);
+      const double temp = ndu(r, j - 1) / ndu(j, r);
+      ndu(r, j) = saved + right(r + 1) * temp;
+      saved = left(j - r) * temp;
+    }
+    ndu(j, j) = saved;
+  }
+  for (int j = 0; j <= p; ++j) ders(0, j) = ndu(j, p);
+  const int top = std::min(order, p);
+  Eigen::MatrixXd a(2, p + 1);
+  for (int r = 0; r <= p; ++r) {
+    int s1 = 0, s2 = 1;
+    a(0, 0) = 1.0;
+    for (int k = 1; k <= top; ++k) {
+      double d = 0.0;
+      const int rk = r - k, pk = p - k;
+      if (r >= k) {
+        a(s2, 0) = a(s1, 0) / ndu(pk + 1, rk);
+        d = a(s2, 0) * ndu(rk, pk);
+      }
+      const int j1 = rk >= -1 ? 1 : -rk;
+      const int j2 = (r - 1 <= pk) ? k - 1 : p - r;
+      for (int j = j1; j <= j2; ++j) {
+        a(s2, j) = (a(s1, j) - a(s1, j - 1)) / ndu(pk + 1, rk + j);
+        d += a(s2, j) * ndu(rk + j, pk);
+      }
+      if (r <= pk) {
+        a(s2, k) = -a(s1, k - 1) / ndu(pk + 1, r);
+        d += a(s2, k) * ndu(r, pk);
+      }
+      ders(k, r) = d;
+      std::swap(s1, s2);
+    }
+  }
+  double factor = p;
+  for (int k = 1; k <= top; ++k) {
+    ders.row(k) *= factor;
+    factor *= (p - k);
+  }
+  return ders;
+}
+
+Knots periodic_knots(std::span<const double> b, int degree) {
+  const int m = static_cast<int>(b.size()) - 1;
+  const double period = b[static_cast<std::size_t>(m)] - b[0];
+  Knots t(static_cast<std::size_t>(m + 2 * degree + 1));
+  for (int j = 0; j < static_cast<int>(t.size()); ++j) {
+    const int shifted = j - degree;
+    const int wraps = shifted >= 0 ? shifted / m : -((-shifted + m - 1) / m);
+    t[static_cast<std::size_t>(j)] = b[static_cast<std::size_t>(shifted - wraps * m)] + wraps * period;
+  }
+  return t;
+}
+
+}  // namespace cifs::nurbs

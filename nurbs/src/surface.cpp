@@ -1,0 +1,212 @@
+// SPDX-License-Identifier: MIT
+#include "cifs/nurbs/surface.hpp"
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "cifs/nurbs/refine.hpp"
+#include "detail.hpp"
+
+namespace cifs::nurbs {
+namespace {
+
+constexpr const char* kDirName[2] = {"u", "v"};
+
+double checked_parameter(const Surface& s, Direction dir, double t) {
+  const Domain dom = domain(s, dir);
+  if (!std::isfinite(t) || t < dom.start || t > dom.end)
+    detail::fail("parameter ", kDirName[static_cast<int>(dir)], " = ", t, " is outside the domain [",
+                 dom.start, ", ", dom.end, "]");
+  return t;
+}
+
+}  // namespace
+
+Surface make_surface(std::array<int, 2> degree, std::array<Knots, 2> knots, std::array<Eigen::Index, 2> count,
+                     const Points& points, const Eigen::VectorXd& weights) {
+  if (count[0] < 1 || count[1] < 1 || count[0] * count[1] != points.rows())
+    detail::fail("points: ", points.rows(), " control points do not form a ", count[0], " by ", count[1],
+                 " net");
+  Surface s{degree, std::move(knots), count, detail::homogeneous(points, weights, "points"),
+            weights.size() > 0};
+  validate(s);
+  return s;
+}
+
+void validate(const Surface& s) {
+  for (int d = 0; d < 2; ++d)
+    validate_knots(s.knots[static_cast<std::size_t>(d)], s.degree[static_cast<std::size_t>(d)],
+                   s.count[static_cast<std::size_t>(d)], std::string("knots[") + std::to_string(d) + "]");
+  if (s.P.rows() != s.count[0] * s.count[1])
+    detail::fail("points: ", s.P.rows(), " rows for a ", s.count[0], " by ", s.count[1], " net");
+  if (s.P.cols() < (s.rational ? 2 : 1)) detail::fail("points: control points have no coordinates");
+  for (Eigen::Index r = 0; r < s.P.rows(); ++r) {
+    const Eigen::Index i = r / s.count[1], j = r % s.count[1];
+    for (Eigen::Index k = 0; k < s.P.cols(); ++k)
+      if (!std::isfinite(s.P(r, k))) detail::fail("points[", i, "][", j, "]: coordinate is not finite");
+    if (s.rational && !(s.P(r, s.P.cols() - 1) > 0))
+      detail::fail("weights[", i, "][", j, "]: weight ", s.P(r, s.P.cols() - 1), " is not positive");
+  }
+}
+
+Points cartesian_points(const Surface& s) {
+  if (!s.rational) return s.P;
+  const int dim = dimension(s);
+  Points out(s.P.rows(), dim);
+  for (Eigen::Index i = 0; i < s.P.rows(); ++i) out.row(i) = s.P.row(i).head(dim) / s.P(i, dim);
+  return out;
+}
+
+Eigen::VectorXd weights(const Surface& s) {
+  if (!s.rational) return Eigen::VectorXd::Ones(s.P.rows());
+  return s.P.col(s.P.cols() - 1);
+}
+
+Point evaluate(const Surface& s, double u, double v) {
+  const std::array<double, 1> us{checked_parameter(s, Direction::u, u)};
+  const std::array<double, 1> vs{checked_parameter(s, Direction::v, v)};
+  return evaluate_grid(s, us, vs).row(0);
+}
+
+Points evaluate_grid(const Surface& s, std::span<const double> us, std::span<const double> vs) {
+  const int p = s.degree[0], q = s.degree[1];
+  const Eigen::Index nv = s.count[1], cols = s.P.cols();
+  const int dim = dimension(s);
+  for (double u : us) checked_parameter(s, Direction::u, u);
+  // v basis once per grid column.
+  std::vector<int> vspan(vs.size());
+  Eigen::MatrixXd Nv(q + 1, static_cast<Eigen::Index>(vs.size()));
+  for (std::size_t b = 0; b < vs.size(); ++b) {
+    const double v = checked_parameter(s, Direction::v, vs[b]);
+    vspan[b] = find_span(s.knots[1], q, v, b ? vspan[b - 1] : q);
+    basis_functions(s.knots[1], q, vspan[b], v, Nv.col(static_cast<Eigen::Index>(b)).data());
+  }
+  Points out(static_cast<Eigen::Index>(us.size() * vs.size()), dim);
+  Points line(nv, cols);  // Σ_r Nu_r P_{i_r, j} for every j: a curve in v
+  double Nu[kMaxDegree + 1];
+  std::vector<double> acc(static_cast<std::size_t>(cols));
+  int uspan = p;
+  for (std::size_t a = 0; a < us.size(); ++a) {
+    uspan = find_span(s.knots[0], p, us[a], uspan);
+    basis_functions(s.knots[0], p, uspan, us[a], Nu);
+    line.noalias() = Nu[0] * s.P.middleRows((uspan - p) * nv, nv);
+    for (int r = 1; r <= p; ++r) line.noalias() += Nu[r] * s.P.middleRows((uspan - p + r) * nv, nv);
+    for (std::size_t b = 0; b < vs.size(); ++b) {
+      const double* N = Nv.col(static_cast<Eigen::Index>(b)).data();
+      const double* base = line.data() + (vspan[b] - q) * cols;
+      for (Eigen::Index k = 0; k < cols; ++k) acc[static_cast<std::size_t>(k)] = N[0] * base[k];
+      for (int r = 1; r <= q; ++r)
+        for (Eigen::Index k = 0; k < cols; ++k) acc[static_cast<std::size_t>(k)] += N[r] * base[r * cols + k];
+      double* o = out.row(static_cast<Eigen::Index>(a * vs.size() + b)).data();
+      const double scale = s.rational ? 1.0 / acc[static_cast<std::size_t>(dim)] : 1.0;
+      for (int k = 0; k < dim; ++k) o[k] = acc[static_cast<std::size_t>(k)] * scale;
+    }
+  }
+  return out;
+}
+
+Points derivatives(const Surface& s, double u, double v, int order) {
+  if (order < 0) detail::fail("derivative order ", order, " is negative");
+  u = checked_parameter(s, Direction::u, u);
+  v = checked_parameter(s, Direction::v, v);
+  const int p = s.degree[0], q = s.degree[1];
+  const Eigen::Index nv = s.count[1], cols = s.P.cols();
+  const int su = find_span(s.knots[0], p, u), sv = find_span(s.knots[1], q, v);
+  const Eigen::MatrixXd Du = basis_derivatives(s.knots[0], p, su, u, order);
+  const Eigen::MatrixXd Dv = basis_derivatives(s.knots[1], q, sv, v, order);
+  const int w = order + 1;
+  Points H = Points::Zero(w * w, cols);  // homogeneous partials
+  for (int k = 0; k <= order; ++k)
+    for (int l = 0; k + l <= order; ++l)
+      for (int r = 0; r <= p; ++r)
+        for (int c = 0; c <= q; ++c)
+          H.row(k * w + l) += Du(k, r) * Dv(l, c) * s.P.row((su - p + r) * nv + (sv - q + c));
+  if (!s.rational) return H;
+  // Quotient rule in two variables (Piegl–Tiller A4.4).
+  const int dim = dimension(s);
+  auto binom = [](int n, int k) {
+    double b = 1;
+    for (int i = 1; i <= k; ++i) b = b * (n - k + i) / i;
+    return b;
+  };
+  Points S = Points::Zero(w * w, dim);
+  for (int k = 0; k <= order; ++k)
+    for (int l = 0; k + l <= order; ++l) {
+      Point val = H.row(k * w + l).head(dim);
+      for (int j = 1; j <= l; ++j) val -= binom(l, j) * H(j, dim) * S.row(k * w + l - j);
+      for (int i = 1; i <= k; ++i) {
+        val -= binom(k, i) * H(i * w, dim) * S.row((k - i) * w + l);
+        Point inner = Point::Zero(dim);
+        for (int j = 1; j <= l; ++j) inner += binom(l, j) * H(i * w + j, dim) * S.row((k - i) * w + l - j);
+        val -= binom(k, i) * inner;
+      }
+      S.row(k * w + l) = val / H(0, dim);
+    }
+  return S;
+}
+
+Eigen::Vector3d normal(const Surface& s, double u, double v) {
+  if (dimension(s) != 3) detail::fail("normal: the surface is ", dimension(s), "-D, normals need 3-D");
+  const Points D = derivatives(s, u, v, 1);
+  const Eigen::Vector3d Su = D.row(2).transpose(), Sv = D.row(1).transpose();  // rows (1,0) and (0,1)
+  const Eigen::Vector3d n = Su.cross(Sv);
+  if (!(n.norm() > 1e-14 * Su.norm() * Sv.norm()) || n.norm() == 0)
+    detail::fail("normal: undefined at (", u, ", ", v, "): the partial derivatives are parallel or zero");
+  return n.normalized();
+}
+
+Curve direction_curve(const Surface& s, Direction dir) {
+  const Eigen::Index nu = s.count[0], nv = s.count[1], cols = s.P.cols();
+  const int d = static_cast<int>(dir);
+  Curve c{s.degree[static_cast<std::size_t>(d)], s.knots[static_cast<std::size_t>(d)], {}, false, false};
+  if (dir == Direction::u) {
+    c.P = Eigen::Map<const Points>(s.P.data(), nu, nv * cols);
+  } else {
+    c.P.resize(nv, nu * cols);
+    for (Eigen::Index i = 0; i < nu; ++i)
+      for (Eigen::Index j = 0; j < nv; ++j) c.P.block(j, i * cols, 1, cols) = s.P.row(i * nv + j);
+  }
+  return c;
+}
+
+Surface refine(const Surface& s, Direction dir, std::span<const double> new_knots) {
+  const int d = static_cast<int>(dir);
+  Curve c;
+  try {
+    c = refine(direction_curve(s, dir), new_knots);
+  } catch (const InvalidInput& e) {
+    detail::fail("direction ", kDirName[d], ": ", e.what());
+  }
+  Surface out = s;
+  out.knots[static_cast<std::size_t>(d)] = c.knots;
+  out.count[static_cast<std::size_t>(d)] = c.P.rows();
+  const Eigen::Index nu = out.count[0], nv = out.count[1], cols = s.P.cols();
+  out.P.resize(nu * nv, cols);
+  if (dir == Direction::u) {
+    out.P = Eigen::Map<const Points>(c.P.data(), nu * nv, cols);
+  } else {
+    for (Eigen::Index i = 0; i < nu; ++i)
+      for (Eigen::Index j = 0; j < nv; ++j) out.P.row(i * nv + j) = c.P.block(j, i * cols, 1, cols);
+  }
+  return out;
+}
+
+Surface insert_knot(const Surface& s, Direction dir, double t, int times) {
+  if (times < 1) detail::fail("insert: times = ", times, " must be at least 1");
+  const std::vector<double> X(static_cast<std::size_t>(times), t);
+  return refine(s, dir, X);
+}
+
+Surface refine_midpoints(const Surface& s) {
+  Surface out = s;
+  for (Direction dir : {Direction::u, Direction::v}) {
+    const std::vector<double> b =
+        breakpoints(out.knots[static_cast<std::size_t>(dir)], out.degree[static_cast<std::size_t>(dir)]);
+    std::vector<double> mid(b.size() - 1);
+    for (std::size_t i = 0; i + 1 < b.size(); ++i) mid[i] = 0.5 * (b[i] + b[i + 1]);
+    out = refine(out, dir, mid);
+  }
+  return out;
+}
+
+}  // namespace cifs::nurbs
