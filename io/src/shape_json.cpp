@@ -185,18 +185,25 @@ void write_pretty(const json& v, int indent, std::string& out) {
     bool first = true;
     for (const auto& item : v.items()) {
       out += first ? "\n" : ",\n";
-      out += pad + json(item.key()).dump() + ": ";
+      out += pad;
+      out += json(item.key()).dump();
+      out += ": ";
       write_pretty(item.value(), indent + 2, out);
       first = false;
     }
-    out += "\n" + std::string(static_cast<std::size_t>(indent), ' ') + "}";
+    out += '\n';
+    out.append(static_cast<std::size_t>(indent), ' ');
+    out += '}';
   } else if (v.is_array() && !flat(v)) {
     out += "[";
     for (std::size_t i = 0; i < v.size(); ++i) {
-      out += (i ? ",\n" : "\n") + pad;
+      out += i ? ",\n" : "\n";
+      out += pad;
       write_pretty(v[i], indent + 2, out);
     }
-    out += "\n" + std::string(static_cast<std::size_t>(indent), ' ') + "]";
+    out += '\n';
+    out.append(static_cast<std::size_t>(indent), ' ');
+    out += ']';
   } else {
     out += v.dump();
   }
