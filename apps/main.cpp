@@ -42,6 +42,11 @@ int main(int argc, char** argv) {
   gallery_cmd->callback([&] { result = gallery(gallery_out); });
 
   try {
+    const std::string first = argc > 1 ? argv[1] : "-";
+    const auto known = app.get_subcommands([&](const CLI::App* sub) { return sub->get_name() == first; });
+    if (first[0] != '-' && known.empty())
+      throw cifs::InvalidInput("unknown command '" + first +
+                               "' (commands: eval, insert, info, gallery; see cifs --help)");
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);

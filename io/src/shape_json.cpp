@@ -209,6 +209,14 @@ void write_pretty(const json& v, int indent, std::string& out) {
   }
 }
 
+/// nlohmann's messages start with "[json.exception.kind.N] "; users need only what follows.
+std::string strip_id(const std::string& what) {
+  const auto end = what.find("] ");
+  std::string rest = end == std::string::npos ? what : what.substr(end + 2);
+  if (rest.rfind("parse error", 0) == 0 && rest.find(": ") != std::string::npos) rest = rest.substr(rest.find(": ") + 2);
+  return rest;
+}
+
 }  // namespace
 
 Shape parse_shape_json(std::string_view text, std::string_view where) {
@@ -217,8 +225,9 @@ Shape parse_shape_json(std::string_view text, std::string_view where) {
   try {
     doc = json::parse(text.begin(), text.end());
   } catch (const json::parse_error& e) {
-    throw IoError(r.where + ": malformed JSON at byte " + std::to_string(e.byte) + ": " +
-                  std::string(e.what()).substr(std::string(e.what()).find(':') + 2));
+    throw IoError(r.where + ": malformed JSON at byte " + std::to_string(e.byte) + ": " + strip_id(e.what()));
+  } catch (const json::exception& e) {  // e.g. a number that overflows a double
+    throw IoError(r.where + ": malformed JSON: " + strip_id(e.what()));
   }
   if (!doc.is_object() || doc.size() != 1 || !(doc.contains("curve") || doc.contains("surface")))
     throw InvalidInput(r.where + ": expected an object with one member, \"curve\" or \"surface\"");

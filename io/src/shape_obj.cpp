@@ -1,16 +1,571 @@
 // SPDX-License-Identifier: MIT
-// OBJ free-form geometry (placeholder until the OBJ reader lands).
+// OBJ free-form geometry (docs/formats.md): `cstype [rat] bspline` curves (`curv`) and surfaces
+// (`surf`) with their `deg`, `parm` and `end` statements, over `v x y z [w]` vertices.
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <optional>
+#include <string>
+#include <system_error>
+#include <type_traits>
+
 #include "cifs/errors.hpp"
 #include "cifs/io/shape.hpp"
 
 namespace cifs::io {
+namespace {
 
-std::vector<Shape> parse_obj(std::string_view, std::string_view where) {
-  throw IoError(std::string(where) + ": OBJ reading is not implemented yet");
+using Tokens = std::vector<std::string_view>;
+
+bool is_space(char c) noexcept {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
 }
 
-std::string to_obj(const Shape&) {
-  throw IoError("OBJ writing is not implemented yet");
+Tokens tokenize(std::string_view s) {
+  Tokens out;
+  std::size_t i = 0;
+  while (i < s.size()) {
+    while (i < s.size() && is_space(s[i])) ++i;
+    const std::size_t start = i;
+    while (i < s.size() && !is_space(s[i])) ++i;
+    if (i > start) out.push_back(s.substr(start, i - start));
+  }
+  return out;
+}
+
+/// Calls `f(line, tokens)` for every non-blank statement. A `#` starts a comment that runs to the end
+/// of its physical line; a physical line that then ends with `\` continues on the next one. `line` is
+/// the 1-based number of the statement's first physical line.
+template <class F>
+void for_each_statement(std::string_view text, F&& f) {
+  if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);  // UTF-8 byte order mark
+  std::string joined;
+  std::size_t line = 0, start = 0, pos = 0;
+  bool continuing = false;
+  for (;;) {
+    const std::size_t eol = std::min(text.find('\n', pos), text.size());
+    std::string_view phys = text.substr(pos, eol - pos);
+    ++line;
+    if (const std::size_t hash = phys.find('#'); hash != std::string_view::npos) phys = phys.substr(0, hash);
+    while (!phys.empty() && is_space(phys.back())) phys.remove_suffix(1);
+    const bool more = !phys.empty() && phys.back() == '\\';
+    if (more) phys.remove_suffix(1);
+    if (!continuing) {
+      joined.clear();
+      start = line;
+    }
+    joined += phys;
+    joined += ' ';
+    continuing = more;
+    if (!continuing) {
+      const Tokens t = tokenize(joined);
+      if (!t.empty()) f(start, t);
+    }
+    if (eol == text.size()) break;
+    pos = eol + 1;
+  }
+  if (continuing) {
+    const Tokens t = tokenize(joined);
+    if (!t.empty()) f(start, t);
+  }
+}
+
+/// Shortest text that reads back as the same double, for messages.
+std::string num(double x) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  return std::string(buf, r.ptr);
+}
+
+/// A token quoted for a message, cut short when it is long.
+std::string quote(std::string_view t) {
+  constexpr std::size_t kMax = 40;
+  return "'" + std::string(t.substr(0, kMax)) + (t.size() > kMax ? "...'" : "'");
+}
+
+struct Vertex {
+  double x = 0, y = 0, z = 0, w = 1;
+  std::size_t values = 0;  // numbers on the `v` line (3 or 4 for a control point)
+  std::size_t line = 0;
+};
+
+enum class Kind { curve, surface, parameter_curve };
+
+const char* keyword(Kind k) noexcept {
+  return k == Kind::curve ? "curv" : k == Kind::surface ? "surf" : "curv2";
+}
+
+/// A `curv`, `surf` or `curv2` statement and the body statements read so far.
+struct Element {
+  Kind kind = Kind::curve;
+  std::size_t line = 0;
+  bool rational = false;
+  std::array<int, 2> degree{};
+  std::vector<double> range;         // u0 u1, or s0 s1 t0 t1
+  std::vector<std::size_t> control;  // 0-based vertex numbers, in file order
+  std::array<std::optional<std::vector<double>>, 2> parm;
+  std::array<std::size_t, 2> parm_line{};
+};
+
+class ObjReader {
+ public:
+  explicit ObjReader(std::string_view where) : where_(where) {}
+
+  void statement(std::size_t line, const Tokens& t) {
+    line_ = line;
+    const std::string_view key = t[0];
+    if (key == "v") {
+      vertex(t);
+    } else if (key == "cstype") {
+      attribute_outside_body(key);
+      cstype(t);
+    } else if (key == "deg") {
+      attribute_outside_body(key);
+      deg(t);
+    } else if (key == "curv") {
+      element(Kind::curve, t);
+    } else if (key == "surf") {
+      element(Kind::surface, t);
+    } else if (key == "curv2") {
+      element(Kind::parameter_curve, t);
+    } else if (key == "parm") {
+      parm(t);
+    } else if (key == "end") {
+      end(t);
+    } else if (key == "trim" || key == "hole") {
+      body(key);
+      invalid(line_, std::string(key) +
+                         ": trimmed surfaces are not supported (only whole curves and surfaces are read)");
+    } else if (key == "scrv" || key == "sp") {
+      body(key);  // special curves and points only steer tessellation: ignored
+    } else if (key == "bsp" || key == "bzp" || key == "cdc" || key == "cdp") {
+      invalid(line_, std::string(key) + ": superseded OBJ 2.11 patch statements are not supported");
+    }
+    // Everything else (vt, vn, vp, p, l, f, g, o, s, mg, usemtl, mtllib, bmat, step, con, ctech,
+    // stech, lod, ...) carries no curve or surface geometry and is ignored.
+  }
+
+  std::vector<Shape> finish() {
+    if (open_)
+      syntax(open_->line,
+             std::string(keyword(open_->kind)) + ": no end statement before the end of the file");
+    return std::move(shapes_);
+  }
+
+ private:
+  std::string where_;
+  std::size_t line_ = 0;
+  std::vector<Vertex> vertices_;
+  bool cstype_set_ = false, rational_ = false;
+  std::array<int, 2> degree_{};  // 0 = not given
+  std::size_t deg_line_ = 0;
+  std::optional<Element> open_;
+  std::vector<Shape> shapes_;
+
+  std::string at(std::size_t line) const { return where_ + ": line " + std::to_string(line) + ": "; }
+  [[noreturn]] void syntax(std::size_t line, const std::string& what) const {
+    throw IoError(at(line) + what);
+  }
+  [[noreturn]] void invalid(std::size_t line, const std::string& what) const {
+    throw InvalidInput(at(line) + what);
+  }
+
+  /// A finite number: IoError when the token is not a number, InvalidInput when it is not finite.
+  double number(std::string_view tok, std::string_view what) const {
+    std::string_view s = tok;
+    if (s.size() > 1 && s[0] == '+' && s[1] != '-' && s[1] != '+') s.remove_prefix(1);
+    double x = 0;
+    const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), x);
+    if (ptr != s.data() + s.size() || (ec != std::errc() && ec != std::errc::result_out_of_range))
+      syntax(line_, std::string(what) + ": expected a number, got " + quote(tok));
+    if (ec == std::errc::result_out_of_range)
+      invalid(line_, std::string(what) + ": " + quote(tok) + " is out of the range of double");
+    if (!std::isfinite(x)) invalid(line_, std::string(what) + ": " + quote(tok) + " is not finite");
+    return x;
+  }
+
+  long long integer(std::string_view tok, std::string_view what) const {
+    std::string_view s = tok;
+    if (s.size() > 1 && s[0] == '+' && s[1] != '-' && s[1] != '+') s.remove_prefix(1);
+    long long x = 0;
+    const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), x);
+    if (ptr != s.data() + s.size() || s.empty() || ec != std::errc())
+      syntax(line_, std::string(what) + ": expected an integer, got " + quote(tok));
+    return x;
+  }
+
+  void attribute_outside_body(std::string_view key) const {
+    if (open_)
+      syntax(line_, std::string(key) + " inside the body of the " + keyword(open_->kind) + " at line " +
+                        std::to_string(open_->line) + " (missing end?)");
+  }
+
+  void body(std::string_view key) const {
+    if (!open_) syntax(line_, std::string(key) + " outside a curv or surf body");
+  }
+
+  void vertex(const Tokens& t) {
+    if (t.size() < 4)
+      syntax(line_, "v: expected x y z [w], got " + std::to_string(t.size() - 1) + " numbers");
+    Vertex v;
+    v.values = t.size() - 1;
+    v.line = line_;
+    std::array<double, 4> xyzw{0, 0, 0, 1};
+    for (std::size_t k = 1; k < t.size(); ++k) {
+      const double x = number(t[k], "v");
+      if (k <= 4) xyzw[k - 1] = x;
+    }
+    v.x = xyzw[0];
+    v.y = xyzw[1];
+    v.z = xyzw[2];
+    v.w = xyzw[3];
+    vertices_.push_back(v);
+  }
+
+  void cstype(const Tokens& t) {
+    std::size_t k = 1;
+    const bool rat = t.size() > k && t[k] == "rat";
+    if (rat) ++k;
+    if (t.size() != k + 1) syntax(line_, "cstype: expected cstype [rat] type");
+    const std::string_view type = t[k];
+    if (type == "bezier" || type == "cardinal" || type == "taylor" || type == "bmatrix")
+      invalid(line_, "cstype " + std::string(rat ? "rat " : "") + std::string(type) +
+                         " is not supported: only bspline and rat bspline are read");
+    if (type != "bspline") invalid(line_, "cstype: unknown curve and surface type " + quote(type));
+    cstype_set_ = true;
+    rational_ = rat;
+  }
+
+  void deg(const Tokens& t) {
+    if (t.size() != 2 && t.size() != 3) syntax(line_, "deg: expected deg du [dv]");
+    degree_ = {0, 0};
+    for (std::size_t k = 1; k < t.size(); ++k) {
+      const long long d = integer(t[k], "deg");
+      if (d < 1 || d > nurbs::kMaxDegree)
+        invalid(line_, "deg: degree " + std::to_string(d) + " is outside [1, " +
+                           std::to_string(nurbs::kMaxDegree) + "]");
+      degree_[k - 1] = static_cast<int>(d);
+    }
+    deg_line_ = line_;
+  }
+
+  std::size_t resolve(long long index) const {
+    const auto n = static_cast<long long>(vertices_.size());
+    if (index == 0)
+      invalid(line_, "vertex index 0 is invalid (indices start at 1, negative ones count back)");
+    const long long k = index > 0 ? index - 1 : n + index;
+    if (k < 0 || k >= n)
+      invalid(line_, "vertex index " + std::to_string(index) + " is out of range: " + std::to_string(n) +
+                         " vertices are defined before this line");
+    return static_cast<std::size_t>(k);
+  }
+
+  void element(Kind kind, const Tokens& t) {
+    const char* kw = keyword(kind);
+    if (open_)
+      syntax(line_, std::string(kw) + " before the end of the " + keyword(open_->kind) + " at line " +
+                        std::to_string(open_->line) + " (missing end?)");
+    Element e;
+    e.kind = kind;
+    e.line = line_;
+    if (kind == Kind::parameter_curve) {  // a curve in a surface's parameter space (trimming): skipped
+      open_ = std::move(e);
+      return;
+    }
+    if (!cstype_set_) syntax(line_, std::string(kw) + " without a preceding cstype");
+    if (degree_[0] == 0) syntax(line_, std::string(kw) + " without a preceding deg");
+    if (kind == Kind::surface && degree_[1] == 0)
+      syntax(line_,
+             "surf needs deg du dv; the deg at line " + std::to_string(deg_line_) + " gives one degree");
+    e.rational = rational_;
+    e.degree = degree_;
+    const std::size_t nrange = kind == Kind::curve ? 2 : 4;
+    if (t.size() < 2 + nrange)
+      syntax(line_, kind == Kind::curve ? "curv: expected curv u0 u1 v1 v2 ..."
+                                        : "surf: expected surf s0 s1 t0 t1 v1 v2 ...");
+    for (std::size_t k = 1; k <= nrange; ++k) e.range.push_back(number(t[k], std::string(kw) + " range"));
+    for (std::size_t k = 1 + nrange; k < t.size(); ++k) {
+      std::string_view tok = t[k];
+      if (kind == Kind::surface) {  // v/vt/vn, v//vn or v/vt: the texture and normal parts are ignored
+        const std::size_t slash = tok.find('/');
+        if (slash != std::string_view::npos) {
+          std::string_view rest = tok.substr(slash + 1);
+          for (int part = 0; part < 2 && !rest.empty(); ++part) {
+            const std::size_t next = rest.find('/');
+            const std::string_view field = rest.substr(0, next);
+            if (!field.empty()) integer(field, "surf");
+            rest = next == std::string_view::npos ? std::string_view{} : rest.substr(next + 1);
+            if (next != std::string_view::npos && part == 1)
+              syntax(line_, "surf: expected v/vt/vn, got " + quote(tok));
+          }
+          tok = tok.substr(0, slash);
+        }
+      }
+      e.control.push_back(resolve(integer(tok, kw)));
+    }
+    open_ = std::move(e);
+  }
+
+  void parm(const Tokens& t) {
+    body("parm");
+    if (t.size() < 3) syntax(line_, "parm: expected parm u|v p1 p2 ...");
+    int dir = 0;
+    if (t[1] == "v") {
+      dir = 1;
+    } else if (t[1] != "u") {
+      syntax(line_, "parm: the direction must be u or v, got " + quote(t[1]));
+    }
+    Element& e = *open_;
+    if (dir == 1 && e.kind != Kind::surface)
+      syntax(line_, std::string("parm v in the body of a ") + keyword(e.kind) +
+                        " (only surfaces have a v direction)");
+    auto& slot = e.parm[static_cast<std::size_t>(dir)];
+    if (slot)
+      syntax(line_, std::string("parm ") + (dir ? "v" : "u") + " given twice (first at line " +
+                        std::to_string(e.parm_line[static_cast<std::size_t>(dir)]) + ")");
+    std::vector<double> knots;
+    knots.reserve(t.size() - 2);
+    const std::string what = std::string("parm ") + (dir ? "v" : "u");
+    for (std::size_t k = 2; k < t.size(); ++k) knots.push_back(number(t[k], what));
+    slot = std::move(knots);
+    e.parm_line[static_cast<std::size_t>(dir)] = line_;
+  }
+
+  void end(const Tokens& t) {
+    if (!open_) syntax(line_, "end without a curv or surf");
+    if (t.size() != 1) syntax(line_, "end: unexpected " + quote(t[1]));
+    const Element e = std::move(*open_);
+    open_.reset();
+    if (e.kind == Kind::parameter_curve) return;
+    const char* kw = keyword(e.kind);
+    if (!e.parm[0])
+      syntax(e.line, std::string(kw) + ": no parm u before the end at line " + std::to_string(line_));
+    if (e.kind == Kind::surface && !e.parm[1])
+      syntax(e.line, "surf: no parm v before the end at line " + std::to_string(line_));
+    if (e.kind == Kind::curve)
+      shapes_.emplace_back(build_curve(e));
+    else
+      shapes_.emplace_back(build_surface(e));
+  }
+
+  /// Cartesian point and weight of the control vertex `k` (a 0-based vertex number).
+  void control_point(const Element& e, std::size_t k, Points& P, Eigen::Index row, Eigen::VectorXd& w) const {
+    const Vertex& v = vertices_[k];
+    const std::string name = "vertex " + std::to_string(k + 1) + " (line " + std::to_string(v.line) + ")";
+    if (v.values > 4)
+      invalid(e.line, std::string(keyword(e.kind)) + ": " + name + " has " + std::to_string(v.values) +
+                          " numbers; a control point takes x y z [w]");
+    P.row(row) << v.x, v.y, v.z;
+    if (e.rational) {
+      if (!(v.w > 0))
+        invalid(v.line, "weight " + num(v.w) + " of vertex " + std::to_string(k + 1) +
+                            " is not positive (used by the rational " + keyword(e.kind) + " at line " +
+                            std::to_string(e.line) + ")");
+      w(row) = v.w;
+    }
+  }
+
+  /// Runs a nurbs constructor; its messages are prefixed with the line of the statement at fault:
+  /// the `parm` line for knot problems, the element line otherwise.
+  template <class Make>
+  auto build(const Element& e, Make&& make) const {
+    try {
+      return make();
+    } catch (const InvalidInput& ex) {
+      const std::string msg = ex.what();
+      const char* kw = keyword(e.kind);
+      if (e.kind == Kind::surface && (msg.starts_with("knots[0]") || msg.starts_with("knots[1]"))) {
+        const std::size_t d = msg[6] == '1' ? 1 : 0;  // "knots[d]..." names the direction
+        invalid(e.parm_line[d], std::string("parm ") + (d ? "v" : "u") + ": knots" + msg.substr(8));
+      }
+      if (msg.starts_with("knots")) invalid(e.parm_line[0], "parm u: " + msg);
+      invalid(e.line, std::string(kw) + ": " + msg);
+    }
+  }
+
+  /// Throws unless [a, b] is the knot domain (up to 1e-9 of its width, for decimal rounding).
+  void check_range(const Element& e, double a, double b, nurbs::Domain dom, const char* dir) const {
+    const std::string name =
+        std::string(keyword(e.kind)) + ": parameter range " + dir + " [" + num(a) + ", " + num(b) + "]";
+    if (!(a < b)) invalid(e.line, name + " is empty or reversed");
+    const double tol = 1e-9 * (dom.end - dom.start);
+    const std::string domain = "the knot domain [" + num(dom.start) + ", " + num(dom.end) + "]";
+    if (a < dom.start - tol || b > dom.end + tol) invalid(e.line, name + " is outside " + domain);
+    if (a > dom.start + tol || b < dom.end - tol)
+      invalid(e.line, name + " is a strict part of " + domain + ": trimmed " +
+                          (e.kind == Kind::curve ? "curves" : "surfaces") + " are not supported");
+  }
+
+  nurbs::Curve build_curve(const Element& e) const {
+    const auto n = static_cast<Eigen::Index>(e.control.size());
+    Points P(n, 3);
+    Eigen::VectorXd w(e.rational ? n : 0);
+    for (Eigen::Index i = 0; i < n; ++i) control_point(e, e.control[static_cast<std::size_t>(i)], P, i, w);
+    nurbs::Curve c = build(e, [&] { return nurbs::make_curve(e.degree[0], *e.parm[0], P, w); });
+    check_range(e, e.range[0], e.range[1], nurbs::domain(c), "u");
+    return c;
+  }
+
+  nurbs::Surface build_surface(const Element& e) const {
+    std::array<Eigen::Index, 2> count{};
+    for (std::size_t d = 0; d < 2; ++d) {
+      const auto knots = static_cast<Eigen::Index>(e.parm[d]->size());
+      count[d] = knots - e.degree[d] - 1;
+      if (count[d] < e.degree[d] + 1)
+        invalid(e.parm_line[d], std::string("parm ") + (d ? "v" : "u") + ": " + std::to_string(knots) +
+                                    " knots are too few for degree " + std::to_string(e.degree[d]) +
+                                    " (at least " + std::to_string(2 * e.degree[d] + 2) + " needed)");
+    }
+    const Eigen::Index nu = count[0], nv = count[1];
+    const auto given = static_cast<Eigen::Index>(e.control.size());
+    if (nu * nv != given)
+      invalid(e.line, "surf: " + std::to_string(given) + " control vertices given; parm u (" +
+                          std::to_string(e.parm[0]->size()) + " knots, degree " +
+                          std::to_string(e.degree[0]) + ") and parm v (" + std::to_string(e.parm[1]->size()) +
+                          " knots, degree " + std::to_string(e.degree[1]) + ") make a " + std::to_string(nu) +
+                          " by " + std::to_string(nv) + " net of " + std::to_string(nu * nv));
+    // The file lists the net with u varying fastest: vertex j·nu + i is control point (i, j),
+    // which the Surface stores at row i·nv + j.
+    Points P(nu * nv, 3);
+    Eigen::VectorXd w(e.rational ? nu * nv : 0);
+    for (Eigen::Index j = 0; j < nv; ++j)
+      for (Eigen::Index i = 0; i < nu; ++i)
+        control_point(e, e.control[static_cast<std::size_t>(j * nu + i)], P, i * nv + j, w);
+    nurbs::Surface s = build(e, [&] {
+      return nurbs::make_surface({e.degree[0], e.degree[1]}, {*e.parm[0], *e.parm[1]}, count, P, w);
+    });
+    check_range(e, e.range[0], e.range[1], nurbs::domain(s, nurbs::Direction::u), "u");
+    check_range(e, e.range[2], e.range[3], nurbs::domain(s, nurbs::Direction::v), "v");
+    return s;
+  }
+};
+
+/// `%.17g`: reads back as the same double.
+void put(std::string& out, double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  out += buf;
+}
+
+/// A Cartesian coordinate x with `x·w == a` in double arithmetic when one exists near a / w, so
+/// that the reader's `w·x` gives back the stored homogeneous coordinate a bit for bit.
+double cartesian(double a, double w) {
+  const double x = a / w;
+  if (x * w == a) return x;
+  double lo = x, hi = x;
+  for (int k = 0; k < 4; ++k) {
+    lo = std::nextafter(lo, -std::numeric_limits<double>::infinity());
+    if (lo * w == a) return lo;
+    hi = std::nextafter(hi, std::numeric_limits<double>::infinity());
+    if (hi * w == a) return hi;
+  }
+  return x;
+}
+
+/// `v x y z [w]` from a stored row (homogeneous when rational), padded with zeros to 3-D.
+void put_vertex(std::string& out, const Points& P, Eigen::Index row, int dim, bool rational) {
+  out += 'v';
+  const double w = rational ? P(row, dim) : 1;
+  for (int k = 0; k < 3; ++k) {
+    out += ' ';
+    put(out, k < dim ? (rational ? cartesian(P(row, k), w) : P(row, k)) : 0.0);
+  }
+  if (rational) {
+    out += ' ';
+    put(out, w);
+  }
+  out += '\n';
+}
+
+/// `keyword` then the values, continued with a trailing backslash every `per_line` values.
+template <class Values>
+void put_list(std::string& out, const std::string& keyword, const Values& values, std::size_t per_line) {
+  out += keyword;
+  std::size_t k = 0;
+  for (const auto& x : values) {
+    if (k > 0 && k % per_line == 0) out += " \\\n ";
+    out += ' ';
+    if constexpr (std::is_floating_point_v<std::decay_t<decltype(x)>>)
+      put(out, x);
+    else
+      out += std::to_string(x);
+    ++k;
+  }
+  out += '\n';
+}
+
+void check_dimension(int dim, const char* what) {
+  if (dim > 3)
+    throw InvalidInput("to_obj: a " + std::to_string(dim) + "-D " + what +
+                       " cannot be written as OBJ, which holds 3-D geometry");
+}
+
+std::vector<long long> one_to(Eigen::Index n) {
+  std::vector<long long> v(static_cast<std::size_t>(n));
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = static_cast<long long>(i) + 1;
+  return v;
+}
+
+}  // namespace
+
+std::vector<Shape> parse_obj(std::string_view text, std::string_view where) {
+  ObjReader reader(where);
+  for_each_statement(text, [&](std::size_t line, const Tokens& t) { reader.statement(line, t); });
+  return reader.finish();
+}
+
+std::string to_obj(const Shape& shape) {
+  constexpr std::size_t kIndicesPerLine = 16, kKnotsPerLine = 6;
+  std::string out;
+  if (const auto* c = std::get_if<nurbs::Curve>(&shape)) {
+    const int dim = nurbs::dimension(*c);
+    check_dimension(dim, "curve");
+    const Eigen::Index n = c->P.rows();
+    out += "# cifs: ";
+    out += c->rational ? "NURBS" : "B-spline";
+    out += " curve of degree " + std::to_string(c->degree) + ", " + std::to_string(n) + " control points\n";
+    if (c->closed)
+      out += "# closed curve of " + std::to_string(nurbs::distinct_count(*c)) +
+             " distinct control points, written as its expanded unclamped form\n";
+    for (Eigen::Index i = 0; i < n; ++i) put_vertex(out, c->P, i, dim, c->rational);
+    out += c->rational ? "cstype rat bspline\n" : "cstype bspline\n";
+    out += "deg " + std::to_string(c->degree) + "\n";
+    const nurbs::Domain dom = nurbs::domain(*c);
+    std::string head = "curv ";
+    put(head, dom.start);
+    head += ' ';
+    put(head, dom.end);
+    put_list(out, head, one_to(n), kIndicesPerLine);
+    put_list(out, "parm u", c->knots, kKnotsPerLine);
+    out += "end\n";
+    return out;
+  }
+  const auto& s = std::get<nurbs::Surface>(shape);
+  const int dim = nurbs::dimension(s);
+  check_dimension(dim, "surface");
+  const Eigen::Index nu = s.count[0], nv = s.count[1];
+  out += "# cifs: ";
+  out += s.rational ? "NURBS" : "B-spline";
+  out += " surface of degree " + std::to_string(s.degree[0]) + " by " + std::to_string(s.degree[1]) + ", " +
+         std::to_string(nu) + " by " + std::to_string(nv) + " control points, u varying fastest\n";
+  for (Eigen::Index j = 0; j < nv; ++j)
+    for (Eigen::Index i = 0; i < nu; ++i) put_vertex(out, s.P, i * nv + j, dim, s.rational);
+  out += s.rational ? "cstype rat bspline\n" : "cstype bspline\n";
+  out += "deg " + std::to_string(s.degree[0]) + " " + std::to_string(s.degree[1]) + "\n";
+  const nurbs::Domain du = nurbs::domain(s, nurbs::Direction::u), dv = nurbs::domain(s, nurbs::Direction::v);
+  std::string head = "surf";
+  for (const double x : {du.start, du.end, dv.start, dv.end}) {
+    head += ' ';
+    put(head, x);
+  }
+  put_list(out, head, one_to(nu * nv), kIndicesPerLine);
+  put_list(out, "parm u", s.knots[0], kKnotsPerLine);
+  put_list(out, "parm v", s.knots[1], kKnotsPerLine);
+  out += "end\n";
+  return out;
 }
 
 }  // namespace cifs::io

@@ -43,10 +43,10 @@ void validate(const Curve& c) {
   validate_knots(c.knots, c.degree, c.P.rows());
   if (c.P.cols() < (c.rational ? 2 : 1)) detail::fail("points: control points have no coordinates");
   for (Eigen::Index i = 0; i < c.P.rows(); ++i) {
+    const double w = c.rational ? c.P(i, c.P.cols() - 1) : 1.0;
+    if (!(w > 0) || !std::isfinite(w)) detail::fail("weights[", i, "]: weight ", w, " is not a positive finite number");
     for (Eigen::Index j = 0; j < c.P.cols(); ++j)
       if (!std::isfinite(c.P(i, j))) detail::fail("points[", i, "][", j, "]: coordinate is not finite");
-    if (c.rational && !(c.P(i, c.P.cols() - 1) > 0))
-      detail::fail("weights[", i, "]: weight ", c.P(i, c.P.cols() - 1), " is not positive");
   }
   if (c.closed) {
     const Eigen::Index m = c.P.rows() - c.degree;

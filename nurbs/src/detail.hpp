@@ -27,9 +27,7 @@ inline Points homogeneous(const Points& points, const Eigen::VectorXd& weights, 
   if (weights.size() != points.rows())
     fail("weights: ", weights.size(), " weights given for ", points.rows(), " ", where);
   Points H(points.rows(), points.cols() + 1);
-  for (Eigen::Index i = 0; i < points.rows(); ++i) {
-    if (!(weights(i) > 0) || !std::isfinite(weights(i)))
-      fail("weights[", i, "]: weight ", weights(i), " is not a positive finite number");
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {  // weights are checked by validate()
     H.row(i).head(points.cols()) = weights(i) * points.row(i);
     H(i, points.cols()) = weights(i);
   }

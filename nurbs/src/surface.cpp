@@ -42,10 +42,11 @@ void validate(const Surface& s) {
   if (s.P.cols() < (s.rational ? 2 : 1)) detail::fail("points: control points have no coordinates");
   for (Eigen::Index r = 0; r < s.P.rows(); ++r) {
     const Eigen::Index i = r / s.count[1], j = r % s.count[1];
+    const double w = s.rational ? s.P(r, s.P.cols() - 1) : 1.0;
+    if (!(w > 0) || !std::isfinite(w))
+      detail::fail("weights[", i, "][", j, "]: weight ", w, " is not a positive finite number");
     for (Eigen::Index k = 0; k < s.P.cols(); ++k)
       if (!std::isfinite(s.P(r, k))) detail::fail("points[", i, "][", j, "]: coordinate is not finite");
-    if (s.rational && !(s.P(r, s.P.cols() - 1) > 0))
-      detail::fail("weights[", i, "][", j, "]: weight ", s.P(r, s.P.cols() - 1), " is not positive");
   }
 }
 

@@ -1,0 +1,604 @@
+// SPDX-License-Identifier: MIT
+// cifs — NURBS-core benchmarks: curve evaluation, surface grids and refinement, each cifs case next
+// to its SISL twin (`BM_<case>/cifs…` and `BM_<case>/sisl…`). See docs/performance.md.
+//
+// Licence: this file is cifs code under the MIT licence. When CIFS_HAVE_SISL is defined it calls
+// SISL (SINTEF, GNU AGPL v3), which bench/CMakeLists.txt links statically into this benchmark
+// executable only — never into a cifs library target, so the cifs libraries stay MIT. A cifs_bench
+// binary built with SISL is an AGPL-covered combined work.
+//
+// Fairness: both libraries get identical inputs (the same knot vectors, control points, weights and
+// parameters; SISL's arrays are copies of cifs' own), both write every result into memory, and each
+// case is cross-checked once, outside the timed loops, before its first benchmark runs: cifs and
+// SISL must agree to 1e-12 of the data scale or the program aborts with a message.
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <random>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "cifs/nurbs/curve.hpp"
+#include "cifs/nurbs/knots.hpp"
+#include "cifs/nurbs/refine.hpp"
+#include "cifs/nurbs/surface.hpp"
+
+#ifdef CIFS_HAVE_SISL
+#include <sisl.h>
+#endif
+
+namespace {
+
+namespace nurbs = cifs::nurbs;
+using cifs::Points;
+
+// ------------------------------------------------------------------------------------------------
+// Inputs and cross-checks
+
+constexpr double kScale = 10.0;    // control points lie in [-kScale, kScale]^dim: the data scale
+constexpr double kRelTol = 1e-12;  // cross-check tolerance, relative to kScale
+constexpr int kDegree = 3;         // every case is cubic (bicubic)
+
+[[noreturn]] void fail(const std::string& what) {
+  std::fprintf(stderr, "cifs_bench: %s\n", what.c_str());
+  std::abort();
+}
+
+/// Clamped knots on [a, b] for n control points of degree p. The n − p spans have random lengths
+/// (up to 9 times one another), so the knots are non-uniform and every interior knot is simple.
+nurbs::Knots clamped_knots(Eigen::Index n, int p, std::mt19937_64& rng, double a, double b) {
+  const auto spans = static_cast<std::size_t>(n - p);
+  std::uniform_real_distribution<double> length(0.2, 1.8);
+  std::vector<double> sum(spans + 1, 0.0);
+  for (std::size_t i = 1; i <= spans; ++i) sum[i] = sum[i - 1] + length(rng);
+  nurbs::Knots t;
+  t.reserve(static_cast<std::size_t>(n + p + 1));
+  t.insert(t.end(), static_cast<std::size_t>(p), a);
+  for (std::size_t i = 0; i <= spans; ++i) t.push_back(i == spans ? b : a + (b - a) * sum[i] / sum[spans]);
+  t.insert(t.end(), static_cast<std::size_t>(p), b);
+  return t;
+}
+
+Points random_points(Eigen::Index n, int dim, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> coordinate(-kScale, kScale);
+  Points P(n, dim);
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (int k = 0; k < dim; ++k) P(i, k) = coordinate(rng);
+  return P;
+}
+
+Eigen::VectorXd random_weights(Eigen::Index n, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> weight(0.5, 2.0);
+  Eigen::VectorXd w(n);
+  for (Eigen::Index i = 0; i < n; ++i) w(i) = weight(rng);
+  return w;
+}
+
+/// Aborts unless the two arrays agree to kRelTol · kScale; logs the agreement to stderr.
+void require_close(const std::string& what, const double* a, const double* b, std::size_t count) {
+  double diff = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const double d = std::abs(a[i] - b[i]);
+    if (!(d <= diff)) diff = d;  // also catches NaN
+  }
+  const double tol = kRelTol * kScale;
+  if (!(diff <= tol)) {
+    char msg[256];
+    std::snprintf(msg, sizeof msg, "cross-check FAILED: %s: max |difference| = %.3g > %.3g", what.c_str(),
+                  diff, tol);
+    fail(msg);
+  }
+  std::fprintf(stderr, "cross-check ok: %-62s max |diff| %.1e (tol %.0e)\n", what.c_str(), diff, tol);
+}
+
+void require_sisl_ok(int status, const char* routine) {
+  if (status < 0) fail(std::string("SISL ") + routine + " returned status " + std::to_string(status));
+}
+
+/// items/s from SetItemsProcessed, plus the time per item in nanoseconds as a counter.
+void report_rate(benchmark::State& state, std::size_t items_per_iteration, const char* counter) {
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(items_per_iteration));
+  state.counters[counter] =
+      benchmark::Counter(static_cast<double>(items_per_iteration) * 1e-9,
+                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+// ------------------------------------------------------------------------------------------------
+// SISL adapters
+
+#ifdef CIFS_HAVE_SISL
+
+struct SislCurveFree {
+  void operator()(SISLCurve* c) const noexcept { freeCurve(c); }
+};
+struct SislSurfFree {
+  void operator()(SISLSurf* s) const noexcept { freeSurf(s); }
+};
+using SislCurvePtr = std::unique_ptr<SISLCurve, SislCurveFree>;
+using SislSurfPtr = std::unique_ptr<SISLSurf, SislSurfFree>;
+
+/// SISL copy of a cifs curve. SISL counts the order (degree + 1), takes the same full knot vector
+/// (n + order values; a clamped end is an order-fold knot in both libraries) and, for a rational
+/// curve (ikind 2), homogeneous coefficients (w·x, w) — exactly the rows cifs stores. icopy = 1: SISL
+/// copies both arrays. (newCurve may shift "superfluous" end knots inside the arrays it is given, so
+/// it gets scratch copies, never cifs' own storage.)
+SislCurvePtr to_sisl(const nurbs::Curve& c) {
+  std::vector<double> knots = c.knots;
+  Points coefficients = c.P;
+  SISLCurve* s = newCurve(static_cast<int>(c.P.rows()), c.degree + 1, knots.data(), coefficients.data(),
+                          c.rational ? 2 : 1, nurbs::dimension(c), 1);
+  if (s == nullptr) fail("SISL newCurve failed");
+  return SislCurvePtr(s);
+}
+
+/// SISL copy of a cifs surface with the parameter directions swapped. SISL stores coefficient
+/// (i1, i2) at i2·in1 + i1 (first direction fastest), cifs stores (i, j) at i·nv + j (v fastest):
+/// with SISL's first direction = cifs v and its second = cifs u the coefficient arrays are
+/// byte-for-byte the same. Then s1506's output order (first-direction parameter fastest) is
+/// evaluate_grid's row order a·#vs + b, and s1506 works like evaluate_grid: it builds the iso-curve
+/// at each second-direction parameter (cifs u, once per grid row) and evaluates it along the first.
+SislSurfPtr to_sisl(const nurbs::Surface& s) {
+  std::vector<double> knots_v = s.knots[1], knots_u = s.knots[0];
+  Points coefficients = s.P;
+  SISLSurf* out = newSurf(static_cast<int>(s.count[1]), static_cast<int>(s.count[0]), s.degree[1] + 1,
+                          s.degree[0] + 1, knots_v.data(), knots_u.data(), coefficients.data(),
+                          s.rational ? 2 : 1, nurbs::dimension(s), 1);
+  if (out == nullptr) fail("SISL newSurf failed");
+  return SislSurfPtr(out);
+}
+
+/// Curve points one parameter at a time, the way SISL users evaluate a parameter sequence: the
+/// `leftknot` interval index of one call is the hint of the next (s1219 checks it, then its
+/// neighbours, before bisecting), so sorted parameters cost O(1) per search.
+/// FromLeft: s1227 (left-continuous: at a knot it evaluates the piece that ends there) — the
+/// routine the SISL manual pairs with increasing parameters; otherwise s1221 (right-continuous, the
+/// cifs convention, and a little cheaper: no knot-multiplicity test). Positions agree either way on a
+/// continuous curve; derivatives are not requested (ider = 0).
+template <bool FromLeft>
+int sisl_curve_points(SISLCurve* c, std::span<const double> us, double* out) {
+  int left = 0, status = 0, worst = 0;
+  const std::size_t dim = static_cast<std::size_t>(c->idim);
+  for (std::size_t k = 0; k < us.size(); ++k) {
+    if constexpr (FromLeft)
+      s1227(c, 0, us[k], &left, out + k * dim, &status);
+    else
+      s1221(c, 0, us[k], &left, out + k * dim, &status);
+    worst = std::min(worst, status);
+  }
+  return worst;
+}
+
+/// Surface grid one point at a time with s1424 (position only: ider1 = ider2 = 0; s1421 would also
+/// compute both first derivatives and the normal, which is not the same job). The two left-knot
+/// hints persist from point to point like s1227's. epar = (first, second) = (v, u), see to_sisl.
+int sisl_grid_points(SISLSurf* s, std::span<const double> us, std::span<const double> vs, double* out) {
+  int left1 = 0, left2 = 0, status = 0, worst = 0;
+  const std::size_t dim = static_cast<std::size_t>(s->idim);
+  double epar[2];
+  for (std::size_t a = 0; a < us.size(); ++a) {
+    epar[1] = us[a];
+    for (std::size_t b = 0; b < vs.size(); ++b) {
+      epar[0] = vs[b];
+      s1424(s, 0, 0, epar, &left1, &left2, out + (a * vs.size() + b) * dim, &status);
+      worst = std::min(worst, status);
+    }
+  }
+  return worst;
+}
+
+/// Surface grid with SISL's grid evaluator s1506 (ider = 0: positions; it pre-evaluates the
+/// B-splines of each grid line with s1504, then s1505 multiplies out, iso-curve by iso-curve).
+/// `normals` must hold dim·#us·#vs values (written only when ider ≥ 1).
+int sisl_grid(SISLSurf* s, std::vector<double>& us, std::vector<double>& vs, double* out, double* normals) {
+  int status = 0;
+  s1506(s, 0, static_cast<int>(vs.size()), vs.data(), static_cast<int>(us.size()), us.data(), out, normals,
+        &status);
+  return status;
+}
+
+constexpr const char* kSislContext = "libsisl 4.6.0 (Debian libsisl-dev, static)";
+#else
+constexpr const char* kSislContext = "not found: cifs only";
+#endif
+
+// ------------------------------------------------------------------------------------------------
+// Case 1: curve evaluation — cubic, 60 control points in 3-D, clamped non-uniform knots, 1e5
+// parameters, random or sorted.
+
+constexpr Eigen::Index kCurvePoints = 60;
+constexpr std::size_t kCurveParams = 100000;
+
+struct CurveCase {
+  nurbs::Curve curve;
+  std::vector<double> random, sorted;
+#ifdef CIFS_HAVE_SISL
+  SislCurvePtr sisl;
+#endif
+  std::vector<double>& params(bool sorted_order) {
+    return sorted_order ? sorted : random;
+  }
+};
+
+void check_curve_case(CurveCase& cc) {
+  const std::string kind = cc.curve.rational ? "rational curve" : "curve";
+  const std::size_t dim = static_cast<std::size_t>(nurbs::dimension(cc.curve));
+  for (bool sorted_order : {false, true}) {
+    const std::vector<double>& us = cc.params(sorted_order);
+    const std::string label = kind + (sorted_order ? " sorted: " : " random: ");
+    const std::size_t count = us.size() * dim;
+    const Points batch = nurbs::evaluate(cc.curve, us);
+    Points single(batch.rows(), batch.cols()), basis(batch.rows(), batch.cols());
+    for (std::size_t k = 0; k < us.size(); ++k) {
+      single.row(static_cast<Eigen::Index>(k)) = nurbs::evaluate(cc.curve, us[k]);
+      basis.row(static_cast<Eigen::Index>(k)) = nurbs::evaluate_basis(cc.curve, us[k]);
+    }
+    require_close(label + "cifs de Boor vs cifs batch", single.data(), batch.data(), count);
+    require_close(label + "cifs evaluate_basis vs cifs batch", basis.data(), batch.data(), count);
+#ifdef CIFS_HAVE_SISL
+    std::vector<double> out(count);
+    require_sisl_ok(sisl_curve_points<true>(cc.sisl.get(), us, out.data()), "s1227");
+    require_close(label + "SISL s1227 vs cifs batch", out.data(), batch.data(), count);
+    require_sisl_ok(sisl_curve_points<false>(cc.sisl.get(), us, out.data()), "s1221");
+    require_close(label + "SISL s1221 vs cifs batch", out.data(), batch.data(), count);
+    if (!cc.curve.rational) {  // s1542 is polynomial-only
+      int status = 0;
+      s1542(cc.sisl.get(), static_cast<int>(us.size()), cc.params(sorted_order).data(), out.data(), &status);
+      require_sisl_ok(status, "s1542");
+      require_close(label + "SISL s1542 vs cifs batch", out.data(), batch.data(), count);
+    }
+#endif
+  }
+}
+
+CurveCase make_curve_case(bool rational) {
+  std::mt19937_64 rng(rational ? 2 : 1);
+  CurveCase cc;
+  const nurbs::Knots knots = clamped_knots(kCurvePoints, kDegree, rng, 0.0, 1.0);
+  const Points P = random_points(kCurvePoints, 3, rng);
+  cc.curve = rational ? nurbs::make_curve(kDegree, knots, P, random_weights(kCurvePoints, rng))
+                      : nurbs::make_curve(kDegree, knots, P);
+  const nurbs::Domain dom = nurbs::domain(cc.curve);
+  std::uniform_real_distribution<double> parameter(dom.start, dom.end);
+  cc.random.resize(kCurveParams);
+  for (double& u : cc.random) u = parameter(rng);
+  // The ends, where span searches clamp, and every interior knot exactly, where left and right
+  // evaluation take different pieces.
+  cc.random[0] = dom.end;
+  cc.random[1] = dom.start;
+  for (std::size_t i = kDegree + 1; i + kDegree + 1 < knots.size(); ++i) cc.random[i] = knots[i];
+  cc.sorted = cc.random;
+  std::sort(cc.sorted.begin(), cc.sorted.end());
+#ifdef CIFS_HAVE_SISL
+  cc.sisl = to_sisl(cc.curve);
+#endif
+  check_curve_case(cc);
+  return cc;
+}
+
+/// Built and cross-checked on first use, i.e. only when a selected benchmark needs it.
+CurveCase& curve_case(bool rational) {
+  if (rational) {
+    static CurveCase cc = make_curve_case(true);
+    return cc;
+  }
+  static CurveCase cc = make_curve_case(false);
+  return cc;
+}
+
+void register_curve_benchmarks(bool rational, bool sorted) {
+  const std::string group =
+      std::string(rational ? "BM_rcurve_eval_" : "BM_curve_eval_") + (sorted ? "sorted/" : "random/");
+  auto add = [&](const char* variant, auto run) {
+    benchmark::RegisterBenchmark((group + variant).c_str(), [rational, sorted, run](benchmark::State& state) {
+      CurveCase& cc = curve_case(rational);
+      const std::vector<double>& us = cc.params(sorted);
+      run(state, cc, us);
+      report_rate(state, us.size(), "ns/pt");
+    })->Unit(benchmark::kMicrosecond);
+  };
+  // cifs batch: nurbs::evaluate(curve, span) — span search hinted by the previous parameter.
+  add("cifs", [](benchmark::State& state, CurveCase& cc, const std::vector<double>& us) {
+    for (auto _ : state) {
+      Points out = nurbs::evaluate(cc.curve, us);
+      benchmark::DoNotOptimize(out.data());
+      benchmark::ClobberMemory();
+    }
+  });
+#ifdef CIFS_HAVE_SISL
+  add("sisl", [](benchmark::State& state, CurveCase& cc, const std::vector<double>& us) {
+    std::vector<double> out(us.size() * 3);
+    int worst = 0;
+    for (auto _ : state) {
+      worst = std::min(worst, sisl_curve_points<true>(cc.sisl.get(), us, out.data()));
+      benchmark::DoNotOptimize(out.data());
+      benchmark::ClobberMemory();
+    }
+    require_sisl_ok(worst, "s1227");
+  });
+  add("sisl_s1221", [](benchmark::State& state, CurveCase& cc, const std::vector<double>& us) {
+    std::vector<double> out(us.size() * 3);
+    int worst = 0;
+    for (auto _ : state) {
+      worst = std::min(worst, sisl_curve_points<false>(cc.sisl.get(), us, out.data()));
+      benchmark::DoNotOptimize(out.data());
+      benchmark::ClobberMemory();
+    }
+    require_sisl_ok(worst, "s1221");
+  });
+  if (!rational)  // SISL's batch curve evaluator (s1540 + s1541); polynomial curves only
+    add("sisl_s1542", [](benchmark::State& state, CurveCase& cc, const std::vector<double>& us) {
+      std::vector<double> out(us.size() * 3), params = us;
+      int status = 0, worst = 0;
+      for (auto _ : state) {
+        s1542(cc.sisl.get(), static_cast<int>(params.size()), params.data(), out.data(), &status);
+        worst = std::min(worst, status);
+        benchmark::DoNotOptimize(out.data());
+        benchmark::ClobberMemory();
+      }
+      require_sisl_ok(worst, "s1542");
+    });
+#endif
+  // cifs single-point forms: de Boor's triangle, and the basis form Σ N_i(u) P_i. Each call finds
+  // its span from scratch and returns a freshly allocated Point, as the API does.
+  add("cifs_deboor", [](benchmark::State& state, CurveCase& cc, const std::vector<double>& us) {
+    Points out(static_cast<Eigen::Index>(us.size()), 3);
+    for (auto _ : state) {
+      for (std::size_t k = 0; k < us.size(); ++k)
+        out.row(static_cast<Eigen::Index>(k)) = nurbs::evaluate(cc.curve, us[k]);
+      benchmark::DoNotOptimize(out.data());
+      benchmark::ClobberMemory();
+    }
+  });
+  add("cifs_basis", [](benchmark::State& state, CurveCase& cc, const std::vector<double>& us) {
+    Points out(static_cast<Eigen::Index>(us.size()), 3);
+    for (auto _ : state) {
+      for (std::size_t k = 0; k < us.size(); ++k)
+        out.row(static_cast<Eigen::Index>(k)) = nurbs::evaluate_basis(cc.curve, us[k]);
+      benchmark::DoNotOptimize(out.data());
+      benchmark::ClobberMemory();
+    }
+  });
+}
+
+// ------------------------------------------------------------------------------------------------
+// Case 2: surface grid — bicubic, 20 × 20 control points in 3-D, 1000 × 1000 grid.
+
+constexpr Eigen::Index kNet = 20;
+constexpr int kGrid = 1000;
+
+struct SurfaceCase {
+  nurbs::Surface surface;
+  std::vector<double> us, vs;
+#ifdef CIFS_HAVE_SISL
+  SislSurfPtr sisl;
+#endif
+};
+
+void check_surface_case(SurfaceCase& sc) {
+  const std::string label = sc.surface.rational ? "rational surface grid: " : "surface grid: ";
+  const Points grid = nurbs::evaluate_grid(sc.surface, sc.us, sc.vs);
+  const auto count = static_cast<std::size_t>(grid.size());
+  // Single-point cifs evaluation on every 10th grid row (it is slow: see the benchmark).
+  Points single(grid.rows(), grid.cols());
+  Points expected(grid.rows(), grid.cols());
+  Eigen::Index rows = 0;
+  for (std::size_t a = 0; a < sc.us.size(); a += 10)
+    for (std::size_t b = 0; b < sc.vs.size(); ++b, ++rows) {
+      single.row(rows) = nurbs::evaluate(sc.surface, sc.us[a], sc.vs[b]);
+      expected.row(rows) = grid.row(static_cast<Eigen::Index>(a * sc.vs.size() + b));
+    }
+  require_close(label + "cifs evaluate(s, u, v) vs evaluate_grid", single.data(), expected.data(),
+                static_cast<std::size_t>(rows * grid.cols()));
+#ifdef CIFS_HAVE_SISL
+  std::vector<double> out(count), normals(count);
+  require_sisl_ok(sisl_grid(sc.sisl.get(), sc.us, sc.vs, out.data(), normals.data()), "s1506");
+  require_close(label + "SISL s1506 vs cifs evaluate_grid", out.data(), grid.data(), count);
+  std::fill(out.begin(), out.end(), 0.0);
+  require_sisl_ok(sisl_grid_points(sc.sisl.get(), sc.us, sc.vs, out.data()), "s1424");
+  require_close(label + "SISL s1424 vs cifs evaluate_grid", out.data(), grid.data(), count);
+#else
+  (void)count;
+#endif
+}
+
+SurfaceCase make_surface_case(bool rational) {
+  std::mt19937_64 rng(rational ? 4 : 3);
+  SurfaceCase sc;
+  std::array<nurbs::Knots, 2> knots{clamped_knots(kNet, kDegree, rng, 0.0, 1.0),
+                                    clamped_knots(kNet, kDegree, rng, -1.0, 2.0)};
+  const Points P = random_points(kNet * kNet, 3, rng);
+  const Eigen::VectorXd w = rational ? random_weights(kNet * kNet, rng) : Eigen::VectorXd();
+  sc.surface = nurbs::make_surface({kDegree, kDegree}, std::move(knots), {kNet, kNet}, P, w);
+  sc.us = nurbs::uniform_parameters(nurbs::domain(sc.surface, nurbs::Direction::u), kGrid);
+  sc.vs = nurbs::uniform_parameters(nurbs::domain(sc.surface, nurbs::Direction::v), kGrid);
+#ifdef CIFS_HAVE_SISL
+  sc.sisl = to_sisl(sc.surface);
+#endif
+  check_surface_case(sc);
+  return sc;
+}
+
+SurfaceCase& surface_case(bool rational) {
+  if (rational) {
+    static SurfaceCase sc = make_surface_case(true);
+    return sc;
+  }
+  static SurfaceCase sc = make_surface_case(false);
+  return sc;
+}
+
+void register_surface_benchmarks(bool rational) {
+  const std::string group = rational ? "BM_rsurface_grid/" : "BM_surface_grid/";
+  auto add = [&](const char* variant, auto run, bool all_points = true) {
+    benchmark::RegisterBenchmark((group + variant).c_str(), [rational, run,
+                                                             all_points](benchmark::State& state) {
+      SurfaceCase& sc = surface_case(rational);
+      run(state, sc);
+      const std::size_t points = (all_points ? sc.us.size() : sc.us.size() / 10) * sc.vs.size();
+      report_rate(state, points, "ns/pt");
+    })->Unit(benchmark::kMillisecond);
+  };
+  add("cifs", [](benchmark::State& state, SurfaceCase& sc) {
+    for (auto _ : state) {
+      Points out = nurbs::evaluate_grid(sc.surface, sc.us, sc.vs);
+      benchmark::DoNotOptimize(out.data());
+      benchmark::ClobberMemory();
+    }
+  });
+#ifdef CIFS_HAVE_SISL
+  add("sisl", [](benchmark::State& state, SurfaceCase& sc) {
+    std::vector<double> out(sc.us.size() * sc.vs.size() * 3), normals(out.size());
+    int worst = 0;
+    for (auto _ : state) {
+      worst = std::min(worst, sisl_grid(sc.sisl.get(), sc.us, sc.vs, out.data(), normals.data()));
+      benchmark::DoNotOptimize(out.data());
+      benchmark::ClobberMemory();
+    }
+    require_sisl_ok(worst, "s1506");
+  });
+  add("sisl_s1424", [](benchmark::State& state, SurfaceCase& sc) {
+    std::vector<double> out(sc.us.size() * sc.vs.size() * 3);
+    int worst = 0;
+    for (auto _ : state) {
+      worst = std::min(worst, sisl_grid_points(sc.sisl.get(), sc.us, sc.vs, out.data()));
+      benchmark::DoNotOptimize(out.data());
+      benchmark::ClobberMemory();
+    }
+    require_sisl_ok(worst, "s1424");
+  });
+#endif
+  // cifs single-point evaluate(s, u, v), the twin of s1424; every 10th grid row (it is slow).
+  add(
+      "cifs_point",
+      [](benchmark::State& state, SurfaceCase& sc) {
+        Points out(static_cast<Eigen::Index>(sc.us.size() / 10 * sc.vs.size()), 3);
+        for (auto _ : state) {
+          Eigen::Index row = 0;
+          for (std::size_t a = 0; a < sc.us.size(); a += 10)
+            for (double v : sc.vs) out.row(row++) = nurbs::evaluate(sc.surface, sc.us[a], v);
+          benchmark::DoNotOptimize(out.data());
+          benchmark::ClobberMemory();
+        }
+      },
+      false);
+}
+
+// ------------------------------------------------------------------------------------------------
+// Case 3: refinement — the midpoint of every span of a cubic 3-D curve with n control points.
+
+struct RefineCase {
+  nurbs::Curve curve;
+  std::vector<double> mids;  // sorted, as s1018 requires
+#ifdef CIFS_HAVE_SISL
+  SislCurvePtr sisl;
+#endif
+};
+
+void check_refine_case(RefineCase& rc) {
+  const std::string label = "refine n = " + std::to_string(rc.curve.P.rows()) + ": ";
+  const nurbs::Curve a = nurbs::refine_midpoints(rc.curve);
+  const nurbs::Curve b = nurbs::refine(rc.curve, rc.mids);
+  if (a.knots != b.knots || a.P.rows() != rc.curve.P.rows() + static_cast<Eigen::Index>(rc.mids.size()))
+    fail("cross-check FAILED: " + label + "refine_midpoints and refine(mids) give different knots");
+  require_close(label + "cifs refine(mids) vs refine_midpoints", b.P.data(), a.P.data(),
+                static_cast<std::size_t>(a.P.size()));
+#ifdef CIFS_HAVE_SISL
+  SISLCurve* out = nullptr;
+  int status = 0;
+  s1018(rc.sisl.get(), rc.mids.data(), static_cast<int>(rc.mids.size()), &out, &status);
+  require_sisl_ok(status, "s1018");
+  const SislCurvePtr refined(out);
+  if (refined->in != a.P.rows() || refined->ik != a.degree + 1)
+    fail("cross-check FAILED: " + label + "SISL s1018 gives " + std::to_string(refined->in) +
+         " control points, cifs " + std::to_string(a.P.rows()));
+  require_close(label + "SISL s1018 knots vs cifs", refined->et, a.knots.data(), a.knots.size());
+  require_close(label + "SISL s1018 points vs cifs", refined->ecoef, a.P.data(),
+                static_cast<std::size_t>(a.P.size()));
+#endif
+}
+
+RefineCase make_refine_case(Eigen::Index n) {
+  std::mt19937_64 rng(static_cast<std::uint64_t>(n));
+  RefineCase rc;
+  rc.curve = nurbs::make_curve(kDegree, clamped_knots(n, kDegree, rng, 0.0, 1.0), random_points(n, 3, rng));
+  const std::vector<double> b = nurbs::breakpoints(rc.curve.knots, kDegree);
+  for (std::size_t i = 0; i + 1 < b.size(); ++i) rc.mids.push_back(0.5 * (b[i] + b[i + 1]));
+#ifdef CIFS_HAVE_SISL
+  rc.sisl = to_sisl(rc.curve);
+#endif
+  check_refine_case(rc);
+  return rc;
+}
+
+RefineCase& refine_case(Eigen::Index n) {
+  static std::map<Eigen::Index, RefineCase> cases;
+  auto it = cases.find(n);
+  if (it == cases.end()) it = cases.emplace(n, make_refine_case(n)).first;
+  return it->second;
+}
+
+void register_refine_benchmarks(Eigen::Index n) {
+  const std::string group = "BM_curve_refine_" + std::to_string(n) + "/";
+  auto add = [&](const char* variant, auto run) {
+    benchmark::RegisterBenchmark((group + variant).c_str(), [n, run](benchmark::State& state) {
+      RefineCase& rc = refine_case(n);
+      run(state, rc);
+      report_rate(state, rc.mids.size(), "ns/knot");
+    })->Unit(benchmark::kMicrosecond);
+  };
+  // cifs refine with the explicit knot list (the twin of s1018) and refine_midpoints, which also
+  // computes the breakpoints and midpoints.
+  add("cifs", [](benchmark::State& state, RefineCase& rc) {
+    for (auto _ : state) {
+      nurbs::Curve out = nurbs::refine(rc.curve, rc.mids);
+      benchmark::DoNotOptimize(out.P.data());
+      benchmark::ClobberMemory();
+    }
+  });
+#ifdef CIFS_HAVE_SISL
+  add("sisl", [](benchmark::State& state, RefineCase& rc) {
+    int worst = 0;
+    for (auto _ : state) {
+      SISLCurve* out = nullptr;
+      int status = 0;
+      s1018(rc.sisl.get(), rc.mids.data(), static_cast<int>(rc.mids.size()), &out, &status);
+      worst = std::min(worst, status);
+      benchmark::DoNotOptimize(out);
+      if (out != nullptr) freeCurve(out);
+    }
+    require_sisl_ok(worst, "s1018");
+  });
+#endif
+  add("cifs_midpoints", [](benchmark::State& state, RefineCase& rc) {
+    for (auto _ : state) {
+      nurbs::Curve out = nurbs::refine_midpoints(rc.curve);
+      benchmark::DoNotOptimize(out.P.data());
+      benchmark::ClobberMemory();
+    }
+  });
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  for (bool sorted : {false, true}) register_curve_benchmarks(false, sorted);
+  for (bool sorted : {false, true}) register_curve_benchmarks(true, sorted);
+  register_surface_benchmarks(false);
+  register_surface_benchmarks(true);
+  register_refine_benchmarks(1000);
+  register_refine_benchmarks(100000);
+  benchmark::AddCustomContext("sisl", kSislContext);
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,169 @@
+// SPDX-License-Identifier: MIT
+// The cifs command line, run as a user runs it: exit status, stdout and stderr.
+#include <sys/wait.h>
+#include <catch2/catch.hpp>
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cifs/io/shape.hpp"
+
+using namespace cifs;
+using nlohmann::json;
+
+namespace {
+
+struct Run {
+  int status;
+  std::string out, err;
+};
+
+const std::filesystem::path& scratch() {
+  static const std::filesystem::path dir = [] {
+    auto d = std::filesystem::temp_directory_path() / ("cifs_cli_test_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(d);
+    return d;
+  }();
+  return dir;
+}
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+Run cifs_cli(const std::string& args) {
+  const auto out = scratch() / "stdout", err = scratch() / "stderr";
+  const std::string cmd =
+      std::string(CIFS_CLI_PATH) + " " + args + " >" + out.string() + " 2>" + err.string();
+  const int raw = std::system(cmd.c_str());
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
+}
+
+std::string file(const std::string& name, const std::string& content) {
+  const auto p = scratch() / name;
+  std::ofstream(p) << content;
+  return p.string();
+}
+
+const char* kCurve = R"({"curve": {"degree": 3, "knots": [0,0,0,0,1,2,4,4,4,4],
+  "points": [[0,0,0],[1,2,0],[3,3,1],[4,0,0],[6,1,2],[7,3,0]], "weights": [1,2,1,0.5,1,1]}})";
+const char* kSurface = R"({"surface": {"degree": [2, 1], "knots": [[0,0,0,1,1,1],[0,0,1,1]],
+  "points": [[[0,0,0],[0,1,0]], [[1,0,1],[1,1,1]], [[2,0,0],[2,1,3]]]}})";
+
+/// One error line on stderr, nothing on stdout, exit status 2.
+void check_error(const Run& r, const std::string& needle) {
+  INFO("stderr: " << r.err);
+  CHECK(r.status == 2);
+  CHECK(r.out.empty());
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  CHECK_THAT(r.err, Catch::StartsWith("cifs: ") && Catch::Contains(needle));
+}
+
+}  // namespace
+
+TEST_CASE("cifs eval prints the points in parameter order", "[cli]") {
+  const std::string shape = file("c.json", kCurve);
+  const auto c = std::get<nurbs::Curve>(io::read_shape(shape));
+  const Run r = cifs_cli("eval " + shape + " --at 4 --at 0.25 --at 1");
+  REQUIRE(r.status == 0);
+  const json pts = json::parse(r.out)["points"];
+  REQUIRE(pts.size() == 3);
+  const double us[] = {4, 0.25, 1};
+  for (int i = 0; i < 3; ++i) {
+    const Point p = nurbs::evaluate_basis(c, us[i]);
+    for (int k = 0; k < 3; ++k)
+      CHECK(pts[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)].get<double>() == p(k));
+  }
+  const json samples = json::parse(cifs_cli("eval " + shape + " --samples 5").out)["points"];
+  REQUIRE(samples.size() == 5);
+  CHECK(samples[4][0].get<double>() == 7.0);  // the domain end is the last control point
+}
+
+TEST_CASE("cifs eval on a surface takes U,V and grids", "[cli]") {
+  const std::string shape = file("s.json", kSurface);
+  const Run r = cifs_cli("eval " + shape + " --at 1,1 --at 0.5,0.25");
+  REQUIRE(r.status == 0);
+  const json pts = json::parse(r.out)["points"];
+  CHECK(pts[0] == json::array({2.0, 1.0, 3.0}));
+  CHECK(json::parse(cifs_cli("eval " + shape + " --samples 3").out)["points"].size() == 9);
+}
+
+TEST_CASE("cifs insert prints the same curve with more knots", "[cli]") {
+  const std::string shape = file("c.json", kCurve);
+  const Run r = cifs_cli("insert " + shape + " --knot 1.5 --knot 3 --knot 3");
+  REQUIRE(r.status == 0);
+  const auto refined = std::get<nurbs::Curve>(io::parse_shape_json(r.out, "stdout"));
+  const auto c = std::get<nurbs::Curve>(io::read_shape(shape));
+  CHECK(refined.knots.size() == c.knots.size() + 3);
+  for (double u : nurbs::uniform_parameters(nurbs::domain(c), 41))
+    CHECK((nurbs::evaluate(refined, u) - nurbs::evaluate(c, u)).norm() <= 1e-12 * 7);
+  const std::string surface = file("s.json", kSurface);
+  const Run rs = cifs_cli("insert " + surface + " --dir v --knot 0.5");
+  REQUIRE(rs.status == 0);
+  CHECK(std::get<nurbs::Surface>(io::parse_shape_json(rs.out, "stdout")).count[1] == 3);
+}
+
+TEST_CASE("cifs info describes the shape", "[cli]") {
+  const json info = json::parse(cifs_cli("info " + file("c.json", kCurve)).out);
+  CHECK(info["type"] == "curve");
+  CHECK(info["degree"] == 3);
+  CHECK(info["control_points"] == 6);
+  CHECK(info["segments"] == 3);
+  CHECK(info["rational"] == true);
+  CHECK(info["domain"] == json::array({0.0, 4.0}));
+}
+
+TEST_CASE("cifs reports bad input on one line and exits 2", "[cli]") {
+  const std::string good = file("c.json", kCurve);
+  check_error(cifs_cli("eval /nonexistent.json --at 0"), "/nonexistent.json: cannot open");
+  check_error(cifs_cli("eval " + file("bad.json", "{\"curve\": ") + " --at 0"), "malformed JSON");
+  check_error(
+      cifs_cli("eval " +
+               file("dec.json", R"({"curve": {"degree": 1, "knots": [0,0,2,1], "points": [[0],[1]]}})") +
+               " --at 0"),
+      "curve.knots[3]: 1 is less than the previous knot 2");
+  check_error(cifs_cli("eval " +
+                       file("inf.json",
+                            R"({"curve": {"degree": 1, "knots": [0,0,1e400,1e400], "points": [[0],[1]]}})") +
+                       " --at 0"),
+              "number overflow parsing '1e400'");
+  check_error(
+      cifs_cli("eval " +
+               file("cnt.json", R"({"curve": {"degree": 2, "knots": [0,0,1,1], "points": [[0],[1]]}})") +
+               " --at 0"),
+      "too few");
+  check_error(
+      cifs_cli(
+          "eval " +
+          file("w.json",
+               R"({"curve": {"degree": 1, "knots": [0,0,1,1], "points": [[0],[1]], "weights": [1,-1]}})") +
+          " --at 0"),
+      "weights[1]");
+  check_error(cifs_cli("eval " + good + " --at 4.5"), "parameter 4.5 is outside the domain [0, 4]");
+  check_error(cifs_cli("eval " + good + " --at nan"), "--at 'nan': not a finite number");
+  check_error(cifs_cli("eval " + good + " --at 1,2"), "a curve takes one parameter");
+  check_error(cifs_cli("eval " + good), "give --at U");
+  check_error(cifs_cli("eval " + good + " --samples -3"), "--samples -3");
+  check_error(cifs_cli("eval " + good + " --samples 2000000000"), "exceed the limit");
+  check_error(cifs_cli("eval " + file("s.json", kSurface) + " --at 0.5"), "a surface takes U,V");
+  check_error(cifs_cli("insert " + good + " --knot 9"), "knot 9 is outside the domain");
+  check_error(cifs_cli("insert " + good + " --knot 1 --knot 1 --knot 1"), "multiplicity 4 > degree 3");
+  check_error(cifs_cli("insert " + good + " --dir w --knot 1"), "--dir 'w'");
+  check_error(cifs_cli("frobnicate"), "unknown command 'frobnicate'");
+  check_error(cifs_cli("eval"), "shape");
+  check_error(cifs_cli("info " + scratch().string()), "is a directory");
+}
+
+TEST_CASE("cifs gallery writes its outputs", "[cli]") {
+  const auto out = scratch() / "gallery";
+  const Run r = cifs_cli("gallery " + out.string());
+  REQUIRE(r.status == 0);
+  const auto circle = std::get<nurbs::Curve>(io::read_shape(out / "circle.json"));
+  CHECK(circle.rational);
+  CHECK(json::parse(slurp(out / "circle.samples.json"))["points"].size() == 257);
+  std::filesystem::remove_all(scratch());
+}
