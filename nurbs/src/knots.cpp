@@ -116,9 +116,17 @@ void basis_functions(std::span<const double> knots, int degree, int span, double
 void blossom_weights(std::span<const double> knots, int degree, int span, std::span<const double> args,
                      double* W) noexcept {
   const double* t = knots.data();
+  // The blossom is symmetric; the order of the arguments matters only for rounding. Level j spans
+  // [t_{k+1−j+r}, t_{k+1+r}], narrow first: feeding it the arguments nearest the span keeps the
+  // factors (hi − x), (x − lo) non-negative as long as possible, instead of large and cancelling.
+  double x_sorted[kMaxDegree];
+  std::copy(args.begin(), args.begin() + degree, x_sorted);
+  const double a = t[span], b = t[span + 1];
+  const auto distance = [a, b](double x) { return x < a ? a - x : (x > b ? x - b : 0.0); };
+  std::sort(x_sorted, x_sorted + degree, [&](double x, double y) { return distance(x) < distance(y); });
   W[0] = 1.0;
   for (int j = 1; j <= degree; ++j) {
-    const double x = args[static_cast<std::size_t>(j - 1)];
+    const double x = x_sorted[j - 1];
     double saved = 0.0;
     for (int r = 0; r < j; ++r) {
       const double lo = t[span + 1 - j + r], hi = t[span + 1 + r];
