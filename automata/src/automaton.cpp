@@ -1,0 +1,221 @@
+// SPDX-License-Identifier: MIT
+#include "cifs/automata/automaton.hpp"
+
+#include <boost/graph/graphviz.hpp>
+#include <boost/graph/strong_components.hpp>
+#include <cmath>
+#include <deque>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cifs/errors.hpp"
+#include "cifs/nurbs/doubling.hpp"
+
+namespace cifs::automata {
+namespace {
+
+constexpr const char* kHalfLabel[2] = {"G", "D"};
+
+std::vector<double> matrix_key(const Eigen::MatrixXd& M) {
+  std::vector<double> key{static_cast<double>(M.rows()), static_cast<double>(M.cols())};
+  key.insert(key.end(), M.data(), M.data() + M.size());
+  return key;
+}
+
+std::string short_number(double x) {
+  std::ostringstream out;
+  out.precision(6);
+  out << x;
+  return out.str();
+}
+
+}  // namespace
+
+Automaton knot_automaton(const nurbs::Curve& curve) {
+  const int d = curve.degree;
+  Automaton a;
+  std::map<std::vector<double>, StateId> ids;  // normalised window → state
+  std::deque<StateId> todo;
+  const auto state_of = [&](std::vector<double> window) {
+    const auto [it, added] = ids.try_emplace(window, 0);
+    if (added) {
+      it->second = boost::add_vertex(State{d + 1, std::move(window), false, ""}, a.graph);
+      a.graph[it->second].name = "s" + std::to_string(it->second);
+      todo.push_back(it->second);
+    }
+    return it->second;
+  };
+  int segment = 0;
+  for (int k = d; k < curve.P.rows(); ++k) {
+    const double lo = curve.knots[static_cast<std::size_t>(k)],
+                 hi = curve.knots[static_cast<std::size_t>(k + 1)];
+    if (!(lo < hi)) continue;
+    nurbs::Window w = nurbs::segment_window(curve.knots, d, k);
+    const double centre = w[static_cast<std::size_t>(d - 1)];
+    for (double& x : w) x /= centre;  // up to scale: the centre is 1 (exactly)
+    a.initial.push_back(Initial{segment++, state_of(std::move(w)), lo, hi, k});
+  }
+  // Children of a normalised window are made of its own entries and keep a unit centre, so the
+  // keys stay exact: no arithmetic happens after the first normalisation.
+  while (!todo.empty()) {
+    const StateId s = todo.front();
+    todo.pop_front();
+    const std::vector<double> window = a.graph[s].window;
+    for (auto half : {nurbs::Half::G, nurbs::Half::D}) {
+      const StateId child = state_of(nurbs::child_window(window, d, half));
+      boost::add_edge(
+          s, child,
+          Transition{kHalfLabel[static_cast<int>(half)], nurbs::subdivision_matrix(window, d, half)},
+          a.graph);
+    }
+  }
+  mark_recurrent(a);
+  return a;
+}
+
+void mark_recurrent(Automaton& a) {
+  // A state recurs when it occurs at arbitrarily deep levels of the unfolded automaton: it lies on
+  // a cycle (a strong component with more than one state or a self-loop) or below one.
+  const auto n = boost::num_vertices(a.graph);
+  std::vector<std::size_t> component(n);
+  boost::strong_components(a.graph, boost::make_iterator_property_map(
+                                        component.begin(), boost::get(boost::vertex_index, a.graph)));
+  std::vector<int> members(n, 0);
+  for (std::size_t c : component) ++members[c];
+  std::vector<StateId> stack;
+  for (StateId s = 0; s < n; ++s) {
+    a.graph[s].recurrent = members[component[s]] > 1;
+    for (auto [e, end] = boost::out_edges(s, a.graph); e != end; ++e)
+      a.graph[s].recurrent = a.graph[s].recurrent || boost::target(*e, a.graph) == s;
+    if (a.graph[s].recurrent) stack.push_back(s);
+  }
+  while (!stack.empty()) {
+    const StateId s = stack.back();
+    stack.pop_back();
+    for (auto [e, end] = boost::out_edges(s, a.graph); e != end; ++e) {
+      const StateId t = boost::target(*e, a.graph);
+      if (!a.graph[t].recurrent) {
+        a.graph[t].recurrent = true;
+        stack.push_back(t);
+      }
+    }
+  }
+}
+
+Automaton minimize(const Automaton& a) {
+  const auto n = boost::num_vertices(a.graph);
+  // Initial classes: size and the ordered (label, matrix) of the out-edges.
+  std::vector<std::size_t> cls(n);
+  {
+    std::map<std::vector<std::vector<double>>, std::size_t> first;
+    std::map<std::vector<std::string>, std::size_t> labels;
+    for (StateId s = 0; s < n; ++s) {
+      std::vector<std::vector<double>> key{{static_cast<double>(a.graph[s].size)}};
+      std::vector<std::string> label_key;
+      for (auto [e, end] = boost::out_edges(s, a.graph); e != end; ++e) {
+        key.push_back(matrix_key(a.graph[*e].matrix));
+        label_key.push_back(a.graph[*e].label);
+      }
+      key.push_back({static_cast<double>(labels.try_emplace(label_key, labels.size()).first->second)});
+      cls[s] = first.try_emplace(key, first.size()).first->second;
+    }
+  }
+  // Moore refinement: split classes by the classes of the children, until stable.
+  for (std::size_t count = 0;;) {
+    std::map<std::vector<std::size_t>, std::size_t> next_ids;
+    std::vector<std::size_t> next(n);
+    for (StateId s = 0; s < n; ++s) {
+      std::vector<std::size_t> key{cls[s]};
+      for (auto [e, end] = boost::out_edges(s, a.graph); e != end; ++e)
+        key.push_back(cls[boost::target(*e, a.graph)]);
+      next[s] = next_ids.try_emplace(key, next_ids.size()).first->second;
+    }
+    cls.swap(next);
+    if (next_ids.size() == count) break;
+    count = next_ids.size();
+  }
+  // Quotient: the first state of each class represents it.
+  Automaton out;
+  std::map<std::size_t, StateId> rep;
+  for (StateId s = 0; s < n; ++s)
+    if (rep.try_emplace(cls[s], 0).second) {
+      rep[cls[s]] = boost::add_vertex(a.graph[s], out.graph);
+      out.graph[rep[cls[s]]].name = "s" + std::to_string(rep[cls[s]]);
+    }
+  std::vector<bool> done(rep.size(), false);
+  for (StateId s = 0; s < n; ++s) {
+    if (done[cls[s]]) continue;
+    done[cls[s]] = true;
+    for (auto [e, end] = boost::out_edges(s, a.graph); e != end; ++e)
+      boost::add_edge(rep[cls[s]], rep[cls[boost::target(*e, a.graph)]], a.graph[*e], out.graph);
+  }
+  for (Initial i : a.initial) {
+    i.state = rep[cls[i.state]];
+    out.initial.push_back(i);
+  }
+  mark_recurrent(out);
+  return out;
+}
+
+std::vector<Points> initial_nets(const Automaton& a, const nurbs::Curve& curve) {
+  std::vector<Points> nets;
+  for (const Initial& i : a.initial) {
+    if (i.span < curve.degree || i.span >= curve.P.rows())
+      throw InvalidInput("initial_nets: segment " + std::to_string(i.segment) + " has no span in this curve");
+    nets.push_back(curve.P.middleRows(i.span - curve.degree, curve.degree + 1));
+  }
+  return nets;
+}
+
+std::string to_json(const Automaton& a) {
+  using nlohmann::json;
+  json states = json::array(), transitions = json::array(), initial = json::array();
+  for (StateId s = 0; s < boost::num_vertices(a.graph); ++s) {
+    const State& st = a.graph[s];
+    json j{{"id", s}, {"size", st.size}, {"recurrent", st.recurrent}};
+    if (!st.window.empty()) j["window"] = st.window;
+    states.push_back(std::move(j));
+  }
+  for (auto [e, end] = boost::edges(a.graph); e != end; ++e) {
+    const Eigen::MatrixXd& M = a.graph[*e].matrix;
+    json rows = json::array();
+    for (Eigen::Index r = 0; r < M.rows(); ++r) {
+      std::vector<double> row(static_cast<std::size_t>(M.cols()));
+      for (Eigen::Index c = 0; c < M.cols(); ++c) row[static_cast<std::size_t>(c)] = M(r, c);
+      rows.push_back(std::move(row));
+    }
+    transitions.push_back({{"from", boost::source(*e, a.graph)},
+                           {"to", boost::target(*e, a.graph)},
+                           {"label", a.graph[*e].label},
+                           {"matrix", rows}});
+  }
+  for (const Initial& i : a.initial)
+    initial.push_back({{"segment", i.segment}, {"state", i.state}, {"interval", {i.start, i.end}}});
+  return json{{"states", states}, {"transitions", transitions}, {"initial", initial}}.dump() + "\n";
+}
+
+std::string to_dot(const Automaton& a) {
+  std::vector<bool> is_initial(boost::num_vertices(a.graph), false);
+  for (const Initial& i : a.initial) is_initial[i.state] = true;
+  std::ostringstream out;
+  boost::write_graphviz(
+      out, a.graph,
+      [&](std::ostream& o, StateId s) {
+        const State& st = a.graph[s];
+        std::string label = "s" + std::to_string(s);
+        if (!st.window.empty()) {
+          label += "\\n(";
+          for (std::size_t i = 0; i < st.window.size(); ++i)
+            label += (i ? ", " : "") + short_number(st.window[i]);
+          label += ")";
+        }
+        o << "[label=\"" << label << "\"" << (st.recurrent ? ", peripheries=2" : "")
+          << (is_initial[s] ? ", style=bold" : "") << "]";
+      },
+      [&](std::ostream& o, TransitionId e) { o << "[label=\"" << a.graph[e].label << "\"]"; },
+      [](std::ostream& o) { o << "rankdir=LR;\nnode [shape=circle, fontsize=10];\n"; });
+  return out.str();
+}
+
+}  // namespace cifs::automata

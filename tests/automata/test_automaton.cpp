@@ -1,0 +1,165 @@
+// SPDX-License-Identifier: MIT
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <set>
+
+#include "cifs/automata/automaton.hpp"
+#include "cifs/nurbs/doubling.hpp"
+#include "cifs/nurbs/refine.hpp"
+
+using namespace cifs;
+using automata::StateId;
+
+namespace {
+
+nurbs::Knots random_knots(std::mt19937_64& rng, std::size_t count) {
+  std::uniform_real_distribution<double> len(0.5, 2.0);
+  nurbs::Knots t(count);
+  for (std::size_t i = 1; i < count; ++i) t[i] = t[i - 1] + len(rng);
+  return t;
+}
+
+std::set<StateId> reachable(const automata::Automaton& a, StateId from) {
+  std::set<StateId> seen{from};
+  std::vector<StateId> stack{from};
+  while (!stack.empty()) {
+    const StateId s = stack.back();
+    stack.pop_back();
+    for (auto [e, end] = boost::out_edges(s, a.graph); e != end; ++e)
+      if (seen.insert(boost::target(*e, a.graph)).second) stack.push_back(boost::target(*e, a.graph));
+  }
+  return seen;
+}
+
+StateId uniform_state(const automata::Automaton& a, int d) {
+  for (StateId s = 0; s < boost::num_vertices(a.graph); ++s)
+    if (a.graph[s].window == std::vector<double>(static_cast<std::size_t>(2 * d - 1), 1.0)) return s;
+  return boost::num_vertices(a.graph);
+}
+
+}  // namespace
+
+TEST_CASE("Generic knots: 4(d-1) states per segment, 2d-1 recur, one shared uniform state", "[automata]") {
+  std::mt19937_64 rng(99);
+  for (int d = 2; d <= 8; ++d) {
+    const int n = 4 * d;
+    const nurbs::Curve c =
+        nurbs::make_curve(d, random_knots(rng, static_cast<std::size_t>(n + d + 1)), Points::Random(n, 2));
+    const automata::Automaton a = automata::knot_automaton(c);
+    CHECK(static_cast<int>(a.initial.size()) == n - d);
+    const StateId uniform = uniform_state(a, d);
+    REQUIRE(uniform < boost::num_vertices(a.graph));
+    for (const automata::Initial& init : a.initial) {
+      const std::set<StateId> states = reachable(a, init.state);
+      INFO("degree " << d << ", segment " << init.segment);
+      CHECK(static_cast<int>(states.size()) == 4 * (d - 1));
+      CHECK(std::count_if(states.begin(), states.end(), [&](StateId s) { return a.graph[s].recurrent; }) ==
+            2 * d - 1);
+      CHECK(states.count(uniform) == 1);
+      CHECK(!a.graph[init.state].recurrent);
+    }
+    // Every state has exactly the two children G, D with the matrices of its window.
+    for (StateId s = 0; s < boost::num_vertices(a.graph); ++s) {
+      REQUIRE(boost::out_degree(s, a.graph) == 2);
+      int half = 0;
+      for (auto [e, end] = boost::out_edges(s, a.graph); e != end; ++e, ++half) {
+        CHECK(a.graph[*e].label == (half == 0 ? "G" : "D"));
+        CHECK(a.graph[*e].matrix ==
+              nurbs::subdivision_matrix(a.graph[s].window, d, static_cast<nurbs::Half>(half)));
+        CHECK(a.graph[boost::target(*e, a.graph)].window ==
+              nurbs::child_window(a.graph[s].window, d, static_cast<nurbs::Half>(half)));
+      }
+      CHECK(a.graph[s].window[static_cast<std::size_t>(d - 1)] == 1.0);
+    }
+  }
+}
+
+TEST_CASE("Uniform, clamped, closed and repeated knots", "[automata]") {
+  SECTION("a uniform closed curve is one state") {
+    const nurbs::Curve c = nurbs::make_closed_curve(3, {0, 1, 2, 3, 4, 5, 6}, Points::Random(6, 3));
+    const automata::Automaton a = automata::knot_automaton(c);
+    CHECK(boost::num_vertices(a.graph) == 1);
+    CHECK(a.initial.size() == 6);
+    CHECK(a.graph[0].recurrent);
+  }
+  SECTION("uniform interior knots share states; scaled knots give the same automaton") {
+    const nurbs::Knots t{0, 0, 0, 0, 1, 2, 3, 4, 5, 5, 5, 5};
+    nurbs::Knots scaled = t;
+    for (double& x : scaled) x = x * 0.125 + 3;  // exact in binary
+    const auto a = automata::knot_automaton(nurbs::make_curve(3, t, Points::Random(8, 2)));
+    const auto b = automata::knot_automaton(nurbs::make_curve(3, scaled, Points::Random(8, 2)));
+    const auto ja = nlohmann::json::parse(automata::to_json(a)),
+               jb = nlohmann::json::parse(automata::to_json(b));
+    CHECK(ja["states"] == jb["states"]);
+    CHECK(ja["transitions"] == jb["transitions"]);
+    CHECK(a.initial.size() == 5);
+    CHECK(reachable(a, a.initial[2].state).size() == 1);  // the middle segment is uniform already
+  }
+  SECTION("repeated interior knots: zero intervals stay single zeros") {
+    const nurbs::Curve c = nurbs::make_curve(3, {0, 0, 0, 0, 1, 1, 3, 4, 4, 4, 4}, Points::Random(7, 2));
+    const automata::Automaton a = automata::knot_automaton(c);
+    CHECK(a.initial.size() == 3);
+    for (StateId s = 0; s < boost::num_vertices(a.graph); ++s) {
+      const auto& w = a.graph[s].window;
+      for (std::size_t i = 0; i + 2 < w.size(); ++i) CHECK(!(w[i] == 0 && w[i + 1] == 0 && w[i + 2] == 0));
+    }
+  }
+  SECTION("degree 1 is one uniform state") {
+    const auto a = automata::knot_automaton(nurbs::make_curve(1, {0, 0, 0.3, 2, 2}, Points::Random(3, 2)));
+    CHECK(boost::num_vertices(a.graph) == 1);
+  }
+}
+
+TEST_CASE("Minimisation merges states no net can tell apart", "[automata]") {
+  // Two copies of Chaikin's state, each pointing at the other, plus a distinct state.
+  const Eigen::MatrixXd G = nurbs::subdivision_matrix(nurbs::Window{1, 1, 1}, 2, nurbs::Half::G);
+  const Eigen::MatrixXd D = nurbs::subdivision_matrix(nurbs::Window{1, 1, 1}, 2, nurbs::Half::D);
+  const Eigen::MatrixXd G2 = nurbs::subdivision_matrix(nurbs::Window{2, 1, 1}, 2, nurbs::Half::G);
+  automata::Automaton a;
+  for (int i = 0; i < 3; ++i) boost::add_vertex(automata::State{3, {}, false, ""}, a.graph);
+  boost::add_edge(0, 1, automata::Transition{"G", G}, a.graph);
+  boost::add_edge(0, 1, automata::Transition{"D", D}, a.graph);
+  boost::add_edge(1, 0, automata::Transition{"G", G}, a.graph);
+  boost::add_edge(1, 0, automata::Transition{"D", D}, a.graph);
+  boost::add_edge(2, 0, automata::Transition{"G", G2}, a.graph);
+  boost::add_edge(2, 1, automata::Transition{"D", D}, a.graph);
+  a.initial = {{0, 2, 0, 1, -1}, {1, 1, 1, 2, -1}};
+  automata::mark_recurrent(a);
+  const automata::Automaton m = automata::minimize(a);
+  CHECK(boost::num_vertices(m.graph) == 2);
+  CHECK(m.initial[0].state != m.initial[1].state);  // states 0 and 1 are one class, state 2 another
+  CHECK(boost::out_degree(m.initial[1].state, m.graph) == 2);
+  for (auto [e, end] = boost::out_edges(m.initial[1].state, m.graph); e != end; ++e)
+    CHECK(boost::target(*e, m.graph) == m.initial[1].state);  // the merged class loops on itself
+  CHECK(!m.graph[m.initial[0].state].recurrent);
+  // Same matrices but different children classes are not merged.
+  const automata::Automaton k =
+      automata::knot_automaton(nurbs::make_curve(2, {0, 0, 0, 1, 3, 4, 4, 4}, Points::Random(5, 2)));
+  CHECK(boost::num_vertices(automata::minimize(k).graph) == boost::num_vertices(k.graph));
+}
+
+TEST_CASE("Automaton JSON and DOT", "[automata]") {
+  const nurbs::Curve c = nurbs::make_curve(2, {0, 0, 0, 1, 3, 4, 4, 4}, Points::Random(5, 2));
+  const automata::Automaton a = automata::knot_automaton(c);
+  const auto j = nlohmann::json::parse(automata::to_json(a));
+  CHECK(j["states"].size() == boost::num_vertices(a.graph));
+  CHECK(j["transitions"].size() == 2 * boost::num_vertices(a.graph));
+  CHECK(j["initial"].size() == 3);
+  CHECK(j["initial"][1]["interval"] == nlohmann::json::array({1.0, 3.0}));
+  for (const auto& t : j["transitions"]) {
+    CHECK(t["matrix"].size() == 3);
+    for (const auto& row : t["matrix"]) {
+      double sum = 0;
+      for (const auto& x : row) sum += x.get<double>();
+      CHECK(sum == Approx(1).epsilon(1e-15));
+    }
+  }
+  const std::string dot = automata::to_dot(a);
+  CHECK_THAT(dot, Catch::StartsWith("digraph G {") && Catch::Contains("[label=\"G\"]") &&
+                      Catch::Contains("peripheries=2"));
+  // The nets of the initial states are the segments' control points.
+  const std::vector<Points> nets = automata::initial_nets(a, c);
+  REQUIRE(nets.size() == 3);
+  CHECK(nets[2] == c.P.bottomRows(3));
+}
