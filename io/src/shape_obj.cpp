@@ -83,7 +83,10 @@ std::string num(double x) {
 /// A token quoted for a message, cut short when it is long.
 std::string quote(std::string_view t) {
   constexpr std::size_t kMax = 40;
-  return "'" + std::string(t.substr(0, kMax)) + (t.size() > kMax ? "...'" : "'");
+  std::string out(1, '\'');
+  out.append(t.substr(0, kMax));
+  out.append(t.size() > kMax ? "...'" : "'");
+  return out;
 }
 
 struct Vertex {
@@ -401,6 +404,10 @@ class ObjReader {
 
   nurbs::Curve build_curve(const Element& e) const {
     const auto n = static_cast<Eigen::Index>(e.control.size());
+    if (n < e.degree[0] + 1)
+      invalid(e.line, "curv: " + std::to_string(n) + " control vertices are too few for degree " +
+                          std::to_string(e.degree[0]) + " (at least " + std::to_string(e.degree[0] + 1) +
+                          " needed)");
     Points P(n, 3);
     Eigen::VectorXd w(e.rational ? n : 0);
     for (Eigen::Index i = 0; i < n; ++i) control_point(e, e.control[static_cast<std::size_t>(i)], P, i, w);
@@ -486,7 +493,7 @@ void put_list(std::string& out, const std::string& keyword, const Values& values
   out += keyword;
   std::size_t k = 0;
   for (const auto& x : values) {
-    if (k > 0 && k % per_line == 0) out += " \\\n ";
+    if (k > 0 && k % per_line == 0) out += " \\\n";
     out += ' ';
     if constexpr (std::is_floating_point_v<std::decay_t<decltype(x)>>)
       put(out, x);
