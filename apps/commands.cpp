@@ -5,9 +5,14 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "cifs/automata/automaton.hpp"
 #include "cifs/errors.hpp"
+#include "cifs/ifs/analysis.hpp"
+#include "cifs/ifs/attractor.hpp"
+#include "cifs/io/polyline.hpp"
 #include "cifs/io/shape.hpp"
 #include "cifs/nurbs/refine.hpp"
+#include "cifs/verify/check.hpp"
 
 namespace cifs::cli {
 namespace {
@@ -135,6 +140,105 @@ std::string info(const std::filesystem::path& path) {
            {"segments", segments}};
   }
   return out.dump(1) + "\n";
+}
+
+std::string automaton(const AutomatonOptions& o) {
+  if (o.format != "json" && o.format != "dot")
+    throw InvalidInput("--format '" + o.format + "': expected json or dot");
+  const io::Shape shape = io::read_shape(o.shape);
+  const auto* c = std::get_if<nurbs::Curve>(&shape);
+  if (!c)
+    throw InvalidInput(o.shape.string() + ": automaton: only curves have a knot-doubling automaton so far");
+  automata::Automaton a = automata::knot_automaton(*c);
+  if (o.minimize) a = automata::minimize(a);
+  return o.format == "json" ? automata::to_json(a) : automata::to_dot(a);
+}
+
+std::string attractor(const AttractorOptions& o) {
+  if (o.format != "json" && o.format != "obj" && o.format != "svg")
+    throw InvalidInput("--format '" + o.format + "': expected json, obj or svg");
+  if ((o.depth >= 0) == (o.tolerance > 0))
+    throw InvalidInput("attractor: give exactly one of --depth K and --tolerance E");
+  if (o.tolerance < 0 || !std::isfinite(o.tolerance))
+    throw InvalidInput("--tolerance: must be a positive number");
+  const io::Shape shape = io::read_shape(o.shape);
+  const auto* c = std::get_if<nurbs::Curve>(&shape);
+  if (!c)
+    throw InvalidInput(o.shape.string() + ": attractor: only curves have a knot-doubling automaton so far");
+  const automata::Automaton a = automata::knot_automaton(*c);
+  const std::vector<Points> nets = automata::initial_nets(a, *c);
+  Points H;
+  if (o.depth >= 0) {
+    ifs::PointsOptions options;
+    options.closed = c->closed;
+    H = ifs::attractor_points(a, nets, o.depth, options);
+  } else {
+    // Leaves whose whole piece is below the tolerance; rational nets are homogeneous, so shrink
+    // the tolerance by w_min / (1 + max|P|), which bounds the Cartesian image of a homogeneous piece.
+    const double max_point = nurbs::cartesian_points(*c).rowwise().norm().maxCoeff();
+    const double epsilon =
+        c->rational ? o.tolerance * nurbs::weights(*c).minCoeff() / (1 + max_point) : o.tolerance;
+    const ifs::EndFunctionals f = ifs::end_functionals(a);
+    std::vector<Point> rows;
+    Point last_end;
+    const ifs::ToleranceResult r =
+        ifs::for_each_leaf_to_tolerance(a, nets, {epsilon, 40, 8}, [&](const ifs::ToleranceLeaf& t) {
+          rows.push_back(f.start[t.leaf.state] * t.leaf.net);
+          last_end = f.end[t.leaf.state] * t.leaf.net;
+        });
+    if (r.unconverged > 0)
+      throw InvalidInput("attractor: " + std::to_string(r.unconverged) +
+                         " pieces did not reach --tolerance " + std::to_string(o.tolerance) +
+                         " by depth 40; give a larger tolerance");
+    if (!c->closed) rows.push_back(last_end);
+    H.resize(static_cast<Eigen::Index>(rows.size()), c->P.cols());
+    for (std::size_t i = 0; i < rows.size(); ++i) H.row(static_cast<Eigen::Index>(i)) = rows[i];
+  }
+  const Points P = c->rational ? ifs::cartesian(H) : H;
+  if (o.format == "obj") return io::polyline_obj(P, c->closed);
+  if (o.format == "svg") return io::polyline_svg(P, c->closed);
+  return points_json(P).dump() + "\n";
+}
+
+std::string check(const CheckOptions& o, int& status) {
+  const io::Shape shape = io::read_shape(o.shape);
+  const auto* c = std::get_if<nurbs::Curve>(&shape);
+  if (!c) throw InvalidInput(o.shape.string() + ": check: only curves have a knot-doubling automaton so far");
+  const verify::CheckReport r = verify::check_curve(*c, {o.depth, o.tolerance});
+  status = r.pass ? 0 : 1;
+  if (o.json) {
+    json segments = json::array();
+    for (const auto& s : r.segments)
+      segments.push_back({{"segment", s.segment},
+                          {"interval", {s.start, s.end}},
+                          {"nets", {{"max_abs", s.nets.max_abs}, {"max_rel", s.nets.max_rel}}},
+                          {"points", {{"max_abs", s.points.max_abs}, {"max_rel", s.points.max_rel}}}});
+    return json{{"depth", r.depth},
+                {"tolerance", r.tolerance},
+                {"segments", segments},
+                {"nets", {{"max_abs", r.nets.max_abs}, {"max_rel", r.nets.max_rel}}},
+                {"points", {{"max_abs", r.points.max_abs}, {"max_rel", r.points.max_rel}}},
+                {"pass", r.pass}}
+               .dump(1) +
+           "\n";
+  }
+  char line[200];
+  std::string out = "cifs check: depth " + std::to_string(r.depth) + ", " +
+                    std::to_string(r.segments.size()) + " segments, relative tolerance " +
+                    json(r.tolerance).dump() + "\n";
+  out += "  segment  interval                        nets max_abs  max_rel    points max_abs  max_rel\n";
+  for (const auto& s : r.segments) {
+    std::snprintf(line, sizeof line, "  %7d  [%-12.6g, %-12.6g]  %12.3e  %9.3e    %12.3e  %9.3e\n", s.segment,
+                  s.start, s.end, s.nets.max_abs, s.nets.max_rel, s.points.max_abs, s.points.max_rel);
+    out += line;
+  }
+  std::snprintf(line, sizeof line,
+                "  all                                    %12.3e  %9.3e    %12.3e  %9.3e\n", r.nets.max_abs,
+                r.nets.max_rel, r.points.max_abs, r.points.max_rel);
+  out += line;
+  out += r.pass ? "PASS: the attractor matches knot insertion and Cox-de Boor evaluation\n"
+                : "FAIL: a deviation exceeds the tolerance\n";
+  return out;
 }
 
 std::string gallery(const std::filesystem::path& out) {

@@ -26,6 +26,30 @@ std::string insert(const InsertOptions& options);
 
 std::string info(const std::filesystem::path& shape);
 
+struct AutomatonOptions {
+  std::filesystem::path shape;
+  std::string format = "json";  // json | dot
+  bool minimize = false;
+};
+std::string automaton(const AutomatonOptions& options);
+
+struct AttractorOptions {
+  std::filesystem::path shape;
+  int depth = -1;               // 2^depth leaves per segment, or
+  double tolerance = 0;         // every leaf's piece smaller than this (Cartesian units)
+  std::string format = "json";  // json | obj | svg
+};
+std::string attractor(const AttractorOptions& options);
+
+struct CheckOptions {
+  std::filesystem::path shape;
+  int depth = 8;
+  double tolerance = 1e-12;
+  bool json = false;
+};
+/// `status` becomes 1 when a deviation exceeds the tolerance.
+std::string check(const CheckOptions& options, int& status);
+
 /// The main job on its built-in default: writes the example gallery into `out`, returns a summary.
 std::string gallery(const std::filesystem::path& out);
 

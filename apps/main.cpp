@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // cifs — command-line entry point. Errors: one line on stderr, nothing on stdout, exit status 2.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <iostream>
 
 #include "cifs/errors.hpp"
@@ -36,6 +37,33 @@ int main(int argc, char** argv) {
   info_cmd->add_option("shape", info_shape, "Shape file (.json or .obj)")->required();
   info_cmd->callback([&] { result = info(info_shape); });
 
+  AutomatonOptions au;
+  auto* automaton_cmd =
+      app.add_subcommand("automaton", "The knot-doubling automaton of a curve (JSON or DOT)");
+  automaton_cmd->add_option("shape", au.shape, "Shape file (.json or .obj)")->required();
+  automaton_cmd->add_option("--format", au.format, "json (default) or dot");
+  automaton_cmd->add_flag("--minimize", au.minimize, "Merge states that no control net can tell apart");
+  automaton_cmd->callback([&] { result = automaton(au); });
+
+  AttractorOptions at;
+  auto* attractor_cmd =
+      app.add_subcommand("attractor", "The attractor of a curve's automaton, in curve order");
+  attractor_cmd->add_option("shape", at.shape, "Shape file (.json or .obj)")->required();
+  attractor_cmd->add_option("--depth", at.depth, "2^K leaves per segment");
+  attractor_cmd->add_option("--tolerance", at.tolerance, "Stop each branch when its piece is smaller than E");
+  attractor_cmd->add_option("--format", at.format, "json (default), obj or svg");
+  attractor_cmd->callback([&] { result = attractor(at); });
+
+  CheckOptions ch;
+  int status = 0;
+  auto* check_cmd =
+      app.add_subcommand("check", "Attractor vs knot insertion vs Cox-de Boor; exit 1 above tolerance");
+  check_cmd->add_option("shape", ch.shape, "Shape file (.json or .obj)")->required();
+  check_cmd->add_option("--depth", ch.depth, "Depth K (2^K leaves per segment; default 8)");
+  check_cmd->add_option("--tolerance", ch.tolerance, "Relative tolerance (default 1e-12)");
+  check_cmd->add_flag("--json", ch.json, "Machine-readable report");
+  check_cmd->callback([&] { result = check(ch, status); });
+
   std::filesystem::path gallery_out = "out";
   auto* gallery_cmd = app.add_subcommand("gallery", "Write the example gallery (the built-in default job)");
   gallery_cmd->add_option("out", gallery_out, "Output folder (default: out)");
@@ -45,8 +73,9 @@ int main(int argc, char** argv) {
     const std::string first = argc > 1 ? argv[1] : "-";
     const auto known = app.get_subcommands([&](const CLI::App* sub) { return sub->get_name() == first; });
     if (first[0] != '-' && known.empty())
-      throw cifs::InvalidInput("unknown command '" + first +
-                               "' (commands: eval, insert, info, gallery; see cifs --help)");
+      throw cifs::InvalidInput(
+          "unknown command '" + first +
+          "' (commands: eval, insert, info, automaton, attractor, check, gallery; see cifs --help)");
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
@@ -59,11 +88,10 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const std::exception& e) {
     std::string message = e.what();
-    for (char& ch : message)
-      if (ch == '\n') ch = ' ';
+    std::replace(message.begin(), message.end(), '\n', ' ');
     std::cerr << "cifs: " << message << "\n";
     return 2;
   }
   std::cout << result;
-  return std::cout.good() ? 0 : 1;
+  return std::cout.good() ? status : 1;
 }

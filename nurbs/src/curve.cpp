@@ -31,6 +31,21 @@ Curve make_closed_curve(int degree, Knots breakpoints, const Points& points, con
   }
   if (!(breakpoints.back() > breakpoints.front()))
     detail::fail("knots: the period [", breakpoints.front(), ", ", breakpoints.back(), "] is empty");
+  // Multiplicities on the breakpoints as given, so that messages name the caller's index (the
+  // periodic knot vector is longer); the seam counts the copies of b_0 and of b_m inside the period.
+  const auto last = static_cast<std::size_t>(m);
+  std::size_t lead = 1, trail = 0;
+  while (breakpoints[lead] == breakpoints[0]) ++lead;
+  while (breakpoints[last - 1 - trail] == breakpoints[last]) ++trail;
+  if (static_cast<int>(lead + trail) > degree + 1)
+    detail::fail("knots[", last, "]: the seam knot ", breakpoints[0], " (= ", breakpoints[last],
+                 ") has multiplicity ", lead + trail, " > degree + 1 = ", degree + 1);
+  for (std::size_t i = 1, run = 1; i < last; ++i) {
+    run = breakpoints[i] == breakpoints[i - 1] ? run + 1 : 1;
+    if (static_cast<int>(run) > degree + 1)
+      detail::fail("knots[", i, "]: knot ", breakpoints[i], " has multiplicity ", run,
+                   " > degree + 1 = ", degree + 1);
+  }
   const Points H = detail::homogeneous(points, weights, "points");
   Points expanded(m + degree, H.cols());
   for (Eigen::Index i = 0; i < expanded.rows(); ++i) expanded.row(i) = H.row(i % m);
@@ -119,8 +134,9 @@ Point evaluate(const Curve& c, double u) {
   for (int r = 1; r <= p; ++r)
     for (int j = p; j >= r; --j) {
       const int i = j + span - p;
-      const double alpha = (u - t[i]) / (t[i + p + 1 - r] - t[i]);
-      d.row(j) = (1.0 - alpha) * d.row(j - 1) + alpha * d.row(j);
+      // Both weights from their own differences: 1 − alpha would cancel next to a knot.
+      const double hi = t[i + p + 1 - r], den = hi - t[i];
+      d.row(j) = ((hi - u) / den) * d.row(j - 1) + ((u - t[i]) / den) * d.row(j);
     }
   return to_cartesian(c, d.row(p));
 }

@@ -195,12 +195,25 @@ Eigen::MatrixXd basis_derivatives(std::span<const double> knots, int degree, int
 Knots periodic_knots(std::span<const double> b, int degree) {
   const int m = static_cast<int>(b.size()) - 1;
   const double period = b[static_cast<std::size_t>(m)] - b[0];
-  Knots t(static_cast<std::size_t>(m + 2 * degree + 1));
-  for (int j = 0; j < static_cast<int>(t.size()); ++j) {
-    const int shifted = j - degree;
-    const int wraps = shifted >= 0 ? shifted / m : -((-shifted + m - 1) / m);
-    t[static_cast<std::size_t>(j)] = b[static_cast<std::size_t>(shifted - wraps * m)] + wraps * period;
+  const int size = m + 2 * degree + 1;
+  Knots t(static_cast<std::size_t>(size));
+  auto at = [&](int i) { return b[static_cast<std::size_t>(i)]; };
+  auto knot = [&](int j) -> double& { return t[static_cast<std::size_t>(j)]; };
+  // The period's knots are the breakpoints as given (b_0 + T may round away from b_m). The copies
+  // next to it are measured from b_0 backwards and from b_m forwards, so that a breakpoint equal to
+  // b_m lands exactly on b_0 and one equal to b_0 exactly on b_m: the seam keeps its multiplicity.
+  // Further copies shift the neighbouring period by T, which keeps equal knots equal and the order.
+  for (int j = 0; j < size; ++j) {
+    const int s = j - degree;
+    if (s >= 0 && s <= m)
+      knot(j) = at(s);
+    else if (s < 0 && s >= -m)
+      knot(j) = at(0) - (at(m) - at(s + m));
+    else if (s > m && s <= 2 * m)
+      knot(j) = at(m) + (at(s - m) - at(0));
   }
+  for (int j = degree - m - 1; j >= 0; --j) knot(j) = knot(j + m) - period;
+  for (int j = degree + 2 * m + 1; j < size; ++j) knot(j) = knot(j - m) + period;
   return t;
 }
 

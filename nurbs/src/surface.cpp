@@ -34,9 +34,12 @@ Surface make_surface(std::array<int, 2> degree, std::array<Knots, 2> knots, std:
 }
 
 void validate(const Surface& s) {
-  for (int d = 0; d < 2; ++d)
+  for (int d = 0; d < 2; ++d) {
+    // The degree first, with its direction in the message (validate_knots reports only "degree").
+    validate_degree(s.degree[static_cast<std::size_t>(d)], std::string("degree[") + std::to_string(d) + "]");
     validate_knots(s.knots[static_cast<std::size_t>(d)], s.degree[static_cast<std::size_t>(d)],
                    s.count[static_cast<std::size_t>(d)], std::string("knots[") + std::to_string(d) + "]");
+  }
   if (s.P.rows() != s.count[0] * s.count[1])
     detail::fail("points: ", s.P.rows(), " rows for a ", s.count[0], " by ", s.count[1], " net");
   if (s.P.cols() < (s.rational ? 2 : 1)) detail::fail("points: control points have no coordinates");

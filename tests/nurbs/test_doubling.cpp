@@ -33,10 +33,10 @@ Eigen::RowVectorXd blossom_ld(const std::vector<long double>& T, const Points& P
     for (int j = d; j >= r; --j) {
       const int i = j + k - d;
       const long double lo = t(i), hi = t(i + d + 1 - r);
-      const long double a = (x[static_cast<std::size_t>(r - 1)] - lo) / (hi - lo);
+      const long double alpha = (x[static_cast<std::size_t>(r - 1)] - lo) / (hi - lo);
       for (std::size_t c = 0; c < q[0].size(); ++c)
         q[static_cast<std::size_t>(j)][c] =
-            (1 - a) * q[static_cast<std::size_t>(j - 1)][c] + a * q[static_cast<std::size_t>(j)][c];
+            (1 - alpha) * q[static_cast<std::size_t>(j - 1)][c] + alpha * q[static_cast<std::size_t>(j)][c];
     }
   Eigen::RowVectorXd out(P.cols());
   for (Eigen::Index c = 0; c < P.cols(); ++c)

@@ -1,0 +1,105 @@
+// SPDX-License-Identifier: MIT
+// cifs — attractors of a controlled IFS: leaves to a depth or to a tolerance (streamed, depth
+// first), attractor points in curve order through precomposed stencil tables.
+//
+// Nets: one per `automaton.initial` entry, `size(initial[i].state) by cols`, all with the same
+// `cols`. Coordinates are opaque rows: rational curves pass homogeneous rows `(w·x, w)` and call
+// `cartesian` on the result.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <span>
+
+#include "cifs/automata/automaton.hpp"
+#include "cifs/ifs/analysis.hpp"
+#include "cifs/types.hpp"
+
+namespace cifs::ifs {
+
+/// `#P by (dim+1)` homogeneous rows `(w·x, w)` → `#P by dim` Cartesian rows `x`. Throws
+/// InvalidInput for fewer than 2 columns or a zero weight.
+Points cartesian(const Points& homogeneous);
+
+/// A node of the subdivision tree handed to callbacks. `net` is `size(state) by cols`; `word`
+/// holds the child indices (out-edge positions) from the root, `depth` of them. The references
+/// are valid during the callback only.
+struct Leaf {
+  std::size_t initial;  // index into automaton.initial (and nets)
+  automata::StateId state;
+  const Points& net;
+  int depth;
+  std::span<const int> word;
+};
+
+using LeafCallback = std::function<void(const Leaf&)>;
+
+/// Visits every node at `depth` (≥ 0) in order — initial entries in order, children in out-edge
+/// order — depth first, keeping one net per level: memory O(depth · net), never a whole level.
+void for_each_leaf(const automata::Automaton& automaton, std::span<const Points> nets, int depth,
+                   const LeafCallback& callback);
+
+struct ToleranceOptions {
+  /// Target diameter of each attractor piece, in the units of the nets' rows (absolute; for
+  /// homogeneous rows it bounds the homogeneous piece, not its Cartesian image).
+  double epsilon = 1e-6;
+  /// Branches stop here even when not converged (reported).
+  int max_depth = 64;
+  /// For the contractivity check (ContractionOptions::max_length).
+  int max_length = 8;
+};
+
+/// A leaf of the tolerance traversal. Every attractor point below it (and every row of every net
+/// below it) lies within `radius` of `leaf.net.row(0)`; `converged` when `2·radius < epsilon`,
+/// otherwise the branch stopped at `max_depth`.
+struct ToleranceLeaf {
+  Leaf leaf;
+  double radius;
+  bool converged;
+};
+
+using ToleranceCallback = std::function<void(const ToleranceLeaf&)>;
+
+struct ToleranceResult {
+  Contraction contraction;
+  std::size_t leaves = 0;
+  std::size_t unconverged = 0;  // leaves cut by max_depth
+  int deepest = 0;              // largest leaf depth
+};
+
+/// Depth-first traversal that stops a branch as soon as its whole attractor piece is known to have
+/// diameter < epsilon: `2·radius·diam(N) < epsilon` with `radius` from `contraction` (sound also
+/// for matrices with negative entries). Throws InvalidInput for epsilon ≤ 0, a negative max_depth
+/// or a system that is not contractive.
+ToleranceResult for_each_leaf_to_tolerance(const automata::Automaton& automaton, std::span<const Points> nets,
+                                           const ToleranceOptions& options,
+                                           const ToleranceCallback& callback);
+
+struct PointsOptions {
+  /// Closed shapes: the end of the last piece equals the start of the first, so it is omitted.
+  bool closed = false;
+  /// Refuse (before any work) an output larger than this many bytes.
+  std::size_t max_bytes = std::size_t{1} << 30;
+  /// Depth L of the precomposed stencil tables (lowered automatically so that tables stay below
+  /// half of the output).
+  int max_table_depth = 8;
+};
+
+/// Number of points attractor_points returns: the number of depth-`depth` nodes (from the
+/// out-degrees) plus 1 unless closed. Throws InvalidInput on overflow or a negative depth.
+std::size_t attractor_point_count(const automata::Automaton& automaton, int depth, bool closed = false);
+
+/// Attractor points to depth K in curve order (`count by cols`): the start point of every node at
+/// depth K (initial entries in order, children in out-edge order), plus the end point of the very
+/// last one unless `closed`. Pieces are assumed to join (the end of initial i is the start of
+/// initial i + 1), so junctions are not repeated. For a binary automaton of one initial entry the
+/// points are those of parameters j/2^K, j = 0 … 2^K.
+///
+/// Uses stencil tables: for every state s the start functionals of its depth-L descendants as a
+/// `c_L(s) by size(s)` matrix F_s, so each node at depth K − L emits its c_L(s) points with one
+/// product F_s·N. The output is allocated once; peak memory stays ≤ 1.5× the output (plus a
+/// constant). Throws InvalidInput when the output would exceed `options.max_bytes`.
+Points attractor_points(const automata::Automaton& automaton, std::span<const Points> nets, int depth,
+                        const PointsOptions& options = {});
+
+}  // namespace cifs::ifs

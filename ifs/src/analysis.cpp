@@ -1,0 +1,437 @@
+// SPDX-License-Identifier: MIT
+// cifs — contraction of nets, fixed points of words, end functionals and spectra.
+//
+// Soundness of the tolerance bound (used by for_each_leaf_to_tolerance and the chaos game).
+//
+// Lemma 1. If Σ_k a_k = 0 then ‖Σ_k a_k N_k‖ ≤ ½‖a‖₁·diam(N) for any norm.
+//   Write a = a⁺ − a⁻ (positive and negative parts); Σa⁺ = Σa⁻ = h = ½‖a‖₁. If h = 0 the sum is 0.
+//   Otherwise Σ a_k N_k = h(x − y) with x = Σ (a⁺_k/h) N_k and y = Σ (a⁻_k/h) N_k convex
+//   combinations of the rows, i.e. points of their convex hull, whose diameter equals the diameter
+//   of the rows (the distance to a fixed point is convex, so its maximum over the hull is reached
+//   at a vertex; apply twice). Hence ‖h(x − y)‖ ≤ h·diam(N).
+//
+// Corollary. Rows of M sum to 1, so (M·N)_i − (M·N)_j = (M_i − M_j)·N has coefficients summing to
+//   0 and diam(M·N) ≤ δ(M)·diam(N) with δ(M) = max_{i,j} ½‖M_i − M_j‖₁. (δ is exactly the
+//   operator bound: for one-dimensional nets N_k ∈ {0, 1} chosen on the positive part of
+//   M_i − M_j the inequality is an equality; so δ is submultiplicative.)
+//
+// Theorem. Let δ_m < 1 be the max of δ over the products of all paths of m transitions starting
+//   at any reachable state, and A ≥ 1 the max row 1-norm over the products of all paths of length
+//   0 … m (length 0 is the identity). Then for a state s with net N, every row of every net below
+//   s and every attractor point of s lie within ρ = ½(1 + A)·diam(N)/(1 − δ_m) of N_0.
+//   Proof. Follow any path from s; N^(k) is the net after k steps. Blocks of m steps are paths of
+//   length m from reachable states, so diam(N^(qm)) ≤ δ_m^q·diam(N). For k = qm + j, 0 ≤ j < m,
+//   with R the product of the last j steps (a path of length j, R = I when j = 0):
+//     ‖N^(k)_i − N^(qm)_0‖ = ‖(R_i − e_0)·N^(qm)‖ ≤ ½(‖R_i‖₁ + 1)·diam(N^(qm)) ≤ ½(1 + A)·δ_m^q·diam(N)
+//   by Lemma 1 (R_i − e_0 sums to 0). The same with j = m bounds each block step
+//   ‖N^((r+1)m)_0 − N^(rm)_0‖ ≤ ½(1 + A)·δ_m^r·diam(N). Telescoping,
+//     ‖N^(k)_i − N_0‖ ≤ ½(1 + A)·diam(N)·Σ_{r=0}^{q} δ_m^r < ρ.
+//   The rows form Cauchy sequences with diam(N^(k)) → 0 (the bound above with the geometric
+//   tail), so they converge to the attractor point of the path's address, which is within ρ as
+//   a limit of points within ρ. Two points of the piece are then within 2ρ of each other.
+//   Since ½(1 + A) ≤ A, ρ is at most the bound A·diam(N)/(1 − δ_m). Nothing requires m to be the
+//   smallest length with δ_m < 1: any such m gives a sound ρ, and `contraction` keeps the smallest.
+//
+// Floating point: the lemma needs Σa = 0 exactly; rows summing to 1 up to η add η·‖N_0‖ per step,
+// far below any tolerance that is meaningful in double precision.
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <sstream>
+
+#include "cifs/errors.hpp"
+#include "cifs/ifs/analysis.hpp"
+#include "walk.hpp"
+
+namespace cifs::ifs {
+
+using automata::Automaton;
+using automata::Graph;
+using automata::StateId;
+
+namespace detail {
+
+std::string state_label(const Automaton& automaton, StateId state) {
+  std::string out = "state " + std::to_string(state);
+  const auto& name = automaton.graph[state].name;
+  if (!name.empty()) out += " (" + name + ")";
+  return out;
+}
+
+std::string word_text(std::span<const int> word) {
+  if (word.empty()) return "(empty)";
+  std::string out;
+  for (std::size_t k = 0; k < word.size(); ++k) {
+    if (k) out += ' ';
+    out += std::to_string(word[k]);
+  }
+  return out;
+}
+
+void check_nets(const Automaton& automaton, std::span<const Points> nets, std::string_view who) {
+  const auto fail = [&](const std::string& what) { throw InvalidInput(std::string(who) + ": " + what); };
+  if (nets.size() != automaton.initial.size())
+    fail(std::to_string(nets.size()) + " nets given for " + std::to_string(automaton.initial.size()) +
+         " initial entries (one net per entry)");
+  if (nets.empty()) fail("the automaton has no initial entry");
+  const Eigen::Index cols = nets[0].cols();
+  if (cols < 1) fail("nets[0] has no column");
+  for (std::size_t i = 0; i < nets.size(); ++i) {
+    const StateId s = automaton.initial[i].state;
+    if (s >= boost::num_vertices(automaton.graph))
+      fail("initial[" + std::to_string(i) + "] names state " + std::to_string(s) + ", which does not exist");
+    const int size = automaton.graph[s].size;
+    if (nets[i].rows() != size)
+      fail("nets[" + std::to_string(i) + "] has " + std::to_string(nets[i].rows()) +
+           " rows but its initial " + state_label(automaton, s) + " holds " + std::to_string(size) +
+           " points");
+    if (nets[i].cols() != cols)
+      fail("nets[" + std::to_string(i) + "] has " + std::to_string(nets[i].cols()) +
+           " columns, nets[0] has " + std::to_string(cols));
+    if (!nets[i].allFinite()) fail("nets[" + std::to_string(i) + "] has a non-finite coordinate");
+  }
+}
+
+}  // namespace detail
+
+std::vector<StateId> reachable_states(const Automaton& automaton) {
+  const Graph& g = automaton.graph;
+  const auto n = boost::num_vertices(g);
+  std::vector<char> seen(n, 0);
+  std::vector<StateId> todo;
+  if (automaton.initial.empty()) {
+    for (StateId s = 0; s < n; ++s) todo.push_back(s);
+  } else {
+    for (const auto& init : automaton.initial)
+      if (init.state < n) todo.push_back(init.state);
+  }
+  while (!todo.empty()) {
+    const StateId s = todo.back();
+    todo.pop_back();
+    if (seen[s]) continue;
+    seen[s] = 1;
+    for (auto [b, e] = boost::out_edges(s, g); b != e; ++b) todo.push_back(boost::target(*b, g));
+  }
+  std::vector<StateId> out;
+  for (StateId s = 0; s < n; ++s)
+    if (seen[s]) out.push_back(s);
+  return out;
+}
+
+void validate(const Automaton& automaton) {
+  const Graph& g = automaton.graph;
+  const auto n = boost::num_vertices(g);
+  for (std::size_t i = 0; i < automaton.initial.size(); ++i)
+    if (automaton.initial[i].state >= n)
+      throw InvalidInput("initial[" + std::to_string(i) + "] names state " +
+                         std::to_string(automaton.initial[i].state) + ", which does not exist");
+  for (const StateId s : reachable_states(automaton)) {
+    const auto label = detail::state_label(automaton, s);
+    if (g[s].size < 1) throw InvalidInput(label + " holds no point (size " + std::to_string(g[s].size) + ")");
+    if (boost::out_degree(s, g) == 0)
+      throw InvalidInput(label + " has no transition: its attractor would be empty");
+    int child = 0;
+    for (auto [b, e] = boost::out_edges(s, g); b != e; ++b, ++child) {
+      const auto& M = g[*b].matrix;
+      const StateId t = boost::target(*b, g);
+      const std::string where = "transition " + std::to_string(child) + " of " + label + " (to " +
+                                detail::state_label(automaton, t) + ")";
+      if (M.rows() != g[t].size || M.cols() != g[s].size)
+        throw InvalidInput(where + ": matrix is " + std::to_string(M.rows()) + " by " +
+                           std::to_string(M.cols()) + ", expected " + std::to_string(g[t].size) + " by " +
+                           std::to_string(g[s].size) + " (to.size by from.size)");
+      if (!M.allFinite()) throw InvalidInput(where + ": matrix has a non-finite entry");
+      for (Eigen::Index r = 0; r < M.rows(); ++r) {
+        const double sum = M.row(r).sum(), norm = M.row(r).cwiseAbs().sum();
+        if (!(std::abs(sum - 1) <= 1e-10 * std::max(1.0, norm))) {
+          std::ostringstream msg;
+          msg.precision(17);
+          msg << where << ": row " << r << " sums to " << sum << ", not 1 (rows are affine combinations)";
+          throw InvalidInput(msg.str());
+        }
+      }
+    }
+  }
+}
+
+double diameter(const Points& net) noexcept {
+  double best = 0;
+  for (Eigen::Index i = 0; i < net.rows(); ++i)
+    for (Eigen::Index j = i + 1; j < net.rows(); ++j)
+      best = std::max(best, (net.row(i) - net.row(j)).squaredNorm());
+  return std::sqrt(best);
+}
+
+double delta(const Eigen::MatrixXd& M) noexcept {
+  double best = 0;
+  for (Eigen::Index i = 0; i < M.rows(); ++i)
+    for (Eigen::Index j = i + 1; j < M.rows(); ++j)
+      best = std::max(best, (M.row(i) - M.row(j)).cwiseAbs().sum());
+  return best / 2;
+}
+
+namespace {
+
+/// Enumerates the paths of exactly `length` transitions from every reachable state, with the
+/// products along the way (`size(target) by size(start)`).
+struct PathScan {
+  explicit PathScan(const Automaton& a, int len, bool stop)
+      : automaton(a), length(len), stop_at_first_failure(stop) {}
+  const Automaton& automaton;
+  int length = 0;
+  bool stop_at_first_failure = false;
+  // Results.
+  double A = 1, worst = 0;
+  StateId worst_state = 0;
+  std::vector<int> worst_word;
+  // Work space: product and word per level.
+  std::vector<Eigen::MatrixXd> product;
+  std::vector<int> word;
+
+  // Returns false to abandon the scan (a failure found and stop_at_first_failure).
+  bool descend(StateId from, StateId s, int k) {
+    const Graph& g = automaton.graph;
+    const auto& P = product[static_cast<std::size_t>(k)];
+    A = std::max(A, P.cwiseAbs().rowwise().sum().maxCoeff());
+    if (k == length) {
+      const double d = delta(P);
+      if (d > worst || worst_word.empty()) {
+        worst = d;
+        worst_state = from;
+        worst_word.assign(word.begin(), word.begin() + k);
+      }
+      return !(stop_at_first_failure && d >= 1);
+    }
+    int child = 0;
+    for (auto [b, e] = boost::out_edges(s, g); b != e; ++b, ++child) {
+      word[static_cast<std::size_t>(k)] = child;
+      product[static_cast<std::size_t>(k) + 1].noalias() = g[*b].matrix * P;
+      if (!descend(from, boost::target(*b, g), k + 1)) return false;
+    }
+    return true;
+  }
+
+  bool run(const std::vector<StateId>& states) {
+    product.resize(static_cast<std::size_t>(length) + 1);
+    word.assign(static_cast<std::size_t>(length), 0);
+    for (const StateId s : states) {
+      const int n = automaton.graph[s].size;
+      product[0] = Eigen::MatrixXd::Identity(n, n);
+      if (!descend(s, s, 0)) return false;
+    }
+    return true;
+  }
+};
+
+/// ℓ with ℓ·P = ℓ, Σℓ = 1, for a square P whose rows sum to 1 (P·1 = 1).
+/// K = I − P + 1·1ᵀ is invertible exactly when 1 is an algebraically simple eigenvalue of P: if
+/// K·x = 0 then, multiplying by the left eigenvector ℓ (ℓ·1 ≠ 0 when simple), 1ᵀx = 0, so
+/// (I − P)x = 0, x ∥ 1 and x = 0; conversely a second eigenvector or a Jordan chain y with
+/// (I − P)y = 1 gives a kernel vector. Then ℓ = 1ᵀ·K⁻¹ satisfies ℓ(I − P) + (ℓ·1)1ᵀ = 1ᵀ; times 1
+/// gives ℓ·1 = 1, hence ℓ(I − P) = 0.
+Eigen::RowVectorXd unit_fixed_point(const Eigen::MatrixXd& P, const std::string& context) {
+  const Eigen::Index n = P.rows();
+  const Eigen::MatrixXd K = Eigen::MatrixXd::Identity(n, n) - P + Eigen::MatrixXd::Ones(n, n);
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(K);
+  const auto& sv = svd.singularValues();
+  if (!(sv(n - 1) > 1e-12 * static_cast<double>(n) * sv(0))) {
+    std::ostringstream msg;
+    msg << context << ": 1 is not a simple eigenvalue of the product (eigenvalues";
+    for (const auto& z : eigenvalues(P))
+      msg << ' ' << z.real() << (z.imag() >= 0 ? "+" : "") << z.imag() << 'i';
+    msg << "), so its fixed point is not unique";
+    throw InvalidInput(msg.str());
+  }
+  // ℓᵀ solves Kᵀ·ℓᵀ = 1.
+  Eigen::RowVectorXd l = K.transpose().fullPivLu().solve(Eigen::VectorXd::Ones(n)).transpose();
+  return l / l.sum();  // Σℓ = 1 already up to rounding; make it exact to the last bit or so
+}
+
+/// The transition `child` of `s` (out-edge position).
+Graph::edge_descriptor out_edge(const Graph& g, StateId s, std::size_t child) {
+  auto [b, e] = boost::out_edges(s, g);
+  std::advance(b, static_cast<std::ptrdiff_t>(child));
+  return *b;
+}
+
+}  // namespace
+
+Contraction contraction(const Automaton& automaton, const ContractionOptions& options) {
+  validate(automaton);
+  if (options.max_length < 1)
+    throw InvalidInput("contraction: max_length is " + std::to_string(options.max_length) + ", must be ≥ 1");
+  const auto states = reachable_states(automaton);
+  // Iterative deepening: the shortest m wins, and paths of length < max_length stop at the first
+  // failing product (their A is not needed); the last length is scanned fully for the message.
+  Contraction out;
+  for (int m = 1; m <= options.max_length; ++m) {
+    PathScan scan(automaton, m, m < options.max_length);
+    const bool complete = scan.run(states);
+    if (complete && scan.worst < 1) {
+      out.m = m;
+      out.delta = scan.worst;
+      out.A = scan.A;
+      out.radius = (1 + scan.A) / (2 * (1 - scan.worst));
+      out.radius_length = m;
+      break;
+    }
+    if (m == options.max_length) {
+      std::ostringstream msg;
+      msg << "not contractive: the " << m << "-step products from "
+          << detail::state_label(automaton, scan.worst_state) << " do not shrink nets (δ = " << scan.worst
+          << " along the path " << detail::word_text(scan.worst_word) << "; no path length ≤ " << m
+          << " gives δ < 1)";
+      throw InvalidInput(msg.str());
+    }
+  }
+  if (!options.tighten) return out;
+  // Longer blocks usually give a much smaller factor (δ_k decays geometrically while A_k grows
+  // slowly); every k with δ_k < 1 gives a sound bound, so keep the smallest.
+  const Graph& g = automaton.graph;
+  std::vector<double> paths(boost::num_vertices(g), 1.0), next_paths(paths.size());
+  for (int k = 1; k <= out.m; ++k) {
+    for (const StateId s : states) {
+      next_paths[s] = 0;
+      for (auto [b, e] = boost::out_edges(s, g); b != e; ++b) next_paths[s] += paths[boost::target(*b, g)];
+    }
+    std::swap(paths, next_paths);
+  }
+  for (int k = out.m + 1; k <= options.max_length; ++k) {
+    double total = 0;
+    for (const StateId s : states) {
+      next_paths[s] = 0;
+      for (auto [b, e] = boost::out_edges(s, g); b != e; ++b) next_paths[s] += paths[boost::target(*b, g)];
+      total += next_paths[s];
+    }
+    std::swap(paths, next_paths);
+    if (total > 65536) break;  // the scan would cost more than the levels it saves
+    PathScan scan(automaton, k, true);
+    if (!scan.run(states) || !(scan.worst < 1)) continue;
+    const double radius = (1 + scan.A) / (2 * (1 - scan.worst));
+    const bool improves = radius < 0.95 * out.radius;
+    if (radius < out.radius) {
+      out.radius = radius;
+      out.radius_length = k;
+    }
+    if (!improves) break;
+  }
+  return out;
+}
+
+Eigen::RowVectorXd fixed_point(const Automaton& automaton, StateId state, std::span<const int> word) {
+  validate(automaton);
+  const Graph& g = automaton.graph;
+  if (state >= boost::num_vertices(g))
+    throw InvalidInput("fixed_point: state " + std::to_string(state) + " does not exist");
+  const std::string context =
+      "fixed_point of the word " + detail::word_text(word) + " from " + detail::state_label(automaton, state);
+  Eigen::MatrixXd P = Eigen::MatrixXd::Identity(g[state].size, g[state].size);
+  StateId s = state;
+  for (std::size_t k = 0; k < word.size(); ++k) {
+    const auto degree = boost::out_degree(s, g);
+    if (word[k] < 0 || static_cast<std::size_t>(word[k]) >= degree)
+      throw InvalidInput(context + ": child index " + std::to_string(word[k]) + " at position " +
+                         std::to_string(k) + " but " + detail::state_label(automaton, s) + " has " +
+                         std::to_string(degree) + " children");
+    const auto e = out_edge(g, s, static_cast<std::size_t>(word[k]));
+    P = (g[e].matrix * P).eval();
+    s = boost::target(e, g);
+  }
+  if (s != state)
+    throw InvalidInput(context + ": the word ends at " + detail::state_label(automaton, s) +
+                       ", not where it started, so it has no fixed point");
+  return unit_fixed_point(P, context);
+}
+
+EndFunctionals end_functionals(const Automaton& automaton) {
+  validate(automaton);
+  const Graph& g = automaton.graph;
+  const auto n = boost::num_vertices(g);
+  EndFunctionals out;
+  out.start.resize(n);
+  out.end.resize(n);
+  const auto states = reachable_states(automaton);
+  for (const bool last : {false, true}) {
+    auto& F = last ? out.end : out.start;
+    std::vector<char> done(n, 0);
+    const auto next = [&](StateId s) { return out_edge(g, s, last ? boost::out_degree(s, g) - 1 : 0); };
+    std::vector<std::ptrdiff_t> pos(n, -1);  // position of a state on the current chain
+    for (const StateId s0 : states) {
+      if (done[s0]) continue;
+      // Follow the chain until a known state or a repetition.
+      std::vector<StateId> path;
+      StateId v = s0;
+      while (!done[v] && pos[v] < 0) {
+        pos[v] = static_cast<std::ptrdiff_t>(path.size());
+        path.push_back(v);
+        v = boost::target(next(v), g);
+      }
+      for (const StateId p : path) pos[p] = -1;
+      std::ptrdiff_t skip = -1;
+      if (!done[v]) {
+        // v = path[c] starts a cycle: its functional is the fixed point of the cycle product.
+        const auto c = static_cast<std::ptrdiff_t>(std::find(path.begin(), path.end(), v) - path.begin());
+        Eigen::MatrixXd P = Eigen::MatrixXd::Identity(g[v].size, g[v].size);
+        std::vector<int> word;
+        for (auto k = static_cast<std::size_t>(c); k < path.size(); ++k) {
+          P = (g[next(path[k])].matrix * P).eval();
+          word.push_back(last ? static_cast<int>(boost::out_degree(path[k], g)) - 1 : 0);
+        }
+        F[v] =
+            unit_fixed_point(P, std::string(last ? "end" : "start") + " functional: the cycle " +
+                                    detail::word_text(word) + " from " + detail::state_label(automaton, v));
+        done[v] = 1;
+        skip = c;
+      }
+      // Back along the chain: the start (end) of s is the start (end) of its first (last) child,
+      // λ_s·N = λ_child·(M·N).
+      for (auto k = static_cast<std::ptrdiff_t>(path.size()) - 1; k >= 0; --k) {
+        if (k == skip) continue;
+        const auto e = next(path[static_cast<std::size_t>(k)]);
+        F[path[static_cast<std::size_t>(k)]] = F[boost::target(e, g)] * g[e].matrix;
+        done[path[static_cast<std::size_t>(k)]] = 1;
+      }
+    }
+  }
+  return out;
+}
+
+std::vector<std::complex<double>> eigenvalues(const Eigen::MatrixXd& M) {
+  if (M.rows() != M.cols())
+    throw InvalidInput("eigenvalues: the matrix is " + std::to_string(M.rows()) + " by " +
+                       std::to_string(M.cols()) + ", not square");
+  if (M.rows() == 0) return {};
+  Eigen::EigenSolver<Eigen::MatrixXd> solver(M, false);
+  if (solver.info() != Eigen::Success) throw InvalidInput("eigenvalues: the QR iteration did not converge");
+  std::vector<std::complex<double>> out(solver.eigenvalues().begin(), solver.eigenvalues().end());
+  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) {
+    if (std::abs(a) != std::abs(b)) return std::abs(a) > std::abs(b);
+    if (a.real() != b.real()) return a.real() > b.real();
+    return a.imag() > b.imag();
+  });
+  return out;
+}
+
+std::vector<TransitionSpectrum> spectra(const Automaton& automaton) {
+  validate(automaton);
+  const Graph& g = automaton.graph;
+  std::vector<TransitionSpectrum> out;
+  for (const StateId s : reachable_states(automaton)) {
+    int child = 0;
+    for (auto [b, e] = boost::out_edges(s, g); b != e; ++b, ++child) {
+      TransitionSpectrum t;
+      t.from = s;
+      t.to = boost::target(*b, g);
+      t.child = child;
+      t.label = g[*b].label;
+      if (g[*b].matrix.rows() == g[*b].matrix.cols()) t.eigenvalues = eigenvalues(g[*b].matrix);
+      out.push_back(std::move(t));
+    }
+  }
+  return out;
+}
+
+}  // namespace cifs::ifs

@@ -1,0 +1,88 @@
+// SPDX-License-Identifier: MIT
+// cifs — the chaos game: a random walk down the subdivision tree emitting exact attractor points.
+#include "cifs/ifs/chaos.hpp"
+
+#include <random>
+
+#include "cifs/errors.hpp"
+#include "cifs/ifs/analysis.hpp"
+#include "walk.hpp"
+
+namespace cifs::ifs {
+
+using automata::Automaton;
+using automata::Graph;
+using automata::StateId;
+
+namespace {
+
+/// Uniform index in [0, bound) from 32 random bits (bias ≤ bound/2³², negligible), the same on
+/// every standard library (std::uniform_int_distribution is implementation-defined).
+std::size_t draw(std::mt19937_64& rng, std::size_t bound) noexcept {
+  return static_cast<std::size_t>(((rng() >> 32) * static_cast<std::uint64_t>(bound)) >> 32);
+}
+
+}  // namespace
+
+ChaosResult chaos_game(const Automaton& automaton, std::span<const Points> nets,
+                       const ChaosOptions& options) {
+  validate(automaton);
+  detail::check_nets(automaton, nets, "chaos_game");
+  if (!(options.restart_diameter > 0 && options.restart_diameter < 1))
+    throw InvalidInput("chaos_game: restart_diameter is " + std::to_string(options.restart_diameter) +
+                       ", must lie in (0, 1)");
+  // A walk on a system that does not shrink nets would never restart and lose all precision.
+  (void)contraction(automaton);
+  const Graph& g = automaton.graph;
+  const EndFunctionals functionals = end_functionals(automaton);
+
+  ChaosResult result;
+  result.seed = options.seed;
+  if (result.seed == 0) {
+    std::random_device device;
+    while (result.seed == 0) result.seed = (std::uint64_t{device()} << 32) ^ std::uint64_t{device()};
+  }
+  std::mt19937_64 rng(result.seed);
+  const auto cols = nets[0].cols();
+  result.points.resize(static_cast<Eigen::Index>(options.samples), cols);
+  if (options.record_address) result.address.resize(options.samples);
+
+  std::vector<double> root_diameter(nets.size());
+  for (std::size_t i = 0; i < nets.size(); ++i) root_diameter[i] = diameter(nets[i]);
+
+  Points net, child;
+  std::size_t initial = 0;
+  StateId state = 0;
+  double threshold = 0, t = 0, share = 1;
+  int steps = 0;
+  const auto restart = [&] {
+    initial = draw(rng, nets.size());
+    state = automaton.initial[initial].state;
+    net = nets[initial];
+    threshold = options.restart_diameter * root_diameter[initial];
+    t = 0;
+    share = 1;
+    steps = 0;
+  };
+  restart();
+  for (std::size_t k = 0; k < options.samples; ++k) {
+    const auto degree = boost::out_degree(state, g);
+    const std::size_t c = draw(rng, degree);
+    auto [b, e] = boost::out_edges(state, g);
+    std::advance(b, static_cast<std::ptrdiff_t>(c));
+    child.noalias() = g[*b].matrix * net;
+    std::swap(net, child);
+    state = boost::target(*b, g);
+    share /= static_cast<double>(degree);
+    t += static_cast<double>(c) * share;
+    ++steps;
+    // The start point of the new node: an exact attractor point (address child-path, then 0^∞).
+    result.points.row(static_cast<Eigen::Index>(k)).noalias() = functionals.start[state] * net;
+    if (options.record_address) result.address[k] = static_cast<double>(initial) + t;
+    // Degenerate roots (diameter 0) restart after a bounded walk instead.
+    if (threshold > 0 ? diameter(net) < threshold : steps >= 64) restart();
+  }
+  return result;
+}
+
+}  // namespace cifs::ifs

@@ -1,0 +1,78 @@
+// SPDX-License-Identifier: MIT
+// cifs — private helpers of the ifs module: input checks and the depth-first walk over the
+// subdivision tree that every traversal shares.
+#pragma once
+
+#include <boost/graph/adjacency_list.hpp>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "cifs/automata/automaton.hpp"
+#include "cifs/types.hpp"
+
+namespace cifs::ifs::detail {
+
+using automata::Automaton;
+using automata::Graph;
+using automata::StateId;
+
+/// "state 3" or "state 3 (uniform)" when the state is named.
+std::string state_label(const Automaton& automaton, StateId state);
+
+/// "0 1 1" for a word of child indices; "(empty)" when empty.
+std::string word_text(std::span<const int> word);
+
+/// Throws InvalidInput (prefixed by `who`) unless `nets` has one net per initial entry, each
+/// `size(state) by cols` with one common cols ≥ 1, finite.
+void check_nets(const Automaton& automaton, std::span<const Points> nets, std::string_view who);
+
+/// Depth-first walk over the nodes of the subdivision tree up to `max_depth`, one net per level.
+/// `visit(initial, state, net, depth, word)` is called for every node in order (initial entries
+/// in order, children in out-edge order) and returns whether to descend below it; nodes at
+/// `max_depth` are never descended. The automaton must have been validated (every state has a
+/// child and matrices of the right shape).
+template <class Visit>
+void depth_first(const Automaton& automaton, std::span<const Points> nets, int max_depth, Visit&& visit) {
+  const Graph& g = automaton.graph;
+  using OutIt = Graph::out_edge_iterator;
+  struct Frame {
+    OutIt it, end;
+    int child;
+  };
+  // One net per level; level 0 reads the caller's net directly.
+  std::vector<Points> level(static_cast<std::size_t>(max_depth) + 1);
+  std::vector<Frame> stack;
+  stack.reserve(static_cast<std::size_t>(max_depth) + 1);
+  std::vector<int> word(static_cast<std::size_t>(max_depth));
+  for (std::size_t i = 0; i < automaton.initial.size(); ++i) {
+    const StateId root = automaton.initial[i].state;
+    if (!visit(i, root, nets[i], 0, std::span<const int>{}) || max_depth == 0) continue;
+    auto [b, e] = boost::out_edges(root, g);
+    stack.push_back(Frame{b, e, 0});
+    while (!stack.empty()) {
+      Frame& top = stack.back();
+      if (top.it == top.end) {
+        stack.pop_back();
+        continue;
+      }
+      const auto edge = *top.it++;
+      const int child = top.child++;
+      const auto d = stack.size();  // depth of the child
+      word[d - 1] = child;
+      const Points& parent = d == 1 ? nets[i] : level[d - 1];
+      Points& net = level[d];
+      net.noalias() = g[edge].matrix * parent;
+      const StateId state = boost::target(edge, g);
+      const bool descend = visit(i, state, static_cast<const Points&>(net), static_cast<int>(d),
+                                 std::span<const int>(word.data(), d));
+      if (descend && static_cast<int>(d) < max_depth) {
+        auto [cb, ce] = boost::out_edges(state, g);
+        stack.push_back(Frame{cb, ce, 0});  // no reallocation: reserved max_depth + 1
+      }
+    }
+  }
+}
+
+}  // namespace cifs::ifs::detail

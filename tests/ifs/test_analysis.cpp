@@ -1,0 +1,191 @@
+// SPDX-License-Identifier: MIT
+#include "cifs/ifs/analysis.hpp"
+
+#include <catch2/catch.hpp>
+#include <random>
+
+#include "cifs/errors.hpp"
+#include "cifs/ifs/attractor.hpp"
+#include "ifs/helpers.hpp"
+
+using namespace cifs;
+using namespace cifs::ifs;
+using namespace ifs_test;
+
+namespace {
+
+Eigen::Matrix3d chaikin_G() {
+  Eigen::Matrix3d G;
+  G << 0.75, 0.25, 0,  //
+      0.25, 0.75, 0,   //
+      0, 0.75, 0.25;
+  return G;
+}
+
+/// One state of 3 points whose first map is the identity: nets never shrink along 0^k.
+Automaton identity_automaton() {
+  Automaton a;
+  const StateId s = add_state(a, 3, "loop");
+  add_transition(a, s, s, Eigen::MatrixXd::Identity(3, 3), "I");
+  add_transition(a, s, s, chaikin_G(), "G");
+  add_initial(a, s);
+  return a;
+}
+
+}  // namespace
+
+TEST_CASE("delta and diameter", "[ifs]") {
+  CHECK(delta(chaikin_G()) == 0.75);
+  CHECK(delta(Eigen::MatrixXd::Identity(4, 4)) == 1);
+  CHECK(delta(Eigen::MatrixXd::Constant(3, 2, 0.5)) == 0);
+  Points P(3, 2);
+  P << 0, 0, 3, 4, 1, 1;
+  CHECK(diameter(P) == 5);
+  // diam(M·N) ≤ δ(M)·diam(N) for random signed maps.
+  std::mt19937_64 rng(6);
+  for (int trial = 0; trial < 100; ++trial) {
+    const Eigen::MatrixXd M = random_contraction(4, 3, 0.9, rng);
+    const Points N = random_points(3, 3, rng);
+    CHECK(diameter(M * N) <= delta(M) * diameter(N) * (1 + 1e-12));
+  }
+}
+
+TEST_CASE("Contractivity: Chaikin, degree 6 and a refused system", "[ifs]") {
+  const Automaton chaikin = uniform_automaton(2);
+  const Contraction c = contraction(chaikin);
+  CHECK(c.m == 1);
+  CHECK(c.delta == Approx(0.75).epsilon(1e-14));
+  CHECK(c.A == Approx(1).epsilon(1e-14));
+  // The bound factor of m = 1 is 4; longer blocks tighten it (δ_2 = 7/16 gives 16/9, …) until
+  // the gain falls below 5%, at k = 6: check ρ_6 against the 64 products of length 6.
+  ContractionOptions plain;
+  plain.tighten = false;
+  CHECK(contraction(chaikin, plain).radius == Approx(4).epsilon(1e-12));
+  CHECK(contraction(chaikin, plain).radius_length == 1);
+  CHECK(c.radius_length == 6);
+  Eigen::MatrixXd Gm = chaikin_G(), Dm = Gm.rowwise().reverse().colwise().reverse();
+  double delta6 = 0;
+  for (int w = 0; w < 64; ++w) {
+    Eigen::MatrixXd P = Eigen::MatrixXd::Identity(3, 3);
+    for (int k = 0; k < 6; ++k) P = (((w >> k) & 1 ? Dm : Gm) * P).eval();
+    delta6 = std::max(delta6, delta(P));
+  }
+  CHECK(c.radius == Approx(1 / (1 - delta6)).epsilon(1e-12));
+  CHECK(c.radius < 1.04);
+  for (int d = 1; d <= 6; ++d) {
+    const Contraction cd = contraction(uniform_automaton(d));
+    INFO("degree " << d << ": m " << cd.m << " delta " << cd.delta);
+    CHECK(cd.delta < 1);
+    CHECK(cd.A == Approx(1));
+    CHECK(cd.radius < 1.2);  // degree 6: 64 for m = 1
+  }
+  const Automaton bad = identity_automaton();
+  CHECK_THROWS_WITH(contraction(bad),
+                    Catch::StartsWith("not contractive: the 8-step products from state 0 (loop) "
+                                      "do not shrink nets (δ = 1 along the path 0 0 0 0 0 0 0 0"));
+  ContractionOptions three;
+  three.max_length = 3;
+  CHECK_THROWS_WITH(contraction(bad, three), Catch::Contains("the 3-step products"));
+  ToleranceOptions options;
+  CHECK_THROWS_WITH(for_each_leaf_to_tolerance(bad, std::vector<Points>{Points::Zero(3, 2)}, options,
+                                               [](const ToleranceLeaf&) {}),
+                    Catch::Contains("not contractive"));
+}
+
+TEST_CASE("Fixed points of words: Chaikin G^inf, D^inf, (GD)^inf against Cox-de Boor", "[ifs]") {
+  std::mt19937_64 rng(7);
+  const Automaton a = uniform_automaton(2);
+  const Points P = random_points(3, 2, rng);
+  const auto point = [&](std::vector<int> word) { return Eigen::RowVectorXd(fixed_point(a, 0, word) * P); };
+  const double tol = 1e-12 * scale_of(P);
+  // G^∞ = (P0 + P1)/2, the start of the segment; D^∞ = (P1 + P2)/2, its end.
+  CHECK((point({0}) - (P.row(0) + P.row(1)) / 2).cwiseAbs().maxCoeff() <= tol);
+  CHECK((point({0}) - uniform_reference(P, 2, 0, 0)).cwiseAbs().maxCoeff() <= tol);
+  CHECK((point({1}) - uniform_reference(P, 2, 0, 1)).cwiseAbs().maxCoeff() <= tol);
+  // Binary 0.0101… = 1/3, 0.1010… = 2/3, 0.001001… = 1/7.
+  CHECK((point({0, 1}) - uniform_reference(P, 2, 0, 1.0L / 3)).cwiseAbs().maxCoeff() <= tol);
+  CHECK((point({1, 0}) - uniform_reference(P, 2, 0, 2.0L / 3)).cwiseAbs().maxCoeff() <= tol);
+  CHECK((point({0, 0, 1}) - uniform_reference(P, 2, 0, 1.0L / 7)).cwiseAbs().maxCoeff() <= tol);
+  CHECK(fixed_point(a, 0, std::vector<int>{0}).sum() == Approx(1).epsilon(1e-15));
+
+  const Automaton q = quadratic_automaton(0.5, 2, 3);
+  CHECK_THROWS_WITH(fixed_point(q, 0, std::vector<int>{0}),
+                    Catch::Contains("ends at state 1 (G), not where it started"));
+  CHECK_THROWS_WITH(fixed_point(q, 0, std::vector<int>{2}), Catch::Contains("child index 2 at position 0"));
+  CHECK_THROWS_WITH(fixed_point(identity_automaton(), 0, std::vector<int>{0}),
+                    Catch::Contains("1 is not a simple eigenvalue"));
+  // A non-uniform word: (G D)^∞ from the G state is not a cycle, (G)^∞ is: the start of the piece.
+  const Points Q = random_points(3, 3, rng);
+  const Eigen::RowVectorXd start =
+      fixed_point(q, 1, std::vector<int>{0}) * (q.graph[boost::edge(0, 1, q.graph).first].matrix * Q);
+  CHECK((start - quadratic_reference(Q, 0.5, 2, 3, 0)).cwiseAbs().maxCoeff() <= 1e-12 * scale_of(Q));
+}
+
+TEST_CASE("End functionals give the ends of every piece", "[ifs]") {
+  std::mt19937_64 rng(8);
+  const double u1 = 0.2, u2 = 1.5, u3 = 7;
+  const Automaton a = quadratic_automaton(u1, u2, u3);
+  const std::vector<Points> nets{random_points(3, 3, rng)};
+  const EndFunctionals f = end_functionals(a);
+  REQUIRE(f.start.size() == 4);
+  for (int K = 0; K <= 4; ++K)
+    for_each_leaf(a, nets, K, [&](const Leaf& leaf) {
+      long double t = 0, share = 1;
+      for (const int c : leaf.word) t += c * (share /= 2);
+      const double tol = 1e-12 * scale_of(nets[0]);
+      CHECK((f.start[leaf.state] * leaf.net - quadratic_reference(nets[0], u1, u2, u3, t))
+                .cwiseAbs()
+                .maxCoeff() <= tol);
+      CHECK((f.end[leaf.state] * leaf.net - quadratic_reference(nets[0], u1, u2, u3, t + share))
+                .cwiseAbs()
+                .maxCoeff() <= tol);
+    });
+}
+
+TEST_CASE("Spectra of the transitions", "[ifs]") {
+  const auto s = spectra(uniform_automaton(2));
+  REQUIRE(s.size() == 2);
+  CHECK(s[0].label == "G");
+  CHECK(s[1].label == "D");
+  for (const auto& t : s) {
+    REQUIRE(t.eigenvalues.size() == 3);
+    const double expected[] = {1, 0.5, 0.25};
+    for (std::size_t k = 0; k < 3; ++k) {
+      CHECK(t.eigenvalues[k].real() == Approx(expected[k]).epsilon(1e-13));
+      CHECK(std::abs(t.eigenvalues[k].imag()) <= 1e-13);
+    }
+  }
+  const auto cubic = spectra(uniform_automaton(3));
+  const double expected[] = {1, 0.5, 0.25, 0.125};
+  for (std::size_t k = 0; k < 4; ++k) CHECK(std::abs(cubic[0].eigenvalues[k] - expected[k]) <= 1e-13);
+  // A rotation has complex eigenvalues, sorted by modulus.
+  Eigen::Matrix3d R;
+  R << 0.5, 0.5, 0, -0.5, 0.5, 1, 0, 0, 1;
+  const auto z = eigenvalues(R);
+  REQUIRE(z.size() == 3);
+  CHECK(std::abs(z[0] - 1.0) <= 1e-14);
+  CHECK(std::abs(z[1]) == Approx(std::sqrt(0.5)));
+  CHECK(z[1].imag() > 0);
+  CHECK(z[2] == std::conj(z[1]));
+}
+
+TEST_CASE("validate names the broken state or transition", "[ifs]") {
+  Automaton a;
+  const StateId s = add_state(a, 3, "s"), t = add_state(a, 2, "t");
+  add_transition(a, s, t, Eigen::MatrixXd::Constant(2, 3, 1.0 / 3), "x");
+  add_initial(a, s);
+  CHECK_THROWS_WITH(validate(a), Catch::Contains("state 1 (t) has no transition"));
+  add_transition(a, t, s, Eigen::MatrixXd::Constant(3, 3, 1.0 / 3), "y");
+  CHECK_THROWS_WITH(validate(a), Catch::Contains("matrix is 3 by 3, expected 3 by 2"));
+  Automaton b;
+  const StateId u = add_state(b, 2);
+  Eigen::MatrixXd M(2, 2);
+  M << 1, 0, 0.5, 0.6;
+  add_transition(b, u, u, M, "m");
+  add_initial(b, u);
+  CHECK_THROWS_WITH(validate(b), Catch::Contains("row 1 sums to 1.1"));
+  // Unreachable broken states are ignored.
+  Automaton c = uniform_automaton(2);
+  add_state(c, 0, "orphan");
+  CHECK_NOTHROW(validate(c));
+}

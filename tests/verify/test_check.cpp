@@ -1,0 +1,119 @@
+// SPDX-License-Identifier: MIT
+// The CIFS attractor of NURBS curves against knot insertion and Cox–de Boor, on random curves.
+#include <catch2/catch.hpp>
+#include <random>
+
+#include "cifs/automata/automaton.hpp"
+#include "cifs/ifs/analysis.hpp"
+#include "cifs/ifs/attractor.hpp"
+#include "cifs/ifs/chaos.hpp"
+#include "cifs/nurbs/curve.hpp"
+#include "cifs/verify/check.hpp"
+
+using namespace cifs;
+
+namespace {
+
+struct Kind {
+  bool clamped, rational, closed;
+};
+
+/// A random curve: interval lengths 10^[-3, 3] (ratios up to 1e6), weights 10^[-3, 3].
+nurbs::Curve random_curve(std::mt19937_64& rng, int d, int dim, Kind kind) {
+  std::uniform_real_distribution<double> exponent(-3, 3);
+  const int n = d + 4;
+  const Points P = Points::Random(n, dim) * 10;
+  Eigen::VectorXd w(n);
+  for (int i = 0; i < n; ++i) w(i) = std::pow(10.0, exponent(rng));
+  const Eigen::VectorXd weights = kind.rational ? w : Eigen::VectorXd();
+  if (kind.closed) {
+    nurbs::Knots b(static_cast<std::size_t>(n + 1));
+    for (std::size_t i = 1; i < b.size(); ++i) b[i] = b[i - 1] + std::pow(10.0, exponent(rng));
+    return nurbs::make_closed_curve(d, b, P, weights);
+  }
+  nurbs::Knots t(static_cast<std::size_t>(n + d + 1));
+  for (std::size_t i = 1; i < t.size(); ++i) {
+    const bool end = kind.clamped && (i <= static_cast<std::size_t>(d) || i > static_cast<std::size_t>(n));
+    t[i] = end ? t[i - 1] : t[i - 1] + std::pow(10.0, exponent(rng));
+  }
+  return nurbs::make_curve(d, t, P, weights);
+}
+
+}  // namespace
+
+TEST_CASE("Attractor = knot insertion = Cox-de Boor, degrees 1-10, ratios 1e6, weights 1e-3..1e3",
+          "[verify]") {
+  std::mt19937_64 rng(20261121);
+  const Kind kinds[] = {{true, false, false}, {false, false, false}, {true, true, false},
+                        {false, true, false}, {false, false, true},  {false, true, true}};
+  for (int d = 1; d <= 10; ++d)
+    for (const Kind& kind : kinds) {
+      const nurbs::Curve c = random_curve(rng, d, 1 + d % 4, kind);
+      const verify::CheckReport r = verify::check_curve(c, {d <= 3 ? 10 : 7, 1e-12});
+      INFO("degree " << d << " clamped " << kind.clamped << " rational " << kind.rational << " closed "
+                     << kind.closed << ": nets " << r.nets.max_rel << ", points " << r.points.max_rel);
+      CHECK(r.pass);
+      CHECK(r.segments.size() == static_cast<std::size_t>(nurbs::segment_count(c)));
+    }
+}
+
+TEST_CASE("A deep check of a cubic", "[verify]") {
+  std::mt19937_64 rng(3);
+  const verify::CheckReport r =
+      verify::check_curve(random_curve(rng, 3, 3, {false, true, false}), {14, 1e-12});
+  INFO("nets " << r.nets.max_rel << ", points " << r.points.max_rel);
+  CHECK(r.pass);
+  CHECK(r.depth == 14);
+}
+
+TEST_CASE("Junctions: the end of G is the start of D, neighbouring segments agree", "[verify]") {
+  std::mt19937_64 rng(11);
+  for (int d = 2; d <= 6; ++d) {
+    const nurbs::Curve c = random_curve(rng, d, 2, {false, true, false});
+    const automata::Automaton a = automata::knot_automaton(c);
+    const ifs::EndFunctionals f = ifs::end_functionals(a);
+    const std::vector<Points> nets = automata::initial_nets(a, c);
+    const double scale = c.P.cwiseAbs().maxCoeff();
+    for (std::size_t i = 0; i < nets.size(); ++i) {
+      std::vector<automata::StateId> child;
+      std::vector<Points> child_net;
+      for (auto [e, end] = boost::out_edges(a.initial[i].state, a.graph); e != end; ++e) {
+        child.push_back(boost::target(*e, a.graph));
+        child_net.push_back(a.graph[*e].matrix * nets[i]);
+      }
+      CHECK((f.end[child[0]] * child_net[0] - f.start[child[1]] * child_net[1]).norm() <= 1e-12 * scale);
+      if (i + 1 < nets.size())
+        CHECK((f.end[a.initial[i].state] * nets[i] - f.start[a.initial[i + 1].state] * nets[i + 1]).norm() <=
+              1e-12 * scale);
+    }
+  }
+}
+
+TEST_CASE("Chaos-game points lie on the curve at their recorded parameter", "[verify]") {
+  std::mt19937_64 rng(17);
+  const nurbs::Curve c = random_curve(rng, 3, 3, {true, true, false});
+  const automata::Automaton a = automata::knot_automaton(c);
+  ifs::ChaosOptions options;
+  options.samples = 2000;
+  options.seed = 42;
+  options.record_address = true;
+  const ifs::ChaosResult r = ifs::chaos_game(a, automata::initial_nets(a, c), options);
+  const Points P = ifs::cartesian(r.points);
+  const double scale = nurbs::cartesian_points(c).cwiseAbs().maxCoeff();
+  for (Eigen::Index k = 0; k < P.rows(); ++k) {
+    const double address = r.address[static_cast<std::size_t>(k)];
+    const auto i =
+        static_cast<std::size_t>(std::min(std::floor(address), static_cast<double>(a.initial.size() - 1)));
+    const double u =
+        a.initial[i].start + (address - static_cast<double>(i)) * (a.initial[i].end - a.initial[i].start);
+    CHECK((P.row(k) - nurbs::evaluate(c, u)).norm() <= 1e-9 * scale);
+  }
+}
+
+TEST_CASE("check refuses bad depths and work beyond its budget", "[verify]") {
+  std::mt19937_64 rng(1);
+  const nurbs::Curve c = random_curve(rng, 3, 2, {true, false, false});
+  CHECK_THROWS_WITH(verify::check_curve(c, {-1, 1e-12}), Catch::Contains("depth -1 is outside [0, 30]"));
+  CHECK_THROWS_WITH(verify::check_curve(c, {24, 1e-12}), Catch::Contains("would insert"));
+  CHECK_THROWS_WITH(verify::check_curve(c, {4, 0}), Catch::Contains("tolerance must be positive"));
+}
