@@ -158,6 +158,51 @@ TEST_CASE("cifs reports bad input on one line and exits 2", "[cli]") {
   check_error(cifs_cli("info " + scratch().string()), "is a directory");
 }
 
+TEST_CASE("cifs automaton, attractor and check", "[cli]") {
+  const std::string shape = file("c.json", kCurve);
+  const auto c = std::get<nurbs::Curve>(io::read_shape(shape));
+  const json a = json::parse(cifs_cli("automaton " + shape).out);
+  CHECK(a["initial"].size() == 3);
+  CHECK(a["transitions"].size() == 2 * a["states"].size());
+  CHECK_THAT(cifs_cli("automaton " + shape + " --format dot").out, Catch::StartsWith("digraph G {"));
+  CHECK(json::parse(cifs_cli("automaton " + shape + " --minimize").out)["states"].size() <=
+        a["states"].size());
+
+  // Attractor points at depth 3: 3 segments × 8 starts + the end, on the curve at the dyadic parameters.
+  const json pts = json::parse(cifs_cli("attractor " + shape + " --depth 3").out)["points"];
+  REQUIRE(pts.size() == 25);
+  const double starts[] = {0, 1, 2};
+  const double lengths[] = {1, 1, 2};
+  for (std::size_t k = 0; k < 25; ++k) {
+    const std::size_t s = std::min<std::size_t>(k / 8, 2);
+    const double u = k == 24 ? 4.0 : starts[s] + lengths[s] * static_cast<double>(k % 8) / 8;
+    const Point p = nurbs::evaluate(c, u);
+    for (int i = 0; i < 3; ++i)
+      CHECK(pts[k][static_cast<std::size_t>(i)].get<double>() == Approx(p(i)).margin(1e-13));
+  }
+  const Run tol = cifs_cli("attractor " + shape + " --tolerance 0.01 --format obj");
+  REQUIRE(tol.status == 0);
+  CHECK_THAT(tol.out, Catch::Contains("\nl 1 2 3"));
+  CHECK_THAT(cifs_cli("attractor " + shape + " --depth 2 --format svg").out, Catch::StartsWith("<svg"));
+
+  const Run ok = cifs_cli("check " + shape + " --depth 6 --json");
+  REQUIRE(ok.status == 0);
+  const json report = json::parse(ok.out);
+  CHECK(report["pass"] == true);
+  CHECK(report["segments"].size() == 3);
+  CHECK(report["nets"]["max_rel"].get<double>() <= 1e-12);
+  // An impossible tolerance fails with exit status 1 and a report, not an error.
+  const Run fail = cifs_cli("check " + shape + " --depth 6 --tolerance 1e-30");
+  CHECK(fail.status == 1);
+  CHECK_THAT(fail.out, Catch::Contains("FAIL"));
+
+  check_error(cifs_cli("attractor " + shape), "exactly one of --depth K and --tolerance E");
+  check_error(cifs_cli("attractor " + shape + " --depth 3 --format png"), "--format 'png'");
+  check_error(cifs_cli("attractor " + shape + " --depth 40"), "");
+  check_error(cifs_cli("check " + shape + " --depth 31"), "depth 31 is outside [0, 30]");
+  check_error(cifs_cli("automaton " + file("s.json", kSurface)), "only curves");
+}
+
 TEST_CASE("cifs gallery writes its outputs", "[cli]") {
   const auto out = scratch() / "gallery";
   const Run r = cifs_cli("gallery " + out.string());
