@@ -29,10 +29,9 @@ Piece piece_for(const Curve& c, double lo, double hi) {
 
 /// Row j of the control points of the same piecewise polynomial, seen with degree `c.degree + raise`
 /// (raise ∈ {0, 1}) on `target`, a knot vector whose pieces are pieces of `c`: the blossom at the
-/// consecutive target knots t'_{j+1..j+q}, symmetrised over the dropped argument when raised.
-/// The blossom is taken on the first non-empty interval of the support of N'_j (open curves: within
-/// the domain, else the nearest one): with the arguments in increasing order the triangle then meets
-/// exact zeros wherever the arguments are old knots, as Boehm's insertion does.
+/// consecutive target knots t'_{j+1..j+q}, symmetrised over the dropped argument when raised, written
+/// to Q.row(row). The piece is one under an interval of the support of N'_j (open curves: within the
+/// target's domain).
 void set_blossom_point(const Curve& c, const Knots& target, int raise, Eigen::Index j, Points& Q,
                        Eigen::Index row) {
   const int p = c.degree;

@@ -13,8 +13,10 @@ namespace cifs::nurbs {
 /// is outside the domain or its multiplicity would exceed the degree.
 Curve insert_knot(const Curve& c, double u, int times = 1);
 
-/// Inserts many knots at once (any order, repeats allowed; Piegl–Tiller A5.4 for open curves,
-/// the blossom form `Q_j = b(t'_{j+1}, …, t'_{j+d})` for closed ones).
+/// Inserts many knots at once (any order, repeats allowed). Every new point is the blossom
+/// `Q_j = b(t'_{j+1}, …, t'_{j+d})` of a piece of its support, computed on its own (Oslo's
+/// accuracy, whatever the number of knots); open curves keep `Σ P_i N_i` on the whole knot range,
+/// as Boehm's insertion does, closed curves stay periodic.
 Curve refine(const Curve& c, std::span<const double> new_knots);
 
 /// Inserts the midpoint of every non-empty span of the domain (one knot-doubling step).
@@ -36,7 +38,8 @@ struct Removal {
 };
 
 /// Removes up to `times` copies of the interior knot `u` while the curve moves by at most
-/// `tolerance` (Piegl–Tiller A5.8, then a bound proven by re-inserting the removed knots).
+/// `tolerance`: one copy at a time with the equations of Piegl–Tiller A5.8, solved from both ends
+/// and meeting where α crosses ½; then a bound proven by re-inserting the removed knots.
 /// Open curves only: throws InvalidInput for closed curves and for knots that are not interior.
 Removal remove_knot(const Curve& c, double u, int times, double tolerance);
 
