@@ -30,14 +30,14 @@
 #include "cifs/nurbs/knots.hpp"
 #include "cifs/nurbs/refine.hpp"
 #include "cifs/nurbs/surface.hpp"
+#include "proto_kernels.hpp"  // PROTOTYPES, not library code: the BM_…/proto_… benchmarks
 
-#ifdef CIFS_HAVE_SISL
-#include <sisl.h>
-#endif
+#include "sisl_adapters.hpp"
 
 namespace {
 
 namespace nurbs = cifs::nurbs;
+namespace proto = cifs_bench::proto;
 using cifs::Points;
 
 // ------------------------------------------------------------------------------------------------
@@ -99,115 +99,18 @@ void require_close(const std::string& what, const double* a, const double* b, st
   std::fprintf(stderr, "cross-check ok: %-62s max |diff| %.1e (tol %.0e)\n", what.c_str(), diff, tol);
 }
 
-void require_sisl_ok(int status, const char* routine) {
-  if (status < 0) fail(std::string("SISL ") + routine + " returned status " + std::to_string(status));
-}
-
-/// items/s from SetItemsProcessed, plus the time per item in nanoseconds as a counter.
+/// items/s from SetItemsProcessed, plus the CPU time per item as a counter (console: "per_pt=27.8ns";
+/// JSON: seconds).
 void report_rate(benchmark::State& state, std::size_t items_per_iteration, const char* counter) {
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(items_per_iteration));
   state.counters[counter] =
-      benchmark::Counter(static_cast<double>(items_per_iteration) * 1e-9,
+      benchmark::Counter(static_cast<double>(items_per_iteration),
                          benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
-// ------------------------------------------------------------------------------------------------
-// SISL adapters
+// SISL adapters: bench/sisl_adapters.hpp
 
-#ifdef CIFS_HAVE_SISL
-
-struct SislCurveFree {
-  void operator()(SISLCurve* c) const noexcept { freeCurve(c); }
-};
-struct SislSurfFree {
-  void operator()(SISLSurf* s) const noexcept { freeSurf(s); }
-};
-using SislCurvePtr = std::unique_ptr<SISLCurve, SislCurveFree>;
-using SislSurfPtr = std::unique_ptr<SISLSurf, SislSurfFree>;
-
-/// SISL copy of a cifs curve. SISL counts the order (degree + 1), takes the same full knot vector
-/// (n + order values; a clamped end is an order-fold knot in both libraries) and, for a rational
-/// curve (ikind 2), homogeneous coefficients (w·x, w) — exactly the rows cifs stores. icopy = 1: SISL
-/// copies both arrays. (newCurve may shift "superfluous" end knots inside the arrays it is given, so
-/// it gets scratch copies, never cifs' own storage.)
-SislCurvePtr to_sisl(const nurbs::Curve& c) {
-  std::vector<double> knots = c.knots;
-  Points coefficients = c.P;
-  SISLCurve* s = newCurve(static_cast<int>(c.P.rows()), c.degree + 1, knots.data(), coefficients.data(),
-                          c.rational ? 2 : 1, nurbs::dimension(c), 1);
-  if (s == nullptr) fail("SISL newCurve failed");
-  return SislCurvePtr(s);
-}
-
-/// SISL copy of a cifs surface with the parameter directions swapped. SISL stores coefficient
-/// (i1, i2) at i2·in1 + i1 (first direction fastest), cifs stores (i, j) at i·nv + j (v fastest):
-/// with SISL's first direction = cifs v and its second = cifs u the coefficient arrays are
-/// byte-for-byte the same. Then s1506's output order (first-direction parameter fastest) is
-/// evaluate_grid's row order a·#vs + b, and s1506 works like evaluate_grid: it builds the iso-curve
-/// at each second-direction parameter (cifs u, once per grid row) and evaluates it along the first.
-SislSurfPtr to_sisl(const nurbs::Surface& s) {
-  std::vector<double> knots_v = s.knots[1], knots_u = s.knots[0];
-  Points coefficients = s.P;
-  SISLSurf* out = newSurf(static_cast<int>(s.count[1]), static_cast<int>(s.count[0]), s.degree[1] + 1,
-                          s.degree[0] + 1, knots_v.data(), knots_u.data(), coefficients.data(),
-                          s.rational ? 2 : 1, nurbs::dimension(s), 1);
-  if (out == nullptr) fail("SISL newSurf failed");
-  return SislSurfPtr(out);
-}
-
-/// Curve points one parameter at a time, the way SISL users evaluate a parameter sequence: the
-/// `leftknot` interval index of one call is the hint of the next (s1219 checks it, then its
-/// neighbours, before bisecting), so sorted parameters cost O(1) per search.
-/// FromLeft: s1227 (left-continuous: at a knot it evaluates the piece that ends there) — the
-/// routine the SISL manual pairs with increasing parameters; otherwise s1221 (right-continuous, the
-/// cifs convention, and a little cheaper: no knot-multiplicity test). Positions agree either way on a
-/// continuous curve; derivatives are not requested (ider = 0).
-template <bool FromLeft>
-int sisl_curve_points(SISLCurve* c, std::span<const double> us, double* out) {
-  int left = 0, status = 0, worst = 0;
-  const std::size_t dim = static_cast<std::size_t>(c->idim);
-  for (std::size_t k = 0; k < us.size(); ++k) {
-    if constexpr (FromLeft)
-      s1227(c, 0, us[k], &left, out + k * dim, &status);
-    else
-      s1221(c, 0, us[k], &left, out + k * dim, &status);
-    worst = std::min(worst, status);
-  }
-  return worst;
-}
-
-/// Surface grid one point at a time with s1424 (position only: ider1 = ider2 = 0; s1421 would also
-/// compute both first derivatives and the normal, which is not the same job). The two left-knot
-/// hints persist from point to point like s1227's. epar = (first, second) = (v, u), see to_sisl.
-int sisl_grid_points(SISLSurf* s, std::span<const double> us, std::span<const double> vs, double* out) {
-  int left1 = 0, left2 = 0, status = 0, worst = 0;
-  const std::size_t dim = static_cast<std::size_t>(s->idim);
-  double epar[2];
-  for (std::size_t a = 0; a < us.size(); ++a) {
-    epar[1] = us[a];
-    for (std::size_t b = 0; b < vs.size(); ++b) {
-      epar[0] = vs[b];
-      s1424(s, 0, 0, epar, &left1, &left2, out + (a * vs.size() + b) * dim, &status);
-      worst = std::min(worst, status);
-    }
-  }
-  return worst;
-}
-
-/// Surface grid with SISL's grid evaluator s1506 (ider = 0: positions; it pre-evaluates the
-/// B-splines of each grid line with s1504, then s1505 multiplies out, iso-curve by iso-curve).
-/// `normals` must hold dim·#us·#vs values (written only when ider ≥ 1).
-int sisl_grid(SISLSurf* s, std::vector<double>& us, std::vector<double>& vs, double* out, double* normals) {
-  int status = 0;
-  s1506(s, 0, static_cast<int>(vs.size()), vs.data(), static_cast<int>(us.size()), us.data(), out, normals,
-        &status);
-  return status;
-}
-
-constexpr const char* kSislContext = "libsisl 4.6.0 (Debian libsisl-dev, static)";
-#else
-constexpr const char* kSislContext = "not found: cifs only";
-#endif
+using namespace cifs_bench;
 
 // ------------------------------------------------------------------------------------------------
 // Case 1: curve evaluation — cubic, 60 control points in 3-D, clamped non-uniform knots, 1e5
@@ -219,11 +122,15 @@ constexpr std::size_t kCurveParams = 100000;
 struct CurveCase {
   nurbs::Curve curve;
   std::vector<double> random, sorted;
+  std::vector<double> random2, sorted2;  // a second draw, for the *_fresh benchmarks
 #ifdef CIFS_HAVE_SISL
   SislCurvePtr sisl;
 #endif
   std::vector<double>& params(bool sorted_order) {
     return sorted_order ? sorted : random;
+  }
+  std::vector<double>& params2(bool sorted_order) {
+    return sorted_order ? sorted2 : random2;
   }
 };
 
@@ -242,6 +149,10 @@ void check_curve_case(CurveCase& cc) {
     }
     require_close(label + "cifs de Boor vs cifs batch", single.data(), batch.data(), count);
     require_close(label + "cifs evaluate_basis vs cifs batch", basis.data(), batch.data(), count);
+    const Points fast = proto::evaluate(cc.curve, us);
+    require_close(label + "PROTOTYPE batch vs cifs batch", fast.data(), batch.data(), count);
+    for (std::size_t k = 0; k < us.size(); ++k) proto::evaluate(cc.curve, us[k], single.data() + k * dim);
+    require_close(label + "PROTOTYPE de Boor vs cifs batch", single.data(), batch.data(), count);
 #ifdef CIFS_HAVE_SISL
     std::vector<double> out(count);
     require_sisl_ok(sisl_curve_points<true>(cc.sisl.get(), us, out.data()), "s1227");
@@ -276,6 +187,10 @@ CurveCase make_curve_case(bool rational) {
   for (std::size_t i = kDegree + 1; i + kDegree + 1 < knots.size(); ++i) cc.random[i] = knots[i];
   cc.sorted = cc.random;
   std::sort(cc.sorted.begin(), cc.sorted.end());
+  cc.random2.resize(kCurveParams);
+  for (double& u : cc.random2) u = parameter(rng);
+  cc.sorted2 = cc.random2;
+  std::sort(cc.sorted2.begin(), cc.sorted2.end());
 #ifdef CIFS_HAVE_SISL
   cc.sisl = to_sisl(cc.curve);
 #endif
@@ -301,7 +216,7 @@ void register_curve_benchmarks(bool rational, bool sorted) {
       CurveCase& cc = curve_case(rational);
       const std::vector<double>& us = cc.params(sorted);
       run(state, cc, us);
-      report_rate(state, us.size(), "ns/pt");
+      report_rate(state, us.size(), "per_pt");
     })->Unit(benchmark::kMicrosecond);
   };
   // cifs batch: nurbs::evaluate(curve, span) — span search hinted by the previous parameter.
@@ -345,6 +260,48 @@ void register_curve_benchmarks(bool rational, bool sorted) {
       }
       require_sisl_ok(worst, "s1542");
     });
+  // s1542 keeps no hint between calls: s1540 mallocs its interval array (uninitialised) and hands
+  // entry k to s1219 as the hint for x[k]. In a benchmark loop on one parameter array, malloc returns
+  // the block just freed, whose entry k is the right interval from the previous call: a perfect hint
+  // that no real caller gets. The *_fresh variants alternate between two parameter draws of the
+  // same distribution, so the stale hints are those of other parameters (cifs twin alongside).
+  if (!rational) {
+    auto fresh = [sorted](const char* variant, auto run) {
+      benchmark::RegisterBenchmark(
+          (std::string(sorted ? "BM_curve_eval_sorted/" : "BM_curve_eval_random/") + variant).c_str(),
+          [sorted, run](benchmark::State& state) {
+            CurveCase& cc = curve_case(false);
+            run(state, cc.params(sorted), cc.params2(sorted));
+            report_rate(state, cc.params(sorted).size(), "per_pt");
+          })
+          ->Unit(benchmark::kMicrosecond);
+    };
+    fresh("sisl_s1542_fresh", [](benchmark::State& state, std::vector<double>& a, std::vector<double>& b) {
+      CurveCase& cc = curve_case(false);
+      std::vector<double> out(a.size() * 3);
+      int status = 0, worst = 0;
+      bool flip = false;
+      for (auto _ : state) {
+        std::vector<double>& us = flip ? b : a;
+        flip = !flip;
+        s1542(cc.sisl.get(), static_cast<int>(us.size()), us.data(), out.data(), &status);
+        worst = std::min(worst, status);
+        benchmark::DoNotOptimize(out.data());
+        benchmark::ClobberMemory();
+      }
+      require_sisl_ok(worst, "s1542");
+    });
+    fresh("cifs_fresh", [](benchmark::State& state, std::vector<double>& a, std::vector<double>& b) {
+      CurveCase& cc = curve_case(false);
+      bool flip = false;
+      for (auto _ : state) {
+        Points out = nurbs::evaluate(cc.curve, flip ? b : a);
+        flip = !flip;
+        benchmark::DoNotOptimize(out.data());
+        benchmark::ClobberMemory();
+      }
+    });
+  }
 #endif
   // cifs single-point forms: de Boor's triangle, and the basis form Σ N_i(u) P_i. Each call finds
   // its span from scratch and returns a freshly allocated Point, as the API does.
@@ -362,6 +319,22 @@ void register_curve_benchmarks(bool rational, bool sorted) {
     for (auto _ : state) {
       for (std::size_t k = 0; k < us.size(); ++k)
         out.row(static_cast<Eigen::Index>(k)) = nurbs::evaluate_basis(cc.curve, us[k]);
+      benchmark::DoNotOptimize(out.data());
+      benchmark::ClobberMemory();
+    }
+  });
+  // PROTOTYPES (bench/proto_kernels.hpp), not library code: what the proposed fixes would gain.
+  add("proto_cifs", [](benchmark::State& state, CurveCase& cc, const std::vector<double>& us) {
+    for (auto _ : state) {
+      Points out = proto::evaluate(cc.curve, us);
+      benchmark::DoNotOptimize(out.data());
+      benchmark::ClobberMemory();
+    }
+  });
+  add("proto_deboor", [](benchmark::State& state, CurveCase& cc, const std::vector<double>& us) {
+    Points out(static_cast<Eigen::Index>(us.size()), 3);
+    for (auto _ : state) {
+      for (std::size_t k = 0; k < us.size(); ++k) proto::evaluate(cc.curve, us[k], out.data() + 3 * k);
       benchmark::DoNotOptimize(out.data());
       benchmark::ClobberMemory();
     }
@@ -397,6 +370,14 @@ void check_surface_case(SurfaceCase& sc) {
     }
   require_close(label + "cifs evaluate(s, u, v) vs evaluate_grid", single.data(), expected.data(),
                 static_cast<std::size_t>(rows * grid.cols()));
+  const Points fast = proto::evaluate_grid(sc.surface, sc.us, sc.vs);
+  require_close(label + "PROTOTYPE evaluate_grid vs evaluate_grid", fast.data(), grid.data(), count);
+  rows = 0;
+  for (std::size_t a = 0; a < sc.us.size(); a += 10)
+    for (std::size_t b = 0; b < sc.vs.size(); ++b, ++rows)
+      proto::evaluate(sc.surface, sc.us[a], sc.vs[b], single.row(rows).data());
+  require_close(label + "PROTOTYPE point vs evaluate_grid", single.data(), expected.data(),
+                static_cast<std::size_t>(rows * grid.cols()));
 #ifdef CIFS_HAVE_SISL
   std::vector<double> out(count), normals(count);
   require_sisl_ok(sisl_grid(sc.sisl.get(), sc.us, sc.vs, out.data(), normals.data()), "s1506");
@@ -404,8 +385,6 @@ void check_surface_case(SurfaceCase& sc) {
   std::fill(out.begin(), out.end(), 0.0);
   require_sisl_ok(sisl_grid_points(sc.sisl.get(), sc.us, sc.vs, out.data()), "s1424");
   require_close(label + "SISL s1424 vs cifs evaluate_grid", out.data(), grid.data(), count);
-#else
-  (void)count;
 #endif
 }
 
@@ -443,7 +422,7 @@ void register_surface_benchmarks(bool rational) {
       SurfaceCase& sc = surface_case(rational);
       run(state, sc);
       const std::size_t points = (all_points ? sc.us.size() : sc.us.size() / 10) * sc.vs.size();
-      report_rate(state, points, "ns/pt");
+      report_rate(state, points, "per_pt");
     })->Unit(benchmark::kMillisecond);
   };
   add("cifs", [](benchmark::State& state, SurfaceCase& sc) {
@@ -475,6 +454,14 @@ void register_surface_benchmarks(bool rational) {
     require_sisl_ok(worst, "s1424");
   });
 #endif
+  // PROTOTYPE (bench/proto_kernels.hpp), not library code: evaluate_grid with a fixed coordinate count.
+  add("proto_cifs", [](benchmark::State& state, SurfaceCase& sc) {
+    for (auto _ : state) {
+      Points out = proto::evaluate_grid(sc.surface, sc.us, sc.vs);
+      benchmark::DoNotOptimize(out.data());
+      benchmark::ClobberMemory();
+    }
+  });
   // cifs single-point evaluate(s, u, v), the twin of s1424; every 10th grid row (it is slow).
   add(
       "cifs_point",
@@ -484,6 +471,20 @@ void register_surface_benchmarks(bool rational) {
           Eigen::Index row = 0;
           for (std::size_t a = 0; a < sc.us.size(); a += 10)
             for (double v : sc.vs) out.row(row++) = nurbs::evaluate(sc.surface, sc.us[a], v);
+          benchmark::DoNotOptimize(out.data());
+          benchmark::ClobberMemory();
+        }
+      },
+      false);
+  // PROTOTYPE (bench/proto_kernels.hpp), not library code: a stack-only single-point evaluator.
+  add(
+      "proto_point",
+      [](benchmark::State& state, SurfaceCase& sc) {
+        Points out(static_cast<Eigen::Index>(sc.us.size() / 10 * sc.vs.size()), 3);
+        for (auto _ : state) {
+          Eigen::Index row = 0;
+          for (std::size_t a = 0; a < sc.us.size(); a += 10)
+            for (double v : sc.vs) proto::evaluate(sc.surface, sc.us[a], v, out.row(row++).data());
           benchmark::DoNotOptimize(out.data());
           benchmark::ClobberMemory();
         }
@@ -509,6 +510,16 @@ void check_refine_case(RefineCase& rc) {
   if (a.knots != b.knots || a.P.rows() != rc.curve.P.rows() + static_cast<Eigen::Index>(rc.mids.size()))
     fail("cross-check FAILED: " + label + "refine_midpoints and refine(mids) give different knots");
   require_close(label + "cifs refine(mids) vs refine_midpoints", b.P.data(), a.P.data(),
+                static_cast<std::size_t>(a.P.size()));
+  const nurbs::Curve fast = proto::refine(rc.curve, rc.mids);
+  if (fast.knots != a.knots || fast.P.rows() != a.P.rows())
+    fail("cross-check FAILED: " + label + "PROTOTYPE refine gives different knots");
+  require_close(label + "PROTOTYPE refine vs cifs", fast.P.data(), a.P.data(),
+                static_cast<std::size_t>(a.P.size()));
+  const nurbs::Curve blossom = proto::refine_blossom(rc.curve, rc.mids);
+  if (blossom.knots != a.knots || blossom.P.rows() != a.P.rows())
+    fail("cross-check FAILED: " + label + "PROTOTYPE blossom refine gives different knots");
+  require_close(label + "PROTOTYPE blossom refine vs cifs", blossom.P.data(), a.P.data(),
                 static_cast<std::size_t>(a.P.size()));
 #ifdef CIFS_HAVE_SISL
   SISLCurve* out = nullptr;
@@ -551,7 +562,7 @@ void register_refine_benchmarks(Eigen::Index n) {
     benchmark::RegisterBenchmark((group + variant).c_str(), [n, run](benchmark::State& state) {
       RefineCase& rc = refine_case(n);
       run(state, rc);
-      report_rate(state, rc.mids.size(), "ns/knot");
+      report_rate(state, rc.mids.size(), "per_knot");
     })->Unit(benchmark::kMicrosecond);
   };
   // cifs refine with the explicit knot list (the twin of s1018) and refine_midpoints, which also
@@ -580,6 +591,22 @@ void register_refine_benchmarks(Eigen::Index n) {
   add("cifs_midpoints", [](benchmark::State& state, RefineCase& rc) {
     for (auto _ : state) {
       nurbs::Curve out = nurbs::refine_midpoints(rc.curve);
+      benchmark::DoNotOptimize(out.P.data());
+      benchmark::ClobberMemory();
+    }
+  });
+  // PROTOTYPES (bench/proto_kernels.hpp), not library code: Boehm insertion run backwards, and the
+  // library's blossom refinement without its per-point overheads.
+  add("proto_refine", [](benchmark::State& state, RefineCase& rc) {
+    for (auto _ : state) {
+      nurbs::Curve out = proto::refine(rc.curve, rc.mids);
+      benchmark::DoNotOptimize(out.P.data());
+      benchmark::ClobberMemory();
+    }
+  });
+  add("proto_blossom", [](benchmark::State& state, RefineCase& rc) {
+    for (auto _ : state) {
+      nurbs::Curve out = proto::refine_blossom(rc.curve, rc.mids);
       benchmark::DoNotOptimize(out.P.data());
       benchmark::ClobberMemory();
     }
