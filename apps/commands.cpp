@@ -13,6 +13,7 @@
 #include "cifs/io/shape.hpp"
 #include "cifs/nurbs/refine.hpp"
 #include "cifs/verify/check.hpp"
+#include "scheme_command.hpp"
 
 namespace cifs::cli {
 namespace {
@@ -255,8 +256,12 @@ std::string gallery(const std::filesystem::path& out) {
   std::error_code ec;
   std::filesystem::create_directories(out, ec);
   if (ec) throw IoError(out.string() + ": cannot create the folder (" + ec.message() + ")");
-  // Built-in default until the renderer lands: the exact rational circle (nine points, quadratic),
-  // written as a shape and sampled at 257 parameters.
+  std::string summary;
+  const auto write = [&](const std::string& name, const std::string& content) {
+    io::write_file_atomically(out / name, content);
+    summary += "gallery: wrote " + (out / name).string() + "\n";
+  };
+  // The exact rational circle (nine points, quadratic), as a shape and sampled at 257 parameters.
   const double h = std::sqrt(0.5);
   Points P(9, 2);
   P << 1, 0, 1, 1, 0, 1, -1, 1, -1, 0, -1, -1, 0, -1, 1, -1, 1, 0;
@@ -264,14 +269,22 @@ std::string gallery(const std::filesystem::path& out) {
   w << 1, h, 1, h, 1, h, 1, h, 1;
   const nurbs::Curve circle = nurbs::make_curve(2, {0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4}, P, w);
   const Points samples = nurbs::evaluate(circle, nurbs::uniform_parameters(nurbs::domain(circle), 257));
-  double radius_error = 0;
-  for (Eigen::Index i = 0; i < samples.rows(); ++i)
-    radius_error = std::max(radius_error, std::abs(samples.row(i).norm() - 1));
-  io::write_file_atomically(out / "circle.json", io::to_json(circle));
-  io::write_file_atomically(out / "circle.samples.json", points_json(samples));
-  return "gallery: wrote " + (out / "circle.json").string() + " and " +
-         (out / "circle.samples.json").string() +
-         " (257 samples, max |radius - 1| = " + std::to_string(radius_error) + ")\n";
+  write("circle.json", io::to_json(circle));
+  write("circle.samples.json", points_json(samples));
+  // A non-uniform rational cubic: its knot-doubling automaton (DOT) and its attractor (SVG).
+  Points Q(7, 2);
+  Q << 0, 0, 1, 3, 3, 4, 4, 1, 6, 0, 7, 2, 9, 3;
+  Eigen::VectorXd wq(7);
+  wq << 1, 2, 0.5, 1, 3, 1, 1;
+  const nurbs::Curve wave = nurbs::make_curve(3, {0, 0, 0, 0, 1, 3, 3.5, 6, 6, 6, 6}, Q, wq);
+  const automata::Automaton a = automata::knot_automaton(wave);
+  write("wave.json", io::to_json(wave));
+  write("wave.automaton.dot", automata::to_dot(a));
+  write("wave.attractor.svg",
+        io::polyline_svg(ifs::cartesian(ifs::attractor_points(a, automata::initial_nets(a, wave), 7))));
+  // The seeds' subdivision schemes: shapes, degree overlays, algorithms compared.
+  summary += write_scheme_gallery(out / "schemes");
+  return summary;
 }
 
 }  // namespace cifs::cli

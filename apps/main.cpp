@@ -6,6 +6,7 @@
 
 #include "cifs/errors.hpp"
 #include "commands.hpp"
+#include "scheme_command.hpp"
 
 int main(int argc, char** argv) {
   using namespace cifs::cli;
@@ -64,6 +65,22 @@ int main(int argc, char** argv) {
   check_cmd->add_flag("--json", ch.json, "Machine-readable report");
   check_cmd->callback([&] { result = check(ch, status); });
 
+  SchemeOptions sc;
+  auto* scheme_cmd =
+      app.add_subcommand("scheme", "Curve subdivision schemes: --analyze (JSON), --refine a polygon, --list");
+  scheme_cmd->add_option("name", sc.name, "Scheme name (cifs scheme --list)");
+  scheme_cmd->add_option("--param", sc.params, "Scheme parameter NAME=VALUE; repeatable")
+      ->allow_extra_args(false);
+  scheme_cmd->add_flag("--analyze", sc.analyze, "Print the analysis as JSON");
+  scheme_cmd->add_option("--refine", sc.refine, "Polygon file to refine (docs/formats.md)");
+  scheme_cmd->add_option("--steps", sc.steps, "Refinement steps (default 1)");
+  scheme_cmd->add_option("--ends", sc.ends, "Open polygons: auto (default), reflect or keep");
+  scheme_cmd->add_option("--format", sc.format, "Refined polygon as json (default), svg or obj");
+  scheme_cmd->add_option("--max-power", sc.max_power,
+                         "Analysis: largest power L of the difference schemes (default 20)");
+  scheme_cmd->add_flag("--list", sc.list, "List the schemes and their parameters");
+  scheme_cmd->callback([&] { result = scheme(sc); });
+
   std::filesystem::path gallery_out = "out";
   auto* gallery_cmd = app.add_subcommand("gallery", "Write the example gallery (the built-in default job)");
   gallery_cmd->add_option("out", gallery_out, "Output folder (default: out)");
@@ -75,7 +92,7 @@ int main(int argc, char** argv) {
     if (first[0] != '-' && known.empty())
       throw cifs::InvalidInput(
           "unknown command '" + first +
-          "' (commands: eval, insert, info, automaton, attractor, check, gallery; see cifs --help)");
+          "' (commands: eval, insert, info, automaton, attractor, check, scheme, gallery; see cifs --help)");
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);

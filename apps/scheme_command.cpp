@@ -1,0 +1,382 @@
+// SPDX-License-Identifier: MIT
+#include "scheme_command.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <sstream>
+
+#include "cifs/errors.hpp"
+#include "cifs/io/polyline.hpp"
+#include "cifs/io/shape.hpp"
+#include "cifs/subdivision/analysis.hpp"
+#include "cifs/subdivision/refine.hpp"
+#include "cifs/subdivision/scheme.hpp"
+
+namespace cifs::cli {
+namespace {
+
+using nlohmann::json;
+namespace sd = cifs::subdivision;
+
+struct Polygon {
+  Points points;
+  bool closed = false;
+};
+
+/// `{"polygon": {"points": [[x, y], ...], "closed": true}}` (docs/formats.md).
+Polygon parse_polygon(const std::string& text, const std::string& where) {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw IoError(where + ": not JSON (" + e.what() + ")");
+  }
+  if (!j.is_object() || !j.contains("polygon") || !j["polygon"].is_object())
+    throw IoError(where + ": expected {\"polygon\": {\"points\": [[x, y], ...], \"closed\": true}}");
+  const json& p = j["polygon"];
+  for (const auto& [key, value] : p.items())
+    if (key != "points" && key != "closed")
+      throw IoError(where + ": polygon: unknown key '" + key + "' (keys: points, closed)");
+  if (!p.contains("points") || !p["points"].is_array() || p["points"].empty())
+    throw IoError(where + ": polygon.points: a non-empty array of points is required");
+  Polygon out;
+  if (p.contains("closed")) {
+    if (!p["closed"].is_boolean()) throw IoError(where + ": polygon.closed: true or false");
+    out.closed = p["closed"].get<bool>();
+  }
+  const json& pts = p["points"];
+  std::size_t dim = 0;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const json& row = pts[i];
+    if (!row.is_array() || row.empty() || row.size() > 16)
+      throw IoError(where + ": polygon.points[" + std::to_string(i) +
+                    "]: a point is an array of 1 to 16 numbers");
+    if (i == 0) dim = row.size();
+    if (row.size() != dim)
+      throw IoError(where + ": polygon.points[" + std::to_string(i) + "]: " + std::to_string(row.size()) +
+                    " coordinates, the first point has " + std::to_string(dim));
+  }
+  out.points.resize(static_cast<Eigen::Index>(pts.size()), static_cast<Eigen::Index>(dim));
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    for (std::size_t k = 0; k < dim; ++k) {
+      const json& x = pts[i][k];
+      if (!x.is_number() || !std::isfinite(x.get<double>()))
+        throw IoError(where + ": polygon.points[" + std::to_string(i) + "][" + std::to_string(k) +
+                      "]: not a finite number");
+      out.points(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) = x.get<double>();
+    }
+  return out;
+}
+
+std::string polygon_json(const Points& P, bool closed) {
+  std::string out = "{\"polygon\": {\"closed\": ";
+  out += closed ? "true" : "false";
+  out += ", \"points\": [";
+  char buffer[32];
+  for (Eigen::Index i = 0; i < P.rows(); ++i) {
+    out += i ? ",\n  [" : "\n  [";
+    for (Eigen::Index k = 0; k < P.cols(); ++k) {
+      if (k) out += ", ";
+      out.append(buffer, std::to_chars(buffer, buffer + sizeof buffer, P(i, k)).ptr);
+    }
+    out += "]";
+  }
+  out += "]}}\n";
+  return out;
+}
+
+std::map<std::string, std::string> parse_params(const std::vector<std::string>& params) {
+  std::map<std::string, std::string> out;
+  for (const std::string& p : params) {
+    const auto eq = p.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw InvalidInput("--param '" + p + "': expected NAME=VALUE, e.g. --param w=0.0625");
+    const std::string key = p.substr(0, eq);
+    if (out.count(key)) throw InvalidInput("--param " + key + " is given twice");
+    out[key] = p.substr(eq + 1);
+  }
+  return out;
+}
+
+std::string catalogue_text() {
+  std::ostringstream s;
+  for (const sd::SchemeSpec& spec : sd::scheme_catalogue()) {
+    s << spec.name;
+    for (const sd::ParameterSpec& p : spec.parameters)
+      s << " " << p.name << "=" << (p.default_value.empty() ? "(required)" : p.default_value);
+    s << "\n    " << spec.summary << "\n";
+  }
+  return s.str();
+}
+
+sd::Ends parse_ends(const std::string& ends) {
+  if (ends == "auto") return sd::Ends::automatic;
+  if (ends == "reflect") return sd::Ends::reflect;
+  if (ends == "keep") return sd::Ends::keep;
+  throw InvalidInput("--ends '" + ends + "': auto, reflect or keep");
+}
+
+// ------------------------------------------------------------------------------------------------
+// Gallery
+
+struct Stroke {
+  Points points;
+  bool closed = true;
+  std::string colour = "#1f77b4";
+  double width = 1.5;
+  std::string dash;  // SVG stroke-dasharray, empty for solid
+  std::string label;
+};
+
+/// Several polylines in one SVG, fitted together (y up), with an optional legend.
+std::string strokes_svg(const std::vector<Stroke>& strokes, const std::string& title, int width = 800) {
+  double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+  for (const Stroke& s : strokes)
+    for (Eigen::Index i = 0; i < s.points.rows(); ++i) {
+      x0 = std::min(x0, s.points(i, 0)), x1 = std::max(x1, s.points(i, 0));
+      y0 = std::min(y0, s.points(i, 1)), y1 = std::max(y1, s.points(i, 1));
+    }
+  const double margin = 20, span = std::max({x1 - x0, y1 - y0, 1e-12});
+  const double scale = (width - 2 * margin) / std::max(x1 - x0, 1e-12 * span);
+  const double legend =
+      22.0 * static_cast<double>(std::count_if(strokes.begin(), strokes.end(),
+                                               [](const Stroke& s) { return !s.label.empty(); }));
+  const double height = std::max(2 * margin + (y1 - y0) * scale, 2 * margin + 10) + legend + 26;
+  std::ostringstream o;
+  o.precision(6);
+  o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
+    << "\" viewBox=\"0 0 " << width << " " << height
+    << "\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  o << "<text x=\"" << margin << "\" y=\"18\" font-family=\"sans-serif\" font-size=\"14\">" << title
+    << "</text>\n";
+  for (const Stroke& s : strokes) {
+    o << "<" << (s.closed ? "polygon" : "polyline") << " fill=\"none\" stroke=\"" << s.colour
+      << "\" stroke-width=\"" << s.width << "\" stroke-linejoin=\"round\"";
+    if (!s.dash.empty()) o << " stroke-dasharray=\"" << s.dash << "\"";
+    o << " points=\"";
+    for (Eigen::Index i = 0; i < s.points.rows(); ++i)
+      o << (i ? " " : "") << margin + (s.points(i, 0) - x0) * scale << ","
+        << 26 + margin + (y1 - s.points(i, 1)) * scale;
+    o << "\"/>\n";
+  }
+  double y = height - legend + 4;
+  for (const Stroke& s : strokes) {
+    if (s.label.empty()) continue;
+    o << "<line x1=\"" << margin << "\" y1=\"" << y << "\" x2=\"" << margin + 40 << "\" y2=\"" << y
+      << "\" stroke=\"" << s.colour << "\" stroke-width=\"" << s.width << "\""
+      << (s.dash.empty() ? "" : " stroke-dasharray=\"" + s.dash + "\"") << "/>\n<text x=\"" << margin + 50
+      << "\" y=\"" << y + 5 << "\" font-family=\"sans-serif\" font-size=\"13\">" << s.label << "</text>\n";
+    y += 22;
+  }
+  o << "</svg>\n";
+  return o.str();
+}
+
+Points from_polar(const std::vector<std::pair<double, double>>& rt) {
+  Points P(static_cast<Eigen::Index>(rt.size()), 2);
+  for (std::size_t i = 0; i < rt.size(); ++i)
+    P.row(static_cast<Eigen::Index>(i)) << rt[i].first * std::cos(rt[i].second),
+        rt[i].first * std::sin(rt[i].second);
+  return P;
+}
+
+Points rows(std::initializer_list<std::pair<double, double>> xy) {
+  Points P(static_cast<Eigen::Index>(xy.size()), 2);
+  Eigen::Index i = 0;
+  for (const auto& [x, y] : xy) P.row(i++) << x, y;
+  return P;
+}
+
+/// The seed 000 shapes, made for cifs: closed control polygons.
+std::vector<std::pair<std::string, Points>> seed_shapes() {
+  using std::numbers::pi;
+  std::vector<std::pair<double, double>> hepta, infinity_rt, clover;
+  for (int k = 0; k < 7; ++k) hepta.push_back({1.0, pi / 2 + 2 * pi * k / 7});
+  Points infinity(12, 2);
+  for (int k = 0; k < 12; ++k) {
+    const double t = 2 * pi * k / 12;
+    infinity.row(k) << 1.6 * std::cos(t), 1.6 * std::sin(t) * std::cos(t);
+  }
+  for (int leaf = 0; leaf < 4; ++leaf) {
+    const double phi = pi / 4 + leaf * pi / 2;
+    for (const auto& [r, d] : std::initializer_list<std::pair<double, double>>{
+             {0.15, -pi / 4}, {0.9, -0.5}, {1.25, -0.22}, {1.0, 0.0}, {1.25, 0.22}, {0.9, 0.5}})
+      clover.push_back({r, phi + d});
+  }
+  const Points bone = rows({{-3, 0.4},
+                            {-3.3, 1.1},
+                            {-4.0, 1.2},
+                            {-4.4, 0.6},
+                            {-3.9, 0},
+                            {-4.4, -0.6},
+                            {-4.0, -1.2},
+                            {-3.3, -1.1},
+                            {-3, -0.4},
+                            {3, -0.4},
+                            {3.3, -1.1},
+                            {4.0, -1.2},
+                            {4.4, -0.6},
+                            {3.9, 0},
+                            {4.4, 0.6},
+                            {4.0, 1.2},
+                            {3.3, 1.1},
+                            {3, 0.4}});
+  const Points sumsign = rows({{1, 1},
+                               {-1, 1},
+                               {0.1, 0},
+                               {-1, -1},
+                               {1, -1},
+                               {1, -0.7},
+                               {-0.4, -0.7},
+                               {0.5, 0},
+                               {-0.4, 0.7},
+                               {1, 0.7}});
+  return {{"hepta", from_polar(hepta)},
+          {"bone", bone},
+          {"infinity", infinity},
+          {"sumsign", sumsign},
+          {"clover", from_polar(clover)}};
+}
+
+Stroke control(const Points& P, bool closed = true) {
+  return {P, closed, "#b0b0b0", 1.0, "4 3", "control polygon"};
+}
+
+}  // namespace
+
+std::string scheme(const SchemeOptions& o) {
+  if (o.list) return catalogue_text();
+  if (o.name.empty()) throw InvalidInput("scheme: a scheme name is required (see cifs scheme --list)");
+  const bool refine = !o.refine.empty();
+  if (o.analyze == refine)
+    throw InvalidInput(o.analyze ? "scheme: --analyze and --refine are exclusive"
+                                 : "scheme: choose --analyze or --refine POLYGON.json (or --list)");
+  const sd::Scheme s = sd::named_scheme(o.name, parse_params(o.params));
+  if (o.analyze) {
+    if (o.max_power < 1 || o.max_power > 26)
+      throw InvalidInput("--max-power " + std::to_string(o.max_power) + ": between 1 and 26");
+    sd::AnalysisOptions a;
+    a.max_power = o.max_power;
+    return sd::analysis_json(s, sd::analyze(s, a));
+  }
+  if (o.steps < 0) throw InvalidInput("--steps " + std::to_string(o.steps) + " is negative");
+  if (o.format != "json" && o.format != "svg" && o.format != "obj")
+    throw InvalidInput("--format '" + o.format + "': json, svg or obj");
+  const Polygon polygon = parse_polygon(io::read_file(o.refine), o.refine.string());
+  sd::RefineOptions r;
+  r.ends = parse_ends(o.ends);
+  r.max_points = 50'000'000;
+  const Points out = sd::refine(s, polygon.points, polygon.closed, o.steps, r);
+  if (o.format == "svg") return io::polyline_svg(out, polygon.closed);
+  if (o.format == "obj") return io::polyline_obj(out, polygon.closed);
+  return polygon_json(out, polygon.closed);
+}
+
+std::string write_scheme_gallery(const std::filesystem::path& folder) {
+  std::error_code ec;
+  std::filesystem::create_directories(folder, ec);
+  if (ec) throw IoError(folder.string() + ": cannot create the folder (" + ec.message() + ")");
+  std::string summary;
+  const auto write = [&](const std::string& name, const std::string& svg) {
+    io::write_file_atomically(folder / name, svg);
+    summary += "scheme gallery: wrote " + (folder / name).string() + "\n";
+  };
+  constexpr int kSteps = 5;
+  // Seed 000: "degree" = averaging passes + 1 = B-spline degree + 1 = smoothing stages + 1.
+  const int seed_degrees[] = {2, 3, 5, 10, 30};
+  const char* dashes[] = {"", "10 5", "10 4 2 4", "10 4 2 4 2 4", "2 4"};
+  const struct {
+    std::string key, title;
+    sd::Scheme (*make)(int seed_degree);
+  } algorithms[] = {
+      {"lr", "Lane-Riesenfeld", [](int d) { return sd::lane_riesenfeld(d - 1); }},
+      {"lr4", "Four-point variant", [](int d) { return sd::lr_four_point(d - 1); }},
+      {"lr6", "Six-point variant", [](int d) { return sd::lr_six_point(d - 1); }},
+  };
+  const char* colours[] = {"#1f77b4", "#ff7f0e", "#2ca02c"};
+  for (const auto& [shape, P] : seed_shapes()) {
+    for (const auto& alg : algorithms) {
+      write(
+          alg.key + "_" + shape + "_degree3.svg",
+          strokes_svg(
+              {control(P), {sd::refine(alg.make(3), P, true, kSteps), true, "#1f77b4", 1.8, "", ""}},
+              "\"" + shape + "\", seed degree 3, " + std::to_string(kSteps) + " subdivisions, " + alg.title));
+      std::vector<Stroke> strokes{control(P)};
+      for (int i = 0; i < 5; ++i)
+        strokes.push_back({sd::refine(alg.make(seed_degrees[i]), P, true, kSteps), true, "#1f77b4", 1.5,
+                           dashes[i], "seed degree " + std::to_string(seed_degrees[i])});
+      write(alg.key + "_" + shape + "_degrees.svg",
+            strokes_svg(strokes, "\"" + shape + "\", seed degrees 2, 3, 5, 10, 30, " +
+                                     std::to_string(kSteps) + " subdivisions, " + alg.title));
+    }
+    std::vector<Stroke> compare{control(P)};
+    for (int a = 0; a < 3; ++a)
+      compare.push_back({sd::refine(algorithms[a].make(30), P, true, kSteps), true, colours[a], 1.8, "",
+                         algorithms[a].title});
+    write("compare_" + shape + ".svg", strokes_svg(compare, "\"" + shape + "\", seed degree 30, " +
+                                                                std::to_string(kSteps) + " subdivisions"));
+  }
+
+  // Seed 001.
+  const Points zigzag = rows({{0, 0}, {1, 2}, {2, 0}, {3, 2}, {4, 0}, {5, 1.5}});
+  const Points square = rows({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  write(
+      "chaikin_open_closed.svg",
+      strokes_svg({control(zigzag, false),
+                   {sd::refine(sd::chaikin(), zigzag, false, kSteps), false, "#1f77b4", 1.8, "",
+                    "open (end points kept)"},
+                   {sd::refine(sd::chaikin(), zigzag, true, kSteps), true, "#ff7f0e", 1.8, "6 3", "closed"}},
+                  "Chaikin, open and closed, 5 subdivisions"));
+  {
+    std::vector<Stroke> strokes{control(square)};
+    const char* ws[] = {"0", "0.03125", "0.0625", "0.1", "0.15", "0.2"};
+    const char* cs[] = {"#444444", "#2ca02c", "#1f77b4", "#9467bd", "#ff7f0e", "#d62728"};
+    for (int i = 0; i < 6; ++i)
+      strokes.push_back(
+          {sd::refine(sd::generalized_four_point(sd::parse_rational(ws[i], "w")), square, true, 7), true,
+           cs[i], 1.5, "", std::string("w = ") + ws[i] + " (eps = 16w)"});
+    write("four_point_tension.svg",
+          strokes_svg(strokes, "Generalised 4-point scheme, tension sweep, 7 subdivisions"));
+  }
+  {
+    std::vector<Stroke> strokes{control(square)};
+    const char* as[] = {"0.05", "0.15", "0.25", "0.35", "0.45"};
+    const char* cs[] = {"#d62728", "#ff7f0e", "#1f77b4", "#2ca02c", "#9467bd"};
+    for (int i = 0; i < 5; ++i) {
+      const sd::Rational a = sd::parse_rational(as[i], "a");
+      strokes.push_back({sd::refine(sd::corner_cutting(a, 1 - a), square, true, 7), true, cs[i], 1.5, "",
+                         std::string("a = ") + as[i] + ", b = 1 - a"});
+    }
+    write("corner_cutting_symmetric.svg",
+          strokes_svg(strokes, "Corner cutting with b = 1 - a, 7 subdivisions"));
+  }
+  {
+    std::vector<Stroke> strokes{control(square)};
+    const std::pair<const char*, const char*> ab[] = {
+        {"0.25", "0.75"}, {"0.1", "0.6"}, {"0.2", "0.5"}, {"0.4", "0.9"}};
+    const char* cs[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728"};
+    for (int i = 0; i < 4; ++i)
+      strokes.push_back({sd::refine(sd::corner_cutting(sd::parse_rational(ab[i].first, "a"),
+                                                       sd::parse_rational(ab[i].second, "b")),
+                                    square, true, 7),
+                         true, cs[i], 1.5, "", std::string("a = ") + ab[i].first + ", b = " + ab[i].second});
+    write("corner_cutting_asymmetric.svg",
+          strokes_svg(strokes, "Corner cutting with b != 1 - a, 7 subdivisions"));
+  }
+  {
+    const Points P = seed_shapes()[0].second;
+    write(
+        "approximating_interpolating.svg",
+        strokes_svg(
+            {control(P),
+             {sd::refine(sd::chaikin(), P, true, 6), true, "#1f77b4", 1.8, "", "Chaikin (approximating)"},
+             {sd::refine(sd::four_point(), P, true, 6), true, "#ff7f0e", 1.8, "", "4-point (interpolating)"}},
+            "\"hepta\": approximating vs interpolating"));
+  }
+  return summary;
+}
+
+}  // namespace cifs::cli

@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: MIT
+// cifs CLI — `cifs scheme`: curve subdivision schemes (analysis, refinement, catalogue) and the
+// schemes' part of the gallery.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace cifs::cli {
+
+struct SchemeOptions {
+  std::string name;                 // catalogue name (see --list)
+  std::vector<std::string> params;  // "k=v"
+  bool analyze = false;
+  std::filesystem::path refine;  // polygon file
+  int steps = 1;
+  std::string ends = "auto";    // auto | reflect | keep
+  std::string format = "json";  // json | svg | obj (refine)
+  bool list = false;
+  int max_power = 20;  // analysis: largest power L
+};
+
+/// The text for stdout; InvalidInput / IoError on bad input.
+std::string scheme(const SchemeOptions& options);
+
+/// Writes the seed figures (seed 000: Lane–Riesenfeld and its 4-/6-point variants on hepta, bone,
+/// infinity, sumsign, clover; seed 001: Chaikin open/closed, the generalised 4-point tension
+/// sweep, corner cutting with b = 1 − a and b ≠ 1 − a) as SVG into `folder` (created). Returns a
+/// one-line-per-file summary.
+std::string write_scheme_gallery(const std::filesystem::path& folder);
+
+}  // namespace cifs::cli

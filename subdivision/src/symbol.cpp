@@ -1,0 +1,209 @@
+// SPDX-License-Identifier: MIT
+// Symbol expressions: a small recursive-descent parser over Laurent polynomials with exact
+// coefficients.
+#include <cctype>
+
+#include "cifs/errors.hpp"
+#include "cifs/subdivision/scheme.hpp"
+#include "polynomial.hpp"
+
+namespace cifs::subdivision {
+namespace {
+
+/// c_0 z^low + c_1 z^{low+1} + …
+struct Laurent {
+  long low = 0;
+  Polynomial c;
+};
+
+constexpr long kMaxExponent = 1024;
+
+Laurent normalised(Laurent p) {
+  while (!p.c.empty() && p.c.back() == 0) p.c.pop_back();
+  std::size_t first = 0;
+  while (first < p.c.size() && p.c[first] == 0) ++first;
+  p.c.erase(p.c.begin(), p.c.begin() + static_cast<std::ptrdiff_t>(first));
+  p.low = p.c.empty() ? 0 : p.low + static_cast<long>(first);
+  return p;
+}
+
+Laurent add(const Laurent& a, const Laurent& b, int sign) {
+  if (a.c.empty()) {
+    Laurent r = b;
+    for (Rational& x : r.c) x *= sign;
+    return r;
+  }
+  if (b.c.empty()) return a;
+  const long low = std::min(a.low, b.low);
+  const long high = std::max(a.low + static_cast<long>(a.c.size()), b.low + static_cast<long>(b.c.size()));
+  Laurent r{low, Polynomial(static_cast<std::size_t>(high - low))};
+  for (std::size_t i = 0; i < a.c.size(); ++i) r.c[static_cast<std::size_t>(a.low - low) + i] += a.c[i];
+  for (std::size_t i = 0; i < b.c.size(); ++i)
+    r.c[static_cast<std::size_t>(b.low - low) + i] += sign * b.c[i];
+  return normalised(r);
+}
+
+Laurent times(const Laurent& a, const Laurent& b) {
+  return normalised({a.low + b.low, detail::multiply(a.c, b.c)});
+}
+
+class Parser {
+ public:
+  explicit Parser(std::string_view text) : s_(text) {}
+
+  Laurent parse() {
+    Laurent p = expression();
+    skip();
+    if (i_ < s_.size()) fail("unexpected '" + std::string(1, s_[i_]) + "'");
+    return p;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& why) const {
+    throw InvalidInput("symbol: " + why + " at character " + std::to_string(i_ + 1) + " of '" +
+                       std::string(s_) + "'");
+  }
+
+  void skip() {
+    while (i_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[i_]))) ++i_;
+  }
+
+  /// '*', or the UTF-8 middle dot '·'.
+  bool times_sign() {
+    skip();
+    if (i_ < s_.size() && s_[i_] == '*') return ++i_, true;
+    if (s_.substr(i_, 2) == "\xC2\xB7") return i_ += 2, true;
+    return false;
+  }
+
+  Laurent expression() {
+    skip();
+    Laurent p = term();
+    for (;;) {
+      skip();
+      if (i_ < s_.size() && (s_[i_] == '+' || s_[i_] == '-')) {
+        const int sign = s_[i_++] == '+' ? 1 : -1;
+        p = add(p, term(), sign);
+      } else {
+        return p;
+      }
+    }
+  }
+
+  bool starts_factor() {
+    skip();
+    return i_ < s_.size() && (s_[i_] == '(' || s_[i_] == 'z' || s_[i_] == 'Z' || s_[i_] == '.' ||
+                              std::isdigit(static_cast<unsigned char>(s_[i_])));
+  }
+
+  Laurent term() {
+    Laurent p = unary();
+    for (;;) {
+      if (times_sign()) {
+        p = times(p, unary());
+      } else if (skip(), i_ < s_.size() && s_[i_] == '/') {
+        ++i_;
+        const std::size_t at = i_;
+        const Laurent d = unary();
+        if (d.c.size() != 1) {
+          i_ = at;
+          fail(d.c.empty() ? "division by zero"
+                           : "division by a polynomial that is not a constant or a power of z");
+        }
+        p = normalised({p.low - d.low, detail::scale(p.c, 1 / d.c[0])});
+      } else if (starts_factor()) {
+        p = times(p, unary());  // implicit product: 2z, (1+z)(1-z), z(1+z)
+      } else {
+        return p;
+      }
+    }
+  }
+
+  Laurent unary() {
+    skip();
+    if (i_ < s_.size() && (s_[i_] == '-' || s_[i_] == '+')) {
+      const bool negative = s_[i_++] == '-';
+      Laurent p = unary();
+      if (negative)
+        for (Rational& x : p.c) x = -x;
+      return p;
+    }
+    return power();
+  }
+
+  Laurent power() {
+    Laurent base = primary();
+    skip();
+    if (i_ < s_.size() && s_[i_] == '^') {
+      ++i_;
+      skip();
+      bool negative = false;
+      if (i_ < s_.size() && (s_[i_] == '-' || s_[i_] == '+')) negative = s_[i_++] == '-';
+      long e = 0;
+      const std::size_t start = i_;
+      while (i_ < s_.size() && std::isdigit(static_cast<unsigned char>(s_[i_])) && e <= kMaxExponent)
+        e = e * 10 + (s_[i_++] - '0');
+      if (i_ == start || (i_ < s_.size() && (s_[i_] == '.' || s_[i_] == 'e' || s_[i_] == 'E')))
+        fail("an exponent must be an integer");
+      if (e > kMaxExponent) fail("exponent beyond " + std::to_string(kMaxExponent));
+      if (negative) {
+        if (base.c.size() != 1) fail("a negative power of a polynomial that is not a power of z");
+        const Rational inverse = 1 / base.c[0];
+        Rational value = 1;
+        for (long k = 0; k < e; ++k) value *= inverse;
+        return normalised({-base.low * e, {value}});
+      }
+      if (base.c.size() > 1 && static_cast<long>(base.c.size() - 1) * e > kMaxExponent)
+        fail("the power is too large");
+      Laurent r{0, {Rational(1)}};
+      for (long k = 0; k < e; ++k) r = times(r, base);
+      return r;
+    }
+    return base;
+  }
+
+  Laurent primary() {
+    skip();
+    if (i_ >= s_.size()) fail("expression ends early");
+    const char c = s_[i_];
+    if (c == '(') {
+      ++i_;
+      Laurent p = expression();
+      skip();
+      if (i_ >= s_.size() || s_[i_] != ')') fail("missing ')'");
+      ++i_;
+      return p;
+    }
+    if (c == 'z' || c == 'Z') {
+      ++i_;
+      return {1, {Rational(1)}};
+    }
+    if (std::isdigit(static_cast<unsigned char>(c)) || c == '.') {
+      const std::size_t start = i_;
+      while (i_ < s_.size() && (std::isdigit(static_cast<unsigned char>(s_[i_])) || s_[i_] == '.')) ++i_;
+      // An exponent only when followed by a digit or a sign and a digit (so "2e" stays an error).
+      if (i_ + 1 < s_.size() && (s_[i_] == 'e' || s_[i_] == 'E') &&
+          (std::isdigit(static_cast<unsigned char>(s_[i_ + 1])) ||
+           ((s_[i_ + 1] == '-' || s_[i_ + 1] == '+') && i_ + 2 < s_.size() &&
+            std::isdigit(static_cast<unsigned char>(s_[i_ + 2]))))) {
+        i_ += 2;
+        while (i_ < s_.size() && std::isdigit(static_cast<unsigned char>(s_[i_]))) ++i_;
+      }
+      return normalised({0, {parse_rational(s_.substr(start, i_ - start), "symbol")}});
+    }
+    fail("unexpected '" + std::string(1, c) + "'");
+  }
+
+  std::string_view s_;
+  std::size_t i_ = 0;
+};
+
+}  // namespace
+
+Polynomial parse_symbol(std::string_view expression) {
+  Laurent p = Parser(expression).parse();
+  if (p.c.empty()) throw InvalidInput("symbol: '" + std::string(expression) + "' is zero");
+  return p.c;  // the lowest power shifted to z^0
+}
+
+}  // namespace cifs::subdivision

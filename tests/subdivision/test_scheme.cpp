@@ -1,0 +1,191 @@
+// SPDX-License-Identifier: MIT
+// Masks of the named schemes against their published rules, exact parsing, symbols, bad input.
+#include <catch2/catch.hpp>
+
+#include "cifs/errors.hpp"
+#include "cifs/subdivision/scheme.hpp"
+
+using namespace cifs;
+using namespace cifs::subdivision;
+
+namespace {
+
+Rational q(long long p, long long d = 1) {
+  return Rational(p) / Rational(d);
+}
+
+/// Mask from integer numerators over a common denominator.
+Polynomial over(std::initializer_list<long long> numerators, long long denominator) {
+  Polynomial m;
+  for (long long x : numerators) m.push_back(q(x, denominator));
+  return m;
+}
+
+Polynomial times(const Polynomial& a, const Polynomial& b) {
+  Polynomial c(a.size() + b.size() - 1);
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t j = 0; j < b.size(); ++j) c[i + j] += a[i] * b[j];
+  return c;
+}
+
+/// Binomial row C(k, ·)/2^(k−1): the mask of the B-spline of degree k − 1.
+Polynomial binomial_mask(int k) {
+  Polynomial m{Rational(1)};
+  for (int i = 0; i < k; ++i) m = times(m, {q(1), q(1)});
+  for (Rational& x : m) x /= Rational(1ll << (k - 1));
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("parse_rational is exact for decimals, fractions and exponents", "[subdivision]") {
+  CHECK(parse_rational("0.0625", "w") == q(1, 16));
+  CHECK(parse_rational(" -1/16 ", "w") == q(-1, 16));
+  CHECK(parse_rational("1e-3", "w") == q(1, 1000));
+  CHECK(parse_rational("2.5E2", "w") == 250);
+  CHECK(parse_rational("0.1", "w") == q(1, 10));  // exact, unlike the double 0.1
+  CHECK(parse_rational("0.5/3", "w") == q(1, 6));
+  for (const char* bad : {"", "nan", "inf", "1/0", "1..2", "0x10", "1e400", "--1", "1/2/3"})
+    CHECK_THROWS_AS(parse_rational(bad, "w"), InvalidInput);
+  CHECK_THROWS_WITH(parse_rational("abc", "two-tension: s"),
+                    Catch::Contains("two-tension: s: 'abc' is not a number"));
+}
+
+TEST_CASE("to_string prints finite decimals, otherwise fractions", "[subdivision]") {
+  CHECK(to_string(q(1, 16)) == "0.0625");
+  CHECK(to_string(q(-3, 2)) == "-1.5");
+  CHECK(to_string(q(3)) == "3");
+  CHECK(to_string(q(1, 3)) == "1/3");
+  CHECK(to_string(q(-7, 40)) == "-0.175");
+  CHECK(to_string(q(0)) == "0");
+}
+
+TEST_CASE("named masks are the published rules", "[subdivision]") {
+  // Seed 001: Chaikin x_{2i} = ¾x_i + ¼x_{i+1}, x_{2i+1} = ¼x_i + ¾x_{i+1}.
+  CHECK(chaikin().mask == over({1, 3, 3, 1}, 4));
+  // Seed 001: 4-point, x_{2i+1} = (−x_{i−1} + 9x_i + 9x_{i+1} − x_{i+2})/16, x_{2i} = x_i.
+  CHECK(four_point().mask == over({-1, 0, 9, 16, 9, 0, -1}, 16));
+  CHECK(six_point().mask == over({3, 0, -25, 0, 150, 256, 150, 0, -25, 0, 3}, 256));
+  // Generalised 4-point at w = 1/16 is the 4-point scheme; w = 0 is linear interpolation.
+  CHECK(generalized_four_point(q(1, 16)).mask == four_point().mask);
+  CHECK(generalized_four_point(0).mask == over({1, 2, 1}, 2));
+  // Corner cutting (seed 001) with a = ¼, b = ¾ is Chaikin.
+  CHECK(corner_cutting(q(1, 4), q(3, 4)).mask == chaikin().mask);
+  CHECK(corner_cutting(q(1, 10), q(6, 10)).mask == Polynomial{q(1, 10), q(6, 10), q(9, 10), q(4, 10)});
+  // Lane–Riesenfeld degree n: binomial coefficients C(n+1, k)/2^n.
+  for (int n : {0, 1, 2, 3, 7, 29}) CHECK(lane_riesenfeld(n).mask == binomial_mask(n + 1));
+  CHECK(lane_riesenfeld(2).mask == chaikin().mask);
+  CHECK(lane_riesenfeld(3).mask == over({1, 4, 6, 4, 1}, 8));
+}
+
+TEST_CASE("generalised Lane-Riesenfeld masks are refine times smoothing stages", "[subdivision]") {
+  const Polynomial smooth4 = over({-1, 9, 9, -1}, 16);
+  const Polynomial smooth6 = over({3, -25, 150, 150, -25, 3}, 256);
+  CHECK(lr_four_point(0).mask == four_point().mask);
+  CHECK(lr_six_point(0).mask == six_point().mask);
+  CHECK(lr_four_point(2).mask == times(times(four_point().mask, smooth4), smooth4));
+  CHECK(lr_six_point(1).mask == times(six_point().mask, smooth6));
+  CHECK(lr_four_point(1).mask.size() == 10);  // 7 + 3: a dual scheme
+}
+
+TEST_CASE("two-tension members, each checked against an independent form", "[subdivision]") {
+  // Seed 002 eq. (4) at s = t = 0: degree-n B-spline.
+  for (int n : {0, 2, 3, 5}) CHECK(two_tension(n, 0, 0).mask == lane_riesenfeld(n).mask);
+  for (int n : {1, 4}) CHECK(b_spline(n).mask == lane_riesenfeld(n).mask);
+  // The refine stage of seed 002 eq. (5) followed by n LR smoothing stages (½, ½).
+  {
+    const Rational s = q(1, 10), t = q(-1, 7);
+    // (R_{s,t}P)_{2i} = (s+t)P_{i−1} + (1−2s−t)P_i + sP_{i+1}; odd = sP_{i−1} + (1−2s−t)P_i + (s+t)P_{i+1}:
+    // interleaved mask (s, s+t, 1−2s−t, 1−2s−t, s+t, s).
+    Polynomial refine{s, s + t, 1 - 2 * s - t, 1 - 2 * s - t, s + t, s};
+    for (int k = 0; k < 3; ++k) refine = times(refine, {q(1, 2), q(1, 2)});
+    CHECK(two_tension(3, s, t).mask == refine);
+  }
+  // J-splines: (1−s)·4-point + s·cubic B-spline (Rossignac–Schaefer), masks aligned at the centre.
+  for (const Rational& s : {q(0), q(1), q(3, 2), q(-17, 10), q(29, 5)}) {
+    Polynomial blend(7);
+    const Polynomial cubic = over({0, 1, 4, 6, 4, 1, 0}, 8);
+    for (std::size_t k = 0; k < 7; ++k) blend[k] = (1 - s) * four_point().mask[k] + s * cubic[k];
+    while (blend.front() == 0) blend.erase(blend.begin());
+    while (blend.back() == 0) blend.pop_back();
+    CHECK(j_spline(s).mask == blend);
+  }
+  CHECK(j_spline(0).mask == four_point().mask);
+  CHECK(j_spline(1).mask == lane_riesenfeld(3).mask);
+  CHECK(j_spline(q(3, 2)).mask == lane_riesenfeld(5).mask);
+  // Romani (seed 002 eq. 3): ((1+z)/2)^{n+1}·(−(n+3)w + 8wz + 2(1+(n−5)w)z² + 8wz³ − (n+3)wz⁴).
+  for (int n : {1, 2, 4}) {
+    const Rational w = q(3, 64);
+    Polynomial m{-(n + 3) * w, 8 * w, 2 * (1 + (n - 5) * w), 8 * w, -(n + 3) * w};
+    for (int k = 0; k <= n; ++k) m = times(m, {q(1, 2), q(1, 2)});
+    CHECK(romani(n, w).mask == m);
+  }
+  CHECK(romani(1, q(1, 16)).mask == four_point().mask);
+  // The generalised 4-point scheme is Romani's n = 1 line.
+  CHECK(romani(1, q(1, 10)).mask == generalized_four_point(q(1, 10)).mask);
+  // Dual 4-point (−5, −7, 35, 105, 105, 35, −7, −5)/128: Romani n = 2, w = 1/16, Hormann–Sabin n = 4.
+  const Polynomial dual4 = over({-5, -7, 35, 105, 105, 35, -7, -5}, 128);
+  CHECK(dual_four_point().mask == dual4);
+  CHECK(romani(2, q(1, 16)).mask == dual4);
+  CHECK(hormann_sabin(4).mask == dual4);
+  CHECK(hormann_sabin(3).mask == four_point().mask);
+  // The 6-point scheme lies on the cubic-precision line: S_{5, 3/8, −9/4}.
+  CHECK(two_tension(5, q(3, 8), q(-9, 4)).mask == six_point().mask);
+  CHECK(cubic_precision(5, q(3, 8)).mask == six_point().mask);
+  CHECK(cubic_precision(3, 0).mask == four_point().mask);
+}
+
+TEST_CASE("symbols parse to masks", "[subdivision]") {
+  CHECK(parse_symbol("(1+z)^4*(-1+4z-z^2)/16") == four_point().mask);
+  CHECK(from_symbol("(1+z)^3/4").mask == chaikin().mask);
+  CHECK(from_symbol("z^-1 (1+z)^2 / 2").mask == over({1, 2, 1}, 2));  // Laurent: shifted
+  CHECK(from_symbol("0.25 + 0.75z + 0.75z^2 + 0.25z^3").mask == chaikin().mask);
+  CHECK(from_symbol("(1+z)(1+z)(1+z)/4").mask == chaikin().mask);
+  CHECK(from_symbol("2^-2 (1+z)^3").mask == chaikin().mask);
+  CHECK_THROWS_WITH(parse_symbol("(1+z)^3/(1+z)"), Catch::Contains("not a constant or a power of z"));
+  CHECK_THROWS_WITH(parse_symbol("(1+z"), Catch::Contains("missing ')'"));
+  CHECK_THROWS_WITH(parse_symbol("1+y"), Catch::Contains("unexpected 'y'"));
+  CHECK_THROWS_WITH(parse_symbol("(1+z)^2.5"), Catch::Contains("an exponent must be an integer"));
+  CHECK_THROWS_WITH(parse_symbol("z-z"), Catch::Contains("is zero"));
+  CHECK_THROWS_AS(parse_symbol("(1+z)^100000"), InvalidInput);
+}
+
+TEST_CASE("bad masks and parameters are refused with clear messages", "[subdivision]") {
+  CHECK_THROWS_WITH(from_mask(Polynomial{q(1, 4), q(3, 4), q(1, 2)}),
+                    "mask: coefficients sum to 1.5, a subdivision mask sums to 2");
+  CHECK_THROWS_WITH(from_mask(Polynomial{q(1), q(1, 2), q(1, 2)}),
+                    Catch::Contains("even-indexed coefficients sum to 1.5 and the odd-indexed ones to 0.5"));
+  CHECK_THROWS_WITH(from_mask(Polynomial{0, 0}), Catch::Contains("no non-zero coefficient"));
+  CHECK_THROWS_AS(from_mask(Polynomial{}), InvalidInput);
+  CHECK_THROWS_WITH(lr_four_point(-1), Catch::Contains("lr-four-point: stages = -1 is negative"));
+  CHECK_THROWS_WITH(lr_six_point(65), Catch::Contains("exceeds the limit 64"));
+  CHECK_THROWS_WITH(lane_riesenfeld(-2), Catch::Contains("degree = -2 is negative"));
+  CHECK_THROWS_WITH(hormann_sabin(2), Catch::Contains("n = 2 is below 3"));
+  // Leading and trailing zeros are trimmed.
+  CHECK(from_mask(Polynomial{0, q(1, 4), q(3, 4), q(3, 4), q(1, 4), 0}).mask == chaikin().mask);
+}
+
+TEST_CASE("named_scheme reads text parameters and defaults", "[subdivision]") {
+  CHECK(named_scheme("generalized-four-point", {}).mask == four_point().mask);
+  CHECK(named_scheme("generalized-four-point", {{"w", "1/16"}}).mask == four_point().mask);
+  CHECK(named_scheme("corner-cutting", {{"a", "0.1"}, {"b", "0.6"}}).mask ==
+        corner_cutting(q(1, 10), q(3, 5)).mask);
+  CHECK(named_scheme("mask", {{"coefficients", "[0.25, 0.75, 0.75, 0.25]"}}).mask == chaikin().mask);
+  CHECK(named_scheme("mask", {{"coefficients", "1/4 3/4 3/4 1/4"}}).mask == chaikin().mask);
+  CHECK(named_scheme("symbol", {{"symbol", "(1+z)^4/8"}}).mask == lane_riesenfeld(3).mask);
+  CHECK(named_scheme("lr-six-point", {{"stages", "2"}}).mask == lr_six_point(2).mask);
+  CHECK_THROWS_WITH(named_scheme("four-points", {}),
+                    Catch::Contains("unknown scheme 'four-points' (schemes: chaikin"));
+  CHECK_THROWS_WITH(named_scheme("chaikin", {{"w", "1"}}), Catch::Contains("unknown parameter 'w'"));
+  CHECK_THROWS_WITH(named_scheme("lr-four-point", {{"stages", "1.5"}}),
+                    Catch::Contains("stages = 1.5 is not an integer"));
+  CHECK_THROWS_WITH(named_scheme("lr-four-point", {{"stages", "-3"}}), Catch::Contains("is negative"));
+  CHECK_THROWS_WITH(named_scheme("mask", {}), Catch::Contains("parameter 'coefficients' is required"));
+  CHECK_THROWS_WITH(named_scheme("mask", {{"coefficients", "1, 0.5, x"}}),
+                    Catch::Contains("'x' is not a number"));
+  CHECK_THROWS_WITH(named_scheme("mask", {{"coefficients", "0.5 0.5 0.5"}}),
+                    "mask: coefficients sum to 1.5, a subdivision mask sums to 2");
+  // Every catalogue entry builds with its defaults (except the two that need input).
+  for (const SchemeSpec& spec : scheme_catalogue())
+    if (spec.name != "mask" && spec.name != "symbol") CHECK_NOTHROW(named_scheme(spec.name, {}));
+}
