@@ -1,67 +1,25 @@
 // SPDX-License-Identifier: MIT
 // The cifs command line, run as a user runs it: exit status, stdout and stderr.
-#include <sys/wait.h>
 #include <catch2/catch.hpp>
-#include <cstdlib>
-#include <fstream>
+
 #include <nlohmann/json.hpp>
-#include <sstream>
+
+#include "apps/cli_runner.hpp"
 
 #include "cifs/io/shape.hpp"
 
 using namespace cifs;
 using nlohmann::json;
 
+using namespace cifs_test;
+
 namespace {
-
-struct Run {
-  int status;
-  std::string out, err;
-};
-
-const std::filesystem::path& scratch() {
-  static const std::filesystem::path dir = [] {
-    auto d = std::filesystem::temp_directory_path() / ("cifs_cli_test_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(d);
-    return d;
-  }();
-  return dir;
-}
-
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-Run cifs_cli(const std::string& args) {
-  const auto out = scratch() / "stdout", err = scratch() / "stderr";
-  const std::string cmd =
-      std::string(CIFS_CLI_PATH) + " " + args + " >" + out.string() + " 2>" + err.string();
-  const int raw = std::system(cmd.c_str());
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
-}
-
-std::string file(const std::string& name, const std::string& content) {
-  const auto p = scratch() / name;
-  std::ofstream(p) << content;
-  return p.string();
-}
 
 const char* kCurve = R"({"curve": {"degree": 3, "knots": [0,0,0,0,1,2,4,4,4,4],
   "points": [[0,0,0],[1,2,0],[3,3,1],[4,0,0],[6,1,2],[7,3,0]], "weights": [1,2,1,0.5,1,1]}})";
+
 const char* kSurface = R"({"surface": {"degree": [2, 1], "knots": [[0,0,0,1,1,1],[0,0,1,1]],
   "points": [[[0,0,0],[0,1,0]], [[1,0,1],[1,1,1]], [[2,0,0],[2,1,3]]]}})";
-
-/// One error line on stderr, nothing on stdout, exit status 2.
-void check_error(const Run& r, const std::string& needle) {
-  INFO("stderr: " << r.err);
-  CHECK(r.status == 2);
-  CHECK(r.out.empty());
-  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
-  CHECK_THAT(r.err, Catch::StartsWith("cifs: ") && Catch::Contains(needle));
-}
 
 }  // namespace
 
@@ -210,5 +168,5 @@ TEST_CASE("cifs gallery writes its outputs", "[cli]") {
   const auto circle = std::get<nurbs::Curve>(io::read_shape(out / "circle.json"));
   CHECK(circle.rational);
   CHECK(json::parse(slurp(out / "circle.samples.json"))["points"].size() == 257);
-  std::filesystem::remove_all(scratch());
+  std::filesystem::remove_all(out);
 }

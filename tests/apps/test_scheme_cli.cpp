@@ -1,62 +1,18 @@
 // SPDX-License-Identifier: MIT
 // `cifs scheme`, run as a user runs it: analysis JSON, refinement of polygon files, errors.
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <catch2/catch.hpp>
+
 #include <cmath>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
+
+#include "apps/cli_runner.hpp"
 
 using nlohmann::json;
 
+using namespace cifs_test;
+
 namespace {
-
-struct Run {
-  int status;
-  std::string out, err;
-};
-
-const std::filesystem::path& scratch() {
-  static const std::filesystem::path dir = [] {
-    auto d = std::filesystem::temp_directory_path() / ("cifs_scheme_cli_test_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(d);
-    return d;
-  }();
-  return dir;
-}
-
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-Run cifs_cli(const std::string& args) {
-  const auto out = scratch() / "stdout", err = scratch() / "stderr";
-  const std::string cmd =
-      std::string(CIFS_CLI_PATH) + " " + args + " >" + out.string() + " 2>" + err.string();
-  const int raw = std::system(cmd.c_str());
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
-}
-
-std::string file(const std::string& name, const std::string& content) {
-  const auto p = scratch() / name;
-  std::ofstream(p) << content;
-  return p.string();
-}
-
-void check_error(const Run& r, const std::string& needle) {
-  INFO("stderr: " << r.err);
-  CHECK(r.status == 2);
-  CHECK(r.out.empty());
-  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
-  CHECK_THAT(r.err, Catch::StartsWith("cifs: ") && Catch::Contains(needle));
-}
 
 json analyze(const std::string& args) {
   const Run r = cifs_cli("scheme " + args + " --analyze");

@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: MIT
+// Runs the cifs command line as a user does (CIFS_CLI_PATH), capturing exit status, stdout and stderr.
+#pragma once
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace cifs_test {
+
+struct Run {
+  int status;
+  std::string out, err;
+};
+
+/// One scratch folder per test process.
+inline const std::filesystem::path& scratch() {
+  static const std::filesystem::path dir = [] {
+    auto d = std::filesystem::temp_directory_path() / ("cifs_cli_test_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(d);
+    return d;
+  }();
+  return dir;
+}
+
+inline std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+inline Run cifs_cli(const std::string& args) {
+  const auto out = scratch() / "stdout", err = scratch() / "stderr";
+  const std::string cmd =
+      std::string(CIFS_CLI_PATH) + " " + args + " >" + out.string() + " 2>" + err.string();
+  const int raw = std::system(cmd.c_str());
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
+}
+
+/// Writes `content` to a scratch file and returns its path.
+inline std::string file(const std::string& name, const std::string& content) {
+  const auto p = scratch() / name;
+  std::ofstream(p) << content;
+  return p.string();
+}
+
+/// One error line on stderr, nothing on stdout, exit status 2.
+inline void check_error(const Run& r, const std::string& needle) {
+  INFO("stderr: " << r.err);
+  CHECK(r.status == 2);
+  CHECK(r.out.empty());
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  CHECK_THAT(r.err, Catch::StartsWith("cifs: ") && Catch::Contains(needle));
+}
+
+}  // namespace cifs_test
