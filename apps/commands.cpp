@@ -9,6 +9,7 @@
 #include "cifs/errors.hpp"
 #include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/attractor.hpp"
+#include "cifs/ifs/chaos.hpp"
 #include "cifs/io/polyline.hpp"
 #include "cifs/io/shape.hpp"
 #include "cifs/nurbs/refine.hpp"
@@ -168,8 +169,13 @@ std::string automaton(const AutomatonOptions& o) {
 std::string attractor(const AttractorOptions& o) {
   if (o.format != "json" && o.format != "obj" && o.format != "svg")
     throw InvalidInput("--format '" + o.format + "': expected json, obj or svg");
-  if ((o.depth >= 0) == (o.tolerance > 0))
-    throw InvalidInput("attractor: give exactly one of --depth K and --tolerance E");
+  if ((o.depth >= 0) + (o.tolerance > 0) + (o.chaos != 0) != 1)
+    throw InvalidInput("attractor: give exactly one of --depth K, --tolerance E and --chaos N");
+  if (o.chaos < 0 || o.chaos > kMaxPoints)
+    throw InvalidInput("--chaos " + std::to_string(o.chaos) + ": expected 1 to " + std::to_string(kMaxPoints) +
+                       " points");
+  if (o.chaos != 0 && o.format != "json")
+    throw InvalidInput("--chaos: the points are unordered, use --format json");
   if (o.tolerance < 0 || !std::isfinite(o.tolerance))
     throw InvalidInput("--tolerance: must be a positive number");
   const io::Shape shape = io::read_shape(o.shape);
@@ -179,7 +185,15 @@ std::string attractor(const AttractorOptions& o) {
   const automata::Automaton a = automata::knot_automaton(*c);
   const std::vector<Points> nets = automata::initial_nets(a, *c);
   Points H;
-  if (o.depth >= 0) {
+  std::string seed_member;
+  if (o.chaos != 0) {
+    ifs::ChaosOptions options;
+    options.samples = static_cast<std::size_t>(o.chaos);
+    options.seed = o.seed;
+    const ifs::ChaosResult r = ifs::chaos_game(a, nets, options);
+    H = r.points;
+    seed_member = ",\"seed\":" + std::to_string(r.seed);
+  } else if (o.depth >= 0) {
     ifs::PointsOptions options;
     options.closed = c->closed;
     H = ifs::attractor_points(a, nets, o.depth, options);
@@ -208,7 +222,8 @@ std::string attractor(const AttractorOptions& o) {
   const Points P = c->rational ? ifs::cartesian(H) : H;
   if (o.format == "obj") return io::polyline_obj(P, c->closed);
   if (o.format == "svg") return io::polyline_svg(P, c->closed);
-  return points_json(P);
+  std::string text = points_json(P);
+  return seed_member.empty() ? text : text.insert(text.size() - 2, seed_member);
 }
 
 std::string check(const CheckOptions& o, int& status) {

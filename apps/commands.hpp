@@ -3,6 +3,7 @@
 // leaves stdout empty.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -36,7 +37,9 @@ std::string automaton(const AutomatonOptions& options);
 struct AttractorOptions {
   std::filesystem::path shape;
   int depth = -1;               // 2^depth leaves per segment, or
-  double tolerance = 0;         // every leaf's piece smaller than this (Cartesian units)
+  double tolerance = 0;         // every leaf's piece smaller than this (Cartesian units), or
+  long long chaos = 0;          // that many chaos-game points
+  std::uint64_t seed = 0;       // chaos game: 0 draws one (printed with the points)
   std::string format = "json";  // json | obj | svg
 };
 std::string attractor(const AttractorOptions& options);

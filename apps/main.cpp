@@ -52,6 +52,9 @@ int main(int argc, char** argv) {
   attractor_cmd->add_option("shape", at.shape, "Shape file (.json or .obj)")->required();
   attractor_cmd->add_option("--depth", at.depth, "2^K leaves per segment");
   attractor_cmd->add_option("--tolerance", at.tolerance, "Stop each branch when its piece is smaller than E");
+  attractor_cmd->add_option("--chaos", at.chaos, "N chaos-game points (a random walk over the automaton)");
+  attractor_cmd->add_option("--seed", at.seed,
+                            "Chaos-game seed (default: drawn, and printed with the points)");
   attractor_cmd->add_option("--format", at.format, "json (default), obj or svg");
   attractor_cmd->callback([&] { result = attractor(at); });
 

@@ -154,7 +154,15 @@ TEST_CASE("cifs automaton, attractor and check", "[cli]") {
   CHECK(fail.status == 1);
   CHECK_THAT(fail.out, Catch::Contains("FAIL"));
 
-  check_error(cifs_cli("attractor " + shape), "exactly one of --depth K and --tolerance E");
+  // Chaos game: reproducible from the printed seed, points on the curve's attractor.
+  const json chaos = json::parse(cifs_cli("attractor " + shape + " --chaos 200").out);
+  REQUIRE(chaos["points"].size() == 200);
+  const std::string seed = std::to_string(chaos["seed"].get<std::uint64_t>());
+  CHECK(json::parse(cifs_cli("attractor " + shape + " --chaos 200 --seed " + seed).out) == chaos);
+  CHECK(json::parse(cifs_cli("attractor " + shape + " --chaos 200 --seed 7").out)["seed"] == 7);
+  check_error(cifs_cli("attractor " + shape + " --chaos 10 --format svg"), "unordered");
+  check_error(cifs_cli("attractor " + shape + " --chaos -5"), "--chaos -5");
+  check_error(cifs_cli("attractor " + shape), "exactly one of --depth K, --tolerance E and --chaos N");
   check_error(cifs_cli("attractor " + shape + " --depth 3 --format png"), "--format 'png'");
   check_error(cifs_cli("attractor " + shape + " --depth 40"), "");
   check_error(cifs_cli("check " + shape + " --depth 31"), "depth 31 is outside [0, 30]");
