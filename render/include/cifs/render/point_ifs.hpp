@@ -1,0 +1,92 @@
+// SPDX-License-Identifier: MIT
+// cifs — classic 2-D affine IFS (Barnsley's fern, Sierpinski's triangle, Koch's curve) and a fast,
+// thread-count-independent chaos game into a histogram.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+namespace cifs::render {
+
+/// w(x, y) = (a·x + b·y + e, c·x + d·y + f), chosen with weight `probability` (Barnsley's notation).
+struct AffineMap {
+  double a = 0, b = 0, c = 0, d = 0, e = 0, f = 0;
+  double probability = 1;
+};
+
+/// Barnsley's fern (Fractals Everywhere, 1988, table III.3): stem, successively smaller leaflets,
+/// largest left and right leaflets, with probabilities 0.01, 0.85, 0.07, 0.07.
+std::vector<AffineMap> barnsley_fern();
+/// Sierpinski's triangle on (0, 0), (1, 0), (½, √3/2): three maps of ratio ½, probabilities ⅓.
+std::vector<AffineMap> sierpinski_triangle();
+/// Koch's curve from (0, 0) to (1, 0): four maps of ratio ⅓, the middle two rotated by +60° and
+/// −60°, probabilities ¼ (the natural measure, since all ratios are equal).
+std::vector<AffineMap> koch_curve();
+
+/// Closed axis-aligned window of the plane; the histogram's row 0 is at y_max (images are y down).
+/// Pixel (col, row) covers [x_min + col·Δx, x_min + (col+1)·Δx) × (y_max − (row+1)·Δy, y_max − row·Δy];
+/// points on the right or bottom edge of the window fall into the last column or row.
+struct Bounds {
+  double x_min = 0, x_max = 1, y_min = 0, y_max = 1;
+};
+
+/// Bounding box of `points` chaos-game points (serial, fixed seed), widened by `margin` times its
+/// size on every side: a framing helper, not a proof that the whole attractor is inside.
+Bounds estimate_bounds(std::span<const AffineMap> maps, double margin = 0.02, std::uint64_t points = 100000);
+
+/// Points per chunk: the unit of determinism (see chaos_game_histogram).
+inline constexpr std::uint64_t kChaosChunk = std::uint64_t{1} << 20;
+
+struct ChaosHistogramOptions {
+  /// Points binned (after burn-in); below 2³² so that no count can overflow.
+  std::uint64_t samples = 10'000'000;
+  std::uint64_t seed = 1;
+  /// Worker threads; 0 uses std::thread::hardware_concurrency().
+  unsigned threads = 1;
+  std::size_t width = 1024;
+  std::size_t height = 1024;
+  Bounds bounds;
+  /// Points dropped at the start of every chunk. Each chunk starts at the fixed point of the first
+  /// map, which lies on the attractor, so 0 is exact; raise it only for a custom start.
+  std::uint64_t burn_in = 0;
+  /// Called after every chunk with (points done, samples), serialised under a mutex, from the
+  /// worker threads. Keep it cheap (a ProgressBar is).
+  std::function<void(std::uint64_t, std::uint64_t)> progress;
+};
+
+struct Histogram {
+  std::size_t width = 0;
+  std::size_t height = 0;
+  Bounds bounds;
+  /// Hits per pixel, row-major, `height by width`, row 0 at bounds.y_max.
+  std::vector<std::uint32_t> counts;
+  /// Points generated and points that fell outside the bounds (not in counts).
+  std::uint64_t samples = 0;
+  std::uint64_t outside = 0;
+};
+
+/// The chaos game: x_{n+1} = w_k(x_n) with map k drawn with its probability, every point binned.
+/// Determinism: the samples are cut into chunks of kChaosChunk points; chunk i runs its own
+/// xoshiro256+ generator seeded from (seed, i) by SplitMix64 and starts at the fixed point of the
+/// first map; threads take chunks dynamically into private histograms that are summed at the end.
+/// Integer sums do not depend on the order, so a seed gives the same histogram for any number of
+/// threads. Maps are drawn from an alias table (one 64-bit draw per point: 32 bits pick a column,
+/// 32 bits the coin), so the cost does not depend on the number of maps.
+/// Throws InvalidInput for no maps, non-finite coefficients, negative or all-zero probabilities, a
+/// map whose linear part is not a contraction (spectral norm ≥ 1), an empty image, bounds with
+/// x_max ≤ x_min or y_max ≤ y_min, or samples ≥ 2³².
+Histogram chaos_game_histogram(std::span<const AffineMap> maps, const ChaosHistogramOptions& options);
+
+/// The deterministic invariant measure at depth k (Hutchinson): every word of k maps carries the
+/// product of its maps' (normalised) probabilities, placed at the image of the measure's
+/// barycentre x̄ = Σ p_i·w_i(x̄) under the word (the piece's own centre of mass), binned on the
+/// histogram grid. Returns `height·width` masses (row 0 at y_max)
+/// summing to the mass inside the bounds. Its resolution is the size of the depth-k pieces of the
+/// attractor. Cost: (#maps)^depth points; throws InvalidInput beyond 2²⁸ points.
+std::vector<double> hutchinson_measure(std::span<const AffineMap> maps, unsigned depth, std::size_t width,
+                                       std::size_t height, const Bounds& bounds);
+
+}  // namespace cifs::render

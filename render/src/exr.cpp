@@ -1,0 +1,129 @@
+// SPDX-License-Identifier: MIT
+// cifs — OpenEXR writer and reader: FLOAT channels at full precision, a UINT `state` channel, and
+// string attributes, written through Imf::OutputFile + FrameBuffer.
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+#include <ImfStringAttribute.h>
+
+#include <climits>
+#include <exception>
+
+#include "cifs/errors.hpp"
+#include "cifs/render/image.hpp"
+#include "temp_file.hpp"
+
+namespace cifs::render {
+
+namespace {
+
+constexpr const char* kStateChannel = "state";
+
+void check_image(const Image& image) {
+  if (image.width == 0 || image.height == 0)
+    throw InvalidInput("write_exr: the image is empty (" + std::to_string(image.width) + " by " +
+                       std::to_string(image.height) + ")");
+  if (image.width > INT_MAX || image.height > INT_MAX || image.width > INT_MAX / image.height)
+    throw InvalidInput("write_exr: the image is too large for OpenEXR");
+  if (image.channels.empty() && !image.state) throw InvalidInput("write_exr: the image has no channel");
+  const std::size_t n = image.width * image.height;
+  for (const auto& [name, values] : image.channels) {
+    if (name.empty()) throw InvalidInput("write_exr: a channel has an empty name");
+    if (name == kStateChannel)
+      throw InvalidInput("write_exr: channels[\"state\"]: the name is reserved for the UINT state channel");
+    if (values.size() != n)
+      throw InvalidInput("write_exr: channels[\"" + name + "\"] holds " + std::to_string(values.size()) +
+                         " values, expected " + std::to_string(n));
+  }
+  if (image.state && image.state->size() != n)
+    throw InvalidInput("write_exr: state holds " + std::to_string(image.state->size()) +
+                       " values, expected " + std::to_string(n));
+}
+
+}  // namespace
+
+void write_exr(const std::filesystem::path& path, const Image& image) {
+  check_image(image);
+  const int w = static_cast<int>(image.width);
+  const int h = static_cast<int>(image.height);
+  // Header: everything (channels, attributes) must be set before the OutputFile is constructed.
+  Imf::Header header(w, h);
+  for (const auto& [key, value] : image.attributes) {
+    // The default header already holds the standard attributes; overwriting one of them with a
+    // string would make an invalid file, so those names are refused.
+    if (key.empty() || header.find(key) != header.end())
+      throw InvalidInput("write_exr: attributes[\"" + key + "\"]: the name is empty or reserved by OpenEXR");
+    header.insert(key, Imf::StringAttribute(value));
+  }
+  Imf::FrameBuffer frame;
+  const std::size_t row_floats = image.width * sizeof(float);
+  for (const auto& [name, values] : image.channels) {
+    header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    // OpenEXR's Slice takes a non-const base pointer, but an OutputFile only reads through it.
+    frame.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(values.data())),
+                                  sizeof(float), row_floats));
+  }
+  if (image.state) {
+    header.channels().insert(kStateChannel, Imf::Channel(Imf::UINT));
+    frame.insert(
+        kStateChannel,
+        Imf::Slice(Imf::UINT, reinterpret_cast<char*>(const_cast<std::uint32_t*>(image.state->data())),
+                   sizeof(std::uint32_t), image.width * sizeof(std::uint32_t)));
+  }
+
+  detail::check_target(path);
+  const std::filesystem::path tmp = detail::temporary_path(path);
+  try {
+    // The file is complete only when the OutputFile is destroyed: close the scope before renaming.
+    Imf::OutputFile out(tmp.c_str(), header);
+    out.setFrameBuffer(frame);
+    out.writePixels(h);
+  } catch (const std::exception& e) {
+    detail::discard(tmp);
+    throw IoError(path.string() + ": cannot write OpenEXR (" + e.what() + ")");
+  }
+  detail::commit(tmp, path);
+}
+
+Image read_exr(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw IoError(path.string() + ": no such file");
+  try {
+    Imf::InputFile in(path.c_str());
+    const Imf::Header& header = in.header();
+    const Imath::Box2i window = header.dataWindow();
+    Image image;
+    image.width = static_cast<std::size_t>(window.max.x - window.min.x + 1);
+    image.height = static_cast<std::size_t>(window.max.y - window.min.y + 1);
+    const std::size_t n = image.width * image.height;
+    // Slice base pointers are addressed by absolute pixel coordinates: shift by the window origin.
+    const auto origin = static_cast<std::ptrdiff_t>(window.min.x) +
+                        static_cast<std::ptrdiff_t>(window.min.y) * static_cast<std::ptrdiff_t>(image.width);
+    Imf::FrameBuffer frame;
+    for (auto it = header.channels().begin(); it != header.channels().end(); ++it) {
+      const std::string name = it.name();
+      if (name == kStateChannel && it.channel().type == Imf::UINT) {
+        image.state.emplace(n);
+        frame.insert(name, Imf::Slice(Imf::UINT, reinterpret_cast<char*>(image.state->data() - origin),
+                                      sizeof(std::uint32_t), image.width * sizeof(std::uint32_t)));
+      } else {
+        std::vector<float>& values = image.channels[name];
+        values.resize(n);
+        frame.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(values.data() - origin),
+                                      sizeof(float), image.width * sizeof(float)));
+      }
+    }
+    in.setFrameBuffer(frame);
+    in.readPixels(window.min.y, window.max.y);
+    for (auto it = header.begin(); it != header.end(); ++it)
+      if (const auto* text = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
+        image.attributes[it.name()] = text->value();
+    return image;
+  } catch (const std::exception& e) {
+    throw IoError(path.string() + ": cannot read OpenEXR (" + e.what() + ")");
+  }
+}
+
+}  // namespace cifs::render

@@ -1,0 +1,369 @@
+// SPDX-License-Identifier: MIT
+// cifs — classic affine IFS and the chaos game into a histogram, deterministic for any thread count.
+#include "cifs/render/point_ifs.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <exception>
+#include <mutex>
+#include <numbers>
+#include <string>
+#include <thread>
+
+#include "cifs/errors.hpp"
+
+namespace cifs::render {
+
+std::vector<AffineMap> barnsley_fern() {
+  // Barnsley, Fractals Everywhere (1988), table III.3; the same coefficients as Barnsley & Demko.
+  return {{0.00, 0.00, 0.00, 0.16, 0.00, 0.00, 0.01},
+          {0.85, 0.04, -0.04, 0.85, 0.00, 1.60, 0.85},
+          {0.20, -0.26, 0.23, 0.22, 0.00, 1.60, 0.07},
+          {-0.15, 0.28, 0.26, 0.24, 0.00, 0.44, 0.07}};
+}
+
+std::vector<AffineMap> sierpinski_triangle() {
+  const double h = std::numbers::sqrt3 / 4;  // half the height of the unit equilateral triangle
+  return {
+      {0.5, 0, 0, 0.5, 0, 0, 1.0 / 3}, {0.5, 0, 0, 0.5, 0.5, 0, 1.0 / 3}, {0.5, 0, 0, 0.5, 0.25, h, 1.0 / 3}};
+}
+
+std::vector<AffineMap> koch_curve() {
+  // Ratio ⅓; the middle pieces are rotated by ±60°: (cos 60°)/3 = 1/6, (sin 60°)/3 = √3/6.
+  const double c = 1.0 / 6, s = std::numbers::sqrt3 / 6;
+  return {{1.0 / 3, 0, 0, 1.0 / 3, 0, 0, 0.25},
+          {c, -s, s, c, 1.0 / 3, 0, 0.25},
+          {c, s, -s, c, 0.5, s, 0.25},
+          {1.0 / 3, 0, 0, 1.0 / 3, 2.0 / 3, 0, 0.25}};
+}
+
+namespace {
+
+// SplitMix64 (Steele, Lea, Flood 2014): turns (seed, chunk) into well-spread generator states.
+std::uint64_t splitmix64(std::uint64_t& state) noexcept {
+  std::uint64_t z = (state += 0x9E3779B97F4A7C15ULL);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return z ^ (z >> 31);
+}
+
+// xoshiro256++ (Blackman & Vigna 2018): fast, 256-bit state, all output bits of good quality (we
+// use both halves of every draw).
+class Xoshiro256 {
+ public:
+  Xoshiro256(std::uint64_t seed, std::uint64_t stream) noexcept {
+    std::uint64_t sm = seed;
+    // An odd multiplier is a bijection modulo 2⁶⁴: distinct chunks get distinct SplitMix streams.
+    sm = splitmix64(sm) + stream * 0xD1B54A32D192ED03ULL;
+    for (auto& word : s_) word = splitmix64(sm);
+  }
+  std::uint64_t operator()() noexcept {
+    const std::uint64_t result = std::rotl(s_[0] + s_[3], 23) + s_[0];
+    const std::uint64_t t = s_[1] << 17;
+    s_[2] ^= s_[0];
+    s_[3] ^= s_[1];
+    s_[1] ^= s_[2];
+    s_[0] ^= s_[3];
+    s_[2] ^= t;
+    s_[3] = std::rotl(s_[3], 45);
+    return result;
+  }
+
+ private:
+  std::uint64_t s_[4];
+};
+
+struct Linear {
+  double a, b, c, d, e, f;
+};
+
+/// One column of Vose's alias table: keep `self` when the coin is below `threshold` (out of 2³²).
+struct Column {
+  std::uint64_t threshold;
+  std::uint32_t self;
+  std::uint32_t alias;
+};
+
+/// Validated maps ready for the inner loop.
+struct Prepared {
+  std::vector<Linear> maps;
+  std::vector<double> probability;  // normalised
+  std::vector<Column> table;
+  double x0 = 0, y0 = 0;  // fixed point of the first map: a point of the attractor
+};
+
+std::string where(std::size_t i) {
+  return "maps[" + std::to_string(i) + "]";
+}
+
+Prepared prepare(std::span<const AffineMap> maps, const char* function) {
+  const std::string fn = function;
+  if (maps.empty()) throw InvalidInput(fn + ": no maps");
+  if (maps.size() > (std::size_t{1} << 31)) throw InvalidInput(fn + ": too many maps");
+  Prepared p;
+  double total = 0;
+  for (std::size_t i = 0; i < maps.size(); ++i) {
+    const AffineMap& m = maps[i];
+    for (const double v : {m.a, m.b, m.c, m.d, m.e, m.f, m.probability})
+      if (!std::isfinite(v)) throw InvalidInput(fn + ": " + where(i) + " has a non-finite coefficient");
+    if (m.probability < 0) throw InvalidInput(fn + ": " + where(i) + ".probability is negative");
+    // Spectral norm of [[a, b], [c, d]]: σ² = (s + √(s² − 4·det²)) / 2 with s the squared
+    // Frobenius norm. A map with σ ≥ 1 may throw the walk out of any bounds.
+    const double s = m.a * m.a + m.b * m.b + m.c * m.c + m.d * m.d;
+    const double det = m.a * m.d - m.b * m.c;
+    const double sigma2 = (s + std::sqrt(std::max(0.0, s * s - 4 * det * det))) / 2;
+    if (!(sigma2 < 1))
+      throw InvalidInput(fn + ": " + where(i) + " is not a contraction (spectral norm " +
+                         std::to_string(std::sqrt(sigma2)) + ")");
+    p.maps.push_back({m.a, m.b, m.c, m.d, m.e, m.f});
+    total += m.probability;
+  }
+  if (!(total > 0)) throw InvalidInput(fn + ": the probabilities sum to 0");
+  for (const AffineMap& m : maps) p.probability.push_back(m.probability / total);
+
+  // Vose's alias method: column i keeps i with probability q_i = n·p_i and gives the rest to a
+  // large column. Built once, in a fixed order, so the table (and the images) are reproducible.
+  const std::size_t n = maps.size();
+  std::vector<double> q(n);
+  std::vector<std::uint32_t> small, large;
+  for (std::size_t i = 0; i < n; ++i) {
+    q[i] = p.probability[i] * static_cast<double>(n);
+    (q[i] < 1 ? small : large).push_back(static_cast<std::uint32_t>(i));
+  }
+  p.table.resize(n);
+  constexpr double kTwo32 = 4294967296.0;
+  while (!small.empty() && !large.empty()) {
+    const std::uint32_t s = small.back(), l = large.back();
+    small.pop_back();
+    p.table[s] = {static_cast<std::uint64_t>(std::llround(q[s] * kTwo32)), s, l};
+    q[l] -= 1 - q[s];
+    if (q[l] < 1) {
+      large.pop_back();
+      small.push_back(l);
+    }
+  }
+  // What remains is 1 up to rounding: keep the column always.
+  for (const std::uint32_t i : small) p.table[i] = {std::uint64_t{1} << 32, i, i};
+  for (const std::uint32_t i : large) p.table[i] = {std::uint64_t{1} << 32, i, i};
+
+  const Linear& m = p.maps.front();
+  // (I − A)·x = t; invertible because A is a contraction.
+  const double det = (1 - m.a) * (1 - m.d) - m.b * m.c;
+  p.x0 = ((1 - m.d) * m.e + m.b * m.f) / det;
+  p.y0 = (m.c * m.e + (1 - m.a) * m.f) / det;
+  return p;
+}
+
+void check_grid(std::size_t width, std::size_t height, const Bounds& b, const char* function) {
+  const std::string fn = function;
+  if (width == 0 || height == 0) throw InvalidInput(fn + ": the image is empty");
+  if (width > (std::size_t{1} << 16) || height > (std::size_t{1} << 16))
+    throw InvalidInput(fn + ": the image is larger than 65536 pixels on a side");
+  if (!(std::isfinite(b.x_min) && std::isfinite(b.x_max) && std::isfinite(b.y_min) &&
+        std::isfinite(b.y_max)) ||
+      !(b.x_max > b.x_min) || !(b.y_max > b.y_min))
+    throw InvalidInput(fn + ": the bounds are empty or not finite");
+}
+
+/// Pixel addressing shared by the chaos game and the Hutchinson measure, so both bin alike.
+struct Grid {
+  double x_min, y_max, sx, sy, w, h;
+  std::size_t width, height;
+  Grid(std::size_t width_, std::size_t height_, const Bounds& b)
+      : x_min(b.x_min),
+        y_max(b.y_max),
+        sx(static_cast<double>(width_) / (b.x_max - b.x_min)),
+        sy(static_cast<double>(height_) / (b.y_max - b.y_min)),
+        w(static_cast<double>(width_)),
+        h(static_cast<double>(height_)),
+        width(width_),
+        height(height_) {}
+  /// Pixel index, or SIZE_MAX outside. The window is closed: points on its right or bottom edge
+  /// go to the last column or row (attractors touch their frames: a walk that starts at a vertex
+  /// of Sierpinski's triangle sits on y = y_min for a few steps). The comparisons are on doubles,
+  /// so no out-of-range float-to-integer conversion can happen.
+  std::size_t index(double x, double y) const noexcept {
+    const double px = (x - x_min) * sx, py = (y_max - y) * sy;
+    if (!(px >= 0 && px <= w && py >= 0 && py <= h)) return SIZE_MAX;
+    const std::size_t ix = std::min(static_cast<std::size_t>(px), width - 1);
+    const std::size_t iy = std::min(static_cast<std::size_t>(py), height - 1);
+    return iy * width + ix;
+  }
+};
+
+/// One chunk of the walk. The hot loop: one 64-bit draw, an alias lookup, two FMA pairs, one
+/// increment; no virtual calls and no data-dependent branch but the (almost always taken) bounds
+/// check.
+std::uint64_t run_chunk(const Prepared& p, const Grid& grid, std::uint64_t seed, std::uint64_t chunk,
+                        std::uint64_t points, std::uint64_t burn_in, std::uint32_t* counts) noexcept {
+  Xoshiro256 rng(seed, chunk);
+  const Linear* maps = p.maps.data();
+  const Column* table = p.table.data();
+  const std::uint64_t n = p.maps.size();
+  double x = p.x0, y = p.y0;
+  const auto step = [&]() noexcept {
+    const std::uint64_t r = rng();
+    const Column& col = table[((r >> 32) * n) >> 32];
+    const std::uint32_t k = (r & 0xFFFFFFFFULL) < col.threshold ? col.self : col.alias;
+    const Linear& m = maps[k];
+    const double nx = m.a * x + m.b * y + m.e;
+    y = m.c * x + m.d * y + m.f;
+    x = nx;
+  };
+  for (std::uint64_t i = 0; i < burn_in; ++i) step();
+  std::uint64_t outside = 0;
+  for (std::uint64_t i = 0; i < points; ++i) {
+    step();
+    const std::size_t at = grid.index(x, y);
+    if (at != SIZE_MAX)
+      ++counts[at];
+    else
+      ++outside;
+  }
+  return outside;
+}
+
+}  // namespace
+
+Histogram chaos_game_histogram(std::span<const AffineMap> maps, const ChaosHistogramOptions& options) {
+  const Prepared p = prepare(maps, "chaos_game_histogram");
+  check_grid(options.width, options.height, options.bounds, "chaos_game_histogram");
+  if (options.samples >= (std::uint64_t{1} << 32))
+    throw InvalidInput(
+        "chaos_game_histogram: samples must be below 2^32 (uint32 counts); sum histograms instead");
+
+  Histogram result;
+  result.width = options.width;
+  result.height = options.height;
+  result.bounds = options.bounds;
+  result.samples = options.samples;
+  const std::size_t pixels = options.width * options.height;
+  const Grid grid(options.width, options.height, options.bounds);
+  const std::uint64_t chunks = (options.samples + kChaosChunk - 1) / kChaosChunk;
+  unsigned threads =
+      options.threads != 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+  threads = static_cast<unsigned>(std::min<std::uint64_t>(threads, std::max<std::uint64_t>(chunks, 1)));
+
+  std::atomic<std::uint64_t> next{0};
+  std::mutex progress_mutex;
+  std::uint64_t done = 0;
+  // Each worker pulls chunks until none is left; which worker runs a chunk does not matter since
+  // a chunk's points depend only on (seed, chunk index) and the sums are of integers.
+  const auto work = [&](std::uint32_t* counts) -> std::uint64_t {
+    std::uint64_t outside = 0;
+    for (std::uint64_t c = next++; c < chunks; c = next++) {
+      const std::uint64_t points = std::min(kChaosChunk, options.samples - c * kChaosChunk);
+      outside += run_chunk(p, grid, options.seed, c, points, options.burn_in, counts);
+      if (options.progress) {
+        const std::lock_guard lock(progress_mutex);
+        done += points;
+        options.progress(done, options.samples);
+      }
+    }
+    return outside;
+  };
+
+  result.counts.assign(pixels, 0);
+  if (threads <= 1) {
+    result.outside = work(result.counts.data());
+    return result;
+  }
+  std::vector<std::vector<std::uint32_t>> local(threads - 1);
+  std::vector<std::uint64_t> outside(threads, 0);
+  std::vector<std::exception_ptr> errors(threads);
+  std::vector<std::thread> pool;
+  for (unsigned t = 0; t + 1 < threads; ++t)
+    pool.emplace_back([&, t] {
+      try {
+        local[t].assign(pixels, 0);  // allocated (first touched) by the worker that fills it
+        outside[t] = work(local[t].data());
+      } catch (...) {
+        errors[t] = std::current_exception();
+      }
+    });
+  // The calling thread works too, straight into the result.
+  try {
+    outside[threads - 1] = work(result.counts.data());
+  } catch (...) {
+    errors[threads - 1] = std::current_exception();
+  }
+  for (auto& thread : pool) thread.join();
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
+  for (const auto& counts : local)
+    for (std::size_t i = 0; i < pixels; ++i) result.counts[i] += counts[i];
+  for (const std::uint64_t o : outside) result.outside += o;
+  return result;
+}
+
+Bounds estimate_bounds(std::span<const AffineMap> maps, double margin, std::uint64_t points) {
+  const Prepared p = prepare(maps, "estimate_bounds");
+  if (!(margin >= 0) || !std::isfinite(margin)) throw InvalidInput("estimate_bounds: margin must be >= 0");
+  Xoshiro256 rng(0x5EED, 0);
+  double x = p.x0, y = p.y0;
+  Bounds b{x, x, y, y};
+  const std::uint64_t n = p.maps.size();
+  for (std::uint64_t i = 0; i < points; ++i) {
+    const std::uint64_t r = rng();
+    const Column& col = p.table[((r >> 32) * n) >> 32];
+    const Linear& m = p.maps[(r & 0xFFFFFFFFULL) < col.threshold ? col.self : col.alias];
+    const double nx = m.a * x + m.b * y + m.e;
+    y = m.c * x + m.d * y + m.f;
+    x = nx;
+    b.x_min = std::min(b.x_min, x);
+    b.x_max = std::max(b.x_max, x);
+    b.y_min = std::min(b.y_min, y);
+    b.y_max = std::max(b.y_max, y);
+  }
+  // A flat attractor (a segment) still needs a window of positive size.
+  double dx = b.x_max - b.x_min, dy = b.y_max - b.y_min;
+  const double size = std::max({dx, dy, 1e-12});
+  dx = std::max(dx, size * 1e-3);
+  dy = std::max(dy, size * 1e-3);
+  const double cx = (b.x_min + b.x_max) / 2, cy = (b.y_min + b.y_max) / 2;
+  return {cx - dx * (0.5 + margin), cx + dx * (0.5 + margin), cy - dy * (0.5 + margin),
+          cy + dy * (0.5 + margin)};
+}
+
+std::vector<double> hutchinson_measure(std::span<const AffineMap> maps, unsigned depth, std::size_t width,
+                                       std::size_t height, const Bounds& bounds) {
+  const Prepared p = prepare(maps, "hutchinson_measure");
+  check_grid(width, height, bounds, "hutchinson_measure");
+  const double words = std::pow(static_cast<double>(p.maps.size()), depth);
+  if (words > static_cast<double>(std::uint64_t{1} << 28))
+    throw InvalidInput("hutchinson_measure: " + std::to_string(p.maps.size()) + "^" + std::to_string(depth) +
+                       " points is more than 2^28");
+  const Grid grid(width, height, bounds);
+  std::vector<double> mass(width * height, 0.0);
+  // Depth-first over the words: memory O(depth), and a fixed visiting order, so the sums are
+  // reproducible.
+  const auto descend = [&](auto&& self, double x, double y, double weight, unsigned level) -> void {
+    if (level == depth) {
+      const std::size_t at = grid.index(x, y);
+      if (at != SIZE_MAX) mass[at] += weight;
+      return;
+    }
+    for (std::size_t k = 0; k < p.maps.size(); ++k) {
+      if (p.probability[k] == 0) continue;
+      const Linear& m = p.maps[k];
+      self(self, m.a * x + m.b * y + m.e, m.c * x + m.d * y + m.f, weight * p.probability[k], level + 1);
+    }
+  };
+  // Start at the barycentre x̄ of the invariant measure μ: x̄ = Σ p_k·w_k(x̄) (μ is invariant and
+  // the maps are affine). Its image under a word is the barycentre of that piece's share of μ, so
+  // each piece's mass lands at its own centre of mass, not on a corner shared with a neighbour.
+  double sa = 0, sb = 0, sc = 0, sd = 0, se = 0, sf = 0;
+  for (std::size_t k = 0; k < p.maps.size(); ++k) {
+    const Linear& m = p.maps[k];
+    const double q = p.probability[k];
+    sa += q * m.a, sb += q * m.b, sc += q * m.c, sd += q * m.d, se += q * m.e, sf += q * m.f;
+  }
+  const double det = (1 - sa) * (1 - sd) - sb * sc;
+  descend(descend, ((1 - sd) * se + sb * sf) / det, (sc * se + (1 - sa) * sf) / det, 1.0, 0);
+  return mass;
+}
+
+}  // namespace cifs::render

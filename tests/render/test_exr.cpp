@@ -1,0 +1,147 @@
+// SPDX-License-Identifier: MIT
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+
+#include "cifs/errors.hpp"
+#include "cifs/render/image.hpp"
+#include "render/scratch.hpp"
+
+using namespace cifs;
+using namespace cifs::render;
+using render_test::ScratchDir;
+
+namespace {
+
+/// Every channel of the issue, with values that a half or a lossy codec would not keep: tiny,
+/// huge, negative, subnormal and irrational-looking floats, and states above 2¹⁶.
+Image full_image(std::size_t w, std::size_t h) {
+  Image image;
+  image.width = w;
+  image.height = h;
+  const std::vector<std::string> names = {"R", "G", "B", "A", "Z", "density", "N.x", "N.y", "N.z"};
+  for (std::size_t c = 0; c < names.size(); ++c) {
+    std::vector<float> values(w * h);
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      const double t = static_cast<double>(i) * 0.731 + static_cast<double>(c) * 1.37;
+      values[i] = static_cast<float>(std::sin(t) * std::pow(10.0, static_cast<double>(i % 13) - 6.0));
+    }
+    values[0] = 1e-40f;    // subnormal
+    values[1] = -3.4e38f;  // near the float range
+    values[2] = 0.1f;      // not representable as half
+    image.channels[names[c]] = std::move(values);
+  }
+  std::vector<std::uint32_t> state(w * h);
+  for (std::size_t i = 0; i < state.size(); ++i) state[i] = static_cast<std::uint32_t>(i * 2654435761u);
+  state[3] = 0xFFFFFFFFu;
+  image.state = std::move(state);
+  image.attributes = {
+      {"experiment", "fern, 1e7 points"}, {"seed", "42"}, {"depth", "12"}, {"comment", "UTF-8: ½ ⅓ €"}};
+  return image;
+}
+
+bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+}  // namespace
+
+TEST_CASE("EXR: every channel and attribute survives a round trip bit for bit", "[render]") {
+  ScratchDir dir;
+  const Image image = full_image(37, 23);  // odd sizes: rows are not padded
+  const auto path = dir.path() / "image.exr";
+  write_exr(path, image);
+  CHECK(dir.files() == std::vector<std::string>{"image.exr"});  // no temporary file left behind
+
+  const Image back = read_exr(path);
+  CHECK(back.width == 37);
+  CHECK(back.height == 23);
+  REQUIRE(back.channels.size() == image.channels.size());
+  for (const auto& [name, values] : image.channels) {
+    INFO("channel " << name);
+    REQUIRE(back.channels.count(name) == 1);
+    for (const float v : back.channels.at(name)) REQUIRE(!std::isnan(v));
+    CHECK(same_bits(back.channels.at(name), values));
+  }
+  REQUIRE(back.state.has_value());
+  CHECK(*back.state == *image.state);
+  for (const auto& [key, value] : image.attributes) {
+    INFO("attribute " << key);
+    REQUIRE(back.attributes.count(key) == 1);
+    CHECK(back.attributes.at(key) == value);
+  }
+}
+
+TEST_CASE("EXR: pixel order is row-major with row 0 at the top", "[render]") {
+  ScratchDir dir;
+  Image image;
+  image.width = 3;
+  image.height = 2;
+  image.channels["density"] = {0, 1, 2, 10, 11, 12};
+  write_exr(dir.path() / "order.exr", image);
+  const Image back = read_exr(dir.path() / "order.exr");
+  CHECK(back.channels.at("density") == std::vector<float>{0, 1, 2, 10, 11, 12});
+  CHECK_FALSE(back.state.has_value());
+}
+
+TEST_CASE("EXR: a state-only image and overwriting an existing file", "[render]") {
+  ScratchDir dir;
+  const auto path = dir.path() / "state.exr";
+  Image image;
+  image.width = 4;
+  image.height = 1;
+  image.state = std::vector<std::uint32_t>{7, 0, 1u << 31, 5};
+  write_exr(path, image);
+  image.state = std::vector<std::uint32_t>{1, 2, 3, 4};
+  write_exr(path, image);  // replaces the file through the rename
+  const Image back = read_exr(path);
+  CHECK(back.channels.empty());
+  CHECK(*back.state == std::vector<std::uint32_t>{1, 2, 3, 4});
+  CHECK(dir.files() == std::vector<std::string>{"state.exr"});
+}
+
+TEST_CASE("EXR: bad paths throw IoError naming the path and leave no file", "[render]") {
+  ScratchDir dir;
+  const Image image = full_image(4, 4);
+  const auto missing_folder = dir.path() / "no_such_folder" / "x.exr";
+  CHECK_THROWS_AS(write_exr(missing_folder, image), IoError);
+  CHECK_THROWS_WITH(write_exr(missing_folder, image), Catch::Contains(missing_folder.string()));
+  CHECK_FALSE(std::filesystem::exists(missing_folder));
+
+  std::filesystem::create_directory(dir.path() / "folder");
+  CHECK_THROWS_AS(write_exr(dir.path() / "folder", image), IoError);
+  CHECK(dir.files() == std::vector<std::string>{"folder"});
+
+  CHECK_THROWS_AS(read_exr(dir.path() / "absent.exr"), IoError);
+  std::filesystem::path not_exr = dir.path() / "text.exr";
+  {
+    std::ofstream out(not_exr);
+    out << "not an image";
+  }
+  CHECK_THROWS_AS(read_exr(not_exr), IoError);
+  CHECK_THROWS_WITH(read_exr(not_exr), Catch::Contains("text.exr"));
+}
+
+TEST_CASE("EXR: invalid images are refused before any file is made", "[render]") {
+  ScratchDir dir;
+  const auto path = dir.path() / "bad.exr";
+  Image image = full_image(4, 4);
+  SECTION("wrong channel size") {
+    image.channels["R"].pop_back();
+  }
+  SECTION("wrong state size") {
+    image.state->push_back(1);
+  }
+  SECTION("float channel named state") {
+    image.channels["state"] = std::vector<float>(16, 0.f);
+  }
+  SECTION("reserved attribute") {
+    image.attributes["compression"] = "none";
+  }
+  SECTION("empty image") {
+    image = Image{};
+  }
+  CHECK_THROWS_AS(write_exr(path, image), InvalidInput);
+  CHECK(dir.files().empty());
+}
