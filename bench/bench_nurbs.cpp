@@ -24,20 +24,19 @@
 #include <random>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cifs/nurbs/curve.hpp"
 #include "cifs/nurbs/knots.hpp"
 #include "cifs/nurbs/refine.hpp"
 #include "cifs/nurbs/surface.hpp"
-#include "proto_kernels.hpp"  // PROTOTYPES, not library code: the BM_…/proto_… benchmarks
 
 #include "sisl_adapters.hpp"
 
 namespace {
 
 namespace nurbs = cifs::nurbs;
-namespace proto = cifs_bench::proto;
 using cifs::Points;
 
 // ------------------------------------------------------------------------------------------------
@@ -149,10 +148,6 @@ void check_curve_case(CurveCase& cc) {
     }
     require_close(label + "cifs de Boor vs cifs batch", single.data(), batch.data(), count);
     require_close(label + "cifs evaluate_basis vs cifs batch", basis.data(), batch.data(), count);
-    const Points fast = proto::evaluate(cc.curve, us);
-    require_close(label + "PROTOTYPE batch vs cifs batch", fast.data(), batch.data(), count);
-    for (std::size_t k = 0; k < us.size(); ++k) proto::evaluate(cc.curve, us[k], single.data() + k * dim);
-    require_close(label + "PROTOTYPE de Boor vs cifs batch", single.data(), batch.data(), count);
 #ifdef CIFS_HAVE_SISL
     std::vector<double> out(count);
     require_sisl_ok(sisl_curve_points<true>(cc.sisl.get(), us, out.data()), "s1227");
@@ -323,22 +318,6 @@ void register_curve_benchmarks(bool rational, bool sorted) {
       benchmark::ClobberMemory();
     }
   });
-  // PROTOTYPES (bench/proto_kernels.hpp), not library code: what the proposed fixes would gain.
-  add("proto_cifs", [](benchmark::State& state, CurveCase& cc, const std::vector<double>& us) {
-    for (auto _ : state) {
-      Points out = proto::evaluate(cc.curve, us);
-      benchmark::DoNotOptimize(out.data());
-      benchmark::ClobberMemory();
-    }
-  });
-  add("proto_deboor", [](benchmark::State& state, CurveCase& cc, const std::vector<double>& us) {
-    Points out(static_cast<Eigen::Index>(us.size()), 3);
-    for (auto _ : state) {
-      for (std::size_t k = 0; k < us.size(); ++k) proto::evaluate(cc.curve, us[k], out.data() + 3 * k);
-      benchmark::DoNotOptimize(out.data());
-      benchmark::ClobberMemory();
-    }
-  });
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -369,14 +348,6 @@ void check_surface_case(SurfaceCase& sc) {
       expected.row(rows) = grid.row(static_cast<Eigen::Index>(a * sc.vs.size() + b));
     }
   require_close(label + "cifs evaluate(s, u, v) vs evaluate_grid", single.data(), expected.data(),
-                static_cast<std::size_t>(rows * grid.cols()));
-  const Points fast = proto::evaluate_grid(sc.surface, sc.us, sc.vs);
-  require_close(label + "PROTOTYPE evaluate_grid vs evaluate_grid", fast.data(), grid.data(), count);
-  rows = 0;
-  for (std::size_t a = 0; a < sc.us.size(); a += 10)
-    for (std::size_t b = 0; b < sc.vs.size(); ++b, ++rows)
-      proto::evaluate(sc.surface, sc.us[a], sc.vs[b], single.row(rows).data());
-  require_close(label + "PROTOTYPE point vs evaluate_grid", single.data(), expected.data(),
                 static_cast<std::size_t>(rows * grid.cols()));
 #ifdef CIFS_HAVE_SISL
   std::vector<double> out(count), normals(count);
@@ -454,14 +425,6 @@ void register_surface_benchmarks(bool rational) {
     require_sisl_ok(worst, "s1424");
   });
 #endif
-  // PROTOTYPE (bench/proto_kernels.hpp), not library code: evaluate_grid with a fixed coordinate count.
-  add("proto_cifs", [](benchmark::State& state, SurfaceCase& sc) {
-    for (auto _ : state) {
-      Points out = proto::evaluate_grid(sc.surface, sc.us, sc.vs);
-      benchmark::DoNotOptimize(out.data());
-      benchmark::ClobberMemory();
-    }
-  });
   // cifs single-point evaluate(s, u, v), the twin of s1424; every 10th grid row (it is slow).
   add(
       "cifs_point",
@@ -476,55 +439,39 @@ void register_surface_benchmarks(bool rational) {
         }
       },
       false);
-  // PROTOTYPE (bench/proto_kernels.hpp), not library code: a stack-only single-point evaluator.
-  add(
-      "proto_point",
-      [](benchmark::State& state, SurfaceCase& sc) {
-        Points out(static_cast<Eigen::Index>(sc.us.size() / 10 * sc.vs.size()), 3);
-        for (auto _ : state) {
-          Eigen::Index row = 0;
-          for (std::size_t a = 0; a < sc.us.size(); a += 10)
-            for (double v : sc.vs) proto::evaluate(sc.surface, sc.us[a], v, out.row(row++).data());
-          benchmark::DoNotOptimize(out.data());
-          benchmark::ClobberMemory();
-        }
-      },
-      false);
 }
 
 // ------------------------------------------------------------------------------------------------
-// Case 3: refinement — the midpoint of every span of a cubic 3-D curve with n control points.
+// Case 3: refinement of a cubic 3-D curve with n control points: the midpoint of every span
+// (BM_curve_refine_<n>; refine takes Boehm's branch), or 7 evenly spaced knots in every span
+// (BM_curve_refine_dense_<n>; too many per span for Boehm's chains, refine takes the blossom branch).
 
 struct RefineCase {
   nurbs::Curve curve;
-  std::vector<double> mids;  // sorted, as s1018 requires
+  std::vector<double> knots;  // sorted, as s1018 requires
 #ifdef CIFS_HAVE_SISL
   SislCurvePtr sisl;
 #endif
 };
 
-void check_refine_case(RefineCase& rc) {
-  const std::string label = "refine n = " + std::to_string(rc.curve.P.rows()) + ": ";
-  const nurbs::Curve a = nurbs::refine_midpoints(rc.curve);
-  const nurbs::Curve b = nurbs::refine(rc.curve, rc.mids);
-  if (a.knots != b.knots || a.P.rows() != rc.curve.P.rows() + static_cast<Eigen::Index>(rc.mids.size()))
-    fail("cross-check FAILED: " + label + "refine_midpoints and refine(mids) give different knots");
-  require_close(label + "cifs refine(mids) vs refine_midpoints", b.P.data(), a.P.data(),
-                static_cast<std::size_t>(a.P.size()));
-  const nurbs::Curve fast = proto::refine(rc.curve, rc.mids);
-  if (fast.knots != a.knots || fast.P.rows() != a.P.rows())
-    fail("cross-check FAILED: " + label + "PROTOTYPE refine gives different knots");
-  require_close(label + "PROTOTYPE refine vs cifs", fast.P.data(), a.P.data(),
-                static_cast<std::size_t>(a.P.size()));
-  const nurbs::Curve blossom = proto::refine_blossom(rc.curve, rc.mids);
-  if (blossom.knots != a.knots || blossom.P.rows() != a.P.rows())
-    fail("cross-check FAILED: " + label + "PROTOTYPE blossom refine gives different knots");
-  require_close(label + "PROTOTYPE blossom refine vs cifs", blossom.P.data(), a.P.data(),
-                static_cast<std::size_t>(a.P.size()));
+constexpr int kDensePerSpan = 7;
+
+void check_refine_case(RefineCase& rc, int per_span) {
+  const std::string label = std::string(per_span == 1 ? "refine" : "dense refine") +
+                            " n = " + std::to_string(rc.curve.P.rows()) + ": ";
+  const nurbs::Curve a = nurbs::refine(rc.curve, rc.knots);
+  if (a.P.rows() != rc.curve.P.rows() + static_cast<Eigen::Index>(rc.knots.size()))
+    fail("cross-check FAILED: " + label + "refine gives " + std::to_string(a.P.rows()) + " control points");
+  if (per_span == 1) {
+    const nurbs::Curve b = nurbs::refine_midpoints(rc.curve);
+    if (a.knots != b.knots) fail("cross-check FAILED: " + label + "refine_midpoints and refine(mids) differ");
+    require_close(label + "cifs refine(mids) vs refine_midpoints", b.P.data(), a.P.data(),
+                  static_cast<std::size_t>(a.P.size()));
+  }
 #ifdef CIFS_HAVE_SISL
   SISLCurve* out = nullptr;
   int status = 0;
-  s1018(rc.sisl.get(), rc.mids.data(), static_cast<int>(rc.mids.size()), &out, &status);
+  s1018(rc.sisl.get(), rc.knots.data(), static_cast<int>(rc.knots.size()), &out, &status);
   require_sisl_ok(status, "s1018");
   const SislCurvePtr refined(out);
   if (refined->in != a.P.rows() || refined->ik != a.degree + 1)
@@ -536,40 +483,43 @@ void check_refine_case(RefineCase& rc) {
 #endif
 }
 
-RefineCase make_refine_case(Eigen::Index n) {
+RefineCase make_refine_case(Eigen::Index n, int per_span) {
   std::mt19937_64 rng(static_cast<std::uint64_t>(n));
   RefineCase rc;
   rc.curve = nurbs::make_curve(kDegree, clamped_knots(n, kDegree, rng, 0.0, 1.0), random_points(n, 3, rng));
   const std::vector<double> b = nurbs::breakpoints(rc.curve.knots, kDegree);
-  for (std::size_t i = 0; i + 1 < b.size(); ++i) rc.mids.push_back(0.5 * (b[i] + b[i + 1]));
+  for (std::size_t i = 0; i + 1 < b.size(); ++i)
+    for (int k = 1; k <= per_span; ++k) rc.knots.push_back(b[i] + (b[i + 1] - b[i]) * k / (per_span + 1));
 #ifdef CIFS_HAVE_SISL
   rc.sisl = to_sisl(rc.curve);
 #endif
-  check_refine_case(rc);
+  check_refine_case(rc, per_span);
   return rc;
 }
 
-RefineCase& refine_case(Eigen::Index n) {
-  static std::map<Eigen::Index, RefineCase> cases;
-  auto it = cases.find(n);
-  if (it == cases.end()) it = cases.emplace(n, make_refine_case(n)).first;
+RefineCase& refine_case(Eigen::Index n, int per_span) {
+  static std::map<std::pair<Eigen::Index, int>, RefineCase> cases;
+  const auto key = std::make_pair(n, per_span);
+  auto it = cases.find(key);
+  if (it == cases.end()) it = cases.emplace(key, make_refine_case(n, per_span)).first;
   return it->second;
 }
 
-void register_refine_benchmarks(Eigen::Index n) {
-  const std::string group = "BM_curve_refine_" + std::to_string(n) + "/";
+void register_refine_benchmarks(Eigen::Index n, int per_span) {
+  const std::string group =
+      std::string(per_span == 1 ? "BM_curve_refine_" : "BM_curve_refine_dense_") + std::to_string(n) + "/";
   auto add = [&](const char* variant, auto run) {
-    benchmark::RegisterBenchmark((group + variant).c_str(), [n, run](benchmark::State& state) {
-      RefineCase& rc = refine_case(n);
+    benchmark::RegisterBenchmark((group + variant).c_str(), [n, per_span, run](benchmark::State& state) {
+      RefineCase& rc = refine_case(n, per_span);
       run(state, rc);
-      report_rate(state, rc.mids.size(), "per_knot");
+      report_rate(state, rc.knots.size(), "per_knot");
     })->Unit(benchmark::kMicrosecond);
   };
   // cifs refine with the explicit knot list (the twin of s1018) and refine_midpoints, which also
   // computes the breakpoints and midpoints.
   add("cifs", [](benchmark::State& state, RefineCase& rc) {
     for (auto _ : state) {
-      nurbs::Curve out = nurbs::refine(rc.curve, rc.mids);
+      nurbs::Curve out = nurbs::refine(rc.curve, rc.knots);
       benchmark::DoNotOptimize(out.P.data());
       benchmark::ClobberMemory();
     }
@@ -580,7 +530,7 @@ void register_refine_benchmarks(Eigen::Index n) {
     for (auto _ : state) {
       SISLCurve* out = nullptr;
       int status = 0;
-      s1018(rc.sisl.get(), rc.mids.data(), static_cast<int>(rc.mids.size()), &out, &status);
+      s1018(rc.sisl.get(), rc.knots.data(), static_cast<int>(rc.knots.size()), &out, &status);
       worst = std::min(worst, status);
       benchmark::DoNotOptimize(out);
       if (out != nullptr) freeCurve(out);
@@ -588,29 +538,14 @@ void register_refine_benchmarks(Eigen::Index n) {
     require_sisl_ok(worst, "s1018");
   });
 #endif
-  add("cifs_midpoints", [](benchmark::State& state, RefineCase& rc) {
-    for (auto _ : state) {
-      nurbs::Curve out = nurbs::refine_midpoints(rc.curve);
-      benchmark::DoNotOptimize(out.P.data());
-      benchmark::ClobberMemory();
-    }
-  });
-  // PROTOTYPES (bench/proto_kernels.hpp), not library code: Boehm insertion run backwards, and the
-  // library's blossom refinement without its per-point overheads.
-  add("proto_refine", [](benchmark::State& state, RefineCase& rc) {
-    for (auto _ : state) {
-      nurbs::Curve out = proto::refine(rc.curve, rc.mids);
-      benchmark::DoNotOptimize(out.P.data());
-      benchmark::ClobberMemory();
-    }
-  });
-  add("proto_blossom", [](benchmark::State& state, RefineCase& rc) {
-    for (auto _ : state) {
-      nurbs::Curve out = proto::refine_blossom(rc.curve, rc.mids);
-      benchmark::DoNotOptimize(out.P.data());
-      benchmark::ClobberMemory();
-    }
-  });
+  if (per_span == 1)
+    add("cifs_midpoints", [](benchmark::State& state, RefineCase& rc) {
+      for (auto _ : state) {
+        nurbs::Curve out = nurbs::refine_midpoints(rc.curve);
+        benchmark::DoNotOptimize(out.P.data());
+        benchmark::ClobberMemory();
+      }
+    });
 }
 
 }  // namespace
@@ -620,8 +555,9 @@ int main(int argc, char** argv) {
   for (bool sorted : {false, true}) register_curve_benchmarks(true, sorted);
   register_surface_benchmarks(false);
   register_surface_benchmarks(true);
-  register_refine_benchmarks(1000);
-  register_refine_benchmarks(100000);
+  register_refine_benchmarks(1000, 1);
+  register_refine_benchmarks(100000, 1);
+  register_refine_benchmarks(10000, kDensePerSpan);
   benchmark::AddCustomContext("sisl", kSislContext);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

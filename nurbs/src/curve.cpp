@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "cifs/nurbs/curve.hpp"
 
+#include <algorithm>
 #include <cmath>
-#include <sstream>
+#include <optional>
 
 #include "cifs/errors.hpp"
 #include "detail.hpp"
@@ -59,7 +60,8 @@ void validate(const Curve& c) {
   if (c.P.cols() < (c.rational ? 2 : 1)) detail::fail("points: control points have no coordinates");
   for (Eigen::Index i = 0; i < c.P.rows(); ++i) {
     const double w = c.rational ? c.P(i, c.P.cols() - 1) : 1.0;
-    if (!(w > 0) || !std::isfinite(w)) detail::fail("weights[", i, "]: weight ", w, " is not a positive finite number");
+    if (!(w > 0) || !std::isfinite(w))
+      detail::fail("weights[", i, "]: weight ", w, " is not a positive finite number");
     for (Eigen::Index j = 0; j < c.P.cols(); ++j)
       if (!std::isfinite(c.P(i, j))) detail::fail("points[", i, "][", j, "]: coordinate is not finite");
   }
@@ -124,46 +126,103 @@ Point to_cartesian(const Curve& c, const Point& row) {
   return row.head(dim) / row(dim);
 }
 
-Point evaluate(const Curve& c, double u) {
-  // De Boor's triangle on the d+1 points of the span (the basis form is evaluate_basis).
-  u = domain_parameter(c, u);
+namespace {
+
+/// The parameter in the domain: u itself when it lies there (no call), else domain_parameter.
+double in_domain(const Curve& c, double u) {
+  const Domain dom = domain(c);
+  return u >= dom.start && u <= dom.end ? u : domain_parameter(c, u);
+}
+
+/// De Boor's triangle on the d + 1 points of u's span, projected into out (dim values). The working
+/// points live on the stack for a fixed column count, in `scratch` ((d + 1)·cols values) otherwise.
+template <int Cols>
+void de_boor(const Curve& c, double u, double* out, double* scratch) noexcept {
   const int p = c.degree;
-  const int span = find_span(c.knots, p, u);
-  Points d = c.P.middleRows(span - p, p + 1);
+  const Eigen::Index cols = Cols > 0 ? Cols : c.P.cols();
   const double* t = c.knots.data();
+  const int span = detail::find_span(t, p, static_cast<int>(c.P.rows()), u);
+  double fixed[Cols > 0 ? (kMaxDegree + 1) * Cols : 1];
+  double* d = Cols > 0 ? fixed : scratch;
+  std::copy_n(c.P.data() + (span - p) * cols, (p + 1) * cols, d);
   for (int r = 1; r <= p; ++r)
     for (int j = p; j >= r; --j) {
       const int i = j + span - p;
       // Both weights from their own differences: 1 − alpha would cancel next to a knot.
       const double hi = t[i + p + 1 - r], den = hi - t[i];
-      d.row(j) = ((hi - u) / den) * d.row(j - 1) + ((u - t[i]) / den) * d.row(j);
+      const double left = (hi - u) / den, right = (u - t[i]) / den;
+      double* dj = d + j * cols;
+      for (Eigen::Index k = 0; k < cols; ++k) dj[k] = left * dj[k - cols] + right * dj[k];
     }
-  return to_cartesian(c, d.row(p));
+  detail::project(d + p * cols, dimension(c), c.rational, out);
+}
+
+/// Σ N_j(u) P_{span−p+j} for every parameter (all in the domain), projected into out (dim per row).
+/// Span search: the previous span as the hint (sorted input), or the bucket table when given.
+template <int Cols>
+void evaluate_rows(const Curve& c, std::span<const double> us, const detail::SpanTable* table, double* out,
+                   double* scratch) noexcept {
+  const int p = c.degree;
+  const int n = static_cast<int>(c.P.rows());
+  const Eigen::Index cols = Cols > 0 ? Cols : c.P.cols();
+  const int dim = dimension(c);
+  const double* t = c.knots.data();
+  const double* P = c.P.data();
+  double fixed[Cols > 0 ? Cols : 1];
+  double* acc = Cols > 0 ? fixed : scratch;
+  double N[kMaxDegree + 1];
+  int span = p;
+  for (std::size_t i = 0; i < us.size(); ++i, out += dim) {
+    const double u = us[i];
+    span = table ? table->find(u) : detail::find_span(t, p, n, u, span);
+    detail::basis(t, p, span, u, N);
+    const double* base = P + (span - p) * cols;
+    for (Eigen::Index k = 0; k < cols; ++k) acc[k] = N[0] * base[k];
+    for (int r = 1; r <= p; ++r)
+      for (Eigen::Index k = 0; k < cols; ++k) acc[k] += N[r] * base[r * cols + k];
+    detail::project(acc, dim, c.rational, out);
+  }
+}
+
+}  // namespace
+
+Point evaluate(const Curve& c, double u) {
+  u = in_domain(c, u);
+  Point out(dimension(c));
+  detail::with_cols(c.P.cols(), [&](auto cols) {
+    std::vector<double> scratch = detail::scratch<cols>(c.P.cols(), c.degree + 1);
+    de_boor<cols>(c, u, out.data(), scratch.data());
+  });
+  return out;
 }
 
 Point evaluate_basis(const Curve& c, double u) {
-  u = domain_parameter(c, u);
-  Point out(c.P.cols());
-  detail::evaluate_homogeneous(c.knots, c.degree, c.P, u, find_span(c.knots, c.degree, u), out.data());
-  return to_cartesian(c, out);
+  u = in_domain(c, u);
+  Point out(dimension(c));
+  detail::with_cols(c.P.cols(), [&](auto cols) {  // the batch kernel on one point
+    std::vector<double> scratch = detail::scratch<cols>(c.P.cols());
+    evaluate_rows<cols>(c, std::span<const double>(&u, 1), nullptr, out.data(), scratch.data());
+  });
+  return out;
 }
 
 Points evaluate(const Curve& c, std::span<const double> us) {
-  const int dim = dimension(c);
-  const auto cols = c.P.cols();
-  Points out(static_cast<Eigen::Index>(us.size()), dim);
-  Point row(cols);
-  int span = c.degree;
-  for (std::size_t k = 0; k < us.size(); ++k) {
-    const double u = domain_parameter(c, us[k]);
-    span = find_span(c.knots, c.degree, u, span);
-    detail::evaluate_homogeneous(c.knots, c.degree, c.P, u, span, row.data());
-    const auto i = static_cast<Eigen::Index>(k);
-    if (c.rational)
-      out.row(i) = row.head(dim) / row(dim);
-    else
-      out.row(i) = row;
+  const detail::Scan scan = detail::scan(us, domain(c));
+  if (!scan.inside) {
+    // Closed curves wrap the parameters into the period; open curves throw for the first one outside.
+    std::vector<double> wrapped(us.size());
+    for (std::size_t k = 0; k < us.size(); ++k) wrapped[k] = domain_parameter(c, us[k]);
+    return evaluate(c, wrapped);
   }
+  Points out(static_cast<Eigen::Index>(us.size()), dimension(c));
+  // Unordered input: the bucket table once the parameters outnumber the knots (it costs O(#knots)).
+  std::optional<detail::SpanTable> table;
+  if (!scan.sorted && us.size() >= 8 * c.knots.size())
+    table.emplace(c.knots.data(), c.degree, static_cast<int>(c.P.rows()));
+  detail::with_cols(c.P.cols(), [&](auto cols) {
+    std::vector<double> scratch = detail::scratch<cols>(c.P.cols());
+    evaluate_rows<cols>(c, us, table ? &*table : nullptr, out.data(), scratch.data());
+  });
   return out;
 }
 

@@ -2,10 +2,13 @@
 // Internal kernels shared by the curve, surface and refinement sources.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <span>
 #include <sstream>
 #include <string_view>
+#include <type_traits>
+#include <vector>
 
 #include "cifs/errors.hpp"
 #include "cifs/nurbs/knots.hpp"
@@ -34,18 +37,224 @@ inline Points homogeneous(const Points& points, const Eigen::VectorXd& weights, 
   return H;
 }
 
-/// `Σ N_j(u) P_{span−p+j}` into `out` (P.cols() values); no allocation.
-inline void evaluate_homogeneous(std::span<const double> knots, int p, const Points& P, double u, int span,
-                                 double* out) noexcept {
-  double N[kMaxDegree + 1];
-  basis_functions(knots, p, span, u, N);
-  const Eigen::Index cols = P.cols();
-  const double* base = P.data() + (span - p) * cols;
-  for (Eigen::Index k = 0; k < cols; ++k) out[k] = N[0] * base[k];
-  for (int j = 1; j <= p; ++j) {
-    const double* row = base + j * cols;
-    for (Eigen::Index k = 0; k < cols; ++k) out[k] += N[j] * row[k];
+// ------------------------------------------------------------------------------------------------
+// Column counts. The kernels below are templates on the number of stored coordinates: for 2, 3 and 4
+// the per-point accumulators are local arrays of known size, which the compiler keeps in registers;
+// Cols = 0 is the same code for any count, with the accumulators in caller memory.
+
+/// Calls f(std::integral_constant<int, Cols>{}) with Cols = cols for 2, 3 and 4, and 0 otherwise.
+template <class F>
+decltype(auto) with_cols(Eigen::Index cols, F&& f) {
+  switch (cols) {
+    case 2:
+      return f(std::integral_constant<int, 2>{});
+    case 3:
+      return f(std::integral_constant<int, 3>{});
+    case 4:
+      return f(std::integral_constant<int, 4>{});
+    default:
+      return f(std::integral_constant<int, 0>{});
   }
+}
+
+/// Scratch doubles a Cols = 0 kernel needs per accumulator row (none for a fixed count).
+template <int Cols>
+std::vector<double> scratch(Eigen::Index cols, Eigen::Index rows = 1) {
+  return std::vector<double>(Cols > 0 ? 0 : static_cast<std::size_t>(cols * rows));
+}
+
+// ------------------------------------------------------------------------------------------------
+// Spans and bases.
+
+/// Whether every value lies in [dom.start, dom.end] (NaN does not), and whether they are non-decreasing:
+/// one pass without calls or branches, so that batch kernels need no per-point check.
+struct Scan {
+  bool inside;
+  bool sorted;
+};
+inline Scan scan(std::span<const double> us, Domain dom) noexcept {
+  int outside = 0, descents = 0;
+  double previous = -HUGE_VAL;
+  for (double u : us) {
+    outside |= static_cast<int>(!(u >= dom.start)) | static_cast<int>(!(u <= dom.end));
+    descents |= static_cast<int>(u < previous);
+    previous = u;
+  }
+  return {outside == 0, descents == 0};
+}
+
+/// find_span on raw knots, n = number of control points: the last non-empty span at the domain end,
+/// else upper_bound over t_{p+1..n−1} minus one, as a bisection whose only decision is a conditional
+/// move (a fixed ⌈log₂⌉ steps: no mispredicted branches on unordered parameters).
+inline int find_span(const double* t, int p, int n, double u) noexcept {
+  if (u >= t[n]) {
+    int k = n - 1;
+    while (k > p && t[k] == t[n]) --k;
+    return k;
+  }
+  const double* base = t + p + 1;
+  std::ptrdiff_t len = n - p - 1;
+  if (len <= 0) return p;
+  while (len > 1) {
+    const std::ptrdiff_t half = len / 2;
+    base = base[half] <= u ? base + half : base;
+    len -= half;
+  }
+  return static_cast<int>(base - t) + (*base <= u ? 1 : 0) - 1;
+}
+
+/// find_span starting from a guess: the guess itself, or the next span, else a bisection.
+inline int find_span(const double* t, int p, int n, double u, int hint) noexcept {
+  if (t[hint] <= u) {
+    if (u < t[hint + 1]) return hint;
+    if (hint + 2 <= n && u < t[hint + 2]) return hint + 1;
+  }
+  return find_span(t, p, n, u);
+}
+
+/// O(1) span search for unordered parameters in the domain: 4 buckets per span, each holding the span
+/// of its left end; a lookup is a multiply, a load and rarely a step. It replaces the ⌈log₂⌉ dependent
+/// loads of a bisection; building it costs O(#buckets + #knots), so batches use it only when the
+/// parameters outnumber the knots.
+class SpanTable {
+ public:
+  SpanTable(const double* t, int p, int n) : t_(t), p_(p), n_(n), start_(t[p]) {
+    const int buckets = 4 * (n - p);
+    scale_ = buckets / (t[n] - start_);
+    first_.resize(static_cast<std::size_t>(buckets) + 2);  // x may round up to #buckets (+ spare)
+    int k = p;
+    for (std::size_t b = 0; b < first_.size(); ++b) {
+      const double x = start_ + static_cast<double>(b) / scale_;
+      while (k + 1 < n && t[k + 1] <= x) ++k;
+      first_[b] = k;
+    }
+  }
+  int find(double u) const noexcept {
+    if (u >= t_[n_]) return find_span(t_, p_, n_, u);
+    int k = first_[static_cast<std::size_t>((u - start_) * scale_)];
+    while (u >= t_[k + 1]) ++k;       // stops before n: u < t_n
+    while (k > p_ && u < t_[k]) --k;  // the bucket's rounding only
+    return k;
+  }
+
+ private:
+  const double* t_;
+  int p_, n_;
+  double start_, scale_ = 0;
+  std::vector<int> first_;
+};
+
+/// The d + 1 non-zero basis functions on `span` (Piegl–Tiller A2.2); inline so that batch loops see
+/// the degree loop. basis_functions calls it.
+inline void basis(const double* t, int p, int span, double u, double* N) noexcept {
+  double left[kMaxDegree + 1];
+  double right[kMaxDegree + 1];
+  N[0] = 1.0;
+  for (int j = 1; j <= p; ++j) {
+    left[j] = u - t[span + 1 - j];
+    right[j] = t[span + j] - u;
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r) {
+      const double temp = N[r] / (right[r + 1] + left[j - r]);
+      N[r] = saved + right[r + 1] * temp;
+      saved = left[j - r] * temp;
+    }
+    N[j] = saved;
+  }
+}
+
+// ------------------------------------------------------------------------------------------------
+// Blossoms.
+
+/// The blossom recursion on `span` with the arguments x in the order given, one per level.
+inline void blossom_recurrence(const double* t, int p, int span, const double* x, double* W) noexcept {
+  W[0] = 1.0;
+  for (int j = 1; j <= p; ++j) {
+    const double xj = x[j - 1];
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r) {
+      const double lo = t[span + 1 - j + r], hi = t[span + 1 + r];
+      const double temp = W[r] / (hi - lo);
+      W[r] = saved + (hi - xj) * temp;
+      saved = (xj - lo) * temp;
+    }
+    W[j] = saved;
+  }
+}
+
+/// The arguments in blossom_weights' order — by distance to the span [a, b], then by value — for
+/// non-decreasing args (consecutive knots): a merge outwards from the span, O(d) instead of a sort.
+inline void nearest_first_increasing(const double* args, int p, double a, double b, double* x) noexcept {
+  int lo = 0;
+  while (lo < p && args[lo] < a) ++lo;  // args[0..lo) left of the span
+  int hi = lo;
+  while (hi < p && args[hi] <= b) ++hi;  // args[lo..hi) inside: distance 0, first
+  for (int m = 0, i = lo, l = lo - 1, r = hi; m < p; ++m) {
+    if (i < hi) {
+      x[m] = args[i++];
+    } else {
+      const bool take_left = r == p || (l >= 0 && a - args[l] <= args[r] - b);
+      x[m] = take_left ? args[l--] : args[r++];
+    }
+  }
+}
+
+/// blossom_weights for non-decreasing arguments: the same weights to the last bit.
+inline void blossom_weights_increasing(const double* t, int p, int span, const double* args,
+                                       double* W) noexcept {
+  double x[kMaxDegree];
+  nearest_first_increasing(args, p, t[span], t[span + 1], x);
+  blossom_recurrence(t, p, span, x, W);
+}
+
+/// Size of the table of blossom_reciprocals.
+inline constexpr int kReciprocals = kMaxDegree * (kMaxDegree + 1) / 2;
+
+/// The divisors of the blossom recursion on `span` depend on the span only: their reciprocals
+/// 1 / (t_{span+1+r} − t_{span+1−j+r}), level j = 1..p, r < j, at inv[j(j−1)/2 + r].
+inline void blossom_reciprocals(const double* t, int p, int span, double* inv) noexcept {
+  for (int j = 1, at = 0; j <= p; ++j)
+    for (int r = 0; r < j; ++r) inv[at++] = 1.0 / (t[span + 1 + r] - t[span + 1 - j + r]);
+}
+
+/// blossom_recurrence with the span's reciprocals: multiplications instead of a chain of divisions,
+/// for the many points that share a piece (refinement with many knots per span).
+inline void blossom_recurrence(const double* t, int p, int span, const double* inv, const double* x,
+                               double* W) noexcept {
+  W[0] = 1.0;
+  for (int j = 1; j <= p; ++j) {
+    const double xj = x[j - 1];
+    const double* level = inv + j * (j - 1) / 2;
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r) {
+      const double lo = t[span + 1 - j + r], hi = t[span + 1 + r];
+      const double temp = W[r] * level[r];
+      W[r] = saved + (hi - xj) * temp;
+      saved = (xj - lo) * temp;
+    }
+    W[j] = saved;
+  }
+}
+
+/// Blossom of the piece on `span` at `args`, as a row of the stored coordinates.
+inline Point blossom_row(std::span<const double> knots, int p, const Points& P, std::span<const double> args,
+                         int span) {
+  double W[kMaxDegree + 1];
+  blossom_weights(knots, p, span, args, W);
+  Point out = Point::Zero(P.cols());
+  for (int j = 0; j <= p; ++j) out += W[j] * P.row(span - p + j);
+  return out;
+}
+
+// ------------------------------------------------------------------------------------------------
+// Rows.
+
+/// A stored row → `dim` Cartesian coordinates (divided by w when rational).
+inline void project(const double* row, int dim, bool rational, double* out) noexcept {
+  if (rational)
+    for (int k = 0; k < dim; ++k) out[k] = row[k] / row[dim];
+  else
+    for (int k = 0; k < dim; ++k) out[k] = row[k];
 }
 
 /// Homogeneous derivatives `(order+1) by (dim+1)` → Cartesian derivatives by the quotient rule
@@ -63,16 +272,6 @@ inline Points rational_derivatives(const Points& H, int dim) {
     C.row(k) = v / H(0, dim);
   }
   return C;
-}
-
-/// Blossom of the piece on `span` at `args`, as a row of the stored coordinates.
-inline Point blossom_row(std::span<const double> knots, int p, const Points& P, std::span<const double> args,
-                         int span) {
-  double W[kMaxDegree + 1];
-  blossom_weights(knots, p, span, args, W);
-  Point out = Point::Zero(P.cols());
-  for (int j = 0; j <= p; ++j) out += W[j] * P.row(span - p + j);
-  return out;
 }
 
 }  // namespace cifs::nurbs::detail

@@ -3,22 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 #include "cifs/errors.hpp"
+#include "detail.hpp"
 
 namespace cifs::nurbs {
-namespace {
-
-template <class... Parts>
-[[noreturn]] void fail(Parts&&... parts) {
-  std::ostringstream out;
-  out.precision(17);
-  (out << ... << parts);
-  throw InvalidInput(out.str());
-}
-
-}  // namespace
+using detail::fail;
 
 void validate_degree(int degree, std::string_view where) {
   if (degree < 1 || degree > kMaxDegree)
@@ -55,31 +45,13 @@ Domain domain(std::span<const double> knots, int degree) noexcept {
 }
 
 int find_span(std::span<const double> knots, int degree, double u) noexcept {
-  const int n = static_cast<int>(control_count(knots, degree));
-  if (u >= knots[static_cast<std::size_t>(n)]) {
-    // Domain end: the last non-empty span (knots at the end may repeat inside the domain).
-    int k = n - 1;
-    while (k > degree && knots[static_cast<std::size_t>(k)] == knots[static_cast<std::size_t>(n)]) --k;
-    return k;
-  }
-  // First knot in (t_{d+1} .. t_{n-1}) strictly greater than u; the span is the one before.
-  const auto first = knots.begin() + degree + 1;
-  const auto last = knots.begin() + n;
-  return static_cast<int>(std::upper_bound(first, last, u) - knots.begin()) - 1;
+  return detail::find_span(knots.data(), degree, static_cast<int>(control_count(knots, degree)), u);
 }
 
 int find_span(std::span<const double> knots, int degree, double u, int hint) noexcept {
   const int n = static_cast<int>(control_count(knots, degree));
-  if (hint < degree || hint >= n || u < knots[static_cast<std::size_t>(hint)] ||
-      u >= knots[static_cast<std::size_t>(n)])
-    return find_span(knots, degree, u);
-  int k = hint;
-  // Walk forward a few spans; fall back to bisection when the jump is long.
-  for (int steps = 0; steps < 8; ++steps) {
-    if (u < knots[static_cast<std::size_t>(k + 1)]) return k;
-    ++k;
-  }
-  return find_span(knots, degree, u);
+  if (hint < degree || hint >= n) return find_span(knots, degree, u);
+  return detail::find_span(knots.data(), degree, n, u, hint);
 }
 
 int multiplicity(std::span<const double> knots, double u) noexcept {
@@ -96,21 +68,7 @@ std::vector<double> breakpoints(std::span<const double> knots, int degree) {
 }
 
 void basis_functions(std::span<const double> knots, int degree, int span, double u, double* N) noexcept {
-  double left[kMaxDegree + 1];
-  double right[kMaxDegree + 1];
-  const double* t = knots.data();
-  N[0] = 1.0;
-  for (int j = 1; j <= degree; ++j) {
-    left[j] = u - t[span + 1 - j];
-    right[j] = t[span + j] - u;
-    double saved = 0.0;
-    for (int r = 0; r < j; ++r) {
-      const double temp = N[r] / (right[r + 1] + left[j - r]);
-      N[r] = saved + right[r + 1] * temp;
-      saved = left[j - r] * temp;
-    }
-    N[j] = saved;
-  }
+  detail::basis(knots.data(), degree, span, u, N);
 }
 
 void blossom_weights(std::span<const double> knots, int degree, int span, std::span<const double> args,
@@ -119,23 +77,21 @@ void blossom_weights(std::span<const double> knots, int degree, int span, std::s
   // The blossom is symmetric; the order of the arguments matters only for rounding. Level j spans
   // [t_{k+1−j+r}, t_{k+1+r}], narrow first: feeding it the arguments nearest the span keeps the
   // factors (hi − x), (x − lo) non-negative as long as possible, instead of large and cancelling.
-  double x_sorted[kMaxDegree];
-  std::copy(args.begin(), args.begin() + degree, x_sorted);
+  // Sorted by (distance, value), a total order: any permutation of the arguments gives the same
+  // weights to the last bit, and increasing ones the order of detail::nearest_first_increasing.
   const double a = t[span], b = t[span + 1];
   const auto distance = [a, b](double x) { return x < a ? a - x : (x > b ? x - b : 0.0); };
-  std::sort(x_sorted, x_sorted + degree, [&](double x, double y) { return distance(x) < distance(y); });
-  W[0] = 1.0;
-  for (int j = 1; j <= degree; ++j) {
-    const double x = x_sorted[j - 1];
-    double saved = 0.0;
-    for (int r = 0; r < j; ++r) {
-      const double lo = t[span + 1 - j + r], hi = t[span + 1 + r];
-      const double temp = W[r] / (hi - lo);
-      W[r] = saved + (hi - x) * temp;
-      saved = (x - lo) * temp;
-    }
-    W[j] = saved;
+  const auto before = [&](double x, double y) {
+    return distance(x) < distance(y) || (distance(x) == distance(y) && x < y);
+  };
+  double x[kMaxDegree];
+  for (int i = 0; i < degree; ++i) {  // insertion sort: d ≤ 64 values
+    const double v = args[static_cast<std::size_t>(i)];
+    int j = i;
+    for (; j > 0 && before(v, x[j - 1]); --j) x[j] = x[j - 1];
+    x[j] = v;
   }
+  detail::blossom_recurrence(t, degree, span, x, W);
 }
 
 Eigen::MatrixXd basis_derivatives(std::span<const double> knots, int degree, int span, double u, int order) {

@@ -2,6 +2,7 @@
 #include "cifs/nurbs/refine.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 #include "detail.hpp"
@@ -16,7 +17,7 @@ struct Piece {
   double shift;
 };
 
-Piece piece_for(const Curve& c, double lo, double hi) {
+Piece piece_for(const Curve& c, double lo, double hi, int hint) {
   const Domain dom = domain(c);
   double mid = 0.5 * (lo + hi);
   double shift = 0;
@@ -24,16 +25,16 @@ Piece piece_for(const Curve& c, double lo, double hi) {
     shift = domain_parameter(c, mid) - mid;
     mid += shift;
   }
-  return {find_span(c.knots, c.degree, std::min(std::max(mid, dom.start), dom.end)), shift};
+  return {find_span(c.knots, c.degree, std::min(std::max(mid, dom.start), dom.end), hint), shift};
 }
 
 /// Row j of the control points of the same piecewise polynomial, seen with degree `c.degree + raise`
 /// (raise ∈ {0, 1}) on `target`, a knot vector whose pieces are pieces of `c`: the blossom at the
 /// consecutive target knots t'_{j+1..j+q}, symmetrised over the dropped argument when raised, written
 /// to Q.row(row). The piece is one under an interval of the support of N'_j (open curves: within the
-/// target's domain).
+/// target's domain). `hint` carries the last piece's span from point to point.
 void set_blossom_point(const Curve& c, const Knots& target, int raise, Eigen::Index j, Points& Q,
-                       Eigen::Index row) {
+                       Eigen::Index row, int& hint) {
   const int p = c.degree;
   const int q = p + raise;
   const auto tn = static_cast<int>(target.size());
@@ -49,26 +50,35 @@ void set_blossom_point(const Curve& c, const Knots& target, int raise, Eigen::In
   double widest = -1;
   for (int k = k_begin; k <= k_end; ++k) {
     if (!(at(k) < at(k + 1)) && !(k == k_end && piece.span < 0)) continue;
-    const Piece candidate = piece_for(c, at(k), at(k + 1));
+    const Piece candidate = piece_for(c, at(k), at(k + 1), hint);
+    hint = candidate.span;
     const double width = c.knots[static_cast<std::size_t>(candidate.span + 1)] -
                          c.knots[static_cast<std::size_t>(candidate.span)];
     if (width > widest) piece = candidate, widest = width;
   }
+  // The arguments are consecutive knots (plus a common shift): increasing, also with one dropped.
   double args[kMaxDegree + 1], sub[kMaxDegree], W[kMaxDegree + 1];
   for (int a = 0; a < q; ++a) args[a] = target[static_cast<std::size_t>(jj + 1 + a)] + piece.shift;
-  Q.row(row).setZero();
+  const Eigen::Index cols = c.P.cols();
+  double* out = Q.row(row).data();
+  std::fill_n(out, cols, 0.0);
   for (int drop = 0; drop < (raise ? q : 1); ++drop) {
     for (int a = 0, b = 0; a < q; ++a)
       if (!raise || a != drop) sub[b++] = args[a];
-    blossom_weights(c.knots, p, piece.span, std::span<const double>(sub, static_cast<std::size_t>(p)), W);
-    for (int i = 0; i <= p; ++i) Q.row(row) += W[i] * c.P.row(piece.span - p + i);
+    detail::blossom_weights_increasing(c.knots.data(), p, piece.span, sub, W);
+    for (int i = 0; i <= p; ++i) {
+      const double* P = c.P.row(piece.span - p + i).data();
+      for (Eigen::Index k = 0; k < cols; ++k) out[k] += W[i] * P[k];
+    }
   }
-  if (raise) Q.row(row) /= q;
+  if (raise)
+    for (Eigen::Index k = 0; k < cols; ++k) out[k] /= q;
 }
 
 Points blossom_points(const Curve& c, const Knots& target, int raise, Eigen::Index count) {
   Points Q(count, c.P.cols());
-  for (Eigen::Index j = 0; j < count; ++j) set_blossom_point(c, target, raise, j, Q, j);
+  int hint = c.degree;
+  for (Eigen::Index j = 0; j < count; ++j) set_blossom_point(c, target, raise, j, Q, j, hint);
   return Q;
 }
 
@@ -83,6 +93,7 @@ Curve closed_on(const Curve& c, const Knots& breaks, int raise) {
   const auto& t = out.knots;
   const auto tn = static_cast<Eigen::Index>(t.size());
   Points distinct(m, c.P.cols());
+  int hint = c.degree;
   for (Eigen::Index j = 0; j < m; ++j) {
     Eigen::Index row = j < q ? j + m * ((q - j + m - 1) / m) : j;
     Eigen::Index k = row;
@@ -90,91 +101,248 @@ Curve closed_on(const Curve& c, const Knots& breaks, int raise) {
            !(t[static_cast<std::size_t>(k)] < t[static_cast<std::size_t>(k + 1)]))
       ++k;
     if (k > m + q - 1) row -= m;
-    set_blossom_point(c, t, raise, row, distinct, j);
+    set_blossom_point(c, t, raise, row, distinct, j, hint);
   }
   out.P.resize(m + q, c.P.cols());
   for (Eigen::Index i = 0; i < out.P.rows(); ++i) out.P.row(i) = distinct.row(i % m);
   return out;
 }
 
-/// Sorted insertion knots, validated against the curve (closed curves: wrapped into the period).
-std::vector<double> checked_insertions(const Curve& c, std::span<const double> new_knots) {
-  std::vector<double> X;
-  X.reserve(new_knots.size());
-  for (std::size_t i = 0; i < new_knots.size(); ++i) {
-    if (!std::isfinite(new_knots[i])) detail::fail("knot ", i, ": ", new_knots[i], " is not finite");
-    const Domain dom = domain(c);
-    if (!c.closed && (new_knots[i] < dom.start || new_knots[i] > dom.end))
-      detail::fail("knot ", new_knots[i], " is outside the domain [", dom.start, ", ", dom.end, "]");
-    double u = domain_parameter(c, new_knots[i]);
+/// The insertion knots, validated against the curve (closed curves: wrapped into the period), sorted:
+/// `new_knots` itself when it is in the domain and sorted, else a copy in `storage`.
+std::span<const double> checked_insertions(const Curve& c, std::span<const double> new_knots,
+                                           std::vector<double>& storage) {
+  const Domain dom = domain(c);
+  const detail::Scan scan = detail::scan(new_knots, dom);
+  const bool wraps_end =
+      c.closed && std::find(new_knots.begin(), new_knots.end(), dom.end) != new_knots.end();
+  if (scan.inside && scan.sorted && !wraps_end) return new_knots;
+  storage.assign(new_knots.begin(), new_knots.end());
+  for (std::size_t i = 0; i < storage.size(); ++i) {
+    double& u = storage[i];
+    if (!scan.inside) {
+      if (!std::isfinite(u)) detail::fail("knot ", i, ": ", u, " is not finite");
+      if (!c.closed && (u < dom.start || u > dom.end))
+        detail::fail("knot ", u, " is outside the domain [", dom.start, ", ", dom.end, "]");
+      u = domain_parameter(c, u);
+    }
     if (c.closed && u == dom.end) u = dom.start;  // the period's end is its start
-    X.push_back(u);
   }
-  std::sort(X.begin(), X.end());
-  return X;
+  if (!std::is_sorted(storage.begin(), storage.end())) std::sort(storage.begin(), storage.end());
+  return storage;
 }
 
-void check_multiplicities(std::span<const double> knots, std::span<const double> inserted, int degree) {
-  for (double u : inserted) {
-    const int mult = multiplicity(knots, u);
-    if (mult > degree) detail::fail("knot ", u, " would reach multiplicity ", mult, " > degree ", degree);
+/// Throws unless every value of the sorted X has multiplicity ≤ degree in the sorted `knots`, which
+/// hold the insertions already (closed curves). One merge-like pass.
+void check_multiplicities(std::span<const double> knots, std::span<const double> X, int degree) {
+  std::size_t i = 0;
+  for (const double x : X) {
+    while (i < knots.size() && knots[i] < x) ++i;
+    int mult = 0;
+    for (std::size_t e = i; e < knots.size() && knots[e] == x; ++e) ++mult;
+    if (mult > degree) detail::fail("knot ", x, " would reach multiplicity ", mult, " > degree ", degree);
   }
+}
+
+// ------------------------------------------------------------------------------------------------
+// Open curves: two ways to the same points.
+//
+// Blossoms: every new point on its own, Q_j = b(t'_{j+1..j+d}) on the widest old piece under its
+// support; the rounding does not depend on the number of knots. Boehm's insertion run backwards
+// (Piegl–Tiller A5.4): d convex combinations per new knot, several times cheaper, but a combination
+// may read a point that the previous insertion made, so rounding adds up along chains of insertions.
+//
+// The chain bound. Undo the insertions from the smallest new knot up. A point whose d consecutive
+// knots W contain the knot x being undone is a convex combination of two points whose knots are W
+// without x plus the knot left or right of W; the left one is old (the new knots left of x are undone
+// already). Old knots never leave W, so the windows along a chain of combinations hold at most d old
+// knot copies in all, and the new knots undone along it lie in the d + 1 gaps around those. A chain
+// therefore has at most
+//     S = max over c of #{new knots x : c ≤ #(old knots < x) ≤ c + d}
+// combinations (A5.4 puts new knots before equal old ones, hence "<"). Each is convex (0 ≤ α ≤ 1) and
+// adds a few ulps of max |P|, so Boehm's points are within about S · 3ε · max |P|. refine takes Boehm
+// when S ≤ max(16, d + 1): d + 1 because the blossom recursion itself rounds through d levels, not all
+// convex; 16 as an absolute budget (≈ 1e-14 · max |P|) that admits a few knots per span at low degree.
+// Single insertions (S = 1), insert_knot's m ≤ d copies and midpoint refinement (S = d + 1) take
+// Boehm; many knots in one span take blossoms (65 535 knots in one span: 6e-15 against long double
+// with blossoms, 2.5e-12 with A5.4; verify's dyadic references are such refinements).
+
+constexpr int kBoehmBudget = 16;
+
+/// One pass over the sorted X and the old knots: throws unless every value keeps multiplicity ≤ p, and
+/// tells whether Boehm's chains are short: S ≤ max(kBoehmBudget, p + 1), i.e. no limit + 1 consecutive
+/// new knots have counts of old knots below them within p of each other.
+bool checked_short_chains(std::span<const double> t, std::span<const double> X, int p) {
+  constexpr std::size_t kRing = 128;  // a power of two above every limit (kMaxDegree + 1 = 65)
+  static_assert(kRing > kMaxDegree + 1 && kRing > kBoehmBudget && (kRing & (kRing - 1)) == 0);
+  const auto limit = static_cast<std::size_t>(std::max(kBoehmBudget, p + 1));
+  std::size_t below = 0;         // #old knots < X[j]
+  std::size_t ring[kRing] = {};  // the same for X[j − 1], X[j − 2], ...
+  bool short_chains = true;
+  for (std::size_t j = 0; j < X.size(); ++j) {
+    const double x = X[j];
+    while (below < t.size() && t[below] < x) ++below;
+    const bool repeated = (below < t.size() && t[below] == x) || (j + 1 < X.size() && X[j + 1] == x);
+    if (repeated && (j == 0 || X[j - 1] != x)) {
+      int mult = 0;  // its copies in X from here, and in t
+      for (std::size_t e = j; e < X.size() && X[e] == x; ++e) ++mult;
+      for (std::size_t e = below; e < t.size() && t[e] == x; ++e) ++mult;
+      if (mult > p) detail::fail("knot ", x, " would reach multiplicity ", mult, " > degree ", p);
+    }
+    if (j >= limit && below - ring[(j - limit) & (kRing - 1)] <= static_cast<std::size_t>(p))
+      short_chains = false;
+    ring[j & (kRing - 1)] = below;
+  }
+  return short_chains;
+}
+
+template <int Cols>
+void copy_row(double* to, const double* from, Eigen::Index cols) noexcept {
+  for (Eigen::Index k = 0; k < (Cols > 0 ? Cols : cols); ++k) to[k] = from[k];
+}
+
+/// Boehm's insertion of the sorted X, backwards (Piegl–Tiller A5.4, indices as there: n and m the last
+/// point and knot, r the last new knot, a and b bracketing the spans that change). `Ub` is the merged
+/// knot vector (written here), Q its n + r + 2 rows. Valid for unclamped curves as they are: the
+/// insertion formula is an identity of the basis functions on the whole knot range.
+template <int Cols>
+void boehm_rows(const Curve& c, std::span<const double> X, double* Ub, double* Q) noexcept {
+  const int p = c.degree;
+  const Eigen::Index cols = Cols > 0 ? Cols : c.P.cols();
+  const int n = static_cast<int>(c.P.rows()) - 1;
+  const int m = n + p + 1;
+  const int r = static_cast<int>(X.size()) - 1;
+  const double* U = c.knots.data();
+  const double* P = c.P.data();
+  const int a = detail::find_span(U, p, n + 1, X.front());
+  const int b = detail::find_span(U, p, n + 1, X.back()) + 1;
+  for (int j = 0; j <= a - p; ++j) copy_row<Cols>(Q + j * cols, P + j * cols, cols);
+  for (int j = b - 1; j <= n; ++j) copy_row<Cols>(Q + (j + r + 1) * cols, P + j * cols, cols);
+  for (int j = 0; j <= a; ++j) Ub[j] = U[j];
+  for (int j = b + p; j <= m; ++j) Ub[j + r + 1] = U[j];
+  int i = b + p - 1, k = b + p + r;
+  for (int j = r; j >= 0; --j) {
+    while (X[static_cast<std::size_t>(j)] <= U[i] && i > a) {
+      copy_row<Cols>(Q + (k - p - 1) * cols, P + (i - p - 1) * cols, cols);
+      Ub[k] = U[i];
+      --k;
+      --i;
+    }
+    copy_row<Cols>(Q + (k - p - 1) * cols, Q + (k - p) * cols, cols);
+    for (int l = 1; l <= p; ++l) {
+      const int ind = k - p + l;
+      double* lo = Q + (ind - 1) * cols;
+      const double* hi = Q + ind * cols;
+      const double gap = Ub[k + l] - X[static_cast<std::size_t>(j)];
+      if (gap == 0.0) {
+        copy_row<Cols>(lo, hi, cols);
+      } else {
+        const double alpha = gap / (Ub[k + l] - U[i - p + l]);
+        for (Eigen::Index e = 0; e < cols; ++e) lo[e] = alpha * lo[e] + (1.0 - alpha) * hi[e];
+      }
+    }
+    Ub[k] = X[static_cast<std::size_t>(j)];
+    --k;
+  }
+}
+
+/// Blossom refinement rows. `t` is the old knot vector, readable at t[−p .. #t + p − 1] for
+/// unclamped curves (padded, see refine); T the merged vector with the new knots after equal old ones,
+/// new_before[i] the number of new knots among T[0..i). The target interval k lies in the old interval
+/// k − new_before[k+1]: no span search.
+template <int Cols>
+void blossom_rows(const Curve& c, const double* t, std::span<const double> T, const int* new_before,
+                  double* Q, double* scratch) noexcept {
+  const int p = c.degree;
+  const int n = static_cast<int>(c.P.rows());
+  const Eigen::Index cols = Cols > 0 ? Cols : c.P.cols();
+  const int count = static_cast<int>(T.size()) - p - 1;
+  const double* P = c.P.data();
+  double fixed[Cols > 0 ? Cols : 1];
+  double* acc = Cols > 0 ? fixed : scratch;
+  double W[kMaxDegree + 1], x[kMaxDegree], inv[detail::kReciprocals];
+  int cached = -1;  // the span of inv: none yet
+  for (int j = 0; j < count; ++j, Q += cols) {
+    const int before = new_before[j + 1];
+    if (new_before[j + p + 1] == before) {  // t'_{j+1..j+p} are the old t_{i+1..i+p}: Q_j = P_i
+      copy_row<Cols>(Q, P + (j - before) * cols, cols);
+      continue;
+    }
+    int span = 0;
+    double widest = -1;
+    for (int k = j; k <= j + p; ++k) {
+      if (!(T[static_cast<std::size_t>(k)] < T[static_cast<std::size_t>(k + 1)])) continue;
+      const int s = k - new_before[k + 1];
+      if (t[s + 1] - t[s] > widest) span = s, widest = t[s + 1] - t[s];
+    }
+    assert(widest > 0);  // at most d + 1 equal knots: the support has a non-empty interval
+    if (span != cached) detail::blossom_reciprocals(t, p, cached = span, inv);
+    detail::nearest_first_increasing(T.data() + j + 1, p, t[span], t[span + 1], x);
+    detail::blossom_recurrence(t, p, span, inv, x, W);
+    // Rows outside 0..n−1 are the padding's zero points.
+    for (Eigen::Index e = 0; e < cols; ++e) acc[e] = 0.0;
+    for (int i = std::max(0, p - span); i <= std::min(p, n - 1 - span + p); ++i) {
+      const double* row = P + (span - p + i) * cols;
+      for (Eigen::Index e = 0; e < cols; ++e) acc[e] += W[i] * row[e];
+    }
+    copy_row<Cols>(Q, acc, cols);
+  }
+}
+
+/// Open curves: the merged knots, then Boehm or blossoms by the chain bound.
+Curve refine_open(const Curve& c, std::span<const double> X) {
+  const int p = c.degree;
+  const auto& t = c.knots;
+  const bool boehm = checked_short_chains(t, X, p);
+  const auto added = static_cast<Eigen::Index>(X.size());
+  Curve out{p, Knots(t.size() + X.size()), Points(c.P.rows() + added, c.P.cols()), c.rational, false};
+  if (boehm) {
+    detail::with_cols(c.P.cols(), [&](auto cols) { boehm_rows<cols>(c, X, out.knots.data(), out.P.data()); });
+    return out;
+  }
+  std::vector<int> new_before(out.knots.size() + 1, 0);
+  for (std::size_t i = 0, a = 0, b = 0; i < out.knots.size(); ++i) {
+    const bool take_new = b < X.size() && (a == t.size() || X[b] < t[a]);
+    out.knots[i] = take_new ? X[b++] : t[a++];
+    new_before[i + 1] = new_before[i] + (take_new ? 1 : 0);
+  }
+  // To preserve Σ P_i N_i on the whole knot range, as Boehm's insertion does, also where the basis
+  // functions of an unclamped curve vanish on the domain, the curve is padded with d knots and d zero
+  // points on each side: every original interval becomes part of the padded domain, where blossoms
+  // are defined, and the pads add nothing to the sum. Only the knots are copied (blossom_rows skips
+  // the zero rows); clamped curves have no non-empty interval outside the domain and need no pads.
+  const auto d = static_cast<std::size_t>(p);
+  const bool clamped = t[0] == t[d] && t[t.size() - 1] == t[t.size() - 1 - d];
+  std::vector<double> padded;
+  const double* old_knots = t.data();
+  if (!clamped) {
+    const double front = t.front(), back = t.back();
+    const double pad = back > front ? back - front : 1.0;
+    for (int i = p; i >= 1; --i) padded.push_back(front - i * pad);
+    padded.insert(padded.end(), t.begin(), t.end());
+    for (int i = 1; i <= p; ++i) padded.push_back(back + i * pad);
+    old_knots = padded.data() + p;
+  }
+  detail::with_cols(c.P.cols(), [&](auto cols) {
+    std::vector<double> scratch = detail::scratch<cols>(c.P.cols());
+    blossom_rows<cols>(c, old_knots, out.knots, new_before.data(), out.P.data(), scratch.data());
+  });
+  return out;
 }
 
 }  // namespace
 
 Curve refine(const Curve& c, std::span<const double> new_knots) {
-  const std::vector<double> X = checked_insertions(c, new_knots);
+  std::vector<double> storage;
+  const std::span<const double> X = checked_insertions(c, new_knots, storage);
   if (X.empty()) return c;
-  if (c.closed) {
-    Knots breaks = defining_knots(c);
-    breaks.insert(breaks.end() - 1, X.begin(), X.end());
-    std::sort(breaks.begin(), breaks.end() - 1);
-    Curve out = closed_on(c, breaks, 0);
-    check_multiplicities(out.knots, X, c.degree);
-    return out;
-  }
-  // Open curve. Every new point is the blossom of an old piece at consecutive new knots, computed
-  // on its own (Oslo's accuracy: no chain of updates through many insertions, whose rounding grows
-  // with their number). To preserve Σ P_i N_i on the whole knot range, as Boehm's insertion does,
-  // also where the basis functions of an unclamped curve vanish on the domain, the knot vector is
-  // padded with d knots and d zero points on each side: the pads add nothing to the sum, and every
-  // original interval becomes part of the padded domain, where blossoms are defined.
-  const int p = c.degree;
-  {
-    Knots merged(c.knots.size() + X.size());
-    std::merge(c.knots.begin(), c.knots.end(), X.begin(), X.end(), merged.begin());
-    check_multiplicities(merged, X, p);
-  }
-  const double front = c.knots.front(), back = c.knots.back();
-  const double pad = back > front ? back - front : 1.0;
-  Curve padded{p, Knots{}, Points::Zero(c.P.rows() + 2 * p, c.P.cols()), c.rational, false};
-  for (int i = p; i >= 1; --i) padded.knots.push_back(front - i * pad);
-  padded.knots.insert(padded.knots.end(), c.knots.begin(), c.knots.end());
-  for (int i = 1; i <= p; ++i) padded.knots.push_back(back + i * pad);
-  padded.P.middleRows(p, c.P.rows()) = c.P;
-
-  // Merge (new knots after equal old ones), copy the points whose dual-functional arguments are
-  // all old knots, compute the others.
-  const auto n = padded.P.rows();
-  Knots target(padded.knots.size() + X.size());
-  std::vector<int> new_before(target.size() + 1, 0);  // new knots among target[0..i)
-  for (std::size_t a = 0, b = 0, i = 0; i < target.size(); ++i) {
-    const bool take_new = b < X.size() && (a == padded.knots.size() || X[b] < padded.knots[a]);
-    target[i] = take_new ? X[b++] : padded.knots[a++];
-    new_before[i + 1] = new_before[i] + (take_new ? 1 : 0);
-  }
-  const auto count = n + static_cast<Eigen::Index>(X.size());
-  Points Q(count, c.P.cols());
-  for (Eigen::Index j = 0; j < count; ++j) {
-    const auto first = static_cast<std::size_t>(j + 1), last = static_cast<std::size_t>(j + p + 1);
-    if (new_before[last] == new_before[first])
-      Q.row(j) = padded.P.row(j - new_before[first]);  // args t'_{j+1..j+p} are old knots t_{i+1..i+p}
-    else
-      set_blossom_point(padded, target, 0, j, Q, j);
-  }
-  return Curve{p, Knots(target.begin() + p, target.end() - p), Q.middleRows(p, count - 2 * p), c.rational,
-               false};
+  if (!c.closed) return refine_open(c, X);
+  Knots breaks = defining_knots(c);
+  breaks.insert(breaks.end() - 1, X.begin(), X.end());
+  std::sort(breaks.begin(), breaks.end() - 1);
+  Curve out = closed_on(c, breaks, 0);
+  check_multiplicities(out.knots, X, c.degree);
+  return out;
 }
 
 Curve insert_knot(const Curve& c, double u, int times) {

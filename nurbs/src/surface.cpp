@@ -66,46 +66,105 @@ Eigen::VectorXd weights(const Surface& s) {
   return s.P.col(s.P.cols() - 1);
 }
 
+namespace {
+
+/// Throws for the first parameter outside the domain of `dir` (one branch-free scan when none is).
+void check_parameters(const Surface& s, Direction dir, std::span<const double> ts) {
+  if (detail::scan(ts, domain(s, dir)).inside) return;
+  for (double t : ts) checked_parameter(s, dir, t);
+}
+
+/// S(u, v) into out (dim values): two spans, two bases and the (p + 1)(q + 1) tensor sum. The order of
+/// operations is evaluate_grid's (u first, for each of the q + 1 columns), so the two agree to the bit.
+template <int Cols>
+void surface_point(const Surface& s, double u, double v, double* out, double* scratch) noexcept {
+  const int p = s.degree[0], q = s.degree[1];
+  const Eigen::Index nv = s.count[1], cols = Cols > 0 ? Cols : s.P.cols();
+  const double* tu = s.knots[0].data();
+  const double* tv = s.knots[1].data();
+  const int su = detail::find_span(tu, p, static_cast<int>(s.count[0]), u);
+  const int sv = detail::find_span(tv, q, static_cast<int>(nv), v);
+  double Nu[kMaxDegree + 1], Nv[kMaxDegree + 1];
+  detail::basis(tu, p, su, u, Nu);
+  detail::basis(tv, q, sv, v, Nv);
+  double fixed[Cols > 0 ? 2 * Cols : 1];
+  double* acc = Cols > 0 ? fixed : scratch;
+  double* line = acc + cols;
+  for (int c = 0; c <= q; ++c) {
+    const double* col = s.P.data() + ((su - p) * nv + (sv - q + c)) * cols;
+    for (Eigen::Index k = 0; k < cols; ++k) line[k] = Nu[0] * col[k];
+    for (int r = 1; r <= p; ++r)
+      for (Eigen::Index k = 0; k < cols; ++k) line[k] += Nu[r] * col[r * nv * cols + k];
+    for (Eigen::Index k = 0; k < cols; ++k) acc[k] = c == 0 ? Nv[0] * line[k] : acc[k] + Nv[c] * line[k];
+  }
+  const int dim = dimension(s);
+  const double scale = s.rational ? 1.0 / acc[dim] : 1.0;
+  for (int k = 0; k < dim; ++k) out[k] = acc[k] * scale;
+}
+
+/// The grid rows: per grid row a, the iso-line Σ_r Nu_r P_{i_r, j} for every j (a curve in v), then
+/// q + 1 of its points per grid point with the v basis precomputed per column.
+template <int Cols>
+void grid_rows(const Surface& s, std::span<const double> us, std::span<const int> vspan, const double* Nv,
+               double* line, double* out, double* scratch) noexcept {
+  const int p = s.degree[0], q = s.degree[1];
+  const Eigen::Index nv = s.count[1], cols = Cols > 0 ? Cols : s.P.cols();
+  const int dim = dimension(s);
+  const double* tu = s.knots[0].data();
+  double fixed[Cols > 0 ? Cols : 1];
+  double* acc = Cols > 0 ? fixed : scratch;
+  double Nu[kMaxDegree + 1];
+  int uspan = p;
+  for (double u : us) {
+    uspan = detail::find_span(tu, p, static_cast<int>(s.count[0]), u, uspan);
+    detail::basis(tu, p, uspan, u, Nu);
+    const double* rows = s.P.data() + (uspan - p) * nv * cols;
+    for (Eigen::Index e = 0; e < nv * cols; ++e) line[e] = Nu[0] * rows[e];
+    for (int r = 1; r <= p; ++r)
+      for (Eigen::Index e = 0; e < nv * cols; ++e) line[e] += Nu[r] * rows[r * nv * cols + e];
+    for (std::size_t b = 0; b < vspan.size(); ++b, out += dim) {
+      const double* N = Nv + b * static_cast<std::size_t>(q + 1);
+      const double* base = line + (vspan[b] - q) * cols;
+      for (Eigen::Index k = 0; k < cols; ++k) acc[k] = N[0] * base[k];
+      for (int r = 1; r <= q; ++r)
+        for (Eigen::Index k = 0; k < cols; ++k) acc[k] += N[r] * base[r * cols + k];
+      const double scale = s.rational ? 1.0 / acc[dim] : 1.0;
+      for (int k = 0; k < dim; ++k) out[k] = acc[k] * scale;
+    }
+  }
+}
+
+}  // namespace
+
 Point evaluate(const Surface& s, double u, double v) {
-  const std::array<double, 1> us{checked_parameter(s, Direction::u, u)};
-  const std::array<double, 1> vs{checked_parameter(s, Direction::v, v)};
-  return evaluate_grid(s, us, vs).row(0);
+  checked_parameter(s, Direction::u, u);
+  checked_parameter(s, Direction::v, v);
+  Point out(dimension(s));
+  detail::with_cols(s.P.cols(), [&](auto cols) {
+    std::vector<double> scratch = detail::scratch<cols>(s.P.cols(), 2);
+    surface_point<cols>(s, u, v, out.data(), scratch.data());
+  });
+  return out;
 }
 
 Points evaluate_grid(const Surface& s, std::span<const double> us, std::span<const double> vs) {
-  const int p = s.degree[0], q = s.degree[1];
-  const Eigen::Index nv = s.count[1], cols = s.P.cols();
-  const int dim = dimension(s);
-  for (double u : us) checked_parameter(s, Direction::u, u);
+  const int q = s.degree[1];
+  check_parameters(s, Direction::u, us);
+  check_parameters(s, Direction::v, vs);
   // v basis once per grid column.
   std::vector<int> vspan(vs.size());
-  Eigen::MatrixXd Nv(q + 1, static_cast<Eigen::Index>(vs.size()));
+  std::vector<double> Nv(vs.size() * static_cast<std::size_t>(q + 1));
+  const int nv = static_cast<int>(s.count[1]);
   for (std::size_t b = 0; b < vs.size(); ++b) {
-    const double v = checked_parameter(s, Direction::v, vs[b]);
-    vspan[b] = find_span(s.knots[1], q, v, b ? vspan[b - 1] : q);
-    basis_functions(s.knots[1], q, vspan[b], v, Nv.col(static_cast<Eigen::Index>(b)).data());
+    vspan[b] = detail::find_span(s.knots[1].data(), q, nv, vs[b], b ? vspan[b - 1] : q);
+    detail::basis(s.knots[1].data(), q, vspan[b], vs[b], Nv.data() + b * static_cast<std::size_t>(q + 1));
   }
-  Points out(static_cast<Eigen::Index>(us.size() * vs.size()), dim);
-  Points line(nv, cols);  // Σ_r Nu_r P_{i_r, j} for every j: a curve in v
-  double Nu[kMaxDegree + 1];
-  std::vector<double> acc(static_cast<std::size_t>(cols));
-  int uspan = p;
-  for (std::size_t a = 0; a < us.size(); ++a) {
-    uspan = find_span(s.knots[0], p, us[a], uspan);
-    basis_functions(s.knots[0], p, uspan, us[a], Nu);
-    line.noalias() = Nu[0] * s.P.middleRows((uspan - p) * nv, nv);
-    for (int r = 1; r <= p; ++r) line.noalias() += Nu[r] * s.P.middleRows((uspan - p + r) * nv, nv);
-    for (std::size_t b = 0; b < vs.size(); ++b) {
-      const double* N = Nv.col(static_cast<Eigen::Index>(b)).data();
-      const double* base = line.data() + (vspan[b] - q) * cols;
-      for (Eigen::Index k = 0; k < cols; ++k) acc[static_cast<std::size_t>(k)] = N[0] * base[k];
-      for (int r = 1; r <= q; ++r)
-        for (Eigen::Index k = 0; k < cols; ++k) acc[static_cast<std::size_t>(k)] += N[r] * base[r * cols + k];
-      double* o = out.row(static_cast<Eigen::Index>(a * vs.size() + b)).data();
-      const double scale = s.rational ? 1.0 / acc[static_cast<std::size_t>(dim)] : 1.0;
-      for (int k = 0; k < dim; ++k) o[k] = acc[static_cast<std::size_t>(k)] * scale;
-    }
-  }
+  Points out(static_cast<Eigen::Index>(us.size() * vs.size()), dimension(s));
+  std::vector<double> line(static_cast<std::size_t>(s.count[1] * s.P.cols()));
+  detail::with_cols(s.P.cols(), [&](auto cols) {
+    std::vector<double> scratch = detail::scratch<cols>(s.P.cols());
+    grid_rows<cols>(s, us, vspan, Nv.data(), line.data(), out.data(), scratch.data());
+  });
   return out;
 }
 

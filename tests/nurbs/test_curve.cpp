@@ -122,6 +122,41 @@ TEST_CASE("de Boor, basis form, batch evaluation and the Cox–de Boor definitio
   }
 }
 
+TEST_CASE("batch evaluation: every column count and span search give evaluate_basis to the last bit",
+          "[nurbs][curve]") {
+  // The batch kernel is the basis form with the same arithmetic; its paths differ only in how they
+  // find spans (the previous span for sorted input, a bucket table for long unordered batches, a
+  // bisection otherwise) and in the column count (2, 3, 4 fixed, any other generic).
+  for (int seed = 0; seed < 300; ++seed) {
+    Rng rng(7300 + seed);
+    const int d = uniform_int(rng, 1, 8);
+    const auto kind = static_cast<Kind>(uniform_int(rng, 0, 2));
+    const RandomCurve r =
+        random_curve(rng, d, uniform_int(rng, 1, 5), coin(rng), kind, uniform_int(rng, 0, 40));
+    INFO("seed " << seed << ": " << r.what);
+    std::vector<double> us = probe_parameters(rng, r.knots, d, 0);
+    // Long enough for the bucket table (8 parameters per knot), unless sorted.
+    while (us.size() < 9 * r.knots.size()) us.push_back(uniform(rng, r.lo, r.hi));
+    if (kind == Kind::closed)  // wrapped by whole periods, outside the domain
+      for (std::size_t i = 0; i < us.size(); i += 7) us[i] += (r.hi - r.lo) * uniform_int(rng, -3, 3);
+    const int order = uniform_int(rng, 0, 2);
+    if (order == 1) std::sort(us.begin(), us.end());
+    if (order == 2) std::shuffle(us.begin(), us.end(), rng);
+    const Points batch = evaluate(r.c, us);
+    REQUIRE(batch.rows() == static_cast<Eigen::Index>(us.size()));
+    double differ = 0, worst = 0;
+    for (std::size_t i = 0; i < us.size(); ++i) {
+      const Point single = evaluate_basis(r.c, us[i]);
+      differ = std::max(differ, diff(batch.row(static_cast<Eigen::Index>(i)), single));
+      if (i % 5 == 0)
+        worst = std::max(worst,
+                         diff(single, ref_point(r.knots, d, r.H, r.rational, domain_parameter(r.c, us[i]))));
+    }
+    CHECK(differ == 0.0);
+    CHECK(worst <= 1e-12 * r.scale + seam_allowance(r, us));
+  }
+}
+
 TEST_CASE("curves are continuous across every knot, one ulp either side, and closed curves wrap",
           "[nurbs][curve]") {
   for (int seed = 0; seed < 400; ++seed) {

@@ -131,6 +131,99 @@ std::pair<double, double> check_open_points(const RandomCurve& r, const Curve& c
   return {e_boehm, e_blossom};
 }
 
+/// Piegl–Tiller A5.4 as printed (RefineKnotVectCurve), on the stored rows, X sorted: refine's Boehm
+/// branch must give these points to the last bit.
+RefSpline textbook_refine(const RefSpline& s, const std::vector<double>& X) {
+  const int p = s.p;
+  const int n = static_cast<int>(s.P.rows()) - 1, m = n + p + 1, r = static_cast<int>(X.size()) - 1;
+  const auto U = [&](int i) { return s.t[static_cast<std::size_t>(i)]; };
+  const auto x = [&](int j) { return X[static_cast<std::size_t>(j)]; };
+  RefSpline out{p, Knots(static_cast<std::size_t>(m + r + 2)), Points(n + r + 2, s.P.cols())};
+  const auto Ub = [&](int i) -> double& { return out.t[static_cast<std::size_t>(i)]; };
+  const int a = definition_span(s.t, p, x(0)), b = definition_span(s.t, p, x(r)) + 1;
+  for (int j = 0; j <= a - p; ++j) out.P.row(j) = s.P.row(j);
+  for (int j = b - 1; j <= n; ++j) out.P.row(j + r + 1) = s.P.row(j);
+  for (int j = 0; j <= a; ++j) Ub(j) = U(j);
+  for (int j = b + p; j <= m; ++j) Ub(j + r + 1) = U(j);
+  int i = b + p - 1, k = b + p + r;
+  for (int j = r; j >= 0; --j) {
+    while (x(j) <= U(i) && i > a) {
+      out.P.row(k - p - 1) = s.P.row(i - p - 1);
+      Ub(k) = U(i);
+      --k;
+      --i;
+    }
+    out.P.row(k - p - 1) = out.P.row(k - p);
+    for (int l = 1; l <= p; ++l) {
+      const int ind = k - p + l;
+      double alpha = Ub(k + l) - x(j);
+      if (alpha == 0.0) {
+        out.P.row(ind - 1) = out.P.row(ind);
+      } else {
+        alpha = alpha / (Ub(k + l) - U(i - p + l));
+        out.P.row(ind - 1) = alpha * out.P.row(ind - 1) + (1.0 - alpha) * out.P.row(ind);
+      }
+    }
+    Ub(k) = x(j);
+    --k;
+  }
+  return out;
+}
+
+/// The refined points in long double, the definition of what refine computes: the old spline padded
+/// with d knots and d zero points on each side (Σ P_i N_i on the whole knot range), and Q_j its blossom
+/// at t'_{j+1..j+d} on the best-conditioned piece under the support of N'_j. Returns the largest
+/// difference to Q, relative to max |P|.
+double refined_error(const RandomCurve& r, const Curve& c2) {
+  const int d = r.degree;
+  const double front = r.knots.front(), back = r.knots.back(), pad = back - front;
+  Knots t;
+  for (int i = d; i >= 1; --i) t.push_back(front - i * pad);
+  t.insert(t.end(), r.knots.begin(), r.knots.end());
+  for (int i = 1; i <= d; ++i) t.push_back(back + i * pad);
+  Points H = Points::Zero(r.H.rows() + 2 * d, r.H.cols());
+  H.middleRows(d, r.H.rows()) = r.H;
+  const auto& t2 = c2.knots;
+  double worst = 0;
+  for (Eigen::Index j = 0; j < c2.P.rows(); ++j) {
+    const std::vector<double> args(t2.begin() + j + 1, t2.begin() + j + d + 1);
+    double best = HUGE_VAL;
+    Point ref;
+    for (Eigen::Index k = j; k <= j + d; ++k) {
+      const double a = t2[static_cast<std::size_t>(k)], b = t2[static_cast<std::size_t>(k + 1)];
+      if (!(a < b)) continue;
+      const int K = definition_span(t, d, 0.5 * (a + b));
+      double l1 = 0;
+      const Point v = ref_blossom(t, d, H, conditioned_order(t, args, K), K, &l1);
+      if (l1 < best) best = l1, ref = v;
+    }
+    worst = std::max(worst, diff(ref, c2.P.row(j)));
+  }
+  return worst / max_abs(r.H);
+}
+
+/// `per` sorted insertions in each of the given old spans (values strictly inside).
+std::vector<double> knots_in_spans(Rng& rng, const Knots& t, const std::vector<int>& spans, int per) {
+  std::vector<double> X;
+  for (int s : spans) {
+    const double a = t[static_cast<std::size_t>(s)], b = t[static_cast<std::size_t>(s + 1)];
+    for (int k = 0; k < per; ++k) {
+      const double x = uniform(rng, a, b);
+      if (x > a) X.push_back(x);
+    }
+  }
+  std::sort(X.begin(), X.end());
+  return X;
+}
+
+/// The non-empty spans of the domain.
+std::vector<int> domain_spans(const RandomCurve& r) {
+  std::vector<int> spans;
+  for (int k = r.degree; k < r.H.rows(); ++k)
+    if (r.knots[static_cast<std::size_t>(k)] < r.knots[static_cast<std::size_t>(k + 1)]) spans.push_back(k);
+  return spans;
+}
+
 }  // namespace
 
 TEST_CASE("insert_knot 1..d times: same curve, merged knots, Boehm's points, blossom points",
@@ -209,6 +302,86 @@ TEST_CASE("refine_midpoints doubles every span and keeps the curve", "[nurbs][re
       CHECK(e_blossom <= 1e-12);
     }
   }
+}
+
+// refine has two branches for open curves (see nurbs/src/refine.cpp): Boehm's insertion (A5.4) when
+// its chains of combinations are short, S ≤ max(16, d + 1), S being the largest number of new knots
+// in d + 1 consecutive old intervals; blossoms otherwise. Both must give the padded spline's blossoms.
+
+TEST_CASE("refine: both branches give the long-double blossoms of the padded spline to 1e-14",
+          "[nurbs][refine]") {
+  double worst_boehm = 0, worst_blossom = 0;
+  for (int seed = 0; seed < 400; ++seed) {
+    Rng rng(8000 + seed);
+    const int d = uniform_int(rng, 1, 10);
+    const auto kind = coin(rng) ? Kind::clamped : Kind::unclamped;
+    const RandomCurve r = random_curve(rng, d, uniform_int(rng, 1, 4), coin(rng), kind, 12);
+    // 1..6 knots in every span, or up to 40 in a few: both sides of the limit.
+    const auto spans = domain_spans(r);
+    std::vector<int> chosen;
+    for (int s : spans)
+      if (coin(rng, 0.7)) chosen.push_back(s);
+    if (chosen.empty()) chosen.push_back(spans.front());
+    const int per = coin(rng) ? uniform_int(rng, 1, 6) : uniform_int(rng, 1, 40);
+    const std::vector<double> X = knots_in_spans(rng, r.knots, chosen, per);
+    INFO("seed " << seed << ": " << X.size() << " knots, " << per << " per span: " << r.what);
+    const Curve c2 = refine(r.c, X);
+    CHECK(defining_knots(c2) == merged(r, X));
+    const double e = refined_error(r, c2);
+    CHECK(e <= 1e-14);
+    const RefSpline boehm = textbook_refine(RefSpline{d, r.knots, r.H}, X);
+    (boehm.P == c2.P ? worst_boehm : worst_blossom) =
+        std::max(boehm.P == c2.P ? worst_boehm : worst_blossom, e);
+  }
+  INFO("largest errors: Boehm " << worst_boehm << ", blossoms " << worst_blossom);
+  CHECK(worst_boehm > 0);  // both branches ran
+  CHECK(worst_blossom > 0);
+}
+
+TEST_CASE("refine takes Boehm's branch up to the chain limit and blossoms beyond", "[nurbs][refine]") {
+  // All new knots in one span make S their number. Up to the limit the points are A5.4's to the last
+  // bit; one more, and they are blossoms, whose rounding differs from A5.4's somewhere.
+  for (int seed = 0; seed < 120; ++seed) {
+    Rng rng(9000 + seed);
+    const int d = uniform_int(rng, 1, 20);
+    const auto kind = coin(rng) ? Kind::clamped : Kind::unclamped;
+    const RandomCurve r = random_curve(rng, d, uniform_int(rng, 1, 4), coin(rng), kind, 6, 3);
+    const auto spans = domain_spans(r);
+    const int span = spans[static_cast<std::size_t>(uniform_int(rng, 0, static_cast<int>(spans.size()) - 1))];
+    const int limit = std::max(16, d + 1);
+    INFO("seed " << seed << " span " << span << " limit " << limit << ": " << r.what);
+    for (int count : {limit, limit + 1}) {
+      std::vector<double> X;
+      const double a = r.knots[static_cast<std::size_t>(span)],
+                   b = r.knots[static_cast<std::size_t>(span + 1)];
+      for (int k = 1; k <= count; ++k) X.push_back(a + (b - a) * k / (count + 1));
+      const Curve c2 = refine(r.c, X);
+      const RefSpline boehm = textbook_refine(RefSpline{d, r.knots, r.H}, X);
+      INFO(count << " knots");
+      CHECK(c2.knots == boehm.t);
+      CHECK((c2.P == boehm.P) == (count == limit));
+      CHECK(refined_error(r, c2) <= 1e-14);
+    }
+  }
+}
+
+TEST_CASE("refine: 65 535 knots in one span take the blossom branch and stay within 1e-14",
+          "[nurbs][refine]") {
+  // Boehm's chains would run through all of them (A5.4: about 1e-12 here).
+  Rng rng(65535);
+  const RandomCurve r = random_curve(rng, 3, 3, true, Kind::unclamped, 4, 3);
+  const int span = domain_spans(r)[1];
+  const double a = r.knots[static_cast<std::size_t>(span)], b = r.knots[static_cast<std::size_t>(span + 1)];
+  std::vector<double> X;
+  for (int k = 1; k < 65536; ++k) X.push_back(a + (b - a) * k / 65536);
+  const Curve c2 = refine(r.c, X);
+  const RefSpline boehm = textbook_refine(RefSpline{3, r.knots, r.H}, X);
+  const double e = refined_error(r, c2), e_boehm = diff(boehm.P, c2.P) / max_abs(r.H);
+  INFO(r.what << ": refine " << e << ", A5.4 differs by " << e_boehm);
+  CHECK(e <= 1e-14);
+  CHECK(e_boehm > 10 * e);
+  Rng probe(1);
+  CHECK(moved(r, c2, probe) <= 1.0);
 }
 
 TEST_CASE("split_bezier: one clamped piece per span, equal to the curve there, joined", "[nurbs][refine]") {

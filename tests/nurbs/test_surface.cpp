@@ -145,7 +145,8 @@ TEST_CASE("surfaces store their data; evaluation equals the double sum of the de
   }
 }
 
-TEST_CASE("evaluate_grid equals pointwise evaluation, in any parameter order", "[nurbs][surface]") {
+TEST_CASE("evaluate_grid equals pointwise evaluation to the last bit, in any parameter order",
+          "[nurbs][surface]") {
   for (int seed = 0; seed < 150; ++seed) {
     Rng rng(1000 + seed);
     const RandomSurface r = random_surface(rng);
@@ -163,7 +164,8 @@ TEST_CASE("evaluate_grid equals pointwise evaluation, in any parameter order", "
       for (std::size_t b = 0; b < vs.size(); ++b)
         worst = std::max(
             worst, diff(G.row(static_cast<Eigen::Index>(a * vs.size() + b)), evaluate(r.s, us[a], vs[b])));
-    CHECK(worst / (1e-13 * r.scale) <= 1.0);
+    // Both sum the u direction first in the same order, for every column count (fixed 2..4, generic).
+    CHECK(worst == 0.0);
     CHECK(evaluate_grid(r.s, std::vector<double>{}, vs).rows() == 0);
   }
 }

@@ -55,7 +55,8 @@ std::vector<double> breakpoints(std::span<const double> knots, int degree);
 void basis_functions(std::span<const double> knots, int degree, int span, double u, double* N) noexcept;
 
 /// Weights `W_0..W_d` with `blossom(x_1..x_d) = Σ_j W_j P_{span−d+j}` for the piece on `span`: the
-/// basis recursion with one argument per level (all arguments equal to u give basis_functions).
+/// basis recursion with one argument per level (all arguments equal to u give basis_functions). The
+/// arguments may come in any order; the weights do not depend on it, to the last bit.
 void blossom_weights(std::span<const double> knots, int degree, int span, std::span<const double> args,
                      double* W) noexcept;
 

@@ -14,9 +14,12 @@ namespace cifs::nurbs {
 Curve insert_knot(const Curve& c, double u, int times = 1);
 
 /// Inserts many knots at once (any order, repeats allowed). Every new point is the blossom
-/// `Q_j = b(t'_{j+1}, …, t'_{j+d})` of a piece of its support, computed on its own (Oslo's
-/// accuracy, whatever the number of knots); open curves keep `Σ P_i N_i` on the whole knot range,
-/// as Boehm's insertion does, closed curves stay periodic.
+/// `Q_j = b(t'_{j+1}, …, t'_{j+d})` of a piece of its support; open curves keep `Σ P_i N_i` on the
+/// whole knot range, as Boehm's insertion does, closed curves stay periodic. Open curves with few new
+/// knots per span (at most max(16, d + 1) in any d + 1 consecutive spans: single insertions, midpoint
+/// refinement) get them by Boehm's insertion (Piegl–Tiller A5.4), whose chains of convex combinations
+/// are then that short; otherwise, and for closed curves, each blossom is computed on its own (Oslo's
+/// accuracy, whatever the number of knots).
 Curve refine(const Curve& c, std::span<const double> new_knots);
 
 /// Inserts the midpoint of every non-empty span of the domain (one knot-doubling step).
