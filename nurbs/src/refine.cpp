@@ -268,17 +268,21 @@ void blossom_rows(const Curve& c, const double* t, std::span<const double> T, co
       copy_row<Cols>(Q, P + (j - before) * cols, cols);
       continue;
     }
-    int span = 0;
-    double widest = -1;
-    for (int k = j; k <= j + p; ++k) {
-      if (!(T[static_cast<std::size_t>(k)] < T[static_cast<std::size_t>(k + 1)])) continue;
-      const int s = k - new_before[k + 1];
-      if (t[s + 1] - t[s] > widest) span = s, widest = t[s + 1] - t[s];
-    }
-    assert(widest > 0);  // at most d + 1 equal knots: the support has a non-empty interval
+    const double* args = T.data() + j + 1;
+    int span = j - before;
+    if (new_before[j + p + 1] - before < p) {  // an old knot among the arguments: the widest piece
+      double widest = -1;
+      for (int k = j; k <= j + p; ++k) {
+        if (!(T[static_cast<std::size_t>(k)] < T[static_cast<std::size_t>(k + 1)])) continue;
+        const int s = k - new_before[k + 1];
+        if (t[s + 1] - t[s] > widest) span = s, widest = t[s + 1] - t[s];
+      }
+      assert(widest > 0);  // at most d + 1 equal knots: the support has a non-empty interval
+      detail::nearest_first_increasing(args, p, t[span], t[span + 1], x);
+      args = x;
+    }  // else all arguments are new, in one old span (the only piece under the support): in order
     if (span != cached) detail::blossom_reciprocals(t, p, cached = span, inv);
-    detail::nearest_first_increasing(T.data() + j + 1, p, t[span], t[span + 1], x);
-    detail::blossom_recurrence(t, p, span, inv, x, W);
+    detail::blossom_recurrence(t, p, span, inv, args, W);
     // Rows outside 0..n−1 are the padding's zero points.
     for (Eigen::Index e = 0; e < cols; ++e) acc[e] = 0.0;
     for (int i = std::max(0, p - span); i <= std::min(p, n - 1 - span + p); ++i) {
