@@ -20,6 +20,20 @@
 
 namespace cifs_test {
 
+inline constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+/// The span of u straight from the definition: the last non-empty [t_j, t_{j+1}) with t_j ≤ u,
+/// j in [d, n−1] (so the domain end belongs to the last non-empty span).
+inline int definition_span(const cifs::nurbs::Knots& t, int d, double u) {
+  const int n = static_cast<int>(t.size()) - d - 1;
+  int k = d;
+  for (int j = d; j < n; ++j)
+    if (t[static_cast<std::size_t>(j)] <= u &&
+        t[static_cast<std::size_t>(j)] < t[static_cast<std::size_t>(j + 1)])
+      k = j;
+  return k;
+}
+
 /// Catch prints doubles in fixed notation with 10 decimals, which shows an error of 3e-12 against a
 /// tolerance of 1e-12 as "0.0 <= 0.0": print 20.
 inline const int catch_double_precision = (Catch::StringMaker<double>::precision = 20, 0);

@@ -17,18 +17,6 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
-
-int definition_span(const Knots& t, int d, double u) {
-  const int n = static_cast<int>(t.size()) - d - 1;
-  int k = d;
-  for (int j = d; j < n; ++j)
-    if (t[static_cast<std::size_t>(j)] <= u &&
-        t[static_cast<std::size_t>(j)] < t[static_cast<std::size_t>(j + 1)])
-      k = j;
-  return k;
-}
-
 /// The distinct knot values strictly inside the domain, with their multiplicities.
 std::vector<std::pair<double, int>> interior_knots(const RandomCurve& r) {
   std::vector<std::pair<double, int>> out;

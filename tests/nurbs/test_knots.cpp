@@ -17,21 +17,6 @@ using namespace cifs_test;
 namespace {
 
 constexpr int kSeeds = 400;
-constexpr double kEps = std::numeric_limits<double>::epsilon();
-
-/// The span the definition assigns to u: t_k ≤ u < t_{k+1} inside the domain, and the last non-empty
-/// span for the domain end.
-int definition_span(const Knots& t, int d, double u) {
-  const int n = static_cast<int>(t.size()) - d - 1;
-  if (u == t[static_cast<std::size_t>(n)]) {
-    int k = n - 1;
-    while (!(t[static_cast<std::size_t>(k)] < t[static_cast<std::size_t>(k + 1)])) --k;
-    return k;
-  }
-  for (int k = d; k < n; ++k)
-    if (t[static_cast<std::size_t>(k)] <= u && u < t[static_cast<std::size_t>(k + 1)]) return k;
-  return -1;
-}
 
 Knots random_knot_vector(Rng& rng, int& d, int& n) {
   d = uniform_int(rng, 1, 10);

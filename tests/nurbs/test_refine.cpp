@@ -18,18 +18,6 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
-
-int definition_span(const Knots& t, int d, double u) {
-  const int n = static_cast<int>(t.size()) - d - 1;
-  int k = d;
-  for (int j = d; j < n; ++j)
-    if (t[static_cast<std::size_t>(j)] <= u &&
-        t[static_cast<std::size_t>(j)] < t[static_cast<std::size_t>(j + 1)])
-      k = j;
-  return k;
-}
-
 /// Largest distance between the curve and the test's reference of the original curve, over the
 /// probes of both knot vectors, in units of the allowed error: 1e-12 of the scale of the control
 /// points (plus, for closed curves, the seam's slope × ulp, see seam_allowance).

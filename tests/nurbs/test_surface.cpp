@@ -19,8 +19,6 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
-
 /// Parameters of one direction: ends, knots, one ulp around them, random values (at most `count`
 /// of the knot-related ones, to keep grids small).
 std::vector<double> direction_probes(Rng& rng, const RandomSurface& r, int dir, int count) {
