@@ -172,8 +172,8 @@ std::string attractor(const AttractorOptions& o) {
   if ((o.depth >= 0) + (o.tolerance > 0) + (o.chaos != 0) != 1)
     throw InvalidInput("attractor: give exactly one of --depth K, --tolerance E and --chaos N");
   if (o.chaos < 0 || o.chaos > kMaxPoints)
-    throw InvalidInput("--chaos " + std::to_string(o.chaos) + ": expected 1 to " + std::to_string(kMaxPoints) +
-                       " points");
+    throw InvalidInput("--chaos " + std::to_string(o.chaos) + ": expected 1 to " +
+                       std::to_string(kMaxPoints) + " points");
   if (o.chaos != 0 && o.format != "json")
     throw InvalidInput("--chaos: the points are unordered, use --format json");
   if (o.tolerance < 0 || !std::isfinite(o.tolerance))

@@ -213,7 +213,8 @@ void write_pretty(const json& v, int indent, std::string& out) {
 std::string strip_id(const std::string& what) {
   const auto end = what.find("] ");
   std::string rest = end == std::string::npos ? what : what.substr(end + 2);
-  if (rest.rfind("parse error", 0) == 0 && rest.find(": ") != std::string::npos) rest = rest.substr(rest.find(": ") + 2);
+  if (rest.rfind("parse error", 0) == 0 && rest.find(": ") != std::string::npos)
+    rest = rest.substr(rest.find(": ") + 2);
   return rest;
 }
 

@@ -230,20 +230,7 @@ TEST_CASE("attractor_points refuses an output above the limit before any work", 
 
 TEST_CASE("Rational quadratic: a quarter circle from homogeneous rows", "[ifs]") {
   // Knots 0 0 0 1 1 1: the window (0, 1, 0); its G/D children and the uniform state.
-  using nurbs::Half;
-  using nurbs::subdivision_matrix;
-  Automaton a;
-  const nurbs::Window w0{0, 1, 0}, wg{0, 1, 1}, wd{1, 1, 0}, wu{1, 1, 1};
-  const StateId s0 = add_state(a, 3), sg = add_state(a, 3), sd = add_state(a, 3), su = add_state(a, 3);
-  add_transition(a, s0, sg, subdivision_matrix(w0, 2, Half::G), "G");
-  add_transition(a, s0, sd, subdivision_matrix(w0, 2, Half::D), "D");
-  add_transition(a, sg, sg, subdivision_matrix(wg, 2, Half::G), "G");
-  add_transition(a, sg, su, subdivision_matrix(wg, 2, Half::D), "D");
-  add_transition(a, sd, su, subdivision_matrix(wd, 2, Half::G), "G");
-  add_transition(a, sd, sd, subdivision_matrix(wd, 2, Half::D), "D");
-  add_transition(a, su, su, subdivision_matrix(wu, 2, Half::G), "G");
-  add_transition(a, su, su, subdivision_matrix(wu, 2, Half::D), "D");
-  add_initial(a, s0);
+  const Automaton a = quadratic_automaton(0, 1, 0);
   const double w = std::sqrt(0.5);
   Points P(3, 3);
   P << 1, 0, 1,  //
