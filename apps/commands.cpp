@@ -155,14 +155,15 @@ std::string info(const std::filesystem::path& path) {
 }
 
 std::string automaton(const AutomatonOptions& o) {
-  if (o.format != "json" && o.format != "dot")
-    throw InvalidInput("--format '" + o.format + "': expected json or dot");
+  if (o.format != "json" && o.format != "dot" && o.format != "svg")
+    throw InvalidInput("--format '" + o.format + "': expected json, dot or svg");
   const io::Shape shape = io::read_shape(o.shape);
   const auto* c = std::get_if<nurbs::Curve>(&shape);
   if (!c)
     throw InvalidInput(o.shape.string() + ": automaton: only curves have a knot-doubling automaton so far");
   automata::Automaton a = automata::knot_automaton(*c);
   if (o.minimize) a = automata::minimize(a);
+  if (o.format == "svg") return automata::to_svg(a);
   return o.format == "json" ? automata::to_json(a) : automata::to_dot(a);
 }
 

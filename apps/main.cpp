@@ -40,9 +40,9 @@ int main(int argc, char** argv) {
 
   AutomatonOptions au;
   auto* automaton_cmd =
-      app.add_subcommand("automaton", "The knot-doubling automaton of a curve (JSON or DOT)");
+      app.add_subcommand("automaton", "The knot-doubling automaton of a curve (JSON, DOT or SVG)");
   automaton_cmd->add_option("shape", au.shape, "Shape file (.json or .obj)")->required();
-  automaton_cmd->add_option("--format", au.format, "json (default) or dot");
+  automaton_cmd->add_option("--format", au.format, "json (default), dot or svg");
   automaton_cmd->add_flag("--minimize", au.minimize, "Merge states that no control net can tell apart");
   automaton_cmd->callback([&] { result = automaton(au); });
 

@@ -163,3 +163,21 @@ TEST_CASE("Automaton JSON and DOT", "[automata]") {
   REQUIRE(nets.size() == 3);
   CHECK(nets[2] == c.P.bottomRows(3));
 }
+
+TEST_CASE("Automaton SVG: one circle per state, one arrow per connected pair", "[automata]") {
+  const nurbs::Curve c = nurbs::make_curve(3, {0, 0, 0, 0, 1, 3, 3.5, 6, 6, 6, 6}, Points::Random(7, 2));
+  const automata::Automaton a = automata::knot_automaton(c);
+  const std::string svg = automata::to_svg(a);
+  const auto count = [&](const std::string& what) {
+    std::size_t n = 0;
+    for (auto at = svg.find(what); at != std::string::npos; at = svg.find(what, at + 1)) ++n;
+    return n;
+  };
+  std::set<std::pair<StateId, StateId>> pairs;
+  for (auto [e, end] = boost::edges(a.graph); e != end; ++e)
+    pairs.insert({boost::source(*e, a.graph), boost::target(*e, a.graph)});
+  CHECK_THAT(svg, Catch::StartsWith("<svg ") && Catch::EndsWith("</svg>\n"));
+  CHECK(count("<circle ") == boost::num_vertices(a.graph));
+  CHECK(count("marker-end=") == pairs.size());
+  CHECK(count("stroke-width=\"2.5\"") == a.initial.size());  // initial states in bold
+}

@@ -1,0 +1,92 @@
+// SPDX-License-Identifier: MIT
+// cifs — experiment files (docs/experiments.md): what to build, how to perturb and evaluate it,
+// how to look at it and what to write. Plain data; cifs::experiment runs them.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "cifs/io/shape.hpp"
+
+namespace cifs::io {
+
+/// A planar affine IFS: a named one ("fern", "sierpinski", "koch") or explicit maps
+/// `(a, b, c, d, e, f, p)`: w(x, y) = (a·x + b·y + e, c·x + d·y + f), drawn with weight p.
+struct ClassicIfs {
+  std::string name;
+  std::vector<std::array<double, 7>> maps;
+};
+
+/// Free coefficients of the BC-IFS moved away from the NURBS (or file) values: uniform random
+/// offsets in [−amplitude, amplitude] from `seed`, then the explicit `values` by coefficient name.
+struct Perturbation {
+  double amplitude = 0;
+  std::uint64_t seed = 1;
+  std::map<std::string, double> values;
+  /// NURBS sources: keep the vertex operators (knot points and end points stay on the NURBS).
+  bool keep_vertices = true;
+};
+
+struct Evaluation {
+  enum class Mode { depth, tolerance, chaos };
+  Mode mode = Mode::depth;
+  int depth = 8;
+  double tolerance = 1e-3;             // relative to the shape's control-net diameter
+  std::uint64_t samples = 10'000'000;  // chaos game
+  std::uint64_t seed = 1;
+};
+
+struct CameraSpec {
+  enum class Projection { automatic, orthographic, perspective };
+  /// automatic: orthographic top view for planar shapes, perspective for 3-D ones.
+  Projection projection = Projection::automatic;
+  /// Unset: framed automatically from the shape's bounds.
+  std::optional<std::array<double, 3>> eye, target;
+  std::array<double, 3> up{0, 0, 1};
+  double fov_degrees = 35;
+  double margin = 0.05;  // fraction of the image left around the framed shape
+};
+
+struct RenderSettings {
+  int width = 1024;
+  int height = 1024;
+  double line_width = 2;  // pixels
+  std::array<double, 3> color{0.12, 0.30, 0.65};
+  std::array<double, 3> background{1, 1, 1};
+  bool control_net = false;  // also draw the control polygon / net
+  unsigned threads = 0;      // 0: every hardware thread
+};
+
+/// Output files, relative to the output directory given at run time (empty: not written).
+struct Outputs {
+  std::filesystem::path exr, png, obj, ply, svg, automaton_svg, automaton_dot;
+};
+
+struct Experiment {
+  std::string name;  // default: the file's stem
+  std::string description;
+  /// Exactly one source: a NURBS shape, a BC-IFS automaton file, or a classic IFS.
+  std::optional<Shape> shape;
+  std::filesystem::path automaton;  // absolute (resolved against the experiment's folder)
+  std::optional<ClassicIfs> ifs;
+  std::optional<Perturbation> perturbation;
+  Evaluation evaluation;
+  CameraSpec camera;
+  RenderSettings render;
+  Outputs outputs;
+};
+
+/// Parses an experiment. `where` names the source in messages ("fern.json: evaluation.depth: …");
+/// relative input paths (shape, automaton) are resolved against `base`. Output paths must be
+/// relative and stay inside the output directory (no "..", no root).
+Experiment parse_experiment(std::string_view text, std::string_view where, const std::filesystem::path& base);
+/// Reads and parses an experiment file; inputs are resolved against the file's folder.
+Experiment read_experiment(const std::filesystem::path& path);
+
+}  // namespace cifs::io

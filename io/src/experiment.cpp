@@ -1,0 +1,235 @@
+// SPDX-License-Identifier: MIT
+#include "cifs/io/experiment.hpp"
+
+#include "json_reader.hpp"
+
+namespace cifs::io {
+namespace {
+
+std::uint64_t unsigned_integer(const Reader& r, const json& v, const std::string& path, std::uint64_t max) {
+  if (!v.is_number_integer() || (v.is_number_integer() && !v.is_number_unsigned() && v.get<long long>() < 0))
+    r.fail(path, "expected a non-negative integer, got " + v.dump());
+  const auto x = v.get<std::uint64_t>();
+  if (x > max) r.fail(path, v.dump() + " is above the limit " + std::to_string(max));
+  return x;
+}
+
+int bounded_integer(const Reader& r, const json& v, const std::string& path, int lo, int hi) {
+  const int x = r.integer(v, path);
+  if (x < lo || x > hi)
+    r.fail(path, std::to_string(x) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  return x;
+}
+
+double positive(const Reader& r, const json& v, const std::string& path) {
+  const double x = r.number(v, path);
+  if (x <= 0) r.fail(path, "expected a positive number");
+  return x;
+}
+
+template <std::size_t N>
+std::array<double, N> fixed_numbers(const Reader& r, const json& v, const std::string& path) {
+  const std::vector<double> x = r.numbers(v, path);
+  if (x.size() != N)
+    r.fail(path, "expected " + std::to_string(N) + " numbers, got " + std::to_string(x.size()));
+  std::array<double, N> out{};
+  std::copy(x.begin(), x.end(), out.begin());
+  return out;
+}
+
+std::array<double, 3> colour(const Reader& r, const json& v, const std::string& path) {
+  const auto c = fixed_numbers<3>(r, v, path);
+  for (const double x : c)
+    if (x < 0 || x > 1) r.fail(path, "colour components must lie in [0, 1]");
+  return c;
+}
+
+Shape read_shape_member(const Reader& r, const json& v, const std::filesystem::path& base) {
+  if (v.is_string()) {
+    const std::filesystem::path p = base / v.get<std::string>();
+    try {
+      return read_shape(p);
+    } catch (const std::exception& e) {
+      r.fail("shape", e.what());
+    }
+  }
+  r.object(v, "shape");
+  return parse_shape_json(v.dump(), r.where + ": shape");
+}
+
+ClassicIfs read_ifs(const Reader& r, const json& v) {
+  ClassicIfs ifs;
+  if (v.is_string()) {
+    ifs.name = v.get<std::string>();
+    if (ifs.name != "fern" && ifs.name != "sierpinski" && ifs.name != "koch")
+      r.fail("ifs", "unknown IFS \"" + ifs.name + "\" (fern, sierpinski, koch, or {\"maps\": [...]})");
+    return ifs;
+  }
+  r.object(v, "ifs");
+  r.only(v, "ifs", {"maps"});
+  const json& maps = r.array(r.member(v, "ifs", "maps"), "ifs.maps");
+  if (maps.empty()) r.fail("ifs.maps", "no maps");
+  for (std::size_t i = 0; i < maps.size(); ++i) {
+    const std::string path = "ifs.maps[" + std::to_string(i) + "]";
+    const std::vector<double> m = r.numbers(maps[i], path);
+    if (m.size() != 6 && m.size() != 7) r.fail(path, "expected [a, b, c, d, e, f] or [a, b, c, d, e, f, p]");
+    std::array<double, 7> map{0, 0, 0, 0, 0, 0, 1};
+    std::copy(m.begin(), m.end(), map.begin());
+    if (map[6] < 0) r.fail(path, "negative probability");
+    ifs.maps.push_back(map);
+  }
+  return ifs;
+}
+
+Perturbation read_perturbation(const Reader& r, const json& v) {
+  r.object(v, "perturbation");
+  r.only(v, "perturbation", {"amplitude", "seed", "values", "keep_vertices"});
+  Perturbation p;
+  if (v.contains("amplitude")) {
+    p.amplitude = r.number(v["amplitude"], "perturbation.amplitude");
+    if (p.amplitude < 0) r.fail("perturbation.amplitude", "expected a number ≥ 0");
+  }
+  if (v.contains("seed")) p.seed = unsigned_integer(r, v["seed"], "perturbation.seed", UINT64_MAX);
+  if (v.contains("values")) {
+    const json& values = r.object(v["values"], "perturbation.values");
+    for (const auto& item : values.items())
+      p.values[item.key()] = r.number(item.value(), "perturbation.values." + item.key());
+  }
+  if (v.contains("keep_vertices"))
+    p.keep_vertices = r.boolean(v["keep_vertices"], "perturbation.keep_vertices");
+  return p;
+}
+
+Evaluation read_evaluation(const Reader& r, const json& v) {
+  r.object(v, "evaluation");
+  r.only(v, "evaluation", {"depth", "tolerance", "chaos", "seed"});
+  Evaluation e;
+  const int modes = int(v.contains("depth")) + int(v.contains("tolerance")) + int(v.contains("chaos"));
+  if (modes != 1) r.fail("evaluation", "expected exactly one of \"depth\", \"tolerance\", \"chaos\"");
+  if (v.contains("depth")) {
+    e.mode = Evaluation::Mode::depth;
+    e.depth = bounded_integer(r, v["depth"], "evaluation.depth", 0, 30);
+  } else if (v.contains("tolerance")) {
+    e.mode = Evaluation::Mode::tolerance;
+    e.tolerance = positive(r, v["tolerance"], "evaluation.tolerance");
+  } else {
+    e.mode = Evaluation::Mode::chaos;
+    e.samples = unsigned_integer(r, v["chaos"], "evaluation.chaos", (std::uint64_t{1} << 32) - 1);
+    if (e.samples == 0) r.fail("evaluation.chaos", "expected at least one sample");
+  }
+  if (v.contains("seed")) e.seed = unsigned_integer(r, v["seed"], "evaluation.seed", UINT64_MAX);
+  return e;
+}
+
+CameraSpec read_camera(const Reader& r, const json& v) {
+  r.object(v, "camera");
+  r.only(v, "camera", {"projection", "eye", "target", "up", "fov", "margin"});
+  CameraSpec c;
+  if (v.contains("projection")) {
+    const std::string p = r.string(v["projection"], "camera.projection");
+    if (p == "orthographic")
+      c.projection = CameraSpec::Projection::orthographic;
+    else if (p == "perspective")
+      c.projection = CameraSpec::Projection::perspective;
+    else if (p != "automatic")
+      r.fail("camera.projection", "expected \"orthographic\", \"perspective\" or \"automatic\"");
+  }
+  if (v.contains("eye")) c.eye = fixed_numbers<3>(r, v["eye"], "camera.eye");
+  if (v.contains("target")) c.target = fixed_numbers<3>(r, v["target"], "camera.target");
+  if (v.contains("up")) c.up = fixed_numbers<3>(r, v["up"], "camera.up");
+  if (v.contains("fov")) {
+    c.fov_degrees = r.number(v["fov"], "camera.fov");
+    if (c.fov_degrees <= 0 || c.fov_degrees >= 180) r.fail("camera.fov", "expected degrees in (0, 180)");
+  }
+  if (v.contains("margin")) {
+    c.margin = r.number(v["margin"], "camera.margin");
+    if (c.margin < 0 || c.margin >= 0.5) r.fail("camera.margin", "expected a fraction in [0, 0.5)");
+  }
+  if (c.eye && c.target && *c.eye == *c.target) r.fail("camera", "eye and target coincide");
+  return c;
+}
+
+RenderSettings read_render(const Reader& r, const json& v) {
+  r.object(v, "render");
+  r.only(v, "render", {"width", "height", "line_width", "color", "background", "control_net", "threads"});
+  RenderSettings s;
+  if (v.contains("width")) s.width = bounded_integer(r, v["width"], "render.width", 1, 16384);
+  if (v.contains("height")) s.height = bounded_integer(r, v["height"], "render.height", 1, 16384);
+  if (v.contains("line_width")) {
+    s.line_width = positive(r, v["line_width"], "render.line_width");
+    if (s.line_width > 256) r.fail("render.line_width", "above 256 pixels");
+  }
+  if (v.contains("color")) s.color = colour(r, v["color"], "render.color");
+  if (v.contains("background")) s.background = colour(r, v["background"], "render.background");
+  if (v.contains("control_net")) s.control_net = r.boolean(v["control_net"], "render.control_net");
+  if (v.contains("threads"))
+    s.threads = static_cast<unsigned>(bounded_integer(r, v["threads"], "render.threads", 0, 1024));
+  return s;
+}
+
+std::filesystem::path output_path(const Reader& r, const json& v, const std::string& path) {
+  const std::filesystem::path p(r.string(v, path));
+  if (p.empty() || p.has_root_path() || !p.has_filename()) r.fail(path, "expected a relative file name");
+  for (const auto& part : p)
+    if (part == "..") r.fail(path, "\"..\" would leave the output directory");
+  return p;
+}
+
+Outputs read_outputs(const Reader& r, const json& v) {
+  r.object(v, "outputs");
+  r.only(v, "outputs", {"exr", "png", "obj", "ply", "svg", "automaton_svg", "automaton_dot"});
+  Outputs o;
+  const auto get = [&](const char* key, std::filesystem::path& out) {
+    if (v.contains(key)) out = output_path(r, v[key], std::string("outputs.") + key);
+  };
+  get("exr", o.exr);
+  get("png", o.png);
+  get("obj", o.obj);
+  get("ply", o.ply);
+  get("svg", o.svg);
+  get("automaton_svg", o.automaton_svg);
+  get("automaton_dot", o.automaton_dot);
+  return o;
+}
+
+}  // namespace
+
+Experiment parse_experiment(std::string_view text, std::string_view where,
+                            const std::filesystem::path& base) {
+  const Reader r{std::string(where)};
+  const json doc = parse_json(text, r.where);
+  if (!doc.is_object()) throw InvalidInput(r.where + ": expected an experiment object");
+  r.only(doc, "",
+         {"name", "description", "shape", "automaton", "ifs", "perturbation", "evaluation", "camera",
+          "render", "outputs"});
+  Experiment e;
+  if (doc.contains("name")) e.name = r.string(doc["name"], "name");
+  if (doc.contains("description")) e.description = r.string(doc["description"], "description");
+  const int sources = int(doc.contains("shape")) + int(doc.contains("automaton")) + int(doc.contains("ifs"));
+  if (sources != 1)
+    throw InvalidInput(r.where + ": expected exactly one of \"shape\", \"automaton\", \"ifs\"");
+  if (doc.contains("shape")) e.shape = read_shape_member(r, doc["shape"], base);
+  if (doc.contains("automaton")) {
+    e.automaton = base / r.string(doc["automaton"], "automaton");
+    if (!std::filesystem::is_regular_file(e.automaton))
+      r.fail("automaton", "no such file: " + e.automaton.string());
+  }
+  if (doc.contains("ifs")) e.ifs = read_ifs(r, doc["ifs"]);
+  if (doc.contains("perturbation")) {
+    if (e.ifs) r.fail("perturbation", "a classic IFS has no constraints to perturb under");
+    e.perturbation = read_perturbation(r, doc["perturbation"]);
+  }
+  if (doc.contains("evaluation")) e.evaluation = read_evaluation(r, doc["evaluation"]);
+  if (doc.contains("camera")) e.camera = read_camera(r, doc["camera"]);
+  if (doc.contains("render")) e.render = read_render(r, doc["render"]);
+  if (doc.contains("outputs")) e.outputs = read_outputs(r, doc["outputs"]);
+  return e;
+}
+
+Experiment read_experiment(const std::filesystem::path& path) {
+  Experiment e = parse_experiment(read_file(path), path.filename().string(), path.parent_path());
+  if (e.name.empty()) e.name = path.stem().string();
+  return e;
+}
+
+}  // namespace cifs::io

@@ -1,0 +1,127 @@
+// SPDX-License-Identifier: MIT
+// cifs — internal: reading JSON documents with the path of every value for error messages.
+#pragma once
+#include <cmath>
+#include <initializer_list>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "cifs/errors.hpp"
+
+namespace cifs::io {
+
+using nlohmann::json;
+
+/// nlohmann's messages start with "[json.exception.kind.N] "; users need only what follows.
+inline std::string strip_id(const std::string& what) {
+  const auto end = what.find("] ");
+  std::string rest = end == std::string::npos ? what : what.substr(end + 2);
+  if (rest.rfind("parse error", 0) == 0 && rest.find(": ") != std::string::npos)
+    rest = rest.substr(rest.find(": ") + 2);
+  return rest;
+}
+
+/// Parses `text`; syntax errors are IoError naming `where` and the byte.
+inline json parse_json(std::string_view text, const std::string& where) {
+  try {
+    return json::parse(text.begin(), text.end());
+  } catch (const json::parse_error& e) {
+    throw IoError(where + ": malformed JSON at byte " + std::to_string(e.byte) + ": " + strip_id(e.what()));
+  } catch (const json::exception& e) {  // e.g. a number that overflows a double
+    throw IoError(where + ": malformed JSON: " + strip_id(e.what()));
+  }
+}
+
+/// Reads JSON values with the path of each value at hand for error messages.
+struct Reader {
+  std::string where;
+
+  [[noreturn]] void fail(const std::string& path, const std::string& what) const {
+    throw InvalidInput(where + ": " + path + ": " + what);
+  }
+
+  const json& member(const json& obj, const std::string& path, const char* key) const {
+    const auto it = obj.find(key);
+    if (it == obj.end()) fail(path, std::string("missing \"") + key + "\"");
+    return *it;
+  }
+
+  double number(const json& v, const std::string& path) const {
+    if (!v.is_number()) fail(path, "expected a number, got " + std::string(v.type_name()));
+    const double x = v.get<double>();
+    if (!std::isfinite(x)) fail(path, "number is not finite");
+    return x;
+  }
+
+  int integer(const json& v, const std::string& path) const {
+    if (!v.is_number_integer()) fail(path, "expected an integer, got " + v.dump());
+    const auto x = v.get<long long>();
+    if (x < -1000000 || x > 1000000) fail(path, "integer " + v.dump() + " is out of range");
+    return static_cast<int>(x);
+  }
+
+  const json& array(const json& v, const std::string& path) const {
+    if (!v.is_array()) fail(path, "expected an array, got " + std::string(v.type_name()));
+    return v;
+  }
+
+  std::vector<double> numbers(const json& v, const std::string& path) const {
+    array(v, path);
+    std::vector<double> out;
+    out.reserve(v.size());
+    for (std::size_t i = 0; i < v.size(); ++i)
+      out.push_back(number(v[i], path + "[" + std::to_string(i) + "]"));
+    return out;
+  }
+
+  /// Rows of equal length ≥ 1 appended to `rows` (dimension fixed by the first row seen).
+  void points(const json& v, const std::string& path, std::vector<std::vector<double>>& rows) const {
+    array(v, path);
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const std::string p = path + "[" + std::to_string(i) + "]";
+      rows.push_back(numbers(v[i], p));
+      if (rows.back().empty()) fail(p, "a point needs at least one coordinate");
+      if (rows.back().size() != rows.front().size())
+        fail(p, std::to_string(rows.back().size()) + " coordinates, the first point has " +
+                    std::to_string(rows.front().size()));
+    }
+  }
+
+  const json& object(const json& v, const std::string& path) const {
+    if (!v.is_object()) fail(path, "expected an object, got " + std::string(v.type_name()));
+    return v;
+  }
+
+  std::string string(const json& v, const std::string& path) const {
+    if (!v.is_string()) fail(path, "expected a string, got " + std::string(v.type_name()));
+    return v.get<std::string>();
+  }
+
+  bool boolean(const json& v, const std::string& path) const {
+    if (!v.is_boolean()) fail(path, "expected true or false");
+    return v.get<bool>();
+  }
+
+  /// Refuses members other than `known` (typos must not be ignored silently).
+  void only(const json& obj, const std::string& path, std::initializer_list<std::string_view> known) const {
+    for (const auto& item : obj.items()) {
+      bool ok = false;
+      for (const auto k : known) ok = ok || item.key() == k;
+      if (!ok) fail(path.empty() ? item.key() : path + "." + item.key(), "unknown member");
+    }
+  }
+
+  /// Runs a nurbs constructor, prefixing its validation messages with the file and the object.
+  template <class Make>
+  auto build(const std::string& object, Make&& make) const {
+    try {
+      return make();
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(where + ": " + object + "." + e.what());
+    }
+  }
+};
+
+}  // namespace cifs::io

@@ -1,0 +1,104 @@
+// SPDX-License-Identifier: MIT
+#include <catch2/catch.hpp>
+#include <filesystem>
+
+#include "cifs/errors.hpp"
+#include "cifs/io/experiment.hpp"
+
+using namespace cifs;
+
+namespace {
+
+io::Experiment parse(const std::string& text) {
+  return io::parse_experiment(text, "e.json", CIFS_SOURCE_DIR "/examples/experiments");
+}
+
+std::string error_of(const std::string& text) {
+  try {
+    parse(text);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+const std::string kCurve =
+    R"("shape": {"curve": {"degree": 1, "knots": [0, 0, 1, 1], "points": [[0, 0], [1, 0]]}})";
+
+}  // namespace
+
+TEST_CASE("Experiments: every section read with its defaults", "[io][experiment]") {
+  const io::Experiment e = parse("{" + kCurve + R"(,
+      "perturbation": {"amplitude": 0.1, "seed": 7, "values": {"G[1,2]": 0.25}},
+      "evaluation": {"chaos": 1000, "seed": 3},
+      "camera": {"projection": "perspective", "eye": [1, 2, 3], "target": [0, 0, 0], "fov": 20},
+      "render": {"width": 64, "height": 32, "line_width": 1.5, "color": [1, 0, 0], "threads": 2},
+      "outputs": {"exr": "a.exr", "png": "img/a.png", "obj": "a.obj"}})");
+  REQUIRE(e.shape);
+  CHECK(std::holds_alternative<nurbs::Curve>(*e.shape));
+  REQUIRE(e.perturbation);
+  CHECK(e.perturbation->amplitude == 0.1);
+  CHECK(e.perturbation->seed == 7);
+  CHECK(e.perturbation->values.at("G[1,2]") == 0.25);
+  CHECK(e.perturbation->keep_vertices);
+  CHECK(e.evaluation.mode == io::Evaluation::Mode::chaos);
+  CHECK(e.evaluation.samples == 1000);
+  CHECK(e.evaluation.seed == 3);
+  CHECK(e.camera.projection == io::CameraSpec::Projection::perspective);
+  CHECK(*e.camera.eye == std::array<double, 3>{1, 2, 3});
+  CHECK(e.camera.fov_degrees == 20);
+  CHECK(e.render.width == 64);
+  CHECK(e.render.height == 32);
+  CHECK(e.render.threads == 2);
+  CHECK(e.render.background == std::array<double, 3>{1, 1, 1});
+  CHECK(e.outputs.png == std::filesystem::path("img/a.png"));
+  CHECK(e.outputs.ply.empty());
+
+  const io::Experiment d = parse(R"({"ifs": "fern"})");
+  REQUIRE(d.ifs);
+  CHECK(d.ifs->name == "fern");
+  CHECK(d.evaluation.mode == io::Evaluation::Mode::depth);
+  CHECK(d.camera.projection == io::CameraSpec::Projection::automatic);
+  const io::Experiment m =
+      parse(R"({"ifs": {"maps": [[0.5, 0, 0, 0.5, 0, 0], [0.5, 0, 0, 0.5, 0.5, 0, 2]]}})");
+  REQUIRE(m.ifs);
+  CHECK(m.ifs->maps[0][6] == 1);
+  CHECK(m.ifs->maps[1][6] == 2);
+}
+
+TEST_CASE("Experiments: bad files name the file, the member and the problem", "[io][experiment]") {
+  CHECK_THAT(error_of("{"), Catch::StartsWith("e.json: malformed JSON"));
+  CHECK_THAT(error_of("[]"), Catch::Contains("expected an experiment object"));
+  CHECK_THAT(error_of("{}"), Catch::Contains("exactly one of \"shape\", \"automaton\", \"ifs\""));
+  CHECK_THAT(error_of(R"({"ifs": "fern", "evaluation": {"depth": 3}, "colour": 1})"),
+             Catch::Contains("e.json: colour: unknown member"));
+  CHECK_THAT(error_of(R"({"ifs": "fern", "evaluation": {"depth": 31}})"),
+             Catch::Contains("evaluation.depth: 31 is outside [0, 30]"));
+  CHECK_THAT(error_of(R"({"ifs": "fern", "evaluation": {"depth": 3, "chaos": 5}})"),
+             Catch::Contains("evaluation: expected exactly one"));
+  CHECK_THAT(error_of(R"({"ifs": "fern", "evaluation": {"chaos": -5}})"),
+             Catch::Contains("evaluation.chaos: expected a non-negative integer"));
+  CHECK_THAT(error_of(R"({"ifs": "fern", "evaluation": {"chaos": 4294967296}})"),
+             Catch::Contains("above the limit"));
+  CHECK_THAT(error_of(R"({"ifs": "fractal"})"), Catch::Contains("ifs: unknown IFS \"fractal\""));
+  CHECK_THAT(error_of(R"({"ifs": {"maps": [[1, 2, 3]]}})"), Catch::Contains("ifs.maps[0]: expected [a, b"));
+  CHECK_THAT(error_of(R"({"ifs": "fern", "perturbation": {}})"),
+             Catch::Contains("perturbation: a classic IFS"));
+  CHECK_THAT(error_of("{" + kCurve + R"(, "perturbation": {"amplitude": -1}})"),
+             Catch::Contains("perturbation.amplitude: expected a number ≥ 0"));
+  CHECK_THAT(error_of(R"({"ifs": "fern", "camera": {"projection": "fisheye"}})"),
+             Catch::Contains("camera.projection: expected"));
+  CHECK_THAT(error_of(R"({"ifs": "fern", "camera": {"eye": [1, 1, 1], "target": [1, 1, 1]}})"),
+             Catch::Contains("camera: eye and target coincide"));
+  CHECK_THAT(error_of(R"({"ifs": "fern", "render": {"width": 0}})"),
+             Catch::Contains("render.width: 0 is outside [1, 16384]"));
+  CHECK_THAT(error_of(R"({"ifs": "fern", "render": {"color": [2, 0, 0]}})"),
+             Catch::Contains("render.color: colour components"));
+  CHECK_THAT(error_of(R"({"ifs": "fern", "outputs": {"exr": "../x.exr"}})"),
+             Catch::Contains("outputs.exr: \"..\" would leave the output directory"));
+  CHECK_THAT(error_of(R"({"ifs": "fern", "outputs": {"png": "/tmp/x.png"}})"),
+             Catch::Contains("outputs.png: expected a relative file name"));
+  CHECK_THAT(error_of(R"({"shape": "no/such/shape.json"})"), Catch::Contains("e.json: shape: "));
+  CHECK_THAT(error_of(R"({"shape": {"curve": {"degree": 0}}})"), Catch::Contains("e.json: shape: "));
+  CHECK_THAT(error_of(R"({"automaton": "missing.json"})"), Catch::Contains("automaton: no such file"));
+}
