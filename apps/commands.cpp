@@ -268,7 +268,7 @@ std::string check(const CheckOptions& o, int& status) {
   return out;
 }
 
-std::string gallery(const std::filesystem::path& out) {
+std::string gallery(const std::filesystem::path& out, const std::filesystem::path& examples) {
   std::error_code ec;
   std::filesystem::create_directories(out, ec);
   if (ec) throw IoError(out.string() + ": cannot create the folder (" + ec.message() + ")");
@@ -299,7 +299,7 @@ std::string gallery(const std::filesystem::path& out) {
   write("wave.attractor.svg",
         io::polyline_svg(ifs::cartesian(ifs::attractor_points(a, automata::initial_nets(a, wave), 7))));
   // The seeds' subdivision schemes: shapes, degree overlays, algorithms compared.
-  summary += write_scheme_gallery(out / "schemes");
+  summary += write_scheme_gallery(out / "schemes", examples);
   return summary;
 }
 

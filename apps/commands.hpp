@@ -53,7 +53,8 @@ struct CheckOptions {
 /// `status` becomes 1 when a deviation exceeds the tolerance.
 std::string check(const CheckOptions& options, int& status);
 
-/// The main job on its built-in default: writes the example gallery into `out`, returns a summary.
-std::string gallery(const std::filesystem::path& out);
+/// The main job on its built-in default: writes the example gallery into `out` from the example
+/// files in `examples` (shapes, experiments), returns a summary.
+std::string gallery(const std::filesystem::path& out, const std::filesystem::path& examples);
 
 }  // namespace cifs::cli

@@ -86,8 +86,11 @@ int main(int argc, char** argv) {
 
   std::filesystem::path gallery_out = "out";
   auto* gallery_cmd = app.add_subcommand("gallery", "Write the example gallery (the built-in default job)");
+  std::filesystem::path gallery_examples = CIFS_EXAMPLES_DIR;
   gallery_cmd->add_option("out", gallery_out, "Output folder (default: out)");
-  gallery_cmd->callback([&] { result = gallery(gallery_out); });
+  gallery_cmd->add_option("--examples", gallery_examples,
+                          "Folder with shapes/ and experiments/ (default: the source tree's examples/)");
+  gallery_cmd->callback([&] { result = gallery(gallery_out, gallery_examples); });
 
   try {
     const std::string first = argc > 1 ? argv[1] : "-";

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "cifs/errors.hpp"
+#include "cifs/io/polygon.hpp"
 #include "cifs/io/polyline.hpp"
 #include "cifs/io/shape.hpp"
 #include "cifs/subdivision/analysis.hpp"
@@ -20,73 +21,6 @@ namespace {
 
 using nlohmann::json;
 namespace sd = cifs::subdivision;
-
-struct Polygon {
-  Points points;
-  bool closed = false;
-};
-
-/// `{"polygon": {"points": [[x, y], ...], "closed": true}}` (docs/formats.md).
-Polygon parse_polygon(const std::string& text, const std::string& where) {
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw IoError(where + ": not JSON (" + e.what() + ")");
-  }
-  if (!j.is_object() || !j.contains("polygon") || !j["polygon"].is_object())
-    throw IoError(where + ": expected {\"polygon\": {\"points\": [[x, y], ...], \"closed\": true}}");
-  const json& p = j["polygon"];
-  for (const auto& [key, value] : p.items())
-    if (key != "points" && key != "closed")
-      throw IoError(where + ": polygon: unknown key '" + key + "' (keys: points, closed)");
-  if (!p.contains("points") || !p["points"].is_array() || p["points"].empty())
-    throw IoError(where + ": polygon.points: a non-empty array of points is required");
-  Polygon out;
-  if (p.contains("closed")) {
-    if (!p["closed"].is_boolean()) throw IoError(where + ": polygon.closed: true or false");
-    out.closed = p["closed"].get<bool>();
-  }
-  const json& pts = p["points"];
-  std::size_t dim = 0;
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    const json& row = pts[i];
-    if (!row.is_array() || row.empty() || row.size() > 16)
-      throw IoError(where + ": polygon.points[" + std::to_string(i) +
-                    "]: a point is an array of 1 to 16 numbers");
-    if (i == 0) dim = row.size();
-    if (row.size() != dim)
-      throw IoError(where + ": polygon.points[" + std::to_string(i) + "]: " + std::to_string(row.size()) +
-                    " coordinates, the first point has " + std::to_string(dim));
-  }
-  out.points.resize(static_cast<Eigen::Index>(pts.size()), static_cast<Eigen::Index>(dim));
-  for (std::size_t i = 0; i < pts.size(); ++i)
-    for (std::size_t k = 0; k < dim; ++k) {
-      const json& x = pts[i][k];
-      if (!x.is_number() || !std::isfinite(x.get<double>()))
-        throw IoError(where + ": polygon.points[" + std::to_string(i) + "][" + std::to_string(k) +
-                      "]: not a finite number");
-      out.points(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) = x.get<double>();
-    }
-  return out;
-}
-
-std::string polygon_json(const Points& P, bool closed) {
-  std::string out = "{\"polygon\": {\"closed\": ";
-  out += closed ? "true" : "false";
-  out += ", \"points\": [";
-  char buffer[32];
-  for (Eigen::Index i = 0; i < P.rows(); ++i) {
-    out += i ? ",\n  [" : "\n  [";
-    for (Eigen::Index k = 0; k < P.cols(); ++k) {
-      if (k) out += ", ";
-      out.append(buffer, std::to_chars(buffer, buffer + sizeof buffer, P(i, k)).ptr);
-    }
-    out += "]";
-  }
-  out += "]}}\n";
-  return out;
-}
 
 std::map<std::string, std::string> parse_params(const std::vector<std::string>& params) {
   std::map<std::string, std::string> out;
@@ -175,14 +109,6 @@ std::string strokes_svg(const std::vector<Stroke>& strokes, const std::string& t
   return o.str();
 }
 
-Points from_polar(const std::vector<std::pair<double, double>>& rt) {
-  Points P(static_cast<Eigen::Index>(rt.size()), 2);
-  for (std::size_t i = 0; i < rt.size(); ++i)
-    P.row(static_cast<Eigen::Index>(i)) << rt[i].first * std::cos(rt[i].second),
-        rt[i].first * std::sin(rt[i].second);
-  return P;
-}
-
 Points rows(std::initializer_list<std::pair<double, double>> xy) {
   Points P(static_cast<Eigen::Index>(xy.size()), 2);
   Eigen::Index i = 0;
@@ -190,55 +116,12 @@ Points rows(std::initializer_list<std::pair<double, double>> xy) {
   return P;
 }
 
-/// The seed 000 shapes, made for cifs: closed control polygons.
-std::vector<std::pair<std::string, Points>> seed_shapes() {
-  using std::numbers::pi;
-  std::vector<std::pair<double, double>> hepta, infinity_rt, clover;
-  for (int k = 0; k < 7; ++k) hepta.push_back({1.0, pi / 2 + 2 * pi * k / 7});
-  Points infinity(12, 2);
-  for (int k = 0; k < 12; ++k) {
-    const double t = 2 * pi * k / 12;
-    infinity.row(k) << 1.6 * std::cos(t), 1.6 * std::sin(t) * std::cos(t);
-  }
-  for (int leaf = 0; leaf < 4; ++leaf) {
-    const double phi = pi / 4 + leaf * pi / 2;
-    for (const auto& [r, d] : std::initializer_list<std::pair<double, double>>{
-             {0.15, -pi / 4}, {0.9, -0.5}, {1.25, -0.22}, {1.0, 0.0}, {1.25, 0.22}, {0.9, 0.5}})
-      clover.push_back({r, phi + d});
-  }
-  const Points bone = rows({{-3, 0.4},
-                            {-3.3, 1.1},
-                            {-4.0, 1.2},
-                            {-4.4, 0.6},
-                            {-3.9, 0},
-                            {-4.4, -0.6},
-                            {-4.0, -1.2},
-                            {-3.3, -1.1},
-                            {-3, -0.4},
-                            {3, -0.4},
-                            {3.3, -1.1},
-                            {4.0, -1.2},
-                            {4.4, -0.6},
-                            {3.9, 0},
-                            {4.4, 0.6},
-                            {4.0, 1.2},
-                            {3.3, 1.1},
-                            {3, 0.4}});
-  const Points sumsign = rows({{1, 1},
-                               {-1, 1},
-                               {0.1, 0},
-                               {-1, -1},
-                               {1, -1},
-                               {1, -0.7},
-                               {-0.4, -0.7},
-                               {0.5, 0},
-                               {-0.4, 0.7},
-                               {1, 0.7}});
-  return {{"hepta", from_polar(hepta)},
-          {"bone", bone},
-          {"infinity", infinity},
-          {"sumsign", sumsign},
-          {"clover", from_polar(clover)}};
+/// The seed 000 shapes (our own control polygons): examples/shapes/NAME.json.
+std::vector<std::pair<std::string, Points>> seed_shapes(const std::filesystem::path& examples) {
+  std::vector<std::pair<std::string, Points>> out;
+  for (const char* name : {"hepta", "bone", "infinity", "sumsign", "clover"})
+    out.emplace_back(name, io::read_polygon(examples / "shapes" / (std::string(name) + ".json")).points);
+  return out;
 }
 
 Stroke control(const Points& P, bool closed = true) {
@@ -265,17 +148,17 @@ std::string scheme(const SchemeOptions& o) {
   if (o.steps < 0) throw InvalidInput("--steps " + std::to_string(o.steps) + " is negative");
   if (o.format != "json" && o.format != "svg" && o.format != "obj")
     throw InvalidInput("--format '" + o.format + "': json, svg or obj");
-  const Polygon polygon = parse_polygon(io::read_file(o.refine), o.refine.string());
+  const io::Polygon polygon = io::read_polygon(o.refine);
   sd::RefineOptions r;
   r.ends = parse_ends(o.ends);
   r.max_points = 50'000'000;
   const Points out = sd::refine(s, polygon.points, polygon.closed, o.steps, r);
   if (o.format == "svg") return io::polyline_svg(out, polygon.closed);
   if (o.format == "obj") return io::polyline_obj(out, polygon.closed);
-  return polygon_json(out, polygon.closed);
+  return io::to_json(io::Polygon{out, polygon.closed});
 }
 
-std::string write_scheme_gallery(const std::filesystem::path& folder) {
+std::string write_scheme_gallery(const std::filesystem::path& folder, const std::filesystem::path& examples) {
   std::error_code ec;
   std::filesystem::create_directories(folder, ec);
   if (ec) throw IoError(folder.string() + ": cannot create the folder (" + ec.message() + ")");
@@ -297,7 +180,7 @@ std::string write_scheme_gallery(const std::filesystem::path& folder) {
       {"lr6", "Six-point variant", [](int d) { return sd::lr_six_point(d - 1); }},
   };
   const char* colours[] = {"#1f77b4", "#ff7f0e", "#2ca02c"};
-  for (const auto& [shape, P] : seed_shapes()) {
+  for (const auto& [shape, P] : seed_shapes(examples)) {
     for (const auto& alg : algorithms) {
       write(
           alg.key + "_" + shape + "_degree3.svg",
@@ -367,7 +250,7 @@ std::string write_scheme_gallery(const std::filesystem::path& folder) {
           strokes_svg(strokes, "Corner cutting with b != 1 - a, 7 subdivisions"));
   }
   {
-    const Points P = seed_shapes()[0].second;
+    const Points P = seed_shapes(examples)[0].second;
     write(
         "approximating_interpolating.svg",
         strokes_svg(

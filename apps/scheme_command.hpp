@@ -26,8 +26,8 @@ std::string scheme(const SchemeOptions& options);
 
 /// Writes the seed figures (seed 000: Lane–Riesenfeld and its 4-/6-point variants on hepta, bone,
 /// infinity, sumsign, clover; seed 001: Chaikin open/closed, the generalised 4-point tension
-/// sweep, corner cutting with b = 1 − a and b ≠ 1 − a) as SVG into `folder` (created). Returns a
-/// one-line-per-file summary.
-std::string write_scheme_gallery(const std::filesystem::path& folder);
+/// sweep, corner cutting with b = 1 − a and b ≠ 1 − a) as SVG into `folder` (created), the seed
+/// shapes read from `examples`/shapes. Returns a one-line-per-file summary.
+std::string write_scheme_gallery(const std::filesystem::path& folder, const std::filesystem::path& examples);
 
 }  // namespace cifs::cli

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "cifs/io/experiment.hpp"
 
+#include "cifs/io/polygon.hpp"
 #include "json_reader.hpp"
 
 namespace cifs::io {
@@ -54,6 +55,17 @@ Shape read_shape_member(const Reader& r, const json& v, const std::filesystem::p
     }
   }
   r.object(v, "shape");
+  if (v.contains("polygon")) {  // the uniform B-spline of a control polygon file
+    r.only(v, "shape", {"polygon", "degree"});
+    const std::filesystem::path p = base / r.string(v["polygon"], "shape.polygon");
+    const int degree = r.integer(r.member(v, "shape", "degree"), "shape.degree");
+    try {
+      const Polygon polygon = read_polygon(p);
+      return nurbs::uniform_bspline(polygon.points, degree, polygon.closed);
+    } catch (const std::exception& e) {
+      r.fail("shape", e.what());
+    }
+  }
   return parse_shape_json(v.dump(), r.where + ": shape");
 }
 

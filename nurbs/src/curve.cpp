@@ -17,6 +17,24 @@ Curve make_curve(int degree, Knots knots, const Points& points, const Eigen::Vec
   return c;
 }
 
+Curve uniform_bspline(const Points& polygon, int degree, bool closed) {
+  validate_degree(degree);
+  const Eigen::Index n = polygon.rows();
+  Knots knots;
+  if (closed) {
+    for (Eigen::Index i = 0; i <= n; ++i) knots.push_back(static_cast<double>(i));
+    return make_closed_curve(degree, std::move(knots), polygon);
+  }
+  if (n < degree + 1)
+    detail::fail("points: a clamped curve of degree ", degree, " needs at least ", degree + 1,
+                 " control points, got ", n);
+  const Eigen::Index spans = n - degree;
+  knots.assign(static_cast<std::size_t>(degree), 0.0);
+  for (Eigen::Index i = 0; i <= spans; ++i) knots.push_back(static_cast<double>(i));
+  knots.insert(knots.end(), static_cast<std::size_t>(degree), static_cast<double>(spans));
+  return make_curve(degree, std::move(knots), polygon);
+}
+
 Curve make_closed_curve(int degree, Knots breakpoints, const Points& points, const Eigen::VectorXd& weights) {
   validate_degree(degree);
   const Eigen::Index m = points.rows();

@@ -71,7 +71,8 @@ struct Outputs {
 struct Experiment {
   std::string name;  // default: the file's stem
   std::string description;
-  /// Exactly one source: a NURBS shape, a BC-IFS automaton file, or a classic IFS.
+  /// Exactly one source: a NURBS shape (a shape file, an inline shape, or the uniform B-spline of a
+  /// polygon file), a BC-IFS automaton file, or a classic IFS.
   std::optional<Shape> shape;
   std::filesystem::path automaton;  // absolute (resolved against the experiment's folder)
   std::optional<ClassicIfs> ifs;

@@ -32,6 +32,11 @@ Curve make_curve(int degree, Knots knots, const Points& points, const Eigen::Vec
 Curve make_closed_curve(int degree, Knots breakpoints, const Points& points,
                         const Eigen::VectorXd& weights = {});
 
+/// The uniform B-spline of degree d on a control polygon (`n by dim`): closed → periodic with
+/// breakpoints 0, 1, …, n (n ≥ 2); open → clamped with interior knots 1, 2, …, n − d − 1
+/// (n ≥ d + 1). The closed one is what Lane–Riesenfeld subdivision of order d + 1 converges to.
+Curve uniform_bspline(const Points& polygon, int degree, bool closed);
+
 /// Throws InvalidInput unless the curve satisfies every invariant above.
 void validate(const Curve& curve);
 

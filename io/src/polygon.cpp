@@ -1,0 +1,53 @@
+// SPDX-License-Identifier: MIT
+#include "cifs/io/polygon.hpp"
+
+#include <charconv>
+
+#include "cifs/io/shape.hpp"
+#include "json_reader.hpp"
+
+namespace cifs::io {
+
+Polygon parse_polygon_json(std::string_view text, std::string_view where) {
+  const Reader r{std::string(where)};
+  const json doc = parse_json(text, r.where);
+  if (!doc.is_object() || doc.size() != 1 || !doc.contains("polygon") || !doc["polygon"].is_object())
+    throw InvalidInput(r.where + ": expected {\"polygon\": {\"points\": [[x, y], ...], \"closed\": true}}");
+  const json& p = doc["polygon"];
+  r.only(p, "polygon", {"points", "closed"});
+  std::vector<std::vector<double>> rows;
+  r.points(r.member(p, "polygon", "points"), "polygon.points", rows);
+  if (rows.empty()) r.fail("polygon.points", "no points");
+  if (rows.front().size() > 16) r.fail("polygon.points[0]", "more than 16 coordinates");
+  Polygon out;
+  if (p.contains("closed")) out.closed = r.boolean(p["closed"], "polygon.closed");
+  out.points.resize(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(rows.front().size()));
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    for (std::size_t k = 0; k < rows[i].size(); ++k)
+      out.points(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) = rows[i][k];
+  return out;
+}
+
+Polygon read_polygon(const std::filesystem::path& path) {
+  return parse_polygon_json(read_file(path), path.string());
+}
+
+std::string to_json(const Polygon& polygon) {
+  const Points& P = polygon.points;
+  std::string out = "{\"polygon\": {\"closed\": ";
+  out += polygon.closed ? "true" : "false";
+  out += ", \"points\": [";
+  char buffer[32];
+  for (Eigen::Index i = 0; i < P.rows(); ++i) {
+    out += i ? ",\n  [" : "\n  [";
+    for (Eigen::Index k = 0; k < P.cols(); ++k) {
+      if (k) out += ", ";
+      out.append(buffer, std::to_chars(buffer, buffer + sizeof buffer, P(i, k)).ptr);
+    }
+    out += "]";
+  }
+  out += "]}}\n";
+  return out;
+}
+
+}  // namespace cifs::io
