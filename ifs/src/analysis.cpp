@@ -40,6 +40,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <sstream>
 
 #include "cifs/errors.hpp"
@@ -247,7 +248,19 @@ Eigen::RowVectorXd unit_fixed_point(const Eigen::MatrixXd& P, const std::string&
   }
   // ℓᵀ solves Kᵀ·ℓᵀ = 1.
   Eigen::RowVectorXd l = K.transpose().fullPivLu().solve(Eigen::VectorXd::Ones(n)).transpose();
-  return l / l.sum();  // Σℓ = 1 already up to rounding; make it exact to the last bit or so
+  l /= l.sum();  // Σℓ = 1 already up to rounding; make it exact to the last bit or so
+  // Polish by ℓ ← ℓ·P: the solve leaves eps-sized entries where ℓ is exactly 0 (a B-spline's basis
+  // function vanishing at the end of its piece), and for rational shapes such an entry multiplies a
+  // weight up to 1e6 times the others; the iteration damps them at the rate of the subdominant
+  // eigenvalues. Kept only when its residual stays at rounding level (a product whose other
+  // eigenvalues do not shrink could make it drift).
+  Eigen::RowVectorXd polished = l;
+  for (int k = 0; k < 64; ++k) polished = (polished * P).eval();
+  polished /= polished.sum();
+  const auto residual = [&](const Eigen::RowVectorXd& x) { return (x * P - x).cwiseAbs().maxCoeff(); };
+  const double floor = 4 * std::numeric_limits<double>::epsilon() * static_cast<double>(n) *
+                       l.cwiseAbs().sum() * P.cwiseAbs().rowwise().sum().maxCoeff();
+  return polished.allFinite() && residual(polished) <= std::max(residual(l), floor) ? polished : l;
 }
 
 /// The transition `child` of `s` (out-edge position).
