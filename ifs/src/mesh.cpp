@@ -68,13 +68,12 @@ Grid make_grid(int A, int B, int depth, std::size_t cols, const MeshOptions& opt
 QuadMesh allocate(const Grid& grid, Eigen::Index cols) {
   QuadMesh mesh;
   mesh.vertices.resize(static_cast<Eigen::Index>(grid.vertices), cols);
-  mesh.quads.resize(grid.quads);
+  mesh.quads.reserve(grid.quads);  // filled once, not zeroed first: the quads are most of the bytes
   mesh.quad_state.resize(grid.quads);
   const int row = grid.cv + 1;
-  std::size_t q = 0;
   for (int I = 0; I < grid.cu; ++I)
     for (int J = 0; J < grid.cv; ++J)
-      mesh.quads[q++] = {I * row + J, (I + 1) * row + J, (I + 1) * row + J + 1, I * row + J + 1};
+      mesh.quads.push_back({I * row + J, (I + 1) * row + J, (I + 1) * row + J + 1, I * row + J + 1});
   return mesh;
 }
 
