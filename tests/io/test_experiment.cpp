@@ -10,7 +10,7 @@ using namespace cifs;
 namespace {
 
 io::Experiment parse(const std::string& text) {
-  return io::parse_experiment(text, "e.json", CIFS_SOURCE_DIR "/examples/experiments");
+  return io::parse_experiment(text, "e.json", CIFS_SOURCE_DIR "/examples/shapes");
 }
 
 std::string error_of(const std::string& text) {
@@ -54,7 +54,7 @@ TEST_CASE("Experiments: every section read with its defaults", "[io][experiment]
   CHECK(e.outputs.png == std::filesystem::path("img/a.png"));
   CHECK(e.outputs.ply.empty());
 
-  const io::Experiment b = parse(R"({"shape": {"polygon": "../shapes/bone.json", "degree": 3}})");
+  const io::Experiment b = parse(R"({"shape": {"polygon": "bone.json", "degree": 3}})");
   REQUIRE(b.shape);
   CHECK(std::get<nurbs::Curve>(*b.shape).closed);
   CHECK(std::get<nurbs::Curve>(*b.shape).degree == 3);
@@ -105,7 +105,7 @@ TEST_CASE("Experiments: bad files name the file, the member and the problem", "[
              Catch::Contains("outputs.png: expected a relative file name"));
   CHECK_THAT(error_of(R"({"shape": "no/such/shape.json"})"), Catch::Contains("e.json: shape: "));
   CHECK_THAT(error_of(R"({"shape": {"curve": {"degree": 0}}})"), Catch::Contains("e.json: shape: "));
-  CHECK_THAT(error_of(R"({"shape": {"polygon": "../shapes/bone.json", "degree": 0}})"),
+  CHECK_THAT(error_of(R"({"shape": {"polygon": "bone.json", "degree": 0}})"),
              Catch::Contains("e.json: shape: degree"));
   CHECK_THAT(error_of(R"({"automaton": "missing.json"})"), Catch::Contains("automaton: no such file"));
 }
