@@ -42,8 +42,6 @@ ViewTransform view_transform(const Camera& camera) {
     throw InvalidInput("camera: up is zero or parallel to the viewing direction");
   t.right = side.normalized();
   t.up = t.right.cross(t.forward);
-  t.width = camera.width;
-  t.height = camera.height;
   t.cx = static_cast<double>(camera.width) / 2;
   t.cy = static_cast<double>(camera.height) / 2;
   const double H = static_cast<double>(camera.height);

@@ -50,7 +50,6 @@ struct ViewTransform {
   double scale = 1;  // s (orthographic) or F (perspective), in pixels
   double cx = 0, cy = 0;
   double near = 0;
-  std::size_t width = 0, height = 0;
 
   /// The pixel coordinates and depth of a world point (no clipping: check depth ≥ near).
   Projected project(const Eigen::Vector3d& p) const noexcept {
