@@ -3,17 +3,15 @@
 #include "cifs/render/point_ifs.hpp"
 
 #include <algorithm>
-#include <atomic>
-#include <bit>
 #include <cmath>
 #include <cstdint>
-#include <exception>
 #include <mutex>
 #include <numbers>
 #include <string>
-#include <thread>
 
 #include "cifs/errors.hpp"
+#include "parallel.hpp"
+#include "random.hpp"
 
 namespace cifs::render {
 
@@ -42,39 +40,7 @@ std::vector<AffineMap> koch_curve() {
 
 namespace {
 
-// SplitMix64 (Steele, Lea, Flood 2014): turns (seed, chunk) into well-spread generator states.
-std::uint64_t splitmix64(std::uint64_t& state) noexcept {
-  std::uint64_t z = (state += 0x9E3779B97F4A7C15ULL);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return z ^ (z >> 31);
-}
-
-// xoshiro256++ (Blackman & Vigna 2018): fast, 256-bit state, all output bits of good quality (we
-// use both halves of every draw).
-class Xoshiro256 {
- public:
-  Xoshiro256(std::uint64_t seed, std::uint64_t stream) noexcept {
-    std::uint64_t sm = seed;
-    // An odd multiplier is a bijection modulo 2⁶⁴: distinct chunks get distinct SplitMix streams.
-    sm = splitmix64(sm) + stream * 0xD1B54A32D192ED03ULL;
-    for (auto& word : s_) word = splitmix64(sm);
-  }
-  std::uint64_t operator()() noexcept {
-    const std::uint64_t result = std::rotl(s_[0] + s_[3], 23) + s_[0];
-    const std::uint64_t t = s_[1] << 17;
-    s_[2] ^= s_[0];
-    s_[3] ^= s_[1];
-    s_[1] ^= s_[2];
-    s_[0] ^= s_[3];
-    s_[2] ^= t;
-    s_[3] = std::rotl(s_[3], 45);
-    return result;
-  }
-
- private:
-  std::uint64_t s_[4];
-};
+using detail::Xoshiro256;
 
 struct Linear {
   double a, b, c, d, e, f;
@@ -243,56 +209,32 @@ Histogram chaos_game_histogram(std::span<const AffineMap> maps, const ChaosHisto
   const std::size_t pixels = options.width * options.height;
   const Grid grid(options.width, options.height, options.bounds);
   const std::uint64_t chunks = (options.samples + kChaosChunk - 1) / kChaosChunk;
-  unsigned threads =
-      options.threads != 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
-  threads = static_cast<unsigned>(std::min<std::uint64_t>(threads, std::max<std::uint64_t>(chunks, 1)));
+  const unsigned threads = detail::worker_count(options.threads, chunks);
 
-  std::atomic<std::uint64_t> next{0};
-  std::mutex progress_mutex;
-  std::uint64_t done = 0;
-  // Each worker pulls chunks until none is left; which worker runs a chunk does not matter since
-  // a chunk's points depend only on (seed, chunk index) and the sums are of integers.
-  const auto work = [&](std::uint32_t* counts) -> std::uint64_t {
-    std::uint64_t outside = 0;
-    for (std::uint64_t c = next++; c < chunks; c = next++) {
-      const std::uint64_t points = std::min(kChaosChunk, options.samples - c * kChaosChunk);
-      outside += run_chunk(p, grid, options.seed, c, points, options.burn_in, counts);
-      if (options.progress) {
-        const std::lock_guard lock(progress_mutex);
-        done += points;
-        options.progress(done, options.samples);
-      }
-    }
-    return outside;
-  };
-
+  // The calling thread (the last worker) bins straight into the result; the others into private
+  // histograms, allocated (first touched) by the worker that fills them. Which worker runs a chunk
+  // does not matter: a chunk's points depend only on (seed, chunk index) and the sums are of
+  // integers.
   result.counts.assign(pixels, 0);
-  if (threads <= 1) {
-    result.outside = work(result.counts.data());
-    return result;
-  }
   std::vector<std::vector<std::uint32_t>> local(threads - 1);
   std::vector<std::uint64_t> outside(threads, 0);
-  std::vector<std::exception_ptr> errors(threads);
-  std::vector<std::thread> pool;
-  for (unsigned t = 0; t + 1 < threads; ++t)
-    pool.emplace_back([&, t] {
-      try {
-        local[t].assign(pixels, 0);  // allocated (first touched) by the worker that fills it
-        outside[t] = work(local[t].data());
-      } catch (...) {
-        errors[t] = std::current_exception();
-      }
-    });
-  // The calling thread works too, straight into the result.
-  try {
-    outside[threads - 1] = work(result.counts.data());
-  } catch (...) {
-    errors[threads - 1] = std::current_exception();
-  }
-  for (auto& thread : pool) thread.join();
-  for (const auto& e : errors)
-    if (e) std::rethrow_exception(e);
+  std::mutex progress_mutex;
+  std::uint64_t done = 0;
+  detail::run_chunks(
+      chunks, threads,
+      [&](unsigned t) {
+        if (t + 1 < threads) local[t].assign(pixels, 0);
+      },
+      [&](unsigned t, std::uint64_t c) {
+        const std::uint64_t points = std::min(kChaosChunk, options.samples - c * kChaosChunk);
+        std::uint32_t* counts = t + 1 < threads ? local[t].data() : result.counts.data();
+        outside[t] += run_chunk(p, grid, options.seed, c, points, options.burn_in, counts);
+        if (options.progress) {
+          const std::lock_guard lock(progress_mutex);
+          done += points;
+          options.progress(done, options.samples);
+        }
+      });
   for (const auto& counts : local)
     for (std::size_t i = 0; i < pixels; ++i) result.counts[i] += counts[i];
   for (const std::uint64_t o : outside) result.outside += o;

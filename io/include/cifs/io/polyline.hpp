@@ -13,7 +13,8 @@ namespace cifs::io {
 std::string polyline_obj(const Points& points, bool closed = false);
 
 /// SVG of the x, y coordinates (y up, as in the plane), fitted with a margin into a
-/// `width`-pixel-wide picture; a stroke width in pixels.
+/// `width`-pixel-wide picture; a stroke width in pixels. The writer is segments_svg
+/// (cifs/io/geometry.hpp) on polyline_segments.
 std::string polyline_svg(const Points& points, bool closed = false, int width = 800, double stroke = 1.5);
 
 }  // namespace cifs::io

@@ -1,0 +1,253 @@
+// SPDX-License-Identifier: MIT
+// cifs — the chaos game of a controlled IFS as a density image, deterministic for any thread count.
+#include "cifs/render/chaos_density.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "cifs/errors.hpp"
+#include "cifs/ifs/analysis.hpp"
+#include "cifs/ifs/attractor.hpp"
+#include "framebuffer.hpp"
+#include "parallel.hpp"
+#include "random.hpp"
+
+namespace cifs::render {
+namespace {
+
+using automata::Graph;
+using automata::StateId;
+
+/// A transition in the form the inner loop reads: the target state and the column-major
+/// `to.size by from.size` matrix.
+struct Edge {
+  std::uint32_t target;
+  const double* M;
+  int rows, cols;
+};
+
+struct Tables {
+  std::vector<std::uint32_t> first, degree;  // per state: its out-edges in `edges`
+  std::vector<Edge> edges;
+  std::vector<Eigen::RowVectorXd> start;  // per state
+  int max_size = 0;
+};
+
+Tables tables(const automata::Automaton& automaton) {
+  const Graph& g = automaton.graph;
+  Tables t;
+  const auto states = boost::num_vertices(g);
+  t.first.resize(states);
+  t.degree.resize(states);
+  for (StateId s = 0; s < states; ++s) {
+    t.first[s] = static_cast<std::uint32_t>(t.edges.size());
+    t.degree[s] = static_cast<std::uint32_t>(boost::out_degree(s, g));
+    t.max_size = std::max(t.max_size, g[s].size);
+    for (auto [b, e] = boost::out_edges(s, g); b != e; ++b) {
+      const Eigen::MatrixXd& M = g[*b].matrix;
+      t.edges.push_back({static_cast<std::uint32_t>(boost::target(*b, g)), M.data(),
+                         static_cast<int>(M.rows()), static_cast<int>(M.cols())});
+    }
+  }
+  t.start = ifs::end_functionals(automaton).start;
+  return t;
+}
+
+void check_nets(const automata::Automaton& automaton, std::span<const Points> nets, bool rational) {
+  if (automaton.initial.empty()) throw InvalidInput("chaos_density: the automaton has no initial entry");
+  if (nets.size() != automaton.initial.size())
+    throw InvalidInput("chaos_density: " + std::to_string(nets.size()) + " nets for " +
+                       std::to_string(automaton.initial.size()) + " initial entries");
+  const auto cols = nets[0].cols();
+  const auto dim = rational ? cols - 1 : cols;
+  if (dim != 2 && dim != 3)
+    throw InvalidInput("chaos_density: nets have " + std::to_string(cols) + " columns, expected " +
+                       (rational ? "3 or 4 (homogeneous)" : "2 or 3"));
+  for (std::size_t i = 0; i < nets.size(); ++i) {
+    const int size = automaton.graph[automaton.initial[i].state].size;
+    if (nets[i].rows() != size || nets[i].cols() != cols)
+      throw InvalidInput("chaos_density: nets[" + std::to_string(i) + "] is " +
+                         std::to_string(nets[i].rows()) + " by " + std::to_string(nets[i].cols()) +
+                         ", expected " + std::to_string(size) + " by " + std::to_string(cols));
+    if (!nets[i].allFinite())
+      throw InvalidInput("chaos_density: nets[" + std::to_string(i) + "] is not finite");
+  }
+}
+
+/// Smallest depth at which every node's piece lies within `tolerance` pixels of its start point
+/// (the point drawn for it): the depth of the deepest leaf of the tolerance traversal, which stops
+/// a branch once its piece is provably smaller than ε = tolerance / (pixels per world unit) — a
+/// bound from the branch's own net (ifs::for_each_leaf_to_tolerance), far tighter than a global
+/// contraction rate. Cost: one visit per leaf, about (size on screen / tolerance)^(dimension of
+/// the attractor).
+int automatic_depth(const automata::Automaton& automaton, std::span<const Points> nets,
+                    const ViewTransform& view, double tolerance) {
+  double scale = view.scale;
+  if (view.perspective) {
+    // A world length ℓ at depth z spans ℓ·F/z pixels: use the nearest depth the attractor can
+    // reach (every point lies within ρ·diam(N) of the net's first row), but not nearer than
+    // `near`, in front of which nothing is drawn.
+    const double radius = ifs::contraction(automaton).radius;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Points& N : nets) {
+      Eigen::Vector3d p = Eigen::Vector3d::Zero();
+      p.head(N.cols()) = N.row(0).transpose();
+      nearest = std::min(nearest, (p - view.eye).dot(view.forward) - radius * ifs::diameter(N));
+    }
+    scale /= std::max(nearest, view.near);
+  }
+  ifs::ToleranceOptions t;
+  t.epsilon = tolerance / scale;
+  t.max_depth = 64;
+  return ifs::for_each_leaf_to_tolerance(automaton, nets, t, [](const ifs::ToleranceLeaf&) {}).deepest;
+}
+
+/// Per-worker buffers: hits, nearest depth, the sample index and state of that point.
+struct Local {
+  std::vector<std::uint32_t> counts;
+  std::vector<float> depth;
+  std::vector<std::uint64_t> key;
+  std::vector<std::uint32_t> state;
+  std::uint64_t outside = 0;
+};
+
+}  // namespace
+
+ChaosDensityResult chaos_density(Image& image, const Camera& camera, const automata::Automaton& automaton,
+                                 std::span<const Points> nets, const ChaosDensityOptions& options) {
+  const ViewTransform view = detail::prepare(image, camera, "chaos_density");
+  ifs::validate(automaton);
+  check_nets(automaton, nets, options.rational);
+  if (options.samples >= (std::uint64_t{1} << 32))
+    throw InvalidInput("chaos_density: samples must be below 2^32 (uint32 counts)");
+  if (options.depth < 0 || options.depth > 64)
+    throw InvalidInput("chaos_density: depth " + std::to_string(options.depth) + " is outside 0 … 64");
+  if (options.rational && options.depth == 0)
+    throw InvalidInput("chaos_density: rational nets need an explicit depth");
+  if (!(options.pixel_tolerance > 0)) throw InvalidInput("chaos_density: pixel_tolerance must be positive");
+  const Tables t = tables(automaton);
+  ChaosDensityResult result;
+  result.samples = options.samples;
+  result.depth =
+      options.depth > 0 ? options.depth : automatic_depth(automaton, nets, view, options.pixel_tolerance);
+  const int depth = result.depth;
+
+  const std::size_t W = image.width, H = image.height, pixels = W * H;
+  const std::vector<float>& Z = image.channels["Z"];
+  const auto cols = nets[0].cols();
+  const std::uint32_t roots = static_cast<std::uint32_t>(automaton.initial.size());
+  const std::uint64_t chunks = (options.samples + kDensityChunk - 1) / kDensityChunk;
+  const unsigned threads = detail::worker_count(options.threads, chunks);
+  std::vector<Local> local(threads);
+  std::mutex progress_mutex;
+  std::uint64_t done = 0;
+
+  detail::run_chunks(
+      chunks, threads,
+      [&](unsigned w) {
+        Local& l = local[w];
+        l.counts.assign(pixels, 0);
+        l.depth.assign(pixels, std::numeric_limits<float>::infinity());
+        l.key.assign(pixels, 0);
+        l.state.assign(pixels, kNoState);
+      },
+      [&](unsigned w, std::uint64_t chunk) {
+        Local& l = local[w];
+        detail::Xoshiro256 rng(options.seed, chunk);
+        std::uint64_t pool = 0;
+        bool half = false;
+        // 32 random bits per choice, two per 64-bit draw.
+        const auto next32 = [&]() noexcept {
+          half = !half;
+          if (half) pool = rng();
+          return static_cast<std::uint32_t>(half ? pool >> 32 : pool);
+        };
+        std::vector<std::uint32_t> path(static_cast<std::size_t>(depth));
+        std::vector<double> r(static_cast<std::size_t>(t.max_size)), next(r.size());
+        const std::uint64_t first = chunk * kDensityChunk;
+        const std::uint64_t count = std::min(kDensityChunk, options.samples - first);
+        for (std::uint64_t n = 0; n < count; ++n) {
+          const std::uint32_t root = roots > 1 ? detail::bounded(next32(), roots) : 0;
+          std::uint32_t s = static_cast<std::uint32_t>(automaton.initial[root].state);
+          for (int level = 0; level < depth; ++level) {
+            const std::uint32_t e = t.first[s] + detail::bounded(next32(), t.degree[s]);
+            path[static_cast<std::size_t>(level)] = e;
+            s = t.edges[e].target;
+          }
+          const Eigen::RowVectorXd& start = t.start[s];
+          std::copy(start.data(), start.data() + start.size(), r.begin());
+          // r ← r·M, leaf to root: the start functional of the leaf pulled back to the root's net.
+          for (int level = depth - 1; level >= 0; --level) {
+            const Edge& e = t.edges[path[static_cast<std::size_t>(level)]];
+            for (int j = 0; j < e.cols; ++j) {
+              const double* column = e.M + static_cast<std::ptrdiff_t>(j) * e.rows;
+              double sum = 0;
+              for (int i = 0; i < e.rows; ++i) sum += r[static_cast<std::size_t>(i)] * column[i];
+              next[static_cast<std::size_t>(j)] = sum;
+            }
+            std::swap(r, next);
+          }
+          const Points& N = nets[root];
+          double x[4] = {0, 0, 0, 0};
+          for (Eigen::Index k = 0; k < cols; ++k)
+            for (Eigen::Index i = 0; i < N.rows(); ++i) x[k] += r[static_cast<std::size_t>(i)] * N(i, k);
+          if (options.rational) {
+            const double weight = x[cols - 1];
+            x[cols - 1] = 0;
+            for (auto& v : x) v /= weight;
+          }
+          const Projected p = view.project({x[0], x[1], x[2]});
+          const bool on_screen = view.visible_depth(p.depth) && p.x >= 0 && p.x < static_cast<double>(W) &&
+                                 p.y >= 0 && p.y < static_cast<double>(H);
+          if (!on_screen) {
+            ++l.outside;
+            continue;
+          }
+          const std::size_t i = static_cast<std::size_t>(p.y) * W + static_cast<std::size_t>(p.x);
+          const float z = static_cast<float>(p.depth);
+          if (!(z <= Z[i])) continue;  // hidden by an earlier layer
+          ++l.counts[i];
+          // A worker sees its samples in increasing index order, so the later of equally near
+          // points always replaces the earlier.
+          if (z <= l.depth[i]) {
+            l.depth[i] = z;
+            l.key[i] = first + n;
+            l.state[i] = s;
+          }
+        }
+        if (options.progress) {
+          const std::lock_guard lock(progress_mutex);
+          done += count;
+          options.progress(done, options.samples);
+        }
+      });
+
+  // Merge: integer sums, and the nearest point (ties: the larger sample index), both independent
+  // of which worker ran which chunk.
+  detail::PointLayer layer{std::vector<double>(pixels, 0), std::move(local[0].depth),
+                           std::move(local[0].state)};
+  std::vector<std::uint64_t> key = std::move(local[0].key);
+  for (std::size_t i = 0; i < pixels; ++i) layer.density[i] = local[0].counts[i];
+  result.outside = local[0].outside;
+  for (unsigned w = 1; w < threads; ++w) {
+    const Local& l = local[w];
+    result.outside += l.outside;
+    for (std::size_t i = 0; i < pixels; ++i) {
+      layer.density[i] += l.counts[i];
+      if (l.depth[i] < layer.depth[i] || (l.depth[i] == layer.depth[i] && l.key[i] > key[i])) {
+        layer.depth[i] = l.depth[i];
+        layer.state[i] = l.state[i];
+        key[i] = l.key[i];
+      }
+    }
+  }
+  // Hidden points are neither counted nor outside: they are part of the samples on screen.
+  detail::composite_points(image, layer, options.color);
+  return result;
+}
+
+}  // namespace cifs::render

@@ -1,0 +1,133 @@
+// SPDX-License-Identifier: MIT
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "cifs/errors.hpp"
+#include "cifs/render/camera.hpp"
+
+using namespace cifs;
+using namespace cifs::render;
+
+namespace {
+
+void check_projection(const Projected& p, double x, double y, double depth) {
+  CHECK(p.x == Approx(x).epsilon(1e-14).margin(1e-12));
+  CHECK(p.y == Approx(y).epsilon(1e-14).margin(1e-12));
+  CHECK(p.depth == Approx(depth).epsilon(1e-14).margin(1e-12));
+}
+
+}  // namespace
+
+TEST_CASE("Orthographic projection by hand", "[render][camera]") {
+  Camera c;
+  c.eye = {0, 0, 5};
+  c.target = {0, 0, 0};
+  c.up = {0, 1, 0};
+  c.ortho_height = 2;
+  c.width = 100;
+  c.height = 50;
+  // s = 50 / 2 = 25 pixels per unit, centre (50, 25), forward −z: depth = 5 − z.
+  check_projection(project(c, {0.5, 0.25, 1}), 50 + 12.5, 25 - 6.25, 4);
+  check_projection(project(c, {-2, -1, -3}), 0, 50, 8);  // the bottom-left corner of the window
+  // Looking along +y with z up: x right, z up in the image, depth = y + 5.
+  c.eye = {0, -5, 0};
+  c.up = {0, 0, 1};
+  check_projection(project(c, {0.4, 2, -0.2}), 50 + 10, 25 + 5, 7);
+  // `up` need not be orthogonal to the view direction.
+  c.up = {0, 3, 1};
+  check_projection(project(c, {0.4, 2, -0.2}), 50 + 10, 25 + 5, 7);
+}
+
+TEST_CASE("Perspective projection by hand", "[render][camera]") {
+  Camera c;
+  c.projection = Projection::perspective;
+  c.eye = {1, 2, 3};
+  c.target = {1, 2, -7};
+  c.up = {0, 1, 0};
+  c.fov_y = 90;  // F = (H/2) / tan 45° = H/2
+  c.width = 200;
+  c.height = 100;
+  // A point a to the right, b up and d in front of the eye: (W/2 + F·a/d, H/2 − F·b/d), depth d.
+  check_projection(project(c, {1 + 0.5, 2 + 1, 3 - 2}), 100 + 50 * 0.25, 50 - 50 * 0.5, 2);
+  check_projection(project(c, {1, 2, 3 - 10}), 100, 50, 10);
+  // fov 60°: F = 50 / tan 30° = 50·√3.
+  c.fov_y = 60;
+  check_projection(project(c, {1 - 1, 2, 3 - 4}), 100 - 50 * std::numbers::sqrt3 / 4, 50, 4);
+  const ViewTransform v = view_transform(c);
+  CHECK(v.visible_depth(c.near));
+  CHECK_FALSE(v.visible_depth(c.near / 2));
+}
+
+TEST_CASE("Framing: planar shapes get a top view, 3-D shapes fit the image", "[render][camera]") {
+  FramingOptions o;
+  o.width = o.height = 100;
+  o.margin = 0.05;
+  Points box(4, 2);
+  box << 0, 0, 4, 0, 4, 1, 0, 1;
+  const Camera top = frame(box, o);
+  CHECK(top.projection == Projection::orthographic);
+  // The box is 4 wide: it fills 90 of the 100 pixels across, centred vertically.
+  check_projection(project(top, {0, 0, 0}), 5, 50 + 11.25, top.eye.z());
+  check_projection(project(top, {4, 1, 0}), 95, 50 - 11.25, top.eye.z());
+  // Planar 3-column data is also a top view.
+  Points flat(3, 3);
+  flat << 0, 0, 2, 1, 0, 2, 0, 1, 2;
+  CHECK(frame(flat, o).projection == Projection::orthographic);
+
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> g(0, 1);
+  Points cloud(200, 3);
+  for (Eigen::Index i = 0; i < cloud.rows(); ++i) cloud.row(i) << 3 + g(rng), -1 + 2 * g(rng), 0.5 * g(rng);
+  for (const bool perspective : {true, false})
+    for (const std::size_t width : {100u, 300u}) {
+      o.perspective = perspective;
+      o.width = width;
+      const Camera c = frame(cloud, o);
+      const ViewTransform v = view_transform(c);
+      double lo_x = 1e300, hi_x = -1e300, lo_y = 1e300, hi_y = -1e300;
+      for (Eigen::Index i = 0; i < cloud.rows(); ++i) {
+        const Projected p = v.project(cloud.row(i).transpose());
+        CHECK(p.depth > c.near);
+        lo_x = std::min(lo_x, p.x), hi_x = std::max(hi_x, p.x), lo_y = std::min(lo_y, p.y),
+        hi_y = std::max(hi_y, p.y);
+      }
+      INFO("perspective " << perspective << ", width " << width);
+      CHECK(lo_x >= 0.05 * static_cast<double>(width));
+      CHECK(hi_x <= 0.95 * static_cast<double>(width));
+      CHECK(lo_y >= 5);
+      CHECK(hi_y <= 95);
+    }
+}
+
+TEST_CASE("Cameras refuse bad input", "[render][camera]") {
+  Camera c;
+  c.width = 0;
+  CHECK_THROWS_WITH(view_transform(c), Catch::Contains("empty"));
+  c.width = 10;
+  c.up = {0, 0, 2};  // parallel to the view direction (−z)
+  CHECK_THROWS_WITH(view_transform(c), Catch::Contains("parallel"));
+  c.up = {0, 1, 0};
+  c.eye = c.target;
+  CHECK_THROWS_WITH(view_transform(c), Catch::Contains("coincide"));
+  c.eye = {0, 0, std::nan("")};
+  CHECK_THROWS_AS(view_transform(c), InvalidInput);
+  c.eye = {0, 0, 1};
+  c.ortho_height = 0;
+  CHECK_THROWS_AS(view_transform(c), InvalidInput);
+  c.projection = Projection::perspective;
+  c.fov_y = 180;
+  CHECK_THROWS_WITH(view_transform(c), Catch::Contains("fov_y"));
+  c.fov_y = 30;
+  c.near = 0;
+  CHECK_THROWS_AS(view_transform(c), InvalidInput);
+  CHECK_THROWS_WITH(frame(Points(0, 2)), Catch::Contains("no points"));
+  CHECK_THROWS_WITH(frame(Points::Zero(3, 4)), Catch::Contains("4 columns"));
+  Points bad = Points::Zero(2, 3);
+  bad(1, 1) = std::numeric_limits<double>::infinity();
+  CHECK_THROWS_AS(frame(bad), InvalidInput);
+  FramingOptions o;
+  o.margin = 0.5;
+  CHECK_THROWS_AS(frame(Points::Zero(2, 2), o), InvalidInput);
+}
