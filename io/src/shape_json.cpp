@@ -5,86 +5,17 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/io/shape.hpp"
+#include "json_common.hpp"
 
 namespace cifs::io {
 namespace {
 
+using detail::parse_document;
+using detail::Reader;
+using detail::rows_json;
+using detail::to_points;
+using detail::write_pretty;
 using nlohmann::json;
-
-/// Reads JSON values with the path of each value at hand for error messages.
-struct Reader {
-  std::string where;
-
-  [[noreturn]] void fail(const std::string& path, const std::string& what) const {
-    throw InvalidInput(where + ": " + path + ": " + what);
-  }
-
-  const json& member(const json& obj, const std::string& path, const char* key) const {
-    const auto it = obj.find(key);
-    if (it == obj.end()) fail(path, std::string("missing \"") + key + "\"");
-    return *it;
-  }
-
-  double number(const json& v, const std::string& path) const {
-    if (!v.is_number()) fail(path, "expected a number, got " + std::string(v.type_name()));
-    const double x = v.get<double>();
-    if (!std::isfinite(x)) fail(path, "number is not finite");
-    return x;
-  }
-
-  int integer(const json& v, const std::string& path) const {
-    if (!v.is_number_integer()) fail(path, "expected an integer, got " + v.dump());
-    const auto x = v.get<long long>();
-    if (x < -1000000 || x > 1000000) fail(path, "integer " + v.dump() + " is out of range");
-    return static_cast<int>(x);
-  }
-
-  const json& array(const json& v, const std::string& path) const {
-    if (!v.is_array()) fail(path, "expected an array, got " + std::string(v.type_name()));
-    return v;
-  }
-
-  std::vector<double> numbers(const json& v, const std::string& path) const {
-    array(v, path);
-    std::vector<double> out;
-    out.reserve(v.size());
-    for (std::size_t i = 0; i < v.size(); ++i)
-      out.push_back(number(v[i], path + "[" + std::to_string(i) + "]"));
-    return out;
-  }
-
-  /// Rows of equal length ≥ 1 appended to `rows` (dimension fixed by the first row seen).
-  void points(const json& v, const std::string& path, std::vector<std::vector<double>>& rows) const {
-    array(v, path);
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      const std::string p = path + "[" + std::to_string(i) + "]";
-      rows.push_back(numbers(v[i], p));
-      if (rows.back().empty()) fail(p, "a point needs at least one coordinate");
-      if (rows.back().size() != rows.front().size())
-        fail(p, std::to_string(rows.back().size()) + " coordinates, the first point has " +
-                    std::to_string(rows.front().size()));
-    }
-  }
-
-  /// Runs a nurbs constructor, prefixing its validation messages with the file and the object.
-  template <class Make>
-  auto build(const std::string& object, Make&& make) const {
-    try {
-      return make();
-    } catch (const InvalidInput& e) {
-      throw InvalidInput(where + ": " + object + "." + e.what());
-    }
-  }
-};
-
-Points to_points(const std::vector<std::vector<double>>& rows) {
-  Points P(static_cast<Eigen::Index>(rows.size()),
-           rows.empty() ? 0 : static_cast<Eigen::Index>(rows[0].size()));
-  for (std::size_t i = 0; i < rows.size(); ++i)
-    for (std::size_t j = 0; j < rows[i].size(); ++j)
-      P(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = rows[i][j];
-  return P;
-}
 
 Eigen::VectorXd to_vector(const std::vector<double>& v) {
   return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
@@ -160,76 +91,11 @@ nurbs::Surface read_surface(const Reader& r, const json& s) {
   });
 }
 
-json rows_json(const Points& P) {
-  json out = json::array();
-  for (Eigen::Index i = 0; i < P.rows(); ++i) {
-    json row = json::array();
-    for (Eigen::Index j = 0; j < P.cols(); ++j) row.push_back(P(i, j));
-    out.push_back(std::move(row));
-  }
-  return out;
-}
-
-/// Objects one member per line; arrays of numbers, and of arrays of numbers, on one line.
-void write_pretty(const json& v, int indent, std::string& out) {
-  const auto flat = [](const json& a) {
-    return a.is_array() && std::all_of(a.begin(), a.end(), [](const json& e) {
-             return e.is_primitive() || (e.is_array() && std::all_of(e.begin(), e.end(), [](const json& x) {
-                                           return x.is_primitive();
-                                         }));
-           });
-  };
-  const std::string pad(static_cast<std::size_t>(indent + 2), ' ');
-  if (v.is_object()) {
-    out += "{";
-    bool first = true;
-    for (const auto& item : v.items()) {
-      out += first ? "\n" : ",\n";
-      out += pad;
-      out += json(item.key()).dump();
-      out += ": ";
-      write_pretty(item.value(), indent + 2, out);
-      first = false;
-    }
-    out += '\n';
-    out.append(static_cast<std::size_t>(indent), ' ');
-    out += '}';
-  } else if (v.is_array() && !flat(v)) {
-    out += "[";
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      out += i ? ",\n" : "\n";
-      out += pad;
-      write_pretty(v[i], indent + 2, out);
-    }
-    out += '\n';
-    out.append(static_cast<std::size_t>(indent), ' ');
-    out += ']';
-  } else {
-    out += v.dump();
-  }
-}
-
-/// nlohmann's messages start with "[json.exception.kind.N] "; users need only what follows.
-std::string strip_id(const std::string& what) {
-  const auto end = what.find("] ");
-  std::string rest = end == std::string::npos ? what : what.substr(end + 2);
-  if (rest.rfind("parse error", 0) == 0 && rest.find(": ") != std::string::npos)
-    rest = rest.substr(rest.find(": ") + 2);
-  return rest;
-}
-
 }  // namespace
 
 Shape parse_shape_json(std::string_view text, std::string_view where) {
   const Reader r{std::string(where)};
-  json doc;
-  try {
-    doc = json::parse(text.begin(), text.end());
-  } catch (const json::parse_error& e) {
-    throw IoError(r.where + ": malformed JSON at byte " + std::to_string(e.byte) + ": " + strip_id(e.what()));
-  } catch (const json::exception& e) {  // e.g. a number that overflows a double
-    throw IoError(r.where + ": malformed JSON: " + strip_id(e.what()));
-  }
+  const json doc = parse_document(text, r.where);
   if (!doc.is_object() || doc.size() != 1 || !(doc.contains("curve") || doc.contains("surface")))
     throw InvalidInput(r.where + ": expected an object with one member, \"curve\" or \"surface\"");
   if (doc.contains("curve")) return read_curve(r, doc["curve"]);

@@ -1,0 +1,95 @@
+// SPDX-License-Identifier: MIT
+// cifs — private helpers of the io module's JSON formats: values read with their JSON path at
+// hand for error messages, compact pretty-printing.
+#pragma once
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "cifs/errors.hpp"
+#include "cifs/types.hpp"
+
+namespace cifs::io::detail {
+
+using nlohmann::json;
+
+/// Reads JSON values with the path of each value at hand for error messages.
+struct Reader {
+  std::string where;
+
+  [[noreturn]] void fail(const std::string& path, const std::string& what) const {
+    throw InvalidInput(where + ": " + path + ": " + what);
+  }
+
+  const json& member(const json& obj, const std::string& path, const char* key) const {
+    const auto it = obj.find(key);
+    if (it == obj.end()) fail(path, std::string("missing \"") + key + "\"");
+    return *it;
+  }
+
+  double number(const json& v, const std::string& path) const {
+    if (!v.is_number()) fail(path, "expected a number, got " + std::string(v.type_name()));
+    const double x = v.get<double>();
+    if (!std::isfinite(x)) fail(path, "number is not finite");
+    return x;
+  }
+
+  int integer(const json& v, const std::string& path) const {
+    if (!v.is_number_integer()) fail(path, "expected an integer, got " + v.dump());
+    const auto x = v.get<long long>();
+    if (x < -1000000 || x > 1000000) fail(path, "integer " + v.dump() + " is out of range");
+    return static_cast<int>(x);
+  }
+
+  const json& array(const json& v, const std::string& path) const {
+    if (!v.is_array()) fail(path, "expected an array, got " + std::string(v.type_name()));
+    return v;
+  }
+
+  std::vector<double> numbers(const json& v, const std::string& path) const {
+    array(v, path);
+    std::vector<double> out;
+    out.reserve(v.size());
+    for (std::size_t i = 0; i < v.size(); ++i)
+      out.push_back(number(v[i], path + "[" + std::to_string(i) + "]"));
+    return out;
+  }
+
+  /// Rows of equal length ≥ 1 appended to `rows` (dimension fixed by the first row seen).
+  void points(const json& v, const std::string& path, std::vector<std::vector<double>>& rows) const {
+    array(v, path);
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const std::string p = path + "[" + std::to_string(i) + "]";
+      rows.push_back(numbers(v[i], p));
+      if (rows.back().empty()) fail(p, "a point needs at least one coordinate");
+      if (rows.back().size() != rows.front().size())
+        fail(p, std::to_string(rows.back().size()) + " coordinates, the first point has " +
+                    std::to_string(rows.front().size()));
+    }
+  }
+
+  /// Runs a nurbs constructor, prefixing its validation messages with the file and the object.
+  template <class Make>
+  auto build(const std::string& object, Make&& make) const {
+    try {
+      return make();
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(where + ": " + object + "." + e.what());
+    }
+  }
+};
+
+/// Parses `text`; IoError naming `where` and the byte for malformed JSON.
+json parse_document(std::string_view text, const std::string& where);
+
+Points to_points(const std::vector<std::vector<double>>& rows);
+
+json rows_json(const Points& P);
+
+/// Objects one member per line; arrays of numbers, and of arrays of numbers, on one line.
+void write_pretty(const json& v, int indent, std::string& out);
+
+}  // namespace cifs::io::detail
