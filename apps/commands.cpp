@@ -226,10 +226,63 @@ std::string attractor(const AttractorOptions& o) {
   return seed_member.empty() ? text : text.insert(text.size() - 2, seed_member);
 }
 
+namespace {
+
+json deviation_json(const verify::Deviation& d) {
+  return {{"max_abs", d.max_abs}, {"max_rel", d.max_rel}};
+}
+
+std::string check_verdict(bool pass) {
+  return pass ? "PASS: the attractor matches knot insertion and Cox-de Boor evaluation\n"
+              : "FAIL: a deviation exceeds the tolerance\n";
+}
+
+std::string check_surface(const nurbs::Surface& s, const CheckOptions& o, int& status) {
+  const verify::SurfaceCheckReport r = verify::check_surface(s, {o.depth, o.tolerance});
+  status = r.pass ? 0 : 1;
+  if (o.json) {
+    json patches = json::array();
+    for (const auto& p : r.patches)
+      patches.push_back({{"patch", p.patch},
+                         {"interval", {p.u, p.v}},
+                         {"nets", deviation_json(p.nets)},
+                         {"points", deviation_json(p.points)}});
+    return json{{"depth", r.depth},
+                {"tolerance", r.tolerance},
+                {"patches", patches},
+                {"nets", deviation_json(r.nets)},
+                {"points", deviation_json(r.points)},
+                {"pass", r.pass}}
+               .dump(1) +
+           "\n";
+  }
+  char line[240];
+  std::string out = "cifs check: depth " + std::to_string(r.depth) + ", " + std::to_string(r.patches.size()) +
+                    " patches, relative tolerance " + json(r.tolerance).dump() + "\n";
+  out +=
+      "  patch     u interval                  v interval                  nets max_abs  max_rel    "
+      "points max_abs  max_rel\n";
+  for (const auto& p : r.patches) {
+    std::snprintf(line, sizeof line,
+                  "  %3d,%-3d  [%-11.5g, %-11.5g]  [%-11.5g, %-11.5g]  %12.3e  %9.3e    %12.3e  %9.3e\n",
+                  p.patch[0], p.patch[1], p.u[0], p.u[1], p.v[0], p.v[1], p.nets.max_abs, p.nets.max_rel,
+                  p.points.max_abs, p.points.max_rel);
+    out += line;
+  }
+  std::snprintf(
+      line, sizeof line,
+      "  all                                                            %12.3e  %9.3e    %12.3e  %9.3e\n",
+      r.nets.max_abs, r.nets.max_rel, r.points.max_abs, r.points.max_rel);
+  out += line;
+  return out + check_verdict(r.pass);
+}
+
+}  // namespace
+
 std::string check(const CheckOptions& o, int& status) {
   const io::Shape shape = io::read_shape(o.shape);
   const auto* c = std::get_if<nurbs::Curve>(&shape);
-  if (!c) throw InvalidInput(o.shape.string() + ": check: only curves have a knot-doubling automaton so far");
+  if (!c) return check_surface(std::get<nurbs::Surface>(shape), o, status);
   const verify::CheckReport r = verify::check_curve(*c, {o.depth, o.tolerance});
   status = r.pass ? 0 : 1;
   if (o.json) {
@@ -237,13 +290,13 @@ std::string check(const CheckOptions& o, int& status) {
     for (const auto& s : r.segments)
       segments.push_back({{"segment", s.segment},
                           {"interval", {s.start, s.end}},
-                          {"nets", {{"max_abs", s.nets.max_abs}, {"max_rel", s.nets.max_rel}}},
-                          {"points", {{"max_abs", s.points.max_abs}, {"max_rel", s.points.max_rel}}}});
+                          {"nets", deviation_json(s.nets)},
+                          {"points", deviation_json(s.points)}});
     return json{{"depth", r.depth},
                 {"tolerance", r.tolerance},
                 {"segments", segments},
-                {"nets", {{"max_abs", r.nets.max_abs}, {"max_rel", r.nets.max_rel}}},
-                {"points", {{"max_abs", r.points.max_abs}, {"max_rel", r.points.max_rel}}},
+                {"nets", deviation_json(r.nets)},
+                {"points", deviation_json(r.points)},
                 {"pass", r.pass}}
                .dump(1) +
            "\n";
@@ -262,9 +315,7 @@ std::string check(const CheckOptions& o, int& status) {
                 "  all                                    %12.3e  %9.3e    %12.3e  %9.3e\n", r.nets.max_abs,
                 r.nets.max_rel, r.points.max_abs, r.points.max_rel);
   out += line;
-  out += r.pass ? "PASS: the attractor matches knot insertion and Cox-de Boor evaluation\n"
-                : "FAIL: a deviation exceeds the tolerance\n";
-  return out;
+  return out + check_verdict(r.pass);
 }
 
 std::string gallery(const std::filesystem::path& out) {

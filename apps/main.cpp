@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
   auto* check_cmd =
       app.add_subcommand("check", "Attractor vs knot insertion vs Cox-de Boor; exit 1 above tolerance");
   check_cmd->add_option("shape", ch.shape, "Shape file (.json or .obj)")->required();
-  check_cmd->add_option("--depth", ch.depth, "Depth K (2^K leaves per segment; default 8)");
+  check_cmd->add_option("--depth", ch.depth, "Depth K (2^K leaves per segment and direction; default 8)");
   check_cmd->add_option("--tolerance", ch.tolerance, "Relative tolerance (default 1e-12)");
   check_cmd->add_flag("--json", ch.json, "Machine-readable report");
   check_cmd->callback([&] { result = check(ch, status); });

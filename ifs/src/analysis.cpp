@@ -40,6 +40,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <sstream>
 
 #include "cifs/errors.hpp"
@@ -247,7 +248,19 @@ Eigen::RowVectorXd unit_fixed_point(const Eigen::MatrixXd& P, const std::string&
   }
   // ℓᵀ solves Kᵀ·ℓᵀ = 1.
   Eigen::RowVectorXd l = K.transpose().fullPivLu().solve(Eigen::VectorXd::Ones(n)).transpose();
-  return l / l.sum();  // Σℓ = 1 already up to rounding; make it exact to the last bit or so
+  l /= l.sum();  // Σℓ = 1 already up to rounding; make it exact to the last bit or so
+  // Polish by ℓ ← ℓ·P: the solve leaves eps-sized entries where ℓ is exactly 0 (a B-spline's basis
+  // function vanishing at the end of its piece), and for rational shapes such an entry multiplies a
+  // weight up to 1e6 times the others; the iteration damps them at the rate of the subdominant
+  // eigenvalues. Kept only when its residual stays at rounding level (a product whose other
+  // eigenvalues do not shrink could make it drift).
+  Eigen::RowVectorXd polished = l;
+  for (int k = 0; k < 64; ++k) polished = (polished * P).eval();
+  polished /= polished.sum();
+  const auto residual = [&](const Eigen::RowVectorXd& x) { return (x * P - x).cwiseAbs().maxCoeff(); };
+  const double floor = 4 * std::numeric_limits<double>::epsilon() * static_cast<double>(n) *
+                       l.cwiseAbs().sum() * P.cwiseAbs().rowwise().sum().maxCoeff();
+  return polished.allFinite() && residual(polished) <= std::max(residual(l), floor) ? polished : l;
 }
 
 /// The transition `child` of `s` (out-edge position).
@@ -346,57 +359,78 @@ Eigen::RowVectorXd fixed_point(const Automaton& automaton, StateId state, std::s
   return unit_fixed_point(P, context);
 }
 
+namespace {
+
+/// Per reachable state s, the functional λ_s of the address c(s)^∞ (child c(s) repeated, c chosen
+/// per state): follows the chosen children until a state repeats, takes the fixed point of the
+/// cycle product and propagates it back along the chain (λ_s = λ_child·M).
+template <class Child>
+std::vector<Eigen::RowVectorXd> chain_functionals(const Automaton& automaton, Child child_of,
+                                                  const std::string& what) {
+  const Graph& g = automaton.graph;
+  const auto n = boost::num_vertices(g);
+  std::vector<Eigen::RowVectorXd> F(n);
+  std::vector<char> done(n, 0);
+  const auto next = [&](StateId s) { return out_edge(g, s, child_of(s)); };
+  std::vector<std::ptrdiff_t> pos(n, -1);  // position of a state on the current chain
+  for (const StateId s0 : reachable_states(automaton)) {
+    if (done[s0]) continue;
+    // Follow the chain until a known state or a repetition.
+    std::vector<StateId> path;
+    StateId v = s0;
+    while (!done[v] && pos[v] < 0) {
+      pos[v] = static_cast<std::ptrdiff_t>(path.size());
+      path.push_back(v);
+      v = boost::target(next(v), g);
+    }
+    for (const StateId p : path) pos[p] = -1;
+    std::ptrdiff_t skip = -1;
+    if (!done[v]) {
+      // v = path[c] starts a cycle: its functional is the fixed point of the cycle product.
+      const auto c = static_cast<std::ptrdiff_t>(std::find(path.begin(), path.end(), v) - path.begin());
+      Eigen::MatrixXd P = Eigen::MatrixXd::Identity(g[v].size, g[v].size);
+      std::vector<int> word;
+      for (auto k = static_cast<std::size_t>(c); k < path.size(); ++k) {
+        P = (g[next(path[k])].matrix * P).eval();
+        word.push_back(static_cast<int>(child_of(path[k])));
+      }
+      F[v] = unit_fixed_point(P, what + " functional: the cycle " + detail::word_text(word) + " from " +
+                                     detail::state_label(automaton, v));
+      done[v] = 1;
+      skip = c;
+    }
+    // Back along the chain: the point of s is the point of its chosen child, λ_s·N = λ_child·(M·N).
+    for (auto k = static_cast<std::ptrdiff_t>(path.size()) - 1; k >= 0; --k) {
+      if (k == skip) continue;
+      const auto e = next(path[static_cast<std::size_t>(k)]);
+      F[path[static_cast<std::size_t>(k)]] = F[boost::target(e, g)] * g[e].matrix;
+      done[path[static_cast<std::size_t>(k)]] = 1;
+    }
+  }
+  return F;
+}
+
+}  // namespace
+
 EndFunctionals end_functionals(const Automaton& automaton) {
   validate(automaton);
   const Graph& g = automaton.graph;
-  const auto n = boost::num_vertices(g);
-  EndFunctionals out;
-  out.start.resize(n);
-  out.end.resize(n);
-  const auto states = reachable_states(automaton);
-  for (const bool last : {false, true}) {
-    auto& F = last ? out.end : out.start;
-    std::vector<char> done(n, 0);
-    const auto next = [&](StateId s) { return out_edge(g, s, last ? boost::out_degree(s, g) - 1 : 0); };
-    std::vector<std::ptrdiff_t> pos(n, -1);  // position of a state on the current chain
-    for (const StateId s0 : states) {
-      if (done[s0]) continue;
-      // Follow the chain until a known state or a repetition.
-      std::vector<StateId> path;
-      StateId v = s0;
-      while (!done[v] && pos[v] < 0) {
-        pos[v] = static_cast<std::ptrdiff_t>(path.size());
-        path.push_back(v);
-        v = boost::target(next(v), g);
-      }
-      for (const StateId p : path) pos[p] = -1;
-      std::ptrdiff_t skip = -1;
-      if (!done[v]) {
-        // v = path[c] starts a cycle: its functional is the fixed point of the cycle product.
-        const auto c = static_cast<std::ptrdiff_t>(std::find(path.begin(), path.end(), v) - path.begin());
-        Eigen::MatrixXd P = Eigen::MatrixXd::Identity(g[v].size, g[v].size);
-        std::vector<int> word;
-        for (auto k = static_cast<std::size_t>(c); k < path.size(); ++k) {
-          P = (g[next(path[k])].matrix * P).eval();
-          word.push_back(last ? static_cast<int>(boost::out_degree(path[k], g)) - 1 : 0);
-        }
-        F[v] =
-            unit_fixed_point(P, std::string(last ? "end" : "start") + " functional: the cycle " +
-                                    detail::word_text(word) + " from " + detail::state_label(automaton, v));
-        done[v] = 1;
-        skip = c;
-      }
-      // Back along the chain: the start (end) of s is the start (end) of its first (last) child,
-      // λ_s·N = λ_child·(M·N).
-      for (auto k = static_cast<std::ptrdiff_t>(path.size()) - 1; k >= 0; --k) {
-        if (k == skip) continue;
-        const auto e = next(path[static_cast<std::size_t>(k)]);
-        F[path[static_cast<std::size_t>(k)]] = F[boost::target(e, g)] * g[e].matrix;
-        done[path[static_cast<std::size_t>(k)]] = 1;
-      }
-    }
-  }
-  return out;
+  return EndFunctionals{chain_functionals(
+                            automaton, [](StateId) { return std::size_t{0}; }, "start"),
+                        chain_functionals(
+                            automaton, [&](StateId s) { return boost::out_degree(s, g) - 1; }, "end")};
+}
+
+std::vector<Eigen::RowVectorXd> repeated_child_functionals(const Automaton& automaton, int child) {
+  validate(automaton);
+  const Graph& g = automaton.graph;
+  for (const StateId s : reachable_states(automaton))
+    if (child < 0 || static_cast<std::size_t>(child) >= boost::out_degree(s, g))
+      throw InvalidInput("repeated_child_functionals: child " + std::to_string(child) + " but " +
+                         detail::state_label(automaton, s) + " has " +
+                         std::to_string(boost::out_degree(s, g)) + " children");
+  return chain_functionals(
+      automaton, [&](StateId) { return static_cast<std::size_t>(child); }, "child-" + std::to_string(child));
 }
 
 std::vector<std::complex<double>> eigenvalues(const Eigen::MatrixXd& M) {

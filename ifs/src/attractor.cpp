@@ -119,44 +119,6 @@ std::size_t total_count(const Automaton& automaton, const std::vector<std::size_
 
 using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-/// out (`F.rows() by C`, row-major, contiguous) = F (`rows by n`) · N (`n by C`). The hot loop of
-/// attractor_points: n·C multiply-adds per point, the point's coordinates kept in registers.
-template <int C>
-void emit_fixed(const RowMatrix& F, const Points& N, double* out) noexcept {
-  const Eigen::Index rows = F.rows(), n = F.cols();
-  const double* f = F.data();
-  const double* p = N.data();
-  for (Eigen::Index r = 0; r < rows; ++r, f += n, out += C) {
-    double acc[C] = {};
-    for (Eigen::Index k = 0; k < n; ++k)
-      for (int c = 0; c < C; ++c) acc[c] += f[k] * p[k * C + c];
-    for (int c = 0; c < C; ++c) out[c] = acc[c];
-  }
-}
-
-void emit(const RowMatrix& F, const Points& N, double* out) noexcept {
-  switch (N.cols()) {
-    case 1:
-      return emit_fixed<1>(F, N, out);
-    case 2:
-      return emit_fixed<2>(F, N, out);
-    case 3:
-      return emit_fixed<3>(F, N, out);
-    case 4:
-      return emit_fixed<4>(F, N, out);
-    default: {
-      const Eigen::Index rows = F.rows(), n = F.cols(), C = N.cols();
-      for (Eigen::Index r = 0; r < rows; ++r, out += C) {
-        for (Eigen::Index c = 0; c < C; ++c) out[c] = 0;
-        for (Eigen::Index k = 0; k < n; ++k) {
-          const double w = F(r, k);
-          for (Eigen::Index c = 0; c < C; ++c) out[c] += w * N(k, c);
-        }
-      }
-    }
-  }
-}
-
 }  // namespace
 
 std::size_t attractor_point_count(const Automaton& automaton, int depth, bool closed) {
@@ -239,7 +201,7 @@ Points attractor_points(const Automaton& automaton, std::span<const Points> nets
   detail::depth_first(automaton, nets, depth - L,
                       [&](std::size_t, StateId s, const Points& net, int d, std::span<const int>) {
                         if (d < depth - L) return true;
-                        emit(table[s], net, cursor);
+                        detail::emit(table[s].data(), table[s].rows(), table[s].cols(), net, cursor);
                         cursor += table[s].rows() * static_cast<Eigen::Index>(cols);
                         return false;
                       });

@@ -75,4 +75,38 @@ void depth_first(const Automaton& automaton, std::span<const Points> nets, int m
   }
 }
 
+/// out (`rows by C`, row-major, contiguous) = F (`rows by n`, row-major at `F`) · N (`n by C`): the
+/// hot loop of the stencil-table routes, n·C multiply-adds per point, the point kept in registers.
+template <int C>
+void emit_fixed(const double* f, Eigen::Index rows, Eigen::Index n, const Points& N, double* out) noexcept {
+  const double* p = N.data();
+  for (Eigen::Index r = 0; r < rows; ++r, f += n, out += C) {
+    double acc[C] = {};
+    for (Eigen::Index k = 0; k < n; ++k)
+      for (int c = 0; c < C; ++c) acc[c] += f[k] * p[k * C + c];
+    for (int c = 0; c < C; ++c) out[c] = acc[c];
+  }
+}
+
+inline void emit(const double* f, Eigen::Index rows, Eigen::Index n, const Points& N, double* out) noexcept {
+  switch (N.cols()) {
+    case 1:
+      return emit_fixed<1>(f, rows, n, N, out);
+    case 2:
+      return emit_fixed<2>(f, rows, n, N, out);
+    case 3:
+      return emit_fixed<3>(f, rows, n, N, out);
+    case 4:
+      return emit_fixed<4>(f, rows, n, N, out);
+    default: {
+      const Eigen::Index C = N.cols();
+      for (Eigen::Index r = 0; r < rows; ++r, f += n, out += C) {
+        for (Eigen::Index c = 0; c < C; ++c) out[c] = 0;
+        for (Eigen::Index k = 0; k < n; ++k)
+          for (Eigen::Index c = 0; c < C; ++c) out[c] += f[k] * N(k, c);
+      }
+    }
+  }
+}
+
 }  // namespace cifs::ifs::detail

@@ -166,6 +166,21 @@ TEST_CASE("cifs automaton, attractor and check", "[cli]") {
   check_error(cifs_cli("attractor " + shape + " --depth 3 --format png"), "--format 'png'");
   check_error(cifs_cli("attractor " + shape + " --depth 40"), "");
   check_error(cifs_cli("check " + shape + " --depth 31"), "depth 31 is outside [0, 30]");
+
+  // Surfaces: per patch, the same options and report.
+  const std::string surface = file("s.json", kSurface);
+  const Run sok = cifs_cli("check " + surface + " --depth 5 --json");
+  REQUIRE(sok.status == 0);
+  const json sreport = json::parse(sok.out);
+  CHECK(sreport["pass"] == true);
+  REQUIRE(sreport["patches"].size() == 1);
+  CHECK(sreport["patches"][0]["interval"] == json::parse("[[0, 1], [0, 1]]"));
+  CHECK(sreport["points"]["max_rel"].get<double>() <= 1e-12);
+  const Run stext = cifs_cli("check " + surface + " --depth 3");
+  CHECK(stext.status == 0);
+  CHECK_THAT(stext.out, Catch::Contains("1 patches") && Catch::Contains("PASS"));
+  CHECK(cifs_cli("check " + surface + " --depth 3 --tolerance 1e-30").status == 1);
+  check_error(cifs_cli("check " + surface + " --depth 14"), "lower --depth");
   check_error(cifs_cli("automaton " + file("s.json", kSurface)), "only curves");
 }
 

@@ -4,8 +4,10 @@
 #include <cmath>
 
 #include "cifs/automata/automaton.hpp"
+#include "cifs/automata/tensor.hpp"
 #include "cifs/errors.hpp"
 #include "cifs/ifs/attractor.hpp"
+#include "cifs/ifs/mesh.hpp"
 #include "cifs/nurbs/doubling.hpp"
 #include "cifs/nurbs/refine.hpp"
 
@@ -15,9 +17,53 @@ namespace {
 /// Most knots the references may insert (about 8 bytes × (d+1)·dim each, kept in memory at once).
 constexpr double kMaxInsertedKnots = 1 << 26;
 
-/// The segment on span k as its own curve: d + 1 points, the window's knots relative to the
-/// segment start, extended by d pad knots and points on each side so that the domain covers the
-/// whole window (pads do not change the window's pieces' blossoms, which is all that matters).
+/// The knots of the segment on span k in its own coordinates: the window's knots relative to the
+/// segment start, extended by pads on each side so that the domain covers the whole window (pads
+/// do not change the window's pieces' blossoms, which is all that matters).
+struct LocalKnots {
+  nurbs::Knots wide;           // 3d + 1 points: domain = the window
+  nurbs::Knots piece;          // d + 1 points: domain = the segment [0, length]
+  std::vector<double> window;  // window knots T_0 … T_{2d−1}, T_{d−1} = 0
+};
+
+LocalKnots local_knots(std::span<const double> t, int d, int k) {
+  const nurbs::Window w = nurbs::segment_window(t, d, k);
+  std::vector<double> T(static_cast<std::size_t>(2 * d));
+  for (int i = d - 1; i + 1 < 2 * d; ++i)
+    T[static_cast<std::size_t>(i + 1)] = T[static_cast<std::size_t>(i)] + w[static_cast<std::size_t>(i)];
+  for (int i = d - 1; i > 0; --i)
+    T[static_cast<std::size_t>(i - 1)] = T[static_cast<std::size_t>(i)] - w[static_cast<std::size_t>(i - 1)];
+  const double pad = T.back() - T.front();
+  LocalKnots out;
+  out.piece = {T.front() - pad};
+  out.piece.insert(out.piece.end(), T.begin(), T.end());
+  out.piece.push_back(T.back() + pad);
+  for (int i = d + 1; i >= 1; --i) out.wide.push_back(T.front() - i * pad);
+  out.wide.insert(out.wide.end(), T.begin(), T.end());
+  for (int i = 1; i <= d + 1; ++i) out.wide.push_back(T.back() + i * pad);
+  out.window = std::move(T);
+  return out;
+}
+
+/// Row i of the wide net (3d + 1 points) repeats the segment's net row clamp(i − d, 0, d).
+int wide_row(int i, int d) {
+  return std::clamp(i - d, 0, d);
+}
+
+/// Every dyadic knot of depth K inside every inter-knot of the window: inserting them splits the
+/// window the way K levels of knot doubling do.
+std::vector<double> dyadic_knots(const std::vector<double>& T, double leaves) {
+  std::vector<double> dyadic;
+  for (std::size_t j = 0; j + 1 < T.size(); ++j) {
+    const double step = (T[j + 1] - T[j]) / leaves;
+    if (step > 0)
+      for (long long m = 1; m < static_cast<long long>(leaves); ++m)
+        dyadic.push_back(T[j] + static_cast<double>(m) * step);
+  }
+  return dyadic;
+}
+
+/// The segment on span k as its own curve (see LocalKnots).
 struct LocalSegment {
   nurbs::Curve curve;          // domain = the window
   nurbs::Curve piece;          // domain = the segment [0, length]
@@ -26,28 +72,13 @@ struct LocalSegment {
 
 LocalSegment local_segment(const nurbs::Curve& c, int k) {
   const int d = c.degree;
-  const nurbs::Window w = nurbs::segment_window(c.knots, d, k);
-  std::vector<double> T(static_cast<std::size_t>(2 * d));
-  for (int i = d - 1; i + 1 < 2 * d; ++i)
-    T[static_cast<std::size_t>(i + 1)] = T[static_cast<std::size_t>(i)] + w[static_cast<std::size_t>(i)];
-  for (int i = d - 1; i > 0; --i)
-    T[static_cast<std::size_t>(i - 1)] = T[static_cast<std::size_t>(i)] - w[static_cast<std::size_t>(i - 1)];
-  const double pad = T.back() - T.front();
+  LocalKnots knots = local_knots(c.knots, d, k);
   const Points net = c.P.middleRows(k - d, d + 1);
-
-  nurbs::Knots piece_knots{T.front() - pad};
-  piece_knots.insert(piece_knots.end(), T.begin(), T.end());
-  piece_knots.push_back(T.back() + pad);
-  LocalSegment out{{}, nurbs::Curve{d, std::move(piece_knots), net, c.rational, false}, T};
-
-  nurbs::Knots knots;
-  for (int i = d + 1; i >= 1; --i) knots.push_back(T.front() - i * pad);
-  knots.insert(knots.end(), T.begin(), T.end());
-  for (int i = 1; i <= d + 1; ++i) knots.push_back(T.back() + i * pad);
   Points P(3 * d + 1, net.cols());
-  for (int i = 0; i < P.rows(); ++i) P.row(i) = net.row(std::clamp(i - d, 0, d));
-  out.curve = nurbs::Curve{d, std::move(knots), std::move(P), c.rational, false};
-  return out;
+  for (int i = 0; i < P.rows(); ++i) P.row(i) = net.row(wide_row(i, d));
+  return LocalSegment{nurbs::Curve{d, std::move(knots.wide), std::move(P), c.rational, false},
+                      nurbs::Curve{d, std::move(knots.piece), net, c.rational, false},
+                      std::move(knots.window)};
 }
 
 /// Cartesian rows and weights of stored rows.
@@ -91,15 +122,7 @@ CheckReport check_curve(const nurbs::Curve& c, const CheckOptions& o) {
   std::vector<nurbs::Curve> refined;  // (a) references: every dyadic knot of every inter-knot of the window
   for (const automata::Initial& init : a.initial) {
     locals.push_back(local_segment(c, init.span));
-    const std::vector<double>& T = locals.back().window;
-    std::vector<double> dyadic;
-    for (std::size_t j = 0; j + 1 < T.size(); ++j) {
-      const double step = (T[j + 1] - T[j]) / leaves;
-      if (step > 0)
-        for (long long m = 1; m < static_cast<long long>(leaves); ++m)
-          dyadic.push_back(T[j] + static_cast<double>(m) * step);
-    }
-    refined.push_back(nurbs::refine(locals.back().curve, dyadic));
+    refined.push_back(nurbs::refine(locals.back().curve, dyadic_knots(locals.back().window, leaves)));
     report.segments.push_back(SegmentReport{init.segment, init.start, init.end, {}, {}});
   }
   const auto length = [&](std::size_t i) { return locals[i].window[static_cast<std::size_t>(d)]; };
@@ -138,6 +161,146 @@ CheckReport check_curve(const nurbs::Curve& c, const CheckOptions& o) {
   for (const SegmentReport& seg : report.segments) {
     merge(report.nets, seg.nets);
     merge(report.points, seg.points);
+  }
+  report.pass = report.nets.max_rel <= o.tolerance && report.points.max_rel <= o.tolerance;
+  return report;
+}
+
+namespace {
+
+/// Most points one patch's reference may hold (about 8 bytes × cols each).
+constexpr double kMaxReferencePoints = 1 << 23;
+
+/// Patch (a, b) in its own coordinates: the wide surface (domain = both windows) and the patch.
+struct LocalPatch {
+  nurbs::Surface wide, piece;
+  std::array<double, 2> length{};
+};
+
+LocalPatch local_patch(const nurbs::Surface& s, const Points& net, const std::array<LocalKnots, 2>& k) {
+  const int p = s.degree[0], q = s.degree[1];
+  Points W((3 * p + 1) * (3 * q + 1), net.cols());
+  for (int i = 0; i <= 3 * p; ++i)
+    for (int j = 0; j <= 3 * q; ++j)
+      W.row(i * (3 * q + 1) + j) = net.row(wide_row(i, p) * (q + 1) + wide_row(j, q));
+  LocalPatch out;
+  out.wide =
+      nurbs::Surface{s.degree, {k[0].wide, k[1].wide}, {3 * p + 1, 3 * q + 1}, std::move(W), s.rational};
+  out.piece = nurbs::Surface{s.degree, {k[0].piece, k[1].piece}, {p + 1, q + 1}, net, s.rational};
+  out.length = {k[0].window[static_cast<std::size_t>(p)], k[1].window[static_cast<std::size_t>(q)]};
+  return out;
+}
+
+}  // namespace
+
+SurfaceCheckReport check_surface(const nurbs::Surface& s, const CheckOptions& o) {
+  if (o.depth < 0 || o.depth > 30)
+    throw InvalidInput("check: depth " + std::to_string(o.depth) + " is outside [0, 30]");
+  if (!(o.tolerance > 0)) throw InvalidInput("check: the tolerance must be positive");
+  nurbs::validate(s);
+  const int p = s.degree[0], q = s.degree[1];
+  const double leaves = std::ldexp(1.0, o.depth);
+  // Reference size of one patch: the wide net refined by (2d − 1)(2^K − 1) knots per direction.
+  const double reference =
+      (3 * p + 1 + (2 * p - 1) * (leaves - 1)) * (3 * q + 1 + (2 * q - 1) * (leaves - 1));
+  if (reference > kMaxReferencePoints)
+    throw InvalidInput("check: depth " + std::to_string(o.depth) + " needs references of " +
+                       std::to_string(static_cast<long long>(reference)) +
+                       " control points per patch (limit 2^23, about the memory of the machine's budget); "
+                       "lower --depth");
+  const automata::TensorAutomaton t = automata::tensor_automaton(s);
+  const std::vector<Points> nets = automata::initial_nets(t, s);
+  const Points cart = nurbs::cartesian_points(s);
+  const double scale = std::max(cart.cwiseAbs().maxCoeff(), 1e-300);
+  const double weight_scale = nurbs::weights(s).maxCoeff();
+
+  std::array<std::vector<LocalKnots>, 2> knots;
+  for (std::size_t dir = 0; dir < 2; ++dir)
+    for (const automata::Initial& init : t.factors[dir].initial)
+      knots[dir].push_back(local_knots(s.knots[dir], s.degree[dir], init.span));
+  SurfaceCheckReport report{o.depth, o.tolerance, {}, {}, {}, false};
+  std::vector<LocalPatch> locals;
+  for (std::size_t k = 0; k < t.patches.size(); ++k) {
+    const auto [a, b] = t.patches[k];
+    const automata::Initial& iu = t.factors[0].initial[static_cast<std::size_t>(a)];
+    const automata::Initial& iv = t.factors[1].initial[static_cast<std::size_t>(b)];
+    locals.push_back(local_patch(
+        s, nets[k], {knots[0][static_cast<std::size_t>(a)], knots[1][static_cast<std::size_t>(b)]}));
+    report.patches.push_back(PatchReport{{a, b}, {iu.start, iu.end}, {iv.start, iv.end}, {}, {}});
+  }
+
+  // (a) Leaf nets against the refined wide patch, one patch's reference in memory at a time (the
+  // leaves come patch by patch).
+  std::size_t current = t.patches.size();
+  nurbs::Surface refined;
+  ifs::for_each_leaf(t.product, nets, o.depth, [&](const ifs::Leaf& leaf) {
+    const std::size_t k = leaf.initial;
+    const LocalPatch& local = locals[k];
+    if (k != current) {
+      const auto [a, b] = t.patches[k];
+      refined = nurbs::refine(local.wide, nurbs::Direction::u,
+                              dyadic_knots(knots[0][static_cast<std::size_t>(a)].window, leaves));
+      refined = nurbs::refine(refined, nurbs::Direction::v,
+                              dyadic_knots(knots[1][static_cast<std::size_t>(b)].window, leaves));
+      current = k;
+    }
+    long long iu = 0, iv = 0;
+    for (int c : leaf.word) {
+      iu = 2 * iu + c / 2;
+      iv = 2 * iv + c % 2;
+    }
+    // The inserted knots, bit for bit.
+    const double u = static_cast<double>(iu) * (local.length[0] / leaves);
+    const double v = static_cast<double>(iv) * (local.length[1] / leaves);
+    const int su = nurbs::find_span(refined.knots[0], p, u), sv = nurbs::find_span(refined.knots[1], q, v);
+    Points expected(leaf.net.rows(), leaf.net.cols());
+    for (int i = 0; i <= p; ++i)
+      expected.middleRows(i * (q + 1), q + 1) =
+          refined.P.middleRows((su - p + i) * refined.count[1] + sv - q, q + 1);
+    PatchReport& patch = report.patches[k];
+    track(patch.nets,
+          (cartesian_rows(leaf.net, s.rational) - cartesian_rows(expected, s.rational))
+              .rowwise()
+              .norm()
+              .maxCoeff(),
+          scale);
+    if (s.rational)
+      track(patch.nets,
+            (leaf.net.col(leaf.net.cols() - 1) - expected.col(expected.cols() - 1)).cwiseAbs().maxCoeff(),
+            weight_scale);
+  });
+
+  // (b) Mesh vertices against evaluate_grid, each in the patch that owns it.
+  ifs::MeshOptions mesh_options;
+  mesh_options.homogeneous = s.rational;
+  const ifs::QuadMesh mesh = ifs::surface_mesh(t, nets, o.depth, mesh_options);
+  const int A = static_cast<int>(t.factors[0].initial.size()),
+            B = static_cast<int>(t.factors[1].initial.size());
+  const auto n = static_cast<int>(leaves);
+  const Eigen::Index row = static_cast<Eigen::Index>(B) * n + 1;
+  const auto parameters = [&](double length, int count) {
+    std::vector<double> ts(static_cast<std::size_t>(count));
+    for (int m = 0; m < count; ++m) ts[static_cast<std::size_t>(m)] = m * (length / leaves);
+    return ts;
+  };
+  for (std::size_t k = 0; k < t.patches.size(); ++k) {
+    const auto [a, b] = t.patches[k];
+    const int rows = n + (a + 1 == A ? 1 : 0), cols = n + (b + 1 == B ? 1 : 0);
+    const Points expected = nurbs::evaluate_grid(locals[k].piece, parameters(locals[k].length[0], rows),
+                                                 parameters(locals[k].length[1], cols));
+    for (int i = 0; i < rows; ++i)
+      track(report.patches[k].points,
+            (mesh.vertices.middleRows(
+                 (static_cast<Eigen::Index>(a) * n + i) * row + static_cast<Eigen::Index>(b) * n, cols) -
+             expected.middleRows(static_cast<Eigen::Index>(i) * cols, cols))
+                .rowwise()
+                .norm()
+                .maxCoeff(),
+            scale);
+  }
+  for (const PatchReport& patch : report.patches) {
+    merge(report.nets, patch.nets);
+    merge(report.points, patch.points);
   }
   report.pass = report.nets.max_rel <= o.tolerance && report.points.max_rel <= o.tolerance;
   return report;

@@ -85,6 +85,13 @@ struct EndFunctionals {
 /// and propagates it back along the chain (λ_s = λ_child·M). Throws as fixed_point.
 EndFunctionals end_functionals(const automata::Automaton& automaton);
 
+/// Per state, the functional of the address k^∞ (child `child` repeated): `F[s]·N` is that point
+/// of the attractor piece of s under a net N (`1 by size(s)`, indexed by StateId, empty for states
+/// that are not reachable). For the four children GH, GB, DH, DB of a tensor-product automaton these
+/// are the piece's corners (u, v) = (0, 0), (0, 1), (1, 0), (1, 1). Throws InvalidInput when a
+/// reachable state has no child `child`, and as fixed_point.
+std::vector<Eigen::RowVectorXd> repeated_child_functionals(const automata::Automaton& automaton, int child);
+
 /// Eigenvalues of one transition matrix, sorted by decreasing modulus (ties: real part, then
 /// imaginary part, decreasing).
 struct TransitionSpectrum {

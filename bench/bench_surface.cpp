@@ -1,0 +1,141 @@
+// SPDX-License-Identifier: MIT
+// cifs — the quad-mesh attractor of a bicubic NURBS surface (separable and generic routes) against
+// evaluating the same dyadic grid with the NURBS core (evaluate_grid) and with SISL's grid
+// evaluator s1506. Licence: cifs code under MIT; with CIFS_HAVE_SISL the executable links SISL
+// (GNU AGPL v3), see bench/CMakeLists.txt. `per_pt` is CPU ns per grid point.
+//
+// The meshes also fill their quads and leaf states (20 bytes per quad); the grid evaluators return
+// points only.
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "cifs/automata/tensor.hpp"
+#include "cifs/ifs/mesh.hpp"
+#include "sisl_adapters.hpp"
+
+namespace {
+
+using namespace cifs_bench;
+namespace automata = cifs::automata;
+namespace ifs = cifs::ifs;
+
+constexpr int kDepth = 8;
+
+/// Bicubic, 8 × 8 control points in [−10, 10]³, clamped non-uniform knots: 5 × 5 patches; the
+/// mesh at depth 8 has 1281² vertices.
+struct SurfaceCase {
+  nurbs::Surface surface;
+  automata::TensorAutomaton automaton;
+  std::vector<Points> nets;
+  std::vector<double> us, vs;  // the dyadic parameters of the mesh nodes, per direction
+};
+
+std::vector<double> node_parameters(const nurbs::Knots& t, int p) {
+  const std::vector<double> b = nurbs::breakpoints(t, p);
+  const double side = std::ldexp(1.0, kDepth);
+  std::vector<double> out;
+  for (std::size_t a = 0; a + 1 < b.size(); ++a)
+    for (int j = 0; j < (1 << kDepth); ++j) out.push_back(b[a] + (b[a + 1] - b[a]) * (j / side));
+  out.push_back(b.back());
+  return out;
+}
+
+SurfaceCase make_case() {
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> coord(-10, 10), length(1, 4);
+  const int n = 8, p = 3;
+  std::array<nurbs::Knots, 2> knots;
+  for (auto& t : knots) {
+    t.assign(static_cast<std::size_t>(n + p + 1), 0.0);
+    for (int i = p + 1; i <= n; ++i)
+      t[static_cast<std::size_t>(i)] = t[static_cast<std::size_t>(i - 1)] + length(rng);
+    for (int i = n + 1; i <= n + p; ++i) t[static_cast<std::size_t>(i)] = t[static_cast<std::size_t>(n)];
+  }
+  Points P(n * n, 3);
+  for (Eigen::Index i = 0; i < P.size(); ++i) P.data()[i] = coord(rng);
+  SurfaceCase c{nurbs::make_surface({p, p}, knots, {n, n}, P), {}, {}, {}, {}};
+  c.automaton = automata::tensor_automaton(c.surface);
+  c.nets = automata::initial_nets(c.automaton, c.surface);
+  c.us = node_parameters(c.surface.knots[0], p);
+  c.vs = node_parameters(c.surface.knots[1], p);
+  // Cross-check once: both meshes are the surface at the dyadic nodes, in evaluate_grid's order.
+  const Points E = nurbs::evaluate_grid(c.surface, c.us, c.vs);
+  const Points A = ifs::surface_mesh(c.automaton, c.nets, kDepth).vertices;
+  const Points G = ifs::quad_mesh(c.automaton.product, c.nets, c.automaton.patches, kDepth).vertices;
+  const double gap = std::max((A - E).cwiseAbs().maxCoeff(), (G - E).cwiseAbs().maxCoeff());
+  if (A.rows() != E.rows() || G.rows() != E.rows() || !(gap <= 1e-12 * 10)) {
+    std::fprintf(stderr, "cifs_bench_surface: mesh and evaluation differ by %g\n", gap);
+    std::abort();
+  }
+  return c;
+}
+
+const SurfaceCase& the_case() {
+  static const SurfaceCase c = make_case();
+  return c;
+}
+
+void report(benchmark::State& state, std::size_t points) {
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(points));
+  state.counters["per_pt"] =
+      benchmark::Counter(static_cast<double>(points),
+                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+std::size_t point_count(const SurfaceCase& c) {
+  return c.us.size() * c.vs.size();
+}
+
+void BM_surface_separable(benchmark::State& state) {
+  const SurfaceCase& c = the_case();
+  for (auto _ : state) {
+    ifs::QuadMesh m = ifs::surface_mesh(c.automaton, c.nets, kDepth);
+    benchmark::DoNotOptimize(m.vertices.data());
+  }
+  report(state, point_count(c));
+}
+
+void BM_surface_generic(benchmark::State& state) {
+  const SurfaceCase& c = the_case();
+  for (auto _ : state) {
+    ifs::QuadMesh m = ifs::quad_mesh(c.automaton.product, c.nets, c.automaton.patches, kDepth);
+    benchmark::DoNotOptimize(m.vertices.data());
+  }
+  report(state, point_count(c));
+}
+
+void BM_surface_grid(benchmark::State& state) {
+  const SurfaceCase& c = the_case();
+  for (auto _ : state) {
+    Points E = nurbs::evaluate_grid(c.surface, c.us, c.vs);
+    benchmark::DoNotOptimize(E.data());
+  }
+  report(state, point_count(c));
+}
+
+#ifdef CIFS_HAVE_SISL
+void BM_surface_sisl_s1506(benchmark::State& state) {
+  const SurfaceCase& c = the_case();
+  const SislSurfPtr s = to_sisl(c.surface);
+  std::vector<double> us = c.us, vs = c.vs;
+  std::vector<double> out(point_count(c) * 3), normals(point_count(c) * 3);
+  for (auto _ : state) {
+    require_sisl_ok(sisl_grid(s.get(), us, vs, out.data(), normals.data()), "s1506");
+    benchmark::DoNotOptimize(out.data());
+  }
+  report(state, point_count(c));
+}
+BENCHMARK(BM_surface_sisl_s1506)->Unit(benchmark::kMillisecond);
+#endif
+
+BENCHMARK(BM_surface_separable)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_surface_generic)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_surface_grid)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,75 @@
+// SPDX-License-Identifier: MIT
+// cifs — attractors of surface automata as watertight quad meshes: the separable route for
+// tensor-product (NURBS) automata and the generic route for any automaton with four children per
+// state in the GH, GB, DH, DB layout (fractal, perturbed surfaces).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "cifs/automata/automaton.hpp"
+#include "cifs/automata/tensor.hpp"
+#include "cifs/types.hpp"
+
+namespace cifs::ifs {
+
+/// The attractor at depth K of a grid of A × B patches as one quad mesh over the global grid of
+/// (A·2^K + 1) × (B·2^K + 1) nodes, node (I, J) — I along u, J along v — being vertex
+/// `I·(B·2^K + 1) + J` (u-major). Patch (a, b) covers the nodes a·2^K … (a+1)·2^K by
+/// b·2^K … (b+1)·2^K; neighbouring leaves and patches share their boundary nodes, so the mesh is
+/// watertight by construction.
+///
+/// - `vertices`: `#V by dim` (Cartesian when the nets were homogeneous and `homogeneous` was set,
+///   otherwise the nets' columns as they are);
+/// - `quads`: one per leaf, cell (I, J) at index `I·(B·2^K) + J`, corners
+///   `(I, J), (I+1, J), (I+1, J+1), (I, J+1)`: counter-clockwise in the (u, v) parameter plane, so
+///   the face normal points along S_u × S_v;
+/// - `quad_state`: the automaton state of that leaf.
+///
+/// The node (I, J) is the attractor point of the leaf cell `(min(I, A·2^K − 1), min(J, B·2^K − 1))`
+/// at its corner: each node is computed once, by that one leaf.
+struct QuadMesh {
+  Points vertices;
+  std::vector<std::array<int, 4>> quads;
+  std::vector<std::uint32_t> quad_state;
+};
+
+struct MeshOptions {
+  /// The nets hold homogeneous rows `(w·x, w)` (rational surfaces): vertices are divided by w.
+  bool homogeneous = false;
+  /// Refuse (before any work) a mesh larger than this many bytes (vertices, quads and states).
+  std::size_t max_bytes = std::size_t{1} << 30;
+  /// Generic route: depth L of the precomposed stencil tables ((2^L + 1)² functionals per state;
+  /// lowered automatically so that the tables stay below half of the output).
+  int max_table_depth = 6;
+};
+
+/// Bytes of a mesh of `vertices` nodes with `cols` coordinates and `quads` quads (saturating).
+std::size_t mesh_bytes(std::size_t vertices, std::size_t cols, std::size_t quads) noexcept;
+
+/// Separable route for a tensor-product automaton (nets from automata::initial_nets, `(p+1)(q+1) by
+/// cols`, row i·(q+1) + j). The curve stencil tables F_u (`A·2^K + 1 by p + 1`) and F_v of the two
+/// factor automata — row I is the functional, on the net of the segment owning node I, of the
+/// point at node I (attractor_points of the factor with identity nets) — give every patch's block
+/// as F_u·N·F_vᵀ per coordinate: (q + 1) multiply-adds per vertex coordinate after a u pass that
+/// costs (p + 1)(q + 1) per *row* of the block, against (p + 1)(q + 1) per vertex coordinate for
+/// Kronecker tables. Throws InvalidInput for a negative depth, nets that do not fit, or a mesh
+/// above `options.max_bytes`.
+QuadMesh surface_mesh(const automata::TensorAutomaton& automaton, std::span<const Points> nets, int depth,
+                      const MeshOptions& options = {});
+
+/// Generic route: any automaton whose reachable states have exactly four children in the GH, GB,
+/// DH, DB layout (child 2·iu + iv covers the u-half iu and the v-half iv of its parent's square),
+/// with general matrices (`to.size by from.size`, rows summing to 1). `patches[i]` places
+/// `automaton.initial[i]` at (a, b) in a grid that the patches must fill exactly once. Corner points
+/// are the fixed points of the corner words (child k repeated, repeated_child_functionals); the
+/// subdivision tree is walked to depth K − L and each node emits its block through stencil tables
+/// of depth L. Throws InvalidInput as surface_mesh, and for a state without four children or
+/// patches that do not tile a grid.
+QuadMesh quad_mesh(const automata::Automaton& automaton, std::span<const Points> nets,
+                   std::span<const std::array<int, 2>> patches, int depth, const MeshOptions& options = {});
+
+}  // namespace cifs::ifs

@@ -1,0 +1,304 @@
+// SPDX-License-Identifier: MIT
+// cifs — quad meshes of surface attractors: separable (tensor-product) and generic routes.
+#include "cifs/ifs/mesh.hpp"
+
+#include <algorithm>
+#include <climits>
+#include <sstream>
+
+#include "cifs/errors.hpp"
+#include "cifs/ifs/analysis.hpp"
+#include "cifs/ifs/attractor.hpp"
+#include "walk.hpp"
+
+namespace cifs::ifs {
+
+using automata::Automaton;
+using automata::Graph;
+using automata::StateId;
+
+namespace {
+
+constexpr std::size_t saturated = std::numeric_limits<std::size_t>::max();
+
+std::size_t mul_sat(std::size_t a, std::size_t b) noexcept {
+  return (a != 0 && b > saturated / a) ? saturated : a * b;
+}
+
+/// The global node grid of A × B patches at depth K: cells (A·2^K) × (B·2^K), nodes one more each way.
+struct Grid {
+  int A = 0, B = 0, depth = 0;
+  int cu = 0, cv = 0;  // cells along u and v
+  int side = 0;        // 2^K: cells per patch and direction
+  std::size_t vertices = 0, quads = 0;
+};
+
+/// Checks the depth and the sizes, and refuses a mesh above the byte limit before any work.
+Grid make_grid(int A, int B, int depth, std::size_t cols, const MeshOptions& options,
+               const std::string& who) {
+  if (depth < 0) throw InvalidInput(who + ": depth is " + std::to_string(depth) + ", must be ≥ 0");
+  const auto cells = [&](int patches) {
+    return depth > 30 ? saturated : mul_sat(static_cast<std::size_t>(patches), std::size_t{1} << depth);
+  };
+  const std::size_t cu = cells(A), cv = cells(B);
+  const std::size_t vertices = mul_sat(cu + (cu < saturated), cv + (cv < saturated));
+  const std::size_t quads = mul_sat(cu, cv);
+  const std::size_t bytes = mesh_bytes(vertices, cols, quads);
+  if (bytes > options.max_bytes || vertices > static_cast<std::size_t>(INT_MAX)) {
+    std::ostringstream msg;
+    msg << who << ": depth " << depth << " on " << A << " by " << B << " patches gives ";
+    if (vertices == saturated)
+      msg << "more vertices than fit in size_t";
+    else
+      msg << vertices << " vertices of " << cols << " coordinates and " << quads << " quads ("
+          << static_cast<double>(bytes) / static_cast<double>(std::size_t{1} << 30) << " GiB)";
+    if (vertices > static_cast<std::size_t>(INT_MAX))
+      msg << ", more vertices than int indices address";
+    else
+      msg << ", more than the limit of "
+          << static_cast<double>(options.max_bytes) / static_cast<double>(std::size_t{1} << 30)
+          << " GiB (MeshOptions::max_bytes)";
+    msg << "; lower the depth";
+    throw InvalidInput(msg.str());
+  }
+  return Grid{A, B, depth, static_cast<int>(cu), static_cast<int>(cv), 1 << depth, vertices, quads};
+}
+
+/// Vertices allocated, quads in cell order (I, J) → I·cv + J, corners counter-clockwise in (u, v).
+QuadMesh allocate(const Grid& grid, Eigen::Index cols) {
+  QuadMesh mesh;
+  mesh.vertices.resize(static_cast<Eigen::Index>(grid.vertices), cols);
+  mesh.quads.reserve(grid.quads);  // filled once, not zeroed first: the quads are most of the bytes
+  mesh.quad_state.resize(grid.quads);
+  const int row = grid.cv + 1;
+  for (int I = 0; I < grid.cu; ++I)
+    for (int J = 0; J < grid.cv; ++J)
+      mesh.quads.push_back({I * row + J, (I + 1) * row + J, (I + 1) * row + J + 1, I * row + J + 1});
+  return mesh;
+}
+
+void finish(QuadMesh& mesh, const MeshOptions& options) {
+  if (options.homogeneous) mesh.vertices = cartesian(mesh.vertices);
+}
+
+/// States of the depth-K nodes of a (binary or any) automaton in order: initial entries in order,
+/// children in out-edge order. States only: no nets are computed.
+std::vector<StateId> leaf_states(const Automaton& automaton, int depth) {
+  const Graph& g = automaton.graph;
+  std::vector<StateId> out;
+  std::vector<std::pair<StateId, int>> stack;
+  for (const automata::Initial& init : automaton.initial) {
+    stack.emplace_back(init.state, 0);
+    while (!stack.empty()) {
+      const auto [s, d] = stack.back();
+      stack.pop_back();
+      if (d == depth) {
+        out.push_back(s);
+        continue;
+      }
+      // Pushed in reverse so that the first child is visited first.
+      const auto [b, e] = boost::out_edges(s, g);
+      std::vector<StateId> children;
+      for (auto it = b; it != e; ++it) children.push_back(boost::target(*it, g));
+      for (auto it = children.rbegin(); it != children.rend(); ++it) stack.emplace_back(*it, d + 1);
+    }
+  }
+  return out;
+}
+
+/// Nodes [first, first + side) of a patch along one direction, plus the far node for the last patch.
+int owned(const Grid& grid, int patch, int patches) {
+  return grid.side + (patch + 1 == patches ? 1 : 0);
+}
+
+}  // namespace
+
+std::size_t mesh_bytes(std::size_t vertices, std::size_t cols, std::size_t quads) noexcept {
+  const std::size_t v = mul_sat(mul_sat(vertices, cols), sizeof(double));
+  const std::size_t q = mul_sat(quads, sizeof(std::array<int, 4>) + sizeof(std::uint32_t));
+  return v > saturated - q ? saturated : v + q;
+}
+
+QuadMesh surface_mesh(const automata::TensorAutomaton& t, std::span<const Points> nets, int depth,
+                      const MeshOptions& options) {
+  validate(t.product);
+  detail::check_nets(t.product, nets, "surface_mesh");
+  const int A = static_cast<int>(t.factors[0].initial.size()),
+            B = static_cast<int>(t.factors[1].initial.size());
+  if (t.patches.size() != t.product.initial.size() || t.patches.size() != static_cast<std::size_t>(A) * B)
+    throw InvalidInput("surface_mesh: the automaton has " + std::to_string(t.patches.size()) +
+                       " patches for " + std::to_string(t.product.initial.size()) + " initial entries and " +
+                       std::to_string(A) + " by " + std::to_string(B) + " factor segments");
+  for (std::size_t k = 0; k < t.patches.size(); ++k)
+    if (t.patches[k] != std::array<int, 2>{static_cast<int>(k) / B, static_cast<int>(k) % B})
+      throw InvalidInput("surface_mesh: patch " + std::to_string(k) + " is not in u-major order");
+  const Eigen::Index C = nets[0].cols();
+  const Grid grid = make_grid(A, B, depth, static_cast<std::size_t>(C), options, "surface_mesh");
+  QuadMesh mesh = allocate(grid, C);
+
+  // Curve stencil tables: row I of F[dir] is the functional, on the net of the segment owning
+  // node I, of the point at node I — the factor's attractor under identity nets.
+  std::array<Points, 2> F;
+  std::array<std::vector<StateId>, 2> leaves;
+  for (std::size_t dir = 0; dir < 2; ++dir) {
+    const Automaton& f = t.factors[dir];
+    std::vector<Points> identity;
+    for (const auto& init : f.initial)
+      identity.push_back(Points::Identity(f.graph[init.state].size, f.graph[init.state].size));
+    F[dir] = attractor_points(f, identity, depth, PointsOptions{false, options.max_bytes, 8});
+    leaves[dir] = leaf_states(f, depth);
+  }
+  const Eigen::Index p1 = F[0].cols(), q1 = F[1].cols();
+  if (nets[0].rows() != p1 * q1)
+    throw InvalidInput("surface_mesh: nets of " + std::to_string(nets[0].rows()) +
+                       " rows, the factors give " + std::to_string(p1) + " by " + std::to_string(q1));
+
+  // Per patch block: X = F_u(I)·N (a `q+1 by C` curve net along v) per row I, then F_v·X.
+  Points X(q1, C);
+  const int row = grid.cv + 1;
+  for (int a = 0; a < A; ++a)
+    for (int b = 0; b < B; ++b) {
+      const Points& N = nets[static_cast<std::size_t>(a) * B + b];
+      const int J0 = b * grid.side, cols = owned(grid, b, B);
+      for (int I = a * grid.side, end = I + owned(grid, a, A); I < end; ++I) {
+        X.setZero();
+        for (Eigen::Index k = 0; k < p1; ++k) X += F[0](I, k) * N.middleRows(k * q1, q1);
+        detail::emit(F[1].data() + J0 * q1, cols, q1, X,
+                     mesh.vertices.data() + (static_cast<Eigen::Index>(I) * row + J0) * C);
+      }
+    }
+
+  // Leaf states: the product state of the pair of factor leaf states.
+  const auto nv_states = boost::num_vertices(t.factors[1].graph);
+  std::vector<std::uint32_t> pair_id(boost::num_vertices(t.factors[0].graph) * nv_states, 0);
+  for (StateId s = 0; s < t.factor_states.size(); ++s)
+    pair_id[t.factor_states[s][0] * nv_states + t.factor_states[s][1]] = static_cast<std::uint32_t>(s);
+  std::size_t q = 0;
+  for (int I = 0; I < grid.cu; ++I)
+    for (int J = 0; J < grid.cv; ++J)
+      mesh.quad_state[q++] = pair_id[leaves[0][static_cast<std::size_t>(I)] * nv_states +
+                                     leaves[1][static_cast<std::size_t>(J)]];
+  finish(mesh, options);
+  return mesh;
+}
+
+QuadMesh quad_mesh(const Automaton& automaton, std::span<const Points> nets,
+                   std::span<const std::array<int, 2>> patches, int depth, const MeshOptions& options) {
+  validate(automaton);
+  detail::check_nets(automaton, nets, "quad_mesh");
+  const Graph& g = automaton.graph;
+  const auto states = reachable_states(automaton);
+  for (const StateId s : states)
+    if (boost::out_degree(s, g) != 4)
+      throw InvalidInput("quad_mesh: " + detail::state_label(automaton, s) + " has " +
+                         std::to_string(boost::out_degree(s, g)) +
+                         " children, a surface state needs 4 (GH, GB, DH, DB)");
+  if (patches.size() != automaton.initial.size())
+    throw InvalidInput("quad_mesh: " + std::to_string(patches.size()) + " patches for " +
+                       std::to_string(automaton.initial.size()) + " initial entries");
+  int A = 0, B = 0;
+  for (const auto& [a, b] : patches) {
+    if (a < 0 || b < 0)
+      throw InvalidInput("quad_mesh: patch (" + std::to_string(a) + ", " + std::to_string(b) +
+                         ") is negative");
+    A = std::max(A, a + 1);
+    B = std::max(B, b + 1);
+  }
+  std::vector<int> patch_at(static_cast<std::size_t>(A) * B, -1);
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    int& slot = patch_at[static_cast<std::size_t>(patches[i][0]) * B + patches[i][1]];
+    if (slot >= 0)
+      throw InvalidInput("quad_mesh: initial entries " + std::to_string(slot) + " and " + std::to_string(i) +
+                         " are both placed at patch (" + std::to_string(patches[i][0]) + ", " +
+                         std::to_string(patches[i][1]) + ")");
+    slot = static_cast<int>(i);
+  }
+  if (patches.size() != patch_at.size())
+    throw InvalidInput("quad_mesh: " + std::to_string(patches.size()) + " patches do not fill their " +
+                       std::to_string(A) + " by " + std::to_string(B) + " grid");
+  const Eigen::Index C = nets[0].cols();
+  const Grid grid = make_grid(A, B, depth, static_cast<std::size_t>(C), options, "quad_mesh");
+
+  // Table depth L: the tables (and, while building, the previous level) below half of the output.
+  const auto table_size = [&](int L) {
+    const auto m = static_cast<std::size_t>((1 << L) + 1);
+    std::size_t total = 0;
+    for (const StateId s : states) total += m * m * static_cast<std::size_t>(g[s].size);
+    return total;
+  };
+  int L = std::clamp(options.max_table_depth, 0, depth);
+  while (L > 0 && table_size(L) + table_size(L - 1) > grid.vertices * static_cast<std::size_t>(C) / 2) --L;
+
+  // Stencil tables T_s: (2^l + 1)² functionals, row i·(2^l + 1) + j for node (i, j) of the state's
+  // square, each owned by the child min(i / h, 1), min(j / h, 1) (h = 2^(l−1)) like the global
+  // nodes by their leaves; level 0 holds the corner functionals. S_s: the 4^l leaf states.
+  using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  const auto n = boost::num_vertices(g);
+  std::vector<RowMatrix> table(n), next(n);
+  std::vector<std::vector<std::uint32_t>> leaf(n), next_leaf(n);
+  {
+    std::array<std::vector<Eigen::RowVectorXd>, 4> corner;
+    for (int k = 0; k < 4; ++k)
+      corner[static_cast<std::size_t>(k)] = repeated_child_functionals(automaton, k);
+    for (const StateId s : states) {
+      table[s].resize(4, g[s].size);
+      for (std::size_t k = 0; k < 4; ++k) table[s].row(static_cast<Eigen::Index>(k)) = corner[k][s];
+      leaf[s] = {static_cast<std::uint32_t>(s)};
+    }
+  }
+  for (int l = 1; l <= L; ++l) {
+    const int h = 1 << (l - 1), m = 2 * h + 1;
+    for (const StateId s : states) {
+      RowMatrix& T = next[s];
+      T.resize(m * m, g[s].size);
+      std::vector<std::uint32_t>& S = next_leaf[s];
+      S.assign(static_cast<std::size_t>(4 * h * h), 0);
+      int c = 0;
+      for (auto [e, end] = boost::out_edges(s, g); e != end; ++e, ++c) {
+        const StateId child = boost::target(*e, g);
+        const RowMatrix P = table[child] * g[*e].matrix;  // (h+1)² functionals on the parent's net
+        const int iu = c / 2, iv = c % 2;
+        for (int i = 0; i <= h; ++i)
+          for (int j = 0; j <= h; ++j) {
+            const int I = iu * h + i, J = iv * h + j;
+            if (std::min(I / h, 1) == iu && std::min(J / h, 1) == iv)
+              T.row(I * m + J) = P.row(i * (h + 1) + j);
+            if (i < h && j < h)
+              S[static_cast<std::size_t>(I * 2 * h + J)] = leaf[child][static_cast<std::size_t>(i * h + j)];
+          }
+      }
+    }
+    std::swap(table, next);
+    std::swap(leaf, next_leaf);
+  }
+  next.clear();
+  next_leaf.clear();
+
+  // Walk to depth K − L; each node writes the nodes it owns and the states of its 4^L leaves.
+  QuadMesh mesh = allocate(grid, C);
+  const int side_L = 1 << L, m = side_L + 1, row = grid.cv + 1;
+  detail::depth_first(
+      automaton, nets, depth - L,
+      [&](std::size_t i, StateId s, const Points& net, int d, std::span<const int> word) {
+        if (d < depth - L) return true;
+        int I0 = patches[i][0] * grid.side, J0 = patches[i][1] * grid.side;
+        for (int k = 0; k < d; ++k) {
+          I0 += (word[static_cast<std::size_t>(k)] / 2) << (depth - 1 - k);
+          J0 += (word[static_cast<std::size_t>(k)] % 2) << (depth - 1 - k);
+        }
+        const int rows = side_L + (I0 + side_L == grid.cu ? 1 : 0);
+        const int cols = side_L + (J0 + side_L == grid.cv ? 1 : 0);
+        const Eigen::Index size = g[s].size;
+        for (int r = 0; r < rows; ++r)
+          detail::emit(table[s].data() + r * m * size, cols, size, net,
+                       mesh.vertices.data() + (static_cast<Eigen::Index>(I0 + r) * row + J0) * C);
+        for (int r = 0; r < side_L; ++r)
+          std::copy_n(leaf[s].begin() + r * side_L, side_L,
+                      mesh.quad_state.begin() + static_cast<std::ptrdiff_t>(I0 + r) * grid.cv + J0);
+        return false;
+      });
+  finish(mesh, options);
+  return mesh;
+}
+
+}  // namespace cifs::ifs

@@ -1,0 +1,237 @@
+// SPDX-License-Identifier: MIT
+#include <catch2/catch.hpp>
+#include <map>
+#include <set>
+
+#include "cifs/errors.hpp"
+#include "cifs/ifs/analysis.hpp"
+#include "cifs/ifs/attractor.hpp"
+#include "cifs/ifs/mesh.hpp"
+#include "ifs/helpers.hpp"
+#include "nurbs/reference.hpp"
+
+using namespace cifs;
+using automata::StateId;
+
+namespace {
+
+nurbs::Surface random_surface(cifs_test::Rng& rng, std::array<int, 2> degree, std::array<int, 2> count,
+                              bool clamped, bool rational, int mode = 3) {
+  std::array<nurbs::Knots, 2> knots;
+  for (std::size_t d = 0; d < 2; ++d)
+    knots[d] = cifs_test::random_knots(rng, degree[d], count[d], clamped, degree[d], mode);
+  const Points P = ifs_test::random_points(count[0] * count[1], 3, rng);
+  Eigen::VectorXd w;
+  if (rational) {
+    w.resize(count[0] * count[1]);
+    for (Eigen::Index i = 0; i < w.size(); ++i) w(i) = std::exp(cifs_test::uniform(rng, -1, 1));
+  }
+  return nurbs::make_surface(degree, knots, {count[0], count[1]}, P, w);
+}
+
+/// The breakpoints of one direction: the patches' parameter intervals.
+std::vector<double> breaks(const nurbs::Surface& s, int dir) {
+  return nurbs::breakpoints(s.knots[static_cast<std::size_t>(dir)], s.degree[static_cast<std::size_t>(dir)]);
+}
+
+/// Parameter of global node I at depth K: breakpoint a plus the dyadic fraction of its interval.
+double node_parameter(const std::vector<double>& b, int I, int depth) {
+  const int side = 1 << depth;
+  const int a = std::min(I / side, static_cast<int>(b.size()) - 2);
+  return b[static_cast<std::size_t>(a)] +
+         (b[static_cast<std::size_t>(a) + 1] - b[static_cast<std::size_t>(a)]) * (I - a * side) / side;
+}
+
+}  // namespace
+
+TEST_CASE("surface_mesh: vertices = surface evaluation at the dyadic nodes", "[ifs][mesh]") {
+  cifs_test::Rng rng(3);
+  for (int trial = 0; trial < 16; ++trial) {
+    const std::array<int, 2> degree{cifs_test::uniform_int(rng, 1, 5), cifs_test::uniform_int(rng, 1, 5)};
+    const std::array<int, 2> count{degree[0] + cifs_test::uniform_int(rng, 1, 3),
+                                   degree[1] + cifs_test::uniform_int(rng, 1, 3)};
+    const bool rational = cifs_test::coin(rng);
+    const nurbs::Surface s = random_surface(rng, degree, count, cifs_test::coin(rng), rational);
+    const automata::TensorAutomaton t = automata::tensor_automaton(s);
+    const int depth = 3;
+    const ifs::QuadMesh mesh = ifs::surface_mesh(t, automata::initial_nets(t, s), depth, {rational});
+    const auto bu = breaks(s, 0), bv = breaks(s, 1);
+    const int nu = static_cast<int>(bu.size() - 1) << depth, nv = static_cast<int>(bv.size() - 1) << depth;
+    REQUIRE(mesh.vertices.rows() == (nu + 1) * (nv + 1));
+    REQUIRE(mesh.vertices.cols() == 3);
+    const double scale = nurbs::cartesian_points(s).cwiseAbs().maxCoeff();
+    double worst = 0;
+    for (int I = 0; I <= nu; ++I)
+      for (int J = 0; J <= nv; ++J) {
+        const Point expected = nurbs::evaluate(s, node_parameter(bu, I, depth), node_parameter(bv, J, depth));
+        worst = std::max(worst, (mesh.vertices.row(I * (nv + 1) + J) - expected).norm() / scale);
+      }
+    INFO("trial " << trial << ", degrees " << degree[0] << ", " << degree[1] << ", rational " << rational);
+    CHECK(worst < 1e-12);
+  }
+}
+
+TEST_CASE("surface_mesh and quad_mesh agree on tensor automata", "[ifs][mesh]") {
+  cifs_test::Rng rng(5);
+  for (int trial = 0; trial < 12; ++trial) {
+    const std::array<int, 2> degree{cifs_test::uniform_int(rng, 1, 4), cifs_test::uniform_int(rng, 1, 4)};
+    const std::array<int, 2> count{degree[0] + cifs_test::uniform_int(rng, 1, 3),
+                                   degree[1] + cifs_test::uniform_int(rng, 1, 3)};
+    const bool rational = cifs_test::coin(rng);
+    const nurbs::Surface s = random_surface(rng, degree, count, cifs_test::coin(rng), rational);
+    const automata::TensorAutomaton t = automata::tensor_automaton(s);
+    const auto nets = automata::initial_nets(t, s);
+    const int depth = cifs_test::uniform_int(rng, 0, 4);
+    ifs::MeshOptions options;
+    options.homogeneous = rational;
+    const ifs::QuadMesh a = ifs::surface_mesh(t, nets, depth, options);
+    for (int L : {0, 2, 6}) {
+      options.max_table_depth = L;
+      const ifs::QuadMesh b = ifs::quad_mesh(t.product, nets, t.patches, depth, options);
+      INFO("trial " << trial << ", depth " << depth << ", table depth " << L);
+      REQUIRE(a.vertices.rows() == b.vertices.rows());
+      const double scale = a.vertices.cwiseAbs().maxCoeff();
+      CHECK((a.vertices - b.vertices).cwiseAbs().maxCoeff() <= 1e-14 * scale);
+      CHECK(a.quads == b.quads);
+      CHECK(a.quad_state == b.quad_state);
+    }
+  }
+}
+
+TEST_CASE("Quad meshes are watertight disks", "[ifs][mesh]") {
+  cifs_test::Rng rng(9);
+  const nurbs::Surface s = random_surface(rng, {3, 2}, {6, 5}, false, true);
+  const automata::TensorAutomaton t = automata::tensor_automaton(s);
+  const ifs::QuadMesh mesh = ifs::surface_mesh(t, automata::initial_nets(t, s), 3, {true});
+  const auto V = static_cast<std::size_t>(mesh.vertices.rows());
+  std::map<std::pair<int, int>, int> edges;  // undirected edge → number of quads
+  std::map<std::pair<int, int>, int> directed;
+  std::vector<int> used(V, 0);
+  for (const auto& q : mesh.quads)
+    for (int k = 0; k < 4; ++k) {
+      const int a = q[static_cast<std::size_t>(k)], b = q[static_cast<std::size_t>((k + 1) % 4)];
+      REQUIRE(a >= 0);
+      REQUIRE(static_cast<std::size_t>(a) < V);
+      ++edges[{std::min(a, b), std::max(a, b)}];
+      ++directed[{a, b}];
+      ++used[static_cast<std::size_t>(a)];
+    }
+  const int cu = static_cast<int>(breaks(s, 0).size() - 1) << 3,
+            cv = static_cast<int>(breaks(s, 1).size() - 1) << 3;
+  int boundary = 0;
+  for (const auto& [e, n] : edges) {
+    CHECK((n == 1 || n == 2));
+    boundary += n == 1;
+  }
+  CHECK(boundary == 2 * (cu + cv));
+  // Consistent orientation: no directed edge twice.
+  for (const auto& [e, n] : directed) CHECK(n == 1);
+  // Every vertex used; Euler characteristic of a disk.
+  CHECK(std::count(used.begin(), used.end(), 0) == 0);
+  const auto chi = static_cast<long long>(V) - static_cast<long long>(edges.size()) +
+                   static_cast<long long>(mesh.quads.size());
+  CHECK(chi == 1);
+  // No two vertices at one position: shared nodes are stored once.
+  std::set<std::array<double, 3>> positions;
+  for (Eigen::Index i = 0; i < mesh.vertices.rows(); ++i)
+    positions.insert({mesh.vertices(i, 0), mesh.vertices(i, 1), mesh.vertices(i, 2)});
+  CHECK(positions.size() == V);
+}
+
+TEST_CASE("quad_mesh on a perturbed (non-Kronecker) automaton: corners of the leaf nets", "[ifs][mesh]") {
+  std::mt19937_64 rng(17);
+  // Two states of 4 and 9 points, four children each, random contractive affine maps.
+  automata::Automaton a;
+  const StateId s0 = ifs_test::add_state(a, 4, "four"), s1 = ifs_test::add_state(a, 9, "nine");
+  const char* labels[4] = {"GH", "GB", "DH", "DB"};
+  for (const StateId from : {s0, s1})
+    for (int c = 0; c < 4; ++c) {
+      const StateId to = (c + static_cast<int>(from)) % 2 ? s1 : s0;
+      ifs_test::add_transition(a, from, to,
+                               ifs_test::random_contraction(a.graph[to].size, a.graph[from].size, 0.6, rng),
+                               labels[c]);
+    }
+  ifs_test::add_initial(a, s0, 0);
+  ifs_test::add_initial(a, s1, 1);
+  ifs_test::add_initial(a, s0, 2);
+  ifs_test::add_initial(a, s1, 3);
+  const std::vector<std::array<int, 2>> patches{{1, 1}, {0, 0}, {1, 0}, {0, 1}};
+  const std::vector<Points> nets{ifs_test::random_points(4, 3, rng), ifs_test::random_points(9, 3, rng),
+                                 ifs_test::random_points(4, 3, rng), ifs_test::random_points(9, 3, rng)};
+  const int depth = 4, side = 1 << depth, cu = 2 * side, row = cu + 1;
+  // Independent route: walk the leaves, take the corners each leaf owns from its own net.
+  std::array<std::vector<Eigen::RowVectorXd>, 4> corner;
+  for (int k = 0; k < 4; ++k) corner[static_cast<std::size_t>(k)] = ifs::repeated_child_functionals(a, k);
+  Points expected(row * row, 3);
+  std::vector<std::uint32_t> states(static_cast<std::size_t>(cu * cu));
+  ifs::for_each_leaf(a, nets, depth, [&](const ifs::Leaf& leaf) {
+    int I = patches[leaf.initial][0] * side, J = patches[leaf.initial][1] * side;
+    for (int k = 0; k < depth; ++k) {
+      I += (leaf.word[static_cast<std::size_t>(k)] / 2) << (depth - 1 - k);
+      J += (leaf.word[static_cast<std::size_t>(k)] % 2) << (depth - 1 - k);
+    }
+    states[static_cast<std::size_t>(I * cu + J)] = static_cast<std::uint32_t>(leaf.state);
+    for (int du = 0; du < 2; ++du)
+      for (int dv = 0; dv < 2; ++dv)
+        if ((du == 0 || I + 1 == cu) && (dv == 0 || J + 1 == cu))
+          expected.row((I + du) * row + J + dv) =
+              corner[static_cast<std::size_t>(2 * du + dv)][leaf.state] * leaf.net;
+  });
+  for (int L : {0, 1, 3, 4}) {
+    ifs::MeshOptions options;
+    options.max_table_depth = L;
+    const ifs::QuadMesh mesh = ifs::quad_mesh(a, nets, patches, depth, options);
+    INFO("table depth " << L);
+    CHECK((mesh.vertices - expected).cwiseAbs().maxCoeff() <= 1e-14 * expected.cwiseAbs().maxCoeff());
+    CHECK(mesh.quad_state == states);
+    CHECK(mesh.quads[static_cast<std::size_t>(5 * cu + 7)] ==
+          std::array<int, 4>{5 * row + 7, 6 * row + 7, 6 * row + 8, 5 * row + 8});
+  }
+}
+
+TEST_CASE("Corner functionals of a tensor automaton are Kronecker products of end functionals",
+          "[ifs][mesh]") {
+  cifs_test::Rng rng(21);
+  const nurbs::Surface s = random_surface(rng, {2, 3}, {5, 6}, false, false);
+  const automata::TensorAutomaton t = automata::tensor_automaton(s);
+  const ifs::EndFunctionals fu = ifs::end_functionals(t.factors[0]), fv = ifs::end_functionals(t.factors[1]);
+  for (int k = 0; k < 4; ++k) {
+    const auto corner = ifs::repeated_child_functionals(t.product, k);
+    for (StateId p = 0; p < t.factor_states.size(); ++p) {
+      const auto [su, sv] = t.factor_states[p];
+      const Eigen::RowVectorXd& lu = k / 2 ? fu.end[su] : fu.start[su];
+      const Eigen::RowVectorXd& lv = k % 2 ? fv.end[sv] : fv.start[sv];
+      Eigen::RowVectorXd expected(lu.size() * lv.size());
+      for (Eigen::Index i = 0; i < lu.size(); ++i) expected.segment(i * lv.size(), lv.size()) = lu(i) * lv;
+      CHECK((corner[p] - expected).cwiseAbs().maxCoeff() < 1e-14);
+    }
+  }
+}
+
+TEST_CASE("Meshes refuse bad input before any work", "[ifs][mesh]") {
+  cifs_test::Rng rng(23);
+  const nurbs::Surface s = random_surface(rng, {3, 3}, {8, 8}, true, false);
+  const automata::TensorAutomaton t = automata::tensor_automaton(s);
+  const auto nets = automata::initial_nets(t, s);
+  ifs::MeshOptions small;
+  small.max_bytes = 1 << 20;
+  CHECK_THROWS_WITH(ifs::surface_mesh(t, nets, 12, small), Catch::Contains("MeshOptions::max_bytes"));
+  CHECK_THROWS_WITH(ifs::quad_mesh(t.product, nets, t.patches, 12, small), Catch::Contains("max_bytes"));
+  CHECK_THROWS_AS(ifs::surface_mesh(t, nets, -1), InvalidInput);
+  CHECK_THROWS_WITH(ifs::surface_mesh(t, nets, 40), Catch::Contains("lower the depth"));
+  // Patches that do not tile their grid.
+  std::vector<std::array<int, 2>> patches = t.patches;
+  patches[1] = patches[0];
+  CHECK_THROWS_WITH(ifs::quad_mesh(t.product, nets, patches, 2), Catch::Contains("both placed"));
+  patches.pop_back();
+  CHECK_THROWS_WITH(ifs::quad_mesh(t.product, nets, patches, 2), Catch::Contains("patches for"));
+  // A curve automaton has two children per state.
+  const automata::Automaton curve = ifs_test::uniform_automaton(3);
+  const std::vector<Points> curve_nets{Points::Random(4, 2)};
+  const std::vector<std::array<int, 2>> one{{0, 0}};
+  CHECK_THROWS_WITH(ifs::quad_mesh(curve, curve_nets, one, 2), Catch::Contains("needs 4"));
+  // Nets of the wrong size.
+  std::vector<Points> wrong = nets;
+  wrong[3] = Points::Random(9, 3);
+  CHECK_THROWS_AS(ifs::surface_mesh(t, wrong, 2), InvalidInput);
+}
