@@ -2,9 +2,12 @@
 #include "cifs/io/experiment.hpp"
 
 #include "cifs/io/polygon.hpp"
-#include "json_reader.hpp"
+#include "json_common.hpp"
 
 namespace cifs::io {
+
+using detail::json;
+using detail::Reader;
 namespace {
 
 std::uint64_t unsigned_integer(const Reader& r, const json& v, const std::string& path, std::uint64_t max) {
@@ -209,7 +212,7 @@ Outputs read_outputs(const Reader& r, const json& v) {
 Experiment parse_experiment(std::string_view text, std::string_view where,
                             const std::filesystem::path& base) {
   const Reader r{std::string(where)};
-  const json doc = parse_json(text, r.where);
+  const json doc = detail::parse_document(text, r.where);
   if (!doc.is_object()) throw InvalidInput(r.where + ": expected an experiment object");
   r.only(doc, "",
          {"name", "description", "shape", "automaton", "ifs", "perturbation", "evaluation", "camera",

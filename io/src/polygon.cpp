@@ -4,13 +4,16 @@
 #include <charconv>
 
 #include "cifs/io/shape.hpp"
-#include "json_reader.hpp"
+#include "json_common.hpp"
 
 namespace cifs::io {
 
+using detail::json;
+using detail::Reader;
+
 Polygon parse_polygon_json(std::string_view text, std::string_view where) {
   const Reader r{std::string(where)};
-  const json doc = parse_json(text, r.where);
+  const json doc = detail::parse_document(text, r.where);
   if (!doc.is_object() || doc.size() != 1 || !doc.contains("polygon") || !doc["polygon"].is_object())
     throw InvalidInput(r.where + ": expected {\"polygon\": {\"points\": [[x, y], ...], \"closed\": true}}");
   const json& p = doc["polygon"];

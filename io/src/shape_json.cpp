@@ -5,19 +5,17 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/io/shape.hpp"
-#include "json_reader.hpp"
+#include "json_common.hpp"
 
 namespace cifs::io {
 namespace {
 
-Points to_points(const std::vector<std::vector<double>>& rows) {
-  Points P(static_cast<Eigen::Index>(rows.size()),
-           rows.empty() ? 0 : static_cast<Eigen::Index>(rows[0].size()));
-  for (std::size_t i = 0; i < rows.size(); ++i)
-    for (std::size_t j = 0; j < rows[i].size(); ++j)
-      P(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = rows[i][j];
-  return P;
-}
+using detail::parse_document;
+using detail::Reader;
+using detail::rows_json;
+using detail::to_points;
+using detail::write_pretty;
+using nlohmann::json;
 
 Eigen::VectorXd to_vector(const std::vector<double>& v) {
   return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
@@ -93,60 +91,11 @@ nurbs::Surface read_surface(const Reader& r, const json& s) {
   });
 }
 
-json rows_json(const Points& P) {
-  json out = json::array();
-  for (Eigen::Index i = 0; i < P.rows(); ++i) {
-    json row = json::array();
-    for (Eigen::Index j = 0; j < P.cols(); ++j) row.push_back(P(i, j));
-    out.push_back(std::move(row));
-  }
-  return out;
-}
-
-/// Objects one member per line; arrays of numbers, and of arrays of numbers, on one line.
-void write_pretty(const json& v, int indent, std::string& out) {
-  const auto flat = [](const json& a) {
-    return a.is_array() && std::all_of(a.begin(), a.end(), [](const json& e) {
-             return e.is_primitive() || (e.is_array() && std::all_of(e.begin(), e.end(), [](const json& x) {
-                                           return x.is_primitive();
-                                         }));
-           });
-  };
-  const std::string pad(static_cast<std::size_t>(indent + 2), ' ');
-  if (v.is_object()) {
-    out += "{";
-    bool first = true;
-    for (const auto& item : v.items()) {
-      out += first ? "\n" : ",\n";
-      out += pad;
-      out += json(item.key()).dump();
-      out += ": ";
-      write_pretty(item.value(), indent + 2, out);
-      first = false;
-    }
-    out += '\n';
-    out.append(static_cast<std::size_t>(indent), ' ');
-    out += '}';
-  } else if (v.is_array() && !flat(v)) {
-    out += "[";
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      out += i ? ",\n" : "\n";
-      out += pad;
-      write_pretty(v[i], indent + 2, out);
-    }
-    out += '\n';
-    out.append(static_cast<std::size_t>(indent), ' ');
-    out += ']';
-  } else {
-    out += v.dump();
-  }
-}
-
 }  // namespace
 
 Shape parse_shape_json(std::string_view text, std::string_view where) {
   const Reader r{std::string(where)};
-  const json doc = parse_json(text, r.where);
+  const json doc = parse_document(text, r.where);
   if (!doc.is_object() || doc.size() != 1 || !(doc.contains("curve") || doc.contains("surface")))
     throw InvalidInput(r.where + ": expected an object with one member, \"curve\" or \"surface\"");
   if (doc.contains("curve")) return read_curve(r, doc["curve"]);

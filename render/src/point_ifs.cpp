@@ -15,29 +15,6 @@
 
 namespace cifs::render {
 
-std::vector<AffineMap> barnsley_fern() {
-  // Barnsley, Fractals Everywhere (1988), table III.3; the same coefficients as Barnsley & Demko.
-  return {{0.00, 0.00, 0.00, 0.16, 0.00, 0.00, 0.01},
-          {0.85, 0.04, -0.04, 0.85, 0.00, 1.60, 0.85},
-          {0.20, -0.26, 0.23, 0.22, 0.00, 1.60, 0.07},
-          {-0.15, 0.28, 0.26, 0.24, 0.00, 0.44, 0.07}};
-}
-
-std::vector<AffineMap> sierpinski_triangle() {
-  const double h = std::numbers::sqrt3 / 4;  // half the height of the unit equilateral triangle
-  return {
-      {0.5, 0, 0, 0.5, 0, 0, 1.0 / 3}, {0.5, 0, 0, 0.5, 0.5, 0, 1.0 / 3}, {0.5, 0, 0, 0.5, 0.25, h, 1.0 / 3}};
-}
-
-std::vector<AffineMap> koch_curve() {
-  // Ratio ⅓; the middle pieces are rotated by ±60°: (cos 60°)/3 = 1/6, (sin 60°)/3 = √3/6.
-  const double c = 1.0 / 6, s = std::numbers::sqrt3 / 6;
-  return {{1.0 / 3, 0, 0, 1.0 / 3, 0, 0, 0.25},
-          {c, -s, s, c, 1.0 / 3, 0, 0.25},
-          {c, s, -s, c, 0.5, s, 0.25},
-          {1.0 / 3, 0, 0, 1.0 / 3, 2.0 / 3, 0, 0.25}};
-}
-
 namespace {
 
 using detail::Xoshiro256;

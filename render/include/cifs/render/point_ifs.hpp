@@ -9,22 +9,15 @@
 #include <span>
 #include <vector>
 
+#include "cifs/ifs/affine.hpp"
+
 namespace cifs::render {
 
-/// w(x, y) = (a·x + b·y + e, c·x + d·y + f), chosen with weight `probability` (Barnsley's notation).
-struct AffineMap {
-  double a = 0, b = 0, c = 0, d = 0, e = 0, f = 0;
-  double probability = 1;
-};
-
-/// Barnsley's fern (Fractals Everywhere, 1988, table III.3): stem, successively smaller leaflets,
-/// largest left and right leaflets, with probabilities 0.01, 0.85, 0.07, 0.07.
-std::vector<AffineMap> barnsley_fern();
-/// Sierpinski's triangle on (0, 0), (1, 0), (½, √3/2): three maps of ratio ½, probabilities ⅓.
-std::vector<AffineMap> sierpinski_triangle();
-/// Koch's curve from (0, 0) to (1, 0): four maps of ratio ⅓, the middle two rotated by +60° and
-/// −60°, probabilities ¼ (the natural measure, since all ratios are equal).
-std::vector<AffineMap> koch_curve();
+// The maps and the named IFS live in ifs/affine.hpp (the CIFS framework builds their automata).
+using ifs::AffineMap;
+using ifs::barnsley_fern;
+using ifs::koch_curve;
+using ifs::sierpinski_triangle;
 
 /// Closed axis-aligned window of the plane; the histogram's row 0 is at y_max (images are y down).
 /// Pixel (col, row) covers [x_min + col·Δx, x_min + (col+1)·Δx) × (y_max − (row+1)·Δy, y_max − row·Δy];

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
-// cifs — internal: reading JSON documents with the path of every value for error messages.
+// cifs — private helpers of the io module's JSON formats: values read with their JSON path at
+// hand for error messages, compact pretty-printing.
 #pragma once
+
 #include <cmath>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
@@ -9,30 +11,11 @@
 #include <vector>
 
 #include "cifs/errors.hpp"
+#include "cifs/types.hpp"
 
-namespace cifs::io {
+namespace cifs::io::detail {
 
 using nlohmann::json;
-
-/// nlohmann's messages start with "[json.exception.kind.N] "; users need only what follows.
-inline std::string strip_id(const std::string& what) {
-  const auto end = what.find("] ");
-  std::string rest = end == std::string::npos ? what : what.substr(end + 2);
-  if (rest.rfind("parse error", 0) == 0 && rest.find(": ") != std::string::npos)
-    rest = rest.substr(rest.find(": ") + 2);
-  return rest;
-}
-
-/// Parses `text`; syntax errors are IoError naming `where` and the byte.
-inline json parse_json(std::string_view text, const std::string& where) {
-  try {
-    return json::parse(text.begin(), text.end());
-  } catch (const json::parse_error& e) {
-    throw IoError(where + ": malformed JSON at byte " + std::to_string(e.byte) + ": " + strip_id(e.what()));
-  } catch (const json::exception& e) {  // e.g. a number that overflows a double
-    throw IoError(where + ": malformed JSON: " + strip_id(e.what()));
-  }
-}
 
 /// Reads JSON values with the path of each value at hand for error messages.
 struct Reader {
@@ -124,4 +107,14 @@ struct Reader {
   }
 };
 
-}  // namespace cifs::io
+/// Parses `text`; IoError naming `where` and the byte for malformed JSON.
+json parse_document(std::string_view text, const std::string& where);
+
+Points to_points(const std::vector<std::vector<double>>& rows);
+
+json rows_json(const Points& P);
+
+/// Objects one member per line; arrays of numbers, and of arrays of numbers, on one line.
+void write_pretty(const json& v, int indent, std::string& out);
+
+}  // namespace cifs::io::detail

@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: MIT
+#include "cifs/ifs/affine_cifs.hpp"
+
+#include <Eigen/LU>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "cifs/errors.hpp"
+#include "cifs/ifs/analysis.hpp"
+
+namespace cifs::ifs {
+
+std::vector<AffineMap> barnsley_fern() {
+  // Barnsley, Fractals Everywhere (1988), table III.3; the same coefficients as Barnsley & Demko.
+  return {{0.00, 0.00, 0.00, 0.16, 0.00, 0.00, 0.01},
+          {0.85, 0.04, -0.04, 0.85, 0.00, 1.60, 0.85},
+          {0.20, -0.26, 0.23, 0.22, 0.00, 1.60, 0.07},
+          {-0.15, 0.28, 0.26, 0.24, 0.00, 0.44, 0.07}};
+}
+
+std::vector<AffineMap> sierpinski_triangle() {
+  const double h = std::numbers::sqrt3 / 4;  // half the height of the unit equilateral triangle
+  return {
+      {0.5, 0, 0, 0.5, 0, 0, 1.0 / 3}, {0.5, 0, 0, 0.5, 0.5, 0, 1.0 / 3}, {0.5, 0, 0, 0.5, 0.25, h, 1.0 / 3}};
+}
+
+std::vector<AffineMap> koch_curve() {
+  // Ratio ⅓; the middle pieces are rotated by ±60°: (cos 60°)/3 = 1/6, (sin 60°)/3 = √3/6.
+  const double c = 1.0 / 6, s = std::numbers::sqrt3 / 6;
+  return {{1.0 / 3, 0, 0, 1.0 / 3, 0, 0, 0.25},
+          {c, -s, s, c, 1.0 / 3, 0, 0.25},
+          {c, s, -s, c, 0.5, s, 0.25},
+          {1.0 / 3, 0, 0, 1.0 / 3, 2.0 / 3, 0, 0.25}};
+}
+
+Point apply(const AffineMap& m, const Point& p) {
+  Point q(2);
+  q << m.a * p(0) + m.b * p(1) + m.e, m.c * p(0) + m.d * p(1) + m.f;
+  return q;
+}
+
+Eigen::MatrixXd barycentric_matrix(const AffineMap& map, const Points& triangle) {
+  if (triangle.rows() != 3 || triangle.cols() != 2)
+    throw InvalidInput("barycentric_matrix: the control triangle is " + std::to_string(triangle.rows()) +
+                       " by " + std::to_string(triangle.cols()) + ", expected 3 by 2");
+  if (!triangle.allFinite())
+    throw InvalidInput("barycentric_matrix: the control triangle has a non-finite coordinate");
+  for (const double x : {map.a, map.b, map.c, map.d, map.e, map.f})
+    if (!std::isfinite(x)) throw InvalidInput("barycentric_matrix: the map has a non-finite coefficient");
+  Eigen::Matrix3d H, W;
+  for (int i = 0; i < 3; ++i) {
+    const Point corner = triangle.row(i);
+    const Point image = apply(map, corner);
+    H.row(i) << corner(0), corner(1), 1;
+    W.row(i) << image(0), image(1), 1;
+  }
+  const double diam = diameter(triangle);
+  if (!(std::abs(H.determinant()) > 1e-12 * diam * diam))
+    throw InvalidInput("barycentric_matrix: the control triangle is degenerate (its corners are collinear)");
+  return W * H.inverse();
+}
+
+automata::Automaton affine_automaton(std::span<const AffineMap> maps, const Points& triangle) {
+  if (maps.empty()) throw InvalidInput("affine_automaton: no map");
+  automata::Automaton a;
+  const auto s = boost::add_vertex(automata::State{3, {}, true, "triangle"}, a.graph);
+  for (std::size_t i = 0; i < maps.size(); ++i)
+    boost::add_edge(
+        s, s, automata::Transition{"w" + std::to_string(i), barycentric_matrix(maps[i], triangle)}, a.graph);
+  automata::Initial init;
+  init.state = s;
+  a.initial.push_back(init);
+  return a;
+}
+
+}  // namespace cifs::ifs

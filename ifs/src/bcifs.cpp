@@ -1,0 +1,577 @@
+// SPDX-License-Identifier: MIT
+// cifs — BC-IFS: validation, constraint assembly, the admissible space, perturbation, edge pieces.
+//
+// Linearity. A side F_0⋯F_k with its free transition X at position u is A·X·C, A = F_0⋯F_{u−1},
+// C = F_{u+1}⋯F_k, and (A·X·C)(r, c) = Σ_{p,q} A(r,p)·X(p,q)·C(q,c): one equation per entry of the
+// constraint, linear in the entries of X. Boundary operators are selections, so A and C have one
+// 1 per row and column used and an equation touches few unknowns: the unknown/equation graph
+// falls apart into small components (a row of a child matrix is tied to rows of a few others).
+#include "cifs/ifs/bcifs.hpp"
+
+#include <Eigen/QR>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <set>
+#include <sstream>
+
+#include "cifs/errors.hpp"
+#include "cifs/ifs/attractor.hpp"
+
+namespace cifs::ifs {
+
+using automata::Automaton;
+using automata::Graph;
+using automata::StateId;
+using automata::TransitionId;
+
+namespace {
+
+std::string state_text(const Automaton& a, StateId s) {
+  const auto& name = a.graph[s].name;
+  return name.empty() ? "s" + std::to_string(s) : name;
+}
+
+std::string number_text(double x) {
+  std::ostringstream out;
+  out.precision(3);
+  out << x;
+  return out.str();
+}
+
+/// Cell read (`from`) and produced (`to`) by a factor; the factor must exist.
+std::pair<StateId, StateId> factor_cells(const Bcifs& sys, const Factor& f) {
+  if (f.kind == Factor::Kind::boundary) {
+    const auto& b = sys.boundaries[static_cast<std::size_t>(f.boundary)];
+    return {b.cell, b.boundary};
+  }
+  const TransitionId e = transition_id(sys.automaton, f.transition);
+  return {f.transition.from, boost::target(e, sys.automaton.graph)};
+}
+
+std::string factor_text(const Bcifs& sys, const Factor& f) {
+  if (f.kind == Factor::Kind::boundary) {
+    const auto& b = sys.boundaries[static_cast<std::size_t>(f.boundary)];
+    return state_text(sys.automaton, b.cell) + "." + b.name;
+  }
+  return transition_name(sys.automaton, f.transition);
+}
+
+Eigen::MatrixXd factor_matrix(const Bcifs& sys, const Factor& f) {
+  if (f.kind == Factor::Kind::boundary) return selection_matrix(sys, f.boundary);
+  return sys.automaton.graph[transition_id(sys.automaton, f.transition)].matrix;
+}
+
+/// Product of factors [first, last) (identity of `size` when empty).
+Eigen::MatrixXd product(const Bcifs& sys, std::span<const Factor> factors, int size) {
+  Eigen::MatrixXd P = Eigen::MatrixXd::Identity(size, size);
+  for (auto it = factors.rbegin(); it != factors.rend(); ++it) P = (factor_matrix(sys, *it) * P).eval();
+  return P;
+}
+
+int cell_size(const Bcifs& sys, StateId s) {
+  return sys.automaton.graph[s].size;
+}
+
+/// Position of the free transition on a side, or -1.
+int free_position(std::span<const Factor> side, const std::map<TransitionRef, std::size_t>& free_index) {
+  for (std::size_t k = 0; k < side.size(); ++k)
+    if (side[k].kind == Factor::Kind::transition && free_index.count(side[k].transition))
+      return static_cast<int>(k);
+  return -1;
+}
+
+struct UnionFind {
+  std::vector<std::size_t> parent;
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), std::size_t{0}); }
+  std::size_t find(std::size_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(std::size_t a, std::size_t b) { parent[find(a)] = find(b); }
+};
+
+/// One linear equation Σ coef·x = rhs over the unknowns; `source` is the constraint index, or
+/// −1 − f for the row sums of free matrix f.
+struct Equation {
+  std::vector<std::pair<std::size_t, double>> terms;
+  double rhs = 0;
+  int source = 0;
+};
+
+/// xoshiro256** seeded by SplitMix64 (Blackman & Vigna): fixed integer arithmetic, so a seed gives
+/// the same stream on every platform.
+class Random {
+ public:
+  explicit Random(std::uint64_t seed) {
+    for (auto& word : s_) {
+      seed += 0x9e3779b97f4a7c15ULL;
+      std::uint64_t z = seed;
+      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+      z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+      word = z ^ (z >> 31);
+    }
+  }
+  std::uint64_t next() {
+    const std::uint64_t result = rotl(s_[1] * 5, 7) * 9, t = s_[1] << 17;
+    s_[2] ^= s_[0];
+    s_[3] ^= s_[1];
+    s_[1] ^= s_[2];
+    s_[0] ^= s_[3];
+    s_[2] ^= t;
+    s_[3] = rotl(s_[3], 45);
+    return result;
+  }
+  /// Uniform in [−1, 1): 53 random bits.
+  double symmetric() { return static_cast<double>(next() >> 11) * 0x1.0p-52 - 1.0; }
+
+ private:
+  static std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
+  std::uint64_t s_[4];
+};
+
+}  // namespace
+
+TransitionId transition_id(const Automaton& a, TransitionRef ref) {
+  const Graph& g = a.graph;
+  if (ref.from >= boost::num_vertices(g))
+    throw InvalidInput("transition of state " + std::to_string(ref.from) + ", which does not exist");
+  const auto degree = static_cast<int>(boost::out_degree(ref.from, g));
+  if (ref.child < 0 || ref.child >= degree)
+    throw InvalidInput("transition " + std::to_string(ref.child) + " of state " + state_text(a, ref.from) +
+                       ", which has " + std::to_string(degree) + " transitions");
+  auto it = boost::out_edges(ref.from, g).first;
+  std::advance(it, ref.child);
+  return *it;
+}
+
+std::string transition_name(const Automaton& a, TransitionRef ref) {
+  return state_text(a, ref.from) + "/" + a.graph[transition_id(a, ref)].label;
+}
+
+Eigen::MatrixXd selection_matrix(const Bcifs& sys, int boundary) {
+  const auto& b = sys.boundaries.at(static_cast<std::size_t>(boundary));
+  Eigen::MatrixXd B = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(b.rows.size()), cell_size(sys, b.cell));
+  for (std::size_t i = 0; i < b.rows.size(); ++i) B(static_cast<Eigen::Index>(i), b.rows[i]) = 1;
+  return B;
+}
+
+void validate(const Bcifs& sys) {
+  const Graph& g = sys.automaton.graph;
+  const auto n = boost::num_vertices(g);
+  if (sys.dimension.size() != n)
+    throw InvalidInput("BC-IFS: " + std::to_string(sys.dimension.size()) + " cell dimensions for " +
+                       std::to_string(n) + " states");
+  for (StateId s = 0; s < n; ++s) {
+    if (sys.dimension[s] < 0 || sys.dimension[s] > 2)
+      throw InvalidInput("BC-IFS: cell " + state_text(sys.automaton, s) + " has dimension " +
+                         std::to_string(sys.dimension[s]) + ", expected 0 (vertex), 1 (edge) or 2 (face)");
+    std::set<std::string> labels;
+    for (auto [b, e] = boost::out_edges(s, g); b != e; ++b)
+      if (!labels.insert(g[*b].label).second)
+        throw InvalidInput("BC-IFS: cell " + state_text(sys.automaton, s) +
+                           " has two transitions labelled \"" + g[*b].label +
+                           "\" (labels name the transitions)");
+  }
+  std::set<std::pair<StateId, std::string>> names;
+  for (std::size_t i = 0; i < sys.boundaries.size(); ++i) {
+    const auto& b = sys.boundaries[i];
+    const std::string where = "BC-IFS: boundaries[" + std::to_string(i) + "] (\"" + b.name + "\")";
+    if (b.cell >= n || b.boundary >= n) throw InvalidInput(where + ": names a state that does not exist");
+    if (!names.insert({b.cell, b.name}).second)
+      throw InvalidInput(where + ": cell " + state_text(sys.automaton, b.cell) +
+                         " has two boundaries of that name");
+    if (sys.dimension[b.boundary] >= sys.dimension[b.cell])
+      throw InvalidInput(where + ": the boundary cell " + state_text(sys.automaton, b.boundary) +
+                         " has dimension " + std::to_string(sys.dimension[b.boundary]) +
+                         ", not less than its cell's " + std::to_string(sys.dimension[b.cell]));
+    if (static_cast<int>(b.rows.size()) != g[b.boundary].size)
+      throw InvalidInput(where + ": selects " + std::to_string(b.rows.size()) + " rows, the boundary cell " +
+                         state_text(sys.automaton, b.boundary) + " holds " +
+                         std::to_string(g[b.boundary].size));
+    std::set<int> seen;
+    for (const int r : b.rows)
+      if (r < 0 || r >= g[b.cell].size || !seen.insert(r).second)
+        throw InvalidInput(where + ": row " + std::to_string(r) + " is repeated or outside the cell's " +
+                           std::to_string(g[b.cell].size) + " rows");
+  }
+  std::map<TransitionRef, std::size_t> free_index;
+  for (std::size_t f = 0; f < sys.free.size(); ++f) {
+    transition_id(sys.automaton, sys.free[f]);
+    if (!free_index.emplace(sys.free[f], f).second)
+      throw InvalidInput("BC-IFS: transition " + transition_name(sys.automaton, sys.free[f]) +
+                         " is listed free twice");
+  }
+  for (const Constraint& c : sys.constraints) {
+    const std::string where = "BC-IFS: constraint \"" + c.name + "\"";
+    std::pair<StateId, StateId> ends[2];
+    for (int side = 0; side < 2; ++side) {
+      const auto& factors = side ? c.right : c.left;
+      if (factors.empty())
+        throw InvalidInput(where + ": the " + (side ? "right" : "left") + " side is empty");
+      int unknowns = 0;
+      for (std::size_t k = 0; k < factors.size(); ++k) {
+        const Factor& f = factors[k];
+        if (f.kind == Factor::Kind::boundary) {
+          if (f.boundary < 0 || f.boundary >= static_cast<int>(sys.boundaries.size()))
+            throw InvalidInput(where + ": boundary operator " + std::to_string(f.boundary) +
+                               " does not exist");
+        } else {
+          transition_id(sys.automaton, f.transition);
+          unknowns += static_cast<int>(free_index.count(f.transition));
+        }
+        if (k + 1 < factors.size() && factor_cells(sys, f).first != factor_cells(sys, factors[k + 1]).second)
+          throw InvalidInput(where + ": " + factor_text(sys, f) + " reads cell " +
+                             state_text(sys.automaton, factor_cells(sys, f).first) + " but " +
+                             factor_text(sys, factors[k + 1]) + " produces cell " +
+                             state_text(sys.automaton, factor_cells(sys, factors[k + 1]).second));
+      }
+      if (unknowns > 1)
+        throw InvalidInput(where + ": the " + (side ? "right" : "left") +
+                           " side holds more than one free transition (not linear)");
+      ends[side] = {factor_cells(sys, factors.back()).first, factor_cells(sys, factors.front()).second};
+    }
+    if (ends[0] != ends[1])
+      throw InvalidInput(where + ": the left side maps cell " + state_text(sys.automaton, ends[0].first) +
+                         " to " + state_text(sys.automaton, ends[0].second) + ", the right side " +
+                         state_text(sys.automaton, ends[1].first) + " to " +
+                         state_text(sys.automaton, ends[1].second));
+  }
+}
+
+std::string coefficient_name(const Automaton& a, const Coefficient& c) {
+  return transition_name(a, c.transition) + "[" + std::to_string(c.row) + "," + std::to_string(c.col) + "]";
+}
+
+std::vector<std::pair<std::string, double>> constraint_residuals(const Bcifs& sys) {
+  validate(sys);
+  std::vector<std::pair<std::string, double>> out;
+  for (const Constraint& c : sys.constraints) {
+    const int source = cell_size(sys, factor_cells(sys, c.left.back()).first);
+    const Eigen::MatrixXd L = product(sys, c.left, source), R = product(sys, c.right, source);
+    const double scale = std::max({1.0, L.cwiseAbs().maxCoeff(), R.cwiseAbs().maxCoeff()});
+    out.emplace_back(c.name, (L - R).cwiseAbs().maxCoeff() / scale);
+  }
+  for (const TransitionRef& f : sys.free) {
+    const auto& M = sys.automaton.graph[transition_id(sys.automaton, f)].matrix;
+    const double worst = M.rows() ? (M.rowwise().sum().array() - 1).abs().maxCoeff() : 0.0;
+    out.emplace_back(transition_name(sys.automaton, f) + " row sums", worst);
+  }
+  return out;
+}
+
+void check_admissible(const Bcifs& sys, double tolerance) {
+  const auto residuals = constraint_residuals(sys);
+  const auto worst = std::max_element(residuals.begin(), residuals.end(),
+                                      [](const auto& a, const auto& b) { return a.second < b.second; });
+  if (worst != residuals.end() && !(worst->second <= tolerance))
+    throw InvalidInput("BC-IFS: the matrices are not admissible: constraint \"" + worst->first +
+                       "\" fails by " + number_text(worst->second) + " (relative; tolerance " +
+                       number_text(tolerance) + ")");
+}
+
+AdmissibleSpace admissible_space(const Bcifs& sys, const SolveOptions& options) {
+  validate(sys);
+  const Graph& g = sys.automaton.graph;
+  AdmissibleSpace space;
+  std::map<TransitionRef, std::size_t> free_index;
+  std::vector<std::size_t> base;  // first unknown of each free matrix
+  for (std::size_t f = 0; f < sys.free.size(); ++f) {
+    free_index.emplace(sys.free[f], f);
+    base.push_back(space.unknowns.size());
+    const auto& M = g[transition_id(sys.automaton, sys.free[f])].matrix;
+    for (int r = 0; r < M.rows(); ++r)
+      for (int c = 0; c < M.cols(); ++c) space.unknowns.push_back(Coefficient{sys.free[f], r, c});
+  }
+  const auto unknown = [&](std::size_t f, Eigen::Index r, Eigen::Index c) {
+    const auto& M = g[transition_id(sys.automaton, sys.free[f])].matrix;
+    return base[f] + static_cast<std::size_t>(r * M.cols() + c);
+  };
+
+  // Equations: one per entry of each constraint, one per row of each free matrix.
+  std::vector<Equation> equations;
+  for (std::size_t ci = 0; ci < sys.constraints.size(); ++ci) {
+    const Constraint& con = sys.constraints[ci];
+    const int source = cell_size(sys, factor_cells(sys, con.left.back()).first);
+    const int target = cell_size(sys, factor_cells(sys, con.left.front()).second);
+    std::vector<std::map<std::size_t, double>> terms(static_cast<std::size_t>(source * target));
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(target, source);
+    for (int side = 0; side < 2; ++side) {
+      const std::span<const Factor> factors = side ? con.right : con.left;
+      const double sign = side ? -1.0 : 1.0;
+      const int u = free_position(factors, free_index);
+      if (u < 0) {
+        rhs -= sign * product(sys, factors, source);
+        continue;
+      }
+      const Factor& x = factors[static_cast<std::size_t>(u)];
+      const auto [x_from, x_to] = factor_cells(sys, x);
+      const Eigen::MatrixXd A =
+          product(sys, factors.first(static_cast<std::size_t>(u)), cell_size(sys, x_to));
+      const Eigen::MatrixXd C = product(sys, factors.subspan(static_cast<std::size_t>(u) + 1), source);
+      const std::size_t f = free_index.at(x.transition);
+      for (Eigen::Index r = 0; r < A.rows(); ++r)
+        for (Eigen::Index p = 0; p < A.cols(); ++p) {
+          if (A(r, p) == 0) continue;
+          for (Eigen::Index q = 0; q < C.rows(); ++q)
+            for (Eigen::Index c = 0; c < C.cols(); ++c)
+              if (C(q, c) != 0)
+                terms[static_cast<std::size_t>(r * source + c)][unknown(f, p, q)] += sign * A(r, p) * C(q, c);
+        }
+    }
+    for (int r = 0; r < target; ++r)
+      for (int c = 0; c < source; ++c) {
+        Equation eq;
+        eq.source = static_cast<int>(ci);
+        eq.rhs = rhs(r, c);
+        for (const auto& [k, v] : terms[static_cast<std::size_t>(r * source + c)])
+          if (v != 0) eq.terms.emplace_back(k, v);
+        if (eq.terms.empty()) {
+          // Both sides known: the entry must already agree.
+          if (std::abs(eq.rhs) > 1e-12 * std::max(1.0, std::abs(eq.rhs)))
+            throw InvalidInput("BC-IFS: constraint \"" + con.name + "\" involves no free matrix at entry (" +
+                               std::to_string(r) + "," + std::to_string(c) + ") and fails there by " +
+                               number_text(std::abs(eq.rhs)));
+          continue;
+        }
+        equations.push_back(std::move(eq));
+      }
+  }
+  for (std::size_t f = 0; f < sys.free.size(); ++f) {
+    const auto& M = g[transition_id(sys.automaton, sys.free[f])].matrix;
+    for (Eigen::Index r = 0; r < M.rows(); ++r) {
+      Equation eq;
+      eq.source = -1 - static_cast<int>(f);
+      eq.rhs = 1;
+      for (Eigen::Index c = 0; c < M.cols(); ++c) eq.terms.emplace_back(unknown(f, r, c), 1.0);
+      equations.push_back(std::move(eq));
+    }
+  }
+
+  // Connected components of the unknown/equation graph.
+  const std::size_t n = space.unknowns.size();
+  UnionFind uf(n);
+  for (const Equation& eq : equations)
+    for (const auto& t : eq.terms) uf.unite(eq.terms.front().first, t.first);
+  std::map<std::size_t, std::vector<std::size_t>> comp_unknowns, comp_equations;
+  for (std::size_t k = 0; k < n; ++k) comp_unknowns[uf.find(k)].push_back(k);
+  for (std::size_t e = 0; e < equations.size(); ++e)
+    comp_equations[uf.find(equations[e].terms.front().first)].push_back(e);
+
+  space.x0 = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
+  std::vector<char> is_free(n, 0);
+  // Dependent unknown → (its coefficient on each free unknown of its component).
+  std::vector<std::pair<std::size_t, std::vector<std::pair<std::size_t, double>>>> dependents;
+  for (const auto& [root, vars] : comp_unknowns) {
+    const auto& eqs = comp_equations[root];
+    std::map<std::size_t, Eigen::Index> local;
+    for (std::size_t k = 0; k < vars.size(); ++k) local[vars[k]] = static_cast<Eigen::Index>(k);
+    const auto m = static_cast<Eigen::Index>(eqs.size()), nv = static_cast<Eigen::Index>(vars.size());
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(m, nv);
+    Eigen::VectorXd b(m);
+    for (Eigen::Index i = 0; i < m; ++i) {
+      const Equation& eq = equations[eqs[static_cast<std::size_t>(i)]];
+      for (const auto& [k, v] : eq.terms) A(i, local[k]) += v;
+      b(i) = eq.rhs;
+    }
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
+    qr.setThreshold(options.threshold);
+    const Eigen::Index rank = qr.rank();
+    const auto& perm = qr.colsPermutation().indices();
+    std::vector<Eigen::Index> basic(perm.data(), perm.data() + rank),
+        others(perm.data() + rank, perm.data() + nv);
+    std::sort(basic.begin(), basic.end());
+    std::sort(others.begin(), others.end());
+    Eigen::MatrixXd AB(m, rank), AF(m, nv - rank);
+    for (Eigen::Index j = 0; j < rank; ++j) AB.col(j) = A.col(basic[static_cast<std::size_t>(j)]);
+    for (Eigen::Index j = 0; j < nv - rank; ++j) AF.col(j) = A.col(others[static_cast<std::size_t>(j)]);
+    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qrb(AB);
+    const Eigen::VectorXd xb = qrb.solve(b);
+    const Eigen::MatrixXd KB = -qrb.solve(AF);
+    const double scale = std::max(1.0, b.cwiseAbs().maxCoeff());
+    const double miss = (AB * xb - b).cwiseAbs().maxCoeff() / scale;
+    const double slack = nv > rank ? (AB * KB + AF).cwiseAbs().maxCoeff() : 0.0;
+    if (!(miss <= 1e-9) || !(slack <= 1e-9)) {
+      std::set<std::string> names;
+      for (const std::size_t e : eqs) {
+        const int src = equations[e].source;
+        names.insert(src >= 0 ? sys.constraints[static_cast<std::size_t>(src)].name
+                              : transition_name(sys.automaton, sys.free[static_cast<std::size_t>(-1 - src)]) +
+                                    " row sums");
+      }
+      std::string list;
+      for (const auto& s : names) list += (list.empty() ? "\"" : ", \"") + s + "\"";
+      throw InvalidInput("BC-IFS: the constraints " + list +
+                         " have no common solution (least-squares residual " +
+                         number_text(std::max(miss, slack)) + ")");
+    }
+    for (Eigen::Index j = 0; j < rank; ++j) {
+      const std::size_t k = vars[static_cast<std::size_t>(basic[static_cast<std::size_t>(j)])];
+      space.x0(static_cast<Eigen::Index>(k)) = xb(j);
+      std::vector<std::pair<std::size_t, double>> row;
+      for (Eigen::Index i = 0; i < nv - rank; ++i)
+        if (KB(j, i) != 0)
+          row.emplace_back(vars[static_cast<std::size_t>(others[static_cast<std::size_t>(i)])], KB(j, i));
+      dependents.emplace_back(k, std::move(row));
+    }
+    for (const Eigen::Index i : others) is_free[vars[static_cast<std::size_t>(i)]] = 1;
+    ++space.components;
+  }
+  std::vector<Eigen::Index> column(n, -1);
+  for (std::size_t k = 0; k < n; ++k)
+    if (is_free[k]) {
+      column[k] = static_cast<Eigen::Index>(space.free.size());
+      space.free.push_back(k);
+    }
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (const std::size_t k : space.free)
+    triplets.emplace_back(static_cast<int>(k), static_cast<int>(column[k]), 1.0);
+  for (const auto& [k, row] : dependents)
+    for (const auto& [fk, v] : row)
+      triplets.emplace_back(static_cast<int>(k), static_cast<int>(column[fk]), v);
+  space.K.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(space.free.size()));
+  space.K.setFromTriplets(triplets.begin(), triplets.end());
+  return space;
+}
+
+std::vector<std::string> free_names(const Bcifs& sys, const AdmissibleSpace& space) {
+  std::vector<std::string> out;
+  for (const std::size_t k : space.free) out.push_back(coefficient_name(sys.automaton, space.unknowns[k]));
+  return out;
+}
+
+Eigen::VectorXd free_values(const Bcifs& sys, const AdmissibleSpace& space) {
+  Eigen::VectorXd c(static_cast<Eigen::Index>(space.free.size()));
+  for (std::size_t j = 0; j < space.free.size(); ++j) {
+    const Coefficient& k = space.unknowns[space.free[j]];
+    c(static_cast<Eigen::Index>(j)) =
+        sys.automaton.graph[transition_id(sys.automaton, k.transition)].matrix(k.row, k.col);
+  }
+  return c;
+}
+
+Bcifs with_free_values(const Bcifs& sys, const AdmissibleSpace& space, const Eigen::VectorXd& c) {
+  if (c.size() != static_cast<Eigen::Index>(space.free.size()))
+    throw InvalidInput("BC-IFS: " + std::to_string(c.size()) + " values for " +
+                       std::to_string(space.free.size()) + " free coefficients");
+  Bcifs out = sys;
+  const Eigen::VectorXd x = space.x0 + space.K * c;
+  for (std::size_t k = 0; k < space.unknowns.size(); ++k) {
+    const Coefficient& u = space.unknowns[k];
+    out.automaton.graph[transition_id(out.automaton, u.transition)].matrix(u.row, u.col) =
+        x(static_cast<Eigen::Index>(k));
+  }
+  return out;
+}
+
+Perturbation perturb(const Bcifs& sys, const PerturbOptions& options) {
+  if (!(options.amplitude >= 0) || !std::isfinite(options.amplitude))
+    throw InvalidInput("perturb: amplitude " + number_text(options.amplitude) + " is not a finite value ≥ 0");
+  const AdmissibleSpace space = admissible_space(sys, options.solve);
+  const auto names = free_names(sys, space);
+  std::map<std::string, std::size_t> index;
+  for (std::size_t j = 0; j < names.size(); ++j) index.emplace(names[j], j);
+  for (const auto& [name, value] : options.values) {
+    if (!index.count(name)) {
+      const bool dependent =
+          std::any_of(space.unknowns.begin(), space.unknowns.end(),
+                      [&](const Coefficient& u) { return coefficient_name(sys.automaton, u) == name; });
+      throw InvalidInput("perturb: values: \"" + name + "\" is " +
+                         (dependent ? "a dependent coefficient (solved from the constraints)"
+                                    : "not an entry of a free matrix") +
+                         "; the free coefficients are listed by free_names");
+    }
+    if (!std::isfinite(value)) throw InvalidInput("perturb: values: \"" + name + "\" is not finite");
+  }
+  Eigen::VectorXd c = free_values(sys, space);
+  Random random(options.seed);
+  Perturbation out;
+  for (std::size_t j = 0; j < names.size(); ++j) {
+    const double draw = random.symmetric();  // drawn for every coefficient: explicit values keep the stream
+    const auto it = options.values.find(names[j]);
+    auto& cj = c(static_cast<Eigen::Index>(j));
+    cj = it != options.values.end() ? it->second : cj + options.amplitude * draw;
+    out.values.emplace_back(names[j], cj);
+  }
+  out.system = with_free_values(sys, space, c);
+  for (const auto& [name, r] : constraint_residuals(out.system)) out.residual = std::max(out.residual, r);
+  if (!(out.residual <= 1e-12))
+    throw InvalidInput("perturb: the solved matrices miss the constraints by " + number_text(out.residual) +
+                       " (the system is ill-conditioned)");
+  try {
+    out.contraction = contraction(out.system.automaton, options.contraction);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput("perturb: amplitude " + number_text(options.amplitude) + " with seed " +
+                       std::to_string(options.seed) +
+                       " makes the system non-contractive (lower the amplitude): " + e.what());
+  }
+  return out;
+}
+
+EndFunctionals edge_end_functionals(const Bcifs& sys) {
+  validate(sys);
+  const Automaton& a = sys.automaton;
+  const auto n = boost::num_vertices(a.graph);
+  const auto cells = reachable_states(a);
+  // Boundary operators "start" and "end" of each reachable edge cell.
+  std::vector<std::array<int, 2>> ends(n, {-1, -1});
+  Automaton vertices = a;  // vertex cells as roots: end_functionals follows their first transition
+  vertices.initial.clear();
+  for (std::size_t i = 0; i < sys.boundaries.size(); ++i) {
+    const auto& b = sys.boundaries[i];
+    const int side = b.name == "start" ? 0 : b.name == "end" ? 1 : -1;
+    if (side < 0 || sys.dimension[b.cell] != 1 || sys.dimension[b.boundary] != 0) continue;
+    ends[b.cell][static_cast<std::size_t>(side)] = static_cast<int>(i);
+    automata::Initial root;
+    root.state = b.boundary;
+    vertices.initial.push_back(root);
+  }
+  EndFunctionals out;
+  out.start.resize(n);
+  out.end.resize(n);
+  for (const StateId s : cells)
+    if (sys.dimension[s] == 1 && (ends[s][0] < 0 || ends[s][1] < 0))
+      throw InvalidInput("edge_end_functionals: edge cell " + state_text(a, s) +
+                         " has no \"start\" or no \"end\" boundary onto a vertex cell");
+  if (vertices.initial.empty()) return out;
+  const EndFunctionals fixed = end_functionals(vertices);
+  for (const StateId s : cells) {
+    if (sys.dimension[s] != 1) continue;
+    for (int side = 0; side < 2; ++side) {
+      const auto& b = sys.boundaries[static_cast<std::size_t>(ends[s][static_cast<std::size_t>(side)])];
+      Eigen::RowVectorXd l = Eigen::RowVectorXd::Zero(a.graph[s].size);
+      for (std::size_t i = 0; i < b.rows.size(); ++i)
+        l(b.rows[i]) = fixed.start[b.boundary](static_cast<Eigen::Index>(i));
+      (side ? out.end : out.start)[s] = std::move(l);
+    }
+  }
+  return out;
+}
+
+EdgePieces edge_pieces(const Bcifs& sys, std::span<const Points> nets, int depth) {
+  const EndFunctionals F = edge_end_functionals(sys);
+  std::vector<Point> starts, ends;
+  EdgePieces out;
+  for_each_leaf(sys.automaton, nets, depth, [&](const Leaf& leaf) {
+    if (F.start[leaf.state].size() == 0)
+      throw InvalidInput("edge_pieces: cell " + state_text(sys.automaton, leaf.state) + " has dimension " +
+                         std::to_string(sys.dimension[leaf.state]) + ": it is not an edge cell");
+    starts.push_back(F.start[leaf.state] * leaf.net);
+    ends.push_back(F.end[leaf.state] * leaf.net);
+    out.state.push_back(leaf.state);
+    out.initial.push_back(leaf.initial);
+    out.word.emplace_back(leaf.word.begin(), leaf.word.end());
+  });
+  const auto count = static_cast<Eigen::Index>(starts.size());
+  const Eigen::Index cols = nets.empty() ? 0 : nets[0].cols();
+  out.start.resize(count, cols);
+  out.end.resize(count, cols);
+  for (Eigen::Index i = 0; i < count; ++i) {
+    out.start.row(i) = starts[static_cast<std::size_t>(i)];
+    out.end.row(i) = ends[static_cast<std::size_t>(i)];
+  }
+  return out;
+}
+
+}  // namespace cifs::ifs

@@ -1,0 +1,171 @@
+// SPDX-License-Identifier: MIT
+#include "cifs/ifs/bcifs_curve.hpp"
+
+#include <map>
+#include <numeric>
+#include <tuple>
+
+#include "cifs/errors.hpp"
+
+namespace cifs::ifs {
+
+using automata::StateId;
+
+namespace {
+
+struct Classes {
+  std::vector<std::size_t> parent;
+  std::size_t find(std::size_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  bool unite(std::size_t a, std::size_t b) {
+    a = find(a);
+    b = find(b);
+    if (a == b) return false;
+    parent[std::max(a, b)] = std::min(a, b);  // the smallest key represents its class
+    return true;
+  }
+};
+
+}  // namespace
+
+Bcifs curve_bcifs(const nurbs::Curve& curve, const CurveBcifsOptions& options) {
+  nurbs::validate(curve);
+  const int d = curve.degree;
+  if (d < 1) throw InvalidInput("curve_bcifs: degree " + std::to_string(d) + " has no edge to subdivide");
+  // Edge cells: the knot automaton's states unfolded by two flags, "starts at a knot of the
+  // curve" and "ends at one", so that the vertex cells at the curve's knots and those at the
+  // midpoints created by subdivision are never the same cell.
+  const automata::Automaton knots = automata::knot_automaton(curve);
+  Bcifs sys;
+  auto& g = sys.automaton.graph;
+  std::map<std::tuple<StateId, bool, bool>, StateId> ids;
+  std::vector<std::tuple<StateId, bool, bool>> origin;
+  std::vector<bool> at_knot;  // per vertex key 2s + side: the vertex is a knot of the curve
+  const auto cell_of = [&](StateId k, bool a, bool b) {
+    const auto [it, added] = ids.try_emplace({k, a, b}, 0);
+    if (added) {
+      const auto& st = knots.graph[k];
+      it->second = boost::add_vertex(
+          automata::State{st.size, st.window, false, st.name + (a ? "a" : "") + (b ? "b" : "")}, g);
+      origin.emplace_back(k, a, b);
+      at_knot.push_back(a);
+      at_knot.push_back(b);
+    }
+    return it->second;
+  };
+  for (automata::Initial init : knots.initial) {
+    init.state = cell_of(init.state, true, true);
+    sys.automaton.initial.push_back(init);
+  }
+  for (StateId s = 0; s < origin.size(); ++s) {
+    const auto [k, a, b] = origin[s];
+    for (int c = 0; c < 2; ++c) {
+      const auto e = transition_id(knots, TransitionRef{k, c});
+      const StateId t = c == 0 ? cell_of(boost::target(e, knots.graph), a, false)
+                               : cell_of(boost::target(e, knots.graph), false, b);
+      boost::add_edge(s, t, knots.graph[e], g);
+    }
+  }
+  automata::mark_recurrent(sys.automaton);
+  const std::size_t edges = boost::num_vertices(g);
+
+  // Rows of an edge net that its start (side 0) or end (side 1) point depends on.
+  const auto end_rows = [&](StateId s, int side) {
+    const auto& w = g[s].window;
+    int m = 1;  // multiplicity of the knot: 1 + the zero intervals next to the centre
+    if (side == 0)
+      for (int i = d - 2; i >= 0 && w[static_cast<std::size_t>(i)] == 0; --i) ++m;
+    else
+      for (int i = d; i < 2 * d - 1 && w[static_cast<std::size_t>(i)] == 0; ++i) ++m;
+    std::vector<int> rows(static_cast<std::size_t>(d - m + 1));
+    std::iota(rows.begin(), rows.end(), side == 0 ? 0 : m);
+    return rows;
+  };
+  const auto child = [&](StateId s, int c) {
+    return boost::target(transition_id(sys.automaton, TransitionRef{s, c}), g);
+  };
+  // Vertex keys 2s + side; the child of a key follows G from a start, D from an end.
+  const auto child_key = [&](std::size_t key) {
+    const int side = static_cast<int>(key % 2);
+    return 2 * child(key / 2, side) + static_cast<std::size_t>(side);
+  };
+  Classes classes{std::vector<std::size_t>(2 * edges)};
+  std::iota(classes.parent.begin(), classes.parent.end(), std::size_t{0});
+  const auto& initial = sys.automaton.initial;
+  for (std::size_t k = 0; k + 1 < initial.size(); ++k)
+    classes.unite(2 * initial[k].state + 1, 2 * initial[k + 1].state);
+  if (curve.closed) classes.unite(2 * initial.back().state + 1, 2 * initial.front().state);
+  // Interior junctions: the end of G(s) and the start of D(s) are one midpoint vertex.
+  for (StateId s = 0; s < edges; ++s) classes.unite(2 * child(s, 0) + 1, 2 * child(s, 1));
+  // Congruence: keys in one class have children in one class.
+  for (bool changed = true; changed;) {
+    changed = false;
+    std::map<std::size_t, std::size_t> first_child;
+    for (std::size_t key = 0; key < 2 * edges; ++key) {
+      const auto [it, added] = first_child.try_emplace(classes.find(key), child_key(key));
+      if (!added) changed = classes.unite(it->second, child_key(key)) || changed;
+    }
+  }
+
+  // Vertex cells, one per class, after the edge cells.
+  sys.dimension.assign(edges, 1);
+  std::map<std::size_t, StateId> vertex;  // class representative → vertex cell
+  for (std::size_t key = 0; key < 2 * edges; ++key) {
+    const std::size_t rep = classes.find(key);
+    const int size = static_cast<int>(end_rows(key / 2, static_cast<int>(key % 2)).size());
+    const auto [it, added] = vertex.try_emplace(rep, 0);
+    if (added) {
+      it->second = boost::add_vertex(g);
+      g[it->second].size = size;
+      g[it->second].name = "v" + std::to_string(it->second - edges);
+      sys.dimension.push_back(0);
+    } else if (g[it->second].size != size) {
+      throw InvalidInput("curve_bcifs: the vertex cell " + g[it->second].name + " is reached with " +
+                         std::to_string(g[it->second].size) + " and with " + std::to_string(size) +
+                         " rows (knot multiplicities disagree)");
+    }
+  }
+  for (const auto& [rep, v] : vertex) {
+    const StateId s = rep / 2;
+    const int side = static_cast<int>(rep % 2);
+    const auto from = end_rows(s, side), to = end_rows(child(s, side), side);
+    const auto& T = g[transition_id(sys.automaton, TransitionRef{s, side})].matrix;
+    Eigen::MatrixXd V(static_cast<Eigen::Index>(to.size()), static_cast<Eigen::Index>(from.size()));
+    for (std::size_t i = 0; i < to.size(); ++i)
+      for (std::size_t j = 0; j < from.size(); ++j)
+        V(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = T(to[i], from[j]);
+    boost::add_edge(v, vertex.at(classes.find(child_key(rep))), automata::Transition{"V", V}, g);
+    if (options.free_vertices || !at_knot[rep]) sys.free.push_back(TransitionRef{v, 0});
+  }
+
+  // Boundaries, then the constraints of every edge cell.
+  for (StateId s = 0; s < edges; ++s)
+    for (int side = 0; side < 2; ++side)
+      sys.boundaries.push_back(BoundaryOperator{side ? "end" : "start", s,
+                                                vertex.at(classes.find(2 * s + side)), end_rows(s, side)});
+  const auto boundary = [](StateId s, int side) {
+    return Factor{Factor::Kind::boundary, static_cast<int>(2 * s) + side, {}};
+  };
+  const auto transition = [](StateId s, int c) {
+    return Factor{Factor::Kind::transition, 0, TransitionRef{s, c}};
+  };
+  for (StateId s = 0; s < edges; ++s) {
+    const std::string name = g[s].name;
+    const StateId t1 = child(s, 0), t2 = child(s, 1);
+    for (int side = 0; side < 2; ++side) {
+      const StateId v = vertex.at(classes.find(2 * s + static_cast<std::size_t>(side)));
+      sys.constraints.push_back(Constraint{name + (side ? ".end" : ".start"),
+                                           {boundary(side ? t2 : t1, side), transition(s, side)},
+                                           {transition(v, 0), boundary(s, side)}});
+    }
+    sys.constraints.push_back(Constraint{
+        name + ".junction", {boundary(t1, 1), transition(s, 0)}, {boundary(t2, 0), transition(s, 1)}});
+    sys.free.push_back(TransitionRef{s, 0});
+    sys.free.push_back(TransitionRef{s, 1});
+  }
+  return sys;
+}
+
+}  // namespace cifs::ifs

@@ -1,0 +1,186 @@
+// SPDX-License-Identifier: MIT
+#include "cifs/ifs/bcifs_curve.hpp"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "cifs/errors.hpp"
+#include "cifs/ifs/attractor.hpp"
+#include "cifs/nurbs/refine.hpp"
+
+using namespace cifs;
+using namespace cifs::ifs;
+
+namespace {
+
+Points polygon(Eigen::Index n) {
+  Points P(n, 2);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double t = static_cast<double>(i);
+    P.row(i) << t + 0.3 * std::sin(3 * t), std::cos(1.7 * t) + 0.1 * t * t;
+  }
+  return P;
+}
+
+nurbs::Curve uniform_curve(int d, int n) {
+  nurbs::Knots U(static_cast<std::size_t>(n + d + 1));
+  for (std::size_t i = 0; i < U.size(); ++i) U[i] = static_cast<double>(i);
+  return nurbs::make_curve(d, U, polygon(n));
+}
+
+double max_residual(const Bcifs& sys) {
+  double worst = 0;
+  for (const auto& [name, r] : constraint_residuals(sys)) worst = std::max(worst, r);
+  return worst;
+}
+
+/// Curves of every kind the builder must handle: simple, double, triple and clamped knots,
+/// rational weights, closed.
+std::vector<nurbs::Curve> sample_curves() {
+  std::vector<nurbs::Curve> out;
+  out.push_back(uniform_curve(2, 5));
+  out.push_back(uniform_curve(3, 6));
+  out.push_back(nurbs::make_curve(2, {0, 0, 0, 0.3, 1.1, 1.5, 2.6, 2.6, 2.6}, polygon(6)));
+  out.push_back(nurbs::make_curve(3, {0, 0, 0, 0, 1, 2, 2, 3, 4, 4, 4, 4}, polygon(8)));
+  out.push_back(nurbs::make_curve(4, {0, 0, 0, 0, 0, 1, 1, 1, 2.5, 3, 3, 3, 3, 3}, polygon(9)));
+  out.push_back(nurbs::make_curve(3, {0, 0, 0, 0, 1, 1, 1, 2, 2, 2, 2}, polygon(7)));
+  Eigen::VectorXd w(5);
+  w << 1, 0.7, 1.3, 0.7, 1;
+  out.push_back(nurbs::make_curve(2, {0, 0, 0, 1, 1, 2, 2, 2}, polygon(5), w));
+  out.push_back(nurbs::make_closed_curve(3, {0, 1, 2, 3.5, 4, 5}, polygon(5)));
+  out.push_back(nurbs::elevate_degree(nurbs::make_curve(3, {0, 0, 0, 0, 1, 2.5, 3, 3, 3, 3}, polygon(6))));
+  return out;
+}
+
+/// Piece j of segment `seg` at depth K spans this parameter interval of the curve.
+double piece_parameter(const automata::Initial& init, int j, int K) {
+  return init.start + (init.end - init.start) * std::ldexp(static_cast<double>(j), -K);
+}
+
+}  // namespace
+
+TEST_CASE("curve BC-IFS: the NURBS matrices are admissible", "[bcifs][curve]") {
+  for (const auto& curve : sample_curves()) {
+    for (const bool free_vertices : {false, true}) {
+      CAPTURE(curve.degree, curve.knots, curve.closed, free_vertices);
+      const Bcifs sys = curve_bcifs(curve, {free_vertices});
+      CHECK(max_residual(sys) <= 1e-14);
+      CHECK_NOTHROW(check_admissible(sys, 1e-14));
+      // The vertex cells give the end points of every segment (row selection by multiplicity):
+      // against de Boor evaluation.
+      const auto nets = automata::initial_nets(sys.automaton, curve);
+      const auto F = edge_end_functionals(sys);
+      for (std::size_t i = 0; i < nets.size(); ++i) {
+        const auto& init = sys.automaton.initial[i];
+        const Points ends = [&] {
+          Points h(2, nets[i].cols());
+          h.row(0) = F.start[init.state] * nets[i];
+          h.row(1) = F.end[init.state] * nets[i];
+          return curve.rational ? cartesian(h) : h;
+        }();
+        const double scale = std::max(1.0, curve.P.cwiseAbs().maxCoeff());
+        CHECK((ends.row(0) - nurbs::evaluate(curve, init.start)).norm() <= 1e-13 * scale);
+        CHECK((ends.row(1) - nurbs::evaluate(curve, init.end)).norm() <= 1e-13 * scale);  // wraps when closed
+      }
+      // Amplitude 0 gives back the NURBS matrices and the NURBS attractor.
+      const Perturbation p = perturb(sys);
+      CHECK(p.residual <= 1e-14);
+      for (automata::StateId s = 0; s < boost::num_vertices(sys.automaton.graph); ++s)
+        for (int c = 0; c < static_cast<int>(boost::out_degree(s, sys.automaton.graph)); ++c) {
+          const auto& before = sys.automaton.graph[transition_id(sys.automaton, {s, c})].matrix;
+          const auto& after = p.system.automaton.graph[transition_id(p.system.automaton, {s, c})].matrix;
+          CHECK((before - after).cwiseAbs().maxCoeff() <= 1e-14);
+        }
+      if (curve.rational) continue;
+      const int K = 4;
+      const EdgePieces pieces = edge_pieces(p.system, nets, K);
+      REQUIRE(pieces.start.rows() == (static_cast<Eigen::Index>(nets.size()) << K));
+      for (Eigen::Index r = 0; r < pieces.start.rows(); ++r) {
+        const auto& init = sys.automaton.initial[pieces.initial[static_cast<std::size_t>(r)]];
+        const int j = static_cast<int>(r % (Eigen::Index{1} << K));
+        CHECK((pieces.start.row(r) - nurbs::evaluate(curve, piece_parameter(init, j, K))).norm() <=
+              1e-12 * std::max(1.0, curve.P.cwiseAbs().maxCoeff()));
+      }
+    }
+  }
+}
+
+TEST_CASE("curve BC-IFS: free coefficients of uniform B-splines (hand counts)", "[bcifs][curve]") {
+  // Uniform open curves with several segments: edge cells "ab" (the segments), "a", "b" and ""
+  // (unfolded uniform state), vertex classes K1 = {ab.start, ab.end} → K2 = {a.start, b.end} → K2
+  // at the knots, and M = {a.end, b.start, .start, .end} at the midpoints. Per edge cell with
+  // start operator Vs and end operator Ve, incidence fixes G's first d rows as [Vs 0] and D's last
+  // d rows as [0 Ve]; the junction G rows 1…d = D rows 0…d−1 then determines the rest.
+  // Quadratic: no condition is left on the vertex operators (2×2), so the free coefficients are
+  // those of the free vertex operators, 2 each (4 entries − 2 row sums): default M only → 2;
+  // free vertices K1, K2, M → 6.
+  CHECK(admissible_space(curve_bcifs(uniform_curve(2, 5))).free.size() == 2);
+  CHECK(admissible_space(curve_bcifs(uniform_curve(2, 5), {true})).free.size() == 6);
+  // Cubic: the junction row 2 adds "Vs row 2 = (0, Ve row 0 without its last entry), Ve(0,2) = 0".
+  // Default (K fixed, Chaikin-like rows [½ ½ 0], [0 ½ ½] at both ends): cells "a" and "b" force
+  // M rows 0 and 2 to those, leaving M row 1: 3 entries − 1 row sum = 2. Free vertices: K1 has
+  // rows 0 and 2 tied (a, 1−a) plus a free row 1 → 3; K2 likewise → 3; M shares K2's rows 0 and 2
+  // and adds its row 1 → 2; total 8.
+  CHECK(admissible_space(curve_bcifs(uniform_curve(3, 6))).free.size() == 2);
+  CHECK(admissible_space(curve_bcifs(uniform_curve(3, 6), {true})).free.size() == 8);
+}
+
+TEST_CASE("curve BC-IFS: perturbed curves keep knots and end points and stay joined", "[bcifs][curve]") {
+  for (const auto& curve : sample_curves()) {
+    if (curve.rational) continue;
+    CAPTURE(curve.degree, curve.knots, curve.closed);
+    const Bcifs sys = curve_bcifs(curve);
+    const auto nets = automata::initial_nets(sys.automaton, curve);
+    PerturbOptions options;
+    options.amplitude = 0.02;
+    options.seed = 3;
+    const Perturbation p = perturb(sys, options);
+    CHECK(p.residual <= 1e-12);
+    const int K = 6;
+    const EdgePieces pieces = edge_pieces(p.system, nets, K);
+    const double scale = std::max(1.0, curve.P.cwiseAbs().maxCoeff());
+    double moved = 0;
+    const Eigen::Index per_segment = Eigen::Index{1} << K;
+    for (Eigen::Index r = 0; r < pieces.start.rows(); ++r) {
+      const auto& init = sys.automaton.initial[pieces.initial[static_cast<std::size_t>(r)]];
+      const Eigen::Index j = r % per_segment;
+      // Joined: every piece ends where the next starts (G end = D start at every node, and
+      // neighbouring segments; closed curves wrap).
+      const Eigen::Index next = r + 1 < pieces.start.rows() ? r + 1 : 0;
+      if (next != 0 || curve.closed)
+        CHECK((pieces.end.row(r) - pieces.start.row(next)).norm() <= 1e-12 * scale);
+      // Knot points and end points stay on the NURBS curve.
+      if (j == 0) CHECK((pieces.start.row(r) - nurbs::evaluate(curve, init.start)).norm() <= 1e-12 * scale);
+      if (j == per_segment - 1 && !(curve.closed && next == 0))
+        CHECK((pieces.end.row(r) - nurbs::evaluate(curve, init.end)).norm() <= 1e-12 * scale);
+      moved = std::max(
+          moved, (pieces.start.row(r) - nurbs::evaluate(curve, piece_parameter(init, static_cast<int>(j), K)))
+                     .norm());
+    }
+    CHECK(moved > 1e-4);  // the geometry between knots did change
+    // attractor_points (ifs::end_functionals, first child) agrees with the vertex-cell functionals.
+    const Points pts = attractor_points(p.system.automaton, nets, K, {curve.closed});
+    for (Eigen::Index r = 0; r < pieces.start.rows(); ++r)
+      CHECK((pts.row(r) - pieces.start.row(r)).norm() <= 1e-12 * scale);
+  }
+}
+
+TEST_CASE("curve BC-IFS: free vertex operators move the knots, junctions hold", "[bcifs][curve]") {
+  const nurbs::Curve curve = uniform_curve(3, 6);
+  const Bcifs sys = curve_bcifs(curve, {true});
+  const auto nets = automata::initial_nets(sys.automaton, curve);
+  PerturbOptions options;
+  options.amplitude = 0.03;
+  options.seed = 5;
+  const Perturbation p = perturb(sys, options);
+  const EdgePieces pieces = edge_pieces(p.system, nets, 5);
+  double knot_moved = 0;
+  for (Eigen::Index r = 0; r + 1 < pieces.start.rows(); ++r) {
+    CHECK((pieces.end.row(r) - pieces.start.row(r + 1)).norm() <= 1e-12 * 10);
+    if (r % 32 == 0) {
+      const auto& init = sys.automaton.initial[pieces.initial[static_cast<std::size_t>(r)]];
+      knot_moved = std::max(knot_moved, (pieces.start.row(r) - nurbs::evaluate(curve, init.start)).norm());
+    }
+  }
+  CHECK(knot_moved > 1e-4);
+}
