@@ -1,15 +1,18 @@
 // SPDX-License-Identifier: MIT
 #include "commands.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "cifs/automata/automaton.hpp"
 #include "cifs/errors.hpp"
+#include "cifs/experiment/run.hpp"
 #include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/ifs/chaos.hpp"
+#include "cifs/io/experiment.hpp"
 #include "cifs/io/polyline.hpp"
 #include "cifs/io/shape.hpp"
 #include "cifs/nurbs/refine.hpp"
@@ -319,36 +322,33 @@ std::string check(const CheckOptions& o, int& status) {
   return out + check_verdict(r.pass);
 }
 
+std::string render(const RenderOptions& o) {
+  const io::Experiment e = io::read_experiment(o.experiment);
+  experiment::RunOptions ro;
+  ro.exr = o.exr;
+  ro.png = o.png;
+  ro.out_dir = !o.out_dir.empty() ? o.out_dir : o.exr.has_parent_path() ? o.exr.parent_path() : ".";
+  ro.quiet = o.quiet;
+  ro.threads = o.threads;
+  return experiment::run(e, ro).summary;
+}
+
 std::string gallery(const std::filesystem::path& out, const std::filesystem::path& examples) {
+  // Every experiment of examples/experiments, in name order; each writes its own outputs.
+  std::vector<std::filesystem::path> files;
+  const std::filesystem::path folder = examples / "experiments";
+  if (!std::filesystem::is_directory(folder)) throw IoError(folder.string() + ": no such folder");
   std::error_code ec;
   std::filesystem::create_directories(out, ec);
   if (ec) throw IoError(out.string() + ": cannot create the folder (" + ec.message() + ")");
+  for (const auto& entry : std::filesystem::directory_iterator(folder))
+    if (entry.path().extension() == ".json") files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
   std::string summary;
-  const auto write = [&](const std::string& name, const std::string& content) {
-    io::write_file_atomically(out / name, content);
-    summary += "gallery: wrote " + (out / name).string() + "\n";
-  };
-  // The exact rational circle (nine points, quadratic), as a shape and sampled at 257 parameters.
-  const double h = std::sqrt(0.5);
-  Points P(9, 2);
-  P << 1, 0, 1, 1, 0, 1, -1, 1, -1, 0, -1, -1, 0, -1, 1, -1, 1, 0;
-  Eigen::VectorXd w(9);
-  w << 1, h, 1, h, 1, h, 1, h, 1;
-  const nurbs::Curve circle = nurbs::make_curve(2, {0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4}, P, w);
-  const Points samples = nurbs::evaluate(circle, nurbs::uniform_parameters(nurbs::domain(circle), 257));
-  write("circle.json", io::to_json(circle));
-  write("circle.samples.json", points_json(samples));
-  // A non-uniform rational cubic: its knot-doubling automaton (DOT) and its attractor (SVG).
-  Points Q(7, 2);
-  Q << 0, 0, 1, 3, 3, 4, 4, 1, 6, 0, 7, 2, 9, 3;
-  Eigen::VectorXd wq(7);
-  wq << 1, 2, 0.5, 1, 3, 1, 1;
-  const nurbs::Curve wave = nurbs::make_curve(3, {0, 0, 0, 0, 1, 3, 3.5, 6, 6, 6, 6}, Q, wq);
-  const automata::Automaton a = automata::knot_automaton(wave);
-  write("wave.json", io::to_json(wave));
-  write("wave.automaton.dot", automata::to_dot(a));
-  write("wave.attractor.svg",
-        io::polyline_svg(ifs::cartesian(ifs::attractor_points(a, automata::initial_nets(a, wave), 7))));
+  experiment::RunOptions ro;
+  ro.out_dir = out;
+  ro.quiet = true;
+  for (const auto& file : files) summary += experiment::run(io::read_experiment(file), ro).summary;
   // The seeds' subdivision schemes: shapes, degree overlays, algorithms compared.
   summary += write_scheme_gallery(out / "schemes", examples);
   return summary;

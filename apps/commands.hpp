@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,15 @@ struct CheckOptions {
 };
 /// `status` becomes 1 when a deviation exceeds the tolerance.
 std::string check(const CheckOptions& options, int& status);
+
+struct RenderOptions {
+  std::filesystem::path experiment;
+  std::filesystem::path exr, png, out_dir;
+  std::optional<unsigned> threads;
+  bool quiet = false;
+};
+/// `cifs render`: runs an experiment; returns the summary (what was written).
+std::string render(const RenderOptions& options);
 
 /// The main job on its built-in default: writes the example gallery into `out` from the example
 /// files in `examples` (shapes, experiments), returns a summary.

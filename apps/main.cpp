@@ -84,6 +84,20 @@ int main(int argc, char** argv) {
   scheme_cmd->add_flag("--list", sc.list, "List the schemes and their parameters");
   scheme_cmd->callback([&] { result = scheme(sc); });
 
+  RenderOptions re;
+  auto* render_cmd =
+      app.add_subcommand("render", "Run an experiment file: OpenEXR image, PNG preview, geometry");
+  render_cmd->add_option("experiment", re.experiment, "Experiment file (docs/experiments.md)")->required();
+  render_cmd->add_option("-o,--output", re.exr, "OpenEXR image (default: the file's outputs.exr)");
+  render_cmd->add_option("--png", re.png, "PNG preview (default: the file's outputs.png)");
+  render_cmd->add_option(
+      "--out-dir", re.out_dir,
+      "Folder of the file's other outputs (default: the folder of -o, else the current one)");
+  render_cmd->add_option("--threads", re.threads,
+                         "Worker threads (default: the file's render.threads; 0: all)");
+  render_cmd->add_flag("--quiet", re.quiet, "No progress bar");
+  render_cmd->callback([&] { result = render(re); });
+
   std::filesystem::path gallery_out = "out";
   auto* gallery_cmd = app.add_subcommand("gallery", "Write the example gallery (the built-in default job)");
   std::filesystem::path gallery_examples = CIFS_EXAMPLES_DIR;
@@ -96,9 +110,9 @@ int main(int argc, char** argv) {
     const std::string first = argc > 1 ? argv[1] : "-";
     const auto known = app.get_subcommands([&](const CLI::App* sub) { return sub->get_name() == first; });
     if (first[0] != '-' && known.empty())
-      throw cifs::InvalidInput(
-          "unknown command '" + first +
-          "' (commands: eval, insert, info, automaton, attractor, check, scheme, gallery; see cifs --help)");
+      throw cifs::InvalidInput("unknown command '" + first +
+                               "' (commands: eval, insert, info, automaton, attractor, check, scheme, "
+                               "render, gallery; see cifs --help)");
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);

@@ -167,7 +167,8 @@ void render_segments(Image& image, const Camera& camera, const io::Segments& seg
   std::vector<float>& A = image.channels["A"];
   std::vector<float>& Z = image.channels["Z"];
   for (std::size_t i = 0; i < pixels; ++i) {
-    if (!(best[i] < reach) || !(depth[i] <= Z[i])) continue;
+    // Compared at the stored (float) precision, so that equal depths (2-D scenes) pass.
+    if (!(best[i] < reach) || !(static_cast<float>(depth[i]) <= Z[i])) continue;
     const double c = stroke_coverage(best[i], w);
     if (c <= 0) continue;
     const auto over = [c](float& x, double v) { x = static_cast<float>(c * v + (1 - c) * x); };

@@ -184,12 +184,26 @@ TEST_CASE("cifs automaton, attractor and check", "[cli]") {
   check_error(cifs_cli("automaton " + file("s.json", kSurface)), "only curves");
 }
 
-TEST_CASE("cifs gallery writes its outputs", "[cli]") {
+TEST_CASE("cifs gallery runs every example experiment", "[cli]") {
   const auto out = scratch() / "gallery";
   const Run r = cifs_cli("gallery " + out.string());
   REQUIRE(r.status == 0);
-  const auto circle = std::get<nurbs::Curve>(io::read_shape(out / "circle.json"));
-  CHECK(circle.rational);
-  CHECK(json::parse(slurp(out / "circle.samples.json"))["points"].size() == 257);
+  // One EXR and one PNG per experiment file, plus what each asks for.
+  std::size_t experiments = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(CIFS_EXAMPLES_DIR "/experiments"))
+    experiments += entry.path().extension() == ".json";
+  std::size_t exr = 0, png = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(out)) {
+    exr += entry.path().extension() == ".exr";
+    png += entry.path().extension() == ".png";
+  }
+  CHECK(experiments >= 10);
+  CHECK(exr == experiments);
+  CHECK(png == experiments);
+  for (const char* name : {"wave.automaton.svg", "hills.ply", "tree.svg", "schemes/lr_bone_degree3.svg"})
+    CHECK(std::filesystem::is_regular_file(out / name));
+  CHECK_THAT(r.out, Catch::Contains("wave-fractal: NURBS curve") && Catch::Contains("free coefficients"));
   std::filesystem::remove_all(out);
+  // A wrong examples folder is one clear error.
+  check_error(cifs_cli("gallery " + out.string() + " --examples /no/such/folder"), "/no/such/folder");
 }

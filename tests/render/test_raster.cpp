@@ -309,3 +309,26 @@ TEST_CASE("Rasterisers refuse bad input", "[render][raster]") {
   CHECK_THROWS_WITH(render_points(image, camera, Points{{0, 0}}, std::vector<std::uint32_t>{1, 2}),
                     Catch::Contains("2 states for 1 points"));
 }
+
+TEST_CASE("Strokes at equal depth: the later layer wins even where float rounds the depth down",
+          "[render][raster]") {
+  // Depth 10.7 is stored in Z as the float 10.6999998…, below the double depth of the next layer.
+  Camera camera = unit_camera(21, 21);
+  camera.eye = {0, 0, 10.7};
+  Image image;
+  io::Segments horizontal, vertical;
+  horizontal.vertices.resize(2, 3);
+  horizontal.vertices << -8, 0, 0, 8, 0, 0;
+  horizontal.segments = {{0, 1}};
+  horizontal.states = {1};
+  vertical.vertices.resize(2, 3);
+  vertical.vertices << 0, -8, 0, 0, 8, 0;
+  vertical.segments = {{0, 1}};
+  vertical.states = {2};
+  render_segments(image, camera, horizontal, CurveStyle{3, {1, 0, 0}});
+  render_segments(image, camera, vertical, CurveStyle{3, {0, 0, 1}});
+  const std::size_t centre = 10 * 21 + 10;
+  CHECK((*image.state)[centre] == 2);
+  CHECK(image.channels["B"][centre] == 1.0f);
+  CHECK(image.channels["R"][centre] == 0.0f);
+}

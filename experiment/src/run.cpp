@@ -1,0 +1,515 @@
+// SPDX-License-Identifier: MIT
+#include "cifs/experiment/run.hpp"
+
+#include <cmath>
+#include <functional>
+#include <numbers>
+
+#include "cifs/automata/tensor.hpp"
+#include "cifs/errors.hpp"
+#include "cifs/ifs/affine.hpp"
+#include "cifs/ifs/affine_cifs.hpp"
+#include "cifs/ifs/attractor.hpp"
+#include "cifs/ifs/bcifs.hpp"
+#include "cifs/ifs/bcifs_curve.hpp"
+#include "cifs/ifs/chaos.hpp"
+#include "cifs/ifs/mesh.hpp"
+#include "cifs/io/bcifs_json.hpp"
+#include "cifs/io/geometry.hpp"
+#include "cifs/render/camera.hpp"
+#include "cifs/render/chaos_density.hpp"
+#include "cifs/render/image.hpp"
+#include "cifs/render/point_ifs.hpp"
+#include "cifs/render/preview.hpp"
+#include "cifs/render/progress.hpp"
+#include "cifs/render/raster.hpp"
+
+namespace cifs::experiment {
+namespace {
+
+using Mode = io::Evaluation::Mode;
+
+/// What the evaluation produced, ready to frame, draw and export.
+struct Scene {
+  automata::Automaton automaton;  // the (perturbed) automaton: drawn, and sampled by the chaos game
+  std::vector<Points> nets;
+  bool rational = false;  // nets hold homogeneous rows
+  std::optional<io::Mesh> mesh;
+  std::optional<io::Segments> curves;
+  std::optional<io::Segments> control;
+  std::vector<ifs::AffineMap> maps;  // classic IFS
+  Points extent;                     // points that the camera must show
+  int depth = 0;
+};
+
+/// Rows with 2 or 3 columns for the rasterisers (a 1-D shape lies on the x axis).
+Points drawable(const Points& P, const std::string& what) {
+  if (P.cols() == 2 || P.cols() == 3) return P;
+  if (P.cols() == 1) {
+    Points out = Points::Zero(P.rows(), 2);
+    out.col(0) = P.col(0);
+    return out;
+  }
+  throw InvalidInput(what + " has " + std::to_string(P.cols()) +
+                     " coordinates; images show 1-, 2- and 3-D shapes");
+}
+
+Points cartesian_if(const Points& P, bool rational) {
+  return rational ? ifs::cartesian(P) : P;
+}
+
+/// Every row of every net (Cartesian): the control polygon's extent.
+Points net_rows(const std::vector<Points>& nets, bool rational) {
+  Eigen::Index rows = 0;
+  for (const Points& N : nets) rows += N.rows();
+  Points all(rows, nets.empty() ? 0 : nets.front().cols());
+  rows = 0;
+  for (const Points& N : nets) {
+    all.middleRows(rows, N.rows()) = N;
+    rows += N.rows();
+  }
+  return cartesian_if(all, rational);
+}
+
+/// The state of every depth-K node, in curve order.
+std::vector<std::uint32_t> leaf_states(const automata::Automaton& a, const std::vector<Points>& nets,
+                                       int depth) {
+  std::vector<std::uint32_t> states;
+  ifs::for_each_leaf(a, nets, depth, [&](const ifs::Leaf& leaf) {
+    states.push_back(static_cast<std::uint32_t>(leaf.state));
+  });
+  return states;
+}
+
+/// Deterministic curve evaluation: the attractor points to a depth, or to a tolerance (leaf start
+/// points of the tolerance traversal, in curve order), as one polyline with per-piece states.
+io::Segments evaluate_curve(Scene& scene, const io::Evaluation& ev, bool closed, const RunOptions& o) {
+  Points P;
+  std::vector<std::uint32_t> states;
+  if (ev.mode == Mode::depth) {
+    ifs::PointsOptions po;
+    po.closed = closed;
+    po.max_bytes = o.max_bytes;
+    P = ifs::attractor_points(scene.automaton, scene.nets, ev.depth, po);
+    states = leaf_states(scene.automaton, scene.nets, ev.depth);
+    scene.depth = ev.depth;
+  } else {
+    const ifs::EndFunctionals ends = ifs::end_functionals(scene.automaton);
+    ifs::ToleranceOptions to;
+    to.epsilon = ev.tolerance * std::max(ifs::diameter(net_rows(scene.nets, false)), 1e-300);
+    std::vector<Eigen::RowVectorXd> rows;
+    const std::size_t cap =
+        o.max_bytes / (sizeof(double) * static_cast<std::size_t>(scene.nets.front().cols()));
+    const auto result =
+        ifs::for_each_leaf_to_tolerance(scene.automaton, scene.nets, to, [&](const ifs::ToleranceLeaf& t) {
+          if (rows.size() >= cap)
+            throw InvalidInput("evaluation.tolerance: more points than the memory limit allows");
+          rows.push_back(ends.start[t.leaf.state] * t.leaf.net);
+          states.push_back(static_cast<std::uint32_t>(t.leaf.state));
+        });
+    scene.depth = result.deepest;
+    // The end of the last piece closes an open curve.
+    const auto last = scene.automaton.initial.size() - 1;
+    if (!closed) rows.push_back(ends.end[scene.automaton.initial[last].state] * scene.nets[last]);
+    P.resize(static_cast<Eigen::Index>(rows.size()), scene.nets.front().cols());
+    for (std::size_t i = 0; i < rows.size(); ++i) P.row(static_cast<Eigen::Index>(i)) = rows[i];
+  }
+  P = drawable(cartesian_if(P, scene.rational), "the curve");
+  io::Segments s = io::polyline_segments(P, closed);
+  if (states.size() == s.segments.size()) s.states = std::move(states);
+  return s;
+}
+
+ifs::PerturbOptions perturb_options(const io::Perturbation& p) {
+  ifs::PerturbOptions po;
+  po.amplitude = p.amplitude;
+  po.seed = p.seed;
+  po.values = p.values;
+  return po;
+}
+
+void note_perturbation(const ifs::Perturbation& p, RunReport& report) {
+  report.free_coefficients = p.values.size();
+  report.residual = p.residual;
+}
+
+Scene curve_scene(const nurbs::Curve& c, const io::Experiment& e, const RunOptions& o, RunReport& report) {
+  Scene scene;
+  scene.rational = c.rational;
+  scene.automaton = automata::knot_automaton(c);
+  if (e.perturbation) {
+    ifs::CurveBcifsOptions co;
+    co.free_vertices = !e.perturbation->keep_vertices;
+    const ifs::Perturbation p = ifs::perturb(ifs::curve_bcifs(c, co), perturb_options(*e.perturbation));
+    note_perturbation(p, report);
+    scene.automaton = p.system.automaton;
+  }
+  scene.nets = automata::initial_nets(scene.automaton, c);
+  const Points control = drawable(nurbs::cartesian_points(c), "the curve");
+  scene.control = io::polyline_segments(control, c.closed);
+  if (e.evaluation.mode != Mode::chaos) scene.curves = evaluate_curve(scene, e.evaluation, c.closed, o);
+  scene.extent = scene.curves ? scene.curves->vertices : control;
+  return scene;
+}
+
+Scene surface_scene(const nurbs::Surface& s, const io::Experiment& e, const RunOptions& o,
+                    RunReport& report) {
+  Scene scene;
+  scene.rational = s.rational;
+  const automata::TensorAutomaton ta = automata::tensor_automaton(s);
+  scene.automaton = ta.product;
+  scene.nets = automata::initial_nets(ta, s);
+  if (e.perturbation) {
+    (void)report;
+    throw InvalidInput("perturbation: surfaces are not supported yet");
+  }
+  // Control net: the u and v polylines of the control points.
+  const Points P = nurbs::cartesian_points(s);
+  if (P.cols() != 3)
+    throw InvalidInput("the surface has " + std::to_string(P.cols()) +
+                       " coordinates; images show 3-D surfaces");
+  io::Segments net;
+  for (Eigen::Index i = 0; i < s.count[0]; ++i)
+    io::append(net, io::polyline_segments(P.middleRows(i * s.count[1], s.count[1])));
+  for (Eigen::Index j = 0; j < s.count[1]; ++j) {
+    Points column(s.count[0], 3);
+    for (Eigen::Index i = 0; i < s.count[0]; ++i) column.row(i) = P.row(i * s.count[1] + j);
+    io::append(net, io::polyline_segments(column));
+  }
+  scene.control = std::move(net);
+  if (e.evaluation.mode != Mode::chaos) {
+    int depth = e.evaluation.depth;
+    if (e.evaluation.mode == Mode::tolerance) {
+      ifs::ToleranceOptions to;
+      to.epsilon = e.evaluation.tolerance * std::max(ifs::diameter(net_rows(scene.nets, false)), 1e-300);
+      to.max_depth = 14;
+      depth = ifs::for_each_leaf_to_tolerance(scene.automaton, scene.nets, to, [](const ifs::ToleranceLeaf&) {
+              }).deepest;
+    }
+    ifs::MeshOptions mo;
+    mo.homogeneous = s.rational;
+    mo.max_bytes = o.max_bytes;
+    const ifs::QuadMesh qm = e.perturbation
+                                 ? ifs::quad_mesh(scene.automaton, scene.nets, ta.patches, depth, mo)
+                                 : ifs::surface_mesh(ta, scene.nets, depth, mo);
+    scene.depth = depth;
+    io::Mesh mesh;
+    mesh.vertices = qm.vertices;
+    mesh.quads = qm.quads;
+    mesh.states = qm.quad_state;
+    scene.extent = mesh.vertices;
+    scene.mesh = std::move(mesh);
+  } else {
+    scene.extent = P;
+  }
+  return scene;
+}
+
+Scene bcifs_scene(const io::Experiment& e, RunReport& report) {
+  io::BcifsFile file = io::read_bcifs(e.automaton);
+  if (file.nets.size() != file.system.automaton.initial.size())
+    throw InvalidInput(e.automaton.string() + ": the file gives no control nets for its initial states");
+  Scene scene;
+  ifs::Bcifs system = std::move(file.system);
+  if (e.perturbation) {
+    ifs::Perturbation p = ifs::perturb(system, perturb_options(*e.perturbation));
+    note_perturbation(p, report);
+    system = std::move(p.system);
+  }
+  scene.automaton = system.automaton;
+  scene.nets = std::move(file.nets);
+  if (e.evaluation.mode == Mode::depth || e.evaluation.mode == Mode::tolerance) {
+    if (e.evaluation.mode == Mode::tolerance)
+      throw InvalidInput("evaluation.tolerance: BC-IFS files are evaluated to a depth or by the chaos game");
+    const ifs::EdgePieces pieces = ifs::edge_pieces(system, scene.nets, e.evaluation.depth);
+    io::Segments s;
+    const Eigen::Index n = pieces.start.rows();
+    Points v(2 * n, pieces.start.cols());
+    v.topRows(n) = pieces.start;
+    v.bottomRows(n) = pieces.end;
+    s.vertices = drawable(v, "the BC-IFS attractor");
+    for (Eigen::Index i = 0; i < n; ++i) {
+      s.segments.push_back({static_cast<int>(i), static_cast<int>(n + i)});
+      s.states.push_back(static_cast<std::uint32_t>(pieces.state[static_cast<std::size_t>(i)]));
+    }
+    scene.depth = e.evaluation.depth;
+    scene.extent = s.vertices;
+    scene.curves = std::move(s);
+  }
+  io::Segments control;
+  for (const Points& N : scene.nets) io::append(control, io::polyline_segments(drawable(N, "a control net")));
+  if (!scene.curves) scene.extent = control.vertices;
+  scene.control = std::move(control);
+  return scene;
+}
+
+std::vector<ifs::AffineMap> classic_maps(const io::ClassicIfs& c) {
+  if (c.name == "fern") return ifs::barnsley_fern();
+  if (c.name == "sierpinski") return ifs::sierpinski_triangle();
+  if (c.name == "koch") return ifs::koch_curve();
+  std::vector<ifs::AffineMap> maps;
+  for (const auto& m : c.maps) maps.push_back({m[0], m[1], m[2], m[3], m[4], m[5], m[6]});
+  return maps;
+}
+
+Scene classic_scene(const io::ClassicIfs& c) {
+  Scene scene;
+  scene.maps = classic_maps(c);
+  const render::Bounds b = render::estimate_bounds(scene.maps, 0.0);
+  scene.extent.resize(2, 2);
+  scene.extent << b.x_min, b.y_min, b.x_max, b.y_max;
+  // The CIFS form (one state, barycentric matrices on a triangle around the attractor) is what the
+  // automaton outputs draw.
+  const double w = b.x_max - b.x_min, h = b.y_max - b.y_min;
+  Points triangle(3, 2);
+  triangle << b.x_min - w, b.y_min, b.x_max + w, b.y_min, (b.x_min + b.x_max) / 2, b.y_max + h;
+  scene.automaton = ifs::affine_automaton(scene.maps, triangle);
+  scene.nets = {triangle};
+  return scene;
+}
+
+render::Camera make_camera(const io::CameraSpec& spec, const io::RenderSettings& r, const Points& extent) {
+  render::FramingOptions f;
+  f.width = static_cast<std::size_t>(r.width);
+  f.height = static_cast<std::size_t>(r.height);
+  f.margin = spec.margin;
+  f.perspective = spec.projection != io::CameraSpec::Projection::orthographic;
+  f.fov_y = spec.fov_degrees;
+  f.up = Eigen::Vector3d(spec.up[0], spec.up[1], spec.up[2]);
+  if (spec.eye) {
+    const Eigen::Vector3d target =
+        spec.target ? Eigen::Vector3d((*spec.target)[0], (*spec.target)[1], (*spec.target)[2])
+                    : render::frame(extent, f).target;
+    f.view_direction = Eigen::Vector3d((*spec.eye)[0], (*spec.eye)[1], (*spec.eye)[2]) - target;
+  }
+  render::Camera camera = render::frame(extent, f);
+  if (spec.eye) {
+    camera.eye = Eigen::Vector3d((*spec.eye)[0], (*spec.eye)[1], (*spec.eye)[2]);
+    if (spec.target) camera.target = Eigen::Vector3d((*spec.target)[0], (*spec.target)[1], (*spec.target)[2]);
+    camera.up = f.up;
+  }
+  if (spec.projection == io::CameraSpec::Projection::perspective)
+    camera.projection = render::Projection::perspective;
+  return camera;
+}
+
+/// Planar affine IFS: its chaos game (with the maps' probabilities) or its depth-K Hutchinson
+/// measure, binned on the pixels of an orthographic top view.
+void render_classic(render::Image& image, const render::Camera& camera, const Scene& scene,
+                    const io::Experiment& e, const RunOptions& o, unsigned threads) {
+  const render::ViewTransform view = render::view_transform(camera);
+  if (view.perspective || std::abs(view.forward.z()) < 1 - 1e-12)
+    throw InvalidInput("camera: a classic IFS is drawn in an orthographic top view");
+  // The window of the plane that the pixels cover (x right, y up in the top view).
+  const double half_w = 0.5 * static_cast<double>(camera.width) / view.scale;
+  const double half_h = 0.5 * static_cast<double>(camera.height) / view.scale;
+  const Eigen::Vector3d centre = view.eye;
+  render::Bounds bounds{centre.x() - half_w, centre.x() + half_w, centre.y() - half_h, centre.y() + half_h};
+  std::vector<double> density;
+  if (e.evaluation.mode == Mode::chaos) {
+    render::ProgressBar bar("chaos game", o.quiet);
+    render::ChaosHistogramOptions co;
+    co.samples = e.evaluation.samples;
+    co.seed = e.evaluation.seed;
+    co.threads = threads;
+    co.width = camera.width;
+    co.height = camera.height;
+    co.bounds = bounds;
+    co.progress = std::ref(bar);
+    const render::Histogram h = render::chaos_game_histogram(scene.maps, co);
+    density.assign(h.counts.begin(), h.counts.end());
+  } else {
+    if (e.evaluation.mode == Mode::tolerance)
+      throw InvalidInput("evaluation.tolerance: a classic IFS is evaluated to a depth or by the chaos game");
+    density = render::hutchinson_measure(scene.maps, static_cast<unsigned>(e.evaluation.depth), camera.width,
+                                         camera.height, bounds);
+  }
+  const render::Rgb c = e.render.color;
+  const float depth = static_cast<float>(view.project(Eigen::Vector3d(centre.x(), centre.y(), 0)).depth);
+  std::vector<float>& D = image.channels["density"];
+  D.assign(density.size(), 0.0f);
+  for (std::size_t i = 0; i < density.size(); ++i) {
+    if (density[i] <= 0) continue;
+    D[i] = static_cast<float>(density[i]);
+    image.channels["R"][i] = static_cast<float>(c[0]);
+    image.channels["G"][i] = static_cast<float>(c[1]);
+    image.channels["B"][i] = static_cast<float>(c[2]);
+    image.channels["A"][i] = 1;
+    image.channels["Z"][i] = depth;
+    (*image.state)[i] = 0;
+  }
+}
+
+std::string number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", x);
+  return buf;
+}
+
+}  // namespace
+
+RunReport run(const io::Experiment& e, const RunOptions& o) {
+  RunReport report;
+  const std::filesystem::path exr = !o.exr.empty()          ? o.exr
+                                    : e.outputs.exr.empty() ? ""
+                                                            : o.out_dir / e.outputs.exr;
+  const std::filesystem::path png = !o.png.empty()          ? o.png
+                                    : e.outputs.png.empty() ? ""
+                                                            : o.out_dir / e.outputs.png;
+  if (exr.empty() && png.empty())
+    throw InvalidInput(e.name + ": no image output (give -o OUT.exr, --png, or outputs.exr / outputs.png)");
+  // Ten float channels and the state: refuse an image that would not fit before any work.
+  const double image_bytes = double(e.render.width) * double(e.render.height) * 44.0;
+  if (image_bytes > double(o.max_bytes))
+    throw InvalidInput("render: a " + std::to_string(e.render.width) + " × " +
+                       std::to_string(e.render.height) + " image needs " + number(image_bytes / 1e9) +
+                       " GB, above the limit of " + number(double(o.max_bytes) / 1e9) + " GB");
+  const unsigned threads = o.threads.value_or(e.render.threads);
+
+  Scene scene;
+  std::string kind;
+  if (e.shape) {
+    if (const auto* c = std::get_if<nurbs::Curve>(&*e.shape)) {
+      scene = curve_scene(*c, e, o, report);
+      kind = "NURBS curve";
+    } else {
+      scene = surface_scene(std::get<nurbs::Surface>(*e.shape), e, o, report);
+      kind = "NURBS surface";
+    }
+  } else if (!e.automaton.empty()) {
+    scene = bcifs_scene(e, report);
+    kind = "BC-IFS " + e.automaton.filename().string();
+  } else {
+    scene = classic_scene(*e.ifs);
+    kind = "classic IFS " + (e.ifs->name.empty() ? std::string("(maps)") : e.ifs->name);
+  }
+  if (e.evaluation.mode == Mode::chaos && !e.ifs) {
+    // Frame the chaos game from a short walk of the same automaton.
+    ifs::ChaosOptions co;
+    co.samples = 20000;
+    co.seed = e.evaluation.seed;
+    scene.extent =
+        drawable(cartesian_if(ifs::chaos_game(scene.automaton, scene.nets, co).points, scene.rational),
+                 "the attractor");
+  }
+
+  if (e.render.control_net && scene.control) {  // the control net is drawn: keep it in the picture
+    Points both(scene.extent.rows() + scene.control->vertices.rows(), scene.extent.cols());
+    if (scene.control->vertices.cols() != both.cols())
+      throw InvalidInput("control net and shape differ in dimension");
+    both << scene.extent, scene.control->vertices;
+    scene.extent = std::move(both);
+  }
+  const render::Camera camera = make_camera(e.camera, e.render, drawable(scene.extent, "the shape"));
+  render::Image image = render::make_framebuffer(camera);
+  render::CurveStyle control_style;
+  control_style.width = std::max(1.0, 0.5 * e.render.line_width);
+  control_style.color = {0.55, 0.55, 0.55};
+  if (e.render.control_net && scene.control)
+    render::render_segments(image, camera, *scene.control, control_style);
+  if (scene.mesh) {
+    render::SurfaceStyle style;
+    style.color = e.render.color;
+    style.threads = threads;
+    render::render_mesh(image, camera, *scene.mesh, style);
+  }
+  if (scene.curves) {
+    render::CurveStyle style;
+    style.width = e.render.line_width;
+    style.color = e.render.color;
+    render::render_segments(image, camera, *scene.curves, style);
+  }
+  if (!scene.maps.empty()) {
+    render_classic(image, camera, scene, e, o, threads);
+    scene.depth = e.evaluation.mode == Mode::depth ? e.evaluation.depth : 0;
+  } else if (e.evaluation.mode == Mode::chaos) {
+    render::ProgressBar bar("chaos game", o.quiet);
+    render::ChaosDensityOptions co;
+    co.samples = e.evaluation.samples;
+    co.seed = e.evaluation.seed;
+    co.threads = threads;
+    co.color = e.render.color;
+    co.rational = scene.rational;
+    if (scene.rational) co.depth = 30;  // the automatic depth bound is for Cartesian nets
+    co.progress = std::ref(bar);
+    scene.depth = render::chaos_density(image, camera, scene.automaton, scene.nets, co).depth;
+  }
+  report.depth = scene.depth;
+
+  image.attributes["experiment"] = e.name;
+  if (!e.description.empty()) image.attributes["description"] = e.description;
+  image.attributes["source"] = kind;
+  image.attributes["evaluation"] =
+      e.evaluation.mode == Mode::chaos   ? "chaos game, " + std::to_string(e.evaluation.samples) + " samples"
+      : e.evaluation.mode == Mode::depth ? "depth"
+                                         : "tolerance " + number(e.evaluation.tolerance);
+  image.attributes["depth"] = std::to_string(scene.depth);
+  image.attributes["seed"] = std::to_string(e.evaluation.mode == Mode::chaos ? e.evaluation.seed
+                                            : e.perturbation                 ? e.perturbation->seed
+                                                                             : 0);
+  if (e.perturbation) {
+    image.attributes["perturbation"] = "amplitude " + number(e.perturbation->amplitude) + ", seed " +
+                                       std::to_string(e.perturbation->seed) + ", " +
+                                       std::to_string(report.free_coefficients) + " free coefficients";
+    image.attributes["residual"] = number(report.residual);
+  }
+
+  // Geometry files, computed before anything is written.
+  std::vector<std::pair<std::filesystem::path, std::string>> texts;
+  const auto geometry = [&](const std::filesystem::path& name, const char* what, auto&& make) {
+    if (name.empty()) return;
+    if (!scene.mesh && !scene.curves)
+      throw InvalidInput(std::string("outputs.") + what +
+                         ": this evaluation gives a density, no geometry to export");
+    texts.emplace_back(o.out_dir / name, make());
+  };
+  geometry(e.outputs.obj, "obj",
+           [&] { return scene.mesh ? io::mesh_obj(*scene.mesh) : io::segments_obj(*scene.curves); });
+  geometry(e.outputs.ply, "ply", [&] {
+    return scene.mesh ? io::mesh_ply(*scene.mesh, io::PlyFormat::binary_little_endian)
+                      : io::segments_ply(*scene.curves, io::PlyFormat::binary_little_endian);
+  });
+  geometry(e.outputs.svg, "svg", [&] {
+    if (!scene.curves) throw InvalidInput("outputs.svg: SVG is for curves; use obj or ply for surfaces");
+    return io::segments_svg(*scene.curves);
+  });
+  if (!e.outputs.automaton_svg.empty())
+    texts.emplace_back(o.out_dir / e.outputs.automaton_svg, automata::to_svg(scene.automaton));
+  if (!e.outputs.automaton_dot.empty())
+    texts.emplace_back(o.out_dir / e.outputs.automaton_dot, automata::to_dot(scene.automaton));
+
+  const auto folder_of = [](const std::filesystem::path& p) {
+    if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
+  };
+  if (!exr.empty()) {
+    folder_of(exr);
+    render::write_exr(exr, image);
+    report.written.push_back(exr);
+  }
+  if (!png.empty()) {
+    folder_of(png);
+    render::PreviewOptions po;
+    po.background = {static_cast<std::uint8_t>(std::lround(255 * e.render.background[0])),
+                     static_cast<std::uint8_t>(std::lround(255 * e.render.background[1])),
+                     static_cast<std::uint8_t>(std::lround(255 * e.render.background[2]))};
+    render::preview_png(png, image, po);
+    report.written.push_back(png);
+  }
+  for (const auto& [path, text] : texts) {
+    folder_of(path);
+    io::write_file_atomically(path, text);
+    report.written.push_back(path);
+  }
+  report.summary = e.name + ": " + kind +
+                   (e.evaluation.mode == Mode::chaos
+                        ? ", chaos game of " + std::to_string(e.evaluation.samples) + " samples"
+                        : ", depth " + std::to_string(scene.depth));
+  if (e.perturbation)
+    report.summary += ", " + std::to_string(report.free_coefficients) + " free coefficients, residual " +
+                      number(report.residual);
+  report.summary += "\n";
+  for (const auto& p : report.written) report.summary += "  wrote " + p.string() + "\n";
+  return report;
+}
+
+}  // namespace cifs::experiment
