@@ -234,4 +234,11 @@ TEST_CASE("Meshes refuse bad input before any work", "[ifs][mesh]") {
   std::vector<Points> wrong = nets;
   wrong[3] = Points::Random(9, 3);
   CHECK_THROWS_AS(ifs::surface_mesh(t, wrong, 2), InvalidInput);
+  // State pairs that do not match the product or name missing factor states.
+  automata::TensorAutomaton broken = t;
+  broken.factor_states.pop_back();
+  CHECK_THROWS_WITH(ifs::surface_mesh(broken, nets, 2), Catch::Contains("factor state pairs"));
+  broken = t;
+  broken.factor_states[0][1] = static_cast<StateId>(boost::num_vertices(t.factors[1].graph));
+  CHECK_THROWS_WITH(ifs::surface_mesh(broken, nets, 2), Catch::Contains("does not exist"));
 }
