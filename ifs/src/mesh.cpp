@@ -160,8 +160,7 @@ std::size_t mesh_bytes(std::size_t vertices, std::size_t cols, std::size_t quads
 QuadMesh surface_mesh(const automata::TensorAutomaton& t, std::span<const Points> nets, int depth,
                       const MeshOptions& options) {
   // The route reads the factors and the state pairs, never the product's matrices: validating the
-  // product (thousands of 16 by 16 matrices for non-uniform bicubic knots) would cost more than
-  // a depth-8 mesh's vertex rows.
+  // product (every 16 by 16 matrix of a bicubic surface) costs as much as a depth-8 mesh's quads.
   for (const Automaton& f : t.factors) validate(f);
   detail::check_nets(t.product, nets, "surface_mesh");
   if (t.factor_states.size() != boost::num_vertices(t.product.graph))
