@@ -130,27 +130,31 @@ void validate(const Automaton& automaton) {
       throw InvalidInput("initial[" + std::to_string(i) + "] names state " +
                          std::to_string(automaton.initial[i].state) + ", which does not exist");
   for (const StateId s : reachable_states(automaton)) {
-    const auto label = detail::state_label(automaton, s);
-    if (g[s].size < 1) throw InvalidInput(label + " holds no point (size " + std::to_string(g[s].size) + ")");
+    // Labels and places are strings built only for a message: valid automata have many transitions.
+    const auto label = [&] { return detail::state_label(automaton, s); };
+    if (g[s].size < 1)
+      throw InvalidInput(label() + " holds no point (size " + std::to_string(g[s].size) + ")");
     if (boost::out_degree(s, g) == 0)
-      throw InvalidInput(label + " has no transition: its attractor would be empty");
+      throw InvalidInput(label() + " has no transition: its attractor would be empty");
     int child = 0;
     for (auto [b, e] = boost::out_edges(s, g); b != e; ++b, ++child) {
       const auto& M = g[*b].matrix;
       const StateId t = boost::target(*b, g);
-      const std::string where = "transition " + std::to_string(child) + " of " + label + " (to " +
-                                detail::state_label(automaton, t) + ")";
+      const auto where = [&] {
+        return "transition " + std::to_string(child) + " of " + label() + " (to " +
+               detail::state_label(automaton, t) + ")";
+      };
       if (M.rows() != g[t].size || M.cols() != g[s].size)
-        throw InvalidInput(where + ": matrix is " + std::to_string(M.rows()) + " by " +
+        throw InvalidInput(where() + ": matrix is " + std::to_string(M.rows()) + " by " +
                            std::to_string(M.cols()) + ", expected " + std::to_string(g[t].size) + " by " +
                            std::to_string(g[s].size) + " (to.size by from.size)");
-      if (!M.allFinite()) throw InvalidInput(where + ": matrix has a non-finite entry");
+      if (!M.allFinite()) throw InvalidInput(where() + ": matrix has a non-finite entry");
       for (Eigen::Index r = 0; r < M.rows(); ++r) {
         const double sum = M.row(r).sum(), norm = M.row(r).cwiseAbs().sum();
         if (!(std::abs(sum - 1) <= 1e-10 * std::max(1.0, norm))) {
           std::ostringstream msg;
           msg.precision(17);
-          msg << where << ": row " << r << " sums to " << sum << ", not 1 (rows are affine combinations)";
+          msg << where() << ": row " << r << " sums to " << sum << ", not 1 (rows are affine combinations)";
           throw InvalidInput(msg.str());
         }
       }

@@ -64,16 +64,22 @@ Grid make_grid(int A, int B, int depth, std::size_t cols, const MeshOptions& opt
   return Grid{A, B, depth, static_cast<int>(cu), static_cast<int>(cv), 1 << depth, vertices, quads};
 }
 
-/// Vertices allocated, quads in cell order (I, J) → I·cv + J, corners counter-clockwise in (u, v).
+/// Vertices allocated (not set), quads in cell order (I, J) → I·cv + J, corners counter-clockwise in
+/// (u, v). The quads are appended a row at a time from one row of cells shifted by a vertex row
+/// each time: one pass over the output, never zeroed first (16 of the 20 connectivity bytes a cell).
+/// The routes fill quad_state themselves.
 QuadMesh allocate(const Grid& grid, Eigen::Index cols) {
   QuadMesh mesh;
   mesh.vertices.resize(static_cast<Eigen::Index>(grid.vertices), cols);
-  mesh.quads.reserve(grid.quads);  // filled once, not zeroed first: the quads are most of the bytes
-  mesh.quad_state.resize(grid.quads);
+  mesh.quads.reserve(grid.quads);
   const int row = grid.cv + 1;
-  for (int I = 0; I < grid.cu; ++I)
-    for (int J = 0; J < grid.cv; ++J)
-      mesh.quads.push_back({I * row + J, (I + 1) * row + J, (I + 1) * row + J + 1, I * row + J + 1});
+  std::vector<std::array<int, 4>> line(static_cast<std::size_t>(grid.cv));
+  for (int J = 0; J < grid.cv; ++J) line[static_cast<std::size_t>(J)] = {J, row + J, row + J + 1, J + 1};
+  for (int I = 0; I < grid.cu; ++I) {
+    mesh.quads.insert(mesh.quads.end(), line.begin(), line.end());
+    for (auto& quad : line)
+      for (int& v : quad) v += row;
+  }
   return mesh;
 }
 
@@ -111,6 +117,38 @@ int owned(const Grid& grid, int patch, int patches) {
   return grid.side + (patch + 1 == patches ? 1 : 0);
 }
 
+/// One vertex row of the separable route: out[e] = Σ_k f[k]·Y[k·n + e] for e < n, summed in k order.
+/// P1 > 0 fixes p + 1 so that the k sum unrolls and the e loop vectorises; 0 reads p1 at run time.
+template <int P1>
+void combine_rows(const double* f, Eigen::Index p1, const double* __restrict Y, Eigen::Index n,
+                  double* __restrict out) noexcept {
+  if constexpr (P1 > 0) p1 = P1;
+  for (Eigen::Index e = 0; e < n; ++e) {
+    double acc = f[0] * Y[e];
+    for (Eigen::Index k = 1; k < p1; ++k) acc += f[k] * Y[k * n + e];
+    out[e] = acc;
+  }
+}
+
+using RowKernel = void (*)(const double*, Eigen::Index, const double*, Eigen::Index, double*) noexcept;
+
+RowKernel row_kernel(Eigen::Index p1) noexcept {
+  switch (p1) {
+    case 2:
+      return combine_rows<2>;
+    case 3:
+      return combine_rows<3>;
+    case 4:
+      return combine_rows<4>;
+    case 5:
+      return combine_rows<5>;
+    case 6:
+      return combine_rows<6>;
+    default:
+      return combine_rows<0>;
+  }
+}
+
 }  // namespace
 
 std::size_t mesh_bytes(std::size_t vertices, std::size_t cols, std::size_t quads) noexcept {
@@ -121,8 +159,20 @@ std::size_t mesh_bytes(std::size_t vertices, std::size_t cols, std::size_t quads
 
 QuadMesh surface_mesh(const automata::TensorAutomaton& t, std::span<const Points> nets, int depth,
                       const MeshOptions& options) {
-  validate(t.product);
+  // The route reads the factors and the state pairs, never the product's matrices: validating the
+  // product (every 16 by 16 matrix of a bicubic surface) costs as much as a depth-8 mesh's quads.
+  for (const Automaton& f : t.factors) validate(f);
   detail::check_nets(t.product, nets, "surface_mesh");
+  if (t.factor_states.size() != boost::num_vertices(t.product.graph))
+    throw InvalidInput("surface_mesh: " + std::to_string(t.factor_states.size()) +
+                       " factor state pairs for " + std::to_string(boost::num_vertices(t.product.graph)) +
+                       " product states");
+  for (StateId s = 0; s < t.factor_states.size(); ++s)
+    for (std::size_t dir = 0; dir < 2; ++dir)
+      if (t.factor_states[s][dir] >= boost::num_vertices(t.factors[dir].graph))
+        throw InvalidInput("surface_mesh: product state " + std::to_string(s) + " names factor state " +
+                           std::to_string(t.factor_states[s][dir]) + " of direction " + std::to_string(dir) +
+                           ", which does not exist");
   const int A = static_cast<int>(t.factors[0].initial.size()),
             B = static_cast<int>(t.factors[1].initial.size());
   if (t.patches.size() != t.product.initial.size() || t.patches.size() != static_cast<std::size_t>(A) * B)
@@ -153,31 +203,50 @@ QuadMesh surface_mesh(const automata::TensorAutomaton& t, std::span<const Points
     throw InvalidInput("surface_mesh: nets of " + std::to_string(nets[0].rows()) +
                        " rows, the factors give " + std::to_string(p1) + " by " + std::to_string(q1));
 
-  // Per patch block: X = F_u(I)·N (a `q+1 by C` curve net along v) per row I, then F_v·X.
-  Points X(q1, C);
-  const int row = grid.cv + 1;
-  for (int a = 0; a < A; ++a)
+  // v pass once per patch row a: Y_k (k ≤ p) is row k of every patch net of the row taken along v
+  // at the nodes the patch owns, i.e. Y_k(J) = Σ_l F_v(J, l)·N_b(k·(q+1) + l) — a `cv + 1 by C`
+  // vertex row, stored contiguously. Each vertex row I of the patch row is then the (p + 1)-term
+  // combination Σ_k F_u(I, k)·Y_k over one contiguous run of (cv + 1)·C doubles.
+  const Eigen::Index width = static_cast<Eigen::Index>(grid.cv + 1) * C;
+  std::vector<double> Y(static_cast<std::size_t>(p1 * width));
+  const RowKernel combine = row_kernel(p1);
+  for (int a = 0; a < A; ++a) {
     for (int b = 0; b < B; ++b) {
       const Points& N = nets[static_cast<std::size_t>(a) * B + b];
       const int J0 = b * grid.side, cols = owned(grid, b, B);
-      for (int I = a * grid.side, end = I + owned(grid, a, A); I < end; ++I) {
-        X.setZero();
-        for (Eigen::Index k = 0; k < p1; ++k) X += F[0](I, k) * N.middleRows(k * q1, q1);
-        detail::emit(F[1].data() + J0 * q1, cols, q1, X,
-                     mesh.vertices.data() + (static_cast<Eigen::Index>(I) * row + J0) * C);
-      }
+      for (Eigen::Index k = 0; k < p1; ++k)
+        for (int J = J0; J < J0 + cols; ++J) {
+          const double* f = F[1].data() + static_cast<Eigen::Index>(J) * q1;
+          double* y = Y.data() + k * width + static_cast<Eigen::Index>(J) * C;
+          for (Eigen::Index c = 0; c < C; ++c) {
+            double acc = f[0] * N(k * q1, c);
+            for (Eigen::Index l = 1; l < q1; ++l) acc += f[l] * N(k * q1 + l, c);
+            y[c] = acc;
+          }
+        }
     }
+    for (int I = a * grid.side, end = I + owned(grid, a, A); I < end; ++I)
+      combine(F[0].data() + static_cast<Eigen::Index>(I) * p1, p1, Y.data(), width,
+              mesh.vertices.data() + static_cast<Eigen::Index>(I) * width);
+  }
 
-  // Leaf states: the product state of the pair of factor leaf states.
+  // Leaf states: the product state of the pair of factor leaf states. Rows I with the same u leaf
+  // state are equal, so each distinct row is built once and copied.
   const auto nv_states = boost::num_vertices(t.factors[1].graph);
   std::vector<std::uint32_t> pair_id(boost::num_vertices(t.factors[0].graph) * nv_states, 0);
   for (StateId s = 0; s < t.factor_states.size(); ++s)
     pair_id[t.factor_states[s][0] * nv_states + t.factor_states[s][1]] = static_cast<std::uint32_t>(s);
-  std::size_t q = 0;
-  for (int I = 0; I < grid.cu; ++I)
-    for (int J = 0; J < grid.cv; ++J)
-      mesh.quad_state[q++] = pair_id[leaves[0][static_cast<std::size_t>(I)] * nv_states +
-                                     leaves[1][static_cast<std::size_t>(J)]];
+  std::vector<std::vector<std::uint32_t>> state_row(boost::num_vertices(t.factors[0].graph));
+  mesh.quad_state.reserve(grid.quads);
+  for (int I = 0; I < grid.cu; ++I) {
+    const StateId su = leaves[0][static_cast<std::size_t>(I)];
+    std::vector<std::uint32_t>& states = state_row[su];
+    if (states.empty()) {
+      states.resize(static_cast<std::size_t>(grid.cv));
+      for (std::size_t J = 0; J < states.size(); ++J) states[J] = pair_id[su * nv_states + leaves[1][J]];
+    }
+    mesh.quad_state.insert(mesh.quad_state.end(), states.begin(), states.end());
+  }
   finish(mesh, options);
   return mesh;
 }
@@ -276,6 +345,7 @@ QuadMesh quad_mesh(const Automaton& automaton, std::span<const Points> nets,
 
   // Walk to depth K − L; each node writes the nodes it owns and the states of its 4^L leaves.
   QuadMesh mesh = allocate(grid, C);
+  mesh.quad_state.resize(grid.quads);  // written block by block, out of order
   const int side_L = 1 << L, m = side_L + 1, row = grid.cv + 1;
   detail::depth_first(
       automaton, nets, depth - L,

@@ -47,7 +47,8 @@ double node_parameter(const std::vector<double>& b, int I, int depth) {
 TEST_CASE("surface_mesh: vertices = surface evaluation at the dyadic nodes", "[ifs][mesh]") {
   cifs_test::Rng rng(3);
   for (int trial = 0; trial < 16; ++trial) {
-    const std::array<int, 2> degree{cifs_test::uniform_int(rng, 1, 5), cifs_test::uniform_int(rng, 1, 5)};
+    // u degrees up to 7: p + 1 > 6 takes the run-time-sized row kernel.
+    const std::array<int, 2> degree{cifs_test::uniform_int(rng, 1, 7), cifs_test::uniform_int(rng, 1, 5)};
     const std::array<int, 2> count{degree[0] + cifs_test::uniform_int(rng, 1, 3),
                                    degree[1] + cifs_test::uniform_int(rng, 1, 3)};
     const bool rational = cifs_test::coin(rng);
@@ -234,4 +235,11 @@ TEST_CASE("Meshes refuse bad input before any work", "[ifs][mesh]") {
   std::vector<Points> wrong = nets;
   wrong[3] = Points::Random(9, 3);
   CHECK_THROWS_AS(ifs::surface_mesh(t, wrong, 2), InvalidInput);
+  // State pairs that do not match the product or name missing factor states.
+  automata::TensorAutomaton broken = t;
+  broken.factor_states.pop_back();
+  CHECK_THROWS_WITH(ifs::surface_mesh(broken, nets, 2), Catch::Contains("factor state pairs"));
+  broken = t;
+  broken.factor_states[0][1] = static_cast<StateId>(boost::num_vertices(t.factors[1].graph));
+  CHECK_THROWS_WITH(ifs::surface_mesh(broken, nets, 2), Catch::Contains("does not exist"));
 }

@@ -54,9 +54,10 @@ std::size_t mesh_bytes(std::size_t vertices, std::size_t cols, std::size_t quads
 /// cols`, row i·(q+1) + j). The curve stencil tables F_u (`A·2^K + 1 by p + 1`) and F_v of the two
 /// factor automata — row I is the functional, on the net of the segment owning node I, of the
 /// point at node I (attractor_points of the factor with identity nets) — give every patch's block
-/// as F_u·N·F_vᵀ per coordinate: (q + 1) multiply-adds per vertex coordinate after a u pass that
-/// costs (p + 1)(q + 1) per *row* of the block, against (p + 1)(q + 1) per vertex coordinate for
-/// Kronecker tables. Throws InvalidInput for a negative depth, nets that do not fit, or a mesh
+/// as F_u·N·F_vᵀ per coordinate. The v pass N·F_vᵀ is done once per row of patches, as p + 1
+/// contiguous vertex rows Y_k; each vertex row is then Σ_k F_u(I, k)·Y_k: (p + 1) multiply-adds
+/// per vertex coordinate over one contiguous run, against (p + 1)(q + 1) for Kronecker tables.
+/// Throws InvalidInput for a negative depth, nets that do not fit, or a mesh
 /// above `options.max_bytes`.
 QuadMesh surface_mesh(const automata::TensorAutomaton& automaton, std::span<const Points> nets, int depth,
                       const MeshOptions& options = {});
