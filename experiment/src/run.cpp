@@ -42,6 +42,12 @@ struct Scene {
   int depth = 0;
 };
 
+std::string number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", x);
+  return buf;
+}
+
 /// Rows with 2 or 3 columns for the rasterisers (a 1-D shape lies on the x axis).
 Points drawable(const Points& P, const std::string& what) {
   if (P.cols() == 2 || P.cols() == 3) return P;
@@ -205,7 +211,7 @@ Scene surface_scene(const nurbs::Surface& s, const io::Experiment& e, const RunO
   return scene;
 }
 
-Scene bcifs_scene(const io::Experiment& e, RunReport& report) {
+Scene bcifs_scene(const io::Experiment& e, const RunOptions& o, RunReport& report) {
   io::BcifsFile file = io::read_bcifs(e.automaton);
   if (file.nets.size() != file.system.automaton.initial.size())
     throw InvalidInput(e.automaton.string() + ": the file gives no control nets for its initial states");
@@ -221,6 +227,14 @@ Scene bcifs_scene(const io::Experiment& e, RunReport& report) {
   if (e.evaluation.mode == Mode::depth || e.evaluation.mode == Mode::tolerance) {
     if (e.evaluation.mode == Mode::tolerance)
       throw InvalidInput("evaluation.tolerance: BC-IFS files are evaluated to a depth or by the chaos game");
+    // Refuse before any work: two end points, a state and a segment per node.
+    const std::size_t nodes = ifs::attractor_point_count(system.automaton, e.evaluation.depth, true);
+    const double bytes = double(nodes) * double(2 * sizeof(double) * scene.nets.front().cols() + 16);
+    if (bytes > double(o.max_bytes))
+      throw InvalidInput("evaluation.depth: " + std::to_string(nodes) + " pieces at depth " +
+                         std::to_string(e.evaluation.depth) + " need " + number(bytes / 1e9) +
+                         " GB, above the limit of " + number(double(o.max_bytes) / 1e9) +
+                         " GB; lower the depth");
     const ifs::EdgePieces pieces = ifs::edge_pieces(system, scene.nets, e.evaluation.depth);
     io::Segments s;
     const Eigen::Index n = pieces.start.rows();
@@ -340,12 +354,6 @@ void render_classic(render::Image& image, const render::Camera& camera, const Sc
   }
 }
 
-std::string number(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", x);
-  return buf;
-}
-
 }  // namespace
 
 RunReport run(const io::Experiment& e, const RunOptions& o) {
@@ -377,7 +385,7 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
       kind = "NURBS surface";
     }
   } else if (!e.automaton.empty()) {
-    scene = bcifs_scene(e, report);
+    scene = bcifs_scene(e, o, report);
     kind = "BC-IFS " + e.automaton.filename().string();
   } else {
     scene = classic_scene(*e.ifs);

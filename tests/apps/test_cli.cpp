@@ -184,6 +184,32 @@ TEST_CASE("cifs automaton, attractor and check", "[cli]") {
   check_error(cifs_cli("automaton " + file("s.json", kSurface)), "only curves");
 }
 
+TEST_CASE("cifs render: outputs where asked; bad experiments exit 2 and write nothing", "[cli]") {
+  const auto dir = scratch() / "render";
+  std::filesystem::create_directories(dir);
+  const std::string exp = file("sierpinski.json", R"({"ifs": "sierpinski", "evaluation": {"depth": 6},
+      "render": {"width": 40, "height": 40}, "outputs": {"exr": "default.exr", "automaton_svg": "a.svg"}})");
+  const Run r =
+      cifs_cli("render " + exp + " -o " + (dir / "s.exr").string() + " --png " + (dir / "s.png").string());
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("classic IFS sierpinski, depth 6"));
+  for (const char* name : {"s.exr", "s.png", "a.svg"}) CHECK(std::filesystem::is_regular_file(dir / name));
+  CHECK(!std::filesystem::exists(dir / "default.exr"));  // -o replaces outputs.exr
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string bad =
+      file("bad.json", R"({"ifs": "sierpinski", "evaluation": {"depth": 6, "chaos": 10}})");
+  check_error(cifs_cli("render " + bad + " -o " + (dir / "s.exr").string()),
+              "bad.json: evaluation: expected exactly one");
+  const std::string impossible =
+      file("surface_svg.json", R"({"shape": ")" CIFS_EXAMPLES_DIR R"(/shapes/saddle.json",
+      "render": {"width": 16, "height": 16}, "outputs": {"svg": "s.svg"}})");
+  check_error(cifs_cli("render " + impossible + " -o " + (dir / "s.exr").string()),
+              "outputs.svg: SVG is for curves");
+  CHECK(std::filesystem::is_empty(dir));
+  std::filesystem::remove_all(dir);
+}
+
 TEST_CASE("cifs gallery runs every example experiment", "[cli]") {
   const auto out = scratch() / "gallery";
   const Run r = cifs_cli("gallery " + out.string());

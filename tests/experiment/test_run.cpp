@@ -147,6 +147,10 @@ TEST_CASE("Bad experiments leave no file behind", "[experiment]") {
   CHECK_THROWS_WITH(run_in(dir, R"({"ifs": "fern", "render": {"width": 16384, "height": 16384},
       "outputs": {"exr": "big.exr"}})"),
                     Catch::Contains("GB, above the limit"));
+  // 3^25 pieces of the tree: refused from the out-degrees, before any evaluation.
+  CHECK_THROWS_WITH(run_in(dir, R"({"automaton": "../automata/tree.json", "evaluation": {"depth": 25},
+      "render": {"width": 8, "height": 8}, "outputs": {"exr": "t.exr"}})"),
+                    Catch::Contains("847288609443 pieces at depth 25"));
   CHECK_THROWS_WITH(run_in(dir, R"({"ifs": "fern", "render": {"width": 8, "height": 8}})"),
                     Catch::Contains("no image output"));
   CHECK(dir.files().empty());
