@@ -1,0 +1,103 @@
+// SPDX-License-Identifier: MIT
+// cifs — fractal dimension of attractors: box counting on a point sample (any evaluation), and
+// the similarity dimension (Moran; Mauldin–Williams for graph-directed systems) when the maps are
+// similarities.
+#pragma once
+
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "cifs/automata/automaton.hpp"
+#include "cifs/ifs/affine.hpp"
+#include "cifs/types.hpp"
+
+namespace cifs::ifs {
+
+struct BoxCountingOptions {
+  /// Largest diameter of the pieces the sample stands for (same units as the points; 0: unknown).
+  /// Scales finer than 2·resolution are not fitted: below it the sample, not the set, is counted.
+  double resolution = 0;
+  /// Automatic fine limit: a fitted scale must hold at least this many points per occupied box
+  /// on average (N(ε) ≤ #P / points_per_box), so that the sample fills its boxes.
+  double points_per_box = 4;
+  /// Automatic coarse limit: a fitted scale has at least this many occupied boxes.
+  std::size_t min_boxes = 1000;
+  /// Fit range given by the user (both ≥ 0, min_level + 2 ≤ max_level); -1: automatic.
+  int min_level = -1, max_level = -1;
+  /// Finest level counted (reported counts are for levels 0 … this); capped by 62 / dim.
+  int levels = 20;
+};
+
+/// One scale: level k, box side ε = size·2^-k, N occupied boxes.
+struct BoxCount {
+  int level = 0;
+  double epsilon = 0;
+  std::size_t boxes = 0;
+};
+
+struct BoxCountingResult {
+  double dimension = 0;  // least-squares slope of log N against log(1/ε) over the fit range
+  double intercept = 0;  // of that line (natural logarithms)
+  int min_level = 0;     // fit range (inclusive)
+  int max_level = 0;
+  double max_epsilon = 0;        // ε at min_level
+  double min_epsilon = 0;        // ε at max_level
+  double r_squared = 0;          // coefficient of determination of the fit
+  double residual = 0;           // largest |log N − line| over the fit range
+  double size = 0;               // side of the bounding cube of the points (ε at level 0)
+  std::vector<BoxCount> counts;  // levels 0 … options.levels, whether fitted or not
+};
+
+/// Box-counting dimension of the set sampled by `points` (`#P by dim`, dim ≥ 1, finite).
+///
+/// Grid: boxes of side ε_k = size·2^-k, where size is the largest side of the bounding box; the
+/// grid origin is the lower corner shifted by −γ_d·size per axis (γ_d = 0.1·√(d + 2) mod 1 for
+/// axis d, irrational), so that no dyadic grid line meets the self-similar structure of a set
+/// built on a dyadic frame (e.g. Sierpinski's corners). Counting: Morton keys of the finest
+/// level, sorted once; the boxes of level k are the distinct keys shifted by dim·(levels − k) bits.
+///
+/// Automatic fit range: the levels k with N(ε_k) ≥ min_boxes, N(ε_k) ≤ #P / points_per_box and
+/// ε_k ≥ 2·resolution. Throws InvalidInput for no points, a point that is not finite, all points
+/// equal, a user range outside 0 … levels or of fewer than 3 levels, or an automatic range of
+/// fewer than 3 levels (the message says to evaluate deeper).
+BoxCountingResult box_counting(const Points& points, const BoxCountingOptions& options = {});
+
+/// A map of a graph-directed system: from state `from` into state `to`, contracting by `ratio`.
+struct SimilarityEdge {
+  automata::StateId from = 0, to = 0;
+  double ratio = 0;
+};
+
+/// Mauldin–Williams dimension (1988) of a graph-directed system of similarities on `states`
+/// states: the s ≥ 0 with spectral radius ρ(A(s)) = 1, A(s)_{uv} = Σ_{e: u→v} ratio_e^s. On every
+/// strongly connected component ρ decreases strictly in s; over the whole graph ρ is the largest
+/// of the components' radii, so the s found is that of the component of largest dimension (the
+/// dimension of the union of the attractors, under the open set condition). Bisection on s to
+/// machine precision. 0 when ρ(A(0)) ≤ 1 (no branching: points). Throws InvalidInput for a ratio
+/// that is not finite and > 0, a state out of range, a graph without cycle, or cycles that do not
+/// contract (ρ(A(s)) ≥ 1 for s up to 1000).
+double mauldin_williams_dimension(std::size_t states, std::span<const SimilarityEdge> edges);
+
+/// Ratio of a similarity x ↦ x·L + b (L `dim by dim`, any dim ≥ 1): r with LᵀL = r²I to 1e-12 of
+/// r², or -1 when L is not r times an orthogonal matrix.
+double similarity_ratio(const Eigen::MatrixXd& L);
+
+/// Similarity (Moran) dimension of a classic planar IFS: the s with Σ r_i^s = 1. Throws
+/// InvalidInput for no map, or a map that is not a similarity (names it and gives LᵀL), or a
+/// ratio ≥ 1.
+double similarity_dimension(std::span<const AffineMap> maps);
+
+/// Similarity dimension of the attractor of a CIFS automaton whose transitions act as
+/// similarities: each reachable state gets a reference net (its initial net, else the image net
+/// along its first reaching transition, breadth first); a transition e: u → v acts as the affine
+/// map f_e with f_e(N_v) = M_e·N_u, which must exist (least squares residual ≤ 1e-12·diam) and be
+/// a similarity of ratio r_e. Then the Mauldin–Williams dimension of the graph of the r_e. The
+/// individual r_e depend on the reference nets, the dimension does not (another choice conjugates
+/// A(s) by a positive diagonal matrix). `nets` as in attractor.hpp (one per initial entry, Cartesian
+/// rows). Throws InvalidInput when a reference net does not span its space affinely, a transition
+/// is not affine between the reference nets or not a similarity (naming it), and as
+/// mauldin_williams_dimension.
+double similarity_dimension(const automata::Automaton& automaton, std::span<const Points> nets);
+
+}  // namespace cifs::ifs

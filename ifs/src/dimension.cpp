@@ -1,0 +1,273 @@
+// SPDX-License-Identifier: MIT
+#include "cifs/ifs/dimension.hpp"
+
+#include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <deque>
+#include <string>
+
+#include "cifs/errors.hpp"
+#include "cifs/ifs/analysis.hpp"
+
+namespace cifs::ifs {
+namespace {
+
+std::string num(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", x);
+  return buf;
+}
+
+/// Interleaves the bits of the box coordinates (each < 2^levels), finest bits lowest, so that the
+/// key of a level-k box is the finest key shifted right by dim·(levels − k).
+std::uint64_t morton(const std::vector<std::uint64_t>& c, int levels) {
+  std::uint64_t key = 0;
+  const auto dim = static_cast<int>(c.size());
+  for (int bit = levels - 1; bit >= 0; --bit)
+    for (int d = 0; d < dim; ++d) key = (key << 1) | ((c[static_cast<std::size_t>(d)] >> bit) & 1u);
+  return key;
+}
+
+}  // namespace
+
+BoxCountingResult box_counting(const Points& P, const BoxCountingOptions& o) {
+  if (P.rows() == 0 || P.cols() == 0) throw InvalidInput("box counting: no points");
+  if (!P.allFinite()) throw InvalidInput("box counting: a point is not finite");
+  if (!(o.points_per_box >= 1) || !(o.resolution >= 0) || !std::isfinite(o.resolution))
+    throw InvalidInput("box counting: points_per_box must be ≥ 1 and resolution finite and ≥ 0");
+  const auto dim = static_cast<int>(P.cols());
+  if (dim > 62) throw InvalidInput("box counting: more than 62 coordinates");
+  if (o.levels < 1) throw InvalidInput("box counting: levels must be ≥ 1");
+  // One spare bit per axis: the shifted origin makes the grid one box wider than the points.
+  const int levels = std::min(o.levels, 64 / dim - 1);
+  if (levels < 3) throw InvalidInput("box counting: too many coordinates (" + std::to_string(dim) + ")");
+
+  const Point lo = P.colwise().minCoeff(), hi = P.colwise().maxCoeff();
+  const double size = (hi - lo).maxCoeff();
+  if (!(size > 0)) throw InvalidInput("box counting: all points are equal");
+  const double fine = std::ldexp(size, -levels);
+  std::vector<std::uint64_t> keys(static_cast<std::size_t>(P.rows()));
+  std::vector<std::uint64_t> c(static_cast<std::size_t>(dim));
+  for (Eigen::Index i = 0; i < P.rows(); ++i) {
+    for (int d = 0; d < dim; ++d) {
+      const double shift = std::fmod(0.1 * std::sqrt(d + 2.0), 1.0);
+      const double x = (P(i, d) - lo(d) + shift * size) / fine;
+      c[static_cast<std::size_t>(d)] = static_cast<std::uint64_t>(std::floor(x));
+    }
+    keys[static_cast<std::size_t>(i)] = morton(c, levels + 1);
+  }
+  std::sort(keys.begin(), keys.end());
+
+  BoxCountingResult r;
+  r.size = size;
+  for (int k = 0; k <= levels; ++k) {
+    const int shift = dim * (levels - k);
+    std::size_t n = 0;
+    std::uint64_t previous = 0;
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      const std::uint64_t key = keys[i] >> shift;
+      if (i == 0 || key != previous) ++n;
+      previous = key;
+    }
+    r.counts.push_back({k, std::ldexp(size, -k), n});
+  }
+
+  if (o.min_level >= 0 || o.max_level >= 0) {
+    if (o.min_level < 0 || o.max_level > levels || o.min_level + 2 > o.max_level)
+      throw InvalidInput("box counting: the fit range " + std::to_string(o.min_level) + " … " +
+                         std::to_string(o.max_level) + " is not within 0 … " + std::to_string(levels) +
+                         " with at least 3 levels");
+    r.min_level = o.min_level;
+    r.max_level = o.max_level;
+  } else {
+    // The longest run of consecutive admissible levels (counts grow with k, so it is one run
+    // unless the sample is degenerate).
+    const auto n_points = static_cast<double>(P.rows());
+    const auto admissible = [&](const BoxCount& b) {
+      return b.boxes >= o.min_boxes && static_cast<double>(b.boxes) * o.points_per_box <= n_points &&
+             b.epsilon >= 2 * o.resolution;
+    };
+    int best = -1, best_len = 0;
+    for (int k = 0; k <= levels;) {
+      if (!admissible(r.counts[static_cast<std::size_t>(k)])) {
+        ++k;
+        continue;
+      }
+      int j = k;
+      while (j <= levels && admissible(r.counts[static_cast<std::size_t>(j)])) ++j;
+      if (j - k > best_len) best = k, best_len = j - k;
+      k = j;
+    }
+    if (best_len < 3)
+      throw InvalidInput("box counting: only " + std::to_string(best_len) + " scale(s) with ≥ " +
+                         std::to_string(o.min_boxes) + " boxes, ≥ " + num(o.points_per_box) +
+                         " points per box" + (o.resolution > 0 ? " and boxes ≥ 2× the pieces" : "") +
+                         " among " + std::to_string(P.rows()) +
+                         " points; evaluate deeper (at least 3 are needed)");
+    r.min_level = best;
+    r.max_level = best + best_len - 1;
+  }
+
+  // Least squares of y = log N on x = log(1/ε).
+  const int m = r.max_level - r.min_level + 1;
+  double sx = 0, sy = 0;
+  for (int k = r.min_level; k <= r.max_level; ++k) {
+    const BoxCount& b = r.counts[static_cast<std::size_t>(k)];
+    sx += -std::log(b.epsilon);
+    sy += std::log(static_cast<double>(b.boxes));
+  }
+  const double mx = sx / m, my = sy / m;
+  double sxx = 0, sxy = 0, syy = 0;
+  for (int k = r.min_level; k <= r.max_level; ++k) {
+    const BoxCount& b = r.counts[static_cast<std::size_t>(k)];
+    const double x = -std::log(b.epsilon) - mx, y = std::log(static_cast<double>(b.boxes)) - my;
+    sxx += x * x;
+    sxy += x * y;
+    syy += y * y;
+  }
+  r.dimension = sxy / sxx;
+  r.intercept = my - r.dimension * mx;
+  double ss_res = 0;
+  for (int k = r.min_level; k <= r.max_level; ++k) {
+    const BoxCount& b = r.counts[static_cast<std::size_t>(k)];
+    const double e =
+        std::log(static_cast<double>(b.boxes)) - (r.intercept - r.dimension * std::log(b.epsilon));
+    ss_res += e * e;
+    r.residual = std::max(r.residual, std::abs(e));
+  }
+  r.r_squared = syy > 0 ? 1 - ss_res / syy : 1;
+  r.max_epsilon = r.counts[static_cast<std::size_t>(r.min_level)].epsilon;
+  r.min_epsilon = r.counts[static_cast<std::size_t>(r.max_level)].epsilon;
+  return r;
+}
+
+double mauldin_williams_dimension(std::size_t states, std::span<const SimilarityEdge> edges) {
+  for (const SimilarityEdge& e : edges) {
+    if (e.from >= states || e.to >= states)
+      throw InvalidInput("similarity dimension: an edge " + std::to_string(e.from) + " → " +
+                         std::to_string(e.to) + " leaves the " + std::to_string(states) + " states");
+    if (!(e.ratio > 0) || !std::isfinite(e.ratio))
+      throw InvalidInput("similarity dimension: the ratio " + num(e.ratio) + " of an edge " +
+                         std::to_string(e.from) + " → " + std::to_string(e.to) + " is not finite and > 0");
+  }
+  const auto n = static_cast<Eigen::Index>(states);
+  const auto rho = [&](double s) {
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
+    for (const SimilarityEdge& e : edges)
+      A(static_cast<Eigen::Index>(e.from), static_cast<Eigen::Index>(e.to)) += std::pow(e.ratio, s);
+    if (n == 0) return 0.0;
+    return Eigen::EigenSolver<Eigen::MatrixXd>(A, false).eigenvalues().cwiseAbs().maxCoeff();
+  };
+  const double rho0 = rho(0);  // spectral radius of the adjacency matrix: 0 iff no cycle
+  if (rho0 < 0.5) throw InvalidInput("similarity dimension: the graph has no cycle");
+  if (rho0 <= 1 + 1e-12) return 0;
+  double lo = 0, hi = 1;
+  while (rho(hi) >= 1) {
+    lo = hi;
+    hi *= 2;
+    if (hi > 1000)
+      throw InvalidInput("similarity dimension: the cycles do not contract (ρ(A(s)) ≥ 1 up to s = 1000)");
+  }
+  // Bisection until the interval stops shrinking.
+  for (;;) {
+    const double mid = 0.5 * (lo + hi);
+    if (mid <= lo || mid >= hi) break;
+    (rho(mid) >= 1 ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+double similarity_ratio(const Eigen::MatrixXd& L) {
+  const Eigen::MatrixXd G = L.transpose() * L;
+  const double r2 = G.trace() / static_cast<double>(G.rows());
+  if (!(r2 > 0) || !std::isfinite(r2)) return -1;
+  const Eigen::MatrixXd E = G - r2 * Eigen::MatrixXd::Identity(G.rows(), G.cols());
+  return E.cwiseAbs().maxCoeff() <= 1e-12 * r2 ? std::sqrt(r2) : -1;
+}
+
+double similarity_dimension(std::span<const AffineMap> maps) {
+  if (maps.empty()) throw InvalidInput("similarity dimension: no map");
+  std::vector<SimilarityEdge> edges;
+  for (std::size_t i = 0; i < maps.size(); ++i) {
+    const AffineMap& m = maps[i];
+    // Row convention: (x, y) ↦ (x, y)·L + (e, f) with L = [a c; b d].
+    Eigen::Matrix2d L;
+    L << m.a, m.c, m.b, m.d;
+    const double r = similarity_ratio(L);
+    if (r < 0) {
+      const Eigen::Matrix2d G = L.transpose() * L;
+      throw InvalidInput("similarity dimension: map " + std::to_string(i) + " is not a similarity (LᵀL = [" +
+                         num(G(0, 0)) + " " + num(G(0, 1)) + "; " + num(G(1, 0)) + " " + num(G(1, 1)) +
+                         "] is not r²·I)");
+    }
+    if (r >= 1)
+      throw InvalidInput("similarity dimension: map " + std::to_string(i) + " has ratio " + num(r) + " ≥ 1");
+    edges.push_back({0, 0, r});
+  }
+  return mauldin_williams_dimension(1, edges);
+}
+
+double similarity_dimension(const automata::Automaton& a, std::span<const Points> nets) {
+  validate(a);
+  if (nets.size() != a.initial.size())
+    throw InvalidInput("similarity dimension: " + std::to_string(nets.size()) + " nets for " +
+                       std::to_string(a.initial.size()) + " initial entries");
+  const auto n = boost::num_vertices(a.graph);
+  std::vector<Points> reference(n);
+  std::deque<automata::StateId> queue;
+  for (std::size_t i = 0; i < nets.size(); ++i) {
+    const automata::StateId s = a.initial[i].state;
+    if (nets[i].rows() != a.graph[s].size)
+      throw InvalidInput("similarity dimension: net " + std::to_string(i) + " has " +
+                         std::to_string(nets[i].rows()) + " rows, its state " +
+                         std::to_string(a.graph[s].size));
+    if (reference[s].size() == 0) {
+      reference[s] = nets[i];
+      queue.push_back(s);
+    }
+  }
+  if (queue.empty()) throw InvalidInput("similarity dimension: the automaton has no initial entry");
+  const Eigen::Index dim = nets.front().cols();
+  while (!queue.empty()) {
+    const automata::StateId u = queue.front();
+    queue.pop_front();
+    for (const auto e : boost::make_iterator_range(boost::out_edges(u, a.graph))) {
+      const automata::StateId v = boost::target(e, a.graph);
+      if (reference[v].size() == 0) {
+        reference[v] = a.graph[e].matrix * reference[u];
+        queue.push_back(v);
+      }
+    }
+  }
+  std::vector<SimilarityEdge> edges;
+  for (automata::StateId u = 0; u < n; ++u) {
+    if (reference[u].size() == 0) continue;
+    for (const auto e : boost::make_iterator_range(boost::out_edges(u, a.graph))) {
+      const automata::StateId v = boost::target(e, a.graph);
+      const std::string name =
+          "transition '" + a.graph[e].label + "' " + std::to_string(u) + " → " + std::to_string(v);
+      // f(x) = x·L + b with [N_v 1]·[L; b] = M·N_u: determined when N_v spans its space affinely.
+      Eigen::MatrixXd H(reference[v].rows(), dim + 1);
+      H << reference[v], Eigen::VectorXd::Ones(reference[v].rows());
+      const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(H);
+      if (qr.rank() < dim + 1)
+        throw InvalidInput("similarity dimension: the net of state " + std::to_string(v) +
+                           " does not span its space affinely, so the map of " + name + " is not determined");
+      const Eigen::MatrixXd Q = a.graph[e].matrix * reference[u];
+      const Eigen::MatrixXd X = qr.solve(Q);
+      const double scale = std::max(diameter(reference[v]), diameter(Q));
+      if ((H * X - Q).cwiseAbs().maxCoeff() > 1e-12 * scale)
+        throw InvalidInput("similarity dimension: " + name +
+                           " is not an affine map between the nets of its states");
+      const double r = similarity_ratio(X.topRows(dim));
+      if (r < 0) throw InvalidInput("similarity dimension: " + name + " is not a similarity (LᵀL ≠ r²·I)");
+      edges.push_back({u, v, r});
+    }
+  }
+  return mauldin_williams_dimension(n, edges);
+}
+
+}  // namespace cifs::ifs

@@ -1,0 +1,215 @@
+// SPDX-License-Identifier: MIT
+#include "cifs/ifs/dimension.hpp"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <numbers>
+
+#include "cifs/automata/tensor.hpp"
+#include "cifs/errors.hpp"
+#include "cifs/ifs/affine_cifs.hpp"
+#include "cifs/ifs/attractor.hpp"
+#include "cifs/ifs/mesh.hpp"
+#include "cifs/nurbs/curve.hpp"
+#include "cifs/nurbs/surface.hpp"
+#include "ifs/helpers.hpp"
+
+using namespace cifs;
+using Catch::Matchers::Contains;
+
+namespace {
+
+Points unit_triangle() {
+  Points T(3, 2);
+  T << 0, 0, 1, 0, 0.5, std::sqrt(3.0) / 2;
+  return T;
+}
+
+/// The depth-K start points of the classic IFS's one-state automaton: 3^K (Sierpinski), 4^K
+/// (Koch) points of the attractor.
+Points classic_points(const std::vector<ifs::AffineMap>& maps, int depth) {
+  const Points T = unit_triangle();
+  const automata::Automaton a = ifs::affine_automaton(maps, T);
+  const std::vector<Points> nets{T};
+  return ifs::attractor_points(a, nets, depth);
+}
+
+/// Rotation by `angle` scaled by r, optionally reflected, then translated.
+ifs::AffineMap similarity(double r, double angle, bool reflect, double e, double f) {
+  const double c = r * std::cos(angle), s = r * std::sin(angle), m = reflect ? -1 : 1;
+  return {c, -s * m, s, c * m, e, f, 1};
+}
+
+}  // namespace
+
+TEST_CASE("similarity dimension: Moran's equation for Sierpinski and Koch", "[ifs][dimension]") {
+  const double sierpinski = std::log(3.0) / std::log(2.0), koch = std::log(4.0) / std::log(3.0);
+  CHECK(ifs::similarity_dimension(ifs::sierpinski_triangle()) == Approx(sierpinski).epsilon(1e-12));
+  CHECK(ifs::similarity_dimension(ifs::koch_curve()) == Approx(koch).epsilon(1e-12));
+  // The same through the one-state automaton on a triangle (maps recovered from the nets).
+  const std::vector<Points> nets{unit_triangle()};
+  CHECK(ifs::similarity_dimension(ifs::affine_automaton(ifs::sierpinski_triangle(), nets[0]), nets) ==
+        Approx(sierpinski).epsilon(1e-12));
+  CHECK(ifs::similarity_dimension(ifs::affine_automaton(ifs::koch_curve(), nets[0]), nets) ==
+        Approx(koch).epsilon(1e-12));
+  // Unequal ratios, reflections: ½^s + ¼^s + ¼^s = 1 ⇔ x + 2x² = 1 with x = 2^-s ⇔ x = ½, s = 1.
+  const std::vector<ifs::AffineMap> mixed{similarity(0.5, 0.3, true, 0, 0),
+                                          similarity(0.25, 1.0, false, 1, 0),
+                                          similarity(0.25, -2.0, true, 0, 1)};
+  CHECK(ifs::similarity_dimension(mixed) == Approx(1.0).epsilon(1e-12));
+}
+
+TEST_CASE("Mauldin–Williams dimension of hand-solved graphs", "[ifs][dimension]") {
+  // u → u (½), u → v (½), v → u (½): det(I − A(s)) = 1 − x − x² with x = 2^-s, whose root
+  // x = (√5 − 1)/2 = 1/φ gives s = log₂ φ.
+  const double phi = (1 + std::sqrt(5.0)) / 2;
+  const std::vector<ifs::SimilarityEdge> golden{{0, 0, 0.5}, {0, 1, 0.5}, {1, 0, 0.5}};
+  CHECK(ifs::mauldin_williams_dimension(2, golden) == Approx(std::log2(phi)).epsilon(1e-12));
+  // Two edges u → v of ratio ½ and two v → u of ratio ⅓: A(s) = [0 2·2^-s; 2·3^-s 0] has
+  // ρ = 2·6^(-s/2), which is 1 at s = log 4 / log 6.
+  const std::vector<ifs::SimilarityEdge> bipartite{
+      {0, 1, 0.5}, {0, 1, 0.5}, {1, 0, 1.0 / 3}, {1, 0, 1.0 / 3}};
+  CHECK(ifs::mauldin_williams_dimension(2, bipartite) ==
+        Approx(std::log(4.0) / std::log(6.0)).epsilon(1e-12));
+  // A transient state feeding a component: the dimension is the component's (Sierpinski's).
+  const std::vector<ifs::SimilarityEdge> feeding{{0, 1, 0.9}, {1, 1, 0.5}, {1, 1, 0.5}, {1, 1, 0.5}};
+  CHECK(ifs::mauldin_williams_dimension(2, feeding) == Approx(std::log2(3.0)).epsilon(1e-12));
+  // One map: a point.
+  const std::vector<ifs::SimilarityEdge> single{{0, 0, 0.5}};
+  CHECK(ifs::mauldin_williams_dimension(1, single) == 0);
+}
+
+TEST_CASE("similarity dimension of a two-state automaton of similarities", "[ifs][dimension]") {
+  // The golden graph above with actual maps: state u has three points, v too; the matrix of an
+  // edge u → v acting as f is barycentric_matrix(f, T) when both reference nets are T.
+  const Points T = unit_triangle();
+  const ifs::AffineMap f = similarity(0.5, 0.2, false, 0, 0), g = similarity(0.5, 1.1, true, 0.5, 0),
+                       h = similarity(0.5, -0.4, false, 0.2, 0.4);
+  automata::Automaton a;
+  const auto u = ifs_test::add_state(a, 3, "u"), v = ifs_test::add_state(a, 3, "v");
+  ifs_test::add_transition(a, u, u, ifs::barycentric_matrix(f, T), "f");
+  ifs_test::add_transition(a, u, v, ifs::barycentric_matrix(g, T), "g");
+  ifs_test::add_transition(a, v, u, ifs::barycentric_matrix(h, T), "h");
+  ifs_test::add_initial(a, u);
+  ifs_test::add_initial(a, v);
+  const double expected = std::log2((1 + std::sqrt(5.0)) / 2);
+  const std::vector<Points> both{T, T};
+  CHECK(ifs::similarity_dimension(a, both) == Approx(expected).epsilon(1e-12));
+  // Only u initial: v's reference net is g(T), so the edge ratios become 1 (g) and ¼ (h∘g); the
+  // cycle products, hence the dimension, are unchanged.
+  a.initial.pop_back();
+  const std::vector<Points> one{T};
+  CHECK(ifs::similarity_dimension(a, one) == Approx(expected).epsilon(1e-12));
+}
+
+TEST_CASE("similarity dimension refuses what is not a similarity", "[ifs][dimension]") {
+  CHECK_THROWS_WITH(ifs::similarity_dimension(ifs::barnsley_fern()), Contains("map 0 is not a similarity"));
+  CHECK_THROWS_AS(ifs::similarity_dimension(std::vector<ifs::AffineMap>{}), InvalidInput);
+  const std::vector<ifs::AffineMap> expanding{similarity(1.5, 0, false, 0, 0)};
+  CHECK_THROWS_WITH(ifs::similarity_dimension(expanding), Contains("ratio 1.5"));
+  // A cubic B-spline: its subdivision matrices are not affine maps of the plane on a 4-point net.
+  const automata::Automaton bspline = ifs_test::uniform_automaton(3);
+  Points N(4, 2);
+  N << 0, 0, 1, 2, 3, -1, 4, 1;
+  const std::vector<Points> nets{N};
+  CHECK_THROWS_WITH(ifs::similarity_dimension(bspline, nets), Contains("not an affine map"));
+  // A collinear net does not determine the map.
+  Points line(4, 2);
+  line << 0, 0, 1, 0, 2, 0, 3, 0;
+  const std::vector<Points> flat{line};
+  CHECK_THROWS_WITH(ifs::similarity_dimension(bspline, flat), Contains("does not span"));
+  // The fern's automaton: affine, not similar.
+  const std::vector<Points> tri{unit_triangle()};
+  CHECK_THROWS_WITH(ifs::similarity_dimension(ifs::affine_automaton(ifs::barnsley_fern(), tri[0]), tri),
+                    Contains("not a similarity"));
+  const std::vector<ifs::SimilarityEdge> bad_ratio{{0, 0, 0.0}}, bad_state{{0, 3, 0.5}}, acyclic{{0, 1, 0.5}},
+      expanding_cycle{{0, 0, 0.5}, {0, 0, 1.0}};
+  CHECK_THROWS_AS(ifs::mauldin_williams_dimension(1, bad_ratio), InvalidInput);
+  CHECK_THROWS_AS(ifs::mauldin_williams_dimension(2, bad_state), InvalidInput);
+  CHECK_THROWS_WITH(ifs::mauldin_williams_dimension(2, acyclic), Contains("no cycle"));
+  CHECK_THROWS_WITH(ifs::mauldin_williams_dimension(1, expanding_cycle), Contains("do not contract"));
+}
+
+TEST_CASE("box counting: Sierpinski and Koch from the deterministic evaluation", "[ifs][dimension]") {
+  // The counts converge slowly (N(ε) = a·3^k + O(2^k) on an offset grid: the local slopes approach
+  // log₂ 3 like (2/3)^k), hence depth 12 for 0.03; depth 9 gives 1.54 (docs/dimension.md).
+  const Points sierpinski = classic_points(ifs::sierpinski_triangle(), 12);
+  const ifs::BoxCountingResult s = ifs::box_counting(sierpinski);
+  INFO("Sierpinski: " << s.dimension << " over levels " << s.min_level << " … " << s.max_level);
+  CHECK(std::abs(s.dimension - std::log2(3.0)) < 0.03);
+  CHECK(s.max_level - s.min_level >= 2);
+  const ifs::BoxCountingResult k = ifs::box_counting(classic_points(ifs::koch_curve(), 9));
+  INFO("Koch: " << k.dimension << " over levels " << k.min_level << " … " << k.max_level);
+  CHECK(std::abs(k.dimension - std::log(4.0) / std::log(3.0)) < 0.03);
+  // Counts: one box at most 2^dim at level 0, never decreasing, never above the points.
+  CHECK(s.counts.front().boxes <= 4);
+  for (std::size_t i = 1; i < s.counts.size(); ++i) {
+    CHECK(s.counts[i].boxes >= s.counts[i - 1].boxes);
+    CHECK(s.counts[i].epsilon == s.counts[i - 1].epsilon / 2);
+  }
+  CHECK(s.counts.back().boxes <= std::size_t(sierpinski.rows()));
+  CHECK(s.r_squared > 0.99);
+}
+
+TEST_CASE("box counting: smooth curve 1, surface mesh 2", "[ifs][dimension]") {
+  Points P(5, 2);
+  P << 0, 0, 1, 2, 3, -1, 4, 1, 6, 0;
+  const nurbs::Curve c = nurbs::make_curve(3, {0, 0, 0, 0, 0.4, 1, 1, 1, 1}, P);
+  const automata::Automaton a = automata::knot_automaton(c);
+  const Points curve = ifs::attractor_points(a, automata::initial_nets(a, c), 15);
+  const ifs::BoxCountingResult r = ifs::box_counting(curve);
+  INFO("curve: " << r.dimension << " over levels " << r.min_level << " … " << r.max_level);
+  CHECK(std::abs(r.dimension - 1) < 0.02);
+
+  Points Q(16, 3);
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) Q.row(4 * i + j) << i, j, 0.6 * std::sin(i + 2.0 * j);
+  const nurbs::Surface s = nurbs::make_surface(
+      {3, 3}, {nurbs::Knots{0, 0, 0, 0, 1, 1, 1, 1}, nurbs::Knots{0, 0, 0, 0, 1, 1, 1, 1}}, {4, 4}, Q);
+  const automata::TensorAutomaton t = automata::tensor_automaton(s);
+  // Boundary boxes bias the slope by about perimeter·ε/area: depth 10 gives 1.947, 11 gives 1.959.
+  const ifs::QuadMesh mesh = ifs::surface_mesh(t, automata::initial_nets(t, s), 11);
+  const ifs::BoxCountingResult m = ifs::box_counting(mesh.vertices);
+  INFO("surface: " << m.dimension << " over levels " << m.min_level << " … " << m.max_level);
+  CHECK(std::abs(m.dimension - 2) < 0.05);
+}
+
+TEST_CASE("box counting: fit ranges and bad input", "[ifs][dimension]") {
+  const Points sierpinski = classic_points(ifs::sierpinski_triangle(), 7);
+  ifs::BoxCountingOptions o;
+  o.min_level = 2;
+  o.max_level = 5;
+  const ifs::BoxCountingResult r = ifs::box_counting(sierpinski, o);
+  CHECK(r.min_level == 2);
+  CHECK(r.max_level == 5);
+  CHECK(r.max_epsilon == r.size / 4);
+  CHECK(r.min_epsilon == r.size / 32);
+  // The slope is the least-squares slope of the reported counts (independent formula:
+  // Σ(x − x̄)(y − ȳ)/Σ(x − x̄)² with x = k·log 2).
+  double sx = 0, sy = 0, sxy = 0, sxx = 0;
+  for (int k = 2; k <= 5; ++k) {
+    const double x = k * std::log(2.0), y = std::log(double(r.counts[std::size_t(k)].boxes));
+    sx += x, sy += y, sxy += x * y, sxx += x * x;
+  }
+  CHECK(r.dimension == Approx((4 * sxy - sx * sy) / (4 * sxx - sx * sx)).epsilon(1e-12));
+  // Resolution: boxes below twice the pieces are not fitted.
+  o = {};
+  o.min_boxes = 10;
+  CHECK(ifs::box_counting(sierpinski, o).max_level == 5);  // 357 boxes at level 5, 1045 at 6
+  o.resolution = r.size / 32;
+  CHECK(ifs::box_counting(sierpinski, o).max_level == 4);
+
+  CHECK_THROWS_WITH(ifs::box_counting(Points(0, 2)), Contains("no points"));
+  Points same(3, 2);
+  same.setOnes();
+  CHECK_THROWS_WITH(ifs::box_counting(same), Contains("all points are equal"));
+  Points nan = sierpinski;
+  nan(1, 1) = std::nan("");
+  CHECK_THROWS_WITH(ifs::box_counting(nan), Contains("not finite"));
+  CHECK_THROWS_WITH(ifs::box_counting(classic_points(ifs::sierpinski_triangle(), 3)),
+                    Contains("evaluate deeper"));
+  o = {};
+  o.min_level = 4;
+  o.max_level = 5;
+  CHECK_THROWS_WITH(ifs::box_counting(sierpinski, o), Contains("at least 3 levels"));
+}
