@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "cifs/automata/automaton.hpp"
 #include "cifs/errors.hpp"
@@ -12,6 +14,7 @@
 #include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/ifs/chaos.hpp"
+#include "cifs/ifs/dimension.hpp"
 #include "cifs/io/experiment.hpp"
 #include "cifs/io/polyline.hpp"
 #include "cifs/io/shape.hpp"
@@ -331,6 +334,87 @@ std::string render(const RenderOptions& o) {
   ro.quiet = o.quiet;
   ro.threads = o.threads;
   return experiment::run(e, ro).summary;
+}
+
+std::string dimension(const DimensionOptions& o) {
+  // A shape file holds "curve" or "surface" (or is an OBJ); anything else is an experiment.
+  bool shape = o.input.extension() == ".obj";
+  if (o.input.extension() == ".json") {
+    std::ifstream in(o.input);
+    if (!in) throw IoError(o.input.string() + ": cannot open");
+    const json j = json::parse(in, nullptr, false);
+    shape = j.is_object() && (j.contains("curve") || j.contains("surface"));
+  }
+  io::Experiment e;
+  if (shape) {
+    e.name = o.input.stem().string();
+    e.shape = io::read_shape(o.input);
+  } else {
+    e = io::read_experiment(o.input);
+  }
+  const experiment::Evaluation ev = experiment::evaluate(e, o.depth);
+  ifs::BoxCountingOptions bo;
+  bo.resolution = ev.resolution;
+  bo.min_level = o.min_level;
+  bo.max_level = o.max_level;
+  const ifs::BoxCountingResult r = ifs::box_counting(ev.points, bo);
+  // The similarity dimension applies when every map is a similarity; say why when it does not.
+  std::optional<double> similarity;
+  std::string why_not;
+  try {
+    if (!ev.maps.empty())
+      similarity = ifs::similarity_dimension(ev.maps);
+    else if (ev.rational)
+      why_not = "rational nets (homogeneous maps are not similarities of the plane)";
+    else
+      similarity = ifs::similarity_dimension(ev.automaton, ev.nets);
+  } catch (const InvalidInput& error) {
+    why_not = error.what();
+  }
+
+  if (o.json) {
+    json j;
+    j["input"] = o.input.string();
+    j["kind"] = ev.kind;
+    j["depth"] = ev.depth;
+    j["points"] = ev.points.rows();
+    j["resolution"] = ev.resolution;
+    json box;
+    box["dimension"] = r.dimension;
+    box["levels"] = {r.min_level, r.max_level};
+    box["epsilon"] = {r.max_epsilon, r.min_epsilon};
+    box["r_squared"] = r.r_squared;
+    box["residual"] = r.residual;
+    box["size"] = r.size;
+    json counts = json::array();
+    for (const ifs::BoxCount& c : r.counts)
+      counts.push_back({{"level", c.level}, {"epsilon", c.epsilon}, {"boxes", c.boxes}});
+    box["counts"] = counts;
+    j["box_counting"] = box;
+    j["similarity_dimension"] = similarity ? json(*similarity) : json(nullptr);
+    if (!similarity) j["similarity_note"] = why_not;
+    return j.dump(2) + "\n";
+  }
+  char line[256];
+  std::string out = o.input.string() + ": " + ev.kind + ", depth " + std::to_string(ev.depth) + ", " +
+                    std::to_string(ev.points.rows()) + " points\n";
+  std::snprintf(line, sizeof line,
+                "box-counting dimension %.4f (levels %d … %d, ε %.4g … %.4g, R² %.6f, max residual %.3g)\n",
+                r.dimension, r.min_level, r.max_level, r.max_epsilon, r.min_epsilon, r.r_squared, r.residual);
+  out += line;
+  if (similarity) {
+    std::snprintf(line, sizeof line, "similarity dimension %.12g\n", *similarity);
+    out += line;
+  } else {
+    out += "similarity dimension: not applicable (" + why_not + ")\n";
+  }
+  out += "  level  epsilon       boxes\n";
+  for (const ifs::BoxCount& c : r.counts) {
+    std::snprintf(line, sizeof line, "  %5d  %-12.6g  %zu%s\n", c.level, c.epsilon, c.boxes,
+                  c.level >= r.min_level && c.level <= r.max_level ? "  *" : "");
+    out += line;
+  }
+  return out;
 }
 
 std::string gallery(const std::filesystem::path& out, const std::filesystem::path& examples) {

@@ -63,6 +63,16 @@ struct RenderOptions {
 /// `cifs render`: runs an experiment; returns the summary (what was written).
 std::string render(const RenderOptions& options);
 
+struct DimensionOptions {
+  std::filesystem::path input;         // experiment file, or shape file (.json with "curve"/"surface", .obj)
+  std::optional<int> depth;            // default: the experiment's evaluation.depth, 8 for a shape
+  int min_level = -1, max_level = -1;  // fit range (box levels); -1: automatic
+  bool json = false;
+};
+/// `cifs dimension`: box-counting fit of the deterministic evaluation, and the similarity
+/// (Moran / Mauldin–Williams) dimension when the maps are similarities.
+std::string dimension(const DimensionOptions& options);
+
 /// The main job on its built-in default: writes the example gallery into `out` from the example
 /// files in `examples` (shapes, experiments), returns a summary.
 std::string gallery(const std::filesystem::path& out, const std::filesystem::path& examples);

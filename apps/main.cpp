@@ -98,6 +98,17 @@ int main(int argc, char** argv) {
   render_cmd->add_flag("--quiet", re.quiet, "No progress bar");
   render_cmd->callback([&] { result = render(re); });
 
+  DimensionOptions di;
+  auto* dimension_cmd = app.add_subcommand(
+      "dimension",
+      "Box-counting dimension of an experiment's or shape's attractor (and similarity dimension)");
+  dimension_cmd->add_option("input", di.input, "Experiment file, or shape file (.json or .obj)")->required();
+  dimension_cmd->add_option("--depth", di.depth, "Evaluation depth (default: the experiment's; shapes: 8)");
+  dimension_cmd->add_option("--min-level", di.min_level, "Fit range: coarsest box level k (ε = size·2^-k)");
+  dimension_cmd->add_option("--max-level", di.max_level, "Fit range: finest box level");
+  dimension_cmd->add_flag("--json", di.json, "Machine-readable report");
+  dimension_cmd->callback([&] { result = dimension(di); });
+
   std::filesystem::path gallery_out = "out";
   auto* gallery_cmd = app.add_subcommand("gallery", "Write the example gallery (the built-in default job)");
   std::filesystem::path gallery_examples = CIFS_EXAMPLES_DIR;
@@ -112,7 +123,7 @@ int main(int argc, char** argv) {
     if (first[0] != '-' && known.empty())
       throw cifs::InvalidInput("unknown command '" + first +
                                "' (commands: eval, insert, info, automaton, attractor, check, scheme, "
-                               "render, gallery; see cifs --help)");
+                               "render, dimension, gallery; see cifs --help)");
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);

@@ -282,6 +282,24 @@ Scene classic_scene(const io::ClassicIfs& c) {
   return scene;
 }
 
+/// The scene of any source; `kind` names the source for summaries.
+Scene make_scene(const io::Experiment& e, const RunOptions& o, RunReport& report, std::string& kind) {
+  if (e.shape) {
+    if (const auto* c = std::get_if<nurbs::Curve>(&*e.shape)) {
+      kind = "NURBS curve";
+      return curve_scene(*c, e, o, report);
+    }
+    kind = "NURBS surface";
+    return surface_scene(std::get<nurbs::Surface>(*e.shape), e, o, report);
+  }
+  if (!e.automaton.empty()) {
+    kind = "BC-IFS " + e.automaton.filename().string();
+    return bcifs_scene(e, o, report);
+  }
+  kind = "classic IFS " + (e.ifs->name.empty() ? std::string("(maps)") : e.ifs->name);
+  return classic_scene(*e.ifs);
+}
+
 render::Camera make_camera(const io::CameraSpec& spec, const io::RenderSettings& r, const Points& extent) {
   render::FramingOptions f;
   f.width = static_cast<std::size_t>(r.width);
@@ -374,23 +392,8 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
                        " GB, above the limit of " + number(double(o.max_bytes) / 1e9) + " GB");
   const unsigned threads = o.threads.value_or(e.render.threads);
 
-  Scene scene;
   std::string kind;
-  if (e.shape) {
-    if (const auto* c = std::get_if<nurbs::Curve>(&*e.shape)) {
-      scene = curve_scene(*c, e, o, report);
-      kind = "NURBS curve";
-    } else {
-      scene = surface_scene(std::get<nurbs::Surface>(*e.shape), e, o, report);
-      kind = "NURBS surface";
-    }
-  } else if (!e.automaton.empty()) {
-    scene = bcifs_scene(e, o, report);
-    kind = "BC-IFS " + e.automaton.filename().string();
-  } else {
-    scene = classic_scene(*e.ifs);
-    kind = "classic IFS " + (e.ifs->name.empty() ? std::string("(maps)") : e.ifs->name);
-  }
+  Scene scene = make_scene(e, o, report, kind);
   if (e.evaluation.mode == Mode::chaos && !e.ifs) {
     // Frame the chaos game from a short walk of the same automaton.
     ifs::ChaosOptions co;
@@ -518,6 +521,39 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
   report.summary += "\n";
   for (const auto& p : report.written) report.summary += "  wrote " + p.string() + "\n";
   return report;
+}
+
+Evaluation evaluate(const io::Experiment& experiment, std::optional<int> depth, const RunOptions& o) {
+  io::Experiment e = experiment;
+  e.evaluation.mode = Mode::depth;
+  if (depth) e.evaluation.depth = *depth;
+  if (e.evaluation.depth < 0)
+    throw InvalidInput("depth: " + std::to_string(e.evaluation.depth) + " is negative");
+  RunReport report;
+  Evaluation out;
+  Scene scene = make_scene(e, o, report, out.kind);
+  out.depth = e.evaluation.depth;
+  if (scene.mesh) {
+    out.points = scene.mesh->vertices;
+  } else if (scene.curves) {
+    out.points = scene.curves->vertices;
+  } else {  // classic IFS: the start points of the depth-K nodes of its one-state automaton
+    ifs::PointsOptions po;
+    po.max_bytes = o.max_bytes;
+    out.points = ifs::attractor_points(scene.automaton, scene.nets, out.depth, po);
+  }
+  if (!scene.rational) {
+    // Every depth-K piece lies within radius·diam(N) of its net's first row (analysis.hpp).
+    const double radius = ifs::contraction(scene.automaton).radius;
+    ifs::for_each_leaf(scene.automaton, scene.nets, out.depth, [&](const ifs::Leaf& leaf) {
+      out.resolution = std::max(out.resolution, 2 * radius * ifs::diameter(leaf.net));
+    });
+  }
+  out.automaton = std::move(scene.automaton);
+  out.nets = std::move(scene.nets);
+  out.maps = std::move(scene.maps);
+  out.rational = scene.rational;
+  return out;
 }
 
 }  // namespace cifs::experiment

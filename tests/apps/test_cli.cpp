@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The cifs command line, run as a user runs it: exit status, stdout and stderr.
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include <nlohmann/json.hpp>
 
@@ -232,4 +233,34 @@ TEST_CASE("cifs gallery runs every example experiment", "[cli]") {
   std::filesystem::remove_all(out);
   // A wrong examples folder is one clear error.
   check_error(cifs_cli("gallery " + out.string() + " --examples /no/such/folder"), "/no/such/folder");
+}
+
+TEST_CASE("cifs dimension: box counting and similarity dimension", "[cli][dimension]") {
+  // Sierpinski at depth 12: the box-counting fit near log 3 / log 2, the Moran dimension exactly.
+  const std::string sierpinski =
+      file("dim_sierpinski.json", R"({"ifs": "sierpinski", "evaluation": {"depth": 6}})");
+  const Run r = cifs_cli("dimension " + sierpinski + " --depth 12 --json");
+  INFO("stderr: " << r.err);
+  REQUIRE(r.status == 0);
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  CHECK(j["depth"] == 12);
+  CHECK(j["points"] == 531442);  // 3^12 nodes and the end point
+  CHECK(std::abs(j["box_counting"]["dimension"].get<double>() - std::log2(3.0)) < 0.03);
+  CHECK(j["similarity_dimension"].get<double>() == Approx(std::log2(3.0)).epsilon(1e-12));
+  CHECK(j["box_counting"]["counts"].size() > 5);
+  // A user fit range is reported back.
+  const nlohmann::json k = nlohmann::json::parse(
+      cifs_cli("dimension " + sierpinski + " --depth 9 --min-level 2 --max-level 5 --json").out);
+  CHECK(k["box_counting"]["levels"] == nlohmann::json::array({2, 5}));
+  // A shape file: a smooth curve, no similarity dimension (and the text report says why).
+  const Run c = cifs_cli("dimension " CIFS_EXAMPLES_DIR "/shapes/wave.json --depth 16");
+  INFO("stderr: " << c.err);
+  CHECK(c.status == 0);
+  CHECK_THAT(c.out,
+             Catch::Contains("box-counting dimension 1.0") || Catch::Contains("box-counting dimension 0.9"));
+  CHECK_THAT(c.out, Catch::Contains("similarity dimension: not applicable"));
+  // Bad input: one clear error line, exit status 2.
+  check_error(cifs_cli("dimension " + sierpinski + " --depth 2"), "evaluate deeper");
+  check_error(cifs_cli("dimension " + sierpinski + " --depth -1"), "negative");
+  check_error(cifs_cli("dimension /no/such/file.json"), "/no/such/file.json");
 }

@@ -8,7 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "cifs/automata/automaton.hpp"
+#include "cifs/ifs/affine.hpp"
 #include "cifs/io/experiment.hpp"
+#include "cifs/types.hpp"
 
 namespace cifs::experiment {
 
@@ -35,5 +38,27 @@ struct RunReport {
 /// temporary file and a rename, so a failure leaves no output file behind (and never a partial
 /// one). Throws InvalidInput (bad content, too large), IoError (files).
 RunReport run(const io::Experiment& experiment, const RunOptions& options = {});
+
+/// The deterministic evaluation of an experiment's source, for analysis (cifs dimension).
+struct Evaluation {
+  /// `#P by dim` Cartesian points: curve points, mesh vertices, BC-IFS piece ends, or for a classic
+  /// IFS the start points of the depth-K nodes of its one-state automaton (attractor points).
+  Points points;
+  int depth = 0;
+  std::string kind;  // "NURBS curve", "classic IFS koch", …
+  /// Bound on the diameter of the depth-K pieces (contraction radius, analysis.hpp); 0 when
+  /// unknown (rational nets: the bound is for homogeneous rows).
+  double resolution = 0;
+  automata::Automaton automaton;  // the (perturbed) automaton; for a classic IFS its CIFS form
+  std::vector<Points> nets;       // one per initial entry (homogeneous rows when `rational`)
+  bool rational = false;
+  std::vector<ifs::AffineMap> maps;  // classic IFS only
+};
+
+/// Builds the source of `experiment` as `run` does (shape, perturbation) and evaluates it to
+/// `depth` (default: the file's evaluation.depth, whatever its mode). Nothing is rendered or
+/// written. Throws InvalidInput as run, and for a negative depth.
+Evaluation evaluate(const io::Experiment& experiment, std::optional<int> depth = {},
+                    const RunOptions& options = {});
 
 }  // namespace cifs::experiment
