@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "cifs/errors.hpp"
 #include "cifs/ifs/attractor.hpp"
@@ -104,6 +105,16 @@ TEST_CASE("surface_bcifs: free coefficients of uniform surfaces (hand counts)", 
   const auto cubic = surface_bcifs(make({3, 3}, {uniform(3, 6), uniform(3, 6)}));
   const AdmissibleSpace c = admissible_space(cubic);
   CHECK(c.free.size() == 8);
+  // The entries of free corner operators (label VV) that depend on the free coefficients all lie in
+  // one row, the centre row 4 = (1, 1); the other rows are fixed.
+  std::set<int> moving_rows;
+  for (std::size_t k = 0; k < c.unknowns.size(); ++k) {
+    const Coefficient& u = c.unknowns[k];
+    const auto e = transition_id(cubic.automaton, u.transition);
+    if (cubic.automaton.graph[e].label == "VV" && c.K.row(static_cast<Eigen::Index>(k)).norm() > 0)
+      moving_rows.insert(u.row);
+  }
+  CHECK(moving_rows == std::set<int>{4});
 }
 
 TEST_CASE("surface_bcifs: cost on an 8×8 non-uniform bicubic surface", "[ifs][bcifs][surface]") {
