@@ -9,6 +9,7 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/ifs/attractor.hpp"
+#include "cifs/ifs/bcifs_curve.hpp"
 #include "cifs/ifs/mesh.hpp"
 
 using namespace cifs;
@@ -232,4 +233,17 @@ TEST_CASE("surface_bcifs: perturbed surfaces keep their knot lines and stay join
                         (nv_nodes - 1));
     CHECK(gap <= 1e-12 * scale);
   }
+}
+
+TEST_CASE("surface_bcifs: bad input", "[ifs][bcifs][surface]") {
+  auto ta = automata::tensor_automaton(make({2, 2}, {uniform(2, 5), uniform(2, 5)}));
+  auto missing = ta;
+  missing.product.initial.pop_back();
+  CHECK_THROWS_WITH(surface_bcifs(missing), Catch::Contains("patches"));
+  // A factor that is not a knot-doubling automaton (no windows).
+  auto handmade = ta;
+  for (auto s : boost::make_iterator_range(boost::vertices(handmade.factors[0].graph)))
+    handmade.factors[0].graph[s].window.clear();
+  CHECK_THROWS_WITH(surface_bcifs(handmade), Catch::Contains("not a knot-doubling state"));
+  CHECK_THROWS_WITH(curve_bcifs(automata::Automaton{}, false), Catch::Contains("no segment"));
 }
