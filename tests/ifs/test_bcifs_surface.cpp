@@ -247,3 +247,27 @@ TEST_CASE("surface_bcifs: bad input", "[ifs][bcifs][surface]") {
   CHECK_THROWS_WITH(surface_bcifs(handmade), Catch::Contains("not a knot-doubling state"));
   CHECK_THROWS_WITH(curve_bcifs(automata::Automaton{}, false), Catch::Contains("no segment"));
 }
+
+TEST_CASE("surface_bcifs: free_knot_lines frees the knot lines too", "[ifs][bcifs][surface]") {
+  const auto s = make({3, 3}, {clamped(3, {0.3, 1.1}), clamped(3, {0.7})});
+  const auto ta = automata::tensor_automaton(s);
+  const auto nets = automata::initial_nets(ta, s);
+  const Bcifs fixed = surface_bcifs(ta), loose = surface_bcifs(ta, {true});
+  CHECK(admissible_space(loose).free.size() > admissible_space(fixed).free.size());
+  PerturbOptions po;
+  po.amplitude = 0.01;
+  po.seed = 3;
+  const Perturbation p = perturb(loose, po);
+  CHECK(p.residual <= 1e-12);
+  const int K = 3, side = 1 << K;
+  const QuadMesh reference = surface_mesh(ta, nets, K);
+  const QuadMesh mesh = quad_mesh(p.system.automaton, nets, ta.patches, K);
+  const int nv_nodes = static_cast<int>(ta.factors[1].initial.size()) * side + 1;
+  double on_lines = 0;
+  for (Eigen::Index k = 0; k < mesh.vertices.rows(); ++k) {
+    const int I = static_cast<int>(k) / nv_nodes, J = static_cast<int>(k) % nv_nodes;
+    if (I % side == 0 || J % side == 0)
+      on_lines = std::max(on_lines, (mesh.vertices.row(k) - reference.vertices.row(k)).cwiseAbs().maxCoeff());
+  }
+  CHECK(on_lines > 1e-4);  // the knot lines move (joined: quad_mesh shares their vertices)
+}
