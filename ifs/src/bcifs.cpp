@@ -295,8 +295,10 @@ AdmissibleSpace admissible_space(const Bcifs& sys, const SolveOptions& options) 
     return base[f] + static_cast<std::size_t>(r * M.cols() + c);
   };
 
-  // Equations: one per entry of each constraint, one per row of each free matrix.
+  // Equations: one per entry of each constraint, one per row of each free matrix; those reading
+  // x_a = x_b only merge classes of equal unknowns (`same`, see the substitution below).
   std::vector<Equation> equations;
+  UnionFind same(space.unknowns.size());
   for (std::size_t ci = 0; ci < sys.constraints.size(); ++ci) {
     const Constraint& con = sys.constraints[ci];
     const int source = cell_size(sys, factor_cells(sys, con.left.back()).first);
@@ -341,6 +343,10 @@ AdmissibleSpace admissible_space(const Bcifs& sys, const SolveOptions& options) 
                                number_text(std::abs(eq.rhs)));
           continue;
         }
+        if (eq.terms.size() == 2 && eq.rhs == 0 && eq.terms[0].second == -eq.terms[1].second) {
+          same.unite(eq.terms[0].first, eq.terms[1].first);  // x_a = x_b: substituted below
+          continue;
+        }
         equations.push_back(std::move(eq));
       }
   }
@@ -365,17 +371,9 @@ AdmissibleSpace admissible_space(const Bcifs& sys, const SolveOptions& options) 
                ? sys.constraints[static_cast<std::size_t>(src)].name
                : transition_name(sys.automaton, sys.free[static_cast<std::size_t>(-1 - src)]) + " row sums";
   };
-  UnionFind same(n);
   std::vector<const Equation*> constants, others_eq;
-  for (const Equation& eq : equations) {
-    if (eq.source >= 0 && eq.terms.size() == 1)
-      constants.push_back(&eq);
-    else if (eq.source >= 0 && eq.terms.size() == 2 && eq.rhs == 0 &&
-             eq.terms[0].second == -eq.terms[1].second)
-      same.unite(eq.terms[0].first, eq.terms[1].first);
-    else
-      others_eq.push_back(&eq);
-  }
+  for (const Equation& eq : equations)
+    (eq.source >= 0 && eq.terms.size() == 1 ? constants : others_eq).push_back(&eq);
   std::vector<double> value(n, std::numeric_limits<double>::quiet_NaN());
   std::vector<int> value_source(n, 0);
   for (const Equation* eq : constants) {

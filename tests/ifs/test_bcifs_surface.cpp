@@ -5,9 +5,11 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "cifs/errors.hpp"
 #include "cifs/ifs/attractor.hpp"
+#include "cifs/ifs/bcifs_curve.hpp"
 #include "cifs/ifs/mesh.hpp"
 
 using namespace cifs;
@@ -104,6 +106,16 @@ TEST_CASE("surface_bcifs: free coefficients of uniform surfaces (hand counts)", 
   const auto cubic = surface_bcifs(make({3, 3}, {uniform(3, 6), uniform(3, 6)}));
   const AdmissibleSpace c = admissible_space(cubic);
   CHECK(c.free.size() == 8);
+  // The entries of free corner operators (label VV) that depend on the free coefficients all lie in
+  // one row, the centre row 4 = (1, 1); the other rows are fixed.
+  std::set<int> moving_rows;
+  for (std::size_t k = 0; k < c.unknowns.size(); ++k) {
+    const Coefficient& u = c.unknowns[k];
+    const auto e = transition_id(cubic.automaton, u.transition);
+    if (cubic.automaton.graph[e].label == "VV" && c.K.row(static_cast<Eigen::Index>(k)).norm() > 0)
+      moving_rows.insert(u.row);
+  }
+  CHECK(moving_rows == std::set<int>{4});
 }
 
 TEST_CASE("surface_bcifs: cost on an 8×8 non-uniform bicubic surface", "[ifs][bcifs][surface]") {
@@ -221,4 +233,41 @@ TEST_CASE("surface_bcifs: perturbed surfaces keep their knot lines and stay join
                         (nv_nodes - 1));
     CHECK(gap <= 1e-12 * scale);
   }
+}
+
+TEST_CASE("surface_bcifs: bad input", "[ifs][bcifs][surface]") {
+  auto ta = automata::tensor_automaton(make({2, 2}, {uniform(2, 5), uniform(2, 5)}));
+  auto missing = ta;
+  missing.product.initial.pop_back();
+  CHECK_THROWS_WITH(surface_bcifs(missing), Catch::Contains("patches"));
+  // A factor that is not a knot-doubling automaton (no windows).
+  auto handmade = ta;
+  for (auto s : boost::make_iterator_range(boost::vertices(handmade.factors[0].graph)))
+    handmade.factors[0].graph[s].window.clear();
+  CHECK_THROWS_WITH(surface_bcifs(handmade), Catch::Contains("not a knot-doubling state"));
+  CHECK_THROWS_WITH(curve_bcifs(automata::Automaton{}, false), Catch::Contains("no segment"));
+}
+
+TEST_CASE("surface_bcifs: free_knot_lines frees the knot lines too", "[ifs][bcifs][surface]") {
+  const auto s = make({3, 3}, {clamped(3, {0.3, 1.1}), clamped(3, {0.7})});
+  const auto ta = automata::tensor_automaton(s);
+  const auto nets = automata::initial_nets(ta, s);
+  const Bcifs fixed = surface_bcifs(ta), loose = surface_bcifs(ta, {true});
+  CHECK(admissible_space(loose).free.size() > admissible_space(fixed).free.size());
+  PerturbOptions po;
+  po.amplitude = 0.01;
+  po.seed = 3;
+  const Perturbation p = perturb(loose, po);
+  CHECK(p.residual <= 1e-12);
+  const int K = 3, side = 1 << K;
+  const QuadMesh reference = surface_mesh(ta, nets, K);
+  const QuadMesh mesh = quad_mesh(p.system.automaton, nets, ta.patches, K);
+  const int nv_nodes = static_cast<int>(ta.factors[1].initial.size()) * side + 1;
+  double on_lines = 0;
+  for (Eigen::Index k = 0; k < mesh.vertices.rows(); ++k) {
+    const int I = static_cast<int>(k) / nv_nodes, J = static_cast<int>(k) % nv_nodes;
+    if (I % side == 0 || J % side == 0)
+      on_lines = std::max(on_lines, (mesh.vertices.row(k) - reference.vertices.row(k)).cwiseAbs().maxCoeff());
+  }
+  CHECK(on_lines > 1e-4);  // the knot lines move (joined: quad_mesh shares their vertices)
 }
