@@ -12,6 +12,7 @@
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/ifs/bcifs.hpp"
 #include "cifs/ifs/bcifs_curve.hpp"
+#include "cifs/ifs/bcifs_surface.hpp"
 #include "cifs/ifs/chaos.hpp"
 #include "cifs/ifs/mesh.hpp"
 #include "cifs/io/bcifs_json.hpp"
@@ -166,8 +167,11 @@ Scene surface_scene(const nurbs::Surface& s, const io::Experiment& e, const RunO
   scene.automaton = ta.product;
   scene.nets = automata::initial_nets(ta, s);
   if (e.perturbation) {
-    (void)report;
-    throw InvalidInput("perturbation: surfaces are not supported yet");
+    ifs::SurfaceBcifsOptions so;
+    so.free_knot_lines = !e.perturbation->keep_vertices;
+    const ifs::Perturbation p = ifs::perturb(ifs::surface_bcifs(ta, so), perturb_options(*e.perturbation));
+    note_perturbation(p, report);
+    scene.automaton = p.system.automaton;
   }
   // Control net: the u and v polylines of the control points.
   const Points P = nurbs::cartesian_points(s);

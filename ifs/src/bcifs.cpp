@@ -12,6 +12,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
+#include <map>
 #include <numeric>
 #include <set>
 #include <sstream>
@@ -89,7 +91,11 @@ struct UnionFind {
     while (parent[x] != x) x = parent[x] = parent[parent[x]];
     return x;
   }
-  void unite(std::size_t a, std::size_t b) { parent[find(a)] = find(b); }
+  void unite(std::size_t a, std::size_t b) {
+    a = find(a);
+    b = find(b);
+    parent[std::max(a, b)] = std::min(a, b);  // the smallest index represents its class
+  }
 };
 
 /// One linear equation Σ coef·x = rhs over the unknowns; `source` is the constraint index, or
@@ -289,8 +295,10 @@ AdmissibleSpace admissible_space(const Bcifs& sys, const SolveOptions& options) 
     return base[f] + static_cast<std::size_t>(r * M.cols() + c);
   };
 
-  // Equations: one per entry of each constraint, one per row of each free matrix.
+  // Equations: one per entry of each constraint, one per row of each free matrix; those reading
+  // x_a = x_b only merge classes of equal unknowns (`same`, see the substitution below).
   std::vector<Equation> equations;
+  UnionFind same(space.unknowns.size());
   for (std::size_t ci = 0; ci < sys.constraints.size(); ++ci) {
     const Constraint& con = sys.constraints[ci];
     const int source = cell_size(sys, factor_cells(sys, con.left.back()).first);
@@ -335,6 +343,10 @@ AdmissibleSpace admissible_space(const Bcifs& sys, const SolveOptions& options) 
                                number_text(std::abs(eq.rhs)));
           continue;
         }
+        if (eq.terms.size() == 2 && eq.rhs == 0 && eq.terms[0].second == -eq.terms[1].second) {
+          same.unite(eq.terms[0].first, eq.terms[1].first);  // x_a = x_b: substituted below
+          continue;
+        }
         equations.push_back(std::move(eq));
       }
   }
@@ -349,18 +361,79 @@ AdmissibleSpace admissible_space(const Bcifs& sys, const SolveOptions& options) 
     }
   }
 
-  // Connected components of the unknown/equation graph.
+  // Substitution first: most constraint equations read x_a = x_b (an entry of one side is an entry
+  // of the other) or x_a = c (the other side is fixed). Classes of equal unknowns, with their
+  // constant when they have one, leave a far smaller system for the dense QR (a surface system
+  // ties thousands of entries into one component otherwise).
   const std::size_t n = space.unknowns.size();
-  UnionFind uf(n);
+  const auto source_name = [&](int src) {
+    return src >= 0
+               ? sys.constraints[static_cast<std::size_t>(src)].name
+               : transition_name(sys.automaton, sys.free[static_cast<std::size_t>(-1 - src)]) + " row sums";
+  };
+  std::vector<const Equation*> constants, others_eq;
   for (const Equation& eq : equations)
+    (eq.source >= 0 && eq.terms.size() == 1 ? constants : others_eq).push_back(&eq);
+  std::vector<double> value(n, std::numeric_limits<double>::quiet_NaN());
+  std::vector<int> value_source(n, 0);
+  for (const Equation* eq : constants) {
+    const std::size_t r = same.find(eq->terms[0].first);
+    const double v = eq->rhs / eq->terms[0].second;
+    if (std::isnan(value[r])) {
+      value[r] = v;
+      value_source[r] = eq->source;
+    } else if (std::abs(value[r] - v) > 1e-12 * std::max({1.0, std::abs(v), std::abs(value[r])})) {
+      throw InvalidInput("BC-IFS: the constraints \"" + source_name(value_source[r]) + "\", \"" +
+                         source_name(eq->source) + "\" have no common solution (they set " +
+                         coefficient_name(sys.automaton, space.unknowns[eq->terms[0].first]) + " to " +
+                         number_text(value[r]) + " and to " + number_text(v) + ")");
+    }
+  }
+  // Reduced variables: the classes without a constant, named by their smallest unknown.
+  std::vector<std::size_t> reduced_of(n, 0), representative;
+  for (std::size_t k = 0; k < n; ++k)
+    if (same.find(k) == k && std::isnan(value[k])) {
+      reduced_of[k] = representative.size();
+      representative.push_back(k);
+    }
+  std::vector<Equation> reduced;
+  for (const Equation* eq : others_eq) {
+    Equation r;
+    r.source = eq->source;
+    r.rhs = eq->rhs;
+    std::map<std::size_t, double> terms;
+    for (const auto& [k, v] : eq->terms) {
+      const std::size_t root = same.find(k);
+      if (std::isnan(value[root]))
+        terms[reduced_of[root]] += v;
+      else
+        r.rhs -= v * value[root];
+    }
+    for (const auto& [k, v] : terms)
+      if (v != 0) r.terms.emplace_back(k, v);
+    if (r.terms.empty()) {
+      if (std::abs(r.rhs) > 1e-9 * std::max(1.0, std::abs(eq->rhs)))
+        throw InvalidInput(
+            "BC-IFS: \"" + source_name(eq->source) +
+            "\" has no solution once the constraints' fixed entries are substituted (it misses by " +
+            number_text(std::abs(r.rhs)) + ")");
+      continue;
+    }
+    reduced.push_back(std::move(r));
+  }
+
+  // Connected components of the unknown/equation graph.
+  const std::size_t nr = representative.size();
+  UnionFind uf(nr);
+  for (const Equation& eq : reduced)
     for (const auto& t : eq.terms) uf.unite(eq.terms.front().first, t.first);
   std::map<std::size_t, std::vector<std::size_t>> comp_unknowns, comp_equations;
-  for (std::size_t k = 0; k < n; ++k) comp_unknowns[uf.find(k)].push_back(k);
-  for (std::size_t e = 0; e < equations.size(); ++e)
-    comp_equations[uf.find(equations[e].terms.front().first)].push_back(e);
+  for (std::size_t k = 0; k < nr; ++k) comp_unknowns[uf.find(k)].push_back(k);
+  for (std::size_t e = 0; e < reduced.size(); ++e)
+    comp_equations[uf.find(reduced[e].terms.front().first)].push_back(e);
 
-  space.x0 = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
-  std::vector<char> is_free(n, 0);
+  Eigen::VectorXd x0 = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(nr));
+  std::vector<char> is_free(nr, 0);
   // Dependent unknown → (its coefficient on each free unknown of its component).
   std::vector<std::pair<std::size_t, std::vector<std::pair<std::size_t, double>>>> dependents;
   for (const auto& [root, vars] : comp_unknowns) {
@@ -371,7 +444,7 @@ AdmissibleSpace admissible_space(const Bcifs& sys, const SolveOptions& options) 
     Eigen::MatrixXd A = Eigen::MatrixXd::Zero(m, nv);
     Eigen::VectorXd b(m);
     for (Eigen::Index i = 0; i < m; ++i) {
-      const Equation& eq = equations[eqs[static_cast<std::size_t>(i)]];
+      const Equation& eq = reduced[eqs[static_cast<std::size_t>(i)]];
       for (const auto& [k, v] : eq.terms) A(i, local[k]) += v;
       b(i) = eq.rhs;
     }
@@ -395,7 +468,7 @@ AdmissibleSpace admissible_space(const Bcifs& sys, const SolveOptions& options) 
     if (!(miss <= 1e-9) || !(slack <= 1e-9)) {
       std::set<std::string> names;
       for (const std::size_t e : eqs) {
-        const int src = equations[e].source;
+        const int src = reduced[e].source;
         names.insert(src >= 0 ? sys.constraints[static_cast<std::size_t>(src)].name
                               : transition_name(sys.automaton, sys.free[static_cast<std::size_t>(-1 - src)]) +
                                     " row sums");
@@ -408,7 +481,7 @@ AdmissibleSpace admissible_space(const Bcifs& sys, const SolveOptions& options) 
     }
     for (Eigen::Index j = 0; j < rank; ++j) {
       const std::size_t k = vars[static_cast<std::size_t>(basic[static_cast<std::size_t>(j)])];
-      space.x0(static_cast<Eigen::Index>(k)) = xb(j);
+      x0(static_cast<Eigen::Index>(k)) = xb(j);
       std::vector<std::pair<std::size_t, double>> row;
       for (Eigen::Index i = 0; i < nv - rank; ++i)
         if (KB(j, i) != 0)
@@ -418,18 +491,33 @@ AdmissibleSpace admissible_space(const Bcifs& sys, const SolveOptions& options) 
     for (const Eigen::Index i : others) is_free[vars[static_cast<std::size_t>(i)]] = 1;
     ++space.components;
   }
-  std::vector<Eigen::Index> column(n, -1);
-  for (std::size_t k = 0; k < n; ++k)
-    if (is_free[k]) {
-      column[k] = static_cast<Eigen::Index>(space.free.size());
-      space.free.push_back(k);
+  // Back to the unknowns: a class's members share its constant, or its reduced variable's
+  // expression; a free reduced variable is named by the class's smallest unknown.
+  std::vector<Eigen::Index> column(nr, -1);
+  for (std::size_t r = 0; r < nr; ++r)
+    if (is_free[r]) {
+      column[r] = static_cast<Eigen::Index>(space.free.size());
+      space.free.push_back(representative[r]);
     }
+  std::vector<std::vector<std::pair<std::size_t, double>>> dependent_row(nr);
+  for (auto& [r, row] : dependents) dependent_row[r] = std::move(row);
+  space.x0 = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
   std::vector<Eigen::Triplet<double>> triplets;
-  for (const std::size_t k : space.free)
-    triplets.emplace_back(static_cast<int>(k), static_cast<int>(column[k]), 1.0);
-  for (const auto& [k, row] : dependents)
-    for (const auto& [fk, v] : row)
-      triplets.emplace_back(static_cast<int>(k), static_cast<int>(column[fk]), v);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t root = same.find(k);
+    const auto i = static_cast<Eigen::Index>(k);
+    if (!std::isnan(value[root])) {
+      space.x0(i) = value[root];
+      continue;
+    }
+    const std::size_t r = reduced_of[root];
+    if (is_free[r]) {
+      triplets.emplace_back(i, column[r], 1.0);
+      continue;
+    }
+    space.x0(i) = x0(static_cast<Eigen::Index>(r));
+    for (const auto& [fr, v] : dependent_row[r]) triplets.emplace_back(i, column[fr], v);
+  }
   space.K.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(space.free.size()));
   space.K.setFromTriplets(triplets.begin(), triplets.end());
   return space;

@@ -32,12 +32,24 @@ struct Classes {
 
 Bcifs curve_bcifs(const nurbs::Curve& curve, const CurveBcifsOptions& options) {
   nurbs::validate(curve);
-  const int d = curve.degree;
+  if (curve.degree < 1)
+    throw InvalidInput("curve_bcifs: degree " + std::to_string(curve.degree) + " has no edge to subdivide");
+  return curve_bcifs(automata::knot_automaton(curve), curve.closed, options);
+}
+
+Bcifs curve_bcifs(const automata::Automaton& knots, bool closed, const CurveBcifsOptions& options) {
+  if (knots.initial.empty()) throw InvalidInput("curve_bcifs: the knot automaton has no segment");
+  const int d = knots.graph[knots.initial.front().state].size - 1;
   if (d < 1) throw InvalidInput("curve_bcifs: degree " + std::to_string(d) + " has no edge to subdivide");
+  for (StateId s = 0; s < boost::num_vertices(knots.graph); ++s)
+    if (knots.graph[s].size != d + 1 || knots.graph[s].window.size() != static_cast<std::size_t>(2 * d - 1) ||
+        boost::out_degree(s, knots.graph) != 2)
+      throw InvalidInput("curve_bcifs: state " + std::to_string(s) +
+                         " is not a knot-doubling state of degree " + std::to_string(d) +
+                         " (d + 1 points, a window of 2d − 1 intervals, two children)");
   // Edge cells: the knot automaton's states unfolded by two flags, "starts at a knot of the
   // curve" and "ends at one", so that the vertex cells at the curve's knots and those at the
   // midpoints created by subdivision are never the same cell.
-  const automata::Automaton knots = automata::knot_automaton(curve);
   Bcifs sys;
   auto& g = sys.automaton.graph;
   std::map<std::tuple<StateId, bool, bool>, StateId> ids;
@@ -96,7 +108,7 @@ Bcifs curve_bcifs(const nurbs::Curve& curve, const CurveBcifsOptions& options) {
   const auto& initial = sys.automaton.initial;
   for (std::size_t k = 0; k + 1 < initial.size(); ++k)
     classes.unite(2 * initial[k].state + 1, 2 * initial[k + 1].state);
-  if (curve.closed) classes.unite(2 * initial.back().state + 1, 2 * initial.front().state);
+  if (closed) classes.unite(2 * initial.back().state + 1, 2 * initial.front().state);
   // Interior junctions: the end of G(s) and the start of D(s) are one midpoint vertex.
   for (StateId s = 0; s < edges; ++s) classes.unite(2 * child(s, 0) + 1, 2 * child(s, 1));
   // Congruence: keys in one class have children in one class.

@@ -33,4 +33,9 @@ struct CurveBcifsOptions {
 /// The NURBS matrices satisfy every constraint (an admissible point).
 Bcifs curve_bcifs(const nurbs::Curve& curve, const CurveBcifsOptions& options = {});
 
+/// The same from the curve's knot automaton (automata::knot_automaton; e.g. a factor of a
+/// TensorAutomaton); `closed` joins the last segment's end to the first one's start. Throws
+/// InvalidInput for states that are not knot-doubling states of one degree ≥ 1.
+Bcifs curve_bcifs(const automata::Automaton& knots, bool closed, const CurveBcifsOptions& options = {});
+
 }  // namespace cifs::ifs
