@@ -534,12 +534,12 @@ TEST_CASE("uniform_bspline: closed cubic at breakpoints is (P_i + 4 P_{i+1} + P_
   for (Eigen::Index i = 0; i < 7; ++i) {
     const Eigen::RowVectorXd expected = (P.row(i) + 4 * P.row((i + 1) % 7) + P.row((i + 2) % 7)) / 6;
     const Point x = nurbs::evaluate(c, static_cast<double>(i));
-    CHECK((x.transpose() - expected).norm() <= 1e-15 * 6);
+    CHECK((x - expected).norm() <= 1e-15 * 6);
   }
   const nurbs::Curve open = nurbs::uniform_bspline(P, 3, false);
   CHECK(open.knots == nurbs::Knots{0, 0, 0, 0, 1, 2, 3, 4, 4, 4, 4});
-  CHECK(nurbs::evaluate(open, 0.0).transpose() == P.row(0));
-  CHECK(nurbs::evaluate(open, 4.0).transpose() == P.row(6));
+  CHECK(nurbs::evaluate(open, 0.0) == P.row(0));
+  CHECK(nurbs::evaluate(open, 4.0) == P.row(6));
   CHECK_THROWS_WITH(nurbs::uniform_bspline(P.topRows(3), 3, false),
                     Catch::Contains("at least 4 control points"));
   CHECK_THROWS_AS(nurbs::uniform_bspline(P.topRows(1), 3, true), InvalidInput);
