@@ -7,10 +7,7 @@
 #include "cifs/errors.hpp"
 
 namespace cifs::automata {
-namespace {
 
-/// kron(A, B): entry (i·B.rows() + k, j·B.cols() + l) = A(i, j)·B(k, l) — one product per entry, so
-/// the result is exact given A and B.
 Eigen::MatrixXd kron(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
   Eigen::MatrixXd K(A.rows() * B.rows(), A.cols() * B.cols());
   for (Eigen::Index i = 0; i < A.rows(); ++i)
@@ -19,12 +16,9 @@ Eigen::MatrixXd kron(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
   return K;
 }
 
-/// The v-direction's halves are named H (first) and B (second), so that product labels read GH … DB.
 std::string v_label(const std::string& label) {
   return label == "G" ? "H" : label == "D" ? "B" : label;
 }
-
-}  // namespace
 
 TensorAutomaton tensor_automaton(const nurbs::Surface& surface) {
   nurbs::validate(surface);

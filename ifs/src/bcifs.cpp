@@ -20,6 +20,7 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/ifs/attractor.hpp"
+#include "union_find.hpp"
 
 namespace cifs::ifs {
 
@@ -84,19 +85,7 @@ int free_position(std::span<const Factor> side, const std::map<TransitionRef, st
   return -1;
 }
 
-struct UnionFind {
-  std::vector<std::size_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), std::size_t{0}); }
-  std::size_t find(std::size_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(std::size_t a, std::size_t b) {
-    a = find(a);
-    b = find(b);
-    parent[std::max(a, b)] = std::min(a, b);  // the smallest index represents its class
-  }
-};
+using detail::UnionFind;
 
 /// One linear equation Σ coef·x = rhs over the unknowns; `source` is the constraint index, or
 /// −1 − f for the row sums of free matrix f.

@@ -6,29 +6,11 @@
 #include <tuple>
 
 #include "cifs/errors.hpp"
+#include "union_find.hpp"
 
 namespace cifs::ifs {
 
 using automata::StateId;
-
-namespace {
-
-struct Classes {
-  std::vector<std::size_t> parent;
-  std::size_t find(std::size_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  bool unite(std::size_t a, std::size_t b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return false;
-    parent[std::max(a, b)] = std::min(a, b);  // the smallest key represents its class
-    return true;
-  }
-};
-
-}  // namespace
 
 Bcifs curve_bcifs(const nurbs::Curve& curve, const CurveBcifsOptions& options) {
   nurbs::validate(curve);
@@ -103,8 +85,7 @@ Bcifs curve_bcifs(const automata::Automaton& knots, bool closed, const CurveBcif
     const int side = static_cast<int>(key % 2);
     return 2 * child(key / 2, side) + static_cast<std::size_t>(side);
   };
-  Classes classes{std::vector<std::size_t>(2 * edges)};
-  std::iota(classes.parent.begin(), classes.parent.end(), std::size_t{0});
+  detail::UnionFind classes(2 * edges);
   const auto& initial = sys.automaton.initial;
   for (std::size_t k = 0; k + 1 < initial.size(); ++k)
     classes.unite(2 * initial[k].state + 1, 2 * initial[k + 1].state);

@@ -16,19 +16,8 @@ using automata::StateId;
 
 namespace {
 
-/// kron(A, B): entry (i·B.rows() + k, j·B.cols() + l) = A(i, j)·B(k, l), one product per entry
-/// (bit-identical to the TensorAutomaton's matrices).
-Eigen::MatrixXd kron(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
-  Eigen::MatrixXd K(A.rows() * B.rows(), A.cols() * B.cols());
-  for (Eigen::Index i = 0; i < A.rows(); ++i)
-    for (Eigen::Index j = 0; j < A.cols(); ++j)
-      K.block(i * B.rows(), j * B.cols(), B.rows(), B.cols()) = A(i, j) * B;
-  return K;
-}
-
-std::string v_label(const std::string& label) {
-  return label == "G" ? "H" : label == "D" ? "B" : label;
-}
+using automata::kron;
+using automata::v_label;
 
 StateId source_cell(const Bcifs& sys, const Constraint& c) {
   const Factor& f = c.left.back();

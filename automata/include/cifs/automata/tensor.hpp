@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <string>
 #include <vector>
 
 #include "cifs/automata/automaton.hpp"
@@ -30,6 +31,13 @@ struct TensorAutomaton {
   std::vector<std::array<StateId, 2>> factor_states;  // per product state: its (u, v) factor states
   std::vector<std::array<int, 2>> patches;            // per product.initial entry: (u segment, v segment)
 };
+
+/// kron(A, B): entry (i·B.rows() + k, j·B.cols() + l) = A(i, j)·B(k, l), one product per entry, so
+/// the result is exact given A and B (the matrices of the product automaton, and of the surface
+/// BC-IFS built on it, are bit-identical).
+Eigen::MatrixXd kron(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B);
+/// The v direction's halves are named H (first) and B (second), so that product labels read GH … DB.
+std::string v_label(const std::string& label);
 
 /// The tensor-product automaton of a surface (from its knots alone); recurrent states marked.
 TensorAutomaton tensor_automaton(const nurbs::Surface& surface);
