@@ -7,6 +7,7 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev libboost-graph-dev libopenexr-dev catch2
   nlohmann-json3-dev libcli11-dev libpng-dev libbenchmark-dev
+  python3-dev pybind11-dev python3-numpy python3-matplotlib  # the cifs Python package and its examples
   libsisl-dev  # AGPL comparator: linked into bench/ only, never into the library
 )
 
