@@ -5,5 +5,6 @@
 namespace cifs::python {
 
 void bind_bcifs(py::module_& m) { (void)m; }
+void bind_bcifs_io(py::module_& m) { (void)m; }
 
 }  // namespace cifs::python

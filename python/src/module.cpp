@@ -30,6 +30,7 @@ PYBIND11_MODULE(_cifs, m) {
   bind_render(render);
   auto io = m.def_submodule("io", "Shape, polygon, BC-IFS and experiment files; geometry export.");
   bind_io(io);
+  bind_bcifs_io(io);
   auto verify = m.def_submodule("verify", "Attractor vs knot insertion vs Cox–de Boor, per segment or patch.");
   bind_verify(verify);
   auto experiment = m.def_submodule("experiment", "Running experiment files: build, perturb, evaluate, "
