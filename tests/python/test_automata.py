@@ -73,7 +73,8 @@ class HandMadeAutomatonTest(unittest.TestCase):
         a = chaikin()
         cases = [
             (lambda: a.add_transition(0, 5, G), "add_transition: state 5 does not exist (the automaton has 1 states)"),
-            (lambda: a.add_transition(-1, 0, G), "add_transition: state -1 does not exist (the automaton has 1 states)"),
+            (lambda: a.add_transition(-1, 0, G),
+             "add_transition: state -1 does not exist (the automaton has 1 states)"),
             (lambda: a.add_transition(0, 0, np.ones((2, 3)) / 3),
              "add_transition 0 -> 0: matrix is 2 by 3, expected 3 by 3 (to.size by from.size)"),
             (lambda: a.add_transition(0, 0, np.array([[np.nan, 1, 0]] * 3)),

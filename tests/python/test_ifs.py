@@ -347,7 +347,28 @@ class DimensionTest(unittest.TestCase):
     def test_bad_samples(self):
         self.assertEqual(message(self, lambda: ifs.box_counting(np.zeros((0, 2)))), "box counting: no points")
         self.assertEqual(message(self, lambda: ifs.box_counting(np.ones((5, 2)))), "box counting: all points are equal")
-        self.assertIn("evaluate deeper", message(self, lambda: ifs.box_counting(np.random.default_rng(0).random((100, 2)))))
+        few = np.random.default_rng(0).random((100, 2))
+        self.assertIn("evaluate deeper", message(self, lambda: ifs.box_counting(few)))
+
+
+@unittest.skipUnless(hasattr(cifs.experiment, "evaluate") and hasattr(cifs.io, "read_experiment"),
+                     "needs the experiment bindings")
+class ExperimentDimensionTest(unittest.TestCase):
+    def test_same_points_same_result_as_cli(self):
+        for name, depth in (("sierpinski.json", 12), ("koch.json", 10)):
+            with self.subTest(name):
+                path = EXAMPLES / "experiments" / name
+                report = cli_json("dimension", path, "--json", "--depth", depth)
+                ev = cifs.experiment.evaluate(cifs.io.read_experiment(path), depth)
+                np.testing.assert_array_equal(ifs.attractor_points(ev.automaton, ev.nets, depth), ev.points)
+                r = ifs.box_counting(ev.points, resolution=ev.resolution)
+                box = report["box_counting"]
+                self.assertEqual((r.dimension, r.r_squared, [r.min_level, r.max_level]),
+                                 (box["dimension"], box["r_squared"], box["levels"]))
+                self.assertEqual(r.count_boxes.tolist(), [c["boxes"] for c in box["counts"]])
+                self.assertEqual(ifs.similarity_dimension(ev.maps), report["similarity_dimension"])
+                self.assertAlmostEqual(ifs.similarity_dimension(ev.automaton, ev.nets), report["similarity_dimension"],
+                                       delta=1e-12)
 
 
 @unittest.skipUnless(hasattr(cifs.io, "read_shape"), "needs the io bindings")
