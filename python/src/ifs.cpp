@@ -185,7 +185,8 @@ void bind_ifs(py::module_& m) {
 
   m.def(
       "for_each_leaf",
-      [](const Automaton& a, const std::vector<Points>& nets, int depth, const py::function& callback) {
+      // The automaton is taken by value: a callback that edits it cannot pull the graph from under the walk.
+      [](const Automaton a, const std::vector<Points>& nets, int depth, const py::function& callback) {
         ifs::for_each_leaf(a, nets, depth, [&](const ifs::Leaf& leaf) { callback(view(leaf)); });
       },
       py::arg("automaton"), py::arg("nets"), py::arg("depth"), py::arg("callback"),
@@ -219,7 +220,7 @@ void bind_ifs(py::module_& m) {
       });
   m.def(
       "for_each_leaf_to_tolerance",
-      [](const Automaton& a, const std::vector<Points>& nets, const py::function& callback, double epsilon,
+      [](const Automaton a, const std::vector<Points>& nets, const py::function& callback, double epsilon,
          int max_depth, int max_length) {
         return ifs::for_each_leaf_to_tolerance(
             a, nets, ifs::ToleranceOptions{epsilon, max_depth, max_length}, [&](const ifs::ToleranceLeaf& t) {

@@ -177,6 +177,11 @@ class AttractorTest(unittest.TestCase):
 
         with self.assertRaises(KeyError):
             ifs.for_each_leaf(a, [NET], 2, fail)
+        # A callback that edits the automaton does not disturb the walk (it runs on a copy).
+        count = []
+        ifs.for_each_leaf(a, [NET], 3, lambda leaf: count.append(a.add_transition(0, 0, G)))
+        self.assertEqual(len(count), 8)
+        self.assertEqual(len(a.children(0)), 10)
         self.assertEqual(message(self, lambda: ifs.for_each_leaf(a, [NET], -2, print)),
                          "for_each_leaf: depth is -2, must be ≥ 0")
 
