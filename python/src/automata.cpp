@@ -1,9 +1,306 @@
 // SPDX-License-Identifier: MIT
-// cifs Python bindings — automata (to be written).
+// cifs Python bindings — cifs.automata: hand-made and knot-doubling automata, tensor products.
+#include <cstdint>
+#include <iterator>
+#include <optional>
+#include <string>
+
 #include "bindings.hpp"
+#include "cifs/automata/automaton.hpp"
+#include "cifs/automata/tensor.hpp"
+#include "cifs/errors.hpp"
 
 namespace cifs::python {
 
-void bind_automata(py::module_& m) { (void)m; }
+namespace {
+
+using automata::Automaton;
+using automata::StateId;
+
+/// One transition as Python sees it: the edge with its endpoints and its place among the out-edges.
+struct TransitionView {
+  StateId source = 0;
+  int child = 0;
+  StateId target = 0;
+  std::string label;
+  Eigen::MatrixXd matrix;
+};
+
+/// `id` as a state of `a`; ids come from Python ints, so negative ones are refused here too.
+StateId state_id(const Automaton& a, std::int64_t id, const std::string& where) {
+  if (id < 0 || static_cast<std::uint64_t>(id) >= boost::num_vertices(a.graph))
+    throw InvalidInput(where + ": state " + std::to_string(id) + " does not exist (the automaton has " +
+                       std::to_string(boost::num_vertices(a.graph)) + " states)");
+  return static_cast<StateId>(id);
+}
+
+automata::TransitionId out_edge(const Automaton& a, StateId source, std::int64_t child,
+                                const std::string& where) {
+  const auto degree = boost::out_degree(source, a.graph);
+  if (child < 0 || static_cast<std::uint64_t>(child) >= degree)
+    throw InvalidInput(where + ": child " + std::to_string(child) + " but state " + std::to_string(source) +
+                       " has " + std::to_string(degree) + " children");
+  return *std::next(boost::out_edges(source, a.graph).first, static_cast<std::ptrdiff_t>(child));
+}
+
+/// A transition `source → target` carries a finite `size(target) by size(source)` matrix.
+void check_matrix(const Automaton& a, StateId source, StateId target, const Eigen::MatrixXd& M,
+                  const std::string& where) {
+  const int rows = a.graph[target].size, cols = a.graph[source].size;
+  if (M.rows() != rows || M.cols() != cols)
+    throw InvalidInput(where + ": matrix is " + std::to_string(M.rows()) + " by " + std::to_string(M.cols()) +
+                       ", expected " + std::to_string(rows) + " by " + std::to_string(cols) +
+                       " (to.size by from.size)");
+  if (!M.allFinite()) throw InvalidInput(where + ": matrix has a non-finite entry");
+}
+
+std::vector<TransitionView> transitions(const Automaton& a) {
+  std::vector<TransitionView> out;
+  for (StateId s = 0; s < boost::num_vertices(a.graph); ++s) {
+    int child = 0;
+    for (auto [b, e] = boost::out_edges(s, a.graph); b != e; ++b, ++child)
+      out.push_back({s, child, boost::target(*b, a.graph), a.graph[*b].label, a.graph[*b].matrix});
+  }
+  return out;
+}
+
+std::string state_repr(const automata::State& s) {
+  return "State(size=" + std::to_string(s.size) + ", window=" + std::to_string(s.window.size()) +
+         " values, recurrent=" + (s.recurrent ? "True" : "False") + ", name='" + s.name + "')";
+}
+
+}  // namespace
+
+void bind_automata(py::module_& m) {
+  using automata::Initial;
+  using automata::State;
+  using automata::TensorAutomaton;
+
+  py::class_<State>(m, "State", "A state of an automaton: the control nets it holds have `size` points.")
+      .def_readonly("size", &State::size, "Number of points of the nets of this state.")
+      .def_readonly("window", &State::window,
+                    "Knot-doubling states: the inter-knot window normalised so that its centre is 1 (list of "
+                    "float, the state's key); empty for hand-made states.")
+      .def_readonly(
+          "recurrent", &State::recurrent,
+          "True when the state occurs at arbitrarily deep levels (on a cycle or reachable from one); "
+          "set by mark_recurrent.")
+      .def_readonly("name", &State::name, "Name of the state (may be empty), used in messages and drawings.")
+      .def("__repr__", &state_repr);
+
+  py::class_<Initial>(m, "Initial", "Where a piece of the shape starts: an initial entry of an automaton.")
+      .def_readonly("segment", &Initial::segment, "Index of the segment (or patch) this entry stands for.")
+      .def_readonly("state", &Initial::state, "Id of the state the piece starts in.")
+      .def_readonly("start", &Initial::start, "Knot-doubling automata: start of the segment's knot interval.")
+      .def_readonly("end", &Initial::end, "Knot-doubling automata: end of the segment's knot interval.")
+      .def_readonly("span", &Initial::span,
+                    "Knot-doubling automata: the segment's span in the curve's knot vector (-1: unset).")
+      .def("__repr__", [](const Initial& i) {
+        return "Initial(segment=" + std::to_string(i.segment) + ", state=" + std::to_string(i.state) +
+               ", start=" + py::repr(py::float_(i.start)).cast<std::string>() +
+               ", end=" + py::repr(py::float_(i.end)).cast<std::string>() +
+               ", span=" + std::to_string(i.span) + ")";
+      });
+
+  py::class_<TransitionView>(m, "Transition",
+                             "A transition of an automaton: the child net is `matrix @ net` of the source "
+                             "(`size(target) by size(source)`, rows summing to 1).")
+      .def_readonly("source", &TransitionView::source, "Id of the state the transition leaves (C++ `from`).")
+      .def_readonly("child", &TransitionView::child,
+                    "Index of the transition among the out-edges of `source`.")
+      .def_readonly("target", &TransitionView::target, "Id of the state the transition enters (C++ `to`).")
+      .def_readonly("label", &TransitionView::label, "Label (\"G\", \"D\" for knot doubling; anything else).")
+      .def_property_readonly(
+          "matrix", [](const TransitionView& t) { return t.matrix; },
+          "The matrix, float64 `(size(target), size(source))` (a copy).")
+      .def("__repr__", [](const TransitionView& t) {
+        return "Transition(" + std::to_string(t.source) + " -> " + std::to_string(t.target) + ", child " +
+               std::to_string(t.child) + ", label='" + t.label + "', " + std::to_string(t.matrix.rows()) +
+               "x" + std::to_string(t.matrix.cols()) + ")";
+      });
+
+  py::class_<Automaton>(
+      m, "Automaton",
+      "An automaton whose transitions carry subdivision matrices (a controlled IFS).\n\n"
+      "Automaton() is empty: add states, transitions (in the order of the children along the "
+      "shape) and initial entries. knot_automaton and tensor_automaton build one from knots.\n"
+      "Ids, matrix shapes and finiteness are checked as they are added (InvalidInput); rows "
+      "summing to 1 and every state having a transition are checked by cifs.ifs.validate, "
+      "which every engine function calls.")
+      .def(py::init<>(), "An empty automaton: no state, no transition, no initial entry.")
+      .def(
+          "add_state",
+          [](Automaton& a, int size, const std::string& name) {
+            if (size < 1)
+              throw InvalidInput("add_state: size is " + std::to_string(size) +
+                                 ", a state holds at least 1 point");
+            return boost::add_vertex(State{size, {}, false, name}, a.graph);
+          },
+          py::arg("size"), py::arg("name") = "",
+          "Adds a state whose nets have `size` (≥ 1) points; returns its id (0, 1, …).\n\n"
+          "Raises InvalidInput for a size < 1.")
+      .def(
+          "add_transition",
+          [](Automaton& a, std::int64_t source, std::int64_t target, const Eigen::MatrixXd& matrix,
+             const std::string& label) {
+            const StateId s = state_id(a, source, "add_transition");
+            const StateId t = state_id(a, target, "add_transition");
+            check_matrix(a, s, t, matrix, "add_transition " + std::to_string(s) + " -> " + std::to_string(t));
+            const auto child = boost::out_degree(s, a.graph);
+            boost::add_edge(s, t, automata::Transition{label, matrix}, a.graph);
+            return child;
+          },
+          py::arg("source"), py::arg("target"), py::arg("matrix"), py::arg("label") = "",
+          "Adds the transition source → target after the existing children of `source`; returns its child "
+          "index.\n\n"
+          "matrix: float `(size(target), size(source))`, finite; the child net is `matrix @ net`.\n"
+          "Raises InvalidInput for an unknown state id, a matrix of another shape or a non-finite entry.")
+      .def(
+          "matrix",
+          [](const Automaton& a, std::int64_t source, std::int64_t child) -> Eigen::MatrixXd {
+            const StateId s = state_id(a, source, "matrix");
+            return a.graph[out_edge(a, s, child, "matrix")].matrix;
+          },
+          py::arg("source"), py::arg("child"),
+          "The matrix of child `child` of state `source` (a copy, `(size(target), size(source))`).\n\n"
+          "Raises InvalidInput for an unknown state or child.")
+      .def(
+          "set_matrix",
+          [](Automaton& a, std::int64_t source, std::int64_t child, const Eigen::MatrixXd& matrix) {
+            const StateId s = state_id(a, source, "set_matrix");
+            const auto e = out_edge(a, s, child, "set_matrix");
+            check_matrix(a, s, boost::target(e, a.graph), matrix,
+                         "set_matrix " + std::to_string(s) + " child " + std::to_string(child));
+            a.graph[e].matrix = matrix;
+          },
+          py::arg("source"), py::arg("child"), py::arg("matrix"),
+          "Replaces the matrix of child `child` of state `source` (same checks as add_transition).")
+      .def(
+          "state", [](const Automaton& a, std::int64_t id) { return a.graph[state_id(a, id, "state")]; },
+          py::arg("id"), "The state `id` (a copy). Raises InvalidInput for an unknown id.")
+      .def_property_readonly(
+          "states",
+          [](const Automaton& a) {
+            std::vector<State> out;
+            for (StateId s = 0; s < boost::num_vertices(a.graph); ++s) out.push_back(a.graph[s]);
+            return out;
+          },
+          "Every state, by id (list of State, copies).")
+      .def_property_readonly(
+          "state_count", [](const Automaton& a) { return boost::num_vertices(a.graph); }, "Number of states.")
+      .def(
+          "children",
+          [](const Automaton& a, std::int64_t source) {
+            const StateId s = state_id(a, source, "children");
+            std::vector<StateId> out;
+            for (auto [b, e] = boost::out_edges(s, a.graph); b != e; ++b)
+              out.push_back(boost::target(*b, a.graph));
+            return out;
+          },
+          py::arg("source"), "Target ids of the transitions out of `source`, in child order (list of int).")
+      .def(
+          "labels",
+          [](const Automaton& a, std::int64_t source) {
+            const StateId s = state_id(a, source, "labels");
+            std::vector<std::string> out;
+            for (auto [b, e] = boost::out_edges(s, a.graph); b != e; ++b) out.push_back(a.graph[*b].label);
+            return out;
+          },
+          py::arg("source"), "Labels of the transitions out of `source`, in child order (list of str).")
+      .def_property_readonly(
+          "transitions", &transitions,
+          "Every transition, in state order then child order (list of Transition, copies).")
+      .def(
+          "add_initial",
+          [](Automaton& a, std::int64_t state, std::optional<int> segment, double start, double end,
+             int span) {
+            const StateId s = state_id(a, state, "add_initial");
+            a.initial.push_back(
+                {segment ? *segment : static_cast<int>(a.initial.size()), s, start, end, span});
+            return a.initial.size() - 1;
+          },
+          py::arg("state"), py::arg("segment") = py::none(), py::arg("start") = 0.0, py::arg("end") = 0.0,
+          py::arg("span") = -1,
+          "Adds an initial entry (a piece of the shape starting in `state`); returns its index.\n\n"
+          "segment: defaults to the entry's index; start, end, span: the knot interval and span of "
+          "knot-doubling automata (informative for hand-made ones). Raises InvalidInput for an unknown "
+          "state.")
+      .def_property_readonly(
+          "initial", [](const Automaton& a) { return a.initial; },
+          "The initial entries (list of Initial, copies).")
+      .def(
+          "copy", [](const Automaton& a) { return a; },
+          "An independent copy (also copy.copy and copy.deepcopy).")
+      .def(
+          "__copy__", [](const Automaton& a) { return a; }, "An independent copy.")
+      .def(
+          "__deepcopy__", [](const Automaton& a, py::dict) { return a; }, py::arg("memo"),
+          "An independent copy.")
+      .def("__repr__", [](const Automaton& a) {
+        return "Automaton(" + std::to_string(boost::num_vertices(a.graph)) + " states, " +
+               std::to_string(boost::num_edges(a.graph)) + " transitions, " +
+               std::to_string(a.initial.size()) + " initial entries)";
+      });
+
+  m.def("knot_automaton", &automata::knot_automaton, py::arg("curve"),
+        py::call_guard<py::gil_scoped_release>(),
+        "The knot-doubling automaton of a nurbs.Curve, from its knots alone: one initial entry per segment, "
+        "transitions G and D with the subdivision matrices, recurrent states marked.");
+  m.def("mark_recurrent", &automata::mark_recurrent, py::arg("automaton"),
+        "Sets State.recurrent of every state of `automaton` (in place) from its strong components.");
+  m.def("minimize", &automata::minimize, py::arg("automaton"), py::call_guard<py::gil_scoped_release>(),
+        "A new automaton whose states no control net can tell apart are merged (Moore partition refinement; "
+        "labels and matrices compared exactly). Initial entries are kept, redirected to their class.");
+  m.def("initial_nets", py::overload_cast<const Automaton&, const nurbs::Curve&>(&automata::initial_nets),
+        py::arg("automaton"), py::arg("curve"),
+        "Control net of every initial entry of knot_automaton(curve): list of float64 `(d+1, cols)` arrays "
+        "(homogeneous rows (w·x, w) when rational).");
+  m.def(
+      "initial_nets",
+      py::overload_cast<const TensorAutomaton&, const nurbs::Surface&>(&automata::initial_nets),
+      py::arg("automaton"), py::arg("surface"),
+      "Control net of every patch of tensor_automaton(surface): list of float64 `((p+1)(q+1), cols)` arrays, "
+      "row i·(q+1) + j = control point (span_u − p + i, span_v − q + j). Raises InvalidInput when the "
+      "surface "
+      "does not fit the automaton.");
+  m.def("to_json", &automata::to_json, py::arg("automaton"),
+        "The automaton as the JSON text of `cifs automaton --format json` (states, transitions, initial).");
+  m.def("to_dot", &automata::to_dot, py::arg("automaton"), "The automaton as Graphviz DOT text.");
+  m.def(
+      "to_svg", &automata::to_svg, py::arg("automaton"),
+      "A self-contained SVG drawing of the automaton (text): states in columns by distance from the initial "
+      "states, recurrent states shaded.");
+
+  py::class_<TensorAutomaton>(
+      m, "TensorAutomaton",
+      "The tensor-product automaton of a surface: pairs of u and v knot-doubling states, "
+      "transitions GH, GB, DH, DB with Kronecker-product matrices.")
+      .def_property_readonly(
+          "product", [](const TensorAutomaton& t) { return t.product; },
+          "The product automaton (Automaton, a copy): one initial entry per patch, u-major.")
+      .def_property_readonly(
+          "factors", [](const TensorAutomaton& t) { return py::make_tuple(t.factors[0], t.factors[1]); },
+          "The knot automata of the u and v direction curves (tuple of 2 Automaton, copies).")
+      .def_property_readonly(
+          "factor_states", [](const TensorAutomaton& t) { return index_array(t.factor_states); },
+          "Per product state, its (u, v) factor states: int array `(states, 2)`.")
+      .def_property_readonly(
+          "patches", [](const TensorAutomaton& t) { return index_array(t.patches); },
+          "Per product initial entry, its (u segment, v segment): int array `(patches, 2)`.")
+      .def("__repr__", [](const TensorAutomaton& t) {
+        return "TensorAutomaton(" + std::to_string(boost::num_vertices(t.product.graph)) +
+               " product states, " + std::to_string(t.patches.size()) + " patches)";
+      });
+
+  m.def("tensor_automaton", &automata::tensor_automaton, py::arg("surface"),
+        py::call_guard<py::gil_scoped_release>(),
+        "The tensor-product automaton of a nurbs.Surface (from its knots alone); recurrent states marked.");
+  m.def("kron", &automata::kron, py::arg("A"), py::arg("B"),
+        "kron(A, B): entry (i·B.rows + k, j·B.cols + l) = A[i, j]·B[k, l], one product per entry (float64 "
+        "array).");
+  m.def("v_label", &automata::v_label, py::arg("label"),
+        "The v direction's name of a knot-doubling label: G → H (first half), D → B (second half); other "
+        "labels unchanged.");
+}
 
 }  // namespace cifs::python

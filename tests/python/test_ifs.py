@@ -1,0 +1,426 @@
+# SPDX-License-Identifier: MIT
+"""cifs.ifs: the engine on hand-made automata (Chaikin's curve and its tensor square) against the
+B-spline formulas, classic affine IFS and dimensions against the closed forms and `cifs dimension`,
+NURBS attractors against `cifs attractor`."""
+import math
+import unittest
+
+import numpy as np
+
+import cifs
+from cifs import automata, ifs
+from support import EXAMPLES, assert_close, cli_json
+
+# Chaikin: the uniform quadratic B-spline segment split at its midpoint (halves G and D).
+G = np.array([[0.75, 0.25, 0], [0.25, 0.75, 0], [0, 0.75, 0.25]])
+D = np.array([[0.25, 0.75, 0], [0, 0.75, 0.25], [0, 0.25, 0.75]])
+NET = np.array([[0.0, 0.0], [1.0, 2.0], [3.0, -1.0]])
+
+
+def chaikin():
+    a = automata.Automaton()
+    s = a.add_state(3, "uniform")
+    a.add_transition(s, s, G, "G")
+    a.add_transition(s, s, D, "D")
+    a.add_initial(s)
+    return a
+
+
+def basis(t):
+    """Uniform quadratic B-spline basis on one segment, t ∈ [0, 1]: `(len(t), 3)`."""
+    t = np.asarray(t, dtype=float)[:, None]
+    return np.hstack([(1 - t) ** 2 / 2, (-2 * t**2 + 2 * t + 1) / 2, t**2 / 2])
+
+
+def curve(t, net=NET):
+    return basis(t) @ net
+
+
+def message(test, call):
+    with test.assertRaises(cifs.InvalidInput) as raised:
+        call()
+    return str(raised.exception)
+
+
+class AnalysisTest(unittest.TestCase):
+    def test_states_and_validation(self):
+        a = chaikin()
+        ifs.validate(a)
+        self.assertEqual(ifs.reachable_states(a), [0])
+        a.add_state(2)  # not reachable: ignored by the engine
+        self.assertEqual(ifs.reachable_states(a), [0])
+        ifs.validate(a)
+
+    def test_rows_not_summing_to_one_and_empty_states_are_refused(self):
+        a = chaikin()
+        bad = G.copy()
+        bad[1, 1] = 0.65
+        a.set_matrix(0, 1, bad)
+        self.assertEqual(message(self, lambda: ifs.validate(a)),
+                         "transition 1 of state 0 (uniform) (to state 0 (uniform)): row 1 sums to "
+                         "0.90000000000000002, not 1 (rows are affine combinations)")
+        # Every engine entry point validates.
+        self.assertIn("not 1 (rows are affine combinations)",
+                      message(self, lambda: ifs.attractor_points(a, [NET], 2)))
+        b = automata.Automaton()
+        b.add_state(2, "x")
+        self.assertEqual(message(self, lambda: ifs.validate(b)),
+                         "state 0 (x) has no transition: its attractor would be empty")
+
+    def test_diameter_and_delta(self):
+        rng = np.random.default_rng(2)
+        P = rng.random((6, 3))
+        expected = max(np.linalg.norm(p - q) for p in P for q in P)
+        self.assertAlmostEqual(ifs.diameter(P), expected, delta=1e-15)
+        self.assertEqual(ifs.diameter(P[:1]), 0)
+        M = rng.random((4, 5)) - 0.3
+        expected = max(0.5 * np.abs(r - s).sum() for r in M for s in M)
+        self.assertAlmostEqual(ifs.delta(M), expected, delta=1e-15)
+        self.assertEqual(ifs.delta(G), 0.75)
+
+    def test_contraction(self):
+        c = ifs.contraction(chaikin(), tighten=False)
+        self.assertEqual((c.m, c.delta, c.A), (1, 0.75, 1.0))
+        self.assertAlmostEqual(c.radius, (1 + c.A) / (2 * (1 - c.delta)), delta=1e-15)
+        self.assertLessEqual(ifs.contraction(chaikin()).radius, c.radius)
+        self.assertIn("m=1", repr(c))
+
+    def test_non_contractive_system_names_the_path(self):
+        a = automata.Automaton()
+        a.add_state(2, "id")
+        a.add_transition(0, 0, np.eye(2))
+        a.add_transition(0, 0, np.array([[1, 0], [0.5, 0.5]]))
+        a.add_initial(0)
+        expected = ("not contractive: the 3-step products from state 0 (id) do not shrink nets (δ = 1 along "
+                    "the path 0 0 0; no path length ≤ 3 gives δ < 1)")
+        self.assertEqual(message(self, lambda: ifs.contraction(a, max_length=3)), expected)
+        self.assertIn("the path 0 0 0 0 0 0 0 0", message(self, lambda: ifs.chaos_game(a, [np.eye(2)], samples=3)))
+        self.assertIn("not contractive", message(self, lambda: ifs.for_each_leaf_to_tolerance(a, [np.eye(2)], print)))
+        self.assertEqual(message(self, lambda: ifs.contraction(a, max_length=0)),
+                         "contraction: max_length is 0, must be ≥ 1")
+
+    def test_fixed_points_are_attractor_points(self):
+        a = chaikin()
+        # Address 0^∞ is t = 0, 1^∞ is t = 1, (01)^∞ is t = 1/3, (011)^∞ is t = 3/7.
+        for word, t in (([0], 0), ([1], 1), ([0, 1], 1 / 3), ([0, 1, 1], 3 / 7)):
+            ell = ifs.fixed_point(a, 0, word)
+            self.assertAlmostEqual(ell.sum(), 1, delta=1e-15)
+            assert_close(self, ell, basis([t])[0], what=f"fixed point of {word}")
+        self.assertEqual(message(self, lambda: ifs.fixed_point(a, 0, [2])),
+                         "fixed_point of the word 2 from state 0 (uniform): child index 2 at position 0 but state 0 "
+                         "(uniform) has 2 children")
+        self.assertEqual(message(self, lambda: ifs.fixed_point(a, -1, [0])), "fixed_point: state -1 does not exist")
+        self.assertEqual(message(self, lambda: ifs.fixed_point(a, 3, [0])), "fixed_point: state 3 does not exist")
+
+    def test_end_and_repeated_child_functionals(self):
+        a = chaikin()
+        e = ifs.end_functionals(a)
+        assert_close(self, e.start[0], basis([0])[0])
+        assert_close(self, e.end[0], basis([1])[0])
+        assert_close(self, ifs.repeated_child_functionals(a, 1)[0], e.end[0])
+        self.assertIn("child 2 but state 0 (uniform) has 2 children",
+                      message(self, lambda: ifs.repeated_child_functionals(a, 2)))
+
+    def test_spectra(self):
+        a = chaikin()
+        s = ifs.spectra(a)
+        self.assertEqual([(x.source, x.target, x.child, x.label) for x in s], [(0, 0, 0, "G"), (0, 0, 1, "D")])
+        for x in s:
+            assert_close(self, x.eigenvalues.real, [1, 0.5, 0.25])
+            self.assertEqual(x.eigenvalues.dtype, np.complex128)
+        np.testing.assert_array_equal(ifs.eigenvalues(G), s[0].eigenvalues)
+        rotation = np.array([[0, -1], [1, 0.0]])
+        np.testing.assert_array_equal(ifs.eigenvalues(rotation), [1j, -1j])
+        self.assertEqual(message(self, lambda: ifs.eigenvalues(np.ones((2, 3)))),
+                         "eigenvalues: the matrix is 2 by 3, not square")
+
+
+class AttractorTest(unittest.TestCase):
+    def test_attractor_points_are_the_curve_at_dyadic_parameters(self):
+        a = chaikin()
+        for depth in (0, 3, 9):
+            P = ifs.attractor_points(a, [NET], depth)
+            self.assertEqual(len(P), ifs.attractor_point_count(a, depth))
+            assert_close(self, P, curve(np.arange(2**depth + 1) / 2**depth), what=f"depth {depth}")
+        closed = ifs.attractor_points(a, [NET], 4, closed=True, max_table_depth=1)
+        self.assertEqual(len(closed), ifs.attractor_point_count(a, 4, closed=True))
+        assert_close(self, closed, curve(np.arange(16) / 16))
+        self.assertEqual(message(self, lambda: ifs.attractor_points(a, [NET], -1)),
+                         "attractor_points: depth is -1, must be ≥ 0")
+        self.assertIn("attractor_points", message(self, lambda: ifs.attractor_points(a, [NET], 20, max_bytes=1000)))
+        self.assertEqual(message(self, lambda: ifs.attractor_points(a, [NET[:2]], 2)),
+                         "attractor_points: nets[0] has 2 rows but its initial state 0 (uniform) holds 3 points")
+        self.assertIn("1 initial entries", message(self, lambda: ifs.attractor_points(a, [NET, NET], 2)))
+        self.assertIn("max_bytes is -1", message(self, lambda: ifs.attractor_points(a, [NET], 2, max_bytes=-1)))
+
+    def test_cartesian(self):
+        H = np.array([[2.0, 4.0, 2.0], [3.0, -3.0, 0.5]])
+        np.testing.assert_array_equal(ifs.cartesian(H), [[1, 2], [6, -6]])
+        self.assertEqual(message(self, lambda: ifs.cartesian(np.array([[1.0, 0.0]]))),
+                         "cartesian: row 0 has weight 0 (a point at infinity)")
+
+    def test_for_each_leaf_gives_the_matrix_products_in_order(self):
+        a = chaikin()
+        leaves = []
+        ifs.for_each_leaf(a, [NET], 3, leaves.append)
+        words = [tuple(x.word) for x in leaves]
+        self.assertEqual(words, [tuple(int(c) for c in f"{k:03b}") for k in range(8)])
+        for leaf in leaves:
+            net = NET
+            for w in leaf.word:
+                net = (G, D)[w] @ net
+            assert_close(self, leaf.net, net)
+            self.assertEqual((leaf.initial, leaf.state, leaf.depth), (0, 0, 3))
+
+        def fail(leaf):
+            raise KeyError("from the callback")
+
+        with self.assertRaises(KeyError):
+            ifs.for_each_leaf(a, [NET], 2, fail)
+        # A callback that edits the automaton does not disturb the walk (it runs on a copy).
+        count = []
+        ifs.for_each_leaf(a, [NET], 3, lambda leaf: count.append(a.add_transition(0, 0, G)))
+        self.assertEqual(len(count), 8)
+        self.assertEqual(len(a.children(0)), 10)
+        self.assertEqual(message(self, lambda: ifs.for_each_leaf(a, [NET], -2, print)),
+                         "for_each_leaf: depth is -2, must be ≥ 0")
+
+    def test_tolerance_leaves_bound_their_piece(self):
+        a = chaikin()
+        leaves = []
+        result = ifs.for_each_leaf_to_tolerance(a, [NET], leaves.append, epsilon=1e-3)
+        self.assertEqual((result.leaves, result.unconverged), (len(leaves), 0))
+        self.assertEqual(result.deepest, max(x.leaf.depth for x in leaves))
+        self.assertEqual(result.contraction.m, 1)
+        start = 0.0
+        for x in leaves:
+            self.assertTrue(x.converged)
+            self.assertLess(2 * x.radius, 1e-3)
+            width = 2.0 ** -x.leaf.depth
+            self.assertEqual(sum(w * 2.0 ** -(k + 1) for k, w in enumerate(x.leaf.word)), start)
+            piece = curve(np.linspace(start, start + width, 9))
+            self.assertLessEqual(np.linalg.norm(piece - x.leaf.net[0], axis=1).max(), x.radius * (1 + 1e-12))
+            start += width
+        self.assertEqual(start, 1.0)
+        cut = ifs.for_each_leaf_to_tolerance(a, [NET], lambda x: None, epsilon=1e-9, max_depth=4)
+        self.assertEqual((cut.leaves, cut.unconverged, cut.deepest), (16, 16, 4))
+        self.assertIn("epsilon", message(self, lambda: ifs.for_each_leaf_to_tolerance(a, [NET], print, epsilon=0)))
+
+    def test_chaos_game_points_lie_on_the_attractor(self):
+        a = chaikin()
+        r = ifs.chaos_game(a, [NET], samples=2000, seed=7, record_address=True)
+        self.assertEqual((r.points.shape, r.address.shape, r.seed), ((2000, 2), (2000,), 7))
+        self.assertTrue(np.all((r.address >= 0) & (r.address <= 1)))
+        assert_close(self, r.points, curve(r.address), rel=1e-12, what="chaos points vs the curve at their address")
+        again = ifs.chaos_game(a, [NET], samples=2000, seed=7)
+        np.testing.assert_array_equal(again.points, r.points)
+        self.assertEqual(again.address.shape, (0,))
+        drawn = ifs.chaos_game(a, [NET], samples=10)
+        np.testing.assert_array_equal(ifs.chaos_game(a, [NET], samples=10, seed=drawn.seed).points, drawn.points)
+        self.assertEqual(message(self, lambda: ifs.chaos_game(a, [NET], samples=-1)),
+                         "chaos_game: samples is -1, must be ≥ 0")
+        self.assertIn("restart_diameter", message(self, lambda: ifs.chaos_game(a, [NET], restart_diameter=2)))
+
+
+class MeshTest(unittest.TestCase):
+    def test_quad_mesh_of_a_hand_made_tensor_automaton(self):
+        # Chaikin ⊗ Chaikin: the uniform biquadratic patch; children GH, GB, DH, DB.
+        a = automata.Automaton()
+        s = a.add_state(9)
+        for mu in (G, D):
+            for mv in (G, D):
+                a.add_transition(s, s, automata.kron(mu, mv))
+        a.add_initial(s)
+        rng = np.random.default_rng(3)
+        net = rng.random((9, 3))
+        K = 3
+        mesh = ifs.quad_mesh(a, [net], [(0, 0)], K)
+        n = 2**K + 1
+        self.assertEqual(mesh.vertices.shape, (n * n, 3))
+        t = np.arange(n) / 2**K
+        B = basis(t)
+        expected = np.einsum("ia,jb,abk->ijk", B, B, net.reshape(3, 3, 3)).reshape(n * n, 3)
+        assert_close(self, mesh.vertices, expected, what="mesh vertices vs the biquadratic patch")
+        q = mesh.quads
+        self.assertEqual(q.shape, (4**K, 4))
+        I, J = divmod(np.arange(4**K), 2**K)
+        np.testing.assert_array_equal(q[:, 0], I * n + J)
+        np.testing.assert_array_equal(q[:, 2], (I + 1) * n + J + 1)
+        np.testing.assert_array_equal(mesh.quad_state, np.zeros(4**K))
+        self.assertEqual(ifs.mesh_bytes(n * n, 3, 4**K), n * n * 3 * 8 + 4**K * 20)
+        self.assertIn("patches", message(self, lambda: ifs.quad_mesh(a, [net], [(0, 0), (1, 0)], K)))
+        self.assertIn("depth is -1", message(self, lambda: ifs.quad_mesh(a, [net], [(0, 0)], -1)))
+        self.assertIn("mesh_bytes: vertices is -1", message(self, lambda: ifs.mesh_bytes(-1, 3, 1)))
+
+
+class AffineTest(unittest.TestCase):
+    TRIANGLE = np.array([[-1.0, -0.5], [2.0, -0.5], [0.5, 2.0]])
+
+    def test_maps_apply_and_barycentric_form(self):
+        fern = ifs.barnsley_fern()
+        self.assertEqual([m.probability for m in fern], [0.01, 0.85, 0.07, 0.07])
+        w = ifs.AffineMap(a=0.5, d=0.5, e=0.25, f=1.0, probability=0.2)
+        self.assertEqual((w.a, w.b, w.c, w.d, w.e, w.f, w.probability), (0.5, 0, 0, 0.5, 0.25, 1.0, 0.2))
+        np.testing.assert_array_equal(ifs.apply(w, np.array([2.0, 4.0])), [1.25, 3.0])
+        for m in fern:
+            M = ifs.barycentric_matrix(m, self.TRIANGLE)
+            images = np.array([ifs.apply(m, p) for p in self.TRIANGLE])
+            assert_close(self, M @ self.TRIANGLE, images)
+            assert_close(self, M.sum(axis=1), np.ones(3))
+        a = ifs.affine_automaton(fern, self.TRIANGLE)
+        self.assertEqual((a.state_count, a.labels(0)), (1, ["w0", "w1", "w2", "w3"]))
+        self.assertEqual(message(self, lambda: ifs.apply(w, np.ones(3))),
+                         "apply: the point has 3 values, expected 2 (x, y)")
+        self.assertIn("degenerate", message(self, lambda: ifs.barycentric_matrix(w, np.zeros((3, 2)))))
+        self.assertEqual(message(self, lambda: ifs.affine_automaton([], self.TRIANGLE)), "affine_automaton: no map")
+
+    def test_attractor_points_are_fixed_under_the_maps(self):
+        maps = ifs.sierpinski_triangle()
+        a = ifs.affine_automaton(maps, self.TRIANGLE)
+        P = ifs.attractor_points(a, [self.TRIANGLE], 4)
+        # The corners (fixed points of the maps) are attractor points; the attractor is w-invariant.
+        for i, m in enumerate(maps):
+            corner = ifs.fixed_point(a, 0, [i]) @ self.TRIANGLE
+            assert_close(self, corner, [[0, 0], [1, 0], [0.5, math.sqrt(3) / 2]][i])
+        deeper = ifs.attractor_points(a, [self.TRIANGLE], 5)
+        # Start points of the depth-4 nodes map to start points of depth-5 nodes (the last point, an end,
+        # does not).
+        image = np.array([ifs.apply(maps[1], p) for p in P[:-1]])
+        distance = np.min(np.linalg.norm(deeper[None, :, :] - image[:, None, :], axis=2), axis=1)
+        self.assertLess(distance.max(), 1e-12)
+
+    def test_similarity_dimensions(self):
+        cases = {"sierpinski": (ifs.sierpinski_triangle(), math.log(3) / math.log(2)),
+                 "koch": (ifs.koch_curve(), math.log(4) / math.log(3))}
+        for name, (maps, expected) in cases.items():
+            with self.subTest(name):
+                self.assertAlmostEqual(ifs.similarity_dimension(maps), expected, delta=1e-12)
+                a = ifs.affine_automaton(maps, self.TRIANGLE)
+                self.assertAlmostEqual(ifs.similarity_dimension(a, [self.TRIANGLE]), expected, delta=1e-12)
+        self.assertEqual(message(self, lambda: ifs.similarity_dimension(ifs.barnsley_fern())),
+                         "similarity dimension: map 0 is not a similarity (LᵀL = [0 0; 0 0.0256] is not r²·I)")
+        self.assertEqual(ifs.similarity_ratio(np.array([[0, 0.5], [-0.5, 0]])), 0.5)
+        self.assertEqual(ifs.similarity_ratio(np.diag([1.0, 2.0])), -1)
+
+    def test_mauldin_williams(self):
+        # Two states, every edge of ratio ½: ρ(A(s)) = 2·2^-s, so s = 1.
+        edges = [(0, 0, 0.5), ifs.SimilarityEdge(0, 1, 0.5), (1, 0, 0.5), [1, 1, 0.5]]
+        self.assertAlmostEqual(ifs.mauldin_williams_dimension(2, edges), 1.0, delta=1e-12)
+        # Moran: three maps of ratio ½ on one state.
+        self.assertAlmostEqual(ifs.mauldin_williams_dimension(1, [(0, 0, 0.5)] * 3), math.log(3) / math.log(2),
+                               delta=1e-12)
+        self.assertEqual(message(self, lambda: ifs.mauldin_williams_dimension(1, [(0, 5, 0.5)])),
+                         "similarity dimension: an edge 0 → 5 leaves the 1 states")
+        self.assertEqual(message(self, lambda: ifs.mauldin_williams_dimension(1, [(0, 0, 0.0)])),
+                         "similarity dimension: the ratio 0 of an edge 0 → 0 is not finite and > 0")
+        self.assertEqual(message(self, lambda: ifs.mauldin_williams_dimension(2, [(0, 1, 0.5)])),
+                         "similarity dimension: the graph has no cycle")
+        self.assertEqual(message(self, lambda: ifs.mauldin_williams_dimension(1, [(0, -1, 0.5)])),
+                         "mauldin_williams_dimension: edges[0]: state -1 is negative")
+
+
+class DimensionTest(unittest.TestCase):
+    def check_against_cli(self, name, maps, expected_similarity, depth):
+        path = EXAMPLES / "experiments" / name
+        report = cli_json("dimension", path, "--json", "--depth", depth)
+        triangle = AffineTest.TRIANGLE
+        points = ifs.attractor_points(ifs.affine_automaton(maps, triangle), [triangle], depth)
+        self.assertEqual(len(points), report["points"])
+        r = ifs.box_counting(points, resolution=report["resolution"])
+        box = report["box_counting"]
+        np.testing.assert_array_equal(r.count_boxes, [c["boxes"] for c in box["counts"]])
+        np.testing.assert_array_equal(r.count_levels, [c["level"] for c in box["counts"]])
+        self.assertEqual([c.boxes for c in r.counts], [c["boxes"] for c in box["counts"]])
+        assert_close(self, r.count_epsilons, [c["epsilon"] for c in box["counts"]])
+        self.assertEqual([r.min_level, r.max_level], box["levels"])
+        assert_close(self, [r.dimension, r.r_squared, r.size, r.max_epsilon, r.min_epsilon],
+                     [box["dimension"], box["r_squared"], box["size"], *box["epsilon"]], what="box counting")
+        self.assertAlmostEqual(r.residual, box["residual"], delta=1e-12)
+        self.assertAlmostEqual(report["similarity_dimension"], expected_similarity, delta=1e-12)
+        # A user range and the line's intercept.
+        fixed = ifs.box_counting(points, min_level=2, max_level=6)
+        counts = np.array([c["boxes"] for c in box["counts"]])[2:7]
+        slope, intercept = np.polyfit(np.log(1 / r.count_epsilons[2:7]), np.log(counts), 1)
+        assert_close(self, [fixed.dimension, fixed.intercept], [slope, intercept], rel=1e-10)
+
+    def test_sierpinski_against_cli(self):
+        self.check_against_cli("sierpinski.json", ifs.sierpinski_triangle(), math.log(3) / math.log(2), 12)
+
+    def test_koch_against_cli(self):
+        self.check_against_cli("koch.json", ifs.koch_curve(), math.log(4) / math.log(3), 10)
+
+    def test_bad_samples(self):
+        self.assertEqual(message(self, lambda: ifs.box_counting(np.zeros((0, 2)))), "box counting: no points")
+        self.assertEqual(message(self, lambda: ifs.box_counting(np.ones((5, 2)))), "box counting: all points are equal")
+        few = np.random.default_rng(0).random((100, 2))
+        self.assertIn("evaluate deeper", message(self, lambda: ifs.box_counting(few)))
+
+
+@unittest.skipUnless(hasattr(cifs.experiment, "evaluate") and hasattr(cifs.io, "read_experiment"),
+                     "needs the experiment bindings")
+class ExperimentDimensionTest(unittest.TestCase):
+    def test_same_points_same_result_as_cli(self):
+        for name, depth in (("sierpinski.json", 12), ("koch.json", 10)):
+            with self.subTest(name):
+                path = EXAMPLES / "experiments" / name
+                report = cli_json("dimension", path, "--json", "--depth", depth)
+                ev = cifs.experiment.evaluate(cifs.io.read_experiment(path), depth)
+                np.testing.assert_array_equal(ifs.attractor_points(ev.automaton, ev.nets, depth), ev.points)
+                r = ifs.box_counting(ev.points, resolution=ev.resolution)
+                box = report["box_counting"]
+                self.assertEqual((r.dimension, r.r_squared, [r.min_level, r.max_level]),
+                                 (box["dimension"], box["r_squared"], box["levels"]))
+                self.assertEqual(r.count_boxes.tolist(), [c["boxes"] for c in box["counts"]])
+                self.assertEqual(ifs.similarity_dimension(ev.maps), report["similarity_dimension"])
+                self.assertAlmostEqual(ifs.similarity_dimension(ev.automaton, ev.nets), report["similarity_dimension"],
+                                       delta=1e-12)
+
+
+@unittest.skipUnless(hasattr(cifs.io, "read_shape"), "needs the io bindings")
+class NurbsAttractorTest(unittest.TestCase):
+    def shape(self, name):
+        path = EXAMPLES / "shapes" / name
+        return path, cifs.io.read_shape(path)
+
+    def test_attractor_points_against_cli(self):
+        for name in ("cubic.json", "closed_cubic.json"):
+            with self.subTest(name):
+                path, c = self.shape(name)
+                a = automata.knot_automaton(c)
+                nets = automata.initial_nets(a, c)
+                expected = np.array(cli_json("attractor", path, "--depth", 6)["points"])
+                H = ifs.attractor_points(a, nets, 6, closed=name.startswith("closed"))
+                points = ifs.cartesian(H) if c.rational else H
+                assert_close(self, points, expected, rel=0, what=name)
+
+    def test_tolerance_and_chaos_against_cli(self):
+        path, c = self.shape("cubic.json")
+        a = automata.knot_automaton(c)
+        nets = automata.initial_nets(a, c)
+        f = ifs.end_functionals(a)
+        rows = []
+        ends = []
+        ifs.for_each_leaf_to_tolerance(a, nets, lambda t: (rows.append(f.start[t.leaf.state] @ t.leaf.net),
+                                                           ends.append(f.end[t.leaf.state] @ t.leaf.net)),
+                                       epsilon=1e-3, max_depth=40)
+        expected = np.array(cli_json("attractor", path, "--tolerance", 1e-3)["points"])
+        assert_close(self, np.array(rows + ends[-1:]), expected, rel=0, what="tolerance")
+        chaos = cli_json("attractor", path, "--chaos", 500, "--seed", 11)
+        r = ifs.chaos_game(a, nets, samples=500, seed=11)
+        assert_close(self, r.points, np.array(chaos["points"]), rel=0, what="chaos")
+        self.assertEqual(r.seed, chaos["seed"])
+
+    def test_surface_mesh_routes_agree(self):
+        _, s = self.shape("saddle.json")
+        t = automata.tensor_automaton(s)
+        nets = automata.initial_nets(t, s)
+        homogeneous = nets[0].shape[1] == 4
+        separable = ifs.surface_mesh(t, nets, 3, homogeneous=homogeneous)
+        generic = ifs.quad_mesh(t.product, nets, t.patches, 3, homogeneous=homogeneous)
+        assert_close(self, separable.vertices, generic.vertices, rel=1e-12)
+        np.testing.assert_array_equal(separable.quads, generic.quads)
+        np.testing.assert_array_equal(separable.quad_state, generic.quad_state)
+
+
+if __name__ == "__main__":
+    unittest.main()
