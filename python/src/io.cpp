@@ -226,7 +226,10 @@ void bind_geometry(py::module_& m) {
 
   py::enum_<io::PlyFormat>(m, "PlyFormat", "PLY encodings.")
       .value("ascii", io::PlyFormat::ascii, "Text PLY.")
-      .value("binary_little_endian", io::PlyFormat::binary_little_endian, "Binary little-endian PLY.");
+      .value("binary_little_endian", io::PlyFormat::binary_little_endian, "Binary little-endian PLY.")
+      // enum_'s own `value` property has no docstring.
+      .def_property_readonly(
+          "value", [](io::PlyFormat f) { return static_cast<int>(f); }, "The integer value.");
   m.def(
       "mesh_ply",
       [](const io::Mesh& mesh, io::PlyFormat format) {

@@ -336,7 +336,10 @@ void bind_refine(py::module_& m) {
 void bind_surface(py::module_& m) {
   py::enum_<Direction>(m, "Direction", "Parameter direction of a surface.")
       .value("u", Direction::u, "First direction (rows of the control net).")
-      .value("v", Direction::v, "Second direction (columns of the control net).");
+      .value("v", Direction::v, "Second direction (columns of the control net).")
+      // enum_'s own `value` property has no docstring.
+      .def_property_readonly(
+          "value", [](Direction d) { return static_cast<int>(d); }, "The integer value (u = 0, v = 1).");
   py::class_<Surface>(
       m, "Surface",
       "A tensor-product B-spline or NURBS surface (immutable). Control point (i, j) — i along u,\n"
@@ -411,7 +414,9 @@ void bind_surface(py::module_& m) {
 void bind_doubling(py::module_& m) {
   py::enum_<Half>(m, "Half", "Halves of a segment after inserting its midpoint.")
       .value("G", Half::G, "Left half.")
-      .value("D", Half::D, "Right half.");
+      .value("D", Half::D, "Right half.")
+      .def_property_readonly(
+          "value", [](Half h) { return static_cast<int>(h); }, "The integer value (G = 0, D = 1).");
   m.def(
       "validate_window", [](const Window& w, int degree) { validate_window(w, degree); }, py::arg("window"),
       py::arg("degree"),

@@ -55,7 +55,8 @@ class KnotTest(unittest.TestCase):
             # Blossom weights at (u, u, u) are the basis functions.
             assert_close(self, nurbs.blossom_weights(CUBIC_KNOTS, 3, span, [u] * 3), N, rel=1e-14)
         h, u = 1e-6, 1.3
-        fd = (nurbs.basis_functions(CUBIC_KNOTS, 3, 4, u + h) - nurbs.basis_functions(CUBIC_KNOTS, 3, 4, u - h)) / (2 * h)
+        fd = (nurbs.basis_functions(CUBIC_KNOTS, 3, 4, u + h) - nurbs.basis_functions(CUBIC_KNOTS, 3, 4, u - h))
+        fd /= 2 * h
         assert_close(self, nurbs.basis_derivatives(CUBIC_KNOTS, 3, 4, u, 1)[1], fd, rel=1e-8)
 
     def test_periodic_knots_are_the_closed_curves_knots(self):
@@ -67,7 +68,8 @@ class KnotTest(unittest.TestCase):
         cases = [
             (lambda: nurbs.validate_knots([0, 1, 0.5, 2], 1, 2), "knots[2]: 0.5 is less than the previous knot 1"),
             (lambda: nurbs.validate_degree(0), "degree: degree 0 is outside [1, 64]"),
-            (lambda: nurbs.find_span([0, 0, 1], 1, 0.5), "knots: 1 control points are too few for degree 1 (need at least 2)"),
+            (lambda: nurbs.find_span([0, 0, 1], 1, 0.5),
+             "knots: 1 control points are too few for degree 1 (need at least 2)"),
             (lambda: nurbs.find_span(CUBIC_KNOTS, 3, float("nan")), "u is not finite"),
             (lambda: nurbs.basis_functions(CUBIC_KNOTS, 3, 2, 0.5), "span 2 is not a non-empty span of the domain"),
             (lambda: nurbs.basis_functions(CUBIC_KNOTS, 3, 6, 0.5), "span 6 is not a non-empty span of the domain"),
@@ -76,7 +78,8 @@ class KnotTest(unittest.TestCase):
             (lambda: nurbs.periodic_knots([1], 2), "breakpoints: 1 given, need at least 2"),
             (lambda: nurbs.periodic_knots([1, 1], 2), "breakpoints: the period is empty"),
             (lambda: nurbs.segment_window(CUBIC_KNOTS, 3, 9), "span 9 is not a non-empty span of the domain"),
-            (lambda: nurbs.subdivision_matrix([1, 0, 1], 2, nurbs.Half.G), "window[1]: the central interval must be positive"),
+            (lambda: nurbs.subdivision_matrix([1, 0, 1], 2, nurbs.Half.G),
+             "window[1]: the central interval must be positive"),
             (lambda: nurbs.child_window([1, 1], 2, nurbs.Half.D), "window: 2 inter-knots given, degree 2 takes 3"),
             (lambda: nurbs.uniform_parameters((0, 1), -1), "count -1 is negative"),
         ]
@@ -244,7 +247,8 @@ class CurveTest(ScratchTestCase):
             (lambda: nurbs.Curve(1, [0, 0, 1, 1], pts, weights=[1, -1]),
              "weights[1]: weight -1 is not a positive finite number"),
             (lambda: nurbs.Curve(1, [0, 0, 1, 1], pts, weights=[1, 1, 1]), "weights: 3 weights given for 2 points"),
-            (lambda: nurbs.Curve(1, [0, 0, 1, 1], np.zeros(2)), "points: expected a 2-D array (n, dim), got shape (2,)"),
+            (lambda: nurbs.Curve(1, [0, 0, 1, 1], np.zeros(2)),
+             "points: expected a 2-D array (n, dim), got shape (2,)"),
             (lambda: nurbs.Curve(1, [0, 0, 1, 1], pts, weights=np.ones((2, 1))),
              "weights: expected a 1-D array, got shape (2, 1)"),
             (lambda: nurbs.Curve(2, [1, 1, 1], pts, closed=True), "knots: the period [1, 1] is empty"),
@@ -285,8 +289,8 @@ class CurveTest(ScratchTestCase):
 class SurfaceTest(unittest.TestCase):
     def setUp(self):
         self.saddle = shape("saddle")
-        self.grid = nurbs.Surface((2, 1), ([0, 0, 0, 1, 1, 1], [0, 0, 2, 2]),
-                                  np.array([[[0, 0, 0], [0, 2, 1]], [[1, 0, 2], [1, 2, 0]], [[2, 0, 0], [2, 2, 1]]], float))
+        net = np.array([[[0, 0, 0], [0, 2, 1]], [[1, 0, 2], [1, 2, 0]], [[2, 0, 0], [2, 2, 1]]], float)
+        self.grid = nurbs.Surface((2, 1), ([0, 0, 0, 1, 1, 1], [0, 0, 2, 2]), net)
 
     def test_constructor_forms(self):
         s = self.saddle
@@ -372,7 +376,8 @@ class SurfaceTest(unittest.TestCase):
     def test_bad_surfaces(self):
         knots = ([0, 0, 0, 1, 1, 1], [0, 0, 2, 2])
         cases = [
-            (lambda: nurbs.Surface((2, 1), knots, np.zeros((6, 3))), "count: give (nu, nv) with points of shape (nu*nv, dim)"),
+            (lambda: nurbs.Surface((2, 1), knots, np.zeros((6, 3))),
+             "count: give (nu, nv) with points of shape (nu*nv, dim)"),
             (lambda: nurbs.Surface((2, 1), knots, np.zeros((6, 3)), count=(2, 2)),
              "points: 6 control points do not form a 2 by 2 net"),
             (lambda: nurbs.Surface((2, 1), knots, np.zeros((3, 2, 3)), count=(2, 3)),
