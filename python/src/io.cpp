@@ -1,9 +1,8 @@
 // SPDX-License-Identifier: MIT
 // cifs Python bindings — cifs.io (shape, polygon and experiment files, geometry export),
 // cifs.verify (the attractor against the NURBS core) and cifs.experiment (running experiment files).
-#include <cmath>
 #include <optional>
-#include <sstream>
+#include <variant>
 
 #include "arrays.hpp"
 #include "cifs/experiment/run.hpp"

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <optional>
 #include <sstream>
+#include <utility>
 
 #include "arrays.hpp"
 #include "cifs/nurbs/curve.hpp"
