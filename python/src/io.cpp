@@ -1,11 +1,525 @@
 // SPDX-License-Identifier: MIT
-// cifs Python bindings — io (to be written).
-#include "bindings.hpp"
+// cifs Python bindings — cifs.io (shape, polygon and experiment files, geometry export),
+// cifs.verify (the attractor against the NURBS core) and cifs.experiment (running experiment files).
+#include <optional>
+#include <variant>
+
+#include "arrays.hpp"
+#include "cifs/experiment/run.hpp"
+#include "cifs/io/experiment.hpp"
+#include "cifs/io/geometry.hpp"
+#include "cifs/io/polygon.hpp"
+#include "cifs/io/polyline.hpp"
+#include "cifs/io/shape.hpp"
+#include "cifs/verify/check.hpp"
 
 namespace cifs::python {
+namespace {
 
-void bind_io(py::module_& m) { (void)m; }
-void bind_verify(py::module_& m) { (void)m; }
-void bind_experiment(py::module_& m) { (void)m; }
+using Release = py::call_guard<py::gil_scoped_release>;
+constexpr const char* kDefaultWhere = "<string>";
+
+/// Binary PLY is not text: bytes for it, str for ASCII.
+py::object ply_result(std::string text, io::PlyFormat format) {
+  if (format == io::PlyFormat::ascii) return py::str(text);
+  return py::bytes(text);
+}
+
+io::Polygon make_polygon(const DoubleArray& points, bool closed) {
+  io::Polygon p{to_points(points, "points"), closed};
+  if (p.points.rows() == 0) throw InvalidInput("points: no points");
+  if (p.points.cols() < 1 || p.points.cols() > 16)
+    throw InvalidInput("points: " + std::to_string(p.points.cols()) + " coordinates, expected 1 to 16");
+  for (Eigen::Index i = 0; i < p.points.rows(); ++i)
+    if (!p.points.row(i).allFinite())
+      throw InvalidInput("points[" + std::to_string(i) + "]: coordinate is not finite");
+  return p;
+}
+
+io::Mesh make_mesh(const DoubleArray& vertices, const py::object& triangles, const py::object& quads,
+                   const std::optional<DoubleArray>& normals,
+                   const std::optional<std::vector<std::uint32_t>>& states) {
+  io::Mesh mesh;
+  mesh.vertices = to_points(vertices, "Mesh: vertices");
+  mesh.triangles = to_rows<int, 3>(triangles, "Mesh: triangles");
+  mesh.quads = to_rows<int, 4>(quads, "Mesh: quads");
+  if (normals) mesh.normals = to_points(*normals, "Mesh: normals");
+  if (states) mesh.states = *states;
+  io::check_mesh(mesh, "Mesh");
+  return mesh;
+}
+
+io::Segments make_segments(const DoubleArray& vertices, const py::object& segments,
+                           const std::optional<std::vector<std::uint32_t>>& states) {
+  io::Segments out;
+  out.vertices = to_points(vertices, "Segments: vertices");
+  out.segments = to_rows<int, 2>(segments, "Segments: segments");
+  if (states) out.states = *states;
+  io::check_segments(out, "Segments");
+  return out;
+}
+
+const char* mode_name(io::Evaluation::Mode mode) {
+  switch (mode) {
+    case io::Evaluation::Mode::depth:
+      return "depth";
+    case io::Evaluation::Mode::tolerance:
+      return "tolerance";
+    case io::Evaluation::Mode::chaos:
+      return "chaos";
+  }
+  return "";
+}
+
+std::string source_kind(const io::Experiment& e) {
+  if (e.shape) return std::holds_alternative<nurbs::Curve>(*e.shape) ? "curve" : "surface";
+  if (!e.automaton.empty()) return "automaton";
+  return "ifs";
+}
+
+void bind_shapes(py::module_& m) {
+  m.def("read_shape", &io::read_shape, Release(), py::arg("path"),
+        "Reads a shape file: `.obj` as OBJ free-form geometry (exactly one shape), anything else as JSON.\n\n"
+        "Returns a nurbs.Curve or nurbs.Surface. Raises IoError (unreadable file, syntax) or InvalidInput\n"
+        "(content), with the path and JSON path in the message.");
+  m.def(
+      "parse_shape_json", &io::parse_shape_json, py::arg("text"), py::arg("where") = kDefaultWhere,
+      "Parses {\"curve\": {...}} or {\"surface\": {...}} (docs/formats.md); `where` names the source in\n"
+      "messages. Returns a nurbs.Curve or nurbs.Surface. Raises IoError (syntax) or InvalidInput (content).");
+  m.def("to_json", py::overload_cast<const io::Shape&>(&io::to_json), py::arg("shape"),
+        "The shape file text (JSON) of a nurbs.Curve or nurbs.Surface; parse_shape_json reads it back.");
+  m.def("parse_obj", &io::parse_obj, py::arg("text"), py::arg("where") = kDefaultWhere,
+        "Every curve and surface of OBJ free-form geometry text, in order (list of Curve / Surface).\n\n"
+        "Raises IoError or InvalidInput naming `where`.");
+  m.def("to_obj", &io::to_obj, py::arg("shape"),
+        "OBJ free-form geometry text of a nurbs.Curve or nurbs.Surface.");
+  m.def(
+      "write_file_atomically",
+      [](const std::filesystem::path& path, const std::string& content) {
+        io::write_file_atomically(path, content);
+      },
+      Release(), py::arg("path"), py::arg("content"),
+      "Writes `content` (str, UTF-8, or bytes) through a temporary file and a rename: `path` never holds\n"
+      "a partial file. Raises IoError.");
+  m.def(
+      "read_file",
+      [](const std::filesystem::path& path, bool binary) -> py::object {
+        std::string text;
+        {
+          py::gil_scoped_release release;
+          text = io::read_file(path);
+        }
+        if (binary) return py::bytes(text);
+        return py::str(text);
+      },
+      py::arg("path"), py::kw_only(), py::arg("binary") = false,
+      "The whole file: str (UTF-8), or bytes with binary=True.\n\nRaises IoError naming the path.");
+}
+
+void bind_polygons(py::module_& m) {
+  py::class_<io::Polygon>(m, "Polygon",
+                          "A control polygon (input of subdivision schemes and uniform B-splines).")
+      .def(py::init(&make_polygon), py::arg("points"), py::arg("closed") = false,
+           "points: (n, dim) with n ≥ 1, 1 ≤ dim ≤ 16, finite. Raises InvalidInput otherwise.")
+      .def_property_readonly(
+          "points", [](const io::Polygon& p) { return Points(p.points); }, "The vertices (n, dim).")
+      .def_readonly("closed", &io::Polygon::closed, "True when the last vertex connects back to the first.")
+      .def(
+          "__repr__",
+          [](const io::Polygon& p) {
+            return "Polygon(points=" + std::to_string(p.points.rows()) +
+                   ", dimension=" + std::to_string(p.points.cols()) + (p.closed ? ", closed)" : ")");
+          },
+          "Short description.");
+  m.def("parse_polygon_json", &io::parse_polygon_json, py::arg("text"), py::arg("where") = kDefaultWhere,
+        "Parses {\"polygon\": {\"points\": [[x, y], ...], \"closed\": true}}.\n\n"
+        "Raises IoError (syntax) or InvalidInput (content) naming `where` and the JSON path.");
+  m.def("read_polygon", &io::read_polygon, Release(), py::arg("path"),
+        "Reads a polygon file. Raises IoError or InvalidInput naming the path.");
+  m.def("to_json", py::overload_cast<const io::Polygon&>(&io::to_json), py::arg("polygon"),
+        "The polygon file text (JSON, round-trip precision); parse_polygon_json reads it back bit for bit.");
+}
+
+void bind_geometry(py::module_& m) {
+  m.def(
+      "polyline_obj",
+      [](const DoubleArray& points, bool closed) {
+        return io::polyline_obj(to_points(points, "points"), closed);
+      },
+      py::arg("points"), py::arg("closed") = false,
+      "OBJ text of a polyline (n, dim ≤ 3): one `v` line per point and one `l` element.\n\n"
+      "Raises InvalidInput for more than 3 coordinates.");
+  m.def(
+      "polyline_svg",
+      [](const DoubleArray& points, bool closed, int width, double stroke) {
+        return io::polyline_svg(to_points(points, "points"), closed, width, stroke);
+      },
+      py::arg("points"), py::arg("closed") = false, py::arg("width") = 800, py::arg("stroke") = 1.5,
+      "SVG text of the x, y coordinates of a polyline (n, dim ≥ 2), `width` pixels wide.\n\n"
+      "Raises InvalidInput for bad points, width or stroke.");
+
+  py::class_<io::Mesh>(m, "Mesh",
+                       "Triangles and quads over vertex rows, with optional normals and face states.")
+      .def(py::init(&make_mesh), py::arg("vertices"), py::arg("triangles") = py::none(),
+           py::arg("quads") = py::none(), py::arg("normals") = py::none(), py::arg("states") = py::none(),
+           "vertices: (V, 3). triangles: int (T, 3), quads: int (Q, 4), 0-based rows of vertices.\n"
+           "normals: None or (V, 3). states: None or one non-negative int per face (triangles first).\n"
+           "Raises InvalidInput for a malformed mesh (check_mesh).")
+      .def_property_readonly(
+          "vertices", [](const io::Mesh& mesh) { return Points(mesh.vertices); }, "Vertex rows (V, 3).")
+      .def_property_readonly(
+          "triangles", [](const io::Mesh& mesh) { return index_array(mesh.triangles); }, "Triangles (T, 3).")
+      .def_property_readonly(
+          "quads", [](const io::Mesh& mesh) { return index_array(mesh.quads); }, "Quads (Q, 4).")
+      .def_property_readonly(
+          "normals", [](const io::Mesh& mesh) { return Points(mesh.normals); },
+          "Per-vertex normals (V, 3), or an empty (0, 0) array.")
+      .def_property_readonly(
+          "states", [](const io::Mesh& mesh) { return vector_array(mesh.states); },
+          "Per-face states (1-D, triangles then quads), or empty.")
+      .def(
+          "__repr__",
+          [](const io::Mesh& mesh) {
+            return "Mesh(vertices=" + std::to_string(mesh.vertices.rows()) +
+                   ", triangles=" + std::to_string(mesh.triangles.size()) +
+                   ", quads=" + std::to_string(mesh.quads.size()) + ")";
+          },
+          "Short description.");
+
+  py::class_<io::Segments>(m, "Segments", "Independent segments over vertex rows, with optional states.")
+      .def(
+          py::init(&make_segments), py::arg("vertices"), py::arg("segments"), py::arg("states") = py::none(),
+          "vertices: (V, 2) or (V, 3). segments: int (S, 2), 0-based rows. states: None or one per segment.\n"
+          "Raises InvalidInput for malformed segments (check_segments).")
+      .def_property_readonly(
+          "vertices", [](const io::Segments& s) { return Points(s.vertices); }, "Vertex rows (V, 2|3).")
+      .def_property_readonly(
+          "segments", [](const io::Segments& s) { return index_array(s.segments); }, "Segments (S, 2).")
+      .def_property_readonly(
+          "states", [](const io::Segments& s) { return vector_array(s.states); },
+          "Per-segment states, or empty.")
+      .def(
+          "__repr__",
+          [](const io::Segments& s) {
+            return "Segments(vertices=" + std::to_string(s.vertices.rows()) +
+                   ", segments=" + std::to_string(s.segments.size()) + ")";
+          },
+          "Short description.");
+
+  m.def(
+      "polyline_segments",
+      [](const DoubleArray& points, bool closed, std::uint32_t state) {
+        const Points P = to_points(points, "points");
+        if (P.cols() != 2 && P.cols() != 3)
+          throw InvalidInput("points: " + std::to_string(P.cols()) + " columns, expected 2 or 3");
+        return io::polyline_segments(P, closed, state);
+      },
+      py::arg("points"), py::arg("closed") = false, py::arg("state") = 0,
+      "The segments (i, i + 1) of a polyline (n, 2|3), plus (n − 1, 0) when closed, all with `state`.");
+  m.def("vertex_normals", &io::vertex_normals, py::arg("mesh"),
+        "Area-weighted unit vertex normals (V, 3); zero rows for vertices without area.");
+  m.def("mesh_obj", &io::mesh_obj, py::arg("mesh"),
+        "OBJ text of a mesh (with `vn` rows when it has normals).");
+  m.def("segments_obj", &io::segments_obj, py::arg("segments"),
+        "OBJ text of segments: `v` rows and `l a b` lines.");
+
+  py::enum_<io::PlyFormat>(m, "PlyFormat", "PLY encodings.")
+      .value("ascii", io::PlyFormat::ascii, "Text PLY.")
+      .value("binary_little_endian", io::PlyFormat::binary_little_endian, "Binary little-endian PLY.")
+      // enum_'s own `value` property has no docstring.
+      .def_property_readonly(
+          "value", [](io::PlyFormat f) { return static_cast<int>(f); }, "The integer value.");
+  m.def(
+      "mesh_ply",
+      [](const io::Mesh& mesh, io::PlyFormat format) {
+        return ply_result(io::mesh_ply(mesh, format), format);
+      },
+      py::arg("mesh"), py::arg("format") = io::PlyFormat::ascii,
+      "PLY of a mesh (normals and face states when present): str for ascii, bytes for binary.");
+  m.def(
+      "segments_ply",
+      [](const io::Segments& s, io::PlyFormat format) {
+        return ply_result(io::segments_ply(s, format), format);
+      },
+      py::arg("segments"), py::arg("format") = io::PlyFormat::ascii,
+      "PLY of segments (`element edge`, states when present): str for ascii, bytes for binary.");
+  m.def(
+      "segments_svg",
+      [](const io::Segments& s, int width, double stroke, std::string color) {
+        return io::segments_svg(s, {width, stroke, std::move(color)});
+      },
+      py::arg("segments"), py::kw_only(), py::arg("width") = io::SvgOptions{}.width,
+      py::arg("stroke") = io::SvgOptions{}.stroke, py::arg("color") = io::SvgOptions{}.color,
+      "SVG text of the x, y coordinates (y up), fitted with a 5 % margin into `width` pixels.\n\n"
+      "stroke: width in pixels; color: an SVG colour. Raises InvalidInput for a bad width or stroke.");
+}
+
+void bind_experiment_file(py::module_& m) {
+  py::class_<io::Experiment>(
+      m, "Experiment",
+      "An experiment file (docs/experiments.md), parsed: source, perturbation, evaluation,\n"
+      "camera, render settings, outputs. Read-only; run it with cifs.experiment.run.")
+      .def_readonly("name", &io::Experiment::name, "Name (default: the file's stem).")
+      .def_readonly("description", &io::Experiment::description, "Free text.")
+      .def_property_readonly("source", &source_kind,
+                             "The source kind: 'curve', 'surface', 'automaton' or 'ifs'.")
+      .def_readonly("shape", &io::Experiment::shape, "The NURBS source (Curve or Surface), or None.")
+      .def_property_readonly(
+          "automaton",
+          [](const io::Experiment& e) -> std::optional<std::filesystem::path> {
+            if (e.automaton.empty()) return std::nullopt;
+            return e.automaton;
+          },
+          "Absolute path of the BC-IFS automaton file source, or None.")
+      .def_property_readonly(
+          "ifs",
+          [](const io::Experiment& e) -> std::optional<std::string> {
+            if (!e.ifs) return std::nullopt;
+            return e.ifs->name;
+          },
+          "Name of the classic IFS source ('' for explicit maps), or None.")
+      .def_property_readonly(
+          "ifs_maps",
+          [](const io::Experiment& e) {
+            return index_array(e.ifs ? e.ifs->maps : std::vector<std::array<double, 7>>());
+          },
+          "Explicit classic IFS maps (n, 7): rows (a, b, c, d, e, f, p).")
+      .def_property_readonly(
+          "perturbed", [](const io::Experiment& e) { return e.perturbation.has_value(); },
+          "True when the file perturbs the free coefficients.")
+      .def_property_readonly(
+          "mode", [](const io::Experiment& e) { return mode_name(e.evaluation.mode); },
+          "Evaluation mode: 'depth', 'tolerance' or 'chaos'.")
+      .def_property_readonly(
+          "depth", [](const io::Experiment& e) { return e.evaluation.depth; }, "Evaluation depth.")
+      .def_property_readonly(
+          "tolerance", [](const io::Experiment& e) { return e.evaluation.tolerance; },
+          "Evaluation tolerance (relative to the control-net diameter).")
+      .def_property_readonly(
+          "samples", [](const io::Experiment& e) { return e.evaluation.samples; }, "Chaos-game samples.")
+      .def_property_readonly(
+          "seed", [](const io::Experiment& e) { return e.evaluation.seed; }, "Chaos-game seed.")
+      .def_property_readonly(
+          "size", [](const io::Experiment& e) { return py::make_tuple(e.render.width, e.render.height); },
+          "Image size (width, height) in pixels.")
+      .def_property_readonly(
+          "outputs",
+          [](const io::Experiment& e) {
+            py::dict out;
+            const std::pair<const char*, const std::filesystem::path*> files[] = {
+                {"exr", &e.outputs.exr},
+                {"png", &e.outputs.png},
+                {"obj", &e.outputs.obj},
+                {"ply", &e.outputs.ply},
+                {"svg", &e.outputs.svg},
+                {"automaton_svg", &e.outputs.automaton_svg},
+                {"automaton_dot", &e.outputs.automaton_dot}};
+            for (const auto& [key, path] : files)
+              if (!path->empty()) out[key] = py::cast(*path);
+            return out;
+          },
+          "The output files the experiment writes, relative to the output folder: dict kind → path.")
+      .def(
+          "__repr__",
+          [](const io::Experiment& e) {
+            return "Experiment(name='" + e.name + "', source=" + source_kind(e) +
+                   ", mode=" + mode_name(e.evaluation.mode) + ")";
+          },
+          "Short description.");
+  m.def("read_experiment", &io::read_experiment, Release(), py::arg("path"),
+        "Reads an experiment file; inputs are resolved against its folder.\n\n"
+        "Raises IoError or InvalidInput naming the path and the JSON path.");
+  m.def("parse_experiment", &io::parse_experiment, py::arg("text"), py::arg("where") = kDefaultWhere,
+        py::arg("base") = std::filesystem::path("."),
+        "Parses experiment text; relative input paths are resolved against the folder `base`.\n\n"
+        "Raises IoError or InvalidInput naming `where` and the JSON path.");
+}
+
+}  // namespace
+
+void bind_io(py::module_& m) {
+  bind_shapes(m);
+  bind_polygons(m);
+  bind_geometry(m);
+  bind_experiment_file(m);
+}
+
+void bind_verify(py::module_& m) {
+  using namespace cifs::verify;
+  const auto deviation_repr = [](const Deviation& d) {
+    return "Deviation(max_abs=" + py::repr(py::float_(d.max_abs)).cast<std::string>() +
+           ", max_rel=" + py::repr(py::float_(d.max_rel)).cast<std::string>() + ")";
+  };
+  py::class_<Deviation>(m, "Deviation", "Largest absolute and relative deviation of one comparison.")
+      .def_readonly("max_abs", &Deviation::max_abs, "Largest absolute deviation.")
+      .def_readonly("max_rel", &Deviation::max_rel,
+                    "Largest deviation relative to the largest control point.")
+      .def("__repr__", deviation_repr, "Short description.");
+  py::class_<SegmentReport>(m, "SegmentReport", "The comparisons of one curve segment.")
+      .def_readonly("segment", &SegmentReport::segment, "Segment index.")
+      .def_readonly("start", &SegmentReport::start, "Start of its parameter interval.")
+      .def_readonly("end", &SegmentReport::end, "End of its parameter interval.")
+      .def_readonly("nets", &SegmentReport::nets, "Leaf control nets vs knot insertion of every dyadic knot.")
+      .def_readonly("points", &SegmentReport::points,
+                    "Attractor points vs Cox–de Boor at the dyadic parameters.")
+      .def(
+          "__repr__",
+          [](const SegmentReport& s) {
+            return "SegmentReport(segment=" + std::to_string(s.segment) +
+                   ", nets.max_rel=" + py::repr(py::float_(s.nets.max_rel)).cast<std::string>() +
+                   ", points.max_rel=" + py::repr(py::float_(s.points.max_rel)).cast<std::string>() + ")";
+          },
+          "Short description.");
+  py::class_<CheckReport>(m, "CheckReport", "Result of check_curve.")
+      .def_readonly("depth", &CheckReport::depth, "Depth checked.")
+      .def_readonly("tolerance", &CheckReport::tolerance, "Relative tolerance.")
+      .def_readonly("segments", &CheckReport::segments, "One SegmentReport per segment, in order.")
+      .def_readonly("nets", &CheckReport::nets, "Net deviation over all segments.")
+      .def_readonly("points", &CheckReport::points, "Point deviation over all segments.")
+      .def_readonly("passed", &CheckReport::pass, "True when no relative deviation exceeds the tolerance.")
+      .def(
+          "__repr__",
+          [](const CheckReport& r) {
+            return "CheckReport(depth=" + std::to_string(r.depth) +
+                   ", segments=" + std::to_string(r.segments.size()) + (r.pass ? ", passed)" : ", failed)");
+          },
+          "Short description.");
+  py::class_<PatchReport>(m, "PatchReport", "The comparisons of one surface patch.")
+      .def_readonly("patch", &PatchReport::patch, "(u segment, v segment).")
+      .def_readonly("u", &PatchReport::u, "Its u interval (start, end).")
+      .def_readonly("v", &PatchReport::v, "Its v interval (start, end).")
+      .def_readonly("nets", &PatchReport::nets,
+                    "Leaf nets vs knot insertion of every dyadic knot in u and v.")
+      .def_readonly("points", &PatchReport::points,
+                    "Mesh vertices vs surface evaluation at the dyadic parameters.")
+      .def(
+          "__repr__",
+          [](const PatchReport& p) {
+            return "PatchReport(patch=(" + std::to_string(p.patch[0]) + ", " + std::to_string(p.patch[1]) +
+                   "))";
+          },
+          "Short description.");
+  py::class_<SurfaceCheckReport>(m, "SurfaceCheckReport", "Result of check_surface.")
+      .def_readonly("depth", &SurfaceCheckReport::depth, "Depth checked.")
+      .def_readonly("tolerance", &SurfaceCheckReport::tolerance, "Relative tolerance.")
+      .def_readonly("patches", &SurfaceCheckReport::patches, "One PatchReport per patch, u-major.")
+      .def_readonly("nets", &SurfaceCheckReport::nets, "Net deviation over all patches.")
+      .def_readonly("points", &SurfaceCheckReport::points, "Point deviation over all patches.")
+      .def_readonly("passed", &SurfaceCheckReport::pass,
+                    "True when no relative deviation exceeds the tolerance.")
+      .def(
+          "__repr__",
+          [](const SurfaceCheckReport& r) {
+            return "SurfaceCheckReport(depth=" + std::to_string(r.depth) +
+                   ", patches=" + std::to_string(r.patches.size()) + (r.pass ? ", passed)" : ", failed)");
+          },
+          "Short description.");
+  const CheckOptions defaults;
+  m.def(
+      "check_curve",
+      [](const nurbs::Curve& c, int depth, double tolerance) {
+        return check_curve(c, {depth, tolerance});
+      },
+      Release(), py::arg("curve"), py::kw_only(), py::arg("depth") = defaults.depth,
+      py::arg("tolerance") = defaults.tolerance,
+      "Checks the knot-doubling attractor of a curve against knot insertion and Cox–de Boor, per segment.\n\n"
+      "Returns a CheckReport. Raises InvalidInput for a depth outside [0, 30] or work beyond the memory "
+      "limit.");
+  m.def(
+      "check_surface",
+      [](const nurbs::Surface& s, int depth, double tolerance) {
+        return check_surface(s, {depth, tolerance});
+      },
+      Release(), py::arg("surface"), py::kw_only(), py::arg("depth") = defaults.depth,
+      py::arg("tolerance") = defaults.tolerance,
+      "check_curve for surfaces, patch by patch on the tensor-product automaton.\n\n"
+      "Returns a SurfaceCheckReport. Raises InvalidInput for a depth outside [0, 30] or references beyond\n"
+      "the memory limit.");
+}
+
+void bind_experiment(py::module_& m) {
+  using namespace cifs::experiment;
+  py::class_<RunReport>(m, "RunReport", "Result of run.")
+      .def_readonly("written", &RunReport::written, "Paths of the files written, in order.")
+      .def_readonly("depth", &RunReport::depth, "Depth evaluated (chaos: depth of the sampled nodes).")
+      .def_readonly("free_coefficients", &RunReport::free_coefficients, "Number of free BC-IFS coefficients.")
+      .def_readonly("residual", &RunReport::residual, "Largest constraint residual after perturbation.")
+      .def_readonly("summary", &RunReport::summary, "The CLI's summary text (one line per fact).")
+      .def(
+          "__repr__",
+          [](const RunReport& r) {
+            return "RunReport(depth=" + std::to_string(r.depth) +
+                   ", written=" + std::to_string(r.written.size()) + ")";
+          },
+          "Short description.");
+  py::class_<Evaluation>(m, "Evaluation", "The deterministic evaluation of an experiment's source.")
+      .def_readonly(
+          "points", &Evaluation::points,
+          "Cartesian points (n, dim): curve points, mesh vertices, BC-IFS piece ends or IFS points.")
+      .def_readonly("depth", &Evaluation::depth, "Depth evaluated.")
+      .def_readonly("kind", &Evaluation::kind, "Source kind, e.g. 'NURBS curve', 'classic IFS koch'.")
+      .def_readonly("resolution", &Evaluation::resolution,
+                    "Bound on the diameter of the depth-K pieces; 0 when unknown (rational nets).")
+      .def_readonly("automaton", &Evaluation::automaton,
+                    "The (perturbed) automaton (cifs.automata.Automaton).")
+      .def_readonly("nets", &Evaluation::nets,
+                    "Initial nets, one per initial entry (homogeneous rows if rational).")
+      .def_readonly("rational", &Evaluation::rational, "True when the nets are homogeneous.")
+      .def_readonly("maps", &Evaluation::maps, "Classic IFS only: its affine maps (cifs.ifs.AffineMap).")
+      .def(
+          "__repr__",
+          [](const Evaluation& e) {
+            return "Evaluation(kind='" + e.kind + "', depth=" + std::to_string(e.depth) +
+                   ", points=" + std::to_string(e.points.rows()) + ")";
+          },
+          "Short description.");
+
+  // Shared keyword checks: negative counts would wrap around in the unsigned C++ fields.
+  const auto options = [](std::optional<int> threads, long long max_bytes) {
+    if (threads && *threads < 0) throw InvalidInput("threads: " + std::to_string(*threads) + " is negative");
+    if (max_bytes < 0) throw InvalidInput("max_bytes: " + std::to_string(max_bytes) + " is negative");
+    RunOptions o;
+    if (threads) o.threads = static_cast<unsigned>(*threads);
+    o.max_bytes = static_cast<std::size_t>(max_bytes);
+    return o;
+  };
+  const RunOptions defaults;
+  m.def(
+      "run",
+      [options](const io::Experiment& e, std::filesystem::path out_dir,
+                std::optional<std::filesystem::path> exr, std::optional<std::filesystem::path> png,
+                bool quiet, std::optional<int> threads, long long max_bytes) {
+        RunOptions o = options(threads, max_bytes);
+        o.out_dir = std::move(out_dir);
+        o.exr = exr.value_or(std::filesystem::path());
+        o.png = png.value_or(std::filesystem::path());
+        o.quiet = quiet;
+        py::gil_scoped_release release;
+        return run(e, o);
+      },
+      py::arg("experiment"), py::kw_only(), py::arg("out_dir") = defaults.out_dir,
+      py::arg("exr") = py::none(), py::arg("png") = py::none(), py::arg("quiet") = defaults.quiet,
+      py::arg("threads") = py::none(), py::arg("max_bytes") = static_cast<long long>(defaults.max_bytes),
+      "Runs an experiment as `cifs render` does: builds, perturbs, evaluates, renders and writes its "
+      "outputs.\n\n"
+      "out_dir: folder of the experiment's outputs (created when missing). exr, png: override\n"
+      "outputs.exr / outputs.png (paths as given). quiet: no progress bar. threads: overrides\n"
+      "render.threads. max_bytes: refuse larger images or geometry before any work.\n"
+      "Returns a RunReport. Raises InvalidInput (bad content, too large) or IoError (files); on failure no\n"
+      "output file is left behind.");
+  m.def(
+      "evaluate",
+      [options](const io::Experiment& e, std::optional<int> depth, std::optional<int> threads,
+                long long max_bytes) {
+        const RunOptions o = options(threads, max_bytes);
+        py::gil_scoped_release release;
+        return evaluate(e, depth, o);
+      },
+      py::arg("experiment"), py::arg("depth") = py::none(), py::kw_only(), py::arg("threads") = py::none(),
+      py::arg("max_bytes") = static_cast<long long>(defaults.max_bytes),
+      "The deterministic evaluation of an experiment's source (perturbed as the file says) to `depth`\n"
+      "(default: the file's evaluation.depth, whatever its mode). Nothing is written.\n\n"
+      "Returns an Evaluation. Raises InvalidInput as run, and for a negative depth.");
+}
 
 }  // namespace cifs::python

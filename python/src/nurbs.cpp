@@ -1,9 +1,459 @@
 // SPDX-License-Identifier: MIT
-// cifs Python bindings — nurbs (to be written).
-#include "bindings.hpp"
+// cifs Python bindings — cifs.nurbs: knot vectors, curves, refinement, surfaces, knot doubling.
+#include <cmath>
+#include <optional>
+#include <sstream>
+#include <utility>
+
+#include "arrays.hpp"
+#include "cifs/nurbs/curve.hpp"
+#include "cifs/nurbs/doubling.hpp"
+#include "cifs/nurbs/knots.hpp"
+#include "cifs/nurbs/refine.hpp"
+#include "cifs/nurbs/surface.hpp"
 
 namespace cifs::python {
+namespace {
 
-void bind_nurbs(py::module_& m) { (void)m; }
+using namespace cifs::nurbs;
+using Release = py::call_guard<py::gil_scoped_release>;
+using DomainTuple = std::pair<double, double>;
+
+DomainTuple as_tuple(Domain d) {
+  return {d.start, d.end};
+}
+
+Eigen::VectorXd optional_weights(const std::optional<DoubleArray>& weights) {
+  return weights ? to_vector(*weights, "weights") : Eigen::VectorXd();
+}
+
+/// The knot functions of the C++ API are unchecked (noexcept); Python callers get the checks first.
+void check_knots(const Knots& knots, int degree) {
+  validate_knots(knots, degree, control_count(knots, degree));
+}
+
+void check_span(const Knots& knots, int degree, int span) {
+  check_knots(knots, degree);
+  if (span < degree || span >= control_count(knots, degree) ||
+      !(knots[static_cast<std::size_t>(span)] < knots[static_cast<std::size_t>(span) + 1]))
+    throw InvalidInput("span " + std::to_string(span) + " is not a non-empty span of the domain");
+}
+
+void check_finite(double u, const char* what) {
+  if (!std::isfinite(u)) throw InvalidInput(std::string(what) + " is not finite");
+}
+
+void check_breakpoints(const Knots& b, int degree) {
+  validate_degree(degree);
+  if (b.size() < 2)
+    throw InvalidInput("breakpoints: " + std::to_string(b.size()) + " given, need at least 2");
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    if (!std::isfinite(b[i]))
+      throw InvalidInput("breakpoints[" + std::to_string(i) + "]: knot is not finite");
+    if (i > 0 && b[i] < b[i - 1])
+      throw InvalidInput("breakpoints[" + std::to_string(i) + "]: is less than the previous breakpoint");
+  }
+  if (!(b.back() > b.front())) throw InvalidInput("breakpoints: the period is empty");
+}
+
+std::string curve_repr(const Curve& c) {
+  std::ostringstream out;
+  out << "Curve(degree=" << c.degree << ", points=" << distinct_count(c) << ", dimension=" << dimension(c)
+      << ", domain=(" << domain(c).start << ", " << domain(c).end << ")" << (c.rational ? ", rational" : "")
+      << (c.closed ? ", closed" : "") << ")";
+  return out.str();
+}
+
+std::string surface_repr(const Surface& s) {
+  std::ostringstream out;
+  out << "Surface(degree=(" << s.degree[0] << ", " << s.degree[1] << "), count=(" << s.count[0] << ", "
+      << s.count[1] << "), dimension=" << dimension(s) << (s.rational ? ", rational" : "") << ")";
+  return out.str();
+}
+
+/// Surface control points `(nu, nv, dim)`, or `(nu·nv, dim)` with `count`; weights `(nu, nv)` or `(nu·nv,)`.
+Surface make_surface_from(std::array<int, 2> degree, std::array<Knots, 2> knots, const DoubleArray& points,
+                          const std::optional<DoubleArray>& weights,
+                          std::optional<std::array<Eigen::Index, 2>> count) {
+  Points P;
+  if (points.ndim() == 3) {
+    const std::array<Eigen::Index, 2> net{points.shape(0), points.shape(1)};
+    if (count && *count != net)
+      throw InvalidInput("count: (" + std::to_string((*count)[0]) + ", " + std::to_string((*count)[1]) +
+                         ") does not match the points' shape " + shape_text(points));
+    count = net;
+    P = Eigen::Map<const Points>(points.data(), net[0] * net[1], points.shape(2));
+  } else {
+    if (points.ndim() != 2)
+      throw InvalidInput("points: expected (nu, nv, dim) or (nu*nv, dim), got shape " + shape_text(points));
+    if (!count) throw InvalidInput("count: give (nu, nv) with points of shape (nu*nv, dim)");
+    P = to_points(points, "points");
+  }
+  Eigen::VectorXd w;
+  if (weights) {
+    if (weights->ndim() == 2) {
+      if (weights->shape(0) != (*count)[0] || weights->shape(1) != (*count)[1])
+        throw InvalidInput("weights: shape " + shape_text(*weights) + " does not match the " +
+                           std::to_string((*count)[0]) + " by " + std::to_string((*count)[1]) + " net");
+      w = Eigen::Map<const Eigen::VectorXd>(weights->data(), weights->size());
+    } else {
+      w = to_vector(*weights, "weights");
+    }
+  }
+  return make_surface(degree, std::move(knots), *count, P, w);
+}
+
+void bind_knots(py::module_& m) {
+  m.attr("kMaxDegree") = kMaxDegree;
+  m.def("validate_degree", &validate_degree, py::arg("degree"), py::arg("where") = "degree",
+        "Checks 1 ≤ degree ≤ kMaxDegree.\n\nRaises InvalidInput (message prefixed by `where`) otherwise.");
+  m.def(
+      "validate_knots",
+      [](const Knots& knots, int degree, Eigen::Index count, std::string_view where) {
+        validate_knots(knots, degree, count, where);
+      },
+      py::arg("knots"), py::arg("degree"), py::arg("count"), py::arg("where") = "knots",
+      "Checks that `knots` is a knot vector of `count` control points of `degree`.\n\n"
+      "Finite, non-decreasing, count + degree + 1 values, multiplicities ≤ degree + 1, non-empty domain.\n"
+      "Raises InvalidInput (message prefixed by `where`) otherwise.");
+  m.def(
+      "control_count", [](const Knots& knots, int degree) { return control_count(knots, degree); },
+      py::arg("knots"), py::arg("degree"),
+      "Number of control points a knot vector serves: len(knots) − degree − 1.");
+  m.def(
+      "domain",
+      [](const Knots& knots, int degree) {
+        check_knots(knots, degree);
+        return as_tuple(domain(knots, degree));
+      },
+      py::arg("knots"), py::arg("degree"),
+      "The domain (t_d, t_n) of a knot vector of `degree`, as a tuple.\n\nRaises InvalidInput for invalid "
+      "knots.");
+  m.def(
+      "find_span",
+      [](const Knots& knots, int degree, double u) {
+        check_knots(knots, degree);
+        check_finite(u, "u");
+        return find_span(knots, degree, u);
+      },
+      py::arg("knots"), py::arg("degree"), py::arg("u"),
+      "The span k in [d, n−1] with t_k ≤ u < t_{k+1} (the domain end belongs to the last non-empty span).\n\n"
+      "Parameters outside the domain are clamped to the first/last span. Raises InvalidInput for invalid\n"
+      "knots or a non-finite u.");
+  m.def(
+      "multiplicity", [](const Knots& knots, double u) { return multiplicity(knots, u); }, py::arg("knots"),
+      py::arg("u"), "Multiplicity of the value u in the (sorted) knots; 0 when absent.");
+  m.def(
+      "breakpoints",
+      [](const Knots& knots, int degree) {
+        check_knots(knots, degree);
+        return vector_array(breakpoints(knots, degree));
+      },
+      py::arg("knots"), py::arg("degree"),
+      "Distinct knot values inside the domain, in order (1-D array).\n\nRaises InvalidInput for invalid "
+      "knots.");
+  m.def(
+      "basis_functions",
+      [](const Knots& knots, int degree, int span, double u) {
+        check_span(knots, degree, span);
+        check_finite(u, "u");
+        std::vector<double> N(static_cast<std::size_t>(degree) + 1);
+        basis_functions(knots, degree, span, u, N.data());
+        return vector_array(N);
+      },
+      py::arg("knots"), py::arg("degree"), py::arg("span"), py::arg("u"),
+      "The degree + 1 non-zero basis functions N_{span−d..span}(u) (1-D array; Cox–de Boor).\n\n"
+      "Raises InvalidInput for invalid knots or a span that is not a non-empty span of the domain.");
+  m.def(
+      "blossom_weights",
+      [](const Knots& knots, int degree, int span, const std::vector<double>& args) {
+        check_span(knots, degree, span);
+        if (static_cast<int>(args.size()) != degree)
+          throw InvalidInput("blossom: " + std::to_string(args.size()) + " arguments given, degree " +
+                             std::to_string(degree) + " takes " + std::to_string(degree));
+        for (double a : args) check_finite(a, "blossom: argument");
+        std::vector<double> W(static_cast<std::size_t>(degree) + 1);
+        blossom_weights(knots, degree, span, args, W.data());
+        return vector_array(W);
+      },
+      py::arg("knots"), py::arg("degree"), py::arg("span"), py::arg("args"),
+      "Weights W_0..W_d with blossom(args) = Σ W_j P_{span−d+j} (1-D array of degree + 1 values).\n\n"
+      "`args`: `degree` parameters, any order. Raises InvalidInput for invalid knots, span or arguments.");
+  m.def(
+      "basis_derivatives",
+      [](const Knots& knots, int degree, int span, double u, int order) {
+        check_span(knots, degree, span);
+        check_finite(u, "u");
+        if (order < 0) throw InvalidInput("derivative order " + std::to_string(order) + " is negative");
+        return basis_derivatives(knots, degree, span, u, order);
+      },
+      py::arg("knots"), py::arg("degree"), py::arg("span"), py::arg("u"), py::arg("order"),
+      "Basis functions and derivatives up to `order`: array (order + 1, degree + 1).\n\n"
+      "Row r holds the r-th derivatives of N_{span−d..span}(u). Raises InvalidInput for invalid knots,\n"
+      "span or a negative order.");
+  m.def(
+      "periodic_knots",
+      [](const Knots& b, int degree) {
+        check_breakpoints(b, degree);
+        return vector_array(periodic_knots(b, degree));
+      },
+      py::arg("breakpoints"), py::arg("degree"),
+      "Knot vector (1-D array, m + 2d + 1 values) of a closed curve with period breakpoints b_0..b_m.\n\n"
+      "Raises InvalidInput for fewer than 2, non-finite or decreasing breakpoints or an empty period.");
+}
+
+void bind_curve(py::module_& m) {
+  py::class_<Curve>(
+      m, "Curve",
+      "A B-spline or NURBS curve (immutable). Build with Curve(...) or uniform_bspline.\n\n"
+      "A closed curve of m control points is stored expanded: m + degree rows of P, periodic knots.")
+      .def(py::init([](int degree, Knots knots, const DoubleArray& points,
+                       const std::optional<DoubleArray>& weights, bool closed) {
+             const Points P = to_points(points, "points");
+             const Eigen::VectorXd w = optional_weights(weights);
+             return closed ? make_closed_curve(degree, std::move(knots), P, w)
+                           : make_curve(degree, std::move(knots), P, w);
+           }),
+           py::arg("degree"), py::arg("knots"), py::arg("points"), py::arg("weights") = py::none(),
+           py::arg("closed") = false,
+           "Validated curve (make_curve / make_closed_curve).\n\n"
+           "degree: 1..kMaxDegree. knots: n + degree + 1 knots (open), or the m + 1 breakpoints of the "
+           "period\n"
+           "(closed). points: (n, dim) Cartesian control points. weights: None or n positive values "
+           "(rational).\n"
+           "Raises InvalidInput with the library's message for any invalid input.")
+      .def_readonly("degree", &Curve::degree, "Polynomial degree.")
+      .def_property_readonly(
+          "knots", [](const Curve& c) { return vector_array(c.knots); },
+          "The full knot vector (1-D array; periodic knots for closed curves).")
+      .def_property_readonly(
+          "P", [](const Curve& c) { return Points(c.P); },
+          "Stored control rows (n, dim + rational): homogeneous (w·x, w) when rational; closed curves\n"
+          "repeat their first `degree` points at the end.")
+      .def_readonly("rational", &Curve::rational, "True for a NURBS (weighted) curve.")
+      .def_readonly("closed", &Curve::closed, "True for a closed (periodic) curve.")
+      .def("__repr__", &curve_repr, "Short description.");
+
+  m.def(
+      "uniform_bspline",
+      [](const DoubleArray& polygon, int degree, bool closed) {
+        return uniform_bspline(to_points(polygon, "points"), degree, closed);
+      },
+      py::arg("polygon"), py::arg("degree"), py::arg("closed"),
+      "The uniform B-spline of `degree` on a control polygon (n, dim).\n\n"
+      "closed: periodic with breakpoints 0..n (n ≥ 2); open: clamped with interior knots 1..n − d − 1.\n"
+      "Raises InvalidInput for too few points or a bad degree.");
+  m.def("dimension", py::overload_cast<const Curve&>(&dimension), py::arg("curve"), "Cartesian dimension.");
+  m.def(
+      "domain", [](const Curve& c) { return as_tuple(domain(c)); }, py::arg("curve"),
+      "The parameter domain (start, end); one period for closed curves.");
+  m.def("distinct_count", &distinct_count, py::arg("curve"),
+        "Number of distinct control points: n, or m for a closed curve.");
+  m.def(
+      "defining_knots", [](const Curve& c) { return vector_array(defining_knots(c)); }, py::arg("curve"),
+      "The knots given to the constructor: the period's breakpoints (closed) or the knot vector (open).");
+  m.def("cartesian_points", py::overload_cast<const Curve&>(&cartesian_points), py::arg("curve"),
+        "Cartesian control points (distinct_count, dim).");
+  m.def("weights", py::overload_cast<const Curve&>(&weights), py::arg("curve"),
+        "Weights (distinct_count,); ones for a non-rational curve.");
+  m.def("segment_count", &segment_count, py::arg("curve"),
+        "Number of polynomial segments (non-empty spans).");
+  m.def("domain_parameter", &domain_parameter, py::arg("curve"), py::arg("u"),
+        "Maps u into the domain: wrapped by the period for closed curves.\n\n"
+        "Raises InvalidInput for an open curve when u is outside the domain or not finite.");
+  m.def("evaluate", py::overload_cast<const Curve&, double>(&evaluate), py::arg("curve"), py::arg("u"),
+        "Curve point at u (1-D array of dim values; de Boor).\n\n"
+        "Closed curves wrap u; open curves raise InvalidInput outside the domain.");
+  m.def(
+      "evaluate", [](const Curve& c, const std::vector<double>& us) { return evaluate(c, us); }, Release(),
+      py::arg("curve"), py::arg("us"),
+      "Curve points at many parameters: array (len(us), dim), in order.\n\nRaises InvalidInput as "
+      "evaluate(curve, u).");
+  m.def("evaluate_basis", &evaluate_basis, py::arg("curve"), py::arg("u"),
+        "Curve point by the basis form Σ N_i(u) P_i (1-D array); an independent route to evaluate.");
+  m.def(
+      "uniform_parameters",
+      [](DomainTuple dom, int count) {
+        if (count < 0) throw InvalidInput("count " + std::to_string(count) + " is negative");
+        return vector_array(uniform_parameters({dom.first, dom.second}, count));
+      },
+      py::arg("domain"), py::arg("count"),
+      "`count` parameters evenly spaced over domain = (start, end), both ends included (1-D array).\n\n"
+      "count = 1 gives the start. Raises InvalidInput for a negative count.");
+  m.def("derivatives", py::overload_cast<const Curve&, double, int>(&derivatives), py::arg("curve"),
+        py::arg("u"), py::arg("order"),
+        "Derivatives of order 0..order at u: array (order + 1, dim), Cartesian.\n\n"
+        "Raises InvalidInput for a negative order or u outside an open curve's domain.");
+  m.def(
+      "blossom",
+      [](const Curve& c, const std::vector<double>& args, std::optional<int> span) {
+        return span ? blossom(c, args, *span) : blossom(c, args);
+      },
+      py::arg("curve"), py::arg("args"), py::arg("span") = py::none(),
+      "Blossom (polar form) at `degree` arguments, in stored coordinates (homogeneous when rational).\n\n"
+      "span: the piece to use (default: the span containing the arguments' mean). blossom(c, [u]*d) is\n"
+      "the (stored) curve point. Raises InvalidInput for a wrong argument count or span.");
+  m.def("to_cartesian", &to_cartesian, py::arg("curve"), py::arg("row"),
+        "Cartesian projection of a stored-coordinate row (divides by w when rational).");
+}
+
+void bind_refine(py::module_& m) {
+  m.def("insert_knot", py::overload_cast<const Curve&, double, int>(&insert_knot), py::arg("curve"),
+        py::arg("u"), py::arg("times") = 1,
+        "Inserts u `times` times (Boehm); the curve is unchanged.\n\n"
+        "Raises InvalidInput when u is outside the domain or its multiplicity would exceed the degree.");
+  m.def(
+      "refine", [](const Curve& c, const std::vector<double>& knots) { return refine(c, knots); }, Release(),
+      py::arg("curve"), py::arg("new_knots"),
+      "Inserts many knots at once (any order, repeats allowed); the curve is unchanged.\n\n"
+      "Raises InvalidInput as insert_knot.");
+  m.def("refine_midpoints", py::overload_cast<const Curve&>(&refine_midpoints), Release(), py::arg("curve"),
+        "Inserts the midpoint of every non-empty span (one knot-doubling step).");
+  m.def("split_bezier", &split_bezier, Release(), py::arg("curve"),
+        "The polynomial pieces as clamped Bézier curves (list of Curve), one per segment, in order.");
+  m.def("elevate_degree", &elevate_degree, Release(), py::arg("curve"), py::arg("times") = 1,
+        "Raises the degree by `times`; the curve is unchanged.\n\n"
+        "Raises InvalidInput for negative times or a degree above kMaxDegree.");
+  py::class_<Removal>(m, "Removal", "Result of remove_knot.")
+      .def_readonly("curve", &Removal::curve, "The curve after removal.")
+      .def_readonly("removed", &Removal::removed, "How many copies of the knot were removed.")
+      .def_readonly("deviation_bound", &Removal::deviation_bound,
+                    "Proven bound on the distance between the old and the new curve.")
+      .def(
+          "__repr__",
+          [](const Removal& r) {
+            return "Removal(removed=" + std::to_string(r.removed) +
+                   ", deviation_bound=" + py::repr(py::float_(r.deviation_bound)).cast<std::string>() + ")";
+          },
+          "Short description.");
+  m.def(
+      "remove_knot", &remove_knot, Release(), py::arg("curve"), py::arg("u"), py::arg("times"),
+      py::arg("tolerance"),
+      "Removes up to `times` copies of the interior knot u while the curve moves by at most `tolerance`.\n\n"
+      "Returns a Removal. Open curves only: raises InvalidInput for closed curves, knots that are not\n"
+      "interior, negative times or tolerance.");
+}
+
+void bind_surface(py::module_& m) {
+  py::enum_<Direction>(m, "Direction", "Parameter direction of a surface.")
+      .value("u", Direction::u, "First direction (rows of the control net).")
+      .value("v", Direction::v, "Second direction (columns of the control net).")
+      // enum_'s own `value` property has no docstring.
+      .def_property_readonly(
+          "value", [](Direction d) { return static_cast<int>(d); }, "The integer value (u = 0, v = 1).");
+  py::class_<Surface>(
+      m, "Surface",
+      "A tensor-product B-spline or NURBS surface (immutable). Control point (i, j) — i along u,\n"
+      "j along v — is row i·nv + j of P.")
+      .def(py::init(&make_surface_from), py::arg("degree"), py::arg("knots"), py::arg("points"),
+           py::arg("weights") = py::none(), py::arg("count") = py::none(),
+           "Validated surface (make_surface).\n\n"
+           "degree: (p, q). knots: (knots_u, knots_v). points: (nu, nv, dim), or (nu·nv, dim) with\n"
+           "count=(nu, nv). weights: None, (nu, nv) or (nu·nv,) positive values.\n"
+           "Raises InvalidInput with the library's message for any invalid input.")
+      .def_property_readonly(
+          "degree", [](const Surface& s) { return py::make_tuple(s.degree[0], s.degree[1]); },
+          "Degrees (p, q).")
+      .def_property_readonly(
+          "knots",
+          [](const Surface& s) { return py::make_tuple(vector_array(s.knots[0]), vector_array(s.knots[1])); },
+          "Knot vectors (knots_u, knots_v) as 1-D arrays.")
+      .def_property_readonly(
+          "count", [](const Surface& s) { return py::make_tuple(s.count[0], s.count[1]); },
+          "Control net size (nu, nv).")
+      .def_property_readonly(
+          "P", [](const Surface& s) { return Points(s.P); },
+          "Stored control rows (nu·nv, dim + rational), homogeneous (w·x, w) when rational.")
+      .def_readonly("rational", &Surface::rational, "True for a NURBS (weighted) surface.")
+      .def("__repr__", &surface_repr, "Short description.");
+
+  m.def("dimension", py::overload_cast<const Surface&>(&dimension), py::arg("surface"),
+        "Cartesian dimension.");
+  m.def(
+      "domain", [](const Surface& s, Direction dir) { return as_tuple(domain(s, dir)); }, py::arg("surface"),
+      py::arg("direction"), "The parameter domain (start, end) in one direction.");
+  m.def("cartesian_points", py::overload_cast<const Surface&>(&cartesian_points), py::arg("surface"),
+        "Cartesian control points (nu·nv, dim).");
+  m.def("weights", py::overload_cast<const Surface&>(&weights), py::arg("surface"),
+        "Weights (nu·nv,); ones for a non-rational surface.");
+  m.def("evaluate", py::overload_cast<const Surface&, double, double>(&evaluate), py::arg("surface"),
+        py::arg("u"), py::arg("v"),
+        "Surface point at (u, v) (1-D array).\n\nRaises InvalidInput outside the domain.");
+  m.def(
+      "evaluate_grid",
+      [](const Surface& s, const std::vector<double>& us, const std::vector<double>& vs) {
+        return evaluate_grid(s, us, vs);
+      },
+      Release(), py::arg("surface"), py::arg("us"), py::arg("vs"),
+      "Points on the grid us × vs: array (len(us)·len(vs), dim), row a·len(vs) + b = S(us[a], vs[b]).\n\n"
+      "Raises InvalidInput for parameters outside the domain.");
+  m.def("derivatives", py::overload_cast<const Surface&, double, double, int>(&derivatives),
+        py::arg("surface"), py::arg("u"), py::arg("v"), py::arg("order"),
+        "Partial derivatives ∂^{k+l}S/∂u^k∂v^l for k + l ≤ order: array ((order+1)², dim),\n"
+        "row k·(order + 1) + l (rows with k + l > order are zero).\n\n"
+        "Raises InvalidInput for a negative order or (u, v) outside the domain.");
+  m.def("normal", &normal, py::arg("surface"), py::arg("u"), py::arg("v"),
+        "Unit normal S_u × S_v / |S_u × S_v| (3 values).\n\n"
+        "Raises InvalidInput where it is undefined or when the surface is not 3-D.");
+  m.def("insert_knot", py::overload_cast<const Surface&, Direction, double, int>(&insert_knot),
+        py::arg("surface"), py::arg("direction"), py::arg("t"), py::arg("times") = 1,
+        "Inserts t `times` times in one direction; the surface is unchanged.\n\n"
+        "Raises InvalidInput outside the domain or beyond multiplicity degree.");
+  m.def(
+      "refine",
+      [](const Surface& s, Direction dir, const std::vector<double>& knots) { return refine(s, dir, knots); },
+      Release(), py::arg("surface"), py::arg("direction"), py::arg("new_knots"),
+      "Inserts many knots in one direction; the surface is unchanged.\n\nRaises InvalidInput as "
+      "insert_knot.");
+  m.def("refine_midpoints", py::overload_cast<const Surface&>(&refine_midpoints), Release(),
+        py::arg("surface"), "Inserts the midpoint of every non-empty span in both directions.");
+  m.def("direction_curve", &direction_curve, py::arg("surface"), py::arg("direction"),
+        "The curve of control lines along `direction`: each row of its points is a whole line of the net,\n"
+        "flattened (stored coordinates).");
+}
+
+void bind_doubling(py::module_& m) {
+  py::enum_<Half>(m, "Half", "Halves of a segment after inserting its midpoint.")
+      .value("G", Half::G, "Left half.")
+      .value("D", Half::D, "Right half.")
+      .def_property_readonly(
+          "value", [](Half h) { return static_cast<int>(h); }, "The integer value (G = 0, D = 1).");
+  m.def(
+      "validate_window", [](const Window& w, int degree) { validate_window(w, degree); }, py::arg("window"),
+      py::arg("degree"),
+      "Checks a window: 2d − 1 finite non-negative inter-knot lengths with a positive centre.\n\n"
+      "Raises InvalidInput otherwise.");
+  m.def(
+      "child_window",
+      [](const Window& w, int degree, Half half) { return vector_array(child_window(w, degree, half)); },
+      py::arg("window"), py::arg("degree"), py::arg("half"),
+      "Window (1-D array) of the G or D half after knot doubling, scaled by 2.\n\nRaises InvalidInput for a "
+      "bad window.");
+  m.def(
+      "subdivision_matrix",
+      [](const Window& w, int degree, Half half) { return subdivision_matrix(w, degree, half); },
+      py::arg("window"), py::arg("degree"), py::arg("half"),
+      "(d + 1, d + 1) matrix M with Q = M·P: the control points of the G or D half from the segment's.\n\n"
+      "Raises InvalidInput for a bad window.");
+  m.def(
+      "segment_window",
+      [](const Knots& knots, int degree, int span) {
+        check_span(knots, degree, span);
+        return vector_array(segment_window(knots, degree, span));
+      },
+      py::arg("knots"), py::arg("degree"), py::arg("span"),
+      "The window (2d − 1 inter-knot lengths, 1-D array) of the segment on the non-empty `span`.\n\n"
+      "Raises InvalidInput for invalid knots or span.");
+}
+
+}  // namespace
+
+void bind_nurbs(py::module_& m) {
+  bind_knots(m);
+  bind_curve(m);
+  bind_refine(m);
+  bind_surface(m);
+  bind_doubling(m);
+}
 
 }  // namespace cifs::python
