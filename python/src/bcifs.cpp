@@ -179,8 +179,10 @@ one side, a transition listed free twice …)doc")
            }),
            py::arg("automaton"), py::arg("dimension"), py::arg("boundaries"), py::arg("constraints"),
            py::arg("free"), "Builds and validates a BC-IFS (see the class docstring).")
-      .def_readonly("automaton", &ifs::Bcifs::automaton,
-                    "The automaton (a copy): cells and transition matrices.")
+      .def_property_readonly(
+          "automaton", [](const ifs::Bcifs& s) { return s.automaton; },
+          "The automaton (a copy, so that the validated system cannot change): cells and transition "
+          "matrices.")
       .def_readonly("dimension", &ifs::Bcifs::dimension, "Dimension of each cell, indexed by state id.")
       .def_readonly("boundaries", &ifs::Bcifs::boundaries,
                     "The boundary operators (list of BoundaryOperator).")

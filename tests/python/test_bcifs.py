@@ -322,6 +322,8 @@ class BuiltFromScratchTest(unittest.TestCase):
         self.assertEqual(ifs.transition_name(a, (0, 2)), "E/B")
         self.assertEqual(ifs.coefficient_name(a, ifs.Coefficient((0, 1), 1, 2)), "E/D[1,2]")
         assert_close(self, a.matrix(0, 0), tree_json()["transitions"][0]["matrix"], rel=0)
+        a.add_state(1, "X")  # a copy: the validated system keeps its two cells
+        self.assertEqual(s.automaton.state_count, 2)
         with self.assertRaises(cifs.InvalidInput) as e:
             ifs.transition_name(a, (0, 3))
         self.assertEqual(str(e.exception), "transition 3 of state E, which has 3 transitions")
