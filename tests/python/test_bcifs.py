@@ -20,7 +20,8 @@ def tree_json():
 
 def matrices(text):
     """{(source name, label): matrix} of BC-IFS JSON text."""
-    return {(t["from"], t["label"]): np.array(t["matrix"], dtype=float) for t in json.loads(text)["bcifs"]["transitions"]}
+    transitions = json.loads(text)["bcifs"]["transitions"]
+    return {(t["from"], t["label"]): np.array(t["matrix"], dtype=float) for t in transitions}
 
 
 def unknown_values(text, free_keys):
