@@ -1,10 +1,460 @@
 // SPDX-License-Identifier: MIT
-// cifs Python bindings — bcifs (to be written).
+// cifs Python bindings — BC-IFS (cifs.ifs): cells, boundary operators, constraints, the admissible
+// space of free coefficients, perturbation, edge pieces; BC-IFS files (cifs.io).
+#include <cmath>
+#include <limits>
+#include <map>
+#include <optional>
+#include <string>
+
 #include "bindings.hpp"
+#include "cifs/errors.hpp"
+#include "cifs/ifs/bcifs.hpp"
+#include "cifs/ifs/bcifs_curve.hpp"
+#include "cifs/ifs/bcifs_surface.hpp"
+#include "cifs/io/bcifs_json.hpp"
+
+namespace ifs = cifs::ifs;
+
+// TransitionRef ↔ (source, child): a tuple of two non-negative integers (source state, position among
+// its out-edges).
+namespace pybind11::detail {
+template <>
+struct type_caster<ifs::TransitionRef> {
+  PYBIND11_TYPE_CASTER(ifs::TransitionRef, const_name("tuple[int, int]"));
+
+  bool load(handle src, bool convert) {
+    if (!src || !isinstance<sequence>(src) || isinstance<str>(src)) return false;
+    const auto seq = reinterpret_borrow<sequence>(src);
+    if (seq.size() != 2) return false;
+    make_caster<long long> from, child;
+    if (!from.load(seq[0], convert) || !child.load(seq[1], convert)) return false;
+    const auto f = cast_op<long long>(from), c = cast_op<long long>(child);
+    if (f < 0 || c < 0 || c > std::numeric_limits<int>::max())
+      throw cifs::InvalidInput("transition (" + std::to_string(f) + ", " + std::to_string(c) +
+                               "): state and child are non-negative");
+    value = {static_cast<cifs::automata::StateId>(f), static_cast<int>(c)};
+    return true;
+  }
+
+  static handle cast(const ifs::TransitionRef& ref, return_value_policy, handle) {
+    return make_tuple(ref.from, ref.child).release();
+  }
+};
+}  // namespace pybind11::detail
 
 namespace cifs::python {
+namespace {
 
-void bind_bcifs(py::module_& m) { (void)m; }
-void bind_bcifs_io(py::module_& m) { (void)m; }
+/// The admissible space with the names of its unknowns (read from the system it was solved for).
+struct Space {
+  ifs::AdmissibleSpace space;
+  std::vector<std::string> unknown_names;
+};
+
+/// Refuses a space that does not fit `system` (solved for another one), before C++ indexes with it.
+void check_space(const ifs::Bcifs& system, const Space& s, const char* where) {
+  for (const ifs::Coefficient& u : s.space.unknowns) {
+    const auto& M = system.automaton.graph[ifs::transition_id(system.automaton, u.transition)].matrix;
+    if (u.row >= M.rows() || u.col >= M.cols() || u.row < 0 || u.col < 0 ||
+        ifs::coefficient_name(system.automaton, u) != s.unknown_names[&u - s.space.unknowns.data()])
+      throw InvalidInput(std::string(where) + ": the admissible space was solved for another system");
+  }
+}
+
+std::string factor_repr(const ifs::Factor& f) {
+  if (f.kind == ifs::Factor::Kind::boundary) return "Factor(boundary=" + std::to_string(f.boundary) + ")";
+  return "Factor(transition=(" + std::to_string(f.transition.from) + ", " +
+         std::to_string(f.transition.child) + "))";
+}
+
+/// Upper bound of the pieces edge_pieces produces: entries × (largest out-degree)^depth.
+double piece_bound(const automata::Automaton& a, int depth) {
+  std::size_t degree = 0;
+  const auto [first, last] = boost::vertices(a.graph);
+  for (auto s = first; s != last; ++s) degree = std::max<std::size_t>(degree, boost::out_degree(*s, a.graph));
+  return static_cast<double>(a.initial.size()) * std::pow(static_cast<double>(degree), depth);
+}
+
+constexpr double kMaxPieces = 1 << 26;
+
+}  // namespace
+
+void bind_bcifs(py::module_& m) {
+  py::class_<ifs::BoundaryOperator>(
+      m, "BoundaryOperator",
+      R"doc(A 0/1 selection: the net of cell `boundary` is rows `rows` of the net of `cell`.
+
+BoundaryOperator(name, cell, boundary, rows): name per cell ("start", "end", "u0", …), cell and
+boundary state ids, rows: one row index of the cell per point of the boundary cell. Checked when
+the Bcifs is built.)doc")
+      .def(py::init([](std::string name, automata::StateId cell, automata::StateId boundary,
+                       std::vector<int> rows) {
+             return ifs::BoundaryOperator{std::move(name), cell, boundary, std::move(rows)};
+           }),
+           py::arg("name"), py::arg("cell"), py::arg("boundary"), py::arg("rows"),
+           "Builds a boundary operator (validated with the Bcifs that uses it).")
+      .def_readonly("name", &ifs::BoundaryOperator::name, "Name, unique per cell (e.g. 'start').")
+      .def_readonly("cell", &ifs::BoundaryOperator::cell, "State id of the cell.")
+      .def_readonly("boundary", &ifs::BoundaryOperator::boundary, "State id of the boundary cell.")
+      .def_readonly("rows", &ifs::BoundaryOperator::rows, "Rows of the cell's net selected (list of int).")
+      .def("__repr__", [](const ifs::BoundaryOperator& b) {
+        return "BoundaryOperator('" + b.name + "', cell=" + std::to_string(b.cell) +
+               ", boundary=" + std::to_string(b.boundary) + ")";
+      });
+
+  py::class_<ifs::Factor> factor(m, "Factor", R"doc(One factor of a constraint's operator product.
+
+Factor(boundary=i): the boundary operator i of the Bcifs (index into Bcifs.boundaries);
+Factor(transition=(source, child)): the matrix of that transition.)doc");
+  py::enum_<ifs::Factor::Kind> kind(factor, "Kind", "What a factor is: a boundary operator or a transition.");
+  kind.value("boundary", ifs::Factor::Kind::boundary, "a boundary operator")
+      .value("transition", ifs::Factor::Kind::transition, "a transition matrix");
+  kind.attr("value").attr("__doc__") = "The integer value of the kind.";
+  factor
+      .def(py::init([](int boundary) {
+             return ifs::Factor{ifs::Factor::Kind::boundary, boundary, {}};
+           }),
+           py::kw_only(), py::arg("boundary"), "A boundary-operator factor (index into Bcifs.boundaries).")
+      .def(py::init([](ifs::TransitionRef transition) {
+             return ifs::Factor{ifs::Factor::Kind::transition, 0, transition};
+           }),
+           py::kw_only(), py::arg("transition"), "A transition factor, transition = (source state, child).")
+      .def_readonly("kind", &ifs::Factor::kind, "Factor.Kind.boundary or Factor.Kind.transition.")
+      .def_readonly("boundary", &ifs::Factor::boundary, "Index of the boundary operator (boundary factors).")
+      .def_readonly("transition", &ifs::Factor::transition,
+                    "(source, child) of the transition (transition factors).")
+      .def("__repr__", &factor_repr);
+
+  py::class_<ifs::Constraint>(
+      m, "Constraint", R"doc(A linear constraint `left == right`: each side a product F_0·F_1⋯F_k of Factors.
+
+Constraint(name, left, right): F_k acts first on a net; both sides map the same source cell to the
+same target cell and hold at most one free transition each (checked by the Bcifs).)doc")
+      .def(py::init([](std::string name, std::vector<ifs::Factor> left, std::vector<ifs::Factor> right) {
+             return ifs::Constraint{std::move(name), std::move(left), std::move(right)};
+           }),
+           py::arg("name"), py::arg("left"), py::arg("right"),
+           "Builds a constraint from two lists of Factors.")
+      .def_readonly("name", &ifs::Constraint::name, "Name of the constraint (e.g. 'junction').")
+      .def_readonly("left", &ifs::Constraint::left, "Factors of the left side (list of Factor).")
+      .def_readonly("right", &ifs::Constraint::right, "Factors of the right side (list of Factor).")
+      .def("__repr__", [](const ifs::Constraint& c) {
+        return "Constraint('" + c.name + "', " + std::to_string(c.left.size()) + " = " +
+               std::to_string(c.right.size()) + " factors)";
+      });
+
+  py::class_<ifs::Coefficient>(m, "Coefficient", "An entry (row, col) of the matrix of a free transition.")
+      .def(py::init([](ifs::TransitionRef transition, int row, int col) {
+             return ifs::Coefficient{transition, row, col};
+           }),
+           py::arg("transition"), py::arg("row"), py::arg("col"),
+           "Entry (row, col) of transition (source, child).")
+      .def_readonly("transition", &ifs::Coefficient::transition, "(source, child) of the transition.")
+      .def_readonly("row", &ifs::Coefficient::row, "Row of the entry.")
+      .def_readonly("col", &ifs::Coefficient::col, "Column of the entry.")
+      .def("__repr__", [](const ifs::Coefficient& c) {
+        return "Coefficient((" + std::to_string(c.transition.from) + ", " +
+               std::to_string(c.transition.child) + "), " + std::to_string(c.row) + ", " +
+               std::to_string(c.col) + ")";
+      });
+
+  py::class_<ifs::Bcifs>(
+      m, "Bcifs",
+      R"doc(A boundary controlled IFS (docs/bcifs.md): cells, boundary operators, constraints, free transitions.
+
+Bcifs(automaton, dimension, boundaries, constraints, free): automaton: cifs.automata.Automaton whose
+states are the cells; dimension: one of 0 (vertex), 1 (edge), 2 (face) per state; boundaries: list
+of BoundaryOperator; constraints: list of Constraint; free: list of (source, child) transitions
+whose matrices are unknowns. Raises cifs.InvalidInput (ifs::validate) when the structure is
+inconsistent: wrong dimension count, bad rows, factors that do not chain, two free transitions on
+one side, a transition listed free twice …)doc")
+      .def(py::init([](automata::Automaton automaton, std::vector<int> dimension,
+                       std::vector<ifs::BoundaryOperator> boundaries,
+                       std::vector<ifs::Constraint> constraints, std::vector<ifs::TransitionRef> free) {
+             ifs::Bcifs system{std::move(automaton), std::move(dimension), std::move(boundaries),
+                               std::move(constraints), std::move(free)};
+             ifs::validate(system);
+             return system;
+           }),
+           py::arg("automaton"), py::arg("dimension"), py::arg("boundaries"), py::arg("constraints"),
+           py::arg("free"), "Builds and validates a BC-IFS (see the class docstring).")
+      .def_property_readonly(
+          "automaton", [](const ifs::Bcifs& s) { return s.automaton; },
+          "The automaton (a copy, so that the validated system cannot change): cells and transition "
+          "matrices.")
+      .def_readonly("dimension", &ifs::Bcifs::dimension, "Dimension of each cell, indexed by state id.")
+      .def_readonly("boundaries", &ifs::Bcifs::boundaries,
+                    "The boundary operators (list of BoundaryOperator).")
+      .def_readonly("constraints", &ifs::Bcifs::constraints, "The constraints (list of Constraint).")
+      .def_readonly("free", &ifs::Bcifs::free, "The free transitions, as (source, child) tuples.")
+      .def("__repr__", [](const ifs::Bcifs& s) {
+        return "Bcifs(cells=" + std::to_string(boost::num_vertices(s.automaton.graph)) +
+               ", boundaries=" + std::to_string(s.boundaries.size()) +
+               ", constraints=" + std::to_string(s.constraints.size()) +
+               ", free=" + std::to_string(s.free.size()) + ")";
+      });
+
+  m.def("transition_name", &ifs::transition_name, py::arg("automaton"), py::arg("transition"),
+        "'E/G': the source state's name (or 's<id>'), '/', the label of transition (source, child). Raises "
+        "cifs.InvalidInput when the transition does not exist.");
+  m.def(
+      "coefficient_name", &ifs::coefficient_name, py::arg("automaton"), py::arg("coefficient"),
+      "'E/G[1,2]': the name of a Coefficient. Raises cifs.InvalidInput when its transition does not exist.");
+  m.def(
+      "selection_matrix",
+      [](const ifs::Bcifs& system, int boundary) {
+        if (boundary < 0 || static_cast<std::size_t>(boundary) >= system.boundaries.size())
+          throw InvalidInput("selection_matrix: boundary " + std::to_string(boundary) + " does not exist (" +
+                             std::to_string(system.boundaries.size()) + " boundary operators)");
+        return ifs::selection_matrix(system, boundary);
+      },
+      py::arg("system"), py::arg("boundary"),
+      "B of boundary operator `boundary` (index into system.boundaries): float64 (size(boundary), "
+      "size(cell)), "
+      "B[i, rows[i]] = 1. Raises cifs.InvalidInput for an index out of range.");
+  m.def("constraint_residuals", &ifs::constraint_residuals, py::arg("system"),
+        py::call_guard<py::gil_scoped_release>(),
+        R"doc(Residual of each constraint and of each free matrix's row sums: list of (name, value).
+
+Per constraint max |left − right| / max(1, largest |entry|); per free matrix ("<transition> row
+sums") the largest |row sum − 1|.)doc");
+  m.def("check_admissible", &ifs::check_admissible, py::arg("system"), py::arg("tolerance") = 1e-12,
+        py::call_guard<py::gil_scoped_release>(),
+        "Raises cifs.InvalidInput naming the worst constraint when a residual exceeds `tolerance`.");
+
+  m.def(
+      "curve_bcifs",
+      [](const nurbs::Curve& curve, bool free_vertices) {
+        return ifs::curve_bcifs(curve, ifs::CurveBcifsOptions{free_vertices});
+      },
+      py::arg("curve"), py::kw_only(), py::arg("free_vertices") = false,
+      py::call_guard<py::gil_scoped_release>(),
+      R"doc(The automatic BC-IFS of a NURBS curve (cifs.nurbs.Curve; docs/bcifs.md).
+
+free_vertices: False keeps the vertex operators at the knots (the knot points stay on the curve),
+True frees every vertex operator. The NURBS matrices satisfy every constraint.)doc");
+  m.def(
+      "curve_bcifs",
+      [](const automata::Automaton& knots, bool closed, bool free_vertices) {
+        return ifs::curve_bcifs(knots, closed, ifs::CurveBcifsOptions{free_vertices});
+      },
+      py::arg("knots"), py::arg("closed"), py::kw_only(), py::arg("free_vertices") = false,
+      py::call_guard<py::gil_scoped_release>(),
+      "The same from a curve's knot automaton (cifs.automata.knot_automaton); `closed` joins the last "
+      "segment to "
+      "the first. Raises cifs.InvalidInput for states that are not knot-doubling states of one degree ≥ 1.");
+  m.def(
+      "surface_bcifs",
+      [](const nurbs::Surface& surface, bool free_knot_lines) {
+        return ifs::surface_bcifs(surface, ifs::SurfaceBcifsOptions{free_knot_lines});
+      },
+      py::arg("surface"), py::kw_only(), py::arg("free_knot_lines") = false,
+      py::call_guard<py::gil_scoped_release>(),
+      R"doc(The automatic BC-IFS of a NURBS surface (cifs.nurbs.Surface): products of the u and v curve systems.
+
+free_knot_lines: False keeps the cells on knot lines (patch boundaries stay NURBS curves), True
+frees every operator.)doc");
+  m.def(
+      "surface_bcifs",
+      [](const automata::TensorAutomaton& automaton, bool free_knot_lines) {
+        return ifs::surface_bcifs(automaton, ifs::SurfaceBcifsOptions{free_knot_lines});
+      },
+      py::arg("automaton"), py::kw_only(), py::arg("free_knot_lines") = false,
+      py::call_guard<py::gil_scoped_release>(),
+      "The same from a cifs.automata.TensorAutomaton (cifs.automata.tensor_automaton).");
+
+  py::class_<Space>(m, "AdmissibleSpace", R"doc(The admissible matrices: every unknown entry is x = x0 + K·c.
+
+c holds the values of the free coefficients (unknowns[free[j]]); K has a unit row at each free
+index. Result of admissible_space.)doc")
+      .def_property_readonly(
+          "unknowns", [](const Space& s) { return s.space.unknowns; },
+          "Every entry of every free matrix (list of Coefficient): free transitions in order, entries "
+          "row-major.")
+      .def_readonly("unknown_names", &Space::unknown_names, "Names of the unknowns ('E/G[1,2]'), same order.")
+      .def_property_readonly(
+          "free", [](const Space& s) { return vector_array(s.space.free); },
+          "Indices into unknowns of the free coefficients (increasing integer array).")
+      .def_property_readonly(
+          "x0", [](const Space& s) { return Eigen::VectorXd(s.space.x0); },
+          "float64 array (len(unknowns),): the particular solution.")
+      .def_property_readonly(
+          "K",
+          [](const Space& s) {
+            std::vector<long long> rows, cols;
+            std::vector<double> values;
+            for (int k = 0; k < s.space.K.outerSize(); ++k)
+              for (Eigen::SparseMatrix<double>::InnerIterator it(s.space.K, k); it; ++it) {
+                rows.push_back(it.row());
+                cols.push_back(it.col());
+                values.push_back(it.value());
+              }
+            return py::make_tuple(vector_array(rows), vector_array(cols), vector_array(values));
+          },
+          "K in COO form: a tuple (row, col, value) of arrays; K has shape `shape`.")
+      .def_property_readonly(
+          "shape", [](const Space& s) { return py::make_tuple(s.space.K.rows(), s.space.K.cols()); },
+          "Shape of K: (len(unknowns), len(free)).")
+      .def(
+          "dense", [](const Space& s) { return Eigen::MatrixXd(s.space.K); },
+          "K as a dense float64 array (len(unknowns), len(free)).")
+      .def_property_readonly(
+          "components", [](const Space& s) { return s.space.components; },
+          "Number of connected components of the unknown/equation graph (each solved separately).")
+      .def("__repr__", [](const Space& s) {
+        return "AdmissibleSpace(unknowns=" + std::to_string(s.space.unknowns.size()) +
+               ", free=" + std::to_string(s.space.free.size()) +
+               ", components=" + std::to_string(s.space.components) + ")";
+      });
+
+  m.def(
+      "admissible_space",
+      [](const ifs::Bcifs& system, double threshold) {
+        if (!(threshold >= 0) || !std::isfinite(threshold))
+          throw InvalidInput("admissible_space: threshold " + std::to_string(threshold) +
+                             " is not a finite value ≥ 0");
+        Space s{ifs::admissible_space(system, ifs::SolveOptions{threshold}), {}};
+        for (const ifs::Coefficient& u : s.space.unknowns)
+          s.unknown_names.push_back(ifs::coefficient_name(system.automaton, u));
+        return s;
+      },
+      py::arg("system"), py::kw_only(), py::arg("threshold") = ifs::SolveOptions{}.threshold,
+      py::call_guard<py::gil_scoped_release>(),
+      R"doc(Solves the constraints and row sums for the free matrices: the AdmissibleSpace.
+
+threshold: relative rank threshold of the pivoted QR. Raises cifs.InvalidInput when the constraints
+have no solution (naming the constraints of the inconsistent component and the residual).)doc");
+  m.def(
+      "free_names",
+      [](const ifs::Bcifs& system, const Space& space) {
+        check_space(system, space, "free_names");
+        return ifs::free_names(system, space.space);
+      },
+      py::arg("system"), py::arg("space"),
+      "Names of the free coefficients ('E/G[1,2]'), in the order of space.free.");
+  m.def(
+      "free_values",
+      [](const ifs::Bcifs& system, const Space& space) {
+        check_space(system, space, "free_values");
+        return ifs::free_values(system, space.space);
+      },
+      py::arg("system"), py::arg("space"),
+      "The current values of the free coefficients, read from the matrices: float64 array "
+      "(len(space.free),).");
+  m.def(
+      "with_free_values",
+      [](const ifs::Bcifs& system, const Space& space, const Eigen::VectorXd& c) {
+        check_space(system, space, "with_free_values");
+        return ifs::with_free_values(system, space.space, c);
+      },
+      py::arg("system"), py::arg("space"), py::arg("c"),
+      "The system with every free matrix set to x0 + K·c (c: one value per free coefficient). Raises "
+      "cifs.InvalidInput for a wrong number of values or a space solved for another system.");
+
+  py::class_<ifs::Perturbation>(m, "Perturbation",
+                                "Result of perturb: the perturbed system and how it was made.")
+      .def_readonly("system", &ifs::Perturbation::system, "The perturbed Bcifs.")
+      .def_readonly("values", &ifs::Perturbation::values,
+                    "Every free coefficient and the value used: list of (name, value), in free order.")
+      .def_readonly("residual", &ifs::Perturbation::residual,
+                    "Largest constraint residual of the result (≤ 1e-12).")
+      .def_readonly("contraction", &ifs::Perturbation::contraction,
+                    "The contractivity witness of the result (cifs.ifs.Contraction).")
+      .def("__repr__", [](const ifs::Perturbation& p) {
+        return "Perturbation(values=" + std::to_string(p.values.size()) +
+               ", residual=" + py::repr(py::float_(p.residual)).cast<std::string>() + ")";
+      });
+
+  m.def(
+      "perturb",
+      [](const ifs::Bcifs& system, double amplitude, std::uint64_t seed,
+         const std::optional<std::map<std::string, double>>& values, double threshold, int max_length,
+         bool tighten) {
+        if (max_length < 1 || max_length > 16)
+          throw InvalidInput("perturb: max_length is " + std::to_string(max_length) + ", must be in [1, 16]");
+        ifs::PerturbOptions options;
+        options.amplitude = amplitude;
+        options.seed = seed;
+        options.values = values.value_or(std::map<std::string, double>{});
+        options.solve.threshold = threshold;
+        options.contraction = ifs::ContractionOptions{max_length, tighten};
+        return ifs::perturb(system, options);
+      },
+      py::arg("system"), py::kw_only(), py::arg("amplitude") = 0.0, py::arg("seed") = 1,
+      py::arg("values") = py::none(), py::arg("threshold") = ifs::SolveOptions{}.threshold,
+      py::arg("max_length") = ifs::ContractionOptions{}.max_length,
+      py::arg("tighten") = ifs::ContractionOptions{}.tighten, py::call_guard<py::gil_scoped_release>(),
+      R"doc(Perturbs the free coefficients, solves the dependent ones and checks the result.
+
+amplitude: each free coefficient gets current value + uniform in [−amplitude, amplitude], drawn
+from the project's xoshiro256** seeded by `seed` (same seed, same values as the CLI's experiments);
+values: dict name → value setting free coefficients instead of the draw; threshold: rank threshold
+of the solver; max_length (1 … 16), tighten: options of the contraction check. Returns a
+Perturbation. Raises cifs.InvalidInput for a negative or non-finite amplitude, unknown or dependent
+names in values, residuals above 1e-12, or a non-contractive result.)doc");
+
+  m.def("edge_end_functionals", &ifs::edge_end_functionals, py::arg("system"),
+        R"doc(Start and end functionals of every reachable edge cell (cifs.ifs.EndFunctionals).
+
+ℓ_V·B with B the cell's "start" (or "end") boundary operator and ℓ_V the fixed point of the vertex
+cell it selects. Raises cifs.InvalidInput when an edge cell lacks a "start" or "end" boundary.)doc");
+
+  py::class_<ifs::EdgePieces>(m, "EdgePieces",
+                              "The pieces of an edge system at a depth (result of edge_pieces).")
+      .def_readonly("start", &ifs::EdgePieces::start, "Start point of each piece: float64 (count, cols).")
+      .def_readonly("end", &ifs::EdgePieces::end, "End point of each piece: float64 (count, cols).")
+      .def_property_readonly(
+          "state", [](const ifs::EdgePieces& p) { return vector_array(p.state); },
+          "Cell (state id) of each piece: integer array (count,).")
+      .def_property_readonly(
+          "initial", [](const ifs::EdgePieces& p) { return vector_array(p.initial); },
+          "Initial entry each piece descends from: integer array (count,).")
+      .def_readonly("word", &ifs::EdgePieces::word,
+                    "Child indices from the initial entry (list of lists of int).")
+      .def("__repr__", [](const ifs::EdgePieces& p) {
+        return "EdgePieces(count=" + std::to_string(p.start.rows()) + ")";
+      });
+
+  m.def(
+      "edge_pieces",
+      [](const ifs::Bcifs& system, const std::vector<Points>& nets, int depth) {
+        if (depth > 0 && piece_bound(system.automaton, depth) > kMaxPieces)
+          throw InvalidInput("edge_pieces: depth " + std::to_string(depth) +
+                             " may give more than 2^26 pieces");
+        return ifs::edge_pieces(system, nets, depth);
+      },
+      py::arg("system"), py::arg("nets"), py::arg("depth"), py::call_guard<py::gil_scoped_release>(),
+      R"doc(Start and end points of every node of an edge system at `depth` (initial entries in order, children in order).
+
+nets: one float64 array (size(state), cols) per initial entry. Returns EdgePieces. Raises
+cifs.InvalidInput for nets that do not fit the entries, a negative depth, more than 2^26 pieces,
+or a piece in a cell that is not an edge.)doc");
+}
+
+void bind_bcifs_io(py::module_& m) {
+  py::class_<io::BcifsFile>(m, "BcifsFile", "A BC-IFS and the control nets of its initial entries.")
+      .def_readonly("system", &io::BcifsFile::system, "The cifs.ifs.Bcifs.")
+      .def_readonly(
+          "nets", &io::BcifsFile::nets,
+          "One float64 array (size(state), cols) per initial entry (empty list when the file gives none).")
+      .def("__repr__", [](const io::BcifsFile& f) {
+        return "BcifsFile(cells=" + std::to_string(boost::num_vertices(f.system.automaton.graph)) +
+               ", nets=" + std::to_string(f.nets.size()) + ")";
+      });
+  m.def("read_bcifs", &io::read_bcifs, py::arg("path"),
+        "Reads a BC-IFS file (docs/formats.md) into a BcifsFile. Raises cifs.IoError (unreadable file, JSON "
+        "syntax) or cifs.InvalidInput (content, with its JSON path).");
+  m.def("parse_bcifs_json", &io::parse_bcifs_json, py::arg("text"), py::arg("where") = "<string>",
+        "Parses BC-IFS JSON text; `where` prefixes error messages (a file name). Raises cifs.IoError or "
+        "cifs.InvalidInput.");
+  m.def(
+      "to_json",
+      [](const ifs::Bcifs& system, const std::vector<Points>& nets) { return io::to_json(system, nets); },
+      py::arg("system"), py::arg("nets") = std::vector<Points>{},
+      "BC-IFS JSON text of a cifs.ifs.Bcifs; nets: none, or one array per initial entry. Cell names must be "
+      "free of "
+      "'.' and '/'.");
+}
 
 }  // namespace cifs::python

@@ -1,0 +1,466 @@
+# SPDX-License-Identifier: MIT
+"""cifs.subdivision against `cifs scheme` (analysis JSON, refined polygons, errors), published
+smoothness values and exact identities (difference masks, power norms, refinement steps)."""
+import json
+import unittest
+from fractions import Fraction
+
+import numpy as np
+
+import cifs
+from cifs import subdivision as sd
+from support import ScratchTestCase, assert_close, cli, cli_json
+
+# (CLI name, parameters as the CLI takes them, the same scheme built in Python)
+SCHEMES = [
+    ("chaikin", {}, lambda: sd.chaikin()),
+    ("four-point", {}, lambda: sd.four_point()),
+    ("b-spline", {"degree": "3"}, lambda: sd.b_spline(3)),
+    ("dual-four-point", {}, lambda: sd.dual_four_point()),
+    ("generalized-four-point", {"w": "0.2"}, lambda: sd.generalized_four_point(Fraction(1, 5))),
+    ("corner-cutting", {"a": "1/10", "b": "3/5"}, lambda: sd.corner_cutting("1/10", Fraction(3, 5))),
+    ("romani", {"n": "2", "w": "1/32"}, lambda: sd.romani(2, Fraction(1, 32))),
+    ("lr-four-point", {"stages": "1"}, lambda: sd.lr_four_point(1)),
+    ("symbol", {"symbol": "(1+z)^4*(-1+4z-z^2)/16"}, lambda: sd.from_symbol("(1+z)^4*(-1+4z-z^2)/16")),
+]
+
+
+def cli_args(name, params):
+    args = ["scheme", name]
+    for key, value in params.items():
+        args += ["--param", f"{key}={value}"]
+    return args
+
+
+def cli_error(*args):
+    """The CLI's one-line error without its "cifs: " prefix (exit status 2)."""
+    result = cli(*args, check=False)
+    if result.returncode != 2:
+        raise AssertionError(f"cifs {' '.join(args)} exited {result.returncode}, expected 2")
+    line = result.stderr.strip()
+    return line[len("cifs: "):] if line.startswith("cifs: ") else line
+
+
+def norm_by_definition(c, L):
+    """‖S_c^L‖_∞ from its definition: the largest sum of |coefficients| of Π_{i<L} c(z^{2^i}) over one
+    residue class mod 2^L (plain Python Fractions, no library code)."""
+    power = [Fraction(1)]
+    for i in range(L):
+        step = 2 ** i
+        out = [Fraction(0)] * (len(power) + (len(c) - 1) * step)
+        for j, cj in enumerate(c):
+            for k, pk in enumerate(power):
+                out[k + j * step] += cj * pk
+        power = out
+    period = 2 ** L
+    return max(sum(abs(x) for x in power[r::period]) for r in range(period))
+
+
+def multiply(p, q):
+    out = [Fraction(0)] * (len(p) + len(q) - 1)
+    for i, a in enumerate(p):
+        for j, b in enumerate(q):
+            out[i + j] += a * b
+    return out
+
+
+class RationalTest(unittest.TestCase):
+    def test_accepted_inputs_are_exact(self):
+        expected = sd.generalized_four_point(Fraction(1, 16)).mask
+        for w in (Fraction(1, 16), "1/16", "0.0625", 0.0625, np.float64(0.0625)):
+            self.assertEqual(sd.generalized_four_point(w).mask, expected, repr(w))
+        self.assertEqual(sd.four_point().mask, expected)
+        self.assertEqual(sd.j_spline(1).mask, sd.j_spline(np.int64(1)).mask)
+        self.assertTrue(all(isinstance(x, Fraction) for x in expected))
+
+    def test_float_must_be_its_decimal(self):
+        with self.assertRaises(cifs.InvalidInput) as e:
+            sd.generalized_four_point(0.1)
+        self.assertEqual(str(e.exception), "rational: the float 0.1 is exactly "
+                         "0.1000000000000000055511151231257827021181583404541015625, not 0.1 (pass "
+                         "fractions.Fraction or the text '0.1')")
+        with self.assertRaises(cifs.InvalidInput) as e:
+            sd.j_spline(float("inf"))
+        self.assertEqual(str(e.exception), "rational: inf is not a finite number")
+        with self.assertRaises(TypeError):
+            sd.j_spline(True)
+
+    def test_parse_rational_and_to_string(self):
+        self.assertEqual(sd.parse_rational("0.5/3"), Fraction(1, 6))
+        self.assertEqual(sd.parse_rational("-1e-3"), Fraction(-1, 1000))
+        self.assertEqual(sd.to_string(Fraction(-3, 2)), "-1.5")
+        self.assertEqual(sd.to_string(Fraction(1, 3)), "1/3")
+        self.assertEqual(sd.to_string(7), "7")
+        for x in (Fraction(1, 3), Fraction(-5, 32), Fraction(10**30 + 1, 7)):
+            self.assertEqual(sd.parse_rational(sd.to_string(x)), x)
+        with self.assertRaises(cifs.InvalidInput) as e:
+            sd.parse_rational("nan", "w")
+        self.assertEqual(str(e.exception), "w: 'nan' is not a number (an integer, a decimal such as -0.0625 or a "
+                         "fraction such as 1/16)")
+        with self.assertRaises(cifs.InvalidInput) as e:
+            sd.parse_rational("1/0")
+        self.assertEqual(str(e.exception), "value: '1/0' divides by zero")
+
+
+class SchemeTest(unittest.TestCase):
+    def test_scheme_class(self):
+        s = sd.Scheme("mine", [0, "0.25", Fraction(3, 4), 0.75, 0.25, 0], {"a": "1/4"})
+        self.assertEqual(s.name, "mine")
+        self.assertEqual(s.mask, [Fraction(1, 4), Fraction(3, 4), Fraction(3, 4), Fraction(1, 4)])  # trimmed
+        self.assertEqual(s.parameters, {"a": Fraction(1, 4)})
+        self.assertEqual(s.weights.dtype, np.float64)
+        assert_close(self, s.weights, [0.25, 0.75, 0.75, 0.25])
+        self.assertEqual(repr(s), "Scheme('mine', mask_degree=3)")
+        self.assertEqual(sd.make_scheme("mine", s.mask).mask, sd.chaikin().mask)
+        self.assertEqual(sd.mask_degree(s), 3)
+        self.assertTrue(sd.is_symmetric(s))
+        self.assertFalse(sd.is_symmetric(sd.corner_cutting("0.1", "0.6")))
+        with self.assertRaises(AttributeError):
+            s.mask = [1, 1]
+
+    def test_named_constructors_match_the_documented_masks(self):
+        F = Fraction
+        self.assertEqual(sd.chaikin().mask, [F(1, 4), F(3, 4), F(3, 4), F(1, 4)])
+        self.assertEqual(sd.corner_cutting(F(1, 4), F(3, 4)).mask, sd.chaikin().mask)
+        self.assertEqual(sd.four_point().mask, [F(x, 16) for x in (-1, 0, 9, 16, 9, 0, -1)])
+        self.assertEqual(sd.six_point().mask, [F(x, 256) for x in (3, 0, -25, 0, 150, 256, 150, 0, -25, 0, 3)])
+        self.assertEqual(sd.dual_four_point().mask, [F(x, 128) for x in (-5, -7, 35, 105, 105, 35, -7, -5)])
+        self.assertEqual(sd.lane_riesenfeld(3).mask, [F(x, 8) for x in (1, 4, 6, 4, 1)])
+        self.assertEqual(sd.b_spline(3).mask, sd.lane_riesenfeld(3).mask)
+        self.assertEqual(sd.two_tension(3, 0, 0).mask, sd.b_spline(3).mask)
+        self.assertEqual(sd.j_spline(0).mask, sd.four_point().mask)
+        self.assertEqual(sd.j_spline(1).mask, sd.b_spline(3).mask)
+        self.assertEqual(sd.j_spline(F(3, 2)).mask, sd.b_spline(5).mask)
+        self.assertEqual(sd.hormann_sabin(3).mask, sd.four_point().mask)
+        self.assertEqual(sd.cubic_precision(3, 0).mask, sd.hormann_sabin(3).mask)
+        self.assertEqual(sd.two_tension(2, F(-5, 32), F(1, 4)).mask, sd.dual_four_point().mask)
+        self.assertEqual(sd.romani(1, F(1, 16)).mask, sd.two_tension(1, F(-1, 8), F(1, 4)).mask)
+        self.assertEqual(sd.lr_four_point(0).mask, sd.four_point().mask)
+        self.assertEqual(sd.lr_six_point(0).mask, sd.six_point().mask)
+        self.assertEqual(sd.lr_four_point(1).mask,
+                         multiply(sd.four_point().mask, [F(x, 16) for x in (-1, 9, 9, -1)]))
+        self.assertEqual(sd.from_mask(["0.5", 1, "0.5"]).name, "mask")
+        self.assertEqual(sd.parse_symbol("(1+z)^2/2"), [F(1, 2), F(1), F(1, 2)])
+        self.assertEqual(sd.parse_symbol("z^-1+2+z"), [1, 2, 1])
+        self.assertEqual(sd.from_symbol("(1+z)^2/2").mask, sd.b_spline(1).mask)
+
+    def test_catalogue_matches_the_cli_list(self):
+        lines = cli("scheme", "--list").stdout.splitlines()
+        heads = [line.split() for line in lines if line and not line.startswith(" ")]
+        catalogue = sd.scheme_catalogue()
+        self.assertEqual([spec.name for spec in catalogue], [h[0] for h in heads])
+        for spec, head in zip(catalogue, heads):
+            expected = [p.name + "=" + (p.default_value or "(required)") for p in spec.parameters]
+            self.assertEqual(head[1:], expected)
+            self.assertTrue(spec.summary)
+            self.assertTrue(all(p.meaning for p in spec.parameters))
+
+    def test_named_scheme_matches_the_cli(self):
+        for name, params, build in SCHEMES:
+            with self.subTest(name):
+                expected = cli_json(*cli_args(name, params), "--analyze")
+                for scheme in (sd.named_scheme(name, params), sd.named_scheme(name, **params), build()):
+                    self.assertEqual([sd.to_string(x) for x in scheme.mask], expected["mask"])
+                    self.assertEqual(scheme.weights.tolist(), expected["mask_values"])
+                named = sd.named_scheme(name, params)
+                self.assertEqual(named.name, expected["scheme"])
+                self.assertEqual({k: sd.to_string(v) for k, v in named.parameters.items()}, expected["parameters"])
+        # Defaults of the catalogue, and numbers as parameters.
+        self.assertEqual(sd.named_scheme("generalized-four-point").mask, sd.four_point().mask)
+        self.assertEqual(sd.named_scheme("romani", {"n": 2}, w=Fraction(1, 32)).mask, sd.romani(2, "1/32").mask)
+        self.assertEqual(sd.named_scheme("lr-six-point", stages=2).mask, sd.lr_six_point(2).mask)
+
+    def test_bad_input_has_the_cli_message(self):
+        cases = [
+            (lambda: sd.named_scheme("mask", coefficients="0.25,0.75,0.5"),
+             ("scheme", "mask", "--param", "coefficients=0.25,0.75,0.5", "--analyze")),
+            (lambda: sd.named_scheme("nope"), ("scheme", "nope", "--analyze")),
+            (lambda: sd.named_scheme("lr-four-point", stages=-1),
+             ("scheme", "lr-four-point", "--param", "stages=-1", "--analyze")),
+            (lambda: sd.named_scheme("lr-four-point", stages="abc"),
+             ("scheme", "lr-four-point", "--param", "stages=abc", "--analyze")),
+            (lambda: sd.named_scheme("b-spline", degree="1/2"),
+             ("scheme", "b-spline", "--param", "degree=1/2", "--analyze")),
+            (lambda: sd.named_scheme("four-point", w=1), ("scheme", "four-point", "--param", "w=1", "--analyze")),
+            (lambda: sd.named_scheme("symbol"), ("scheme", "symbol", "--analyze")),
+            (lambda: sd.named_scheme("symbol", symbol="(1+z"),
+             ("scheme", "symbol", "--param", "symbol=(1+z", "--analyze")),
+            (lambda: sd.named_scheme("mask", coefficients="0.5 0.5 0.5 0.5 1 -1"),
+             ("scheme", "mask", "--param", "coefficients=0.5 0.5 0.5 0.5 1 -1", "--analyze")),
+        ]
+        for call, args in cases:
+            with self.subTest(args=args):
+                with self.assertRaises(cifs.InvalidInput) as e:
+                    call()
+                self.assertEqual(str(e.exception), cli_error(*args))
+        with self.assertRaises(cifs.InvalidInput) as e:
+            sd.from_mask([Fraction(1, 4), Fraction(3, 4), Fraction(1, 2)])
+        self.assertEqual(str(e.exception), "mask: coefficients sum to 1.5, a subdivision mask sums to 2")
+        with self.assertRaises(cifs.InvalidInput) as e:
+            sd.lr_four_point(-1)
+        self.assertEqual(str(e.exception), cli_error("scheme", "lr-four-point", "--param", "stages=-1", "--analyze"))
+        with self.assertRaises(cifs.InvalidInput) as e:
+            sd.named_scheme("hormann-sabin", n=2)
+        self.assertEqual(str(e.exception), cli_error("scheme", "hormann-sabin", "--param", "n=2", "--analyze"))
+        # The direct constructor explains a little more than the catalogue does.
+        with self.assertRaises(cifs.InvalidInput) as e:
+            sd.hormann_sabin(2)
+        self.assertEqual(str(e.exception), "hormann-sabin: n = 2 is below 3: the Hormann–Sabin members have n ≥ 3 "
+                         "smoothing stages (n = 3 is the 4-point scheme)")
+        with self.assertRaises(cifs.InvalidInput) as e:
+            sd.named_scheme("romani", {"n": 1}, n=2)
+        self.assertEqual(str(e.exception), "named_scheme: parameter 'n' is given twice")
+        with self.assertRaises(cifs.InvalidInput):
+            sd.Scheme("x", [])
+        with self.assertRaises(cifs.InvalidInput):
+            sd.Scheme("x", [2])
+
+
+class RefineTest(ScratchTestCase):
+    P = np.array([[0.0, 0.0], [1.0, 2.0], [2.5, 0.5], [3.0, 2.0], [1.5, 3.5], [0.25, 1.0]])
+
+    def polygon_file(self, points, closed):
+        path = self.scratch / "polygon.json"
+        path.write_text(json.dumps({"polygon": {"points": np.asarray(points).tolist(), "closed": closed}}))
+        return path
+
+    def test_refine_matches_the_cli(self):
+        for name, params, build in SCHEMES:
+            for closed in (True, False):
+                for ends in ("auto", "keep") + (("reflect",) if sd.is_symmetric(build()) else ()):
+                    with self.subTest(name=name, closed=closed, ends=ends):
+                        path = self.polygon_file(self.P, closed)
+                        out = cli_json(*cli_args(name, params), "--refine", path, "--steps", 2, "--ends", ends)
+                        self.assertEqual(out["polygon"]["closed"], closed)
+                        rule = {"auto": sd.Ends.automatic, "keep": sd.Ends.keep, "reflect": sd.Ends.reflect}[ends]
+                        mine = sd.refine(build(), self.P, closed, 2, ends=rule)
+                        assert_close(self, mine, out["polygon"]["points"], what=f"{name} refined")
+
+    def test_refinement_identities(self):
+        chaikin = sd.chaikin()
+        one = sd.refine(chaikin, self.P, True)
+        self.assertEqual(one.shape, (12, 2))
+        # Seed 001's rule: out[2i] = ¾P_i + ¼P_{i+1}, out[2i+1] = ¼P_i + ¾P_{i+1}.
+        nxt = np.roll(self.P, -1, axis=0)
+        assert_close(self, one[0::2], 0.75 * self.P + 0.25 * nxt)
+        assert_close(self, one[1::2], 0.25 * self.P + 0.75 * nxt)
+        for scheme in (chaikin, sd.four_point(), sd.b_spline(4)):
+            for closed in (True, False):
+                assert_close(self, sd.refine(scheme, self.P, closed, 3),
+                             sd.refine(scheme, sd.refine(scheme, sd.refine(scheme, self.P, closed), closed), closed))
+        # Interpolating: the old points stay at the even indices.
+        assert_close(self, sd.refine(sd.four_point(), self.P, True, 1)[0::2], self.P, rel=0)
+        assert_close(self, sd.refine(chaikin, self.P, False, 0), self.P, rel=0)
+        # Homogeneous rows refine unchanged: refining (w·x, w) and dividing equals refining x when w = 1.
+        three_d = np.hstack([self.P, np.ones((6, 1))])
+        assert_close(self, sd.refine(chaikin, three_d, True)[:, :2], one)
+
+    def test_refine_bad_input(self):
+        checks = [
+            (lambda: sd.refine(sd.chaikin(), np.zeros((0, 2)), True), "refine: the polygon has no point"),
+            (lambda: sd.refine(sd.chaikin(), self.P[:1], False),
+             "refine: an open polygon needs at least 2 points, got 1"),
+            (lambda: sd.refine(sd.chaikin(), self.P, True, -1), "refine: steps = -1 is negative"),
+            (lambda: sd.refine(sd.chaikin(), np.array([[0, np.nan], [1, 1]]), True),
+             "refine: the polygon has a coordinate that is not finite"),
+        ]
+        for call, message in checks:
+            with self.assertRaises(cifs.InvalidInput) as e:
+                call()
+            self.assertEqual(str(e.exception), message)
+        asym = sd.corner_cutting("0.1", "0.6")
+        with self.assertRaises(cifs.InvalidInput) as e:
+            sd.refine(asym, self.P, False, ends=sd.Ends.reflect)
+        path = self.polygon_file(self.P, False)
+        self.assertEqual(str(e.exception), cli_error("scheme", "corner-cutting", "--param", "a=0.1", "--param",
+                                                     "b=0.6", "--refine", path, "--ends", "reflect"))
+        with self.assertRaises(cifs.InvalidInput) as e:
+            sd.refine(sd.chaikin(), self.P, True, 10, max_points=1000)
+        self.assertIn("refine: ", str(e.exception))
+        with self.assertRaises(TypeError):
+            sd.refine(sd.chaikin(), np.zeros((2, 2, 2)), True)
+
+
+class IfsTest(unittest.TestCase):
+    P = RefineTest.P
+
+    def test_matrices_follow_the_documented_formula(self):
+        for scheme in (sd.chaikin(), sd.four_point(), sd.corner_cutting("0.1", "0.6"), sd.six_point()):
+            a, N = [float(x) for x in scheme.mask], sd.mask_degree(scheme)
+            S = sd.ifs_matrices(scheme)
+            for eps in (0, 1):
+                expected = np.zeros((N, N))
+                for s in range(N):
+                    for r in range(N):
+                        k = s - 2 * r + N - 1 + eps
+                        expected[s, r] = a[k] if 0 <= k <= N else 0.0
+                assert_close(self, S[eps], expected, rel=0)
+                assert_close(self, sd.ifs_matrix(scheme.weights, eps), expected, rel=0)
+                assert_close(self, S[eps].sum(axis=1), np.ones(N))
+        assert_close(self, sd.ifs_matrices(sd.chaikin())[0], [[0.75, 0.25, 0], [0.25, 0.75, 0], [0, 0.75, 0.25]])
+        with self.assertRaises(cifs.InvalidInput) as e:
+            sd.ifs_matrix([1.0, 1.0], 2)
+        self.assertEqual(str(e.exception), "ifs_matrix: epsilon is 0 or 1")
+        with self.assertRaises(cifs.InvalidInput) as e:
+            sd.ifs_matrix([2.0], 0)
+        self.assertEqual(str(e.exception), "ifs_matrix: a mask needs at least 2 coefficients")
+
+    def test_closed_windows(self):
+        windows = sd.closed_windows(sd.four_point(), self.P)
+        self.assertEqual(len(windows), 6)
+        for k, W in enumerate(windows):
+            assert_close(self, W, self.P[[(k + r) % 6 for r in range(6)]], rel=0)
+        with self.assertRaises(cifs.InvalidInput) as e:
+            sd.closed_windows(sd.chaikin(), np.zeros((0, 2)))
+        self.assertEqual(str(e.exception), "closed_windows: the polygon has no point")
+
+    def test_limit_points_lie_on_the_refined_polygon_of_an_interpolating_scheme(self):
+        # After K steps the 4-point scheme's points are limit points at the dyadic parameters j/2^K,
+        # so the attractor points are the K-times refined polygon up to a cyclic shift.
+        K = 4
+        limit = sd.limit_points(sd.four_point(), self.P, K)
+        refined = sd.refine(sd.four_point(), self.P, True, K)
+        self.assertEqual(limit.shape, refined.shape)
+        shifts = [s for s in range(len(refined)) if np.allclose(np.roll(refined, -s, axis=0), limit, atol=1e-12)]
+        self.assertEqual(len(shifts), 1)
+        # A dual scheme: Chaikin's limit points are on the quadratic B-spline: midpoints of the
+        # polygon edges after one step are limit points at the knots.
+        limit = sd.limit_points(sd.chaikin(), self.P, 0)
+        mid = 0.5 * (self.P + np.roll(self.P, -1, axis=0))
+        self.assertTrue(all(np.min(np.abs(mid - p).sum(axis=1)) < 1e-12 for p in limit))
+        with self.assertRaises(cifs.InvalidInput) as e:
+            sd.limit_points(sd.chaikin(), self.P, -1)
+        self.assertEqual(str(e.exception), "attractor_points: depth is -1, must be ≥ 0")
+
+    @unittest.skipUnless(hasattr(cifs.automata, "Automaton"), "cifs.automata.Automaton is bound elsewhere")
+    def test_scheme_automaton(self):
+        automaton = sd.scheme_automaton(sd.chaikin(), 3)
+        self.assertIsInstance(automaton, cifs.automata.Automaton)
+        with self.assertRaises(cifs.InvalidInput) as e:
+            sd.scheme_automaton(sd.chaikin(), -1)
+        self.assertEqual(str(e.exception), "scheme_automaton: segments is negative")
+
+
+class AnalysisTest(unittest.TestCase):
+    def test_analysis_matches_the_cli(self):
+        for name, params, build in SCHEMES:
+            with self.subTest(name):
+                expected = cli_json(*cli_args(name, params), "--analyze")
+                scheme = build()
+                a = sd.analyze(scheme)
+                self.assertEqual(json.loads(sd.analysis_json(scheme, a)), expected)
+                # Field by field: exact rationals through their text, floats exactly (same algorithm).
+                self.assertEqual([sd.to_string(x) for x in a.mask], expected["mask"])
+                self.assertEqual([0, a.support], expected["support"])
+                self.assertEqual(a.kind, expected["kind"])
+                self.assertEqual(a.symmetric, expected["symmetric"])
+                self.assertEqual(a.interpolating, expected["interpolating"])
+                self.assertEqual(a.multiplicity, expected["one_plus_z_power"])
+                self.assertEqual(a.generation_degree, expected["generation_degree"])
+                self.assertEqual(a.reproduction_degree, expected["reproduction_degree"])
+                self.assertEqual(a.continuity, expected["continuity"])
+                self.assertEqual([a.holder_low, a.holder_high], expected["holder"])
+                self.assertEqual(a.holder_low_power, expected["holder_low_power"])
+                self.assertEqual(a.holder_high_word, expected["holder_high_word"])
+                self.assertEqual(a.symbol, expected["symbol"])
+                self.assertEqual(a.symbol_factored, expected["symbol_factored"])
+                proof = expected["continuity_proof"]
+                if a.continuity >= 0:
+                    self.assertEqual((a.proof.k, a.proof.power), (proof["k"], proof["power"]))
+                    self.assertEqual(sd.to_string(a.proof.norm), proof["norm"])
+                    d = sd.difference_mask(a.mask, a.proof.k)
+                    self.assertEqual([sd.to_string(x) for x in d], proof["difference_mask"])
+                    self.assertEqual(sd.power_norm(d, a.proof.power), a.proof.norm)
+                else:
+                    self.assertIsNone(proof)
+                for e, key in ((0, "S0"), (1, "S1")):
+                    self.assertEqual(a.eigenvalues[e].dtype, np.complex128)
+                    assert_close(self, a.eigenvalues[e].real, [z[0] for z in expected["eigenvalues"][key]], rel=1e-15)
+                    assert_close(self, sd.ifs_matrices(scheme)[e], expected["matrices"][key], rel=0)
+
+    def test_max_power_matches_the_cli(self):
+        expected = cli_json("scheme", "six-point", "--analyze", "--max-power", "3")
+        self.assertEqual(json.loads(sd.analysis_json(sd.six_point(), sd.analyze(sd.six_point(), max_power=3))),
+                         expected)
+
+    def test_published_smoothness(self):
+        # Chaikin = quadratic B-spline: C^1, Hölder exponent exactly 2.
+        a = sd.analyze(sd.chaikin())
+        self.assertEqual(a.continuity, 1)
+        self.assertAlmostEqual(a.holder_low, 2, delta=1e-12)
+        self.assertAlmostEqual(a.holder_high, 2, delta=1e-12)
+        # Dyn–Levin–Gregory 4-point: C^1, not C^2, Hölder exponent 2 − ε (Daubechies–Lagarias: < 2).
+        a = sd.analyze(sd.four_point())
+        self.assertEqual((a.continuity, a.kind, a.interpolating), (1, "primal", True))
+        self.assertGreater(a.holder_low, 1.7)
+        self.assertLessEqual(a.holder_low, a.holder_high)
+        self.assertAlmostEqual(a.holder_high, 2, delta=1e-9)
+        self.assertEqual(a.reproduction_degree, 3)
+        # Uniform B-splines of degree n: C^{n−1}, Hölder n.
+        for n in (2, 3, 5):
+            a = sd.analyze(sd.b_spline(n))
+            self.assertEqual(a.continuity, n - 1)
+            self.assertAlmostEqual(a.holder_low, n, delta=1e-9)
+            self.assertAlmostEqual(a.holder_high, n, delta=1e-9)
+            self.assertEqual(a.generation_degree, n)
+        # Dual 4-point (Dyn, Floater, Hormann 2005): C^2, Hölder log2(64/9) ≈ 2.83.
+        a = sd.analyze(sd.dual_four_point())
+        self.assertEqual((a.continuity, a.kind), (2, "dual"))
+        self.assertAlmostEqual(a.holder_high, np.log2(64 / 9), delta=1e-9)
+        # Tension w = 0.2 is outside the C^1 range 0 < w < (√5 − 1)/8 of the 4-point family.
+        self.assertEqual(sd.analyze(sd.generalized_four_point("0.2")).continuity, 0)
+        # Degree 0 (piecewise constant): no continuity, so no lower Hölder bound.
+        a = sd.analyze(sd.b_spline(0))
+        self.assertEqual(a.continuity, -1)
+        self.assertIsNone(a.holder_low)
+        self.assertAlmostEqual(a.holder_high, 0, delta=1e-12)
+
+    def test_difference_masks_and_norms(self):
+        a = sd.four_point().mask
+        for k in (0, 1):
+            d = sd.difference_mask(a, k)
+            # d_k(z)·(1+z)^{k+1} = 2^k a(z)
+            back = d
+            for _ in range(k + 1):
+                back = multiply(back, [1, 1])
+            self.assertEqual(back, [2**k * x for x in a])
+            for L in (1, 2, 3):
+                self.assertEqual(sd.power_norm(d, L), norm_by_definition(d, L))
+        with self.assertRaises(cifs.InvalidInput) as e:
+            sd.difference_mask(a, 4)
+        self.assertEqual(str(e.exception), "difference_mask: (1+z)^5 does not divide the symbol")
+        with self.assertRaises(cifs.InvalidInput) as e:
+            sd.power_norm([1, 1], 0)
+        self.assertEqual(str(e.exception), "power_norm: L = 0 is below 1")
+        with self.assertRaises(cifs.InvalidInput) as e:
+            sd.power_norm([1, 1], 30, 1000)
+        self.assertEqual(str(e.exception), "power_norm: the 30-th power has too many coefficients")
+
+    def test_symbol_texts_read_back(self):
+        self.assertEqual(sd.polynomial_text(sd.chaikin().mask), "(1+3z+3z^2+z^3)/4")
+        for name, params, build in SCHEMES:
+            a = sd.analyze(build(), max_power=6)
+            self.assertEqual(sd.parse_symbol(a.symbol), a.mask)
+            self.assertEqual(sd.parse_symbol(a.symbol_factored), a.mask)
+            self.assertEqual(sd.polynomial_text(a.mask), a.symbol)
+
+    def test_result_is_read_only_and_printable(self):
+        a = sd.analyze(sd.chaikin())
+        self.assertEqual(repr(a), "SchemeAnalysis(support=3, kind='dual', continuity=1)")
+        self.assertEqual(repr(a.proof), "ContinuityProof(k=1, power=1, norm=0.5)")
+        with self.assertRaises(AttributeError):
+            a.continuity = 3
+
+    def test_options_are_checked(self):
+        with self.assertRaises(cifs.InvalidInput) as e:
+            sd.analyze(sd.chaikin(), max_power=0)
+        self.assertEqual(str(e.exception), "analyze: max_power = 0 is outside [1, 26]")
+        with self.assertRaises(cifs.InvalidInput) as e:
+            sd.analyze(sd.chaikin(), max_word_length=64)
+        self.assertEqual(str(e.exception), "analyze: max_word_length = 64 is outside [1, 20]")
+        with self.assertRaises(TypeError):
+            sd.analyze(sd.chaikin(), 3)  # keyword-only
+
+
+if __name__ == "__main__":
+    unittest.main()
