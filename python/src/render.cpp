@@ -33,13 +33,17 @@ std::string shape_text(const py::array& a) {
   return text + (a.ndim() == 1 ? ",)" : ")");
 }
 
+/// `object` as a numpy array, or a null array (and no pending Python error) when numpy cannot convert it.
+py::array as_array(const py::handle& object) {
+  py::array a = py::array::ensure(object);
+  if (!a) PyErr_Clear();
+  return a;
+}
+
 /// `object` as a numpy array whose dtype kind is one of `kinds` ('i', 'u', 'f'); InvalidInput otherwise.
 py::array numeric(const py::handle& object, const std::string& where, const char* kinds) {
-  py::array a = py::array::ensure(object);
-  if (!a) {
-    PyErr_Clear();
-    throw InvalidInput(where + ": expected an array of numbers");
-  }
+  py::array a = as_array(object);
+  if (!a) throw InvalidInput(where + ": expected an array of numbers");
   const char kind = a.dtype().kind();
   if (!std::strchr(kinds, kind))
     throw InvalidInput(where + ": expected an array of " +
@@ -75,7 +79,7 @@ template <std::size_t N>
 std::vector<std::array<int, N>> index_rows(const py::handle& object, const std::string& where) {
   std::vector<std::array<int, N>> rows;
   if (object.is_none()) return rows;
-  const py::array any = py::array::ensure(object);
+  const py::array any = as_array(object);
   if (any && any.size() == 0) return rows;
   const py::array a = numeric(object, where, "iu");
   if (a.ndim() != 2 || a.shape(1) != static_cast<py::ssize_t>(N))
@@ -98,7 +102,7 @@ std::vector<std::array<int, N>> index_rows(const py::handle& object, const std::
 std::vector<std::uint32_t> states_from(const py::handle& object, const std::string& where) {
   std::vector<std::uint32_t> states;
   if (object.is_none()) return states;
-  const py::array any = py::array::ensure(object);
+  const py::array any = as_array(object);
   if (any && any.size() == 0) return states;
   const py::array a = numeric(object, where, "iu");
   if (a.ndim() != 1) throw InvalidInput(where + ": expected a 1-D integer array, got shape " + shape_text(a));
@@ -543,7 +547,7 @@ string attributes. Row 0 is the top of the image; arrays are (height, width).)")
           "copy", [](const Image& image) { return image; }, "An independent copy of the image.")
       .def("__repr__", &image_repr);
 
-  m.def("make_framebuffer", &make_framebuffer, py::arg("camera"),
+  m.def("make_framebuffer", &make_framebuffer, py::arg("camera"), py::call_guard<py::gil_scoped_release>(),
         "An empty framebuffer of the camera's size: R G B A = 0, Z = +inf, state = kNoState.\n\n"
         "Raises InvalidInput for a zero or oversized image.");
   m.def("write_exr", &write_exr, py::arg("path"), py::arg("image"), py::call_guard<py::gil_scoped_release>(),
@@ -880,7 +884,9 @@ void bind_point_ifs(py::module_& m) {
   py::class_<Histogram>(m, "Histogram", "The chaos-game histogram of a point IFS.")
       .def_readonly("width", &Histogram::width, "Columns.")
       .def_readonly("height", &Histogram::height, "Rows.")
-      .def_readonly("bounds", &Histogram::bounds, "The window binned (row 0 at y_max).")
+      .def_property_readonly(
+          "bounds", [](const Histogram& h) { return h.bounds; },
+          "The window binned (row 0 at y_max), a copy.")
       .def_property_readonly(
           "counts", [](const Histogram& h) { return grid(h.counts, h.width, h.height, "counts"); },
           "Hits per pixel, uint32 (height, width) (a copy).")
