@@ -60,7 +60,7 @@ def wave(args):
     render.render_polylines(image, camera, [nurbs.cartesian_points(curve)], width=max(1.0, args.size / 1024),
                             color=(0.55, 0.55, 0.55))
     render.render_polylines(image, camera, [points], width=max(1.5, 3 * args.size / 1024), color=(0.12, 0.30, 0.65))
-    image.attributes["source"] = "examples/python/gallery.py: wave"
+    image.attributes = {**image.attributes, "source": "examples/python/gallery.py: wave"}
     save(args, "wave", image)
     io.write_file_atomically(args.out / "wave.automaton.svg", automata.to_svg(automaton))
     say(args, f"wave: {len(points)} attractor points, {automaton.state_count} states, deviation {deviation:.1e}")

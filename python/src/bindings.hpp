@@ -31,7 +31,8 @@ py::array_t<T> index_array(const std::vector<std::array<T, N>>& rows) {
   py::array_t<T> out({static_cast<py::ssize_t>(rows.size()), static_cast<py::ssize_t>(N)});
   auto view = out.template mutable_unchecked<2>();
   for (std::size_t i = 0; i < rows.size(); ++i)
-    for (std::size_t j = 0; j < N; ++j) view(static_cast<py::ssize_t>(i), static_cast<py::ssize_t>(j)) = rows[i][j];
+    for (std::size_t j = 0; j < N; ++j)
+      view(static_cast<py::ssize_t>(i), static_cast<py::ssize_t>(j)) = rows[i][j];
   return out;
 }
 

@@ -26,7 +26,7 @@ py::object ply_result(std::string text, io::PlyFormat format) {
 }
 
 io::Polygon make_polygon(const DoubleArray& points, bool closed) {
-  io::Polygon p{to_points(points, "points"), closed};
+  io::Polygon p{points_from(points, "points"), closed};
   if (p.points.rows() == 0) throw InvalidInput("points: no points");
   if (p.points.cols() < 1 || p.points.cols() > 16)
     throw InvalidInput("points: " + std::to_string(p.points.cols()) + " coordinates, expected 1 to 16");
@@ -40,10 +40,10 @@ io::Mesh make_mesh(const DoubleArray& vertices, const py::object& triangles, con
                    const std::optional<DoubleArray>& normals,
                    const std::optional<std::vector<std::uint32_t>>& states) {
   io::Mesh mesh;
-  mesh.vertices = to_points(vertices, "Mesh: vertices");
-  mesh.triangles = to_rows<int, 3>(triangles, "Mesh: triangles");
-  mesh.quads = to_rows<int, 4>(quads, "Mesh: quads");
-  if (normals) mesh.normals = to_points(*normals, "Mesh: normals");
+  mesh.vertices = points_from(vertices, "Mesh: vertices");
+  mesh.triangles = index_rows<3>(triangles, "Mesh: triangles");
+  mesh.quads = index_rows<4>(quads, "Mesh: quads");
+  if (normals) mesh.normals = points_from(*normals, "Mesh: normals");
   if (states) mesh.states = *states;
   io::check_mesh(mesh, "Mesh");
   return mesh;
@@ -52,8 +52,8 @@ io::Mesh make_mesh(const DoubleArray& vertices, const py::object& triangles, con
 io::Segments make_segments(const DoubleArray& vertices, const py::object& segments,
                            const std::optional<std::vector<std::uint32_t>>& states) {
   io::Segments out;
-  out.vertices = to_points(vertices, "Segments: vertices");
-  out.segments = to_rows<int, 2>(segments, "Segments: segments");
+  out.vertices = points_from(vertices, "Segments: vertices");
+  out.segments = index_rows<2>(segments, "Segments: segments");
   if (states) out.states = *states;
   io::check_segments(out, "Segments");
   return out;
@@ -144,7 +144,7 @@ void bind_geometry(py::module_& m) {
   m.def(
       "polyline_obj",
       [](const DoubleArray& points, bool closed) {
-        return io::polyline_obj(to_points(points, "points"), closed);
+        return io::polyline_obj(points_from(points, "points"), closed);
       },
       py::arg("points"), py::arg("closed") = false,
       "OBJ text of a polyline (n, dim ≤ 3): one `v` line per point and one `l` element.\n\n"
@@ -152,7 +152,7 @@ void bind_geometry(py::module_& m) {
   m.def(
       "polyline_svg",
       [](const DoubleArray& points, bool closed, int width, double stroke) {
-        return io::polyline_svg(to_points(points, "points"), closed, width, stroke);
+        return io::polyline_svg(points_from(points, "points"), closed, width, stroke);
       },
       py::arg("points"), py::arg("closed") = false, py::arg("width") = 800, py::arg("stroke") = 1.5,
       "SVG text of the x, y coordinates of a polyline (n, dim ≥ 2), `width` pixels wide.\n\n"
@@ -209,7 +209,7 @@ void bind_geometry(py::module_& m) {
   m.def(
       "polyline_segments",
       [](const DoubleArray& points, bool closed, std::uint32_t state) {
-        const Points P = to_points(points, "points");
+        const Points P = points_from(points, "points");
         if (P.cols() != 2 && P.cols() != 3)
           throw InvalidInput("points: " + std::to_string(P.cols()) + " columns, expected 2 or 3");
         return io::polyline_segments(P, closed, state);

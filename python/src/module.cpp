@@ -7,33 +7,40 @@ namespace py = pybind11;
 using namespace cifs::python;
 
 PYBIND11_MODULE(_cifs, m) {
-  m.doc() = "cifs — NURBS curves and surfaces and subdivision schemes as controlled iterated function systems.";
+  m.doc() =
+      "cifs — NURBS curves and surfaces and subdivision schemes as controlled iterated function systems.";
   m.attr("__version__") = CIFS_VERSION;
   py::register_exception<cifs::InvalidInput>(m, "InvalidInput", PyExc_ValueError);
   py::register_exception<cifs::IoError>(m, "IoError", PyExc_OSError);
 
   // Order: a submodule's types are registered before the submodules whose signatures use them.
-  auto nurbs = m.def_submodule("nurbs", "B-spline and NURBS curves and surfaces: evaluation, knot insertion, "
-                                        "blossoms, knot-doubling matrices.");
+  auto nurbs = m.def_submodule("nurbs",
+                               "B-spline and NURBS curves and surfaces: evaluation, knot insertion, "
+                               "blossoms, knot-doubling matrices.");
   bind_nurbs(nurbs);
-  auto automata = m.def_submodule("automata", "Automata whose transitions carry subdivision matrices: knot "
-                                              "doubling, tensor products, hand-made automata.");
+  auto automata = m.def_submodule("automata",
+                                  "Automata whose transitions carry subdivision matrices: knot "
+                                  "doubling, tensor products, hand-made automata.");
   bind_automata(automata);
-  auto ifs = m.def_submodule("ifs", "The CIFS engine: attractors, contraction, chaos game, meshes, BC-IFS "
-                                    "constraints and free coefficients, classic affine IFS, fractal dimension.");
+  auto ifs = m.def_submodule("ifs",
+                             "The CIFS engine: attractors, contraction, chaos game, meshes, BC-IFS "
+                             "constraints and free coefficients, classic affine IFS, fractal dimension.");
   bind_ifs(ifs);
   bind_bcifs(ifs);
-  auto subdivision = m.def_submodule("subdivision", "Uniform binary curve subdivision schemes: masks, "
-                                                    "refinement, IFS matrices, smoothness analysis.");
+  auto subdivision = m.def_submodule("subdivision",
+                                     "Uniform binary curve subdivision schemes: masks, "
+                                     "refinement, IFS matrices, smoothness analysis.");
   bind_subdivision(subdivision);
   auto render = m.def_submodule("render", "Cameras, rasterisers, the chaos-game density, OpenEXR and PNG.");
   bind_render(render);
   auto io = m.def_submodule("io", "Shape, polygon, BC-IFS and experiment files; geometry export.");
   bind_io(io);
   bind_bcifs_io(io);
-  auto verify = m.def_submodule("verify", "Attractor vs knot insertion vs Cox–de Boor, per segment or patch.");
+  auto verify =
+      m.def_submodule("verify", "Attractor vs knot insertion vs Cox–de Boor, per segment or patch.");
   bind_verify(verify);
-  auto experiment = m.def_submodule("experiment", "Running experiment files: build, perturb, evaluate, "
-                                                  "render, export.");
+  auto experiment = m.def_submodule("experiment",
+                                    "Running experiment files: build, perturb, evaluate, "
+                                    "render, export.");
   bind_experiment(experiment);
 }

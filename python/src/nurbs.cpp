@@ -87,7 +87,7 @@ Surface make_surface_from(std::array<int, 2> degree, std::array<Knots, 2> knots,
     if (points.ndim() != 2)
       throw InvalidInput("points: expected (nu, nv, dim) or (nu*nv, dim), got shape " + shape_text(points));
     if (!count) throw InvalidInput("count: give (nu, nv) with points of shape (nu*nv, dim)");
-    P = to_points(points, "points");
+    P = points_from(points, "points");
   }
   Eigen::VectorXd w;
   if (weights) {
@@ -209,7 +209,7 @@ void bind_curve(py::module_& m) {
       "A closed curve of m control points is stored expanded: m + degree rows of P, periodic knots.")
       .def(py::init([](int degree, Knots knots, const DoubleArray& points,
                        const std::optional<DoubleArray>& weights, bool closed) {
-             const Points P = to_points(points, "points");
+             const Points P = points_from(points, "points");
              const Eigen::VectorXd w = optional_weights(weights);
              return closed ? make_closed_curve(degree, std::move(knots), P, w)
                            : make_curve(degree, std::move(knots), P, w);
@@ -237,7 +237,7 @@ void bind_curve(py::module_& m) {
   m.def(
       "uniform_bspline",
       [](const DoubleArray& polygon, int degree, bool closed) {
-        return uniform_bspline(to_points(polygon, "points"), degree, closed);
+        return uniform_bspline(points_from(polygon, "points"), degree, closed);
       },
       py::arg("polygon"), py::arg("degree"), py::arg("closed"),
       "The uniform B-spline of `degree` on a control polygon (n, dim).\n\n"

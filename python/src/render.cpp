@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "arrays.hpp"
 #include "bindings.hpp"
 #include "cifs/errors.hpp"
 #include "cifs/render/camera.hpp"
@@ -24,105 +25,12 @@ namespace {
 
 using namespace cifs::render;
 
-using Doubles = py::array_t<double, py::array::c_style | py::array::forcecast>;
-using Int64s = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
-
-std::string shape_text(const py::array& a) {
-  std::string text = "(";
-  for (py::ssize_t i = 0; i < a.ndim(); ++i) text += (i ? ", " : "") + std::to_string(a.shape(i));
-  return text + (a.ndim() == 1 ? ",)" : ")");
-}
-
-/// `object` as a numpy array, or a null array (and no pending Python error) when numpy cannot convert it.
-py::array as_array(const py::handle& object) {
-  py::array a = py::array::ensure(object);
-  if (!a) PyErr_Clear();
-  return a;
-}
-
-/// `object` as a numpy array whose dtype kind is one of `kinds` ('i', 'u', 'f'); InvalidInput otherwise.
-py::array numeric(const py::handle& object, const std::string& where, const char* kinds) {
-  py::array a = as_array(object);
-  if (!a) throw InvalidInput(where + ": expected an array of numbers");
-  const char kind = a.dtype().kind();
-  if (!std::strchr(kinds, kind))
-    throw InvalidInput(where + ": expected an array of " +
-                       (std::strchr(kinds, 'f') ? std::string("numbers") : std::string("integers")) +
-                       ", got dtype " + std::string(py::str(a.dtype())));
-  return a;
-}
-
-/// A `(n, dim)` array as Points (copy).
-Points points_from(const py::handle& object, const std::string& where) {
-  const py::array a = numeric(object, where, "iuf");
-  if (a.ndim() != 2)
-    throw InvalidInput(where + ": expected a 2-D array (n, dim), got shape " + shape_text(a));
-  const auto d = Doubles::ensure(a);
-  Points P(d.shape(0), d.shape(1));
-  if (P.size() > 0) std::memcpy(P.data(), d.data(), sizeof(double) * static_cast<std::size_t>(P.size()));
-  return P;
-}
-
-/// A list of `(n, dim)` arrays.
-std::vector<Points> nets_from(const py::handle& object, const std::string& where) {
-  if (!py::isinstance<py::sequence>(object) || py::isinstance<py::str>(object))
-    throw InvalidInput(where + ": expected a list of 2-D arrays");
-  std::vector<Points> nets;
-  std::size_t i = 0;
-  for (const py::handle item : object)
-    nets.push_back(points_from(item, where + "[" + std::to_string(i++) + "]"));
-  return nets;
-}
-
-/// An integer table `(n, N)` (segments, triangles, quads); None or an empty array give no rows.
-template <std::size_t N>
-std::vector<std::array<int, N>> index_rows(const py::handle& object, const std::string& where) {
-  std::vector<std::array<int, N>> rows;
-  if (object.is_none()) return rows;
-  const py::array any = as_array(object);
-  if (any && any.size() == 0) return rows;
-  const py::array a = numeric(object, where, "iu");
-  if (a.ndim() != 2 || a.shape(1) != static_cast<py::ssize_t>(N))
-    throw InvalidInput(where + ": expected an integer array of shape (n, " + std::to_string(N) +
-                       "), got shape " + shape_text(a));
-  const auto v = Int64s::ensure(a).unchecked<2>();
-  rows.resize(static_cast<std::size_t>(v.shape(0)));
-  for (py::ssize_t i = 0; i < v.shape(0); ++i)
-    for (std::size_t j = 0; j < N; ++j) {
-      const std::int64_t x = v(i, static_cast<py::ssize_t>(j));
-      if (x < INT_MIN || x > INT_MAX)
-        throw InvalidInput(where + "[" + std::to_string(i) + "][" + std::to_string(j) +
-                           "] = " + std::to_string(x) + " is out of range");
-      rows[static_cast<std::size_t>(i)][j] = static_cast<int>(x);
-    }
-  return rows;
-}
-
-/// One uint32 per item (states); None or an empty array give none.
-std::vector<std::uint32_t> states_from(const py::handle& object, const std::string& where) {
-  std::vector<std::uint32_t> states;
-  if (object.is_none()) return states;
-  const py::array any = as_array(object);
-  if (any && any.size() == 0) return states;
-  const py::array a = numeric(object, where, "iu");
-  if (a.ndim() != 1) throw InvalidInput(where + ": expected a 1-D integer array, got shape " + shape_text(a));
-  const auto v = Int64s::ensure(a).unchecked<1>();
-  states.resize(static_cast<std::size_t>(v.shape(0)));
-  for (py::ssize_t i = 0; i < v.shape(0); ++i) {
-    if (v(i) < 0 || v(i) > std::int64_t{UINT32_MAX})
-      throw InvalidInput(where + "[" + std::to_string(i) + "] = " + std::to_string(v(i)) +
-                         " is outside 0 … 4294967295");
-    states[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(v(i));
-  }
-  return states;
-}
-
 /// Exactly three numbers (a 3-vector or a colour).
 std::array<double, 3> three(const py::handle& object, const std::string& where) {
   const py::array a = numeric(object, where, "iuf");
   if (a.ndim() != 1 || a.size() != 3)
     throw InvalidInput(where + ": expected 3 numbers, got shape " + shape_text(a));
-  const auto d = Doubles::ensure(a);
+  const auto d = DoubleArray::ensure(a);
   return {d.data()[0], d.data()[1], d.data()[2]};
 }
 
@@ -541,8 +449,17 @@ string attributes. Row 0 is the top of the image; arrays are (height, width).)")
           "The uint32 state channel as (height, width) (a copy), or None. Assign an integer array of shape\n"
           "(height, width) with values in 0 … 2³² − 1, or None to remove it (InvalidInput otherwise).\n"
           "Unreached pixels hold kNoState.")
-      .def_readwrite("attributes", &Image::attributes,
-                     "Header attributes, dict[str, str] (a copy: assign a whole dict to change them).")
+      .def_property(
+          "attributes",
+          // Read-only view: editing a copy in place would silently do nothing.
+          [](const Image& image) {
+            return py::module_::import("types").attr("MappingProxyType")(py::cast(image.attributes));
+          },
+          [](Image& image, std::map<std::string, std::string> attributes) {
+            image.attributes = std::move(attributes);
+          },
+          "Header attributes (str → str), a read-only mapping: assign a whole dict to change them, e.g.\n"
+          "``image.attributes = {**image.attributes, \"source\": \"sweep\"}``.")
       .def(
           "copy", [](const Image& image) { return image; }, "An independent copy of the image.")
       .def("__repr__", &image_repr);

@@ -29,9 +29,11 @@ class GalleryTest(ScratchTestCase):
             self.assertEqual(png.shape[:2], (96, 96), name)
             self.assertGreater(float(np.sum(image.channels["A"])), 0, f"{name}: nothing drawn")
         self.assertIn("<svg", (self.scratch / "wave.automaton.svg").read_text())
-        # The fern's density holds every sample that landed on screen.
+        # The fern's density holds the samples that landed on screen: all but a few, since the frame
+        # is fitted to depth-6 points and the attractor reaches slightly beyond them.
         fern = cifs.render.read_exr(self.scratch / "fern.exr")
-        self.assertEqual(int(np.sum(fern.channels["density"])), 20000)
+        self.assertLessEqual(int(np.sum(fern.channels["density"])), 20000)
+        self.assertGreaterEqual(int(np.sum(fern.channels["density"])), 19900)
         self.assertEqual(sorted(p.name for p in self.scratch.iterdir() if p.name.startswith(".")), [],
                          "temporary files left behind")
 

@@ -196,7 +196,7 @@ class GeometryTest(ScratchTestCase):
         cases = [
             (lambda: io.Mesh(v, triangles=[[0, 1, 5]]), "Mesh: triangles[0][2] = 5 is out of range (3 vertices)"),
             (lambda: io.Mesh(v, triangles=[[0, 1]]),
-             "Mesh: triangles: expected an integer array (n, 3), got shape (1, 2)"),
+             "Mesh: triangles: expected an integer array of shape (n, 3), got shape (1, 2)"),
             (lambda: io.Mesh(np.zeros((3, 2))), "Mesh: mesh vertices have 2 columns, expected 3"),
             (lambda: io.Mesh(v, triangles=[[0, 1, 2]], states=[1, 2]), "Mesh: 2 states for 1 faces"),
             (lambda: io.Segments(v, [[0, 3]]), "Segments: segments[0][1] = 3 is out of range (3 vertices)"),

@@ -429,6 +429,33 @@ class RasterTest(unittest.TestCase):
         for name in ("A", "Z", "R", "N.x", "N.y", "N.z"):
             self.assertTrue(np.array_equal(image.channels[name], other.channels[name]), name)
 
+    def test_mesh_index_dtypes_give_the_same_image(self):
+        # int32 quads and uint32 states (what ifs.surface_mesh returns) are converted, not misread
+        # (a converted temporary once dangled here: a crash).
+        camera = R.Camera(width=24, height=24, eye=(0.5, 0.5, 3), target=(0.5, 0.5, 0), ortho_height=2)
+        vertices = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0.2], [0, 1, 0.1]], dtype=float)
+        images = []
+        for index_type, state_type in ((np.int64, np.int64), (np.int32, np.uint32), (np.uint16, np.uint8)):
+            image = R.make_framebuffer(camera)
+            R.render_mesh(image, camera, vertices, quads=np.array([[0, 1, 2, 3]], dtype=index_type),
+                               states=np.array([7], dtype=state_type))
+            images.append(image)
+        for image in images[1:]:
+            for name in ("R", "A", "Z", "N.z"):
+                np.testing.assert_array_equal(image.channels[name], images[0].channels[name], name)
+            np.testing.assert_array_equal(image.state, images[0].state)
+        with self.assertRaises(cifs.InvalidInput) as caught:
+            R.render_mesh(R.make_framebuffer(camera), camera, vertices, quads=np.array([[0, 1, 2, 3.0]]))
+        self.assertIn("expected an array of integers", str(caught.exception))
+
+    def test_attributes_are_a_read_only_view(self):
+        image = R.Image(2, 2)
+        image.attributes = {"a": "1"}
+        with self.assertRaises(TypeError):
+            image.attributes["b"] = "2"
+        image.attributes = {**image.attributes, "b": "2"}
+        self.assertEqual(dict(image.attributes), {"a": "1", "b": "2"})
+
     def test_mesh_thread_count_invariance(self):
         camera = R.Camera(projection=R.Projection.perspective, eye=(2, -3, 2), target=(0, 0, 0), up=(0, 0, 1),
                           width=80, height=70, fov_y=45)
