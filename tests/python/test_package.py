@@ -40,6 +40,12 @@ class PackageTest(unittest.TestCase):
                             missing.append(f"cifs.{name}.{attr}.{member}")
         self.assertEqual(missing, [], "objects without a docstring")
 
+    def test_docs_name_every_public_object(self):
+        text = (SOURCE_DIR / "docs" / "python.md").read_text()
+        missing = [f"cifs.{name}.{attr}" for name in SUBMODULES for attr in vars(getattr(cifs, name))
+                   if not attr.startswith("_") and f"`{attr}`" not in text and f"`{attr}(" not in text]
+        self.assertEqual(missing, [], "public objects that docs/python.md does not name")
+
 
 if __name__ == "__main__":
     unittest.main()
