@@ -355,10 +355,14 @@ std::string dimension(const DimensionOptions& o) {
   if (o.depth && o.tolerance) throw InvalidInput("dimension: give --depth or --tolerance, not both");
   // Default: a tolerance sample, whose piece size is proven; --depth: the file's evaluation.
   const bool sampled = !o.depth;
-  const experiment::Evaluation ev =
-      sampled ? experiment::sample(e, {o.tolerance.value_or(0), o.max_points}) : experiment::evaluate(e, o.depth);
+  const experiment::Evaluation ev = sampled ? experiment::sample(e, {o.tolerance.value_or(0), o.max_points})
+                                            : experiment::evaluate(e, o.depth);
   ifs::BoxCountingOptions bo;
   bo.resolution = ev.resolution;
+  bo.min_boxes = o.min_boxes;
+  // A tolerance sample covers the attractor to its resolution by construction: the
+  // points-per-box rule (a proxy for coverage of depth samples) does not apply.
+  if (sampled) bo.points_per_box = 1;
   bo.min_level = o.min_level;
   bo.max_level = o.max_level;
   const ifs::BoxCountingResult r = ifs::box_counting(ev.points, bo);

@@ -571,7 +571,8 @@ Evaluation sample(const io::Experiment& experiment, const SampleOptions& options
   so.homogeneous = scene.rational;
   so.max_points = options.max_points;
   so.epsilon = options.tolerance * ifs::diameter(net_rows(scene.nets, scene.rational));
-  if (options.tolerance > 0 && !(so.epsilon > 0)) throw InvalidInput("tolerance: the control nets are single points");
+  if (options.tolerance > 0 && !(so.epsilon > 0))
+    throw InvalidInput("tolerance: the control nets are single points");
   ifs::ToleranceSample ts = ifs::tolerance_sample(scene.automaton, scene.nets, so);
   out.points = std::move(ts.points);
   out.resolution = ts.resolution;

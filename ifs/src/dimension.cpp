@@ -36,8 +36,8 @@ struct Full {};
 
 /// Leaves of the tolerance traversal at `options.epsilon`; max + 1 as soon as there are more.
 /// Throws InvalidInput when a branch is unresolved at max_depth.
-std::size_t count_leaves(const automata::Automaton& a, std::span<const Points> nets, const ToleranceOptions& to,
-                         std::size_t max) {
+std::size_t count_leaves(const automata::Automaton& a, std::span<const Points> nets,
+                         const ToleranceOptions& to, std::size_t max) {
   std::size_t n = 0;
   try {
     for_each_leaf_to_tolerance(a, nets, to, [&](const ToleranceLeaf& t) {
@@ -83,8 +83,9 @@ ToleranceSample tolerance_sample(const automata::Automaton& a, std::span<const P
     to.epsilon = std::ldexp(extent, -4);
     n = count_leaves(a, nets, to, o.max_points);
     if (n > o.max_points)
-      throw InvalidInput("tolerance sample: even tolerance " + num(to.epsilon) + " (1/16 of the nets' extent) needs more than " +
-                         std::to_string(o.max_points) + " points; raise the point limit");
+      throw InvalidInput("tolerance sample: even tolerance " + num(to.epsilon) +
+                         " (1/16 of the nets' extent) needs more than " + std::to_string(o.max_points) +
+                         " points; raise the point limit");
     // 2^-60 of the extent is far below double precision of any coordinate: stop there (a sample
     // that does not grow is an attractor of few points).
     for (int j = 5; j <= 60; ++j) {
