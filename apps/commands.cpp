@@ -352,9 +352,17 @@ std::string dimension(const DimensionOptions& o) {
   } else {
     e = io::read_experiment(o.input);
   }
-  const experiment::Evaluation ev = experiment::evaluate(e, o.depth);
+  if (o.depth && o.tolerance) throw InvalidInput("dimension: give --depth or --tolerance, not both");
+  // Default: a tolerance sample, whose piece size is proven; --depth: the file's evaluation.
+  const bool sampled = !o.depth;
+  const experiment::Evaluation ev = sampled ? experiment::sample(e, {o.tolerance.value_or(0), o.max_points})
+                                            : experiment::evaluate(e, o.depth);
   ifs::BoxCountingOptions bo;
   bo.resolution = ev.resolution;
+  bo.min_boxes = o.min_boxes;
+  // A tolerance sample covers the attractor to its resolution by construction: the
+  // points-per-box rule (a proxy for coverage of depth samples) does not apply.
+  if (sampled) bo.points_per_box = 1;
   bo.min_level = o.min_level;
   bo.max_level = o.max_level;
   const ifs::BoxCountingResult r = ifs::box_counting(ev.points, bo);
@@ -376,6 +384,7 @@ std::string dimension(const DimensionOptions& o) {
     json j;
     j["input"] = o.input.string();
     j["kind"] = ev.kind;
+    j["mode"] = sampled ? "tolerance" : "depth";
     j["depth"] = ev.depth;
     j["points"] = ev.points.rows();
     j["resolution"] = ev.resolution;
@@ -396,8 +405,11 @@ std::string dimension(const DimensionOptions& o) {
     return j.dump(2) + "\n";
   }
   char line[256];
-  std::string out = o.input.string() + ": " + ev.kind + ", depth " + std::to_string(ev.depth) + ", " +
-                    std::to_string(ev.points.rows()) + " points\n";
+  std::snprintf(line, sizeof line, "%.4g", ev.resolution);
+  std::string out = o.input.string() + ": " + ev.kind + ", " +
+                    (sampled ? "pieces < " + std::string(line) + " (deepest " + std::to_string(ev.depth) + ")"
+                             : "depth " + std::to_string(ev.depth) + ", pieces ≤ " + line) +
+                    ", " + std::to_string(ev.points.rows()) + " points\n";
   std::snprintf(line, sizeof line,
                 "box-counting dimension %.4f (levels %d … %d, ε %.4g … %.4g, R² %.6f, max residual %.3g)\n",
                 r.dimension, r.min_level, r.max_level, r.max_epsilon, r.min_epsilon, r.r_squared, r.residual);

@@ -64,9 +64,12 @@ struct RenderOptions {
 std::string render(const RenderOptions& options);
 
 struct DimensionOptions {
-  std::filesystem::path input;         // experiment file, or shape file (.json with "curve"/"surface", .obj)
-  std::optional<int> depth;            // default: the experiment's evaluation.depth, 8 for a shape
-  int min_level = -1, max_level = -1;  // fit range (box levels); -1: automatic
+  std::filesystem::path input;      // experiment file, or shape file (.json with "curve"/"surface", .obj)
+  std::optional<int> depth;         // evaluate to this depth (shapes: default 8 when no other mode)
+  std::optional<double> tolerance;  // sample to this relative piece size; default (no depth): from max_points
+  std::size_t max_points = std::size_t{1} << 21;  // point budget of the tolerance sample
+  int min_level = -1, max_level = -1;             // fit range (box levels); -1: automatic
+  std::size_t min_boxes = 1000;                   // automatic range: coarsest level with this many boxes
   bool json = false;
 };
 /// `cifs dimension`: box-counting fit of the deterministic evaluation, and the similarity

@@ -103,9 +103,19 @@ int main(int argc, char** argv) {
       "dimension",
       "Box-counting dimension of an experiment's or shape's attractor (and similarity dimension)");
   dimension_cmd->add_option("input", di.input, "Experiment file, or shape file (.json or .obj)")->required();
-  dimension_cmd->add_option("--depth", di.depth, "Evaluation depth (default: the experiment's; shapes: 8)");
+  auto* dimension_depth = dimension_cmd->add_option(
+      "--depth", di.depth, "Evaluate to this depth instead of sampling to a tolerance");
+  dimension_cmd
+      ->add_option("--tolerance", di.tolerance,
+                   "Sample: every piece smaller than this fraction of the control nets' extent (default: "
+                   "the smallest 2^-j within --max-points)")
+      ->excludes(dimension_depth);
+  dimension_cmd->add_option("--max-points", di.max_points,
+                            "Point budget of the tolerance sample (default 2^21)");
   dimension_cmd->add_option("--min-level", di.min_level, "Fit range: coarsest box level k (ε = size·2^-k)");
   dimension_cmd->add_option("--max-level", di.max_level, "Fit range: finest box level");
+  dimension_cmd->add_option("--min-boxes", di.min_boxes,
+                            "Automatic fit range: only levels with at least this many boxes (default 1000)");
   dimension_cmd->add_flag("--json", di.json, "Machine-readable report");
   dimension_cmd->callback([&] { result = dimension(di); });
 

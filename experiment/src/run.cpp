@@ -14,6 +14,7 @@
 #include "cifs/ifs/bcifs_curve.hpp"
 #include "cifs/ifs/bcifs_surface.hpp"
 #include "cifs/ifs/chaos.hpp"
+#include "cifs/ifs/dimension.hpp"
 #include "cifs/ifs/mesh.hpp"
 #include "cifs/io/bcifs_json.hpp"
 #include "cifs/io/geometry.hpp"
@@ -546,13 +547,36 @@ Evaluation evaluate(const io::Experiment& experiment, std::optional<int> depth, 
     po.max_bytes = o.max_bytes;
     out.points = ifs::attractor_points(scene.automaton, scene.nets, out.depth, po);
   }
-  if (!scene.rational) {
-    // Every depth-K piece lies within radius·diam(N) of its net's first row (analysis.hpp).
-    const double radius = ifs::contraction(scene.automaton).radius;
-    ifs::for_each_leaf(scene.automaton, scene.nets, out.depth, [&](const ifs::Leaf& leaf) {
-      out.resolution = std::max(out.resolution, 2 * radius * ifs::diameter(leaf.net));
-    });
-  }
+  const ifs::PieceBounds bounds(scene.automaton, ifs::contraction(scene.automaton), scene.rational);
+  ifs::for_each_leaf(scene.automaton, scene.nets, out.depth, [&](const ifs::Leaf& leaf) {
+    out.resolution = std::max(out.resolution, bounds(leaf.state, leaf.net).diameter);
+  });
+  out.automaton = std::move(scene.automaton);
+  out.nets = std::move(scene.nets);
+  out.maps = std::move(scene.maps);
+  out.rational = scene.rational;
+  return out;
+}
+
+Evaluation sample(const io::Experiment& experiment, const SampleOptions& options, const RunOptions& o) {
+  if (!(options.tolerance >= 0) || !std::isfinite(options.tolerance))
+    throw InvalidInput("tolerance: " + number(options.tolerance) + " must be finite and ≥ 0");
+  // Chaos mode builds the automaton and nets without evaluating them.
+  io::Experiment e = experiment;
+  e.evaluation.mode = Mode::chaos;
+  RunReport report;
+  Evaluation out;
+  Scene scene = make_scene(e, o, report, out.kind);
+  ifs::ToleranceSampleOptions so;
+  so.homogeneous = scene.rational;
+  so.max_points = options.max_points;
+  so.epsilon = options.tolerance * ifs::diameter(net_rows(scene.nets, scene.rational));
+  if (options.tolerance > 0 && !(so.epsilon > 0))
+    throw InvalidInput("tolerance: the control nets are single points");
+  ifs::ToleranceSample ts = ifs::tolerance_sample(scene.automaton, scene.nets, so);
+  out.points = std::move(ts.points);
+  out.resolution = ts.resolution;
+  out.depth = ts.deepest;
   out.automaton = std::move(scene.automaton);
   out.nets = std::move(scene.nets);
   out.maps = std::move(scene.maps);

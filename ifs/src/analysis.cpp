@@ -32,6 +32,24 @@
 //   Since ½(1 + A) ≤ A, ρ is at most the bound A·diam(N)/(1 − δ_m). Nothing requires m to be the
 //   smallest length with δ_m < 1: any such m gives a sound ρ, and `contraction` keeps the smallest.
 //
+// Hull bound (convex_states, PieceBounds). If every matrix on every path from s is non-negative
+//   with rows summing to 1, every product P along a path is too (sums and products of
+//   non-negative numbers; P·1 = 1), so each row of a net below s is a convex combination of the
+//   rows of N, i.e. lies in their convex hull H; attractor points are limits of such rows (the
+//   theorem above) and H is closed. The distance to N_0 is convex, so its maximum over H is
+//   max_i ‖N_i − N_0‖ (a vertex), and diam(H) = diam(N) (Lemma 1's argument). Both are ≤ the
+//   contraction bound, since ρ ≥ ½(1 + 1)/1 = 1.
+//
+// Homogeneous rows h = (w·x, w) (rational nets), Cartesian point x = h_x / h_w.
+//   (a) Convex state and weights w_k of N all > 0 (or all < 0): a piece point is Σ c_k N_k with
+//       c ≥ 0, Σc = 1, hence x = Σ (c_k w_k / Σ_j c_j w_j)·x_k, a convex combination of the
+//       Cartesian rows x_k: the hull bound applies to the Cartesian net.
+//   (b) Otherwise, with r the homogeneous radius around N_0 = (w_0 x_0, w_0): every piece point
+//       p = (p_x, w_p) has |w_p − w_0| ≤ ‖p − N_0‖ ≤ r, so |w_p| ≥ |w_0| − r > 0 when |w_0| > r,
+//       and x_p − x_0 = (p_x − w_p x_0)/w_p = ((p_x − w_0 x_0) − (w_p − w_0)·x_0)/w_p. By
+//       Cauchy–Schwarz ‖a − b·x_0‖ ≤ ‖(a, b)‖·√(1 + ‖x_0‖²), so
+//       ‖x_p − x_0‖ ≤ r·√(1 + ‖x_0‖²) / (|w_0| − r).
+//
 // Floating point: the lemma needs Σa = 0 exactly; rows summing to 1 up to η add η·‖N_0‖ per step,
 // far below any tolerance that is meaningful in double precision.
 #include <Eigen/Eigenvalues>
@@ -176,6 +194,68 @@ double delta(const Eigen::MatrixXd& M) noexcept {
     for (Eigen::Index j = i + 1; j < M.rows(); ++j)
       best = std::max(best, (M.row(i) - M.row(j)).cwiseAbs().sum());
   return best / 2;
+}
+
+std::vector<bool> convex_states(const Automaton& automaton) {
+  const Graph& g = automaton.graph;
+  const auto n = boost::num_vertices(g);
+  // A state is not convex when it has a negative matrix or reaches such a state: propagate
+  // backwards from the states with a negative out-transition.
+  std::vector<std::vector<StateId>> into(n);
+  std::vector<StateId> todo;
+  std::vector<bool> convex(n, true);
+  for (StateId s = 0; s < n; ++s)
+    for (auto [b, e] = boost::out_edges(s, g); b != e; ++b) {
+      into[boost::target(*b, g)].push_back(s);
+      if (convex[s] && (g[*b].matrix.array() < 0).any()) {
+        convex[s] = false;
+        todo.push_back(s);
+      }
+    }
+  while (!todo.empty()) {
+    const StateId s = todo.back();
+    todo.pop_back();
+    for (const StateId u : into[s])
+      if (convex[u]) {
+        convex[u] = false;
+        todo.push_back(u);
+      }
+  }
+  return convex;
+}
+
+PieceBounds::PieceBounds(const Automaton& automaton, const Contraction& contraction, bool homogeneous)
+    : convex_(convex_states(automaton)), factor_(contraction.radius), homogeneous_(homogeneous) {}
+
+namespace {
+
+/// max_i ‖N_i − N_0‖ and diam(N): the hull bound (analysis.cpp header).
+PieceBound hull_bound(const Points& net) {
+  double far = 0;
+  for (Eigen::Index i = 1; i < net.rows(); ++i) far = std::max(far, (net.row(i) - net.row(0)).squaredNorm());
+  return {std::sqrt(far), diameter(net)};
+}
+
+}  // namespace
+
+PieceBound PieceBounds::operator()(StateId state, const Points& net) const {
+  const bool convex = state < convex_.size() && convex_[state];
+  if (!homogeneous_) {
+    const double r = factor_ * diameter(net);
+    return convex ? hull_bound(net) : PieceBound{r, 2 * r};
+  }
+  const Eigen::Index c = net.cols() - 1;
+  const auto w = net.col(c);
+  if (convex && ((w.array() > 0).all() || (w.array() < 0).all())) {
+    Points X = net.leftCols(c);
+    X.array().colwise() /= w.array();
+    return hull_bound(X);
+  }
+  const double r = factor_ * diameter(net), w0 = std::abs(net(0, c));
+  if (!(w0 > r)) return {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  const double x0 = net.row(0).head(c).norm() / w0;
+  const double radius = r * std::sqrt(1 + x0 * x0) / (w0 - r);
+  return {radius, 2 * radius};
 }
 
 namespace {

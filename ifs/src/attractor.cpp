@@ -56,17 +56,18 @@ ToleranceResult for_each_leaf_to_tolerance(const Automaton& automaton, std::span
                        ", must be ≥ 0");
   ToleranceResult result;
   result.contraction = contraction(automaton, ContractionOptions{options.max_length});
-  const double factor = result.contraction.radius;
+  if (options.homogeneous && nets.front().cols() < 2)
+    throw InvalidInput("for_each_leaf_to_tolerance: homogeneous rows need at least 2 columns (w·x, w)");
+  const PieceBounds bounds(automaton, result.contraction, options.homogeneous);
   detail::depth_first(automaton, nets, options.max_depth,
                       [&](std::size_t i, StateId s, const Points& net, int d, std::span<const int> word) {
-                        // Every point of the piece lies within `radius` of net.row(0) (analysis.cpp).
-                        const double radius = factor * diameter(net);
-                        const bool converged = 2 * radius < options.epsilon;
+                        const PieceBound b = bounds(s, net);
+                        const bool converged = b.diameter < options.epsilon;
                         if (!converged && d < options.max_depth) return true;
                         ++result.leaves;
                         if (!converged) ++result.unconverged;
                         result.deepest = std::max(result.deepest, d);
-                        callback(ToleranceLeaf{Leaf{i, s, net, d, word}, radius, converged});
+                        callback(ToleranceLeaf{Leaf{i, s, net, d, word}, b.radius, converged, b.diameter});
                         return false;
                       });
   return result;

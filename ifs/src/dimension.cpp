@@ -11,6 +11,7 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/ifs/analysis.hpp"
+#include "cifs/ifs/attractor.hpp"
 
 namespace cifs::ifs {
 namespace {
@@ -31,7 +32,83 @@ std::uint64_t morton(const std::vector<std::uint64_t>& c, int levels) {
   return key;
 }
 
+struct Full {};
+
+/// Leaves of the tolerance traversal at `options.epsilon`; max + 1 as soon as there are more.
+/// Throws InvalidInput when a branch is unresolved at max_depth.
+std::size_t count_leaves(const automata::Automaton& a, std::span<const Points> nets,
+                         const ToleranceOptions& to, std::size_t max) {
+  std::size_t n = 0;
+  try {
+    for_each_leaf_to_tolerance(a, nets, to, [&](const ToleranceLeaf& t) {
+      if (!t.converged)
+        throw InvalidInput("tolerance sample: a piece is still " + num(t.diameter) + " wide at depth " +
+                           std::to_string(to.max_depth) + " (tolerance " + num(to.epsilon) + ")");
+      if (++n > max) throw Full{};
+    });
+  } catch (const Full&) {
+  }
+  return n;
+}
+
 }  // namespace
+
+ToleranceSample tolerance_sample(const automata::Automaton& a, std::span<const Points> nets,
+                                 const ToleranceSampleOptions& o) {
+  if (!(o.epsilon >= 0) || !std::isfinite(o.epsilon))
+    throw InvalidInput("tolerance sample: epsilon is " + num(o.epsilon) + ", must be finite and ≥ 0");
+  validate(a);
+  ToleranceOptions to;
+  to.homogeneous = o.homogeneous;
+  to.max_depth = o.max_depth;
+  to.epsilon = o.epsilon;
+  std::size_t n = 0;
+  if (o.epsilon > 0) {
+    n = count_leaves(a, nets, to, o.max_points);
+    if (n > o.max_points)
+      throw InvalidInput("tolerance sample: tolerance " + num(o.epsilon) + " needs more than " +
+                         std::to_string(o.max_points) + " points; raise the tolerance or the point limit");
+  } else {
+    // The largest power-of-2 fraction of the nets' extent within the point budget.
+    Eigen::Index rows = 0;
+    for (const Points& N : nets) rows += N.rows();
+    Points all(rows, nets.empty() ? 0 : nets.front().cols());
+    rows = 0;
+    for (const Points& N : nets) {
+      all.middleRows(rows, N.rows()) = N;
+      rows += N.rows();
+    }
+    const double extent = diameter(o.homogeneous ? cartesian(all) : all);
+    if (!(extent > 0)) throw InvalidInput("tolerance sample: the nets are single points");
+    to.epsilon = std::ldexp(extent, -4);
+    n = count_leaves(a, nets, to, o.max_points);
+    if (n > o.max_points)
+      throw InvalidInput("tolerance sample: even tolerance " + num(to.epsilon) +
+                         " (1/16 of the nets' extent) needs more than " + std::to_string(o.max_points) +
+                         " points; raise the point limit");
+    // 2^-60 of the extent is far below double precision of any coordinate: stop there (a sample
+    // that does not grow is an attractor of few points).
+    for (int j = 5; j <= 60; ++j) {
+      ToleranceOptions finer = to;
+      finer.epsilon = std::ldexp(extent, -j);
+      const std::size_t m = count_leaves(a, nets, finer, o.max_points);
+      if (m > o.max_points) break;
+      to = finer;
+      n = m;
+    }
+  }
+  const EndFunctionals ends = end_functionals(a);
+  const Eigen::Index cols = nets.front().cols();
+  Points H(static_cast<Eigen::Index>(n), cols);
+  ToleranceSample out;
+  const auto result = for_each_leaf_to_tolerance(a, nets, to, [&](const ToleranceLeaf& t) {
+    H.row(static_cast<Eigen::Index>(out.leaves++)) = ends.start[t.leaf.state] * t.leaf.net;
+  });
+  out.points = o.homogeneous ? cartesian(H) : std::move(H);
+  out.resolution = to.epsilon;
+  out.deepest = result.deepest;
+  return out;
+}
 
 BoxCountingResult box_counting(const Points& P, const BoxCountingOptions& o) {
   if (P.rows() == 0 || P.cols() == 0) throw InvalidInput("box counting: no points");

@@ -268,3 +268,22 @@ TEST_CASE("cifs dimension: box counting and similarity dimension", "[cli][dimens
   check_error(cifs_cli("dimension " + sierpinski + " --depth -1"), "negative");
   check_error(cifs_cli("dimension /no/such/file.json"), "/no/such/file.json");
 }
+
+TEST_CASE("cifs dimension: tolerance samples by default", "[cli][dimension]") {
+  const auto dim = [](const std::string& args) {
+    const Run r = cifs_cli("dimension " CIFS_EXAMPLES_DIR "/" + args + " --json");
+    INFO(args << ": " << r.err);
+    REQUIRE(r.status == 0);
+    const auto j = nlohmann::json::parse(r.out);
+    CHECK(j["mode"] == "tolerance");
+    CHECK(j["box_counting"]["epsilon"][1].get<double>() >= 2 * j["resolution"].get<double>());
+    return j["box_counting"]["dimension"].get<double>();
+  };
+  CHECK(std::abs(dim("experiments/sierpinski.json") - std::log2(3.0)) < 0.01);
+  CHECK(std::abs(dim("experiments/koch.json --max-points 1048576") - std::log(4.0) / std::log(3.0)) < 0.01);
+  CHECK(std::abs(dim("shapes/wave.json --max-points 1048576") - 1) < 0.02);  // rational: Cartesian bound
+  CHECK(dim("experiments/clover_fractal.json --max-points 1048576") >= 1);
+  check_error(
+      cifs_cli("dimension " CIFS_EXAMPLES_DIR "/experiments/koch.json --tolerance 1e-9 --max-points 1000"),
+      "needs more than 1000 points");
+}

@@ -255,7 +255,8 @@ TEST_CASE("Tolerance leaves: the reported radius bounds the attractor piece", "[
     std::vector<std::tuple<StateId, Points, double>> leaves;
     std::size_t seen = 0;
     const auto result = for_each_leaf_to_tolerance(a, nets, options, [&](const ToleranceLeaf& leaf) {
-      CHECK(leaf.converged == (2 * leaf.radius < epsilon));
+      CHECK(leaf.converged == (leaf.diameter < epsilon));
+      CHECK(leaf.diameter <= 2 * leaf.radius);
       if (!leaf.converged) CHECK(leaf.leaf.depth == max_depth);
       if (seen++ % 37 == 0) leaves.emplace_back(leaf.leaf.state, leaf.leaf.net, leaf.radius);
     });

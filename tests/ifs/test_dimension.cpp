@@ -213,3 +213,102 @@ TEST_CASE("box counting: fit ranges and bad input", "[ifs][dimension]") {
   o.max_level = 5;
   CHECK_THROWS_WITH(ifs::box_counting(sierpinski, o), Contains("at least 3 levels"));
 }
+
+TEST_CASE("piece bounds hold: hull, contraction and Cartesian (rational) bounds", "[ifs][dimension]") {
+  std::mt19937_64 rng(11);
+  // The true piece: attractor points 8 levels below the node (Cartesian for homogeneous rows).
+  const auto check = [](const automata::Automaton& a, const std::vector<Points>& nets, bool homogeneous) {
+    const ifs::PieceBounds bounds(a, ifs::contraction(a), homogeneous);
+    int finite = 0;
+    for (const int depth : {0, 2, 4})
+      ifs::for_each_leaf(a, nets, depth, [&](const ifs::Leaf& leaf) {
+        const ifs::PieceBound b = bounds(leaf.state, leaf.net);
+        CHECK(b.diameter <= 2 * b.radius * (1 + 1e-12));
+        if (!std::isfinite(b.diameter)) return;
+        ++finite;
+        automata::Automaton sub = a;
+        sub.initial.clear();
+        ifs_test::add_initial(sub, leaf.state);
+        const std::vector<Points> sub_nets{leaf.net};
+        Points X = ifs::attractor_points(sub, sub_nets, 8);
+        Points N0 = leaf.net.topRows(1);
+        if (homogeneous) X = ifs::cartesian(X), N0 = ifs::cartesian(N0);
+        CHECK(ifs::diameter(X) <= b.diameter * (1 + 1e-12));
+        for (Eigen::Index i = 0; i < X.rows(); ++i) CHECK((X.row(i) - N0).norm() <= b.radius * (1 + 1e-12));
+      });
+    CHECK(finite > 0);
+  };
+  SECTION("non-negative matrices: the hull bound, diam(net)") {
+    const automata::Automaton a = ifs_test::uniform_automaton(3);
+    CHECK(ifs::convex_states(a) == std::vector<bool>{true});
+    const std::vector<Points> nets{ifs_test::random_points(4, 2, rng)};
+    check(a, nets, false);
+    const ifs::PieceBounds bounds(a, ifs::contraction(a), false);
+    CHECK(bounds(0, nets[0]).diameter == ifs::diameter(nets[0]));
+    // Rational: positive weights keep the Cartesian hull property.
+    Points H(4, 3);
+    for (Eigen::Index i = 0; i < 4; ++i) {
+      const double w = 0.5 + std::abs(nets[0](i, 0));
+      H.row(i) << w * nets[0](i, 0), w * nets[0](i, 1), w;
+    }
+    check(a, {H}, true);
+  }
+  SECTION("signed matrices: the contraction bound, Cartesian through the weight bound") {
+    automata::Automaton a;
+    const automata::StateId s = ifs_test::add_state(a, 3), t = ifs_test::add_state(a, 3);
+    Eigen::MatrixXd A = ifs_test::random_contraction(3, 3, 0.4, rng);
+    A.row(0) << 1.1, -0.3, 0.2;  // a negative entry, δ still < 1
+    ifs_test::add_transition(a, s, s, A, "a");
+    ifs_test::add_transition(a, s, t, ifs_test::random_contraction(3, 3, 0.4, rng), "b");
+    ifs_test::add_transition(a, t, t, nurbs::subdivision_matrix(nurbs::Window(3, 1.0), 2, nurbs::Half::G),
+                             "c");
+    ifs_test::add_transition(a, t, t, nurbs::subdivision_matrix(nurbs::Window(3, 1.0), 2, nurbs::Half::D),
+                             "d");
+    ifs_test::add_initial(a, s);
+    CHECK(ifs::convex_states(a) == std::vector<bool>{false, true});
+    check(a, {ifs_test::random_points(3, 2, rng)}, false);
+    Points H = ifs_test::random_points(3, 3, rng);
+    H.col(2).setConstant(1);
+    H.col(2) += 0.1 * ifs_test::random_points(3, 1, rng);
+    check(a, {H}, true);
+  }
+}
+
+TEST_CASE("tolerance sample: Sierpinski and Koch within 0.01, a smooth curve 1", "[ifs][dimension]") {
+  const auto dimension_of = [](const automata::Automaton& a, const std::vector<Points>& nets,
+                               bool homogeneous, std::size_t budget) {
+    ifs::ToleranceSampleOptions so;
+    so.max_points = budget;
+    so.homogeneous = homogeneous;
+    const ifs::ToleranceSample s = ifs::tolerance_sample(a, nets, so);
+    CHECK(s.leaves == static_cast<std::size_t>(s.points.rows()));
+    CHECK(s.leaves <= budget);
+    ifs::BoxCountingOptions bo;
+    bo.resolution = s.resolution;
+    bo.points_per_box = 1;
+    const ifs::BoxCountingResult r = ifs::box_counting(s.points, bo);
+    CHECK(r.min_epsilon >= 2 * s.resolution);
+    return r.dimension;
+  };
+  const Points T = unit_triangle();
+  CHECK(std::abs(dimension_of(ifs::affine_automaton(ifs::sierpinski_triangle(), T), {T}, false, 1u << 20) -
+                 std::log(3.0) / std::log(2.0)) < 0.01);
+  CHECK(std::abs(dimension_of(ifs::affine_automaton(ifs::koch_curve(), T), {T}, false, 1u << 20) -
+                 std::log(4.0) / std::log(3.0)) < 0.01);
+  std::mt19937_64 rng(3);
+  CHECK(std::abs(dimension_of(ifs_test::uniform_automaton(3), {ifs_test::random_points(4, 2, rng)}, false,
+                              1u << 18) -
+                 1) < 0.02);
+  SECTION("budget and bad input") {
+    ifs::ToleranceSampleOptions so;
+    so.epsilon = 1e-6;
+    so.max_points = 1000;
+    CHECK_THROWS_WITH(ifs::tolerance_sample(ifs_test::uniform_automaton(3),
+                                            std::vector<Points>{ifs_test::random_points(4, 2, rng)}, so),
+                      Contains("needs more than 1000 points"));
+    so.epsilon = -1;
+    CHECK_THROWS_WITH(ifs::tolerance_sample(ifs_test::uniform_automaton(3),
+                                            std::vector<Points>{ifs_test::random_points(4, 2, rng)}, so),
+                      Contains("must be finite and ≥ 0"));
+  }
+}

@@ -46,8 +46,9 @@ struct Evaluation {
   Points points;
   int depth = 0;
   std::string kind;  // "NURBS curve", "classic IFS koch", …
-  /// Bound on the diameter of the depth-K pieces (contraction radius, analysis.hpp); 0 when
-  /// unknown (rational nets: the bound is for homogeneous rows).
+  /// Bound on the diameter of the pieces the points stand for (ifs::PieceBounds, Cartesian): the
+  /// largest bound over the depth-K pieces, or the tolerance of `sample`; infinite when unknown
+  /// (a rational piece whose weights may vanish).
   double resolution = 0;
   automata::Automaton automaton;  // the (perturbed) automaton; for a classic IFS its CIFS form
   std::vector<Points> nets;       // one per initial entry (homogeneous rows when `rational`)
@@ -60,5 +61,21 @@ struct Evaluation {
 /// written. Throws InvalidInput as run, and for a negative depth.
 Evaluation evaluate(const io::Experiment& experiment, std::optional<int> depth = {},
                     const RunOptions& options = {});
+
+struct SampleOptions {
+  /// Piece diameter relative to the extent (diameter) of the Cartesian initial nets; 0: the
+  /// largest 2^-j (j ≥ 4) within max_points (ifs::tolerance_sample).
+  double tolerance = 0;
+  /// Refuse (before allocating it) a sample of more points.
+  std::size_t max_points = std::size_t{1} << 21;
+};
+
+/// Builds the source of `experiment` as `run` does and samples its attractor to a tolerance
+/// (ifs::tolerance_sample): one attractor point per piece, every piece proven smaller than
+/// `resolution` = tolerance × extent; `depth` is the deepest piece. For any source (curve, surface,
+/// BC-IFS, classic IFS), whatever the file's evaluation mode. Throws InvalidInput as run, for a
+/// tolerance < 0 and as ifs::tolerance_sample.
+Evaluation sample(const io::Experiment& experiment, const SampleOptions& options = {},
+                  const RunOptions& run_options = {});
 
 }  // namespace cifs::experiment

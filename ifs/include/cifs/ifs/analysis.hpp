@@ -64,6 +64,37 @@ struct Contraction {
 /// shrink nets (δ = 1 along the path 0 0 0 0 0 0 0 0 …)"), instead of letting iteration diverge.
 Contraction contraction(const automata::Automaton& automaton, const ContractionOptions& options = {});
 
+/// Per state (indexed by StateId): true when every transition on every path from the state
+/// carries a matrix without negative entry. Products along such paths are stochastic, so every
+/// row of every net below the state and every attractor point of it is a convex combination of
+/// the rows of its net (hull property): the piece's diameter is at most the net's.
+std::vector<bool> convex_states(const automata::Automaton& automaton);
+
+/// A bound on one attractor piece: every point lies within `radius` of the first row of its net
+/// (its Cartesian image for homogeneous rows), and any two points within `diameter` ≤ 2·radius.
+/// Infinite when no bound is known (homogeneous rows whose weight may vanish on the piece).
+struct PieceBound {
+  double radius = 0;
+  double diameter = 0;
+};
+
+/// Bounds on the attractor pieces of one automaton, per (state, net); proofs in analysis.cpp.
+/// The smaller of the contraction bound (radius·diam(N)) and, for convex states, the hull bound
+/// (max distance of the net's rows to its first row; diameter diam(N)). With `homogeneous` rows
+/// `(w·x, w)` the bound is Cartesian: by the hull of the Cartesian net when the state is convex
+/// and the weights have one sign, else from the homogeneous bound r around N₀ = (w₀x₀, w₀) as
+/// r·√(1 + ‖x₀‖²) / (|w₀| − r) when |w₀| > r.
+class PieceBounds {
+ public:
+  PieceBounds(const automata::Automaton& automaton, const Contraction& contraction, bool homogeneous);
+  PieceBound operator()(automata::StateId state, const Points& net) const;
+
+ private:
+  std::vector<bool> convex_;
+  double factor_;
+  bool homogeneous_;
+};
+
 /// Fixed point of a word: read the child indices `word` from `state` (the word must return to
 /// `state`); the product `P = M_k ⋯ M_1` is `size by size`. Returns the row ℓ (`1 by size`) with
 /// ℓ·P = ℓ and Σℓ = 1; the point of address word^∞ under a net N is ℓ·N. Throws InvalidInput

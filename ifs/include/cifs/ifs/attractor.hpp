@@ -41,21 +41,25 @@ void for_each_leaf(const automata::Automaton& automaton, std::span<const Points>
 
 struct ToleranceOptions {
   /// Target diameter of each attractor piece, in the units of the nets' rows (absolute; for
-  /// homogeneous rows it bounds the homogeneous piece, not its Cartesian image).
+  /// homogeneous rows it bounds the homogeneous piece unless `homogeneous` is set).
   double epsilon = 1e-6;
   /// Branches stop here even when not converged (reported).
   int max_depth = 64;
   /// For the contractivity check (ContractionOptions::max_length).
   int max_length = 8;
+  /// Rows are homogeneous `(w·x, w)` and epsilon, radius and diameter are Cartesian (PieceBounds).
+  bool homogeneous = false;
 };
 
-/// A leaf of the tolerance traversal. Every attractor point below it (and every row of every net
-/// below it) lies within `radius` of `leaf.net.row(0)`; `converged` when `2·radius < epsilon`,
-/// otherwise the branch stopped at `max_depth`.
+/// A leaf of the tolerance traversal. Every attractor point below it lies within `radius` of
+/// `leaf.net.row(0)` (of its Cartesian image with `homogeneous`), any two of them within
+/// `diameter` (PieceBounds); `converged` when `diameter < epsilon`, otherwise the branch stopped
+/// at `max_depth`.
 struct ToleranceLeaf {
   Leaf leaf;
   double radius;
   bool converged;
+  double diameter;
 };
 
 using ToleranceCallback = std::function<void(const ToleranceLeaf&)>;
@@ -68,8 +72,9 @@ struct ToleranceResult {
 };
 
 /// Depth-first traversal that stops a branch as soon as its whole attractor piece is known to have
-/// diameter < epsilon: `2·radius·diam(N) < epsilon` with `radius` from `contraction` (sound also
-/// for matrices with negative entries). Throws InvalidInput for epsilon ≤ 0, a negative max_depth
+/// diameter < epsilon: by PieceBounds, the hull of the net for states whose paths carry only
+/// non-negative matrices, else `2·radius·diam(N)` with `radius` from `contraction` (sound also for
+/// matrices with negative entries). Throws InvalidInput for epsilon ≤ 0, a negative max_depth
 /// or a system that is not contractive.
 ToleranceResult for_each_leaf_to_tolerance(const automata::Automaton& automaton, std::span<const Points> nets,
                                            const ToleranceOptions& options,

@@ -63,6 +63,37 @@ struct BoxCountingResult {
 /// fewer than 3 levels (the message says to evaluate deeper).
 BoxCountingResult box_counting(const Points& points, const BoxCountingOptions& options = {});
 
+/// A sample of an attractor whose resolution is proven: every attractor piece it stands for has
+/// diameter < `resolution`.
+struct ToleranceSample {
+  Points points;           // `#P by dim` Cartesian: the start point (end_functionals) of every leaf
+  double resolution = 0;   // the epsilon used (Cartesian units)
+  int deepest = 0;         // largest leaf depth
+  std::size_t leaves = 0;  // = #P
+};
+
+struct ToleranceSampleOptions {
+  /// Cartesian piece diameter; 0: the largest diam(nets)·2^-j (j ≥ 4) whose sample has at most
+  /// max_points points (each halving of epsilon is tried on a traversal that counts leaves and
+  /// stops at max_points, so the search costs about twice the final traversal).
+  double epsilon = 0;
+  /// Nets hold homogeneous rows `(w·x, w)` (rational shapes).
+  bool homogeneous = false;
+  /// Refuse (before allocating the sample) more points than this.
+  std::size_t max_points = std::size_t{1} << 21;
+  /// Depth cap of the traversal: a branch still unresolved there is refused.
+  int max_depth = 64;
+};
+
+/// Samples the attractor to a tolerance (for_each_leaf_to_tolerance with PieceBounds): one point
+/// per leaf, the attractor point `end_functionals(a).start[state]·net` of its piece, every piece of
+/// diameter < epsilon, so every attractor point lies within epsilon of the sample and the sample
+/// lies on the attractor. Throws InvalidInput for epsilon < 0 or not finite, a sample above
+/// max_points (before allocating it), a branch unresolved at max_depth, and as
+/// for_each_leaf_to_tolerance and end_functionals.
+ToleranceSample tolerance_sample(const automata::Automaton& automaton, std::span<const Points> nets,
+                                 const ToleranceSampleOptions& options = {});
+
 /// A map of a graph-directed system: from state `from` into state `to`, contracting by `ratio`.
 struct SimilarityEdge {
   automata::StateId from = 0, to = 0;
