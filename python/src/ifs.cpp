@@ -35,6 +35,7 @@ struct LeafView {
 struct ToleranceLeafView {
   LeafView leaf;
   double radius = 0;
+  double diameter = 0;
   bool converged = false;
 };
 
@@ -198,14 +199,16 @@ void bind_ifs(py::module_& m) {
   py::class_<ToleranceLeafView>(
       m, "ToleranceLeaf",
       "A leaf of for_each_leaf_to_tolerance: every attractor point below it lies within "
-      "`radius` of leaf.net[0].")
+      "`radius` of leaf.net[0] (its Cartesian image with homogeneous=True), any two within `diameter`.")
       .def_readonly("leaf", &ToleranceLeafView::leaf, "The node (Leaf).")
       .def_readonly("radius", &ToleranceLeafView::radius,
-                    "Bound on the distance of the piece's points to net[0].")
+                    "Bound on the distance of the piece's points to net[0] (PieceBounds).")
+      .def_readonly("diameter", &ToleranceLeafView::diameter,
+                    "Bound on the piece's diameter (PieceBounds), ≤ 2·radius.")
       .def_readonly("converged", &ToleranceLeafView::converged,
-                    "True when 2·radius < epsilon; False when the branch stopped at max_depth.")
+                    "True when diameter < epsilon; False when the branch stopped at max_depth.")
       .def("__repr__", [](const ToleranceLeafView& t) {
-        return "ToleranceLeaf(depth=" + std::to_string(t.leaf.depth) + ", radius=" + num(t.radius) +
+        return "ToleranceLeaf(depth=" + std::to_string(t.leaf.depth) + ", diameter=" + num(t.diameter) +
                ", converged=" + (t.converged ? "True" : "False") + ")";
       });
   py::class_<ifs::ToleranceResult>(m, "ToleranceResult", "Summary of for_each_leaf_to_tolerance.")
@@ -221,19 +224,91 @@ void bind_ifs(py::module_& m) {
   m.def(
       "for_each_leaf_to_tolerance",
       [](const Automaton a, const std::vector<Points>& nets, const py::function& callback, double epsilon,
-         int max_depth, int max_length) {
+         int max_depth, int max_length, bool homogeneous) {
         return ifs::for_each_leaf_to_tolerance(
-            a, nets, ifs::ToleranceOptions{epsilon, max_depth, max_length}, [&](const ifs::ToleranceLeaf& t) {
-              callback(ToleranceLeafView{view(t.leaf), t.radius, t.converged});
+            a, nets, ifs::ToleranceOptions{epsilon, max_depth, max_length, homogeneous},
+            [&](const ifs::ToleranceLeaf& t) {
+              callback(ToleranceLeafView{view(t.leaf), t.radius, t.diameter, t.converged});
             });
       },
       py::arg("automaton"), py::arg("nets"), py::arg("callback"), py::kw_only(), py::arg("epsilon") = 1e-6,
-      py::arg("max_depth") = 64, py::arg("max_length") = 8,
-      "Depth-first traversal that stops a branch once its attractor piece is proved smaller than epsilon; "
+      py::arg("max_depth") = 64, py::arg("max_length") = 8, py::arg("homogeneous") = false,
+      "Depth-first traversal that stops a branch once its attractor piece is proved smaller than epsilon "
+      "(PieceBounds: the hull of the net where every path is non-negative, else the contraction bound); "
       "calls callback(ToleranceLeaf) per leaf and returns a ToleranceResult.\n\n"
       "nets as for_each_leaf; epsilon: absolute target diameter; max_depth: branches stop there (reported as "
-      "unconverged); max_length: for the contraction check. Raises InvalidInput for epsilon ≤ 0, a negative "
-      "max_depth, a system that is not contractive, and as for_each_leaf.");
+      "unconverged); max_length: for the contraction check; homogeneous: rows are (w·x, w) and epsilon and "
+      "the bounds are Cartesian. Raises InvalidInput for epsilon ≤ 0, a negative max_depth, a system that is "
+      "not contractive, and as for_each_leaf.");
+  m.def("convex_states", &ifs::convex_states, py::arg("automaton"),
+        "Per state id: True when every matrix on every path from the state has no negative entry, so each "
+        "attractor piece lies in the convex hull of its net (hull property).");
+  py::class_<ifs::PieceBound>(m, "PieceBound", "A bound on one attractor piece (PieceBounds).")
+      .def_readonly("radius", &ifs::PieceBound::radius,
+                    "Every point lies within radius of the net's first row (Cartesian image if homogeneous).")
+      .def_readonly("diameter", &ifs::PieceBound::diameter,
+                    "Any two points lie within diameter (≤ 2·radius).")
+      .def("__repr__", [](const ifs::PieceBound& b) {
+        return "PieceBound(radius=" + num(b.radius) + ", diameter=" + num(b.diameter) + ")";
+      });
+  py::class_<ifs::PieceBounds>(
+      m, "PieceBounds",
+      "Proven bounds on attractor pieces, per (state, net): the smaller of the "
+      "contraction bound and, for convex states, the hull bound (docs/dimension.md).")
+      .def(py::init([](const Automaton& a, int max_length, bool homogeneous) {
+             return ifs::PieceBounds(a, ifs::contraction(a, {max_length, true}), homogeneous);
+           }),
+           py::arg("automaton"), py::kw_only(), py::arg("max_length") = 8, py::arg("homogeneous") = false,
+           "Bounds for `automaton` (contraction found with paths up to max_length); homogeneous: nets hold "
+           "(w·x, w) rows and the bounds are Cartesian. Raises InvalidInput for a system that is not "
+           "contractive.")
+      .def(
+          "__call__",
+          [](const ifs::PieceBounds& bounds, const Automaton& a, std::int64_t state, const Points& net) {
+            if (state < 0 || state >= static_cast<std::int64_t>(boost::num_vertices(a.graph)))
+              throw InvalidInput("PieceBounds: state " + std::to_string(state) + " does not exist");
+            if (net.rows() != a.graph[static_cast<StateId>(state)].size)
+              throw InvalidInput("PieceBounds: the net has " + std::to_string(net.rows()) + " rows, state " +
+                                 std::to_string(state) + " holds " +
+                                 std::to_string(a.graph[static_cast<StateId>(state)].size));
+            return bounds(static_cast<StateId>(state), net);
+          },
+          py::arg("automaton"), py::arg("state"), py::arg("net"),
+          "The PieceBound of the piece of `state` under `net` (`(size(state), cols)`); `automaton` is the "
+          "one the bounds were built for (to check the state and the net's size).");
+  py::class_<ifs::ToleranceSample>(m, "ToleranceSample",
+                                   "A sample of an attractor of proven resolution (tolerance_sample).")
+      .def_property_readonly(
+          "points", [](const ifs::ToleranceSample& t) { return t.points; },
+          "Float (n, dim) Cartesian: the start point of every leaf (a point of the attractor).")
+      .def_readonly("resolution", &ifs::ToleranceSample::resolution,
+                    "Every piece the points stand for has a diameter below this (Cartesian units).")
+      .def_readonly("deepest", &ifs::ToleranceSample::deepest, "Largest leaf depth.")
+      .def_readonly("leaves", &ifs::ToleranceSample::leaves, "Number of leaves (= number of points).")
+      .def("__repr__", [](const ifs::ToleranceSample& t) {
+        return "ToleranceSample(leaves=" + std::to_string(t.leaves) + ", resolution=" + num(t.resolution) +
+               ", deepest=" + std::to_string(t.deepest) + ")";
+      });
+  m.def(
+      "tolerance_sample",
+      [](const Automaton& a, const std::vector<Points>& nets, double epsilon, bool homogeneous,
+         std::int64_t max_points, int max_depth) {
+        const ifs::ToleranceSampleOptions o{epsilon, homogeneous,
+                                            count_arg(max_points, "tolerance_sample: max_points"), max_depth};
+        py::gil_scoped_release unlocked;
+        return ifs::tolerance_sample(a, nets, o);
+      },
+      py::arg("automaton"), py::arg("nets"), py::kw_only(), py::arg("epsilon") = 0.0,
+      py::arg("homogeneous") = false, py::arg("max_points") = std::int64_t{1} << 21,
+      py::arg("max_depth") = 64,
+      "Samples the attractor to a tolerance: one attractor point per leaf of for_each_leaf_to_tolerance, "
+      "every "
+      "piece proven smaller than epsilon (the sample's resolution, for box_counting).\n\n"
+      "epsilon: Cartesian piece diameter, 0 picks the largest diam(nets)·2^-j (j ≥ 4) within max_points; "
+      "homogeneous: nets hold (w·x, w) rows. Returns a ToleranceSample. Raises InvalidInput for a bad "
+      "epsilon, "
+      "a sample above max_points (before allocating it), a branch unresolved at max_depth, and as "
+      "for_each_leaf_to_tolerance.");
   m.def("attractor_point_count", &ifs::attractor_point_count, py::arg("automaton"), py::arg("depth"),
         py::arg("closed") = false,
         "Number of points attractor_points returns: the nodes at `depth` plus 1 unless closed. Raises "

@@ -520,6 +520,26 @@ void bind_experiment(py::module_& m) {
       "The deterministic evaluation of an experiment's source (perturbed as the file says) to `depth`\n"
       "(default: the file's evaluation.depth, whatever its mode). Nothing is written.\n\n"
       "Returns an Evaluation. Raises InvalidInput as run, and for a negative depth.");
+  m.def(
+      "sample",
+      [options](const io::Experiment& e, double tolerance, long long max_points, std::optional<int> threads,
+                long long max_bytes) {
+        if (max_points < 0)
+          throw InvalidInput("sample: max_points is " + std::to_string(max_points) + ", must be ≥ 0");
+        const RunOptions o = options(threads, max_bytes);
+        const SampleOptions s{tolerance, static_cast<std::size_t>(max_points)};
+        py::gil_scoped_release release;
+        return sample(e, s, o);
+      },
+      py::arg("experiment"), py::kw_only(), py::arg("tolerance") = SampleOptions{}.tolerance,
+      py::arg("max_points") = static_cast<long long>(SampleOptions{}.max_points),
+      py::arg("threads") = py::none(), py::arg("max_bytes") = static_cast<long long>(defaults.max_bytes),
+      "Builds the experiment's source (perturbed as the file says) and samples its attractor to a tolerance\n"
+      "(ifs.tolerance_sample): one point per piece, every piece proven smaller than `resolution` =\n"
+      "tolerance × the extent of the initial nets (0: the largest 2^-j, j ≥ 4, within max_points).\n"
+      "What `cifs dimension` measures by default.\n\n"
+      "Returns an Evaluation (depth = the deepest piece). Raises InvalidInput as run, for a negative\n"
+      "tolerance and for a sample above max_points (before allocating it).");
 }
 
 }  // namespace cifs::python

@@ -195,11 +195,14 @@ class AttractorTest(unittest.TestCase):
         start = 0.0
         for x in leaves:
             self.assertTrue(x.converged)
-            self.assertLess(2 * x.radius, 1e-3)
+            self.assertLess(x.diameter, 1e-3)
+            self.assertLessEqual(x.diameter, 2 * x.radius)
             width = 2.0 ** -x.leaf.depth
             self.assertEqual(sum(w * 2.0 ** -(k + 1) for k, w in enumerate(x.leaf.word)), start)
             piece = curve(np.linspace(start, start + width, 9))
             self.assertLessEqual(np.linalg.norm(piece - x.leaf.net[0], axis=1).max(), x.radius * (1 + 1e-12))
+            spread = np.linalg.norm(piece[:, None, :] - piece[None, :, :], axis=2).max()
+            self.assertLessEqual(spread, x.diameter * (1 + 1e-12))
             start += width
         self.assertEqual(start, 1.0)
         cut = ifs.for_each_leaf_to_tolerance(a, [NET], lambda x: None, epsilon=1e-9, max_depth=4)
@@ -374,6 +377,22 @@ class ExperimentDimensionTest(unittest.TestCase):
                 self.assertEqual(ifs.similarity_dimension(ev.maps), report["similarity_dimension"])
                 self.assertAlmostEqual(ifs.similarity_dimension(ev.automaton, ev.nets), report["similarity_dimension"],
                                        delta=1e-12)
+
+    def test_tolerance_sample_same_result_as_cli(self):
+        # The CLI's default: a sample of proven resolution, fitted without the points-per-box rule.
+        path = EXAMPLES / "experiments" / "clover_fractal.json"
+        report = cli_json("dimension", path, "--json")
+        ev = cifs.experiment.sample(cifs.io.read_experiment(path))
+        r = ifs.box_counting(ev.points, resolution=ev.resolution, points_per_box=1)
+        box = report["box_counting"]
+        self.assertEqual((r.dimension, [r.min_level, r.max_level]), (box["dimension"], box["levels"]))
+        self.assertGreaterEqual(r.dimension, 1.0)
+        # The library's own route gives the same sample from the perturbed automaton.
+        direct = ifs.tolerance_sample(ev.automaton, ev.nets, epsilon=ev.resolution)
+        np.testing.assert_array_equal(direct.points, ev.points)
+        bounds = ifs.PieceBounds(ev.automaton)
+        self.assertTrue(all(np.isfinite(bounds(ev.automaton, e.state, net).diameter)
+                            for e, net in zip(ev.automaton.initial, ev.nets)))
 
 
 @unittest.skipUnless(hasattr(cifs.io, "read_shape"), "needs the io bindings")
