@@ -579,9 +579,14 @@ Perturbation perturb(const Bcifs& sys, const PerturbOptions& options) {
   try {
     out.contraction = contraction(out.system.automaton, options.contraction);
   } catch (const InvalidInput& e) {
-    throw InvalidInput("perturb: amplitude " + number_text(options.amplitude) + " with seed " +
-                       std::to_string(options.seed) +
-                       " makes the system non-contractive (lower the amplitude): " + e.what());
+    // Name what moved the coefficients: the random draw, the values set by name, or both.
+    std::string cause;
+    if (options.amplitude > 0)
+      cause = "amplitude " + number_text(options.amplitude) + ", seed " + std::to_string(options.seed);
+    for (const auto& [name, value] : options.values)
+      cause += (cause.empty() ? "" : ", ") + name + " = " + number_text(value);
+    throw InvalidInput("perturb: the system is non-contractive with " +
+                       (cause.empty() ? std::string("its current values") : cause) + ": " + e.what());
   }
   return out;
 }

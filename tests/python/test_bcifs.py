@@ -205,7 +205,8 @@ class TreeFileTest(ScratchTestCase):
                 self.assertEqual(str(e.exception), message)
         with self.assertRaises(cifs.InvalidInput) as e:
             ifs.perturb(self.system, amplitude=5.0, seed=1)
-        self.assertIn("makes the system non-contractive (lower the amplitude)", str(e.exception))
+        self.assertIn("perturb: the system is non-contractive with amplitude 5, seed 1: not contractive",
+                      str(e.exception))
         with self.assertRaises(TypeError):
             ifs.perturb(self.system, 0.1)  # keyword-only
 

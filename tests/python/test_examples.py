@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: MIT
 """The Python examples (examples/python) run on small sizes, and what they write is checked."""
+import json
 import subprocess
 import sys
 import unittest
@@ -41,7 +42,6 @@ class GalleryTest(ScratchTestCase):
         # The script edits the experiment's image size only: the CLI on the same edited file writes
         # the same image.
         run_script("gallery.py", "--out", self.scratch, "--size", 64, "--quiet", "clover_fractal")
-        import json
         spec = json.loads((EXAMPLES / "experiments" / "clover_fractal.json").read_text())
         spec.setdefault("render", {}).update(width=64, height=64)
         spec["outputs"] = {}
@@ -60,6 +60,49 @@ class GalleryTest(ScratchTestCase):
                                 capture_output=True, text=True)
         self.assertEqual(result.returncode, 2)
         self.assertIn("unknown picture 'nope'", result.stderr)
+
+
+class SweepTest(ScratchTestCase):
+    def rows(self):
+        import csv
+        with open(self.scratch / "sweep.csv", newline="") as table:
+            return list(csv.DictReader(table))
+
+    def test_small_sweep_and_the_command_line_agree(self):
+        run_script("sweep.py", "--out", self.scratch, "--steps", 5, "--depth", 9, "--min-boxes", 100, "--quiet")
+        self.assertGreater((self.scratch / "sweep.png").stat().st_size, 10000)
+        rows = self.rows()
+        values = [float(r["value"]) for r in rows]
+        self.assertEqual(len(rows), 5)
+        # Default: the last free coefficient, v2/V[1,2], NURBS value 1/8 (the cubic B-spline's vertex
+        # rule 1/8, 6/8, 1/8), swept over ±0.8: the ends are not contractive, and the mirror values
+        # 1/8 ± t give mirror-image curves, hence equal dimensions up to the grid.
+        self.assertAlmostEqual(values[2], 0.125, delta=1e-15)
+        self.assertIn("perturb: the system is non-contractive with v2/V[1,2] = -0.675", rows[0]["note"])
+        self.assertIn("non-contractive", rows[-1]["note"])
+        dims = [float(r["dimension"]) for r in rows[1:4]]
+        self.assertAlmostEqual(dims[1], 1.0, delta=0.03)  # the smooth NURBS curve
+        self.assertGreater(dims[0], dims[1] + 0.03)  # rougher away from it
+        self.assertAlmostEqual(dims[0], dims[2], delta=0.01)
+        # The same curve as an experiment file, measured by the CLI on the same levels.
+        row = rows[3]
+        experiment = self.scratch / "swept.json"
+        experiment.write_text(json.dumps({
+            "shape": {"polygon": str(EXAMPLES / "shapes" / "clover.json"), "degree": 3},
+            "perturbation": {"amplitude": 0, "values": {"v2/V[1,2]": float(row["value"])}},
+            "evaluation": {"depth": 9}}))
+        report = json.loads(cli("dimension", experiment, "--depth", 9, "--min-level", row["min_level"],
+                                "--max-level", row["max_level"], "--json").stdout)
+        self.assertEqual(report["points"], int(row["points"]))
+        self.assertAlmostEqual(report["box_counting"]["dimension"], float(row["dimension"]), delta=1e-12)
+
+    def test_unknown_coefficient_is_refused(self):
+        result = subprocess.run([sys.executable, str(SCRIPTS / "sweep.py"), "--out", str(self.scratch),
+                                 "--coefficient", "nope"], capture_output=True, text=True)
+        self.assertEqual(result.returncode, 2)
+        self.assertIn("sweep.py: --coefficient: 'nope' is not a free coefficient (v2/V[1,1], v2/V[1,2])",
+                      result.stderr)
+        self.assertFalse((self.scratch / "sweep.csv").exists())
 
 
 if __name__ == "__main__":
