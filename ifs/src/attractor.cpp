@@ -62,6 +62,11 @@ ToleranceResult for_each_leaf_to_tolerance(const Automaton& automaton, std::span
   detail::depth_first(automaton, nets, options.max_depth,
                       [&](std::size_t i, StateId s, const Points& net, int d, std::span<const int> word) {
                         const PieceBound b = bounds(s, net);
+                        // NaN never converges: every branch would run to max_depth (2^max_depth leaves).
+                        if (!std::isfinite(b.diameter))
+                          throw InvalidInput("for_each_leaf_to_tolerance: the piece of state " +
+                                             std::to_string(s) + " at depth " + std::to_string(d) +
+                                             " has no finite bound (homogeneous nets need positive weights)");
                         const bool converged = b.diameter < options.epsilon;
                         if (!converged && d < options.max_depth) return true;
                         ++result.leaves;

@@ -267,6 +267,10 @@ void check_admissible(const Bcifs& sys, double tolerance) {
 }
 
 AdmissibleSpace admissible_space(const Bcifs& sys, const SolveOptions& options) {
+  // threshold ≥ 1 makes every rank 0: the basic-column QR below would factor an m × 0 matrix.
+  if (!(options.threshold >= 0 && options.threshold < 1))
+    throw InvalidInput("admissible_space: threshold " + number_text(options.threshold) +
+                       " is outside [0, 1)");
   validate(sys);
   const Graph& g = sys.automaton.graph;
   AdmissibleSpace space;

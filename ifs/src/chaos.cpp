@@ -3,6 +3,7 @@
 #include "cifs/ifs/chaos.hpp"
 
 #include <random>
+#include <string>
 
 #include "cifs/errors.hpp"
 #include "cifs/ifs/analysis.hpp"
@@ -44,6 +45,12 @@ ChaosResult chaos_game(const Automaton& automaton, std::span<const Points> nets,
   }
   std::mt19937_64 rng(result.seed);
   const auto cols = nets[0].cols();
+  const std::size_t per_sample =
+      (static_cast<std::size_t>(cols) + (options.record_address ? 1 : 0)) * sizeof(double);
+  if (options.samples > options.max_bytes / per_sample)
+    throw InvalidInput("chaos_game: " + std::to_string(options.samples) + " samples of " +
+                       std::to_string(per_sample) + " bytes exceed the limit of " +
+                       std::to_string(options.max_bytes) + " bytes (ChaosOptions::max_bytes)");
   result.points.resize(static_cast<Eigen::Index>(options.samples), cols);
   if (options.record_address) result.address.resize(options.samples);
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <string>
 
 #include "cifs/errors.hpp"
@@ -230,11 +231,18 @@ double mauldin_williams_dimension(std::size_t states, std::span<const Similarity
       throw InvalidInput("similarity dimension: the ratio " + num(e.ratio) + " of an edge " +
                          std::to_string(e.from) + " → " + std::to_string(e.to) + " is not finite and > 0");
   }
-  const auto n = static_cast<Eigen::Index>(states);
+  // States without edges add zero rows and columns (eigenvalue 0): the matrix is over the others,
+  // so its size follows the edges, not `states`.
+  std::map<std::size_t, Eigen::Index> index;
+  for (const SimilarityEdge& e : edges) {
+    index.emplace(e.from, 0);
+    index.emplace(e.to, 0);
+  }
+  Eigen::Index n = 0;
+  for (auto& [state, i] : index) i = n++;
   const auto rho = [&](double s) {
     Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
-    for (const SimilarityEdge& e : edges)
-      A(static_cast<Eigen::Index>(e.from), static_cast<Eigen::Index>(e.to)) += std::pow(e.ratio, s);
+    for (const SimilarityEdge& e : edges) A(index.at(e.from), index.at(e.to)) += std::pow(e.ratio, s);
     if (n == 0) return 0.0;
     return Eigen::EigenSolver<Eigen::MatrixXd>(A, false).eigenvalues().cwiseAbs().maxCoeff();
   };

@@ -254,7 +254,7 @@ std::vector<double> uniform_parameters(Domain dom, int count) {
 }
 
 Points derivatives(const Curve& c, double u, int order) {
-  if (order < 0) detail::fail("derivative order ", order, " is negative");
+  detail::check_derivative_order(order);
   u = domain_parameter(c, u);
   const int p = c.degree;
   const int span = find_span(c.knots, p, u);

@@ -24,6 +24,12 @@ template <class... Parts>
   throw InvalidInput(out.str());
 }
 
+/// Derivative orders 0 … kMaxDegree: higher ones of a polynomial piece vanish, and the result has
+/// (order + 1) rows ((order + 1)² for surfaces), which an unchecked order could overflow.
+inline void check_derivative_order(int order) {
+  if (order < 0 || order > kMaxDegree) fail("derivative order ", order, " is outside 0 … ", kMaxDegree);
+}
+
 /// Cartesian points and optional weights → stored rows (homogeneous `(w·x, w)` when weighted).
 inline Points homogeneous(const Points& points, const Eigen::VectorXd& weights, std::string_view where) {
   if (weights.size() == 0) return points;

@@ -169,7 +169,7 @@ Points evaluate_grid(const Surface& s, std::span<const double> us, std::span<con
 }
 
 Points derivatives(const Surface& s, double u, double v, int order) {
-  if (order < 0) detail::fail("derivative order ", order, " is negative");
+  detail::check_derivative_order(order);
   u = checked_parameter(s, Direction::u, u);
   v = checked_parameter(s, Direction::v, v);
   const int p = s.degree[0], q = s.degree[1];

@@ -311,9 +311,6 @@ index. Result of admissible_space.)doc")
   m.def(
       "admissible_space",
       [](const ifs::Bcifs& system, double threshold) {
-        if (!(threshold >= 0) || !std::isfinite(threshold))
-          throw InvalidInput("admissible_space: threshold " + std::to_string(threshold) +
-                             " is not a finite value ≥ 0");
         Space s{ifs::admissible_space(system, ifs::SolveOptions{threshold}), {}};
         for (const ifs::Coefficient& u : s.space.unknowns)
           s.unknown_names.push_back(ifs::coefficient_name(system.automaton, u));
@@ -323,7 +320,8 @@ index. Result of admissible_space.)doc")
       py::call_guard<py::gil_scoped_release>(),
       R"doc(Solves the constraints and row sums for the free matrices: the AdmissibleSpace.
 
-threshold: relative rank threshold of the pivoted QR. Raises cifs.InvalidInput when the constraints
+threshold: relative rank threshold of the pivoted QR, in [0, 1). Raises cifs.InvalidInput for another
+threshold and when the constraints
 have no solution (naming the constraints of the inconsistent component and the residual).)doc");
   m.def(
       "free_names",

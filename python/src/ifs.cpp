@@ -347,20 +347,23 @@ void bind_ifs(py::module_& m) {
   m.def(
       "chaos_game",
       [](const Automaton& a, const std::vector<Points>& nets, std::int64_t samples, std::uint64_t seed,
-         double restart_diameter, bool record_address) {
+         double restart_diameter, bool record_address, std::int64_t max_bytes) {
         const ifs::ChaosOptions o{count_arg(samples, "chaos_game: samples"), seed, restart_diameter,
-                                  record_address};
+                                  record_address, count_arg(max_bytes, "chaos_game: max_bytes")};
         py::gil_scoped_release unlocked;
         return ifs::chaos_game(a, nets, o);
       },
       py::arg("automaton"), py::arg("nets"), py::kw_only(), py::arg("samples") = 100000, py::arg("seed") = 0,
       py::arg("restart_diameter") = 1e-9, py::arg("record_address") = false,
+      py::arg("max_bytes") = ifs::ChaosOptions{}.max_bytes,
       "Random walk over the automaton (uniform child at each step) emitting one attractor point per step; "
       "returns a ChaosResult.\n\n"
       "nets as for_each_leaf; seed: of std::mt19937_64, 0 draws one; restart_diameter: restart at a root "
       "when "
       "the net has shrunk below this fraction of the root's diameter. Raises InvalidInput for a system that "
-      "is not contractive, restart_diameter outside (0, 1), negative samples, and as for_each_leaf.");
+      "is not contractive, restart_diameter outside (0, 1), negative samples, an output (8 bytes per "
+      "coordinate\n"
+      "and address) above max_bytes (checked before allocating), and as for_each_leaf.");
 
   // Meshes.
   py::class_<ifs::QuadMesh>(m, "QuadMesh", "A watertight quad mesh of a surface attractor.")

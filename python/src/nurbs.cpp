@@ -184,13 +184,15 @@ void bind_knots(py::module_& m) {
       [](const Knots& knots, int degree, int span, double u, int order) {
         check_span(knots, degree, span);
         check_finite(u, "u");
-        if (order < 0) throw InvalidInput("derivative order " + std::to_string(order) + " is negative");
+        if (order < 0 || order > kMaxDegree)
+          throw InvalidInput("derivative order " + std::to_string(order) + " is outside 0 … " +
+                             std::to_string(kMaxDegree));
         return basis_derivatives(knots, degree, span, u, order);
       },
       py::arg("knots"), py::arg("degree"), py::arg("span"), py::arg("u"), py::arg("order"),
       "Basis functions and derivatives up to `order`: array (order + 1, degree + 1).\n\n"
       "Row r holds the r-th derivatives of N_{span−d..span}(u). Raises InvalidInput for invalid knots,\n"
-      "span or a negative order.");
+      "span or an order outside 0 … kMaxDegree.");
   m.def(
       "periodic_knots",
       [](const Knots& b, int degree) {
@@ -283,7 +285,7 @@ void bind_curve(py::module_& m) {
   m.def("derivatives", py::overload_cast<const Curve&, double, int>(&derivatives), py::arg("curve"),
         py::arg("u"), py::arg("order"),
         "Derivatives of order 0..order at u: array (order + 1, dim), Cartesian.\n\n"
-        "Raises InvalidInput for a negative order or u outside an open curve's domain.");
+        "Raises InvalidInput for an order outside 0 … kMaxDegree or u outside an open curve's domain.");
   m.def(
       "blossom",
       [](const Curve& c, const std::vector<double>& args, std::optional<int> span) {
@@ -391,7 +393,7 @@ void bind_surface(py::module_& m) {
         py::arg("surface"), py::arg("u"), py::arg("v"), py::arg("order"),
         "Partial derivatives ∂^{k+l}S/∂u^k∂v^l for k + l ≤ order: array ((order+1)², dim),\n"
         "row k·(order + 1) + l (rows with k + l > order are zero).\n\n"
-        "Raises InvalidInput for a negative order or (u, v) outside the domain.");
+        "Raises InvalidInput for an order outside 0 … kMaxDegree or (u, v) outside the domain.");
   m.def("normal", &normal, py::arg("surface"), py::arg("u"), py::arg("v"),
         "Unit normal S_u × S_v / |S_u × S_v| (3 values).\n\n"
         "Raises InvalidInput where it is undefined or when the surface is not 3-D.");

@@ -51,7 +51,8 @@ std::vector<Rgb8> rgb8_rows(const py::handle& object, const std::string& where) 
   const py::array a = numeric(object, where, "iu");
   if (a.ndim() != 2 || a.shape(1) != 3)
     throw InvalidInput(where + ": expected an integer array of shape (k, 3), got shape " + shape_text(a));
-  const auto v = Int64s::ensure(a).unchecked<2>();
+  const Int64s ints = Int64s::ensure(a);  // the converted copy must outlive the proxy reading it
+  const auto v = ints.unchecked<2>();
   std::vector<Rgb8> rows(static_cast<std::size_t>(v.shape(0)));
   for (py::ssize_t i = 0; i < v.shape(0); ++i)
     for (py::ssize_t j = 0; j < 3; ++j) {

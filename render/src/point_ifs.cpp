@@ -177,6 +177,8 @@ Histogram chaos_game_histogram(std::span<const AffineMap> maps, const ChaosHisto
   if (options.samples >= (std::uint64_t{1} << 32))
     throw InvalidInput(
         "chaos_game_histogram: samples must be below 2^32 (uint32 counts); sum histograms instead");
+  if (options.burn_in > kChaosChunk)  // dropped in every chunk
+    throw InvalidInput("chaos_game_histogram: burn_in must be at most kChaosChunk = 2^20");
 
   Histogram result;
   result.width = options.width;
@@ -221,6 +223,7 @@ Histogram chaos_game_histogram(std::span<const AffineMap> maps, const ChaosHisto
 Bounds estimate_bounds(std::span<const AffineMap> maps, double margin, std::uint64_t points) {
   const Prepared p = prepare(maps, "estimate_bounds");
   if (!(margin >= 0) || !std::isfinite(margin)) throw InvalidInput("estimate_bounds: margin must be >= 0");
+  if (points >= (std::uint64_t{1} << 32)) throw InvalidInput("estimate_bounds: points must be below 2^32");
   Xoshiro256 rng(0x5EED, 0);
   double x = p.x0, y = p.y0;
   Bounds b{x, x, y, y};

@@ -342,5 +342,13 @@ TEST_CASE("Tolerance leaves: the reported radius bounds the attractor piece", "[
     CHECK_THROWS_AS(for_each_leaf_to_tolerance(a, std::vector<Points>{Points::Zero(3, 2)}, options,
                                                [](const ToleranceLeaf&) {}),
                     InvalidInput);
+    // A zero weight in homogeneous rows: no finite bound, which would never converge (2^64 leaves).
+    options.epsilon = 1e-3;
+    options.homogeneous = true;
+    Points H(3, 2);
+    H << 0, 1, 1, 0, 2, 1;
+    CHECK_THROWS_WITH(
+        for_each_leaf_to_tolerance(a, std::vector<Points>{H}, options, [](const ToleranceLeaf&) {}),
+        Catch::Contains("has no finite bound"));
   }
 }

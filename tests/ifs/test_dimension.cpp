@@ -65,6 +65,9 @@ TEST_CASE("Mauldin–Williams dimension of hand-solved graphs", "[ifs][dimension
   const double phi = (1 + std::sqrt(5.0)) / 2;
   const std::vector<ifs::SimilarityEdge> golden{{0, 0, 0.5}, {0, 1, 0.5}, {1, 0, 0.5}};
   CHECK(ifs::mauldin_williams_dimension(2, golden) == Approx(std::log2(phi)).epsilon(1e-12));
+  // States without edges change nothing, and cost nothing (no states² matrix).
+  CHECK(ifs::mauldin_williams_dimension(std::size_t{1} << 40, golden) ==
+        Approx(std::log2(phi)).epsilon(1e-12));
   // Two edges u → v of ratio ½ and two v → u of ratio ⅓: A(s) = [0 2·2^-s; 2·3^-s 0] has
   // ρ = 2·6^(-s/2), which is 1 at s = log 4 / log 6.
   const std::vector<ifs::SimilarityEdge> bipartite{

@@ -508,7 +508,9 @@ TEST_CASE("evaluation, derivatives and blossoms reject bad arguments", "[nurbs][
     CHECK_THROWS_WITH(evaluate(c, us), Contains(what));
     CHECK_THROWS_WITH(derivatives(c, bad, 1), Contains(what));
   }
-  CHECK_THROWS_WITH(derivatives(c, 0.5, -1), Contains("negative"));
+  CHECK_THROWS_WITH(derivatives(c, 0.5, -1), Contains("order -1 is outside 0 … 64"));
+  CHECK_THROWS_WITH(derivatives(c, 0.5, 1000000), Contains("order 1000000 is outside 0 … 64"));
+  CHECK(derivatives(c, 0.5, kMaxDegree).rows() == kMaxDegree + 1);
   CHECK(derivatives(c, 0.5, 0).rows() == 1);
   const std::vector<double> one{0.5}, three{0.5, 0.5, 0.5}, two{0.5, 0.5}, bad2{0.5, nan};
   CHECK_THROWS_WITH(blossom(c, one, 2), Contains("1 arguments"));

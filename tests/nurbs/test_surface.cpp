@@ -438,7 +438,9 @@ TEST_CASE("surface evaluation, derivatives, normals and insertion reject bad arg
                     Contains("parameter u"));
   CHECK_THROWS_WITH(evaluate_grid(s, std::vector<double>{0.5}, std::vector<double>{1.0, -1.0}),
                     Contains("parameter v"));
-  CHECK_THROWS_WITH(derivatives(s, 0.5, 1.0, -1), Contains("negative"));
+  CHECK_THROWS_WITH(derivatives(s, 0.5, 1.0, -1), Contains("order -1 is outside 0 … 64"));
+  // (order + 1)² rows would overflow an int: refused before any allocation.
+  CHECK_THROWS_WITH(derivatives(s, 0.5, 1.0, 1000000), Contains("order 1000000 is outside 0 … 64"));
   CHECK_THROWS_WITH(derivatives(s, 0.5, 3.0, 1), Contains("parameter v"));
   CHECK_THROWS_WITH(normal(s, 2.0, 1.0), Contains("parameter u"));
   const Surface flat =

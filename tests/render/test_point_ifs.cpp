@@ -74,6 +74,7 @@ TEST_CASE("Named point IFS match the literature", "[render]") {
     CHECK(((1 - m.d) * m.e + m.b * m.f) / det == Approx(2.6556).margin(1e-4));
     CHECK((m.c * m.e + (1 - m.a) * m.f) / det == Approx(9.9585).margin(1e-4));
     const Bounds frame = estimate_bounds(fern, 0);
+    CHECK_THROWS_WITH(estimate_bounds(fern, 0, std::uint64_t{1} << 32), Catch::Contains("below 2^32"));
     // The frame of the fern: −2.1820 < x < 2.6558, 0 ≤ y < 9.9983.
     CHECK(frame.x_min == Approx(-2.1820).margin(0.05));
     CHECK(frame.x_max == Approx(2.6558).margin(0.05));
@@ -123,6 +124,8 @@ TEST_CASE("Chaos game density within tolerance of the deterministic (Hutchinson)
   // they lie exactly on the dyadic lines between cells, where pixel ownership (half-open, y down)
   // is a convention. A burn-in of 64 steps leaves points on a level-k line with probability
   // (2/3)^(53−k).
+  options.burn_in = kChaosChunk + 1;  // dropped in every chunk: refused
+  CHECK_THROWS_WITH(chaos_game_histogram(maps, options), Catch::Contains("burn_in must be at most"));
   options.burn_in = 64;
   const Histogram h = chaos_game_histogram(maps, options);
   CHECK(h.outside == 0);

@@ -102,7 +102,8 @@ std::vector<std::pair<std::string, double>> constraint_residuals(const Bcifs& sy
 void check_admissible(const Bcifs& system, double tolerance = 1e-12);
 
 struct SolveOptions {
-  /// Relative rank threshold of the pivoted QR of each component (|r_kk| ≤ threshold·|r_00|).
+  /// Relative rank threshold of the pivoted QR of each component (|r_kk| ≤ threshold·|r_00|), in
+  /// [0, 1) (InvalidInput otherwise).
   double threshold = 1e-10;
 };
 

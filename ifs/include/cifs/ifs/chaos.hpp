@@ -22,6 +22,8 @@ struct ChaosOptions {
   double restart_diameter = 1e-9;
   /// Also return each point's address (see ChaosResult::address).
   bool record_address = false;
+  /// Largest output (points and addresses) allocated; InvalidInput before allocating beyond it.
+  std::size_t max_bytes = std::size_t{1} << 30;
 };
 
 struct ChaosResult {

@@ -77,6 +77,7 @@ Points evaluate(const Curve& c, std::span<const double> us);
 std::vector<double> uniform_parameters(Domain dom, int count);
 
 /// Derivatives of order 0..`order` at u: `(order+1) by dim`, Cartesian (quotient rule when rational).
+/// Throws InvalidInput for an order outside 0 … kMaxDegree.
 Points derivatives(const Curve& c, double u, int order);
 
 /// Blossom (polar form) of the polynomial piece on `span`, at `degree` arguments, in the stored

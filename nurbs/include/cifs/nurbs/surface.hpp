@@ -50,6 +50,7 @@ Points evaluate_grid(const Surface& s, std::span<const double> us, std::span<con
 
 /// Partial derivatives `∂^{k+l} S / ∂u^k ∂v^l` for k + l ≤ order: row `k·(order+1) + l`
 /// (rows with k + l > order are zero). Cartesian; quotient rule when rational.
+/// Throws InvalidInput for an order outside 0 … kMaxDegree.
 Points derivatives(const Surface& s, double u, double v, int order);
 
 /// Unit normal `S_u × S_v / |S_u × S_v|` (3-D surfaces). Throws InvalidInput where the normal is

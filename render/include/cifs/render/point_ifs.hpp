@@ -27,7 +27,8 @@ struct Bounds {
 };
 
 /// Bounding box of `points` chaos-game points (serial, fixed seed), widened by `margin` times its
-/// size on every side: a framing helper, not a proof that the whole attractor is inside.
+/// size on every side: a framing helper, not a proof that the whole attractor is inside. Throws
+/// InvalidInput for invalid maps, a negative margin or points ≥ 2^32.
 Bounds estimate_bounds(std::span<const AffineMap> maps, double margin = 0.02, std::uint64_t points = 100000);
 
 /// Points per chunk: the unit of determinism (see chaos_game_histogram).
@@ -43,7 +44,8 @@ struct ChaosHistogramOptions {
   std::size_t height = 1024;
   Bounds bounds;
   /// Points dropped at the start of every chunk. Each chunk starts at the fixed point of the first
-  /// map, which lies on the attractor, so 0 is exact; raise it only for a custom start.
+  /// map, which lies on the attractor, so 0 is exact; raise it only for a custom start. At most
+  /// kChaosChunk (InvalidInput otherwise).
   std::uint64_t burn_in = 0;
   /// Called after every chunk with (points done, samples), serialised under a mutex, from the
   /// worker threads. Keep it cheap (a ProgressBar is).
