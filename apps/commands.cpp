@@ -365,7 +365,16 @@ std::string dimension(const DimensionOptions& o) {
   if (sampled) bo.points_per_box = 1;
   bo.min_level = o.min_level;
   bo.max_level = o.max_level;
-  const ifs::BoxCountingResult r = ifs::box_counting(ev.points, bo);
+  const ifs::BoxCountingResult r = [&] {
+    try {
+      return ifs::box_counting(ev.points, bo);
+    } catch (const InvalidInput& error) {
+      // The proven piece bound may be loose (signed matrices): say that a depth evaluation is the way out.
+      if (!sampled || o.min_level >= 0) throw;
+      throw InvalidInput(std::string(error.what()) +
+                         "; or raise --max-points, or measure a depth evaluation (--depth K)");
+    }
+  }();
   // The similarity dimension applies when every map is a similarity; say why when it does not.
   std::optional<double> similarity;
   std::string why_not;

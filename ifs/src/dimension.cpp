@@ -42,6 +42,10 @@ std::size_t count_leaves(const automata::Automaton& a, std::span<const Points> n
   std::size_t n = 0;
   try {
     for_each_leaf_to_tolerance(a, nets, to, [&](const ToleranceLeaf& t) {
+      if (!t.converged && !std::isfinite(t.diameter))
+        throw InvalidInput(
+            "tolerance sample: a piece has no Cartesian size bound at depth " + std::to_string(to.max_depth) +
+            " (homogeneous rows whose weight is not bounded away from 0); evaluate to a depth instead");
       if (!t.converged)
         throw InvalidInput("tolerance sample: a piece is still " + num(t.diameter) + " wide at depth " +
                            std::to_string(to.max_depth) + " (tolerance " + num(to.epsilon) + ")");

@@ -267,6 +267,12 @@ TEST_CASE("cifs dimension: box counting and similarity dimension", "[cli][dimens
   check_error(cifs_cli("dimension " + sierpinski + " --depth 2"), "evaluate deeper");
   check_error(cifs_cli("dimension " + sierpinski + " --depth -1"), "negative");
   check_error(cifs_cli("dimension /no/such/file.json"), "/no/such/file.json");
+  // Default (sampled) mode: where the proven bound leaves too few scales, the error names the way
+  // out; a rational piece without a Cartesian bound says so instead of "inf wide".
+  check_error(cifs_cli("dimension " CIFS_EXAMPLES_DIR "/experiments/hills.json --max-points 20000"),
+              "measure a depth evaluation (--depth K)");
+  check_error(cifs_cli("dimension " CIFS_EXAMPLES_DIR "/experiments/wave_fractal.json --max-points 20000"),
+              "no Cartesian size bound");
 }
 
 TEST_CASE("cifs dimension: tolerance samples by default", "[cli][dimension]") {
