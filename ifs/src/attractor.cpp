@@ -15,6 +15,9 @@ using automata::Automaton;
 using automata::Graph;
 using automata::StateId;
 
+/// Depth from which a piece without a Cartesian bound is refused rather than subdivided further.
+constexpr int kUnboundedDepth = 32;
+
 Points cartesian(const Points& homogeneous) {
   const Eigen::Index c = homogeneous.cols();
   if (c < 2)
@@ -62,11 +65,14 @@ ToleranceResult for_each_leaf_to_tolerance(const Automaton& automaton, std::span
   detail::depth_first(automaton, nets, options.max_depth,
                       [&](std::size_t i, StateId s, const Points& net, int d, std::span<const int> word) {
                         const PieceBound b = bounds(s, net);
-                        // NaN never converges: every branch would run to max_depth (2^max_depth leaves).
-                        if (!std::isfinite(b.diameter))
+                        // A missing bound (homogeneous rows whose weight is not bounded away from 0)
+                        // may appear near the root and vanish deeper, where the nets are small; one
+                        // that persists would expand every branch to max_depth (2^max_depth leaves).
+                        if (std::isnan(b.diameter) || (std::isinf(b.diameter) && d >= kUnboundedDepth))
                           throw InvalidInput("for_each_leaf_to_tolerance: the piece of state " +
-                                             std::to_string(s) + " at depth " + std::to_string(d) +
-                                             " has no finite bound (homogeneous nets need positive weights)");
+                                             std::to_string(s) + " has no Cartesian size bound at depth " +
+                                             std::to_string(d) +
+                                             " (homogeneous rows whose weight is not bounded away from 0)");
                         const bool converged = b.diameter < options.epsilon;
                         if (!converged && d < options.max_depth) return true;
                         ++result.leaves;
