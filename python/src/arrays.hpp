@@ -112,6 +112,12 @@ inline std::vector<std::uint32_t> states_from(const py::handle& object, const st
   return states;
 }
 
+/// A size or count from a Python int: negative values are refused, not wrapped around.
+inline std::size_t count_arg(std::int64_t value, const std::string& where) {
+  if (value < 0) throw InvalidInput(where + " = " + std::to_string(value) + " is negative");
+  return static_cast<std::size_t>(value);
+}
+
 /// A 1-D array as a vector (copy).
 inline Eigen::VectorXd to_vector(const DoubleArray& a, std::string_view where) {
   if (a.ndim() != 1)

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <string>
 
+#include "arrays.hpp"
 #include "bindings.hpp"
 #include "cifs/errors.hpp"
 #include "cifs/ifs/affine.hpp"
@@ -42,12 +43,6 @@ struct ToleranceLeafView {
 LeafView view(const ifs::Leaf& leaf) {
   return {leaf.initial, leaf.state, leaf.net, leaf.depth,
           std::vector<int>(leaf.word.begin(), leaf.word.end())};
-}
-
-/// A byte or sample count from a Python int: negative values are refused, not wrapped.
-std::size_t count_arg(std::int64_t value, const std::string& where) {
-  if (value < 0) throw InvalidInput(where + " is " + std::to_string(value) + ", must be ≥ 0");
-  return static_cast<std::size_t>(value);
 }
 
 std::string num(double x) {

@@ -77,11 +77,6 @@ py::list rgb8_list(const std::vector<Rgb8>& rows) {
   return out;
 }
 
-std::size_t size_arg(std::int64_t value, const std::string& where) {
-  if (value < 0) throw InvalidInput(where + " = " + std::to_string(value) + " is negative");
-  return static_cast<std::size_t>(value);
-}
-
 unsigned threads_arg(std::int64_t value, const std::string& where) {
   if (value < 0 || value > std::int64_t{UINT_MAX})
     throw InvalidInput(where + " = " + std::to_string(value) + " is outside 0 … " + std::to_string(UINT_MAX));
@@ -199,8 +194,8 @@ the view, fov_y outside (0, 180), ortho_height ≤ 0 or near ≤ 0.)")
              camera.fov_y = fov_y;
              camera.ortho_height = ortho_height;
              camera.near = near;
-             camera.width = size_arg(width, "camera: width");
-             camera.height = size_arg(height, "camera: height");
+             camera.width = count_arg(width, "camera: width");
+             camera.height = count_arg(height, "camera: height");
              return camera;
            }),
            py::kw_only(), py::arg("projection") = c.projection, py::arg("eye") = tuple3(c.eye),
@@ -231,11 +226,11 @@ ortho_height: visible height in world units (orthographic); near: smallest visib
       .def_readwrite("near", &Camera::near, "Perspective: smallest visible depth (> 0).")
       .def_property(
           "width", [](const Camera& cam) { return cam.width; },
-          [](Camera& cam, std::int64_t v) { cam.width = size_arg(v, "camera: width"); },
+          [](Camera& cam, std::int64_t v) { cam.width = count_arg(v, "camera: width"); },
           "Image width in pixels.")
       .def_property(
           "height", [](const Camera& cam) { return cam.height; },
-          [](Camera& cam, std::int64_t v) { cam.height = size_arg(v, "camera: height"); },
+          [](Camera& cam, std::int64_t v) { cam.height = count_arg(v, "camera: height"); },
           "Image height in pixels.")
       .def("__repr__", [](const Camera& cam) {
         const auto v = [](const Eigen::Vector3d& p) { return std::string(py::repr(tuple3(p))); };
@@ -310,8 +305,8 @@ ortho_height: visible height in world units (orthographic); near: smallest visib
       [](const py::object& points, std::int64_t width, std::int64_t height, double margin, bool perspective,
          const py::object& view_direction, const py::object& up, double fov_y) {
         FramingOptions o;
-        o.width = size_arg(width, "frame: width");
-        o.height = size_arg(height, "frame: height");
+        o.width = count_arg(width, "frame: width");
+        o.height = count_arg(height, "frame: height");
         o.margin = margin;
         o.perspective = perspective;
         o.view_direction = vec3(view_direction, "frame: view_direction");
@@ -402,8 +397,8 @@ Float channels by name (R G B A Z density N.x N.y N.z …), an optional uint32 `
 string attributes. Row 0 is the top of the image; arrays are (height, width).)")
       .def(py::init([](std::int64_t width, std::int64_t height) {
              Image image;
-             image.width = size_arg(width, "Image: width");
-             image.height = size_arg(height, "Image: height");
+             image.width = count_arg(width, "Image: width");
+             image.height = count_arg(height, "Image: height");
              return image;
            }),
            py::arg("width") = 0, py::arg("height") = 0,
@@ -614,7 +609,7 @@ states size mismatch or an image of another size than the camera.)");
          bool rational, const py::object& color, bool progress) {
         const std::vector<Points> N = nets_from(nets, "chaos_density: nets");
         ChaosDensityOptions o;
-        o.samples = size_arg(samples, "chaos_density: samples");
+        o.samples = count_arg(samples, "chaos_density: samples");
         o.seed = seed;
         o.threads = threads_arg(threads, "chaos_density: threads");
         o.depth = depth;
@@ -790,7 +785,7 @@ void bind_point_ifs(py::module_& m) {
   m.def(
       "estimate_bounds",
       [](const std::vector<AffineMap>& maps, double margin, std::int64_t points) {
-        const std::uint64_t n = size_arg(points, "estimate_bounds: points");
+        const std::uint64_t n = count_arg(points, "estimate_bounds: points");
         py::gil_scoped_release release;
         return estimate_bounds(maps, margin, n);
       },
@@ -822,13 +817,13 @@ void bind_point_ifs(py::module_& m) {
       [](const std::vector<AffineMap>& maps, std::int64_t samples, std::uint64_t seed, std::int64_t threads,
          std::int64_t width, std::int64_t height, const Bounds& bounds, std::int64_t burn_in, bool progress) {
         ChaosHistogramOptions o;
-        o.samples = size_arg(samples, "chaos_game_histogram: samples");
+        o.samples = count_arg(samples, "chaos_game_histogram: samples");
         o.seed = seed;
         o.threads = threads_arg(threads, "chaos_game_histogram: threads");
-        o.width = size_arg(width, "chaos_game_histogram: width");
-        o.height = size_arg(height, "chaos_game_histogram: height");
+        o.width = count_arg(width, "chaos_game_histogram: width");
+        o.height = count_arg(height, "chaos_game_histogram: height");
         o.bounds = bounds;
-        o.burn_in = size_arg(burn_in, "chaos_game_histogram: burn_in");
+        o.burn_in = count_arg(burn_in, "chaos_game_histogram: burn_in");
         py::gil_scoped_release release;
         ProgressBar bar("chaos game", !progress);
         o.progress = std::ref(bar);
@@ -849,8 +844,8 @@ contraction, an empty image, empty bounds, samples ≥ 2³², or negative counts
       [](const std::vector<AffineMap>& maps, std::int64_t depth, std::int64_t width, std::int64_t height,
          const Bounds& bounds) {
         const auto k = threads_arg(depth, "hutchinson_measure: depth");
-        const auto w = size_arg(width, "hutchinson_measure: width"),
-                   hh = size_arg(height, "hutchinson_measure: height");
+        const auto w = count_arg(width, "hutchinson_measure: width"),
+                   hh = count_arg(height, "hutchinson_measure: height");
         std::vector<double> mass;
         {
           py::gil_scoped_release release;
