@@ -66,19 +66,6 @@ Points cartesian_if(const Points& P, bool rational) {
   return rational ? ifs::cartesian(P) : P;
 }
 
-/// Every row of every net (Cartesian): the control polygon's extent.
-Points net_rows(const std::vector<Points>& nets, bool rational) {
-  Eigen::Index rows = 0;
-  for (const Points& N : nets) rows += N.rows();
-  Points all(rows, nets.empty() ? 0 : nets.front().cols());
-  rows = 0;
-  for (const Points& N : nets) {
-    all.middleRows(rows, N.rows()) = N;
-    rows += N.rows();
-  }
-  return cartesian_if(all, rational);
-}
-
 /// The state of every depth-K node, in curve order.
 std::vector<std::uint32_t> leaf_states(const automata::Automaton& a, const std::vector<Points>& nets,
                                        int depth) {
@@ -104,7 +91,7 @@ io::Segments evaluate_curve(Scene& scene, const io::Evaluation& ev, bool closed,
   } else {
     const ifs::EndFunctionals ends = ifs::end_functionals(scene.automaton);
     ifs::ToleranceOptions to;
-    to.epsilon = ev.tolerance * std::max(ifs::diameter(net_rows(scene.nets, false)), 1e-300);
+    to.epsilon = ev.tolerance * std::max(ifs::nets_diameter(scene.nets), 1e-300);
     std::vector<Eigen::RowVectorXd> rows;
     const std::size_t cap =
         o.max_bytes / (sizeof(double) * static_cast<std::size_t>(scene.nets.front().cols()));
@@ -192,7 +179,7 @@ Scene surface_scene(const nurbs::Surface& s, const io::Experiment& e, const RunO
     int depth = e.evaluation.depth;
     if (e.evaluation.mode == Mode::tolerance) {
       ifs::ToleranceOptions to;
-      to.epsilon = e.evaluation.tolerance * std::max(ifs::diameter(net_rows(scene.nets, false)), 1e-300);
+      to.epsilon = e.evaluation.tolerance * std::max(ifs::nets_diameter(scene.nets), 1e-300);
       to.max_depth = 14;
       depth = ifs::for_each_leaf_to_tolerance(scene.automaton, scene.nets, to, [](const ifs::ToleranceLeaf&) {
               }).deepest;
@@ -570,7 +557,7 @@ Evaluation sample(const io::Experiment& experiment, const SampleOptions& options
   ifs::ToleranceSampleOptions so;
   so.homogeneous = scene.rational;
   so.max_points = options.max_points;
-  so.epsilon = options.tolerance * ifs::diameter(net_rows(scene.nets, scene.rational));
+  so.epsilon = options.tolerance * ifs::nets_diameter(scene.nets, scene.rational);
   if (options.tolerance > 0 && !(so.epsilon > 0))
     throw InvalidInput("tolerance: the control nets are single points");
   ifs::ToleranceSample ts = ifs::tolerance_sample(scene.automaton, scene.nets, so);

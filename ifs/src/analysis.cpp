@@ -63,6 +63,7 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/ifs/analysis.hpp"
+#include "cifs/ifs/attractor.hpp"
 #include "walk.hpp"
 
 namespace cifs::ifs {
@@ -186,6 +187,18 @@ double diameter(const Points& net) noexcept {
     for (Eigen::Index j = i + 1; j < net.rows(); ++j)
       best = std::max(best, (net.row(i) - net.row(j)).squaredNorm());
   return std::sqrt(best);
+}
+
+double nets_diameter(std::span<const Points> nets, bool homogeneous) {
+  Eigen::Index rows = 0;
+  for (const Points& N : nets) rows += N.rows();
+  Points all(rows, nets.empty() ? 0 : nets.front().cols());
+  rows = 0;
+  for (const Points& N : nets) {
+    all.middleRows(rows, N.rows()) = N;
+    rows += N.rows();
+  }
+  return diameter(homogeneous ? cartesian(all) : all);
 }
 
 double delta(const Eigen::MatrixXd& M) noexcept {

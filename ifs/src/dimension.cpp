@@ -75,15 +75,7 @@ ToleranceSample tolerance_sample(const automata::Automaton& a, std::span<const P
                          std::to_string(o.max_points) + " points; raise the tolerance or the point limit");
   } else {
     // The largest power-of-2 fraction of the nets' extent within the point budget.
-    Eigen::Index rows = 0;
-    for (const Points& N : nets) rows += N.rows();
-    Points all(rows, nets.empty() ? 0 : nets.front().cols());
-    rows = 0;
-    for (const Points& N : nets) {
-      all.middleRows(rows, N.rows()) = N;
-      rows += N.rows();
-    }
-    const double extent = diameter(o.homogeneous ? cartesian(all) : all);
+    const double extent = nets_diameter(nets, o.homogeneous);
     if (!(extent > 0)) throw InvalidInput("tolerance sample: the nets are single points");
     to.epsilon = std::ldexp(extent, -4);
     n = count_leaves(a, nets, to, o.max_points);

@@ -18,6 +18,22 @@ EXAMPLES = Path(os.environ.get("CIFS_EXAMPLES_DIR", SOURCE_DIR / "examples"))
 CLI = os.environ.get("CIFS_CLI", "")
 
 
+# Chaikin's scheme = the uniform quadratic B-spline: its two knot-doubling matrices (rows sum to 1).
+CHAIKIN_G = np.array([[0.75, 0.25, 0], [0.25, 0.75, 0], [0, 0.75, 0.25]])
+CHAIKIN_D = np.array([[0.25, 0.75, 0], [0, 0.75, 0.25], [0, 0.25, 0.75]])
+
+
+def chaikin():
+    """The one-state automaton of Chaikin's scheme, built from scratch (transitions G, D; one initial entry)."""
+    import cifs
+    a = cifs.automata.Automaton()
+    s = a.add_state(3, "uniform")
+    a.add_transition(s, s, CHAIKIN_G, "G")
+    a.add_transition(s, s, CHAIKIN_D, "D")
+    a.add_initial(s)
+    return a
+
+
 def cli(*args, check=True):
     """Runs the `cifs` command line; returns the CompletedProcess (text). Skips when no CLI is built."""
     if not CLI:

@@ -9,21 +9,10 @@ import numpy as np
 
 import cifs
 from cifs import automata
-from support import EXAMPLES, assert_close, cli, cli_json
+from support import CHAIKIN_D, CHAIKIN_G, chaikin, EXAMPLES, assert_close, cli, cli_json
 
 # Chaikin: the uniform quadratic B-spline segment split at its midpoint (halves G and D).
-G = np.array([[0.75, 0.25, 0], [0.25, 0.75, 0], [0, 0.75, 0.25]])
-D = np.array([[0.25, 0.75, 0], [0, 0.75, 0.25], [0, 0.25, 0.75]])
-
-
-def chaikin():
-    """The one-state automaton of Chaikin's scheme, built from scratch."""
-    a = automata.Automaton()
-    s = a.add_state(3, "uniform")
-    a.add_transition(s, s, G, "G")
-    a.add_transition(s, s, D, "D")
-    a.add_initial(s)
-    return a
+G, D = CHAIKIN_G, CHAIKIN_D
 
 
 class HandMadeAutomatonTest(unittest.TestCase):

@@ -9,21 +9,11 @@ import numpy as np
 
 import cifs
 from cifs import automata, ifs
-from support import EXAMPLES, assert_close, cli_json
+from support import CHAIKIN_D, CHAIKIN_G, chaikin, EXAMPLES, assert_close, cli_json
 
 # Chaikin: the uniform quadratic B-spline segment split at its midpoint (halves G and D).
-G = np.array([[0.75, 0.25, 0], [0.25, 0.75, 0], [0, 0.75, 0.25]])
-D = np.array([[0.25, 0.75, 0], [0, 0.75, 0.25], [0, 0.25, 0.75]])
+G, D = CHAIKIN_G, CHAIKIN_D
 NET = np.array([[0.0, 0.0], [1.0, 2.0], [3.0, -1.0]])
-
-
-def chaikin():
-    a = automata.Automaton()
-    s = a.add_state(3, "uniform")
-    a.add_transition(s, s, G, "G")
-    a.add_transition(s, s, D, "D")
-    a.add_initial(s)
-    return a
 
 
 def basis(t):

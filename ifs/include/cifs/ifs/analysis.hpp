@@ -29,6 +29,10 @@ void validate(const automata::Automaton& automaton);
 /// Diameter of a net: the largest Euclidean distance between two of its rows (0 for < 2 rows).
 double diameter(const Points& net) noexcept;
 
+/// Diameter of all the rows of all the nets together (the control polygon's extent); with
+/// `homogeneous` rows `(w·x, w)` of their Cartesian images. 0 for no rows.
+double nets_diameter(std::span<const Points> nets, bool homogeneous = false);
+
 /// Contraction coefficient of an affine map on nets: δ(M) = max_{i,j} ½‖M_i − M_j‖₁ over pairs of
 /// rows of M (`r by n`). diam(M·N) ≤ δ(M)·diam(N) for every net N, and δ is the smallest such
 /// constant (Dobrushin's ergodicity coefficient extended to signed rows), so δ(M·M') ≤ δ(M)·δ(M').
