@@ -1,0 +1,208 @@
+// SPDX-License-Identifier: MIT
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <set>
+
+#include "cifs/errors.hpp"
+#include "cifs/mesh.hpp"
+#include "cifs/topology.hpp"
+
+using namespace cifs;
+
+namespace {
+
+Mesh faces_mesh(int vertices, const std::vector<std::vector<int>>& faces) {
+  Mesh m;
+  m.vertices = Points::Zero(vertices, 3);
+  for (const auto& f : faces) add_face(m, f);
+  return m;
+}
+
+Mesh cube() {
+  return faces_mesh(8, {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}});
+}
+
+/// n by m quads on a torus (both directions wrap).
+Mesh torus(int n, int m) {
+  std::vector<std::vector<int>> faces;
+  const auto id = [&](int i, int j) { return ((i + n) % n) * m + (j + m) % m; };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < m; ++j) faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+  return faces_mesh(n * m, faces);
+}
+
+/// n by m quads on a square (open: one boundary loop).
+Mesh grid(int n, int m) {
+  std::vector<std::vector<int>> faces;
+  const auto id = [&](int i, int j) { return i * (m + 1) + j; };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < m; ++j) faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+  return faces_mesh((n + 1) * (m + 1), faces);
+}
+
+/// Checks every documented invariant of the rotation order around each vertex.
+void check_rotation(const MeshTopology& t) {
+  for (int v = 0; v < t.vertex_count; ++v) {
+    const auto E = vertex_edges(t, static_cast<std::size_t>(v));
+    const auto Fs = vertex_faces(t, static_cast<std::size_t>(v));
+    const auto C = corner_in_face(t, static_cast<std::size_t>(v));
+    const bool boundary = t.boundary_vertex[static_cast<std::size_t>(v)] != 0;
+    if (Fs.empty()) {
+      CHECK(E.empty());
+      continue;
+    }
+    CHECK(E.size() == Fs.size() + (boundary ? 1 : 0));
+    for (std::size_t k = 0; k < Fs.size(); ++k) {
+      const auto f = static_cast<std::size_t>(Fs[k]);
+      const auto corners = face(t, f);
+      const auto edges = face_edges(t, f);
+      const auto c = static_cast<std::size_t>(C[k]);
+      REQUIRE(corners[c] == v);
+      // Edge k is the face's outgoing edge at v, edge k + 1 its incoming one.
+      CHECK(edges[c] == E[k]);
+      CHECK(edges[(c + corners.size() - 1) % corners.size()] == E[(k + 1) % E.size()]);
+    }
+    if (boundary) {
+      CHECK(is_boundary_edge(t, static_cast<std::size_t>(E.front())));
+      CHECK(is_boundary_edge(t, static_cast<std::size_t>(E.back())));
+    }
+    for (const int e : E)
+      CHECK((t.edges[static_cast<std::size_t>(e)][0] == v || t.edges[static_cast<std::size_t>(e)][1] == v));
+  }
+  // Every edge: its first face runs along it forwards, the other one backwards.
+  for (std::size_t e = 0; e < t.edges.size(); ++e) {
+    for (int side = 0; side < 2; ++side) {
+      const int f = t.edge_faces[e][static_cast<std::size_t>(side)];
+      if (f < 0) continue;
+      const auto corners = face(t, static_cast<std::size_t>(f));
+      const auto edges = face_edges(t, static_cast<std::size_t>(f));
+      const auto it = std::find(edges.begin(), edges.end(), static_cast<int>(e));
+      REQUIRE(it != edges.end());
+      const auto i = static_cast<std::size_t>(it - edges.begin());
+      const int a = corners[i], b = corners[(i + 1) % corners.size()];
+      if (side == 0)
+        CHECK((a == t.edges[e][0] && b == t.edges[e][1]));
+      else
+        CHECK((a == t.edges[e][1] && b == t.edges[e][0]));
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("topology of closed meshes: counts, Euler characteristic, rotations", "[core][topology]") {
+  SECTION("cube") {
+    const MeshTopology t = build_topology(cube());
+    CHECK(t.edges.size() == 12);
+    CHECK(face_count(t) == 6);
+    CHECK(euler_characteristic(t) == 2);
+    for (int v = 0; v < 8; ++v) CHECK(valence(t, static_cast<std::size_t>(v)) == 3);
+    CHECK(boundary_loops(t).empty());
+    check_rotation(t);
+  }
+  SECTION("tetrahedron") {
+    const MeshTopology t = build_topology(faces_mesh(4, {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}}));
+    CHECK(t.edges.size() == 6);
+    CHECK(euler_characteristic(t) == 2);
+    check_rotation(t);
+  }
+  SECTION("torus") {
+    const MeshTopology t = build_topology(torus(5, 7));
+    CHECK(euler_characteristic(t) == 0);
+    CHECK(t.edges.size() == 70);
+    for (int v = 0; v < 35; ++v) CHECK(valence(t, static_cast<std::size_t>(v)) == 4);
+    check_rotation(t);
+  }
+  SECTION("mixed polygons: a pentagon, triangles and a quad") {
+    const MeshTopology t =
+        build_topology(faces_mesh(7, {{0, 1, 2, 3, 4}, {1, 0, 5}, {2, 1, 5, 6}, {3, 2, 6}}));
+    CHECK(face_count(t) == 4);
+    CHECK(euler_characteristic(t) == 1);  // a disc
+    check_rotation(t);
+    REQUIRE(boundary_loops(t).size() == 1);
+  }
+}
+
+TEST_CASE("topology of open meshes: boundary flags and loops", "[core][topology]") {
+  const MeshTopology t = build_topology(grid(3, 4));
+  CHECK(euler_characteristic(t) == 1);
+  check_rotation(t);
+  int boundary = 0;
+  for (int v = 0; v < t.vertex_count; ++v) boundary += t.boundary_vertex[static_cast<std::size_t>(v)];
+  CHECK(boundary == 2 * (3 + 4));
+  CHECK(valence(t, 0) == 2);          // corner
+  CHECK(valence(t, 1) == 3);          // edge
+  CHECK(valence(t, 1 * 5 + 1) == 4);  // interior
+  const auto loops = boundary_loops(t);
+  REQUIRE(loops.size() == 1);
+  CHECK(loops[0].size() == 14);
+  // The face is on the left of every boundary step: the loop runs 0 → 5 → 10 … (down the first
+  // column, since face (0, 0) is 0, 5, 6, 1).
+  CHECK(loops[0][0] == 0);
+  CHECK(loops[0][1] == 5);
+  SECTION("an annulus has two loops") {
+    // Square with a square hole: 8 outer vertices ring, 8 inner, 8 quads.
+    std::vector<std::vector<int>> faces;
+    for (int k = 0; k < 8; ++k) faces.push_back({k, (k + 1) % 8, 8 + (k + 1) % 8, 8 + k});
+    const MeshTopology a = build_topology(faces_mesh(16, faces));
+    CHECK(boundary_loops(a).size() == 2);
+    CHECK(euler_characteristic(a) == 0);
+    check_rotation(a);
+  }
+  SECTION("isolated vertices are kept, with no edges") {
+    Mesh m = grid(1, 1);
+    m.vertices.conservativeResize(5, 3);
+    const MeshTopology i = build_topology(m);
+    CHECK(valence(i, 4) == 0);
+    CHECK(vertex_faces(i, 4).empty());
+    check_rotation(i);
+  }
+}
+
+TEST_CASE("topology refuses what is not an oriented manifold, naming the element", "[core][topology]") {
+  const auto fails = [](const Mesh& m, const std::string& part) {
+    try {
+      (void)build_topology(m, "m.obj");
+      FAIL("accepted");
+    } catch (const InvalidInput& e) {
+      INFO(e.what());
+      CHECK(std::string(e.what()).find(part) != std::string::npos);
+      CHECK(std::string(e.what()).rfind("m.obj: ", 0) == 0);
+    }
+  };
+  fails(faces_mesh(4, {{0, 1, 2}, {0, 1, 3}}), "both use edge (0, 1) in the same direction");
+  // Three triangles on edge (0, 1).
+  fails(faces_mesh(5, {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}}), "edge (0, 1)");
+  // Two triangles touching at vertex 0 only (a bow tie).
+  fails(faces_mesh(5, {{0, 1, 2}, {0, 3, 4}}), "vertex 0 is not manifold");
+  // Two closed cones sharing their apex: two tetrahedra glued at vertex 0.
+  fails(
+      faces_mesh(7, {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}, {0, 5, 4}, {0, 4, 6}, {4, 5, 6}, {5, 0, 6}}),
+      "vertex 0 is not manifold");
+  fails(faces_mesh(3, {{0, 1}}), "face 0 has 2 vertices");
+  fails(faces_mesh(3, {{0, 1, 1}}), "face 0 repeats vertex 1");
+  fails(faces_mesh(3, {{0, 1, 7}}), "face 0 corner 2 is vertex 7, out of range (3 vertices)");
+  fails(faces_mesh(3, {{0, -1, 2}}), "out of range");
+}
+
+TEST_CASE("meshes: faces, uniform meshes, checks and normals", "[core][mesh]") {
+  Points v(4, 3);
+  v << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0;
+  const Mesh quad = uniform_mesh(v, {0, 1, 2, 3}, 4);
+  REQUIRE(face_count(quad) == 1);
+  CHECK(face(quad, 0).size() == 4);
+  const Points N = vertex_normals(quad);
+  for (int i = 0; i < 4; ++i) CHECK(N.row(i).isApprox(Eigen::RowVector3d(0, 0, 1).cast<double>()));
+  // A regular hexagon's Newell normal is its plane's normal.
+  Mesh hex;
+  hex.vertices.resize(6, 3);
+  for (int k = 0; k < 6; ++k) hex.vertices.row(k) << std::cos(k * M_PI / 3), std::sin(k * M_PI / 3), 2.0;
+  add_face(hex, {0, 1, 2, 3, 4, 5});
+  const Points H = vertex_normals(hex);
+  for (int i = 0; i < 6; ++i) CHECK((H.row(i) - Eigen::RowVector3d(0, 0, 1)).norm() < 1e-15);
+  CHECK_THROWS_WITH(check_mesh(uniform_mesh(v, {0, 1, 9}, 3), "w"),
+                    "w: face 0 corner 2 = 9 is out of range (4 vertices)");
+  Mesh bad = quad;
+  bad.states = {1, 2};
+  CHECK_THROWS_WITH(check_mesh(bad, "w"), "w: 2 states for 1 faces");
+}
