@@ -20,6 +20,7 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/ifs/attractor.hpp"
+#include "cifs/random.hpp"
 #include "union_find.hpp"
 
 namespace cifs::ifs {
@@ -93,37 +94,6 @@ struct Equation {
   std::vector<std::pair<std::size_t, double>> terms;
   double rhs = 0;
   int source = 0;
-};
-
-/// xoshiro256** seeded by SplitMix64 (Blackman & Vigna): fixed integer arithmetic, so a seed gives
-/// the same stream on every platform.
-class Random {
- public:
-  explicit Random(std::uint64_t seed) {
-    for (auto& word : s_) {
-      seed += 0x9e3779b97f4a7c15ULL;
-      std::uint64_t z = seed;
-      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-      z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-      word = z ^ (z >> 31);
-    }
-  }
-  std::uint64_t next() {
-    const std::uint64_t result = rotl(s_[1] * 5, 7) * 9, t = s_[1] << 17;
-    s_[2] ^= s_[0];
-    s_[3] ^= s_[1];
-    s_[1] ^= s_[2];
-    s_[0] ^= s_[3];
-    s_[2] ^= t;
-    s_[3] = rotl(s_[3], 45);
-    return result;
-  }
-  /// Uniform in [−1, 1): 53 random bits.
-  double symmetric() { return static_cast<double>(next() >> 11) * 0x1.0p-52 - 1.0; }
-
- private:
-  static std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
-  std::uint64_t s_[4];
 };
 
 }  // namespace

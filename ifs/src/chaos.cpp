@@ -7,6 +7,7 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/ifs/analysis.hpp"
+#include "cifs/random.hpp"
 #include "walk.hpp"
 
 namespace cifs::ifs {
@@ -17,9 +18,8 @@ using automata::StateId;
 
 namespace {
 
-/// Uniform index in [0, bound) from 32 random bits (bias ≤ bound/2³², negligible), the same on
-/// every standard library (std::uniform_int_distribution is implementation-defined).
-std::size_t draw(std::mt19937_64& rng, std::size_t bound) noexcept {
+/// Uniform index in [0, bound) from the top 32 bits of a draw (bias ≤ bound/2³², negligible).
+std::size_t draw(Random& rng, std::size_t bound) noexcept {
   return static_cast<std::size_t>(((rng() >> 32) * static_cast<std::uint64_t>(bound)) >> 32);
 }
 
@@ -43,7 +43,7 @@ ChaosResult chaos_game(const Automaton& automaton, std::span<const Points> nets,
     std::random_device device;
     while (result.seed == 0) result.seed = (std::uint64_t{device()} << 32) ^ std::uint64_t{device()};
   }
-  std::mt19937_64 rng(result.seed);
+  Random rng(result.seed);
   const auto cols = nets[0].cols();
   const std::size_t per_sample =
       (static_cast<std::size_t>(cols) + (options.record_address ? 1 : 0)) * sizeof(double);

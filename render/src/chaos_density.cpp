@@ -12,9 +12,9 @@
 #include "cifs/errors.hpp"
 #include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/attractor.hpp"
+#include "cifs/random.hpp"
 #include "framebuffer.hpp"
 #include "parallel.hpp"
-#include "random.hpp"
 
 namespace cifs::render {
 namespace {
@@ -157,7 +157,7 @@ ChaosDensityResult chaos_density(Image& image, const Camera& camera, const autom
       },
       [&](unsigned w, std::uint64_t chunk) {
         Local& l = local[w];
-        detail::Xoshiro256 rng(options.seed, chunk);
+        Random rng(options.seed, chunk);
         std::uint64_t pool = 0;
         bool half = false;
         // 32 random bits per choice, two per 64-bit draw.
@@ -171,10 +171,10 @@ ChaosDensityResult chaos_density(Image& image, const Camera& camera, const autom
         const std::uint64_t first = chunk * kDensityChunk;
         const std::uint64_t count = std::min(kDensityChunk, options.samples - first);
         for (std::uint64_t n = 0; n < count; ++n) {
-          const std::uint32_t root = roots > 1 ? detail::bounded(next32(), roots) : 0;
+          const std::uint32_t root = roots > 1 ? bounded(next32(), roots) : 0;
           std::uint32_t s = static_cast<std::uint32_t>(automaton.initial[root].state);
           for (int level = 0; level < depth; ++level) {
-            const std::uint32_t e = t.first[s] + detail::bounded(next32(), t.degree[s]);
+            const std::uint32_t e = t.first[s] + bounded(next32(), t.degree[s]);
             path[static_cast<std::size_t>(level)] = e;
             s = t.edges[e].target;
           }

@@ -10,14 +10,12 @@
 #include <string>
 
 #include "cifs/errors.hpp"
+#include "cifs/random.hpp"
 #include "parallel.hpp"
-#include "random.hpp"
 
 namespace cifs::render {
 
 namespace {
-
-using detail::Xoshiro256;
 
 struct Linear {
   double a, b, c, d, e, f;
@@ -142,7 +140,7 @@ struct Grid {
 /// check.
 std::uint64_t run_chunk(const Prepared& p, const Grid& grid, std::uint64_t seed, std::uint64_t chunk,
                         std::uint64_t points, std::uint64_t burn_in, std::uint32_t* counts) noexcept {
-  Xoshiro256 rng(seed, chunk);
+  Random rng(seed, chunk);
   const Linear* maps = p.maps.data();
   const Column* table = p.table.data();
   const std::uint64_t n = p.maps.size();
@@ -224,7 +222,7 @@ Bounds estimate_bounds(std::span<const AffineMap> maps, double margin, std::uint
   const Prepared p = prepare(maps, "estimate_bounds");
   if (!(margin >= 0) || !std::isfinite(margin)) throw InvalidInput("estimate_bounds: margin must be >= 0");
   if (points >= (std::uint64_t{1} << 32)) throw InvalidInput("estimate_bounds: points must be below 2^32");
-  Xoshiro256 rng(0x5EED, 0);
+  Random rng(0x5EED, 0);
   double x = p.x0, y = p.y0;
   Bounds b{x, x, y, y};
   const std::uint64_t n = p.maps.size();

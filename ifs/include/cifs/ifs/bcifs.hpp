@@ -136,7 +136,7 @@ Bcifs with_free_values(const Bcifs& system, const AdmissibleSpace& space, const 
 struct PerturbOptions {
   /// Each free coefficient gets current value + uniform in [−amplitude, amplitude].
   double amplitude = 0;
-  /// Seeds the project's own xoshiro256** (SplitMix64-seeded): same seed, same values everywhere.
+  /// Seeds cifs::Random (cifs/random.hpp, xoshiro256**): same seed, same values everywhere.
   std::uint64_t seed = 1;
   /// Free coefficients set by name to these values (instead of the random draw).
   std::map<std::string, double> values;

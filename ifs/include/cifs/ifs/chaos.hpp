@@ -15,7 +15,7 @@ namespace cifs::ifs {
 
 struct ChaosOptions {
   std::size_t samples = 100000;
-  /// Seed of std::mt19937_64; 0 draws one from std::random_device (returned in the result).
+  /// Seed of cifs::Random (cifs/random.hpp); 0 draws one from std::random_device (returned in the result).
   std::uint64_t seed = 0;
   /// Restart at a root when the walk's net diameter falls below this fraction of the root net's
   /// diameter, so that precision never collapses.

@@ -63,7 +63,7 @@ struct ChaosDensityResult {
 /// last, by sample index). Points behind the image's Z are dropped.
 ///
 /// Determinism: samples are cut into chunks of kDensityChunk; chunk c draws from its own
-/// xoshiro256++ stream seeded from (seed, c); workers keep private counts, depths and states that
+/// stream (seed, c) of cifs::Random; workers keep private counts, depths and states that
 /// are merged by integer sums and by (depth, sample index), so a seed gives the same image for any
 /// number of threads.
 /// Throws InvalidInput for an invalid automaton or nets (ifs::validate), a system that is not

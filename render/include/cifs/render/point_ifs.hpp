@@ -65,7 +65,7 @@ struct Histogram {
 
 /// The chaos game: x_{n+1} = w_k(x_n) with map k drawn with its probability, every point binned.
 /// Determinism: the samples are cut into chunks of kChaosChunk points; chunk i runs its own
-/// xoshiro256+ generator seeded from (seed, i) by SplitMix64 and starts at the fixed point of the
+/// stream (seed, i) of cifs::Random (cifs/random.hpp) and starts at the fixed point of the
 /// first map; threads take chunks dynamically into private histograms that are summed at the end.
 /// Integer sums do not depend on the order, so a seed gives the same histogram for any number of
 /// threads. Maps are drawn from an alias table (one 64-bit draw per point: 32 bits pick a column,
