@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "cifs/errors.hpp"
+#include "cifs/files.hpp"
 #include "cifs/io/polygon.hpp"
 #include "cifs/io/polyline.hpp"
 #include "cifs/io/shape.hpp"
@@ -164,7 +165,7 @@ std::string write_scheme_gallery(const std::filesystem::path& folder, const std:
   if (ec) throw IoError(folder.string() + ": cannot create the folder (" + ec.message() + ")");
   std::string summary;
   const auto write = [&](const std::string& name, const std::string& svg) {
-    io::write_file_atomically(folder / name, svg);
+    write_file_atomically(folder / name, svg);
     summary += "scheme gallery: wrote " + (folder / name).string() + "\n";
   };
   constexpr int kSteps = 5;

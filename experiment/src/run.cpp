@@ -7,6 +7,7 @@
 
 #include "cifs/automata/tensor.hpp"
 #include "cifs/errors.hpp"
+#include "cifs/files.hpp"
 #include "cifs/ifs/affine.hpp"
 #include "cifs/ifs/affine_cifs.hpp"
 #include "cifs/ifs/attractor.hpp"
@@ -500,7 +501,7 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
   }
   for (const auto& [path, text] : texts) {
     folder_of(path);
-    io::write_file_atomically(path, text);
+    write_file_atomically(path, text);
     report.written.push_back(path);
   }
   report.summary = e.name + ": " + kind +

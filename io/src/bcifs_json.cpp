@@ -4,6 +4,7 @@
 #include <map>
 #include <set>
 
+#include "cifs/files.hpp"
 #include "cifs/io/shape.hpp"
 #include "json_common.hpp"
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "cifs/io/experiment.hpp"
 
+#include "cifs/files.hpp"
 #include "cifs/io/polygon.hpp"
 #include "json_common.hpp"
 

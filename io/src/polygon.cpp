@@ -3,6 +3,7 @@
 
 #include <charconv>
 
+#include "cifs/files.hpp"
 #include "cifs/io/shape.hpp"
 #include "json_common.hpp"
 

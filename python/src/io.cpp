@@ -6,6 +6,7 @@
 
 #include "arrays.hpp"
 #include "cifs/experiment/run.hpp"
+#include "cifs/files.hpp"
 #include "cifs/io/experiment.hpp"
 #include "cifs/io/geometry.hpp"
 #include "cifs/io/polygon.hpp"
@@ -96,7 +97,7 @@ void bind_shapes(py::module_& m) {
   m.def(
       "write_file_atomically",
       [](const std::filesystem::path& path, const std::string& content) {
-        io::write_file_atomically(path, content);
+        write_file_atomically(path, content);
       },
       Release(), py::arg("path"), py::arg("content"),
       "Writes `content` (str, UTF-8, or bytes) through a temporary file and a rename: `path` never holds\n"
@@ -107,7 +108,7 @@ void bind_shapes(py::module_& m) {
         std::string text;
         {
           py::gil_scoped_release release;
-          text = io::read_file(path);
+          text = read_file(path);
         }
         if (binary) return py::bytes(text);
         return py::str(text);

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include "cifs/errors.hpp"
+#include "cifs/files.hpp"
 #include "cifs/ifs/bcifs_curve.hpp"
 #include "cifs/io/shape.hpp"
 #include "ifs/bcifs_helpers.hpp"

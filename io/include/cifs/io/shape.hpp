@@ -30,11 +30,4 @@ std::string to_obj(const Shape& shape);
 /// Reads a shape file: `.obj` as OBJ (it must hold exactly one shape), anything else as JSON.
 Shape read_shape(const std::filesystem::path& path);
 
-/// Writes `content` to `path` through a temporary file in the same folder and a rename, so that
-/// `path` never holds a partial file.
-void write_file_atomically(const std::filesystem::path& path, std::string_view content);
-
-/// Whole file as a string; IoError naming the path when it cannot be read.
-std::string read_file(const std::filesystem::path& path);
-
 }  // namespace cifs::io
