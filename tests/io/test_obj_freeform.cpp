@@ -10,7 +10,8 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/files.hpp"
-#include "cifs/io/shape.hpp"
+#include "cifs/io/io.hpp"
+#include "cifs/io/obj.hpp"
 #include "cifs/nurbs/refine.hpp"
 
 namespace {

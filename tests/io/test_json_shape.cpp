@@ -4,7 +4,8 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/files.hpp"
-#include "cifs/io/shape.hpp"
+#include "cifs/io/io.hpp"
+#include "cifs/io/json.hpp"
 
 using namespace cifs;
 
