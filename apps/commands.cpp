@@ -15,9 +15,8 @@
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/ifs/chaos.hpp"
 #include "cifs/ifs/dimension.hpp"
-#include "cifs/io/experiment.hpp"
-#include "cifs/io/polyline.hpp"
-#include "cifs/io/shape.hpp"
+#include "cifs/io/io.hpp"
+#include "cifs/io/json.hpp"
 #include "cifs/nurbs/refine.hpp"
 #include "cifs/verify/check.hpp"
 #include "scheme_command.hpp"
@@ -161,21 +160,19 @@ std::string info(const std::filesystem::path& path) {
 }
 
 std::string automaton(const AutomatonOptions& o) {
-  if (o.format != "json" && o.format != "dot" && o.format != "svg")
-    throw InvalidInput("--format '" + o.format + "': expected json, dot or svg");
+  io::writable_format(io::Content::automaton, o.format, "--format");
   const io::Shape shape = io::read_shape(o.shape);
   const auto* c = std::get_if<nurbs::Curve>(&shape);
   if (!c)
     throw InvalidInput(o.shape.string() + ": automaton: only curves have a knot-doubling automaton so far");
   automata::Automaton a = automata::knot_automaton(*c);
   if (o.minimize) a = automata::minimize(a);
-  if (o.format == "svg") return automata::to_svg(a);
-  return o.format == "json" ? automata::to_json(a) : automata::to_dot(a);
+  return io::encode(a, o.format);
 }
 
 std::string attractor(const AttractorOptions& o) {
-  if (o.format != "json" && o.format != "obj" && o.format != "svg")
-    throw InvalidInput("--format '" + o.format + "': expected json, obj or svg");
+  // The attractor is a polyline: any polygon format, where json is the points report of `eval`.
+  io::writable_format(io::Content::polygon, o.format, "--format");
   if ((o.depth >= 0) + (o.tolerance > 0) + (o.chaos != 0) != 1)
     throw InvalidInput("attractor: give exactly one of --depth K, --tolerance E and --chaos N");
   if (o.chaos < 0 || o.chaos > kMaxPoints)
@@ -227,8 +224,7 @@ std::string attractor(const AttractorOptions& o) {
     for (std::size_t i = 0; i < rows.size(); ++i) H.row(static_cast<Eigen::Index>(i)) = rows[i];
   }
   const Points P = c->rational ? ifs::cartesian(H) : H;
-  if (o.format == "obj") return io::polyline_obj(P, c->closed);
-  if (o.format == "svg") return io::polyline_svg(P, c->closed);
+  if (o.format != "json") return io::encode(io::Polygon{P, c->closed}, o.format);
   std::string text = points_json(P);
   return seed_member.empty() ? text : text.insert(text.size() - 2, seed_member);
 }

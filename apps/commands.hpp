@@ -30,7 +30,7 @@ std::string info(const std::filesystem::path& shape);
 
 struct AutomatonOptions {
   std::filesystem::path shape;
-  std::string format = "json";  // json | dot
+  std::string format = "json";  // a writable format of io::formats(Content::automaton)
   bool minimize = false;
 };
 std::string automaton(const AutomatonOptions& options);
@@ -41,7 +41,7 @@ struct AttractorOptions {
   double tolerance = 0;         // every leaf's piece smaller than this (Cartesian units), or
   long long chaos = 0;          // that many chaos-game points
   std::uint64_t seed = 0;       // chaos game: 0 draws one (printed with the points)
-  std::string format = "json";  // json | obj | svg
+  std::string format = "json";  // json (the points), or a writable format of io::formats(Content::polygon)
 };
 std::string attractor(const AttractorOptions& options);
 

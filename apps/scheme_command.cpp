@@ -4,14 +4,14 @@
 #include <charconv>
 #include <cmath>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <numbers>
 #include <sstream>
 
 #include "cifs/errors.hpp"
-#include "cifs/io/polygon.hpp"
-#include "cifs/io/polyline.hpp"
-#include "cifs/io/shape.hpp"
+#include "cifs/files.hpp"
+#include "cifs/io/io.hpp"
+#include "cifs/io/json.hpp"
+#include "cifs/io/svg.hpp"
 #include "cifs/subdivision/analysis.hpp"
 #include "cifs/subdivision/refine.hpp"
 #include "cifs/subdivision/scheme.hpp"
@@ -19,8 +19,9 @@
 namespace cifs::cli {
 namespace {
 
-using nlohmann::json;
 namespace sd = cifs::subdivision;
+using io::Stroke;
+using io::strokes_svg;
 
 std::map<std::string, std::string> parse_params(const std::vector<std::string>& params) {
   std::map<std::string, std::string> out;
@@ -56,59 +57,6 @@ sd::Ends parse_ends(const std::string& ends) {
 // ------------------------------------------------------------------------------------------------
 // Gallery
 
-struct Stroke {
-  Points points;
-  bool closed = true;
-  std::string colour = "#1f77b4";
-  double width = 1.5;
-  std::string dash;  // SVG stroke-dasharray, empty for solid
-  std::string label;
-};
-
-/// Several polylines in one SVG, fitted together (y up), with an optional legend.
-std::string strokes_svg(const std::vector<Stroke>& strokes, const std::string& title, int width = 800) {
-  double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
-  for (const Stroke& s : strokes)
-    for (Eigen::Index i = 0; i < s.points.rows(); ++i) {
-      x0 = std::min(x0, s.points(i, 0)), x1 = std::max(x1, s.points(i, 0));
-      y0 = std::min(y0, s.points(i, 1)), y1 = std::max(y1, s.points(i, 1));
-    }
-  const double margin = 20, span = std::max({x1 - x0, y1 - y0, 1e-12});
-  const double scale = (width - 2 * margin) / std::max(x1 - x0, 1e-12 * span);
-  const double legend =
-      22.0 * static_cast<double>(std::count_if(strokes.begin(), strokes.end(),
-                                               [](const Stroke& s) { return !s.label.empty(); }));
-  const double height = std::max(2 * margin + (y1 - y0) * scale, 2 * margin + 10) + legend + 26;
-  std::ostringstream o;
-  o.precision(6);
-  o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
-    << "\" viewBox=\"0 0 " << width << " " << height
-    << "\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  o << "<text x=\"" << margin << "\" y=\"18\" font-family=\"sans-serif\" font-size=\"14\">" << title
-    << "</text>\n";
-  for (const Stroke& s : strokes) {
-    o << "<" << (s.closed ? "polygon" : "polyline") << " fill=\"none\" stroke=\"" << s.colour
-      << "\" stroke-width=\"" << s.width << "\" stroke-linejoin=\"round\"";
-    if (!s.dash.empty()) o << " stroke-dasharray=\"" << s.dash << "\"";
-    o << " points=\"";
-    for (Eigen::Index i = 0; i < s.points.rows(); ++i)
-      o << (i ? " " : "") << margin + (s.points(i, 0) - x0) * scale << ","
-        << 26 + margin + (y1 - s.points(i, 1)) * scale;
-    o << "\"/>\n";
-  }
-  double y = height - legend + 4;
-  for (const Stroke& s : strokes) {
-    if (s.label.empty()) continue;
-    o << "<line x1=\"" << margin << "\" y1=\"" << y << "\" x2=\"" << margin + 40 << "\" y2=\"" << y
-      << "\" stroke=\"" << s.colour << "\" stroke-width=\"" << s.width << "\""
-      << (s.dash.empty() ? "" : " stroke-dasharray=\"" + s.dash + "\"") << "/>\n<text x=\"" << margin + 50
-      << "\" y=\"" << y + 5 << "\" font-family=\"sans-serif\" font-size=\"13\">" << s.label << "</text>\n";
-    y += 22;
-  }
-  o << "</svg>\n";
-  return o.str();
-}
-
 Points rows(std::initializer_list<std::pair<double, double>> xy) {
   Points P(static_cast<Eigen::Index>(xy.size()), 2);
   Eigen::Index i = 0;
@@ -143,19 +91,16 @@ std::string scheme(const SchemeOptions& o) {
       throw InvalidInput("--max-power " + std::to_string(o.max_power) + ": between 1 and 26");
     sd::AnalysisOptions a;
     a.max_power = o.max_power;
-    return sd::analysis_json(s, sd::analyze(s, a));
+    return io::analysis_json(s, sd::analyze(s, a));
   }
   if (o.steps < 0) throw InvalidInput("--steps " + std::to_string(o.steps) + " is negative");
-  if (o.format != "json" && o.format != "svg" && o.format != "obj")
-    throw InvalidInput("--format '" + o.format + "': json, svg or obj");
+  io::writable_format(io::Content::polygon, o.format, "--format");
   const io::Polygon polygon = io::read_polygon(o.refine);
   sd::RefineOptions r;
   r.ends = parse_ends(o.ends);
   r.max_points = 50'000'000;
   const Points out = sd::refine(s, polygon.points, polygon.closed, o.steps, r);
-  if (o.format == "svg") return io::polyline_svg(out, polygon.closed);
-  if (o.format == "obj") return io::polyline_obj(out, polygon.closed);
-  return io::to_json(io::Polygon{out, polygon.closed});
+  return io::encode(io::Polygon{out, polygon.closed}, o.format);
 }
 
 std::string write_scheme_gallery(const std::filesystem::path& folder, const std::filesystem::path& examples) {
@@ -164,7 +109,7 @@ std::string write_scheme_gallery(const std::filesystem::path& folder, const std:
   if (ec) throw IoError(folder.string() + ": cannot create the folder (" + ec.message() + ")");
   std::string summary;
   const auto write = [&](const std::string& name, const std::string& svg) {
-    io::write_file_atomically(folder / name, svg);
+    write_file_atomically(folder / name, svg);
     summary += "scheme gallery: wrote " + (folder / name).string() + "\n";
   };
   constexpr int kSteps = 5;

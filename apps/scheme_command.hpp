@@ -16,7 +16,7 @@ struct SchemeOptions {
   std::filesystem::path refine;  // polygon file
   int steps = 1;
   std::string ends = "auto";    // auto | reflect | keep
-  std::string format = "json";  // json | svg | obj (refine)
+  std::string format = "json";  // refine: a writable format of io::formats(Content::polygon)
   bool list = false;
   int max_power = 20;  // analysis: largest power L
 };

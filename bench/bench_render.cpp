@@ -70,7 +70,7 @@ void cifs_density(benchmark::State& state) {
 
 void mesh(benchmark::State& state) {
   constexpr int n = 256;
-  io::Mesh m;
+  Mesh m;
   m.vertices.resize((n + 1) * (n + 1), 3);
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) {
@@ -80,7 +80,7 @@ void mesh(benchmark::State& state) {
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
       const int v = j * (n + 1) + i;
-      m.quads.push_back({v, v + 1, v + n + 2, v + n + 1});
+      add_face(m, {v, v + 1, v + n + 2, v + n + 1});
     }
   FramingOptions framing;
   framing.width = framing.height = 1024;

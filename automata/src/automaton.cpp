@@ -1,13 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "cifs/automata/automaton.hpp"
 
-#include <boost/graph/graphviz.hpp>
 #include <boost/graph/strong_components.hpp>
 #include <cmath>
 #include <deque>
 #include <map>
-#include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "cifs/errors.hpp"
 #include "cifs/nurbs/doubling.hpp"
@@ -21,13 +18,6 @@ std::vector<double> matrix_key(const Eigen::MatrixXd& M) {
   std::vector<double> key{static_cast<double>(M.rows()), static_cast<double>(M.cols())};
   key.insert(key.end(), M.data(), M.data() + M.size());
   return key;
-}
-
-std::string short_number(double x) {
-  std::ostringstream out;
-  out.precision(6);
-  out << x;
-  return out.str();
 }
 
 }  // namespace
@@ -166,56 +156,6 @@ std::vector<Points> initial_nets(const Automaton& a, const nurbs::Curve& curve) 
     nets.push_back(curve.P.middleRows(i.span - curve.degree, curve.degree + 1));
   }
   return nets;
-}
-
-std::string to_json(const Automaton& a) {
-  using nlohmann::json;
-  json states = json::array(), transitions = json::array(), initial = json::array();
-  for (StateId s = 0; s < boost::num_vertices(a.graph); ++s) {
-    const State& st = a.graph[s];
-    json j{{"id", s}, {"size", st.size}, {"recurrent", st.recurrent}};
-    if (!st.window.empty()) j["window"] = st.window;
-    states.push_back(std::move(j));
-  }
-  for (auto [e, end] = boost::edges(a.graph); e != end; ++e) {
-    const Eigen::MatrixXd& M = a.graph[*e].matrix;
-    json rows = json::array();
-    for (Eigen::Index r = 0; r < M.rows(); ++r) {
-      std::vector<double> row(static_cast<std::size_t>(M.cols()));
-      for (Eigen::Index c = 0; c < M.cols(); ++c) row[static_cast<std::size_t>(c)] = M(r, c);
-      rows.push_back(std::move(row));
-    }
-    transitions.push_back({{"from", boost::source(*e, a.graph)},
-                           {"to", boost::target(*e, a.graph)},
-                           {"label", a.graph[*e].label},
-                           {"matrix", rows}});
-  }
-  for (const Initial& i : a.initial)
-    initial.push_back({{"segment", i.segment}, {"state", i.state}, {"interval", {i.start, i.end}}});
-  return json{{"states", states}, {"transitions", transitions}, {"initial", initial}}.dump() + "\n";
-}
-
-std::string to_dot(const Automaton& a) {
-  std::vector<bool> is_initial(boost::num_vertices(a.graph), false);
-  for (const Initial& i : a.initial) is_initial[i.state] = true;
-  std::ostringstream out;
-  boost::write_graphviz(
-      out, a.graph,
-      [&](std::ostream& o, StateId s) {
-        const State& st = a.graph[s];
-        std::string label = "s" + std::to_string(s);
-        if (!st.window.empty()) {
-          label += "\\n(";
-          for (std::size_t i = 0; i < st.window.size(); ++i)
-            label += (i ? ", " : "") + short_number(st.window[i]);
-          label += ")";
-        }
-        o << "[label=\"" << label << "\"" << (st.recurrent ? ", peripheries=2" : "")
-          << (is_initial[s] ? ", style=bold" : "") << "]";
-      },
-      [&](std::ostream& o, TransitionId e) { o << "[label=\"" << a.graph[e].label << "\"]"; },
-      [](std::ostream& o) { o << "rankdir=LR;\nnode [shape=circle, fontsize=10];\n"; });
-  return out.str();
 }
 
 }  // namespace cifs::automata

@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: MIT
 #include "cifs/experiment/run.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <functional>
 #include <numbers>
 
 #include "cifs/automata/tensor.hpp"
 #include "cifs/errors.hpp"
+#include "cifs/files.hpp"
 #include "cifs/ifs/affine.hpp"
 #include "cifs/ifs/affine_cifs.hpp"
 #include "cifs/ifs/attractor.hpp"
@@ -16,8 +19,7 @@
 #include "cifs/ifs/chaos.hpp"
 #include "cifs/ifs/dimension.hpp"
 #include "cifs/ifs/mesh.hpp"
-#include "cifs/io/bcifs_json.hpp"
-#include "cifs/io/geometry.hpp"
+#include "cifs/io/io.hpp"
 #include "cifs/render/camera.hpp"
 #include "cifs/render/chaos_density.hpp"
 #include "cifs/render/image.hpp"
@@ -36,9 +38,9 @@ struct Scene {
   automata::Automaton automaton;  // the (perturbed) automaton: drawn, and sampled by the chaos game
   std::vector<Points> nets;
   bool rational = false;  // nets hold homogeneous rows
-  std::optional<io::Mesh> mesh;
-  std::optional<io::Segments> curves;
-  std::optional<io::Segments> control;
+  std::optional<Mesh> mesh;
+  std::optional<Segments> curves;
+  std::optional<Segments> control;
   std::vector<ifs::AffineMap> maps;  // classic IFS
   Points extent;                     // points that the camera must show
   int depth = 0;
@@ -78,7 +80,7 @@ std::vector<std::uint32_t> leaf_states(const automata::Automaton& a, const std::
 
 /// Deterministic curve evaluation: the attractor points to a depth, or to a tolerance (leaf start
 /// points of the tolerance traversal, in curve order), as one polyline with per-piece states.
-io::Segments evaluate_curve(Scene& scene, const io::Evaluation& ev, bool closed, const RunOptions& o) {
+Segments evaluate_curve(Scene& scene, const io::Evaluation& ev, bool closed, const RunOptions& o) {
   Points P;
   std::vector<std::uint32_t> states;
   if (ev.mode == Mode::depth) {
@@ -110,7 +112,7 @@ io::Segments evaluate_curve(Scene& scene, const io::Evaluation& ev, bool closed,
     for (std::size_t i = 0; i < rows.size(); ++i) P.row(static_cast<Eigen::Index>(i)) = rows[i];
   }
   P = drawable(cartesian_if(P, scene.rational), "the curve");
-  io::Segments s = io::polyline_segments(P, closed);
+  Segments s = polyline_segments(P, closed);
   if (states.size() == s.segments.size()) s.states = std::move(states);
   return s;
 }
@@ -141,7 +143,7 @@ Scene curve_scene(const nurbs::Curve& c, const io::Experiment& e, const RunOptio
   }
   scene.nets = automata::initial_nets(scene.automaton, c);
   const Points control = drawable(nurbs::cartesian_points(c), "the curve");
-  scene.control = io::polyline_segments(control, c.closed);
+  scene.control = polyline_segments(control, c.closed);
   if (e.evaluation.mode != Mode::chaos) scene.curves = evaluate_curve(scene, e.evaluation, c.closed, o);
   scene.extent = scene.curves ? scene.curves->vertices : control;
   return scene;
@@ -166,13 +168,13 @@ Scene surface_scene(const nurbs::Surface& s, const io::Experiment& e, const RunO
   if (P.cols() != 3)
     throw InvalidInput("the surface has " + std::to_string(P.cols()) +
                        " coordinates; images show 3-D surfaces");
-  io::Segments net;
+  Segments net;
   for (Eigen::Index i = 0; i < s.count[0]; ++i)
-    io::append(net, io::polyline_segments(P.middleRows(i * s.count[1], s.count[1])));
+    append(net, polyline_segments(P.middleRows(i * s.count[1], s.count[1])));
   for (Eigen::Index j = 0; j < s.count[1]; ++j) {
     Points column(s.count[0], 3);
     for (Eigen::Index i = 0; i < s.count[0]; ++i) column.row(i) = P.row(i * s.count[1] + j);
-    io::append(net, io::polyline_segments(column));
+    append(net, polyline_segments(column));
   }
   scene.control = std::move(net);
   if (e.evaluation.mode != Mode::chaos) {
@@ -191,9 +193,10 @@ Scene surface_scene(const nurbs::Surface& s, const io::Experiment& e, const RunO
                                  ? ifs::quad_mesh(scene.automaton, scene.nets, ta.patches, depth, mo)
                                  : ifs::surface_mesh(ta, scene.nets, depth, mo);
     scene.depth = depth;
-    io::Mesh mesh;
-    mesh.vertices = qm.vertices;
-    mesh.quads = qm.quads;
+    std::vector<int> corners;
+    corners.reserve(4 * qm.quads.size());
+    for (const auto& q : qm.quads) corners.insert(corners.end(), q.begin(), q.end());
+    Mesh mesh = uniform_mesh(qm.vertices, std::move(corners), 4);
     mesh.states = qm.quad_state;
     scene.extent = mesh.vertices;
     scene.mesh = std::move(mesh);
@@ -228,7 +231,7 @@ Scene bcifs_scene(const io::Experiment& e, const RunOptions& o, RunReport& repor
                          " GB, above the limit of " + number(double(o.max_bytes) / 1e9) +
                          " GB; lower the depth");
     const ifs::EdgePieces pieces = ifs::edge_pieces(system, scene.nets, e.evaluation.depth);
-    io::Segments s;
+    Segments s;
     const Eigen::Index n = pieces.start.rows();
     Points v(2 * n, pieces.start.cols());
     v.topRows(n) = pieces.start;
@@ -242,8 +245,8 @@ Scene bcifs_scene(const io::Experiment& e, const RunOptions& o, RunReport& repor
     scene.extent = s.vertices;
     scene.curves = std::move(s);
   }
-  io::Segments control;
-  for (const Points& N : scene.nets) io::append(control, io::polyline_segments(drawable(N, "a control net")));
+  Segments control;
+  for (const Points& N : scene.nets) append(control, polyline_segments(drawable(N, "a control net")));
   if (!scene.curves) scene.extent = control.vertices;
   scene.control = std::move(control);
   return scene;
@@ -457,29 +460,35 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
     image.attributes["residual"] = number(report.residual);
   }
 
-  // Geometry files, computed before anything is written.
+  // Geometry and automaton files, computed before anything is written, in the order of the format
+  // table (io::formats).
   std::vector<std::pair<std::filesystem::path, std::string>> texts;
-  const auto geometry = [&](const std::filesystem::path& name, const char* what, auto&& make) {
-    if (name.empty()) return;
+  if (!e.outputs.geometry.empty()) {
+    const std::string& first = e.outputs.geometry.begin()->first;
     if (!scene.mesh && !scene.curves)
-      throw InvalidInput(std::string("outputs.") + what +
-                         ": this evaluation gives a density, no geometry to export");
-    texts.emplace_back(o.out_dir / name, make());
-  };
-  geometry(e.outputs.obj, "obj",
-           [&] { return scene.mesh ? io::mesh_obj(*scene.mesh) : io::segments_obj(*scene.curves); });
-  geometry(e.outputs.ply, "ply", [&] {
-    return scene.mesh ? io::mesh_ply(*scene.mesh, io::PlyFormat::binary_little_endian)
-                      : io::segments_ply(*scene.curves, io::PlyFormat::binary_little_endian);
-  });
-  geometry(e.outputs.svg, "svg", [&] {
-    if (!scene.curves) throw InvalidInput("outputs.svg: SVG is for curves; use obj or ply for surfaces");
-    return io::segments_svg(*scene.curves);
-  });
-  if (!e.outputs.automaton_svg.empty())
-    texts.emplace_back(o.out_dir / e.outputs.automaton_svg, automata::to_svg(scene.automaton));
-  if (!e.outputs.automaton_dot.empty())
-    texts.emplace_back(o.out_dir / e.outputs.automaton_dot, automata::to_dot(scene.automaton));
+      throw InvalidInput("outputs." + first + ": this evaluation gives a density, no geometry to export");
+    const io::Content content = scene.mesh ? io::Content::mesh : io::Content::segments;
+    // The parser accepts the formats of meshes and of segment sets: say which one this scene takes.
+    const std::vector<io::Format> formats = io::formats(content);
+    for (const auto& [format, name] : e.outputs.geometry) {
+      const auto writes = [&](const io::Format& f) { return f.write && f.name == format; };
+      if (std::any_of(formats.begin(), formats.end(), writes)) continue;
+      std::string upper = format, ours;
+      for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+      for (const io::Format& f : formats)
+        if (f.write) ours += (ours.empty() ? "" : " or ") + std::string(f.name);
+      throw InvalidInput("outputs." + format + ": " + upper + " is for " +
+                         (scene.mesh ? "curves" : "surfaces") + "; use " + ours + " for " +
+                         (scene.mesh ? "surfaces" : "curves"));
+    }
+    for (const io::Format& f : io::formats(content))
+      if (const auto it = e.outputs.geometry.find(std::string(f.name)); it != e.outputs.geometry.end())
+        texts.emplace_back(o.out_dir / it->second,
+                           scene.mesh ? io::encode(*scene.mesh, f.name) : io::encode(*scene.curves, f.name));
+  }
+  for (const io::Format& f : io::formats(io::Content::automaton))
+    if (const auto it = e.outputs.automaton.find(std::string(f.name)); it != e.outputs.automaton.end())
+      texts.emplace_back(o.out_dir / it->second, io::encode(scene.automaton, f.name));
 
   const auto folder_of = [](const std::filesystem::path& p) {
     if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
@@ -500,7 +509,7 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
   }
   for (const auto& [path, text] : texts) {
     folder_of(path);
-    io::write_file_atomically(path, text);
+    write_file_atomically(path, text);
     report.written.push_back(path);
   }
   report.summary = e.name + ": " + kind +

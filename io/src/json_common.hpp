@@ -17,12 +17,15 @@ namespace cifs::io::detail {
 
 using nlohmann::json;
 
+Points to_points(const std::vector<std::vector<double>>& rows);
+
 /// Reads JSON values with the path of each value at hand for error messages.
 struct Reader {
   std::string where;
 
+  /// "where: path: what" (no path for the document itself).
   [[noreturn]] void fail(const std::string& path, const std::string& what) const {
-    throw InvalidInput(where + ": " + path + ": " + what);
+    throw InvalidInput(where + ": " + (path.empty() ? "" : path + ": ") + what);
   }
 
   const json& member(const json& obj, const std::string& path, const char* key) const {
@@ -96,6 +99,27 @@ struct Reader {
     }
   }
 
+  /// `rows` rows of `cols` numbers each (cols −1: as many as the first row, at least 1); the
+  /// reasons name where the expected counts come from.
+  Eigen::MatrixXd matrix(const json& v, const std::string& path, Eigen::Index rows, Eigen::Index cols,
+                         const std::string& rows_why, const std::string& cols_why) const {
+    array(v, path);
+    if (rows >= 0 && static_cast<Eigen::Index>(v.size()) != rows)
+      fail(path,
+           std::to_string(v.size()) + " rows, expected " + std::to_string(rows) + " (" + rows_why + ")");
+    std::vector<std::vector<double>> all;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const std::string p = path + "[" + std::to_string(i) + "]";
+      all.push_back(numbers(v[i], p));
+      const auto want = cols >= 0 ? cols : static_cast<Eigen::Index>(all.front().size());
+      if (static_cast<Eigen::Index>(all.back().size()) != want || want == 0)
+        fail(p, std::to_string(all.back().size()) + " entries, expected " +
+                    (want == 0 ? std::string("at least 1") : std::to_string(want)) +
+                    (cols >= 0 ? " (" + cols_why + ")" : " (as the first row)"));
+    }
+    return to_points(all);
+  }
+
   /// Runs a nurbs constructor, prefixing its validation messages with the file and the object.
   template <class Make>
   auto build(const std::string& object, Make&& make) const {
@@ -109,8 +133,6 @@ struct Reader {
 
 /// Parses `text`; IoError naming `where` and the byte for malformed JSON.
 json parse_document(std::string_view text, const std::string& where);
-
-Points to_points(const std::vector<std::vector<double>>& rows);
 
 json rows_json(const Points& P);
 

@@ -8,7 +8,7 @@ Submodules mirror the C++ library (docs/python.md):
 - ``cifs.ifs``          attractors, contraction, chaos game, meshes, BC-IFS free coefficients, dimension
 - ``cifs.subdivision``  curve subdivision schemes and their analysis
 - ``cifs.render``       cameras, rasterisers, chaos-game density, OpenEXR and PNG
-- ``cifs.io``           shape, polygon, BC-IFS and experiment files; geometry export
+- ``cifs.io``           every file format (shapes, polygons, meshes, automata, BC-IFS, experiments), by extension
 - ``cifs.verify``       the attractor against knot insertion and Cox–de Boor
 - ``cifs.experiment``   running experiment files
 

@@ -13,6 +13,7 @@
 
 #include "bindings.hpp"
 #include "cifs/errors.hpp"
+#include "cifs/mesh.hpp"
 #include "cifs/types.hpp"
 
 namespace cifs::python {
@@ -110,6 +111,53 @@ inline std::vector<std::uint32_t> states_from(const py::handle& object, const st
     states[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(v(i));
   }
   return states;
+}
+
+/// One int per item (face offsets, corners); None or an empty array give none.
+inline std::vector<int> ints_from(const py::handle& object, const std::string& where) {
+  std::vector<int> out;
+  if (object.is_none()) return out;
+  const py::array any = as_array(object);
+  if (any && any.size() == 0) return out;
+  const py::array a = numeric(object, where, "iu");
+  if (a.ndim() != 1) throw InvalidInput(where + ": expected a 1-D integer array, got shape " + shape_text(a));
+  const Int64s ints = Int64s::ensure(a);
+  const auto v = ints.unchecked<1>();
+  out.resize(static_cast<std::size_t>(v.shape(0)));
+  for (py::ssize_t i = 0; i < v.shape(0); ++i) {
+    if (v(i) < INT_MIN || v(i) > INT_MAX)
+      throw InvalidInput(where + "[" + std::to_string(i) + "] = " + std::to_string(v(i)) +
+                         " is out of range");
+    out[static_cast<std::size_t>(i)] = static_cast<int>(v(i));
+  }
+  return out;
+}
+
+/// A mesh from the index tables of the Python API: triangles first, then quads (the order of the
+/// states). Vertices are checked first, then the tables, with their own names in the messages
+/// ("who: quads[0][3] = 5 is out of range (4 vertices)"), then the rest (check_mesh).
+inline Mesh mesh_from_tables(Points vertices, const std::vector<std::array<int, 3>>& triangles,
+                             const std::vector<std::array<int, 4>>& quads, Points normals,
+                             std::vector<std::uint32_t> states, const std::string& who) {
+  Mesh mesh;
+  mesh.vertices = std::move(vertices);
+  check_mesh(mesh, who);  // columns and finite coordinates
+  const auto check_range = [&](const auto& rows, const char* what) {
+    for (std::size_t f = 0; f < rows.size(); ++f)
+      for (std::size_t k = 0; k < rows[f].size(); ++k)
+        if (rows[f][k] < 0 || rows[f][k] >= mesh.vertices.rows())
+          throw InvalidInput(who + ": " + what + "[" + std::to_string(f) + "][" + std::to_string(k) +
+                             "] = " + std::to_string(rows[f][k]) + " is out of range (" +
+                             std::to_string(mesh.vertices.rows()) + " vertices)");
+  };
+  check_range(triangles, "triangles");
+  check_range(quads, "quads");
+  for (const auto& t : triangles) add_face(mesh, t);
+  for (const auto& q : quads) add_face(mesh, q);
+  mesh.normals = std::move(normals);
+  mesh.states = std::move(states);
+  check_mesh(mesh, who);
+  return mesh;
 }
 
 /// A size or count from a Python int: negative values are refused, not wrapped around.

@@ -9,6 +9,9 @@
 #include "cifs/automata/automaton.hpp"
 #include "cifs/automata/tensor.hpp"
 #include "cifs/errors.hpp"
+#include "cifs/io/dot.hpp"
+#include "cifs/io/json.hpp"
+#include "cifs/io/svg.hpp"
 
 namespace cifs::python {
 
@@ -263,11 +266,13 @@ void bind_automata(py::module_& m) {
       "row i·(q+1) + j = control point (span_u − p + i, span_v − q + j). Raises InvalidInput when the "
       "surface "
       "does not fit the automaton.");
-  m.def("to_json", &automata::to_json, py::arg("automaton"),
-        "The automaton as the JSON text of `cifs automaton --format json` (states, transitions, initial).");
-  m.def("to_dot", &automata::to_dot, py::arg("automaton"), "The automaton as Graphviz DOT text.");
+  // The writers live in io (one file per format); bound here too, where Python users look for them.
+  m.def("to_json", py::overload_cast<const Automaton&>(&io::to_json), py::arg("automaton"),
+        "The automaton as the JSON text of `cifs automaton --format json` (states, transitions, initial);\n"
+        "cifs.io.parse_automaton_json reads it back.");
+  m.def("to_dot", &io::to_dot, py::arg("automaton"), "The automaton as Graphviz DOT text.");
   m.def(
-      "to_svg", &automata::to_svg, py::arg("automaton"),
+      "to_svg", py::overload_cast<const Automaton&>(&io::to_svg), py::arg("automaton"),
       "A self-contained SVG drawing of the automaton (text): states in columns by distance from the initial "
       "states, recurrent states shaded.");
 

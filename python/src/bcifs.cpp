@@ -12,7 +12,8 @@
 #include "cifs/ifs/bcifs.hpp"
 #include "cifs/ifs/bcifs_curve.hpp"
 #include "cifs/ifs/bcifs_surface.hpp"
-#include "cifs/io/bcifs_json.hpp"
+#include "cifs/io/io.hpp"
+#include "cifs/io/json.hpp"
 
 namespace ifs = cifs::ifs;
 

@@ -48,8 +48,9 @@ void bind_verify(py::module_& m);
 void bind_experiment(py::module_& m);
 void bind_automata(py::module_& m);
 void bind_ifs(py::module_& m);
-void bind_bcifs(py::module_& m);     // into cifs.ifs
-void bind_bcifs_io(py::module_& m);  // BC-IFS files, into cifs.io
+void bind_bcifs(py::module_& m);        // into cifs.ifs
+void bind_bcifs_io(py::module_& m);     // BC-IFS files, into cifs.io
+void bind_io_dispatch(py::module_& m);  // the format table, write and encode, into cifs.io
 void bind_subdivision(py::module_& m);
 void bind_render(py::module_& m);
 

@@ -1,16 +1,19 @@
 // SPDX-License-Identifier: MIT
-// cifs Python bindings — cifs.io (shape, polygon and experiment files, geometry export),
+// cifs Python bindings — cifs.io (shape, polygon, mesh, automaton and experiment files, the format
+// table and the dispatcher),
 // cifs.verify (the attractor against the NURBS core) and cifs.experiment (running experiment files).
 #include <optional>
+#include <type_traits>
 #include <variant>
 
 #include "arrays.hpp"
 #include "cifs/experiment/run.hpp"
-#include "cifs/io/experiment.hpp"
-#include "cifs/io/geometry.hpp"
-#include "cifs/io/polygon.hpp"
-#include "cifs/io/polyline.hpp"
-#include "cifs/io/shape.hpp"
+#include "cifs/files.hpp"
+#include "cifs/io/io.hpp"
+#include "cifs/io/json.hpp"
+#include "cifs/io/obj.hpp"
+#include "cifs/io/ply.hpp"
+#include "cifs/io/svg.hpp"
 #include "cifs/verify/check.hpp"
 
 namespace cifs::python {
@@ -19,10 +22,36 @@ namespace {
 using Release = py::call_guard<py::gil_scoped_release>;
 constexpr const char* kDefaultWhere = "<string>";
 
-/// Binary PLY is not text: bytes for it, str for ASCII.
-py::object ply_result(std::string text, io::PlyFormat format) {
-  if (format == io::PlyFormat::ascii) return py::str(text);
-  return py::bytes(text);
+/// Binary files are not text: bytes for them, str for the others.
+py::object file_result(std::string text, bool binary) {
+  if (binary) return py::bytes(text);
+  return py::str(text);
+}
+
+io::Content content_of(const io::Shape*) {
+  return io::Content::shape;
+}
+io::Content content_of(const io::Polygon*) {
+  return io::Content::polygon;
+}
+io::Content content_of(const Mesh*) {
+  return io::Content::mesh;
+}
+io::Content content_of(const Segments*) {
+  return io::Content::segments;
+}
+io::Content content_of(const automata::Automaton*) {
+  return io::Content::automaton;
+}
+io::Content content_of(const io::BcifsFile*) {
+  return io::Content::bcifs;
+}
+
+/// Text or bytes as the bytes they hold (UTF-8 for str).
+std::string bytes_of(const py::object& data, const char* where) {
+  if (py::isinstance<py::bytes>(data)) return data.cast<std::string>();
+  if (py::isinstance<py::str>(data)) return data.cast<std::string>();
+  throw InvalidInput(std::string(where) + ": expected str or bytes");
 }
 
 io::Polygon make_polygon(const DoubleArray& points, bool closed) {
@@ -36,26 +65,73 @@ io::Polygon make_polygon(const DoubleArray& points, bool closed) {
   return p;
 }
 
-io::Mesh make_mesh(const DoubleArray& vertices, const py::object& triangles, const py::object& quads,
-                   const std::optional<DoubleArray>& normals,
-                   const std::optional<std::vector<std::uint32_t>>& states) {
-  io::Mesh mesh;
-  mesh.vertices = points_from(vertices, "Mesh: vertices");
-  mesh.triangles = index_rows<3>(triangles, "Mesh: triangles");
-  mesh.quads = index_rows<4>(quads, "Mesh: quads");
-  if (normals) mesh.normals = points_from(*normals, "Mesh: normals");
-  if (states) mesh.states = *states;
-  io::check_mesh(mesh, "Mesh");
+/// `faces`: a sequence of sequences of vertex indices (any sizes).
+void add_faces(Mesh& mesh, const py::object& faces) {
+  if (!py::isinstance<py::sequence>(faces) || py::isinstance<py::str>(faces))
+    throw InvalidInput("Mesh: faces: expected a list of lists of vertex indices");
+  std::size_t f = 0;
+  for (const py::handle face : faces) {
+    const std::string where = "Mesh: faces[" + std::to_string(f++) + "]";
+    const std::vector<int> corners = ints_from(face, where);
+    add_face(mesh, corners);
+  }
+}
+
+/// Triangles and quads (the C++ order: triangles first), or `faces`, or face_offsets and
+/// face_vertices; one of the three.
+Mesh make_mesh(const DoubleArray& vertices, const py::object& triangles, const py::object& quads,
+               const std::optional<DoubleArray>& normals,
+               const std::optional<std::vector<std::uint32_t>>& states, const py::object& faces,
+               const py::object& face_offsets, const py::object& face_vertices) {
+  const bool tables = !triangles.is_none() || !quads.is_none();
+  const bool lists = !faces.is_none();
+  const bool arrays = !face_offsets.is_none() || !face_vertices.is_none();
+  if (int(tables) + int(lists) + int(arrays) > 1)
+    throw InvalidInput("Mesh: give triangles and quads, or faces, or face_offsets and face_vertices");
+  Points V = points_from(vertices, "Mesh: vertices");
+  Points N;
+  if (normals) N = points_from(*normals, "Mesh: normals");
+  std::vector<std::uint32_t> S = states.value_or(std::vector<std::uint32_t>{});
+  if (!lists && !arrays)
+    return mesh_from_tables(std::move(V), index_rows<3>(triangles, "Mesh: triangles"),
+                            index_rows<4>(quads, "Mesh: quads"), std::move(N), std::move(S), "Mesh");
+  Mesh mesh;
+  mesh.vertices = std::move(V);
+  if (lists) {
+    add_faces(mesh, faces);
+  } else {
+    if (face_offsets.is_none() || face_vertices.is_none())
+      throw InvalidInput("Mesh: face_offsets and face_vertices go together");
+    mesh.face_offsets = ints_from(face_offsets, "Mesh: face_offsets");
+    mesh.face_vertices = ints_from(face_vertices, "Mesh: face_vertices");
+  }
+  mesh.normals = std::move(N);
+  mesh.states = std::move(S);
+  check_mesh(mesh, "Mesh");
   return mesh;
 }
 
-io::Segments make_segments(const DoubleArray& vertices, const py::object& segments,
-                           const std::optional<std::vector<std::uint32_t>>& states) {
-  io::Segments out;
+/// The faces with `n` corners as an integer array (F, n).
+template <std::size_t N>
+py::array_t<int> faces_of_size(const Mesh& mesh) {
+  std::vector<std::array<int, N>> rows;
+  for (std::size_t f = 0; f < face_count(mesh); ++f) {
+    const auto c = face(mesh, f);
+    if (c.size() != N) continue;
+    std::array<int, N> row;
+    std::copy(c.begin(), c.end(), row.begin());
+    rows.push_back(row);
+  }
+  return index_array(rows);
+}
+
+Segments make_segments(const DoubleArray& vertices, const py::object& segments,
+                       const std::optional<std::vector<std::uint32_t>>& states) {
+  Segments out;
   out.vertices = points_from(vertices, "Segments: vertices");
   out.segments = index_rows<2>(segments, "Segments: segments");
   if (states) out.states = *states;
-  io::check_segments(out, "Segments");
+  check_segments(out, "Segments");
   return out;
 }
 
@@ -96,7 +172,7 @@ void bind_shapes(py::module_& m) {
   m.def(
       "write_file_atomically",
       [](const std::filesystem::path& path, const std::string& content) {
-        io::write_file_atomically(path, content);
+        write_file_atomically(path, content);
       },
       Release(), py::arg("path"), py::arg("content"),
       "Writes `content` (str, UTF-8, or bytes) through a temporary file and a rename: `path` never holds\n"
@@ -107,7 +183,7 @@ void bind_shapes(py::module_& m) {
         std::string text;
         {
           py::gil_scoped_release release;
-          text = io::read_file(path);
+          text = read_file(path);
         }
         if (binary) return py::bytes(text);
         return py::str(text);
@@ -158,49 +234,79 @@ void bind_geometry(py::module_& m) {
       "SVG text of the x, y coordinates of a polyline (n, dim ≥ 2), `width` pixels wide.\n\n"
       "Raises InvalidInput for bad points, width or stroke.");
 
-  py::class_<io::Mesh>(m, "Mesh",
-                       "Triangles and quads over vertex rows, with optional normals and face states.")
+  py::class_<Mesh>(m, "Mesh",
+                   "A polygon mesh: faces of any size over vertex rows (face_offsets + face_vertices), with\n"
+                   "optional normals and face states.")
       .def(py::init(&make_mesh), py::arg("vertices"), py::arg("triangles") = py::none(),
            py::arg("quads") = py::none(), py::arg("normals") = py::none(), py::arg("states") = py::none(),
-           "vertices: (V, 3). triangles: int (T, 3), quads: int (Q, 4), 0-based rows of vertices.\n"
-           "normals: None or (V, 3). states: None or one non-negative int per face (triangles first).\n"
+           py::kw_only(), py::arg("faces") = py::none(), py::arg("face_offsets") = py::none(),
+           py::arg("face_vertices") = py::none(),
+           "vertices: (V, 3). Faces, 0-based rows of vertices, counter-clockwise, given in one of three "
+           "ways:\n"
+           "triangles: int (T, 3) and quads: int (Q, 4) (triangles first); faces: a list of lists of any\n"
+           "sizes ≥ 3; face_offsets: int (F + 1,) from 0 with face_vertices: int (offsets[-1],), face f "
+           "being\n"
+           "face_vertices[face_offsets[f]:face_offsets[f + 1]].\n"
+           "normals: None or (V, 3). states: None or one non-negative int per face, in face order.\n"
            "Raises InvalidInput for a malformed mesh (check_mesh).")
       .def_property_readonly(
-          "vertices", [](const io::Mesh& mesh) { return Points(mesh.vertices); }, "Vertex rows (V, 3).")
+          "vertices", [](const Mesh& mesh) { return Points(mesh.vertices); }, "Vertex rows (V, 3).")
+      .def_property_readonly("triangles", &faces_of_size<3>, "The faces of 3 corners (T, 3), in face order.")
+      .def_property_readonly("quads", &faces_of_size<4>, "The faces of 4 corners (Q, 4), in face order.")
       .def_property_readonly(
-          "triangles", [](const io::Mesh& mesh) { return index_array(mesh.triangles); }, "Triangles (T, 3).")
+          "face_offsets", [](const Mesh& mesh) { return vector_array(mesh.face_offsets); },
+          "Where each face starts in face_vertices (F + 1,), from 0.")
       .def_property_readonly(
-          "quads", [](const io::Mesh& mesh) { return index_array(mesh.quads); }, "Quads (Q, 4).")
+          "face_vertices", [](const Mesh& mesh) { return vector_array(mesh.face_vertices); },
+          "The corners of every face, face after face.")
       .def_property_readonly(
-          "normals", [](const io::Mesh& mesh) { return Points(mesh.normals); },
+          "faces",
+          [](const Mesh& mesh) {
+            py::list out;
+            for (std::size_t f = 0; f < face_count(mesh); ++f) {
+              const auto c = face(mesh, f);
+              out.append(py::cast(std::vector<int>(c.begin(), c.end())));
+            }
+            return out;
+          },
+          "Every face as a list of vertex indices.")
+      .def_property_readonly(
+          "normals", [](const Mesh& mesh) { return Points(mesh.normals); },
           "Per-vertex normals (V, 3), or an empty (0, 0) array.")
       .def_property_readonly(
-          "states", [](const io::Mesh& mesh) { return vector_array(mesh.states); },
-          "Per-face states (1-D, triangles then quads), or empty.")
+          "states", [](const Mesh& mesh) { return vector_array(mesh.states); },
+          "Per-face states (1-D, in face order), or empty.")
       .def(
           "__repr__",
-          [](const io::Mesh& mesh) {
+          [](const Mesh& mesh) {
+            std::size_t count[2] = {0, 0}, others = 0;
+            for (std::size_t f = 0; f < face_count(mesh); ++f) {
+              const std::size_t n = face(mesh, f).size();
+              if (n == 3 || n == 4)
+                ++count[n - 3];
+              else
+                ++others;
+            }
             return "Mesh(vertices=" + std::to_string(mesh.vertices.rows()) +
-                   ", triangles=" + std::to_string(mesh.triangles.size()) +
-                   ", quads=" + std::to_string(mesh.quads.size()) + ")";
+                   ", triangles=" + std::to_string(count[0]) + ", quads=" + std::to_string(count[1]) +
+                   (others ? ", polygons=" + std::to_string(others) : std::string()) + ")";
           },
           "Short description.");
 
-  py::class_<io::Segments>(m, "Segments", "Independent segments over vertex rows, with optional states.")
+  py::class_<Segments>(m, "Segments", "Independent segments over vertex rows, with optional states.")
       .def(
           py::init(&make_segments), py::arg("vertices"), py::arg("segments"), py::arg("states") = py::none(),
           "vertices: (V, 2) or (V, 3). segments: int (S, 2), 0-based rows. states: None or one per segment.\n"
           "Raises InvalidInput for malformed segments (check_segments).")
       .def_property_readonly(
-          "vertices", [](const io::Segments& s) { return Points(s.vertices); }, "Vertex rows (V, 2|3).")
+          "vertices", [](const Segments& s) { return Points(s.vertices); }, "Vertex rows (V, 2|3).")
       .def_property_readonly(
-          "segments", [](const io::Segments& s) { return index_array(s.segments); }, "Segments (S, 2).")
+          "segments", [](const Segments& s) { return index_array(s.segments); }, "Segments (S, 2).")
       .def_property_readonly(
-          "states", [](const io::Segments& s) { return vector_array(s.states); },
-          "Per-segment states, or empty.")
+          "states", [](const Segments& s) { return vector_array(s.states); }, "Per-segment states, or empty.")
       .def(
           "__repr__",
-          [](const io::Segments& s) {
+          [](const Segments& s) {
             return "Segments(vertices=" + std::to_string(s.vertices.rows()) +
                    ", segments=" + std::to_string(s.segments.size()) + ")";
           },
@@ -212,46 +318,140 @@ void bind_geometry(py::module_& m) {
         const Points P = points_from(points, "points");
         if (P.cols() != 2 && P.cols() != 3)
           throw InvalidInput("points: " + std::to_string(P.cols()) + " columns, expected 2 or 3");
-        return io::polyline_segments(P, closed, state);
+        return polyline_segments(P, closed, state);
       },
       py::arg("points"), py::arg("closed") = false, py::arg("state") = 0,
       "The segments (i, i + 1) of a polyline (n, 2|3), plus (n − 1, 0) when closed, all with `state`.");
-  m.def("vertex_normals", &io::vertex_normals, py::arg("mesh"),
+  m.def("vertex_normals", &vertex_normals, py::arg("mesh"),
         "Area-weighted unit vertex normals (V, 3); zero rows for vertices without area.");
   m.def("mesh_obj", &io::mesh_obj, py::arg("mesh"),
         "OBJ text of a mesh (with `vn` rows when it has normals).");
   m.def("segments_obj", &io::segments_obj, py::arg("segments"),
         "OBJ text of segments: `v` rows and `l a b` lines.");
+  m.def("parse_mesh_obj", &io::parse_mesh_obj, py::arg("text"), py::arg("where") = kDefaultWhere,
+        "A polygon mesh from OBJ text (`v`, `f` with v, v/vt, v/vt/vn or v//vn references, negative ones\n"
+        "counting back; other statements ignored). Raises IoError (syntax) or InvalidInput (content) naming\n"
+        "`where` and the line.");
 
   py::enum_<io::PlyFormat>(m, "PlyFormat", "PLY encodings.")
       .value("ascii", io::PlyFormat::ascii, "Text PLY.")
       .value("binary_little_endian", io::PlyFormat::binary_little_endian, "Binary little-endian PLY.")
+      .value("binary_big_endian", io::PlyFormat::binary_big_endian, "Binary big-endian PLY.")
       // enum_'s own `value` property has no docstring.
       .def_property_readonly(
           "value", [](io::PlyFormat f) { return static_cast<int>(f); }, "The integer value.");
   m.def(
       "mesh_ply",
-      [](const io::Mesh& mesh, io::PlyFormat format) {
-        return ply_result(io::mesh_ply(mesh, format), format);
+      [](const Mesh& mesh, io::PlyFormat format) {
+        return file_result(io::mesh_ply(mesh, format), format != io::PlyFormat::ascii);
       },
       py::arg("mesh"), py::arg("format") = io::PlyFormat::ascii,
       "PLY of a mesh (normals and face states when present): str for ascii, bytes for binary.");
   m.def(
       "segments_ply",
-      [](const io::Segments& s, io::PlyFormat format) {
-        return ply_result(io::segments_ply(s, format), format);
+      [](const Segments& s, io::PlyFormat format) {
+        return file_result(io::segments_ply(s, format), format != io::PlyFormat::ascii);
       },
       py::arg("segments"), py::arg("format") = io::PlyFormat::ascii,
       "PLY of segments (`element edge`, states when present): str for ascii, bytes for binary.");
   m.def(
+      "parse_mesh_ply",
+      [](const py::object& data, const std::string& where) {
+        const std::string bytes = bytes_of(data, "parse_mesh_ply: data");
+        py::gil_scoped_release release;
+        return io::parse_mesh_ply(bytes, where);
+      },
+      py::arg("data"), py::arg("where") = kDefaultWhere,
+      "A polygon mesh from PLY bytes (or ASCII text): ascii, binary_little_endian or binary_big_endian,\n"
+      "vertex x y z (nx ny nz), face vertex_indices of any types, other properties skipped. Raises\n"
+      "IoError (header, truncated data) or InvalidInput (content) naming `where` and the element.");
+  m.def("read_mesh", &io::read_mesh, Release(), py::arg("path"),
+        "Reads a polygon mesh from a .obj or .ply file (checked with check_mesh).\n\n"
+        "Raises IoError or InvalidInput naming the path and the line or element.");
+  m.def(
       "segments_svg",
-      [](const io::Segments& s, int width, double stroke, std::string color) {
+      [](const Segments& s, int width, double stroke, std::string color) {
         return io::segments_svg(s, {width, stroke, std::move(color)});
       },
       py::arg("segments"), py::kw_only(), py::arg("width") = io::SvgOptions{}.width,
       py::arg("stroke") = io::SvgOptions{}.stroke, py::arg("color") = io::SvgOptions{}.color,
       "SVG text of the x, y coordinates (y up), fitted with a 5 % margin into `width` pixels.\n\n"
       "stroke: width in pixels; color: an SVG colour. Raises InvalidInput for a bad width or stroke.");
+}
+
+void bind_automaton_files(py::module_& m) {
+  m.def(
+      "parse_automaton_json", &io::parse_automaton_json, py::arg("text"), py::arg("where") = kDefaultWhere,
+      "The automaton of cifs.automata.to_json text: states (sizes, names, windows, recurrent flags),\n"
+      "transitions with labels and matrices in out-edge order, initial entries. Raises IoError (syntax) or\n"
+      "InvalidInput (content) naming `where` and the JSON path.");
+  m.def(
+      "read_automaton", &io::read_automaton, Release(), py::arg("path"),
+      "Reads an automaton JSON file (parse_automaton_json). Raises IoError or InvalidInput naming the path.");
+}
+
+/// The format table and the dispatcher.
+void bind_dispatch(py::module_& m) {
+  py::enum_<io::Content>(m, "Content", "What io reads and writes.")
+      .value("shape", io::Content::shape, "A NURBS curve or surface.")
+      .value("polygon", io::Content::polygon, "A control polygon or any polyline.")
+      .value("mesh", io::Content::mesh, "A polygon mesh (Mesh).")
+      .value("segments", io::Content::segments, "A segment set (Segments).")
+      .value("automaton", io::Content::automaton, "An automaton (cifs.automata.Automaton).")
+      .value("bcifs", io::Content::bcifs, "A BC-IFS file (BcifsFile).")
+      .value("experiment", io::Content::experiment, "An experiment file (Experiment).")
+      .def_property_readonly(
+          "value", [](io::Content c) { return static_cast<int>(c); }, "The integer value.");
+  py::class_<io::Format>(m, "Format", "One file format of a kind of content.")
+      .def_property_readonly(
+          "name", [](const io::Format& f) { return std::string(f.name); }, "The --format value, e.g. 'obj'.")
+      .def_property_readonly(
+          "extension", [](const io::Format& f) { return std::string(f.extension); },
+          "The extension, e.g. '.obj'.")
+      .def_readonly("read", &io::Format::read, "True when io reads it.")
+      .def_readonly("write", &io::Format::write, "True when io writes it.")
+      .def_readonly("binary", &io::Format::binary,
+                    "True when the written bytes are not text (encode gives bytes).")
+      .def(
+          "__repr__",
+          [](const io::Format& f) {
+            return "Format(name='" + std::string(f.name) + "', extension='" + std::string(f.extension) + "')";
+          },
+          "Short description.");
+  m.def("formats", &io::formats, py::arg("content"),
+        "The formats of a Content, in the table's order (the one the CLI and experiment outputs consult).");
+
+  // write(path, thing) and encode(thing, format) for every content that is written.
+  const auto bind = [&m](auto tag, const char* type) {
+    using T = typename decltype(tag)::type;
+    m.def(
+        "write", [](const std::filesystem::path& path, const T& thing) { io::write(path, thing); }, Release(),
+        py::arg("path"), py::arg("thing"),
+        (std::string("Writes a ") + type +
+         " in the format its extension names, atomically. Raises InvalidInput for an extension\n"
+         "it is not written in (naming those it is), IoError when the file cannot be written.")
+            .c_str());
+    m.def(
+        "encode",
+        [](const T& thing, const std::string& format) {
+          const std::string bytes = io::encode(thing, format);
+          bool binary = false;
+          for (const io::Format& f : io::formats(content_of(static_cast<const T*>(nullptr))))
+            binary = binary || (f.name == format && f.binary);
+          return file_result(bytes, binary);
+        },
+        py::arg("thing"), py::arg("format"),
+        (std::string("The file contents of a ") + type +
+         " in `format`: str, or bytes for a binary format. Raises InvalidInput naming the formats it is\n"
+         "written in.")
+            .c_str());
+  };
+  bind(std::type_identity<io::Shape>{}, "nurbs.Curve or nurbs.Surface");
+  bind(std::type_identity<io::Polygon>{}, "Polygon");
+  bind(std::type_identity<Mesh>{}, "Mesh");
+  bind(std::type_identity<Segments>{}, "Segments");
+  bind(std::type_identity<automata::Automaton>{}, "cifs.automata.Automaton");
+  bind(std::type_identity<io::BcifsFile>{}, "BcifsFile");
 }
 
 void bind_experiment_file(py::module_& m) {
@@ -306,19 +506,15 @@ void bind_experiment_file(py::module_& m) {
           "outputs",
           [](const io::Experiment& e) {
             py::dict out;
-            const std::pair<const char*, const std::filesystem::path*> files[] = {
-                {"exr", &e.outputs.exr},
-                {"png", &e.outputs.png},
-                {"obj", &e.outputs.obj},
-                {"ply", &e.outputs.ply},
-                {"svg", &e.outputs.svg},
-                {"automaton_svg", &e.outputs.automaton_svg},
-                {"automaton_dot", &e.outputs.automaton_dot}};
-            for (const auto& [key, path] : files)
-              if (!path->empty()) out[key] = py::cast(*path);
+            if (!e.outputs.exr.empty()) out["exr"] = py::cast(e.outputs.exr);
+            if (!e.outputs.png.empty()) out["png"] = py::cast(e.outputs.png);
+            for (const auto& [format, path] : e.outputs.geometry) out[py::str(format)] = py::cast(path);
+            for (const auto& [format, path] : e.outputs.automaton)
+              out[py::str("automaton_" + format)] = py::cast(path);
             return out;
           },
-          "The output files the experiment writes, relative to the output folder: dict kind → path.")
+          "The output files the experiment writes, relative to the output folder: dict key → path (the\n"
+          "file's keys: exr, png, a geometry format, automaton_<format>).")
       .def(
           "__repr__",
           [](const io::Experiment& e) {
@@ -341,7 +537,12 @@ void bind_io(py::module_& m) {
   bind_shapes(m);
   bind_polygons(m);
   bind_geometry(m);
+  bind_automaton_files(m);
   bind_experiment_file(m);
+}
+
+void bind_io_dispatch(py::module_& m) {
+  bind_dispatch(m);
 }
 
 void bind_verify(py::module_& m) {

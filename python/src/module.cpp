@@ -33,9 +33,13 @@ PYBIND11_MODULE(_cifs, m) {
   bind_subdivision(subdivision);
   auto render = m.def_submodule("render", "Cameras, rasterisers, the chaos-game density, OpenEXR and PNG.");
   bind_render(render);
-  auto io = m.def_submodule("io", "Shape, polygon, BC-IFS and experiment files; geometry export.");
+  auto io = m.def_submodule(
+      "io",
+      "Every file format: shapes, polygons, meshes, segment sets, automata, BC-IFS and experiment\n"
+      "files; the format table and read/write by extension.");
   bind_io(io);
   bind_bcifs_io(io);
+  bind_io_dispatch(io);
   auto verify =
       m.def_submodule("verify", "Attractor vs knot insertion vs Cox–de Boor, per segment or patch.");
   bind_verify(verify);

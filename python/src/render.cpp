@@ -482,7 +482,7 @@ void bind_raster(py::module_& m) {
       "render_segments",
       [](Image& image, const Camera& camera, const py::object& vertices, const py::object& segments,
          const py::object& states, double width, const py::object& color) {
-        io::Segments s;
+        Segments s;
         s.vertices = points_from(vertices, "render_segments: vertices");
         s.segments = index_rows<2>(segments, "render_segments: segments");
         s.states = states_from(states, "render_segments: states");
@@ -526,12 +526,12 @@ in-place update as render_segments.)");
          const py::object& color, const py::object& state_colors, double ambient, double diffuse,
          double specular, double shininess, bool headlight, const py::object& light_direction,
          int samples_per_side, std::int64_t threads) {
-        io::Mesh mesh;
-        mesh.vertices = points_from(vertices, "render_mesh: vertices");
-        mesh.triangles = index_rows<3>(triangles, "render_mesh: triangles");
-        mesh.quads = index_rows<4>(quads, "render_mesh: quads");
-        if (!normals.is_none()) mesh.normals = points_from(normals, "render_mesh: normals");
-        mesh.states = states_from(states, "render_mesh: states");
+        Points V = points_from(vertices, "render_mesh: vertices");
+        const auto tri = index_rows<3>(triangles, "render_mesh: triangles");
+        const auto quad = index_rows<4>(quads, "render_mesh: quads");
+        Points N;
+        if (!normals.is_none()) N = points_from(normals, "render_mesh: normals");
+        std::vector<std::uint32_t> S = states_from(states, "render_mesh: states");
         SurfaceStyle style;
         style.color = three(color, "render_mesh: color");
         if (!state_colors.is_none()) {
@@ -550,6 +550,8 @@ in-place update as render_segments.)");
         style.light_direction = vec3(light_direction, "render_mesh: light_direction");
         style.samples_per_side = samples_per_side;
         style.threads = threads_arg(threads, "render_mesh: threads");
+        const Mesh mesh =
+            mesh_from_tables(std::move(V), tri, quad, std::move(N), std::move(S), "render_mesh");
         py::gil_scoped_release release;
         render_mesh(image, camera, mesh, style);
       },

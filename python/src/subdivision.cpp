@@ -7,6 +7,7 @@
 #include "bindings.hpp"
 #include "cifs/automata/automaton.hpp"
 #include "cifs/errors.hpp"
+#include "cifs/io/json.hpp"
 #include "cifs/subdivision/analysis.hpp"
 #include "cifs/subdivision/ifs.hpp"
 #include "cifs/subdivision/refine.hpp"
@@ -345,7 +346,7 @@ empty polygon, a negative depth or too many points.)doc");
 max_power: largest power L of the difference schemes tried (1 … 26, as the CLI's --max-power);
 max_coefficients: cap on the coefficients of c^[L]; max_word_length: longest word (1 … 20) for the
 upper Hölder bound. Returns a SchemeAnalysis. Raises cifs.InvalidInput for options out of range.)doc");
-  m.def("analysis_json", &sd::analysis_json, py::arg("scheme"), py::arg("analysis"),
+  m.def("analysis_json", &io::analysis_json, py::arg("scheme"), py::arg("analysis"),
         "JSON text of an analysis, as printed by `cifs scheme NAME --analyze`.");
   m.def("difference_mask", &sd::difference_mask, py::arg("a"), py::arg("k"),
         "d_k(z) = 2^k a(z)/(1+z)^{k+1} (list of Fractions). Raises cifs.InvalidInput unless (1+z)^{k+1} "

@@ -12,8 +12,8 @@
 #include <exception>
 
 #include "cifs/errors.hpp"
+#include "cifs/files.hpp"
 #include "cifs/render/image.hpp"
-#include "temp_file.hpp"
 
 namespace cifs::render {
 
@@ -73,18 +73,16 @@ void write_exr(const std::filesystem::path& path, const Image& image) {
                    sizeof(std::uint32_t), image.width * sizeof(std::uint32_t)));
   }
 
-  detail::check_target(path);
-  const std::filesystem::path tmp = detail::temporary_path(path);
+  AtomicFile file(path);
   try {
     // The file is complete only when the OutputFile is destroyed: close the scope before renaming.
-    Imf::OutputFile out(tmp.c_str(), header);
+    Imf::OutputFile out(file.temporary().c_str(), header);
     out.setFrameBuffer(frame);
     out.writePixels(h);
   } catch (const std::exception& e) {
-    detail::discard(tmp);
     throw IoError(path.string() + ": cannot write OpenEXR (" + e.what() + ")");
   }
-  detail::commit(tmp, path);
+  file.commit();
 }
 
 Image read_exr(const std::filesystem::path& path) {

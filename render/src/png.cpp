@@ -9,8 +9,8 @@
 #include <cstring>
 
 #include "cifs/errors.hpp"
+#include "cifs/files.hpp"
 #include "cifs/render/png.hpp"
-#include "temp_file.hpp"
 
 namespace cifs::render {
 
@@ -32,23 +32,21 @@ void write_png(const std::filesystem::path& path, std::span<const std::uint8_t> 
     throw InvalidInput("write_png: " + std::to_string(pixels.size()) + " bytes given, expected " +
                        std::to_string(stride * height) + " (" + std::to_string(width) + " by " +
                        std::to_string(height) + " by " + std::to_string(channel_count(format)) + ")");
-  detail::check_target(path);
-  const std::filesystem::path tmp = detail::temporary_path(path);
+  AtomicFile file(path);
   png_image image;
   std::memset(&image, 0, sizeof image);
   image.version = PNG_IMAGE_VERSION;
   image.width = static_cast<png_uint_32>(width);
   image.height = static_cast<png_uint_32>(height);
   image.format = png_format(format);
-  const int ok = png_image_write_to_file(&image, tmp.c_str(), 0, pixels.data(),
+  const int ok = png_image_write_to_file(&image, file.temporary().c_str(), 0, pixels.data(),
                                          static_cast<png_int_32>(stride), nullptr);
   if (!ok) {
     const std::string message = image.message;
     png_image_free(&image);
-    detail::discard(tmp);
     throw IoError(path.string() + ": cannot write PNG (" + message + ")");
   }
-  detail::commit(tmp, path);
+  file.commit();
 }
 
 PngImage read_png(const std::filesystem::path& path, PixelFormat format) {

@@ -114,10 +114,9 @@ bool clip_segment(const ViewTransform& view, Eigen::Vector3d& a, Eigen::Vector3d
 
 }  // namespace
 
-void render_segments(Image& image, const Camera& camera, const io::Segments& segments,
-                     const CurveStyle& style) {
+void render_segments(Image& image, const Camera& camera, const Segments& segments, const CurveStyle& style) {
   const ViewTransform view = detail::prepare(image, camera, "render_segments");
-  io::check_segments(segments, "render_segments");
+  check_segments(segments, "render_segments");
   const double w = style.width;
   if (!(w > 0) || !std::isfinite(w)) throw InvalidInput("render_segments: the width must be positive");
   const std::size_t W = image.width, H = image.height, pixels = W * H;
@@ -183,12 +182,12 @@ void render_segments(Image& image, const Camera& camera, const io::Segments& seg
 
 void render_polylines(Image& image, const Camera& camera, std::span<const Points> polylines,
                       const CurveStyle& style, bool closed) {
-  io::Segments all;
+  Segments all;
   for (std::size_t i = 0; i < polylines.size(); ++i) {
     if (polylines[i].rows() > 0 && polylines[i].cols() != 2 && polylines[i].cols() != 3)
       throw InvalidInput("render_polylines: polylines[" + std::to_string(i) + "] has " +
                          std::to_string(polylines[i].cols()) + " columns, expected 2 or 3");
-    io::append(all, io::polyline_segments(polylines[i], closed, static_cast<std::uint32_t>(i)));
+    append(all, polyline_segments(polylines[i], closed, static_cast<std::uint32_t>(i)));
   }
   render_segments(image, camera, all, style);
 }
@@ -246,8 +245,8 @@ Interpolation interpolate(const Scene& scene, const Primitive& p, const Eigen::V
   return {q / inverse, 1 / inverse};
 }
 
-Scene build_scene(const io::Mesh& mesh, const ViewTransform& view) {
-  const Points normals = mesh.normals.size() != 0 ? mesh.normals : io::vertex_normals(mesh);
+Scene build_scene(const Mesh& mesh, const ViewTransform& view) {
+  const Points normals = mesh.normals.size() != 0 ? mesh.normals : vertex_normals(mesh);
   Scene scene;
   scene.vertices.reserve(static_cast<std::size_t>(mesh.vertices.rows()));
   for (Eigen::Index i = 0; i < mesh.vertices.rows(); ++i) {
@@ -288,14 +287,11 @@ Scene build_scene(const io::Mesh& mesh, const ViewTransform& view) {
     if (count >= 3) emit({out[0], out[1], out[2]});
     if (count == 4) emit({out[0], out[2], out[3]});
   };
-  const std::size_t nt = mesh.triangles.size();
-  for (std::size_t f = 0; f < nt; ++f)
-    add_triangle(mesh.triangles[f], mesh.states.empty() ? 0u : mesh.states[f]);
-  for (std::size_t f = 0; f < mesh.quads.size(); ++f) {
-    const auto& q = mesh.quads[f];
-    const std::uint32_t state = mesh.states.empty() ? 0u : mesh.states[nt + f];
-    add_triangle({q[0], q[1], q[2]}, state);
-    add_triangle({q[0], q[2], q[3]}, state);
+  // The fan (0, i, i + 1) of every face: a quad along its 0–2 diagonal.
+  for (std::size_t f = 0; f < face_count(mesh); ++f) {
+    const auto c = face(mesh, f);
+    const std::uint32_t state = mesh.states.empty() ? 0u : mesh.states[f];
+    for (std::size_t i = 1; i + 1 < c.size(); ++i) add_triangle({c[0], c[i], c[i + 1]}, state);
   }
   return scene;
 }
@@ -340,9 +336,9 @@ struct Shader {
 
 }  // namespace
 
-void render_mesh(Image& image, const Camera& camera, const io::Mesh& mesh, const SurfaceStyle& style) {
+void render_mesh(Image& image, const Camera& camera, const Mesh& mesh, const SurfaceStyle& style) {
   const ViewTransform view = detail::prepare(image, camera, "render_mesh");
-  io::check_mesh(mesh, "render_mesh");
+  check_mesh(mesh, "render_mesh");
   const int S = style.samples_per_side;
   if (S < 1 || S > 8)
     throw InvalidInput("render_mesh: samples_per_side = " + std::to_string(S) + " is outside 1 … 8");

@@ -7,7 +7,8 @@
 
 #include "apps/cli_runner.hpp"
 
-#include "cifs/io/shape.hpp"
+#include "cifs/io/io.hpp"
+#include "cifs/io/json.hpp"
 
 using namespace cifs;
 using nlohmann::json;

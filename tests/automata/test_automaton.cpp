@@ -5,6 +5,7 @@
 #include <set>
 
 #include "cifs/automata/automaton.hpp"
+#include "cifs/io/json.hpp"
 #include "cifs/nurbs/doubling.hpp"
 #include "cifs/nurbs/refine.hpp"
 
@@ -89,8 +90,7 @@ TEST_CASE("Uniform, clamped, closed and repeated knots", "[automata]") {
     for (double& x : scaled) x = x * 0.125 + 3;  // exact in binary
     const auto a = automata::knot_automaton(nurbs::make_curve(3, t, Points::Random(8, 2)));
     const auto b = automata::knot_automaton(nurbs::make_curve(3, scaled, Points::Random(8, 2)));
-    const auto ja = nlohmann::json::parse(automata::to_json(a)),
-               jb = nlohmann::json::parse(automata::to_json(b));
+    const auto ja = nlohmann::json::parse(io::to_json(a)), jb = nlohmann::json::parse(io::to_json(b));
     CHECK(ja["states"] == jb["states"]);
     CHECK(ja["transitions"] == jb["transitions"]);
     CHECK(a.initial.size() == 5);
@@ -139,45 +139,11 @@ TEST_CASE("Minimisation merges states no net can tell apart", "[automata]") {
   CHECK(boost::num_vertices(automata::minimize(k).graph) == boost::num_vertices(k.graph));
 }
 
-TEST_CASE("Automaton JSON and DOT", "[automata]") {
+TEST_CASE("Initial nets are the segments' control points", "[automata]") {
   const nurbs::Curve c = nurbs::make_curve(2, {0, 0, 0, 1, 3, 4, 4, 4}, Points::Random(5, 2));
   const automata::Automaton a = automata::knot_automaton(c);
-  const auto j = nlohmann::json::parse(automata::to_json(a));
-  CHECK(j["states"].size() == boost::num_vertices(a.graph));
-  CHECK(j["transitions"].size() == 2 * boost::num_vertices(a.graph));
-  CHECK(j["initial"].size() == 3);
-  CHECK(j["initial"][1]["interval"] == nlohmann::json::array({1.0, 3.0}));
-  for (const auto& t : j["transitions"]) {
-    CHECK(t["matrix"].size() == 3);
-    for (const auto& row : t["matrix"]) {
-      double sum = 0;
-      for (const auto& x : row) sum += x.get<double>();
-      CHECK(sum == Approx(1).epsilon(1e-15));
-    }
-  }
-  const std::string dot = automata::to_dot(a);
-  CHECK_THAT(dot, Catch::StartsWith("digraph G {") && Catch::Contains("[label=\"G\"]") &&
-                      Catch::Contains("peripheries=2"));
   // The nets of the initial states are the segments' control points.
   const std::vector<Points> nets = automata::initial_nets(a, c);
   REQUIRE(nets.size() == 3);
   CHECK(nets[2] == c.P.bottomRows(3));
-}
-
-TEST_CASE("Automaton SVG: one circle per state, one arrow per connected pair", "[automata]") {
-  const nurbs::Curve c = nurbs::make_curve(3, {0, 0, 0, 0, 1, 3, 3.5, 6, 6, 6, 6}, Points::Random(7, 2));
-  const automata::Automaton a = automata::knot_automaton(c);
-  const std::string svg = automata::to_svg(a);
-  const auto count = [&](const std::string& what) {
-    std::size_t n = 0;
-    for (auto at = svg.find(what); at != std::string::npos; at = svg.find(what, at + 1)) ++n;
-    return n;
-  };
-  std::set<std::pair<StateId, StateId>> pairs;
-  for (auto [e, end] = boost::edges(a.graph); e != end; ++e)
-    pairs.insert({boost::source(*e, a.graph), boost::target(*e, a.graph)});
-  CHECK_THAT(svg, Catch::StartsWith("<svg ") && Catch::EndsWith("</svg>\n"));
-  CHECK(count("<circle ") == boost::num_vertices(a.graph));
-  CHECK(count("marker-end=") == pairs.size());
-  CHECK(count("stroke-width=\"2.5\"") == a.initial.size());  // initial states in bold
 }

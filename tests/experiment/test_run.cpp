@@ -8,6 +8,8 @@
 #include "cifs/errors.hpp"
 #include "cifs/experiment/run.hpp"
 #include "cifs/ifs/attractor.hpp"
+#include "cifs/io/io.hpp"
+#include "cifs/io/json.hpp"
 #include "cifs/nurbs/curve.hpp"
 #include "cifs/render/image.hpp"
 #include "render/scratch.hpp"
@@ -65,6 +67,16 @@ TEST_CASE("A NURBS curve experiment: EXR channels and header, PNG, SVG, PLY, aut
   std::size_t vertices = 0;
   for (std::string line; std::getline(obj, line);) vertices += line.rfind("v ", 0) == 0;
   CHECK(vertices == 4 * 64 + 1);
+}
+
+TEST_CASE("The automaton output in JSON is the evaluated automaton, readable", "[experiment]") {
+  ScratchDir dir;
+  run_in(dir, R"({"shape": "../shapes/wave.json", "evaluation": {"depth": 2},
+      "render": {"width": 16, "height": 16}, "outputs": {"exr": "w.exr", "automaton_json": "a.json"}})");
+  const automata::Automaton a = io::read_automaton(dir.path() / "a.json");
+  const io::Experiment e = parse(R"({"shape": "../shapes/wave.json"})");
+  const automata::Automaton knots = automata::knot_automaton(std::get<nurbs::Curve>(*e.shape));
+  CHECK(io::to_json(a) == io::to_json(knots));
 }
 
 TEST_CASE("A surface experiment: normals in the EXR, watertight PLY counts", "[experiment]") {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include <cifs/io/shape.hpp>
+#include <cifs/io/json.hpp>
 #include <cifs/nurbs/refine.hpp>
 #include <cmath>
 #include <cstdio>

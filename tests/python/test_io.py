@@ -211,6 +211,137 @@ class GeometryTest(ScratchTestCase):
                 self.assertEqual(str(caught.exception), message)
 
 
+def pentagon_and_apex():
+    """A regular pentagon at z = 0.5 and an apex above it (6 vertices)."""
+    k = np.arange(5)
+    ring = np.column_stack([np.cos(k * 1.25), np.sin(k * 1.25), np.full(5, 0.5)])
+    return np.vstack([ring, [[0, 0, 2]]])
+
+
+class MeshFileTest(ScratchTestCase):
+    def test_faces_three_ways(self):
+        v = pentagon_and_apex()
+        lists = io.Mesh(v, faces=[[0, 1, 2, 3, 4], [0, 1, 5]], states=[3, 9])
+        arrays = io.Mesh(v, face_offsets=[0, 5, 8], face_vertices=[0, 1, 2, 3, 4, 0, 1, 5], states=[3, 9])
+        for m in (lists, arrays):
+            np.testing.assert_array_equal(m.face_offsets, [0, 5, 8])
+            np.testing.assert_array_equal(m.face_vertices, [0, 1, 2, 3, 4, 0, 1, 5])
+            self.assertEqual(m.faces, [[0, 1, 2, 3, 4], [0, 1, 5]])
+            np.testing.assert_array_equal(m.triangles, [[0, 1, 5]])
+            self.assertEqual(m.quads.shape, (0, 4))
+            np.testing.assert_array_equal(m.states, [3, 9])
+        self.assertIn("Mesh(vertices=6, triangles=1, quads=0, polygons=1)", repr(lists))
+        tables = io.Mesh(v, triangles=[[0, 1, 5]], quads=[[0, 1, 2, 3]])  # triangles first
+        np.testing.assert_array_equal(tables.face_offsets, [0, 3, 7])
+        self.assertEqual(tables.faces, [[0, 1, 5], [0, 1, 2, 3]])
+        # The pentagon's normal at its centre-less ring points up: its vertices see +z from it alone.
+        flat = io.vertex_normals(io.Mesh(v, faces=[[0, 1, 2, 3, 4]]))
+        np.testing.assert_allclose(flat[:5], np.tile([0, 0, 1.0], (5, 1)), atol=1e-15)
+        cases = [
+            (lambda: io.Mesh(v, triangles=[[0, 1, 5]], faces=[[0, 1, 2]]),
+             "Mesh: give triangles and quads, or faces, or face_offsets and face_vertices"),
+            (lambda: io.Mesh(v, face_offsets=[0, 3]), "Mesh: face_offsets and face_vertices go together"),
+            (lambda: io.Mesh(v, faces=[[0, 1]]), "Mesh: face 0 has 2 vertices, a face needs at least 3"),
+            (lambda: io.Mesh(v, faces=[[0, 1, 2], [0, 1, 9]]),
+             "Mesh: face 1 corner 2 = 9 is out of range (6 vertices)"),
+            (lambda: io.Mesh(v, face_offsets=[0, 3], face_vertices=[0, 1]),
+             "Mesh: the face offsets end at 3 but 2 corners are given"),
+            (lambda: io.Mesh(v, faces=[[0, 1, 2.5]]), "Mesh: faces[0]: expected an array of integers, got dtype float64"),
+        ]
+        for call, message in cases:
+            with self.subTest(message=message), self.assertRaises(cifs.InvalidInput) as caught:
+                call()
+            self.assertEqual(str(caught.exception), message)
+
+    def test_files_read_back(self):
+        v = pentagon_and_apex()
+        mesh = io.Mesh(v, faces=[[0, 1, 2, 3, 4], [0, 1, 5], [1, 2, 5]], states=[1, 2, 4000000000])
+        for name in ("m.obj", "m.ply"):
+            path = self.scratch / name
+            io.write(path, mesh)
+            back = io.read_mesh(path)
+            np.testing.assert_array_equal(back.vertices, v)  # bit for bit
+            self.assertEqual(back.faces, mesh.faces)
+        np.testing.assert_array_equal(io.read_mesh(self.scratch / "m.ply").states, mesh.states)
+        for fmt in (io.PlyFormat.ascii, io.PlyFormat.binary_little_endian, io.PlyFormat.binary_big_endian):
+            data = io.mesh_ply(mesh, fmt)
+            back = io.parse_mesh_ply(data, "m.ply")
+            np.testing.assert_array_equal(back.vertices, v)
+            np.testing.assert_array_equal(back.face_vertices, mesh.face_vertices)
+        self.assertIn(b"format binary_big_endian 1.0", io.mesh_ply(mesh, io.PlyFormat.binary_big_endian))
+        # A file written by hand: float32 coordinates, a colour, short indices, a uint count.
+        big = (b"ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+               b"property float z\nproperty uchar red\nelement face 1\nproperty list uint short vertex_indices\n"
+               b"end_header\n" + struct.pack(">3fB3fB3fB", 0, 0, 0, 1, 2.5, 0, 0, 2, 3, 1, 0.25, 5) +
+               struct.pack(">I3h", 3, 0, 1, 2))
+        hand = io.parse_mesh_ply(big, "hand.ply")
+        np.testing.assert_array_equal(hand.vertices, [[0, 0, 0], [2.5, 0, 0], [3, 1, 0.25]])
+        self.assertEqual(hand.faces, [[0, 1, 2]])
+        obj = io.parse_mesh_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1 -1/1\n", "hand.obj")
+        self.assertEqual(obj.faces, [[0, 1, 2, 3]])
+
+    def test_bad_mesh_files(self):
+        stl = self.scratch / "m.stl"
+        with self.assertRaises(cifs.IoError) as caught:
+            io.read_mesh(stl)
+        self.assertEqual(str(caught.exception), f"{stl}: a mesh is read from .obj or .ply")
+        mesh = io.Mesh(pentagon_and_apex(), faces=[[0, 1, 2, 3, 4]])
+        cut = self.scratch / "cut.ply"
+        cut.write_bytes(io.mesh_ply(mesh, io.PlyFormat.binary_little_endian)[:-2])
+        with self.assertRaises(cifs.IoError) as caught:
+            io.read_mesh(cut)
+        self.assertEqual(str(caught.exception), f"{cut}: the data ends in face 0 of 1 (truncated file)")
+        bad = self.scratch / "bad.obj"
+        bad.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n")
+        with self.assertRaises(cifs.InvalidInput) as caught:
+            io.read_mesh(bad)
+        self.assertEqual(str(caught.exception),
+                         f"{bad}: line 4: vertex index 4 is out of range: 3 vertices are defined before this line")
+
+
+class DispatchTest(ScratchTestCase):
+    def test_format_table(self):
+        self.assertEqual([(f.name, f.extension, f.read, f.write) for f in io.formats(io.Content.mesh)],
+                         [("obj", ".obj", True, True), ("ply", ".ply", True, True)])
+        self.assertEqual([f.name for f in io.formats(io.Content.automaton)], ["json", "svg", "dot"])
+        self.assertEqual([f.name for f in io.formats(io.Content.segments) if f.write], ["obj", "ply", "svg"])
+        self.assertTrue([f for f in io.formats(io.Content.mesh) if f.name == "ply"][0].binary)
+
+    def test_write_and_encode(self):
+        mesh = io.Mesh(pentagon_and_apex(), faces=[[0, 1, 2, 3, 4], [0, 1, 5]])
+        self.assertIsInstance(io.encode(mesh, "ply"), bytes)
+        self.assertEqual(io.encode(mesh, "obj"), io.mesh_obj(mesh))
+        self.assertEqual(io.encode(mesh, "ply"), io.mesh_ply(mesh, io.PlyFormat.binary_little_endian))
+        points = np.array([[0, 0], [1, 0], [1, 1.5]])
+        polygon = io.Polygon(points, closed=True)
+        self.assertEqual(io.encode(polygon, "svg"), io.polyline_svg(points, True))
+        self.assertEqual(io.encode(polygon, "json"), io.to_json(polygon))
+        path = self.scratch / "p.obj"
+        io.write(path, polygon)
+        self.assertEqual(path.read_text(), io.polyline_obj(points, True))
+        with self.assertRaises(cifs.InvalidInput) as caught:
+            io.write(self.scratch / "m.svg", mesh)
+        self.assertEqual(str(caught.exception), f"{self.scratch / 'm.svg'}: a mesh is written as .obj or .ply")
+        self.assertFalse((self.scratch / "m.svg").exists())
+        with self.assertRaises(cifs.InvalidInput) as caught:
+            io.encode(mesh, "stl")
+        self.assertEqual(str(caught.exception), "format 'stl': expected obj or ply")
+
+    def test_automaton_files_are_the_clis(self):
+        path = SHAPES / "wave.json"
+        text = cli("automaton", path, "--format", "json").stdout
+        a = io.parse_automaton_json(text, "cli")
+        self.assertEqual(cifs.automata.to_json(a), text)
+        self.assertEqual(io.encode(a, "dot"), cli("automaton", path, "--format", "dot").stdout)
+        self.assertEqual(io.encode(a, "svg"), cli("automaton", path, "--format", "svg").stdout)
+        file = self.scratch / "a.json"
+        io.write(file, a)
+        self.assertEqual(cifs.automata.to_json(io.read_automaton(file)), text)
+        with self.assertRaises(cifs.InvalidInput) as caught:
+            io.parse_automaton_json('{"states": [{"id": 1, "size": 2}], "transitions": [], "initial": []}', "x.json")
+        self.assertEqual(str(caught.exception), "x.json: states[0].id: expected 0 (states are listed by id, from 0)")
+
+
 class VerifyTest(unittest.TestCase):
     def test_check_curve_matches_cli_check(self):
         for name in ("cubic", "circle", "closed_cubic"):

@@ -32,11 +32,11 @@ Camera unit_camera(std::size_t width, std::size_t height) {
 }
 
 /// A square [x0, x1] × [y0, y1] at height z, counter-clockwise seen from +z (normal +z).
-io::Mesh square(double x0, double x1, double y0, double y1, double z, std::uint32_t state) {
-  io::Mesh m;
+Mesh square(double x0, double x1, double y0, double y1, double z, std::uint32_t state) {
+  Mesh m;
   m.vertices.resize(4, 3);
   m.vertices << x0, y0, z, x1, y0, z, x1, y1, z, x0, y1, z;
-  m.quads = {{0, 1, 2, 3}};
+  add_face(m, {0, 1, 2, 3});
   m.states = {state};
   return m;
 }
@@ -109,13 +109,13 @@ TEST_CASE("A tilted plane in perspective: Z and N against ray casting", "[render
   // The plane n·x = c through a large quad, crossing the whole view.
   const Eigen::Vector3d n = Eigen::Vector3d(0.2, -0.3, 1).normalized();
   const double c = 0.1;
-  io::Mesh plane;
+  Mesh plane;
   plane.vertices.resize(4, 3);
   const auto on_plane = [&](double x, double y) {
     return Eigen::RowVector3d(x, y, (c - n.x() * x - n.y() * y) / n.z());
   };
   plane.vertices << on_plane(-20, -20), on_plane(20, -20), on_plane(20, 20), on_plane(-20, 20);
-  plane.quads = {{0, 1, 2, 3}};
+  add_face(plane, {0, 1, 2, 3});
   Image image;
   render_mesh(image, camera, plane);
   const ViewTransform v = view_transform(camera);
@@ -139,15 +139,51 @@ TEST_CASE("A tilted plane in perspective: Z and N against ray casting", "[render
   CHECK(covered > 1000);
 }
 
+TEST_CASE("A polygon is drawn as the fan of its corners (a quad along its 0-2 diagonal)",
+          "[render][raster]") {
+  const Camera camera = unit_camera(24, 20);
+  Mesh polygon, fan;
+  polygon.vertices.resize(5, 3);
+  // A skew, non-planar pentagon: the split matters.
+  polygon.vertices << -8, -6, 1, 7, -7, 2, 9, 3, 0.5, 1, 8, 3, -9, 4, 1.5;
+  fan.vertices = polygon.vertices;
+  add_face(polygon, {0, 1, 2, 3, 4});
+  polygon.states = {6};
+  for (const auto& t : std::vector<std::vector<int>>{{0, 1, 2}, {0, 2, 3}, {0, 3, 4}}) add_face(fan, t);
+  fan.states = {6, 6, 6};
+  fan.normals = polygon.normals = vertex_normals(polygon);  // the same vertex normals for both
+  for (int corners : {5, 4}) {
+    INFO(corners << " corners");
+    Mesh p = polygon, f = fan;
+    if (corners == 4) {
+      p.face_offsets = {0, 4};
+      p.face_vertices = {0, 1, 2, 3};
+      f.face_offsets = {0, 3, 6};
+      f.face_vertices = {0, 1, 2, 0, 2, 3};
+      f.states = {6, 6};
+      p.normals = f.normals = vertex_normals(p);
+    }
+    Image a, b;
+    render_mesh(a, camera, p);
+    render_mesh(b, camera, f);
+    CHECK(sum(a.channels.at("A")) > 100);
+    for (const auto& [name, values] : a.channels) {
+      INFO("channel " << name);
+      CHECK(values == b.channels.at(name));
+    }
+    CHECK(*a.state == *b.state);
+  }
+}
+
 TEST_CASE("Nearer surfaces win per sample; a later layer is hidden behind an earlier one",
           "[render][raster]") {
   const Camera camera = unit_camera(16, 16);
   Image image;
-  io::Mesh both = square(-6, 2, -6, 2, 1, 1);         // depth 9
-  const io::Mesh front = square(-2, 6, -2, 6, 3, 2);  // depth 7
+  Mesh both = square(-6, 2, -6, 2, 1, 1);         // depth 9
+  const Mesh front = square(-2, 6, -2, 6, 3, 2);  // depth 7
   both.vertices.conservativeResize(8, 3);
   both.vertices.bottomRows(4) = front.vertices;
-  both.quads.push_back({4, 5, 6, 7});
+  add_face(both, {4, 5, 6, 7});
   both.states.push_back(2);
   render_mesh(image, camera, both);
   const auto at = [&](std::size_t x, std::size_t y) { return y * 16 + x; };
@@ -166,7 +202,7 @@ TEST_CASE("Anti-aliased strokes: coverage integrates to width × length", "[rend
   for (const double w : {0.6, 1.0, 2.5, 4.0}) {
     // A line crossing the whole image from the left edge to the right edge (its ends are outside:
     // no caps), slope 0.37.
-    io::Segments s;
+    Segments s;
     s.vertices.resize(2, 2);
     s.vertices << -150, -150 * 0.37 + 3, 150, 150 * 0.37 + 3;
     s.segments = {{0, 1}};
@@ -207,7 +243,7 @@ TEST_CASE("Strokes: a straight line cut into pieces is the same line; corners ar
 
 TEST_CASE("Strokes carry their segment's state and depth; colour is composited", "[render][raster]") {
   const Camera camera = unit_camera(32, 32);
-  io::Segments s;
+  Segments s;
   s.vertices.resize(4, 3);
   s.vertices << -10, -5, 2, 10, -5, 2, -10, 5, 4, 10, 5, 4;
   s.segments = {{0, 1}, {2, 3}};
@@ -249,7 +285,7 @@ TEST_CASE("The rendered scene survives an OpenEXR round trip, every channel and 
   const Camera camera = unit_camera(24, 16);
   Image image;
   render_mesh(image, camera, square(-6, 6, -4, 4, 1, 5));
-  io::Segments s = io::polyline_segments(Points{{-10, -6}, {10, 6}}, false, 9);
+  Segments s = polyline_segments(Points{{-10, -6}, {10, 6}}, false, 9);
   render_segments(image, camera, s);
   render_points(image, camera, Points{{0.5, 0.5}, {-11.5, 7.5}}, std::vector<std::uint32_t>{3, 4});
   image.attributes = {{"experiment", "quad, stroke and points"}, {"seed", "1"}, {"depth", "0"}};
@@ -282,9 +318,9 @@ TEST_CASE("The rendered scene survives an OpenEXR round trip, every channel and 
 TEST_CASE("Rasterisers refuse bad input", "[render][raster]") {
   const Camera camera = unit_camera(8, 8);
   Image image;
-  io::Mesh m = square(-1, 1, -1, 1, 0, 0);
-  m.quads[0][3] = 4;
-  CHECK_THROWS_WITH(render_mesh(image, camera, m), Catch::Contains("quads[0][3] = 4 is out of range"));
+  Mesh m = square(-1, 1, -1, 1, 0, 0);
+  m.face_vertices[3] = 4;  // quad 0, corner 3
+  CHECK_THROWS_WITH(render_mesh(image, camera, m), Catch::Contains("face 0 corner 3 = 4 is out of range"));
   m = square(-1, 1, -1, 1, 0, 0);
   m.vertices(2, 0) = std::nan("");
   CHECK_THROWS_WITH(render_mesh(image, camera, m), Catch::Contains("vertices[2] is not finite"));
@@ -298,7 +334,7 @@ TEST_CASE("Rasterisers refuse bad input", "[render][raster]") {
   CHECK_THROWS_WITH(render_mesh(fresh, empty, square(-1, 1, -1, 1, 0, 0)), Catch::Contains("empty"));
   Camera other = unit_camera(9, 8);
   CHECK_THROWS_WITH(render_mesh(image, other, square(-1, 1, -1, 1, 0, 0)), Catch::Contains("9 by 8"));
-  io::Segments s = io::polyline_segments(Points{{0, 0}, {1, 1}});
+  Segments s = polyline_segments(Points{{0, 0}, {1, 1}});
   CurveStyle thin;
   thin.width = 0;
   CHECK_THROWS_AS(render_segments(image, camera, s, thin), InvalidInput);
@@ -316,7 +352,7 @@ TEST_CASE("Strokes at equal depth: the later layer wins even where float rounds 
   Camera camera = unit_camera(21, 21);
   camera.eye = {0, 0, 10.7};
   Image image;
-  io::Segments horizontal, vertical;
+  Segments horizontal, vertical;
   horizontal.vertices.resize(2, 3);
   horizontal.vertices << -8, 0, 0, 8, 0, 0;
   horizontal.segments = {{0, 1}};

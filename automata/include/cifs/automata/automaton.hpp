@@ -70,11 +70,4 @@ Automaton minimize(const Automaton& automaton);
 /// rows of `curve.P` (homogeneous when rational).
 std::vector<Points> initial_nets(const Automaton& automaton, const nurbs::Curve& curve);
 
-/// JSON of docs/cli.md (`states`, `transitions`, `initial`) and Graphviz DOT.
-std::string to_json(const Automaton& automaton);
-std::string to_dot(const Automaton& automaton);
-/// A self-contained SVG drawing (no Graphviz needed): states in columns by breadth-first distance
-/// from the initial states (bold outline), recurrent states shaded, transitions as labelled arrows.
-std::string to_svg(const Automaton& automaton);
-
 }  // namespace cifs::automata

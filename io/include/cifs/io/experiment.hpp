@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // cifs — experiment files (docs/experiments.md): what to build, how to perturb and evaluate it,
-// how to look at it and what to write. Plain data; cifs::experiment runs them.
+// how to look at it and what to write. Plain data (read by io::parse_experiment in
+// cifs/io/json.hpp, io::read_experiment in cifs/io/io.hpp); cifs::experiment runs them.
 #pragma once
 
 #include <array>
@@ -65,7 +66,13 @@ struct RenderSettings {
 
 /// Output files, relative to the output directory given at run time (empty: not written).
 struct Outputs {
-  std::filesystem::path exr, png, obj, ply, svg, automaton_svg, automaton_dot;
+  std::filesystem::path exr, png;  // the image and its preview
+  /// The evaluated geometry (a mesh or a segment set) by format name ("obj", "ply", "svg": the
+  /// formats of io::formats(Content::mesh / segments); file key "obj").
+  std::map<std::string, std::filesystem::path> geometry;
+  /// The evaluated automaton by format name (io::formats(Content::automaton); file key
+  /// "automaton_svg" for "svg").
+  std::map<std::string, std::filesystem::path> automaton;
 };
 
 struct Experiment {
@@ -82,12 +89,5 @@ struct Experiment {
   RenderSettings render;
   Outputs outputs;
 };
-
-/// Parses an experiment. `where` names the source in messages ("fern.json: evaluation.depth: …");
-/// relative input paths (shape, automaton) are resolved against `base`. Output paths must be
-/// relative and stay inside the output directory (no "..", no root).
-Experiment parse_experiment(std::string_view text, std::string_view where, const std::filesystem::path& base);
-/// Reads and parses an experiment file; inputs are resolved against the file's folder.
-Experiment read_experiment(const std::filesystem::path& path);
 
 }  // namespace cifs::io

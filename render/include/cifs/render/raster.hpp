@@ -11,7 +11,7 @@
 
 #include <Eigen/Core>
 
-#include "cifs/io/geometry.hpp"
+#include "cifs/mesh.hpp"
 #include "cifs/render/camera.hpp"
 #include "cifs/render/image.hpp"
 #include "cifs/types.hpp"
@@ -53,8 +53,8 @@ struct CurveStyle {
 /// joints have neither gaps nor double darkening. The pixel's depth and state are those of the
 /// nearest segment at its closest point (depth interpolated perspective-correctly).
 /// Segments are clipped to the near plane. Throws InvalidInput for bad segments (see
-/// io::check_segments), a width ≤ 0 or non-finite, or an image of another size than the camera.
-void render_segments(Image& image, const Camera& camera, const io::Segments& segments,
+/// check_segments), a width ≤ 0 or non-finite, or an image of another size than the camera.
+void render_segments(Image& image, const Camera& camera, const Segments& segments,
                      const CurveStyle& style = {});
 
 /// Polylines (`#P by 2|3` each, all with the same columns), drawn as one segment set in which
@@ -83,8 +83,9 @@ struct SurfaceStyle {
   unsigned threads = 0;
 };
 
-/// Z-buffered mesh rendering. Quads are split along their 0–2 diagonal; triangles are clipped to
-/// the near plane; no back-face culling.
+/// Z-buffered mesh rendering. A face of n corners is drawn as the fan of triangles (0, i, i + 1),
+/// i = 1 … n − 2 (a quad is split along its 0–2 diagonal); triangles are clipped to the near plane;
+/// no back-face culling.
 ///
 /// Each pixel has samples_per_side² samples, each with its own depth test (against the other
 /// samples of the layer and against the image's Z). Resolve:
@@ -96,10 +97,10 @@ struct SurfaceStyle {
 ///   triangle of the nearest sample, evaluated at the centroid of its samples. N is the
 ///   interpolated vertex normal, normalised, in world space, with the mesh's orientation (not
 ///   flipped towards the viewer).
-/// Vertex normals are `mesh.normals` when given, else io::vertex_normals; where the interpolated
-/// normal vanishes the face normal is used. Throws InvalidInput for a bad mesh (io::check_mesh),
-/// samples_per_side outside 1 … 8, or an image of another size.
-void render_mesh(Image& image, const Camera& camera, const io::Mesh& mesh, const SurfaceStyle& style = {});
+/// Vertex normals are `mesh.normals` when given, else vertex_normals; where the interpolated
+/// normal vanishes the face normal (of the fan triangle) is used. Throws InvalidInput for a bad mesh
+/// (check_mesh), samples_per_side outside 1 … 8, or an image of another size.
+void render_mesh(Image& image, const Camera& camera, const Mesh& mesh, const SurfaceStyle& style = {});
 
 struct PointStyle {
   Rgb color{1, 1, 1};

@@ -72,9 +72,6 @@ struct SchemeAnalysis {
 /// contractivity is decided late.
 SchemeAnalysis analyze(const Scheme& scheme, const AnalysisOptions& options = {});
 
-/// JSON text of the analysis (docs/cli.md, `cifs scheme NAME --analyze`).
-std::string analysis_json(const Scheme& scheme, const SchemeAnalysis& analysis);
-
 /// d_k(z) = 2^k a(z)/(1+z)^{k+1}; InvalidInput unless (1+z)^{k+1} divides a(z).
 Polynomial difference_mask(const Polynomial& a, int k);
 

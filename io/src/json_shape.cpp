@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: MIT
+// cifs — shape files as JSON (docs/formats.md): curves and surfaces, read and written.
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "cifs/errors.hpp"
-#include "cifs/io/shape.hpp"
+#include "cifs/io/json.hpp"
 #include "json_common.hpp"
 
 namespace cifs::io {

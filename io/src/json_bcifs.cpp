@@ -1,10 +1,9 @@
 // SPDX-License-Identifier: MIT
-#include "cifs/io/bcifs_json.hpp"
-
+// cifs — BC-IFS files as JSON (docs/formats.md, "bcifs"), read and written.
 #include <map>
 #include <set>
 
-#include "cifs/io/shape.hpp"
+#include "cifs/io/json.hpp"
 #include "json_common.hpp"
 
 namespace cifs::io {
@@ -26,27 +25,6 @@ const json& object(const Reader& r, const json& v, const std::string& path) {
 
 std::string cell_name(const automata::Automaton& a, StateId s) {
   return a.graph[s].name.empty() ? "s" + std::to_string(s) : a.graph[s].name;
-}
-
-/// `rows` rows of `cols` numbers each (cols −1: as many as the first row, at least 1); the
-/// reasons name where the expected counts come from.
-Eigen::MatrixXd read_rows(const Reader& r, const json& v, const std::string& path, Eigen::Index rows,
-                          Eigen::Index cols, const std::string& rows_why, const std::string& cols_why) {
-  r.array(v, path);
-  if (rows >= 0 && static_cast<Eigen::Index>(v.size()) != rows)
-    r.fail(path,
-           std::to_string(v.size()) + " rows, expected " + std::to_string(rows) + " (" + rows_why + ")");
-  std::vector<std::vector<double>> all;
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const std::string p = path + "[" + std::to_string(i) + "]";
-    all.push_back(r.numbers(v[i], p));
-    const auto want = cols >= 0 ? cols : static_cast<Eigen::Index>(all.front().size());
-    if (static_cast<Eigen::Index>(all.back().size()) != want || want == 0)
-      r.fail(p, std::to_string(all.back().size()) + " entries, expected " +
-                    (want == 0 ? std::string("at least 1") : std::to_string(want)) +
-                    (cols >= 0 ? " (" + cols_why + ")" : " (as the first row)"));
-  }
-  return detail::to_points(all);
 }
 
 }  // namespace
@@ -101,7 +79,7 @@ BcifsFile parse_bcifs_json(std::string_view source, std::string_view where) {
         r.fail(path + ".label", "cell " + g[from].name + " has two transitions \"" + label + "\"");
     const std::string shape = "size of " + g[to].name + " by size of " + g[from].name;
     Eigen::MatrixXd M =
-        read_rows(r, r.member(t, path, "matrix"), path + ".matrix", g[to].size, g[from].size, shape, shape);
+        r.matrix(r.member(t, path, "matrix"), path + ".matrix", g[to].size, g[from].size, shape, shape);
     bool free = false;
     if (t.contains("free")) {
       if (!t["free"].is_boolean()) r.fail(path + ".free", "expected true or false");
@@ -184,9 +162,9 @@ BcifsFile parse_bcifs_json(std::string_view source, std::string_view where) {
     if (o.contains("net") != (i == 0 ? o.contains("net") : !out.nets.empty()))
       r.fail(path, "give a net for every initial entry or for none");
     if (o.contains("net")) {
-      out.nets.push_back(read_rows(r, o["net"], path + ".net", g[init.state].size,
-                                   out.nets.empty() ? -1 : out.nets.front().cols(),
-                                   "size of " + g[init.state].name, "as many coordinates as the first net"));
+      out.nets.push_back(r.matrix(o["net"], path + ".net", g[init.state].size,
+                                  out.nets.empty() ? -1 : out.nets.front().cols(),
+                                  "size of " + g[init.state].name, "as many coordinates as the first net"));
     }
   }
   try {
@@ -250,10 +228,6 @@ std::string to_json(const ifs::Bcifs& sys, std::span<const Points> nets) {
   std::string out;
   detail::write_pretty(doc, 0, out);
   return out + "\n";
-}
-
-BcifsFile read_bcifs(const std::filesystem::path& path) {
-  return parse_bcifs_json(read_file(path), path.string());
 }
 
 }  // namespace cifs::io

@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: MIT
-#include "cifs/io/bcifs_json.hpp"
+#include "cifs/io/json.hpp"
 
 #include <catch2/catch.hpp>
 
 #include "cifs/errors.hpp"
+#include "cifs/files.hpp"
 #include "cifs/ifs/bcifs_curve.hpp"
-#include "cifs/io/shape.hpp"
+#include "cifs/io/io.hpp"
 #include "ifs/bcifs_helpers.hpp"
 
 using namespace cifs;

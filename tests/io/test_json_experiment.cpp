@@ -3,7 +3,8 @@
 #include <filesystem>
 
 #include "cifs/errors.hpp"
-#include "cifs/io/experiment.hpp"
+#include "cifs/io/io.hpp"
+#include "cifs/io/json.hpp"
 
 using namespace cifs;
 
@@ -52,7 +53,7 @@ TEST_CASE("Experiments: every section read with its defaults", "[io][experiment]
   CHECK(e.render.threads == 2);
   CHECK(e.render.background == std::array<double, 3>{1, 1, 1});
   CHECK(e.outputs.png == std::filesystem::path("img/a.png"));
-  CHECK(e.outputs.ply.empty());
+  CHECK(e.outputs.geometry.count("ply") == 0);
 
   const io::Experiment b = parse(R"({"shape": {"polygon": "bone.json", "degree": 3}})");
   REQUIRE(b.shape);
@@ -108,4 +109,18 @@ TEST_CASE("Experiments: bad files name the file, the member and the problem", "[
   CHECK_THAT(error_of(R"({"shape": {"polygon": "bone.json", "degree": 0}})"),
              Catch::Contains("e.json: shape: degree"));
   CHECK_THAT(error_of(R"({"automaton": "missing.json"})"), Catch::Contains("automaton: no such file"));
+}
+
+TEST_CASE("Experiments: output keys are the formats of the format table", "[io][experiment]") {
+  const io::Experiment e =
+      parse(R"({"ifs": "fern", "outputs": {"obj": "g.obj", "ply": "g.ply", "svg": "g.svg",
+      "automaton_json": "a.json", "automaton_dot": "a.dot", "automaton_svg": "a.svg"}})");
+  CHECK(e.outputs.geometry ==
+        std::map<std::string, std::filesystem::path>{{"obj", "g.obj"}, {"ply", "g.ply"}, {"svg", "g.svg"}});
+  CHECK(e.outputs.automaton ==
+        std::map<std::string, std::filesystem::path>{{"json", "a.json"}, {"dot", "a.dot"}, {"svg", "a.svg"}});
+  CHECK_THAT(error_of(R"({"ifs": "fern", "outputs": {"automaton_obj": "a.obj"}})"),
+             Catch::Contains("outputs.automaton_obj: unknown member"));
+  CHECK_THAT(error_of(R"({"ifs": "fern", "outputs": {"dot": "g.dot"}})"),
+             Catch::Contains("outputs.dot: unknown member"));
 }

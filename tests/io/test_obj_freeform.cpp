@@ -9,7 +9,9 @@
 #include <string>
 
 #include "cifs/errors.hpp"
-#include "cifs/io/shape.hpp"
+#include "cifs/files.hpp"
+#include "cifs/io/io.hpp"
+#include "cifs/io/obj.hpp"
 #include "cifs/nurbs/refine.hpp"
 
 namespace {
@@ -498,9 +500,9 @@ TEST_CASE("read_shape reads a one-shape .obj file", "[obj]") {
       std::filesystem::temp_directory_path() / ("cifs_test_obj_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const nurbs::Surface s = sample_surface(true, 5);
-  io::write_file_atomically(dir / "one.obj", io::to_obj(s));
+  write_file_atomically(dir / "one.obj", io::to_obj(s));
   require_same(std::get<nurbs::Surface>(io::read_shape(dir / "one.obj")), s);
-  io::write_file_atomically(dir / "two.obj", kCurve + kCurve);
+  write_file_atomically(dir / "two.obj", kCurve + kCurve);
   CHECK_THROWS_AS(io::read_shape(dir / "two.obj"), InvalidInput);
   std::filesystem::remove_all(dir);
 }

@@ -1,9 +1,8 @@
 // SPDX-License-Identifier: MIT
-#include "cifs/io/polygon.hpp"
-
+// cifs — control polygon files as JSON (docs/formats.md), read and written.
 #include <charconv>
 
-#include "cifs/io/shape.hpp"
+#include "cifs/io/json.hpp"
 #include "json_common.hpp"
 
 namespace cifs::io {
@@ -29,10 +28,6 @@ Polygon parse_polygon_json(std::string_view text, std::string_view where) {
     for (std::size_t k = 0; k < rows[i].size(); ++k)
       out.points(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) = rows[i][k];
   return out;
-}
-
-Polygon read_polygon(const std::filesystem::path& path) {
-  return parse_polygon_json(read_file(path), path.string());
 }
 
 std::string to_json(const Polygon& polygon) {

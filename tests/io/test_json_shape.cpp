@@ -3,7 +3,9 @@
 #include <cmath>
 
 #include "cifs/errors.hpp"
-#include "cifs/io/shape.hpp"
+#include "cifs/files.hpp"
+#include "cifs/io/io.hpp"
+#include "cifs/io/json.hpp"
 
 using namespace cifs;
 
@@ -139,10 +141,10 @@ TEST_CASE("Shape files: unreadable paths and atomic writes", "[io]") {
   CHECK_THROWS_WITH(io::read_shape("/tmp"), Catch::Contains("/tmp: is a directory"));
   const auto dir = std::filesystem::temp_directory_path() / "cifs_test_io";
   std::filesystem::create_directories(dir);
-  io::write_file_atomically(dir / "a.txt", "hello");
-  CHECK(io::read_file(dir / "a.txt") == "hello");
+  write_file_atomically(dir / "a.txt", "hello");
+  CHECK(read_file(dir / "a.txt") == "hello");
   for (const auto& entry : std::filesystem::directory_iterator(dir))
     CHECK(entry.path().filename() == "a.txt");  // no temporary left behind
-  CHECK_THROWS_AS(io::write_file_atomically(dir / "missing" / "b.txt", "x"), IoError);
+  CHECK_THROWS_AS(write_file_atomically(dir / "missing" / "b.txt", "x"), IoError);
   std::filesystem::remove_all(dir);
 }

@@ -1,93 +1,25 @@
 // SPDX-License-Identifier: MIT
-// OBJ free-form geometry (docs/formats.md): `cstype [rat] bspline` curves (`curv`) and surfaces
+// cifs — OBJ free-form geometry (docs/formats.md): `cstype [rat] bspline` curves (`curv`) and surfaces
 // (`surf`) with their `deg`, `parm` and `end` statements, over `v x y z [w]` vertices.
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <optional>
 #include <string>
-#include <system_error>
 #include <type_traits>
 
 #include "cifs/errors.hpp"
-#include "cifs/io/shape.hpp"
+#include "cifs/io/obj.hpp"
+#include "obj_lexer.hpp"
 
 namespace cifs::io {
 namespace {
 
-using Tokens = std::vector<std::string_view>;
-
-bool is_space(char c) noexcept {
-  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
-}
-
-Tokens tokenize(std::string_view s) {
-  Tokens out;
-  std::size_t i = 0;
-  while (i < s.size()) {
-    while (i < s.size() && is_space(s[i])) ++i;
-    const std::size_t start = i;
-    while (i < s.size() && !is_space(s[i])) ++i;
-    if (i > start) out.push_back(s.substr(start, i - start));
-  }
-  return out;
-}
-
-/// Calls `f(line, tokens)` for every non-blank statement. A `#` starts a comment that runs to the end
-/// of its physical line; a physical line that then ends with `\` continues on the next one. `line` is
-/// the 1-based number of the statement's first physical line.
-template <class F>
-void for_each_statement(std::string_view text, F&& f) {
-  if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);  // UTF-8 byte order mark
-  std::string joined;
-  std::size_t line = 0, start = 0, pos = 0;
-  bool continuing = false;
-  for (;;) {
-    const std::size_t eol = std::min(text.find('\n', pos), text.size());
-    std::string_view phys = text.substr(pos, eol - pos);
-    ++line;
-    if (const std::size_t hash = phys.find('#'); hash != std::string_view::npos) phys = phys.substr(0, hash);
-    while (!phys.empty() && is_space(phys.back())) phys.remove_suffix(1);
-    const bool more = !phys.empty() && phys.back() == '\\';
-    if (more) phys.remove_suffix(1);
-    if (!continuing) {
-      joined.clear();
-      start = line;
-    }
-    joined += phys;
-    joined += ' ';
-    continuing = more;
-    if (!continuing) {
-      const Tokens t = tokenize(joined);
-      if (!t.empty()) f(start, t);
-    }
-    if (eol == text.size()) break;
-    pos = eol + 1;
-  }
-  if (continuing) {
-    const Tokens t = tokenize(joined);
-    if (!t.empty()) f(start, t);
-  }
-}
-
-/// Shortest text that reads back as the same double, for messages.
-std::string num(double x) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, x);
-  return std::string(buf, r.ptr);
-}
-
-/// A token quoted for a message, cut short when it is long.
-std::string quote(std::string_view t) {
-  constexpr std::size_t kMax = 40;
-  std::string out(1, '\'');
-  out.append(t.substr(0, kMax));
-  out.append(t.size() > kMax ? "...'" : "'");
-  return out;
-}
+using detail::num;
+using detail::quote;
+using detail::Tokens;
 
 struct Vertex {
   double x = 0, y = 0, z = 0, w = 1;
@@ -115,10 +47,10 @@ struct Element {
 
 class ObjReader {
  public:
-  explicit ObjReader(std::string_view where) : where_(where) {}
+  explicit ObjReader(std::string_view where) : place_{std::string(where)} {}
 
   void statement(std::size_t line, const Tokens& t) {
-    line_ = line;
+    place_.line = line;
     const std::string_view key = t[0];
     if (key == "v") {
       vertex(t);
@@ -140,12 +72,13 @@ class ObjReader {
       end(t);
     } else if (key == "trim" || key == "hole") {
       body(key);
-      invalid(line_, std::string(key) +
-                         ": trimmed surfaces are not supported (only whole curves and surfaces are read)");
+      invalid(place_.line,
+              std::string(key) +
+                  ": trimmed surfaces are not supported (only whole curves and surfaces are read)");
     } else if (key == "scrv" || key == "sp") {
       body(key);  // special curves and points only steer tessellation: ignored
     } else if (key == "bsp" || key == "bzp" || key == "cdc" || key == "cdp") {
-      invalid(line_, std::string(key) + ": superseded OBJ 2.11 patch statements are not supported");
+      invalid(place_.line, std::string(key) + ": superseded OBJ 2.11 patch statements are not supported");
     }
     // Everything else (vt, vn, vp, p, l, f, g, o, s, mg, usemtl, mtllib, bmat, step, con, ctech,
     // stech, lod, ...) carries no curve or surface geometry and is ignored.
@@ -159,8 +92,7 @@ class ObjReader {
   }
 
  private:
-  std::string where_;
-  std::size_t line_ = 0;
+  detail::ObjPlace place_;
   std::vector<Vertex> vertices_;
   bool cstype_set_ = false, rational_ = false;
   std::array<int, 2> degree_{};  // 0 = not given
@@ -168,54 +100,27 @@ class ObjReader {
   std::optional<Element> open_;
   std::vector<Shape> shapes_;
 
-  std::string at(std::size_t line) const { return where_ + ": line " + std::to_string(line) + ": "; }
-  [[noreturn]] void syntax(std::size_t line, const std::string& what) const {
-    throw IoError(at(line) + what);
-  }
-  [[noreturn]] void invalid(std::size_t line, const std::string& what) const {
-    throw InvalidInput(at(line) + what);
-  }
-
-  /// A finite number: IoError when the token is not a number, InvalidInput when it is not finite.
-  double number(std::string_view tok, std::string_view what) const {
-    std::string_view s = tok;
-    if (s.size() > 1 && s[0] == '+' && s[1] != '-' && s[1] != '+') s.remove_prefix(1);
-    double x = 0;
-    const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), x);
-    if (ptr != s.data() + s.size() || (ec != std::errc() && ec != std::errc::result_out_of_range))
-      syntax(line_, std::string(what) + ": expected a number, got " + quote(tok));
-    if (ec == std::errc::result_out_of_range)
-      invalid(line_, std::string(what) + ": " + quote(tok) + " is out of the range of double");
-    if (!std::isfinite(x)) invalid(line_, std::string(what) + ": " + quote(tok) + " is not finite");
-    return x;
-  }
-
-  long long integer(std::string_view tok, std::string_view what) const {
-    std::string_view s = tok;
-    if (s.size() > 1 && s[0] == '+' && s[1] != '-' && s[1] != '+') s.remove_prefix(1);
-    long long x = 0;
-    const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), x);
-    if (ptr != s.data() + s.size() || s.empty() || ec != std::errc())
-      syntax(line_, std::string(what) + ": expected an integer, got " + quote(tok));
-    return x;
-  }
+  [[noreturn]] void syntax(std::size_t line, const std::string& what) const { place_.syntax(line, what); }
+  [[noreturn]] void invalid(std::size_t line, const std::string& what) const { place_.invalid(line, what); }
+  double number(std::string_view tok, std::string_view what) const { return place_.number(tok, what); }
+  long long integer(std::string_view tok, std::string_view what) const { return place_.integer(tok, what); }
 
   void attribute_outside_body(std::string_view key) const {
     if (open_)
-      syntax(line_, std::string(key) + " inside the body of the " + keyword(open_->kind) + " at line " +
-                        std::to_string(open_->line) + " (missing end?)");
+      syntax(place_.line, std::string(key) + " inside the body of the " + keyword(open_->kind) + " at line " +
+                              std::to_string(open_->line) + " (missing end?)");
   }
 
   void body(std::string_view key) const {
-    if (!open_) syntax(line_, std::string(key) + " outside a curv or surf body");
+    if (!open_) syntax(place_.line, std::string(key) + " outside a curv or surf body");
   }
 
   void vertex(const Tokens& t) {
     if (t.size() < 4)
-      syntax(line_, "v: expected x y z [w], got " + std::to_string(t.size() - 1) + " numbers");
+      syntax(place_.line, "v: expected x y z [w], got " + std::to_string(t.size() - 1) + " numbers");
     Vertex v;
     v.values = t.size() - 1;
-    v.line = line_;
+    v.line = place_.line;
     std::array<double, 4> xyzw{0, 0, 0, 1};
     for (std::size_t k = 1; k < t.size(); ++k) {
       const double x = number(t[k], "v");
@@ -232,63 +137,54 @@ class ObjReader {
     std::size_t k = 1;
     const bool rat = t.size() > k && t[k] == "rat";
     if (rat) ++k;
-    if (t.size() != k + 1) syntax(line_, "cstype: expected cstype [rat] type");
+    if (t.size() != k + 1) syntax(place_.line, "cstype: expected cstype [rat] type");
     const std::string_view type = t[k];
     if (type == "bezier" || type == "cardinal" || type == "taylor" || type == "bmatrix")
-      invalid(line_, "cstype " + std::string(rat ? "rat " : "") + std::string(type) +
-                         " is not supported: only bspline and rat bspline are read");
-    if (type != "bspline") invalid(line_, "cstype: unknown curve and surface type " + quote(type));
+      invalid(place_.line, "cstype " + std::string(rat ? "rat " : "") + std::string(type) +
+                               " is not supported: only bspline and rat bspline are read");
+    if (type != "bspline") invalid(place_.line, "cstype: unknown curve and surface type " + quote(type));
     cstype_set_ = true;
     rational_ = rat;
   }
 
   void deg(const Tokens& t) {
-    if (t.size() != 2 && t.size() != 3) syntax(line_, "deg: expected deg du [dv]");
+    if (t.size() != 2 && t.size() != 3) syntax(place_.line, "deg: expected deg du [dv]");
     degree_ = {0, 0};
     for (std::size_t k = 1; k < t.size(); ++k) {
       const long long d = integer(t[k], "deg");
       if (d < 1 || d > nurbs::kMaxDegree)
-        invalid(line_, "deg: degree " + std::to_string(d) + " is outside [1, " +
-                           std::to_string(nurbs::kMaxDegree) + "]");
+        invalid(place_.line, "deg: degree " + std::to_string(d) + " is outside [1, " +
+                                 std::to_string(nurbs::kMaxDegree) + "]");
       degree_[k - 1] = static_cast<int>(d);
     }
-    deg_line_ = line_;
+    deg_line_ = place_.line;
   }
 
-  std::size_t resolve(long long index) const {
-    const auto n = static_cast<long long>(vertices_.size());
-    if (index == 0)
-      invalid(line_, "vertex index 0 is invalid (indices start at 1, negative ones count back)");
-    const long long k = index > 0 ? index - 1 : n + index;
-    if (k < 0 || k >= n)
-      invalid(line_, "vertex index " + std::to_string(index) + " is out of range: " + std::to_string(n) +
-                         " vertices are defined before this line");
-    return static_cast<std::size_t>(k);
-  }
+  std::size_t resolve(long long index) const { return place_.resolve(index, vertices_.size(), "vertex"); }
 
   void element(Kind kind, const Tokens& t) {
     const char* kw = keyword(kind);
     if (open_)
-      syntax(line_, std::string(kw) + " before the end of the " + keyword(open_->kind) + " at line " +
-                        std::to_string(open_->line) + " (missing end?)");
+      syntax(place_.line, std::string(kw) + " before the end of the " + keyword(open_->kind) + " at line " +
+                              std::to_string(open_->line) + " (missing end?)");
     Element e;
     e.kind = kind;
-    e.line = line_;
+    e.line = place_.line;
     if (kind == Kind::parameter_curve) {  // a curve in a surface's parameter space (trimming): skipped
       open_ = std::move(e);
       return;
     }
-    if (!cstype_set_) syntax(line_, std::string(kw) + " without a preceding cstype");
-    if (degree_[0] == 0) syntax(line_, std::string(kw) + " without a preceding deg");
+    if (!cstype_set_) syntax(place_.line, std::string(kw) + " without a preceding cstype");
+    if (degree_[0] == 0) syntax(place_.line, std::string(kw) + " without a preceding deg");
     if (kind == Kind::surface && degree_[1] == 0)
-      syntax(line_,
+      syntax(place_.line,
              "surf needs deg du dv; the deg at line " + std::to_string(deg_line_) + " gives one degree");
     e.rational = rational_;
     e.degree = degree_;
     const std::size_t nrange = kind == Kind::curve ? 2 : 4;
     if (t.size() < 2 + nrange)
-      syntax(line_, kind == Kind::curve ? "curv: expected curv u0 u1 v1 v2 ..."
-                                        : "surf: expected surf s0 s1 t0 t1 v1 v2 ...");
+      syntax(place_.line, kind == Kind::curve ? "curv: expected curv u0 u1 v1 v2 ..."
+                                              : "surf: expected surf s0 s1 t0 t1 v1 v2 ...");
     for (std::size_t k = 1; k <= nrange; ++k) e.range.push_back(number(t[k], std::string(kw) + " range"));
     for (std::size_t k = 1 + nrange; k < t.size(); ++k) {
       std::string_view tok = t[k];
@@ -302,7 +198,7 @@ class ObjReader {
             if (!field.empty()) integer(field, "surf");
             rest = next == std::string_view::npos ? std::string_view{} : rest.substr(next + 1);
             if (next != std::string_view::npos && part == 1)
-              syntax(line_, "surf: expected v/vt/vn, got " + quote(tok));
+              syntax(place_.line, "surf: expected v/vt/vn, got " + quote(tok));
           }
           tok = tok.substr(0, slash);
         }
@@ -314,40 +210,40 @@ class ObjReader {
 
   void parm(const Tokens& t) {
     body("parm");
-    if (t.size() < 3) syntax(line_, "parm: expected parm u|v p1 p2 ...");
+    if (t.size() < 3) syntax(place_.line, "parm: expected parm u|v p1 p2 ...");
     int dir = 0;
     if (t[1] == "v") {
       dir = 1;
     } else if (t[1] != "u") {
-      syntax(line_, "parm: the direction must be u or v, got " + quote(t[1]));
+      syntax(place_.line, "parm: the direction must be u or v, got " + quote(t[1]));
     }
     Element& e = *open_;
     if (dir == 1 && e.kind != Kind::surface)
-      syntax(line_, std::string("parm v in the body of a ") + keyword(e.kind) +
-                        " (only surfaces have a v direction)");
+      syntax(place_.line, std::string("parm v in the body of a ") + keyword(e.kind) +
+                              " (only surfaces have a v direction)");
     auto& slot = e.parm[static_cast<std::size_t>(dir)];
     if (slot)
-      syntax(line_, std::string("parm ") + (dir ? "v" : "u") + " given twice (first at line " +
-                        std::to_string(e.parm_line[static_cast<std::size_t>(dir)]) + ")");
+      syntax(place_.line, std::string("parm ") + (dir ? "v" : "u") + " given twice (first at line " +
+                              std::to_string(e.parm_line[static_cast<std::size_t>(dir)]) + ")");
     std::vector<double> knots;
     knots.reserve(t.size() - 2);
     const std::string what = std::string("parm ") + (dir ? "v" : "u");
     for (std::size_t k = 2; k < t.size(); ++k) knots.push_back(number(t[k], what));
     slot = std::move(knots);
-    e.parm_line[static_cast<std::size_t>(dir)] = line_;
+    e.parm_line[static_cast<std::size_t>(dir)] = place_.line;
   }
 
   void end(const Tokens& t) {
-    if (!open_) syntax(line_, "end without a curv or surf");
-    if (t.size() != 1) syntax(line_, "end: unexpected " + quote(t[1]));
+    if (!open_) syntax(place_.line, "end without a curv or surf");
+    if (t.size() != 1) syntax(place_.line, "end: unexpected " + quote(t[1]));
     const Element e = std::move(*open_);
     open_.reset();
     if (e.kind == Kind::parameter_curve) return;
     const char* kw = keyword(e.kind);
     if (!e.parm[0])
-      syntax(e.line, std::string(kw) + ": no parm u before the end at line " + std::to_string(line_));
+      syntax(e.line, std::string(kw) + ": no parm u before the end at line " + std::to_string(place_.line));
     if (e.kind == Kind::surface && !e.parm[1])
-      syntax(e.line, "surf: no parm v before the end at line " + std::to_string(line_));
+      syntax(e.line, "surf: no parm v before the end at line " + std::to_string(place_.line));
     if (e.kind == Kind::curve)
       shapes_.emplace_back(build_curve(e));
     else
@@ -520,7 +416,7 @@ std::vector<long long> one_to(Eigen::Index n) {
 
 std::vector<Shape> parse_obj(std::string_view text, std::string_view where) {
   ObjReader reader(where);
-  for_each_statement(text, [&](std::size_t line, const Tokens& t) { reader.statement(line, t); });
+  detail::for_each_statement(text, [&](std::size_t line, const Tokens& t) { reader.statement(line, t); });
   return reader.finish();
 }
 

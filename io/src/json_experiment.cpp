@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
-#include "cifs/io/experiment.hpp"
+// cifs — experiment files as JSON (docs/experiments.md), read.
+#include <algorithm>
 
-#include "cifs/io/polygon.hpp"
+#include "cifs/io/io.hpp"
+#include "cifs/io/json.hpp"
 #include "json_common.hpp"
 
 namespace cifs::io {
@@ -190,20 +192,38 @@ std::filesystem::path output_path(const Reader& r, const json& v, const std::str
   return p;
 }
 
+/// The names of the formats that write `content`, in table order.
+std::vector<std::string> writable_names(Content content) {
+  std::vector<std::string> names;
+  for (const Format& f : formats(content))
+    if (f.write) names.emplace_back(f.name);
+  return names;
+}
+
+/// Keys: exr, png, a geometry format (of meshes or segment sets: which one applies is known only
+/// when the experiment runs), automaton_<format>. Checked in the order the files are written.
 Outputs read_outputs(const Reader& r, const json& v) {
   r.object(v, "outputs");
-  r.only(v, "outputs", {"exr", "png", "obj", "ply", "svg", "automaton_svg", "automaton_dot"});
+  std::vector<std::string> geometry = writable_names(Content::segments);
+  for (const std::string& name : writable_names(Content::mesh))
+    if (std::find(geometry.begin(), geometry.end(), name) == geometry.end()) geometry.push_back(name);
+  const std::vector<std::string> automaton = writable_names(Content::automaton);
+  for (const auto& item : v.items()) {
+    const std::string& key = item.key();
+    const bool known = key == "exr" || key == "png" ||
+                       std::find(geometry.begin(), geometry.end(), key) != geometry.end() ||
+                       (key.starts_with("automaton_") &&
+                        std::find(automaton.begin(), automaton.end(), key.substr(10)) != automaton.end());
+    if (!known) r.fail("outputs." + key, "unknown member");
+  }
   Outputs o;
-  const auto get = [&](const char* key, std::filesystem::path& out) {
-    if (v.contains(key)) out = output_path(r, v[key], std::string("outputs.") + key);
-  };
-  get("exr", o.exr);
-  get("png", o.png);
-  get("obj", o.obj);
-  get("ply", o.ply);
-  get("svg", o.svg);
-  get("automaton_svg", o.automaton_svg);
-  get("automaton_dot", o.automaton_dot);
+  const auto get = [&](const std::string& key) { return output_path(r, v[key], "outputs." + key); };
+  if (v.contains("exr")) o.exr = get("exr");
+  if (v.contains("png")) o.png = get("png");
+  for (const std::string& name : geometry)
+    if (v.contains(name)) o.geometry[name] = get(name);
+  for (const std::string& name : automaton)
+    if (v.contains("automaton_" + name)) o.automaton[name] = get("automaton_" + name);
   return o;
 }
 
@@ -238,12 +258,6 @@ Experiment parse_experiment(std::string_view text, std::string_view where,
   if (doc.contains("camera")) e.camera = read_camera(r, doc["camera"]);
   if (doc.contains("render")) e.render = read_render(r, doc["render"]);
   if (doc.contains("outputs")) e.outputs = read_outputs(r, doc["outputs"]);
-  return e;
-}
-
-Experiment read_experiment(const std::filesystem::path& path) {
-  Experiment e = parse_experiment(read_file(path), path.filename().string(), path.parent_path());
-  if (e.name.empty()) e.name = path.stem().string();
   return e;
 }
 

@@ -1,0 +1,94 @@
+// SPDX-License-Identifier: MIT
+// cifs — whole-file reads and atomic writes (POSIX: open with O_EXCL, write, close, rename).
+#include "cifs/files.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <system_error>
+#include <thread>
+
+#include "cifs/errors.hpp"
+
+namespace cifs {
+namespace {
+
+/// Unique per process (pid), thread and call (counter): two threads, or two processes, writing the
+/// same target never share a temporary.
+std::filesystem::path temporary_path(const std::filesystem::path& target) {
+  static std::atomic<unsigned long long> counter{0};
+  const std::size_t thread = std::hash<std::thread::id>{}(std::this_thread::get_id());
+  return target.string() + std::string(kTemporaryMarker) + std::to_string(::getpid()) + "-" +
+         std::to_string(thread) + "-" + std::to_string(counter++);
+}
+
+void remove_quietly(const std::filesystem::path& path) noexcept {
+  std::error_code ignored;
+  std::filesystem::remove(path, ignored);
+}
+
+}  // namespace
+
+std::string read_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw IoError(path.string() + ": is a directory");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError(path.string() + ": cannot open (" + std::strerror(errno) + ")");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw IoError(path.string() + ": read error");
+  return text.str();
+}
+
+AtomicFile::AtomicFile(std::filesystem::path target) : target_(std::move(target)) {
+  if (target_.empty()) throw IoError("empty output path");
+  std::error_code ec;
+  if (std::filesystem::is_directory(target_, ec)) throw IoError(target_.string() + ": is a directory");
+  temporary_ = temporary_path(target_);
+}
+
+AtomicFile::~AtomicFile() {
+  if (!committed_) remove_quietly(temporary_);
+}
+
+void AtomicFile::commit() {
+  std::error_code ec;
+  std::filesystem::rename(temporary_, target_, ec);
+  if (ec) {
+    remove_quietly(temporary_);
+    throw IoError(target_.string() + ": cannot rename the temporary file into place (" + ec.message() + ")");
+  }
+  committed_ = true;
+}
+
+void write_file_atomically(const std::filesystem::path& path, std::string_view bytes) {
+  AtomicFile file(path);
+  const auto fail = [&](int error) {
+    throw IoError(path.string() + ": cannot write (" + std::strerror(error) + ")");
+  };
+  // O_EXCL: never write through a file that is already there (a stale temporary, a link).
+  const int fd = ::open(file.temporary().c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  if (fd < 0) fail(errno);
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ::ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const int error = errno;
+      ::close(fd);
+      fail(error);
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  // close reports the errors that a file system defers (NFS, full disks).
+  if (::close(fd) != 0) fail(errno);
+  file.commit();
+}
+
+}  // namespace cifs

@@ -1,0 +1,15 @@
+// SPDX-License-Identifier: MIT
+// cifs — Graphviz DOT (written only): automata.
+#pragma once
+
+#include <string>
+
+#include "cifs/automata/automaton.hpp"
+
+namespace cifs::io {
+
+/// The automaton for `dot -Tsvg`: left to right, states labelled `s<id>` and their window (knot
+/// automata), recurrent states with a double circle, initial states in bold, transitions labelled.
+std::string to_dot(const automata::Automaton& automaton);
+
+}  // namespace cifs::io

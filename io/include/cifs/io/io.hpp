@@ -1,0 +1,84 @@
+// SPDX-License-Identifier: MIT
+// cifs — the one dispatcher of the io module: every kind of content, the formats it is read and
+// written in (one table, which the CLI's --format, the experiment outputs and the Python bindings
+// consult), and read/write by file extension. The formats themselves live one per file: json.hpp,
+// obj.hpp, ply.hpp, svg.hpp, dot.hpp (docs/design.md: where a new file format goes).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "cifs/automata/automaton.hpp"
+#include "cifs/io/bcifs_file.hpp"
+#include "cifs/io/experiment.hpp"
+#include "cifs/io/polygon.hpp"
+#include "cifs/io/shape.hpp"
+#include "cifs/mesh.hpp"
+
+namespace cifs::io {
+
+/// What io reads and writes (the C++ type in parentheses).
+enum class Content {
+  shape,       // a NURBS curve or surface (Shape)
+  polygon,     // a control polygon or any polyline, open or closed (Polygon)
+  mesh,        // a polygon mesh (cifs::Mesh)
+  segments,    // a segment set (cifs::Segments)
+  automaton,   // an automaton with matrices (automata::Automaton)
+  bcifs,       // a BC-IFS and its initial nets (BcifsFile)
+  experiment,  // an experiment file (Experiment)
+};
+
+/// "a shape", "a mesh", "an automaton", …: the content in messages.
+std::string_view content_name(Content content);
+
+struct Format {
+  std::string_view name;       // "obj": a --format value, an experiment output key
+  std::string_view extension;  // ".obj"
+  bool read = false, write = false;
+  bool binary = false;  // the written bytes are not text (PLY)
+};
+
+/// The formats of `content`, in the table's fixed order (the order in which an experiment writes
+/// its outputs).
+std::vector<Format> formats(Content content);
+
+/// The format called `name` that writes `content`. Otherwise InvalidInput
+/// "`who` 'name': expected json, svg or dot" (the writable names, in table order).
+Format writable_format(Content content, std::string_view name, std::string_view who);
+
+/// The bytes of a file of `format` (a name of formats(content) that writes; InvalidInput naming the
+/// writable ones otherwise). Polygons: json is the polygon file, obj and svg the polyline; PLY is
+/// binary little-endian.
+std::string encode(const Shape& shape, std::string_view format);
+std::string encode(const Polygon& polygon, std::string_view format);
+std::string encode(const Mesh& mesh, std::string_view format);
+std::string encode(const Segments& segments, std::string_view format);
+std::string encode(const automata::Automaton& automaton, std::string_view format);
+std::string encode(const BcifsFile& file, std::string_view format);
+
+/// Writes the file of the format its extension names, atomically (cifs::write_file_atomically).
+/// An extension that the content is not written in is an InvalidInput naming the path and the
+/// extensions it is written in: "out.svg: a mesh is written as .obj or .ply". Nothing is created
+/// then.
+void write(const std::filesystem::path& path, const Shape& shape);
+void write(const std::filesystem::path& path, const Polygon& polygon);
+void write(const std::filesystem::path& path, const Mesh& mesh);
+void write(const std::filesystem::path& path, const Segments& segments);
+void write(const std::filesystem::path& path, const automata::Automaton& automaton);
+void write(const std::filesystem::path& path, const BcifsFile& file);
+
+/// Reads a file in the format its extension names. Shapes, polygons, automata, BC-IFS files and
+/// experiments, whose own format is JSON, read any other extension as JSON; meshes must be `.obj` or
+/// `.ply` (IoError "m.stl: a mesh is read from .obj or .ply"). IoError naming the path when it
+/// cannot be read; the format's errors otherwise.
+Shape read_shape(const std::filesystem::path& path);  // an OBJ must hold exactly one shape
+Polygon read_polygon(const std::filesystem::path& path);
+Mesh read_mesh(const std::filesystem::path& path);  // checked with check_mesh
+automata::Automaton read_automaton(const std::filesystem::path& path);
+BcifsFile read_bcifs(const std::filesystem::path& path);
+/// Inputs (shape, automaton) are resolved against the file's folder; the name defaults to its stem.
+Experiment read_experiment(const std::filesystem::path& path);
+
+}  // namespace cifs::io

@@ -1,0 +1,39 @@
+// SPDX-License-Identifier: MIT
+// cifs — Wavefront OBJ: free-form B-spline curves and surfaces (read and written), polygon meshes
+// (read and written), segment sets and polylines (written).
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "cifs/io/shape.hpp"
+#include "cifs/mesh.hpp"
+#include "cifs/types.hpp"
+
+namespace cifs::io {
+
+/// OBJ free-form geometry (docs/formats.md): `cstype [rat] bspline`, `deg`, `curv`/`surf`, `parm u|v`,
+/// `end`, with `v x y z [w]` vertices. Every curve and surface of the file, in order.
+std::vector<Shape> parse_obj(std::string_view text, std::string_view where);
+std::string to_obj(const Shape& shape);
+
+/// A polygon mesh from OBJ text: `v x y z` (further numbers, a weight or a colour, are ignored),
+/// `f` with references `v`, `v/vt`, `v/vt/vn` or `v//vn` (1-based, or negative counting back from
+/// the latest vertex), faces of any size ≥ 3. The normals are kept when they are per vertex as
+/// mesh_obj writes them (one `vn` per `v`, every corner `a//a`), dropped otherwise. Other
+/// statements (`vt`, `l`, `g`, `usemtl`, free-form geometry, …) are ignored. Errors name `where`
+/// and the line ("m.obj: line 12: vertex index 9 is out of range: 8 vertices are defined before
+/// this line"); a file without faces is refused. The result passes check_mesh.
+Mesh parse_mesh_obj(std::string_view text, std::string_view where);
+
+/// OBJ text: `v` rows (17 significant digits), `vn` rows when the mesh has normals, `f` lines
+/// (`f a//a b//b c//c` with normals), 1-based. parse_mesh_obj reads it back bit for bit.
+std::string mesh_obj(const Mesh& mesh);
+/// OBJ text: `v` rows (missing z = 0) and one `l a b` line per segment.
+std::string segments_obj(const Segments& segments);
+/// OBJ: one `v` line per point (missing coordinates are 0, more than 3 are refused) and one `l`
+/// element through them, closed back to the first point when `closed`.
+std::string polyline_obj(const Points& points, bool closed = false);
+
+}  // namespace cifs::io

@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: MIT
+// cifs — Graphviz DOT: automata, through Boost.Graph's write_graphviz.
+#include "cifs/io/dot.hpp"
+
+#include <boost/graph/graphviz.hpp>
+#include <sstream>
+
+namespace cifs::io {
+namespace {
+
+/// Six significant digits: enough to tell windows apart at a glance.
+std::string short_number(double x) {
+  std::ostringstream out;
+  out.precision(6);
+  out << x;
+  return out.str();
+}
+
+}  // namespace
+
+std::string to_dot(const automata::Automaton& a) {
+  std::vector<bool> is_initial(boost::num_vertices(a.graph), false);
+  for (const automata::Initial& i : a.initial) is_initial[i.state] = true;
+  std::ostringstream out;
+  boost::write_graphviz(
+      out, a.graph,
+      [&](std::ostream& o, automata::StateId s) {
+        const automata::State& st = a.graph[s];
+        std::string label = "s" + std::to_string(s);
+        if (!st.window.empty()) {
+          label += "\\n(";
+          for (std::size_t i = 0; i < st.window.size(); ++i)
+            label += (i ? ", " : "") + short_number(st.window[i]);
+          label += ")";
+        }
+        o << "[label=\"" << label << "\"" << (st.recurrent ? ", peripheries=2" : "")
+          << (is_initial[s] ? ", style=bold" : "") << "]";
+      },
+      [&](std::ostream& o, automata::TransitionId e) { o << "[label=\"" << a.graph[e].label << "\"]"; },
+      [](std::ostream& o) { o << "rankdir=LR;\nnode [shape=circle, fontsize=10];\n"; });
+  return out.str();
+}
+
+}  // namespace cifs::io

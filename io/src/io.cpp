@@ -1,0 +1,269 @@
+// SPDX-License-Identifier: MIT
+// cifs — the dispatcher: one table of formats per kind of content. A new format is a new file (its
+// reader and writer) and one line here.
+#include "cifs/io/io.hpp"
+
+#include <algorithm>
+#include <span>
+
+#include "cifs/errors.hpp"
+#include "cifs/files.hpp"
+#include "cifs/io/dot.hpp"
+#include "cifs/io/json.hpp"
+#include "cifs/io/obj.hpp"
+#include "cifs/io/ply.hpp"
+#include "cifs/io/svg.hpp"
+
+namespace cifs::io {
+namespace {
+
+/// One format of content T: its writer and its reader (null when it does not write or read).
+template <class T>
+struct Codec {
+  std::string_view name, extension;
+  std::string (*write)(const T&) = nullptr;
+  T (*read)(std::string_view text, const std::filesystem::path& path) = nullptr;
+  bool binary = false;
+};
+
+/// A reader whose messages name the file by its path.
+template <class T, T (*parse)(std::string_view, std::string_view)>
+T parse_at(std::string_view text, const std::filesystem::path& path) {
+  return parse(text, path.string());
+}
+
+Shape parse_one_obj_shape(std::string_view text, const std::filesystem::path& path) {
+  std::vector<Shape> shapes = parse_obj(text, path.string());
+  if (shapes.size() != 1)
+    throw InvalidInput(path.string() + ": holds " + std::to_string(shapes.size()) +
+                       " curves and surfaces, expected exactly one");
+  return std::move(shapes.front());
+}
+
+Experiment parse_experiment_at(std::string_view text, const std::filesystem::path& path) {
+  Experiment e = parse_experiment(text, path.filename().string(), path.parent_path());
+  if (e.name.empty()) e.name = path.stem().string();
+  return e;
+}
+
+// The table. Order matters where several formats are written at once (experiment outputs).
+const Codec<Shape> kShape[] = {
+    {"json", ".json", [](const Shape& s) { return to_json(s); }, parse_at<Shape, parse_shape_json>},
+    {"obj", ".obj", to_obj, parse_one_obj_shape},
+};
+const Codec<Polygon> kPolygon[] = {
+    {"json", ".json", [](const Polygon& p) { return to_json(p); }, parse_at<Polygon, parse_polygon_json>},
+    {"obj", ".obj", [](const Polygon& p) { return polyline_obj(p.points, p.closed); }},
+    {"svg", ".svg", [](const Polygon& p) { return polyline_svg(p.points, p.closed); }},
+};
+const Codec<Mesh> kMesh[] = {
+    {"obj", ".obj", mesh_obj, parse_at<Mesh, parse_mesh_obj>},
+    {"ply", ".ply", [](const Mesh& m) { return mesh_ply(m, PlyFormat::binary_little_endian); },
+     parse_at<Mesh, parse_mesh_ply>, true},
+};
+const Codec<Segments> kSegments[] = {
+    {"obj", ".obj", segments_obj},
+    {"ply", ".ply", [](const Segments& s) { return segments_ply(s, PlyFormat::binary_little_endian); },
+     nullptr, true},
+    {"svg", ".svg", [](const Segments& s) { return segments_svg(s); }},
+};
+const Codec<automata::Automaton> kAutomaton[] = {
+    {"json", ".json", [](const automata::Automaton& a) { return to_json(a); },
+     parse_at<automata::Automaton, parse_automaton_json>},
+    {"svg", ".svg", [](const automata::Automaton& a) { return to_svg(a); }},
+    {"dot", ".dot", [](const automata::Automaton& a) { return to_dot(a); }},
+};
+const Codec<BcifsFile> kBcifs[] = {
+    {"json", ".json", [](const BcifsFile& f) { return to_json(f.system, f.nets); },
+     parse_at<BcifsFile, parse_bcifs_json>},
+};
+const Codec<Experiment> kExperiment[] = {
+    {"json", ".json", nullptr, parse_experiment_at},
+};
+
+std::span<const Codec<Shape>> codecs(const Shape*) {
+  return kShape;
+}
+std::span<const Codec<Polygon>> codecs(const Polygon*) {
+  return kPolygon;
+}
+std::span<const Codec<Mesh>> codecs(const Mesh*) {
+  return kMesh;
+}
+std::span<const Codec<Segments>> codecs(const Segments*) {
+  return kSegments;
+}
+std::span<const Codec<automata::Automaton>> codecs(const automata::Automaton*) {
+  return kAutomaton;
+}
+std::span<const Codec<BcifsFile>> codecs(const BcifsFile*) {
+  return kBcifs;
+}
+std::span<const Codec<Experiment>> codecs(const Experiment*) {
+  return kExperiment;
+}
+
+template <class T>
+std::span<const Codec<T>> table() {
+  return codecs(static_cast<const T*>(nullptr));
+}
+
+template <class T>
+std::vector<Format> formats_of() {
+  std::vector<Format> out;
+  for (const Codec<T>& c : table<T>())
+    out.push_back({c.name, c.extension, c.read != nullptr, c.write != nullptr, c.binary});
+  return out;
+}
+
+/// "a, b or c" of the names (or extensions) of the formats that write (or read).
+std::string listing(std::span<const Format> formats, bool write, bool extensions) {
+  std::vector<std::string_view> names;
+  for (const Format& f : formats)
+    if (write ? f.write : f.read) names.push_back(extensions ? f.extension : f.name);
+  std::string out;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    out += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + std::string(names[i]);
+  return out;
+}
+
+template <class T>
+std::string encode_as(const T& thing, Content content, std::string_view format) {
+  for (const Codec<T>& c : table<T>())
+    if (c.write && c.name == format) return c.write(thing);
+  writable_format(content, format, "format");  // throws, naming the formats
+  return {};
+}
+
+template <class T>
+void write_as(const std::filesystem::path& path, const T& thing, Content content) {
+  const std::string extension = path.extension().string();
+  for (const Codec<T>& c : table<T>())
+    if (c.write && c.extension == extension) return write_file_atomically(path, c.write(thing));
+  const std::vector<Format> all = formats(content);
+  throw InvalidInput(path.string() + ": " + std::string(content_name(content)) + " is written as " +
+                     listing(all, true, true));
+}
+
+/// The reader of the path's extension, else JSON where JSON is the content's own format.
+template <class T>
+T read_as(const std::filesystem::path& path, Content content) {
+  const std::string extension = path.extension().string();
+  const Codec<T>* chosen = nullptr;
+  for (const Codec<T>& c : table<T>())
+    if (c.read && c.extension == extension) chosen = &c;
+  if (!chosen && table<T>().front().name == "json") chosen = &table<T>().front();
+  if (!chosen)
+    throw IoError(path.string() + ": " + std::string(content_name(content)) + " is read from " +
+                  listing(formats(content), false, true));
+  return chosen->read(read_file(path), path);
+}
+
+}  // namespace
+
+std::string_view content_name(Content content) {
+  switch (content) {
+    case Content::shape:
+      return "a shape";
+    case Content::polygon:
+      return "a polygon";
+    case Content::mesh:
+      return "a mesh";
+    case Content::segments:
+      return "a segment set";
+    case Content::automaton:
+      return "an automaton";
+    case Content::bcifs:
+      return "a BC-IFS";
+    case Content::experiment:
+      return "an experiment";
+  }
+  return "";
+}
+
+std::vector<Format> formats(Content content) {
+  switch (content) {
+    case Content::shape:
+      return formats_of<Shape>();
+    case Content::polygon:
+      return formats_of<Polygon>();
+    case Content::mesh:
+      return formats_of<Mesh>();
+    case Content::segments:
+      return formats_of<Segments>();
+    case Content::automaton:
+      return formats_of<automata::Automaton>();
+    case Content::bcifs:
+      return formats_of<BcifsFile>();
+    case Content::experiment:
+      return formats_of<Experiment>();
+  }
+  return {};
+}
+
+Format writable_format(Content content, std::string_view name, std::string_view who) {
+  const std::vector<Format> all = formats(content);
+  for (const Format& f : all)
+    if (f.write && f.name == name) return f;
+  throw InvalidInput(std::string(who) + " '" + std::string(name) + "': expected " +
+                     listing(all, true, false));
+}
+
+std::string encode(const Shape& shape, std::string_view format) {
+  return encode_as(shape, Content::shape, format);
+}
+std::string encode(const Polygon& polygon, std::string_view format) {
+  return encode_as(polygon, Content::polygon, format);
+}
+std::string encode(const Mesh& mesh, std::string_view format) {
+  return encode_as(mesh, Content::mesh, format);
+}
+std::string encode(const Segments& segments, std::string_view format) {
+  return encode_as(segments, Content::segments, format);
+}
+std::string encode(const automata::Automaton& automaton, std::string_view format) {
+  return encode_as(automaton, Content::automaton, format);
+}
+std::string encode(const BcifsFile& file, std::string_view format) {
+  return encode_as(file, Content::bcifs, format);
+}
+
+void write(const std::filesystem::path& path, const Shape& shape) {
+  write_as(path, shape, Content::shape);
+}
+void write(const std::filesystem::path& path, const Polygon& polygon) {
+  write_as(path, polygon, Content::polygon);
+}
+void write(const std::filesystem::path& path, const Mesh& mesh) {
+  write_as(path, mesh, Content::mesh);
+}
+void write(const std::filesystem::path& path, const Segments& segments) {
+  write_as(path, segments, Content::segments);
+}
+void write(const std::filesystem::path& path, const automata::Automaton& automaton) {
+  write_as(path, automaton, Content::automaton);
+}
+void write(const std::filesystem::path& path, const BcifsFile& file) {
+  write_as(path, file, Content::bcifs);
+}
+
+Shape read_shape(const std::filesystem::path& path) {
+  return read_as<Shape>(path, Content::shape);
+}
+Polygon read_polygon(const std::filesystem::path& path) {
+  return read_as<Polygon>(path, Content::polygon);
+}
+Mesh read_mesh(const std::filesystem::path& path) {
+  return read_as<Mesh>(path, Content::mesh);
+}
+automata::Automaton read_automaton(const std::filesystem::path& path) {
+  return read_as<automata::Automaton>(path, Content::automaton);
+}
+BcifsFile read_bcifs(const std::filesystem::path& path) {
+  return read_as<BcifsFile>(path, Content::bcifs);
+}
+Experiment read_experiment(const std::filesystem::path& path) {
+  return read_as<Experiment>(path, Content::experiment);
+}
+
+}  // namespace cifs::io

@@ -1,0 +1,248 @@
+// SPDX-License-Identifier: MIT
+// cifs — SVG pictures: segment sets and polylines, multi-stroke figures, automata.
+#include "cifs/io/svg.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <deque>
+#include <map>
+#include <sstream>
+
+#include "cifs/errors.hpp"
+
+namespace cifs::io {
+namespace {
+
+void append_number(std::string& out, double x, const char* format) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, format, x);
+  out += buffer;
+}
+
+// The automaton drawing: state circles of radius kRadius on a grid of kColumn × kRow pixels, at
+// most kMaxRows states per column.
+constexpr double kRadius = 26, kColumn = 150, kRow = 78, kMargin = 40;
+constexpr int kMaxRows = 7;
+
+std::string fixed(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f", x);
+  return buf;
+}
+
+std::string xml_escape(const std::string& s) {
+  std::string out;
+  for (const char c : s) {
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else
+      out += c;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string segments_svg(const Segments& segments, const SvgOptions& options) {
+  check_segments(segments, "segments_svg");
+  const Points& P = segments.vertices;
+  if (P.rows() == 0) throw InvalidInput("segments_svg: no vertices");
+  const int width = options.width;
+  if (width < 16 || width > 100000)
+    throw InvalidInput("segments_svg: width " + std::to_string(width) + " is outside [16, 100000]");
+  if (!(options.stroke > 0) || !std::isfinite(options.stroke))
+    throw InvalidInput("segments_svg: the stroke width must be positive");
+  const Eigen::Vector2d lo = P.leftCols(2).colwise().minCoeff().transpose();
+  const Eigen::Vector2d hi = P.leftCols(2).colwise().maxCoeff().transpose();
+  const double span = std::max({hi.x() - lo.x(), hi.y() - lo.y(), 1e-300});
+  const double margin = 0.05 * width, scale = (width - 2 * margin) / span;
+  const int height = static_cast<int>(std::ceil((hi.y() - lo.y()) * scale + 2 * margin));
+  std::string out =
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + std::to_string(width) + "\" height=\"" +
+      std::to_string(height) + "\" viewBox=\"0 0 " + std::to_string(width) + " " + std::to_string(height) +
+      "\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<path fill=\"none\" stroke=\"" +
+      options.color + "\" stroke-linecap=\"round\" stroke-linejoin=\"round\" stroke-width=\"";
+  append_number(out, options.stroke, "%g");
+  out += "\" d=\"";
+  const auto point = [&](int i) {
+    append_number(out, margin + (P(i, 0) - lo.x()) * scale, "%.3f");
+    out += ',';
+    append_number(out, height - margin - (P(i, 1) - lo.y()) * scale, "%.3f");
+  };
+  int previous = -1;
+  for (const auto& s : segments.segments) {
+    // A segment that starts where the previous one ended continues the run (a proper join).
+    if (s[0] != previous) {
+      if (previous != -1) out += ' ';
+      out += 'M';
+      point(s[0]);
+    }
+    out += " L";
+    point(s[1]);
+    previous = s[1];
+  }
+  out += "\"/>\n</svg>\n";
+  return out;
+}
+
+std::string polyline_svg(const Points& points, bool closed, int width, double stroke) {
+  if (points.cols() < 2) throw InvalidInput("SVG: points need at least 2 coordinates");
+  Segments s = polyline_segments(points.leftCols(2), closed);
+  s.states.clear();
+  SvgOptions options;
+  options.width = width;
+  options.stroke = stroke;
+  return segments_svg(s, options);
+}
+
+std::string strokes_svg(const std::vector<Stroke>& strokes, const std::string& title, int width) {
+  double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+  for (const Stroke& s : strokes)
+    for (Eigen::Index i = 0; i < s.points.rows(); ++i) {
+      x0 = std::min(x0, s.points(i, 0)), x1 = std::max(x1, s.points(i, 0));
+      y0 = std::min(y0, s.points(i, 1)), y1 = std::max(y1, s.points(i, 1));
+    }
+  const double margin = 20, span = std::max({x1 - x0, y1 - y0, 1e-12});
+  const double scale = (width - 2 * margin) / std::max(x1 - x0, 1e-12 * span);
+  const double legend =
+      22.0 * static_cast<double>(std::count_if(strokes.begin(), strokes.end(),
+                                               [](const Stroke& s) { return !s.label.empty(); }));
+  const double height = std::max(2 * margin + (y1 - y0) * scale, 2 * margin + 10) + legend + 26;
+  std::ostringstream o;
+  o.precision(6);
+  o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
+    << "\" viewBox=\"0 0 " << width << " " << height
+    << "\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  o << "<text x=\"" << margin << "\" y=\"18\" font-family=\"sans-serif\" font-size=\"14\">" << title
+    << "</text>\n";
+  for (const Stroke& s : strokes) {
+    o << "<" << (s.closed ? "polygon" : "polyline") << " fill=\"none\" stroke=\"" << s.colour
+      << "\" stroke-width=\"" << s.width << "\" stroke-linejoin=\"round\"";
+    if (!s.dash.empty()) o << " stroke-dasharray=\"" << s.dash << "\"";
+    o << " points=\"";
+    for (Eigen::Index i = 0; i < s.points.rows(); ++i)
+      o << (i ? " " : "") << margin + (s.points(i, 0) - x0) * scale << ","
+        << 26 + margin + (y1 - s.points(i, 1)) * scale;
+    o << "\"/>\n";
+  }
+  double y = height - legend + 4;
+  for (const Stroke& s : strokes) {
+    if (s.label.empty()) continue;
+    o << "<line x1=\"" << margin << "\" y1=\"" << y << "\" x2=\"" << margin + 40 << "\" y2=\"" << y
+      << "\" stroke=\"" << s.colour << "\" stroke-width=\"" << s.width << "\""
+      << (s.dash.empty() ? "" : " stroke-dasharray=\"" + s.dash + "\"") << "/>\n<text x=\"" << margin + 50
+      << "\" y=\"" << y + 5 << "\" font-family=\"sans-serif\" font-size=\"13\">" << s.label << "</text>\n";
+    y += 22;
+  }
+  o << "</svg>\n";
+  return o.str();
+}
+
+std::string to_svg(const automata::Automaton& a) {
+  const std::size_t n = boost::num_vertices(a.graph);
+  // Layers: breadth-first distance from the initial states; unreachable states go last.
+  std::vector<int> layer(n, -1);
+  std::deque<automata::StateId> queue;
+  for (const automata::Initial& i : a.initial)
+    if (layer[i.state] < 0) {
+      layer[i.state] = 0;
+      queue.push_back(i.state);
+    }
+  std::vector<automata::StateId> order;
+  while (!queue.empty()) {
+    const automata::StateId s = queue.front();
+    queue.pop_front();
+    order.push_back(s);
+    for (auto [e, end] = boost::out_edges(s, a.graph); e != end; ++e) {
+      const automata::StateId t = boost::target(*e, a.graph);
+      if (layer[t] < 0) {
+        layer[t] = layer[s] + 1;
+        queue.push_back(t);
+      }
+    }
+  }
+  const int deepest = order.empty() ? 0 : layer[order.back()];
+  for (automata::StateId s = 0; s < n; ++s)
+    if (layer[s] < 0) {
+      layer[s] = deepest + 1;
+      order.push_back(s);
+    }
+  // Tall layers wrap into several columns of at most kMaxRows states.
+  std::vector<int> in_layer(static_cast<std::size_t>(deepest + 2), 0), first_column(in_layer.size() + 1, 0);
+  std::vector<int> column(n, 0), row(n, 0);
+  for (const automata::StateId s : order) ++in_layer[static_cast<std::size_t>(layer[s])];
+  for (std::size_t l = 0; l < in_layer.size(); ++l)
+    first_column[l + 1] = first_column[l] + (in_layer[l] + kMaxRows - 1) / kMaxRows;
+  std::vector<int> seen(in_layer.size(), 0);
+  for (const automata::StateId s : order) {
+    const auto l = static_cast<std::size_t>(layer[s]);
+    column[s] = first_column[l] + seen[l] / kMaxRows;
+    row[s] = seen[l]++ % kMaxRows;
+  }
+  const int columns = first_column.back();
+  const int tallest = std::min(kMaxRows, *std::max_element(in_layer.begin(), in_layer.end()));
+  const auto x_of = [&](automata::StateId s) { return kMargin + kRadius + kColumn * column[s]; };
+  const auto y_of = [&](automata::StateId s) { return kMargin + kRadius + kRow * row[s] + 20; };
+  const double width = 2 * (kMargin + kRadius) + kColumn * std::max(columns - 1, 0);
+  const double height = 2 * (kMargin + kRadius) + kRow * std::max(tallest - 1, 0) + 20;
+
+  std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + fixed(width) + "\" height=\"" +
+                    fixed(height) + "\" viewBox=\"0 0 " + fixed(width) + " " + fixed(height) + "\">\n";
+  svg +=
+      "<defs><marker id=\"arrow\" viewBox=\"0 0 10 10\" refX=\"10\" refY=\"5\" markerWidth=\"7\" "
+      "markerHeight=\"7\" orient=\"auto-start-reverse\"><path d=\"M0,0 L10,5 L0,10 z\" fill=\"#444\"/>"
+      "</marker></defs>\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  svg += "<g font-family=\"sans-serif\" font-size=\"12\" text-anchor=\"middle\">\n";
+  // Parallel transitions (e.g. G and D both to the uniform state) share one arrow, "G,D".
+  std::map<std::pair<automata::StateId, automata::StateId>, std::string> arrows;
+  for (auto [e, end] = boost::edges(a.graph); e != end; ++e) {
+    std::string& label = arrows[{boost::source(*e, a.graph), boost::target(*e, a.graph)}];
+    label += (label.empty() ? "" : ",") + xml_escape(a.graph[*e].label);
+  }
+  for (const auto& [ends, label] : arrows) {
+    const auto [s, t] = ends;
+    const double x0 = x_of(s), y0 = y_of(s), x1 = x_of(t), y1 = y_of(t);
+    if (s == t) {  // self-loop above the state
+      svg += "<path d=\"M" + fixed(x0 - 10) + "," + fixed(y0 - kRadius + 2) + " C" + fixed(x0 - 30) + "," +
+             fixed(y0 - kRadius - 38) + " " + fixed(x0 + 30) + "," + fixed(y0 - kRadius - 38) + " " +
+             fixed(x0 + 10) + "," + fixed(y0 - kRadius + 2) +
+             "\" fill=\"none\" stroke=\"#444\" marker-end=\"url(#arrow)\"/>\n";
+      svg += "<text x=\"" + fixed(x0) + "\" y=\"" + fixed(y0 - kRadius - 32) + "\">" + label + "</text>\n";
+      continue;
+    }
+    // Edges bend to the left of their direction, so a pair s→t, t→s shows two arrows.
+    const double dx = x1 - x0, dy = y1 - y0, len = std::hypot(dx, dy);
+    const double ux = dx / len, uy = dy / len, bend = 0.18 * len;
+    const double cx = (x0 + x1) / 2 + uy * bend, cy = (y0 + y1) / 2 - ux * bend;
+    const auto towards = [&](double px, double py, double qx, double qy) {
+      const double l = std::hypot(qx - px, qy - py);
+      return std::pair{px + (qx - px) * kRadius / l, py + (qy - py) * kRadius / l};
+    };
+    const auto [sx, sy] = towards(x0, y0, cx, cy);
+    const auto [tx, ty] = towards(x1, y1, cx, cy);
+    svg += "<path d=\"M" + fixed(sx) + "," + fixed(sy) + " Q" + fixed(cx) + "," + fixed(cy) + " " +
+           fixed(tx) + "," + fixed(ty) + "\" fill=\"none\" stroke=\"#444\" marker-end=\"url(#arrow)\"/>\n";
+    const double lx = 0.25 * x0 + 0.5 * cx + 0.25 * x1, ly = 0.25 * y0 + 0.5 * cy + 0.25 * y1;
+    svg += "<text x=\"" + fixed(lx) + "\" y=\"" + fixed(ly - 3) + "\" fill=\"#a33\">" + label + "</text>\n";
+  }
+  std::vector<bool> is_initial(n, false);
+  for (const automata::Initial& i : a.initial) is_initial[i.state] = true;
+  for (automata::StateId s = 0; s < n; ++s) {
+    const automata::State& st = a.graph[s];
+    const std::string fill = st.recurrent ? "#dfe9f7" : "#f4f4f4";
+    svg += "<circle cx=\"" + fixed(x_of(s)) + "\" cy=\"" + fixed(y_of(s)) + "\" r=\"" + fixed(kRadius) +
+           "\" fill=\"" + fill + "\" stroke=\"#222\" stroke-width=\"" + (is_initial[s] ? "2.5" : "1") +
+           "\"/>\n";
+    const std::string name = st.name.empty() ? "s" + std::to_string(s) : xml_escape(st.name);
+    svg += "<text x=\"" + fixed(x_of(s)) + "\" y=\"" + fixed(y_of(s) + 4) + "\">" + name + "</text>\n";
+  }
+  svg += "</g>\n</svg>\n";
+  return svg;
+}
+
+}  // namespace cifs::io

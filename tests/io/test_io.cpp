@@ -1,0 +1,146 @@
+// SPDX-License-Identifier: MIT
+#include "cifs/io/io.hpp"
+
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <filesystem>
+
+#include "cifs/automata/automaton.hpp"
+#include "cifs/errors.hpp"
+#include "cifs/files.hpp"
+#include "cifs/ifs/bcifs_curve.hpp"
+#include "cifs/io/json.hpp"
+#include "cifs/io/obj.hpp"
+
+using namespace cifs;
+using namespace cifs::io;
+using Catch::Matchers::Contains;
+
+namespace {
+
+struct Scratch {
+  std::filesystem::path dir;
+  Scratch() {
+    dir = std::filesystem::temp_directory_path() / ("cifs_test_io_" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+  }
+  ~Scratch() { std::filesystem::remove_all(dir); }
+};
+
+std::string table(Content content) {
+  std::string out;
+  for (const Format& f : formats(content))
+    out += std::string(f.name) + ":" + std::string(f.extension) + (f.read ? "r" : "") + (f.write ? "w" : "") +
+           (f.binary ? "b" : "") + " ";
+  return out;
+}
+
+Mesh pentagon_and_triangle() {
+  Mesh m;
+  m.vertices.resize(6, 3);
+  for (int k = 0; k < 5; ++k) m.vertices.row(k) << std::cos(k * 1.25), std::sin(k * 1.25), 0.5;
+  m.vertices.row(5) << 0, 0, 2;
+  add_face(m, {0, 1, 2, 3, 4});
+  add_face(m, {0, 1, 5});
+  m.states = {3, 9};
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("The format table: every content, its formats in order", "[io][dispatch]") {
+  CHECK(table(Content::shape) == "json:.jsonrw obj:.objrw ");
+  CHECK(table(Content::polygon) == "json:.jsonrw obj:.objw svg:.svgw ");
+  CHECK(table(Content::mesh) == "obj:.objrw ply:.plyrwb ");
+  CHECK(table(Content::segments) == "obj:.objw ply:.plywb svg:.svgw ");
+  CHECK(table(Content::automaton) == "json:.jsonrw svg:.svgw dot:.dotw ");
+  CHECK(table(Content::bcifs) == "json:.jsonrw ");
+  CHECK(table(Content::experiment) == "json:.jsonr ");
+  CHECK(writable_format(Content::mesh, "ply", "--format").extension == ".ply");
+  CHECK_THROWS_WITH(writable_format(Content::automaton, "png", "--format"),
+                    "--format 'png': expected json, svg or dot");
+  CHECK_THROWS_WITH(writable_format(Content::experiment, "json", "--format"), "--format 'json': expected ");
+  CHECK_THROWS_WITH(encode(pentagon_and_triangle(), "svg"), "format 'svg': expected obj or ply");
+}
+
+TEST_CASE("write and read by extension: the bytes of encode, read back", "[io][dispatch]") {
+  Scratch s;
+  const Mesh m = pentagon_and_triangle();
+  for (const char* name : {"m.obj", "m.ply"}) {
+    const auto path = s.dir / name;
+    write(path, m);
+    CHECK(read_file(path) == encode(m, path.extension().string().substr(1)));
+    const Mesh back = read_mesh(path);
+    CHECK(back.vertices == m.vertices);
+    CHECK(back.face_vertices == m.face_vertices);
+    CHECK(back.face_offsets == m.face_offsets);
+  }
+  CHECK(read_mesh(s.dir / "m.ply").states == m.states);  // OBJ has no face states
+  CHECK(read_mesh(s.dir / "m.obj").states.empty());
+
+  Segments seg = polyline_segments(m.vertices, true, 2);
+  for (const char* ext : {"obj", "ply", "svg"}) {
+    const auto path = s.dir / (std::string("s.") + ext);
+    write(path, seg);
+    CHECK(read_file(path) == encode(seg, ext));
+  }
+
+  Points P(4, 2);
+  P << 0, 0, 1, 0, 1, 1, 0.5, 2;
+  const nurbs::Curve curve = nurbs::make_curve(2, {0, 0, 0, 1, 2, 2, 2}, P);
+  for (const char* ext : {"json", "obj"}) {
+    const auto path = s.dir / (std::string("c.") + ext);
+    write(path, Shape(curve));
+    CHECK(read_file(path) == encode(Shape(curve), ext));
+    CHECK(std::get<nurbs::Curve>(read_shape(path)).knots == curve.knots);
+  }
+  // Shapes, polygons, automata, BC-IFS files and experiments read any other extension as JSON.
+  write_file_atomically(s.dir / "c.txt", to_json(Shape(curve)));
+  CHECK(std::get<nurbs::Curve>(read_shape(s.dir / "c.txt")).P == curve.P);
+
+  const Polygon polygon{P, true};
+  write(s.dir / "p.json", polygon);
+  CHECK(read_polygon(s.dir / "p.json").points == P);
+  CHECK(read_polygon(s.dir / "p.json").closed);
+  write(s.dir / "p.obj", polygon);
+  CHECK(read_file(s.dir / "p.obj") == polyline_obj(P, true));
+  write(s.dir / "p.svg", polygon);
+  CHECK(read_file(s.dir / "p.svg") == encode(polygon, "svg"));
+
+  const automata::Automaton a = automata::knot_automaton(curve);
+  for (const char* ext : {"json", "svg", "dot"}) {
+    const auto path = s.dir / (std::string("a.") + ext);
+    write(path, a);
+    CHECK(read_file(path) == encode(a, ext));
+  }
+  CHECK(to_json(read_automaton(s.dir / "a.json")) == to_json(a));
+
+  const BcifsFile file{ifs::curve_bcifs(curve), automata::initial_nets(a, curve)};
+  write(s.dir / "b.json", file);
+  const BcifsFile back = read_bcifs(s.dir / "b.json");
+  CHECK(to_json(back.system, back.nets) == to_json(file.system, file.nets));
+}
+
+TEST_CASE("write and read refuse unknown extensions before touching the disk", "[io][dispatch]") {
+  Scratch s;
+  const Mesh m = pentagon_and_triangle();
+  CHECK_THROWS_WITH(write(s.dir / "m.stl", m),
+                    (s.dir / "m.stl").string() + ": a mesh is written as .obj or .ply");
+  CHECK_THROWS_AS(write(s.dir / "m.stl", m), InvalidInput);
+  CHECK_THROWS_WITH(write(s.dir / "s.dot", polyline_segments(m.vertices)),
+                    (s.dir / "s.dot").string() + ": a segment set is written as .obj, .ply or .svg");
+  CHECK_THROWS_WITH(write(s.dir / "a.obj", automata::Automaton{}),
+                    (s.dir / "a.obj").string() + ": an automaton is written as .json, .svg or .dot");
+  CHECK(std::filesystem::is_empty(s.dir));
+  CHECK_THROWS_WITH(read_mesh(s.dir / "m.stl"),
+                    (s.dir / "m.stl").string() + ": a mesh is read from .obj or .ply");
+  CHECK_THROWS_AS(read_mesh(s.dir / "m.stl"), IoError);
+  CHECK_THROWS_WITH(read_mesh(s.dir / "none.obj"), Contains("none.obj: cannot open"));
+  // Content errors name the file and the line or element.
+  write_file_atomically(s.dir / "bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");
+  CHECK_THROWS_WITH(read_mesh(s.dir / "bad.obj"),
+                    (s.dir / "bad.obj").string() +
+                        ": line 4: vertex index 7 is out of range: 3 vertices are defined before this line");
+}
