@@ -11,6 +11,7 @@
 #include "cifs/automata/automaton.hpp"
 #include "cifs/errors.hpp"
 #include "cifs/experiment/run.hpp"
+#include "cifs/format.hpp"
 #include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/ifs/chaos.hpp"
@@ -44,13 +45,11 @@ std::string points_json(const Points& P) {
   std::string out;
   out.reserve(static_cast<std::size_t>(P.size()) * 22 + 16);
   out += "{\"points\":[";
-  char buffer[32];
   for (Eigen::Index i = 0; i < P.rows(); ++i) {
     out += i ? ",[" : "[";
     for (Eigen::Index j = 0; j < P.cols(); ++j) {
       if (j) out += ',';
-      const auto end = std::to_chars(buffer, buffer + sizeof buffer, P(i, j)).ptr;
-      out.append(buffer, end);
+      append_number(out, P(i, j));
     }
     out += ']';
   }
@@ -409,12 +408,12 @@ std::string dimension(const DimensionOptions& o) {
     if (!similarity) j["similarity_note"] = why_not;
     return j.dump(2) + "\n";
   }
-  char line[256];
-  std::snprintf(line, sizeof line, "%.4g", ev.resolution);
+  const std::string resolution = number_text(ev.resolution, 4);
   std::string out = o.input.string() + ": " + ev.kind + ", " +
-                    (sampled ? "pieces < " + std::string(line) + " (deepest " + std::to_string(ev.depth) + ")"
-                             : "depth " + std::to_string(ev.depth) + ", pieces ≤ " + line) +
+                    (sampled ? "pieces < " + resolution + " (deepest " + std::to_string(ev.depth) + ")"
+                             : "depth " + std::to_string(ev.depth) + ", pieces ≤ " + resolution) +
                     ", " + std::to_string(ev.points.rows()) + " points\n";
+  char line[256];
   std::snprintf(line, sizeof line,
                 "box-counting dimension %.4f (levels %d … %d, ε %.4g … %.4g, R² %.6f, max residual %.3g)\n",
                 r.dimension, r.min_level, r.max_level, r.max_epsilon, r.min_epsilon, r.r_squared, r.residual);

@@ -5,18 +5,10 @@
 #include <boost/graph/graphviz.hpp>
 #include <sstream>
 
+#include "cifs/format.hpp"
+
 namespace cifs::io {
-namespace {
-
-/// Six significant digits: enough to tell windows apart at a glance.
-std::string short_number(double x) {
-  std::ostringstream out;
-  out.precision(6);
-  out << x;
-  return out.str();
-}
-
-}  // namespace
+namespace {}  // namespace
 
 std::string to_dot(const automata::Automaton& a) {
   std::vector<bool> is_initial(boost::num_vertices(a.graph), false);
@@ -29,8 +21,9 @@ std::string to_dot(const automata::Automaton& a) {
         std::string label = "s" + std::to_string(s);
         if (!st.window.empty()) {
           label += "\\n(";
+          // Six significant digits: enough to tell windows apart at a glance.
           for (std::size_t i = 0; i < st.window.size(); ++i)
-            label += (i ? ", " : "") + short_number(st.window[i]);
+            label += (i ? ", " : "") + number_text(st.window[i], 6);
           label += ")";
         }
         o << "[label=\"" << label << "\"" << (st.recurrent ? ", peripheries=2" : "")

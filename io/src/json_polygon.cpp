@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // cifs — control polygon files as JSON (docs/formats.md), read and written.
-#include <charconv>
 
+#include "cifs/format.hpp"
 #include "cifs/io/json.hpp"
 #include "json_common.hpp"
 
@@ -35,12 +35,11 @@ std::string to_json(const Polygon& polygon) {
   std::string out = "{\"polygon\": {\"closed\": ";
   out += polygon.closed ? "true" : "false";
   out += ", \"points\": [";
-  char buffer[32];
   for (Eigen::Index i = 0; i < P.rows(); ++i) {
     out += i ? ",\n  [" : "\n  [";
     for (Eigen::Index k = 0; k < P.cols(); ++k) {
       if (k) out += ", ";
-      out.append(buffer, std::to_chars(buffer, buffer + sizeof buffer, P(i, k)).ptr);
+      append_number(out, P(i, k));
     }
     out += "]";
   }

@@ -5,17 +5,12 @@
 #include <optional>
 
 #include "cifs/errors.hpp"
+#include "cifs/format.hpp"
 #include "cifs/io/obj.hpp"
 #include "obj_lexer.hpp"
 
 namespace cifs::io {
 namespace {
-
-void append_number(std::string& out, double x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.17g", x);
-  out += buffer;
-}
 
 /// `v` lines with missing coordinates set to 0.
 void obj_vertices(std::string& out, const Points& P, const char* tag = "v") {
@@ -23,7 +18,7 @@ void obj_vertices(std::string& out, const Points& P, const char* tag = "v") {
     out += tag;
     for (Eigen::Index k = 0; k < 3; ++k) {
       out += ' ';
-      append_number(out, k < P.cols() ? P(i, k) : 0.0);
+      append_number(out, k < P.cols() ? P(i, k) : 0.0, 17);  // %.17g
     }
     out += '\n';
   }

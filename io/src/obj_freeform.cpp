@@ -11,6 +11,7 @@
 #include <type_traits>
 
 #include "cifs/errors.hpp"
+#include "cifs/format.hpp"
 #include "cifs/io/obj.hpp"
 #include "obj_lexer.hpp"
 
@@ -346,13 +347,6 @@ class ObjReader {
   }
 };
 
-/// `%.17g`: reads back as the same double.
-void put(std::string& out, double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  out += buf;
-}
-
 /// A Cartesian coordinate x with `x·w == a` in double arithmetic when one exists near a / w, so
 /// that the reader's `w·x` gives back the stored homogeneous coordinate a bit for bit.
 double cartesian(double a, double w) {
@@ -374,11 +368,12 @@ void put_vertex(std::string& out, const Points& P, Eigen::Index row, int dim, bo
   const double w = rational ? P(row, dim) : 1;
   for (int k = 0; k < 3; ++k) {
     out += ' ';
-    put(out, k < dim ? (rational ? cartesian(P(row, k), w) : P(row, k)) : 0.0);
+    append_number(out, k < dim ? (rational ? cartesian(P(row, k), w) : P(row, k)) : 0.0,
+                  17);  // %.17g: reads back as the same double
   }
   if (rational) {
     out += ' ';
-    put(out, w);
+    append_number(out, w, 17);
   }
   out += '\n';
 }
@@ -392,7 +387,7 @@ void put_list(std::string& out, const std::string& keyword, const Values& values
     if (k > 0 && k % per_line == 0) out += " \\\n";
     out += ' ';
     if constexpr (std::is_floating_point_v<std::decay_t<decltype(x)>>)
-      put(out, x);
+      append_number(out, x, 17);
     else
       out += std::to_string(x);
     ++k;
@@ -438,9 +433,9 @@ std::string to_obj(const Shape& shape) {
     out += "deg " + std::to_string(c->degree) + "\n";
     const nurbs::Domain dom = nurbs::domain(*c);
     std::string head = "curv ";
-    put(head, dom.start);
+    append_number(head, dom.start, 17);
     head += ' ';
-    put(head, dom.end);
+    append_number(head, dom.end, 17);
     put_list(out, head, one_to(n), kIndicesPerLine);
     put_list(out, "parm u", c->knots, kKnotsPerLine);
     out += "end\n";
@@ -462,7 +457,7 @@ std::string to_obj(const Shape& shape) {
   std::string head = "surf";
   for (const double x : {du.start, du.end, dv.start, dv.end}) {
     head += ' ';
-    put(head, x);
+    append_number(head, x, 17);
   }
   put_list(out, head, one_to(nu * nv), kIndicesPerLine);
   put_list(out, "parm u", s.knots[0], kKnotsPerLine);

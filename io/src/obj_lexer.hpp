@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "cifs/errors.hpp"
+#include "cifs/format.hpp"
 
 namespace cifs::io::detail {
 
@@ -73,9 +74,7 @@ void for_each_statement(std::string_view text, F&& f) {
 
 /// Shortest text that reads back as the same double, for messages.
 inline std::string num(double x) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, x);
-  return std::string(buf, r.ptr);
+  return number_text(x);
 }
 
 /// A token quoted for a message, cut short when it is long.

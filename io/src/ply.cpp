@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "cifs/errors.hpp"
+#include "cifs/format.hpp"
 
 namespace cifs::io {
 namespace {
@@ -43,9 +44,7 @@ class PlyWriter {
   void f64(double x) {
     if (binary()) return bytes(std::bit_cast<std::uint64_t>(x), 8);
     separate();
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%.17g", x);
-    out += buffer;
+    append_number(out, x, 17);
   }
   void i32(int x) { integer(static_cast<std::uint32_t>(x), 4, std::to_string(x)); }
   void u32(std::uint32_t x) { integer(x, 4, std::to_string(x)); }

@@ -10,15 +10,10 @@
 #include <sstream>
 
 #include "cifs/errors.hpp"
+#include "cifs/format.hpp"
 
 namespace cifs::io {
 namespace {
-
-void append_number(std::string& out, double x, const char* format) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, format, x);
-  out += buffer;
-}
 
 // The automaton drawing: state circles of radius kRadius on a grid of kColumn × kRow pixels, at
 // most kMaxRows states per column.
@@ -26,9 +21,7 @@ constexpr double kRadius = 26, kColumn = 150, kRow = 78, kMargin = 40;
 constexpr int kMaxRows = 7;
 
 std::string fixed(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1f", x);
-  return buf;
+  return fixed_text(x, 1);
 }
 
 std::string xml_escape(const std::string& s) {
@@ -67,12 +60,12 @@ std::string segments_svg(const Segments& segments, const SvgOptions& options) {
       std::to_string(height) + "\" viewBox=\"0 0 " + std::to_string(width) + " " + std::to_string(height) +
       "\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<path fill=\"none\" stroke=\"" +
       options.color + "\" stroke-linecap=\"round\" stroke-linejoin=\"round\" stroke-width=\"";
-  append_number(out, options.stroke, "%g");
+  append_number(out, options.stroke, 6);
   out += "\" d=\"";
   const auto point = [&](int i) {
-    append_number(out, margin + (P(i, 0) - lo.x()) * scale, "%.3f");
+    append_fixed(out, margin + (P(i, 0) - lo.x()) * scale, 3);
     out += ',';
-    append_number(out, height - margin - (P(i, 1) - lo.y()) * scale, "%.3f");
+    append_fixed(out, height - margin - (P(i, 1) - lo.y()) * scale, 3);
   };
   int previous = -1;
   for (const auto& s : segments.segments) {

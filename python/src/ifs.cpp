@@ -353,7 +353,8 @@ void bind_ifs(py::module_& m) {
       py::arg("max_bytes") = ifs::ChaosOptions{}.max_bytes,
       "Random walk over the automaton (uniform child at each step) emitting one attractor point per step; "
       "returns a ChaosResult.\n\n"
-      "nets as for_each_leaf; seed: of the project's generator (xoshiro256**), 0 draws one; restart_diameter: restart at a root "
+      "nets as for_each_leaf; seed: of the project's generator (xoshiro256**), 0 draws one; "
+      "restart_diameter: restart at a root "
       "when "
       "the net has shrunk below this fraction of the root's diameter. Raises InvalidInput for a system that "
       "is not contractive, restart_diameter outside (0, 1), negative samples, an output (8 bytes per "
