@@ -8,7 +8,9 @@
 #include "commands.hpp"
 #include "scheme_command.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run(int argc, char** argv) {
   using namespace cifs::cli;
   CLI::App app{"cifs — NURBS curves and surfaces as controlled iterated function systems"};
   app.require_subcommand(1);
@@ -152,4 +154,18 @@ int main(int argc, char** argv) {
   }
   std::cout << result;
   return std::cout.good() ? status : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {  // outside parsing: the command table, the final write
+    std::cerr << "cifs: " << e.what() << "\n";
+    return 2;
+  } catch (...) {
+    std::cerr << "cifs: unexpected error\n";
+    return 2;
+  }
 }

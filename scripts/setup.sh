@@ -9,6 +9,7 @@ packages=(
   nlohmann-json3-dev libcli11-dev libpng-dev libbenchmark-dev
   python3-dev pybind11-dev python3-numpy python3-matplotlib  # the cifs Python package and its examples
   libsisl-dev  # AGPL comparator: linked into bench/ only, never into the library
+  clang-format clang-tidy  # scripts/lint.sh (CI)
 )
 
 missing=()

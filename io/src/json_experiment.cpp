@@ -185,7 +185,7 @@ RenderSettings read_render(const Reader& r, const json& v) {
 }
 
 std::filesystem::path output_path(const Reader& r, const json& v, const std::string& path) {
-  const std::filesystem::path p(r.string(v, path));
+  std::filesystem::path p(r.string(v, path));
   if (p.empty() || p.has_root_path() || !p.has_filename()) r.fail(path, "expected a relative file name");
   for (const auto& part : p)
     if (part == "..") r.fail(path, "\"..\" would leave the output directory");

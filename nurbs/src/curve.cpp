@@ -259,7 +259,7 @@ Points derivatives(const Curve& c, double u, int order) {
   const int p = c.degree;
   const int span = find_span(c.knots, p, u);
   const Eigen::MatrixXd ders = basis_derivatives(c.knots, p, span, u, order);
-  const Points H = ders * c.P.middleRows(span - p, p + 1);  // homogeneous derivatives
+  Points H = ders * c.P.middleRows(span - p, p + 1);  // homogeneous derivatives
   if (!c.rational) return H;
   return detail::rational_derivatives(H, dimension(c));
 }
@@ -271,7 +271,7 @@ Point blossom(const Curve& c, std::span<const double> args, int span) {
   for (std::size_t i = 0; i < args.size(); ++i)
     if (!std::isfinite(args[i])) detail::fail("blossom: argument ", i, " is not finite");
   if (span < p || span >= c.P.rows() ||
-      !(c.knots[static_cast<std::size_t>(span)] < c.knots[static_cast<std::size_t>(span + 1)]))
+      !(c.knots[static_cast<std::size_t>(span)] < c.knots[static_cast<std::size_t>(span) + 1]))
     detail::fail("blossom: span ", span, " is not a non-empty span of the domain");
   return detail::blossom_row(c.knots, p, c.P, args, span);
 }

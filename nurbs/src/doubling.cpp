@@ -49,7 +49,7 @@ Window child_window(std::span<const double> window, int degree, Half half) {
     doubled.insert(doubled.end(), window[i] > 0 ? 2 : 1, window[i]);
   }
   const auto first = doubled.begin() + static_cast<std::ptrdiff_t>(centre) - (degree - 1);
-  return Window(first, first + 2 * degree - 1);
+  return Window(first, first + (2 * static_cast<std::ptrdiff_t>(degree) - 1));
 }
 
 Eigen::MatrixXd subdivision_matrix(std::span<const double> window, int degree, Half half) {
@@ -70,8 +70,9 @@ Eigen::MatrixXd subdivision_matrix(std::span<const double> window, int degree, H
   Eigen::MatrixXd M(d + 1, d + 1);
   double W[kMaxDegree + 1];
   for (int i = 0; i <= d; ++i) {
-    const auto args = std::span<const double>(S).subspan(static_cast<std::size_t>(j - d + 1 + i),
-                                                         static_cast<std::size_t>(d));
+    const auto args = std::span<const double>(S).subspan(
+        static_cast<std::size_t>(j) - static_cast<std::size_t>(d) + 1 + static_cast<std::size_t>(i),
+        static_cast<std::size_t>(d));
     blossom_weights(T, d, d, args, W);
     for (int k = 0; k <= d; ++k) M(i, k) = W[k];
   }
@@ -81,7 +82,8 @@ Eigen::MatrixXd subdivision_matrix(std::span<const double> window, int degree, H
 Window segment_window(std::span<const double> knots, int degree, int span) {
   Window w(static_cast<std::size_t>(2 * degree - 1));
   for (int i = 0; i < 2 * degree - 1; ++i) {
-    const auto k = static_cast<std::size_t>(span - degree + 1 + i);
+    const auto k =
+        static_cast<std::size_t>(span) - static_cast<std::size_t>(degree) + 1 + static_cast<std::size_t>(i);
     w[static_cast<std::size_t>(i)] = knots[k + 1] - knots[k];
   }
   return w;

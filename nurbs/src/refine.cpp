@@ -52,13 +52,14 @@ void set_blossom_point(const Curve& c, const Knots& target, int raise, Eigen::In
     if (!(at(k) < at(k + 1)) && !(k == k_end && piece.span < 0)) continue;
     const Piece candidate = piece_for(c, at(k), at(k + 1), hint);
     hint = candidate.span;
-    const double width = c.knots[static_cast<std::size_t>(candidate.span + 1)] -
+    const double width = c.knots[static_cast<std::size_t>(candidate.span) + 1] -
                          c.knots[static_cast<std::size_t>(candidate.span)];
     if (width > widest) piece = candidate, widest = width;
   }
   // The arguments are consecutive knots (plus a common shift): increasing, also with one dropped.
   double args[kMaxDegree + 1], sub[kMaxDegree], W[kMaxDegree + 1];
-  for (int a = 0; a < q; ++a) args[a] = target[static_cast<std::size_t>(jj + 1 + a)] + piece.shift;
+  for (int a = 0; a < q; ++a)
+    args[a] = target[static_cast<std::size_t>(jj) + 1 + static_cast<std::size_t>(a)] + piece.shift;
   const Eigen::Index cols = c.P.cols();
   double* out = Q.row(row).data();
   std::fill_n(out, cols, 0.0);
@@ -273,7 +274,7 @@ void blossom_rows(const Curve& c, const double* t, std::span<const double> T, co
     if (new_before[j + p + 1] - before < p) {  // an old knot among the arguments: the widest piece
       double widest = -1;
       for (int k = j; k <= j + p; ++k) {
-        if (!(T[static_cast<std::size_t>(k)] < T[static_cast<std::size_t>(k + 1)])) continue;
+        if (!(T[static_cast<std::size_t>(k)] < T[static_cast<std::size_t>(k) + 1])) continue;
         const int s = k - new_before[k + 1];
         if (t[s + 1] - t[s] > widest) span = s, widest = t[s + 1] - t[s];
       }
@@ -367,7 +368,7 @@ std::vector<Curve> split_bezier(const Curve& c) {
   std::vector<Curve> pieces;
   std::vector<double> args(static_cast<std::size_t>(p));
   for (int k = p; k < c.P.rows(); ++k) {
-    const double a = c.knots[static_cast<std::size_t>(k)], b = c.knots[static_cast<std::size_t>(k + 1)];
+    const double a = c.knots[static_cast<std::size_t>(k)], b = c.knots[static_cast<std::size_t>(k) + 1];
     if (!(a < b)) continue;
     Curve piece{p, Knots(static_cast<std::size_t>(2 * p + 2), a), Points(p + 1, c.P.cols()), c.rational,
                 false};
@@ -411,7 +412,7 @@ Curve elevate_degree(const Curve& c, int times) {
     const int d = out.degree, q = d + 1;
     const Knots& t = out.knots;
     Curve pad{d, Knots(static_cast<std::size_t>(d), t.front()),
-              Points::Zero(out.P.rows() + 2 * d, out.P.cols()), out.rational, false};
+              Points::Zero(out.P.rows() + 2 * Eigen::Index{d}, out.P.cols()), out.rational, false};
     pad.knots.insert(pad.knots.end(), t.begin(), t.end());
     pad.knots.insert(pad.knots.end(), static_cast<std::size_t>(d), t.back());
     pad.P.middleRows(d, out.P.rows()) = out.P;
@@ -453,7 +454,8 @@ double remove_one(const Knots& U, const Points& P, int p, double u, Points& Q) {
   Knots V = U;
   V.erase(V.begin() + r);
   auto alpha = [&](int i) {
-    const double a = V[static_cast<std::size_t>(i)], b = V[static_cast<std::size_t>(i + p)];
+    const double a = V[static_cast<std::size_t>(i)],
+                 b = V[static_cast<std::size_t>(i) + static_cast<std::size_t>(p)];
     return (u - a) / (b - a);
   };
   const auto n = P.rows();

@@ -177,7 +177,7 @@ Points derivatives(const Surface& s, double u, double v, int order) {
   const int su = find_span(s.knots[0], p, u), sv = find_span(s.knots[1], q, v);
   const Eigen::MatrixXd Du = basis_derivatives(s.knots[0], p, su, u, order);
   const Eigen::MatrixXd Dv = basis_derivatives(s.knots[1], q, sv, v, order);
-  const int w = order + 1;
+  const Eigen::Index w = order + 1;
   Points H = Points::Zero(w * w, cols);  // homogeneous partials
   for (int k = 0; k <= order; ++k)
     for (int l = 0; k + l <= order; ++l)

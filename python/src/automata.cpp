@@ -237,7 +237,7 @@ void bind_automata(py::module_& m) {
       .def(
           "__copy__", [](const Automaton& a) { return a; }, "An independent copy.")
       .def(
-          "__deepcopy__", [](const Automaton& a, py::dict) { return a; }, py::arg("memo"),
+          "__deepcopy__", [](const Automaton& a, const py::dict&) { return a; }, py::arg("memo"),
           "An independent copy.")
       .def("__repr__", [](const Automaton& a) {
         return "Automaton(" + std::to_string(boost::num_vertices(a.graph)) + " states, " +

@@ -182,6 +182,7 @@ void bind_ifs(py::module_& m) {
   m.def(
       "for_each_leaf",
       // The automaton is taken by value: a callback that edits it cannot pull the graph from under the walk.
+      // NOLINTNEXTLINE(performance-unnecessary-value-param): the copy is the point (above).
       [](const Automaton a, const std::vector<Points>& nets, int depth, const py::function& callback) {
         ifs::for_each_leaf(a, nets, depth, [&](const ifs::Leaf& leaf) { callback(view(leaf)); });
       },
@@ -218,6 +219,7 @@ void bind_ifs(py::module_& m) {
       });
   m.def(
       "for_each_leaf_to_tolerance",
+      // NOLINTNEXTLINE(performance-unnecessary-value-param): a copy, as for for_each_leaf.
       [](const Automaton a, const std::vector<Points>& nets, const py::function& callback, double epsilon,
          int max_depth, int max_length, bool homogeneous) {
         return ifs::for_each_leaf_to_tolerance(

@@ -23,7 +23,7 @@ using Release = py::call_guard<py::gil_scoped_release>;
 constexpr const char* kDefaultWhere = "<string>";
 
 /// Binary files are not text: bytes for them, str for the others.
-py::object file_result(std::string text, bool binary) {
+py::object file_result(const std::string& text, bool binary) {
   if (binary) return py::bytes(text);
   return py::str(text);
 }
@@ -688,8 +688,9 @@ void bind_experiment(py::module_& m) {
   m.def(
       "run",
       [options](const io::Experiment& e, std::filesystem::path out_dir,
-                std::optional<std::filesystem::path> exr, std::optional<std::filesystem::path> png,
-                bool quiet, std::optional<int> threads, long long max_bytes) {
+                const std::optional<std::filesystem::path>& exr,
+                const std::optional<std::filesystem::path>& png, bool quiet, std::optional<int> threads,
+                long long max_bytes) {
         RunOptions o = options(threads, max_bytes);
         o.out_dir = std::move(out_dir);
         o.exr = exr.value_or(std::filesystem::path());

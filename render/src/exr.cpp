@@ -93,8 +93,8 @@ Image read_exr(const std::filesystem::path& path) {
     const Imf::Header& header = in.header();
     const Imath::Box2i window = header.dataWindow();
     Image image;
-    image.width = static_cast<std::size_t>(window.max.x - window.min.x + 1);
-    image.height = static_cast<std::size_t>(window.max.y - window.min.y + 1);
+    image.width = static_cast<std::size_t>(window.max.x - window.min.x) + 1;
+    image.height = static_cast<std::size_t>(window.max.y - window.min.y) + 1;
     const std::size_t n = image.width * image.height;
     // Slice base pointers are addressed by absolute pixel coordinates: shift by the window origin.
     const auto origin = static_cast<std::ptrdiff_t>(window.min.x) +

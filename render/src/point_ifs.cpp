@@ -113,15 +113,15 @@ void check_grid(std::size_t width, std::size_t height, const Bounds& b, const ch
 struct Grid {
   double x_min, y_max, sx, sy, w, h;
   std::size_t width, height;
-  Grid(std::size_t width_, std::size_t height_, const Bounds& b)
+  Grid(std::size_t columns, std::size_t rows, const Bounds& b)
       : x_min(b.x_min),
         y_max(b.y_max),
-        sx(static_cast<double>(width_) / (b.x_max - b.x_min)),
-        sy(static_cast<double>(height_) / (b.y_max - b.y_min)),
-        w(static_cast<double>(width_)),
-        h(static_cast<double>(height_)),
-        width(width_),
-        height(height_) {}
+        sx(static_cast<double>(columns) / (b.x_max - b.x_min)),
+        sy(static_cast<double>(rows) / (b.y_max - b.y_min)),
+        w(static_cast<double>(columns)),
+        h(static_cast<double>(rows)),
+        width(columns),
+        height(rows) {}
   /// Pixel index, or SIZE_MAX outside. The window is closed: points on its right or bottom edge
   /// go to the last column or row (attractors touch their frames: a walk that starts at a vertex
   /// of Sierpinski's triangle sits on y = y_min for a few steps). The comparisons are on doubles,

@@ -33,7 +33,7 @@ std::vector<float>& channel(Image& image, const std::string& name, float fill) {
 }
 
 ViewTransform prepare(Image& image, const Camera& camera, const char* who) {
-  const ViewTransform view = view_transform(camera);
+  ViewTransform view = view_transform(camera);
   if (image.width == 0 && image.height == 0 && image.channels.empty()) {
     image = make_framebuffer(camera);
     return view;
@@ -470,10 +470,12 @@ void render_mesh(Image& image, const Camera& camera, const Mesh& mesh, const Sur
             for (const auto& [k, count] : seen) {
               Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
               for (std::size_t s = 0; s < spp; ++s)
-                if (sample_prim[local + s] == k)
+                if (sample_prim[local + s] == k) {
+                  const std::size_t column = s % S, row = s / S;  // the sample's place in its pixel
                   centroid +=
-                      Eigen::Vector2d(static_cast<double>(x) + (static_cast<double>(s % S) + 0.5) / S,
-                                      static_cast<double>(y) + (static_cast<double>(s / S) + 0.5) / S);
+                      Eigen::Vector2d(static_cast<double>(x) + (static_cast<double>(column) + 0.5) / S,
+                                      static_cast<double>(y) + (static_cast<double>(row) + 0.5) / S);
+                }
               centroid /= count;
               if (k == nearest) nearest_centroid = centroid;
               const Primitive& p = scene.primitives[k];

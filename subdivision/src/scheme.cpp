@@ -323,8 +323,9 @@ Scheme named_scheme(std::string_view name_view, const std::map<std::string, std:
     if (!values.count(key)) {
       std::string known;
       for (const ParameterSpec& p : spec->parameters) known += (known.empty() ? "" : ", ") + p.name;
-      throw InvalidInput(name + ": unknown parameter '" + key + "' (" +
-                         (known.empty() ? "this scheme takes none" : "parameters: " + known) + ")");
+      std::string message = name + ": unknown parameter '" + key + "' (";
+      message += known.empty() ? "this scheme takes none" : "parameters: " + known;
+      throw InvalidInput(message + ")");
     }
     values[key] = value;
   }

@@ -99,7 +99,7 @@ class Parser {
   Laurent term() {
     Laurent p = unary();
     for (;;) {
-      if (times_sign()) {
+      if (times_sign() || starts_factor()) {  // implicit product too: 2z, (1+z)(1-z), z(1+z)
         p = times(p, unary());
       } else if (skip(), i_ < s_.size() && s_[i_] == '/') {
         ++i_;
@@ -111,8 +111,6 @@ class Parser {
                            : "division by a polynomial that is not a constant or a power of z");
         }
         p = normalised({p.low - d.low, detail::scale(p.c, 1 / d.c[0])});
-      } else if (starts_factor()) {
-        p = times(p, unary());  // implicit product: 2z, (1+z)(1-z), z(1+z)
       } else {
         return p;
       }

@@ -30,7 +30,7 @@ LocalKnots local_knots(std::span<const double> t, int d, int k) {
   const nurbs::Window w = nurbs::segment_window(t, d, k);
   std::vector<double> T(static_cast<std::size_t>(2 * d));
   for (int i = d - 1; i + 1 < 2 * d; ++i)
-    T[static_cast<std::size_t>(i + 1)] = T[static_cast<std::size_t>(i)] + w[static_cast<std::size_t>(i)];
+    T[static_cast<std::size_t>(i) + 1] = T[static_cast<std::size_t>(i)] + w[static_cast<std::size_t>(i)];
   for (int i = d - 1; i > 0; --i)
     T[static_cast<std::size_t>(i - 1)] = T[static_cast<std::size_t>(i)] - w[static_cast<std::size_t>(i - 1)];
   const double pad = T.back() - T.front();
@@ -255,7 +255,7 @@ SurfaceCheckReport check_surface(const nurbs::Surface& s, const CheckOptions& o)
     const int su = nurbs::find_span(refined.knots[0], p, u), sv = nurbs::find_span(refined.knots[1], q, v);
     Points expected(leaf.net.rows(), leaf.net.cols());
     for (int i = 0; i <= p; ++i)
-      expected.middleRows(i * (q + 1), q + 1) =
+      expected.middleRows(Eigen::Index{i} * (q + 1), q + 1) =
           refined.P.middleRows((su - p + i) * refined.count[1] + sv - q, q + 1);
     PatchReport& patch = report.patches[k];
     track(patch.nets,
