@@ -152,8 +152,13 @@ int run(int argc, char** argv) {
     std::cerr << "cifs: " << message << "\n";
     return 2;
   }
-  std::cout << result;
-  return std::cout.good() ? status : 1;
+  // Flushed here: a full disk or a closed pipe shows only when the buffer goes out.
+  std::cout << result << std::flush;
+  if (!std::cout.good()) {
+    std::cerr << "cifs: could not write the result to standard output\n";
+    return 1;
+  }
+  return status;
 }
 
 }  // namespace

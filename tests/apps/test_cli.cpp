@@ -77,6 +77,18 @@ TEST_CASE("cifs info describes the shape", "[cli]") {
   CHECK(info["domain"] == json::array({0.0, 4.0}));
 }
 
+TEST_CASE("cifs exits 1 with one line when stdout cannot be written", "[cli]") {
+  // /dev/full accepts the open and fails every write: small outputs fail only at the final flush.
+  const std::string shape = file("c.json", kCurve), err = (scratch() / "full_stderr").string();
+  for (const std::string& args : {"info " + shape, "eval " + shape + " --samples 3", "check " + shape}) {
+    const int raw = std::system((std::string(CIFS_CLI_PATH) + " " + args + " >/dev/full 2>" + err).c_str());
+    INFO(args);
+    REQUIRE(WIFEXITED(raw));
+    CHECK(WEXITSTATUS(raw) == 1);
+    CHECK(slurp(err) == "cifs: could not write the result to standard output\n");
+  }
+}
+
 TEST_CASE("cifs reports bad input on one line and exits 2", "[cli]") {
   const std::string good = file("c.json", kCurve);
   check_error(cifs_cli("eval /nonexistent.json --at 0"), "/nonexistent.json: cannot open");
