@@ -117,6 +117,19 @@ TEST_CASE("BC-IFS JSON: bad files name the JSON path", "[bcifs][io]") {
         "t.json: bcifs.initial[0].state: expected a string, got number");
   fails(tree_with("[[0, 0], [0.5, 0.5], [1, 0]]", "[[0, 0], [0.5, 0.5]]"),
         "t.json: bcifs.initial[0].net: 2 rows, expected 3 (size of E)");
+  // Unknown members are typos, refused wherever they are: "fre" would silently fix a free transition.
+  fails(tree_with("\"label\": \"G\", \"free\": true", "\"label\": \"G\", \"fre\": true"),
+        "t.json: bcifs.transitions[0].fre: unknown member");
+  fails(tree_with("\"name\": \"start\", \"boundary\"", "\"name\": \"start\", \"boundry\""),
+        "t.json: bcifs.boundaries[0].boundry: unknown member");
+  fails(tree_with("{\"name\": \"start\", \"left\"", "{\"name\": \"start\", \"lft\""),
+        "t.json: bcifs.constraints[0].lft: unknown member");
+  fails(tree_with("{\"state\": \"E\", \"net\"", "{\"state\": \"E\", \"nets\""),
+        "t.json: bcifs.initial[0].nets: unknown member");
+  fails(tree_with("\"boundaries\": [", "\"boundary\": [], \"boundaries\": ["),
+        "t.json: bcifs.boundary: unknown member");
+  fails(tree_with("\"size\": 1, \"dimension\": 0", "\"size\": 1, \"dimension\": 0, \"dim\": 0"),
+        "t.json: bcifs.cells[1].dim: unknown member");
   // Structure checked by ifs::validate, prefixed by the file.
   CHECK_THROWS_WITH(
       parse_bcifs_json(tree_with("\"right\": [\"V/V\", \"E.start\"]", "\"right\": [\"E.start\", \"V/V\"]"),
