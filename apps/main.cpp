@@ -2,6 +2,8 @@
 // cifs — command-line entry point. Errors: one line on stderr, nothing on stdout, exit status 2.
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <charconv>
+#include <cstdint>
 #include <iostream>
 
 #include "cifs/errors.hpp"
@@ -9,6 +11,17 @@
 #include "scheme_command.hpp"
 
 namespace {
+
+/// CLI11 turns "-1" and 2^64 into the largest seed without a word: seeds are checked as text first.
+const CLI::Validator seed_text(
+    [](std::string& text) -> std::string {
+      std::uint64_t value = 0;
+      const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+      if (text.empty() || error != std::errc() || end != text.data() + text.size())
+        return "'" + text + "' is not an integer from 0 to 18446744073709551615";
+      return {};
+    },
+    "SEED");
 
 int run(int argc, char** argv) {
   using namespace cifs::cli;
@@ -55,8 +68,9 @@ int run(int argc, char** argv) {
   attractor_cmd->add_option("--depth", at.depth, "2^K leaves per segment");
   attractor_cmd->add_option("--tolerance", at.tolerance, "Stop each branch when its piece is smaller than E");
   attractor_cmd->add_option("--chaos", at.chaos, "N chaos-game points (a random walk over the automaton)");
-  attractor_cmd->add_option("--seed", at.seed,
-                            "Chaos-game seed (default: drawn, and printed with the points)");
+  attractor_cmd
+      ->add_option("--seed", at.seed, "Chaos-game seed (default: drawn, and printed with the points)")
+      ->check(seed_text);
   attractor_cmd->add_option("--format", at.format, "json (default), obj or svg");
   attractor_cmd->callback([&] { result = attractor(at); });
 

@@ -98,6 +98,12 @@ TEST_CASE("cifs reports bad input on one line and exits 2", "[cli]") {
                file("dec.json", R"({"curve": {"degree": 1, "knots": [0,0,2,1], "points": [[0],[1]]}})") +
                " --at 0"),
       "curve.knots[3]: 1 is less than the previous knot 2");
+  // Seeds out of range are refused, not clamped to 2^64 − 1.
+  for (const std::string seed : {"-1", "18446744073709551616", "1e23", "7x"})
+    check_error(cifs_cli("attractor " + good + " --chaos 3 --seed " + seed),
+                "--seed: '" + seed + "' is not an integer from 0 to 18446744073709551615");
+  const json top = json::parse(cifs_cli("attractor " + good + " --chaos 3 --seed 18446744073709551615").out);
+  CHECK(top["seed"].get<std::uint64_t>() == 18446744073709551615ULL);
   check_error(cifs_cli("eval " +
                        file("inf.json",
                             R"({"curve": {"degree": 1, "knots": [0,0,1e400,1e400], "points": [[0],[1]]}})") +
