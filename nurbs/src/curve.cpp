@@ -50,6 +50,12 @@ Curve make_closed_curve(int degree, Knots breakpoints, const Points& points, con
   }
   if (!(breakpoints.back() > breakpoints.front()))
     detail::fail("knots: the period [", breakpoints.front(), ", ", breakpoints.back(), "] is empty");
+  // The periodic knot vector reaches up to one period past each end; its differences must be finite.
+  const double period = breakpoints.back() - breakpoints.front();
+  if (!std::isfinite(3 * period) || !std::isfinite(breakpoints.front() - period) ||
+      !std::isfinite(breakpoints.back() + period))
+    detail::fail("knots: the period [", breakpoints.front(), ", ", breakpoints.back(),
+                 "] extended by one period on each side is wider than a double holds");
   // Multiplicities on the breakpoints as given, so that messages name the caller's index (the
   // periodic knot vector is longer); the seam counts the copies of b_0 and of b_m inside the period.
   const auto last = static_cast<std::size_t>(m);

@@ -34,6 +34,11 @@ void validate_knots(std::span<const double> knots, int degree, Eigen::Index coun
     if (run > degree + 1)
       fail(where, "[", i, "]: knot ", knots[i], " has multiplicity ", run, " > degree + 1 = ", degree + 1);
   }
+  // Every algorithm works on knot differences (basis functions, blossoms, insertion): they must be
+  // finite, or the results are silently wrong (knots ±1e308 evaluated to nonsense).
+  if (!std::isfinite(knots.back() - knots.front()))
+    fail(where, ": the knots run from ", knots.front(), " to ", knots.back(),
+         ", a range wider than a double holds (knot differences must be finite)");
   const Domain dom = domain(knots, degree);
   if (!(dom.start < dom.end))
     fail(where, ": empty domain [t_", degree, ", t_", count, "] = [", dom.start, ", ", dom.end, "]");

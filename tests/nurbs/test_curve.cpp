@@ -469,6 +469,34 @@ TEST_CASE("curve validation names the problem and its place", "[nurbs][curve]") 
   CHECK_THROWS_WITH(validate(broken), Contains("points[4]"));
 }
 
+TEST_CASE("knots near the limits of double: refused when differences overflow, exact otherwise",
+          "[nurbs][curve]") {
+  const Points P = (Points(6, 3) << 0, 0, 0, 1, 2, 0, 3, 3, 1, 4, 0, 0, 6, 1, 2, 7, 3, 0).finished();
+  const Eigen::VectorXd w = (Eigen::VectorXd(6) << 1, 2, 1, 0.5, 1, 1).finished();
+  // The audit's case: every knot finite, the range 2e308 is not.
+  CHECK_THROWS_WITH(make_curve(3, {-1e308, -1e308, -1e308, -1e308, 0, 1e307, 1e308, 1e308, 1e308, 1e308}, P),
+                    Contains("wider than a double holds"));
+  CHECK_THROWS_WITH(make_closed_curve(3, {0, 5e307, 1e308, 1.5e308, 1.7e308, 1.79e308}, P.topRows(5)),
+                    Contains("wider than a double holds"));
+  // An affine change of the knots leaves the curve as it is (basis functions are ratios of knot
+  // differences): scaled by 2^1016 or 2^-996 and shifted, it is the unit curve at the mapped
+  // parameter. Scales are powers of two and parameters dyadic, so that knots and parameters map exactly.
+  const Knots unit{0, 0, 0, 0, 1, 2, 4, 4, 4, 4};
+  const Curve reference = make_curve(3, unit, P, w);
+  for (const auto& [scale, shift] :
+       {std::pair{std::ldexp(1.0, 1016), -std::ldexp(1.0, 1017)},
+        std::pair{std::ldexp(1.0, -996), std::ldexp(1.0, -993)}, std::pair{0.25, 1e6}}) {
+    Knots t = unit;
+    for (double& k : t) k = shift + scale * k;
+    const Curve scaled = make_curve(3, t, P, w);
+    for (const double u : {0.0, 0.3125, 1.0, 1.75, 2.0, 3.9921875, 4.0}) {
+      const Point a = evaluate(reference, u), b = evaluate(scaled, shift + scale * u);
+      INFO("scale " << scale << ", u " << u);
+      CHECK((a - b).norm() <= 1e-13 * a.norm());
+    }
+  }
+}
+
 TEST_CASE("closed curve validation names the problem and its place", "[nurbs][curve]") {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const Points P = Points::Random(4, 3);
