@@ -117,6 +117,9 @@ TEST_CASE("check refuses bad depths and work beyond its budget", "[verify]") {
   CHECK_THROWS_WITH(verify::check_curve(c, {-1, 1e-12}), Catch::Contains("depth -1 is outside [0, 30]"));
   CHECK_THROWS_WITH(verify::check_curve(c, {24, 1e-12}), Catch::Contains("would insert"));
   CHECK_THROWS_WITH(verify::check_curve(c, {4, 0}), Catch::Contains("tolerance must be positive"));
+  // An infinite tolerance would pass anything.
+  CHECK_THROWS_WITH(verify::check_curve(c, {.depth = 4, .tolerance = INFINITY}),
+                    Catch::Contains("tolerance must be positive and finite (got inf)"));
 }
 
 namespace {
@@ -182,5 +185,9 @@ TEST_CASE("Surface check refuses bad depths and work beyond its budget", "[verif
   CHECK_THROWS_AS(verify::check_surface(s, {-1, 1e-12}), InvalidInput);
   CHECK_THROWS_AS(verify::check_surface(s, {31, 1e-12}), InvalidInput);
   CHECK_THROWS_WITH(verify::check_surface(s, {12, 1e-12}), Catch::Contains("lower --depth"));
+  // The largest depth gives the figure (2^30 leaves overflowed a long long: "-9223372036854775808").
+  CHECK_THROWS_WITH(verify::check_surface(s, {.depth = 30}), Catch::Contains("needs references of ") &&
+                                                                 !Catch::Contains("-9") &&
+                                                                 Catch::Contains("e+"));
   CHECK_THROWS_AS(verify::check_surface(s, {2, 0}), InvalidInput);
 }

@@ -6,6 +6,7 @@
 #include "cifs/automata/automaton.hpp"
 #include "cifs/automata/tensor.hpp"
 #include "cifs/errors.hpp"
+#include "cifs/format.hpp"
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/ifs/mesh.hpp"
 #include "cifs/nurbs/doubling.hpp"
@@ -101,14 +102,14 @@ void merge(Deviation& into, const Deviation& d) {
 CheckReport check_curve(const nurbs::Curve& c, const CheckOptions& o) {
   if (o.depth < 0 || o.depth > 30)
     throw InvalidInput("check: depth " + std::to_string(o.depth) + " is outside [0, 30]");
-  if (!(o.tolerance > 0)) throw InvalidInput("check: the tolerance must be positive");
+  if (!(o.tolerance > 0) || !std::isfinite(o.tolerance))
+    throw InvalidInput("check: the tolerance must be positive and finite (got " + number_text(o.tolerance, 6) + ")");
   const int d = c.degree;
   const automata::Automaton a = automata::knot_automaton(c);
   const double inserted = static_cast<double>(a.initial.size()) * (2 * d - 1) * std::ldexp(1.0, o.depth);
   if (inserted > kMaxInsertedKnots)
     throw InvalidInput(
-        "check: depth " + std::to_string(o.depth) + " would insert " +
-        std::to_string(static_cast<long long>(inserted)) +
+        "check: depth " + std::to_string(o.depth) + " would insert " + number_text(inserted, 3) +
         " knots in the references (limit 2^26, about the memory of the machine's budget); lower --depth");
 
   const Points cart = nurbs::cartesian_points(c);
@@ -196,7 +197,8 @@ LocalPatch local_patch(const nurbs::Surface& s, const Points& net, const std::ar
 SurfaceCheckReport check_surface(const nurbs::Surface& s, const CheckOptions& o) {
   if (o.depth < 0 || o.depth > 30)
     throw InvalidInput("check: depth " + std::to_string(o.depth) + " is outside [0, 30]");
-  if (!(o.tolerance > 0)) throw InvalidInput("check: the tolerance must be positive");
+  if (!(o.tolerance > 0) || !std::isfinite(o.tolerance))
+    throw InvalidInput("check: the tolerance must be positive and finite (got " + number_text(o.tolerance, 6) + ")");
   nurbs::validate(s);
   const int p = s.degree[0], q = s.degree[1];
   const double leaves = std::ldexp(1.0, o.depth);
@@ -205,7 +207,7 @@ SurfaceCheckReport check_surface(const nurbs::Surface& s, const CheckOptions& o)
       (3 * p + 1 + (2 * p - 1) * (leaves - 1)) * (3 * q + 1 + (2 * q - 1) * (leaves - 1));
   if (reference > kMaxReferencePoints)
     throw InvalidInput("check: depth " + std::to_string(o.depth) + " needs references of " +
-                       std::to_string(static_cast<long long>(reference)) +
+                       number_text(reference, 3) +
                        " control points per patch (limit 2^23, about the memory of the machine's budget); "
                        "lower --depth");
   const automata::TensorAutomaton t = automata::tensor_automaton(s);
