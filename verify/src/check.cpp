@@ -103,7 +103,8 @@ CheckReport check_curve(const nurbs::Curve& c, const CheckOptions& o) {
   if (o.depth < 0 || o.depth > 30)
     throw InvalidInput("check: depth " + std::to_string(o.depth) + " is outside [0, 30]");
   if (!(o.tolerance > 0) || !std::isfinite(o.tolerance))
-    throw InvalidInput("check: the tolerance must be positive and finite (got " + number_text(o.tolerance, 6) + ")");
+    throw InvalidInput("check: the tolerance must be positive and finite (got " +
+                       number_text(o.tolerance, 6) + ")");
   const int d = c.degree;
   const automata::Automaton a = automata::knot_automaton(c);
   const double inserted = static_cast<double>(a.initial.size()) * (2 * d - 1) * std::ldexp(1.0, o.depth);
@@ -198,7 +199,8 @@ SurfaceCheckReport check_surface(const nurbs::Surface& s, const CheckOptions& o)
   if (o.depth < 0 || o.depth > 30)
     throw InvalidInput("check: depth " + std::to_string(o.depth) + " is outside [0, 30]");
   if (!(o.tolerance > 0) || !std::isfinite(o.tolerance))
-    throw InvalidInput("check: the tolerance must be positive and finite (got " + number_text(o.tolerance, 6) + ")");
+    throw InvalidInput("check: the tolerance must be positive and finite (got " +
+                       number_text(o.tolerance, 6) + ")");
   nurbs::validate(s);
   const int p = s.degree[0], q = s.degree[1];
   const double leaves = std::ldexp(1.0, o.depth);

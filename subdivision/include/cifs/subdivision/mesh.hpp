@@ -1,0 +1,84 @@
+// SPDX-License-Identifier: MIT
+// cifs — subdivision surfaces on polygon meshes (seed 003): Catmull–Clark, Loop, Doo–Sabin,
+// modified Butterfly and √3. Topology apart from geometry, as OpenSubdiv's refiner/primvar split:
+// refine_topology builds every level's faces and, for every new vertex, its weights on the
+// previous level's vertices; apply replays those weights on any vertex data.
+#pragma once
+
+#include <Eigen/SparseCore>
+#include <cstddef>
+#include <string_view>
+#include <vector>
+
+#include "cifs/mesh.hpp"
+#include "cifs/topology.hpp"
+#include "cifs/types.hpp"
+
+namespace cifs::subdivision {
+
+enum class MeshScheme { catmull_clark, loop, doo_sabin, butterfly, sqrt3 };
+
+/// "catmull-clark", "loop", "doo-sabin", "butterfly", "sqrt3"; InvalidInput naming the list otherwise.
+MeshScheme named_mesh_scheme(std::string_view name);
+std::string_view scheme_name(MeshScheme scheme) noexcept;
+/// Loop, Butterfly and √3 run on triangles only.
+bool triangles_only(MeshScheme scheme) noexcept;
+
+/// Rule at boundary vertices of valence 2 (two boundary edges, one face): `edge_only` smooths
+/// them with the boundary curve's B-spline rule (OpenSubdiv VTX_BOUNDARY_EDGE_ONLY), `edge_and_corner`
+/// keeps them in place (VTX_BOUNDARY_EDGE_AND_CORNER). Other boundary vertices always follow the
+/// boundary curve.
+enum class BoundaryRule { edge_only, edge_and_corner };
+
+struct MeshOptions {
+  BoundaryRule boundary = BoundaryRule::edge_only;
+  /// Refinements whose topology and weights would need more than this are refused before any work.
+  double max_bytes = 4.0 * (1ull << 30);
+};
+
+/// Sparse weights, one row per new vertex: new vertex i = Σ weights[k] · old vertex columns[k],
+/// k in [offsets[i], offsets[i + 1]). Every row sums to 1 (affine combinations).
+struct Stencils {
+  std::vector<int> offsets{0};
+  std::vector<int> columns;
+  std::vector<double> weights;
+};
+
+inline std::size_t row_count(const Stencils& s) noexcept {
+  return s.offsets.size() - 1;
+}
+
+/// A refinement, topology only: `levels[0]` is the input's topology, `levels[k]` the mesh after k
+/// steps, `steps[k]` the weights from level k's vertices to level k + 1's.
+struct MeshRefinement {
+  MeshScheme scheme = MeshScheme::catmull_clark;
+  MeshOptions options;
+  std::vector<MeshTopology> levels;
+  std::vector<Stencils> steps;
+};
+
+/// Refines the faces `levels` times. Throws InvalidInput (naming the face, edge or vertex) for a
+/// mesh that is not an oriented 2-manifold, for non-triangles under Loop, Butterfly and √3, for
+/// a boundary under Doo–Sabin, Butterfly and √3 (not supported yet), and, before any work, for
+/// a result larger than `options.max_bytes` (the message gives the figure).
+MeshRefinement refine_topology(const Mesh& mesh, MeshScheme scheme, int levels,
+                               const MeshOptions& options = {});
+
+/// The vertex data of the last level from the first level's (`#V by any`); `#V` must match.
+Points apply(const MeshRefinement& refinement, const Points& vertices);
+/// One step: level k + 1's data from level k's.
+Points apply(const Stencils& step, const Points& vertices);
+
+/// The refined mesh (positions through apply; normals and states are not carried).
+Mesh subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOptions& options = {});
+Mesh catmull_clark(const Mesh& mesh, int levels, const MeshOptions& options = {});
+Mesh loop(const Mesh& mesh, int levels, const MeshOptions& options = {});
+Mesh doo_sabin(const Mesh& mesh, int levels, const MeshOptions& options = {});
+Mesh butterfly(const Mesh& mesh, int levels, const MeshOptions& options = {});
+Mesh sqrt3(const Mesh& mesh, int levels, const MeshOptions& options = {});
+
+/// Seed 003 §1: a step as a sparse matrix, `#new by #old` (row i = stencil of new vertex i), for the
+/// analysis of the scheme — never used for the refinement itself.
+Eigen::SparseMatrix<double, Eigen::RowMajor> subdivision_matrix(const Stencils& step, int old_vertex_count);
+
+}  // namespace cifs::subdivision

@@ -1,0 +1,518 @@
+// SPDX-License-Identifier: MIT
+// cifs — subdivision surfaces: one step of each scheme as (child faces, weights), levels by repeating
+// it, vertex data by replaying the weights (cifs/subdivision/mesh.hpp; rules: docs/subdivision-surfaces.md).
+#include "cifs/subdivision/mesh.hpp"
+
+#include <algorithm>
+#include <array>
+#include <climits>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <utility>
+
+#include "cifs/errors.hpp"
+#include "cifs/format.hpp"
+
+namespace cifs::subdivision {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+struct Step {
+  std::vector<int> face_offsets{0};
+  std::vector<int> face_vertices;
+  int vertex_count = 0;
+  Stencils stencils;
+};
+
+/// Appends one stencil row at a time; a column given twice is summed (face points expanded into
+/// corners meet the ring's own vertices).
+class RowWriter {
+ public:
+  explicit RowWriter(Stencils& out) : out_(out) {}
+  void add(int column, double weight) { pending_.emplace_back(column, weight); }
+  void finish() {
+    std::sort(pending_.begin(), pending_.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (std::size_t i = 0; i < pending_.size();) {
+      const int column = pending_[i].first;
+      double weight = 0;
+      for (; i < pending_.size() && pending_[i].first == column; ++i) weight += pending_[i].second;
+      out_.columns.push_back(column);
+      out_.weights.push_back(weight);
+    }
+    out_.offsets.push_back(static_cast<int>(out_.columns.size()));
+    pending_.clear();
+  }
+
+ private:
+  Stencils& out_;
+  std::vector<std::pair<int, double>> pending_;
+};
+
+void add_face(Step& s, std::initializer_list<int> corners) {
+  s.face_vertices.insert(s.face_vertices.end(), corners);
+  s.face_offsets.push_back(static_cast<int>(s.face_vertices.size()));
+}
+
+std::span<const int> ring_edges(const MeshTopology& t, int v) {
+  return vertex_edges(t, static_cast<std::size_t>(v));
+}
+
+bool on_boundary(const MeshTopology& t, int v) {
+  return t.boundary_vertex[static_cast<std::size_t>(v)] != 0;
+}
+
+/// Boundary vertex rule shared by Catmull–Clark and Loop: the cubic B-spline rule (1, 6, 1)/8 along
+/// the boundary curve, or the vertex kept when it is a corner (one face) and corners are asked for.
+void boundary_vertex_row(const MeshTopology& t, int v, const MeshOptions& o, RowWriter& row) {
+  const auto ring = ring_edges(t, v);
+  if (ring.size() == 2 && o.boundary == BoundaryRule::edge_and_corner) {
+    row.add(v, 1);
+    return;
+  }
+  // Edges 0 and n − 1 of a boundary vertex's ring are its boundary edges.
+  row.add(v, 0.75);
+  row.add(other_vertex(t, static_cast<std::size_t>(ring.front()), v), 0.125);
+  row.add(other_vertex(t, static_cast<std::size_t>(ring.back()), v), 0.125);
+}
+
+void add_face_point(const MeshTopology& t, std::size_t f, double weight, RowWriter& row) {
+  const auto corners = face(t, f);
+  const double w = weight / static_cast<double>(corners.size());
+  for (const int c : corners) row.add(c, w);
+}
+
+Step catmull_clark_step(const MeshTopology& t, const MeshOptions& o) {
+  const int V = t.vertex_count, E = static_cast<int>(t.edges.size()), F = static_cast<int>(face_count(t));
+  Step s;
+  s.vertex_count = V + E + F;  // vertex points, edge points, face points
+  RowWriter row(s.stencils);
+  for (int v = 0; v < V; ++v) {
+    const auto ring = ring_edges(t, v);
+    if (ring.empty()) {
+      row.add(v, 1);
+    } else if (on_boundary(t, v)) {
+      boundary_vertex_row(t, v, o, row);
+    } else {
+      // (F + 2R + (n − 3)V)/n with R the mean of the edge midpoints: V (n − 2)/n, each neighbour
+      // and each face point 1/n².
+      const double n = static_cast<double>(ring.size()), w = 1 / (n * n);
+      row.add(v, (n - 2) / n);
+      for (const int e : ring) row.add(other_vertex(t, static_cast<std::size_t>(e), v), w);
+      for (const int f : vertex_faces(t, static_cast<std::size_t>(v)))
+        add_face_point(t, static_cast<std::size_t>(f), w, row);
+    }
+    row.finish();
+  }
+  for (int e = 0; e < E; ++e) {
+    const auto [a, b] = t.edges[static_cast<std::size_t>(e)];
+    const auto [f0, f1] = t.edge_faces[static_cast<std::size_t>(e)];
+    if (f1 < 0) {
+      row.add(a, 0.5);
+      row.add(b, 0.5);
+    } else {
+      row.add(a, 0.25);
+      row.add(b, 0.25);
+      add_face_point(t, static_cast<std::size_t>(f0), 0.25, row);
+      add_face_point(t, static_cast<std::size_t>(f1), 0.25, row);
+    }
+    row.finish();
+  }
+  for (int f = 0; f < F; ++f) {
+    add_face_point(t, static_cast<std::size_t>(f), 1, row);
+    row.finish();
+  }
+  // Face f's corner i becomes the quad (vertex i, edge i, face, edge i − 1), counter-clockwise.
+  for (int f = 0; f < F; ++f) {
+    const auto corners = face(t, static_cast<std::size_t>(f));
+    const auto edges = face_edges(t, static_cast<std::size_t>(f));
+    const std::size_t k = corners.size();
+    for (std::size_t i = 0; i < k; ++i)
+      add_face(s, {corners[i], V + edges[i], V + E + f, V + edges[(i + k - 1) % k]});
+  }
+  return s;
+}
+
+/// The corner of triangle f that is not on edge e.
+int opposite_corner(const MeshTopology& t, int f, int e) {
+  const auto corners = face(t, static_cast<std::size_t>(f));
+  const auto [a, b] = t.edges[static_cast<std::size_t>(e)];
+  for (const int c : corners)
+    if (c != a && c != b) return c;
+  return corners[0];  // unreachable on a manifold triangle
+}
+
+/// Loop and Butterfly split every triangle in four at its edge points (vertex points first).
+void split_triangles(const MeshTopology& t, Step& s) {
+  const int V = t.vertex_count;
+  for (std::size_t f = 0; f < face_count(t); ++f) {
+    const auto c = face(t, f);
+    const auto e = face_edges(t, f);  // e[i] joins c[i] → c[i + 1]
+    const int ab = V + e[0], bc = V + e[1], ca = V + e[2];
+    add_face(s, {c[0], ab, ca});
+    add_face(s, {ab, c[1], bc});
+    add_face(s, {ca, bc, c[2]});
+    add_face(s, {ab, bc, ca});
+  }
+}
+
+/// Loop's β(n) = (1/n)(5/8 − (3/8 + ¼cos(2π/n))²); the seed's α_n = (40 − (3 + 2cos(2π/n))²)/64 is
+/// n·β(n) written over 64.
+double loop_beta(int n) {
+  const double c = 0.375 + 0.25 * std::cos(2 * kPi / n);
+  return (0.625 - c * c) / n;
+}
+
+Step loop_step(const MeshTopology& t, const MeshOptions& o) {
+  const int V = t.vertex_count, E = static_cast<int>(t.edges.size());
+  Step s;
+  s.vertex_count = V + E;
+  RowWriter row(s.stencils);
+  for (int v = 0; v < V; ++v) {
+    const auto ring = ring_edges(t, v);
+    if (ring.empty()) {
+      row.add(v, 1);
+    } else if (on_boundary(t, v)) {
+      boundary_vertex_row(t, v, o, row);
+    } else {
+      const int n = static_cast<int>(ring.size());
+      const double beta = loop_beta(n);
+      row.add(v, 1 - n * beta);
+      for (const int e : ring) row.add(other_vertex(t, static_cast<std::size_t>(e), v), beta);
+    }
+    row.finish();
+  }
+  for (int e = 0; e < E; ++e) {
+    const auto [a, b] = t.edges[static_cast<std::size_t>(e)];
+    const auto [f0, f1] = t.edge_faces[static_cast<std::size_t>(e)];
+    if (f1 < 0) {
+      row.add(a, 0.5);
+      row.add(b, 0.5);
+    } else {
+      row.add(a, 0.375);
+      row.add(b, 0.375);
+      row.add(opposite_corner(t, f0, e), 0.125);
+      row.add(opposite_corner(t, f1, e), 0.125);
+    }
+    row.finish();
+  }
+  split_triangles(t, s);
+  return s;
+}
+
+/// The vertices around v in counter-clockwise order, starting at the other end of edge e.
+std::vector<int> ring_from(const MeshTopology& t, int v, int e) {
+  const auto ring = ring_edges(t, v);
+  const std::size_t n = ring.size();
+  const std::size_t start = static_cast<std::size_t>(std::find(ring.begin(), ring.end(), e) - ring.begin());
+  std::vector<int> out(n);
+  for (std::size_t j = 0; j < n; ++j)
+    out[j] = other_vertex(t, static_cast<std::size_t>(ring[(start + j) % n]), v);
+  return out;
+}
+
+/// Zorin–Schröder–Sweldens' stencil for an edge point next to a vertex of valence k ≠ 6: ¾ on the
+/// centre and s_j on ring vertex j (j = 0 the edge's other end). The seed writes s_j without the
+/// 1/k and mixes n and k; k = 3: 5/12, −1/12, −1/12; k = 4: 3/8, 0, −1/8, 0;
+/// k ≥ 5: s_j = (1/k)(¼ + cos(2πj/k) + ½cos(4πj/k)).
+void butterfly_extraordinary(int centre, const std::vector<int>& ring, double scale, RowWriter& row) {
+  const int k = static_cast<int>(ring.size());
+  row.add(centre, 0.75 * scale);
+  for (int j = 0; j < k; ++j) {
+    double s;
+    if (k == 3)
+      s = j == 0 ? 5.0 / 12 : -1.0 / 12;
+    else if (k == 4)
+      s = j == 0 ? 0.375 : (j == 2 ? -0.125 : 0.0);
+    else
+      s = (0.25 + std::cos(2 * kPi * j / k) + 0.5 * std::cos(4 * kPi * j / k)) / k;
+    row.add(ring[static_cast<std::size_t>(j)], s * scale);
+  }
+}
+
+Step butterfly_step(const MeshTopology& t, const MeshOptions&) {
+  const int V = t.vertex_count, E = static_cast<int>(t.edges.size());
+  Step s;
+  s.vertex_count = V + E;
+  RowWriter row(s.stencils);
+  for (int v = 0; v < V; ++v) {  // interpolating: old vertices stay
+    row.add(v, 1);
+    row.finish();
+  }
+  for (int e = 0; e < E; ++e) {
+    const auto [a, b] = t.edges[static_cast<std::size_t>(e)];
+    const std::vector<int> ra = ring_from(t, a, e), rb = ring_from(t, b, e);
+    const bool regular_a = ra.size() == 6, regular_b = rb.size() == 6;
+    if (regular_a && regular_b) {
+      // The 10-point stencil (w = 1/16): ends ½, the two opposite corners 1/8, the four wings −1/16.
+      row.add(a, 0.5);
+      row.add(b, 0.5);
+      row.add(ra[1], 0.125);
+      row.add(ra[5], 0.125);
+      for (const int wing : {ra[2], ra[4], rb[2], rb[4]}) row.add(wing, -0.0625);
+    } else if (!regular_a && !regular_b) {  // both extraordinary: the mean of the two stencils
+      butterfly_extraordinary(a, ra, 0.5, row);
+      butterfly_extraordinary(b, rb, 0.5, row);
+    } else if (!regular_a) {
+      butterfly_extraordinary(a, ra, 1, row);
+    } else {
+      butterfly_extraordinary(b, rb, 1, row);
+    }
+    row.finish();
+  }
+  split_triangles(t, s);
+  return s;
+}
+
+/// Kobbelt's √3: a vertex at every face centroid, old vertices relaxed by
+/// α_n = (4 − 2cos(2π/n))/9 (v' = (1 − α)v + (α/n)Σ neighbours), old edges flipped to join the
+/// centroids of their two faces. Two steps are a triadic refinement.
+Step sqrt3_step(const MeshTopology& t, const MeshOptions&) {
+  const int V = t.vertex_count, F = static_cast<int>(face_count(t));
+  Step s;
+  s.vertex_count = V + F;
+  RowWriter row(s.stencils);
+  for (int v = 0; v < V; ++v) {
+    const auto ring = ring_edges(t, v);
+    if (ring.empty()) {
+      row.add(v, 1);
+    } else {
+      const double n = static_cast<double>(ring.size()), alpha = (4 - 2 * std::cos(2 * kPi / n)) / 9;
+      row.add(v, 1 - alpha);
+      for (const int e : ring) row.add(other_vertex(t, static_cast<std::size_t>(e), v), alpha / n);
+    }
+    row.finish();
+  }
+  for (int f = 0; f < F; ++f) {
+    add_face_point(t, static_cast<std::size_t>(f), 1, row);
+    row.finish();
+  }
+  // Edge a → b between faces f0 (left) and f1 (right) becomes the triangles (a, c1, c0), (b, c0, c1).
+  for (std::size_t e = 0; e < t.edges.size(); ++e) {
+    const auto [a, b] = t.edges[e];
+    const int c0 = V + t.edge_faces[e][0], c1 = V + t.edge_faces[e][1];
+    add_face(s, {a, c1, c0});
+    add_face(s, {b, c0, c1});
+  }
+  return s;
+}
+
+/// Doo–Sabin: a new point for every corner of every face, Σ_j α_{j−i} v_j with
+/// α_0 = ¼ + 5/(4k), α_m = (3 + 2cos(2πm/k))/(4k); then a face per face (its corner points), per
+/// edge (a quad) and per vertex (its corner points around it).
+Step doo_sabin_step(const MeshTopology& t, const MeshOptions&) {
+  Step s;
+  s.vertex_count = static_cast<int>(t.face_vertices.size());  // corner (f, i) → face_offsets[f] + i
+  RowWriter row(s.stencils);
+  for (std::size_t f = 0; f < face_count(t); ++f) {
+    const auto corners = face(t, f);
+    const std::size_t k = corners.size();
+    const double kd = static_cast<double>(k);
+    for (std::size_t i = 0; i < k; ++i) {
+      for (std::size_t m = 0; m < k; ++m)
+        row.add(corners[(i + m) % k],
+                (m == 0 ? 0.25 : 0.0) + (3 + 2 * std::cos(2 * kPi * static_cast<double>(m) / kd)) / (4 * kd));
+      row.finish();
+    }
+  }
+  const auto point = [&](int f, int v) {
+    const auto corners = face(t, static_cast<std::size_t>(f));
+    const auto i = std::find(corners.begin(), corners.end(), v) - corners.begin();
+    return t.face_offsets[static_cast<std::size_t>(f)] + static_cast<int>(i);
+  };
+  for (std::size_t f = 0; f < face_count(t); ++f) {  // F-faces
+    const int begin = t.face_offsets[f], end = t.face_offsets[f + 1];
+    for (int c = begin; c < end; ++c) s.face_vertices.push_back(c);
+    s.face_offsets.push_back(static_cast<int>(s.face_vertices.size()));
+  }
+  for (std::size_t e = 0; e < t.edges.size(); ++e) {  // E-faces: f0 on the left of a → b
+    const auto [a, b] = t.edges[e];
+    const auto [f0, f1] = t.edge_faces[e];
+    add_face(s, {point(f1, a), point(f1, b), point(f0, b), point(f0, a)});
+  }
+  for (int v = 0; v < t.vertex_count; ++v) {  // V-faces, counter-clockwise around v
+    const auto faces = vertex_faces(t, static_cast<std::size_t>(v));
+    if (faces.empty()) continue;
+    for (const int f : faces) s.face_vertices.push_back(point(f, v));
+    s.face_offsets.push_back(static_cast<int>(s.face_vertices.size()));
+  }
+  return s;
+}
+
+Step step(MeshScheme scheme, const MeshTopology& t, const MeshOptions& o) {
+  switch (scheme) {
+    case MeshScheme::catmull_clark:
+      return catmull_clark_step(t, o);
+    case MeshScheme::loop:
+      return loop_step(t, o);
+    case MeshScheme::doo_sabin:
+      return doo_sabin_step(t, o);
+    case MeshScheme::butterfly:
+      return butterfly_step(t, o);
+    case MeshScheme::sqrt3:
+      return sqrt3_step(t, o);
+  }
+  return {};
+}
+
+/// Counts of a mesh, as doubles (they are estimates before the work).
+struct Counts {
+  double vertices, edges, faces, corners;
+};
+
+/// The counts after one step, by formula (closed meshes where the scheme requires them).
+Counts next_counts(MeshScheme scheme, const Counts& c) {
+  switch (scheme) {
+    case MeshScheme::catmull_clark:
+      return {c.vertices + c.edges + c.faces, 2 * c.edges + c.corners, c.corners, 4 * c.corners};
+    case MeshScheme::loop:
+    case MeshScheme::butterfly:
+      return {c.vertices + c.edges, 2 * c.edges + 3 * c.faces, 4 * c.faces, 12 * c.faces};
+    case MeshScheme::doo_sabin:
+      return {c.corners, 2 * c.corners, c.faces + c.edges + c.vertices, c.corners + 6 * c.edges};
+    case MeshScheme::sqrt3:
+      return {c.vertices + c.faces, c.edges + 3 * c.faces, 3 * c.faces, 9 * c.faces};
+  }
+  return c;
+}
+
+void check_scheme_input(const MeshTopology& t, MeshScheme scheme) {
+  const std::string who(scheme_name(scheme));
+  if (triangles_only(scheme))
+    for (std::size_t f = 0; f < face_count(t); ++f)
+      if (face(t, f).size() != 3)
+        throw InvalidInput(
+            who + ": face " + std::to_string(f) + " has " + std::to_string(face(t, f).size()) +
+            " corners; this scheme runs on triangles (triangulate first, or use catmull-clark)");
+  if (scheme == MeshScheme::doo_sabin || scheme == MeshScheme::butterfly || scheme == MeshScheme::sqrt3)
+    for (std::size_t e = 0; e < t.edges.size(); ++e)
+      if (t.edge_faces[e][1] < 0)
+        throw InvalidInput(who + ": edge " + std::to_string(e) + " (vertices " +
+                           std::to_string(t.edges[e][0]) + "–" + std::to_string(t.edges[e][1]) +
+                           ") is on a boundary; this scheme runs on closed meshes so far (catmull-clark and "
+                           "loop take boundaries)");
+}
+
+}  // namespace
+
+MeshScheme named_mesh_scheme(std::string_view name) {
+  for (const MeshScheme s : {MeshScheme::catmull_clark, MeshScheme::loop, MeshScheme::doo_sabin,
+                             MeshScheme::butterfly, MeshScheme::sqrt3})
+    if (scheme_name(s) == name) return s;
+  throw InvalidInput("unknown mesh scheme '" + std::string(name) +
+                     "' (catmull-clark, loop, doo-sabin, butterfly, sqrt3)");
+}
+
+std::string_view scheme_name(MeshScheme scheme) noexcept {
+  switch (scheme) {
+    case MeshScheme::catmull_clark:
+      return "catmull-clark";
+    case MeshScheme::loop:
+      return "loop";
+    case MeshScheme::doo_sabin:
+      return "doo-sabin";
+    case MeshScheme::butterfly:
+      return "butterfly";
+    case MeshScheme::sqrt3:
+      return "sqrt3";
+  }
+  return "";
+}
+
+bool triangles_only(MeshScheme scheme) noexcept {
+  return scheme == MeshScheme::loop || scheme == MeshScheme::butterfly || scheme == MeshScheme::sqrt3;
+}
+
+MeshRefinement refine_topology(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOptions& options) {
+  const std::string who(scheme_name(scheme));
+  if (levels < 0) throw InvalidInput(who + ": " + std::to_string(levels) + " levels; expected 0 or more");
+  MeshRefinement r{.scheme = scheme, .options = options, .levels = {}, .steps = {}};
+  r.levels.push_back(build_topology(mesh, who));
+  check_scheme_input(r.levels[0], scheme);
+  // Refuse before any work: every level's topology (~40 bytes a corner, ~70 a vertex) and weights
+  // (~12 bytes an entry, ~10 entries a vertex) stay in memory.
+  const MeshTopology& t0 = r.levels[0];
+  Counts c{static_cast<double>(t0.vertex_count), static_cast<double>(t0.edges.size()),
+           static_cast<double>(face_count(t0)), static_cast<double>(t0.face_vertices.size())};
+  double bytes = 0;
+  for (int level = 0; level < levels; ++level) {
+    c = next_counts(scheme, c);
+    bytes += 40 * c.corners + 190 * c.vertices;
+    if (bytes > options.max_bytes || c.corners > INT_MAX)
+      throw InvalidInput(who + ": " + std::to_string(levels) + " levels of " +
+                         std::to_string(face_count(t0)) + " faces reach " + number_text(c.faces, 3) +
+                         " faces and " + number_text(c.vertices, 3) + " vertices at level " +
+                         std::to_string(level + 1) + ", about " + number_text(bytes, 3) + " bytes (limit " +
+                         number_text(options.max_bytes, 3) + "); ask for fewer levels");
+  }
+  for (int level = 0; level < levels; ++level) {
+    Step s = step(scheme, r.levels.back(), options);
+    r.steps.push_back(std::move(s.stencils));
+    r.levels.push_back(build_topology(s.face_offsets, s.face_vertices, s.vertex_count, who));
+  }
+  return r;
+}
+
+Points apply(const Stencils& step, const Points& vertices) {
+  const auto rows = static_cast<Eigen::Index>(row_count(step));
+  Points out = Points::Zero(rows, vertices.cols());
+  for (Eigen::Index i = 0; i < rows; ++i)
+    for (int k = step.offsets[static_cast<std::size_t>(i)]; k < step.offsets[static_cast<std::size_t>(i) + 1];
+         ++k)
+      out.row(i) +=
+          step.weights[static_cast<std::size_t>(k)] * vertices.row(step.columns[static_cast<std::size_t>(k)]);
+  return out;
+}
+
+Points apply(const MeshRefinement& refinement, const Points& vertices) {
+  if (vertices.rows() != refinement.levels.front().vertex_count)
+    throw InvalidInput("apply: " + std::to_string(vertices.rows()) + " vertex rows for a mesh of " +
+                       std::to_string(refinement.levels.front().vertex_count) + " vertices");
+  Points P = vertices;
+  for (const Stencils& s : refinement.steps) P = apply(s, P);
+  return P;
+}
+
+Mesh subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOptions& options) {
+  check_mesh(mesh, scheme_name(scheme));
+  const MeshRefinement r = refine_topology(mesh, scheme, levels, options);
+  const MeshTopology& last = r.levels.back();
+  Mesh out;
+  out.vertices = apply(r, mesh.vertices);
+  out.face_offsets = last.face_offsets;
+  out.face_vertices = last.face_vertices;
+  return out;
+}
+
+Mesh catmull_clark(const Mesh& mesh, int levels, const MeshOptions& options) {
+  return subdivide(mesh, MeshScheme::catmull_clark, levels, options);
+}
+Mesh loop(const Mesh& mesh, int levels, const MeshOptions& options) {
+  return subdivide(mesh, MeshScheme::loop, levels, options);
+}
+Mesh doo_sabin(const Mesh& mesh, int levels, const MeshOptions& options) {
+  return subdivide(mesh, MeshScheme::doo_sabin, levels, options);
+}
+Mesh butterfly(const Mesh& mesh, int levels, const MeshOptions& options) {
+  return subdivide(mesh, MeshScheme::butterfly, levels, options);
+}
+Mesh sqrt3(const Mesh& mesh, int levels, const MeshOptions& options) {
+  return subdivide(mesh, MeshScheme::sqrt3, levels, options);
+}
+
+Eigen::SparseMatrix<double, Eigen::RowMajor> subdivision_matrix(const Stencils& step, int old_vertex_count) {
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(step.weights.size());
+  for (std::size_t i = 0; i < row_count(step); ++i)
+    for (int k = step.offsets[i]; k < step.offsets[i + 1]; ++k)
+      entries.emplace_back(static_cast<int>(i), step.columns[static_cast<std::size_t>(k)],
+                           step.weights[static_cast<std::size_t>(k)]);
+  Eigen::SparseMatrix<double, Eigen::RowMajor> S(static_cast<Eigen::Index>(row_count(step)),
+                                                 old_vertex_count);
+  S.setFromTriplets(entries.begin(), entries.end());
+  return S;
+}
+
+}  // namespace cifs::subdivision

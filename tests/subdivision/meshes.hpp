@@ -1,0 +1,107 @@
+// SPDX-License-Identifier: MIT
+// Test meshes for the subdivision surfaces: closed and open, regular and with extraordinary vertices.
+#pragma once
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "cifs/mesh.hpp"
+
+namespace cifs_test {
+
+inline cifs::Mesh make_mesh(const std::vector<std::array<double, 3>>& points,
+                            const std::vector<std::vector<int>>& faces) {
+  cifs::Mesh m;
+  m.vertices.resize(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      m.vertices(static_cast<Eigen::Index>(i), k) = points[i][static_cast<std::size_t>(k)];
+  for (const auto& f : faces) cifs::add_face(m, std::span<const int>(f));
+  return m;
+}
+
+/// Unit cube, outward quads (valence 3 everywhere).
+inline cifs::Mesh cube() {
+  return make_mesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}},
+                   {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}});
+}
+
+inline cifs::Mesh tetrahedron() {
+  return make_mesh({{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}},
+                   {{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {1, 3, 2}});
+}
+
+inline cifs::Mesh octahedron() {
+  return make_mesh({{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}},
+                   {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}});
+}
+
+/// Pentagonal bipyramid, slightly irregular: valences 4 (equator) and 5 (poles).
+inline cifs::Mesh bipyramid() {
+  std::vector<std::array<double, 3>> p;
+  for (int i = 0; i < 5; ++i) {
+    const double a = 2 * std::numbers::pi * i / 5;
+    p.push_back({std::cos(a) * (1 + 0.1 * i), std::sin(a), 0.05 * i});
+  }
+  p.push_back({0.1, 0, 1.3});
+  p.push_back({0, -0.1, -1});
+  std::vector<std::vector<int>> f;
+  for (int i = 0; i < 5; ++i) {
+    f.push_back({i, (i + 1) % 5, 5});
+    f.push_back({(i + 1) % 5, i, 6});
+  }
+  return make_mesh(p, f);
+}
+
+/// Square pyramid: one quad and four triangles (Catmull–Clark on mixed polygons; valence 4 apex).
+inline cifs::Mesh pyramid() {
+  return make_mesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.4, 0.6, 0.9}},
+                   {{0, 3, 2, 1}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}});
+}
+
+/// An n × m grid of quads over a wavy height field, open (boundary with valence-2 corners).
+inline cifs::Mesh quad_grid(int n, int m, bool triangles = false) {
+  std::vector<std::array<double, 3>> p;
+  for (int j = 0; j <= m; ++j)
+    for (int i = 0; i <= n; ++i)
+      p.push_back({1.0 * i, 1.0 * j, std::sin(1.3 * i) * std::cos(0.7 * j) + 0.1 * i * j});
+  std::vector<std::vector<int>> f;
+  const auto id = [&](int i, int j) { return j * (n + 1) + i; };
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < n; ++i) {
+      if (triangles) {
+        f.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+        f.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+      } else {
+        f.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+      }
+    }
+  return make_mesh(p, f);
+}
+
+/// A torus of n × m quads (or 2nm triangles), every vertex regular.
+inline cifs::Mesh torus(int n, int m, bool triangles = false) {
+  std::vector<std::array<double, 3>> p;
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double u = 2 * std::numbers::pi * i / n, v = 2 * std::numbers::pi * j / m;
+      const double r = 1 + 0.1 * std::sin(3 * u);  // not a surface of revolution: no symmetric ties
+      p.push_back(
+          {(3 + r * std::cos(v)) * std::cos(u), (3 + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
+    }
+  std::vector<std::vector<int>> f;
+  const auto id = [&](int i, int j) { return (j % m) * n + (i % n); };
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < n; ++i) {
+      if (triangles) {
+        f.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+        f.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+      } else {
+        f.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+      }
+    }
+  return make_mesh(p, f);
+}
+
+}  // namespace cifs_test

@@ -1,0 +1,187 @@
+// SPDX-License-Identifier: MIT
+// Subdivision surfaces: properties that hold whatever the implementation — regular regions are the
+// tensor products of the curve schemes, counts by Euler's formula, levels compose, affine
+// invariance, Butterfly interpolates, the subdivision matrix is the weights — and bad input.
+#include "cifs/subdivision/mesh.hpp"
+
+#include <catch2/catch.hpp>
+
+#include "cifs/errors.hpp"
+#include "cifs/subdivision/refine.hpp"
+#include "cifs/subdivision/scheme.hpp"
+#include "cifs/topology.hpp"
+#include "subdivision/mesh_compare.hpp"
+#include "subdivision/meshes.hpp"
+
+using namespace cifs;
+using namespace cifs::subdivision;
+using namespace cifs_test;
+using Catch::Matchers::Contains;
+
+namespace {
+
+constexpr MeshScheme kAll[] = {MeshScheme::catmull_clark, MeshScheme::loop, MeshScheme::doo_sabin,
+                               MeshScheme::butterfly, MeshScheme::sqrt3};
+
+/// The n × m torus grid refined by a closed curve scheme along both grid directions: a
+/// (2n) × (2m) grid (rows of 2n points).
+Points tensor_refine(const Scheme& scheme, const Points& grid, int n, int m) {
+  Points rows(2 * n * m, 3);
+  for (int j = 0; j < m; ++j)
+    rows.middleRows(2 * n * j, 2 * n) = refine(scheme, grid.middleRows(n * j, n), true);
+  Points out(4 * n * m, 3);
+  for (int i = 0; i < 2 * n; ++i) {
+    Points column(m, 3);
+    for (int j = 0; j < m; ++j) column.row(j) = rows.row(2 * n * j + i);
+    const Points refined = refine(scheme, column, true);
+    for (int j = 0; j < 2 * m; ++j) out.row(2 * n * j + i) = refined.row(j);
+  }
+  return out;
+}
+
+/// A mesh that every scheme takes: closed triangles.
+Mesh closed_triangles() {
+  return bipyramid();
+}
+
+}  // namespace
+
+TEST_CASE("regular Catmull–Clark is the bicubic B-spline, regular Doo–Sabin the biquadratic",
+          "[subdivision][mesh]") {
+  // On a torus every vertex is regular: one step is the tensor product of the curve schemes
+  // (cubic B-spline (1,4,6,4,1)/8, Chaikin (1,3,3,1)/4) along both grid directions.
+  const int n = 7, m = 5;
+  const Mesh t = torus(n, m);
+  const Points cubic = tensor_refine(named_scheme("b-spline", {{"degree", "3"}}), t.vertices, n, m);
+  match_vertices(catmull_clark(t, 1).vertices, cubic, 1e-14);
+  const Points quadratic = tensor_refine(named_scheme("chaikin", {}), t.vertices, n, m);
+  match_vertices(doo_sabin(t, 1).vertices, quadratic, 1e-14);
+}
+
+TEST_CASE("counts per level: V − E + F kept, faces by the scheme's factor", "[subdivision][mesh]") {
+  for (const MeshScheme scheme : kAll) {
+    const Mesh m = scheme == MeshScheme::catmull_clark || scheme == MeshScheme::doo_sabin
+                       ? pyramid()
+                       : closed_triangles();
+    const MeshRefinement r = refine_topology(m, scheme, 3);
+    REQUIRE(r.levels.size() == 4);
+    REQUIRE(r.steps.size() == 3);
+    for (std::size_t k = 0; k + 1 < r.levels.size(); ++k) {
+      const MeshTopology &a = r.levels[k], &b = r.levels[k + 1];
+      INFO(scheme_name(scheme) << ", level " << k + 1);
+      CHECK(euler_characteristic(b) == euler_characteristic(a));
+      CHECK(row_count(r.steps[k]) == static_cast<std::size_t>(b.vertex_count));
+      const std::size_t F = face_count(a), E = a.edges.size(), V = static_cast<std::size_t>(a.vertex_count);
+      switch (scheme) {
+        case MeshScheme::catmull_clark:
+          CHECK(face_count(b) == a.face_vertices.size());
+          break;
+        case MeshScheme::loop:
+        case MeshScheme::butterfly:
+          CHECK(face_count(b) == 4 * F);
+          break;
+        case MeshScheme::doo_sabin:
+          CHECK(face_count(b) == F + E + V);
+          break;
+        case MeshScheme::sqrt3:
+          CHECK(face_count(b) == 3 * F);
+          break;
+      }
+      // Every stencil is an affine combination.
+      for (std::size_t i = 0; i < row_count(r.steps[k]); ++i) {
+        double sum = 0;
+        for (int j = r.steps[k].offsets[i]; j < r.steps[k].offsets[i + 1]; ++j)
+          sum += r.steps[k].weights[static_cast<std::size_t>(j)];
+        CHECK(sum == Approx(1).margin(1e-15));
+      }
+    }
+  }
+}
+
+TEST_CASE("two levels at once = one level of one level; replay on new data = a fresh refinement",
+          "[subdivision][mesh]") {
+  for (const MeshScheme scheme : kAll) {
+    const Mesh m = triangles_only(scheme) ? closed_triangles() : cube();
+    INFO(scheme_name(scheme));
+    const Mesh twice = subdivide(subdivide(m, scheme, 1), scheme, 1), once = subdivide(m, scheme, 2);
+    CHECK(twice.face_offsets == once.face_offsets);
+    CHECK(twice.face_vertices == once.face_vertices);
+    CHECK((twice.vertices - once.vertices).cwiseAbs().maxCoeff() <= 1e-15);
+    // Topology once, any number of position sets (and any number of columns).
+    const MeshRefinement r = refine_topology(m, scheme, 2);
+    Points moved = m.vertices;
+    moved.col(2) *= -3;
+    moved.col(0).array() += 0.5;
+    Mesh other = m;
+    other.vertices = moved;
+    CHECK((apply(r, moved) - subdivide(other, scheme, 2).vertices).cwiseAbs().maxCoeff() == 0);
+    Points wide(m.vertices.rows(), 5);
+    wide << m.vertices, moved.leftCols(2);
+    const Points applied = apply(r, wide);
+    CHECK(applied.leftCols(3) == once.vertices);
+  }
+}
+
+TEST_CASE("affine invariance; Butterfly interpolates; the subdivision matrix is the weights",
+          "[subdivision][mesh]") {
+  Eigen::Matrix3d A;
+  A << 2, 0.3, -1, 0.1, -1.5, 0.2, 0.7, 0.4, 3;
+  const Eigen::RowVector3d shift(10, -20, 5);
+  for (const MeshScheme scheme : kAll) {
+    const Mesh m = triangles_only(scheme) ? closed_triangles() : pyramid();
+    Mesh moved = m;
+    moved.vertices = (m.vertices * A.transpose()).rowwise() + shift;
+    const Points expected = (subdivide(m, scheme, 2).vertices * A.transpose()).rowwise() + shift;
+    const Points got = subdivide(moved, scheme, 2).vertices;
+    INFO(scheme_name(scheme));
+    CHECK((got - expected).cwiseAbs().maxCoeff() <= 1e-12 * expected.cwiseAbs().maxCoeff());
+    const MeshRefinement r = refine_topology(m, scheme, 1);
+    const auto S = subdivision_matrix(r.steps[0], static_cast<int>(m.vertices.rows()));
+    CHECK(S.rows() == r.levels[1].vertex_count);
+    CHECK((Points(S * m.vertices) - apply(r, m.vertices)).cwiseAbs().maxCoeff() <= 1e-15);
+  }
+  const Mesh m = closed_triangles();
+  const Mesh b = butterfly(m, 3);
+  CHECK(b.vertices.topRows(m.vertices.rows()) == m.vertices);  // old vertices exactly in place
+}
+
+TEST_CASE("Loop's β is the seed's α_n/n, and the Butterfly stencils are ZSS's", "[subdivision][mesh]") {
+  // A closed mesh with a vertex of valence n: its Loop vertex row has 1 − α_n on the vertex and
+  // α_n/n on each neighbour, α_n = (40 − (3 + 2cos(2π/n))²)/64 (seed 003).
+  const Mesh m = bipyramid();  // poles of valence 5, equator of valence 4
+  const MeshRefinement r = refine_topology(m, MeshScheme::loop, 1);
+  for (const int v : {0, 5}) {
+    const int n = v == 5 ? 5 : 4;
+    const double t = 3 + 2 * std::cos(2 * std::numbers::pi / n), alpha = (40 - t * t) / 64;
+    const Stencils& s = r.steps[0];
+    for (int k = s.offsets[static_cast<std::size_t>(v)]; k < s.offsets[static_cast<std::size_t>(v) + 1]; ++k)
+      CHECK(s.weights[static_cast<std::size_t>(k)] ==
+            Approx(s.columns[static_cast<std::size_t>(k)] == v ? 1 - alpha : alpha / n).epsilon(1e-14));
+  }
+}
+
+TEST_CASE("bad meshes and requests: one-line errors naming the element", "[subdivision][mesh]") {
+  CHECK_THROWS_WITH(loop(cube(), 1), Contains("loop: face 0 has 4 corners") && Contains("triangles"));
+  CHECK_THROWS_WITH(sqrt3(pyramid(), 1), Contains("face 0 has 4 corners"));
+  CHECK_THROWS_WITH(butterfly(quad_grid(2, 2, true), 1), Contains("is on a boundary"));
+  CHECK_THROWS_WITH(doo_sabin(quad_grid(2, 2), 1), Contains("doo-sabin: edge") && Contains("boundary"));
+  Mesh bowtie = make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {2, 0, 0}},
+                          {{0, 1, 2}, {1, 3, 2}, {1, 2, 4}});  // edge 1–2 in three faces
+  CHECK_THROWS_AS(catmull_clark(bowtie, 1), InvalidInput);
+  Mesh nan = cube();
+  nan.vertices(3, 1) = std::nan("");
+  CHECK_THROWS_AS(catmull_clark(nan, 1), InvalidInput);
+  Mesh out_of_range = cube();
+  out_of_range.face_vertices[5] = 8;
+  CHECK_THROWS_AS(catmull_clark(out_of_range, 1), InvalidInput);
+  Mesh repeated = cube();
+  repeated.face_vertices[1] = repeated.face_vertices[0];
+  CHECK_THROWS_AS(catmull_clark(repeated, 1), InvalidInput);
+  CHECK_THROWS_WITH(catmull_clark(cube(), -1), Contains("-1 levels"));
+  // Refused before any work, with the figure: 16 levels of the cube are 2.6e10 faces.
+  CHECK_THROWS_WITH(refine_topology(cube(), MeshScheme::catmull_clark, 16),
+                    Contains("catmull-clark: 16 levels of 6 faces reach") && Contains("bytes (limit"));
+  CHECK_THROWS_WITH(named_mesh_scheme("kobbelt"),
+                    Contains("catmull-clark, loop, doo-sabin, butterfly, sqrt3"));
+  CHECK(subdivide(cube(), MeshScheme::catmull_clark, 0).vertices == cube().vertices);
+}

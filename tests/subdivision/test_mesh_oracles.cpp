@@ -1,0 +1,158 @@
+// SPDX-License-Identifier: MIT
+// Subdivision surfaces against independent implementations: OpenSubdiv Far (Catmull–Clark, Loop,
+// boundaries both ways) and OpenMesh's uniform subdividers (Loop, √3, modified Butterfly on closed
+// meshes). Both are permissive licences, linked into this test executable only.
+#include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/far/topologyRefinerFactory.h>
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Tools/Subdivider/Uniform/LoopT.hh>
+#include <OpenMesh/Tools/Subdivider/Uniform/ModifiedButterFlyT.hh>
+#include <OpenMesh/Tools/Subdivider/Uniform/Sqrt3T.hh>
+#include <catch2/catch.hpp>
+#include <memory>
+
+#include "cifs/subdivision/mesh.hpp"
+#include "subdivision/mesh_compare.hpp"
+#include "subdivision/meshes.hpp"
+
+using namespace cifs;
+using namespace cifs::subdivision;
+using namespace cifs_test;
+namespace Far = OpenSubdiv::Far;
+namespace Sdc = OpenSubdiv::Sdc;
+
+namespace {
+
+struct OsdVertex {
+  double p[3];
+  void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0; }
+  void AddWithWeight(const OsdVertex& s, double w) {
+    for (int k = 0; k < 3; ++k) p[k] += w * s.p[k];
+  }
+};
+
+Mesh osd_refine(const Mesh& m, Sdc::SchemeType type, BoundaryRule boundary, int levels) {
+  std::vector<int> counts;
+  for (std::size_t f = 0; f < face_count(m); ++f) counts.push_back(static_cast<int>(face(m, f).size()));
+  Far::TopologyDescriptor desc;
+  desc.numVertices = static_cast<int>(m.vertices.rows());
+  desc.numFaces = static_cast<int>(counts.size());
+  desc.numVertsPerFace = counts.data();
+  desc.vertIndicesPerFace = m.face_vertices.data();
+  Sdc::Options so;
+  so.SetVtxBoundaryInterpolation(boundary == BoundaryRule::edge_only
+                                     ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
+                                     : Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
+  using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+  std::unique_ptr<Far::TopologyRefiner> refiner(Factory::Create(desc, Factory::Options(type, so)));
+  REQUIRE(refiner);
+  refiner->RefineUniform(Far::TopologyRefiner::UniformOptions(levels));
+  std::vector<OsdVertex> verts(static_cast<std::size_t>(refiner->GetNumVerticesTotal()));
+  for (Eigen::Index i = 0; i < m.vertices.rows(); ++i)
+    for (int k = 0; k < 3; ++k) verts[static_cast<std::size_t>(i)].p[k] = m.vertices(i, k);
+  Far::PrimvarRefinerReal<double> primvars(*refiner);
+  OsdVertex* src = verts.data();
+  for (int level = 1; level <= levels; ++level) {
+    OsdVertex* dst = src + refiner->GetLevel(level - 1).GetNumVertices();
+    primvars.Interpolate(level, src, dst);
+    src = dst;
+  }
+  const Far::TopologyLevel& last = refiner->GetLevel(levels);
+  Mesh out;
+  out.vertices.resize(last.GetNumVertices(), 3);
+  for (int i = 0; i < last.GetNumVertices(); ++i)
+    for (int k = 0; k < 3; ++k) out.vertices(i, k) = src[i].p[k];
+  for (int f = 0; f < last.GetNumFaces(); ++f) {
+    const auto corners = last.GetFaceVertices(f);
+    std::vector<int> face(corners.begin(), corners.end());
+    add_face(out, std::span<const int>(face));
+  }
+  return out;
+}
+
+struct Traits : OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  using Normal = OpenMesh::Vec3d;
+};
+using TriMesh = OpenMesh::TriMesh_ArrayKernelT<Traits>;
+
+template <class Subdivider>
+Mesh openmesh_refine(const Mesh& m, int levels) {
+  TriMesh om;
+  std::vector<TriMesh::VertexHandle> handles;
+  for (Eigen::Index i = 0; i < m.vertices.rows(); ++i)
+    handles.push_back(om.add_vertex(TriMesh::Point(m.vertices(i, 0), m.vertices(i, 1), m.vertices(i, 2))));
+  for (std::size_t f = 0; f < face_count(m); ++f) {
+    const auto c = face(m, f);
+    om.add_face(handles[static_cast<std::size_t>(c[0])], handles[static_cast<std::size_t>(c[1])],
+                handles[static_cast<std::size_t>(c[2])]);
+  }
+  Subdivider subdivider;
+  subdivider.attach(om);
+  subdivider(static_cast<std::size_t>(levels));
+  subdivider.detach();
+  Mesh out;
+  out.vertices.resize(static_cast<Eigen::Index>(om.n_vertices()), 3);
+  for (const auto v : om.vertices()) {
+    const auto p = om.point(v);
+    for (int k = 0; k < 3; ++k) out.vertices(v.idx(), k) = p[k];
+  }
+  for (const auto f : om.faces()) {
+    std::vector<int> corners;
+    for (const auto v : om.fv_range(f)) corners.push_back(v.idx());
+    add_face(out, std::span<const int>(corners));
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("Catmull–Clark = OpenSubdiv Far, closed and open meshes, both boundary rules, levels 1–3",
+          "[subdivision][mesh][oracle]") {
+  const std::vector<std::pair<const char*, Mesh>> meshes{
+      {"cube", cube()},          {"pyramid", pyramid()},         {"torus", torus(6, 5)},
+      {"grid", quad_grid(4, 3)}, {"tetrahedron", tetrahedron()}, {"open triangles", quad_grid(3, 2, true)}};
+  for (const auto& [name, m] : meshes)
+    for (const BoundaryRule rule : {BoundaryRule::edge_only, BoundaryRule::edge_and_corner})
+      for (int levels = 1; levels <= 3; ++levels) {
+        INFO(name << ", level " << levels << ", corners " << (rule == BoundaryRule::edge_and_corner));
+        check_same_mesh(catmull_clark(m, levels, {.boundary = rule}),
+                        osd_refine(m, Sdc::SCHEME_CATMARK, rule, levels));
+      }
+}
+
+TEST_CASE("Loop = OpenSubdiv Far, closed and open meshes, both boundary rules, levels 1–3",
+          "[subdivision][mesh][oracle]") {
+  const std::vector<std::pair<const char*, Mesh>> meshes{{"tetrahedron", tetrahedron()},
+                                                         {"octahedron", octahedron()},
+                                                         {"bipyramid", bipyramid()},
+                                                         {"torus", torus(6, 5, true)},
+                                                         {"open triangles", quad_grid(4, 3, true)}};
+  for (const auto& [name, m] : meshes)
+    for (const BoundaryRule rule : {BoundaryRule::edge_only, BoundaryRule::edge_and_corner})
+      for (int levels = 1; levels <= 3; ++levels) {
+        INFO(name << ", level " << levels << ", corners " << (rule == BoundaryRule::edge_and_corner));
+        check_same_mesh(loop(m, levels, {.boundary = rule}), osd_refine(m, Sdc::SCHEME_LOOP, rule, levels));
+      }
+}
+
+TEST_CASE("Loop, √3 and modified Butterfly = OpenMesh's uniform subdividers on closed meshes",
+          "[subdivision][mesh][oracle]") {
+  const std::vector<std::pair<const char*, Mesh>> meshes{{"tetrahedron", tetrahedron()},
+                                                         {"octahedron", octahedron()},
+                                                         {"bipyramid", bipyramid()},
+                                                         {"torus", torus(6, 5, true)}};
+  for (const auto& [name, m] : meshes)
+    for (int levels = 1; levels <= 3; ++levels) {
+      INFO(name << ", level " << levels);
+      check_same_mesh(loop(m, levels),
+                      openmesh_refine<OpenMesh::Subdivider::Uniform::LoopT<TriMesh, double>>(m, levels));
+      check_same_mesh(sqrt3(m, levels),
+                      openmesh_refine<OpenMesh::Subdivider::Uniform::Sqrt3T<TriMesh, double>>(m, levels));
+      check_same_mesh(
+          butterfly(m, levels),
+          openmesh_refine<OpenMesh::Subdivider::Uniform::ModifiedButterflyT<TriMesh, double>>(m, levels));
+    }
+}
