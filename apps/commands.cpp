@@ -124,6 +124,7 @@ std::string insert(const InsertOptions& o) {
 }
 
 std::string info(const std::filesystem::path& path) {
+  if (is_polygon_mesh_file(path)) return mesh_info(path);
   const io::Shape shape = io::read_shape(path);
   json out;
   if (const auto* c = std::get_if<nurbs::Curve>(&shape)) {

@@ -26,7 +26,21 @@ struct InsertOptions {
 };
 std::string insert(const InsertOptions& options);
 
-std::string info(const std::filesystem::path& shape);
+std::string info(const std::filesystem::path& shape);  // shapes; polygon meshes through mesh_info
+
+/// A PLY file, or an OBJ with faces and no free-form geometry.
+bool is_polygon_mesh_file(const std::filesystem::path& path);
+/// Counts, face sizes, valences, boundary loops, Euler characteristic (and genus when closed), as JSON.
+std::string mesh_info(const std::filesystem::path& mesh);
+
+struct SubdivideOptions {
+  std::filesystem::path mesh;
+  std::string scheme;  // subdivision::named_mesh_scheme
+  int levels = 1;
+  std::string boundary = "edge";  // edge | corner
+  std::filesystem::path output;   // .obj or .ply; empty: OBJ on stdout
+};
+std::string subdivide(const SubdivideOptions& options);
 
 struct AutomatonOptions {
   std::filesystem::path shape;

@@ -49,8 +49,10 @@ int run(int argc, char** argv) {
   insert_cmd->callback([&] { result = insert(in); });
 
   std::filesystem::path info_shape;
-  auto* info_cmd = app.add_subcommand("info", "Degree, counts, domain and segments of a shape");
-  info_cmd->add_option("shape", info_shape, "Shape file (.json or .obj)")->required();
+  auto* info_cmd = app.add_subcommand(
+      "info", "Degree, counts, domain and segments of a shape; counts, valences and topology of a mesh");
+  info_cmd->add_option("shape", info_shape, "Shape file (.json or .obj) or polygon mesh (.obj or .ply)")
+      ->required();
   info_cmd->callback([&] { result = info(info_shape); });
 
   AutomatonOptions au;
@@ -114,6 +116,18 @@ int run(int argc, char** argv) {
   render_cmd->add_flag("--quiet", re.quiet, "No progress bar");
   render_cmd->callback([&] { result = render(re); });
 
+  SubdivideOptions su;
+  auto* subdivide_cmd = app.add_subcommand(
+      "subdivide", "Subdivide a polygon mesh: Catmull-Clark, Loop, Doo-Sabin, Butterfly, sqrt3");
+  subdivide_cmd->add_option("mesh", su.mesh, "Polygon mesh (.obj or .ply)")->required();
+  subdivide_cmd->add_option("--scheme", su.scheme, "catmull-clark, loop, doo-sabin, butterfly or sqrt3")
+      ->required();
+  subdivide_cmd->add_option("--levels", su.levels, "Subdivision steps (default 1)");
+  subdivide_cmd->add_option("--boundary", su.boundary,
+                            "Boundary corners (one face): edge (smoothed, default) or corner (kept)");
+  subdivide_cmd->add_option("-o,--output", su.output, "Output mesh (.obj or .ply; default: OBJ on stdout)");
+  subdivide_cmd->callback([&] { result = subdivide(su); });
+
   DimensionOptions di;
   auto* dimension_cmd = app.add_subcommand(
       "dimension",
@@ -149,7 +163,7 @@ int run(int argc, char** argv) {
     if (first[0] != '-' && known.empty())
       throw cifs::InvalidInput("unknown command '" + first +
                                "' (commands: eval, insert, info, automaton, attractor, check, scheme, "
-                               "render, dimension, gallery; see cifs --help)");
+                               "subdivide, render, dimension, gallery; see cifs --help)");
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);

@@ -8,6 +8,7 @@ packages=(
   libeigen3-dev libboost-graph-dev libopenexr-dev catch2
   nlohmann-json3-dev libcli11-dev libpng-dev libbenchmark-dev
   python3-dev pybind11-dev python3-numpy python3-matplotlib  # the cifs Python package and its examples
+  libosd-dev libopenmesh-dev  # OpenSubdiv, OpenMesh: oracles of the mesh subdivision tests only
   libsisl-dev  # AGPL comparator: linked into bench/ only, never into the library
   clang-format clang-tidy  # scripts/lint.sh (CI)
 )

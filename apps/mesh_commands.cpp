@@ -1,0 +1,124 @@
+// SPDX-License-Identifier: MIT
+// cifs CLI — polygon meshes: `cifs subdivide` and `cifs info` on an OBJ/PLY mesh.
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <numeric>
+
+#include "cifs/errors.hpp"
+#include "cifs/files.hpp"
+#include "cifs/io/io.hpp"
+#include "cifs/subdivision/mesh.hpp"
+#include "cifs/topology.hpp"
+#include "commands.hpp"
+
+namespace cifs::cli {
+namespace {
+
+using nlohmann::json;
+
+/// Connected components of the faces (through shared vertices).
+int components(const MeshTopology& t) {
+  std::vector<int> parent(static_cast<std::size_t>(t.vertex_count));
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto find = [&](int v) {
+    while (parent[static_cast<std::size_t>(v)] != v)
+      v = parent[static_cast<std::size_t>(v)] =
+          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(v)])];
+    return v;
+  };
+  for (const auto& [a, b] : t.edges) parent[static_cast<std::size_t>(find(a))] = find(b);
+  int count = 0;
+  for (int v = 0; v < t.vertex_count; ++v)
+    if (find(v) == v && valence(t, static_cast<std::size_t>(v)) > 0) ++count;
+  return count;
+}
+
+subdivision::BoundaryRule boundary_rule(const std::string& name) {
+  if (name == "edge") return subdivision::BoundaryRule::edge_only;
+  if (name == "corner") return subdivision::BoundaryRule::edge_and_corner;
+  throw InvalidInput("--boundary " + name + ": expected edge (boundary corners smoothed) or corner (kept)");
+}
+
+/// Refused before the work: the output must be a mesh format the table writes.
+void check_mesh_output(const std::filesystem::path& output) {
+  std::string known;
+  for (const io::Format& f : io::formats(io::Content::mesh)) {
+    if (!f.write) continue;
+    if (output.extension() == f.extension) return;
+    known += (known.empty() ? "" : " or ") + std::string(f.extension);
+  }
+  throw InvalidInput("-o " + output.string() + ": expected a " + known + " file name");
+}
+
+}  // namespace
+
+bool is_polygon_mesh_file(const std::filesystem::path& path) {
+  const std::string ext = path.extension().string();
+  if (ext == ".ply") return true;
+  if (ext != ".obj") return false;
+  // An OBJ is a polygon mesh when it has faces and no free-form geometry.
+  std::ifstream in(path);
+  bool faces = false;
+  for (std::string line; std::getline(in, line);) {
+    const auto start = line.find_first_not_of(" \t");
+    if (start == std::string::npos) continue;
+    const std::string_view word =
+        std::string_view(line).substr(start, line.find_first_of(" \t", start) - start);
+    if (word == "cstype" || word == "curv" || word == "surf") return false;
+    faces = faces || word == "f";
+  }
+  return faces;
+}
+
+std::string mesh_info(const std::filesystem::path& path) {
+  const Mesh mesh = io::read_mesh(path);
+  const MeshTopology t = build_topology(mesh, path.string());
+  std::map<std::string, int> sizes, valences;
+  for (std::size_t f = 0; f < face_count(t); ++f) ++sizes[std::to_string(face(t, f).size())];
+  int isolated = 0;
+  for (int v = 0; v < t.vertex_count; ++v) {
+    const int n = valence(t, static_cast<std::size_t>(v));
+    if (n == 0)
+      ++isolated;
+    else
+      ++valences[std::to_string(n)];
+  }
+  const auto loops = boundary_loops(t);
+  const long long chi = euler_characteristic(t) - isolated;
+  const int parts = components(t);
+  json out = {{"type", "mesh"},
+              {"vertices", t.vertex_count},
+              {"edges", t.edges.size()},
+              {"faces", face_count(t)},
+              {"faces_by_corners", sizes},
+              {"valences", valences},
+              {"isolated_vertices", isolated},
+              {"boundary_loops", loops.size()},
+              {"closed", loops.empty()},
+              {"components", parts},
+              {"euler_characteristic", euler_characteristic(t)}};
+  // An oriented closed surface of c components has χ = 2c − 2g (g the total genus).
+  if (loops.empty()) out["genus"] = (2LL * parts - chi) / 2;
+  return out.dump(1) + "\n";
+}
+
+std::string subdivide(const SubdivideOptions& o) {
+  const subdivision::MeshScheme scheme = subdivision::named_mesh_scheme(o.scheme);
+  const subdivision::MeshOptions options{.boundary = boundary_rule(o.boundary)};
+  if (!o.output.empty()) check_mesh_output(o.output);
+  const Mesh mesh = io::read_mesh(o.mesh);
+  Mesh refined;
+  try {
+    refined = subdivision::subdivide(mesh, scheme, o.levels, options);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(o.mesh.string() + ": " + e.what());
+  }
+  if (o.output.empty()) return io::encode(refined, "obj");
+  io::write(o.output, refined);
+  return "wrote " + o.output.string() + ": " + std::to_string(refined.vertices.rows()) + " vertices, " +
+         std::to_string(face_count(refined)) + " faces (" + o.scheme + ", " + std::to_string(o.levels) +
+         " levels)\n";
+}
+
+}  // namespace cifs::cli

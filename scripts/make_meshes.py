@@ -1,0 +1,107 @@
+#!/usr/bin/python3
+# SPDX-License-Identifier: MIT
+"""Writes the example polygon meshes of examples/meshes/ (OBJ, faces counter-clockwise seen from
+outside). `make_meshes.py --check` compares the files with what this script writes (a ctest test)."""
+import math
+import pathlib
+import sys
+
+
+def obj(name, comment, points, faces):
+    lines = [f"# {name}: {comment}", f"# {len(points)} vertices, {len(faces)} faces (scripts/make_meshes.py)"]
+    lines += ["v " + " ".join(repr(round(c, 12) + 0.0) for c in p) for p in points]
+    lines += ["f " + " ".join(str(i + 1) for i in f) for f in faces]
+    return "\n".join(lines) + "\n"
+
+
+def cube():
+    p = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
+    f = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
+    return p, f
+
+
+def cube_triangles():
+    # Each square split along the diagonal of the inscribed tetrahedron (0, 2, 5, 7): those four
+    # corners get valence 6, the other four valence 3.
+    p, quads = cube()
+    tet = {0, 2, 5, 7}
+    f = []
+    for q in quads:
+        k = next(i for i in range(4) if q[i] in tet)
+        a, b, c, d = q[k:] + q[:k]
+        f += [(a, b, c), (a, c, d)]
+    return p, f
+
+
+def tetrahedron():
+    return [(1, 1, 1), (1, -1, -1), (-1, 1, -1), (-1, -1, 1)], [(0, 1, 2), (0, 2, 3), (0, 3, 1), (1, 3, 2)]
+
+
+def icosahedron():
+    t = (1 + math.sqrt(5)) / 2
+    p = [(-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t), (0, -1, -t), (0, 1, -t),
+         (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]
+    f = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4), (11, 10, 2),
+         (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8), (3, 8, 9), (4, 9, 5), (2, 4, 11),
+         (6, 2, 10), (8, 6, 7), (9, 8, 1)]
+    return p, f
+
+
+def open_grid(n=6, m=4, triangles=False):
+    p = [(i / 2, j / 2, 0.3 * math.sin(1.1 * i) * math.cos(0.9 * j)) for j in range(m + 1) for i in range(n + 1)]
+    f = []
+    for j in range(m):
+        for i in range(n):
+            a, b, c, d = j * (n + 1) + i, j * (n + 1) + i + 1, (j + 1) * (n + 1) + i + 1, (j + 1) * (n + 1) + i
+            f += [(a, b, c), (a, c, d)] if triangles else [(a, b, c, d)]
+    return p, f
+
+
+def torus(n=12, m=8, triangles=False):
+    p = []
+    for j in range(m):
+        for i in range(n):
+            u, v = 2 * math.pi * i / n, 2 * math.pi * j / m
+            p.append(((2 + 0.7 * math.cos(v)) * math.cos(u), (2 + 0.7 * math.cos(v)) * math.sin(u), 0.7 * math.sin(v)))
+    f = []
+    for j in range(m):
+        for i in range(n):
+            a, b = j * n + i, j * n + (i + 1) % n
+            c, d = ((j + 1) % m) * n + (i + 1) % n, ((j + 1) % m) * n + i
+            f += [(a, b, c), (a, c, d)] if triangles else [(a, b, c, d)]
+    return p, f
+
+
+MESHES = {
+    "cube": ("unit cube, 6 quads, valence 3", cube),
+    "cube_triangles": ("cube split into 12 triangles, valences 3 and 6", cube_triangles),
+    "tetrahedron": ("regular tetrahedron, valence 3", tetrahedron),
+    "icosahedron": ("regular icosahedron, valence 5", icosahedron),
+    "open_grid": ("6 x 4 quads over a wave, open (boundary, valence-2 corners)", open_grid),
+    "open_grid_triangles": ("the open grid split into triangles", lambda: open_grid(triangles=True)),
+    "torus": ("12 x 8 quads, genus 1, every vertex regular", torus),
+    "torus_triangles": ("the torus split into triangles, valence 6", lambda: torus(triangles=True)),
+}
+
+
+def main():
+    check = "--check" in sys.argv
+    args = [a for a in sys.argv[1:] if a != "--check"]
+    out = pathlib.Path(args[0]) if args else pathlib.Path(__file__).resolve().parent.parent / "examples" / "meshes"
+    out.mkdir(parents=True, exist_ok=True)
+    stale = []
+    for name, (comment, make) in MESHES.items():
+        text = obj(name, comment, *make())
+        path = out / f"{name}.obj"
+        if check:
+            if not path.exists() or path.read_text() != text:
+                stale.append(str(path))
+        else:
+            path.write_text(text)
+    if stale:
+        print("make_meshes: differs from what scripts/make_meshes.py writes: " + ", ".join(stale), file=sys.stderr)
+        sys.exit(1)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: MIT
+// cifs subdivide and cifs info on polygon meshes, run as a user runs them.
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include "apps/cli_runner.hpp"
+#include "cifs/io/io.hpp"
+#include "cifs/subdivision/mesh.hpp"
+
+using namespace cifs;
+using namespace cifs_test;
+using nlohmann::json;
+
+namespace {
+
+std::string example(const std::string& name) {
+  return std::string(CIFS_EXAMPLES_DIR) + "/meshes/" + name;
+}
+
+}  // namespace
+
+TEST_CASE("cifs subdivide writes the library's refinement, OBJ or PLY, or OBJ on stdout", "[cli][mesh]") {
+  struct Case {
+    const char* mesh;
+    const char* scheme;
+    subdivision::MeshScheme id;
+  };
+  for (const Case c : {Case{"open_grid.obj", "catmull-clark", subdivision::MeshScheme::catmull_clark},
+                       Case{"icosahedron.obj", "loop", subdivision::MeshScheme::loop},
+                       Case{"torus.obj", "doo-sabin", subdivision::MeshScheme::doo_sabin},
+                       Case{"cube_triangles.obj", "butterfly", subdivision::MeshScheme::butterfly},
+                       Case{"tetrahedron.obj", "sqrt3", subdivision::MeshScheme::sqrt3}}) {
+    INFO(c.scheme);
+    const Mesh input = io::read_mesh(example(c.mesh));
+    const Mesh expected = subdivision::subdivide(input, c.id, 2);
+    for (const char* ext : {".obj", ".ply"}) {
+      const auto out = scratch() / (std::string("sub_") + c.scheme + ext);
+      const Run r = cifs_cli("subdivide " + example(c.mesh) + " --scheme " + c.scheme + " --levels 2 -o " +
+                             out.string());
+      REQUIRE(r.status == 0);
+      CHECK(r.out == "wrote " + out.string() + ": " + std::to_string(expected.vertices.rows()) +
+                         " vertices, " + std::to_string(face_count(expected)) + " faces (" + c.scheme +
+                         ", 2 levels)\n");
+      const Mesh back = io::read_mesh(out);
+      CHECK(back.vertices == expected.vertices);  // %.17g text and binary PLY both read back exactly
+      CHECK(back.face_vertices == expected.face_vertices);
+      CHECK(back.face_offsets == expected.face_offsets);
+    }
+  }
+  const Run r = cifs_cli("subdivide " + example("cube.obj") + " --scheme catmull-clark");
+  REQUIRE(r.status == 0);
+  CHECK(r.out == io::encode(subdivision::catmull_clark(io::read_mesh(example("cube.obj")), 1), "obj"));
+  // The corner rule keeps the open grid's four corners in place.
+  const auto corners = scratch() / "corners.obj";
+  REQUIRE(cifs_cli("subdivide " + example("open_grid.obj") + " --scheme catmull-clark --boundary corner -o " +
+                   corners.string())
+              .status == 0);
+  const Mesh grid = io::read_mesh(example("open_grid.obj")), kept = io::read_mesh(corners);
+  CHECK(kept.vertices.row(0) == grid.vertices.row(0));
+}
+
+TEST_CASE("cifs info on a polygon mesh: counts, valences, boundary, Euler characteristic, genus",
+          "[cli][mesh]") {
+  const json torus = json::parse(cifs_cli("info " + example("torus.obj")).out);
+  CHECK(torus["type"] == "mesh");
+  CHECK(torus["vertices"] == 96);
+  CHECK(torus["faces"] == 96);
+  CHECK(torus["edges"] == 192);  // every quad has 4 edges, each shared by 2 quads
+  CHECK(torus["euler_characteristic"] == 0);
+  CHECK(torus["genus"] == 1);
+  CHECK(torus["closed"] == true);
+  CHECK(torus["valences"] == json{{"4", 96}});
+  const json grid = json::parse(cifs_cli("info " + example("open_grid.obj")).out);
+  CHECK(grid["boundary_loops"] == 1);
+  CHECK(grid["closed"] == false);
+  CHECK(!grid.contains("genus"));
+  CHECK(grid["euler_characteristic"] == 1);                         // a disc
+  CHECK(grid["valences"] == json{{"2", 4}, {"3", 16}, {"4", 15}});  // corners, sides (2·(6+4)−8), inside 5·3
+  const json cube = json::parse(cifs_cli("info " + example("cube_triangles.obj")).out);
+  CHECK(cube["valences"] == json{{"3", 4}, {"6", 4}});
+  CHECK(cube["faces_by_corners"] == json{{"3", 12}});
+}
+
+TEST_CASE("cifs subdivide: bad meshes and requests exit 2 with one line and write nothing", "[cli][mesh]") {
+  const auto out = scratch() / "never.obj";
+  std::filesystem::remove(out);
+  const std::string o = " -o " + out.string();
+  check_error(cifs_cli("subdivide " + example("cube.obj") + " --scheme loop" + o),
+              "loop: face 0 has 4 corners; this scheme runs on triangles");
+  check_error(cifs_cli("subdivide " + example("cube.obj") + " --scheme kobbelt" + o),
+              "unknown mesh scheme 'kobbelt'");
+  check_error(cifs_cli("subdivide " + example("cube.obj") + " --scheme catmull-clark --levels 14" + o),
+              "catmull-clark: 14 levels of 6 faces reach");
+  check_error(cifs_cli("subdivide " + example("cube.obj") + " --scheme catmull-clark --boundary sharp" + o),
+              "--boundary sharp: expected edge");
+  check_error(cifs_cli("subdivide " + example("cube.obj") + " --scheme catmull-clark -o x.stl"),
+              "-o x.stl: expected a .obj or .ply file name");
+  check_error(cifs_cli("subdivide " +
+                       file("fan.obj",
+                            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 2 0 0\n"
+                            "f 1 2 3\nf 2 4 3\nf 2 3 5\n") +
+                       " --scheme loop" + o),
+              "edge");
+  check_error(cifs_cli("subdivide " + file("nan.obj", "v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n") +
+                       " --scheme loop" + o),
+              "nan.obj");
+  check_error(cifs_cli("subdivide " + example("open_grid_triangles.obj") + " --scheme butterfly" + o),
+              "is on a boundary");
+  CHECK(!std::filesystem::exists(out));
+}
