@@ -39,7 +39,7 @@ Automaton knot_automaton(const nurbs::Curve& curve) {
   int segment = 0;
   for (int k = d; k < curve.P.rows(); ++k) {
     const double lo = curve.knots[static_cast<std::size_t>(k)],
-                 hi = curve.knots[static_cast<std::size_t>(k + 1)];
+                 hi = curve.knots[static_cast<std::size_t>(k) + 1];
     if (!(lo < hi)) continue;
     nurbs::Window w = nurbs::segment_window(curve.knots, d, k);
     const double centre = w[static_cast<std::size_t>(d - 1)];

@@ -99,7 +99,7 @@ std::vector<Points> initial_nets(const TensorAutomaton& t, const nurbs::Surface&
                          std::to_string((p + 1) * (q + 1)));
     Points net((p + 1) * (q + 1), s.P.cols());
     for (int i = 0; i <= p; ++i)
-      net.middleRows(i * (q + 1), q + 1) =
+      net.middleRows(Eigen::Index{i} * (q + 1), q + 1) =
           s.P.middleRows((span[0] - p + i) * s.count[1] + span[1] - q, q + 1);
     nets.push_back(std::move(net));
   }

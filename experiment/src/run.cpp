@@ -470,16 +470,21 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
     const io::Content content = scene.mesh ? io::Content::mesh : io::Content::segments;
     // The parser accepts the formats of meshes and of segment sets: say which one this scene takes.
     const std::vector<io::Format> formats = io::formats(content);
-    for (const auto& [format, name] : e.outputs.geometry) {
+    for (const auto& output : e.outputs.geometry) {
+      const std::string& format = output.first;
       const auto writes = [&](const io::Format& f) { return f.write && f.name == format; };
       if (std::any_of(formats.begin(), formats.end(), writes)) continue;
       std::string upper = format, ours;
       for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
       for (const io::Format& f : formats)
         if (f.write) ours += (ours.empty() ? "" : " or ") + std::string(f.name);
-      throw InvalidInput("outputs." + format + ": " + upper + " is for " +
-                         (scene.mesh ? "curves" : "surfaces") + "; use " + ours + " for " +
-                         (scene.mesh ? "surfaces" : "curves"));
+      std::string message = "outputs.";
+      message += format + ": ";
+      message += upper + " is for ";
+      message += scene.mesh ? "curves" : "surfaces";
+      message += "; use " + ours + " for ";
+      message += scene.mesh ? "surfaces" : "curves";
+      throw InvalidInput(message);
     }
     for (const io::Format& f : io::formats(content))
       if (const auto it = e.outputs.geometry.find(std::string(f.name)); it != e.outputs.geometry.end())

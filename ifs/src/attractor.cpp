@@ -86,13 +86,13 @@ ToleranceResult for_each_leaf_to_tolerance(const Automaton& automaton, std::span
 
 namespace {
 
-constexpr std::size_t saturated = std::numeric_limits<std::size_t>::max();
+constexpr std::size_t kSaturated = std::numeric_limits<std::size_t>::max();
 
 std::size_t add_sat(std::size_t a, std::size_t b) noexcept {
-  return a > saturated - b ? saturated : a + b;
+  return a > kSaturated - b ? kSaturated : a + b;
 }
 std::size_t mul_sat(std::size_t a, std::size_t b) noexcept {
-  return (a != 0 && b > saturated / a) ? saturated : a * b;
+  return (a != 0 && b > kSaturated / a) ? kSaturated : a * b;
 }
 
 /// Node counts c_k(s) (paths of k transitions from s) for k = 0 … depth, by state; only the
@@ -138,7 +138,7 @@ std::size_t attractor_point_count(const Automaton& automaton, int depth, bool cl
   if (depth < 0)
     throw InvalidInput("attractor_point_count: depth is " + std::to_string(depth) + ", must be ≥ 0");
   const auto count = total_count(automaton, node_counts(automaton, depth, 0).at_depth, closed);
-  if (count == saturated)
+  if (count == kSaturated)
     throw InvalidInput("attractor_point_count: depth " + std::to_string(depth) +
                        " gives more points than fit in size_t");
   return count;
@@ -162,7 +162,7 @@ Points attractor_points(const Automaton& automaton, std::span<const Points> nets
   if (bytes > options.max_bytes) {
     std::ostringstream msg;
     msg << "attractor_points: depth " << depth << " gives ";
-    if (count == saturated)
+    if (count == kSaturated)
       msg << "more points than fit in size_t";
     else
       msg << count << " points of " << cols << " coordinates ("

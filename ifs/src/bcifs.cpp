@@ -288,7 +288,8 @@ AdmissibleSpace admissible_space(const Bcifs& sys, const SolveOptions& options) 
           for (Eigen::Index q = 0; q < C.rows(); ++q)
             for (Eigen::Index c = 0; c < C.cols(); ++c)
               if (C(q, c) != 0)
-                terms[static_cast<std::size_t>(r * source + c)][unknown(f, p, q)] += sign * A(r, p) * C(q, c);
+                terms[static_cast<std::size_t>(r) * static_cast<std::size_t>(source) +
+                      static_cast<std::size_t>(c)][unknown(f, p, q)] += sign * A(r, p) * C(q, c);
         }
     }
     for (int r = 0; r < target; ++r)
@@ -296,7 +297,8 @@ AdmissibleSpace admissible_space(const Bcifs& sys, const SolveOptions& options) 
         Equation eq;
         eq.source = static_cast<int>(ci);
         eq.rhs = rhs(r, c);
-        for (const auto& [k, v] : terms[static_cast<std::size_t>(r * source + c)])
+        for (const auto& [k, v] : terms[static_cast<std::size_t>(r) * static_cast<std::size_t>(source) +
+                                        static_cast<std::size_t>(c)])
           if (v != 0) eq.terms.emplace_back(k, v);
         if (eq.terms.empty()) {
           // Both sides known: the entry must already agree.
@@ -525,9 +527,11 @@ Perturbation perturb(const Bcifs& sys, const PerturbOptions& options) {
   for (std::size_t j = 0; j < names.size(); ++j) index.emplace(names[j], j);
   for (const auto& [name, value] : options.values) {
     if (!index.count(name)) {
+      const std::string& given =
+          name;  // a structured binding cannot be captured before C++20's P1091 in clang 14
       const bool dependent =
           std::any_of(space.unknowns.begin(), space.unknowns.end(),
-                      [&](const Coefficient& u) { return coefficient_name(sys.automaton, u) == name; });
+                      [&](const Coefficient& u) { return coefficient_name(sys.automaton, u) == given; });
       throw InvalidInput("perturb: values: \"" + name + "\" is " +
                          (dependent ? "a dependent coefficient (solved from the constraints)"
                                     : "not an entry of a free matrix") +

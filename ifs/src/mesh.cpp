@@ -19,10 +19,10 @@ using automata::StateId;
 
 namespace {
 
-constexpr std::size_t saturated = std::numeric_limits<std::size_t>::max();
+constexpr std::size_t kSaturated = std::numeric_limits<std::size_t>::max();
 
 std::size_t mul_sat(std::size_t a, std::size_t b) noexcept {
-  return (a != 0 && b > saturated / a) ? saturated : a * b;
+  return (a != 0 && b > kSaturated / a) ? kSaturated : a * b;
 }
 
 /// The global node grid of A × B patches at depth K: cells (A·2^K) × (B·2^K), nodes one more each way.
@@ -38,16 +38,16 @@ Grid make_grid(int A, int B, int depth, std::size_t cols, const MeshOptions& opt
                const std::string& who) {
   if (depth < 0) throw InvalidInput(who + ": depth is " + std::to_string(depth) + ", must be ≥ 0");
   const auto cells = [&](int patches) {
-    return depth > 30 ? saturated : mul_sat(static_cast<std::size_t>(patches), std::size_t{1} << depth);
+    return depth > 30 ? kSaturated : mul_sat(static_cast<std::size_t>(patches), std::size_t{1} << depth);
   };
   const std::size_t cu = cells(A), cv = cells(B);
-  const std::size_t vertices = mul_sat(cu + (cu < saturated), cv + (cv < saturated));
+  const std::size_t vertices = mul_sat(cu + (cu < kSaturated), cv + (cv < kSaturated));
   const std::size_t quads = mul_sat(cu, cv);
   const std::size_t bytes = mesh_bytes(vertices, cols, quads);
   if (bytes > options.max_bytes || vertices > static_cast<std::size_t>(INT_MAX)) {
     std::ostringstream msg;
     msg << who << ": depth " << depth << " on " << A << " by " << B << " patches gives ";
-    if (vertices == saturated)
+    if (vertices == kSaturated)
       msg << "more vertices than fit in size_t";
     else
       msg << vertices << " vertices of " << cols << " coordinates and " << quads << " quads ("
@@ -154,7 +154,7 @@ RowKernel row_kernel(Eigen::Index p1) noexcept {
 std::size_t mesh_bytes(std::size_t vertices, std::size_t cols, std::size_t quads) noexcept {
   const std::size_t v = mul_sat(mul_sat(vertices, cols), sizeof(double));
   const std::size_t q = mul_sat(quads, sizeof(std::array<int, 4>) + sizeof(std::uint32_t));
-  return v > saturated - q ? saturated : v + q;
+  return v > kSaturated - q ? kSaturated : v + q;
 }
 
 QuadMesh surface_mesh(const automata::TensorAutomaton& t, std::span<const Points> nets, int depth,
@@ -290,7 +290,7 @@ QuadMesh quad_mesh(const Automaton& automaton, std::span<const Points> nets,
 
   // Table depth L: the tables (and, while building, the previous level) below half of the output.
   const auto table_size = [&](int L) {
-    const auto m = static_cast<std::size_t>((1 << L) + 1);
+    const std::size_t m = (std::size_t{1} << L) + 1;
     std::size_t total = 0;
     for (const StateId s : states) total += m * m * static_cast<std::size_t>(g[s].size);
     return total;
@@ -319,9 +319,9 @@ QuadMesh quad_mesh(const Automaton& automaton, std::span<const Points> nets,
     const int h = 1 << (l - 1), m = 2 * h + 1;
     for (const StateId s : states) {
       RowMatrix& T = next[s];
-      T.resize(m * m, g[s].size);
+      T.resize(Eigen::Index{m} * m, g[s].size);
       std::vector<std::uint32_t>& S = next_leaf[s];
-      S.assign(static_cast<std::size_t>(4 * h * h), 0);
+      S.assign(4 * static_cast<std::size_t>(h) * static_cast<std::size_t>(h), 0);
       int c = 0;
       for (auto [e, end] = boost::out_edges(s, g); e != end; ++e, ++c) {
         const StateId child = boost::target(*e, g);
@@ -333,7 +333,9 @@ QuadMesh quad_mesh(const Automaton& automaton, std::span<const Points> nets,
             if (std::min(I / h, 1) == iu && std::min(J / h, 1) == iv)
               T.row(I * m + J) = P.row(i * (h + 1) + j);
             if (i < h && j < h)
-              S[static_cast<std::size_t>(I * 2 * h + J)] = leaf[child][static_cast<std::size_t>(i * h + j)];
+              S[static_cast<std::size_t>(I) * 2 * static_cast<std::size_t>(h) + static_cast<std::size_t>(J)] =
+                  leaf[child][static_cast<std::size_t>(i) * static_cast<std::size_t>(h) +
+                              static_cast<std::size_t>(j)];
           }
       }
     }
@@ -360,10 +362,10 @@ QuadMesh quad_mesh(const Automaton& automaton, std::span<const Points> nets,
         const int cols = side_L + (J0 + side_L == grid.cv ? 1 : 0);
         const Eigen::Index size = g[s].size;
         for (int r = 0; r < rows; ++r)
-          detail::emit(table[s].data() + r * m * size, cols, size, net,
+          detail::emit(table[s].data() + static_cast<Eigen::Index>(r) * m * size, cols, size, net,
                        mesh.vertices.data() + (static_cast<Eigen::Index>(I0 + r) * row + J0) * C);
         for (int r = 0; r < side_L; ++r)
-          std::copy_n(leaf[s].begin() + r * side_L, side_L,
+          std::copy_n(leaf[s].begin() + static_cast<std::ptrdiff_t>(r) * side_L, side_L,
                       mesh.quad_state.begin() + static_cast<std::ptrdiff_t>(I0 + r) * grid.cv + J0);
         return false;
       });

@@ -323,7 +323,8 @@ Scheme named_scheme(std::string_view name_view, const std::map<std::string, std:
     if (!values.count(key)) {
       std::string known;
       for (const ParameterSpec& p : spec->parameters) known += (known.empty() ? "" : ", ") + p.name;
-      std::string message = name + ": unknown parameter '" + key + "' (";
+      std::string message = name;
+      message += ": unknown parameter '" + key + "' (";
       message += known.empty() ? "this scheme takes none" : "parameters: " + known;
       throw InvalidInput(message + ")");
     }

@@ -29,6 +29,7 @@ namespace cifs::ifs {
 struct TransitionRef {
   automata::StateId from = 0;
   int child = 0;
+  // NOLINTNEXTLINE(modernize-use-nullptr): clang-tidy 14 flags the 0 of a defaulted <=>'s expansion.
   friend auto operator<=>(const TransitionRef&, const TransitionRef&) = default;
 };
 
