@@ -10,6 +10,7 @@ packages=(
   python3-dev pybind11-dev python3-numpy python3-matplotlib  # the cifs Python package and its examples
   libosd-dev libopenmesh-dev  # OpenSubdiv, OpenMesh: oracles of the mesh subdivision tests only
   libsisl-dev  # AGPL comparator: linked into bench/ only, never into the library
+  libcgal-dev  # GPL cross-check of the mesh schemes (tests/subdivision/test_mesh_cgal.cpp) only
   clang-format clang-tidy  # scripts/lint.sh (CI)
 )
 

@@ -202,7 +202,7 @@ Step loop_step(const MeshTopology& t, const MeshOptions& o) {
   return s;
 }
 
-/// The vertices around v in counter-clockwise order, starting at the other end of edge e.
+/// The vertices around interior vertex v in counter-clockwise order, starting at the other end of edge e.
 std::vector<int> ring_from(const MeshTopology& t, int v, int e) {
   const auto ring = ring_edges(t, v);
   const std::size_t n = ring.size();
@@ -211,6 +211,21 @@ std::vector<int> ring_from(const MeshTopology& t, int v, int e) {
   for (std::size_t j = 0; j < n; ++j)
     out[j] = other_vertex(t, static_cast<std::size_t>(ring[(start + j) % n]), v);
   return out;
+}
+
+/// The edge of face f joining x and y.
+int edge_between(const MeshTopology& t, int f, int x, int y) {
+  for (const int e : face_edges(t, static_cast<std::size_t>(f))) {
+    const auto [a, b] = t.edges[static_cast<std::size_t>(e)];
+    if ((a == x && b == y) || (a == y && b == x)) return e;
+  }
+  return -1;  // unreachable: callers pass two corners of f
+}
+
+/// The other boundary neighbour of boundary vertex v, seen from its boundary edge e.
+int boundary_neighbour(const MeshTopology& t, int v, int e) {
+  const auto ring = ring_edges(t, v);
+  return other_vertex(t, static_cast<std::size_t>(ring.front() == e ? ring.back() : ring.front()), v);
 }
 
 /// Zorin–Schröder–Sweldens' stencil for an edge point next to a vertex of valence k ≠ 6: ¾ on the
@@ -232,6 +247,35 @@ void butterfly_extraordinary(int centre, const std::vector<int>& ring, double sc
   }
 }
 
+/// The 10-point stencil of edge a–b (w = 1/16): ends ½, the opposite corners o of the two faces
+/// ⅛, and −1/16 on each wing — the far corner of the triangle across edge (x, o), x ∈ {a, b}. A
+/// wing missing at the boundary is the reflection x + o − (the other end), as OpenMesh does.
+void butterfly_regular(const MeshTopology& t, int e, RowWriter& row) {
+  const auto [a, b] = t.edges[static_cast<std::size_t>(e)];
+  row.add(a, 0.5);
+  row.add(b, 0.5);
+  for (const int f : t.edge_faces[static_cast<std::size_t>(e)]) {
+    const int o = opposite_corner(t, f, e);
+    row.add(o, 0.125);
+    for (const auto& [x, z] : {std::pair{a, b}, std::pair{b, a}}) {
+      const int side = edge_between(t, f, x, o);
+      const auto [g0, g1] = t.edge_faces[static_cast<std::size_t>(side)];
+      const int g = g0 == f ? g1 : g0;
+      if (g >= 0) {
+        row.add(opposite_corner(t, g, side), -0.0625);
+      } else {
+        row.add(x, -0.0625);
+        row.add(o, -0.0625);
+        row.add(z, 0.0625);
+      }
+    }
+  }
+}
+
+/// Edge points: the 4-point rule (−1, 9, 9, −1)/16 along boundary edges; inside, the 10-point
+/// stencil unless an end is an interior vertex of valence ≠ 6, whose ring stencil is then used
+/// (the mean of the two when both are). Boundary ends count as regular (OpenMesh's rule; ZSS's
+/// boundary tables are not implemented).
 Step butterfly_step(const MeshTopology& t, const MeshOptions&) {
   const int V = t.vertex_count, E = static_cast<int>(t.edges.size());
   Step s;
@@ -241,24 +285,22 @@ Step butterfly_step(const MeshTopology& t, const MeshOptions&) {
     row.add(v, 1);
     row.finish();
   }
+  const auto extraordinary = [&](int v) {
+    return !on_boundary(t, v) && valence(t, static_cast<std::size_t>(v)) != 6;
+  };
   for (int e = 0; e < E; ++e) {
     const auto [a, b] = t.edges[static_cast<std::size_t>(e)];
-    const std::vector<int> ra = ring_from(t, a, e), rb = ring_from(t, b, e);
-    const bool regular_a = ra.size() == 6, regular_b = rb.size() == 6;
-    if (regular_a && regular_b) {
-      // The 10-point stencil (w = 1/16): ends ½, the two opposite corners 1/8, the four wings −1/16.
-      row.add(a, 0.5);
-      row.add(b, 0.5);
-      row.add(ra[1], 0.125);
-      row.add(ra[5], 0.125);
-      for (const int wing : {ra[2], ra[4], rb[2], rb[4]}) row.add(wing, -0.0625);
-    } else if (!regular_a && !regular_b) {  // both extraordinary: the mean of the two stencils
-      butterfly_extraordinary(a, ra, 0.5, row);
-      butterfly_extraordinary(b, rb, 0.5, row);
-    } else if (!regular_a) {
-      butterfly_extraordinary(a, ra, 1, row);
+    if (is_boundary_edge(t, static_cast<std::size_t>(e))) {
+      row.add(a, 0.5625);
+      row.add(b, 0.5625);
+      row.add(boundary_neighbour(t, a, e), -0.0625);
+      row.add(boundary_neighbour(t, b, e), -0.0625);
+    } else if (!extraordinary(a) && !extraordinary(b)) {
+      butterfly_regular(t, e, row);
     } else {
-      butterfly_extraordinary(b, rb, 1, row);
+      const double scale = extraordinary(a) && extraordinary(b) ? 0.5 : 1;
+      if (extraordinary(a)) butterfly_extraordinary(a, ring_from(t, a, e), scale, row);
+      if (extraordinary(b)) butterfly_extraordinary(b, ring_from(t, b, e), scale, row);
     }
     row.finish();
   }
@@ -266,18 +308,26 @@ Step butterfly_step(const MeshTopology& t, const MeshOptions&) {
   return s;
 }
 
-/// Kobbelt's √3: a vertex at every face centroid, old vertices relaxed by
-/// α_n = (4 − 2cos(2π/n))/9 (v' = (1 − α)v + (α/n)Σ neighbours), old edges flipped to join the
-/// centroids of their two faces. Two steps are a triadic refinement.
-Step sqrt3_step(const MeshTopology& t, const MeshOptions&) {
+/// Kobbelt's √3: a vertex at every face centroid, interior vertices relaxed by
+/// α_n = (4 − 2cos(2π/n))/9 (v' = (1 − α)v + (α/n)Σ neighbours), interior edges flipped to join
+/// the new vertices on their two sides. Two steps are a triadic refinement. Boundary (Kobbelt
+/// 2000 §5, as CGAL and OpenMesh): on even steps (0, 2, …) boundary vertices stay and boundary
+/// edges are kept; on odd steps each boundary edge p_a → p_b (p_− before it, p_+ after it) is
+/// trisected by (p_− + 16p_a + 10p_b)/27 and (10p_a + 16p_b + p_+)/27 in place of its face's
+/// centroid, and boundary vertices move to (4p_− + 19p + 4p_+)/27. After an even step every
+/// boundary face has exactly one boundary edge, which the odd step relies on.
+Step sqrt3_step(const MeshTopology& t, bool refine_boundary) {
   const int V = t.vertex_count, F = static_cast<int>(face_count(t));
   Step s;
-  s.vertex_count = V + F;
   RowWriter row(s.stencils);
   for (int v = 0; v < V; ++v) {
     const auto ring = ring_edges(t, v);
-    if (ring.empty()) {
+    if (ring.empty() || (on_boundary(t, v) && !refine_boundary)) {
       row.add(v, 1);
+    } else if (on_boundary(t, v)) {
+      row.add(v, 19.0 / 27);
+      row.add(other_vertex(t, static_cast<std::size_t>(ring.front()), v), 4.0 / 27);
+      row.add(other_vertex(t, static_cast<std::size_t>(ring.back()), v), 4.0 / 27);
     } else {
       const double n = static_cast<double>(ring.size()), alpha = (4 - 2 * std::cos(2 * kPi / n)) / 9;
       row.add(v, 1 - alpha);
@@ -285,23 +335,69 @@ Step sqrt3_step(const MeshTopology& t, const MeshOptions&) {
     }
     row.finish();
   }
+  // apex[corner slot of edge i in face f]: the new vertex that edge i's flip joins on f's side.
+  std::vector<int> apex(t.face_vertices.size());
+  int next = V;
   for (int f = 0; f < F; ++f) {
-    add_face_point(t, static_cast<std::size_t>(f), 1, row);
+    const auto corners = face(t, static_cast<std::size_t>(f));
+    const auto edges = face_edges(t, static_cast<std::size_t>(f));
+    const int base = t.face_offsets[static_cast<std::size_t>(f)];
+    std::size_t split = 3;  // the boundary edge's slot when this face is trisected
+    if (refine_boundary)
+      for (std::size_t i = 0; i < 3; ++i)
+        if (is_boundary_edge(t, static_cast<std::size_t>(edges[i]))) split = i;
+    if (split == 3) {
+      add_face_point(t, static_cast<std::size_t>(f), 1, row);
+      row.finish();
+      for (std::size_t i = 0; i < 3; ++i) apex[static_cast<std::size_t>(base) + i] = next;
+      ++next;
+      continue;
+    }
+    const int e = edges[split], a = corners[split], b = corners[(split + 1) % 3];
+    const int before = boundary_neighbour(t, a, e), after = boundary_neighbour(t, b, e);
+    row.add(before, 1.0 / 27);
+    row.add(a, 16.0 / 27);
+    row.add(b, 10.0 / 27);
     row.finish();
+    row.add(a, 10.0 / 27);
+    row.add(b, 16.0 / 27);
+    row.add(after, 1.0 / 27);
+    row.finish();
+    // Edge b → o meets the point near b, edge o → a the point near a.
+    apex[static_cast<std::size_t>(base) + (split + 1) % 3] = next + 1;
+    apex[static_cast<std::size_t>(base) + (split + 2) % 3] = next;
+    apex[static_cast<std::size_t>(base) + split] = -1;
+    add_face(s, {next, next + 1, corners[(split + 2) % 3]});
+    next += 2;
   }
-  // Edge a → b between faces f0 (left) and f1 (right) becomes the triangles (a, c1, c0), (b, c0, c1).
+  s.vertex_count = next;
+  const auto apex_of = [&](int f, int e) {
+    const auto edges = face_edges(t, static_cast<std::size_t>(f));
+    const auto i = std::find(edges.begin(), edges.end(), e) - edges.begin();
+    return apex[static_cast<std::size_t>(t.face_offsets[static_cast<std::size_t>(f)] + i)];
+  };
+  // Edge a → b between faces f0 (left) and f1 (right) becomes the triangles (a, c1, c0), (b, c0, c1);
+  // a boundary edge kept by an even step becomes (a, b, c0).
   for (std::size_t e = 0; e < t.edges.size(); ++e) {
     const auto [a, b] = t.edges[e];
-    const int c0 = V + t.edge_faces[e][0], c1 = V + t.edge_faces[e][1];
-    add_face(s, {a, c1, c0});
-    add_face(s, {b, c0, c1});
+    const auto [f0, f1] = t.edge_faces[e];
+    const int c0 = apex_of(f0, static_cast<int>(e));
+    if (f1 >= 0) {
+      const int c1 = apex_of(f1, static_cast<int>(e));
+      add_face(s, {a, c1, c0});
+      add_face(s, {b, c0, c1});
+    } else if (!refine_boundary) {
+      add_face(s, {a, b, c0});
+    }
   }
   return s;
 }
 
 /// Doo–Sabin: a new point for every corner of every face, Σ_j α_{j−i} v_j with
 /// α_0 = ¼ + 5/(4k), α_m = (3 + 2cos(2πm/k))/(4k); then a face per face (its corner points), per
-/// edge (a quad) and per vertex (its corner points around it).
+/// interior edge (a quad) and per interior vertex (its corner points around it). Boundary edges
+/// and vertices make no face, so the surface shrinks away from the boundary (CGAL's rule:
+/// corner points are the same at the boundary).
 Step doo_sabin_step(const MeshTopology& t, const MeshOptions&) {
   Step s;
   s.vertex_count = static_cast<int>(t.face_vertices.size());  // corner (f, i) → face_offsets[f] + i
@@ -330,18 +426,20 @@ Step doo_sabin_step(const MeshTopology& t, const MeshOptions&) {
   for (std::size_t e = 0; e < t.edges.size(); ++e) {  // E-faces: f0 on the left of a → b
     const auto [a, b] = t.edges[e];
     const auto [f0, f1] = t.edge_faces[e];
+    if (f1 < 0) continue;
     add_face(s, {point(f1, a), point(f1, b), point(f0, b), point(f0, a)});
   }
   for (int v = 0; v < t.vertex_count; ++v) {  // V-faces, counter-clockwise around v
     const auto faces = vertex_faces(t, static_cast<std::size_t>(v));
-    if (faces.empty()) continue;
+    if (faces.empty() || on_boundary(t, v)) continue;
     for (const int f : faces) s.face_vertices.push_back(point(f, v));
     s.face_offsets.push_back(static_cast<int>(s.face_vertices.size()));
   }
   return s;
 }
 
-Step step(MeshScheme scheme, const MeshTopology& t, const MeshOptions& o) {
+/// Step `level` (0 for the first) of a refinement.
+Step step(MeshScheme scheme, const MeshTopology& t, const MeshOptions& o, int level) {
   switch (scheme) {
     case MeshScheme::catmull_clark:
       return catmull_clark_step(t, o);
@@ -352,7 +450,7 @@ Step step(MeshScheme scheme, const MeshTopology& t, const MeshOptions& o) {
     case MeshScheme::butterfly:
       return butterfly_step(t, o);
     case MeshScheme::sqrt3:
-      return sqrt3_step(t, o);
+      return sqrt3_step(t, level % 2 == 1);
   }
   return {};
 }
@@ -386,13 +484,6 @@ void check_scheme_input(const MeshTopology& t, MeshScheme scheme) {
         throw InvalidInput(
             who + ": face " + std::to_string(f) + " has " + std::to_string(face(t, f).size()) +
             " corners; this scheme runs on triangles (triangulate first, or use catmull-clark)");
-  if (scheme == MeshScheme::doo_sabin || scheme == MeshScheme::butterfly || scheme == MeshScheme::sqrt3)
-    for (std::size_t e = 0; e < t.edges.size(); ++e)
-      if (t.edge_faces[e][1] < 0)
-        throw InvalidInput(who + ": edge " + std::to_string(e) + " (vertices " +
-                           std::to_string(t.edges[e][0]) + "–" + std::to_string(t.edges[e][1]) +
-                           ") is on a boundary; this scheme runs on closed meshes so far (catmull-clark and "
-                           "loop take boundaries)");
 }
 
 }  // namespace
@@ -448,7 +539,7 @@ MeshRefinement refine_topology(const Mesh& mesh, MeshScheme scheme, int levels, 
                          number_text(options.max_bytes, 3) + "); ask for fewer levels");
   }
   for (int level = 0; level < levels; ++level) {
-    Step s = step(scheme, r.levels.back(), options);
+    Step s = step(scheme, r.levels.back(), options, level);
     r.steps.push_back(std::move(s.stencils));
     r.levels.push_back(build_topology(s.face_offsets, s.face_vertices, s.vertex_count, who));
   }

@@ -80,6 +80,27 @@ inline cifs::Mesh quad_grid(int n, int m, bool triangles = false) {
   return make_mesh(p, f);
 }
 
+/// A disc of triangles around a centre of valence k: a first ring of k vertices (valence 6), a
+/// boundary ring of 2k; heights not symmetric.
+inline cifs::Mesh fan(int k) {
+  std::vector<std::array<double, 3>> p{{0, 0, 1}};
+  for (int ring = 1; ring <= 2; ++ring)
+    for (int i = 0; i < ring * k; ++i) {
+      const double a = 2 * std::numbers::pi * i / (ring * k);
+      p.push_back({ring * std::cos(a), ring * std::sin(a), 0.3 * std::sin(3 * a + ring) / ring});
+    }
+  const auto inner = [&](int i) { return 1 + i % k; };
+  const auto outer = [&](int i) { return 1 + k + i % (2 * k); };
+  std::vector<std::vector<int>> f;
+  for (int i = 0; i < k; ++i) {
+    f.push_back({0, inner(i), inner(i + 1)});
+    f.push_back({inner(i), outer(2 * i), outer(2 * i + 1)});
+    f.push_back({inner(i), outer(2 * i + 1), inner(i + 1)});
+    f.push_back({inner(i + 1), outer(2 * i + 1), outer(2 * i + 2)});
+  }
+  return make_mesh(p, f);
+}
+
 /// A torus of n × m quads (or 2nm triangles), every vertex regular.
 inline cifs::Mesh torus(int n, int m, bool triangles = false) {
   std::vector<std::array<double, 3>> p;

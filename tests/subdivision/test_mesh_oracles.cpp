@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Subdivision surfaces against independent implementations: OpenSubdiv Far (Catmull–Clark, Loop,
-// boundaries both ways) and OpenMesh's uniform subdividers (Loop, √3, modified Butterfly on closed
-// meshes). Both are permissive licences, linked into this test executable only.
+// boundaries both ways) and OpenMesh's uniform subdividers (Loop, √3, modified Butterfly, closed and
+// open meshes). Both are permissive licences, linked into this test executable only.
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
@@ -138,14 +138,18 @@ TEST_CASE("Loop = OpenSubdiv Far, closed and open meshes, both boundary rules, l
       }
 }
 
-TEST_CASE("Loop, √3 and modified Butterfly = OpenMesh's uniform subdividers on closed meshes",
-          "[subdivision][mesh][oracle]") {
+TEST_CASE(
+    "Loop, √3 and modified Butterfly = OpenMesh's uniform subdividers, closed and open meshes, levels 1–4",
+    "[subdivision][mesh][oracle]") {
   const std::vector<std::pair<const char*, Mesh>> meshes{{"tetrahedron", tetrahedron()},
                                                          {"octahedron", octahedron()},
                                                          {"bipyramid", bipyramid()},
-                                                         {"torus", torus(6, 5, true)}};
+                                                         {"torus", torus(6, 5, true)},
+                                                         {"open triangles", quad_grid(4, 3, true)},
+                                                         {"open fan", fan(5)},
+                                                         {"open strip", quad_grid(5, 1, true)}};
   for (const auto& [name, m] : meshes)
-    for (int levels = 1; levels <= 3; ++levels) {
+    for (int levels = 1; levels <= 4; ++levels) {
       INFO(name << ", level " << levels);
       check_same_mesh(loop(m, levels),
                       openmesh_refine<OpenMesh::Subdivider::Uniform::LoopT<TriMesh, double>>(m, levels));

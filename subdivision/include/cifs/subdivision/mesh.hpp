@@ -58,9 +58,10 @@ struct MeshRefinement {
 };
 
 /// Refines the faces `levels` times. Throws InvalidInput (naming the face, edge or vertex) for a
-/// mesh that is not an oriented 2-manifold, for non-triangles under Loop, Butterfly and √3, for
-/// a boundary under Doo–Sabin, Butterfly and √3 (not supported yet), and, before any work, for
-/// a result larger than `options.max_bytes` (the message gives the figure).
+/// mesh that is not an oriented 2-manifold, for non-triangles under Loop, Butterfly and √3, and,
+/// before any work, for a result larger than `options.max_bytes` (the message gives the figure).
+/// √3 treats boundaries every second step (Kobbelt): refining k levels then m is the same as
+/// k + m levels at once only for closed meshes or an even k.
 MeshRefinement refine_topology(const Mesh& mesh, MeshScheme scheme, int levels,
                                const MeshOptions& options = {});
 
