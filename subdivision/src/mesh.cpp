@@ -33,8 +33,10 @@ class RowWriter {
   explicit RowWriter(Stencils& out) : out_(out) {}
   void add(int column, double weight) { pending_.emplace_back(column, weight); }
   void finish() {
-    std::sort(pending_.begin(), pending_.end(),
-              [](const auto& a, const auto& b) { return a.first < b.first; });
+    // Rows are short (≤ ~30 entries): insertion sort by column, then equal columns merged.
+    for (std::size_t i = 1; i < pending_.size(); ++i)
+      for (std::size_t j = i; j > 0 && pending_[j].first < pending_[j - 1].first; --j)
+        std::swap(pending_[j], pending_[j - 1]);
     for (std::size_t i = 0; i < pending_.size();) {
       const int column = pending_[i].first;
       double weight = 0;
@@ -50,6 +52,16 @@ class RowWriter {
   Stencils& out_;
   std::vector<std::pair<int, double>> pending_;
 };
+
+/// Reserves a step's arrays from its counts (growing them by doubling costs copies and page faults
+/// at these sizes).
+void reserve(Step& s, std::size_t rows, std::size_t entries, std::size_t faces, std::size_t corners) {
+  s.stencils.offsets.reserve(rows + 1);
+  s.stencils.columns.reserve(entries);
+  s.stencils.weights.reserve(entries);
+  s.face_offsets.reserve(faces + 1);
+  s.face_vertices.reserve(corners);
+}
 
 void add_face(Step& s, std::initializer_list<int> corners) {
   s.face_vertices.insert(s.face_vertices.end(), corners);
@@ -88,6 +100,10 @@ Step catmull_clark_step(const MeshTopology& t, const MeshOptions& o) {
   const int V = t.vertex_count, E = static_cast<int>(t.edges.size()), F = static_cast<int>(face_count(t));
   Step s;
   s.vertex_count = V + E + F;  // vertex points, edge points, face points
+  const std::size_t H = t.face_vertices.size();
+  // Vertex rows: itself, n neighbours, the corners of n faces; edge rows: both faces' corners.
+  reserve(s, static_cast<std::size_t>(s.vertex_count), static_cast<std::size_t>(V) + 2 * H + 2 * H + H, H,
+          4 * H);
   RowWriter row(s.stencils);
   for (int v = 0; v < V; ++v) {
     const auto ring = ring_edges(t, v);
@@ -169,6 +185,10 @@ Step loop_step(const MeshTopology& t, const MeshOptions& o) {
   const int V = t.vertex_count, E = static_cast<int>(t.edges.size());
   Step s;
   s.vertex_count = V + E;
+  const std::size_t F = face_count(t);
+  reserve(s, static_cast<std::size_t>(V + E),
+          static_cast<std::size_t>(V) + 2 * static_cast<std::size_t>(E) + 4 * static_cast<std::size_t>(E),
+          4 * F, 12 * F);
   RowWriter row(s.stencils);
   for (int v = 0; v < V; ++v) {
     const auto ring = ring_edges(t, v);
@@ -516,21 +536,24 @@ bool triangles_only(MeshScheme scheme) noexcept {
   return scheme == MeshScheme::loop || scheme == MeshScheme::butterfly || scheme == MeshScheme::sqrt3;
 }
 
-MeshRefinement refine_topology(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOptions& options) {
+namespace {
+
+/// The input's topology, checked for the scheme, after refusing (before any work) a refinement
+/// whose memory would pass options.max_bytes: ~40 bytes a corner and ~190 a vertex for a level's
+/// topology and weights, summed over the levels when they are all kept (`keep_levels`).
+MeshTopology checked_input(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOptions& options,
+                           bool keep_levels) {
   const std::string who(scheme_name(scheme));
   if (levels < 0) throw InvalidInput(who + ": " + std::to_string(levels) + " levels; expected 0 or more");
-  MeshRefinement r{.scheme = scheme, .options = options, .levels = {}, .steps = {}};
-  r.levels.push_back(build_topology(mesh, who));
-  check_scheme_input(r.levels[0], scheme);
-  // Refuse before any work: every level's topology (~40 bytes a corner, ~70 a vertex) and weights
-  // (~12 bytes an entry, ~10 entries a vertex) stay in memory.
-  const MeshTopology& t0 = r.levels[0];
+  MeshTopology t0 = build_topology(mesh, who);
+  check_scheme_input(t0, scheme);
   Counts c{static_cast<double>(t0.vertex_count), static_cast<double>(t0.edges.size()),
            static_cast<double>(face_count(t0)), static_cast<double>(t0.face_vertices.size())};
   double bytes = 0;
   for (int level = 0; level < levels; ++level) {
     c = next_counts(scheme, c);
-    bytes += 40 * c.corners + 190 * c.vertices;
+    const double level_bytes = 40 * c.corners + 190 * c.vertices;
+    bytes = keep_levels ? bytes + level_bytes : level_bytes;
     if (bytes > options.max_bytes || c.corners > INT_MAX)
       throw InvalidInput(who + ": " + std::to_string(levels) + " levels of " +
                          std::to_string(face_count(t0)) + " faces reach " + number_text(c.faces, 3) +
@@ -538,6 +561,15 @@ MeshRefinement refine_topology(const Mesh& mesh, MeshScheme scheme, int levels, 
                          std::to_string(level + 1) + ", about " + number_text(bytes, 3) + " bytes (limit " +
                          number_text(options.max_bytes, 3) + "); ask for fewer levels");
   }
+  return t0;
+}
+
+}  // namespace
+
+MeshRefinement refine_topology(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOptions& options) {
+  const std::string who(scheme_name(scheme));
+  MeshRefinement r{.scheme = scheme, .options = options, .levels = {}, .steps = {}};
+  r.levels.push_back(checked_input(mesh, scheme, levels, options, true));
   for (int level = 0; level < levels; ++level) {
     Step s = step(scheme, r.levels.back(), options, level);
     r.steps.push_back(std::move(s.stencils));
@@ -546,15 +578,85 @@ MeshRefinement refine_topology(const Mesh& mesh, MeshScheme scheme, int levels, 
   return r;
 }
 
-Points apply(const Stencils& step, const Points& vertices) {
+void apply(const Stencils& step, const Points& vertices, Points& out) {
   const auto rows = static_cast<Eigen::Index>(row_count(step));
-  Points out = Points::Zero(rows, vertices.cols());
+  const Eigen::Index d = vertices.cols();
+  out.resize(rows, d);  // keeps the storage when the size is unchanged
+  const double* in = vertices.data();
+  double* o = out.data();
+  const int* offsets = step.offsets.data();
+  const int* columns = step.columns.data();
+  const double* weights = step.weights.data();
+  if (d == 3) {  // positions: the common case, kept in registers
+    for (Eigen::Index i = 0; i < rows; ++i) {
+      double x = 0, y = 0, z = 0;
+      for (int k = offsets[i]; k < offsets[i + 1]; ++k) {
+        const double* p = in + 3 * static_cast<std::ptrdiff_t>(columns[k]);
+        x += weights[k] * p[0];
+        y += weights[k] * p[1];
+        z += weights[k] * p[2];
+      }
+      o[3 * i] = x;
+      o[3 * i + 1] = y;
+      o[3 * i + 2] = z;
+    }
+    return;
+  }
+  out.setZero();
   for (Eigen::Index i = 0; i < rows; ++i)
-    for (int k = step.offsets[static_cast<std::size_t>(i)]; k < step.offsets[static_cast<std::size_t>(i) + 1];
-         ++k)
-      out.row(i) +=
-          step.weights[static_cast<std::size_t>(k)] * vertices.row(step.columns[static_cast<std::size_t>(k)]);
+    for (int k = offsets[i]; k < offsets[i + 1]; ++k) out.row(i) += weights[k] * vertices.row(columns[k]);
+}
+
+Points apply(const Stencils& step, const Points& vertices) {
+  Points out;
+  apply(step, vertices, out);
   return out;
+}
+
+Stencils stencil_table(const MeshRefinement& refinement) {
+  const int base = refinement.levels.front().vertex_count;
+  Stencils table;  // identity on the base vertices
+  for (int v = 0; v < base; ++v) {
+    table.columns.push_back(v);
+    table.weights.push_back(1);
+    table.offsets.push_back(v + 1);
+  }
+  // Gustavson's row-by-row sparse product: next row = Σ_k w_k · (row c_k of the table so far).
+  std::vector<double> sum(static_cast<std::size_t>(base), 0);
+  std::vector<char> listed(static_cast<std::size_t>(base), 0);
+  std::vector<int> touched;
+  for (const Stencils& step : refinement.steps) {
+    Stencils next;
+    next.offsets.reserve(step.offsets.size());
+    for (std::size_t i = 0; i + 1 < step.offsets.size(); ++i) {
+      for (int k = step.offsets[i]; k < step.offsets[i + 1]; ++k) {
+        const auto row = static_cast<std::size_t>(step.columns[static_cast<std::size_t>(k)]);
+        const double w = step.weights[static_cast<std::size_t>(k)];
+        for (int j = table.offsets[row]; j < table.offsets[row + 1]; ++j) {
+          const auto c = static_cast<std::size_t>(table.columns[static_cast<std::size_t>(j)]);
+          if (!listed[c]) {
+            listed[c] = 1;
+            touched.push_back(static_cast<int>(c));
+          }
+          sum[c] += w * table.weights[static_cast<std::size_t>(j)];
+        }
+      }
+      std::sort(touched.begin(), touched.end());
+      for (const int c : touched) {
+        const auto u = static_cast<std::size_t>(c);
+        if (sum[u] != 0) {  // exact cancellations (Butterfly's zero weights) leave no entry
+          next.columns.push_back(c);
+          next.weights.push_back(sum[u]);
+        }
+        sum[u] = 0;
+        listed[u] = 0;
+      }
+      touched.clear();
+      next.offsets.push_back(static_cast<int>(next.columns.size()));
+    }
+    table = std::move(next);
+  }
+  return table;
 }
 
 Points apply(const MeshRefinement& refinement, const Points& vertices) {
@@ -567,13 +669,25 @@ Points apply(const MeshRefinement& refinement, const Points& vertices) {
 }
 
 Mesh subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOptions& options) {
-  check_mesh(mesh, scheme_name(scheme));
-  const MeshRefinement r = refine_topology(mesh, scheme, levels, options);
-  const MeshTopology& last = r.levels.back();
+  const std::string who(scheme_name(scheme));
+  check_mesh(mesh, who);
+  // One level at a time: only the current level's topology, weights and positions live, and the
+  // last level's faces need no adjacency.
+  MeshTopology t = checked_input(mesh, scheme, levels, options, false);
   Mesh out;
-  out.vertices = apply(r, mesh.vertices);
-  out.face_offsets = last.face_offsets;
-  out.face_vertices = last.face_vertices;
+  out.vertices = mesh.vertices;
+  out.face_offsets = mesh.face_offsets;
+  out.face_vertices = mesh.face_vertices;
+  for (int level = 0; level < levels; ++level) {
+    Step s = step(scheme, t, options, level);
+    out.vertices = apply(s.stencils, out.vertices);
+    if (level + 1 < levels) {
+      t = build_topology(s.face_offsets, s.face_vertices, s.vertex_count, who);
+    } else {
+      out.face_offsets = std::move(s.face_offsets);
+      out.face_vertices = std::move(s.face_vertices);
+    }
+  }
   return out;
 }
 

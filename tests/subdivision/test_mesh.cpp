@@ -122,6 +122,31 @@ TEST_CASE("two levels at once = one level of one level; replay on new data = a f
   }
 }
 
+TEST_CASE("the stencil table (product of the steps) replays every level at once", "[subdivision][mesh]") {
+  for (const MeshScheme scheme : kAll)
+    for (const bool open : {false, true}) {
+      const Mesh m = open ? quad_grid(4, 3, triangles_only(scheme))
+                          : (triangles_only(scheme) ? closed_triangles() : pyramid());
+      INFO(scheme_name(scheme) << (open ? ", open" : ", closed"));
+      const MeshRefinement r = refine_topology(m, scheme, 3);
+      const Stencils table = stencil_table(r);
+      CHECK(static_cast<int>(row_count(table)) == r.levels.back().vertex_count);
+      for (std::size_t i = 0; i < row_count(table); ++i) {
+        double sum = 0;
+        for (int k = table.offsets[i]; k < table.offsets[i + 1]; ++k)
+          sum += table.weights[static_cast<std::size_t>(k)];
+        CHECK(std::abs(sum - 1) <= 1e-14);
+      }
+      const Points by_levels = apply(r, m.vertices);
+      Points at_once(7, 3);  // wrong size on purpose: resized
+      apply(table, m.vertices, at_once);
+      CHECK((at_once - by_levels).cwiseAbs().maxCoeff() <= 1e-13 * by_levels.cwiseAbs().maxCoeff());
+      const double* storage = at_once.data();
+      apply(table, m.vertices, at_once);  // same size: the storage is reused
+      CHECK(at_once.data() == storage);
+    }
+}
+
 TEST_CASE("affine invariance; Butterfly interpolates; the subdivision matrix is the weights",
           "[subdivision][mesh]") {
   Eigen::Matrix3d A;

@@ -69,6 +69,14 @@ MeshRefinement refine_topology(const Mesh& mesh, MeshScheme scheme, int levels,
 Points apply(const MeshRefinement& refinement, const Points& vertices);
 /// One step: level k + 1's data from level k's.
 Points apply(const Stencils& step, const Points& vertices);
+/// The same into `out`, whose storage is reused when it already has the size (no allocation, no
+/// page faults on repeated replays).
+void apply(const Stencils& step, const Points& vertices, Points& out);
+
+/// The weights from the input's vertices straight to the last level's (the product of the steps;
+/// OpenSubdiv's factorized stencil table): `apply(stencil_table(r), P)` equals `apply(r, P)` to
+/// round-off in one pass over small, cached input data. Built once per topology.
+Stencils stencil_table(const MeshRefinement& refinement);
 
 /// The refined mesh (positions through apply; normals and states are not carried).
 Mesh subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOptions& options = {});

@@ -1,0 +1,423 @@
+// SPDX-License-Identifier: MIT
+// cifs — subdivision surfaces against OpenSubdiv Far and OpenMesh (and CGAL when built with
+// CIFS_HAVE_CGAL), side by side in one run: Catmull–Clark to level 4 on a torus of 8192 quads
+// (2.1 M quads out) and Loop to level 4 on a torus of 16384 triangles (4.2 M triangles out).
+//
+//   one_shot  faces and positions in, the refined mesh out (every library's whole job)
+//   topology  cifs refine_topology / OSD TopologyRefinerFactory + RefineUniform
+//   replay    positions only, topology prebuilt: cifs apply(refinement, P) level by level and
+//             apply(stencil_table(r), P, out) into a reused buffer / OSD's PrimvarRefiner level by
+//             level and its StencilTable (base → last level) UpdateValues into a reused buffer
+//   stencil_table_build  building those tables from the refined topology
+//
+// Before timing, every library's result is checked against cifs's to 1e-12 (vertices matched by
+// position on the level-2 result); a mismatch aborts the run.
+
+#include <benchmark/benchmark.h>
+#include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/stencilTable.h>
+#include <opensubdiv/far/stencilTableFactory.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/far/topologyRefinerFactory.h>
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Tools/Subdivider/Uniform/CatmullClarkT.hh>
+#include <OpenMesh/Tools/Subdivider/Uniform/LoopT.hh>
+#ifdef CIFS_HAVE_CGAL
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/subdivision_method_3.h>
+#endif
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "cifs/subdivision/mesh.hpp"
+#include "subdivision/meshes.hpp"
+
+namespace {
+
+using cifs::Mesh;
+using cifs::Points;
+namespace sd = cifs::subdivision;
+namespace Far = OpenSubdiv::Far;
+namespace Sdc = OpenSubdiv::Sdc;
+
+constexpr int kLevels = 4;
+
+const Mesh& input(sd::MeshScheme scheme) {
+  static const Mesh quads = cifs_test::torus(64, 128);            // 8192 quads
+  static const Mesh triangles = cifs_test::torus(64, 128, true);  // 16384 triangles
+  return scheme == sd::MeshScheme::catmull_clark ? quads : triangles;
+}
+
+// ---- OpenSubdiv ------------------------------------------------------------------------------
+
+struct OsdVertex {
+  double p[3];
+  void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0; }
+  void AddWithWeight(const OsdVertex& s, double w) {
+    p[0] += w * s.p[0];
+    p[1] += w * s.p[1];
+    p[2] += w * s.p[2];
+  }
+};
+
+std::unique_ptr<Far::TopologyRefiner> osd_topology(const Mesh& m, sd::MeshScheme scheme, int levels) {
+  std::vector<int> counts;
+  for (std::size_t f = 0; f < cifs::face_count(m); ++f)
+    counts.push_back(static_cast<int>(cifs::face(m, f).size()));
+  Far::TopologyDescriptor desc;
+  desc.numVertices = static_cast<int>(m.vertices.rows());
+  desc.numFaces = static_cast<int>(counts.size());
+  desc.numVertsPerFace = counts.data();
+  desc.vertIndicesPerFace = m.face_vertices.data();
+  Sdc::Options so;
+  so.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
+  using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+  const auto type = scheme == sd::MeshScheme::catmull_clark ? Sdc::SCHEME_CATMARK : Sdc::SCHEME_LOOP;
+  std::unique_ptr<Far::TopologyRefiner> refiner(Factory::Create(desc, Factory::Options(type, so)));
+  refiner->RefineUniform(Far::TopologyRefiner::UniformOptions(levels));
+  return refiner;
+}
+
+/// Positions of every level, level by level (OSD's primvar refinement); returns the last level's.
+const OsdVertex* osd_positions(const Far::TopologyRefiner& refiner, const Mesh& m,
+                               std::vector<OsdVertex>& verts) {
+  verts.resize(static_cast<std::size_t>(refiner.GetNumVerticesTotal()));
+  for (Eigen::Index i = 0; i < m.vertices.rows(); ++i)
+    for (int k = 0; k < 3; ++k) verts[static_cast<std::size_t>(i)].p[k] = m.vertices(i, k);
+  Far::PrimvarRefinerReal<double> primvars(refiner);
+  OsdVertex* src = verts.data();
+  for (int level = 1; level <= refiner.GetMaxLevel(); ++level) {
+    OsdVertex* dst = src + refiner.GetLevel(level - 1).GetNumVertices();
+    primvars.Interpolate(level, src, dst);
+    src = dst;
+  }
+  return src;
+}
+
+Mesh osd_mesh(const Far::TopologyRefiner& refiner, const OsdVertex* last_positions) {
+  const Far::TopologyLevel& last = refiner.GetLevel(refiner.GetMaxLevel());
+  Mesh out;
+  out.vertices.resize(last.GetNumVertices(), 3);
+  for (int i = 0; i < last.GetNumVertices(); ++i)
+    for (int k = 0; k < 3; ++k) out.vertices(i, k) = last_positions[i].p[k];
+  out.face_vertices.reserve(static_cast<std::size_t>(last.GetNumFaceVertices()));
+  out.face_offsets.reserve(static_cast<std::size_t>(last.GetNumFaces()) + 1);
+  for (int f = 0; f < last.GetNumFaces(); ++f) {
+    const auto corners = last.GetFaceVertices(f);
+    out.face_vertices.insert(out.face_vertices.end(), corners.begin(), corners.end());
+    out.face_offsets.push_back(static_cast<int>(out.face_vertices.size()));
+  }
+  return out;
+}
+
+Mesh osd_one_shot(const Mesh& m, sd::MeshScheme scheme, int levels) {
+  const auto refiner = osd_topology(m, scheme, levels);
+  std::vector<OsdVertex> verts;
+  return osd_mesh(*refiner, osd_positions(*refiner, m, verts));
+}
+
+std::unique_ptr<const Far::StencilTableReal<double>> osd_stencils(const Far::TopologyRefiner& refiner) {
+  Far::StencilTableFactoryReal<double>::Options options;
+  options.generateIntermediateLevels = false;
+  options.generateOffsets = true;
+  return std::unique_ptr<const Far::StencilTableReal<double>>(
+      Far::StencilTableFactoryReal<double>::Create(refiner, options));
+}
+
+// ---- OpenMesh ----------------------------------------------------------------------------------
+
+struct Traits : OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  using Normal = OpenMesh::Vec3d;
+};
+using OmPoly = OpenMesh::PolyMesh_ArrayKernelT<Traits>;
+using OmTri = OpenMesh::TriMesh_ArrayKernelT<Traits>;
+
+template <class OmMesh>
+OmMesh to_openmesh(const Mesh& m) {
+  OmMesh om;
+  std::vector<typename OmMesh::VertexHandle> handles;
+  for (Eigen::Index i = 0; i < m.vertices.rows(); ++i)
+    handles.push_back(
+        om.add_vertex(typename OmMesh::Point(m.vertices(i, 0), m.vertices(i, 1), m.vertices(i, 2))));
+  for (std::size_t f = 0; f < cifs::face_count(m); ++f) {
+    std::vector<typename OmMesh::VertexHandle> corners;
+    for (const int c : cifs::face(m, f)) corners.push_back(handles[static_cast<std::size_t>(c)]);
+    om.add_face(corners);
+  }
+  return om;
+}
+
+template <class OmMesh>
+Mesh from_openmesh(const OmMesh& om) {
+  Mesh out;
+  out.vertices.resize(static_cast<Eigen::Index>(om.n_vertices()), 3);
+  for (const auto v : om.vertices())
+    for (int k = 0; k < 3; ++k) out.vertices(v.idx(), k) = om.point(v)[k];
+  for (const auto f : om.faces()) {
+    for (const auto v : om.fv_range(f)) out.face_vertices.push_back(v.idx());
+    out.face_offsets.push_back(static_cast<int>(out.face_vertices.size()));
+  }
+  return out;
+}
+
+Mesh openmesh_one_shot(const Mesh& m, sd::MeshScheme scheme, int levels) {
+  if (scheme == sd::MeshScheme::catmull_clark) {
+    OmPoly om = to_openmesh<OmPoly>(m);
+    OpenMesh::Subdivider::Uniform::CatmullClarkT<OmPoly, double> subdivider;
+    subdivider.attach(om);
+    subdivider(static_cast<std::size_t>(levels));
+    subdivider.detach();
+    return from_openmesh(om);
+  }
+  OmTri om = to_openmesh<OmTri>(m);
+  OpenMesh::Subdivider::Uniform::LoopT<OmTri, double> subdivider;
+  subdivider.attach(om);
+  subdivider(static_cast<std::size_t>(levels));
+  subdivider.detach();
+  return from_openmesh(om);
+}
+
+// ---- CGAL (GPL: optional) ----------------------------------------------------------------------
+
+#ifdef CIFS_HAVE_CGAL
+using CgalMesh = CGAL::Surface_mesh<CGAL::Simple_cartesian<double>::Point_3>;
+
+Mesh cgal_one_shot(const Mesh& m, sd::MeshScheme scheme, int levels) {
+  CgalMesh cm;
+  std::vector<CgalMesh::Vertex_index> handles;
+  for (Eigen::Index i = 0; i < m.vertices.rows(); ++i)
+    handles.push_back(cm.add_vertex({m.vertices(i, 0), m.vertices(i, 1), m.vertices(i, 2)}));
+  for (std::size_t f = 0; f < cifs::face_count(m); ++f) {
+    std::vector<CgalMesh::Vertex_index> corners;
+    for (const int c : cifs::face(m, f)) corners.push_back(handles[static_cast<std::size_t>(c)]);
+    cm.add_face(corners);
+  }
+  const auto iterations = CGAL::parameters::number_of_iterations(static_cast<unsigned>(levels));
+  if (scheme == sd::MeshScheme::catmull_clark)
+    CGAL::Subdivision_method_3::CatmullClark_subdivision(cm, iterations);
+  else
+    CGAL::Subdivision_method_3::Loop_subdivision(cm, iterations);
+  cm.collect_garbage();
+  Mesh out;
+  out.vertices.resize(static_cast<Eigen::Index>(cm.number_of_vertices()), 3);
+  for (const auto v : cm.vertices())
+    for (int k = 0; k < 3; ++k) out.vertices(static_cast<Eigen::Index>(v.idx()), k) = cm.point(v)[k];
+  for (const auto f : cm.faces()) {
+    for (const auto v : CGAL::vertices_around_face(cm.halfedge(f), cm))
+      out.face_vertices.push_back(static_cast<int>(v.idx()));
+    out.face_offsets.push_back(static_cast<int>(out.face_vertices.size()));
+  }
+  return out;
+}
+#endif
+
+// ---- the cross-check before timing -----------------------------------------------------------
+
+/// Same point set within 1e-12 of the largest coordinate (rows sorted lexicographically after
+/// rounding to 1e-9, then compared one by one).
+bool same_points(const Points& a, const Points& b) {
+  if (a.rows() != b.rows()) return false;
+  const auto sorted = [](const Points& P) {
+    std::vector<std::array<double, 3>> rows(static_cast<std::size_t>(P.rows()));
+    for (Eigen::Index i = 0; i < P.rows(); ++i)
+      rows[static_cast<std::size_t>(i)] = {P(i, 0), P(i, 1), P(i, 2)};
+    std::sort(rows.begin(), rows.end(), [](const auto& x, const auto& y) {
+      for (int k = 0; k < 3; ++k) {
+        const double xr = std::round(x[static_cast<std::size_t>(k)] * 1e9),
+                     yr = std::round(y[static_cast<std::size_t>(k)] * 1e9);
+        if (xr != yr) return xr < yr;
+      }
+      return false;
+    });
+    return rows;
+  };
+  const auto A = sorted(a), B = sorted(b);
+  const double scale = a.cwiseAbs().maxCoeff();
+  for (std::size_t i = 0; i < A.size(); ++i)
+    for (std::size_t k = 0; k < 3; ++k)
+      if (std::abs(A[i][k] - B[i][k]) > 1e-12 * scale) return false;
+  return true;
+}
+
+void cross_check() {
+  for (const auto scheme : {sd::MeshScheme::catmull_clark, sd::MeshScheme::loop}) {
+    const Mesh& m = input(scheme);
+    const Mesh ours = sd::subdivide(m, scheme, 2);
+    std::vector<std::pair<const char*, Mesh>> theirs{{"OpenSubdiv", osd_one_shot(m, scheme, 2)},
+                                                     {"OpenMesh", openmesh_one_shot(m, scheme, 2)}};
+#ifdef CIFS_HAVE_CGAL
+    theirs.emplace_back("CGAL", cgal_one_shot(m, scheme, 2));
+#endif
+    for (const auto& [name, other] : theirs)
+      if (!same_points(ours.vertices, other.vertices) || cifs::face_count(ours) != cifs::face_count(other)) {
+        std::fprintf(stderr, "cifs_bench_mesh: %s differs from cifs (%s, 2 levels)\n", name,
+                     std::string(sd::scheme_name(scheme)).c_str());
+        std::exit(1);
+      }
+  }
+  std::fprintf(stderr, "cifs_bench_mesh: cifs = OpenSubdiv = OpenMesh%s to 1e-12 at level 2\n",
+#ifdef CIFS_HAVE_CGAL
+               " = CGAL"
+#else
+               ""
+#endif
+  );
+}
+
+// ---- the cases -----------------------------------------------------------------------------------
+
+void counters(benchmark::State& state, const Mesh& out) {
+  state.counters["faces_out"] = static_cast<double>(cifs::face_count(out));
+  state.counters["vertices_out"] = static_cast<double>(out.vertices.rows());
+}
+
+void cifs_one_shot(benchmark::State& state, sd::MeshScheme scheme) {
+  const Mesh& m = input(scheme);
+  Mesh out;
+  for (auto _ : state) {
+    out = sd::subdivide(m, scheme, kLevels);
+    benchmark::DoNotOptimize(out.vertices.data());
+  }
+  counters(state, out);
+}
+
+void cifs_topology(benchmark::State& state, sd::MeshScheme scheme) {
+  const Mesh& m = input(scheme);
+  for (auto _ : state) {
+    const sd::MeshRefinement r = sd::refine_topology(m, scheme, kLevels);
+    benchmark::DoNotOptimize(r.levels.back().face_vertices.data());
+  }
+}
+
+void cifs_replay(benchmark::State& state, sd::MeshScheme scheme) {
+  const Mesh& m = input(scheme);
+  const sd::MeshRefinement r = sd::refine_topology(m, scheme, kLevels);
+  for (auto _ : state) {
+    const Points P = sd::apply(r, m.vertices);
+    benchmark::DoNotOptimize(P.data());
+  }
+}
+
+void cifs_stencil_table(benchmark::State& state, sd::MeshScheme scheme) {
+  const Mesh& m = input(scheme);
+  const sd::Stencils table = sd::stencil_table(sd::refine_topology(m, scheme, kLevels));
+  Points out;
+  sd::apply(table, m.vertices, out);
+  for (auto _ : state) {
+    sd::apply(table, m.vertices, out);
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.counters["stencil_weights"] = static_cast<double>(table.weights.size());
+}
+
+void cifs_stencil_table_build(benchmark::State& state, sd::MeshScheme scheme) {
+  const Mesh& m = input(scheme);
+  const sd::MeshRefinement r = sd::refine_topology(m, scheme, kLevels);
+  for (auto _ : state) benchmark::DoNotOptimize(sd::stencil_table(r).weights.data());
+}
+
+void osd_stencil_table_build(benchmark::State& state, sd::MeshScheme scheme) {
+  const Mesh& m = input(scheme);
+  const auto refiner = osd_topology(m, scheme, kLevels);
+  for (auto _ : state) benchmark::DoNotOptimize(osd_stencils(*refiner).get());
+}
+
+void osd_one_shot_case(benchmark::State& state, sd::MeshScheme scheme) {
+  const Mesh& m = input(scheme);
+  Mesh out;
+  for (auto _ : state) {
+    out = osd_one_shot(m, scheme, kLevels);
+    benchmark::DoNotOptimize(out.vertices.data());
+  }
+  counters(state, out);
+}
+
+void osd_topology_case(benchmark::State& state, sd::MeshScheme scheme) {
+  const Mesh& m = input(scheme);
+  for (auto _ : state) {
+    const auto refiner = osd_topology(m, scheme, kLevels);
+    benchmark::DoNotOptimize(refiner.get());
+  }
+}
+
+void osd_primvar_case(benchmark::State& state, sd::MeshScheme scheme) {
+  const Mesh& m = input(scheme);
+  const auto refiner = osd_topology(m, scheme, kLevels);
+  std::vector<OsdVertex> verts;
+  for (auto _ : state) benchmark::DoNotOptimize(osd_positions(*refiner, m, verts));
+}
+
+void osd_stencil_case(benchmark::State& state, sd::MeshScheme scheme) {
+  const Mesh& m = input(scheme);
+  const auto refiner = osd_topology(m, scheme, kLevels);
+  const auto stencils = osd_stencils(*refiner);
+  std::vector<OsdVertex> base(static_cast<std::size_t>(m.vertices.rows()));
+  for (Eigen::Index i = 0; i < m.vertices.rows(); ++i)
+    for (int k = 0; k < 3; ++k) base[static_cast<std::size_t>(i)].p[k] = m.vertices(i, k);
+  std::vector<OsdVertex> out(static_cast<std::size_t>(stencils->GetNumStencils()));
+  for (auto _ : state) {
+    stencils->UpdateValues(base.data(), out.data());
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.counters["stencil_weights"] = static_cast<double>(stencils->GetWeights().size());
+}
+
+void openmesh_case(benchmark::State& state, sd::MeshScheme scheme) {
+  const Mesh& m = input(scheme);
+  Mesh out;
+  for (auto _ : state) {
+    out = openmesh_one_shot(m, scheme, kLevels);
+    benchmark::DoNotOptimize(out.vertices.data());
+  }
+  counters(state, out);
+}
+
+#ifdef CIFS_HAVE_CGAL
+void cgal_case(benchmark::State& state, sd::MeshScheme scheme) {
+  const Mesh& m = input(scheme);
+  Mesh out;
+  for (auto _ : state) {
+    out = cgal_one_shot(m, scheme, kLevels);
+    benchmark::DoNotOptimize(out.vertices.data());
+  }
+  counters(state, out);
+}
+#endif
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  cross_check();
+  for (const auto scheme : {sd::MeshScheme::catmull_clark, sd::MeshScheme::loop}) {
+    const std::string s(sd::scheme_name(scheme));
+    const auto reg = [&](const std::string& name, void (*f)(benchmark::State&, sd::MeshScheme)) {
+      benchmark::RegisterBenchmark((s + "/L4/" + name).c_str(), f, scheme)->Unit(benchmark::kMillisecond);
+    };
+    reg("one_shot/cifs", cifs_one_shot);
+    reg("one_shot/osd", osd_one_shot_case);
+    reg("one_shot/openmesh", openmesh_case);
+#ifdef CIFS_HAVE_CGAL
+    reg("one_shot/cgal", cgal_case);
+#endif
+    reg("topology/cifs", cifs_topology);
+    reg("topology/osd", osd_topology_case);
+    reg("replay/cifs", cifs_replay);
+    reg("replay/osd_primvar", osd_primvar_case);
+    reg("replay/cifs_stencil_table", cifs_stencil_table);
+    reg("replay/osd_stencil_table", osd_stencil_case);
+    reg("stencil_table_build/cifs", cifs_stencil_table_build);
+    reg("stencil_table_build/osd", osd_stencil_table_build);
+  }
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
