@@ -52,6 +52,7 @@ void bind_bcifs(py::module_& m);        // into cifs.ifs
 void bind_bcifs_io(py::module_& m);     // BC-IFS files, into cifs.io
 void bind_io_dispatch(py::module_& m);  // the format table, write and encode, into cifs.io
 void bind_subdivision(py::module_& m);
+void bind_mesh_subdivision(py::module_& m);  // into cifs.subdivision
 void bind_render(py::module_& m);
 
 }  // namespace cifs::python

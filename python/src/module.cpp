@@ -29,8 +29,10 @@ PYBIND11_MODULE(_cifs, m) {
   bind_bcifs(ifs);
   auto subdivision = m.def_submodule("subdivision",
                                      "Uniform binary curve subdivision schemes: masks, "
-                                     "refinement, IFS matrices, smoothness analysis.");
+                                     "refinement, IFS matrices, smoothness analysis; subdivision "
+                                     "surfaces on polygon meshes.");
   bind_subdivision(subdivision);
+  bind_mesh_subdivision(subdivision);
   auto render = m.def_submodule("render", "Cameras, rasterisers, the chaos-game density, OpenEXR and PNG.");
   bind_render(render);
   auto io = m.def_submodule(

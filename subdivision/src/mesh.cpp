@@ -186,9 +186,8 @@ Step loop_step(const MeshTopology& t, const MeshOptions& o) {
   Step s;
   s.vertex_count = V + E;
   const std::size_t F = face_count(t);
-  reserve(s, static_cast<std::size_t>(V + E),
-          static_cast<std::size_t>(V) + 2 * static_cast<std::size_t>(E) + 4 * static_cast<std::size_t>(E),
-          4 * F, 12 * F);
+  const auto Vs = static_cast<std::size_t>(V), Es = static_cast<std::size_t>(E);
+  reserve(s, Vs + Es, Vs + 6 * Es, 4 * F, 12 * F);  // vertex rows ~ 1 + n, edge rows 4
   RowWriter row(s.stencils);
   for (int v = 0; v < V; ++v) {
     const auto ring = ring_edges(t, v);

@@ -9,7 +9,7 @@ import numpy as np
 
 import cifs
 from cifs import subdivision as sd
-from support import ScratchTestCase, assert_close, cli, cli_json
+from support import EXAMPLES, ScratchTestCase, assert_close, cli, cli_json
 
 # (CLI name, parameters as the CLI takes them, the same scheme built in Python)
 SCHEMES = [
@@ -464,3 +464,69 @@ class AnalysisTest(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class MeshSubdivisionTest(ScratchTestCase):
+    """cifs.subdivision on polygon meshes against `cifs subdivide` (the CLI's OBJ, to the digits it
+    prints), the replay and stencil-table identities, and the errors."""
+
+    @staticmethod
+    def read_obj(text):
+        vertices, faces = [], []
+        for line in text.splitlines():
+            parts = line.split()
+            if parts and parts[0] == "v":
+                vertices.append([float(x) for x in parts[1:4]])
+            elif parts and parts[0] == "f":
+                faces.append([int(x.split("/")[0]) - 1 for x in parts[1:]])
+        return np.array(vertices), faces
+
+    def test_schemes_match_the_cli(self):
+        for scheme, mesh_name in [("catmull-clark", "cube.obj"), ("loop", "icosahedron.obj"),
+                                  ("doo-sabin", "open_grid.obj"), ("butterfly", "torus_triangles.obj"),
+                                  ("sqrt3", "open_grid_triangles.obj")]:
+            with self.subTest(scheme=scheme):
+                path = str(EXAMPLES / "meshes" / mesh_name)
+                vertices, faces = self.read_obj(cli("subdivide", path, "--scheme", scheme, "--levels", "0").stdout)
+                mesh = cifs.io.Mesh(vertices, faces=faces)
+                ours = sd.subdivide(mesh, scheme, 2)
+                theirs_v, theirs_f = self.read_obj(cli("subdivide", path, "--scheme", scheme, "--levels", "2").stdout)
+                assert_close(self, ours.vertices, theirs_v, 1e-12)
+                offsets, corners = ours.face_offsets, ours.face_vertices
+                self.assertEqual([list(corners[offsets[f]:offsets[f + 1]]) for f in range(len(offsets) - 1)],
+                                 theirs_f)
+                named = getattr(sd, scheme.replace("-", "_"))(mesh, 2)
+                np.testing.assert_array_equal(named.vertices, ours.vertices)
+
+    def test_replay_and_stencil_table(self):
+        vertices, faces = self.read_obj(cli("subdivide", str(EXAMPLES / "meshes" / "torus.obj"),
+                                            "--scheme", "catmull-clark", "--levels", "0").stdout)
+        mesh = cifs.io.Mesh(vertices, faces=faces)
+        r = sd.refine_topology(mesh, "catmull-clark", 2)
+        self.assertEqual(r.levels, 2)
+        self.assertEqual(r.vertex_counts[0], len(vertices))
+        np.testing.assert_array_equal(r.apply(vertices), sd.catmull_clark(mesh, 2).vertices)
+        offsets, corners = r.faces(2)
+        self.assertEqual(len(offsets) - 1, 16 * len(faces))
+        colours = np.random.default_rng(1).random((len(vertices), 5))
+        table = r.stencil_table()
+        assert_close(self, table.apply(colours), r.apply(colours), 1e-13)
+        step = r.steps[0]
+        sums = np.add.reduceat(step.weights, step.offsets[:-1])
+        assert_close(self, sums, np.ones(step.rows), 1e-15)
+
+    def test_errors(self):
+        cube = cifs.io.Mesh(np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0],
+                                      [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], dtype=float),
+                            faces=[[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]])
+        with self.assertRaisesRegex(cifs.InvalidInput, "loop: face 0 has 4 corners"):
+            sd.loop(cube)
+        with self.assertRaisesRegex(cifs.InvalidInput, "unknown mesh scheme 'kobbelt'"):
+            sd.subdivide(cube, "kobbelt")
+        with self.assertRaisesRegex(cifs.InvalidInput, "boundary 'sharp'"):
+            sd.catmull_clark(cube, boundary="sharp")
+        with self.assertRaisesRegex(cifs.InvalidInput, "ask for fewer levels"):
+            sd.catmull_clark(cube, 20)
+        with self.assertRaisesRegex(cifs.InvalidInput, "rows"):
+            sd.refine_topology(cube, "catmull-clark").steps[0].apply(np.zeros((3, 3)))
+        self.assertEqual(sd.mesh_schemes(), ["catmull-clark", "loop", "doo-sabin", "butterfly", "sqrt3"])

@@ -1,0 +1,173 @@
+// SPDX-License-Identifier: MIT
+// cifs Python bindings — cifs.subdivision on polygon meshes: Catmull–Clark, Loop, Doo–Sabin,
+// modified Butterfly, √3; one-shot functions, the topology-only refinement replayed on any vertex
+// data, its weights and the stencil table.
+#include <algorithm>
+#include <string>
+
+#include "arrays.hpp"
+#include "bindings.hpp"
+#include "cifs/errors.hpp"
+#include "cifs/subdivision/mesh.hpp"
+
+namespace cifs::python {
+namespace {
+
+namespace sd = cifs::subdivision;
+
+sd::MeshOptions mesh_options(const std::string& boundary, double max_bytes) {
+  sd::MeshOptions o;
+  if (boundary == "edge")
+    o.boundary = sd::BoundaryRule::edge_only;
+  else if (boundary == "corner")
+    o.boundary = sd::BoundaryRule::edge_and_corner;
+  else
+    throw InvalidInput("boundary '" + boundary + "': expected 'edge' (corners smoothed) or 'corner' (kept)");
+  if (!(max_bytes > 0)) throw InvalidInput("max_bytes must be positive");
+  o.max_bytes = max_bytes;
+  return o;
+}
+
+constexpr double kDefaultBytes = 4.0 * (1ull << 30);
+
+/// A level's faces as (face_offsets, face_vertices) integer arrays.
+py::tuple faces_of(const sd::MeshRefinement& r, int level) {
+  if (level < 0 || level >= static_cast<int>(r.levels.size()))
+    throw InvalidInput("faces: level " + std::to_string(level) + " outside 0.." +
+                       std::to_string(r.levels.size() - 1));
+  const MeshTopology& t = r.levels[static_cast<std::size_t>(level)];
+  return py::make_tuple(vector_array(t.face_offsets), vector_array(t.face_vertices));
+}
+
+Points apply_checked(const sd::Stencils& s, const py::handle& vertices, const char* where) {
+  const Points P = points_from(vertices, where);
+  int needed = 0;
+  for (const int c : s.columns) needed = std::max(needed, c + 1);
+  if (P.rows() < needed)
+    throw InvalidInput(std::string(where) + ": " + std::to_string(P.rows()) + " rows; these weights read " +
+                       std::to_string(needed));
+  py::gil_scoped_release release;
+  return sd::apply(s, P);
+}
+
+}  // namespace
+
+void bind_mesh_subdivision(py::module_& m) {
+  m.def(
+      "mesh_schemes",
+      []() {
+        py::list out;
+        for (const auto s : {sd::MeshScheme::catmull_clark, sd::MeshScheme::loop, sd::MeshScheme::doo_sabin,
+                             sd::MeshScheme::butterfly, sd::MeshScheme::sqrt3})
+          out.append(std::string(sd::scheme_name(s)));
+        return out;
+      },
+      "Names of the mesh schemes: catmull-clark, loop, doo-sabin, butterfly, sqrt3.");
+  m.def(
+      "subdivide",
+      [](const Mesh& mesh, const std::string& scheme, int levels, const std::string& boundary,
+         double max_bytes) {
+        const sd::MeshScheme s = sd::named_mesh_scheme(scheme);
+        const sd::MeshOptions o = mesh_options(boundary, max_bytes);
+        py::gil_scoped_release release;
+        return sd::subdivide(mesh, s, levels, o);
+      },
+      py::arg("mesh"), py::arg("scheme"), py::arg("levels") = 1, py::kw_only(), py::arg("boundary") = "edge",
+      py::arg("max_bytes") = kDefaultBytes,
+      "The mesh refined `levels` times by a named scheme (mesh_schemes()). boundary='edge' smooths "
+      "boundary corners along the boundary curve, 'corner' keeps them (Catmull–Clark, Loop). Refused "
+      "before any work when the result would need more than max_bytes.");
+  const auto one = [&m](const char* name, sd::MeshScheme scheme, const char* doc) {
+    m.def(
+        name,
+        [scheme](const Mesh& mesh, int levels, const std::string& boundary, double max_bytes) {
+          const sd::MeshOptions o = mesh_options(boundary, max_bytes);
+          py::gil_scoped_release release;
+          return sd::subdivide(mesh, scheme, levels, o);
+        },
+        py::arg("mesh"), py::arg("levels") = 1, py::kw_only(), py::arg("boundary") = "edge",
+        py::arg("max_bytes") = kDefaultBytes, doc);
+  };
+  one("catmull_clark", sd::MeshScheme::catmull_clark, "Catmull–Clark (any polygons; quads after one level).");
+  one("loop", sd::MeshScheme::loop, "Loop (triangles).");
+  one("doo_sabin", sd::MeshScheme::doo_sabin, "Doo–Sabin (any polygons; dual).");
+  one("butterfly", sd::MeshScheme::butterfly,
+      "Modified Butterfly, Zorin–Schröder–Sweldens (triangles; interpolating).");
+  one("sqrt3", sd::MeshScheme::sqrt3, "Kobbelt's √3 (triangles).");
+
+  py::class_<sd::Stencils>(m, "Stencils",
+                           "Sparse weights, one row per new vertex: row i is Σ weights[k]·old[columns[k]] "
+                           "for k in offsets[i]..offsets[i+1].")
+      .def_property_readonly(
+          "offsets", [](const sd::Stencils& s) { return vector_array(s.offsets); }, "Row starts (rows + 1).")
+      .def_property_readonly(
+          "columns", [](const sd::Stencils& s) { return vector_array(s.columns); },
+          "Old vertex of each weight.")
+      .def_property_readonly(
+          "weights", [](const sd::Stencils& s) { return vector_array(s.weights); }, "The weights.")
+      .def_property_readonly(
+          "rows", [](const sd::Stencils& s) { return sd::row_count(s); }, "Number of new vertices.")
+      .def(
+          "apply",
+          [](const sd::Stencils& s, const py::handle& v) { return apply_checked(s, v, "apply: vertices"); },
+          py::arg("vertices"), "The new vertices' data from the old ones (`(#old, any)` array).")
+      .def("__repr__", [](const sd::Stencils& s) {
+        return "Stencils(" + std::to_string(sd::row_count(s)) + " rows, " + std::to_string(s.weights.size()) +
+               " weights)";
+      });
+
+  py::class_<sd::MeshRefinement>(m, "MeshRefinement",
+                                 "A refinement, topology only: every level's faces and every step's weights, "
+                                 "replayed on any number of vertex data sets.")
+      .def_property_readonly(
+          "scheme", [](const sd::MeshRefinement& r) { return std::string(sd::scheme_name(r.scheme)); },
+          "The scheme's name.")
+      .def_property_readonly(
+          "levels", [](const sd::MeshRefinement& r) { return static_cast<int>(r.steps.size()); },
+          "Number of steps.")
+      .def_property_readonly(
+          "vertex_counts",
+          [](const sd::MeshRefinement& r) {
+            std::vector<int> counts;
+            for (const MeshTopology& t : r.levels) counts.push_back(t.vertex_count);
+            return counts;
+          },
+          "Vertices at every level, input first.")
+      .def_property_readonly(
+          "steps", [](const sd::MeshRefinement& r) { return r.steps; }, "Each step's Stencils.")
+      .def("faces", &faces_of, py::arg("level"), "(face_offsets, face_vertices) of a level (0 = the input).")
+      .def(
+          "apply",
+          [](const sd::MeshRefinement& r, const py::handle& vertices) {
+            const Points P = points_from(vertices, "apply: vertices");
+            py::gil_scoped_release release;
+            return sd::apply(r, P);
+          },
+          py::arg("vertices"), "The last level's data from the input's (`(#V, any)` array).")
+      .def(
+          "stencil_table",
+          [](const sd::MeshRefinement& r) {
+            py::gil_scoped_release release;
+            return sd::stencil_table(r);
+          },
+          "Stencils from the input's vertices straight to the last level's (the product of the steps).")
+      .def("__repr__", [](const sd::MeshRefinement& r) {
+        return "MeshRefinement(" + std::string(sd::scheme_name(r.scheme)) + ", " +
+               std::to_string(r.steps.size()) + " levels, " + std::to_string(r.levels.back().vertex_count) +
+               " vertices)";
+      });
+  m.def(
+      "refine_topology",
+      [](const Mesh& mesh, const std::string& scheme, int levels, const std::string& boundary,
+         double max_bytes) {
+        const sd::MeshScheme s = sd::named_mesh_scheme(scheme);
+        const sd::MeshOptions o = mesh_options(boundary, max_bytes);
+        py::gil_scoped_release release;
+        return sd::refine_topology(mesh, s, levels, o);
+      },
+      py::arg("mesh"), py::arg("scheme"), py::arg("levels") = 1, py::kw_only(), py::arg("boundary") = "edge",
+      py::arg("max_bytes") = kDefaultBytes,
+      "The refinement's topology and weights only; MeshRefinement.apply replays it on vertex data.");
+}
+
+}  // namespace cifs::python
