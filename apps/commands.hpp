@@ -38,6 +38,8 @@ struct SubdivideOptions {
   std::string scheme;  // subdivision::named_mesh_scheme
   int levels = 1;
   std::string boundary = "edge";  // edge | corner
+  bool factored = false;          // linear subdivision + averaging (catmull-clark, loop)
+  bool quiet = false;             // no progress bar
   std::filesystem::path output;   // .obj or .ply; empty: OBJ on stdout
 };
 std::string subdivide(const SubdivideOptions& options);

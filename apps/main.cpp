@@ -125,6 +125,9 @@ int run(int argc, char** argv) {
   subdivide_cmd->add_option("--levels", su.levels, "Subdivision steps (default 1)");
   subdivide_cmd->add_option("--boundary", su.boundary,
                             "Boundary corners (one face): edge (smoothed, default) or corner (kept)");
+  subdivide_cmd->add_flag("--factored", su.factored,
+                          "Linear subdivision then averaging (catmull-clark on quads, loop); same result");
+  subdivide_cmd->add_flag("--quiet", su.quiet, "No progress bar");
   subdivide_cmd->add_option("-o,--output", su.output, "Output mesh (.obj or .ply; default: OBJ on stdout)");
   subdivide_cmd->callback([&] { result = subdivide(su); });
 

@@ -8,6 +8,7 @@
 #include "cifs/errors.hpp"
 #include "cifs/files.hpp"
 #include "cifs/io/io.hpp"
+#include "cifs/render/progress.hpp"
 #include "cifs/subdivision/mesh.hpp"
 #include "cifs/topology.hpp"
 #include "commands.hpp"
@@ -105,20 +106,24 @@ std::string mesh_info(const std::filesystem::path& path) {
 
 std::string subdivide(const SubdivideOptions& o) {
   const subdivision::MeshScheme scheme = subdivision::named_mesh_scheme(o.scheme);
-  const subdivision::MeshOptions options{.boundary = boundary_rule(o.boundary)};
+  render::ProgressBar bar("subdivide", o.quiet);
+  const subdivision::MeshOptions options{
+      .boundary = boundary_rule(o.boundary),
+      .progress = [&bar](std::uint64_t done, std::uint64_t total) { bar(done, total); }};
   if (!o.output.empty()) check_mesh_output(o.output);
   const Mesh mesh = io::read_mesh(o.mesh);
   Mesh refined;
   try {
-    refined = subdivision::subdivide(mesh, scheme, o.levels, options);
+    refined = o.factored ? subdivision::factored_subdivide(mesh, scheme, o.levels, options)
+                         : subdivision::subdivide(mesh, scheme, o.levels, options);
   } catch (const InvalidInput& e) {
     throw InvalidInput(o.mesh.string() + ": " + e.what());
   }
   if (o.output.empty()) return io::encode(refined, "obj");
   io::write(o.output, refined);
   return "wrote " + o.output.string() + ": " + std::to_string(refined.vertices.rows()) + " vertices, " +
-         std::to_string(face_count(refined)) + " faces (" + o.scheme + ", " + std::to_string(o.levels) +
-         " levels)\n";
+         std::to_string(face_count(refined)) + " faces (" + o.scheme + (o.factored ? " factored" : "") +
+         ", " + std::to_string(o.levels) + " levels)\n";
 }
 
 }  // namespace cifs::cli

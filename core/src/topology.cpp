@@ -52,13 +52,20 @@ void check_faces(std::span<const int> offsets, std::span<const int> corners, int
 }  // namespace
 
 MeshTopology build_topology(std::span<const int> face_offsets, std::span<const int> face_vertices,
-                            int vertex_count, std::string_view who_view) {
+                            int vertex_count, std::string_view who) {
+  return build_topology(std::vector<int>(face_offsets.begin(), face_offsets.end()),
+                        std::vector<int>(face_vertices.begin(), face_vertices.end()), vertex_count, who);
+}
+
+MeshTopology build_topology(std::vector<int> offsets, std::vector<int> corners, int vertex_count,
+                            std::string_view who_view) {
   const std::string who(who_view);
-  check_faces(face_offsets, face_vertices, vertex_count, who);
+  check_faces(offsets, corners, vertex_count, who);
   MeshTopology t;
   t.vertex_count = vertex_count;
-  t.face_offsets.assign(face_offsets.begin(), face_offsets.end());
-  t.face_vertices.assign(face_vertices.begin(), face_vertices.end());
+  t.face_offsets = std::move(offsets);
+  t.face_vertices = std::move(corners);
+  const std::span<const int> face_offsets(t.face_offsets), face_vertices(t.face_vertices);
   const std::size_t F = face_offsets.size() - 1, H = face_vertices.size();
   const auto V = static_cast<std::size_t>(vertex_count);
 

@@ -66,17 +66,18 @@ void bind_mesh_subdivision(py::module_& m) {
   m.def(
       "subdivide",
       [](const Mesh& mesh, const std::string& scheme, int levels, const std::string& boundary,
-         double max_bytes) {
+         double max_bytes, bool factored) {
         const sd::MeshScheme s = sd::named_mesh_scheme(scheme);
         const sd::MeshOptions o = mesh_options(boundary, max_bytes);
         py::gil_scoped_release release;
-        return sd::subdivide(mesh, s, levels, o);
+        return factored ? sd::factored_subdivide(mesh, s, levels, o) : sd::subdivide(mesh, s, levels, o);
       },
       py::arg("mesh"), py::arg("scheme"), py::arg("levels") = 1, py::kw_only(), py::arg("boundary") = "edge",
-      py::arg("max_bytes") = kDefaultBytes,
+      py::arg("max_bytes") = kDefaultBytes, py::arg("factored") = false,
       "The mesh refined `levels` times by a named scheme (mesh_schemes()). boundary='edge' smooths "
-      "boundary corners along the boundary curve, 'corner' keeps them (Catmull–Clark, Loop). Refused "
-      "before any work when the result would need more than max_bytes.");
+      "boundary corners along the boundary curve, 'corner' keeps them (Catmull–Clark, Loop). "
+      "factored=True: linear subdivision then averaging (catmull-clark on quads, loop), the same mesh to "
+      "round-off. Refused before any work when the result would need more than max_bytes.");
   const auto one = [&m](const char* name, sd::MeshScheme scheme, const char* doc) {
     m.def(
         name,

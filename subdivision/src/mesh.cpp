@@ -96,6 +96,19 @@ void add_face_point(const MeshTopology& t, std::size_t f, double weight, RowWrit
   for (const int c : corners) row.add(c, w);
 }
 
+/// Catmull–Clark's split (vertex points, then edge points, then face points): face f's corner i
+/// becomes the quad (vertex i, edge i, face, edge i − 1), counter-clockwise.
+void split_polygons(const MeshTopology& t, Step& s) {
+  const int V = t.vertex_count, E = static_cast<int>(t.edges.size());
+  for (int f = 0; f < static_cast<int>(face_count(t)); ++f) {
+    const auto corners = face(t, static_cast<std::size_t>(f));
+    const auto edges = face_edges(t, static_cast<std::size_t>(f));
+    const std::size_t k = corners.size();
+    for (std::size_t i = 0; i < k; ++i)
+      add_face(s, {corners[i], V + edges[i], V + E + f, V + edges[(i + k - 1) % k]});
+  }
+}
+
 Step catmull_clark_step(const MeshTopology& t, const MeshOptions& o) {
   const int V = t.vertex_count, E = static_cast<int>(t.edges.size()), F = static_cast<int>(face_count(t));
   Step s;
@@ -140,14 +153,7 @@ Step catmull_clark_step(const MeshTopology& t, const MeshOptions& o) {
     add_face_point(t, static_cast<std::size_t>(f), 1, row);
     row.finish();
   }
-  // Face f's corner i becomes the quad (vertex i, edge i, face, edge i − 1), counter-clockwise.
-  for (int f = 0; f < F; ++f) {
-    const auto corners = face(t, static_cast<std::size_t>(f));
-    const auto edges = face_edges(t, static_cast<std::size_t>(f));
-    const std::size_t k = corners.size();
-    for (std::size_t i = 0; i < k; ++i)
-      add_face(s, {corners[i], V + edges[i], V + E + f, V + edges[(i + k - 1) % k]});
-  }
+  split_polygons(t, s);
   return s;
 }
 
@@ -563,6 +569,32 @@ MeshTopology checked_input(const Mesh& mesh, MeshScheme scheme, int levels, cons
   return t0;
 }
 
+/// Reports levels done to options.progress, weighted by their face counts.
+class LevelProgress {
+ public:
+  LevelProgress(const MeshTopology& t0, MeshScheme scheme, int levels, const MeshOptions& options)
+      : report_(options.progress) {
+    if (!report_) return;
+    Counts c{static_cast<double>(t0.vertex_count), static_cast<double>(t0.edges.size()),
+             static_cast<double>(face_count(t0)), static_cast<double>(t0.face_vertices.size())};
+    for (int level = 0; level < levels; ++level) {
+      c = next_counts(scheme, c);
+      faces_.push_back(static_cast<std::uint64_t>(c.faces));
+      total_ += faces_.back();
+    }
+  }
+  void level_done(int level) {
+    if (!report_) return;
+    done_ += faces_[static_cast<std::size_t>(level)];
+    report_(done_, total_);
+  }
+
+ private:
+  const std::function<void(std::uint64_t, std::uint64_t)>& report_;
+  std::vector<std::uint64_t> faces_;
+  std::uint64_t done_ = 0, total_ = 0;
+};
+
 }  // namespace
 
 MeshRefinement refine_topology(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOptions& options) {
@@ -572,7 +604,8 @@ MeshRefinement refine_topology(const Mesh& mesh, MeshScheme scheme, int levels, 
   for (int level = 0; level < levels; ++level) {
     Step s = step(scheme, r.levels.back(), options, level);
     r.steps.push_back(std::move(s.stencils));
-    r.levels.push_back(build_topology(s.face_offsets, s.face_vertices, s.vertex_count, who));
+    r.levels.push_back(
+        build_topology(std::move(s.face_offsets), std::move(s.face_vertices), s.vertex_count, who));
   }
   return r;
 }
@@ -673,6 +706,7 @@ Mesh subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOption
   // One level at a time: only the current level's topology, weights and positions live, and the
   // last level's faces need no adjacency.
   MeshTopology t = checked_input(mesh, scheme, levels, options, false);
+  LevelProgress progress(t, scheme, levels, options);
   Mesh out;
   out.vertices = mesh.vertices;
   out.face_offsets = mesh.face_offsets;
@@ -681,12 +715,103 @@ Mesh subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOption
     Step s = step(scheme, t, options, level);
     out.vertices = apply(s.stencils, out.vertices);
     if (level + 1 < levels) {
-      t = build_topology(s.face_offsets, s.face_vertices, s.vertex_count, who);
+      t = build_topology(std::move(s.face_offsets), std::move(s.face_vertices), s.vertex_count, who);
     } else {
       out.face_offsets = std::move(s.face_offsets);
       out.face_vertices = std::move(s.face_vertices);
     }
+    progress.level_done(level);
   }
+  return out;
+}
+
+namespace {
+
+/// One step of the factored form (Warren–Weimer; seed 003 §3–4): linear subdivision (old vertices,
+/// edge midpoints and, for Catmull–Clark, face centroids, on the same split as the masks), then one
+/// averaging pass over the split mesh's faces. An interior vertex of valence n moves to
+/// (1 − w_n)·x + w_n·(mean of its faces' centroids), w_n = 4/n for Catmull–Clark and 3α_n for
+/// Loop (α_n the seed's, 9/8 at n = 6). The seed's plain mean (w = 1) is Catmull–Clark only at
+/// n = 4 and never Loop; these weights make both forms equal. A boundary vertex of the split mesh
+/// moves to x/2 + (x₋ + x₊)/4 along the boundary (the curve's linear-then-average form of
+/// (1, 6, 1)/8 and midpoints), or stays when it has one face under `edge_and_corner`.
+Points factored_step(const MeshTopology& t, MeshScheme scheme, const MeshOptions& o, const Points& P,
+                     MeshTopology& split, const std::string& who) {
+  const bool cc = scheme == MeshScheme::catmull_clark;
+  const int V = t.vertex_count, E = static_cast<int>(t.edges.size()), F = static_cast<int>(face_count(t));
+  Step s;
+  s.vertex_count = cc ? V + E + F : V + E;
+  if (cc)
+    split_polygons(t, s);
+  else
+    split_triangles(t, s);
+  Points linear(s.vertex_count, P.cols());
+  linear.topRows(V) = P;
+  for (int e = 0; e < E; ++e) {
+    const auto [a, b] = t.edges[static_cast<std::size_t>(e)];
+    linear.row(V + e) = 0.5 * (P.row(a) + P.row(b));
+  }
+  if (cc)
+    for (int f = 0; f < F; ++f) {
+      const auto corners = face(t, static_cast<std::size_t>(f));
+      linear.row(V + E + f).setZero();
+      for (const int c : corners) linear.row(V + E + f) += P.row(c);
+      linear.row(V + E + f) /= static_cast<double>(corners.size());
+    }
+  split = build_topology(std::move(s.face_offsets), std::move(s.face_vertices), s.vertex_count, who);
+  Points centroid_sum = Points::Zero(linear.rows(), linear.cols());
+  for (std::size_t f = 0; f < face_count(split); ++f) {
+    const auto corners = face(split, f);
+    Eigen::RowVectorXd c = Eigen::RowVectorXd::Zero(linear.cols());
+    for (const int v : corners) c += linear.row(v);
+    c /= static_cast<double>(corners.size());
+    for (const int v : corners) centroid_sum.row(v) += c;
+  }
+  Points out(linear.rows(), linear.cols());
+  for (int v = 0; v < split.vertex_count; ++v) {
+    const auto faces = vertex_faces(split, static_cast<std::size_t>(v));
+    const auto ring = ring_edges(split, v);
+    if (faces.empty() ||
+        (on_boundary(split, v) && faces.size() == 1 && o.boundary == BoundaryRule::edge_and_corner)) {
+      out.row(v) = linear.row(v);
+    } else if (on_boundary(split, v)) {
+      out.row(v) = 0.5 * linear.row(v) +
+                   0.25 * (linear.row(other_vertex(split, static_cast<std::size_t>(ring.front()), v)) +
+                           linear.row(other_vertex(split, static_cast<std::size_t>(ring.back()), v)));
+    } else {
+      const int n = static_cast<int>(ring.size());
+      const double w = cc ? 4.0 / n : 3 * n * loop_beta(n);
+      out.row(v) = (1 - w) * linear.row(v) + (w / static_cast<double>(faces.size())) * centroid_sum.row(v);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+Mesh factored_subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOptions& options) {
+  const std::string who = std::string(scheme_name(scheme)) + " (factored)";
+  if (scheme != MeshScheme::catmull_clark && scheme != MeshScheme::loop)
+    throw InvalidInput(who + ": the factored form exists for catmull-clark and loop");
+  check_mesh(mesh, who);
+  MeshTopology t = checked_input(mesh, scheme, levels, options, false);
+  if (scheme == MeshScheme::catmull_clark)
+    for (std::size_t f = 0; f < face_count(t); ++f)
+      if (face(t, f).size() != 4)
+        throw InvalidInput(who + ": face " + std::to_string(f) + " has " + std::to_string(face(t, f).size()) +
+                           " corners; the factored form runs on quads (one step of the masks makes them)");
+  LevelProgress progress(t, scheme, levels, options);
+  Points P = mesh.vertices;
+  for (int level = 0; level < levels; ++level) {
+    MeshTopology split;
+    P = factored_step(t, scheme, options, P, split, who);
+    t = std::move(split);
+    progress.level_done(level);
+  }
+  Mesh out;
+  out.vertices = std::move(P);
+  out.face_offsets = std::move(t.face_offsets);
+  out.face_vertices = std::move(t.face_vertices);
   return out;
 }
 

@@ -108,3 +108,20 @@ TEST_CASE("cifs subdivide: bad meshes and requests exit 2 with one line and writ
               "butterfly: face 0 has 4 corners");
   CHECK(!std::filesystem::exists(out));
 }
+
+TEST_CASE("cifs subdivide --factored writes the same mesh as the masks", "[cli][mesh]") {
+  for (const char* scheme : {"catmull-clark", "loop"}) {
+    const std::string mesh = example(std::string(scheme) == "loop" ? "icosahedron.obj" : "cube.obj");
+    const auto out = scratch() / (std::string("factored_") + scheme + ".obj");
+    const Run r = cifs_cli("subdivide " + mesh + " --scheme " + scheme +
+                           " --levels 2 --factored --quiet -o " + out.string());
+    REQUIRE(r.status == 0);
+    CHECK(r.out.find("factored, 2 levels") != std::string::npos);
+    const Mesh a = subdivision::subdivide(io::read_mesh(mesh), subdivision::named_mesh_scheme(scheme), 2);
+    const Mesh b = io::read_mesh(out);
+    CHECK(a.face_vertices == b.face_vertices);
+    CHECK((a.vertices - b.vertices).cwiseAbs().maxCoeff() <= 1e-14 * a.vertices.cwiseAbs().maxCoeff());
+  }
+  check_error(cifs_cli("subdivide " + example("cube_triangles.obj") + " --scheme butterfly --factored"),
+              "the factored form exists for catmull-clark and loop");
+}

@@ -506,6 +506,7 @@ class MeshSubdivisionTest(ScratchTestCase):
         self.assertEqual(r.levels, 2)
         self.assertEqual(r.vertex_counts[0], len(vertices))
         np.testing.assert_array_equal(r.apply(vertices), sd.catmull_clark(mesh, 2).vertices)
+        assert_close(self, sd.subdivide(mesh, "catmull-clark", 2, factored=True).vertices, r.apply(vertices), 1e-14)
         offsets, corners = r.faces(2)
         self.assertEqual(len(offsets) - 1, 16 * len(faces))
         colours = np.random.default_rng(1).random((len(vertices), 5))

@@ -209,3 +209,33 @@ TEST_CASE("bad meshes and requests: one-line errors naming the element", "[subdi
                     Contains("catmull-clark, loop, doo-sabin, butterfly, sqrt3"));
   CHECK(subdivide(cube(), MeshScheme::catmull_clark, 0).vertices == cube().vertices);
 }
+
+TEST_CASE("the factored forms (linear subdivision, then averaging) equal the masks", "[subdivision][mesh]") {
+  const Mesh icosa_quads = catmull_clark(bipyramid(), 1);  // valences 3, 4, 5 and 6 (poles 5)
+  const std::vector<std::pair<const char*, Mesh>> quads{{"cube", cube()},
+                                                        {"torus", torus(6, 5)},
+                                                        {"open grid", quad_grid(4, 3)},
+                                                        {"bipyramid, one step", icosa_quads}};
+  const std::vector<std::pair<const char*, Mesh>> triangles{
+      {"tetrahedron", tetrahedron()}, {"octahedron", octahedron()},
+      {"bipyramid", bipyramid()},     {"open triangles", quad_grid(4, 3, true)},
+      {"fan of 7", fan(7)},           {"torus", torus(6, 5, true)}};
+  for (const BoundaryRule rule : {BoundaryRule::edge_only, BoundaryRule::edge_and_corner})
+    for (int levels = 1; levels <= 3; ++levels) {
+      const MeshOptions o{.boundary = rule};
+      for (const auto& [cases, scheme] :
+           {std::pair{&quads, MeshScheme::catmull_clark}, std::pair{&triangles, MeshScheme::loop}})
+        for (const auto& [name, m] : *cases) {
+          INFO(scheme_name(scheme) << ", " << name << ", level " << levels << ", corners "
+                                   << (rule == BoundaryRule::edge_and_corner));
+          const Mesh masks = subdivide(m, scheme, levels, o),
+                     factored = factored_subdivide(m, scheme, levels, o);
+          CHECK(factored.face_vertices == masks.face_vertices);
+          CHECK((factored.vertices - masks.vertices).cwiseAbs().maxCoeff() <=
+                1e-14 * masks.vertices.cwiseAbs().maxCoeff());
+        }
+    }
+  CHECK_THROWS_WITH(factored_subdivide(pyramid(), MeshScheme::catmull_clark, 1),
+                    Contains("face 1 has 3 corners; the factored form runs on quads"));
+  CHECK_THROWS_WITH(factored_subdivide(cube(), MeshScheme::doo_sabin, 1), Contains("catmull-clark and loop"));
+}

@@ -92,6 +92,9 @@ inline int other_vertex(const MeshTopology& t, std::size_t e, int v) noexcept {
 /// two cones meeting at a vertex). Errors start with `who`.
 MeshTopology build_topology(std::span<const int> face_offsets, std::span<const int> face_vertices,
                             int vertex_count, std::string_view who = "mesh");
+/// The same, taking the face arrays over (no copy: the refinement passes each level's faces on).
+MeshTopology build_topology(std::vector<int> face_offsets, std::vector<int> face_vertices, int vertex_count,
+                            std::string_view who = "mesh");
 inline MeshTopology build_topology(const Mesh& mesh, std::string_view who = "mesh") {
   return build_topology(mesh.face_offsets, mesh.face_vertices, static_cast<int>(mesh.vertices.rows()), who);
 }

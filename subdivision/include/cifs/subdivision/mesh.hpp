@@ -7,6 +7,8 @@
 
 #include <Eigen/SparseCore>
 #include <cstddef>
+#include <cstdint>
+#include <functional>
 #include <string_view>
 #include <vector>
 
@@ -34,6 +36,8 @@ struct MeshOptions {
   BoundaryRule boundary = BoundaryRule::edge_only;
   /// Refinements whose topology and weights would need more than this are refused before any work.
   double max_bytes = 4.0 * (1ull << 30);
+  /// Called after every level with (faces made so far, faces of all levels): a progress bar.
+  std::function<void(std::uint64_t, std::uint64_t)> progress = nullptr;
 };
 
 /// Sparse weights, one row per new vertex: new vertex i = Σ weights[k] · old vertex columns[k],
@@ -81,6 +85,11 @@ Stencils stencil_table(const MeshRefinement& refinement);
 /// The refined mesh (positions through apply; normals and states are not carried).
 Mesh subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOptions& options = {});
 Mesh catmull_clark(const Mesh& mesh, int levels, const MeshOptions& options = {});
+/// The factored form of Catmull–Clark (quad meshes) or Loop (triangles): linear subdivision, then
+/// one averaging pass (seed 003 §3–4, Warren–Weimer), computed on the split mesh's positions, not
+/// through the weights; equal to `subdivide` to round-off (docs/subdivision-surfaces.md gives the
+/// averaging weights at extraordinary vertices, which the seed gets wrong).
+Mesh factored_subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOptions& options = {});
 Mesh loop(const Mesh& mesh, int levels, const MeshOptions& options = {});
 Mesh doo_sabin(const Mesh& mesh, int levels, const MeshOptions& options = {});
 Mesh butterfly(const Mesh& mesh, int levels, const MeshOptions& options = {});
