@@ -27,6 +27,8 @@
 #include "cifs/render/preview.hpp"
 #include "cifs/render/progress.hpp"
 #include "cifs/render/raster.hpp"
+#include "cifs/subdivision/mesh.hpp"
+#include "cifs/topology.hpp"
 
 namespace cifs::experiment {
 namespace {
@@ -252,6 +254,39 @@ Scene bcifs_scene(const io::Experiment& e, const RunOptions& o, RunReport& repor
   return scene;
 }
 
+/// The subdivision surface of a polygon mesh; its control mesh is the mesh's edges.
+Scene mesh_scene(const io::MeshSource& m, const RunOptions& o) {
+  Scene scene;
+  const subdivision::MeshOptions options{.boundary = m.boundary, .max_bytes = double(o.max_bytes)};
+  try {
+    scene.mesh = subdivision::subdivide(m.mesh, m.scheme, m.levels, options);
+  } catch (const InvalidInput& error) {
+    throw InvalidInput("subdivision.levels: " + m.path.filename().string() + ": " + error.what());
+  }
+  scene.depth = m.levels;
+  Segments cage;
+  cage.vertices = m.mesh.vertices;
+  const MeshTopology topology = build_topology(m.mesh, m.path.filename().string());
+  cage.segments = topology.edges;
+  scene.control = std::move(cage);
+  scene.extent = drawable(scene.mesh->vertices, "the mesh");
+  return scene;
+}
+
+/// Draws a control mesh over its subdivision surface: a line is hidden only where the surface is
+/// more than `bias` in front of it. Interpolating schemes (Butterfly) and the shrinking ones leave
+/// the control edges just inside or just outside the surface, where an exact depth test would cut
+/// them into dashes; the far side of the surface still hides the far side of the mesh.
+void render_control_mesh(render::Image& image, const render::Camera& camera, const Segments& control,
+                         const render::CurveStyle& style, double bias) {
+  std::vector<float>& Z = image.channels.at("Z");
+  const std::vector<float> surface = Z;
+  for (float& z : Z) z += static_cast<float>(bias);
+  render::render_segments(image, camera, control, style);
+  // Z keeps the nearest surface where it is nearer than the line drawn over it.
+  for (std::size_t i = 0; i < Z.size(); ++i) Z[i] = std::min(Z[i], surface[i]);
+}
+
 std::vector<ifs::AffineMap> classic_maps(const io::ClassicIfs& c) {
   if (c.name == "fern") return ifs::barnsley_fern();
   if (c.name == "sierpinski") return ifs::sierpinski_triangle();
@@ -290,6 +325,11 @@ Scene make_scene(const io::Experiment& e, const RunOptions& o, RunReport& report
   if (!e.automaton.empty()) {
     kind = "BC-IFS " + e.automaton.filename().string();
     return bcifs_scene(e, o, report);
+  }
+  if (e.mesh) {
+    kind = std::string(subdivision::scheme_name(e.mesh->scheme)) + " subdivision of " +
+           e.mesh->path.filename().string();
+    return mesh_scene(*e.mesh, o);
   }
   kind = "classic IFS " + (e.ifs->name.empty() ? std::string("(maps)") : e.ifs->name);
   return classic_scene(*e.ifs);
@@ -411,13 +451,19 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
   render::CurveStyle control_style;
   control_style.width = std::max(1.0, 0.5 * e.render.line_width);
   control_style.color = {0.55, 0.55, 0.55};
-  if (e.render.control_net && scene.control)
-    render::render_segments(image, camera, *scene.control, control_style);
+  // A NURBS net goes under its shape; a control mesh over its subdivision surface.
+  const bool under = e.render.control_net && scene.control && !e.mesh;
+  if (under) render::render_segments(image, camera, *scene.control, control_style);
   if (scene.mesh) {
     render::SurfaceStyle style;
     style.color = e.render.color;
     style.threads = threads;
     render::render_mesh(image, camera, *scene.mesh, style);
+  }
+  if (e.render.control_net && scene.control && e.mesh) {
+    control_style.color = {0.1, 0.1, 0.1};
+    const Eigen::VectorXd size = scene.extent.colwise().maxCoeff() - scene.extent.colwise().minCoeff();
+    render_control_mesh(image, camera, *scene.control, control_style, 0.1 * size.norm());
   }
   if (scene.curves) {
     render::CurveStyle style;
@@ -446,7 +492,8 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
   if (!e.description.empty()) image.attributes["description"] = e.description;
   image.attributes["source"] = kind;
   image.attributes["evaluation"] =
-      e.evaluation.mode == Mode::chaos   ? "chaos game, " + std::to_string(e.evaluation.samples) + " samples"
+      e.mesh                             ? "subdivision, " + std::to_string(e.mesh->levels) + " levels"
+      : e.evaluation.mode == Mode::chaos ? "chaos game, " + std::to_string(e.evaluation.samples) + " samples"
       : e.evaluation.mode == Mode::depth ? "depth"
                                          : "tolerance " + number(e.evaluation.tolerance);
   image.attributes["depth"] = std::to_string(scene.depth);
@@ -518,7 +565,9 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
     report.written.push_back(path);
   }
   report.summary = e.name + ": " + kind +
-                   (e.evaluation.mode == Mode::chaos
+                   (e.mesh ? ", " + std::to_string(scene.depth) + " levels, " +
+                                 std::to_string(face_count(*scene.mesh)) + " faces"
+                    : e.evaluation.mode == Mode::chaos
                         ? ", chaos game of " + std::to_string(e.evaluation.samples) + " samples"
                         : ", depth " + std::to_string(scene.depth));
   if (e.perturbation)
@@ -529,7 +578,19 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
   return report;
 }
 
+namespace {
+
+/// evaluate and sample measure attractors; a subdivision surface is not one.
+void refuse_mesh(const io::Experiment& e) {
+  if (e.mesh)
+    throw InvalidInput("mesh: " + e.mesh->path.filename().string() +
+                       ": a subdivision surface has no attractor to evaluate or sample");
+}
+
+}  // namespace
+
 Evaluation evaluate(const io::Experiment& experiment, std::optional<int> depth, const RunOptions& o) {
+  refuse_mesh(experiment);
   io::Experiment e = experiment;
   e.evaluation.mode = Mode::depth;
   if (depth) e.evaluation.depth = *depth;
@@ -562,6 +623,7 @@ Evaluation evaluate(const io::Experiment& experiment, std::optional<int> depth, 
 Evaluation sample(const io::Experiment& experiment, const SampleOptions& options, const RunOptions& o) {
   if (!(options.tolerance >= 0) || !std::isfinite(options.tolerance))
     throw InvalidInput("tolerance: " + number(options.tolerance) + " must be finite and ≥ 0");
+  refuse_mesh(experiment);
   // Chaos mode builds the automaton and nets without evaluating them.
   io::Experiment e = experiment;
   e.evaluation.mode = Mode::chaos;

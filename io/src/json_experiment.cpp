@@ -4,6 +4,7 @@
 
 #include "cifs/io/io.hpp"
 #include "cifs/io/json.hpp"
+#include "cifs/topology.hpp"
 #include "json_common.hpp"
 
 namespace cifs::io {
@@ -96,6 +97,44 @@ ClassicIfs read_ifs(const Reader& r, const json& v) {
     ifs.maps.push_back(map);
   }
   return ifs;
+}
+
+/// `"mesh": FILE` with `"subdivision": {"scheme", "levels", "boundary"}`. The mesh's topology is
+/// checked here, so that a mesh no scheme can refine is refused with the experiment's name.
+MeshSource read_mesh_source(const Reader& r, const json& doc, const std::filesystem::path& base) {
+  MeshSource m;
+  m.path = base / r.string(doc["mesh"], "mesh");
+  try {
+    m.mesh = read_mesh(m.path);
+    build_topology(m.mesh, m.path.filename().string());
+  } catch (const std::exception& e) {
+    r.fail("mesh", e.what());
+  }
+  const json& v = r.object(r.member(doc, "", "subdivision"), "subdivision");
+  r.only(v, "subdivision", {"scheme", "levels", "boundary"});
+  const std::string scheme = r.string(r.member(v, "subdivision", "scheme"), "subdivision.scheme");
+  try {
+    m.scheme = subdivision::named_mesh_scheme(scheme);
+  } catch (const InvalidInput& e) {
+    r.fail("subdivision.scheme", e.what());
+  }
+  if (subdivision::triangles_only(m.scheme))
+    for (std::size_t f = 0; f < face_count(m.mesh); ++f)
+      if (face(m.mesh, f).size() != 3)
+        r.fail("subdivision.scheme", std::string(subdivision::scheme_name(m.scheme)) +
+                                         " refines triangles only; " + m.path.filename().string() +
+                                         " has a face of " + std::to_string(face(m.mesh, f).size()) +
+                                         " corners (face " + std::to_string(f) + ")");
+  // The size limit is checked when the experiment runs (subdivision::MeshOptions::max_bytes).
+  if (v.contains("levels")) m.levels = bounded_integer(r, v["levels"], "subdivision.levels", 0, 16);
+  if (v.contains("boundary")) {
+    const std::string b = r.string(v["boundary"], "subdivision.boundary");
+    if (b == "corner")
+      m.boundary = subdivision::BoundaryRule::edge_and_corner;
+    else if (b != "edge")
+      r.fail("subdivision.boundary", "expected \"edge\" (boundary corners smoothed) or \"corner\" (kept)");
+  }
+  return m;
 }
 
 Perturbation read_perturbation(const Reader& r, const json& v) {
@@ -235,14 +274,15 @@ Experiment parse_experiment(std::string_view text, std::string_view where,
   const json doc = detail::parse_document(text, r.where);
   if (!doc.is_object()) throw InvalidInput(r.where + ": expected an experiment object");
   r.only(doc, "",
-         {"name", "description", "shape", "automaton", "ifs", "perturbation", "evaluation", "camera",
-          "render", "outputs"});
+         {"name", "description", "shape", "automaton", "ifs", "mesh", "subdivision", "perturbation",
+          "evaluation", "camera", "render", "outputs"});
   Experiment e;
   if (doc.contains("name")) e.name = r.string(doc["name"], "name");
   if (doc.contains("description")) e.description = r.string(doc["description"], "description");
-  const int sources = int(doc.contains("shape")) + int(doc.contains("automaton")) + int(doc.contains("ifs"));
+  const int sources = int(doc.contains("shape")) + int(doc.contains("automaton")) + int(doc.contains("ifs")) +
+                      int(doc.contains("mesh"));
   if (sources != 1)
-    throw InvalidInput(r.where + ": expected exactly one of \"shape\", \"automaton\", \"ifs\"");
+    throw InvalidInput(r.where + ": expected exactly one of \"shape\", \"automaton\", \"ifs\", \"mesh\"");
   if (doc.contains("shape")) e.shape = read_shape_member(r, doc["shape"], base);
   if (doc.contains("automaton")) {
     e.automaton = base / r.string(doc["automaton"], "automaton");
@@ -250,6 +290,15 @@ Experiment parse_experiment(std::string_view text, std::string_view where,
       r.fail("automaton", "no such file: " + e.automaton.string());
   }
   if (doc.contains("ifs")) e.ifs = read_ifs(r, doc["ifs"]);
+  if (doc.contains("mesh")) {
+    e.mesh = read_mesh_source(r, doc, base);
+    // A subdivision surface is refined, not evaluated: no free coefficients, no attractor.
+    if (doc.contains("perturbation"))
+      r.fail("perturbation", "a subdivision surface has no coefficients to perturb");
+    if (doc.contains("evaluation")) r.fail("evaluation", "a mesh is refined by subdivision.levels");
+  } else if (doc.contains("subdivision")) {
+    r.fail("subdivision", "only with a \"mesh\" source");
+  }
   if (doc.contains("perturbation")) {
     if (e.ifs) r.fail("perturbation", "a classic IFS has no constraints to perturb under");
     e.perturbation = read_perturbation(r, doc["perturbation"]);

@@ -150,6 +150,7 @@ const char* mode_name(io::Evaluation::Mode mode) {
 std::string source_kind(const io::Experiment& e) {
   if (e.shape) return std::holds_alternative<nurbs::Curve>(*e.shape) ? "curve" : "surface";
   if (!e.automaton.empty()) return "automaton";
+  if (e.mesh) return "mesh";
   return "ifs";
 }
 
@@ -462,7 +463,7 @@ void bind_experiment_file(py::module_& m) {
       .def_readonly("name", &io::Experiment::name, "Name (default: the file's stem).")
       .def_readonly("description", &io::Experiment::description, "Free text.")
       .def_property_readonly("source", &source_kind,
-                             "The source kind: 'curve', 'surface', 'automaton' or 'ifs'.")
+                             "The source kind: 'curve', 'surface', 'automaton', 'ifs' or 'mesh'.")
       .def_readonly("shape", &io::Experiment::shape, "The NURBS source (Curve or Surface), or None.")
       .def_property_readonly(
           "automaton",
@@ -484,6 +485,13 @@ void bind_experiment_file(py::module_& m) {
             return index_array(e.ifs ? e.ifs->maps : std::vector<std::array<double, 7>>());
           },
           "Explicit classic IFS maps (n, 7): rows (a, b, c, d, e, f, p).")
+      .def_property_readonly(
+          "mesh",
+          [](const io::Experiment& e) -> std::optional<std::filesystem::path> {
+            if (!e.mesh) return std::nullopt;
+            return e.mesh->path;
+          },
+          "Path of the polygon mesh source (refined by its subdivision scheme), or None.")
       .def_property_readonly(
           "perturbed", [](const io::Experiment& e) { return e.perturbation.has_value(); },
           "True when the file perturbs the free coefficients.")

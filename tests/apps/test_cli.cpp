@@ -249,6 +249,16 @@ TEST_CASE("cifs gallery runs every example experiment", "[cli]") {
   for (const char* name : {"wave.automaton.svg", "hills.ply", "tree.svg", "schemes/lr_bone_degree3.svg"})
     CHECK(std::filesystem::is_regular_file(out / name));
   CHECK_THAT(r.out, Catch::Contains("wave-fractal: NURBS curve") && Catch::Contains("free coefficients"));
+  // The five mesh schemes on the example meshes: closed, open (boundary) and genus 1.
+  for (const char* name :
+       {"subdivision_cube_catmull_clark", "subdivision_cube_doo_sabin", "subdivision_tetrahedron_loop",
+        "subdivision_tetrahedron_butterfly", "subdivision_tetrahedron_sqrt3", "subdivision_open_grid",
+        "subdivision_open_grid_triangles", "subdivision_torus"})
+    for (const char* ext : {".exr", ".png", ".obj"})
+      CHECK(std::filesystem::is_regular_file(out / (std::string(name) + ext)));
+  CHECK_THAT(r.out, Catch::Contains(
+                        "subdivision-torus: catmull-clark subdivision of torus.obj, 3 levels, 6144 faces") &&
+                        Catch::Contains("sqrt3 subdivision of tetrahedron.obj, 6 levels"));
   std::filesystem::remove_all(out);
   // A wrong examples folder is one clear error.
   check_error(cifs_cli("gallery " + out.string() + " --examples /no/such/folder"), "/no/such/folder");

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/cli_runner.hpp"
+#include "cifs/files.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/subdivision/mesh.hpp"
 
@@ -124,4 +125,40 @@ TEST_CASE("cifs subdivide --factored writes the same mesh as the masks", "[cli][
   }
   check_error(cifs_cli("subdivide " + example("cube_triangles.obj") + " --scheme butterfly --factored"),
               "the factored form exists for catmull-clark and loop");
+}
+
+TEST_CASE("cifs render on a mesh experiment: the same files as cifs subdivide; bad ones exit 2",
+          "[cli][mesh][experiment]") {
+  const auto dir = scratch() / "mesh_render";
+  std::filesystem::remove_all(dir);
+  const std::string experiment = file("mesh_experiment.json", R"({"mesh": ")" CIFS_EXAMPLES_DIR
+                                                              R"(/meshes/icosahedron.obj",
+      "subdivision": {"scheme": "butterfly", "levels": 2}, "render": {"width": 64, "height": 48, "control_net": true},
+      "outputs": {"obj": "ico.obj"}})");
+  const Run r = cifs_cli("render " + experiment + " -o " + (dir / "ico.exr").string() + " --quiet");
+  INFO("stderr: " << r.err);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out, Catch::StartsWith("mesh_experiment: butterfly subdivision of icosahedron.obj, 2 levels"));
+  const auto theirs = scratch() / "ico_subdivide.obj";
+  REQUIRE(cifs_cli("subdivide " + example("icosahedron.obj") + " --scheme butterfly --levels 2 -o " +
+                   theirs.string())
+              .status == 0);
+  CHECK(read_file(dir / "ico.obj") == read_file(theirs));
+  CHECK(std::filesystem::file_size(dir / "ico.exr") > 0);
+  std::filesystem::remove_all(dir);
+  // One line naming the file and the member; nothing written.
+  const std::string bad =
+      file("bad_mesh.json", R"({"mesh": "no_such.obj", "subdivision": {"scheme": "loop"}})");
+  check_error(cifs_cli("render " + bad + " -o " + (dir / "x.exr").string()), "bad_mesh.json: mesh: ");
+  const std::string levels = file(
+      "bad_levels.json", R"({"mesh": ")" CIFS_EXAMPLES_DIR
+                         R"(/meshes/cube.obj", "subdivision": {"scheme": "catmull-clark", "levels": -2}})");
+  check_error(cifs_cli("render " + levels + " -o " + (dir / "x.exr").string()),
+              "bad_levels.json: subdivision.levels: -2 is outside [0, 16]");
+  const std::string scheme =
+      file("bad_scheme.json", R"({"mesh": ")" CIFS_EXAMPLES_DIR
+                              R"(/meshes/cube.obj", "subdivision": {"scheme": "catmul-clark"}})");
+  check_error(cifs_cli("render " + scheme + " -o " + (dir / "x.exr").string()),
+              "bad_scheme.json: subdivision.scheme: unknown mesh scheme 'catmul-clark'");
+  CHECK_FALSE(std::filesystem::exists(dir));
 }

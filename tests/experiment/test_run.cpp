@@ -7,11 +7,13 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/experiment/run.hpp"
+#include "cifs/files.hpp"
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/io/json.hpp"
 #include "cifs/nurbs/curve.hpp"
 #include "cifs/render/image.hpp"
+#include "cifs/subdivision/mesh.hpp"
 #include "render/scratch.hpp"
 
 using namespace cifs;
@@ -166,4 +168,95 @@ TEST_CASE("Bad experiments leave no file behind", "[experiment]") {
   CHECK_THROWS_WITH(run_in(dir, R"({"ifs": "fern", "render": {"width": 8, "height": 8}})"),
                     Catch::Contains("no image output"));
   CHECK(dir.files().empty());
+}
+
+TEST_CASE("A mesh experiment: the subdivision surface shaded, its control mesh over it, OBJ and PLY",
+          "[experiment][mesh]") {
+  ScratchDir dir;
+  const auto report = run_in(dir, R"({"name": "cube", "mesh": "../meshes/cube.obj",
+      "subdivision": {"scheme": "catmull-clark", "levels": 3},
+      "camera": {"projection": "perspective", "eye": [2.5, -1.3, 2.1], "target": [0.5, 0.5, 0.5]},
+      "render": {"width": 120, "height": 90, "color": [0.8, 0.8, 0.8], "control_net": true},
+      "outputs": {"exr": "c.exr", "png": "c.png", "obj": "c.obj", "ply": "c.ply"}})");
+  CHECK(dir.files() == std::vector<std::string>{"c.exr", "c.obj", "c.ply", "c.png"});
+  CHECK(report.depth == 3);
+  CHECK_THAT(report.summary,
+             Catch::StartsWith("cube: catmull-clark subdivision of cube.obj, 3 levels, 384 faces"));
+  const render::Image image = render::read_exr(dir.path() / "c.exr");
+  for (const char* c : {"R", "G", "B", "A", "Z", "N.x", "N.y", "N.z"}) CHECK(image.channels.count(c) == 1);
+  CHECK(image.attributes.at("source") == "catmull-clark subdivision of cube.obj");
+  CHECK(image.attributes.at("evaluation") == "subdivision, 3 levels");
+  CHECK(image.attributes.at("depth") == "3");
+  // The framed surface covers a good part of the picture, and the corners stay empty.
+  CHECK(covered(image) > 120 * 90 / 8);
+  CHECK(image.channels.at("A")[0] == 0);
+  // The files hold exactly the library's refinement of the same input.
+  const Mesh cube = io::read_mesh(CIFS_EXAMPLES_DIR "/meshes/cube.obj");
+  const Mesh refined = subdivision::subdivide(cube, subdivision::MeshScheme::catmull_clark, 3);
+  CHECK(read_file(dir.path() / "c.obj") == io::encode(refined, "obj"));
+  CHECK(read_file(dir.path() / "c.ply") == io::encode(refined, "ply"));
+
+  // Without the control mesh (same camera) fewer pixels are dark: the lines are drawn over the
+  // surface.
+  ScratchDir plain;
+  run_in(plain, R"({"mesh": "../meshes/cube.obj", "subdivision": {"scheme": "catmull-clark", "levels": 3},
+      "camera": {"projection": "perspective", "eye": [2.5, -1.3, 2.1], "target": [0.5, 0.5, 0.5]},
+      "render": {"width": 120, "height": 90, "color": [0.8, 0.8, 0.8]}, "outputs": {"exr": "c.exr"}})");
+  const render::Image bare = render::read_exr(plain.path() / "c.exr");
+  const auto dark = [](const render::Image& im) {
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < im.width * im.height; ++i)
+      n += im.channels.at("A")[i] > 0.5f && im.channels.at("R")[i] < 0.2f;
+    return n;
+  };
+  CHECK(dark(image) > dark(bare) + 100);
+  // Z is the nearest fragment: a line in front of the surface, else the surface (the lines' depth
+  // bias does not leak into the EXR).
+  std::size_t behind = 0;
+  for (std::size_t i = 0; i < image.width * image.height; ++i)
+    behind += image.channels.at("Z")[i] > bare.channels.at("Z")[i];
+  CHECK(behind == 0);
+}
+
+TEST_CASE("Mesh experiments: every scheme, boundaries, and what a mesh cannot do", "[experiment][mesh]") {
+  ScratchDir dir;
+  for (
+      const char* text :
+      {R"({"mesh": "../meshes/tetrahedron.obj", "subdivision": {"scheme": "butterfly", "levels": 2}, "outputs": {"exr": "a.exr", "obj": "a.obj"}, "render": {"width": 40, "height": 30}})",
+       R"({"mesh": "../meshes/open_grid_triangles.obj", "subdivision": {"scheme": "sqrt3", "levels": 2, "boundary": "corner"}, "outputs": {"exr": "a.exr", "obj": "a.obj"}, "render": {"width": 40, "height": 30, "control_net": true}})",
+       R"({"mesh": "../meshes/open_grid.obj", "subdivision": {"scheme": "doo-sabin", "levels": 2}, "outputs": {"exr": "a.exr", "obj": "a.obj"}, "render": {"width": 40, "height": 30, "control_net": true}})"}) {
+    const io::Experiment e = parse(text);
+    run_in(dir, text);
+    const Mesh refined =
+        subdivision::subdivide(e.mesh->mesh, e.mesh->scheme, e.mesh->levels, {.boundary = e.mesh->boundary});
+    CHECK(read_file(dir.path() / "a.obj") == io::encode(refined, "obj"));
+    CHECK(covered(render::read_exr(dir.path() / "a.exr")) > 40 * 30 / 8);
+  }
+  ScratchDir empty;
+  // A result above the memory limit is refused before any work, and no file is written.
+  experiment::RunOptions o;
+  o.out_dir = empty.path();
+  o.quiet = true;
+  o.max_bytes = 1 << 20;
+  const io::Experiment big =
+      parse(R"({"mesh": "../meshes/torus.obj", "subdivision": {"scheme": "catmull-clark", "levels": 9},
+      "render": {"width": 8, "height": 8}, "outputs": {"exr": "t.exr", "obj": "t.obj"}})");
+  try {
+    experiment::run(big, o);
+    FAIL("no error");
+  } catch (const InvalidInput& error) {
+    const std::string message = error.what();
+    CHECK_THAT(message, Catch::StartsWith("subdivision.levels: torus.obj: "));
+    CHECK(message.find('\n') == std::string::npos);
+  }
+  CHECK_THROWS_WITH(run_in(empty, R"({"mesh": "../meshes/cube.obj", "subdivision": {"scheme": "loop"},
+      "outputs": {"exr": "c.exr", "svg": "c.svg"}})"),
+                    Catch::Contains("subdivision.scheme: loop refines triangles only"));
+  CHECK_THROWS_WITH(run_in(empty, R"({"mesh": "../meshes/cube.obj", "subdivision": {"scheme": "doo-sabin"},
+      "render": {"width": 8, "height": 8}, "outputs": {"exr": "c.exr", "svg": "c.svg"}})"),
+                    Catch::Contains("outputs.svg: SVG is for curves"));
+  CHECK_THROWS_WITH(experiment::evaluate(
+                        parse(R"({"mesh": "../meshes/tetrahedron.obj", "subdivision": {"scheme": "loop"}})")),
+                    "mesh: tetrahedron.obj: a subdivision surface has no attractor to evaluate or sample");
+  CHECK(empty.files().empty());
 }

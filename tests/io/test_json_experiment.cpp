@@ -124,3 +124,58 @@ TEST_CASE("Experiments: output keys are the formats of the format table", "[io][
   CHECK_THAT(error_of(R"({"ifs": "fern", "outputs": {"dot": "g.dot"}})"),
              Catch::Contains("outputs.dot: unknown member"));
 }
+
+TEST_CASE("Experiments: a polygon mesh and its subdivision scheme", "[io][experiment][mesh]") {
+  const io::Experiment e = parse(R"({"mesh": "../meshes/open_grid.obj",
+      "subdivision": {"scheme": "doo-sabin", "levels": 2, "boundary": "corner"}, "render": {"control_net": true}})");
+  REQUIRE(e.mesh);
+  CHECK_FALSE(e.shape);
+  CHECK(e.mesh->path.filename() == "open_grid.obj");
+  CHECK(e.mesh->mesh.vertices.rows() == 35);
+  CHECK(e.mesh->scheme == subdivision::MeshScheme::doo_sabin);
+  CHECK(e.mesh->levels == 2);
+  CHECK(e.mesh->boundary == subdivision::BoundaryRule::edge_and_corner);
+  CHECK(e.render.control_net);
+  // Defaults: 3 levels, the edge rule.
+  const io::Experiment d =
+      parse(R"({"mesh": "../meshes/cube.obj", "subdivision": {"scheme": "catmull-clark"}})");
+  CHECK(d.mesh->levels == 3);
+  CHECK(d.mesh->boundary == subdivision::BoundaryRule::edge_only);
+}
+
+TEST_CASE("Experiments: bad mesh sources are one line naming the file and the member",
+          "[io][experiment][mesh]") {
+  const std::string cube = R"("mesh": "../meshes/cube.obj")";
+  const auto one_line = [](const std::string& message, const std::string& expected) {
+    CHECK_THAT(message, Catch::StartsWith("e.json: ") && Catch::Contains(expected));
+    CHECK(message.find('\n') == std::string::npos);
+  };
+  one_line(error_of("{" + cube + R"(, "subdivision": {"scheme": "kobbelt"}})"),
+           "e.json: subdivision.scheme: unknown mesh scheme 'kobbelt' (catmull-clark, loop");
+  one_line(error_of("{" + cube + R"(, "subdivision": {"scheme": "loop", "levels": 2}})"),
+           "subdivision.scheme: loop refines triangles only; cube.obj has a face of 4 corners (face 0)");
+  one_line(error_of("{" + cube + R"(, "subdivision": {"scheme": "catmull-clark", "levels": -1}})"),
+           "e.json: subdivision.levels: -1 is outside [0, 16]");
+  one_line(error_of("{" + cube + R"(, "subdivision": {"scheme": "catmull-clark", "boundary": "crease"}})"),
+           "e.json: subdivision.boundary: expected \"edge\"");
+  one_line(error_of("{" + cube + R"(, "subdivision": {"scheme": "catmull-clark", "level": 2}})"),
+           "e.json: subdivision.level: unknown member");
+  one_line(error_of("{" + cube + R"(, "subdivision": {"levels": 2}})"),
+           "e.json: subdivision: missing \"scheme\"");
+  one_line(error_of("{" + cube + "}"), "e.json: missing \"subdivision\"");
+  one_line(error_of(R"({"mesh": "../meshes/no_such.obj", "subdivision": {"scheme": "loop"}})"),
+           "e.json: mesh: ");
+  CHECK_THAT(error_of(R"({"mesh": "../meshes/no_such.obj", "subdivision": {"scheme": "loop"}})"),
+             Catch::Contains("no_such.obj"));
+  one_line(error_of("{" + cube + ", " + kCurve + R"(, "subdivision": {"scheme": "catmull-clark"}})"),
+           "e.json: expected exactly one of \"shape\", \"automaton\", \"ifs\", \"mesh\"");
+  one_line(error_of("{" + kCurve + R"(, "subdivision": {"scheme": "loop"}})"),
+           "e.json: subdivision: only with a \"mesh\" source");
+  one_line(
+      error_of("{" + cube + R"(, "subdivision": {"scheme": "catmull-clark"}, "evaluation": {"depth": 2}})"),
+      "e.json: evaluation: a mesh is refined by subdivision.levels");
+  one_line(error_of("{" + cube + R"(, "subdivision": {"scheme": "catmull-clark"}, "perturbation": {}})"),
+           "e.json: perturbation: a subdivision surface has no coefficients to perturb");
+  one_line(error_of(R"({"mesh": "../shapes/hills.json", "subdivision": {"scheme": "loop"}})"),
+           "e.json: mesh: ");
+}

@@ -418,6 +418,10 @@ class ExperimentTest(ScratchTestCase):
         maps = io.parse_experiment('{"ifs": {"maps": [[0.5, 0, 0, 0.5, 0, 0, 1]]}}', "x.json")
         np.testing.assert_array_equal(maps.ifs_maps, [[0.5, 0, 0, 0.5, 0, 0, 1]])
         self.assertIn("Experiment(name='wave'", repr(wave))
+        torus = io.read_experiment(EXPERIMENTS / "subdivision_torus.json")
+        self.assertEqual((torus.source, torus.shape, torus.ifs, torus.automaton), ("mesh", None, None, None))
+        self.assertEqual(torus.mesh.resolve(), (EXAMPLES / "meshes" / "torus.obj").resolve())
+        self.assertIsNone(wave.mesh)
 
     def test_run_writes_what_cli_render_writes(self):
         for name in ("wave", "koch"):

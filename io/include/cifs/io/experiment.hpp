@@ -14,6 +14,8 @@
 #include <vector>
 
 #include "cifs/io/shape.hpp"
+#include "cifs/mesh.hpp"
+#include "cifs/subdivision/mesh.hpp"
 
 namespace cifs::io {
 
@@ -32,6 +34,16 @@ struct Perturbation {
   std::map<std::string, double> values;
   /// NURBS sources: keep the vertex operators (knot points and end points stay on the NURBS).
   bool keep_vertices = true;
+};
+
+/// A polygon mesh and the subdivision scheme that refines it (docs/subdivision-surfaces.md). The
+/// mesh is read and its topology checked when the experiment is parsed; `run` refines it.
+struct MeshSource {
+  std::filesystem::path path;  // as resolved against the experiment's folder
+  Mesh mesh;                   // the control mesh
+  subdivision::MeshScheme scheme = subdivision::MeshScheme::catmull_clark;
+  int levels = 3;
+  subdivision::BoundaryRule boundary = subdivision::BoundaryRule::edge_only;
 };
 
 struct Evaluation {
@@ -60,7 +72,7 @@ struct RenderSettings {
   double line_width = 2;  // pixels
   std::array<double, 3> color{0.12, 0.30, 0.65};
   std::array<double, 3> background{1, 1, 1};
-  bool control_net = false;  // also draw the control polygon / net
+  bool control_net = false;  // also draw the control polygon / net / mesh
   unsigned threads = 0;      // 0: every hardware thread
 };
 
@@ -79,10 +91,11 @@ struct Experiment {
   std::string name;  // default: the file's stem
   std::string description;
   /// Exactly one source: a NURBS shape (a shape file, an inline shape, or the uniform B-spline of a
-  /// polygon file), a BC-IFS automaton file, or a classic IFS.
+  /// polygon file), a BC-IFS automaton file, a classic IFS, or a polygon mesh to subdivide.
   std::optional<Shape> shape;
   std::filesystem::path automaton;  // absolute (resolved against the experiment's folder)
   std::optional<ClassicIfs> ifs;
+  std::optional<MeshSource> mesh;
   std::optional<Perturbation> perturbation;
   Evaluation evaluation;
   CameraSpec camera;
