@@ -23,42 +23,85 @@ struct Step {
   std::vector<int> face_offsets{0};
   std::vector<int> face_vertices;
   int vertex_count = 0;
-  Stencils stencils;
+  Stencils stencils;              // the weights, unless `input` is set
+  const Points* input = nullptr;  // set: each row is applied to it as it is made, into `output`,
+  Points output;                  // and not kept (one-shot subdivision: no weights in memory)
 };
 
-/// Appends one stencil row at a time; a column given twice is summed (face points expanded into
-/// corners meet the ring's own vertices).
+/// out = Σ_k weights[k] · in row columns[k] (d columns): the one kernel of apply and of rows applied
+/// as they are made, so both give the same bits.
+inline void weighted_row(const double* in, Eigen::Index d, const int* columns, const double* weights,
+                         int count, double* out) {
+  if (d == 3) {  // positions: the common case, kept in registers
+    double x = 0, y = 0, z = 0;
+    for (int k = 0; k < count; ++k) {
+      const double* p = in + 3 * static_cast<std::ptrdiff_t>(columns[k]);
+      x += weights[k] * p[0];
+      y += weights[k] * p[1];
+      z += weights[k] * p[2];
+    }
+    out[0] = x;
+    out[1] = y;
+    out[2] = z;
+    return;
+  }
+  std::fill(out, out + d, 0.0);
+  for (int k = 0; k < count; ++k) {
+    const double* p = in + d * static_cast<std::ptrdiff_t>(columns[k]);
+    for (Eigen::Index c = 0; c < d; ++c) out[c] += weights[k] * p[c];
+  }
+}
+
+/// Makes one stencil row at a time; a column given twice is summed (face points expanded into
+/// corners meet the ring's own vertices). Rows go to the step's stencils, or straight onto its
+/// input (then `s.vertex_count` must be set before the writer is made).
 class RowWriter {
  public:
-  explicit RowWriter(Stencils& out) : out_(out) {}
+  explicit RowWriter(Step& s) : s_(s) {
+    if (s.input) s.output.resize(s.vertex_count, s.input->cols());
+  }
   void add(int column, double weight) { pending_.emplace_back(column, weight); }
   void finish() {
     // Rows are short (≤ ~30 entries): insertion sort by column, then equal columns merged.
     for (std::size_t i = 1; i < pending_.size(); ++i)
       for (std::size_t j = i; j > 0 && pending_[j].first < pending_[j - 1].first; --j)
         std::swap(pending_[j], pending_[j - 1]);
+    Stencils& out = s_.input ? merged_ : s_.stencils;
+    const std::size_t first = out.columns.size();
     for (std::size_t i = 0; i < pending_.size();) {
       const int column = pending_[i].first;
       double weight = 0;
       for (; i < pending_.size() && pending_[i].first == column; ++i) weight += pending_[i].second;
-      out_.columns.push_back(column);
-      out_.weights.push_back(weight);
+      out.columns.push_back(column);
+      out.weights.push_back(weight);
     }
-    out_.offsets.push_back(static_cast<int>(out_.columns.size()));
     pending_.clear();
+    if (!s_.input) {
+      out.offsets.push_back(static_cast<int>(out.columns.size()));
+      return;
+    }
+    const Eigen::Index d = s_.input->cols();
+    weighted_row(s_.input->data(), d, out.columns.data() + first, out.weights.data() + first,
+                 static_cast<int>(out.columns.size() - first), s_.output.data() + d * row_++);
+    out.columns.clear();
+    out.weights.clear();
   }
 
  private:
-  Stencils& out_;
+  Step& s_;
   std::vector<std::pair<int, double>> pending_;
+  Stencils merged_;  // one row at a time when applying directly
+  Eigen::Index row_ = 0;
 };
 
 /// Reserves a step's arrays from its counts (growing them by doubling costs copies and page faults
 /// at these sizes).
 void reserve(Step& s, std::size_t rows, std::size_t entries, std::size_t faces, std::size_t corners) {
-  s.stencils.offsets.reserve(rows + 1);
-  s.stencils.columns.reserve(entries);
-  s.stencils.weights.reserve(entries);
+  if (!s.input) {
+    s.stencils.offsets.reserve(rows + 1);
+    s.stencils.columns.reserve(entries);
+    s.stencils.weights.reserve(entries);
+  }
   s.face_offsets.reserve(faces + 1);
   s.face_vertices.reserve(corners);
 }
@@ -109,15 +152,16 @@ void split_polygons(const MeshTopology& t, Step& s) {
   }
 }
 
-Step catmull_clark_step(const MeshTopology& t, const MeshOptions& o) {
+Step catmull_clark_step(const MeshTopology& t, const MeshOptions& o, const Points* input) {
   const int V = t.vertex_count, E = static_cast<int>(t.edges.size()), F = static_cast<int>(face_count(t));
   Step s;
+  s.input = input;
   s.vertex_count = V + E + F;  // vertex points, edge points, face points
   const std::size_t H = t.face_vertices.size();
   // Vertex rows: itself, n neighbours, the corners of n faces; edge rows: both faces' corners.
   reserve(s, static_cast<std::size_t>(s.vertex_count), static_cast<std::size_t>(V) + 2 * H + 2 * H + H, H,
           4 * H);
-  RowWriter row(s.stencils);
+  RowWriter row(s);
   for (int v = 0; v < V; ++v) {
     const auto ring = ring_edges(t, v);
     if (ring.empty()) {
@@ -187,14 +231,15 @@ double loop_beta(int n) {
   return (0.625 - c * c) / n;
 }
 
-Step loop_step(const MeshTopology& t, const MeshOptions& o) {
+Step loop_step(const MeshTopology& t, const MeshOptions& o, const Points* input) {
   const int V = t.vertex_count, E = static_cast<int>(t.edges.size());
   Step s;
+  s.input = input;
   s.vertex_count = V + E;
   const std::size_t F = face_count(t);
   const auto Vs = static_cast<std::size_t>(V), Es = static_cast<std::size_t>(E);
   reserve(s, Vs + Es, Vs + 6 * Es, 4 * F, 12 * F);  // vertex rows ~ 1 + n, edge rows 4
-  RowWriter row(s.stencils);
+  RowWriter row(s);
   for (int v = 0; v < V; ++v) {
     const auto ring = ring_edges(t, v);
     if (ring.empty()) {
@@ -301,11 +346,12 @@ void butterfly_regular(const MeshTopology& t, int e, RowWriter& row) {
 /// stencil unless an end is an interior vertex of valence ≠ 6, whose ring stencil is then used
 /// (the mean of the two when both are). Boundary ends count as regular (OpenMesh's rule; ZSS's
 /// boundary tables are not implemented).
-Step butterfly_step(const MeshTopology& t, const MeshOptions&) {
+Step butterfly_step(const MeshTopology& t, const MeshOptions&, const Points* input) {
   const int V = t.vertex_count, E = static_cast<int>(t.edges.size());
   Step s;
+  s.input = input;
   s.vertex_count = V + E;
-  RowWriter row(s.stencils);
+  RowWriter row(s);
   for (int v = 0; v < V; ++v) {  // interpolating: old vertices stay
     row.add(v, 1);
     row.finish();
@@ -341,10 +387,14 @@ Step butterfly_step(const MeshTopology& t, const MeshOptions&) {
 /// trisected by (p_− + 16p_a + 10p_b)/27 and (10p_a + 16p_b + p_+)/27 in place of its face's
 /// centroid, and boundary vertices move to (4p_− + 19p + 4p_+)/27. After an even step every
 /// boundary face has exactly one boundary edge, which the odd step relies on.
-Step sqrt3_step(const MeshTopology& t, bool refine_boundary) {
+Step sqrt3_step(const MeshTopology& t, bool refine_boundary, const Points* input) {
   const int V = t.vertex_count, F = static_cast<int>(face_count(t));
   Step s;
-  RowWriter row(s.stencils);
+  s.input = input;
+  s.vertex_count = V + F;  // and one more point per boundary face when it is trisected
+  if (refine_boundary)
+    for (std::size_t e = 0; e < t.edges.size(); ++e) s.vertex_count += is_boundary_edge(t, e) ? 1 : 0;
+  RowWriter row(s);
   for (int v = 0; v < V; ++v) {
     const auto ring = ring_edges(t, v);
     if (ring.empty() || (on_boundary(t, v) && !refine_boundary)) {
@@ -395,7 +445,6 @@ Step sqrt3_step(const MeshTopology& t, bool refine_boundary) {
     add_face(s, {next, next + 1, corners[(split + 2) % 3]});
     next += 2;
   }
-  s.vertex_count = next;
   const auto apex_of = [&](int f, int e) {
     const auto edges = face_edges(t, static_cast<std::size_t>(f));
     const auto i = std::find(edges.begin(), edges.end(), e) - edges.begin();
@@ -423,10 +472,11 @@ Step sqrt3_step(const MeshTopology& t, bool refine_boundary) {
 /// interior edge (a quad) and per interior vertex (its corner points around it). Boundary edges
 /// and vertices make no face, so the surface shrinks away from the boundary (CGAL's rule:
 /// corner points are the same at the boundary).
-Step doo_sabin_step(const MeshTopology& t, const MeshOptions&) {
+Step doo_sabin_step(const MeshTopology& t, const MeshOptions&, const Points* input) {
   Step s;
+  s.input = input;
   s.vertex_count = static_cast<int>(t.face_vertices.size());  // corner (f, i) → face_offsets[f] + i
-  RowWriter row(s.stencils);
+  RowWriter row(s);
   for (std::size_t f = 0; f < face_count(t); ++f) {
     const auto corners = face(t, f);
     const std::size_t k = corners.size();
@@ -464,18 +514,20 @@ Step doo_sabin_step(const MeshTopology& t, const MeshOptions&) {
 }
 
 /// Step `level` (0 for the first) of a refinement.
-Step step(MeshScheme scheme, const MeshTopology& t, const MeshOptions& o, int level) {
+/// With `input`, the rows are applied to it as they are made (Step::output) instead of kept.
+Step step(MeshScheme scheme, const MeshTopology& t, const MeshOptions& o, int level,
+          const Points* input = nullptr) {
   switch (scheme) {
     case MeshScheme::catmull_clark:
-      return catmull_clark_step(t, o);
+      return catmull_clark_step(t, o, input);
     case MeshScheme::loop:
-      return loop_step(t, o);
+      return loop_step(t, o, input);
     case MeshScheme::doo_sabin:
-      return doo_sabin_step(t, o);
+      return doo_sabin_step(t, o, input);
     case MeshScheme::butterfly:
-      return butterfly_step(t, o);
+      return butterfly_step(t, o, input);
     case MeshScheme::sqrt3:
-      return sqrt3_step(t, level % 2 == 1);
+      return sqrt3_step(t, level % 2 == 1, input);
   }
   return {};
 }
@@ -614,29 +666,11 @@ void apply(const Stencils& step, const Points& vertices, Points& out) {
   const auto rows = static_cast<Eigen::Index>(row_count(step));
   const Eigen::Index d = vertices.cols();
   out.resize(rows, d);  // keeps the storage when the size is unchanged
-  const double* in = vertices.data();
-  double* o = out.data();
-  const int* offsets = step.offsets.data();
-  const int* columns = step.columns.data();
-  const double* weights = step.weights.data();
-  if (d == 3) {  // positions: the common case, kept in registers
-    for (Eigen::Index i = 0; i < rows; ++i) {
-      double x = 0, y = 0, z = 0;
-      for (int k = offsets[i]; k < offsets[i + 1]; ++k) {
-        const double* p = in + 3 * static_cast<std::ptrdiff_t>(columns[k]);
-        x += weights[k] * p[0];
-        y += weights[k] * p[1];
-        z += weights[k] * p[2];
-      }
-      o[3 * i] = x;
-      o[3 * i + 1] = y;
-      o[3 * i + 2] = z;
-    }
-    return;
+  for (Eigen::Index i = 0; i < rows; ++i) {
+    const int begin = step.offsets[static_cast<std::size_t>(i)];
+    weighted_row(vertices.data(), d, step.columns.data() + begin, step.weights.data() + begin,
+                 step.offsets[static_cast<std::size_t>(i) + 1] - begin, out.data() + d * i);
   }
-  out.setZero();
-  for (Eigen::Index i = 0; i < rows; ++i)
-    for (int k = offsets[i]; k < offsets[i + 1]; ++k) out.row(i) += weights[k] * vertices.row(columns[k]);
 }
 
 Points apply(const Stencils& step, const Points& vertices) {
@@ -712,8 +746,8 @@ Mesh subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOption
   out.face_offsets = mesh.face_offsets;
   out.face_vertices = mesh.face_vertices;
   for (int level = 0; level < levels; ++level) {
-    Step s = step(scheme, t, options, level);
-    out.vertices = apply(s.stencils, out.vertices);
+    Step s = step(scheme, t, options, level, &out.vertices);
+    out.vertices = std::move(s.output);
     if (level + 1 < levels) {
       t = build_topology(std::move(s.face_offsets), std::move(s.face_vertices), s.vertex_count, who);
     } else {
