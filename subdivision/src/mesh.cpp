@@ -53,44 +53,43 @@ inline void weighted_row(const double* in, Eigen::Index d, const int* columns, c
 }
 
 /// Makes one stencil row at a time; a column given twice is summed (face points expanded into
-/// corners meet the ring's own vertices). Rows go to the step's stencils, or straight onto its
-/// input (then `s.vertex_count` must be set before the writer is made).
+/// corners meet the ring's own vertices), columns in order of first appearance. Rows go to the
+/// step's stencils, or straight onto its input (then `s.vertex_count` must be set before the writer
+/// is made).
 class RowWriter {
  public:
   explicit RowWriter(Step& s) : s_(s) {
     if (s.input) s.output.resize(s.vertex_count, s.input->cols());
   }
-  void add(int column, double weight) { pending_.emplace_back(column, weight); }
+  void add(int column, double weight) {
+    // Rows are short (≤ ~10 distinct columns): a linear search beats sorting.
+    for (std::size_t i = 0; i < columns_.size(); ++i)
+      if (columns_[i] == column) {
+        weights_[i] += weight;
+        return;
+      }
+    columns_.push_back(column);
+    weights_.push_back(weight);
+  }
   void finish() {
-    // Rows are short (≤ ~30 entries): insertion sort by column, then equal columns merged.
-    for (std::size_t i = 1; i < pending_.size(); ++i)
-      for (std::size_t j = i; j > 0 && pending_[j].first < pending_[j - 1].first; --j)
-        std::swap(pending_[j], pending_[j - 1]);
-    Stencils& out = s_.input ? merged_ : s_.stencils;
-    const std::size_t first = out.columns.size();
-    for (std::size_t i = 0; i < pending_.size();) {
-      const int column = pending_[i].first;
-      double weight = 0;
-      for (; i < pending_.size() && pending_[i].first == column; ++i) weight += pending_[i].second;
-      out.columns.push_back(column);
-      out.weights.push_back(weight);
-    }
-    pending_.clear();
-    if (!s_.input) {
+    if (s_.input) {
+      const Eigen::Index d = s_.input->cols();
+      weighted_row(s_.input->data(), d, columns_.data(), weights_.data(), static_cast<int>(columns_.size()),
+                   s_.output.data() + d * row_++);
+    } else {
+      Stencils& out = s_.stencils;
+      out.columns.insert(out.columns.end(), columns_.begin(), columns_.end());
+      out.weights.insert(out.weights.end(), weights_.begin(), weights_.end());
       out.offsets.push_back(static_cast<int>(out.columns.size()));
-      return;
     }
-    const Eigen::Index d = s_.input->cols();
-    weighted_row(s_.input->data(), d, out.columns.data() + first, out.weights.data() + first,
-                 static_cast<int>(out.columns.size() - first), s_.output.data() + d * row_++);
-    out.columns.clear();
-    out.weights.clear();
+    columns_.clear();
+    weights_.clear();
   }
 
  private:
   Step& s_;
-  std::vector<std::pair<int, double>> pending_;
-  Stencils merged_;  // one row at a time when applying directly
+  std::vector<int> columns_;
+  std::vector<double> weights_;
   Eigen::Index row_ = 0;
 };
 

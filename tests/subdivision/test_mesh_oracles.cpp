@@ -109,21 +109,21 @@ Mesh openmesh_refine(const Mesh& m, int levels) {
 
 }  // namespace
 
-TEST_CASE("Catmull–Clark = OpenSubdiv Far, closed and open meshes, both boundary rules, levels 1–3",
+TEST_CASE("Catmull–Clark = OpenSubdiv Far, closed and open meshes, both boundary rules, levels 1–4",
           "[subdivision][mesh][oracle]") {
   const std::vector<std::pair<const char*, Mesh>> meshes{
       {"cube", cube()},          {"pyramid", pyramid()},         {"torus", torus(6, 5)},
       {"grid", quad_grid(4, 3)}, {"tetrahedron", tetrahedron()}, {"open triangles", quad_grid(3, 2, true)}};
   for (const auto& [name, m] : meshes)
     for (const BoundaryRule rule : {BoundaryRule::edge_only, BoundaryRule::edge_and_corner})
-      for (int levels = 1; levels <= 3; ++levels) {
+      for (int levels = 1; levels <= 4; ++levels) {
         INFO(name << ", level " << levels << ", corners " << (rule == BoundaryRule::edge_and_corner));
         check_same_mesh(catmull_clark(m, levels, {.boundary = rule}),
                         osd_refine(m, Sdc::SCHEME_CATMARK, rule, levels));
       }
 }
 
-TEST_CASE("Loop = OpenSubdiv Far, closed and open meshes, both boundary rules, levels 1–3",
+TEST_CASE("Loop = OpenSubdiv Far, closed and open meshes, both boundary rules, levels 1–4",
           "[subdivision][mesh][oracle]") {
   const std::vector<std::pair<const char*, Mesh>> meshes{{"tetrahedron", tetrahedron()},
                                                          {"octahedron", octahedron()},
@@ -132,7 +132,7 @@ TEST_CASE("Loop = OpenSubdiv Far, closed and open meshes, both boundary rules, l
                                                          {"open triangles", quad_grid(4, 3, true)}};
   for (const auto& [name, m] : meshes)
     for (const BoundaryRule rule : {BoundaryRule::edge_only, BoundaryRule::edge_and_corner})
-      for (int levels = 1; levels <= 3; ++levels) {
+      for (int levels = 1; levels <= 4; ++levels) {
         INFO(name << ", level " << levels << ", corners " << (rule == BoundaryRule::edge_and_corner));
         check_same_mesh(loop(m, levels, {.boundary = rule}), osd_refine(m, Sdc::SCHEME_LOOP, rule, levels));
       }
