@@ -72,6 +72,41 @@ def torus(n=12, m=8, triangles=False):
     return p, f
 
 
+def rings(sizes=(3, 7, 5)):
+    """A closed egg of triangles: a pole, rings of the given sizes, a pole; consecutive rings zipped
+    by angle, so valences vary (here 3 to 7) — the mixed extraordinary vertices of real meshes."""
+    top, p, starts = 0, [(0.0, 0.0, 1.6)], []
+    for k, n in enumerate(sizes):
+        z = 1.2 - 2.4 * (k + 0.5) / len(sizes)
+        r = 1.0 + 0.15 * k
+        starts.append(len(p))
+        p += [(r * math.cos(2 * math.pi * i / n + 0.3 * k), r * math.sin(2 * math.pi * i / n + 0.3 * k), z)
+              for i in range(n)]
+    bottom = len(p)
+    p.append((0.0, 0.0, -1.8))
+    f = [(top, starts[0] + i, starts[0] + (i + 1) % sizes[0]) for i in range(sizes[0])]
+    for k in range(len(sizes) - 1):
+        (a0, na), (b0, nb) = (starts[k], sizes[k]), (starts[k + 1], sizes[k + 1])
+        angle = lambda i, n, k: (2 * math.pi * i / n + 0.3 * k) % (2 * math.pi)
+        # Merge the two rings' vertices by angle, starting both at vertex 0; each step adds the
+        # triangle that advances the ring whose next vertex comes first.
+        i = j = 0
+        while i < na or j < nb:
+            ta = angle(i + 1, na, k) if i < na else math.inf
+            tb = angle(j + 1, nb, k + 1) if j < nb else math.inf
+            ta = ta if ta > angle(i, na, k) or i == na else ta + 2 * math.pi
+            tb = tb if tb > angle(j, nb, k + 1) or j == nb else tb + 2 * math.pi
+            if ta <= tb:
+                f.append((a0 + i % na, b0 + j % nb, a0 + (i + 1) % na))
+                i += 1
+            else:
+                f.append((a0 + i % na, b0 + j % nb, b0 + (j + 1) % nb))
+                j += 1
+    last, n = starts[-1], sizes[-1]
+    f += [(bottom, last + (i + 1) % n, last + i) for i in range(n)]
+    return p, f
+
+
 MESHES = {
     "cube": ("unit cube, 6 quads, valence 3", cube),
     "cube_triangles": ("cube split into 12 triangles, valences 3 and 6", cube_triangles),
@@ -81,6 +116,7 @@ MESHES = {
     "open_grid_triangles": ("the open grid split into triangles", lambda: open_grid(triangles=True)),
     "torus": ("12 x 8 quads, genus 1, every vertex regular", torus),
     "torus_triangles": ("the torus split into triangles, valence 6", lambda: torus(triangles=True)),
+    "rings": ("closed triangles, a pole and rings of 3, 7 and 5 vertices: valences 3 to 7", rings),
 }
 
 

@@ -253,7 +253,7 @@ TEST_CASE("cifs gallery runs every example experiment", "[cli]") {
   for (const char* name :
        {"subdivision_cube_catmull_clark", "subdivision_cube_doo_sabin", "subdivision_tetrahedron_loop",
         "subdivision_tetrahedron_butterfly", "subdivision_tetrahedron_sqrt3", "subdivision_open_grid",
-        "subdivision_open_grid_triangles", "subdivision_torus"})
+        "subdivision_open_grid_triangles", "subdivision_torus", "subdivision_rings_loop"})
     for (const char* ext : {".exr", ".png", ".obj"})
       CHECK(std::filesystem::is_regular_file(out / (std::string(name) + ext)));
   CHECK_THAT(r.out, Catch::Contains(
