@@ -58,38 +58,52 @@ inline void weighted_row(const double* in, Eigen::Index d, const int* columns, c
 /// is made).
 class RowWriter {
  public:
-  explicit RowWriter(Step& s) : s_(s) {
+  RowWriter(Step& s, int old_vertex_count)
+      : s_(s),
+        slot_(static_cast<std::size_t>(old_vertex_count)),
+        row_of_(static_cast<std::size_t>(old_vertex_count), -1) {
     if (s.input) s.output.resize(s.vertex_count, s.input->cols());
   }
   void add(int column, double weight) {
-    // Rows are short (≤ ~10 distinct columns): a linear search beats sorting.
-    for (std::size_t i = 0; i < columns_.size(); ++i)
-      if (columns_[i] == column) {
-        weights_[i] += weight;
-        return;
-      }
-    columns_.push_back(column);
-    weights_.push_back(weight);
+    // A column seen before in this row is found through row_of_/slot_ in O(1).
+    const auto c = static_cast<std::size_t>(column);
+    if (row_of_[c] == row_) {
+      weights_[slot_[c]] += weight;
+      return;
+    }
+    if (count_ == columns_.size()) {
+      columns_.resize(2 * count_ + 16);
+      weights_.resize(2 * count_ + 16);
+    }
+    row_of_[c] = row_;
+    slot_[c] = count_;
+    columns_[count_] = column;
+    weights_[count_++] = weight;
   }
   void finish() {
     if (s_.input) {
       const Eigen::Index d = s_.input->cols();
-      weighted_row(s_.input->data(), d, columns_.data(), weights_.data(), static_cast<int>(columns_.size()),
-                   s_.output.data() + d * row_++);
+      weighted_row(s_.input->data(), d, columns_.data(), weights_.data(), static_cast<int>(count_),
+                   s_.output.data() + d * row_);
     } else {
       Stencils& out = s_.stencils;
-      out.columns.insert(out.columns.end(), columns_.begin(), columns_.end());
-      out.weights.insert(out.weights.end(), weights_.begin(), weights_.end());
+      out.columns.insert(out.columns.end(), columns_.begin(),
+                         columns_.begin() + static_cast<std::ptrdiff_t>(count_));
+      out.weights.insert(out.weights.end(), weights_.begin(),
+                         weights_.begin() + static_cast<std::ptrdiff_t>(count_));
       out.offsets.push_back(static_cast<int>(out.columns.size()));
     }
-    columns_.clear();
-    weights_.clear();
+    count_ = 0;
+    ++row_;
   }
 
  private:
   Step& s_;
-  std::vector<int> columns_;
+  std::vector<int> columns_;  // the row so far: count_ entries
   std::vector<double> weights_;
+  std::size_t count_ = 0;
+  std::vector<std::size_t> slot_;     // per old vertex: its place in columns_ ...
+  std::vector<Eigen::Index> row_of_;  // ... valid when it was added in this row
   Eigen::Index row_ = 0;
 };
 
@@ -160,7 +174,7 @@ Step catmull_clark_step(const MeshTopology& t, const MeshOptions& o, const Point
   // Vertex rows: itself, n neighbours, the corners of n faces; edge rows: both faces' corners.
   reserve(s, static_cast<std::size_t>(s.vertex_count), static_cast<std::size_t>(V) + 2 * H + 2 * H + H, H,
           4 * H);
-  RowWriter row(s);
+  RowWriter row(s, t.vertex_count);
   for (int v = 0; v < V; ++v) {
     const auto ring = ring_edges(t, v);
     if (ring.empty()) {
@@ -238,7 +252,7 @@ Step loop_step(const MeshTopology& t, const MeshOptions& o, const Points* input)
   const std::size_t F = face_count(t);
   const auto Vs = static_cast<std::size_t>(V), Es = static_cast<std::size_t>(E);
   reserve(s, Vs + Es, Vs + 6 * Es, 4 * F, 12 * F);  // vertex rows ~ 1 + n, edge rows 4
-  RowWriter row(s);
+  RowWriter row(s, t.vertex_count);
   for (int v = 0; v < V; ++v) {
     const auto ring = ring_edges(t, v);
     if (ring.empty()) {
@@ -350,7 +364,7 @@ Step butterfly_step(const MeshTopology& t, const MeshOptions&, const Points* inp
   Step s;
   s.input = input;
   s.vertex_count = V + E;
-  RowWriter row(s);
+  RowWriter row(s, t.vertex_count);
   for (int v = 0; v < V; ++v) {  // interpolating: old vertices stay
     row.add(v, 1);
     row.finish();
@@ -393,7 +407,7 @@ Step sqrt3_step(const MeshTopology& t, bool refine_boundary, const Points* input
   s.vertex_count = V + F;  // and one more point per boundary face when it is trisected
   if (refine_boundary)
     for (std::size_t e = 0; e < t.edges.size(); ++e) s.vertex_count += is_boundary_edge(t, e) ? 1 : 0;
-  RowWriter row(s);
+  RowWriter row(s, t.vertex_count);
   for (int v = 0; v < V; ++v) {
     const auto ring = ring_edges(t, v);
     if (ring.empty() || (on_boundary(t, v) && !refine_boundary)) {
@@ -475,7 +489,7 @@ Step doo_sabin_step(const MeshTopology& t, const MeshOptions&, const Points* inp
   Step s;
   s.input = input;
   s.vertex_count = static_cast<int>(t.face_vertices.size());  // corner (f, i) → face_offsets[f] + i
-  RowWriter row(s);
+  RowWriter row(s, t.vertex_count);
   for (std::size_t f = 0; f < face_count(t); ++f) {
     const auto corners = face(t, f);
     const std::size_t k = corners.size();
