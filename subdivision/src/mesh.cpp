@@ -71,10 +71,8 @@ class RowWriter {
       weights_[slot_[c]] += weight;
       return;
     }
-    if (count_ == columns_.size()) {
-      columns_.resize(2 * count_ + 16);
-      weights_.resize(2 * count_ + 16);
-    }
+    if (count_ == columns_.size()) [[unlikely]]
+      grow();
     row_of_[c] = row_;
     slot_[c] = count_;
     columns_[count_] = column;
@@ -98,6 +96,12 @@ class RowWriter {
   }
 
  private:
+  // Out of line: keeps add() small enough to inline.
+  [[gnu::noinline]] void grow() {
+    columns_.resize(2 * count_ + 16);
+    weights_.resize(2 * count_ + 16);
+  }
+
   Step& s_;
   std::vector<int> columns_;  // the row so far: count_ entries
   std::vector<double> weights_;
