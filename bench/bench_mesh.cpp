@@ -38,6 +38,7 @@
 
 #include "cifs/subdivision/mesh.hpp"
 #include "subdivision/meshes.hpp"
+#include "subdivision/osd_refiner.hpp"
 
 namespace {
 
@@ -57,32 +58,12 @@ const Mesh& input(sd::MeshScheme scheme) {
 
 // ---- OpenSubdiv ------------------------------------------------------------------------------
 
-struct OsdVertex {
-  double p[3];
-  void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0; }
-  void AddWithWeight(const OsdVertex& s, double w) {
-    p[0] += w * s.p[0];
-    p[1] += w * s.p[1];
-    p[2] += w * s.p[2];
-  }
-};
+using cifs_test::OsdVertex;
 
 std::unique_ptr<Far::TopologyRefiner> osd_topology(const Mesh& m, sd::MeshScheme scheme, int levels) {
-  std::vector<int> counts;
-  for (std::size_t f = 0; f < cifs::face_count(m); ++f)
-    counts.push_back(static_cast<int>(cifs::face(m, f).size()));
-  Far::TopologyDescriptor desc;
-  desc.numVertices = static_cast<int>(m.vertices.rows());
-  desc.numFaces = static_cast<int>(counts.size());
-  desc.numVertsPerFace = counts.data();
-  desc.vertIndicesPerFace = m.face_vertices.data();
-  Sdc::Options so;
-  so.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
-  using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-  const auto type = scheme == sd::MeshScheme::catmull_clark ? Sdc::SCHEME_CATMARK : Sdc::SCHEME_LOOP;
-  std::unique_ptr<Far::TopologyRefiner> refiner(Factory::Create(desc, Factory::Options(type, so)));
-  refiner->RefineUniform(Far::TopologyRefiner::UniformOptions(levels));
-  return refiner;
+  return cifs_test::osd_refiner(
+      m, scheme == sd::MeshScheme::catmull_clark ? Sdc::SCHEME_CATMARK : Sdc::SCHEME_LOOP,
+      Sdc::Options::VTX_BOUNDARY_EDGE_ONLY, levels);
 }
 
 /// Positions of every level, level by level (OSD's primvar refinement); returns the last level's.

@@ -16,6 +16,7 @@
 #include "cifs/subdivision/mesh.hpp"
 #include "subdivision/mesh_compare.hpp"
 #include "subdivision/meshes.hpp"
+#include "subdivision/osd_refiner.hpp"
 
 using namespace cifs;
 using namespace cifs::subdivision;
@@ -25,30 +26,13 @@ namespace Sdc = OpenSubdiv::Sdc;
 
 namespace {
 
-struct OsdVertex {
-  double p[3];
-  void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0; }
-  void AddWithWeight(const OsdVertex& s, double w) {
-    for (int k = 0; k < 3; ++k) p[k] += w * s.p[k];
-  }
-};
-
 Mesh osd_refine(const Mesh& m, Sdc::SchemeType type, BoundaryRule boundary, int levels) {
-  std::vector<int> counts;
-  for (std::size_t f = 0; f < face_count(m); ++f) counts.push_back(static_cast<int>(face(m, f).size()));
-  Far::TopologyDescriptor desc;
-  desc.numVertices = static_cast<int>(m.vertices.rows());
-  desc.numFaces = static_cast<int>(counts.size());
-  desc.numVertsPerFace = counts.data();
-  desc.vertIndicesPerFace = m.face_vertices.data();
-  Sdc::Options so;
-  so.SetVtxBoundaryInterpolation(boundary == BoundaryRule::edge_only
-                                     ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
-                                     : Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
-  using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-  std::unique_ptr<Far::TopologyRefiner> refiner(Factory::Create(desc, Factory::Options(type, so)));
+  const auto refiner =
+      osd_refiner(m, type,
+                  boundary == BoundaryRule::edge_only ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
+                                                      : Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER,
+                  levels);
   REQUIRE(refiner);
-  refiner->RefineUniform(Far::TopologyRefiner::UniformOptions(levels));
   std::vector<OsdVertex> verts(static_cast<std::size_t>(refiner->GetNumVerticesTotal()));
   for (Eigen::Index i = 0; i < m.vertices.rows(); ++i)
     for (int k = 0; k < 3; ++k) verts[static_cast<std::size_t>(i)].p[k] = m.vertices(i, k);
