@@ -8,6 +8,7 @@
 #include <string>
 
 #include "cifs/errors.hpp"
+#include "cifs/memory.hpp"
 
 namespace cifs {
 namespace {
@@ -57,33 +58,106 @@ MeshTopology build_topology(std::span<const int> face_offsets, std::span<const i
                         std::vector<int>(face_vertices.begin(), face_vertices.end()), vertex_count, who);
 }
 
-MeshTopology build_topology(std::vector<int> offsets, std::vector<int> corners, int vertex_count,
-                            std::string_view who_view) {
-  const std::string who(who_view);
-  check_faces(offsets, corners, vertex_count, who);
-  MeshTopology t;
-  t.vertex_count = vertex_count;
-  t.face_offsets = std::move(offsets);
-  t.face_vertices = std::move(corners);
+namespace {
+
+/// Edges and rings from faces whose half-edges are paired (`twin[h]`, −1 on the boundary): the
+/// part shared by build_topology and assemble_topology. Throws unless the faces around every vertex
+/// form one fan.
+void assemble(MeshTopology& t, std::span<const int> twin, const std::string& who) {
   const std::span<const int> face_offsets(t.face_offsets), face_vertices(t.face_vertices);
   const std::size_t F = face_offsets.size() - 1, H = face_vertices.size();
-  const auto V = static_cast<std::size_t>(vertex_count);
+  const auto V = static_cast<std::size_t>(t.vertex_count);
 
   // Half-edge h is corner h of face_vertices going to the next corner of its face.
-  std::vector<int> face_of(H), next(H), prev(H);
+  std::vector<int> face_of;
+  reserve_huge(face_of, H);
+  for (std::size_t f = 0; f < F; ++f)
+    face_of.insert(face_of.end(), face_offsets[f + 1] - face_offsets[f], static_cast<int>(f));
+  const auto first = [&](std::size_t h) { return face_offsets[static_cast<std::size_t>(face_of[h])]; };
+  const auto last = [&](std::size_t h) { return face_offsets[static_cast<std::size_t>(face_of[h]) + 1] - 1; };
+
+  // Edges in order of first appearance.
+  assign_huge(t.face_edges, H, -1);
+  reserve_huge(t.edges, H / 2 + 1);
+  reserve_huge(t.edge_faces, H / 2 + 1);
+  for (std::size_t h = 0; h < H; ++h) {
+    if (t.face_edges[h] >= 0) continue;
+    const int e = static_cast<int>(t.edges.size());
+    t.face_edges[h] = e;
+    const int next = static_cast<int>(h) < last(h) ? static_cast<int>(h) + 1 : first(h);
+    t.edges.push_back({face_vertices[h], face_vertices[static_cast<std::size_t>(next)]});
+    const int g = twin[h];
+    t.edge_faces.push_back({face_of[h], g >= 0 ? face_of[static_cast<std::size_t>(g)] : -1});
+    if (g >= 0) t.face_edges[static_cast<std::size_t>(g)] = e;
+  }
+
+  // Where every vertex's walk starts: its outgoing half-edge on the boundary (no face before it),
+  // else its first outgoing half-edge; and how many half-edges leave it (its faces).
+  std::vector<int> start(V, -1);
+  assign_huge(t.boundary_vertex, V, char{0});
+  assign_huge(t.vertex_offsets_faces, V + 1, 0);
+  for (std::size_t h = 0; h < H; ++h) {
+    const auto v = static_cast<std::size_t>(face_vertices[h]);
+    ++t.vertex_offsets_faces[v + 1];
+    if (twin[h] < 0) t.boundary_vertex[v] = 1;
+    if (start[v] < 0 || (twin[h] < 0 && twin[static_cast<std::size_t>(start[v])] >= 0))
+      start[v] = static_cast<int>(h);
+  }
+  // A boundary vertex has one edge more than faces.
+  assign_huge(t.vertex_offsets_edges, V + 1, 0);
+  for (std::size_t v = 0; v < V; ++v) {
+    t.vertex_offsets_edges[v + 1] =
+        t.vertex_offsets_edges[v] + t.vertex_offsets_faces[v + 1] + t.boundary_vertex[v];
+    t.vertex_offsets_faces[v + 1] += t.vertex_offsets_faces[v];
+  }
+  assign_huge(t.vertex_edge_list, static_cast<std::size_t>(t.vertex_offsets_edges[V]), 0);
+  assign_huge(t.vertex_face_list, H, 0);
+  assign_huge(t.vertex_corner_list, H, 0);
+
+  // Around every vertex, counter-clockwise: the half-edge leaving v in face k is followed (in the
+  // rotation) by the twin of face k's half-edge entering v.
+  for (std::size_t v = 0; v < V; ++v) {
+    const int degree = t.vertex_offsets_faces[v + 1] - t.vertex_offsets_faces[v];
+    auto edge = static_cast<std::size_t>(t.vertex_offsets_edges[v]);
+    auto slot = static_cast<std::size_t>(t.vertex_offsets_faces[v]);
+    int faces = 0;
+    for (int h = start[v]; h >= 0;) {
+      if (faces == degree) {  // more faces around v than leave it: not one fan (guards the arrays)
+        ++faces;
+        break;
+      }
+      const auto u = static_cast<std::size_t>(h);
+      t.vertex_edge_list[edge++] = t.face_edges[u];
+      t.vertex_face_list[slot] = face_of[u];
+      t.vertex_corner_list[slot++] = h - first(u);
+      ++faces;
+      const int entering = h > first(u) ? h - 1 : last(u);
+      h = twin[static_cast<std::size_t>(entering)];
+      if (h < 0)  // the ring ends on a boundary edge: it is the last edge
+        t.vertex_edge_list[edge] = t.face_edges[static_cast<std::size_t>(entering)];
+      if (h == start[v]) break;
+    }
+    if (faces != degree) {
+      throw InvalidInput(who + ": vertex " + std::to_string(v) + " is not manifold: its " +
+                         std::to_string(degree) + " faces do not form one fan around it (" +
+                         std::to_string(faces) + " are reached walking around it)");
+    }
+  }
+}
+
+/// twin[h] for every half-edge h (−1 on the boundary), found by searching the half-edges leaving
+/// its target; two faces running along one edge in the same direction are not an oriented manifold.
+std::vector<int> find_twins(std::span<const int> face_offsets, std::span<const int> face_vertices,
+                            std::size_t V, const std::string& who) {
+  const std::size_t F = face_offsets.size() - 1, H = face_vertices.size();
+  std::vector<int> target(H), face_of(H);
   for (std::size_t f = 0; f < F; ++f) {
     const int b = face_offsets[f], e = face_offsets[f + 1];
     for (int h = b; h < e; ++h) {
       face_of[static_cast<std::size_t>(h)] = static_cast<int>(f);
-      next[static_cast<std::size_t>(h)] = h + 1 < e ? h + 1 : b;
-      prev[static_cast<std::size_t>(h)] = h > b ? h - 1 : e - 1;
+      target[static_cast<std::size_t>(h)] = face_vertices[static_cast<std::size_t>(h + 1 < e ? h + 1 : b)];
     }
   }
-  const auto origin = [&](int h) { return face_vertices[static_cast<std::size_t>(h)]; };
-  const auto target = [&](int h) {
-    return face_vertices[static_cast<std::size_t>(next[static_cast<std::size_t>(h)])];
-  };
-
   // Half-edges grouped by origin (CSR), in corner order.
   std::vector<int> out_offsets(V + 1, 0), out_list(H);
   for (std::size_t h = 0; h < H; ++h) ++out_offsets[static_cast<std::size_t>(face_vertices[h]) + 1];
@@ -94,15 +168,14 @@ MeshTopology build_topology(std::vector<int> offsets, std::vector<int> corners, 
       out_list[static_cast<std::size_t>(fill[static_cast<std::size_t>(face_vertices[h])]++)] =
           static_cast<int>(h);
   }
-  // Twins: the half-edge b → a for a → b; two a → b half-edges or two twins are not manifold.
   std::vector<int> twin(H, -1);
   for (std::size_t v = 0; v < V; ++v) {
     for (int k = out_offsets[v]; k < out_offsets[v + 1]; ++k) {
       const int h = out_list[static_cast<std::size_t>(k)];
-      const int b = target(h);
+      const int b = target[static_cast<std::size_t>(h)];
       for (int j = out_offsets[v]; j < k; ++j) {
         const int g = out_list[static_cast<std::size_t>(j)];
-        if (target(g) == b) {
+        if (target[static_cast<std::size_t>(g)] == b) {
           // Two faces run along v → b in the same direction: either a third face on the edge or
           // inconsistent orientation.
           throw InvalidInput(who + ": faces " + std::to_string(face_of[static_cast<std::size_t>(g)]) +
@@ -115,68 +188,35 @@ MeshTopology build_topology(std::vector<int> offsets, std::vector<int> corners, 
       for (int j = out_offsets[static_cast<std::size_t>(b)]; j < out_offsets[static_cast<std::size_t>(b) + 1];
            ++j) {
         const int g = out_list[static_cast<std::size_t>(j)];
-        if (target(g) == static_cast<int>(v)) twin[static_cast<std::size_t>(h)] = g;
+        if (target[static_cast<std::size_t>(g)] == static_cast<int>(v)) twin[static_cast<std::size_t>(h)] = g;
       }
     }
   }
+  return twin;
+}
 
-  // Edges in order of first appearance.
-  t.face_edges.assign(H, -1);
-  t.edges.reserve(H / 2 + 1);
-  t.edge_faces.reserve(H / 2 + 1);
-  for (std::size_t h = 0; h < H; ++h) {
-    if (t.face_edges[h] >= 0) continue;
-    const int e = static_cast<int>(t.edges.size());
-    t.face_edges[h] = e;
-    t.edges.push_back({origin(static_cast<int>(h)), target(static_cast<int>(h))});
-    const int g = twin[h];
-    t.edge_faces.push_back({face_of[h], g >= 0 ? face_of[static_cast<std::size_t>(g)] : -1});
-    if (g >= 0) t.face_edges[static_cast<std::size_t>(g)] = e;
-  }
+}  // namespace
 
-  // Around every vertex, counter-clockwise: the half-edge leaving v in face k is followed (in the
-  // rotation) by the twin of face k's half-edge entering v. Start at the outgoing half-edge whose
-  // edge is on the boundary (no face before it), if any.
-  t.boundary_vertex.assign(V, 0);
-  t.vertex_offsets_edges.assign(V + 1, 0);
-  t.vertex_offsets_faces.assign(V + 1, 0);
-  t.vertex_edge_list.reserve(H + H / 4);
-  t.vertex_face_list.reserve(H);
-  t.vertex_corner_list.reserve(H);
-  for (std::size_t v = 0; v < V; ++v) {
-    const int begin = out_offsets[v], end = out_offsets[v + 1];
-    int start = -1;
-    for (int k = begin; k < end && start < 0; ++k) {
-      const int h = out_list[static_cast<std::size_t>(k)];
-      if (twin[static_cast<std::size_t>(h)] < 0) start = h;
-    }
-    const bool boundary = start >= 0;
-    if (!boundary && begin < end) start = out_list[static_cast<std::size_t>(begin)];
-    int faces = 0;
-    for (int h = start; h >= 0 && (faces == 0 || h != start);) {
-      t.vertex_edge_list.push_back(t.face_edges[static_cast<std::size_t>(h)]);
-      t.vertex_face_list.push_back(face_of[static_cast<std::size_t>(h)]);
-      t.vertex_corner_list.push_back(
-          h - face_offsets[static_cast<std::size_t>(face_of[static_cast<std::size_t>(h)])]);
-      ++faces;
-      const int entering = prev[static_cast<std::size_t>(h)];
-      const int after = twin[static_cast<std::size_t>(entering)];
-      if (after < 0) {  // the ring ends on a boundary edge: it is the last edge
-        t.vertex_edge_list.push_back(t.face_edges[static_cast<std::size_t>(entering)]);
-        break;
-      }
-      h = after;
-      if (faces > end - begin) break;  // cannot happen on valid input; guards the loop
-    }
-    if (faces != end - begin) {
-      throw InvalidInput(who + ": vertex " + std::to_string(v) + " is not manifold: its " +
-                         std::to_string(end - begin) + " faces do not form one fan around it (" +
-                         std::to_string(faces) + " are reached walking around it)");
-    }
-    t.boundary_vertex[v] = boundary ? 1 : 0;
-    t.vertex_offsets_edges[v + 1] = static_cast<int>(t.vertex_edge_list.size());
-    t.vertex_offsets_faces[v + 1] = static_cast<int>(t.vertex_face_list.size());
-  }
+MeshTopology build_topology(std::vector<int> offsets, std::vector<int> corners, int vertex_count,
+                            std::string_view who_view) {
+  const std::string who(who_view);
+  check_faces(offsets, corners, vertex_count, who);
+  const std::vector<int> twin = find_twins(offsets, corners, static_cast<std::size_t>(vertex_count), who);
+  MeshTopology t;
+  t.vertex_count = vertex_count;
+  t.face_offsets = std::move(offsets);
+  t.face_vertices = std::move(corners);
+  assemble(t, twin, who);
+  return t;
+}
+
+MeshTopology assemble_topology(std::vector<int> face_offsets, std::vector<int> face_vertices,
+                               std::span<const int> twins, int vertex_count) {
+  MeshTopology t;
+  t.vertex_count = vertex_count;
+  t.face_offsets = std::move(face_offsets);
+  t.face_vertices = std::move(face_vertices);
+  assemble(t, twins, "refined mesh");
   return t;
 }
 

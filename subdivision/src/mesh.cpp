@@ -13,6 +13,7 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/format.hpp"
+#include "cifs/memory.hpp"
 
 namespace cifs::subdivision {
 namespace {
@@ -62,7 +63,10 @@ class RowWriter {
       : s_(s),
         slot_(static_cast<std::size_t>(old_vertex_count)),
         row_of_(static_cast<std::size_t>(old_vertex_count), -1) {
-    if (s.input) s.output.resize(s.vertex_count, s.input->cols());
+    if (s.input) {
+      s.output.resize(s.vertex_count, s.input->cols());
+      advise_huge_pages(s.output.data(), static_cast<std::size_t>(s.output.size()) * sizeof(double));
+    }
   }
   void add(int column, double weight) {
     // A column seen before in this row is found through row_of_/slot_ in O(1).
@@ -115,12 +119,12 @@ class RowWriter {
 /// at these sizes).
 void reserve(Step& s, std::size_t rows, std::size_t entries, std::size_t faces, std::size_t corners) {
   if (!s.input) {
-    s.stencils.offsets.reserve(rows + 1);
-    s.stencils.columns.reserve(entries);
-    s.stencils.weights.reserve(entries);
+    reserve_huge(s.stencils.offsets, rows + 1);
+    reserve_huge(s.stencils.columns, entries);
+    reserve_huge(s.stencils.weights, entries);
   }
-  s.face_offsets.reserve(faces + 1);
-  s.face_vertices.reserve(corners);
+  reserve_huge(s.face_offsets, faces + 1);
+  reserve_huge(s.face_vertices, corners);
 }
 
 void add_face(Step& s, std::initializer_list<int> corners) {
@@ -156,8 +160,25 @@ void add_face_point(const MeshTopology& t, std::size_t f, double weight, RowWrit
   for (const int c : corners) row.add(c, w);
 }
 
+/// Across half-edge h (corner h of face f): the face on the other side and its half-edge running
+/// the other way, or {−1, −1} on the boundary.
+struct Across {
+  int face, half_edge;
+};
+Across across(const MeshTopology& t, int f, int h) {
+  const int e = t.face_edges[static_cast<std::size_t>(h)];
+  const auto [f0, f1] = t.edge_faces[static_cast<std::size_t>(e)];
+  const int g = f0 == f ? f1 : f0;
+  if (g >= 0)
+    for (int q = t.face_offsets[static_cast<std::size_t>(g)];
+         q < t.face_offsets[static_cast<std::size_t>(g) + 1]; ++q)
+      if (t.face_edges[static_cast<std::size_t>(q)] == e) return {g, q};
+  return {-1, -1};
+}
+
 /// Catmull–Clark's split (vertex points, then edge points, then face points): face f's corner i
-/// becomes the quad (vertex i, edge i, face, edge i − 1), counter-clockwise.
+/// becomes the quad (vertex i, edge i, face, edge i − 1), counter-clockwise; the quad of parent
+/// half-edge h is child face h.
 void split_polygons(const MeshTopology& t, Step& s) {
   const int V = t.vertex_count, E = static_cast<int>(t.edges.size());
   for (int f = 0; f < static_cast<int>(face_count(t)); ++f) {
@@ -167,6 +188,34 @@ void split_polygons(const MeshTopology& t, Step& s) {
     for (std::size_t i = 0; i < k; ++i)
       add_face(s, {corners[i], V + edges[i], V + E + f, V + edges[(i + k - 1) % k]});
   }
+}
+
+/// The pairing of split_polygons' child half-edges (4h … 4h + 3 in the quad of parent half-edge h).
+std::vector<int> polygon_split_twins(const MeshTopology& t) {
+  std::vector<int> twins;
+  assign_huge(twins, 4 * t.face_vertices.size(), 0);
+  for (int f = 0; f < static_cast<int>(face_count(t)); ++f) {
+    const int base = t.face_offsets[static_cast<std::size_t>(f)],
+              k = t.face_offsets[static_cast<std::size_t>(f) + 1] - base;
+    for (int i = 0; i < k; ++i) {
+      const int h = base + i, next = base + (i + 1) % k, prev = base + (i + k - 1) % k;
+      int* twin = twins.data() + 4 * static_cast<std::ptrdiff_t>(h);
+      // Vertex i → edge point: across the edge, the quad of the corner after the twin ends with
+      // edge point → vertex i. Edge point i − 1 → vertex i: the quad of the previous edge's twin.
+      if (const Across a = across(t, f, h); a.face >= 0) {
+        const int b = t.face_offsets[static_cast<std::size_t>(a.face)],
+                  n = t.face_offsets[static_cast<std::size_t>(a.face) + 1] - b;
+        twin[0] = 4 * (b + (a.half_edge - b + 1) % n) + 3;
+      } else {
+        twin[0] = -1;
+      }
+      twin[1] = 4 * next + 2;  // edge point i → face point, and back in the next quad
+      twin[2] = 4 * prev + 1;
+      const Across a = across(t, f, prev);
+      twin[3] = a.face >= 0 ? 4 * a.half_edge : -1;
+    }
+  }
+  return twins;
 }
 
 Step catmull_clark_step(const MeshTopology& t, const MeshOptions& o, const Points* input) {
@@ -227,7 +276,8 @@ int opposite_corner(const MeshTopology& t, int f, int e) {
   return corners[0];  // unreachable on a manifold triangle
 }
 
-/// Loop and Butterfly split every triangle in four at its edge points (vertex points first).
+/// Loop and Butterfly split every triangle in four at its edge points (vertex points first):
+/// triangle f becomes children 4f … 4f + 3, the corner triangles then the middle one.
 void split_triangles(const MeshTopology& t, Step& s) {
   const int V = t.vertex_count;
   for (std::size_t f = 0; f < face_count(t); ++f) {
@@ -239,6 +289,31 @@ void split_triangles(const MeshTopology& t, Step& s) {
     add_face(s, {ca, bc, c[2]});
     add_face(s, {ab, bc, ca});
   }
+}
+
+/// The pairing of split_triangles' child half-edges (12f … 12f + 11 for triangle f).
+std::vector<int> triangle_split_twins(const MeshTopology& t) {
+  std::vector<int> twins;
+  assign_huge(twins, 4 * t.face_vertices.size(), 0);
+  for (int f = 0; f < static_cast<int>(face_count(t)); ++f) {
+    const auto twin = [&, base = 12 * static_cast<std::size_t>(f)](int k) -> int& {
+      return twins[base + static_cast<std::size_t>(k)];
+    };
+    // Corner i → edge point i is child half-edge 4i; edge point i → corner i + 1 is
+    // 3((i + 1) mod 3) + i. Across parent edge i (corner j of triangle g) they pair with g's.
+    for (int i = 0; i < 3; ++i) {
+      const Across a = across(t, f, 3 * f + i);
+      const int g = a.face, j = a.half_edge - 3 * g;
+      twin(4 * i) = g >= 0 ? 12 * g + 3 * ((j + 1) % 3) + j : -1;
+      twin(3 * ((i + 1) % 3) + i) = g >= 0 ? 12 * g + 4 * j : -1;
+    }
+    for (const auto& [x, y] :
+         {std::pair{1, 11}, std::pair{5, 9}, std::pair{6, 10}}) {  // the middle one's sides
+      twin(x) = 12 * f + y;
+      twin(y) = 12 * f + x;
+    }
+  }
+  return twins;
 }
 
 /// Loop's β(n) = (1/n)(5/8 − (3/8 + ¼cos(2π/n))²); the seed's α_n = (40 − (3 + 2cos(2π/n))²)/64 is
@@ -530,6 +605,19 @@ Step doo_sabin_step(const MeshTopology& t, const MeshOptions&, const Points* inp
   return s;
 }
 
+/// The adjacency of a step's child faces (taken over from it): paired by construction where the
+/// split is Catmull–Clark's or the triangle split, searched otherwise.
+MeshTopology child_topology(MeshScheme scheme, const MeshTopology& parent, Step& s, const std::string& who) {
+  std::vector<int> twins;
+  if (scheme == MeshScheme::catmull_clark)
+    twins = polygon_split_twins(parent);
+  else if (scheme == MeshScheme::loop || scheme == MeshScheme::butterfly)
+    twins = triangle_split_twins(parent);
+  else
+    return build_topology(std::move(s.face_offsets), std::move(s.face_vertices), s.vertex_count, who);
+  return assemble_topology(std::move(s.face_offsets), std::move(s.face_vertices), twins, s.vertex_count);
+}
+
 /// Step `level` (0 for the first) of a refinement.
 /// With `input`, the rows are applied to it as they are made (Step::output) instead of kept.
 Step step(MeshScheme scheme, const MeshTopology& t, const MeshOptions& o, int level,
@@ -673,8 +761,7 @@ MeshRefinement refine_topology(const Mesh& mesh, MeshScheme scheme, int levels, 
   for (int level = 0; level < levels; ++level) {
     Step s = step(scheme, r.levels.back(), options, level);
     r.steps.push_back(std::move(s.stencils));
-    r.levels.push_back(
-        build_topology(std::move(s.face_offsets), std::move(s.face_vertices), s.vertex_count, who));
+    r.levels.push_back(child_topology(scheme, r.levels.back(), s, who));
   }
   return r;
 }
@@ -682,7 +769,10 @@ MeshRefinement refine_topology(const Mesh& mesh, MeshScheme scheme, int levels, 
 void apply(const Stencils& step, const Points& vertices, Points& out) {
   const auto rows = static_cast<Eigen::Index>(row_count(step));
   const Eigen::Index d = vertices.cols();
-  out.resize(rows, d);  // keeps the storage when the size is unchanged
+  if (out.rows() != rows || out.cols() != d) {  // else the storage is reused
+    out.resize(rows, d);
+    advise_huge_pages(out.data(), static_cast<std::size_t>(out.size()) * sizeof(double));
+  }
   for (Eigen::Index i = 0; i < rows; ++i) {
     const int begin = step.offsets[static_cast<std::size_t>(i)];
     weighted_row(vertices.data(), d, step.columns.data() + begin, step.weights.data() + begin,
@@ -766,7 +856,7 @@ Mesh subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOption
     Step s = step(scheme, t, options, level, &out.vertices);
     out.vertices = std::move(s.output);
     if (level + 1 < levels) {
-      t = build_topology(std::move(s.face_offsets), std::move(s.face_vertices), s.vertex_count, who);
+      t = child_topology(scheme, t, s, who);
     } else {
       out.face_offsets = std::move(s.face_offsets);
       out.face_vertices = std::move(s.face_vertices);
@@ -809,7 +899,7 @@ Points factored_step(const MeshTopology& t, MeshScheme scheme, const MeshOptions
       for (const int c : corners) linear.row(V + E + f) += P.row(c);
       linear.row(V + E + f) /= static_cast<double>(corners.size());
     }
-  split = build_topology(std::move(s.face_offsets), std::move(s.face_vertices), s.vertex_count, who);
+  split = child_topology(scheme, t, s, who);
   Points centroid_sum = Points::Zero(linear.rows(), linear.cols());
   for (std::size_t f = 0; f < face_count(split); ++f) {
     const auto corners = face(split, f);
