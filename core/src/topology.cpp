@@ -112,7 +112,6 @@ void assemble(MeshTopology& t, std::span<const int> twin, const std::string& who
   }
   assign_huge(t.vertex_edge_list, static_cast<std::size_t>(t.vertex_offsets_edges[V]), 0);
   assign_huge(t.vertex_face_list, H, 0);
-  assign_huge(t.vertex_corner_list, H, 0);
 
   // Around every vertex, counter-clockwise: the half-edge leaving v in face k is followed (in the
   // rotation) by the twin of face k's half-edge entering v.
@@ -128,8 +127,7 @@ void assemble(MeshTopology& t, std::span<const int> twin, const std::string& who
       }
       const auto u = static_cast<std::size_t>(h);
       t.vertex_edge_list[edge++] = t.face_edges[u];
-      t.vertex_face_list[slot] = face_of[u];
-      t.vertex_corner_list[slot++] = h - first(u);
+      t.vertex_face_list[slot++] = face_of[u];
       ++faces;
       const int entering = h > first(u) ? h - 1 : last(u);
       h = twin[static_cast<std::size_t>(entering)];

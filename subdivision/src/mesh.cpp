@@ -115,16 +115,13 @@ class RowWriter {
   Eigen::Index row_ = 0;
 };
 
-/// Reserves a step's arrays from its counts (growing them by doubling costs copies and page faults
+/// Reserves a step's weights from its counts (growing them by doubling costs copies and page faults
 /// at these sizes).
-void reserve(Step& s, std::size_t rows, std::size_t entries, std::size_t faces, std::size_t corners) {
-  if (!s.input) {
-    reserve_huge(s.stencils.offsets, rows + 1);
-    reserve_huge(s.stencils.columns, entries);
-    reserve_huge(s.stencils.weights, entries);
-  }
-  reserve_huge(s.face_offsets, faces + 1);
-  reserve_huge(s.face_vertices, corners);
+void reserve_rows(Step& s, std::size_t rows, std::size_t entries) {
+  if (s.input) return;
+  reserve_huge(s.stencils.offsets, rows + 1);
+  reserve_huge(s.stencils.columns, entries);
+  reserve_huge(s.stencils.weights, entries);
 }
 
 void add_face(Step& s, std::initializer_list<int> corners) {
@@ -180,7 +177,11 @@ Across across(const MeshTopology& t, int f, int h) {
 /// becomes the quad (vertex i, edge i, face, edge i − 1), counter-clockwise; the quad of parent
 /// half-edge h is child face h.
 void split_polygons(const MeshTopology& t, Step& s) {
-  const int V = t.vertex_count, E = static_cast<int>(t.edges.size());
+  // Face points come after the V + E vertex and edge points (s.vertex_count is set: the edge list
+  // may be gone, see subdivide).
+  const int V = t.vertex_count, E = s.vertex_count - V - static_cast<int>(face_count(t));
+  reserve_huge(s.face_offsets, t.face_vertices.size() + 1);
+  reserve_huge(s.face_vertices, 4 * t.face_vertices.size());
   for (int f = 0; f < static_cast<int>(face_count(t)); ++f) {
     const auto corners = face(t, static_cast<std::size_t>(f));
     const auto edges = face_edges(t, static_cast<std::size_t>(f));
@@ -225,8 +226,7 @@ Step catmull_clark_step(const MeshTopology& t, const MeshOptions& o, const Point
   s.vertex_count = V + E + F;  // vertex points, edge points, face points
   const std::size_t H = t.face_vertices.size();
   // Vertex rows: itself, n neighbours, the corners of n faces; edge rows: both faces' corners.
-  reserve(s, static_cast<std::size_t>(s.vertex_count), static_cast<std::size_t>(V) + 2 * H + 2 * H + H, H,
-          4 * H);
+  reserve_rows(s, static_cast<std::size_t>(s.vertex_count), static_cast<std::size_t>(V) + 2 * H + 2 * H + H);
   RowWriter row(s, t.vertex_count);
   for (int v = 0; v < V; ++v) {
     const auto ring = ring_edges(t, v);
@@ -263,7 +263,6 @@ Step catmull_clark_step(const MeshTopology& t, const MeshOptions& o, const Point
     add_face_point(t, static_cast<std::size_t>(f), 1, row);
     row.finish();
   }
-  split_polygons(t, s);
   return s;
 }
 
@@ -280,6 +279,8 @@ int opposite_corner(const MeshTopology& t, int f, int e) {
 /// triangle f becomes children 4f … 4f + 3, the corner triangles then the middle one.
 void split_triangles(const MeshTopology& t, Step& s) {
   const int V = t.vertex_count;
+  reserve_huge(s.face_offsets, 4 * face_count(t) + 1);
+  reserve_huge(s.face_vertices, 12 * face_count(t));
   for (std::size_t f = 0; f < face_count(t); ++f) {
     const auto c = face(t, f);
     const auto e = face_edges(t, f);  // e[i] joins c[i] → c[i + 1]
@@ -328,9 +329,8 @@ Step loop_step(const MeshTopology& t, const MeshOptions& o, const Points* input)
   Step s;
   s.input = input;
   s.vertex_count = V + E;
-  const std::size_t F = face_count(t);
   const auto Vs = static_cast<std::size_t>(V), Es = static_cast<std::size_t>(E);
-  reserve(s, Vs + Es, Vs + 6 * Es, 4 * F, 12 * F);  // vertex rows ~ 1 + n, edge rows 4
+  reserve_rows(s, Vs + Es, Vs + 6 * Es);  // vertex rows ~ 1 + n, edge rows 4
   RowWriter row(s, t.vertex_count);
   for (int v = 0; v < V; ++v) {
     const auto ring = ring_edges(t, v);
@@ -360,7 +360,6 @@ Step loop_step(const MeshTopology& t, const MeshOptions& o, const Points* input)
     }
     row.finish();
   }
-  split_triangles(t, s);
   return s;
 }
 
@@ -467,7 +466,6 @@ Step butterfly_step(const MeshTopology& t, const MeshOptions&, const Points* inp
     }
     row.finish();
   }
-  split_triangles(t, s);
   return s;
 }
 
@@ -618,23 +616,43 @@ MeshTopology child_topology(MeshScheme scheme, const MeshTopology& parent, Step&
   return assemble_topology(std::move(s.face_offsets), std::move(s.face_vertices), twins, s.vertex_count);
 }
 
-/// Step `level` (0 for the first) of a refinement.
+/// Whether a scheme's child faces are a split of the parent's faces alone, made after the rows
+/// (Catmull–Clark's quads, the triangle split of Loop and Butterfly).
+bool splits_faces(MeshScheme scheme) {
+  return scheme == MeshScheme::catmull_clark || scheme == MeshScheme::loop || scheme == MeshScheme::butterfly;
+}
+
+/// Makes the child faces of a scheme that splits_faces.
+void split_faces(MeshScheme scheme, const MeshTopology& t, Step& s) {
+  if (scheme == MeshScheme::catmull_clark)
+    split_polygons(t, s);
+  else
+    split_triangles(t, s);
+}
+
+/// Step `level` (0 for the first) of a refinement: its rows and, unless `faces` is false for a
+/// scheme that splits_faces (then split_faces makes them), its child faces.
 /// With `input`, the rows are applied to it as they are made (Step::output) instead of kept.
 Step step(MeshScheme scheme, const MeshTopology& t, const MeshOptions& o, int level,
-          const Points* input = nullptr) {
+          const Points* input = nullptr, bool faces = true) {
+  Step s;
   switch (scheme) {
     case MeshScheme::catmull_clark:
-      return catmull_clark_step(t, o, input);
+      s = catmull_clark_step(t, o, input);
+      break;
     case MeshScheme::loop:
-      return loop_step(t, o, input);
+      s = loop_step(t, o, input);
+      break;
+    case MeshScheme::butterfly:
+      s = butterfly_step(t, o, input);
+      break;
     case MeshScheme::doo_sabin:
       return doo_sabin_step(t, o, input);
-    case MeshScheme::butterfly:
-      return butterfly_step(t, o, input);
     case MeshScheme::sqrt3:
       return sqrt3_step(t, level % 2 == 1, input);
   }
-  return {};
+  if (faces) split_faces(scheme, t, s);
+  return s;
 }
 
 /// Counts of a mesh, as doubles (they are estimates before the work).
@@ -853,13 +871,26 @@ Mesh subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOption
   out.face_offsets = mesh.face_offsets;
   out.face_vertices = mesh.face_vertices;
   for (int level = 0; level < levels; ++level) {
-    Step s = step(scheme, t, options, level, &out.vertices);
+    const bool last = level + 1 == levels, split_last = last && splits_faces(scheme);
+    Step s = step(scheme, t, options, level, &out.vertices, !split_last);
     out.vertices = std::move(s.output);
-    if (level + 1 < levels) {
-      t = child_topology(scheme, t, s, who);
-    } else {
+    s.output = Points();  // the parent's positions, swapped in by the move
+    if (split_last) {
+      // Only the faces are left to make, from the parent's faces and face_edges: free its rings
+      // and edge lists first, so that they, the parent's positions and the whole output never
+      // live together (peak memory).
+      for (std::vector<int>* rings :
+           {&t.vertex_offsets_edges, &t.vertex_edge_list, &t.vertex_offsets_faces, &t.vertex_face_list})
+        std::vector<int>().swap(*rings);
+      std::vector<std::array<int, 2>>().swap(t.edges);
+      std::vector<std::array<int, 2>>().swap(t.edge_faces);
+      split_faces(scheme, t, s);
+    }
+    if (last) {
       out.face_offsets = std::move(s.face_offsets);
       out.face_vertices = std::move(s.face_vertices);
+    } else {
+      t = child_topology(scheme, t, s, who);
     }
     progress.level_done(level);
   }
@@ -882,10 +913,7 @@ Points factored_step(const MeshTopology& t, MeshScheme scheme, const MeshOptions
   const int V = t.vertex_count, E = static_cast<int>(t.edges.size()), F = static_cast<int>(face_count(t));
   Step s;
   s.vertex_count = cc ? V + E + F : V + E;
-  if (cc)
-    split_polygons(t, s);
-  else
-    split_triangles(t, s);
+  split_faces(scheme, t, s);
   Points linear(s.vertex_count, P.cols());
   linear.topRows(V) = P;
   for (int e = 0; e < E; ++e) {

@@ -26,8 +26,8 @@ namespace cifs {
 /// from the normal side): face k lies between edge k and edge k + 1, edge k being the face's
 /// outgoing edge at v (from v to the next corner). An interior vertex has as many edges as faces
 /// (the ring closes: face n − 1 lies between edge n − 1 and edge 0); a boundary vertex has one more
-/// edge than faces, edges 0 and n − 1 being its two boundary edges. `corner_in_face(v)` gives, for
-/// each face around v, v's corner index in that face. Isolated vertices have no edges and faces.
+/// edge than faces, edges 0 and n − 1 being its two boundary edges. Isolated vertices have no edges
+/// and faces.
 struct MeshTopology {
   int vertex_count = 0;
   std::vector<int> face_offsets{0};  // as Mesh
@@ -37,10 +37,9 @@ struct MeshTopology {
   std::vector<std::array<int, 2>> edge_faces;  // second entry −1 on the boundary
   std::vector<int> vertex_offsets_edges{0};    // `#V + 1` into vertex_edge_list
   std::vector<int> vertex_edge_list;
-  std::vector<int> vertex_offsets_faces{0};  // `#V + 1` into vertex_face_list and vertex_corner_list
+  std::vector<int> vertex_offsets_faces{0};  // `#V + 1` into vertex_face_list
   std::vector<int> vertex_face_list;
-  std::vector<int> vertex_corner_list;  // v's corner index within each face of vertex_face_list
-  std::vector<char> boundary_vertex;    // per vertex: on a boundary edge
+  std::vector<char> boundary_vertex;  // per vertex: on a boundary edge
 };
 
 inline std::size_t face_count(const MeshTopology& t) noexcept {
@@ -68,11 +67,6 @@ inline std::span<const int> vertex_faces(const MeshTopology& t, std::size_t v) n
   const auto b = static_cast<std::size_t>(t.vertex_offsets_faces[v]);
   const auto e = static_cast<std::size_t>(t.vertex_offsets_faces[v + 1]);
   return std::span<const int>(t.vertex_face_list).subspan(b, e - b);
-}
-inline std::span<const int> corner_in_face(const MeshTopology& t, std::size_t v) noexcept {
-  const auto b = static_cast<std::size_t>(t.vertex_offsets_faces[v]);
-  const auto e = static_cast<std::size_t>(t.vertex_offsets_faces[v + 1]);
-  return std::span<const int>(t.vertex_corner_list).subspan(b, e - b);
 }
 /// Number of edges at v (its valence).
 inline int valence(const MeshTopology& t, std::size_t v) noexcept {
