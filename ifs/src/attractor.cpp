@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "cifs/errors.hpp"
+#include "cifs/memory.hpp"
 #include "walk.hpp"
 
 namespace cifs::ifs {
@@ -209,6 +210,7 @@ Points attractor_points(const Automaton& automaton, std::span<const Points> nets
 
   // Emit: the nodes at depth K − L write their c_L(s) points with one product each.
   Points out(static_cast<Eigen::Index>(count), static_cast<Eigen::Index>(cols));
+  advise_huge_pages(out.data(), static_cast<std::size_t>(out.size()) * sizeof(double));
   double* cursor = out.data();
   detail::depth_first(automaton, nets, depth - L,
                       [&](std::size_t, StateId s, const Points& net, int d, std::span<const int>) {

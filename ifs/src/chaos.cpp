@@ -7,6 +7,7 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/ifs/analysis.hpp"
+#include "cifs/memory.hpp"
 #include "cifs/random.hpp"
 #include "walk.hpp"
 
@@ -52,6 +53,7 @@ ChaosResult chaos_game(const Automaton& automaton, std::span<const Points> nets,
                        std::to_string(per_sample) + " bytes exceed the limit of " +
                        std::to_string(options.max_bytes) + " bytes (ChaosOptions::max_bytes)");
   result.points.resize(static_cast<Eigen::Index>(options.samples), cols);
+  advise_huge_pages(result.points.data(), static_cast<std::size_t>(result.points.size()) * sizeof(double));
   if (options.record_address) result.address.resize(options.samples);
 
   std::vector<double> root_diameter(nets.size());

@@ -9,6 +9,7 @@
 #include "cifs/errors.hpp"
 #include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/attractor.hpp"
+#include "cifs/memory.hpp"
 #include "walk.hpp"
 
 namespace cifs::ifs {
@@ -71,7 +72,8 @@ Grid make_grid(int A, int B, int depth, std::size_t cols, const MeshOptions& opt
 QuadMesh allocate(const Grid& grid, Eigen::Index cols) {
   QuadMesh mesh;
   mesh.vertices.resize(static_cast<Eigen::Index>(grid.vertices), cols);
-  mesh.quads.reserve(grid.quads);
+  advise_huge_pages(mesh.vertices.data(), static_cast<std::size_t>(mesh.vertices.size()) * sizeof(double));
+  reserve_huge(mesh.quads, grid.quads);
   const int row = grid.cv + 1;
   std::vector<std::array<int, 4>> line(static_cast<std::size_t>(grid.cv));
   for (int J = 0; J < grid.cv; ++J) line[static_cast<std::size_t>(J)] = {J, row + J, row + J + 1, J + 1};
@@ -237,7 +239,7 @@ QuadMesh surface_mesh(const automata::TensorAutomaton& t, std::span<const Points
   for (StateId s = 0; s < t.factor_states.size(); ++s)
     pair_id[t.factor_states[s][0] * nv_states + t.factor_states[s][1]] = static_cast<std::uint32_t>(s);
   std::vector<std::vector<std::uint32_t>> state_row(boost::num_vertices(t.factors[0].graph));
-  mesh.quad_state.reserve(grid.quads);
+  reserve_huge(mesh.quad_state, grid.quads);
   for (int I = 0; I < grid.cu; ++I) {
     const StateId su = leaves[0][static_cast<std::size_t>(I)];
     std::vector<std::uint32_t>& states = state_row[su];
@@ -347,7 +349,7 @@ QuadMesh quad_mesh(const Automaton& automaton, std::span<const Points> nets,
 
   // Walk to depth K − L; each node writes the nodes it owns and the states of its 4^L leaves.
   QuadMesh mesh = allocate(grid, C);
-  mesh.quad_state.resize(grid.quads);  // written block by block, out of order
+  assign_huge(mesh.quad_state, grid.quads, std::uint32_t{0});  // written block by block, out of order
   const int side_L = 1 << L, m = side_L + 1, row = grid.cv + 1;
   detail::depth_first(
       automaton, nets, depth - L,

@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "cifs/memory.hpp"
 #include "cifs/nurbs/refine.hpp"
 #include "detail.hpp"
 
@@ -160,6 +161,7 @@ Points evaluate_grid(const Surface& s, std::span<const double> us, std::span<con
     detail::basis(s.knots[1].data(), q, vspan[b], vs[b], Nv.data() + b * static_cast<std::size_t>(q + 1));
   }
   Points out(static_cast<Eigen::Index>(us.size() * vs.size()), dimension(s));
+  advise_huge_pages(out.data(), static_cast<std::size_t>(out.size()) * sizeof(double));
   std::vector<double> line(static_cast<std::size_t>(s.count[1] * s.P.cols()));
   detail::with_cols(s.P.cols(), [&](auto cols) {
     std::vector<double> scratch = detail::scratch<cols>(s.P.cols());
