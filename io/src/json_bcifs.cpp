@@ -186,6 +186,8 @@ class BcifsReader {
   }
 
   void read_initial(const json& ij) {
+    // Every use of the file (drawing, chaos game, dimension) starts from the initial entries.
+    if (ij.empty()) r_.fail("bcifs.initial", "no entry; list at least one cell to start from");
     const auto& g = graph();
     for (std::size_t i = 0; i < ij.size(); ++i) {
       const std::string path = item("initial", i);
