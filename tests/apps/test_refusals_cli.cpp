@@ -30,3 +30,43 @@ TEST_CASE("cifs render refuses a BC-IFS file without initial entries", "[cli][re
     check_error(cifs_cli(command + exp), "no_initial.json: bcifs.initial: no entry");
   CHECK(!std::filesystem::exists(scratch() / "no_initial.exr"));
 }
+
+TEST_CASE("cifs render refuses two outputs with one file", "[cli][reliability]") {
+  // The PNG overwrote the EXR, exit status 0, "wrote ./same" printed twice.
+  const auto dir = scratch() / "same_outputs";
+  std::filesystem::create_directories(dir);
+  const auto experiment = [&](const std::string& outputs) {
+    return file("same_outputs/e.json", R"({"ifs": "sierpinski", "evaluation": {"depth": 3},
+      "render": {"width": 8, "height": 8}, "outputs": )" +
+                                           outputs + "}");
+  };
+  check_error(
+      cifs_cli("render " + experiment(R"({"exr": "same", "png": "same"})") + " --out-dir " + dir.string()),
+      "outputs.png: " + (dir / "same").string() + " is also outputs.exr; give each output its own file");
+  check_error(cifs_cli("render " + experiment(R"({"exr": "a.exr", "svg": "./a.exr"})") + " --out-dir " +
+                       dir.string()),
+              "outputs.svg: " + (dir / "./a.exr").string() + " is also outputs.exr");
+  const std::string png = experiment(R"({"png": "a.png"})");
+  check_error(cifs_cli("render " + png + " -o " + (dir / "a.png").string()), "outputs.png: ");
+  check_error(
+      cifs_cli("render " + png + " -o " + (dir / "b.exr").string() + " --png " + (dir / "b.exr").string()),
+      "the PNG path: " + (dir / "b.exr").string() + " is also the EXR path");
+  std::filesystem::remove(dir / "e.json");
+  CHECK(std::filesystem::is_empty(dir));
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("cifs render refuses an image path whose folder is missing", "[cli][reliability]") {
+  // Both folders were created silently; subdivide -o already refused a missing folder.
+  const auto missing = scratch() / "no_folder";
+  const std::string exp = file("small_sierpinski.json", R"({"ifs": "sierpinski", "evaluation": {"depth": 3},
+      "render": {"width": 8, "height": 8}})");
+  check_error(
+      cifs_cli("render " + exp + " -o " + (missing / "sub/x.exr").string()),
+      (missing / "sub/x.exr").string() + ": the folder " + (missing / "sub").string() + " does not exist");
+  check_error(cifs_cli("render " + exp + " -o " + (scratch() / "x.exr").string() + " --png " +
+                       (missing / "x.png").string()),
+              "the folder " + missing.string() + " does not exist");
+  CHECK(!std::filesystem::exists(missing));
+  CHECK(!std::filesystem::exists(scratch() / "x.exr"));
+}
