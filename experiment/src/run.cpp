@@ -219,6 +219,9 @@ Scene bcifs_scene(const io::Experiment& e, const RunOptions& o, RunReport& repor
     note_perturbation(p, report);
     system = std::move(p.system);
   }
+  // The file's matrices are the user's: an attractor exists only when they shrink nets. A depth
+  // evaluation would draw a finite composition of anything; dimension and the chaos game refuse too.
+  (void)ifs::contraction(system.automaton);
   scene.automaton = system.automaton;
   scene.nets = std::move(file.nets);
   if (e.evaluation.mode == Mode::depth || e.evaluation.mode == Mode::tolerance) {

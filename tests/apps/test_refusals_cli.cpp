@@ -70,3 +70,24 @@ TEST_CASE("cifs render refuses an image path whose folder is missing", "[cli][re
   CHECK(!std::filesystem::exists(missing));
   CHECK(!std::filesystem::exists(scratch() / "x.exr"));
 }
+
+TEST_CASE("cifs render refuses a BC-IFS that is not contractive, as dimension does", "[cli][reliability]") {
+  // The tree with a branch B that keeps two rows fixed: B^k never shrinks nets. Rendered at depth
+  // 12 with exit status 0, while dimension and the chaos game refused it.
+  std::string tree = slurp(CIFS_EXAMPLES_DIR "/automata/tree.json");
+  const std::string branch = "[[0.5, 0, 0.5], [0.28, 0.4, 0.32], [0.2, 0.76, 0.04]]";
+  REQUIRE(tree.find(branch) != std::string::npos);
+  tree.replace(tree.find(branch), branch.size(), "[[0.5, 0, 0.5], [0, 1, 0], [0, 0, 1]]");
+  file("fixed_branch.json", tree);
+  for (const std::string evaluation : {R"({"depth": 12})", R"({"chaos": 1000})"}) {
+    const std::string exp = file(
+        "fixed_branch_exp.json",
+        R"({"automaton": "fixed_branch.json",
+      "evaluation": )" +
+            evaluation + R"(, "render": {"width": 8, "height": 8}, "outputs": {"exr": "fixed_branch.exr"}})");
+    for (const std::string command : {"render ", "dimension "})
+      check_error(cifs_cli(command + exp),
+                  "not contractive: the 8-step products from state 0 (E) do not shrink nets");
+  }
+  CHECK(!std::filesystem::exists(scratch() / "fixed_branch.exr"));
+}
