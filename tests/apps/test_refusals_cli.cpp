@@ -91,3 +91,11 @@ TEST_CASE("cifs render refuses a BC-IFS that is not contractive, as dimension do
   }
   CHECK(!std::filesystem::exists(scratch() / "fixed_branch.exr"));
 }
+
+TEST_CASE("cifs names an unknown option given before the command", "[cli][reliability]") {
+  // CLI11 said "A subcommand is required", which hides the typo.
+  check_error(cifs_cli("--frob"), "unknown option '--frob'; options follow the command");
+  check_error(cifs_cli("--depth=3 attractor x.json"), "unknown option '--depth'; options follow the command");
+  CHECK(cifs_cli("--version").status == 0);
+  CHECK(cifs_cli("--help").status == 0);
+}
