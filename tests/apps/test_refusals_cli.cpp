@@ -99,3 +99,13 @@ TEST_CASE("cifs names an unknown option given before the command", "[cli][reliab
   CHECK(cifs_cli("--version").status == 0);
   CHECK(cifs_cli("--help").status == 0);
 }
+
+TEST_CASE("cifs dimension refuses control points spanning more than a double", "[cli][reliability]") {
+  // It said "tolerance sample: epsilon is -nan, must be finite and ≥ 0".
+  const std::string huge = file("huge.json", R"({"curve": {"degree": 2, "knots": [0, 0, 0, 1, 1, 1],
+      "points": [[1e308, 0], [-1.7e308, 1], [1e308, 0]]}})");
+  check_error(
+      cifs_cli("dimension " + huge),
+      "the control points span more than a double holds (coordinates up to 1.7e+308); scale the shape "
+      "down");
+}
