@@ -167,6 +167,11 @@ int run(int argc, char** argv) {
       throw cifs::InvalidInput("unknown command '" + first +
                                "' (commands: eval, insert, info, automaton, attractor, check, scheme, "
                                "subdivide, render, dimension, gallery; see cifs --help)");
+    // CLI11 would report the missing command ("A subcommand is required") instead of the option.
+    const std::string option = first.substr(0, first.find('='));
+    if (first.size() > 1 && first[0] == '-' && app.get_option_no_throw(option) == nullptr)
+      throw cifs::InvalidInput("unknown option '" + option +
+                               "'; options follow the command: cifs COMMAND [OPTIONS] (see cifs --help)");
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);

@@ -3,11 +3,16 @@
 #include "cifs/format.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 
 namespace cifs {
 
 void append_number(std::string& out, double x) {
+  if (std::isnan(x)) {  // the sign of a NaN means nothing to a reader ("-nan" from arithmetic)
+    out += "nan";
+    return;
+  }
   char buffer[32];
   out.append(buffer, std::to_chars(buffer, buffer + sizeof buffer, x).ptr);
 }
@@ -22,6 +27,10 @@ namespace {
 
 /// printf of one double, however long the text (%f of 1e308 has 309 digits).
 void append_printf(std::string& out, const char* format, int precision, double x) {
+  if (std::isnan(x)) {
+    out += "nan";
+    return;
+  }
   const int n = std::snprintf(nullptr, 0, format, precision, x);
   if (n <= 0) return;
   const std::size_t at = out.size();

@@ -219,6 +219,9 @@ Scene bcifs_scene(const io::Experiment& e, const RunOptions& o, RunReport& repor
     note_perturbation(p, report);
     system = std::move(p.system);
   }
+  // The file's matrices are the user's: an attractor exists only when they shrink nets. A depth
+  // evaluation would draw a finite composition of anything; dimension and the chaos game refuse too.
+  (void)ifs::contraction(system.automaton);
   scene.automaton = system.automaton;
   scene.nets = std::move(file.nets);
   if (e.evaluation.mode == Mode::depth || e.evaluation.mode == Mode::tolerance) {
@@ -407,6 +410,30 @@ void render_classic(render::Image& image, const render::Camera& camera, const Sc
   }
 }
 
+/// Refuses, before any work, outputs that would overwrite each other (two names for one file) and
+/// an image path given outside the experiment (`RunOptions::exr`, `png`) whose folder is missing:
+/// only the experiment's own output folder is created.
+void check_output_paths(const io::Experiment& e, const RunOptions& o, const std::filesystem::path& exr,
+                        const std::filesystem::path& png) {
+  for (const std::filesystem::path& given : {o.exr, o.png})
+    if (given.has_parent_path() && !std::filesystem::is_directory(given.parent_path()))
+      throw IoError(given.string() + ": the folder " + given.parent_path().string() +
+                    " does not exist; create it first");
+  std::vector<std::pair<std::string, std::filesystem::path>> outputs;
+  if (!exr.empty()) outputs.emplace_back(o.exr.empty() ? "outputs.exr" : "the EXR path", exr);
+  if (!png.empty()) outputs.emplace_back(o.png.empty() ? "outputs.png" : "the PNG path", png);
+  for (const auto& [format, path] : e.outputs.geometry)
+    outputs.emplace_back("outputs." + format, o.out_dir / path);
+  for (const auto& [format, path] : e.outputs.automaton)
+    outputs.emplace_back("outputs.automaton_" + format, o.out_dir / path);
+  for (std::size_t i = 0; i < outputs.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (std::filesystem::absolute(outputs[i].second).lexically_normal() ==
+          std::filesystem::absolute(outputs[j].second).lexically_normal())
+        throw InvalidInput(outputs[i].first + ": " + outputs[i].second.string() + " is also " +
+                           outputs[j].first + "; give each output its own file");
+}
+
 }  // namespace
 
 RunReport run(const io::Experiment& e, const RunOptions& o) {
@@ -419,6 +446,7 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
                                                             : o.out_dir / e.outputs.png;
   if (exr.empty() && png.empty())
     throw InvalidInput(e.name + ": no image output (give -o OUT.exr, --png, or outputs.exr / outputs.png)");
+  check_output_paths(e, o, exr, png);
   // Ten float channels and the state: refuse an image that would not fit before any work.
   const double image_bytes = double(e.render.width) * double(e.render.height) * 44.0;
   if (image_bytes > double(o.max_bytes))

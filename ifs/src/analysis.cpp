@@ -62,6 +62,7 @@
 #include <sstream>
 
 #include "cifs/errors.hpp"
+#include "cifs/format.hpp"
 #include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/attractor.hpp"
 #include "walk.hpp"
@@ -198,7 +199,17 @@ double nets_diameter(std::span<const Points> nets, bool homogeneous) {
     all.middleRows(rows, N.rows()) = N;
     rows += N.rows();
   }
-  return diameter(homogeneous ? cartesian(all) : all);
+  if (homogeneous) all = cartesian(all);
+  // Scaled to the largest coordinate first: squared distances of coordinates above ~1e154 would
+  // overflow although the diameter itself is a double.
+  const double scale = all.size() ? all.cwiseAbs().maxCoeff() : 0.0;
+  const double extent = scale > 0 && std::isfinite(scale) ? scale * diameter(all / scale) : diameter(all);
+  if (!std::isfinite(extent))
+    throw InvalidInput("the control points span more than a double holds (" +
+                       (std::isfinite(scale) ? "coordinates up to " + number_text(scale, 3)
+                                             : std::string("a weight so small that x/w overflows")) +
+                       "); scale the shape down");
+  return extent;
 }
 
 double delta(const Eigen::MatrixXd& M) noexcept {

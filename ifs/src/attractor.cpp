@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "cifs/errors.hpp"
+#include "cifs/format.hpp"
 #include "cifs/memory.hpp"
 #include "walk.hpp"
 
@@ -53,35 +54,34 @@ ToleranceResult for_each_leaf_to_tolerance(const Automaton& automaton, std::span
   validate(automaton);
   detail::check_nets(automaton, nets, "for_each_leaf_to_tolerance");
   if (!(options.epsilon > 0))
-    throw InvalidInput("for_each_leaf_to_tolerance: epsilon is " + std::to_string(options.epsilon) +
-                       ", must be > 0");
+    throw InvalidInput("tolerance " + number_text(options.epsilon, 6) + " is not a positive number");
   if (options.max_depth < 0)
-    throw InvalidInput("for_each_leaf_to_tolerance: max_depth is " + std::to_string(options.max_depth) +
-                       ", must be ≥ 0");
+    throw InvalidInput("maximum depth " + std::to_string(options.max_depth) + " is negative");
   ToleranceResult result;
   result.contraction = contraction(automaton, ContractionOptions{options.max_length});
   if (options.homogeneous && nets.front().cols() < 2)
-    throw InvalidInput("for_each_leaf_to_tolerance: homogeneous rows need at least 2 columns (w·x, w)");
+    throw InvalidInput("rational nets need at least 2 columns (w·x, w)");
   const PieceBounds bounds(automaton, result.contraction, options.homogeneous);
-  detail::depth_first(automaton, nets, options.max_depth,
-                      [&](std::size_t i, StateId s, const Points& net, int d, std::span<const int> word) {
-                        const PieceBound b = bounds(s, net);
-                        // A missing bound (homogeneous rows whose weight is not bounded away from 0)
-                        // may appear near the root and vanish deeper, where the nets are small; one
-                        // that persists would expand every branch to max_depth (2^max_depth leaves).
-                        if (std::isnan(b.diameter) || (std::isinf(b.diameter) && d >= kUnboundedDepth))
-                          throw InvalidInput("for_each_leaf_to_tolerance: the piece of state " +
-                                             std::to_string(s) + " has no Cartesian size bound at depth " +
-                                             std::to_string(d) +
-                                             " (homogeneous rows whose weight is not bounded away from 0)");
-                        const bool converged = b.diameter < options.epsilon;
-                        if (!converged && d < options.max_depth) return true;
-                        ++result.leaves;
-                        if (!converged) ++result.unconverged;
-                        result.deepest = std::max(result.deepest, d);
-                        callback(ToleranceLeaf{Leaf{i, s, net, d, word}, b.radius, converged, b.diameter});
-                        return false;
-                      });
+  detail::depth_first(
+      automaton, nets, options.max_depth,
+      [&](std::size_t i, StateId s, const Points& net, int d, std::span<const int> word) {
+        const PieceBound b = bounds(s, net);
+        // A missing bound (homogeneous rows whose weight is not bounded away from 0)
+        // may appear near the root and vanish deeper, where the nets are small; one
+        // that persists would expand every branch to max_depth (2^max_depth leaves).
+        if (std::isnan(b.diameter) || (std::isinf(b.diameter) && d >= kUnboundedDepth))
+          throw InvalidInput("the piece of state " + std::to_string(s) +
+                             " has no Cartesian size bound at depth " + std::to_string(d) +
+                             (options.homogeneous ? " (its weights come near 0); evaluate to a depth instead"
+                                                  : " (its size overflows a double); scale the shape down"));
+        const bool converged = b.diameter < options.epsilon;
+        if (!converged && d < options.max_depth) return true;
+        ++result.leaves;
+        if (!converged) ++result.unconverged;
+        result.deepest = std::max(result.deepest, d);
+        callback(ToleranceLeaf{Leaf{i, s, net, d, word}, b.radius, converged, b.diameter});
+        return false;
+      });
   return result;
 }
 

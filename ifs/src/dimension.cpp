@@ -43,12 +43,12 @@ std::size_t count_leaves(const automata::Automaton& a, std::span<const Points> n
   try {
     for_each_leaf_to_tolerance(a, nets, to, [&](const ToleranceLeaf& t) {
       if (!t.converged && !std::isfinite(t.diameter))
-        throw InvalidInput(
-            "tolerance sample: a piece has no Cartesian size bound at depth " + std::to_string(to.max_depth) +
-            " (homogeneous rows whose weight is not bounded away from 0); evaluate to a depth instead");
+        throw InvalidInput("a piece of the rational shape has no Cartesian size bound at depth " +
+                           std::to_string(to.max_depth) +
+                           " (its weights come near 0); evaluate to a depth instead");
       if (!t.converged)
-        throw InvalidInput("tolerance sample: a piece is still " + num(t.diameter) + " wide at depth " +
-                           std::to_string(to.max_depth) + " (tolerance " + num(to.epsilon) + ")");
+        throw InvalidInput("tolerance " + num(to.epsilon) + ": a piece is still " + num(t.diameter) +
+                           " wide at depth " + std::to_string(to.max_depth) + "; give a larger tolerance");
       if (++n > max) throw Full{};
     });
   } catch (const Full&) {
@@ -61,7 +61,7 @@ std::size_t count_leaves(const automata::Automaton& a, std::span<const Points> n
 ToleranceSample tolerance_sample(const automata::Automaton& a, std::span<const Points> nets,
                                  const ToleranceSampleOptions& o) {
   if (!(o.epsilon >= 0) || !std::isfinite(o.epsilon))
-    throw InvalidInput("tolerance sample: epsilon is " + num(o.epsilon) + ", must be finite and ≥ 0");
+    throw InvalidInput("tolerance " + num(o.epsilon) + " is not a finite number ≥ 0");
   validate(a);
   ToleranceOptions to;
   to.homogeneous = o.homogeneous;
@@ -71,16 +71,16 @@ ToleranceSample tolerance_sample(const automata::Automaton& a, std::span<const P
   if (o.epsilon > 0) {
     n = count_leaves(a, nets, to, o.max_points);
     if (n > o.max_points)
-      throw InvalidInput("tolerance sample: tolerance " + num(o.epsilon) + " needs more than " +
-                         std::to_string(o.max_points) + " points; raise the tolerance or the point limit");
+      throw InvalidInput("tolerance " + num(o.epsilon) + " needs more than " + std::to_string(o.max_points) +
+                         " points; raise the tolerance or the point limit");
   } else {
     // The largest power-of-2 fraction of the nets' extent within the point budget.
     const double extent = nets_diameter(nets, o.homogeneous);
-    if (!(extent > 0)) throw InvalidInput("tolerance sample: the nets are single points");
+    if (!(extent > 0)) throw InvalidInput("the control points are all one point: there is nothing to sample");
     to.epsilon = std::ldexp(extent, -4);
     n = count_leaves(a, nets, to, o.max_points);
     if (n > o.max_points)
-      throw InvalidInput("tolerance sample: even tolerance " + num(to.epsilon) +
+      throw InvalidInput("even tolerance " + num(to.epsilon) +
                          " (1/16 of the nets' extent) needs more than " + std::to_string(o.max_points) +
                          " points; raise the point limit");
     // 2^-60 of the extent is far below double precision of any coordinate: stop there (a sample

@@ -13,16 +13,6 @@ using automata::StateId;
 using detail::json;
 using detail::Reader;
 
-std::string text(const Reader& r, const json& v, const std::string& path) {
-  if (!v.is_string()) r.fail(path, "expected a string, got " + std::string(v.type_name()));
-  return v.get<std::string>();
-}
-
-const json& object(const Reader& r, const json& v, const std::string& path) {
-  if (!v.is_object()) r.fail(path, "expected an object, got " + std::string(v.type_name()));
-  return v;
-}
-
 std::string cell_name(const automata::Automaton& a, StateId s) {
   return a.graph[s].name.empty() ? "s" + std::to_string(s) : a.graph[s].name;
 }
@@ -40,7 +30,7 @@ class BcifsReader {
   BcifsFile read(const json& doc) {
     if (!doc.is_object() || doc.size() != 1 || !doc.contains("bcifs"))
       throw InvalidInput(r_.where + ": expected an object with one member, \"bcifs\"");
-    const json& b = object(r_, doc["bcifs"], "bcifs");
+    const json& b = r_.object(doc["bcifs"], "bcifs");
     r_.only(b, "bcifs", {"cells", "transitions", "boundaries", "constraints", "initial"});
     read_cells(r_.array(r_.member(b, "bcifs", "cells"), "bcifs.cells"));
     read_transitions(r_.array(r_.member(b, "bcifs", "transitions"), "bcifs.transitions"));
@@ -68,9 +58,9 @@ class BcifsReader {
     auto& g = graph();
     for (std::size_t i = 0; i < cj.size(); ++i) {
       const std::string path = item("cells", i);
-      const json& c = object(r_, cj[i], path);
+      const json& c = r_.object(cj[i], path);
       r_.only(c, path, {"name", "size", "dimension"});
-      const std::string name = text(r_, r_.member(c, path, "name"), path + ".name");
+      const std::string name = r_.string(r_.member(c, path, "name"), path + ".name");
       if (name.empty() || name.find_first_of("./") != std::string::npos)
         r_.fail(path + ".name", "\"" + name + "\": a cell name is non-empty and has no '.' or '/'");
       if (cells_.count(name)) r_.fail(path + ".name", "\"" + name + "\" names two cells");
@@ -87,7 +77,7 @@ class BcifsReader {
   }
 
   StateId cell(const json& v, const std::string& path) const {
-    const std::string name = text(r_, v, path);
+    const std::string name = r_.string(v, path);
     const auto it = cells_.find(name);
     if (it == cells_.end()) r_.fail(path, "no cell is named \"" + name + "\"");
     return it->second;
@@ -97,11 +87,11 @@ class BcifsReader {
     auto& g = graph();
     for (std::size_t i = 0; i < tj.size(); ++i) {
       const std::string path = item("transitions", i);
-      const json& t = object(r_, tj[i], path);
+      const json& t = r_.object(tj[i], path);
       r_.only(t, path, {"from", "to", "label", "free", "matrix"});
       const StateId from = cell(r_.member(t, path, "from"), path + ".from"),
                     to = cell(r_.member(t, path, "to"), path + ".to");
-      const std::string label = text(r_, r_.member(t, path, "label"), path + ".label");
+      const std::string label = r_.string(r_.member(t, path, "label"), path + ".label");
       if (label.empty()) r_.fail(path + ".label", "empty label (labels name the transitions)");
       for (auto [e, end] = boost::out_edges(from, g); e != end; ++e)
         if (g[*e].label == label)
@@ -120,11 +110,11 @@ class BcifsReader {
     const auto& g = graph();
     for (std::size_t i = 0; i < bj.size(); ++i) {
       const std::string path = item("boundaries", i);
-      const json& o = object(r_, bj[i], path);
+      const json& o = r_.object(bj[i], path);
       r_.only(o, path, {"cell", "name", "boundary", "rows"});
       ifs::BoundaryOperator op;
       op.cell = cell(r_.member(o, path, "cell"), path + ".cell");
-      op.name = text(r_, r_.member(o, path, "name"), path + ".name");
+      op.name = r_.string(r_.member(o, path, "name"), path + ".name");
       if (op.name.empty() || op.name.find_first_of("./") != std::string::npos)
         r_.fail(path + ".name", "\"" + op.name + "\": a boundary name is non-empty and has no '.' or '/'");
       op.boundary = cell(r_.member(o, path, "boundary"), path + ".boundary");
@@ -146,7 +136,7 @@ class BcifsReader {
   /// "cell/label" names a transition, "cell.name" a boundary operator.
   ifs::Factor factor(const json& v, const std::string& path) {
     const auto& g = graph();
-    const std::string f = text(r_, v, path);
+    const std::string f = r_.string(v, path);
     const auto slash = f.find('/'), dot = f.find('.');
     const auto split = slash != std::string::npos ? slash : dot;
     if (split == std::string::npos)
@@ -170,10 +160,10 @@ class BcifsReader {
   void read_constraints(const json& kj) {
     for (std::size_t i = 0; i < kj.size(); ++i) {
       const std::string path = item("constraints", i);
-      const json& o = object(r_, kj[i], path);
+      const json& o = r_.object(kj[i], path);
       r_.only(o, path, {"name", "left", "right"});
       ifs::Constraint c;
-      c.name = text(r_, r_.member(o, path, "name"), path + ".name");
+      c.name = r_.string(r_.member(o, path, "name"), path + ".name");
       for (const char* side : {"left", "right"}) {
         const std::string p = path + "." + side;
         const json& list = r_.array(r_.member(o, path, side), p);
@@ -186,10 +176,12 @@ class BcifsReader {
   }
 
   void read_initial(const json& ij) {
+    // Every use of the file (drawing, chaos game, dimension) starts from the initial entries.
+    if (ij.empty()) r_.fail("bcifs.initial", "no entry; list at least one cell to start from");
     const auto& g = graph();
     for (std::size_t i = 0; i < ij.size(); ++i) {
       const std::string path = item("initial", i);
-      const json& o = object(r_, ij[i], path);
+      const json& o = r_.object(ij[i], path);
       r_.only(o, path, {"state", "net"});
       automata::Initial init;
       init.segment = static_cast<int>(i);

@@ -23,7 +23,8 @@ Eigen::VectorXd to_vector(const std::vector<double>& v) {
 }
 
 nurbs::Curve read_curve(const Reader& r, const json& c) {
-  if (!c.is_object()) r.fail("curve", "expected an object");
+  r.object(c, "curve");
+  r.only(c, "curve", {"degree", "knots", "points", "weights", "closed"});
   const int degree = r.integer(r.member(c, "curve", "degree"), "curve.degree");
   std::vector<double> knots = r.numbers(r.member(c, "curve", "knots"), "curve.knots");
   std::vector<std::vector<double>> rows;
@@ -31,15 +32,7 @@ nurbs::Curve read_curve(const Reader& r, const json& c) {
   if (rows.empty()) r.fail("curve.points", "no control points");
   std::vector<double> w;
   if (c.contains("weights") && !c["weights"].is_null()) w = r.numbers(c["weights"], "curve.weights");
-  bool closed = false;
-  if (c.contains("closed")) {
-    if (!c["closed"].is_boolean()) r.fail("curve.closed", "expected true or false");
-    closed = c["closed"].get<bool>();
-  }
-  for (const auto& item : c.items())
-    if (item.key() != "degree" && item.key() != "knots" && item.key() != "points" &&
-        item.key() != "weights" && item.key() != "closed")
-      r.fail("curve." + item.key(), "unknown member");
+  const bool closed = c.contains("closed") && r.boolean(c["closed"], "curve.closed");
   return r.build("curve", [&] {
     return closed ? nurbs::make_closed_curve(degree, std::move(knots), to_points(rows), to_vector(w))
                   : nurbs::make_curve(degree, std::move(knots), to_points(rows), to_vector(w));
@@ -47,7 +40,8 @@ nurbs::Curve read_curve(const Reader& r, const json& c) {
 }
 
 nurbs::Surface read_surface(const Reader& r, const json& s) {
-  if (!s.is_object()) r.fail("surface", "expected an object");
+  r.object(s, "surface");
+  r.only(s, "surface", {"degree", "knots", "points", "weights"});
   const json& deg = r.array(r.member(s, "surface", "degree"), "surface.degree");
   if (deg.size() != 2) r.fail("surface.degree", "expected [du, dv]");
   const std::array<int, 2> degree{r.integer(deg[0], "surface.degree[0]"),
@@ -82,9 +76,6 @@ nurbs::Surface read_surface(const Reader& r, const json& s) {
       w.insert(w.end(), row.begin(), row.end());
     }
   }
-  for (const auto& item : s.items())
-    if (item.key() != "degree" && item.key() != "knots" && item.key() != "points" && item.key() != "weights")
-      r.fail("surface." + item.key(), "unknown member");
   const std::array<Eigen::Index, 2> count{static_cast<Eigen::Index>(net.size()),
                                           static_cast<Eigen::Index>(nv)};
   return r.build("surface", [&] {

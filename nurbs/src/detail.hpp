@@ -11,16 +11,25 @@
 #include <vector>
 
 #include "cifs/errors.hpp"
+#include "cifs/format.hpp"
 #include "cifs/nurbs/knots.hpp"
 #include "cifs/types.hpp"
 
 namespace cifs::nurbs::detail {
 
+/// Doubles go through the one number formatter (17 digits, "nan" without a sign).
+template <class Part>
+void append_part(std::ostringstream& out, const Part& part) {
+  if constexpr (std::is_floating_point_v<Part>)
+    out << number_text(static_cast<double>(part), 17);
+  else
+    out << part;
+}
+
 template <class... Parts>
 [[noreturn]] void fail(Parts&&... parts) {
   std::ostringstream out;
-  out.precision(17);
-  (out << ... << parts);
+  (append_part(out, parts), ...);
   throw InvalidInput(out.str());
 }
 

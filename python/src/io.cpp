@@ -713,7 +713,8 @@ void bind_experiment(py::module_& m) {
       "Runs an experiment as `cifs render` does: builds, perturbs, evaluates, renders and writes its "
       "outputs.\n\n"
       "out_dir: folder of the experiment's outputs (created when missing). exr, png: override\n"
-      "outputs.exr / outputs.png (paths as given). quiet: no progress bar. threads: overrides\n"
+      "outputs.exr / outputs.png (paths as given; their folders must exist). quiet: no progress bar. "
+      "threads: overrides\n"
       "render.threads. max_bytes: refuse larger images or geometry before any work.\n"
       "Returns a RunReport. Raises InvalidInput (bad content, too large) or IoError (files); on failure no\n"
       "output file is left behind.");

@@ -131,6 +131,7 @@ TEST_CASE("cifs render on a mesh experiment: the same files as cifs subdivide; b
           "[cli][mesh][experiment]") {
   const auto dir = scratch() / "mesh_render";
   std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);  // render creates no folder for -o
   const std::string experiment = file("mesh_experiment.json", R"({"mesh": ")" CIFS_EXAMPLES_DIR
                                                               R"(/meshes/icosahedron.obj",
       "subdivision": {"scheme": "butterfly", "levels": 2}, "render": {"width": 64, "height": 48, "control_net": true},

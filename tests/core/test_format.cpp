@@ -76,5 +76,11 @@ TEST_CASE("number_text with digits and fixed_text match the iostream forms", "[c
   CHECK(std::strtod(number_text(0.1, 17).c_str(), nullptr) == 0.1);
   CHECK(number_text(0.1, 17) == "0.10000000000000001");
   CHECK(number_text(std::numeric_limits<double>::infinity(), 6) == "inf");
+  // A NaN is "nan" in every form: printf and to_chars wrote "-nan" for one with its sign bit set
+  // (messages read "parameter -nan is not finite").
+  const double negative_nan = -std::numeric_limits<double>::quiet_NaN();
+  CHECK(number_text(negative_nan, 6) == "nan");
+  CHECK(number_text(negative_nan) == "nan");
+  CHECK(fixed_text(negative_nan, 2) == "nan");
   CHECK(fixed_text(1e308, 2).size() == 312);  // 309 digits, the point, 2 decimals
 }

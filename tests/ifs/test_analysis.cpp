@@ -50,6 +50,21 @@ TEST_CASE("delta and diameter", "[ifs]") {
   }
 }
 
+TEST_CASE("nets_diameter near the range of a double", "[ifs][reliability]") {
+  // Coordinates of 1e200 square to infinity: the extent 2e200 was reported as inf.
+  Points N(3, 2);
+  N << 1e200, 0, -1e200, 0, 0, 1e199;
+  const std::vector<Points> nets{N};
+  CHECK(nets_diameter(nets) == Approx(2e200).epsilon(1e-15));
+  // An extent above the largest double is refused: every tolerance relative to it was inf or nan.
+  Points far(2, 1);
+  far << 1e308, -1.7e308;
+  CHECK_THROWS_WITH(
+      nets_diameter(std::vector<Points>{far}),
+      "the control points span more than a double holds (coordinates up to 1.7e+308); scale the "
+      "shape down");
+}
+
 TEST_CASE("Contractivity: Chaikin, degree 6 and a refused system", "[ifs]") {
   const Automaton chaikin = uniform_automaton(2);
   const Contraction c = contraction(chaikin);

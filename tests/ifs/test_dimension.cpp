@@ -312,6 +312,6 @@ TEST_CASE("tolerance sample: Sierpinski and Koch within 0.01, a smooth curve 1",
     so.epsilon = -1;
     CHECK_THROWS_WITH(ifs::tolerance_sample(ifs_test::uniform_automaton(3),
                                             std::vector<Points>{ifs_test::random_points(4, 2, rng)}, so),
-                      Contains("must be finite and ≥ 0"));
+                      Contains("tolerance -1 is not a finite number ≥ 0"));
   }
 }

@@ -117,6 +117,9 @@ TEST_CASE("BC-IFS JSON: bad files name the JSON path", "[bcifs][io]") {
         "t.json: bcifs.initial[0].state: expected a string, got number");
   fails(tree_with("[[0, 0], [0.5, 0.5], [1, 0]]", "[[0, 0], [0.5, 0.5]]"),
         "t.json: bcifs.initial[0].net: 2 rows, expected 3 (size of E)");
+  // No initial entry: nothing to draw or sample (rendering such a file dereferenced a missing net).
+  fails(tree_with("{\"state\": \"E\", \"net\": [[0, 0], [0.5, 0.5], [1, 0]]}", ""),
+        "t.json: bcifs.initial: no entry; list at least one cell to start from");
   // Unknown members are typos, refused wherever they are: "fre" would silently fix a free transition.
   fails(tree_with("\"label\": \"G\", \"free\": true", "\"label\": \"G\", \"fre\": true"),
         "t.json: bcifs.transitions[0].fre: unknown member");

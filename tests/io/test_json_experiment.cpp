@@ -78,6 +78,16 @@ TEST_CASE("Experiments: bad files name the file, the member and the problem", "[
   CHECK_THAT(error_of("{}"), Catch::Contains("exactly one of \"shape\", \"automaton\", \"ifs\""));
   CHECK_THAT(error_of(R"({"ifs": "fern", "evaluation": {"depth": 3}, "colour": 1})"),
              Catch::Contains("e.json: colour: unknown member"));
+  // In every section: a misspelt option must not fall back to its default silently.
+  for (const auto& [section, typo] : {std::pair{"evaluation", R"("depth": 3, "sed": 1)"},
+                                      {"camera", R"("fov": 20, "eyes": [1, 1, 1])"},
+                                      {"render", R"("width": 8, "hieght": 8)"},
+                                      {"perturbation", R"("amplitude": 0.1, "keep_vertex": true)"}})
+    CHECK_THAT(
+        error_of("{" + kCurve + ", " +
+                 (section == std::string("evaluation") ? "" : R"("evaluation": {"depth": 3}, )") + "\"" +
+                 section + "\": {" + typo + "}}"),
+        Catch::Contains(std::string("e.json: ") + section + ".") && Catch::Contains(": unknown member"));
   CHECK_THAT(error_of(R"({"ifs": "fern", "evaluation": {"depth": 31}})"),
              Catch::Contains("evaluation.depth: 31 is outside [0, 30]"));
   CHECK_THAT(error_of(R"({"ifs": "fern", "evaluation": {"depth": 3, "chaos": 5}})"),

@@ -555,6 +555,7 @@ TEST_CASE("evaluation, derivatives and blossoms reject bad arguments", "[nurbs][
   const Curve closed = make_closed_curve(2, {0, 1, 2, 3}, Points::Random(3, 2));
   CHECK_NOTHROW(evaluate(closed, -10.0));
   CHECK_THROWS_WITH(evaluate(closed, nan), Contains("not finite"));
+  CHECK_THROWS_WITH(evaluate(closed, -nan), "parameter nan is not finite");
 }
 
 TEST_CASE("uniform_bspline: closed cubic at breakpoints is (P_i + 4 P_{i+1} + P_{i+2}) / 6", "[nurbs]") {

@@ -197,7 +197,7 @@ class AttractorTest(unittest.TestCase):
         self.assertEqual(start, 1.0)
         cut = ifs.for_each_leaf_to_tolerance(a, [NET], lambda x: None, epsilon=1e-9, max_depth=4)
         self.assertEqual((cut.leaves, cut.unconverged, cut.deepest), (16, 16, 4))
-        self.assertIn("epsilon", message(self, lambda: ifs.for_each_leaf_to_tolerance(a, [NET], print, epsilon=0)))
+        self.assertIn("tolerance 0 is not a positive number", message(self, lambda: ifs.for_each_leaf_to_tolerance(a, [NET], print, epsilon=0)))
 
     def test_chaos_game_points_lie_on_the_attractor(self):
         a = chaikin()

@@ -7,6 +7,8 @@
 
 namespace cifs {
 
+// Every form writes a NaN as "nan", whatever its sign bit.
+
 /// Shortest decimal text that reads back as the same double (std::to_chars): JSON and other data.
 void append_number(std::string& out, double x);
 std::string number_text(double x);

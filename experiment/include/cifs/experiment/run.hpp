@@ -18,7 +18,8 @@ namespace cifs::experiment {
 struct RunOptions {
   /// Folder of the experiment's `outputs` (created when missing).
   std::filesystem::path out_dir = ".";
-  /// Override `outputs.exr` / `outputs.png` (paths as given, not under out_dir).
+  /// Override `outputs.exr` / `outputs.png` (paths as given, not under out_dir; their folders must
+  /// exist).
   std::filesystem::path exr, png;
   bool quiet = false;               // no progress bar
   std::optional<unsigned> threads;  // overrides render.threads
@@ -36,7 +37,7 @@ struct RunReport {
 
 /// Runs `experiment`. Every output is computed in memory first and then written through a
 /// temporary file and a rename, so a failure leaves no output file behind (and never a partial
-/// one). Throws InvalidInput (bad content, too large), IoError (files).
+/// one). Throws InvalidInput (bad content, too large, two outputs naming one file), IoError (files).
 RunReport run(const io::Experiment& experiment, const RunOptions& options = {});
 
 /// The deterministic evaluation of an experiment's source, for analysis (cifs dimension).

@@ -30,7 +30,8 @@ void validate(const automata::Automaton& automaton);
 double diameter(const Points& net) noexcept;
 
 /// Diameter of all the rows of all the nets together (the control polygon's extent); with
-/// `homogeneous` rows `(w·x, w)` of their Cartesian images. 0 for no rows.
+/// `homogeneous` rows `(w·x, w)` of their Cartesian images. 0 for no rows. InvalidInput when the
+/// extent is not a finite double (nothing relative to it could be computed).
 double nets_diameter(std::span<const Points> nets, bool homogeneous = false);
 
 /// Contraction coefficient of an affine map on nets: δ(M) = max_{i,j} ½‖M_i − M_j‖₁ over pairs of

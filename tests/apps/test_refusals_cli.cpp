@@ -1,0 +1,111 @@
+// SPDX-License-Identifier: MIT
+// Inputs the CLI must refuse with one line and exit status 2 (docs/reliability.md), each a defect
+// that once crashed, ran, or wrote something wrong instead (issue 16).
+#include <catch2/catch.hpp>
+#include <filesystem>
+
+#include "apps/cli_runner.hpp"
+
+using namespace cifs_test;
+
+namespace {
+
+/// A one-edge BC-IFS file; `initial` is the JSON array of its initial entries.
+std::string edge_bcifs(const std::string& name, const std::string& initial) {
+  return file(name, R"({"bcifs": {"cells": [{"name": "E", "size": 2, "dimension": 1}],
+    "transitions": [{"from": "E", "to": "E", "label": "G", "matrix": [[1, 0], [0.5, 0.5]]}],
+    "boundaries": [], "constraints": [], "initial": )" +
+                        initial + "}}");
+}
+
+}  // namespace
+
+TEST_CASE("cifs render refuses a BC-IFS file without initial entries", "[cli][reliability]") {
+  // It dereferenced the first of no nets (segmentation fault); dimension refused it, by luck.
+  const std::string bcifs = edge_bcifs("no_initial.json", "[]");
+  const std::string exp = file("no_initial_exp.json", R"({"name": "s", "automaton": ")" + bcifs +
+                                                          R"(", "evaluation": {"depth": 1},
+      "outputs": {"exr": "no_initial.exr"}})");
+  for (const std::string command : {"render ", "dimension "})
+    check_error(cifs_cli(command + exp), "no_initial.json: bcifs.initial: no entry");
+  CHECK(!std::filesystem::exists(scratch() / "no_initial.exr"));
+}
+
+TEST_CASE("cifs render refuses two outputs with one file", "[cli][reliability]") {
+  // The PNG overwrote the EXR, exit status 0, "wrote ./same" printed twice.
+  const auto dir = scratch() / "same_outputs";
+  std::filesystem::create_directories(dir);
+  const auto experiment = [&](const std::string& outputs) {
+    return file("same_outputs/e.json", R"({"ifs": "sierpinski", "evaluation": {"depth": 3},
+      "render": {"width": 8, "height": 8}, "outputs": )" +
+                                           outputs + "}");
+  };
+  check_error(
+      cifs_cli("render " + experiment(R"({"exr": "same", "png": "same"})") + " --out-dir " + dir.string()),
+      "outputs.png: " + (dir / "same").string() + " is also outputs.exr; give each output its own file");
+  check_error(cifs_cli("render " + experiment(R"({"exr": "a.exr", "svg": "./a.exr"})") + " --out-dir " +
+                       dir.string()),
+              "outputs.svg: " + (dir / "./a.exr").string() + " is also outputs.exr");
+  const std::string png = experiment(R"({"png": "a.png"})");
+  check_error(cifs_cli("render " + png + " -o " + (dir / "a.png").string()), "outputs.png: ");
+  check_error(
+      cifs_cli("render " + png + " -o " + (dir / "b.exr").string() + " --png " + (dir / "b.exr").string()),
+      "the PNG path: " + (dir / "b.exr").string() + " is also the EXR path");
+  std::filesystem::remove(dir / "e.json");
+  CHECK(std::filesystem::is_empty(dir));
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("cifs render refuses an image path whose folder is missing", "[cli][reliability]") {
+  // Both folders were created silently; subdivide -o already refused a missing folder.
+  const auto missing = scratch() / "no_folder";
+  const std::string exp = file("small_sierpinski.json", R"({"ifs": "sierpinski", "evaluation": {"depth": 3},
+      "render": {"width": 8, "height": 8}})");
+  check_error(
+      cifs_cli("render " + exp + " -o " + (missing / "sub/x.exr").string()),
+      (missing / "sub/x.exr").string() + ": the folder " + (missing / "sub").string() + " does not exist");
+  check_error(cifs_cli("render " + exp + " -o " + (scratch() / "x.exr").string() + " --png " +
+                       (missing / "x.png").string()),
+              "the folder " + missing.string() + " does not exist");
+  CHECK(!std::filesystem::exists(missing));
+  CHECK(!std::filesystem::exists(scratch() / "x.exr"));
+}
+
+TEST_CASE("cifs render refuses a BC-IFS that is not contractive, as dimension does", "[cli][reliability]") {
+  // The tree with a branch B that keeps two rows fixed: B^k never shrinks nets. Rendered at depth
+  // 12 with exit status 0, while dimension and the chaos game refused it.
+  std::string tree = slurp(CIFS_EXAMPLES_DIR "/automata/tree.json");
+  const std::string branch = "[[0.5, 0, 0.5], [0.28, 0.4, 0.32], [0.2, 0.76, 0.04]]";
+  REQUIRE(tree.find(branch) != std::string::npos);
+  tree.replace(tree.find(branch), branch.size(), "[[0.5, 0, 0.5], [0, 1, 0], [0, 0, 1]]");
+  file("fixed_branch.json", tree);
+  for (const std::string evaluation : {R"({"depth": 12})", R"({"chaos": 1000})"}) {
+    const std::string exp = file(
+        "fixed_branch_exp.json",
+        R"({"automaton": "fixed_branch.json",
+      "evaluation": )" +
+            evaluation + R"(, "render": {"width": 8, "height": 8}, "outputs": {"exr": "fixed_branch.exr"}})");
+    for (const std::string command : {"render ", "dimension "})
+      check_error(cifs_cli(command + exp),
+                  "not contractive: the 8-step products from state 0 (E) do not shrink nets");
+  }
+  CHECK(!std::filesystem::exists(scratch() / "fixed_branch.exr"));
+}
+
+TEST_CASE("cifs names an unknown option given before the command", "[cli][reliability]") {
+  // CLI11 said "A subcommand is required", which hides the typo.
+  check_error(cifs_cli("--frob"), "unknown option '--frob'; options follow the command");
+  check_error(cifs_cli("--depth=3 attractor x.json"), "unknown option '--depth'; options follow the command");
+  CHECK(cifs_cli("--version").status == 0);
+  CHECK(cifs_cli("--help").status == 0);
+}
+
+TEST_CASE("cifs dimension refuses control points spanning more than a double", "[cli][reliability]") {
+  // It said "tolerance sample: epsilon is -nan, must be finite and ≥ 0".
+  const std::string huge = file("huge.json", R"({"curve": {"degree": 2, "knots": [0, 0, 0, 1, 1, 1],
+      "points": [[1e308, 0], [-1.7e308, 1], [1e308, 0]]}})");
+  check_error(
+      cifs_cli("dimension " + huge),
+      "the control points span more than a double holds (coordinates up to 1.7e+308); scale the shape "
+      "down");
+}
