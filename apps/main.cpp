@@ -1,10 +1,14 @@
 // SPDX-License-Identifier: MIT
-// cifs — command-line entry point. Errors: one line on stderr, nothing on stdout, exit status 2.
+// cifs — command-line entry point. Errors: one line on stderr, nothing on stdout, exit status 2; a
+// failed write to stdout: one line, exit status 1.
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <cstdint>
+#include <cstring>
 #include <iostream>
+#include <sstream>
 
 #include "cifs/errors.hpp"
 #include "commands.hpp"
@@ -23,12 +27,20 @@ const CLI::Validator seed_text(
     },
     "SEED");
 
-int run(int argc, char** argv) {
+/// Help or version text into `result`, which main writes and checks like any command's output.
+int help_or_version(const CLI::App& app, const CLI::Error& e, std::string& result) {
+  std::ostringstream text;
+  const int status = app.exit(e, text);
+  result = text.str();
+  return status;
+}
+
+/// Parses and runs one command; everything it prints on stdout goes to `result`.
+int run(int argc, char** argv, std::string& result) {
   using namespace cifs::cli;
   CLI::App app{"cifs — NURBS curves and surfaces as controlled iterated function systems"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "cifs 0.1.0");
-  std::string result;
 
   EvalOptions ev;
   auto* eval_cmd = app.add_subcommand("eval", "Evaluate a curve or surface; prints {\"points\": [...]}");
@@ -174,11 +186,11 @@ int run(int argc, char** argv) {
                                "'; options follow the command: cifs COMMAND [OPTIONS] (see cifs --help)");
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
+    return help_or_version(app, e, result);
   } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
+    return help_or_version(app, e, result);
   } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
+    return help_or_version(app, e, result);
   } catch (const CLI::ParseError& e) {
     std::cerr << "cifs: " << e.what() << " (see cifs --help)\n";
     return 2;
@@ -188,25 +200,33 @@ int run(int argc, char** argv) {
     std::cerr << "cifs: " << message << "\n";
     return 2;
   }
-  // Flushed here: a full disk or a closed pipe shows only when the buffer goes out.
-  std::cout << result << std::flush;
-  if (!std::cout.good()) {
-    std::cerr << "cifs: could not write the result to standard output\n";
-    return 1;
-  }
   return status;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
+  std::string result;
+  int status = 0;
   try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {  // outside parsing: the command table, the final write
+    status = run(argc, argv, result);
+  } catch (const std::exception& e) {  // outside parsing: the command table
     std::cerr << "cifs: " << e.what() << "\n";
     return 2;
   } catch (...) {
     std::cerr << "cifs: unexpected error\n";
     return 2;
   }
+  // Every command's output, help and version included, is written and checked here once: a full disk or a
+  // closed pipe shows only when the buffer goes out, so the flush comes before the check. errno
+  // tells why when the failing write was one of these.
+  errno = 0;
+  std::cout << result << std::flush;
+  if (!std::cout.good()) {
+    const int error = errno;
+    std::cerr << "cifs: cannot write to standard output" << (error != 0 ? ": " : "")
+              << (error != 0 ? std::strerror(error) : "") << "\n";
+    return 1;
+  }
+  return status;
 }

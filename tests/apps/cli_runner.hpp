@@ -37,12 +37,13 @@ inline std::string slurp(const std::filesystem::path& p) {
   return s.str();
 }
 
-inline Run cifs_cli(const std::string& args) {
+/// `stdout_to`: where standard output goes instead of being captured (e.g. /dev/full; `out` is then empty).
+inline Run cifs_cli(const std::string& args, const std::string& stdout_to = "") {
   const auto out = scratch() / "stdout", err = scratch() / "stderr";
-  const std::string cmd =
-      std::string(CIFS_CLI_PATH) + " " + args + " >" + out.string() + " 2>" + err.string();
+  const std::string target = stdout_to.empty() ? out.string() : stdout_to;
+  const std::string cmd = std::string(CIFS_CLI_PATH) + " " + args + " >" + target + " 2>" + err.string();
   const int raw = std::system(cmd.c_str());
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, stdout_to.empty() ? slurp(out) : "", slurp(err)};
 }
 
 /// Writes `content` to a scratch file and returns its path.
