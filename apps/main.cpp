@@ -98,8 +98,9 @@ int run(int argc, char** argv) {
   scheme_cmd->add_option("--refine", sc.refine, "Polygon file to refine (docs/formats.md)");
   scheme_cmd->add_option("--steps", sc.steps, "Refinement steps (default 1)");
   scheme_cmd->add_option("--ends", sc.ends, "Open polygons: auto (default), reflect or keep");
-  scheme_cmd->add_option("--format", sc.format,
-                         "Refined polygon as json (default), svg or obj; mesh schemes' analysis: json or table");
+  scheme_cmd->add_option(
+      "--format", sc.format,
+      "Refined polygon as json (default), svg or obj; mesh schemes' analysis: json or table");
   scheme_cmd->add_option("--max-power", sc.max_power,
                          "Analysis: largest power L of the difference schemes (default 20)");
   scheme_cmd->add_flag("--list", sc.list, "List the schemes and their parameters");
@@ -107,8 +108,9 @@ int run(int argc, char** argv) {
                          "Mesh schemes (catmull-clark, loop, doo-sabin, butterfly, sqrt3): analyse the local "
                          "subdivision matrix at a vertex of valence N (doo-sabin: an N-gon face)");
   scheme_cmd->add_option("--valences", sc.valences, "Mesh schemes: several valences, A..B or A,B,C");
-  scheme_cmd->add_option("--boundary", sc.boundary,
-                         "Mesh schemes: a boundary vertex (catmull-clark, loop), rule edge or corner at valence 2");
+  scheme_cmd->add_option(
+      "--boundary", sc.boundary,
+      "Mesh schemes: a boundary vertex (catmull-clark, loop), rule edge or corner at valence 2");
   scheme_cmd->callback([&] { result = scheme(sc); });
 
   RenderOptions re;

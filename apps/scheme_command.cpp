@@ -2,11 +2,11 @@
 #include "scheme_command.hpp"
 
 #include <charconv>
-#include <iomanip>
-#include <optional>
 #include <cmath>
+#include <iomanip>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 #include "cifs/errors.hpp"
@@ -62,8 +62,8 @@ sd::Ends parse_ends(const std::string& ends) {
 // Mesh schemes: local subdivision matrices
 
 std::optional<sd::MeshScheme> mesh_scheme_named(const std::string& name) {
-  for (const sd::MeshScheme s : {sd::MeshScheme::catmull_clark, sd::MeshScheme::loop, sd::MeshScheme::doo_sabin,
-                                 sd::MeshScheme::butterfly, sd::MeshScheme::sqrt3})
+  for (const sd::MeshScheme s : {sd::MeshScheme::catmull_clark, sd::MeshScheme::loop,
+                                 sd::MeshScheme::doo_sabin, sd::MeshScheme::butterfly, sd::MeshScheme::sqrt3})
     if (sd::scheme_name(s) == name) return s;
   return std::nullopt;
 }
@@ -82,7 +82,8 @@ std::vector<int> parse_valences(const std::string& text, const std::string& opti
   if (const auto dots = text.find(".."); dots != std::string::npos) {
     const int first = integer_text(text.substr(0, dots), option, text);
     const int last = integer_text(text.substr(dots + 2), option, text);
-    if (first > last) throw InvalidInput(option + " '" + text + "': the range is empty (write A..B with A ≤ B)");
+    if (first > last)
+      throw InvalidInput(option + " '" + text + "': the range is empty (write A..B with A ≤ B)");
     for (int n = first; n <= last; ++n) out.push_back(n);
     return out;
   }
@@ -102,13 +103,15 @@ std::string real_text(long double x) {
 }
 
 /// One line per valence: the numbers `cifs scheme … --analyze` prints as JSON, in columns.
-std::string local_table(const std::vector<sd::LocalMatrix>& matrices, const std::vector<sd::LocalSpectrum>& spectra) {
+std::string local_table(const std::vector<sd::LocalMatrix>& matrices,
+                        const std::vector<sd::LocalSpectrum>& spectra) {
   const sd::LocalMatrix& first = matrices.front();
   std::ostringstream s;
   s << "# " << sd::scheme_name(first.scheme) << ", "
-    << (first.options.boundary ? std::string("boundary vertices (--boundary ") +
-                                     (first.options.rule == sd::BoundaryRule::edge_only ? "edge" : "corner") + ")"
-                               : std::string(first.scheme == sd::MeshScheme::doo_sabin ? "k-gon faces" : "interior vertices"))
+    << (first.options.boundary
+            ? std::string("boundary vertices (--boundary ") +
+                  (first.options.rule == sd::BoundaryRule::edge_only ? "edge" : "corner") + ")"
+            : std::string(first.scheme == sd::MeshScheme::doo_sabin ? "k-gon faces" : "interior vertices"))
     << ", S_n over " << first.steps << (first.steps == 1 ? " step" : " steps") << "\n";
   s << std::left << std::setw(4) << "n" << std::setw(6) << "size" << std::setw(7) << "exact" << std::setw(17)
     << "lambda1" << std::setw(17) << "lambda2" << std::setw(17) << "|mu|" << std::setw(17) << "lambda2^2/|mu|"
@@ -132,17 +135,21 @@ std::string local_table(const std::vector<sd::LocalMatrix>& matrices, const std:
 std::string analyze_mesh_scheme(sd::MeshScheme scheme, const SchemeOptions& o) {
   const std::string name(sd::scheme_name(scheme));
   if (!o.analyze || !o.refine.empty())
-    throw InvalidInput("scheme " + name + ": a mesh scheme takes --analyze with --valence N or --valences A..B " +
+    throw InvalidInput("scheme " + name +
+                       ": a mesh scheme takes --analyze with --valence N or --valences A..B " +
                        "(to refine a mesh: cifs subdivide MESH --scheme " + name + ")");
-  if (!o.params.empty()) throw InvalidInput("scheme " + name + ": --param: the mesh schemes take no parameters");
+  if (!o.params.empty())
+    throw InvalidInput("scheme " + name + ": --param: the mesh schemes take no parameters");
   if (o.valence.empty() == o.valences.empty())
     throw InvalidInput("scheme " + name + ": give --valence N or --valences A..B (one of them)");
   if (o.format != "json" && o.format != "table")
     throw InvalidInput("--format '" + o.format + "': json or table for a mesh scheme's analysis");
-  const sd::LocalOptions local{.boundary = !o.boundary.empty(),
-                               .rule = o.boundary.empty() ? sd::BoundaryRule::edge_only : boundary_rule(o.boundary)};
-  const std::vector<int> valences = o.valence.empty() ? parse_valences(o.valences, "--valences")
-                                                      : std::vector<int>{integer_text(o.valence, "--valence", o.valence)};
+  const sd::LocalOptions local{
+      .boundary = !o.boundary.empty(),
+      .rule = o.boundary.empty() ? sd::BoundaryRule::edge_only : boundary_rule(o.boundary)};
+  const std::vector<int> valences = o.valence.empty()
+                                        ? parse_valences(o.valences, "--valences")
+                                        : std::vector<int>{integer_text(o.valence, "--valence", o.valence)};
   std::vector<sd::LocalMatrix> matrices;
   std::vector<sd::LocalSpectrum> spectra;
   for (const int n : valences) {  // every valence checked before any output
@@ -186,9 +193,10 @@ std::string scheme(const SchemeOptions& o) {
     throw InvalidInput(o.analyze ? "scheme: --analyze and --refine are exclusive"
                                  : "scheme: choose --analyze or --refine POLYGON.json (or --list)");
   if (!o.valence.empty() || !o.valences.empty() || !o.boundary.empty())
-    throw InvalidInput("scheme " + o.name +
-                       ": --valence, --valences and --boundary are for the mesh schemes (catmull-clark, loop, "
-                       "doo-sabin, butterfly, sqrt3)");
+    throw InvalidInput(
+        "scheme " + o.name +
+        ": --valence, --valences and --boundary are for the mesh schemes (catmull-clark, loop, "
+        "doo-sabin, butterfly, sqrt3)");
   const sd::Scheme s = sd::named_scheme(o.name, parse_params(o.params));
   if (o.analyze) {
     if (o.max_power < 1 || o.max_power > 26)

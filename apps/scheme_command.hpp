@@ -20,10 +20,10 @@ struct SchemeOptions {
   std::string format = "json";  // refine: a writable format of io::formats(Content::polygon);
                                 // mesh schemes' analysis: json or table
   bool list = false;
-  int max_power = 20;     // analysis: largest power L
-  std::string valence;    // mesh schemes: "5"
-  std::string valences;   // mesh schemes: "3..16" or "3,5,8"
-  std::string boundary;   // mesh schemes: empty (interior vertex), or edge | corner (boundary vertex)
+  int max_power = 20;    // analysis: largest power L
+  std::string valence;   // mesh schemes: "5"
+  std::string valences;  // mesh schemes: "3..16" or "3,5,8"
+  std::string boundary;  // mesh schemes: empty (interior vertex), or edge | corner (boundary vertex)
 };
 
 /// The text for stdout; InvalidInput / IoError on bad input.

@@ -55,8 +55,9 @@ json local_json(const LocalMatrix& m, const LocalSpectrum& s) {
                                                     vector_json(s.subdominant_basis.col(1))})}};
   j["gap"] = s.gap;
   j["mu"] = complex_json(s.mu);
-  j["curvature"] = {{"ratio", s.curvature_ratio ? json(static_cast<double>(*s.curvature_ratio)) : json(nullptr)},
-                    {"verdict", s.curvature}};
+  j["curvature"] = {
+      {"ratio", s.curvature_ratio ? json(static_cast<double>(*s.curvature_ratio)) : json(nullptr)},
+      {"verdict", s.curvature}};
   j["limit_stencil"] = vector_json(s.limit_stencil);
   j["residual"] = static_cast<double>(s.residual);
   return j;

@@ -208,8 +208,9 @@ void bind_mesh_subdivision(py::module_& m) {
         out["lambda1"] = static_cast<double>(sp.subdominant);
         out["lambda2"] = static_cast<double>(sp.second);
         out["mu"] = complex_of(sp.mu);
-        out["curvature_ratio"] =
-            sp.curvature_ratio ? py::object(py::float_(static_cast<double>(*sp.curvature_ratio))) : py::none();
+        out["curvature_ratio"] = sp.curvature_ratio
+                                     ? py::object(py::float_(static_cast<double>(*sp.curvature_ratio)))
+                                     : py::none();
         out["curvature"] = sp.curvature;
         out["subdominant_basis"] = Points(sp.subdominant_basis.cast<double>());
         out["limit_stencil"] = Eigen::VectorXd(sp.limit_stencil.cast<double>());

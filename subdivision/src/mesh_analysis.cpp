@@ -28,8 +28,9 @@ void check_valence(MeshScheme scheme, int valence, const LocalOptions& o) {
     if (scheme != MeshScheme::catmull_clark && scheme != MeshScheme::loop)
       throw InvalidInput(who + ": boundary vertices are analysed for catmull-clark and loop only");
     if (valence < kMinBoundaryValence || valence > kMaxBoundaryValence)
-      throw InvalidInput(who + ": boundary valence " + std::to_string(valence) + " is out of range; expected " +
-                         std::to_string(kMinBoundaryValence) + " to " + std::to_string(kMaxBoundaryValence));
+      throw InvalidInput(who + ": boundary valence " + std::to_string(valence) +
+                         " is out of range; expected " + std::to_string(kMinBoundaryValence) + " to " +
+                         std::to_string(kMaxBoundaryValence));
     return;
   }
   if (valence < kMinValence || valence > kMaxValence)
@@ -237,8 +238,8 @@ Dense<T> rules(MeshScheme scheme, int n, const LocalOptions& o, Cos cos_of) {
       for (int i = 0; i < k; ++i) gon.push_back(g(i));
       for (int i = 0; i < k; ++i) {
         corner_point(g(i), gon, i);
-        corner_point(a(i), {g(i + 1), g(i), a(i), b(i)}, 1);     // edge quad i at g_i
-        corner_point(b(i), {g(i + 1), g(i), a(i), b(i)}, 0);     // edge quad i at g_{i+1}
+        corner_point(a(i), {g(i + 1), g(i), a(i), b(i)}, 1);    // edge quad i at g_i
+        corner_point(b(i), {g(i + 1), g(i), a(i), b(i)}, 0);    // edge quad i at g_{i+1}
         corner_point(cq(i), {g(i), b(i - 1), cq(i), a(i)}, 0);  // corner quad at g_i
       }
       return S;
@@ -316,8 +317,8 @@ class WedgeVertices {
       // Planar positions (any will do: the weights depend on the topology only).
       const long double step = closed_ ? 2 * kPi / n_ : kPi / n_;
       const auto dir = [&](int t) {
-        return Eigen::RowVector3d(static_cast<double>(std::cos(step * t)), static_cast<double>(std::sin(step * t)),
-                                  0.0);
+        return Eigen::RowVector3d(static_cast<double>(std::cos(step * t)),
+                                  static_cast<double>(std::sin(step * t)), 0.0);
       };
       positions.conservativeResize(it->second + 1, 3);
       positions.row(it->second) = i * dir(s) + j * dir(s + 1);
@@ -394,16 +395,17 @@ int face_across(const MeshTopology& t, int e, int f) {
 
 /// The neighbourhood of vertex `centre` (Doo–Sabin: face) in the header's numbering, sector 0 at
 /// `start` (a neighbour; Doo–Sabin: a corner; ignored on the boundary, where edge 0 starts).
-std::vector<int> neighbourhood(const MeshTopology& t, MeshScheme scheme, int centre, int start, bool boundary) {
+std::vector<int> neighbourhood(const MeshTopology& t, MeshScheme scheme, int centre, int start,
+                               bool boundary) {
   if (scheme == MeshScheme::doo_sabin) {
     const int k = static_cast<int>(face(t, static_cast<std::size_t>(centre)).size());
     const int s = corner_index(t, centre, start);
     std::vector<int> g(static_cast<std::size_t>(k)), edge_quad(static_cast<std::size_t>(k));
     for (int i = 0; i < k; ++i) g[static_cast<std::size_t>(i)] = corner(t, centre, s + i);
     for (int i = 0; i < k; ++i)
-      edge_quad[static_cast<std::size_t>(i)] =
-          face_across(t, edge_between(t, g[static_cast<std::size_t>(i)], g[static_cast<std::size_t>((i + 1) % k)]),
-                      centre);
+      edge_quad[static_cast<std::size_t>(i)] = face_across(
+          t, edge_between(t, g[static_cast<std::size_t>(i)], g[static_cast<std::size_t>((i + 1) % k)]),
+          centre);
     std::vector<int> out;
     for (int i = 0; i < k; ++i) {
       const int gi = g[static_cast<std::size_t>(i)], quad = edge_quad[static_cast<std::size_t>(i)];
@@ -423,7 +425,8 @@ std::vector<int> neighbourhood(const MeshTopology& t, MeshScheme scheme, int cen
   const int n = static_cast<int>(ring.size()), F = static_cast<int>(faces.size());
   int s = 0;
   if (!boundary)
-    while (s < n && other_vertex(t, static_cast<std::size_t>(ring[static_cast<std::size_t>(s)]), centre) != start)
+    while (s < n &&
+           other_vertex(t, static_cast<std::size_t>(ring[static_cast<std::size_t>(s)]), centre) != start)
       ++s;
   const auto r = [&](int j) {
     return other_vertex(t, static_cast<std::size_t>(ring[static_cast<std::size_t>(wrap(s + j, n))]), centre);
@@ -441,7 +444,8 @@ std::vector<int> neighbourhood(const MeshTopology& t, MeshScheme scheme, int cen
       const auto at = std::find(rj_ring.begin(), rj_ring.end(), to_centre) - rj_ring.begin();
       if (rj_ring.size() != 6 || t.boundary_vertex[static_cast<std::size_t>(rj)])
         throw std::logic_error("local mesh: a ring vertex is not regular");
-      out.push_back(other_vertex(t, static_cast<std::size_t>(rj_ring[static_cast<std::size_t>((at + 3) % 6)]), rj));
+      out.push_back(
+          other_vertex(t, static_cast<std::size_t>(rj_ring[static_cast<std::size_t>((at + 3) % 6)]), rj));
       const int across = face_across(t, edge_between(t, rj, r(j + 1)), face_j(j));
       out.push_back(corner(t, across, corner_index(t, across, rj) + 1));
     }
@@ -452,7 +456,8 @@ std::vector<int> neighbourhood(const MeshTopology& t, MeshScheme scheme, int cen
 /// Weight of `column` in row `row` of the stencils.
 double weight(const Stencils& s, int row, int column) {
   double w = 0;
-  for (int k = s.offsets[static_cast<std::size_t>(row)]; k < s.offsets[static_cast<std::size_t>(row) + 1]; ++k)
+  for (int k = s.offsets[static_cast<std::size_t>(row)]; k < s.offsets[static_cast<std::size_t>(row) + 1];
+       ++k)
     if (s.columns[static_cast<std::size_t>(k)] == column) w += s.weights[static_cast<std::size_t>(k)];
   return w;
 }
@@ -549,8 +554,8 @@ LocalMatrix refined_local_matrix(MeshScheme scheme, int n, const LocalOptions& o
   out.values = LongMatrix::Zero(N, N);
   for (Eigen::Index i = 0; i < N; ++i) {
     const int row = child[static_cast<std::size_t>(i)];
-    for (int k = stencils.offsets[static_cast<std::size_t>(row)]; k < stencils.offsets[static_cast<std::size_t>(row) + 1];
-         ++k) {
+    for (int k = stencils.offsets[static_cast<std::size_t>(row)];
+         k < stencils.offsets[static_cast<std::size_t>(row) + 1]; ++k) {
       const auto it = position.find(stencils.columns[static_cast<std::size_t>(k)]);
       const double w = stencils.weights[static_cast<std::size_t>(k)];
       if (it == position.end()) {
@@ -633,8 +638,8 @@ LocalSpectrum local_spectrum(const LocalMatrix& matrix) {
   out.dominant_simple = std::abs(lambda(0) - 1.0L) < tol && std::abs(lambda(1)) < 1 - tol;
   out.subdominant = lambda(1).real();
   out.second = lambda(2).real();
-  const bool real_positive = std::abs(lambda(1).imag()) < tol && std::abs(lambda(2).imag()) < tol &&
-                             out.second > tol;
+  const bool real_positive =
+      std::abs(lambda(1).imag()) < tol && std::abs(lambda(2).imag()) < tol && out.second > tol;
   out.subdominant_pair = real_positive && std::abs(lambda(1) - lambda(2)) < tol;
   out.mu = lambda(3);
   out.gap = real_positive && std::abs(out.mu) < out.second - tol;
@@ -652,9 +657,11 @@ LocalSpectrum local_spectrum(const LocalMatrix& matrix) {
   out.limit_stencil = kernel((S - I).transpose(), 1);
   out.limit_stencil /= out.limit_stencil.sum();
   const LongVector values = (LongVector(2) << out.subdominant, out.second).finished();
-  out.residual = (S * out.subdominant_basis - out.subdominant_basis * values.asDiagonal()).cwiseAbs().maxCoeff();
-  out.residual = std::max(out.residual,
-                          (out.limit_stencil.transpose() * S - out.limit_stencil.transpose()).cwiseAbs().maxCoeff());
+  out.residual =
+      (S * out.subdominant_basis - out.subdominant_basis * values.asDiagonal()).cwiseAbs().maxCoeff();
+  out.residual =
+      std::max(out.residual,
+               (out.limit_stencil.transpose() * S - out.limit_stencil.transpose()).cwiseAbs().maxCoeff());
   return out;
 }
 

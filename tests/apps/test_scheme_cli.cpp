@@ -131,7 +131,8 @@ TEST_CASE("cifs scheme reports bad input on one line and exits 2", "[cli][subdiv
               "needs a symmetric mask");
 }
 
-TEST_CASE("cifs scheme MESH-SCHEME --valence N --analyze: local subdivision matrices", "[cli][mesh_analysis]") {
+TEST_CASE("cifs scheme MESH-SCHEME --valence N --analyze: local subdivision matrices",
+          "[cli][mesh_analysis]") {
   const json cc = analyze("catmull-clark --valence 5");
   CHECK(cc["scheme"] == "catmull-clark");
   CHECK(cc["valence"] == 5);
@@ -169,7 +170,8 @@ TEST_CASE("cifs scheme MESH-SCHEME --valence N --analyze: local subdivision matr
 }
 
 TEST_CASE("cifs scheme MESH-SCHEME: bad valences and options on one line, exit 2", "[cli][mesh_analysis]") {
-  check_error(cifs_cli("scheme loop --valence 2 --analyze"), "loop: valence 2 is out of range; expected 3 to 16");
+  check_error(cifs_cli("scheme loop --valence 2 --analyze"),
+              "loop: valence 2 is out of range; expected 3 to 16");
   check_error(cifs_cli("scheme catmull-clark --valences 3..17 --analyze"), "valence 17 is out of range");
   check_error(cifs_cli("scheme loop --valence five --analyze"), "--valence 'five': expected an integer");
   check_error(cifs_cli("scheme loop --valences 9..3 --analyze"), "the range is empty");
@@ -182,7 +184,8 @@ TEST_CASE("cifs scheme MESH-SCHEME: bad valences and options on one line, exit 2
   check_error(cifs_cli("scheme loop --valence 5 --analyze --param w=1"), "take no parameters");
   check_error(cifs_cli("scheme butterfly --valence 5 --analyze --boundary edge"),
               "boundary vertices are analysed for catmull-clark and loop only");
-  check_error(cifs_cli("scheme loop --valence 12 --analyze --boundary edge"), "boundary valence 12 is out of range");
+  check_error(cifs_cli("scheme loop --valence 12 --analyze --boundary edge"),
+              "boundary valence 12 is out of range");
   check_error(cifs_cli("scheme loop --valence 4 --analyze --boundary sideways"), "--boundary sideways");
   check_error(cifs_cli("scheme chaikin --valence 5 --analyze"), "are for the mesh schemes");
 }

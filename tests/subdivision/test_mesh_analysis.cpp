@@ -32,7 +32,8 @@ long double cos_2pi(long double m, long double n) {
 }
 
 /// Every expected eigenvalue matched to a distinct computed one within `tol` (multisets equal).
-void check_same_spectrum(const std::vector<Complex>& computed, std::vector<Complex> expected, long double tol) {
+void check_same_spectrum(const std::vector<Complex>& computed, std::vector<Complex> expected,
+                         long double tol) {
   REQUIRE(computed.size() == expected.size());
   std::vector<bool> used(computed.size(), false);
   for (const Complex& e : expected) {
@@ -49,7 +50,8 @@ void check_same_spectrum(const std::vector<Complex>& computed, std::vector<Compl
 
 /// The 4th largest modulus of a multiset (μ after 1 and the subdominant pair).
 long double fourth_modulus(std::vector<Complex> values) {
-  std::sort(values.begin(), values.end(), [](const Complex& a, const Complex& b) { return std::abs(a) > std::abs(b); });
+  std::sort(values.begin(), values.end(),
+            [](const Complex& a, const Complex& b) { return std::abs(a) > std::abs(b); });
   return std::abs(values[3]);
 }
 
@@ -76,7 +78,8 @@ std::vector<Complex> catmull_clark_spectrum(int n) {
   const long double nd = n;
   zero << (4 * nd - 7) / (4 * nd), 3 / (2 * nd), 1 / (4 * nd), 3.0L / 8, 0.5L, 1.0L / 8, 0.25L, 0.5L, 0.25L;
   const Eigen::EigenSolver<Eigen::Matrix<long double, 3, 3>> solver(zero, false);
-  for (int i = 0; i < 3; ++i) out.emplace_back(solver.eigenvalues()(i).real(), solver.eigenvalues()(i).imag());
+  for (int i = 0; i < 3; ++i)
+    out.emplace_back(solver.eigenvalues()(i).real(), solver.eigenvalues()(i).imag());
   for (int l = 1; l < n; ++l) {
     const long double T = 5.0L / 8 + cos_2pi(l, n) / 8, D = 1.0L / 16;
     const long double root = std::sqrt(T * T - 4 * D);  // T² − 4D = ((5 + c)² − 16)/64 ≥ 0
@@ -151,8 +154,9 @@ std::vector<Complex> regular_butterfly_spectrum() {
   for (int l = 0; l < 6; ++l) {
     const Complex w = std::polar(1.0L, 2 * kPi * l / 6), one = 1;
     ComplexMatrix block(3, 3);
-    block << 0.5L + 0.125L * (w + one / w) - 0.0625L * (w * w + one / (w * w)), 0, -0.0625L * (one + one / w),  //
-        1, 0, 0,                                                                                              //
+    block << 0.5L + 0.125L * (w + one / w) - 0.0625L * (w * w + one / (w * w)), 0,
+        -0.0625L * (one + one / w),  //
+        1, 0, 0,                     //
         0.5L * (one + w) - 0.0625L * (one / w + w * w), -0.0625L * (one + w), 0.125L;
     // ℓ = 0 is the 4 × 4 block with c (the means of each part of the sectors).
     const ComplexMatrix& m = l == 0 ? zero : block;
@@ -327,7 +331,8 @@ TEST_CASE("eigenvectors: the subdominant eigenspace and the limit stencil", "[su
     for (int j = 1; j <= n; ++j) CHECK(std::abs(s.limit_stencil(j) - chi) < 1e-16L);
     // The subdominant eigenvectors are the ring's cos and sin modes (c weighs 0).
     REQUIRE(s.subdominant_basis.cols() == 2);
-    CHECK((S.values * s.subdominant_basis - s.subdominant * s.subdominant_basis).cwiseAbs().maxCoeff() < 1e-17L);
+    CHECK((S.values * s.subdominant_basis - s.subdominant * s.subdominant_basis).cwiseAbs().maxCoeff() <
+          1e-17L);
     CHECK(s.subdominant_basis.row(0).cwiseAbs().maxCoeff() < 1e-17L);
     LongVector cosine(n + 1);
     cosine(0) = 0;
@@ -337,7 +342,8 @@ TEST_CASE("eigenvectors: the subdominant eigenspace and the limit stencil", "[su
   }
 }
 
-TEST_CASE("boundary vertices: the boundary curve's block and the interior ring", "[subdivision][mesh_analysis]") {
+TEST_CASE("boundary vertices: the boundary curve's block and the interior ring",
+          "[subdivision][mesh_analysis]") {
   for (int n = kMinBoundaryValence; n <= kMaxBoundaryValence; ++n) {
     INFO("boundary valence " << n);
     // Loop: c, r_0, r_{n−1} follow the cubic B-spline curve ((1, 6, 1)/8, midpoints): 1, ½, ¼; the
@@ -350,7 +356,8 @@ TEST_CASE("boundary vertices: the boundary curve's block and the interior ring",
     // With the corner rule at valence 2 the vertex stays: 1, ½, ½.
     if (n == 2)
       check_same_spectrum(
-          local_spectrum(local_matrix(MeshScheme::loop, 2, {.boundary = true, .rule = BoundaryRule::edge_and_corner}))
+          local_spectrum(
+              local_matrix(MeshScheme::loop, 2, {.boundary = true, .rule = BoundaryRule::edge_and_corner}))
               .eigenvalues,
           {1, 0.5L, 0.5L}, 1e-15L);
     // Catmull–Clark: the same curve block.
@@ -362,7 +369,8 @@ TEST_CASE("boundary vertices: the boundary curve's block and the interior ring",
 }
 
 TEST_CASE("local matrices: bad valences are one-line InvalidInputs", "[subdivision][mesh_analysis]") {
-  CHECK_THROWS_WITH(local_matrix(MeshScheme::loop, 2), Contains("loop: valence 2 is out of range; expected 3 to 16"));
+  CHECK_THROWS_WITH(local_matrix(MeshScheme::loop, 2),
+                    Contains("loop: valence 2 is out of range; expected 3 to 16"));
   CHECK_THROWS_WITH(local_matrix(MeshScheme::catmull_clark, 17), Contains("valence 17 is out of range"));
   CHECK_THROWS_WITH(local_matrix(MeshScheme::loop, 9, {.boundary = true}),
                     Contains("boundary valence 9 is out of range; expected 2 to 8"));

@@ -97,12 +97,12 @@ LocalMatrix refined_local_matrix(MeshScheme scheme, int valence, const LocalOpti
 struct LocalSpectrum {
   /// By modulus, largest first; equal moduli: larger real part first, then larger imaginary part.
   std::vector<std::complex<long double>> eigenvalues;
-  bool dominant_simple = false;     // λ0 = 1 and |λ1| < 1
-  bool subdominant_pair = false;    // λ1 = λ2 real and positive (at a boundary vertex: rarely)
-  bool gap = false;                 // |λ3| < λ2, λ1 and λ2 real and positive
-  long double subdominant = 0;      // λ1 (real part)
-  long double second = 0;           // λ2 (real part)
-  std::complex<long double> mu{0};  // λ3
+  bool dominant_simple = false;                // λ0 = 1 and |λ1| < 1
+  bool subdominant_pair = false;               // λ1 = λ2 real and positive (at a boundary vertex: rarely)
+  bool gap = false;                            // |λ3| < λ2, λ1 and λ2 real and positive
+  long double subdominant = 0;                 // λ1 (real part)
+  long double second = 0;                      // λ2 (real part)
+  std::complex<long double> mu{0};             // λ3
   std::optional<long double> curvature_ratio;  // λ2²/|μ|; absent when μ = 0
   std::string curvature;                       // "bounded", "zero" (also when μ = 0), "unbounded"
   /// N by 2, orthonormal columns: ker(S − λ1 I) when λ1 = λ2, else an eigenvector of λ1 and one of λ2.
