@@ -73,8 +73,12 @@ struct Dense {
   int n = 0;
   std::vector<T> a;
   explicit Dense(int size) : n(size), a(static_cast<std::size_t>(size * size), T(0)) {}
-  T& operator()(int i, int j) { return a[static_cast<std::size_t>(i * n + j)]; }
-  const T& operator()(int i, int j) const { return a[static_cast<std::size_t>(i * n + j)]; }
+  T& operator()(int i, int j) {
+    return a[static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(j)];
+  }
+  const T& operator()(int i, int j) const {
+    return a[static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(j)];
+  }
 };
 
 template <class T>
@@ -234,8 +238,8 @@ Dense<T> rules(MeshScheme scheme, int n, const LocalOptions& o, Cos cos_of) {
           S(row, corners[static_cast<std::size_t>(wrap(i + d, m))]) +=
               (d == 0 ? quarter : T(0)) + (3 + 2 * cos_of(d, m)) / (4 * T(m));
       };
-      std::vector<int> gon;
-      for (int i = 0; i < k; ++i) gon.push_back(g(i));
+      std::vector<int> gon(static_cast<std::size_t>(k));
+      for (int i = 0; i < k; ++i) gon[static_cast<std::size_t>(i)] = g(i);
       for (int i = 0; i < k; ++i) {
         corner_point(g(i), gon, i);
         corner_point(a(i), {g(i + 1), g(i), a(i), b(i)}, 1);    // edge quad i at g_i

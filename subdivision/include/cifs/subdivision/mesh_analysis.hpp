@@ -39,7 +39,10 @@ struct RationalMatrix {
   int rows = 0;
   int cols = 0;
   std::vector<Rational> entries;
-  const Rational& operator()(int i, int j) const { return entries[static_cast<std::size_t>(i * cols + j)]; }
+  const Rational& operator()(int i, int j) const {
+    return entries[static_cast<std::size_t>(i) * static_cast<std::size_t>(cols) +
+                   static_cast<std::size_t>(j)];
+  }
 };
 
 /// Where the extraordinary vertex is. Boundary vertices (valence = number of edges, 2 … 8) are
