@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "cifs/subdivision/mesh.hpp"
+
 namespace cifs::cli {
 
 struct EvalOptions {
@@ -43,6 +45,8 @@ struct SubdivideOptions {
   std::filesystem::path output;   // .obj or .ply; empty: OBJ on stdout
 };
 std::string subdivide(const SubdivideOptions& options);
+/// `--boundary edge|corner` (cifs subdivide, cifs scheme): InvalidInput naming the two otherwise.
+subdivision::BoundaryRule boundary_rule(const std::string& name);
 
 struct AutomatonOptions {
   std::filesystem::path shape;

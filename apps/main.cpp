@@ -100,7 +100,9 @@ int run(int argc, char** argv, std::string& result) {
 
   SchemeOptions sc;
   auto* scheme_cmd =
-      app.add_subcommand("scheme", "Curve subdivision schemes: --analyze (JSON), --refine a polygon, --list");
+      app.add_subcommand("scheme",
+                         "Subdivision schemes: --analyze (JSON), --refine a polygon, --list; mesh schemes: "
+                         "--valence N --analyze");
   scheme_cmd->add_option("name", sc.name, "Scheme name (cifs scheme --list)");
   scheme_cmd->add_option("--param", sc.params, "Scheme parameter NAME=VALUE; repeatable")
       ->allow_extra_args(false);
@@ -108,10 +110,19 @@ int run(int argc, char** argv, std::string& result) {
   scheme_cmd->add_option("--refine", sc.refine, "Polygon file to refine (docs/formats.md)");
   scheme_cmd->add_option("--steps", sc.steps, "Refinement steps (default 1)");
   scheme_cmd->add_option("--ends", sc.ends, "Open polygons: auto (default), reflect or keep");
-  scheme_cmd->add_option("--format", sc.format, "Refined polygon as json (default), svg or obj");
+  scheme_cmd->add_option(
+      "--format", sc.format,
+      "Refined polygon as json (default), svg or obj; mesh schemes' analysis: json or table");
   scheme_cmd->add_option("--max-power", sc.max_power,
                          "Analysis: largest power L of the difference schemes (default 20)");
   scheme_cmd->add_flag("--list", sc.list, "List the schemes and their parameters");
+  scheme_cmd->add_option("--valence", sc.valence,
+                         "Mesh schemes (catmull-clark, loop, doo-sabin, butterfly, sqrt3): analyse the local "
+                         "subdivision matrix at a vertex of valence N (doo-sabin: an N-gon face)");
+  scheme_cmd->add_option("--valences", sc.valences, "Mesh schemes: several valences, A..B or A,B,C");
+  scheme_cmd->add_option(
+      "--boundary", sc.boundary,
+      "Mesh schemes: a boundary vertex (catmull-clark, loop), rule edge or corner at valence 2");
   scheme_cmd->callback([&] { result = scheme(sc); });
 
   RenderOptions re;

@@ -35,12 +35,6 @@ int components(const MeshTopology& t) {
   return count;
 }
 
-subdivision::BoundaryRule boundary_rule(const std::string& name) {
-  if (name == "edge") return subdivision::BoundaryRule::edge_only;
-  if (name == "corner") return subdivision::BoundaryRule::edge_and_corner;
-  throw InvalidInput("--boundary " + name + ": expected edge (boundary corners smoothed) or corner (kept)");
-}
-
 /// Refused before the work: the output must be a mesh format the table writes.
 void check_mesh_output(const std::filesystem::path& output) {
   std::string known;
@@ -53,6 +47,12 @@ void check_mesh_output(const std::filesystem::path& output) {
 }
 
 }  // namespace
+
+subdivision::BoundaryRule boundary_rule(const std::string& name) {
+  if (name == "edge") return subdivision::BoundaryRule::edge_only;
+  if (name == "corner") return subdivision::BoundaryRule::edge_and_corner;
+  throw InvalidInput("--boundary " + name + ": expected edge (boundary corners smoothed) or corner (kept)");
+}
 
 bool is_polygon_mesh_file(const std::filesystem::path& path) {
   const std::string ext = path.extension().string();

@@ -3,8 +3,10 @@
 
 #include <charconv>
 #include <cmath>
+#include <iomanip>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 #include "cifs/errors.hpp"
@@ -13,8 +15,10 @@
 #include "cifs/io/json.hpp"
 #include "cifs/io/svg.hpp"
 #include "cifs/subdivision/analysis.hpp"
+#include "cifs/subdivision/mesh_analysis.hpp"
 #include "cifs/subdivision/refine.hpp"
 #include "cifs/subdivision/scheme.hpp"
+#include "commands.hpp"
 
 namespace cifs::cli {
 namespace {
@@ -55,6 +59,108 @@ sd::Ends parse_ends(const std::string& ends) {
 }
 
 // ------------------------------------------------------------------------------------------------
+// Mesh schemes: local subdivision matrices
+
+std::optional<sd::MeshScheme> mesh_scheme_named(const std::string& name) {
+  for (const sd::MeshScheme s : {sd::MeshScheme::catmull_clark, sd::MeshScheme::loop,
+                                 sd::MeshScheme::doo_sabin, sd::MeshScheme::butterfly, sd::MeshScheme::sqrt3})
+    if (sd::scheme_name(s) == name) return s;
+  return std::nullopt;
+}
+
+int integer_text(const std::string& text, const std::string& option, const std::string& given) {
+  int value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error != std::errc() || end != text.data() + text.size())
+    throw InvalidInput(option + " '" + given + "': expected an integer, a range A..B or a list A,B,C");
+  return value;
+}
+
+/// "5", "3..16" or "3,5,8".
+std::vector<int> parse_valences(const std::string& text, const std::string& option) {
+  std::vector<int> out;
+  if (const auto dots = text.find(".."); dots != std::string::npos) {
+    const int first = integer_text(text.substr(0, dots), option, text);
+    const int last = integer_text(text.substr(dots + 2), option, text);
+    if (first > last)
+      throw InvalidInput(option + " '" + text + "': the range is empty (write A..B with A ≤ B)");
+    for (int n = first; n <= last; ++n) out.push_back(n);
+    return out;
+  }
+  std::size_t begin = 0;
+  while (true) {
+    const std::size_t comma = text.find(',', begin);
+    out.push_back(integer_text(text.substr(begin, comma - begin), option, text));
+    if (comma == std::string::npos) return out;
+    begin = comma + 1;
+  }
+}
+
+std::string real_text(long double x) {
+  std::ostringstream s;
+  s << std::setprecision(12) << static_cast<double>(x);
+  return s.str();
+}
+
+/// One line per valence: the numbers `cifs scheme … --analyze` prints as JSON, in columns.
+std::string local_table(const std::vector<sd::LocalMatrix>& matrices,
+                        const std::vector<sd::LocalSpectrum>& spectra) {
+  const sd::LocalMatrix& first = matrices.front();
+  std::ostringstream s;
+  s << "# " << sd::scheme_name(first.scheme) << ", "
+    << (first.options.boundary
+            ? std::string("boundary vertices (--boundary ") +
+                  (first.options.rule == sd::BoundaryRule::edge_only ? "edge" : "corner") + ")"
+            : std::string(first.scheme == sd::MeshScheme::doo_sabin ? "k-gon faces" : "interior vertices"))
+    << ", S_n over " << first.steps << (first.steps == 1 ? " step" : " steps") << "\n";
+  s << std::left << std::setw(4) << "n" << std::setw(6) << "size" << std::setw(7) << "exact" << std::setw(17)
+    << "lambda1" << std::setw(17) << "lambda2" << std::setw(17) << "|mu|" << std::setw(17) << "lambda2^2/|mu|"
+    << std::setw(11) << "curvature"
+    << "spectral conditions\n";
+  for (std::size_t i = 0; i < matrices.size(); ++i) {
+    const sd::LocalSpectrum& sp = spectra[i];
+    std::string checks;
+    if (!sp.dominant_simple) checks += " lambda0=1-not-simple";
+    if (!sp.subdominant_pair) checks += " lambda1!=lambda2";
+    if (!sp.gap) checks += " no-gap";
+    s << std::setw(4) << matrices[i].valence << std::setw(6) << matrices[i].values.rows() << std::setw(7)
+      << (matrices[i].exact ? "yes" : "no") << std::setw(17) << real_text(sp.subdominant) << std::setw(17)
+      << real_text(sp.second) << std::setw(17) << real_text(std::abs(sp.mu)) << std::setw(17)
+      << (sp.curvature_ratio ? real_text(*sp.curvature_ratio) : "-") << std::setw(11) << sp.curvature
+      << (checks.empty() ? "ok" : checks.substr(1)) << "\n";
+  }
+  return s.str();
+}
+
+std::string analyze_mesh_scheme(sd::MeshScheme scheme, const SchemeOptions& o) {
+  const std::string name(sd::scheme_name(scheme));
+  if (!o.analyze || !o.refine.empty())
+    throw InvalidInput("scheme " + name +
+                       ": a mesh scheme takes --analyze with --valence N or --valences A..B " +
+                       "(to refine a mesh: cifs subdivide MESH --scheme " + name + ")");
+  if (!o.params.empty())
+    throw InvalidInput("scheme " + name + ": --param: the mesh schemes take no parameters");
+  if (o.valence.empty() == o.valences.empty())
+    throw InvalidInput("scheme " + name + ": give --valence N or --valences A..B (one of them)");
+  if (o.format != "json" && o.format != "table")
+    throw InvalidInput("--format '" + o.format + "': json or table for a mesh scheme's analysis");
+  const sd::LocalOptions local{
+      .boundary = !o.boundary.empty(),
+      .rule = o.boundary.empty() ? sd::BoundaryRule::edge_only : boundary_rule(o.boundary)};
+  const std::vector<int> valences = o.valence.empty()
+                                        ? parse_valences(o.valences, "--valences")
+                                        : std::vector<int>{integer_text(o.valence, "--valence", o.valence)};
+  std::vector<sd::LocalMatrix> matrices;
+  std::vector<sd::LocalSpectrum> spectra;
+  for (const int n : valences) {  // every valence checked before any output
+    matrices.push_back(sd::local_matrix(scheme, n, local));
+    spectra.push_back(sd::local_spectrum(matrices.back()));
+  }
+  if (o.format == "table") return local_table(matrices, spectra);
+  return io::local_analysis_json(matrices, spectra, !o.valences.empty());
+}
+
+// ------------------------------------------------------------------------------------------------
 // Gallery
 
 Points rows(std::initializer_list<std::pair<double, double>> xy) {
@@ -81,10 +187,16 @@ Stroke control(const Points& P, bool closed = true) {
 std::string scheme(const SchemeOptions& o) {
   if (o.list) return catalogue_text();
   if (o.name.empty()) throw InvalidInput("scheme: a scheme name is required (see cifs scheme --list)");
+  if (const auto mesh = mesh_scheme_named(o.name)) return analyze_mesh_scheme(*mesh, o);
   const bool refine = !o.refine.empty();
   if (o.analyze == refine)
     throw InvalidInput(o.analyze ? "scheme: --analyze and --refine are exclusive"
                                  : "scheme: choose --analyze or --refine POLYGON.json (or --list)");
+  if (!o.valence.empty() || !o.valences.empty() || !o.boundary.empty())
+    throw InvalidInput(
+        "scheme " + o.name +
+        ": --valence, --valences and --boundary are for the mesh schemes (catmull-clark, loop, "
+        "doo-sabin, butterfly, sqrt3)");
   const sd::Scheme s = sd::named_scheme(o.name, parse_params(o.params));
   if (o.analyze) {
     if (o.max_power < 1 || o.max_power > 26)

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// cifs CLI — `cifs scheme`: curve subdivision schemes (analysis, refinement, catalogue) and the
-// schemes' part of the gallery.
+// cifs CLI — `cifs scheme`: curve subdivision schemes (analysis, refinement, catalogue), the local
+// subdivision matrices of the mesh schemes at extraordinary vertices (analysis), and the schemes'
+// part of the gallery.
 #pragma once
 
 #include <filesystem>
@@ -16,9 +17,13 @@ struct SchemeOptions {
   std::filesystem::path refine;  // polygon file
   int steps = 1;
   std::string ends = "auto";    // auto | reflect | keep
-  std::string format = "json";  // refine: a writable format of io::formats(Content::polygon)
+  std::string format = "json";  // refine: a writable format of io::formats(Content::polygon);
+                                // mesh schemes' analysis: json or table
   bool list = false;
-  int max_power = 20;  // analysis: largest power L
+  int max_power = 20;    // analysis: largest power L
+  std::string valence;   // mesh schemes: "5"
+  std::string valences;  // mesh schemes: "3..16" or "3,5,8"
+  std::string boundary;  // mesh schemes: empty (interior vertex), or edge | corner (boundary vertex)
 };
 
 /// The text for stdout; InvalidInput / IoError on bad input.

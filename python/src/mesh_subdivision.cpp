@@ -1,14 +1,17 @@
 // SPDX-License-Identifier: MIT
 // cifs Python bindings — cifs.subdivision on polygon meshes: Catmull–Clark, Loop, Doo–Sabin,
 // modified Butterfly, √3; one-shot functions, the topology-only refinement replayed on any vertex
-// data, its weights and the stencil table.
+// data, its weights and the stencil table; local subdivision matrices and their spectra.
 #include <algorithm>
+#include <complex>
+#include <optional>
 #include <string>
 
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "cifs/errors.hpp"
 #include "cifs/subdivision/mesh.hpp"
+#include "cifs/subdivision/mesh_analysis.hpp"
 
 namespace cifs::python {
 namespace {
@@ -169,6 +172,56 @@ void bind_mesh_subdivision(py::module_& m) {
       py::arg("mesh"), py::arg("scheme"), py::arg("levels") = 1, py::kw_only(), py::arg("boundary") = "edge",
       py::arg("max_bytes") = kDefaultBytes,
       "The refinement's topology and weights only; MeshRefinement.apply replays it on vertex data.");
+  m.def(
+      "local_analysis",
+      [](const std::string& scheme, int valence, const std::optional<std::string>& boundary) {
+        const sd::LocalOptions o{
+            .boundary = boundary.has_value(),
+            .rule = boundary ? mesh_options(*boundary, kDefaultBytes).boundary : sd::BoundaryRule::edge_only};
+        const sd::LocalMatrix S = sd::local_matrix(sd::named_mesh_scheme(scheme), valence, o);
+        const sd::LocalSpectrum sp = sd::local_spectrum(S);
+        const auto complex_of = [](const std::complex<long double>& z) {
+          return std::complex<double>(static_cast<double>(z.real()), static_cast<double>(z.imag()));
+        };
+        py::dict out;
+        out["labels"] = S.labels;
+        out["steps"] = S.steps;
+        out["matrix"] = Points(S.values.cast<double>());
+        if (S.exact) {
+          const py::object fraction = py::module_::import("fractions").attr("Fraction");
+          py::list rows;
+          for (int i = 0; i < S.exact->rows; ++i) {
+            py::list row;
+            for (int j = 0; j < S.exact->cols; ++j) row.append(fraction(sd::to_string((*S.exact)(i, j))));
+            rows.append(row);
+          }
+          out["exact"] = rows;
+        } else {
+          out["exact"] = py::none();
+        }
+        py::list eigenvalues;
+        for (const auto& z : sp.eigenvalues) eigenvalues.append(complex_of(z));
+        out["eigenvalues"] = eigenvalues;
+        out["dominant_simple"] = sp.dominant_simple;
+        out["subdominant_pair"] = sp.subdominant_pair;
+        out["gap"] = sp.gap;
+        out["lambda1"] = static_cast<double>(sp.subdominant);
+        out["lambda2"] = static_cast<double>(sp.second);
+        out["mu"] = complex_of(sp.mu);
+        out["curvature_ratio"] = sp.curvature_ratio
+                                     ? py::object(py::float_(static_cast<double>(*sp.curvature_ratio)))
+                                     : py::none();
+        out["curvature"] = sp.curvature;
+        out["subdominant_basis"] = Points(sp.subdominant_basis.cast<double>());
+        out["limit_stencil"] = Eigen::VectorXd(sp.limit_stencil.cast<double>());
+        return out;
+      },
+      py::arg("scheme"), py::arg("valence"), py::kw_only(), py::arg("boundary") = py::none(),
+      "The local subdivision matrix S_n at a vertex of this valence (doo-sabin: an n-gon face; "
+      "boundary='edge'|'corner': a boundary vertex, catmull-clark and loop) and its spectrum, as a dict: "
+      "labels, steps, matrix, exact (Fractions or None), eigenvalues by modulus, dominant_simple, "
+      "subdominant_pair, gap, lambda1, lambda2, mu, curvature_ratio (lambda2^2/|mu|), curvature, "
+      "subdominant_basis, limit_stencil (docs/subdivision-surfaces.md).");
 }
 
 }  // namespace cifs::python

@@ -130,3 +130,62 @@ TEST_CASE("cifs scheme reports bad input on one line and exits 2", "[cli][subdiv
                        file("o.json", R"({"polygon": {"points": [[0,0],[1,0],[1,1]]}})")),
               "needs a symmetric mask");
 }
+
+TEST_CASE("cifs scheme MESH-SCHEME --valence N --analyze: local subdivision matrices",
+          "[cli][mesh_analysis]") {
+  const json cc = analyze("catmull-clark --valence 5");
+  CHECK(cc["scheme"] == "catmull-clark");
+  CHECK(cc["valence"] == 5);
+  CHECK(cc["vertex"] == "interior");
+  CHECK(cc["exact"] == true);
+  CHECK(cc["neighbourhood"].size() == 11);
+  CHECK(cc["matrix"][0][0] == "0.65");  // (n − 2)/n + n·(1/n²)(¼) at n = 5
+  CHECK(analyze("catmull-clark --valence 3")["matrix"][0][0] == "5/12");
+  CHECK(cc["spectrum"].size() == 11);
+  CHECK(cc["spectrum"][0] == json::array({1.0, 0.0}));
+  // (5 + cos(2π/5) + cos(π/5)√(2(9 + cos(2π/5))))/16
+  const double c = std::cos(2 * M_PI / 5);
+  const double lambda1 = (5 + c + std::cos(M_PI / 5) * std::sqrt(2 * (9 + c))) / 16;
+  CHECK(cc["subdominant"]["lambda1"].get<double>() == Approx(lambda1).epsilon(1e-15));
+  CHECK(cc["subdominant"]["equal_pair"] == true);
+  CHECK(cc["subdominant"]["eigenvectors"].size() == 2);
+  CHECK(cc["gap"] == true);
+  CHECK(cc["dominant_simple"] == true);
+  CHECK(cc["curvature"]["verdict"] == "unbounded");
+  CHECK(cc["limit_stencil"].size() == 11);
+
+  const json loop = analyze("loop --valence 7");
+  CHECK(loop["exact"] == false);
+  CHECK(loop["matrix"][0][0].is_number());
+  CHECK(analyze("sqrt3 --valence 4")["steps"] == 2);
+  const json boundary = analyze("loop --valence 4 --boundary edge");
+  CHECK(boundary["vertex"] == "boundary");
+  CHECK(boundary["boundary_rule"] == "edge");
+  CHECK(analyze("doo-sabin --valences 3,5")[1]["valence"] == 5);
+
+  const Run table = cifs_cli("scheme loop --valences 3..16 --analyze --format table");
+  REQUIRE(table.status == 0);
+  CHECK(std::count(table.out.begin(), table.out.end(), '\n') == 16);  // title, header, 14 valences
+  CHECK_THAT(table.out, Catch::Contains("\n6   7     yes    0.5              0.5              0.25"));
+}
+
+TEST_CASE("cifs scheme MESH-SCHEME: bad valences and options on one line, exit 2", "[cli][mesh_analysis]") {
+  check_error(cifs_cli("scheme loop --valence 2 --analyze"),
+              "loop: valence 2 is out of range; expected 3 to 16");
+  check_error(cifs_cli("scheme catmull-clark --valences 3..17 --analyze"), "valence 17 is out of range");
+  check_error(cifs_cli("scheme loop --valence five --analyze"), "--valence 'five': expected an integer");
+  check_error(cifs_cli("scheme loop --valences 9..3 --analyze"), "the range is empty");
+  check_error(cifs_cli("scheme loop --valences 3,,5 --analyze"), "--valences '3,,5'");
+  check_error(cifs_cli("scheme loop --analyze"), "give --valence N or --valences A..B");
+  check_error(cifs_cli("scheme loop --valence 3 --valences 3..5 --analyze"), "one of them");
+  check_error(cifs_cli("scheme loop --valence 5"), "a mesh scheme takes --analyze");
+  check_error(cifs_cli("scheme loop --valence 5 --analyze --refine x.json"), "cifs subdivide");
+  check_error(cifs_cli("scheme loop --valence 5 --analyze --format svg"), "--format 'svg'");
+  check_error(cifs_cli("scheme loop --valence 5 --analyze --param w=1"), "take no parameters");
+  check_error(cifs_cli("scheme butterfly --valence 5 --analyze --boundary edge"),
+              "boundary vertices are analysed for catmull-clark and loop only");
+  check_error(cifs_cli("scheme loop --valence 12 --analyze --boundary edge"),
+              "boundary valence 12 is out of range");
+  check_error(cifs_cli("scheme loop --valence 4 --analyze --boundary sideways"), "--boundary sideways");
+  check_error(cifs_cli("scheme chaikin --valence 5 --analyze"), "are for the mesh schemes");
+}

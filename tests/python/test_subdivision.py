@@ -531,3 +531,32 @@ class MeshSubdivisionTest(ScratchTestCase):
         with self.assertRaisesRegex(cifs.InvalidInput, "rows"):
             sd.refine_topology(cube, "catmull-clark").steps[0].apply(np.zeros((3, 3)))
         self.assertEqual(sd.mesh_schemes(), ["catmull-clark", "loop", "doo-sabin", "butterfly", "sqrt3"])
+
+
+class LocalAnalysisTest(unittest.TestCase):
+    def test_matches_the_cli_and_the_closed_forms(self):
+        import math
+        for n in (3, 5, 8):
+            a = sd.local_analysis("catmull-clark", n)
+            c = math.cos(2 * math.pi / n)
+            self.assertAlmostEqual(a["lambda1"], (5 + c + math.cos(math.pi / n) * math.sqrt(2 * (9 + c))) / 16, places=15)
+            cli_out = cli_json("scheme", "catmull-clark", "--valence", str(n), "--analyze")
+            self.assertEqual(a["labels"], cli_out["neighbourhood"])
+            self.assertEqual(a["curvature"], cli_out["curvature"]["verdict"])
+            self.assertEqual(a["exact"][0][0], Fraction(cli_out["matrix"][0][0]))
+        loop = sd.local_analysis("loop", 7)
+        self.assertIsNone(loop["exact"])
+        self.assertEqual(loop["matrix"].shape, (8, 8))
+        self.assertAlmostEqual(loop["lambda1"], 3 / 8 + math.cos(2 * math.pi / 7) / 4, places=15)
+        self.assertEqual(loop["subdominant_basis"].shape, (8, 2))
+        self.assertAlmostEqual(loop["limit_stencil"].sum(), 1.0, places=15)
+        self.assertEqual(sd.local_analysis("sqrt3", 4)["steps"], 2)
+        self.assertFalse(sd.local_analysis("loop", 7, boundary="edge")["gap"])
+
+    def test_errors(self):
+        with self.assertRaisesRegex(cifs.InvalidInput, "valence 2 is out of range"):
+            sd.local_analysis("loop", 2)
+        with self.assertRaisesRegex(cifs.InvalidInput, "catmull-clark and loop only"):
+            sd.local_analysis("butterfly", 5, boundary="edge")
+        with self.assertRaisesRegex(cifs.InvalidInput, "boundary 'sharp'"):
+            sd.local_analysis("loop", 4, boundary="sharp")

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // cifs — the JSON formats (docs/formats.md, docs/experiments.md, docs/cli.md): shapes, control
 // polygons, BC-IFS files, automata (read and written), experiment files (read), and the analysis
-// of a subdivision scheme (written).
+// of a subdivision scheme and of a mesh scheme's local matrices (written).
 //
 // Readers take the text and `where`, the name of its source in messages. Malformed JSON is an
 // IoError naming the byte; content problems are InvalidInput with the JSON path of the offending
@@ -19,6 +19,7 @@
 #include "cifs/io/polygon.hpp"
 #include "cifs/io/shape.hpp"
 #include "cifs/subdivision/analysis.hpp"
+#include "cifs/subdivision/mesh_analysis.hpp"
 
 namespace cifs::io {
 
@@ -59,5 +60,11 @@ automata::Automaton parse_automaton_json(std::string_view text, std::string_view
 
 /// The analysis of a scheme (`cifs scheme NAME --analyze`, docs/cli.md), indented by 2.
 std::string analysis_json(const subdivision::Scheme& scheme, const subdivision::SchemeAnalysis& analysis);
+
+/// Local subdivision matrices and their spectra (`cifs scheme MESH-SCHEME --analyze`, docs/cli.md),
+/// indented by 2: the first as one object, or all of them as an array when `as_array`. Exact
+/// matrices are written as strings ("3/16"), others and every spectrum as numbers.
+std::string local_analysis_json(std::span<const subdivision::LocalMatrix> matrices,
+                                std::span<const subdivision::LocalSpectrum> spectra, bool as_array);
 
 }  // namespace cifs::io

@@ -1,0 +1,75 @@
+// SPDX-License-Identifier: MIT
+// cifs — local subdivision matrices of mesh schemes and their spectra as JSON
+// (`cifs scheme MESH-SCHEME --valence N --analyze`, docs/cli.md).
+#include <nlohmann/json.hpp>
+
+#include "cifs/io/json.hpp"
+
+namespace cifs::io {
+
+using nlohmann::json;
+using subdivision::LocalMatrix;
+using subdivision::LocalSpectrum;
+
+namespace {
+
+json complex_json(const std::complex<long double>& z) {
+  return json::array({static_cast<double>(z.real()), static_cast<double>(z.imag())});
+}
+
+json vector_json(const subdivision::LongVector& v) {
+  json out = json::array();
+  for (Eigen::Index i = 0; i < v.size(); ++i) out.push_back(static_cast<double>(v(i)));
+  return out;
+}
+
+json local_json(const LocalMatrix& m, const LocalSpectrum& s) {
+  json j;
+  j["scheme"] = std::string(subdivision::scheme_name(m.scheme));
+  j["valence"] = m.valence;
+  j["vertex"] = m.options.boundary ? "boundary" : "interior";
+  if (m.options.boundary)
+    j["boundary_rule"] = m.options.rule == subdivision::BoundaryRule::edge_only ? "edge" : "corner";
+  j["steps"] = m.steps;
+  j["neighbourhood"] = m.labels;
+  j["exact"] = m.exact.has_value();
+  json rows = json::array();
+  for (Eigen::Index i = 0; i < m.values.rows(); ++i) {
+    json row = json::array();
+    for (Eigen::Index k = 0; k < m.values.cols(); ++k)
+      if (m.exact)
+        row.push_back(subdivision::to_string((*m.exact)(static_cast<int>(i), static_cast<int>(k))));
+      else
+        row.push_back(static_cast<double>(m.values(i, k)));
+    rows.push_back(row);
+  }
+  j["matrix"] = rows;
+  json spectrum = json::array();
+  for (const auto& z : s.eigenvalues) spectrum.push_back(complex_json(z));
+  j["spectrum"] = spectrum;
+  j["dominant_simple"] = s.dominant_simple;
+  j["subdominant"] = {{"lambda1", static_cast<double>(s.subdominant)},
+                      {"lambda2", static_cast<double>(s.second)},
+                      {"equal_pair", s.subdominant_pair},
+                      {"eigenvectors", json::array({vector_json(s.subdominant_basis.col(0)),
+                                                    vector_json(s.subdominant_basis.col(1))})}};
+  j["gap"] = s.gap;
+  j["mu"] = complex_json(s.mu);
+  j["curvature"] = {
+      {"ratio", s.curvature_ratio ? json(static_cast<double>(*s.curvature_ratio)) : json(nullptr)},
+      {"verdict", s.curvature}};
+  j["limit_stencil"] = vector_json(s.limit_stencil);
+  j["residual"] = static_cast<double>(s.residual);
+  return j;
+}
+
+}  // namespace
+
+std::string local_analysis_json(std::span<const LocalMatrix> matrices, std::span<const LocalSpectrum> spectra,
+                                bool as_array) {
+  json out = json::array();
+  for (std::size_t i = 0; i < matrices.size(); ++i) out.push_back(local_json(matrices[i], spectra[i]));
+  return (as_array ? out : out.at(0)).dump(2) + "\n";
+}
+
+}  // namespace cifs::io

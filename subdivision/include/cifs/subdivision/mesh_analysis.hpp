@@ -1,0 +1,120 @@
+// SPDX-License-Identifier: MIT
+// cifs — the local subdivision matrix S_n of a mesh scheme around an extraordinary vertex (seed 003
+// §1) and its spectrum: what decides the tangent plane and the curvature of the limit surface there
+// (docs/subdivision-surfaces.md, "Spectra at extraordinary vertices").
+//
+// The invariant neighbourhood and its numbering, sector j = 0 … n − 1 counter-clockwise from r_0
+// (c the vertex, r_j its neighbours, face j between r_j and r_{j+1}):
+// - Catmull–Clark: c, then r_j, f_j per sector (f_j the corner of quad j opposite c): 2n + 1; on
+//   the boundary c, r_0, f_0, …, f_{n−2}, r_{n−1} (n edges, n − 1 quads): 2n.
+// - Loop: c, r_0 … r_{n−1}: n + 1, on the boundary too.
+// - Modified Butterfly (two rings): c, then r_j, p_j, q_j per sector, p_j the vertex beyond r_j
+//   (opposite c in r_j's ring), q_j the corner across the edge r_j r_{j+1}: 3n + 1.
+// - √3, two steps (one step rotates the ring by half a sector): c, r_0 … r_{n−1}: n + 1. After
+//   one step the ring is the face centroids; after two, the centroid of the level-1 triangle
+//   (c¹, m_{j−1}, m_j) lies in the direction of r_j and takes its number.
+// - Doo–Sabin, around a k-gon face (valence k): per corner g_i of the face, g_i, a_i, b_i, c_i:
+//   a_i, b_i the outer corners of the quad across the edge g_i g_{i+1} (a_i next to g_i), c_i the
+//   corner opposite g_i of the quad at g_i outside the two edge quads: 4k.
+// Every vertex other than the extraordinary one is regular (valence 4 for quads, 6 for triangles).
+#pragma once
+
+#include <Eigen/Dense>
+#include <complex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cifs/mesh.hpp"
+#include "cifs/subdivision/mesh.hpp"
+#include "cifs/subdivision/scheme.hpp"
+
+namespace cifs::subdivision {
+
+using LongMatrix = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
+using LongVector = Eigen::Matrix<long double, Eigen::Dynamic, 1>;
+
+/// A dense exact matrix, row-major.
+struct RationalMatrix {
+  int rows = 0;
+  int cols = 0;
+  std::vector<Rational> entries;
+  const Rational& operator()(int i, int j) const {
+    return entries[static_cast<std::size_t>(i) * static_cast<std::size_t>(cols) +
+                   static_cast<std::size_t>(j)];
+  }
+};
+
+/// Where the extraordinary vertex is. Boundary vertices (valence = number of edges, 2 … 8) are
+/// analysed for Catmull–Clark and Loop only, with `rule` at valence 2 (one face).
+struct LocalOptions {
+  bool boundary = false;
+  BoundaryRule rule = BoundaryRule::edge_only;
+};
+
+/// Valences analysed: interior 3 … 16 (Doo–Sabin: the face's corners), boundary 2 … 8.
+inline constexpr int kMinValence = 3;
+inline constexpr int kMaxValence = 16;
+inline constexpr int kMinBoundaryValence = 2;
+inline constexpr int kMaxBoundaryValence = 8;
+
+/// S_n: new neighbourhood = S_n · old neighbourhood, in the numbering above. Rows sum to 1.
+struct LocalMatrix {
+  MeshScheme scheme = MeshScheme::catmull_clark;
+  int valence = 0;
+  LocalOptions options;
+  int steps = 1;                    // subdivision steps S_n spans: 2 for √3, else 1
+  std::vector<std::string> labels;  // "c", "r0", "f0", …: the numbering
+  /// The exact matrix when every weight is rational: always for Catmull–Clark; Loop, √3 and
+  /// Doo–Sabin when cos(2π/n) is rational (n = 3, 4, 6); Butterfly at n = 3, 4, 6.
+  std::optional<RationalMatrix> exact;
+  /// The same in long double (the exact one rounded; otherwise computed with long double cosines,
+  /// every entry within 1e-18 of its true value).
+  LongMatrix values;
+};
+
+/// Route (a): S_n written from the scheme's rules in the numbering above. Throws InvalidInput for a
+/// valence out of range or a boundary vertex under Doo–Sabin, Butterfly or √3.
+LocalMatrix local_matrix(MeshScheme scheme, int valence, const LocalOptions& options = {});
+
+/// The local mesh route (b) refines: the extraordinary vertex (Doo–Sabin: face) of the valence
+/// with `rings` rings of regular faces around it, vertex (face) 0 at the centre; planar positions.
+Mesh local_mesh(MeshScheme scheme, int valence, const LocalOptions& options = {}, int rings = 3);
+
+/// Route (b): S_n read off the general refinement (`refine_topology`, √3 two levels through
+/// `stencil_table`) of `local_mesh`: the neighbourhood found from the topology on both levels, the
+/// child vertex matched to the old one it weighs most (the centre, then r_0 or g_0), its rows taken
+/// as they are. `exact` is empty; `values` are the refinement's doubles. Throws std::logic_error
+/// if the child neighbourhood's weights reach outside the old one (it would not be invariant).
+LocalMatrix refined_local_matrix(MeshScheme scheme, int valence, const LocalOptions& options = {});
+
+/// The spectrum and what it says. Eigenvalues in long double (Eigen's real Schur form); an
+/// equality below is decided to `tolerance`.
+///
+/// μ is λ3, the eigenvalue of largest modulus after λ0 = 1 and the subdominant pair λ1 ≥ λ2 (0
+/// when S_n has three eigenvalues). The limit surface near the vertex scales like λ2^k across and
+/// μ^k out of its tangent plane, so its curvature goes like (|μ|/λ2²)^k: the ratio λ2²/|μ| (=
+/// λ1²/|μ| at an interior vertex, where λ1 = λ2) is 1 for bounded curvature, > 1 when it tends to
+/// 0 at the vertex (a flat spot) and < 1 when it grows without bound (for generic data, whose
+/// component along μ's eigenvectors is not zero).
+struct LocalSpectrum {
+  /// By modulus, largest first; equal moduli: larger real part first, then larger imaginary part.
+  std::vector<std::complex<long double>> eigenvalues;
+  bool dominant_simple = false;                // λ0 = 1 and |λ1| < 1
+  bool subdominant_pair = false;               // λ1 = λ2 real and positive (at a boundary vertex: rarely)
+  bool gap = false;                            // |λ3| < λ2, λ1 and λ2 real and positive
+  long double subdominant = 0;                 // λ1 (real part)
+  long double second = 0;                      // λ2 (real part)
+  std::complex<long double> mu{0};             // λ3
+  std::optional<long double> curvature_ratio;  // λ2²/|μ|; absent when μ = 0
+  std::string curvature;                       // "bounded", "zero" (also when μ = 0), "unbounded"
+  /// N by 2, orthonormal columns: ker(S − λ1 I) when λ1 = λ2, else an eigenvector of λ1 and one of λ2.
+  LongMatrix subdominant_basis;
+  LongVector limit_stencil;  // left eigenvector of 1, summing to 1: the limit position's weights
+  long double residual = 0;  // max |S x − λ x| over the basis, |yᵀS − yᵀ| over the stencil
+  long double tolerance = 1e-12L;
+};
+
+LocalSpectrum local_spectrum(const LocalMatrix& matrix);
+
+}  // namespace cifs::subdivision

@@ -1,0 +1,672 @@
+// SPDX-License-Identifier: MIT
+// cifs — local subdivision matrices at extraordinary vertices and their spectra
+// (cifs/subdivision/mesh_analysis.hpp; docs/subdivision-surfaces.md).
+#include "cifs/subdivision/mesh_analysis.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <numeric>
+#include <stdexcept>
+#include <tuple>
+
+#include "cifs/errors.hpp"
+#include "cifs/topology.hpp"
+
+namespace cifs::subdivision {
+namespace {
+
+constexpr long double kPi = std::numbers::pi_v<long double>;
+
+void check_valence(MeshScheme scheme, int valence, const LocalOptions& o) {
+  const std::string who(scheme_name(scheme));
+  if (o.boundary) {
+    if (scheme != MeshScheme::catmull_clark && scheme != MeshScheme::loop)
+      throw InvalidInput(who + ": boundary vertices are analysed for catmull-clark and loop only");
+    if (valence < kMinBoundaryValence || valence > kMaxBoundaryValence)
+      throw InvalidInput(who + ": boundary valence " + std::to_string(valence) +
+                         " is out of range; expected " + std::to_string(kMinBoundaryValence) + " to " +
+                         std::to_string(kMaxBoundaryValence));
+    return;
+  }
+  if (valence < kMinValence || valence > kMaxValence)
+    throw InvalidInput(who + ": valence " + std::to_string(valence) + " is out of range; expected " +
+                       std::to_string(kMinValence) + " to " + std::to_string(kMaxValence));
+}
+
+// ------------------------------------------------------------------------------------------------
+// Route (a): the rules, in any scalar type that holds the weights.
+
+/// cos(2πm/n) as a rational when it is one (Niven: the reduced denominator of m/n is 1, 2, 3, 4
+/// or 6), otherwise nothing.
+std::optional<Rational> exact_cos(int m, int n) {
+  int p = ((m % n) + n) % n, q = n;
+  const int g = std::gcd(p, q);
+  p /= g;
+  q /= g;
+  switch (q) {
+    case 1:
+      return Rational(1);
+    case 2:
+      return Rational(-1);
+    case 3:
+      return Rational(-1, 2);
+    case 4:
+      return Rational(0);
+    case 6:
+      return Rational(1, 2);
+    default:
+      return std::nullopt;
+  }
+}
+
+long double long_cos(int m, int n) {
+  return std::cos(2 * kPi * static_cast<long double>(m) / static_cast<long double>(n));
+}
+
+template <class T>
+struct Dense {
+  int n = 0;
+  std::vector<T> a;
+  explicit Dense(int size) : n(size), a(static_cast<std::size_t>(size * size), T(0)) {}
+  T& operator()(int i, int j) {
+    return a[static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(j)];
+  }
+  const T& operator()(int i, int j) const {
+    return a[static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(j)];
+  }
+};
+
+template <class T>
+Dense<T> product(const Dense<T>& A, const Dense<T>& B) {
+  Dense<T> C(A.n);
+  for (int i = 0; i < A.n; ++i)
+    for (int k = 0; k < A.n; ++k) {
+      if (A(i, k) == 0) continue;
+      for (int j = 0; j < A.n; ++j) C(i, j) += A(i, k) * B(k, j);
+    }
+  return C;
+}
+
+int wrap(int j, int n) {
+  return ((j % n) + n) % n;
+}
+
+/// The rules of each scheme on its neighbourhood; `cos_of(m, n)` gives cos(2πm/n) in T.
+template <class T, class Cos>
+Dense<T> rules(MeshScheme scheme, int n, const LocalOptions& o, Cos cos_of) {
+  const T one(1), half = one / 2, quarter = one / 4, eighth = one / 8, sixteenth = one / 16;
+  const T nn(n);
+  switch (scheme) {
+    case MeshScheme::catmull_clark: {
+      const int N = o.boundary ? 2 * n : 2 * n + 1;
+      const int faces = o.boundary ? n - 1 : n;
+      Dense<T> S(N);
+      const auto r = [&](int j) { return 1 + 2 * (o.boundary ? j : wrap(j, n)); };
+      const auto f = [&](int j) { return 2 + 2 * (o.boundary ? j : wrap(j, n)); };
+      // Face point of quad j = (c + r_j + f_j + r_{j+1})/4, added with weight w to row i.
+      const auto face_point = [&](int i, int j, const T& w) {
+        for (const int v : {0, r(j), f(j), r(j + 1)}) S(i, v) += w / 4;
+      };
+      if (o.boundary && n == 2 && o.rule == BoundaryRule::edge_and_corner) {
+        S(0, 0) = one;
+      } else if (o.boundary) {  // (1, 6, 1)/8 along the boundary
+        S(0, 0) = 3 * quarter;
+        S(0, r(0)) += eighth;
+        S(0, r(n - 1)) += eighth;
+      } else {  // (n − 2)/n on c, 1/n² on each neighbour and each face point
+        S(0, 0) = (nn - 2) / nn;
+        for (int j = 0; j < n; ++j) {
+          S(0, r(j)) += one / (nn * nn);
+          face_point(0, j, one / (nn * nn));
+        }
+      }
+      for (int j = 0; j < n; ++j) {
+        if (o.boundary && (j == 0 || j == n - 1)) {  // boundary edge: its midpoint
+          S(r(j), 0) += half;
+          S(r(j), r(j)) += half;
+          continue;
+        }
+        S(r(j), 0) += quarter;
+        S(r(j), r(j)) += quarter;
+        face_point(r(j), j - 1, quarter);
+        face_point(r(j), j, quarter);
+      }
+      for (int j = 0; j < faces; ++j) face_point(f(j), j, one);
+      return S;
+    }
+    case MeshScheme::loop: {
+      Dense<T> S(n + 1);
+      const auto r = [&](int j) { return 1 + (o.boundary ? j : wrap(j, n)); };
+      if (o.boundary && n == 2 && o.rule == BoundaryRule::edge_and_corner) {
+        S(0, 0) = one;
+      } else if (o.boundary) {
+        S(0, 0) = 3 * quarter;
+        S(0, r(0)) += eighth;
+        S(0, r(n - 1)) += eighth;
+      } else {  // β = (5/8 − (3/8 + ¼cos(2π/n))²)/n
+        const T a = 3 * eighth + quarter * cos_of(1, n);
+        const T beta = (5 * eighth - a * a) / nn;
+        S(0, 0) = one - nn * beta;
+        for (int j = 0; j < n; ++j) S(0, r(j)) += beta;
+      }
+      for (int j = 0; j < n; ++j) {
+        if (o.boundary && (j == 0 || j == n - 1)) {
+          S(r(j), 0) += half;
+          S(r(j), r(j)) += half;
+          continue;
+        }
+        S(r(j), 0) += 3 * eighth;
+        S(r(j), r(j)) += 3 * eighth;
+        S(r(j), r(j - 1)) += eighth;
+        S(r(j), r(j + 1)) += eighth;
+      }
+      return S;
+    }
+    case MeshScheme::butterfly: {
+      Dense<T> S(3 * n + 1);
+      const auto r = [&](int j) { return 1 + 3 * wrap(j, n); };
+      const auto p = [&](int j) { return 2 + 3 * wrap(j, n); };
+      const auto q = [&](int j) { return 3 + 3 * wrap(j, n); };
+      S(0, 0) = one;  // interpolating: old vertices stay (c, and r_j becomes p_j)
+      for (int j = 0; j < n; ++j) {
+        S(p(j), r(j)) = one;
+        // Edge c r_j: ZSS's stencil of the extraordinary end, or the 10-point one at n = 6.
+        if (n == 6) {
+          S(r(j), 0) += half;
+          S(r(j), r(j)) += half;
+          S(r(j), r(j - 1)) += eighth;
+          S(r(j), r(j + 1)) += eighth;
+          for (const int w : {r(j - 2), r(j + 2), q(j), q(j - 1)}) S(r(j), w) -= sixteenth;
+        } else {
+          S(r(j), 0) += 3 * quarter;
+          for (int m = 0; m < n; ++m) {
+            T s(0);
+            if (n == 3)
+              s = m == 0 ? T(5) / 12 : T(-1) / 12;
+            else if (n == 4)
+              s = m == 0 ? 3 * eighth : (m == 2 ? -eighth : T(0));
+            else
+              s = (quarter + cos_of(m, n) + half * cos_of(2 * m, n)) / nn;
+            S(r(j), r(j + m)) += s;
+          }
+        }
+        // Edge r_j r_{j+1}: both ends regular, the 10-point stencil (opposite corners c and q_j;
+        // wings r_{j−1}, r_{j+2}, p_j, p_{j+1}).
+        S(q(j), r(j)) += half;
+        S(q(j), r(j + 1)) += half;
+        S(q(j), 0) += eighth;
+        S(q(j), q(j)) += eighth;
+        for (const int w : {r(j - 1), r(j + 2), p(j), p(j + 1)}) S(q(j), w) -= sixteenth;
+      }
+      return S;
+    }
+    case MeshScheme::sqrt3: {
+      // One step: c¹ = (1 − α)c + (α/n)Σ r_j, α = (4 − 2cos(2π/n))/9, and a ring point per face,
+      // the centroid (c + r_j + r_{j+1})/3 (first step) — on the second step numbered so that
+      // (c¹ + m_{j−1} + m_j)/3 is ring point j.
+      const T alpha = (4 - 2 * cos_of(1, n)) / 9;
+      const auto one_step = [&](int shift) {
+        Dense<T> A(n + 1);
+        A(0, 0) = one - alpha;
+        for (int j = 0; j < n; ++j) {
+          A(0, 1 + j) += alpha / nn;
+          A(1 + j, 0) += one / 3;
+          A(1 + j, 1 + wrap(j + shift, n)) += one / 3;
+          A(1 + j, 1 + wrap(j + shift + 1, n)) += one / 3;
+        }
+        return A;
+      };
+      return product(one_step(-1), one_step(0));
+    }
+    case MeshScheme::doo_sabin: {
+      const int k = n;
+      Dense<T> S(4 * k);
+      const auto g = [&](int i) { return 4 * wrap(i, k); };
+      const auto a = [&](int i) { return 4 * wrap(i, k) + 1; };
+      const auto b = [&](int i) { return 4 * wrap(i, k) + 2; };
+      const auto cq = [&](int i) { return 4 * wrap(i, k) + 3; };
+      // Corner point of a face with corners v_0 … v_{m−1} at corner i: Σ_j α_{j−i} v_j,
+      // α_0 = ¼ + 5/(4m), α_d = (3 + 2cos(2πd/m))/(4m).
+      const auto corner_point = [&](int row, const std::vector<int>& corners, int i) {
+        const int m = static_cast<int>(corners.size());
+        for (int d = 0; d < m; ++d)
+          S(row, corners[static_cast<std::size_t>(wrap(i + d, m))]) +=
+              (d == 0 ? quarter : T(0)) + (3 + 2 * cos_of(d, m)) / (4 * T(m));
+      };
+      std::vector<int> gon(static_cast<std::size_t>(k));
+      for (int i = 0; i < k; ++i) gon[static_cast<std::size_t>(i)] = g(i);
+      for (int i = 0; i < k; ++i) {
+        corner_point(g(i), gon, i);
+        corner_point(a(i), {g(i + 1), g(i), a(i), b(i)}, 1);    // edge quad i at g_i
+        corner_point(b(i), {g(i + 1), g(i), a(i), b(i)}, 0);    // edge quad i at g_{i+1}
+        corner_point(cq(i), {g(i), b(i - 1), cq(i), a(i)}, 0);  // corner quad at g_i
+      }
+      return S;
+    }
+  }
+  return Dense<T>(0);
+}
+
+/// The rules in exact rationals, or nothing when a cosine they need is irrational.
+std::optional<Dense<Rational>> exact_rules(MeshScheme scheme, int n, const LocalOptions& o) {
+  bool rational = true;
+  const auto cosine = [&](int m, int k) {
+    const std::optional<Rational> c = exact_cos(m, k);
+    if (!c) rational = false;
+    return c.value_or(Rational(0));
+  };
+  Dense<Rational> S = rules<Rational>(scheme, n, o, cosine);
+  if (!rational) return std::nullopt;
+  return S;
+}
+
+std::vector<std::string> labels(MeshScheme scheme, int n, const LocalOptions& o) {
+  std::vector<std::string> out;
+  const auto add = [&](const char* name, int j) { out.push_back(name + std::to_string(j)); };
+  if (scheme == MeshScheme::doo_sabin) {
+    for (int i = 0; i < n; ++i) {
+      add("g", i);
+      add("a", i);
+      add("b", i);
+      add("c", i);
+    }
+    return out;
+  }
+  out.emplace_back("c");
+  for (int j = 0; j < n; ++j) {
+    add("r", j);
+    if (scheme == MeshScheme::catmull_clark && (!o.boundary || j < n - 1)) add("f", j);
+    if (scheme == MeshScheme::butterfly) {
+      add("p", j);
+      add("q", j);
+    }
+  }
+  return out;
+}
+
+LocalMatrix empty_matrix(MeshScheme scheme, int valence, const LocalOptions& o) {
+  return LocalMatrix{.scheme = scheme,
+                     .valence = valence,
+                     .options = o,
+                     .steps = scheme == MeshScheme::sqrt3 ? 2 : 1,
+                     .labels = labels(scheme, valence, o),
+                     .exact = std::nullopt,
+                     .values = {}};
+}
+
+// ------------------------------------------------------------------------------------------------
+// Route (b): the general refinement of a local mesh.
+
+/// Vertex ids of a lattice wedge layout: sector s holds the points (i, j) with i ≥ 1 (its ray j = 0
+/// included), point (0, j) of sector s is point (j, 0) of sector s + 1, (0, 0) the centre.
+class WedgeVertices {
+ public:
+  WedgeVertices(int sectors, bool closed, int n) : sectors_(sectors), closed_(closed), n_(n) {}
+  int id(int s, int i, int j, Points& positions) {
+    if (i == 0 && j == 0) return at({0, 0, 0}, 0, 0, 0, positions);
+    if (i == 0) return id(s + 1, j, 0, positions);
+    const int key_s = closed_ ? wrap(s, sectors_) : s;
+    return at({key_s, i, j}, key_s, i, j, positions);
+  }
+
+ private:
+  int at(const std::array<int, 3>& key, int s, int i, int j, Points& positions) {
+    const auto [it, added] = index_.try_emplace(key, static_cast<int>(index_.size()));
+    if (added) {
+      // Planar positions (any will do: the weights depend on the topology only).
+      const long double step = closed_ ? 2 * kPi / n_ : kPi / n_;
+      const auto dir = [&](int t) {
+        return Eigen::RowVector3d(static_cast<double>(std::cos(step * t)),
+                                  static_cast<double>(std::sin(step * t)), 0.0);
+      };
+      positions.conservativeResize(it->second + 1, 3);
+      positions.row(it->second) = i * dir(s) + j * dir(s + 1);
+    }
+    return it->second;
+  }
+  int sectors_;
+  bool closed_;
+  int n_;
+  std::map<std::array<int, 3>, int> index_;
+};
+
+Mesh primal_local_mesh(bool quads, int n, bool boundary, int rings) {
+  const int sectors = boundary ? n - 1 : n;
+  WedgeVertices ids(sectors, !boundary, n);
+  Mesh m;
+  m.vertices.resize(0, 3);
+  ids.id(0, 0, 0, m.vertices);  // the centre is vertex 0
+  ids.id(0, 1, 0, m.vertices);  // r_0 is vertex 1
+  for (int s = 0; s < sectors; ++s)
+    for (int i = 0; i < rings; ++i)
+      for (int j = 0; j < rings; ++j) {
+        const auto v = [&](int a, int b) { return ids.id(s, a, b, m.vertices); };
+        if (quads) {
+          add_face(m, {v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)});
+          continue;
+        }
+        if (i + j + 1 <= rings) add_face(m, {v(i, j), v(i + 1, j), v(i, j + 1)});
+        if (i + j + 2 <= rings) add_face(m, {v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)});
+      }
+  return m;
+}
+
+/// The dual of a closed-around-the-centre quad mesh: a face per interior vertex (its faces in
+/// counter-clockwise order), a vertex per face (its centroid); the centre vertex 0 becomes face 0.
+Mesh dual_mesh(const Mesh& primal) {
+  const MeshTopology t = build_topology(primal, "local mesh");
+  Mesh m;
+  m.vertices.resize(static_cast<Eigen::Index>(face_count(t)), 3);
+  for (std::size_t f = 0; f < face_count(t); ++f) {
+    m.vertices.row(static_cast<Eigen::Index>(f)).setZero();
+    for (const int c : face(t, f)) m.vertices.row(static_cast<Eigen::Index>(f)) += primal.vertices.row(c) / 4;
+  }
+  for (int v = 0; v < t.vertex_count; ++v) {
+    if (t.boundary_vertex[static_cast<std::size_t>(v)]) continue;
+    const auto faces = vertex_faces(t, static_cast<std::size_t>(v));
+    add_face(m, faces);
+  }
+  return m;
+}
+
+int edge_between(const MeshTopology& t, int a, int b) {
+  for (const int e : vertex_edges(t, static_cast<std::size_t>(a)))
+    if (other_vertex(t, static_cast<std::size_t>(e), a) == b) return e;
+  throw std::logic_error("local mesh: no edge between two neighbourhood vertices");
+}
+
+int corner_index(const MeshTopology& t, int f, int v) {
+  const auto corners = face(t, static_cast<std::size_t>(f));
+  const auto it = std::find(corners.begin(), corners.end(), v);
+  if (it == corners.end()) throw std::logic_error("local mesh: vertex not on the face");
+  return static_cast<int>(it - corners.begin());
+}
+
+int corner(const MeshTopology& t, int f, int i) {
+  const auto corners = face(t, static_cast<std::size_t>(f));
+  return corners[static_cast<std::size_t>(wrap(i, static_cast<int>(corners.size())))];
+}
+
+int face_across(const MeshTopology& t, int e, int f) {
+  const auto [f0, f1] = t.edge_faces[static_cast<std::size_t>(e)];
+  return f0 == f ? f1 : f0;
+}
+
+/// The neighbourhood of vertex `centre` (Doo–Sabin: face) in the header's numbering, sector 0 at
+/// `start` (a neighbour; Doo–Sabin: a corner; ignored on the boundary, where edge 0 starts).
+std::vector<int> neighbourhood(const MeshTopology& t, MeshScheme scheme, int centre, int start,
+                               bool boundary) {
+  if (scheme == MeshScheme::doo_sabin) {
+    const int k = static_cast<int>(face(t, static_cast<std::size_t>(centre)).size());
+    const int s = corner_index(t, centre, start);
+    std::vector<int> g(static_cast<std::size_t>(k)), edge_quad(static_cast<std::size_t>(k));
+    for (int i = 0; i < k; ++i) g[static_cast<std::size_t>(i)] = corner(t, centre, s + i);
+    for (int i = 0; i < k; ++i)
+      edge_quad[static_cast<std::size_t>(i)] = face_across(
+          t, edge_between(t, g[static_cast<std::size_t>(i)], g[static_cast<std::size_t>((i + 1) % k)]),
+          centre);
+    std::vector<int> out;
+    for (int i = 0; i < k; ++i) {
+      const int gi = g[static_cast<std::size_t>(i)], quad = edge_quad[static_cast<std::size_t>(i)];
+      const int previous = edge_quad[static_cast<std::size_t>((i + k - 1) % k)];
+      int corner_quad = -1;
+      for (const int f : vertex_faces(t, static_cast<std::size_t>(gi)))
+        if (f != centre && f != quad && f != previous) corner_quad = f;
+      const int ci = corner_index(t, quad, gi);
+      out.insert(out.end(), {gi, corner(t, quad, ci + 1), corner(t, quad, ci + 2),
+                             corner(t, corner_quad, corner_index(t, corner_quad, gi) + 2)});
+    }
+    return out;
+  }
+  const auto ring = vertex_edges(t, static_cast<std::size_t>(centre));
+  const auto faces = vertex_faces(t, static_cast<std::size_t>(centre));
+  const auto corners = corner_in_face(t, static_cast<std::size_t>(centre));
+  const int n = static_cast<int>(ring.size()), F = static_cast<int>(faces.size());
+  int s = 0;
+  if (!boundary)
+    while (s < n &&
+           other_vertex(t, static_cast<std::size_t>(ring[static_cast<std::size_t>(s)]), centre) != start)
+      ++s;
+  const auto r = [&](int j) {
+    return other_vertex(t, static_cast<std::size_t>(ring[static_cast<std::size_t>(wrap(s + j, n))]), centre);
+  };
+  const auto face_j = [&](int j) { return faces[static_cast<std::size_t>(wrap(s + j, F))]; };
+  std::vector<int> out{centre};
+  for (int j = 0; j < n; ++j) {
+    out.push_back(r(j));
+    if (scheme == MeshScheme::catmull_clark && j < F)
+      out.push_back(corner(t, face_j(j), corners[static_cast<std::size_t>(wrap(s + j, F))] + 2));
+    if (scheme == MeshScheme::butterfly) {
+      const int rj = r(j);
+      const auto rj_ring = vertex_edges(t, static_cast<std::size_t>(rj));
+      const int to_centre = edge_between(t, rj, centre);
+      const auto at = std::find(rj_ring.begin(), rj_ring.end(), to_centre) - rj_ring.begin();
+      if (rj_ring.size() != 6 || t.boundary_vertex[static_cast<std::size_t>(rj)])
+        throw std::logic_error("local mesh: a ring vertex is not regular");
+      out.push_back(
+          other_vertex(t, static_cast<std::size_t>(rj_ring[static_cast<std::size_t>((at + 3) % 6)]), rj));
+      const int across = face_across(t, edge_between(t, rj, r(j + 1)), face_j(j));
+      out.push_back(corner(t, across, corner_index(t, across, rj) + 1));
+    }
+  }
+  return out;
+}
+
+/// Weight of `column` in row `row` of the stencils.
+double weight(const Stencils& s, int row, int column) {
+  double w = 0;
+  for (int k = s.offsets[static_cast<std::size_t>(row)]; k < s.offsets[static_cast<std::size_t>(row) + 1];
+       ++k)
+    if (s.columns[static_cast<std::size_t>(k)] == column) w += s.weights[static_cast<std::size_t>(k)];
+  return w;
+}
+
+/// The candidate weighing most on `column` (ties: the first).
+int heaviest(const Stencils& s, const std::vector<int>& candidates, int column) {
+  int best = -1;
+  double best_weight = -1;
+  for (const int c : candidates) {
+    const double w = weight(s, c, column);
+    if (w > best_weight) {
+      best_weight = w;
+      best = c;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+LocalMatrix local_matrix(MeshScheme scheme, int valence, const LocalOptions& options) {
+  check_valence(scheme, valence, options);
+  LocalMatrix out = empty_matrix(scheme, valence, options);
+  if (const auto exact = exact_rules(scheme, valence, options)) {
+    out.exact = RationalMatrix{.rows = exact->n, .cols = exact->n, .entries = exact->a};
+    out.values.resize(exact->n, exact->n);
+    for (int i = 0; i < exact->n; ++i)
+      for (int j = 0; j < exact->n; ++j) out.values(i, j) = (*exact)(i, j).convert_to<long double>();
+    return out;
+  }
+  const Dense<long double> S = rules<long double>(scheme, valence, options, long_cos);
+  out.values = Eigen::Map<const Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+      S.a.data(), S.n, S.n);
+  return out;
+}
+
+Mesh local_mesh(MeshScheme scheme, int valence, const LocalOptions& options, int rings) {
+  check_valence(scheme, valence, options);
+  switch (scheme) {
+    case MeshScheme::catmull_clark:
+      return primal_local_mesh(true, valence, options.boundary, rings);
+    case MeshScheme::doo_sabin:
+      return dual_mesh(primal_local_mesh(true, valence, false, rings + 1));
+    default:
+      return primal_local_mesh(false, valence, options.boundary, rings);
+  }
+}
+
+LocalMatrix refined_local_matrix(MeshScheme scheme, int n, const LocalOptions& options) {
+  LocalMatrix out = empty_matrix(scheme, n, options);
+  const Mesh mesh = local_mesh(scheme, n, options);
+  const MeshRefinement r =
+      refine_topology(mesh, scheme, out.steps, MeshOptions{.boundary = options.rule, .max_bytes = 1e9});
+  const Stencils stencils = out.steps == 1 ? r.steps.front() : stencil_table(r);
+  const MeshTopology& t0 = r.levels.front();
+  const MeshTopology& t1 = r.levels.back();
+  const bool dual = scheme == MeshScheme::doo_sabin;
+  // Old side by construction: the centre is vertex (face) 0, sector 0 starts at vertex 1 (the
+  // face's first corner).
+  const int start = dual ? face(t0, 0)[0] : 1;
+  const std::vector<int> old = neighbourhood(t0, scheme, 0, start, options.boundary);
+  // New side by the weights: the child centre weighs most on the centre, sector 0 on `start`.
+  int centre = -1, child_start = -1;
+  if (dual) {
+    double best = -1;
+    for (std::size_t f = 0; f < face_count(t1); ++f) {
+      if (face(t1, f).size() != static_cast<std::size_t>(n)) continue;
+      double w = 0;
+      for (const int c : face(t1, f))
+        for (const int g : face(t0, 0)) w += weight(stencils, c, g);
+      if (w > best) {
+        best = w;
+        centre = static_cast<int>(f);
+      }
+    }
+    const auto corners = face(t1, static_cast<std::size_t>(centre));
+    child_start = heaviest(stencils, std::vector<int>(corners.begin(), corners.end()), start);
+  } else {
+    std::vector<int> candidates;
+    for (int v = 0; v < t1.vertex_count; ++v)
+      if (valence(t1, static_cast<std::size_t>(v)) == n &&
+          t1.boundary_vertex[static_cast<std::size_t>(v)] == t0.boundary_vertex[0])
+        candidates.push_back(v);
+    centre = heaviest(stencils, candidates, 0);
+    std::vector<int> ring;
+    for (const int e : vertex_edges(t1, static_cast<std::size_t>(centre)))
+      ring.push_back(other_vertex(t1, static_cast<std::size_t>(e), centre));
+    child_start = heaviest(stencils, ring, start);
+  }
+  const std::vector<int> child = neighbourhood(t1, scheme, centre, child_start, options.boundary);
+  std::map<int, int> position;
+  for (std::size_t j = 0; j < old.size(); ++j) position[old[j]] = static_cast<int>(j);
+  const auto N = static_cast<Eigen::Index>(old.size());
+  out.values = LongMatrix::Zero(N, N);
+  for (Eigen::Index i = 0; i < N; ++i) {
+    const int row = child[static_cast<std::size_t>(i)];
+    for (int k = stencils.offsets[static_cast<std::size_t>(row)];
+         k < stencils.offsets[static_cast<std::size_t>(row) + 1]; ++k) {
+      const auto it = position.find(stencils.columns[static_cast<std::size_t>(k)]);
+      const double w = stencils.weights[static_cast<std::size_t>(k)];
+      if (it == position.end()) {
+        if (w != 0) throw std::logic_error("local matrix: the neighbourhood is not invariant");
+        continue;
+      }
+      out.values(i, it->second) += w;
+    }
+  }
+  return out;
+}
+
+namespace {
+
+std::string curvature_verdict(std::optional<long double> ratio) {
+  if (!ratio || *ratio > 1 + 1e-9L) return "zero";
+  if (*ratio < 1 - 1e-9L) return "unbounded";
+  return "bounded";
+}
+
+/// A multiple eigenvalue with a Jordan block of size m comes out of a backward-stable solver as m
+/// values scattered by ~ε^{1/m} around it (3e-7 for m = 3 in long double; Butterfly's ¼ at
+/// valence 6), while their mean stays within ~ε. Values closer than kCluster (single linkage) are
+/// taken as one multiple eigenvalue and each replaced by the mean.
+constexpr long double kCluster = 1e-6L;
+
+std::vector<std::complex<long double>> cluster_means(std::vector<std::complex<long double>> values) {
+  const std::size_t N = values.size();
+  std::vector<std::size_t> cluster(N);
+  std::iota(cluster.begin(), cluster.end(), 0);
+  const auto root = [&](std::size_t i) {
+    while (cluster[i] != i) i = cluster[i];
+    return i;
+  };
+  for (std::size_t i = 0; i < N; ++i)
+    for (std::size_t j = i + 1; j < N; ++j)
+      if (std::abs(values[i] - values[j]) < kCluster) cluster[root(j)] = root(i);
+  std::vector<std::complex<long double>> sum(N, 0);
+  std::vector<int> count(N, 0);
+  for (std::size_t i = 0; i < N; ++i) {
+    sum[root(i)] += values[i];
+    ++count[root(i)];
+  }
+  for (std::size_t i = 0; i < N; ++i) {
+    const std::size_t r = root(i);
+    // The mean of a cluster of conjugate pairs is real: drop its round-off imaginary part.
+    std::complex<long double> mean = sum[r] / static_cast<long double>(count[r]);
+    if (std::abs(mean.imag()) < kCluster) mean.imag(0);
+    values[i] = mean;
+  }
+  return values;
+}
+
+/// The last `count` right singular vectors of A: an orthonormal basis of its kernel when its
+/// dimension is `count`.
+LongMatrix kernel(const LongMatrix& A, Eigen::Index count) {
+  const Eigen::JacobiSVD<LongMatrix> svd(A, Eigen::ComputeFullV);
+  return svd.matrixV().rightCols(count);
+}
+
+}  // namespace
+
+LocalSpectrum local_spectrum(const LocalMatrix& matrix) {
+  const LongMatrix& S = matrix.values;
+  const auto N = S.rows();
+  LocalSpectrum out;
+  const long double tol = out.tolerance;
+  const Eigen::EigenSolver<LongMatrix> solver(S, false);
+  const auto& ev = solver.eigenvalues();
+  out.eigenvalues = cluster_means(std::vector<std::complex<long double>>(ev.data(), ev.data() + N));
+  std::sort(out.eigenvalues.begin(), out.eigenvalues.end(),
+            [&](const std::complex<long double>& a, const std::complex<long double>& b) {
+              if (std::abs(std::abs(a) - std::abs(b)) > tol) return std::abs(a) > std::abs(b);
+              if (std::abs(a.real() - b.real()) > tol) return a.real() > b.real();
+              return a.imag() > b.imag();
+            });
+  const auto lambda = [&](std::size_t i) {
+    return i < out.eigenvalues.size() ? out.eigenvalues[i] : std::complex<long double>(0);
+  };
+  out.dominant_simple = std::abs(lambda(0) - 1.0L) < tol && std::abs(lambda(1)) < 1 - tol;
+  out.subdominant = lambda(1).real();
+  out.second = lambda(2).real();
+  const bool real_positive =
+      std::abs(lambda(1).imag()) < tol && std::abs(lambda(2).imag()) < tol && out.second > tol;
+  out.subdominant_pair = real_positive && std::abs(lambda(1) - lambda(2)) < tol;
+  out.mu = lambda(3);
+  out.gap = real_positive && std::abs(out.mu) < out.second - tol;
+  if (std::abs(out.mu) > tol) out.curvature_ratio = out.second * out.second / std::abs(out.mu);
+  out.curvature = curvature_verdict(out.curvature_ratio);
+
+  const LongMatrix I = LongMatrix::Identity(N, N);
+  if (out.subdominant_pair) {
+    out.subdominant_basis = kernel(S - out.subdominant * I, 2);
+  } else {
+    out.subdominant_basis.resize(N, 2);
+    out.subdominant_basis.col(0) = kernel(S - out.subdominant * I, 1);
+    out.subdominant_basis.col(1) = kernel(S - out.second * I, 1);
+  }
+  out.limit_stencil = kernel((S - I).transpose(), 1);
+  out.limit_stencil /= out.limit_stencil.sum();
+  const LongVector values = (LongVector(2) << out.subdominant, out.second).finished();
+  out.residual =
+      (S * out.subdominant_basis - out.subdominant_basis * values.asDiagonal()).cwiseAbs().maxCoeff();
+  out.residual =
+      std::max(out.residual,
+               (out.limit_stencil.transpose() * S - out.limit_stencil.transpose()).cwiseAbs().maxCoeff());
+  return out;
+}
+
+}  // namespace cifs::subdivision
