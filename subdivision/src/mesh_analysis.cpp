@@ -425,7 +425,6 @@ std::vector<int> neighbourhood(const MeshTopology& t, MeshScheme scheme, int cen
   }
   const auto ring = vertex_edges(t, static_cast<std::size_t>(centre));
   const auto faces = vertex_faces(t, static_cast<std::size_t>(centre));
-  const auto corners = corner_in_face(t, static_cast<std::size_t>(centre));
   const int n = static_cast<int>(ring.size()), F = static_cast<int>(faces.size());
   int s = 0;
   if (!boundary)
@@ -440,7 +439,7 @@ std::vector<int> neighbourhood(const MeshTopology& t, MeshScheme scheme, int cen
   for (int j = 0; j < n; ++j) {
     out.push_back(r(j));
     if (scheme == MeshScheme::catmull_clark && j < F)
-      out.push_back(corner(t, face_j(j), corners[static_cast<std::size_t>(wrap(s + j, F))] + 2));
+      out.push_back(corner(t, face_j(j), corner_index(t, face_j(j), centre) + 2));
     if (scheme == MeshScheme::butterfly) {
       const int rj = r(j);
       const auto rj_ring = vertex_edges(t, static_cast<std::size_t>(rj));
