@@ -104,7 +104,8 @@ std::string real_text(long double x) {
 
 /// One line per valence: the numbers `cifs scheme … --analyze` prints as JSON, in columns.
 std::string local_table(const std::vector<sd::LocalMatrix>& matrices,
-                        const std::vector<sd::LocalSpectrum>& spectra) {
+                        const std::vector<sd::LocalSpectrum>& spectra,
+                        const std::vector<sd::C1Verdict>& verdicts) {
   const sd::LocalMatrix& first = matrices.front();
   std::ostringstream s;
   s << "# " << sd::scheme_name(first.scheme) << ", "
@@ -115,8 +116,8 @@ std::string local_table(const std::vector<sd::LocalMatrix>& matrices,
     << ", S_n over " << first.steps << (first.steps == 1 ? " step" : " steps") << "\n";
   s << std::left << std::setw(4) << "n" << std::setw(6) << "size" << std::setw(7) << "exact" << std::setw(17)
     << "lambda1" << std::setw(17) << "lambda2" << std::setw(17) << "|mu|" << std::setw(17) << "lambda2^2/|mu|"
-    << std::setw(11) << "curvature"
-    << "spectral conditions\n";
+    << std::setw(11) << "curvature" << std::setw(21) << "spectral conditions"
+    << (verdicts.empty() ? "" : "C1") << "\n";
   for (std::size_t i = 0; i < matrices.size(); ++i) {
     const sd::LocalSpectrum& sp = spectra[i];
     std::string checks;
@@ -127,7 +128,14 @@ std::string local_table(const std::vector<sd::LocalMatrix>& matrices,
       << (matrices[i].exact ? "yes" : "no") << std::setw(17) << real_text(sp.subdominant) << std::setw(17)
       << real_text(sp.second) << std::setw(17) << real_text(std::abs(sp.mu)) << std::setw(17)
       << (sp.curvature_ratio ? real_text(*sp.curvature_ratio) : "-") << std::setw(11) << sp.curvature
-      << (checks.empty() ? "ok" : checks.substr(1)) << "\n";
+      << std::setw(21) << (checks.empty() ? "ok" : checks.substr(1));
+    if (!verdicts.empty()) {
+      const sd::C1Verdict& v = verdicts[i];
+      s << (v.c1 ? "yes" : v.decided ? "no" : "undecided");
+      if (v.spectral)
+        s << " (" << (v.method == "bernstein" ? "proved" : "sampled") << ", winding " << v.winding << ")";
+    }
+    s << "\n";
   }
   return s.str();
 }
@@ -152,12 +160,14 @@ std::string analyze_mesh_scheme(sd::MeshScheme scheme, const SchemeOptions& o) {
                                         : std::vector<int>{integer_text(o.valence, "--valence", o.valence)};
   std::vector<sd::LocalMatrix> matrices;
   std::vector<sd::LocalSpectrum> spectra;
-  for (const int n : valences) {  // every valence checked before any output
+  std::vector<sd::C1Verdict> verdicts;  // interior vertices only: Reif's test needs a whole ring
+  for (const int n : valences) {        // every valence checked before any output
     matrices.push_back(sd::local_matrix(scheme, n, local));
     spectra.push_back(sd::local_spectrum(matrices.back()));
+    if (!local.boundary) verdicts.push_back(sd::c1_verdict(matrices.back(), spectra.back()));
   }
-  if (o.format == "table") return local_table(matrices, spectra);
-  return io::local_analysis_json(matrices, spectra, !o.valences.empty());
+  if (o.format == "table") return local_table(matrices, spectra, verdicts);
+  return io::local_analysis_json(matrices, spectra, verdicts, !o.valences.empty());
 }
 
 // ------------------------------------------------------------------------------------------------

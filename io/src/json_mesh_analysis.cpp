@@ -23,6 +23,23 @@ json vector_json(const subdivision::LongVector& v) {
   return out;
 }
 
+json c1_json(const subdivision::C1Verdict& v) {
+  json j;
+  j["verdict"] = v.c1;
+  j["reason"] = v.reason;
+  j["spectral"] = v.spectral;
+  if (!v.spectral) return j;
+  j["method"] = v.method;
+  if (v.method == "sampled") j["levels"] = v.levels;
+  j["pieces"] = v.pieces;
+  j["splits"] = v.splits;
+  j["decided"] = v.decided;
+  j["regular"] = v.regular;
+  j["winding"] = v.winding;
+  j["margin"] = static_cast<double>(v.margin);
+  return j;
+}
+
 json local_json(const LocalMatrix& m, const LocalSpectrum& s) {
   json j;
   j["scheme"] = std::string(subdivision::scheme_name(m.scheme));
@@ -66,9 +83,12 @@ json local_json(const LocalMatrix& m, const LocalSpectrum& s) {
 }  // namespace
 
 std::string local_analysis_json(std::span<const LocalMatrix> matrices, std::span<const LocalSpectrum> spectra,
-                                bool as_array) {
+                                std::span<const subdivision::C1Verdict> verdicts, bool as_array) {
   json out = json::array();
-  for (std::size_t i = 0; i < matrices.size(); ++i) out.push_back(local_json(matrices[i], spectra[i]));
+  for (std::size_t i = 0; i < matrices.size(); ++i) {
+    out.push_back(local_json(matrices[i], spectra[i]));
+    if (i < verdicts.size()) out.back()["c1"] = c1_json(verdicts[i]);
+  }
   return (as_array ? out : out.at(0)).dump(2) + "\n";
 }
 

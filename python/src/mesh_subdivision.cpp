@@ -213,6 +213,21 @@ void bind_mesh_subdivision(py::module_& m) {
                                      : py::none();
         out["curvature"] = sp.curvature;
         out["subdominant_basis"] = Points(sp.subdominant_basis.cast<double>());
+        if (!o.boundary) {
+          const sd::C1Verdict v = sd::c1_verdict(S, sp);
+          py::dict c1;
+          c1["verdict"] = v.c1;
+          c1["reason"] = v.reason;
+          c1["spectral"] = v.spectral;
+          c1["method"] = v.method;
+          c1["pieces"] = v.pieces;
+          c1["regular"] = v.regular;
+          c1["winding"] = v.winding;
+          c1["margin"] = static_cast<double>(v.margin);
+          out["c1"] = c1;
+        } else {
+          out["c1"] = py::none();
+        }
         out["limit_stencil"] = Eigen::VectorXd(sp.limit_stencil.cast<double>());
         return out;
       },

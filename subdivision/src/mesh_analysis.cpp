@@ -16,8 +16,18 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/topology.hpp"
+#include "local_mesh.hpp"
 
 namespace cifs::subdivision {
+
+using detail::corner;
+using detail::corner_index;
+using detail::edge_between;
+using detail::face_across;
+using detail::neighbourhood;
+using detail::weight;
+using detail::wrap;
+
 namespace {
 
 constexpr long double kPi = std::numbers::pi_v<long double>;
@@ -90,10 +100,6 @@ Dense<T> product(const Dense<T>& A, const Dense<T>& B) {
       for (int j = 0; j < A.n; ++j) C(i, j) += A(i, k) * B(k, j);
     }
   return C;
-}
-
-int wrap(int j, int n) {
-  return ((j % n) + n) % n;
 }
 
 /// The rules of each scheme on its neighbourhood; `cos_of(m, n)` gives cos(2πm/n) in T.
@@ -374,6 +380,14 @@ Mesh dual_mesh(const Mesh& primal) {
   return m;
 }
 
+}  // namespace
+
+namespace detail {
+
+int wrap(int j, int n) {
+  return ((j % n) + n) % n;
+}
+
 int edge_between(const MeshTopology& t, int a, int b) {
   for (const int e : vertex_edges(t, static_cast<std::size_t>(a)))
     if (other_vertex(t, static_cast<std::size_t>(e), a) == b) return e;
@@ -479,7 +493,7 @@ int heaviest(const Stencils& s, const std::vector<int>& candidates, int column) 
   return best;
 }
 
-}  // namespace
+}  // namespace detail
 
 LocalMatrix local_matrix(MeshScheme scheme, int valence, const LocalOptions& options) {
   check_valence(scheme, valence, options);
@@ -509,22 +523,21 @@ Mesh local_mesh(MeshScheme scheme, int valence, const LocalOptions& options, int
   }
 }
 
-LocalMatrix refined_local_matrix(MeshScheme scheme, int n, const LocalOptions& options) {
-  LocalMatrix out = empty_matrix(scheme, n, options);
-  const Mesh mesh = local_mesh(scheme, n, options);
-  const MeshRefinement r =
-      refine_topology(mesh, scheme, out.steps, MeshOptions{.boundary = options.rule, .max_bytes = 1e9});
-  const Stencils stencils = out.steps == 1 ? r.steps.front() : stencil_table(r);
+namespace detail {
+
+LocalRefinement refine_local(MeshScheme scheme, int n, const LocalOptions& options, int rings) {
+  LocalRefinement out;
+  out.mesh = local_mesh(scheme, n, options, rings);
+  const int steps = scheme == MeshScheme::sqrt3 ? 2 : 1;
+  out.refinement =
+      refine_topology(out.mesh, scheme, steps, MeshOptions{.boundary = options.rule, .max_bytes = 1e9});
+  const MeshRefinement& r = out.refinement;
+  out.stencils = steps == 1 ? r.steps.front() : stencil_table(r);
+  const Stencils& stencils = out.stencils;
   const MeshTopology& t0 = r.levels.front();
   const MeshTopology& t1 = r.levels.back();
-  const bool dual = scheme == MeshScheme::doo_sabin;
-  // Old side by construction: the centre is vertex (face) 0, sector 0 starts at vertex 1 (the
-  // face's first corner).
-  const int start = dual ? face(t0, 0)[0] : 1;
-  const std::vector<int> old = neighbourhood(t0, scheme, 0, start, options.boundary);
-  // New side by the weights: the child centre weighs most on the centre, sector 0 on `start`.
-  int centre = -1, child_start = -1;
-  if (dual) {
+  out.start = scheme == MeshScheme::doo_sabin ? face(t0, 0)[0] : 1;
+  if (scheme == MeshScheme::doo_sabin) {
     double best = -1;
     for (std::size_t f = 0; f < face_count(t1); ++f) {
       if (face(t1, f).size() != static_cast<std::size_t>(n)) continue;
@@ -533,24 +546,73 @@ LocalMatrix refined_local_matrix(MeshScheme scheme, int n, const LocalOptions& o
         for (const int g : face(t0, 0)) w += weight(stencils, c, g);
       if (w > best) {
         best = w;
-        centre = static_cast<int>(f);
+        out.child_centre = static_cast<int>(f);
       }
     }
-    const auto corners = face(t1, static_cast<std::size_t>(centre));
-    child_start = heaviest(stencils, std::vector<int>(corners.begin(), corners.end()), start);
-  } else {
-    std::vector<int> candidates;
-    for (int v = 0; v < t1.vertex_count; ++v)
-      if (valence(t1, static_cast<std::size_t>(v)) == n &&
-          t1.boundary_vertex[static_cast<std::size_t>(v)] == t0.boundary_vertex[0])
-        candidates.push_back(v);
-    centre = heaviest(stencils, candidates, 0);
-    std::vector<int> ring;
-    for (const int e : vertex_edges(t1, static_cast<std::size_t>(centre)))
-      ring.push_back(other_vertex(t1, static_cast<std::size_t>(e), centre));
-    child_start = heaviest(stencils, ring, start);
+    const auto corners = face(t1, static_cast<std::size_t>(out.child_centre));
+    out.child_start = heaviest(stencils, std::vector<int>(corners.begin(), corners.end()), out.start);
+    return out;
   }
-  const std::vector<int> child = neighbourhood(t1, scheme, centre, child_start, options.boundary);
+  std::vector<int> candidates;
+  for (int v = 0; v < t1.vertex_count; ++v)
+    if (valence(t1, static_cast<std::size_t>(v)) == n &&
+        t1.boundary_vertex[static_cast<std::size_t>(v)] == t0.boundary_vertex[0])
+      candidates.push_back(v);
+  out.child_centre = heaviest(stencils, candidates, 0);
+  std::vector<int> ring;
+  for (const int e : vertex_edges(t1, static_cast<std::size_t>(out.child_centre)))
+    ring.push_back(other_vertex(t1, static_cast<std::size_t>(e), out.child_centre));
+  out.child_start = heaviest(stencils, ring, out.start);
+  return out;
+}
+
+std::vector<int> canonical_order(const MeshTopology& t, MeshScheme scheme, int centre, int start, int depth) {
+  std::vector<int> order, distance(static_cast<std::size_t>(t.vertex_count), -1);
+  std::vector<int> reached_from;  // parallel to order
+  const auto visit = [&](int v, int from, int d) {
+    distance[static_cast<std::size_t>(v)] = d;
+    order.push_back(v);
+    reached_from.push_back(from);
+  };
+  if (scheme == MeshScheme::doo_sabin) {
+    const int k = static_cast<int>(face(t, static_cast<std::size_t>(centre)).size());
+    const int s = corner_index(t, centre, start);
+    for (int i = 0; i < k; ++i) visit(corner(t, centre, s + i), corner(t, centre, s + i + 1), 0);
+  } else {
+    visit(centre, start, 0);
+  }
+  for (std::size_t q = 0; q < order.size(); ++q) {
+    const int v = order[q];
+    if (distance[static_cast<std::size_t>(v)] == depth) continue;
+    if (t.boundary_vertex[static_cast<std::size_t>(v)])
+      throw std::logic_error("local mesh: too few rings for the region asked");
+    const auto ring = vertex_edges(t, static_cast<std::size_t>(v));
+    const int m = static_cast<int>(ring.size());
+    int at = 0;
+    while (at < m && other_vertex(t, static_cast<std::size_t>(ring[static_cast<std::size_t>(at)]), v) !=
+                         reached_from[q])
+      ++at;
+    if (at == m) throw std::logic_error("local mesh: a vertex is not next to the one it was reached from");
+    for (int i = 0; i < m; ++i) {
+      const int w =
+          other_vertex(t, static_cast<std::size_t>(ring[static_cast<std::size_t>((at + i) % m)]), v);
+      if (distance[static_cast<std::size_t>(w)] < 0) visit(w, v, distance[static_cast<std::size_t>(v)] + 1);
+    }
+  }
+  return order;
+}
+
+}  // namespace detail
+
+LocalMatrix refined_local_matrix(MeshScheme scheme, int n, const LocalOptions& options) {
+  LocalMatrix out = empty_matrix(scheme, n, options);
+  const detail::LocalRefinement local = detail::refine_local(scheme, n, options, 3);
+  const Stencils& stencils = local.stencils;
+  const MeshTopology& t0 = local.refinement.levels.front();
+  const MeshTopology& t1 = local.refinement.levels.back();
+  const std::vector<int> old = neighbourhood(t0, scheme, local.centre, local.start, options.boundary);
+  const std::vector<int> child =
+      neighbourhood(t1, scheme, local.child_centre, local.child_start, options.boundary);
   std::map<int, int> position;
   for (std::size_t j = 0; j < old.size(); ++j) position[old[j]] = static_cast<int>(j);
   const auto N = static_cast<Eigen::Index>(old.size());

@@ -141,6 +141,12 @@ TEST_CASE("cifs scheme MESH-SCHEME --valence N --analyze: local subdivision matr
   CHECK(cc["neighbourhood"].size() == 11);
   CHECK(cc["matrix"][0][0] == "0.65");  // (n − 2)/n + n·(1/n²)(¼) at n = 5
   CHECK(analyze("catmull-clark --valence 3")["matrix"][0][0] == "5/12");
+  // Reif's C1 test, proved on the characteristic map's Bernstein patches.
+  CHECK(cc["c1"]["verdict"] == true);
+  CHECK(cc["c1"]["method"] == "bernstein");
+  CHECK(cc["c1"]["winding"] == 1);
+  CHECK(cc["c1"]["pieces"].get<int>() >= 15);
+  CHECK(analyze("butterfly --valence 5")["c1"]["method"] == "sampled");
   CHECK(cc["spectrum"].size() == 11);
   CHECK(cc["spectrum"][0] == json::array({1.0, 0.0}));
   // (5 + cos(2π/5) + cos(π/5)√(2(9 + cos(2π/5))))/16
@@ -161,12 +167,17 @@ TEST_CASE("cifs scheme MESH-SCHEME --valence N --analyze: local subdivision matr
   const json boundary = analyze("loop --valence 4 --boundary edge");
   CHECK(boundary["vertex"] == "boundary");
   CHECK(boundary["boundary_rule"] == "edge");
+  CHECK_FALSE(boundary.contains("c1"));  // Reif's test needs a whole ring
   CHECK(analyze("doo-sabin --valences 3,5")[1]["valence"] == 5);
 
   const Run table = cifs_cli("scheme loop --valences 3..16 --analyze --format table");
   REQUIRE(table.status == 0);
   CHECK(std::count(table.out.begin(), table.out.end(), '\n') == 16);  // title, header, 14 valences
   CHECK_THAT(table.out, Catch::Contains("\n6   7     yes    0.5              0.5              0.25"));
+  std::size_t proved = 0;
+  for (std::size_t at = 0; (at = table.out.find("yes (proved, winding 1)", at)) != std::string::npos; ++at)
+    ++proved;
+  CHECK(proved == 14);
 }
 
 TEST_CASE("cifs scheme MESH-SCHEME: bad valences and options on one line, exit 2", "[cli][mesh_analysis]") {

@@ -553,6 +553,16 @@ class LocalAnalysisTest(unittest.TestCase):
         self.assertEqual(sd.local_analysis("sqrt3", 4)["steps"], 2)
         self.assertFalse(sd.local_analysis("loop", 7, boundary="edge")["gap"])
 
+    def test_c1_verdicts(self):
+        for scheme, method in (("catmull-clark", "bernstein"), ("loop", "bernstein"), ("doo-sabin", "bernstein"),
+                               ("butterfly", "sampled"), ("sqrt3", "sampled")):
+            c1 = sd.local_analysis(scheme, 5)["c1"]
+            self.assertTrue(c1["verdict"], c1["reason"])
+            self.assertEqual(c1["method"], method)
+            self.assertEqual(c1["winding"], 1)
+            self.assertEqual(c1["verdict"], cli_json("scheme", scheme, "--valence", "5", "--analyze")["c1"]["verdict"])
+        self.assertIsNone(sd.local_analysis("loop", 5, boundary="edge")["c1"])
+
     def test_errors(self):
         with self.assertRaisesRegex(cifs.InvalidInput, "valence 2 is out of range"):
             sd.local_analysis("loop", 2)

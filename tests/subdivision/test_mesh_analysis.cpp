@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -377,4 +378,144 @@ TEST_CASE("local matrices: bad valences are one-line InvalidInputs", "[subdivisi
   CHECK_THROWS_WITH(local_matrix(MeshScheme::sqrt3, 4, {.boundary = true}),
                     Contains("boundary vertices are analysed for catmull-clark and loop only"));
   CHECK_THROWS_AS(refined_local_matrix(MeshScheme::doo_sabin, 1), InvalidInput);
+}
+
+// ------------------------------------------------------------------------------------------------
+// C¹ at extraordinary vertices (Reif): the characteristic map's Jacobian and winding.
+
+TEST_CASE("C1 verdicts: every scheme is C1 at every interior valence, proved where it is polynomial",
+          "[subdivision][mesh_analysis][c1]") {
+  for (const MeshScheme scheme : kAll) {
+    const bool polynomial =
+        scheme == MeshScheme::catmull_clark || scheme == MeshScheme::loop || scheme == MeshScheme::doo_sabin;
+    for (int n = kMinValence; n <= kMaxValence; ++n) {
+      if (!polynomial && n > 8 && n % 4 != 0) continue;  // the sampled route is slower: 3 … 8, 12, 16
+      INFO(scheme_name(scheme) << " valence " << n);
+      const LocalMatrix S = local_matrix(scheme, n);
+      const C1Verdict v = c1_verdict(S, local_spectrum(S));
+      CHECK(v.spectral);
+      CHECK(v.method == (polynomial ? "bernstein" : "sampled"));
+      CHECK(v.decided);
+      CHECK(v.regular);
+      CHECK(v.winding == 1);
+      CHECK(v.c1);
+      CHECK(v.margin > 0);
+      // At the regular valence the characteristic map is linear: a constant Jacobian.
+      const int regular = scheme == MeshScheme::catmull_clark || scheme == MeshScheme::doo_sabin ? 4 : 6;
+      if (n == regular) CHECK(std::abs(v.margin - 1) < 1e-9L);
+      if (n != regular) CHECK(v.margin < 1 - 1e-6L);
+    }
+  }
+}
+
+TEST_CASE("C1 verdicts: the sampled net agrees with the Bernstein proof",
+          "[subdivision][mesh_analysis][c1]") {
+  for (const MeshScheme scheme : {MeshScheme::catmull_clark, MeshScheme::loop, MeshScheme::doo_sabin})
+    for (const int n : {3, 5, 9}) {
+      INFO(scheme_name(scheme) << " valence " << n);
+      const LocalMatrix S = local_matrix(scheme, n);
+      const C1Verdict v = c1_verdict(S, local_spectrum(S), {.sampled = true, .levels = 3});
+      CHECK(v.method == "sampled");
+      CHECK(v.levels == 3);
+      CHECK(v.c1);
+    }
+}
+
+namespace {
+
+/// The kernel of S − λ, two columns.
+LongMatrix eigen_pair(const LocalMatrix& S, long double lambda) {
+  const LongMatrix A = S.values - lambda * LongMatrix::Identity(S.values.rows(), S.values.cols());
+  const Eigen::JacobiSVD<LongMatrix> svd(A, Eigen::ComputeFullV);
+  REQUIRE(svd.singularValues()(svd.singularValues().size() - 2) < 1e-15L);
+  return svd.matrixV().rightCols(2);
+}
+
+}  // namespace
+
+TEST_CASE("C1 verdicts: broken rules come out not C1", "[subdivision][mesh_analysis][c1]") {
+  for (int n = 3; n <= 8; ++n) {
+    INFO("valence " << n);
+    // Loop with β = 0 (the vertex stays): the ring's mean is an eigenvector of 5/8, above the
+    // Fourier pair 3/8 + ¼cos(2π/n): a single subdominant eigenvalue, no tangent plane.
+    LocalMatrix loop = local_matrix(MeshScheme::loop, n);
+    loop.exact.reset();
+    loop.values.row(0).setZero();
+    loop.values(0, 0) = 1;
+    const LocalSpectrum s = local_spectrum(loop);
+    CHECK(std::abs(s.subdominant - 0.625L) < 1e-15L);
+    const C1Verdict v = c1_verdict(loop, s);
+    CHECK_FALSE(v.spectral);
+    CHECK_FALSE(v.c1);
+    CHECK_THAT(v.reason, Contains("not a real double eigenvalue"));
+  }
+  // Catmull–Clark with the vertex kept at 9/10 of itself (rest of the rule scaled): at n = 3 the
+  // mean mode's eigenvalue passes the Fourier pair (λ1 = 0.41): not C1. The vertex rule acts on
+  // the mean mode only, so at n = 7 (λ1 = 0.60 stays above it) the scheme stays C1.
+  for (const int n : {3, 7}) {
+    LocalMatrix cc = local_matrix(MeshScheme::catmull_clark, n);
+    cc.exact.reset();
+    cc.values.row(0).tail(2 * n) *= 0.1L / (1 - cc.values(0, 0));
+    cc.values(0, 0) = 0.9L;
+    const C1Verdict v = c1_verdict(cc, local_spectrum(cc));
+    CHECK(v.c1 == (n == 7));
+  }
+}
+
+TEST_CASE("C1 verdicts: a rule that passes every spectral test but winds three times",
+          "[subdivision][mesh_analysis][c1]") {
+  // Loop at n = 7 with each ring vertex averaged with its second neighbours instead of its first:
+  // Fourier mode k has 3/8 + ¼cos(4πk/7), largest at k = 3 (0.53, double, above the mean mode's
+  // 0.28 and mode 1's 0.32) — λ0 simple, λ1 = λ2 real, a gap — yet the characteristic map runs 3
+  // times round the centre.
+  const int n = 7;
+  LocalMatrix S = local_matrix(MeshScheme::loop, n);
+  S.exact.reset();
+  for (int j = 0; j < n; ++j) {
+    S.values.row(1 + j).setZero();
+    S.values(1 + j, 0) = 0.375L;
+    S.values(1 + j, 1 + j) = 0.375L;
+    S.values(1 + j, 1 + (j + 2) % n) += 0.125L;
+    S.values(1 + j, 1 + (j + n - 2) % n) += 0.125L;
+  }
+  const LocalSpectrum s = local_spectrum(S);
+  REQUIRE(s.dominant_simple);
+  REQUIRE(s.subdominant_pair);
+  REQUIRE(s.gap);
+  CHECK(std::abs(s.subdominant - (0.375L + cos_2pi(6, 7) / 4)) < 1e-15L);  // cos(4π·3/7)
+  for (const bool sampled : {false, true}) {
+    const C1Verdict v = c1_verdict(S, s, {.sampled = sampled});
+    CHECK(v.regular);
+    CHECK(std::abs(v.winding) == 3);
+    CHECK_FALSE(v.c1);
+    CHECK_THAT(v.reason, Contains("winds 3 times"));
+  }
+}
+
+TEST_CASE("characteristic maps: orientation does not matter, a higher Fourier pair winds more",
+          "[subdivision][mesh_analysis][c1]") {
+  for (const MeshScheme scheme : {MeshScheme::loop, MeshScheme::catmull_clark}) {
+    const int n = 7;
+    INFO(scheme_name(scheme));
+    const LocalMatrix S = local_matrix(scheme, n);
+    const LocalSpectrum s = local_spectrum(S);
+    LongMatrix mirrored = s.subdominant_basis;
+    mirrored.col(1) *= -1;
+    const C1Verdict m = characteristic_map_verdict(scheme, n, s.subdominant, mirrored);
+    CHECK(m.c1);
+    CHECK(m.winding == 1);
+    // Loop's Fourier mode 2: 3/8 + ¼cos(4π/7), a double eigenvalue whose map is like z².
+    if (scheme == MeshScheme::loop) {
+      const long double lambda = 0.375L + cos_2pi(2, 7) / 4;
+      const C1Verdict z2 = characteristic_map_verdict(scheme, n, lambda, eigen_pair(S, lambda));
+      CHECK(z2.regular);
+      CHECK(std::abs(z2.winding) == 2);
+      CHECK_FALSE(z2.c1);
+    }
+  }
+  CHECK_THROWS_WITH(c1_verdict(local_matrix(MeshScheme::loop, 4, {.boundary = true}),
+                               local_spectrum(local_matrix(MeshScheme::loop, 4, {.boundary = true}))),
+                    Contains("C1 verdicts are for interior vertices"));
+  CHECK_THROWS_WITH(characteristic_map_verdict(MeshScheme::loop, 5, 0.5L, LongMatrix::Zero(3, 2)),
+                    Contains("expected 6 by 2 eigenvectors"));
 }

@@ -63,8 +63,10 @@ std::string analysis_json(const subdivision::Scheme& scheme, const subdivision::
 
 /// Local subdivision matrices and their spectra (`cifs scheme MESH-SCHEME --analyze`, docs/cli.md),
 /// indented by 2: the first as one object, or all of them as an array when `as_array`. Exact
-/// matrices are written as strings ("3/16"), others and every spectrum as numbers.
+/// matrices are written as strings ("3/16"), others and every spectrum as numbers. `verdicts` (empty
+/// at boundary vertices) adds each C¹ verdict as "c1".
 std::string local_analysis_json(std::span<const subdivision::LocalMatrix> matrices,
-                                std::span<const subdivision::LocalSpectrum> spectra, bool as_array);
+                                std::span<const subdivision::LocalSpectrum> spectra,
+                                std::span<const subdivision::C1Verdict> verdicts, bool as_array);
 
 }  // namespace cifs::io

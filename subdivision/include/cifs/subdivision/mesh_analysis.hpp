@@ -117,4 +117,51 @@ struct LocalSpectrum {
 
 LocalSpectrum local_spectrum(const LocalMatrix& matrix);
 
+/// Reif's test of C¹ at an interior extraordinary vertex (Doo–Sabin: face): with λ0 = 1 simple and
+/// a real double subdominant λ1 = λ2 above every other |λ|, the limit surface is C¹ there for
+/// generic data iff the characteristic map Φ — the limit of the net whose planar positions are the
+/// two subdominant eigenvectors, extended outside the invariant neighbourhood by the eigen-equation
+/// — is regular (its Jacobian has one sign, nowhere zero) and injective on one ring of patches.
+/// A regular Φ is injective iff the ring's inner boundary winds once around Φ(centre) = 0.
+///
+/// `bernstein` (Catmull–Clark, Loop, Doo–Sabin: the regular patches are polynomials): every patch
+/// of the ring, exactly the polynomial of its regular limit (bicubic / quartic box spline from
+/// its limit values at the dyadic points of two steps, biquadratic from its B-spline net), in
+/// Bernstein form; the Jacobian's Bernstein coefficients bound it from below (de Casteljau splits
+/// where they do not decide), and the winding is counted on the inner boundary's Bézier pieces,
+/// each inside a half-plane that misses 0 — a proof up to long double round-off, which the margin
+/// (1e-12 of the largest coefficient) exceeds. `sampled` (Butterfly, √3: no polynomial pieces):
+/// the orientation of every triangle of the net after `levels` steps and the winding of the
+/// centre's ring there — evidence, not a proof.
+struct C1Verdict {
+  bool spectral = false;  // λ0 simple, subdominant pair, gap
+  std::string method;     // "bernstein" or "sampled"; empty when the spectrum already fails
+  int levels = 0;         // sampled: the net's level
+  int pieces = 0;         // patches (triangles) checked
+  int splits = 0;         // deepest de Casteljau split a patch needed
+  bool decided = true;    // false when a patch's Jacobian stayed undecided after the splits
+  bool regular = false;   // Jacobian of one sign on every piece
+  int winding = 0;        // of the inner boundary around 0 (sign: the eigenvectors' orientation)
+  /// Smallest lower bound of |Jacobian| found (bernstein) or smallest |triangle area| (sampled),
+  /// over the largest: how far from singular.
+  long double margin = 0;
+  bool c1 = false;
+  std::string reason;  // one sentence: what decided
+};
+
+/// `sampled` on any scheme (a cross-check of the Bernstein proof), at `levels` steps.
+struct C1Options {
+  bool sampled = false;
+  int levels = 4;
+};
+
+/// The verdict for a matrix of `local_matrix` (interior vertices only; InvalidInput on the
+/// boundary) and its spectrum.
+C1Verdict c1_verdict(const LocalMatrix& matrix, const LocalSpectrum& spectrum, const C1Options& options = {});
+
+/// The regularity and winding test alone, on any pair of eigenvectors of S_n for `lambda` (N by 2,
+/// the numbering above): e.g. a higher Fourier mode's pair, whose map winds more than once.
+C1Verdict characteristic_map_verdict(MeshScheme scheme, int valence, long double lambda,
+                                     const LongMatrix& pair, const C1Options& options = {});
+
 }  // namespace cifs::subdivision
