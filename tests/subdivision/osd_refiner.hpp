@@ -23,10 +23,11 @@ struct OsdVertex {
   }
 };
 
-/// The mesh's faces refined `levels` times uniformly by OpenSubdiv.
+/// The mesh's faces refined `levels` times uniformly by OpenSubdiv; `full_topology` keeps the last
+/// level's adjacency, which PrimvarRefiner::Limit needs.
 inline std::unique_ptr<OpenSubdiv::Far::TopologyRefiner> osd_refiner(
     const cifs::Mesh& m, OpenSubdiv::Sdc::SchemeType type,
-    OpenSubdiv::Sdc::Options::VtxBoundaryInterpolation boundary, int levels) {
+    OpenSubdiv::Sdc::Options::VtxBoundaryInterpolation boundary, int levels, bool full_topology = false) {
   namespace Far = OpenSubdiv::Far;
   std::vector<int> counts;
   for (std::size_t f = 0; f < cifs::face_count(m); ++f)
@@ -40,7 +41,9 @@ inline std::unique_ptr<OpenSubdiv::Far::TopologyRefiner> osd_refiner(
   so.SetVtxBoundaryInterpolation(boundary);
   using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
   std::unique_ptr<Far::TopologyRefiner> refiner(Factory::Create(desc, Factory::Options(type, so)));
-  if (refiner) refiner->RefineUniform(Far::TopologyRefiner::UniformOptions(levels));
+  Far::TopologyRefiner::UniformOptions uniform(levels);
+  uniform.fullTopologyInLastLevel = full_topology;
+  if (refiner) refiner->RefineUniform(uniform);
   return refiner;
 }
 

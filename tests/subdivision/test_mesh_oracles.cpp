@@ -5,14 +5,18 @@
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
+#include <Eigen/Geometry>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Tools/Subdivider/Uniform/LoopT.hh>
 #include <OpenMesh/Tools/Subdivider/Uniform/ModifiedButterFlyT.hh>
 #include <OpenMesh/Tools/Subdivider/Uniform/Sqrt3T.hh>
+#include <algorithm>
+#include <array>
 #include <catch2/catch.hpp>
 #include <memory>
 
+#include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/mesh.hpp"
 #include "subdivision/mesh_compare.hpp"
 #include "subdivision/meshes.hpp"
@@ -54,6 +58,76 @@ Mesh osd_refine(const Mesh& m, Sdc::SchemeType type, BoundaryRule boundary, int 
     add_face(out, std::span<const int>(face));
   }
   return out;
+}
+
+/// OpenSubdiv's refined positions, limit positions and unit normals (du × dv) after `levels` steps.
+std::array<Points, 3> osd_limit(const Mesh& m, Sdc::SchemeType type, BoundaryRule boundary, int levels) {
+  const auto refiner =
+      osd_refiner(m, type,
+                  boundary == BoundaryRule::edge_only ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
+                                                      : Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER,
+                  levels, true);
+  REQUIRE(refiner);
+  std::vector<OsdVertex> verts(static_cast<std::size_t>(refiner->GetNumVerticesTotal()));
+  for (Eigen::Index i = 0; i < m.vertices.rows(); ++i)
+    for (int k = 0; k < 3; ++k) verts[static_cast<std::size_t>(i)].p[k] = m.vertices(i, k);
+  Far::PrimvarRefinerReal<double> primvars(*refiner);
+  OsdVertex* src = verts.data();
+  for (int level = 1; level <= levels; ++level) {
+    OsdVertex* dst = src + refiner->GetLevel(level - 1).GetNumVertices();
+    primvars.Interpolate(level, src, dst);
+    src = dst;
+  }
+  const int n = refiner->GetLevel(levels).GetNumVertices();
+  std::vector<OsdVertex> pos(static_cast<std::size_t>(n)), du(pos.size()), dv(pos.size());
+  OsdVertex *p = pos.data(), *u = du.data(), *v = dv.data();
+  primvars.Limit(src, p, u, v);
+  Points refined(n, 3), positions(n, 3), normals(n, 3);
+  for (int i = 0; i < n; ++i) {
+    refined.row(i) << src[i].p[0], src[i].p[1], src[i].p[2];
+    const auto at = static_cast<std::size_t>(i);
+    const Eigen::Vector3d a(du[at].p[0], du[at].p[1], du[at].p[2]), b(dv[at].p[0], dv[at].p[1], dv[at].p[2]);
+    positions.row(i) << pos[at].p[0], pos[at].p[1], pos[at].p[2];
+    normals.row(i) = a.cross(b).normalized().transpose();
+  }
+  return {refined, positions, normals};
+}
+
+/// Our limit mesh against OpenSubdiv's, vertices matched by their refined positions.
+void check_same_limit(const Mesh& m, MeshScheme scheme, Sdc::SchemeType type, BoundaryRule rule, int levels,
+                      bool normals) {
+  const Mesh ours = limit_mesh(m, scheme, levels, {.boundary = rule, .normals = normals});
+  const auto [refined, positions, osd_normals] = osd_limit(m, type, rule, levels);
+  const std::vector<int> to_osd =
+      match_vertices(subdivide(m, scheme, levels, {.boundary = rule}).vertices, refined, 1e-12);
+  const double scale = m.vertices.cwiseAbs().maxCoeff();
+  double position_error = 0, normal_error = 0;
+  for (std::size_t i = 0; i < to_osd.size(); ++i) {
+    const auto a = static_cast<Eigen::Index>(i), b = static_cast<Eigen::Index>(to_osd[i]);
+    position_error =
+        std::max(position_error, (ours.vertices.row(a) - positions.row(b)).cwiseAbs().maxCoeff());
+    if (normals)
+      normal_error = std::max(normal_error, (ours.normals.row(a) - osd_normals.row(b)).cwiseAbs().maxCoeff());
+  }
+  CHECK(position_error <= 1e-12 * scale);
+  CHECK(normal_error <= 1e-12);
+}
+
+/// A k-gonal bipyramid, slightly irregular: poles of valence k, equator of valence 4.
+Mesh bipyramid_of(int k) {
+  std::vector<std::array<double, 3>> p;
+  for (int i = 0; i < k; ++i) {
+    const double a = 2 * std::numbers::pi * i / k;
+    p.push_back({std::cos(a) * (1 + 0.05 * i), std::sin(a), 0.03 * i});
+  }
+  p.push_back({0.1, 0, 1.2});
+  p.push_back({0, -0.1, -0.9});
+  std::vector<std::vector<int>> f;
+  for (int i = 0; i < k; ++i) {
+    f.push_back({i, (i + 1) % k, k});
+    f.push_back({(i + 1) % k, i, k + 1});
+  }
+  return make_mesh(p, f);
 }
 
 struct Traits : OpenMesh::DefaultTraits {
@@ -143,4 +217,34 @@ TEST_CASE(
           butterfly(m, levels),
           openmesh_refine<OpenMesh::Subdivider::Uniform::ModifiedButterflyT<TriMesh, double>>(m, levels));
     }
+}
+
+TEST_CASE("limit positions and normals = OpenSubdiv Far's Limit, valences 3–8, closed and open",
+          "[subdivision][limit][oracle]") {
+  struct Case {
+    const char* name;
+    Mesh mesh;
+    MeshScheme scheme;
+    Sdc::SchemeType type;
+    int levels;
+  };
+  std::vector<Case> cases{{"cube", cube(), MeshScheme::catmull_clark, Sdc::SCHEME_CATMARK, 1},
+                          {"torus", torus(6, 5), MeshScheme::catmull_clark, Sdc::SCHEME_CATMARK, 1},
+                          {"tetrahedron", tetrahedron(), MeshScheme::loop, Sdc::SCHEME_LOOP, 1},
+                          {"octahedron", octahedron(), MeshScheme::loop, Sdc::SCHEME_LOOP, 2}};
+  for (int k = 5; k <= 8; ++k) {
+    cases.push_back({"bipyramid", bipyramid_of(k), MeshScheme::catmull_clark, Sdc::SCHEME_CATMARK, 1});
+    cases.push_back({"bipyramid", bipyramid_of(k), MeshScheme::loop, Sdc::SCHEME_LOOP, 1});
+  }
+  for (const auto& c : cases)
+    for (int levels = c.levels; levels <= c.levels + 1; ++levels) {
+      INFO(c.name << " (" << c.mesh.vertices.rows() << " vertices), " << scheme_name(c.scheme) << ", level "
+                  << levels);
+      check_same_limit(c.mesh, c.scheme, c.type, BoundaryRule::edge_only, levels, true);
+    }
+  // Open meshes: positions on the boundary too, under both rules (normals are not built there).
+  for (const BoundaryRule rule : {BoundaryRule::edge_only, BoundaryRule::edge_and_corner}) {
+    check_same_limit(quad_grid(4, 3), MeshScheme::catmull_clark, Sdc::SCHEME_CATMARK, rule, 1, false);
+    check_same_limit(quad_grid(3, 2, true), MeshScheme::loop, Sdc::SCHEME_LOOP, rule, 1, false);
+  }
 }
