@@ -45,6 +45,17 @@ struct SubdivideOptions {
   std::filesystem::path output;   // .obj or .ply; empty: OBJ on stdout
 };
 std::string subdivide(const SubdivideOptions& options);
+
+/// `cifs limit`: the mesh after `levels` steps with its vertices on the limit surface.
+struct LimitCommandOptions {
+  std::filesystem::path mesh;
+  std::string scheme;
+  int levels = 1;
+  std::string boundary = "edge";
+  bool normals = false;          // unit limit normals (PLY nx ny nz, OBJ vn)
+  std::filesystem::path output;  // .obj or .ply; empty: OBJ on stdout
+};
+std::string limit(const LimitCommandOptions& options);
 /// `--boundary edge|corner` (cifs subdivide, cifs scheme): InvalidInput naming the two otherwise.
 subdivision::BoundaryRule boundary_rule(const std::string& name);
 

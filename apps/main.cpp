@@ -154,6 +154,19 @@ int run(int argc, char** argv, std::string& result) {
   subdivide_cmd->add_option("-o,--output", su.output, "Output mesh (.obj or .ply; default: OBJ on stdout)");
   subdivide_cmd->callback([&] { result = subdivide(su); });
 
+  LimitCommandOptions li;
+  auto* limit_cmd = app.add_subcommand(
+      "limit", "Limit points (and normals) of a subdivision surface: catmull-clark, loop, butterfly, sqrt3");
+  limit_cmd->add_option("mesh", li.mesh, "Polygon mesh (.obj or .ply)")->required();
+  limit_cmd->add_option("--scheme", li.scheme, "catmull-clark, loop, butterfly or sqrt3")->required();
+  limit_cmd->add_option("--levels", li.levels,
+                        "Subdivision steps before the vertices go to the limit (default 1)");
+  limit_cmd->add_option("--boundary", li.boundary,
+                        "Boundary corners (one face): edge (smoothed, default) or corner (kept)");
+  limit_cmd->add_flag("--normals", li.normals, "Write unit limit normals (closed meshes)");
+  limit_cmd->add_option("-o,--output", li.output, "Output mesh (.obj or .ply; default: OBJ on stdout)");
+  limit_cmd->callback([&] { result = limit(li); });
+
   DimensionOptions di;
   auto* dimension_cmd = app.add_subcommand(
       "dimension",
@@ -189,7 +202,7 @@ int run(int argc, char** argv, std::string& result) {
     if (first[0] != '-' && known.empty())
       throw cifs::InvalidInput("unknown command '" + first +
                                "' (commands: eval, insert, info, automaton, attractor, check, scheme, "
-                               "subdivide, render, dimension, gallery; see cifs --help)");
+                               "subdivide, limit, render, dimension, gallery; see cifs --help)");
     // CLI11 would report the missing command ("A subcommand is required") instead of the option.
     const std::string option = first.substr(0, first.find('='));
     if (first.size() > 1 && first[0] == '-' && app.get_option_no_throw(option) == nullptr)

@@ -9,6 +9,7 @@
 #include "cifs/files.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/render/progress.hpp"
+#include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/mesh.hpp"
 #include "cifs/topology.hpp"
 #include "commands.hpp"
@@ -124,6 +125,24 @@ std::string subdivide(const SubdivideOptions& o) {
   return "wrote " + o.output.string() + ": " + std::to_string(refined.vertices.rows()) + " vertices, " +
          std::to_string(face_count(refined)) + " faces (" + o.scheme + (o.factored ? " factored" : "") +
          ", " + std::to_string(o.levels) + " levels)\n";
+}
+
+std::string limit(const LimitCommandOptions& o) {
+  const subdivision::MeshScheme scheme = subdivision::named_mesh_scheme(o.scheme);
+  const subdivision::LimitOptions options{.boundary = boundary_rule(o.boundary), .normals = o.normals};
+  if (!o.output.empty()) check_mesh_output(o.output);
+  const Mesh mesh = io::read_mesh(o.mesh);
+  Mesh surface;
+  try {
+    surface = subdivision::limit_mesh(mesh, scheme, o.levels, options);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(o.mesh.string() + ": " + e.what());
+  }
+  if (o.output.empty()) return io::encode(surface, "obj");
+  io::write(o.output, surface);
+  return "wrote " + o.output.string() + ": " + std::to_string(surface.vertices.rows()) + " limit points" +
+         (o.normals ? " with normals, " : ", ") + std::to_string(face_count(surface)) + " faces (" +
+         o.scheme + ", " + std::to_string(o.levels) + " levels)\n";
 }
 
 }  // namespace cifs::cli

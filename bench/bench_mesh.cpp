@@ -36,6 +36,7 @@
 #include <memory>
 #include <vector>
 
+#include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/mesh.hpp"
 #include "subdivision/meshes.hpp"
 #include "subdivision/osd_refiner.hpp"
@@ -351,6 +352,48 @@ void osd_stencil_case(benchmark::State& state, sd::MeshScheme scheme) {
   state.counters["stencil_weights"] = static_cast<double>(stencils->GetWeights().size());
 }
 
+// Limit positions and tangents of every level-4 vertex from the level-4 positions: cifs's limit
+// stencils (built once per topology, like OSD's masks are per call) against Far::PrimvarRefiner::Limit.
+void cifs_limit_case(benchmark::State& state, sd::MeshScheme scheme) {
+  const Mesh& m = input(scheme);
+  const sd::MeshRefinement r = sd::refine_topology(m, scheme, kLevels);
+  const Points x = sd::apply(r, m.vertices);
+  const sd::LimitStencils st = sd::limit_stencils(r.levels.back(), scheme);
+  sd::LimitFrame f;  // reused, as OSD's output vectors are
+  for (auto _ : state) {
+    sd::evaluate_limit(st, x, f);
+    benchmark::DoNotOptimize(f.tangent_v.data());
+  }
+  state.counters["vertices"] = static_cast<double>(f.positions.rows());
+}
+
+void cifs_limit_stencils_build(benchmark::State& state, sd::MeshScheme scheme) {
+  const sd::MeshRefinement r = sd::refine_topology(input(scheme), scheme, kLevels);
+  for (auto _ : state) {
+    const sd::LimitStencils st = sd::limit_stencils(r.levels.back(), scheme);
+    benchmark::DoNotOptimize(st.columns.data());
+  }
+}
+
+void osd_limit_case(benchmark::State& state, sd::MeshScheme scheme) {
+  const Mesh& m = input(scheme);
+  const auto refiner = cifs_test::osd_refiner(
+      m, scheme == sd::MeshScheme::catmull_clark ? Sdc::SCHEME_CATMARK : Sdc::SCHEME_LOOP,
+      Sdc::Options::VTX_BOUNDARY_EDGE_ONLY, kLevels, true);
+  std::vector<OsdVertex> verts;
+  const OsdVertex* last = osd_positions(*refiner, m, verts);
+  const auto n = static_cast<std::size_t>(refiner->GetLevel(kLevels).GetNumVertices());
+  std::vector<OsdVertex> pos(n), du(n), dv(n);
+  const Far::PrimvarRefinerReal<double> primvars(*refiner);
+  OsdVertex *p = pos.data(), *u = du.data(), *v = dv.data();
+  for (auto _ : state) {
+    primvars.Limit(last, p, u, v);
+    benchmark::DoNotOptimize(pos.data());
+    benchmark::DoNotOptimize(dv.data());
+  }
+  state.counters["vertices"] = static_cast<double>(n);
+}
+
 void openmesh_case(benchmark::State& state, sd::MeshScheme scheme) {
   const Mesh& m = input(scheme);
   Mesh out;
@@ -396,6 +439,9 @@ int main(int argc, char** argv) {
     reg("replay/osd_stencil_table", osd_stencil_case);
     reg("stencil_table_build/cifs", cifs_stencil_table_build);
     reg("stencil_table_build/osd", osd_stencil_table_build);
+    reg("limit/cifs", cifs_limit_case);
+    reg("limit/osd", osd_limit_case);
+    reg("limit_stencils_build/cifs", cifs_limit_stencils_build);
   }
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();

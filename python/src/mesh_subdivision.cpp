@@ -10,6 +10,7 @@
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "cifs/errors.hpp"
+#include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/mesh.hpp"
 #include "cifs/subdivision/mesh_analysis.hpp"
 
@@ -81,6 +82,22 @@ void bind_mesh_subdivision(py::module_& m) {
       "boundary corners along the boundary curve, 'corner' keeps them (Catmull–Clark, Loop). "
       "factored=True: linear subdivision then averaging (catmull-clark on quads, loop), the same mesh to "
       "round-off. Refused before any work when the result would need more than max_bytes.");
+  m.def(
+      "limit",
+      [](const Mesh& mesh, const std::string& scheme, int levels, const std::string& boundary, bool normals,
+         double max_bytes) {
+        const sd::MeshScheme s = sd::named_mesh_scheme(scheme);
+        const sd::LimitOptions o{.boundary = mesh_options(boundary, max_bytes).boundary,
+                                 .normals = normals,
+                                 .max_bytes = max_bytes};
+        py::gil_scoped_release release;
+        return sd::limit_mesh(mesh, s, levels, o);
+      },
+      py::arg("mesh"), py::arg("scheme"), py::arg("levels") = 1, py::kw_only(), py::arg("boundary") = "edge",
+      py::arg("normals") = false, py::arg("max_bytes") = kDefaultBytes,
+      "The mesh after `levels` steps with every vertex on the limit surface (left eigenvectors of the local "
+      "subdivision matrices), and unit limit normals when normals=True (closed meshes; not Butterfly). "
+      "catmull-clark, loop, butterfly (interpolating: the vertices themselves), sqrt3.");
   const auto one = [&m](const char* name, sd::MeshScheme scheme, const char* doc) {
     m.def(
         name,

@@ -5,26 +5,27 @@
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
 #include <algorithm>
-#include <map>
+#include <array>
 #include <string>
-#include <utility>
+#include <vector>
 
 #include "cifs/errors.hpp"
+#include "cifs/memory.hpp"
 #include "cifs/subdivision/mesh_analysis.hpp"
 #include "local_mesh.hpp"
 
 namespace cifs::subdivision {
 namespace {
 
-/// Limit weights on a vertex's neighbourhood, in mesh_analysis.hpp's numbering.
-struct Masks {
-  LongVector position, tangent_u, tangent_v;  // tangents empty on the boundary
-};
-
-Masks masks(MeshScheme scheme, int valence, const LocalOptions& local) {
+LimitMask mask(MeshScheme scheme, int valence, const LocalOptions& local) {
   const LocalMatrix S = local_matrix(scheme, valence, local);
   const LocalSpectrum spectrum = local_spectrum(S);
-  Masks out{.position = spectrum.limit_stencil, .tangent_u = {}, .tangent_v = {}};
+  const auto doubles = [](const LongVector& w) {
+    std::vector<double> out(static_cast<std::size_t>(w.size()));
+    for (Eigen::Index i = 0; i < w.size(); ++i) out[static_cast<std::size_t>(i)] = static_cast<double>(w(i));
+    return out;
+  };
+  LimitMask out{.position = doubles(spectrum.limit_stencil), .tangent_u = {}, .tangent_v = {}};
   if (local.boundary) return out;
   const auto N = S.values.rows();
   const LongMatrix A = (S.values - spectrum.subdominant * LongMatrix::Identity(N, N)).transpose();
@@ -43,29 +44,20 @@ Masks masks(MeshScheme scheme, int valence, const LocalOptions& local) {
     v += static_cast<double>(left(static_cast<Eigen::Index>(i), 1)) * p;
   }
   if (u.x() * v.y() - u.y() * v.x() < 0) left.col(1) *= -1;
-  out.tangent_u = left.col(0);
-  out.tangent_v = left.col(1);
+  out.tangent_u = doubles(left.col(0));
+  out.tangent_v = doubles(left.col(1));
   return out;
 }
 
-void add_row(Stencils& s, const std::vector<int>& nb, const LongVector& weights) {
-  for (std::size_t i = 0; i < nb.size() && weights.size() > 0; ++i) {
-    s.columns.push_back(nb[i]);
-    s.weights.push_back(static_cast<double>(weights(static_cast<Eigen::Index>(i))));
-  }
-  s.offsets.push_back(static_cast<int>(s.columns.size()));
-}
-
 /// Why the neighbourhood of v cannot be walked, or nothing.
-std::string unsupported(const MeshTopology& t, MeshScheme scheme, int v) {
-  const auto faces = vertex_faces(t, static_cast<std::size_t>(v));
+const char* unsupported(const MeshTopology& t, MeshScheme scheme, int v) {
   const std::size_t corners = scheme == MeshScheme::catmull_clark ? 4 : 3;
-  for (const int f : faces)
+  for (const int f : vertex_faces(t, static_cast<std::size_t>(v)))
     if (face(t, static_cast<std::size_t>(f)).size() != corners)
       return scheme == MeshScheme::catmull_clark
                  ? "touches a face that is not a quad (refine one level first)"
                  : "touches a face that is not a triangle";
-  return {};
+  return nullptr;
 }
 
 }  // namespace
@@ -75,46 +67,103 @@ LimitStencils limit_stencils(const MeshTopology& t, MeshScheme scheme, BoundaryR
   if (scheme == MeshScheme::doo_sabin)
     throw InvalidInput(who + ": limit points belong to faces under this dual scheme; not built");
   LimitStencils out;
-  std::map<std::pair<int, bool>, Masks> cache;
+  const auto V = static_cast<std::size_t>(t.vertex_count);
+  out.offsets.reserve(V + 1);
+  out.mask_of.reserve(V);
+  out.columns.reserve(V * (scheme == MeshScheme::catmull_clark ? 9 : 7));
+  // Masks by kind: [valence][boundary]; −1 until first needed. Kind 0 is "the vertex itself".
+  out.masks.push_back(LimitMask{.position = {1.0}, .tangent_u = {}, .tangent_v = {}});
+  std::vector<std::array<int, 2>> kind;
+  std::vector<int> nb;
   for (int v = 0; v < t.vertex_count; ++v) {
     const int n = valence(t, static_cast<std::size_t>(v));
     const bool on_boundary = t.boundary_vertex[static_cast<std::size_t>(v)] != 0;
-    const std::string where = who + ": vertex " + std::to_string(v) + " (valence " + std::to_string(n) + ")";
-    if (n == 0) {  // isolated: it stays where it is
-      add_row(out.position, {v}, LongVector::Ones(1));
-      add_row(out.tangent_u, {}, {});
-      add_row(out.tangent_v, {}, {});
+    // Isolated vertices stay where they are; Butterfly interpolates: the vertex is its limit.
+    if (n == 0 || scheme == MeshScheme::butterfly) {
+      out.columns.push_back(v);
+      out.offsets.push_back(static_cast<int>(out.columns.size()));
+      out.mask_of.push_back(0);
       continue;
     }
-    if (scheme == MeshScheme::butterfly) {  // interpolating: the vertex is its limit
-      add_row(out.position, {v}, LongVector::Ones(1));
-      add_row(out.tangent_u, {}, {});
-      add_row(out.tangent_v, {}, {});
-      continue;
-    }
+    const auto where = [&] {
+      return who + ": vertex " + std::to_string(v) + " (valence " + std::to_string(n) + ")";
+    };
     if (on_boundary && scheme != MeshScheme::catmull_clark && scheme != MeshScheme::loop)
-      throw InvalidInput(where +
+      throw InvalidInput(where() +
                          " is on the boundary: limit points there are built for catmull-clark and loop only");
-    if (const std::string why = unsupported(t, scheme, v); !why.empty())
-      throw InvalidInput(where + " " + why);
-    auto it = cache.find({n, on_boundary});
-    if (it == cache.end()) {
+    if (const char* why = unsupported(t, scheme, v)) throw InvalidInput(where() + " " + why);
+    if (kind.size() <= static_cast<std::size_t>(n)) kind.resize(static_cast<std::size_t>(n) + 1, {-1, -1});
+    int& k = kind[static_cast<std::size_t>(n)][on_boundary ? 1 : 0];
+    if (k < 0) {
       try {
-        it = cache
-                 .emplace(std::pair{n, on_boundary},
-                          masks(scheme, n, LocalOptions{.boundary = on_boundary, .rule = boundary}))
-                 .first;
+        out.masks.push_back(mask(scheme, n, LocalOptions{.boundary = on_boundary, .rule = boundary}));
       } catch (const InvalidInput& e) {
-        throw InvalidInput(where + ": " + e.what());
+        throw InvalidInput(where() + ": " + e.what());
       }
+      k = static_cast<int>(out.masks.size()) - 1;
     }
     const int start =
         other_vertex(t, static_cast<std::size_t>(vertex_edges(t, static_cast<std::size_t>(v))[0]), v);
-    const std::vector<int> nb = detail::neighbourhood(t, scheme, v, start, on_boundary);
-    add_row(out.position, nb, it->second.position);
-    add_row(out.tangent_u, nb, it->second.tangent_u);
-    add_row(out.tangent_v, nb, it->second.tangent_v);
+    detail::neighbourhood(t, scheme, v, start, on_boundary, nb);
+    out.columns.insert(out.columns.end(), nb.begin(), nb.end());
+    out.offsets.push_back(static_cast<int>(out.columns.size()));
+    out.mask_of.push_back(k);
   }
+  return out;
+}
+
+namespace {
+
+/// One pass, each neighbourhood gathered once for the three weighted sums; D = 3 lets the compiler
+/// keep the sums in registers.
+template <int D>
+void limit_rows(const LimitStencils& s, const Points& x, LimitFrame& out, bool tangents) {
+  using Row = Eigen::Matrix<double, 1, D>;
+  const Eigen::Index d = x.cols();
+  const auto V = static_cast<Eigen::Index>(s.mask_of.size());
+  for (Eigen::Index v = 0; v < V; ++v) {
+    const LimitMask& m = s.masks[static_cast<std::size_t>(s.mask_of[static_cast<std::size_t>(v)])];
+    const int* column = s.columns.data() + s.offsets[static_cast<std::size_t>(v)];
+    const bool with_tangents = tangents && !m.tangent_u.empty();
+    Row p = Row::Zero(d), u = Row::Zero(d), w = Row::Zero(d);
+    for (std::size_t i = 0; i < m.position.size(); ++i) {
+      const Eigen::Map<const Row> row(x.data() + static_cast<std::ptrdiff_t>(column[i]) * d, d);
+      p += m.position[i] * row;
+      if (!with_tangents) continue;
+      u += m.tangent_u[i] * row;
+      w += m.tangent_v[i] * row;
+    }
+    Eigen::Map<Row>(out.positions.data() + v * d, d) = p;
+    if (!tangents) continue;
+    Eigen::Map<Row>(out.tangent_u.data() + v * d, d) = u;
+    Eigen::Map<Row>(out.tangent_v.data() + v * d, d) = w;
+  }
+}
+
+}  // namespace
+
+void evaluate_limit(const LimitStencils& s, const Points& x, LimitFrame& out, bool tangents) {
+  const auto V = static_cast<Eigen::Index>(s.mask_of.size());
+  const Eigen::Index d = x.cols();
+  const auto resize = [&](Points& P) {
+    if (P.rows() == V && P.cols() == d) return;  // storage reused: no page faults on repeated calls
+    P.resize(V, d);
+    advise_huge_pages(P.data(), static_cast<std::size_t>(P.size()) * sizeof(double));
+  };
+  resize(out.positions);
+  if (tangents) {
+    resize(out.tangent_u);
+    resize(out.tangent_v);
+  }
+  if (d == 3)
+    limit_rows<3>(s, x, out, tangents);
+  else
+    limit_rows<Eigen::Dynamic>(s, x, out, tangents);
+}
+
+LimitFrame evaluate_limit(const LimitStencils& stencils, const Points& vertices, bool tangents) {
+  LimitFrame out;
+  evaluate_limit(stencils, vertices, out, tangents);
   return out;
 }
 
@@ -122,29 +171,29 @@ Mesh limit_mesh(const Mesh& mesh, MeshScheme scheme, int levels, const LimitOpti
   const MeshRefinement r = refine_topology(
       mesh, scheme, levels, MeshOptions{.boundary = options.boundary, .max_bytes = options.max_bytes});
   const MeshTopology& last = r.levels.back();
+  if (options.normals && scheme == MeshScheme::butterfly)
+    throw InvalidInput(
+        "butterfly: limit normals are not built (next to an extraordinary vertex the invariant neighbourhood "
+        "is not the regular one)");
   if (options.normals &&
       std::any_of(last.boundary_vertex.begin(), last.boundary_vertex.end(), [](char b) { return b != 0; }))
     throw InvalidInput(
         std::string(scheme_name(scheme)) +
         ": limit normals at boundary vertices are not built; the mesh has a boundary (drop the normals)");
-  if (options.normals && scheme == MeshScheme::butterfly)
-    throw InvalidInput(
-        "butterfly: limit normals are not built (next to an extraordinary vertex the invariant neighbourhood "
-        "is not the regular one)");
   if (options.normals && mesh.vertices.cols() != 3)
     throw InvalidInput(std::string(scheme_name(scheme)) + ": limit normals need 3-D vertices, not " +
                        std::to_string(mesh.vertices.cols()) + "-D");
-  const LimitStencils stencils = limit_stencils(last, scheme, options.boundary);
-  const Points refined = apply(r, mesh.vertices);
+  const LimitFrame frame = evaluate_limit(limit_stencils(last, scheme, options.boundary),
+                                          apply(r, mesh.vertices), options.normals);
   Mesh out;
-  out.vertices = apply(stencils.position, refined);
+  out.vertices = frame.positions;
   out.face_offsets = last.face_offsets;
   out.face_vertices = last.face_vertices;
   if (options.normals) {
-    const Points u = apply(stencils.tangent_u, refined), v = apply(stencils.tangent_v, refined);
     out.normals.resize(out.vertices.rows(), 3);
     for (Eigen::Index i = 0; i < out.vertices.rows(); ++i) {
-      const Eigen::Vector3d n = u.row(i).head<3>().transpose().cross(v.row(i).head<3>().transpose());
+      const Eigen::Vector3d u = frame.tangent_u.row(i).transpose(), v = frame.tangent_v.row(i).transpose();
+      const Eigen::Vector3d n = u.cross(v);
       const double length = n.norm();  // 0 where the surface is singular: left 0
       out.normals.row(i) = (length > 0 ? Eigen::Vector3d(n / length) : n).transpose();
     }

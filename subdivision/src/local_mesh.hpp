@@ -21,6 +21,9 @@ int face_across(const MeshTopology& t, int e, int f);
 /// 0 at `start` (a neighbour; Doo–Sabin: a corner; ignored on the boundary, where edge 0 starts).
 std::vector<int> neighbourhood(const MeshTopology& t, MeshScheme scheme, int centre, int start,
                                bool boundary);
+/// The same into `out` (cleared first), for walks over every vertex of a mesh.
+void neighbourhood(const MeshTopology& t, MeshScheme scheme, int centre, int start, bool boundary,
+                   std::vector<int>& out);
 
 /// Weight of `column` in row `row` of the stencils.
 double weight(const Stencils& s, int row, int column);

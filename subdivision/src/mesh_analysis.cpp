@@ -413,8 +413,9 @@ int face_across(const MeshTopology& t, int e, int f) {
 
 /// The neighbourhood of vertex `centre` (Doo–Sabin: face) in the header's numbering, sector 0 at
 /// `start` (a neighbour; Doo–Sabin: a corner; ignored on the boundary, where edge 0 starts).
-std::vector<int> neighbourhood(const MeshTopology& t, MeshScheme scheme, int centre, int start,
-                               bool boundary) {
+void neighbourhood(const MeshTopology& t, MeshScheme scheme, int centre, int start, bool boundary,
+                   std::vector<int>& out) {
+  out.clear();
   if (scheme == MeshScheme::doo_sabin) {
     const int k = static_cast<int>(face(t, static_cast<std::size_t>(centre)).size());
     const int s = corner_index(t, centre, start);
@@ -424,7 +425,6 @@ std::vector<int> neighbourhood(const MeshTopology& t, MeshScheme scheme, int cen
       edge_quad[static_cast<std::size_t>(i)] = face_across(
           t, edge_between(t, g[static_cast<std::size_t>(i)], g[static_cast<std::size_t>((i + 1) % k)]),
           centre);
-    std::vector<int> out;
     for (int i = 0; i < k; ++i) {
       const int gi = g[static_cast<std::size_t>(i)], quad = edge_quad[static_cast<std::size_t>(i)];
       const int previous = edge_quad[static_cast<std::size_t>((i + k - 1) % k)];
@@ -435,7 +435,7 @@ std::vector<int> neighbourhood(const MeshTopology& t, MeshScheme scheme, int cen
       out.insert(out.end(), {gi, corner(t, quad, ci + 1), corner(t, quad, ci + 2),
                              corner(t, corner_quad, corner_index(t, corner_quad, gi) + 2)});
     }
-    return out;
+    return;
   }
   const auto ring = vertex_edges(t, static_cast<std::size_t>(centre));
   const auto faces = vertex_faces(t, static_cast<std::size_t>(centre));
@@ -449,7 +449,7 @@ std::vector<int> neighbourhood(const MeshTopology& t, MeshScheme scheme, int cen
     return other_vertex(t, static_cast<std::size_t>(ring[static_cast<std::size_t>(wrap(s + j, n))]), centre);
   };
   const auto face_j = [&](int j) { return faces[static_cast<std::size_t>(wrap(s + j, F))]; };
-  std::vector<int> out{centre};
+  out.push_back(centre);
   for (int j = 0; j < n; ++j) {
     out.push_back(r(j));
     if (scheme == MeshScheme::catmull_clark && j < F)
@@ -467,6 +467,12 @@ std::vector<int> neighbourhood(const MeshTopology& t, MeshScheme scheme, int cen
       out.push_back(corner(t, across, corner_index(t, across, rj) + 1));
     }
   }
+}
+
+std::vector<int> neighbourhood(const MeshTopology& t, MeshScheme scheme, int centre, int start,
+                               bool boundary) {
+  std::vector<int> out;
+  neighbourhood(t, scheme, centre, start, boundary, out);
   return out;
 }
 

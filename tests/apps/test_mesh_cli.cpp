@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 // cifs subdivide and cifs info on polygon meshes, run as a user runs them.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
@@ -162,4 +163,47 @@ TEST_CASE("cifs render on a mesh experiment: the same files as cifs subdivide; b
   check_error(cifs_cli("render " + scheme + " -o " + (dir / "x.exr").string()),
               "bad_scheme.json: subdivision.scheme: unknown mesh scheme 'catmul-clark'");
   CHECK_FALSE(std::filesystem::exists(dir));
+}
+
+TEST_CASE("cifs limit: the cube's corners go to Halstead's limit point, normals along the diagonal",
+          "[cli][mesh][limit]") {
+  // Catmull–Clark limit of a valence-n vertex: (n²v + 4Σ edge neighbours + Σ diagonal corners) /
+  // (n(n + 5)) (Halstead, Kass and DeRose 1993). For the unit cube's corner at 0, n = 3: the
+  // neighbours sum to (1, 1, 1), the diagonals to (2, 2, 2): (6, 6, 6)/24 = ¼(1, 1, 1). By symmetry
+  // the normal there points along −(1, 1, 1).
+  const auto out = scratch() / "limit_cube.ply";
+  const Run r = cifs_cli("limit " + example("cube.obj") + " --scheme catmull-clark --levels 0 --normals -o " +
+                         out.string());
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("8 limit points with normals, 6 faces"));
+  const Mesh limit = io::read_mesh(out);
+  REQUIRE(limit.normals.rows() == 8);
+  for (Eigen::Index v = 0; v < 8; ++v) {
+    const Eigen::RowVector3d corner = io::read_mesh(example("cube.obj")).vertices.row(v);
+    const Eigen::RowVector3d expected = Eigen::RowVector3d::Constant(0.25) + 0.5 * corner;  // ¼ inwards
+    CHECK((limit.vertices.row(v) - expected).norm() < 1e-15);
+    const Eigen::RowVector3d outward = (corner - Eigen::RowVector3d::Constant(0.5)).normalized();
+    CHECK((limit.normals.row(v) - outward).norm() < 1e-15);
+  }
+  // On stdout as OBJ, at level 2: as many vertices as the subdivided mesh.
+  const Run obj = cifs_cli("limit " + example("icosahedron.obj") + " --scheme loop --levels 2");
+  REQUIRE(obj.status == 0);
+  const Mesh refined = subdivision::loop(io::read_mesh(example("icosahedron.obj")), 2);
+  std::size_t vertices = 0;
+  for (std::size_t at = 0; (at = obj.out.find("\nv ", at)) != std::string::npos; ++at) ++vertices;
+  CHECK(vertices + (obj.out.rfind("v ", 0) == 0 ? 1 : 0) ==
+        static_cast<std::size_t>(refined.vertices.rows()));
+}
+
+TEST_CASE("cifs limit: what is not built exits 2 with one line", "[cli][mesh][limit]") {
+  const auto out = scratch() / "never_limit.ply";
+  std::filesystem::remove(out);
+  const std::string o = " -o " + out.string();
+  check_error(cifs_cli("limit " + example("open_grid.obj") + " --scheme catmull-clark --normals" + o),
+              "limit normals at boundary vertices are not built");
+  check_error(cifs_cli("limit " + example("cube.obj") + " --scheme doo-sabin" + o),
+              "doo-sabin: limit points belong to faces");
+  check_error(cifs_cli("limit " + example("cube_triangles.obj") + " --scheme catmull-clark --levels 0" + o),
+              "touches a face that is not a quad (refine one level first)");
+  CHECK(!std::filesystem::exists(out));
 }

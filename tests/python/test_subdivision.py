@@ -533,6 +533,20 @@ class MeshSubdivisionTest(ScratchTestCase):
         self.assertEqual(sd.mesh_schemes(), ["catmull-clark", "loop", "doo-sabin", "butterfly", "sqrt3"])
 
 
+class LimitTest(unittest.TestCase):
+    def test_cube_corners_and_normals(self):
+        # Halstead et al. 1993: a valence-3 corner of the unit cube goes to (n²v + 4Σe + Σf)/(n(n + 5))
+        # = ¼ of the way along the diagonal; the normal is along the diagonal, outwards.
+        cube = cifs.io.read_mesh(str(EXAMPLES / "meshes" / "cube.obj"))
+        limit = sd.limit(cube, "catmull-clark", 0, normals=True)
+        corners = np.asarray(cube.vertices)
+        np.testing.assert_allclose(limit.vertices, 0.25 + 0.5 * corners, atol=1e-15)
+        outward = corners - 0.5
+        np.testing.assert_allclose(limit.normals, outward / np.linalg.norm(outward, axis=1)[:, None], atol=1e-15)
+        with self.assertRaisesRegex(cifs.InvalidInput, "limit points belong to faces"):
+            sd.limit(cube, "doo-sabin")
+
+
 class LocalAnalysisTest(unittest.TestCase):
     def test_matches_the_cli_and_the_closed_forms(self):
         import math

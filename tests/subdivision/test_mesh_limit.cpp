@@ -57,9 +57,9 @@ TEST_CASE("limit stencils: the same limit position and normal at every level", "
     std::vector<Points> data{c.mesh.vertices};
     for (const Stencils& s : r.steps) data.push_back(apply(s, data.back()));
     const auto at_level = [&](int level) {
-      const LimitStencils st = limit_stencils(r.levels[static_cast<std::size_t>(level)], c.scheme);
-      const Points& x = data[static_cast<std::size_t>(level)];
-      return std::array<Points, 3>{apply(st.position, x), apply(st.tangent_u, x), apply(st.tangent_v, x)};
+      const LimitFrame f = evaluate_limit(limit_stencils(r.levels[static_cast<std::size_t>(level)], c.scheme),
+                                          data[static_cast<std::size_t>(level)]);
+      return std::array<Points, 3>{f.positions, f.tangent_u, f.tangent_v};
     };
     const auto base = at_level(c.first_level);
     const double scale = c.mesh.vertices.cwiseAbs().maxCoeff();
@@ -83,7 +83,8 @@ TEST_CASE("limit stencils: vertices converge to their limit positions geometrica
     Points x = c.mesh.vertices;
     for (int l = 0; l < c.first_level; ++l) x = apply(r.steps[static_cast<std::size_t>(l)], x);
     const Points limit =
-        apply(limit_stencils(r.levels[static_cast<std::size_t>(c.first_level)], c.scheme).position, x);
+        evaluate_limit(limit_stencils(r.levels[static_cast<std::size_t>(c.first_level)], c.scheme), x, false)
+            .positions;
     std::vector<double> error;
     for (int l = c.first_level; l <= c.first_level + steps; ++l) {
       if (l > c.first_level) x = apply(r.steps[static_cast<std::size_t>(l - 1)], x);
@@ -129,8 +130,9 @@ TEST_CASE("regular Catmull–Clark limit points and normals are the bicubic surf
   const nurbs::Surface surface = nurbs::make_surface({3, 3}, {ku, kv}, {n + 1, m + 1}, grid);
   const MeshRefinement r = refine_topology(shape, MeshScheme::catmull_clark, levels);
   const LimitStencils st = limit_stencils(r.levels.back(), MeshScheme::catmull_clark);
-  const Points x = apply(r, shape.vertices), uv = apply(st.position, apply(r, params.vertices));
-  const Points p = apply(st.position, x), tu = apply(st.tangent_u, x), tv = apply(st.tangent_v, x);
+  const Points uv = evaluate_limit(st, apply(r, params.vertices), false).positions;
+  const LimitFrame f = evaluate_limit(st, apply(r, shape.vertices));
+  const Points &p = f.positions, &tu = f.tangent_u, &tv = f.tangent_v;
   int checked = 0;
   for (Eigen::Index v = 0; v < p.rows(); ++v) {
     // Dyadic parameters, as the linear data's limit gives them up to round-off.

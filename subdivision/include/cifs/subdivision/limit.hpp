@@ -16,23 +16,41 @@
 
 namespace cifs::subdivision {
 
-/// Per vertex of a topology: `position` (rows sum to 1) and two tangent directions `tangent_u`,
-/// `tangent_v` (rows sum to 0; empty rows at boundary and isolated vertices), ordered so that
-/// tangent_u × tangent_v points to the side the faces are counter-clockwise from. Their lengths
-/// are not derivatives of any parametrisation: use them for the tangent plane and the normal.
-struct LimitStencils {
-  Stencils position;
-  Stencils tangent_u;
-  Stencils tangent_v;
+/// Limit weights for one kind of vertex (a valence, interior or boundary), on its neighbourhood in
+/// mesh_analysis.hpp's numbering: `position` sums to 1; `tangent_u`, `tangent_v` sum to 0 (empty at
+/// boundary vertices, under Butterfly and at isolated vertices), ordered so that
+/// tangent_u × tangent_v points to the side the faces are counter-clockwise from. Their lengths are
+/// not derivatives of any parametrisation: use them for the tangent plane and the normal.
+struct LimitMask {
+  std::vector<double> position, tangent_u, tangent_v;
 };
+
+/// Per vertex of a topology, its neighbourhood (the topology) and which mask weighs it (the
+/// weights, one copy per kind of vertex).
+struct LimitStencils {
+  std::vector<int> offsets{0};   // `#V + 1`, into columns
+  std::vector<int> columns;      // each vertex's neighbourhood, in its mask's order
+  std::vector<int> mask_of;      // per vertex, an index into masks
+  std::vector<LimitMask> masks;  // one per kind of vertex present
+};
+
+/// Limit positions and tangent directions of every vertex (`#V by d` each, d the data's columns);
+/// tangent rows are 0 where the mask has none.
+struct LimitFrame {
+  Points positions, tangent_u, tangent_v;
+};
+LimitFrame evaluate_limit(const LimitStencils& stencils, const Points& vertices, bool tangents = true);
+/// The same into `out`, whose storage is reused when it already has the size.
+void evaluate_limit(const LimitStencils& stencils, const Points& vertices, LimitFrame& out,
+                    bool tangents = true);
 
 /// The stencils of every vertex of `topology`, a mesh produced (or to be refined) by `scheme`.
 /// Catmull–Clark needs quads around each vertex (true after one level). Butterfly interpolates:
 /// every vertex is its own limit; its tangents are not built (next to an extraordinary vertex the
-/// invariant neighbourhood of a regular vertex is not the regular one). Boundary vertices are Catmull–Clark's and Loop's only (the boundary curve's limit
-/// (1, 4, 1)/6, or the corner itself under `edge_and_corner` at valence 2); Doo–Sabin's limit
-/// points belong to faces and are not built. InvalidInput naming the vertex otherwise, and for
-/// valences above 16 (boundary: 8).
+/// invariant neighbourhood of a regular vertex is not the regular one). Boundary vertices are Catmull–Clark's
+/// and Loop's only (the boundary curve's limit (1, 4, 1)/6, or the corner itself under `edge_and_corner` at
+/// valence 2); Doo–Sabin's limit points belong to faces and are not built. InvalidInput naming the vertex
+/// otherwise, and for valences above 16 (boundary: 8).
 LimitStencils limit_stencils(const MeshTopology& topology, MeshScheme scheme,
                              BoundaryRule boundary = BoundaryRule::edge_only);
 
