@@ -173,3 +173,135 @@ TEST_CASE("limit stencils: what is not built is refused, naming the vertex", "[s
     CHECK((limit.vertices.row(v) - expected).norm() <= 1e-15 * expected.norm() + 1e-15);
   }
 }
+
+// ------------------------------------------------------------------------------------------------
+// Catmull–Clark at any (face, u, v).
+
+namespace {
+
+/// The vertices of `levels` more Catmull–Clark steps at the dyadic points (i, j)/2^levels of face f
+/// of level 0, [i][j] flattened by i: each level's grid refined by the child numbering (vertex
+/// points keep their index, edge e's point is V + e, face f's V + E + f).
+std::vector<int> dyadic_vertices(const MeshRefinement& r, int f, int levels) {
+  const auto c = face(r.levels[0], static_cast<std::size_t>(f));
+  int m = 1;
+  std::vector<int> grid{c[0], c[3], c[1], c[2]};  // [i][j], i along corner 0 → 1
+  for (int l = 0; l < levels; ++l) {
+    const MeshTopology& t = r.levels[static_cast<std::size_t>(l)];
+    const int M = 2 * m, V = t.vertex_count, E = static_cast<int>(t.edges.size());
+    std::vector<int> next(static_cast<std::size_t>((M + 1) * (M + 1)));
+    const auto g = [&](int i, int j) { return grid[static_cast<std::size_t>(i * (m + 1) + j)]; };
+    const auto set = [&](int i, int j, int v) { next[static_cast<std::size_t>(i * (M + 1) + j)] = v; };
+    const auto edge = [&](int a, int b) {
+      for (const int e : vertex_edges(t, static_cast<std::size_t>(a)))
+        if (other_vertex(t, static_cast<std::size_t>(e), a) == b) return e;
+      FAIL("no edge");
+      return -1;
+    };
+    for (int i = 0; i <= m; ++i)
+      for (int j = 0; j <= m; ++j) {
+        set(2 * i, 2 * j, g(i, j));
+        if (i < m) set(2 * i + 1, 2 * j, V + edge(g(i, j), g(i + 1, j)));
+        if (j < m) set(2 * i, 2 * j + 1, V + edge(g(i, j), g(i, j + 1)));
+        if (i < m && j < m)
+          for (const int a : vertex_faces(t, static_cast<std::size_t>(g(i, j))))
+            for (const int b : vertex_faces(t, static_cast<std::size_t>(g(i + 1, j + 1))))
+              if (a == b) set(2 * i + 1, 2 * j + 1, V + E + a);
+      }
+    grid = std::move(next);
+    m = M;
+  }
+  return grid;
+}
+
+}  // namespace
+
+TEST_CASE("Catmull–Clark at (face, u, v): extraordinary patches equal the limits of refined vertices",
+          "[subdivision][limit]") {
+  // Each face of these refined meshes has at most one extraordinary corner (the cube's valence 3;
+  // the bipyramid's 5, 4 and its faces' 3, refined twice as one level of triangles leaves quads with
+  // two; the torus none). At the dyadic points (i, j)/8 of every face the surface is the limit of
+  // the vertex three levels down there: limit_stencils on the refined mesh, another route.
+  const std::vector<Mesh> meshes{catmull_clark(cube(), 1), catmull_clark(bipyramid(), 2),
+                                 catmull_clark(torus(6, 5), 1)};
+  for (const Mesh& m : meshes) {
+    const int levels = 3, N = 1 << levels;
+    const MeshRefinement r = refine_topology(m, MeshScheme::catmull_clark, levels);
+    const LimitFrame limit =
+        evaluate_limit(limit_stencils(r.levels.back(), MeshScheme::catmull_clark), apply(r, m.vertices));
+    std::vector<FacePoint> points;
+    std::vector<int> expected;
+    for (int f = 0; f < static_cast<int>(face_count(m)); ++f) {
+      const std::vector<int> ids = dyadic_vertices(r, f, levels);
+      for (int i = 0; i <= N; ++i)
+        for (int j = 0; j <= N; ++j) {
+          points.push_back({.face = f, .u = static_cast<double>(i) / N, .v = static_cast<double>(j) / N});
+          expected.push_back(ids[static_cast<std::size_t>(i * (N + 1) + j)]);
+        }
+    }
+    const SurfaceSample got = evaluate_limit_surface(m, points);
+    const double scale = m.vertices.cwiseAbs().maxCoeff();
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const auto p = static_cast<Eigen::Index>(k), v = static_cast<Eigen::Index>(expected[k]);
+      INFO("face " << points[k].face << " at (" << points[k].u << ", " << points[k].v << ")");
+      CHECK((got.positions.row(p) - limit.positions.row(v)).norm() <= 1e-12 * scale);
+      if (points[k].u == 0 && points[k].v == 0) continue;  // a corner may be extraordinary: no partials there
+      if ((points[k].u == 0 || points[k].u == 1) && (points[k].v == 0 || points[k].v == 1)) continue;
+      // The partials span the limit tangent plane: their normal is the vertex's limit normal.
+      CHECK((normal_at(got.du, got.dv, p) - normal_at(limit.tangent_u, limit.tangent_v, v)).norm() <= 1e-10);
+    }
+  }
+}
+
+TEST_CASE("Catmull–Clark at (face, u, v): regular patches are the bicubic surface, partials included",
+          "[subdivision][limit]") {
+  const int n = 8, m = 7;
+  Mesh shape = quad_grid(n, m);
+  Points grid((n + 1) * (m + 1), 3);
+  for (int j = 0; j <= m; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const auto r = static_cast<Eigen::Index>(j * (n + 1) + i);
+      shape.vertices.row(r) << i + 0.3 * std::sin(1.7 * j), j + 0.2 * std::cos(0.9 * i + j),
+          std::sin(1.3 * i) * std::cos(0.7 * j) + 0.1 * i * j;
+      grid.row(static_cast<Eigen::Index>(i * (m + 1) + j)) = shape.vertices.row(r);
+    }
+  nurbs::Knots ku(static_cast<std::size_t>(n + 5)), kv(static_cast<std::size_t>(m + 5));
+  for (std::size_t k = 0; k < ku.size(); ++k) ku[k] = static_cast<double>(k);
+  for (std::size_t k = 0; k < kv.size(); ++k) kv[k] = static_cast<double>(k);
+  const nurbs::Surface surface = nurbs::make_surface({3, 3}, {ku, kv}, {n + 1, m + 1}, grid);
+  // Face (i, j) of the grid (corners (i, j), (i + 1, j), …) is the parameter square
+  // [i + 2, i + 3] × [j + 2, j + 3]; the interior faces have no boundary corner.
+  std::vector<FacePoint> points;
+  std::vector<std::array<double, 2>> params;
+  for (int j = 1; j < m - 1; ++j)
+    for (int i = 1; i < n - 1; ++i)
+      for (const auto [u, v] :
+           {std::array{0.0, 0.0}, std::array{0.3, 0.7}, std::array{1.0, 0.45}, std::array{0.9, 0.1}}) {
+        points.push_back({.face = j * n + i, .u = u, .v = v});
+        params.push_back({i + 2 + u, j + 2 + v});
+      }
+  const SurfaceSample got = evaluate_limit_surface(shape, points);
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const auto p = static_cast<Eigen::Index>(k);
+    // Rows k·2 + l: S, S_v, S_u, S_uv.
+    const Points d = nurbs::derivatives(surface, params[k][0], params[k][1], 1);
+    INFO("face " << points[k].face << " at (" << points[k].u << ", " << points[k].v << ")");
+    CHECK((got.positions.row(p) - d.row(0)).norm() <= 1e-12 * d.row(0).norm());
+    CHECK((got.du.row(p) - d.row(2)).norm() <= 1e-12 * d.row(2).norm());
+    CHECK((got.dv.row(p) - d.row(1)).norm() <= 1e-12 * d.row(1).norm());
+  }
+}
+
+TEST_CASE("Catmull–Clark at (face, u, v): what is not built is refused, naming the point",
+          "[subdivision][limit]") {
+  const Mesh cube1 = catmull_clark(cube(), 1);
+  const std::vector<FacePoint> outside{{.face = 0, .u = 1.5, .v = 0}};
+  CHECK_THROWS_WITH(evaluate_limit_surface(cube1, outside), Contains("point 0 (face 0): (u, v) = (1.5"));
+  const std::vector<FacePoint> no_face{{.face = 99, .u = 0, .v = 0}};
+  CHECK_THROWS_WITH(evaluate_limit_surface(cube1, no_face), Contains("no such face; the mesh has 24"));
+  const std::vector<FacePoint> first{{.face = 0, .u = 0.5, .v = 0.5}};
+  CHECK_THROWS_WITH(evaluate_limit_surface(cube(), first),
+                    Contains("extraordinary corners (refine one level first)"));
+  CHECK_THROWS_WITH(evaluate_limit_surface(quad_grid(3, 3), first), Contains("touches the boundary"));
+  CHECK_THROWS_WITH(evaluate_limit_surface(pyramid(), first), Contains("not a quad"));
+}

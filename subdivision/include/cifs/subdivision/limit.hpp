@@ -10,6 +10,11 @@
 // the normal. Computed once per valence and replayed on any topology, like the refinement's weights.
 #pragma once
 
+#include <Eigen/Dense>
+#include <array>
+#include <span>
+#include <vector>
+
 #include "cifs/mesh.hpp"
 #include "cifs/subdivision/mesh.hpp"
 #include "cifs/topology.hpp"
@@ -63,5 +68,39 @@ struct LimitOptions {
 /// The mesh after `levels` steps with every vertex moved to its limit position (and `normals` set
 /// when asked): a sampling of the limit surface itself, exact at the vertices.
 Mesh limit_mesh(const Mesh& mesh, MeshScheme scheme, int levels, const LimitOptions& options = {});
+
+/// A point of a face's parameter square: corner 0 at (0, 0), corner 1 at (1, 0), corner 3 at
+/// (0, 1) (OpenSubdiv's quad parametrisation).
+struct FacePoint {
+  int face = 0;
+  double u = 0, v = 0;
+};
+
+/// Positions and first partials ∂/∂u, ∂/∂v, `#points by d`.
+struct SurfaceSample {
+  Points positions, du, dv;
+};
+
+/// A Catmull–Clark patch with one extraordinary corner of valence n as a controlled IFS (Stam 1998
+/// without the eigenbasis): its 2n + 8 control points (the corner's neighbourhood, then the 7 outer
+/// points) go one level down by `subdivide` into the patch at the corner, whose net has the same
+/// shape, and by `regular[k]` into the 16-point B-spline nets of the three other quarters (k = 0:
+/// s ≥ ½, t < ½; 1: both ≥ ½; 2: s < ½, t ≥ ½), the corner at (s, t) = (0, 0). The attractor of
+/// this automaton — the extraordinary state looping on itself, leaving into regular states — is the
+/// patch.
+struct ExtraordinaryPatch {
+  int valence = 0;
+  Eigen::MatrixXd subdivide;               // (2n + 8) × (2n + 8)
+  std::array<Eigen::MatrixXd, 3> regular;  // 16 × (2n + 8), rows by i (along s) then j
+  Eigen::RowVectorXd limit;                // the corner's limit position's weights
+};
+ExtraordinaryPatch catmull_clark_patch(int valence);
+
+/// Catmull–Clark's limit surface at any (face, u, v), exactly: a regular face (four interior
+/// corners of valence 4) is a bicubic B-spline patch; a face with one extraordinary interior corner
+/// goes down its ExtraordinaryPatch automaton until the point leaves the corner's quarter, then is
+/// evaluated in a regular quarter. The mesh: quads, no face with two extraordinary corners and no
+/// boundary face (InvalidInput naming the face otherwise; one level of refinement gives the first two).
+SurfaceSample evaluate_limit_surface(const Mesh& mesh, std::span<const FacePoint> at);
 
 }  // namespace cifs::subdivision
