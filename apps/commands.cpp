@@ -42,10 +42,10 @@ double parse_number(std::string_view text, std::string_view option) {
 
 void check_samples(long long count) {
   if (count > kMaxPoints)
-    throw InvalidInput("--samples: " + std::to_string(count) + " points exceed the limit of " +
-                       std::to_string(kMaxPoints) +
-                       " held in memory for standard output; write them to a file with -o points.npy (or .json, "
-                       ".ply, .obj), which is streamed");
+    throw InvalidInput(
+        "--samples: " + std::to_string(count) + " points exceed the limit of " + std::to_string(kMaxPoints) +
+        " held in memory for standard output; write them to a file with -o points.npy (or .json, "
+        ".ply, .obj), which is streamed");
 }
 
 /// Where a command's points go: a file written as they come (PointsFile: its format from the extension,
@@ -96,7 +96,8 @@ class PointsOutput {
 /// Points produced a chunk at a time: `rows(first, n)` gives rows first … first + n − 1 of `count`.
 template <class Rows>
 void write_in_chunks(PointsOutput& out, std::int64_t count, std::int64_t chunk, Rows&& rows) {
-  for (std::int64_t first = 0; first < count; first += chunk) out.write(rows(first, std::min(chunk, count - first)));
+  for (std::int64_t first = 0; first < count; first += chunk)
+    out.write(rows(first, std::min(chunk, count - first)));
 }
 
 /// Rows per chunk of a streamed output (one chunk when the points go to stdout: they are in memory anyway).
@@ -117,7 +118,8 @@ std::string eval_curve(const nurbs::Curve& c, const EvalOptions& o) {
   out.write(first);
   const std::int64_t chunk = o.output.empty() ? std::max(o.samples, 1) : kChunkPoints;
   write_in_chunks(out, o.samples, chunk, [&](std::int64_t i, std::int64_t n) {
-    return nurbs::evaluate(c, nurbs::uniform_parameters(dom, o.samples, static_cast<int>(i), static_cast<int>(n)));
+    return nurbs::evaluate(
+        c, nurbs::uniform_parameters(dom, o.samples, static_cast<int>(i), static_cast<int>(n)));
   });
   return out.finish(o.output);
 }
@@ -136,11 +138,13 @@ std::string eval_surface(const nurbs::Surface& s, const EvalOptions& o) {
   if (o.output.empty()) check_samples(n * n);
   const auto u_domain = nurbs::domain(s, nurbs::Direction::u);
   const auto vs = nurbs::uniform_parameters(nurbs::domain(s, nurbs::Direction::v), o.samples);
-  PointsOutput out(o.output, "json", static_cast<std::uint64_t>(first.rows() + n * n), first.cols(), {}, "eval",
-                   o.quiet);
+  PointsOutput out(o.output, "json", static_cast<std::uint64_t>(first.rows() + n * n), first.cols(), {},
+                   "eval", o.quiet);
   out.write(first);
   // Grid rows a chunk at a time: row a·N + b at (u_a, v_b).
-  const std::int64_t rows = o.output.empty() ? std::max<std::int64_t>(n, 1) : std::max<std::int64_t>(kChunkPoints / std::max<std::int64_t>(n, 1), 1);
+  const std::int64_t rows = o.output.empty()
+                                ? std::max<std::int64_t>(n, 1)
+                                : std::max<std::int64_t>(kChunkPoints / std::max<std::int64_t>(n, 1), 1);
   write_in_chunks(out, n, rows, [&](std::int64_t a, std::int64_t k) {
     return nurbs::evaluate_grid(
         s, nurbs::uniform_parameters(u_domain, o.samples, static_cast<int>(a), static_cast<int>(k)), vs);
@@ -234,7 +238,10 @@ std::string attractor_format(const AttractorOptions& o) {
   const auto listing = [&](bool extensions) {
     std::string out;
     for (std::size_t i = 0; i < names.size(); ++i)
-      out += std::string(i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + (extensions ? "." : "") + names[i];
+      out += std::string(i == 0                  ? ""
+                         : i + 1 == names.size() ? " or "
+                                                 : ", ") +
+             (extensions ? "." : "") + names[i];
     return out;
   };
   std::string format = o.format.empty() ? "json" : o.format;
@@ -243,7 +250,8 @@ std::string attractor_format(const AttractorOptions& o) {
     if (extension.size() < 2 || std::find(names.begin(), names.end(), extension.substr(1)) == names.end())
       throw InvalidInput("-o " + o.output.string() + ": expected a " + listing(true) + " file name");
     if (!o.format.empty() && o.format != extension.substr(1))
-      throw InvalidInput("--format " + o.format + ": -o " + o.output.string() + " names " + extension.substr(1));
+      throw InvalidInput("--format " + o.format + ": -o " + o.output.string() + " names " +
+                         extension.substr(1));
     format = extension.substr(1);
   }
   if (std::find(names.begin(), names.end(), format) == names.end())
@@ -318,10 +326,11 @@ std::string attractor(const AttractorOptions& o) {
     }
     const double bytes = static_cast<double>(count) * static_cast<double>(nets[0].cols()) * sizeof(double);
     if (bytes > static_cast<double>(kMemoryBytes))
-      throw InvalidInput("attractor: depth " + std::to_string(o.depth) + " gives " + std::to_string(count) +
-                         " points (" + number_text(bytes / static_cast<double>(kMemoryBytes), 3) +
-                         " GiB), more than the 1 GiB held in memory for standard output and SVG; write them to "
-                         "a file with -o points.npy (or .json, .ply, .obj), which is streamed");
+      throw InvalidInput(
+          "attractor: depth " + std::to_string(o.depth) + " gives " + std::to_string(count) + " points (" +
+          number_text(bytes / static_cast<double>(kMemoryBytes), 3) +
+          " GiB), more than the 1 GiB held in memory for standard output and SVG; write them to "
+          "a file with -o points.npy (or .json, .ply, .obj), which is streamed");
     options.max_bytes = kMemoryBytes;
     Points H = ifs::attractor_points(a, nets, o.depth, options);
     if (c->rational) H = ifs::cartesian(H);
@@ -335,16 +344,18 @@ std::string attractor(const AttractorOptions& o) {
   const double epsilon =
       c->rational ? o.tolerance * nurbs::weights(*c).minCoeff() / (1 + max_point) : o.tolerance;
   const ifs::ToleranceOptions to{epsilon, 40, 8};
-  const ifs::ToleranceResult r = ifs::for_each_leaf_to_tolerance(a, nets, to, [](const ifs::ToleranceLeaf&) {});
+  const ifs::ToleranceResult r =
+      ifs::for_each_leaf_to_tolerance(a, nets, to, [](const ifs::ToleranceLeaf&) {});
   if (r.unconverged > 0)
     throw InvalidInput("attractor: " + std::to_string(r.unconverged) + " pieces did not reach --tolerance " +
                        std::to_string(o.tolerance) + " by depth 40; give a larger tolerance");
   const std::size_t count = r.leaves + (c->closed ? 0 : 1);
   if (!streamed && static_cast<double>(count) * static_cast<double>(nets[0].cols()) * sizeof(double) >
                        static_cast<double>(kMemoryBytes))
-    throw InvalidInput("attractor: --tolerance " + number_text(o.tolerance, 6) + " gives " + std::to_string(count) +
-                       " points, more than the 1 GiB held in memory for standard output and SVG; write them to a "
-                       "file with -o points.npy (or .json, .ply, .obj), which is streamed");
+    throw InvalidInput(
+        "attractor: --tolerance " + number_text(o.tolerance, 6) + " gives " + std::to_string(count) +
+        " points, more than the 1 GiB held in memory for standard output and SVG; write them to a "
+        "file with -o points.npy (or .json, .ply, .obj), which is streamed");
   const ifs::EndFunctionals f = ifs::end_functionals(a);
   Points chunk(streamed ? std::min<Eigen::Index>(kChunkPoints, static_cast<Eigen::Index>(count))
                         : static_cast<Eigen::Index>(count),

@@ -43,7 +43,8 @@ int run(int argc, char** argv, std::string& result) {
   app.set_version_flag("--version", "cifs 0.1.0");
 
   EvalOptions ev;
-  auto* eval_cmd = app.add_subcommand("eval", "Evaluate a curve or surface; prints {\"points\": [...]} or writes -o FILE");
+  auto* eval_cmd =
+      app.add_subcommand("eval", "Evaluate a curve or surface; prints {\"points\": [...]} or writes -o FILE");
   eval_cmd->add_option("shape", ev.shape, "Shape file (.json or .obj)")->required();
   eval_cmd->add_option("--at", ev.at, "Parameter U (curves) or U,V (surfaces); repeatable")
       ->allow_extra_args(false);

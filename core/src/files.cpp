@@ -127,9 +127,8 @@ void check_disk_space(const std::filesystem::path& target, std::uint64_t bytes, 
   std::error_code ec;
   const std::filesystem::space_info space = std::filesystem::space(folder, ec);
   if (ec || space.available == static_cast<std::uintmax_t>(-1) || bytes <= written + space.available) return;
-  throw IoError(target.string() + ": the file needs " + (about ? "about " : "") +
-                gigabytes(bytes) + " GB of disk space, " + gigabytes(written + space.available) +
-                " GB are free there");
+  throw IoError(target.string() + ": the file needs " + (about ? "about " : "") + gigabytes(bytes) +
+                " GB of disk space, " + gigabytes(written + space.available) + " GB are free there");
 }
 
 }  // namespace cifs

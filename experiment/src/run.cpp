@@ -572,8 +572,7 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
       throw InvalidInput(message);
     }
     for (const io::Format& f : io::formats(content))
-      if (const auto it = e.outputs.geometry.find(std::string(f.name)); it != e.outputs.geometry.end())
-      {
+      if (const auto it = e.outputs.geometry.find(std::string(f.name)); it != e.outputs.geometry.end()) {
         AtomicWriter& out = file(o.out_dir / it->second);
         if (scene.mesh)
           io::encode(*scene.mesh, f.name, out);

@@ -153,7 +153,7 @@ struct StencilTables {
   int L = 0;
   std::vector<RowMatrix> table;  // by state
   EndFunctionals functionals;
-  std::size_t count = 0;       // points of the whole output
+  std::size_t count = 0;      // points of the whole output
   Eigen::Index max_rows = 0;  // largest c_L(s)
 };
 
@@ -223,8 +223,8 @@ StencilTables stencil_tables(const Automaton& automaton, std::span<const Points>
 /// product each, at `place(rows)` (a pointer to room for that many rows); then the end point of the
 /// very last node unless closed (the end of the last root: end functionals propagate).
 template <class Place>
-void emit_points(const Automaton& automaton, std::span<const Points> nets, int depth,
-                 const StencilTables& t, bool closed, Place&& place) {
+void emit_points(const Automaton& automaton, std::span<const Points> nets, int depth, const StencilTables& t,
+                 bool closed, Place&& place) {
   detail::depth_first(automaton, nets, depth - t.L,
                       [&](std::size_t, StateId s, const Points& net, int d, std::span<const int>) {
                         if (d < depth - t.L) return true;
@@ -272,15 +272,15 @@ Points attractor_points(const Automaton& automaton, std::span<const Points> nets
 
 std::size_t for_each_attractor_chunk(const Automaton& automaton, std::span<const Points> nets, int depth,
                                      const PointsOptions& options, const PointsChunkCallback& callback) {
-  const StencilTables t =
-      stencil_tables(automaton, nets, depth, options, "for_each_attractor_chunk", [&](std::size_t count, std::size_t) {
+  const StencilTables t = stencil_tables(
+      automaton, nets, depth, options, "for_each_attractor_chunk", [&](std::size_t count, std::size_t) {
         if (count == kSaturated)
           throw InvalidInput("for_each_attractor_chunk: depth " + std::to_string(depth) +
                              " gives more points than fit in size_t");
       });
   const Eigen::Index cols = nets[0].cols();
-  const auto capacity =
-      std::max({static_cast<Eigen::Index>(std::max<std::size_t>(options.chunk_points, 1)), t.max_rows, Eigen::Index{1}});
+  const auto capacity = std::max({static_cast<Eigen::Index>(std::max<std::size_t>(options.chunk_points, 1)),
+                                  t.max_rows, Eigen::Index{1}});
   Points chunk(capacity, cols);
   Eigen::Index used = 0;
   const auto flush = [&] {

@@ -102,7 +102,8 @@ const Codec<PointSet> kPoints[] = {
 const detail::PointsFormat* const kPointsFormats[] = {&detail::kJsonPoints, &detail::kNpyPoints,
                                                       &detail::kPlyPoints, &detail::kObjPoints};
 const Codec<automata::Automaton> kAutomaton[] = {
-    {"json", ".json", whole<automata::Automaton, to_json>, parse_at<automata::Automaton, parse_automaton_json>},
+    {"json", ".json", whole<automata::Automaton, to_json>,
+     parse_at<automata::Automaton, parse_automaton_json>},
     {"svg", ".svg", whole<automata::Automaton, to_svg>},
     {"dot", ".dot", whole<automata::Automaton, to_dot>},
 };
@@ -184,7 +185,6 @@ void write_as(const std::filesystem::path& path, const T& thing, Content content
   encode_as(thing, content, format.name, file);
   file.commit();
 }
-
 
 /// The reader of the path's extension, else JSON where JSON is the content's own format.
 template <class T>

@@ -20,7 +20,8 @@ constexpr std::string_view kMagic{"\x93NUMPY\x01\x00", 8};
 /// The header dictionary, padded with spaces and ended by a newline.
 std::string dictionary(std::uint64_t count, Eigen::Index dim) {
   const std::string n = std::to_string(count);
-  std::string d = "{'descr': '<f8', 'fortran_order': False, 'shape': (" + n + ", " + std::to_string(dim) + "), }";
+  std::string d =
+      "{'descr': '<f8', 'fortran_order': False, 'shape': (" + n + ", " + std::to_string(dim) + "), }";
   d.append(kCountDigits - std::min(n.size(), kCountDigits), ' ');
   const std::size_t unpadded = kMagic.size() + 2 + d.size() + 1;
   d.append(kAlign - unpadded % kAlign, ' ');  // as numpy: a whole 64 when already aligned

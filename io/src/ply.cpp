@@ -521,8 +521,8 @@ std::string segments_ply(const Segments& segments, PlyFormat format) {
 namespace {
 
 std::string point_cloud_header(std::uint64_t count) {
-  return "ply\nformat binary_little_endian 1.0\ncomment cifs points\nelement vertex " + std::to_string(count) +
-         "\nproperty double x\nproperty double y\nproperty double z\nend_header\n";
+  return "ply\nformat binary_little_endian 1.0\ncomment cifs points\nelement vertex " +
+         std::to_string(count) + "\nproperty double x\nproperty double y\nproperty double z\nend_header\n";
 }
 
 void points_header(std::string& out, std::uint64_t count, Eigen::Index, const PointsStyle&) {
@@ -545,7 +545,8 @@ std::uint64_t points_size(std::uint64_t count, Eigen::Index) {
 
 }  // namespace
 
-const detail::PointsFormat detail::kPlyPoints{"ply", 3, points_header, points_rows, points_footer, points_size};
+const detail::PointsFormat detail::kPlyPoints{"ply",         3,          points_header, points_rows,
+                                              points_footer, points_size};
 
 Mesh parse_mesh_ply(std::string_view bytes, std::string_view where) {
   const std::string w(where);

@@ -47,13 +47,14 @@ void PointsWriter::write(const Eigen::Ref<const Points>& rows) {
 
 void PointsWriter::finish() {
   if (written_ != count_)
-    throw InvalidInput(std::string(name_) + ": " + std::to_string(written_) + " points written, the header says " +
-                       std::to_string(count_));
+    throw InvalidInput(std::string(name_) + ": " + std::to_string(written_) +
+                       " points written, the header says " + std::to_string(count_));
   format_->footer(out_, count_, style_);
   out_.flush();
 }
 
-std::optional<std::uint64_t> points_file_size(std::string_view format, std::uint64_t count, Eigen::Index dim) {
+std::optional<std::uint64_t> points_file_size(std::string_view format, std::uint64_t count,
+                                              Eigen::Index dim) {
   const detail::PointsFormat& f = detail::points_format(format, "format");
   if (!f.size) return std::nullopt;
   return f.size(count, dim);
@@ -84,8 +85,8 @@ void PointsFile::write(const Eigen::Ref<const Points>& rows) {
   const std::uint64_t done = writer_.rows_written();
   if (space_checked_ || done < kSample) return;
   space_checked_ = true;
-  const double estimate = static_cast<double>(writer_.bytes()) / static_cast<double>(done) *
-                          static_cast<double>(writer_.count());
+  const double estimate =
+      static_cast<double>(writer_.bytes()) / static_cast<double>(done) * static_cast<double>(writer_.count());
   check_disk_space(file_.target(), static_cast<std::uint64_t>(estimate), true, file_.size());
 }
 

@@ -57,11 +57,10 @@ void segments_svg(const Segments& segments, const SvgOptions& options, ByteSink&
   const int height = static_cast<int>(std::ceil((hi.y() - lo.y()) * scale + 2 * margin));
   ChunkBuffer buffer(sink);
   std::string& out = buffer.text;
-  out =
-      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + std::to_string(width) + "\" height=\"" +
-      std::to_string(height) + "\" viewBox=\"0 0 " + std::to_string(width) + " " + std::to_string(height) +
-      "\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<path fill=\"none\" stroke=\"" +
-      options.color + "\" stroke-linecap=\"round\" stroke-linejoin=\"round\" stroke-width=\"";
+  out = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + std::to_string(width) + "\" height=\"" +
+        std::to_string(height) + "\" viewBox=\"0 0 " + std::to_string(width) + " " + std::to_string(height) +
+        "\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<path fill=\"none\" stroke=\"" +
+        options.color + "\" stroke-linecap=\"round\" stroke-linejoin=\"round\" stroke-width=\"";
   append_number(out, options.stroke, 6);
   out += "\" d=\"";
   const auto point = [&](int i) {

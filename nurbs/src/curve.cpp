@@ -258,7 +258,7 @@ std::vector<double> uniform_parameters(Domain dom, int count, int first, int n) 
   std::vector<double> us(static_cast<std::size_t>(std::max(n, 0)));
   for (int k = 0; k < n; ++k) {
     const int i = first + k;
-    us[static_cast<std::size_t>(k)] = count == 1        ? dom.start
+    us[static_cast<std::size_t>(k)] = count == 1       ? dom.start
                                       : i == count - 1 ? dom.end
                                                        : dom.start + (dom.end - dom.start) * i / (count - 1);
   }

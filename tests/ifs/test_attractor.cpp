@@ -296,7 +296,8 @@ TEST_CASE("for_each_attractor_chunk: the points of attractor_points, bit for bit
   CHECK(largest == Eigen::Index{1} << 16);
   // And the points are the Cox–de Boor ones (the in-memory route is checked against them above).
   const Chunks c = stacked_chunks(u, cubic, 11, {});
-  CHECK((c.rows - leaf_start_points(u, cubic, 11, false)).cwiseAbs().maxCoeff() <= 1e-12 * scale_of(cubic[0]));
+  CHECK((c.rows - leaf_start_points(u, cubic, 11, false)).cwiseAbs().maxCoeff() <=
+        1e-12 * scale_of(cubic[0]));
 }
 
 TEST_CASE("Rational quadratic: a quarter circle from homogeneous rows", "[ifs]") {

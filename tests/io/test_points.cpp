@@ -50,7 +50,8 @@ Points some_points(Eigen::Index n, Eigen::Index dim) {
 }
 
 /// The points written through a PointsWriter in blocks of `block` rows.
-std::string chunked(const Points& P, std::string_view format, Eigen::Index block, const PointsStyle& style = {}) {
+std::string chunked(const Points& P, std::string_view format, Eigen::Index block,
+                    const PointsStyle& style = {}) {
   StringSink out;
   PointsWriter w(out, format, static_cast<std::uint64_t>(P.rows()), P.cols(), style);
   for (Eigen::Index i = 0; i < P.rows(); i += block) w.write(P.middleRows(i, std::min(block, P.rows() - i)));
@@ -90,8 +91,7 @@ TEST_CASE("Point sets: JSON and OBJ text", "[io][points]") {
   CHECK(encode(PointSet{P, {.polyline = false, .closed = false, .seed = 42}}, "json") ==
         "{\"points\":[[0,0.5],[1,-2],[3.25,1e-300]],\"seed\":42}\n");
   CHECK(encode(PointSet{Points(0, 2), {}}, "json") == "{\"points\":[]}\n");
-  CHECK(encode(PointSet{P, {}}, "obj") ==
-        "# cifs points, 3 points\nv 0 0.5 0\nv 1 -2 0\nv 3.25 1e-300 0\n");
+  CHECK(encode(PointSet{P, {}}, "obj") == "# cifs points, 3 points\nv 0 0.5 0\nv 1 -2 0\nv 3.25 1e-300 0\n");
   CHECK_THAT(encode(PointSet{P, {.polyline = true, .closed = false, .seed = {}}}, "obj"),
              StartsWith("# cifs polyline, 3 points\n") && Catch::EndsWith("\nl 1 2 3\n"));
 }
@@ -150,7 +150,8 @@ TEST_CASE("PointsFile: by extension, atomic, the disk space checked", "[io][poin
   for (const char* format : {"json", "npy", "ply", "obj"}) {
     const auto path = s.dir / (std::string("p.") + format);
     PointsFile file(path, 5000, 3);
-    for (Eigen::Index i = 0; i < 5000; i += 1234) file.write(P.middleRows(i, std::min<Eigen::Index>(1234, 5000 - i)));
+    for (Eigen::Index i = 0; i < 5000; i += 1234)
+      file.write(P.middleRows(i, std::min<Eigen::Index>(1234, 5000 - i)));
     CHECK_FALSE(std::filesystem::exists(path));  // only the temporary until commit
     file.commit();
     CHECK(read_file(path) == encode(PointSet{P, {}}, format));
@@ -169,8 +170,9 @@ TEST_CASE("PointsFile: by extension, atomic, the disk space checked", "[io][poin
   // A size beyond the disk: refused before the header (npy, exact: 2^55 × 24 bytes + 128) or after the
   // first rows (text).
   const std::uint64_t huge = std::uint64_t{1} << 55;
-  CHECK_THROWS_WITH(PointsFile(s.dir / "huge.npy", huge, 3),
-                    StartsWith((s.dir / "huge.npy").string() + ": the file needs 864691128 GB of disk space"));
+  CHECK_THROWS_WITH(
+      PointsFile(s.dir / "huge.npy", huge, 3),
+      StartsWith((s.dir / "huge.npy").string() + ": the file needs 864691128 GB of disk space"));
   {
     PointsFile file(s.dir / "huge.json", huge, 3);
     file.write(P.topRows(4095));
@@ -181,7 +183,8 @@ TEST_CASE("PointsFile: by extension, atomic, the disk space checked", "[io][poin
   CHECK(s.names() == std::set<std::string>{"p.json", "p.npy", "p.ply", "p.obj"});
 }
 
-TEST_CASE("io::write of meshes and segments: the bytes of encode, written a chunk at a time", "[io][points]") {
+TEST_CASE("io::write of meshes and segments: the bytes of encode, written a chunk at a time",
+          "[io][points]") {
   Scratch s;
   Segments segs;
   segs.vertices = some_points(200000, 3);  // several chunks of text

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "cifs/automata/automaton.hpp"
-#include "cifs/io/bcifs_file.hpp"
 #include "cifs/files.hpp"
+#include "cifs/io/bcifs_file.hpp"
 #include "cifs/io/experiment.hpp"
 #include "cifs/io/points.hpp"
 #include "cifs/io/polygon.hpp"
