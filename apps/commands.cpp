@@ -19,6 +19,7 @@
 #include "cifs/io/io.hpp"
 #include "cifs/io/json.hpp"
 #include "cifs/nurbs/refine.hpp"
+#include "cifs/render/progress.hpp"
 #include "cifs/verify/check.hpp"
 #include "scheme_command.hpp"
 
@@ -39,61 +40,116 @@ double parse_number(std::string_view text, std::string_view option) {
   return x;
 }
 
-/// `{"points": [[x, y, ...], ...]}` written straight to text: shortest round-trip numbers
-/// (std::to_chars), no JSON tree in between (large attractors stay within ~1.5× their text).
-std::string points_json(const Points& P) {
-  std::string out;
-  out.reserve(static_cast<std::size_t>(P.size()) * 22 + 16);
-  out += "{\"points\":[";
-  for (Eigen::Index i = 0; i < P.rows(); ++i) {
-    out += i ? ",[" : "[";
-    for (Eigen::Index j = 0; j < P.cols(); ++j) {
-      if (j) out += ',';
-      append_number(out, P(i, j));
-    }
-    out += ']';
-  }
-  out += "]}\n";
-  return out;
-}
-
 void check_samples(long long count) {
   if (count > kMaxPoints)
-    throw InvalidInput("--samples: " + std::to_string(count) + " points exceed the limit of " +
-                       std::to_string(kMaxPoints) + " (the output would not fit in memory)");
+    throw InvalidInput(
+        "--samples: " + std::to_string(count) + " points exceed the limit of " + std::to_string(kMaxPoints) +
+        " held in memory for standard output; write them to a file with -o points.npy (or .json, "
+        ".ply, .obj), which is streamed");
 }
 
+/// Where a command's points go: a file written as they come (PointsFile: its format from the extension,
+/// a chunk in memory), or the text for standard output (a PointsWriter on a string).
+class PointsOutput {
+ public:
+  PointsOutput(const std::filesystem::path& output, const std::string& format, std::uint64_t count,
+               Eigen::Index dim, const io::PointsStyle& style, const std::string& label, bool quiet)
+      : count_(count), bar_(label, quiet || output.empty()) {
+    if (output.empty())
+      text_.emplace(string_, format, count, dim, style);
+    else
+      file_.emplace(output, count, dim, style);
+  }
+  /// Homogeneous rows `(w·x, w)` when `rational`: written as their Cartesian points.
+  void write(const Eigen::Ref<const Points>& rows, bool rational) {
+    if (rational)
+      write(ifs::cartesian(rows));
+    else
+      write(rows);
+  }
+  void write(const Eigen::Ref<const Points>& rows) {
+    if (file_)
+      file_->write(rows);
+    else
+      text_->write(rows);
+    done_ += static_cast<std::uint64_t>(rows.rows());
+    bar_(done_, count_);
+  }
+  /// The text for stdout, or a line that says what was written.
+  std::string finish(const std::filesystem::path& output, const std::string& note = "") {
+    if (!file_) {
+      text_->finish();
+      return std::move(string_.bytes);
+    }
+    file_->commit();
+    return "wrote " + output.string() + ": " + std::to_string(count_) + " points" + note + "\n";
+  }
+
+ private:
+  std::uint64_t count_, done_ = 0;
+  render::ProgressBar bar_;
+  StringSink string_;
+  std::optional<io::PointsWriter> text_;
+  std::optional<io::PointsFile> file_;
+};
+
+/// Points produced a chunk at a time: `rows(first, n)` gives rows first … first + n − 1 of `count`.
+template <class Rows>
+void write_in_chunks(PointsOutput& out, std::int64_t count, std::int64_t chunk, Rows&& rows) {
+  for (std::int64_t first = 0; first < count; first += chunk)
+    out.write(rows(first, std::min(chunk, count - first)));
+}
+
+/// Rows per chunk of a streamed output (one chunk when the points go to stdout: they are in memory anyway).
+constexpr std::int64_t kChunkPoints = std::int64_t{1} << 16;
+
 std::string eval_curve(const nurbs::Curve& c, const EvalOptions& o) {
-  std::vector<double> us;
+  std::vector<double> at;
   for (const std::string& a : o.at) {
     if (a.find(',') != std::string::npos)
       throw InvalidInput("--at '" + a + "': a curve takes one parameter U");
-    us.push_back(parse_number(a, "--at"));
+    at.push_back(parse_number(a, "--at"));
   }
-  check_samples(o.samples);
-  const std::vector<double> grid = nurbs::uniform_parameters(nurbs::domain(c), o.samples);
-  us.insert(us.end(), grid.begin(), grid.end());
-  return points_json(nurbs::evaluate(c, us));
+  if (o.output.empty()) check_samples(o.samples);
+  const Points first = nurbs::evaluate(c, at);  // checks the parameters before any file is created
+  const nurbs::Domain dom = nurbs::domain(c);
+  PointsOutput out(o.output, "json", static_cast<std::uint64_t>(first.rows() + o.samples), first.cols(), {},
+                   "eval", o.quiet);
+  out.write(first);
+  const std::int64_t chunk = o.output.empty() ? std::max(o.samples, 1) : kChunkPoints;
+  write_in_chunks(out, o.samples, chunk, [&](std::int64_t i, std::int64_t n) {
+    return nurbs::evaluate(
+        c, nurbs::uniform_parameters(dom, o.samples, static_cast<int>(i), static_cast<int>(n)));
+  });
+  return out.finish(o.output);
 }
 
 std::string eval_surface(const nurbs::Surface& s, const EvalOptions& o) {
-  Points out(0, nurbs::dimension(s));
-  std::vector<Point> rows;
-  for (const std::string& a : o.at) {
+  Points first(static_cast<Eigen::Index>(o.at.size()), nurbs::dimension(s));
+  for (std::size_t i = 0; i < o.at.size(); ++i) {
+    const std::string& a = o.at[i];
     const auto comma = a.find(',');
     if (comma == std::string::npos) throw InvalidInput("--at '" + a + "': a surface takes U,V");
     const double u = parse_number(std::string_view(a).substr(0, comma), "--at");
     const double v = parse_number(std::string_view(a).substr(comma + 1), "--at");
-    rows.push_back(nurbs::evaluate(s, u, v));
+    first.row(static_cast<Eigen::Index>(i)) = nurbs::evaluate(s, u, v);
   }
-  check_samples(static_cast<long long>(o.samples) * o.samples);
-  const auto us = nurbs::uniform_parameters(nurbs::domain(s, nurbs::Direction::u), o.samples);
+  const auto n = static_cast<std::int64_t>(o.samples);
+  if (o.output.empty()) check_samples(n * n);
+  const auto u_domain = nurbs::domain(s, nurbs::Direction::u);
   const auto vs = nurbs::uniform_parameters(nurbs::domain(s, nurbs::Direction::v), o.samples);
-  const Points grid = nurbs::evaluate_grid(s, us, vs);
-  out.resize(static_cast<Eigen::Index>(rows.size()) + grid.rows(), out.cols());
-  for (std::size_t i = 0; i < rows.size(); ++i) out.row(static_cast<Eigen::Index>(i)) = rows[i];
-  out.bottomRows(grid.rows()) = grid;
-  return points_json(out);
+  PointsOutput out(o.output, "json", static_cast<std::uint64_t>(first.rows() + n * n), first.cols(), {},
+                   "eval", o.quiet);
+  out.write(first);
+  // Grid rows a chunk at a time: row a·N + b at (u_a, v_b).
+  const std::int64_t rows = o.output.empty()
+                                ? std::max<std::int64_t>(n, 1)
+                                : std::max<std::int64_t>(kChunkPoints / std::max<std::int64_t>(n, 1), 1);
+  write_in_chunks(out, n, rows, [&](std::int64_t a, std::int64_t k) {
+    return nurbs::evaluate_grid(
+        s, nurbs::uniform_parameters(u_domain, o.samples, static_cast<int>(a), static_cast<int>(k)), vs);
+  });
+  return out.finish(o.output);
 }
 
 }  // namespace
@@ -101,6 +157,7 @@ std::string eval_surface(const nurbs::Surface& s, const EvalOptions& o) {
 std::string eval(const EvalOptions& o) {
   if (o.samples < 0) throw InvalidInput("--samples " + std::to_string(o.samples) + ": must be non-negative");
   if (o.at.empty() && o.samples == 0) throw InvalidInput("eval: give --at U (repeatable) or --samples N");
+  if (!o.output.empty()) io::format_of(o.output, io::Content::points);  // refused before any work
   const io::Shape shape = io::read_shape(o.shape);
   if (const auto* c = std::get_if<nurbs::Curve>(&shape)) return eval_curve(*c, o);
   return eval_surface(std::get<nurbs::Surface>(shape), o);
@@ -170,16 +227,70 @@ std::string automaton(const AutomatonOptions& o) {
   return io::encode(a, o.format);
 }
 
+namespace {
+
+/// The attractor's format: -o's extension, else --format (default json); a point-set format, or svg
+/// (the polyline, drawn from memory: it is fitted to the bounds of all the points).
+std::string attractor_format(const AttractorOptions& o) {
+  std::vector<std::string> names;
+  for (const io::Format& f : io::formats(io::Content::points)) names.emplace_back(f.name);
+  names.emplace_back("svg");
+  const auto listing = [&](bool extensions) {
+    std::string out;
+    for (std::size_t i = 0; i < names.size(); ++i)
+      out += std::string(i == 0                  ? ""
+                         : i + 1 == names.size() ? " or "
+                                                 : ", ") +
+             (extensions ? "." : "") + names[i];
+    return out;
+  };
+  std::string format = o.format.empty() ? "json" : o.format;
+  if (!o.output.empty()) {
+    const std::string extension = o.output.extension().string();
+    if (extension.size() < 2 || std::find(names.begin(), names.end(), extension.substr(1)) == names.end())
+      throw InvalidInput("-o " + o.output.string() + ": expected a " + listing(true) + " file name");
+    if (!o.format.empty() && o.format != extension.substr(1))
+      throw InvalidInput("--format " + o.format + ": -o " + o.output.string() + " names " +
+                         extension.substr(1));
+    format = extension.substr(1);
+  }
+  if (std::find(names.begin(), names.end(), format) == names.end())
+    throw InvalidInput("--format '" + format + "': expected " + listing(false));
+  return format;
+}
+
+/// Points held in memory before they are written (stdout, svg): refused above this.
+constexpr std::size_t kMemoryBytes = std::size_t{1} << 30;
+
+/// Points computed whole (chaos game, stdout, svg): moved into the output, never copied.
+std::string write_whole(Points&& P, const io::PointsStyle& style, const std::string& format,
+                        const AttractorOptions& o) {
+  const auto count = P.rows();
+  if (format == "svg") {
+    const io::Polygon polygon{std::move(P), style.closed};
+    if (o.output.empty()) return io::encode(polygon, "svg");
+    io::write(o.output, polygon);
+  } else {
+    const io::PointSet set{std::move(P), style};
+    if (o.output.empty()) return io::encode(set, format);
+    io::write(o.output, set);
+  }
+  return "wrote " + o.output.string() + ": " + std::to_string(count) + " points" +
+         (style.seed ? " (seed " + std::to_string(*style.seed) + ")" : "") + "\n";
+}
+
+}  // namespace
+
 std::string attractor(const AttractorOptions& o) {
-  // The attractor is a polyline: any polygon format, where json is the points report of `eval`.
-  io::writable_format(io::Content::polygon, o.format, "--format");
+  // The attractor is a polyline (in curve order) written as a point set, or drawn as SVG.
+  const std::string format = attractor_format(o);
   if ((o.depth >= 0) + (o.tolerance > 0) + (o.chaos != 0) != 1)
     throw InvalidInput("attractor: give exactly one of --depth K, --tolerance E and --chaos N");
   if (o.chaos < 0 || o.chaos > kMaxPoints)
     throw InvalidInput("--chaos " + std::to_string(o.chaos) + ": expected 1 to " +
                        std::to_string(kMaxPoints) + " points");
-  if (o.chaos != 0 && o.format != "json")
-    throw InvalidInput("--chaos: the points are unordered, use --format json");
+  if (o.chaos != 0 && (format == "obj" || format == "svg"))
+    throw InvalidInput("--chaos: the points are unordered, use json, npy or ply");
   if (o.tolerance < 0 || !std::isfinite(o.tolerance))
     throw InvalidInput("--tolerance: must be a positive number");
   const io::Shape shape = io::read_shape(o.shape);
@@ -188,45 +299,87 @@ std::string attractor(const AttractorOptions& o) {
     throw InvalidInput(o.shape.string() + ": attractor: only curves have a knot-doubling automaton so far");
   const automata::Automaton a = automata::knot_automaton(*c);
   const std::vector<Points> nets = automata::initial_nets(a, *c);
-  Points H;
-  std::string seed_member;
+  const Eigen::Index dim = nurbs::dimension(*c);
+  // Streamed: the points go to the file a chunk at a time, as they are computed.
+  const bool streamed = !o.output.empty() && format != "svg";
+  io::PointsStyle style{.polyline = true, .closed = c->closed, .seed = {}};
+
   if (o.chaos != 0) {
     ifs::ChaosOptions options;
     options.samples = static_cast<std::size_t>(o.chaos);
     options.seed = o.seed;
-    const ifs::ChaosResult r = ifs::chaos_game(a, nets, options);
-    H = r.points;
-    seed_member = ",\"seed\":" + std::to_string(r.seed);
-  } else if (o.depth >= 0) {
+    ifs::ChaosResult r = ifs::chaos_game(a, nets, options);
+    if (c->rational) r.points = ifs::cartesian(r.points);
+    style = {.polyline = false, .closed = false, .seed = r.seed};
+    return write_whole(std::move(r.points), style, format, o);
+  }
+
+  if (o.depth >= 0) {
     ifs::PointsOptions options;
     options.closed = c->closed;
-    H = ifs::attractor_points(a, nets, o.depth, options);
-  } else {
-    // Leaves whose whole piece is below the tolerance; rational nets are homogeneous, so shrink
-    // the tolerance by w_min / (1 + max|P|), which bounds the Cartesian image of a homogeneous piece.
-    const double max_point = nurbs::cartesian_points(*c).rowwise().norm().maxCoeff();
-    const double epsilon =
-        c->rational ? o.tolerance * nurbs::weights(*c).minCoeff() / (1 + max_point) : o.tolerance;
-    const ifs::EndFunctionals f = ifs::end_functionals(a);
-    std::vector<Point> rows;
-    Point last_end;
-    const ifs::ToleranceResult r =
-        ifs::for_each_leaf_to_tolerance(a, nets, {epsilon, 40, 8}, [&](const ifs::ToleranceLeaf& t) {
-          rows.push_back(f.start[t.leaf.state] * t.leaf.net);
-          last_end = f.end[t.leaf.state] * t.leaf.net;
-        });
-    if (r.unconverged > 0)
-      throw InvalidInput("attractor: " + std::to_string(r.unconverged) +
-                         " pieces did not reach --tolerance " + std::to_string(o.tolerance) +
-                         " by depth 40; give a larger tolerance");
-    if (!c->closed) rows.push_back(last_end);
-    H.resize(static_cast<Eigen::Index>(rows.size()), c->P.cols());
-    for (std::size_t i = 0; i < rows.size(); ++i) H.row(static_cast<Eigen::Index>(i)) = rows[i];
+    const std::size_t count = ifs::attractor_point_count(a, o.depth, c->closed);
+    if (streamed) {
+      PointsOutput out(o.output, format, count, dim, style, "attractor", o.quiet);
+      ifs::for_each_attractor_chunk(a, nets, o.depth, options,
+                                    [&](const Eigen::Ref<const Points>& H) { out.write(H, c->rational); });
+      return out.finish(o.output);
+    }
+    const double bytes = static_cast<double>(count) * static_cast<double>(nets[0].cols()) * sizeof(double);
+    if (bytes > static_cast<double>(kMemoryBytes))
+      throw InvalidInput(
+          "attractor: depth " + std::to_string(o.depth) + " gives " + std::to_string(count) + " points (" +
+          number_text(bytes / static_cast<double>(kMemoryBytes), 3) +
+          " GiB), more than the 1 GiB held in memory for standard output and SVG; write them to "
+          "a file with -o points.npy (or .json, .ply, .obj), which is streamed");
+    options.max_bytes = kMemoryBytes;
+    Points H = ifs::attractor_points(a, nets, o.depth, options);
+    if (c->rational) H = ifs::cartesian(H);
+    return write_whole(std::move(H), style, format, o);
   }
-  const Points P = c->rational ? ifs::cartesian(H) : H;
-  if (o.format != "json") return io::encode(io::Polygon{P, c->closed}, o.format);
-  std::string text = points_json(P);
-  return seed_member.empty() ? text : text.insert(text.size() - 2, seed_member);
+
+  // Leaves whose whole piece is below the tolerance; rational nets are homogeneous, so shrink
+  // the tolerance by w_min / (1 + max|P|), which bounds the Cartesian image of a homogeneous piece.
+  // A first walk counts the leaves (the files' headers name the count), the second writes them.
+  const double max_point = nurbs::cartesian_points(*c).rowwise().norm().maxCoeff();
+  const double epsilon =
+      c->rational ? o.tolerance * nurbs::weights(*c).minCoeff() / (1 + max_point) : o.tolerance;
+  const ifs::ToleranceOptions to{epsilon, 40, 8};
+  const ifs::ToleranceResult r =
+      ifs::for_each_leaf_to_tolerance(a, nets, to, [](const ifs::ToleranceLeaf&) {});
+  if (r.unconverged > 0)
+    throw InvalidInput("attractor: " + std::to_string(r.unconverged) + " pieces did not reach --tolerance " +
+                       std::to_string(o.tolerance) + " by depth 40; give a larger tolerance");
+  const std::size_t count = r.leaves + (c->closed ? 0 : 1);
+  if (!streamed && static_cast<double>(count) * static_cast<double>(nets[0].cols()) * sizeof(double) >
+                       static_cast<double>(kMemoryBytes))
+    throw InvalidInput(
+        "attractor: --tolerance " + number_text(o.tolerance, 6) + " gives " + std::to_string(count) +
+        " points, more than the 1 GiB held in memory for standard output and SVG; write them to a "
+        "file with -o points.npy (or .json, .ply, .obj), which is streamed");
+  const ifs::EndFunctionals f = ifs::end_functionals(a);
+  Points chunk(streamed ? std::min<Eigen::Index>(kChunkPoints, static_cast<Eigen::Index>(count))
+                        : static_cast<Eigen::Index>(count),
+               nets[0].cols());
+  Eigen::Index used = 0;
+  std::optional<PointsOutput> out;
+  if (streamed) out.emplace(o.output, format, count, dim, style, "attractor", o.quiet);
+  // In memory the chunk holds every point and is never full.
+  const auto add = [&](const Point& row) {
+    if (used == chunk.rows()) {
+      out->write(chunk, c->rational);
+      used = 0;
+    }
+    chunk.row(used++) = row;
+  };
+  Point last_end;
+  ifs::for_each_leaf_to_tolerance(a, nets, to, [&](const ifs::ToleranceLeaf& t) {
+    add(f.start[t.leaf.state] * t.leaf.net);
+    last_end = f.end[t.leaf.state] * t.leaf.net;
+  });
+  if (!c->closed) add(last_end);
+  if (!out) return write_whole(c->rational ? ifs::cartesian(chunk) : std::move(chunk), style, format, o);
+  out->write(chunk.topRows(used), c->rational);
+  return out->finish(o.output);
 }
 
 namespace {

@@ -17,6 +17,9 @@ struct EvalOptions {
   std::filesystem::path shape;
   std::vector<std::string> at;  // "U" for curves, "U,V" for surfaces
   int samples = 0;              // uniform over the domain (surfaces: samples × samples)
+  std::filesystem::path
+      output;          // a point-set file (.json, .npy, .ply, .obj), written as computed; empty: stdout
+  bool quiet = false;  // no progress bar
 };
 std::string eval(const EvalOptions& options);
 
@@ -68,11 +71,13 @@ std::string automaton(const AutomatonOptions& options);
 
 struct AttractorOptions {
   std::filesystem::path shape;
-  int depth = -1;               // 2^depth leaves per segment, or
-  double tolerance = 0;         // every leaf's piece smaller than this (Cartesian units), or
-  long long chaos = 0;          // that many chaos-game points
-  std::uint64_t seed = 0;       // chaos game: 0 draws one (printed with the points)
-  std::string format = "json";  // json (the points), or a writable format of io::formats(Content::polygon)
+  int depth = -1;                // 2^depth leaves per segment, or
+  double tolerance = 0;          // every leaf's piece smaller than this (Cartesian units), or
+  long long chaos = 0;           // that many chaos-game points
+  std::uint64_t seed = 0;        // chaos game: 0 draws one (printed with the points)
+  std::string format;            // a format of io::formats(Content::points), or svg; default json
+  std::filesystem::path output;  // its extension names the format; streamed unless svg; empty: stdout
+  bool quiet = false;            // no progress bar
 };
 std::string attractor(const AttractorOptions& options);
 

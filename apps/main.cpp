@@ -43,12 +43,16 @@ int run(int argc, char** argv, std::string& result) {
   app.set_version_flag("--version", "cifs 0.1.0");
 
   EvalOptions ev;
-  auto* eval_cmd = app.add_subcommand("eval", "Evaluate a curve or surface; prints {\"points\": [...]}");
+  auto* eval_cmd =
+      app.add_subcommand("eval", "Evaluate a curve or surface; prints {\"points\": [...]} or writes -o FILE");
   eval_cmd->add_option("shape", ev.shape, "Shape file (.json or .obj)")->required();
   eval_cmd->add_option("--at", ev.at, "Parameter U (curves) or U,V (surfaces); repeatable")
       ->allow_extra_args(false);
   eval_cmd->add_option("--samples", ev.samples,
                        "N parameters evenly spaced over the domain (surfaces: N×N grid)");
+  eval_cmd->add_option("-o,--output", ev.output,
+                       "Write the points to a file as they are computed: .json, .npy, .ply or .obj");
+  eval_cmd->add_flag("--quiet", ev.quiet, "No progress bar (-o)");
   eval_cmd->callback([&] { result = eval(ev); });
 
   InsertOptions in;
@@ -85,7 +89,11 @@ int run(int argc, char** argv, std::string& result) {
   attractor_cmd
       ->add_option("--seed", at.seed, "Chaos-game seed (default: drawn, and printed with the points)")
       ->check(seed_text);
-  attractor_cmd->add_option("--format", at.format, "json (default), obj or svg");
+  attractor_cmd->add_option("--format", at.format, "json (default), npy, ply, obj or svg");
+  attractor_cmd->add_option(
+      "-o,--output", at.output,
+      "Output file, its format from the extension (.json, .npy, .ply, .obj: written as computed; .svg)");
+  attractor_cmd->add_flag("--quiet", at.quiet, "No progress bar (-o)");
   attractor_cmd->callback([&] { result = attractor(at); });
 
   CheckOptions ch;

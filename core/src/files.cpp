@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "cifs/errors.hpp"
+#include "cifs/format.hpp"
 
 namespace cifs {
 namespace {
@@ -67,28 +68,67 @@ void AtomicFile::commit() {
   committed_ = true;
 }
 
-void write_file_atomically(const std::filesystem::path& path, std::string_view bytes) {
-  AtomicFile file(path);
-  const auto fail = [&](int error) {
-    throw IoError(path.string() + ": cannot write (" + std::strerror(error) + ")");
-  };
+AtomicWriter::AtomicWriter(std::filesystem::path target) : file_(std::move(target)) {
   // O_EXCL: never write through a file that is already there (a stale temporary, a link).
-  const int fd = ::open(file.temporary().c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-  if (fd < 0) fail(errno);
+  fd_ = ::open(file_.temporary().c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  if (fd_ < 0) fail(errno);
+}
+
+AtomicWriter::~AtomicWriter() {
+  if (fd_ >= 0) ::close(fd_);  // then file_ removes the temporary unless committed
+}
+
+void AtomicWriter::fail(int error) {
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+  throw IoError(target().string() + ": cannot write (" + std::strerror(error) + ")");
+}
+
+void AtomicWriter::write(std::string_view bytes) {
+  if (fd_ < 0) throw IoError(target().string() + ": written after it was closed");
   std::size_t done = 0;
   while (done < bytes.size()) {
-    const ::ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    const ::ssize_t n = ::write(fd_, bytes.data() + done, bytes.size() - done);
     if (n < 0 && errno == EINTR) continue;
-    if (n < 0) {
-      const int error = errno;
-      ::close(fd);
-      fail(error);
-    }
+    if (n < 0) fail(errno);
     done += static_cast<std::size_t>(n);
   }
+  size_ += bytes.size();
+}
+
+void AtomicWriter::commit() {
+  if (fd_ < 0) throw IoError(target().string() + ": committed after it was closed");
   // close reports the errors that a file system defers (NFS, full disks).
-  if (::close(fd) != 0) fail(errno);
+  const int status = ::close(fd_);
+  fd_ = -1;
+  if (status != 0) fail(errno);
+  file_.commit();
+}
+
+void write_file_atomically(const std::filesystem::path& path, std::string_view bytes) {
+  AtomicWriter file(path);
+  file.write(bytes);
   file.commit();
+}
+
+namespace {
+
+/// "19.3", "0.00412", "79200": gigabytes with 3 significant digits, no exponent.
+std::string gigabytes(std::uint64_t bytes) {
+  const double x = static_cast<double>(bytes) / 1e9;
+  return x < 100 ? number_text(x, 3) : fixed_text(x, 0);
+}
+
+}  // namespace
+
+void check_disk_space(const std::filesystem::path& target, std::uint64_t bytes, bool about,
+                      std::uint64_t written) {
+  const std::filesystem::path folder = target.has_parent_path() ? target.parent_path() : ".";
+  std::error_code ec;
+  const std::filesystem::space_info space = std::filesystem::space(folder, ec);
+  if (ec || space.available == static_cast<std::uintmax_t>(-1) || bytes <= written + space.available) return;
+  throw IoError(target.string() + ": the file needs " + (about ? "about " : "") + gigabytes(bytes) +
+                " GB of disk space, " + gigabytes(written + space.available) + " GB are free there");
 }
 
 }  // namespace cifs

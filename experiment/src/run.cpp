@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <numbers>
 
 #include "cifs/automata/tensor.hpp"
@@ -535,9 +536,18 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
     image.attributes["residual"] = number(report.residual);
   }
 
-  // Geometry and automaton files, computed before anything is written, in the order of the format
-  // table (io::formats).
-  std::vector<std::pair<std::filesystem::path, std::string>> texts;
+  // Geometry and automaton files, in the order of the format table (io::formats): encoded a chunk at a
+  // time into their temporaries before any image is written (an error leaves no file, and no file's
+  // bytes are ever whole in memory), renamed onto their names after the images.
+  const auto folder_of = [](const std::filesystem::path& p) {
+    if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
+  };
+  std::vector<std::unique_ptr<AtomicWriter>> files;
+  const auto file = [&](const std::filesystem::path& path) -> AtomicWriter& {
+    folder_of(path);
+    files.push_back(std::make_unique<AtomicWriter>(path));
+    return *files.back();
+  };
   if (!e.outputs.geometry.empty()) {
     const std::string& first = e.outputs.geometry.begin()->first;
     if (!scene.mesh && !scene.curves)
@@ -562,17 +572,18 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
       throw InvalidInput(message);
     }
     for (const io::Format& f : io::formats(content))
-      if (const auto it = e.outputs.geometry.find(std::string(f.name)); it != e.outputs.geometry.end())
-        texts.emplace_back(o.out_dir / it->second,
-                           scene.mesh ? io::encode(*scene.mesh, f.name) : io::encode(*scene.curves, f.name));
+      if (const auto it = e.outputs.geometry.find(std::string(f.name)); it != e.outputs.geometry.end()) {
+        AtomicWriter& out = file(o.out_dir / it->second);
+        if (scene.mesh)
+          io::encode(*scene.mesh, f.name, out);
+        else
+          io::encode(*scene.curves, f.name, out);
+      }
   }
   for (const io::Format& f : io::formats(io::Content::automaton))
     if (const auto it = e.outputs.automaton.find(std::string(f.name)); it != e.outputs.automaton.end())
-      texts.emplace_back(o.out_dir / it->second, io::encode(scene.automaton, f.name));
+      io::encode(scene.automaton, f.name, file(o.out_dir / it->second));
 
-  const auto folder_of = [](const std::filesystem::path& p) {
-    if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
-  };
   if (!exr.empty()) {
     folder_of(exr);
     render::write_exr(exr, image);
@@ -587,10 +598,9 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
     render::preview_png(png, image, po);
     report.written.push_back(png);
   }
-  for (const auto& [path, text] : texts) {
-    folder_of(path);
-    write_file_atomically(path, text);
-    report.written.push_back(path);
+  for (const auto& f : files) {
+    f->commit();
+    report.written.push_back(f->target());
   }
   report.summary = e.name + ": " + kind +
                    (e.mesh ? ", " + std::to_string(scene.depth) + " levels, " +

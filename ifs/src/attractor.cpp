@@ -20,7 +20,7 @@ using automata::StateId;
 /// Depth from which a piece without a Cartesian bound is refused rather than subdivided further.
 constexpr int kUnboundedDepth = 32;
 
-Points cartesian(const Points& homogeneous) {
+Points cartesian(const Eigen::Ref<const Points>& homogeneous) {
   const Eigen::Index c = homogeneous.cols();
   if (c < 2)
     throw InvalidInput("cartesian: homogeneous rows need at least 2 columns (w·x, w), got " +
@@ -145,37 +145,45 @@ std::size_t attractor_point_count(const Automaton& automaton, int depth, bool cl
   return count;
 }
 
-Points attractor_points(const Automaton& automaton, std::span<const Points> nets, int depth,
-                        const PointsOptions& options) {
+namespace {
+
+/// Stencil tables F_s (`c_L(s) by size(s)`): row j is the start functional of the j-th depth-L
+/// descendant of s composed with the path's matrices, so F_s·N are their start points in order.
+struct StencilTables {
+  int L = 0;
+  std::vector<RowMatrix> table;  // by state
+  EndFunctionals functionals;
+  std::size_t count = 0;      // points of the whole output
+  Eigen::Index max_rows = 0;  // largest c_L(s)
+};
+
+/// Double entries the tables may hold besides the output's half: a streamed output keeps its memory
+/// bounded by this (and the chunk), whatever the depth. Both routes choose L the same way, so that
+/// they give the same bits.
+constexpr std::size_t kTableBudget = std::size_t{1} << 21;
+
+/// Validates, counts the points and builds the tables of depth L: the largest L ≤ max_table_depth
+/// whose tables (and, while building, the previous level) stay below half the output and below
+/// kTableBudget; L = 0 (one functional per state) always. `refuse(count, bytes)` may throw before
+/// any work.
+template <class Refuse>
+StencilTables stencil_tables(const Automaton& automaton, std::span<const Points> nets, int depth,
+                             const PointsOptions& options, const char* who, Refuse&& refuse) {
   validate(automaton);
-  detail::check_nets(automaton, nets, "attractor_points");
-  if (depth < 0) throw InvalidInput("attractor_points: depth is " + std::to_string(depth) + ", must be ≥ 0");
+  detail::check_nets(automaton, nets, who);
+  if (depth < 0)
+    throw InvalidInput(std::string(who) + ": depth is " + std::to_string(depth) + ", must be ≥ 0");
   const Graph& g = automaton.graph;
   const auto n = boost::num_vertices(g);
   const auto states = reachable_states(automaton);
   const int max_L = std::clamp(options.max_table_depth, 0, depth);
   const Counts counts = node_counts(automaton, depth, max_L);
 
-  // Refuse before any work: the output is allocated once, exactly.
+  StencilTables out;
   const auto cols = static_cast<std::size_t>(nets[0].cols());
-  const std::size_t count = total_count(automaton, counts.at_depth, options.closed);
-  const std::size_t bytes = mul_sat(mul_sat(count, cols), sizeof(double));
-  if (bytes > options.max_bytes) {
-    std::ostringstream msg;
-    msg << "attractor_points: depth " << depth << " gives ";
-    if (count == kSaturated)
-      msg << "more points than fit in size_t";
-    else
-      msg << count << " points of " << cols << " coordinates ("
-          << static_cast<double>(bytes) / static_cast<double>(std::size_t{1} << 30) << " GiB)";
-    msg << ", more than the limit of "
-        << static_cast<double>(options.max_bytes) / static_cast<double>(std::size_t{1} << 30)
-        << " GiB (PointsOptions::max_bytes); lower the depth or raise the limit";
-    throw InvalidInput(msg.str());
-  }
+  out.count = total_count(automaton, counts.at_depth, options.closed);
+  refuse(out.count, mul_sat(mul_sat(out.count, cols), sizeof(double)));
 
-  // Table depth L: the tables (and, while building, the previous level) stay below half the
-  // output, so that peak memory is ≤ 1.5× the output; L = 0 (one functional per state) always.
   const auto table_size = [&](int L) {
     std::size_t t = 0;
     for (const StateId s : states)
@@ -183,48 +191,110 @@ Points attractor_points(const Automaton& automaton, std::span<const Points> nets
                   mul_sat(counts.low[static_cast<std::size_t>(L)][s], static_cast<std::size_t>(g[s].size)));
     return t;
   };
-  const std::size_t budget = count * cols / 2;
+  const std::size_t budget = std::min(mul_sat(out.count, cols) / 2, kTableBudget);
   int L = max_L;
   while (L > 0 && add_sat(table_size(L), table_size(L - 1)) > budget) --L;
+  out.L = L;
 
-  // Stencil tables F_s (`c_L(s) by size(s)`): row j is the start functional of the j-th depth-L
-  // descendant of s composed with the path's matrices, so F_s·N are their start points in order.
   // Level 0 is the start functional itself; level ℓ stacks F_t^(ℓ−1)·M_e over the children e.
-  const EndFunctionals functionals = end_functionals(automaton);
-  std::vector<RowMatrix> table(n), next(n);
-  for (const StateId s : states) table[s] = functionals.start[s];
+  out.functionals = end_functionals(automaton);
+  std::vector<RowMatrix> next(n);
+  out.table.resize(n);
+  for (const StateId s : states) out.table[s] = out.functionals.start[s];
   for (int l = 1; l <= L; ++l) {
     for (const StateId s : states) {
       RowMatrix& F = next[s];
       F.resize(static_cast<Eigen::Index>(counts.low[static_cast<std::size_t>(l)][s]), g[s].size);
       Eigen::Index row = 0;
       for (auto [b, e] = boost::out_edges(s, g); b != e; ++b) {
-        const RowMatrix& child = table[boost::target(*b, g)];
+        const RowMatrix& child = out.table[boost::target(*b, g)];
         F.middleRows(row, child.rows()).noalias() = child * g[*b].matrix;
         row += child.rows();
       }
     }
-    std::swap(table, next);
+    std::swap(out.table, next);
     for (auto& F : next) F.resize(0, 0);  // free the previous level
   }
+  for (const StateId s : states) out.max_rows = std::max(out.max_rows, out.table[s].rows());
+  return out;
+}
 
-  // Emit: the nodes at depth K − L write their c_L(s) points with one product each.
-  Points out(static_cast<Eigen::Index>(count), static_cast<Eigen::Index>(cols));
-  advise_huge_pages(out.data(), static_cast<std::size_t>(out.size()) * sizeof(double));
-  double* cursor = out.data();
-  detail::depth_first(automaton, nets, depth - L,
+/// The emit walk shared by both routes: the nodes at depth K − L write their c_L(s) points with one
+/// product each, at `place(rows)` (a pointer to room for that many rows); then the end point of the
+/// very last node unless closed (the end of the last root: end functionals propagate).
+template <class Place>
+void emit_points(const Automaton& automaton, std::span<const Points> nets, int depth, const StencilTables& t,
+                 bool closed, Place&& place) {
+  detail::depth_first(automaton, nets, depth - t.L,
                       [&](std::size_t, StateId s, const Points& net, int d, std::span<const int>) {
-                        if (d < depth - L) return true;
-                        detail::emit(table[s].data(), table[s].rows(), table[s].cols(), net, cursor);
-                        cursor += table[s].rows() * static_cast<Eigen::Index>(cols);
+                        if (d < depth - t.L) return true;
+                        const RowMatrix& F = t.table[s];
+                        detail::emit(F.data(), F.rows(), F.cols(), net, place(F.rows()));
                         return false;
                       });
-  if (!options.closed) {
-    // The end of the very last node is the end of the last root (end functionals propagate).
+  if (!closed) {
     const StateId last = automaton.initial.back().state;
-    out.row(out.rows() - 1) = functionals.end[last] * nets.back();
+    Eigen::Map<Point>(place(1), nets.back().cols()) = t.functionals.end[last] * nets.back();
   }
+}
+
+}  // namespace
+
+Points attractor_points(const Automaton& automaton, std::span<const Points> nets, int depth,
+                        const PointsOptions& options) {
+  // Refuse before any work: the output is allocated once, exactly.
+  const auto cols = nets.empty() ? 0 : nets[0].cols();
+  const StencilTables t = stencil_tables(
+      automaton, nets, depth, options, "attractor_points", [&](std::size_t count, std::size_t bytes) {
+        if (bytes <= options.max_bytes) return;
+        std::ostringstream msg;
+        msg << "attractor_points: depth " << depth << " gives ";
+        if (count == kSaturated)
+          msg << "more points than fit in size_t";
+        else
+          msg << count << " points of " << cols << " coordinates ("
+              << static_cast<double>(bytes) / static_cast<double>(std::size_t{1} << 30) << " GiB)";
+        msg << ", more than the limit of "
+            << static_cast<double>(options.max_bytes) / static_cast<double>(std::size_t{1} << 30)
+            << " GiB (PointsOptions::max_bytes); lower the depth or raise the limit";
+        throw InvalidInput(msg.str());
+      });
+  Points out(static_cast<Eigen::Index>(t.count), cols);
+  advise_huge_pages(out.data(), static_cast<std::size_t>(out.size()) * sizeof(double));
+  double* cursor = out.data();
+  emit_points(automaton, nets, depth, t, options.closed, [&](Eigen::Index rows) {
+    double* at = cursor;
+    cursor += rows * cols;
+    return at;
+  });
   return out;
+}
+
+std::size_t for_each_attractor_chunk(const Automaton& automaton, std::span<const Points> nets, int depth,
+                                     const PointsOptions& options, const PointsChunkCallback& callback) {
+  const StencilTables t = stencil_tables(
+      automaton, nets, depth, options, "for_each_attractor_chunk", [&](std::size_t count, std::size_t) {
+        if (count == kSaturated)
+          throw InvalidInput("for_each_attractor_chunk: depth " + std::to_string(depth) +
+                             " gives more points than fit in size_t");
+      });
+  const Eigen::Index cols = nets[0].cols();
+  const auto capacity = std::max({static_cast<Eigen::Index>(std::max<std::size_t>(options.chunk_points, 1)),
+                                  t.max_rows, Eigen::Index{1}});
+  Points chunk(capacity, cols);
+  Eigen::Index used = 0;
+  const auto flush = [&] {
+    if (used > 0) callback(chunk.topRows(used));
+    used = 0;
+  };
+  emit_points(automaton, nets, depth, t, options.closed, [&](Eigen::Index rows) {
+    if (used + rows > capacity) flush();
+    double* at = chunk.data() + used * cols;
+    used += rows;
+    return at;
+  });
+  flush();
+  return t.count;
 }
 
 }  // namespace cifs::ifs

@@ -13,15 +13,17 @@
 #include "cifs/io/obj.hpp"
 #include "cifs/io/ply.hpp"
 #include "cifs/io/svg.hpp"
+#include "points_format.hpp"
 
 namespace cifs::io {
 namespace {
 
-/// One format of content T: its writer and its reader (null when it does not write or read).
+/// One format of content T: its writer (the bytes, a chunk at a time, into a sink) and its reader
+/// (null when it does not write or read).
 template <class T>
 struct Codec {
   std::string_view name, extension;
-  std::string (*write)(const T&) = nullptr;
+  void (*write)(const T&, ByteSink&) = nullptr;
   T (*read)(std::string_view text, const std::filesystem::path& path) = nullptr;
   bool binary = false;
 };
@@ -46,35 +48,67 @@ Experiment parse_experiment_at(std::string_view text, const std::filesystem::pat
   return e;
 }
 
+/// A writer of content T whose format builds its text whole (small files: shapes, automata).
+template <class T, std::string (*text)(const T&)>
+void whole(const T& thing, ByteSink& out) {
+  out.write(text(thing));
+}
+
+/// Points written from memory: the chunked writer over all of them.
+void write_points(const detail::PointsFormat& f, const Points& P, const PointsStyle& style, ByteSink& out) {
+  PointsWriter w(out, f.name, static_cast<std::uint64_t>(P.rows()), P.cols(), style);
+  w.write(P);
+  w.finish();
+}
+
+template <const detail::PointsFormat& F>
+void point_set(const PointSet& set, ByteSink& out) {
+  write_points(F, set.points, set.style, out);
+}
+
 // The table. Order matters where several formats are written at once (experiment outputs).
 const Codec<Shape> kShape[] = {
-    {"json", ".json", [](const Shape& s) { return to_json(s); }, parse_at<Shape, parse_shape_json>},
-    {"obj", ".obj", to_obj, parse_one_obj_shape},
+    {"json", ".json", whole<Shape, to_json>, parse_at<Shape, parse_shape_json>},
+    {"obj", ".obj", whole<Shape, to_obj>, parse_one_obj_shape},
 };
 const Codec<Polygon> kPolygon[] = {
-    {"json", ".json", [](const Polygon& p) { return to_json(p); }, parse_at<Polygon, parse_polygon_json>},
-    {"obj", ".obj", [](const Polygon& p) { return polyline_obj(p.points, p.closed); }},
-    {"svg", ".svg", [](const Polygon& p) { return polyline_svg(p.points, p.closed); }},
+    {"json", ".json", whole<Polygon, to_json>, parse_at<Polygon, parse_polygon_json>},
+    {"obj", ".obj",
+     [](const Polygon& p, ByteSink& out) {
+       write_points(detail::kObjPoints, p.points, {.polyline = true, .closed = p.closed, .seed = {}}, out);
+     }},
+    {"svg", ".svg", [](const Polygon& p, ByteSink& out) { out.write(polyline_svg(p.points, p.closed)); }},
 };
 const Codec<Mesh> kMesh[] = {
-    {"obj", ".obj", mesh_obj, parse_at<Mesh, parse_mesh_obj>},
-    {"ply", ".ply", [](const Mesh& m) { return mesh_ply(m, PlyFormat::binary_little_endian); },
+    {"obj", ".obj", [](const Mesh& m, ByteSink& out) { mesh_obj(m, out); }, parse_at<Mesh, parse_mesh_obj>},
+    {"ply", ".ply", [](const Mesh& m, ByteSink& out) { mesh_ply(m, PlyFormat::binary_little_endian, out); },
      parse_at<Mesh, parse_mesh_ply>, true},
 };
 const Codec<Segments> kSegments[] = {
-    {"obj", ".obj", segments_obj},
-    {"ply", ".ply", [](const Segments& s) { return segments_ply(s, PlyFormat::binary_little_endian); },
-     nullptr, true},
-    {"svg", ".svg", [](const Segments& s) { return segments_svg(s); }},
+    {"obj", ".obj", [](const Segments& s, ByteSink& out) { segments_obj(s, out); }},
+    {"ply", ".ply",
+     [](const Segments& s, ByteSink& out) { segments_ply(s, PlyFormat::binary_little_endian, out); }, nullptr,
+     true},
+    {"svg", ".svg", [](const Segments& s, ByteSink& out) { segments_svg(s, {}, out); }},
 };
+/// Point sets: the writers take rows a chunk at a time (PointsWriter), from memory or as computed.
+const Codec<PointSet> kPoints[] = {
+    {"json", ".json", point_set<detail::kJsonPoints>},
+    {"npy", ".npy", point_set<detail::kNpyPoints>, nullptr, true},
+    {"ply", ".ply", point_set<detail::kPlyPoints>, nullptr, true},
+    {"obj", ".obj", point_set<detail::kObjPoints>},
+};
+/// The chunked writers behind kPoints, which PointsWriter finds by name.
+const detail::PointsFormat* const kPointsFormats[] = {&detail::kJsonPoints, &detail::kNpyPoints,
+                                                      &detail::kPlyPoints, &detail::kObjPoints};
 const Codec<automata::Automaton> kAutomaton[] = {
-    {"json", ".json", [](const automata::Automaton& a) { return to_json(a); },
+    {"json", ".json", whole<automata::Automaton, to_json>,
      parse_at<automata::Automaton, parse_automaton_json>},
-    {"svg", ".svg", [](const automata::Automaton& a) { return to_svg(a); }},
-    {"dot", ".dot", [](const automata::Automaton& a) { return to_dot(a); }},
+    {"svg", ".svg", whole<automata::Automaton, to_svg>},
+    {"dot", ".dot", whole<automata::Automaton, to_dot>},
 };
 const Codec<BcifsFile> kBcifs[] = {
-    {"json", ".json", [](const BcifsFile& f) { return to_json(f.system, f.nets); },
+    {"json", ".json", [](const BcifsFile& f, ByteSink& out) { out.write(to_json(f.system, f.nets)); },
      parse_at<BcifsFile, parse_bcifs_json>},
 };
 const Codec<Experiment> kExperiment[] = {
@@ -92,6 +126,9 @@ std::span<const Codec<Mesh>> codecs(const Mesh*) {
 }
 std::span<const Codec<Segments>> codecs(const Segments*) {
   return kSegments;
+}
+std::span<const Codec<PointSet>> codecs(const PointSet*) {
+  return kPoints;
 }
 std::span<const Codec<automata::Automaton>> codecs(const automata::Automaton*) {
   return kAutomaton;
@@ -128,21 +165,25 @@ std::string listing(std::span<const Format> formats, bool write, bool extensions
 }
 
 template <class T>
-std::string encode_as(const T& thing, Content content, std::string_view format) {
+void encode_as(const T& thing, Content content, std::string_view format, ByteSink& out) {
   for (const Codec<T>& c : table<T>())
-    if (c.write && c.name == format) return c.write(thing);
+    if (c.write && c.name == format) return c.write(thing, out);
   writable_format(content, format, "format");  // throws, naming the formats
-  return {};
+}
+
+template <class T>
+std::string encode_as(const T& thing, Content content, std::string_view format) {
+  StringSink out;
+  encode_as(thing, content, format, out);
+  return std::move(out.bytes);
 }
 
 template <class T>
 void write_as(const std::filesystem::path& path, const T& thing, Content content) {
-  const std::string extension = path.extension().string();
-  for (const Codec<T>& c : table<T>())
-    if (c.write && c.extension == extension) return write_file_atomically(path, c.write(thing));
-  const std::vector<Format> all = formats(content);
-  throw InvalidInput(path.string() + ": " + std::string(content_name(content)) + " is written as " +
-                     listing(all, true, true));
+  const Format format = format_of(path, content);  // refused before anything is created
+  AtomicWriter file(path);
+  encode_as(thing, content, format.name, file);
+  file.commit();
 }
 
 /// The reader of the path's extension, else JSON where JSON is the content's own format.
@@ -171,6 +212,8 @@ std::string_view content_name(Content content) {
       return "a mesh";
     case Content::segments:
       return "a segment set";
+    case Content::points:
+      return "a point set";
     case Content::automaton:
       return "an automaton";
     case Content::bcifs:
@@ -191,6 +234,8 @@ std::vector<Format> formats(Content content) {
       return formats_of<Mesh>();
     case Content::segments:
       return formats_of<Segments>();
+    case Content::points:
+      return formats_of<PointSet>();
     case Content::automaton:
       return formats_of<automata::Automaton>();
     case Content::bcifs:
@@ -209,6 +254,35 @@ Format writable_format(Content content, std::string_view name, std::string_view 
                      listing(all, true, false));
 }
 
+void encode(const Mesh& mesh, std::string_view format, ByteSink& out) {
+  encode_as(mesh, Content::mesh, format, out);
+}
+void encode(const Segments& segments, std::string_view format, ByteSink& out) {
+  encode_as(segments, Content::segments, format, out);
+}
+void encode(const automata::Automaton& automaton, std::string_view format, ByteSink& out) {
+  encode_as(automaton, Content::automaton, format, out);
+}
+
+Format format_of(const std::filesystem::path& path, Content content) {
+  const std::vector<Format> all = formats(content);
+  for (const Format& f : all)
+    if (f.write && f.extension == path.extension().string()) return f;
+  throw InvalidInput(path.string() + ": " + std::string(content_name(content)) + " is written as " +
+                     listing(all, true, true));
+}
+
+const detail::PointsFormat& detail::points_format(std::string_view name, std::string_view who) {
+  for (const PointsFormat* f : kPointsFormats)
+    if (f->name == name) return *f;
+  writable_format(Content::points, name, who);  // throws, naming the formats
+  throw InvalidInput(std::string(name) + ": not a point-set format");
+}
+
+std::string_view detail::points_format_of(const std::filesystem::path& path) {
+  return points_format(format_of(path, Content::points).name, "format").name;
+}
+
 std::string encode(const Shape& shape, std::string_view format) {
   return encode_as(shape, Content::shape, format);
 }
@@ -220,6 +294,9 @@ std::string encode(const Mesh& mesh, std::string_view format) {
 }
 std::string encode(const Segments& segments, std::string_view format) {
   return encode_as(segments, Content::segments, format);
+}
+std::string encode(const PointSet& points, std::string_view format) {
+  return encode_as(points, Content::points, format);
 }
 std::string encode(const automata::Automaton& automaton, std::string_view format) {
   return encode_as(automaton, Content::automaton, format);
@@ -239,6 +316,9 @@ void write(const std::filesystem::path& path, const Mesh& mesh) {
 }
 void write(const std::filesystem::path& path, const Segments& segments) {
   write_as(path, segments, Content::segments);
+}
+void write(const std::filesystem::path& path, const PointSet& points) {
+  write_as(path, points, Content::points);
 }
 void write(const std::filesystem::path& path, const automata::Automaton& automaton) {
   write_as(path, automaton, Content::automaton);

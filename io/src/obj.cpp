@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // cifs — OBJ polygonal geometry: meshes (read and written), segment sets and polylines (written).
 // The free-form curves and surfaces are in obj_freeform.cpp.
+#include <algorithm>
 #include <cstdio>
 #include <optional>
 
@@ -8,12 +9,13 @@
 #include "cifs/format.hpp"
 #include "cifs/io/obj.hpp"
 #include "obj_lexer.hpp"
+#include "points_format.hpp"
 
 namespace cifs::io {
 namespace {
 
 /// `v` lines with missing coordinates set to 0.
-void obj_vertices(std::string& out, const Points& P, const char* tag = "v") {
+void obj_vertices(std::string& out, const Eigen::Ref<const Points>& P, const char* tag = "v") {
   for (Eigen::Index i = 0; i < P.rows(); ++i) {
     out += tag;
     for (Eigen::Index k = 0; k < 3; ++k) {
@@ -22,6 +24,37 @@ void obj_vertices(std::string& out, const Points& P, const char* tag = "v") {
     }
     out += '\n';
   }
+}
+
+/// obj_vertices a block of rows at a time, spilled in between.
+void obj_vertices(ChunkBuffer& out, const Points& P, const char* tag = "v") {
+  constexpr Eigen::Index kBlock = 4096;
+  for (Eigen::Index i = 0; i < P.rows(); i += kBlock) {
+    obj_vertices(out.text, P.middleRows(i, std::min(kBlock, P.rows() - i)), tag);
+    out.spill();
+  }
+}
+
+// The point-set format: `v` lines, and one `l` line through them when they are a polyline.
+void points_header(std::string& out, std::uint64_t count, Eigen::Index, const PointsStyle& style) {
+  out += std::string("# cifs ") + (style.polyline ? "polyline, " : "points, ") + std::to_string(count) +
+         " points\n";
+}
+
+void points_rows(std::string& out, const Eigen::Ref<const Points>& rows, std::uint64_t) {
+  obj_vertices(out, rows);
+}
+
+void points_footer(ChunkBuffer& out, std::uint64_t count, const PointsStyle& style) {
+  if (!style.polyline || count < 2) return;
+  out.text += "l";
+  for (std::uint64_t i = 1; i <= count; ++i) {
+    out.text += ' ';
+    out.text += std::to_string(i);
+    out.spill();
+  }
+  if (style.closed) out.text += " 1";
+  out.text += '\n';
 }
 
 /// The polygonal statements of an OBJ file, gathered into a mesh.
@@ -103,6 +136,8 @@ class MeshReader {
 
 }  // namespace
 
+const detail::PointsFormat detail::kObjPoints{"obj", 3, points_header, points_rows, points_footer};
+
 Mesh parse_mesh_obj(std::string_view text, std::string_view where) {
   MeshReader reader(where);
   detail::for_each_statement(text,
@@ -110,48 +145,59 @@ Mesh parse_mesh_obj(std::string_view text, std::string_view where) {
   return reader.finish();
 }
 
-std::string mesh_obj(const Mesh& mesh) {
+void mesh_obj(const Mesh& mesh, ByteSink& sink) {
   check_mesh(mesh, "mesh_obj");
   const bool normals = mesh.normals.size() != 0;
-  std::string out = "# cifs mesh, " + std::to_string(mesh.vertices.rows()) + " vertices, " +
-                    std::to_string(face_count(mesh)) + " faces\n";
+  ChunkBuffer out(sink);
+  out.text = "# cifs mesh, " + std::to_string(mesh.vertices.rows()) + " vertices, " +
+             std::to_string(face_count(mesh)) + " faces\n";
   obj_vertices(out, mesh.vertices);
   if (normals) obj_vertices(out, mesh.normals, "vn");
   for (std::size_t f = 0; f < face_count(mesh); ++f) {
-    out += 'f';
+    out.text += 'f';
     for (const int i : face(mesh, f)) {
       const std::string k = std::to_string(i + 1);
-      out += ' ' + k;
-      if (normals) out += "//" + k;
+      out.text += ' ' + k;
+      if (normals) out.text += "//" + k;
     }
-    out += '\n';
+    out.text += '\n';
+    out.spill();
   }
-  return out;
+  out.flush();
+}
+
+std::string mesh_obj(const Mesh& mesh) {
+  StringSink out;
+  mesh_obj(mesh, out);
+  return std::move(out.bytes);
+}
+
+void segments_obj(const Segments& segments, ByteSink& sink) {
+  check_segments(segments, "segments_obj");
+  ChunkBuffer out(sink);
+  out.text = "# cifs segments, " + std::to_string(segments.vertices.rows()) + " vertices, " +
+             std::to_string(segments.segments.size()) + " segments\n";
+  obj_vertices(out, segments.vertices);
+  for (const auto& s : segments.segments) {
+    out.text += "l " + std::to_string(s[0] + 1) + ' ' + std::to_string(s[1] + 1) + '\n';
+    out.spill();
+  }
+  out.flush();
 }
 
 std::string segments_obj(const Segments& segments) {
-  check_segments(segments, "segments_obj");
-  std::string out = "# cifs segments, " + std::to_string(segments.vertices.rows()) + " vertices, " +
-                    std::to_string(segments.segments.size()) + " segments\n";
-  obj_vertices(out, segments.vertices);
-  for (const auto& s : segments.segments)
-    out += "l " + std::to_string(s[0] + 1) + ' ' + std::to_string(s[1] + 1) + '\n';
-  return out;
+  StringSink out;
+  segments_obj(segments, out);
+  return std::move(out.bytes);
 }
 
 std::string polyline_obj(const Points& points, bool closed) {
-  if (points.cols() > 3)
-    throw InvalidInput("OBJ: points have " + std::to_string(points.cols()) +
-                       " coordinates, OBJ holds at most 3");
-  std::string out = "# cifs polyline, " + std::to_string(points.rows()) + " points\n";
-  obj_vertices(out, points);
-  if (points.rows() > 1) {
-    out += "l";
-    for (Eigen::Index i = 0; i < points.rows(); ++i) out += ' ' + std::to_string(i + 1);
-    if (closed) out += " 1";
-    out += '\n';
-  }
-  return out;
+  StringSink out;
+  PointsWriter w(out, "obj", static_cast<std::uint64_t>(points.rows()), points.cols(),
+                 {.polyline = true, .closed = closed, .seed = {}});
+  w.write(points);
+  w.finish();
+  return std::move(out.bytes);
 }
 
 }  // namespace cifs::io

@@ -17,6 +17,7 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/format.hpp"
+#include "points_format.hpp"
 
 namespace cifs::io {
 namespace {
@@ -36,11 +37,17 @@ const char* format_name(PlyFormat format) noexcept {
   return "";
 }
 
-/// PLY body writer: ASCII values separated by spaces, or bytes in the format's order.
+/// PLY body writer: ASCII values separated by spaces, or bytes in the format's order, handed to the
+/// sink a chunk at a time (`finish` hands on the rest).
 class PlyWriter {
  public:
-  explicit PlyWriter(PlyFormat format) : format_(format) {}
-  std::string out;
+  PlyWriter(PlyFormat format, ByteSink& sink) : buffer_(sink), out(buffer_.text), format_(format) {}
+
+ private:
+  ChunkBuffer buffer_;
+
+ public:
+  std::string& out;
   void f64(double x) {
     if (binary()) return bytes(std::bit_cast<std::uint64_t>(x), 8);
     separate();
@@ -52,7 +59,9 @@ class PlyWriter {
   void end_row() {
     if (!binary()) out += '\n';
     first_ = true;
+    buffer_.spill();
   }
+  void finish() { buffer_.flush(); }
   const char* name() const { return format_name(format_); }
 
  private:
@@ -449,7 +458,7 @@ void read_faces(BodyReader& r, const Element& e, Mesh& mesh, const std::string& 
 
 }  // namespace
 
-std::string mesh_ply(const Mesh& mesh, PlyFormat format) {
+void mesh_ply(const Mesh& mesh, PlyFormat format, ByteSink& sink) {
   check_mesh(mesh, "mesh_ply");
   const Points* normals = mesh.normals.size() != 0 ? &mesh.normals : nullptr;
   const std::size_t faces = face_count(mesh);
@@ -457,7 +466,7 @@ std::string mesh_ply(const Mesh& mesh, PlyFormat format) {
   for (std::size_t f = 0; f < faces; ++f)
     largest = std::max(largest, mesh.face_offsets[f + 1] - mesh.face_offsets[f]);
   const bool wide = largest > 255;  // the usual uchar count holds up to 255 corners
-  PlyWriter w(format);
+  PlyWriter w(format, sink);
   ply_vertices(w, mesh.vertices, normals, "cifs mesh");
   w.out += "element face " + std::to_string(faces) + "\nproperty list " + (wide ? "uint" : "uchar") +
            " int vertex_indices\n";
@@ -474,12 +483,18 @@ std::string mesh_ply(const Mesh& mesh, PlyFormat format) {
     if (!mesh.states.empty()) w.u32(mesh.states[f]);
     w.end_row();
   }
-  return std::move(w.out);
+  w.finish();
 }
 
-std::string segments_ply(const Segments& segments, PlyFormat format) {
+std::string mesh_ply(const Mesh& mesh, PlyFormat format) {
+  StringSink out;
+  mesh_ply(mesh, format, out);
+  return std::move(out.bytes);
+}
+
+void segments_ply(const Segments& segments, PlyFormat format, ByteSink& sink) {
   check_segments(segments, "segments_ply");
-  PlyWriter w(format);
+  PlyWriter w(format, sink);
   ply_vertices(w, segments.vertices, nullptr, "cifs segments");
   w.out += "element edge " + std::to_string(segments.segments.size()) +
            "\nproperty int vertex1\nproperty int vertex2\n";
@@ -492,8 +507,46 @@ std::string segments_ply(const Segments& segments, PlyFormat format) {
     if (!segments.states.empty()) w.u32(segments.states[e]);
     w.end_row();
   }
-  return std::move(w.out);
+  w.finish();
 }
+
+std::string segments_ply(const Segments& segments, PlyFormat format) {
+  StringSink out;
+  segments_ply(segments, format, out);
+  return std::move(out.bytes);
+}
+
+// The point-set format: a binary little-endian point cloud, `element vertex` of double x y z (the
+// coordinates a point lacks are 0), as the vertices of meshes and segment sets.
+namespace {
+
+std::string point_cloud_header(std::uint64_t count) {
+  return "ply\nformat binary_little_endian 1.0\ncomment cifs points\nelement vertex " +
+         std::to_string(count) + "\nproperty double x\nproperty double y\nproperty double z\nend_header\n";
+}
+
+void points_header(std::string& out, std::uint64_t count, Eigen::Index, const PointsStyle&) {
+  out += point_cloud_header(count);
+}
+
+void points_rows(std::string& out, const Eigen::Ref<const Points>& rows, std::uint64_t) {
+  for (Eigen::Index i = 0; i < rows.rows(); ++i)
+    for (Eigen::Index k = 0; k < 3; ++k) {
+      const auto bits = std::bit_cast<std::uint64_t>(k < rows.cols() ? rows(i, k) : 0.0);
+      for (int b = 0; b < 8; ++b) out += static_cast<char>((bits >> (8 * b)) & 0xFF);
+    }
+}
+
+void points_footer(ChunkBuffer&, std::uint64_t, const PointsStyle&) {}
+
+std::uint64_t points_size(std::uint64_t count, Eigen::Index) {
+  return point_cloud_header(count).size() + count * 24;
+}
+
+}  // namespace
+
+const detail::PointsFormat detail::kPlyPoints{"ply",         3,          points_header, points_rows,
+                                              points_footer, points_size};
 
 Mesh parse_mesh_ply(std::string_view bytes, std::string_view where) {
   const std::string w(where);

@@ -41,7 +41,7 @@ std::string xml_escape(const std::string& s) {
 
 }  // namespace
 
-std::string segments_svg(const Segments& segments, const SvgOptions& options) {
+void segments_svg(const Segments& segments, const SvgOptions& options, ByteSink& sink) {
   check_segments(segments, "segments_svg");
   const Points& P = segments.vertices;
   if (P.rows() == 0) throw InvalidInput("segments_svg: no vertices");
@@ -55,11 +55,12 @@ std::string segments_svg(const Segments& segments, const SvgOptions& options) {
   const double span = std::max({hi.x() - lo.x(), hi.y() - lo.y(), 1e-300});
   const double margin = 0.05 * width, scale = (width - 2 * margin) / span;
   const int height = static_cast<int>(std::ceil((hi.y() - lo.y()) * scale + 2 * margin));
-  std::string out =
-      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + std::to_string(width) + "\" height=\"" +
-      std::to_string(height) + "\" viewBox=\"0 0 " + std::to_string(width) + " " + std::to_string(height) +
-      "\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<path fill=\"none\" stroke=\"" +
-      options.color + "\" stroke-linecap=\"round\" stroke-linejoin=\"round\" stroke-width=\"";
+  ChunkBuffer buffer(sink);
+  std::string& out = buffer.text;
+  out = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + std::to_string(width) + "\" height=\"" +
+        std::to_string(height) + "\" viewBox=\"0 0 " + std::to_string(width) + " " + std::to_string(height) +
+        "\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<path fill=\"none\" stroke=\"" +
+        options.color + "\" stroke-linecap=\"round\" stroke-linejoin=\"round\" stroke-width=\"";
   append_number(out, options.stroke, 6);
   out += "\" d=\"";
   const auto point = [&](int i) {
@@ -78,9 +79,16 @@ std::string segments_svg(const Segments& segments, const SvgOptions& options) {
     out += " L";
     point(s[1]);
     previous = s[1];
+    buffer.spill();
   }
   out += "\"/>\n</svg>\n";
-  return out;
+  buffer.flush();
+}
+
+std::string segments_svg(const Segments& segments, const SvgOptions& options) {
+  StringSink out;
+  segments_svg(segments, options, out);
+  return std::move(out.bytes);
 }
 
 std::string polyline_svg(const Points& points, bool closed, int width, double stroke) {

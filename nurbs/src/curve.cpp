@@ -251,11 +251,17 @@ Points evaluate(const Curve& c, std::span<const double> us) {
 }
 
 std::vector<double> uniform_parameters(Domain dom, int count) {
-  std::vector<double> us(static_cast<std::size_t>(std::max(count, 0)));
-  if (count == 1) us[0] = dom.start;
-  for (int i = 0; count > 1 && i < count; ++i)
-    us[static_cast<std::size_t>(i)] =
-        i == count - 1 ? dom.end : dom.start + (dom.end - dom.start) * i / (count - 1);
+  return uniform_parameters(dom, count, 0, std::max(count, 0));
+}
+
+std::vector<double> uniform_parameters(Domain dom, int count, int first, int n) {
+  std::vector<double> us(static_cast<std::size_t>(std::max(n, 0)));
+  for (int k = 0; k < n; ++k) {
+    const int i = first + k;
+    us[static_cast<std::size_t>(k)] = count == 1       ? dom.start
+                                      : i == count - 1 ? dom.end
+                                                       : dom.start + (dom.end - dom.start) * i / (count - 1);
+  }
   return us;
 }
 

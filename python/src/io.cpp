@@ -325,9 +325,9 @@ void bind_geometry(py::module_& m) {
       "The segments (i, i + 1) of a polyline (n, 2|3), plus (n − 1, 0) when closed, all with `state`.");
   m.def("vertex_normals", &vertex_normals, py::arg("mesh"),
         "Area-weighted unit vertex normals (V, 3); zero rows for vertices without area.");
-  m.def("mesh_obj", &io::mesh_obj, py::arg("mesh"),
+  m.def("mesh_obj", py::overload_cast<const Mesh&>(&io::mesh_obj), py::arg("mesh"),
         "OBJ text of a mesh (with `vn` rows when it has normals).");
-  m.def("segments_obj", &io::segments_obj, py::arg("segments"),
+  m.def("segments_obj", py::overload_cast<const Segments&>(&io::segments_obj), py::arg("segments"),
         "OBJ text of segments: `v` rows and `l a b` lines.");
   m.def("parse_mesh_obj", &io::parse_mesh_obj, py::arg("text"), py::arg("where") = kDefaultWhere,
         "A polygon mesh from OBJ text (`v`, `f` with v, v/vt, v/vt/vn or v//vn references, negative ones\n"
@@ -401,6 +401,7 @@ void bind_dispatch(py::module_& m) {
       .value("automaton", io::Content::automaton, "An automaton (cifs.automata.Automaton).")
       .value("bcifs", io::Content::bcifs, "A BC-IFS file (BcifsFile).")
       .value("experiment", io::Content::experiment, "An experiment file (Experiment).")
+      .value("points", io::Content::points, "A point set (write_points, encode_points: json, npy, ply, obj).")
       .def_property_readonly(
           "value", [](io::Content c) { return static_cast<int>(c); }, "The integer value.");
   py::class_<io::Format>(m, "Format", "One file format of a kind of content.")
@@ -421,6 +422,25 @@ void bind_dispatch(py::module_& m) {
           "Short description.");
   m.def("formats", &io::formats, py::arg("content"),
         "The formats of a Content, in the table's order (the one the CLI and experiment outputs consult).");
+
+  // Point sets: an (n, dim) array and how it is written (io::PointSet).
+  m.def(
+      "write_points",
+      [](const std::filesystem::path& path, const DoubleArray& points, bool polyline, bool closed) {
+        io::write(path, io::PointSet{points_from(points, "points"), {polyline, closed, {}}});
+      },
+      py::arg("path"), py::arg("points"), py::arg("polyline") = false, py::arg("closed") = false,
+      "Writes a point set (n, dim) in the format its extension names (.json, .npy, .ply, .obj),\n"
+      "atomically; `polyline` joins the points by an OBJ `l` line (back to the first when `closed`).");
+  m.def(
+      "encode_points",
+      [](const DoubleArray& points, const std::string& format, bool polyline, bool closed) {
+        const std::string bytes =
+            io::encode(io::PointSet{points_from(points, "points"), {polyline, closed, {}}}, format);
+        return file_result(bytes, format == "npy" || format == "ply");
+      },
+      py::arg("points"), py::arg("format"), py::arg("polyline") = false, py::arg("closed") = false,
+      "The file contents of a point set in `format` (json, npy, ply, obj): str, or bytes for npy and ply.");
 
   // write(path, thing) and encode(thing, format) for every content that is written.
   const auto bind = [&m](auto tag, const char* type) {

@@ -150,6 +150,74 @@ TEST_CASE("cifs reports bad input on one line and exits 2", "[cli]") {
   check_error(cifs_cli("info " + scratch().string()), "is a directory");
 }
 
+TEST_CASE("cifs attractor and eval -o: the file written as computed = standard output", "[cli][stream]") {
+  const std::string rational = file("r.json", kCurve), surface = file("s.json", kSurface);
+  const std::string closed = file("closed.json", R"({"curve": {"degree": 3, "closed": true,
+    "knots": [0, 1, 2, 3.5, 4, 6], "points": [[0, 0], [2, -1], [4, 0], [3, 2], [1, 2]]}})");
+  const auto same = [](const std::string& command, const std::string& format) {
+    const auto path = scratch() / ("streamed." + format);
+    std::filesystem::remove(path);
+    const Run in_memory = cifs_cli(command + " --format " + format);
+    const Run streamed = cifs_cli(command + " -o " + path.string());
+    INFO(command << " " << format << ": " << streamed.err);
+    REQUIRE(in_memory.status == 0);
+    REQUIRE(streamed.status == 0);
+    CHECK_THAT(streamed.out, Catch::StartsWith("wrote " + path.string() + ": "));
+    CHECK(streamed.err.empty());  // no progress bar off a terminal
+    CHECK(slurp(path) == in_memory.out);
+    CHECK(in_memory.out.size() > 100);
+  };
+  // Stencil chunks of 2^16 points, several of them (3 · 2^16 + 1 points at depth 16).
+  for (const std::string format : {"json", "obj", "npy", "ply"}) {
+    same("attractor " + rational + " --depth 16", format);
+    same("attractor " + closed + " --depth 9", format);
+    same("attractor " + rational + " --tolerance 0.001", format);
+  }
+  same("attractor " + rational + " --chaos 1000 --seed 5", "npy");
+  // eval: the stdout route evaluates all parameters at once, the file route 2^16 at a time.
+  const auto eval_same = [](const std::string& command) {
+    const auto path = scratch() / "eval.json";
+    const Run in_memory = cifs_cli(command);
+    const Run streamed = cifs_cli(command + " -o " + path.string());
+    INFO(command << ": " << streamed.err);
+    REQUIRE(in_memory.status == 0);
+    REQUIRE(streamed.status == 0);
+    CHECK(slurp(path) == in_memory.out);
+  };
+  eval_same("eval " + rational + " --at 0.5 --at 3 --samples 150001");
+  eval_same("eval " + surface + " --at 0.5,0.25 --samples 300");  // 90000 points: rows of 218 per chunk
+}
+
+TEST_CASE("cifs attractor -o: refusals name the memory or the disk, and leave nothing", "[cli][stream]") {
+  const auto folder = scratch() / "refusals";
+  std::filesystem::create_directories(folder);
+  const std::string shape = file("refusals/c.json", kCurve);
+  const auto count = [&] { return std::distance(std::filesystem::directory_iterator(folder), {}); };
+  // 3 · 2^24 + 1 points of 4 homogeneous coordinates do not fit the 1 GiB of standard output…
+  check_error(cifs_cli("attractor " + shape + " --depth 24"),
+              "attractor: depth 24 gives 50331649 points (1.5 GiB), more than the 1 GiB held in memory for "
+              "standard output and SVG; write them to a file with -o points.npy");
+  check_error(cifs_cli("eval " + shape + " --samples 60000000"), "write them to a file with -o points.npy");
+  // …while a file of any size is refused only for the disk's free space (3 · 2^40 + 1 points · 24 bytes).
+  check_error(cifs_cli("attractor " + shape + " --depth 40 -o " + (folder / "big.npy").string()),
+              (folder / "big.npy").string() + ": the file needs 79165 GB of disk space, ");
+  check_error(cifs_cli("attractor " + shape + " --depth 40 -o " + (folder / "big.json").string()),
+              (folder / "big.json").string() + ": the file needs about ");
+  check_error(cifs_cli("attractor " + shape + " --depth 3 -o " + (folder / "p.txt").string()),
+              "expected a .json, .npy, .ply, .obj or .svg file name");
+  check_error(cifs_cli("attractor " + shape + " --depth 3 --format obj -o " + (folder / "p.json").string()),
+              "--format obj: -o " + (folder / "p.json").string() + " names json");
+  check_error(cifs_cli("attractor " + shape + " --chaos 10 -o " + (folder / "p.obj").string()), "unordered");
+  check_error(cifs_cli("eval " + shape + " --at 9 -o " + (folder / "p.npy").string()), "outside the domain");
+  check_error(cifs_cli("eval " + shape + " --at 1 -o " + (folder / "p.svg").string()),
+              "a point set is written as .json, .npy, .ply or .obj");
+  CHECK(count() == 1);  // c.json only: no output, no temporary
+  // SVG is drawn from memory (fitted to all the points), written through the same atomic writer.
+  const Run svg = cifs_cli("attractor " + shape + " --depth 4 -o " + (folder / "p.svg").string());
+  CHECK(svg.status == 0);
+  CHECK_THAT(slurp(folder / "p.svg"), Catch::StartsWith("<svg"));
+}
+
 TEST_CASE("cifs automaton, attractor and check", "[cli]") {
   const std::string shape = file("c.json", kCurve);
   const auto c = std::get<nurbs::Curve>(io::read_shape(shape));

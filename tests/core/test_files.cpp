@@ -134,3 +134,75 @@ TEST_CASE("read_file names the path", "[core][files]") {
   CHECK_THROWS_WITH(read_file(s.dir / "none"),
                     (s.dir / "none").string() + ": cannot open (No such file or directory)");
 }
+
+TEST_CASE("AtomicWriter: pieces into a temporary, renamed on commit, removed otherwise", "[core][files]") {
+  Scratch s;
+  const auto target = s.dir / "points.npy";
+  std::ofstream(target) << "old";
+  {
+    AtomicWriter file(target);
+    CHECK(std::filesystem::exists(file.temporary()));  // created up front (O_EXCL)
+    file.write(all_bytes().substr(0, 100));
+    file.write("");
+    file.write(all_bytes().substr(100));
+    CHECK(file.size() == all_bytes().size());
+    CHECK(read_file(file.temporary()) == all_bytes());
+    CHECK(read_file(target) == "old");  // the target is untouched until commit
+  }
+  CHECK(read_file(target) == "old");  // not committed: discarded
+  CHECK(s.names() == std::set<std::string>{"points.npy"});
+  {
+    AtomicWriter file(target);
+    file.write("new");
+    file.commit();
+    CHECK_THROWS_WITH(file.write("more"), target.string() + ": written after it was closed");
+  }
+  CHECK(read_file(target) == "new");
+  CHECK(s.names() == std::set<std::string>{"points.npy"});
+  CHECK_THROWS_WITH(AtomicWriter(""), "empty output path");
+  CHECK_THROWS_WITH(AtomicWriter(s.dir), s.dir.string() + ": is a directory");
+  CHECK_THROWS_WITH(AtomicWriter(s.dir / "missing" / "p.npy"),
+                    StartsWith((s.dir / "missing" / "p.npy").string() + ": cannot write ("));
+}
+
+TEST_CASE("ChunkBuffer hands its bytes on a chunk at a time", "[core][files]") {
+  struct Counting final : ByteSink {
+    std::vector<std::size_t> pieces;
+    std::string bytes;
+    void write(std::string_view more) override {
+      pieces.push_back(more.size());
+      bytes += more;
+    }
+  } sink;
+  ChunkBuffer out(sink);
+  std::string expected;
+  for (int k = 0; k < 300000; ++k) {
+    const std::string piece = std::to_string(k) + ",";
+    out.text += piece;
+    expected += piece;
+    out.spill();
+  }
+  CHECK(out.size() == expected.size());
+  out.flush();
+  CHECK(sink.bytes == expected);
+  REQUIRE(sink.pieces.size() >= 2);
+  for (std::size_t i = 0; i + 1 < sink.pieces.size(); ++i) {  // every piece but the last is one chunk
+    CHECK(sink.pieces[i] >= ChunkBuffer::kChunkBytes);
+    CHECK(sink.pieces[i] < ChunkBuffer::kChunkBytes + 16);
+  }
+}
+
+TEST_CASE("check_disk_space names the bytes needed and those free", "[core][files]") {
+  Scratch s;
+  const auto target = s.dir / "huge.npy";
+  const std::uint64_t free = std::filesystem::space(s.dir).available;
+  CHECK_NOTHROW(check_disk_space(target, 1000));
+  CHECK_NOTHROW(check_disk_space(target, free + 1000, false, 2000));  // 2000 bytes written already
+  const std::uint64_t exabyte = std::uint64_t{1} << 60;
+  CHECK_THROWS_AS(check_disk_space(target, exabyte), IoError);
+  CHECK_THROWS_WITH(check_disk_space(target, exabyte),
+                    StartsWith(target.string() + ": the file needs 1152921505 GB of disk space, ") &&
+                        Contains(" GB are free there"));
+  CHECK_THROWS_WITH(check_disk_space(target, exabyte, true), Contains("needs about 1152921505 GB"));
+  CHECK(s.names().empty());
+}

@@ -228,6 +228,78 @@ TEST_CASE("attractor_points refuses an output above the limit before any work", 
   CHECK(attractor_points(a, nets, 5, options).rows() == 33);             // 792 bytes
 }
 
+namespace {
+
+/// The chunks of for_each_attractor_chunk stacked, and the largest chunk.
+struct Chunks {
+  Points rows;
+  Eigen::Index largest = 0;
+  std::size_t count = 0;
+};
+
+Chunks stacked_chunks(const Automaton& a, std::span<const Points> nets, int K, const PointsOptions& options) {
+  Chunks out;
+  std::vector<Points> pieces;
+  out.count = for_each_attractor_chunk(a, nets, K, options, [&](const Eigen::Ref<const Points>& rows) {
+    CHECK(rows.rows() > 0);
+    out.largest = std::max(out.largest, rows.rows());
+    pieces.emplace_back(rows);
+  });
+  Eigen::Index total = 0;
+  for (const Points& p : pieces) total += p.rows();
+  out.rows.resize(total, nets[0].cols());
+  Eigen::Index at = 0;
+  for (const Points& p : pieces) {
+    out.rows.middleRows(at, p.rows()) = p;
+    at += p.rows();
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("for_each_attractor_chunk: the points of attractor_points, bit for bit, in bounded chunks",
+          "[ifs][stream]") {
+  std::mt19937_64 rng(11);
+  const Automaton a = mixed_automaton(rng, 0.7);
+  const std::vector<Points> nets{random_points(3, 2, rng), random_points(4, 2, rng)};
+  for (const int K : {0, 1, 5, 9}) {
+    for (const bool closed : {false, true}) {
+      for (const std::size_t chunk : {std::size_t{1}, std::size_t{100}, std::size_t{1} << 16}) {
+        INFO("depth " << K << ", closed " << closed << ", chunk " << chunk);
+        PointsOptions options;
+        options.closed = closed;
+        options.chunk_points = chunk;
+        const Chunks c = stacked_chunks(a, nets, K, options);
+        const Points X = attractor_points(a, nets, K, options);
+        CHECK(c.count == static_cast<std::size_t>(X.rows()));
+        REQUIRE(c.rows.rows() == X.rows());
+        CHECK(c.rows == X);  // exactly: the same tables, the same products
+        // At most one chunk, or one stencil table when that is larger (≤ 3^8 rows: out-degrees ≤ 3).
+        CHECK(c.largest <= std::max<Eigen::Index>(static_cast<Eigen::Index>(chunk), 6561));
+      }
+    }
+  }
+  // A depth refused in memory is streamed: 2^20 + 1 points under a limit of 1000 bytes.
+  const Automaton u = uniform_automaton(3);
+  const std::vector<Points> cubic{random_points(4, 3, rng)};
+  PointsOptions small;
+  small.max_bytes = 1000;
+  CHECK_THROWS_AS(attractor_points(u, cubic, 20, small), InvalidInput);
+  std::size_t rows = 0;
+  Eigen::Index largest = 0;
+  CHECK(for_each_attractor_chunk(u, cubic, 20, small, [&](const Eigen::Ref<const Points>& chunk) {
+          rows += static_cast<std::size_t>(chunk.rows());
+          largest = std::max(largest, chunk.rows());
+        }) == (std::size_t{1} << 20) + 1);
+  CHECK(rows == (std::size_t{1} << 20) + 1);
+  CHECK(largest == Eigen::Index{1} << 16);
+  // And the points are the Cox–de Boor ones (the in-memory route is checked against them above).
+  const Chunks c = stacked_chunks(u, cubic, 11, {});
+  CHECK((c.rows - leaf_start_points(u, cubic, 11, false)).cwiseAbs().maxCoeff() <=
+        1e-12 * scale_of(cubic[0]));
+}
+
 TEST_CASE("Rational quadratic: a quarter circle from homogeneous rows", "[ifs]") {
   // Knots 0 0 0 1 1 1: the window (0, 1, 0); its G/D children and the uniform state.
   const Automaton a = quadratic_automaton(0, 1, 0);

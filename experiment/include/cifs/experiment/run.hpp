@@ -35,9 +35,11 @@ struct RunReport {
   std::string summary;  // one line per fact, for the CLI
 };
 
-/// Runs `experiment`. Every output is computed in memory first and then written through a
-/// temporary file and a rename, so a failure leaves no output file behind (and never a partial
-/// one). Throws InvalidInput (bad content, too large, two outputs naming one file), IoError (files).
+/// Runs `experiment`. Every output is computed before any is renamed into place: geometry and automaton
+/// files are encoded a chunk at a time into temporary files (their bytes are never whole in memory)
+/// before the images are written, and renamed after them, so a failure leaves no output file behind
+/// (and never a partial one). Throws InvalidInput (bad content, too large, two outputs naming one file),
+/// IoError (files).
 RunReport run(const io::Experiment& experiment, const RunOptions& options = {});
 
 /// The deterministic evaluation of an experiment's source, for analysis (cifs dimension).

@@ -19,7 +19,7 @@ namespace cifs::ifs {
 
 /// `#P by (dim+1)` homogeneous rows `(w·x, w)` → `#P by dim` Cartesian rows `x`. Throws
 /// InvalidInput for fewer than 2 columns or a zero weight.
-Points cartesian(const Points& homogeneous);
+Points cartesian(const Eigen::Ref<const Points>& homogeneous);
 
 /// A node of the subdivision tree handed to callbacks. `net` is `size(state) by cols`; `word`
 /// holds the child indices (out-edge positions) from the root, `depth` of them. The references
@@ -83,11 +83,13 @@ ToleranceResult for_each_leaf_to_tolerance(const automata::Automaton& automaton,
 struct PointsOptions {
   /// Closed shapes: the end of the last piece equals the start of the first, so it is omitted.
   bool closed = false;
-  /// Refuse (before any work) an output larger than this many bytes.
+  /// attractor_points: refuse (before any work) an output larger than this many bytes.
   std::size_t max_bytes = std::size_t{1} << 30;
   /// Depth L of the precomposed stencil tables (lowered automatically so that tables stay below
-  /// half of the output).
+  /// half of the output and below 2^21 entries).
   int max_table_depth = 8;
+  /// for_each_attractor_chunk: points per chunk (more only when one stencil table has more rows).
+  std::size_t chunk_points = std::size_t{1} << 16;
 };
 
 /// Number of points attractor_points returns: the number of depth-`depth` nodes (from the
@@ -106,5 +108,17 @@ std::size_t attractor_point_count(const automata::Automaton& automaton, int dept
 /// constant). Throws InvalidInput when the output would exceed `options.max_bytes`.
 Points attractor_points(const automata::Automaton& automaton, std::span<const Points> nets, int depth,
                         const PointsOptions& options = {});
+
+/// Consecutive rows of attractor points (`rows by cols`); valid during the call only.
+using PointsChunkCallback = std::function<void(const Eigen::Ref<const Points>& rows)>;
+
+/// attractor_points without holding the output: the same points, bit for bit and in the same order,
+/// handed to `callback` in chunks of at most `options.chunk_points` rows (or one stencil table's
+/// rows, when larger). Memory is the chunk, the tables and one net per level, whatever the depth;
+/// `max_bytes` does not apply. Returns the number of points (attractor_point_count). Throws as
+/// attractor_points, and for more points than fit in size_t.
+std::size_t for_each_attractor_chunk(const automata::Automaton& automaton, std::span<const Points> nets,
+                                     int depth, const PointsOptions& options,
+                                     const PointsChunkCallback& callback);
 
 }  // namespace cifs::ifs

@@ -11,8 +11,10 @@
 #include <vector>
 
 #include "cifs/automata/automaton.hpp"
+#include "cifs/files.hpp"
 #include "cifs/io/bcifs_file.hpp"
 #include "cifs/io/experiment.hpp"
+#include "cifs/io/points.hpp"
 #include "cifs/io/polygon.hpp"
 #include "cifs/io/shape.hpp"
 #include "cifs/mesh.hpp"
@@ -28,6 +30,7 @@ enum class Content {
   automaton,   // an automaton with matrices (automata::Automaton)
   bcifs,       // a BC-IFS and its initial nets (BcifsFile)
   experiment,  // an experiment file (Experiment)
+  points,      // a point set (PointSet): cifs eval, cifs attractor; written in chunks by PointsFile
 };
 
 /// "a shape", "a mesh", "an automaton", …: the content in messages.
@@ -55,10 +58,19 @@ std::string encode(const Shape& shape, std::string_view format);
 std::string encode(const Polygon& polygon, std::string_view format);
 std::string encode(const Mesh& mesh, std::string_view format);
 std::string encode(const Segments& segments, std::string_view format);
+std::string encode(const PointSet& points, std::string_view format);
 std::string encode(const automata::Automaton& automaton, std::string_view format);
 std::string encode(const BcifsFile& file, std::string_view format);
+/// The same bytes handed to `out` a chunk at a time (an AtomicWriter: the file is never whole in memory).
+void encode(const Mesh& mesh, std::string_view format, ByteSink& out);
+void encode(const Segments& segments, std::string_view format, ByteSink& out);
+void encode(const automata::Automaton& automaton, std::string_view format, ByteSink& out);
 
-/// Writes the file of the format its extension names, atomically (cifs::write_file_atomically).
+/// The format of the path's extension among those that write `content`. Otherwise InvalidInput naming the
+/// path and the extensions: "out.svg: a mesh is written as .obj or .ply".
+Format format_of(const std::filesystem::path& path, Content content);
+
+/// Writes the file of the format its extension names, atomically (cifs::AtomicWriter, a chunk at a time).
 /// An extension that the content is not written in is an InvalidInput naming the path and the
 /// extensions it is written in: "out.svg: a mesh is written as .obj or .ply". Nothing is created
 /// then.
@@ -66,6 +78,7 @@ void write(const std::filesystem::path& path, const Shape& shape);
 void write(const std::filesystem::path& path, const Polygon& polygon);
 void write(const std::filesystem::path& path, const Mesh& mesh);
 void write(const std::filesystem::path& path, const Segments& segments);
+void write(const std::filesystem::path& path, const PointSet& points);
 void write(const std::filesystem::path& path, const automata::Automaton& automaton);
 void write(const std::filesystem::path& path, const BcifsFile& file);
 

@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "cifs/files.hpp"
 #include "cifs/io/shape.hpp"
 #include "cifs/mesh.hpp"
 #include "cifs/types.hpp"
@@ -30,10 +31,13 @@ Mesh parse_mesh_obj(std::string_view text, std::string_view where);
 /// OBJ text: `v` rows (17 significant digits), `vn` rows when the mesh has normals, `f` lines
 /// (`f a//a b//b c//c` with normals), 1-based. parse_mesh_obj reads it back bit for bit.
 std::string mesh_obj(const Mesh& mesh);
+void mesh_obj(const Mesh& mesh, ByteSink& out);  // the same bytes, a chunk at a time
 /// OBJ text: `v` rows (missing z = 0) and one `l a b` line per segment.
 std::string segments_obj(const Segments& segments);
+void segments_obj(const Segments& segments, ByteSink& out);
 /// OBJ: one `v` line per point (missing coordinates are 0, more than 3 are refused) and one `l`
-/// element through them, closed back to the first point when `closed`.
+/// element through them, closed back to the first point when `closed` (the obj point-set format of
+/// PointsWriter, cifs/io/points.hpp).
 std::string polyline_obj(const Points& points, bool closed = false);
 
 }  // namespace cifs::io

@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: MIT
 // cifs — PLY (Stanford polygon files): meshes and segment sets written as ASCII or binary, polygon
-// meshes read from ASCII and binary (either byte order) files.
+// meshes read from ASCII and binary (either byte order) files. Point sets are written as binary
+// point clouds through io::PointsWriter (cifs/io/points.hpp).
 #pragma once
 
 #include <string>
 #include <string_view>
 
+#include "cifs/files.hpp"
 #include "cifs/mesh.hpp"
 
 namespace cifs::io {
@@ -17,9 +19,11 @@ enum class PlyFormat { ascii, binary_little_endian, binary_big_endian };
 /// corners —, plus uint state when the mesh has states). Binary files have the byte order their
 /// format names, whatever the host.
 std::string mesh_ply(const Mesh& mesh, PlyFormat format = PlyFormat::ascii);
+void mesh_ply(const Mesh& mesh, PlyFormat format, ByteSink& out);  // the same bytes, a chunk at a time
 /// PLY: `element vertex` (double x y z; z = 0 for planar vertices) and `element edge` (int vertex1,
 /// int vertex2, plus uint state when present).
 std::string segments_ply(const Segments& segments, PlyFormat format = PlyFormat::ascii);
+void segments_ply(const Segments& segments, PlyFormat format, ByteSink& out);
 
 /// A polygon mesh from PLY bytes (ascii, binary_little_endian or binary_big_endian 1.0):
 /// `element vertex` with x y z (and nx ny nz, read as normals when all three are there), `element

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cifs/automata/automaton.hpp"
+#include "cifs/files.hpp"
 #include "cifs/mesh.hpp"
 #include "cifs/types.hpp"
 
@@ -23,6 +24,7 @@ struct SvgOptions {
 /// SVG of the x, y coordinates (y up, as in the plane; z is dropped), fitted with a 5 % margin:
 /// one path of `M … L …` pieces, consecutive segments that share a vertex drawn as one run.
 std::string segments_svg(const Segments& segments, const SvgOptions& options = {});
+void segments_svg(const Segments& segments, const SvgOptions& options, ByteSink& out);  // a chunk at a time
 
 /// SVG of the x, y coordinates of a polyline (`#P by ≥ 2`), fitted with a margin into a
 /// `width`-pixel-wide picture; a stroke width in pixels. The writer is segments_svg on

@@ -75,6 +75,9 @@ Points evaluate(const Curve& c, std::span<const double> us);
 
 /// `count` parameters evenly spaced over the domain, both ends included (count ≥ 2; 1 gives the start).
 std::vector<double> uniform_parameters(Domain dom, int count);
+/// Parameters `first` … `first + n − 1` of uniform_parameters(dom, count), the same doubles: for
+/// callers that take them a chunk at a time. Requires 0 ≤ first and first + n ≤ count.
+std::vector<double> uniform_parameters(Domain dom, int count, int first, int n);
 
 /// Derivatives of order 0..`order` at u: `(order+1) by dim`, Cartesian (quotient rule when rational).
 /// Throws InvalidInput for an order outside 0 … kMaxDegree.

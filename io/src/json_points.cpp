@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: MIT
+// cifs — the JSON points report of cifs eval and cifs attractor: `{"points":[[x,y],…]}`, numbers
+// as the shortest text that reads back as the same double, then `"seed":S` for the chaos game.
+#include "cifs/format.hpp"
+#include "points_format.hpp"
+
+namespace cifs::io::detail {
+namespace {
+
+void header(std::string& out, std::uint64_t, Eigen::Index, const PointsStyle&) {
+  out += "{\"points\":[";
+}
+
+void rows(std::string& out, const Eigen::Ref<const Points>& rows, std::uint64_t first) {
+  for (Eigen::Index i = 0; i < rows.rows(); ++i) {
+    out += first == 0 && i == 0 ? "[" : ",[";
+    for (Eigen::Index j = 0; j < rows.cols(); ++j) {
+      if (j) out += ',';
+      append_number(out, rows(i, j));
+    }
+    out += ']';
+  }
+}
+
+void footer(ChunkBuffer& out, std::uint64_t, const PointsStyle& style) {
+  out.text += ']';
+  if (style.seed) out.text += ",\"seed\":" + std::to_string(*style.seed);
+  out.text += "}\n";
+}
+
+}  // namespace
+
+const PointsFormat kJsonPoints{"json", 0, header, rows, footer};
+
+}  // namespace cifs::io::detail
