@@ -4,6 +4,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numeric>
+#include <optional>
 
 #include "cifs/errors.hpp"
 #include "cifs/files.hpp"
@@ -35,12 +36,12 @@ int components(const MeshTopology& t) {
   return count;
 }
 
-/// Refused before the work: the output must be a mesh format the table writes.
-void check_mesh_output(const std::filesystem::path& output) {
+/// Refused before the work: the output must be a mesh format the table writes. Its name.
+std::string mesh_output_format(const std::filesystem::path& output) {
   std::string known;
   for (const io::Format& f : io::formats(io::Content::mesh)) {
     if (!f.write) continue;
-    if (output.extension() == f.extension) return;
+    if (output.extension() == f.extension) return std::string(f.name);
     known += (known.empty() ? "" : " or ") + std::string(f.extension);
   }
   throw InvalidInput("-o " + output.string() + ": expected a " + known + " file name");
@@ -110,7 +111,10 @@ std::string subdivide(const SubdivideOptions& o) {
   const subdivision::MeshOptions options{
       .boundary = boundary_rule(o.boundary),
       .progress = [&bar](std::uint64_t done, std::uint64_t total) { bar(done, total); }};
-  if (!o.output.empty()) check_mesh_output(o.output);
+  // The output is checked (not the input mesh, a folder, a device…) and its temporary made before the work.
+  const std::string format = o.output.empty() ? "obj" : mesh_output_format(o.output);
+  std::optional<AtomicFile> output;
+  if (!o.output.empty()) output.emplace(o.output, OutputOptions{.inputs = {o.mesh}});
   const Mesh mesh = io::read_mesh(o.mesh);
   Mesh refined;
   try {
@@ -119,8 +123,9 @@ std::string subdivide(const SubdivideOptions& o) {
   } catch (const InvalidInput& e) {
     throw InvalidInput(o.mesh.string() + ": " + e.what());
   }
-  if (o.output.empty()) return io::encode(refined, "obj");
-  io::write(o.output, refined);
+  if (!output) return io::encode(refined, format);
+  output->write(io::encode(refined, format));
+  output->commit();
   return "wrote " + o.output.string() + ": " + std::to_string(refined.vertices.rows()) + " vertices, " +
          std::to_string(face_count(refined)) + " faces (" + o.scheme + (o.factored ? " factored" : "") +
          ", " + std::to_string(o.levels) + " levels)\n";

@@ -43,6 +43,7 @@ Shape parse_one_obj_shape(std::string_view text, const std::filesystem::path& pa
 Experiment parse_experiment_at(std::string_view text, const std::filesystem::path& path) {
   Experiment e = parse_experiment(text, path.filename().string(), path.parent_path());
   if (e.name.empty()) e.name = path.stem().string();
+  e.inputs.insert(e.inputs.begin(), path);
   return e;
 }
 

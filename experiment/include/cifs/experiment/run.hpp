@@ -35,9 +35,11 @@ struct RunReport {
   std::string summary;  // one line per fact, for the CLI
 };
 
-/// Runs `experiment`. Every output is computed in memory first and then written through a
-/// temporary file and a rename, so a failure leaves no output file behind (and never a partial
-/// one). Throws InvalidInput (bad content, too large, two outputs naming one file), IoError (files).
+/// Runs `experiment`. Its outputs are checked and their temporary files made before any work
+/// (cifs::AtomicFiles: no output onto an input, a folder, a device or another output; the image
+/// paths' folders must exist, the others are created), written, and renamed together at the end:
+/// all are written or none is, never a partial one. Throws InvalidInput (bad content, too large,
+/// two outputs naming one file), IoError (files).
 RunReport run(const io::Experiment& experiment, const RunOptions& options = {});
 
 /// The deterministic evaluation of an experiment's source, for analysis (cifs dimension).
