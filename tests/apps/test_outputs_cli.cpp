@@ -7,6 +7,7 @@
 #include <signal.h>
 #include <spawn.h>
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -231,6 +232,14 @@ TEST_CASE("cifs writes through symbolic links and replaces only regular files",
   check_error(cifs_cli("render " + exp + " -o " + (dir / "fifo").string()),
               (dir / "fifo").string() + ": is a FIFO; only regular files are written");
   CHECK(fs::is_fifo(dir / "fifo"));
+  // A device node of our own, like /dev/full (made only where root may make one; a failed refusal
+  // replaces this node, never a real device).
+  if (::geteuid() == 0 && ::mknod((dir / "full").c_str(), S_IFCHR | 0600, makedev(1, 7)) == 0) {
+    check_error(cifs_cli("render " + exp + " -o " + (dir / "full").string()),
+                (dir / "full").string() + ": is a device; only regular files are written");
+    CHECK(fs::is_character_file(dir / "full"));
+    fs::remove(dir / "full");
+  }
   REQUIRE(::mkfifo((dir / "fifo.obj").c_str(), 0600) == 0);
   check_error(cifs_cli("subdivide " CIFS_EXAMPLES_DIR "/meshes/cube.obj --scheme loop -o " +
                        (dir / "fifo.obj").string()),
