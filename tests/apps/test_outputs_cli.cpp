@@ -28,7 +28,7 @@ namespace {
 
 /// A fresh folder of the scratch area.
 fs::path folder(const std::string& name) {
-  const fs::path dir = scratch() / name;
+  fs::path dir = scratch() / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
@@ -67,7 +67,7 @@ std::string cubic_experiment(const fs::path& dir, const std::string& outputs,
 /// into any folder of its own).
 fs::path unwritable_folder() {
   if (::geteuid() == 0) return "/sys";
-  const fs::path dir = folder("read_only");
+  fs::path dir = folder("read_only");
   fs::permissions(dir, fs::perms::owner_read | fs::perms::owner_exec);
   return dir;
 }

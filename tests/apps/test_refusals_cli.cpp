@@ -44,8 +44,9 @@ TEST_CASE("cifs refuses unknown members of BC-IFS files by name", "[cli][reliabi
     const std::string exp = file("typo_exp.json", R"({"automaton": ")" + bcifs + R"(",
       "perturbation": {"amplitude": 0.1, "seed": 1}, "evaluation": {"depth": 2},
       "render": {"width": 8, "height": 8}, "outputs": {"exr": "typo.exr"}})");
-    check_error(cifs_cli("render --out-dir " + scratch().string() + " " + exp), bcifs + ": " + member);
-    check_error(cifs_cli("dimension " + exp), bcifs + ": " + member);
+    const std::string where = bcifs + ": ";
+    check_error(cifs_cli("render --out-dir " + scratch().string() + " " + exp), where + member);
+    check_error(cifs_cli("dimension " + exp), where + member);
   }
   CHECK(!std::filesystem::exists(scratch() / "typo.exr"));
 }

@@ -320,6 +320,7 @@ TEST_CASE("Temporary names differ between calls and threads", "[core][files]") {
   // Threads writing the same target: every write succeeds and the file is one of them, whole.
   constexpr int kThreads = 8, kWrites = 50;
   std::vector<std::thread> threads;
+  threads.reserve(kThreads);
   std::vector<int> failures(kThreads, 0);
   for (int t = 0; t < kThreads; ++t)
     threads.emplace_back([&, t] {

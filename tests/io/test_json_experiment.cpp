@@ -100,7 +100,9 @@ TEST_CASE("Experiments: bad files name the file, the member and the problem", "[
   for (const std::string seed : {"-1", "18446744073709551616", "1e23", "1.5", "\"7\""}) {
     CHECK_THAT(error_of(R"({"ifs": "fern", "evaluation": {"chaos": 5, "seed": )" + seed + "}}"),
                Catch::Contains("e.json: evaluation.seed: expected a non-negative integer"));
-    CHECK_THAT(error_of("{" + kCurve + R"(, "perturbation": {"seed": )" + seed + "}}"),
+    std::string perturbation = "{" + kCurve;
+    perturbation += R"(, "perturbation": {"seed": )" + seed + "}}";
+    CHECK_THAT(error_of(perturbation),
                Catch::Contains("e.json: perturbation.seed: expected a non-negative integer"));
   }
   CHECK(
