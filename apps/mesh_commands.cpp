@@ -4,6 +4,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numeric>
+#include <optional>
 
 #include "cifs/errors.hpp"
 #include "cifs/files.hpp"
@@ -36,12 +37,12 @@ int components(const MeshTopology& t) {
   return count;
 }
 
-/// Refused before the work: the output must be a mesh format the table writes.
-void check_mesh_output(const std::filesystem::path& output) {
+/// Refused before the work: the output must be a mesh format the table writes. Its name.
+std::string mesh_output_format(const std::filesystem::path& output) {
   std::string known;
   for (const io::Format& f : io::formats(io::Content::mesh)) {
     if (!f.write) continue;
-    if (output.extension() == f.extension) return;
+    if (output.extension() == f.extension) return std::string(f.name);
     known += (known.empty() ? "" : " or ") + std::string(f.extension);
   }
   throw InvalidInput("-o " + output.string() + ": expected a " + known + " file name");
@@ -111,7 +112,10 @@ std::string subdivide(const SubdivideOptions& o) {
   const subdivision::MeshOptions options{
       .boundary = boundary_rule(o.boundary),
       .progress = [&bar](std::uint64_t done, std::uint64_t total) { bar(done, total); }};
-  if (!o.output.empty()) check_mesh_output(o.output);
+  // The output is checked (not the input mesh, a folder, a device…) and its temporary made before the work.
+  const std::string format = o.output.empty() ? "obj" : mesh_output_format(o.output);
+  std::optional<AtomicFile> output;
+  if (!o.output.empty()) output.emplace(o.output, OutputOptions{.inputs = {o.mesh}});
   const Mesh mesh = io::read_mesh(o.mesh);
   Mesh refined;
   try {
@@ -120,8 +124,9 @@ std::string subdivide(const SubdivideOptions& o) {
   } catch (const InvalidInput& e) {
     throw InvalidInput(o.mesh.string() + ": " + e.what());
   }
-  if (o.output.empty()) return io::encode(refined, "obj");
-  io::write(o.output, refined);
+  if (!output) return io::encode(refined, format);
+  io::encode(refined, format, *output);  // a chunk at a time: the text is never whole in memory
+  output->commit();
   return "wrote " + o.output.string() + ": " + std::to_string(refined.vertices.rows()) + " vertices, " +
          std::to_string(face_count(refined)) + " faces (" + o.scheme + (o.factored ? " factored" : "") +
          ", " + std::to_string(o.levels) + " levels)\n";
@@ -130,7 +135,9 @@ std::string subdivide(const SubdivideOptions& o) {
 std::string limit(const LimitCommandOptions& o) {
   const subdivision::MeshScheme scheme = subdivision::named_mesh_scheme(o.scheme);
   const subdivision::LimitOptions options{.boundary = boundary_rule(o.boundary), .normals = o.normals};
-  if (!o.output.empty()) check_mesh_output(o.output);
+  const std::string format = o.output.empty() ? "obj" : mesh_output_format(o.output);
+  std::optional<AtomicFile> output;
+  if (!o.output.empty()) output.emplace(o.output, OutputOptions{.inputs = {o.mesh}});
   const Mesh mesh = io::read_mesh(o.mesh);
   Mesh surface;
   try {
@@ -138,8 +145,9 @@ std::string limit(const LimitCommandOptions& o) {
   } catch (const InvalidInput& e) {
     throw InvalidInput(o.mesh.string() + ": " + e.what());
   }
-  if (o.output.empty()) return io::encode(surface, "obj");
-  io::write(o.output, surface);
+  if (!output) return io::encode(surface, format);
+  io::encode(surface, format, *output);
+  output->commit();
   return "wrote " + o.output.string() + ": " + std::to_string(surface.vertices.rows()) + " limit points" +
          (o.normals ? " with normals, " : ", ") + std::to_string(face_count(surface)) + " faces (" +
          o.scheme + ", " + std::to_string(o.levels) + " levels)\n";

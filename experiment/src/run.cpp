@@ -5,7 +5,7 @@
 #include <cctype>
 #include <cmath>
 #include <functional>
-#include <memory>
+#include <map>
 #include <numbers>
 
 #include "cifs/automata/tensor.hpp"
@@ -411,28 +411,30 @@ void render_classic(render::Image& image, const render::Camera& camera, const Sc
   }
 }
 
-/// Refuses, before any work, outputs that would overwrite each other (two names for one file) and
-/// an image path given outside the experiment (`RunOptions::exr`, `png`) whose folder is missing:
-/// only the experiment's own output folder is created.
-void check_output_paths(const io::Experiment& e, const RunOptions& o, const std::filesystem::path& exr,
-                        const std::filesystem::path& png) {
-  for (const std::filesystem::path& given : {o.exr, o.png})
-    if (given.has_parent_path() && !std::filesystem::is_directory(given.parent_path()))
-      throw IoError(given.string() + ": the folder " + given.parent_path().string() +
-                    " does not exist; create it first");
-  std::vector<std::pair<std::string, std::filesystem::path>> outputs;
-  if (!exr.empty()) outputs.emplace_back(o.exr.empty() ? "outputs.exr" : "the EXR path", exr);
-  if (!png.empty()) outputs.emplace_back(o.png.empty() ? "outputs.png" : "the PNG path", png);
+/// The run's outputs, checked and reserved (their temporaries made) before any work: two names for
+/// one file, an input of the experiment, a folder, a device, a missing folder of an image path given
+/// outside the experiment (RunOptions::exr, png: only the experiment's own output folder is
+/// created) and an unwritable folder are refused here (cifs::AtomicFiles).
+struct Outputs {
+  AtomicFiles files;
+  AtomicFile *exr = nullptr, *png = nullptr;
+  std::map<std::string, AtomicFile*> geometry, automaton;
+};
+
+void reserve_outputs(Outputs& out, const io::Experiment& e, const RunOptions& o,
+                     const std::filesystem::path& exr, const std::filesystem::path& png) {
+  const OutputOptions given{.inputs = e.inputs, .create_folders = false};
+  const OutputOptions own{.inputs = e.inputs, .create_folders = true};
+  if (!exr.empty())
+    out.exr =
+        &out.files.add(exr, o.exr.empty() ? "outputs.exr" : "the EXR path", o.exr.empty() ? own : given);
+  if (!png.empty())
+    out.png =
+        &out.files.add(png, o.png.empty() ? "outputs.png" : "the PNG path", o.png.empty() ? own : given);
   for (const auto& [format, path] : e.outputs.geometry)
-    outputs.emplace_back("outputs." + format, o.out_dir / path);
+    out.geometry[format] = &out.files.add(o.out_dir / path, "outputs." + format, own);
   for (const auto& [format, path] : e.outputs.automaton)
-    outputs.emplace_back("outputs.automaton_" + format, o.out_dir / path);
-  for (std::size_t i = 0; i < outputs.size(); ++i)
-    for (std::size_t j = 0; j < i; ++j)
-      if (std::filesystem::absolute(outputs[i].second).lexically_normal() ==
-          std::filesystem::absolute(outputs[j].second).lexically_normal())
-        throw InvalidInput(outputs[i].first + ": " + outputs[i].second.string() + " is also " +
-                           outputs[j].first + "; give each output its own file");
+    out.automaton[format] = &out.files.add(o.out_dir / path, "outputs.automaton_" + format, own);
 }
 
 }  // namespace
@@ -447,13 +449,14 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
                                                             : o.out_dir / e.outputs.png;
   if (exr.empty() && png.empty())
     throw InvalidInput(e.name + ": no image output (give -o OUT.exr, --png, or outputs.exr / outputs.png)");
-  check_output_paths(e, o, exr, png);
   // Ten float channels and the state: refuse an image that would not fit before any work.
   const double image_bytes = double(e.render.width) * double(e.render.height) * 44.0;
   if (image_bytes > double(o.max_bytes))
     throw InvalidInput("render: a " + std::to_string(e.render.width) + " × " +
                        std::to_string(e.render.height) + " image needs " + number(image_bytes / 1e9) +
                        " GB, above the limit of " + number(double(o.max_bytes) / 1e9) + " GB");
+  Outputs outputs;
+  reserve_outputs(outputs, e, o, exr, png);
   const unsigned threads = o.threads.value_or(e.render.threads);
 
   std::string kind;
@@ -537,17 +540,9 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
   }
 
   // Geometry and automaton files, in the order of the format table (io::formats): encoded a chunk at a
-  // time into their temporaries before any image is written (an error leaves no file, and no file's
-  // bytes are ever whole in memory), renamed onto their names after the images.
-  const auto folder_of = [](const std::filesystem::path& p) {
-    if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
-  };
-  std::vector<std::unique_ptr<AtomicWriter>> files;
-  const auto file = [&](const std::filesystem::path& path) -> AtomicWriter& {
-    folder_of(path);
-    files.push_back(std::make_unique<AtomicWriter>(path));
-    return *files.back();
-  };
+  // time straight into their temporaries (no file's bytes are ever whole in memory); the images after
+  // them; then all renamed together (all are written or none is).
+  std::vector<std::filesystem::path> geometry;  // reported after the images
   if (!e.outputs.geometry.empty()) {
     const std::string& first = e.outputs.geometry.begin()->first;
     if (!scene.mesh && !scene.curves)
@@ -573,35 +568,35 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
     }
     for (const io::Format& f : io::formats(content))
       if (const auto it = e.outputs.geometry.find(std::string(f.name)); it != e.outputs.geometry.end()) {
-        AtomicWriter& out = file(o.out_dir / it->second);
+        AtomicFile& out = *outputs.geometry.at(it->first);
         if (scene.mesh)
           io::encode(*scene.mesh, f.name, out);
         else
           io::encode(*scene.curves, f.name, out);
+        geometry.push_back(out.target());
       }
   }
   for (const io::Format& f : io::formats(io::Content::automaton))
-    if (const auto it = e.outputs.automaton.find(std::string(f.name)); it != e.outputs.automaton.end())
-      io::encode(scene.automaton, f.name, file(o.out_dir / it->second));
+    if (const auto it = e.outputs.automaton.find(std::string(f.name)); it != e.outputs.automaton.end()) {
+      AtomicFile& out = *outputs.automaton.at(it->first);
+      io::encode(scene.automaton, f.name, out);
+      geometry.push_back(out.target());
+    }
 
-  if (!exr.empty()) {
-    folder_of(exr);
-    render::write_exr(exr, image);
+  if (outputs.exr) {
+    render::write_exr(*outputs.exr, image);
     report.written.push_back(exr);
   }
-  if (!png.empty()) {
-    folder_of(png);
+  if (outputs.png) {
     render::PreviewOptions po;
     po.background = {static_cast<std::uint8_t>(std::lround(255 * e.render.background[0])),
                      static_cast<std::uint8_t>(std::lround(255 * e.render.background[1])),
                      static_cast<std::uint8_t>(std::lround(255 * e.render.background[2]))};
-    render::preview_png(png, image, po);
+    render::preview_png(*outputs.png, image, po);
     report.written.push_back(png);
   }
-  for (const auto& f : files) {
-    f->commit();
-    report.written.push_back(f->target());
-  }
+  report.written.insert(report.written.end(), geometry.begin(), geometry.end());
+  outputs.files.commit();
   report.summary = e.name + ": " + kind +
                    (e.mesh ? ", " + std::to_string(scene.depth) + " levels, " +
                                  std::to_string(face_count(*scene.mesh)) + " faces"

@@ -45,6 +45,7 @@ Shape parse_one_obj_shape(std::string_view text, const std::filesystem::path& pa
 Experiment parse_experiment_at(std::string_view text, const std::filesystem::path& path) {
   Experiment e = parse_experiment(text, path.filename().string(), path.parent_path());
   if (e.name.empty()) e.name = path.stem().string();
+  e.inputs.insert(e.inputs.begin(), path);
   return e;
 }
 
@@ -181,7 +182,7 @@ std::string encode_as(const T& thing, Content content, std::string_view format) 
 template <class T>
 void write_as(const std::filesystem::path& path, const T& thing, Content content) {
   const Format format = format_of(path, content);  // refused before anything is created
-  AtomicWriter file(path);
+  AtomicFile file(path);
   encode_as(thing, content, format.name, file);
   file.commit();
 }

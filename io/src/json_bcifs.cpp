@@ -28,6 +28,7 @@ class BcifsReader {
   explicit BcifsReader(const Reader& r) : r_(r) {}
 
   BcifsFile read(const json& doc) {
+    r_.only_beside(doc, {"bcifs"});
     if (!doc.is_object() || doc.size() != 1 || !doc.contains("bcifs"))
       throw InvalidInput(r_.where + ": expected an object with one member, \"bcifs\"");
     const json& b = r_.object(doc["bcifs"], "bcifs");

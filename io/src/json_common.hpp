@@ -99,6 +99,14 @@ struct Reader {
     }
   }
 
+  /// The top level of a document made of one of `known` (`{"bcifs": …}`): a member beside it is
+  /// refused by name, as `only` does; a document without any of them is left to the format's message.
+  void only_beside(const json& doc, std::initializer_list<std::string_view> known) const {
+    if (!doc.is_object()) return;
+    for (const auto k : known)
+      if (doc.contains(k)) return only(doc, "", known);
+  }
+
   /// `rows` rows of `cols` numbers each (cols −1: as many as the first row, at least 1); the
   /// reasons name where the expected counts come from.
   Eigen::MatrixXd matrix(const json& v, const std::string& path, Eigen::Index rows, Eigen::Index cols,

@@ -51,9 +51,11 @@ std::array<double, 3> colour(const Reader& r, const json& v, const std::string& 
   return c;
 }
 
-Shape read_shape_member(const Reader& r, const json& v, const std::filesystem::path& base) {
+Shape read_shape_member(const Reader& r, const json& v, const std::filesystem::path& base,
+                        std::vector<std::filesystem::path>& inputs) {
   if (v.is_string()) {
     const std::filesystem::path p = base / v.get<std::string>();
+    inputs.push_back(p);
     try {
       return read_shape(p);
     } catch (const std::exception& e) {
@@ -64,6 +66,7 @@ Shape read_shape_member(const Reader& r, const json& v, const std::filesystem::p
   if (v.contains("polygon")) {  // the uniform B-spline of a control polygon file
     r.only(v, "shape", {"polygon", "degree"});
     const std::filesystem::path p = base / r.string(v["polygon"], "shape.polygon");
+    inputs.push_back(p);
     const int degree = r.integer(r.member(v, "shape", "degree"), "shape.degree");
     try {
       const Polygon polygon = read_polygon(p);
@@ -283,15 +286,17 @@ Experiment parse_experiment(std::string_view text, std::string_view where,
                       int(doc.contains("mesh"));
   if (sources != 1)
     throw InvalidInput(r.where + ": expected exactly one of \"shape\", \"automaton\", \"ifs\", \"mesh\"");
-  if (doc.contains("shape")) e.shape = read_shape_member(r, doc["shape"], base);
+  if (doc.contains("shape")) e.shape = read_shape_member(r, doc["shape"], base, e.inputs);
   if (doc.contains("automaton")) {
     e.automaton = base / r.string(doc["automaton"], "automaton");
+    e.inputs.push_back(e.automaton);
     if (!std::filesystem::is_regular_file(e.automaton))
       r.fail("automaton", "no such file: " + e.automaton.string());
   }
   if (doc.contains("ifs")) e.ifs = read_ifs(r, doc["ifs"]);
   if (doc.contains("mesh")) {
     e.mesh = read_mesh_source(r, doc, base);
+    e.inputs.push_back(e.mesh->path);
     // A subdivision surface is refined, not evaluated: no free coefficients, no attractor.
     if (doc.contains("perturbation"))
       r.fail("perturbation", "a subdivision surface has no coefficients to perturb");

@@ -13,6 +13,7 @@ using detail::Reader;
 Polygon parse_polygon_json(std::string_view text, std::string_view where) {
   const Reader r{std::string(where)};
   const json doc = detail::parse_document(text, r.where);
+  r.only_beside(doc, {"polygon"});
   if (!doc.is_object() || doc.size() != 1 || !doc.contains("polygon") || !doc["polygon"].is_object())
     throw InvalidInput(r.where + ": expected {\"polygon\": {\"points\": [[x, y], ...], \"closed\": true}}");
   const json& p = doc["polygon"];

@@ -88,6 +88,7 @@ nurbs::Surface read_surface(const Reader& r, const json& s) {
 Shape parse_shape_json(std::string_view text, std::string_view where) {
   const Reader r{std::string(where)};
   const json doc = parse_document(text, r.where);
+  r.only_beside(doc, {"curve", "surface"});
   if (!doc.is_object() || doc.size() != 1 || !(doc.contains("curve") || doc.contains("surface")))
     throw InvalidInput(r.where + ": expected an object with one member, \"curve\" or \"surface\"");
   if (doc.contains("curve")) return read_curve(r, doc["curve"]);

@@ -177,7 +177,8 @@ void bind_shapes(py::module_& m) {
       },
       Release(), py::arg("path"), py::arg("content"),
       "Writes `content` (str, UTF-8, or bytes) through a temporary file and a rename: `path` never holds\n"
-      "a partial file. Raises IoError.");
+      "a partial file. A symbolic link is written through; a folder, a device, a FIFO or a missing\n"
+      "folder is refused. Raises IoError.");
   m.def(
       "read_file",
       [](const std::filesystem::path& path, bool binary) -> py::object {
@@ -512,6 +513,10 @@ void bind_experiment_file(py::module_& m) {
             return e.mesh->path;
           },
           "Path of the polygon mesh source (refined by its subdivision scheme), or None.")
+      .def_readonly(
+          "inputs", &io::Experiment::inputs,
+          "Every file the experiment reads (list of paths): the experiment file, its shape, polygon,\n"
+          "mesh or BC-IFS file. cifs.experiment.run refuses outputs onto them.")
       .def_property_readonly(
           "perturbed", [](const io::Experiment& e) { return e.perturbation.has_value(); },
           "True when the file perturbs the free coefficients.")

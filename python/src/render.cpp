@@ -463,7 +463,8 @@ string attributes. Row 0 is the top of the image; arrays are (height, width).)")
   m.def("make_framebuffer", &make_framebuffer, py::arg("camera"), py::call_guard<py::gil_scoped_release>(),
         "An empty framebuffer of the camera's size: R G B A = 0, Z = +inf, state = kNoState.\n\n"
         "Raises InvalidInput for a zero or oversized image.");
-  m.def("write_exr", &write_exr, py::arg("path"), py::arg("image"), py::call_guard<py::gil_scoped_release>(),
+  m.def("write_exr", py::overload_cast<const std::filesystem::path&, const Image&>(&write_exr),
+        py::arg("path"), py::arg("image"), py::call_guard<py::gil_scoped_release>(),
         R"(Writes every channel (32-bit FLOAT, state as UINT) and attribute of `image` to an OpenEXR file.
 
 The file is written under a temporary name and renamed into place. Raises InvalidInput for an empty

@@ -44,7 +44,7 @@ void check_image(const Image& image) {
 
 }  // namespace
 
-void write_exr(const std::filesystem::path& path, const Image& image) {
+void write_exr(AtomicFile& file, const Image& image) {
   check_image(image);
   const int w = static_cast<int>(image.width);
   const int h = static_cast<int>(image.height);
@@ -73,15 +73,20 @@ void write_exr(const std::filesystem::path& path, const Image& image) {
                    sizeof(std::uint32_t), image.width * sizeof(std::uint32_t)));
   }
 
-  AtomicFile file(path);
   try {
     // The file is complete only when the OutputFile is destroyed: close the scope before renaming.
     Imf::OutputFile out(file.temporary().c_str(), header);
     out.setFrameBuffer(frame);
     out.writePixels(h);
   } catch (const std::exception& e) {
-    throw IoError(path.string() + ": cannot write OpenEXR (" + e.what() + ")");
+    throw IoError(file.target().string() + ": cannot write OpenEXR (" + e.what() + ")");
   }
+}
+
+void write_exr(const std::filesystem::path& path, const Image& image) {
+  check_image(image);  // before the target's temporary is made
+  AtomicFile file(path);
+  write_exr(file, image);
   file.commit();
 }
 

@@ -20,10 +20,8 @@ png_uint_32 png_format(PixelFormat format) noexcept {
   return format == PixelFormat::rgb8 ? PNG_FORMAT_RGB : PNG_FORMAT_RGBA;
 }
 
-}  // namespace
-
-void write_png(const std::filesystem::path& path, std::span<const std::uint8_t> pixels, std::size_t width,
-               std::size_t height, PixelFormat format) {
+void check_pixels(std::span<const std::uint8_t> pixels, std::size_t width, std::size_t height,
+                  PixelFormat format) {
   if (width == 0 || height == 0) throw InvalidInput("write_png: the image is empty");
   // libpng's row stride is an int: keep a row (and the whole image) addressable.
   if (width > INT_MAX / 4 || height > INT_MAX) throw InvalidInput("write_png: the image is too large");
@@ -32,7 +30,14 @@ void write_png(const std::filesystem::path& path, std::span<const std::uint8_t> 
     throw InvalidInput("write_png: " + std::to_string(pixels.size()) + " bytes given, expected " +
                        std::to_string(stride * height) + " (" + std::to_string(width) + " by " +
                        std::to_string(height) + " by " + std::to_string(channel_count(format)) + ")");
-  AtomicFile file(path);
+}
+
+}  // namespace
+
+void write_png(AtomicFile& file, std::span<const std::uint8_t> pixels, std::size_t width, std::size_t height,
+               PixelFormat format) {
+  check_pixels(pixels, width, height, format);
+  const std::size_t stride = width * channel_count(format);
   png_image image;
   std::memset(&image, 0, sizeof image);
   image.version = PNG_IMAGE_VERSION;
@@ -44,8 +49,15 @@ void write_png(const std::filesystem::path& path, std::span<const std::uint8_t> 
   if (!ok) {
     const std::string message = image.message;
     png_image_free(&image);
-    throw IoError(path.string() + ": cannot write PNG (" + message + ")");
+    throw IoError(file.target().string() + ": cannot write PNG (" + message + ")");
   }
+}
+
+void write_png(const std::filesystem::path& path, std::span<const std::uint8_t> pixels, std::size_t width,
+               std::size_t height, PixelFormat format) {
+  check_pixels(pixels, width, height, format);  // before the target's temporary is made
+  AtomicFile file(path);
+  write_png(file, pixels, width, height, format);
   file.commit();
 }
 

@@ -67,4 +67,9 @@ void preview_png(const std::filesystem::path& path, const Image& image, const Pr
   write_png(path, pixels, image.width, image.height, PixelFormat::rgb8);
 }
 
+void preview_png(AtomicFile& file, const Image& image, const PreviewOptions& options) {
+  const std::vector<std::uint8_t> pixels = preview_rgb8(image, options);
+  write_png(file, pixels, image.width, image.height, PixelFormat::rgb8);
+}
+
 }  // namespace cifs::render

@@ -31,6 +31,26 @@ TEST_CASE("cifs render refuses a BC-IFS file without initial entries", "[cli][re
   CHECK(!std::filesystem::exists(scratch() / "no_initial.exr"));
 }
 
+TEST_CASE("cifs refuses unknown members of BC-IFS files by name", "[cli][reliability]") {
+  // A typo "fre" for "free" made the transition fixed: 6 free coefficients instead of 9, exit 0.
+  std::string tree = slurp(CIFS_EXAMPLES_DIR "/automata/tree.json");
+  const std::string free = "\"free\": true";
+  REQUIRE(tree.find(free) != std::string::npos);
+  file("typo_tree.json", std::string(tree).replace(tree.find(free), free.size(), "\"fre\": true"));
+  file("extra_tree.json", std::string(tree).replace(tree.find('{'), 1, "{\"comment\": \"x\", "));
+  const std::pair<std::string, std::string> cases[] = {{"typo_tree.json", "bcifs.transitions["},
+                                                       {"extra_tree.json", "comment"}};
+  for (const auto& [bcifs, member] : cases) {
+    const std::string exp = file("typo_exp.json", R"({"automaton": ")" + bcifs + R"(",
+      "perturbation": {"amplitude": 0.1, "seed": 1}, "evaluation": {"depth": 2},
+      "render": {"width": 8, "height": 8}, "outputs": {"exr": "typo.exr"}})");
+    const std::string where = bcifs + ": ";
+    check_error(cifs_cli("render --out-dir " + scratch().string() + " " + exp), where + member);
+    check_error(cifs_cli("dimension " + exp), where + member);
+  }
+  CHECK(!std::filesystem::exists(scratch() / "typo.exr"));
+}
+
 TEST_CASE("cifs render refuses two outputs with one file", "[cli][reliability]") {
   // The PNG overwrote the EXR, exit status 0, "wrote ./same" printed twice.
   const auto dir = scratch() / "same_outputs";

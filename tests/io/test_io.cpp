@@ -104,6 +104,8 @@ TEST_CASE("write and read by extension: the bytes of encode, read back", "[io][d
   write(s.dir / "p.json", polygon);
   CHECK(read_polygon(s.dir / "p.json").points == P);
   CHECK(read_polygon(s.dir / "p.json").closed);
+  CHECK_THROWS_WITH(parse_polygon_json(R"({"polygon": {"points": [[0]]}, "closd": true})", "p.json"),
+                    "p.json: closd: unknown member");
   write(s.dir / "p.obj", polygon);
   CHECK(read_file(s.dir / "p.obj") == polyline_obj(P, true));
   write(s.dir / "p.svg", polygon);

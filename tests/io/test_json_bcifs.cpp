@@ -133,6 +133,8 @@ TEST_CASE("BC-IFS JSON: bad files name the JSON path", "[bcifs][io]") {
         "t.json: bcifs.boundary: unknown member");
   fails(tree_with("\"size\": 1, \"dimension\": 0", "\"size\": 1, \"dimension\": 0, \"dim\": 0"),
         "t.json: bcifs.cells[1].dim: unknown member");
+  // Beside the "bcifs" object too (it said "expected an object with one member", not which).
+  fails(tree_with("\"bcifs\": {", "\"comment\": \"x\", \"bcifs\": {"), "t.json: comment: unknown member");
   // Structure checked by ifs::validate, prefixed by the file.
   CHECK_THROWS_WITH(
       parse_bcifs_json(tree_with("\"right\": [\"V/V\", \"E.start\"]", "\"right\": [\"E.start\", \"V/V\"]"),

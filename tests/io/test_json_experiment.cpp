@@ -96,6 +96,18 @@ TEST_CASE("Experiments: bad files name the file, the member and the problem", "[
              Catch::Contains("evaluation.chaos: expected a non-negative integer"));
   CHECK_THAT(error_of(R"({"ifs": "fern", "evaluation": {"chaos": 4294967296}})"),
              Catch::Contains("above the limit"));
+  // Seeds outside 0 … 2^64 − 1 or not integers are refused, not clamped to 2^64 − 1 (issue 16 defect 10).
+  for (const std::string seed : {"-1", "18446744073709551616", "1e23", "1.5", "\"7\""}) {
+    CHECK_THAT(error_of(R"({"ifs": "fern", "evaluation": {"chaos": 5, "seed": )" + seed + "}}"),
+               Catch::Contains("e.json: evaluation.seed: expected a non-negative integer"));
+    std::string perturbation = "{" + kCurve;
+    perturbation += R"(, "perturbation": {"seed": )" + seed + "}}";
+    CHECK_THAT(error_of(perturbation),
+               Catch::Contains("e.json: perturbation.seed: expected a non-negative integer"));
+  }
+  CHECK(
+      parse(R"({"ifs": "fern", "evaluation": {"chaos": 5, "seed": 18446744073709551615}})").evaluation.seed ==
+      18446744073709551615ULL);
   CHECK_THAT(error_of(R"({"ifs": "fractal"})"), Catch::Contains("ifs: unknown IFS \"fractal\""));
   CHECK_THAT(error_of(R"({"ifs": {"maps": [[1, 2, 3]]}})"), Catch::Contains("ifs.maps[0]: expected [a, b"));
   CHECK_THAT(error_of(R"({"ifs": "fern", "perturbation": {}})"),
@@ -188,4 +200,18 @@ TEST_CASE("Experiments: bad mesh sources are one line naming the file and the me
            "e.json: perturbation: a subdivision surface has no coefficients to perturb");
   one_line(error_of(R"({"mesh": "../shapes/hills.json", "subdivision": {"scheme": "loop"}})"),
            "e.json: mesh: ");
+}
+
+TEST_CASE("Experiments list every file they read, so that no output overwrites one", "[io][experiment]") {
+  const std::filesystem::path experiments = CIFS_SOURCE_DIR "/examples/experiments";
+  const auto inputs = [&](const std::string& name) {
+    return io::read_experiment(experiments / (name + ".json")).inputs;
+  };
+  using Paths = std::vector<std::filesystem::path>;
+  CHECK(inputs("tree") == Paths{experiments / "tree.json", experiments / "../automata/tree.json"});
+  CHECK(inputs("wave") == Paths{experiments / "wave.json", experiments / "../shapes/wave.json"});
+  CHECK(inputs("bone") == Paths{experiments / "bone.json", experiments / "../shapes/bone.json"});
+  CHECK(inputs("subdivision_torus") ==
+        Paths{experiments / "subdivision_torus.json", experiments / "../meshes/torus.obj"});
+  CHECK(inputs("fern") == Paths{experiments / "fern.json"});
 }

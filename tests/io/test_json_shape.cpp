@@ -99,6 +99,8 @@ TEST_CASE("JSON errors name the file, the path and the problem", "[io][json]") {
   CHECK_THAT(
       error_of(curve_head + R"("knots": [0,0,0,1,1,1], "points": [[0],[1],[2]], "weigths": [1,1,1]}})"),
       Catch::Contains("curve.weigths: unknown member"));
+  CHECK_THAT(error_of(R"({"curve": {"degree": 0, "knots": [0,1], "points": [[0]]}, "curv": 1})"),
+             Catch::Contains("s.json: curv: unknown member"));
   CHECK_THAT(error_of(R"({"surface": {"degree": [1, 1], "knots": [[0,0,1,1],[0,0,1,1]],
       "points": [[[0,0,0],[0,1,0]],[[1,0,0],[1,1,1]]], "closed": true}})"),
              Catch::Contains("surface.closed: unknown member"));

@@ -37,7 +37,7 @@ class GalleryTest(ScratchTestCase):
         self.assertGreaterEqual(int(np.sum(fern.channels["density"])), 19900)
         self.assertEqual(sorted(p.name for p in self.scratch.iterdir() if p.name.startswith(".")), [],
                          "temporary files left behind")
-        self.assertEqual([p.name for p in self.scratch.rglob("*.cifs-tmp-*")], [], "temporary files left behind")
+        self.assertEqual([p.name for p in self.scratch.rglob("*.cifs-tmp.*")], [], "temporary files left behind")
 
     def test_clover_fractal_matches_the_command_line(self):
         # The script edits the experiment's image size only: the CLI on the same edited file writes

@@ -422,6 +422,12 @@ class ExperimentTest(ScratchTestCase):
         self.assertEqual((torus.source, torus.shape, torus.ifs, torus.automaton), ("mesh", None, None, None))
         self.assertEqual(torus.mesh.resolve(), (EXAMPLES / "meshes" / "torus.obj").resolve())
         self.assertIsNone(wave.mesh)
+        # The files each experiment reads (outputs onto them are refused).
+        self.assertEqual([p.resolve() for p in tree.inputs],
+                         [(EXPERIMENTS / "tree.json").resolve(), (EXAMPLES / "automata" / "tree.json").resolve()])
+        self.assertEqual([p.resolve() for p in torus.inputs],
+                         [(EXPERIMENTS / "subdivision_torus.json").resolve(), (EXAMPLES / "meshes" / "torus.obj").resolve()])
+        self.assertEqual(maps.inputs, [])
 
     def test_run_writes_what_cli_render_writes(self):
         for name in ("wave", "koch"):

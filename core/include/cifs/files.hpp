@@ -1,29 +1,43 @@
 // SPDX-License-Identifier: MIT
-// cifs — whole-file reads and the one atomic writer every module uses (text files, EXR, PNG): the
-// bytes go to a temporary file next to the target, which is renamed onto it only when complete.
-// The format writers put their bytes into a ByteSink, a chunk at a time: a string (in memory) or
-// an AtomicWriter (a file that is never whole in memory).
+// cifs — whole-file reads and the one atomic writer every module uses (text files, EXR, PNG) and
+// every command goes through: the output contract of docs/reliability.md lives here.
+//
+// An output is written to a temporary file next to its target and renamed onto it only when
+// complete; several outputs of one run are renamed together, all or none (AtomicFiles). Targets
+// are checked, and their temporaries created, before any work: a folder, a device, a FIFO, a
+// missing or unwritable folder and an input of the run are refused up front. Symbolic links are
+// written through. SIGINT, SIGTERM and SIGHUP remove the temporaries still open; those of a
+// process that died otherwise (SIGKILL) are removed by the next write into their folder. The
+// format writers put their bytes into a ByteSink a chunk at a time: a string (in memory) or an
+// AtomicFile (a file that is never whole in memory).
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace cifs {
 
-/// Marks the temporary files of the atomic writer: `<target><marker><pid>-<thread>-<n>`. A file whose
-/// name holds it is a leftover of a writer that was killed before it could clean up.
-inline constexpr std::string_view kTemporaryMarker = ".cifs-tmp-";
+/// Marks the temporary files of the atomic writer: `.<name><marker><pid>.<n>` next to `<name>`
+/// (hidden, so that folder listings stay clean). A file named so whose process is gone is a
+/// leftover of a writer that was killed before it could clean up.
+inline constexpr std::string_view kTemporaryMarker = ".cifs-tmp.";
 
 /// The whole file as bytes. IoError naming the path when it is a directory or cannot be read.
 std::string read_file(const std::filesystem::path& path);
 
-/// Writes `bytes` to `path` so that `path` never holds a partial file: the bytes go to a temporary
-/// file in the same folder (so that the rename stays on one file system), which is flushed, closed
-/// and renamed onto `path`. On any failure the temporary is removed and IoError names `path`; an
-/// empty path and a directory target are refused before anything is created.
-void write_file_atomically(const std::filesystem::path& path, std::string_view bytes);
+/// What an output must not be, and what may be made for it.
+struct OutputOptions {
+  /// The files the run reads: an output that is one of them — by any name, hard link or symbolic
+  /// link — is refused (an output never overwrites an input).
+  std::vector<std::filesystem::path> inputs;
+  /// Create the missing folders of the target (removed again when nothing is committed);
+  /// otherwise a missing folder is refused.
+  bool create_folders = false;
+};
 
 /// Where the format writers put their bytes, in order, a piece at a time.
 class ByteSink {
@@ -68,62 +82,61 @@ class ChunkBuffer {
   std::uint64_t handed_ = 0;
 };
 
-/// The same protocol for writers that need a path of their own (OpenEXR's Imf::OutputFile, libpng):
-/// write to `temporary()`, then `commit()`. A file that is not committed is removed by the destructor.
+/// Writes `bytes` to `path` so that `path` never holds a partial file (AtomicFile: checked, written
+/// to a temporary in the same folder, renamed). On any failure nothing is left and IoError names
+/// `path`.
+void write_file_atomically(const std::filesystem::path& path, std::string_view bytes,
+                           const OutputOptions& options = {});
+
+/// One output written through a temporary file, for writers that need a path of their own
+/// (OpenEXR's Imf::OutputFile, libpng) or bytes (`write`):
 ///
-///   AtomicFile file(path);                       // refuses an empty path or a directory
+///   AtomicFile file(path);                       // checks path, creates the temporary
 ///   library_write(file.temporary().c_str(), …);  // may throw: the temporary is discarded
 ///   file.commit();                               // renamed onto path
-class AtomicFile {
+class AtomicFile final : public ByteSink {
  public:
-  /// Chooses a fresh temporary name next to `target` (nothing is created yet). Throws IoError for an
-  /// empty path or a directory target.
-  explicit AtomicFile(std::filesystem::path target);
+  /// Checks `target` and creates its (empty) temporary, so that an output that cannot be written
+  /// is refused before the work. IoError naming the target for: an empty path; a folder ("is a
+  /// directory"); a device, FIFO or socket (only regular files are replaced); one of
+  /// `options.inputs`; a missing folder (unless `create_folders`), a folder path through a file;
+  /// a folder where no file can be created (the system's reason: permission, read-only). A
+  /// symbolic link is followed: its final target is replaced and the link kept. Temporaries of
+  /// dead processes in the target's folder are removed (once per folder and process).
+  explicit AtomicFile(std::filesystem::path target, const OutputOptions& options = {});
   AtomicFile(const AtomicFile&) = delete;
   AtomicFile& operator=(const AtomicFile&) = delete;
-  ~AtomicFile();
+  /// Not committed: removes the temporary and the folders made for it.
+  ~AtomicFile() override;
 
+  /// The path as given.
   const std::filesystem::path& target() const noexcept { return target_; }
+  /// The file that is replaced: the target, or the final target of the symbolic link it is.
+  const std::filesystem::path& destination() const noexcept { return destination_; }
   const std::filesystem::path& temporary() const noexcept { return temporary_; }
 
-  /// Renames the temporary onto the target. On failure the temporary is removed and IoError names the
-  /// target. Once committed, the destructor leaves the file alone.
-  void commit();
-
- private:
-  std::filesystem::path target_, temporary_;
-  bool committed_ = false;
-};
-
-/// write_file_atomically a piece at a time, for files that are written as they are computed: the
-/// constructor creates the temporary (O_EXCL), `write` appends to it, `commit` closes it and renames it
-/// onto the target; a writer that is not committed closes and removes its temporary.
-///
-///   AtomicWriter file(path);  // IoError: empty path, directory, folder missing
-///   file.write(header);       // IoError naming the path (a full disk: "No space left on device")
-///   file.write(chunk); …
-///   file.commit();
-class AtomicWriter final : public ByteSink {
- public:
-  explicit AtomicWriter(std::filesystem::path target);
-  AtomicWriter(const AtomicWriter&) = delete;
-  AtomicWriter& operator=(const AtomicWriter&) = delete;
-  ~AtomicWriter() override;
-
-  const std::filesystem::path& target() const noexcept { return file_.target(); }
-  const std::filesystem::path& temporary() const noexcept { return file_.temporary(); }
+  /// Appends `bytes` to the temporary. IoError naming the target (a full disk, a quota).
+  void write(std::string_view bytes) override;
   /// Bytes written so far.
   std::uint64_t size() const noexcept { return size_; }
 
-  void write(std::string_view bytes) override;
-  /// Closes the temporary (which reports deferred write errors) and renames it onto the target.
+  /// Renames the temporary onto the destination (an existing file keeps its permission bits). On
+  /// failure the temporary is removed and IoError names the target. SIGINT and SIGTERM wait until
+  /// the rename is done. Once committed, the destructor leaves the file alone.
   void commit();
 
  private:
-  [[noreturn]] void fail(int error);
-  AtomicFile file_;
-  int fd_ = -1;
+  friend class AtomicFiles;
+  /// Renames each file's temporary, in order; when one fails, puts the ones before it back.
+  static void commit_together(const std::vector<AtomicFile*>& files);
+
+  std::filesystem::path target_, destination_, temporary_;
+  std::vector<std::filesystem::path> made_folders_;  // deepest last
+  int fd_ = -1;    // open on the temporary, locked: a live writer's temporary is never stale
+  int slot_ = -1;  // in the signal handler's registry (−1: not registered)
+  int mode_ = -1;  // permission bits of the file replaced (−1: a new file)
   std::uint64_t size_ = 0;
+  bool committed_ = false;
 };
 
 /// Refuses a file of `bytes` at `target`, of which `written` are on the disk already, when the file
@@ -132,5 +145,36 @@ class AtomicWriter final : public ByteSink {
 /// ("needs about"). Does nothing when the free space cannot be read.
 void check_disk_space(const std::filesystem::path& target, std::uint64_t bytes, bool about = false,
                       std::uint64_t written = 0);
+
+/// The outputs of one run, committed together: every file is renamed into place, or — when one
+/// rename fails — the files already renamed are put back as they were (a replaced file from a hard
+/// link kept during the commit, a new one removed).
+///
+///   AtomicFiles files;
+///   AtomicFile& exr = files.add(path, "outputs.exr");  // every target checked before the work
+///   …
+///   write_exr(exr, image);
+///   files.commit();
+class AtomicFiles {
+ public:
+  AtomicFiles() = default;
+  AtomicFiles(const AtomicFiles&) = delete;
+  AtomicFiles& operator=(const AtomicFiles&) = delete;
+  /// Discards the temporaries not committed, the last added first (their folders with them).
+  ~AtomicFiles();
+
+  /// A new output (AtomicFile's checks). `label` names it in messages; InvalidInput when it is the
+  /// file of an earlier output ("LABEL: PATH is also OTHER; give each output its own file").
+  AtomicFile& add(const std::filesystem::path& target, const std::string& label,
+                  const OutputOptions& options = {});
+
+  /// Renames every temporary onto its destination, all or none. IoError naming the output whose
+  /// rename failed.
+  void commit();
+
+ private:
+  std::deque<AtomicFile> files_;  // a deque: references stay valid as files are added
+  std::vector<std::string> labels_;
+};
 
 }  // namespace cifs

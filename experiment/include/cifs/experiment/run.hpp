@@ -35,11 +35,12 @@ struct RunReport {
   std::string summary;  // one line per fact, for the CLI
 };
 
-/// Runs `experiment`. Every output is computed before any is renamed into place: geometry and automaton
-/// files are encoded a chunk at a time into temporary files (their bytes are never whole in memory)
-/// before the images are written, and renamed after them, so a failure leaves no output file behind
-/// (and never a partial one). Throws InvalidInput (bad content, too large, two outputs naming one file),
-/// IoError (files).
+/// Runs `experiment`. Its outputs are checked and their temporary files made before any work
+/// (cifs::AtomicFiles: no output onto an input, a folder, a device or another output; the image
+/// paths' folders must exist, the others are created), written — geometry and automaton files a
+/// chunk at a time, never whole in memory — and renamed together at the end: all are written or
+/// none is, never a partial one. Throws InvalidInput (bad content, too large,
+/// two outputs naming one file), IoError (files).
 RunReport run(const io::Experiment& experiment, const RunOptions& options = {});
 
 /// The deterministic evaluation of an experiment's source, for analysis (cifs dimension).

@@ -101,6 +101,9 @@ struct Experiment {
   CameraSpec camera;
   RenderSettings render;
   Outputs outputs;
+  /// Every file the experiment reads: the experiment file itself (io::read_experiment), its shape,
+  /// polygon, mesh or BC-IFS file. Outputs onto them are refused (cifs::OutputOptions::inputs).
+  std::vector<std::filesystem::path> inputs;
 };
 
 }  // namespace cifs::io

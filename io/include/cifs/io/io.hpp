@@ -61,7 +61,7 @@ std::string encode(const Segments& segments, std::string_view format);
 std::string encode(const PointSet& points, std::string_view format);
 std::string encode(const automata::Automaton& automaton, std::string_view format);
 std::string encode(const BcifsFile& file, std::string_view format);
-/// The same bytes handed to `out` a chunk at a time (an AtomicWriter: the file is never whole in memory).
+/// The same bytes handed to `out` a chunk at a time (an AtomicFile: the file is never whole in memory).
 void encode(const Mesh& mesh, std::string_view format, ByteSink& out);
 void encode(const Segments& segments, std::string_view format, ByteSink& out);
 void encode(const automata::Automaton& automaton, std::string_view format, ByteSink& out);
@@ -70,7 +70,7 @@ void encode(const automata::Automaton& automaton, std::string_view format, ByteS
 /// path and the extensions: "out.svg: a mesh is written as .obj or .ply".
 Format format_of(const std::filesystem::path& path, Content content);
 
-/// Writes the file of the format its extension names, atomically (cifs::AtomicWriter, a chunk at a time).
+/// Writes the file of the format its extension names, atomically (cifs::AtomicFile, a chunk at a time).
 /// An extension that the content is not written in is an InvalidInput naming the path and the
 /// extensions it is written in: "out.svg: a mesh is written as .obj or .ply". Nothing is created
 /// then.

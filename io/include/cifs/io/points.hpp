@@ -67,7 +67,7 @@ std::optional<std::uint64_t> points_file_size(std::string_view format, std::uint
 
 /// A point-set file written as its points are computed: the format from the path's extension (InvalidInput
 /// "p.txt: a point set is written as .json, .npy, .ply or .obj" before anything is created), through an
-/// AtomicWriter (a temporary renamed onto the path by `commit`, removed when the file is dropped
+/// AtomicFile (a temporary renamed onto the path by `commit`, removed when the file is dropped
 /// uncommitted). Memory is one chunk, whatever `count`. The disk space is checked before the header when
 /// the size is known (npy, ply), and after the first 4096 rows otherwise, extrapolated from them: IoError
 /// "p.npy: the file needs 19.3 GB of disk space, 4.1 GB are free there".
@@ -81,7 +81,7 @@ class PointsFile {
   std::uint64_t rows_written() const noexcept { return writer_.rows_written(); }
 
  private:
-  AtomicWriter file_;
+  AtomicFile file_;
   PointsWriter writer_;
   bool space_checked_ = false;
 };

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "cifs/files.hpp"
+
 namespace cifs::render {
 
 /// A multi-channel image: every channel holds `width·height` values, row-major, row 0 at the top
@@ -33,6 +35,10 @@ struct Image {
 /// float channel named `state`, or an attribute name that OpenEXR reserves (`channels`,
 /// `compression`, `dataWindow`, …); IoError (naming `path`) when the file cannot be written.
 void write_exr(const std::filesystem::path& path, const Image& image);
+
+/// Writes the image into `file`'s temporary; the caller commits it (with the other outputs of a
+/// run: cifs::AtomicFiles). Throws as write_exr, naming the file's target.
+void write_exr(AtomicFile& file, const Image& image);
 
 /// Reads an OpenEXR scan-line file back: every channel (HALF and FLOAT as float, a UINT channel
 /// named `state` into Image::state, other UINT channels as float) and every string attribute.

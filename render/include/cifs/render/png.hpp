@@ -9,6 +9,8 @@
 #include <span>
 #include <vector>
 
+#include "cifs/files.hpp"
+
 namespace cifs::render {
 
 /// Interleaved 8-bit pixel layouts.
@@ -25,6 +27,10 @@ constexpr std::size_t channel_count(PixelFormat format) noexcept {
 /// IoError (naming `path`) when the file cannot be written.
 void write_png(const std::filesystem::path& path, std::span<const std::uint8_t> pixels, std::size_t width,
                std::size_t height, PixelFormat format);
+
+/// Writes the PNG into `file`'s temporary; the caller commits it (cifs::AtomicFiles).
+void write_png(AtomicFile& file, std::span<const std::uint8_t> pixels, std::size_t width, std::size_t height,
+               PixelFormat format);
 
 /// A PNG read back (tests, tools): any PNG is converted to interleaved 8-bit `format`.
 struct PngImage {

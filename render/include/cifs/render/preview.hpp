@@ -38,4 +38,7 @@ std::vector<std::uint8_t> preview_rgb8(const Image& image, const PreviewOptions&
 /// Writes preview_rgb8 as a PNG (write_png: temporary file and rename).
 void preview_png(const std::filesystem::path& path, const Image& image, const PreviewOptions& options = {});
 
+/// Writes preview_rgb8 as a PNG into `file`'s temporary; the caller commits it (cifs::AtomicFiles).
+void preview_png(AtomicFile& file, const Image& image, const PreviewOptions& options = {});
+
 }  // namespace cifs::render
