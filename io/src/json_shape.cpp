@@ -85,13 +85,18 @@ nurbs::Surface read_surface(const Reader& r, const json& s) {
 
 }  // namespace
 
-Shape parse_shape_json(std::string_view text, std::string_view where) {
+std::vector<Shape> parse_shapes_json(std::string_view text, std::string_view where,
+                                     const ShapeReadOptions& /*options*/) {
   const Reader r{std::string(where)};
   const json doc = parse_document(text, r.where);
   if (!doc.is_object() || doc.size() != 1 || !(doc.contains("curve") || doc.contains("surface")))
     throw InvalidInput(r.where + ": expected an object with one member, \"curve\" or \"surface\"");
-  if (doc.contains("curve")) return read_curve(r, doc["curve"]);
-  return read_surface(r, doc["surface"]);
+  if (doc.contains("curve")) return {read_curve(r, doc["curve"])};
+  return {read_surface(r, doc["surface"])};
+}
+
+Shape parse_shape_json(std::string_view text, std::string_view where, const ShapeReadOptions& options) {
+  return select_shape(parse_shapes_json(text, where, options), options, where);
 }
 
 std::string to_json(const Shape& shape) {

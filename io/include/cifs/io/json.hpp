@@ -23,8 +23,11 @@
 
 namespace cifs::io {
 
-/// `{"curve": {...}}` or `{"surface": {...}}`.
-Shape parse_shape_json(std::string_view text, std::string_view where);
+/// `{"curve": {...}}` or `{"surface": {...}}`: every shape of the file (one), in order.
+std::vector<Shape> parse_shapes_json(std::string_view text, std::string_view where,
+                                     const ShapeReadOptions& options = {});
+/// The one shape of the file, or the one options.index selects (select_shape).
+Shape parse_shape_json(std::string_view text, std::string_view where, const ShapeReadOptions& options = {});
 /// Round-trip precision: parse_shape_json reads it back bit for bit.
 std::string to_json(const Shape& shape);
 
