@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Shapes from other tools on the command line: OBJ as Blender writes it, several shapes in one file
-// (--index), trimmed surfaces (--ignore-trim).
+// (--index), trimmed surfaces (--ignore-trim), knots in the Rhino convention, geomdl exports.
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
@@ -98,4 +98,31 @@ TEST_CASE("cifs refuses trimmed surfaces, or reads them whole with --ignore-trim
             "is read\n");
   // A command that fails prints its error only, not the warnings of the file it read.
   check_error(cifs_cli("eval " + path + " --ignore-trim --at 2,2"), "outside the domain");
+}
+
+TEST_CASE("cifs reads knots in the Rhino convention and geomdl exports", "[cli]") {
+  const std::string points =
+      R"("points": [[0, 0], [1, 3], [2.5, -1], [4, 2], [6, 0.5]], "weights": [1, 2, 1, 0.5, 1])";
+  const std::string rhino =
+      file("rhino.json", R"({"curve": {"degree": 3, "knots": [0, 1, 2.5, 3, 4, 6, 7], )" + points + "}}");
+  const std::string full = file(
+      "full.json", R"({"curve": {"degree": 3, "knots": [0, 0, 1, 2.5, 3, 4, 6, 7, 7], )" + points + "}}");
+  const Run a = cifs_cli("eval " + rhino + " --samples 50"), b = cifs_cli("eval " + full + " --samples 50");
+  REQUIRE(a.status == 0);
+  CHECK(a.err.empty());
+  CHECK(a.out == b.out);
+
+  const json info = json::parse(cifs_cli("info " CIFS_EXAMPLES_DIR "/shapes/geomdl_curve.json").out);
+  CHECK(info["type"] == "curve");
+  CHECK(info["dimension"] == 2);
+  CHECK(info["rational"] == true);
+  CHECK(info["segments"] == 4);
+  CHECK(
+      json::parse(cifs_cli("info " CIFS_EXAMPLES_DIR "/shapes/geomdl_surface.json").out)["control_points"] ==
+      json::array({2, 9}));
+  CHECK(cifs_cli("check " CIFS_EXAMPLES_DIR "/shapes/geomdl_curve.json").status == 0);
+  // dimension tells a geomdl file from an experiment (both have a "shape" member).
+  const Run d = cifs_cli("dimension " CIFS_EXAMPLES_DIR "/shapes/geomdl_curve.json --depth 16 --json");
+  REQUIRE(d.status == 0);
+  CHECK_THAT(json::parse(d.out)["kind"].get<std::string>(), Catch::Contains("curve"));
 }

@@ -1,13 +1,13 @@
 # SPDX-License-Identifier: MIT
 """Shapes from other tools through cifs.io: several shapes in a file (index), trimmed surfaces
-(ignore_trim); against the command line on the same files."""
+(ignore_trim), geomdl exports; against the command line on the same files."""
 import unittest
 
 import numpy as np
 
 import cifs
 from cifs import io, nurbs
-from support import ScratchTestCase, cli_json
+from support import EXAMPLES, ScratchTestCase, cli, cli_json
 
 TWO_CURVES = ("v 0 0 0\nv 2 0 0\ncstype bspline\ndeg 1\ncurv 0 1 -2 -1\nparm u 0 0 1 1\nend\n"
               "v 0 0 0\nv 1 2 0\nv 2 0 0\ndeg 2\ncurv 0 1 -3 -2 -1\nparm u 0 0 0 1 1 1\nend\n")
@@ -35,6 +35,12 @@ class ImportTest(ScratchTestCase):
             io.parse_obj(TRIMMED, "t.obj")
         (surface,) = io.parse_obj(TRIMMED, "t.obj", ignore_trim=True)
         np.testing.assert_array_equal(nurbs.evaluate(surface, 0.5, 0.5), [0.5, 0.5, 0.25])
+
+    def test_geomdl_example_is_the_unit_circle(self):
+        curve = io.read_shape(EXAMPLES / "shapes" / "geomdl_curve.json")
+        points = np.array([nurbs.evaluate(curve, u) for u in np.linspace(0, 1, 101)])
+        np.testing.assert_allclose(np.hypot(points[:, 0], points[:, 1]), 1, rtol=0, atol=1e-15)
+        self.assertEqual(cli("info", EXAMPLES / "shapes" / "geomdl_curve.json").returncode, 0)
 
 
 if __name__ == "__main__":

@@ -23,7 +23,9 @@
 
 namespace cifs::io {
 
-/// `{"curve": {...}}` or `{"surface": {...}}`: every shape of the file (one), in order.
+/// `{"curve": {...}}` or `{"surface": {...}}` (knots in the standard or the Rhino convention), or a
+/// geomdl (NURBS-Python) export `{"shape": {"type": "curve" | "surface", "data": [...]}}`: every
+/// shape of the file, in order.
 std::vector<Shape> parse_shapes_json(std::string_view text, std::string_view where,
                                      const ShapeReadOptions& options = {});
 /// The one shape of the file, or the one options.index selects (select_shape).
