@@ -24,6 +24,12 @@
 #include "scheme_command.hpp"
 
 namespace cifs::cli {
+
+std::vector<std::string>& pending_warnings() {
+  static std::vector<std::string> warnings;
+  return warnings;
+}
+
 namespace {
 
 using nlohmann::json;
@@ -38,6 +44,21 @@ double parse_number(std::string_view text, std::string_view option) {
   if (ec != std::errc() || ptr != end || !std::isfinite(x))
     throw InvalidInput(std::string(option) + " '" + std::string(text) + "': not a finite number");
   return x;
+}
+
+/// The shapes of a file, or the one `select.index` picks (`one`: the file must then hold one shape).
+/// Warnings wait in pending_warnings.
+std::vector<io::Shape> read_shapes(const std::filesystem::path& path, const ShapeSelection& select,
+                                   bool one = false) {
+  const io::ShapeReadOptions options{.ignore_trim = select.ignore_trim,
+                                     .index = select.index,
+                                     .warn = [](const std::string& w) { pending_warnings().push_back(w); }};
+  if (one || select.index) return {io::read_shape(path, options)};
+  return io::read_shapes(path, options);
+}
+
+io::Shape read_shape(const std::filesystem::path& path, const ShapeSelection& select) {
+  return std::move(read_shapes(path, select, true).front());
 }
 
 void check_samples(long long count) {
@@ -158,7 +179,7 @@ std::string eval(const EvalOptions& o) {
   if (o.samples < 0) throw InvalidInput("--samples " + std::to_string(o.samples) + ": must be non-negative");
   if (o.at.empty() && o.samples == 0) throw InvalidInput("eval: give --at U (repeatable) or --samples N");
   if (!o.output.empty()) io::format_of(o.output, io::Content::points);  // refused before any work
-  const io::Shape shape = io::read_shape(o.shape);
+  const io::Shape shape = read_shape(o.shape, o.select);
   if (const auto* c = std::get_if<nurbs::Curve>(&shape)) return eval_curve(*c, o);
   return eval_surface(std::get<nurbs::Surface>(shape), o);
 }
@@ -167,7 +188,7 @@ std::string insert(const InsertOptions& o) {
   if (o.dir != "u" && o.dir != "v") throw InvalidInput("--dir '" + o.dir + "': expected u or v");
   if (o.knots.empty() && !o.midpoints)
     throw InvalidInput("insert: give --knot U (repeatable) or --midpoints");
-  const io::Shape shape = io::read_shape(o.shape);
+  const io::Shape shape = read_shape(o.shape, o.select);
   if (const auto* c = std::get_if<nurbs::Curve>(&shape)) {
     if (o.dir != "u") throw InvalidInput("--dir v: a curve has one direction");
     nurbs::Curve out = nurbs::refine(*c, o.knots);
@@ -180,9 +201,9 @@ std::string insert(const InsertOptions& o) {
   return io::to_json(out);
 }
 
-std::string info(const std::filesystem::path& path) {
-  if (is_polygon_mesh_file(path)) return mesh_info(path);
-  const io::Shape shape = io::read_shape(path);
+namespace {
+
+json shape_info(const io::Shape& shape) {
   json out;
   if (const auto* c = std::get_if<nurbs::Curve>(&shape)) {
     const nurbs::Domain dom = nurbs::domain(*c);
@@ -213,12 +234,28 @@ std::string info(const std::filesystem::path& path) {
            {"domain", domains},
            {"segments", segments}};
   }
-  return out.dump(1) + "\n";
+  return out;
+}
+
+}  // namespace
+
+std::string info(const std::filesystem::path& path, const ShapeSelection& select) {
+  if (is_polygon_mesh_file(path)) return mesh_info(path);
+  // Every shape of the file: one object, or an array of them with their index when there are several.
+  const std::vector<io::Shape> shapes = read_shapes(path, select);
+  if (shapes.size() == 1) return shape_info(shapes.front()).dump(1) + "\n";
+  json all = json::array();
+  for (std::size_t i = 0; i < shapes.size(); ++i) {
+    json entry = shape_info(shapes[i]);
+    entry["index"] = i;
+    all.push_back(std::move(entry));
+  }
+  return all.dump(1) + "\n";
 }
 
 std::string automaton(const AutomatonOptions& o) {
   io::writable_format(io::Content::automaton, o.format, "--format");
-  const io::Shape shape = io::read_shape(o.shape);
+  const io::Shape shape = read_shape(o.shape, o.select);
   const auto* c = std::get_if<nurbs::Curve>(&shape);
   if (!c)
     throw InvalidInput(o.shape.string() + ": automaton: only curves have a knot-doubling automaton so far");
@@ -293,7 +330,7 @@ std::string attractor(const AttractorOptions& o) {
     throw InvalidInput("--chaos: the points are unordered, use json, npy or ply");
   if (o.tolerance < 0 || !std::isfinite(o.tolerance))
     throw InvalidInput("--tolerance: must be a positive number");
-  const io::Shape shape = io::read_shape(o.shape);
+  const io::Shape shape = read_shape(o.shape, o.select);
   const auto* c = std::get_if<nurbs::Curve>(&shape);
   if (!c)
     throw InvalidInput(o.shape.string() + ": attractor: only curves have a knot-doubling automaton so far");
@@ -436,7 +473,7 @@ std::string check_surface(const nurbs::Surface& s, const CheckOptions& o, int& s
 }  // namespace
 
 std::string check(const CheckOptions& o, int& status) {
-  const io::Shape shape = io::read_shape(o.shape);
+  const io::Shape shape = read_shape(o.shape, o.select);
   const auto* c = std::get_if<nurbs::Curve>(&shape);
   if (!c) return check_surface(std::get<nurbs::Surface>(shape), o, status);
   const verify::CheckReport r = verify::check_curve(*c, {o.depth, o.tolerance});
@@ -486,18 +523,23 @@ std::string render(const RenderOptions& o) {
 }
 
 std::string dimension(const DimensionOptions& o) {
-  // A shape file holds "curve" or "surface" (or is an OBJ); anything else is an experiment.
+  // A shape file holds "curve" or "surface", or "shape" alone (geomdl), or is an OBJ; anything else
+  // is an experiment.
   bool shape = o.input.extension() == ".obj";
   if (o.input.extension() == ".json") {
     std::ifstream in(o.input);
     if (!in) throw IoError(o.input.string() + ": cannot open");
     const json j = json::parse(in, nullptr, false);
-    shape = j.is_object() && (j.contains("curve") || j.contains("surface"));
+    shape = j.is_object() &&
+            (j.contains("curve") || j.contains("surface") || (j.size() == 1 && j.contains("shape")));
   }
+  if (!shape && (o.select.index || o.select.ignore_trim))
+    throw InvalidInput(o.input.string() +
+                       ": --index and --ignore-trim apply to shape files, not experiments");
   io::Experiment e;
   if (shape) {
     e.name = o.input.stem().string();
-    e.shape = io::read_shape(o.input);
+    e.shape = read_shape(o.input, o.select);
   } else {
     e = io::read_experiment(o.input);
   }

@@ -13,8 +13,19 @@
 
 namespace cifs::cli {
 
+/// The shape readers' warnings, held until the command has succeeded: main then writes them on stderr,
+/// so that a command that fails prints its one error line only.
+std::vector<std::string>& pending_warnings();
+
+/// `--index N` and `--ignore-trim`, on every command that reads a shape file.
+struct ShapeSelection {
+  std::optional<std::size_t> index;  // which shape of a file with several (0-based)
+  bool ignore_trim = false;          // read trimmed surfaces whole, with a warning
+};
+
 struct EvalOptions {
   std::filesystem::path shape;
+  ShapeSelection select;
   std::vector<std::string> at;  // "U" for curves, "U,V" for surfaces
   int samples = 0;              // uniform over the domain (surfaces: samples × samples)
   std::filesystem::path
@@ -25,13 +36,16 @@ std::string eval(const EvalOptions& options);
 
 struct InsertOptions {
   std::filesystem::path shape;
+  ShapeSelection select;
   std::vector<double> knots;
   std::string dir = "u";
   bool midpoints = false;
 };
 std::string insert(const InsertOptions& options);
 
-std::string info(const std::filesystem::path& shape);  // shapes; polygon meshes through mesh_info
+/// Shapes (every shape of the file, one JSON object each, unless `select.index` picks one); polygon
+/// meshes through mesh_info.
+std::string info(const std::filesystem::path& shape, const ShapeSelection& select = {});
 
 /// A PLY file, or an OBJ with faces and no free-form geometry.
 bool is_polygon_mesh_file(const std::filesystem::path& path);
@@ -64,6 +78,7 @@ subdivision::BoundaryRule boundary_rule(const std::string& name);
 
 struct AutomatonOptions {
   std::filesystem::path shape;
+  ShapeSelection select;
   std::string format = "json";  // a writable format of io::formats(Content::automaton)
   bool minimize = false;
 };
@@ -71,6 +86,7 @@ std::string automaton(const AutomatonOptions& options);
 
 struct AttractorOptions {
   std::filesystem::path shape;
+  ShapeSelection select;
   int depth = -1;                // 2^depth leaves per segment, or
   double tolerance = 0;          // every leaf's piece smaller than this (Cartesian units), or
   long long chaos = 0;           // that many chaos-game points
@@ -83,6 +99,7 @@ std::string attractor(const AttractorOptions& options);
 
 struct CheckOptions {
   std::filesystem::path shape;
+  ShapeSelection select;
   int depth = 8;
   double tolerance = 1e-12;
   bool json = false;
@@ -100,8 +117,9 @@ struct RenderOptions {
 std::string render(const RenderOptions& options);
 
 struct DimensionOptions {
-  std::filesystem::path input;      // experiment file, or shape file (.json with "curve"/"surface", .obj)
-  std::optional<int> depth;         // evaluate to this depth (shapes: default 8 when no other mode)
+  std::filesystem::path input;  // experiment file, or shape file (.json with "curve"/"surface"/"shape", .obj)
+  ShapeSelection select;        // shape files
+  std::optional<int> depth;     // evaluate to this depth (shapes: default 8 when no other mode)
   std::optional<double> tolerance;  // sample to this relative piece size; default (no depth): from max_points
   std::size_t max_points = std::size_t{1} << 21;  // point budget of the tolerance sample
   int min_level = -1, max_level = -1;             // fit range (box levels); -1: automatic

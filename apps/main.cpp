@@ -27,6 +27,14 @@ const CLI::Validator seed_text(
     },
     "SEED");
 
+/// `--index N` and `--ignore-trim` of the commands that read a shape file.
+void add_shape_selection(CLI::App* command, cifs::cli::ShapeSelection& select) {
+  command->add_option("--index", select.index,
+                      "Which curve or surface of a file that holds several (0-based, in file order)");
+  command->add_flag("--ignore-trim", select.ignore_trim,
+                    "Read trimmed surfaces (OBJ trim/hole, geomdl trims) whole, with a warning");
+}
+
 /// Help or version text into `result`, which main writes and checks like any command's output.
 int help_or_version(const CLI::App& app, const CLI::Error& e, std::string& result) {
   std::ostringstream text;
@@ -53,6 +61,7 @@ int run(int argc, char** argv, std::string& result) {
   eval_cmd->add_option("-o,--output", ev.output,
                        "Write the points to a file as they are computed: .json, .npy, .ply or .obj");
   eval_cmd->add_flag("--quiet", ev.quiet, "No progress bar (-o)");
+  add_shape_selection(eval_cmd, ev.select);
   eval_cmd->callback([&] { result = eval(ev); });
 
   InsertOptions in;
@@ -62,14 +71,19 @@ int run(int argc, char** argv, std::string& result) {
   insert_cmd->add_option("--dir", in.dir, "Surface direction: u or v");
   insert_cmd->add_flag("--midpoints", in.midpoints,
                        "Insert the midpoint of every span (both directions for surfaces)");
+  add_shape_selection(insert_cmd, in.select);
   insert_cmd->callback([&] { result = insert(in); });
 
   std::filesystem::path info_shape;
+  ShapeSelection info_select;
   auto* info_cmd = app.add_subcommand(
-      "info", "Degree, counts, domain and segments of a shape; counts, valences and topology of a mesh");
+      "info",
+      "Degree, counts, domain and segments of a shape (of each shape of the file); counts, valences and "
+      "topology of a mesh");
   info_cmd->add_option("shape", info_shape, "Shape file (.json or .obj) or polygon mesh (.obj or .ply)")
       ->required();
-  info_cmd->callback([&] { result = info(info_shape); });
+  add_shape_selection(info_cmd, info_select);
+  info_cmd->callback([&] { result = info(info_shape, info_select); });
 
   AutomatonOptions au;
   auto* automaton_cmd =
@@ -77,6 +91,7 @@ int run(int argc, char** argv, std::string& result) {
   automaton_cmd->add_option("shape", au.shape, "Shape file (.json or .obj)")->required();
   automaton_cmd->add_option("--format", au.format, "json (default), dot or svg");
   automaton_cmd->add_flag("--minimize", au.minimize, "Merge states that no control net can tell apart");
+  add_shape_selection(automaton_cmd, au.select);
   automaton_cmd->callback([&] { result = automaton(au); });
 
   AttractorOptions at;
@@ -94,6 +109,7 @@ int run(int argc, char** argv, std::string& result) {
       "-o,--output", at.output,
       "Output file, its format from the extension (.json, .npy, .ply, .obj: written as computed; .svg)");
   attractor_cmd->add_flag("--quiet", at.quiet, "No progress bar (-o)");
+  add_shape_selection(attractor_cmd, at.select);
   attractor_cmd->callback([&] { result = attractor(at); });
 
   CheckOptions ch;
@@ -104,6 +120,7 @@ int run(int argc, char** argv, std::string& result) {
   check_cmd->add_option("--depth", ch.depth, "Depth K (2^K leaves per segment and direction; default 8)");
   check_cmd->add_option("--tolerance", ch.tolerance, "Relative tolerance (default 1e-12)");
   check_cmd->add_flag("--json", ch.json, "Machine-readable report");
+  add_shape_selection(check_cmd, ch.select);
   check_cmd->callback([&] { result = check(ch, status); });
 
   SchemeOptions sc;
@@ -194,6 +211,7 @@ int run(int argc, char** argv, std::string& result) {
   dimension_cmd->add_option("--min-boxes", di.min_boxes,
                             "Automatic fit range: only levels with at least this many boxes (default 1000)");
   dimension_cmd->add_flag("--json", di.json, "Machine-readable report");
+  add_shape_selection(dimension_cmd, di.select);
   dimension_cmd->callback([&] { result = dimension(di); });
 
   std::filesystem::path gallery_out = "out";
@@ -252,6 +270,8 @@ int main(int argc, char** argv) {
   // Every command's output, help and version included, is written and checked here once: a full disk or a
   // closed pipe shows only when the buffer goes out, so the flush comes before the check. errno
   // tells why when the failing write was one of these.
+  if (status != 2)
+    for (const std::string& w : cifs::cli::pending_warnings()) std::cerr << "cifs: warning: " << w << "\n";
   errno = 0;
   std::cout << result << std::flush;
   if (!std::cout.good()) {

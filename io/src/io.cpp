@@ -34,12 +34,12 @@ T parse_at(std::string_view text, const std::filesystem::path& path) {
   return parse(text, path.string());
 }
 
+Shape parse_shape_json_at(std::string_view text, const std::filesystem::path& path) {
+  return parse_shape_json(text, path.string());
+}
+
 Shape parse_one_obj_shape(std::string_view text, const std::filesystem::path& path) {
-  std::vector<Shape> shapes = parse_obj(text, path.string());
-  if (shapes.size() != 1)
-    throw InvalidInput(path.string() + ": holds " + std::to_string(shapes.size()) +
-                       " curves and surfaces, expected exactly one");
-  return std::move(shapes.front());
+  return select_shape(parse_obj(text, path.string()), {}, path.string());
 }
 
 Experiment parse_experiment_at(std::string_view text, const std::filesystem::path& path) {
@@ -69,7 +69,7 @@ void point_set(const PointSet& set, ByteSink& out) {
 
 // The table. Order matters where several formats are written at once (experiment outputs).
 const Codec<Shape> kShape[] = {
-    {"json", ".json", whole<Shape, to_json>, parse_at<Shape, parse_shape_json>},
+    {"json", ".json", whole<Shape, to_json>, parse_shape_json_at},
     {"obj", ".obj", whole<Shape, to_obj>, parse_one_obj_shape},
 };
 const Codec<Polygon> kPolygon[] = {
@@ -328,8 +328,14 @@ void write(const std::filesystem::path& path, const BcifsFile& file) {
   write_as(path, file, Content::bcifs);
 }
 
-Shape read_shape(const std::filesystem::path& path) {
-  return read_as<Shape>(path, Content::shape);
+std::vector<Shape> read_shapes(const std::filesystem::path& path, const ShapeReadOptions& options) {
+  // The readers of the table, with the options: OBJ by extension, JSON otherwise.
+  const std::string text = read_file(path);
+  if (path.extension() == ".obj") return parse_obj(text, path.string(), options);
+  return parse_shapes_json(text, path.string(), options);
+}
+Shape read_shape(const std::filesystem::path& path, const ShapeReadOptions& options) {
+  return select_shape(read_shapes(path, options), options, path.string());
 }
 Polygon read_polygon(const std::filesystem::path& path) {
   return read_as<Polygon>(path, Content::polygon);

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// cifs — shape files as JSON (docs/formats.md): curves and surfaces, read and written.
+// cifs — shape files as JSON (docs/formats.md): curves and surfaces, read and written; geomdl
+// (NURBS-Python) exports, read.
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
@@ -22,9 +23,46 @@ Eigen::VectorXd to_vector(const std::vector<double>& v) {
   return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
 }
 
+/// How a file counts its knots: n + d + 1 (standard), n + d − 1 (Rhino, openNURBS: without the first
+/// and the last knot), or either, told apart by the count (detect).
+enum class Convention { detect, standard, rhino };
+
+Convention read_convention(const Reader& r, const json& o, const std::string& object) {
+  if (!o.contains("knot_convention")) return Convention::detect;
+  const std::string path = object + ".knot_convention";
+  const std::string name = r.string(o["knot_convention"], path);
+  if (name == "standard") return Convention::standard;
+  if (name == "rhino") return Convention::rhino;
+  r.fail(path, "'" + name + "': expected \"standard\" (n + d + 1 knots) or \"rhino\" (n + d - 1 knots)");
+}
+
+/// The n + d + 1 knots of a knot vector given in `convention` for n control points of degree d. The
+/// Rhino convention leaves out the first and the last knot, which do not act on the domain
+/// [t_d, t_n]; they come back equal to their neighbours (openNURBS's ON_SuperfluousKnot gives these
+/// values at clamped ends, and any value gives the same curve).
+nurbs::Knots full_knots(const Reader& r, const std::string& path, nurbs::Knots knots, std::size_t n,
+                        int degree, Convention convention) {
+  // The constructor names a bad degree, or too few points.
+  if (degree < 1 || degree > nurbs::kMaxDegree || n < static_cast<std::size_t>(degree) + 1) return knots;
+  const std::size_t standard = n + static_cast<std::size_t>(degree) + 1, rhino = standard - 2;
+  const std::string given = std::to_string(knots.size()) + " knots given, " + std::to_string(n) +
+                            " control points of degree " + std::to_string(degree) + " need ";
+  if (convention == Convention::rhino && knots.size() != rhino)
+    r.fail(path, given + std::to_string(rhino) + " in the rhino convention (n + d - 1)");
+  if (convention == Convention::detect && knots.size() != standard && knots.size() != rhino)
+    r.fail(path, given + std::to_string(standard) + " (or " + std::to_string(rhino) +
+                     " without the first and the last knot, as Rhino and openNURBS store them)");
+  if (convention == Convention::rhino || (convention == Convention::detect && knots.size() == rhino)) {
+    const double first = knots.front(), last = knots.back();
+    knots.insert(knots.begin(), first);
+    knots.push_back(last);
+  }
+  return knots;
+}
+
 nurbs::Curve read_curve(const Reader& r, const json& c) {
   r.object(c, "curve");
-  r.only(c, "curve", {"degree", "knots", "points", "weights", "closed"});
+  r.only(c, "curve", {"degree", "knots", "points", "weights", "closed", "knot_convention"});
   const int degree = r.integer(r.member(c, "curve", "degree"), "curve.degree");
   std::vector<double> knots = r.numbers(r.member(c, "curve", "knots"), "curve.knots");
   std::vector<std::vector<double>> rows;
@@ -33,6 +71,10 @@ nurbs::Curve read_curve(const Reader& r, const json& c) {
   std::vector<double> w;
   if (c.contains("weights") && !c["weights"].is_null()) w = r.numbers(c["weights"], "curve.weights");
   const bool closed = c.contains("closed") && r.boolean(c["closed"], "curve.closed");
+  const Convention convention = read_convention(r, c, "curve");
+  if (closed && convention != Convention::detect)
+    r.fail("curve.knot_convention", "a closed curve's knots are the m + 1 breakpoints of its period");
+  if (!closed) knots = full_knots(r, "curve.knots", std::move(knots), rows.size(), degree, convention);
   return r.build("curve", [&] {
     return closed ? nurbs::make_closed_curve(degree, std::move(knots), to_points(rows), to_vector(w))
                   : nurbs::make_curve(degree, std::move(knots), to_points(rows), to_vector(w));
@@ -41,7 +83,7 @@ nurbs::Curve read_curve(const Reader& r, const json& c) {
 
 nurbs::Surface read_surface(const Reader& r, const json& s) {
   r.object(s, "surface");
-  r.only(s, "surface", {"degree", "knots", "points", "weights"});
+  r.only(s, "surface", {"degree", "knots", "points", "weights", "knot_convention"});
   const json& deg = r.array(r.member(s, "surface", "degree"), "surface.degree");
   if (deg.size() != 2) r.fail("surface.degree", "expected [du, dv]");
   const std::array<int, 2> degree{r.integer(deg[0], "surface.degree[0]"),
@@ -50,6 +92,7 @@ nurbs::Surface read_surface(const Reader& r, const json& s) {
   if (kn.size() != 2) r.fail("surface.knots", "expected [[u knots], [v knots]]");
   std::array<nurbs::Knots, 2> knots{r.numbers(kn[0], "surface.knots[0]"),
                                     r.numbers(kn[1], "surface.knots[1]")};
+  const Convention convention = read_convention(r, s, "surface");
   const json& net = r.array(r.member(s, "surface", "points"), "surface.points");
   if (net.empty()) r.fail("surface.points", "no control points");
   std::vector<std::vector<double>> rows;
@@ -76,6 +119,8 @@ nurbs::Surface read_surface(const Reader& r, const json& s) {
       w.insert(w.end(), row.begin(), row.end());
     }
   }
+  knots[0] = full_knots(r, "surface.knots[0]", std::move(knots[0]), net.size(), degree[0], convention);
+  knots[1] = full_knots(r, "surface.knots[1]", std::move(knots[1]), nv, degree[1], convention);
   const std::array<Eigen::Index, 2> count{static_cast<Eigen::Index>(net.size()),
                                           static_cast<Eigen::Index>(nv)};
   return r.build("surface", [&] {
@@ -83,16 +128,148 @@ nurbs::Surface read_surface(const Reader& r, const json& s) {
   });
 }
 
+// geomdl (NURBS-Python) exports, exchange.export_json: {"shape": {"type": "curve" | "surface",
+// "count": N, "data": [entry, ...]}}; every entry has Cartesian "control_points": {"points",
+// "weights"} and the standard knot vector(s); surfaces list their points with v varying fastest
+// (point (i, j) at i·size_v + j, as cifs stores them).
+
+/// Runs a nurbs constructor for a geomdl entry at `path`, naming the entry's own members.
+template <class Make>
+auto build_geomdl(const Reader& r, const std::string& path, bool surface, Make&& make) {
+  try {
+    return make();
+  } catch (const InvalidInput& e) {
+    std::string msg = e.what();
+    const auto rename = [&](std::string_view from, std::string_view to) {
+      if (!msg.starts_with(from)) return false;
+      msg = std::string(to) + msg.substr(from.size());
+      return true;
+    };
+    if (!(surface && (rename("knots[0]", "knotvector_u") || rename("knots[1]", "knotvector_v"))))
+      rename("knots", "knotvector") || rename("weights", "control_points.weights") ||
+          rename("points", "control_points.points");
+    throw InvalidInput(r.where + ": " + path + "." + msg);
+  }
+}
+
+/// A geomdl entry (an object of type "spline") with only the members `known`.
+void geomdl_entry(const Reader& r, const json& e, const std::string& path,
+                  std::initializer_list<std::string_view> known) {
+  r.object(e, path);
+  if (e.contains("type")) {  // "freeform" and "container" entries are point lists (trim curves)
+    const std::string type = r.string(e["type"], path + ".type");
+    if (type != "spline") r.fail(path + ".type", "'" + type + "': only \"spline\" entries are read");
+  }
+  r.only(e, path, known);
+}
+
+/// The control points and weights of a geomdl entry, and the members cifs does not need, checked.
+void geomdl_net(const Reader& r, const json& e, const std::string& path,
+                std::vector<std::vector<double>>& rows, std::vector<double>& weights) {
+  const std::string cp = path + ".control_points";
+  const json& c = r.object(r.member(e, path, "control_points"), cp);
+  r.only(c, cp, {"points", "weights"});
+  r.points(r.member(c, cp, "points"), cp + ".points", rows);
+  if (rows.empty()) r.fail(cp + ".points", "no control points");
+  if (c.contains("weights")) weights = r.numbers(c["weights"], cp + ".weights");
+  if (e.contains("rational")) r.boolean(e["rational"], path + ".rational");  // the weights decide
+  if (e.contains("dimension")) {
+    const int dim = r.integer(e["dimension"], path + ".dimension");
+    if (dim != static_cast<int>(rows.front().size()))
+      r.fail(path + ".dimension", std::to_string(dim) + ", but the control points have " +
+                                      std::to_string(rows.front().size()) + " coordinates");
+  }
+  // "delta" (evaluation step), "name", "id" and "reversed" (orientation of trim curves) do not
+  // change the shape.
+}
+
+nurbs::Curve geomdl_curve(const Reader& r, const json& e, const std::string& path) {
+  geomdl_entry(r, e, path,
+               {"type", "rational", "dimension", "degree", "knotvector", "control_points", "delta", "name",
+                "id", "reversed"});
+  std::vector<std::vector<double>> rows;
+  std::vector<double> w;
+  geomdl_net(r, e, path, rows, w);
+  const int degree = r.integer(r.member(e, path, "degree"), path + ".degree");
+  nurbs::Knots knots = r.numbers(r.member(e, path, "knotvector"), path + ".knotvector");
+  return build_geomdl(r, path, false, [&] {
+    return nurbs::make_curve(degree, std::move(knots), to_points(rows), to_vector(w));
+  });
+}
+
+nurbs::Surface geomdl_surface(const Reader& r, const json& e, std::size_t index, const std::string& path,
+                              const ShapeReadOptions& options) {
+  geomdl_entry(r, e, path,
+               {"type", "rational", "dimension", "degree_u", "degree_v", "knotvector_u", "knotvector_v",
+                "size_u", "size_v", "control_points", "delta", "name", "id", "reversed", "trims"});
+  std::vector<std::vector<double>> rows;
+  std::vector<double> w;
+  geomdl_net(r, e, path, rows, w);
+  const std::array<int, 2> degree{r.integer(r.member(e, path, "degree_u"), path + ".degree_u"),
+                                  r.integer(r.member(e, path, "degree_v"), path + ".degree_v")};
+  std::array<nurbs::Knots, 2> knots{r.numbers(r.member(e, path, "knotvector_u"), path + ".knotvector_u"),
+                                    r.numbers(r.member(e, path, "knotvector_v"), path + ".knotvector_v")};
+  const std::array<int, 2> size{r.integer(r.member(e, path, "size_u"), path + ".size_u"),
+                                r.integer(r.member(e, path, "size_v"), path + ".size_v")};
+  if (size[0] < 1 || size[1] < 1 ||
+      static_cast<long long>(size[0]) * size[1] != static_cast<long long>(rows.size()))
+    r.fail(path + ".control_points.points", std::to_string(rows.size()) + " points, size_u × size_v = " +
+                                                std::to_string(size[0]) + " × " + std::to_string(size[1]));
+  if (e.contains("trims")) {
+    if (!options.ignore_trim)
+      r.fail(path + ".trims",
+             "trimmed surfaces are not supported; --ignore-trim (ignore_trim) reads the whole untrimmed "
+             "surface");
+    warn(options, index,
+         r.where + ": " + path + ".trims: the trim curves are ignored: the whole untrimmed surface is read");
+  }
+  return build_geomdl(r, path, true, [&] {
+    return nurbs::make_surface(degree, std::move(knots), {size[0], size[1]}, to_points(rows), to_vector(w));
+  });
+}
+
+std::vector<Shape> read_geomdl(const Reader& r, const json& doc, const ShapeReadOptions& options) {
+  const json& shape = r.object(doc["shape"], "shape");
+  r.only(shape, "shape", {"type", "count", "data"});
+  const std::string type = r.string(r.member(shape, "shape", "type"), "shape.type");
+  if (type == "volume") r.fail("shape.type", "volumes are not read: cifs reads curves and surfaces");
+  if (type != "curve" && type != "surface")
+    r.fail("shape.type", "'" + type + "': expected \"curve\" or \"surface\"");
+  const json& data = r.array(r.member(shape, "shape", "data"), "shape.data");
+  if (data.empty()) r.fail("shape.data", "no curve or surface");
+  if (shape.contains("count") && r.integer(shape["count"], "shape.count") != static_cast<int>(data.size()))
+    r.fail("shape.count", shape["count"].dump() + ", but shape.data holds " + std::to_string(data.size()));
+  std::vector<Shape> out;
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    const std::string path = "shape.data[" + std::to_string(i) + "]";
+    if (type == "curve") {
+      out.emplace_back(geomdl_curve(r, data[i], path));
+    } else {
+      out.emplace_back(geomdl_surface(r, data[i], i, path, options));
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
-Shape parse_shape_json(std::string_view text, std::string_view where) {
+std::vector<Shape> parse_shapes_json(std::string_view text, std::string_view where,
+                                     const ShapeReadOptions& options) {
   const Reader r{std::string(where)};
   const json doc = parse_document(text, r.where);
+  if (doc.is_object() && doc.size() == 1 && doc.contains("shape")) return read_geomdl(r, doc, options);
   r.only_beside(doc, {"curve", "surface"});
   if (!doc.is_object() || doc.size() != 1 || !(doc.contains("curve") || doc.contains("surface")))
-    throw InvalidInput(r.where + ": expected an object with one member, \"curve\" or \"surface\"");
-  if (doc.contains("curve")) return read_curve(r, doc["curve"]);
-  return read_surface(r, doc["surface"]);
+    throw InvalidInput(
+        r.where +
+        ": expected an object with one member, \"curve\" or \"surface\" (or \"shape\", a geomdl "
+        "export)");
+  if (doc.contains("curve")) return {read_curve(r, doc["curve"])};
+  return {read_surface(r, doc["surface"])};
+}
+
+Shape parse_shape_json(std::string_view text, std::string_view where, const ShapeReadOptions& options) {
+  return select_shape(parse_shapes_json(text, where, options), options, where);
 }
 
 std::string to_json(const Shape& shape) {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// cifs — OBJ free-form geometry (docs/formats.md): `cstype [rat] bspline` curves (`curv`) and surfaces
-// (`surf`) with their `deg`, `parm` and `end` statements, over `v x y z [w]` vertices.
+// cifs — OBJ free-form geometry (docs/formats.md): `cstype [rat] bspline` and `cstype [rat] bezier`
+// curves (`curv`) and surfaces (`surf`) with their `deg`, `parm` and `end` statements, over
+// `v x y z [w]` vertices.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -13,6 +14,7 @@
 #include "cifs/errors.hpp"
 #include "cifs/format.hpp"
 #include "cifs/io/obj.hpp"
+#include "cifs/nurbs/refine.hpp"
 #include "obj_lexer.hpp"
 
 namespace cifs::io {
@@ -30,6 +32,9 @@ struct Vertex {
 
 enum class Kind { curve, surface, parameter_curve };
 
+/// The `cstype` in effect: the ones read, and the others, refused by the curv or surf that uses them.
+enum class Type { none, bspline, bezier, other };
+
 const char* keyword(Kind k) noexcept {
   return k == Kind::curve ? "curv" : k == Kind::surface ? "surf" : "curv2";
 }
@@ -38,7 +43,8 @@ const char* keyword(Kind k) noexcept {
 struct Element {
   Kind kind = Kind::curve;
   std::size_t line = 0;
-  bool rational = false;
+  bool rational = false, bezier = false;
+  std::size_t trim_line = 0;  // first trim or hole statement (read with ignore_trim)
   std::array<int, 2> degree{};
   std::vector<double> range;         // u0 u1, or s0 s1 t0 t1
   std::vector<std::size_t> control;  // 0-based vertex numbers, in file order
@@ -46,9 +52,74 @@ struct Element {
   std::array<std::size_t, 2> parm_line{};
 };
 
+/// Where a range cuts a shape's knot domain (none: the domain's own end).
+struct Part {
+  std::optional<double> start, end;
+};
+
+/// Knots to insert so that `x` has multiplicity ≥ d.
+void fill_to_degree(std::vector<double>& add, const nurbs::Knots& t, int d, double x) {
+  for (int m = nurbs::multiplicity(t, x); m < d; ++m) add.push_back(x);
+}
+
+/// The first and last control index, and the knots, of the part of a spline whose knots `t` (n
+/// control points, degree d) have each cut of `part` with multiplicity ≥ d. On [a, b] the spline is
+/// the one of the control points first … last over t[first … last + d + 1], whose outer knots (which
+/// do not act on [a, b]) are set to a and b: the part is clamped at its cuts.
+struct PartIndices {
+  Eigen::Index first = 0, last = 0;
+  nurbs::Knots knots;
+};
+PartIndices part_indices(const nurbs::Knots& t, int d, Eigen::Index n, const Part& part) {
+  PartIndices out{0, n - 1, {}};
+  if (part.start) out.first = (std::upper_bound(t.begin(), t.end(), *part.start) - t.begin()) - 1 - d;
+  if (part.end) out.last = (std::lower_bound(t.begin(), t.end(), *part.end) - t.begin()) - 1;
+  out.knots.assign(t.begin() + out.first, t.begin() + out.last + d + 2);
+  if (part.start) out.knots.front() = *part.start;
+  if (part.end) out.knots.back() = *part.end;
+  return out;
+}
+
+/// The curve over the part of its domain (the same points there): knot insertion at the cuts.
+nurbs::Curve part_of(const nurbs::Curve& c, const Part& part) {
+  if (!part.start && !part.end) return c;
+  std::vector<double> add;
+  if (part.start) fill_to_degree(add, c.knots, c.degree, *part.start);
+  if (part.end) fill_to_degree(add, c.knots, c.degree, *part.end);
+  const nurbs::Curve r = add.empty() ? c : nurbs::refine(c, add);
+  PartIndices p = part_indices(r.knots, r.degree, r.P.rows(), part);
+  nurbs::Curve out{r.degree, std::move(p.knots), r.P.middleRows(p.first, p.last - p.first + 1), r.rational,
+                   false};
+  nurbs::validate(out);
+  return out;
+}
+
+/// The surface over the part of its domain in one direction.
+nurbs::Surface part_of(const nurbs::Surface& s, nurbs::Direction dir, const Part& part) {
+  if (!part.start && !part.end) return s;
+  const auto k = static_cast<std::size_t>(dir);
+  std::vector<double> add;
+  if (part.start) fill_to_degree(add, s.knots[k], s.degree[k], *part.start);
+  if (part.end) fill_to_degree(add, s.knots[k], s.degree[k], *part.end);
+  const nurbs::Surface r = add.empty() ? s : nurbs::refine(s, dir, add);
+  PartIndices p = part_indices(r.knots[k], r.degree[k], r.count[k], part);
+  nurbs::Surface out = r;
+  out.knots[k] = std::move(p.knots);
+  out.count[k] = p.last - p.first + 1;
+  out.P.resize(out.count[0] * out.count[1], r.P.cols());
+  for (Eigen::Index i = 0; i < out.count[0]; ++i)
+    for (Eigen::Index j = 0; j < out.count[1]; ++j) {
+      const Eigen::Index si = k == 0 ? i + p.first : i, sj = k == 1 ? j + p.first : j;
+      out.P.row(i * out.count[1] + j) = r.P.row(si * r.count[1] + sj);
+    }
+  nurbs::validate(out);
+  return out;
+}
+
 class ObjReader {
  public:
-  explicit ObjReader(std::string_view where) : place_{std::string(where)} {}
+  ObjReader(std::string_view where, const ShapeReadOptions& options)
+      : place_{std::string(where)}, options_(options) {}
 
   void statement(std::size_t line, const Tokens& t) {
     place_.line = line;
@@ -73,9 +144,12 @@ class ObjReader {
       end(t);
     } else if (key == "trim" || key == "hole") {
       body(key);
-      invalid(place_.line,
-              std::string(key) +
-                  ": trimmed surfaces are not supported (only whole curves and surfaces are read)");
+      if (!options_.ignore_trim)
+        invalid(place_.line,
+                std::string(key) +
+                    ": trimmed surfaces are not supported; --ignore-trim (ignore_trim) reads the "
+                    "whole untrimmed surface");
+      if (open_->trim_line == 0) open_->trim_line = place_.line;
     } else if (key == "scrv" || key == "sp") {
       body(key);  // special curves and points only steer tessellation: ignored
     } else if (key == "bsp" || key == "bzp" || key == "cdc" || key == "cdp") {
@@ -94,8 +168,12 @@ class ObjReader {
 
  private:
   detail::ObjPlace place_;
+  const ShapeReadOptions& options_;
   std::vector<Vertex> vertices_;
-  bool cstype_set_ = false, rational_ = false;
+  Type type_ = Type::none;
+  std::string type_name_;  // as written after cstype, for messages
+  std::size_t cstype_line_ = 0;
+  bool rational_ = false;
   std::array<int, 2> degree_{};  // 0 = not given
   std::size_t deg_line_ = 0;
   std::optional<Element> open_;
@@ -140,11 +218,17 @@ class ObjReader {
     if (rat) ++k;
     if (t.size() != k + 1) syntax(place_.line, "cstype: expected cstype [rat] type");
     const std::string_view type = t[k];
-    if (type == "bezier" || type == "cardinal" || type == "taylor" || type == "bmatrix")
-      invalid(place_.line, "cstype " + std::string(rat ? "rat " : "") + std::string(type) +
-                               " is not supported: only bspline and rat bspline are read");
-    if (type != "bspline") invalid(place_.line, "cstype: unknown curve and surface type " + quote(type));
-    cstype_set_ = true;
+    if (type == "bspline") {
+      type_ = Type::bspline;
+    } else if (type == "bezier") {
+      type_ = Type::bezier;
+    } else if (type == "cardinal" || type == "taylor" || type == "bmatrix") {
+      type_ = Type::other;  // refused by the curv or surf that uses it: curv2 trimming curves may
+    } else {
+      invalid(place_.line, "cstype: unknown curve and surface type " + quote(type));
+    }
+    type_name_ = std::string(rat ? "rat " : "") + std::string(type);
+    cstype_line_ = place_.line;
     rational_ = rat;
   }
 
@@ -175,12 +259,17 @@ class ObjReader {
       open_ = std::move(e);
       return;
     }
-    if (!cstype_set_) syntax(place_.line, std::string(kw) + " without a preceding cstype");
+    if (type_ == Type::none) syntax(place_.line, std::string(kw) + " without a preceding cstype");
+    if (type_ == Type::other)
+      invalid(place_.line, std::string(kw) + ": cstype " + type_name_ + " (line " +
+                               std::to_string(cstype_line_) +
+                               ") is not supported: only bspline and bezier, rational or not, are read");
     if (degree_[0] == 0) syntax(place_.line, std::string(kw) + " without a preceding deg");
     if (kind == Kind::surface && degree_[1] == 0)
       syntax(place_.line,
              "surf needs deg du dv; the deg at line " + std::to_string(deg_line_) + " gives one degree");
     e.rational = rational_;
+    e.bezier = type_ == Type::bezier;
     e.degree = degree_;
     const std::size_t nrange = kind == Kind::curve ? 2 : 4;
     if (t.size() < 2 + nrange)
@@ -245,10 +334,15 @@ class ObjReader {
       syntax(e.line, std::string(kw) + ": no parm u before the end at line " + std::to_string(place_.line));
     if (e.kind == Kind::surface && !e.parm[1])
       syntax(e.line, "surf: no parm v before the end at line " + std::to_string(place_.line));
-    if (e.kind == Kind::curve)
+    if (e.kind == Kind::curve) {
       shapes_.emplace_back(build_curve(e));
-    else
+    } else {
       shapes_.emplace_back(build_surface(e));
+    }
+    if (e.trim_line != 0)
+      warn(options_, shapes_.size() - 1,
+           place_.at(e.trim_line) + "the trimming loops of the " + kw + " at line " + std::to_string(e.line) +
+               " are ignored: the whole untrimmed surface is read");
   }
 
   /// Cartesian point and weight of the control vertex `k` (a 0-based vertex number).
@@ -286,17 +380,44 @@ class ObjReader {
     }
   }
 
-  /// Throws unless [a, b] is the knot domain (up to 1e-9 of its width, for decimal rounding).
-  void check_range(const Element& e, double a, double b, nurbs::Domain dom, const char* dir) const {
+  /// The part of the knot domain that the range [a, b] selects (the spec's x_d ≤ t_min < t_max ≤ x_n,
+  /// knots x): an end within 1e-9 of the domain's width of the domain's end is that end (decimal
+  /// rounding); an end inside the domain cuts the shape there; an end outside is clamped to the
+  /// domain, with a warning (Blender writes `curv 0.0 1.0` whatever the knots).
+  Part range_part(const Element& e, double a, double b, nurbs::Domain dom, const char* dir) const {
     const std::string name =
         std::string(keyword(e.kind)) + ": parameter range " + dir + " [" + num(a) + ", " + num(b) + "]";
     if (!(a < b)) invalid(e.line, name + " is empty or reversed");
     const double tol = 1e-9 * (dom.end - dom.start);
     const std::string domain = "the knot domain [" + num(dom.start) + ", " + num(dom.end) + "]";
-    if (a < dom.start - tol || b > dom.end + tol) invalid(e.line, name + " is outside " + domain);
-    if (a > dom.start + tol || b < dom.end - tol)
-      invalid(e.line, name + " is a strict part of " + domain + ": trimmed " +
-                          (e.kind == Kind::curve ? "curves" : "surfaces") + " are not supported");
+    if (b <= dom.start + tol || a >= dom.end - tol) invalid(e.line, name + " does not overlap " + domain);
+    Part part;
+    if (a > dom.start + tol) part.start = a;
+    if (b < dom.end - tol) part.end = b;
+    if (a < dom.start - tol || b > dom.end + tol)
+      warn(options_, shapes_.size(),
+           place_.at(e.line) + name + " reaches outside " + domain + ": read over [" +
+               num(part.start.value_or(dom.start)) + ", " + num(part.end.value_or(dom.end)) + "]");
+    return part;
+  }
+
+  /// The B-spline knots of a Bezier element's parameter values p_0 < … < p_s (segment i is the
+  /// Bezier curve of its d + 1 control points over [p_i, p_{i+1}]): the ends d + 1 times, the
+  /// others d times.
+  nurbs::Knots bezier_knots(const Element& e, std::size_t dir) const {
+    const std::vector<double>& p = *e.parm[dir];
+    const std::string name = std::string("parm ") + (dir ? "v" : "u");
+    if (p.size() < 2)
+      invalid(e.parm_line[dir], name + ": a Bezier " + keyword(e.kind) + " needs at least 2 values");
+    for (std::size_t i = 1; i < p.size(); ++i)
+      if (!(p[i] > p[i - 1]))
+        invalid(e.parm_line[dir], name + ": the parameter values of a Bezier " + keyword(e.kind) +
+                                      " must increase: " + num(p[i]) + " follows " + num(p[i - 1]));
+    const auto d = static_cast<std::size_t>(e.degree[dir]);
+    nurbs::Knots t;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      t.insert(t.end(), i == 0 || i + 1 == p.size() ? d + 1 : d, p[i]);
+    return t;
   }
 
   nurbs::Curve build_curve(const Element& e) const {
@@ -305,17 +426,36 @@ class ObjReader {
       invalid(e.line, "curv: " + std::to_string(n) + " control vertices are too few for degree " +
                           std::to_string(e.degree[0]) + " (at least " + std::to_string(e.degree[0] + 1) +
                           " needed)");
+    nurbs::Knots knots = *e.parm[0];
+    if (e.bezier) {
+      const int d = e.degree[0];
+      if ((n - 1) % d != 0)
+        invalid(e.line, "curv: " + std::to_string(n) +
+                            " control vertices do not make whole Bezier segments of degree " +
+                            std::to_string(d) + " (k·" + std::to_string(d) + " + 1 vertices for k segments)");
+      const auto values = static_cast<Eigen::Index>(e.parm[0]->size());
+      if (values != (n - 1) / d + 1)
+        invalid(e.parm_line[0], "parm u: " + std::to_string(values) + " values given; a Bezier curv of " +
+                                    std::to_string((n - 1) / d) + " segments needs " +
+                                    std::to_string((n - 1) / d + 1));
+      knots = bezier_knots(e, 0);
+    }
     Points P(n, 3);
     Eigen::VectorXd w(e.rational ? n : 0);
     for (Eigen::Index i = 0; i < n; ++i) control_point(e, e.control[static_cast<std::size_t>(i)], P, i, w);
-    nurbs::Curve c = build(e, [&] { return nurbs::make_curve(e.degree[0], *e.parm[0], P, w); });
-    check_range(e, e.range[0], e.range[1], nurbs::domain(c), "u");
-    return c;
+    const nurbs::Curve c = build(e, [&] { return nurbs::make_curve(e.degree[0], std::move(knots), P, w); });
+    return part_of(c, range_part(e, e.range[0], e.range[1], nurbs::domain(c), "u"));
   }
 
   nurbs::Surface build_surface(const Element& e) const {
     std::array<Eigen::Index, 2> count{};
+    std::array<nurbs::Knots, 2> knot_vectors{*e.parm[0], *e.parm[1]};
     for (std::size_t d = 0; d < 2; ++d) {
+      if (e.bezier) {  // patches of degree + 1 points, sharing their edges
+        knot_vectors[d] = bezier_knots(e, d);
+        count[d] = static_cast<Eigen::Index>(e.parm[d]->size() - 1) * e.degree[d] + 1;
+        continue;
+      }
       const auto knots = static_cast<Eigen::Index>(e.parm[d]->size());
       count[d] = knots - e.degree[d] - 1;
       if (count[d] < e.degree[d] + 1)
@@ -325,6 +465,12 @@ class ObjReader {
     }
     const Eigen::Index nu = count[0], nv = count[1];
     const auto given = static_cast<Eigen::Index>(e.control.size());
+    if (nu * nv != given && e.bezier)
+      invalid(e.line, "surf: " + std::to_string(given) + " control vertices given; parm u (" +
+                          std::to_string(e.parm[0]->size()) + " values, degree " +
+                          std::to_string(e.degree[0]) + ") and parm v (" + std::to_string(e.parm[1]->size()) +
+                          " values, degree " + std::to_string(e.degree[1]) + ") make a Bezier net of " +
+                          std::to_string(nu) + " by " + std::to_string(nv) + " = " + std::to_string(nu * nv));
     if (nu * nv != given)
       invalid(e.line, "surf: " + std::to_string(given) + " control vertices given; parm u (" +
                           std::to_string(e.parm[0]->size()) + " knots, degree " +
@@ -338,12 +484,12 @@ class ObjReader {
     for (Eigen::Index j = 0; j < nv; ++j)
       for (Eigen::Index i = 0; i < nu; ++i)
         control_point(e, e.control[static_cast<std::size_t>(j * nu + i)], P, i * nv + j, w);
-    nurbs::Surface s = build(e, [&] {
-      return nurbs::make_surface({e.degree[0], e.degree[1]}, {*e.parm[0], *e.parm[1]}, count, P, w);
+    const nurbs::Surface s = build(e, [&] {
+      return nurbs::make_surface({e.degree[0], e.degree[1]}, std::move(knot_vectors), count, P, w);
     });
-    check_range(e, e.range[0], e.range[1], nurbs::domain(s, nurbs::Direction::u), "u");
-    check_range(e, e.range[2], e.range[3], nurbs::domain(s, nurbs::Direction::v), "v");
-    return s;
+    const Part u = range_part(e, e.range[0], e.range[1], nurbs::domain(s, nurbs::Direction::u), "u");
+    const Part v = range_part(e, e.range[2], e.range[3], nurbs::domain(s, nurbs::Direction::v), "v");
+    return part_of(part_of(s, nurbs::Direction::u, u), nurbs::Direction::v, v);
   }
 };
 
@@ -409,8 +555,8 @@ std::vector<long long> one_to(Eigen::Index n) {
 
 }  // namespace
 
-std::vector<Shape> parse_obj(std::string_view text, std::string_view where) {
-  ObjReader reader(where);
+std::vector<Shape> parse_obj(std::string_view text, std::string_view where, const ShapeReadOptions& options) {
+  ObjReader reader(where, options);
   detail::for_each_statement(text, [&](std::size_t line, const Tokens& t) { reader.statement(line, t); });
   return reader.finish();
 }

@@ -155,19 +155,52 @@ std::string source_kind(const io::Experiment& e) {
 }
 
 void bind_shapes(py::module_& m) {
-  m.def("read_shape", &io::read_shape, Release(), py::arg("path"),
-        "Reads a shape file: `.obj` as OBJ free-form geometry (exactly one shape), anything else as JSON.\n\n"
-        "Returns a nurbs.Curve or nurbs.Surface. Raises IoError (unreadable file, syntax) or InvalidInput\n"
-        "(content), with the path and JSON path in the message.");
+  // Warnings (a range clamped to the knot domain, trims ignored) go to stderr.
+  const auto options = [](std::optional<std::size_t> index, bool ignore_trim) {
+    return io::ShapeReadOptions{.ignore_trim = ignore_trim, .index = index, .warn = {}};
+  };
   m.def(
-      "parse_shape_json", &io::parse_shape_json, py::arg("text"), py::arg("where") = kDefaultWhere,
-      "Parses {\"curve\": {...}} or {\"surface\": {...}} (docs/formats.md); `where` names the source in\n"
-      "messages. Returns a nurbs.Curve or nurbs.Surface. Raises IoError (syntax) or InvalidInput (content).");
+      "read_shape",
+      [options](const std::filesystem::path& path, std::optional<std::size_t> index, bool ignore_trim) {
+        return io::read_shape(path, options(index, ignore_trim));
+      },
+      Release(), py::arg("path"), py::kw_only(), py::arg("index") = py::none(),
+      py::arg("ignore_trim") = false,
+      "Reads a shape file: `.obj` as OBJ free-form geometry, anything else as JSON (cifs's own format or a\n"
+      "geomdl export). A file of several shapes needs `index` (0-based); ignore_trim=True reads trimmed\n"
+      "surfaces whole, with a warning on stderr.\n\n"
+      "Returns a nurbs.Curve or nurbs.Surface. Raises IoError (unreadable file, syntax) or InvalidInput\n"
+      "(content), with the path and JSON path in the message.");
+  m.def(
+      "read_shapes",
+      [options](const std::filesystem::path& path, bool ignore_trim) {
+        return io::read_shapes(path, options(std::nullopt, ignore_trim));
+      },
+      Release(), py::arg("path"), py::kw_only(), py::arg("ignore_trim") = false,
+      "Every curve and surface of a shape file, in order (list of Curve / Surface); see read_shape.");
+  m.def(
+      "parse_shape_json",
+      [options](std::string_view text, std::string_view where, std::optional<std::size_t> index,
+                bool ignore_trim) { return io::parse_shape_json(text, where, options(index, ignore_trim)); },
+      py::arg("text"), py::arg("where") = kDefaultWhere, py::kw_only(), py::arg("index") = py::none(),
+      py::arg("ignore_trim") = false,
+      "Parses {\"curve\": {...}} or {\"surface\": {...}} (docs/formats.md), or a geomdl export ({\"shape\":\n"
+      "...}, `index` choosing among several); `where` names the source in messages. Returns a nurbs.Curve "
+      "or\n"
+      "nurbs.Surface. Raises IoError (syntax) or InvalidInput (content).");
   m.def("to_json", py::overload_cast<const io::Shape&>(&io::to_json), py::arg("shape"),
         "The shape file text (JSON) of a nurbs.Curve or nurbs.Surface; parse_shape_json reads it back.");
-  m.def("parse_obj", &io::parse_obj, py::arg("text"), py::arg("where") = kDefaultWhere,
-        "Every curve and surface of OBJ free-form geometry text, in order (list of Curve / Surface).\n\n"
-        "Raises IoError or InvalidInput naming `where`.");
+  m.def(
+      "parse_obj",
+      [options](std::string_view text, std::string_view where, bool ignore_trim) {
+        return io::parse_obj(text, where, options(std::nullopt, ignore_trim));
+      },
+      py::arg("text"), py::arg("where") = kDefaultWhere, py::kw_only(), py::arg("ignore_trim") = false,
+      "Every curve and surface of OBJ free-form geometry text, in order (list of Curve / Surface), each "
+      "over\n"
+      "the range its curv or surf statement gives. ignore_trim=True reads trimmed surfaces whole, with a\n"
+      "warning on stderr.\n\n"
+      "Raises IoError or InvalidInput naming `where`.");
   m.def("to_obj", &io::to_obj, py::arg("shape"),
         "OBJ free-form geometry text of a nurbs.Curve or nurbs.Surface.");
   m.def(

@@ -153,3 +153,188 @@ TEST_CASE("Shape files: unreadable paths and atomic writes", "[io]") {
   CHECK_THROWS_AS(write_file_atomically(dir / "missing" / "b.txt", "x"), IoError);
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("JSON knots in the Rhino convention (n + d - 1, end knots implicit)", "[io][json]") {
+  // An unclamped non-uniform cubic: Rhino's 7 knots for 5 points; the standard vector adds one knot
+  // at each end. openNURBS's ON_SuperfluousKnot extends an unclamped end by a span instead: the end
+  // knots do not act on the domain, so that vector gives the same curve.
+  const std::string points = R"("points": [[0, 0], [1, 3], [2.5, -1], [4, 2], [6, 0.5]])";
+  const std::string rhino = R"({"curve": {"degree": 3, "knots": [0, 1, 2.5, 3, 4, 6, 7], )" + points + "}}";
+  const std::string stated =
+      R"({"curve": {"degree": 3, "knot_convention": "rhino", "knots": [0, 1, 2.5, 3, 4, 6, 7], )" + points +
+      "}}";
+  const std::string standard =
+      R"({"curve": {"degree": 3, "knots": [-1.5, 0, 1, 2.5, 3, 4, 6, 7, 9], )" + points + "}}";
+  const auto a = std::get<nurbs::Curve>(parse(rhino)), b = std::get<nurbs::Curve>(parse(stated)),
+             c = std::get<nurbs::Curve>(parse(standard));
+  CHECK(a.knots == nurbs::Knots{0, 0, 1, 2.5, 3, 4, 6, 7, 7});
+  CHECK(b.knots == a.knots);
+  CHECK(nurbs::domain(a).start == 2.5);
+  CHECK(nurbs::domain(a).end == 4);
+  for (const double u : nurbs::uniform_parameters(nurbs::domain(c), 400)) {
+    const Point p = nurbs::evaluate_basis(a, u), q = nurbs::evaluate_basis(c, u);
+    CHECK((p - q).norm() <= 1e-15 * (1 + q.norm()));
+  }
+  // A clamped rational quadratic as Rhino stores it: [0, 0, 1, 2, 2] for 4 points.
+  const auto r = std::get<nurbs::Curve>(parse(
+      R"({"curve": {"degree": 2, "knots": [0, 0, 1, 2, 2], "points": [[0], [1], [3], [4]], "weights": [1, 2, 1, 1]}})"));
+  CHECK(r.knots == nurbs::Knots{0, 0, 0, 1, 2, 2, 2});
+  // A surface: u in the Rhino convention, v standard, each told by its count.
+  const auto s = std::get<nurbs::Surface>(parse(R"({"surface": {"degree": [1, 2],
+      "knots": [[0, 1, 2], [0, 0, 0, 1, 1, 1]],
+      "points": [[[0, 0, 0], [0, 1, 0], [0, 2, 0]], [[1, 0, 1], [1, 1, 1], [1, 2, 1]], [[2, 0, 0], [2, 1, 0], [2, 2, 3]]]}})"));
+  CHECK(s.knots[0] == nurbs::Knots{0, 0, 1, 2, 2});
+  CHECK(s.knots[1] == nurbs::Knots{0, 0, 0, 1, 1, 1});
+  const Point corner = nurbs::evaluate(s, 2, 1);
+  CHECK(corner(2) == 3);
+  // Stated conventions are checked; the standard one is the default.
+  CHECK_THAT(
+      error_of(
+          R"({"curve": {"degree": 3, "knot_convention": "standard", "knots": [0, 1, 2.5, 3, 4, 6, 7], )" +
+          points + "}}"),
+      Catch::Contains("curve.knots: 7 knots given, 5 control points of degree 3 need 9"));
+  CHECK_THAT(
+      error_of(
+          R"({"curve": {"degree": 3, "knot_convention": "rhino", "knots": [0, 1, 2, 3, 4, 5, 6, 7, 8], )" +
+          points + "}}"),
+      Catch::Contains("curve.knots: 9 knots given, 5 control points of degree 3 need 7 in the rhino "
+                      "convention (n + d - 1)"));
+  CHECK_THAT(error_of(R"({"curve": {"degree": 3, "knots": [0, 1, 2, 3, 4, 5, 6, 7], )" + points + "}}"),
+             Catch::Contains("8 knots given, 5 control points of degree 3 need 9 (or 7 without the first and "
+                             "the last knot, as Rhino and openNURBS store them)"));
+  CHECK_THAT(
+      error_of(R"({"curve": {"degree": 3, "knot_convention": "opennurbs", "knots": [0], )" + points + "}}"),
+      Catch::Contains("curve.knot_convention: 'opennurbs': expected \"standard\""));
+  CHECK_THAT(
+      error_of(R"({"curve": {"degree": 1, "closed": true, "knot_convention": "rhino", "knots": [0, 1, 2],
+      "points": [[0], [1]]}})"),
+      Catch::Contains("curve.knot_convention: a closed curve's knots are the m + 1 breakpoints"));
+  CHECK_THAT(
+      error_of(R"({"surface": {"degree": [1, 1], "knot_convention": "rhino", "knots": [[0, 1], [0, 0, 1, 1]],
+      "points": [[[0], [1]], [[2], [3]]]}})"),
+      Catch::Contains("surface.knots[1]: 4 knots given, 2 control points of degree 1 need 2 in the rhino"));
+}
+
+namespace {
+
+const double kHalfRoot2 = 0.7071067811865476;  // √2/2, the weight of a quarter circle's corner
+
+}  // namespace
+
+TEST_CASE("geomdl JSON exports: the example curve is the unit circle", "[io][json]") {
+  const auto c = std::get<nurbs::Curve>(io::read_shape(CIFS_SOURCE_DIR "/examples/shapes/geomdl_curve.json"));
+  CHECK(c.degree == 2);
+  CHECK(c.rational);
+  CHECK(nurbs::dimension(c) == 2);
+  CHECK(nurbs::weights(c)(1) == kHalfRoot2);
+  for (const double u : nurbs::uniform_parameters(nurbs::domain(c), 257))
+    CHECK(std::abs(nurbs::evaluate(c, u).norm() - 1) <= 1e-15);
+  // Quarter points by hand: the rational quadratic through (0, −1), (−1, −1), (−1, 0) at its middle
+  // is ((0 + 2w·(−1) − 1)/(2 + 2w), (−1 − 2w + 0)/(2 + 2w)) with w = √2/2.
+  const Point p = nurbs::evaluate(c, 0.125);
+  const double w = kHalfRoot2, d = 2 + 2 * w;
+  CHECK(p(0) == Approx((-2 * w - 1) / d).epsilon(1e-15));
+  CHECK(p(1) == Approx((-1 - 2 * w) / d).epsilon(1e-15));
+}
+
+TEST_CASE("geomdl JSON exports: the example surface is the unit cylinder, v varying fastest", "[io][json]") {
+  const auto s =
+      std::get<nurbs::Surface>(io::read_shape(CIFS_SOURCE_DIR "/examples/shapes/geomdl_surface.json"));
+  CHECK(s.degree == std::array<int, 2>{1, 2});
+  CHECK(s.count == std::array<Eigen::Index, 2>{2, 9});
+  for (const double u : nurbs::uniform_parameters({0, 1}, 9))
+    for (const double v : nurbs::uniform_parameters({0, 1}, 65)) {
+      const Point p = nurbs::evaluate(s, u, v);
+      CHECK(std::abs(std::hypot(p(0), p(1)) - 1) <= 1e-15);
+      CHECK(std::abs(p(2) - u) <= 1e-15);
+    }
+}
+
+namespace {
+
+std::string geomdl_curves(const std::string& entries, const std::string& shape_extra = "") {
+  return R"({"shape": {"type": "curve", )" + shape_extra + R"("data": [)" + entries + "]}}";
+}
+
+const std::string kLine =
+    R"({"degree": 1, "knotvector": [0, 0, 1, 1], "control_points": {"points": [[0, 0], [2, 4]]}})";
+const std::string kArc = R"({"type": "spline", "rational": true, "dimension": 2, "degree": 2,
+    "knotvector": [0, 0, 0, 1, 1, 1], "control_points": {"points": [[1, 0], [1, 1], [0, 1]],
+    "weights": [1, 0.7071067811865476, 1]}, "delta": 0.01, "name": "arc", "id": 3})";
+
+}  // namespace
+
+TEST_CASE("geomdl JSON exports: several shapes, options and errors", "[io][json]") {
+  const std::string two = geomdl_curves(kLine + ", " + kArc, R"("count": 2, )");
+  const std::vector<io::Shape> shapes = io::parse_shapes_json(two, "g.json");
+  REQUIRE(shapes.size() == 2);
+  const auto line = std::get<nurbs::Curve>(shapes[0]);
+  CHECK_FALSE(line.rational);
+  CHECK(nurbs::evaluate(line, 0.25) == Point(Eigen::Vector2d(0.5, 1)));
+  const auto arc = std::get<nurbs::Curve>(shapes[1]);
+  CHECK(std::abs(nurbs::evaluate(arc, 0.5).norm() - 1) <= 1e-15);
+  CHECK_THAT(error_of(two),
+             Catch::Contains("s.json: holds 2 shapes (curves and surfaces): choose one with --index"));
+  CHECK(std::get<nurbs::Curve>(
+            io::parse_shape_json(two, "g.json", {.ignore_trim = false, .index = 1, .warn = {}}))
+            .rational);
+  // The equivalent cifs curve gives the same points.
+  const auto same = std::get<nurbs::Curve>(parse(R"({"curve": {"degree": 2, "knots": [0, 0, 0, 1, 1, 1],
+      "points": [[1, 0], [1, 1], [0, 1]], "weights": [1, 0.7071067811865476, 1]}})"));
+  CHECK(same.P == arc.P);
+  CHECK(same.knots == arc.knots);
+
+  // Trims: refused, or ignored with a warning.
+  const std::string trimmed = R"({"shape": {"type": "surface", "data": [{"degree_u": 1, "degree_v": 1,
+      "knotvector_u": [0, 0, 1, 1], "knotvector_v": [0, 0, 1, 1], "size_u": 2, "size_v": 2,
+      "control_points": {"points": [[0, 0, 0], [0, 1, 0], [1, 0, 0], [1, 1, 1]]},
+      "trims": {"count": 1, "data": [{"type": "freeform", "points": [[0.2, 0.2], [0.8, 0.2], [0.5, 0.8]]}]}}]}})";
+  CHECK_THAT(
+      error_of(trimmed),
+      Catch::Contains("s.json: shape.data[0].trims: trimmed surfaces are not supported; --ignore-trim"));
+  std::vector<std::string> warnings;
+  const auto s = std::get<nurbs::Surface>(io::parse_shape_json(
+      trimmed, "t.json",
+      {.ignore_trim = true, .index = {}, .warn = [&](const std::string& w) { warnings.push_back(w); }}));
+  CHECK(warnings ==
+        std::vector<std::string>{"t.json: shape.data[0].trims: the trim curves are ignored: the whole "
+                                 "untrimmed surface is read"});
+  // Control point (i, j) is entry i·size_v + j: (1, 1) is the last, the corner (u, v) = (1, 1).
+  CHECK(nurbs::evaluate(s, 1, 1) == Point(Eigen::Vector3d(1, 1, 1)));
+  CHECK(nurbs::evaluate(s, 0, 1) == Point(Eigen::Vector3d(0, 1, 0)));
+
+  CHECK_THAT(error_of(R"({"shape": {"type": "volume", "data": []}})"),
+             Catch::Contains("shape.type: volumes are not read"));
+  CHECK_THAT(error_of(R"({"shape": {"type": "curve", "data": []}})"),
+             Catch::Contains("shape.data: no curve"));
+  CHECK_THAT(error_of(geomdl_curves(kLine, R"("count": 3, )")),
+             Catch::Contains("shape.count: 3, but shape.data holds 1"));
+  CHECK_THAT(
+      error_of(geomdl_curves(
+          R"({"degree": 1, "knotvector": [0, 0, 1], "control_points": {"points": [[0, 0], [2, 4]]}})")),
+      Catch::Contains("shape.data[0].knotvector: 3 knots given, 2 control points of degree 1 need 4"));
+  CHECK_THAT(error_of(geomdl_curves(
+                 R"({"degree": 1, "knotvector": [0, 0, 1, 1], "control_points": {"points": [[0, 0], [2, 4]],
+                     "weights": [1, -1]}})")),
+             Catch::Contains("shape.data[0].control_points.weights[1]: weight -1"));
+  CHECK_THAT(error_of(geomdl_curves(
+                 R"({"degree": 1, "knotvector": [0, 0, 1, 1], "control_points": {"points": [[0, 0], [2, 4]]},
+                     "dimension": 3})")),
+             Catch::Contains("shape.data[0].dimension: 3, but the control points have 2 coordinates"));
+  CHECK_THAT(error_of(geomdl_curves(
+                 R"({"degree": 1, "knotvector": [0, 0, 1, 1], "control_points": {"points": [[0, 0], [2, 4]]},
+                     "knots": [0, 1]})")),
+             Catch::Contains("shape.data[0].knots: unknown member"));
+  CHECK_THAT(error_of(geomdl_curves(R"({"type": "freeform", "points": [[0, 0]]})")),
+             Catch::Contains("shape.data[0].type: 'freeform': only \"spline\" entries are read"));
+  CHECK_THAT(error_of(R"({"shape": {"type": "surface", "data": [{"degree_u": 1, "degree_v": 1,
+      "knotvector_u": [0, 0, 1, 1], "knotvector_v": [0, 0, 1, 1], "size_u": 2, "size_v": 3,
+      "control_points": {"points": [[0, 0, 0], [0, 1, 0], [1, 0, 0], [1, 1, 1]]}}]}})"),
+             Catch::Contains("shape.data[0].control_points.points: 4 points, size_u × size_v = 2 × 3"));
+  CHECK_THAT(error_of(R"({"shape": {"type": "surface", "data": [{"degree_u": 1, "degree_v": 1,
+      "knotvector_u": [0, 0, 1, 1], "knotvector_v": [0, 2, 1, 1], "size_u": 2, "size_v": 2,
+      "control_points": {"points": [[0, 0, 0], [0, 1, 0], [1, 0, 0], [1, 1, 1]]}}]}})"),
+             Catch::Contains("shape.data[0].knotvector_v[2]: 1 is less than the previous knot 2"));
+  CHECK_THAT(error_of(R"({"shape": {"type": "curve", "data": [], "extra": 1}})"),
+             Catch::Contains("shape.extra: unknown member"));
+}

@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <random>
 #include <string>
 
@@ -400,11 +401,12 @@ TEST_CASE("OBJ errors name the line and the problem", "[obj]") {
        "parm u given twice (first at line 8)", true},
       {"non-finite knot", curve_with("curv 0 2 1 2 3 4", "parm u 0 0 0 nan 2 2 2"), 8,
        "parm u: 'nan' is not finite", false},
-      {"cstype bezier", "cstype bezier\n", 1, "cstype bezier is not supported", false},
-      {"cstype rat bezier", "v 0 0 0\ncstype rat bezier\n", 2, "cstype rat bezier is not supported", false},
-      {"cstype cardinal", "cstype cardinal\n", 1, "cstype cardinal is not supported", false},
-      {"cstype taylor", "cstype taylor\n", 1, "cstype taylor is not supported", false},
-      {"cstype bmatrix", "cstype bmatrix\n", 1, "cstype bmatrix is not supported", false},
+      {"cstype cardinal", kVertices + "cstype cardinal\ndeg 3\ncurv 0 1 1 2 3 4\n", 7,
+       "curv: cstype cardinal (line 5) is not supported: only bspline and bezier", false},
+      {"cstype rat taylor", kVertices + "cstype rat taylor\ndeg 1 1\nsurf 0 1 0 1 1 2 3 4\n", 7,
+       "surf: cstype rat taylor (line 5) is not supported", false},
+      {"cstype bmatrix", kVertices + "cstype bmatrix\ndeg 2\ncurv 0 2 1 2 3 4\n", 7,
+       "cstype bmatrix (line 5) is not supported", false},
       {"cstype unknown", "cstype nurbs\n", 1, "unknown curve and surface type 'nurbs'", false},
       {"cstype without type", "cstype rat\n", 1, "expected cstype [rat] type", true},
       {"cstype inside a body", kVertices + "cstype bspline\ndeg 2\ncurv 0 2 1 2 3 4\ncstype bspline\n", 8,
@@ -428,12 +430,30 @@ TEST_CASE("OBJ errors name the line and the problem", "[obj]") {
        "parm u: knots[4]: 2 is less than the previous knot 3", false},
       {"too few control points", curve_with("curv 0 1 1 2", "parm u 0 0 0 1 1"), 7, "too few for degree 2",
        false},
-      {"trimmed curve", curve_with("curv 0.5 2 1 2 3 4"), 7, "trimmed curves are not supported", false},
-      {"range outside the domain", curve_with("curv -1 2 1 2 3 4"), 7, "is outside the knot domain [0, 2]",
-       false},
+      {"range beside the domain", curve_with("curv 2 3 1 2 3 4"), 7,
+       "curv: parameter range u [2, 3] does not overlap the knot domain [0, 2]", false},
+      {"range before the domain", curve_with("curv -2 -1e-12 1 2 3 4"), 7, "does not overlap", false},
       {"reversed range", curve_with("curv 2 0 1 2 3 4"), 7, "is empty or reversed", false},
-      {"trimmed surface range", surface_with("surf 0 1 0 0.5 1 2 3 4", "parm u 0 0 1 1", "parm v 0 0 1 1"), 7,
-       "parameter range v [0, 0.5] is a strict part of the knot domain [0, 1]", false},
+      {"surface range beside the domain",
+       surface_with("surf 0 1 1 2 1 2 3 4", "parm u 0 0 1 1", "parm v 0 0 1 1"), 7,
+       "parameter range v [1, 2] does not overlap the knot domain [0, 1]", false},
+      {"Bezier curv of broken segments",
+       kVertices + "cstype bezier\ndeg 2\ncurv 0 1 1 2 3 4\nparm u 0 1\nend\n", 7,
+       "curv: 4 control vertices do not make whole Bezier segments of degree 2", false},
+      {"Bezier parm count",
+       "v 0 0 0\n" + kVertices + "cstype bezier\ndeg 2\ncurv 0 1 1 2 3 4 5\nparm u 0 1\nend\n", 9,
+       "parm u: 2 values given; a Bezier curv of 2 segments needs 3", false},
+      {"Bezier parm not increasing",
+       "v 0 0 0\n" + kVertices + "cstype bezier\ndeg 2\ncurv 0 1 1 2 3 4 5\nparm u 0 1 1\nend\n", 9,
+       "parm u: the parameter values of a Bezier curv must increase: 1 follows 1", false},
+      {"Bezier surf count",
+       kVertices + "cstype bezier\ndeg 1 1\nsurf 0 2 0 1 1 2 3 4\nparm u 0 1 2\nparm v 0 1\nend\n", 7,
+       "surf: 4 control vertices given; parm u (3 values, degree 1) and parm v (2 values, degree 1) make a "
+       "Bezier net of 3 by 2 = 6",
+       false},
+      {"Bezier surf one value",
+       kVertices + "cstype bezier\ndeg 1 1\nsurf 0 1 0 1 1 2 3 4\nparm u 0\nparm v 0 1\nend\n", 8,
+       "parm u: a Bezier surf needs at least 2 values", false},
       {"surf count", surface_with("surf 0 1 0 1 1 2 3 4", "parm u 0 0 0.5 1 1", "parm v 0 0 1 1"), 7,
        "4 control vertices given; parm u (5 knots, degree 1) and parm v (4 knots, degree 1) make a 3 by 2 "
        "net of 6",
@@ -455,7 +475,9 @@ TEST_CASE("OBJ errors name the line and the problem", "[obj]") {
        "parm u 0 0 1 2 2\nend\n",
        6, "vertex 2 (line 2) has 6 numbers", false},
       {"trim", surface_with("surf 0 1 0 1 1 2 3 4", "parm u 0 0 1 1", "parm v 0 0 1 1\ntrim 0 1 1"), 10,
-       "trimmed surfaces are not supported", false},
+       "trim: trimmed surfaces are not supported; --ignore-trim (ignore_trim) reads the whole untrimmed "
+       "surface",
+       false},
       {"hole", surface_with("surf 0 1 0 1 1 2 3 4", "parm u 0 0 1 1", "parm v 0 0 1 1\nhole 0 1 1"), 10,
        "hole: trimmed surfaces", false},
       {"trim outside a body", "trim 0 1 1\n", 1, "trim outside a curv or surf body", true},
@@ -476,10 +498,12 @@ TEST_CASE("OBJ errors name the line and the problem", "[obj]") {
 }
 
 TEST_CASE("OBJ reader never fails otherwise on truncated or mutated input", "[obj]") {
-  const std::string valid = io::to_obj(sample_surface(true)) + io::to_obj(sample_curve(true)) + kCurve;
+  const std::string valid =
+      io::to_obj(sample_surface(true)) + io::to_obj(sample_curve(true)) + kCurve +
+      "cstype bezier\ndeg 1 1\nsurf 0 2 0 2 1 2 3 4\nparm u 0 2\nparm v 0 2\ntrim 0 4 1\nend\n";
   const auto parse = [](const std::string& text) {
     try {
-      io::parse_obj(text, "f.obj");
+      io::parse_obj(text, "f.obj", {.ignore_trim = true, .index = {}, .warn = [](const std::string&) {}});
     } catch (const IoError&) {
     } catch (const InvalidInput&) {
     }
@@ -504,5 +528,265 @@ TEST_CASE("read_shape reads a one-shape .obj file", "[obj]") {
   require_same(std::get<nurbs::Surface>(io::read_shape(dir / "one.obj")), s);
   write_file_atomically(dir / "two.obj", kCurve + kCurve);
   CHECK_THROWS_AS(io::read_shape(dir / "two.obj"), InvalidInput);
+  CHECK_THROWS_WITH(io::read_shape(dir / "two.obj"),
+                    (dir / "two.obj").string() +
+                        ": holds 2 shapes (curves and surfaces): choose one with --index N, N from 0 to 1");
+  std::filesystem::remove_all(dir);
+}
+
+namespace {
+
+/// Parses with ignore_trim as given, collecting the warnings.
+std::vector<io::Shape> parse_warned(const std::string& text, std::vector<std::string>& warnings,
+                                    bool ignore_trim = false, std::optional<std::size_t> index = {}) {
+  return io::parse_obj(text, "w.obj",
+                       {.ignore_trim = ignore_trim, .index = index, .warn = [&](const std::string& w) {
+                          warnings.push_back(w);
+                        }});
+}
+
+/// A Bezier curve point by de Casteljau's algorithm over the rows of P (homogeneous rows stay
+/// homogeneous).
+Eigen::RowVectorXd de_casteljau(Points P, double t) {
+  for (Eigen::Index r = P.rows() - 1; r > 0; --r)
+    for (Eigen::Index i = 0; i < r; ++i) P.row(i) = (1 - t) * P.row(i) + t * P.row(i + 1);
+  return P.row(0);
+}
+
+}  // namespace
+
+TEST_CASE("OBJ reads Blender's curv 0.0 1.0 over the knot domain, with one warning", "[obj]") {
+  // As Blender's exporter writes a cubic NURBS curve: uniform knots i/7 printed with %.6f and the
+  // range 0 1 whatever the knots, relative vertex indices.
+  const std::string text =
+      "o NurbsCurve\nv -1 0 0\nv -0.5 0.5 0\nv 0.5 0.5 0\nv 1 0 0\ng NurbsCurve\n"
+      "cstype bspline\ndeg 3\ncurv 0.0 1.0 -4 -3 -2 -1\n"
+      "parm u 0.000000 0.142857 0.285714 0.428571 0.571429 0.714286 0.857143 1.000000\nend\n";
+  std::vector<std::string> warnings;
+  const auto c = only<nurbs::Curve>(parse_warned(text, warnings));
+  REQUIRE(warnings.size() == 1);
+  CHECK(warnings[0] ==
+        "w.obj: line 9: curv: parameter range u [0, 1] reaches outside the knot domain [0.428571, 0.571429]: "
+        "read over [0.428571, 0.571429]");
+  // The curve of the file's own knots and points, untouched.
+  CHECK(c.knots == nurbs::Knots{0, 0.142857, 0.285714, 0.428571, 0.571429, 0.714286, 0.857143, 1});
+  CHECK(c.P.row(1) == Eigen::RowVector3d(-0.5, 0.5, 0));
+  CHECK(nurbs::domain(c).start == 0.428571);
+  CHECK(nurbs::domain(c).end == 0.571429);
+  // Almost uniform knots: one uniform cubic B-spline segment, (P0 + 4 P1 + P2)/6 at its start.
+  const Point start = nurbs::evaluate(c, 0.428571);
+  CHECK(start(0) == Approx((-1 + 4 * -0.5 + 0.5) / 6).margin(1e-5));
+  CHECK(start(1) == Approx((0 + 4 * 0.5 + 0.5) / 6).margin(1e-5));
+  // The default warning goes to stderr, and a file whose range is the domain gives none.
+  warnings.clear();
+  parse_warned(kCurve, warnings);
+  CHECK(warnings.empty());
+}
+
+TEST_CASE("OBJ range inside the knot domain reads that part of the curve", "[obj]") {
+  for (const bool rational : {false, true}) {
+    const nurbs::Curve full = sample_curve(rational, 3, 9);
+    // An unclamped curve too: a part of a part.
+    for (const auto& [a, b] :
+         std::vector<std::pair<double, double>>{{0.2, 0.8}, {0.3, 1}, {0, 0.31}, {0.05, 0.1}}) {
+      std::string text = io::to_obj(full);
+      const std::string range = "curv 0 1 ";
+      const auto at = text.find(range);
+      REQUIRE(at != std::string::npos);
+      text.replace(at, range.size(), "curv " + std::to_string(a) + " " + std::to_string(b) + " ");
+      std::vector<std::string> warnings;
+      const auto part = only<nurbs::Curve>(parse_warned(text, warnings));
+      CHECK(warnings.empty());
+      CHECK(part.rational == rational);
+      CHECK(nurbs::domain(part).start == a);
+      CHECK(nurbs::domain(part).end == b);
+      // The same points as the whole curve over [a, b] (Cox–de Boor on the file's knots).
+      for (const double u : nurbs::uniform_parameters({a, b}, 101)) {
+        const Point p = nurbs::evaluate_basis(full, u), q = nurbs::evaluate(part, u);
+        CHECK((p - q).norm() <= 1e-13 * (1 + p.norm()));
+      }
+      // Clamped at the cuts: the end points are control points.
+      if (a > 0)
+        CHECK((nurbs::cartesian_points(part).row(0) - nurbs::evaluate(full, a)).norm() <= 1e-13 * 10);
+    }
+  }
+}
+
+TEST_CASE("OBJ surface range inside and outside the knot domain", "[obj]") {
+  const nurbs::Surface full = sample_surface(true, 4);  // domain [0, 1] × [-1, 2]
+  std::string text = io::to_obj(full);
+  const std::string range = "surf 0 1 -1 2 ";
+  const auto at = text.find(range);
+  REQUIRE(at != std::string::npos);
+  text.replace(at, range.size(), "surf 0.25 1.5 -3 1.25 ");
+  std::vector<std::string> warnings;
+  const auto part = only<nurbs::Surface>(parse_warned(text, warnings));
+  REQUIRE(warnings.size() == 2);
+  CHECK_THAT(warnings[0], Contains("parameter range u [0.25, 1.5] reaches outside the knot domain [0, 1]: "
+                                   "read over [0.25, 1]"));
+  CHECK_THAT(warnings[1], Contains("parameter range v [-3, 1.25] reaches outside the knot domain [-1, 2]: "
+                                   "read over [-1, 1.25]"));
+  CHECK(nurbs::domain(part, nurbs::Direction::u).start == 0.25);
+  CHECK(nurbs::domain(part, nurbs::Direction::u).end == 1);
+  CHECK(nurbs::domain(part, nurbs::Direction::v).start == -1);
+  CHECK(nurbs::domain(part, nurbs::Direction::v).end == 1.25);
+  for (const double u : nurbs::uniform_parameters({0.25, 1}, 13))
+    for (const double v : nurbs::uniform_parameters({-1, 1.25}, 13)) {
+      const Point p = nurbs::evaluate(full, u, v), q = nurbs::evaluate(part, u, v);
+      CHECK((p - q).norm() <= 1e-13 * (1 + p.norm()));
+    }
+}
+
+TEST_CASE("OBJ Bezier curves and surfaces are their B-splines", "[obj]") {
+  // Two quadratic segments over [0, 1] and [1, 3], rational: each is de Casteljau's of its 3 points.
+  const std::string text =
+      "v 0 0 0\nv 1 2 0 2\nv 2 0 1\nv 3 -1 0 0.5\nv 5 1 2\n"
+      "cstype rat bezier\ndeg 2\ncurv 0 3 1 2 3 4 5\nparm u 0 1 3\nend\n";
+  const auto c = only<nurbs::Curve>(io::parse_obj(text, "b.obj"));
+  CHECK(c.knots == nurbs::Knots{0, 0, 0, 1, 1, 3, 3, 3});
+  Points H(5, 4);  // homogeneous (w·x, w)
+  H << 0, 0, 0, 1, 2, 4, 0, 2, 2, 0, 1, 1, 1.5, -0.5, 0, 0.5, 5, 1, 2, 1;
+  for (const double u : nurbs::uniform_parameters({0, 3}, 61)) {
+    const bool first = u < 1;
+    const Eigen::RowVectorXd h = de_casteljau(H.middleRows(first ? 0 : 2, 3), first ? u : (u - 1) / 2);
+    const Point expected = h.head(3).transpose() / h(3);
+    CHECK((nurbs::evaluate(c, u) - expected).norm() <= 1e-14 * 6);
+  }
+  // Example 7 of the OBJ spec's surface: a bilinear patch over [0, 2]², S(u, v) = (u/2, v/2, 0).
+  const std::string patch =
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\ndeg 1 1\ncstype bezier\n"
+      "surf 0.0 2.0 0.0 2.0 1 2 3 4\nparm u 0.00 2.00\nparm v 0.00 2.00\nend\n";
+  const auto s = only<nurbs::Surface>(io::parse_obj(patch, "p.obj"));
+  for (const double u : {0.0, 0.3, 1.7, 2.0})
+    for (const double v : {0.0, 0.9, 2.0})
+      CHECK((nurbs::evaluate(s, u, v) - Point(Eigen::Vector3d(u / 2, v / 2, 0))).norm() <= 1e-15);
+}
+
+namespace {
+
+// Example 9 of the OBJ specification ("Trimming with special points"), as printed: a Bezier space
+// curve over a part of its range, a rational Bezier trimming curve (curv2), and a trimmed rational
+// B-spline surface with special points.
+const char* kSpecExample9 = R"(# special point and space curve data
+vp 0.500
+vp 0.700
+vp 1.100
+vp 0.200 0.950
+v  0.300 1.500 0.100
+v  0.000  0.000  0.000
+v  1.000  1.000  0.000
+v  2.000  1.000  0.000
+v  3.000  0.000  0.000
+cstype bezier
+deg 3
+curv 0.2 0.9 -4 -3 -2 -1
+sp 1
+parm u 0.00 1.00
+end
+# trimming curve
+vp -0.675  1.850  3.000
+vp  0.915  1.930
+vp  2.485  0.470  2.000
+vp  2.485 -1.030
+vp  1.605 -1.890 10.700
+vp -0.745 -0.654  0.500
+cstype rat bezier
+curv2 -6 -5 -4 -3 -2 -1 -6
+parm u 0.00 1.00 2.00
+sp 2 3
+end
+# surface
+v -1.350 -1.030 0.000
+v  0.130 -1.030 0.432 7.600
+v  1.480 -1.030 0.000 2.300
+v -1.460  0.060 0.201
+v  0.120  0.060 0.915 0.500
+v  1.380  0.060 0.454 1.500
+v -1.480  1.030 0.000 2.300
+v  0.120  1.030 0.394 6.100
+v  1.170  1.030 0.000 3.300
+cstype rat bspline
+deg 2 2
+surf -1.0 2.5 -2.0 2.0 -9 -8 -7 -6 -5 -4 -3 -2 -1
+parm u -1.00 -1.00 -1.00 2.50 2.50 2.50
+parm v -2.00 -2.00 -2.00 2.00 2.00 2.00
+trim 0.0 2.0 1
+sp 4
+end
+)";
+
+}  // namespace
+
+TEST_CASE("OBJ trimmed surfaces: refused, or read whole with ignore_trim (the spec's example 9)", "[obj]") {
+  CHECK_THROWS_AS(io::parse_obj(kSpecExample9, "t.obj"), InvalidInput);
+  CHECK_THROWS_WITH(io::parse_obj(kSpecExample9, "t.obj"),
+                    "t.obj: line 44: trim: trimmed surfaces are not supported; --ignore-trim (ignore_trim) "
+                    "reads the whole untrimmed surface");
+  std::vector<std::string> warnings;
+  const std::vector<io::Shape> shapes = parse_warned(kSpecExample9, warnings, true);
+  REQUIRE(shapes.size() == 2);
+  REQUIRE(warnings.size() == 1);
+  CHECK(warnings[0] ==
+        "w.obj: line 44: the trimming loops of the surf at line 41 are ignored: the whole "
+        "untrimmed surface is read");
+  // The space curve: the cubic Bezier of (0,0,0), (1,1,0), (2,1,0), (3,0,0) over [0.2, 0.9], i.e.
+  // (3t, 3t(1 − t), 0).
+  const auto& c = std::get<nurbs::Curve>(shapes[0]);
+  CHECK(nurbs::domain(c).start == 0.2);
+  CHECK(nurbs::domain(c).end == 0.9);
+  for (const double t : nurbs::uniform_parameters({0.2, 0.9}, 15))
+    CHECK((nurbs::evaluate(c, t) - Point(Eigen::Vector3d(3 * t, 3 * t * (1 - t), 0))).norm() <= 1e-14);
+  // The surface: one rational biquadratic patch; its corners are the corner vertices.
+  const auto& s = std::get<nurbs::Surface>(shapes[1]);
+  CHECK(s.rational);
+  CHECK((nurbs::evaluate(s, -1, -2) - Point(Eigen::Vector3d(-1.35, -1.03, 0))).norm() <= 1e-15);
+  CHECK((nurbs::evaluate(s, 2.5, -2) - Point(Eigen::Vector3d(1.48, -1.03, 0))).norm() <= 1e-15);
+  CHECK((nurbs::evaluate(s, -1, 2) - Point(Eigen::Vector3d(-1.48, 1.03, 0))).norm() <= 1e-15);
+  CHECK((nurbs::evaluate(s, 2.5, 2) - Point(Eigen::Vector3d(1.17, 1.03, 0))).norm() <= 1e-15);
+  // Its centre by hand: the tensor Bernstein weights 1/4, 1/2, 1/4 in each direction, rational.
+  Eigen::Vector4d sum = Eigen::Vector4d::Zero();
+  const double b[3] = {0.25, 0.5, 0.25};
+  const double vw[9][4] = {{-1.35, -1.03, 0, 1},    {0.13, -1.03, 0.432, 7.6}, {1.48, -1.03, 0, 2.3},
+                           {-1.46, 0.06, 0.201, 1}, {0.12, 0.06, 0.915, 0.5},  {1.38, 0.06, 0.454, 1.5},
+                           {-1.48, 1.03, 0, 2.3},   {0.12, 1.03, 0.394, 6.1},  {1.17, 1.03, 0, 3.3}};
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) {  // vertex j·3 + i is control point (i, j)
+      const double* v = vw[j * 3 + i];
+      sum += b[i] * b[j] * v[3] * Eigen::Vector4d(v[0], v[1], v[2], 1);
+    }
+  const Eigen::Vector3d centre = sum.head(3) / sum(3);
+  CHECK((nurbs::evaluate(s, 0.75, 0) - Point(centre)).norm() <= 1e-14);
+  // With an index, only the chosen shape's warnings.
+  warnings.clear();
+  parse_warned(kSpecExample9, warnings, true, 0);
+  CHECK(warnings.empty());
+}
+
+namespace {
+
+io::ShapeReadOptions by_index(std::size_t index) {
+  return {.ignore_trim = false, .index = index, .warn = {}};
+}
+
+}  // namespace
+
+TEST_CASE("read_shape chooses among several shapes by index", "[obj]") {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("cifs_test_obj_index_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const nurbs::Curve a = sample_curve(false, 3, 11), b = sample_curve(true, 3, 12);
+  // to_obj numbers the vertices from 1: the second curve refers to its own by negative indices.
+  std::string second = io::to_obj(b);
+  const std::string indices = "curv 0 1 1 2 3 4 5 6 7 8\n";
+  REQUIRE(second.find(indices) != std::string::npos);
+  second.replace(second.find(indices), indices.size(), "curv 0 1 -8 -7 -6 -5 -4 -3 -2 -1\n");
+  write_file_atomically(dir / "two.obj", io::to_obj(a) + second);
+  CHECK(io::read_shapes(dir / "two.obj").size() == 2);
+  require_same(std::get<nurbs::Curve>(io::read_shape(dir / "two.obj", by_index(0))), a);
+  require_same(std::get<nurbs::Curve>(io::read_shape(dir / "two.obj", by_index(1))), b);
+  CHECK_THROWS_WITH(io::read_shape(dir / "two.obj", by_index(2)),
+                    Contains("two.obj: --index 2 is out of range: the file holds 2 shapes (0 to 1)"));
+  write_file_atomically(dir / "none.obj", "v 0 0 0\n");
+  CHECK_THROWS_WITH(io::read_shape(dir / "none.obj"), Contains("none.obj: holds no curve or surface"));
   std::filesystem::remove_all(dir);
 }

@@ -86,7 +86,10 @@ void write(const std::filesystem::path& path, const BcifsFile& file);
 /// experiments, whose own format is JSON, read any other extension as JSON; meshes must be `.obj` or
 /// `.ply` (IoError "m.stl: a mesh is read from .obj or .ply"). IoError naming the path when it
 /// cannot be read; the format's errors otherwise.
-Shape read_shape(const std::filesystem::path& path);  // an OBJ must hold exactly one shape
+/// Shapes: every curve and surface of the file (OBJ: all elements; JSON: one, or every entry of a
+/// geomdl file), or the one `options.index` selects (required when the file holds several).
+std::vector<Shape> read_shapes(const std::filesystem::path& path, const ShapeReadOptions& options = {});
+Shape read_shape(const std::filesystem::path& path, const ShapeReadOptions& options = {});
 Polygon read_polygon(const std::filesystem::path& path);
 Mesh read_mesh(const std::filesystem::path& path);  // checked with check_mesh
 automata::Automaton read_automaton(const std::filesystem::path& path);

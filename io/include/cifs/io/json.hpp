@@ -23,8 +23,13 @@
 
 namespace cifs::io {
 
-/// `{"curve": {...}}` or `{"surface": {...}}`.
-Shape parse_shape_json(std::string_view text, std::string_view where);
+/// `{"curve": {...}}` or `{"surface": {...}}` (knots in the standard or the Rhino convention), or a
+/// geomdl (NURBS-Python) export `{"shape": {"type": "curve" | "surface", "data": [...]}}`: every
+/// shape of the file, in order.
+std::vector<Shape> parse_shapes_json(std::string_view text, std::string_view where,
+                                     const ShapeReadOptions& options = {});
+/// The one shape of the file, or the one options.index selects (select_shape).
+Shape parse_shape_json(std::string_view text, std::string_view where, const ShapeReadOptions& options = {});
 /// Round-trip precision: parse_shape_json reads it back bit for bit.
 std::string to_json(const Shape& shape);
 

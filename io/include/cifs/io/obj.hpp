@@ -14,9 +14,12 @@
 
 namespace cifs::io {
 
-/// OBJ free-form geometry (docs/formats.md): `cstype [rat] bspline`, `deg`, `curv`/`surf`, `parm u|v`,
-/// `end`, with `v x y z [w]` vertices. Every curve and surface of the file, in order.
-std::vector<Shape> parse_obj(std::string_view text, std::string_view where);
+/// OBJ free-form geometry (docs/formats.md): `cstype [rat] bspline` or `cstype [rat] bezier`, `deg`,
+/// `curv`/`surf`, `parm u|v`, `end`, with `v x y z [w]` vertices. Every curve and surface of the file,
+/// in order, each over the part of its knot domain that its range selects (a range reaching outside
+/// the domain is clamped to it, with a warning). Trimmed surfaces: options.ignore_trim.
+std::vector<Shape> parse_obj(std::string_view text, std::string_view where,
+                             const ShapeReadOptions& options = {});
 std::string to_obj(const Shape& shape);
 
 /// A polygon mesh from OBJ text: `v x y z` (further numbers, a weight or a colour, are ignored),
