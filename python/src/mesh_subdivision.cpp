@@ -98,6 +98,28 @@ void bind_mesh_subdivision(py::module_& m) {
       "The mesh after `levels` steps with every vertex on the limit surface (left eigenvectors of the local "
       "subdivision matrices), and unit limit normals when normals=True (closed meshes; not Butterfly). "
       "catmull-clark, loop, butterfly (interpolating: the vertices themselves), sqrt3.");
+  m.def(
+      "limit_surface",
+      [](const Mesh& mesh, const std::vector<int>& faces, const std::vector<double>& u,
+         const std::vector<double>& v) {
+        if (faces.size() != u.size() || faces.size() != v.size())
+          throw InvalidInput("limit_surface: faces, u and v must have one entry per point (" +
+                             std::to_string(faces.size()) + ", " + std::to_string(u.size()) + ", " +
+                             std::to_string(v.size()) + " given)");
+        std::vector<sd::FacePoint> at(faces.size());
+        for (std::size_t i = 0; i < at.size(); ++i) at[i] = {.face = faces[i], .u = u[i], .v = v[i]};
+        sd::SurfaceSample s;
+        {
+          py::gil_scoped_release release;  // the tuple below needs the GIL back
+          s = sd::evaluate_limit_surface(mesh, at);
+        }
+        return py::make_tuple(s.positions, s.du, s.dv);
+      },
+      py::arg("mesh"), py::arg("faces"), py::arg("u"), py::arg("v"),
+      "Catmull–Clark's limit surface at points (faces[i], u[i], v[i]) of a quad mesh without boundary whose "
+      "faces have at most one extraordinary corner (one level of refinement gives that): (positions, du, "
+      "dv), "
+      "each (n, 3). Exact, extraordinary patches included.");
   const auto one = [&m](const char* name, sd::MeshScheme scheme, const char* doc) {
     m.def(
         name,

@@ -546,6 +546,20 @@ class LimitTest(unittest.TestCase):
         with self.assertRaisesRegex(cifs.InvalidInput, "limit points belong to faces"):
             sd.limit(cube, "doo-sabin")
 
+    def test_limit_surface_at_face_points(self):
+        # At the corners of a once-refined cube's faces the surface is the limit of those vertices.
+        cube = sd.catmull_clark(cifs.io.read_mesh(str(EXAMPLES / "meshes" / "cube.obj")), 1)
+        limit = sd.limit(cube, "catmull-clark", 0)
+        faces = np.asarray(cube.face_vertices).reshape(-1, 4)
+        f = np.repeat(np.arange(len(faces)), 4)
+        u = np.tile([0.0, 1.0, 1.0, 0.0], len(faces))
+        v = np.tile([0.0, 0.0, 1.0, 1.0], len(faces))
+        positions, du, dv = sd.limit_surface(cube, f.tolist(), u.tolist(), v.tolist())
+        np.testing.assert_allclose(positions, np.asarray(limit.vertices)[faces.reshape(-1)], atol=1e-14)
+        self.assertEqual(du.shape, (len(f), 3))
+        with self.assertRaisesRegex(cifs.InvalidInput, "one entry per point"):
+            sd.limit_surface(cube, [0], [0.5], [])
+
 
 class LocalAnalysisTest(unittest.TestCase):
     def test_matches_the_cli_and_the_closed_forms(self):
