@@ -111,23 +111,10 @@ TEST_CASE("limit normals point out of convex closed shapes", "[subdivision][limi
 
 TEST_CASE("regular Catmull–Clark limit points and normals are the bicubic surface's",
           "[subdivision][limit]") {
-  // As in test_mesh.cpp: the open grid is a uniform bicubic B-spline; level-2 vertices away from the
+  // The open grid is a uniform bicubic B-spline (`bicubic_grid`); level-2 vertices away from the
   // boundary have their limit at the dyadic parameter that the refinement of (i + 2, j + 2) gives.
   const int n = 10, m = 9, levels = 2;
-  Mesh params = quad_grid(n, m), shape = params;
-  Points grid((n + 1) * (m + 1), 3);
-  for (int j = 0; j <= m; ++j)
-    for (int i = 0; i <= n; ++i) {
-      const auto r = static_cast<Eigen::Index>(j * (n + 1) + i);
-      params.vertices.row(r) << i + 2.0, j + 2.0, 0.0;
-      shape.vertices.row(r) << i + 0.3 * std::sin(1.7 * j), j + 0.2 * std::cos(0.9 * i + j),
-          std::sin(1.3 * i) * std::cos(0.7 * j) + 0.1 * i * j;
-      grid.row(static_cast<Eigen::Index>(i * (m + 1) + j)) = shape.vertices.row(r);
-    }
-  nurbs::Knots ku(static_cast<std::size_t>(n + 5)), kv(static_cast<std::size_t>(m + 5));
-  for (std::size_t k = 0; k < ku.size(); ++k) ku[k] = static_cast<double>(k);
-  for (std::size_t k = 0; k < kv.size(); ++k) kv[k] = static_cast<double>(k);
-  const nurbs::Surface surface = nurbs::make_surface({3, 3}, {ku, kv}, {n + 1, m + 1}, grid);
+  const auto [shape, params, surface] = bicubic_grid(n, m);
   const MeshRefinement r = refine_topology(shape, MeshScheme::catmull_clark, levels);
   const LimitStencils st = limit_stencils(r.levels.back(), MeshScheme::catmull_clark);
   const Points uv = evaluate_limit(st, apply(r, params.vertices), false).positions;
@@ -256,21 +243,11 @@ TEST_CASE("Catmull–Clark at (face, u, v): extraordinary patches equal the limi
 TEST_CASE("Catmull–Clark at (face, u, v): regular patches are the bicubic surface, partials included",
           "[subdivision][limit]") {
   const int n = 8, m = 7;
-  Mesh shape = quad_grid(n, m);
-  Points grid((n + 1) * (m + 1), 3);
-  for (int j = 0; j <= m; ++j)
-    for (int i = 0; i <= n; ++i) {
-      const auto r = static_cast<Eigen::Index>(j * (n + 1) + i);
-      shape.vertices.row(r) << i + 0.3 * std::sin(1.7 * j), j + 0.2 * std::cos(0.9 * i + j),
-          std::sin(1.3 * i) * std::cos(0.7 * j) + 0.1 * i * j;
-      grid.row(static_cast<Eigen::Index>(i * (m + 1) + j)) = shape.vertices.row(r);
-    }
-  nurbs::Knots ku(static_cast<std::size_t>(n + 5)), kv(static_cast<std::size_t>(m + 5));
-  for (std::size_t k = 0; k < ku.size(); ++k) ku[k] = static_cast<double>(k);
-  for (std::size_t k = 0; k < kv.size(); ++k) kv[k] = static_cast<double>(k);
-  const nurbs::Surface surface = nurbs::make_surface({3, 3}, {ku, kv}, {n + 1, m + 1}, grid);
-  // Face (i, j) of the grid (corners (i, j), (i + 1, j), …) is the parameter square
-  // [i + 2, i + 3] × [j + 2, j + 3]; the interior faces have no boundary corner.
+  const BicubicGrid g = bicubic_grid(n, m);
+  const Mesh& shape = g.shape;
+  const nurbs::Surface& surface = g.surface;
+  // Face (i, j) of the grid is the parameter square [i + 2, i + 3] × [j + 2, j + 3]; the interior
+  // faces have no boundary corner.
   std::vector<FacePoint> points;
   std::vector<std::array<double, 2>> params;
   for (int j = 1; j < m - 1; ++j)
