@@ -98,8 +98,8 @@ Bcifs uniform_curve_bcifs(const Eigen::MatrixXd& S0, const Eigen::MatrixXd& S1,
   for (int p = 0; p <= L; ++p) {
     const StateId s = edge_at(p);
     const int t1 = index_of(child_of(sys, s, 0)), t2 = index_of(child_of(sys, s, 1));
-    const StateId vs = sys.boundaries[static_cast<std::size_t>(2 * p)].boundary;
-    const StateId ve = sys.boundaries[static_cast<std::size_t>(2 * p + 1)].boundary;
+    const StateId vs = sys.boundaries[2 * static_cast<std::size_t>(p)].boundary;
+    const StateId ve = sys.boundaries[2 * static_cast<std::size_t>(p) + 1].boundary;
     const std::string name = g[s].name;
     sys.constraints.push_back(Constraint{
         name + ".start", {boundary(t1, 0), transition(s, 0)}, {transition(vs, 0), boundary(p, 0)}});
