@@ -46,6 +46,8 @@ Bcifs uniform_curve_bcifs(const Eigen::MatrixXd& S0, const Eigen::MatrixXd& S1,
     throw InvalidInput("uniform_curve_bcifs: S0 and S1 must be N by N with N ≥ 2");
   if (options.pieces < 0 || options.layer < 0)
     throw InvalidInput("uniform_curve_bcifs: pieces and layer must not be negative");
+  if (options.pieces > (1 << 20) || options.layer > 4096)
+    throw InvalidInput("uniform_curve_bcifs: at most 2^20 pieces and a layer of 4096");
   const int L = options.layer;
   Bcifs sys;
   auto& g = sys.automaton.graph;

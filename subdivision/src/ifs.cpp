@@ -31,6 +31,9 @@ std::array<Eigen::MatrixXd, 2> padded_ifs_matrices(const Scheme& scheme, int win
   if (window < N)
     throw InvalidInput("padded_ifs_matrices: a window of " + std::to_string(window) +
                        " points is narrower than the " + std::to_string(N) + " of the scheme");
+  if (window >= kMaxMaskSize)
+    throw InvalidInput("padded_ifs_matrices: a window of " + std::to_string(window) +
+                       " points is wider than " + std::to_string(kMaxMaskSize - 1));
   std::vector<double> mask(static_cast<std::size_t>(window) + 1, 0.0);
   std::copy(scheme.weights.begin(), scheme.weights.end(), mask.begin() + (window - N) / 2);
   return {ifs_matrix(mask, 0), ifs_matrix(mask, 1)};

@@ -21,8 +21,8 @@ struct UniformCurveOptions {
   /// Initial entries (curve pieces, windows k … k + N − 1 of an open polygon of pieces + N − 1 points).
   int pieces = 1;
   /// Pieces at offsets 0 … layer − 1 from the curve's start get cells of their own ("a0", "a1", …)
-  /// with free matrices, and so do the vertices between them ("w1", …): the room a junction at the
-  /// start ("v0") needs to adapt without touching the interior ("e", "m").
+  /// with free matrices, and so do the vertices between them ("w1", …; at most 4096, pieces ≤ 2^20): the room
+  /// a junction at the start ("v0") needs to adapt without touching the interior ("e", "m").
   int layer = 0;
   /// Every transition free (a fractal curve with the scheme's topology).
   bool free = false;
