@@ -121,21 +121,27 @@ void cubic_basis(double t, std::array<double, 4>& b, std::array<double, 4>& d) {
   d = {-s * s / 2, (3 * t * t - 4 * t) / 2, (-3 * t * t + 2 * t + 1) / 2, t * t / 2};
 }
 
-/// Value and partials of the bicubic B-spline patch of a 16-point net (rows by i then j) at (a, b).
-std::array<Eigen::RowVectorXd, 3> bicubic(const Points& net, double a, double b) {
+/// Value and partials (times `scale`) of the bicubic B-spline patch of a 16-point net (rows by i then
+/// j) at (a, b), written into three rows of d doubles: no allocation, the loop of every point.
+void bicubic(const Points& net, double a, double b, double scale, double* value, double* da_out,
+             double* db_out) {
   std::array<double, 4> ba{}, da{}, bb{}, db{};
   cubic_basis(a, ba, da);
   cubic_basis(b, bb, db);
-  std::array<Eigen::RowVectorXd, 3> out;
-  for (auto& x : out) x = Eigen::RowVectorXd::Zero(net.cols());
+  const Eigen::Index d = net.cols();
+  std::fill_n(value, d, 0.0);
+  std::fill_n(da_out, d, 0.0);
+  std::fill_n(db_out, d, 0.0);
   for (std::size_t i = 0; i < 4; ++i)
     for (std::size_t j = 0; j < 4; ++j) {
-      const auto row = net.row(static_cast<Eigen::Index>(i * 4 + j));
-      out[0] += ba[i] * bb[j] * row;
-      out[1] += da[i] * bb[j] * row;
-      out[2] += ba[i] * db[j] * row;
+      const double* row = net.data() + static_cast<Eigen::Index>(i * 4 + j) * d;
+      const double w = ba[i] * bb[j], wa = scale * da[i] * bb[j], wb = scale * ba[i] * db[j];
+      for (Eigen::Index k = 0; k < d; ++k) {
+        value[k] += w * row[k];
+        da_out[k] += wa * row[k];
+        db_out[k] += wb * row[k];
+      }
     }
-  return out;
 }
 
 }  // namespace
@@ -330,7 +336,10 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, std::span<const FacePoint
   out.positions.resize(count, d);
   out.du.resize(count, d);
   out.dv.resize(count, d);
-  Points x;
+  std::vector<char> regular(boost::num_vertices(g));
+  for (automata::StateId k = 0; k < regular.size(); ++k) regular[k] = is_regular(s.automaton, k) ? 1 : 0;
+  std::array<Points, 2> buffers;  // the descent's nets, in turn (a product never reads its own output)
+  Eigen::RowVectorXd pa(d), pb(d);
   for (Eigen::Index p = 0; p < count; ++p) {
     const FacePoint& q = at[static_cast<std::size_t>(p)];
     const auto f = static_cast<std::size_t>(entry[static_cast<std::size_t>(q.face)]);
@@ -341,25 +350,24 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, std::span<const FacePoint
     double a = st[static_cast<std::size_t>(turn)][0], b = st[static_cast<std::size_t>(turn)][1], scale = 1;
     automata::StateId state = s.automaton.initial[f].state;
     const Points* net = &s.nets[f];
-    Eigen::RowVectorXd pa = Eigen::RowVectorXd::Zero(d), pb = pa;
-    if (!is_regular(s.automaton, state) && a == 0 && b == 0) {
+    if (regular[state] == 0 && a == 0 && b == 0) {
       out.positions.row(p) = corner_point[state] * *net;
+      pa.setZero();
+      pb.setZero();
     } else {
-      while (!is_regular(s.automaton, state)) {  // down the quarters until a regular one holds the point
+      for (int k = 0; regular[state] == 0; k ^= 1) {  // down the quarters to a regular one
         const int iu = a >= 0.5 ? 1 : 0, iv = b >= 0.5 ? 1 : 0;
         auto edge = boost::out_edges(state, g).first;
         std::advance(edge, 2 * iu + iv);
-        x = g[*edge].matrix * *net;
+        Points& x = buffers[static_cast<std::size_t>(k)];
+        x.noalias() = g[*edge].matrix * *net;
         net = &x;
         state = boost::target(*edge, g);
         a = 2 * a - iu;
         b = 2 * b - iv;
         scale *= 2;
       }
-      const auto [value, da, db] = bicubic(*net, a, b);
-      out.positions.row(p) = value;
-      pa = scale * da;
-      pb = scale * db;
+      bicubic(*net, a, b, scale, out.positions.row(p).data(), pa.data(), pb.data());
     }
     // Back to the face's (u, v).
     switch (turn) {
