@@ -122,26 +122,36 @@ void cubic_basis(double t, std::array<double, 4>& b, std::array<double, 4>& d) {
 }
 
 /// Value and partials (times `scale`) of the bicubic B-spline patch of a 16-point net (rows by i then
-/// j) at (a, b), written into three rows of d doubles: no allocation, the loop of every point.
-void bicubic(const Points& net, double a, double b, double scale, double* value, double* da_out,
-             double* db_out) {
+/// j) at (a, b), written into three rows of D = net.cols() doubles: the loop of every point, so no
+/// allocation, separable sums (along j, then i) and, for D = 3, the sums in registers.
+template <int D>
+void bicubic_sums(const double* net, Eigen::Index d, const std::array<double, 4>& ba,
+                  const std::array<double, 4>& da, const std::array<double, 4>& bb,
+                  const std::array<double, 4>& db, double scale, double* value, double* du, double* dv) {
+  for (Eigen::Index k = 0; k < (D > 0 ? D : d); ++k) {
+    double v = 0, u_sum = 0, v_sum = 0;
+    for (std::size_t i = 0; i < 4; ++i) {
+      const double* row = net + static_cast<Eigen::Index>(i * 4) * d + k;
+      const double along_j = bb[0] * row[0] + bb[1] * row[d] + bb[2] * row[2 * d] + bb[3] * row[3 * d];
+      const double along_dj = db[0] * row[0] + db[1] * row[d] + db[2] * row[2 * d] + db[3] * row[3 * d];
+      v += ba[i] * along_j;
+      u_sum += da[i] * along_j;
+      v_sum += ba[i] * along_dj;
+    }
+    value[k] = v;
+    du[k] = scale * u_sum;
+    dv[k] = scale * v_sum;
+  }
+}
+
+void bicubic(const Points& net, double a, double b, double scale, double* value, double* du, double* dv) {
   std::array<double, 4> ba{}, da{}, bb{}, db{};
   cubic_basis(a, ba, da);
   cubic_basis(b, bb, db);
-  const Eigen::Index d = net.cols();
-  std::fill_n(value, d, 0.0);
-  std::fill_n(da_out, d, 0.0);
-  std::fill_n(db_out, d, 0.0);
-  for (std::size_t i = 0; i < 4; ++i)
-    for (std::size_t j = 0; j < 4; ++j) {
-      const double* row = net.data() + static_cast<Eigen::Index>(i * 4 + j) * d;
-      const double w = ba[i] * bb[j], wa = scale * da[i] * bb[j], wb = scale * ba[i] * db[j];
-      for (Eigen::Index k = 0; k < d; ++k) {
-        value[k] += w * row[k];
-        da_out[k] += wa * row[k];
-        db_out[k] += wb * row[k];
-      }
-    }
+  if (net.cols() == 3)
+    bicubic_sums<3>(net.data(), 3, ba, da, bb, db, scale, value, du, dv);
+  else
+    bicubic_sums<0>(net.data(), net.cols(), ba, da, bb, db, scale, value, du, dv);
 }
 
 }  // namespace
@@ -312,13 +322,13 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, std::span<const FacePoint
   const auto F = static_cast<int>(face_count(t));
   for (std::size_t p = 0; p < at.size(); ++p) {  // the points first: a bad one is named before any work
     const FacePoint& q = at[p];
+    const bool no_face = q.face < 0 || q.face >= F;
+    if (!no_face && q.u >= 0 && q.u <= 1 && q.v >= 0 && q.v <= 1) continue;
     const std::string where =
         "catmull-clark limit: point " + std::to_string(p) + " (face " + std::to_string(q.face) + ")";
-    if (q.face < 0 || q.face >= F)
-      throw InvalidInput(where + ": no such face; the mesh has " + std::to_string(F));
-    if (!(q.u >= 0 && q.u <= 1 && q.v >= 0 && q.v <= 1))
-      throw InvalidInput(where + ": (u, v) = (" + std::to_string(q.u) + ", " + std::to_string(q.v) +
-                         ") is outside [0, 1]²");
+    if (no_face) throw InvalidInput(where + ": no such face; the mesh has " + std::to_string(F));
+    throw InvalidInput(where + ": (u, v) = (" + std::to_string(q.u) + ", " + std::to_string(q.v) +
+                       ") is outside [0, 1]²");
   }
   // Only the faces asked for: the others may be boundary faces.
   std::vector<int> faces, entry(static_cast<std::size_t>(F), -1);
@@ -338,7 +348,15 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, std::span<const FacePoint
   out.dv.resize(count, d);
   std::vector<char> regular(boost::num_vertices(g));
   for (automata::StateId k = 0; k < regular.size(); ++k) regular[k] = is_regular(s.automaton, k) ? 1 : 0;
-  std::array<Points, 2> buffers;  // the descent's nets, in turn (a product never reads its own output)
+  // Per face, the nets met going down: the corner quarters' chain (level j: the corner quarter j levels
+  // down, a net of its extraordinary state) and, per level, the other quarters' nets. Built once per
+  // face and level, so a point costs one bicubic evaluation whatever its depth.
+  struct Descent {
+    std::vector<Points> chain;
+    std::vector<automata::StateId> state;
+    std::vector<std::array<Points, 4>> quarter;
+  };
+  std::vector<Descent> descents(faces.size());
   Eigen::RowVectorXd pa(d), pb(d);
   for (Eigen::Index p = 0; p < count; ++p) {
     const FacePoint& q = at[static_cast<std::size_t>(p)];
@@ -347,27 +365,41 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, std::span<const FacePoint
     const int turn = corner_index(t, q.face, s.corners[f][0]);
     const std::array<std::array<double, 2>, 4> st{
         {{q.u, q.v}, {q.v, 1 - q.u}, {1 - q.u, 1 - q.v}, {1 - q.v, q.u}}};
-    double a = st[static_cast<std::size_t>(turn)][0], b = st[static_cast<std::size_t>(turn)][1], scale = 1;
-    automata::StateId state = s.automaton.initial[f].state;
-    const Points* net = &s.nets[f];
-    if (regular[state] == 0 && a == 0 && b == 0) {
-      out.positions.row(p) = corner_point[state] * *net;
+    double a = st[static_cast<std::size_t>(turn)][0], b = st[static_cast<std::size_t>(turn)][1];
+    const automata::StateId first = s.automaton.initial[f].state;
+    if (regular[first] != 0) {
+      bicubic(s.nets[f], a, b, 1, out.positions.row(p).data(), pa.data(), pb.data());
+    } else if (a == 0 && b == 0) {
+      out.positions.row(p) = corner_point[first] * s.nets[f];
       pa.setZero();
       pb.setZero();
     } else {
-      for (int k = 0; regular[state] == 0; k ^= 1) {  // down the quarters to a regular one
-        const int iu = a >= 0.5 ? 1 : 0, iv = b >= 0.5 ? 1 : 0;
-        auto edge = boost::out_edges(state, g).first;
-        std::advance(edge, 2 * iu + iv);
-        Points& x = buffers[static_cast<std::size_t>(k)];
-        x.noalias() = g[*edge].matrix * *net;
-        net = &x;
-        state = boost::target(*edge, g);
-        a = 2 * a - iu;
-        b = 2 * b - iv;
-        scale *= 2;
+      Descent& down = descents[f];
+      if (down.chain.empty()) {
+        down.chain.push_back(s.nets[f]);
+        down.state.push_back(first);
       }
-      bicubic(*net, a, b, scale, out.positions.row(p).data(), pa.data(), pb.data());
+      std::size_t level = 0;
+      double scale = 2;
+      for (; std::max(a, b) < 0.5; ++level, a *= 2, b *= 2, scale *= 2)  // the corner's quarter
+        if (level + 1 == down.chain.size()) {
+          const auto edge = *boost::out_edges(down.state[level], g).first;
+          down.chain.push_back(g[edge].matrix * down.chain[level]);
+          down.state.push_back(boost::target(edge, g));
+          if (regular[down.state.back()] != 0)
+            throw std::logic_error("limit surface: the corner quarter of an extraordinary patch is regular");
+        }
+      if (down.quarter.size() <= level) down.quarter.resize(level + 1);
+      const int iu = a >= 0.5 ? 1 : 0, iv = b >= 0.5 ? 1 : 0, c = 2 * iu + iv;
+      Points& net = down.quarter[level][static_cast<std::size_t>(c)];
+      if (net.size() == 0) {
+        auto edge = boost::out_edges(down.state[level], g).first;
+        std::advance(edge, c);
+        if (regular[boost::target(*edge, g)] == 0)
+          throw std::logic_error("limit surface: a side quarter of an extraordinary patch is not regular");
+        net = g[*edge].matrix * down.chain[level];
+      }
+      bicubic(net, 2 * a - iu, 2 * b - iv, scale, out.positions.row(p).data(), pa.data(), pb.data());
     }
     // Back to the face's (u, v).
     switch (turn) {
