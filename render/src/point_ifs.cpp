@@ -185,7 +185,14 @@ Histogram chaos_game_histogram(std::span<const AffineMap> maps, const ChaosHisto
   result.samples = options.samples;
   const std::size_t pixels = options.width * options.height;
   const Grid grid(options.width, options.height, options.bounds);
-  const std::uint64_t chunks = (options.samples + kChaosChunk - 1) / kChaosChunk;
+  check_part(options.part, "chaos_game_histogram");
+  // This part's chunks: part.index, part.index + part.count, …
+  const Part part = options.part;
+  const std::uint64_t all_chunks = (options.samples + kChaosChunk - 1) / kChaosChunk;
+  const std::uint64_t chunks = all_chunks > part.index ? (all_chunks - part.index + part.count - 1) / part.count : 0;
+  std::uint64_t part_samples = 0;
+  for (std::uint64_t c = part.index; c < all_chunks; c += part.count)
+    part_samples += std::min(kChaosChunk, options.samples - c * kChaosChunk);
   const unsigned threads = detail::worker_count(options.threads, chunks);
 
   // The calling thread (the last worker) bins straight into the result; the others into private
@@ -202,14 +209,15 @@ Histogram chaos_game_histogram(std::span<const AffineMap> maps, const ChaosHisto
       [&](unsigned t) {
         if (t + 1 < threads) local[t].assign(pixels, 0);
       },
-      [&](unsigned t, std::uint64_t c) {
+      [&](unsigned t, std::uint64_t mine) {
+        const std::uint64_t c = part.index + mine * part.count;
         const std::uint64_t points = std::min(kChaosChunk, options.samples - c * kChaosChunk);
         std::uint32_t* counts = t + 1 < threads ? local[t].data() : result.counts.data();
         outside[t] += run_chunk(p, grid, options.seed, c, points, options.burn_in, counts);
         if (options.progress) {
           const std::lock_guard lock(progress_mutex);
           done += points;
-          options.progress(done, options.samples);
+          options.progress(done, part_samples);
         }
       });
   for (const auto& counts : local)

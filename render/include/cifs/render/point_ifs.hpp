@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cifs/ifs/affine.hpp"
+#include "cifs/render/part.hpp"
 
 namespace cifs::render {
 
@@ -47,8 +48,11 @@ struct ChaosHistogramOptions {
   /// map, which lies on the attractor, so 0 is exact; raise it only for a custom start. At most
   /// kChaosChunk (InvalidInput otherwise).
   std::uint64_t burn_in = 0;
-  /// Called after every chunk with (points done, samples), serialised under a mutex, from the
-  /// worker threads. Keep it cheap (a ProgressBar is).
+  /// Run only this part's chunks (chunk c belongs to part c mod count): the parts' histograms sum
+  /// to the single-process one (a distributed render).
+  Part part;
+  /// Called after every chunk with (points done, points of this part), serialised under a mutex,
+  /// from the worker threads. Keep it cheap (a ProgressBar is).
   std::function<void(std::uint64_t, std::uint64_t)> progress;
 };
 
