@@ -64,7 +64,8 @@ void combine_world(render::Share& share) {
   MPI_Op op = MPI_OP_NULL;
   MPI_Op_create(&reduce_shares, /*commute=*/1, &op);
   const std::size_t pixels = share.image.width * share.image.height;
-  std::vector<render::PixelShare> mine(std::min(pixels, kTilePixels)), all(share.part.index == 0 ? mine.size() : 0);
+  std::vector<render::PixelShare> mine(std::min(pixels, kTilePixels)),
+      all(share.part.index == 0 ? mine.size() : 0);
   for (std::size_t first = 0; first < pixels; first += kTilePixels) {
     const std::size_t n = std::min(kTilePixels, pixels - first);
     render::pack(share, first, {mine.data(), n});

@@ -528,8 +528,8 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
     // The chaos game's layers are divided by samples; every other layer by rows (a classic IFS to a
     // depth is drawn whole by every part and shared by rows too).
     render::Share share;
-    share.kind = points && e.evaluation.mode == Mode::chaos ? render::Share::Kind::points
-                                                             : render::Share::Kind::bands;
+    share.kind =
+        points && e.evaluation.mode == Mode::chaos ? render::Share::Kind::points : render::Share::Kind::bands;
     share.part = o.part;
     share.color = e.render.color;
     if (points && share.kind == render::Share::Kind::bands) render::composite(image, *points, e.render.color);

@@ -154,7 +154,8 @@ ChaosDensityResult chaos_density_layer(DensityLayer& layer, Image& image, const 
   // This part's chunks: part.index, part.index + part.count, …
   const std::uint64_t all_chunks = (options.samples + kDensityChunk - 1) / kDensityChunk;
   const Part part = options.part;
-  const std::uint64_t chunks = all_chunks > part.index ? (all_chunks - part.index + part.count - 1) / part.count : 0;
+  const std::uint64_t chunks =
+      all_chunks > part.index ? (all_chunks - part.index + part.count - 1) / part.count : 0;
   std::uint64_t part_samples = 0;
   for (std::uint64_t c = part.index; c < all_chunks; c += part.count)
     part_samples += std::min(kDensityChunk, options.samples - c * kDensityChunk);

@@ -31,8 +31,8 @@ void check_part(const Part& part, const char* who) {
 }
 
 DensityLayer empty_density_layer(std::size_t pixels) {
-  return {std::vector<double>(pixels, 0), std::vector<float>(pixels, kInf), std::vector<std::uint64_t>(pixels, 0),
-          std::vector<std::uint32_t>(pixels, kNoState)};
+  return {std::vector<double>(pixels, 0), std::vector<float>(pixels, kInf),
+          std::vector<std::uint64_t>(pixels, 0), std::vector<std::uint32_t>(pixels, kNoState)};
 }
 
 void composite(Image& image, const DensityLayer& layer, const Rgb& color) {
@@ -76,7 +76,7 @@ void pack(const Share& share, std::size_t first, std::span<PixelShare> out) {
     return;
   }
   const std::vector<float>*R = find(image, "R"), *G = find(image, "G"), *B = find(image, "B"),
-  *A = find(image, "A"), *Z = find(image, "Z");
+        *A = find(image, "A"), *Z = find(image, "Z");
   const std::vector<float>*Nx = find(image, "N.x"), *Ny = find(image, "N.y"), *Nz = find(image, "N.z");
   const std::vector<float>* density = find(image, "density");
   if (!R || !G || !B || !A || !Z || !image.state) throw InvalidInput("pack: the image is not a framebuffer");

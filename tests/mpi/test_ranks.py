@@ -32,8 +32,8 @@ EXPERIMENTS = {
                       "render": {"width": 170, "height": 130, "control_net": True}},
     "curve_depth": {"shape": {"polygon": "../shapes/clover.json", "degree": 3}, "evaluation": {"depth": 6},
                     "render": {"width": 140, "height": 100, "line_width": 3, "control_net": True}},
-    "subdivision": {"mesh": {"file": "../meshes/cube.obj", "scheme": "catmull-clark", "levels": 3},
-                    "render": {"width": 120, "height": 100, "control_net": True}},
+    "subdivision": {"mesh": "../meshes/cube.obj", "subdivision": {"scheme": "catmull-clark", "levels": 3},
+                    "camera": {"projection": "perspective"}, "render": {"width": 120, "height": 100, "control_net": True}},
 }
 GEOMETRY = {"surface_depth": "ply", "curve_depth": "svg", "subdivision": "obj"}
 
