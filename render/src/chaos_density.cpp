@@ -133,8 +133,6 @@ ChaosDensityResult chaos_density_layer(DensityLayer& layer, Image& image, const 
   check_part(options.part, "chaos_density");
   ifs::validate(automaton);
   check_nets(automaton, nets, options.rational);
-  if (options.samples >= (std::uint64_t{1} << 32))
-    throw InvalidInput("chaos_density: samples must be below 2^32 (uint32 counts)");
   if (options.depth < 0 || options.depth > 64)
     throw InvalidInput("chaos_density: depth " + std::to_string(options.depth) + " is outside 0 … 64");
   if (options.rational && options.depth == 0)
@@ -159,6 +157,13 @@ ChaosDensityResult chaos_density_layer(DensityLayer& layer, Image& image, const 
   std::uint64_t part_samples = 0;
   for (std::uint64_t c = part.index; c < all_chunks; c += part.count)
     part_samples += std::min(kDensityChunk, options.samples - c * kDensityChunk);
+  // Counts are uint32 per process: more samples are drawn by more processes.
+  if (part_samples >= (std::uint64_t{1} << 32))
+    throw InvalidInput(part.count == 1
+                           ? std::string("chaos_density: samples must be below 2^32 (uint32 counts)")
+                           : "chaos_density: part " + std::to_string(part.index) + " of " +
+                                 std::to_string(part.count) + " draws " + std::to_string(part_samples) +
+                                 " samples, at most 2^32 - 1 per part (uint32 counts)");
   const unsigned threads = detail::worker_count(options.threads, chunks);
   std::vector<Local> local(threads);
   std::mutex progress_mutex;

@@ -234,9 +234,6 @@ std::uint64_t run_chunk(const Prepared& p, const Grid& grid, std::uint64_t seed,
 Histogram chaos_game_histogram(std::span<const AffineMap> maps, const ChaosHistogramOptions& options) {
   const Prepared p = prepare(maps, "chaos_game_histogram");
   check_grid(options.width, options.height, options.bounds, "chaos_game_histogram");
-  if (options.samples >= (std::uint64_t{1} << 32))
-    throw InvalidInput(
-        "chaos_game_histogram: samples must be below 2^32 (uint32 counts); sum histograms instead");
   if (options.burn_in > kChaosChunk)  // dropped in every chunk
     throw InvalidInput("chaos_game_histogram: burn_in must be at most kChaosChunk = 2^20");
 
@@ -256,6 +253,14 @@ Histogram chaos_game_histogram(std::span<const AffineMap> maps, const ChaosHisto
   std::uint64_t part_samples = 0;
   for (std::uint64_t c = part.index; c < all_chunks; c += part.count)
     part_samples += std::min(kChaosChunk, options.samples - c * kChaosChunk);
+  // Counts are uint32: a part draws fewer than 2^32 points (more are drawn by more parts).
+  if (part_samples >= (std::uint64_t{1} << 32))
+    throw InvalidInput(part.count == 1
+                           ? std::string("chaos_game_histogram: samples must be below 2^32 (uint32 "
+                                         "counts); sum histograms instead")
+                           : "chaos_game_histogram: part " + std::to_string(part.index) + " of " +
+                                 std::to_string(part.count) + " draws " + std::to_string(part_samples) +
+                                 " points, at most 2^32 - 1 per part (uint32 counts)");
   const unsigned threads = detail::worker_count(options.threads, chunks);
 
   // The calling thread (the last worker) bins straight into the result; the others into private

@@ -20,7 +20,7 @@ namespace cifs::render {
 inline constexpr std::uint64_t kDensityChunk = std::uint64_t{1} << 16;
 
 struct ChaosDensityOptions {
-  /// Points drawn (each one independent, see chaos_density); below 2³² (uint32 counts).
+  /// Points drawn (each one independent, see chaos_density); below 2³² in each part (uint32 counts).
   std::uint64_t samples = 1'000'000;
   std::uint64_t seed = 1;
   /// Worker threads; 0 uses every core. The image does not depend on it.
@@ -71,7 +71,7 @@ struct ChaosDensityResult {
 /// are merged by integer sums and by (depth, sample index), so a seed gives the same image for any
 /// number of threads.
 /// Throws InvalidInput for an invalid automaton or nets (ifs::validate), a system that is not
-/// contractive (auto depth), samples ≥ 2³², depth outside 0 … 64, rational without depth, or an
+/// contractive (auto depth), ≥ 2³² samples in this part, depth outside 0 … 64, rational without depth, or an
 /// image of another size than the camera.
 ChaosDensityResult chaos_density(Image& image, const Camera& camera, const automata::Automaton& automaton,
                                  std::span<const Points> nets, const ChaosDensityOptions& options = {});

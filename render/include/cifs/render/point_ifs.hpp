@@ -36,7 +36,7 @@ Bounds estimate_bounds(std::span<const AffineMap> maps, double margin = 0.02, st
 inline constexpr std::uint64_t kChaosChunk = std::uint64_t{1} << 20;
 
 struct ChaosHistogramOptions {
-  /// Points binned (after burn-in); below 2³² so that no count can overflow.
+  /// Points binned (after burn-in); below 2³² in each part, so that no count can overflow.
   std::uint64_t samples = 10'000'000;
   std::uint64_t seed = 1;
   /// Worker threads; 0 uses std::thread::hardware_concurrency().
@@ -76,7 +76,7 @@ struct Histogram {
 /// 32 bits the coin), so the cost does not depend on the number of maps.
 /// Throws InvalidInput for no maps, non-finite coefficients, negative or all-zero probabilities, a
 /// map whose linear part is not a contraction (spectral norm ≥ 1), an empty image, bounds with
-/// x_max ≤ x_min or y_max ≤ y_min, or samples ≥ 2³².
+/// x_max ≤ x_min or y_max ≤ y_min, or ≥ 2³² points in this part.
 Histogram chaos_game_histogram(std::span<const AffineMap> maps, const ChaosHistogramOptions& options);
 
 /// The deterministic invariant measure at depth k (Hutchinson): every word of k maps carries the
