@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // cifs CLI — polygon meshes: `cifs subdivide` and `cifs info` on an OBJ/PLY mesh.
 #include <fstream>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numeric>
@@ -106,51 +107,62 @@ std::string mesh_info(const std::filesystem::path& path) {
   return out.dump(1) + "\n";
 }
 
+namespace {
+
+/// The frame of the commands that make a mesh from a mesh: the output is checked (not the input mesh, a
+/// folder, a device…) and its temporary made before the work; errors of the work name the input; the
+/// result goes out a chunk at a time (its text is never whole in memory), or to standard output as OBJ.
+std::string mesh_to_mesh(const std::filesystem::path& input, const std::filesystem::path& output_path,
+                         const std::function<Mesh(const Mesh&)>& make,
+                         const std::function<std::string(const Mesh&)>& summary) {
+  const std::string format = output_path.empty() ? "obj" : mesh_output_format(output_path);
+  std::optional<AtomicFile> output;
+  if (!output_path.empty()) output.emplace(output_path, OutputOptions{.inputs = {input}});
+  const Mesh mesh = io::read_mesh(input);
+  Mesh result;
+  try {
+    result = make(mesh);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(input.string() + ": " + e.what());
+  }
+  if (!output) return io::encode(result, format);
+  io::encode(result, format, *output);
+  output->commit();
+  return "wrote " + output_path.string() + ": " + summary(result) + "\n";
+}
+
+}  // namespace
+
 std::string subdivide(const SubdivideOptions& o) {
   const subdivision::MeshScheme scheme = subdivision::named_mesh_scheme(o.scheme);
   render::ProgressBar bar("subdivide", o.quiet);
   const subdivision::MeshOptions options{
       .boundary = boundary_rule(o.boundary),
       .progress = [&bar](std::uint64_t done, std::uint64_t total) { bar(done, total); }};
-  // The output is checked (not the input mesh, a folder, a device…) and its temporary made before the work.
-  const std::string format = o.output.empty() ? "obj" : mesh_output_format(o.output);
-  std::optional<AtomicFile> output;
-  if (!o.output.empty()) output.emplace(o.output, OutputOptions{.inputs = {o.mesh}});
-  const Mesh mesh = io::read_mesh(o.mesh);
-  Mesh refined;
-  try {
-    refined = o.factored ? subdivision::factored_subdivide(mesh, scheme, o.levels, options)
-                         : subdivision::subdivide(mesh, scheme, o.levels, options);
-  } catch (const InvalidInput& e) {
-    throw InvalidInput(o.mesh.string() + ": " + e.what());
-  }
-  if (!output) return io::encode(refined, format);
-  io::encode(refined, format, *output);  // a chunk at a time: the text is never whole in memory
-  output->commit();
-  return "wrote " + o.output.string() + ": " + std::to_string(refined.vertices.rows()) + " vertices, " +
-         std::to_string(face_count(refined)) + " faces (" + o.scheme + (o.factored ? " factored" : "") +
-         ", " + std::to_string(o.levels) + " levels)\n";
+  return mesh_to_mesh(
+      o.mesh, o.output,
+      [&](const Mesh& mesh) {
+        return o.factored ? subdivision::factored_subdivide(mesh, scheme, o.levels, options)
+                          : subdivision::subdivide(mesh, scheme, o.levels, options);
+      },
+      [&](const Mesh& refined) {
+        return std::to_string(refined.vertices.rows()) + " vertices, " + std::to_string(face_count(refined)) +
+               " faces (" + o.scheme + (o.factored ? " factored" : "") + ", " + std::to_string(o.levels) +
+               " levels)";
+      });
 }
 
 std::string limit(const LimitCommandOptions& o) {
   const subdivision::MeshScheme scheme = subdivision::named_mesh_scheme(o.scheme);
   const subdivision::LimitOptions options{.boundary = boundary_rule(o.boundary), .normals = o.normals};
-  const std::string format = o.output.empty() ? "obj" : mesh_output_format(o.output);
-  std::optional<AtomicFile> output;
-  if (!o.output.empty()) output.emplace(o.output, OutputOptions{.inputs = {o.mesh}});
-  const Mesh mesh = io::read_mesh(o.mesh);
-  Mesh surface;
-  try {
-    surface = subdivision::limit_mesh(mesh, scheme, o.levels, options);
-  } catch (const InvalidInput& e) {
-    throw InvalidInput(o.mesh.string() + ": " + e.what());
-  }
-  if (!output) return io::encode(surface, format);
-  io::encode(surface, format, *output);
-  output->commit();
-  return "wrote " + o.output.string() + ": " + std::to_string(surface.vertices.rows()) + " limit points" +
-         (o.normals ? " with normals, " : ", ") + std::to_string(face_count(surface)) + " faces (" +
-         o.scheme + ", " + std::to_string(o.levels) + " levels)\n";
+  return mesh_to_mesh(
+      o.mesh, o.output,
+      [&](const Mesh& mesh) { return subdivision::limit_mesh(mesh, scheme, o.levels, options); },
+      [&](const Mesh& surface) {
+        return std::to_string(surface.vertices.rows()) + " limit points" +
+               (o.normals ? " with normals, " : ", ") + std::to_string(face_count(surface)) + " faces (" +
+               o.scheme + ", " + std::to_string(o.levels) + " levels)";
+      });
 }
 
 }  // namespace cifs::cli

@@ -9,11 +9,18 @@
 //             apply(stencil_table(r), P, out) into a reused buffer / OSD's PrimvarRefiner level by
 //             level and its StencilTable (base → last level) UpdateValues into a reused buffer
 //   stencil_table_build  building those tables from the refined topology
+//   limit     limit positions and tangents of every level-4 vertex (limit stencils / Far Limit)
+//   surface   Catmull–Clark's limit surface at 1 M points (face, u, v), sorted by face, of a
+//             bipyramid refined 3 times (480 quads, valences 3, 4, 5): evaluate_limit_surface (the
+//             surface automaton) / Bfr::Surface (InitVertexSurface + PreparePatchPoints per face,
+//             Evaluate per point); both give positions and both partials
 //
 // Before timing, every library's result is checked against cifs's to 1e-12 (vertices matched by
 // position on the level-2 result); a mismatch aborts the run.
 
 #include <benchmark/benchmark.h>
+#include <opensubdiv/bfr/refinerSurfaceFactory.h>
+#include <opensubdiv/bfr/surface.h>
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/stencilTable.h>
 #include <opensubdiv/far/stencilTableFactory.h>
@@ -30,10 +37,13 @@
 #endif
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "cifs/subdivision/limit.hpp"
@@ -394,6 +404,124 @@ void osd_limit_case(benchmark::State& state, sd::MeshScheme scheme) {
   state.counters["vertices"] = static_cast<double>(n);
 }
 
+const Mesh& surface_mesh() {
+  static const Mesh m = sd::catmull_clark(cifs_test::bipyramid(), 3);
+  return m;
+}
+
+/// 1 M points (face, u, v), uniform over the faces, sorted by face (cifs::Random-free: a fixed LCG).
+const std::vector<sd::FacePoint>& surface_points() {
+  static const std::vector<sd::FacePoint> points = [] {
+    const auto faces = static_cast<int>(cifs::face_count(surface_mesh()));
+    std::vector<sd::FacePoint> out(1'000'000);
+    std::uint64_t x = 12345;
+    const auto next = [&x] {
+      x = x * 6364136223846793005ULL + 1442695040888963407ULL;
+      return static_cast<double>(x >> 11) * 0x1.0p-53;
+    };
+    for (auto& p : out) p = {.face = static_cast<int>(next() * faces), .u = next(), .v = next()};
+    std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.face < b.face; });
+    return out;
+  }();
+  return points;
+}
+
+void cifs_surface_case(benchmark::State& state, sd::MeshScheme) {
+  sd::SurfaceSample s;
+  for (auto _ : state) {
+    s = sd::evaluate_limit_surface(surface_mesh(), surface_points());
+    benchmark::DoNotOptimize(s.dv.data());
+  }
+  state.counters["ns_per_point"] =
+      benchmark::Counter(static_cast<double>(surface_points().size()),
+                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+/// Bfr's positions and partials at the points, (P, Du, Dv) each `points by 3`.
+std::array<Points, 3> bfr_surface(const OpenSubdiv::Bfr::RefinerSurfaceFactory<>& factory, const Mesh& m,
+                                  std::span<const sd::FacePoint> points) {
+  namespace Bfr = OpenSubdiv::Bfr;
+  const auto n = static_cast<Eigen::Index>(points.size());
+  std::array<Points, 3> out{Points(n, 3), Points(n, 3), Points(n, 3)};
+  Bfr::Surface<double> surface;
+  std::vector<double> patch;
+  const Bfr::Surface<double>::PointDescriptor desc(3);
+  int current = -1;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const sd::FacePoint& q = points[static_cast<std::size_t>(i)];
+    if (q.face != current) {
+      current = q.face;
+      if (!factory.InitVertexSurface(current, &surface)) std::abort();
+      patch.resize(static_cast<std::size_t>(surface.GetNumPatchPoints()) * 3);
+      surface.PreparePatchPoints(m.vertices.data(), desc, patch.data(), desc);
+    }
+    const double uv[2] = {q.u, q.v};
+    surface.Evaluate(uv, patch.data(), desc, out[0].row(i).data(), out[1].row(i).data(),
+                     out[2].row(i).data());
+  }
+  return out;
+}
+
+/// Bfr at its approximation level `state.range(0)` (2: its default, approximate near extraordinary
+/// vertices; 6: equal to the exact surface to 1e-12, see surface_cross_check).
+void osd_bfr_surface_case(benchmark::State& state) {
+  const Mesh& m = surface_mesh();
+  const auto refiner =
+      cifs_test::osd_refiner(m, Sdc::SCHEME_CATMARK, Sdc::Options::VTX_BOUNDARY_EDGE_ONLY, 0);
+  OpenSubdiv::Bfr::SurfaceFactory::Options options;
+  options.SetApproxLevelSmooth(static_cast<int>(state.range(0)));
+  const OpenSubdiv::Bfr::RefinerSurfaceFactory<> factory(*refiner, options);
+  std::array<Points, 3> out;
+  for (auto _ : state) {
+    out = bfr_surface(factory, m, surface_points());
+    benchmark::DoNotOptimize(out[2].data());
+  }
+  state.counters["ns_per_point"] =
+      benchmark::Counter(static_cast<double>(surface_points().size()),
+                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+/// Bfr against evaluate_limit_surface on the first 20 000 points: regular faces agree to 1e-12; on
+/// faces with an extraordinary corner Bfr approximates at its default level 2 (irregular patches
+/// refined that far, then approximated), and agrees to 1e-12 from level 6 on (checked).
+void surface_cross_check() {
+  const Mesh& m = surface_mesh();
+  const std::span<const sd::FacePoint> points(surface_points().data(), 20'000);
+  const auto refiner =
+      cifs_test::osd_refiner(m, Sdc::SCHEME_CATMARK, Sdc::Options::VTX_BOUNDARY_EDGE_ONLY, 0);
+  const sd::SurfaceSample ours = sd::evaluate_limit_surface(m, points);
+  for (const int level : {2, 6, 10}) {  // Bfr's default is 2
+    OpenSubdiv::Bfr::SurfaceFactory::Options options;
+    options.SetApproxLevelSmooth(level);
+    const OpenSubdiv::Bfr::RefinerSurfaceFactory<> factory(*refiner, options);
+    const auto theirs = bfr_surface(factory, m, points);
+    const cifs::MeshTopology t = cifs::build_topology(m);
+    double regular = 0, irregular = 0, irregular_partials = 0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      bool extraordinary = false;
+      for (const int c : cifs::face(t, static_cast<std::size_t>(points[i].face)))
+        extraordinary |= cifs::valence(t, static_cast<std::size_t>(c)) != 4;
+      const auto r = static_cast<Eigen::Index>(i);
+      const double position = (ours.positions.row(r) - theirs[0].row(r)).norm();
+      const double partials =
+          std::max((ours.du.row(r) - theirs[1].row(r)).norm(), (ours.dv.row(r) - theirs[2].row(r)).norm());
+      if (extraordinary) {
+        irregular = std::max(irregular, position);
+        irregular_partials = std::max(irregular_partials, partials);
+      } else {
+        regular = std::max({regular, position, partials});
+      }
+    }
+    std::printf(
+        "surface cross-check against Bfr (approximation level %d): regular faces %.3g (positions and "
+        "partials); "
+        "faces with an extraordinary corner %.3g (positions), %.3g (partials)\n",
+        level, regular, irregular, irregular_partials);
+    const double scale = m.vertices.cwiseAbs().maxCoeff();
+    if (!(regular <= 1e-12 * scale) || (level >= 6 && !(irregular <= 1e-12 * scale))) std::abort();
+  }
+}
+
 void openmesh_case(benchmark::State& state, sd::MeshScheme scheme) {
   const Mesh& m = input(scheme);
   Mesh out;
@@ -420,6 +548,14 @@ void cgal_case(benchmark::State& state, sd::MeshScheme scheme) {
 
 int main(int argc, char** argv) {
   cross_check();
+  surface_cross_check();
+  benchmark::RegisterBenchmark("catmull-clark/surface_1M/cifs", cifs_surface_case,
+                               sd::MeshScheme::catmull_clark)
+      ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("catmull-clark/surface_1M/osd_bfr_level", osd_bfr_surface_case)
+      ->Arg(2)
+      ->Arg(6)
+      ->Unit(benchmark::kMillisecond);
   for (const auto scheme : {sd::MeshScheme::catmull_clark, sd::MeshScheme::loop}) {
     const std::string s(sd::scheme_name(scheme));
     const auto reg = [&](const std::string& name, void (*f)(benchmark::State&, sd::MeshScheme)) {

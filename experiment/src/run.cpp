@@ -28,6 +28,7 @@
 #include "cifs/render/preview.hpp"
 #include "cifs/render/progress.hpp"
 #include "cifs/render/raster.hpp"
+#include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/mesh.hpp"
 #include "cifs/topology.hpp"
 
@@ -258,13 +259,60 @@ Scene bcifs_scene(const io::Experiment& e, const RunOptions& o, RunReport& repor
   return scene;
 }
 
-/// The subdivision surface of a polygon mesh; its control mesh is the mesh's edges.
-Scene mesh_scene(const io::MeshSource& m, const RunOptions& o) {
+/// A fractal Catmull–Clark surface (subdivision/limit.hpp, fractal_catmull_clark) at the resolution of
+/// `levels` steps: the surface automaton needs quads with at most one extraordinary corner, so the
+/// mesh is refined once or twice first and the attractor drawn at the remaining depth.
+Mesh fractal_mesh(const io::MeshSource& m, const io::Perturbation& perturbation, const RunOptions& o,
+                  RunReport& report) {
+  const subdivision::MeshOptions options{.boundary = m.boundary, .max_bytes = double(o.max_bytes)};
+  for (int first = 1; first <= 2; ++first) {
+    if (m.levels < first)
+      throw InvalidInput("subdivision.levels: " + m.path.filename().string() + ": a fractal surface needs " +
+                         std::to_string(first) + " level(s) or more here");
+    const Mesh refined = subdivision::subdivide(m.mesh, m.scheme, first, options);
+    subdivision::SurfaceAutomaton smooth;
+    try {
+      smooth = subdivision::catmull_clark_automaton(refined);
+    } catch (const InvalidInput& error) {
+      if (first == 1 &&
+          std::string_view(error.what()).find("refine one level first") != std::string_view::npos)
+        continue;
+      throw InvalidInput("perturbation: " + m.path.filename().string() + ": " + error.what());
+    }
+    subdivision::FractalSurface fractal;
+    try {
+      fractal = subdivision::fractal_catmull_clark(smooth, perturb_options(perturbation));
+    } catch (const InvalidInput& error) {
+      throw InvalidInput("perturbation: " + std::string(error.what()));
+    }
+    note_perturbation(fractal.perturbation, report);
+    ifs::MeshOptions mo;
+    mo.max_bytes = o.max_bytes;
+    return subdivision::surface_automaton_mesh(fractal.surface, m.levels - first, mo);
+  }
+  throw std::logic_error("fractal_mesh: two levels leave no face with two extraordinary corners");
+}
+
+/// The subdivision surface of a polygon mesh (its limit surface, or its fractal version); its
+/// control mesh is the mesh's edges.
+Scene mesh_scene(const io::MeshSource& m, const io::Experiment& e, const RunOptions& o, RunReport& report) {
   Scene scene;
   const subdivision::MeshOptions options{.boundary = m.boundary, .max_bytes = double(o.max_bytes)};
   try {
-    scene.mesh = subdivision::subdivide(m.mesh, m.scheme, m.levels, options);
+    if (e.perturbation) {
+      scene.mesh = fractal_mesh(m, *e.perturbation, o, report);
+    } else if (m.limit) {
+      const MeshTopology t = build_topology(m.mesh);
+      const bool closed =
+          std::none_of(t.boundary_vertex.begin(), t.boundary_vertex.end(), [](auto b) { return b; });
+      scene.mesh = subdivision::limit_mesh(
+          m.mesh, m.scheme, m.levels,
+          {.boundary = m.boundary, .normals = closed, .max_bytes = double(o.max_bytes)});
+    } else {
+      scene.mesh = subdivision::subdivide(m.mesh, m.scheme, m.levels, options);
+    }
   } catch (const InvalidInput& error) {
+    if (std::string_view(error.what()).starts_with("perturbation")) throw;
     throw InvalidInput("subdivision.levels: " + m.path.filename().string() + ": " + error.what());
   }
   scene.depth = m.levels;
@@ -333,7 +381,7 @@ Scene make_scene(const io::Experiment& e, const RunOptions& o, RunReport& report
   if (e.mesh) {
     kind = std::string(subdivision::scheme_name(e.mesh->scheme)) + " subdivision of " +
            e.mesh->path.filename().string();
-    return mesh_scene(*e.mesh, o);
+    return mesh_scene(*e.mesh, e, o, report);
   }
   kind = "classic IFS " + (e.ifs->name.empty() ? std::string("(maps)") : e.ifs->name);
   return classic_scene(*e.ifs);

@@ -9,6 +9,7 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/ifs/bcifs_curve.hpp"
+#include "cifs/ifs/junction.hpp"
 
 namespace cifs::ifs {
 
@@ -28,16 +29,31 @@ StateId source_cell(const Bcifs& sys, const Constraint& c) {
 }  // namespace
 
 Bcifs surface_bcifs(const automata::TensorAutomaton& automaton, const SurfaceBcifsOptions& options) {
-  const std::array<Bcifs, 2> curves{curve_bcifs(automaton.factors[0], false, {options.free_knot_lines}),
-                                    curve_bcifs(automaton.factors[1], false, {options.free_knot_lines})};
-  const auto& gu = curves[0].automaton.graph;
-  const auto& gv = curves[1].automaton.graph;
-  const auto& iu = curves[0].automaton.initial;
-  const auto& iv = curves[1].automaton.initial;
-  if (automaton.product.initial.size() != iu.size() * iv.size())
+  const Bcifs cu = curve_bcifs(automaton.factors[0], false, {options.free_knot_lines});
+  const Bcifs cv = curve_bcifs(automaton.factors[1], false, {options.free_knot_lines});
+  if (automaton.product.initial.size() != cu.automaton.initial.size() * cv.automaton.initial.size())
     throw InvalidInput("surface_bcifs: the tensor automaton has " +
                        std::to_string(automaton.product.initial.size()) + " patches, its factors " +
-                       std::to_string(iu.size()) + " × " + std::to_string(iv.size()));
+                       std::to_string(cu.automaton.initial.size()) + " × " +
+                       std::to_string(cv.automaton.initial.size()));
+  Bcifs sys = product_bcifs(cu, cv);
+  // The tensor automaton's entries (patch order, segments, knot intervals) on the product's cells.
+  for (std::size_t k = 0; k < sys.automaton.initial.size(); ++k) {
+    automata::Initial init = automaton.product.initial[k];
+    init.state = sys.automaton.initial[k].state;
+    sys.automaton.initial[k] = init;
+  }
+  return sys;
+}
+
+Bcifs product_bcifs(const Bcifs& u, const Bcifs& v, const ProductOptions& options) {
+  const std::array<const Bcifs*, 2> curves{&u, &v};
+  const auto& gu = u.automaton.graph;
+  const auto& gv = v.automaton.graph;
+  const auto& iu = u.automaton.initial;
+  const auto& iv = v.automaton.initial;
+  validate(u);
+  validate(v);
 
   // Cells: pairs closed under children and boundaries, from the patches.
   Bcifs sys;
@@ -53,7 +69,7 @@ Bcifs surface_bcifs(const automata::TensorAutomaton& automaton, const SurfaceBci
               gu[p[0]].size * gv[p[1]].size, {}, false, "(" + gu[p[0]].name + "," + gv[p[1]].name + ")"},
           g);
       pair.push_back(p);
-      sys.dimension.push_back(curves[0].dimension[p[0]] + curves[1].dimension[p[1]]);
+      sys.dimension.push_back(curves[0]->dimension[p[0]] + curves[1]->dimension[p[1]]);
       todo.push_back(it->second);
     }
     return it->second;
@@ -61,15 +77,14 @@ Bcifs surface_bcifs(const automata::TensorAutomaton& automaton, const SurfaceBci
   // Boundaries of each factor cell (indices into the curve system's boundaries).
   std::array<std::vector<std::vector<int>>, 2> factor_boundaries;
   for (int dir = 0; dir < 2; ++dir) {
-    factor_boundaries[dir].resize(boost::num_vertices(curves[dir].automaton.graph));
-    for (std::size_t b = 0; b < curves[dir].boundaries.size(); ++b)
-      factor_boundaries[dir][curves[dir].boundaries[b].cell].push_back(static_cast<int>(b));
+    factor_boundaries[dir].resize(boost::num_vertices(curves[dir]->automaton.graph));
+    for (std::size_t b = 0; b < curves[dir]->boundaries.size(); ++b)
+      factor_boundaries[dir][curves[dir]->boundaries[b].cell].push_back(static_cast<int>(b));
   }
   for (std::size_t a = 0; a < iu.size(); ++a)
     for (std::size_t b = 0; b < iv.size(); ++b) {
-      automata::Initial init = automaton.product.initial[a * iv.size() + b];
-      init.state = cell_of({iu[a].state, iv[b].state});
-      sys.automaton.initial.push_back(init);
+      sys.automaton.initial.push_back(automata::Initial{static_cast<int>(a * iv.size() + b),
+                                                        cell_of({iu[a].state, iv[b].state}), 0.0, 0.0, -1});
     }
   const auto children = [](const automata::Graph& graph, StateId s) {
     std::vector<std::pair<StateId, automata::TransitionId>> out;
@@ -82,14 +97,14 @@ Bcifs surface_bcifs(const automata::TensorAutomaton& automaton, const SurfaceBci
     todo.pop_front();
     for (const auto& [cx, ex] : children(gu, x))
       for (const auto& [cy, ey] : children(gv, y)) cell_of({cx, cy});
-    for (const int b : factor_boundaries[0][x]) cell_of({curves[0].boundaries[b].boundary, y});
-    for (const int b : factor_boundaries[1][y]) cell_of({x, curves[1].boundaries[b].boundary});
+    for (const int b : factor_boundaries[0][x]) cell_of({curves[0]->boundaries[b].boundary, y});
+    for (const int b : factor_boundaries[1][y]) cell_of({x, curves[1]->boundaries[b].boundary});
   }
   const std::size_t cells = pair.size();
 
   // Transitions: kron of the factors' out-edges, u-major; free when both factors are.
   const auto is_free = [&](int dir, automata::StateId s, int c) {
-    const auto& f = curves[dir].free;
+    const auto& f = curves[dir]->free;
     return std::find(f.begin(), f.end(), TransitionRef{s, c}) != f.end();
   };
   for (StateId s = 0; s < cells; ++s) {
@@ -101,7 +116,8 @@ Bcifs surface_bcifs(const automata::TensorAutomaton& automaton, const SurfaceBci
         const auto& tv = gv[cv[j].second];
         boost::add_edge(s, ids.at({cu[i].first, cv[j].first}),
                         automata::Transition{tu.label + v_label(tv.label), kron(tu.matrix, tv.matrix)}, g);
-        if (is_free(0, x, static_cast<int>(i)) && is_free(1, y, static_cast<int>(j)))
+        const bool fu = is_free(0, x, static_cast<int>(i)), fv = is_free(1, y, static_cast<int>(j));
+        if (options.free_when_either ? fu || fv : fu && fv)
           sys.free.push_back(TransitionRef{s, static_cast<int>(i * cv.size() + j)});
       }
   }
@@ -125,17 +141,17 @@ Bcifs surface_bcifs(const automata::TensorAutomaton& automaton, const SurfaceBci
     std::iota(all_u.begin(), all_u.end(), 0);
     std::iota(all_v.begin(), all_v.end(), 0);
     for (const int b : factor_boundaries[0][x]) {
-      const auto& op = curves[0].boundaries[b];
+      const auto& op = curves[0]->boundaries[b];
       lifted[0][{b, y}] = add("u" + op.name, ids.at({op.boundary, y}), op.rows, all_v);
     }
     for (const int b : factor_boundaries[1][y]) {
-      const auto& op = curves[1].boundaries[b];
+      const auto& op = curves[1]->boundaries[b];
       lifted[1][{b, x}] = add("v" + op.name, ids.at({x, op.boundary}), all_u, op.rows);
     }
     for (const int bu : factor_boundaries[0][x])
       for (const int bv : factor_boundaries[1][y]) {
-        const auto& ou = curves[0].boundaries[bu];
-        const auto& ov = curves[1].boundaries[bv];
+        const auto& ou = curves[0]->boundaries[bu];
+        const auto& ov = curves[1]->boundaries[bv];
         add("u" + ou.name + ".v" + ov.name, ids.at({ou.boundary, ov.boundary}), ou.rows, ov.rows);
       }
   }
@@ -144,8 +160,8 @@ Bcifs surface_bcifs(const automata::TensorAutomaton& automaton, const SurfaceBci
   // F_0⋯F_k of a curve constraint holds one transition; the other factor's cell is y before it
   // (factors to its right act first) and y's child after it.
   for (int dir = 0; dir < 2; ++dir) {
-    const Bcifs& curve = curves[dir];
-    const auto& other = curves[1 - dir].automaton.graph;
+    const Bcifs& curve = *curves[dir];
+    const auto& other = curves[1 - dir]->automaton.graph;
     std::vector<std::vector<std::size_t>> on_cell(boost::num_vertices(curve.automaton.graph));
     for (std::size_t c = 0; c < curve.constraints.size(); ++c)
       on_cell[source_cell(curve, curve.constraints[c])].push_back(c);

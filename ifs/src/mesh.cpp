@@ -34,35 +34,42 @@ struct Grid {
   std::size_t vertices = 0, quads = 0;
 };
 
+/// Refuses (before any work) a mesh above the byte limit or beyond int indices; `what` says what
+/// the depth is applied to.
+void check_size(std::size_t vertices, std::size_t quads, std::size_t cols, int depth, const std::string& what,
+                const MeshOptions& options, const std::string& who) {
+  const std::size_t bytes = mesh_bytes(vertices, cols, quads);
+  if (bytes <= options.max_bytes && vertices <= static_cast<std::size_t>(INT_MAX)) return;
+  std::ostringstream msg;
+  msg << who << ": depth " << depth << " on " << what << " gives ";
+  if (vertices == kSaturated)
+    msg << "more vertices than fit in size_t";
+  else
+    msg << vertices << " vertices of " << cols << " coordinates and " << quads << " quads ("
+        << static_cast<double>(bytes) / static_cast<double>(std::size_t{1} << 30) << " GiB)";
+  if (vertices > static_cast<std::size_t>(INT_MAX))
+    msg << ", more vertices than int indices address";
+  else
+    msg << ", more than the limit of "
+        << static_cast<double>(options.max_bytes) / static_cast<double>(std::size_t{1} << 30)
+        << " GiB (MeshOptions::max_bytes)";
+  msg << "; lower the depth";
+  throw InvalidInput(msg.str());
+}
+
+std::size_t cells(int patches, int depth) {
+  return depth > 30 ? kSaturated : mul_sat(static_cast<std::size_t>(patches), std::size_t{1} << depth);
+}
+
 /// Checks the depth and the sizes, and refuses a mesh above the byte limit before any work.
 Grid make_grid(int A, int B, int depth, std::size_t cols, const MeshOptions& options,
                const std::string& who) {
   if (depth < 0) throw InvalidInput(who + ": depth is " + std::to_string(depth) + ", must be ≥ 0");
-  const auto cells = [&](int patches) {
-    return depth > 30 ? kSaturated : mul_sat(static_cast<std::size_t>(patches), std::size_t{1} << depth);
-  };
-  const std::size_t cu = cells(A), cv = cells(B);
+  const std::size_t cu = cells(A, depth), cv = cells(B, depth);
   const std::size_t vertices = mul_sat(cu + (cu < kSaturated), cv + (cv < kSaturated));
-  const std::size_t quads = mul_sat(cu, cv);
-  const std::size_t bytes = mesh_bytes(vertices, cols, quads);
-  if (bytes > options.max_bytes || vertices > static_cast<std::size_t>(INT_MAX)) {
-    std::ostringstream msg;
-    msg << who << ": depth " << depth << " on " << A << " by " << B << " patches gives ";
-    if (vertices == kSaturated)
-      msg << "more vertices than fit in size_t";
-    else
-      msg << vertices << " vertices of " << cols << " coordinates and " << quads << " quads ("
-          << static_cast<double>(bytes) / static_cast<double>(std::size_t{1} << 30) << " GiB)";
-    if (vertices > static_cast<std::size_t>(INT_MAX))
-      msg << ", more vertices than int indices address";
-    else
-      msg << ", more than the limit of "
-          << static_cast<double>(options.max_bytes) / static_cast<double>(std::size_t{1} << 30)
-          << " GiB (MeshOptions::max_bytes)";
-    msg << "; lower the depth";
-    throw InvalidInput(msg.str());
-  }
-  return Grid{A, B, depth, static_cast<int>(cu), static_cast<int>(cv), 1 << depth, vertices, quads};
+  check_size(vertices, mul_sat(cu, cv), cols, depth,
+             std::to_string(A) + " by " + std::to_string(B) + " patches", options, who);
+  return Grid{A, B, depth, static_cast<int>(cu), static_cast<int>(cv), 1 << depth, vertices, mul_sat(cu, cv)};
 }
 
 /// Vertices allocated (not set), quads in cell order (I, J) → I·cv + J, corners counter-clockwise in
@@ -253,17 +260,142 @@ QuadMesh surface_mesh(const automata::TensorAutomaton& t, std::span<const Points
   return mesh;
 }
 
-QuadMesh quad_mesh(const Automaton& automaton, std::span<const Points> nets,
-                   std::span<const std::array<int, 2>> patches, int depth, const MeshOptions& options) {
+namespace {
+
+/// Where the generic route writes a patch: node (I, J) of the patch is vertex `vertex + I·row + J`,
+/// cell (I, J) quad `quad + I·quad_row + J`; the patch's last node row (column) is its own when
+/// its cells end at `close_u` (`close_v`), otherwise the next patch's first.
+struct Placement {
+  std::size_t vertex = 0, quad = 0;
+  int row = 0, quad_row = 0, close_u = 0, close_v = 0;
+};
+
+/// Stencil tables of the generic route: per state, the (2^L + 1)² node functionals (row
+/// i·(2^L + 1) + j for node (i, j) of the state's square, owned by the child min(i / h, 1),
+/// min(j / h, 1), h = 2^(L−1), like the global nodes by their leaves; level 0 holds the corner
+/// functionals) and the states of its 4^L leaves.
+struct NodeTables {
+  using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  int depth = 0;
+  std::vector<RowMatrix> table;
+  std::vector<std::vector<std::uint32_t>> leaf;
+};
+
+/// Checks that every reachable state has four children.
+std::vector<StateId> surface_states(const Automaton& automaton, std::span<const Points> nets,
+                                    const std::string& who) {
   validate(automaton);
-  detail::check_nets(automaton, nets, "quad_mesh");
+  detail::check_nets(automaton, nets, who);
   const Graph& g = automaton.graph;
-  const auto states = reachable_states(automaton);
+  auto states = reachable_states(automaton);
   for (const StateId s : states)
     if (boost::out_degree(s, g) != 4)
-      throw InvalidInput("quad_mesh: " + detail::state_label(automaton, s) + " has " +
+      throw InvalidInput(who + ": " + detail::state_label(automaton, s) + " has " +
                          std::to_string(boost::out_degree(s, g)) +
                          " children, a surface state needs 4 (GH, GB, DH, DB)");
+  return states;
+}
+
+/// The tables of depth L ≤ `max_depth`, lowered until they (and, while building, the previous
+/// level) stay below half of an output of `output_doubles`.
+NodeTables node_tables(const Automaton& automaton, std::span<const StateId> states, int max_depth,
+                       std::size_t output_doubles) {
+  const Graph& g = automaton.graph;
+  const auto table_size = [&](int L) {
+    const std::size_t m = (std::size_t{1} << L) + 1;
+    std::size_t total = 0;
+    for (const StateId s : states) total += m * m * static_cast<std::size_t>(g[s].size);
+    return total;
+  };
+  int L = std::max(max_depth, 0);
+  while (L > 0 && table_size(L) + table_size(L - 1) > output_doubles / 2) --L;
+  const auto n = boost::num_vertices(g);
+  NodeTables out{.depth = L,
+                 .table = std::vector<NodeTables::RowMatrix>(n),
+                 .leaf = std::vector<std::vector<std::uint32_t>>(n)};
+  auto& table = out.table;
+  auto& leaf = out.leaf;
+  std::vector<NodeTables::RowMatrix> next(n);
+  std::vector<std::vector<std::uint32_t>> next_leaf(n);
+  {
+    std::array<std::vector<Eigen::RowVectorXd>, 4> corner;
+    for (int k = 0; k < 4; ++k)
+      corner[static_cast<std::size_t>(k)] = repeated_child_functionals(automaton, k);
+    for (const StateId s : states) {
+      table[s].resize(4, g[s].size);
+      for (std::size_t k = 0; k < 4; ++k) table[s].row(static_cast<Eigen::Index>(k)) = corner[k][s];
+      leaf[s] = {static_cast<std::uint32_t>(s)};
+    }
+  }
+  for (int l = 1; l <= L; ++l) {
+    const int h = 1 << (l - 1), m = 2 * h + 1;
+    for (const StateId s : states) {
+      NodeTables::RowMatrix& T = next[s];
+      T.resize(Eigen::Index{m} * m, g[s].size);
+      std::vector<std::uint32_t>& S = next_leaf[s];
+      S.assign(4 * static_cast<std::size_t>(h) * static_cast<std::size_t>(h), 0);
+      int c = 0;
+      for (auto [e, end] = boost::out_edges(s, g); e != end; ++e, ++c) {
+        const StateId child = boost::target(*e, g);
+        const NodeTables::RowMatrix P =
+            table[child] * g[*e].matrix;  // (h+1)² functionals on the parent's net
+        const int iu = c / 2, iv = c % 2;
+        for (int i = 0; i <= h; ++i)
+          for (int j = 0; j <= h; ++j) {
+            const int I = iu * h + i, J = iv * h + j;
+            if (std::min(I / h, 1) == iu && std::min(J / h, 1) == iv)
+              T.row(I * m + J) = P.row(i * (h + 1) + j);
+            if (i < h && j < h)
+              S[static_cast<std::size_t>(I) * 2 * static_cast<std::size_t>(h) + static_cast<std::size_t>(J)] =
+                  leaf[child][static_cast<std::size_t>(i) * static_cast<std::size_t>(h) +
+                              static_cast<std::size_t>(j)];
+          }
+      }
+    }
+    std::swap(table, next);
+    std::swap(leaf, next_leaf);
+  }
+  return out;
+}
+
+/// Walks to depth K − L; each node writes the nodes it owns and the states of its 4^L leaves,
+/// where `place(i)` puts initial entry i.
+template <class Place>
+void emit_patches(const Automaton& automaton, std::span<const Points> nets, int depth,
+                  const NodeTables& tables, QuadMesh& mesh, const Place& place) {
+  const int L = tables.depth, side_L = 1 << L, m = side_L + 1;
+  const Eigen::Index C = mesh.vertices.cols();
+  detail::depth_first(
+      automaton, nets, depth - L,
+      [&](std::size_t i, StateId s, const Points& net, int d, std::span<const int> word) {
+        if (d < depth - L) return true;
+        const Placement p = place(i);
+        int I0 = 0, J0 = 0;
+        for (int k = 0; k < d; ++k) {
+          I0 += (word[static_cast<std::size_t>(k)] / 2) << (depth - 1 - k);
+          J0 += (word[static_cast<std::size_t>(k)] % 2) << (depth - 1 - k);
+        }
+        const int rows = side_L + (I0 + side_L == p.close_u ? 1 : 0);
+        const int cols = side_L + (J0 + side_L == p.close_v ? 1 : 0);
+        const Eigen::Index size = automaton.graph[s].size;
+        for (int r = 0; r < rows; ++r)
+          detail::emit(
+              tables.table[s].data() + static_cast<Eigen::Index>(r) * m * size, cols, size, net,
+              mesh.vertices.data() +
+                  (static_cast<Eigen::Index>(p.vertex) + static_cast<Eigen::Index>(I0 + r) * p.row + J0) * C);
+        for (int r = 0; r < side_L; ++r)
+          std::copy_n(tables.leaf[s].begin() + static_cast<std::ptrdiff_t>(r) * side_L, side_L,
+                      mesh.quad_state.begin() + static_cast<std::ptrdiff_t>(p.quad) +
+                          static_cast<std::ptrdiff_t>(I0 + r) * p.quad_row + J0);
+        return false;
+      });
+}
+
+}  // namespace
+
+QuadMesh quad_mesh(const Automaton& automaton, std::span<const Points> nets,
+                   std::span<const std::array<int, 2>> patches, int depth, const MeshOptions& options) {
+  const auto states = surface_states(automaton, nets, "quad_mesh");
   if (patches.size() != automaton.initial.size())
     throw InvalidInput("quad_mesh: " + std::to_string(patches.size()) + " patches for " +
                        std::to_string(automaton.initial.size()) + " initial entries");
@@ -289,88 +421,59 @@ QuadMesh quad_mesh(const Automaton& automaton, std::span<const Points> nets,
                        std::to_string(A) + " by " + std::to_string(B) + " grid");
   const Eigen::Index C = nets[0].cols();
   const Grid grid = make_grid(A, B, depth, static_cast<std::size_t>(C), options, "quad_mesh");
-
-  // Table depth L: the tables (and, while building, the previous level) below half of the output.
-  const auto table_size = [&](int L) {
-    const std::size_t m = (std::size_t{1} << L) + 1;
-    std::size_t total = 0;
-    for (const StateId s : states) total += m * m * static_cast<std::size_t>(g[s].size);
-    return total;
-  };
-  int L = std::clamp(options.max_table_depth, 0, depth);
-  while (L > 0 && table_size(L) + table_size(L - 1) > grid.vertices * static_cast<std::size_t>(C) / 2) --L;
-
-  // Stencil tables T_s: (2^l + 1)² functionals, row i·(2^l + 1) + j for node (i, j) of the state's
-  // square, each owned by the child min(i / h, 1), min(j / h, 1) (h = 2^(l−1)) like the global
-  // nodes by their leaves; level 0 holds the corner functionals. S_s: the 4^l leaf states.
-  using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  const auto n = boost::num_vertices(g);
-  std::vector<RowMatrix> table(n), next(n);
-  std::vector<std::vector<std::uint32_t>> leaf(n), next_leaf(n);
-  {
-    std::array<std::vector<Eigen::RowVectorXd>, 4> corner;
-    for (int k = 0; k < 4; ++k)
-      corner[static_cast<std::size_t>(k)] = repeated_child_functionals(automaton, k);
-    for (const StateId s : states) {
-      table[s].resize(4, g[s].size);
-      for (std::size_t k = 0; k < 4; ++k) table[s].row(static_cast<Eigen::Index>(k)) = corner[k][s];
-      leaf[s] = {static_cast<std::uint32_t>(s)};
-    }
-  }
-  for (int l = 1; l <= L; ++l) {
-    const int h = 1 << (l - 1), m = 2 * h + 1;
-    for (const StateId s : states) {
-      RowMatrix& T = next[s];
-      T.resize(Eigen::Index{m} * m, g[s].size);
-      std::vector<std::uint32_t>& S = next_leaf[s];
-      S.assign(4 * static_cast<std::size_t>(h) * static_cast<std::size_t>(h), 0);
-      int c = 0;
-      for (auto [e, end] = boost::out_edges(s, g); e != end; ++e, ++c) {
-        const StateId child = boost::target(*e, g);
-        const RowMatrix P = table[child] * g[*e].matrix;  // (h+1)² functionals on the parent's net
-        const int iu = c / 2, iv = c % 2;
-        for (int i = 0; i <= h; ++i)
-          for (int j = 0; j <= h; ++j) {
-            const int I = iu * h + i, J = iv * h + j;
-            if (std::min(I / h, 1) == iu && std::min(J / h, 1) == iv)
-              T.row(I * m + J) = P.row(i * (h + 1) + j);
-            if (i < h && j < h)
-              S[static_cast<std::size_t>(I) * 2 * static_cast<std::size_t>(h) + static_cast<std::size_t>(J)] =
-                  leaf[child][static_cast<std::size_t>(i) * static_cast<std::size_t>(h) +
-                              static_cast<std::size_t>(j)];
-          }
-      }
-    }
-    std::swap(table, next);
-    std::swap(leaf, next_leaf);
-  }
-  next.clear();
-  next_leaf.clear();
-
-  // Walk to depth K − L; each node writes the nodes it owns and the states of its 4^L leaves.
+  const NodeTables tables = node_tables(automaton, states, std::min(options.max_table_depth, depth),
+                                        grid.vertices * static_cast<std::size_t>(C));
   QuadMesh mesh = allocate(grid, C);
   assign_huge(mesh.quad_state, grid.quads, std::uint32_t{0});  // written block by block, out of order
-  const int side_L = 1 << L, m = side_L + 1, row = grid.cv + 1;
-  detail::depth_first(
-      automaton, nets, depth - L,
-      [&](std::size_t i, StateId s, const Points& net, int d, std::span<const int> word) {
-        if (d < depth - L) return true;
-        int I0 = patches[i][0] * grid.side, J0 = patches[i][1] * grid.side;
-        for (int k = 0; k < d; ++k) {
-          I0 += (word[static_cast<std::size_t>(k)] / 2) << (depth - 1 - k);
-          J0 += (word[static_cast<std::size_t>(k)] % 2) << (depth - 1 - k);
-        }
-        const int rows = side_L + (I0 + side_L == grid.cu ? 1 : 0);
-        const int cols = side_L + (J0 + side_L == grid.cv ? 1 : 0);
-        const Eigen::Index size = g[s].size;
-        for (int r = 0; r < rows; ++r)
-          detail::emit(table[s].data() + static_cast<Eigen::Index>(r) * m * size, cols, size, net,
-                       mesh.vertices.data() + (static_cast<Eigen::Index>(I0 + r) * row + J0) * C);
-        for (int r = 0; r < side_L; ++r)
-          std::copy_n(leaf[s].begin() + static_cast<std::ptrdiff_t>(r) * side_L, side_L,
-                      mesh.quad_state.begin() + static_cast<std::ptrdiff_t>(I0 + r) * grid.cv + J0);
-        return false;
-      });
+  const int row = grid.cv + 1;
+  emit_patches(automaton, nets, depth, tables, mesh, [&](std::size_t i) {
+    const int I = patches[i][0] * grid.side, J = patches[i][1] * grid.side;
+    return Placement{
+        .vertex = static_cast<std::size_t>(I) * static_cast<std::size_t>(row) + static_cast<std::size_t>(J),
+        .quad = static_cast<std::size_t>(I) * static_cast<std::size_t>(grid.cv) + static_cast<std::size_t>(J),
+        .row = row,
+        .quad_row = grid.cv,
+        .close_u = grid.cu - I,
+        .close_v = grid.cv - J};
+  });
+  finish(mesh, options);
+  return mesh;
+}
+
+QuadMesh patch_meshes(const Automaton& automaton, std::span<const Points> nets, int depth,
+                      const MeshOptions& options) {
+  const auto states = surface_states(automaton, nets, "patch_meshes");
+  if (depth < 0) throw InvalidInput("patch_meshes: depth is " + std::to_string(depth) + ", must be ≥ 0");
+  const auto F = static_cast<int>(automaton.initial.size());
+  const std::size_t side = cells(1, depth),
+                    nodes = side < kSaturated ? mul_sat(side + 1, side + 1) : kSaturated;
+  const Eigen::Index C = nets.empty() ? 0 : nets[0].cols();
+  check_size(mul_sat(nodes, static_cast<std::size_t>(F)),
+             mul_sat(mul_sat(side, side), static_cast<std::size_t>(F)), static_cast<std::size_t>(C), depth,
+             std::to_string(F) + " patches", options, "patch_meshes");
+  const int s = 1 << depth, block = (s + 1) * (s + 1);
+  QuadMesh mesh;
+  mesh.vertices.resize(static_cast<Eigen::Index>(F) * block, C);
+  advise_huge_pages(mesh.vertices.data(), static_cast<std::size_t>(mesh.vertices.size()) * sizeof(double));
+  reserve_huge(mesh.quads,
+               static_cast<std::size_t>(F) * static_cast<std::size_t>(s) * static_cast<std::size_t>(s));
+  for (int i = 0; i < F; ++i)
+    for (int I = 0; I < s; ++I)
+      for (int J = 0; J < s; ++J) {
+        const int v = i * block + I * (s + 1) + J;
+        mesh.quads.push_back({v, v + s + 1, v + s + 2, v + 1});
+      }
+  assign_huge(mesh.quad_state, mesh.quads.size(), std::uint32_t{0});
+  const NodeTables tables = node_tables(automaton, states, std::min(options.max_table_depth, depth),
+                                        static_cast<std::size_t>(mesh.vertices.size()));
+  emit_patches(automaton, nets, depth, tables, mesh, [&](std::size_t i) {
+    return Placement{.vertex = i * static_cast<std::size_t>(block),
+                     .quad = i * static_cast<std::size_t>(s) * static_cast<std::size_t>(s),
+                     .row = s + 1,
+                     .quad_row = s,
+                     .close_u = s,
+                     .close_v = s};
+  });
   finish(mesh, options);
   return mesh;
 }

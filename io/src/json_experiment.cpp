@@ -114,7 +114,7 @@ MeshSource read_mesh_source(const Reader& r, const json& doc, const std::filesys
     r.fail("mesh", e.what());
   }
   const json& v = r.object(r.member(doc, "", "subdivision"), "subdivision");
-  r.only(v, "subdivision", {"scheme", "levels", "boundary"});
+  r.only(v, "subdivision", {"scheme", "levels", "boundary", "limit"});
   const std::string scheme = r.string(r.member(v, "subdivision", "scheme"), "subdivision.scheme");
   try {
     m.scheme = subdivision::named_mesh_scheme(scheme);
@@ -136,6 +136,13 @@ MeshSource read_mesh_source(const Reader& r, const json& doc, const std::filesys
       m.boundary = subdivision::BoundaryRule::edge_and_corner;
     else if (b != "edge")
       r.fail("subdivision.boundary", "expected \"edge\" (boundary corners smoothed) or \"corner\" (kept)");
+  }
+  if (v.contains("limit")) {
+    m.limit = r.boolean(v["limit"], "subdivision.limit");
+    if (m.limit && m.scheme != subdivision::MeshScheme::catmull_clark &&
+        m.scheme != subdivision::MeshScheme::loop)
+      r.fail("subdivision.limit", std::string("limit surfaces are built for catmull-clark and loop, not ") +
+                                      std::string(subdivision::scheme_name(m.scheme)));
   }
   return m;
 }
@@ -299,9 +306,16 @@ Experiment parse_experiment(std::string_view text, std::string_view where,
   if (doc.contains("mesh")) {
     e.mesh = read_mesh_source(r, doc, base);
     e.inputs.push_back(e.mesh->path);
-    // A subdivision surface is refined, not evaluated: no free coefficients, no attractor.
-    if (doc.contains("perturbation"))
-      r.fail("perturbation", "a subdivision surface has no coefficients to perturb");
+    // A subdivision surface is refined, not evaluated; Catmull–Clark's can be perturbed as a BC-IFS.
+    if (doc.contains("perturbation")) {
+      if (e.mesh->scheme != subdivision::MeshScheme::catmull_clark)
+        r.fail("perturbation", "fractal subdivision surfaces are built for catmull-clark, not " +
+                                   std::string(subdivision::scheme_name(e.mesh->scheme)));
+      if (e.mesh->limit)
+        r.fail("perturbation", "a fractal surface has no limit normals (drop subdivision.limit)");
+      if (doc["perturbation"].is_object() && doc["perturbation"].contains("keep_vertices"))
+        r.fail("perturbation.keep_vertices", "NURBS sources only: a mesh's face boundaries always stay");
+    }
     if (doc.contains("evaluation")) r.fail("evaluation", "a mesh is refined by subdivision.levels");
   } else if (doc.contains("subdivision")) {
     r.fail("subdivision", "only with a \"mesh\" source");

@@ -6,12 +6,14 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <tuple>
 
 #include "bindings.hpp"
 #include "cifs/errors.hpp"
 #include "cifs/ifs/bcifs.hpp"
 #include "cifs/ifs/bcifs_curve.hpp"
 #include "cifs/ifs/bcifs_surface.hpp"
+#include "cifs/ifs/junction.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/io/json.hpp"
 
@@ -429,6 +431,57 @@ cell it selects. Raises cifs.InvalidInput when an edge cell lacks a "start" or "
 nets: one float64 array (size(state), cols) per initial entry. Returns EdgePieces. Raises
 cifs.InvalidInput for nets that do not fit the entries, a negative depth, more than 2^26 pieces,
 or a piece in a cell that is not an edge.)doc");
+
+  m.def(
+      "uniform_curve_bcifs",
+      [](const Eigen::MatrixXd& S0, const Eigen::MatrixXd& S1, int pieces, int layer, bool free) {
+        return ifs::uniform_curve_bcifs(S0, S1, {.pieces = pieces, .layer = layer, .free = free});
+      },
+      py::arg("S0"), py::arg("S1"), py::arg("pieces") = 1, py::arg("layer") = 0, py::arg("free") = false,
+      R"doc(BC-IFS of an open curve of a uniform scheme from its N by N IFS matrices (docs/junctions.md).
+
+Edge cells "e" (interior) and "a0" … (a junction layer of `layer` pieces at the start, free), vertex
+cells "v0" (the start), "w1" …, "m"; boundaries "start" (rows 0 … N−2) and "end" (rows 1 … N−1).)doc");
+  m.def(
+      "product_bcifs",
+      [](const ifs::Bcifs& u, const ifs::Bcifs& v, bool free_when_either) {
+        return ifs::product_bcifs(u, v, {.free_when_either = free_when_either});
+      },
+      py::arg("u"), py::arg("v"), py::arg("free_when_either") = false,
+      "Tensor product of two curve systems (faces, edges, corners; patches u-major).");
+
+  py::class_<ifs::Junction>(m, "Junction", "Two BC-IFS joined along shared boundary cells (result of join).")
+      .def_readonly("system", &ifs::Junction::system, "The joined cifs.ifs.Bcifs (A's entries, then B's).")
+      .def_readonly("nets", &ifs::Junction::nets, "A's nets, then B's with the glued rows taken from A.")
+      .def_readonly("shared", &ifs::Junction::shared, "Shared cells: list of (A state, B state).")
+      .def_readonly("junction_constraints", &ifs::Junction::junction_constraints,
+                    "Names of B's constraints that read a shared cell.")
+      .def_readonly("free", &ifs::Junction::free, "Number of free coefficients of the joined system.")
+      .def_readonly("residual", &ifs::Junction::residual, "Largest constraint residual after the projection.")
+      .def("__repr__", [](const ifs::Junction& j) {
+        return "Junction(shared=" + std::to_string(j.shared.size()) + ", free=" + std::to_string(j.free) +
+               ")";
+      });
+  m.def(
+      "join",
+      [](const ifs::Bcifs& a, const std::vector<Points>& nets_a, const ifs::Bcifs& b,
+         const std::vector<Points>& nets_b,
+         const std::vector<std::tuple<std::size_t, std::string, std::size_t, std::string>>& glue,
+         bool free_a) {
+        std::vector<ifs::Glue> g;
+        for (const auto& [ea, ba, eb, bb] : glue) g.push_back({ea, ba, eb, bb});
+        ifs::JoinOptions options;
+        options.free_a = free_a;
+        return ifs::join(a, nets_a, b, nets_b, g, options);
+      },
+      py::arg("a"), py::arg("nets_a"), py::arg("b"), py::arg("nets_b"), py::arg("glue"),
+      py::arg("free_a") = false,
+      R"doc(Joins B to A along shared boundary cells (docs/junctions.md).
+
+glue: list of (A entry, A boundary name, B entry, B boundary name), e.g. [(2, "end", 0, "start")].
+The shared cells keep A's operators; B's constraints that meet them are solved again and the free
+matrices projected onto the admissible space. Returns a Junction. Raises cifs.InvalidInput when
+glued cells differ (size, dimension, children, boundaries) or the constraints have no solution.)doc");
 }
 
 void bind_bcifs_io(py::module_& m) {

@@ -4,6 +4,8 @@
 // data, its weights and the stencil table; local subdivision matrices and their spectra.
 #include <algorithm>
 #include <complex>
+#include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -120,6 +122,53 @@ void bind_mesh_subdivision(py::module_& m) {
       "faces have at most one extraordinary corner (one level of refinement gives that): (positions, du, "
       "dv), "
       "each (n, 3). Exact, extraordinary patches included.");
+  py::class_<sd::SurfaceAutomaton>(
+      m, "SurfaceAutomaton",
+      "Catmull–Clark's limit surface as one controlled IFS: a patch per face, states "
+      "'regular' (16 points) and 'E<n>' (2n + 8), four children each.")
+      .def_readonly("automaton", &sd::SurfaceAutomaton::automaton,
+                    "cifs.automata.Automaton; entry i is face i.")
+      .def_readonly("nets", &sd::SurfaceAutomaton::nets, "Per face, its patch's control points.")
+      .def_readonly("corners", &sd::SurfaceAutomaton::corners,
+                    "Per face, the mesh vertices at the patch's (s, t) = (0, 0), (1, 0), (1, 1), (0, 1).");
+  m.def("surface_automaton", &sd::catmull_clark_automaton, py::arg("mesh"),
+        py::call_guard<py::gil_scoped_release>(),
+        "The SurfaceAutomaton of a closed quad mesh whose faces have at most one extraordinary corner (one "
+        "level "
+        "of Catmull–Clark gives that). cifs.ifs's attractor, tolerance and chaos functions run on "
+        "(s.automaton, s.nets).");
+  m.def(
+      "surface_automaton_mesh",
+      [](const sd::SurfaceAutomaton& s, int depth, double max_bytes) {
+        ifs::MeshOptions o;
+        if (!(max_bytes > 0 && max_bytes < 1.8e19)) throw InvalidInput("max_bytes must be positive");
+        o.max_bytes = static_cast<std::size_t>(max_bytes);
+        py::gil_scoped_release release;
+        return sd::surface_automaton_mesh(s, depth, o);
+      },
+      py::arg("surface"), py::arg("depth"), py::kw_only(), py::arg("max_bytes") = kDefaultBytes,
+      "The attractor at `depth` as one closed quad mesh (4^depth quads per face, shared nodes welded by the "
+      "mesh's topology; Mesh.states the leaves' states).");
+  m.def(
+      "fractal_catmull_clark",
+      [](const sd::SurfaceAutomaton& s, double amplitude, std::uint64_t seed,
+         const std::optional<std::map<std::string, double>>& values) {
+        ifs::PerturbOptions o;
+        o.amplitude = amplitude;
+        o.seed = seed;
+        o.values = values.value_or(std::map<std::string, double>{});
+        sd::FractalSurface f;
+        {
+          py::gil_scoped_release release;  // the tuple below needs the GIL back
+          f = sd::fractal_catmull_clark(s, o);
+        }
+        return py::make_tuple(std::move(f.surface), std::move(f.perturbation));
+      },
+      py::arg("surface"), py::kw_only(), py::arg("amplitude") = 0.0, py::arg("seed") = 1,
+      py::arg("values") = py::none(),
+      "A fractal Catmull–Clark surface with the mesh's topology: the regular state replaced by the uniform "
+      "bicubic patch's BC-IFS, perturbed (cifs.ifs.perturb's amplitude, seed, values). Every face keeps the "
+      "smooth surface's boundary curves. Returns (SurfaceAutomaton, cifs.ifs.Perturbation).");
   const auto one = [&m](const char* name, sd::MeshScheme scheme, const char* doc) {
     m.def(
         name,

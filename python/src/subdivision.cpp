@@ -271,6 +271,24 @@ epsilon: 0 (left half) or 1 (right half). Raises cifs.InvalidInput otherwise.)do
       },
       py::arg("scheme"), "(S_0, S_1) of the scheme, each a float64 array (N, N) with rows summing to 1.");
   m.def(
+      "padded_ifs_matrices",
+      [](const sd::Scheme& scheme, int window) {
+        const auto S = sd::padded_ifs_matrices(scheme, window);
+        return py::make_tuple(S[0], S[1]);
+      },
+      py::arg("scheme"), py::arg("window"),
+      "(S_0, S_1) of the mask padded with zeros to windows of `window` points (docs/junctions.md): the same "
+      "curve on wider windows, so that schemes of different supports share cells of one size.");
+  m.def(
+      "scheme_bcifs",
+      [](const sd::Scheme& scheme, int window, int pieces, int layer, bool free) {
+        return sd::scheme_bcifs(scheme, window, {.pieces = pieces, .layer = layer, .free = free});
+      },
+      py::arg("scheme"), py::arg("window") = 0, py::arg("pieces") = 1, py::arg("layer") = 0,
+      py::arg("free") = false,
+      "BC-IFS of an open curve of the scheme on windows of `window` points (0: its own N): "
+      "cifs.ifs.uniform_curve_bcifs of padded_ifs_matrices.");
+  m.def(
       "scheme_automaton", &sd::scheme_automaton, py::arg("scheme"), py::arg("segments") = 1,
       R"doc(The one-state automaton of the scheme: transitions '0' (S_0) and '1' (S_1), `segments` initial entries.
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "cifs/subdivision/ifs.hpp"
 
+#include <algorithm>
 #include <string>
 
 #include "cifs/errors.hpp"
@@ -23,6 +24,24 @@ Eigen::MatrixXd ifs_matrix(std::span<const double> mask, int epsilon) {
 
 std::array<Eigen::MatrixXd, 2> ifs_matrices(const Scheme& scheme) {
   return {ifs_matrix(scheme.weights, 0), ifs_matrix(scheme.weights, 1)};
+}
+
+std::array<Eigen::MatrixXd, 2> padded_ifs_matrices(const Scheme& scheme, int window) {
+  const int N = mask_degree(scheme);
+  if (window < N)
+    throw InvalidInput("padded_ifs_matrices: a window of " + std::to_string(window) +
+                       " points is narrower than the " + std::to_string(N) + " of the scheme");
+  if (window >= kMaxMaskSize)
+    throw InvalidInput("padded_ifs_matrices: a window of " + std::to_string(window) +
+                       " points is wider than " + std::to_string(kMaxMaskSize - 1));
+  std::vector<double> mask(static_cast<std::size_t>(window) + 1, 0.0);
+  std::copy(scheme.weights.begin(), scheme.weights.end(), mask.begin() + (window - N) / 2);
+  return {ifs_matrix(mask, 0), ifs_matrix(mask, 1)};
+}
+
+ifs::Bcifs scheme_bcifs(const Scheme& scheme, int window, const ifs::UniformCurveOptions& options) {
+  const auto S = padded_ifs_matrices(scheme, window == 0 ? mask_degree(scheme) : window);
+  return ifs::uniform_curve_bcifs(S[0], S[1], options);
 }
 
 automata::Automaton scheme_automaton(const Scheme& scheme, int segments) {

@@ -6,11 +6,16 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "cifs/automata/tensor.hpp"
 #include "cifs/errors.hpp"
+#include "cifs/ifs/analysis.hpp"
+#include "cifs/ifs/bcifs_surface.hpp"
+#include "cifs/nurbs/surface.hpp"
 #include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/mesh_analysis.hpp"
 #include "local_mesh.hpp"
@@ -116,21 +121,27 @@ void cubic_basis(double t, std::array<double, 4>& b, std::array<double, 4>& d) {
   d = {-s * s / 2, (3 * t * t - 4 * t) / 2, (-3 * t * t + 2 * t + 1) / 2, t * t / 2};
 }
 
-/// Value and partials of the bicubic B-spline patch of a 16-point net (rows by i then j) at (a, b).
-std::array<Eigen::RowVectorXd, 3> bicubic(const Eigen::MatrixXd& net, double a, double b) {
+/// Value and partials (times `scale`) of the bicubic B-spline patch of a 16-point net (rows by i then
+/// j) at (a, b), written into three rows of d doubles: no allocation, the loop of every point.
+void bicubic(const Points& net, double a, double b, double scale, double* value, double* da_out,
+             double* db_out) {
   std::array<double, 4> ba{}, da{}, bb{}, db{};
   cubic_basis(a, ba, da);
   cubic_basis(b, bb, db);
-  std::array<Eigen::RowVectorXd, 3> out;
-  for (auto& x : out) x = Eigen::RowVectorXd::Zero(net.cols());
+  const Eigen::Index d = net.cols();
+  std::fill_n(value, d, 0.0);
+  std::fill_n(da_out, d, 0.0);
+  std::fill_n(db_out, d, 0.0);
   for (std::size_t i = 0; i < 4; ++i)
     for (std::size_t j = 0; j < 4; ++j) {
-      const auto row = net.row(static_cast<Eigen::Index>(i * 4 + j));
-      out[0] += ba[i] * bb[j] * row;
-      out[1] += da[i] * bb[j] * row;
-      out[2] += ba[i] * db[j] * row;
+      const double* row = net.data() + static_cast<Eigen::Index>(i * 4 + j) * d;
+      const double w = ba[i] * bb[j], wa = scale * da[i] * bb[j], wb = scale * ba[i] * db[j];
+      for (Eigen::Index k = 0; k < d; ++k) {
+        value[k] += w * row[k];
+        da_out[k] += wa * row[k];
+        db_out[k] += wb * row[k];
+      }
     }
-  return out;
 }
 
 }  // namespace
@@ -187,105 +198,289 @@ ExtraordinaryPatch catmull_clark_patch(int n) {
   return out;
 }
 
+namespace {
+
+/// The uniform cubic B-spline's halves (rows: the child's control points on the parent's).
+Eigen::Matrix4d cubic_half(int half) {
+  Eigen::Matrix4d G;
+  G << 4, 4, 0, 0, 1, 6, 1, 0, 0, 4, 4, 0, 0, 1, 6, 1;
+  G /= 8;
+  return half == 0 ? G : Eigen::Matrix4d(G.reverse());  // D is G read backwards
+}
+
+/// Which corner of face f, if any, is extraordinary; InvalidInput (naming the face) for what the
+/// surface automaton does not build.
+int extraordinary_corner(const MeshTopology& t, int f) {
+  const std::string where = "catmull-clark limit surface: face " + std::to_string(f);
+  const auto corners = face(t, static_cast<std::size_t>(f));
+  if (corners.size() != 4) throw InvalidInput(where + ": not a quad (refine one level first)");
+  int ev = -1, extraordinary = 0;
+  for (std::size_t k = 0; k < 4; ++k) {
+    const auto v = static_cast<std::size_t>(corners[k]);
+    if (t.boundary_vertex[v])
+      throw InvalidInput(where + ": touches the boundary; boundary patches are not built");
+    if (valence(t, v) != 4) {
+      ev = static_cast<int>(k);
+      ++extraordinary;
+    }
+    for (const int g : vertex_faces(t, v))
+      if (face(t, static_cast<std::size_t>(g)).size() != 4)
+        throw InvalidInput(where + ": a corner touches a face that is not a quad (refine one level first)");
+  }
+  if (extraordinary > 1)
+    throw InvalidInput(where + ": " + std::to_string(extraordinary) +
+                       " extraordinary corners (refine one level first)");
+  return ev;
+}
+
+bool is_regular(const automata::Automaton& a, automata::StateId s) {
+  return a.graph[s].name == "regular";
+}
+
+}  // namespace
+
+namespace {
+
+/// The automaton of the given faces (initial entry i is faces[i], `segment` the face's index).
+SurfaceAutomaton catmull_clark_automaton(const Mesh& mesh, const MeshTopology& t,
+                                         std::span<const int> faces) {
+  SurfaceAutomaton out;
+  automata::Graph& g = out.automaton.graph;
+  const automata::StateId regular =
+      boost::add_vertex(automata::State{.size = 16, .window = {}, .recurrent = false, .name = "regular"}, g);
+  static constexpr std::array<const char*, 4> kLabels{"GH", "GB", "DH", "DB"};
+  for (int c = 0; c < 4; ++c)
+    boost::add_edge(regular, regular,
+                    automata::Transition{kLabels[static_cast<std::size_t>(c)],
+                                         automata::kron(cubic_half(c / 2), cubic_half(c % 2))},
+                    g);
+  std::map<int, automata::StateId> extraordinary;  // by valence
+  const auto state_of = [&](int n) {
+    if (const auto it = extraordinary.find(n); it != extraordinary.end()) return it->second;
+    const ExtraordinaryPatch patch = catmull_clark_patch(n);
+    const automata::StateId s = boost::add_vertex(
+        automata::State{.size = 2 * n + 8, .window = {}, .recurrent = false, .name = "E" + std::to_string(n)},
+        g);
+    // Child 2·iu + iv: (0, 0) the corner's quarter, (0, 1) regular[2], (1, 0) regular[0], (1, 1) regular[1].
+    boost::add_edge(s, s, automata::Transition{"GH", patch.subdivide}, g);
+    boost::add_edge(s, regular, automata::Transition{"GB", patch.regular[2]}, g);
+    boost::add_edge(s, regular, automata::Transition{"DH", patch.regular[0]}, g);
+    boost::add_edge(s, regular, automata::Transition{"DB", patch.regular[1]}, g);
+    return extraordinary.emplace(n, s).first->second;
+  };
+  const Eigen::Index d = mesh.vertices.cols();
+  for (const int f : faces) {
+    const int ev = extraordinary_corner(t, f);
+    const int first = corner(t, f, std::max(ev, 0));
+    std::vector<int> support;
+    automata::StateId state = regular;
+    if (ev < 0) {
+      const std::array<int, 16> net = regular_net(t, f, first);
+      support.assign(net.begin(), net.end());
+    } else {
+      const int n = valence(t, static_cast<std::size_t>(first));
+      try {
+        state = state_of(n);
+      } catch (const InvalidInput& e) {
+        throw InvalidInput("catmull-clark limit surface: face " + std::to_string(f) + ": " + e.what());
+      }
+      support = patch_support(t, f, first);
+    }
+    Points net(static_cast<Eigen::Index>(support.size()), d);
+    for (std::size_t k = 0; k < support.size(); ++k)
+      net.row(static_cast<Eigen::Index>(k)) = mesh.vertices.row(support[k]);
+    out.automaton.initial.push_back(automata::Initial{.segment = f, .state = state});
+    out.nets.push_back(std::move(net));
+    const int e = corner_index(t, f, first);
+    out.corners.push_back({first, corner(t, f, e + 1), corner(t, f, e + 2), corner(t, f, e + 3)});
+  }
+  return out;
+}
+
+}  // namespace
+
+SurfaceAutomaton catmull_clark_automaton(const Mesh& mesh) {
+  const MeshTopology t = build_topology(mesh);
+  std::vector<int> faces(face_count(t));
+  std::iota(faces.begin(), faces.end(), 0);
+  return catmull_clark_automaton(mesh, t, faces);
+}
+
 SurfaceSample evaluate_limit_surface(const Mesh& mesh, std::span<const FacePoint> at) {
   const MeshTopology t = build_topology(mesh);
   const Eigen::Index d = mesh.vertices.cols();
+  const auto F = static_cast<int>(face_count(t));
+  for (std::size_t p = 0; p < at.size(); ++p) {  // the points first: a bad one is named before any work
+    const FacePoint& q = at[p];
+    const std::string where =
+        "catmull-clark limit: point " + std::to_string(p) + " (face " + std::to_string(q.face) + ")";
+    if (q.face < 0 || q.face >= F)
+      throw InvalidInput(where + ": no such face; the mesh has " + std::to_string(F));
+    if (!(q.u >= 0 && q.u <= 1 && q.v >= 0 && q.v <= 1))
+      throw InvalidInput(where + ": (u, v) = (" + std::to_string(q.u) + ", " + std::to_string(q.v) +
+                         ") is outside [0, 1]²");
+  }
+  // Only the faces asked for: the others may be boundary faces.
+  std::vector<int> faces, entry(static_cast<std::size_t>(F), -1);
+  for (const FacePoint& q : at)
+    if (entry[static_cast<std::size_t>(q.face)] < 0) {
+      entry[static_cast<std::size_t>(q.face)] = static_cast<int>(faces.size());
+      faces.push_back(q.face);
+    }
+  const SurfaceAutomaton s = catmull_clark_automaton(mesh, t, faces);
+  const automata::Graph& g = s.automaton.graph;
+  // The extraordinary point itself is the fixed point of the corner quarter (no partials there).
+  const std::vector<Eigen::RowVectorXd> corner_point = ifs::repeated_child_functionals(s.automaton, 0);
   SurfaceSample out;
   const auto count = static_cast<Eigen::Index>(at.size());
   out.positions.resize(count, d);
   out.du.resize(count, d);
   out.dv.resize(count, d);
-  std::map<int, ExtraordinaryPatch> patches;
-  const auto gather = [&](const auto& ids) {
-    Eigen::MatrixXd x(static_cast<Eigen::Index>(ids.size()), d);
-    for (std::size_t k = 0; k < ids.size(); ++k)
-      x.row(static_cast<Eigen::Index>(k)) = mesh.vertices.row(ids[k]);
-    return x;
-  };
+  std::vector<char> regular(boost::num_vertices(g));
+  for (automata::StateId k = 0; k < regular.size(); ++k) regular[k] = is_regular(s.automaton, k) ? 1 : 0;
+  std::array<Points, 2> buffers;  // the descent's nets, in turn (a product never reads its own output)
+  Eigen::RowVectorXd pa(d), pb(d);
   for (Eigen::Index p = 0; p < count; ++p) {
     const FacePoint& q = at[static_cast<std::size_t>(p)];
-    const std::string where =
-        "catmull-clark limit: point " + std::to_string(p) + " (face " + std::to_string(q.face) + ")";
-    if (q.face < 0 || static_cast<std::size_t>(q.face) >= face_count(t))
-      throw InvalidInput(where + ": no such face; the mesh has " + std::to_string(face_count(t)));
-    if (!(q.u >= 0 && q.u <= 1 && q.v >= 0 && q.v <= 1))
-      throw InvalidInput(where + ": (u, v) = (" + std::to_string(q.u) + ", " + std::to_string(q.v) +
-                         ") is outside [0, 1]²");
-    const auto corners = face(t, static_cast<std::size_t>(q.face));
-    if (corners.size() != 4) throw InvalidInput(where + ": not a quad (refine one level first)");
-    int ev = -1, extraordinary = 0;
-    for (std::size_t k = 0; k < 4; ++k) {
-      const auto v = static_cast<std::size_t>(corners[k]);
-      if (t.boundary_vertex[v])
-        throw InvalidInput(where + ": touches the boundary; boundary patches are not built");
-      if (valence(t, v) != 4) {
-        ev = static_cast<int>(k);
-        ++extraordinary;
-      }
-      for (const int f : vertex_faces(t, v))
-        if (face(t, static_cast<std::size_t>(f)).size() != 4)
-          throw InvalidInput(where + ": a corner touches a face that is not a quad (refine one level first)");
-    }
-    if (extraordinary > 1)
-      throw InvalidInput(where + ": " + std::to_string(extraordinary) +
-                         " extraordinary corners (refine one level first)");
-    if (ev < 0) {
-      const std::array<int, 16> net = regular_net(t, q.face, corners[0]);
-      const auto [x, xu, xv] = bicubic(gather(net), q.u, q.v);
-      out.positions.row(p) = x;
-      out.du.row(p) = xu;
-      out.dv.row(p) = xv;
-      continue;
-    }
-    // Extraordinary corner at (s, t) = (0, 0), s towards the next corner, t towards the previous.
+    const auto f = static_cast<std::size_t>(entry[static_cast<std::size_t>(q.face)]);
+    // The patch's (s, t) is the face's (u, v) turned: its (0, 0) is the face's corner `turn`.
+    const int turn = corner_index(t, q.face, s.corners[f][0]);
     const std::array<std::array<double, 2>, 4> st{
         {{q.u, q.v}, {q.v, 1 - q.u}, {1 - q.u, 1 - q.v}, {1 - q.v, q.u}}};
-    double s = st[static_cast<std::size_t>(ev)][0], tt = st[static_cast<std::size_t>(ev)][1];
-    const int n = valence(t, static_cast<std::size_t>(corners[static_cast<std::size_t>(ev)]));
-    auto it = patches.find(n);
-    if (it == patches.end()) {
-      try {
-        it = patches.emplace(n, catmull_clark_patch(n)).first;
-      } catch (const InvalidInput& e) {
-        throw InvalidInput(where + ": " + e.what());
-      }
-    }
-    const ExtraordinaryPatch& patch = it->second;
-    Eigen::MatrixXd x = gather(patch_support(t, q.face, corners[static_cast<std::size_t>(ev)]));
-    Eigen::RowVectorXd ps = Eigen::RowVectorXd::Zero(d), pt = ps;
-    if (s == 0 && tt == 0) {  // the extraordinary point itself: no parametric partials there
-      out.positions.row(p) = patch.limit * x;
+    double a = st[static_cast<std::size_t>(turn)][0], b = st[static_cast<std::size_t>(turn)][1], scale = 1;
+    automata::StateId state = s.automaton.initial[f].state;
+    const Points* net = &s.nets[f];
+    if (regular[state] == 0 && a == 0 && b == 0) {
+      out.positions.row(p) = corner_point[state] * *net;
+      pa.setZero();
+      pb.setZero();
     } else {
-      double scale = 2;
-      while (std::max(s, tt) < 0.5) {  // the corner's quarter: one level down, same shape
-        x = patch.subdivide * x;
-        s *= 2;
-        tt *= 2;
+      for (int k = 0; regular[state] == 0; k ^= 1) {  // down the quarters to a regular one
+        const int iu = a >= 0.5 ? 1 : 0, iv = b >= 0.5 ? 1 : 0;
+        auto edge = boost::out_edges(state, g).first;
+        std::advance(edge, 2 * iu + iv);
+        Points& x = buffers[static_cast<std::size_t>(k)];
+        x.noalias() = g[*edge].matrix * *net;
+        net = &x;
+        state = boost::target(*edge, g);
+        a = 2 * a - iu;
+        b = 2 * b - iv;
         scale *= 2;
       }
-      const int k = s >= 0.5 ? (tt >= 0.5 ? 1 : 0) : 2;
-      const double a = k == 2 ? 2 * s : 2 * s - 1, b = k == 0 ? 2 * tt : 2 * tt - 1;
-      const auto [value, da, db] = bicubic(patch.regular[static_cast<std::size_t>(k)] * x, a, b);
-      out.positions.row(p) = value;
-      ps = scale * da;
-      pt = scale * db;
+      bicubic(*net, a, b, scale, out.positions.row(p).data(), pa.data(), pb.data());
     }
-    // Back to the face's (u, v): s, t as functions of u, v for each position of the corner.
-    switch (ev) {
+    // Back to the face's (u, v).
+    switch (turn) {
       case 0:
-        out.du.row(p) = ps, out.dv.row(p) = pt;
+        out.du.row(p) = pa, out.dv.row(p) = pb;
         break;
       case 1:
-        out.du.row(p) = -pt, out.dv.row(p) = ps;
+        out.du.row(p) = -pb, out.dv.row(p) = pa;
         break;
       case 2:
-        out.du.row(p) = -ps, out.dv.row(p) = -pt;
+        out.du.row(p) = -pa, out.dv.row(p) = -pb;
         break;
       default:
-        out.du.row(p) = pt, out.dv.row(p) = -ps;
+        out.du.row(p) = pb, out.dv.row(p) = -pa;
         break;
     }
   }
+  return out;
+}
+
+Mesh surface_automaton_mesh(const SurfaceAutomaton& surface, int depth, const ifs::MeshOptions& options) {
+  const ifs::QuadMesh blocks = ifs::patch_meshes(surface.automaton, surface.nets, depth, options);
+  // Node (I, J) of face f's block is shared with its neighbours when it lies on the block's border:
+  // a mesh vertex at a corner, else a point of a mesh edge, named by the edge's end vertices (lower
+  // index first) and its distance from the lower one in cells. Each gets the first block's vertex.
+  const int side = 1 << depth, row = side + 1, block = row * row;
+  std::map<std::array<int, 3>, int> shared;
+  std::vector<int> index(static_cast<std::size_t>(blocks.vertices.rows()));
+  int next = 0;
+  const auto corner_node = [&](int I, int J) -> int {
+    if (I == 0 && J == 0) return 0;
+    if (I == side && J == 0) return 1;
+    if (I == side && J == side) return 2;
+    if (I == 0 && J == side) return 3;
+    return -1;
+  };
+  for (std::size_t f = 0; f < surface.corners.size(); ++f) {
+    const auto& c = surface.corners[f];
+    for (int I = 0; I <= side; ++I)
+      for (int J = 0; J <= side; ++J) {
+        const std::size_t v = f * static_cast<std::size_t>(block) + static_cast<std::size_t>(I * row + J);
+        std::array<int, 3> key{-1, -1, 0};
+        if (const int k = corner_node(I, J); k >= 0) {
+          key = {c[static_cast<std::size_t>(k)], -1, 0};
+        } else if (I == 0 || I == side || J == 0 || J == side) {
+          // Sides: J = 0 from corner 0 to 1 (I cells from 0), I = side from 1 to 2, J = side from 3
+          // to 2, I = 0 from 0 to 3.
+          int from = 0, to = 0, at = 0;
+          if (J == 0)
+            from = c[0], to = c[1], at = I;
+          else if (I == side)
+            from = c[1], to = c[2], at = J;
+          else if (J == side)
+            from = c[3], to = c[2], at = I;
+          else
+            from = c[0], to = c[3], at = J;
+          key = from < to ? std::array{from, to, at} : std::array{to, from, side - at};
+        }
+        if (key[0] < 0) {
+          index[v] = next++;
+          continue;
+        }
+        const auto [it, fresh] = shared.emplace(key, next);
+        index[v] = it->second;
+        if (fresh) ++next;
+      }
+  }
+  Mesh out;
+  out.vertices.resize(next, blocks.vertices.cols());
+  std::vector<bool> written(static_cast<std::size_t>(next), false);
+  for (std::size_t v = 0; v < index.size(); ++v) {
+    const auto w = static_cast<std::size_t>(index[v]);
+    if (written[w]) continue;
+    out.vertices.row(index[v]) = blocks.vertices.row(static_cast<Eigen::Index>(v));
+    written[w] = true;
+  }
+  std::vector<int> corners;
+  corners.reserve(4 * blocks.quads.size());
+  for (const auto& q : blocks.quads)
+    for (const int v : q) corners.push_back(index[static_cast<std::size_t>(v)]);
+  out = uniform_mesh(out.vertices, std::move(corners), 4);
+  out.states = blocks.quad_state;
+  return out;
+}
+
+FractalSurface fractal_catmull_clark(const SurfaceAutomaton& smooth, const ifs::PerturbOptions& options) {
+  // The uniform bicubic patch: 4 × 4 control points, knots 0 … 7, one patch whose sides all lie on knot
+  // lines.
+  nurbs::Knots knots(8);
+  for (std::size_t k = 0; k < knots.size(); ++k) knots[k] = static_cast<double>(k);
+  const nurbs::Surface patch = nurbs::make_surface({3, 3}, {knots, knots}, {4, 4}, Points::Zero(16, 3));
+  const automata::TensorAutomaton tensor = automata::tensor_automaton(patch);
+  FractalSurface out;
+  out.perturbation = ifs::perturb(ifs::surface_bcifs(tensor), options);
+  const automata::Automaton& cells = out.perturbation.system.automaton;
+  // The new graph: the BC-IFS's cells, then the smooth automaton's extraordinary states with their
+  // regular children led to the patch cell (the BC-IFS's one initial state).
+  automata::Graph g = cells.graph;
+  const automata::StateId root = cells.initial.at(0).state;
+  const automata::Graph& old = smooth.automaton.graph;
+  std::vector<automata::StateId> moved(boost::num_vertices(old), root);
+  for (automata::StateId s = 0; s < boost::num_vertices(old); ++s)
+    if (!is_regular(smooth.automaton, s)) moved[s] = boost::add_vertex(old[s], g);
+  for (automata::StateId s = 0; s < boost::num_vertices(old); ++s) {
+    if (is_regular(smooth.automaton, s)) continue;
+    for (auto [e, end] = boost::out_edges(s, old); e != end; ++e)
+      boost::add_edge(moved[s], moved[boost::target(*e, old)], old[*e], g);
+  }
+  out.surface.automaton.graph = std::move(g);
+  for (const automata::Initial& i : smooth.automaton.initial)
+    out.surface.automaton.initial.push_back(automata::Initial{.segment = i.segment, .state = moved[i.state]});
+  out.surface.nets = smooth.nets;
+  out.surface.corners = smooth.corners;
   return out;
 }
 

@@ -13,7 +13,9 @@
 #include "cifs/io/json.hpp"
 #include "cifs/nurbs/curve.hpp"
 #include "cifs/render/image.hpp"
+#include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/mesh.hpp"
+#include "cifs/topology.hpp"
 #include "render/scratch.hpp"
 
 using namespace cifs;
@@ -216,6 +218,47 @@ TEST_CASE("A mesh experiment: the subdivision surface shaded, its control mesh o
   for (std::size_t i = 0; i < image.width * image.height; ++i)
     behind += image.channels.at("Z")[i] > bare.channels.at("Z")[i];
   CHECK(behind == 0);
+}
+
+TEST_CASE("Mesh experiments: the limit surface with its normals, and the fractal Catmull–Clark surface",
+          "[experiment][mesh]") {
+  ScratchDir dir;
+  // The limit surface: the library's limit mesh, normals included (PLY carries them).
+  run_in(
+      dir,
+      R"({"mesh": "../meshes/torus.obj", "subdivision": {"scheme": "catmull-clark", "levels": 2, "limit": true},
+      "render": {"width": 60, "height": 45}, "outputs": {"exr": "l.exr", "ply": "l.ply"}})");
+  const Mesh torus = io::read_mesh(CIFS_EXAMPLES_DIR "/meshes/torus.obj");
+  const Mesh limit =
+      subdivision::limit_mesh(torus, subdivision::MeshScheme::catmull_clark, 2, {.normals = true});
+  REQUIRE(limit.normals.rows() == limit.vertices.rows());
+  CHECK(read_file(dir.path() / "l.ply") == io::encode(limit, "ply"));
+  CHECK(covered(render::read_exr(dir.path() / "l.exr")) > 60 * 45 / 8);
+
+  // The fractal surface: the cube refined once (each face then has one extraordinary corner), the
+  // attractor of the perturbed automaton 3 levels further: 6·4^4 faces, closed like the cube.
+  const auto report =
+      run_in(dir, R"({"mesh": "../meshes/cube.obj", "subdivision": {"scheme": "catmull-clark", "levels": 4},
+      "perturbation": {"amplitude": 0.5, "seed": 3},
+      "render": {"width": 60, "height": 45}, "outputs": {"exr": "f.exr", "obj": "f.obj"}})");
+  CHECK(report.free_coefficients == 8);
+  CHECK(report.residual <= 1e-12);
+  const Mesh fractal = io::read_mesh(dir.path() / "f.obj");
+  CHECK(face_count(fractal) == 6 * 256);
+  CHECK(euler_characteristic(build_topology(fractal)) == 2);
+  const Mesh smooth = subdivision::catmull_clark(io::read_mesh(CIFS_EXAMPLES_DIR "/meshes/cube.obj"), 4);
+  CHECK(fractal.vertices.rows() == smooth.vertices.rows());
+  // A pyramid has faces with two extraordinary corners after one level: refined twice first.
+  run_in(dir,
+         R"({"mesh": "../meshes/tetrahedron.obj", "subdivision": {"scheme": "catmull-clark", "levels": 3},
+      "perturbation": {"amplitude": 0.2}, "render": {"width": 40, "height": 30}, "outputs": {"exr": "t.exr"}})");
+  CHECK(covered(render::read_exr(dir.path() / "t.exr")) > 40 * 30 / 8);
+  // An open mesh has boundary patches, which the surface automaton does not build.
+  CHECK_THROWS_WITH(
+      run_in(dir,
+             R"({"mesh": "../meshes/open_grid.obj", "subdivision": {"scheme": "catmull-clark", "levels": 3},
+      "perturbation": {"amplitude": 0.2}, "render": {"width": 40, "height": 30}, "outputs": {"exr": "o.exr"}})"),
+      Catch::Contains("perturbation: open_grid.obj: catmull-clark limit surface: face"));
 }
 
 TEST_CASE("Mesh experiments: every scheme, boundaries, and what a mesh cannot do", "[experiment][mesh]") {

@@ -197,8 +197,23 @@ TEST_CASE("Experiments: bad mesh sources are one line naming the file and the me
   one_line(
       error_of("{" + cube + R"(, "subdivision": {"scheme": "catmull-clark"}, "evaluation": {"depth": 2}})"),
       "e.json: evaluation: a mesh is refined by subdivision.levels");
-  one_line(error_of("{" + cube + R"(, "subdivision": {"scheme": "catmull-clark"}, "perturbation": {}})"),
-           "e.json: perturbation: a subdivision surface has no coefficients to perturb");
+  // Fractal subdivision surfaces are Catmull–Clark's; limit surfaces Catmull–Clark's and Loop's.
+  one_line(
+      error_of(
+          R"({"mesh": "../meshes/tetrahedron.obj", "subdivision": {"scheme": "loop"}, "perturbation": {}})"),
+      "e.json: perturbation: fractal subdivision surfaces are built for catmull-clark, not loop");
+  one_line(
+      error_of("{" + cube +
+               R"(, "subdivision": {"scheme": "catmull-clark"}, "perturbation": {"keep_vertices": false}})"),
+      "e.json: perturbation.keep_vertices: NURBS sources only: a mesh's face boundaries always stay");
+  one_line(error_of("{" + cube +
+                    R"(, "subdivision": {"scheme": "catmull-clark", "limit": true}, "perturbation": {}})"),
+           "e.json: perturbation: a fractal surface has no limit normals (drop subdivision.limit)");
+  one_line(
+      error_of(
+          R"({"mesh": "../meshes/tetrahedron.obj", "subdivision": {"scheme": "butterfly", "limit": true}})"),
+      "e.json: subdivision.limit: limit surfaces are built for catmull-clark and loop, not butterfly");
+  CHECK(parse("{" + cube + R"(, "subdivision": {"scheme": "catmull-clark", "limit": true}})").mesh->limit);
   one_line(error_of(R"({"mesh": "../shapes/hills.json", "subdivision": {"scheme": "loop"}})"),
            "e.json: mesh: ");
 }

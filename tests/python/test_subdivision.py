@@ -561,6 +561,28 @@ class LimitTest(unittest.TestCase):
             sd.limit_surface(cube, [0], [0.5], [])
 
 
+    def test_surface_automaton_attractor_and_fractal(self):
+        # The welded attractor at depth 2 holds exactly the limit points of the cube refined 2 more
+        # levels (nearest-neighbour distances, numpy); the fractal keeps the face corners.
+        cube = sd.catmull_clark(cifs.io.read_mesh(str(EXAMPLES / "meshes" / "cube.obj")), 1)
+        s = sd.surface_automaton(cube)
+        self.assertEqual(len(s.nets), 24)
+        attractor = np.asarray(sd.surface_automaton_mesh(s, 2).vertices)
+        limit = np.asarray(sd.limit(cube, "catmull-clark", 2).vertices)
+        self.assertEqual(attractor.shape, limit.shape)
+        distance = np.linalg.norm(attractor[:, None, :] - limit[None, :, :], axis=2)
+        self.assertLess(distance.min(axis=1).max(), 1e-12)
+        self.assertLess(distance.min(axis=0).max(), 1e-12)
+        rough, perturbation = sd.fractal_catmull_clark(s, amplitude=0.5, seed=3)
+        self.assertEqual(len(perturbation.values), 8)
+        self.assertLessEqual(perturbation.residual, 1e-12)
+        fractal = np.asarray(sd.surface_automaton_mesh(rough, 2).vertices)
+        corners = np.asarray(sd.limit(cube, "catmull-clark", 0).vertices)
+        self.assertLess(np.linalg.norm(fractal[:, None, :] - corners[None, :, :], axis=2).min(axis=0).max(), 1e-12)
+        self.assertGreater(np.abs(fractal - attractor).max(), 1e-3)
+        points = cifs.ifs.chaos_game(s.automaton, s.nets, samples=200, seed=2).points
+        self.assertEqual(points.shape, (200, 3))
+
 class LocalAnalysisTest(unittest.TestCase):
     def test_matches_the_cli_and_the_closed_forms(self):
         import math

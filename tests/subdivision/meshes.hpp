@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cifs/mesh.hpp"
+#include "cifs/nurbs/surface.hpp"
 
 namespace cifs_test {
 
@@ -78,6 +79,37 @@ inline cifs::Mesh quad_grid(int n, int m, bool triangles = false) {
       }
     }
   return make_mesh(p, f);
+}
+
+/// An open grid of quads that is, read as control points, a uniform bicubic B-spline with knots
+/// 0, 1, …: control point (i, j) spans [i, i + 4] × [j, j + 4], so grid face (i, j) is the
+/// parameter square [i + 2, i + 3] × [j + 2, j + 3]. `params` is the same mesh with vertex (i, j)
+/// at its parameter (i + 2, j + 2, 0): a scheme that reproduces linear functions maps it to the
+/// parameters of its own points.
+struct BicubicGrid {
+  cifs::Mesh shape, params;
+  cifs::nurbs::Surface surface;
+};
+
+inline BicubicGrid bicubic_grid(int n, int m) {
+  BicubicGrid g{.shape = quad_grid(n, m), .params = quad_grid(n, m), .surface = {}};
+  cifs::Points net((n + 1) * (m + 1), 3);
+  for (int j = 0; j <= m; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const auto r = static_cast<Eigen::Index>(j * (n + 1) + i);
+      g.params.vertices.row(r) << i + 2.0, j + 2.0, 0.0;
+      g.shape.vertices.row(r) << i + 0.3 * std::sin(1.7 * j), j + 0.2 * std::cos(0.9 * i + j),
+          std::sin(1.3 * i) * std::cos(0.7 * j) + 0.1 * i * j;
+      net.row(static_cast<Eigen::Index>(i * (m + 1) + j)) =
+          g.shape.vertices.row(r);  // Surface order: i·nv + j
+    }
+  const auto uniform = [](int count) {
+    cifs::nurbs::Knots k(static_cast<std::size_t>(count));
+    for (std::size_t i = 0; i < k.size(); ++i) k[i] = static_cast<double>(i);
+    return k;
+  };
+  g.surface = cifs::nurbs::make_surface({3, 3}, {uniform(n + 5), uniform(m + 5)}, {n + 1, m + 1}, net);
+  return g;
 }
 
 /// A disc of triangles around a centre of valence k: a first ring of k vertices (valence 6), a

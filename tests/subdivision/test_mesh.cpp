@@ -61,30 +61,13 @@ TEST_CASE("regular Catmull–Clark is the bicubic B-spline, regular Doo–Sabin 
 
 TEST_CASE("regular Catmull–Clark converges to the NURBS core's uniform bicubic surface",
           "[subdivision][mesh]") {
-  // An open n × m grid of control points is a uniform bicubic B-spline with knots 0, 1, …:
-  // control point (i, j) spans [i, i + 4] × [j, j + 4], its limit sits at (i + 2, j + 2). Away
-  // from the boundary (whose rules differ from the unclamped spline's: one more ring per level),
-  // the limit of every vertex of the level-2 mesh, by the regular limit mask
-  // (16v + 4Σ edge neighbours + Σ diagonals)/36, is the surface point (Cox–de Boor) at its dyadic
-  // parameter, which the same refinement of the parameter grid (i + 2, j + 2, 0) gives: the
-  // scheme reproduces linear functions.
+  // The open grid is a uniform bicubic B-spline (`bicubic_grid`). Away from the boundary (whose rules differ
+  // from the unclamped spline's: one more ring per level), the limit of every vertex of the level-2 mesh, by
+  // the regular limit mask (16v + 4Σ edge neighbours + Σ diagonals)/36, is the surface point (Cox–de Boor) at
+  // its dyadic parameter, which the same refinement of the parameter grid (i + 2, j + 2, 0) gives: the scheme
+  // reproduces linear functions.
   const int n = 12, m = 11, levels = 2;
-  Mesh params = quad_grid(n, m), shape = params;
-  Points grid((n + 1) * (m + 1), 3);
-  for (int j = 0; j <= m; ++j)
-    for (int i = 0; i <= n; ++i) {
-      const auto r = static_cast<Eigen::Index>(j * (n + 1) + i);
-      params.vertices.row(r) << i + 2.0, j + 2.0, 0.0;
-      shape.vertices.row(r) << i + 0.3 * std::sin(1.7 * j), j + 0.2 * std::cos(0.9 * i + j),
-          std::sin(1.3 * i) * std::cos(0.7 * j) + 0.1 * i * j;
-      grid.row(static_cast<Eigen::Index>(i * (m + 1) + j)) =
-          shape.vertices.row(r);  // Surface order: i·nv + j
-    }
-  nurbs::Knots ku(static_cast<std::size_t>(n + 5)), kv(static_cast<std::size_t>(m + 5));
-  for (std::size_t k = 0; k < ku.size(); ++k) ku[k] = static_cast<double>(k);
-  for (std::size_t k = 0; k < kv.size(); ++k) kv[k] = static_cast<double>(k);
-  const nurbs::Surface surface = nurbs::make_surface({3, 3}, {ku, kv}, {n + 1, m + 1}, grid);
-
+  const auto [shape, params, surface] = bicubic_grid(n, m);
   const Mesh refined = catmull_clark(shape, levels), uv = catmull_clark(params, levels);
   const MeshTopology t = build_topology(refined);
   const auto limit = [&](const Points& P, int v) {

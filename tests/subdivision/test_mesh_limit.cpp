@@ -8,10 +8,12 @@
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
 #include "cifs/errors.hpp"
+#include "cifs/ifs/chaos.hpp"
 #include "cifs/nurbs/surface.hpp"
 #include "cifs/subdivision/mesh_analysis.hpp"
 #include "subdivision/meshes.hpp"
@@ -111,23 +113,10 @@ TEST_CASE("limit normals point out of convex closed shapes", "[subdivision][limi
 
 TEST_CASE("regular Catmull–Clark limit points and normals are the bicubic surface's",
           "[subdivision][limit]") {
-  // As in test_mesh.cpp: the open grid is a uniform bicubic B-spline; level-2 vertices away from the
+  // The open grid is a uniform bicubic B-spline (`bicubic_grid`); level-2 vertices away from the
   // boundary have their limit at the dyadic parameter that the refinement of (i + 2, j + 2) gives.
   const int n = 10, m = 9, levels = 2;
-  Mesh params = quad_grid(n, m), shape = params;
-  Points grid((n + 1) * (m + 1), 3);
-  for (int j = 0; j <= m; ++j)
-    for (int i = 0; i <= n; ++i) {
-      const auto r = static_cast<Eigen::Index>(j * (n + 1) + i);
-      params.vertices.row(r) << i + 2.0, j + 2.0, 0.0;
-      shape.vertices.row(r) << i + 0.3 * std::sin(1.7 * j), j + 0.2 * std::cos(0.9 * i + j),
-          std::sin(1.3 * i) * std::cos(0.7 * j) + 0.1 * i * j;
-      grid.row(static_cast<Eigen::Index>(i * (m + 1) + j)) = shape.vertices.row(r);
-    }
-  nurbs::Knots ku(static_cast<std::size_t>(n + 5)), kv(static_cast<std::size_t>(m + 5));
-  for (std::size_t k = 0; k < ku.size(); ++k) ku[k] = static_cast<double>(k);
-  for (std::size_t k = 0; k < kv.size(); ++k) kv[k] = static_cast<double>(k);
-  const nurbs::Surface surface = nurbs::make_surface({3, 3}, {ku, kv}, {n + 1, m + 1}, grid);
+  const auto [shape, params, surface] = bicubic_grid(n, m);
   const MeshRefinement r = refine_topology(shape, MeshScheme::catmull_clark, levels);
   const LimitStencils st = limit_stencils(r.levels.back(), MeshScheme::catmull_clark);
   const Points uv = evaluate_limit(st, apply(r, params.vertices), false).positions;
@@ -256,21 +245,11 @@ TEST_CASE("Catmull–Clark at (face, u, v): extraordinary patches equal the limi
 TEST_CASE("Catmull–Clark at (face, u, v): regular patches are the bicubic surface, partials included",
           "[subdivision][limit]") {
   const int n = 8, m = 7;
-  Mesh shape = quad_grid(n, m);
-  Points grid((n + 1) * (m + 1), 3);
-  for (int j = 0; j <= m; ++j)
-    for (int i = 0; i <= n; ++i) {
-      const auto r = static_cast<Eigen::Index>(j * (n + 1) + i);
-      shape.vertices.row(r) << i + 0.3 * std::sin(1.7 * j), j + 0.2 * std::cos(0.9 * i + j),
-          std::sin(1.3 * i) * std::cos(0.7 * j) + 0.1 * i * j;
-      grid.row(static_cast<Eigen::Index>(i * (m + 1) + j)) = shape.vertices.row(r);
-    }
-  nurbs::Knots ku(static_cast<std::size_t>(n + 5)), kv(static_cast<std::size_t>(m + 5));
-  for (std::size_t k = 0; k < ku.size(); ++k) ku[k] = static_cast<double>(k);
-  for (std::size_t k = 0; k < kv.size(); ++k) kv[k] = static_cast<double>(k);
-  const nurbs::Surface surface = nurbs::make_surface({3, 3}, {ku, kv}, {n + 1, m + 1}, grid);
-  // Face (i, j) of the grid (corners (i, j), (i + 1, j), …) is the parameter square
-  // [i + 2, i + 3] × [j + 2, j + 3]; the interior faces have no boundary corner.
+  const BicubicGrid g = bicubic_grid(n, m);
+  const Mesh& shape = g.shape;
+  const nurbs::Surface& surface = g.surface;
+  // Face (i, j) of the grid is the parameter square [i + 2, i + 3] × [j + 2, j + 3]; the interior
+  // faces have no boundary corner.
   std::vector<FacePoint> points;
   std::vector<std::array<double, 2>> params;
   for (int j = 1; j < m - 1; ++j)
@@ -304,4 +283,141 @@ TEST_CASE("Catmull–Clark at (face, u, v): what is not built is refused, naming
                     Contains("extraordinary corners (refine one level first)"));
   CHECK_THROWS_WITH(evaluate_limit_surface(quad_grid(3, 3), first), Contains("touches the boundary"));
   CHECK_THROWS_WITH(evaluate_limit_surface(pyramid(), first), Contains("not a quad"));
+}
+
+namespace {
+
+/// Closed quad meshes whose faces have at most one extraordinary corner: valences 3 (cube), 3 and 4
+/// (pyramid), 3, 4 and 5 (bipyramid), with regular faces besides.
+/// Each face's corner list is turned by f mod 4 places, so that the patches' (s, t) meet the
+/// faces' (u, v) in all four ways.
+std::vector<std::pair<const char*, Mesh>> automaton_meshes() {
+  const auto turned = [](Mesh m) {
+    for (std::size_t f = 0; f < face_count(m); ++f) {
+      const auto b = m.face_vertices.begin() + m.face_offsets[f],
+                 e = m.face_vertices.begin() + m.face_offsets[f + 1];
+      std::rotate(b, b + static_cast<std::ptrdiff_t>(f % 4), e);
+    }
+    return m;
+  };
+  return {{"cube", turned(catmull_clark(cube(), 1))},
+          {"pyramid", turned(catmull_clark(pyramid(), 2))},
+          {"bipyramid", turned(catmull_clark(bipyramid(), 2))}};
+}
+
+/// Index of the row of `P` nearest to `x`, and its distance.
+std::pair<Eigen::Index, double> nearest(const Points& P, const Eigen::RowVectorXd& x) {
+  Eigen::Index best = 0;
+  const double d = (P.rowwise() - x).rowwise().squaredNorm().minCoeff(&best);
+  return {best, std::sqrt(d)};
+}
+
+}  // namespace
+
+TEST_CASE("the surface automaton's attractor is the limit surface: every node a refined vertex's limit",
+          "[subdivision][limit]") {
+  // Independent route: the limit stencils (left eigenvectors of S_n) on the mesh refined `depth`
+  // times more. The welded attractor mesh has exactly the refined mesh's vertices and faces, and each
+  // of its nodes is one of those limit points.
+  const int depth = 3;
+  for (const auto& [name, m] : automaton_meshes()) {
+    INFO(name);
+    const SurfaceAutomaton s = catmull_clark_automaton(m);
+    const Mesh attractor = surface_automaton_mesh(s, depth);
+    const Mesh limit = limit_mesh(m, MeshScheme::catmull_clark, depth);
+    REQUIRE(attractor.vertices.rows() == limit.vertices.rows());
+    REQUIRE(face_count(attractor) == face_count(limit));
+    CHECK(euler_characteristic(build_topology(attractor)) == euler_characteristic(build_topology(m)));
+    const double scale = limit.vertices.cwiseAbs().maxCoeff();
+    std::vector<bool> hit(static_cast<std::size_t>(limit.vertices.rows()), false);
+    double worst = 0;
+    for (Eigen::Index v = 0; v < attractor.vertices.rows(); ++v) {
+      const auto [k, d] = nearest(limit.vertices, attractor.vertices.row(v));
+      worst = std::max(worst, d);
+      hit[static_cast<std::size_t>(k)] = true;
+    }
+    CHECK(worst <= 1e-12 * scale);
+    CHECK(std::all_of(hit.begin(), hit.end(), [](bool b) { return b; }));
+  }
+}
+
+TEST_CASE("the chaos game on the surface automaton lands on the limit surface at its addresses",
+          "[subdivision][limit]") {
+  // A chaos point is the corner (0, 0) of the node it stands on; its recorded address holds the face
+  // (integer part) and the base-4 digits 2·iu + iv of the quarters, i.e. the dyadic (s, t) of that
+  // corner. evaluate_limit_surface there, through the face's (u, v), must give the same point.
+  for (const auto& [name, m] : automaton_meshes()) {
+    INFO(name);
+    const SurfaceAutomaton s = catmull_clark_automaton(m);
+    // Restarts by 2^-18: at most 18 digits (36 bits) below the face number, exact in a double.
+    const ifs::ChaosResult chaos = ifs::chaos_game(
+        s.automaton, s.nets, {.samples = 3000, .seed = 7, .restart_diameter = 1e-5, .record_address = true});
+    const MeshTopology t = build_topology(m);
+    std::vector<FacePoint> at;
+    for (const double address : chaos.address) {
+      const int f = static_cast<int>(std::floor(address));
+      double rest = address - f, a = 0, b = 0, unit = 0.5;
+      for (int k = 0; k < 26 && rest > 0; ++k, unit /= 2) {
+        rest *= 4;
+        const int digit = static_cast<int>(std::floor(rest));
+        rest -= digit;
+        a += unit * (digit / 2);
+        b += unit * (digit % 2);
+      }
+      REQUIRE(rest == 0);
+      // (s, t) → the face's (u, v): corners[0] is face corner `turn`.
+      const int turn = static_cast<int>(std::find(face(t, static_cast<std::size_t>(f)).begin(),
+                                                  face(t, static_cast<std::size_t>(f)).end(),
+                                                  s.corners[static_cast<std::size_t>(f)][0]) -
+                                        face(t, static_cast<std::size_t>(f)).begin());
+      const std::array<std::array<double, 2>, 4> uv{{{a, b}, {1 - b, a}, {1 - a, 1 - b}, {b, 1 - a}}};
+      at.push_back({.face = f,
+                    .u = uv[static_cast<std::size_t>(turn)][0],
+                    .v = uv[static_cast<std::size_t>(turn)][1]});
+    }
+    const SurfaceSample expected = evaluate_limit_surface(m, at);
+    const double scale = m.vertices.cwiseAbs().maxCoeff();
+    for (Eigen::Index p = 0; p < chaos.points.rows(); ++p) {
+      INFO("sample " << p << ", face " << at[static_cast<std::size_t>(p)].face);
+      CHECK((chaos.points.row(p) - expected.positions.row(p)).norm() <= 1e-12 * scale);
+    }
+  }
+}
+
+TEST_CASE("fractal Catmull–Clark: faces keep the smooth surface's boundary curves, the inside moves",
+          "[subdivision][limit]") {
+  const Mesh m = catmull_clark(bipyramid(), 2);
+  const SurfaceAutomaton smooth = catmull_clark_automaton(m);
+  const int depth = 4, side = 1 << depth, row = side + 1;
+  const ifs::QuadMesh flat = ifs::patch_meshes(smooth.automaton, smooth.nets, depth);
+  // No perturbation: the BC-IFS's bicubic cells are the B-spline's, the same surface.
+  ifs::PerturbOptions perturb;
+  perturb.amplitude = 0;
+  const FractalSurface same = fractal_catmull_clark(smooth, perturb);
+  const ifs::QuadMesh same_mesh = ifs::patch_meshes(same.surface.automaton, same.surface.nets, depth);
+  const double scale = flat.vertices.cwiseAbs().maxCoeff();
+  CHECK((same_mesh.vertices - flat.vertices).cwiseAbs().maxCoeff() <= 1e-13 * scale);
+
+  perturb.amplitude = 0.3;
+  perturb.seed = 5;
+  const FractalSurface rough = fractal_catmull_clark(smooth, perturb);
+  CHECK(rough.perturbation.residual <= 1e-12);
+  CHECK(!rough.perturbation.values.empty());
+  const ifs::QuadMesh fractal = ifs::patch_meshes(rough.surface.automaton, rough.surface.nets, depth);
+  // Per face block: the border nodes (the face's boundary curves) are the smooth surface's; inside,
+  // the surface moved.
+  double border = 0, inside = 0;
+  for (Eigen::Index v = 0; v < fractal.vertices.rows(); ++v) {
+    const auto I = static_cast<int>(v % (row * row)) / row, J = static_cast<int>(v % (row * row)) % row;
+    const double d = (fractal.vertices.row(v) - flat.vertices.row(v)).norm();
+    if (I == 0 || J == 0 || I == side || J == side)
+      border = std::max(border, d);
+    else
+      inside = std::max(inside, d);
+  }
+  CHECK(border <= 1e-12 * scale);
+  CHECK(inside >= 1e-3 * scale);
+  // Welded by the topology, the fractal surface is closed like the mesh.
+  const Mesh welded = surface_automaton_mesh(rough.surface, depth);
+  CHECK(euler_characteristic(build_topology(welded)) == euler_characteristic(build_topology(m)));
 }

@@ -30,28 +30,43 @@ namespace Sdc = OpenSubdiv::Sdc;
 
 namespace {
 
-Mesh osd_refine(const Mesh& m, Sdc::SchemeType type, BoundaryRule boundary, int levels) {
-  const auto refiner =
-      osd_refiner(m, type,
-                  boundary == BoundaryRule::edge_only ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
-                                                      : Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER,
-                  levels);
-  REQUIRE(refiner);
-  std::vector<OsdVertex> verts(static_cast<std::size_t>(refiner->GetNumVerticesTotal()));
+/// OpenSubdiv's refinement of m's positions by `levels` steps.
+struct OsdRefined {
+  std::unique_ptr<Far::TopologyRefiner> refiner;
+  std::vector<OsdVertex> vertices;  // every level's, one level after another
+  std::size_t last = 0;             // where the last level's begin
+};
+
+OsdRefined osd_interpolate(const Mesh& m, Sdc::SchemeType type, BoundaryRule boundary, int levels,
+                           bool full_topology = false) {
+  OsdRefined r{.refiner = osd_refiner(m, type,
+                                      boundary == BoundaryRule::edge_only
+                                          ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
+                                          : Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER,
+                                      levels, full_topology)};
+  REQUIRE(r.refiner);
+  r.vertices.resize(static_cast<std::size_t>(r.refiner->GetNumVerticesTotal()));
   for (Eigen::Index i = 0; i < m.vertices.rows(); ++i)
-    for (int k = 0; k < 3; ++k) verts[static_cast<std::size_t>(i)].p[k] = m.vertices(i, k);
-  Far::PrimvarRefinerReal<double> primvars(*refiner);
-  OsdVertex* src = verts.data();
+    for (int k = 0; k < 3; ++k) r.vertices[static_cast<std::size_t>(i)].p[k] = m.vertices(i, k);
+  Far::PrimvarRefinerReal<double> primvars(*r.refiner);
   for (int level = 1; level <= levels; ++level) {
-    OsdVertex* dst = src + refiner->GetLevel(level - 1).GetNumVertices();
+    const std::size_t next =
+        r.last + static_cast<std::size_t>(r.refiner->GetLevel(level - 1).GetNumVertices());
+    OsdVertex *src = r.vertices.data() + r.last,
+              *dst = r.vertices.data() + next;  // Interpolate takes lvalues
     primvars.Interpolate(level, src, dst);
-    src = dst;
+    r.last = next;
   }
-  const Far::TopologyLevel& last = refiner->GetLevel(levels);
+  return r;
+}
+
+Mesh osd_refine(const Mesh& m, Sdc::SchemeType type, BoundaryRule boundary, int levels) {
+  const OsdRefined r = osd_interpolate(m, type, boundary, levels);
+  const Far::TopologyLevel& last = r.refiner->GetLevel(levels);
   Mesh out;
   out.vertices.resize(last.GetNumVertices(), 3);
   for (int i = 0; i < last.GetNumVertices(); ++i)
-    for (int k = 0; k < 3; ++k) out.vertices(i, k) = src[i].p[k];
+    for (int k = 0; k < 3; ++k) out.vertices(i, k) = r.vertices[r.last + static_cast<std::size_t>(i)].p[k];
   for (int f = 0; f < last.GetNumFaces(); ++f) {
     const auto corners = last.GetFaceVertices(f);
     std::vector<int> face(corners.begin(), corners.end());
@@ -62,30 +77,17 @@ Mesh osd_refine(const Mesh& m, Sdc::SchemeType type, BoundaryRule boundary, int 
 
 /// OpenSubdiv's refined positions, limit positions and unit normals (du × dv) after `levels` steps.
 std::array<Points, 3> osd_limit(const Mesh& m, Sdc::SchemeType type, BoundaryRule boundary, int levels) {
-  const auto refiner =
-      osd_refiner(m, type,
-                  boundary == BoundaryRule::edge_only ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
-                                                      : Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER,
-                  levels, true);
-  REQUIRE(refiner);
-  std::vector<OsdVertex> verts(static_cast<std::size_t>(refiner->GetNumVerticesTotal()));
-  for (Eigen::Index i = 0; i < m.vertices.rows(); ++i)
-    for (int k = 0; k < 3; ++k) verts[static_cast<std::size_t>(i)].p[k] = m.vertices(i, k);
-  Far::PrimvarRefinerReal<double> primvars(*refiner);
-  OsdVertex* src = verts.data();
-  for (int level = 1; level <= levels; ++level) {
-    OsdVertex* dst = src + refiner->GetLevel(level - 1).GetNumVertices();
-    primvars.Interpolate(level, src, dst);
-    src = dst;
-  }
-  const int n = refiner->GetLevel(levels).GetNumVertices();
+  const OsdRefined r = osd_interpolate(m, type, boundary, levels, true);
+  const int n = r.refiner->GetLevel(levels).GetNumVertices();
   std::vector<OsdVertex> pos(static_cast<std::size_t>(n)), du(pos.size()), dv(pos.size());
+  const OsdVertex* last = r.vertices.data() + r.last;
   OsdVertex *p = pos.data(), *u = du.data(), *v = dv.data();
-  primvars.Limit(src, p, u, v);
+  Far::PrimvarRefinerReal<double>(*r.refiner).Limit(last, p, u, v);
   Points refined(n, 3), positions(n, 3), normals(n, 3);
   for (int i = 0; i < n; ++i) {
-    refined.row(i) << src[i].p[0], src[i].p[1], src[i].p[2];
     const auto at = static_cast<std::size_t>(i);
+    const OsdVertex& s = r.vertices[r.last + at];
+    refined.row(i) << s.p[0], s.p[1], s.p[2];
     const Eigen::Vector3d a(du[at].p[0], du[at].p[1], du[at].p[2]), b(dv[at].p[0], dv[at].p[1], dv[at].p[2]);
     positions.row(i) << pos[at].p[0], pos[at].p[1], pos[at].p[2];
     normals.row(i) = a.cross(b).normalized().transpose();

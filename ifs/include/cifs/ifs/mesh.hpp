@@ -73,4 +73,11 @@ QuadMesh surface_mesh(const automata::TensorAutomaton& automaton, std::span<cons
 QuadMesh quad_mesh(const automata::Automaton& automaton, std::span<const Points> nets,
                    std::span<const std::array<int, 2>> patches, int depth, const MeshOptions& options = {});
 
+/// The generic route with every initial entry meshed on its own, for patches that do not tile a
+/// grid (the faces of a subdivision surface): patch i is the block of (2^K + 1)² vertices from
+/// i·(2^K + 1)², node (I, J) at I·(2^K + 1) + J, and of 4^K quads from i·4^K, cell (I, J) at
+/// I·2^K + J. Nodes that neighbouring patches share are computed by each. Throws as quad_mesh.
+QuadMesh patch_meshes(const automata::Automaton& automaton, std::span<const Points> nets, int depth,
+                      const MeshOptions& options = {});
+
 }  // namespace cifs::ifs

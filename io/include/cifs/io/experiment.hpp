@@ -44,6 +44,9 @@ struct MeshSource {
   subdivision::MeshScheme scheme = subdivision::MeshScheme::catmull_clark;
   int levels = 3;
   subdivision::BoundaryRule boundary = subdivision::BoundaryRule::edge_only;
+  /// Draw the limit surface itself: the refined vertices at their limit positions, with the limit
+  /// normals on closed meshes (Catmull–Clark and Loop; subdivision/limit.hpp).
+  bool limit = false;
 };
 
 struct Evaluation {

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "cifs/automata/automaton.hpp"
+#include "cifs/ifs/junction.hpp"
 #include "cifs/subdivision/scheme.hpp"
 #include "cifs/types.hpp"
 
@@ -26,6 +27,17 @@ Eigen::MatrixXd ifs_matrix(std::span<const double> mask, int epsilon);
 
 /// {S_0, S_1} of the scheme.
 std::array<Eigen::MatrixXd, 2> ifs_matrices(const Scheme& scheme);
+
+/// {S_0, S_1} of the mask padded with zeros to `window` + 1 coefficients (⌊(window − N)/2⌋ in
+/// front, the rest behind; window ≥ N): the same limit curve on wider windows, so that schemes of
+/// different supports have cells of one size and can share them (docs/junctions.md). An odd
+/// difference shifts the pieces by half an interval (the primal/dual offset of a quadratic in the
+/// windows of a cubic).
+std::array<Eigen::MatrixXd, 2> padded_ifs_matrices(const Scheme& scheme, int window);
+
+/// The BC-IFS of an open curve of the scheme on windows of `window` points (0: N):
+/// ifs::uniform_curve_bcifs of padded_ifs_matrices.
+ifs::Bcifs scheme_bcifs(const Scheme& scheme, int window = 0, const ifs::UniformCurveOptions& options = {});
 
 /// One state of size N with transitions "0" (S_0) and "1" (S_1) to itself, in that order (left
 /// half first), and `segments` initial entries on it (segment k = k): the automaton whose

@@ -15,6 +15,9 @@
 #include <span>
 #include <vector>
 
+#include "cifs/automata/automaton.hpp"
+#include "cifs/ifs/bcifs.hpp"
+#include "cifs/ifs/mesh.hpp"
 #include "cifs/mesh.hpp"
 #include "cifs/subdivision/mesh.hpp"
 #include "cifs/topology.hpp"
@@ -96,11 +99,46 @@ struct ExtraordinaryPatch {
 };
 ExtraordinaryPatch catmull_clark_patch(int valence);
 
-/// Catmull–Clark's limit surface at any (face, u, v), exactly: a regular face (four interior
-/// corners of valence 4) is a bicubic B-spline patch; a face with one extraordinary interior corner
-/// goes down its ExtraordinaryPatch automaton until the point leaves the corner's quarter, then is
-/// evaluated in a regular quarter. The mesh: quads, no face with two extraordinary corners and no
-/// boundary face (InvalidInput naming the face otherwise; one level of refinement gives the first two).
+/// Catmull–Clark's limit surface as one controlled IFS: a patch per face of the mesh, state
+/// "regular" (the 16-point uniform bicubic B-spline net; children GH, GB, DH, DB by the tensor
+/// products of the cubic B-spline's G and D, as automata/tensor.hpp orders them) or "E<n>" for a
+/// face with an extraordinary corner of valence n (its ExtraordinaryPatch net; child GH is E<n>
+/// itself by `subdivide`, the other three are regular quarters). Every reachable state has four
+/// children in the quad layout of ifs::quad_mesh, so the ifs engine (attractors, tolerance
+/// traversal, chaos game, ifs::patch_meshes) runs on it unchanged.
+struct SurfaceAutomaton {
+  automata::Automaton automaton;  // initial entry i is face i
+  std::vector<Points> nets;       // per face
+  /// Per face: the mesh vertices at the patch's (s, t) = (0, 0), (1, 0), (1, 1), (0, 1), counter-clockwise
+  /// like the face (an extraordinary corner at (0, 0)). The patch's (s, t) is the face's (u, v)
+  /// turned by a quarter per position of corners[0] among the face's corners.
+  std::vector<std::array<int, 4>> corners;
+};
+/// The automaton of a mesh: quads only, no face with two extraordinary corners, no boundary face
+/// (InvalidInput naming the face otherwise; one level of refinement gives the first two).
+SurfaceAutomaton catmull_clark_automaton(const Mesh& mesh);
+
+/// Catmull–Clark's limit surface at any (face, u, v), exactly: a regular face is a bicubic
+/// B-spline patch; a face with one extraordinary corner goes down its "E<n>" state until the point
+/// leaves the corner's quarter, then is evaluated in a regular quarter. The mesh: as
+/// catmull_clark_automaton.
 SurfaceSample evaluate_limit_surface(const Mesh& mesh, std::span<const FacePoint> at);
 
+/// The attractor of a surface automaton at `depth` as one quad mesh: 4^depth quads per face (in
+/// face order, cell (I, J) of face f at f·4^depth + I·2^depth + J, I along s), `states` the leaves'
+/// automaton states. Nodes shared by neighbouring faces (along a mesh edge, at a mesh vertex) are one
+/// vertex, found from the mesh's topology and computed by the first face that holds it.
+Mesh surface_automaton_mesh(const SurfaceAutomaton& surface, int depth, const ifs::MeshOptions& options = {});
+
+/// A fractal Catmull–Clark surface with the mesh's topology: the "regular" state is replaced by
+/// the BC-IFS of the uniform bicubic patch (ifs::surface_bcifs; its face cells, named "(x,y)"),
+/// perturbed by `options`. The patch's four sides lie on knot lines, so they keep the B-spline
+/// operators: every face keeps the smooth surface's boundary curves exactly and the surface stays
+/// closed, while the inside of every regular patch — around extraordinary vertices too, whose
+/// patches are rings of regular ones — turns fractal. The "E<n>" states are not perturbed.
+struct FractalSurface {
+  SurfaceAutomaton surface;
+  ifs::Perturbation perturbation;  // of the bicubic patch's BC-IFS: values, residual, contraction
+};
+FractalSurface fractal_catmull_clark(const SurfaceAutomaton& smooth, const ifs::PerturbOptions& options);
 }  // namespace cifs::subdivision
