@@ -2,12 +2,12 @@
 # SPDX-License-Identifier: MIT
 """`mpirun -n R cifs render` writes the bytes of the single-process render (docs/scaling.md).
 
-For experiments that take every path of a distributed render — the chaos game of a NURBS curve over its
-control polygon (samples divided by chunks), a classic IFS by the chaos game (its
-chunks) and to a depth (rows), a surface mesh, a curve and a subdivision surface with its control mesh
-(rows) — the EXR, PNG and geometry files of 1, 2 and 3 ranks, on 1 and 2 threads, are compared byte for
-byte with those of one process without mpirun. Also: a rank that fails stops them all with exit status 2,
-and other commands are refused under mpirun.
+For experiments that take every path of a distributed render — the chaos game of a NURBS curve over
+its control polygon (samples divided by chunks), a classic IFS by the chaos game (its chunks) and to a
+depth (rows), a surface mesh, a curve, a subdivision surface with its control mesh and a fractal
+Catmull–Clark surface (rows) — the EXR, PNG and geometry files of 1, 2 and 3 ranks, on 1 and 2
+threads, are compared byte for byte with those of one process without mpirun. Also: a rank that
+fails stops them all with exit status 2, and other commands are refused under mpirun.
 
     tests/mpi/test_ranks.py --cli build/apps/cifs --examples examples --work /tmp/ranks
 """
@@ -34,6 +34,9 @@ EXPERIMENTS = {
                     "render": {"width": 140, "height": 100, "line_width": 3, "control_net": True}},
     "subdivision": {"mesh": "../meshes/cube.obj", "subdivision": {"scheme": "catmull-clark", "levels": 3},
                     "camera": {"projection": "perspective"}, "render": {"width": 120, "height": 100, "control_net": True}},
+    "fractal_subdivision": {"mesh": "../meshes/cube.obj", "subdivision": {"scheme": "catmull-clark", "levels": 3},
+                            "perturbation": {"amplitude": 0.9, "seed": 3}, "camera": {"projection": "perspective"},
+                            "render": {"width": 110, "height": 90, "control_net": True}},
 }
 GEOMETRY = {"surface_depth": "ply", "curve_depth": "svg", "subdivision": "obj"}
 
