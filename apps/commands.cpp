@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "commands.hpp"
+#include "world.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -517,8 +518,14 @@ std::string render(const RenderOptions& o) {
   ro.exr = o.exr;
   ro.png = o.png;
   ro.out_dir = !o.out_dir.empty() ? o.out_dir : o.exr.has_parent_path() ? o.exr.parent_path() : ".";
-  ro.quiet = o.quiet;
   ro.threads = o.threads;
+  // Under mpirun: this process's part, the reduction, and one progress bar (rank 0's).
+  const World& w = world();
+  ro.quiet = o.quiet || w.rank != 0;
+  if (w.size > 1) {
+    ro.part = {w.rank, w.size};
+    ro.combine = combine_world;
+  }
   return experiment::run(e, ro).summary;
 }
 

@@ -13,6 +13,7 @@
 #include "cifs/errors.hpp"
 #include "commands.hpp"
 #include "scheme_command.hpp"
+#include "world.hpp"
 
 namespace {
 
@@ -258,15 +259,28 @@ int run(int argc, char** argv, std::string& result) {
 int main(int argc, char** argv) {
   std::string result;
   int status = 0;
+  cifs::cli::World world;
   try {
+    world = cifs::cli::start_world(argc, argv);
+    cifs::cli::world() = world;
+    // Under mpirun every process runs the command: only render divides its work and writes once.
+    if (world.size > 1 && (argc < 2 || std::string(argv[1]) != "render")) {
+      if (world.rank == 0) std::cerr << "cifs: only cifs render runs on several MPI processes\n";
+      cifs::cli::end_world();
+      return 2;
+    }
     status = run(argc, argv, result);
   } catch (const std::exception& e) {  // outside parsing: the command table
     std::cerr << "cifs: " << e.what() << "\n";
-    return 2;
+    status = 2;
   } catch (...) {
     std::cerr << "cifs: unexpected error\n";
-    return 2;
+    status = 2;
   }
+  // A failed process may leave the others waiting in the reduction: stop them all.
+  if (world.size > 1 && status == 2) cifs::cli::abort_world(2);
+  cifs::cli::end_world();
+  if (status == 2 && result.empty()) return 2;
   // Every command's output, help and version included, is written and checked here once: a full disk or a
   // closed pipe shows only when the buffer goes out, so the flush comes before the check. errno
   // tells why when the failing write was one of these.

@@ -11,6 +11,8 @@ packages=(
   libosd-dev libopenmesh-dev  # OpenSubdiv, OpenMesh: oracles of the mesh subdivision tests only
   libsisl-dev  # AGPL comparator: linked into bench/ only, never into the library
   libcgal-dev  # GPL cross-check of the mesh schemes (tests/subdivision/test_mesh_cgal.cpp) only
+  libopenmpi-dev openmpi-bin  # cifs render across processes (-DCIFS_MPI=ON, on in the presets)
+  python3-mpi4py  # examples/python/sweep.py across processes under mpirun (optional: one process without)
   clang-format clang-tidy  # scripts/lint.sh (CI)
 )
 

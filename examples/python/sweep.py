@@ -21,6 +21,12 @@ which is too loose here to leave three fitted scales.
 Writes sweep.csv (value, dimension, fit range, R², or why there is none) and sweep.png (matplotlib:
 the smooth and the roughest curve, and the dimension against the coefficient).
 
+Under mpirun (with mpi4py, Debian's python3-mpi4py) the values are dealt out to the processes in
+turn and rank 0 gathers the rows and writes the files, byte for byte those of one process; without
+mpirun, or without mpi4py, the script runs as one process (docs/scaling.md).
+
+    mpirun -n 2 python3 examples/python/sweep.py --out /tmp/s --steps 5 --depth 9 --min-boxes 100 --quiet
+
     python3 examples/python/sweep.py --out out/python
     python3 examples/python/sweep.py --out /tmp/s --steps 5 --depth 9 --min-boxes 100 --quiet
 """
@@ -42,6 +48,19 @@ import cifs  # noqa: E402
 from cifs import automata, ifs, io, nurbs  # noqa: E402
 
 EXAMPLES = Path(__file__).resolve().parents[1]
+
+
+def mpi_world():
+    """MPI's world communicator when launched by mpirun on several processes and mpi4py is there,
+    else None. mpi4py is imported only then: importing it starts MPI."""
+    if not any(int(os.environ.get(name, "1")) > 1 for name in ("OMPI_COMM_WORLD_SIZE", "PMI_SIZE")):
+        return None
+    try:
+        from mpi4py import MPI
+    except ImportError:
+        print("sweep.py: mpi4py is missing: every process runs the whole sweep", file=sys.stderr)
+        return None
+    return MPI.COMM_WORLD if MPI.COMM_WORLD.Get_size() > 1 else None
 
 
 def write_atomically(path, data):
@@ -85,6 +104,7 @@ def main(argv=None):
     if args.steps < 2:
         parser.error(f"--steps {args.steps}: need at least 2 values")
 
+    world = mpi_world()
     try:
         polygon = io.read_polygon(args.polygon)
         if not polygon.closed:
@@ -95,6 +115,8 @@ def main(argv=None):
         names = ifs.free_names(system, space)
         nurbs_values = dict(zip(names, ifs.free_values(system, space)))
         if args.list:
+            if world and world.Get_rank() != 0:
+                return 0
             for n, v in nurbs_values.items():
                 print(f"{n} = {v!r}")
             return 0
@@ -105,9 +127,20 @@ def main(argv=None):
 
         base = nurbs_values[name]
         values = np.linspace(base - args.span, base + args.span, args.steps)
+        # Value i is measured by process i mod size; the rows are put back in order on rank 0.
+        rank, size = (world.Get_rank(), world.Get_size()) if world else (0, 1)
+        measured = []
+        for i in range(rank, len(values), size):
+            row, perturbed, points = measure(system, nets, name, float(values[i]), args)
+            measured.append((i, row, points))
+        if world:
+            gathered = world.gather(measured, root=0)
+            if rank != 0:
+                return 0
+            measured = sorted((m for part in gathered for m in part), key=lambda m: m[0])
         rows, shapes = [], {}
-        for i, value in enumerate(values):
-            row, perturbed, points = measure(system, nets, name, float(value), args)
+        for i, row, points in measured:
+            value = values[i]
             rows.append(row)
             if points is not None:
                 shapes[float(value)] = points
@@ -116,7 +149,8 @@ def main(argv=None):
                       + (f"dimension {row['dimension']:.4f} (levels {row['min_level']}–{row['max_level']}, "
                          f"{row['points']} points)" if not row["note"] else row["note"]))
     except (cifs.InvalidInput, cifs.IoError) as error:
-        print(f"sweep.py: {error}", file=sys.stderr)
+        if world is None or world.Get_rank() == 0:
+            print(f"sweep.py: {error}", file=sys.stderr)
         return 2
 
     args.out.mkdir(parents=True, exist_ok=True)

@@ -414,8 +414,8 @@ render::Camera make_camera(const io::CameraSpec& spec, const io::RenderSettings&
 
 /// Planar affine IFS: its chaos game (with the maps' probabilities) or its depth-K Hutchinson
 /// measure, binned on the pixels of an orthographic top view.
-void render_classic(render::Image& image, const render::Camera& camera, const Scene& scene,
-                    const io::Experiment& e, const RunOptions& o, unsigned threads) {
+render::DensityLayer render_classic(const render::Camera& camera, const Scene& scene, const io::Experiment& e,
+                                    const RunOptions& o, unsigned threads) {
   const render::ViewTransform view = render::view_transform(camera);
   if (view.perspective || std::abs(view.forward.z()) < 1 - 1e-12)
     throw InvalidInput("camera: a classic IFS is drawn in an orthographic top view");
@@ -435,6 +435,7 @@ void render_classic(render::Image& image, const render::Camera& camera, const Sc
     co.height = camera.height;
     co.bounds = bounds;
     co.progress = std::ref(bar);
+    co.part = o.part;
     const render::Histogram h = render::chaos_game_histogram(scene.maps, co);
     density.assign(h.counts.begin(), h.counts.end());
   } else {
@@ -443,20 +444,15 @@ void render_classic(render::Image& image, const render::Camera& camera, const Sc
     density = render::hutchinson_measure(scene.maps, static_cast<unsigned>(e.evaluation.depth), camera.width,
                                          camera.height, bounds);
   }
-  const render::Rgb c = e.render.color;
   const float depth = static_cast<float>(view.project(Eigen::Vector3d(centre.x(), centre.y(), 0)).depth);
-  std::vector<float>& D = image.channels["density"];
-  D.assign(density.size(), 0.0f);
+  render::DensityLayer layer = render::empty_density_layer(density.size());
   for (std::size_t i = 0; i < density.size(); ++i) {
     if (density[i] <= 0) continue;
-    D[i] = static_cast<float>(density[i]);
-    image.channels["R"][i] = static_cast<float>(c[0]);
-    image.channels["G"][i] = static_cast<float>(c[1]);
-    image.channels["B"][i] = static_cast<float>(c[2]);
-    image.channels["A"][i] = 1;
-    image.channels["Z"][i] = depth;
-    (*image.state)[i] = 0;
+    layer.density[i] = density[i];
+    layer.depth[i] = depth;
+    layer.state[i] = 0;
   }
+  return layer;
 }
 
 /// The run's outputs, checked and reserved (their temporaries made) before any work: two names for
@@ -503,8 +499,11 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
     throw InvalidInput("render: a " + std::to_string(e.render.width) + " × " +
                        std::to_string(e.render.height) + " image needs " + number(image_bytes / 1e9) +
                        " GB, above the limit of " + number(double(o.max_bytes) / 1e9) + " GB");
+  render::check_part(o.part, "run");
+  const bool distributed = o.part.count > 1, writer = o.part.index == 0;
+  if (distributed && !o.combine) throw InvalidInput("run: a distributed run needs a combine function");
   Outputs outputs;
-  reserve_outputs(outputs, e, o, exr, png);
+  if (writer) reserve_outputs(outputs, e, o, exr, png);
   const unsigned threads = o.threads.value_or(e.render.threads);
 
   std::string kind;
@@ -538,10 +537,12 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
     render::SurfaceStyle style;
     style.color = e.render.color;
     style.threads = threads;
+    style.part = o.part;
     render::render_mesh(image, camera, *scene.mesh, style);
   }
   if (e.render.control_net && scene.control && e.mesh) {
     control_style.color = {0.1, 0.1, 0.1};
+    control_style.part = o.part;
     const Eigen::VectorXd size = scene.extent.colwise().maxCoeff() - scene.extent.colwise().minCoeff();
     render_control_mesh(image, camera, *scene.control, control_style, 0.1 * size.norm());
   }
@@ -549,10 +550,13 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
     render::CurveStyle style;
     style.width = e.render.line_width;
     style.color = e.render.color;
+    style.part = o.part;
     render::render_segments(image, camera, *scene.curves, style);
   }
+  // The chaos game's hits, composited here or, in a distributed run, combined with the other parts'.
+  std::optional<render::DensityLayer> points;
   if (!scene.maps.empty()) {
-    render_classic(image, camera, scene, e, o, threads);
+    points = render_classic(camera, scene, e, o, threads);
     scene.depth = e.evaluation.mode == Mode::depth ? e.evaluation.depth : 0;
   } else if (e.evaluation.mode == Mode::chaos) {
     render::ProgressBar bar("chaos game", o.quiet);
@@ -564,7 +568,29 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
     co.rational = scene.rational;
     if (scene.rational) co.depth = 30;  // the automatic depth bound is for Cartesian nets
     co.progress = std::ref(bar);
-    scene.depth = render::chaos_density(image, camera, scene.automaton, scene.nets, co).depth;
+    co.part = o.part;
+    points.emplace();
+    scene.depth = render::chaos_density_layer(*points, image, camera, scene.automaton, scene.nets, co).depth;
+  }
+  if (distributed) {
+    // The chaos game's layers are divided by samples; every other layer by rows (a classic IFS to a
+    // depth is drawn whole by every part and shared by rows too).
+    render::Share share;
+    share.kind =
+        points && e.evaluation.mode == Mode::chaos ? render::Share::Kind::points : render::Share::Kind::bands;
+    share.part = o.part;
+    share.color = e.render.color;
+    if (points && share.kind == render::Share::Kind::bands) render::composite(image, *points, e.render.color);
+    if (points && share.kind == render::Share::Kind::points) share.points = std::move(*points);
+    share.image = std::move(image);
+    o.combine(share);
+    if (!writer) {
+      report.depth = scene.depth;
+      return report;
+    }
+    image = std::move(share.image);
+  } else if (points) {
+    render::composite(image, *points, e.render.color);
   }
   report.depth = scene.depth;
 

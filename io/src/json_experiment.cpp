@@ -180,7 +180,9 @@ Evaluation read_evaluation(const Reader& r, const json& v) {
     e.tolerance = positive(r, v["tolerance"], "evaluation.tolerance");
   } else {
     e.mode = Evaluation::Mode::chaos;
-    e.samples = unsigned_integer(r, v["chaos"], "evaluation.chaos", (std::uint64_t{1} << 32) - 1);
+    // Below 2^53, where the summed counts stay exact; each process draws fewer than 2^32 (cifs render
+    // under mpirun divides them).
+    e.samples = unsigned_integer(r, v["chaos"], "evaluation.chaos", (std::uint64_t{1} << 53) - 1);
     if (e.samples == 0) r.fail("evaluation.chaos", "expected at least one sample");
   }
   if (v.contains("seed")) e.seed = unsigned_integer(r, v["seed"], "evaluation.seed", UINT64_MAX);

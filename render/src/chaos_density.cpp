@@ -119,11 +119,20 @@ struct Local {
 
 ChaosDensityResult chaos_density(Image& image, const Camera& camera, const automata::Automaton& automaton,
                                  std::span<const Points> nets, const ChaosDensityOptions& options) {
+  DensityLayer layer;
+  const ChaosDensityResult result = chaos_density_layer(layer, image, camera, automaton, nets, options);
+  // Hidden points are neither counted nor outside: they are part of the samples on screen.
+  composite(image, layer, options.color);
+  return result;
+}
+
+ChaosDensityResult chaos_density_layer(DensityLayer& layer, Image& image, const Camera& camera,
+                                       const automata::Automaton& automaton, std::span<const Points> nets,
+                                       const ChaosDensityOptions& options) {
   const ViewTransform view = detail::prepare(image, camera, "chaos_density");
+  check_part(options.part, "chaos_density");
   ifs::validate(automaton);
   check_nets(automaton, nets, options.rational);
-  if (options.samples >= (std::uint64_t{1} << 32))
-    throw InvalidInput("chaos_density: samples must be below 2^32 (uint32 counts)");
   if (options.depth < 0 || options.depth > 64)
     throw InvalidInput("chaos_density: depth " + std::to_string(options.depth) + " is outside 0 … 64");
   if (options.rational && options.depth == 0)
@@ -140,7 +149,21 @@ ChaosDensityResult chaos_density(Image& image, const Camera& camera, const autom
   const std::vector<float>& Z = image.channels["Z"];
   const auto cols = nets[0].cols();
   const std::uint32_t roots = static_cast<std::uint32_t>(automaton.initial.size());
-  const std::uint64_t chunks = (options.samples + kDensityChunk - 1) / kDensityChunk;
+  // This part's chunks: part.index, part.index + part.count, …
+  const std::uint64_t all_chunks = (options.samples + kDensityChunk - 1) / kDensityChunk;
+  const Part part = options.part;
+  const std::uint64_t chunks =
+      all_chunks > part.index ? (all_chunks - part.index + part.count - 1) / part.count : 0;
+  std::uint64_t part_samples = 0;
+  for (std::uint64_t c = part.index; c < all_chunks; c += part.count)
+    part_samples += std::min(kDensityChunk, options.samples - c * kDensityChunk);
+  // Counts are uint32 per process: more samples are drawn by more processes.
+  if (part_samples >= (std::uint64_t{1} << 32))
+    throw InvalidInput(part.count == 1
+                           ? std::string("chaos_density: samples must be below 2^32 (uint32 counts)")
+                           : "chaos_density: part " + std::to_string(part.index) + " of " +
+                                 std::to_string(part.count) + " draws " + std::to_string(part_samples) +
+                                 " samples, at most 2^32 - 1 per part (uint32 counts)");
   const unsigned threads = detail::worker_count(options.threads, chunks);
   std::vector<Local> local(threads);
   std::mutex progress_mutex;
@@ -155,7 +178,8 @@ ChaosDensityResult chaos_density(Image& image, const Camera& camera, const autom
         l.key.assign(pixels, 0);
         l.state.assign(pixels, kNoState);
       },
-      [&](unsigned w, std::uint64_t chunk) {
+      [&](unsigned w, std::uint64_t mine) {
+        const std::uint64_t chunk = part.index + mine * part.count;
         Local& l = local[w];
         Random rng(options.seed, chunk);
         std::uint64_t pool = 0;
@@ -222,15 +246,14 @@ ChaosDensityResult chaos_density(Image& image, const Camera& camera, const autom
         if (options.progress) {
           const std::lock_guard lock(progress_mutex);
           done += count;
-          options.progress(done, options.samples);
+          options.progress(done, part_samples);
         }
       });
 
   // Merge: integer sums, and the nearest point (ties: the larger sample index), both independent
   // of which worker ran which chunk.
-  detail::PointLayer layer{std::vector<double>(pixels, 0), std::move(local[0].depth),
-                           std::move(local[0].state)};
-  std::vector<std::uint64_t> key = std::move(local[0].key);
+  layer = {std::vector<double>(pixels, 0), std::move(local[0].depth), std::move(local[0].key),
+           std::move(local[0].state)};
   for (std::size_t i = 0; i < pixels; ++i) layer.density[i] = local[0].counts[i];
   result.outside = local[0].outside;
   for (unsigned w = 1; w < threads; ++w) {
@@ -238,15 +261,13 @@ ChaosDensityResult chaos_density(Image& image, const Camera& camera, const autom
     result.outside += l.outside;
     for (std::size_t i = 0; i < pixels; ++i) {
       layer.density[i] += l.counts[i];
-      if (l.depth[i] < layer.depth[i] || (l.depth[i] == layer.depth[i] && l.key[i] > key[i])) {
+      if (l.depth[i] < layer.depth[i] || (l.depth[i] == layer.depth[i] && l.key[i] > layer.sample[i])) {
         layer.depth[i] = l.depth[i];
         layer.state[i] = l.state[i];
-        key[i] = l.key[i];
+        layer.sample[i] = l.key[i];
       }
     }
   }
-  // Hidden points are neither counted nor outside: they are part of the samples on screen.
-  detail::composite_points(image, layer, options.color);
   return result;
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -27,8 +28,15 @@ struct PointLayer {
   std::vector<std::uint32_t> state;
 };
 
+/// A point layer's per-pixel values, borrowed.
+struct PointLayerView {
+  std::span<const double> density;
+  std::span<const float> depth;
+  std::span<const std::uint32_t> state;
+};
+
 /// Adds the layer's density to `density`; where it has hits: A = 1, R G B = color, Z and state
 /// of its nearest point.
-void composite_points(Image& image, const PointLayer& layer, const Rgb& color);
+void composite_points(Image& image, const PointLayerView& layer, const Rgb& color);
 
 }  // namespace cifs::render::detail

@@ -56,7 +56,7 @@ ViewTransform prepare(Image& image, const Camera& camera, const char* who) {
   return view;
 }
 
-void composite_points(Image& image, const PointLayer& layer, const Rgb& color) {
+void composite_points(Image& image, const PointLayerView& layer, const Rgb& color) {
   std::vector<float>& density = channel(image, "density");
   std::vector<float>& R = channel(image, "R");
   std::vector<float>& G = channel(image, "G");
@@ -119,6 +119,7 @@ void render_segments(Image& image, const Camera& camera, const Segments& segment
   check_segments(segments, "render_segments");
   const double w = style.width;
   if (!(w > 0) || !std::isfinite(w)) throw InvalidInput("render_segments: the width must be positive");
+  check_part(style.part, "render_segments");
   const std::size_t W = image.width, H = image.height, pixels = W * H;
   const double reach = w / 2 + 0.5;  // beyond it the coverage is 0
 
@@ -139,6 +140,7 @@ void render_segments(Image& image, const Camera& camera, const Segments& segment
     if (!(x0 <= x1 && y0 <= y1)) continue;  // off screen (also catches NaN)
     const std::uint32_t id = segments.states.empty() ? 0u : segments.states[s];
     for (auto iy = static_cast<std::size_t>(y0); iy <= static_cast<std::size_t>(y1); ++iy) {
+      if (!owns_row(style.part, iy)) continue;
       const double py = static_cast<double>(iy) + 0.5;
       for (auto ix = static_cast<std::size_t>(x0); ix <= static_cast<std::size_t>(x1); ++ix) {
         const double px = static_cast<double>(ix) + 0.5;
@@ -342,6 +344,7 @@ void render_mesh(Image& image, const Camera& camera, const Mesh& mesh, const Sur
   const int S = style.samples_per_side;
   if (S < 1 || S > 8)
     throw InvalidInput("render_mesh: samples_per_side = " + std::to_string(S) + " is outside 1 … 8");
+  check_part(style.part, "render_mesh");
   for (const double k : {style.ambient, style.diffuse, style.specular, style.shininess})
     if (!(k >= 0) || !std::isfinite(k))
       throw InvalidInput("render_mesh: shading coefficients must be finite and >= 0");
@@ -408,6 +411,8 @@ void render_mesh(Image& image, const Camera& camera, const Mesh& mesh, const Sur
         std::vector<double>& sample_depth = depth_of[t];
         std::vector<std::uint32_t>& sample_prim = prim_of[t];
         const std::size_t tx0 = (tile % tiles_x) * kTile, ty0 = (tile / tiles_x) * kTile;
+        static_assert(kTile == kBandRows, "a tile lies in one band");
+        if (!owns_row(style.part, ty0)) return;
         const std::size_t tx1 = std::min(tx0 + kTile, W), ty1 = std::min(ty0 + kTile, H);
         std::fill(sample_prim.begin(), sample_prim.end(), kNone);
         // Samples start just behind the image's depth: earlier layers are opaque at their Z, and
@@ -548,7 +553,7 @@ void render_points(Image& image, const Camera& camera, const Points& points,
       layer.state[i] = states.empty() ? 0u : states[static_cast<std::size_t>(k)];
     }
   }
-  detail::composite_points(image, layer, style.color);
+  detail::composite_points(image, {layer.density, layer.depth, layer.state}, style.color);
 }
 
 }  // namespace cifs::render

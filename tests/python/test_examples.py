@@ -1,6 +1,9 @@
 # SPDX-License-Identifier: MIT
 """The Python examples (examples/python) run on small sizes, and what they write is checked."""
+import importlib.util
 import json
+import os
+import shutil
 import subprocess
 import sys
 import unittest
@@ -96,6 +99,25 @@ class SweepTest(ScratchTestCase):
                                 "--max-level", row["max_level"], "--json").stdout)
         self.assertEqual(report["points"], int(row["points"]))
         self.assertAlmostEqual(report["box_counting"]["dimension"], float(row["dimension"]), delta=1e-12)
+
+    @unittest.skipUnless(shutil.which("mpirun") and importlib.util.find_spec("mpi4py"), "needs mpirun and mpi4py")
+    def test_sweep_across_processes_writes_the_files_of_one(self):
+        arguments = ["--steps", "5", "--depth", "8", "--min-boxes", "100"]
+        run_script("sweep.py", "--out", self.scratch / "one", *arguments, "--quiet")
+        mpirun = ["mpirun", "-n", "3", "--oversubscribe"] + (["--allow-run-as-root"] if os.geteuid() == 0 else [])
+        result = subprocess.run(mpirun + [sys.executable, str(SCRIPTS / "sweep.py"), "--out",
+                                          str(self.scratch / "three"), *arguments],
+                                capture_output=True, text=True, timeout=600)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        # One sweep shared by three processes (rank 0 reports every value once), not three sweeps.
+        lines = result.stdout.splitlines()
+        self.assertEqual([line.split(" ")[0] for line in lines if line.startswith("[")],
+                         ["[1/5]", "[2/5]", "[3/5]", "[4/5]", "[5/5]"], result.stdout)
+        self.assertEqual(sum(line.startswith("wrote") for line in lines), 1, result.stdout)
+        # Three processes measured values 0 and 3, 1 and 4, 2: the table and the figure are those of one.
+        for name in ("sweep.csv", "sweep.png"):
+            self.assertEqual((self.scratch / "three" / name).read_bytes(), (self.scratch / "one" / name).read_bytes(),
+                             name)
 
     def test_unknown_coefficient_is_refused(self):
         result = subprocess.run([sys.executable, str(SCRIPTS / "sweep.py"), "--out", str(self.scratch),

@@ -361,8 +361,12 @@ TEST_CASE("Strokes at equal depth: the later layer wins even where float rounds 
   vertical.vertices << 0, -8, 0, 0, 8, 0;
   vertical.segments = {{0, 1}};
   vertical.states = {2};
-  render_segments(image, camera, horizontal, CurveStyle{3, {1, 0, 0}});
-  render_segments(image, camera, vertical, CurveStyle{3, {0, 0, 1}});
+  CurveStyle red, blue;
+  red.width = blue.width = 3;
+  red.color = {1, 0, 0};
+  blue.color = {0, 0, 1};
+  render_segments(image, camera, horizontal, red);
+  render_segments(image, camera, vertical, blue);
   const std::size_t centre = 10 * 21 + 10;
   CHECK((*image.state)[centre] == 2);
   CHECK(image.channels["B"][centre] == 1.0f);

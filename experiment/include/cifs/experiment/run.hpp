@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "cifs/automata/automaton.hpp"
 #include "cifs/ifs/affine.hpp"
 #include "cifs/io/experiment.hpp"
+#include "cifs/render/partial.hpp"
 #include "cifs/types.hpp"
 
 namespace cifs::experiment {
@@ -25,6 +27,13 @@ struct RunOptions {
   std::optional<unsigned> threads;  // overrides render.threads
   /// Refuse (before any work) an image or geometry above this many bytes.
   std::size_t max_bytes = std::size_t{1} << 31;
+  /// A distributed run (cifs render under mpirun; docs/scaling.md): this process draws only its
+  /// part — the chaos game's chunks c ≡ index (mod count), or the rows of its bands
+  /// (render::owns_row) of every other layer — and hands its share to `combine`, which every part
+  /// calls once and which leaves the combined image in the share of part 0 (an MPI reduction).
+  /// Part 0 alone reserves and writes the outputs; the others return after `combine`.
+  render::Part part;
+  std::function<void(render::Share&)> combine;
 };
 
 struct RunReport {

@@ -10,6 +10,7 @@
 #include "cifs/automata/automaton.hpp"
 #include "cifs/render/camera.hpp"
 #include "cifs/render/image.hpp"
+#include "cifs/render/partial.hpp"
 #include "cifs/render/raster.hpp"
 #include "cifs/types.hpp"
 
@@ -19,7 +20,7 @@ namespace cifs::render {
 inline constexpr std::uint64_t kDensityChunk = std::uint64_t{1} << 16;
 
 struct ChaosDensityOptions {
-  /// Points drawn (each one independent, see chaos_density); below 2³² (uint32 counts).
+  /// Points drawn (each one independent, see chaos_density); below 2³² in each part (uint32 counts).
   std::uint64_t samples = 1'000'000;
   std::uint64_t seed = 1;
   /// Worker threads; 0 uses every core. The image does not depend on it.
@@ -34,8 +35,11 @@ struct ChaosDensityOptions {
   bool rational = false;
   /// R G B where points landed.
   Rgb color{1, 1, 1};
-  /// Called after every chunk with (samples done, samples), serialised, from the workers (a
-  /// ProgressBar fits).
+  /// Draw only this part's chunks (chunk c belongs to part c mod count): a distributed render whose
+  /// parts' layers combine (combine_shares) into the single-process image.
+  Part part;
+  /// Called after every chunk with (samples done, samples of this part), serialised, from the
+  /// workers (a ProgressBar fits).
   std::function<void(std::uint64_t, std::uint64_t)> progress;
 };
 
@@ -67,9 +71,17 @@ struct ChaosDensityResult {
 /// are merged by integer sums and by (depth, sample index), so a seed gives the same image for any
 /// number of threads.
 /// Throws InvalidInput for an invalid automaton or nets (ifs::validate), a system that is not
-/// contractive (auto depth), samples ≥ 2³², depth outside 0 … 64, rational without depth, or an
+/// contractive (auto depth), ≥ 2³² samples in this part, depth outside 0 … 64, rational without depth, or an
 /// image of another size than the camera.
 ChaosDensityResult chaos_density(Image& image, const Camera& camera, const automata::Automaton& automaton,
                                  std::span<const Points> nets, const ChaosDensityOptions& options = {});
+
+/// The same chaos game, its hits kept in `layer` (made the image's size) instead of composited:
+/// `composite(image, layer, options.color)` then gives chaos_density's image. With options.part,
+/// the hits of that part's chunks only (one process's share of a distributed render). `image` is
+/// read for its depths (points behind its Z are dropped) and prepared as by chaos_density.
+ChaosDensityResult chaos_density_layer(DensityLayer& layer, Image& image, const Camera& camera,
+                                       const automata::Automaton& automaton, std::span<const Points> nets,
+                                       const ChaosDensityOptions& options = {});
 
 }  // namespace cifs::render

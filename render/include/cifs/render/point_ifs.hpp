@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cifs/ifs/affine.hpp"
+#include "cifs/render/part.hpp"
 
 namespace cifs::render {
 
@@ -35,7 +36,7 @@ Bounds estimate_bounds(std::span<const AffineMap> maps, double margin = 0.02, st
 inline constexpr std::uint64_t kChaosChunk = std::uint64_t{1} << 20;
 
 struct ChaosHistogramOptions {
-  /// Points binned (after burn-in); below 2³² so that no count can overflow.
+  /// Points binned (after burn-in); below 2³² in each part, so that no count can overflow.
   std::uint64_t samples = 10'000'000;
   std::uint64_t seed = 1;
   /// Worker threads; 0 uses std::thread::hardware_concurrency().
@@ -47,8 +48,11 @@ struct ChaosHistogramOptions {
   /// map, which lies on the attractor, so 0 is exact; raise it only for a custom start. At most
   /// kChaosChunk (InvalidInput otherwise).
   std::uint64_t burn_in = 0;
-  /// Called after every chunk with (points done, samples), serialised under a mutex, from the
-  /// worker threads. Keep it cheap (a ProgressBar is).
+  /// Run only this part's chunks (chunk c belongs to part c mod count): the parts' histograms sum
+  /// to the single-process one (a distributed render).
+  Part part;
+  /// Called after every chunk with (points done, points of this part), serialised under a mutex,
+  /// from the worker threads. Keep it cheap (a ProgressBar is).
   std::function<void(std::uint64_t, std::uint64_t)> progress;
 };
 
@@ -72,7 +76,7 @@ struct Histogram {
 /// 32 bits the coin), so the cost does not depend on the number of maps.
 /// Throws InvalidInput for no maps, non-finite coefficients, negative or all-zero probabilities, a
 /// map whose linear part is not a contraction (spectral norm ≥ 1), an empty image, bounds with
-/// x_max ≤ x_min or y_max ≤ y_min, or samples ≥ 2³².
+/// x_max ≤ x_min or y_max ≤ y_min, or ≥ 2³² points in this part.
 Histogram chaos_game_histogram(std::span<const AffineMap> maps, const ChaosHistogramOptions& options);
 
 /// The deterministic invariant measure at depth k (Hutchinson): every word of k maps carries the

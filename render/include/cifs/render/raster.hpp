@@ -14,6 +14,7 @@
 #include "cifs/mesh.hpp"
 #include "cifs/render/camera.hpp"
 #include "cifs/render/image.hpp"
+#include "cifs/render/part.hpp"
 #include "cifs/types.hpp"
 
 namespace cifs::render {
@@ -41,6 +42,8 @@ struct CurveStyle {
   /// Stroke width in pixels (constant on screen, also under perspective).
   double width = 1.5;
   Rgb color{0.05, 0.2, 0.6};
+  /// Draw only the rows of this part (a distributed render; the other rows are left as they are).
+  Part part;
 };
 
 /// Draws every segment as a capsule of `style.width` pixels around its projection.
@@ -81,6 +84,9 @@ struct SurfaceStyle {
   int samples_per_side = 4;
   /// Worker threads over 32×32-pixel tiles; 0 uses every core. The image does not depend on it.
   unsigned threads = 0;
+  /// Draw only the tiles in the rows of this part (a distributed render; the other rows are left as
+  /// they are).
+  Part part;
 };
 
 /// Z-buffered mesh rendering. A face of n corners is drawn as the fan of triangles (0, i, i + 1),
