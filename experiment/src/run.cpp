@@ -7,6 +7,7 @@
 #include <functional>
 #include <map>
 #include <numbers>
+#include <optional>
 
 #include "cifs/automata/tensor.hpp"
 #include "cifs/errors.hpp"
@@ -485,112 +486,10 @@ void reserve_outputs(Outputs& out, const io::Experiment& e, const RunOptions& o,
     out.automaton[format] = &out.files.add(o.out_dir / path, "outputs.automaton_" + format, own);
 }
 
-}  // namespace
-
-RunReport run(const io::Experiment& e, const RunOptions& o) {
-  RunReport report;
-  const std::filesystem::path exr = !o.exr.empty()          ? o.exr
-                                    : e.outputs.exr.empty() ? ""
-                                                            : o.out_dir / e.outputs.exr;
-  const std::filesystem::path png = !o.png.empty()          ? o.png
-                                    : e.outputs.png.empty() ? ""
-                                                            : o.out_dir / e.outputs.png;
-  if (exr.empty() && png.empty())
-    throw InvalidInput(e.name + ": no image output (give -o OUT.exr, --png, or outputs.exr / outputs.png)");
-  // Ten float channels and the state: refuse an image that would not fit before any work.
-  const double image_bytes = double(e.render.width) * double(e.render.height) * 44.0;
-  if (image_bytes > double(o.max_bytes))
-    throw InvalidInput("render: a " + std::to_string(e.render.width) + " × " +
-                       std::to_string(e.render.height) + " image needs " + number(image_bytes / 1e9) +
-                       " GB, above the limit of " + number(double(o.max_bytes) / 1e9) + " GB");
-  Outputs outputs;
-  reserve_outputs(outputs, e, o, exr, png);
-  const unsigned threads = o.threads.value_or(e.render.threads);
-
-  std::string kind;
-  Scene scene = make_scene(e, o, report, kind);
-  if (e.evaluation.mode == Mode::chaos && !e.ifs) {
-    // Frame the chaos game from a short walk of the same automaton.
-    ifs::ChaosOptions co;
-    co.samples = 20000;
-    co.seed = e.evaluation.seed;
-    scene.extent =
-        drawable(cartesian_if(ifs::chaos_game(scene.automaton, scene.nets, co).points, scene.rational),
-                 "the attractor");
-  }
-
-  if (e.render.control_net && scene.control) {  // the control net is drawn: keep it in the picture
-    Points both(scene.extent.rows() + scene.control->vertices.rows(), scene.extent.cols());
-    if (scene.control->vertices.cols() != both.cols())
-      throw InvalidInput("control net and shape differ in dimension");
-    both << scene.extent, scene.control->vertices;
-    scene.extent = std::move(both);
-  }
-  const render::Camera camera = make_camera(e.camera, e.render, drawable(scene.extent, "the shape"));
-  render::Image image = render::make_framebuffer(camera);
-  render::CurveStyle control_style;
-  control_style.width = std::max(1.0, 0.5 * e.render.line_width);
-  control_style.color = {0.55, 0.55, 0.55};
-  // A NURBS net goes under its shape; a control mesh over its subdivision surface.
-  const bool under = e.render.control_net && scene.control && !e.mesh;
-  if (under) render::render_segments(image, camera, *scene.control, control_style);
-  if (scene.mesh) {
-    render::SurfaceStyle style;
-    style.color = e.render.color;
-    style.threads = threads;
-    render::render_mesh(image, camera, *scene.mesh, style);
-  }
-  if (e.render.control_net && scene.control && e.mesh) {
-    control_style.color = {0.1, 0.1, 0.1};
-    const Eigen::VectorXd size = scene.extent.colwise().maxCoeff() - scene.extent.colwise().minCoeff();
-    render_control_mesh(image, camera, *scene.control, control_style, 0.1 * size.norm());
-  }
-  if (scene.curves) {
-    render::CurveStyle style;
-    style.width = e.render.line_width;
-    style.color = e.render.color;
-    render::render_segments(image, camera, *scene.curves, style);
-  }
-  if (!scene.maps.empty()) {
-    render_classic(image, camera, scene, e, o, threads);
-    scene.depth = e.evaluation.mode == Mode::depth ? e.evaluation.depth : 0;
-  } else if (e.evaluation.mode == Mode::chaos) {
-    render::ProgressBar bar("chaos game", o.quiet);
-    render::ChaosDensityOptions co;
-    co.samples = e.evaluation.samples;
-    co.seed = e.evaluation.seed;
-    co.threads = threads;
-    co.color = e.render.color;
-    co.rational = scene.rational;
-    if (scene.rational) co.depth = 30;  // the automatic depth bound is for Cartesian nets
-    co.progress = std::ref(bar);
-    scene.depth = render::chaos_density(image, camera, scene.automaton, scene.nets, co).depth;
-  }
-  report.depth = scene.depth;
-
-  image.attributes["experiment"] = e.name;
-  if (!e.description.empty()) image.attributes["description"] = e.description;
-  image.attributes["source"] = kind;
-  image.attributes["evaluation"] =
-      e.mesh                             ? "subdivision, " + std::to_string(e.mesh->levels) + " levels"
-      : e.evaluation.mode == Mode::chaos ? "chaos game, " + std::to_string(e.evaluation.samples) + " samples"
-      : e.evaluation.mode == Mode::depth ? "depth"
-                                         : "tolerance " + number(e.evaluation.tolerance);
-  image.attributes["depth"] = std::to_string(scene.depth);
-  image.attributes["seed"] = std::to_string(e.evaluation.mode == Mode::chaos ? e.evaluation.seed
-                                            : e.perturbation                 ? e.perturbation->seed
-                                                                             : 0);
-  if (e.perturbation) {
-    image.attributes["perturbation"] = "amplitude " + number(e.perturbation->amplitude) + ", seed " +
-                                       std::to_string(e.perturbation->seed) + ", " +
-                                       std::to_string(report.free_coefficients) + " free coefficients";
-    image.attributes["residual"] = number(report.residual);
-  }
-
-  // Geometry and automaton files, in the order of the format table (io::formats): encoded a chunk at a
-  // time straight into their temporaries (no file's bytes are ever whole in memory); the images after
-  // them; then all renamed together (all are written or none is).
-  std::vector<std::filesystem::path> geometry;  // reported after the images
+/// The geometry and automaton files, in the order of the format table (io::formats), encoded a chunk
+/// at a time into their temporaries (no file's bytes are ever whole in memory); returns their paths.
+std::vector<std::filesystem::path> write_files(const Scene& scene, const io::Experiment& e, Outputs& outputs) {
+  std::vector<std::filesystem::path> geometry;
   if (!e.outputs.geometry.empty()) {
     const std::string& first = e.outputs.geometry.begin()->first;
     if (!scene.mesh && !scene.curves)
@@ -631,31 +530,196 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
       geometry.push_back(out.target());
     }
 
-  if (outputs.exr) {
-    render::write_exr(*outputs.exr, image);
-    report.written.push_back(exr);
-  }
-  if (outputs.png) {
-    render::PreviewOptions po;
-    po.background = {static_cast<std::uint8_t>(std::lround(255 * e.render.background[0])),
-                     static_cast<std::uint8_t>(std::lround(255 * e.render.background[1])),
-                     static_cast<std::uint8_t>(std::lround(255 * e.render.background[2]))};
-    render::preview_png(*outputs.png, image, po);
-    report.written.push_back(png);
-  }
-  report.written.insert(report.written.end(), geometry.begin(), geometry.end());
-  outputs.files.commit();
-  report.summary = e.name + ": " + kind +
+  return geometry;
+}
+
+/// One line of facts, then one per file written.
+std::string summary(const io::Experiment& e, const std::string& kind, const Scene& scene, const RunReport& report) {
+  std::string out = e.name + ": " + kind +
                    (e.mesh ? ", " + std::to_string(scene.depth) + " levels, " +
                                  std::to_string(face_count(*scene.mesh)) + " faces"
                     : e.evaluation.mode == Mode::chaos
                         ? ", chaos game of " + std::to_string(e.evaluation.samples) + " samples"
                         : ", depth " + std::to_string(scene.depth));
   if (e.perturbation)
-    report.summary += ", " + std::to_string(report.free_coefficients) + " free coefficients, residual " +
+    out += ", " + std::to_string(report.free_coefficients) + " free coefficients, residual " +
                       number(report.residual);
-  report.summary += "\n";
-  for (const auto& p : report.written) report.summary += "  wrote " + p.string() + "\n";
+  out += "\n";
+  for (const auto& p : report.written) out += "  wrote " + p.string() + "\n";
+  return out;
+}
+
+/// The PNG preview: shaded colours over the background, or a density's log tone mapping with the
+/// file's palette (default: from the background to its colour when it gives one), gamma and exposure.
+render::PreviewOptions preview_options(const io::RenderSettings& r, const render::Image& image) {
+  const auto byte = [](double x) { return static_cast<std::uint8_t>(std::lround(255 * std::clamp(x, 0.0, 1.0))); };
+  // Colours are linear RGB; the ramp's stops are sRGB bytes (IEC 61966-2-1).
+  const auto srgb = [&](const std::array<double, 3>& c) {
+    render::Rgb8 out{};
+    for (std::size_t k = 0; k < 3; ++k)
+      out[k] = byte(c[k] <= 0.0031308 ? 12.92 * c[k] : 1.055 * std::pow(c[k], 1 / 2.4) - 0.055);
+    return out;
+  };
+  render::PreviewOptions po;
+  po.background = {byte(r.background[0]), byte(r.background[1]), byte(r.background[2])};
+  po.exposure = r.exposure;
+  po.tone.gamma = r.gamma;
+  if (!r.palette.empty()) {
+    po.tone.ramp.clear();
+    for (const auto& c : r.palette) po.tone.ramp.push_back(srgb(c));
+  } else if (r.color_given) {
+    po.tone.ramp = {po.background, srgb(r.color)};
+  }
+  if (r.exposure != 1) {
+    const auto it = image.channels.find("density");
+    float top = 0;
+    if (it != image.channels.end())
+      for (const float d : it->second)
+        if (std::isfinite(d)) top = std::max(top, d);
+    if (top > 0) po.tone.max_density = static_cast<double>(top) / r.exposure;
+  }
+  return po;
+}
+
+}  // namespace
+
+RunReport run(const io::Experiment& e, const RunOptions& o) {
+  RunReport report;
+  const std::filesystem::path exr = !o.exr.empty()          ? o.exr
+                                    : e.outputs.exr.empty() ? ""
+                                                            : o.out_dir / e.outputs.exr;
+  const std::filesystem::path png = !o.png.empty()          ? o.png
+                                    : e.outputs.png.empty() ? ""
+                                                            : o.out_dir / e.outputs.png;
+  // Geometry or automaton files alone are a run without an image: nothing is framed or drawn.
+  const bool image = !exr.empty() || !png.empty();
+  if (!image && e.outputs.geometry.empty() && e.outputs.automaton.empty())
+    throw InvalidInput(e.name +
+                       ": no output (give -o OUT.exr or --png, or outputs: exr, png, a geometry or automaton file)");
+  // Ten float channels and the state: refuse an image that would not fit before any work.
+  const double image_bytes = double(e.render.width) * double(e.render.height) * 44.0;
+  if (image && image_bytes > double(o.max_bytes))
+    throw InvalidInput("render: a " + std::to_string(e.render.width) + " × " +
+                       std::to_string(e.render.height) + " image needs " + number(image_bytes / 1e9) +
+                       " GB, above the limit of " + number(double(o.max_bytes) / 1e9) + " GB");
+  Outputs outputs;
+  reserve_outputs(outputs, e, o, exr, png);
+  const unsigned threads = o.threads.value_or(e.render.threads);
+
+  std::string kind;
+  // Stages without a count show their name and time on a terminal (render::Stage).
+  std::optional<render::Stage> stage;
+  const auto begin = [&](const std::string& what) { stage.emplace(e.name + ": " + what, o.quiet); };
+  begin("evaluation");
+  Scene scene = make_scene(e, o, report, kind);
+  stage.reset();
+  if (!image) {
+    report.depth = scene.depth;
+    begin("writing files");
+    report.written = write_files(scene, e, outputs);
+    stage.reset();
+    outputs.files.commit();
+    report.summary = summary(e, kind, scene, report);
+    return report;
+  }
+  if (e.evaluation.mode == Mode::chaos && !e.ifs) {
+    // Frame the chaos game from a short walk of the same automaton.
+    ifs::ChaosOptions co;
+    co.samples = 20000;
+    co.seed = e.evaluation.seed;
+    scene.extent =
+        drawable(cartesian_if(ifs::chaos_game(scene.automaton, scene.nets, co).points, scene.rational),
+                 "the attractor");
+  }
+
+  if (e.render.control_net && scene.control) {  // the control net is drawn: keep it in the picture
+    Points both(scene.extent.rows() + scene.control->vertices.rows(), scene.extent.cols());
+    if (scene.control->vertices.cols() != both.cols())
+      throw InvalidInput("control net and shape differ in dimension");
+    both << scene.extent, scene.control->vertices;
+    scene.extent = std::move(both);
+  }
+  const render::Camera camera = make_camera(e.camera, e.render, drawable(scene.extent, "the shape"));
+  begin("drawing");
+  render::Image image = render::make_framebuffer(camera);
+  render::CurveStyle control_style;
+  control_style.width = std::max(1.0, 0.5 * e.render.line_width);
+  control_style.color = {0.55, 0.55, 0.55};
+  // A NURBS net goes under its shape; a control mesh over its subdivision surface.
+  const bool under = e.render.control_net && scene.control && !e.mesh;
+  if (under) render::render_segments(image, camera, *scene.control, control_style);
+  if (scene.mesh) {
+    render::SurfaceStyle style;
+    style.color = e.render.color;
+    style.threads = threads;
+    render::render_mesh(image, camera, *scene.mesh, style);
+  }
+  if (e.render.control_net && scene.control && e.mesh) {
+    control_style.color = {0.1, 0.1, 0.1};
+    const Eigen::VectorXd size = scene.extent.colwise().maxCoeff() - scene.extent.colwise().minCoeff();
+    render_control_mesh(image, camera, *scene.control, control_style, 0.1 * size.norm());
+  }
+  if (scene.curves) {
+    render::CurveStyle style;
+    style.width = e.render.line_width;
+    style.color = e.render.color;
+    render::render_segments(image, camera, *scene.curves, style);
+  }
+  stage.reset();  // the chaos game has its progress bar
+  if (!scene.maps.empty()) {
+    render_classic(image, camera, scene, e, o, threads);
+    scene.depth = e.evaluation.mode == Mode::depth ? e.evaluation.depth : 0;
+  } else if (e.evaluation.mode == Mode::chaos) {
+    render::ProgressBar bar("chaos game", o.quiet);
+    render::ChaosDensityOptions co;
+    co.samples = e.evaluation.samples;
+    co.seed = e.evaluation.seed;
+    co.threads = threads;
+    co.color = e.render.color;
+    co.rational = scene.rational;
+    if (scene.rational) co.depth = 30;  // the automatic depth bound is for Cartesian nets
+    co.progress = std::ref(bar);
+    scene.depth = render::chaos_density(image, camera, scene.automaton, scene.nets, co).depth;
+  }
+  report.depth = scene.depth;
+
+  image.attributes["experiment"] = e.name;
+  if (!e.description.empty()) image.attributes["description"] = e.description;
+  image.attributes["source"] = kind;
+  image.attributes["evaluation"] =
+      e.mesh                             ? "subdivision, " + std::to_string(e.mesh->levels) + " levels"
+      : e.evaluation.mode == Mode::chaos ? "chaos game, " + std::to_string(e.evaluation.samples) + " samples"
+      : e.evaluation.mode == Mode::depth ? "depth"
+                                         : "tolerance " + number(e.evaluation.tolerance);
+  image.attributes["depth"] = std::to_string(scene.depth);
+  image.attributes["seed"] = std::to_string(e.evaluation.mode == Mode::chaos ? e.evaluation.seed
+                                            : e.perturbation                 ? e.perturbation->seed
+                                                                             : 0);
+  if (e.perturbation) {
+    image.attributes["perturbation"] = "amplitude " + number(e.perturbation->amplitude) + ", seed " +
+                                       std::to_string(e.perturbation->seed) + ", " +
+                                       std::to_string(report.free_coefficients) + " free coefficients";
+    image.attributes["residual"] = number(report.residual);
+  }
+
+  // Geometry and automaton files (encoded a chunk at a time straight into their temporaries), the
+  // images after them; then all renamed together (all are written or none is).
+  begin("writing files");
+  const std::vector<std::filesystem::path> geometry = write_files(scene, e, outputs);  // reported last
+  if (outputs.exr) {
+    begin("writing " + exr.filename().string());
+    render::write_exr(*outputs.exr, image);
+    report.written.push_back(exr);
+  }
+  if (outputs.png) {
+    begin("writing " + png.filename().string());
+    render::preview_png(*outputs.png, image, preview_options(e.render, image));
+    report.written.push_back(png);
+  }
+  stage.reset();
+  report.written.insert(report.written.end(), geometry.begin(), geometry.end());
+  outputs.files.commit();
+  report.summary = summary(e, kind, scene, report);
   return report;
 }
 
