@@ -263,8 +263,9 @@ std::string polygon_info(const std::filesystem::path& path) {
   const Eigen::RowVectorXd lo = p.points.colwise().minCoeff(), hi = p.points.colwise().maxCoeff();
   json bounds = json::array();
   for (Eigen::Index k = 0; k < p.points.cols(); ++k) bounds.push_back({lo(k), hi(k)});
-  return json{{"type", "polygon"}, {"points", n},      {"dimension", p.points.cols()}, {"closed", p.closed},
-              {"edges", edges},    {"length", length}, {"bounds", bounds}}
+  return json{{"type", "polygon"},  {"points", n},    {"dimension", p.points.cols()},
+              {"closed", p.closed}, {"edges", edges}, {"length", length},
+              {"bounds", bounds}}
              .dump(1) +
          "\n";
 }
@@ -360,7 +361,8 @@ std::string surface_attractor(const nurbs::Surface& s, const std::string& format
   if (format == "svg")
     throw InvalidInput("--format svg draws curves; a surface's attractor is json, npy, ply or obj");
   if (o.depth < 0 && format == "obj")
-    throw InvalidInput("obj: a surface's points are unordered with --tolerance and --chaos, use json, npy or ply");
+    throw InvalidInput(
+        "obj: a surface's points are unordered with --tolerance and --chaos, use json, npy or ply");
   const automata::TensorAutomaton ta = automata::tensor_automaton(s);
   const std::vector<Points> nets = automata::initial_nets(ta, s);
   const Eigen::Index dim = nurbs::dimension(s);
@@ -603,7 +605,8 @@ std::string check(const CheckOptions& o, int& status) {
 
 std::size_t memory_size(const std::string& text) {
   const auto bad = [&] {
-    return InvalidInput("--max-memory '" + text + "': expected a size such as 4G, 3000M or 2.5G (bytes: K, M, G, T)");
+    return InvalidInput("--max-memory '" + text +
+                        "': expected a size such as 4G, 3000M or 2.5G (bytes: K, M, G, T)");
   };
   if (text.empty()) throw bad();
   const char last = static_cast<char>(std::toupper(static_cast<unsigned char>(text.back())));

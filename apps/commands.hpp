@@ -135,6 +135,7 @@ std::string dimension(const DimensionOptions& options);
 
 /// The main job on its built-in default: writes the example gallery into `out` from the example
 /// files in `examples` (shapes, experiments), returns a summary.
-std::string gallery(const std::filesystem::path& out, const std::filesystem::path& examples, bool quiet = false);
+std::string gallery(const std::filesystem::path& out, const std::filesystem::path& examples,
+                    bool quiet = false);
 
 }  // namespace cifs::cli

@@ -117,10 +117,10 @@ int run(int argc, char** argv, std::string& result) {
   });
 
   AttractorOptions at;
-  auto* attractor_cmd =
-      app.add_subcommand("attractor",
-                         "The attractor of a curve's automaton (in curve order) or a surface's (its quad mesh, "
-                         "or points)");
+  auto* attractor_cmd = app.add_subcommand(
+      "attractor",
+      "The attractor of a curve's automaton (in curve order) or a surface's (its quad mesh, "
+      "or points)");
   attractor_cmd->add_option("shape", at.shape, "Shape file (.json or .obj)")->required();
   attractor_cmd->add_option("--depth", at.depth, "2^K leaves per segment");
   attractor_cmd->add_option("--tolerance", at.tolerance, "Stop each branch when its piece is smaller than E");
@@ -128,8 +128,9 @@ int run(int argc, char** argv, std::string& result) {
   attractor_cmd
       ->add_option("--seed", at.seed, "Chaos-game seed (default: drawn, and printed with the points)")
       ->check(seed_text);
-  attractor_cmd->add_option("--format", at.format,
-                            "json (default), npy, ply, obj or svg (surfaces at a depth: ply and obj the mesh)");
+  attractor_cmd->add_option(
+      "--format", at.format,
+      "json (default), npy, ply, obj or svg (surfaces at a depth: ply and obj the mesh)");
   attractor_cmd->add_option(
       "-o,--output", at.output,
       "Output file, its format from the extension (.json, .npy, .ply, .obj: written as computed; .svg)");

@@ -488,7 +488,8 @@ void reserve_outputs(Outputs& out, const io::Experiment& e, const RunOptions& o,
 
 /// The geometry and automaton files, in the order of the format table (io::formats), encoded a chunk
 /// at a time into their temporaries (no file's bytes are ever whole in memory); returns their paths.
-std::vector<std::filesystem::path> write_files(const Scene& scene, const io::Experiment& e, Outputs& outputs) {
+std::vector<std::filesystem::path> write_files(const Scene& scene, const io::Experiment& e,
+                                               Outputs& outputs) {
   std::vector<std::filesystem::path> geometry;
   if (!e.outputs.geometry.empty()) {
     const std::string& first = e.outputs.geometry.begin()->first;
@@ -534,16 +535,17 @@ std::vector<std::filesystem::path> write_files(const Scene& scene, const io::Exp
 }
 
 /// One line of facts, then one per file written.
-std::string summary(const io::Experiment& e, const std::string& kind, const Scene& scene, const RunReport& report) {
+std::string summary(const io::Experiment& e, const std::string& kind, const Scene& scene,
+                    const RunReport& report) {
   std::string out = e.name + ": " + kind +
-                   (e.mesh ? ", " + std::to_string(scene.depth) + " levels, " +
-                                 std::to_string(face_count(*scene.mesh)) + " faces"
-                    : e.evaluation.mode == Mode::chaos
-                        ? ", chaos game of " + std::to_string(e.evaluation.samples) + " samples"
-                        : ", depth " + std::to_string(scene.depth));
+                    (e.mesh ? ", " + std::to_string(scene.depth) + " levels, " +
+                                  std::to_string(face_count(*scene.mesh)) + " faces"
+                     : e.evaluation.mode == Mode::chaos
+                         ? ", chaos game of " + std::to_string(e.evaluation.samples) + " samples"
+                         : ", depth " + std::to_string(scene.depth));
   if (e.perturbation)
     out += ", " + std::to_string(report.free_coefficients) + " free coefficients, residual " +
-                      number(report.residual);
+           number(report.residual);
   out += "\n";
   for (const auto& p : report.written) out += "  wrote " + p.string() + "\n";
   return out;
@@ -552,7 +554,9 @@ std::string summary(const io::Experiment& e, const std::string& kind, const Scen
 /// The PNG preview: shaded colours over the background, or a density's log tone mapping with the
 /// file's palette (default: from the background to its colour when it gives one), gamma and exposure.
 render::PreviewOptions preview_options(const io::RenderSettings& r, const render::Image& image) {
-  const auto byte = [](double x) { return static_cast<std::uint8_t>(std::lround(255 * std::clamp(x, 0.0, 1.0))); };
+  const auto byte = [](double x) {
+    return static_cast<std::uint8_t>(std::lround(255 * std::clamp(x, 0.0, 1.0)));
+  };
   // Colours are linear RGB; the ramp's stops are sRGB bytes (IEC 61966-2-1).
   const auto srgb = [&](const std::array<double, 3>& c) {
     render::Rgb8 out{};
@@ -592,13 +596,14 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
                                     : e.outputs.png.empty() ? ""
                                                             : o.out_dir / e.outputs.png;
   // Geometry or automaton files alone are a run without an image: nothing is framed or drawn.
-  const bool image = !exr.empty() || !png.empty();
-  if (!image && e.outputs.geometry.empty() && e.outputs.automaton.empty())
-    throw InvalidInput(e.name +
-                       ": no output (give -o OUT.exr or --png, or outputs: exr, png, a geometry or automaton file)");
+  const bool drawn = !exr.empty() || !png.empty();
+  if (!drawn && e.outputs.geometry.empty() && e.outputs.automaton.empty())
+    throw InvalidInput(
+        e.name +
+        ": no output (give -o OUT.exr or --png, or outputs: exr, png, a geometry or automaton file)");
   // Ten float channels and the state: refuse an image that would not fit before any work.
   const double image_bytes = double(e.render.width) * double(e.render.height) * 44.0;
-  if (image && image_bytes > double(o.max_bytes))
+  if (drawn && image_bytes > double(o.max_bytes))
     throw InvalidInput("render: a " + std::to_string(e.render.width) + " × " +
                        std::to_string(e.render.height) + " image needs " + number(image_bytes / 1e9) +
                        " GB, above the limit of " + number(double(o.max_bytes) / 1e9) + " GB");
@@ -613,7 +618,7 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
   begin("evaluation");
   Scene scene = make_scene(e, o, report, kind);
   stage.reset();
-  if (!image) {
+  if (!drawn) {
     report.depth = scene.depth;
     begin("writing files");
     report.written = write_files(scene, e, outputs);

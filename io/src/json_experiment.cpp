@@ -218,8 +218,8 @@ CameraSpec read_camera(const Reader& r, const json& v) {
 RenderSettings read_render(const Reader& r, const json& v) {
   r.object(v, "render");
   r.only(v, "render",
-         {"width", "height", "line_width", "color", "background", "control_net", "threads", "palette", "gamma",
-          "exposure"});
+         {"width", "height", "line_width", "color", "background", "control_net", "threads", "palette",
+          "gamma", "exposure"});
   RenderSettings s;
   if (v.contains("width")) s.width = bounded_integer(r, v["width"], "render.width", 1, 16384);
   if (v.contains("height")) s.height = bounded_integer(r, v["height"], "render.height", 1, 16384);

@@ -38,7 +38,9 @@ void ProgressBar::operator()(std::uint64_t done, std::uint64_t total) {
 }
 
 Stage::Stage(std::string label, bool quiet)
-    : label_(std::move(label)), start_(std::chrono::steady_clock::now()), exceptions_(std::uncaught_exceptions()) {
+    : label_(std::move(label)),
+      start_(std::chrono::steady_clock::now()),
+      exceptions_(std::uncaught_exceptions()) {
   if (quiet || ::isatty(STDERR_FILENO) != 1) return;
   ticker_ = std::thread([this] {
     std::unique_lock lock(mutex_);

@@ -4,8 +4,8 @@
 // density previews, --max-memory.
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <numbers>
 #include <nlohmann/json.hpp>
+#include <numbers>
 
 #include "apps/cli_runner.hpp"
 
@@ -42,7 +42,8 @@ std::string experiment(const std::string& name, const std::string& body) {
 
 TEST_CASE("cifs automaton and attractor take surfaces", "[cli][newuser]") {
   const auto s = std::get<nurbs::Surface>(io::read_shape(kHills));
-  const auto bu = nurbs::breakpoints(s.knots[0], s.degree[0]), bv = nurbs::breakpoints(s.knots[1], s.degree[1]);
+  const auto bu = nurbs::breakpoints(s.knots[0], s.degree[0]),
+             bv = nurbs::breakpoints(s.knots[1], s.degree[1]);
   const std::size_t patches = (bu.size() - 1) * (bv.size() - 1);
 
   // The tensor-product automaton: one initial entry per patch, four children per state.
@@ -68,7 +69,8 @@ TEST_CASE("cifs automaton and attractor take surfaces", "[cli][newuser]") {
     for (std::size_t j = 0; j < vs.size(); ++j) {
       const Point p = nurbs::evaluate(s, us[i], vs[j]);
       for (Eigen::Index k = 0; k < p.size(); ++k)
-        worst = std::max(worst, std::abs(points[i * vs.size() + j][static_cast<std::size_t>(k)].get<double>() - p(k)));
+        worst = std::max(
+            worst, std::abs(points[i * vs.size() + j][static_cast<std::size_t>(k)].get<double>() - p(k)));
     }
   CHECK(worst <= 1e-12 * scale);
 
@@ -115,7 +117,8 @@ TEST_CASE("cifs render: geometry alone, several experiments, --max-memory", "[cl
   REQUIRE(two.status == 0);
   CHECK_THAT(two.out, Catch::Contains("geo: NURBS surface") && Catch::Contains("tri: classic IFS"));
   CHECK(std::filesystem::is_regular_file(out / "tri.png"));
-  check_error(cifs_cli("render " + geometry + " " + tri + " -o " + (out / "x.exr").string()), "one experiment");
+  check_error(cifs_cli("render " + geometry + " " + tri + " -o " + (out / "x.exr").string()),
+              "one experiment");
   // A bad second file is refused before the first runs.
   std::filesystem::remove(out / "tri.png");
   check_error(cifs_cli("render " + tri + " " + experiment("bad.json", "{") + " --out-dir " + out.string()),
@@ -124,7 +127,8 @@ TEST_CASE("cifs render: geometry alone, several experiments, --max-memory", "[cl
 
   // --max-memory: a 1024² image (46 MB) under 10M is refused; a 7000² one (2.16 GB), refused by default,
   // passes the check under 3G (and is then refused for its missing folder, before any work).
-  const std::string small = experiment("small.json", R"({"ifs": "fern", "render": {"width": 1024, "height": 1024},
+  const std::string small =
+      experiment("small.json", R"({"ifs": "fern", "render": {"width": 1024, "height": 1024},
       "outputs": {"png": "small.png"}})");
   check_error(cifs_cli("render " + small + " --max-memory 10M"), "above the limit of 0.0104858 GB");
   const std::string big = experiment("big.json", R"({"ifs": "fern", "render": {"width": 7000, "height": 7000},
@@ -154,10 +158,10 @@ TEST_CASE("cifs info describes a control polygon", "[cli][newuser]") {
 TEST_CASE("Density previews take the experiment's colour, palette, gamma and exposure", "[cli][newuser]") {
   const auto out = scratch() / "newuser_colour";
   const auto run = [&](const std::string& name, const std::string& render) {
-    const std::string path = experiment(name + ".json", R"({"name": ")" + name + R"(", "ifs": "sierpinski",
+    const std::string path =
+        experiment(name + ".json", R"({"name": ")" + name + R"(", "ifs": "sierpinski",
         "evaluation": {"chaos": 200000, "seed": 1}, "render": {"width": 48, "height": 48)" +
-                                                            render + R"(}, "outputs": {"png": ")" + name +
-                                                            R"(.png"}})");
+                                       render + R"(}, "outputs": {"png": ")" + name + R"(.png"}})");
     const Run r = cifs_cli("render " + path + " --out-dir " + out.string());
     INFO(r.err);
     REQUIRE(r.status == 0);
@@ -201,27 +205,28 @@ TEST_CASE("Density previews take the experiment's colour, palette, gamma and exp
 
 TEST_CASE("--quiet on every command; progress only on a terminal", "[cli][newuser]") {
   const std::string mesh = CIFS_EXAMPLES_DIR "/meshes/cube.obj";
-  for (const std::string& command :
-       {"info " + kHills, "insert " + kHills + " --midpoints", "automaton " + kHills, "check " + kHills,
-        "scheme --list", "limit " + mesh + " --scheme catmull-clark", "dimension " CIFS_EXAMPLES_DIR
-        "/experiments/sierpinski.json",
-        "eval " + kHills + " --samples 3", "attractor " + kHills + " --depth 1",
-        "subdivide " + mesh + " --scheme loop --levels 0"}) {
+  for (const std::string& command : std::vector<std::string>{
+           "info " + kHills, "insert " + kHills + " --midpoints", "automaton " + kHills, "check " + kHills,
+           std::string("scheme --list"), "limit " + mesh + " --scheme catmull-clark",
+           std::string("dimension " CIFS_EXAMPLES_DIR "/experiments/sierpinski.json"),
+           "eval " + kHills + " --samples 3", "attractor " + kHills + " --depth 1",
+           "subdivide " + mesh + " --scheme loop --levels 0"}) {
     INFO(command);
     const Run r = cifs_cli(command + " --quiet");
     CHECK(r.err.find("--quiet") == std::string::npos);
   }
-  // A stage over a second shows its name and time on a terminal (script gives the command one), and
-  // nothing when stderr is a file.
-  const std::string slow = std::string(CIFS_CLI_PATH) + " check " + kHills + " --depth 10";
+  // A stage over a second (depth 9: about 4 s of CPU) shows its name and time on a terminal (script gives the
+  // command one), and nothing when stderr is a file.
+  const std::string slow = std::string(CIFS_CLI_PATH) + " check " + kHills + " --depth 9";
   const auto log = scratch() / "tty.log";
   const std::string tty = "script -qec '" + slow + " >/dev/null' " + log.string() + " >/dev/null 2>&1";
   REQUIRE(std::system(tty.c_str()) == 0);
   CHECK_THAT(slurp(log), Catch::Contains("check  done"));
-  const Run plain = cifs_cli("check " + kHills + " --depth 10");
+  const Run plain = cifs_cli("check " + kHills + " --depth 9");
   CHECK(plain.status == 0);
   CHECK(plain.err.empty());
-  const std::string quiet = "script -qec '" + slow + " --quiet >/dev/null' " + log.string() + " >/dev/null 2>&1";
+  const std::string quiet =
+      "script -qec '" + slow + " --quiet >/dev/null' " + log.string() + " >/dev/null 2>&1";
   REQUIRE(std::system(quiet.c_str()) == 0);
   CHECK_THAT(slurp(log), !Catch::Contains("check"));
 }

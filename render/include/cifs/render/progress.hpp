@@ -32,9 +32,9 @@ class ProgressBar {
 
 /// A stage whose amount of work is not counted (building a mesh, rasterising, writing an image):
 /// once it has run for a second, `label …  3.2 s` on stderr, redrawn every 100 ms by a thread of
-/// its own, and `label  done  3.4 s` when it ends (erased when it ends by an exception); a shorter stage prints
-/// nothing. Quiet and
-/// non-terminal as ProgressBar. Stages are not nested, nor drawn while a ProgressBar draws.
+/// its own, and `label  done  3.4 s` when it ends (erased when it ends by an exception); a shorter stage
+/// prints nothing. Quiet and non-terminal as ProgressBar. Stages are not nested, nor drawn while a
+/// ProgressBar draws.
 class Stage {
  public:
   explicit Stage(std::string label, bool quiet = false);
