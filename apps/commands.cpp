@@ -3,6 +3,7 @@
 #include "world.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -10,6 +11,7 @@
 #include <optional>
 
 #include "cifs/automata/automaton.hpp"
+#include "cifs/automata/tensor.hpp"
 #include "cifs/errors.hpp"
 #include "cifs/experiment/run.hpp"
 #include "cifs/format.hpp"
@@ -17,6 +19,7 @@
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/ifs/chaos.hpp"
 #include "cifs/ifs/dimension.hpp"
+#include "cifs/ifs/mesh.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/io/json.hpp"
 #include "cifs/nurbs/refine.hpp"
@@ -240,8 +243,43 @@ json shape_info(const io::Shape& shape) {
 
 }  // namespace
 
+namespace {
+
+/// A JSON file whose object holds "polygon" (docs/formats.md, control polygons of the seeds).
+bool is_polygon_file(const std::filesystem::path& path) {
+  if (path.extension() != ".json") return false;
+  std::ifstream in(path);
+  if (!in) return false;  // the shape reader names the problem
+  const json j = json::parse(in, nullptr, false);
+  return j.is_object() && j.contains("polygon");
+}
+
+/// Points, dimension, closed, edges, length and bounds of a control polygon.
+std::string polygon_info(const std::filesystem::path& path) {
+  const io::Polygon p = io::read_polygon(path);
+  const Eigen::Index n = p.points.rows();
+  const Eigen::Index edges = p.closed ? (n > 1 ? n : 0) : n - 1;
+  double length = 0;
+  for (Eigen::Index i = 0; i < edges; ++i) length += (p.points.row((i + 1) % n) - p.points.row(i)).norm();
+  const Eigen::RowVectorXd lo = p.points.colwise().minCoeff(), hi = p.points.colwise().maxCoeff();
+  json bounds = json::array();
+  for (Eigen::Index k = 0; k < p.points.cols(); ++k) bounds.push_back({lo(k), hi(k)});
+  return json{{"type", "polygon"},  {"points", n},    {"dimension", p.points.cols()},
+              {"closed", p.closed}, {"edges", edges}, {"length", length},
+              {"bounds", bounds}}
+             .dump(1) +
+         "\n";
+}
+
+}  // namespace
+
 std::string info(const std::filesystem::path& path, const ShapeSelection& select) {
   if (is_polygon_mesh_file(path)) return mesh_info(path);
+  if (is_polygon_file(path)) {
+    if (select.index || select.ignore_trim)
+      throw InvalidInput(path.string() + ": --index and --ignore-trim apply to shape files, not polygons");
+    return polygon_info(path);
+  }
   // Every shape of the file: one object, or an array of them with their index when there are several.
   const std::vector<io::Shape> shapes = read_shapes(path, select);
   if (shapes.size() == 1) return shape_info(shapes.front()).dump(1) + "\n";
@@ -257,10 +295,10 @@ std::string info(const std::filesystem::path& path, const ShapeSelection& select
 std::string automaton(const AutomatonOptions& o) {
   io::writable_format(io::Content::automaton, o.format, "--format");
   const io::Shape shape = read_shape(o.shape, o.select);
+  // Curves: the knot-doubling automaton; surfaces: the tensor product of their two direction curves'.
   const auto* c = std::get_if<nurbs::Curve>(&shape);
-  if (!c)
-    throw InvalidInput(o.shape.string() + ": automaton: only curves have a knot-doubling automaton so far");
-  automata::Automaton a = automata::knot_automaton(*c);
+  automata::Automaton a =
+      c ? automata::knot_automaton(*c) : automata::tensor_automaton(std::get<nurbs::Surface>(shape)).product;
   if (o.minimize) a = automata::minimize(a);
   return io::encode(a, o.format);
 }
@@ -317,6 +355,61 @@ std::string write_whole(Points&& P, const io::PointsStyle& style, const std::str
          (style.seed ? " (seed " + std::to_string(*style.seed) + ")" : "") + "\n";
 }
 
+/// A surface's attractor (its tensor-product automaton): at a depth the watertight quad mesh, as
+/// its grid of vertices (json, npy: u-major, (A·2^K + 1) × (B·2^K + 1)) or the mesh itself (obj, ply);
+/// to a tolerance one attractor point per proven piece, and the chaos game, as unordered points.
+std::string surface_attractor(const nurbs::Surface& s, const std::string& format, const AttractorOptions& o) {
+  if (format == "svg")
+    throw InvalidInput("--format svg draws curves; a surface's attractor is json, npy, ply or obj");
+  if (o.depth < 0 && format == "obj")
+    throw InvalidInput(
+        "obj: a surface's points are unordered with --tolerance and --chaos, use json, npy or ply");
+  const automata::TensorAutomaton ta = automata::tensor_automaton(s);
+  const std::vector<Points> nets = automata::initial_nets(ta, s);
+  const Eigen::Index dim = nurbs::dimension(s);
+  const io::PointsStyle cloud{.polyline = false, .closed = false, .seed = {}};
+
+  if (o.depth >= 0) {
+    // The mesh is built in memory (each node computed once, neighbours shared); its file is encoded a
+    // chunk at a time.
+    render::Stage stage("surface mesh", o.quiet);
+    const ifs::QuadMesh qm =
+        ifs::surface_mesh(ta, nets, o.depth, {.homogeneous = s.rational, .max_bytes = kMemoryBytes});
+    const auto count = static_cast<std::uint64_t>(qm.vertices.rows());
+    if (format == "json" || format == "npy") {
+      PointsOutput out(o.output, format, count, dim, cloud, "attractor", o.quiet);
+      out.write(qm.vertices);
+      return out.finish(o.output, " (the " + std::to_string(qm.quads.size()) + " quads' grid, u-major)");
+    }
+    std::vector<int> corners;
+    corners.reserve(4 * qm.quads.size());
+    for (const auto& q : qm.quads) corners.insert(corners.end(), q.begin(), q.end());
+    Mesh mesh = uniform_mesh(qm.vertices, std::move(corners), 4);
+    mesh.states = qm.quad_state;
+    if (o.output.empty()) return io::encode(mesh, format);
+    io::write(o.output, mesh);
+    return "wrote " + o.output.string() + ": " + std::to_string(count) + " vertices, " +
+           std::to_string(qm.quads.size()) + " quads\n";
+  }
+
+  if (o.chaos != 0) {
+    ifs::ChaosOptions options;
+    options.samples = static_cast<std::size_t>(o.chaos);
+    options.seed = o.seed;
+    ifs::ChaosResult r = ifs::chaos_game(ta.product, nets, options);
+    if (s.rational) r.points = ifs::cartesian(r.points);
+    return write_whole(std::move(r.points), {.polyline = false, .closed = false, .seed = r.seed}, format, o);
+  }
+
+  // One attractor point per piece, every piece proven smaller than the tolerance (Cartesian).
+  ifs::ToleranceSampleOptions so;
+  so.epsilon = o.tolerance;
+  so.homogeneous = s.rational;
+  so.max_points = kMemoryBytes / (sizeof(double) * static_cast<std::size_t>(nets.front().cols()));
+  ifs::ToleranceSample sample = ifs::tolerance_sample(ta.product, nets, so);
+  return write_whole(std::move(sample.points), cloud, format, o);
+}
+
 }  // namespace
 
 std::string attractor(const AttractorOptions& o) {
@@ -333,8 +426,7 @@ std::string attractor(const AttractorOptions& o) {
     throw InvalidInput("--tolerance: must be a positive number");
   const io::Shape shape = read_shape(o.shape, o.select);
   const auto* c = std::get_if<nurbs::Curve>(&shape);
-  if (!c)
-    throw InvalidInput(o.shape.string() + ": attractor: only curves have a knot-doubling automaton so far");
+  if (!c) return surface_attractor(std::get<nurbs::Surface>(shape), format, o);
   const automata::Automaton a = automata::knot_automaton(*c);
   const std::vector<Points> nets = automata::initial_nets(a, *c);
   const Eigen::Index dim = nurbs::dimension(*c);
@@ -512,8 +604,32 @@ std::string check(const CheckOptions& o, int& status) {
   return out + check_verdict(r.pass);
 }
 
+std::size_t memory_size(const std::string& text) {
+  const auto bad = [&] {
+    return InvalidInput("--max-memory '" + text +
+                        "': expected a size such as 4G, 3000M or 2.5G (bytes: K, M, G, T)");
+  };
+  if (text.empty()) throw bad();
+  const char last = static_cast<char>(std::toupper(static_cast<unsigned char>(text.back())));
+  const std::string units = "KMGT";
+  const auto unit = units.find(last);
+  const std::string digits = unit == std::string::npos ? text : text.substr(0, text.size() - 1);
+  double x = 0;
+  const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), x);
+  if (digits.empty() || error != std::errc() || end != digits.data() + digits.size() || !(x > 0)) throw bad();
+  if (unit != std::string::npos) x *= std::pow(1024.0, static_cast<double>(unit + 1));
+  if (x < 1 || x > 1e18) throw bad();
+  return static_cast<std::size_t>(x);
+}
+
 std::string render(const RenderOptions& o) {
-  const io::Experiment e = io::read_experiment(o.experiment);
+  if (o.experiments.size() > 1 && (!o.exr.empty() || !o.png.empty()))
+    throw InvalidInput("render: -o and --png name the image of one experiment; with " +
+                       std::to_string(o.experiments.size()) +
+                       " experiments the files' own outputs go to --out-dir");
+  // Every file is read (and refused) before the first one runs.
+  std::vector<io::Experiment> experiments;
+  for (const auto& path : o.experiments) experiments.push_back(io::read_experiment(path));
   experiment::RunOptions ro;
   ro.exr = o.exr;
   ro.png = o.png;
@@ -526,7 +642,10 @@ std::string render(const RenderOptions& o) {
     ro.part = {w.rank, w.size};
     ro.combine = combine_world;
   }
-  return experiment::run(e, ro).summary;
+  if (!o.max_memory.empty()) ro.max_bytes = memory_size(o.max_memory);
+  std::string summary;
+  for (const io::Experiment& e : experiments) summary += experiment::run(e, ro).summary;
+  return summary;
 }
 
 std::string dimension(const DimensionOptions& o) {
@@ -636,7 +755,7 @@ std::string dimension(const DimensionOptions& o) {
   return out;
 }
 
-std::string gallery(const std::filesystem::path& out, const std::filesystem::path& examples) {
+std::string gallery(const std::filesystem::path& out, const std::filesystem::path& examples, bool quiet) {
   // Every experiment of examples/experiments, in name order; each writes its own outputs.
   std::vector<std::filesystem::path> files;
   const std::filesystem::path folder = examples / "experiments";
@@ -650,10 +769,16 @@ std::string gallery(const std::filesystem::path& out, const std::filesystem::pat
   std::string summary;
   experiment::RunOptions ro;
   ro.out_dir = out;
-  ro.quiet = true;
-  for (const auto& file : files) summary += experiment::run(io::read_experiment(file), ro).summary;
+  ro.quiet = true;  // one bar for the whole gallery, by experiments run
+  render::ProgressBar bar("gallery", quiet);
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    bar(i, files.size() + 1);
+    summary += experiment::run(io::read_experiment(files[i]), ro).summary;
+  }
+  bar(files.size(), files.size() + 1);
   // The seeds' subdivision schemes: shapes, degree overlays, algorithms compared.
   summary += write_scheme_gallery(out / "schemes", examples);
+  bar(files.size() + 1, files.size() + 1);
   return summary;
 }
 

@@ -44,7 +44,7 @@ struct InsertOptions {
 std::string insert(const InsertOptions& options);
 
 /// Shapes (every shape of the file, one JSON object each, unless `select.index` picks one); polygon
-/// meshes through mesh_info.
+/// meshes through mesh_info; control polygons (JSON "polygon") by points, edges, length and bounds.
 std::string info(const std::filesystem::path& shape, const ShapeSelection& select = {});
 
 /// A PLY file, or an OBJ with faces and no free-form geometry.
@@ -108,12 +108,15 @@ struct CheckOptions {
 std::string check(const CheckOptions& options, int& status);
 
 struct RenderOptions {
-  std::filesystem::path experiment;
+  std::vector<std::filesystem::path> experiments;  // run in order; -o and --png take one
   std::filesystem::path exr, png, out_dir;
   std::optional<unsigned> threads;
+  std::string max_memory;  // `--max-memory SIZE` (bytes, or with K, M, G, T); empty: the run's default
   bool quiet = false;
 };
-/// `cifs render`: runs an experiment; returns the summary (what was written).
+/// `--max-memory`: "4G", "3000M", "2.5G", "1000000" as bytes (powers of 1024); InvalidInput otherwise.
+std::size_t memory_size(const std::string& text);
+/// `cifs render`: runs the experiments, each read before any runs; returns the summaries (what was written).
 std::string render(const RenderOptions& options);
 
 struct DimensionOptions {
@@ -132,6 +135,7 @@ std::string dimension(const DimensionOptions& options);
 
 /// The main job on its built-in default: writes the example gallery into `out` from the example
 /// files in `examples` (shapes, experiments), returns a summary.
-std::string gallery(const std::filesystem::path& out, const std::filesystem::path& examples);
+std::string gallery(const std::filesystem::path& out, const std::filesystem::path& examples,
+                    bool quiet = false);
 
 }  // namespace cifs::cli

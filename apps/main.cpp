@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "cifs/errors.hpp"
+#include "cifs/render/progress.hpp"
 #include "commands.hpp"
 #include "scheme_command.hpp"
 #include "world.hpp"
@@ -34,6 +35,12 @@ void add_shape_selection(CLI::App* command, cifs::cli::ShapeSelection& select) {
                       "Which curve or surface of a file that holds several (0-based, in file order)");
   command->add_flag("--ignore-trim", select.ignore_trim,
                     "Read trimmed surfaces (OBJ trim/hole, geomdl trims) whole, with a warning");
+}
+
+/// `--quiet` on a command without a progress bar of its own: once it has run for a second, its name
+/// and time on a terminal (render::Stage), none with the flag.
+void add_quiet(CLI::App* command, bool& quiet) {
+  command->add_flag("--quiet", quiet, "No progress on the terminal (none is drawn when stderr is not one)");
 }
 
 /// Help or version text into `result`, which main writes and checks like any command's output.
@@ -73,7 +80,12 @@ int run(int argc, char** argv, std::string& result) {
   insert_cmd->add_flag("--midpoints", in.midpoints,
                        "Insert the midpoint of every span (both directions for surfaces)");
   add_shape_selection(insert_cmd, in.select);
-  insert_cmd->callback([&] { result = insert(in); });
+  bool quiet = false;  // commands without a bar of their own show a Stage
+  add_quiet(insert_cmd, quiet);
+  insert_cmd->callback([&] {
+    const cifs::render::Stage stage("insert", quiet);
+    result = insert(in);
+  });
 
   std::filesystem::path info_shape;
   ShapeSelection info_select;
@@ -84,20 +96,32 @@ int run(int argc, char** argv, std::string& result) {
   info_cmd->add_option("shape", info_shape, "Shape file (.json or .obj) or polygon mesh (.obj or .ply)")
       ->required();
   add_shape_selection(info_cmd, info_select);
-  info_cmd->callback([&] { result = info(info_shape, info_select); });
+  add_quiet(info_cmd, quiet);
+  info_cmd->callback([&] {
+    const cifs::render::Stage stage("info", quiet);
+    result = info(info_shape, info_select);
+  });
 
   AutomatonOptions au;
   auto* automaton_cmd =
-      app.add_subcommand("automaton", "The knot-doubling automaton of a curve (JSON, DOT or SVG)");
+      app.add_subcommand("automaton",
+                         "The knot-doubling automaton of a curve, the tensor-product automaton of a surface "
+                         "(JSON, DOT or SVG)");
   automaton_cmd->add_option("shape", au.shape, "Shape file (.json or .obj)")->required();
   automaton_cmd->add_option("--format", au.format, "json (default), dot or svg");
   automaton_cmd->add_flag("--minimize", au.minimize, "Merge states that no control net can tell apart");
   add_shape_selection(automaton_cmd, au.select);
-  automaton_cmd->callback([&] { result = automaton(au); });
+  add_quiet(automaton_cmd, quiet);
+  automaton_cmd->callback([&] {
+    const cifs::render::Stage stage("automaton", quiet);
+    result = automaton(au);
+  });
 
   AttractorOptions at;
-  auto* attractor_cmd =
-      app.add_subcommand("attractor", "The attractor of a curve's automaton, in curve order");
+  auto* attractor_cmd = app.add_subcommand(
+      "attractor",
+      "The attractor of a curve's automaton (in curve order) or a surface's (its quad mesh, "
+      "or points)");
   attractor_cmd->add_option("shape", at.shape, "Shape file (.json or .obj)")->required();
   attractor_cmd->add_option("--depth", at.depth, "2^K leaves per segment");
   attractor_cmd->add_option("--tolerance", at.tolerance, "Stop each branch when its piece is smaller than E");
@@ -105,11 +129,13 @@ int run(int argc, char** argv, std::string& result) {
   attractor_cmd
       ->add_option("--seed", at.seed, "Chaos-game seed (default: drawn, and printed with the points)")
       ->check(seed_text);
-  attractor_cmd->add_option("--format", at.format, "json (default), npy, ply, obj or svg");
+  attractor_cmd->add_option(
+      "--format", at.format,
+      "json (default), npy, ply, obj or svg (surfaces at a depth: ply and obj the mesh)");
   attractor_cmd->add_option(
       "-o,--output", at.output,
       "Output file, its format from the extension (.json, .npy, .ply, .obj: written as computed; .svg)");
-  attractor_cmd->add_flag("--quiet", at.quiet, "No progress bar (-o)");
+  attractor_cmd->add_flag("--quiet", at.quiet, "No progress on the terminal");
   add_shape_selection(attractor_cmd, at.select);
   attractor_cmd->callback([&] { result = attractor(at); });
 
@@ -122,7 +148,11 @@ int run(int argc, char** argv, std::string& result) {
   check_cmd->add_option("--tolerance", ch.tolerance, "Relative tolerance (default 1e-12)");
   check_cmd->add_flag("--json", ch.json, "Machine-readable report");
   add_shape_selection(check_cmd, ch.select);
-  check_cmd->callback([&] { result = check(ch, status); });
+  add_quiet(check_cmd, quiet);
+  check_cmd->callback([&] {
+    const cifs::render::Stage stage("check", quiet);
+    result = check(ch, status);
+  });
 
   SchemeOptions sc;
   auto* scheme_cmd =
@@ -149,12 +179,17 @@ int run(int argc, char** argv, std::string& result) {
   scheme_cmd->add_option(
       "--boundary", sc.boundary,
       "Mesh schemes: a boundary vertex (catmull-clark, loop), rule edge or corner at valence 2");
-  scheme_cmd->callback([&] { result = scheme(sc); });
+  add_quiet(scheme_cmd, quiet);
+  scheme_cmd->callback([&] {
+    const cifs::render::Stage stage("scheme", quiet);
+    result = scheme(sc);
+  });
 
   RenderOptions re;
   auto* render_cmd =
-      app.add_subcommand("render", "Run an experiment file: OpenEXR image, PNG preview, geometry");
-  render_cmd->add_option("experiment", re.experiment, "Experiment file (docs/experiments.md)")->required();
+      app.add_subcommand("render", "Run experiment files: OpenEXR image, PNG preview, geometry");
+  render_cmd->add_option("experiment", re.experiments, "Experiment files (docs/experiments.md), run in order")
+      ->required();
   render_cmd->add_option("-o,--output", re.exr, "OpenEXR image (default: the file's outputs.exr)");
   render_cmd->add_option("--png", re.png, "PNG preview (default: the file's outputs.png)");
   render_cmd->add_option(
@@ -162,7 +197,9 @@ int run(int argc, char** argv, std::string& result) {
       "Folder of the file's other outputs (default: the folder of -o, else the current one)");
   render_cmd->add_option("--threads", re.threads,
                          "Worker threads (default: the file's render.threads; 0: all)");
-  render_cmd->add_flag("--quiet", re.quiet, "No progress bar");
+  render_cmd->add_option("--max-memory", re.max_memory,
+                         "Refuse (before any work) an image, mesh or curve above SIZE (e.g. 4G; default 2G)");
+  render_cmd->add_flag("--quiet", re.quiet, "No progress on the terminal");
   render_cmd->callback([&] { result = render(re); });
 
   SubdivideOptions su;
@@ -191,7 +228,11 @@ int run(int argc, char** argv, std::string& result) {
                         "Boundary corners (one face): edge (smoothed, default) or corner (kept)");
   limit_cmd->add_flag("--normals", li.normals, "Write unit limit normals (closed meshes)");
   limit_cmd->add_option("-o,--output", li.output, "Output mesh (.obj or .ply; default: OBJ on stdout)");
-  limit_cmd->callback([&] { result = limit(li); });
+  add_quiet(limit_cmd, quiet);
+  limit_cmd->callback([&] {
+    const cifs::render::Stage stage("limit", quiet);
+    result = limit(li);
+  });
 
   DimensionOptions di;
   auto* dimension_cmd = app.add_subcommand(
@@ -213,7 +254,11 @@ int run(int argc, char** argv, std::string& result) {
                             "Automatic fit range: only levels with at least this many boxes (default 1000)");
   dimension_cmd->add_flag("--json", di.json, "Machine-readable report");
   add_shape_selection(dimension_cmd, di.select);
-  dimension_cmd->callback([&] { result = dimension(di); });
+  add_quiet(dimension_cmd, quiet);
+  dimension_cmd->callback([&] {
+    const cifs::render::Stage stage("dimension", quiet);
+    result = dimension(di);
+  });
 
   std::filesystem::path gallery_out = "out";
   auto* gallery_cmd = app.add_subcommand("gallery", "Write the example gallery (the built-in default job)");
@@ -221,7 +266,8 @@ int run(int argc, char** argv, std::string& result) {
   gallery_cmd->add_option("out", gallery_out, "Output folder (default: out)");
   gallery_cmd->add_option("--examples", gallery_examples,
                           "Folder with shapes/ and experiments/ (default: the source tree's examples/)");
-  gallery_cmd->callback([&] { result = gallery(gallery_out, gallery_examples); });
+  gallery_cmd->add_flag("--quiet", quiet, "No progress on the terminal");
+  gallery_cmd->callback([&] { result = gallery(gallery_out, gallery_examples, quiet); });
 
   try {
     const std::string first = argc > 1 ? argv[1] : "-";

@@ -7,6 +7,7 @@
 #include <functional>
 #include <map>
 #include <numbers>
+#include <optional>
 
 #include "cifs/automata/tensor.hpp"
 #include "cifs/errors.hpp"
@@ -481,6 +482,105 @@ void reserve_outputs(Outputs& out, const io::Experiment& e, const RunOptions& o,
     out.automaton[format] = &out.files.add(o.out_dir / path, "outputs.automaton_" + format, own);
 }
 
+/// The geometry and automaton files, in the order of the format table (io::formats), encoded a chunk
+/// at a time into their temporaries (no file's bytes are ever whole in memory); returns their paths.
+std::vector<std::filesystem::path> write_files(const Scene& scene, const io::Experiment& e,
+                                               Outputs& outputs) {
+  std::vector<std::filesystem::path> geometry;
+  if (!e.outputs.geometry.empty()) {
+    const std::string& first = e.outputs.geometry.begin()->first;
+    if (!scene.mesh && !scene.curves)
+      throw InvalidInput("outputs." + first + ": this evaluation gives a density, no geometry to export");
+    const io::Content content = scene.mesh ? io::Content::mesh : io::Content::segments;
+    // The parser accepts the formats of meshes and of segment sets: say which one this scene takes.
+    const std::vector<io::Format> formats = io::formats(content);
+    for (const auto& output : e.outputs.geometry) {
+      const std::string& format = output.first;
+      const auto writes = [&](const io::Format& f) { return f.write && f.name == format; };
+      if (std::any_of(formats.begin(), formats.end(), writes)) continue;
+      std::string upper = format, ours;
+      for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+      for (const io::Format& f : formats)
+        if (f.write) ours += (ours.empty() ? "" : " or ") + std::string(f.name);
+      std::string message = "outputs.";
+      message += format + ": ";
+      message += upper + " is for ";
+      message += scene.mesh ? "curves" : "surfaces";
+      message += "; use " + ours + " for ";
+      message += scene.mesh ? "surfaces" : "curves";
+      throw InvalidInput(message);
+    }
+    for (const io::Format& f : io::formats(content))
+      if (const auto it = e.outputs.geometry.find(std::string(f.name)); it != e.outputs.geometry.end()) {
+        AtomicFile& out = *outputs.geometry.at(it->first);
+        if (scene.mesh)
+          io::encode(*scene.mesh, f.name, out);
+        else
+          io::encode(*scene.curves, f.name, out);
+        geometry.push_back(out.target());
+      }
+  }
+  for (const io::Format& f : io::formats(io::Content::automaton))
+    if (const auto it = e.outputs.automaton.find(std::string(f.name)); it != e.outputs.automaton.end()) {
+      AtomicFile& out = *outputs.automaton.at(it->first);
+      io::encode(scene.automaton, f.name, out);
+      geometry.push_back(out.target());
+    }
+
+  return geometry;
+}
+
+/// One line of facts, then one per file written.
+std::string summary(const io::Experiment& e, const std::string& kind, const Scene& scene,
+                    const RunReport& report) {
+  std::string out = e.name + ": " + kind +
+                    (e.mesh ? ", " + std::to_string(scene.depth) + " levels, " +
+                                  std::to_string(face_count(*scene.mesh)) + " faces"
+                     : e.evaluation.mode == Mode::chaos
+                         ? ", chaos game of " + std::to_string(e.evaluation.samples) + " samples"
+                         : ", depth " + std::to_string(scene.depth));
+  if (e.perturbation)
+    out += ", " + std::to_string(report.free_coefficients) + " free coefficients, residual " +
+           number(report.residual);
+  out += "\n";
+  for (const auto& p : report.written) out += "  wrote " + p.string() + "\n";
+  return out;
+}
+
+/// The PNG preview: shaded colours over the background, or a density's log tone mapping with the
+/// file's palette (default: from the background to its colour when it gives one), gamma and exposure.
+render::PreviewOptions preview_options(const io::RenderSettings& r, const render::Image& image) {
+  const auto byte = [](double x) {
+    return static_cast<std::uint8_t>(std::lround(255 * std::clamp(x, 0.0, 1.0)));
+  };
+  // Colours are linear RGB; the ramp's stops are sRGB bytes (IEC 61966-2-1).
+  const auto srgb = [&](const std::array<double, 3>& c) {
+    render::Rgb8 out{};
+    for (std::size_t k = 0; k < 3; ++k)
+      out[k] = byte(c[k] <= 0.0031308 ? 12.92 * c[k] : 1.055 * std::pow(c[k], 1 / 2.4) - 0.055);
+    return out;
+  };
+  render::PreviewOptions po;
+  po.background = {byte(r.background[0]), byte(r.background[1]), byte(r.background[2])};
+  po.exposure = r.exposure;
+  po.tone.gamma = r.gamma;
+  if (!r.palette.empty()) {
+    po.tone.ramp.clear();
+    for (const auto& c : r.palette) po.tone.ramp.push_back(srgb(c));
+  } else if (r.color_given) {
+    po.tone.ramp = {po.background, srgb(r.color)};
+  }
+  if (r.exposure != 1) {
+    const auto it = image.channels.find("density");
+    float top = 0;
+    if (it != image.channels.end())
+      for (const float d : it->second)
+        if (std::isfinite(d)) top = std::max(top, d);
+    if (top > 0) po.tone.max_density = static_cast<double>(top) / r.exposure;
+  }
+  return po;
+}
+
 }  // namespace
 
 RunReport run(const io::Experiment& e, const RunOptions& o) {
@@ -491,11 +591,15 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
   const std::filesystem::path png = !o.png.empty()          ? o.png
                                     : e.outputs.png.empty() ? ""
                                                             : o.out_dir / e.outputs.png;
-  if (exr.empty() && png.empty())
-    throw InvalidInput(e.name + ": no image output (give -o OUT.exr, --png, or outputs.exr / outputs.png)");
+  // Geometry or automaton files alone are a run without an image: nothing is framed or drawn.
+  const bool drawn = !exr.empty() || !png.empty();
+  if (!drawn && e.outputs.geometry.empty() && e.outputs.automaton.empty())
+    throw InvalidInput(
+        e.name +
+        ": no output (give -o OUT.exr or --png, or outputs: exr, png, a geometry or automaton file)");
   // Ten float channels and the state: refuse an image that would not fit before any work.
   const double image_bytes = double(e.render.width) * double(e.render.height) * 44.0;
-  if (image_bytes > double(o.max_bytes))
+  if (drawn && image_bytes > double(o.max_bytes))
     throw InvalidInput("render: a " + std::to_string(e.render.width) + " × " +
                        std::to_string(e.render.height) + " image needs " + number(image_bytes / 1e9) +
                        " GB, above the limit of " + number(double(o.max_bytes) / 1e9) + " GB");
@@ -507,7 +611,22 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
   const unsigned threads = o.threads.value_or(e.render.threads);
 
   std::string kind;
+  // Stages without a count show their name and time on a terminal (render::Stage).
+  std::optional<render::Stage> stage;
+  const auto begin = [&](const std::string& what) { stage.emplace(e.name + ": " + what, o.quiet); };
+  begin("evaluation");
   Scene scene = make_scene(e, o, report, kind);
+  stage.reset();
+  if (!drawn) {
+    report.depth = scene.depth;
+    if (!writer) return report;  // a distributed run's files are rank 0's
+    begin("writing files");
+    report.written = write_files(scene, e, outputs);
+    stage.reset();
+    outputs.files.commit();
+    report.summary = summary(e, kind, scene, report);
+    return report;
+  }
   if (e.evaluation.mode == Mode::chaos && !e.ifs) {
     // Frame the chaos game from a short walk of the same automaton.
     ifs::ChaosOptions co;
@@ -526,6 +645,7 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
     scene.extent = std::move(both);
   }
   const render::Camera camera = make_camera(e.camera, e.render, drawable(scene.extent, "the shape"));
+  begin("drawing");
   render::Image image = render::make_framebuffer(camera);
   render::CurveStyle control_style;
   control_style.width = std::max(1.0, 0.5 * e.render.line_width);
@@ -553,6 +673,7 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
     style.part = o.part;
     render::render_segments(image, camera, *scene.curves, style);
   }
+  stage.reset();  // the chaos game has its progress bar
   // The chaos game's hits, composited here or, in a distributed run, combined with the other parts'.
   std::optional<render::DensityLayer> points;
   if (!scene.maps.empty()) {
@@ -613,75 +734,24 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
     image.attributes["residual"] = number(report.residual);
   }
 
-  // Geometry and automaton files, in the order of the format table (io::formats): encoded a chunk at a
-  // time straight into their temporaries (no file's bytes are ever whole in memory); the images after
-  // them; then all renamed together (all are written or none is).
-  std::vector<std::filesystem::path> geometry;  // reported after the images
-  if (!e.outputs.geometry.empty()) {
-    const std::string& first = e.outputs.geometry.begin()->first;
-    if (!scene.mesh && !scene.curves)
-      throw InvalidInput("outputs." + first + ": this evaluation gives a density, no geometry to export");
-    const io::Content content = scene.mesh ? io::Content::mesh : io::Content::segments;
-    // The parser accepts the formats of meshes and of segment sets: say which one this scene takes.
-    const std::vector<io::Format> formats = io::formats(content);
-    for (const auto& output : e.outputs.geometry) {
-      const std::string& format = output.first;
-      const auto writes = [&](const io::Format& f) { return f.write && f.name == format; };
-      if (std::any_of(formats.begin(), formats.end(), writes)) continue;
-      std::string upper = format, ours;
-      for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-      for (const io::Format& f : formats)
-        if (f.write) ours += (ours.empty() ? "" : " or ") + std::string(f.name);
-      std::string message = "outputs.";
-      message += format + ": ";
-      message += upper + " is for ";
-      message += scene.mesh ? "curves" : "surfaces";
-      message += "; use " + ours + " for ";
-      message += scene.mesh ? "surfaces" : "curves";
-      throw InvalidInput(message);
-    }
-    for (const io::Format& f : io::formats(content))
-      if (const auto it = e.outputs.geometry.find(std::string(f.name)); it != e.outputs.geometry.end()) {
-        AtomicFile& out = *outputs.geometry.at(it->first);
-        if (scene.mesh)
-          io::encode(*scene.mesh, f.name, out);
-        else
-          io::encode(*scene.curves, f.name, out);
-        geometry.push_back(out.target());
-      }
-  }
-  for (const io::Format& f : io::formats(io::Content::automaton))
-    if (const auto it = e.outputs.automaton.find(std::string(f.name)); it != e.outputs.automaton.end()) {
-      AtomicFile& out = *outputs.automaton.at(it->first);
-      io::encode(scene.automaton, f.name, out);
-      geometry.push_back(out.target());
-    }
-
+  // Geometry and automaton files (encoded a chunk at a time straight into their temporaries), the
+  // images after them; then all renamed together (all are written or none is).
+  begin("writing files");
+  const std::vector<std::filesystem::path> geometry = write_files(scene, e, outputs);  // reported last
   if (outputs.exr) {
+    begin("writing " + exr.filename().string());
     render::write_exr(*outputs.exr, image);
     report.written.push_back(exr);
   }
   if (outputs.png) {
-    render::PreviewOptions po;
-    po.background = {static_cast<std::uint8_t>(std::lround(255 * e.render.background[0])),
-                     static_cast<std::uint8_t>(std::lround(255 * e.render.background[1])),
-                     static_cast<std::uint8_t>(std::lround(255 * e.render.background[2]))};
-    render::preview_png(*outputs.png, image, po);
+    begin("writing " + png.filename().string());
+    render::preview_png(*outputs.png, image, preview_options(e.render, image));
     report.written.push_back(png);
   }
+  stage.reset();
   report.written.insert(report.written.end(), geometry.begin(), geometry.end());
   outputs.files.commit();
-  report.summary = e.name + ": " + kind +
-                   (e.mesh ? ", " + std::to_string(scene.depth) + " levels, " +
-                                 std::to_string(face_count(*scene.mesh)) + " faces"
-                    : e.evaluation.mode == Mode::chaos
-                        ? ", chaos game of " + std::to_string(e.evaluation.samples) + " samples"
-                        : ", depth " + std::to_string(scene.depth));
-  if (e.perturbation)
-    report.summary += ", " + std::to_string(report.free_coefficients) + " free coefficients, residual " +
-                      number(report.residual);
-  report.summary += "\n";
-  for (const auto& p : report.written) report.summary += "  wrote " + p.string() + "\n";
+  report.summary = summary(e, kind, scene, report);
   return report;
 }
 

@@ -219,7 +219,9 @@ CameraSpec read_camera(const Reader& r, const json& v) {
 
 RenderSettings read_render(const Reader& r, const json& v) {
   r.object(v, "render");
-  r.only(v, "render", {"width", "height", "line_width", "color", "background", "control_net", "threads"});
+  r.only(v, "render",
+         {"width", "height", "line_width", "color", "background", "control_net", "threads", "palette",
+          "gamma", "exposure"});
   RenderSettings s;
   if (v.contains("width")) s.width = bounded_integer(r, v["width"], "render.width", 1, 16384);
   if (v.contains("height")) s.height = bounded_integer(r, v["height"], "render.height", 1, 16384);
@@ -227,7 +229,24 @@ RenderSettings read_render(const Reader& r, const json& v) {
     s.line_width = positive(r, v["line_width"], "render.line_width");
     if (s.line_width > 256) r.fail("render.line_width", "above 256 pixels");
   }
-  if (v.contains("color")) s.color = colour(r, v["color"], "render.color");
+  if (v.contains("color")) {
+    s.color = colour(r, v["color"], "render.color");
+    s.color_given = true;
+  }
+  if (v.contains("palette")) {
+    const json& stops = r.array(v["palette"], "render.palette");
+    if (stops.empty() || stops.size() > 256) r.fail("render.palette", "expected 1 to 256 colours");
+    for (std::size_t i = 0; i < stops.size(); ++i)
+      s.palette.push_back(colour(r, stops[i], "render.palette[" + std::to_string(i) + "]"));
+  }
+  if (v.contains("gamma")) {
+    s.gamma = positive(r, v["gamma"], "render.gamma");
+    if (s.gamma > 100) r.fail("render.gamma", "above 100");
+  }
+  if (v.contains("exposure")) {
+    s.exposure = positive(r, v["exposure"], "render.exposure");
+    if (s.exposure > 1e6) r.fail("render.exposure", "above 1e6");
+  }
   if (v.contains("background")) s.background = colour(r, v["background"], "render.background");
   if (v.contains("control_net")) s.control_net = r.boolean(v["control_net"], "render.control_net");
   if (v.contains("threads"))

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <exception>
 
 namespace cifs::render {
 
@@ -34,6 +35,44 @@ void ProgressBar::operator()(std::uint64_t done, std::uint64_t total) {
     finished_ = true;
   }
   std::fflush(stderr);
+}
+
+Stage::Stage(std::string label, bool quiet)
+    : label_(std::move(label)),
+      start_(std::chrono::steady_clock::now()),
+      exceptions_(std::uncaught_exceptions()) {
+  if (quiet || ::isatty(STDERR_FILENO) != 1) return;
+  ticker_ = std::thread([this] {
+    std::unique_lock lock(mutex_);
+    // Silent for the first second: short stages leave no line.
+    if (wake_.wait_until(lock, start_ + std::chrono::seconds(1), [this] { return stop_; })) return;
+    do draw(false);
+    while (!wake_.wait_for(lock, std::chrono::milliseconds(100), [this] { return stop_; }));
+  });
+}
+
+Stage::~Stage() {
+  if (!ticker_.joinable()) return;
+  {
+    const std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_one();
+  ticker_.join();
+  if (!shown_) return;
+  if (std::uncaught_exceptions() > exceptions_) {
+    std::fputs("\r\033[K", stderr);  // the error line follows on a clean line
+    std::fflush(stderr);
+  } else {
+    draw(true);
+  }
+}
+
+void Stage::draw(bool done) {
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  std::fprintf(stderr, "\r%s %s  %.1f s%s", label_.c_str(), done ? " done" : "…", seconds, done ? "\n" : "");
+  std::fflush(stderr);
+  shown_ = true;
 }
 
 }  // namespace cifs::render

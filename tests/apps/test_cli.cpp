@@ -283,7 +283,9 @@ TEST_CASE("cifs automaton, attractor and check", "[cli]") {
   CHECK_THAT(stext.out, Catch::Contains("1 patches") && Catch::Contains("PASS"));
   CHECK(cifs_cli("check " + surface + " --depth 3 --tolerance 1e-30").status == 1);
   check_error(cifs_cli("check " + surface + " --depth 14"), "lower --depth");
-  check_error(cifs_cli("automaton " + file("s.json", kSurface)), "only curves");
+  // A surface's automaton is its tensor product: one patch, four children per state.
+  const json sa = json::parse(cifs_cli("automaton " + file("s.json", kSurface)).out);
+  CHECK(sa["initial"].size() == 1);
 }
 
 TEST_CASE("cifs render: outputs where asked; bad experiments exit 2 and write nothing", "[cli]") {
@@ -314,7 +316,7 @@ TEST_CASE("cifs render: outputs where asked; bad experiments exit 2 and write no
 
 TEST_CASE("cifs gallery runs every example experiment", "[cli]") {
   const auto out = scratch() / "gallery";
-  const Run r = cifs_cli("gallery " + out.string());
+  const Run r = cifs_cli("gallery " + out.string() + " --quiet");
   REQUIRE(r.status == 0);
   // One EXR and one PNG per experiment file, plus what each asks for.
   std::size_t experiments = 0;

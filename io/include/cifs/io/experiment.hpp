@@ -77,6 +77,13 @@ struct RenderSettings {
   std::array<double, 3> background{1, 1, 1};
   bool control_net = false;  // also draw the control polygon / net / mesh
   unsigned threads = 0;      // 0: every hardware thread
+  /// Density (chaos-game, Hutchinson) previews: colour stops from the lowest to the highest density
+  /// (linear RGB). Empty: from the background to `color` when the file gives a colour
+  /// (`color_given`), else the default ramp (render::ToneMapOptions).
+  std::vector<std::array<double, 3>> palette;
+  bool color_given = false;
+  double gamma = 1;     // density previews: v ↦ v^(1/gamma) after the log mapping (> 1 lifts faint parts)
+  double exposure = 1;  // previews: shaded colours × exposure; densities saturate at max / exposure
 };
 
 /// Output files, relative to the output directory given at run time (empty: not written).

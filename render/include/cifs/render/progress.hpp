@@ -3,8 +3,11 @@
 #pragma once
 
 #include <chrono>
+#include <condition_variable>
 #include <cstdint>
+#include <mutex>
 #include <string>
+#include <thread>
 
 namespace cifs::render {
 
@@ -25,6 +28,31 @@ class ProgressBar {
   bool finished_ = false;
   std::chrono::steady_clock::time_point start_;
   std::chrono::steady_clock::time_point last_draw_;
+};
+
+/// A stage whose amount of work is not counted (building a mesh, rasterising, writing an image):
+/// once it has run for a second, `label …  3.2 s` on stderr, redrawn every 100 ms by a thread of
+/// its own, and `label  done  3.4 s` when it ends (erased when it ends by an exception); a shorter stage
+/// prints nothing. Quiet and non-terminal as ProgressBar. Stages are not nested, nor drawn while a
+/// ProgressBar draws.
+class Stage {
+ public:
+  explicit Stage(std::string label, bool quiet = false);
+  ~Stage();
+  Stage(const Stage&) = delete;
+  Stage& operator=(const Stage&) = delete;
+  Stage(Stage&&) = delete;
+  Stage& operator=(Stage&&) = delete;
+
+ private:
+  void draw(bool done);
+  std::string label_;
+  std::chrono::steady_clock::time_point start_;
+  int exceptions_ = 0;  // std::uncaught_exceptions() at the start: a stage ended by an error is erased
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stop_ = false, shown_ = false;
+  std::thread ticker_;
 };
 
 }  // namespace cifs::render
