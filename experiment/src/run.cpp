@@ -396,7 +396,7 @@ JunctionPart junction_part(const io::JunctionSide& s) {
     part.nets = scheme_windows(s, window);
     for (std::size_t k = 0; k < part.nets.size(); ++k) {
       std::vector<Eigen::Index>& rows = part.point_of_row.emplace_back();
-      const auto nb = static_cast<Eigen::Index>(s.columns - window + 1), K = static_cast<Eigen::Index>(k);
+      const Eigen::Index nb = Eigen::Index{s.columns} - window + 1, K = static_cast<Eigen::Index>(k);
       for (Eigen::Index r = 0; r < part.nets[k].rows(); ++r)
         rows.push_back(s.columns == 0 ? K + r : (K / nb + r / window) * s.columns + K % nb + r % window);
     }
@@ -447,6 +447,7 @@ std::vector<std::size_t> glued_entries(const JunctionPart& part, const std::stri
       along.emplace_back(part.patches[k][static_cast<std::size_t>(1 - axis)], k);
   std::sort(along.begin(), along.end());
   std::vector<std::size_t> entries;
+  entries.reserve(along.size());
   for (const auto& [place, k] : along) entries.push_back(k);
   return entries;
 }

@@ -430,8 +430,8 @@ TEST_CASE("A junction of a bicubic and a biquadratic patch: the experiment's mes
     automata::Automaton a = j.system.automaton;
     a.initial.assign(a.initial.begin() + static_cast<long>(first),
                      a.initial.begin() + static_cast<long>(first + count));
-    std::vector<std::array<int, 2>> patches;
-    for (int p = 0; p < nu * nv; ++p) patches.push_back({p / nv, p % nv});
+    std::vector<std::array<int, 2>> patches(static_cast<std::size_t>(nu) * static_cast<std::size_t>(nv));
+    for (int p = 0; p < nu * nv; ++p) patches[static_cast<std::size_t>(p)] = {p / nv, p % nv};
     return ifs::quad_mesh(a, std::span(j.nets).subspan(first, count), patches, 3).vertices;
   };
   const Points a = side(0, 4, 2, 2), b = side(4, 8, 4, 2);
@@ -443,7 +443,8 @@ TEST_CASE("A junction of a bicubic and a biquadratic patch: the experiment's mes
   const auto Q = [&](int k) {
     return Eigen::RowVector3d((G.row(10 + k) + 4 * G.row(15 + k) + G.row(20 + k)) / 6);
   };
-  for (int k = 0; k < 3; ++k) CHECK((b.row(k * 8) - (Q(k) + 4 * Q(k + 1) + Q(k + 2)) / 6).norm() <= 1e-12);
+  for (int k = 0; k < 3; ++k)
+    CHECK((b.row(8 * Eigen::Index{k}) - (Q(k) + 4 * Q(k + 1) + Q(k + 2)) / 6).norm() <= 1e-12);
 }
 
 TEST_CASE("The gallery's NURBS and fractal junction: B's boundary is A's NURBS boundary after perturbation",
