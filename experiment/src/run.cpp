@@ -20,6 +20,7 @@
 #include "cifs/ifs/bcifs_surface.hpp"
 #include "cifs/ifs/chaos.hpp"
 #include "cifs/ifs/dimension.hpp"
+#include "cifs/ifs/junction.hpp"
 #include "cifs/ifs/mesh.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/render/camera.hpp"
@@ -29,6 +30,7 @@
 #include "cifs/render/preview.hpp"
 #include "cifs/render/progress.hpp"
 #include "cifs/render/raster.hpp"
+#include "cifs/subdivision/ifs.hpp"
 #include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/mesh.hpp"
 #include "cifs/topology.hpp"
@@ -49,6 +51,9 @@ struct Scene {
   std::vector<ifs::AffineMap> maps;  // classic IFS
   Points extent;                     // points that the camera must show
   int depth = 0;
+  /// Junctions: the colour of every automaton state (its side's), for faces and segments.
+  std::vector<render::Rgb> state_colors;
+  std::string junction;  // junctions: what was glued, for the summary and the EXR header
 };
 
 std::string number(double x) {
@@ -340,6 +345,273 @@ void render_control_mesh(render::Image& image, const render::Camera& camera, con
   for (std::size_t i = 0; i < Z.size(); ++i) Z[i] = std::min(Z[i], surface[i]);
 }
 
+/// One side of a junction as a BC-IFS, its nets and the layout of its initial entries.
+struct JunctionPart {
+  ifs::Bcifs system;
+  std::vector<Points> nets;
+  bool rational = false;
+  /// Surfaces: the (u, v) place of every initial entry in the side's grid of patches, and the
+  /// points per net along u and v (for drawing the control nets).
+  std::vector<std::array<int, 2>> patches;
+  std::array<Eigen::Index, 2> net_grid{0, 0};
+  /// Scheme sides: the control point that each row of each net reads (nets overlap).
+  std::vector<std::vector<Eigen::Index>> point_of_row;
+  std::string kind;  // "b-spline(degree = 3) curve", "rational NURBS surface", …
+};
+
+std::string scheme_text(const subdivision::Scheme& s) {
+  std::string text = s.name;
+  for (std::size_t i = 0; i < s.parameters.size(); ++i)
+    text += (i == 0 ? "(" : ", ") + s.parameters[i].name + " = " +
+            subdivision::to_string(s.parameters[i].value) + (i + 1 == s.parameters.size() ? ")" : "");
+  return text;
+}
+
+/// The windows of `window` consecutive points of a polygon, or of window × window points of a
+/// grid (u-major, row i·window + j), u-major like product_bcifs' initial entries.
+std::vector<Points> scheme_windows(const io::JunctionSide& s, int window) {
+  std::vector<Points> nets;
+  if (s.columns == 0) {
+    for (Eigen::Index k = 0; k + window <= s.points.rows(); ++k)
+      nets.push_back(s.points.middleRows(k, window));
+    return nets;
+  }
+  for (int a = 0; a + window <= s.rows; ++a)
+    for (int b = 0; b + window <= s.columns; ++b) {
+      Points W(window * window, s.points.cols());
+      for (int i = 0; i < window; ++i)
+        for (int j = 0; j < window; ++j) W.row(i * window + j) = s.points.row((a + i) * s.columns + b + j);
+      nets.push_back(std::move(W));
+    }
+  return nets;
+}
+
+JunctionPart junction_part(const io::JunctionSide& s) {
+  JunctionPart part;
+  if (s.scheme) {
+    const int window = s.window == 0 ? subdivision::mask_degree(*s.scheme) : s.window;
+    const auto curve = [&](int points, bool layered) {
+      return subdivision::scheme_bcifs(
+          *s.scheme, window, {.pieces = points - window + 1, .layer = layered ? s.layer : 0, .free = s.free});
+    };
+    part.nets = scheme_windows(s, window);
+    for (std::size_t k = 0; k < part.nets.size(); ++k) {
+      std::vector<Eigen::Index>& rows = part.point_of_row.emplace_back();
+      const Eigen::Index nb = Eigen::Index{s.columns} - window + 1, K = static_cast<Eigen::Index>(k);
+      for (Eigen::Index r = 0; r < part.nets[k].rows(); ++r)
+        rows.push_back(s.columns == 0 ? K + r : (K / nb + r / window) * s.columns + K % nb + r % window);
+    }
+    if (s.columns == 0) {
+      part.system = curve(static_cast<int>(s.points.rows()), true);
+      part.kind = scheme_text(*s.scheme) + " curve";
+      return part;
+    }
+    // The layer runs along the glued boundary: across u for "ustart", across v for "vstart".
+    const bool u = s.boundary.front() == 'u';
+    part.system =
+        ifs::product_bcifs(curve(s.rows, u), curve(s.columns, !u), {.free_when_either = s.layer > 0});
+    const int nb = s.columns - window + 1;
+    for (int k = 0; k < static_cast<int>(part.nets.size()); ++k) part.patches.push_back({k / nb, k % nb});
+    part.net_grid = {window, window};
+    part.kind = scheme_text(*s.scheme) + " surface";
+    return part;
+  }
+  if (const auto* c = std::get_if<nurbs::Curve>(&*s.shape)) {
+    part.system = ifs::curve_bcifs(*c, {.free_vertices = s.free});
+    part.nets = automata::initial_nets(part.system.automaton, *c);
+    part.rational = c->rational;
+    part.kind = std::string(c->rational ? "rational " : "") + "NURBS curve";
+    return part;
+  }
+  const auto& surface = std::get<nurbs::Surface>(*s.shape);
+  const automata::TensorAutomaton ta = automata::tensor_automaton(surface);
+  part.system = ifs::surface_bcifs(ta, {.free_knot_lines = s.free});
+  part.nets = automata::initial_nets(ta, surface);
+  part.rational = surface.rational;
+  part.patches = ta.patches;
+  part.net_grid = {surface.degree[0] + 1, surface.degree[1] + 1};
+  part.kind = std::string(surface.rational ? "rational " : "") + "NURBS surface";
+  return part;
+}
+
+/// The initial entries of a side along its glued boundary, in order along it.
+std::vector<std::size_t> glued_entries(const JunctionPart& part, const std::string& boundary) {
+  const std::size_t n = part.system.automaton.initial.size();
+  if (part.patches.empty()) return {boundary == "start" ? 0 : n - 1};
+  const int axis = boundary.front() == 'u' ? 0 : 1;
+  int last = 0;
+  for (const auto& p : part.patches) last = std::max(last, p[static_cast<std::size_t>(axis)]);
+  const int at = boundary.ends_with("start") ? 0 : last;
+  std::vector<std::pair<int, std::size_t>> along;
+  for (std::size_t k = 0; k < n; ++k)
+    if (part.patches[k][static_cast<std::size_t>(axis)] == at)
+      along.emplace_back(part.patches[k][static_cast<std::size_t>(1 - axis)], k);
+  std::sort(along.begin(), along.end());
+  std::vector<std::size_t> entries;
+  entries.reserve(along.size());
+  for (const auto& [place, k] : along) entries.push_back(k);
+  return entries;
+}
+
+/// Homogeneous rows (x, 1) for the side that is not rational when the other one is.
+void lift_homogeneous(std::vector<Points>& nets) {
+  for (Points& N : nets) {
+    Points H(N.rows(), N.cols() + 1);
+    H << N, Eigen::VectorXd::Ones(N.rows());
+    N = std::move(H);
+  }
+}
+
+/// The grid lines of a net of rows × columns points (row i·columns + j), Cartesian.
+Segments net_lines(const Points& net, std::array<Eigen::Index, 2> grid) {
+  Segments lines;
+  for (Eigen::Index i = 0; i < grid[0]; ++i)
+    append(lines, polyline_segments(net.middleRows(i * grid[1], grid[1])));
+  for (Eigen::Index j = 0; j < grid[1]; ++j) {
+    Points column(grid[0], net.cols());
+    for (Eigen::Index i = 0; i < grid[0]; ++i) column.row(i) = net.row(i * grid[1] + j);
+    append(lines, polyline_segments(column));
+  }
+  return lines;
+}
+
+/// join replaces B's rows on the glued boundary by A's in the glued nets only; B's other nets read
+/// the same control points. A scheme side takes the new points in every net (its windows overlap:
+/// one polygon or grid); a NURBS side must already have them (its nets come from knot insertion).
+void share_boundary_points(const JunctionPart& b, std::vector<Points>& nets, std::size_t first) {
+  std::map<Eigen::Index, Eigen::RowVectorXd> moved;
+  for (std::size_t k = 0; k < b.nets.size(); ++k) {
+    const Points& given = b.nets[k];
+    const Points& joined = nets[first + k];
+    for (Eigen::Index r = 0; r < given.rows(); ++r) {
+      const double scale = std::max({1.0, given.row(r).norm(), joined.row(r).norm()});
+      if ((given.row(r) - joined.row(r)).norm() <= 1e-12 * scale) continue;
+      if (b.point_of_row.empty())
+        throw InvalidInput("junction: B's control points on the glued boundary differ from A's (net " +
+                           std::to_string(k) + ", row " + std::to_string(r) +
+                           "): give the NURBS side A's boundary points, with A's weights");
+      moved[b.point_of_row[k][static_cast<std::size_t>(r)]] = joined.row(r);
+    }
+  }
+  for (std::size_t k = 0; k < b.nets.size() && !moved.empty(); ++k)
+    for (Eigen::Index r = 0; r < b.nets[k].rows(); ++r)
+      if (const auto it = moved.find(b.point_of_row[k][static_cast<std::size_t>(r)]); it != moved.end())
+        nets[first + k].row(r) = it->second;
+}
+
+/// Two shapes joined along a shared boundary (ifs::join: A keeps its matrices, B adapts), perturbed
+/// when asked, drawn each side in its own colour: curves as their pieces, surfaces as one quad mesh
+/// per side (ifs::quad_mesh; the two meshes meet on the junction but are not welded).
+Scene junction_scene(const io::Junction& junction, const io::Experiment& e, const RunOptions& o,
+                     RunReport& report, std::string& kind) {
+  JunctionPart a = junction_part(junction.a), b = junction_part(junction.b);
+  const bool rational = a.rational || b.rational;
+  if (rational && !a.rational) lift_homogeneous(a.nets);
+  if (rational && !b.rational) lift_homogeneous(b.nets);
+  const std::vector<std::size_t> ea = glued_entries(a, junction.a.boundary),
+                                 eb = glued_entries(b, junction.b.boundary);
+  if (ea.size() != eb.size())
+    throw InvalidInput("junction: A's " + junction.a.boundary + " has " + std::to_string(ea.size()) +
+                       " patches and B's " + junction.b.boundary + " " + std::to_string(eb.size()) +
+                       ": the glued boundaries must have as many");
+  std::vector<ifs::Glue> glue;
+  for (std::size_t k = 0; k < ea.size(); ++k)
+    glue.push_back({ea[k], junction.a.boundary, eb[k], junction.b.boundary});
+  ifs::Junction j;
+  try {
+    j = ifs::join(a.system, a.nets, b.system, b.nets, glue);
+  } catch (const InvalidInput& error) {
+    throw InvalidInput("junction: " + std::string(error.what()));
+  }
+  share_boundary_points(b, j.nets, a.nets.size());
+  report.free_coefficients = j.free;
+  report.residual = j.residual;
+  ifs::Bcifs system = std::move(j.system);
+  if (e.perturbation) {
+    ifs::Perturbation p = ifs::perturb(system, perturb_options(*e.perturbation));
+    report.free_coefficients = p.values.size();
+    report.residual = std::max(report.residual, p.residual);
+    system = std::move(p.system);
+  }
+  (void)ifs::contraction(system.automaton);
+  kind = "junction of a " + a.kind + " and a " + b.kind;
+  Scene scene;
+  scene.junction = "A's " + junction.a.boundary + " = B's " + junction.b.boundary + ", " +
+                   std::to_string(j.shared.size()) + " shared cell" + (j.shared.size() == 1 ? "" : "s") +
+                   ", " + std::to_string(j.junction_constraints.size()) + " junction constraint" +
+                   (j.junction_constraints.size() == 1 ? "" : "s");
+  scene.automaton = system.automaton;
+  scene.nets = std::move(j.nets);
+  scene.rational = rational;
+  // Each side's colour on its own states (shared cells are A's; leaves are never shared).
+  const render::Rgb color_a = junction.a.color.value_or(e.render.color);
+  const render::Rgb color_b = junction.b.color.value_or(render::Rgb{0.85, 0.40, 0.08});
+  const auto& g = scene.automaton.graph;
+  for (automata::StateId s = 0; s < boost::num_vertices(g); ++s)
+    scene.state_colors.push_back(g[s].name.starts_with("B:") ? color_b : color_a);
+
+  const std::size_t na = a.nets.size();
+  Segments control;
+  for (std::size_t k = 0; k < scene.nets.size(); ++k) {
+    const Points N = drawable(cartesian_if(scene.nets[k], rational), "a control net");
+    const auto& grid = (k < na ? a : b).net_grid;
+    append(control, grid[0] > 0 ? net_lines(N, grid) : polyline_segments(N));
+  }
+  scene.extent = control.vertices;
+  scene.control = std::move(control);
+  if (e.evaluation.mode == Mode::chaos) return scene;
+  const int depth = e.evaluation.depth;
+  scene.depth = depth;
+  if (a.patches.empty()) {  // curves: one segment per piece, as for BC-IFS files
+    const std::size_t nodes = ifs::attractor_point_count(system.automaton, depth, true);
+    const double bytes = double(nodes) * double(2 * sizeof(double) * scene.nets.front().cols() + 16);
+    if (bytes > double(o.max_bytes))
+      throw InvalidInput("evaluation.depth: " + std::to_string(nodes) + " pieces at depth " +
+                         std::to_string(depth) + " need " + number(bytes / 1e9) + " GB, above the limit of " +
+                         number(double(o.max_bytes) / 1e9) + " GB; lower the depth");
+    const ifs::EdgePieces pieces = ifs::edge_pieces(system, scene.nets, depth);
+    const Eigen::Index n = pieces.start.rows();
+    Points v(2 * n, pieces.start.cols());
+    v << pieces.start, pieces.end;
+    Segments s;
+    s.vertices = drawable(cartesian_if(v, rational), "the junction");
+    for (Eigen::Index i = 0; i < n; ++i) {
+      s.segments.push_back({static_cast<int>(i), static_cast<int>(n + i)});
+      s.states.push_back(static_cast<std::uint32_t>(pieces.state[static_cast<std::size_t>(i)]));
+    }
+    scene.extent = s.vertices;
+    scene.curves = std::move(s);
+    return scene;
+  }
+  // Surfaces: each side's patches meshed on their own grid, the meshes put side by side.
+  ifs::MeshOptions mo;
+  mo.homogeneous = rational;
+  mo.max_bytes = o.max_bytes / 2;
+  std::vector<int> corners;
+  std::vector<std::uint32_t> states;
+  Points vertices(0, 3);
+  for (const JunctionPart* part : {&a, &b}) {
+    const std::size_t first = part == &a ? 0 : na;
+    automata::Automaton side = system.automaton;
+    side.initial.assign(system.automaton.initial.begin() + static_cast<long>(first),
+                        system.automaton.initial.begin() + static_cast<long>(first + part->nets.size()));
+    const std::span<const Points> nets(scene.nets.data() + first, part->nets.size());
+    const ifs::QuadMesh qm = ifs::quad_mesh(side, nets, part->patches, depth, mo);
+    const auto offset = static_cast<int>(vertices.rows());
+    Points both(vertices.rows() + qm.vertices.rows(), 3);
+    both << vertices, drawable(qm.vertices, "the junction");
+    vertices = std::move(both);
+    for (const auto& q : qm.quads)
+      for (const int c : q) corners.push_back(offset + c);
+    states.insert(states.end(), qm.quad_state.begin(), qm.quad_state.end());
+  }
+  Mesh mesh = uniform_mesh(vertices, std::move(corners), 4);
+  mesh.states = std::move(states);
+  scene.extent = mesh.vertices;
+  scene.mesh = std::move(mesh);
+  return scene;
+}
+
 std::vector<ifs::AffineMap> classic_maps(const io::ClassicIfs& c) {
   if (c.name == "fern") return ifs::barnsley_fern();
   if (c.name == "sierpinski") return ifs::sierpinski_triangle();
@@ -384,6 +656,7 @@ Scene make_scene(const io::Experiment& e, const RunOptions& o, RunReport& report
            e.mesh->path.filename().string();
     return mesh_scene(*e.mesh, e, o, report);
   }
+  if (e.junction) return junction_scene(*e.junction, e, o, report, kind);
   kind = "classic IFS " + (e.ifs->name.empty() ? std::string("(maps)") : e.ifs->name);
   return classic_scene(*e.ifs);
 }
@@ -454,6 +727,25 @@ render::DensityLayer render_classic(const render::Camera& camera, const Scene& s
     layer.state[i] = 0;
   }
   return layer;
+}
+
+/// Segments in the colour of their state (`colors[state]`, junctions: each side its own), or all in
+/// the style's colour when `colors` is empty.
+void render_coloured_segments(render::Image& image, const render::Camera& camera, const Segments& segments,
+                              render::CurveStyle style, const std::vector<render::Rgb>& colors) {
+  if (colors.empty() || segments.states.size() != segments.segments.size())
+    return render::render_segments(image, camera, segments, style);
+  std::map<render::Rgb, Segments> parts;
+  for (std::size_t i = 0; i < segments.segments.size(); ++i) {
+    Segments& part = parts[colors.at(segments.states[i])];
+    if (part.vertices.size() == 0) part.vertices = segments.vertices;  // shared: segments index them
+    part.segments.push_back(segments.segments[i]);
+    part.states.push_back(segments.states[i]);
+  }
+  for (const auto& [color, part] : parts) {
+    style.color = color;
+    render::render_segments(image, camera, part, style);
+  }
 }
 
 /// The run's outputs, checked and reserved (their temporaries made) before any work: two names for
@@ -539,7 +831,8 @@ std::string summary(const io::Experiment& e, const std::string& kind, const Scen
                      : e.evaluation.mode == Mode::chaos
                          ? ", chaos game of " + std::to_string(e.evaluation.samples) + " samples"
                          : ", depth " + std::to_string(scene.depth));
-  if (e.perturbation)
+  if (e.junction) out += ", " + scene.junction;
+  if (e.perturbation || e.junction)
     out += ", " + std::to_string(report.free_coefficients) + " free coefficients, residual " +
            number(report.residual);
   out += "\n";
@@ -656,6 +949,7 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
   if (scene.mesh) {
     render::SurfaceStyle style;
     style.color = e.render.color;
+    style.state_colors = scene.state_colors;
     style.threads = threads;
     style.part = o.part;
     render::render_mesh(image, camera, *scene.mesh, style);
@@ -671,7 +965,7 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
     style.width = e.render.line_width;
     style.color = e.render.color;
     style.part = o.part;
-    render::render_segments(image, camera, *scene.curves, style);
+    render_coloured_segments(image, camera, *scene.curves, style, scene.state_colors);
   }
   stage.reset();  // the chaos game has its progress bar
   // The chaos game's hits, composited here or, in a distributed run, combined with the other parts'.
@@ -731,6 +1025,11 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
     image.attributes["perturbation"] = "amplitude " + number(e.perturbation->amplitude) + ", seed " +
                                        std::to_string(e.perturbation->seed) + ", " +
                                        std::to_string(report.free_coefficients) + " free coefficients";
+    image.attributes["residual"] = number(report.residual);
+  }
+  if (e.junction) {
+    image.attributes["junction"] =
+        scene.junction + ", " + std::to_string(report.free_coefficients) + " free coefficients";
     image.attributes["residual"] = number(report.residual);
   }
 

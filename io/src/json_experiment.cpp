@@ -52,30 +52,30 @@ std::array<double, 3> colour(const Reader& r, const json& v, const std::string& 
 }
 
 Shape read_shape_member(const Reader& r, const json& v, const std::filesystem::path& base,
-                        std::vector<std::filesystem::path>& inputs) {
+                        std::vector<std::filesystem::path>& inputs, const std::string& path = "shape") {
   if (v.is_string()) {
     const std::filesystem::path p = base / v.get<std::string>();
     inputs.push_back(p);
     try {
       return read_shape(p);
     } catch (const std::exception& e) {
-      r.fail("shape", e.what());
+      r.fail(path, e.what());
     }
   }
-  r.object(v, "shape");
+  r.object(v, path);
   if (v.contains("polygon")) {  // the uniform B-spline of a control polygon file
-    r.only(v, "shape", {"polygon", "degree"});
-    const std::filesystem::path p = base / r.string(v["polygon"], "shape.polygon");
+    r.only(v, path, {"polygon", "degree"});
+    const std::filesystem::path p = base / r.string(v["polygon"], path + ".polygon");
     inputs.push_back(p);
-    const int degree = r.integer(r.member(v, "shape", "degree"), "shape.degree");
+    const int degree = r.integer(r.member(v, path, "degree"), path + ".degree");
     try {
       const Polygon polygon = read_polygon(p);
       return nurbs::uniform_bspline(polygon.points, degree, polygon.closed);
     } catch (const std::exception& e) {
-      r.fail("shape", e.what());
+      r.fail(path, e.what());
     }
   }
-  return parse_shape_json(v.dump(), r.where + ": shape");
+  return parse_shape_json(v.dump(), r.where + ": " + path);
 }
 
 ClassicIfs read_ifs(const Reader& r, const json& v) {
@@ -145,6 +145,127 @@ MeshSource read_mesh_source(const Reader& r, const json& doc, const std::filesys
                                       std::string(subdivision::scheme_name(m.scheme)));
   }
   return m;
+}
+
+/// A scheme side's control points: a polygon `[[x, y], …]` or a grid `[[[x, y, z], …], …]` (lines
+/// of constant v, u-major), with at least `window` points along each direction.
+void read_junction_points(const Reader& r, const json& v, const std::string& path, JunctionSide& s,
+                          int window) {
+  r.array(v, path);
+  if (v.empty()) r.fail(path, "no points");
+  std::vector<std::vector<double>> rows;
+  if (v[0].is_array() && !v[0].empty() && v[0][0].is_array()) {  // a grid
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const std::size_t before = rows.size();
+      r.points(v[i], path + "[" + std::to_string(i) + "]", rows);
+      const auto n = static_cast<int>(rows.size() - before);
+      if (i > 0 && n != s.columns)
+        r.fail(path + "[" + std::to_string(i) + "]",
+               std::to_string(n) + " points, the first line has " + std::to_string(s.columns));
+      s.columns = n;
+    }
+    s.rows = static_cast<int>(v.size());
+    if (rows.front().size() != 3) r.fail(path, "a surface's points need 3 coordinates");
+    if (s.rows < window || s.columns < window)
+      r.fail(path, "a " + std::to_string(s.rows) + " × " + std::to_string(s.columns) + " grid; cells of " +
+                       std::to_string(window) + " × " + std::to_string(window) + " points need at least " +
+                       std::to_string(window) + " lines each way");
+  } else {
+    r.points(v, path, rows);
+    if (rows.front().size() < 2 || rows.front().size() > 3)
+      r.fail(path, "a curve's points need 2 or 3 coordinates");
+    if (static_cast<int>(rows.size()) < window)
+      r.fail(path, std::to_string(rows.size()) + " points; cells of " + std::to_string(window) +
+                       " points need at least " + std::to_string(window));
+  }
+  s.points = detail::to_points(rows);
+}
+
+/// `junction.a` / `junction.b`: a NURBS shape, or a named scheme on its control points.
+JunctionSide read_junction_side(const Reader& r, const json& v, const std::string& path,
+                                const std::filesystem::path& base,
+                                std::vector<std::filesystem::path>& inputs) {
+  r.object(v, path);
+  r.only(v, path,
+         {"shape", "scheme", "parameters", "points", "window", "layer", "free", "boundary", "color"});
+  JunctionSide s;
+  if (int(v.contains("shape")) + int(v.contains("scheme")) != 1)
+    r.fail(path, "expected exactly one of \"shape\" (a NURBS curve or surface) and \"scheme\"");
+  bool surface = false;
+  if (v.contains("shape")) {
+    for (const char* key : {"parameters", "points", "window", "layer"})
+      if (v.contains(key)) r.fail(path + "." + key, "only with \"scheme\" (a NURBS side has its own)");
+    s.shape = read_shape_member(r, v["shape"], base, inputs, path + ".shape");
+    surface = std::holds_alternative<nurbs::Surface>(*s.shape);
+    if (const auto* c = std::get_if<nurbs::Curve>(&*s.shape); c && c->closed)
+      r.fail(path + ".shape", "a closed curve has no start or end to glue");
+  } else {
+    const std::string name = r.string(v["scheme"], path + ".scheme");
+    std::map<std::string, std::string> parameters;
+    if (v.contains("parameters"))
+      for (const auto& item : r.object(v["parameters"], path + ".parameters").items()) {
+        const json& x = item.value();
+        if (!x.is_string() && !x.is_number())
+          r.fail(path + ".parameters." + item.key(), "expected a number or a string");
+        parameters[item.key()] = x.is_string() ? x.get<std::string>() : x.dump();
+      }
+    try {
+      s.scheme = subdivision::named_scheme(name, parameters);
+    } catch (const InvalidInput& e) {
+      r.fail(path + ".scheme", e.what());
+    }
+    const int support = subdivision::mask_degree(*s.scheme);
+    if (v.contains("window")) {
+      s.window = bounded_integer(r, v["window"], path + ".window", 0, 64);
+      if (s.window != 0 && s.window < support)
+        r.fail(path + ".window", std::to_string(s.window) + " is below the scheme's support " +
+                                     std::to_string(support) + " (0: the support)");
+    }
+    const int window = s.window == 0 ? support : s.window;
+    read_junction_points(r, r.member(v, path, "points"), path + ".points", s, window);
+    surface = s.columns > 0;
+    if (v.contains("layer")) s.layer = bounded_integer(r, v["layer"], path + ".layer", 0, 4096);
+  }
+  if (v.contains("free")) s.free = r.boolean(v["free"], path + ".free");
+  s.boundary = r.string(r.member(v, path, "boundary"), path + ".boundary");
+  const bool known = surface ? s.boundary == "ustart" || s.boundary == "uend" || s.boundary == "vstart" ||
+                                   s.boundary == "vend"
+                             : s.boundary == "start" || s.boundary == "end";
+  if (!known)
+    r.fail(path + ".boundary", "\"" + s.boundary + "\": expected " +
+                                   (surface ? "\"ustart\", \"uend\", \"vstart\" or \"vend\" (a surface)"
+                                            : "\"start\" or \"end\" (a curve)"));
+  // uniform_curve_bcifs unfolds the pieces at the start of the curve only.
+  if (s.layer > 0 && !s.boundary.ends_with("start"))
+    r.fail(path + ".layer", "the junction layer lies at the start: glue the side's " +
+                                std::string(surface ? "\"ustart\" or \"vstart\"" : "\"start\""));
+  if (v.contains("color")) s.color = colour(r, v["color"], path + ".color");
+  return s;
+}
+
+bool is_surface(const JunctionSide& s) {
+  return s.shape ? std::holds_alternative<nurbs::Surface>(*s.shape) : s.columns > 0;
+}
+
+/// Cartesian coordinates of a side's points.
+Eigen::Index side_dimension(const JunctionSide& s) {
+  if (!s.shape) return s.points.cols();
+  return std::visit([](const auto& shape) { return nurbs::cartesian_points(shape).cols(); }, *s.shape);
+}
+
+Junction read_junction(const Reader& r, const json& v, const std::filesystem::path& base,
+                       std::vector<std::filesystem::path>& inputs) {
+  r.object(v, "junction");
+  r.only(v, "junction", {"a", "b"});
+  Junction j{read_junction_side(r, r.member(v, "junction", "a"), "junction.a", base, inputs),
+             read_junction_side(r, r.member(v, "junction", "b"), "junction.b", base, inputs)};
+  if (is_surface(j.a) != is_surface(j.b))
+    r.fail("junction", std::string("A is a ") + (is_surface(j.a) ? "surface" : "curve") + " and B a " +
+                           (is_surface(j.b) ? "surface" : "curve") + ": join two curves or two surfaces");
+  if (side_dimension(j.a) != side_dimension(j.b))
+    r.fail("junction", "A has " + std::to_string(side_dimension(j.a)) + " coordinates and B " +
+                           std::to_string(side_dimension(j.b)));
+  return j;
 }
 
 Perturbation read_perturbation(const Reader& r, const json& v) {
@@ -305,15 +426,16 @@ Experiment parse_experiment(std::string_view text, std::string_view where,
   const json doc = detail::parse_document(text, r.where);
   if (!doc.is_object()) throw InvalidInput(r.where + ": expected an experiment object");
   r.only(doc, "",
-         {"name", "description", "shape", "automaton", "ifs", "mesh", "subdivision", "perturbation",
-          "evaluation", "camera", "render", "outputs"});
+         {"name", "description", "shape", "automaton", "ifs", "mesh", "junction", "subdivision",
+          "perturbation", "evaluation", "camera", "render", "outputs"});
   Experiment e;
   if (doc.contains("name")) e.name = r.string(doc["name"], "name");
   if (doc.contains("description")) e.description = r.string(doc["description"], "description");
   const int sources = int(doc.contains("shape")) + int(doc.contains("automaton")) + int(doc.contains("ifs")) +
-                      int(doc.contains("mesh"));
+                      int(doc.contains("mesh")) + int(doc.contains("junction"));
   if (sources != 1)
-    throw InvalidInput(r.where + ": expected exactly one of \"shape\", \"automaton\", \"ifs\", \"mesh\"");
+    throw InvalidInput(r.where +
+                       ": expected exactly one of \"shape\", \"automaton\", \"ifs\", \"mesh\", \"junction\"");
   if (doc.contains("shape")) e.shape = read_shape_member(r, doc["shape"], base, e.inputs);
   if (doc.contains("automaton")) {
     e.automaton = base / r.string(doc["automaton"], "automaton");
@@ -338,6 +460,15 @@ Experiment parse_experiment(std::string_view text, std::string_view where,
     if (doc.contains("evaluation")) r.fail("evaluation", "a mesh is refined by subdivision.levels");
   } else if (doc.contains("subdivision")) {
     r.fail("subdivision", "only with a \"mesh\" source");
+  }
+  if (doc.contains("junction")) {
+    e.junction = read_junction(r, doc["junction"], base, e.inputs);
+    if (doc.contains("perturbation") && doc["perturbation"].is_object() &&
+        doc["perturbation"].contains("keep_vertices"))
+      r.fail("perturbation.keep_vertices", "a junction's sides say which matrices are free (\"free\")");
+    if (doc.contains("evaluation") && doc["evaluation"].is_object() &&
+        doc["evaluation"].contains("tolerance"))
+      r.fail("evaluation.tolerance", "a junction is evaluated to a depth or by the chaos game");
   }
   if (doc.contains("perturbation")) {
     if (e.ifs) r.fail("perturbation", "a classic IFS has no constraints to perturb under");

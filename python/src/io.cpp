@@ -151,6 +151,7 @@ std::string source_kind(const io::Experiment& e) {
   if (e.shape) return std::holds_alternative<nurbs::Curve>(*e.shape) ? "curve" : "surface";
   if (!e.automaton.empty()) return "automaton";
   if (e.mesh) return "mesh";
+  if (e.junction) return "junction";
   return "ifs";
 }
 
@@ -517,7 +518,7 @@ void bind_experiment_file(py::module_& m) {
       .def_readonly("name", &io::Experiment::name, "Name (default: the file's stem).")
       .def_readonly("description", &io::Experiment::description, "Free text.")
       .def_property_readonly("source", &source_kind,
-                             "The source kind: 'curve', 'surface', 'automaton', 'ifs' or 'mesh'.")
+                             "The source kind: 'curve', 'surface', 'automaton', 'ifs', 'mesh' or 'junction'.")
       .def_readonly("shape", &io::Experiment::shape, "The NURBS source (Curve or Surface), or None.")
       .def_property_readonly(
           "automaton",

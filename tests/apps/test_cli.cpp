@@ -330,9 +330,16 @@ TEST_CASE("cifs gallery runs every example experiment", "[cli]") {
   CHECK(experiments >= 10);
   CHECK(exr == experiments);
   CHECK(png == experiments);
-  for (const char* name : {"wave.automaton.svg", "hills.ply", "tree.svg", "schemes/lr_bone_degree3.svg"})
+  for (const char* name : {"wave.automaton.svg", "hills.ply", "tree.svg", "schemes/lr_bone_degree3.svg",
+                           "junction_curves.svg", "junction_surfaces.ply", "junction_fractal.ply"})
     CHECK(std::filesystem::is_regular_file(out / name));
   CHECK_THAT(r.out, Catch::Contains("wave-fractal: NURBS curve") && Catch::Contains("free coefficients"));
+  // The three junctions of docs/junctions.md, each with its residual.
+  for (const char* name :
+       {"junction-curves: junction of a b-spline(degree = 3) curve and a four-point curve",
+        "junction-surfaces: junction of a b-spline(degree = 3) surface and a b-spline(degree = 2)",
+        "junction-fractal: junction of a rational NURBS surface and a rational NURBS surface"})
+    CHECK_THAT(r.out, Catch::Contains(name));
   // The five mesh schemes on the example meshes: closed, open (boundary) and genus 1.
   for (const char* name :
        {"subdivision_cube_catmull_clark", "subdivision_cube_doo_sabin", "subdivision_tetrahedron_loop",
@@ -346,6 +353,48 @@ TEST_CASE("cifs gallery runs every example experiment", "[cli]") {
   std::filesystem::remove_all(out);
   // A wrong examples folder is one clear error.
   check_error(cifs_cli("gallery " + out.string() + " --examples /no/such/folder"), "/no/such/folder");
+}
+
+TEST_CASE("cifs render refuses junctions that cannot be joined, one line each", "[cli][junction]") {
+  const std::string nurbs =
+      R"({"shape": ")" CIFS_EXAMPLES_DIR R"(/shapes/junction_nurbs.json", "boundary": "uend"})";
+  const auto experiment = [&](const std::string& name, const std::string& a, const std::string& b) {
+    return file(name, R"({"junction": {"a": )" + a + R"(, "b": )" + b + R"(}, "evaluation": {"depth": 2},
+      "render": {"width": 16, "height": 16}, "outputs": {"png": "junction_refused.png"}})");
+  };
+  const std::string grid = R"([[[0, 0, 0], [0, 1, 0], [0, 2, 0], [0, 3, 0], [0, 4, 0], [0, 5, 0]],
+      [[1, 0, 0], [1, 1, 0], [1, 2, 0], [1, 3, 0], [1, 4, 0], [1, 5, 0]],
+      [[2, 0, 0], [2, 1, 0], [2, 2, 0], [2, 3, 0], [2, 4, 0], [2, 5, 0]],
+      [[3, 0, 0], [3, 1, 0], [3, 2, 0], [3, 3, 0], [3, 4, 0], [3, 5, 0]]])";
+  const std::pair<std::string, std::string> cases[] = {
+      // A junction layer of one piece: the four-point side cannot adapt to the B-spline.
+      {experiment("junction_thin.json",
+                  R"({"scheme": "b-spline", "window": 6, "boundary": "end",
+                      "points": [[0, 0], [1, 1], [2, 0], [3, 1], [4, 0], [5, 1], [6, 0]]})",
+                  R"({"scheme": "four-point", "window": 6, "layer": 1, "boundary": "start",
+                      "points": [[2, 0], [3, 1], [4, 0], [5, 1], [6, 0], [7, 1], [8, 0]]})"),
+       "junction: BC-IFS: the constraints \"B:a0.start\", \"B:a0.end\" have no common solution"},
+      // A NURBS patch and a uniform scheme's: the boundaries do not subdivide alike.
+      {experiment("junction_structure.json", nurbs,
+                  R"({"scheme": "b-spline", "boundary": "ustart", "points": )" + grid + "}"),
+       "junction: join: B's cell"},
+      {experiment("junction_points.json", nurbs,
+                  R"({"shape": ")" CIFS_EXAMPLES_DIR
+                  R"(/shapes/junction_nurbs.json", "boundary": "ustart"})"),
+       "junction: B's control points on the glued boundary differ from A's"},
+      {experiment("junction_count.json", nurbs,
+                  R"({"shape": ")" CIFS_EXAMPLES_DIR
+                  R"(/shapes/junction_nurbs.json", "boundary": "vstart"})"),
+       "junction: A's uend has 3 patches and B's vstart 2"},
+      {experiment(
+           "junction_kind.json", nurbs,
+           R"({"scheme": "four-point", "boundary": "start", "points": [[0, 0, 0], [1, 0, 0], [2, 0, 0], [3, 0, 0], [4, 0, 0], [5, 0, 0]]})"),
+       "junction_kind.json: junction: A is a surface and B a curve"}};
+  for (const auto& [experiment_file, message] : cases) {
+    INFO(experiment_file);
+    check_error(cifs_cli("render --out-dir " + scratch().string() + " " + experiment_file), message);
+  }
+  CHECK(!std::filesystem::exists(scratch() / "junction_refused.png"));
 }
 
 TEST_CASE("cifs dimension: box counting and similarity dimension", "[cli][dimension]") {

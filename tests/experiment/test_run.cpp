@@ -8,11 +8,17 @@
 #include "cifs/errors.hpp"
 #include "cifs/experiment/run.hpp"
 #include "cifs/files.hpp"
+#include "cifs/format.hpp"
 #include "cifs/ifs/attractor.hpp"
+#include "cifs/ifs/bcifs.hpp"
+#include "cifs/ifs/junction.hpp"
+#include "cifs/ifs/mesh.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/io/json.hpp"
 #include "cifs/nurbs/curve.hpp"
+#include "cifs/nurbs/surface.hpp"
 #include "cifs/render/image.hpp"
+#include "cifs/subdivision/ifs.hpp"
 #include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/mesh.hpp"
 #include "cifs/topology.hpp"
@@ -302,4 +308,172 @@ TEST_CASE("Mesh experiments: every scheme, boundaries, and what a mesh cannot do
                         parse(R"({"mesh": "../meshes/tetrahedron.obj", "subdivision": {"scheme": "loop"}})")),
                     "mesh: tetrahedron.obj: a subdivision surface has no attractor to evaluate or sample");
   CHECK(empty.files().empty());
+}
+
+namespace {
+
+/// `"points": [...]` of a polygon or of a grid (lines of constant v).
+std::string points_json(const Points& P, int columns = 0) {
+  std::string s = "[";
+  for (Eigen::Index i = 0; i < P.rows(); ++i) {
+    if (columns > 0 && i % columns == 0)
+      s += (i == 0 ? "[" : "], [");
+    else if (i > 0)
+      s += ", ";
+    s += "[";
+    for (Eigen::Index c = 0; c < P.cols(); ++c) s += (c ? ", " : "") + number_text(P(i, c));
+    s += "]";
+  }
+  return s + (columns > 0 ? "]]" : "]");
+}
+
+/// Windows of N consecutive points, or of N × N points of a grid with `columns` points a line.
+std::vector<Points> windows(const Points& P, int N, int columns = 0) {
+  std::vector<Points> nets;
+  if (columns == 0) {
+    for (Eigen::Index k = 0; k + N <= P.rows(); ++k) nets.push_back(P.middleRows(k, N));
+    return nets;
+  }
+  const auto rows = static_cast<int>(P.rows()) / columns;
+  for (int a = 0; a + N <= rows; ++a)
+    for (int b = 0; b + N <= columns; ++b) {
+      Points W(N * N, P.cols());
+      for (int i = 0; i < N; ++i)
+        for (int j = 0; j < N; ++j) W.row(i * N + j) = P.row((a + i) * columns + b + j);
+      nets.push_back(std::move(W));
+    }
+  return nets;
+}
+
+}  // namespace
+
+TEST_CASE("A junction of curves: the experiment draws what ifs::join gives, the report its residual",
+          "[experiment][junction]") {
+  // One polygon: A (cubic B-spline, windows of 6) reads points 0 … 7, B (four-point, layer 3)
+  // points 3 … 11, so B's first five points are A's last five.
+  Points P(12, 2);
+  for (int i = 0; i < 12; ++i) P.row(i) << i, std::sin(0.9 * i) + 0.1 * i;
+  const Points PA = P.topRows(8), PB = P.bottomRows(9);
+  const std::string text = R"({"junction": {
+      "a": {"scheme": "b-spline", "parameters": {"degree": 3}, "window": 6, "boundary": "end", "points": )" +
+                           points_json(PA) + R"(},
+      "b": {"scheme": "four-point", "window": 6, "layer": 3, "boundary": "start", "points": )" +
+                           points_json(PB) + R"(}},
+      "evaluation": {"depth": 7}, "render": {"width": 200, "height": 100, "line_width": 3},
+      "outputs": {"exr": "j.exr"}})";
+  const int depth = 7;
+  const experiment::Evaluation ev = experiment::evaluate(parse(text));
+  // Library route: ifs::join of the two scheme systems, edge pieces at the same depth.
+  const ifs::Bcifs A = subdivision::scheme_bcifs(subdivision::b_spline(3), 6, {.pieces = 3});
+  const ifs::Bcifs B = subdivision::scheme_bcifs(subdivision::four_point(), 6, {.pieces = 4, .layer = 3});
+  const std::vector<ifs::Glue> glue{{2, "end", 0, "start"}};
+  const ifs::Junction j = ifs::join(A, windows(PA, 6), B, windows(PB, 6), glue);
+  const ifs::EdgePieces pieces = ifs::edge_pieces(j.system, j.nets, depth);
+  const Eigen::Index n = pieces.start.rows();
+  REQUIRE(ev.points.rows() == 2 * n);
+  CHECK((ev.points.topRows(n) - pieces.start).cwiseAbs().maxCoeff() == 0);
+  CHECK((ev.points.bottomRows(n) - pieces.end).cwiseAbs().maxCoeff() == 0);
+  // By hand: A's last piece (the cubic segment of P3 … P6) ends at (P4 + 4 P5 + P6)/6, where B starts.
+  const Eigen::RowVector2d end = (P.row(4) + 4 * P.row(5) + P.row(6)) / 6;
+  const Eigen::Index per = Eigen::Index{1} << depth;
+  CHECK((ev.points.row(n + 3 * per - 1) - end).norm() <= 1e-12);
+  CHECK((ev.points.row(3 * per) - end).norm() <= 1e-12);
+
+  ScratchDir dir;
+  const auto report = run_in(dir, text);
+  CHECK(report.residual <= 1e-12);
+  CHECK(report.free_coefficients == j.free);
+  CHECK_THAT(report.summary,
+             Catch::Contains("junction of a b-spline(degree = 3) curve and a four-point curve") &&
+                 Catch::Contains("A's end = B's start") && Catch::Contains("residual"));
+  const render::Image image = render::read_exr(dir.path() / "j.exr");
+  CHECK_THAT(image.attributes.at("junction"), Catch::Contains("free coefficients"));
+  CHECK(std::stod(image.attributes.at("residual")) <= 1e-12);
+  // Each side in its own colour: blue (render.color) and orange pixels.
+  std::size_t blue = 0, orange = 0;
+  for (std::size_t i = 0; i < image.channels.at("A").size(); ++i) {
+    const float a = image.channels.at("A")[i], r = image.channels.at("R")[i], b = image.channels.at("B")[i];
+    blue += a > 0.9f && b > 2 * r;
+    orange += a > 0.9f && r > 2 * b;
+  }
+  CHECK(blue > 100);
+  CHECK(orange > 100);
+}
+
+TEST_CASE("A junction of a bicubic and a biquadratic patch: the experiment's mesh is ifs::join's",
+          "[experiment][junction]") {
+  // A grid of 9 × 5 points: A (bicubic) reads lines 0 … 4, B (biquadratic on windows of 4, layer 2)
+  // lines 2 … 8.
+  Points G(45, 3);
+  for (int i = 0; i < 9; ++i)
+    for (int k = 0; k < 5; ++k) G.row(i * 5 + k) << i, k, 0.6 * std::sin(0.7 * i) * std::cos(0.9 * k);
+  const Points GA = G.topRows(25), GB = G.bottomRows(35);
+  const std::string text = R"({"junction": {
+      "a": {"scheme": "b-spline", "boundary": "uend", "points": )" +
+                           points_json(GA, 5) + R"(},
+      "b": {"scheme": "b-spline", "parameters": {"degree": 2}, "window": 4, "layer": 2, "boundary": "ustart",
+            "points": )" + points_json(GB, 5) +
+                           R"(}},
+      "evaluation": {"depth": 3}})";
+  const experiment::Evaluation ev = experiment::evaluate(parse(text));
+  const auto curve = [](int degree, int window, int pieces, int layer) {
+    return subdivision::scheme_bcifs(subdivision::b_spline(degree), window,
+                                     {.pieces = pieces, .layer = layer});
+  };
+  const ifs::Bcifs A = ifs::product_bcifs(curve(3, 0, 2, 0), curve(3, 0, 2, 0));
+  const ifs::Bcifs B = ifs::product_bcifs(curve(2, 4, 4, 2), curve(2, 4, 2, 0), {.free_when_either = true});
+  std::vector<ifs::Glue> glue;
+  for (std::size_t b = 0; b < 2; ++b) glue.push_back({2 + b, "uend", b, "ustart"});
+  const ifs::Junction j = ifs::join(A, windows(GA, 4, 5), B, windows(GB, 4, 5), glue);
+  CHECK(j.residual <= 1e-12);
+  const auto side = [&](std::size_t first, std::size_t count, int nu, int nv) {
+    automata::Automaton a = j.system.automaton;
+    a.initial.assign(a.initial.begin() + static_cast<long>(first),
+                     a.initial.begin() + static_cast<long>(first + count));
+    std::vector<std::array<int, 2>> patches(static_cast<std::size_t>(nu) * static_cast<std::size_t>(nv));
+    for (int p = 0; p < nu * nv; ++p) patches[static_cast<std::size_t>(p)] = {p / nv, p % nv};
+    return ifs::quad_mesh(a, std::span(j.nets).subspan(first, count), patches, 3).vertices;
+  };
+  const Points a = side(0, 4, 2, 2), b = side(4, 8, 4, 2);
+  REQUIRE(ev.points.rows() == a.rows() + b.rows());
+  CHECK((ev.points.topRows(a.rows()) - a).cwiseAbs().maxCoeff() == 0);
+  CHECK((ev.points.bottomRows(b.rows()) - b).cwiseAbs().maxCoeff() == 0);
+  // By hand: the common boundary is the cubic B-spline of Q_k = (G_2k + 4 G_3k + G_4k)/6 (lines 2 … 4
+  // of A), so B's first node line passes through (Q_k + 4 Q_k+1 + Q_k+2)/6 at A's knots.
+  const auto Q = [&](int k) {
+    return Eigen::RowVector3d((G.row(10 + k) + 4 * G.row(15 + k) + G.row(20 + k)) / 6);
+  };
+  for (int k = 0; k < 3; ++k)
+    CHECK((b.row(8 * Eigen::Index{k}) - (Q(k) + 4 * Q(k + 1) + Q(k + 2)) / 6).norm() <= 1e-12);
+}
+
+TEST_CASE("The gallery's NURBS and fractal junction: B's boundary is A's NURBS boundary after perturbation",
+          "[experiment][junction]") {
+  const io::Experiment e = io::read_experiment(CIFS_EXAMPLES_DIR "/experiments/junction_fractal.json");
+  REQUIRE(e.junction);
+  io::Experiment small = e;
+  small.evaluation.depth = 3;
+  const experiment::Evaluation ev = experiment::evaluate(small);
+  const auto& SA = std::get<nurbs::Surface>(*e.junction->a.shape);
+  const auto& SB = std::get<nurbs::Surface>(*e.junction->b.shape);
+  // A: 2 × 3 patches, (2·8 + 1) × (3·8 + 1) nodes; B's node line u = 0 follows.
+  const Eigen::Index nv = 3 * 8 + 1, first_b = (2 * 8 + 1) * nv;
+  double moved = 0;
+  for (Eigen::Index J = 0; J < nv; ++J) {
+    const double v = 3.0 + 3.0 * static_cast<double>(J) / static_cast<double>(nv - 1);
+    const Eigen::RowVector3d exact = nurbs::evaluate(SA, 5.0, v);  // Cox–de Boor, A's end u = 5
+    CHECK((ev.points.row(first_b + J) - exact).norm() <= 1e-12);
+    CHECK((ev.points.row(first_b - nv + J) - exact).norm() <= 1e-12);
+    // B away from the junction (its node line u = 1/2 of its first patch) left its B-spline.
+    moved = std::max(moved, (ev.points.row(first_b + 4 * nv + J) - nurbs::evaluate(SB, 3.5, v)).norm());
+  }
+  CHECK(moved > 1e-3);
+  ScratchDir dir;
+  experiment::RunOptions o;
+  o.out_dir = dir.path();
+  o.quiet = true;
+  small.outputs = {};
+  o.png = dir.path() / "f.png";
+  small.render.width = small.render.height = 64;
+  CHECK(experiment::run(small, o).residual <= 1e-12);
 }

@@ -231,3 +231,74 @@ TEST_CASE("Experiments list every file they read, so that no output overwrites o
         Paths{experiments / "subdivision_torus.json", experiments / "../meshes/torus.obj"});
   CHECK(inputs("fern") == Paths{experiments / "fern.json"});
 }
+
+TEST_CASE("Experiments: a junction of two sides, and bad descriptions one line each",
+          "[io][experiment][junction]") {
+  const std::string a = R"("a": {"scheme": "b-spline", "parameters": {"degree": 3}, "window": 6,
+      "points": [[0, 0], [1, 1], [2, 0], [3, 1], [4, 0], [5, 1], [6, 0]], "boundary": "end"})";
+  const std::string b4 =
+      R"("scheme": "four-point", "window": 6, "points": [[4, 0], [5, 1], [6, 0], [7, 1], [8, 0], [9, 1]])";
+  const io::Experiment e = parse(R"({"junction": {)" + a + R"(, "b": {)" + b4 +
+                                 R"(, "layer": 3, "boundary": "start", "color": [1, 0.5, 0]}}})");
+  REQUIRE(e.junction);
+  CHECK(e.junction->a.scheme->name == "b-spline");
+  CHECK(e.junction->a.window == 6);
+  CHECK(e.junction->a.points.rows() == 7);
+  CHECK(e.junction->a.columns == 0);
+  CHECK(e.junction->b.layer == 3);
+  CHECK(e.junction->b.color == std::array<double, 3>{1, 0.5, 0});
+  // A grid: lines of constant v; a NURBS side from a shape file, which becomes an input.
+  const io::Experiment s = parse(R"({"junction": {"a": {"shape": "saddle.json", "boundary": "uend"},
+      "b": {"scheme": "b-spline", "boundary": "ustart", "free": true,
+            "points": [[[0, 0, 0], [0, 1, 0], [0, 2, 0], [0, 3, 0]], [[1, 0, 0], [1, 1, 0], [1, 2, 0], [1, 3, 0]],
+                       [[2, 0, 0], [2, 1, 0], [2, 2, 0], [2, 3, 0]], [[3, 0, 0], [3, 1, 0], [3, 2, 0], [3, 3, 0]],
+                       [[4, 0, 0], [4, 1, 0], [4, 2, 0], [4, 3, 0]]]}}})");
+  CHECK(s.junction->b.rows == 5);
+  CHECK(s.junction->b.columns == 4);
+  CHECK(s.junction->b.free);
+  CHECK(std::holds_alternative<nurbs::Surface>(*s.junction->a.shape));
+  CHECK(s.inputs.back().filename() == "saddle.json");
+
+  const auto one_line = [](const std::string& message, const std::string& expected) {
+    CHECK_THAT(message, Catch::StartsWith("e.json: ") && Catch::Contains(expected));
+    CHECK(message.find('\n') == std::string::npos);
+  };
+  const auto with_b = [&](const std::string& b, const std::string& rest = "") {
+    return error_of(R"({"junction": {)" + a + R"(, "b": {)" + b + "}}" + rest + "}");
+  };
+  one_line(with_b(b4), "junction.b: missing \"boundary\"");
+  one_line(with_b(b4 + R"(, "boundary": "ustart")"),
+           "junction.b.boundary: \"ustart\": expected \"start\" or \"end\" (a curve)");
+  one_line(with_b(b4 + R"(, "boundary": "end", "layer": 2)"),
+           "junction.b.layer: the junction layer lies at the start");
+  one_line(with_b(R"("scheme": "five-point", "points": [[0, 0]], "boundary": "start")"),
+           "junction.b.scheme: ");
+  one_line(with_b(R"("scheme": "four-point", "window": 6, "points": [[0, 0], [1, 0]], "boundary": "start")"),
+           "junction.b.points: 2 points; cells of 6 points need at least 6");
+  one_line(with_b(R"("scheme": "four-point", "window": 3, "points": [[0, 0]], "boundary": "start")"),
+           "junction.b.window: 3 is below the scheme's support 6");
+  one_line(with_b(R"("scheme": "four-point", "boundary": "start")"), "junction.b: missing \"points\"");
+  one_line(with_b(R"("shape": "saddle.json", "scheme": "four-point", "boundary": "start")"),
+           "junction.b: expected exactly one of \"shape\"");
+  one_line(with_b(R"("shape": "saddle.json", "points": [[0, 0]], "boundary": "ustart")"),
+           "junction.b.points: only with \"scheme\"");
+  one_line(with_b(R"("shape": "saddle.json", "boundary": "ustart")"),
+           "junction: A is a curve and B a surface");
+  one_line(with_b(b4 + R"(, "boundary": "start", "colour": [1, 0, 0])"), "junction.b.colour: unknown member");
+  one_line(
+      with_b(
+          R"("scheme": "four-point", "points": [[[0, 0, 0], [1, 0, 0]], [[0, 1, 0]]], "boundary": "ustart")"),
+      "junction.b.points[1]: 1 points, the first line has 2");
+  one_line(
+      with_b(
+          R"("scheme": "four-point", "points": [[0, 0, 0], [1, 0, 0], [2, 0, 0], [3, 0, 0], [4, 0, 0], [5, 0, 0], [6, 0, 0]], "boundary": "start")"),
+      "junction: A has 2 coordinates and B 3");
+  one_line(with_b(b4 + R"(, "boundary": "start")", R"(, "perturbation": {"keep_vertices": false})"),
+           "perturbation.keep_vertices: a junction's sides say which matrices are free");
+  one_line(with_b(b4 + R"(, "boundary": "start")", R"(, "evaluation": {"tolerance": 0.01})"),
+           "evaluation.tolerance: a junction is evaluated to a depth or by the chaos game");
+  one_line(error_of(R"({"junction": {)" + a + "}}"), "junction: missing \"b\"");
+  one_line(error_of(R"({"junction": {)" + a + R"(, "b": {}, "c": {}}})"), "junction.c: unknown member");
+  one_line(error_of(R"({"junction": {)" + a + R"(, "b": {}}, "ifs": "fern"})"),
+           "expected exactly one of \"shape\", \"automaton\", \"ifs\", \"mesh\", \"junction\"");
+}

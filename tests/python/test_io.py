@@ -428,6 +428,10 @@ class ExperimentTest(ScratchTestCase):
         self.assertEqual([p.resolve() for p in torus.inputs],
                          [(EXPERIMENTS / "subdivision_torus.json").resolve(), (EXAMPLES / "meshes" / "torus.obj").resolve()])
         self.assertEqual(maps.inputs, [])
+        junction = io.read_experiment(EXPERIMENTS / "junction_fractal.json")
+        self.assertEqual((junction.source, junction.shape, junction.mesh), ("junction", None, None))
+        self.assertEqual([p.name for p in junction.inputs],
+                         ["junction_fractal.json", "junction_nurbs.json", "junction_fractal.json"])
 
     def test_run_writes_what_cli_render_writes(self):
         for name in ("wave", "koch"):

@@ -16,6 +16,7 @@
 #include "cifs/io/shape.hpp"
 #include "cifs/mesh.hpp"
 #include "cifs/subdivision/mesh.hpp"
+#include "cifs/subdivision/scheme.hpp"
 
 namespace cifs::io {
 
@@ -47,6 +48,31 @@ struct MeshSource {
   /// Draw the limit surface itself: the refined vertices at their limit positions, with the limit
   /// normals on closed meshes (Catmull–Clark and Loop; subdivision/limit.hpp).
   bool limit = false;
+};
+
+/// One side of a junction (docs/junctions.md): a NURBS curve or surface, or a uniform subdivision
+/// scheme on its control points (a polygon for a curve; a grid for the tensor-product surface of
+/// the scheme in u and v).
+struct JunctionSide {
+  std::optional<Shape> shape;
+  std::optional<subdivision::Scheme> scheme;
+  Points points;              // scheme sides: the polygon, or the grid u-major (row i·columns + j)
+  int rows = 0, columns = 0;  // scheme surfaces: the grid's lines of constant v × of constant u; 0: a curve
+  int window = 0;             // scheme sides: points per cell (0: the scheme's support N)
+  /// Scheme sides: cells of their own, with free matrices, for the first `layer` pieces from the
+  /// glued start (ifs::UniformCurveOptions::layer; across the junction for surfaces).
+  int layer = 0;
+  /// Scheme sides: every matrix free (ifs::UniformCurveOptions::free); NURBS sides: the vertex
+  /// operators (curves) or knot lines (surfaces) free too.
+  bool free = false;
+  /// The glued boundary: "start", "end" (curves); "ustart", "uend", "vstart", "vend" (surfaces).
+  std::string boundary;
+  std::optional<std::array<double, 3>> color;  // unset: render.color for A, orange for B
+};
+
+/// Two shapes joined along a shared boundary (ifs::join): A keeps its matrices, B adapts.
+struct Junction {
+  JunctionSide a, b;
 };
 
 struct Evaluation {
@@ -101,11 +127,13 @@ struct Experiment {
   std::string name;  // default: the file's stem
   std::string description;
   /// Exactly one source: a NURBS shape (a shape file, an inline shape, or the uniform B-spline of a
-  /// polygon file), a BC-IFS automaton file, a classic IFS, or a polygon mesh to subdivide.
+  /// polygon file), a BC-IFS automaton file, a classic IFS, a polygon mesh to subdivide, or a
+  /// junction of two shapes.
   std::optional<Shape> shape;
   std::filesystem::path automaton;  // absolute (resolved against the experiment's folder)
   std::optional<ClassicIfs> ifs;
   std::optional<MeshSource> mesh;
+  std::optional<Junction> junction;
   std::optional<Perturbation> perturbation;
   Evaluation evaluation;
   CameraSpec camera;
