@@ -213,10 +213,12 @@ double nets_diameter(std::span<const Points> nets, bool homogeneous) {
 }
 
 double delta(const Eigen::MatrixXd& M) noexcept {
+  // Rows as contiguous columns: the pairs loop vectorises (strided rows made δ of 65 × 65 products
+  // as slow as the products themselves).
+  const Eigen::MatrixXd T = M.transpose();
   double best = 0;
-  for (Eigen::Index i = 0; i < M.rows(); ++i)
-    for (Eigen::Index j = i + 1; j < M.rows(); ++j)
-      best = std::max(best, (M.row(i) - M.row(j)).cwiseAbs().sum());
+  for (Eigen::Index i = 0; i < T.cols(); ++i)
+    for (Eigen::Index j = i + 1; j < T.cols(); ++j) best = std::max(best, (T.col(i) - T.col(j)).cwiseAbs().sum());
   return best / 2;
 }
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cifs/errors.hpp"
+#include "cifs/format.hpp"
 #include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/random.hpp"
@@ -88,6 +89,7 @@ void check_nets(const automata::Automaton& automaton, std::span<const Points> ne
 /// traversal gives way to the global bound, O(1) and deeper: every piece at depth j·m has
 /// diameter ≤ 2ρ·δ_m^j·diam(N) (ifs::Contraction), capped at 64.
 constexpr std::size_t kMaxLeaves = std::size_t{1} << 20;
+constexpr double kMaxChaosWork = 0x1p38;
 
 int automatic_depth(const automata::Automaton& automaton, std::span<const Points> nets,
                     const ViewTransform& view, double tolerance) {
@@ -158,6 +160,21 @@ ChaosDensityResult chaos_density(Image& image, const Camera& camera, const autom
   result.depth =
       options.depth > 0 ? options.depth : automatic_depth(automaton, nets, view, options.pixel_tolerance);
   const int depth = result.depth;
+  {
+    // Each sample descends `depth` levels, a `size × size` matrix times the net per level: refuse a
+    // game past ~2^38 multiply-adds (minutes) before it starts; 2^32 − 1 samples took hours.
+    int size = 1;
+    for (std::size_t s = 0; s < boost::num_vertices(automaton.graph); ++s)
+      size = std::max(size, automaton.graph[s].size);
+    const double work = static_cast<double>(options.samples) * depth * size * size;
+    if (work > kMaxChaosWork)
+      throw InvalidInput("chaos game: " + std::to_string(options.samples) + " samples × depth " +
+                         std::to_string(depth) + " × " + std::to_string(size) + "² coefficients = " +
+                         number_text(work, 3) + " multiply-adds, above the limit of " +
+                         number_text(kMaxChaosWork, 3) + "; ask for at most " +
+                         std::to_string(static_cast<std::uint64_t>(kMaxChaosWork / (double(depth) * size * size))) +
+                         " samples");
+  }
 
   const std::size_t W = image.width, H = image.height, pixels = W * H;
   const std::vector<float>& Z = image.channels["Z"];
