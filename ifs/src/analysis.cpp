@@ -218,7 +218,8 @@ double delta(const Eigen::MatrixXd& M) noexcept {
   const Eigen::MatrixXd T = M.transpose();
   double best = 0;
   for (Eigen::Index i = 0; i < T.cols(); ++i)
-    for (Eigen::Index j = i + 1; j < T.cols(); ++j) best = std::max(best, (T.col(i) - T.col(j)).cwiseAbs().sum());
+    for (Eigen::Index j = i + 1; j < T.cols(); ++j)
+      best = std::max(best, (T.col(i) - T.col(j)).cwiseAbs().sum());
   return best / 2;
 }
 

@@ -117,9 +117,11 @@ int automatic_depth(const automata::Automaton& automaton, std::span<const Points
   struct OverBudget {};
   std::size_t leaves = 0;
   try {
-    return ifs::for_each_leaf_to_tolerance(automaton, nets, t, [&](const ifs::ToleranceLeaf&) {
-             if (++leaves > kMaxLeaves) throw OverBudget{};
-           }).deepest;
+    return ifs::for_each_leaf_to_tolerance(automaton, nets, t,
+                                           [&](const ifs::ToleranceLeaf&) {
+                                             if (++leaves > kMaxLeaves) throw OverBudget{};
+                                           })
+        .deepest;
   } catch (const OverBudget&) {
   }
   double diameter = 0;
@@ -168,12 +170,12 @@ ChaosDensityResult chaos_density(Image& image, const Camera& camera, const autom
       size = std::max(size, automaton.graph[s].size);
     const double work = static_cast<double>(options.samples) * depth * size * size;
     if (work > kMaxChaosWork)
-      throw InvalidInput("chaos game: " + std::to_string(options.samples) + " samples × depth " +
-                         std::to_string(depth) + " × " + std::to_string(size) + "² coefficients = " +
-                         number_text(work, 3) + " multiply-adds, above the limit of " +
-                         number_text(kMaxChaosWork, 3) + "; ask for at most " +
-                         std::to_string(static_cast<std::uint64_t>(kMaxChaosWork / (double(depth) * size * size))) +
-                         " samples");
+      throw InvalidInput(
+          "chaos game: " + std::to_string(options.samples) + " samples × depth " + std::to_string(depth) +
+          " × " + std::to_string(size) + "² coefficients = " + number_text(work, 3) +
+          " multiply-adds, above the limit of " + number_text(kMaxChaosWork, 3) + "; ask for at most " +
+          std::to_string(static_cast<std::uint64_t>(kMaxChaosWork / (double(depth) * size * size))) +
+          " samples");
   }
 
   const std::size_t W = image.width, H = image.height, pixels = W * H;

@@ -2,8 +2,8 @@
 // Inputs the CLI must refuse with one line and exit status 2 (docs/reliability.md), each a defect
 // that once crashed, ran, or wrote something wrong instead (issue 16).
 #include <catch2/catch.hpp>
-#include <filesystem>
 #include <chrono>
+#include <filesystem>
 
 #include "apps/cli_runner.hpp"
 
@@ -136,11 +136,11 @@ TEST_CASE("cifs render: a chaos game is bounded before it starts", "[cli][reliab
   const auto experiment = [&](const std::string& name, const std::string& samples) {
     return file(name + ".json", R"({"shape": ")" + hills + R"(", "evaluation": {"chaos": )" + samples +
                                     R"(}, "render": {"width": 64, "height": 64, "threads": 1},
-      "outputs": {"exr": ")" + name + R"(.exr"}})");
+      "outputs": {"exr": ")" + name +
+                                    R"(.exr"}})");
   };
   // 2^32 − 1 samples was accepted (hours of work): refused with the figure and the largest count.
-  check_error(cifs_cli("render " + experiment("chaos_huge", "4294967295") + " --quiet"),
-              "samples × depth");
+  check_error(cifs_cli("render " + experiment("chaos_huge", "4294967295") + " --quiet"), "samples × depth");
   CHECK(!std::filesystem::exists(scratch() / "chaos_huge.exr"));
   // The automatic depth of a surface in perspective walked tens of millions of pieces (minutes) before
   // the first sample; its traversal now gives way to the global contraction bound.
@@ -157,6 +157,7 @@ TEST_CASE("cifs scheme refuses a symbol beyond the largest mask at once", "[cli]
 }
 
 TEST_CASE("cifs scheme --refine --format svg refuses a 3-D polygon", "[cli][reliability]") {
-  const std::string p = file("lifted.json", R"({"polygon": {"points": [[0, 0, 0], [1, 0, 1], [1, 1, 2]], "closed": true}})");
+  const std::string p =
+      file("lifted.json", R"({"polygon": {"points": [[0, 0, 0], [1, 0, 1], [1, 1, 2]], "closed": true}})");
   check_error(cifs_cli("scheme chaikin --refine " + p + " --format svg"), "SVG draws x and y only");
 }

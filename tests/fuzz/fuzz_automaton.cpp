@@ -8,7 +8,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   using namespace cifs;
   fuzz::refusals_allowed([&] {
     const std::string json = io::to_json(io::parse_automaton_json(fuzz::text(data, size), "fuzz.json"));
-    fuzz::require(io::to_json(io::parse_automaton_json(json, "again.json")) == json, "automaton JSON round trip");
+    fuzz::require(io::to_json(io::parse_automaton_json(json, "again.json")) == json,
+                  "automaton JSON round trip");
   });
   return 0;
 }

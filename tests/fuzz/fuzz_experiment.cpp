@@ -6,8 +6,7 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace cifs;
-  fuzz::refusals_allowed([&] {
-    io::parse_experiment(fuzz::text(data, size), "fuzz.json", CIFS_EXAMPLES_DIR "/experiments");
-  });
+  fuzz::refusals_allowed(
+      [&] { io::parse_experiment(fuzz::text(data, size), "fuzz.json", CIFS_EXAMPLES_DIR "/experiments"); });
   return 0;
 }

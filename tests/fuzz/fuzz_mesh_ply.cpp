@@ -9,8 +9,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   fuzz::refusals_allowed([&] {
     const Mesh mesh = io::parse_mesh_ply(fuzz::text(data, size), "fuzz.ply");
     const std::string ply = io::mesh_ply(mesh, io::PlyFormat::binary_little_endian);
-    fuzz::require(io::mesh_ply(io::parse_mesh_ply(ply, "again.ply"), io::PlyFormat::binary_little_endian) == ply,
-                  "PLY mesh round trip");
+    fuzz::require(
+        io::mesh_ply(io::parse_mesh_ply(ply, "again.ply"), io::PlyFormat::binary_little_endian) == ply,
+        "PLY mesh round trip");
   });
   return 0;
 }

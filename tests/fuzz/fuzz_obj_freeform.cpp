@@ -7,7 +7,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace cifs;
   fuzz::refusals_allowed([&] {
-    const io::ShapeReadOptions options{.ignore_trim = size % 2 == 0, .index = {}, .warn = [](const std::string&) {}};
+    const io::ShapeReadOptions options{
+        .ignore_trim = size % 2 == 0, .index = {}, .warn = [](const std::string&) {}};
     for (const io::Shape& shape : io::parse_obj(fuzz::text(data, size), "fuzz.obj", options)) {
       const std::string obj = io::to_obj(shape);
       const std::vector<io::Shape> again = io::parse_obj(obj, "again.obj");

@@ -3,12 +3,12 @@
 // examples/experiments) is parsed, its sizes capped — depth 6, tolerance 1e-2, 2,000 chaos samples,
 // 2 subdivision levels, a 48 × 48 image, one thread, 64 MB of image or geometry — and run: automaton,
 // perturbation, attractor, render, EXR, PNG and geometry outputs into a scratch folder; then
-// evaluated at depth ≤ 4 as `cifs dimension` does (unless perturbed and already run). libFuzzer's -timeout and -rss_limit_mb
-// (scripts/fuzz.sh) bound the time and memory of each input.
+// evaluated at depth ≤ 4 as `cifs dimension` does (unless perturbed and already run). libFuzzer's -timeout
+// and -rss_limit_mb (scripts/fuzz.sh) bound the time and memory of each input.
+#include <unistd.h>
 #include <algorithm>
 #include <filesystem>
 #include <string>
-#include <unistd.h>
 
 #include "cifs/experiment/run.hpp"
 #include "cifs/io/json.hpp"
@@ -30,7 +30,8 @@ const std::filesystem::path& scratch() {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace cifs;
   fuzz::refusals_allowed([&] {
-    io::Experiment e = io::parse_experiment(fuzz::text(data, size), "fuzz.json", CIFS_EXAMPLES_DIR "/experiments");
+    io::Experiment e =
+        io::parse_experiment(fuzz::text(data, size), "fuzz.json", CIFS_EXAMPLES_DIR "/experiments");
     e.render.width = std::min(e.render.width, 48);
     e.render.height = std::min(e.render.height, 48);
     e.render.threads = 1;

@@ -5,10 +5,10 @@
 // CPU, not wall time: the test machine may be busy).
 // Usage: fuzz_NAME_replay [--budget SECONDS] FILE|FOLDER...
 #include <algorithm>
-#include <ctime>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -52,7 +52,8 @@ int main(int argc, char** argv) {
     total += seconds;
     if (seconds > slowest) slowest = seconds, slowest_file = file;
     if (seconds > budget) {
-      std::fprintf(stderr, "replay: %s took %.2f s of CPU, above the budget of %.2f s\n", file.c_str(), seconds, budget);
+      std::fprintf(stderr, "replay: %s took %.2f s of CPU, above the budget of %.2f s\n", file.c_str(),
+                   seconds, budget);
       return 1;
     }
   }

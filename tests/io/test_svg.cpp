@@ -95,7 +95,8 @@ TEST_CASE("SVG refuses points off the plane instead of dropping z", "[io][svg][r
   flat << 0, 0, 0, 1, 0, 0, 1, 1, 0;
   lifted << 0, 0, 0, 1, 0, 0.5, 1, 1, 0;
   CHECK(polyline_svg(flat) == polyline_svg(flat.leftCols(2)));  // z = 0 everywhere: the plane drawing
-  CHECK_THROWS_WITH(polyline_svg(lifted), Catch::Contains("point 1 has coordinate 3 = 0.5: SVG draws x and y only"));
+  CHECK_THROWS_WITH(polyline_svg(lifted),
+                    Catch::Contains("point 1 has coordinate 3 = 0.5: SVG draws x and y only"));
   Segments s;
   s.vertices = lifted;
   s.segments = {{0, 1}, {1, 2}};
