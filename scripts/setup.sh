@@ -12,6 +12,7 @@ packages=(
   libsisl-dev  # AGPL comparator: linked into bench/ only, never into the library
   libcgal-dev  # GPL cross-check of the mesh schemes (tests/subdivision/test_mesh_cgal.cpp) only
   clang-format clang-tidy  # scripts/lint.sh (CI)
+  libclang-rt-14-dev  # libFuzzer and the sanitizer runtimes of clang 14: scripts/fuzz.sh (the fuzz preset)
 )
 
 missing=()

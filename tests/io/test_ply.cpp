@@ -426,3 +426,14 @@ TEST_CASE("PLY writers refuse bad meshes and segments", "[io][ply]") {
   s.segments = {{0, 2}};
   CHECK_THROWS_WITH(segments_ply(s), Contains("segments[0][1] = 2 is out of range"));
 }
+
+TEST_CASE("PLY: an element without properties holds no data, whatever its count", "[io][ply][reliability]") {
+  // 2^31 − 1 rows of nothing were skipped one by one: minutes (tests/fuzz/fuzz_mesh_ply).
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\nproperty double z\n"
+      "element nothing 2147483647\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  const Mesh m = cifs::io::parse_mesh_ply(ply, "empty_rows.ply");
+  CHECK(m.vertices.rows() == 3);
+  CHECK(cifs::face_count(m) == 1);
+}
