@@ -27,6 +27,7 @@ const std::filesystem::path& scratch() {
 
 }  // namespace
 
+// NOLINTNEXTLINE(readability-identifier-naming): the name libFuzzer calls
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace cifs;
   fuzz::refusals_allowed([&] {
