@@ -39,23 +39,12 @@ std::string xml_escape(const std::string& s) {
   return out;
 }
 
-/// SVG draws x and y: refuse points that leave the plane rather than drop their z silently.
-void require_planar(const Points& P) {
-  for (Eigen::Index j = 2; j < P.cols(); ++j)
-    for (Eigen::Index i = 0; i < P.rows(); ++i)
-      if (P(i, j) != 0)
-        throw InvalidInput("SVG: point " + std::to_string(i) + " has coordinate " + std::to_string(j + 1) +
-                           " = " + number_text(P(i, j), 6) +
-                           ": SVG draws x and y only; write a 3-D shape as OBJ or PLY");
-}
-
 }  // namespace
 
 void segments_svg(const Segments& segments, const SvgOptions& options, ByteSink& sink) {
   check_segments(segments, "segments_svg");
   const Points& P = segments.vertices;
   if (P.rows() == 0) throw InvalidInput("segments_svg: no vertices");
-  require_planar(P);
   const int width = options.width;
   if (width < 16 || width > 100000)
     throw InvalidInput("segments_svg: width " + std::to_string(width) + " is outside [16, 100000]");
@@ -104,7 +93,6 @@ std::string segments_svg(const Segments& segments, const SvgOptions& options) {
 
 std::string polyline_svg(const Points& points, bool closed, int width, double stroke) {
   if (points.cols() < 2) throw InvalidInput("SVG: points need at least 2 coordinates");
-  require_planar(points);
   Segments s = polyline_segments(points.leftCols(2), closed);
   s.states.clear();
   SvgOptions options;

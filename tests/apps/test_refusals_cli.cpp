@@ -155,9 +155,3 @@ TEST_CASE("cifs scheme refuses a symbol beyond the largest mask at once", "[cli]
   check_error(cifs_cli("scheme symbol --param 'symbol=(1+z)^1024' --analyze"),
               "the power has degree 1024, above the largest mask (512 coefficients, degree 511)");
 }
-
-TEST_CASE("cifs scheme --refine --format svg refuses a 3-D polygon", "[cli][reliability]") {
-  const std::string p =
-      file("lifted.json", R"({"polygon": {"points": [[0, 0, 0], [1, 0, 1], [1, 1, 2]], "closed": true}})");
-  check_error(cifs_cli("scheme chaikin --refine " + p + " --format svg"), "SVG draws x and y only");
-}

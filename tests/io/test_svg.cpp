@@ -89,16 +89,3 @@ TEST_CASE("Automaton SVG: one circle per state, one arrow per connected pair", "
   CHECK(count("marker-end=") == pairs.size());
   CHECK(count("stroke-width=\"2.5\"") == a.initial.size());  // initial states in bold
 }
-
-TEST_CASE("SVG refuses points off the plane instead of dropping z", "[io][svg][reliability]") {
-  Points flat(3, 3), lifted(3, 3);
-  flat << 0, 0, 0, 1, 0, 0, 1, 1, 0;
-  lifted << 0, 0, 0, 1, 0, 0.5, 1, 1, 0;
-  CHECK(polyline_svg(flat) == polyline_svg(flat.leftCols(2)));  // z = 0 everywhere: the plane drawing
-  CHECK_THROWS_WITH(polyline_svg(lifted),
-                    Catch::Contains("point 1 has coordinate 3 = 0.5: SVG draws x and y only"));
-  Segments s;
-  s.vertices = lifted;
-  s.segments = {{0, 1}, {1, 2}};
-  CHECK_THROWS_AS(segments_svg(s), InvalidInput);
-}
