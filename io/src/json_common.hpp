@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cifs/errors.hpp"
+#include "cifs/format.hpp"
 #include "cifs/types.hpp"
 
 namespace cifs::io::detail {
@@ -143,6 +144,15 @@ struct Reader {
 json parse_document(std::string_view text, const std::string& where);
 
 json rows_json(const Points& P);
+
+/// append_number for JSON: −0 written "-0.0", since a JSON reader takes "-0" for the integer 0 and
+/// the round trip lost the sign (found by tests/fuzz/fuzz_polygon).
+inline void append_json_number(std::string& out, double x) {
+  if (x == 0 && std::signbit(x))
+    out += "-0.0";
+  else
+    append_number(out, x);
+}
 
 /// Objects one member per line; arrays of numbers, and of arrays of numbers, on one line.
 void write_pretty(const json& v, int indent, std::string& out);

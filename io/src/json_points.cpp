@@ -2,6 +2,7 @@
 // cifs — the JSON points report of cifs eval and cifs attractor: `{"points":[[x,y],…]}`, numbers
 // as the shortest text that reads back as the same double, then `"seed":S` for the chaos game.
 #include "cifs/format.hpp"
+#include "json_common.hpp"
 #include "points_format.hpp"
 
 namespace cifs::io::detail {
@@ -16,7 +17,7 @@ void rows(std::string& out, const Eigen::Ref<const Points>& rows, std::uint64_t 
     out += first == 0 && i == 0 ? "[" : ",[";
     for (Eigen::Index j = 0; j < rows.cols(); ++j) {
       if (j) out += ',';
-      append_number(out, rows(i, j));
+      detail::append_json_number(out, rows(i, j));
     }
     out += ']';
   }

@@ -40,7 +40,7 @@ std::string to_json(const Polygon& polygon) {
     out += i ? ",\n  [" : "\n  [";
     for (Eigen::Index k = 0; k < P.cols(); ++k) {
       if (k) out += ", ";
-      append_number(out, P(i, k));
+      detail::append_json_number(out, P(i, k));
     }
     out += "]";
   }

@@ -562,7 +562,7 @@ Mesh parse_mesh_ply(std::string_view bytes, std::string_view where) {
     } else if (e.name == "face" && !faces) {
       read_faces(r, e, mesh, w);
       faces = true;
-    } else {
+    } else if (!e.properties.empty()) {  // no properties: no data (2^31 empty rows looped for minutes)
       for (std::size_t i = 0; i < e.count; ++i) {
         r.enter(e, i);
         for (const Property& p : e.properties) skip_property(r, p);

@@ -6,10 +6,12 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cifs/errors.hpp"
+#include "cifs/format.hpp"
 #include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/random.hpp"
@@ -83,27 +85,52 @@ void check_nets(const automata::Automaton& automaton, std::span<const Points> ne
 /// a branch once its piece is provably smaller than ε = tolerance / (pixels per world unit) — a
 /// bound from the branch's own net (ifs::for_each_leaf_to_tolerance), far tighter than a global
 /// contraction rate. Cost: one visit per leaf, about (size on screen / tolerance)^(dimension of
-/// the attractor).
+/// the attractor): past kMaxLeaves leaves (a surface seen from close by: minutes, unbounded) the
+/// traversal gives way to the global bound, O(1) and deeper: every piece at depth j·m has
+/// diameter ≤ 2ρ·δ_m^j·diam(N) (ifs::Contraction), capped at 64.
+constexpr std::size_t kMaxLeaves = std::size_t{1} << 20;
+constexpr double kMaxChaosWork = 0x1p38;
+
 int automatic_depth(const automata::Automaton& automaton, std::span<const Points> nets,
                     const ViewTransform& view, double tolerance) {
+  std::optional<ifs::Contraction> contraction;  // computed when needed: seconds for large states
+  const auto radius = [&] {
+    if (!contraction) contraction = ifs::contraction(automaton);
+    return contraction->radius;
+  };
   double scale = view.scale;
   if (view.perspective) {
     // A world length ℓ at depth z spans ℓ·F/z pixels: use the nearest depth the attractor can
     // reach (every point lies within ρ·diam(N) of the net's first row), but not nearer than
     // `near`, in front of which nothing is drawn.
-    const double radius = ifs::contraction(automaton).radius;
     double nearest = std::numeric_limits<double>::infinity();
     for (const Points& N : nets) {
       Eigen::Vector3d p = Eigen::Vector3d::Zero();
       p.head(N.cols()) = N.row(0).transpose();
-      nearest = std::min(nearest, (p - view.eye).dot(view.forward) - radius * ifs::diameter(N));
+      nearest = std::min(nearest, (p - view.eye).dot(view.forward) - radius() * ifs::diameter(N));
     }
     scale /= std::max(nearest, view.near);
   }
   ifs::ToleranceOptions t;
   t.epsilon = tolerance / scale;
   t.max_depth = 64;
-  return ifs::for_each_leaf_to_tolerance(automaton, nets, t, [](const ifs::ToleranceLeaf&) {}).deepest;
+  struct OverBudget {};
+  std::size_t leaves = 0;
+  try {
+    return ifs::for_each_leaf_to_tolerance(automaton, nets, t,
+                                           [&](const ifs::ToleranceLeaf&) {
+                                             if (++leaves > kMaxLeaves) throw OverBudget{};
+                                           })
+        .deepest;
+  } catch (const OverBudget&) {
+  }
+  double diameter = 0;
+  for (const Points& N : nets) diameter = std::max(diameter, ifs::diameter(N));
+  const double ratio = t.epsilon / (2 * radius() * diameter);  // need δ_m^j < ratio
+  const int m = contraction->m;
+  if (!(ratio < 1) || !(contraction->delta > 0)) return m;
+  const double j = std::ceil(std::log(ratio) / std::log(contraction->delta));
+  return static_cast<int>(std::min(64.0, std::max(1.0, j) * m));
 }
 
 /// Per-worker buffers: hits, nearest depth, the sample index and state of that point.
@@ -164,6 +191,25 @@ ChaosDensityResult chaos_density_layer(DensityLayer& layer, Image& image, const 
                            : "chaos_density: part " + std::to_string(part.index) + " of " +
                                  std::to_string(part.count) + " draws " + std::to_string(part_samples) +
                                  " samples, at most 2^32 - 1 per part (uint32 counts)");
+  {
+    // Each sample descends `depth` levels, a `size × size` matrix times the net per level: refuse a
+    // game past ~2^38 multiply-adds (minutes) before it starts; 2^32 − 1 samples took hours.
+    int size = 1;
+    for (std::size_t s = 0; s < boost::num_vertices(automaton.graph); ++s)
+      size = std::max(size, automaton.graph[s].size);
+    // The limit is per process: a distributed game (options.part) divides the samples.
+    const double count = options.part.count > 1 ? static_cast<double>(options.part.count) : 1.0;
+    const double work = static_cast<double>(part_samples) * depth * size * size;
+    if (work > kMaxChaosWork)
+      throw InvalidInput(
+          "chaos game: " + std::to_string(options.samples) + " samples" +
+          (count > 1 ? " over " + std::to_string(options.part.count) + " processes" : std::string()) +
+          " × depth " + std::to_string(depth) + " × " + std::to_string(size) +
+          "² coefficients = " + number_text(work, 3) + " multiply-adds" + (count > 1 ? " per process" : "") +
+          ", above the limit of " + number_text(kMaxChaosWork, 3) + "; ask for at most " +
+          std::to_string(static_cast<std::uint64_t>(count * kMaxChaosWork / (double(depth) * size * size))) +
+          " samples");
+  }
   const unsigned threads = detail::worker_count(options.threads, chunks);
   std::vector<Local> local(threads);
   std::mutex progress_mutex;

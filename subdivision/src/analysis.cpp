@@ -28,9 +28,15 @@ std::size_t power_length(std::size_t c_size, int L) {
 std::vector<double> power_norms(const std::vector<double>& c, int max_power, std::size_t max_coefficients) {
   std::vector<double> norms;
   std::vector<double> cur = c, next;
+  // Each step costs |c^{[L]}| × |c| products: up to 2^28 for masks of ≤ 64 coefficients (as the
+  // coefficient cap allows), shrinking as |c|² beyond (lr-six-point stages=64, 326 coefficients,
+  // took 16 s per analysis).
+  const double n = static_cast<double>(std::count_if(c.begin(), c.end(), [](double x) { return x != 0; }));
+  const double max_work = std::ldexp(1.0, 28) * std::pow(64 / std::max(n, 64.0), 2);
   for (int L = 1; L <= max_power; ++L) {
     if (L > 1) {
       if (power_length(c.size(), L) > max_coefficients) break;
+      if (static_cast<double>(power_length(c.size(), L)) * n > max_work) break;
       // cur(z)·c(z^{2^{L−1}})
       const std::size_t step = std::size_t{1} << (L - 1);
       next.assign(cur.size() + (c.size() - 1) * step, 0.0);
@@ -124,6 +130,26 @@ double product_radius(const std::vector<double>& c, int max_length, std::vector<
   return best;
 }
 
+/// Work of power_norm(d, L) in 64-bit word products: c^{[L]} has power_length coefficients, each
+/// step multiplies them by the non-zero coefficients of d, and its integers grow to about
+/// L·log2(Σ|d_i|·D) bits (D the common denominator).
+double exact_cost(const Polynomial& d, int L) {
+  cpp_int D = 1;
+  for (const Rational& x : d) D = boost::multiprecision::lcm(D, denominator(x));
+  cpp_int total = 0;
+  double nonzero = 0;
+  for (const Rational& x : d) {
+    total += boost::multiprecision::abs(numerator(x) * (D / denominator(x)));
+    nonzero += x != 0;
+  }
+  const double bits = total > 0 ? static_cast<double>(boost::multiprecision::msb(total) + 1) * L : 1;
+  const double words = bits < 125 ? 1 : bits / 64;
+  return static_cast<double>(power_length(d.size(), L)) * nonzero * (1 + words * words);
+}
+
+/// About a second of exact arithmetic per power tried (at most 4 tries per difference scheme).
+constexpr double kMaxExactCost = 2e8;
+
 struct Contractivity {
   bool proved = false;
   int power = 0;
@@ -146,6 +172,7 @@ Contractivity contractivity(const Polynomial& d, const AnalysisOptions& options)
       continue;  // clearly not contractive at this L (double is accurate to far better)
     const int L = static_cast<int>(i) + 1;
     if (power_length(d.size(), L) > options.max_coefficients / 4) break;  // exact arithmetic too costly
+    if (exact_cost(d, L) > kMaxExactCost) break;  // big integers: lr-six-point stages=64 took minutes
     ++exact_tries;
     const Rational n = power_norm(d, L, options.max_coefficients);
     if (n < 1) result.proved = true, result.power = L, result.norm = n;
@@ -269,8 +296,13 @@ SchemeAnalysis analyze(const Scheme& scheme, const AnalysisOptions& options) {
     int k_top = m - 1;
     if (r.holder_high && std::isfinite(*r.holder_high))
       k_top = std::min(k_top, static_cast<int>(std::floor(*r.holder_high + 1e-9)));
+    // d_k = 2^k·a/(1+z)^{k+1}, each from the one above by one product with (1+z): difference_mask
+    // for every k cost k_top²·N exact operations (a degree-510 B-spline: seconds).
+    Polynomial q = a;  // a/(1+z)^{k+1}
+    for (int i = 0; i <= k_top; ++i) detail::divide_by_one_plus_z(q);
     for (int k = k_top; k >= 0; --k) {
-      const Contractivity c = contractivity(difference_mask(a, k), options);
+      if (k < k_top) q = detail::multiply(q, Polynomial{Rational(1), Rational(1)});
+      const Contractivity c = contractivity(detail::scale(q, Rational(cpp_int(1) << k)), options);
       if (!c.proved) continue;
       r.continuity = k;
       r.proof = {k, c.power, c.norm};

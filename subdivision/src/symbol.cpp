@@ -100,7 +100,14 @@ class Parser {
     Laurent p = unary();
     for (;;) {
       if (times_sign() || starts_factor()) {  // implicit product too: 2z, (1+z)(1-z), z(1+z)
-        p = times(p, unary());
+        const std::size_t at = i_;
+        const Laurent q = unary();
+        if (!p.c.empty() && !q.c.empty() && p.c.size() + q.c.size() - 1 > kMaxMaskSize) {
+          i_ = at;
+          fail("the product has " + std::to_string(p.c.size() + q.c.size() - 1) +
+               " coefficients, above the largest mask (" + std::to_string(kMaxMaskSize) + ")");
+        }
+        p = times(p, q);
       } else if (skip(), i_ < s_.size() && s_[i_] == '/') {
         ++i_;
         const std::size_t at = i_;
@@ -151,8 +158,12 @@ class Parser {
         for (long k = 0; k < e; ++k) value *= inverse;
         return normalised({-base.low * e, {value}});
       }
-      if (base.c.size() > 1 && static_cast<long>(base.c.size() - 1) * e > kMaxExponent)
-        fail("the power is too large");
+      // A mask holds at most kMaxMaskSize coefficients: refuse a larger power before computing it
+      // (the exact coefficients of (1+z)^1024 took 17 s, for a mask refused afterwards).
+      if (base.c.size() > 1 && static_cast<long>(base.c.size() - 1) * e >= kMaxMaskSize)
+        fail("the power has degree " + std::to_string(static_cast<long>(base.c.size() - 1) * e) +
+             ", above the largest mask (" + std::to_string(kMaxMaskSize) + " coefficients, degree " +
+             std::to_string(kMaxMaskSize - 1) + ")");
       Laurent r{0, {Rational(1)}};
       for (long k = 0; k < e; ++k) r = times(r, base);
       return r;

@@ -2,6 +2,7 @@
 // Inputs the CLI must refuse with one line and exit status 2 (docs/reliability.md), each a defect
 // that once crashed, ran, or wrote something wrong instead (issue 16).
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <filesystem>
 
 #include "apps/cli_runner.hpp"
@@ -128,4 +129,29 @@ TEST_CASE("cifs dimension refuses control points spanning more than a double", "
       cifs_cli("dimension " + huge),
       "the control points span more than a double holds (coordinates up to 1.7e+308); scale the shape "
       "down");
+}
+
+TEST_CASE("cifs render: a chaos game is bounded before it starts", "[cli][reliability]") {
+  const std::string hills = std::string(CIFS_EXAMPLES_DIR) + "/shapes/hills.json";
+  const auto experiment = [&](const std::string& name, const std::string& samples) {
+    return file(name + ".json", R"({"shape": ")" + hills + R"(", "evaluation": {"chaos": )" + samples +
+                                    R"(}, "render": {"width": 64, "height": 64, "threads": 1},
+      "outputs": {"exr": ")" + name +
+                                    R"(.exr"}})");
+  };
+  // 2^32 − 1 samples was accepted (hours of work): refused with the figure and the largest count.
+  check_error(cifs_cli("render " + experiment("chaos_huge", "4294967295") + " --quiet"), "samples × depth");
+  CHECK(!std::filesystem::exists(scratch() / "chaos_huge.exr"));
+  // The automatic depth of a surface in perspective walked tens of millions of pieces (minutes) before
+  // the first sample; its traversal now gives way to the global contraction bound.
+  const auto start = std::chrono::steady_clock::now();
+  const Run r = cifs_cli("render " + experiment("chaos_small", "16") + " --quiet");
+  INFO(r.err);
+  CHECK(r.status == 0);
+  CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 60);
+}
+
+TEST_CASE("cifs scheme refuses a symbol beyond the largest mask at once", "[cli][reliability]") {
+  check_error(cifs_cli("scheme symbol --param 'symbol=(1+z)^1024' --analyze"),
+              "the power has degree 1024, above the largest mask (512 coefficients, degree 511)");
 }

@@ -150,7 +150,7 @@ Mesh cube() {
 /// An open n × n grid of quads over a wavy height field (irrational coordinates).
 Mesh open_grid(int n) {
   Mesh m;
-  m.vertices.resize((n + 1) * (n + 1), 3);
+  m.vertices.resize(static_cast<Eigen::Index>(n + 1) * (n + 1), 3);
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i)
       m.vertices.row(j * (n + 1) + i) << i / 3.0, j / 7.0, std::sin(i * 0.7) * std::cos(j * 1.3);
@@ -397,7 +397,7 @@ TEST_CASE("PLY reader: bad input is a one-line error naming the file and the ele
     std::string patched = bytes;
     const std::uint64_t bits = std::bit_cast<std::uint64_t>(std::numeric_limits<double>::quiet_NaN());
     for (std::size_t i = 0; i < 8; ++i)
-      patched[body + 8 * 11 + i] =
+      patched[body + std::size_t{8} * 11 + i] =
           static_cast<char>((bits >> (8 * (format == PlyFormat::binary_big_endian ? 7 - i : i))) & 0xFF);
     CHECK(error_of(patched) == "m.ply: vertex 3: z is not finite");
     CHECK(error_of(bytes.substr(0, bytes.size() - 3)) ==
@@ -425,4 +425,15 @@ TEST_CASE("PLY writers refuse bad meshes and segments", "[io][ply]") {
   s.vertices = Points::Zero(2, 2);
   s.segments = {{0, 2}};
   CHECK_THROWS_WITH(segments_ply(s), Contains("segments[0][1] = 2 is out of range"));
+}
+
+TEST_CASE("PLY: an element without properties holds no data, whatever its count", "[io][ply][reliability]") {
+  // 2^31 − 1 rows of nothing were skipped one by one: minutes (tests/fuzz/fuzz_mesh_ply).
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\nproperty double z\n"
+      "element nothing 2147483647\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  const Mesh m = cifs::io::parse_mesh_ply(ply, "empty_rows.ply");
+  CHECK(m.vertices.rows() == 3);
+  CHECK(cifs::face_count(m) == 1);
 }

@@ -189,3 +189,12 @@ TEST_CASE("named_scheme reads text parameters and defaults", "[subdivision]") {
   for (const SchemeSpec& spec : scheme_catalogue())
     if (spec.name != "mask" && spec.name != "symbol") CHECK_NOTHROW(named_scheme(spec.name, {}));
 }
+
+TEST_CASE("symbols beyond the largest mask are refused before they are expanded",
+          "[subdivision][reliability]") {
+  // (1+z)^1024 was expanded exactly (17 s) and only then refused for its 1025 coefficients.
+  CHECK_THROWS_WITH(from_symbol("(1+z)^1024"),
+                    Catch::Contains("the power has degree 1024, above the largest mask"));
+  CHECK_THROWS_WITH(from_symbol("(1+z)^300*(1+z)^300"), Catch::Contains("the product has 601 coefficients"));
+  CHECK(from_symbol("(1+z)^511/2^510").mask.size() == 512);  // the largest mask is still accepted
+}

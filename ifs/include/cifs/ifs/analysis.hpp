@@ -43,8 +43,9 @@ struct ContractionOptions {
   /// Longest path length m tried.
   int max_length = 8;
   /// Also try longer paths (up to max_length, while the bound improves by > 5% and the paths of
-  /// that length number ≤ 2^16) for a smaller bound factor: for the uniform degree-6 B-spline the
-  /// factor drops from 64 (m = 1) to about 1.1 (m = 5), saving six levels of subdivision.
+  /// that length number ≤ 2^16 · (16/n)³ for states of size n > 16) for a smaller bound factor: for the
+  /// uniform degree-6 B-spline the factor drops from 64 (m = 1) to about 1.1 (m = 5), saving six levels of
+  /// subdivision.
   bool tighten = true;
 };
 

@@ -1,0 +1,16 @@
+// SPDX-License-Identifier: MIT
+// Fuzzing: automaton JSON (io::parse_automaton_json). Property: an automaton read writes back
+// (to_json) into text that reads back to the same text.
+#include "cifs/io/json.hpp"
+#include "fuzz.hpp"
+
+// NOLINTNEXTLINE(readability-identifier-naming): the name libFuzzer calls
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace cifs;
+  fuzz::refusals_allowed([&] {
+    const std::string json = io::to_json(io::parse_automaton_json(fuzz::text(data, size), "fuzz.json"));
+    fuzz::require(io::to_json(io::parse_automaton_json(json, "again.json")) == json,
+                  "automaton JSON round trip");
+  });
+  return 0;
+}

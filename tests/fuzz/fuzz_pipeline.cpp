@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: MIT
+// Fuzzing: the whole pipeline on small sizes. An experiment file (inputs resolved against
+// examples/experiments) is parsed, its sizes capped — depth 6, tolerance 1e-2, 2,000 chaos samples,
+// 2 subdivision levels, a 48 × 48 image, one thread, 64 MB of image or geometry — and run: automaton,
+// perturbation, attractor, render, EXR, PNG and geometry outputs into a scratch folder; then
+// evaluated at depth ≤ 4 as `cifs dimension` does (unless perturbed and already run). libFuzzer's -timeout
+// and -rss_limit_mb (scripts/fuzz.sh) bound the time and memory of each input.
+#include <unistd.h>
+#include <algorithm>
+#include <filesystem>
+#include <string>
+
+#include "cifs/experiment/run.hpp"
+#include "cifs/io/json.hpp"
+#include "fuzz.hpp"
+
+namespace {
+
+const std::filesystem::path& scratch() {
+  static const std::filesystem::path folder = [] {
+    auto path = std::filesystem::temp_directory_path() / ("cifs_fuzz_pipeline." + std::to_string(getpid()));
+    std::filesystem::create_directories(path);
+    return path;
+  }();
+  return folder;
+}
+
+}  // namespace
+
+// NOLINTNEXTLINE(readability-identifier-naming): the name libFuzzer calls
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace cifs;
+  fuzz::refusals_allowed([&] {
+    io::Experiment e =
+        io::parse_experiment(fuzz::text(data, size), "fuzz.json", CIFS_EXAMPLES_DIR "/experiments");
+    e.render.width = std::min(e.render.width, 48);
+    e.render.height = std::min(e.render.height, 48);
+    e.render.threads = 1;
+    e.evaluation.depth = std::min(e.evaluation.depth, 6);
+    e.evaluation.tolerance = std::max(e.evaluation.tolerance, 1e-2);
+    e.evaluation.samples = std::min<std::uint64_t>(e.evaluation.samples, 2000);
+    if (e.mesh) e.mesh->levels = std::min(e.mesh->levels, 2);
+    experiment::RunOptions options;
+    options.out_dir = scratch();
+    options.exr = scratch() / "image.exr";
+    options.quiet = true;
+    options.max_bytes = std::size_t{64} << 20;
+    try {
+      experiment::run(e, options);
+      // A perturbed BC-IFS costs seconds to set up (its contraction bound): not twice per input.
+      if (e.perturbation) return;
+    } catch (const InvalidInput&) {  // a refused run may still evaluate (cifs dimension)
+    }
+    experiment::evaluate(e, std::min(e.evaluation.depth, 4), options);
+  });
+  return 0;
+}
