@@ -469,6 +469,7 @@ cells "v0" (the start), "w1" …, "m"; boundaries "start" (rows 0 … N−2) and
          const std::vector<std::tuple<std::size_t, std::string, std::size_t, std::string>>& glue,
          bool free_a) {
         std::vector<ifs::Glue> g;
+        g.reserve(glue.size());
         for (const auto& [ea, ba, eb, bb] : glue) g.push_back({ea, ba, eb, bb});
         ifs::JoinOptions options;
         options.free_a = free_a;

@@ -508,7 +508,7 @@ FractalSurface fractal_catmull_clark(const SurfaceAutomaton& smooth, const ifs::
     for (auto [e, end] = boost::out_edges(s, old); e != end; ++e)
       boost::add_edge(moved[s], moved[boost::target(*e, old)], old[*e], g);
   }
-  out.surface.automaton.graph = std::move(g);
+  out.surface.automaton.graph = g;  // boost::adjacency_list has no move assignment
   for (const automata::Initial& i : smooth.automaton.initial)
     out.surface.automaton.initial.push_back(automata::Initial{.segment = i.segment, .state = moved[i.state]});
   out.surface.nets = smooth.nets;
