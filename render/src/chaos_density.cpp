@@ -177,13 +177,9 @@ ChaosDensityResult chaos_density_layer(DensityLayer& layer, Image& image, const 
   const auto cols = nets[0].cols();
   const std::uint32_t roots = static_cast<std::uint32_t>(automaton.initial.size());
   // This part's chunks: part.index, part.index + part.count, …
-  const std::uint64_t all_chunks = (options.samples + kDensityChunk - 1) / kDensityChunk;
   const Part part = options.part;
-  const std::uint64_t chunks =
-      all_chunks > part.index ? (all_chunks - part.index + part.count - 1) / part.count : 0;
-  std::uint64_t part_samples = 0;
-  for (std::uint64_t c = part.index; c < all_chunks; c += part.count)
-    part_samples += std::min(kDensityChunk, options.samples - c * kDensityChunk);
+  const PartChunks dealt = part_chunks(part, options.samples, kDensityChunk);
+  const std::uint64_t chunks = dealt.mine, part_samples = dealt.samples;
   // Counts are uint32 per process: more samples are drawn by more processes.
   if (part_samples >= (std::uint64_t{1} << 32))
     throw InvalidInput(part.count == 1

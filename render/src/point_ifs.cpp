@@ -247,12 +247,8 @@ Histogram chaos_game_histogram(std::span<const AffineMap> maps, const ChaosHisto
   check_part(options.part, "chaos_game_histogram");
   // This part's chunks: part.index, part.index + part.count, …
   const Part part = options.part;
-  const std::uint64_t all_chunks = (options.samples + kChaosChunk - 1) / kChaosChunk;
-  const std::uint64_t chunks =
-      all_chunks > part.index ? (all_chunks - part.index + part.count - 1) / part.count : 0;
-  std::uint64_t part_samples = 0;
-  for (std::uint64_t c = part.index; c < all_chunks; c += part.count)
-    part_samples += std::min(kChaosChunk, options.samples - c * kChaosChunk);
+  const PartChunks dealt = part_chunks(part, options.samples, kChaosChunk);
+  const std::uint64_t chunks = dealt.mine, part_samples = dealt.samples;
   // Counts are uint32: a part draws fewer than 2^32 points (more are drawn by more parts).
   if (part_samples >= (std::uint64_t{1} << 32))
     throw InvalidInput(part.count == 1

@@ -2,7 +2,9 @@
 // cifs — part i of n of a distributed render (cifs render under mpirun; docs/scaling.md).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
+#include <cstdint>
 
 namespace cifs::render {
 
@@ -22,6 +24,21 @@ inline constexpr std::size_t kBandRows = 32;
 
 inline bool owns_row(const Part& part, std::size_t y) noexcept {
   return (y / kBandRows) % part.count == part.index;
+}
+
+/// A chaos game's samples in chunks of `chunk`, dealt out in turn: chunk c belongs to part
+/// c mod count. This part's number of chunks and of samples.
+struct PartChunks {
+  std::uint64_t all = 0, mine = 0, samples = 0;
+};
+
+inline PartChunks part_chunks(const Part& part, std::uint64_t samples, std::uint64_t chunk) noexcept {
+  PartChunks out;
+  out.all = (samples + chunk - 1) / chunk;
+  out.mine = out.all > part.index ? (out.all - part.index + part.count - 1) / part.count : 0;
+  for (std::uint64_t c = part.index; c < out.all; c += part.count)
+    out.samples += std::min(chunk, samples - c * chunk);
+  return out;
 }
 
 }  // namespace cifs::render
