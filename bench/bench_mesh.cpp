@@ -429,7 +429,7 @@ const std::vector<sd::FacePoint>& surface_points() {
 void cifs_surface_case(benchmark::State& state, sd::MeshScheme) {
   sd::SurfaceSample s;
   for (auto _ : state) {
-    s = sd::evaluate_limit_surface(surface_mesh(), surface_points());
+    s = sd::evaluate_limit_surface(surface_mesh(), sd::MeshScheme::catmull_clark, surface_points());
     benchmark::DoNotOptimize(s.dv.data());
   }
   state.counters["ns_per_point"] =
@@ -489,7 +489,7 @@ void surface_cross_check() {
   const std::span<const sd::FacePoint> points(surface_points().data(), 20'000);
   const auto refiner =
       cifs_test::osd_refiner(m, Sdc::SCHEME_CATMARK, Sdc::Options::VTX_BOUNDARY_EDGE_ONLY, 0);
-  const sd::SurfaceSample ours = sd::evaluate_limit_surface(m, points);
+  const sd::SurfaceSample ours = sd::evaluate_limit_surface(m, sd::MeshScheme::catmull_clark, points);
   for (const int level : {2, 6, 10}) {  // Bfr's default is 2
     OpenSubdiv::Bfr::SurfaceFactory::Options options;
     options.SetApproxLevelSmooth(level);

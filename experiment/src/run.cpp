@@ -278,7 +278,7 @@ Mesh fractal_mesh(const io::MeshSource& m, const io::Perturbation& perturbation,
     const Mesh refined = subdivision::subdivide(m.mesh, m.scheme, first, options);
     subdivision::SurfaceAutomaton smooth;
     try {
-      smooth = subdivision::catmull_clark_automaton(refined);
+      smooth = subdivision::surface_automaton(refined, subdivision::MeshScheme::catmull_clark);
     } catch (const InvalidInput& error) {
       if (first == 1 &&
           std::string_view(error.what()).find("refine one level first") != std::string_view::npos)

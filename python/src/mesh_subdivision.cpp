@@ -103,7 +103,8 @@ void bind_mesh_subdivision(py::module_& m) {
   m.def(
       "limit_surface",
       [](const Mesh& mesh, const std::vector<int>& faces, const std::vector<double>& u,
-         const std::vector<double>& v) {
+         const std::vector<double>& v, const std::string& scheme) {
+        const sd::MeshScheme s_scheme = sd::named_mesh_scheme(scheme);
         if (faces.size() != u.size() || faces.size() != v.size())
           throw InvalidInput("limit_surface: faces, u and v must have one entry per point (" +
                              std::to_string(faces.size()) + ", " + std::to_string(u.size()) + ", " +
@@ -113,30 +114,40 @@ void bind_mesh_subdivision(py::module_& m) {
         sd::SurfaceSample s;
         {
           py::gil_scoped_release release;  // the tuple below needs the GIL back
-          s = sd::evaluate_limit_surface(mesh, at);
+          s = sd::evaluate_limit_surface(mesh, s_scheme, at);
         }
         return py::make_tuple(s.positions, s.du, s.dv);
       },
-      py::arg("mesh"), py::arg("faces"), py::arg("u"), py::arg("v"),
-      "Catmull–Clark's limit surface at points (faces[i], u[i], v[i]) of a quad mesh without boundary whose "
-      "faces have at most one extraordinary corner (one level of refinement gives that): (positions, du, "
-      "dv), "
-      "each (n, 3). Exact, extraordinary patches included.");
+      py::arg("mesh"), py::arg("faces"), py::arg("u"), py::arg("v"), py::kw_only(),
+      py::arg("scheme") = "catmull-clark",
+      "The limit surface at points (faces[i], u[i], v[i]) of a closed mesh whose faces have at most one "
+      "extraordinary corner (one level of refinement gives that): catmull-clark (quads, (u, v) in [0, 1]^2) "
+      "or "
+      "loop (triangles, u + v <= 1). (positions, du, dv), each (n, 3). Exact, extraordinary patches "
+      "included.");
   py::class_<sd::SurfaceAutomaton>(
       m, "SurfaceAutomaton",
-      "Catmull–Clark's limit surface as one controlled IFS: a patch per face, states "
-      "'regular' (16 points) and 'E<n>' (2n + 8), four children each.")
+      "A subdivision surface's limit as one controlled IFS: a patch per face, four children per state; "
+      "catmull-clark: 'regular' (16 points) and 'E<n>' (2n + 8); loop: 'regular' (12) and 'E<n>' (n + 6).")
       .def_readonly("automaton", &sd::SurfaceAutomaton::automaton,
                     "cifs.automata.Automaton; entry i is face i.")
       .def_readonly("nets", &sd::SurfaceAutomaton::nets, "Per face, its patch's control points.")
       .def_readonly("corners", &sd::SurfaceAutomaton::corners,
-                    "Per face, the mesh vertices at the patch's (s, t) = (0, 0), (1, 0), (1, 1), (0, 1).");
-  m.def("surface_automaton", &sd::catmull_clark_automaton, py::arg("mesh"),
-        py::call_guard<py::gil_scoped_release>(),
-        "The SurfaceAutomaton of a closed quad mesh whose faces have at most one extraordinary corner (one "
-        "level "
-        "of Catmull–Clark gives that). cifs.ifs's attractor, tolerance and chaos functions run on "
-        "(s.automaton, s.nets).");
+                    "Per face, the mesh vertices at the patch's (s, t) = (0, 0), (1, 0), (1, 1), (0, 1) "
+                    "(triangles: (0, 0), (1, 0), (0, 1), then -1).")
+      .def_property_readonly(
+          "scheme", [](const sd::SurfaceAutomaton& s) { return std::string(sd::scheme_name(s.scheme)); });
+  m.def(
+      "surface_automaton",
+      [](const Mesh& mesh, const std::string& scheme) {
+        const sd::MeshScheme s = sd::named_mesh_scheme(scheme);
+        py::gil_scoped_release release;
+        return sd::surface_automaton(mesh, s);
+      },
+      py::arg("mesh"), py::kw_only(), py::arg("scheme") = "catmull-clark",
+      "The SurfaceAutomaton of a closed mesh, catmull-clark (quads) or loop (triangles), whose faces have at "
+      "most one extraordinary corner (one level of refinement gives that). cifs.ifs's attractor, tolerance "
+      "and chaos functions run on (s.automaton, s.nets).");
   m.def(
       "surface_automaton_mesh",
       [](const sd::SurfaceAutomaton& s, int depth, double max_bytes) {
@@ -147,8 +158,8 @@ void bind_mesh_subdivision(py::module_& m) {
         return sd::surface_automaton_mesh(s, depth, o);
       },
       py::arg("surface"), py::arg("depth"), py::kw_only(), py::arg("max_bytes") = kDefaultBytes,
-      "The attractor at `depth` as one closed quad mesh (4^depth quads per face, shared nodes welded by the "
-      "mesh's topology; Mesh.states the leaves' states).");
+      "The attractor at `depth` as one closed mesh (4^depth quads or triangles per face, shared nodes welded "
+      "by the mesh's topology; Mesh.states the leaves' states).");
   m.def(
       "fractal_catmull_clark",
       [](const sd::SurfaceAutomaton& s, double amplitude, std::uint64_t seed,

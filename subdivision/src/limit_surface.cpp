@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: MIT
-// cifs — Catmull–Clark's limit surface at any (face, u, v): regular patches as bicubic B-splines,
-// extraordinary ones through their controlled-IFS form (cifs/subdivision/limit.hpp).
+// cifs — a subdivision surface's limit as one controlled IFS (Catmull–Clark and Loop), its
+// evaluation at any (face, u, v), its attractor meshes and its fractal version
+// (cifs/subdivision/limit.hpp).
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
+#include <climits>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <numeric>
 #include <stdexcept>
@@ -17,7 +20,7 @@
 #include "cifs/ifs/bcifs_surface.hpp"
 #include "cifs/nurbs/surface.hpp"
 #include "cifs/subdivision/limit.hpp"
-#include "cifs/subdivision/mesh_analysis.hpp"
+#include "limit_patches.hpp"
 #include "local_mesh.hpp"
 
 namespace cifs::subdivision {
@@ -25,93 +28,6 @@ namespace {
 
 using detail::corner;
 using detail::corner_index;
-using detail::edge_between;
-using Net3 = std::array<std::array<int, 3>, 3>;
-
-int position_of(std::span<const int> list, int value) {
-  const auto it = std::find(list.begin(), list.end(), value);
-  if (it == list.end()) throw std::logic_error("limit surface: an element is not where the walk expects it");
-  return static_cast<int>(it - list.begin());
-}
-
-/// The 3 × 3 net around an interior vertex q of valence 4 with four quads, in the frame where face
-/// f is quadrant `quadrant` (0: (+,+), 1: (−,+), 2: (−,−), 3: (+,−)); net[a][b], q at [1][1].
-Net3 vertex_net(const MeshTopology& t, int q, int f, int quadrant) {
-  const auto edges = vertex_edges(t, static_cast<std::size_t>(q));
-  const auto faces = vertex_faces(t, static_cast<std::size_t>(q));
-  const int at = position_of(faces, f);
-  // Face k lies between edges k and k + 1 (counter-clockwise): with face `at` in `quadrant`, edge k
-  // points along direction r = k − at + quadrant (+a, +b, −a, −b) and face k fills quadrant r.
-  static constexpr std::array<std::array<int, 2>, 4> kAlong{{{2, 1}, {1, 2}, {0, 1}, {1, 0}}};
-  static constexpr std::array<std::array<int, 2>, 4> kDiagonal{{{2, 2}, {0, 2}, {0, 0}, {2, 0}}};
-  Net3 net{};
-  net[1][1] = q;
-  for (int k = 0; k < 4; ++k) {
-    const auto r = static_cast<std::size_t>((k - at + quadrant + 8) % 4);
-    const int face_k = faces[static_cast<std::size_t>(k)];
-    net[static_cast<std::size_t>(kAlong[r][0])][static_cast<std::size_t>(kAlong[r][1])] =
-        other_vertex(t, static_cast<std::size_t>(edges[static_cast<std::size_t>(k)]), q);
-    net[static_cast<std::size_t>(kDiagonal[r][0])][static_cast<std::size_t>(kDiagonal[r][1])] =
-        corner(t, face_k, corner_index(t, face_k, q) + 2);
-  }
-  return net;
-}
-
-/// Writes a 3 × 3 net into a grid at offset (di, dj), checking entries already there.
-template <std::size_t N>
-void place(std::array<std::array<int, N>, N>& grid, const Net3& net, int di, int dj) {
-  for (std::size_t a = 0; a < 3; ++a)
-    for (std::size_t b = 0; b < 3; ++b) {
-      int& cell = grid[a + static_cast<std::size_t>(di)][b + static_cast<std::size_t>(dj)];
-      if (cell >= 0 && cell != net[a][b]) throw std::logic_error("limit surface: the corner nets disagree");
-      cell = net[a][b];
-    }
-}
-
-/// The 16-point B-spline net of a regular quad, its corner `first` at (0, 0): [i][j] flattened by i,
-/// i along first → next corner.
-std::array<int, 16> regular_net(const MeshTopology& t, int f, int first) {
-  std::array<std::array<int, 4>, 4> grid{};
-  for (auto& row : grid) row.fill(-1);
-  const int e = corner_index(t, f, first);
-  // Corner k + e sits at grid (1, 1), (2, 1), (2, 2), (1, 2) with the face in quadrant k.
-  static constexpr std::array<std::array<int, 2>, 4> kOffset{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
-  for (int k = 0; k < 4; ++k)
-    place(grid, vertex_net(t, corner(t, f, e + k), f, k), kOffset[static_cast<std::size_t>(k)][0],
-          kOffset[static_cast<std::size_t>(k)][1]);
-  std::array<int, 16> out{};
-  for (std::size_t i = 0; i < 4; ++i)
-    for (std::size_t j = 0; j < 4; ++j) out[i * 4 + j] = grid[i][j];
-  return out;
-}
-
-/// The 2n + 8 control points of a quad whose corner `ev` is extraordinary: the corner's
-/// neighbourhood (c, r_j, f_j, sector 0 at the face's next corner), then the 7 outer points
-/// (3, 0) … (3, 3) … (0, 3) of the grid where c is (1, 1) and the face [1, 2]².
-std::vector<int> patch_support(const MeshTopology& t, int f, int ev) {
-  const int e = corner_index(t, f, ev);
-  std::vector<int> out = detail::neighbourhood(t, MeshScheme::catmull_clark, ev, corner(t, f, e + 1), false);
-  std::array<std::array<int, 4>, 4> grid{};
-  for (auto& row : grid) row.fill(-1);
-  place(grid, vertex_net(t, corner(t, f, e + 1), f, 1), 1, 0);
-  place(grid, vertex_net(t, corner(t, f, e + 2), f, 2), 1, 1);
-  place(grid, vertex_net(t, corner(t, f, e + 3), f, 3), 0, 1);
-  for (const auto [i, j] : {std::array{3, 0}, std::array{3, 1}, std::array{3, 2}, std::array{3, 3},
-                            std::array{2, 3}, std::array{1, 3}, std::array{0, 3}})
-    out.push_back(grid[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]);
-  return out;
-}
-
-/// The face among v's that holds all of `corners`.
-int face_with(const MeshTopology& t, int v, std::initializer_list<int> corners) {
-  for (const int f : vertex_faces(t, static_cast<std::size_t>(v))) {
-    const auto c = face(t, static_cast<std::size_t>(f));
-    if (std::all_of(corners.begin(), corners.end(),
-                    [&](int x) { return std::find(c.begin(), c.end(), x) != c.end(); }))
-      return f;
-  }
-  throw std::logic_error("limit surface: no face holds the corners");
-}
 
 /// Uniform cubic B-spline basis on one segment and its derivative.
 void cubic_basis(double t, std::array<double, 4>& b, std::array<double, 4>& d) {
@@ -156,58 +72,6 @@ void bicubic(const Points& net, double a, double b, double scale, double* value,
 
 }  // namespace
 
-ExtraordinaryPatch catmull_clark_patch(int n) {
-  const detail::LocalRefinement local = detail::refine_local(MeshScheme::catmull_clark, n, {}, 4);
-  const MeshTopology& t0 = local.refinement.levels.front();
-  const MeshTopology& t1 = local.refinement.levels.back();
-  const int c = local.centre, r0 = local.start;
-  const int F = face_with(t0, c, {c, r0});  // sector 0: c, r0, f0, r1 counter-clockwise
-  if (corner(t0, F, corner_index(t0, F, c) + 1) != r0)
-    throw std::logic_error("limit surface: sector 0 is not first");
-  const std::vector<int> support0 = patch_support(t0, F, c);
-  const int f0 = corner(t0, F, corner_index(t0, F, c) + 2), r1 = corner(t0, F, corner_index(t0, F, c) + 3);
-  // Child numbering: vertex points keep their index, edge e's point is V + e, face f's V + E + f.
-  const int V = t0.vertex_count, E = static_cast<int>(t0.edges.size());
-  const auto edge_point = [&](int a, int b) { return V + edge_between(t0, a, b); };
-  const int e0 = edge_point(c, r0), e1 = edge_point(c, r1), m01 = edge_point(r0, f0),
-            m12 = edge_point(f0, r1);
-  const int mid = V + E + F;
-  if (local.child_centre != c) throw std::logic_error("limit surface: the centre moved");
-  const std::vector<int> support1 = patch_support(t1, face_with(t1, c, {c, e0, mid}), c);
-  std::vector<std::vector<int>> rows{support1};
-  for (const auto& [first, others] : {std::pair{e0, std::array{r0, mid}}, std::pair{mid, std::array{m01, f0}},
-                                      std::pair{e1, std::array{mid, r1}}}) {
-    const std::array<int, 16> net =
-        regular_net(t1, face_with(t1, first, {first, others[0], others[1]}), first);
-    rows.emplace_back(net.begin(), net.end());
-  }
-  (void)m12;
-  std::map<int, int> column;
-  for (std::size_t k = 0; k < support0.size(); ++k) column[support0[k]] = static_cast<int>(k);
-  const auto matrix = [&](const std::vector<int>& children) {
-    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(children.size()),
-                                              static_cast<Eigen::Index>(support0.size()));
-    const Stencils& s = local.stencils;
-    for (std::size_t i = 0; i < children.size(); ++i)
-      for (int k = s.offsets[static_cast<std::size_t>(children[i])];
-           k < s.offsets[static_cast<std::size_t>(children[i]) + 1]; ++k) {
-        const auto it = column.find(s.columns[static_cast<std::size_t>(k)]);
-        if (it == column.end())
-          throw std::logic_error("limit surface: a child reaches outside the patch's support");
-        M(static_cast<Eigen::Index>(i), it->second) += s.weights[static_cast<std::size_t>(k)];
-      }
-    return M;
-  };
-  ExtraordinaryPatch out;
-  out.valence = n;
-  out.subdivide = matrix(rows[0]);
-  for (std::size_t k = 0; k < 3; ++k) out.regular[k] = matrix(rows[k + 1]);
-  const LongVector stencil = local_spectrum(local_matrix(MeshScheme::catmull_clark, n)).limit_stencil;
-  out.limit = Eigen::RowVectorXd::Zero(static_cast<Eigen::Index>(support0.size()));
-  for (Eigen::Index k = 0; k < stencil.size(); ++k) out.limit(k) = static_cast<double>(stencil(k));
-  return out;
-}
-
 namespace {
 
 /// The uniform cubic B-spline's halves (rows: the child's control points on the parent's).
@@ -218,24 +82,32 @@ Eigen::Matrix4d cubic_half(int half) {
   return half == 0 ? G : Eigen::Matrix4d(G.reverse());  // D is G read backwards
 }
 
+bool quads(MeshScheme scheme) {
+  return scheme == MeshScheme::catmull_clark;
+}
+
 /// Which corner of face f, if any, is extraordinary; InvalidInput (naming the face) for what the
 /// surface automaton does not build.
-int extraordinary_corner(const MeshTopology& t, int f) {
-  const std::string where = "catmull-clark limit surface: face " + std::to_string(f);
+int extraordinary_corner(const MeshTopology& t, MeshScheme scheme, int f) {
+  const std::string where = std::string(scheme_name(scheme)) + " limit surface: face " + std::to_string(f);
+  const std::size_t sides = quads(scheme) ? 4 : 3;
+  const int regular = quads(scheme) ? 4 : 6;
+  const char* polygon =
+      quads(scheme) ? "a quad (refine one level first)" : "a triangle (loop runs on triangles)";
   const auto corners = face(t, static_cast<std::size_t>(f));
-  if (corners.size() != 4) throw InvalidInput(where + ": not a quad (refine one level first)");
+  if (corners.size() != sides) throw InvalidInput(where + ": not " + polygon);
   int ev = -1, extraordinary = 0;
-  for (std::size_t k = 0; k < 4; ++k) {
+  for (std::size_t k = 0; k < sides; ++k) {
     const auto v = static_cast<std::size_t>(corners[k]);
     if (t.boundary_vertex[v])
       throw InvalidInput(where + ": touches the boundary; boundary patches are not built");
-    if (valence(t, v) != 4) {
+    if (valence(t, v) != regular) {
       ev = static_cast<int>(k);
       ++extraordinary;
     }
     for (const int g : vertex_faces(t, v))
-      if (face(t, static_cast<std::size_t>(g)).size() != 4)
-        throw InvalidInput(where + ": a corner touches a face that is not a quad (refine one level first)");
+      if (face(t, static_cast<std::size_t>(g)).size() != sides)
+        throw InvalidInput(where + ": a corner touches a face that is not " + polygon);
   }
   if (extraordinary > 1)
     throw InvalidInput(where + ": " + std::to_string(extraordinary) +
@@ -247,54 +119,72 @@ bool is_regular(const automata::Automaton& a, automata::StateId s) {
   return a.graph[s].name == "regular";
 }
 
-}  // namespace
-
-namespace {
+/// The labels of a state's four children, in the order of their out-edges.
+std::array<const char*, 4> child_labels(MeshScheme scheme) {
+  if (quads(scheme)) return {"GH", "GB", "DH", "DB"};
+  return {"C0", "C1", "C2", "M"};
+}
 
 /// The automaton of the given faces (initial entry i is faces[i], `segment` the face's index).
-SurfaceAutomaton catmull_clark_automaton(const Mesh& mesh, const MeshTopology& t,
-                                         std::span<const int> faces) {
+SurfaceAutomaton build_automaton(const Mesh& mesh, const MeshTopology& t, MeshScheme scheme,
+                                 std::span<const int> faces) {
   SurfaceAutomaton out;
+  out.scheme = scheme;
   automata::Graph& g = out.automaton.graph;
-  const automata::StateId regular =
-      boost::add_vertex(automata::State{.size = 16, .window = {}, .recurrent = false, .name = "regular"}, g);
-  static constexpr std::array<const char*, 4> kLabels{"GH", "GB", "DH", "DB"};
-  for (int c = 0; c < 4; ++c)
-    boost::add_edge(regular, regular,
-                    automata::Transition{kLabels[static_cast<std::size_t>(c)],
-                                         automata::kron(cubic_half(c / 2), cubic_half(c % 2))},
-                    g);
+  const auto labels = child_labels(scheme);
+  const ExtraordinaryPatch regular_patch = quads(scheme) ? ExtraordinaryPatch{} : loop_patch(6);
+  const automata::StateId regular = boost::add_vertex(
+      automata::State{.size = quads(scheme) ? 16 : 12, .window = {}, .recurrent = false, .name = "regular"},
+      g);
+  for (std::size_t c = 0; c < 4; ++c) {
+    Eigen::MatrixXd M;
+    if (quads(scheme))
+      M = automata::kron(cubic_half(static_cast<int>(c / 2)), cubic_half(static_cast<int>(c % 2)));
+    else
+      M = c == 0 ? regular_patch.subdivide : regular_patch.regular[c - 1];
+    boost::add_edge(regular, regular, automata::Transition{labels[c], M}, g);
+  }
   std::map<int, automata::StateId> extraordinary;  // by valence
   const auto state_of = [&](int n) {
     if (const auto it = extraordinary.find(n); it != extraordinary.end()) return it->second;
-    const ExtraordinaryPatch patch = catmull_clark_patch(n);
-    const automata::StateId s = boost::add_vertex(
-        automata::State{.size = 2 * n + 8, .window = {}, .recurrent = false, .name = "E" + std::to_string(n)},
-        g);
-    // Child 2·iu + iv: (0, 0) the corner's quarter, (0, 1) regular[2], (1, 0) regular[0], (1, 1) regular[1].
-    boost::add_edge(s, s, automata::Transition{"GH", patch.subdivide}, g);
-    boost::add_edge(s, regular, automata::Transition{"GB", patch.regular[2]}, g);
-    boost::add_edge(s, regular, automata::Transition{"DH", patch.regular[0]}, g);
-    boost::add_edge(s, regular, automata::Transition{"DB", patch.regular[1]}, g);
+    const ExtraordinaryPatch patch = quads(scheme) ? catmull_clark_patch(n) : loop_patch(n);
+    const automata::StateId s =
+        boost::add_vertex(automata::State{.size = static_cast<int>(patch.subdivide.rows()),
+                                          .window = {},
+                                          .recurrent = false,
+                                          .name = "E" + std::to_string(n)},
+                          g);
+    boost::add_edge(s, s, automata::Transition{labels[0], patch.subdivide}, g);
+    // Quads: child 2·iu + iv, (0, 1) regular[2], (1, 0) regular[0], (1, 1) regular[1]. Triangles:
+    // C1, C2, M are regular[0], [1], [2].
+    const std::array<std::size_t, 3> order =
+        quads(scheme) ? std::array<std::size_t, 3>{2, 0, 1} : std::array<std::size_t, 3>{0, 1, 2};
+    for (std::size_t c = 1; c < 4; ++c)
+      boost::add_edge(s, regular, automata::Transition{labels[c], patch.regular[order[c - 1]]}, g);
     return extraordinary.emplace(n, s).first->second;
   };
   const Eigen::Index d = mesh.vertices.cols();
   for (const int f : faces) {
-    const int ev = extraordinary_corner(t, f);
+    const int ev = extraordinary_corner(t, scheme, f);
     const int first = corner(t, f, std::max(ev, 0));
     std::vector<int> support;
     automata::StateId state = regular;
-    if (ev < 0) {
-      const std::array<int, 16> net = regular_net(t, f, first);
-      support.assign(net.begin(), net.end());
-    } else {
+    if (ev >= 0) {
       const int n = valence(t, static_cast<std::size_t>(first));
       try {
         state = state_of(n);
       } catch (const InvalidInput& e) {
-        throw InvalidInput("catmull-clark limit surface: face " + std::to_string(f) + ": " + e.what());
+        throw InvalidInput(std::string(scheme_name(scheme)) + " limit surface: face " + std::to_string(f) +
+                           ": " + e.what());
       }
-      support = patch_support(t, f, first);
+    }
+    if (!quads(scheme)) {
+      support = detail::triangle_support(t, f, first);
+    } else if (ev < 0) {
+      const std::array<int, 16> net = detail::regular_net(t, f, first);
+      support.assign(net.begin(), net.end());
+    } else {
+      support = detail::patch_support(t, f, first);
     }
     Points net(static_cast<Eigen::Index>(support.size()), d);
     for (std::size_t k = 0; k < support.size(); ++k)
@@ -302,33 +192,170 @@ SurfaceAutomaton catmull_clark_automaton(const Mesh& mesh, const MeshTopology& t
     out.automaton.initial.push_back(automata::Initial{.segment = f, .state = state});
     out.nets.push_back(std::move(net));
     const int e = corner_index(t, f, first);
-    out.corners.push_back({first, corner(t, f, e + 1), corner(t, f, e + 2), corner(t, f, e + 3)});
+    out.corners.push_back(
+        {first, corner(t, f, e + 1), corner(t, f, e + 2), quads(scheme) ? corner(t, f, e + 3) : -1});
   }
   return out;
 }
 
+void check_scheme(MeshScheme scheme) {
+  if (scheme != MeshScheme::catmull_clark && scheme != MeshScheme::loop)
+    throw InvalidInput("limit surface: " + std::string(scheme_name(scheme)) +
+                       " is not built (catmull-clark and loop are)");
+}
+
+/// Index of the quartic Bernstein coefficient of u^a v^b w^(4 − a − b) (w = 1 − u − v).
+constexpr int tri(int a, int b) {
+  return a * (11 - a) / 2 + b;
+}
+
+/// Weights of the 15 quartic Bernstein polynomials at (u, v) and their partials in u and v.
+void quartic_basis(double u, double v, std::array<double, 15>& b, std::array<double, 15>& bu,
+                   std::array<double, 15>& bv) {
+  const double w = 1 - u - v;
+  std::array<double, 5> pu{1, u, u * u, u * u * u, u * u * u * u}, pv{1, v, v * v, v * v * v, v * v * v * v},
+      pw{1, w, w * w, w * w * w, w * w * w * w};
+  static constexpr std::array<double, 5> kFactorial{1, 1, 2, 6, 24};
+  const auto at = [](const std::array<double, 5>& p, int k) {
+    return k < 0 ? 0.0 : p[static_cast<std::size_t>(k)];
+  };
+  for (int a = 0; a <= 4; ++a)
+    for (int c0 = 0; a + c0 <= 4; ++c0) {
+      const int bb = c0, c = 4 - a - bb;
+      const double m =
+          24 / (kFactorial[static_cast<std::size_t>(a)] * kFactorial[static_cast<std::size_t>(bb)] *
+                kFactorial[static_cast<std::size_t>(c)]);
+      const auto k = static_cast<std::size_t>(tri(a, bb));
+      b[k] = m * at(pu, a) * at(pv, bb) * at(pw, c);
+      const double dw = c * at(pu, a) * at(pv, bb) * at(pw, c - 1);  // ∂/∂w
+      bu[k] = m * (a * at(pu, a - 1) * at(pv, bb) * at(pw, c) - dw);
+      bv[k] = m * (bb * at(pu, a) * at(pv, bb - 1) * at(pw, c) - dw);
+    }
+}
+
+/// Value and partials (times `scale`) of a quartic triangle patch from its 15 Bézier rows.
+void quartic(const Points& bezier, double u, double v, double scale, double* value, double* du, double* dv) {
+  std::array<double, 15> b{}, bu{}, bv{};
+  quartic_basis(u, v, b, bu, bv);
+  for (Eigen::Index k = 0; k < bezier.cols(); ++k) {
+    double x = 0, xu = 0, xv = 0;
+    for (std::size_t i = 0; i < 15; ++i) {
+      const double c = bezier(static_cast<Eigen::Index>(i), k);
+      x += b[i] * c;
+      xu += bu[i] * c;
+      xv += bv[i] * c;
+    }
+    value[k] = x;
+    du[k] = scale * xu;
+    dv[k] = scale * xv;
+  }
+}
+
+/// The regular Loop patch in Bernstein form: `B·net` are the quartic Bézier coefficients (rows
+/// tri(a, b)) of the box-spline patch of a 12-point net. The patch is a quartic polynomial, so its
+/// values at the 15 points (a, b)/4 determine it (collocation); each value is a corner of a
+/// triangle two levels down, the fixed point of that corner's child repeated.
+Eigen::MatrixXd quartic_bezier(const SurfaceAutomaton& s, automata::StateId regular) {
+  const automata::Graph& g = s.automaton.graph;
+  std::array<Eigen::MatrixXd, 4> child;
+  {
+    std::size_t c = 0;
+    for (auto [e, end] = boost::out_edges(regular, g); e != end; ++e) child[c++] = g[*e].matrix;
+  }
+  std::array<Eigen::RowVectorXd, 3> fixed;  // the corners (0, 0), (1, 0), (0, 1)
+  for (std::size_t c = 0; c < 3; ++c)
+    fixed[c] = ifs::repeated_child_functionals(s.automaton, static_cast<int>(c))[regular];
+  constexpr int D = 4;
+  // The functional of the point (a, b)/D, through the child holding it.
+  const auto point = [&](const auto& self, int a, int b) -> Eigen::RowVectorXd {
+    if (a == 0 && b == 0) return fixed[0];
+    if (a == D && b == 0) return fixed[1];
+    if (a == 0 && b == D) return fixed[2];
+    if (2 * (a + b) <= D) return self(self, 2 * a, 2 * b) * child[0];
+    if (2 * a >= D) return self(self, 2 * a - D, 2 * b) * child[1];
+    if (2 * b >= D) return self(self, 2 * a, 2 * b - D) * child[2];
+    return self(self, D - 2 * a, D - 2 * b) * child[3];
+  };
+  Eigen::MatrixXd values(15, child[0].cols()), collocation(15, 15);
+  for (int a = 0; a <= D; ++a)
+    for (int b = 0; a + b <= D; ++b) {
+      values.row(tri(a, b)) = point(point, a, b);
+      std::array<double, 15> w{}, wu{}, wv{};
+      quartic_basis(static_cast<double>(a) / D, static_cast<double>(b) / D, w, wu, wv);
+      for (std::size_t k = 0; k < 15; ++k) collocation(tri(a, b), static_cast<Eigen::Index>(k)) = w[k];
+    }
+  return collocation.fullPivLu().solve(values);
+}
+
+/// The patch's (s, t) from the face's (u, v), the patch's corner (0, 0) being the face's corner `turn`.
+std::array<double, 2> patch_parameters(bool quad, int turn, double u, double v) {
+  if (quad) {
+    const std::array<std::array<double, 2>, 4> st{{{u, v}, {v, 1 - u}, {1 - u, 1 - v}, {1 - v, u}}};
+    return st[static_cast<std::size_t>(turn)];
+  }
+  const std::array<std::array<double, 2>, 3> st{{{u, v}, {v, 1 - u - v}, {1 - u - v, u}}};
+  return st[static_cast<std::size_t>(turn)];
+}
+
+/// The partials in the face's (u, v) from those in the patch's (s, t): ps, pt in, du, dv out.
+void face_partials(bool quad, int turn, const Eigen::RowVectorXd& ps, const Eigen::RowVectorXd& pt,
+                   Eigen::Ref<Eigen::RowVectorXd> du, Eigen::Ref<Eigen::RowVectorXd> dv) {
+  if (quad) {
+    switch (turn) {
+      case 0:
+        du = ps, dv = pt;
+        return;
+      case 1:
+        du = -pt, dv = ps;
+        return;
+      case 2:
+        du = -ps, dv = -pt;
+        return;
+      default:
+        du = pt, dv = -ps;
+        return;
+    }
+  }
+  switch (turn) {
+    case 0:
+      du = ps, dv = pt;
+      return;
+    case 1:  // s = v, t = 1 − u − v
+      du = -pt, dv = ps - pt;
+      return;
+    default:  // s = 1 − u − v, t = u
+      du = pt - ps, dv = -ps;
+      return;
+  }
+}
+
 }  // namespace
 
-SurfaceAutomaton catmull_clark_automaton(const Mesh& mesh) {
+SurfaceAutomaton surface_automaton(const Mesh& mesh, MeshScheme scheme) {
+  check_scheme(scheme);
   const MeshTopology t = build_topology(mesh);
   std::vector<int> faces(face_count(t));
   std::iota(faces.begin(), faces.end(), 0);
-  return catmull_clark_automaton(mesh, t, faces);
+  return build_automaton(mesh, t, scheme, faces);
 }
 
-SurfaceSample evaluate_limit_surface(const Mesh& mesh, std::span<const FacePoint> at) {
+SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::span<const FacePoint> at) {
+  check_scheme(scheme);
+  const bool quad = quads(scheme);
   const MeshTopology t = build_topology(mesh);
   const Eigen::Index d = mesh.vertices.cols();
   const auto F = static_cast<int>(face_count(t));
+  // Triangles: u + v may pass 1 by a rounding of the caller's sum.
+  const double sum_limit = quad ? 2 : 1 + 1e-12;
   for (std::size_t p = 0; p < at.size(); ++p) {  // the points first: a bad one is named before any work
     const FacePoint& q = at[p];
     const bool no_face = q.face < 0 || q.face >= F;
-    if (!no_face && q.u >= 0 && q.u <= 1 && q.v >= 0 && q.v <= 1) continue;
-    const std::string where =
-        "catmull-clark limit: point " + std::to_string(p) + " (face " + std::to_string(q.face) + ")";
+    if (!no_face && q.u >= 0 && q.u <= 1 && q.v >= 0 && q.v <= 1 && q.u + q.v <= sum_limit) continue;
+    const std::string where = std::string(scheme_name(scheme)) + " limit: point " + std::to_string(p) +
+                              " (face " + std::to_string(q.face) + ")";
     if (no_face) throw InvalidInput(where + ": no such face; the mesh has " + std::to_string(F));
     throw InvalidInput(where + ": (u, v) = (" + std::to_string(q.u) + ", " + std::to_string(q.v) +
-                       ") is outside [0, 1]²");
+                       ") is outside " + (quad ? "[0, 1]²" : "the triangle u, v ≥ 0, u + v ≤ 1"));
   }
   // Only the faces asked for: the others may be boundary faces.
   std::vector<int> faces, entry(static_cast<std::size_t>(F), -1);
@@ -337,90 +364,203 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, std::span<const FacePoint
       entry[static_cast<std::size_t>(q.face)] = static_cast<int>(faces.size());
       faces.push_back(q.face);
     }
-  const SurfaceAutomaton s = catmull_clark_automaton(mesh, t, faces);
+  const SurfaceAutomaton s = build_automaton(mesh, t, scheme, faces);
   const automata::Graph& g = s.automaton.graph;
-  // The extraordinary point itself is the fixed point of the corner quarter (no partials there).
+  // The extraordinary point itself is the fixed point of the corner child (no partials there).
   const std::vector<Eigen::RowVectorXd> corner_point = ifs::repeated_child_functionals(s.automaton, 0);
+  std::vector<char> regular(boost::num_vertices(g));
+  for (automata::StateId k = 0; k < regular.size(); ++k) regular[k] = is_regular(s.automaton, k) ? 1 : 0;
+  // Loop's regular nets are evaluated in Bernstein form: B·net once per net.
+  const Eigen::MatrixXd bezier = quad ? Eigen::MatrixXd() : quartic_bezier(s, 0);
+  const auto evaluate_regular = [&](const Points& net, double a, double b, double scale, double* value,
+                                    double* du, double* dv) {
+    if (quad)
+      bicubic(net, a, b, scale, value, du, dv);
+    else
+      quartic(net, a, b, scale, value, du, dv);
+  };
+  const auto regular_form = [&](Points net) { return quad ? net : Points(bezier * net); };
   SurfaceSample out;
   const auto count = static_cast<Eigen::Index>(at.size());
   out.positions.resize(count, d);
   out.du.resize(count, d);
   out.dv.resize(count, d);
-  std::vector<char> regular(boost::num_vertices(g));
-  for (automata::StateId k = 0; k < regular.size(); ++k) regular[k] = is_regular(s.automaton, k) ? 1 : 0;
-  // Per face, the nets met going down: the corner quarters' chain (level j: the corner quarter j levels
-  // down, a net of its extraordinary state) and, per level, the other quarters' nets. Built once per
-  // face and level, so a point costs one bicubic evaluation whatever its depth.
+  // Per face, the nets met going down: the corner parts' chain (level j: the corner part j levels
+  // down, a net of its extraordinary state) and, per level, the other parts' nets (Loop: in
+  // Bernstein form). Built once per face and level, so a point costs one polynomial evaluation
+  // whatever its depth.
   struct Descent {
+    Points own;  // a regular face's net in evaluation form
     std::vector<Points> chain;
     std::vector<automata::StateId> state;
-    std::vector<std::array<Points, 4>> quarter;
+    std::vector<std::array<Points, 4>> part;
   };
   std::vector<Descent> descents(faces.size());
-  Eigen::RowVectorXd pa(d), pb(d);
+  Eigen::RowVectorXd ps(d), pt(d);
   for (Eigen::Index p = 0; p < count; ++p) {
     const FacePoint& q = at[static_cast<std::size_t>(p)];
     const auto f = static_cast<std::size_t>(entry[static_cast<std::size_t>(q.face)]);
-    // The patch's (s, t) is the face's (u, v) turned: its (0, 0) is the face's corner `turn`.
     const int turn = corner_index(t, q.face, s.corners[f][0]);
-    const std::array<std::array<double, 2>, 4> st{
-        {{q.u, q.v}, {q.v, 1 - q.u}, {1 - q.u, 1 - q.v}, {1 - q.v, q.u}}};
-    double a = st[static_cast<std::size_t>(turn)][0], b = st[static_cast<std::size_t>(turn)][1];
+    auto [a, b] = patch_parameters(quad, turn, q.u, q.v);
     const automata::StateId first = s.automaton.initial[f].state;
+    Descent& down = descents[f];
     if (regular[first] != 0) {
-      bicubic(s.nets[f], a, b, 1, out.positions.row(p).data(), pa.data(), pb.data());
+      if (down.own.size() == 0) down.own = regular_form(s.nets[f]);
+      evaluate_regular(down.own, a, b, 1, out.positions.row(p).data(), ps.data(), pt.data());
     } else if (a == 0 && b == 0) {
       out.positions.row(p) = corner_point[first] * s.nets[f];
-      pa.setZero();
-      pb.setZero();
+      ps.setZero();
+      pt.setZero();
     } else {
-      Descent& down = descents[f];
       if (down.chain.empty()) {
         down.chain.push_back(s.nets[f]);
         down.state.push_back(first);
       }
       std::size_t level = 0;
       double scale = 2;
-      for (; std::max(a, b) < 0.5; ++level, a *= 2, b *= 2, scale *= 2)  // the corner's quarter
+      // Down the corner's part (quads: both below ½; triangles: a + b below ½).
+      for (; quad ? std::max(a, b) < 0.5 : a + b < 0.5; ++level, a *= 2, b *= 2, scale *= 2)
         if (level + 1 == down.chain.size()) {
           const auto edge = *boost::out_edges(down.state[level], g).first;
           down.chain.push_back(g[edge].matrix * down.chain[level]);
           down.state.push_back(boost::target(edge, g));
           if (regular[down.state.back()] != 0)
-            throw std::logic_error("limit surface: the corner quarter of an extraordinary patch is regular");
+            throw std::logic_error("limit surface: the corner part of an extraordinary patch is regular");
         }
-      if (down.quarter.size() <= level) down.quarter.resize(level + 1);
-      const int iu = a >= 0.5 ? 1 : 0, iv = b >= 0.5 ? 1 : 0, c = 2 * iu + iv;
-      Points& net = down.quarter[level][static_cast<std::size_t>(c)];
+      if (down.part.size() <= level) down.part.resize(level + 1);
+      // The child holding (a, b) and the point in its own parameters.
+      int c = 0;
+      double s_child = 0, t_child = 0, sign = 1;
+      if (quad) {
+        const int iu = a >= 0.5 ? 1 : 0, iv = b >= 0.5 ? 1 : 0;
+        c = 2 * iu + iv;
+        s_child = 2 * a - iu, t_child = 2 * b - iv;
+      } else if (a >= 0.5) {
+        c = 1, s_child = 2 * a - 1, t_child = 2 * b;
+      } else if (b >= 0.5) {
+        c = 2, s_child = 2 * a, t_child = 2 * b - 1;
+      } else {
+        c = 3, s_child = 1 - 2 * a, t_child = 1 - 2 * b, sign = -1;  // the middle triangle, turned
+      }
+      Points& net = down.part[level][static_cast<std::size_t>(c)];
       if (net.size() == 0) {
         auto edge = boost::out_edges(down.state[level], g).first;
         std::advance(edge, c);
         if (regular[boost::target(*edge, g)] == 0)
-          throw std::logic_error("limit surface: a side quarter of an extraordinary patch is not regular");
-        net = g[*edge].matrix * down.chain[level];
+          throw std::logic_error("limit surface: a side part of an extraordinary patch is not regular");
+        net = regular_form(g[*edge].matrix * down.chain[level]);
       }
-      bicubic(net, 2 * a - iu, 2 * b - iv, scale, out.positions.row(p).data(), pa.data(), pb.data());
+      evaluate_regular(net, s_child, t_child, sign * scale, out.positions.row(p).data(), ps.data(),
+                       pt.data());
     }
-    // Back to the face's (u, v).
-    switch (turn) {
-      case 0:
-        out.du.row(p) = pa, out.dv.row(p) = pb;
-        break;
-      case 1:
-        out.du.row(p) = -pb, out.dv.row(p) = pa;
-        break;
-      case 2:
-        out.du.row(p) = -pa, out.dv.row(p) = -pb;
-        break;
-      default:
-        out.du.row(p) = pb, out.dv.row(p) = -pa;
-        break;
-    }
+    face_partials(quad, turn, ps, pt, out.du.row(p), out.dv.row(p));
   }
   return out;
 }
 
+namespace {
+
+/// The index of a shared node: a mesh vertex ({v, −1, 0}) or the point `at` cells along the mesh edge
+/// from its lower vertex to its higher one; {−1, −1, 0} for a node inside a face.
+std::array<int, 3> edge_node(int from, int to, int at, int side) {
+  return from < to ? std::array{from, to, at} : std::array{to, from, side - at};
+}
+
+/// Loop's attractor at `depth`: per face the nodes (i, j), i + j ≤ 2^depth, of the patch's
+/// triangle grid; a leaf's corners are the fixed points of its corner children repeated.
+Mesh triangle_mesh(const SurfaceAutomaton& surface, int depth, const ifs::MeshOptions& options) {
+  if (depth < 0 || depth > 15)
+    throw InvalidInput("loop limit surface mesh: depth " + std::to_string(depth) + " is outside 0 … 15");
+  if (surface.nets.empty()) return {};
+  const int side = 1 << depth;
+  const std::size_t faces = surface.nets.size(), cols = static_cast<std::size_t>(surface.nets.front().cols());
+  const std::size_t nodes =
+                        faces * static_cast<std::size_t>(side + 1) * static_cast<std::size_t>(side + 2) / 2,
+                    cells = faces * static_cast<std::size_t>(side) * static_cast<std::size_t>(side);
+  if (ifs::mesh_bytes(nodes, cols, cells) > options.max_bytes || nodes > static_cast<std::size_t>(INT_MAX))
+    throw InvalidInput("loop limit surface mesh: depth " + std::to_string(depth) + " on " +
+                       std::to_string(faces) + " faces gives " + std::to_string(cells) +
+                       " triangles, more than the limit of " + std::to_string(options.max_bytes >> 20) +
+                       " MiB (MeshOptions::max_bytes); lower the depth");
+  std::array<std::vector<Eigen::RowVectorXd>, 3> fixed;
+  for (std::size_t c = 0; c < 3; ++c)
+    fixed[c] = ifs::repeated_child_functionals(surface.automaton, static_cast<int>(c));
+  const automata::Graph& g = surface.automaton.graph;
+  std::map<std::array<int, 3>, int> shared;
+  std::vector<int> node_of((static_cast<std::size_t>(side) + 1) * static_cast<std::size_t>(side + 1));
+  std::vector<Eigen::RowVectorXd> rows;
+  std::vector<int> corners;
+  corners.reserve(3 * cells);
+  std::vector<std::uint32_t> states;
+  states.reserve(cells);
+  for (std::size_t f = 0; f < faces; ++f) {
+    const auto& c = surface.corners[f];
+    // The face's nodes: shared ones by the mesh's topology, the others new.
+    for (int i = 0; i <= side; ++i)
+      for (int j = 0; i + j <= side; ++j) {
+        std::array<int, 3> key{-1, -1, 0};
+        if (i == 0 && j == 0)
+          key = {c[0], -1, 0};
+        else if (i == side)
+          key = {c[1], -1, 0};
+        else if (j == side)
+          key = {c[2], -1, 0};
+        else if (j == 0)
+          key = edge_node(c[0], c[1], i, side);
+        else if (i + j == side)
+          key = edge_node(c[1], c[2], j, side);
+        else if (i == 0)
+          key = edge_node(c[0], c[2], j, side);
+        int& node = node_of[static_cast<std::size_t>(i * (side + 1) + j)];
+        if (key[0] < 0) {
+          node = static_cast<int>(rows.size());
+          rows.emplace_back();
+          continue;
+        }
+        const auto [it, fresh] = shared.emplace(key, static_cast<int>(rows.size()));
+        node = it->second;
+        if (fresh) rows.emplace_back();
+      }
+    // Down the tree: a triangle's corner 0 at (i, j), its corners 1 and 2 at ± h along i and j
+    // (− for the turned middle triangles).
+    const auto visit = [&](const auto& self, automata::StateId state, const Points& net, int i, int j,
+                           int sign, int h) -> void {
+      if (h == 1) {
+        const std::array<std::array<int, 2>, 3> at{{{i, j}, {i + sign, j}, {i, j + sign}}};
+        for (std::size_t k = 0; k < 3; ++k) {
+          const int node = node_of[static_cast<std::size_t>(at[k][0] * (side + 1) + at[k][1])];
+          auto& row = rows[static_cast<std::size_t>(node)];
+          if (row.size() == 0) row = fixed[k][state] * net;
+          corners.push_back(node);
+        }
+        states.push_back(static_cast<std::uint32_t>(state));
+        return;
+      }
+      const int half = h / 2;
+      const std::array<std::array<int, 3>, 4> child{{{i, j, sign},
+                                                     {i + sign * half, j, sign},
+                                                     {i, j + sign * half, sign},
+                                                     {i + sign * half, j + sign * half, -sign}}};
+      std::size_t k = 0;
+      for (auto [e, end] = boost::out_edges(state, g); e != end; ++e, ++k)
+        self(self, boost::target(*e, g), Points(g[*e].matrix * net), child[k][0], child[k][1], child[k][2],
+             half);
+    };
+    visit(visit, surface.automaton.initial[f].state, surface.nets[f], 0, 0, 1, side);
+  }
+  Points vertices(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(cols));
+  for (std::size_t v = 0; v < rows.size(); ++v) vertices.row(static_cast<Eigen::Index>(v)) = rows[v];
+  if (options.homogeneous)
+    for (Eigen::Index v = 0; v < vertices.rows(); ++v) vertices.row(v) /= vertices(v, vertices.cols() - 1);
+  Mesh out = uniform_mesh(std::move(vertices), std::move(corners), 3);
+  out.states = std::move(states);
+  return out;
+}
+
+}  // namespace
+
 Mesh surface_automaton_mesh(const SurfaceAutomaton& surface, int depth, const ifs::MeshOptions& options) {
+  if (!quads(surface.scheme)) return triangle_mesh(surface, depth, options);
   const ifs::QuadMesh blocks = ifs::patch_meshes(surface.automaton, surface.nets, depth, options);
   // Node (I, J) of face f's block is shared with its neighbours when it lies on the block's border:
   // a mesh vertex at a corner, else a point of a mesh edge, named by the edge's end vertices (lower
@@ -456,7 +596,7 @@ Mesh surface_automaton_mesh(const SurfaceAutomaton& surface, int depth, const if
             from = c[3], to = c[2], at = I;
           else
             from = c[0], to = c[3], at = J;
-          key = from < to ? std::array{from, to, at} : std::array{to, from, side - at};
+          key = edge_node(from, to, at, side);
         }
         if (key[0] < 0) {
           index[v] = next++;
@@ -486,6 +626,9 @@ Mesh surface_automaton_mesh(const SurfaceAutomaton& surface, int depth, const if
 }
 
 FractalSurface fractal_catmull_clark(const SurfaceAutomaton& smooth, const ifs::PerturbOptions& options) {
+  if (!quads(smooth.scheme))
+    throw InvalidInput(
+        "fractal subdivision surfaces: catmull-clark only (the BC-IFS of Loop's box spline is not built)");
   // The uniform bicubic patch: 4 × 4 control points, knots 0 … 7, one patch whose sides all lie on knot
   // lines.
   nurbs::Knots knots(8);
@@ -513,6 +656,7 @@ FractalSurface fractal_catmull_clark(const SurfaceAutomaton& smooth, const ifs::
     out.surface.automaton.initial.push_back(automata::Initial{.segment = i.segment, .state = moved[i.state]});
   out.surface.nets = smooth.nets;
   out.surface.corners = smooth.corners;
+  out.surface.scheme = smooth.scheme;
   return out;
 }
 

@@ -55,6 +55,24 @@ inline cifs::Mesh bipyramid() {
   return make_mesh(p, f);
 }
 
+/// A bipyramid over a k-gon: apexes of valence k, equator vertices of valence 4 (a little
+/// irregular, so that no symmetry hides an error).
+inline cifs::Mesh bipyramid_of(int k) {
+  std::vector<std::array<double, 3>> p;
+  for (int i = 0; i < k; ++i) {
+    const double a = 2 * std::numbers::pi * i / k;
+    p.push_back({std::cos(a) * (1 + 0.05 * i), std::sin(a), 0.03 * i});
+  }
+  p.push_back({0.1, 0, 1.2});
+  p.push_back({0, -0.1, -0.9});
+  std::vector<std::vector<int>> f;
+  for (int i = 0; i < k; ++i) {
+    f.push_back({i, (i + 1) % k, k});
+    f.push_back({(i + 1) % k, i, k + 1});
+  }
+  return make_mesh(p, f);
+}
+
 /// Square pyramid: one quad and four triangles (Catmull–Clark on mixed polygons; valence 4 apex).
 inline cifs::Mesh pyramid() {
   return make_mesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.4, 0.6, 0.9}},

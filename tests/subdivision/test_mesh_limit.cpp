@@ -9,7 +9,9 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "cifs/errors.hpp"
@@ -228,7 +230,7 @@ TEST_CASE("Catmull–Clark at (face, u, v): extraordinary patches equal the limi
           expected.push_back(ids[static_cast<std::size_t>(i * (N + 1) + j)]);
         }
     }
-    const SurfaceSample got = evaluate_limit_surface(m, points);
+    const SurfaceSample got = evaluate_limit_surface(m, MeshScheme::catmull_clark, points);
     const double scale = m.vertices.cwiseAbs().maxCoeff();
     for (std::size_t k = 0; k < points.size(); ++k) {
       const auto p = static_cast<Eigen::Index>(k), v = static_cast<Eigen::Index>(expected[k]);
@@ -259,7 +261,7 @@ TEST_CASE("Catmull–Clark at (face, u, v): regular patches are the bicubic surf
         points.push_back({.face = j * n + i, .u = u, .v = v});
         params.push_back({i + 2 + u, j + 2 + v});
       }
-  const SurfaceSample got = evaluate_limit_surface(shape, points);
+  const SurfaceSample got = evaluate_limit_surface(shape, MeshScheme::catmull_clark, points);
   for (std::size_t k = 0; k < points.size(); ++k) {
     const auto p = static_cast<Eigen::Index>(k);
     // Rows k·2 + l: S, S_v, S_u, S_uv.
@@ -275,14 +277,18 @@ TEST_CASE("Catmull–Clark at (face, u, v): what is not built is refused, naming
           "[subdivision][limit]") {
   const Mesh cube1 = catmull_clark(cube(), 1);
   const std::vector<FacePoint> outside{{.face = 0, .u = 1.5, .v = 0}};
-  CHECK_THROWS_WITH(evaluate_limit_surface(cube1, outside), Contains("point 0 (face 0): (u, v) = (1.5"));
+  CHECK_THROWS_WITH(evaluate_limit_surface(cube1, MeshScheme::catmull_clark, outside),
+                    Contains("point 0 (face 0): (u, v) = (1.5"));
   const std::vector<FacePoint> no_face{{.face = 99, .u = 0, .v = 0}};
-  CHECK_THROWS_WITH(evaluate_limit_surface(cube1, no_face), Contains("no such face; the mesh has 24"));
+  CHECK_THROWS_WITH(evaluate_limit_surface(cube1, MeshScheme::catmull_clark, no_face),
+                    Contains("no such face; the mesh has 24"));
   const std::vector<FacePoint> first{{.face = 0, .u = 0.5, .v = 0.5}};
-  CHECK_THROWS_WITH(evaluate_limit_surface(cube(), first),
+  CHECK_THROWS_WITH(evaluate_limit_surface(cube(), MeshScheme::catmull_clark, first),
                     Contains("extraordinary corners (refine one level first)"));
-  CHECK_THROWS_WITH(evaluate_limit_surface(quad_grid(3, 3), first), Contains("touches the boundary"));
-  CHECK_THROWS_WITH(evaluate_limit_surface(pyramid(), first), Contains("not a quad"));
+  CHECK_THROWS_WITH(evaluate_limit_surface(quad_grid(3, 3), MeshScheme::catmull_clark, first),
+                    Contains("touches the boundary"));
+  CHECK_THROWS_WITH(evaluate_limit_surface(pyramid(), MeshScheme::catmull_clark, first),
+                    Contains("not a quad"));
 }
 
 namespace {
@@ -322,7 +328,7 @@ TEST_CASE("the surface automaton's attractor is the limit surface: every node a 
   const int depth = 3;
   for (const auto& [name, m] : automaton_meshes()) {
     INFO(name);
-    const SurfaceAutomaton s = catmull_clark_automaton(m);
+    const SurfaceAutomaton s = surface_automaton(m, MeshScheme::catmull_clark);
     const Mesh attractor = surface_automaton_mesh(s, depth);
     const Mesh limit = limit_mesh(m, MeshScheme::catmull_clark, depth);
     REQUIRE(attractor.vertices.rows() == limit.vertices.rows());
@@ -348,7 +354,7 @@ TEST_CASE("the chaos game on the surface automaton lands on the limit surface at
   // corner. evaluate_limit_surface there, through the face's (u, v), must give the same point.
   for (const auto& [name, m] : automaton_meshes()) {
     INFO(name);
-    const SurfaceAutomaton s = catmull_clark_automaton(m);
+    const SurfaceAutomaton s = surface_automaton(m, MeshScheme::catmull_clark);
     // Restarts by 2^-18: at most 18 digits (36 bits) below the face number, exact in a double.
     const ifs::ChaosResult chaos = ifs::chaos_game(
         s.automaton, s.nets, {.samples = 3000, .seed = 7, .restart_diameter = 1e-5, .record_address = true});
@@ -375,7 +381,7 @@ TEST_CASE("the chaos game on the surface automaton lands on the limit surface at
                     .u = uv[static_cast<std::size_t>(turn)][0],
                     .v = uv[static_cast<std::size_t>(turn)][1]});
     }
-    const SurfaceSample expected = evaluate_limit_surface(m, at);
+    const SurfaceSample expected = evaluate_limit_surface(m, MeshScheme::catmull_clark, at);
     const double scale = m.vertices.cwiseAbs().maxCoeff();
     for (Eigen::Index p = 0; p < chaos.points.rows(); ++p) {
       INFO("sample " << p << ", face " << at[static_cast<std::size_t>(p)].face);
@@ -387,7 +393,7 @@ TEST_CASE("the chaos game on the surface automaton lands on the limit surface at
 TEST_CASE("fractal Catmull–Clark: faces keep the smooth surface's boundary curves, the inside moves",
           "[subdivision][limit]") {
   const Mesh m = catmull_clark(bipyramid(), 2);
-  const SurfaceAutomaton smooth = catmull_clark_automaton(m);
+  const SurfaceAutomaton smooth = surface_automaton(m, MeshScheme::catmull_clark);
   const int depth = 4, side = 1 << depth, row = side + 1;
   const ifs::QuadMesh flat = ifs::patch_meshes(smooth.automaton, smooth.nets, depth);
   // No perturbation: the BC-IFS's bicubic cells are the B-spline's, the same surface.
@@ -420,4 +426,213 @@ TEST_CASE("fractal Catmull–Clark: faces keep the smooth surface's boundary cur
   // Welded by the topology, the fractal surface is closed like the mesh.
   const Mesh welded = surface_automaton_mesh(rough.surface, depth);
   CHECK(euler_characteristic(build_topology(welded)) == euler_characteristic(build_topology(m)));
+}
+
+// ------------------------------------------------------------------------------------------------
+// Loop at any (face, u, v), and its surface automaton.
+
+namespace {
+
+/// Closed triangle meshes whose faces have at most one extraordinary corner, valences 3 … 8 and
+/// regular faces; each face's corner list turned by f mod 3 places, so that the patches' (s, t)
+/// meet the faces' (u, v) in all three ways.
+std::vector<std::pair<const char*, Mesh>> loop_meshes() {
+  const auto turned = [](Mesh m) {
+    for (std::size_t f = 0; f < face_count(m); ++f) {
+      const auto b = m.face_vertices.begin() + m.face_offsets[f];
+      std::rotate(b, b + static_cast<std::ptrdiff_t>(f % 3), m.face_vertices.begin() + m.face_offsets[f + 1]);
+    }
+    return m;
+  };
+  return {{"tetrahedron (3)", turned(loop(tetrahedron(), 1))},
+          {"octahedron (4)", turned(loop(octahedron(), 1))},
+          {"bipyramid (4, 5)", turned(loop(bipyramid(), 1))},
+          {"bipyramid (4, 7)", turned(loop(bipyramid_of(7), 1))},
+          {"bipyramid (4, 8)", turned(loop(bipyramid_of(8), 1))},
+          {"torus (6)", turned(torus(6, 5, true))}};
+}
+
+/// The vertices of `levels` more Loop steps at the points (i, j)/2^levels of triangle f of level 0
+/// (corner 1 at (1, 0), 2 at (0, 1)), [i][j] flattened by i over a square: each level's points
+/// refined by the child numbering (vertex points keep their index, edge e's point is V + e).
+std::vector<int> dyadic_triangle_vertices(const MeshRefinement& r, int f, int levels) {
+  const auto c = face(r.levels[0], static_cast<std::size_t>(f));
+  int m = 1;
+  std::vector<int> grid{c[0], c[2], c[1], -1};  // [i][j], i along corner 0 → 1
+  for (int l = 0; l < levels; ++l) {
+    const MeshTopology& t = r.levels[static_cast<std::size_t>(l)];
+    const int M = 2 * m, V = t.vertex_count;
+    std::vector<int> next(static_cast<std::size_t>((M + 1) * (M + 1)), -1);
+    const auto g = [&](int i, int j) { return grid[static_cast<std::size_t>(i * (m + 1) + j)]; };
+    const auto set = [&](int i, int j, int v) { next[static_cast<std::size_t>(i * (M + 1) + j)] = v; };
+    const auto edge = [&](int a, int b) {
+      for (const int e : vertex_edges(t, static_cast<std::size_t>(a)))
+        if (other_vertex(t, static_cast<std::size_t>(e), a) == b) return e;
+      FAIL("no edge");
+      return -1;
+    };
+    for (int i = 0; i <= m; ++i)
+      for (int j = 0; i + j <= m; ++j) {
+        set(2 * i, 2 * j, g(i, j));
+        if (i + j == m) continue;
+        set(2 * i + 1, 2 * j, V + edge(g(i, j), g(i + 1, j)));
+        set(2 * i, 2 * j + 1, V + edge(g(i, j), g(i, j + 1)));
+        set(2 * i + 1, 2 * j + 1, V + edge(g(i + 1, j), g(i, j + 1)));
+      }
+    grid = std::move(next);
+    m = M;
+  }
+  return grid;
+}
+
+}  // namespace
+
+TEST_CASE("Loop at (face, u, v): every patch equals the limits of refined vertices, normals included",
+          "[subdivision][limit]") {
+  // At the points (i, j)/8 of every face the surface is the limit of the vertex three levels down
+  // there: limit_stencils on the refined mesh, another route (45 points on a quartic patch determine it).
+  for (const auto& [name, m] : loop_meshes()) {
+    INFO(name);
+    const int levels = 3, N = 1 << levels;
+    const MeshRefinement r = refine_topology(m, MeshScheme::loop, levels);
+    const LimitFrame limit =
+        evaluate_limit(limit_stencils(r.levels.back(), MeshScheme::loop), apply(r, m.vertices));
+    std::vector<FacePoint> points;
+    std::vector<int> expected;
+    for (int f = 0; f < static_cast<int>(face_count(m)); ++f) {
+      const std::vector<int> ids = dyadic_triangle_vertices(r, f, levels);
+      for (int i = 0; i <= N; ++i)
+        for (int j = 0; i + j <= N; ++j) {
+          points.push_back({.face = f, .u = static_cast<double>(i) / N, .v = static_cast<double>(j) / N});
+          expected.push_back(ids[static_cast<std::size_t>(i * (N + 1) + j)]);
+        }
+    }
+    const SurfaceSample got = evaluate_limit_surface(m, MeshScheme::loop, points);
+    const double scale = m.vertices.cwiseAbs().maxCoeff();
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const auto p = static_cast<Eigen::Index>(k), v = static_cast<Eigen::Index>(expected[k]);
+      INFO("face " << points[k].face << " at (" << points[k].u << ", " << points[k].v << ")");
+      CHECK((got.positions.row(p) - limit.positions.row(v)).norm() <= 1e-12 * scale);
+      const int corner_index = points[k].u == 0 && points[k].v == 0 ? 0
+                               : points[k].u == 1                   ? 1
+                               : points[k].v == 1                   ? 2
+                                                                    : -1;
+      if (corner_index >= 0) continue;  // a corner may be extraordinary: no partials there
+      CHECK((normal_at(got.du, got.dv, p) - normal_at(limit.tangent_u, limit.tangent_v, v)).norm() <= 1e-10);
+    }
+  }
+}
+
+TEST_CASE("Loop at (face, u, v): the partials are the derivatives of the positions", "[subdivision][limit]") {
+  // Central differences of the evaluated positions, at points off the dyadic grid and off the
+  // extraordinary corners (the patch is smooth there): agreement to the differences' own error.
+  for (const auto& [name, m] : loop_meshes()) {
+    INFO(name);
+    std::vector<FacePoint> points;
+    const double h = 1e-5;
+    for (int f = 0; f < static_cast<int>(face_count(m)); f += 3)
+      for (const auto [u, v] : {std::array{0.21, 0.13}, std::array{0.6, 0.3}, std::array{0.05, 0.8},
+                                std::array{0.33, 0.35}, std::array{0.02, 0.03}})
+        for (const auto [du, dv] : {std::array{0.0, 0.0}, std::array{h, 0.0}, std::array{-h, 0.0},
+                                    std::array{0.0, h}, std::array{0.0, -h}})
+          points.push_back({.face = f, .u = u + du, .v = v + dv});
+    const SurfaceSample s = evaluate_limit_surface(m, MeshScheme::loop, points);
+    for (Eigen::Index p = 0; p < s.positions.rows(); p += 5) {
+      INFO("face " << points[static_cast<std::size_t>(p)].face << " at ("
+                   << points[static_cast<std::size_t>(p)].u << ", " << points[static_cast<std::size_t>(p)].v
+                   << ")");
+      const Eigen::RowVectorXd fu = (s.positions.row(p + 1) - s.positions.row(p + 2)) / (2 * h),
+                               fv = (s.positions.row(p + 3) - s.positions.row(p + 4)) / (2 * h);
+      CHECK((s.du.row(p) - fu).norm() <= 1e-6 * s.du.row(p).norm());
+      CHECK((s.dv.row(p) - fv).norm() <= 1e-6 * s.dv.row(p).norm());
+    }
+  }
+}
+
+TEST_CASE("Loop at (face, u, v): what is not built is refused, naming the point", "[subdivision][limit]") {
+  const Mesh tet1 = loop(tetrahedron(), 1);
+  const std::vector<FacePoint> outside{{.face = 2, .u = 0.6, .v = 0.6}};
+  CHECK_THROWS_WITH(evaluate_limit_surface(tet1, MeshScheme::loop, outside),
+                    Contains("point 0 (face 2): (u, v) = (0.6") && Contains("outside the triangle"));
+  const std::vector<FacePoint> first{{.face = 0, .u = 0.25, .v = 0.25}};
+  CHECK_THROWS_WITH(evaluate_limit_surface(tetrahedron(), MeshScheme::loop, first),
+                    Contains("3 extraordinary corners (refine one level first)"));
+  CHECK_THROWS_WITH(evaluate_limit_surface(cube(), MeshScheme::loop, first), Contains("not a triangle"));
+  CHECK_THROWS_WITH(evaluate_limit_surface(tet1, MeshScheme::doo_sabin, first),
+                    Contains("doo-sabin is not built"));
+  CHECK_THROWS_WITH(fractal_catmull_clark(surface_automaton(tet1, MeshScheme::loop), {}),
+                    Contains("catmull-clark only"));
+}
+
+TEST_CASE("Loop's surface automaton: its attractor mesh is the limit surface, its chaos game lands on it",
+          "[subdivision][limit]") {
+  const int depth = 3;
+  for (const auto& [name, m] : loop_meshes()) {
+    INFO(name);
+    const SurfaceAutomaton s = surface_automaton(m, MeshScheme::loop);
+    // The welded attractor mesh has exactly the refined mesh's vertices and faces, each node one of
+    // the limit points (limit stencils of the mesh refined `depth` times: another route).
+    const Mesh attractor = surface_automaton_mesh(s, depth);
+    const Mesh limit = limit_mesh(m, MeshScheme::loop, depth, {.normals = true});
+    REQUIRE(attractor.vertices.rows() == limit.vertices.rows());
+    REQUIRE(face_count(attractor) == face_count(limit));
+    CHECK(euler_characteristic(build_topology(attractor)) == euler_characteristic(build_topology(m)));
+    const double scale = limit.vertices.cwiseAbs().maxCoeff();
+    std::vector<bool> hit(static_cast<std::size_t>(limit.vertices.rows()), false);
+    std::vector<Eigen::Index> same(static_cast<std::size_t>(attractor.vertices.rows()));
+    double worst = 0;
+    for (Eigen::Index v = 0; v < attractor.vertices.rows(); ++v) {
+      const auto [k, d] = nearest(limit.vertices, attractor.vertices.row(v));
+      worst = std::max(worst, d);
+      hit[static_cast<std::size_t>(k)] = true;
+      same[static_cast<std::size_t>(v)] = k;
+    }
+    CHECK(worst <= 1e-12 * scale);
+    CHECK(std::all_of(hit.begin(), hit.end(), [](bool b) { return b; }));
+    // Orientation: the triangles turn as the mesh's faces — each one's normal points to the side of
+    // the limit normal at its first corner.
+    int flipped = 0;
+    for (std::size_t f = 0; f < face_count(attractor); ++f) {
+      const auto c = face(attractor, f);
+      const Eigen::Vector3d A = attractor.vertices.row(c[0]).transpose(),
+                            B = attractor.vertices.row(c[1]).transpose(),
+                            C = attractor.vertices.row(c[2]).transpose();
+      const Eigen::Vector3d n = limit.normals.row(same[static_cast<std::size_t>(c[0])]).transpose();
+      if ((B - A).cross(C - A).dot(n) <= 0) ++flipped;
+    }
+    CHECK(flipped == 0);
+    // A chaos point is corner (0, 0) of its node; the address's base-4 digits name the children
+    // C0, C1, C2, M, which place that corner in the patch's (s, t).
+    const ifs::ChaosResult chaos = ifs::chaos_game(
+        s.automaton, s.nets, {.samples = 2000, .seed = 11, .restart_diameter = 1e-5, .record_address = true});
+    const MeshTopology t = build_topology(m);
+    std::vector<FacePoint> at;
+    for (const double address : chaos.address) {
+      const int f = static_cast<int>(std::floor(address));
+      double rest = address - f, a = 0, b = 0, h = 1, sign = 1;
+      for (int k = 0; k < 26 && rest > 0; ++k) {
+        rest *= 4;
+        const int digit = static_cast<int>(std::floor(rest));
+        rest -= digit;
+        h /= 2;
+        if (digit == 1) a += sign * h;
+        if (digit == 2) b += sign * h;
+        if (digit == 3) a += sign * h, b += sign * h, sign = -sign;
+      }
+      REQUIRE(rest == 0);
+      const auto corners = face(t, static_cast<std::size_t>(f));
+      const auto turn = std::find(corners.begin(), corners.end(), s.corners[static_cast<std::size_t>(f)][0]) -
+                        corners.begin();
+      // (s, t) → the face's (u, v): corners[0] is face corner `turn`.
+      const std::array<std::array<double, 2>, 3> uv{{{a, b}, {1 - a - b, a}, {b, 1 - a - b}}};
+      at.push_back({.face = f,
+                    .u = uv[static_cast<std::size_t>(turn)][0],
+                    .v = uv[static_cast<std::size_t>(turn)][1]});
+    }
+    const SurfaceSample expected = evaluate_limit_surface(m, MeshScheme::loop, at);
+    for (Eigen::Index p = 0; p < chaos.points.rows(); ++p) {
+      INFO("sample " << p << ", face " << at[static_cast<std::size_t>(p)].face);
+      CHECK((chaos.points.row(p) - expected.positions.row(p)).norm() <= 1e-12 * scale);
+    }
+  }
 }

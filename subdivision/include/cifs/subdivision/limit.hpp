@@ -72,8 +72,9 @@ struct LimitOptions {
 /// when asked): a sampling of the limit surface itself, exact at the vertices.
 Mesh limit_mesh(const Mesh& mesh, MeshScheme scheme, int levels, const LimitOptions& options = {});
 
-/// A point of a face's parameter square: corner 0 at (0, 0), corner 1 at (1, 0), corner 3 at
-/// (0, 1) (OpenSubdiv's quad parametrisation).
+/// A point of a face's parameter domain (OpenSubdiv's): a quad's square [0, 1]² with corner 0 at
+/// (0, 0), 1 at (1, 0), 3 at (0, 1); a triangle's u, v ≥ 0, u + v ≤ 1 with corner 1 at (1, 0), 2 at
+/// (0, 1).
 struct FacePoint {
   int face = 0;
   double u = 0, v = 0;
@@ -84,50 +85,65 @@ struct SurfaceSample {
   Points positions, du, dv;
 };
 
-/// A Catmull–Clark patch with one extraordinary corner of valence n as a controlled IFS (Stam 1998
-/// without the eigenbasis): its 2n + 8 control points (the corner's neighbourhood, then the 7 outer
-/// points) go one level down by `subdivide` into the patch at the corner, whose net has the same
-/// shape, and by `regular[k]` into the 16-point B-spline nets of the three other quarters (k = 0:
-/// s ≥ ½, t < ½; 1: both ≥ ½; 2: s < ½, t ≥ ½), the corner at (s, t) = (0, 0). The attractor of
-/// this automaton — the extraordinary state looping on itself, leaving into regular states — is the
-/// patch.
+/// A patch with one extraordinary corner of valence n as a controlled IFS (Stam 1998 without the
+/// eigenbasis): its control points go one level down by `subdivide` into the patch at the corner,
+/// whose net has the same shape, and by `regular[k]` into the regular nets of the other quarters.
+/// The attractor of this automaton — the extraordinary state looping on itself, leaving into
+/// regular states — is the patch.
+/// Catmull–Clark: 2n + 8 control points (the corner's neighbourhood, then the 7 outer points);
+/// regular[k] are 16-point B-spline nets (rows by i along s, then j) of the quarters k = 0: s ≥ ½,
+/// t < ½; 1: both ≥ ½; 2: s < ½, t ≥ ½; the corner at (s, t) = (0, 0).
+/// Loop: n + 6 control points (the corner's neighbourhood, then the 5 points beyond it in the other
+/// corners' rings) of the triangle s, t ≥ 0, s + t ≤ 1; regular[k] are 12-point nets (the regular
+/// patch's, n = 6) of the triangles k = 0 at corner (1, 0), at (2s − 1, 2t); 1 at corner (0, 1), at
+/// (2s, 2t − 1); 2 the middle one turned by a half turn, at (1 − 2s, 1 − 2t). At n = 6 the patch is
+/// the regular one (a quartic box-spline patch) and `subdivide` its own corner triangle.
 struct ExtraordinaryPatch {
   int valence = 0;
-  Eigen::MatrixXd subdivide;               // (2n + 8) × (2n + 8)
-  std::array<Eigen::MatrixXd, 3> regular;  // 16 × (2n + 8), rows by i (along s) then j
+  Eigen::MatrixXd subdivide;               // square, the patch's control points
+  std::array<Eigen::MatrixXd, 3> regular;  // regular nets × the patch's control points
   Eigen::RowVectorXd limit;                // the corner's limit position's weights
 };
 ExtraordinaryPatch catmull_clark_patch(int valence);
+ExtraordinaryPatch loop_patch(int valence);
 
-/// Catmull–Clark's limit surface as one controlled IFS: a patch per face of the mesh, state
-/// "regular" (the 16-point uniform bicubic B-spline net; children GH, GB, DH, DB by the tensor
-/// products of the cubic B-spline's G and D, as automata/tensor.hpp orders them) or "E<n>" for a
-/// face with an extraordinary corner of valence n (its ExtraordinaryPatch net; child GH is E<n>
-/// itself by `subdivide`, the other three are regular quarters). Every reachable state has four
-/// children in the quad layout of ifs::quad_mesh, so the ifs engine (attractors, tolerance
-/// traversal, chaos game, ifs::patch_meshes) runs on it unchanged.
+/// A subdivision surface's limit as one controlled IFS: a patch per face of the mesh, four children
+/// per state. Catmull–Clark: state "regular" (the 16-point uniform bicubic B-spline net; children
+/// GH, GB, DH, DB by the tensor products of the cubic B-spline's G and D, as automata/tensor.hpp
+/// orders them) or "E<n>" for a face with an extraordinary corner of valence n (its
+/// ExtraordinaryPatch net; child GH is E<n> itself by `subdivide`, the other three are regular
+/// quarters), in the quad layout of ifs::quad_mesh. Loop: "regular" (12 points) or "E<n>"
+/// (n + 6), children C0 (the triangle at the patch's corner (0, 0): E<n> itself), C1, C2 and M (the
+/// regular triangles of loop_patch). The ifs engine (attractors, tolerance traversal, chaos game;
+/// ifs::patch_meshes for quads) runs on it unchanged.
 struct SurfaceAutomaton {
+  MeshScheme scheme = MeshScheme::catmull_clark;
   automata::Automaton automaton;  // initial entry i is face i
   std::vector<Points> nets;       // per face
-  /// Per face: the mesh vertices at the patch's (s, t) = (0, 0), (1, 0), (1, 1), (0, 1), counter-clockwise
-  /// like the face (an extraordinary corner at (0, 0)). The patch's (s, t) is the face's (u, v)
-  /// turned by a quarter per position of corners[0] among the face's corners.
+  /// Per face: the mesh vertices at the patch's (s, t) = (0, 0), (1, 0), (1, 1), (0, 1) (triangles:
+  /// (0, 0), (1, 0), (0, 1), then −1), counter-clockwise like the face (an extraordinary corner at
+  /// (0, 0)). The patch's (s, t) is the face's (u, v) turned by one step per position of corners[0]
+  /// among the face's corners.
   std::vector<std::array<int, 4>> corners;
 };
-/// The automaton of a mesh: quads only, no face with two extraordinary corners, no boundary face
-/// (InvalidInput naming the face otherwise; one level of refinement gives the first two).
-SurfaceAutomaton catmull_clark_automaton(const Mesh& mesh);
+/// The automaton of a closed mesh under Catmull–Clark (quads) or Loop (triangles) whose faces have
+/// at most one extraordinary corner (InvalidInput naming the face otherwise, and for other schemes;
+/// one level of refinement gives that).
+SurfaceAutomaton surface_automaton(const Mesh& mesh, MeshScheme scheme);
 
-/// Catmull–Clark's limit surface at any (face, u, v), exactly: a regular face is a bicubic
-/// B-spline patch; a face with one extraordinary corner goes down its "E<n>" state until the point
-/// leaves the corner's quarter, then is evaluated in a regular quarter. The mesh: as
-/// catmull_clark_automaton.
-SurfaceSample evaluate_limit_surface(const Mesh& mesh, std::span<const FacePoint> at);
+/// The limit surface at any (face, u, v), exactly, partials included — for quads (u, v) ∈ [0, 1]²
+/// (corner 0 at (0, 0), 1 at (1, 0), 3 at (0, 1)), for triangles u, v ≥ 0, u + v ≤ 1 (corner 1 at
+/// (1, 0), 2 at (0, 1)), as OpenSubdiv parametrises faces. A regular face is a bicubic B-spline
+/// (Loop: quartic box-spline) patch; a face with an extraordinary corner goes down its "E<n>"
+/// state until the point leaves the corner's part, then is evaluated in a regular one. No partials
+/// at the extraordinary vertex itself (0 there). The mesh: as surface_automaton.
+SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::span<const FacePoint> at);
 
-/// The attractor of a surface automaton at `depth` as one quad mesh: 4^depth quads per face (in
-/// face order, cell (I, J) of face f at f·4^depth + I·2^depth + J, I along s), `states` the leaves'
-/// automaton states. Nodes shared by neighbouring faces (along a mesh edge, at a mesh vertex) are one
-/// vertex, found from the mesh's topology and computed by the first face that holds it.
+/// The attractor of a surface automaton at `depth` as one mesh, 4^depth cells per face in face
+/// order, `states` the leaves' automaton states. Quads: cell (I, J) of face f at f·4^depth +
+/// I·2^depth + J, I along s. Triangles: the leaves in depth-first order of the children C0, C1, C2, M. Nodes
+/// shared by neighbouring faces (along a mesh edge, at a mesh vertex) are one vertex, found from the mesh's
+/// topology and computed by the first face that holds it.
 Mesh surface_automaton_mesh(const SurfaceAutomaton& surface, int depth, const ifs::MeshOptions& options = {});
 
 /// A fractal Catmull–Clark surface with the mesh's topology: the "regular" state is replaced by
@@ -140,5 +156,6 @@ struct FractalSurface {
   SurfaceAutomaton surface;
   ifs::Perturbation perturbation;  // of the bicubic patch's BC-IFS: values, residual, contraction
 };
+/// InvalidInput for a Loop automaton (the box spline's BC-IFS is not built).
 FractalSurface fractal_catmull_clark(const SurfaceAutomaton& smooth, const ifs::PerturbOptions& options);
 }  // namespace cifs::subdivision
