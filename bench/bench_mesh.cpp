@@ -10,10 +10,10 @@
 //             level and its StencilTable (base → last level) UpdateValues into a reused buffer
 //   stencil_table_build  building those tables from the refined topology
 //   limit     limit positions and tangents of every level-4 vertex (limit stencils / Far Limit)
-//   surface   Catmull–Clark's limit surface at 1 M points (face, u, v), sorted by face, of a
-//             bipyramid refined 3 times (480 quads, valences 3, 4, 5): evaluate_limit_surface (the
-//             surface automaton) / Bfr::Surface (InitVertexSurface + PreparePatchPoints per face,
-//             Evaluate per point); both give positions and both partials
+//   surface   the limit surface at 1 M points (face, u, v), sorted by face, of a bipyramid refined 3
+//             times (Catmull–Clark: 480 quads, valences 3, 4, 5; Loop: 640 triangles, valences 4,
+//             5): evaluate_limit_surface (the surface automaton) / Bfr::Surface (InitVertexSurface +
+//             PreparePatchPoints per face, Evaluate per point); both give positions and both partials
 //
 // Before timing, every library's result is checked against cifs's to 1e-12 (vertices matched by
 // position on the level-2 result); a mismatch aborts the run.
@@ -404,36 +404,52 @@ void osd_limit_case(benchmark::State& state, sd::MeshScheme scheme) {
   state.counters["vertices"] = static_cast<double>(n);
 }
 
-const Mesh& surface_mesh() {
-  static const Mesh m = sd::catmull_clark(cifs_test::bipyramid(), 3);
-  return m;
+bool quads(sd::MeshScheme scheme) {
+  return scheme == sd::MeshScheme::catmull_clark;
 }
 
-/// 1 M points (face, u, v), uniform over the faces, sorted by face (cifs::Random-free: a fixed LCG).
-const std::vector<sd::FacePoint>& surface_points() {
-  static const std::vector<sd::FacePoint> points = [] {
-    const auto faces = static_cast<int>(cifs::face_count(surface_mesh()));
-    std::vector<sd::FacePoint> out(1'000'000);
-    std::uint64_t x = 12345;
-    const auto next = [&x] {
-      x = x * 6364136223846793005ULL + 1442695040888963407ULL;
-      return static_cast<double>(x >> 11) * 0x1.0p-53;
-    };
-    for (auto& p : out) p = {.face = static_cast<int>(next() * faces), .u = next(), .v = next()};
-    std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.face < b.face; });
-    return out;
-  }();
-  return points;
+Sdc::SchemeType osd_type(sd::MeshScheme scheme) {
+  return quads(scheme) ? Sdc::SCHEME_CATMARK : Sdc::SCHEME_LOOP;
 }
 
-void cifs_surface_case(benchmark::State& state, sd::MeshScheme) {
+const Mesh& surface_mesh(sd::MeshScheme scheme) {
+  static const Mesh cc = sd::catmull_clark(cifs_test::bipyramid(), 3),
+                    loop = sd::loop(cifs_test::bipyramid(), 3);
+  return quads(scheme) ? cc : loop;
+}
+
+/// 1 M points (face, u, v), uniform over the faces (triangles: (u, v) folded into u + v ≤ 1), sorted
+/// by face (cifs::Random-free: a fixed LCG).
+std::vector<sd::FacePoint> make_surface_points(sd::MeshScheme scheme) {
+  const auto faces = static_cast<int>(cifs::face_count(surface_mesh(scheme)));
+  std::vector<sd::FacePoint> out(1'000'000);
+  std::uint64_t x = 12345;
+  const auto next = [&x] {
+    x = x * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(x >> 11) * 0x1.0p-53;
+  };
+  for (auto& p : out) {
+    p = {.face = static_cast<int>(next() * faces), .u = next(), .v = next()};
+    if (!quads(scheme) && p.u + p.v > 1) p.u = 1 - p.u, p.v = 1 - p.v;
+  }
+  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.face < b.face; });
+  return out;
+}
+
+const std::vector<sd::FacePoint>& surface_points(sd::MeshScheme scheme) {
+  static const std::vector<sd::FacePoint> cc = make_surface_points(sd::MeshScheme::catmull_clark),
+                                          loop = make_surface_points(sd::MeshScheme::loop);
+  return quads(scheme) ? cc : loop;
+}
+
+void cifs_surface_case(benchmark::State& state, sd::MeshScheme scheme) {
   sd::SurfaceSample s;
   for (auto _ : state) {
-    s = sd::evaluate_limit_surface(surface_mesh(), sd::MeshScheme::catmull_clark, surface_points());
+    s = sd::evaluate_limit_surface(surface_mesh(scheme), scheme, surface_points(scheme));
     benchmark::DoNotOptimize(s.dv.data());
   }
   state.counters["ns_per_point"] =
-      benchmark::Counter(static_cast<double>(surface_points().size()),
+      benchmark::Counter(static_cast<double>(surface_points(scheme).size()),
                          benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
@@ -464,32 +480,33 @@ std::array<Points, 3> bfr_surface(const OpenSubdiv::Bfr::RefinerSurfaceFactory<>
 
 /// Bfr at its approximation level `state.range(0)` (2: its default, approximate near extraordinary
 /// vertices; 6: equal to the exact surface to 1e-12, see surface_cross_check).
-void osd_bfr_surface_case(benchmark::State& state) {
-  const Mesh& m = surface_mesh();
-  const auto refiner =
-      cifs_test::osd_refiner(m, Sdc::SCHEME_CATMARK, Sdc::Options::VTX_BOUNDARY_EDGE_ONLY, 0);
+void osd_bfr_surface_case(benchmark::State& state, sd::MeshScheme scheme) {
+  const Mesh& m = surface_mesh(scheme);
+  const auto refiner = cifs_test::osd_refiner(m, osd_type(scheme), Sdc::Options::VTX_BOUNDARY_EDGE_ONLY, 0);
   OpenSubdiv::Bfr::SurfaceFactory::Options options;
   options.SetApproxLevelSmooth(static_cast<int>(state.range(0)));
   const OpenSubdiv::Bfr::RefinerSurfaceFactory<> factory(*refiner, options);
   std::array<Points, 3> out;
   for (auto _ : state) {
-    out = bfr_surface(factory, m, surface_points());
+    out = bfr_surface(factory, m, surface_points(scheme));
     benchmark::DoNotOptimize(out[2].data());
   }
   state.counters["ns_per_point"] =
-      benchmark::Counter(static_cast<double>(surface_points().size()),
+      benchmark::Counter(static_cast<double>(surface_points(scheme).size()),
                          benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 /// Bfr against evaluate_limit_surface on the first 20 000 points: regular faces agree to 1e-12; on
 /// faces with an extraordinary corner Bfr approximates at its default level 2 (irregular patches
-/// refined that far, then approximated), and agrees to 1e-12 from level 6 on (checked).
-void surface_cross_check() {
-  const Mesh& m = surface_mesh();
-  const std::span<const sd::FacePoint> points(surface_points().data(), 20'000);
-  const auto refiner =
-      cifs_test::osd_refiner(m, Sdc::SCHEME_CATMARK, Sdc::Options::VTX_BOUNDARY_EDGE_ONLY, 0);
-  const sd::SurfaceSample ours = sd::evaluate_limit_surface(m, sd::MeshScheme::catmull_clark, points);
+/// refined that far, then approximated). Catmull–Clark agrees to 1e-12 from level 6 on (checked).
+/// Loop does not: Bfr stays 1.2e-7 off at (0.00998, 0.00494) next to a valence-4 vertex at levels 6
+/// and 10 alike, where cifs equals the limit stencils of the mesh refined 7 levels to 1e-12
+/// (tests/subdivision/test_mesh_limit.cpp checks those points) — printed, not a failure.
+void surface_cross_check(sd::MeshScheme scheme) {
+  const Mesh& m = surface_mesh(scheme);
+  const std::span<const sd::FacePoint> points(surface_points(scheme).data(), 20'000);
+  const auto refiner = cifs_test::osd_refiner(m, osd_type(scheme), Sdc::Options::VTX_BOUNDARY_EDGE_ONLY, 0);
+  const sd::SurfaceSample ours = sd::evaluate_limit_surface(m, scheme, points);
   for (const int level : {2, 6, 10}) {  // Bfr's default is 2
     OpenSubdiv::Bfr::SurfaceFactory::Options options;
     options.SetApproxLevelSmooth(level);
@@ -500,7 +517,7 @@ void surface_cross_check() {
     for (std::size_t i = 0; i < points.size(); ++i) {
       bool extraordinary = false;
       for (const int c : cifs::face(t, static_cast<std::size_t>(points[i].face)))
-        extraordinary |= cifs::valence(t, static_cast<std::size_t>(c)) != 4;
+        extraordinary |= cifs::valence(t, static_cast<std::size_t>(c)) != (quads(scheme) ? 4 : 6);
       const auto r = static_cast<Eigen::Index>(i);
       const double position = (ours.positions.row(r) - theirs[0].row(r)).norm();
       const double partials =
@@ -513,12 +530,13 @@ void surface_cross_check() {
       }
     }
     std::printf(
-        "surface cross-check against Bfr (approximation level %d): regular faces %.3g (positions and "
-        "partials); "
-        "faces with an extraordinary corner %.3g (positions), %.3g (partials)\n",
-        level, regular, irregular, irregular_partials);
+        "%s surface cross-check against Bfr (approximation level %d): regular faces %.3g (positions and "
+        "partials); faces with an extraordinary corner %.3g (positions), %.3g (partials)\n",
+        sd::scheme_name(scheme).data(), level, regular, irregular, irregular_partials);
     const double scale = m.vertices.cwiseAbs().maxCoeff();
-    if (!(regular <= 1e-12 * scale) || (level >= 6 && !(irregular <= 1e-12 * scale))) std::abort();
+    std::fflush(stdout);
+    if (!(regular <= 1e-12 * scale) || (level >= 6 && quads(scheme) && !(irregular <= 1e-12 * scale)))
+      std::abort();
   }
 }
 
@@ -548,14 +566,16 @@ void cgal_case(benchmark::State& state, sd::MeshScheme scheme) {
 
 int main(int argc, char** argv) {
   cross_check();
-  surface_cross_check();
-  benchmark::RegisterBenchmark("catmull-clark/surface_1M/cifs", cifs_surface_case,
-                               sd::MeshScheme::catmull_clark)
-      ->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark("catmull-clark/surface_1M/osd_bfr_level", osd_bfr_surface_case)
-      ->Arg(2)
-      ->Arg(6)
-      ->Unit(benchmark::kMillisecond);
+  for (const auto scheme : {sd::MeshScheme::catmull_clark, sd::MeshScheme::loop}) {
+    surface_cross_check(scheme);
+    const std::string s(sd::scheme_name(scheme));
+    benchmark::RegisterBenchmark((s + "/surface_1M/cifs").c_str(), cifs_surface_case, scheme)
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark((s + "/surface_1M/osd_bfr_level").c_str(), osd_bfr_surface_case, scheme)
+        ->Arg(2)
+        ->Arg(6)
+        ->Unit(benchmark::kMillisecond);
+  }
   for (const auto scheme : {sd::MeshScheme::catmull_clark, sd::MeshScheme::loop}) {
     const std::string s(sd::scheme_name(scheme));
     const auto reg = [&](const std::string& name, void (*f)(benchmark::State&, sd::MeshScheme)) {
