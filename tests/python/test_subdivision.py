@@ -560,6 +560,32 @@ class LimitTest(unittest.TestCase):
         with self.assertRaisesRegex(cifs.InvalidInput, "one entry per point"):
             sd.limit_surface(cube, [0], [0.5], [])
 
+    def test_loop_limit_surface_and_automaton(self):
+        # Loop on triangles: at the corners of every face of a once-refined tetrahedron (corner 1 at
+        # (1, 0), 2 at (0, 1)) the surface is the limit of those vertices; the attractor at depth 2
+        # holds exactly the limit points of the mesh refined 2 more levels (nearest distances, numpy).
+        tet = sd.loop(cifs.io.read_mesh(str(EXAMPLES / "meshes" / "tetrahedron.obj")), 1)
+        limit = np.asarray(sd.limit(tet, "loop", 0).vertices)
+        faces = np.asarray(tet.face_vertices).reshape(-1, 3)
+        f = np.repeat(np.arange(len(faces)), 3)
+        u = np.tile([0.0, 1.0, 0.0], len(faces))
+        v = np.tile([0.0, 0.0, 1.0], len(faces))
+        positions, du, dv = sd.limit_surface(tet, f.tolist(), u.tolist(), v.tolist(), scheme="loop")
+        np.testing.assert_allclose(positions, limit[faces.reshape(-1)], atol=1e-14)
+        with self.assertRaisesRegex(cifs.InvalidInput, "outside the triangle"):
+            sd.limit_surface(tet, [0], [0.7], [0.7], scheme="loop")
+        s = sd.surface_automaton(tet, scheme="loop")
+        self.assertEqual(s.scheme, "loop")
+        self.assertEqual(len(s.nets), len(faces))
+        attractor = np.asarray(sd.surface_automaton_mesh(s, 2).vertices)
+        refined = np.asarray(sd.limit(tet, "loop", 2).vertices)
+        self.assertEqual(attractor.shape, refined.shape)
+        distance = np.linalg.norm(attractor[:, None, :] - refined[None, :, :], axis=2)
+        self.assertLess(distance.min(axis=1).max(), 1e-12)
+        self.assertLess(distance.min(axis=0).max(), 1e-12)
+        with self.assertRaisesRegex(cifs.InvalidInput, "catmull-clark only"):
+            sd.fractal_catmull_clark(s, amplitude=0.5, seed=3)
+
 
     def test_surface_automaton_attractor_and_fractal(self):
         # The welded attractor at depth 2 holds exactly the limit points of the cube refined 2 more
