@@ -265,23 +265,23 @@ Eigen::MatrixXd quartic_bezier(const SurfaceAutomaton& s, automata::StateId regu
   std::array<Eigen::RowVectorXd, 3> fixed;  // the corners (0, 0), (1, 0), (0, 1)
   for (std::size_t c = 0; c < 3; ++c)
     fixed[c] = ifs::repeated_child_functionals(s.automaton, static_cast<int>(c))[regular];
-  constexpr int D = 4;
-  // The functional of the point (a, b)/D, through the child holding it.
+  constexpr int kD = 4;
+  // The functional of the point (a, b)/kD, through the child holding it.
   const auto point = [&](const auto& self, int a, int b) -> Eigen::RowVectorXd {
     if (a == 0 && b == 0) return fixed[0];
-    if (a == D && b == 0) return fixed[1];
-    if (a == 0 && b == D) return fixed[2];
-    if (2 * (a + b) <= D) return self(self, 2 * a, 2 * b) * child[0];
-    if (2 * a >= D) return self(self, 2 * a - D, 2 * b) * child[1];
-    if (2 * b >= D) return self(self, 2 * a, 2 * b - D) * child[2];
-    return self(self, D - 2 * a, D - 2 * b) * child[3];
+    if (a == kD && b == 0) return fixed[1];
+    if (a == 0 && b == kD) return fixed[2];
+    if (2 * (a + b) <= kD) return self(self, 2 * a, 2 * b) * child[0];
+    if (2 * a >= kD) return self(self, 2 * a - kD, 2 * b) * child[1];
+    if (2 * b >= kD) return self(self, 2 * a, 2 * b - kD) * child[2];
+    return self(self, kD - 2 * a, kD - 2 * b) * child[3];
   };
   Eigen::MatrixXd values(15, child[0].cols()), collocation(15, 15);
-  for (int a = 0; a <= D; ++a)
-    for (int b = 0; a + b <= D; ++b) {
+  for (int a = 0; a <= kD; ++a)
+    for (int b = 0; a + b <= kD; ++b) {
       values.row(tri(a, b)) = point(point, a, b);
       std::array<double, 15> w{}, wu{}, wv{};
-      quartic_basis(static_cast<double>(a) / D, static_cast<double>(b) / D, w, wu, wv);
+      quartic_basis(static_cast<double>(a) / kD, static_cast<double>(b) / kD, w, wu, wv);
       for (std::size_t k = 0; k < 15; ++k) collocation(tri(a, b), static_cast<Eigen::Index>(k)) = w[k];
     }
   return collocation.fullPivLu().solve(values);
@@ -379,7 +379,7 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::s
     else
       quartic(net, a, b, scale, value, du, dv);
   };
-  const auto regular_form = [&](Points net) { return quad ? net : Points(bezier * net); };
+  const auto regular_form = [&](const Points& net) { return quad ? net : Points(bezier * net); };
   SurfaceSample out;
   const auto count = static_cast<Eigen::Index>(at.size());
   out.positions.resize(count, d);
@@ -511,7 +511,8 @@ Mesh triangle_mesh(const SurfaceAutomaton& surface, int depth, const ifs::MeshOp
           key = edge_node(c[1], c[2], j, side);
         else if (i == 0)
           key = edge_node(c[0], c[2], j, side);
-        int& node = node_of[static_cast<std::size_t>(i * (side + 1) + j)];
+        int& node = node_of[static_cast<std::size_t>(i) * static_cast<std::size_t>(side + 1) +
+                            static_cast<std::size_t>(j)];
         if (key[0] < 0) {
           node = static_cast<int>(rows.size());
           rows.emplace_back();
@@ -528,7 +529,8 @@ Mesh triangle_mesh(const SurfaceAutomaton& surface, int depth, const ifs::MeshOp
       if (h == 1) {
         const std::array<std::array<int, 2>, 3> at{{{i, j}, {i + sign, j}, {i, j + sign}}};
         for (std::size_t k = 0; k < 3; ++k) {
-          const int node = node_of[static_cast<std::size_t>(at[k][0] * (side + 1) + at[k][1])];
+          const int node = node_of[static_cast<std::size_t>(at[k][0]) * static_cast<std::size_t>(side + 1) +
+                                   static_cast<std::size_t>(at[k][1])];
           auto& row = rows[static_cast<std::size_t>(node)];
           if (row.size() == 0) row = fixed[k][state] * net;
           corners.push_back(node);
