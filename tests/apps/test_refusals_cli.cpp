@@ -155,3 +155,30 @@ TEST_CASE("cifs scheme refuses a symbol beyond the largest mask at once", "[cli]
   check_error(cifs_cli("scheme symbol --param 'symbol=(1+z)^1024' --analyze"),
               "the power has degree 1024, above the largest mask (512 coefficients, degree 511)");
 }
+
+TEST_CASE("cifs: tolerance modes are bounded before the work, with the estimated figure",
+          "[cli][reliability]") {
+  // Each ran for minutes or hours (or ended in std::bad_alloc) without a figure: the leaves are now
+  // estimated from coarser tolerances (ifs::estimate_tolerance_leaves) and refused at once.
+  const std::string shapes = std::string(CIFS_EXAMPLES_DIR) + "/shapes/";
+  const std::string tall = file("tall.json", R"({"curve": {"degree": 3, "knots": [0, 0, 0, 0, 1, 2, 2, 2, 2],
+      "points": [[0, 0, 0], [1, 2, 0], [2, 0, 1e23], [3, 1, 0], [4, 0, 0]]}})");
+  const std::string out = (scratch() / "tolerance.npy").string();
+  const std::pair<std::string, std::string> cases[] = {
+      // The cubic's length is about 4.6: 4.6e10 pieces of 1e-9 (counted at 1e-4: 421642).
+      {"attractor " + shapes + "cubic.json --tolerance 1e-9", "--tolerance 1e-09: about 4.6"},
+      {"attractor " + shapes + "cubic.json --tolerance 1e-9 -o " + out,
+       "above the limit of 1.07e+09 written"},
+      {"attractor " + tall + " --tolerance 0.01", "e+25 points"},
+      {"attractor " + shapes + "saddle.json --tolerance 1e-4 -o " + out, "needs about 2.0"},
+      {"attractor " + shapes + "saddle.json --tolerance 1e-9 -o " + out, "e+20 points"},
+      {"dimension " + shapes + "cubic.json --max-points 1099511627776",
+       "--max-points 1099511627776: expected 1 to"},
+  };
+  for (const auto& [command, needle] : cases) {
+    const auto start = std::chrono::steady_clock::now();
+    check_error(cifs_cli(command), needle);
+    CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 2);
+  }
+  CHECK(!std::filesystem::exists(out));
+}
