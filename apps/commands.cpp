@@ -22,6 +22,7 @@
 #include "cifs/ifs/mesh.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/io/json.hpp"
+#include "cifs/io/svg.hpp"
 #include "cifs/nurbs/refine.hpp"
 #include "cifs/render/progress.hpp"
 #include "cifs/verify/check.hpp"
@@ -345,6 +346,8 @@ std::string write_whole(Points&& P, const io::PointsStyle& style, const std::str
                         const AttractorOptions& o) {
   const auto count = P.rows();
   if (format == "svg") {
+    if (std::string w = io::svg_dropped_coordinates(P); !w.empty())
+      pending_warnings().push_back(std::move(w));
     const io::Polygon polygon{std::move(P), style.closed};
     if (o.output.empty()) return io::encode(polygon, "svg");
     io::write(o.output, polygon);
@@ -659,7 +662,11 @@ std::string render(const RenderOptions& o) {
   }
   if (!o.max_memory.empty()) ro.max_bytes = memory_size(o.max_memory);
   std::string summary;
-  for (const io::Experiment& e : experiments) summary += experiment::run(e, ro).summary;
+  for (const io::Experiment& e : experiments) {
+    experiment::RunReport report = experiment::run(e, ro);
+    summary += report.summary;
+    for (std::string& warning : report.warnings) pending_warnings().push_back(std::move(warning));
+  }
   return summary;
 }
 

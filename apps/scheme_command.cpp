@@ -222,6 +222,9 @@ std::string scheme(const SchemeOptions& o) {
   r.ends = parse_ends(o.ends);
   r.max_points = 50'000'000;
   const Points out = sd::refine(s, polygon.points, polygon.closed, o.steps, r);
+  if (o.format == "svg")
+    if (std::string w = io::svg_dropped_coordinates(out); !w.empty())
+      pending_warnings().push_back(std::move(w));
   return io::encode(io::Polygon{out, polygon.closed}, o.format);
 }
 

@@ -23,6 +23,7 @@
 #include "cifs/ifs/junction.hpp"
 #include "cifs/ifs/mesh.hpp"
 #include "cifs/io/io.hpp"
+#include "cifs/io/svg.hpp"
 #include "cifs/render/camera.hpp"
 #include "cifs/render/chaos_density.hpp"
 #include "cifs/render/image.hpp"
@@ -1037,6 +1038,9 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
   // images after them; then all renamed together (all are written or none is).
   begin("writing files");
   const std::vector<std::filesystem::path> geometry = write_files(scene, e, outputs);  // reported last
+  if (scene.curves && e.outputs.geometry.contains("svg"))
+    if (std::string w = io::svg_dropped_coordinates(scene.curves->vertices); !w.empty())
+      report.warnings.push_back("outputs.svg: " + w);
   if (outputs.exr) {
     begin("writing " + exr.filename().string());
     render::write_exr(*outputs.exr, image);

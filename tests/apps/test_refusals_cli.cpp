@@ -182,3 +182,30 @@ TEST_CASE("cifs: tolerance modes are bounded before the work, with the estimated
   }
   CHECK(!std::filesystem::exists(out));
 }
+
+TEST_CASE("cifs warns when an SVG drops z", "[cli][reliability]") {
+  // A 3-D curve or polygon drawn as SVG lost z silently; it is still drawn (a top view), with one
+  // warning naming the range of z that was dropped. Quadratic Bézier z = 0, 2, −1: at depth 2 the
+  // points t = 0, 1/4, 1/2, 3/4, 1 have z = 0, 0.6875, 0.75, 0.1875, −1 (B(t) = 4t(1 − t) − t²).
+  const std::string bent = file("bent.json", R"({"curve": {"degree": 2, "knots": [0, 0, 0, 1, 1, 1],
+      "points": [[0, 0, 0], [1, 1, 2], [2, 0, -1]]}})");
+  const std::string flat = file("flat.json", R"({"curve": {"degree": 2, "knots": [0, 0, 0, 1, 1, 1],
+      "points": [[0, 0, 0], [1, 1, 0], [2, 0, 0]]}})");
+  const std::string polygon = file(
+      "bent_polygon.json", R"({"polygon": {"points": [[0, 0, 1], [1, 0, 2], [1, 1, 3]], "closed": true}})");
+  const Run r = cifs_cli("attractor " + bent + " --depth 2 --format svg");
+  CHECK(r.status == 0);
+  CHECK_THAT(r.out, Catch::StartsWith("<svg") || Catch::Contains("<svg"));
+  CHECK(
+      r.err ==
+      "cifs: warning: the SVG is a top view (x, y): z (from -1 to 0.75) is dropped; write json, npy, ply or "
+      "obj to keep it\n");
+  const Run plane = cifs_cli("attractor " + flat + " --depth 2 --format svg");
+  CHECK(plane.status == 0);
+  CHECK(plane.err.empty());
+  const Run refined = cifs_cli("scheme chaikin --refine " + polygon + " --steps 1 --format svg");
+  CHECK(refined.status == 0);
+  // Chaikin keeps z within the polygon's: from 1 to 3 at most, the corners cut at 1/4 and 3/4.
+  CHECK_THAT(refined.err,
+             Catch::StartsWith("cifs: warning: the SVG is a top view (x, y): z (from 1.25 to 2.75)"));
+}
