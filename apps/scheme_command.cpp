@@ -213,7 +213,15 @@ std::string scheme(const SchemeOptions& o) {
       throw InvalidInput("--max-power " + std::to_string(o.max_power) + ": between 1 and 26");
     sd::AnalysisOptions a;
     a.max_power = o.max_power;
-    return io::analysis_json(s, sd::analyze(s, a));
+    try {
+      return io::analysis_json(s, sd::analyze(s, a));
+    } catch (const InvalidInput& error) {
+      // The analysis's own messages speak of its matrices: name the parameters they came from.
+      std::string given;
+      for (const std::string& p : o.params) given += (given.empty() ? "" : ", ") + p;
+      throw InvalidInput("--analyze of " + o.name + (given.empty() ? "" : " with --param " + given) + ": " +
+                         error.what() + (given.empty() ? "" : "; try parameters of moderate size"));
+    }
   }
   if (o.steps < 0) throw InvalidInput("--steps " + std::to_string(o.steps) + " is negative");
   io::writable_format(io::Content::polygon, o.format, "--format");

@@ -197,8 +197,7 @@ std::size_t attractor_point_count(const Automaton& automaton, int depth, bool cl
     throw InvalidInput("attractor_point_count: depth is " + std::to_string(depth) + ", must be ≥ 0");
   const auto count = total_count(automaton, node_counts(automaton, depth, 0).at_depth, closed);
   if (count == kSaturated)
-    throw InvalidInput("attractor_point_count: depth " + std::to_string(depth) +
-                       " gives more points than fit in size_t");
+    throw InvalidInput("depth " + std::to_string(depth) + " gives more than 2^64 points; lower the depth");
   return count;
 }
 

@@ -209,3 +209,37 @@ TEST_CASE("cifs warns when an SVG drops z", "[cli][reliability]") {
   CHECK_THAT(refined.err,
              Catch::StartsWith("cifs: warning: the SVG is a top view (x, y): z (from 1.25 to 2.75)"));
 }
+
+TEST_CASE("cifs: messages at the edges name what the user gave", "[cli][reliability]") {
+  const std::string saddle = std::string(CIFS_EXAMPLES_DIR) + "/shapes/saddle.json";
+  const auto camera = [&](const std::string& name, const std::string& eye, const std::string& target,
+                          const std::string& up) {
+    return file(name + ".json", R"({"shape": ")" + saddle + R"(", "evaluation": {"depth": 2},
+      "camera": {"eye": )" + eye + R"(, "target": )" +
+                                    target + R"(, "up": )" + up + R"(},
+      "render": {"width": 16, "height": 16}, "outputs": {"exr": ")" +
+                                    name + R"(.exr"}})");
+  };
+  // An eye at 1e308 overflowed the norm of the view direction: "camera: up is zero or parallel"; it
+  // renders now, and an eye−target difference beyond a double is named.
+  const Run far = cifs_cli("render " + camera("far_eye", "[1e308, 1e308, 1e308]", "[0, 0, 0]", "[0, 0, 1]") +
+                           " --out-dir " + scratch().string() + " --quiet");
+  INFO(far.err);
+  CHECK(far.status == 0);
+  check_error(
+      cifs_cli("render " + camera("farther_eye", "[1e308, 1e308, 1e308]", "[-1e308, 0, 0]", "[0, 0, 1]") +
+               " --out-dir " + scratch().string()),
+      "camera.eye: the eye is farther from the target than a double holds");
+  check_error(cifs_cli("render " + camera("parallel_up", "[1, 1, 1]", "[0, 0, 0]", "[2, 2, 2]") +
+                       " --out-dir " + scratch().string()),
+              "camera: up (2, 2, 2) is parallel to the viewing direction");
+  // "eigenvalues: the QR iteration did not converge".
+  check_error(cifs_cli("scheme corner-cutting --param a=1e300 --analyze"),
+              "--analyze of corner-cutting with --param a=1e300: ");
+  // Internal function names: "attractor_point_count: … size_t", "surface_mesh: … size_t".
+  check_error(cifs_cli("attractor " + std::string(CIFS_EXAMPLES_DIR) + "/shapes/cubic.json --depth 100 -o " +
+                       (scratch() / "deep.npy").string()),
+              "cifs: depth 100 gives more than 2^64 points; lower the depth");
+  check_error(cifs_cli("attractor " + saddle + " --depth 40 -o " + (scratch() / "deep.npy").string()),
+              "cifs: depth 40 on 2 by 1 patches gives more than 2^64 vertices; lower the depth");
+}
