@@ -346,6 +346,46 @@ class RobustnessTest(unittest.TestCase):
         self.assertEqual(result.returncode, 0, result.stderr[-3000:])
 
 
+class StrictBoolTest(unittest.TestCase):
+    """Every `bool` parameter refuses values that merely have a truth value (2, 0.5, None, "yes"):
+    pybind11's bool caster converts anything with __bool__ unless the argument is noconvert()."""
+
+    def test_bool_parameters(self):
+        import numpy as np
+
+        import cifs
+        with tempfile.TemporaryDirectory(prefix="cifs-bools-") as scratch:
+            samples = _Samples(cifs, np, scratch)
+            checked = []
+            for submodule in SUBMODULES:
+                module = getattr(cifs, submodule)
+                for attr in sorted(vars(module)):
+                    fn = getattr(module, attr)
+                    if attr.startswith("_") or not callable(fn) or isinstance(fn, type):
+                        continue
+                    for params in _signatures(fn, attr):
+                        cheap = CHEAP.get(f"{submodule}.{attr}", {})
+                        for i, (pname, annotation, _, _) in enumerate(params):
+                            if annotation != "bool":
+                                continue
+                            def incompatible(value):
+                                try:
+                                    _call(fn, params, samples, {i: value}, cheap)
+                                except TypeError as error:
+                                    return "incompatible function arguments" in str(error)
+                                except Exception:  # noqa: BLE001 — refused for another reason: converted
+                                    pass
+                                return False
+                            # With True the other arguments convert: a refusal of 2 is the bool's.
+                            if incompatible(True):
+                                continue
+                            checked.append(f"{submodule}.{attr}({pname})")
+                            for value in (2, 0.5, None, "yes"):
+                                self.assertTrue(incompatible(value), f"{checked[-1]} accepted {value!r}")
+            self.assertGreater(len(checked), 15, checked)
+            print(len(checked), "bool parameters checked", file=sys.stderr)
+
+
 for _name in SUBMODULES:
     setattr(RobustnessTest, f"test_{_name}", lambda self, n=_name: self._batch(n))
 
