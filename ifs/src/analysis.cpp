@@ -192,8 +192,16 @@ double diameter(const Points& net) noexcept {
 
 double nets_diameter(std::span<const Points> nets, bool homogeneous) {
   Eigen::Index rows = 0;
-  for (const Points& N : nets) rows += N.rows();
-  Points all(rows, nets.empty() ? 0 : nets.front().cols());
+  const Eigen::Index cols = nets.empty() ? 0 : nets.front().cols();
+  for (std::size_t i = 0; i < nets.size(); ++i) {
+    // Stacked below: nets of other widths wrote past the rows (the robustness test's mismatched
+    // nets under ASan, called from tolerance_sample before any other check).
+    if (nets[i].cols() != cols)
+      throw InvalidInput("nets[" + std::to_string(i) + "] has " + std::to_string(nets[i].cols()) +
+                         " columns, nets[0] has " + std::to_string(cols) + "; every net needs the same");
+    rows += nets[i].rows();
+  }
+  Points all(rows, cols);
   rows = 0;
   for (const Points& N : nets) {
     all.middleRows(rows, N.rows()) = N;
