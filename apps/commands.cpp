@@ -22,6 +22,7 @@
 #include "cifs/ifs/mesh.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/io/json.hpp"
+#include "cifs/io/svg.hpp"
 #include "cifs/nurbs/refine.hpp"
 #include "cifs/render/progress.hpp"
 #include "cifs/verify/check.hpp"
@@ -337,12 +338,16 @@ std::string attractor_format(const AttractorOptions& o) {
 
 /// Points held in memory before they are written (stdout, svg): refused above this.
 constexpr std::size_t kMemoryBytes = std::size_t{1} << 30;
+/// Points a tolerance traversal may stream to a file (two walks of about 1 µs per point each).
+constexpr double kMaxTolerancePoints = 1U << 30;
 
 /// Points computed whole (chaos game, stdout, svg): moved into the output, never copied.
 std::string write_whole(Points&& P, const io::PointsStyle& style, const std::string& format,
                         const AttractorOptions& o) {
   const auto count = P.rows();
   if (format == "svg") {
+    if (std::string w = io::svg_dropped_coordinates(P); !w.empty())
+      pending_warnings().push_back(std::move(w));
     const io::Polygon polygon{std::move(P), style.closed};
     if (o.output.empty()) return io::encode(polygon, "svg");
     io::write(o.output, polygon);
@@ -474,6 +479,19 @@ std::string attractor(const AttractorOptions& o) {
   const double epsilon =
       c->rational ? o.tolerance * nurbs::weights(*c).minCoeff() / (1 + max_point) : o.tolerance;
   const ifs::ToleranceOptions to{epsilon, 40, 8};
+  // Before the counting walk (which alone would run for hours at 1e-9): the leaves estimated from
+  // coarser tolerances, refused beyond what memory (stdout, SVG) or a streamed file takes.
+  if (const ifs::ToleranceEstimate est = ifs::estimate_tolerance_leaves(a, nets, to); !est.exact) {
+    const double row_bytes = static_cast<double>(nets[0].cols()) * sizeof(double);
+    const double limit = streamed ? kMaxTolerancePoints : static_cast<double>(kMemoryBytes) / row_bytes;
+    if (est.leaves > limit)
+      throw InvalidInput(
+          "--tolerance " + number_text(o.tolerance, 6) + ": about " + number_text(est.leaves, 3) +
+          " points (estimated from coarser tolerances), above the limit of " + number_text(limit, 3) +
+          (streamed ? " written to a file; give a larger tolerance"
+                    : " held in memory for standard output and SVG; give a larger tolerance, or "
+                      "write them to a file with -o points.npy, which is streamed"));
+  }
   const ifs::ToleranceResult r =
       ifs::for_each_leaf_to_tolerance(a, nets, to, [](const ifs::ToleranceLeaf&) {});
   if (r.unconverged > 0)
@@ -644,7 +662,11 @@ std::string render(const RenderOptions& o) {
   }
   if (!o.max_memory.empty()) ro.max_bytes = memory_size(o.max_memory);
   std::string summary;
-  for (const io::Experiment& e : experiments) summary += experiment::run(e, ro).summary;
+  for (const io::Experiment& e : experiments) {
+    experiment::RunReport report = experiment::run(e, ro);
+    summary += report.summary;
+    for (std::string& warning : report.warnings) pending_warnings().push_back(std::move(warning));
+  }
   return summary;
 }
 
@@ -670,6 +692,10 @@ std::string dimension(const DimensionOptions& o) {
     e = io::read_experiment(o.input);
   }
   if (o.depth && o.tolerance) throw InvalidInput("dimension: give --depth or --tolerance, not both");
+  // The sample is held in memory and its walk takes about 1 µs per point: a budget of 2^40 ran for days.
+  if (o.max_points < 1 || o.max_points > static_cast<std::size_t>(kMaxPoints))
+    throw InvalidInput("--max-points " + std::to_string(o.max_points) + ": expected 1 to " +
+                       std::to_string(kMaxPoints) + " points (the sample is held in memory)");
   // Default: a tolerance sample, whose piece size is proven; --depth: the file's evaluation.
   const bool sampled = !o.depth;
   const experiment::Evaluation ev = sampled ? experiment::sample(e, {o.tolerance.value_or(0), o.max_points})

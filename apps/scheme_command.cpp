@@ -213,7 +213,15 @@ std::string scheme(const SchemeOptions& o) {
       throw InvalidInput("--max-power " + std::to_string(o.max_power) + ": between 1 and 26");
     sd::AnalysisOptions a;
     a.max_power = o.max_power;
-    return io::analysis_json(s, sd::analyze(s, a));
+    try {
+      return io::analysis_json(s, sd::analyze(s, a));
+    } catch (const InvalidInput& error) {
+      // The analysis's own messages speak of its matrices: name the parameters they came from.
+      std::string given;
+      for (const std::string& p : o.params) given += (given.empty() ? "" : ", ") + p;
+      throw InvalidInput("--analyze of " + o.name + (given.empty() ? "" : " with --param " + given) + ": " +
+                         error.what() + (given.empty() ? "" : "; try parameters of moderate size"));
+    }
   }
   if (o.steps < 0) throw InvalidInput("--steps " + std::to_string(o.steps) + " is negative");
   io::writable_format(io::Content::polygon, o.format, "--format");
@@ -222,6 +230,9 @@ std::string scheme(const SchemeOptions& o) {
   r.ends = parse_ends(o.ends);
   r.max_points = 50'000'000;
   const Points out = sd::refine(s, polygon.points, polygon.closed, o.steps, r);
+  if (o.format == "svg")
+    if (std::string w = io::svg_dropped_coordinates(out); !w.empty())
+      pending_warnings().push_back(std::move(w));
   return io::encode(io::Polygon{out, polygon.closed}, o.format);
 }
 

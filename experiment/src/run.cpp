@@ -23,6 +23,7 @@
 #include "cifs/ifs/junction.hpp"
 #include "cifs/ifs/mesh.hpp"
 #include "cifs/io/io.hpp"
+#include "cifs/io/svg.hpp"
 #include "cifs/render/camera.hpp"
 #include "cifs/render/chaos_density.hpp"
 #include "cifs/render/image.hpp"
@@ -674,6 +675,13 @@ render::Camera make_camera(const io::CameraSpec& spec, const io::RenderSettings&
         spec.target ? Eigen::Vector3d((*spec.target)[0], (*spec.target)[1], (*spec.target)[2])
                     : render::frame(extent, f).target;
     f.view_direction = Eigen::Vector3d((*spec.eye)[0], (*spec.eye)[1], (*spec.eye)[2]) - target;
+    if (!f.view_direction.allFinite())
+      throw InvalidInput(
+          "camera.eye: the eye is farther from the target than a double holds (coordinates up to " +
+          number(
+              std::max(Eigen::Vector3d((*spec.eye)[0], (*spec.eye)[1], (*spec.eye)[2]).cwiseAbs().maxCoeff(),
+                       target.cwiseAbs().maxCoeff())) +
+          "); move it closer or scale the scene down");
   }
   render::Camera camera = render::frame(extent, f);
   if (spec.eye) {
@@ -1037,6 +1045,9 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
   // images after them; then all renamed together (all are written or none is).
   begin("writing files");
   const std::vector<std::filesystem::path> geometry = write_files(scene, e, outputs);  // reported last
+  if (scene.curves && e.outputs.geometry.contains("svg"))
+    if (std::string w = io::svg_dropped_coordinates(scene.curves->vertices); !w.empty())
+      report.warnings.push_back("outputs.svg: " + w);
   if (outputs.exr) {
     begin("writing " + exr.filename().string());
     render::write_exr(*outputs.exr, image);

@@ -192,8 +192,16 @@ double diameter(const Points& net) noexcept {
 
 double nets_diameter(std::span<const Points> nets, bool homogeneous) {
   Eigen::Index rows = 0;
-  for (const Points& N : nets) rows += N.rows();
-  Points all(rows, nets.empty() ? 0 : nets.front().cols());
+  const Eigen::Index cols = nets.empty() ? 0 : nets.front().cols();
+  for (std::size_t i = 0; i < nets.size(); ++i) {
+    // Stacked below: nets of other widths wrote past the rows (the robustness test's mismatched
+    // nets under ASan, called from tolerance_sample before any other check).
+    if (nets[i].cols() != cols)
+      throw InvalidInput("nets[" + std::to_string(i) + "] has " + std::to_string(nets[i].cols()) +
+                         " columns, nets[0] has " + std::to_string(cols) + "; every net needs the same");
+    rows += nets[i].rows();
+  }
+  Points all(rows, cols);
   rows = 0;
   for (const Points& N : nets) {
     all.middleRows(rows, N.rows()) = N;
@@ -555,9 +563,18 @@ std::vector<std::complex<double>> eigenvalues(const Eigen::MatrixXd& M) {
     throw InvalidInput("eigenvalues: the matrix is " + std::to_string(M.rows()) + " by " +
                        std::to_string(M.cols()) + ", not square");
   if (M.rows() == 0) return {};
-  Eigen::EigenSolver<Eigen::MatrixXd> solver(M, false);
-  if (solver.info() != Eigen::Success) throw InvalidInput("eigenvalues: the QR iteration did not converge");
+  if (!M.allFinite()) throw InvalidInput("a matrix entry is not finite: it has no eigenvalues");
+  // Solved on M / max|M_ij| and scaled back: entries of 1e300 overflowed inside the QR iteration,
+  // which then did not converge (corner-cutting a=1e300).
+  const double scale = M.cwiseAbs().maxCoeff();
+  if (scale == 0) return std::vector<std::complex<double>>(static_cast<std::size_t>(M.rows()));
+  Eigen::EigenSolver<Eigen::MatrixXd> solver(M / scale, false);
+  if (solver.info() != Eigen::Success)
+    throw InvalidInput("the eigenvalues of a " + std::to_string(M.rows()) + " by " +
+                       std::to_string(M.cols()) + " matrix (entries up to " + number_text(scale, 6) +
+                       ") did not converge in the QR iteration; check the matrices for extreme entries");
   std::vector<std::complex<double>> out(solver.eigenvalues().begin(), solver.eigenvalues().end());
+  for (auto& z : out) z *= scale;
   std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) {
     if (std::abs(a) != std::abs(b)) return std::abs(a) > std::abs(b);
     if (a.real() != b.real()) return a.real() > b.real();

@@ -3,6 +3,7 @@
 #include "cifs/ifs/attractor.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <sstream>
 
@@ -85,6 +86,62 @@ ToleranceResult for_each_leaf_to_tolerance(const Automaton& automaton, std::span
   return result;
 }
 
+ToleranceEstimate estimate_tolerance_leaves(const Automaton& automaton, std::span<const Points> nets,
+                                            const ToleranceOptions& options, std::size_t budget) {
+  validate(automaton);
+  detail::check_nets(automaton, nets, "the tolerance estimate");
+  if (!(options.epsilon > 0))
+    throw InvalidInput("tolerance " + number_text(options.epsilon, 6) + " is not a positive number");
+  const Contraction c = contraction(automaton, ContractionOptions{options.max_length});
+  if (options.homogeneous && nets.front().cols() < 2)
+    throw InvalidInput("rational nets need at least 2 columns (w·x, w)");
+  const PieceBounds bounds(automaton, c, options.homogeneous);
+  // Leaves at tolerance e, or budget + 1 as soon as there are more.
+  struct Full {};
+  const auto count = [&](double e) {
+    std::size_t n = 0;
+    try {
+      detail::depth_first(automaton, nets, options.max_depth,
+                          [&](std::size_t, StateId s, const Points& net, int d, std::span<const int>) {
+                            if (!(bounds(s, net).diameter < e) && d < options.max_depth) return true;
+                            if (++n > budget) throw Full{};
+                            return false;
+                          });
+    } catch (const Full&) {
+    }
+    return n;
+  };
+  // Coarsest tolerance of the ladder ε·2^k: above every root's bound (one leaf per root).
+  double top = 0;
+  for (std::size_t i = 0; i < nets.size(); ++i)
+    top = std::max(top, bounds(automaton.initial[i].state, nets[i]).diameter);
+  if (!std::isfinite(top)) top = 4 * nets_diameter(nets, options.homogeneous);
+  int k = std::isfinite(top) && top > options.epsilon
+              ? std::min(static_cast<int>(std::ceil(std::log2(top / options.epsilon))) + 1, 2100)
+              : 0;
+  // Halve the tolerance while the count stays within the budget; the last three counts give the
+  // growth per halving (2^dimension of the pieces: 2 for curves, 4 for surfaces).
+  std::vector<double> counts;
+  for (; k >= 0; --k) {
+    const std::size_t n = count(std::ldexp(options.epsilon, k));
+    if (n > budget) break;
+    counts.push_back(static_cast<double>(n));
+  }
+  ToleranceEstimate out;
+  out.exact = k < 0;
+  if (out.exact) {
+    out.leaves = counts.back();
+    return out;
+  }
+  // k + 1 halvings remain from the last count within the budget.
+  const double last = counts.empty() ? 1 : counts.back();
+  const std::size_t m = counts.size();
+  const double growth =
+      m >= 3 ? std::sqrt(counts[m - 1] / counts[m - 3]) : static_cast<double>(budget + 1) / last;
+  out.leaves = last * std::pow(std::max(growth, 1.0), k + 1);
+  return out;
+}
+
 namespace {
 
 constexpr std::size_t kSaturated = std::numeric_limits<std::size_t>::max();
@@ -140,8 +197,7 @@ std::size_t attractor_point_count(const Automaton& automaton, int depth, bool cl
     throw InvalidInput("attractor_point_count: depth is " + std::to_string(depth) + ", must be ≥ 0");
   const auto count = total_count(automaton, node_counts(automaton, depth, 0).at_depth, closed);
   if (count == kSaturated)
-    throw InvalidInput("attractor_point_count: depth " + std::to_string(depth) +
-                       " gives more points than fit in size_t");
+    throw InvalidInput("depth " + std::to_string(depth) + " gives more than 2^64 points; lower the depth");
   return count;
 }
 

@@ -425,8 +425,11 @@ AdmissibleSpace admissible_space(const Bcifs& sys, const SolveOptions& options) 
     for (Eigen::Index j = 0; j < rank; ++j) AB.col(j) = A.col(basic[static_cast<std::size_t>(j)]);
     for (Eigen::Index j = 0; j < nv - rank; ++j) AF.col(j) = A.col(others[static_cast<std::size_t>(j)]);
     const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qrb(AB);
-    const Eigen::VectorXd xb = qrb.solve(b);
-    const Eigen::MatrixXd KB = -qrb.solve(AF);
+    // Eigen's triangular solve binds a reference to the first coefficient of its right-hand side,
+    // null for an empty one (UBSan: MapBase.h:262): solve only what is not empty.
+    const Eigen::VectorXd xb = rank > 0 ? Eigen::VectorXd(qrb.solve(b)) : Eigen::VectorXd(0);
+    const Eigen::MatrixXd KB =
+        rank > 0 && nv > rank ? Eigen::MatrixXd(-qrb.solve(AF)) : Eigen::MatrixXd::Zero(rank, nv - rank);
     const double scale = std::max(1.0, b.cwiseAbs().maxCoeff());
     const double miss = (AB * xb - b).cwiseAbs().maxCoeff() / scale;
     const double slack = nv > rank ? (AB * KB + AF).cwiseAbs().maxCoeff() : 0.0;

@@ -35,6 +35,9 @@ std::uint64_t morton(const std::vector<std::uint64_t>& c, int levels) {
 
 struct Full {};
 
+/// Point budgets above this are checked against an estimate before each counting walk.
+constexpr std::size_t kEstimateAbove = std::size_t{1} << 22;
+
 /// Leaves of the tolerance traversal at `options.epsilon`; max + 1 as soon as there are more.
 /// Throws InvalidInput when a branch is unresolved at max_depth.
 std::size_t count_leaves(const automata::Automaton& a, std::span<const Points> nets,
@@ -67,8 +70,19 @@ ToleranceSample tolerance_sample(const automata::Automaton& a, std::span<const P
   to.homogeneous = o.homogeneous;
   to.max_depth = o.max_depth;
   to.epsilon = o.epsilon;
+  // A large point budget takes seconds per counting walk (about 1 µs per leaf): a tolerance that
+  // clearly needs more is refused, or ends the search, on an estimate from coarser tolerances.
+  const auto clearly_above = [&](const ToleranceOptions& t) {
+    if (o.max_points <= kEstimateAbove) return 0.0;
+    const ToleranceEstimate e = estimate_tolerance_leaves(a, nets, t);
+    return !e.exact && e.leaves > 1.5 * static_cast<double>(o.max_points) ? e.leaves : 0.0;
+  };
   std::size_t n = 0;
   if (o.epsilon > 0) {
+    if (const double about = clearly_above(to); about > 0)
+      throw InvalidInput("tolerance " + num(o.epsilon) + " needs about " + num(about) +
+                         " points (estimated from coarser tolerances), more than " +
+                         std::to_string(o.max_points) + "; raise the tolerance");
     n = count_leaves(a, nets, to, o.max_points);
     if (n > o.max_points)
       throw InvalidInput("tolerance " + num(o.epsilon) + " needs more than " + std::to_string(o.max_points) +
@@ -88,6 +102,7 @@ ToleranceSample tolerance_sample(const automata::Automaton& a, std::span<const P
     for (int j = 5; j <= 60; ++j) {
       ToleranceOptions finer = to;
       finer.epsilon = std::ldexp(extent, -j);
+      if (clearly_above(finer) > 0) break;
       const std::size_t m = count_leaves(a, nets, finer, o.max_points);
       if (m > o.max_points) break;
       to = finer;

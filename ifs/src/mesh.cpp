@@ -37,22 +37,24 @@ struct Grid {
 /// Refuses (before any work) a mesh above the byte limit or beyond int indices; `what` says what
 /// the depth is applied to.
 void check_size(std::size_t vertices, std::size_t quads, std::size_t cols, int depth, const std::string& what,
-                const MeshOptions& options, const std::string& who) {
+                const MeshOptions& options) {
   const std::size_t bytes = mesh_bytes(vertices, cols, quads);
   if (bytes <= options.max_bytes && vertices <= static_cast<std::size_t>(INT_MAX)) return;
   std::ostringstream msg;
-  msg << who << ": depth " << depth << " on " << what << " gives ";
-  if (vertices == kSaturated)
-    msg << "more vertices than fit in size_t";
-  else
+  // The message names the depth the user gave, not this routine.
+  msg << "depth " << depth << " on " << what << " gives ";
+  if (vertices == kSaturated) {
+    msg << "more than 2^64 vertices";
+  } else {
     msg << vertices << " vertices of " << cols << " coordinates and " << quads << " quads ("
         << static_cast<double>(bytes) / static_cast<double>(std::size_t{1} << 30) << " GiB)";
-  if (vertices > static_cast<std::size_t>(INT_MAX))
-    msg << ", more vertices than int indices address";
-  else
-    msg << ", more than the limit of "
-        << static_cast<double>(options.max_bytes) / static_cast<double>(std::size_t{1} << 30)
-        << " GiB (MeshOptions::max_bytes)";
+    if (vertices > static_cast<std::size_t>(INT_MAX))
+      msg << ", more than the 2^31 − 1 vertices a mesh addresses";
+    else
+      msg << ", more than the limit of "
+          << static_cast<double>(options.max_bytes) / static_cast<double>(std::size_t{1} << 30)
+          << " GiB held in memory";
+  }
   msg << "; lower the depth";
   throw InvalidInput(msg.str());
 }
@@ -68,7 +70,7 @@ Grid make_grid(int A, int B, int depth, std::size_t cols, const MeshOptions& opt
   const std::size_t cu = cells(A, depth), cv = cells(B, depth);
   const std::size_t vertices = mul_sat(cu + (cu < kSaturated), cv + (cv < kSaturated));
   check_size(vertices, mul_sat(cu, cv), cols, depth,
-             std::to_string(A) + " by " + std::to_string(B) + " patches", options, who);
+             std::to_string(A) + " by " + std::to_string(B) + " patches", options);
   return Grid{A, B, depth, static_cast<int>(cu), static_cast<int>(cv), 1 << depth, vertices, mul_sat(cu, cv)};
 }
 
@@ -450,7 +452,7 @@ QuadMesh patch_meshes(const Automaton& automaton, std::span<const Points> nets, 
   const Eigen::Index C = nets.empty() ? 0 : nets[0].cols();
   check_size(mul_sat(nodes, static_cast<std::size_t>(F)),
              mul_sat(mul_sat(side, side), static_cast<std::size_t>(F)), static_cast<std::size_t>(C), depth,
-             std::to_string(F) + " patches", options, "patch_meshes");
+             std::to_string(F) + " patches", options);
   const int s = 1 << depth, block = (s + 1) * (s + 1);
   QuadMesh mesh;
   mesh.vertices.resize(static_cast<Eigen::Index>(F) * block, C);

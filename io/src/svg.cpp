@@ -41,6 +41,15 @@ std::string xml_escape(const std::string& s) {
 
 }  // namespace
 
+std::string svg_dropped_coordinates(const Eigen::Ref<const Points>& points) {
+  if (points.cols() <= 2 || points.rows() == 0) return {};
+  const auto rest = points.rightCols(points.cols() - 2);
+  if ((rest.array() == 0).all()) return {};
+  const std::string axes = points.cols() == 3 ? "z" : "the coordinates after x and y";
+  return "the SVG is a top view (x, y): " + axes + " (from " + number_text(rest.minCoeff(), 6) + " to " +
+         number_text(rest.maxCoeff(), 6) + ") is dropped; write json, npy, ply or obj to keep it";
+}
+
 void segments_svg(const Segments& segments, const SvgOptions& options, ByteSink& sink) {
   check_segments(segments, "segments_svg");
   const Points& P = segments.vertices;

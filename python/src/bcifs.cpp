@@ -181,7 +181,7 @@ one side, a transition listed free twice …)doc")
              return system;
            }),
            py::arg("automaton"), py::arg("dimension"), py::arg("boundaries"), py::arg("constraints"),
-           py::arg("free"), "Builds and validates a BC-IFS (see the class docstring).")
+           py::arg("free").noconvert(), "Builds and validates a BC-IFS (see the class docstring).")
       .def_property_readonly(
           "automaton", [](const ifs::Bcifs& s) { return s.automaton; },
           "The automaton (a copy, so that the validated system cannot change): cells and transition "
@@ -231,7 +231,7 @@ sums") the largest |row sum − 1|.)doc");
       [](const nurbs::Curve& curve, bool free_vertices) {
         return ifs::curve_bcifs(curve, ifs::CurveBcifsOptions{free_vertices});
       },
-      py::arg("curve"), py::kw_only(), py::arg("free_vertices") = false,
+      py::arg("curve"), py::kw_only(), py::arg("free_vertices").noconvert() = false,
       py::call_guard<py::gil_scoped_release>(),
       R"doc(The automatic BC-IFS of a NURBS curve (cifs.nurbs.Curve; docs/bcifs.md).
 
@@ -242,8 +242,8 @@ True frees every vertex operator. The NURBS matrices satisfy every constraint.)d
       [](const automata::Automaton& knots, bool closed, bool free_vertices) {
         return ifs::curve_bcifs(knots, closed, ifs::CurveBcifsOptions{free_vertices});
       },
-      py::arg("knots"), py::arg("closed"), py::kw_only(), py::arg("free_vertices") = false,
-      py::call_guard<py::gil_scoped_release>(),
+      py::arg("knots"), py::arg("closed").noconvert(), py::kw_only(),
+      py::arg("free_vertices").noconvert() = false, py::call_guard<py::gil_scoped_release>(),
       "The same from a curve's knot automaton (cifs.automata.knot_automaton); `closed` joins the last "
       "segment to "
       "the first. Raises cifs.InvalidInput for states that are not knot-doubling states of one degree ≥ 1.");
@@ -252,7 +252,7 @@ True frees every vertex operator. The NURBS matrices satisfy every constraint.)d
       [](const nurbs::Surface& surface, bool free_knot_lines) {
         return ifs::surface_bcifs(surface, ifs::SurfaceBcifsOptions{free_knot_lines});
       },
-      py::arg("surface"), py::kw_only(), py::arg("free_knot_lines") = false,
+      py::arg("surface"), py::kw_only(), py::arg("free_knot_lines").noconvert() = false,
       py::call_guard<py::gil_scoped_release>(),
       R"doc(The automatic BC-IFS of a NURBS surface (cifs.nurbs.Surface): products of the u and v curve systems.
 
@@ -263,7 +263,7 @@ frees every operator.)doc");
       [](const automata::TensorAutomaton& automaton, bool free_knot_lines) {
         return ifs::surface_bcifs(automaton, ifs::SurfaceBcifsOptions{free_knot_lines});
       },
-      py::arg("automaton"), py::kw_only(), py::arg("free_knot_lines") = false,
+      py::arg("automaton"), py::kw_only(), py::arg("free_knot_lines").noconvert() = false,
       py::call_guard<py::gil_scoped_release>(),
       "The same from a cifs.automata.TensorAutomaton (cifs.automata.tensor_automaton).");
 
@@ -385,7 +385,8 @@ have no solution (naming the constraints of the inconsistent component and the r
       py::arg("system"), py::kw_only(), py::arg("amplitude") = 0.0, py::arg("seed") = 1,
       py::arg("values") = py::none(), py::arg("threshold") = ifs::SolveOptions{}.threshold,
       py::arg("max_length") = ifs::ContractionOptions{}.max_length,
-      py::arg("tighten") = ifs::ContractionOptions{}.tighten, py::call_guard<py::gil_scoped_release>(),
+      py::arg("tighten").noconvert() = ifs::ContractionOptions{}.tighten,
+      py::call_guard<py::gil_scoped_release>(),
       R"doc(Perturbs the free coefficients, solves the dependent ones and checks the result.
 
 amplitude: each free coefficient gets current value + uniform in [−amplitude, amplitude], drawn
@@ -437,7 +438,8 @@ or a piece in a cell that is not an edge.)doc");
       [](const Eigen::MatrixXd& S0, const Eigen::MatrixXd& S1, int pieces, int layer, bool free) {
         return ifs::uniform_curve_bcifs(S0, S1, {.pieces = pieces, .layer = layer, .free = free});
       },
-      py::arg("S0"), py::arg("S1"), py::arg("pieces") = 1, py::arg("layer") = 0, py::arg("free") = false,
+      py::arg("S0"), py::arg("S1"), py::arg("pieces") = 1, py::arg("layer") = 0,
+      py::arg("free").noconvert() = false,
       R"doc(BC-IFS of an open curve of a uniform scheme from its N by N IFS matrices (docs/junctions.md).
 
 Edge cells "e" (interior) and "a0" … (a junction layer of `layer` pieces at the start, free), vertex
@@ -447,7 +449,7 @@ cells "v0" (the start), "w1" …, "m"; boundaries "start" (rows 0 … N−2) and
       [](const ifs::Bcifs& u, const ifs::Bcifs& v, bool free_when_either) {
         return ifs::product_bcifs(u, v, {.free_when_either = free_when_either});
       },
-      py::arg("u"), py::arg("v"), py::arg("free_when_either") = false,
+      py::arg("u"), py::arg("v"), py::arg("free_when_either").noconvert() = false,
       "Tensor product of two curve systems (faces, edges, corners; patches u-major).");
 
   py::class_<ifs::Junction>(m, "Junction", "Two BC-IFS joined along shared boundary cells (result of join).")
@@ -476,7 +478,7 @@ cells "v0" (the start), "w1" …, "m"; boundaries "start" (rows 0 … N−2) and
         return ifs::join(a, nets_a, b, nets_b, g, options);
       },
       py::arg("a"), py::arg("nets_a"), py::arg("b"), py::arg("nets_b"), py::arg("glue"),
-      py::arg("free_a") = false,
+      py::arg("free_a").noconvert() = false,
       R"doc(Joins B to A along shared boundary cells (docs/junctions.md).
 
 glue: list of (A entry, A boundary name, B entry, B boundary name), e.g. [(2, "end", 0, "start")].

@@ -101,7 +101,8 @@ void bind_ifs(py::module_& m) {
       [](const Automaton& a, int max_length, bool tighten) {
         return ifs::contraction(a, ifs::ContractionOptions{max_length, tighten});
       },
-      py::arg("automaton"), py::kw_only(), py::arg("max_length") = 8, py::arg("tighten") = true, release,
+      py::arg("automaton"), py::kw_only(), py::arg("max_length") = 8, py::arg("tighten").noconvert() = true,
+      release,
       "Finds the smallest path length m ≤ max_length whose products all shrink nets (δ_m < 1).\n\n"
       "tighten: also try longer paths for a smaller bound factor `radius`. Returns a Contraction. Raises "
       "InvalidInput when there is none (the message names the state and the path that fails), for "
@@ -229,7 +230,7 @@ void bind_ifs(py::module_& m) {
             });
       },
       py::arg("automaton"), py::arg("nets"), py::arg("callback"), py::kw_only(), py::arg("epsilon") = 1e-6,
-      py::arg("max_depth") = 64, py::arg("max_length") = 8, py::arg("homogeneous") = false,
+      py::arg("max_depth") = 64, py::arg("max_length") = 8, py::arg("homogeneous").noconvert() = false,
       "Depth-first traversal that stops a branch once its attractor piece is proved smaller than epsilon "
       "(PieceBounds: the hull of the net where every path is non-negative, else the contraction bound); "
       "calls callback(ToleranceLeaf) per leaf and returns a ToleranceResult.\n\n"
@@ -255,7 +256,8 @@ void bind_ifs(py::module_& m) {
       .def(py::init([](const Automaton& a, int max_length, bool homogeneous) {
              return ifs::PieceBounds(a, ifs::contraction(a, {max_length, true}), homogeneous);
            }),
-           py::arg("automaton"), py::kw_only(), py::arg("max_length") = 8, py::arg("homogeneous") = false,
+           py::arg("automaton"), py::kw_only(), py::arg("max_length") = 8,
+           py::arg("homogeneous").noconvert() = false,
            "Bounds for `automaton` (contraction found with paths up to max_length); homogeneous: nets hold "
            "(w·x, w) rows and the bounds are Cartesian. Raises InvalidInput for a system that is not "
            "contractive.")
@@ -296,7 +298,7 @@ void bind_ifs(py::module_& m) {
         return ifs::tolerance_sample(a, nets, o);
       },
       py::arg("automaton"), py::arg("nets"), py::kw_only(), py::arg("epsilon") = 0.0,
-      py::arg("homogeneous") = false, py::arg("max_points") = std::int64_t{1} << 21,
+      py::arg("homogeneous").noconvert() = false, py::arg("max_points") = std::int64_t{1} << 21,
       py::arg("max_depth") = 64,
       "Samples the attractor to a tolerance: one attractor point per leaf of for_each_leaf_to_tolerance, "
       "every "
@@ -307,7 +309,7 @@ void bind_ifs(py::module_& m) {
       "a sample above max_points (before allocating it), a branch unresolved at max_depth, and as "
       "for_each_leaf_to_tolerance.");
   m.def("attractor_point_count", &ifs::attractor_point_count, py::arg("automaton"), py::arg("depth"),
-        py::arg("closed") = false,
+        py::arg("closed").noconvert() = false,
         "Number of points attractor_points returns: the nodes at `depth` plus 1 unless closed. Raises "
         "InvalidInput for a negative depth or an overflow.");
   m.def(
@@ -319,8 +321,9 @@ void bind_ifs(py::module_& m) {
         py::gil_scoped_release unlocked;
         return ifs::attractor_points(a, nets, depth, o);
       },
-      py::arg("automaton"), py::arg("nets"), py::arg("depth"), py::kw_only(), py::arg("closed") = false,
-      py::arg("max_bytes") = std::int64_t{1} << 30, py::arg("max_table_depth") = 8,
+      py::arg("automaton"), py::arg("nets"), py::arg("depth"), py::kw_only(),
+      py::arg("closed").noconvert() = false, py::arg("max_bytes") = std::int64_t{1} << 30,
+      py::arg("max_table_depth") = 8,
       "Attractor points to depth K in curve order: float `(count, cols)`, the start point of every node at "
       "`depth` plus the end of the last one unless `closed`.\n\n"
       "nets as for_each_leaf; max_bytes: refuse a larger output before any work; max_table_depth: depth of "
@@ -351,7 +354,7 @@ void bind_ifs(py::module_& m) {
         return ifs::chaos_game(a, nets, o);
       },
       py::arg("automaton"), py::arg("nets"), py::kw_only(), py::arg("samples") = 100000, py::arg("seed") = 0,
-      py::arg("restart_diameter") = 1e-9, py::arg("record_address") = false,
+      py::arg("restart_diameter") = 1e-9, py::arg("record_address").noconvert() = false,
       py::arg("max_bytes") = ifs::ChaosOptions{}.max_bytes,
       "Random walk over the automaton (uniform child at each step) emitting one attractor point per step; "
       "returns a ChaosResult.\n\n"
@@ -396,8 +399,9 @@ void bind_ifs(py::module_& m) {
         py::gil_scoped_release unlocked;
         return ifs::surface_mesh(a, nets, depth, o);
       },
-      py::arg("automaton"), py::arg("nets"), py::arg("depth"), py::kw_only(), py::arg("homogeneous") = false,
-      py::arg("max_bytes") = std::int64_t{1} << 30, py::arg("max_table_depth") = 6,
+      py::arg("automaton"), py::arg("nets"), py::arg("depth"), py::kw_only(),
+      py::arg("homogeneous").noconvert() = false, py::arg("max_bytes") = std::int64_t{1} << 30,
+      py::arg("max_table_depth") = 6,
       "The attractor at `depth` of a TensorAutomaton as one QuadMesh (separable route).\n\n"
       "nets: automata.initial_nets(automaton, surface); homogeneous: the nets hold (w·x, w) rows, vertices "
       "are divided by w; max_bytes: refuse a larger mesh. Raises InvalidInput for a negative depth, nets "
@@ -412,7 +416,7 @@ void bind_ifs(py::module_& m) {
         return ifs::quad_mesh(a, nets, patches, depth, o);
       },
       py::arg("automaton"), py::arg("nets"), py::arg("patches"), py::arg("depth"), py::kw_only(),
-      py::arg("homogeneous") = false, py::arg("max_bytes") = std::int64_t{1} << 30,
+      py::arg("homogeneous").noconvert() = false, py::arg("max_bytes") = std::int64_t{1} << 30,
       py::arg("max_table_depth") = 6,
       "The attractor at `depth` of any automaton with four children per state (GH, GB, DH, DB) as a "
       "QuadMesh.\n\n"

@@ -166,7 +166,7 @@ void bind_shapes(py::module_& m) {
         return io::read_shape(path, options(index, ignore_trim));
       },
       Release(), py::arg("path"), py::kw_only(), py::arg("index") = py::none(),
-      py::arg("ignore_trim") = false,
+      py::arg("ignore_trim").noconvert() = false,
       "Reads a shape file: `.obj` as OBJ free-form geometry, anything else as JSON (cifs's own format or a\n"
       "geomdl export). A file of several shapes needs `index` (0-based); ignore_trim=True reads trimmed\n"
       "surfaces whole, with a warning on stderr.\n\n"
@@ -177,14 +177,14 @@ void bind_shapes(py::module_& m) {
       [options](const std::filesystem::path& path, bool ignore_trim) {
         return io::read_shapes(path, options(std::nullopt, ignore_trim));
       },
-      Release(), py::arg("path"), py::kw_only(), py::arg("ignore_trim") = false,
+      Release(), py::arg("path"), py::kw_only(), py::arg("ignore_trim").noconvert() = false,
       "Every curve and surface of a shape file, in order (list of Curve / Surface); see read_shape.");
   m.def(
       "parse_shape_json",
       [options](std::string_view text, std::string_view where, std::optional<std::size_t> index,
                 bool ignore_trim) { return io::parse_shape_json(text, where, options(index, ignore_trim)); },
       py::arg("text"), py::arg("where") = kDefaultWhere, py::kw_only(), py::arg("index") = py::none(),
-      py::arg("ignore_trim") = false,
+      py::arg("ignore_trim").noconvert() = false,
       "Parses {\"curve\": {...}} or {\"surface\": {...}} (docs/formats.md), or a geomdl export ({\"shape\":\n"
       "...}, `index` choosing among several); `where` names the source in messages. Returns a nurbs.Curve "
       "or\n"
@@ -196,7 +196,8 @@ void bind_shapes(py::module_& m) {
       [options](std::string_view text, std::string_view where, bool ignore_trim) {
         return io::parse_obj(text, where, options(std::nullopt, ignore_trim));
       },
-      py::arg("text"), py::arg("where") = kDefaultWhere, py::kw_only(), py::arg("ignore_trim") = false,
+      py::arg("text"), py::arg("where") = kDefaultWhere, py::kw_only(),
+      py::arg("ignore_trim").noconvert() = false,
       "Every curve and surface of OBJ free-form geometry text, in order (list of Curve / Surface), each "
       "over\n"
       "the range its curv or surf statement gives. ignore_trim=True reads trimmed surfaces whole, with a\n"
@@ -224,14 +225,14 @@ void bind_shapes(py::module_& m) {
         if (binary) return py::bytes(text);
         return py::str(text);
       },
-      py::arg("path"), py::kw_only(), py::arg("binary") = false,
+      py::arg("path"), py::kw_only(), py::arg("binary").noconvert() = false,
       "The whole file: str (UTF-8), or bytes with binary=True.\n\nRaises IoError naming the path.");
 }
 
 void bind_polygons(py::module_& m) {
   py::class_<io::Polygon>(m, "Polygon",
                           "A control polygon (input of subdivision schemes and uniform B-splines).")
-      .def(py::init(&make_polygon), py::arg("points"), py::arg("closed") = false,
+      .def(py::init(&make_polygon), py::arg("points"), py::arg("closed").noconvert() = false,
            "points: (n, dim) with n ≥ 1, 1 ≤ dim ≤ 16, finite. Raises InvalidInput otherwise.")
       .def_property_readonly(
           "points", [](const io::Polygon& p) { return Points(p.points); }, "The vertices (n, dim).")
@@ -258,7 +259,7 @@ void bind_geometry(py::module_& m) {
       [](const DoubleArray& points, bool closed) {
         return io::polyline_obj(points_from(points, "points"), closed);
       },
-      py::arg("points"), py::arg("closed") = false,
+      py::arg("points"), py::arg("closed").noconvert() = false,
       "OBJ text of a polyline (n, dim ≤ 3): one `v` line per point and one `l` element.\n\n"
       "Raises InvalidInput for more than 3 coordinates.");
   m.def(
@@ -266,7 +267,8 @@ void bind_geometry(py::module_& m) {
       [](const DoubleArray& points, bool closed, int width, double stroke) {
         return io::polyline_svg(points_from(points, "points"), closed, width, stroke);
       },
-      py::arg("points"), py::arg("closed") = false, py::arg("width") = 800, py::arg("stroke") = 1.5,
+      py::arg("points"), py::arg("closed").noconvert() = false, py::arg("width") = 800,
+      py::arg("stroke") = 1.5,
       "SVG text of the x, y coordinates of a polyline (n, dim ≥ 2), `width` pixels wide.\n\n"
       "Raises InvalidInput for bad points, width or stroke.");
 
@@ -356,7 +358,7 @@ void bind_geometry(py::module_& m) {
           throw InvalidInput("points: " + std::to_string(P.cols()) + " columns, expected 2 or 3");
         return polyline_segments(P, closed, state);
       },
-      py::arg("points"), py::arg("closed") = false, py::arg("state") = 0,
+      py::arg("points"), py::arg("closed").noconvert() = false, py::arg("state") = 0,
       "The segments (i, i + 1) of a polyline (n, 2|3), plus (n − 1, 0) when closed, all with `state`.");
   m.def("vertex_normals", &vertex_normals, py::arg("mesh"),
         "Area-weighted unit vertex normals (V, 3); zero rows for vertices without area.");
@@ -464,7 +466,8 @@ void bind_dispatch(py::module_& m) {
       [](const std::filesystem::path& path, const DoubleArray& points, bool polyline, bool closed) {
         io::write(path, io::PointSet{points_from(points, "points"), {polyline, closed, {}}});
       },
-      py::arg("path"), py::arg("points"), py::arg("polyline") = false, py::arg("closed") = false,
+      py::arg("path"), py::arg("points"), py::arg("polyline").noconvert() = false,
+      py::arg("closed").noconvert() = false,
       "Writes a point set (n, dim) in the format its extension names (.json, .npy, .ply, .obj),\n"
       "atomically; `polyline` joins the points by an OBJ `l` line (back to the first when `closed`).");
   m.def(
@@ -474,7 +477,8 @@ void bind_dispatch(py::module_& m) {
             io::encode(io::PointSet{points_from(points, "points"), {polyline, closed, {}}}, format);
         return file_result(bytes, format == "npy" || format == "ply");
       },
-      py::arg("points"), py::arg("format"), py::arg("polyline") = false, py::arg("closed") = false,
+      py::arg("points"), py::arg("format"), py::arg("polyline").noconvert() = false,
+      py::arg("closed").noconvert() = false,
       "The file contents of a point set in `format` (json, npy, ply, obj): str, or bytes for npy and ply.");
 
   // write(path, thing) and encode(thing, format) for every content that is written.
@@ -767,7 +771,7 @@ void bind_experiment(py::module_& m) {
         return run(e, o);
       },
       py::arg("experiment"), py::kw_only(), py::arg("out_dir") = defaults.out_dir,
-      py::arg("exr") = py::none(), py::arg("png") = py::none(), py::arg("quiet") = defaults.quiet,
+      py::arg("exr") = py::none(), py::arg("png") = py::none(), py::arg("quiet").noconvert() = defaults.quiet,
       py::arg("threads") = py::none(), py::arg("max_bytes") = static_cast<long long>(defaults.max_bytes),
       "Runs an experiment as `cifs render` does: builds, perturbs, evaluates, renders and writes its "
       "outputs.\n\n"

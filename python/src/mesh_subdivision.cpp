@@ -79,7 +79,7 @@ void bind_mesh_subdivision(py::module_& m) {
         return factored ? sd::factored_subdivide(mesh, s, levels, o) : sd::subdivide(mesh, s, levels, o);
       },
       py::arg("mesh"), py::arg("scheme"), py::arg("levels") = 1, py::kw_only(), py::arg("boundary") = "edge",
-      py::arg("max_bytes") = kDefaultBytes, py::arg("factored") = false,
+      py::arg("max_bytes") = kDefaultBytes, py::arg("factored").noconvert() = false,
       "The mesh refined `levels` times by a named scheme (mesh_schemes()). boundary='edge' smooths "
       "boundary corners along the boundary curve, 'corner' keeps them (Catmull–Clark, Loop). "
       "factored=True: linear subdivision then averaging (catmull-clark on quads, loop), the same mesh to "
@@ -96,7 +96,7 @@ void bind_mesh_subdivision(py::module_& m) {
         return sd::limit_mesh(mesh, s, levels, o);
       },
       py::arg("mesh"), py::arg("scheme"), py::arg("levels") = 1, py::kw_only(), py::arg("boundary") = "edge",
-      py::arg("normals") = false, py::arg("max_bytes") = kDefaultBytes,
+      py::arg("normals").noconvert() = false, py::arg("max_bytes") = kDefaultBytes,
       "The mesh after `levels` steps with every vertex on the limit surface (left eigenvectors of the local "
       "subdivision matrices), and unit limit normals when normals=True (closed meshes; not Butterfly). "
       "catmull-clark, loop, butterfly (interpolating: the vertices themselves), sqrt3.");

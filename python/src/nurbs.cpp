@@ -217,7 +217,7 @@ void bind_curve(py::module_& m) {
                            : make_curve(degree, std::move(knots), P, w);
            }),
            py::arg("degree"), py::arg("knots"), py::arg("points"), py::arg("weights") = py::none(),
-           py::arg("closed") = false,
+           py::arg("closed").noconvert() = false,
            "Validated curve (make_curve / make_closed_curve).\n\n"
            "degree: 1..kMaxDegree. knots: n + degree + 1 knots (open), or the m + 1 breakpoints of the "
            "period\n"
@@ -241,7 +241,7 @@ void bind_curve(py::module_& m) {
       [](const DoubleArray& polygon, int degree, bool closed) {
         return uniform_bspline(points_from(polygon, "points"), degree, closed);
       },
-      py::arg("polygon"), py::arg("degree"), py::arg("closed"),
+      py::arg("polygon"), py::arg("degree"), py::arg("closed").noconvert(),
       "The uniform B-spline of `degree` on a control polygon (n, dim).\n\n"
       "closed: periodic with breakpoints 0..n (n ≥ 2); open: clamped with interior knots 1..n − d − 1.\n"
       "Raises InvalidInput for too few points or a bad degree.");

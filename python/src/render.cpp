@@ -315,7 +315,7 @@ ortho_height: visible height in world units (orthographic); near: smallest visib
         return frame(points_from(points, "frame: points"), o);
       },
       py::arg("points"), py::kw_only(), py::arg("width") = f.width, py::arg("height") = f.height,
-      py::arg("margin") = f.margin, py::arg("perspective") = f.perspective,
+      py::arg("margin") = f.margin, py::arg("perspective").noconvert() = f.perspective,
       py::arg("view_direction") = tuple3(f.view_direction), py::arg("up") = tuple3(f.up),
       py::arg("fov_y") = f.fov_y,
       R"(A Camera that shows all of `points` (float64 (n, 2|3)) with a margin.
@@ -513,7 +513,7 @@ or dtypes, indices out of range, a width ≤ 0, or an image of another size than
         render_polylines(image, camera, lines, style, closed);
       },
       py::arg("image"), py::arg("camera"), py::arg("polylines"), py::kw_only(), py::arg("width") = cs.width,
-      py::arg("color") = tuple3(cs.color), py::arg("closed") = false,
+      py::arg("color") = tuple3(cs.color), py::arg("closed").noconvert() = false,
       R"(Draws polylines (a list of float64 (n, 2|3) arrays, all with the same columns) as one segment set.
 
 Polyline i gets state i; `closed` joins each last point to the first. Same strokes, errors and
@@ -561,7 +561,8 @@ in-place update as render_segments.)");
       py::arg("states") = py::none(), py::arg("color") = tuple3(ss.color),
       py::arg("state_colors") = py::none(), py::arg("ambient") = ss.ambient, py::arg("diffuse") = ss.diffuse,
       py::arg("specular") = ss.specular, py::arg("shininess") = ss.shininess,
-      py::arg("headlight") = ss.headlight, py::arg("light_direction") = tuple3(ss.light_direction),
+      py::arg("headlight").noconvert() = ss.headlight,
+      py::arg("light_direction") = tuple3(ss.light_direction),
       py::arg("samples_per_side") = ss.samples_per_side, py::arg("threads") = ss.threads,
       R"(Z-buffered, supersampled, Blinn–Phong shaded mesh rendering into `image` (in place).
 
@@ -627,7 +628,8 @@ states size mismatch or an image of another size than the camera.)");
       py::arg("image"), py::arg("camera"), py::arg("automaton"), py::arg("nets"), py::kw_only(),
       py::arg("samples") = co.samples, py::arg("seed") = co.seed, py::arg("threads") = co.threads,
       py::arg("depth") = co.depth, py::arg("pixel_tolerance") = co.pixel_tolerance,
-      py::arg("rational") = co.rational, py::arg("color") = tuple3(co.color), py::arg("progress") = false,
+      py::arg("rational").noconvert() = co.rational, py::arg("color") = tuple3(co.color),
+      py::arg("progress").noconvert() = false,
       R"(The chaos game of a controlled IFS added to the `density` channel of `image` (in place).
 
 automaton: cifs.automata.Automaton; nets: one float64 array per initial entry, (size(state), 2|3),
@@ -834,7 +836,7 @@ void bind_point_ifs(py::module_& m) {
       },
       py::arg("maps"), py::kw_only(), py::arg("samples") = h.samples, py::arg("seed") = h.seed,
       py::arg("threads") = h.threads, py::arg("width") = h.width, py::arg("height") = h.height,
-      py::arg("bounds") = h.bounds, py::arg("burn_in") = h.burn_in, py::arg("progress") = false,
+      py::arg("bounds") = h.bounds, py::arg("burn_in") = h.burn_in, py::arg("progress").noconvert() = false,
       R"(The chaos game of an affine IFS (a list of cifs.ifs.AffineMap, maps drawn with their probabilities)
 binned into a width × height Histogram over `bounds`.
 

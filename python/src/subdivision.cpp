@@ -245,7 +245,7 @@ repeated one, a value that does not parse, a non-integer or out-of-range integer
          std::size_t max_points) {
         return sd::refine(scheme, P, closed, steps, sd::RefineOptions{ends, max_points});
       },
-      py::arg("scheme"), py::arg("P"), py::arg("closed"), py::arg("steps") = 1, py::kw_only(),
+      py::arg("scheme"), py::arg("P"), py::arg("closed").noconvert(), py::arg("steps") = 1, py::kw_only(),
       py::arg("ends") = sd::Ends::automatic, py::arg("max_points") = sd::RefineOptions{}.max_points,
       py::call_guard<py::gil_scoped_release>(),
       R"doc(Refines a polygon `steps` ≥ 0 times by the scheme's mask.
@@ -285,7 +285,7 @@ epsilon: 0 (left half) or 1 (right half). Raises cifs.InvalidInput otherwise.)do
         return sd::scheme_bcifs(scheme, window, {.pieces = pieces, .layer = layer, .free = free});
       },
       py::arg("scheme"), py::arg("window") = 0, py::arg("pieces") = 1, py::arg("layer") = 0,
-      py::arg("free") = false,
+      py::arg("free").noconvert() = false,
       "BC-IFS of an open curve of the scheme on windows of `window` points (0: its own N): "
       "cifs.ifs.uniform_curve_bcifs of padded_ifs_matrices.");
   m.def(

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "cifs/errors.hpp"
+#include "cifs/format.hpp"
 
 namespace cifs::render {
 namespace {
@@ -19,6 +20,10 @@ void check_size(std::size_t width, std::size_t height, const char* who) {
                        std::to_string(height) + " is empty");
   if (width > 65536 || height > 65536)
     throw InvalidInput(std::string(who) + ": the image is larger than 65536 pixels on a side");
+}
+
+std::string vector_text(const Eigen::Vector3d& v) {
+  return "(" + number_text(v.x(), 6) + ", " + number_text(v.y(), 6) + ", " + number_text(v.z(), 6) + ")";
 }
 
 double radians(double degrees) {
@@ -32,14 +37,25 @@ ViewTransform view_transform(const Camera& camera) {
   if (!camera.eye.allFinite() || !camera.target.allFinite() || !camera.up.allFinite())
     throw InvalidInput("camera: eye, target and up must be finite");
   const Eigen::Vector3d view = camera.target - camera.eye;
-  if (!(view.norm() > 0)) throw InvalidInput("camera: eye and target coincide");
+  if (!view.allFinite())
+    throw InvalidInput("camera: eye " + vector_text(camera.eye) + " and target " +
+                       vector_text(camera.target) +
+                       " are farther apart than a double holds; move them closer (scale the scene down)");
+  // Scaled before the norms: the squares of coordinates above ~1e154 overflow (an eye at 1e308 was
+  // reported as "up is zero or parallel").
+  const double view_scale = view.cwiseAbs().maxCoeff();
+  if (!(view_scale > 0)) throw InvalidInput("camera: eye and target coincide");
   ViewTransform t;
   t.eye = camera.eye;
-  t.forward = view.normalized();
-  const Eigen::Vector3d side = t.forward.cross(camera.up);
+  t.forward = (view / view_scale).normalized();
+  const double up_scale = camera.up.cwiseAbs().maxCoeff();
+  const Eigen::Vector3d up = up_scale > 0 ? Eigen::Vector3d(camera.up / up_scale) : camera.up;
+  const Eigen::Vector3d side = t.forward.cross(up);
   // Relative test: up must have a component orthogonal to the view direction.
-  if (!(side.norm() > 1e-9 * camera.up.norm()))
-    throw InvalidInput("camera: up is zero or parallel to the viewing direction");
+  if (!(side.norm() > 1e-9 * up.norm()))
+    throw InvalidInput("camera: up " + vector_text(camera.up) +
+                       (up_scale > 0 ? " is parallel to" : " is zero, not across") +
+                       " the viewing direction from eye to target; give an up vector across it");
   t.right = side.normalized();
   t.up = t.right.cross(t.forward);
   t.cx = static_cast<double>(camera.width) / 2;
@@ -97,9 +113,11 @@ Camera frame(const Points& points, const FramingOptions& options) {
     camera.up = {0, 1, 0};
     return camera;
   }
-  const Eigen::Vector3d direction = options.view_direction;
-  if (!direction.allFinite() || !(direction.norm() > 0))
-    throw InvalidInput("frame: view_direction must be finite and non-zero");
+  const Eigen::Vector3d& v = options.view_direction;
+  if (!v.allFinite() || !(v.cwiseAbs().maxCoeff() > 0))
+    throw InvalidInput("camera: the view direction " + vector_text(v) + " is not finite and non-zero");
+  // Scaled first: the norm of a direction of 1e308 overflows, and its normalization gave 0.
+  const Eigen::Vector3d direction = (v / v.cwiseAbs().maxCoeff()).normalized();
   double radius = 0;
   for (Eigen::Index i = 0; i < points.rows(); ++i)
     radius = std::max(radius, (points.row(i).transpose() - centre).norm());
@@ -112,12 +130,12 @@ Camera frame(const Points& points, const FramingOptions& options) {
     // The tighter of the vertical and horizontal half-angles, shrunk to the usable fraction.
     const double tan_half = usable * std::tan(half_v) * std::min(1.0, W / H);
     const double distance = radius / std::sin(std::atan(tan_half));
-    camera.eye = centre + direction.normalized() * distance;
+    camera.eye = centre + direction * distance;
     camera.near = distance * 1e-4;
   } else {
     camera.projection = Projection::orthographic;
     camera.ortho_height = 2 * radius / usable * std::max(1.0, H / W);
-    camera.eye = centre + direction.normalized() * (2 * radius + 1);
+    camera.eye = centre + direction * (2 * radius + 1);
   }
   (void)view_transform(camera);  // refuses an up parallel to view_direction
   return camera;

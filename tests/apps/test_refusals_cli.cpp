@@ -155,3 +155,91 @@ TEST_CASE("cifs scheme refuses a symbol beyond the largest mask at once", "[cli]
   check_error(cifs_cli("scheme symbol --param 'symbol=(1+z)^1024' --analyze"),
               "the power has degree 1024, above the largest mask (512 coefficients, degree 511)");
 }
+
+TEST_CASE("cifs: tolerance modes are bounded before the work, with the estimated figure",
+          "[cli][reliability]") {
+  // Each ran for minutes or hours (or ended in std::bad_alloc) without a figure: the leaves are now
+  // estimated from coarser tolerances (ifs::estimate_tolerance_leaves) and refused at once.
+  const std::string shapes = std::string(CIFS_EXAMPLES_DIR) + "/shapes/";
+  const std::string tall = file("tall.json", R"({"curve": {"degree": 3, "knots": [0, 0, 0, 0, 1, 2, 2, 2, 2],
+      "points": [[0, 0, 0], [1, 2, 0], [2, 0, 1e23], [3, 1, 0], [4, 0, 0]]}})");
+  const std::string out = (scratch() / "tolerance.npy").string();
+  const std::pair<std::string, std::string> cases[] = {
+      // The cubic's length is about 4.6: 4.6e10 pieces of 1e-9 (counted at 1e-4: 421642).
+      {"attractor " + shapes + "cubic.json --tolerance 1e-9", "--tolerance 1e-09: about 4.6"},
+      {"attractor " + shapes + "cubic.json --tolerance 1e-9 -o " + out,
+       "above the limit of 1.07e+09 written"},
+      {"attractor " + tall + " --tolerance 0.01", "e+25 points"},
+      {"attractor " + shapes + "saddle.json --tolerance 1e-4 -o " + out, "needs about 2.0"},
+      {"attractor " + shapes + "saddle.json --tolerance 1e-9 -o " + out, "e+20 points"},
+      {"dimension " + shapes + "cubic.json --max-points 1099511627776",
+       "--max-points 1099511627776: expected 1 to"},
+  };
+  for (const auto& [command, needle] : cases) {
+    const auto start = std::chrono::steady_clock::now();
+    check_error(cifs_cli(command), needle);
+    CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 2);
+  }
+  CHECK(!std::filesystem::exists(out));
+}
+
+TEST_CASE("cifs warns when an SVG drops z", "[cli][reliability]") {
+  // A 3-D curve or polygon drawn as SVG lost z silently; it is still drawn (a top view), with one
+  // warning naming the range of z that was dropped. Quadratic Bézier z = 0, 2, −1: at depth 2 the
+  // points t = 0, 1/4, 1/2, 3/4, 1 have z = 0, 0.6875, 0.75, 0.1875, −1 (B(t) = 4t(1 − t) − t²).
+  const std::string bent = file("bent.json", R"({"curve": {"degree": 2, "knots": [0, 0, 0, 1, 1, 1],
+      "points": [[0, 0, 0], [1, 1, 2], [2, 0, -1]]}})");
+  const std::string flat = file("flat.json", R"({"curve": {"degree": 2, "knots": [0, 0, 0, 1, 1, 1],
+      "points": [[0, 0, 0], [1, 1, 0], [2, 0, 0]]}})");
+  const std::string polygon = file(
+      "bent_polygon.json", R"({"polygon": {"points": [[0, 0, 1], [1, 0, 2], [1, 1, 3]], "closed": true}})");
+  const Run r = cifs_cli("attractor " + bent + " --depth 2 --format svg");
+  CHECK(r.status == 0);
+  CHECK_THAT(r.out, Catch::StartsWith("<svg") || Catch::Contains("<svg"));
+  CHECK(
+      r.err ==
+      "cifs: warning: the SVG is a top view (x, y): z (from -1 to 0.75) is dropped; write json, npy, ply or "
+      "obj to keep it\n");
+  const Run plane = cifs_cli("attractor " + flat + " --depth 2 --format svg");
+  CHECK(plane.status == 0);
+  CHECK(plane.err.empty());
+  const Run refined = cifs_cli("scheme chaikin --refine " + polygon + " --steps 1 --format svg");
+  CHECK(refined.status == 0);
+  // Chaikin keeps z within the polygon's: from 1 to 3 at most, the corners cut at 1/4 and 3/4.
+  CHECK_THAT(refined.err,
+             Catch::StartsWith("cifs: warning: the SVG is a top view (x, y): z (from 1.25 to 2.75)"));
+}
+
+TEST_CASE("cifs: messages at the edges name what the user gave", "[cli][reliability]") {
+  const std::string saddle = std::string(CIFS_EXAMPLES_DIR) + "/shapes/saddle.json";
+  const auto camera = [&](const std::string& name, const std::string& eye, const std::string& target,
+                          const std::string& up) {
+    return file(name + ".json", R"({"shape": ")" + saddle + R"(", "evaluation": {"depth": 2},
+      "camera": {"eye": )" + eye + R"(, "target": )" +
+                                    target + R"(, "up": )" + up + R"(},
+      "render": {"width": 16, "height": 16}, "outputs": {"exr": ")" +
+                                    name + R"(.exr"}})");
+  };
+  // An eye at 1e308 overflowed the norm of the view direction: "camera: up is zero or parallel"; it
+  // renders now, and an eye−target difference beyond a double is named.
+  const Run far = cifs_cli("render " + camera("far_eye", "[1e308, 1e308, 1e308]", "[0, 0, 0]", "[0, 0, 1]") +
+                           " --out-dir " + scratch().string() + " --quiet");
+  INFO(far.err);
+  CHECK(far.status == 0);
+  check_error(
+      cifs_cli("render " + camera("farther_eye", "[1e308, 1e308, 1e308]", "[-1e308, 0, 0]", "[0, 0, 1]") +
+               " --out-dir " + scratch().string()),
+      "camera.eye: the eye is farther from the target than a double holds");
+  check_error(cifs_cli("render " + camera("parallel_up", "[1, 1, 1]", "[0, 0, 0]", "[2, 2, 2]") +
+                       " --out-dir " + scratch().string()),
+              "camera: up (2, 2, 2) is parallel to the viewing direction");
+  // "eigenvalues: the QR iteration did not converge".
+  check_error(cifs_cli("scheme corner-cutting --param a=1e300 --analyze"),
+              "--analyze of corner-cutting with --param a=1e300: ");
+  // Internal function names: "attractor_point_count: … size_t", "surface_mesh: … size_t".
+  check_error(cifs_cli("attractor " + std::string(CIFS_EXAMPLES_DIR) + "/shapes/cubic.json --depth 100 -o " +
+                       (scratch() / "deep.npy").string()),
+              "cifs: depth 100 gives more than 2^64 points; lower the depth");
+  check_error(cifs_cli("attractor " + saddle + " --depth 40 -o " + (scratch() / "deep.npy").string()),
+              "cifs: depth 40 on 2 by 1 patches gives more than 2^64 vertices; lower the depth");
+}

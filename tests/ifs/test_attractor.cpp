@@ -430,3 +430,29 @@ TEST_CASE("Tolerance leaves: the reported radius bounds the attractor piece", "[
         Catch::Contains("has no Cartesian size bound at depth 32"));
   }
 }
+
+TEST_CASE("estimate_tolerance_leaves: exact within its budget, close to the count beyond",
+          "[ifs][tolerance]") {
+  std::mt19937_64 rng(16);
+  const auto count = [](const Automaton& a, const std::vector<Points>& nets, const ToleranceOptions& o) {
+    return static_cast<double>(for_each_leaf_to_tolerance(a, nets, o, [](const ToleranceLeaf&) {}).leaves);
+  };
+  for (const Automaton& a : {uniform_automaton(3), quadratic_automaton(0.3, 1, 2.5)}) {
+    const std::vector<Points> nets{random_points(a.graph[a.initial[0].state].size, 2, rng)};
+    ToleranceOptions o;
+    o.max_depth = 40;
+    for (const double epsilon : {1e-2, 1e-3, 1e-4}) {
+      o.epsilon = epsilon;
+      const double exact = count(a, nets, o);
+      const ToleranceEstimate small = estimate_tolerance_leaves(a, nets, o, 256);
+      const ToleranceEstimate large = estimate_tolerance_leaves(a, nets, o, std::size_t{1} << 24);
+      INFO("epsilon " << epsilon << ": " << exact << " leaves, estimated " << small.leaves);
+      CHECK(large.exact);
+      CHECK(large.leaves == exact);
+      CHECK(small.exact == (exact <= 256));
+      // Curves: the leaves double per halving of the tolerance, up to the pieces' uneven sizes.
+      CHECK(small.leaves > exact / 1.3);
+      CHECK(small.leaves < exact * 1.3);
+    }
+  }
+}

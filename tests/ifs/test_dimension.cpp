@@ -313,5 +313,10 @@ TEST_CASE("tolerance sample: Sierpinski and Koch within 0.01, a smooth curve 1",
     CHECK_THROWS_WITH(ifs::tolerance_sample(ifs_test::uniform_automaton(3),
                                             std::vector<Points>{ifs_test::random_points(4, 2, rng)}, so),
                       Contains("tolerance -1 is not a finite number ≥ 0"));
+    // Nets of two widths: nets_diameter stacked them past the end of its matrix (found by the Python
+    // robustness test under ASan, through the automatic tolerance before any other check).
+    so.epsilon = 0;
+    CHECK_THROWS_WITH(ifs::nets_diameter(std::vector<Points>{Points::Zero(4, 2), Points::Zero(3, 3)}),
+                      Contains("nets[1] has 3 columns, nets[0] has 2"));
   }
 }

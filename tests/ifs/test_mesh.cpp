@@ -216,8 +216,9 @@ TEST_CASE("Meshes refuse bad input before any work", "[ifs][mesh]") {
   const auto nets = automata::initial_nets(t, s);
   ifs::MeshOptions small;
   small.max_bytes = 1 << 20;
-  CHECK_THROWS_WITH(ifs::surface_mesh(t, nets, 12, small), Catch::Contains("MeshOptions::max_bytes"));
-  CHECK_THROWS_WITH(ifs::quad_mesh(t.product, nets, t.patches, 12, small), Catch::Contains("max_bytes"));
+  CHECK_THROWS_WITH(ifs::surface_mesh(t, nets, 12, small), Catch::Contains("GiB held in memory"));
+  CHECK_THROWS_WITH(ifs::quad_mesh(t.product, nets, t.patches, 12, small),
+                    Catch::Contains("GiB held in memory"));
   CHECK_THROWS_AS(ifs::surface_mesh(t, nets, -1), InvalidInput);
   CHECK_THROWS_WITH(ifs::surface_mesh(t, nets, 40), Catch::Contains("lower the depth"));
   // Patches that do not tile their grid.

@@ -575,3 +575,34 @@ TEST_CASE("uniform_bspline: closed cubic at breakpoints is (P_i + 4 P_{i+1} + P_
                     Catch::Contains("at least 4 control points"));
   CHECK_THROWS_AS(nurbs::uniform_bspline(P.topRows(1), 3, true), InvalidInput);
 }
+
+TEST_CASE("Open curves at the edges of double: within γ_4p of the control points (docs/formats.md)",
+          "[nurbs][reliability]") {
+  // Knot ratios of 1e12, spans of 1e-300 and knots near 1e300, weights from 1e-3 to 1e3: open knots
+  // are used as given, every coefficient is in [0, 1], so the error stays within 4p·u of the
+  // largest control point whatever the ratios (long double Cox–de Boor from the definition).
+  Rng rng(12);
+  for (const int p : {2, 4, 10}) {
+    const Eigen::Index n = p + 4;
+    for (const auto& [origin, scale, ratio] :
+         {std::tuple{0.0, 1.0, 1e12}, std::tuple{1e300, 1e290, 1e6}, std::tuple{1e-290, 1e-300, 1e3}}) {
+      Knots t;
+      for (int i = 0; i <= p; ++i) t.push_back(origin);
+      double x = origin;
+      for (Eigen::Index i = 0; i < n - p - 1; ++i) t.push_back(x += scale * (i % 2 ? ratio : 1));
+      for (int i = 0; i <= p; ++i) t.push_back(x + scale);
+      const Points cart = random_points(rng, n, 2);
+      Eigen::VectorXd w(n);
+      for (Eigen::Index i = 0; i < n; ++i) w[i] = i % 2 ? 1e3 : 1e-3;
+      const Curve c = make_curve(p, t, cart, w);
+      const double size = cart.cwiseAbs().maxCoeff();
+      for (int k = 0; k <= 200; ++k) {
+        const double u = t[static_cast<std::size_t>(p)] +
+                         (t[static_cast<std::size_t>(n)] - t[static_cast<std::size_t>(p)]) * k / 200;
+        const Point ref = ref_point(c.knots, p, c.P, true, u);
+        INFO("degree " << p << ", origin " << origin << ", ratio " << ratio << ", u = " << u);
+        CHECK((evaluate(c, u) - ref).cwiseAbs().maxCoeff() <= 4 * p * kEps * size * 2);
+      }
+    }
+  }
+}

@@ -125,7 +125,7 @@ class CameraTest(unittest.TestCase):
         for camera, message in [
             (R.Camera(width=0), "camera: the image size 0 by 512 is empty"),
             (R.Camera(eye=(0, 0, 0)), "camera: eye and target coincide"),
-            (R.Camera(up=(0, 0, 2)), "camera: up is zero or parallel to the viewing direction"),
+            (R.Camera(up=(0, 0, 2)), "camera: up (0, 0, 2) is parallel to the viewing direction from eye to target; give an up vector across it"),
             (R.Camera(ortho_height=0), "camera: ortho_height must be positive and finite"),
             (R.Camera(projection=R.Projection.perspective, fov_y=180),
              "camera: fov_y = 180.000000 degrees is outside (0, 180)"),

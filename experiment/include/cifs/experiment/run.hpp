@@ -40,8 +40,9 @@ struct RunReport {
   std::vector<std::filesystem::path> written;
   int depth = 0;  // depth evaluated (chaos: depth of the sampled nodes)
   std::size_t free_coefficients = 0;
-  double residual = 0;  // largest constraint residual after perturbation
-  std::string summary;  // one line per fact, for the CLI
+  double residual = 0;                // largest constraint residual after perturbation
+  std::string summary;                // one line per fact, for the CLI
+  std::vector<std::string> warnings;  // "outputs.svg: …": what an output drops (the CLI prints them)
 };
 
 /// Runs `experiment`. Its outputs are checked and their temporary files made before any work

@@ -80,6 +80,24 @@ ToleranceResult for_each_leaf_to_tolerance(const automata::Automaton& automaton,
                                            const ToleranceOptions& options,
                                            const ToleranceCallback& callback);
 
+/// An estimate of the size of for_each_leaf_to_tolerance, made in a bounded time before it, so
+/// that a tolerance whose sample would take hours or fill the memory is refused with its figure.
+struct ToleranceEstimate {
+  double leaves = 0;   // the leaves at epsilon: exact when `exact`, else extrapolated (may be +inf)
+  bool exact = false;  // the traversal at epsilon has at most `budget` leaves (then counted)
+};
+
+/// Counts the leaves of the traversal at the tolerances ε·2^k, k = K, K − 1, …, from one above
+/// every root's piece bound (one leaf per root) down to ε, stopping at the first count above
+/// `budget` (the work is about 2·budget leaves). When ε itself is reached the count is exact;
+/// otherwise the leaves grow by a factor g per halving of the tolerance (g = 2^d for pieces of
+/// dimension d: 2 on curves, 4 on surfaces), g taken from the last three counts within the budget
+/// (the mean growth of two halvings) and extrapolated over the k + 1 halvings left. Throws as
+/// for_each_leaf_to_tolerance.
+ToleranceEstimate estimate_tolerance_leaves(const automata::Automaton& automaton,
+                                            std::span<const Points> nets, const ToleranceOptions& options,
+                                            std::size_t budget = 1 << 16);
+
 struct PointsOptions {
   /// Closed shapes: the end of the last piece equals the start of the first, so it is omitted.
   bool closed = false;

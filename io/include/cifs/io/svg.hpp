@@ -31,6 +31,12 @@ void segments_svg(const Segments& segments, const SvgOptions& options, ByteSink&
 /// polyline_segments.
 std::string polyline_svg(const Points& points, bool closed = false, int width = 800, double stroke = 1.5);
 
+/// The warning due when an SVG of these points (`#P by ≥ 2`) drops information: empty when every
+/// coordinate after x and y is 0 (plane drawings), else "the SVG is a top view: z (from A to B) is
+/// dropped; write json, npy, ply or obj to keep it". The writers above stay silent (tests and the
+/// gallery draw top views on purpose); the command line prints it.
+std::string svg_dropped_coordinates(const Eigen::Ref<const Points>& points);
+
 /// One polyline of a figure and its style.
 struct Stroke {
   Points points;  // `#P by ≥ 2`: x, y are drawn
