@@ -171,9 +171,12 @@ std::string eval_surface(const nurbs::Surface& s, const EvalOptions& o) {
   const std::int64_t rows = o.output.empty()
                                 ? std::max<std::int64_t>(n, 1)
                                 : std::max<std::int64_t>(kChunkPoints / std::max<std::int64_t>(n, 1), 1);
-  write_in_chunks(out, n, rows, [&](std::int64_t a, std::int64_t k) {
-    return nurbs::evaluate_grid(
-        s, nurbs::uniform_parameters(u_domain, o.samples, static_cast<int>(a), static_cast<int>(k)), vs);
+  Points grid;  // one chunk of rows, its storage reused from chunk to chunk
+  write_in_chunks(out, n, rows, [&](std::int64_t a, std::int64_t k) -> const Points& {
+    nurbs::evaluate_grid(
+        s, nurbs::uniform_parameters(u_domain, o.samples, static_cast<int>(a), static_cast<int>(k)), vs,
+        grid);
+    return grid;
   });
   return out.finish(o.output);
 }
@@ -378,7 +381,7 @@ std::string surface_attractor(const nurbs::Surface& s, const std::string& format
     // The mesh is built in memory (each node computed once, neighbours shared); its file is encoded a
     // chunk at a time.
     render::Stage stage("surface mesh", o.quiet);
-    const ifs::QuadMesh qm =
+    ifs::QuadMesh qm =
         ifs::surface_mesh(ta, nets, o.depth, {.homogeneous = s.rational, .max_bytes = kMemoryBytes});
     const auto count = static_cast<std::uint64_t>(qm.vertices.rows());
     if (format == "json" || format == "npy") {
@@ -386,15 +389,19 @@ std::string surface_attractor(const nurbs::Surface& s, const std::string& format
       out.write(qm.vertices);
       return out.finish(o.output, " (the " + std::to_string(qm.quads.size()) + " quads' grid, u-major)");
     }
+    // Vertices and states are moved into the mesh; the quads become its flat corner list (the one
+    // conversion left: cifs::Mesh holds faces of any size), their array freed before the file is encoded.
+    const std::size_t quads = qm.quads.size();
     std::vector<int> corners;
-    corners.reserve(4 * qm.quads.size());
+    corners.reserve(4 * quads);
     for (const auto& q : qm.quads) corners.insert(corners.end(), q.begin(), q.end());
-    Mesh mesh = uniform_mesh(qm.vertices, std::move(corners), 4);
-    mesh.states = qm.quad_state;
+    qm.quads = {};
+    Mesh mesh = uniform_mesh(std::move(qm.vertices), std::move(corners), 4);
+    mesh.states = std::move(qm.quad_state);
     if (o.output.empty()) return io::encode(mesh, format);
     io::write(o.output, mesh);
     return "wrote " + o.output.string() + ": " + std::to_string(count) + " vertices, " +
-           std::to_string(qm.quads.size()) + " quads\n";
+           std::to_string(quads) + " quads\n";
   }
 
   if (o.chaos != 0) {

@@ -1,17 +1,23 @@
 // SPDX-License-Identifier: MIT
 // cifs — the quad-mesh attractor of a bicubic NURBS surface (separable and generic routes) against
-// evaluating the same dyadic grid with the NURBS core (evaluate_grid) and with SISL's grid
-// evaluator s1506. Licence: cifs code under MIT; with CIFS_HAVE_SISL the executable links SISL
-// (GNU AGPL v3), see bench/CMakeLists.txt. `per_pt` is CPU ns per grid point.
+// evaluating the same dyadic grid with the NURBS core (evaluate_grid, and de Boor per point) and with
+// SISL's grid evaluator s1506. Licence: cifs code under MIT; with CIFS_HAVE_SISL the executable links
+// SISL (GNU AGPL v3), see bench/CMakeLists.txt. `per_pt` is CPU ns per grid point.
 //
-// The meshes also fill their quads and leaf states (20 bytes per quad); the grid evaluators return
-// points only.
+// The argument is the number of patches per direction at depth 8: 2, 5, 8, 16 give 513², 1281²,
+// 2049² and 4097² nodes, on both sides of glibc's 32 MiB mmap threshold. The cifs routes are timed
+// twice: returning a fresh output (the default allocator: every output above the threshold is a
+// fresh mmap, faulted in on each call) and writing into the caller's output (`_into`: storage reused,
+// as SISL's buffer, allocated once outside the loop). The meshes also fill their quads and leaf
+// states (20 bytes per quad); the grid evaluators return points only.
 
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <random>
+#include <string>
 
 #include "cifs/automata/tensor.hpp"
 #include "cifs/ifs/mesh.hpp"
@@ -25,8 +31,8 @@ namespace ifs = cifs::ifs;
 
 constexpr int kDepth = 8;
 
-/// Bicubic, 8 × 8 control points in [−10, 10]³, clamped non-uniform knots: 5 × 5 patches; the
-/// mesh at depth 8 has 1281² vertices.
+/// Bicubic, (A + 3)² control points in [−10, 10]³, clamped non-uniform knots: A × A patches; the
+/// mesh at depth 8 has (256·A + 1)² vertices (A = 5: 1281², the case of the earlier tables).
 struct SurfaceCase {
   nurbs::Surface surface;
   automata::TensorAutomaton automaton;
@@ -44,10 +50,10 @@ std::vector<double> node_parameters(const nurbs::Knots& t, int p) {
   return out;
 }
 
-SurfaceCase make_case() {
+SurfaceCase make_case(int patches) {
   std::mt19937_64 rng(8);
   std::uniform_real_distribution<double> coord(-10, 10), length(1, 4);
-  const int n = 8, p = 3;
+  const int p = 3, n = patches + p;
   std::array<nurbs::Knots, 2> knots;
   for (auto& t : knots) {
     t.assign(static_cast<std::size_t>(n + p + 1), 0.0);
@@ -74,12 +80,17 @@ SurfaceCase make_case() {
   return c;
 }
 
-const SurfaceCase& the_case() {
-  static const SurfaceCase c = make_case();
-  return c;
+const SurfaceCase& case_for(const benchmark::State& state) {
+  static std::map<int, SurfaceCase> cases;
+  const auto patches = static_cast<int>(state.range(0));
+  auto it = cases.find(patches);
+  if (it == cases.end()) it = cases.emplace(patches, make_case(patches)).first;
+  return it->second;
 }
 
 void report(benchmark::State& state, std::size_t points) {
+  const std::string side = std::to_string(256 * state.range(0) + 1);
+  state.SetLabel(side + "x" + side);
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(points));
   state.counters["per_pt"] =
       benchmark::Counter(static_cast<double>(points),
@@ -91,7 +102,7 @@ std::size_t point_count(const SurfaceCase& c) {
 }
 
 void BM_surface_separable(benchmark::State& state) {
-  const SurfaceCase& c = the_case();
+  const SurfaceCase& c = case_for(state);
   for (auto _ : state) {
     ifs::QuadMesh m = ifs::surface_mesh(c.automaton, c.nets, kDepth);
     benchmark::DoNotOptimize(m.vertices.data());
@@ -99,8 +110,19 @@ void BM_surface_separable(benchmark::State& state) {
   report(state, point_count(c));
 }
 
+void BM_surface_separable_into(benchmark::State& state) {
+  const SurfaceCase& c = case_for(state);
+  ifs::QuadMesh m;
+  ifs::surface_mesh(c.automaton, c.nets, kDepth, m);  // faulted in once, as SISL's buffer
+  for (auto _ : state) {
+    ifs::surface_mesh(c.automaton, c.nets, kDepth, m);
+    benchmark::DoNotOptimize(m.vertices.data());
+  }
+  report(state, point_count(c));
+}
+
 void BM_surface_generic(benchmark::State& state) {
-  const SurfaceCase& c = the_case();
+  const SurfaceCase& c = case_for(state);
   for (auto _ : state) {
     ifs::QuadMesh m = ifs::quad_mesh(c.automaton.product, c.nets, c.automaton.patches, kDepth);
     benchmark::DoNotOptimize(m.vertices.data());
@@ -109,7 +131,7 @@ void BM_surface_generic(benchmark::State& state) {
 }
 
 void BM_surface_grid(benchmark::State& state) {
-  const SurfaceCase& c = the_case();
+  const SurfaceCase& c = case_for(state);
   for (auto _ : state) {
     Points E = nurbs::evaluate_grid(c.surface, c.us, c.vs);
     benchmark::DoNotOptimize(E.data());
@@ -117,9 +139,33 @@ void BM_surface_grid(benchmark::State& state) {
   report(state, point_count(c));
 }
 
+void BM_surface_grid_into(benchmark::State& state) {
+  const SurfaceCase& c = case_for(state);
+  Points E;
+  nurbs::evaluate_grid(c.surface, c.us, c.vs, E);  // faulted in once, as SISL's buffer
+  for (auto _ : state) {
+    nurbs::evaluate_grid(c.surface, c.us, c.vs, E);
+    benchmark::DoNotOptimize(E.data());
+  }
+  report(state, point_count(c));
+}
+
+/// De Boor per point (nurbs::evaluate(s, u, v)) into a buffer allocated once.
+void BM_surface_deboor(benchmark::State& state) {
+  const SurfaceCase& c = case_for(state);
+  Points out(static_cast<Eigen::Index>(point_count(c)), 3);
+  for (auto _ : state) {
+    Eigen::Index row = 0;
+    for (const double u : c.us)
+      for (const double v : c.vs) out.row(row++) = nurbs::evaluate(c.surface, u, v);
+    benchmark::DoNotOptimize(out.data());
+  }
+  report(state, point_count(c));
+}
+
 #ifdef CIFS_HAVE_SISL
 void BM_surface_sisl_s1506(benchmark::State& state) {
-  const SurfaceCase& c = the_case();
+  const SurfaceCase& c = case_for(state);
   const SislSurfPtr s = to_sisl(c.surface);
   std::vector<double> us = c.us, vs = c.vs;
   std::vector<double> out(point_count(c) * 3), normals(point_count(c) * 3);
@@ -129,12 +175,22 @@ void BM_surface_sisl_s1506(benchmark::State& state) {
   }
   report(state, point_count(c));
 }
-BENCHMARK(BM_surface_sisl_s1506)->Unit(benchmark::kMillisecond);
 #endif
 
-BENCHMARK(BM_surface_separable)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_surface_generic)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_surface_grid)->Unit(benchmark::kMillisecond);
+/// The sizes, in the order of a table row: SISL, then the cifs routes.
+void sizes(benchmark::internal::Benchmark* b) {
+  for (const int patches : {2, 5, 8, 16}) b->Arg(patches);
+  b->Unit(benchmark::kMillisecond);
+}
+#ifdef CIFS_HAVE_SISL
+BENCHMARK(BM_surface_sisl_s1506)->Apply(sizes);
+#endif
+BENCHMARK(BM_surface_separable)->Apply(sizes);
+BENCHMARK(BM_surface_separable_into)->Apply(sizes);
+BENCHMARK(BM_surface_grid)->Apply(sizes);
+BENCHMARK(BM_surface_grid_into)->Apply(sizes);
+BENCHMARK(BM_surface_deboor)->Apply(sizes);
+BENCHMARK(BM_surface_generic)->Arg(5)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

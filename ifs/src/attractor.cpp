@@ -296,8 +296,8 @@ void emit_points(const Automaton& automaton, std::span<const Points> nets, int d
 
 }  // namespace
 
-Points attractor_points(const Automaton& automaton, std::span<const Points> nets, int depth,
-                        const PointsOptions& options) {
+void attractor_points(const Automaton& automaton, std::span<const Points> nets, int depth, Points& out,
+                      const PointsOptions& options) {
   // Refuse before any work: the output is allocated once, exactly.
   const auto cols = nets.empty() ? 0 : nets[0].cols();
   const StencilTables t = stencil_tables(
@@ -315,14 +315,19 @@ Points attractor_points(const Automaton& automaton, std::span<const Points> nets
             << " GiB (PointsOptions::max_bytes); lower the depth or raise the limit";
         throw InvalidInput(msg.str());
       });
-  Points out(static_cast<Eigen::Index>(t.count), cols);
-  advise_huge_pages(out.data(), static_cast<std::size_t>(out.size()) * sizeof(double));
+  resize_huge(out, static_cast<Eigen::Index>(t.count), cols);
   double* cursor = out.data();
   emit_points(automaton, nets, depth, t, options.closed, [&](Eigen::Index rows) {
     double* at = cursor;
     cursor += rows * cols;
     return at;
   });
+}
+
+Points attractor_points(const Automaton& automaton, std::span<const Points> nets, int depth,
+                        const PointsOptions& options) {
+  Points out;
+  attractor_points(automaton, nets, depth, out, options);
   return out;
 }
 

@@ -78,10 +78,11 @@ Grid make_grid(int A, int B, int depth, std::size_t cols, const MeshOptions& opt
 /// (u, v). The quads are appended a row at a time from one row of cells shifted by a vertex row
 /// each time: one pass over the output, never zeroed first (16 of the 20 connectivity bytes a cell).
 /// The routes fill quad_state themselves.
-QuadMesh allocate(const Grid& grid, Eigen::Index cols) {
-  QuadMesh mesh;
-  mesh.vertices.resize(static_cast<Eigen::Index>(grid.vertices), cols);
-  advise_huge_pages(mesh.vertices.data(), static_cast<std::size_t>(mesh.vertices.size()) * sizeof(double));
+/// The storage of `mesh` is reused when it is large enough (no page faults when a caller meshes
+/// into the same object again).
+void allocate(const Grid& grid, Eigen::Index cols, QuadMesh& mesh) {
+  resize_huge(mesh.vertices, static_cast<Eigen::Index>(grid.vertices), cols);
+  mesh.quads.clear();
   reserve_huge(mesh.quads, grid.quads);
   const int row = grid.cv + 1;
   std::vector<std::array<int, 4>> line(static_cast<std::size_t>(grid.cv));
@@ -91,7 +92,6 @@ QuadMesh allocate(const Grid& grid, Eigen::Index cols) {
     for (auto& quad : line)
       for (int& v : quad) v += row;
   }
-  return mesh;
 }
 
 void finish(QuadMesh& mesh, const MeshOptions& options) {
@@ -168,8 +168,8 @@ std::size_t mesh_bytes(std::size_t vertices, std::size_t cols, std::size_t quads
   return v > kSaturated - q ? kSaturated : v + q;
 }
 
-QuadMesh surface_mesh(const automata::TensorAutomaton& t, std::span<const Points> nets, int depth,
-                      const MeshOptions& options) {
+void surface_mesh(const automata::TensorAutomaton& t, std::span<const Points> nets, int depth, QuadMesh& mesh,
+                  const MeshOptions& options) {
   // The route reads the factors and the state pairs, never the product's matrices: validating the
   // product (every 16 by 16 matrix of a bicubic surface) costs as much as a depth-8 mesh's quads.
   for (const Automaton& f : t.factors) validate(f);
@@ -194,8 +194,10 @@ QuadMesh surface_mesh(const automata::TensorAutomaton& t, std::span<const Points
     if (t.patches[k] != std::array<int, 2>{static_cast<int>(k) / B, static_cast<int>(k) % B})
       throw InvalidInput("surface_mesh: patch " + std::to_string(k) + " is not in u-major order");
   const Eigen::Index C = nets[0].cols();
+  if (options.homogeneous && C < 2)
+    throw InvalidInput("surface_mesh: homogeneous rows need at least 2 columns (w·x, w), got " +
+                       std::to_string(C));
   const Grid grid = make_grid(A, B, depth, static_cast<std::size_t>(C), options, "surface_mesh");
-  QuadMesh mesh = allocate(grid, C);
 
   // Curve stencil tables: row I of F[dir] is the functional, on the net of the segment owning
   // node I, of the point at node I — the factor's attractor under identity nets.
@@ -213,6 +215,10 @@ QuadMesh surface_mesh(const automata::TensorAutomaton& t, std::span<const Points
   if (nets[0].rows() != p1 * q1)
     throw InvalidInput("surface_mesh: nets of " + std::to_string(nets[0].rows()) +
                        " rows, the factors give " + std::to_string(p1) + " by " + std::to_string(q1));
+  // Homogeneous rows are divided by w a vertex row at a time, straight into the output: no whole
+  // homogeneous mesh, and no second allocation of the vertices.
+  const Eigen::Index D = options.homogeneous ? C - 1 : C;
+  allocate(grid, D, mesh);
 
   // v pass once per patch row a: Y_k (k ≤ p) is row k of every patch net of the row taken along v
   // at the nodes the patch owns, i.e. Y_k(J) = Σ_l F_v(J, l)·N_b(k·(q+1) + l) — a `cv + 1 by C`
@@ -220,6 +226,7 @@ QuadMesh surface_mesh(const automata::TensorAutomaton& t, std::span<const Points
   // combination Σ_k F_u(I, k)·Y_k over one contiguous run of (cv + 1)·C doubles.
   const Eigen::Index width = static_cast<Eigen::Index>(grid.cv + 1) * C;
   std::vector<double> Y(static_cast<std::size_t>(p1 * width));
+  std::vector<double> H(options.homogeneous ? static_cast<std::size_t>(width) : 0);  // one homogeneous row
   const RowKernel combine = row_kernel(p1);
   for (int a = 0; a < A; ++a) {
     for (int b = 0; b < B; ++b) {
@@ -236,9 +243,24 @@ QuadMesh surface_mesh(const automata::TensorAutomaton& t, std::span<const Points
           }
         }
     }
-    for (int I = a * grid.side, end = I + owned(grid, a, A); I < end; ++I)
-      combine(F[0].data() + static_cast<Eigen::Index>(I) * p1, p1, Y.data(), width,
-              mesh.vertices.data() + static_cast<Eigen::Index>(I) * width);
+    for (int I = a * grid.side, end = I + owned(grid, a, A); I < end; ++I) {
+      const double* f = F[0].data() + static_cast<Eigen::Index>(I) * p1;
+      double* row = mesh.vertices.data() + static_cast<Eigen::Index>(I) * (grid.cv + 1) * D;
+      if (!options.homogeneous) {
+        combine(f, p1, Y.data(), width, row);
+        continue;
+      }
+      combine(f, p1, Y.data(), width, H.data());
+      for (int J = 0; J <= grid.cv; ++J, row += D) {
+        const double* h = H.data() + static_cast<Eigen::Index>(J) * C;
+        const double w = h[D];
+        if (w == 0)
+          throw InvalidInput("surface_mesh: vertex " +
+                             std::to_string(static_cast<std::size_t>(I) * (grid.cv + 1) + J) +
+                             " has weight 0 (a point at infinity)");
+        for (Eigen::Index c = 0; c < D; ++c) row[c] = h[c] / w;  // as cartesian(): the same bits
+      }
+    }
   }
 
   // Leaf states: the product state of the pair of factor leaf states. Rows I with the same u leaf
@@ -248,6 +270,7 @@ QuadMesh surface_mesh(const automata::TensorAutomaton& t, std::span<const Points
   for (StateId s = 0; s < t.factor_states.size(); ++s)
     pair_id[t.factor_states[s][0] * nv_states + t.factor_states[s][1]] = static_cast<std::uint32_t>(s);
   std::vector<std::vector<std::uint32_t>> state_row(boost::num_vertices(t.factors[0].graph));
+  mesh.quad_state.clear();
   reserve_huge(mesh.quad_state, grid.quads);
   for (int I = 0; I < grid.cu; ++I) {
     const StateId su = leaves[0][static_cast<std::size_t>(I)];
@@ -258,7 +281,12 @@ QuadMesh surface_mesh(const automata::TensorAutomaton& t, std::span<const Points
     }
     mesh.quad_state.insert(mesh.quad_state.end(), states.begin(), states.end());
   }
-  finish(mesh, options);
+}
+
+QuadMesh surface_mesh(const automata::TensorAutomaton& automaton, std::span<const Points> nets, int depth,
+                      const MeshOptions& options) {
+  QuadMesh mesh;
+  surface_mesh(automaton, nets, depth, mesh, options);
   return mesh;
 }
 
@@ -425,7 +453,8 @@ QuadMesh quad_mesh(const Automaton& automaton, std::span<const Points> nets,
   const Grid grid = make_grid(A, B, depth, static_cast<std::size_t>(C), options, "quad_mesh");
   const NodeTables tables = node_tables(automaton, states, std::min(options.max_table_depth, depth),
                                         grid.vertices * static_cast<std::size_t>(C));
-  QuadMesh mesh = allocate(grid, C);
+  QuadMesh mesh;
+  allocate(grid, C, mesh);
   assign_huge(mesh.quad_state, grid.quads, std::uint32_t{0});  // written block by block, out of order
   const int row = grid.cv + 1;
   emit_patches(automaton, nets, depth, tables, mesh, [&](std::size_t i) {

@@ -148,7 +148,7 @@ Point evaluate(const Surface& s, double u, double v) {
   return out;
 }
 
-Points evaluate_grid(const Surface& s, std::span<const double> us, std::span<const double> vs) {
+void evaluate_grid(const Surface& s, std::span<const double> us, std::span<const double> vs, Points& out) {
   const int q = s.degree[1];
   check_parameters(s, Direction::u, us);
   check_parameters(s, Direction::v, vs);
@@ -160,13 +160,17 @@ Points evaluate_grid(const Surface& s, std::span<const double> us, std::span<con
     vspan[b] = detail::find_span(s.knots[1].data(), q, nv, vs[b], b ? vspan[b - 1] : q);
     detail::basis(s.knots[1].data(), q, vspan[b], vs[b], Nv.data() + b * static_cast<std::size_t>(q + 1));
   }
-  Points out(static_cast<Eigen::Index>(us.size() * vs.size()), dimension(s));
-  advise_huge_pages(out.data(), static_cast<std::size_t>(out.size()) * sizeof(double));
+  resize_huge(out, static_cast<Eigen::Index>(us.size() * vs.size()), Eigen::Index{dimension(s)});
   std::vector<double> line(static_cast<std::size_t>(s.count[1] * s.P.cols()));
   detail::with_cols(s.P.cols(), [&](auto cols) {
     std::vector<double> scratch = detail::scratch<cols>(s.P.cols());
     grid_rows<cols>(s, us, vspan, Nv.data(), line.data(), out.data(), scratch.data());
   });
+}
+
+Points evaluate_grid(const Surface& s, std::span<const double> us, std::span<const double> vs) {
+  Points out;
+  evaluate_grid(s, us, vs, out);
   return out;
 }
 

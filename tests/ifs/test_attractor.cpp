@@ -258,6 +258,36 @@ Chunks stacked_chunks(const Automaton& a, std::span<const Points> nets, int K, c
 
 }  // namespace
 
+TEST_CASE("attractor_points into an output: the streamed points, bit for bit, whatever `out` held",
+          "[ifs][stream]") {
+  std::mt19937_64 rng(13);
+  const Automaton a = mixed_automaton(rng, 0.7);
+  const std::vector<Points> nets{random_points(3, 2, rng), random_points(4, 2, rng)};
+  Points out = Points::Constant(7, 5, 1.5);  // another size and column count to start with
+  // Larger, smaller, the same size twice (storage kept), and open/closed of one depth (one row apart).
+  for (const auto& [K, closed] : std::vector<std::pair<int, bool>>{
+           {9, false}, {4, false}, {4, false}, {6, true}, {6, false}, {0, false}, {9, true}}) {
+    INFO("depth " << K << ", closed " << closed << ", out held " << out.rows() << " rows");
+    PointsOptions options;
+    options.closed = closed;
+    const bool same_size =
+        out.rows() == static_cast<Eigen::Index>(attractor_point_count(a, K, closed)) && out.cols() == 2;
+    const double* storage = out.data();
+    attractor_points(a, nets, K, out, options);
+    if (same_size) CHECK(out.data() == storage);
+    const Chunks c = stacked_chunks(a, nets, K, options);
+    REQUIRE(out.rows() == c.rows.rows());
+    CHECK(out == c.rows);
+    CHECK(out == attractor_points(a, nets, K, options));
+  }
+  // A refusal leaves the output as it was.
+  const Points before = out;
+  PointsOptions small;
+  small.max_bytes = 100;
+  CHECK_THROWS_AS(attractor_points(a, nets, 9, out, small), InvalidInput);
+  CHECK(out == before);
+}
+
 TEST_CASE("for_each_attractor_chunk: the points of attractor_points, bit for bit, in bounded chunks",
           "[ifs][stream]") {
   std::mt19937_64 rng(11);

@@ -99,6 +99,53 @@ TEST_CASE("surface_mesh and quad_mesh agree on tensor automata", "[ifs][mesh]") 
   }
 }
 
+TEST_CASE("surface_mesh into a mesh: the returned mesh and cartesian(homogeneous), whatever it held",
+          "[ifs][mesh]") {
+  cifs_test::Rng rng(17);
+  ifs::QuadMesh out;  // reused across trials: larger, smaller and equal sizes, 3 or 4 columns before
+  for (int trial = 0; trial < 12; ++trial) {
+    const std::array<int, 2> degree{cifs_test::uniform_int(rng, 1, 4), cifs_test::uniform_int(rng, 1, 3)};
+    const std::array<int, 2> count{degree[0] + cifs_test::uniform_int(rng, 1, 3),
+                                   degree[1] + cifs_test::uniform_int(rng, 1, 3)};
+    const bool rational = trial % 3 != 0;
+    const nurbs::Surface s = random_surface(rng, degree, count, cifs_test::coin(rng), rational);
+    const automata::TensorAutomaton t = automata::tensor_automaton(s);
+    const auto nets = automata::initial_nets(t, s);
+    const int depth = trial % 4 == 3 ? 1 : 3 - trial % 4;
+    INFO("trial " << trial << ", depth " << depth << ", rational " << rational << ", out held "
+                  << out.vertices.rows() << " by " << out.vertices.cols());
+    ifs::surface_mesh(t, nets, depth, out, {rational});
+    const ifs::QuadMesh fresh = ifs::surface_mesh(t, nets, depth, {rational});
+    REQUIRE(out.vertices.rows() == fresh.vertices.rows());
+    REQUIRE(out.vertices.cols() == 3);
+    CHECK(out.vertices == fresh.vertices);
+    CHECK(out.quads == fresh.quads);
+    CHECK(out.quad_state == fresh.quad_state);
+    // Rational: the division by w a row at a time gives cartesian()'s bits on the homogeneous mesh.
+    if (rational) CHECK(out.vertices == ifs::cartesian(ifs::surface_mesh(t, nets, depth, {false}).vertices));
+    // The same call again, over other contents: storage kept, everything rewritten.
+    const double* storage = out.vertices.data();
+    const auto* quads = out.quads.data();
+    out.vertices.setConstant(-1);
+    out.quads.front() = {-1, -1, -1, -1};
+    out.quad_state.push_back(7);
+    ifs::surface_mesh(t, nets, depth, out, {rational});
+    CHECK(out.vertices.data() == storage);
+    CHECK(out.quads.data() == quads);
+    CHECK(out.vertices == fresh.vertices);
+    CHECK(out.quads == fresh.quads);
+    CHECK(out.quad_state == fresh.quad_state);
+  }
+  // A refusal leaves the mesh as it was.
+  const nurbs::Surface s = random_surface(rng, {2, 2}, {4, 4}, true, false);
+  const automata::TensorAutomaton t = automata::tensor_automaton(s);
+  const ifs::QuadMesh before = out;
+  CHECK_THROWS_AS(ifs::surface_mesh(t, automata::initial_nets(t, s), 6, out, {.max_bytes = 1000}),
+                  InvalidInput);
+  CHECK(out.vertices == before.vertices);
+  CHECK(out.quads == before.quads);
+}
+
 TEST_CASE("Quad meshes are watertight disks", "[ifs][mesh]") {
   cifs_test::Rng rng(9);
   const nurbs::Surface s = random_surface(rng, {3, 2}, {6, 5}, false, true);

@@ -168,6 +168,33 @@ TEST_CASE("evaluate_grid equals pointwise evaluation to the last bit, in any par
   }
 }
 
+TEST_CASE("evaluate_grid into an output: pointwise evaluation to the last bit, whatever `out` held",
+          "[nurbs][surface]") {
+  Points out;  // reused across seeds: every size, column count and previous content in turn
+  for (int seed = 0; seed < 60; ++seed) {
+    Rng rng(3000 + seed);
+    const RandomSurface r = random_surface(rng);
+    INFO("seed " << seed << ": " << r.what << ", out held " << out.rows() << " by " << out.cols());
+    const auto us = direction_probes(rng, r, 0, 1 + seed % 7), vs = direction_probes(rng, r, 1, 1 + seed % 5);
+    evaluate_grid(r.s, us, vs, out);
+    REQUIRE(out.rows() == static_cast<Eigen::Index>(us.size() * vs.size()));
+    REQUIRE(out.cols() == r.cart.cols());
+    double worst = 0;
+    for (std::size_t a = 0; a < us.size(); ++a)
+      for (std::size_t b = 0; b < vs.size(); ++b)
+        worst = std::max(
+            worst, diff(out.row(static_cast<Eigen::Index>(a * vs.size() + b)), evaluate(r.s, us[a], vs[b])));
+    CHECK(worst == 0.0);
+    CHECK(out == evaluate_grid(r.s, us, vs));
+    // Same size again, over other values: the storage is kept and every coefficient rewritten.
+    const double* storage = out.data();
+    out.setConstant(std::numeric_limits<double>::quiet_NaN());
+    evaluate_grid(r.s, us, vs, out);
+    CHECK(out.data() == storage);
+    CHECK(out == evaluate_grid(r.s, us, vs));
+  }
+}
+
 TEST_CASE("surface partial derivatives: definition, Leibniz' rule, finite differences", "[nurbs][surface]") {
   for (int seed = 0; seed < 150; ++seed) {
     Rng rng(2000 + seed);

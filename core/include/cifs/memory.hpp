@@ -22,6 +22,16 @@ void reserve_huge(std::vector<T>& v, std::size_t n) {
   advise_huge_pages(v.data(), v.capacity() * sizeof(T));
 }
 
+/// m.resize(rows, cols) for an output written next: storage of another size is fresh and advised for
+/// huge pages; storage that already has rows · cols coefficients is kept, so that a caller reusing
+/// its output across calls faults its pages in once (contents are left as they were).
+template <class Matrix, class Index>
+void resize_huge(Matrix& m, Index rows, Index cols) {
+  const bool fresh = m.size() != rows * cols;
+  m.resize(rows, cols);
+  if (fresh) advise_huge_pages(m.data(), static_cast<std::size_t>(m.size()) * sizeof(*m.data()));
+}
+
 /// v.assign(n, value) into storage advised for huge pages.
 template <class T>
 void assign_huge(std::vector<T>& v, std::size_t n, const T& value) {

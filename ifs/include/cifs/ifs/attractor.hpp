@@ -126,6 +126,11 @@ std::size_t attractor_point_count(const automata::Automaton& automaton, int dept
 /// constant). Throws InvalidInput when the output would exceed `options.max_bytes`.
 Points attractor_points(const automata::Automaton& automaton, std::span<const Points> nets, int depth,
                         const PointsOptions& options = {});
+/// The same into `out`, whose storage is reused when it already has the size: repeated calls of one
+/// size fault its pages in once (fresh storage is advised for huge pages). `out` must not be one of
+/// the nets. A refusal (InvalidInput) leaves it unchanged.
+void attractor_points(const automata::Automaton& automaton, std::span<const Points> nets, int depth,
+                      Points& out, const PointsOptions& options = {});
 
 /// Consecutive rows of attractor points (`rows by cols`); valid during the call only.
 using PointsChunkCallback = std::function<void(const Eigen::Ref<const Points>& rows)>;

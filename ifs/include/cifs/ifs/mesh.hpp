@@ -61,6 +61,11 @@ std::size_t mesh_bytes(std::size_t vertices, std::size_t cols, std::size_t quads
 /// above `options.max_bytes`.
 QuadMesh surface_mesh(const automata::TensorAutomaton& automaton, std::span<const Points> nets, int depth,
                       const MeshOptions& options = {});
+/// The same into `mesh`, whose storage (vertices, quads, states) is reused when it is large enough:
+/// repeated calls of one size fault its pages in once (fresh storage is advised for huge pages).
+/// Refusals of the size or the nets (InvalidInput) leave `mesh` unchanged.
+void surface_mesh(const automata::TensorAutomaton& automaton, std::span<const Points> nets, int depth,
+                  QuadMesh& mesh, const MeshOptions& options = {});
 
 /// Generic route: any automaton whose reachable states have exactly four children in the GH, GB,
 /// DH, DB layout (child 2·iu + iv covers the u-half iu and the v-half iv of its parent's square),

@@ -47,6 +47,9 @@ Point evaluate(const Surface& s, double u, double v);
 /// Points on the grid `us × vs`: row `a·#vs + b` is S(us[a], vs[b]). The u-combination is done once
 /// per grid row, so a grid costs O(#us·nv + #us·#vs) combinations of control points.
 Points evaluate_grid(const Surface& s, std::span<const double> us, std::span<const double> vs);
+/// The same into `out`, whose storage is reused when it already has the size (no page faults on
+/// repeated calls; fresh storage is advised for huge pages). `out` must not be `s.P`.
+void evaluate_grid(const Surface& s, std::span<const double> us, std::span<const double> vs, Points& out);
 
 /// Partial derivatives `∂^{k+l} S / ∂u^k ∂v^l` for k + l ≤ order: row `k·(order+1) + l`
 /// (rows with k + l > order are zero). Cartesian; quotient rule when rational.
