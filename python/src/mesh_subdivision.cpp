@@ -136,7 +136,8 @@ void bind_mesh_subdivision(py::module_& m) {
                     "Per face, the mesh vertices at the patch's (s, t) = (0, 0), (1, 0), (1, 1), (0, 1) "
                     "(triangles: (0, 0), (1, 0), (0, 1), then -1).")
       .def_property_readonly(
-          "scheme", [](const sd::SurfaceAutomaton& s) { return std::string(sd::scheme_name(s.scheme)); });
+          "scheme", [](const sd::SurfaceAutomaton& s) { return std::string(sd::scheme_name(s.scheme)); },
+          "The subdivision scheme: 'catmull-clark' (quad patches) or 'loop' (triangle patches).");
   m.def(
       "surface_automaton",
       [](const Mesh& mesh, const std::string& scheme) {
