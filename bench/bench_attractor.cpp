@@ -4,10 +4,11 @@
 // Licence: cifs code under MIT; with CIFS_HAVE_SISL the executable links SISL (GNU AGPL v3), see
 // bench/CMakeLists.txt. Points per second via items/s; `per_pt` is CPU ns per point.
 //
-// Depths 14 … 20 (17·2^K + 1 points: 6.7 MB to 428 MB) cross glibc's 32 MiB mmap threshold at 18.
+// Depths 12 … 20 (17·2^K + 1 points: 1.7 MB to 428 MB) cross glibc's 32 MiB mmap threshold at 18.
 // attractor_points is timed returning a fresh output (the default allocator: above the threshold
 // every call maps and faults in fresh pages) and writing into the caller's output (`_into`: storage
-// reused, as SISL's and de Boor's buffers, allocated once outside the loop).
+// reused, as SISL's and de Boor's buffers, allocated once outside the loop). `table_apply` applies a stencil
+// table built once (the sweep case) into a reused output; `table_build` is the table alone.
 //
 // BM_attractor_memory forks a child that computes the attractor and reports its peak resident
 // memory above the child's starting point, divided by the output size (target ≤ 1.5).
@@ -104,6 +105,30 @@ void BM_attractor_automaton_into(benchmark::State& state) {
   report(state, c.params.size());
 }
 
+/// The animation/sweep case: the stencil table is built once from the automaton and the depth, then
+/// applied to new nets (here the same ones) into a reused output.
+void BM_attractor_table_apply(benchmark::State& state) {
+  const AttractorCase& c = case_for(static_cast<int>(state.range(0)));
+  const ifs::StencilTable table = ifs::stencil_table(c.automaton, static_cast<int>(state.range(0)));
+  Points A;
+  ifs::apply_table(table, c.nets, A);  // faulted in once
+  for (auto _ : state) {
+    ifs::apply_table(table, c.nets, A);
+    benchmark::DoNotOptimize(A.data());
+  }
+  report(state, c.params.size());
+}
+
+/// Building the table alone: what every attractor_points call pays besides the points.
+void BM_attractor_table_build(benchmark::State& state) {
+  const AttractorCase& c = case_for(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    const ifs::StencilTable table = ifs::stencil_table(c.automaton, static_cast<int>(state.range(0)));
+    benchmark::DoNotOptimize(table.tables.data());
+  }
+  report(state, c.params.size());
+}
+
 void BM_attractor_deboor(benchmark::State& state) {
   const AttractorCase& c = case_for(static_cast<int>(state.range(0)));
   Points out(static_cast<Eigen::Index>(c.params.size()), 3);
@@ -137,9 +162,9 @@ void BM_attractor_sisl(benchmark::State& state) {
 }
 #endif
 
-/// Depths 14, 16, 18, 20.
+/// Depths 12, 14, 16, 18, 20.
 void depths(benchmark::internal::Benchmark* b) {
-  for (const int depth : {14, 16, 18, 20}) b->Arg(depth);
+  for (const int depth : {12, 14, 16, 18, 20}) b->Arg(depth);
   b->Unit(benchmark::kMillisecond);
 }
 #ifdef CIFS_HAVE_SISL
@@ -147,6 +172,8 @@ BENCHMARK(BM_attractor_sisl)->Apply(depths);
 #endif
 BENCHMARK(BM_attractor_automaton)->Apply(depths);
 BENCHMARK(BM_attractor_automaton_into)->Apply(depths);
+BENCHMARK(BM_attractor_table_apply)->Apply(depths);
+BENCHMARK(BM_attractor_table_build)->Apply(depths);
 BENCHMARK(BM_attractor_deboor)->Apply(depths);
 BENCHMARK(BM_attractor_batch)->Apply(depths);
 

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <string>
+#include <string_view>
 
 #include "cifs/errors.hpp"
 #include "cifs/format.hpp"
@@ -203,42 +205,31 @@ std::size_t attractor_point_count(const Automaton& automaton, int depth, bool cl
 
 namespace {
 
-/// Stencil tables F_s (`c_L(s) by size(s)`): row j is the start functional of the j-th depth-L
-/// descendant of s composed with the path's matrices, so F_s·N are their start points in order.
-struct StencilTables {
-  int L = 0;
-  std::vector<RowMatrix> table;  // by state
-  EndFunctionals functionals;
-  std::size_t count = 0;      // points of the whole output
-  Eigen::Index max_rows = 0;  // largest c_L(s)
-};
-
 /// Double entries the tables may hold besides the output's half: a streamed output keeps its memory
-/// bounded by this (and the chunk), whatever the depth. Both routes choose L the same way, so that
-/// they give the same bits.
+/// bounded by this (and the chunk), whatever the depth. Both attractor routes choose L the same way,
+/// so that they give the same bits.
 constexpr std::size_t kTableBudget = std::size_t{1} << 21;
 
-/// Validates, counts the points and builds the tables of depth L: the largest L ≤ max_table_depth
-/// whose tables (and, while building, the previous level) stay below half the output and below
-/// kTableBudget; L = 0 (one functional per state) always. `refuse(count, bytes)` may throw before
-/// any work.
-template <class Refuse>
-StencilTables stencil_tables(const Automaton& automaton, std::span<const Points> nets, int depth,
-                             const PointsOptions& options, const char* who, Refuse&& refuse) {
-  validate(automaton);
-  detail::check_nets(automaton, nets, who);
+/// Counts the points and builds the tables of depth L of a validated automaton (without its copy):
+/// the largest L ≤ max_table_depth whose tables (and, while building, the previous level) stay
+/// within `entries(count)` doubles; L = 0 (one functional per state) always. `entries` may throw
+/// (a refusal) before any work on the tables.
+template <class Entries>
+StencilTable build_table(const Automaton& automaton, int depth, bool closed, int max_table_depth,
+                         std::string_view who, Entries&& entries) {
   if (depth < 0)
     throw InvalidInput(std::string(who) + ": depth is " + std::to_string(depth) + ", must be ≥ 0");
   const Graph& g = automaton.graph;
   const auto n = boost::num_vertices(g);
   const auto states = reachable_states(automaton);
-  const int max_L = std::clamp(options.max_table_depth, 0, depth);
+  const int max_L = std::clamp(max_table_depth, 0, depth);
   const Counts counts = node_counts(automaton, depth, max_L);
 
-  StencilTables out;
-  const auto cols = static_cast<std::size_t>(nets[0].cols());
-  out.count = total_count(automaton, counts.at_depth, options.closed);
-  refuse(out.count, mul_sat(mul_sat(out.count, cols), sizeof(double)));
+  StencilTable out;
+  out.depth = depth;
+  out.closed = closed;
+  out.points = total_count(automaton, counts.at_depth, closed);
+  const std::size_t budget = entries(out.points);
 
   const auto table_size = [&](int L) {
     std::size_t t = 0;
@@ -247,81 +238,124 @@ StencilTables stencil_tables(const Automaton& automaton, std::span<const Points>
                   mul_sat(counts.low[static_cast<std::size_t>(L)][s], static_cast<std::size_t>(g[s].size)));
     return t;
   };
-  const std::size_t budget = std::min(mul_sat(out.count, cols) / 2, kTableBudget);
   int L = max_L;
   while (L > 0 && add_sat(table_size(L), table_size(L - 1)) > budget) --L;
-  out.L = L;
+  out.table_depth = L;
 
   // Level 0 is the start functional itself; level ℓ stacks F_t^(ℓ−1)·M_e over the children e.
-  out.functionals = end_functionals(automaton);
+  const EndFunctionals functionals = end_functionals(automaton);
+  if (!closed) out.end = functionals.end[automaton.initial.back().state];
   std::vector<RowMatrix> next(n);
-  out.table.resize(n);
-  for (const StateId s : states) out.table[s] = out.functionals.start[s];
+  out.tables.resize(n);
+  for (const StateId s : states) out.tables[s] = functionals.start[s];
   for (int l = 1; l <= L; ++l) {
     for (const StateId s : states) {
       RowMatrix& F = next[s];
       F.resize(static_cast<Eigen::Index>(counts.low[static_cast<std::size_t>(l)][s]), g[s].size);
       Eigen::Index row = 0;
       for (auto [b, e] = boost::out_edges(s, g); b != e; ++b) {
-        const RowMatrix& child = out.table[boost::target(*b, g)];
+        const RowMatrix& child = out.tables[boost::target(*b, g)];
         F.middleRows(row, child.rows()).noalias() = child * g[*b].matrix;
         row += child.rows();
       }
     }
-    std::swap(out.table, next);
+    std::swap(out.tables, next);
     for (auto& F : next) F.resize(0, 0);  // free the previous level
   }
-  for (const StateId s : states) out.max_rows = std::max(out.max_rows, out.table[s].rows());
+  for (const StateId s : states) out.max_rows = std::max(out.max_rows, out.tables[s].rows());
   return out;
 }
 
-/// The emit walk shared by both routes: the nodes at depth K − L write their c_L(s) points with one
+/// The emit walk shared by every route: the nodes at depth K − L write their c_L(s) points with one
 /// product each, at `place(rows)` (a pointer to room for that many rows); then the end point of the
 /// very last node unless closed (the end of the last root: end functionals propagate).
 template <class Place>
-void emit_points(const Automaton& automaton, std::span<const Points> nets, int depth, const StencilTables& t,
-                 bool closed, Place&& place) {
-  detail::depth_first(automaton, nets, depth - t.L,
+void emit_points(const Automaton& automaton, std::span<const Points> nets, const StencilTable& t,
+                 Place&& place) {
+  const int walk_depth = t.depth - t.table_depth;
+  detail::depth_first(automaton, nets, walk_depth,
                       [&](std::size_t, StateId s, const Points& net, int d, std::span<const int>) {
-                        if (d < depth - t.L) return true;
-                        const RowMatrix& F = t.table[s];
+                        if (d < walk_depth) return true;
+                        const RowMatrix& F = t.tables[s];
                         detail::emit(F.data(), F.rows(), F.cols(), net, place(F.rows()));
                         return false;
                       });
-  if (!closed) {
-    const StateId last = automaton.initial.back().state;
-    Eigen::Map<Point>(place(1), nets.back().cols()) = t.functionals.end[last] * nets.back();
+  if (!t.closed) Eigen::Map<Point>(place(1), nets.back().cols()) = t.end * nets.back();
+}
+
+/// Every point into `out` (`t.points by cols`, storage reused when it has the size).
+void emit_into(const Automaton& automaton, std::span<const Points> nets, const StencilTable& t, Points& out) {
+  const auto cols = nets[0].cols();
+  resize_huge(out, static_cast<Eigen::Index>(t.points), cols);
+  double* cursor = out.data();
+  emit_points(automaton, nets, t, [&](Eigen::Index rows) {
+    double* at = cursor;
+    cursor += rows * cols;
+    return at;
+  });
+}
+
+/// "depth 20 gives 17825793 points of 3 coordinates (0.4 GiB), more than the limit of 1 GiB (…)".
+[[noreturn]] void refuse_output(std::string_view who, int depth, std::size_t count, Eigen::Index cols,
+                                std::size_t bytes, std::size_t max_bytes, std::string_view limit_name) {
+  const auto gib = [](std::size_t b) {
+    return static_cast<double>(b) / static_cast<double>(std::size_t{1} << 30);
+  };
+  std::ostringstream msg;
+  msg << who << ": depth " << depth << " gives ";
+  if (count == kSaturated)
+    msg << "more points than fit in size_t";
+  else
+    msg << count << " points of " << cols << " coordinates (" << gib(bytes) << " GiB)";
+  msg << ", more than the limit of " << gib(max_bytes) << " GiB (" << limit_name
+      << "); lower the depth or raise the limit";
+  throw InvalidInput(msg.str());
+}
+
+std::size_t output_bytes(std::size_t count, Eigen::Index cols) {
+  return mul_sat(mul_sat(count, static_cast<std::size_t>(cols)), sizeof(double));
+}
+
+/// Throws unless `t` is a table stencil_table could have built for its automaton (so that a table
+/// whose fields were edited cannot write out of bounds) and the nets fit it.
+void check_table(const StencilTable& t, std::span<const Points> nets, std::string_view who) {
+  const Automaton& a = t.automaton;
+  validate(a);
+  detail::check_nets(a, nets, who);
+  const Graph& g = a.graph;
+  bool fits = t.depth >= 0 && t.table_depth >= 0 && t.table_depth <= t.depth &&
+              t.tables.size() == boost::num_vertices(g) && (t.closed || t.end.size() == nets.back().rows());
+  if (fits) {
+    const Counts counts = node_counts(a, t.depth, t.table_depth);
+    fits = t.points == total_count(a, counts.at_depth, t.closed);
+    for (const StateId s : reachable_states(a))
+      fits = fits && t.tables[s].cols() == g[s].size &&
+             static_cast<std::size_t>(t.tables[s].rows()) ==
+                 counts.low[static_cast<std::size_t>(t.table_depth)][s] &&
+             t.tables[s].rows() <= t.max_rows;
   }
+  if (!fits)
+    throw InvalidInput(std::string(who) +
+                       ": the stencil table does not fit its automaton; build it with stencil_table");
 }
 
 }  // namespace
 
 void attractor_points(const Automaton& automaton, std::span<const Points> nets, int depth, Points& out,
                       const PointsOptions& options) {
+  validate(automaton);
+  detail::check_nets(automaton, nets, "attractor_points");
   // Refuse before any work: the output is allocated once, exactly.
-  const auto cols = nets.empty() ? 0 : nets[0].cols();
-  const StencilTables t = stencil_tables(
-      automaton, nets, depth, options, "attractor_points", [&](std::size_t count, std::size_t bytes) {
-        if (bytes <= options.max_bytes) return;
-        std::ostringstream msg;
-        msg << "attractor_points: depth " << depth << " gives ";
-        if (count == kSaturated)
-          msg << "more points than fit in size_t";
-        else
-          msg << count << " points of " << cols << " coordinates ("
-              << static_cast<double>(bytes) / static_cast<double>(std::size_t{1} << 30) << " GiB)";
-        msg << ", more than the limit of "
-            << static_cast<double>(options.max_bytes) / static_cast<double>(std::size_t{1} << 30)
-            << " GiB (PointsOptions::max_bytes); lower the depth or raise the limit";
-        throw InvalidInput(msg.str());
+  const auto cols = nets[0].cols();
+  const StencilTable t = build_table(
+      automaton, depth, options.closed, options.max_table_depth, "attractor_points", [&](std::size_t count) {
+        const std::size_t bytes = output_bytes(count, cols);
+        if (bytes > options.max_bytes)
+          refuse_output("attractor_points", depth, count, cols, bytes, options.max_bytes,
+                        "PointsOptions::max_bytes");
+        return std::min(mul_sat(count, static_cast<std::size_t>(cols)) / 2, kTableBudget);
       });
-  resize_huge(out, static_cast<Eigen::Index>(t.count), cols);
-  double* cursor = out.data();
-  emit_points(automaton, nets, depth, t, options.closed, [&](Eigen::Index rows) {
-    double* at = cursor;
-    cursor += rows * cols;
-    return at;
-  });
+  emit_into(automaton, nets, t, out);
 }
 
 Points attractor_points(const Automaton& automaton, std::span<const Points> nets, int depth,
@@ -331,31 +365,82 @@ Points attractor_points(const Automaton& automaton, std::span<const Points> nets
   return out;
 }
 
-std::size_t for_each_attractor_chunk(const Automaton& automaton, std::span<const Points> nets, int depth,
-                                     const PointsOptions& options, const PointsChunkCallback& callback) {
-  const StencilTables t = stencil_tables(
-      automaton, nets, depth, options, "for_each_attractor_chunk", [&](std::size_t count, std::size_t) {
-        if (count == kSaturated)
-          throw InvalidInput("for_each_attractor_chunk: depth " + std::to_string(depth) +
-                             " gives more points than fit in size_t");
-      });
+namespace {
+
+/// Chunks of at most `chunk_points` rows (or one table's rows) through `callback`.
+std::size_t emit_in_chunks(const Automaton& automaton, std::span<const Points> nets, const StencilTable& t,
+                           std::size_t chunk_points, const PointsChunkCallback& callback) {
   const Eigen::Index cols = nets[0].cols();
-  const auto capacity = std::max({static_cast<Eigen::Index>(std::max<std::size_t>(options.chunk_points, 1)),
-                                  t.max_rows, Eigen::Index{1}});
+  const auto capacity = std::max(
+      {static_cast<Eigen::Index>(std::max<std::size_t>(chunk_points, 1)), t.max_rows, Eigen::Index{1}});
   Points chunk(capacity, cols);
   Eigen::Index used = 0;
   const auto flush = [&] {
     if (used > 0) callback(chunk.topRows(used));
     used = 0;
   };
-  emit_points(automaton, nets, depth, t, options.closed, [&](Eigen::Index rows) {
+  emit_points(automaton, nets, t, [&](Eigen::Index rows) {
     if (used + rows > capacity) flush();
     double* at = chunk.data() + used * cols;
     used += rows;
     return at;
   });
   flush();
-  return t.count;
+  return t.points;
+}
+
+void refuse_saturated(std::string_view who, int depth, std::size_t count) {
+  if (count == kSaturated)
+    throw InvalidInput(std::string(who) + ": depth " + std::to_string(depth) +
+                       " gives more points than fit in size_t");
+}
+
+}  // namespace
+
+std::size_t for_each_attractor_chunk(const Automaton& automaton, std::span<const Points> nets, int depth,
+                                     const PointsOptions& options, const PointsChunkCallback& callback) {
+  validate(automaton);
+  detail::check_nets(automaton, nets, "for_each_attractor_chunk");
+  const auto cols = static_cast<std::size_t>(nets[0].cols());
+  const StencilTable t = build_table(automaton, depth, options.closed, options.max_table_depth,
+                                     "for_each_attractor_chunk", [&](std::size_t count) {
+                                       refuse_saturated("for_each_attractor_chunk", depth, count);
+                                       return std::min(mul_sat(count, cols) / 2, kTableBudget);
+                                     });
+  return emit_in_chunks(automaton, nets, t, options.chunk_points, callback);
+}
+
+StencilTable stencil_table(const Automaton& automaton, int depth, const StencilOptions& options) {
+  validate(automaton);
+  StencilTable t = build_table(automaton, depth, options.closed, options.max_table_depth, "stencil_table",
+                               [&](std::size_t count) {
+                                 refuse_saturated("stencil_table", depth, count);
+                                 return options.max_entries;
+                               });
+  t.automaton = automaton;
+  return t;
+}
+
+void apply_table(const StencilTable& table, std::span<const Points> nets, Points& out,
+                 std::size_t max_bytes) {
+  check_table(table, nets, "apply_table");
+  const auto cols = nets[0].cols();
+  const std::size_t bytes = output_bytes(table.points, cols);
+  if (bytes > max_bytes)
+    refuse_output("apply_table", table.depth, table.points, cols, bytes, max_bytes, "max_bytes");
+  emit_into(table.automaton, nets, table, out);
+}
+
+Points apply_table(const StencilTable& table, std::span<const Points> nets, std::size_t max_bytes) {
+  Points out;
+  apply_table(table, nets, out, max_bytes);
+  return out;
+}
+
+std::size_t apply_table_in_chunks(const StencilTable& table, std::span<const Points> nets,
+                                  std::size_t chunk_points, const PointsChunkCallback& callback) {
+  check_table(table, nets, "apply_table_in_chunks");
+  return emit_in_chunks(table.automaton, nets, table, chunk_points, callback);
 }
 
 }  // namespace cifs::ifs

@@ -77,8 +77,11 @@ void depth_first(const Automaton& automaton, std::span<const Points> nets, int m
 
 /// out (`rows by C`, row-major, contiguous) = F (`rows by n`, row-major at `F`) · N (`n by C`): the
 /// hot loop of the stencil-table routes, n·C multiply-adds per point, the point kept in registers.
-template <int C>
+/// N_ > 0 fixes n (cubic and quadratic curve nets) so that the k sum unrolls; the sums run in k order
+/// either way, so both give the same bits.
+template <int C, int N_>
 void emit_fixed(const double* f, Eigen::Index rows, Eigen::Index n, const Points& N, double* out) noexcept {
+  if constexpr (N_ > 0) n = N_;
   const double* p = N.data();
   for (Eigen::Index r = 0; r < rows; ++r, f += n, out += C) {
     double acc[C] = {};
@@ -88,16 +91,28 @@ void emit_fixed(const double* f, Eigen::Index rows, Eigen::Index n, const Points
   }
 }
 
+template <int C>
+void emit_cols(const double* f, Eigen::Index rows, Eigen::Index n, const Points& N, double* out) noexcept {
+  switch (n) {
+    case 3:
+      return emit_fixed<C, 3>(f, rows, n, N, out);
+    case 4:
+      return emit_fixed<C, 4>(f, rows, n, N, out);
+    default:
+      return emit_fixed<C, 0>(f, rows, n, N, out);
+  }
+}
+
 inline void emit(const double* f, Eigen::Index rows, Eigen::Index n, const Points& N, double* out) noexcept {
   switch (N.cols()) {
     case 1:
-      return emit_fixed<1>(f, rows, n, N, out);
+      return emit_cols<1>(f, rows, n, N, out);
     case 2:
-      return emit_fixed<2>(f, rows, n, N, out);
+      return emit_cols<2>(f, rows, n, N, out);
     case 3:
-      return emit_fixed<3>(f, rows, n, N, out);
+      return emit_cols<3>(f, rows, n, N, out);
     case 4:
-      return emit_fixed<4>(f, rows, n, N, out);
+      return emit_cols<4>(f, rows, n, N, out);
     default: {
       const Eigen::Index C = N.cols();
       for (Eigen::Index r = 0; r < rows; ++r, f += n, out += C) {

@@ -330,6 +330,42 @@ void bind_ifs(py::module_& m) {
       "the precomposed stencil tables. Raises InvalidInput for a negative depth, an output above max_bytes, "
       "nets that do not fit, and as validate.");
 
+  py::class_<ifs::StencilTable>(
+      m, "StencilTable",
+      "The attractor points of one depth as functionals of the initial nets, built once (stencil_table) and "
+      "applied to any nets of the automaton: animations and parameter sweeps pay the table once.")
+      .def_readonly("depth", &ifs::StencilTable::depth, "Depth K of the attractor points.")
+      .def_readonly("table_depth", &ifs::StencilTable::table_depth, "Depth L of the precomposed tables.")
+      .def_readonly("closed", &ifs::StencilTable::closed,
+                    "No end point: the last piece ends where the first starts.")
+      .def_readonly("points", &ifs::StencilTable::points, "Rows of every application.")
+      .def(
+          "apply",
+          [](const ifs::StencilTable& t, const std::vector<Points>& nets, std::int64_t max_bytes) {
+            const std::size_t limit = count_arg(max_bytes, "StencilTable.apply: max_bytes");
+            py::gil_scoped_release unlocked;
+            return ifs::apply_table(t, nets, limit);
+          },
+          py::arg("nets"), py::kw_only(), py::arg("max_bytes") = std::int64_t{1} << 30,
+          "The points of these nets: float `(points, cols)`, the same as attractor_points. Several net sets "
+          "side by side (columns) give their points side by side. Raises InvalidInput for nets that do not "
+          "fit and an output above max_bytes.")
+      .def("__repr__", [](const ifs::StencilTable& t) {
+        return "StencilTable(depth " + std::to_string(t.depth) + ", table depth " +
+               std::to_string(t.table_depth) + ", " + std::to_string(t.points) + " points)";
+      });
+  m.def(
+      "stencil_table",
+      [](const Automaton& a, int depth, bool closed, int max_table_depth) {
+        py::gil_scoped_release unlocked;
+        return ifs::stencil_table(a, depth, {.closed = closed, .max_table_depth = max_table_depth});
+      },
+      py::arg("automaton"), py::arg("depth"), py::kw_only(), py::arg("closed").noconvert() = false,
+      py::arg("max_table_depth") = 8,
+      "Builds the StencilTable of `automaton` at `depth` (checks, counts, end functionals, tables: the work "
+      "that depends on the automaton alone). Raises InvalidInput for an invalid automaton, a negative depth "
+      "or a count that overflows.");
+
   py::class_<ifs::ChaosResult>(m, "ChaosResult", "Result of the chaos game.")
       .def_property_readonly(
           "points", [](const ifs::ChaosResult& r) { return r.points; },

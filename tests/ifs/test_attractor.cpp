@@ -330,6 +330,103 @@ TEST_CASE("for_each_attractor_chunk: the points of attractor_points, bit for bit
         1e-12 * scale_of(cubic[0]));
 }
 
+TEST_CASE("Stencil table: built once, applied to new nets = Cox-de Boor, side by side, in chunks",
+          "[ifs][stencil]") {
+  std::mt19937_64 rng(21);
+  const int d = 3, K = 9, segments = 4;
+  const long double n = std::ldexp(1.0L, K);
+  const Automaton a = uniform_automaton(d, segments);
+  const StencilTable table = stencil_table(a, K);
+  CHECK(table.points == attractor_point_count(a, K));
+  CHECK(table.table_depth == 8);
+  // Three polygons through one table, each against the uniform B-spline at its dyadic parameters.
+  std::vector<Points> polygons, all;
+  for (int frame = 0; frame < 3; ++frame) polygons.push_back(random_points(segments + d, 3, rng));
+  const auto nets_of = [&](const Points& P) {
+    std::vector<Points> nets;
+    for (int k = 0; k < segments; ++k) nets.push_back(P.middleRows(k, d + 1));
+    return nets;
+  };
+  Points out;
+  for (const Points& P : polygons) {
+    apply_table(table, nets_of(P), out);
+    REQUIRE(out.rows() == segments * 512 + 1);
+    double err = 0;
+    for (Eigen::Index j = 0; j < out.rows(); ++j) {
+      const int k = std::min(static_cast<int>(j / 512), segments - 1);
+      err = std::max(err, (out.row(j) - uniform_reference(P, d, k, static_cast<long double>(j - 512 * k) / n))
+                              .cwiseAbs()
+                              .maxCoeff());
+    }
+    CHECK(err <= 1e-12 * scale_of(P));
+    // The same bits as attractor_points, which chooses the same table depth for this output.
+    CHECK(out == attractor_points(a, nets_of(P), K));
+  }
+  // The three net sets side by side (9 columns) give the three outputs side by side.
+  Points wide(segments + d, 9);
+  for (int f = 0; f < 3; ++f) wide.middleCols(3 * f, 3) = polygons[static_cast<std::size_t>(f)];
+  const Points together = apply_table(table, nets_of(wide));
+  for (int f = 0; f < 3; ++f) {
+    const Points alone = apply_table(table, nets_of(polygons[static_cast<std::size_t>(f)]));
+    CHECK((together.middleCols(3 * f, 3) - alone).cwiseAbs().maxCoeff() <= 1e-14 * scale_of(wide));
+  }
+  // In chunks: the same points, in order, chunks no larger than asked (or one table, 256 rows).
+  Points stacked(static_cast<Eigen::Index>(table.points), 3);
+  Eigen::Index at = 0, largest = 0;
+  CHECK(apply_table_in_chunks(table, nets_of(polygons[0]), 100, [&](const Eigen::Ref<const Points>& rows) {
+          stacked.middleRows(at, rows.rows()) = rows;
+          at += rows.rows();
+          largest = std::max(largest, rows.rows());
+        }) == table.points);
+  CHECK(at == stacked.rows());
+  CHECK(largest == 256);
+  CHECK(stacked == apply_table(table, nets_of(polygons[0])));
+}
+
+TEST_CASE("Stencil table: generic automata, every table depth, open and closed", "[ifs][stencil]") {
+  std::mt19937_64 rng(22);
+  const Automaton a = mixed_automaton(rng, 0.7);
+  for (const int K : {0, 3, 7})
+    for (const bool closed : {false, true})
+      for (const std::size_t entries : {std::size_t{0}, std::size_t{200}, std::size_t{1} << 21}) {
+        const StencilTable t = stencil_table(a, K, {.closed = closed, .max_entries = entries});
+        INFO("depth " << K << ", closed " << closed << ", table depth " << t.table_depth);
+        for (int trial = 0; trial < 2; ++trial) {
+          const std::vector<Points> nets{random_points(3, 2, rng), random_points(4, 2, rng)};
+          const Points X = apply_table(t, nets);
+          const Points reference = leaf_start_points(a, nets, K, closed);
+          REQUIRE(X.rows() == reference.rows());
+          CHECK((X - reference).cwiseAbs().maxCoeff() <= 1e-12 * scale_of(nets[0]));
+        }
+      }
+}
+
+TEST_CASE("Stencil table: what it refuses", "[ifs][stencil]") {
+  std::mt19937_64 rng(23);
+  const Automaton a = mixed_automaton(rng, 0.7);
+  const std::vector<Points> nets{random_points(3, 2, rng), random_points(4, 2, rng)};
+  CHECK_THROWS_WITH(stencil_table(a, -1), Catch::Contains("depth is -1"));
+  CHECK_THROWS_WITH(stencil_table(a, 100), Catch::Contains("more points than fit in size_t"));
+  const StencilTable t = stencil_table(a, 5);
+  // Nets of another automaton, and a table whose fields were edited.
+  CHECK_THROWS_AS(apply_table(t, std::vector<Points>{nets[1], nets[0]}), InvalidInput);
+  CHECK_THROWS_AS(apply_table(t, std::vector<Points>{nets[0]}), InvalidInput);
+  StencilTable edited = t;
+  edited.tables.pop_back();
+  CHECK_THROWS_WITH(apply_table(edited, nets), Catch::Contains("does not fit its automaton"));
+  edited = t;
+  edited.tables[1].resize(4, 2);
+  CHECK_THROWS_WITH(apply_table(edited, nets), Catch::Contains("does not fit its automaton"));
+  edited = t;
+  edited.table_depth = 6;
+  CHECK_THROWS_WITH(apply_table(edited, nets), Catch::Contains("does not fit its automaton"));
+  // The output's size, before any work, leaving `out` as it was.
+  Points out = Points::Constant(2, 2, 7.0);
+  const Points before = out;
+  CHECK_THROWS_WITH(apply_table(t, nets, out, 100), Catch::Contains("more than the limit"));
+  CHECK(out == before);
+}
+
 TEST_CASE("Rational quadratic: a quarter circle from homogeneous rows", "[ifs]") {
   // Knots 0 0 0 1 1 1: the window (0, 1, 0); its G/D children and the uniform state.
   const Automaton a = quadratic_automaton(0, 1, 0);

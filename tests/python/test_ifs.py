@@ -143,6 +143,23 @@ class AttractorTest(unittest.TestCase):
         self.assertIn("1 initial entries", message(self, lambda: ifs.attractor_points(a, [NET, NET], 2)))
         self.assertIn("max_bytes = -1 is negative", message(self, lambda: ifs.attractor_points(a, [NET], 2, max_bytes=-1)))
 
+    def test_a_stencil_table_is_applied_to_new_nets(self):
+        a = chaikin()
+        table = ifs.stencil_table(a, 7)
+        self.assertEqual((table.depth, table.points), (7, 129))
+        t = np.arange(129) / 128
+        frames = [NET * s + s for s in (1.0, -0.5, 3.0)]
+        for net in frames:
+            assert_close(self, table.apply([net]), curve(t, net))
+        # Net sets side by side give their points side by side.
+        wide = table.apply([np.hstack(frames)])
+        for k, net in enumerate(frames):
+            assert_close(self, wide[:, 2 * k:2 * k + 2], curve(t, net))
+        self.assertEqual(len(ifs.stencil_table(a, 3, closed=True).apply([NET])), 8)
+        self.assertIn("holds 3 points", message(self, lambda: table.apply([NET[:2]])))
+        self.assertIn("more than the limit", message(self, lambda: table.apply([NET], max_bytes=100)))
+        self.assertIn("depth is -1", message(self, lambda: ifs.stencil_table(a, -1)))
+
     def test_cartesian(self):
         H = np.array([[2.0, 4.0, 2.0], [3.0, -3.0, 0.5]])
         np.testing.assert_array_equal(ifs.cartesian(H), [[1, 2], [6, -6]])

@@ -135,6 +135,58 @@ void attractor_points(const automata::Automaton& automaton, std::span<const Poin
 /// Consecutive rows of attractor points (`rows by cols`); valid during the call only.
 using PointsChunkCallback = std::function<void(const Eigen::Ref<const Points>& rows)>;
 
+/// The attractor points of depth K as linear functionals of the initial nets, built once from the
+/// topology (an automaton and a depth) and applied to any nets of that automaton, as many times as
+/// wanted (animations, parameter sweeps, several net sets side by side) — OpenSubdiv's
+/// `Far::StencilTable` for controlled IFS. It holds its own copy of the automaton, the stencil
+/// tables F_s of depth L (`c_L(s) by size(s)`, row j the start functional of the j-th depth-L
+/// descendant of s composed with the path's matrices) and the end functional of the last root:
+/// applying it walks the tree to depth K − L (one net product per node) and emits each node's
+/// c_L(s) points as F_s·N. Building does every check and product that depends on the automaton
+/// alone (validation, counts, end functionals, the tables), so applying costs the output's
+/// multiply-adds and little more. Same points, bit for bit, as attractor_points with the same L.
+struct StencilTable {
+  automata::Automaton automaton;
+  int depth = 0;        // K
+  int table_depth = 0;  // L ≤ K
+  bool closed = false;
+  std::size_t points = 0;  // rows of every application (attractor_point_count)
+  std::vector<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> tables;  // F_s by state
+  Eigen::RowVectorXd end;     // end functional of the last root (empty when closed)
+  Eigen::Index max_rows = 0;  // largest c_L(s)
+};
+
+struct StencilOptions {
+  /// The end of the last piece is the start of the first: no end point (PointsOptions::closed).
+  bool closed = false;
+  /// Largest table depth L (lowered to the depth K, and until the tables fit in max_entries).
+  int max_table_depth = 8;
+  /// Doubles the tables may hold (and, while building, the previous level besides): the largest
+  /// L ≤ max_table_depth within it is taken, L = 0 (one functional per state) always.
+  std::size_t max_entries = std::size_t{1} << 21;
+};
+
+/// Builds the table of `automaton` at depth K. Throws InvalidInput for an invalid automaton, a
+/// negative depth or more points than fit in size_t.
+StencilTable stencil_table(const automata::Automaton& automaton, int depth,
+                           const StencilOptions& options = {});
+
+/// `table.points by cols` points of the nets (one per initial entry of the table's automaton, each
+/// `size(state) by cols`, any common cols: several net sets side by side give their points side by
+/// side) into `out`, whose storage is reused when it already has the size (it must not be one of
+/// the nets). Throws InvalidInput for nets that do not fit or a table that is not one
+/// stencil_table built (its fields edited), leaving `out` unchanged.
+/// An output above `max_bytes` is refused before any work.
+void apply_table(const StencilTable& table, std::span<const Points> nets, Points& out,
+                 std::size_t max_bytes = std::size_t{1} << 30);
+Points apply_table(const StencilTable& table, std::span<const Points> nets,
+                   std::size_t max_bytes = std::size_t{1} << 30);
+
+/// apply_table without holding the output: the same points in chunks of at most `chunk_points` rows (or
+/// one table's rows, when larger). Returns table.points.
+std::size_t apply_table_in_chunks(const StencilTable& table, std::span<const Points> nets,
+                                  std::size_t chunk_points, const PointsChunkCallback& callback);
+
 /// attractor_points without holding the output: the same points, bit for bit and in the same order,
 /// handed to `callback` in chunks of at most `options.chunk_points` rows (or one stencil table's
 /// rows, when larger). Memory is the chunk, the tables and one net per level, whatever the depth;
