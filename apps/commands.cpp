@@ -20,6 +20,7 @@
 #include "cifs/ifs/chaos.hpp"
 #include "cifs/ifs/dimension.hpp"
 #include "cifs/ifs/mesh.hpp"
+#include "cifs/ifs/sample.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/io/json.hpp"
 #include "cifs/io/svg.hpp"
@@ -479,61 +480,27 @@ std::string attractor(const AttractorOptions& o) {
     return write_whole(std::move(H), style, format, o);
   }
 
-  // Leaves whose whole piece is below the tolerance; rational nets are homogeneous, so shrink
-  // the tolerance by w_min / (1 + max|P|), which bounds the Cartesian image of a homogeneous piece.
-  // A first walk counts the leaves (the files' headers name the count), the second writes them.
-  const double max_point = nurbs::cartesian_points(*c).rowwise().norm().maxCoeff();
-  const double epsilon =
-      c->rational ? o.tolerance * nurbs::weights(*c).minCoeff() / (1 + max_point) : o.tolerance;
-  const ifs::ToleranceOptions to{epsilon, 40, 8};
-  // Before the counting walk (which alone would run for hours at 1e-9): the leaves estimated from
-  // coarser tolerances, refused beyond what memory (stdout, SVG) or a streamed file takes.
-  if (const ifs::ToleranceEstimate est = ifs::estimate_tolerance_leaves(a, nets, to); !est.exact) {
-    const double row_bytes = static_cast<double>(nets[0].cols()) * sizeof(double);
-    const double limit = streamed ? kMaxTolerancePoints : static_cast<double>(kMemoryBytes) / row_bytes;
-    if (est.leaves > limit)
-      throw InvalidInput(
-          "--tolerance " + number_text(o.tolerance, 6) + ": about " + number_text(est.leaves, 3) +
-          " points (estimated from coarser tolerances), above the limit of " + number_text(limit, 3) +
-          (streamed ? " written to a file; give a larger tolerance"
-                    : " held in memory for standard output and SVG; give a larger tolerance, or "
-                      "write them to a file with -o points.npy, which is streamed"));
-  }
-  const ifs::ToleranceResult r =
-      ifs::for_each_leaf_to_tolerance(a, nets, to, [](const ifs::ToleranceLeaf&) {});
-  if (r.unconverged > 0)
-    throw InvalidInput("attractor: " + std::to_string(r.unconverged) + " pieces did not reach --tolerance " +
-                       std::to_string(o.tolerance) + " by depth 40; give a larger tolerance");
-  const std::size_t count = r.leaves + (c->closed ? 0 : 1);
-  if (!streamed && static_cast<double>(count) * static_cast<double>(nets[0].cols()) * sizeof(double) >
-                       static_cast<double>(kMemoryBytes))
-    throw InvalidInput(
-        "attractor: --tolerance " + number_text(o.tolerance, 6) + " gives " + std::to_string(count) +
-        " points, more than the 1 GiB held in memory for standard output and SVG; write them to a "
-        "file with -o points.npy (or .json, .ply, .obj), which is streamed");
-  const ifs::EndFunctionals f = ifs::end_functionals(a);
-  Points chunk(streamed ? std::min<Eigen::Index>(kChunkPoints, static_cast<Eigen::Index>(count))
-                        : static_cast<Eigen::Index>(count),
-               nets[0].cols());
-  Eigen::Index used = 0;
+  // Leaves whose whole piece is proven below the tolerance (Cartesian for rational curves), in
+  // curve order; refused before the work when memory (stdout, SVG) or a streamed file cannot take
+  // them. A first walk counts the leaves (the files' headers name the count), the second writes.
+  const double row_bytes = static_cast<double>(dim) * sizeof(double);
+  const ifs::SampleOptions so{
+      .tolerance = o.tolerance,
+      .homogeneous = c->rational,
+      .closed = c->closed,
+      .max_depth = 40,
+      .max_points = static_cast<std::size_t>(streamed ? kMaxTolerancePoints
+                                                      : static_cast<double>(kMemoryBytes) / row_bytes),
+      .tolerance_name = "--tolerance",
+      .limit_hint = streamed ? " written to a file; give a larger tolerance"
+                             : " held in memory for standard output and SVG; give a larger tolerance, or "
+                               "write them to a file with -o points.npy, which is streamed"};
+  if (!streamed) return write_whole(ifs::sample_attractor(a, nets, so).points, style, format, o);
   std::optional<PointsOutput> out;
-  if (streamed) out.emplace(o.output, format, count, dim, style, "attractor", o.quiet);
-  // In memory the chunk holds every point and is never full.
-  const auto add = [&](const Point& row) {
-    if (used == chunk.rows()) {
-      out->write(chunk, c->rational);
-      used = 0;
-    }
-    chunk.row(used++) = row;
-  };
-  Point last_end;
-  ifs::for_each_leaf_to_tolerance(a, nets, to, [&](const ifs::ToleranceLeaf& t) {
-    add(f.start[t.leaf.state] * t.leaf.net);
-    last_end = f.end[t.leaf.state] * t.leaf.net;
-  });
-  if (!c->closed) add(last_end);
-  if (!out) return write_whole(c->rational ? ifs::cartesian(chunk) : std::move(chunk), style, format, o);
-  out->write(chunk.topRows(used), c->rational);
+  ifs::for_each_sample_chunk(
+      a, nets, so, static_cast<std::size_t>(kChunkPoints),
+      [&](std::size_t count, int) { out.emplace(o.output, format, count, dim, style, "attractor", o.quiet); },
+      [&](const Eigen::Ref<const Points>& rows, std::span<const std::uint32_t>) { out->write(rows); });
   return out->finish(o.output);
 }
 

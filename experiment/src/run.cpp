@@ -22,6 +22,7 @@
 #include "cifs/ifs/dimension.hpp"
 #include "cifs/ifs/junction.hpp"
 #include "cifs/ifs/mesh.hpp"
+#include "cifs/ifs/sample.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/io/svg.hpp"
 #include "cifs/render/camera.hpp"
@@ -79,52 +80,26 @@ Points cartesian_if(const Points& P, bool rational) {
   return rational ? ifs::cartesian(P) : P;
 }
 
-/// The state of every depth-K node, in curve order.
-std::vector<std::uint32_t> leaf_states(const automata::Automaton& a, const std::vector<Points>& nets,
-                                       int depth) {
-  std::vector<std::uint32_t> states;
-  ifs::for_each_leaf(a, nets, depth, [&](const ifs::Leaf& leaf) {
-    states.push_back(static_cast<std::uint32_t>(leaf.state));
-  });
-  return states;
-}
-
-/// Deterministic curve evaluation: the attractor points to a depth, or to a tolerance (leaf start
-/// points of the tolerance traversal, in curve order), as one polyline with per-piece states.
+/// Deterministic curve evaluation: the attractor points to a depth, or to a tolerance (a fraction of
+/// the nets' extent; leaf start points of the tolerance traversal, in curve order), as one polyline
+/// with per-piece states.
 Segments evaluate_curve(Scene& scene, const io::Evaluation& ev, bool closed, const RunOptions& o) {
-  Points P;
-  std::vector<std::uint32_t> states;
-  if (ev.mode == Mode::depth) {
-    ifs::PointsOptions po;
-    po.closed = closed;
-    po.max_bytes = o.max_bytes;
-    P = ifs::attractor_points(scene.automaton, scene.nets, ev.depth, po);
-    states = leaf_states(scene.automaton, scene.nets, ev.depth);
-    scene.depth = ev.depth;
-  } else {
-    const ifs::EndFunctionals ends = ifs::end_functionals(scene.automaton);
-    ifs::ToleranceOptions to;
-    to.epsilon = ev.tolerance * std::max(ifs::nets_diameter(scene.nets), 1e-300);
-    std::vector<Eigen::RowVectorXd> rows;
-    const std::size_t cap =
-        o.max_bytes / (sizeof(double) * static_cast<std::size_t>(scene.nets.front().cols()));
-    const auto result =
-        ifs::for_each_leaf_to_tolerance(scene.automaton, scene.nets, to, [&](const ifs::ToleranceLeaf& t) {
-          if (rows.size() >= cap)
-            throw InvalidInput("evaluation.tolerance: more points than the memory limit allows");
-          rows.push_back(ends.start[t.leaf.state] * t.leaf.net);
-          states.push_back(static_cast<std::uint32_t>(t.leaf.state));
-        });
-    scene.depth = result.deepest;
-    // The end of the last piece closes an open curve.
-    const auto last = scene.automaton.initial.size() - 1;
-    if (!closed) rows.push_back(ends.end[scene.automaton.initial[last].state] * scene.nets[last]);
-    P.resize(static_cast<Eigen::Index>(rows.size()), scene.nets.front().cols());
-    for (std::size_t i = 0; i < rows.size(); ++i) P.row(static_cast<Eigen::Index>(i)) = rows[i];
-  }
-  P = drawable(cartesian_if(P, scene.rational), "the curve");
-  Segments s = polyline_segments(P, closed);
-  if (states.size() == s.segments.size()) s.states = std::move(states);
+  const bool depth = ev.mode == Mode::depth;
+  const auto row_bytes = sizeof(double) * static_cast<std::size_t>(scene.nets.front().cols());
+  ifs::Sample sample = ifs::sample_attractor(
+      scene.automaton, scene.nets,
+      {.depth = depth ? ev.depth : -1,
+       .tolerance =
+           depth ? 0 : ev.tolerance * std::max(ifs::nets_diameter(scene.nets, scene.rational), 1e-300),
+       .homogeneous = scene.rational,
+       .closed = closed,
+       .states = true,
+       .max_points = o.max_bytes / row_bytes,
+       .tolerance_name = "evaluation.tolerance",
+       .limit_hint = depth ? "; lower evaluation.depth" : "; give a larger evaluation.tolerance"});
+  scene.depth = sample.depth;
+  Segments s = polyline_segments(drawable(sample.points, "the curve"), closed);
+  if (sample.states.size() == s.segments.size()) s.states = std::move(sample.states);
   return s;
 }
 
@@ -236,15 +211,7 @@ Scene bcifs_scene(const io::Experiment& e, const RunOptions& o, RunReport& repor
   if (e.evaluation.mode == Mode::depth || e.evaluation.mode == Mode::tolerance) {
     if (e.evaluation.mode == Mode::tolerance)
       throw InvalidInput("evaluation.tolerance: BC-IFS files are evaluated to a depth or by the chaos game");
-    // Refuse before any work: two end points, a state and a segment per node.
-    const std::size_t nodes = ifs::attractor_point_count(system.automaton, e.evaluation.depth, true);
-    const double bytes = double(nodes) * double(2 * sizeof(double) * scene.nets.front().cols() + 16);
-    if (bytes > double(o.max_bytes))
-      throw InvalidInput("evaluation.depth: " + std::to_string(nodes) + " pieces at depth " +
-                         std::to_string(e.evaluation.depth) + " need " + number(bytes / 1e9) +
-                         " GB, above the limit of " + number(double(o.max_bytes) / 1e9) +
-                         " GB; lower the depth");
-    const ifs::EdgePieces pieces = ifs::edge_pieces(system, scene.nets, e.evaluation.depth);
+    const ifs::EdgePieces pieces = ifs::edge_pieces(system, scene.nets, e.evaluation.depth, o.max_bytes);
     Segments s;
     const Eigen::Index n = pieces.start.rows();
     Points v(2 * n, pieces.start.cols());
@@ -564,13 +531,7 @@ Scene junction_scene(const io::Junction& junction, const io::Experiment& e, cons
   const int depth = e.evaluation.depth;
   scene.depth = depth;
   if (a.patches.empty()) {  // curves: one segment per piece, as for BC-IFS files
-    const std::size_t nodes = ifs::attractor_point_count(system.automaton, depth, true);
-    const double bytes = double(nodes) * double(2 * sizeof(double) * scene.nets.front().cols() + 16);
-    if (bytes > double(o.max_bytes))
-      throw InvalidInput("evaluation.depth: " + std::to_string(nodes) + " pieces at depth " +
-                         std::to_string(depth) + " need " + number(bytes / 1e9) + " GB, above the limit of " +
-                         number(double(o.max_bytes) / 1e9) + " GB; lower the depth");
-    const ifs::EdgePieces pieces = ifs::edge_pieces(system, scene.nets, depth);
+    const ifs::EdgePieces pieces = ifs::edge_pieces(system, scene.nets, depth, o.max_bytes);
     const Eigen::Index n = pieces.start.rows();
     Points v(2 * n, pieces.start.cols());
     v << pieces.start, pieces.end;

@@ -612,7 +612,22 @@ EndFunctionals edge_end_functionals(const Bcifs& sys) {
   return out;
 }
 
-EdgePieces edge_pieces(const Bcifs& sys, std::span<const Points> nets, int depth) {
+EdgePieces edge_pieces(const Bcifs& sys, std::span<const Points> nets, int depth, std::size_t max_bytes) {
+  // Refuse before any work: two end points, a state, an initial index and a word per node. Bad nets
+  // and depths are left to for_each_leaf's messages.
+  if (depth >= 0 && !nets.empty() && nets.size() == sys.automaton.initial.size()) {
+    const std::size_t nodes = attractor_point_count(sys.automaton, depth, true);
+    const double bytes =
+        static_cast<double>(nodes) *
+        static_cast<double>(2 * sizeof(double) * static_cast<std::size_t>(nets.front().cols()) +
+                            sizeof(automata::StateId) + sizeof(std::size_t) + sizeof(std::vector<int>) +
+                            sizeof(int) * static_cast<std::size_t>(depth));
+    if (bytes > static_cast<double>(max_bytes))
+      throw InvalidInput("edge_pieces: " + std::to_string(nodes) + " pieces at depth " +
+                         std::to_string(depth) + " need " + number_text(bytes / 1e9) +
+                         " GB, above the limit of " + number_text(static_cast<double>(max_bytes) / 1e9) +
+                         " GB; lower the depth");
+  }
   const EndFunctionals F = edge_end_functionals(sys);
   std::vector<Point> starts, ends;
   EdgePieces out;

@@ -13,6 +13,7 @@
 #include "cifs/errors.hpp"
 #include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/attractor.hpp"
+#include "cifs/ifs/sample.hpp"
 
 namespace cifs::ifs {
 namespace {
@@ -109,16 +110,18 @@ ToleranceSample tolerance_sample(const automata::Automaton& a, std::span<const P
       n = m;
     }
   }
-  const EndFunctionals ends = end_functionals(a);
-  const Eigen::Index cols = nets.front().cols();
-  Points H(static_cast<Eigen::Index>(n), cols);
+  // One point per leaf, no end point: each piece counts once.
+  Sample sample = sample_attractor(a, nets,
+                                   {.tolerance = to.epsilon,
+                                    .homogeneous = o.homogeneous,
+                                    .closed = true,
+                                    .max_depth = o.max_depth,
+                                    .max_points = std::max(n, o.max_points)});
   ToleranceSample out;
-  const auto result = for_each_leaf_to_tolerance(a, nets, to, [&](const ToleranceLeaf& t) {
-    H.row(static_cast<Eigen::Index>(out.leaves++)) = ends.start[t.leaf.state] * t.leaf.net;
-  });
-  out.points = o.homogeneous ? cartesian(H) : std::move(H);
+  out.leaves = static_cast<std::size_t>(sample.points.rows());
+  out.points = std::move(sample.points);
   out.resolution = to.epsilon;
-  out.deepest = result.deepest;
+  out.deepest = sample.depth;
   return out;
 }
 

@@ -71,16 +71,6 @@ std::string factor_repr(const ifs::Factor& f) {
          std::to_string(f.transition.child) + "))";
 }
 
-/// Upper bound of the pieces edge_pieces produces: entries × (largest out-degree)^depth.
-double piece_bound(const automata::Automaton& a, int depth) {
-  std::size_t degree = 0;
-  const auto [first, last] = boost::vertices(a.graph);
-  for (auto s = first; s != last; ++s) degree = std::max<std::size_t>(degree, boost::out_degree(*s, a.graph));
-  return static_cast<double>(a.initial.size()) * std::pow(static_cast<double>(degree), depth);
-}
-
-constexpr double kMaxPieces = 1 << 26;
-
 }  // namespace
 
 void bind_bcifs(py::module_& m) {
@@ -421,9 +411,6 @@ cell it selects. Raises cifs.InvalidInput when an edge cell lacks a "start" or "
   m.def(
       "edge_pieces",
       [](const ifs::Bcifs& system, const std::vector<Points>& nets, int depth) {
-        if (depth > 0 && piece_bound(system.automaton, depth) > kMaxPieces)
-          throw InvalidInput("edge_pieces: depth " + std::to_string(depth) +
-                             " may give more than 2^26 pieces");
         return ifs::edge_pieces(system, nets, depth);
       },
       py::arg("system"), py::arg("nets"), py::arg("depth"), py::call_guard<py::gil_scoped_release>(),

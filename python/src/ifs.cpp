@@ -15,6 +15,7 @@
 #include "cifs/ifs/chaos.hpp"
 #include "cifs/ifs/dimension.hpp"
 #include "cifs/ifs/mesh.hpp"
+#include "cifs/ifs/sample.hpp"
 
 namespace cifs::python {
 
@@ -308,6 +309,38 @@ void bind_ifs(py::module_& m) {
       "epsilon, "
       "a sample above max_points (before allocating it), a branch unresolved at max_depth, and as "
       "for_each_leaf_to_tolerance.");
+  py::class_<ifs::Sample>(m, "Sample", "Attractor points to a depth or a tolerance (sample_attractor).")
+      .def_property_readonly(
+          "points", [](const ifs::Sample& s) { return s.points; },
+          "float `(n, dim)` in curve order; Cartesian when homogeneous.")
+      .def_property_readonly(
+          "states", [](const ifs::Sample& s) { return s.states; },
+          "With states=True: the state of the piece each point starts (none for the end point).")
+      .def_readonly("depth", &ifs::Sample::depth,
+                    "The depth, or the deepest leaf of the tolerance traversal.");
+  m.def(
+      "sample_attractor",
+      [](const Automaton& a, const std::vector<Points>& nets, int depth, double tolerance, bool homogeneous,
+         bool closed, bool states, int max_depth, std::int64_t max_points) {
+        const ifs::SampleOptions o{.depth = depth,
+                                   .tolerance = tolerance,
+                                   .homogeneous = homogeneous,
+                                   .closed = closed,
+                                   .states = states,
+                                   .max_depth = max_depth,
+                                   .max_points = count_arg(max_points, "sample_attractor: max_points")};
+        py::gil_scoped_release unlocked;
+        return ifs::sample_attractor(a, nets, o);
+      },
+      py::arg("automaton"), py::arg("nets"), py::kw_only(), py::arg("depth") = -1, py::arg("tolerance") = 0.0,
+      py::arg("homogeneous").noconvert() = false, py::arg("closed").noconvert() = false,
+      py::arg("states").noconvert() = false, py::arg("max_depth") = 64,
+      py::arg("max_points") = std::int64_t{1} << 27,
+      "The attractor's points to `depth` (≥ 0) or, when depth is negative, to a proven `tolerance`: every "
+      "piece's diameter below it (Cartesian with homogeneous nets, whose points come back Cartesian), plus "
+      "the end point unless closed. Returns a Sample. Raises InvalidInput for more than max_points points "
+      "(before computing them, from an estimate in tolerance mode), a tolerance that is not positive, a "
+      "branch unresolved at max_depth, and as attractor_points.");
   m.def("attractor_point_count", &ifs::attractor_point_count, py::arg("automaton"), py::arg("depth"),
         py::arg("closed").noconvert() = false,
         "Number of points attractor_points returns: the nodes at `depth` plus 1 unless closed. Raises "

@@ -280,7 +280,8 @@ class TreeFileTest(ScratchTestCase):
              "for_each_leaf: nets[0] has 1 rows but its initial state 0 (E) holds 3 points"),
             (lambda: ifs.edge_pieces(self.system, self.file.nets, -1), "for_each_leaf: depth is -1, must be ≥ 0"),
             (lambda: ifs.edge_pieces(self.system, self.file.nets, 30),
-             "edge_pieces: depth 30 may give more than 2^26 pieces"),
+             "edge_pieces: 205891132094649 pieces at depth 30 need 3.95e+07 GB, above the limit of 1.07 GB; "
+             "lower the depth"),
         ]
         for call, message in checks:
             with self.assertRaises(cifs.InvalidInput) as e:

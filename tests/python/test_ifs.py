@@ -143,6 +143,19 @@ class AttractorTest(unittest.TestCase):
         self.assertIn("1 initial entries", message(self, lambda: ifs.attractor_points(a, [NET, NET], 2)))
         self.assertIn("max_bytes = -1 is negative", message(self, lambda: ifs.attractor_points(a, [NET], 2, max_bytes=-1)))
 
+    def test_sample_attractor_to_a_depth_and_to_a_tolerance(self):
+        a = chaikin()
+        s = ifs.sample_attractor(a, [NET], depth=5, states=True)
+        assert_close(self, s.points, curve(np.arange(33) / 32))
+        self.assertEqual((s.depth, s.states), (5, [0] * 32))
+        t = ifs.sample_attractor(a, [NET], tolerance=0.05)
+        gaps = np.linalg.norm(np.diff(t.points, axis=0), axis=1)
+        self.assertLess(gaps.max(), 0.05)  # consecutive points bound one piece each
+        assert_close(self, t.points[[0, -1]], curve(np.array([0.0, 1.0])))
+        self.assertIn("above the limit of 10", message(self, lambda: ifs.sample_attractor(a, [NET], depth=9,
+                                                                                            max_points=10)))
+        self.assertIn("is not a positive number", message(self, lambda: ifs.sample_attractor(a, [NET])))
+
     def test_a_stencil_table_is_applied_to_new_nets(self):
         a = chaikin()
         table = ifs.stencil_table(a, 7)

@@ -177,6 +177,9 @@ struct EdgePieces {
 };
 
 /// Evaluates the pieces of every node at `depth` (ifs::for_each_leaf with edge_end_functionals).
-EdgePieces edge_pieces(const Bcifs& system, std::span<const Points> nets, int depth);
+/// Throws InvalidInput before any work when the pieces would take more than `max_bytes`, and as
+/// for_each_leaf.
+EdgePieces edge_pieces(const Bcifs& system, std::span<const Points> nets, int depth,
+                       std::size_t max_bytes = std::size_t{1} << 30);
 
 }  // namespace cifs::ifs

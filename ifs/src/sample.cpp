@@ -1,0 +1,204 @@
+// SPDX-License-Identifier: MIT
+// cifs — the sampling API: attractor points to a depth or a proven tolerance.
+#include "cifs/ifs/sample.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "cifs/errors.hpp"
+#include "cifs/format.hpp"
+#include "cifs/ifs/analysis.hpp"
+#include "walk.hpp"
+
+namespace cifs::ifs {
+
+using automata::Automaton;
+using automata::Graph;
+using automata::StateId;
+
+namespace {
+
+/// The states of the depth-K nodes in order, one at a time, without nets: a depth-first walk over
+/// the automaton's edges that holds one out-edge iterator per level.
+class StateWalk {
+ public:
+  StateWalk(const Automaton& automaton, int depth)
+      : g_(automaton.graph), automaton_(automaton), depth_(depth) {
+    stack_.reserve(static_cast<std::size_t>(depth) + 1);
+  }
+
+  StateId next() {
+    for (;;) {
+      if (stack_.empty()) {
+        const StateId root = automaton_.initial[root_++].state;
+        if (depth_ == 0) return root;
+        const auto [b, e] = boost::out_edges(root, g_);
+        stack_.emplace_back(b, e);
+      }
+      auto& [it, end] = stack_.back();
+      if (it == end) {
+        stack_.pop_back();
+        continue;
+      }
+      const StateId s = boost::target(*it++, g_);
+      if (static_cast<int>(stack_.size()) == depth_) return s;
+      const auto [b, e] = boost::out_edges(s, g_);
+      stack_.emplace_back(b, e);
+    }
+  }
+
+ private:
+  const Graph& g_;
+  const Automaton& automaton_;
+  int depth_;
+  std::size_t root_ = 0;
+  std::vector<std::pair<Graph::out_edge_iterator, Graph::out_edge_iterator>> stack_;
+};
+
+[[noreturn]] void refuse(const SampleOptions& o, const std::string& what, std::string_view advice) {
+  // Exact below a million, three digits above ("1.07e+09").
+  const std::string limit = o.max_points < 1000000 ? std::to_string(o.max_points)
+                                                   : number_text(static_cast<double>(o.max_points), 3);
+  throw InvalidInput(what + ", above the limit of " + limit +
+                     std::string(o.limit_hint.empty() ? advice : o.limit_hint));
+}
+
+std::string tolerance_text(const SampleOptions& o) {
+  return std::string(o.tolerance_name) + " " + number_text(o.tolerance, 6);
+}
+
+ToleranceOptions tolerance_options(const SampleOptions& o) {
+  return {.epsilon = o.tolerance, .max_depth = o.max_depth, .homogeneous = o.homogeneous};
+}
+
+/// Tolerance mode: every leaf to `visit`, after an estimate, both against max_points — a traversal
+/// that alone could run for hours is refused in bounded time with its figure.
+template <class Visit>
+ToleranceResult visit_leaves(const Automaton& a, std::span<const Points> nets, const SampleOptions& o,
+                             Visit&& visit) {
+  if (!(o.tolerance > 0) || !std::isfinite(o.tolerance))
+    throw InvalidInput(tolerance_text(o) + " is not a positive number");
+  const ToleranceOptions to = tolerance_options(o);
+  constexpr std::string_view kAdvice = "; give a larger tolerance";
+  if (const ToleranceEstimate est = estimate_tolerance_leaves(a, nets, to);
+      !est.exact && est.leaves > static_cast<double>(o.max_points))
+    refuse(o,
+           tolerance_text(o) + ": about " + number_text(est.leaves, 3) +
+               " points (estimated from coarser tolerances)",
+           kAdvice);
+  std::size_t n = o.closed ? 0 : 1;  // the end point
+  return for_each_leaf_to_tolerance(a, nets, to, [&](const ToleranceLeaf& t) {
+    if (!t.converged)
+      throw InvalidInput(tolerance_text(o) + ": a piece is still " + number_text(t.diameter, 3) +
+                         " wide at depth " + std::to_string(o.max_depth) + "; give a larger tolerance");
+    if (++n > o.max_points)
+      refuse(o, tolerance_text(o) + " gives more than " + std::to_string(o.max_points) + " points", kAdvice);
+    visit(t);
+  });
+}
+
+void check_input(const Automaton& a, std::span<const Points> nets, const SampleOptions& o) {
+  validate(a);
+  detail::check_nets(a, nets, "the sample");
+  if (o.homogeneous && nets.front().cols() < 2)
+    throw InvalidInput("rational nets need at least 2 columns (w·x, w)");
+}
+
+}  // namespace
+
+std::size_t for_each_sample_chunk(const Automaton& automaton, std::span<const Points> nets,
+                                  const SampleOptions& o, std::size_t chunk_points,
+                                  const SampleCountCallback& count, const SampleChunkCallback& chunk) {
+  check_input(automaton, nets, o);
+  const auto emit = [&](const Eigen::Ref<const Points>& rows, std::span<const std::uint32_t> states) {
+    if (o.homogeneous)
+      chunk(cartesian(rows), states);
+    else
+      chunk(rows, states);
+  };
+  std::vector<std::uint32_t> states;
+  if (o.depth >= 0) {
+    const std::size_t n = attractor_point_count(automaton, o.depth, o.closed);
+    if (n > o.max_points)
+      refuse(o, "depth " + std::to_string(o.depth) + " gives " + std::to_string(n) + " points",
+             "; lower the depth");
+    count(n, o.depth);
+    StateWalk walk(automaton, o.depth);
+    std::size_t pieces = n - (o.closed ? 0 : 1), done = 0;
+    for_each_attractor_chunk(automaton, nets, o.depth, {.closed = o.closed, .chunk_points = chunk_points},
+                             [&](const Eigen::Ref<const Points>& rows) {
+                               states.clear();
+                               if (o.states)
+                                 for (Eigen::Index r = 0; r < rows.rows() && done < pieces; ++r, ++done)
+                                   states.push_back(static_cast<std::uint32_t>(walk.next()));
+                               emit(rows, states);
+                             });
+    return n;
+  }
+  // A first walk counts (count() comes before the chunks), the second emits.
+  const ToleranceResult counted = visit_leaves(automaton, nets, o, [](const ToleranceLeaf&) {});
+  const std::size_t n = counted.leaves + (o.closed ? 0 : 1);
+  count(n, counted.deepest);
+  const EndFunctionals ends = end_functionals(automaton);
+  Points rows(static_cast<Eigen::Index>(std::clamp<std::size_t>(std::min(chunk_points, n), 1, n)),
+              nets.front().cols());
+  Eigen::Index used = 0;
+  const auto flush = [&] {
+    if (used > 0) emit(rows.topRows(used), states);
+    used = 0;
+    states.clear();
+  };
+  Point last_end;  // the end of the last leaf closes an open curve
+  for_each_leaf_to_tolerance(automaton, nets, tolerance_options(o), [&](const ToleranceLeaf& t) {
+    if (used == rows.rows()) flush();
+    rows.row(used++) = ends.start[t.leaf.state] * t.leaf.net;
+    if (o.states) states.push_back(static_cast<std::uint32_t>(t.leaf.state));
+    if (!o.closed) last_end = ends.end[t.leaf.state] * t.leaf.net;
+  });
+  if (!o.closed) {
+    if (used == rows.rows()) flush();
+    rows.row(used++) = last_end;
+  }
+  flush();
+  return n;
+}
+
+Sample sample_attractor(const Automaton& automaton, std::span<const Points> nets, const SampleOptions& o) {
+  Sample out;
+  if (o.depth >= 0) {
+    Eigen::Index at = 0;
+    for_each_sample_chunk(
+        automaton, nets, o, std::size_t{1} << 16,
+        [&](std::size_t n, int depth) {
+          out.depth = depth;
+          out.points.resize(static_cast<Eigen::Index>(n), nets.front().cols() - (o.homogeneous ? 1 : 0));
+          if (o.states) out.states.reserve(n);
+        },
+        [&](const Eigen::Ref<const Points>& rows, std::span<const std::uint32_t> states) {
+          out.points.middleRows(at, rows.rows()) = rows;
+          at += rows.rows();
+          out.states.insert(out.states.end(), states.begin(), states.end());
+        });
+    return out;
+  }
+  // In memory one walk does: the rows grow (at most max_points of them), no counting walk first.
+  check_input(automaton, nets, o);
+  const EndFunctionals ends = end_functionals(automaton);
+  const Eigen::Index cols = nets.front().cols();
+  std::vector<double> rows;
+  const auto add = [&](const Point& p) { rows.insert(rows.end(), p.data(), p.data() + cols); };
+  Point last_end;  // the end of the last leaf closes an open curve
+  out.depth = visit_leaves(automaton, nets, o, [&](const ToleranceLeaf& t) {
+                add(ends.start[t.leaf.state] * t.leaf.net);
+                if (o.states) out.states.push_back(static_cast<std::uint32_t>(t.leaf.state));
+                if (!o.closed) last_end = ends.end[t.leaf.state] * t.leaf.net;
+              }).deepest;
+  if (!o.closed) add(last_end);
+  const Eigen::Map<const Points> H(rows.data(), static_cast<Eigen::Index>(rows.size()) / cols, cols);
+  out.points = o.homogeneous ? cartesian(H) : Points(H);
+  return out;
+}
+
+}  // namespace cifs::ifs

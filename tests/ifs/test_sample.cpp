@@ -1,0 +1,145 @@
+// SPDX-License-Identifier: MIT
+// The sampling API against the routes it replaces and against the geometry: a quarter circle from
+// homogeneous rows (every point on the circle, consecutive points closer than the tolerance, which
+// bounds every Cartesian piece), depth samples = attractor_points and the states of for_each_leaf.
+#include "cifs/ifs/sample.hpp"
+
+#include <catch2/catch.hpp>
+#include <random>
+
+#include "cifs/errors.hpp"
+#include "ifs/helpers.hpp"
+
+using namespace cifs;
+using namespace cifs::ifs;
+using namespace ifs_test;
+
+namespace {
+
+/// Knots 0 0 0 1 1 1 and weights 1, √½, 1: a quarter of the unit circle, homogeneous rows (w·x, w).
+std::vector<Points> quarter_circle() {
+  const double w = std::sqrt(0.5);
+  Points P(3, 3);
+  P << 1, 0, 1,  //
+      w, w, w,   //
+      0, 1, 1;
+  return {P};
+}
+
+/// The chunks of for_each_sample_chunk stacked (points and states), and the count announced.
+Sample stacked(const Automaton& a, std::span<const Points> nets, const SampleOptions& o, std::size_t chunk,
+               std::size_t& announced) {
+  Sample out;
+  std::vector<Points> pieces;
+  const std::size_t n = for_each_sample_chunk(
+      a, nets, o, chunk,
+      [&](std::size_t count, int depth) {
+        announced = count;
+        out.depth = depth;
+      },
+      [&](const Eigen::Ref<const Points>& rows, std::span<const std::uint32_t> states) {
+        CHECK(static_cast<std::size_t>(rows.rows()) <= std::max<std::size_t>(chunk, 256));
+        pieces.emplace_back(rows);
+        out.states.insert(out.states.end(), states.begin(), states.end());
+      });
+  Eigen::Index total = 0;
+  for (const Points& p : pieces) total += p.rows();
+  CHECK(static_cast<std::size_t>(total) == n);
+  out.points.resize(total, pieces.empty() ? 0 : pieces[0].cols());
+  Eigen::Index at = 0;
+  for (const Points& p : pieces) {
+    out.points.middleRows(at, p.rows()) = p;
+    at += p.rows();
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("sample_attractor to a depth: attractor_points, Cartesian, with the leaves' states",
+          "[ifs][sample]") {
+  std::mt19937_64 rng(31);
+  const Automaton a = quadratic_automaton(0.3, 1.7, 4.0);
+  const std::vector<Points> nets{random_points(3, 2, rng)};
+  for (const int K : {0, 1, 6, 11})
+    for (const bool closed : {false, true}) {
+      INFO("depth " << K << ", closed " << closed);
+      const Sample s = sample_attractor(a, nets, {.depth = K, .closed = closed, .states = true});
+      CHECK(s.depth == K);
+      CHECK(s.points == attractor_points(a, nets, K, {.closed = closed}));
+      std::vector<std::uint32_t> states;
+      for_each_leaf(a, nets, K,
+                    [&](const Leaf& leaf) { states.push_back(static_cast<std::uint32_t>(leaf.state)); });
+      CHECK(s.states == states);
+      std::size_t announced = 0;
+      const Sample c = stacked(a, nets, {.depth = K, .closed = closed, .states = true}, 100, announced);
+      CHECK(announced == static_cast<std::size_t>(s.points.rows()));
+      CHECK(c.points == s.points);
+      CHECK(c.states == s.states);
+    }
+  // Homogeneous rows come back Cartesian, on the circle.
+  const Sample circle =
+      sample_attractor(quadratic_automaton(0, 1, 0), quarter_circle(), {.depth = 9, .homogeneous = true});
+  REQUIRE(circle.points.cols() == 2);
+  CHECK(circle.points.rows() == 513);
+  CHECK((circle.points.rowwise().norm().array() - 1).abs().maxCoeff() <= 1e-14);
+  CHECK(circle.states.empty());
+}
+
+TEST_CASE("sample_attractor to a tolerance: Cartesian pieces below it, on the curve", "[ifs][sample]") {
+  const Automaton a = quadratic_automaton(0, 1, 0);
+  const auto nets = quarter_circle();
+  for (const double tolerance : {0.3, 1e-2, 1e-4}) {
+    INFO("tolerance " << tolerance);
+    const Sample s = sample_attractor(a, nets, {.tolerance = tolerance, .homogeneous = true, .states = true});
+    REQUIRE(s.points.cols() == 2);
+    REQUIRE(s.points.rows() >= 2);
+    CHECK(s.states.size() == static_cast<std::size_t>(s.points.rows()) - 1);
+    CHECK((s.points.rowwise().norm().array() - 1).abs().maxCoeff() <= 1e-14);
+    CHECK((s.points.row(0) - Eigen::RowVector2d(1, 0)).norm() <= 1e-15);
+    CHECK((s.points.bottomRows(1) - Eigen::RowVector2d(0, 1)).norm() <= 1e-15);
+    // Consecutive points are the two ends of one piece: closer than the tolerance. The quarter arc is
+    // π/2 long, so at least π/(2·tolerance) pieces.
+    double gap = 0;
+    for (Eigen::Index i = 1; i < s.points.rows(); ++i) {
+      gap = std::max(gap, (s.points.row(i) - s.points.row(i - 1)).norm());
+      CHECK(std::atan2(s.points(i, 1), s.points(i, 0)) > std::atan2(s.points(i - 1, 1), s.points(i - 1, 0)));
+    }
+    CHECK(gap < tolerance);
+    CHECK(static_cast<double>(s.points.rows() - 1) >= std::numbers::pi / 2 / tolerance);
+    std::size_t announced = 0;
+    const Sample c =
+        stacked(a, nets, {.tolerance = tolerance, .homogeneous = true, .states = true}, 7, announced);
+    CHECK(announced == static_cast<std::size_t>(s.points.rows()));
+    CHECK(c.points == s.points);
+    CHECK(c.states == s.states);
+    CHECK(c.depth == s.depth);
+  }
+}
+
+TEST_CASE("sample_attractor refuses before the work, naming the caller's words", "[ifs][sample]") {
+  const Automaton a = quadratic_automaton(0, 1, 0);
+  const auto nets = quarter_circle();
+  CHECK_THROWS_WITH(sample_attractor(a, nets, {.depth = 20, .homogeneous = true, .max_points = 1000}),
+                    "depth 20 gives 1048577 points, above the limit of 1000; lower the depth");
+  CHECK_THROWS_WITH(
+      sample_attractor(a, nets, {.tolerance = 1e-12, .homogeneous = true, .max_points = 1000}),
+      Catch::StartsWith("tolerance 1e-12: about ") &&
+          Catch::EndsWith("points (estimated from coarser tolerances), above the limit of 1000; "
+                          "give a larger tolerance"));
+  // Counted exactly within the estimate's budget: the message gives the limit.
+  CHECK_THROWS_WITH(
+      sample_attractor(a, nets,
+                       {.tolerance = 1e-2,
+                        .homogeneous = true,
+                        .max_points = 20,
+                        .tolerance_name = "--tolerance",
+                        .limit_hint = " held in memory"}),
+      Catch::StartsWith("--tolerance 0.01") && Catch::EndsWith("above the limit of 20 held in memory"));
+  CHECK_THROWS_WITH(sample_attractor(a, nets, {.tolerance = 1e-6, .homogeneous = true, .max_depth = 3}),
+                    Catch::Contains("a piece is still") && Catch::Contains("wide at depth 3"));
+  for (const double bad : {0.0, -1.0, std::nan("")})
+    CHECK_THROWS_WITH(sample_attractor(a, nets, {.tolerance = bad}),
+                      Catch::EndsWith("is not a positive number"));
+  CHECK_THROWS_AS(sample_attractor(a, std::vector<Points>{Points::Zero(2, 3)}, {.depth = 2}), InvalidInput);
+}
