@@ -390,15 +390,9 @@ std::string surface_attractor(const nurbs::Surface& s, const std::string& format
       out.write(qm.vertices);
       return out.finish(o.output, " (the " + std::to_string(qm.quads.size()) + " quads' grid, u-major)");
     }
-    // Vertices and states are moved into the mesh; the quads become its flat corner list (the one
-    // conversion left: cifs::Mesh holds faces of any size), their array freed before the file is encoded.
+    // Vertices and states are moved into the mesh, the quads' array freed before the file is encoded.
     const std::size_t quads = qm.quads.size();
-    std::vector<int> corners;
-    corners.reserve(4 * quads);
-    for (const auto& q : qm.quads) corners.insert(corners.end(), q.begin(), q.end());
-    qm.quads = {};
-    Mesh mesh = uniform_mesh(std::move(qm.vertices), std::move(corners), 4);
-    mesh.states = std::move(qm.quad_state);
+    const Mesh mesh = ifs::to_mesh(std::move(qm));
     if (o.output.empty()) return io::encode(mesh, format);
     io::write(o.output, mesh);
     return "wrote " + o.output.string() + ": " + std::to_string(count) + " vertices, " +

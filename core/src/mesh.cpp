@@ -50,6 +50,33 @@ Mesh uniform_mesh(Points vertices, std::vector<int> corners, int arity) {
   return mesh;
 }
 
+void append(Mesh& into, const Mesh& more) {
+  const Eigen::Index base = into.vertices.rows();
+  const bool normals =
+      (base == 0 || into.normals.rows() == base) && more.normals.rows() == more.vertices.rows();
+  const bool states = (face_count(into) == 0 || into.states.size() == face_count(into)) &&
+                      more.states.size() == face_count(more);
+  if (base == 0) into.vertices.resize(0, more.vertices.cols());
+  Points vertices(base + more.vertices.rows(), more.vertices.cols());
+  vertices << into.vertices, more.vertices;
+  into.vertices = std::move(vertices);
+  if (normals) {
+    Points n(into.vertices.rows(), 3);
+    n << (base == 0 ? Points(0, 3) : into.normals), more.normals;
+    into.normals = std::move(n);
+  } else {
+    into.normals.resize(0, 0);
+  }
+  const int corner_base = into.face_offsets.back();
+  for (std::size_t f = 1; f < more.face_offsets.size(); ++f)
+    into.face_offsets.push_back(corner_base + more.face_offsets[f]);
+  for (const int v : more.face_vertices) into.face_vertices.push_back(static_cast<int>(base) + v);
+  if (states)
+    into.states.insert(into.states.end(), more.states.begin(), more.states.end());
+  else
+    into.states.clear();
+}
+
 void check_mesh(const Mesh& mesh, std::string_view who) {
   const std::string w(who);
   if (mesh.vertices.cols() != 3 && mesh.vertices.rows() > 0)

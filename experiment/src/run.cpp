@@ -175,15 +175,10 @@ Scene surface_scene(const nurbs::Surface& s, const io::Experiment& e, const RunO
     ifs::MeshOptions mo;
     mo.homogeneous = s.rational;
     mo.max_bytes = o.max_bytes;
-    const ifs::QuadMesh qm = e.perturbation
-                                 ? ifs::quad_mesh(scene.automaton, scene.nets, ta.patches, depth, mo)
-                                 : ifs::surface_mesh(ta, scene.nets, depth, mo);
+    Mesh mesh =
+        ifs::to_mesh(e.perturbation ? ifs::quad_mesh(scene.automaton, scene.nets, ta.patches, depth, mo)
+                                    : ifs::surface_mesh(ta, scene.nets, depth, mo));
     scene.depth = depth;
-    std::vector<int> corners;
-    corners.reserve(4 * qm.quads.size());
-    for (const auto& q : qm.quads) corners.insert(corners.end(), q.begin(), q.end());
-    Mesh mesh = uniform_mesh(qm.vertices, std::move(corners), 4);
-    mesh.states = qm.quad_state;
     scene.extent = mesh.vertices;
     scene.mesh = std::move(mesh);
   } else {
@@ -549,26 +544,17 @@ Scene junction_scene(const io::Junction& junction, const io::Experiment& e, cons
   ifs::MeshOptions mo;
   mo.homogeneous = rational;
   mo.max_bytes = o.max_bytes / 2;
-  std::vector<int> corners;
-  std::vector<std::uint32_t> states;
-  Points vertices(0, 3);
+  Mesh mesh;
   for (const JunctionPart* part : {&a, &b}) {
     const std::size_t first = part == &a ? 0 : na;
     automata::Automaton side = system.automaton;
     side.initial.assign(system.automaton.initial.begin() + static_cast<long>(first),
                         system.automaton.initial.begin() + static_cast<long>(first + part->nets.size()));
     const std::span<const Points> nets(scene.nets.data() + first, part->nets.size());
-    const ifs::QuadMesh qm = ifs::quad_mesh(side, nets, part->patches, depth, mo);
-    const auto offset = static_cast<int>(vertices.rows());
-    Points both(vertices.rows() + qm.vertices.rows(), 3);
-    both << vertices, drawable(qm.vertices, "the junction");
-    vertices = std::move(both);
-    for (const auto& q : qm.quads)
-      for (const int c : q) corners.push_back(offset + c);
-    states.insert(states.end(), qm.quad_state.begin(), qm.quad_state.end());
+    Mesh side_mesh = ifs::to_mesh(ifs::quad_mesh(side, nets, part->patches, depth, mo));
+    side_mesh.vertices = drawable(side_mesh.vertices, "the junction");
+    append(mesh, side_mesh);
   }
-  Mesh mesh = uniform_mesh(vertices, std::move(corners), 4);
-  mesh.states = std::move(states);
   scene.extent = mesh.vertices;
   scene.mesh = std::move(mesh);
   return scene;

@@ -162,6 +162,16 @@ RowKernel row_kernel(Eigen::Index p1) noexcept {
 
 }  // namespace
 
+Mesh to_mesh(QuadMesh quad_mesh) {
+  std::vector<int> corners;
+  corners.reserve(4 * quad_mesh.quads.size());
+  for (const auto& q : quad_mesh.quads) corners.insert(corners.end(), q.begin(), q.end());
+  quad_mesh.quads = {};  // freed before the offsets are allocated
+  Mesh mesh = uniform_mesh(std::move(quad_mesh.vertices), std::move(corners), 4);
+  mesh.states = std::move(quad_mesh.quad_state);
+  return mesh;
+}
+
 std::size_t mesh_bytes(std::size_t vertices, std::size_t cols, std::size_t quads) noexcept {
   const std::size_t v = mul_sat(mul_sat(vertices, cols), sizeof(double));
   const std::size_t q = mul_sat(quads, sizeof(std::array<int, 4>) + sizeof(std::uint32_t));

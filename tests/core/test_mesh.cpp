@@ -52,3 +52,37 @@ TEST_CASE("Segments: polylines, appending, checks", "[core][mesh]") {
   bare.segments = {{0, 3}};
   CHECK_THROWS_WITH(check_segments(bare, "w"), "w: segments[0][1] = 3 is out of range (3 vertices)");
 }
+
+TEST_CASE("Meshes appended: indices shifted, states and normals kept when both have them", "[core][mesh]") {
+  Mesh a;
+  a.vertices.resize(3, 3);
+  a.vertices << 0, 0, 0, 1, 0, 0, 0, 1, 0;
+  add_face(a, {0, 1, 2});
+  a.states = {7};
+  Mesh b;
+  b.vertices.resize(4, 3);
+  b.vertices << 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1;
+  add_face(b, {0, 1, 2, 3});
+  add_face(b, {0, 2, 3});
+  b.states = {8, 9};
+  Mesh m;
+  append(m, a);
+  append(m, b);
+  CHECK(m.vertices.rows() == 7);
+  CHECK(m.vertices.bottomRows(4) == b.vertices);
+  CHECK(m.face_offsets == std::vector<int>{0, 3, 7, 10});
+  CHECK(m.face_vertices == std::vector<int>{0, 1, 2, 3, 4, 5, 6, 3, 5, 6});
+  CHECK(m.states == std::vector<std::uint32_t>{7, 8, 9});
+  CHECK(m.normals.size() == 0);
+  check_mesh(m, "appended");
+  // Normals only when both have them; states dropped when one mesh has none.
+  a.normals = vertex_normals(a);
+  b.normals = vertex_normals(b);
+  b.states.clear();
+  Mesh n = a;
+  append(n, b);
+  CHECK(n.normals.rows() == 7);
+  CHECK(n.normals.bottomRows(4) == b.normals);
+  CHECK(n.states.empty());
+  check_mesh(n, "appended");
+}

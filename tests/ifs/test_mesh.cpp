@@ -291,3 +291,18 @@ TEST_CASE("Meshes refuse bad input before any work", "[ifs][mesh]") {
   broken.factor_states[0][1] = static_cast<StateId>(boost::num_vertices(t.factors[1].graph));
   CHECK_THROWS_WITH(ifs::surface_mesh(broken, nets, 2), Catch::Contains("does not exist"));
 }
+
+TEST_CASE("to_mesh: the quads as 4-corner faces, vertices and states moved", "[ifs][mesh]") {
+  ifs::QuadMesh q;
+  q.vertices.resize(6, 3);
+  for (int i = 0; i < 6; ++i) q.vertices.row(i) << i % 3, i / 3, 0.5 * i;
+  q.quads = {{0, 3, 4, 1}, {1, 4, 5, 2}};
+  q.quad_state = {5, 6};
+  const Points vertices = q.vertices;
+  const Mesh m = ifs::to_mesh(q);
+  CHECK(m.vertices == vertices);
+  CHECK(m.face_offsets == std::vector<int>{0, 4, 8});
+  CHECK(m.face_vertices == std::vector<int>{0, 3, 4, 1, 1, 4, 5, 2});
+  CHECK(m.states == std::vector<std::uint32_t>{5, 6});
+  check_mesh(m, "to_mesh");
+}

@@ -51,6 +51,10 @@ inline void add_face(Mesh& mesh, std::initializer_list<int> corners) {
 /// triangles of a triangulation).
 Mesh uniform_mesh(Points vertices, std::vector<int> corners, int arity);
 
+/// Appends `more`'s vertices and faces to `into` (its indices shifted past `into`'s vertices), with
+/// their normals and states when both meshes have them (dropped otherwise). Vertices are not welded.
+void append(Mesh& into, const Mesh& more);
+
 /// Throws InvalidInput (the message starts with `who`) unless the mesh is well formed: vertices
 /// `#V by 3` and finite, offsets starting at 0 and non-decreasing up to the number of corners,
 /// every face with at least 3 corners, every index in [0, #V), normals empty or `#V by 3` and

@@ -12,6 +12,7 @@
 
 #include "cifs/automata/automaton.hpp"
 #include "cifs/automata/tensor.hpp"
+#include "cifs/mesh.hpp"
 #include "cifs/types.hpp"
 
 namespace cifs::ifs {
@@ -36,6 +37,10 @@ struct QuadMesh {
   std::vector<std::array<int, 4>> quads;
   std::vector<std::uint32_t> quad_state;
 };
+
+/// The quad mesh as the polygon mesh every renderer and writer takes: vertices and states moved,
+/// each quad a face of 4 corners in the same order (the one conversion between the two types).
+Mesh to_mesh(QuadMesh quad_mesh);
 
 struct MeshOptions {
   /// The nets hold homogeneous rows `(w·x, w)` (rational surfaces): vertices are divided by w.
