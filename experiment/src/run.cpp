@@ -166,11 +166,10 @@ Scene surface_scene(const nurbs::Surface& s, const io::Experiment& e, const RunO
   if (e.evaluation.mode != Mode::chaos) {
     int depth = e.evaluation.depth;
     if (e.evaluation.mode == Mode::tolerance) {
-      ifs::ToleranceOptions to;
-      to.epsilon = e.evaluation.tolerance * std::max(ifs::nets_diameter(scene.nets), 1e-300);
-      to.max_depth = 14;
-      depth = ifs::for_each_leaf_to_tolerance(scene.automaton, scene.nets, to, [](const ifs::ToleranceLeaf&) {
-              }).deepest;
+      depth = ifs::depth_for_tolerance(
+          scene.automaton, scene.nets,
+          {.epsilon = e.evaluation.tolerance * std::max(ifs::nets_diameter(scene.nets), 1e-300),
+           .max_depth = 14});
     }
     ifs::MeshOptions mo;
     mo.homogeneous = s.rational;

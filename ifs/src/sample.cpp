@@ -201,4 +201,25 @@ Sample sample_attractor(const Automaton& automaton, std::span<const Points> nets
   return out;
 }
 
+int depth_for_tolerance(const Automaton& automaton, std::span<const Points> nets,
+                        const ToleranceOptions& options, std::size_t max_leaves) {
+  struct OverBudget {};
+  std::size_t leaves = 0;
+  try {
+    return for_each_leaf_to_tolerance(automaton, nets, options,
+                                      [&](const ToleranceLeaf&) {
+                                        if (++leaves > max_leaves) throw OverBudget{};
+                                      })
+        .deepest;
+  } catch (const OverBudget&) {
+  }
+  const Contraction c = contraction(automaton, {.max_length = options.max_length});
+  double diameter = 0;  // of the largest root net: each piece's bound starts from its own root
+  for (const Points& N : nets) diameter = std::max(diameter, ifs::diameter(N));
+  const double ratio = options.epsilon / (2 * c.radius * diameter);
+  if (!(ratio < 1) || !(c.delta > 0)) return std::min(c.m, options.max_depth);
+  const double j = std::ceil(std::log(ratio) / std::log(c.delta));
+  return static_cast<int>(std::min(static_cast<double>(options.max_depth), std::max(1.0, j) * c.m));
+}
+
 }  // namespace cifs::ifs

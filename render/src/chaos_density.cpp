@@ -6,7 +6,6 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +13,7 @@
 #include "cifs/format.hpp"
 #include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/attractor.hpp"
+#include "cifs/ifs/sample.hpp"
 #include "cifs/random.hpp"
 #include "framebuffer.hpp"
 #include "parallel.hpp"
@@ -80,26 +80,15 @@ void check_nets(const automata::Automaton& automaton, std::span<const Points> ne
   }
 }
 
-/// Smallest depth at which every node's piece lies within `tolerance` pixels of its start point
-/// (the point drawn for it): the depth of the deepest leaf of the tolerance traversal, which stops
-/// a branch once its piece is provably smaller than ε = tolerance / (pixels per world unit) — a
-/// bound from the branch's own net (ifs::for_each_leaf_to_tolerance), far tighter than a global
-/// contraction rate. Cost: one visit per leaf, about (size on screen / tolerance)^(dimension of
-/// the attractor): past kMaxLeaves leaves (a surface seen from close by: minutes, unbounded) the
-/// traversal gives way to the global bound, O(1) and deeper: every piece at depth j·m has
-/// diameter ≤ 2ρ·δ_m^j·diam(N) (ifs::Contraction), capped at 64.
-constexpr std::size_t kMaxLeaves = std::size_t{1} << 20;
 constexpr double kMaxChaosWork = 0x1p38;
 
+/// Smallest depth at which every node's piece lies within `tolerance` pixels of its start point
+/// (the point drawn for it): ifs::depth_for_tolerance at ε = tolerance / (pixels per world unit).
 int automatic_depth(const automata::Automaton& automaton, std::span<const Points> nets,
                     const ViewTransform& view, double tolerance) {
-  std::optional<ifs::Contraction> contraction;  // computed when needed: seconds for large states
-  const auto radius = [&] {
-    if (!contraction) contraction = ifs::contraction(automaton);
-    return contraction->radius;
-  };
   double scale = view.scale;
   if (view.perspective) {
+    const double radius = ifs::contraction(automaton).radius;  // only here: seconds for large states
     // A world length ℓ at depth z spans ℓ·F/z pixels: use the nearest depth the attractor can
     // reach (every point lies within ρ·diam(N) of the net's first row), but not nearer than
     // `near`, in front of which nothing is drawn.
@@ -107,30 +96,11 @@ int automatic_depth(const automata::Automaton& automaton, std::span<const Points
     for (const Points& N : nets) {
       Eigen::Vector3d p = Eigen::Vector3d::Zero();
       p.head(N.cols()) = N.row(0).transpose();
-      nearest = std::min(nearest, (p - view.eye).dot(view.forward) - radius() * ifs::diameter(N));
+      nearest = std::min(nearest, (p - view.eye).dot(view.forward) - radius * ifs::diameter(N));
     }
     scale /= std::max(nearest, view.near);
   }
-  ifs::ToleranceOptions t;
-  t.epsilon = tolerance / scale;
-  t.max_depth = 64;
-  struct OverBudget {};
-  std::size_t leaves = 0;
-  try {
-    return ifs::for_each_leaf_to_tolerance(automaton, nets, t,
-                                           [&](const ifs::ToleranceLeaf&) {
-                                             if (++leaves > kMaxLeaves) throw OverBudget{};
-                                           })
-        .deepest;
-  } catch (const OverBudget&) {
-  }
-  double diameter = 0;
-  for (const Points& N : nets) diameter = std::max(diameter, ifs::diameter(N));
-  const double ratio = t.epsilon / (2 * radius() * diameter);  // need δ_m^j < ratio
-  const int m = contraction->m;
-  if (!(ratio < 1) || !(contraction->delta > 0)) return m;
-  const double j = std::ceil(std::log(ratio) / std::log(contraction->delta));
-  return static_cast<int>(std::min(64.0, std::max(1.0, j) * m));
+  return ifs::depth_for_tolerance(automaton, nets, {.epsilon = tolerance / scale, .max_depth = 64});
 }
 
 /// Per-worker buffers: hits, nearest depth, the sample index and state of that point.

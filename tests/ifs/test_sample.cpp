@@ -143,3 +143,33 @@ TEST_CASE("sample_attractor refuses before the work, naming the caller's words",
                       Catch::EndsWith("is not a positive number"));
   CHECK_THROWS_AS(sample_attractor(a, std::vector<Points>{Points::Zero(2, 3)}, {.depth = 2}), InvalidInput);
 }
+
+TEST_CASE(
+    "depth_for_tolerance: every piece below epsilon at that depth, by the traversal or the global bound",
+    "[ifs][sample]") {
+  std::mt19937_64 rng(33);
+  const Automaton a = quadratic_automaton(0.3, 1.7, 4.0);
+  const std::vector<Points> nets{random_points(3, 2, rng)};
+  for (const double epsilon : {0.1, 1e-3, 1e-5}) {
+    const int traversal = depth_for_tolerance(a, nets, {.epsilon = epsilon});
+    const int global = depth_for_tolerance(a, nets, {.epsilon = epsilon}, 1);  // at once past the budget
+    INFO("epsilon " << epsilon << ": depths " << traversal << " and " << global);
+    CHECK(global >= traversal);  // the global bound is the coarser one
+    CHECK(global <= 64);
+    // Consecutive attractor points are the ends of one piece: closer than its diameter.
+    const Points P = attractor_points(a, nets, traversal);
+    double gap = 0;
+    for (Eigen::Index i = 1; i < P.rows(); ++i) gap = std::max(gap, (P.row(i) - P.row(i - 1)).norm());
+    CHECK(gap < epsilon);
+    // One level above the traversal's depth some piece is still too wide (it is the smallest depth):
+    // at least one leaf of the traversal at that depth was not yet converged one level up.
+    if (traversal > 0) {
+      bool coarser_suffices = true;
+      for_each_leaf_to_tolerance(
+          a, nets, {.epsilon = epsilon, .max_depth = traversal - 1},
+          [&](const ToleranceLeaf& t) { coarser_suffices = coarser_suffices && t.converged; });
+      CHECK_FALSE(coarser_suffices);
+    }
+  }
+  CHECK(depth_for_tolerance(a, nets, {.epsilon = 1e-300, .max_depth = 20}, 1) == 20);  // capped
+}

@@ -67,4 +67,12 @@ std::size_t for_each_sample_chunk(const automata::Automaton& automaton, std::spa
                                   const SampleOptions& options, std::size_t chunk_points,
                                   const SampleCountCallback& count, const SampleChunkCallback& chunk);
 
+/// The smallest depth at which every piece of the attractor is proven smaller than `epsilon`: the
+/// deepest leaf of for_each_leaf_to_tolerance (a bound from each branch's own net). Past
+/// `max_leaves` leaves (a surface at a fine tolerance: minutes) the traversal gives way to the
+/// global bound, O(1) and deeper: every piece at depth j·m has diameter ≤ 2ρ·δ_m^j·diam(N)
+/// (Contraction). Capped at `options.max_depth`. Throws as for_each_leaf_to_tolerance.
+int depth_for_tolerance(const automata::Automaton& automaton, std::span<const Points> nets,
+                        const ToleranceOptions& options, std::size_t max_leaves = std::size_t{1} << 20);
+
 }  // namespace cifs::ifs
