@@ -11,7 +11,6 @@
 #include <optional>
 
 #include "cifs/automata/automaton.hpp"
-#include "cifs/nurbs/tensor_automaton.hpp"
 #include "cifs/errors.hpp"
 #include "cifs/experiment/run.hpp"
 #include "cifs/format.hpp"
@@ -25,6 +24,7 @@
 #include "cifs/io/json.hpp"
 #include "cifs/io/svg.hpp"
 #include "cifs/nurbs/refine.hpp"
+#include "cifs/nurbs/tensor_automaton.hpp"
 #include "cifs/render/progress.hpp"
 #include "cifs/verify/check.hpp"
 #include "scheme_command.hpp"
@@ -302,8 +302,9 @@ std::string automaton(const AutomatonOptions& o) {
   const io::Shape shape = read_shape(o.shape, o.select);
   // Curves: the knot-doubling automaton; surfaces: the tensor product of their two direction curves'.
   const auto* c = std::get_if<nurbs::Curve>(&shape);
-  nurbs::KnotAutomaton a = c ? nurbs::knot_automaton(*c)
-                             : nurbs::without_knots(nurbs::tensor_automaton(std::get<nurbs::Surface>(shape)).product);
+  nurbs::KnotAutomaton a =
+      c ? nurbs::knot_automaton(*c)
+        : nurbs::without_knots(nurbs::tensor_automaton(std::get<nurbs::Surface>(shape)).product);
   if (o.minimize) a = nurbs::minimize(a);
   return io::encode(a, o.format);
 }

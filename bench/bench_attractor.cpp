@@ -25,8 +25,8 @@
 #include <string>
 
 #include "cifs/automata/automaton.hpp"
-#include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/ifs/attractor.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
 #include "sisl_adapters.hpp"
 
 namespace {

@@ -9,8 +9,8 @@
 #include <cmath>
 
 #include "cifs/automata/automaton.hpp"
-#include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/nurbs/curve.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/render/chaos_density.hpp"
 #include "cifs/render/point_ifs.hpp"
 #include "cifs/render/raster.hpp"

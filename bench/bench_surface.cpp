@@ -19,8 +19,8 @@
 #include <random>
 #include <string>
 
-#include "cifs/nurbs/tensor_automaton.hpp"
 #include "cifs/ifs/mesh.hpp"
+#include "cifs/nurbs/tensor_automaton.hpp"
 #include "sisl_adapters.hpp"
 
 namespace {

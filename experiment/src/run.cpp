@@ -9,7 +9,6 @@
 #include <numbers>
 #include <optional>
 
-#include "cifs/nurbs/tensor_automaton.hpp"
 #include "cifs/errors.hpp"
 #include "cifs/files.hpp"
 #include "cifs/ifs/affine.hpp"
@@ -25,6 +24,7 @@
 #include "cifs/ifs/sample.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/io/svg.hpp"
+#include "cifs/nurbs/tensor_automaton.hpp"
 #include "cifs/render/camera.hpp"
 #include "cifs/render/chaos_density.hpp"
 #include "cifs/render/image.hpp"

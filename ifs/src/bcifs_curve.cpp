@@ -59,7 +59,8 @@ Bcifs curve_bcifs(const nurbs::KnotAutomaton& knot_automaton, bool closed, const
   const int d = knots.graph[knots.initial.front().state].size - 1;
   if (d < 1) throw InvalidInput("curve_bcifs: degree " + std::to_string(d) + " has no edge to subdivide");
   for (StateId s = 0; s < boost::num_vertices(knots.graph); ++s)
-    if (knots.graph[s].size != d + 1 || window_size(knot_automaton, s) != static_cast<std::size_t>(2 * d - 1) ||
+    if (knots.graph[s].size != d + 1 ||
+        window_size(knot_automaton, s) != static_cast<std::size_t>(2 * d - 1) ||
         boost::out_degree(s, knots.graph) != 2)
       throw InvalidInput("curve_bcifs: state " + std::to_string(s) +
                          " is not a knot-doubling state of degree " + std::to_string(d) +
@@ -71,10 +72,10 @@ Bcifs curve_bcifs(const nurbs::KnotAutomaton& knot_automaton, bool closed, const
   std::vector<bool> at_knot;  // per vertex key 2s + side: the vertex is a knot of the curve
   for (const auto& [k, a, b] : origin) {
     const auto& st = knots.graph[k];
-    boost::add_vertex(automata::State{.size = st.size,
-                                      .recurrent = false,
-                                      .name = st.name + (a ? "a" : "") + (b ? "b" : "")},
-                      g);
+    boost::add_vertex(
+        automata::State{
+            .size = st.size, .recurrent = false, .name = st.name + (a ? "a" : "") + (b ? "b" : "")},
+        g);
     at_knot.push_back(a);
     at_knot.push_back(b);
   }
@@ -194,11 +195,12 @@ nurbs::KnotAutomaton curve_bcifs_knots(automata::Automaton automaton, const nurb
   const Unfolding unfolding = unfold(knots.automaton);
   if (boost::num_vertices(automaton.graph) < unfolding.origin.size() ||
       automaton.initial.size() != knots.automaton.initial.size())
-    throw InvalidInput("curve_bcifs_knots: the automaton is not that of curve_bcifs of this knot automaton (" +
-                       std::to_string(boost::num_vertices(automaton.graph)) + " states and " +
-                       std::to_string(automaton.initial.size()) + " initial entries for " +
-                       std::to_string(unfolding.origin.size()) + " edge cells and " +
-                       std::to_string(knots.automaton.initial.size()) + " segments)");
+    throw InvalidInput(
+        "curve_bcifs_knots: the automaton is not that of curve_bcifs of this knot automaton (" +
+        std::to_string(boost::num_vertices(automaton.graph)) + " states and " +
+        std::to_string(automaton.initial.size()) + " initial entries for " +
+        std::to_string(unfolding.origin.size()) + " edge cells and " +
+        std::to_string(knots.automaton.initial.size()) + " segments)");
   nurbs::KnotAutomaton out = nurbs::without_knots(std::move(automaton));
   for (StateId s = 0; s < unfolding.origin.size(); ++s) {
     const StateId k = std::get<0>(unfolding.origin[s]);

@@ -64,11 +64,10 @@ Bcifs product_bcifs(const Bcifs& u, const Bcifs& v, const ProductOptions& option
   const auto cell_of = [&](std::array<StateId, 2> p) {
     const auto [it, added] = ids.try_emplace(p, 0);
     if (added) {
-      it->second = boost::add_vertex(
-          automata::State{.size = gu[p[0]].size * gv[p[1]].size,
-                          .recurrent = false,
-                          .name = "(" + gu[p[0]].name + "," + gv[p[1]].name + ")"},
-          g);
+      it->second = boost::add_vertex(automata::State{.size = gu[p[0]].size * gv[p[1]].size,
+                                                     .recurrent = false,
+                                                     .name = "(" + gu[p[0]].name + "," + gv[p[1]].name + ")"},
+                                     g);
       pair.push_back(p);
       sys.dimension.push_back(curves[0]->dimension[p[0]] + curves[1]->dimension[p[1]]);
       todo.push_back(it->second);

@@ -11,11 +11,11 @@
 #include "cifs/automata/automaton.hpp"
 #include "cifs/automata/tensor.hpp"
 #include "cifs/errors.hpp"
-#include "cifs/nurbs/knot_automaton.hpp"
-#include "cifs/nurbs/tensor_automaton.hpp"
 #include "cifs/io/dot.hpp"
 #include "cifs/io/json.hpp"
 #include "cifs/io/svg.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
+#include "cifs/nurbs/tensor_automaton.hpp"
 
 namespace cifs::python {
 
@@ -129,14 +129,18 @@ void bind_automata(py::module_& m) {
           "recurrent", &StateView::recurrent,
           "True when the state occurs at arbitrarily deep levels (on a cycle or reachable from one); "
           "set by mark_recurrent.")
-      .def_readonly("name", &StateView::name, "Name of the state (may be empty), used in messages and drawings.")
+      .def_readonly("name", &StateView::name,
+                    "Name of the state (may be empty), used in messages and drawings.")
       .def("__repr__", &state_repr);
 
-  py::class_<InitialView>(m, "Initial", "Where a piece of the shape starts: an initial entry of an automaton.")
-      .def_readonly("segment", &InitialView::segment, "Index of the segment (or patch) this entry stands for.")
+  py::class_<InitialView>(m, "Initial",
+                          "Where a piece of the shape starts: an initial entry of an automaton.")
+      .def_readonly("segment", &InitialView::segment,
+                    "Index of the segment (or patch) this entry stands for.")
       .def_readonly("state", &InitialView::state, "Id of the state the piece starts in.")
-      .def_readonly("start", &InitialView::start,
-                    "Knot-doubling automata: start of the segment's knot interval (C++ KnotAutomaton::intervals).")
+      .def_readonly(
+          "start", &InitialView::start,
+          "Knot-doubling automata: start of the segment's knot interval (C++ KnotAutomaton::intervals).")
       .def_readonly("end", &InitialView::end, "Knot-doubling automata: end of the segment's knot interval.")
       .def_readonly("span", &InitialView::span,
                     "Knot-doubling automata: the segment's span in the curve's knot vector (-1: unset).")
@@ -236,7 +240,8 @@ void bind_automata(py::module_& m) {
           "states",
           [](const KnotAutomaton& k) {
             std::vector<StateView> out;
-            for (StateId s = 0; s < boost::num_vertices(k.automaton.graph); ++s) out.push_back(state_view(k, s));
+            for (StateId s = 0; s < boost::num_vertices(k.automaton.graph); ++s)
+              out.push_back(state_view(k, s));
             return out;
           },
           "Every state, by id (list of State, copies).")
@@ -285,9 +290,7 @@ void bind_automata(py::module_& m) {
           "segment: defaults to the entry's index; start, end, span: the knot interval and span of "
           "knot-doubling automata (informative for hand-made ones). Raises InvalidInput for an unknown "
           "state.")
-      .def_property_readonly(
-          "initial", &initial_views,
-          "The initial entries (list of Initial, copies).")
+      .def_property_readonly("initial", &initial_views, "The initial entries (list of Initial, copies).")
       .def(
           "copy", [](const KnotAutomaton& k) { return k; },
           "An independent copy (also copy.copy and copy.deepcopy).")
@@ -303,24 +306,23 @@ void bind_automata(py::module_& m) {
                std::to_string(a.initial.size()) + " initial entries)";
       });
 
-  m.def("knot_automaton", &nurbs::knot_automaton, py::arg("curve"),
-        py::call_guard<py::gil_scoped_release>(),
+  m.def("knot_automaton", &nurbs::knot_automaton, py::arg("curve"), py::call_guard<py::gil_scoped_release>(),
         "The knot-doubling automaton of a nurbs.Curve, from its knots alone: one initial entry per segment, "
         "transitions G and D with the subdivision matrices, recurrent states marked.");
   m.def("mark_recurrent", &automata::mark_recurrent, py::arg("automaton"),
         "Sets State.recurrent of every state of `automaton` (in place) from its strong components.");
-  m.def("minimize", py::overload_cast<const KnotAutomaton&>(&nurbs::minimize), py::arg("automaton"),
-        py::call_guard<py::gil_scoped_release>(),
-        "A new automaton whose states no control net can tell apart are merged (Moore partition refinement; "
-        "labels and matrices compared exactly). Initial entries are kept, redirected to their class; a merged "
-        "state keeps the window of the first state of its class.");
+  m.def(
+      "minimize", py::overload_cast<const KnotAutomaton&>(&nurbs::minimize), py::arg("automaton"),
+      py::call_guard<py::gil_scoped_release>(),
+      "A new automaton whose states no control net can tell apart are merged (Moore partition refinement; "
+      "labels and matrices compared exactly). Initial entries are kept, redirected to their class; a merged "
+      "state keeps the window of the first state of its class.");
   m.def("initial_nets", py::overload_cast<const KnotAutomaton&, const nurbs::Curve&>(&nurbs::initial_nets),
         py::arg("automaton"), py::arg("curve"),
         "Control net of every initial entry of knot_automaton(curve): list of float64 `(d+1, cols)` arrays "
         "(homogeneous rows (w·x, w) when rational).");
   m.def(
-      "initial_nets",
-      py::overload_cast<const TensorAutomaton&, const nurbs::Surface&>(&nurbs::initial_nets),
+      "initial_nets", py::overload_cast<const TensorAutomaton&, const nurbs::Surface&>(&nurbs::initial_nets),
       py::arg("automaton"), py::arg("surface"),
       "Control net of every patch of tensor_automaton(surface): list of float64 `((p+1)(q+1), cols)` arrays, "
       "row i·(q+1) + j = control point (span_u − p + i, span_v − q + j). Raises InvalidInput when the "

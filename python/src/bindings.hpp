@@ -37,6 +37,7 @@ class type_caster<cifs::automata::Automaton> {
   type_caster_base<Knots> knots_;
 
  public:
+  // NOLINTNEXTLINE(readability-identifier-naming): the member pybind11 reads for signatures
   static constexpr auto name = type_caster_base<Knots>::name;
 
   bool load(handle src, bool convert) { return knots_.load(src, convert); }

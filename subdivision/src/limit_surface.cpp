@@ -14,11 +14,11 @@
 #include <string>
 #include <vector>
 
-#include "cifs/nurbs/tensor_automaton.hpp"
 #include "cifs/errors.hpp"
 #include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/bcifs_surface.hpp"
 #include "cifs/nurbs/surface.hpp"
+#include "cifs/nurbs/tensor_automaton.hpp"
 #include "cifs/subdivision/limit.hpp"
 #include "limit_patches.hpp"
 #include "local_mesh.hpp"
@@ -134,8 +134,7 @@ SurfaceAutomaton build_automaton(const Mesh& mesh, const MeshTopology& t, MeshSc
   const auto labels = child_labels(scheme);
   const ExtraordinaryPatch regular_patch = quads(scheme) ? ExtraordinaryPatch{} : loop_patch(6);
   const automata::StateId regular = boost::add_vertex(
-      automata::State{.size = quads(scheme) ? 16 : 12, .recurrent = false, .name = "regular"},
-      g);
+      automata::State{.size = quads(scheme) ? 16 : 12, .recurrent = false, .name = "regular"}, g);
   for (std::size_t c = 0; c < 4; ++c) {
     Eigen::MatrixXd M;
     if (quads(scheme))

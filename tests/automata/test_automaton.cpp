@@ -110,7 +110,8 @@ TEST_CASE("Uniform, clamped, closed and repeated knots", "[automata]") {
     }
   }
   SECTION("degree 1 is one uniform state") {
-    const auto a = nurbs::knot_automaton(nurbs::make_curve(1, {0, 0, 0.3, 2, 2}, Points::Random(3, 2))).automaton;
+    const auto a =
+        nurbs::knot_automaton(nurbs::make_curve(1, {0, 0, 0.3, 2, 2}, Points::Random(3, 2))).automaton;
     CHECK(boost::num_vertices(a.graph) == 1);
   }
 }
@@ -121,7 +122,8 @@ TEST_CASE("Minimisation merges states no net can tell apart", "[automata]") {
   const Eigen::MatrixXd D = nurbs::subdivision_matrix(nurbs::Window{1, 1, 1}, 2, nurbs::Half::D);
   const Eigen::MatrixXd G2 = nurbs::subdivision_matrix(nurbs::Window{2, 1, 1}, 2, nurbs::Half::G);
   automata::Automaton a;
-  for (int i = 0; i < 3; ++i) boost::add_vertex(automata::State{.size = 3, .recurrent = false, .name = ""}, a.graph);
+  for (int i = 0; i < 3; ++i)
+    boost::add_vertex(automata::State{.size = 3, .recurrent = false, .name = ""}, a.graph);
   boost::add_edge(0, 1, automata::Transition{"G", G}, a.graph);
   boost::add_edge(0, 1, automata::Transition{"D", D}, a.graph);
   boost::add_edge(1, 0, automata::Transition{"G", G}, a.graph);
@@ -167,9 +169,10 @@ TEST_CASE("Minimisation keeps the knot data beside the automaton", "[automata]")
   }
   a.initial = {{.segment = 0, .state = 2}, {.segment = 1, .state = 1}};
   CHECK(automata::minimize_classes(a) == std::vector<std::size_t>{0, 0, 1});
-  const nurbs::KnotAutomaton k{.automaton = a,
-                               .windows = {{1, 1, 1}, {2, 1, 2}, {3, 1, 3}},
-                               .intervals = {{.start = 0, .end = 1, .span = 2}, {.start = 1, .end = 3, .span = 3}}};
+  const nurbs::KnotAutomaton k{
+      .automaton = a,
+      .windows = {{1, 1, 1}, {2, 1, 2}, {3, 1, 3}},
+      .intervals = {{.start = 0, .end = 1, .span = 2}, {.start = 1, .end = 3, .span = 3}}};
   const nurbs::KnotAutomaton m = nurbs::minimize(k);
   REQUIRE(boost::num_vertices(m.automaton.graph) == 2);
   // Class {0, 1} is state 0 with state 0's window; state 2 became state 1.

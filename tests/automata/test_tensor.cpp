@@ -3,8 +3,8 @@
 #include <set>
 #include <unsupported/Eigen/KroneckerProduct>
 
-#include "cifs/nurbs/tensor_automaton.hpp"
 #include "cifs/errors.hpp"
+#include "cifs/nurbs/tensor_automaton.hpp"
 #include "nurbs/reference.hpp"
 
 using namespace cifs;
@@ -53,7 +53,8 @@ TEST_CASE("Tensor automaton: reachable pairs, sizes, Kronecker matrices in GH GB
         CHECK(t.patches[k] == std::array<int, 2>{static_cast<int>(a), static_cast<int>(b)});
         CHECK(t.product.initial[k].segment == static_cast<int>(k));
         CHECK(t.factor_states[t.product.initial[k].state] ==
-              std::array<StateId, 2>{t.factors[0].automaton.initial[a].state, t.factors[1].automaton.initial[b].state});
+              std::array<StateId, 2>{t.factors[0].automaton.initial[a].state,
+                                     t.factors[1].automaton.initial[b].state});
       }
     // Only reachable states.
     std::set<StateId> seen;

@@ -5,14 +5,14 @@
 #include <cmath>
 #include <numbers>
 
-#include "cifs/nurbs/tensor_automaton.hpp"
 #include "cifs/errors.hpp"
-#include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/ifs/affine_cifs.hpp"
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/ifs/mesh.hpp"
 #include "cifs/nurbs/curve.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/nurbs/surface.hpp"
+#include "cifs/nurbs/tensor_automaton.hpp"
 #include "ifs/helpers.hpp"
 
 using namespace cifs;

@@ -5,10 +5,10 @@
 #include <cmath>
 
 #include "cifs/errors.hpp"
-#include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/ifs/bcifs_surface.hpp"
 #include "cifs/ifs/mesh.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/nurbs/surface.hpp"
 #include "cifs/subdivision/ifs.hpp"
 

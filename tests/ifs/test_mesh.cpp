@@ -4,10 +4,10 @@
 #include <set>
 
 #include "cifs/errors.hpp"
-#include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/ifs/mesh.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
 #include "ifs/helpers.hpp"
 #include "nurbs/reference.hpp"
 
@@ -141,8 +141,7 @@ TEST_CASE("surface_mesh into a mesh: the returned mesh and cartesian(homogeneous
   const nurbs::Surface s = random_surface(rng, {2, 2}, {4, 4}, true, false);
   const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
   const ifs::QuadMesh before = out;
-  CHECK_THROWS_AS(ifs::surface_mesh(t, nurbs::initial_nets(t, s), 6, out, {.max_bytes = 1000}),
-                  InvalidInput);
+  CHECK_THROWS_AS(ifs::surface_mesh(t, nurbs::initial_nets(t, s), 6, out, {.max_bytes = 1000}), InvalidInput);
   CHECK(out.vertices == before.vertices);
   CHECK(out.quads == before.quads);
 }

@@ -9,11 +9,11 @@
 
 #include "cifs/automata/automaton.hpp"
 #include "cifs/errors.hpp"
-#include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/files.hpp"
 #include "cifs/ifs/bcifs_curve.hpp"
 #include "cifs/io/json.hpp"
 #include "cifs/io/obj.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
 
 using namespace cifs;
 using namespace cifs::io;

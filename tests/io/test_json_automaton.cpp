@@ -6,11 +6,11 @@
 #include <random>
 
 #include "cifs/automata/automaton.hpp"
-#include "cifs/nurbs/tensor_automaton.hpp"
 #include "cifs/errors.hpp"
 #include "cifs/ifs/bcifs_curve.hpp"
 #include "cifs/io/json.hpp"
 #include "cifs/nurbs/surface.hpp"
+#include "cifs/nurbs/tensor_automaton.hpp"
 
 using namespace cifs;
 using namespace cifs::io;
@@ -145,7 +145,7 @@ TEST_CASE("Automaton JSON: names only when not the default, read from text writt
                       {"from": 1, "to": 1, "label": "y", "matrix": [[1]]},
                       {"from": 0, "to": 0, "label": "z", "matrix": [[1, 0], [0.5, 0.5]]}],
       "initial": [{"segment": 4, "state": 0, "interval": [1, 2.5]}, {"segment": 5, "state": 1}]})",
-                                                     "hand");
+                                                      "hand");
   const automata::Automaton& a = k.automaton;
   REQUIRE(boost::num_vertices(a.graph) == 2);
   CHECK(a.graph[0].name == "s0");

@@ -7,8 +7,8 @@
 #include <string>
 
 #include "cifs/errors.hpp"
-#include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/nurbs/curve.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
 
 using namespace cifs;
 using namespace cifs::io;

@@ -6,10 +6,10 @@
 #include <set>
 
 #include "cifs/errors.hpp"
-#include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/nurbs/curve.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/render/chaos_density.hpp"
 #include "ifs/helpers.hpp"
 

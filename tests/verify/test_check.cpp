@@ -4,12 +4,12 @@
 #include <random>
 
 #include "cifs/automata/automaton.hpp"
-#include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/errors.hpp"
 #include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/ifs/chaos.hpp"
 #include "cifs/nurbs/curve.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/verify/check.hpp"
 
 using namespace cifs;
@@ -108,8 +108,8 @@ TEST_CASE("Chaos-game points lie on the curve at their recorded parameter", "[ve
     const double address = r.address[static_cast<std::size_t>(k)];
     const auto i =
         static_cast<std::size_t>(std::min(std::floor(address), static_cast<double>(a.initial.size() - 1)));
-    const double u =
-        ka.intervals[i].start + (address - static_cast<double>(i)) * (ka.intervals[i].end - ka.intervals[i].start);
+    const double u = ka.intervals[i].start +
+                     (address - static_cast<double>(i)) * (ka.intervals[i].end - ka.intervals[i].start);
     CHECK((P.row(k) - nurbs::evaluate(c, u)).norm() <= 1e-9 * scale);
   }
 }

@@ -4,13 +4,13 @@
 #include <cmath>
 
 #include "cifs/automata/automaton.hpp"
-#include "cifs/nurbs/tensor_automaton.hpp"
 #include "cifs/errors.hpp"
 #include "cifs/format.hpp"
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/ifs/mesh.hpp"
 #include "cifs/nurbs/doubling.hpp"
 #include "cifs/nurbs/refine.hpp"
+#include "cifs/nurbs/tensor_automaton.hpp"
 
 namespace cifs::verify {
 namespace {

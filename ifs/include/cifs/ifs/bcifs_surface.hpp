@@ -5,9 +5,9 @@
 // and the surface's boundary) and makes the interior fractal.
 #pragma once
 
-#include "cifs/nurbs/tensor_automaton.hpp"
 #include "cifs/ifs/bcifs.hpp"
 #include "cifs/nurbs/surface.hpp"
+#include "cifs/nurbs/tensor_automaton.hpp"
 
 namespace cifs::ifs {
 

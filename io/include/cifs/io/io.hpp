@@ -11,7 +11,6 @@
 #include <vector>
 
 #include "cifs/automata/automaton.hpp"
-#include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/files.hpp"
 #include "cifs/io/bcifs_file.hpp"
 #include "cifs/io/experiment.hpp"
@@ -19,6 +18,7 @@
 #include "cifs/io/polygon.hpp"
 #include "cifs/io/shape.hpp"
 #include "cifs/mesh.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
 
 namespace cifs::io {
 
@@ -95,7 +95,8 @@ std::vector<Shape> read_shapes(const std::filesystem::path& path, const ShapeRea
 Shape read_shape(const std::filesystem::path& path, const ShapeReadOptions& options = {});
 Polygon read_polygon(const std::filesystem::path& path);
 Mesh read_mesh(const std::filesystem::path& path);  // checked with check_mesh
-nurbs::KnotAutomaton read_automaton(const std::filesystem::path& path);  // with its knot data, if any
+/// Automata: with their knot data (windows, intervals) when the file has them.
+nurbs::KnotAutomaton read_automaton(const std::filesystem::path& path);
 BcifsFile read_bcifs(const std::filesystem::path& path);
 /// Inputs (shape, automaton) are resolved against the file's folder; the name defaults to its stem.
 Experiment read_experiment(const std::filesystem::path& path);

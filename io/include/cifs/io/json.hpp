@@ -14,11 +14,11 @@
 #include <string_view>
 
 #include "cifs/automata/automaton.hpp"
-#include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/io/bcifs_file.hpp"
 #include "cifs/io/experiment.hpp"
 #include "cifs/io/polygon.hpp"
 #include "cifs/io/shape.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/subdivision/analysis.hpp"
 #include "cifs/subdivision/mesh_analysis.hpp"
 

@@ -27,10 +27,10 @@ namespace cifs::nurbs {
 /// - only pairs reachable from the initial pairs are states; rational surfaces use homogeneous
 ///   rows `(w·x, w)`, and the matrices do not depend on them.
 struct TensorAutomaton {
-  automata::Automaton product;                                  // states = (u-state, v-state) pairs
-  std::array<KnotAutomaton, 2> factors;                         // knot automata of the u and v direction curves
+  automata::Automaton product;           // states = (u-state, v-state) pairs
+  std::array<KnotAutomaton, 2> factors;  // knot automata of the u and v direction curves
   std::vector<std::array<automata::StateId, 2>> factor_states;  // per product state: its (u, v) factor states
-  std::vector<std::array<int, 2>> patches;                      // per product.initial entry: (u segment, v segment)
+  std::vector<std::array<int, 2>> patches;  // per product.initial entry: (u segment, v segment)
 };
 
 /// The tensor-product automaton of a surface (from its knots alone); recurrent states marked.
