@@ -3,6 +3,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <string>
 
 #include "cifs/errors.hpp"
 #include "cifs/ifs/attractor.hpp"
@@ -68,7 +69,19 @@ TEST_CASE("curve BC-IFS: the NURBS matrices are admissible", "[bcifs][curve]") {
       CHECK_NOTHROW(check_admissible(sys, 1e-14));
       // The vertex cells give the end points of every segment (row selection by multiplicity):
       // against de Boor evaluation.
-      const nurbs::KnotAutomaton knots = curve_bcifs_knots(sys.automaton, nurbs::knot_automaton(curve));
+      const nurbs::KnotAutomaton knot = nurbs::knot_automaton(curve);
+      const nurbs::KnotAutomaton knots = curve_bcifs_knots(sys.automaton, knot);
+      // Edge cell "s3ab" unfolds knot state "s3" and has its window; vertex cells have none.
+      REQUIRE(knots.windows.size() == boost::num_vertices(sys.automaton.graph));
+      for (automata::StateId s = 0; s < knots.windows.size(); ++s) {
+        std::string name = sys.automaton.graph[s].name;
+        if (sys.dimension[s] == 0) {
+          CHECK(knots.windows[s].empty());
+          continue;
+        }
+        while (name.back() == 'a' || name.back() == 'b') name.pop_back();
+        CHECK(knots.windows[s] == knot.windows[static_cast<std::size_t>(std::stoi(name.substr(1)))]);
+      }
       const auto nets = nurbs::initial_nets(knots, curve);
       const auto F = edge_end_functionals(sys);
       for (std::size_t i = 0; i < nets.size(); ++i) {
