@@ -11,7 +11,6 @@
 #include <optional>
 
 #include "cifs/automata/automaton.hpp"
-#include "cifs/automata/tensor.hpp"
 #include "cifs/errors.hpp"
 #include "cifs/experiment/run.hpp"
 #include "cifs/format.hpp"
@@ -25,6 +24,7 @@
 #include "cifs/io/json.hpp"
 #include "cifs/io/svg.hpp"
 #include "cifs/nurbs/refine.hpp"
+#include "cifs/nurbs/tensor_automaton.hpp"
 #include "cifs/render/progress.hpp"
 #include "cifs/verify/check.hpp"
 #include "scheme_command.hpp"
@@ -302,9 +302,10 @@ std::string automaton(const AutomatonOptions& o) {
   const io::Shape shape = read_shape(o.shape, o.select);
   // Curves: the knot-doubling automaton; surfaces: the tensor product of their two direction curves'.
   const auto* c = std::get_if<nurbs::Curve>(&shape);
-  automata::Automaton a =
-      c ? automata::knot_automaton(*c) : automata::tensor_automaton(std::get<nurbs::Surface>(shape)).product;
-  if (o.minimize) a = automata::minimize(a);
+  nurbs::KnotAutomaton a =
+      c ? nurbs::knot_automaton(*c)
+        : nurbs::without_knots(nurbs::tensor_automaton(std::get<nurbs::Surface>(shape)).product);
+  if (o.minimize) a = nurbs::minimize(a);
   return io::encode(a, o.format);
 }
 
@@ -373,8 +374,8 @@ std::string surface_attractor(const nurbs::Surface& s, const std::string& format
   if (o.depth < 0 && format == "obj")
     throw InvalidInput(
         "obj: a surface's points are unordered with --tolerance and --chaos, use json, npy or ply");
-  const automata::TensorAutomaton ta = automata::tensor_automaton(s);
-  const std::vector<Points> nets = automata::initial_nets(ta, s);
+  const nurbs::TensorAutomaton ta = nurbs::tensor_automaton(s);
+  const std::vector<Points> nets = nurbs::initial_nets(ta, s);
   const Eigen::Index dim = nurbs::dimension(s);
   const io::PointsStyle cloud{.polyline = false, .closed = false, .seed = {}};
 
@@ -434,8 +435,9 @@ std::string attractor(const AttractorOptions& o) {
   const io::Shape shape = read_shape(o.shape, o.select);
   const auto* c = std::get_if<nurbs::Curve>(&shape);
   if (!c) return surface_attractor(std::get<nurbs::Surface>(shape), format, o);
-  const automata::Automaton a = automata::knot_automaton(*c);
-  const std::vector<Points> nets = automata::initial_nets(a, *c);
+  const nurbs::KnotAutomaton knots = nurbs::knot_automaton(*c);
+  const automata::Automaton& a = knots.automaton;
+  const std::vector<Points> nets = nurbs::initial_nets(knots, *c);
   const Eigen::Index dim = nurbs::dimension(*c);
   // Streamed: the points go to the file a chunk at a time, as they are computed.
   const bool streamed = !o.output.empty() && format != "svg";

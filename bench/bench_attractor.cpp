@@ -26,6 +26,7 @@
 
 #include "cifs/automata/automaton.hpp"
 #include "cifs/ifs/attractor.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
 #include "sisl_adapters.hpp"
 
 namespace {
@@ -53,13 +54,14 @@ AttractorCase make_case(int depth) {
   Points P(n, 3);
   for (Eigen::Index i = 0; i < P.size(); ++i) P.data()[i] = coord(rng);
   AttractorCase c{nurbs::make_curve(p, t, P), {}, {}, {}};
-  c.automaton = automata::knot_automaton(c.curve);
-  c.nets = automata::initial_nets(c.automaton, c.curve);
+  const nurbs::KnotAutomaton knots = nurbs::knot_automaton(c.curve);
+  c.automaton = knots.automaton;
+  c.nets = nurbs::initial_nets(knots, c.curve);
   const double leaves = std::ldexp(1.0, depth);
-  for (const automata::Initial& init : c.automaton.initial)
+  for (const nurbs::KnotInterval& init : knots.intervals)
     for (long long j = 0; j < static_cast<long long>(leaves); ++j)
       c.params.push_back(init.start + (init.end - init.start) * (static_cast<double>(j) / leaves));
-  c.params.push_back(c.automaton.initial.back().end);
+  c.params.push_back(knots.intervals.back().end);
   // Cross-check once: the attractor is the curve at the dyadic parameters.
   const Points A = ifs::attractor_points(c.automaton, c.nets, depth);
   const Points E = nurbs::evaluate(c.curve, c.params);

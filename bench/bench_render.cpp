@@ -10,6 +10,7 @@
 
 #include "cifs/automata/automaton.hpp"
 #include "cifs/nurbs/curve.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/render/chaos_density.hpp"
 #include "cifs/render/point_ifs.hpp"
 #include "cifs/render/raster.hpp"
@@ -49,8 +50,9 @@ void cifs_density(benchmark::State& state) {
   nurbs::Knots knots;
   for (int i = 0; i < 12; ++i) knots.push_back(i);
   const nurbs::Curve curve = nurbs::make_curve(3, knots, P);
-  const automata::Automaton a = automata::knot_automaton(curve);
-  const std::vector<Points> nets = automata::initial_nets(a, curve);
+  const nurbs::KnotAutomaton k = nurbs::knot_automaton(curve);
+  const automata::Automaton& a = k.automaton;
+  const std::vector<Points> nets = nurbs::initial_nets(k, curve);
   FramingOptions framing;
   framing.width = framing.height = 1024;
   const Camera camera = frame(P, framing);

@@ -19,8 +19,8 @@
 #include <random>
 #include <string>
 
-#include "cifs/automata/tensor.hpp"
 #include "cifs/ifs/mesh.hpp"
+#include "cifs/nurbs/tensor_automaton.hpp"
 #include "sisl_adapters.hpp"
 
 namespace {
@@ -35,7 +35,7 @@ constexpr int kDepth = 8;
 /// mesh at depth 8 has (256·A + 1)² vertices (A = 5: 1281², the case of the earlier tables).
 struct SurfaceCase {
   nurbs::Surface surface;
-  automata::TensorAutomaton automaton;
+  nurbs::TensorAutomaton automaton;
   std::vector<Points> nets;
   std::vector<double> us, vs;  // the dyadic parameters of the mesh nodes, per direction
 };
@@ -64,8 +64,8 @@ SurfaceCase make_case(int patches) {
   Points P(n * n, 3);
   for (Eigen::Index i = 0; i < P.size(); ++i) P.data()[i] = coord(rng);
   SurfaceCase c{nurbs::make_surface({p, p}, knots, {n, n}, P), {}, {}, {}, {}};
-  c.automaton = automata::tensor_automaton(c.surface);
-  c.nets = automata::initial_nets(c.automaton, c.surface);
+  c.automaton = nurbs::tensor_automaton(c.surface);
+  c.nets = nurbs::initial_nets(c.automaton, c.surface);
   c.us = node_parameters(c.surface.knots[0], p);
   c.vs = node_parameters(c.surface.knots[1], p);
   // Cross-check once: both meshes are the surface at the dyadic nodes, in evaluate_grid's order.

@@ -2,17 +2,10 @@
 #include "cifs/automata/automaton.hpp"
 
 #include <boost/graph/strong_components.hpp>
-#include <cmath>
-#include <deque>
 #include <map>
-
-#include "cifs/errors.hpp"
-#include "cifs/nurbs/doubling.hpp"
 
 namespace cifs::automata {
 namespace {
-
-constexpr const char* kHalfLabel[2] = {"G", "D"};
 
 std::vector<double> matrix_key(const Eigen::MatrixXd& M) {
   std::vector<double> key{static_cast<double>(M.rows()), static_cast<double>(M.cols())};
@@ -21,48 +14,6 @@ std::vector<double> matrix_key(const Eigen::MatrixXd& M) {
 }
 
 }  // namespace
-
-Automaton knot_automaton(const nurbs::Curve& curve) {
-  const int d = curve.degree;
-  Automaton a;
-  std::map<std::vector<double>, StateId> ids;  // normalised window → state
-  std::deque<StateId> todo;
-  const auto state_of = [&](std::vector<double> window) {
-    const auto [it, added] = ids.try_emplace(window, 0);
-    if (added) {
-      it->second = boost::add_vertex(State{d + 1, std::move(window), false, ""}, a.graph);
-      a.graph[it->second].name = "s" + std::to_string(it->second);
-      todo.push_back(it->second);
-    }
-    return it->second;
-  };
-  int segment = 0;
-  for (int k = d; k < curve.P.rows(); ++k) {
-    const double lo = curve.knots[static_cast<std::size_t>(k)],
-                 hi = curve.knots[static_cast<std::size_t>(k) + 1];
-    if (!(lo < hi)) continue;
-    nurbs::Window w = nurbs::segment_window(curve.knots, d, k);
-    const double centre = w[static_cast<std::size_t>(d - 1)];
-    for (double& x : w) x /= centre;  // up to scale: the centre is 1 (exactly)
-    a.initial.push_back(Initial{segment++, state_of(std::move(w)), lo, hi, k});
-  }
-  // Children of a normalised window are made of its own entries and keep a unit centre, so the
-  // keys stay exact: no arithmetic happens after the first normalisation.
-  while (!todo.empty()) {
-    const StateId s = todo.front();
-    todo.pop_front();
-    const std::vector<double> window = a.graph[s].window;
-    for (auto half : {nurbs::Half::G, nurbs::Half::D}) {
-      const StateId child = state_of(nurbs::child_window(window, d, half));
-      boost::add_edge(
-          s, child,
-          Transition{kHalfLabel[static_cast<int>(half)], nurbs::subdivision_matrix(window, d, half)},
-          a.graph);
-    }
-  }
-  mark_recurrent(a);
-  return a;
-}
 
 void mark_recurrent(Automaton& a) {
   // A state recurs when it occurs at arbitrarily deep levels of the unfolded automaton: it lies on
@@ -93,7 +44,7 @@ void mark_recurrent(Automaton& a) {
   }
 }
 
-Automaton minimize(const Automaton& a) {
+std::vector<std::size_t> minimize_classes(const Automaton& a) {
   const auto n = boost::num_vertices(a.graph);
   // Initial classes: size and the ordered (label, matrix) of the out-edges.
   std::vector<std::size_t> cls(n);
@@ -125,6 +76,12 @@ Automaton minimize(const Automaton& a) {
     if (next_ids.size() == count) break;
     count = next_ids.size();
   }
+  return cls;
+}
+
+Automaton minimize(const Automaton& a) {
+  const auto n = boost::num_vertices(a.graph);
+  const std::vector<std::size_t> cls = minimize_classes(a);
   // Quotient: the first state of each class represents it.
   Automaton out;
   std::map<std::size_t, StateId> rep;
@@ -146,16 +103,6 @@ Automaton minimize(const Automaton& a) {
   }
   mark_recurrent(out);
   return out;
-}
-
-std::vector<Points> initial_nets(const Automaton& a, const nurbs::Curve& curve) {
-  std::vector<Points> nets;
-  for (const Initial& i : a.initial) {
-    if (i.span < curve.degree || i.span >= curve.P.rows())
-      throw InvalidInput("initial_nets: segment " + std::to_string(i.segment) + " has no span in this curve");
-    nets.push_back(curve.P.middleRows(i.span - curve.degree, curve.degree + 1));
-  }
-  return nets;
 }
 
 }  // namespace cifs::automata

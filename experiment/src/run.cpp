@@ -9,7 +9,6 @@
 #include <numbers>
 #include <optional>
 
-#include "cifs/automata/tensor.hpp"
 #include "cifs/errors.hpp"
 #include "cifs/files.hpp"
 #include "cifs/ifs/affine.hpp"
@@ -25,6 +24,7 @@
 #include "cifs/ifs/sample.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/io/svg.hpp"
+#include "cifs/nurbs/tensor_automaton.hpp"
 #include "cifs/render/camera.hpp"
 #include "cifs/render/chaos_density.hpp"
 #include "cifs/render/image.hpp"
@@ -45,6 +45,8 @@ using Mode = io::Evaluation::Mode;
 /// What the evaluation produced, ready to frame, draw and export.
 struct Scene {
   automata::Automaton automaton;  // the (perturbed) automaton: drawn, and sampled by the chaos game
+  /// NURBS curves: `automaton` with its knot data (windows, intervals), for the automaton outputs.
+  std::optional<nurbs::KnotAutomaton> knots;
   std::vector<Points> nets;
   bool rational = false;  // nets hold homogeneous rows
   std::optional<Mesh> mesh;
@@ -119,15 +121,19 @@ void note_perturbation(const ifs::Perturbation& p, RunReport& report) {
 Scene curve_scene(const nurbs::Curve& c, const io::Experiment& e, const RunOptions& o, RunReport& report) {
   Scene scene;
   scene.rational = c.rational;
-  scene.automaton = automata::knot_automaton(c);
+  const nurbs::KnotAutomaton knots = nurbs::knot_automaton(c);
+  scene.automaton = knots.automaton;
+  scene.knots = knots;
   if (e.perturbation) {
     ifs::CurveBcifsOptions co;
     co.free_vertices = !e.perturbation->keep_vertices;
     const ifs::Perturbation p = ifs::perturb(ifs::curve_bcifs(c, co), perturb_options(*e.perturbation));
     note_perturbation(p, report);
     scene.automaton = p.system.automaton;
+    scene.knots = ifs::curve_bcifs_knots(p.system.automaton, knots);
   }
-  scene.nets = automata::initial_nets(scene.automaton, c);
+  // The BC-IFS keeps the knot automaton's initial entries, in order: the same nets.
+  scene.nets = nurbs::initial_nets(knots, c);
   const Points control = drawable(nurbs::cartesian_points(c), "the curve");
   scene.control = polyline_segments(control, c.closed);
   if (e.evaluation.mode != Mode::chaos) scene.curves = evaluate_curve(scene, e.evaluation, c.closed, o);
@@ -139,9 +145,9 @@ Scene surface_scene(const nurbs::Surface& s, const io::Experiment& e, const RunO
                     RunReport& report) {
   Scene scene;
   scene.rational = s.rational;
-  const automata::TensorAutomaton ta = automata::tensor_automaton(s);
+  const nurbs::TensorAutomaton ta = nurbs::tensor_automaton(s);
   scene.automaton = ta.product;
-  scene.nets = automata::initial_nets(ta, s);
+  scene.nets = nurbs::initial_nets(ta, s);
   if (e.perturbation) {
     ifs::SurfaceBcifsOptions so;
     so.free_knot_lines = !e.perturbation->keep_vertices;
@@ -380,15 +386,15 @@ JunctionPart junction_part(const io::JunctionSide& s) {
   }
   if (const auto* c = std::get_if<nurbs::Curve>(&*s.shape)) {
     part.system = ifs::curve_bcifs(*c, {.free_vertices = s.free});
-    part.nets = automata::initial_nets(part.system.automaton, *c);
+    part.nets = nurbs::initial_nets(nurbs::knot_automaton(*c), *c);  // the BC-IFS keeps its initial entries
     part.rational = c->rational;
     part.kind = std::string(c->rational ? "rational " : "") + "NURBS curve";
     return part;
   }
   const auto& surface = std::get<nurbs::Surface>(*s.shape);
-  const automata::TensorAutomaton ta = automata::tensor_automaton(surface);
+  const nurbs::TensorAutomaton ta = nurbs::tensor_automaton(surface);
   part.system = ifs::surface_bcifs(ta, {.free_knot_lines = s.free});
-  part.nets = automata::initial_nets(ta, surface);
+  part.nets = nurbs::initial_nets(ta, surface);
   part.rational = surface.rational;
   part.patches = ta.patches;
   part.net_grid = {surface.degree[0] + 1, surface.degree[1] + 1};
@@ -769,7 +775,7 @@ std::vector<std::filesystem::path> write_files(const Scene& scene, const io::Exp
   for (const io::Format& f : io::formats(io::Content::automaton))
     if (const auto it = e.outputs.automaton.find(std::string(f.name)); it != e.outputs.automaton.end()) {
       AtomicFile& out = *outputs.automaton.at(it->first);
-      io::encode(scene.automaton, f.name, out);
+      io::encode(scene.knots ? *scene.knots : nurbs::without_knots(scene.automaton), f.name, out);
       geometry.push_back(out.target());
     }
 

@@ -64,7 +64,8 @@ Eigen::MatrixXd barycentric_matrix(const AffineMap& map, const Points& triangle)
 automata::Automaton affine_automaton(std::span<const AffineMap> maps, const Points& triangle) {
   if (maps.empty()) throw InvalidInput("affine_automaton: no map");
   automata::Automaton a;
-  const auto s = boost::add_vertex(automata::State{3, {}, true, "triangle"}, a.graph);
+  const auto s =
+      boost::add_vertex(automata::State{.size = 3, .recurrent = true, .name = "triangle"}, a.graph);
   for (std::size_t i = 0; i < maps.size(); ++i)
     boost::add_edge(
         s, s, automata::Transition{"w" + std::to_string(i), barycentric_matrix(maps[i], triangle)}, a.graph);

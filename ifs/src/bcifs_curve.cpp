@@ -12,53 +12,83 @@ namespace cifs::ifs {
 
 using automata::StateId;
 
+namespace {
+
+using Cell = std::tuple<StateId, bool, bool>;  // knot state, starts at a knot, ends at one
+
+/// Edge cells: the knot automaton's states unfolded by two flags, "starts at a knot of the curve"
+/// and "ends at one", so that the vertex cells at the curve's knots and those at the midpoints
+/// created by subdivision are never the same cell. `origin[s]` is the cell of state s.
+struct Unfolding {
+  std::map<Cell, StateId> ids;
+  std::vector<Cell> origin;
+};
+
+Unfolding unfold(const automata::Automaton& knots) {
+  Unfolding u;
+  const auto cell_of = [&](StateId k, bool a, bool b) {
+    const auto [it, added] = u.ids.try_emplace({k, a, b}, u.origin.size());
+    if (added) u.origin.emplace_back(k, a, b);
+    return it->second;
+  };
+  for (const automata::Initial& init : knots.initial) cell_of(init.state, true, true);
+  for (StateId s = 0; s < u.origin.size(); ++s) {
+    const auto [k, a, b] = u.origin[s];
+    cell_of(boost::target(transition_id(knots, TransitionRef{k, 0}), knots.graph), a, false);
+    cell_of(boost::target(transition_id(knots, TransitionRef{k, 1}), knots.graph), false, b);
+  }
+  return u;
+}
+
+std::size_t window_size(const nurbs::KnotAutomaton& knots, StateId s) {
+  return s < knots.windows.size() ? knots.windows[s].size() : 0;
+}
+
+}  // namespace
+
 Bcifs curve_bcifs(const nurbs::Curve& curve, const CurveBcifsOptions& options) {
   nurbs::validate(curve);
   if (curve.degree < 1)
     throw InvalidInput("curve_bcifs: degree " + std::to_string(curve.degree) + " has no edge to subdivide");
-  return curve_bcifs(automata::knot_automaton(curve), curve.closed, options);
+  return curve_bcifs(nurbs::knot_automaton(curve), curve.closed, options);
 }
 
-Bcifs curve_bcifs(const automata::Automaton& knots, bool closed, const CurveBcifsOptions& options) {
+Bcifs curve_bcifs(const nurbs::KnotAutomaton& knot_automaton, bool closed, const CurveBcifsOptions& options) {
+  const automata::Automaton& knots = knot_automaton.automaton;
   if (knots.initial.empty()) throw InvalidInput("curve_bcifs: the knot automaton has no segment");
   const int d = knots.graph[knots.initial.front().state].size - 1;
   if (d < 1) throw InvalidInput("curve_bcifs: degree " + std::to_string(d) + " has no edge to subdivide");
   for (StateId s = 0; s < boost::num_vertices(knots.graph); ++s)
-    if (knots.graph[s].size != d + 1 || knots.graph[s].window.size() != static_cast<std::size_t>(2 * d - 1) ||
+    if (knots.graph[s].size != d + 1 ||
+        window_size(knot_automaton, s) != static_cast<std::size_t>(2 * d - 1) ||
         boost::out_degree(s, knots.graph) != 2)
       throw InvalidInput("curve_bcifs: state " + std::to_string(s) +
                          " is not a knot-doubling state of degree " + std::to_string(d) +
                          " (d + 1 points, a window of 2d − 1 intervals, two children)");
-  // Edge cells: the knot automaton's states unfolded by two flags, "starts at a knot of the
-  // curve" and "ends at one", so that the vertex cells at the curve's knots and those at the
-  // midpoints created by subdivision are never the same cell.
   Bcifs sys;
   auto& g = sys.automaton.graph;
-  std::map<std::tuple<StateId, bool, bool>, StateId> ids;
-  std::vector<std::tuple<StateId, bool, bool>> origin;
+  const Unfolding unfolding = unfold(knots);
+  const auto& origin = unfolding.origin;
   std::vector<bool> at_knot;  // per vertex key 2s + side: the vertex is a knot of the curve
-  const auto cell_of = [&](StateId k, bool a, bool b) {
-    const auto [it, added] = ids.try_emplace({k, a, b}, 0);
-    if (added) {
-      const auto& st = knots.graph[k];
-      it->second = boost::add_vertex(
-          automata::State{st.size, st.window, false, st.name + (a ? "a" : "") + (b ? "b" : "")}, g);
-      origin.emplace_back(k, a, b);
-      at_knot.push_back(a);
-      at_knot.push_back(b);
-    }
-    return it->second;
-  };
+  for (const auto& [k, a, b] : origin) {
+    const auto& st = knots.graph[k];
+    boost::add_vertex(
+        automata::State{
+            .size = st.size, .recurrent = false, .name = st.name + (a ? "a" : "") + (b ? "b" : "")},
+        g);
+    at_knot.push_back(a);
+    at_knot.push_back(b);
+  }
   for (automata::Initial init : knots.initial) {
-    init.state = cell_of(init.state, true, true);
+    init.state = unfolding.ids.at({init.state, true, true});
     sys.automaton.initial.push_back(init);
   }
   for (StateId s = 0; s < origin.size(); ++s) {
     const auto [k, a, b] = origin[s];
     for (int c = 0; c < 2; ++c) {
       const auto e = transition_id(knots, TransitionRef{k, c});
-      const StateId t = c == 0 ? cell_of(boost::target(e, knots.graph), a, false)
-                               : cell_of(boost::target(e, knots.graph), false, b);
+      const StateId t = c == 0 ? unfolding.ids.at({boost::target(e, knots.graph), a, false})
+                               : unfolding.ids.at({boost::target(e, knots.graph), false, b});
       boost::add_edge(s, t, knots.graph[e], g);
     }
   }
@@ -67,7 +97,7 @@ Bcifs curve_bcifs(const automata::Automaton& knots, bool closed, const CurveBcif
 
   // Rows of an edge net that its start (side 0) or end (side 1) point depends on.
   const auto end_rows = [&](StateId s, int side) {
-    const auto& w = g[s].window;
+    const auto& w = knot_automaton.windows[std::get<0>(origin[s])];
     int m = 1;  // multiplicity of the knot: 1 + the zero intervals next to the centre
     if (side == 0)
       for (int i = d - 2; i >= 0 && w[static_cast<std::size_t>(i)] == 0; --i) ++m;
@@ -159,6 +189,26 @@ Bcifs curve_bcifs(const automata::Automaton& knots, bool closed, const CurveBcif
     sys.free.push_back(TransitionRef{s, 1});
   }
   return sys;
+}
+
+nurbs::KnotAutomaton curve_bcifs_knots(automata::Automaton automaton, const nurbs::KnotAutomaton& knots) {
+  const Unfolding unfolding = unfold(knots.automaton);
+  if (boost::num_vertices(automaton.graph) < unfolding.origin.size() ||
+      automaton.initial.size() != knots.automaton.initial.size())
+    throw InvalidInput(
+        "curve_bcifs_knots: the automaton is not that of curve_bcifs of this knot automaton (" +
+        std::to_string(boost::num_vertices(automaton.graph)) + " states and " +
+        std::to_string(automaton.initial.size()) + " initial entries for " +
+        std::to_string(unfolding.origin.size()) + " edge cells and " +
+        std::to_string(knots.automaton.initial.size()) + " segments)");
+  nurbs::KnotAutomaton out = nurbs::without_knots(std::move(automaton));
+  for (StateId s = 0; s < unfolding.origin.size(); ++s) {
+    const StateId k = std::get<0>(unfolding.origin[s]);
+    if (k < knots.windows.size()) out.windows[s] = knots.windows[k];
+  }
+  out.intervals = knots.intervals;
+  out.intervals.resize(out.automaton.initial.size());
+  return out;
 }
 
 }  // namespace cifs::ifs

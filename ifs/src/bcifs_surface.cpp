@@ -28,7 +28,7 @@ StateId source_cell(const Bcifs& sys, const Constraint& c) {
 
 }  // namespace
 
-Bcifs surface_bcifs(const automata::TensorAutomaton& automaton, const SurfaceBcifsOptions& options) {
+Bcifs surface_bcifs(const nurbs::TensorAutomaton& automaton, const SurfaceBcifsOptions& options) {
   const Bcifs cu = curve_bcifs(automaton.factors[0], false, {options.free_knot_lines});
   const Bcifs cv = curve_bcifs(automaton.factors[1], false, {options.free_knot_lines});
   if (automaton.product.initial.size() != cu.automaton.initial.size() * cv.automaton.initial.size())
@@ -37,7 +37,7 @@ Bcifs surface_bcifs(const automata::TensorAutomaton& automaton, const SurfaceBci
                        std::to_string(cu.automaton.initial.size()) + " × " +
                        std::to_string(cv.automaton.initial.size()));
   Bcifs sys = product_bcifs(cu, cv);
-  // The tensor automaton's entries (patch order, segments, knot intervals) on the product's cells.
+  // The tensor automaton's entries (patch order, segments) on the product's cells.
   for (std::size_t k = 0; k < sys.automaton.initial.size(); ++k) {
     automata::Initial init = automaton.product.initial[k];
     init.state = sys.automaton.initial[k].state;
@@ -64,10 +64,10 @@ Bcifs product_bcifs(const Bcifs& u, const Bcifs& v, const ProductOptions& option
   const auto cell_of = [&](std::array<StateId, 2> p) {
     const auto [it, added] = ids.try_emplace(p, 0);
     if (added) {
-      it->second = boost::add_vertex(
-          automata::State{
-              gu[p[0]].size * gv[p[1]].size, {}, false, "(" + gu[p[0]].name + "," + gv[p[1]].name + ")"},
-          g);
+      it->second = boost::add_vertex(automata::State{.size = gu[p[0]].size * gv[p[1]].size,
+                                                     .recurrent = false,
+                                                     .name = "(" + gu[p[0]].name + "," + gv[p[1]].name + ")"},
+                                     g);
       pair.push_back(p);
       sys.dimension.push_back(curves[0]->dimension[p[0]] + curves[1]->dimension[p[1]]);
       todo.push_back(it->second);
@@ -83,8 +83,8 @@ Bcifs product_bcifs(const Bcifs& u, const Bcifs& v, const ProductOptions& option
   }
   for (std::size_t a = 0; a < iu.size(); ++a)
     for (std::size_t b = 0; b < iv.size(); ++b) {
-      sys.automaton.initial.push_back(automata::Initial{static_cast<int>(a * iv.size() + b),
-                                                        cell_of({iu[a].state, iv[b].state}), 0.0, 0.0, -1});
+      sys.automaton.initial.push_back(automata::Initial{.segment = static_cast<int>(a * iv.size() + b),
+                                                        .state = cell_of({iu[a].state, iv[b].state})});
     }
   const auto children = [](const automata::Graph& graph, StateId s) {
     std::vector<std::pair<StateId, automata::TransitionId>> out;
@@ -204,7 +204,7 @@ Bcifs product_bcifs(const Bcifs& u, const Bcifs& v, const ProductOptions& option
 }
 
 Bcifs surface_bcifs(const nurbs::Surface& surface, const SurfaceBcifsOptions& options) {
-  return surface_bcifs(automata::tensor_automaton(surface), options);
+  return surface_bcifs(nurbs::tensor_automaton(surface), options);
 }
 
 }  // namespace cifs::ifs

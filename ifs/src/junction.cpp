@@ -52,7 +52,8 @@ Bcifs uniform_curve_bcifs(const Eigen::MatrixXd& S0, const Eigen::MatrixXd& S1,
   Bcifs sys;
   auto& g = sys.automaton.graph;
   const auto add = [&](const std::string& name, Eigen::Index size, int dimension) {
-    const StateId s = boost::add_vertex(automata::State{static_cast<int>(size), {}, true, name}, g);
+    const StateId s = boost::add_vertex(
+        automata::State{.size = static_cast<int>(size), .recurrent = true, .name = name}, g);
     sys.dimension.push_back(dimension);
     return s;
   };
@@ -110,7 +111,8 @@ Bcifs uniform_curve_bcifs(const Eigen::MatrixXd& S0, const Eigen::MatrixXd& S1,
     sys.constraints.push_back(Constraint{
         name + ".junction", {boundary(t1, 1), transition(s, 0)}, {boundary(t2, 0), transition(s, 1)}});
   }
-  for (int k = 0; k < options.pieces; ++k) sys.automaton.initial.push_back({k, edge_at(k), 0.0, 0.0, -1});
+  for (int k = 0; k < options.pieces; ++k)
+    sys.automaton.initial.push_back({.segment = k, .state = edge_at(k)});
   automata::mark_recurrent(sys.automaton);
   validate(sys);
   return sys;

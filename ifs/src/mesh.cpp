@@ -178,11 +178,11 @@ std::size_t mesh_bytes(std::size_t vertices, std::size_t cols, std::size_t quads
   return v > kSaturated - q ? kSaturated : v + q;
 }
 
-void surface_mesh(const automata::TensorAutomaton& t, std::span<const Points> nets, int depth, QuadMesh& mesh,
+void surface_mesh(const nurbs::TensorAutomaton& t, std::span<const Points> nets, int depth, QuadMesh& mesh,
                   const MeshOptions& options) {
   // The route reads the factors and the state pairs, never the product's matrices: validating the
   // product (every 16 by 16 matrix of a bicubic surface) costs as much as a depth-8 mesh's quads.
-  for (const Automaton& f : t.factors) validate(f);
+  for (const auto& f : t.factors) validate(f.automaton);
   detail::check_nets(t.product, nets, "surface_mesh");
   if (t.factor_states.size() != boost::num_vertices(t.product.graph))
     throw InvalidInput("surface_mesh: " + std::to_string(t.factor_states.size()) +
@@ -190,12 +190,12 @@ void surface_mesh(const automata::TensorAutomaton& t, std::span<const Points> ne
                        " product states");
   for (StateId s = 0; s < t.factor_states.size(); ++s)
     for (std::size_t dir = 0; dir < 2; ++dir)
-      if (t.factor_states[s][dir] >= boost::num_vertices(t.factors[dir].graph))
+      if (t.factor_states[s][dir] >= boost::num_vertices(t.factors[dir].automaton.graph))
         throw InvalidInput("surface_mesh: product state " + std::to_string(s) + " names factor state " +
                            std::to_string(t.factor_states[s][dir]) + " of direction " + std::to_string(dir) +
                            ", which does not exist");
-  const int A = static_cast<int>(t.factors[0].initial.size()),
-            B = static_cast<int>(t.factors[1].initial.size());
+  const int A = static_cast<int>(t.factors[0].automaton.initial.size()),
+            B = static_cast<int>(t.factors[1].automaton.initial.size());
   if (t.patches.size() != t.product.initial.size() || t.patches.size() != static_cast<std::size_t>(A) * B)
     throw InvalidInput("surface_mesh: the automaton has " + std::to_string(t.patches.size()) +
                        " patches for " + std::to_string(t.product.initial.size()) + " initial entries and " +
@@ -214,7 +214,7 @@ void surface_mesh(const automata::TensorAutomaton& t, std::span<const Points> ne
   std::array<Points, 2> F;
   std::array<std::vector<StateId>, 2> leaves;
   for (std::size_t dir = 0; dir < 2; ++dir) {
-    const Automaton& f = t.factors[dir];
+    const Automaton& f = t.factors[dir].automaton;
     std::vector<Points> identity;
     for (const auto& init : f.initial)
       identity.push_back(Points::Identity(f.graph[init.state].size, f.graph[init.state].size));
@@ -275,11 +275,11 @@ void surface_mesh(const automata::TensorAutomaton& t, std::span<const Points> ne
 
   // Leaf states: the product state of the pair of factor leaf states. Rows I with the same u leaf
   // state are equal, so each distinct row is built once and copied.
-  const auto nv_states = boost::num_vertices(t.factors[1].graph);
-  std::vector<std::uint32_t> pair_id(boost::num_vertices(t.factors[0].graph) * nv_states, 0);
+  const auto nv_states = boost::num_vertices(t.factors[1].automaton.graph);
+  std::vector<std::uint32_t> pair_id(boost::num_vertices(t.factors[0].automaton.graph) * nv_states, 0);
   for (StateId s = 0; s < t.factor_states.size(); ++s)
     pair_id[t.factor_states[s][0] * nv_states + t.factor_states[s][1]] = static_cast<std::uint32_t>(s);
-  std::vector<std::vector<std::uint32_t>> state_row(boost::num_vertices(t.factors[0].graph));
+  std::vector<std::vector<std::uint32_t>> state_row(boost::num_vertices(t.factors[0].automaton.graph));
   mesh.quad_state.clear();
   reserve_huge(mesh.quad_state, grid.quads);
   for (int I = 0; I < grid.cu; ++I) {
@@ -293,7 +293,7 @@ void surface_mesh(const automata::TensorAutomaton& t, std::span<const Points> ne
   }
 }
 
-QuadMesh surface_mesh(const automata::TensorAutomaton& automaton, std::span<const Points> nets, int depth,
+QuadMesh surface_mesh(const nurbs::TensorAutomaton& automaton, std::span<const Points> nets, int depth,
                       const MeshOptions& options) {
   QuadMesh mesh;
   surface_mesh(automaton, nets, depth, mesh, options);

@@ -102,11 +102,11 @@ const Codec<PointSet> kPoints[] = {
 /// The chunked writers behind kPoints, which PointsWriter finds by name.
 const detail::PointsFormat* const kPointsFormats[] = {&detail::kJsonPoints, &detail::kNpyPoints,
                                                       &detail::kPlyPoints, &detail::kObjPoints};
-const Codec<automata::Automaton> kAutomaton[] = {
-    {"json", ".json", whole<automata::Automaton, to_json>,
-     parse_at<automata::Automaton, parse_automaton_json>},
-    {"svg", ".svg", whole<automata::Automaton, to_svg>},
-    {"dot", ".dot", whole<automata::Automaton, to_dot>},
+const Codec<nurbs::KnotAutomaton> kAutomaton[] = {
+    {"json", ".json", whole<nurbs::KnotAutomaton, to_json>,
+     parse_at<nurbs::KnotAutomaton, parse_automaton_json>},
+    {"svg", ".svg", [](const nurbs::KnotAutomaton& a, ByteSink& out) { out.write(to_svg(a.automaton)); }},
+    {"dot", ".dot", whole<nurbs::KnotAutomaton, to_dot>},
 };
 const Codec<BcifsFile> kBcifs[] = {
     {"json", ".json", [](const BcifsFile& f, ByteSink& out) { out.write(to_json(f.system, f.nets)); },
@@ -131,7 +131,7 @@ std::span<const Codec<Segments>> codecs(const Segments*) {
 std::span<const Codec<PointSet>> codecs(const PointSet*) {
   return kPoints;
 }
-std::span<const Codec<automata::Automaton>> codecs(const automata::Automaton*) {
+std::span<const Codec<nurbs::KnotAutomaton>> codecs(const nurbs::KnotAutomaton*) {
   return kAutomaton;
 }
 std::span<const Codec<BcifsFile>> codecs(const BcifsFile*) {
@@ -238,7 +238,7 @@ std::vector<Format> formats(Content content) {
     case Content::points:
       return formats_of<PointSet>();
     case Content::automaton:
-      return formats_of<automata::Automaton>();
+      return formats_of<nurbs::KnotAutomaton>();
     case Content::bcifs:
       return formats_of<BcifsFile>();
     case Content::experiment:
@@ -261,7 +261,7 @@ void encode(const Mesh& mesh, std::string_view format, ByteSink& out) {
 void encode(const Segments& segments, std::string_view format, ByteSink& out) {
   encode_as(segments, Content::segments, format, out);
 }
-void encode(const automata::Automaton& automaton, std::string_view format, ByteSink& out) {
+void encode(const nurbs::KnotAutomaton& automaton, std::string_view format, ByteSink& out) {
   encode_as(automaton, Content::automaton, format, out);
 }
 
@@ -299,8 +299,12 @@ std::string encode(const Segments& segments, std::string_view format) {
 std::string encode(const PointSet& points, std::string_view format) {
   return encode_as(points, Content::points, format);
 }
-std::string encode(const automata::Automaton& automaton, std::string_view format) {
+std::string encode(const nurbs::KnotAutomaton& automaton, std::string_view format) {
   return encode_as(automaton, Content::automaton, format);
+}
+
+std::string encode(const automata::Automaton& automaton, std::string_view format) {
+  return encode(nurbs::without_knots(automaton), format);
 }
 std::string encode(const BcifsFile& file, std::string_view format) {
   return encode_as(file, Content::bcifs, format);
@@ -321,8 +325,12 @@ void write(const std::filesystem::path& path, const Segments& segments) {
 void write(const std::filesystem::path& path, const PointSet& points) {
   write_as(path, points, Content::points);
 }
-void write(const std::filesystem::path& path, const automata::Automaton& automaton) {
+void write(const std::filesystem::path& path, const nurbs::KnotAutomaton& automaton) {
   write_as(path, automaton, Content::automaton);
+}
+
+void write(const std::filesystem::path& path, const automata::Automaton& automaton) {
+  write(path, nurbs::without_knots(automaton));
 }
 void write(const std::filesystem::path& path, const BcifsFile& file) {
   write_as(path, file, Content::bcifs);
@@ -343,8 +351,8 @@ Polygon read_polygon(const std::filesystem::path& path) {
 Mesh read_mesh(const std::filesystem::path& path) {
   return read_as<Mesh>(path, Content::mesh);
 }
-automata::Automaton read_automaton(const std::filesystem::path& path) {
-  return read_as<automata::Automaton>(path, Content::automaton);
+nurbs::KnotAutomaton read_automaton(const std::filesystem::path& path) {
+  return read_as<nurbs::KnotAutomaton>(path, Content::automaton);
 }
 BcifsFile read_bcifs(const std::filesystem::path& path) {
   return read_as<BcifsFile>(path, Content::bcifs);

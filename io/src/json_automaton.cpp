@@ -17,12 +17,13 @@ std::string default_name(StateId s) {
 
 }  // namespace
 
-std::string to_json(const automata::Automaton& a) {
+std::string to_json(const nurbs::KnotAutomaton& k) {
+  const automata::Automaton& a = k.automaton;
   json states = json::array(), transitions = json::array(), initial = json::array();
   for (StateId s = 0; s < boost::num_vertices(a.graph); ++s) {
     const automata::State& st = a.graph[s];
     json j{{"id", s}, {"size", st.size}, {"recurrent", st.recurrent}};
-    if (!st.window.empty()) j["window"] = st.window;
+    if (s < k.windows.size() && !k.windows[s].empty()) j["window"] = k.windows[s];
     if (st.name != default_name(s)) j["name"] = st.name;
     states.push_back(std::move(j));
   }
@@ -40,18 +41,27 @@ std::string to_json(const automata::Automaton& a) {
                            {"label", a.graph[*e].label},
                            {"matrix", rows}});
   }
-  for (const automata::Initial& i : a.initial)
-    initial.push_back({{"segment", i.segment}, {"state", i.state}, {"interval", {i.start, i.end}}});
+  for (std::size_t n = 0; n < a.initial.size(); ++n) {
+    const automata::Initial& i = a.initial[n];
+    const nurbs::KnotInterval interval = n < k.intervals.size() ? k.intervals[n] : nurbs::KnotInterval{};
+    initial.push_back(
+        {{"segment", i.segment}, {"state", i.state}, {"interval", {interval.start, interval.end}}});
+  }
   return json{{"states", states}, {"transitions", transitions}, {"initial", initial}}.dump() + "\n";
 }
 
-automata::Automaton parse_automaton_json(std::string_view text, std::string_view where) {
+std::string to_json(const automata::Automaton& a) {
+  return to_json(nurbs::without_knots(a));
+}
+
+nurbs::KnotAutomaton parse_automaton_json(std::string_view text, std::string_view where) {
   const Reader r{std::string(where)};
   const json doc = detail::parse_document(text, r.where);
   if (!doc.is_object())
     throw InvalidInput(r.where + ": expected an object with \"states\", \"transitions\", \"initial\"");
   r.only(doc, "", {"states", "transitions", "initial"});
-  automata::Automaton a;
+  nurbs::KnotAutomaton k;
+  automata::Automaton& a = k.automaton;
   auto& g = a.graph;
 
   const json& states = r.array(r.member(doc, "", "states"), "states");
@@ -65,7 +75,7 @@ automata::Automaton parse_automaton_json(std::string_view text, std::string_view
     state.size = r.integer(r.member(s, path, "size"), path + ".size");
     if (state.size < 1) r.fail(path + ".size", std::to_string(state.size) + " points, expected at least 1");
     if (s.contains("recurrent")) state.recurrent = r.boolean(s["recurrent"], path + ".recurrent");
-    if (s.contains("window")) state.window = r.numbers(s["window"], path + ".window");
+    k.windows.push_back(s.contains("window") ? r.numbers(s["window"], path + ".window") : nurbs::Window{});
     state.name = s.contains("name") ? r.string(s["name"], path + ".name") : default_name(i);
     boost::add_vertex(state, g);
   }
@@ -100,15 +110,17 @@ automata::Automaton parse_automaton_json(std::string_view text, std::string_view
     automata::Initial entry;
     entry.segment = r.integer(r.member(o, path, "segment"), path + ".segment");
     entry.state = state_id(r.member(o, path, "state"), path + ".state");
+    nurbs::KnotInterval knots;
     if (o.contains("interval")) {
       const std::vector<double> interval = r.numbers(o["interval"], path + ".interval");
       if (interval.size() != 2) r.fail(path + ".interval", "expected [start, end]");
-      entry.start = interval[0];
-      entry.end = interval[1];
+      knots.start = interval[0];
+      knots.end = interval[1];
     }
     a.initial.push_back(entry);
+    k.intervals.push_back(knots);
   }
-  return a;
+  return k;
 }
 
 }  // namespace cifs::io

@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: MIT
 // cifs Python bindings — cifs.automata: hand-made and knot-doubling automata, tensor products.
+// Python's Automaton is nurbs::KnotAutomaton: a generic automaton and its knot data, empty for
+// hand-made automata (bindings.hpp reads a C++ automata::Automaton from it).
 #include <cstdint>
 #include <iterator>
 #include <optional>
@@ -12,6 +14,8 @@
 #include "cifs/io/dot.hpp"
 #include "cifs/io/json.hpp"
 #include "cifs/io/svg.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
+#include "cifs/nurbs/tensor_automaton.hpp"
 
 namespace cifs::python {
 
@@ -19,6 +23,45 @@ namespace {
 
 using automata::Automaton;
 using automata::StateId;
+using nurbs::KnotAutomaton;
+
+/// A state as Python sees it: the generic state and its window (knot data).
+struct StateView {
+  int size = 0;
+  nurbs::Window window;
+  bool recurrent = false;
+  std::string name;
+};
+
+/// An initial entry as Python sees it: the generic entry and its knot interval and span.
+struct InitialView {
+  int segment = 0;
+  StateId state = 0;
+  double start = 0, end = 0;
+  int span = -1;
+};
+
+StateView state_view(const KnotAutomaton& k, StateId s) {
+  const automata::State& st = k.automaton.graph[s];
+  return {.size = st.size,
+          .window = s < k.windows.size() ? k.windows[s] : nurbs::Window{},
+          .recurrent = st.recurrent,
+          .name = st.name};
+}
+
+std::vector<InitialView> initial_views(const KnotAutomaton& k) {
+  std::vector<InitialView> out;
+  for (std::size_t i = 0; i < k.automaton.initial.size(); ++i) {
+    const automata::Initial& init = k.automaton.initial[i];
+    const nurbs::KnotInterval interval = i < k.intervals.size() ? k.intervals[i] : nurbs::KnotInterval{};
+    out.push_back({.segment = init.segment,
+                   .state = init.state,
+                   .start = interval.start,
+                   .end = interval.end,
+                   .span = interval.span});
+  }
+  return out;
+}
 
 /// One transition as Python sees it: the edge with its endpoints and its place among the out-edges.
 struct TransitionView {
@@ -67,7 +110,7 @@ std::vector<TransitionView> transitions(const Automaton& a) {
   return out;
 }
 
-std::string state_repr(const automata::State& s) {
+std::string state_repr(const StateView& s) {
   return "State(size=" + std::to_string(s.size) + ", window=" + std::to_string(s.window.size()) +
          " values, recurrent=" + (s.recurrent ? "True" : "False") + ", name='" + s.name + "')";
 }
@@ -75,30 +118,33 @@ std::string state_repr(const automata::State& s) {
 }  // namespace
 
 void bind_automata(py::module_& m) {
-  using automata::Initial;
-  using automata::State;
-  using automata::TensorAutomaton;
+  using nurbs::TensorAutomaton;
 
-  py::class_<State>(m, "State", "A state of an automaton: the control nets it holds have `size` points.")
-      .def_readonly("size", &State::size, "Number of points of the nets of this state.")
-      .def_readonly("window", &State::window,
+  py::class_<StateView>(m, "State", "A state of an automaton: the control nets it holds have `size` points.")
+      .def_readonly("size", &StateView::size, "Number of points of the nets of this state.")
+      .def_readonly("window", &StateView::window,
                     "Knot-doubling states: the inter-knot window normalised so that its centre is 1 (list of "
-                    "float, the state's key); empty for hand-made states.")
+                    "float, the state's key; C++ KnotAutomaton::windows); empty for hand-made states.")
       .def_readonly(
-          "recurrent", &State::recurrent,
+          "recurrent", &StateView::recurrent,
           "True when the state occurs at arbitrarily deep levels (on a cycle or reachable from one); "
           "set by mark_recurrent.")
-      .def_readonly("name", &State::name, "Name of the state (may be empty), used in messages and drawings.")
+      .def_readonly("name", &StateView::name,
+                    "Name of the state (may be empty), used in messages and drawings.")
       .def("__repr__", &state_repr);
 
-  py::class_<Initial>(m, "Initial", "Where a piece of the shape starts: an initial entry of an automaton.")
-      .def_readonly("segment", &Initial::segment, "Index of the segment (or patch) this entry stands for.")
-      .def_readonly("state", &Initial::state, "Id of the state the piece starts in.")
-      .def_readonly("start", &Initial::start, "Knot-doubling automata: start of the segment's knot interval.")
-      .def_readonly("end", &Initial::end, "Knot-doubling automata: end of the segment's knot interval.")
-      .def_readonly("span", &Initial::span,
+  py::class_<InitialView>(m, "Initial",
+                          "Where a piece of the shape starts: an initial entry of an automaton.")
+      .def_readonly("segment", &InitialView::segment,
+                    "Index of the segment (or patch) this entry stands for.")
+      .def_readonly("state", &InitialView::state, "Id of the state the piece starts in.")
+      .def_readonly(
+          "start", &InitialView::start,
+          "Knot-doubling automata: start of the segment's knot interval (C++ KnotAutomaton::intervals).")
+      .def_readonly("end", &InitialView::end, "Knot-doubling automata: end of the segment's knot interval.")
+      .def_readonly("span", &InitialView::span,
                     "Knot-doubling automata: the segment's span in the curve's knot vector (-1: unset).")
-      .def("__repr__", [](const Initial& i) {
+      .def("__repr__", [](const InitialView& i) {
         return "Initial(segment=" + std::to_string(i.segment) + ", state=" + std::to_string(i.state) +
                ", start=" + py::repr(py::float_(i.start)).cast<std::string>() +
                ", end=" + py::repr(py::float_(i.end)).cast<std::string>() +
@@ -122,30 +168,34 @@ void bind_automata(py::module_& m) {
                "x" + std::to_string(t.matrix.cols()) + ")";
       });
 
-  py::class_<Automaton>(
+  py::class_<KnotAutomaton>(
       m, "Automaton",
       "An automaton whose transitions carry subdivision matrices (a controlled IFS).\n\n"
       "Automaton() is empty: add states, transitions (in the order of the children along the "
       "shape) and initial entries. knot_automaton and tensor_automaton build one from knots.\n"
       "Ids, matrix shapes and finiteness are checked as they are added (InvalidInput); rows "
       "summing to 1 and every state having a transition are checked by cifs.ifs.validate, "
-      "which every engine function calls.")
+      "which every engine function calls. Knot-doubling automata also hold the windows of their "
+      "states and the knot intervals of their initial entries (C++ nurbs::KnotAutomaton).")
       .def(py::init<>(), "An empty automaton: no state, no transition, no initial entry.")
       .def(
           "add_state",
-          [](Automaton& a, int size, const std::string& name) {
+          [](KnotAutomaton& k, int size, const std::string& name) {
             if (size < 1)
               throw InvalidInput("add_state: size is " + std::to_string(size) +
                                  ", a state holds at least 1 point");
-            return boost::add_vertex(State{size, {}, false, name}, a.graph);
+            k.windows.resize(boost::num_vertices(k.automaton.graph) + 1);
+            return boost::add_vertex(automata::State{.size = size, .recurrent = false, .name = name},
+                                     k.automaton.graph);
           },
           py::arg("size"), py::arg("name") = "",
           "Adds a state whose nets have `size` (≥ 1) points; returns its id (0, 1, …).\n\n"
           "Raises InvalidInput for a size < 1.")
       .def(
           "add_transition",
-          [](Automaton& a, std::int64_t source, std::int64_t target, const Eigen::MatrixXd& matrix,
+          [](KnotAutomaton& k, std::int64_t source, std::int64_t target, const Eigen::MatrixXd& matrix,
              const std::string& label) {
+            Automaton& a = k.automaton;
             const StateId s = state_id(a, source, "add_transition");
             const StateId t = state_id(a, target, "add_transition");
             check_matrix(a, s, t, matrix, "add_transition " + std::to_string(s) + " -> " + std::to_string(t));
@@ -160,7 +210,8 @@ void bind_automata(py::module_& m) {
           "Raises InvalidInput for an unknown state id, a matrix of another shape or a non-finite entry.")
       .def(
           "matrix",
-          [](const Automaton& a, std::int64_t source, std::int64_t child) -> Eigen::MatrixXd {
+          [](const KnotAutomaton& k, std::int64_t source, std::int64_t child) -> Eigen::MatrixXd {
+            const Automaton& a = k.automaton;
             const StateId s = state_id(a, source, "matrix");
             return a.graph[out_edge(a, s, child, "matrix")].matrix;
           },
@@ -169,7 +220,8 @@ void bind_automata(py::module_& m) {
           "Raises InvalidInput for an unknown state or child.")
       .def(
           "set_matrix",
-          [](Automaton& a, std::int64_t source, std::int64_t child, const Eigen::MatrixXd& matrix) {
+          [](KnotAutomaton& k, std::int64_t source, std::int64_t child, const Eigen::MatrixXd& matrix) {
+            Automaton& a = k.automaton;
             const StateId s = state_id(a, source, "set_matrix");
             const auto e = out_edge(a, s, child, "set_matrix");
             check_matrix(a, s, boost::target(e, a.graph), matrix,
@@ -179,21 +231,27 @@ void bind_automata(py::module_& m) {
           py::arg("source"), py::arg("child"), py::arg("matrix"),
           "Replaces the matrix of child `child` of state `source` (same checks as add_transition).")
       .def(
-          "state", [](const Automaton& a, std::int64_t id) { return a.graph[state_id(a, id, "state")]; },
+          "state",
+          [](const KnotAutomaton& k, std::int64_t id) {
+            return state_view(k, state_id(k.automaton, id, "state"));
+          },
           py::arg("id"), "The state `id` (a copy). Raises InvalidInput for an unknown id.")
       .def_property_readonly(
           "states",
-          [](const Automaton& a) {
-            std::vector<State> out;
-            for (StateId s = 0; s < boost::num_vertices(a.graph); ++s) out.push_back(a.graph[s]);
+          [](const KnotAutomaton& k) {
+            std::vector<StateView> out;
+            for (StateId s = 0; s < boost::num_vertices(k.automaton.graph); ++s)
+              out.push_back(state_view(k, s));
             return out;
           },
           "Every state, by id (list of State, copies).")
       .def_property_readonly(
-          "state_count", [](const Automaton& a) { return boost::num_vertices(a.graph); }, "Number of states.")
+          "state_count", [](const KnotAutomaton& k) { return boost::num_vertices(k.automaton.graph); },
+          "Number of states.")
       .def(
           "children",
-          [](const Automaton& a, std::int64_t source) {
+          [](const KnotAutomaton& k, std::int64_t source) {
+            const Automaton& a = k.automaton;
             const StateId s = state_id(a, source, "children");
             std::vector<StateId> out;
             for (auto [b, e] = boost::out_edges(s, a.graph); b != e; ++b)
@@ -203,7 +261,8 @@ void bind_automata(py::module_& m) {
           py::arg("source"), "Target ids of the transitions out of `source`, in child order (list of int).")
       .def(
           "labels",
-          [](const Automaton& a, std::int64_t source) {
+          [](const KnotAutomaton& k, std::int64_t source) {
+            const Automaton& a = k.automaton;
             const StateId s = state_id(a, source, "labels");
             std::vector<std::string> out;
             for (auto [b, e] = boost::out_edges(s, a.graph); b != e; ++b) out.push_back(a.graph[*b].label);
@@ -211,15 +270,18 @@ void bind_automata(py::module_& m) {
           },
           py::arg("source"), "Labels of the transitions out of `source`, in child order (list of str).")
       .def_property_readonly(
-          "transitions", &transitions,
+          "transitions", [](const KnotAutomaton& k) { return transitions(k.automaton); },
           "Every transition, in state order then child order (list of Transition, copies).")
       .def(
           "add_initial",
-          [](Automaton& a, std::int64_t state, std::optional<int> segment, double start, double end,
+          [](KnotAutomaton& k, std::int64_t state, std::optional<int> segment, double start, double end,
              int span) {
+            Automaton& a = k.automaton;
             const StateId s = state_id(a, state, "add_initial");
-            a.initial.push_back(
-                {segment ? *segment : static_cast<int>(a.initial.size()), s, start, end, span});
+            a.initial.push_back(automata::Initial{
+                .segment = segment ? *segment : static_cast<int>(a.initial.size()), .state = s});
+            k.intervals.resize(a.initial.size() - 1);
+            k.intervals.push_back(nurbs::KnotInterval{.start = start, .end = end, .span = span});
             return a.initial.size() - 1;
           },
           py::arg("state"), py::arg("segment") = py::none(), py::arg("start") = 0.0, py::arg("end") = 0.0,
@@ -228,49 +290,50 @@ void bind_automata(py::module_& m) {
           "segment: defaults to the entry's index; start, end, span: the knot interval and span of "
           "knot-doubling automata (informative for hand-made ones). Raises InvalidInput for an unknown "
           "state.")
-      .def_property_readonly(
-          "initial", [](const Automaton& a) { return a.initial; },
-          "The initial entries (list of Initial, copies).")
+      .def_property_readonly("initial", &initial_views, "The initial entries (list of Initial, copies).")
       .def(
-          "copy", [](const Automaton& a) { return a; },
+          "copy", [](const KnotAutomaton& k) { return k; },
           "An independent copy (also copy.copy and copy.deepcopy).")
       .def(
-          "__copy__", [](const Automaton& a) { return a; }, "An independent copy.")
+          "__copy__", [](const KnotAutomaton& k) { return k; }, "An independent copy.")
       .def(
-          "__deepcopy__", [](const Automaton& a, const py::dict&) { return a; }, py::arg("memo"),
+          "__deepcopy__", [](const KnotAutomaton& k, const py::dict&) { return k; }, py::arg("memo"),
           "An independent copy.")
-      .def("__repr__", [](const Automaton& a) {
+      .def("__repr__", [](const KnotAutomaton& k) {
+        const Automaton& a = k.automaton;
         return "Automaton(" + std::to_string(boost::num_vertices(a.graph)) + " states, " +
                std::to_string(boost::num_edges(a.graph)) + " transitions, " +
                std::to_string(a.initial.size()) + " initial entries)";
       });
 
-  m.def("knot_automaton", &automata::knot_automaton, py::arg("curve"),
-        py::call_guard<py::gil_scoped_release>(),
+  m.def("knot_automaton", &nurbs::knot_automaton, py::arg("curve"), py::call_guard<py::gil_scoped_release>(),
         "The knot-doubling automaton of a nurbs.Curve, from its knots alone: one initial entry per segment, "
         "transitions G and D with the subdivision matrices, recurrent states marked.");
   m.def("mark_recurrent", &automata::mark_recurrent, py::arg("automaton"),
         "Sets State.recurrent of every state of `automaton` (in place) from its strong components.");
-  m.def("minimize", &automata::minimize, py::arg("automaton"), py::call_guard<py::gil_scoped_release>(),
-        "A new automaton whose states no control net can tell apart are merged (Moore partition refinement; "
-        "labels and matrices compared exactly). Initial entries are kept, redirected to their class.");
-  m.def("initial_nets", py::overload_cast<const Automaton&, const nurbs::Curve&>(&automata::initial_nets),
+  m.def(
+      "minimize", py::overload_cast<const KnotAutomaton&>(&nurbs::minimize), py::arg("automaton"),
+      py::call_guard<py::gil_scoped_release>(),
+      "A new automaton whose states no control net can tell apart are merged (Moore partition refinement; "
+      "labels and matrices compared exactly). Initial entries are kept, redirected to their class; a merged "
+      "state keeps the window of the first state of its class.");
+  m.def("initial_nets", py::overload_cast<const KnotAutomaton&, const nurbs::Curve&>(&nurbs::initial_nets),
         py::arg("automaton"), py::arg("curve"),
         "Control net of every initial entry of knot_automaton(curve): list of float64 `(d+1, cols)` arrays "
         "(homogeneous rows (w·x, w) when rational).");
   m.def(
-      "initial_nets",
-      py::overload_cast<const TensorAutomaton&, const nurbs::Surface&>(&automata::initial_nets),
+      "initial_nets", py::overload_cast<const TensorAutomaton&, const nurbs::Surface&>(&nurbs::initial_nets),
       py::arg("automaton"), py::arg("surface"),
       "Control net of every patch of tensor_automaton(surface): list of float64 `((p+1)(q+1), cols)` arrays, "
       "row i·(q+1) + j = control point (span_u − p + i, span_v − q + j). Raises InvalidInput when the "
       "surface "
       "does not fit the automaton.");
   // The writers live in io (one file per format); bound here too, where Python users look for them.
-  m.def("to_json", py::overload_cast<const Automaton&>(&io::to_json), py::arg("automaton"),
+  m.def("to_json", py::overload_cast<const KnotAutomaton&>(&io::to_json), py::arg("automaton"),
         "The automaton as the JSON text of `cifs automaton --format json` (states, transitions, initial);\n"
         "cifs.io.parse_automaton_json reads it back.");
-  m.def("to_dot", &io::to_dot, py::arg("automaton"), "The automaton as Graphviz DOT text.");
+  m.def("to_dot", py::overload_cast<const KnotAutomaton&>(&io::to_dot), py::arg("automaton"),
+        "The automaton as Graphviz DOT text.");
   m.def(
       "to_svg", py::overload_cast<const Automaton&>(&io::to_svg), py::arg("automaton"),
       "A self-contained SVG drawing of the automaton (text): states in columns by distance from the initial "
@@ -297,7 +360,7 @@ void bind_automata(py::module_& m) {
                " product states, " + std::to_string(t.patches.size()) + " patches)";
       });
 
-  m.def("tensor_automaton", &automata::tensor_automaton, py::arg("surface"),
+  m.def("tensor_automaton", &nurbs::tensor_automaton, py::arg("surface"),
         py::call_guard<py::gil_scoped_release>(),
         "The tensor-product automaton of a nurbs.Surface (from its knots alone); recurrent states marked.");
   m.def("kron", &automata::kron, py::arg("A"), py::arg("B"),

@@ -229,7 +229,7 @@ free_vertices: False keeps the vertex operators at the knots (the knot points st
 True frees every vertex operator. The NURBS matrices satisfy every constraint.)doc");
   m.def(
       "curve_bcifs",
-      [](const automata::Automaton& knots, bool closed, bool free_vertices) {
+      [](const nurbs::KnotAutomaton& knots, bool closed, bool free_vertices) {
         return ifs::curve_bcifs(knots, closed, ifs::CurveBcifsOptions{free_vertices});
       },
       py::arg("knots"), py::arg("closed").noconvert(), py::kw_only(),
@@ -250,7 +250,7 @@ free_knot_lines: False keeps the cells on knot lines (patch boundaries stay NURB
 frees every operator.)doc");
   m.def(
       "surface_bcifs",
-      [](const automata::TensorAutomaton& automaton, bool free_knot_lines) {
+      [](const nurbs::TensorAutomaton& automaton, bool free_knot_lines) {
         return ifs::surface_bcifs(automaton, ifs::SurfaceBcifsOptions{free_knot_lines});
       },
       py::arg("automaton"), py::kw_only(), py::arg("free_knot_lines").noconvert() = false,

@@ -21,6 +21,48 @@
 #include <cstddef>
 #include <vector>
 
+#include "cifs/automata/automaton.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
+
+// Python has one automaton class, cifs.automata.Automaton, bound to nurbs::KnotAutomaton (an
+// automaton with its knot data; hand-made ones have none), so that `state.window` and
+// `initial[i].start` stay where Python users find them. Every binding that takes a C++
+// automata::Automaton reads it from that class (a reference to its `automaton` member: in-place
+// changes such as mark_recurrent reach the Python object); one returned becomes an Automaton
+// without knot data. The specialisation is seen by every binding file (they all include this one).
+namespace pybind11::detail {
+template <>
+class type_caster<cifs::automata::Automaton> {
+  using Knots = cifs::nurbs::KnotAutomaton;
+  type_caster_base<Knots> knots_;
+
+ public:
+  // NOLINTNEXTLINE(readability-identifier-naming): the member pybind11 reads for signatures
+  static constexpr auto name = type_caster_base<Knots>::name;
+
+  bool load(handle src, bool convert) { return knots_.load(src, convert); }
+
+  static handle cast(const cifs::automata::Automaton& automaton, return_value_policy /*policy*/,
+                     handle parent) {
+    return type_caster_base<Knots>::cast(cifs::nurbs::without_knots(automaton), return_value_policy::move,
+                                         parent);
+  }
+  static handle cast(const cifs::automata::Automaton* automaton, return_value_policy policy, handle parent) {
+    return automaton ? cast(*automaton, policy, parent) : none().release();
+  }
+
+  template <typename T>
+  using cast_op_type = pybind11::detail::cast_op_type<T>;
+  // NOLINTNEXTLINE(google-explicit-constructor): pybind11's caster protocol
+  operator cifs::automata::Automaton*() {
+    Knots* knots = knots_;
+    return knots ? &knots->automaton : nullptr;
+  }
+  // NOLINTNEXTLINE(google-explicit-constructor): pybind11's caster protocol
+  operator cifs::automata::Automaton&() { return static_cast<Knots&>(knots_).automaton; }
+};
+}  // namespace pybind11::detail
+
 namespace cifs::python {
 
 namespace py = pybind11;

@@ -461,7 +461,7 @@ void bind_ifs(py::module_& m) {
       "InvalidInput for a negative count.");
   m.def(
       "surface_mesh",
-      [](const automata::TensorAutomaton& a, const std::vector<Points>& nets, int depth, bool homogeneous,
+      [](const nurbs::TensorAutomaton& a, const std::vector<Points>& nets, int depth, bool homogeneous,
          std::int64_t max_bytes, int max_table_depth) {
         const ifs::MeshOptions o{homogeneous, count_arg(max_bytes, "surface_mesh: max_bytes"),
                                  max_table_depth};

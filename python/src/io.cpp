@@ -40,7 +40,7 @@ io::Content content_of(const Mesh*) {
 io::Content content_of(const Segments*) {
   return io::Content::segments;
 }
-io::Content content_of(const automata::Automaton*) {
+io::Content content_of(const nurbs::KnotAutomaton*) {
   return io::Content::automaton;
 }
 io::Content content_of(const io::BcifsFile*) {
@@ -510,7 +510,7 @@ void bind_dispatch(py::module_& m) {
   bind(std::type_identity<io::Polygon>{}, "Polygon");
   bind(std::type_identity<Mesh>{}, "Mesh");
   bind(std::type_identity<Segments>{}, "Segments");
-  bind(std::type_identity<automata::Automaton>{}, "cifs.automata.Automaton");
+  bind(std::type_identity<nurbs::KnotAutomaton>{}, "cifs.automata.Automaton");
   bind(std::type_identity<io::BcifsFile>{}, "BcifsFile");
 }
 

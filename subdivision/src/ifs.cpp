@@ -55,7 +55,7 @@ automata::Automaton scheme_automaton(const Scheme& scheme, int segments) {
   const auto S = ifs_matrices(scheme);
   boost::add_edge(s, s, automata::Transition{"0", S[0]}, a.graph);
   boost::add_edge(s, s, automata::Transition{"1", S[1]}, a.graph);
-  for (int k = 0; k < segments; ++k) a.initial.push_back({k, s, 0.0, 0.0, -1});
+  for (int k = 0; k < segments; ++k) a.initial.push_back({.segment = k, .state = s});
   return a;
 }
 

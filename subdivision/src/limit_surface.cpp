@@ -14,11 +14,11 @@
 #include <string>
 #include <vector>
 
-#include "cifs/automata/tensor.hpp"
 #include "cifs/errors.hpp"
 #include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/bcifs_surface.hpp"
 #include "cifs/nurbs/surface.hpp"
+#include "cifs/nurbs/tensor_automaton.hpp"
 #include "cifs/subdivision/limit.hpp"
 #include "limit_patches.hpp"
 #include "local_mesh.hpp"
@@ -134,8 +134,7 @@ SurfaceAutomaton build_automaton(const Mesh& mesh, const MeshTopology& t, MeshSc
   const auto labels = child_labels(scheme);
   const ExtraordinaryPatch regular_patch = quads(scheme) ? ExtraordinaryPatch{} : loop_patch(6);
   const automata::StateId regular = boost::add_vertex(
-      automata::State{.size = quads(scheme) ? 16 : 12, .window = {}, .recurrent = false, .name = "regular"},
-      g);
+      automata::State{.size = quads(scheme) ? 16 : 12, .recurrent = false, .name = "regular"}, g);
   for (std::size_t c = 0; c < 4; ++c) {
     Eigen::MatrixXd M;
     if (quads(scheme))
@@ -150,7 +149,6 @@ SurfaceAutomaton build_automaton(const Mesh& mesh, const MeshTopology& t, MeshSc
     const ExtraordinaryPatch patch = quads(scheme) ? catmull_clark_patch(n) : loop_patch(n);
     const automata::StateId s =
         boost::add_vertex(automata::State{.size = static_cast<int>(patch.subdivide.rows()),
-                                          .window = {},
                                           .recurrent = false,
                                           .name = "E" + std::to_string(n)},
                           g);
@@ -636,7 +634,7 @@ FractalSurface fractal_catmull_clark(const SurfaceAutomaton& smooth, const ifs::
   nurbs::Knots knots(8);
   for (std::size_t k = 0; k < knots.size(); ++k) knots[k] = static_cast<double>(k);
   const nurbs::Surface patch = nurbs::make_surface({3, 3}, {knots, knots}, {4, 4}, Points::Zero(16, 3));
-  const automata::TensorAutomaton tensor = automata::tensor_automaton(patch);
+  const nurbs::TensorAutomaton tensor = nurbs::tensor_automaton(patch);
   FractalSurface out;
   out.perturbation = ifs::perturb(ifs::surface_bcifs(tensor), options);
   const automata::Automaton& cells = out.perturbation.system.automaton;

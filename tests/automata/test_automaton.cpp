@@ -7,6 +7,7 @@
 #include "cifs/automata/automaton.hpp"
 #include "cifs/io/json.hpp"
 #include "cifs/nurbs/doubling.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/nurbs/refine.hpp"
 
 using namespace cifs;
@@ -33,10 +34,10 @@ std::set<StateId> reachable(const automata::Automaton& a, StateId from) {
   return seen;
 }
 
-StateId uniform_state(const automata::Automaton& a, int d) {
-  for (StateId s = 0; s < boost::num_vertices(a.graph); ++s)
-    if (a.graph[s].window == std::vector<double>(static_cast<std::size_t>(2 * d - 1), 1.0)) return s;
-  return boost::num_vertices(a.graph);
+StateId uniform_state(const nurbs::KnotAutomaton& k, int d) {
+  for (StateId s = 0; s < boost::num_vertices(k.automaton.graph); ++s)
+    if (k.windows[s] == std::vector<double>(static_cast<std::size_t>(2 * d - 1), 1.0)) return s;
+  return boost::num_vertices(k.automaton.graph);
 }
 
 }  // namespace
@@ -47,9 +48,11 @@ TEST_CASE("Generic knots: 4(d-1) states per segment, 2d-1 recur, one shared unif
     const int n = 4 * d;
     const nurbs::Curve c =
         nurbs::make_curve(d, random_knots(rng, static_cast<std::size_t>(n + d + 1)), Points::Random(n, 2));
-    const automata::Automaton a = automata::knot_automaton(c);
+    const nurbs::KnotAutomaton k = nurbs::knot_automaton(c);
+    const automata::Automaton& a = k.automaton;
+    REQUIRE(k.windows.size() == boost::num_vertices(a.graph));
     CHECK(static_cast<int>(a.initial.size()) == n - d);
-    const StateId uniform = uniform_state(a, d);
+    const StateId uniform = uniform_state(k, d);
     REQUIRE(uniform < boost::num_vertices(a.graph));
     for (const automata::Initial& init : a.initial) {
       const std::set<StateId> states = reachable(a, init.state);
@@ -67,11 +70,11 @@ TEST_CASE("Generic knots: 4(d-1) states per segment, 2d-1 recur, one shared unif
       for (auto [e, end] = boost::out_edges(s, a.graph); e != end; ++e, ++half) {
         CHECK(a.graph[*e].label == (half == 0 ? "G" : "D"));
         CHECK(a.graph[*e].matrix ==
-              nurbs::subdivision_matrix(a.graph[s].window, d, static_cast<nurbs::Half>(half)));
-        CHECK(a.graph[boost::target(*e, a.graph)].window ==
-              nurbs::child_window(a.graph[s].window, d, static_cast<nurbs::Half>(half)));
+              nurbs::subdivision_matrix(k.windows[s], d, static_cast<nurbs::Half>(half)));
+        CHECK(k.windows[boost::target(*e, a.graph)] ==
+              nurbs::child_window(k.windows[s], d, static_cast<nurbs::Half>(half)));
       }
-      CHECK(a.graph[s].window[static_cast<std::size_t>(d - 1)] == 1.0);
+      CHECK(k.windows[s][static_cast<std::size_t>(d - 1)] == 1.0);
     }
   }
 }
@@ -79,7 +82,7 @@ TEST_CASE("Generic knots: 4(d-1) states per segment, 2d-1 recur, one shared unif
 TEST_CASE("Uniform, clamped, closed and repeated knots", "[automata]") {
   SECTION("a uniform closed curve is one state") {
     const nurbs::Curve c = nurbs::make_closed_curve(3, {0, 1, 2, 3, 4, 5, 6}, Points::Random(6, 3));
-    const automata::Automaton a = automata::knot_automaton(c);
+    const automata::Automaton a = nurbs::knot_automaton(c).automaton;
     CHECK(boost::num_vertices(a.graph) == 1);
     CHECK(a.initial.size() == 6);
     CHECK(a.graph[0].recurrent);
@@ -88,9 +91,10 @@ TEST_CASE("Uniform, clamped, closed and repeated knots", "[automata]") {
     const nurbs::Knots t{0, 0, 0, 0, 1, 2, 3, 4, 5, 5, 5, 5};
     nurbs::Knots scaled = t;
     for (double& x : scaled) x = x * 0.125 + 3;  // exact in binary
-    const auto a = automata::knot_automaton(nurbs::make_curve(3, t, Points::Random(8, 2)));
-    const auto b = automata::knot_automaton(nurbs::make_curve(3, scaled, Points::Random(8, 2)));
-    const auto ja = nlohmann::json::parse(io::to_json(a)), jb = nlohmann::json::parse(io::to_json(b));
+    const auto ka = nurbs::knot_automaton(nurbs::make_curve(3, t, Points::Random(8, 2)));
+    const auto kb = nurbs::knot_automaton(nurbs::make_curve(3, scaled, Points::Random(8, 2)));
+    const auto ja = nlohmann::json::parse(io::to_json(ka)), jb = nlohmann::json::parse(io::to_json(kb));
+    const automata::Automaton& a = ka.automaton;
     CHECK(ja["states"] == jb["states"]);
     CHECK(ja["transitions"] == jb["transitions"]);
     CHECK(a.initial.size() == 5);
@@ -98,15 +102,16 @@ TEST_CASE("Uniform, clamped, closed and repeated knots", "[automata]") {
   }
   SECTION("repeated interior knots: zero intervals stay single zeros") {
     const nurbs::Curve c = nurbs::make_curve(3, {0, 0, 0, 0, 1, 1, 3, 4, 4, 4, 4}, Points::Random(7, 2));
-    const automata::Automaton a = automata::knot_automaton(c);
-    CHECK(a.initial.size() == 3);
-    for (StateId s = 0; s < boost::num_vertices(a.graph); ++s) {
-      const auto& w = a.graph[s].window;
+    const nurbs::KnotAutomaton k = nurbs::knot_automaton(c);
+    CHECK(k.automaton.initial.size() == 3);
+    for (StateId s = 0; s < boost::num_vertices(k.automaton.graph); ++s) {
+      const auto& w = k.windows[s];
       for (std::size_t i = 0; i + 2 < w.size(); ++i) CHECK(!(w[i] == 0 && w[i + 1] == 0 && w[i + 2] == 0));
     }
   }
   SECTION("degree 1 is one uniform state") {
-    const auto a = automata::knot_automaton(nurbs::make_curve(1, {0, 0, 0.3, 2, 2}, Points::Random(3, 2)));
+    const auto a =
+        nurbs::knot_automaton(nurbs::make_curve(1, {0, 0, 0.3, 2, 2}, Points::Random(3, 2))).automaton;
     CHECK(boost::num_vertices(a.graph) == 1);
   }
 }
@@ -117,14 +122,15 @@ TEST_CASE("Minimisation merges states no net can tell apart", "[automata]") {
   const Eigen::MatrixXd D = nurbs::subdivision_matrix(nurbs::Window{1, 1, 1}, 2, nurbs::Half::D);
   const Eigen::MatrixXd G2 = nurbs::subdivision_matrix(nurbs::Window{2, 1, 1}, 2, nurbs::Half::G);
   automata::Automaton a;
-  for (int i = 0; i < 3; ++i) boost::add_vertex(automata::State{3, {}, false, ""}, a.graph);
+  for (int i = 0; i < 3; ++i)
+    boost::add_vertex(automata::State{.size = 3, .recurrent = false, .name = ""}, a.graph);
   boost::add_edge(0, 1, automata::Transition{"G", G}, a.graph);
   boost::add_edge(0, 1, automata::Transition{"D", D}, a.graph);
   boost::add_edge(1, 0, automata::Transition{"G", G}, a.graph);
   boost::add_edge(1, 0, automata::Transition{"D", D}, a.graph);
   boost::add_edge(2, 0, automata::Transition{"G", G2}, a.graph);
   boost::add_edge(2, 1, automata::Transition{"D", D}, a.graph);
-  a.initial = {{0, 2, 0, 1, -1}, {1, 1, 1, 2, -1}};
+  a.initial = {{.segment = 0, .state = 2}, {.segment = 1, .state = 1}};
   automata::mark_recurrent(a);
   const automata::Automaton m = automata::minimize(a);
   CHECK(boost::num_vertices(m.graph) == 2);
@@ -135,15 +141,51 @@ TEST_CASE("Minimisation merges states no net can tell apart", "[automata]") {
   CHECK(!m.graph[m.initial[0].state].recurrent);
   // Same matrices but different children classes are not merged.
   const automata::Automaton k =
-      automata::knot_automaton(nurbs::make_curve(2, {0, 0, 0, 1, 3, 4, 4, 4}, Points::Random(5, 2)));
+      nurbs::knot_automaton(nurbs::make_curve(2, {0, 0, 0, 1, 3, 4, 4, 4}, Points::Random(5, 2))).automaton;
   CHECK(boost::num_vertices(automata::minimize(k).graph) == boost::num_vertices(k.graph));
 }
 
 TEST_CASE("Initial nets are the segments' control points", "[automata]") {
   const nurbs::Curve c = nurbs::make_curve(2, {0, 0, 0, 1, 3, 4, 4, 4}, Points::Random(5, 2));
-  const automata::Automaton a = automata::knot_automaton(c);
+  const nurbs::KnotAutomaton a = nurbs::knot_automaton(c);
   // The nets of the initial states are the segments' control points.
-  const std::vector<Points> nets = automata::initial_nets(a, c);
+  const std::vector<Points> nets = nurbs::initial_nets(a, c);
   REQUIRE(nets.size() == 3);
   CHECK(nets[2] == c.P.bottomRows(3));
+}
+
+TEST_CASE("Minimisation keeps the knot data beside the automaton", "[automata]") {
+  // States 0 and 1 are Chaikin's state twice (one class), 2 another; the windows are told apart.
+  const Eigen::MatrixXd G = nurbs::subdivision_matrix(nurbs::Window{1, 1, 1}, 2, nurbs::Half::G);
+  const Eigen::MatrixXd D = nurbs::subdivision_matrix(nurbs::Window{1, 1, 1}, 2, nurbs::Half::D);
+  automata::Automaton a;
+  for (int i = 0; i < 3; ++i)
+    boost::add_vertex(automata::State{.size = 3, .recurrent = false, .name = ""}, a.graph);
+  boost::add_edge(2, 1, automata::Transition{"G", G}, a.graph);
+  boost::add_edge(2, 1, automata::Transition{"D", G}, a.graph);
+  for (StateId s = 0; s < 2; ++s) {
+    boost::add_edge(s, 1 - s, automata::Transition{"G", G}, a.graph);
+    boost::add_edge(s, 1 - s, automata::Transition{"D", D}, a.graph);
+  }
+  a.initial = {{.segment = 0, .state = 2}, {.segment = 1, .state = 1}};
+  CHECK(automata::minimize_classes(a) == std::vector<std::size_t>{0, 0, 1});
+  const nurbs::KnotAutomaton k{
+      .automaton = a,
+      .windows = {{1, 1, 1}, {2, 1, 2}, {3, 1, 3}},
+      .intervals = {{.start = 0, .end = 1, .span = 2}, {.start = 1, .end = 3, .span = 3}}};
+  const nurbs::KnotAutomaton m = nurbs::minimize(k);
+  REQUIRE(boost::num_vertices(m.automaton.graph) == 2);
+  // Class {0, 1} is state 0 with state 0's window; state 2 became state 1.
+  CHECK(m.windows == std::vector<nurbs::Window>{{1, 1, 1}, {3, 1, 3}});
+  CHECK(m.automaton.initial[0].state == 1);
+  CHECK(m.automaton.initial[1].state == 0);
+  REQUIRE(m.intervals.size() == 2);
+  CHECK(m.intervals[1].start == 1);
+  CHECK(m.intervals[1].end == 3);
+  CHECK(m.intervals[1].span == 3);
+  // A generic automaton has no knot data: empty windows, unset intervals.
+  const nurbs::KnotAutomaton plain = nurbs::without_knots(a);
+  CHECK(plain.windows == std::vector<nurbs::Window>(3));
+  REQUIRE(plain.intervals.size() == 2);
+  CHECK(plain.intervals[0].span == -1);
 }

@@ -3,8 +3,8 @@
 #include <set>
 #include <unsupported/Eigen/KroneckerProduct>
 
-#include "cifs/automata/tensor.hpp"
 #include "cifs/errors.hpp"
+#include "cifs/nurbs/tensor_automaton.hpp"
 #include "nurbs/reference.hpp"
 
 using namespace cifs;
@@ -32,10 +32,10 @@ TEST_CASE("Tensor automaton: reachable pairs, sizes, Kronecker matrices in GH GB
     const std::array<int, 2> count{degree[0] + cifs_test::uniform_int(rng, 1, 4),
                                    degree[1] + cifs_test::uniform_int(rng, 1, 4)};
     const nurbs::Surface s = random_surface(rng, degree, count, cifs_test::coin(rng), cifs_test::coin(rng));
-    const automata::TensorAutomaton t = automata::tensor_automaton(s);
+    const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
     const automata::Graph& g = t.product.graph;
-    const automata::Graph& gu = t.factors[0].graph;
-    const automata::Graph& gv = t.factors[1].graph;
+    const automata::Graph& gu = t.factors[0].automaton.graph;
+    const automata::Graph& gv = t.factors[1].automaton.graph;
     const auto n = boost::num_vertices(g);
     INFO("trial " << trial << ", degrees " << degree[0] << ", " << degree[1]);
     REQUIRE(t.factor_states.size() == n);
@@ -44,7 +44,7 @@ TEST_CASE("Tensor automaton: reachable pairs, sizes, Kronecker matrices in GH GB
     std::set<std::array<StateId, 2>> pairs(t.factor_states.begin(), t.factor_states.end());
     CHECK(pairs.size() == n);
     // Initial entries: every (u segment, v segment) pair in u-major order.
-    const std::size_t nu = t.factors[0].initial.size(), nv = t.factors[1].initial.size();
+    const std::size_t nu = t.factors[0].automaton.initial.size(), nv = t.factors[1].automaton.initial.size();
     REQUIRE(t.product.initial.size() == nu * nv);
     REQUIRE(t.patches.size() == nu * nv);
     for (std::size_t a = 0; a < nu; ++a)
@@ -53,7 +53,8 @@ TEST_CASE("Tensor automaton: reachable pairs, sizes, Kronecker matrices in GH GB
         CHECK(t.patches[k] == std::array<int, 2>{static_cast<int>(a), static_cast<int>(b)});
         CHECK(t.product.initial[k].segment == static_cast<int>(k));
         CHECK(t.factor_states[t.product.initial[k].state] ==
-              std::array<StateId, 2>{t.factors[0].initial[a].state, t.factors[1].initial[b].state});
+              std::array<StateId, 2>{t.factors[0].automaton.initial[a].state,
+                                     t.factors[1].automaton.initial[b].state});
       }
     // Only reachable states.
     std::set<StateId> seen;
@@ -96,9 +97,9 @@ TEST_CASE("Tensor automaton: uniform bicubic surfaces share one recurrent unifor
   nurbs::Knots t;
   for (int i = 0; i < 12; ++i) t.push_back(i);  // 8 points, degree 3, 5 segments
   const nurbs::Surface s = nurbs::make_surface({3, 3}, {t, t}, {8, 8}, Points::Random(64, 3));
-  const automata::TensorAutomaton a = automata::tensor_automaton(s);
+  const nurbs::TensorAutomaton a = nurbs::tensor_automaton(s);
   // Uniform knots: each factor has one state, so the product has one state reached by all 25 patches.
-  CHECK(boost::num_vertices(a.factors[0].graph) == 1);
+  CHECK(boost::num_vertices(a.factors[0].automaton.graph) == 1);
   CHECK(boost::num_vertices(a.product.graph) == 1);
   CHECK(a.product.initial.size() == 25);
   CHECK(a.product.graph[0].recurrent);
@@ -108,17 +109,17 @@ TEST_CASE("Tensor automaton: uniform bicubic surfaces share one recurrent unifor
 TEST_CASE("Tensor automaton: initial nets are the patches' control points", "[automata][tensor]") {
   cifs_test::Rng rng(11);
   const nurbs::Surface s = random_surface(rng, {2, 3}, {5, 7}, false, true);
-  const automata::TensorAutomaton t = automata::tensor_automaton(s);
-  const std::vector<Points> nets = automata::initial_nets(t, s);
+  const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
+  const std::vector<Points> nets = nurbs::initial_nets(t, s);
   REQUIRE(nets.size() == t.product.initial.size());
   for (std::size_t k = 0; k < nets.size(); ++k) {
-    const int su = t.factors[0].initial[static_cast<std::size_t>(t.patches[k][0])].span;
-    const int sv = t.factors[1].initial[static_cast<std::size_t>(t.patches[k][1])].span;
+    const int su = t.factors[0].intervals[static_cast<std::size_t>(t.patches[k][0])].span;
+    const int sv = t.factors[1].intervals[static_cast<std::size_t>(t.patches[k][1])].span;
     REQUIRE(nets[k].rows() == 12);
     for (int i = 0; i <= 2; ++i)
       for (int j = 0; j <= 3; ++j) CHECK(nets[k].row(i * 4 + j) == s.P.row((su - 2 + i) * 7 + (sv - 3 + j)));
   }
   // A surface of other degrees does not fit.
   const nurbs::Surface other = random_surface(rng, {3, 3}, {5, 7}, false, false);
-  CHECK_THROWS_AS(automata::initial_nets(t, other), InvalidInput);
+  CHECK_THROWS_AS(nurbs::initial_nets(t, other), InvalidInput);
 }

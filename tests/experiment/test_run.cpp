@@ -83,9 +83,9 @@ TEST_CASE("The automaton output in JSON is the evaluated automaton, readable", "
   ScratchDir dir;
   run_in(dir, R"({"shape": "../shapes/wave.json", "evaluation": {"depth": 2},
       "render": {"width": 16, "height": 16}, "outputs": {"exr": "w.exr", "automaton_json": "a.json"}})");
-  const automata::Automaton a = io::read_automaton(dir.path() / "a.json");
+  const nurbs::KnotAutomaton a = io::read_automaton(dir.path() / "a.json");
   const io::Experiment e = parse(R"({"shape": "../shapes/wave.json"})");
-  const automata::Automaton knots = automata::knot_automaton(std::get<nurbs::Curve>(*e.shape));
+  const nurbs::KnotAutomaton knots = nurbs::knot_automaton(std::get<nurbs::Curve>(*e.shape));
   CHECK(io::to_json(a) == io::to_json(knots));
 }
 

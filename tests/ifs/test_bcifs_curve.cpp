@@ -3,6 +3,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <string>
 
 #include "cifs/errors.hpp"
 #include "cifs/ifs/attractor.hpp"
@@ -53,7 +54,7 @@ std::vector<nurbs::Curve> sample_curves() {
 }
 
 /// Piece j of segment `seg` at depth K spans this parameter interval of the curve.
-double piece_parameter(const automata::Initial& init, int j, int K) {
+double piece_parameter(const nurbs::KnotInterval& init, int j, int K) {
   return init.start + (init.end - init.start) * std::ldexp(static_cast<double>(j), -K);
 }
 
@@ -68,7 +69,20 @@ TEST_CASE("curve BC-IFS: the NURBS matrices are admissible", "[bcifs][curve]") {
       CHECK_NOTHROW(check_admissible(sys, 1e-14));
       // The vertex cells give the end points of every segment (row selection by multiplicity):
       // against de Boor evaluation.
-      const auto nets = automata::initial_nets(sys.automaton, curve);
+      const nurbs::KnotAutomaton knot = nurbs::knot_automaton(curve);
+      const nurbs::KnotAutomaton knots = curve_bcifs_knots(sys.automaton, knot);
+      // Edge cell "s3ab" unfolds knot state "s3" and has its window; vertex cells have none.
+      REQUIRE(knots.windows.size() == boost::num_vertices(sys.automaton.graph));
+      for (automata::StateId s = 0; s < knots.windows.size(); ++s) {
+        std::string name = sys.automaton.graph[s].name;
+        if (sys.dimension[s] == 0) {
+          CHECK(knots.windows[s].empty());
+          continue;
+        }
+        while (name.back() == 'a' || name.back() == 'b') name.pop_back();
+        CHECK(knots.windows[s] == knot.windows[static_cast<std::size_t>(std::stoi(name.substr(1)))]);
+      }
+      const auto nets = nurbs::initial_nets(knots, curve);
       const auto F = edge_end_functionals(sys);
       for (std::size_t i = 0; i < nets.size(); ++i) {
         const auto& init = sys.automaton.initial[i];
@@ -79,8 +93,9 @@ TEST_CASE("curve BC-IFS: the NURBS matrices are admissible", "[bcifs][curve]") {
           return curve.rational ? cartesian(h) : h;
         }();
         const double scale = std::max(1.0, curve.P.cwiseAbs().maxCoeff());
-        CHECK((ends.row(0) - nurbs::evaluate(curve, init.start)).norm() <= 1e-13 * scale);
-        CHECK((ends.row(1) - nurbs::evaluate(curve, init.end)).norm() <= 1e-13 * scale);  // wraps when closed
+        CHECK((ends.row(0) - nurbs::evaluate(curve, knots.intervals[i].start)).norm() <= 1e-13 * scale);
+        CHECK((ends.row(1) - nurbs::evaluate(curve, knots.intervals[i].end)).norm() <=
+              1e-13 * scale);  // wraps when closed
       }
       // Amplitude 0 gives back the NURBS matrices and the NURBS attractor.
       const Perturbation p = perturb(sys);
@@ -96,7 +111,7 @@ TEST_CASE("curve BC-IFS: the NURBS matrices are admissible", "[bcifs][curve]") {
       const EdgePieces pieces = edge_pieces(p.system, nets, K);
       REQUIRE(pieces.start.rows() == (static_cast<Eigen::Index>(nets.size()) << K));
       for (Eigen::Index r = 0; r < pieces.start.rows(); ++r) {
-        const auto& init = sys.automaton.initial[pieces.initial[static_cast<std::size_t>(r)]];
+        const auto& init = knots.intervals[pieces.initial[static_cast<std::size_t>(r)]];
         const int j = static_cast<int>(r % (Eigen::Index{1} << K));
         CHECK((pieces.start.row(r) - nurbs::evaluate(curve, piece_parameter(init, j, K))).norm() <=
               1e-12 * std::max(1.0, curve.P.cwiseAbs().maxCoeff()));
@@ -130,7 +145,8 @@ TEST_CASE("curve BC-IFS: perturbed curves keep knots and end points and stay joi
     if (curve.rational) continue;
     CAPTURE(curve.degree, curve.knots, curve.closed);
     const Bcifs sys = curve_bcifs(curve);
-    const auto nets = automata::initial_nets(sys.automaton, curve);
+    const nurbs::KnotAutomaton knots = curve_bcifs_knots(sys.automaton, nurbs::knot_automaton(curve));
+    const auto nets = nurbs::initial_nets(knots, curve);
     PerturbOptions options;
     options.amplitude = 0.02;
     options.seed = 3;
@@ -142,7 +158,7 @@ TEST_CASE("curve BC-IFS: perturbed curves keep knots and end points and stay joi
     double moved = 0;
     const Eigen::Index per_segment = Eigen::Index{1} << K;
     for (Eigen::Index r = 0; r < pieces.start.rows(); ++r) {
-      const auto& init = sys.automaton.initial[pieces.initial[static_cast<std::size_t>(r)]];
+      const auto& init = knots.intervals[pieces.initial[static_cast<std::size_t>(r)]];
       const Eigen::Index j = r % per_segment;
       // Joined: every piece ends where the next starts (G end = D start at every node, and
       // neighbouring segments; closed curves wrap).
@@ -168,7 +184,8 @@ TEST_CASE("curve BC-IFS: perturbed curves keep knots and end points and stay joi
 TEST_CASE("curve BC-IFS: free vertex operators move the knots, junctions hold", "[bcifs][curve]") {
   const nurbs::Curve curve = uniform_curve(3, 6);
   const Bcifs sys = curve_bcifs(curve, {true});
-  const auto nets = automata::initial_nets(sys.automaton, curve);
+  const nurbs::KnotAutomaton knots = curve_bcifs_knots(sys.automaton, nurbs::knot_automaton(curve));
+  const auto nets = nurbs::initial_nets(knots, curve);
   PerturbOptions options;
   options.amplitude = 0.03;
   options.seed = 5;
@@ -178,7 +195,7 @@ TEST_CASE("curve BC-IFS: free vertex operators move the knots, junctions hold", 
   for (Eigen::Index r = 0; r + 1 < pieces.start.rows(); ++r) {
     CHECK((pieces.end.row(r) - pieces.start.row(r + 1)).norm() <= 1e-12 * 10);
     if (r % 32 == 0) {
-      const auto& init = sys.automaton.initial[pieces.initial[static_cast<std::size_t>(r)]];
+      const auto& init = knots.intervals[pieces.initial[static_cast<std::size_t>(r)]];
       knot_moved = std::max(knot_moved, (pieces.start.row(r) - nurbs::evaluate(curve, init.start)).norm());
     }
   }

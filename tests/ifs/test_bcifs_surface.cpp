@@ -77,7 +77,7 @@ std::vector<Sample> samples() {
 TEST_CASE("surface_bcifs: the NURBS matrices are admissible", "[ifs][bcifs][surface]") {
   for (const auto& [name, s] : samples()) {
     INFO(name);
-    const auto ta = automata::tensor_automaton(s);
+    const auto ta = nurbs::tensor_automaton(s);
     const Bcifs sys = surface_bcifs(ta);
     CHECK(max_residual(sys) <= 1e-14);
     CHECK(sys.automaton.initial.size() == ta.product.initial.size());
@@ -121,7 +121,7 @@ TEST_CASE("surface_bcifs: free coefficients of uniform surfaces (hand counts)", 
 TEST_CASE("surface_bcifs: cost on an 8×8 non-uniform bicubic surface", "[ifs][bcifs][surface]") {
   const auto s = make({3, 3}, {clamped(3, {0.3, 1.1, 1.5, 2.6, 2.9, 3.7, 4.8}),
                                clamped(3, {0.6, 0.9, 2.2, 3, 3.4, 4.5, 5.1})});
-  const auto ta = automata::tensor_automaton(s);
+  const auto ta = nurbs::tensor_automaton(s);
   auto t0 = std::chrono::steady_clock::now();
   const Bcifs sys = surface_bcifs(ta);
   const double build = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -160,8 +160,8 @@ Points rows(const Points& N, const std::vector<int>& r) {
 TEST_CASE("surface_bcifs: amplitude 0 gives back the NURBS mesh", "[ifs][bcifs][surface]") {
   for (const auto& [name, s] : samples()) {
     INFO(name);
-    const auto ta = automata::tensor_automaton(s);
-    const auto nets = automata::initial_nets(ta, s);
+    const auto ta = nurbs::tensor_automaton(s);
+    const auto nets = nurbs::initial_nets(ta, s);
     const Perturbation p = perturb(surface_bcifs(ta), {});
     const MeshOptions options{s.rational};
     const QuadMesh reference = surface_mesh(ta, nets, 4, options);
@@ -178,8 +178,8 @@ TEST_CASE("surface_bcifs: perturbed surfaces keep their knot lines and stay join
   const int K = 3;
   for (const auto& [name, s] : samples()) {
     INFO(name);
-    const auto ta = automata::tensor_automaton(s);
-    const auto nets = automata::initial_nets(ta, s);
+    const auto ta = nurbs::tensor_automaton(s);
+    const auto nets = nurbs::initial_nets(ta, s);
     const Bcifs sys = surface_bcifs(ta);
     PerturbOptions po;
     po.amplitude = 0.02;
@@ -192,7 +192,7 @@ TEST_CASE("surface_bcifs: perturbed surfaces keep their knot lines and stay join
     REQUIRE(mesh.vertices.rows() == reference.vertices.rows());
     CHECK(mesh.quads == reference.quads);  // one vertex per grid node: watertight
     const int side = 1 << K;
-    const auto nv_nodes = static_cast<int>(nets.size() / ta.factors[0].initial.size()) * side + 1;
+    const auto nv_nodes = static_cast<int>(nets.size() / ta.factors[0].automaton.initial.size()) * side + 1;
     const double scale = reference.vertices.cwiseAbs().maxCoeff();
     double on_lines = 0, inside = 0;
     for (Eigen::Index k = 0; k < mesh.vertices.rows(); ++k) {
@@ -236,22 +236,21 @@ TEST_CASE("surface_bcifs: perturbed surfaces keep their knot lines and stay join
 }
 
 TEST_CASE("surface_bcifs: bad input", "[ifs][bcifs][surface]") {
-  auto ta = automata::tensor_automaton(make({2, 2}, {uniform(2, 5), uniform(2, 5)}));
+  auto ta = nurbs::tensor_automaton(make({2, 2}, {uniform(2, 5), uniform(2, 5)}));
   auto missing = ta;
   missing.product.initial.pop_back();
   CHECK_THROWS_WITH(surface_bcifs(missing), Catch::Contains("patches"));
   // A factor that is not a knot-doubling automaton (no windows).
   auto handmade = ta;
-  for (auto s : boost::make_iterator_range(boost::vertices(handmade.factors[0].graph)))
-    handmade.factors[0].graph[s].window.clear();
+  for (auto& window : handmade.factors[0].windows) window.clear();
   CHECK_THROWS_WITH(surface_bcifs(handmade), Catch::Contains("not a knot-doubling state"));
-  CHECK_THROWS_WITH(curve_bcifs(automata::Automaton{}, false), Catch::Contains("no segment"));
+  CHECK_THROWS_WITH(curve_bcifs(nurbs::KnotAutomaton{}, false), Catch::Contains("no segment"));
 }
 
 TEST_CASE("surface_bcifs: free_knot_lines frees the knot lines too", "[ifs][bcifs][surface]") {
   const auto s = make({3, 3}, {clamped(3, {0.3, 1.1}), clamped(3, {0.7})});
-  const auto ta = automata::tensor_automaton(s);
-  const auto nets = automata::initial_nets(ta, s);
+  const auto ta = nurbs::tensor_automaton(s);
+  const auto nets = nurbs::initial_nets(ta, s);
   const Bcifs fixed = surface_bcifs(ta), loose = surface_bcifs(ta, {true});
   CHECK(admissible_space(loose).free.size() > admissible_space(fixed).free.size());
   PerturbOptions po;
@@ -262,7 +261,7 @@ TEST_CASE("surface_bcifs: free_knot_lines frees the knot lines too", "[ifs][bcif
   const int K = 3, side = 1 << K;
   const QuadMesh reference = surface_mesh(ta, nets, K);
   const QuadMesh mesh = quad_mesh(p.system.automaton, nets, ta.patches, K);
-  const int nv_nodes = static_cast<int>(ta.factors[1].initial.size()) * side + 1;
+  const int nv_nodes = static_cast<int>(ta.factors[1].automaton.initial.size()) * side + 1;
   double on_lines = 0;
   for (Eigen::Index k = 0; k < mesh.vertices.rows(); ++k) {
     const int I = static_cast<int>(k) / nv_nodes, J = static_cast<int>(k) % nv_nodes;

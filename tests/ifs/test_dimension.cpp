@@ -5,13 +5,14 @@
 #include <cmath>
 #include <numbers>
 
-#include "cifs/automata/tensor.hpp"
 #include "cifs/errors.hpp"
 #include "cifs/ifs/affine_cifs.hpp"
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/ifs/mesh.hpp"
 #include "cifs/nurbs/curve.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/nurbs/surface.hpp"
+#include "cifs/nurbs/tensor_automaton.hpp"
 #include "ifs/helpers.hpp"
 
 using namespace cifs;
@@ -158,8 +159,9 @@ TEST_CASE("box counting: smooth curve 1, surface mesh 2", "[ifs][dimension]") {
   Points P(5, 2);
   P << 0, 0, 1, 2, 3, -1, 4, 1, 6, 0;
   const nurbs::Curve c = nurbs::make_curve(3, {0, 0, 0, 0, 0.4, 1, 1, 1, 1}, P);
-  const automata::Automaton a = automata::knot_automaton(c);
-  const Points curve = ifs::attractor_points(a, automata::initial_nets(a, c), 15);
+  const nurbs::KnotAutomaton ka = nurbs::knot_automaton(c);
+  const automata::Automaton& a = ka.automaton;
+  const Points curve = ifs::attractor_points(a, nurbs::initial_nets(ka, c), 15);
   const ifs::BoxCountingResult r = ifs::box_counting(curve);
   INFO("curve: " << r.dimension << " over levels " << r.min_level << " … " << r.max_level);
   CHECK(std::abs(r.dimension - 1) < 0.02);
@@ -169,9 +171,9 @@ TEST_CASE("box counting: smooth curve 1, surface mesh 2", "[ifs][dimension]") {
     for (int j = 0; j < 4; ++j) Q.row(4 * i + j) << i, j, 0.6 * std::sin(i + 2.0 * j);
   const nurbs::Surface s = nurbs::make_surface(
       {3, 3}, {nurbs::Knots{0, 0, 0, 0, 1, 1, 1, 1}, nurbs::Knots{0, 0, 0, 0, 1, 1, 1, 1}}, {4, 4}, Q);
-  const automata::TensorAutomaton t = automata::tensor_automaton(s);
+  const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
   // Boundary boxes bias the slope by about perimeter·ε/area: depth 10 gives 1.947, 11 gives 1.959.
-  const ifs::QuadMesh mesh = ifs::surface_mesh(t, automata::initial_nets(t, s), 11);
+  const ifs::QuadMesh mesh = ifs::surface_mesh(t, nurbs::initial_nets(t, s), 11);
   const ifs::BoxCountingResult m = ifs::box_counting(mesh.vertices);
   INFO("surface: " << m.dimension << " over levels " << m.min_level << " … " << m.max_level);
   CHECK(std::abs(m.dimension - 2) < 0.05);

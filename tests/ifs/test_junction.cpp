@@ -8,6 +8,7 @@
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/ifs/bcifs_surface.hpp"
 #include "cifs/ifs/mesh.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/nurbs/surface.hpp"
 #include "cifs/subdivision/ifs.hpp"
 
@@ -197,9 +198,9 @@ TEST_CASE("junction: a smooth NURBS patch and a fractal patch", "[junction]") {
     }
   const nurbs::Surface SA = nurbs::make_surface({3, 3}, {U, U}, {5, 5}, PA, w);
   const nurbs::Surface SB = nurbs::make_surface({3, 3}, {U, U}, {5, 5}, PB);
-  const automata::TensorAutomaton ta = automata::tensor_automaton(SA), tb = automata::tensor_automaton(SB);
+  const nurbs::TensorAutomaton ta = nurbs::tensor_automaton(SA), tb = nurbs::tensor_automaton(SB);
   // B's nets in homogeneous form (weight 1) like A's.
-  std::vector<Points> nets_b = automata::initial_nets(tb, SB);
+  std::vector<Points> nets_b = nurbs::initial_nets(tb, SB);
   for (Points& N : nets_b) {
     Points H(N.rows(), 4);
     H << N, Eigen::VectorXd::Ones(N.rows());
@@ -207,7 +208,7 @@ TEST_CASE("junction: a smooth NURBS patch and a fractal patch", "[junction]") {
   }
   std::vector<Glue> glue;
   for (std::size_t b = 0; b < 2; ++b) glue.push_back({2 + b, "uend", b, "ustart"});
-  const Junction j = join(surface_bcifs(ta), automata::initial_nets(ta, SA),
+  const Junction j = join(surface_bcifs(ta), nurbs::initial_nets(ta, SA),
                           surface_bcifs(tb, {.free_knot_lines = true}), nets_b, glue);
   PerturbOptions po;
   po.amplitude = 0.1;
@@ -234,10 +235,10 @@ TEST_CASE("junction: a smooth NURBS patch and a fractal patch", "[junction]") {
     CHECK((b.vertices.row(J) - exact).norm() <= 1e-12);
   }
   // B is fractal: away from the junction it left the B-spline surface.
-  const automata::TensorAutomaton smooth = automata::tensor_automaton(SB);
+  const nurbs::TensorAutomaton smooth = nurbs::tensor_automaton(SB);
   (void)smooth;
   double moved = 0;
-  const QuadMesh reference = surface_mesh(tb, automata::initial_nets(tb, SB), depth);
+  const QuadMesh reference = surface_mesh(tb, nurbs::initial_nets(tb, SB), depth);
   for (Eigen::Index v = n; v < b.vertices.rows(); ++v)
     moved = std::max(moved, (b.vertices.row(v) - reference.vertices.row(v)).norm());
   CHECK(moved > 1e-3);

@@ -7,6 +7,7 @@
 #include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/ifs/mesh.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
 #include "ifs/helpers.hpp"
 #include "nurbs/reference.hpp"
 
@@ -53,9 +54,9 @@ TEST_CASE("surface_mesh: vertices = surface evaluation at the dyadic nodes", "[i
                                    degree[1] + cifs_test::uniform_int(rng, 1, 3)};
     const bool rational = cifs_test::coin(rng);
     const nurbs::Surface s = random_surface(rng, degree, count, cifs_test::coin(rng), rational);
-    const automata::TensorAutomaton t = automata::tensor_automaton(s);
+    const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
     const int depth = 3;
-    const ifs::QuadMesh mesh = ifs::surface_mesh(t, automata::initial_nets(t, s), depth, {rational});
+    const ifs::QuadMesh mesh = ifs::surface_mesh(t, nurbs::initial_nets(t, s), depth, {rational});
     const auto bu = breaks(s, 0), bv = breaks(s, 1);
     const int nu = static_cast<int>(bu.size() - 1) << depth, nv = static_cast<int>(bv.size() - 1) << depth;
     REQUIRE(mesh.vertices.rows() == (nu + 1) * (nv + 1));
@@ -80,8 +81,8 @@ TEST_CASE("surface_mesh and quad_mesh agree on tensor automata", "[ifs][mesh]") 
                                    degree[1] + cifs_test::uniform_int(rng, 1, 3)};
     const bool rational = cifs_test::coin(rng);
     const nurbs::Surface s = random_surface(rng, degree, count, cifs_test::coin(rng), rational);
-    const automata::TensorAutomaton t = automata::tensor_automaton(s);
-    const auto nets = automata::initial_nets(t, s);
+    const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
+    const auto nets = nurbs::initial_nets(t, s);
     const int depth = cifs_test::uniform_int(rng, 0, 4);
     ifs::MeshOptions options;
     options.homogeneous = rational;
@@ -109,8 +110,8 @@ TEST_CASE("surface_mesh into a mesh: the returned mesh and cartesian(homogeneous
                                    degree[1] + cifs_test::uniform_int(rng, 1, 3)};
     const bool rational = trial % 3 != 0;
     const nurbs::Surface s = random_surface(rng, degree, count, cifs_test::coin(rng), rational);
-    const automata::TensorAutomaton t = automata::tensor_automaton(s);
-    const auto nets = automata::initial_nets(t, s);
+    const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
+    const auto nets = nurbs::initial_nets(t, s);
     const int depth = trial % 4 == 3 ? 1 : 3 - trial % 4;
     INFO("trial " << trial << ", depth " << depth << ", rational " << rational << ", out held "
                   << out.vertices.rows() << " by " << out.vertices.cols());
@@ -138,10 +139,9 @@ TEST_CASE("surface_mesh into a mesh: the returned mesh and cartesian(homogeneous
   }
   // A refusal leaves the mesh as it was.
   const nurbs::Surface s = random_surface(rng, {2, 2}, {4, 4}, true, false);
-  const automata::TensorAutomaton t = automata::tensor_automaton(s);
+  const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
   const ifs::QuadMesh before = out;
-  CHECK_THROWS_AS(ifs::surface_mesh(t, automata::initial_nets(t, s), 6, out, {.max_bytes = 1000}),
-                  InvalidInput);
+  CHECK_THROWS_AS(ifs::surface_mesh(t, nurbs::initial_nets(t, s), 6, out, {.max_bytes = 1000}), InvalidInput);
   CHECK(out.vertices == before.vertices);
   CHECK(out.quads == before.quads);
 }
@@ -149,8 +149,8 @@ TEST_CASE("surface_mesh into a mesh: the returned mesh and cartesian(homogeneous
 TEST_CASE("Quad meshes are watertight disks", "[ifs][mesh]") {
   cifs_test::Rng rng(9);
   const nurbs::Surface s = random_surface(rng, {3, 2}, {6, 5}, false, true);
-  const automata::TensorAutomaton t = automata::tensor_automaton(s);
-  const ifs::QuadMesh mesh = ifs::surface_mesh(t, automata::initial_nets(t, s), 3, {true});
+  const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
+  const ifs::QuadMesh mesh = ifs::surface_mesh(t, nurbs::initial_nets(t, s), 3, {true});
   const auto V = static_cast<std::size_t>(mesh.vertices.rows());
   std::map<std::pair<int, int>, int> edges;  // undirected edge → number of quads
   std::map<std::pair<int, int>, int> directed;
@@ -241,8 +241,9 @@ TEST_CASE("Corner functionals of a tensor automaton are Kronecker products of en
           "[ifs][mesh]") {
   cifs_test::Rng rng(21);
   const nurbs::Surface s = random_surface(rng, {2, 3}, {5, 6}, false, false);
-  const automata::TensorAutomaton t = automata::tensor_automaton(s);
-  const ifs::EndFunctionals fu = ifs::end_functionals(t.factors[0]), fv = ifs::end_functionals(t.factors[1]);
+  const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
+  const ifs::EndFunctionals fu = ifs::end_functionals(t.factors[0].automaton),
+                            fv = ifs::end_functionals(t.factors[1].automaton);
   for (int k = 0; k < 4; ++k) {
     const auto corner = ifs::repeated_child_functionals(t.product, k);
     for (StateId p = 0; p < t.factor_states.size(); ++p) {
@@ -259,8 +260,8 @@ TEST_CASE("Corner functionals of a tensor automaton are Kronecker products of en
 TEST_CASE("Meshes refuse bad input before any work", "[ifs][mesh]") {
   cifs_test::Rng rng(23);
   const nurbs::Surface s = random_surface(rng, {3, 3}, {8, 8}, true, false);
-  const automata::TensorAutomaton t = automata::tensor_automaton(s);
-  const auto nets = automata::initial_nets(t, s);
+  const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
+  const auto nets = nurbs::initial_nets(t, s);
   ifs::MeshOptions small;
   small.max_bytes = 1 << 20;
   CHECK_THROWS_WITH(ifs::surface_mesh(t, nets, 12, small), Catch::Contains("GiB held in memory"));
@@ -284,11 +285,11 @@ TEST_CASE("Meshes refuse bad input before any work", "[ifs][mesh]") {
   wrong[3] = Points::Random(9, 3);
   CHECK_THROWS_AS(ifs::surface_mesh(t, wrong, 2), InvalidInput);
   // State pairs that do not match the product or name missing factor states.
-  automata::TensorAutomaton broken = t;
+  nurbs::TensorAutomaton broken = t;
   broken.factor_states.pop_back();
   CHECK_THROWS_WITH(ifs::surface_mesh(broken, nets, 2), Catch::Contains("factor state pairs"));
   broken = t;
-  broken.factor_states[0][1] = static_cast<StateId>(boost::num_vertices(t.factors[1].graph));
+  broken.factor_states[0][1] = static_cast<StateId>(boost::num_vertices(t.factors[1].automaton.graph));
   CHECK_THROWS_WITH(ifs::surface_mesh(broken, nets, 2), Catch::Contains("does not exist"));
 }
 

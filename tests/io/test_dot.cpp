@@ -22,8 +22,9 @@ std::size_t count(const std::string& text, const std::string& what) {
 
 TEST_CASE("Automaton DOT", "[io][dot]") {
   const nurbs::Curve c = nurbs::make_curve(2, {0, 0, 0, 1, 3, 4, 4, 4}, Points::Random(5, 2));
-  const automata::Automaton a = automata::knot_automaton(c);
-  const std::string dot = to_dot(a);
+  const nurbs::KnotAutomaton ka = nurbs::knot_automaton(c);
+  const automata::Automaton& a = ka.automaton;
+  const std::string dot = to_dot(ka);
   CHECK_THAT(dot, Catch::StartsWith("digraph G {") && Catch::Contains("[label=\"G\"]") &&
                       Catch::Contains("peripheries=2"));
   // One line per transition, one bold node per initial state, a window in every label.

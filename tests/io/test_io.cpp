@@ -13,6 +13,7 @@
 #include "cifs/ifs/bcifs_curve.hpp"
 #include "cifs/io/json.hpp"
 #include "cifs/io/obj.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
 
 using namespace cifs;
 using namespace cifs::io;
@@ -112,15 +113,15 @@ TEST_CASE("write and read by extension: the bytes of encode, read back", "[io][d
   write(s.dir / "p.svg", polygon);
   CHECK(read_file(s.dir / "p.svg") == encode(polygon, "svg"));
 
-  const automata::Automaton a = automata::knot_automaton(curve);
+  const nurbs::KnotAutomaton ka = nurbs::knot_automaton(curve);
   for (const char* ext : {"json", "svg", "dot"}) {
     const auto path = s.dir / (std::string("a.") + ext);
-    write(path, a);
-    CHECK(read_file(path) == encode(a, ext));
+    write(path, ka);
+    CHECK(read_file(path) == encode(ka, ext));
   }
-  CHECK(to_json(read_automaton(s.dir / "a.json")) == to_json(a));
+  CHECK(to_json(read_automaton(s.dir / "a.json")) == to_json(ka));
 
-  const BcifsFile file{ifs::curve_bcifs(curve), automata::initial_nets(a, curve)};
+  const BcifsFile file{ifs::curve_bcifs(curve), nurbs::initial_nets(ka, curve)};
   write(s.dir / "b.json", file);
   const BcifsFile back = read_bcifs(s.dir / "b.json");
   CHECK(to_json(back.system, back.nets) == to_json(file.system, file.nets));

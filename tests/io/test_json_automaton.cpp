@@ -6,11 +6,11 @@
 #include <random>
 
 #include "cifs/automata/automaton.hpp"
-#include "cifs/automata/tensor.hpp"
 #include "cifs/errors.hpp"
 #include "cifs/ifs/bcifs_curve.hpp"
 #include "cifs/io/json.hpp"
 #include "cifs/nurbs/surface.hpp"
+#include "cifs/nurbs/tensor_automaton.hpp"
 
 using namespace cifs;
 using namespace cifs::io;
@@ -25,15 +25,18 @@ bool same_bits(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
 }
 
 /// Everything the JSON holds, compared exactly: states, out-edges in order, initial entries.
-void require_same(const automata::Automaton& a, const automata::Automaton& b) {
+void require_same(const nurbs::KnotAutomaton& ka, const nurbs::KnotAutomaton& kb) {
+  const automata::Automaton &a = ka.automaton, &b = kb.automaton;
   const auto n = boost::num_vertices(a.graph);
+  REQUIRE(ka.windows.size() == n);
+  REQUIRE(kb.windows.size() == n);
   REQUIRE(boost::num_vertices(b.graph) == n);
   for (StateId s = 0; s < n; ++s) {
     INFO("state " << s);
     const automata::State &x = a.graph[s], &y = b.graph[s];
     CHECK(x.size == y.size);
     CHECK(x.name == y.name);
-    CHECK(x.window == y.window);
+    CHECK(ka.windows[s] == kb.windows[s]);
     CHECK(x.recurrent == y.recurrent);
     REQUIRE(boost::out_degree(s, a.graph) == boost::out_degree(s, b.graph));
     auto [e, end] = boost::out_edges(s, a.graph);
@@ -45,22 +48,24 @@ void require_same(const automata::Automaton& a, const automata::Automaton& b) {
     }
   }
   REQUIRE(a.initial.size() == b.initial.size());
+  REQUIRE(ka.intervals.size() == a.initial.size());
+  REQUIRE(kb.intervals.size() == b.initial.size());
   for (std::size_t i = 0; i < a.initial.size(); ++i) {
     CHECK(a.initial[i].segment == b.initial[i].segment);
     CHECK(a.initial[i].state == b.initial[i].state);
-    CHECK(a.initial[i].start == b.initial[i].start);
-    CHECK(a.initial[i].end == b.initial[i].end);
-    CHECK(b.initial[i].span == -1);  // not stored
+    CHECK(ka.intervals[i].start == kb.intervals[i].start);
+    CHECK(ka.intervals[i].end == kb.intervals[i].end);
+    CHECK(kb.intervals[i].span == -1);  // not stored
   }
 }
 
 /// States named "" and "E" (and one with the default name), a self-loop, parallel transitions,
 /// irrational entries, no windows.
-automata::Automaton hand_made() {
+nurbs::KnotAutomaton hand_made() {
   automata::Automaton a;
-  boost::add_vertex(automata::State{2, {}, true, ""}, a.graph);
-  boost::add_vertex(automata::State{3, {}, false, "E"}, a.graph);
-  boost::add_vertex(automata::State{1, {}, true, "s2"}, a.graph);
+  boost::add_vertex(automata::State{.size = 2, .recurrent = true, .name = ""}, a.graph);
+  boost::add_vertex(automata::State{.size = 3, .recurrent = false, .name = "E"}, a.graph);
+  boost::add_vertex(automata::State{.size = 1, .recurrent = true, .name = "s2"}, a.graph);
   Eigen::MatrixXd M(3, 2);
   M << 1, 0, 1 / 3.0, 2 / 3.0, std::sqrt(0.5), 1 - std::sqrt(0.5);
   boost::add_edge(0, 1, automata::Transition{"w0", M}, a.graph);
@@ -68,8 +73,10 @@ automata::Automaton hand_made() {
   boost::add_edge(1, 2, automata::Transition{"", Eigen::MatrixXd::Constant(1, 3, 1 / 3.0)}, a.graph);
   boost::add_edge(2, 2, automata::Transition{"loop", Eigen::MatrixXd::Ones(1, 1)}, a.graph);
   boost::add_edge(1, 0, automata::Transition{"back", M.transpose().topRows(2) / 1.5}, a.graph);
-  a.initial = {{0, 1, -0.5, 1e-300, 7}, {3, 0, 0, 0, -1}};
-  return a;
+  a.initial = {{.segment = 0, .state = 1}, {.segment = 3, .state = 0}};
+  nurbs::KnotAutomaton k = nurbs::without_knots(a);
+  k.intervals[0] = {.start = -0.5, .end = 1e-300, .span = 7};
+  return k;
 }
 
 std::string error_of(const std::string& text) {
@@ -85,8 +92,9 @@ std::string error_of(const std::string& text) {
 
 TEST_CASE("Automaton JSON: counts, intervals, stochastic rows", "[io][json]") {
   const nurbs::Curve c = nurbs::make_curve(2, {0, 0, 0, 1, 3, 4, 4, 4}, Points::Random(5, 2));
-  const automata::Automaton a = automata::knot_automaton(c);
-  const auto j = nlohmann::json::parse(to_json(a));
+  const nurbs::KnotAutomaton k = nurbs::knot_automaton(c);
+  const automata::Automaton& a = k.automaton;
+  const auto j = nlohmann::json::parse(to_json(k));
   CHECK(j["states"].size() == boost::num_vertices(a.graph));
   CHECK(j["transitions"].size() == 2 * boost::num_vertices(a.graph));
   CHECK(j["initial"].size() == 3);
@@ -108,19 +116,19 @@ TEST_CASE("Automaton JSON reads back exactly (knot, minimised, tensor, BC-IFS, h
   for (std::size_t i = 4; i < 10; ++i) t[i] = t[i - 1] + len(rng);
   for (std::size_t i = 10; i < 14; ++i) t[i] = t[9] + 1;
   const nurbs::Curve curve = nurbs::make_curve(3, t, Points::Random(10, 2));
-  const automata::Automaton knot = automata::knot_automaton(curve);
+  const nurbs::KnotAutomaton knot = nurbs::knot_automaton(curve);
   const nurbs::Surface surface = nurbs::make_surface(
       {2, 1}, {nurbs::Knots{0, 0, 0, 1, 3, 3, 3}, nurbs::Knots{0, 0, 2, 2}}, {4, 2}, Points::Random(8, 3));
-  const std::vector<std::pair<const char*, automata::Automaton>> cases = {
+  const std::vector<std::pair<const char*, nurbs::KnotAutomaton>> cases = {
       {"knot", knot},
-      {"minimised", automata::minimize(knot)},
-      {"tensor product", automata::tensor_automaton(surface).product},
-      {"BC-IFS", ifs::curve_bcifs(curve).automaton},
+      {"minimised", nurbs::minimize(knot)},
+      {"tensor product", nurbs::without_knots(nurbs::tensor_automaton(surface).product)},
+      {"BC-IFS", ifs::curve_bcifs_knots(ifs::curve_bcifs(curve).automaton, knot)},
       {"hand-made", hand_made()}};
   for (const auto& [what, a] : cases) {
     INFO(what);
     const std::string text = to_json(a);
-    const automata::Automaton back = parse_automaton_json(text, what);
+    const nurbs::KnotAutomaton back = parse_automaton_json(text, what);
     require_same(a, back);
     CHECK(to_json(back) == text);
   }
@@ -131,16 +139,19 @@ TEST_CASE("Automaton JSON: names only when not the default, read from text writt
   CHECK_THAT(text, Contains(R"({"id":0,"name":"","recurrent":true,"size":2})"));
   CHECK_THAT(text, Contains(R"({"id":1,"name":"E","recurrent":false,"size":3})"));
   CHECK_THAT(text, Contains(R"({"id":2,"recurrent":true,"size":1})"));  // "s2" is the default
-  const automata::Automaton a = parse_automaton_json(R"({
+  const nurbs::KnotAutomaton k = parse_automaton_json(R"({
       "states": [{"id": 0, "size": 2, "window": [0.5, 1, 2]}, {"id": 1, "size": 1, "name": "V", "recurrent": true}],
       "transitions": [{"from": 0, "to": 1, "label": "x", "matrix": [[0.25, 0.75]]},
                       {"from": 1, "to": 1, "label": "y", "matrix": [[1]]},
                       {"from": 0, "to": 0, "label": "z", "matrix": [[1, 0], [0.5, 0.5]]}],
       "initial": [{"segment": 4, "state": 0, "interval": [1, 2.5]}, {"segment": 5, "state": 1}]})",
-                                                     "hand");
+                                                      "hand");
+  const automata::Automaton& a = k.automaton;
   REQUIRE(boost::num_vertices(a.graph) == 2);
   CHECK(a.graph[0].name == "s0");
-  CHECK(a.graph[0].window == std::vector<double>{0.5, 1, 2});
+  REQUIRE(k.windows.size() == 2);
+  CHECK(k.windows[0] == std::vector<double>{0.5, 1, 2});
+  CHECK(k.windows[1].empty());
   CHECK(!a.graph[0].recurrent);
   CHECK(a.graph[1].name == "V");
   CHECK(a.graph[1].recurrent);
@@ -153,10 +164,11 @@ TEST_CASE("Automaton JSON: names only when not the default, read from text writt
   CHECK(a.graph[boost::edge(0, 0, a.graph).first].matrix == z);
   REQUIRE(a.initial.size() == 2);
   CHECK(a.initial[0].segment == 4);
-  CHECK(a.initial[0].start == 1);
-  CHECK(a.initial[0].end == 2.5);
+  REQUIRE(k.intervals.size() == 2);
+  CHECK(k.intervals[0].start == 1);
+  CHECK(k.intervals[0].end == 2.5);
   CHECK(a.initial[1].state == 1);
-  CHECK(a.initial[1].start == 0);
+  CHECK(k.intervals[1].start == 0);
 }
 
 TEST_CASE("Automaton JSON: bad input names the JSON path", "[io][json]") {

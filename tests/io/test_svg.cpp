@@ -8,6 +8,7 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/nurbs/curve.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
 
 using namespace cifs;
 using namespace cifs::io;
@@ -74,7 +75,8 @@ TEST_CASE("Multi-stroke SVG: one element per stroke, fitted together, a legend o
 
 TEST_CASE("Automaton SVG: one circle per state, one arrow per connected pair", "[io][svg]") {
   const nurbs::Curve c = nurbs::make_curve(3, {0, 0, 0, 0, 1, 3, 3.5, 6, 6, 6, 6}, Points::Random(7, 2));
-  const automata::Automaton a = automata::knot_automaton(c);
+  const nurbs::KnotAutomaton ka = nurbs::knot_automaton(c);
+  const automata::Automaton& a = ka.automaton;
   const std::string svg = to_svg(a);
   const auto count = [&](const std::string& what) {
     std::size_t n = 0;

@@ -9,6 +9,7 @@
 #include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/nurbs/curve.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/render/chaos_density.hpp"
 #include "ifs/helpers.hpp"
 
@@ -165,8 +166,9 @@ TEST_CASE("CIFS chaos density of a rational quarter circle stays on the circle",
   Eigen::VectorXd w(3);
   w << 1, std::sqrt(0.5), 1;
   const nurbs::Curve curve = nurbs::make_curve(2, {0, 0, 0, 1, 1, 1}, P, w);
-  const automata::Automaton a = automata::knot_automaton(curve);
-  const std::vector<Points> nets = automata::initial_nets(a, curve);
+  const nurbs::KnotAutomaton ka = nurbs::knot_automaton(curve);
+  const automata::Automaton& a = ka.automaton;
+  const std::vector<Points> nets = nurbs::initial_nets(ka, curve);
   Camera camera;
   camera.eye = {0.5, 0.5, 1};
   camera.target = {0.5, 0.5, 0};

@@ -9,6 +9,7 @@
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/ifs/chaos.hpp"
 #include "cifs/nurbs/curve.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/verify/check.hpp"
 
 using namespace cifs;
@@ -71,9 +72,10 @@ TEST_CASE("Junctions: the end of G is the start of D, neighbouring segments agre
   std::mt19937_64 rng(11);
   for (int d = 2; d <= 6; ++d) {
     const nurbs::Curve c = random_curve(rng, d, 2, {false, true, false});
-    const automata::Automaton a = automata::knot_automaton(c);
+    const nurbs::KnotAutomaton ka = nurbs::knot_automaton(c);
+    const automata::Automaton& a = ka.automaton;
     const ifs::EndFunctionals f = ifs::end_functionals(a);
-    const std::vector<Points> nets = automata::initial_nets(a, c);
+    const std::vector<Points> nets = nurbs::initial_nets(ka, c);
     const double scale = c.P.cwiseAbs().maxCoeff();
     for (std::size_t i = 0; i < nets.size(); ++i) {
       std::vector<automata::StateId> child;
@@ -93,20 +95,21 @@ TEST_CASE("Junctions: the end of G is the start of D, neighbouring segments agre
 TEST_CASE("Chaos-game points lie on the curve at their recorded parameter", "[verify]") {
   std::mt19937_64 rng(17);
   const nurbs::Curve c = random_curve(rng, 3, 3, {true, true, false});
-  const automata::Automaton a = automata::knot_automaton(c);
+  const nurbs::KnotAutomaton ka = nurbs::knot_automaton(c);
+  const automata::Automaton& a = ka.automaton;
   ifs::ChaosOptions options;
   options.samples = 2000;
   options.seed = 42;
   options.record_address = true;
-  const ifs::ChaosResult r = ifs::chaos_game(a, automata::initial_nets(a, c), options);
+  const ifs::ChaosResult r = ifs::chaos_game(a, nurbs::initial_nets(ka, c), options);
   const Points P = ifs::cartesian(r.points);
   const double scale = nurbs::cartesian_points(c).cwiseAbs().maxCoeff();
   for (Eigen::Index k = 0; k < P.rows(); ++k) {
     const double address = r.address[static_cast<std::size_t>(k)];
     const auto i =
         static_cast<std::size_t>(std::min(std::floor(address), static_cast<double>(a.initial.size() - 1)));
-    const double u =
-        a.initial[i].start + (address - static_cast<double>(i)) * (a.initial[i].end - a.initial[i].start);
+    const double u = ka.intervals[i].start +
+                     (address - static_cast<double>(i)) * (ka.intervals[i].end - ka.intervals[i].start);
     CHECK((P.row(k) - nurbs::evaluate(c, u)).norm() <= 1e-9 * scale);
   }
 }

@@ -4,13 +4,13 @@
 #include <cmath>
 
 #include "cifs/automata/automaton.hpp"
-#include "cifs/automata/tensor.hpp"
 #include "cifs/errors.hpp"
 #include "cifs/format.hpp"
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/ifs/mesh.hpp"
 #include "cifs/nurbs/doubling.hpp"
 #include "cifs/nurbs/refine.hpp"
+#include "cifs/nurbs/tensor_automaton.hpp"
 
 namespace cifs::verify {
 namespace {
@@ -106,7 +106,8 @@ CheckReport check_curve(const nurbs::Curve& c, const CheckOptions& o) {
     throw InvalidInput("check: the tolerance must be positive and finite (got " +
                        number_text(o.tolerance, 6) + ")");
   const int d = c.degree;
-  const automata::Automaton a = automata::knot_automaton(c);
+  const nurbs::KnotAutomaton knots = nurbs::knot_automaton(c);
+  const automata::Automaton& a = knots.automaton;
   const double inserted = static_cast<double>(a.initial.size()) * (2 * d - 1) * std::ldexp(1.0, o.depth);
   if (inserted > kMaxInsertedKnots)
     throw InvalidInput(
@@ -116,16 +117,17 @@ CheckReport check_curve(const nurbs::Curve& c, const CheckOptions& o) {
   const Points cart = nurbs::cartesian_points(c);
   const double scale = std::max(cart.cwiseAbs().maxCoeff(), 1e-300);
   const double weight_scale = nurbs::weights(c).maxCoeff();
-  const std::vector<Points> nets = automata::initial_nets(a, c);
+  const std::vector<Points> nets = nurbs::initial_nets(knots, c);
   const double leaves = std::ldexp(1.0, o.depth);
 
   CheckReport report{o.depth, o.tolerance, {}, {}, {}, false};
   std::vector<LocalSegment> locals;
   std::vector<nurbs::Curve> refined;  // (a) references: every dyadic knot of every inter-knot of the window
-  for (const automata::Initial& init : a.initial) {
-    locals.push_back(local_segment(c, init.span));
+  for (std::size_t i = 0; i < a.initial.size(); ++i) {
+    const nurbs::KnotInterval& interval = knots.intervals[i];
+    locals.push_back(local_segment(c, interval.span));
     refined.push_back(nurbs::refine(locals.back().curve, dyadic_knots(locals.back().window, leaves)));
-    report.segments.push_back(SegmentReport{init.segment, init.start, init.end, {}, {}});
+    report.segments.push_back(SegmentReport{a.initial[i].segment, interval.start, interval.end, {}, {}});
   }
   const auto length = [&](std::size_t i) { return locals[i].window[static_cast<std::size_t>(d)]; };
 
@@ -212,22 +214,22 @@ SurfaceCheckReport check_surface(const nurbs::Surface& s, const CheckOptions& o)
                        number_text(reference, 3) +
                        " control points per patch (limit 2^23, about the memory of the machine's budget); "
                        "lower --depth");
-  const automata::TensorAutomaton t = automata::tensor_automaton(s);
-  const std::vector<Points> nets = automata::initial_nets(t, s);
+  const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
+  const std::vector<Points> nets = nurbs::initial_nets(t, s);
   const Points cart = nurbs::cartesian_points(s);
   const double scale = std::max(cart.cwiseAbs().maxCoeff(), 1e-300);
   const double weight_scale = nurbs::weights(s).maxCoeff();
 
   std::array<std::vector<LocalKnots>, 2> knots;
   for (std::size_t dir = 0; dir < 2; ++dir)
-    for (const automata::Initial& init : t.factors[dir].initial)
-      knots[dir].push_back(local_knots(s.knots[dir], s.degree[dir], init.span));
+    for (const nurbs::KnotInterval& interval : t.factors[dir].intervals)
+      knots[dir].push_back(local_knots(s.knots[dir], s.degree[dir], interval.span));
   SurfaceCheckReport report{o.depth, o.tolerance, {}, {}, {}, false};
   std::vector<LocalPatch> locals;
   for (std::size_t k = 0; k < t.patches.size(); ++k) {
     const auto [a, b] = t.patches[k];
-    const automata::Initial& iu = t.factors[0].initial[static_cast<std::size_t>(a)];
-    const automata::Initial& iv = t.factors[1].initial[static_cast<std::size_t>(b)];
+    const nurbs::KnotInterval& iu = t.factors[0].intervals[static_cast<std::size_t>(a)];
+    const nurbs::KnotInterval& iv = t.factors[1].intervals[static_cast<std::size_t>(b)];
     locals.push_back(local_patch(
         s, nets[k], {knots[0][static_cast<std::size_t>(a)], knots[1][static_cast<std::size_t>(b)]}));
     report.patches.push_back(PatchReport{{a, b}, {iu.start, iu.end}, {iv.start, iv.end}, {}, {}});
@@ -278,8 +280,8 @@ SurfaceCheckReport check_surface(const nurbs::Surface& s, const CheckOptions& o)
   ifs::MeshOptions mesh_options;
   mesh_options.homogeneous = s.rational;
   const ifs::QuadMesh mesh = ifs::surface_mesh(t, nets, o.depth, mesh_options);
-  const int A = static_cast<int>(t.factors[0].initial.size()),
-            B = static_cast<int>(t.factors[1].initial.size());
+  const int A = static_cast<int>(t.factors[0].automaton.initial.size()),
+            B = static_cast<int>(t.factors[1].automaton.initial.size());
   const auto n = static_cast<int>(leaves);
   const Eigen::Index row = static_cast<Eigen::Index>(B) * n + 1;
   const auto parameters = [&](double length, int count) {

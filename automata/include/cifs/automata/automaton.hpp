@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // cifs — automata whose transitions carry subdivision matrices (topology and stencils, no
-// coordinates), on Boost.Graph; the knot-doubling automaton of a NURBS curve.
+// coordinates), on Boost.Graph. Generic: the knot-doubling automaton of a NURBS curve and its knot
+// data (windows, intervals, spans) live in nurbs (cifs/nurbs/knot_automaton.hpp).
 #pragma once
 
 #include <Eigen/Core>
@@ -8,16 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "cifs/nurbs/curve.hpp"
-
 namespace cifs::automata {
 
 /// A state: the control nets it holds have `size` points.
 struct State {
   int size = 0;
-  /// Knot-doubling states: the inter-knot window, normalised so that its centre is 1 (the key that
-  /// identifies the state, compared exactly). Empty for hand-made automata.
-  std::vector<double> window;
   /// True when the state occurs at arbitrarily deep levels: it lies on a cycle (a strong component
   /// with a cycle) or is reachable from one. For generic knots, 2d − 1 of a segment's 4(d − 1)
   /// states recur (Morlet et al.); the others are the transient states of the first levels.
@@ -42,21 +38,12 @@ using TransitionId = Graph::edge_descriptor;
 struct Initial {
   int segment = 0;
   StateId state = 0;
-  /// Knot-doubling automata: the segment's knot interval and its span in the curve's knot
-  /// vector; the segment's net is rows `span − d … span` of the curve's points.
-  double start = 0, end = 0;
-  int span = -1;
 };
 
 struct Automaton {
   Graph graph;
   std::vector<Initial> initial;
 };
-
-/// The knot-doubling automaton of a curve: one initial state per segment, states = windows up to
-/// scale (shared between segments, e.g. the uniform state), transitions G and D with the matrices
-/// of nurbs::subdivision_matrix; recurrent states marked. Built from the knots alone.
-Automaton knot_automaton(const nurbs::Curve& curve);
 
 /// Marks `recurrent` from the strong components (Boost.Graph) and reachability from them.
 void mark_recurrent(Automaton& automaton);
@@ -66,8 +53,9 @@ void mark_recurrent(Automaton& automaton);
 /// refinement). Initial states are kept (redirected to their class).
 Automaton minimize(const Automaton& automaton);
 
-/// Control net of every initial entry of a knot automaton built from `curve`: `d+1 by cols`
-/// rows of `curve.P` (homogeneous when rational).
-std::vector<Points> initial_nets(const Automaton& automaton, const nurbs::Curve& curve);
+/// The classes of minimize, per state, numbered in the order of their first state: class k is
+/// state k of minimize's result and copies the first state of the class (for data kept beside
+/// the automaton, e.g. nurbs::minimize's windows).
+std::vector<std::size_t> minimize_classes(const Automaton& automaton);
 
 }  // namespace cifs::automata

@@ -1,36 +1,13 @@
 // SPDX-License-Identifier: MIT
-// cifs — the tensor-product automaton of a NURBS surface: pairs of knot-doubling states of the u
-// and v direction curves, transitions = Kronecker products of the factors' matrices.
+// cifs — the pieces of tensor-product automata that know no knots: Kronecker products of
+// transition matrices and the v direction's labels. The tensor-product automaton of a NURBS
+// surface is nurbs::TensorAutomaton (cifs/nurbs/tensor_automaton.hpp).
 #pragma once
 
-#include <array>
+#include <Eigen/Core>
 #include <string>
-#include <vector>
-
-#include "cifs/automata/automaton.hpp"
-#include "cifs/nurbs/surface.hpp"
 
 namespace cifs::automata {
-
-/// Conventions (fixed; other modules rely on them):
-/// - product state (p, q) of factor states p (u, size su) and q (v, size sv) has size su·sv; row
-///   (i, j) of its nets — i along u, j along v — is row `i·sv + j` (u-major, like Surface::P);
-/// - its four transitions are, in out-edge order, GH, GB, DH, DB: child index `2·iu + iv` with iu
-///   the u-half (0 = G, 1 = D) and iv the v-half (0 = H, 1 = B, the v-direction's G and D);
-/// - the matrix of child (iu, iv) is `kron(M_u, M_v)` (`su'·sv' by su·sv`, entry
-///   `(i·sv' + j, k·sv + l) = M_u(i, k)·M_v(j, l)`), exactly, with M_u, M_v the factors' matrices;
-/// - `product.initial` holds one entry per patch (non-empty u segment a × non-empty v segment b) in
-///   u-major order: index `a·nv_seg + b`, `segment` = that index; `start`, `end` and `span` are
-///   unset (0, 0, −1): the patch's intervals and spans are those of `factors[0].initial[a]` and
-///   `factors[1].initial[b]`;
-/// - only pairs reachable from the initial pairs are states; rational surfaces use homogeneous
-///   rows `(w·x, w)`, and the matrices do not depend on them.
-struct TensorAutomaton {
-  Automaton product;                                  // states = (u-state, v-state) pairs
-  std::array<Automaton, 2> factors;                   // knot automata of the u and v direction curves
-  std::vector<std::array<StateId, 2>> factor_states;  // per product state: its (u, v) factor states
-  std::vector<std::array<int, 2>> patches;            // per product.initial entry: (u segment, v segment)
-};
 
 /// kron(A, B): entry (i·B.rows() + k, j·B.cols() + l) = A(i, j)·B(k, l), one product per entry, so
 /// the result is exact given A and B (the matrices of the product automaton, and of the surface
@@ -38,13 +15,5 @@ struct TensorAutomaton {
 Eigen::MatrixXd kron(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B);
 /// The v direction's halves are named H (first) and B (second), so that product labels read GH … DB.
 std::string v_label(const std::string& label);
-
-/// The tensor-product automaton of a surface (from its knots alone); recurrent states marked.
-TensorAutomaton tensor_automaton(const nurbs::Surface& surface);
-
-/// Control net of every patch (per product.initial entry): `(p+1)(q+1) by cols` rows of
-/// `surface.P` (homogeneous when rational), row `i·(q+1) + j` = control point
-/// `(span_u − p + i, span_v − q + j)`. Throws InvalidInput when `surface` does not fit the automaton.
-std::vector<Points> initial_nets(const TensorAutomaton& automaton, const nurbs::Surface& surface);
 
 }  // namespace cifs::automata

@@ -5,6 +5,7 @@
 
 #include "cifs/ifs/bcifs.hpp"
 #include "cifs/nurbs/curve.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
 
 namespace cifs::ifs {
 
@@ -17,10 +18,10 @@ struct CurveBcifsOptions {
 };
 
 /// Cells and constraints of `curve` (docs/bcifs.md):
-/// - edge cells: the states of automata::knot_automaton(curve) unfolded by whether the piece
+/// - edge cells: the states of nurbs::knot_automaton(curve) unfolded by whether the piece
 ///   starts (suffix "a") and ends ("b") at a knot of the curve: "s3ab", "s5a", "s5". `d+1` points,
 ///   transitions G, D (free), the knot automaton's initial entries (nets from
-///   automata::initial_nets);
+///   nurbs::initial_nets);
 /// - boundary "start": rows 0 … d−m of the edge net, m the multiplicity of the knot at its start
 ///   (read from the window); "end": rows m' … d, m' that of the end knot: the rows whose
 ///   B-splines do not vanish at that knot, so the end point depends on them only;
@@ -33,9 +34,16 @@ struct CurveBcifsOptions {
 /// The NURBS matrices satisfy every constraint (an admissible point).
 Bcifs curve_bcifs(const nurbs::Curve& curve, const CurveBcifsOptions& options = {});
 
-/// The same from the curve's knot automaton (automata::knot_automaton; e.g. a factor of a
+/// The same from the curve's knot automaton (nurbs::knot_automaton; e.g. a factor of a
 /// TensorAutomaton); `closed` joins the last segment's end to the first one's start. Throws
-/// InvalidInput for states that are not knot-doubling states of one degree ≥ 1.
-Bcifs curve_bcifs(const automata::Automaton& knots, bool closed, const CurveBcifsOptions& options = {});
+/// InvalidInput for states that are not knot-doubling states of one degree ≥ 1 (a window of 2d − 1
+/// intervals each). The nets of its initial entries: nurbs::initial_nets(knots, curve).
+Bcifs curve_bcifs(const nurbs::KnotAutomaton& knots, bool closed, const CurveBcifsOptions& options = {});
+
+/// The knot data of the automaton of curve_bcifs(knots, …), or of a perturbation of it (which keeps
+/// the states): each edge cell has the window of the knot state it unfolds, the vertex cells none,
+/// the initial entries the intervals of their segments. Throws InvalidInput when `automaton` has
+/// fewer states than the edge cells or another number of initial entries.
+nurbs::KnotAutomaton curve_bcifs_knots(automata::Automaton automaton, const nurbs::KnotAutomaton& knots);
 
 }  // namespace cifs::ifs

@@ -5,9 +5,9 @@
 // and the surface's boundary) and makes the interior fractal.
 #pragma once
 
-#include "cifs/automata/tensor.hpp"
 #include "cifs/ifs/bcifs.hpp"
 #include "cifs/nurbs/surface.hpp"
+#include "cifs/nurbs/tensor_automaton.hpp"
 
 namespace cifs::ifs {
 
@@ -29,7 +29,7 @@ struct SurfaceBcifsOptions {
 ///   two labels with v's G, D read H, B, matrix kron(X, Y) (`size' by size`): faces have GH, GB,
 ///   DH, DB in TensorAutomaton order and matrices; initial entries = automaton.product.initial's
 ///   (patches in u-major order, same segments), so ifs::quad_mesh(result.automaton,
-///   automata::initial_nets(automaton, surface), automaton.patches, depth) meshes the result;
+///   nurbs::initial_nets(automaton, surface), automaton.patches, depth) meshes the result;
 /// - boundaries of (x, y): "u<name>" = x's boundary <name> ("ustart", "uend": rows of x's start or
 ///   end × every row of y, onto (vertex, y)), "v<name>" likewise, and on faces the corners
 ///   "ustart.vstart" … (rows of x's × rows of y's);
@@ -41,9 +41,9 @@ struct SurfaceBcifsOptions {
 /// - free: a transition is free when both factor transitions are free in Cu and Cv (faces always;
 ///   edges and corners unless one factor is a vertex at a knot, see SurfaceBcifsOptions).
 /// The NURBS (kron) matrices satisfy every constraint.
-Bcifs surface_bcifs(const automata::TensorAutomaton& automaton, const SurfaceBcifsOptions& options = {});
+Bcifs surface_bcifs(const nurbs::TensorAutomaton& automaton, const SurfaceBcifsOptions& options = {});
 
-/// surface_bcifs(automata::tensor_automaton(surface), options).
+/// surface_bcifs(nurbs::tensor_automaton(surface), options).
 Bcifs surface_bcifs(const nurbs::Surface& surface, const SurfaceBcifsOptions& options = {});
 
 }  // namespace cifs::ifs

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "cifs/automata/automaton.hpp"
-#include "cifs/automata/tensor.hpp"
 #include "cifs/mesh.hpp"
+#include "cifs/nurbs/tensor_automaton.hpp"
 #include "cifs/types.hpp"
 
 namespace cifs::ifs {
@@ -55,7 +55,7 @@ struct MeshOptions {
 /// Bytes of a mesh of `vertices` nodes with `cols` coordinates and `quads` quads (saturating).
 std::size_t mesh_bytes(std::size_t vertices, std::size_t cols, std::size_t quads) noexcept;
 
-/// Separable route for a tensor-product automaton (nets from automata::initial_nets, `(p+1)(q+1) by
+/// Separable route for a tensor-product automaton (nets from nurbs::initial_nets, `(p+1)(q+1) by
 /// cols`, row i·(q+1) + j). The curve stencil tables F_u (`A·2^K + 1 by p + 1`) and F_v of the two
 /// factor automata — row I is the functional, on the net of the segment owning node I, of the
 /// point at node I (attractor_points of the factor with identity nets) — give every patch's block
@@ -64,12 +64,12 @@ std::size_t mesh_bytes(std::size_t vertices, std::size_t cols, std::size_t quads
 /// per vertex coordinate over one contiguous run, against (p + 1)(q + 1) for Kronecker tables.
 /// Throws InvalidInput for a negative depth, nets that do not fit, or a mesh
 /// above `options.max_bytes`.
-QuadMesh surface_mesh(const automata::TensorAutomaton& automaton, std::span<const Points> nets, int depth,
+QuadMesh surface_mesh(const nurbs::TensorAutomaton& automaton, std::span<const Points> nets, int depth,
                       const MeshOptions& options = {});
 /// The same into `mesh`, whose storage (vertices, quads, states) is reused when it is large enough:
 /// repeated calls of one size fault its pages in once (fresh storage is advised for huge pages).
 /// Refusals of the size or the nets (InvalidInput) leave `mesh` unchanged.
-void surface_mesh(const automata::TensorAutomaton& automaton, std::span<const Points> nets, int depth,
+void surface_mesh(const nurbs::TensorAutomaton& automaton, std::span<const Points> nets, int depth,
                   QuadMesh& mesh, const MeshOptions& options = {});
 
 /// Generic route: any automaton whose reachable states have exactly four children in the GH, GB,

@@ -18,6 +18,7 @@
 #include "cifs/io/polygon.hpp"
 #include "cifs/io/shape.hpp"
 #include "cifs/mesh.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
 
 namespace cifs::io {
 
@@ -27,7 +28,7 @@ enum class Content {
   polygon,     // a control polygon or any polyline, open or closed (Polygon)
   mesh,        // a polygon mesh (cifs::Mesh)
   segments,    // a segment set (cifs::Segments)
-  automaton,   // an automaton with matrices (automata::Automaton)
+  automaton,   // an automaton with matrices and its knot data, if any (nurbs::KnotAutomaton)
   bcifs,       // a BC-IFS and its initial nets (BcifsFile)
   experiment,  // an experiment file (Experiment)
   points,      // a point set (PointSet): cifs eval, cifs attractor; written in chunks by PointsFile
@@ -59,12 +60,13 @@ std::string encode(const Polygon& polygon, std::string_view format);
 std::string encode(const Mesh& mesh, std::string_view format);
 std::string encode(const Segments& segments, std::string_view format);
 std::string encode(const PointSet& points, std::string_view format);
-std::string encode(const automata::Automaton& automaton, std::string_view format);
+std::string encode(const nurbs::KnotAutomaton& automaton, std::string_view format);
+std::string encode(const automata::Automaton& automaton, std::string_view format);  // without knot data
 std::string encode(const BcifsFile& file, std::string_view format);
 /// The same bytes handed to `out` a chunk at a time (an AtomicFile: the file is never whole in memory).
 void encode(const Mesh& mesh, std::string_view format, ByteSink& out);
 void encode(const Segments& segments, std::string_view format, ByteSink& out);
-void encode(const automata::Automaton& automaton, std::string_view format, ByteSink& out);
+void encode(const nurbs::KnotAutomaton& automaton, std::string_view format, ByteSink& out);
 
 /// The format of the path's extension among those that write `content`. Otherwise InvalidInput naming the
 /// path and the extensions: "out.svg: a mesh is written as .obj or .ply".
@@ -79,7 +81,8 @@ void write(const std::filesystem::path& path, const Polygon& polygon);
 void write(const std::filesystem::path& path, const Mesh& mesh);
 void write(const std::filesystem::path& path, const Segments& segments);
 void write(const std::filesystem::path& path, const PointSet& points);
-void write(const std::filesystem::path& path, const automata::Automaton& automaton);
+void write(const std::filesystem::path& path, const nurbs::KnotAutomaton& automaton);
+void write(const std::filesystem::path& path, const automata::Automaton& automaton);  // without knot data
 void write(const std::filesystem::path& path, const BcifsFile& file);
 
 /// Reads a file in the format its extension names. Shapes, polygons, automata, BC-IFS files and
@@ -92,7 +95,8 @@ std::vector<Shape> read_shapes(const std::filesystem::path& path, const ShapeRea
 Shape read_shape(const std::filesystem::path& path, const ShapeReadOptions& options = {});
 Polygon read_polygon(const std::filesystem::path& path);
 Mesh read_mesh(const std::filesystem::path& path);  // checked with check_mesh
-automata::Automaton read_automaton(const std::filesystem::path& path);
+/// Automata: with their knot data (windows, intervals) when the file has them.
+nurbs::KnotAutomaton read_automaton(const std::filesystem::path& path);
 BcifsFile read_bcifs(const std::filesystem::path& path);
 /// Inputs (shape, automaton) are resolved against the file's folder; the name defaults to its stem.
 Experiment read_experiment(const std::filesystem::path& path);

@@ -18,6 +18,7 @@
 #include "cifs/io/experiment.hpp"
 #include "cifs/io/polygon.hpp"
 #include "cifs/io/shape.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/subdivision/analysis.hpp"
 #include "cifs/subdivision/mesh_analysis.hpp"
 
@@ -54,14 +55,18 @@ Experiment parse_experiment(std::string_view text, std::string_view where, const
 /// `{"states": [{"id", "size", "recurrent", "window"?, "name"?}], "transitions": [{"from", "to",
 /// "label", "matrix"}], "initial": [{"segment", "state", "interval": [start, end]}]}` (docs/cli.md).
 /// Keys are written sorted, on one line. `name` is written only when it is not the default
-/// "s<id>", `window` only when the state has one. Transitions are listed state by state in
-/// out-edge order (the order of the children). The initial entries' `span` is not stored.
+/// "s<id>", `window` only when the state has one (knot data). Transitions are listed state by state
+/// in out-edge order (the order of the children). The initial entries' `interval` is their knot
+/// interval ([0, 0] when unset, as for every generic automaton); their `span` is not stored.
+std::string to_json(const nurbs::KnotAutomaton& automaton);
+/// A generic automaton: to_json(nurbs::without_knots(automaton)).
 std::string to_json(const automata::Automaton& automaton);
 /// The automaton of to_json: states, sizes, names (default "s<id>"), windows and recurrent flags as
 /// written (not recomputed), transitions with their labels and matrices in out-edge order, initial
-/// entries (`span` = −1). Ids must be 0, 1, … in order; matrices `size(to) by size(from)`. Errors
-/// name the JSON path: "a.json: transitions[3].matrix: 2 rows, expected 4 (size of state 1)".
-automata::Automaton parse_automaton_json(std::string_view text, std::string_view where);
+/// entries with their intervals (`span` = −1). Ids must be 0, 1, … in order; matrices `size(to) by
+/// size(from)`. Errors name the JSON path: "a.json: transitions[3].matrix: 2 rows, expected 4 (size
+/// of state 1)".
+nurbs::KnotAutomaton parse_automaton_json(std::string_view text, std::string_view where);
 
 /// The analysis of a scheme (`cifs scheme NAME --analyze`, docs/cli.md), indented by 2.
 std::string analysis_json(const subdivision::Scheme& scheme, const subdivision::SchemeAnalysis& analysis);
