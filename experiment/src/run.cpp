@@ -12,6 +12,7 @@
 #include "cifs/automata/tensor.hpp"
 #include "cifs/errors.hpp"
 #include "cifs/files.hpp"
+#include "cifs/format.hpp"
 #include "cifs/ifs/affine.hpp"
 #include "cifs/ifs/affine_cifs.hpp"
 #include "cifs/ifs/attractor.hpp"
@@ -57,12 +58,6 @@ struct Scene {
   std::vector<render::Rgb> state_colors;
   std::string junction;  // junctions: what was glued, for the summary and the EXR header
 };
-
-std::string number(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", x);
-  return buf;
-}
 
 /// Rows with 2 or 3 columns for the rasterisers (a 1-D shape lies on the x axis).
 Points drawable(const Points& P, const std::string& what) {
@@ -625,9 +620,10 @@ render::Camera make_camera(const io::CameraSpec& spec, const io::RenderSettings&
     if (!f.view_direction.allFinite())
       throw InvalidInput(
           "camera.eye: the eye is farther from the target than a double holds (coordinates up to " +
-          number(
+          number_text(
               std::max(Eigen::Vector3d((*spec.eye)[0], (*spec.eye)[1], (*spec.eye)[2]).cwiseAbs().maxCoeff(),
-                       target.cwiseAbs().maxCoeff())) +
+                       target.cwiseAbs().maxCoeff()),
+              6) +
           "); move it closer or scale the scene down");
   }
   render::Camera camera = render::frame(extent, f);
@@ -789,7 +785,7 @@ std::string summary(const io::Experiment& e, const std::string& kind, const Scen
   if (e.junction) out += ", " + scene.junction;
   if (e.perturbation || e.junction)
     out += ", " + std::to_string(report.free_coefficients) + " free coefficients, residual " +
-           number(report.residual);
+           number_text(report.residual, 6);
   out += "\n";
   for (const auto& p : report.written) out += "  wrote " + p.string() + "\n";
   return out;
@@ -849,8 +845,8 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
   const double image_bytes = double(e.render.width) * double(e.render.height) * 44.0;
   if (drawn && image_bytes > double(o.max_bytes))
     throw InvalidInput("render: a " + std::to_string(e.render.width) + " × " +
-                       std::to_string(e.render.height) + " image needs " + number(image_bytes / 1e9) +
-                       " GB, above the limit of " + number(double(o.max_bytes) / 1e9) + " GB");
+                       std::to_string(e.render.height) + " image needs " + number_text(image_bytes / 1e9, 6) +
+                       " GB, above the limit of " + number_text(double(o.max_bytes) / 1e9, 6) + " GB");
   render::check_part(o.part, "run");
   const bool distributed = o.part.count > 1, writer = o.part.index == 0;
   if (distributed && !o.combine) throw InvalidInput("run: a distributed run needs a combine function");
@@ -971,21 +967,21 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
       e.mesh                             ? "subdivision, " + std::to_string(e.mesh->levels) + " levels"
       : e.evaluation.mode == Mode::chaos ? "chaos game, " + std::to_string(e.evaluation.samples) + " samples"
       : e.evaluation.mode == Mode::depth ? "depth"
-                                         : "tolerance " + number(e.evaluation.tolerance);
+                                         : "tolerance " + number_text(e.evaluation.tolerance, 6);
   image.attributes["depth"] = std::to_string(scene.depth);
   image.attributes["seed"] = std::to_string(e.evaluation.mode == Mode::chaos ? e.evaluation.seed
                                             : e.perturbation                 ? e.perturbation->seed
                                                                              : 0);
   if (e.perturbation) {
-    image.attributes["perturbation"] = "amplitude " + number(e.perturbation->amplitude) + ", seed " +
+    image.attributes["perturbation"] = "amplitude " + number_text(e.perturbation->amplitude, 6) + ", seed " +
                                        std::to_string(e.perturbation->seed) + ", " +
                                        std::to_string(report.free_coefficients) + " free coefficients";
-    image.attributes["residual"] = number(report.residual);
+    image.attributes["residual"] = number_text(report.residual, 6);
   }
   if (e.junction) {
     image.attributes["junction"] =
         scene.junction + ", " + std::to_string(report.free_coefficients) + " free coefficients";
-    image.attributes["residual"] = number(report.residual);
+    image.attributes["residual"] = number_text(report.residual, 6);
   }
 
   // Geometry and automaton files (encoded a chunk at a time straight into their temporaries), the
@@ -1056,7 +1052,7 @@ Evaluation evaluate(const io::Experiment& experiment, std::optional<int> depth, 
 
 Evaluation sample(const io::Experiment& experiment, const SampleOptions& options, const RunOptions& o) {
   if (!(options.tolerance >= 0) || !std::isfinite(options.tolerance))
-    throw InvalidInput("tolerance: " + number(options.tolerance) + " must be finite and ≥ 0");
+    throw InvalidInput("tolerance: " + number_text(options.tolerance, 6) + " must be finite and ≥ 0");
   refuse_mesh(experiment);
   // Chaos mode builds the automaton and nets without evaluating them.
   io::Experiment e = experiment;
