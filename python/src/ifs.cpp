@@ -100,7 +100,7 @@ void bind_ifs(py::module_& m) {
   m.def(
       "contraction",
       [](const Automaton& a, int max_length, bool tighten) {
-        return ifs::contraction(a, ifs::ContractionOptions{max_length, tighten});
+        return ifs::contraction(a, ifs::ContractionOptions{.max_length = max_length, .tighten = tighten});
       },
       py::arg("automaton"), py::kw_only(), py::arg("max_length") = 8, py::arg("tighten").noconvert() = true,
       release,
@@ -225,7 +225,11 @@ void bind_ifs(py::module_& m) {
       [](const Automaton a, const std::vector<Points>& nets, const py::function& callback, double epsilon,
          int max_depth, int max_length, bool homogeneous) {
         return ifs::for_each_leaf_to_tolerance(
-            a, nets, ifs::ToleranceOptions{epsilon, max_depth, max_length, homogeneous},
+            a, nets,
+            ifs::ToleranceOptions{.epsilon = epsilon,
+                                  .max_depth = max_depth,
+                                  .max_length = max_length,
+                                  .homogeneous = homogeneous},
             [&](const ifs::ToleranceLeaf& t) {
               callback(ToleranceLeafView{view(t.leaf), t.radius, t.diameter, t.converged});
             });
@@ -293,8 +297,11 @@ void bind_ifs(py::module_& m) {
       "tolerance_sample",
       [](const Automaton& a, const std::vector<Points>& nets, double epsilon, bool homogeneous,
          std::int64_t max_points, int max_depth) {
-        const ifs::ToleranceSampleOptions o{epsilon, homogeneous,
-                                            count_arg(max_points, "tolerance_sample: max_points"), max_depth};
+        const ifs::ToleranceSampleOptions o{
+            .epsilon = epsilon,
+            .homogeneous = homogeneous,
+            .max_points = count_arg(max_points, "tolerance_sample: max_points"),
+            .max_depth = max_depth};
         py::gil_scoped_release unlocked;
         return ifs::tolerance_sample(a, nets, o);
       },
@@ -349,8 +356,9 @@ void bind_ifs(py::module_& m) {
       "attractor_points",
       [](const Automaton& a, const std::vector<Points>& nets, int depth, bool closed, std::int64_t max_bytes,
          int max_table_depth) {
-        const ifs::PointsOptions o{closed, count_arg(max_bytes, "attractor_points: max_bytes"),
-                                   max_table_depth};
+        const ifs::PointsOptions o{.closed = closed,
+                                   .max_bytes = count_arg(max_bytes, "attractor_points: max_bytes"),
+                                   .max_table_depth = max_table_depth};
         py::gil_scoped_release unlocked;
         return ifs::attractor_points(a, nets, depth, o);
       },
@@ -417,8 +425,11 @@ void bind_ifs(py::module_& m) {
       "chaos_game",
       [](const Automaton& a, const std::vector<Points>& nets, std::int64_t samples, std::uint64_t seed,
          double restart_diameter, bool record_address, std::int64_t max_bytes) {
-        const ifs::ChaosOptions o{count_arg(samples, "chaos_game: samples"), seed, restart_diameter,
-                                  record_address, count_arg(max_bytes, "chaos_game: max_bytes")};
+        const ifs::ChaosOptions o{.samples = count_arg(samples, "chaos_game: samples"),
+                                  .seed = seed,
+                                  .restart_diameter = restart_diameter,
+                                  .record_address = record_address,
+                                  .max_bytes = count_arg(max_bytes, "chaos_game: max_bytes")};
         py::gil_scoped_release unlocked;
         return ifs::chaos_game(a, nets, o);
       },
@@ -463,8 +474,9 @@ void bind_ifs(py::module_& m) {
       "surface_mesh",
       [](const automata::TensorAutomaton& a, const std::vector<Points>& nets, int depth, bool homogeneous,
          std::int64_t max_bytes, int max_table_depth) {
-        const ifs::MeshOptions o{homogeneous, count_arg(max_bytes, "surface_mesh: max_bytes"),
-                                 max_table_depth};
+        const ifs::MeshOptions o{.homogeneous = homogeneous,
+                                 .max_bytes = count_arg(max_bytes, "surface_mesh: max_bytes"),
+                                 .max_table_depth = max_table_depth};
         py::gil_scoped_release unlocked;
         return ifs::surface_mesh(a, nets, depth, o);
       },
@@ -480,7 +492,9 @@ void bind_ifs(py::module_& m) {
       "quad_mesh",
       [](const Automaton& a, const std::vector<Points>& nets, const std::vector<std::array<int, 2>>& patches,
          int depth, bool homogeneous, std::int64_t max_bytes, int max_table_depth) {
-        const ifs::MeshOptions o{homogeneous, count_arg(max_bytes, "quad_mesh: max_bytes"), max_table_depth};
+        const ifs::MeshOptions o{.homogeneous = homogeneous,
+                                 .max_bytes = count_arg(max_bytes, "quad_mesh: max_bytes"),
+                                 .max_table_depth = max_table_depth};
         py::gil_scoped_release unlocked;
         return ifs::quad_mesh(a, nets, patches, depth, o);
       },

@@ -801,7 +801,7 @@ void bind_experiment(py::module_& m) {
         if (max_points < 0)
           throw InvalidInput("sample: max_points is " + std::to_string(max_points) + ", must be ≥ 0");
         const RunOptions o = options(threads, max_bytes);
-        const SampleOptions s{tolerance, static_cast<std::size_t>(max_points)};
+        const SampleOptions s{.tolerance = tolerance, .max_points = static_cast<std::size_t>(max_points)};
         py::gil_scoped_release release;
         return sample(e, s, o);
       },

@@ -163,7 +163,7 @@ TEST_CASE("surface_bcifs: amplitude 0 gives back the NURBS mesh", "[ifs][bcifs][
     const auto ta = automata::tensor_automaton(s);
     const auto nets = automata::initial_nets(ta, s);
     const Perturbation p = perturb(surface_bcifs(ta), {});
-    const MeshOptions options{s.rational};
+    const MeshOptions options{.homogeneous = s.rational};
     const QuadMesh reference = surface_mesh(ta, nets, 4, options);
     const QuadMesh mesh = quad_mesh(p.system.automaton, nets, ta.patches, 4, options);
     REQUIRE(mesh.vertices.rows() == reference.vertices.rows());
@@ -186,7 +186,7 @@ TEST_CASE("surface_bcifs: perturbed surfaces keep their knot lines and stay join
     po.seed = 11;
     const Perturbation p = perturb(sys, po);
     CHECK(p.residual <= 1e-12);
-    const MeshOptions options{s.rational};
+    const MeshOptions options{.homogeneous = s.rational};
     const QuadMesh reference = surface_mesh(ta, nets, K, options);
     const QuadMesh mesh = quad_mesh(p.system.automaton, nets, ta.patches, K, options);
     REQUIRE(mesh.vertices.rows() == reference.vertices.rows());
