@@ -556,9 +556,8 @@ Scene junction_scene(const io::Junction& junction, const io::Experiment& e, cons
 }
 
 std::vector<ifs::AffineMap> classic_maps(const io::ClassicIfs& c) {
-  if (c.name == "fern") return ifs::barnsley_fern();
-  if (c.name == "sierpinski") return ifs::sierpinski_triangle();
-  if (c.name == "koch") return ifs::koch_curve();
+  const auto& names = ifs::ifs_names();
+  if (std::find(names.begin(), names.end(), c.name) != names.end()) return ifs::named_ifs(c.name);
   std::vector<ifs::AffineMap> maps;
   for (const auto& m : c.maps) maps.push_back({m[0], m[1], m[2], m[3], m[4], m[5], m[6]});
   return maps;

@@ -532,6 +532,12 @@ void bind_ifs(py::module_& m) {
   m.def("sierpinski_triangle", &ifs::sierpinski_triangle,
         "Sierpinski's triangle on (0, 0), (1, 0), (½, √3/2): 3 AffineMap of ratio ½.");
   m.def("koch_curve", &ifs::koch_curve, "Koch's curve from (0, 0) to (1, 0): 4 AffineMap of ratio ⅓.");
+  m.def("ifs_names", &ifs::ifs_names,
+        "Names of the classic IFS above, in order: 'fern', 'sierpinski', 'koch' (an experiment file's "
+        "\"ifs\").");
+  m.def("named_ifs", &ifs::named_ifs, py::arg("name"),
+        "The AffineMap list of a name in ifs_names(). Raises cifs.InvalidInput for another name (listing "
+        "them).");
   m.def(
       "apply",
       [](const AffineMap& map, const Point& p) {
