@@ -259,7 +259,8 @@ void bind_ifs(py::module_& m) {
       "Proven bounds on attractor pieces, per (state, net): the smaller of the "
       "contraction bound and, for convex states, the hull bound (docs/dimension.md).")
       .def(py::init([](const Automaton& a, int max_length, bool homogeneous) {
-             return ifs::PieceBounds(a, ifs::contraction(a, {max_length, true}), homogeneous);
+             return ifs::PieceBounds(a, ifs::contraction(a, {.max_length = max_length, .tighten = true}),
+                                     homogeneous);
            }),
            py::arg("automaton"), py::kw_only(), py::arg("max_length") = 8,
            py::arg("homogeneous").noconvert() = false,
@@ -619,9 +620,12 @@ void bind_ifs(py::module_& m) {
       "box_counting",
       [](const Points& points, double resolution, double points_per_box, std::int64_t min_boxes,
          int min_level, int max_level, int levels) {
-        const ifs::BoxCountingOptions o{
-            resolution, points_per_box, count_arg(min_boxes, "box counting: min_boxes"),
-            min_level,  max_level,      levels};
+        const ifs::BoxCountingOptions o{.resolution = resolution,
+                                        .points_per_box = points_per_box,
+                                        .min_boxes = count_arg(min_boxes, "box counting: min_boxes"),
+                                        .min_level = min_level,
+                                        .max_level = max_level,
+                                        .levels = levels};
         py::gil_scoped_release unlocked;
         return ifs::box_counting(points, o);
       },

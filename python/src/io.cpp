@@ -409,7 +409,7 @@ void bind_geometry(py::module_& m) {
   m.def(
       "segments_svg",
       [](const Segments& s, int width, double stroke, std::string color) {
-        return io::segments_svg(s, {width, stroke, std::move(color)});
+        return io::segments_svg(s, {.width = width, .stroke = stroke, .color = std::move(color)});
       },
       py::arg("segments"), py::kw_only(), py::arg("width") = io::SvgOptions{}.width,
       py::arg("stroke") = io::SvgOptions{}.stroke, py::arg("color") = io::SvgOptions{}.color,
@@ -690,7 +690,7 @@ void bind_verify(py::module_& m) {
   m.def(
       "check_curve",
       [](const nurbs::Curve& c, int depth, double tolerance) {
-        return check_curve(c, {depth, tolerance});
+        return check_curve(c, {.depth = depth, .tolerance = tolerance});
       },
       Release(), py::arg("curve"), py::kw_only(), py::arg("depth") = defaults.depth,
       py::arg("tolerance") = defaults.tolerance,
@@ -700,7 +700,7 @@ void bind_verify(py::module_& m) {
   m.def(
       "check_surface",
       [](const nurbs::Surface& s, int depth, double tolerance) {
-        return check_surface(s, {depth, tolerance});
+        return check_surface(s, {.depth = depth, .tolerance = tolerance});
       },
       Release(), py::arg("surface"), py::kw_only(), py::arg("depth") = defaults.depth,
       py::arg("tolerance") = defaults.tolerance,

@@ -252,7 +252,7 @@ TEST_CASE("surface_bcifs: free_knot_lines frees the knot lines too", "[ifs][bcif
   const auto s = make({3, 3}, {clamped(3, {0.3, 1.1}), clamped(3, {0.7})});
   const auto ta = automata::tensor_automaton(s);
   const auto nets = automata::initial_nets(ta, s);
-  const Bcifs fixed = surface_bcifs(ta), loose = surface_bcifs(ta, {true});
+  const Bcifs fixed = surface_bcifs(ta), loose = surface_bcifs(ta, {.free_knot_lines = true});
   CHECK(admissible_space(loose).free.size() > admissible_space(fixed).free.size());
   PerturbOptions po;
   po.amplitude = 0.01;
