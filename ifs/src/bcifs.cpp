@@ -618,8 +618,8 @@ EdgePieces edge_pieces(const Bcifs& sys, std::span<const Points> nets, int depth
                             sizeof(int) * static_cast<std::size_t>(depth));
     if (bytes > static_cast<double>(max_bytes))
       throw InvalidInput("edge_pieces: " + std::to_string(nodes) + " pieces at depth " +
-                         std::to_string(depth) + " need " + number_text(bytes / 1e9) +
-                         " GB, above the limit of " + number_text(static_cast<double>(max_bytes) / 1e9) +
+                         std::to_string(depth) + " need " + number_text(bytes / 1e9, 3) +
+                         " GB, above the limit of " + number_text(static_cast<double>(max_bytes) / 1e9, 3) +
                          " GB; lower the depth");
   }
   const EndFunctionals F = edge_end_functionals(sys);
