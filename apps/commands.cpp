@@ -512,7 +512,7 @@ std::string check_verdict(bool pass) {
 }
 
 std::string check_surface(const nurbs::Surface& s, const CheckOptions& o, int& status) {
-  const verify::SurfaceCheckReport r = verify::check_surface(s, {o.depth, o.tolerance});
+  const verify::SurfaceCheckReport r = verify::check_surface(s, {.depth = o.depth, .tolerance = o.tolerance});
   status = r.pass ? 0 : 1;
   if (o.json) {
     json patches = json::array();
@@ -557,7 +557,7 @@ std::string check(const CheckOptions& o, int& status) {
   const io::Shape shape = read_shape(o.shape, o.select);
   const auto* c = std::get_if<nurbs::Curve>(&shape);
   if (!c) return check_surface(std::get<nurbs::Surface>(shape), o, status);
-  const verify::CheckReport r = verify::check_curve(*c, {o.depth, o.tolerance});
+  const verify::CheckReport r = verify::check_curve(*c, {.depth = o.depth, .tolerance = o.tolerance});
   status = r.pass ? 0 : 1;
   if (o.json) {
     json segments = json::array();
@@ -668,8 +668,9 @@ std::string dimension(const DimensionOptions& o) {
                        std::to_string(kMaxPoints) + " points (the sample is held in memory)");
   // Default: a tolerance sample, whose piece size is proven; --depth: the file's evaluation.
   const bool sampled = !o.depth;
-  const experiment::Evaluation ev = sampled ? experiment::sample(e, {o.tolerance.value_or(0), o.max_points})
-                                            : experiment::evaluate(e, o.depth);
+  const experiment::Evaluation ev =
+      sampled ? experiment::sample(e, {.tolerance = o.tolerance.value_or(0), .max_points = o.max_points})
+              : experiment::evaluate(e, o.depth);
   ifs::BoxCountingOptions bo;
   bo.resolution = ev.resolution;
   bo.min_boxes = o.min_boxes;

@@ -11,6 +11,7 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/files.hpp"
+#include "cifs/format.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/io/json.hpp"
 #include "cifs/io/svg.hpp"
@@ -96,12 +97,6 @@ std::vector<int> parse_valences(const std::string& text, const std::string& opti
   }
 }
 
-std::string real_text(long double x) {
-  std::ostringstream s;
-  s << std::setprecision(12) << static_cast<double>(x);
-  return s.str();
-}
-
 /// One line per valence: the numbers `cifs scheme … --analyze` prints as JSON, in columns.
 std::string local_table(const std::vector<sd::LocalMatrix>& matrices,
                         const std::vector<sd::LocalSpectrum>& spectra,
@@ -125,10 +120,12 @@ std::string local_table(const std::vector<sd::LocalMatrix>& matrices,
     if (!sp.subdominant_pair) checks += " lambda1!=lambda2";
     if (!sp.gap) checks += " no-gap";
     s << std::setw(4) << matrices[i].valence << std::setw(6) << matrices[i].values.rows() << std::setw(7)
-      << (matrices[i].exact ? "yes" : "no") << std::setw(17) << real_text(sp.subdominant) << std::setw(17)
-      << real_text(sp.second) << std::setw(17) << real_text(std::abs(sp.mu)) << std::setw(17)
-      << (sp.curvature_ratio ? real_text(*sp.curvature_ratio) : "-") << std::setw(11) << sp.curvature
-      << std::setw(21) << (checks.empty() ? "ok" : checks.substr(1));
+      << (matrices[i].exact ? "yes" : "no") << std::setw(17)
+      << number_text(static_cast<double>(sp.subdominant), 12) << std::setw(17)
+      << number_text(static_cast<double>(sp.second), 12) << std::setw(17)
+      << number_text(static_cast<double>(std::abs(sp.mu)), 12) << std::setw(17)
+      << (sp.curvature_ratio ? number_text(static_cast<double>(*sp.curvature_ratio), 12) : "-")
+      << std::setw(11) << sp.curvature << std::setw(21) << (checks.empty() ? "ok" : checks.substr(1));
     if (!verdicts.empty()) {
       const sd::C1Verdict& v = verdicts[i];
       s << (v.c1 ? "yes" : v.decided ? "no" : "undecided");

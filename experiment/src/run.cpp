@@ -11,6 +11,7 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/files.hpp"
+#include "cifs/format.hpp"
 #include "cifs/ifs/affine.hpp"
 #include "cifs/ifs/affine_cifs.hpp"
 #include "cifs/ifs/attractor.hpp"
@@ -59,12 +60,6 @@ struct Scene {
   std::vector<render::Rgb> state_colors;
   std::string junction;  // junctions: what was glued, for the summary and the EXR header
 };
-
-std::string number(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", x);
-  return buf;
-}
 
 /// Rows with 2 or 3 columns for the rasterisers (a 1-D shape lies on the x axis).
 Points drawable(const Points& P, const std::string& what) {
@@ -566,9 +561,8 @@ Scene junction_scene(const io::Junction& junction, const io::Experiment& e, cons
 }
 
 std::vector<ifs::AffineMap> classic_maps(const io::ClassicIfs& c) {
-  if (c.name == "fern") return ifs::barnsley_fern();
-  if (c.name == "sierpinski") return ifs::sierpinski_triangle();
-  if (c.name == "koch") return ifs::koch_curve();
+  const auto& names = ifs::ifs_names();
+  if (std::find(names.begin(), names.end(), c.name) != names.end()) return ifs::named_ifs(c.name);
   std::vector<ifs::AffineMap> maps;
   for (const auto& m : c.maps) maps.push_back({m[0], m[1], m[2], m[3], m[4], m[5], m[6]});
   return maps;
@@ -630,9 +624,10 @@ render::Camera make_camera(const io::CameraSpec& spec, const io::RenderSettings&
     if (!f.view_direction.allFinite())
       throw InvalidInput(
           "camera.eye: the eye is farther from the target than a double holds (coordinates up to " +
-          number(
+          number_text(
               std::max(Eigen::Vector3d((*spec.eye)[0], (*spec.eye)[1], (*spec.eye)[2]).cwiseAbs().maxCoeff(),
-                       target.cwiseAbs().maxCoeff())) +
+                       target.cwiseAbs().maxCoeff()),
+              6) +
           "); move it closer or scale the scene down");
   }
   render::Camera camera = render::frame(extent, f);
@@ -794,7 +789,7 @@ std::string summary(const io::Experiment& e, const std::string& kind, const Scen
   if (e.junction) out += ", " + scene.junction;
   if (e.perturbation || e.junction)
     out += ", " + std::to_string(report.free_coefficients) + " free coefficients, residual " +
-           number(report.residual);
+           number_text(report.residual, 6);
   out += "\n";
   for (const auto& p : report.written) out += "  wrote " + p.string() + "\n";
   return out;
@@ -854,8 +849,8 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
   const double image_bytes = double(e.render.width) * double(e.render.height) * 44.0;
   if (drawn && image_bytes > double(o.max_bytes))
     throw InvalidInput("render: a " + std::to_string(e.render.width) + " × " +
-                       std::to_string(e.render.height) + " image needs " + number(image_bytes / 1e9) +
-                       " GB, above the limit of " + number(double(o.max_bytes) / 1e9) + " GB");
+                       std::to_string(e.render.height) + " image needs " + number_text(image_bytes / 1e9, 6) +
+                       " GB, above the limit of " + number_text(double(o.max_bytes) / 1e9, 6) + " GB");
   render::check_part(o.part, "run");
   const bool distributed = o.part.count > 1, writer = o.part.index == 0;
   if (distributed && !o.combine) throw InvalidInput("run: a distributed run needs a combine function");
@@ -976,21 +971,21 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
       e.mesh                             ? "subdivision, " + std::to_string(e.mesh->levels) + " levels"
       : e.evaluation.mode == Mode::chaos ? "chaos game, " + std::to_string(e.evaluation.samples) + " samples"
       : e.evaluation.mode == Mode::depth ? "depth"
-                                         : "tolerance " + number(e.evaluation.tolerance);
+                                         : "tolerance " + number_text(e.evaluation.tolerance, 6);
   image.attributes["depth"] = std::to_string(scene.depth);
   image.attributes["seed"] = std::to_string(e.evaluation.mode == Mode::chaos ? e.evaluation.seed
                                             : e.perturbation                 ? e.perturbation->seed
                                                                              : 0);
   if (e.perturbation) {
-    image.attributes["perturbation"] = "amplitude " + number(e.perturbation->amplitude) + ", seed " +
+    image.attributes["perturbation"] = "amplitude " + number_text(e.perturbation->amplitude, 6) + ", seed " +
                                        std::to_string(e.perturbation->seed) + ", " +
                                        std::to_string(report.free_coefficients) + " free coefficients";
-    image.attributes["residual"] = number(report.residual);
+    image.attributes["residual"] = number_text(report.residual, 6);
   }
   if (e.junction) {
     image.attributes["junction"] =
         scene.junction + ", " + std::to_string(report.free_coefficients) + " free coefficients";
-    image.attributes["residual"] = number(report.residual);
+    image.attributes["residual"] = number_text(report.residual, 6);
   }
 
   // Geometry and automaton files (encoded a chunk at a time straight into their temporaries), the
@@ -1061,7 +1056,7 @@ Evaluation evaluate(const io::Experiment& experiment, std::optional<int> depth, 
 
 Evaluation sample(const io::Experiment& experiment, const SampleOptions& options, const RunOptions& o) {
   if (!(options.tolerance >= 0) || !std::isfinite(options.tolerance))
-    throw InvalidInput("tolerance: " + number(options.tolerance) + " must be finite and ≥ 0");
+    throw InvalidInput("tolerance: " + number_text(options.tolerance, 6) + " must be finite and ≥ 0");
   refuse_mesh(experiment);
   // Chaos mode builds the automaton and nets without evaluating them.
   io::Experiment e = experiment;

@@ -75,4 +75,36 @@ automata::Automaton affine_automaton(std::span<const AffineMap> maps, const Poin
   return a;
 }
 
+namespace {
+
+struct NamedIfs {
+  std::string name;
+  std::vector<AffineMap> (*maps)();
+};
+
+const std::vector<NamedIfs>& registry() {
+  static const std::vector<NamedIfs> systems{
+      {"fern", barnsley_fern}, {"sierpinski", sierpinski_triangle}, {"koch", koch_curve}};
+  return systems;
+}
+
+}  // namespace
+
+const std::vector<std::string>& ifs_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const NamedIfs& s : registry()) out.push_back(s.name);
+    return out;
+  }();
+  return names;
+}
+
+std::vector<AffineMap> named_ifs(std::string_view name) {
+  for (const NamedIfs& s : registry())
+    if (s.name == name) return s.maps();
+  std::string names;
+  for (const std::string& n : ifs_names()) names += (names.empty() ? "" : ", ") + n;
+  throw InvalidInput("named_ifs: unknown IFS \"" + std::string(name) + "\" (" + names + ")");
+}
+
 }  // namespace cifs::ifs

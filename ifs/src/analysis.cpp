@@ -59,7 +59,6 @@
 #include <cmath>
 #include <functional>
 #include <limits>
-#include <sstream>
 
 #include "cifs/errors.hpp"
 #include "cifs/format.hpp"
@@ -172,10 +171,8 @@ void validate(const Automaton& automaton) {
       for (Eigen::Index r = 0; r < M.rows(); ++r) {
         const double sum = M.row(r).sum(), norm = M.row(r).cwiseAbs().sum();
         if (!(std::abs(sum - 1) <= 1e-10 * std::max(1.0, norm))) {
-          std::ostringstream msg;
-          msg.precision(17);
-          msg << where() << ": row " << r << " sums to " << sum << ", not 1 (rows are affine combinations)";
-          throw InvalidInput(msg.str());
+          throw InvalidInput(where() + ": row " + std::to_string(r) + " sums to " + number_text(sum, 17) +
+                             ", not 1 (rows are affine combinations)");
         }
       }
     }
@@ -358,12 +355,10 @@ Eigen::RowVectorXd unit_fixed_point(const Eigen::MatrixXd& P, const std::string&
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(K);
   const auto& sv = svd.singularValues();
   if (!(sv(n - 1) > 1e-12 * static_cast<double>(n) * sv(0))) {
-    std::ostringstream msg;
-    msg << context << ": 1 is not a simple eigenvalue of the product (eigenvalues";
+    std::string msg = context + ": 1 is not a simple eigenvalue of the product (eigenvalues";
     for (const auto& z : eigenvalues(P))
-      msg << ' ' << z.real() << (z.imag() >= 0 ? "+" : "") << z.imag() << 'i';
-    msg << "), so its fixed point is not unique";
-    throw InvalidInput(msg.str());
+      msg += ' ' + number_text(z.real(), 6) + (z.imag() >= 0 ? "+" : "") + number_text(z.imag(), 6) + 'i';
+    throw InvalidInput(msg + "), so its fixed point is not unique");
   }
   // ℓᵀ solves Kᵀ·ℓᵀ = 1.
   Eigen::RowVectorXd l = K.transpose().fullPivLu().solve(Eigen::VectorXd::Ones(n)).transpose();
@@ -411,12 +406,11 @@ Contraction contraction(const Automaton& automaton, const ContractionOptions& op
       break;
     }
     if (m == options.max_length) {
-      std::ostringstream msg;
-      msg << "not contractive: the " << m << "-step products from "
-          << detail::state_label(automaton, scan.worst_state) << " do not shrink nets (δ = " << scan.worst
-          << " along the path " << detail::word_text(scan.worst_word) << "; no path length ≤ " << m
-          << " gives δ < 1)";
-      throw InvalidInput(msg.str());
+      throw InvalidInput("not contractive: the " + std::to_string(m) + "-step products from " +
+                         detail::state_label(automaton, scan.worst_state) +
+                         " do not shrink nets (δ = " + number_text(scan.worst, 6) + " along the path " +
+                         detail::word_text(scan.worst_word) + "; no path length ≤ " + std::to_string(m) +
+                         " gives δ < 1)");
     }
   }
   if (!options.tighten) return out;

@@ -61,7 +61,7 @@ ToleranceResult for_each_leaf_to_tolerance(const Automaton& automaton, std::span
   if (options.max_depth < 0)
     throw InvalidInput("maximum depth " + std::to_string(options.max_depth) + " is negative");
   ToleranceResult result;
-  result.contraction = contraction(automaton, ContractionOptions{options.max_length});
+  result.contraction = contraction(automaton, ContractionOptions{.max_length = options.max_length});
   if (options.homogeneous && nets.front().cols() < 2)
     throw InvalidInput("rational nets need at least 2 columns (w·x, w)");
   const PieceBounds bounds(automaton, result.contraction, options.homogeneous);
@@ -94,7 +94,7 @@ ToleranceEstimate estimate_tolerance_leaves(const Automaton& automaton, std::spa
   detail::check_nets(automaton, nets, "the tolerance estimate");
   if (!(options.epsilon > 0))
     throw InvalidInput("tolerance " + number_text(options.epsilon, 6) + " is not a positive number");
-  const Contraction c = contraction(automaton, ContractionOptions{options.max_length});
+  const Contraction c = contraction(automaton, ContractionOptions{.max_length = options.max_length});
   if (options.homogeneous && nets.front().cols() < 2)
     throw InvalidInput("rational nets need at least 2 columns (w·x, w)");
   const PieceBounds bounds(automaton, c, options.homogeneous);

@@ -16,9 +16,9 @@
 #include <map>
 #include <numeric>
 #include <set>
-#include <sstream>
 
 #include "cifs/errors.hpp"
+#include "cifs/format.hpp"
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/random.hpp"
 #include "union_find.hpp"
@@ -35,13 +35,6 @@ namespace {
 std::string state_text(const Automaton& a, StateId s) {
   const auto& name = a.graph[s].name;
   return name.empty() ? "s" + std::to_string(s) : name;
-}
-
-std::string number_text(double x) {
-  std::ostringstream out;
-  out.precision(3);
-  out << x;
-  return out.str();
 }
 
 /// Cell read (`from`) and produced (`to`) by a factor; the factor must exist.
@@ -232,14 +225,14 @@ void check_admissible(const Bcifs& sys, double tolerance) {
                                       [](const auto& a, const auto& b) { return a.second < b.second; });
   if (worst != residuals.end() && !(worst->second <= tolerance))
     throw InvalidInput("BC-IFS: the matrices are not admissible: constraint \"" + worst->first +
-                       "\" fails by " + number_text(worst->second) + " (relative; tolerance " +
-                       number_text(tolerance) + ")");
+                       "\" fails by " + number_text(worst->second, 3) + " (relative; tolerance " +
+                       number_text(tolerance, 3) + ")");
 }
 
 AdmissibleSpace admissible_space(const Bcifs& sys, const SolveOptions& options) {
   // threshold ≥ 1 makes every rank 0: the basic-column QR below would factor an m × 0 matrix.
   if (!(options.threshold >= 0 && options.threshold < 1))
-    throw InvalidInput("admissible_space: threshold " + number_text(options.threshold) +
+    throw InvalidInput("admissible_space: threshold " + number_text(options.threshold, 3) +
                        " is outside [0, 1)");
   validate(sys);
   const Graph& g = sys.automaton.graph;
@@ -305,7 +298,7 @@ AdmissibleSpace admissible_space(const Bcifs& sys, const SolveOptions& options) 
           if (std::abs(eq.rhs) > 1e-12 * std::max(1.0, std::abs(eq.rhs)))
             throw InvalidInput("BC-IFS: constraint \"" + con.name + "\" involves no free matrix at entry (" +
                                std::to_string(r) + "," + std::to_string(c) + ") and fails there by " +
-                               number_text(std::abs(eq.rhs)));
+                               number_text(std::abs(eq.rhs), 3));
           continue;
         }
         if (eq.terms.size() == 2 && eq.rhs == 0 && eq.terms[0].second == -eq.terms[1].second) {
@@ -351,7 +344,7 @@ AdmissibleSpace admissible_space(const Bcifs& sys, const SolveOptions& options) 
       throw InvalidInput("BC-IFS: the constraints \"" + source_name(value_source[r]) + "\", \"" +
                          source_name(eq->source) + "\" have no common solution (they set " +
                          coefficient_name(sys.automaton, space.unknowns[eq->terms[0].first]) + " to " +
-                         number_text(value[r]) + " and to " + number_text(v) + ")");
+                         number_text(value[r], 3) + " and to " + number_text(v, 3) + ")");
     }
   }
   // Reduced variables: the classes without a constant, named by their smallest unknown.
@@ -381,7 +374,7 @@ AdmissibleSpace admissible_space(const Bcifs& sys, const SolveOptions& options) 
         throw InvalidInput(
             "BC-IFS: \"" + source_name(eq->source) +
             "\" has no solution once the constraints' fixed entries are substituted (it misses by " +
-            number_text(std::abs(r.rhs)) + ")");
+            number_text(std::abs(r.rhs), 3) + ")");
       continue;
     }
     reduced.push_back(std::move(r));
@@ -445,7 +438,7 @@ AdmissibleSpace admissible_space(const Bcifs& sys, const SolveOptions& options) 
       for (const auto& s : names) list += (list.empty() ? "\"" : ", \"") + s + "\"";
       throw InvalidInput("BC-IFS: the constraints " + list +
                          " have no common solution (least-squares residual " +
-                         number_text(std::max(miss, slack)) + ")");
+                         number_text(std::max(miss, slack), 3) + ")");
     }
     for (Eigen::Index j = 0; j < rank; ++j) {
       const std::size_t k = vars[static_cast<std::size_t>(basic[static_cast<std::size_t>(j)])];
@@ -523,7 +516,8 @@ Bcifs with_free_values(const Bcifs& sys, const AdmissibleSpace& space, const Eig
 
 Perturbation perturb(const Bcifs& sys, const PerturbOptions& options) {
   if (!(options.amplitude >= 0) || !std::isfinite(options.amplitude))
-    throw InvalidInput("perturb: amplitude " + number_text(options.amplitude) + " is not a finite value ≥ 0");
+    throw InvalidInput("perturb: amplitude " + number_text(options.amplitude, 3) +
+                       " is not a finite value ≥ 0");
   const AdmissibleSpace space = admissible_space(sys, options.solve);
   const auto names = free_names(sys, space);
   std::map<std::string, std::size_t> index;
@@ -555,17 +549,17 @@ Perturbation perturb(const Bcifs& sys, const PerturbOptions& options) {
   out.system = with_free_values(sys, space, c);
   for (const auto& [name, r] : constraint_residuals(out.system)) out.residual = std::max(out.residual, r);
   if (!(out.residual <= 1e-12))
-    throw InvalidInput("perturb: the solved matrices miss the constraints by " + number_text(out.residual) +
-                       " (the system is ill-conditioned)");
+    throw InvalidInput("perturb: the solved matrices miss the constraints by " +
+                       number_text(out.residual, 3) + " (the system is ill-conditioned)");
   try {
     out.contraction = contraction(out.system.automaton, options.contraction);
   } catch (const InvalidInput& e) {
     // Name what moved the coefficients: the random draw, the values set by name, or both.
     std::string cause;
     if (options.amplitude > 0)
-      cause = "amplitude " + number_text(options.amplitude) + ", seed " + std::to_string(options.seed);
+      cause = "amplitude " + number_text(options.amplitude, 3) + ", seed " + std::to_string(options.seed);
     for (const auto& [name, value] : options.values)
-      cause += (cause.empty() ? "" : ", ") + name + " = " + number_text(value);
+      cause += (cause.empty() ? "" : ", ") + name + " = " + number_text(value, 3);
     throw InvalidInput("perturb: the system is non-contractive with " +
                        (cause.empty() ? std::string("its current values") : cause) + ": " + e.what());
   }
@@ -624,8 +618,8 @@ EdgePieces edge_pieces(const Bcifs& sys, std::span<const Points> nets, int depth
                             sizeof(int) * static_cast<std::size_t>(depth));
     if (bytes > static_cast<double>(max_bytes))
       throw InvalidInput("edge_pieces: " + std::to_string(nodes) + " pieces at depth " +
-                         std::to_string(depth) + " need " + number_text(bytes / 1e9) +
-                         " GB, above the limit of " + number_text(static_cast<double>(max_bytes) / 1e9) +
+                         std::to_string(depth) + " need " + number_text(bytes / 1e9, 3) +
+                         " GB, above the limit of " + number_text(static_cast<double>(max_bytes) / 1e9, 3) +
                          " GB; lower the depth");
   }
   const EndFunctionals F = edge_end_functionals(sys);

@@ -29,8 +29,8 @@ StateId source_cell(const Bcifs& sys, const Constraint& c) {
 }  // namespace
 
 Bcifs surface_bcifs(const nurbs::TensorAutomaton& automaton, const SurfaceBcifsOptions& options) {
-  const Bcifs cu = curve_bcifs(automaton.factors[0], false, {options.free_knot_lines});
-  const Bcifs cv = curve_bcifs(automaton.factors[1], false, {options.free_knot_lines});
+  const Bcifs cu = curve_bcifs(automaton.factors[0], false, {.free_vertices = options.free_knot_lines});
+  const Bcifs cv = curve_bcifs(automaton.factors[1], false, {.free_vertices = options.free_knot_lines});
   if (automaton.product.initial.size() != cu.automaton.initial.size() * cv.automaton.initial.size())
     throw InvalidInput("surface_bcifs: the tensor automaton has " +
                        std::to_string(automaton.product.initial.size()) + " patches, its factors " +

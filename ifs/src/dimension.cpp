@@ -11,18 +11,13 @@
 #include <string>
 
 #include "cifs/errors.hpp"
+#include "cifs/format.hpp"
 #include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/ifs/sample.hpp"
 
 namespace cifs::ifs {
 namespace {
-
-std::string num(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", x);
-  return buf;
-}
 
 /// Interleaves the bits of the box coordinates (each < 2^levels), finest bits lowest, so that the
 /// key of a level-k box is the finest key shifted right by dim·(levels − k).
@@ -51,8 +46,9 @@ std::size_t count_leaves(const automata::Automaton& a, std::span<const Points> n
                            std::to_string(to.max_depth) +
                            " (its weights come near 0); evaluate to a depth instead");
       if (!t.converged)
-        throw InvalidInput("tolerance " + num(to.epsilon) + ": a piece is still " + num(t.diameter) +
-                           " wide at depth " + std::to_string(to.max_depth) + "; give a larger tolerance");
+        throw InvalidInput("tolerance " + number_text(to.epsilon, 6) + ": a piece is still " +
+                           number_text(t.diameter, 6) + " wide at depth " + std::to_string(to.max_depth) +
+                           "; give a larger tolerance");
       if (++n > max) throw Full{};
     });
   } catch (const Full&) {
@@ -65,7 +61,7 @@ std::size_t count_leaves(const automata::Automaton& a, std::span<const Points> n
 ToleranceSample tolerance_sample(const automata::Automaton& a, std::span<const Points> nets,
                                  const ToleranceSampleOptions& o) {
   if (!(o.epsilon >= 0) || !std::isfinite(o.epsilon))
-    throw InvalidInput("tolerance " + num(o.epsilon) + " is not a finite number ≥ 0");
+    throw InvalidInput("tolerance " + number_text(o.epsilon, 6) + " is not a finite number ≥ 0");
   validate(a);
   ToleranceOptions to;
   to.homogeneous = o.homogeneous;
@@ -81,13 +77,13 @@ ToleranceSample tolerance_sample(const automata::Automaton& a, std::span<const P
   std::size_t n = 0;
   if (o.epsilon > 0) {
     if (const double about = clearly_above(to); about > 0)
-      throw InvalidInput("tolerance " + num(o.epsilon) + " needs about " + num(about) +
+      throw InvalidInput("tolerance " + number_text(o.epsilon, 6) + " needs about " + number_text(about, 6) +
                          " points (estimated from coarser tolerances), more than " +
                          std::to_string(o.max_points) + "; raise the tolerance");
     n = count_leaves(a, nets, to, o.max_points);
     if (n > o.max_points)
-      throw InvalidInput("tolerance " + num(o.epsilon) + " needs more than " + std::to_string(o.max_points) +
-                         " points; raise the tolerance or the point limit");
+      throw InvalidInput("tolerance " + number_text(o.epsilon, 6) + " needs more than " +
+                         std::to_string(o.max_points) + " points; raise the tolerance or the point limit");
   } else {
     // The largest power-of-2 fraction of the nets' extent within the point budget.
     const double extent = nets_diameter(nets, o.homogeneous);
@@ -95,7 +91,7 @@ ToleranceSample tolerance_sample(const automata::Automaton& a, std::span<const P
     to.epsilon = std::ldexp(extent, -4);
     n = count_leaves(a, nets, to, o.max_points);
     if (n > o.max_points)
-      throw InvalidInput("even tolerance " + num(to.epsilon) +
+      throw InvalidInput("even tolerance " + number_text(to.epsilon, 6) +
                          " (1/16 of the nets' extent) needs more than " + std::to_string(o.max_points) +
                          " points; raise the point limit");
     // 2^-60 of the extent is far below double precision of any coordinate: stop there (a sample
@@ -195,7 +191,7 @@ BoxCountingResult box_counting(const Points& P, const BoxCountingOptions& o) {
     }
     if (best_len < 3)
       throw InvalidInput("box counting: only " + std::to_string(best_len) + " scale(s) with ≥ " +
-                         std::to_string(o.min_boxes) + " boxes, ≥ " + num(o.points_per_box) +
+                         std::to_string(o.min_boxes) + " boxes, ≥ " + number_text(o.points_per_box, 6) +
                          " points per box" + (o.resolution > 0 ? " and boxes ≥ 2× the pieces" : "") +
                          " among " + std::to_string(P.rows()) +
                          " points; evaluate deeper (at least 3 are needed)");
@@ -242,7 +238,7 @@ double mauldin_williams_dimension(std::size_t states, std::span<const Similarity
       throw InvalidInput("similarity dimension: an edge " + std::to_string(e.from) + " → " +
                          std::to_string(e.to) + " leaves the " + std::to_string(states) + " states");
     if (!(e.ratio > 0) || !std::isfinite(e.ratio))
-      throw InvalidInput("similarity dimension: the ratio " + num(e.ratio) + " of an edge " +
+      throw InvalidInput("similarity dimension: the ratio " + number_text(e.ratio, 6) + " of an edge " +
                          std::to_string(e.from) + " → " + std::to_string(e.to) + " is not finite and > 0");
   }
   // States without edges add zero rows and columns (eigenvalue 0): the matrix is over the others,
@@ -299,11 +295,12 @@ double similarity_dimension(std::span<const AffineMap> maps) {
     if (r < 0) {
       const Eigen::Matrix2d G = L.transpose() * L;
       throw InvalidInput("similarity dimension: map " + std::to_string(i) + " is not a similarity (LᵀL = [" +
-                         num(G(0, 0)) + " " + num(G(0, 1)) + "; " + num(G(1, 0)) + " " + num(G(1, 1)) +
-                         "] is not r²·I)");
+                         number_text(G(0, 0), 6) + " " + number_text(G(0, 1), 6) + "; " +
+                         number_text(G(1, 0), 6) + " " + number_text(G(1, 1), 6) + "] is not r²·I)");
     }
     if (r >= 1)
-      throw InvalidInput("similarity dimension: map " + std::to_string(i) + " has ratio " + num(r) + " ≥ 1");
+      throw InvalidInput("similarity dimension: map " + std::to_string(i) + " has ratio " +
+                         number_text(r, 6) + " ≥ 1");
     edges.push_back({0, 0, r});
   }
   return mauldin_williams_dimension(1, edges);

@@ -218,7 +218,9 @@ void surface_mesh(const nurbs::TensorAutomaton& t, std::span<const Points> nets,
     std::vector<Points> identity;
     for (const auto& init : f.initial)
       identity.push_back(Points::Identity(f.graph[init.state].size, f.graph[init.state].size));
-    F[dir] = attractor_points(f, identity, depth, PointsOptions{false, options.max_bytes, 8});
+    F[dir] = attractor_points(
+        f, identity, depth,
+        PointsOptions{.closed = false, .max_bytes = options.max_bytes, .max_table_depth = 8});
     leaves[dir] = leaf_states(f, depth);
   }
   const Eigen::Index p1 = F[0].cols(), q1 = F[1].cols();

@@ -2,6 +2,7 @@
 // cifs — experiment files as JSON (docs/experiments.md), read.
 #include <algorithm>
 
+#include "cifs/ifs/affine.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/io/json.hpp"
 #include "cifs/topology.hpp"
@@ -82,8 +83,12 @@ ClassicIfs read_ifs(const Reader& r, const json& v) {
   ClassicIfs ifs;
   if (v.is_string()) {
     ifs.name = v.get<std::string>();
-    if (ifs.name != "fern" && ifs.name != "sierpinski" && ifs.name != "koch")
-      r.fail("ifs", "unknown IFS \"" + ifs.name + "\" (fern, sierpinski, koch, or {\"maps\": [...]})");
+    const auto& names = cifs::ifs::ifs_names();
+    if (std::find(names.begin(), names.end(), ifs.name) == names.end()) {
+      std::string known;
+      for (const std::string& n : names) known += n + ", ";
+      r.fail("ifs", "unknown IFS \"" + ifs.name + "\" (" + known + "or {\"maps\": [...]})");
+    }
     return ifs;
   }
   r.object(v, "ifs");

@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <deque>
 #include <map>
-#include <sstream>
 
 #include "cifs/errors.hpp"
 #include "cifs/format.hpp"
@@ -123,34 +122,33 @@ std::string strokes_svg(const std::vector<Stroke>& strokes, const std::string& t
       22.0 * static_cast<double>(std::count_if(strokes.begin(), strokes.end(),
                                                [](const Stroke& s) { return !s.label.empty(); }));
   const double height = std::max(2 * margin + (y1 - y0) * scale, 2 * margin + 10) + legend + 26;
-  std::ostringstream o;
-  o.precision(6);
-  o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
-    << "\" viewBox=\"0 0 " << width << " " << height
-    << "\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  o << "<text x=\"" << margin << "\" y=\"18\" font-family=\"sans-serif\" font-size=\"14\">" << title
-    << "</text>\n";
+  const auto n = [](double x) { return number_text(x, 6); };  // six significant digits: pixels
+  std::string o = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + std::to_string(width) +
+                  "\" height=\"" + n(height) + "\" viewBox=\"0 0 " + std::to_string(width) + " " + n(height) +
+                  "\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  o += "<text x=\"" + n(margin) + "\" y=\"18\" font-family=\"sans-serif\" font-size=\"14\">" + title +
+       "</text>\n";
   for (const Stroke& s : strokes) {
-    o << "<" << (s.closed ? "polygon" : "polyline") << " fill=\"none\" stroke=\"" << s.colour
-      << "\" stroke-width=\"" << s.width << "\" stroke-linejoin=\"round\"";
-    if (!s.dash.empty()) o << " stroke-dasharray=\"" << s.dash << "\"";
-    o << " points=\"";
+    o += std::string("<") + (s.closed ? "polygon" : "polyline") + " fill=\"none\" stroke=\"" + s.colour +
+         "\" stroke-width=\"" + n(s.width) + "\" stroke-linejoin=\"round\"";
+    if (!s.dash.empty()) o += " stroke-dasharray=\"" + s.dash + "\"";
+    o += " points=\"";
     for (Eigen::Index i = 0; i < s.points.rows(); ++i)
-      o << (i ? " " : "") << margin + (s.points(i, 0) - x0) * scale << ","
-        << 26 + margin + (y1 - s.points(i, 1)) * scale;
-    o << "\"/>\n";
+      o += (i ? " " : "") + n(margin + (s.points(i, 0) - x0) * scale) + "," +
+           n(26 + margin + (y1 - s.points(i, 1)) * scale);
+    o += "\"/>\n";
   }
   double y = height - legend + 4;
   for (const Stroke& s : strokes) {
     if (s.label.empty()) continue;
-    o << "<line x1=\"" << margin << "\" y1=\"" << y << "\" x2=\"" << margin + 40 << "\" y2=\"" << y
-      << "\" stroke=\"" << s.colour << "\" stroke-width=\"" << s.width << "\""
-      << (s.dash.empty() ? "" : " stroke-dasharray=\"" + s.dash + "\"") << "/>\n<text x=\"" << margin + 50
-      << "\" y=\"" << y + 5 << "\" font-family=\"sans-serif\" font-size=\"13\">" << s.label << "</text>\n";
+    o += "<line x1=\"" + n(margin) + "\" y1=\"" + n(y) + "\" x2=\"" + n(margin + 40) + "\" y2=\"" + n(y) +
+         "\" stroke=\"" + s.colour + "\" stroke-width=\"" + n(s.width) + "\"" +
+         (s.dash.empty() ? "" : " stroke-dasharray=\"" + s.dash + "\"") + "/>\n<text x=\"" + n(margin + 50) +
+         "\" y=\"" + n(y + 5) + "\" font-family=\"sans-serif\" font-size=\"13\">" + s.label + "</text>\n";
     y += 22;
   }
-  o << "</svg>\n";
-  return o.str();
+  o += "</svg>\n";
+  return o;
 }
 
 std::string to_svg(const automata::Automaton& a) {

@@ -219,7 +219,7 @@ sums") the largest |row sum − 1|.)doc");
   m.def(
       "curve_bcifs",
       [](const nurbs::Curve& curve, bool free_vertices) {
-        return ifs::curve_bcifs(curve, ifs::CurveBcifsOptions{free_vertices});
+        return ifs::curve_bcifs(curve, ifs::CurveBcifsOptions{.free_vertices = free_vertices});
       },
       py::arg("curve"), py::kw_only(), py::arg("free_vertices").noconvert() = false,
       py::call_guard<py::gil_scoped_release>(),
@@ -230,7 +230,7 @@ True frees every vertex operator. The NURBS matrices satisfy every constraint.)d
   m.def(
       "curve_bcifs",
       [](const nurbs::KnotAutomaton& knots, bool closed, bool free_vertices) {
-        return ifs::curve_bcifs(knots, closed, ifs::CurveBcifsOptions{free_vertices});
+        return ifs::curve_bcifs(knots, closed, ifs::CurveBcifsOptions{.free_vertices = free_vertices});
       },
       py::arg("knots"), py::arg("closed").noconvert(), py::kw_only(),
       py::arg("free_vertices").noconvert() = false, py::call_guard<py::gil_scoped_release>(),
@@ -240,7 +240,7 @@ True frees every vertex operator. The NURBS matrices satisfy every constraint.)d
   m.def(
       "surface_bcifs",
       [](const nurbs::Surface& surface, bool free_knot_lines) {
-        return ifs::surface_bcifs(surface, ifs::SurfaceBcifsOptions{free_knot_lines});
+        return ifs::surface_bcifs(surface, ifs::SurfaceBcifsOptions{.free_knot_lines = free_knot_lines});
       },
       py::arg("surface"), py::kw_only(), py::arg("free_knot_lines").noconvert() = false,
       py::call_guard<py::gil_scoped_release>(),
@@ -251,7 +251,7 @@ frees every operator.)doc");
   m.def(
       "surface_bcifs",
       [](const nurbs::TensorAutomaton& automaton, bool free_knot_lines) {
-        return ifs::surface_bcifs(automaton, ifs::SurfaceBcifsOptions{free_knot_lines});
+        return ifs::surface_bcifs(automaton, ifs::SurfaceBcifsOptions{.free_knot_lines = free_knot_lines});
       },
       py::arg("automaton"), py::kw_only(), py::arg("free_knot_lines").noconvert() = false,
       py::call_guard<py::gil_scoped_release>(),
@@ -304,7 +304,7 @@ index. Result of admissible_space.)doc")
   m.def(
       "admissible_space",
       [](const ifs::Bcifs& system, double threshold) {
-        Space s{ifs::admissible_space(system, ifs::SolveOptions{threshold}), {}};
+        Space s{ifs::admissible_space(system, ifs::SolveOptions{.threshold = threshold}), {}};
         for (const ifs::Coefficient& u : s.space.unknowns)
           s.unknown_names.push_back(ifs::coefficient_name(system.automaton, u));
         return s;
@@ -369,7 +369,7 @@ have no solution (naming the constraints of the inconsistent component and the r
         options.seed = seed;
         options.values = values.value_or(std::map<std::string, double>{});
         options.solve.threshold = threshold;
-        options.contraction = ifs::ContractionOptions{max_length, tighten};
+        options.contraction = ifs::ContractionOptions{.max_length = max_length, .tighten = tighten};
         return ifs::perturb(system, options);
       },
       py::arg("system"), py::kw_only(), py::arg("amplitude") = 0.0, py::arg("seed") = 1,

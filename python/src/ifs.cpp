@@ -100,7 +100,7 @@ void bind_ifs(py::module_& m) {
   m.def(
       "contraction",
       [](const Automaton& a, int max_length, bool tighten) {
-        return ifs::contraction(a, ifs::ContractionOptions{max_length, tighten});
+        return ifs::contraction(a, ifs::ContractionOptions{.max_length = max_length, .tighten = tighten});
       },
       py::arg("automaton"), py::kw_only(), py::arg("max_length") = 8, py::arg("tighten").noconvert() = true,
       release,
@@ -225,7 +225,11 @@ void bind_ifs(py::module_& m) {
       [](const Automaton a, const std::vector<Points>& nets, const py::function& callback, double epsilon,
          int max_depth, int max_length, bool homogeneous) {
         return ifs::for_each_leaf_to_tolerance(
-            a, nets, ifs::ToleranceOptions{epsilon, max_depth, max_length, homogeneous},
+            a, nets,
+            ifs::ToleranceOptions{.epsilon = epsilon,
+                                  .max_depth = max_depth,
+                                  .max_length = max_length,
+                                  .homogeneous = homogeneous},
             [&](const ifs::ToleranceLeaf& t) {
               callback(ToleranceLeafView{view(t.leaf), t.radius, t.diameter, t.converged});
             });
@@ -255,7 +259,8 @@ void bind_ifs(py::module_& m) {
       "Proven bounds on attractor pieces, per (state, net): the smaller of the "
       "contraction bound and, for convex states, the hull bound (docs/dimension.md).")
       .def(py::init([](const Automaton& a, int max_length, bool homogeneous) {
-             return ifs::PieceBounds(a, ifs::contraction(a, {max_length, true}), homogeneous);
+             return ifs::PieceBounds(a, ifs::contraction(a, {.max_length = max_length, .tighten = true}),
+                                     homogeneous);
            }),
            py::arg("automaton"), py::kw_only(), py::arg("max_length") = 8,
            py::arg("homogeneous").noconvert() = false,
@@ -293,8 +298,11 @@ void bind_ifs(py::module_& m) {
       "tolerance_sample",
       [](const Automaton& a, const std::vector<Points>& nets, double epsilon, bool homogeneous,
          std::int64_t max_points, int max_depth) {
-        const ifs::ToleranceSampleOptions o{epsilon, homogeneous,
-                                            count_arg(max_points, "tolerance_sample: max_points"), max_depth};
+        const ifs::ToleranceSampleOptions o{
+            .epsilon = epsilon,
+            .homogeneous = homogeneous,
+            .max_points = count_arg(max_points, "tolerance_sample: max_points"),
+            .max_depth = max_depth};
         py::gil_scoped_release unlocked;
         return ifs::tolerance_sample(a, nets, o);
       },
@@ -349,8 +357,9 @@ void bind_ifs(py::module_& m) {
       "attractor_points",
       [](const Automaton& a, const std::vector<Points>& nets, int depth, bool closed, std::int64_t max_bytes,
          int max_table_depth) {
-        const ifs::PointsOptions o{closed, count_arg(max_bytes, "attractor_points: max_bytes"),
-                                   max_table_depth};
+        const ifs::PointsOptions o{.closed = closed,
+                                   .max_bytes = count_arg(max_bytes, "attractor_points: max_bytes"),
+                                   .max_table_depth = max_table_depth};
         py::gil_scoped_release unlocked;
         return ifs::attractor_points(a, nets, depth, o);
       },
@@ -417,8 +426,11 @@ void bind_ifs(py::module_& m) {
       "chaos_game",
       [](const Automaton& a, const std::vector<Points>& nets, std::int64_t samples, std::uint64_t seed,
          double restart_diameter, bool record_address, std::int64_t max_bytes) {
-        const ifs::ChaosOptions o{count_arg(samples, "chaos_game: samples"), seed, restart_diameter,
-                                  record_address, count_arg(max_bytes, "chaos_game: max_bytes")};
+        const ifs::ChaosOptions o{.samples = count_arg(samples, "chaos_game: samples"),
+                                  .seed = seed,
+                                  .restart_diameter = restart_diameter,
+                                  .record_address = record_address,
+                                  .max_bytes = count_arg(max_bytes, "chaos_game: max_bytes")};
         py::gil_scoped_release unlocked;
         return ifs::chaos_game(a, nets, o);
       },
@@ -463,8 +475,9 @@ void bind_ifs(py::module_& m) {
       "surface_mesh",
       [](const nurbs::TensorAutomaton& a, const std::vector<Points>& nets, int depth, bool homogeneous,
          std::int64_t max_bytes, int max_table_depth) {
-        const ifs::MeshOptions o{homogeneous, count_arg(max_bytes, "surface_mesh: max_bytes"),
-                                 max_table_depth};
+        const ifs::MeshOptions o{.homogeneous = homogeneous,
+                                 .max_bytes = count_arg(max_bytes, "surface_mesh: max_bytes"),
+                                 .max_table_depth = max_table_depth};
         py::gil_scoped_release unlocked;
         return ifs::surface_mesh(a, nets, depth, o);
       },
@@ -480,7 +493,9 @@ void bind_ifs(py::module_& m) {
       "quad_mesh",
       [](const Automaton& a, const std::vector<Points>& nets, const std::vector<std::array<int, 2>>& patches,
          int depth, bool homogeneous, std::int64_t max_bytes, int max_table_depth) {
-        const ifs::MeshOptions o{homogeneous, count_arg(max_bytes, "quad_mesh: max_bytes"), max_table_depth};
+        const ifs::MeshOptions o{.homogeneous = homogeneous,
+                                 .max_bytes = count_arg(max_bytes, "quad_mesh: max_bytes"),
+                                 .max_table_depth = max_table_depth};
         py::gil_scoped_release unlocked;
         return ifs::quad_mesh(a, nets, patches, depth, o);
       },
@@ -518,6 +533,12 @@ void bind_ifs(py::module_& m) {
   m.def("sierpinski_triangle", &ifs::sierpinski_triangle,
         "Sierpinski's triangle on (0, 0), (1, 0), (½, √3/2): 3 AffineMap of ratio ½.");
   m.def("koch_curve", &ifs::koch_curve, "Koch's curve from (0, 0) to (1, 0): 4 AffineMap of ratio ⅓.");
+  m.def("ifs_names", &ifs::ifs_names,
+        "Names of the classic IFS above, in order: 'fern', 'sierpinski', 'koch' (an experiment file's "
+        "\"ifs\").");
+  m.def("named_ifs", &ifs::named_ifs, py::arg("name"),
+        "The AffineMap list of a name in ifs_names(). Raises cifs.InvalidInput for another name (listing "
+        "them).");
   m.def(
       "apply",
       [](const AffineMap& map, const Point& p) {
@@ -599,9 +620,12 @@ void bind_ifs(py::module_& m) {
       "box_counting",
       [](const Points& points, double resolution, double points_per_box, std::int64_t min_boxes,
          int min_level, int max_level, int levels) {
-        const ifs::BoxCountingOptions o{
-            resolution, points_per_box, count_arg(min_boxes, "box counting: min_boxes"),
-            min_level,  max_level,      levels};
+        const ifs::BoxCountingOptions o{.resolution = resolution,
+                                        .points_per_box = points_per_box,
+                                        .min_boxes = count_arg(min_boxes, "box counting: min_boxes"),
+                                        .min_level = min_level,
+                                        .max_level = max_level,
+                                        .levels = levels};
         py::gil_scoped_release unlocked;
         return ifs::box_counting(points, o);
       },

@@ -409,7 +409,7 @@ void bind_geometry(py::module_& m) {
   m.def(
       "segments_svg",
       [](const Segments& s, int width, double stroke, std::string color) {
-        return io::segments_svg(s, {width, stroke, std::move(color)});
+        return io::segments_svg(s, {.width = width, .stroke = stroke, .color = std::move(color)});
       },
       py::arg("segments"), py::kw_only(), py::arg("width") = io::SvgOptions{}.width,
       py::arg("stroke") = io::SvgOptions{}.stroke, py::arg("color") = io::SvgOptions{}.color,
@@ -690,7 +690,7 @@ void bind_verify(py::module_& m) {
   m.def(
       "check_curve",
       [](const nurbs::Curve& c, int depth, double tolerance) {
-        return check_curve(c, {depth, tolerance});
+        return check_curve(c, {.depth = depth, .tolerance = tolerance});
       },
       Release(), py::arg("curve"), py::kw_only(), py::arg("depth") = defaults.depth,
       py::arg("tolerance") = defaults.tolerance,
@@ -700,7 +700,7 @@ void bind_verify(py::module_& m) {
   m.def(
       "check_surface",
       [](const nurbs::Surface& s, int depth, double tolerance) {
-        return check_surface(s, {depth, tolerance});
+        return check_surface(s, {.depth = depth, .tolerance = tolerance});
       },
       Release(), py::arg("surface"), py::kw_only(), py::arg("depth") = defaults.depth,
       py::arg("tolerance") = defaults.tolerance,
@@ -801,7 +801,7 @@ void bind_experiment(py::module_& m) {
         if (max_points < 0)
           throw InvalidInput("sample: max_points is " + std::to_string(max_points) + ", must be ≥ 0");
         const RunOptions o = options(threads, max_bytes);
-        const SampleOptions s{tolerance, static_cast<std::size_t>(max_points)};
+        const SampleOptions s{.tolerance = tolerance, .max_points = static_cast<std::size_t>(max_points)};
         py::gil_scoped_release release;
         return sample(e, s, o);
       },

@@ -243,7 +243,8 @@ repeated one, a value that does not parse, a non-integer or out-of-range integer
       "refine",
       [](const sd::Scheme& scheme, const Points& P, bool closed, int steps, sd::Ends ends,
          std::size_t max_points) {
-        return sd::refine(scheme, P, closed, steps, sd::RefineOptions{ends, max_points});
+        return sd::refine(scheme, P, closed, steps,
+                          sd::RefineOptions{.ends = ends, .max_points = max_points});
       },
       py::arg("scheme"), py::arg("P"), py::arg("closed").noconvert(), py::arg("steps") = 1, py::kw_only(),
       py::arg("ends") = sd::Ends::automatic, py::arg("max_points") = sd::RefineOptions{}.max_points,
@@ -353,7 +354,9 @@ empty polygon, a negative depth or too many points.)doc");
       [](const sd::Scheme& scheme, int max_power, std::size_t max_coefficients, int max_word_length) {
         check_range("analyze", "max_power", max_power, 1, 26);
         check_range("analyze", "max_word_length", max_word_length, 1, 20);
-        return sd::analyze(scheme, sd::AnalysisOptions{max_power, max_coefficients, max_word_length});
+        return sd::analyze(scheme, sd::AnalysisOptions{.max_power = max_power,
+                                                       .max_coefficients = max_coefficients,
+                                                       .max_word_length = max_word_length});
       },
       py::arg("scheme"), py::kw_only(), py::arg("max_power") = sd::AnalysisOptions{}.max_power,
       py::arg("max_coefficients") = sd::AnalysisOptions{}.max_coefficients,

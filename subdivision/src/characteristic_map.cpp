@@ -8,12 +8,12 @@
 #include <numbers>
 #include <optional>
 #include <span>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "cifs/errors.hpp"
+#include "cifs/format.hpp"
 #include "cifs/subdivision/mesh_analysis.hpp"
 #include "local_mesh.hpp"
 
@@ -668,13 +668,6 @@ C1Verdict sampled_verdict(MeshScheme scheme, int n, const CharacteristicNet& net
   return out;
 }
 
-std::string format_number(long double x) {
-  std::ostringstream s;
-  s.precision(3);
-  s << static_cast<double>(x);
-  return s.str();
-}
-
 }  // namespace
 
 C1Verdict characteristic_map_verdict(MeshScheme scheme, int valence, long double lambda,
@@ -705,10 +698,10 @@ C1Verdict characteristic_map_verdict(MeshScheme scheme, int valence, long double
                  " times around the centre (not injective)";
   } else {
     out.c1 = true;
-    out.reason = std::string(polynomial ? "C1, proved: " : "C1 (sampled, not a proof): ") +
-                 "Jacobian of one sign on " + pieces +
-                 (polynomial ? " (Bernstein bound " : " (smallest area ") + format_number(out.margin) +
-                 " of the largest), inner boundary winds once";
+    out.reason =
+        std::string(polynomial ? "C1, proved: " : "C1 (sampled, not a proof): ") +
+        "Jacobian of one sign on " + pieces + (polynomial ? " (Bernstein bound " : " (smallest area ") +
+        number_text(static_cast<double>(out.margin), 3) + " of the largest), inner boundary winds once";
   }
   return out;
 }
@@ -721,7 +714,8 @@ C1Verdict c1_verdict(const LocalMatrix& matrix, const LocalSpectrum& spectrum, c
     out.reason = !spectrum.dominant_simple
                      ? "not C1: the eigenvalue 1 is not simple and dominant (no convergence to a point)"
                  : !spectrum.subdominant_pair
-                     ? "not C1: the subdominant eigenvalue " + format_number(spectrum.subdominant) +
+                     ? "not C1: the subdominant eigenvalue " +
+                           number_text(static_cast<double>(spectrum.subdominant), 3) +
                            " is not a real double eigenvalue (no tangent plane for generic data)"
                      : "not C1: no gap below the subdominant pair (|lambda3| = lambda2)";
     return out;

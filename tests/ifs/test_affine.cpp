@@ -111,3 +111,20 @@ TEST_CASE("affine_automaton refuses degenerate triangles", "[affine]") {
   CHECK_THROWS_AS(affine_automaton({}, control_triangle()), InvalidInput);
   CHECK_THROWS_AS(barycentric_matrix(sierpinski_triangle()[0], Points(2, 2)), InvalidInput);
 }
+
+TEST_CASE("named affine IFS: one registry for the experiment files, the runner and Python", "[affine]") {
+  CHECK(ifs_names() == std::vector<std::string>{"fern", "sierpinski", "koch"});
+  // Told apart by what defines them (map counts, Barnsley's probabilities, the ratios ½ and ⅓).
+  const auto fern = named_ifs("fern");
+  REQUIRE(fern.size() == 4);
+  CHECK(fern[1].a == 0.85);
+  CHECK(fern[0].probability == 0.01);
+  const auto sierpinski = named_ifs("sierpinski");
+  REQUIRE(sierpinski.size() == 3);
+  CHECK(std::hypot(sierpinski[2].a, sierpinski[2].c) == Approx(0.5).epsilon(1e-15));
+  const auto koch = named_ifs("koch");
+  REQUIRE(koch.size() == 4);
+  CHECK(std::hypot(koch[1].a, koch[1].c) == Approx(1.0 / 3).epsilon(1e-15));
+  CHECK_THROWS_WITH(named_ifs("Fern"), "named_ifs: unknown IFS \"Fern\" (fern, sierpinski, koch)");
+  CHECK_THROWS_AS(named_ifs(""), InvalidInput);
+}

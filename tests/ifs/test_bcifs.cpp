@@ -31,7 +31,8 @@ TEST_CASE("tree-like BC-IFS: free coefficients, perturbation, branch junction", 
   REQUIRE(max_residual(tree) <= 1e-15);
   const AdmissibleSpace space = admissible_space(tree);
   for (const double bad : {-1e-3, 1.0, 1.5, std::numeric_limits<double>::quiet_NaN()})
-    CHECK_THROWS_WITH(admissible_space(tree, SolveOptions{bad}), Catch::Contains("is outside [0, 1)"));
+    CHECK_THROWS_WITH(admissible_space(tree, SolveOptions{.threshold = bad}),
+                      Catch::Contains("is outside [0, 1)"));
   // Hand count: 27 entries of G, D, B. Independent equations: G row 0 = e0 (3), D row 2 = e2 (3),
   // G row 2 = D row 0 (3), B row 0 = D row 0 (3), and the row sums not implied by those: G row 1,
   // D rows 0 and 1, B rows 1 and 2 (5). 27 − 17 = 10.

@@ -64,7 +64,7 @@ TEST_CASE("curve BC-IFS: the NURBS matrices are admissible", "[bcifs][curve]") {
   for (const auto& curve : sample_curves()) {
     for (const bool free_vertices : {false, true}) {
       CAPTURE(curve.degree, curve.knots, curve.closed, free_vertices);
-      const Bcifs sys = curve_bcifs(curve, {free_vertices});
+      const Bcifs sys = curve_bcifs(curve, {.free_vertices = free_vertices});
       CHECK(max_residual(sys) <= 1e-14);
       CHECK_NOTHROW(check_admissible(sys, 1e-14));
       // The vertex cells give the end points of every segment (row selection by multiplicity):
@@ -130,14 +130,14 @@ TEST_CASE("curve BC-IFS: free coefficients of uniform B-splines (hand counts)", 
   // those of the free vertex operators, 2 each (4 entries − 2 row sums): default M only → 2;
   // free vertices K1, K2, M → 6.
   CHECK(admissible_space(curve_bcifs(uniform_curve(2, 5))).free.size() == 2);
-  CHECK(admissible_space(curve_bcifs(uniform_curve(2, 5), {true})).free.size() == 6);
+  CHECK(admissible_space(curve_bcifs(uniform_curve(2, 5), {.free_vertices = true})).free.size() == 6);
   // Cubic: the junction row 2 adds "Vs row 2 = (0, Ve row 0 without its last entry), Ve(0,2) = 0".
   // Default (K fixed, Chaikin-like rows [½ ½ 0], [0 ½ ½] at both ends): cells "a" and "b" force
   // M rows 0 and 2 to those, leaving M row 1: 3 entries − 1 row sum = 2. Free vertices: K1 has
   // rows 0 and 2 tied (a, 1−a) plus a free row 1 → 3; K2 likewise → 3; M shares K2's rows 0 and 2
   // and adds its row 1 → 2; total 8.
   CHECK(admissible_space(curve_bcifs(uniform_curve(3, 6))).free.size() == 2);
-  CHECK(admissible_space(curve_bcifs(uniform_curve(3, 6), {true})).free.size() == 8);
+  CHECK(admissible_space(curve_bcifs(uniform_curve(3, 6), {.free_vertices = true})).free.size() == 8);
 }
 
 TEST_CASE("curve BC-IFS: perturbed curves keep knots and end points and stay joined", "[bcifs][curve]") {
@@ -175,7 +175,7 @@ TEST_CASE("curve BC-IFS: perturbed curves keep knots and end points and stay joi
     }
     CHECK(moved > 1e-4);  // the geometry between knots did change
     // attractor_points (ifs::end_functionals, first child) agrees with the vertex-cell functionals.
-    const Points pts = attractor_points(p.system.automaton, nets, K, {curve.closed});
+    const Points pts = attractor_points(p.system.automaton, nets, K, {.closed = curve.closed});
     for (Eigen::Index r = 0; r < pieces.start.rows(); ++r)
       CHECK((pts.row(r) - pieces.start.row(r)).norm() <= 1e-12 * scale);
   }
@@ -183,7 +183,7 @@ TEST_CASE("curve BC-IFS: perturbed curves keep knots and end points and stay joi
 
 TEST_CASE("curve BC-IFS: free vertex operators move the knots, junctions hold", "[bcifs][curve]") {
   const nurbs::Curve curve = uniform_curve(3, 6);
-  const Bcifs sys = curve_bcifs(curve, {true});
+  const Bcifs sys = curve_bcifs(curve, {.free_vertices = true});
   const nurbs::KnotAutomaton knots = curve_bcifs_knots(sys.automaton, nurbs::knot_automaton(curve));
   const auto nets = nurbs::initial_nets(knots, curve);
   PerturbOptions options;

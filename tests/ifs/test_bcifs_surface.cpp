@@ -163,7 +163,7 @@ TEST_CASE("surface_bcifs: amplitude 0 gives back the NURBS mesh", "[ifs][bcifs][
     const auto ta = nurbs::tensor_automaton(s);
     const auto nets = nurbs::initial_nets(ta, s);
     const Perturbation p = perturb(surface_bcifs(ta), {});
-    const MeshOptions options{s.rational};
+    const MeshOptions options{.homogeneous = s.rational};
     const QuadMesh reference = surface_mesh(ta, nets, 4, options);
     const QuadMesh mesh = quad_mesh(p.system.automaton, nets, ta.patches, 4, options);
     REQUIRE(mesh.vertices.rows() == reference.vertices.rows());
@@ -186,7 +186,7 @@ TEST_CASE("surface_bcifs: perturbed surfaces keep their knot lines and stay join
     po.seed = 11;
     const Perturbation p = perturb(sys, po);
     CHECK(p.residual <= 1e-12);
-    const MeshOptions options{s.rational};
+    const MeshOptions options{.homogeneous = s.rational};
     const QuadMesh reference = surface_mesh(ta, nets, K, options);
     const QuadMesh mesh = quad_mesh(p.system.automaton, nets, ta.patches, K, options);
     REQUIRE(mesh.vertices.rows() == reference.vertices.rows());
@@ -251,7 +251,7 @@ TEST_CASE("surface_bcifs: free_knot_lines frees the knot lines too", "[ifs][bcif
   const auto s = make({3, 3}, {clamped(3, {0.3, 1.1}), clamped(3, {0.7})});
   const auto ta = nurbs::tensor_automaton(s);
   const auto nets = nurbs::initial_nets(ta, s);
-  const Bcifs fixed = surface_bcifs(ta), loose = surface_bcifs(ta, {true});
+  const Bcifs fixed = surface_bcifs(ta), loose = surface_bcifs(ta, {.free_knot_lines = true});
   CHECK(admissible_space(loose).free.size() > admissible_space(fixed).free.size());
   PerturbOptions po;
   po.amplitude = 0.01;

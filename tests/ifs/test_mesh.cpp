@@ -56,7 +56,8 @@ TEST_CASE("surface_mesh: vertices = surface evaluation at the dyadic nodes", "[i
     const nurbs::Surface s = random_surface(rng, degree, count, cifs_test::coin(rng), rational);
     const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
     const int depth = 3;
-    const ifs::QuadMesh mesh = ifs::surface_mesh(t, nurbs::initial_nets(t, s), depth, {rational});
+    const ifs::QuadMesh mesh =
+        ifs::surface_mesh(t, nurbs::initial_nets(t, s), depth, {.homogeneous = rational});
     const auto bu = breaks(s, 0), bv = breaks(s, 1);
     const int nu = static_cast<int>(bu.size() - 1) << depth, nv = static_cast<int>(bv.size() - 1) << depth;
     REQUIRE(mesh.vertices.rows() == (nu + 1) * (nv + 1));
@@ -115,22 +116,24 @@ TEST_CASE("surface_mesh into a mesh: the returned mesh and cartesian(homogeneous
     const int depth = trial % 4 == 3 ? 1 : 3 - trial % 4;
     INFO("trial " << trial << ", depth " << depth << ", rational " << rational << ", out held "
                   << out.vertices.rows() << " by " << out.vertices.cols());
-    ifs::surface_mesh(t, nets, depth, out, {rational});
-    const ifs::QuadMesh fresh = ifs::surface_mesh(t, nets, depth, {rational});
+    ifs::surface_mesh(t, nets, depth, out, {.homogeneous = rational});
+    const ifs::QuadMesh fresh = ifs::surface_mesh(t, nets, depth, {.homogeneous = rational});
     REQUIRE(out.vertices.rows() == fresh.vertices.rows());
     REQUIRE(out.vertices.cols() == 3);
     CHECK(out.vertices == fresh.vertices);
     CHECK(out.quads == fresh.quads);
     CHECK(out.quad_state == fresh.quad_state);
     // Rational: the division by w a row at a time gives cartesian()'s bits on the homogeneous mesh.
-    if (rational) CHECK(out.vertices == ifs::cartesian(ifs::surface_mesh(t, nets, depth, {false}).vertices));
+    if (rational)
+      CHECK(out.vertices ==
+            ifs::cartesian(ifs::surface_mesh(t, nets, depth, {.homogeneous = false}).vertices));
     // The same call again, over other contents: storage kept, everything rewritten.
     const double* storage = out.vertices.data();
     const auto* quads = out.quads.data();
     out.vertices.setConstant(-1);
     out.quads.front() = {-1, -1, -1, -1};
     out.quad_state.push_back(7);
-    ifs::surface_mesh(t, nets, depth, out, {rational});
+    ifs::surface_mesh(t, nets, depth, out, {.homogeneous = rational});
     CHECK(out.vertices.data() == storage);
     CHECK(out.quads.data() == quads);
     CHECK(out.vertices == fresh.vertices);
@@ -150,7 +153,7 @@ TEST_CASE("Quad meshes are watertight disks", "[ifs][mesh]") {
   cifs_test::Rng rng(9);
   const nurbs::Surface s = random_surface(rng, {3, 2}, {6, 5}, false, true);
   const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
-  const ifs::QuadMesh mesh = ifs::surface_mesh(t, nurbs::initial_nets(t, s), 3, {true});
+  const ifs::QuadMesh mesh = ifs::surface_mesh(t, nurbs::initial_nets(t, s), 3, {.homogeneous = true});
   const auto V = static_cast<std::size_t>(mesh.vertices.rows());
   std::map<std::pair<int, int>, int> edges;  // undirected edge → number of quads
   std::map<std::pair<int, int>, int> directed;

@@ -49,7 +49,7 @@ TEST_CASE("SVG writers refuse bad segments", "[io][svg]") {
   Segments s;
   s.vertices = Points::Zero(2, 2);
   s.segments = {{0, 1}};
-  CHECK_THROWS_AS(segments_svg(s, SvgOptions{10, 1.5, "black"}), InvalidInput);
+  CHECK_THROWS_AS(segments_svg(s, SvgOptions{.width = 10, .stroke = 1.5, .color = "black"}), InvalidInput);
 }
 
 TEST_CASE("Multi-stroke SVG: one element per stroke, fitted together, a legend of the labelled ones",

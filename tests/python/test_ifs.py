@@ -279,6 +279,17 @@ class MeshTest(unittest.TestCase):
 class AffineTest(unittest.TestCase):
     TRIANGLE = np.array([[-1.0, -0.5], [2.0, -0.5], [0.5, 2.0]])
 
+    def test_named_ifs(self):
+        self.assertEqual(ifs.ifs_names(), ["fern", "sierpinski", "koch"])
+        # Map counts and the defining coefficients: Barnsley's probabilities, ratios ½ and ⅓.
+        self.assertEqual([m.probability for m in ifs.named_ifs("fern")], [0.01, 0.85, 0.07, 0.07])
+        self.assertEqual([(m.a, m.d) for m in ifs.named_ifs("sierpinski")], [(0.5, 0.5)] * 3)
+        koch = ifs.named_ifs("koch")
+        self.assertEqual(len(koch), 4)
+        self.assertAlmostEqual(math.hypot(koch[1].a, koch[1].c), 1 / 3, places=15)
+        self.assertEqual(message(self, lambda: ifs.named_ifs("fen")),
+                         'named_ifs: unknown IFS "fen" (fern, sierpinski, koch)')
+
     def test_maps_apply_and_barycentric_form(self):
         fern = ifs.barnsley_fern()
         self.assertEqual([m.probability for m in fern], [0.01, 0.85, 0.07, 0.07])

@@ -82,5 +82,6 @@ TEST_CASE("Log-density tone mapping", "[render]") {
 
   options.ramp.clear();
   CHECK_THROWS_AS(tone_map_log_density(d, options), InvalidInput);
-  CHECK_THROWS_AS(tone_map_log_density(d, ToneMapOptions{0, 0, {{0, 0, 0}}}), InvalidInput);
+  CHECK_THROWS_AS(tone_map_log_density(d, ToneMapOptions{.max_density = 0, .gamma = 0, .ramp = {{0, 0, 0}}}),
+                  InvalidInput);
 }

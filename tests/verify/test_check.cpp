@@ -51,7 +51,7 @@ TEST_CASE("Attractor = knot insertion = Cox-de Boor, degrees 1-10, ratios 1e6, w
   for (int d = 1; d <= 10; ++d)
     for (const Kind& kind : kinds) {
       const nurbs::Curve c = random_curve(rng, d, 1 + d % 4, kind);
-      const verify::CheckReport r = verify::check_curve(c, {d <= 3 ? 10 : 7, 1e-12});
+      const verify::CheckReport r = verify::check_curve(c, {.depth = d <= 3 ? 10 : 7, .tolerance = 1e-12});
       INFO("degree " << d << " clamped " << kind.clamped << " rational " << kind.rational << " closed "
                      << kind.closed << ": nets " << r.nets.max_rel << ", points " << r.points.max_rel);
       CHECK(r.pass);
@@ -62,7 +62,7 @@ TEST_CASE("Attractor = knot insertion = Cox-de Boor, degrees 1-10, ratios 1e6, w
 TEST_CASE("A deep check of a cubic", "[verify]") {
   std::mt19937_64 rng(3);
   const verify::CheckReport r =
-      verify::check_curve(random_curve(rng, 3, 3, {false, true, false}), {14, 1e-12});
+      verify::check_curve(random_curve(rng, 3, 3, {false, true, false}), {.depth = 14, .tolerance = 1e-12});
   INFO("nets " << r.nets.max_rel << ", points " << r.points.max_rel);
   CHECK(r.pass);
   CHECK(r.depth == 14);
@@ -117,9 +117,12 @@ TEST_CASE("Chaos-game points lie on the curve at their recorded parameter", "[ve
 TEST_CASE("check refuses bad depths and work beyond its budget", "[verify]") {
   std::mt19937_64 rng(1);
   const nurbs::Curve c = random_curve(rng, 3, 2, {true, false, false});
-  CHECK_THROWS_WITH(verify::check_curve(c, {-1, 1e-12}), Catch::Contains("depth -1 is outside [0, 30]"));
-  CHECK_THROWS_WITH(verify::check_curve(c, {24, 1e-12}), Catch::Contains("would insert"));
-  CHECK_THROWS_WITH(verify::check_curve(c, {4, 0}), Catch::Contains("tolerance must be positive"));
+  CHECK_THROWS_WITH(verify::check_curve(c, {.depth = -1, .tolerance = 1e-12}),
+                    Catch::Contains("depth -1 is outside [0, 30]"));
+  CHECK_THROWS_WITH(verify::check_curve(c, {.depth = 24, .tolerance = 1e-12}),
+                    Catch::Contains("would insert"));
+  CHECK_THROWS_WITH(verify::check_curve(c, {.depth = 4, .tolerance = 0}),
+                    Catch::Contains("tolerance must be positive"));
   // An infinite tolerance would pass anything.
   CHECK_THROWS_WITH(verify::check_curve(c, {.depth = 4, .tolerance = INFINITY}),
                     Catch::Contains("tolerance must be positive and finite (got inf)"));
@@ -163,7 +166,7 @@ TEST_CASE("Surface attractor = knot insertion = evaluation, degrees 1-6, ratios 
       const bool clamped = (p + q) % 2 == 0, rational = (p * q) % 3 != 1;
       const nurbs::Surface s = random_surface(rng, {p, q}, clamped, rational);
       const double tolerance = rational ? 5e-12 : 1e-12;
-      const verify::SurfaceCheckReport r = verify::check_surface(s, {3, tolerance});
+      const verify::SurfaceCheckReport r = verify::check_surface(s, {.depth = 3, .tolerance = tolerance});
       INFO("degrees " << p << ", " << q << ", clamped " << clamped << ", rational " << rational << ": nets "
                       << r.nets.max_rel << ", points " << r.points.max_rel);
       CHECK(r.pass);
@@ -176,7 +179,7 @@ TEST_CASE("Surface attractor = knot insertion = evaluation, degrees 1-6, ratios 
 TEST_CASE("Surface check: a deeper rational bicubic", "[verify][surface]") {
   std::mt19937_64 rng(37);
   const nurbs::Surface s = random_surface(rng, {3, 3}, false, true);
-  const verify::SurfaceCheckReport r = verify::check_surface(s, {6, 5e-12});
+  const verify::SurfaceCheckReport r = verify::check_surface(s, {.depth = 6, .tolerance = 5e-12});
   CHECK(r.pass);
   CHECK(r.patches[3].patch == std::array<int, 2>{1, 1});
   CHECK(r.patches[3].u[0] == s.knots[0][4]);
@@ -185,12 +188,13 @@ TEST_CASE("Surface check: a deeper rational bicubic", "[verify][surface]") {
 TEST_CASE("Surface check refuses bad depths and work beyond its budget", "[verify][surface]") {
   std::mt19937_64 rng(41);
   const nurbs::Surface s = random_surface(rng, {3, 3}, true, false);
-  CHECK_THROWS_AS(verify::check_surface(s, {-1, 1e-12}), InvalidInput);
-  CHECK_THROWS_AS(verify::check_surface(s, {31, 1e-12}), InvalidInput);
-  CHECK_THROWS_WITH(verify::check_surface(s, {12, 1e-12}), Catch::Contains("lower --depth"));
+  CHECK_THROWS_AS(verify::check_surface(s, {.depth = -1, .tolerance = 1e-12}), InvalidInput);
+  CHECK_THROWS_AS(verify::check_surface(s, {.depth = 31, .tolerance = 1e-12}), InvalidInput);
+  CHECK_THROWS_WITH(verify::check_surface(s, {.depth = 12, .tolerance = 1e-12}),
+                    Catch::Contains("lower --depth"));
   // The largest depth gives the figure (2^30 leaves overflowed a long long: "-9223372036854775808").
   CHECK_THROWS_WITH(verify::check_surface(s, {.depth = 30}), Catch::Contains("needs references of ") &&
                                                                  !Catch::Contains("-9") &&
                                                                  Catch::Contains("e+"));
-  CHECK_THROWS_AS(verify::check_surface(s, {2, 0}), InvalidInput);
+  CHECK_THROWS_AS(verify::check_surface(s, {.depth = 2, .tolerance = 0}), InvalidInput);
 }
