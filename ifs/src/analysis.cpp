@@ -91,6 +91,8 @@ std::string word_text(std::span<const int> word) {
   return out;
 }
 
+}  // namespace detail
+
 void check_nets(const Automaton& automaton, std::span<const Points> nets, std::string_view who) {
   const auto fail = [&](const std::string& what) { throw InvalidInput(std::string(who) + ": " + what); };
   if (nets.size() != automaton.initial.size())
@@ -106,7 +108,7 @@ void check_nets(const Automaton& automaton, std::span<const Points> nets, std::s
     const int size = automaton.graph[s].size;
     if (nets[i].rows() != size)
       fail("nets[" + std::to_string(i) + "] has " + std::to_string(nets[i].rows()) +
-           " rows but its initial " + state_label(automaton, s) + " holds " + std::to_string(size) +
+           " rows but its initial " + detail::state_label(automaton, s) + " holds " + std::to_string(size) +
            " points");
     if (nets[i].cols() != cols)
       fail("nets[" + std::to_string(i) + "] has " + std::to_string(nets[i].cols()) +
@@ -114,8 +116,6 @@ void check_nets(const Automaton& automaton, std::span<const Points> nets, std::s
     if (!nets[i].allFinite()) fail("nets[" + std::to_string(i) + "] has a non-finite coordinate");
   }
 }
-
-}  // namespace detail
 
 std::vector<StateId> reachable_states(const Automaton& automaton) {
   const Graph& g = automaton.graph;

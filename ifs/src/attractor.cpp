@@ -41,7 +41,7 @@ Points cartesian(const Eigen::Ref<const Points>& homogeneous) {
 void for_each_leaf(const Automaton& automaton, std::span<const Points> nets, int depth,
                    const LeafCallback& callback) {
   validate(automaton);
-  detail::check_nets(automaton, nets, "for_each_leaf");
+  check_nets(automaton, nets, "for_each_leaf");
   if (depth < 0) throw InvalidInput("for_each_leaf: depth is " + std::to_string(depth) + ", must be ≥ 0");
   detail::depth_first(automaton, nets, depth,
                       [&](std::size_t i, StateId s, const Points& net, int d, std::span<const int> word) {
@@ -55,7 +55,7 @@ ToleranceResult for_each_leaf_to_tolerance(const Automaton& automaton, std::span
                                            const ToleranceOptions& options,
                                            const ToleranceCallback& callback) {
   validate(automaton);
-  detail::check_nets(automaton, nets, "for_each_leaf_to_tolerance");
+  check_nets(automaton, nets, "for_each_leaf_to_tolerance");
   if (!(options.epsilon > 0))
     throw InvalidInput("tolerance " + number_text(options.epsilon, 6) + " is not a positive number");
   if (options.max_depth < 0)
@@ -91,7 +91,7 @@ ToleranceResult for_each_leaf_to_tolerance(const Automaton& automaton, std::span
 ToleranceEstimate estimate_tolerance_leaves(const Automaton& automaton, std::span<const Points> nets,
                                             const ToleranceOptions& options, std::size_t budget) {
   validate(automaton);
-  detail::check_nets(automaton, nets, "the tolerance estimate");
+  check_nets(automaton, nets, "the tolerance estimate");
   if (!(options.epsilon > 0))
     throw InvalidInput("tolerance " + number_text(options.epsilon, 6) + " is not a positive number");
   const Contraction c = contraction(automaton, ContractionOptions{.max_length = options.max_length});
@@ -321,7 +321,7 @@ std::size_t output_bytes(std::size_t count, Eigen::Index cols) {
 void check_table(const StencilTable& t, std::span<const Points> nets, std::string_view who) {
   const Automaton& a = t.automaton;
   validate(a);
-  detail::check_nets(a, nets, who);
+  check_nets(a, nets, who);
   const Graph& g = a.graph;
   bool fits = t.depth >= 0 && t.table_depth >= 0 && t.table_depth <= t.depth &&
               t.tables.size() == boost::num_vertices(g) && (t.closed || t.end.size() == nets.back().rows());
@@ -344,7 +344,7 @@ void check_table(const StencilTable& t, std::span<const Points> nets, std::strin
 void attractor_points(const Automaton& automaton, std::span<const Points> nets, int depth, Points& out,
                       const PointsOptions& options) {
   validate(automaton);
-  detail::check_nets(automaton, nets, "attractor_points");
+  check_nets(automaton, nets, "attractor_points");
   // Refuse before any work: the output is allocated once, exactly.
   const auto cols = nets[0].cols();
   const StencilTable t = build_table(
@@ -400,7 +400,7 @@ void refuse_saturated(std::string_view who, int depth, std::size_t count) {
 std::size_t for_each_attractor_chunk(const Automaton& automaton, std::span<const Points> nets, int depth,
                                      const PointsOptions& options, const PointsChunkCallback& callback) {
   validate(automaton);
-  detail::check_nets(automaton, nets, "for_each_attractor_chunk");
+  check_nets(automaton, nets, "for_each_attractor_chunk");
   const auto cols = static_cast<std::size_t>(nets[0].cols());
   const StencilTable t = build_table(automaton, depth, options.closed, options.max_table_depth,
                                      "for_each_attractor_chunk", [&](std::size_t count) {

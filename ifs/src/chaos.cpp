@@ -29,7 +29,7 @@ std::size_t draw(Random& rng, std::size_t bound) noexcept {
 ChaosResult chaos_game(const Automaton& automaton, std::span<const Points> nets,
                        const ChaosOptions& options) {
   validate(automaton);
-  detail::check_nets(automaton, nets, "chaos_game");
+  check_nets(automaton, nets, "chaos_game");
   if (!(options.restart_diameter > 0 && options.restart_diameter < 1))
     throw InvalidInput("chaos_game: restart_diameter is " + std::to_string(options.restart_diameter) +
                        ", must lie in (0, 1)");

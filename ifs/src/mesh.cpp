@@ -183,7 +183,7 @@ void surface_mesh(const nurbs::TensorAutomaton& t, std::span<const Points> nets,
   // The route reads the factors and the state pairs, never the product's matrices: validating the
   // product (every 16 by 16 matrix of a bicubic surface) costs as much as a depth-8 mesh's quads.
   for (const auto& f : t.factors) validate(f.automaton);
-  detail::check_nets(t.product, nets, "surface_mesh");
+  check_nets(t.product, nets, "surface_mesh");
   if (t.factor_states.size() != boost::num_vertices(t.product.graph))
     throw InvalidInput("surface_mesh: " + std::to_string(t.factor_states.size()) +
                        " factor state pairs for " + std::to_string(boost::num_vertices(t.product.graph)) +
@@ -327,7 +327,7 @@ struct NodeTables {
 std::vector<StateId> surface_states(const Automaton& automaton, std::span<const Points> nets,
                                     const std::string& who) {
   validate(automaton);
-  detail::check_nets(automaton, nets, who);
+  check_nets(automaton, nets, who);
   const Graph& g = automaton.graph;
   auto states = reachable_states(automaton);
   for (const StateId s : states)

@@ -101,7 +101,7 @@ ToleranceResult visit_leaves(const Automaton& a, std::span<const Points> nets, c
 
 void check_input(const Automaton& a, std::span<const Points> nets, const SampleOptions& o) {
   validate(a);
-  detail::check_nets(a, nets, "the sample");
+  check_nets(a, nets, "the sample");
   if (o.homogeneous && nets.front().cols() < 2)
     throw InvalidInput("rational nets need at least 2 columns (w·x, w)");
 }

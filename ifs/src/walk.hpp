@@ -24,10 +24,6 @@ std::string state_label(const Automaton& automaton, StateId state);
 /// "0 1 1" for a word of child indices; "(empty)" when empty.
 std::string word_text(std::span<const int> word);
 
-/// Throws InvalidInput (prefixed by `who`) unless `nets` has one net per initial entry, each
-/// `size(state) by cols` with one common cols ≥ 1, finite.
-void check_nets(const Automaton& automaton, std::span<const Points> nets, std::string_view who);
-
 /// Depth-first walk over the nodes of the subdivision tree up to `max_depth`, one net per level.
 /// `visit(initial, state, net, depth, word)` is called for every node in order (initial entries
 /// in order, children in out-edge order) and returns whether to descend below it; nodes at

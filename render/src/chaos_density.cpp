@@ -60,24 +60,12 @@ Tables tables(const automata::Automaton& automaton) {
 }
 
 void check_nets(const automata::Automaton& automaton, std::span<const Points> nets, bool rational) {
-  if (automaton.initial.empty()) throw InvalidInput("chaos_density: the automaton has no initial entry");
-  if (nets.size() != automaton.initial.size())
-    throw InvalidInput("chaos_density: " + std::to_string(nets.size()) + " nets for " +
-                       std::to_string(automaton.initial.size()) + " initial entries");
+  ifs::check_nets(automaton, nets, "chaos_density");
   const auto cols = nets[0].cols();
   const auto dim = rational ? cols - 1 : cols;
   if (dim != 2 && dim != 3)
     throw InvalidInput("chaos_density: nets have " + std::to_string(cols) + " columns, expected " +
                        (rational ? "3 or 4 (homogeneous)" : "2 or 3"));
-  for (std::size_t i = 0; i < nets.size(); ++i) {
-    const int size = automaton.graph[automaton.initial[i].state].size;
-    if (nets[i].rows() != size || nets[i].cols() != cols)
-      throw InvalidInput("chaos_density: nets[" + std::to_string(i) + "] is " +
-                         std::to_string(nets[i].rows()) + " by " + std::to_string(nets[i].cols()) +
-                         ", expected " + std::to_string(size) + " by " + std::to_string(cols));
-    if (!nets[i].allFinite())
-      throw InvalidInput("chaos_density: nets[" + std::to_string(i) + "] is not finite");
-  }
 }
 
 constexpr double kMaxChaosWork = 0x1p38;

@@ -719,7 +719,7 @@ class ChaosDensityTest(unittest.TestCase):
         self.assertEqual(str(e.exception), "chaos_density: nets[0]: expected a 2-D array (n, dim), got shape (2,)")
         with self.assertRaises(cifs.InvalidInput) as e:
             R.chaos_density(R.Image(), self.camera, self.automaton, [self.triangle, self.triangle])
-        self.assertTrue(str(e.exception).startswith("chaos_density: 2 nets for 1"), str(e.exception))
+        self.assertTrue(str(e.exception).startswith("chaos_density: 2 nets given for 1"), str(e.exception))
         with self.assertRaises(cifs.InvalidInput) as e:
             R.chaos_density(R.Image(3, 3), self.camera, self.automaton, [self.triangle])
         self.assertEqual(str(e.exception), "chaos_density: the image is 3 by 3, the camera 64 by 56")

@@ -205,9 +205,10 @@ TEST_CASE("CIFS chaos density refuses bad input", "[render][chaos]") {
   Image image;
   CHECK_THROWS_WITH(chaos_density(image, camera, a, std::vector<Points>{}), Catch::Contains("0 nets"));
   CHECK_THROWS_WITH(chaos_density(image, camera, a, std::vector<Points>{Points::Zero(2, 2)}),
-                    Catch::Contains("expected 3 by 2"));
+                    Catch::Contains("nets[0] has 2 rows but its initial state 0 (uniform) holds 3 points"));
   net(1, 1) = std::nan("");
-  CHECK_THROWS_WITH(chaos_density(image, camera, a, std::vector<Points>{net}), Catch::Contains("not finite"));
+  CHECK_THROWS_WITH(chaos_density(image, camera, a, std::vector<Points>{net}),
+                    Catch::Contains("nets[0] has a non-finite coordinate"));
   net = planar_net();
   ChaosDensityOptions options;
   options.depth = 65;
