@@ -383,17 +383,15 @@ std::string surface_attractor(const nurbs::Surface& s, const std::string& format
     // The mesh is built in memory (each node computed once, neighbours shared); its file is encoded a
     // chunk at a time.
     render::Stage stage("surface mesh", o.quiet);
-    ifs::QuadMesh qm =
+    const Mesh mesh =
         ifs::surface_mesh(ta, nets, o.depth, {.homogeneous = s.rational, .max_bytes = kMemoryBytes});
-    const auto count = static_cast<std::uint64_t>(qm.vertices.rows());
+    const auto count = static_cast<std::uint64_t>(mesh.vertices.rows());
+    const std::size_t quads = face_count(mesh);
     if (format == "json" || format == "npy") {
       PointsOutput out(o.output, format, count, dim, cloud, "attractor", o.quiet);
-      out.write(qm.vertices);
-      return out.finish(o.output, " (the " + std::to_string(qm.quads.size()) + " quads' grid, u-major)");
+      out.write(mesh.vertices);
+      return out.finish(o.output, " (the " + std::to_string(quads) + " quads' grid, u-major)");
     }
-    // Vertices and states are moved into the mesh, the quads' array freed before the file is encoded.
-    const std::size_t quads = qm.quads.size();
-    const Mesh mesh = ifs::to_mesh(std::move(qm));
     if (o.output.empty()) return io::encode(mesh, format);
     io::write(o.output, mesh);
     return "wrote " + o.output.string() + ": " + std::to_string(count) + " vertices, " +

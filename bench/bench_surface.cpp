@@ -104,7 +104,7 @@ std::size_t point_count(const SurfaceCase& c) {
 void BM_surface_separable(benchmark::State& state) {
   const SurfaceCase& c = case_for(state);
   for (auto _ : state) {
-    ifs::QuadMesh m = ifs::surface_mesh(c.automaton, c.nets, kDepth);
+    cifs::Mesh m = ifs::surface_mesh(c.automaton, c.nets, kDepth);
     benchmark::DoNotOptimize(m.vertices.data());
   }
   report(state, point_count(c));
@@ -112,7 +112,7 @@ void BM_surface_separable(benchmark::State& state) {
 
 void BM_surface_separable_into(benchmark::State& state) {
   const SurfaceCase& c = case_for(state);
-  ifs::QuadMesh m;
+  cifs::Mesh m;
   ifs::surface_mesh(c.automaton, c.nets, kDepth, m);  // faulted in once, as SISL's buffer
   for (auto _ : state) {
     ifs::surface_mesh(c.automaton, c.nets, kDepth, m);
@@ -124,7 +124,22 @@ void BM_surface_separable_into(benchmark::State& state) {
 void BM_surface_generic(benchmark::State& state) {
   const SurfaceCase& c = case_for(state);
   for (auto _ : state) {
-    ifs::QuadMesh m = ifs::quad_mesh(c.automaton.product, c.nets, c.automaton.patches, kDepth);
+    cifs::Mesh m = ifs::quad_mesh(c.automaton.product, c.nets, c.automaton.patches, kDepth);
+    benchmark::DoNotOptimize(m.vertices.data());
+  }
+  report(state, point_count(c));
+}
+
+// The generic route's topology built once and applied to the nets into reused storage (the
+// animation/sweep case): the mesh analogue of cifs_bench_attractor's table_apply.
+void BM_surface_generic_table(benchmark::State& state) {
+  const SurfaceCase& c = case_for(state);
+  const ifs::MeshStencilTable table =
+      ifs::mesh_stencil_table(c.automaton.product, kDepth, {.patches = c.automaton.patches});
+  cifs::Mesh m;
+  ifs::apply_table(table, c.nets, m);
+  for (auto _ : state) {
+    ifs::apply_table(table, c.nets, m);
     benchmark::DoNotOptimize(m.vertices.data());
   }
   report(state, point_count(c));
@@ -191,6 +206,7 @@ BENCHMARK(BM_surface_grid)->Apply(sizes);
 BENCHMARK(BM_surface_grid_into)->Apply(sizes);
 BENCHMARK(BM_surface_deboor)->Apply(sizes);
 BENCHMARK(BM_surface_generic)->Arg(5)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_surface_generic_table)->Arg(5)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

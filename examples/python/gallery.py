@@ -82,7 +82,7 @@ def hills(args):
 
     camera = render.frame(mesh.vertices, width=args.size, height=args.size)
     image = render.make_framebuffer(camera)
-    render.render_mesh(image, camera, mesh.vertices, quads=mesh.quads, states=mesh.quad_state,
+    render.render_mesh(image, camera, mesh.vertices, quads=mesh.quads, states=mesh.states,
                        color=(0.80, 0.72, 0.55))
     save(args, "hills", image)
     say(args, f"hills: {len(mesh.quads)} quads from {tensor.product.state_count} product states, "

@@ -175,9 +175,8 @@ Scene surface_scene(const nurbs::Surface& s, const io::Experiment& e, const RunO
     ifs::MeshOptions mo;
     mo.homogeneous = s.rational;
     mo.max_bytes = o.max_bytes;
-    Mesh mesh =
-        ifs::to_mesh(e.perturbation ? ifs::quad_mesh(scene.automaton, scene.nets, ta.patches, depth, mo)
-                                    : ifs::surface_mesh(ta, scene.nets, depth, mo));
+    Mesh mesh = e.perturbation ? ifs::quad_mesh(scene.automaton, scene.nets, ta.patches, depth, mo)
+                               : ifs::surface_mesh(ta, scene.nets, depth, mo);
     scene.depth = depth;
     scene.extent = mesh.vertices;
     scene.mesh = std::move(mesh);
@@ -551,7 +550,7 @@ Scene junction_scene(const io::Junction& junction, const io::Experiment& e, cons
     side.initial.assign(system.automaton.initial.begin() + static_cast<long>(first),
                         system.automaton.initial.begin() + static_cast<long>(first + part->nets.size()));
     const std::span<const Points> nets(scene.nets.data() + first, part->nets.size());
-    Mesh side_mesh = ifs::to_mesh(ifs::quad_mesh(side, nets, part->patches, depth, mo));
+    Mesh side_mesh = ifs::quad_mesh(side, nets, part->patches, depth, mo);
     side_mesh.vertices = drawable(side_mesh.vertices, "the junction");
     append(mesh, side_mesh);
   }

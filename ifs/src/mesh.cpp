@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <optional>
 #include <sstream>
 
 #include "cifs/errors.hpp"
@@ -34,12 +35,13 @@ struct Grid {
   std::size_t vertices = 0, quads = 0;
 };
 
-/// Refuses (before any work) a mesh above the byte limit or beyond int indices; `what` says what
-/// the depth is applied to.
+/// Refuses (before any work) a mesh above the byte limit or beyond int indices (vertices, and the
+/// corners that face_offsets count); `what` says what the depth is applied to.
 void check_size(std::size_t vertices, std::size_t quads, std::size_t cols, int depth, const std::string& what,
-                const MeshOptions& options) {
+                std::size_t max_bytes) {
   const std::size_t bytes = mesh_bytes(vertices, cols, quads);
-  if (bytes <= options.max_bytes && vertices <= static_cast<std::size_t>(INT_MAX)) return;
+  const bool indexed = vertices <= static_cast<std::size_t>(INT_MAX) && mul_sat(quads, 4) <= INT_MAX;
+  if (bytes <= max_bytes && indexed) return;
   std::ostringstream msg;
   // The message names the depth the user gave, not this routine.
   msg << "depth " << depth << " on " << what << " gives ";
@@ -48,11 +50,11 @@ void check_size(std::size_t vertices, std::size_t quads, std::size_t cols, int d
   } else {
     msg << vertices << " vertices of " << cols << " coordinates and " << quads << " quads ("
         << static_cast<double>(bytes) / static_cast<double>(std::size_t{1} << 30) << " GiB)";
-    if (vertices > static_cast<std::size_t>(INT_MAX))
-      msg << ", more than the 2^31 − 1 vertices a mesh addresses";
+    if (!indexed)
+      msg << ", more than the 2^31 − 1 vertices and corners a mesh addresses";
     else
       msg << ", more than the limit of "
-          << static_cast<double>(options.max_bytes) / static_cast<double>(std::size_t{1} << 30)
+          << static_cast<double>(max_bytes) / static_cast<double>(std::size_t{1} << 30)
           << " GiB held in memory";
   }
   msg << "; lower the depth";
@@ -70,31 +72,57 @@ Grid make_grid(int A, int B, int depth, std::size_t cols, const MeshOptions& opt
   const std::size_t cu = cells(A, depth), cv = cells(B, depth);
   const std::size_t vertices = mul_sat(cu + (cu < kSaturated), cv + (cv < kSaturated));
   check_size(vertices, mul_sat(cu, cv), cols, depth,
-             std::to_string(A) + " by " + std::to_string(B) + " patches", options);
+             std::to_string(A) + " by " + std::to_string(B) + " patches", options.max_bytes);
   return Grid{A, B, depth, static_cast<int>(cu), static_cast<int>(cv), 1 << depth, vertices, mul_sat(cu, cv)};
 }
 
-/// Vertices allocated (not set), quads in cell order (I, J) → I·cv + J, corners counter-clockwise in
-/// (u, v). The quads are appended a row at a time from one row of cells shifted by a vertex row
-/// each time: one pass over the output, never zeroed first (16 of the 20 connectivity bytes a cell).
-/// The routes fill quad_state themselves.
-/// The storage of `mesh` is reused when it is large enough (no page faults when a caller meshes
-/// into the same object again).
-void allocate(const Grid& grid, Eigen::Index cols, QuadMesh& mesh) {
-  resize_huge(mesh.vertices, static_cast<Eigen::Index>(grid.vertices), cols);
-  mesh.quads.clear();
-  reserve_huge(mesh.quads, grid.quads);
-  const int row = grid.cv + 1;
-  std::vector<std::array<int, 4>> line(static_cast<std::size_t>(grid.cv));
-  for (int J = 0; J < grid.cv; ++J) line[static_cast<std::size_t>(J)] = {J, row + J, row + J + 1, J + 1};
-  for (int I = 0; I < grid.cu; ++I) {
-    mesh.quads.insert(mesh.quads.end(), line.begin(), line.end());
-    for (auto& quad : line)
-      for (int& v : quad) v += row;
+/// The corners of `blocks` grids of bu × bv cells, block after block, cell (I, J) of block b at face
+/// b·bu·bv + I·bv + J with the corners (I, J), (I+1, J), (I+1, J+1), (I, J+1) of the block's
+/// (bu + 1) × (bv + 1) nodes, and the offsets 0, 4, 8, …: one pass over the output, never zeroed
+/// first (appended a row of cells at a time from one row shifted by a vertex row each time). The
+/// storage of `mesh` is reused when it is large enough (no page faults when a caller meshes into
+/// the same object again). States and normals are the routes'.
+void write_quads(int blocks, int bu, int bv, Mesh& mesh) {
+  const std::size_t faces =
+      static_cast<std::size_t>(blocks) * static_cast<std::size_t>(bu) * static_cast<std::size_t>(bv);
+  std::vector<int>& corners = mesh.face_vertices;
+  corners.clear();
+  reserve_huge(corners, 4 * faces);
+  const int row = bv + 1;
+  std::vector<int> line(4 * static_cast<std::size_t>(bv));
+  for (int b = 0; b < blocks; ++b) {
+    const int first = b * (bu + 1) * row;
+    for (int J = 0; J < bv; ++J) {
+      const auto at = 4 * static_cast<std::size_t>(J);
+      line[at] = first + J;
+      line[at + 1] = first + row + J;
+      line[at + 2] = first + row + J + 1;
+      line[at + 3] = first + J + 1;
+    }
+    for (int I = 0; I < bu; ++I) {
+      corners.insert(corners.end(), line.begin(), line.end());
+      for (int& v : line) v += row;
+    }
   }
+  std::vector<int>& offsets = mesh.face_offsets;
+  offsets.clear();
+  reserve_huge(offsets, faces + 1);
+  std::array<int, 1024> run{};
+  for (std::size_t f = 0; f <= faces; f += run.size()) {
+    const std::size_t n = std::min(run.size(), faces + 1 - f);
+    for (std::size_t k = 0; k < n; ++k) run[k] = static_cast<int>(4 * (f + k));
+    offsets.insert(offsets.end(), run.begin(), run.begin() + static_cast<std::ptrdiff_t>(n));
+  }
+  mesh.normals.resize(0, 0);
 }
 
-void finish(QuadMesh& mesh, const MeshOptions& options) {
+/// Vertices allocated (not set) and the quads of the grid.
+void allocate(const Grid& grid, Eigen::Index cols, Mesh& mesh) {
+  resize_huge(mesh.vertices, static_cast<Eigen::Index>(grid.vertices), cols);
+  write_quads(1, grid.cu, grid.cv, mesh);
+}
+
+void finish(Mesh& mesh, const MeshOptions& options) {
   if (options.homogeneous) mesh.vertices = cartesian(mesh.vertices);
 }
 
@@ -162,23 +190,14 @@ RowKernel row_kernel(Eigen::Index p1) noexcept {
 
 }  // namespace
 
-Mesh to_mesh(QuadMesh quad_mesh) {
-  std::vector<int> corners;
-  corners.reserve(4 * quad_mesh.quads.size());
-  for (const auto& q : quad_mesh.quads) corners.insert(corners.end(), q.begin(), q.end());
-  quad_mesh.quads = {};  // freed before the offsets are allocated
-  Mesh mesh = uniform_mesh(std::move(quad_mesh.vertices), std::move(corners), 4);
-  mesh.states = std::move(quad_mesh.quad_state);
-  return mesh;
-}
-
 std::size_t mesh_bytes(std::size_t vertices, std::size_t cols, std::size_t quads) noexcept {
   const std::size_t v = mul_sat(mul_sat(vertices, cols), sizeof(double));
-  const std::size_t q = mul_sat(quads, sizeof(std::array<int, 4>) + sizeof(std::uint32_t));
+  // Four corners, one offset and one state per quad.
+  const std::size_t q = mul_sat(quads, 4 * sizeof(int) + sizeof(int) + sizeof(std::uint32_t));
   return v > kSaturated - q ? kSaturated : v + q;
 }
 
-void surface_mesh(const nurbs::TensorAutomaton& t, std::span<const Points> nets, int depth, QuadMesh& mesh,
+void surface_mesh(const nurbs::TensorAutomaton& t, std::span<const Points> nets, int depth, Mesh& mesh,
                   const MeshOptions& options) {
   // The route reads the factors and the state pairs, never the product's matrices: validating the
   // product (every 16 by 16 matrix of a bicubic surface) costs as much as a depth-8 mesh's quads.
@@ -282,8 +301,8 @@ void surface_mesh(const nurbs::TensorAutomaton& t, std::span<const Points> nets,
   for (StateId s = 0; s < t.factor_states.size(); ++s)
     pair_id[t.factor_states[s][0] * nv_states + t.factor_states[s][1]] = static_cast<std::uint32_t>(s);
   std::vector<std::vector<std::uint32_t>> state_row(boost::num_vertices(t.factors[0].automaton.graph));
-  mesh.quad_state.clear();
-  reserve_huge(mesh.quad_state, grid.quads);
+  mesh.states.clear();
+  reserve_huge(mesh.states, grid.quads);
   for (int I = 0; I < grid.cu; ++I) {
     const StateId su = leaves[0][static_cast<std::size_t>(I)];
     std::vector<std::uint32_t>& states = state_row[su];
@@ -291,13 +310,13 @@ void surface_mesh(const nurbs::TensorAutomaton& t, std::span<const Points> nets,
       states.resize(static_cast<std::size_t>(grid.cv));
       for (std::size_t J = 0; J < states.size(); ++J) states[J] = pair_id[su * nv_states + leaves[1][J]];
     }
-    mesh.quad_state.insert(mesh.quad_state.end(), states.begin(), states.end());
+    mesh.states.insert(mesh.states.end(), states.begin(), states.end());
   }
 }
 
-QuadMesh surface_mesh(const nurbs::TensorAutomaton& automaton, std::span<const Points> nets, int depth,
-                      const MeshOptions& options) {
-  QuadMesh mesh;
+Mesh surface_mesh(const nurbs::TensorAutomaton& automaton, std::span<const Points> nets, int depth,
+                  const MeshOptions& options) {
+  Mesh mesh;
   surface_mesh(automaton, nets, depth, mesh, options);
   return mesh;
 }
@@ -305,29 +324,106 @@ QuadMesh surface_mesh(const nurbs::TensorAutomaton& automaton, std::span<const P
 namespace {
 
 /// Where the generic route writes a patch: node (I, J) of the patch is vertex `vertex + I·row + J`,
-/// cell (I, J) quad `quad + I·quad_row + J`; the patch's last node row (column) is its own when
+/// cell (I, J) face `face + I·face_row + J`; the patch's last node row (column) is its own when
 /// its cells end at `close_u` (`close_v`), otherwise the next patch's first.
 struct Placement {
-  std::size_t vertex = 0, quad = 0;
-  int row = 0, quad_row = 0, close_u = 0, close_v = 0;
+  std::size_t vertex = 0, face = 0;
+  int row = 0, face_row = 0, close_u = 0, close_v = 0;
 };
 
-/// Stencil tables of the generic route: per state, the (2^L + 1)² node functionals (row
-/// i·(2^L + 1) + j for node (i, j) of the state's square, owned by the child min(i / h, 1),
-/// min(j / h, 1), h = 2^(L−1), like the global nodes by their leaves; level 0 holds the corner
-/// functionals) and the states of its 4^L leaves.
-struct NodeTables {
-  using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  int depth = 0;
-  std::vector<RowMatrix> table;
-  std::vector<std::vector<std::uint32_t>> leaf;
+/// The generic route's output: where each initial entry goes, and the faces as `blocks` grids of
+/// block_u × block_v cells (one grid of A × B patches, or one block per entry).
+struct Layout {
+  std::vector<Placement> placements = {};
+  int blocks = 0, block_u = 0, block_v = 0;
+  std::size_t vertices = 0, faces = 0;
+  std::string what = {};  // what the depth is applied to, for refusals
 };
 
-/// Checks that every reachable state has four children.
-std::vector<StateId> surface_states(const Automaton& automaton, std::span<const Points> nets,
-                                    const std::string& who) {
+/// quad_mesh's layout: `patches` must fill their A × B grid exactly once.
+Layout grid_layout(std::span<const std::array<int, 2>> patches, std::size_t initial, int depth,
+                   const std::string& who) {
+  if (patches.size() != initial)
+    throw InvalidInput(who + ": " + std::to_string(patches.size()) + " patches for " +
+                       std::to_string(initial) + " initial entries");
+  int A = 0, B = 0;
+  for (const auto& [a, b] : patches) {
+    if (a < 0 || b < 0)
+      throw InvalidInput(who + ": patch (" + std::to_string(a) + ", " + std::to_string(b) + ") is negative");
+    A = std::max(A, a + 1);
+    B = std::max(B, b + 1);
+  }
+  std::vector<int> patch_at(static_cast<std::size_t>(A) * B, -1);
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    int& slot = patch_at[static_cast<std::size_t>(patches[i][0]) * B + patches[i][1]];
+    if (slot >= 0)
+      throw InvalidInput(who + ": initial entries " + std::to_string(slot) + " and " + std::to_string(i) +
+                         " are both placed at patch (" + std::to_string(patches[i][0]) + ", " +
+                         std::to_string(patches[i][1]) + ")");
+    slot = static_cast<int>(i);
+  }
+  if (patches.size() != patch_at.size())
+    throw InvalidInput(who + ": " + std::to_string(patches.size()) + " patches do not fill their " +
+                       std::to_string(A) + " by " + std::to_string(B) + " grid");
+  if (depth < 0) throw InvalidInput(who + ": depth is " + std::to_string(depth) + ", must be ≥ 0");
+  const std::size_t cu = cells(A, depth), cv = cells(B, depth);
+  Layout out{.blocks = 1,
+             .vertices = mul_sat(cu + (cu < kSaturated), cv + (cv < kSaturated)),
+             .faces = mul_sat(cu, cv),
+             .what = std::to_string(A) + " by " + std::to_string(B) + " patches"};
+  if (out.vertices > static_cast<std::size_t>(INT_MAX)) return out;  // refused by check_size
+  out.block_u = static_cast<int>(cu);
+  out.block_v = static_cast<int>(cv);
+  const int side = 1 << depth, row = out.block_v + 1;
+  for (const auto& [a, b] : patches) {
+    const int I = a * side, J = b * side;
+    out.placements.push_back(
+        {.vertex = static_cast<std::size_t>(I) * static_cast<std::size_t>(row) + static_cast<std::size_t>(J),
+         .face = static_cast<std::size_t>(I) * static_cast<std::size_t>(out.block_v) +
+                 static_cast<std::size_t>(J),
+         .row = row,
+         .face_row = out.block_v,
+         .close_u = out.block_u - I,
+         .close_v = out.block_v - J});
+  }
+  return out;
+}
+
+/// patch_meshes' layout: entry i is the block of (2^K + 1)² vertices and 4^K faces i.
+Layout block_layout(std::size_t initial, int depth, const std::string& who) {
+  if (depth < 0) throw InvalidInput(who + ": depth is " + std::to_string(depth) + ", must be ≥ 0");
+  const std::size_t side = cells(1, depth),
+                    nodes = side < kSaturated ? mul_sat(side + 1, side + 1) : kSaturated;
+  Layout out{.blocks = static_cast<int>(std::min(initial, static_cast<std::size_t>(INT_MAX))),
+             .vertices = mul_sat(nodes, initial),
+             .faces = mul_sat(mul_sat(side, side), initial),
+             .what = std::to_string(initial) + " patches"};
+  if (out.vertices > static_cast<std::size_t>(INT_MAX)) return out;  // refused by check_size
+  const int s = 1 << depth, block = (s + 1) * (s + 1);
+  out.block_u = out.block_v = s;
+  for (std::size_t i = 0; i < initial; ++i)
+    out.placements.push_back({.vertex = i * static_cast<std::size_t>(block),
+                              .face = i * static_cast<std::size_t>(s) * static_cast<std::size_t>(s),
+                              .row = s + 1,
+                              .face_row = s,
+                              .close_u = s,
+                              .close_v = s});
+  return out;
+}
+
+/// A table's layout: a grid when it has patches.
+Layout layout(const MeshStencilTable& table, const std::string& who) {
+  const std::size_t initial = table.automaton.initial.size();
+  return table.patches.empty() ? block_layout(initial, table.depth, who)
+                               : grid_layout(table.patches, initial, table.depth, who);
+}
+
+/// Checks that the automaton is valid, then the nets when given, then that every reachable state has
+/// four children.
+std::vector<StateId> surface_states(const Automaton& automaton, const std::string& who,
+                                    std::optional<std::span<const Points>> nets = std::nullopt) {
   validate(automaton);
-  check_nets(automaton, nets, who);
+  if (nets) check_nets(automaton, *nets, who);
   const Graph& g = automaton.graph;
   auto states = reachable_states(automaton);
   for (const StateId s : states)
@@ -339,9 +435,10 @@ std::vector<StateId> surface_states(const Automaton& automaton, std::span<const 
 }
 
 /// The tables of depth L ≤ `max_depth`, lowered until they (and, while building, the previous
-/// level) stay below half of an output of `output_doubles`.
-NodeTables node_tables(const Automaton& automaton, std::span<const StateId> states, int max_depth,
-                       std::size_t output_doubles) {
+/// level) hold at most `max_entries` doubles.
+void build_tables(const Automaton& automaton, std::span<const StateId> states, int max_depth,
+                  std::size_t max_entries, MeshStencilTable& out) {
+  using RowMatrix = MeshStencilTable::RowMatrix;
   const Graph& g = automaton.graph;
   const auto table_size = [&](int L) {
     const std::size_t m = (std::size_t{1} << L) + 1;
@@ -350,14 +447,14 @@ NodeTables node_tables(const Automaton& automaton, std::span<const StateId> stat
     return total;
   };
   int L = std::max(max_depth, 0);
-  while (L > 0 && table_size(L) + table_size(L - 1) > output_doubles / 2) --L;
+  while (L > 0 && table_size(L) + table_size(L - 1) > max_entries) --L;
   const auto n = boost::num_vertices(g);
-  NodeTables out{.depth = L,
-                 .table = std::vector<NodeTables::RowMatrix>(n),
-                 .leaf = std::vector<std::vector<std::uint32_t>>(n)};
-  auto& table = out.table;
-  auto& leaf = out.leaf;
-  std::vector<NodeTables::RowMatrix> next(n);
+  out.table_depth = L;
+  auto& table = out.tables;
+  auto& leaf = out.leaf_states;
+  table.assign(n, RowMatrix());
+  leaf.assign(n, {});
+  std::vector<RowMatrix> next(n);
   std::vector<std::vector<std::uint32_t>> next_leaf(n);
   {
     std::array<std::vector<Eigen::RowVectorXd>, 4> corner;
@@ -372,15 +469,14 @@ NodeTables node_tables(const Automaton& automaton, std::span<const StateId> stat
   for (int l = 1; l <= L; ++l) {
     const int h = 1 << (l - 1), m = 2 * h + 1;
     for (const StateId s : states) {
-      NodeTables::RowMatrix& T = next[s];
+      RowMatrix& T = next[s];
       T.resize(Eigen::Index{m} * m, g[s].size);
       std::vector<std::uint32_t>& S = next_leaf[s];
       S.assign(4 * static_cast<std::size_t>(h) * static_cast<std::size_t>(h), 0);
       int c = 0;
       for (auto [e, end] = boost::out_edges(s, g); e != end; ++e, ++c) {
         const StateId child = boost::target(*e, g);
-        const NodeTables::RowMatrix P =
-            table[child] * g[*e].matrix;  // (h+1)² functionals on the parent's net
+        const RowMatrix P = table[child] * g[*e].matrix;  // (h+1)² functionals on the parent's net
         const int iu = c / 2, iv = c % 2;
         for (int i = 0; i <= h; ++i)
           for (int j = 0; j <= h; ++j) {
@@ -397,21 +493,34 @@ NodeTables node_tables(const Automaton& automaton, std::span<const StateId> stat
     std::swap(table, next);
     std::swap(leaf, next_leaf);
   }
+}
+
+/// The table of a checked automaton (`states` its reachable states) over a checked layout.
+MeshStencilTable build_table(const Automaton& automaton, std::span<const StateId> states, int depth,
+                             std::span<const std::array<int, 2>> patches, int max_table_depth,
+                             std::size_t max_entries) {
+  MeshStencilTable out{.automaton = automaton,
+                       .depth = depth,
+                       .patches = std::vector<std::array<int, 2>>(patches.begin(), patches.end())};
+  build_tables(automaton, states, std::min(max_table_depth, depth), max_entries, out);
   return out;
 }
 
-/// Walks to depth K − L; each node writes the nodes it owns and the states of its 4^L leaves,
-/// where `place(i)` puts initial entry i.
-template <class Place>
-void emit_patches(const Automaton& automaton, std::span<const Points> nets, int depth,
-                  const NodeTables& tables, QuadMesh& mesh, const Place& place) {
-  const int L = tables.depth, side_L = 1 << L, m = side_L + 1;
-  const Eigen::Index C = mesh.vertices.cols();
+/// Writes the mesh of checked nets over a checked layout: the faces, then a walk to depth K − L in
+/// which each node writes the nodes it owns and the states of its 4^L leaves.
+void emit_mesh(const MeshStencilTable& table, const Layout& layout, std::span<const Points> nets, Mesh& mesh,
+               const MeshOptions& options) {
+  const Automaton& automaton = table.automaton;
+  const int depth = table.depth, L = table.table_depth, side_L = 1 << L, m = side_L + 1;
+  const Eigen::Index C = nets[0].cols();
+  resize_huge(mesh.vertices, static_cast<Eigen::Index>(layout.vertices), C);
+  write_quads(layout.blocks, layout.block_u, layout.block_v, mesh);
+  assign_huge(mesh.states, layout.faces, std::uint32_t{0});  // written block by block, out of order
   detail::depth_first(
       automaton, nets, depth - L,
       [&](std::size_t i, StateId s, const Points& net, int d, std::span<const int> word) {
         if (d < depth - L) return true;
-        const Placement p = place(i);
+        const Placement& p = layout.placements[i];
         int I0 = 0, J0 = 0;
         for (int k = 0; k < d; ++k) {
           I0 += (word[static_cast<std::size_t>(k)] / 2) << (depth - 1 - k);
@@ -422,102 +531,95 @@ void emit_patches(const Automaton& automaton, std::span<const Points> nets, int 
         const Eigen::Index size = automaton.graph[s].size;
         for (int r = 0; r < rows; ++r)
           detail::emit(
-              tables.table[s].data() + static_cast<Eigen::Index>(r) * m * size, cols, size, net,
+              table.tables[s].data() + static_cast<Eigen::Index>(r) * m * size, cols, size, net,
               mesh.vertices.data() +
                   (static_cast<Eigen::Index>(p.vertex) + static_cast<Eigen::Index>(I0 + r) * p.row + J0) * C);
         for (int r = 0; r < side_L; ++r)
-          std::copy_n(tables.leaf[s].begin() + static_cast<std::ptrdiff_t>(r) * side_L, side_L,
-                      mesh.quad_state.begin() + static_cast<std::ptrdiff_t>(p.quad) +
-                          static_cast<std::ptrdiff_t>(I0 + r) * p.quad_row + J0);
+          std::copy_n(table.leaf_states[s].begin() + static_cast<std::ptrdiff_t>(r) * side_L, side_L,
+                      mesh.states.begin() + static_cast<std::ptrdiff_t>(p.face) +
+                          static_cast<std::ptrdiff_t>(I0 + r) * p.face_row + J0);
         return false;
       });
+  finish(mesh, options);
+}
+
+/// The generic route for quad_mesh (a grid of `patches`) and patch_meshes (no grid): every refusal
+/// before any work.
+Mesh generic_mesh(const Automaton& automaton, std::span<const Points> nets,
+                  std::optional<std::span<const std::array<int, 2>>> grid, int depth,
+                  const MeshOptions& options, const std::string& who) {
+  const auto states = surface_states(automaton, who, nets);
+  const std::span<const std::array<int, 2>> patches = grid.value_or(std::span<const std::array<int, 2>>{});
+  const Layout place = grid ? grid_layout(patches, automaton.initial.size(), depth, who)
+                            : block_layout(automaton.initial.size(), depth, who);
+  const Eigen::Index C = nets[0].cols();
+  check_size(place.vertices, place.faces, static_cast<std::size_t>(C), depth, place.what, options.max_bytes);
+  const MeshStencilTable table = build_table(automaton, states, depth, patches, options.max_table_depth,
+                                             place.vertices * static_cast<std::size_t>(C) / 2);
+  Mesh mesh;
+  emit_mesh(table, place, nets, mesh, options);
+  return mesh;
+}
+
+/// Checks a table that may have been edited against its automaton, as mesh_stencil_table built it.
+void check_table(const MeshStencilTable& t, std::span<const Points> nets, const std::string& who) {
+  const Automaton& a = t.automaton;
+  const auto states = surface_states(a, who, nets);
+  const Graph& g = a.graph;
+  const auto n = boost::num_vertices(g);
+  bool fits = t.depth >= 0 && t.table_depth >= 0 && t.table_depth <= t.depth && t.table_depth < 16 &&
+              t.tables.size() == n && t.leaf_states.size() == n;
+  if (fits) {
+    const Eigen::Index m = (Eigen::Index{1} << t.table_depth) + 1;
+    const std::size_t leaves = std::size_t{1} << (2 * t.table_depth);
+    for (const StateId s : states) {
+      fits = fits && t.tables[s].rows() == m * m && t.tables[s].cols() == g[s].size &&
+             t.leaf_states[s].size() == leaves;
+      for (const std::uint32_t leaf : t.leaf_states[s]) fits = fits && leaf < n;
+    }
+  }
+  if (!fits)
+    throw InvalidInput(
+        who + ": the mesh stencil table does not fit its automaton; build it with mesh_stencil_table");
 }
 
 }  // namespace
 
-QuadMesh quad_mesh(const Automaton& automaton, std::span<const Points> nets,
-                   std::span<const std::array<int, 2>> patches, int depth, const MeshOptions& options) {
-  const auto states = surface_states(automaton, nets, "quad_mesh");
-  if (patches.size() != automaton.initial.size())
-    throw InvalidInput("quad_mesh: " + std::to_string(patches.size()) + " patches for " +
-                       std::to_string(automaton.initial.size()) + " initial entries");
-  int A = 0, B = 0;
-  for (const auto& [a, b] : patches) {
-    if (a < 0 || b < 0)
-      throw InvalidInput("quad_mesh: patch (" + std::to_string(a) + ", " + std::to_string(b) +
-                         ") is negative");
-    A = std::max(A, a + 1);
-    B = std::max(B, b + 1);
-  }
-  std::vector<int> patch_at(static_cast<std::size_t>(A) * B, -1);
-  for (std::size_t i = 0; i < patches.size(); ++i) {
-    int& slot = patch_at[static_cast<std::size_t>(patches[i][0]) * B + patches[i][1]];
-    if (slot >= 0)
-      throw InvalidInput("quad_mesh: initial entries " + std::to_string(slot) + " and " + std::to_string(i) +
-                         " are both placed at patch (" + std::to_string(patches[i][0]) + ", " +
-                         std::to_string(patches[i][1]) + ")");
-    slot = static_cast<int>(i);
-  }
-  if (patches.size() != patch_at.size())
-    throw InvalidInput("quad_mesh: " + std::to_string(patches.size()) + " patches do not fill their " +
-                       std::to_string(A) + " by " + std::to_string(B) + " grid");
-  const Eigen::Index C = nets[0].cols();
-  const Grid grid = make_grid(A, B, depth, static_cast<std::size_t>(C), options, "quad_mesh");
-  const NodeTables tables = node_tables(automaton, states, std::min(options.max_table_depth, depth),
-                                        grid.vertices * static_cast<std::size_t>(C));
-  QuadMesh mesh;
-  allocate(grid, C, mesh);
-  assign_huge(mesh.quad_state, grid.quads, std::uint32_t{0});  // written block by block, out of order
-  const int row = grid.cv + 1;
-  emit_patches(automaton, nets, depth, tables, mesh, [&](std::size_t i) {
-    const int I = patches[i][0] * grid.side, J = patches[i][1] * grid.side;
-    return Placement{
-        .vertex = static_cast<std::size_t>(I) * static_cast<std::size_t>(row) + static_cast<std::size_t>(J),
-        .quad = static_cast<std::size_t>(I) * static_cast<std::size_t>(grid.cv) + static_cast<std::size_t>(J),
-        .row = row,
-        .quad_row = grid.cv,
-        .close_u = grid.cu - I,
-        .close_v = grid.cv - J};
-  });
-  finish(mesh, options);
-  return mesh;
+Mesh quad_mesh(const Automaton& automaton, std::span<const Points> nets,
+               std::span<const std::array<int, 2>> patches, int depth, const MeshOptions& options) {
+  return generic_mesh(automaton, nets, patches, depth, options, "quad_mesh");
 }
 
-QuadMesh patch_meshes(const Automaton& automaton, std::span<const Points> nets, int depth,
-                      const MeshOptions& options) {
-  const auto states = surface_states(automaton, nets, "patch_meshes");
-  if (depth < 0) throw InvalidInput("patch_meshes: depth is " + std::to_string(depth) + ", must be ≥ 0");
-  const auto F = static_cast<int>(automaton.initial.size());
-  const std::size_t side = cells(1, depth),
-                    nodes = side < kSaturated ? mul_sat(side + 1, side + 1) : kSaturated;
-  const Eigen::Index C = nets.empty() ? 0 : nets[0].cols();
-  check_size(mul_sat(nodes, static_cast<std::size_t>(F)),
-             mul_sat(mul_sat(side, side), static_cast<std::size_t>(F)), static_cast<std::size_t>(C), depth,
-             std::to_string(F) + " patches", options);
-  const int s = 1 << depth, block = (s + 1) * (s + 1);
-  QuadMesh mesh;
-  mesh.vertices.resize(static_cast<Eigen::Index>(F) * block, C);
-  advise_huge_pages(mesh.vertices.data(), static_cast<std::size_t>(mesh.vertices.size()) * sizeof(double));
-  reserve_huge(mesh.quads,
-               static_cast<std::size_t>(F) * static_cast<std::size_t>(s) * static_cast<std::size_t>(s));
-  for (int i = 0; i < F; ++i)
-    for (int I = 0; I < s; ++I)
-      for (int J = 0; J < s; ++J) {
-        const int v = i * block + I * (s + 1) + J;
-        mesh.quads.push_back({v, v + s + 1, v + s + 2, v + 1});
-      }
-  assign_huge(mesh.quad_state, mesh.quads.size(), std::uint32_t{0});
-  const NodeTables tables = node_tables(automaton, states, std::min(options.max_table_depth, depth),
-                                        static_cast<std::size_t>(mesh.vertices.size()));
-  emit_patches(automaton, nets, depth, tables, mesh, [&](std::size_t i) {
-    return Placement{.vertex = i * static_cast<std::size_t>(block),
-                     .quad = i * static_cast<std::size_t>(s) * static_cast<std::size_t>(s),
-                     .row = s + 1,
-                     .quad_row = s,
-                     .close_u = s,
-                     .close_v = s};
-  });
-  finish(mesh, options);
+Mesh patch_meshes(const Automaton& automaton, std::span<const Points> nets, int depth,
+                  const MeshOptions& options) {
+  return generic_mesh(automaton, nets, std::nullopt, depth, options, "patch_meshes");
+}
+
+MeshStencilTable mesh_stencil_table(const Automaton& automaton, int depth,
+                                    const MeshStencilOptions& options) {
+  const std::string who = "mesh_stencil_table";
+  const auto states = surface_states(automaton, who);
+  const std::size_t initial = automaton.initial.size();
+  const Layout place = options.patches.empty() ? block_layout(initial, depth, who)
+                                               : grid_layout(options.patches, initial, depth, who);
+  // Only the index limits: the bytes depend on the nets' columns and are checked when applied.
+  check_size(place.vertices, place.faces, 3, depth, place.what, kSaturated);
+  return build_table(automaton, states, depth, options.patches, options.max_table_depth, options.max_entries);
+}
+
+void apply_table(const MeshStencilTable& table, std::span<const Points> nets, Mesh& mesh,
+                 const MeshOptions& options) {
+  const std::string who = "apply_table";
+  check_table(table, nets, who);
+  const Layout place = layout(table, who);
+  check_size(place.vertices, place.faces, static_cast<std::size_t>(nets[0].cols()), table.depth, place.what,
+             options.max_bytes);
+  emit_mesh(table, place, nets, mesh, options);
+}
+
+Mesh apply_table(const MeshStencilTable& table, std::span<const Points> nets, const MeshOptions& options) {
+  Mesh mesh;
+  apply_table(table, nets, mesh, options);
   return mesh;
 }
 

@@ -448,20 +448,6 @@ void bind_ifs(py::module_& m) {
       "and address) above max_bytes (checked before allocating), and as for_each_leaf.");
 
   // Meshes.
-  py::class_<ifs::QuadMesh>(m, "QuadMesh", "A watertight quad mesh of a surface attractor.")
-      .def_property_readonly(
-          "vertices", [](const ifs::QuadMesh& q) { return q.vertices; },
-          "Vertices, float `(V, dim)`; node (I, J) of the global grid is vertex I·(B·2^K + 1) + J.")
-      .def_property_readonly(
-          "quads", [](const ifs::QuadMesh& q) { return index_array(q.quads); },
-          "Quads, int `(Q, 4)`: corners (I, J), (I+1, J), (I+1, J+1), (I, J+1), counter-clockwise in (u, v).")
-      .def_property_readonly(
-          "quad_state", [](const ifs::QuadMesh& q) { return vector_array(q.quad_state); },
-          "Automaton state of each quad's leaf, uint32 `(Q,)`.")
-      .def("__repr__", [](const ifs::QuadMesh& q) {
-        return "QuadMesh(" + std::to_string(q.vertices.rows()) + " vertices, " +
-               std::to_string(q.quads.size()) + " quads)";
-      });
   m.def(
       "mesh_bytes",
       [](std::int64_t vertices, std::int64_t cols, std::int64_t quads) {
@@ -484,7 +470,11 @@ void bind_ifs(py::module_& m) {
       py::arg("automaton"), py::arg("nets"), py::arg("depth"), py::kw_only(),
       py::arg("homogeneous").noconvert() = false, py::arg("max_bytes") = std::int64_t{1} << 30,
       py::arg("max_table_depth") = 6,
-      "The attractor at `depth` of a TensorAutomaton as one QuadMesh (separable route).\n\n"
+      "The attractor at `depth` of a TensorAutomaton as one io.Mesh of quads (separable route): node (I, J) "
+      "of "
+      "the global grid is vertex I·(B·2^K + 1) + J, cell (I, J) face I·(B·2^K) + J with corners (I, J), "
+      "(I+1, J), (I+1, J+1), (I, J+1) (counter-clockwise in (u, v)), `states` the leaf state of each "
+      "face.\n\n"
       "nets: automata.initial_nets(automaton, surface); homogeneous: the nets hold (w·x, w) rows, vertices "
       "are divided by w; max_bytes: refuse a larger mesh. Raises InvalidInput for a negative depth, nets "
       "that "
@@ -502,11 +492,49 @@ void bind_ifs(py::module_& m) {
       py::arg("automaton"), py::arg("nets"), py::arg("patches"), py::arg("depth"), py::kw_only(),
       py::arg("homogeneous").noconvert() = false, py::arg("max_bytes") = std::int64_t{1} << 30,
       py::arg("max_table_depth") = 6,
-      "The attractor at `depth` of any automaton with four children per state (GH, GB, DH, DB) as a "
-      "QuadMesh.\n\n"
+      "The attractor at `depth` of any automaton with four children per state (GH, GB, DH, DB) as an "
+      "io.Mesh of quads laid out as surface_mesh's.\n\n"
       "patches: per initial entry its (a, b) place in a grid they fill exactly once (int `(n, 2)` or list of "
       "pairs); other arguments as surface_mesh. Raises InvalidInput as surface_mesh, and for a state without "
       "four children or patches that do not tile a grid.");
+  py::class_<ifs::MeshStencilTable>(
+      m, "MeshStencilTable",
+      "quad_mesh's (patch_meshes') topology built once (mesh_stencil_table) and applied to any nets of the "
+      "automaton: the mesh analogue of StencilTable.")
+      .def_readonly("depth", &ifs::MeshStencilTable::depth, "Depth K of the mesh.")
+      .def_readonly("table_depth", &ifs::MeshStencilTable::table_depth, "Depth L of the precomposed tables.")
+      .def(
+          "apply",
+          [](const ifs::MeshStencilTable& t, const std::vector<Points>& nets, bool homogeneous,
+             std::int64_t max_bytes) {
+            const ifs::MeshOptions o{.homogeneous = homogeneous,
+                                     .max_bytes = count_arg(max_bytes, "MeshStencilTable.apply: max_bytes")};
+            py::gil_scoped_release unlocked;
+            return ifs::apply_table(t, nets, o);
+          },
+          py::arg("nets"), py::kw_only(), py::arg("homogeneous").noconvert() = false,
+          py::arg("max_bytes") = std::int64_t{1} << 30,
+          "The io.Mesh of these nets, the same as quad_mesh (patch_meshes). Raises InvalidInput for nets "
+          "that "
+          "do not fit and a mesh above max_bytes.")
+      .def("__repr__", [](const ifs::MeshStencilTable& t) {
+        return "MeshStencilTable(depth " + std::to_string(t.depth) + ", table depth " +
+               std::to_string(t.table_depth) + ", " +
+               (t.patches.empty() ? "separate patches" : "a patch grid") + ")";
+      });
+  m.def(
+      "mesh_stencil_table",
+      [](const Automaton& a, int depth, const std::optional<std::vector<std::array<int, 2>>>& patches,
+         int max_table_depth) {
+        py::gil_scoped_release unlocked;
+        return ifs::mesh_stencil_table(a, depth,
+                                       {.patches = patches.value_or(std::vector<std::array<int, 2>>{}),
+                                        .max_table_depth = max_table_depth});
+      },
+      py::arg("automaton"), py::arg("depth"), py::kw_only(), py::arg("patches") = py::none(),
+      py::arg("max_table_depth") = 6,
+      "Builds the MeshStencilTable of `automaton` at `depth`: patches as quad_mesh's, or None for "
+      "patch_meshes' layout (each initial entry on its own). Raises InvalidInput as quad_mesh.");
 
   // Classic affine IFS.
   py::class_<AffineMap>(

@@ -561,7 +561,7 @@ Mesh triangle_mesh(const SurfaceAutomaton& surface, int depth, const ifs::MeshOp
 
 Mesh surface_automaton_mesh(const SurfaceAutomaton& surface, int depth, const ifs::MeshOptions& options) {
   if (!quads(surface.scheme)) return triangle_mesh(surface, depth, options);
-  const ifs::QuadMesh blocks = ifs::patch_meshes(surface.automaton, surface.nets, depth, options);
+  const Mesh blocks = ifs::patch_meshes(surface.automaton, surface.nets, depth, options);
   // Node (I, J) of face f's block is shared with its neighbours when it lies on the block's border:
   // a mesh vertex at a corner, else a point of a mesh edge, named by the edge's end vertices (lower
   // index first) and its distance from the lower one in cells. Each gets the first block's vertex.
@@ -617,11 +617,10 @@ Mesh surface_automaton_mesh(const SurfaceAutomaton& surface, int depth, const if
     written[w] = true;
   }
   std::vector<int> corners;
-  corners.reserve(4 * blocks.quads.size());
-  for (const auto& q : blocks.quads)
-    for (const int v : q) corners.push_back(index[static_cast<std::size_t>(v)]);
+  corners.reserve(blocks.face_vertices.size());
+  for (const int v : blocks.face_vertices) corners.push_back(index[static_cast<std::size_t>(v)]);
   out = uniform_mesh(out.vertices, std::move(corners), 4);
-  out.states = blocks.quad_state;
+  out.states = blocks.states;
   return out;
 }
 

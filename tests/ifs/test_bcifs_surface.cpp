@@ -164,10 +164,10 @@ TEST_CASE("surface_bcifs: amplitude 0 gives back the NURBS mesh", "[ifs][bcifs][
     const auto nets = nurbs::initial_nets(ta, s);
     const Perturbation p = perturb(surface_bcifs(ta), {});
     const MeshOptions options{.homogeneous = s.rational};
-    const QuadMesh reference = surface_mesh(ta, nets, 4, options);
-    const QuadMesh mesh = quad_mesh(p.system.automaton, nets, ta.patches, 4, options);
+    const Mesh reference = surface_mesh(ta, nets, 4, options);
+    const Mesh mesh = quad_mesh(p.system.automaton, nets, ta.patches, 4, options);
     REQUIRE(mesh.vertices.rows() == reference.vertices.rows());
-    CHECK(mesh.quads == reference.quads);
+    CHECK(mesh.face_vertices == reference.face_vertices);
     const double scale = reference.vertices.cwiseAbs().maxCoeff();
     CHECK((mesh.vertices - reference.vertices).cwiseAbs().maxCoeff() <= 1e-12 * scale);
   }
@@ -187,10 +187,10 @@ TEST_CASE("surface_bcifs: perturbed surfaces keep their knot lines and stay join
     const Perturbation p = perturb(sys, po);
     CHECK(p.residual <= 1e-12);
     const MeshOptions options{.homogeneous = s.rational};
-    const QuadMesh reference = surface_mesh(ta, nets, K, options);
-    const QuadMesh mesh = quad_mesh(p.system.automaton, nets, ta.patches, K, options);
+    const Mesh reference = surface_mesh(ta, nets, K, options);
+    const Mesh mesh = quad_mesh(p.system.automaton, nets, ta.patches, K, options);
     REQUIRE(mesh.vertices.rows() == reference.vertices.rows());
-    CHECK(mesh.quads == reference.quads);  // one vertex per grid node: watertight
+    CHECK(mesh.face_vertices == reference.face_vertices);  // one vertex per grid node: watertight
     const int side = 1 << K;
     const auto nv_nodes = static_cast<int>(nets.size() / ta.factors[0].automaton.initial.size()) * side + 1;
     const double scale = reference.vertices.cwiseAbs().maxCoeff();
@@ -259,8 +259,8 @@ TEST_CASE("surface_bcifs: free_knot_lines frees the knot lines too", "[ifs][bcif
   const Perturbation p = perturb(loose, po);
   CHECK(p.residual <= 1e-12);
   const int K = 3, side = 1 << K;
-  const QuadMesh reference = surface_mesh(ta, nets, K);
-  const QuadMesh mesh = quad_mesh(p.system.automaton, nets, ta.patches, K);
+  const Mesh reference = surface_mesh(ta, nets, K);
+  const Mesh mesh = quad_mesh(p.system.automaton, nets, ta.patches, K);
   const int nv_nodes = static_cast<int>(ta.factors[1].automaton.initial.size()) * side + 1;
   double on_lines = 0;
   for (Eigen::Index k = 0; k < mesh.vertices.rows(); ++k) {

@@ -173,7 +173,7 @@ TEST_CASE("box counting: smooth curve 1, surface mesh 2", "[ifs][dimension]") {
       {3, 3}, {nurbs::Knots{0, 0, 0, 0, 1, 1, 1, 1}, nurbs::Knots{0, 0, 0, 0, 1, 1, 1, 1}}, {4, 4}, Q);
   const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
   // Boundary boxes bias the slope by about perimeter·ε/area: depth 10 gives 1.947, 11 gives 1.959.
-  const ifs::QuadMesh mesh = ifs::surface_mesh(t, nurbs::initial_nets(t, s), 11);
+  const Mesh mesh = ifs::surface_mesh(t, nurbs::initial_nets(t, s), 11);
   const ifs::BoxCountingResult m = ifs::box_counting(mesh.vertices);
   INFO("surface: " << m.dimension << " over levels " << m.min_level << " … " << m.max_level);
   CHECK(std::abs(m.dimension - 2) < 0.05);

@@ -129,7 +129,7 @@ std::vector<Points> grid_windows(const Points& P, int n, int N) {
 }
 
 /// The mesh of initial entries [first, first + 4) of a system (2 × 2 patches).
-QuadMesh patch_mesh(const Bcifs& system, const std::vector<Points>& nets, std::size_t first, int depth) {
+Mesh patch_mesh(const Bcifs& system, const std::vector<Points>& nets, std::size_t first, int depth) {
   automata::Automaton a = system.automaton;
   a.initial.assign(system.automaton.initial.begin() + static_cast<long>(first),
                    system.automaton.initial.begin() + static_cast<long>(first + 4));
@@ -167,8 +167,8 @@ TEST_CASE("junction: a bicubic and a biquadratic patch along a common boundary c
   for (const Bcifs* system : {&j.system, &fractal}) {
     CHECK(largest_residual(*system) <= 1e-12);
     const int depth = 4, n = 2 * 16 + 1;
-    const QuadMesh a = patch_mesh(*system, j.nets, 0, depth);  // A's four patches
-    const QuadMesh b = patch_mesh(*system, j.nets, 4, depth);  // B's
+    const Mesh a = patch_mesh(*system, j.nets, 0, depth);  // A's four patches
+    const Mesh b = patch_mesh(*system, j.nets, 4, depth);  // B's
     // A's boundary u = end is B's boundary u = 0, node by node.
     for (int J = 0; J < n; ++J) CHECK((a.vertices.row((n - 1) * n + J) - b.vertices.row(J)).norm() <= 1e-12);
     // Independent route, by hand: A's boundary curve is the cubic B-spline of the points
@@ -227,7 +227,7 @@ TEST_CASE("junction: a smooth NURBS patch and a fractal patch", "[junction]") {
     const std::vector<std::array<int, 2>> patches{{0, 0}, {0, 1}, {1, 0}, {1, 1}};
     return quad_mesh(a, own, patches, depth, mo);
   };
-  const QuadMesh a = mesh(0), b = mesh(4);
+  const Mesh a = mesh(0), b = mesh(4);
   // Independent route: Cox–de Boor on A's surface along its boundary u = end.
   for (int J = 0; J < n; ++J) {
     const Eigen::RowVector3d exact = nurbs::evaluate(SA, 5.0, 3.0 + 2.0 * J / (n - 1));
@@ -238,7 +238,7 @@ TEST_CASE("junction: a smooth NURBS patch and a fractal patch", "[junction]") {
   const nurbs::TensorAutomaton smooth = nurbs::tensor_automaton(SB);
   (void)smooth;
   double moved = 0;
-  const QuadMesh reference = surface_mesh(tb, nurbs::initial_nets(tb, SB), depth);
+  const Mesh reference = surface_mesh(tb, nurbs::initial_nets(tb, SB), depth);
   for (Eigen::Index v = n; v < b.vertices.rows(); ++v)
     moved = std::max(moved, (b.vertices.row(v) - reference.vertices.row(v)).norm());
   CHECK(moved > 1e-3);

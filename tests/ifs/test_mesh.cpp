@@ -56,8 +56,7 @@ TEST_CASE("surface_mesh: vertices = surface evaluation at the dyadic nodes", "[i
     const nurbs::Surface s = random_surface(rng, degree, count, cifs_test::coin(rng), rational);
     const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
     const int depth = 3;
-    const ifs::QuadMesh mesh =
-        ifs::surface_mesh(t, nurbs::initial_nets(t, s), depth, {.homogeneous = rational});
+    const Mesh mesh = ifs::surface_mesh(t, nurbs::initial_nets(t, s), depth, {.homogeneous = rational});
     const auto bu = breaks(s, 0), bv = breaks(s, 1);
     const int nu = static_cast<int>(bu.size() - 1) << depth, nv = static_cast<int>(bv.size() - 1) << depth;
     REQUIRE(mesh.vertices.rows() == (nu + 1) * (nv + 1));
@@ -87,16 +86,16 @@ TEST_CASE("surface_mesh and quad_mesh agree on tensor automata", "[ifs][mesh]") 
     const int depth = cifs_test::uniform_int(rng, 0, 4);
     ifs::MeshOptions options;
     options.homogeneous = rational;
-    const ifs::QuadMesh a = ifs::surface_mesh(t, nets, depth, options);
+    const Mesh a = ifs::surface_mesh(t, nets, depth, options);
     for (int L : {0, 2, 6}) {
       options.max_table_depth = L;
-      const ifs::QuadMesh b = ifs::quad_mesh(t.product, nets, t.patches, depth, options);
+      const Mesh b = ifs::quad_mesh(t.product, nets, t.patches, depth, options);
       INFO("trial " << trial << ", depth " << depth << ", table depth " << L);
       REQUIRE(a.vertices.rows() == b.vertices.rows());
       const double scale = a.vertices.cwiseAbs().maxCoeff();
       CHECK((a.vertices - b.vertices).cwiseAbs().maxCoeff() <= 1e-14 * scale);
-      CHECK(a.quads == b.quads);
-      CHECK(a.quad_state == b.quad_state);
+      CHECK(a.face_vertices == b.face_vertices);
+      CHECK(a.states == b.states);
     }
   }
 }
@@ -104,7 +103,7 @@ TEST_CASE("surface_mesh and quad_mesh agree on tensor automata", "[ifs][mesh]") 
 TEST_CASE("surface_mesh into a mesh: the returned mesh and cartesian(homogeneous), whatever it held",
           "[ifs][mesh]") {
   cifs_test::Rng rng(17);
-  ifs::QuadMesh out;  // reused across trials: larger, smaller and equal sizes, 3 or 4 columns before
+  Mesh out;  // reused across trials: larger, smaller and equal sizes, 3 or 4 columns before
   for (int trial = 0; trial < 12; ++trial) {
     const std::array<int, 2> degree{cifs_test::uniform_int(rng, 1, 4), cifs_test::uniform_int(rng, 1, 3)};
     const std::array<int, 2> count{degree[0] + cifs_test::uniform_int(rng, 1, 3),
@@ -117,49 +116,54 @@ TEST_CASE("surface_mesh into a mesh: the returned mesh and cartesian(homogeneous
     INFO("trial " << trial << ", depth " << depth << ", rational " << rational << ", out held "
                   << out.vertices.rows() << " by " << out.vertices.cols());
     ifs::surface_mesh(t, nets, depth, out, {.homogeneous = rational});
-    const ifs::QuadMesh fresh = ifs::surface_mesh(t, nets, depth, {.homogeneous = rational});
+    const Mesh fresh = ifs::surface_mesh(t, nets, depth, {.homogeneous = rational});
     REQUIRE(out.vertices.rows() == fresh.vertices.rows());
     REQUIRE(out.vertices.cols() == 3);
     CHECK(out.vertices == fresh.vertices);
-    CHECK(out.quads == fresh.quads);
-    CHECK(out.quad_state == fresh.quad_state);
+    CHECK(out.face_vertices == fresh.face_vertices);
+    CHECK(out.states == fresh.states);
     // Rational: the division by w a row at a time gives cartesian()'s bits on the homogeneous mesh.
     if (rational)
       CHECK(out.vertices ==
             ifs::cartesian(ifs::surface_mesh(t, nets, depth, {.homogeneous = false}).vertices));
     // The same call again, over other contents: storage kept, everything rewritten.
     const double* storage = out.vertices.data();
-    const auto* quads = out.quads.data();
+    const auto* quads = out.face_vertices.data();
+    const auto* offsets = out.face_offsets.data();
     out.vertices.setConstant(-1);
-    out.quads.front() = {-1, -1, -1, -1};
-    out.quad_state.push_back(7);
+    out.face_vertices.front() = -1;
+    out.face_offsets.back() = -1;
+    out.states.push_back(7);
     ifs::surface_mesh(t, nets, depth, out, {.homogeneous = rational});
     CHECK(out.vertices.data() == storage);
-    CHECK(out.quads.data() == quads);
+    CHECK(out.face_vertices.data() == quads);
+    CHECK(out.face_offsets.data() == offsets);
     CHECK(out.vertices == fresh.vertices);
-    CHECK(out.quads == fresh.quads);
-    CHECK(out.quad_state == fresh.quad_state);
+    CHECK(out.face_vertices == fresh.face_vertices);
+    CHECK(out.states == fresh.states);
   }
   // A refusal leaves the mesh as it was.
   const nurbs::Surface s = random_surface(rng, {2, 2}, {4, 4}, true, false);
   const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
-  const ifs::QuadMesh before = out;
+  const Mesh before = out;
   CHECK_THROWS_AS(ifs::surface_mesh(t, nurbs::initial_nets(t, s), 6, out, {.max_bytes = 1000}), InvalidInput);
   CHECK(out.vertices == before.vertices);
-  CHECK(out.quads == before.quads);
+  CHECK(out.face_vertices == before.face_vertices);
 }
 
 TEST_CASE("Quad meshes are watertight disks", "[ifs][mesh]") {
   cifs_test::Rng rng(9);
   const nurbs::Surface s = random_surface(rng, {3, 2}, {6, 5}, false, true);
   const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
-  const ifs::QuadMesh mesh = ifs::surface_mesh(t, nurbs::initial_nets(t, s), 3, {.homogeneous = true});
+  const Mesh mesh = ifs::surface_mesh(t, nurbs::initial_nets(t, s), 3, {.homogeneous = true});
   const auto V = static_cast<std::size_t>(mesh.vertices.rows());
   std::map<std::pair<int, int>, int> edges;  // undirected edge → number of quads
   std::map<std::pair<int, int>, int> directed;
   std::vector<int> used(V, 0);
-  for (const auto& q : mesh.quads)
+  for (std::size_t f = 0; f < face_count(mesh); ++f)
     for (int k = 0; k < 4; ++k) {
+      const std::span<const int> q = face(mesh, f);
+      REQUIRE(q.size() == 4);
       const int a = q[static_cast<std::size_t>(k)], b = q[static_cast<std::size_t>((k + 1) % 4)];
       REQUIRE(a >= 0);
       REQUIRE(static_cast<std::size_t>(a) < V);
@@ -180,7 +184,7 @@ TEST_CASE("Quad meshes are watertight disks", "[ifs][mesh]") {
   // Every vertex used; Euler characteristic of a disk.
   CHECK(std::count(used.begin(), used.end(), 0) == 0);
   const auto chi = static_cast<long long>(V) - static_cast<long long>(edges.size()) +
-                   static_cast<long long>(mesh.quads.size());
+                   static_cast<long long>(face_count(mesh));
   CHECK(chi == 1);
   // No two vertices at one position: shared nodes are stored once.
   std::set<std::array<double, 3>> positions;
@@ -231,13 +235,62 @@ TEST_CASE("quad_mesh on a perturbed (non-Kronecker) automaton: corners of the le
   for (int L : {0, 1, 3, 4}) {
     ifs::MeshOptions options;
     options.max_table_depth = L;
-    const ifs::QuadMesh mesh = ifs::quad_mesh(a, nets, patches, depth, options);
+    const Mesh mesh = ifs::quad_mesh(a, nets, patches, depth, options);
     INFO("table depth " << L);
     CHECK((mesh.vertices - expected).cwiseAbs().maxCoeff() <= 1e-14 * expected.cwiseAbs().maxCoeff());
-    CHECK(mesh.quad_state == states);
-    CHECK(mesh.quads[static_cast<std::size_t>(5 * cu + 7)] ==
-          std::array<int, 4>{5 * row + 7, 6 * row + 7, 6 * row + 8, 5 * row + 8});
+    CHECK(mesh.states == states);
+    const std::span<const int> q = face(mesh, static_cast<std::size_t>(5 * cu + 7));
+    CHECK(std::vector<int>(q.begin(), q.end()) ==
+          std::vector<int>{5 * row + 7, 6 * row + 7, 6 * row + 8, 5 * row + 8});
   }
+
+  // The topology built once (mesh_stencil_table) and applied: these nets give quad_mesh's bits,
+  // other nets their own mesh, both side by side (columns) both meshes, into reused storage.
+  const ifs::MeshStencilTable table =
+      ifs::mesh_stencil_table(a, depth, {.patches = patches, .max_table_depth = 3});
+  CHECK(table.table_depth == 3);
+  const Mesh direct = ifs::quad_mesh(a, nets, patches, depth, {.max_table_depth = 3});
+  Mesh applied = ifs::apply_table(table, nets);
+  CHECK(applied.vertices == direct.vertices);
+  CHECK(applied.face_offsets == direct.face_offsets);
+  CHECK(applied.face_vertices == direct.face_vertices);
+  CHECK(applied.states == states);
+  std::vector<Points> other, both;
+  for (const Points& n : nets) {
+    other.push_back(ifs_test::random_points(n.rows(), 3, rng));
+    both.emplace_back(n.rows(), 6);
+    both.back() << n, other.back();
+  }
+  const double* storage = applied.vertices.data();
+  ifs::apply_table(table, other, applied);
+  CHECK(applied.vertices.data() == storage);
+  CHECK(applied.vertices == ifs::quad_mesh(a, other, patches, depth, {.max_table_depth = 3}).vertices);
+  const Mesh side_by_side = ifs::apply_table(table, both);
+  // Six columns take another kernel than three: the same sums to rounding.
+  const double scale = direct.vertices.cwiseAbs().maxCoeff();
+  CHECK((side_by_side.vertices.leftCols(3) - direct.vertices).cwiseAbs().maxCoeff() <= 1e-15 * scale);
+  CHECK((side_by_side.vertices.rightCols(3) - applied.vertices).cwiseAbs().maxCoeff() <= 1e-15 * scale);
+  // patch_meshes' layout: each entry on its own block.
+  const Mesh blocks = ifs::apply_table(ifs::mesh_stencil_table(a, depth, {.max_table_depth = 3}), nets);
+  const Mesh separate = ifs::patch_meshes(a, nets, depth, {.max_table_depth = 3});
+  CHECK(blocks.vertices == separate.vertices);
+  CHECK(blocks.face_vertices == separate.face_vertices);
+  CHECK(blocks.states == separate.states);
+  CHECK(blocks.vertices.rows() == 4 * (side + 1) * (side + 1));
+  // A table edited after it was built, or nets of another shape, are refused.
+  ifs::MeshStencilTable edited = table;
+  edited.leaf_states[0].push_back(0);
+  CHECK_THROWS_WITH(ifs::apply_table(edited, nets), Catch::Contains("does not fit its automaton"));
+  edited = table;
+  edited.table_depth = 2;
+  CHECK_THROWS_WITH(ifs::apply_table(edited, nets), Catch::Contains("does not fit its automaton"));
+  edited = table;
+  edited.patches[0] = {0, 0};
+  CHECK_THROWS_WITH(ifs::apply_table(edited, nets), Catch::Contains("both placed at patch (0, 0)"));
+  CHECK_THROWS_WITH(ifs::apply_table(table, std::span<const Points>(nets).first(3)),
+                    Catch::Contains("apply_table"));
+  CHECK_THROWS_WITH(ifs::apply_table(table, nets, {.max_bytes = 1000}), Catch::Contains("lower the depth"));
+  CHECK_THROWS_WITH(ifs::mesh_stencil_table(a, -1), Catch::Contains("mesh_stencil_table: depth is -1"));
 }
 
 TEST_CASE("Corner functionals of a tensor automaton are Kronecker products of end functionals",
@@ -294,19 +347,4 @@ TEST_CASE("Meshes refuse bad input before any work", "[ifs][mesh]") {
   broken = t;
   broken.factor_states[0][1] = static_cast<StateId>(boost::num_vertices(t.factors[1].automaton.graph));
   CHECK_THROWS_WITH(ifs::surface_mesh(broken, nets, 2), Catch::Contains("does not exist"));
-}
-
-TEST_CASE("to_mesh: the quads as 4-corner faces, vertices and states moved", "[ifs][mesh]") {
-  ifs::QuadMesh q;
-  q.vertices.resize(6, 3);
-  for (int i = 0; i < 6; ++i) q.vertices.row(i) << i % 3, i / 3, 0.5 * i;
-  q.quads = {{0, 3, 4, 1}, {1, 4, 5, 2}};
-  q.quad_state = {5, 6};
-  const Points vertices = q.vertices;
-  const Mesh m = ifs::to_mesh(q);
-  CHECK(m.vertices == vertices);
-  CHECK(m.face_offsets == std::vector<int>{0, 4, 8});
-  CHECK(m.face_vertices == std::vector<int>{0, 3, 4, 1, 1, 4, 5, 2});
-  CHECK(m.states == std::vector<std::uint32_t>{5, 6});
-  check_mesh(m, "to_mesh");
 }

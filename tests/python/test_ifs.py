@@ -269,8 +269,10 @@ class MeshTest(unittest.TestCase):
         I, J = divmod(np.arange(4**K), 2**K)
         np.testing.assert_array_equal(q[:, 0], I * n + J)
         np.testing.assert_array_equal(q[:, 2], (I + 1) * n + J + 1)
-        np.testing.assert_array_equal(mesh.quad_state, np.zeros(4**K))
-        self.assertEqual(ifs.mesh_bytes(n * n, 3, 4**K), n * n * 3 * 8 + 4**K * 20)
+        np.testing.assert_array_equal(mesh.states, np.zeros(4**K))
+        np.testing.assert_array_equal(mesh.face_offsets, 4 * np.arange(4**K + 1))
+        # Vertices; four corners, one offset and one state per quad.
+        self.assertEqual(ifs.mesh_bytes(n * n, 3, 4**K), n * n * 3 * 8 + 4**K * 24)
         self.assertIn("patches", message(self, lambda: ifs.quad_mesh(a, [net], [(0, 0), (1, 0)], K)))
         self.assertIn("depth is -1", message(self, lambda: ifs.quad_mesh(a, [net], [(0, 0)], -1)))
         self.assertIn("mesh_bytes: vertices = -1 is negative", message(self, lambda: ifs.mesh_bytes(-1, 3, 1)))
@@ -469,7 +471,18 @@ class NurbsAttractorTest(unittest.TestCase):
         generic = ifs.quad_mesh(t.product, nets, t.patches, 3, homogeneous=homogeneous)
         assert_close(self, separable.vertices, generic.vertices, rel=1e-12)
         np.testing.assert_array_equal(separable.quads, generic.quads)
-        np.testing.assert_array_equal(separable.quad_state, generic.quad_state)
+        np.testing.assert_array_equal(separable.states, generic.states)
+        # The generic route's topology built once, applied to the nets and to moved nets.
+        table = ifs.mesh_stencil_table(t.product, 3, patches=t.patches)
+        self.assertIn("MeshStencilTable(depth 3", repr(table))
+        applied = table.apply(nets, homogeneous=homogeneous)
+        assert_close(self, applied.vertices, generic.vertices, rel=1e-14, what="table vs quad_mesh")
+        np.testing.assert_array_equal(applied.states, generic.states)
+        moved = [n + np.r_[np.ones(3), np.zeros(n.shape[1] - 3)] * n[:, -1:] if homogeneous else n + 1
+                 for n in nets]
+        shifted = table.apply(moved, homogeneous=homogeneous)
+        assert_close(self, shifted.vertices, generic.vertices + 1, rel=1e-12, what="translated nets")
+        self.assertIn("apply_table", message(self, lambda: table.apply(nets[:1])))
 
 
 if __name__ == "__main__":

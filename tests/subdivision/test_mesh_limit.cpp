@@ -395,12 +395,12 @@ TEST_CASE("fractal Catmull–Clark: faces keep the smooth surface's boundary cur
   const Mesh m = catmull_clark(bipyramid(), 2);
   const SurfaceAutomaton smooth = surface_automaton(m, MeshScheme::catmull_clark);
   const int depth = 4, side = 1 << depth, row = side + 1;
-  const ifs::QuadMesh flat = ifs::patch_meshes(smooth.automaton, smooth.nets, depth);
+  const Mesh flat = ifs::patch_meshes(smooth.automaton, smooth.nets, depth);
   // No perturbation: the BC-IFS's bicubic cells are the B-spline's, the same surface.
   ifs::PerturbOptions perturb;
   perturb.amplitude = 0;
   const FractalSurface same = fractal_catmull_clark(smooth, perturb);
-  const ifs::QuadMesh same_mesh = ifs::patch_meshes(same.surface.automaton, same.surface.nets, depth);
+  const Mesh same_mesh = ifs::patch_meshes(same.surface.automaton, same.surface.nets, depth);
   const double scale = flat.vertices.cwiseAbs().maxCoeff();
   CHECK((same_mesh.vertices - flat.vertices).cwiseAbs().maxCoeff() <= 1e-13 * scale);
 
@@ -409,7 +409,7 @@ TEST_CASE("fractal Catmull–Clark: faces keep the smooth surface's boundary cur
   const FractalSurface rough = fractal_catmull_clark(smooth, perturb);
   CHECK(rough.perturbation.residual <= 1e-12);
   CHECK(!rough.perturbation.values.empty());
-  const ifs::QuadMesh fractal = ifs::patch_meshes(rough.surface.automaton, rough.surface.nets, depth);
+  const Mesh fractal = ifs::patch_meshes(rough.surface.automaton, rough.surface.nets, depth);
   // Per face block: the border nodes (the face's boundary curves) are the smooth surface's; inside,
   // the surface moved.
   double border = 0, inside = 0;

@@ -279,7 +279,7 @@ SurfaceCheckReport check_surface(const nurbs::Surface& s, const CheckOptions& o)
   // (b) Mesh vertices against evaluate_grid, each in the patch that owns it.
   ifs::MeshOptions mesh_options;
   mesh_options.homogeneous = s.rational;
-  const ifs::QuadMesh mesh = ifs::surface_mesh(t, nets, o.depth, mesh_options);
+  const Mesh mesh = ifs::surface_mesh(t, nets, o.depth, mesh_options);
   const int A = static_cast<int>(t.factors[0].automaton.initial.size()),
             B = static_cast<int>(t.factors[1].automaton.initial.size());
   const auto n = static_cast<int>(leaves);
