@@ -184,11 +184,26 @@ Sample sample_attractor(const Automaton& automaton, std::span<const Points> nets
     return out;
   }
   // In memory one walk does: the rows grow (at most max_points of them), no counting walk first.
+  // Row-major rows of fixed width grow by realloc (Eigen's conservativeResize), which glibc does
+  // with mremap for large buffers: no copy and no second buffer, and pages beyond the rows written
+  // are never touched. Homogeneous rows are divided by w as they come (cartesian()'s bits).
   check_input(automaton, nets, o);
   const EndFunctionals ends = end_functionals(automaton);
-  const Eigen::Index cols = nets.front().cols();
-  std::vector<double> rows;
-  const auto add = [&](const Point& p) { rows.insert(rows.end(), p.data(), p.data() + cols); };
+  const Eigen::Index D = nets.front().cols() - (o.homogeneous ? 1 : 0);
+  Points& P = out.points;
+  P.resize(0, D);
+  Eigen::Index used = 0;
+  const auto add = [&](const Point& p) {
+    if (used == P.rows()) P.conservativeResize(std::max<Eigen::Index>(1024, 2 * used), D);
+    if (!o.homogeneous) {
+      P.row(used++) = p;
+      return;
+    }
+    const double w = p(D);
+    if (w == 0)
+      throw InvalidInput("cartesian: row " + std::to_string(used) + " has weight 0 (a point at infinity)");
+    P.row(used++) = p.head(D) / w;
+  };
   Point last_end;  // the end of the last leaf closes an open curve
   out.depth = visit_leaves(automaton, nets, o, [&](const ToleranceLeaf& t) {
                 add(ends.start[t.leaf.state] * t.leaf.net);
@@ -196,8 +211,7 @@ Sample sample_attractor(const Automaton& automaton, std::span<const Points> nets
                 if (!o.closed) last_end = ends.end[t.leaf.state] * t.leaf.net;
               }).deepest;
   if (!o.closed) add(last_end);
-  const Eigen::Map<const Points> H(rows.data(), static_cast<Eigen::Index>(rows.size()) / cols, cols);
-  out.points = o.homogeneous ? cartesian(H) : Points(H);
+  P.conservativeResize(used, D);
   return out;
 }
 
