@@ -371,6 +371,10 @@ std::string write_whole(Points&& P, const io::PointsStyle& style, const std::str
 std::string surface_attractor(const nurbs::Surface& s, const std::string& format, const AttractorOptions& o) {
   if (format == "svg")
     throw InvalidInput("--format svg draws curves; a surface's attractor is json, npy, ply or obj");
+  if (o.deviation > 0)
+    throw InvalidInput(
+        "--deviation bounds a curve's polyline; for a surface give --depth K (its quad mesh) or "
+        "--tolerance E");
   if (o.depth < 0 && format == "obj")
     throw InvalidInput(
         "obj: a surface's points are unordered with --tolerance and --chaos, use json, npy or ply");
@@ -421,15 +425,18 @@ std::string surface_attractor(const nurbs::Surface& s, const std::string& format
 std::string attractor(const AttractorOptions& o) {
   // The attractor is a polyline (in curve order) written as a point set, or drawn as SVG.
   const std::string format = attractor_format(o);
-  if ((o.depth >= 0) + (o.tolerance > 0) + (o.chaos != 0) != 1)
-    throw InvalidInput("attractor: give exactly one of --depth K, --tolerance E and --chaos N");
+  if (o.tolerance < 0 || !std::isfinite(o.tolerance))
+    throw InvalidInput("--tolerance: must be a positive number");
+  if (o.deviation < 0 || !std::isfinite(o.deviation))
+    throw InvalidInput("--deviation: must be a positive number");
+  if ((o.depth >= 0) + (o.tolerance > 0) + (o.deviation > 0) + (o.chaos != 0) != 1)
+    throw InvalidInput(
+        "attractor: give exactly one of --depth K, --tolerance E, --deviation D and --chaos N");
   if (o.chaos < 0 || o.chaos > kMaxPoints)
     throw InvalidInput("--chaos " + std::to_string(o.chaos) + ": expected 1 to " +
                        std::to_string(kMaxPoints) + " points");
   if (o.chaos != 0 && (format == "obj" || format == "svg"))
     throw InvalidInput("--chaos: the points are unordered, use json, npy or ply");
-  if (o.tolerance < 0 || !std::isfinite(o.tolerance))
-    throw InvalidInput("--tolerance: must be a positive number");
   const io::Shape shape = read_shape(o.shape, o.select);
   const auto* c = std::get_if<nurbs::Curve>(&shape);
   if (!c) return surface_attractor(std::get<nurbs::Surface>(shape), format, o);
@@ -474,18 +481,21 @@ std::string attractor(const AttractorOptions& o) {
     return write_whole(std::move(H), style, format, o);
   }
 
-  // Leaves whose whole piece is proven below the tolerance (Cartesian for rational curves), in
-  // curve order; refused before the work when memory (stdout, SVG) or a streamed file cannot take
-  // them. A first walk counts the leaves (the files' headers name the count), the second writes.
+  // Leaves whose whole piece is proven below the tolerance, or within the deviation of its chord
+  // (Cartesian for rational curves), in curve order; refused before the work when memory (stdout,
+  // SVG) or a streamed file cannot take them. A first walk counts the leaves (the files' headers
+  // name the count), the second writes.
   const double row_bytes = static_cast<double>(dim) * sizeof(double);
+  const bool chordal = o.deviation > 0;
   const ifs::SampleOptions so{
-      .tolerance = o.tolerance,
+      .tolerance = chordal ? o.deviation : o.tolerance,
+      .chordal = chordal,
       .homogeneous = c->rational,
       .closed = c->closed,
       .max_depth = 40,
       .max_points = static_cast<std::size_t>(streamed ? kMaxTolerancePoints
                                                       : static_cast<double>(kMemoryBytes) / row_bytes),
-      .tolerance_name = "--tolerance",
+      .tolerance_name = chordal ? "--deviation" : "--tolerance",
       .limit_hint = streamed ? " written to a file; give a larger tolerance"
                              : " held in memory for standard output and SVG; give a larger tolerance, or "
                                "write them to a file with -o points.npy, which is streamed"};

@@ -89,6 +89,7 @@ struct AttractorOptions {
   ShapeSelection select;
   int depth = -1;                // 2^depth leaves per segment, or
   double tolerance = 0;          // every leaf's piece smaller than this (Cartesian units), or
+  double deviation = 0;          // curves: every piece within this of its chord (Cartesian units), or
   long long chaos = 0;           // that many chaos-game points
   std::uint64_t seed = 0;        // chaos game: 0 draws one (printed with the points)
   std::string format;            // a format of io::formats(Content::points), or svg; default json

@@ -124,7 +124,11 @@ int run(int argc, char** argv, std::string& result) {
       "or points)");
   attractor_cmd->add_option("shape", at.shape, "Shape file (.json or .obj)")->required();
   attractor_cmd->add_option("--depth", at.depth, "2^K leaves per segment");
-  attractor_cmd->add_option("--tolerance", at.tolerance, "Stop each branch when its piece is smaller than E");
+  attractor_cmd->add_option("--tolerance", at.tolerance,
+                            "Proven piece size: stop each branch when its whole piece is smaller than E");
+  attractor_cmd->add_option("--deviation", at.deviation,
+                            "Curves: a polyline proven within D of the curve (chordal deviation, far fewer "
+                            "points than --tolerance)");
   attractor_cmd->add_option("--chaos", at.chaos, "N chaos-game points (a random walk over the automaton)");
   attractor_cmd
       ->add_option("--seed", at.seed, "Chaos-game seed (default: drawn, and printed with the points)")

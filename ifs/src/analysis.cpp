@@ -268,6 +268,20 @@ PieceBound hull_bound(const Points& net) {
   return {std::sqrt(far), diameter(net)};
 }
 
+/// Distance from p to the segment [a, b] (to a when a = b).
+double segment_distance(const Eigen::Ref<const Point>& p, const Point& a, const Point& b) {
+  const Point d = b - a;
+  const double length2 = d.squaredNorm();
+  const double t = length2 > 0 ? std::clamp((p - a).dot(d) / length2, 0.0, 1.0) : 0.0;
+  return (p - a - t * d).norm();
+}
+
+double farthest_from_segment(const Points& rows, const Point& a, const Point& b) {
+  double far = 0;
+  for (Eigen::Index i = 0; i < rows.rows(); ++i) far = std::max(far, segment_distance(rows.row(i), a, b));
+  return far;
+}
+
 }  // namespace
 
 PieceBound PieceBounds::operator()(StateId state, const Points& net) const {
@@ -288,6 +302,24 @@ PieceBound PieceBounds::operator()(StateId state, const Points& net) const {
   const double x0 = net.row(0).head(c).norm() / w0;
   const double radius = r * std::sqrt(1 + x0 * x0) / (w0 - r);
   return {radius, 2 * radius};
+}
+
+double PieceBounds::chord_deviation(StateId state, const Points& net, const Point& a, const Point& b) const {
+  const bool convex = state < convex_.size() && convex_[state];
+  if (!homogeneous_)
+    return convex ? farthest_from_segment(net, a, b)
+                  : segment_distance(net.row(0), a, b) + factor_ * diameter(net);
+  const Eigen::Index c = net.cols() - 1;
+  const auto w = net.col(c);
+  if (convex && ((w.array() > 0).all() || (w.array() < 0).all())) {
+    Points X = net.leftCols(c);
+    X.array().colwise() /= w.array();
+    return farthest_from_segment(X, a, b);
+  }
+  const PieceBound bound = (*this)(state, net);  // around the Cartesian first row
+  if (!std::isfinite(bound.radius)) return std::numeric_limits<double>::infinity();
+  const Point x0 = net.row(0).head(c) / net(0, c);
+  return segment_distance(x0, a, b) + bound.radius;
 }
 
 namespace {

@@ -38,6 +38,83 @@ Points cartesian(const Eigen::Ref<const Points>& homogeneous) {
   return out;
 }
 
+namespace {
+
+/// What for_each_leaf_to_tolerance compares with epsilon: the bound on the piece's diameter, or
+/// with `chordal` a bound on its distance to the chord between its end points (end_functionals,
+/// Cartesian with homogeneous rows; a weight 0 at an end leaves the piece unbounded).
+///
+/// The chordal bound covers the piece by the pieces of its descendants and takes the largest
+/// PieceBounds::chord_deviation over the cover, refining only the descendants whose bound is not
+/// yet below epsilon. One net's hull is not enough: a B-spline net reaches beyond the piece's
+/// ends by half a control leg, a first-order overshoot, while the piece itself strays from its
+/// chord to second order; the first and last descendants near the ends shrink it, the others are
+/// accepted at once.
+class PieceMeasure {
+ public:
+  struct Value {
+    PieceBound bound;
+    double deviation = 0;  // chordal only
+    double size = 0;       // compared with epsilon
+  };
+
+  PieceMeasure(const Automaton& automaton, const Contraction& c, const ToleranceOptions& o)
+      : automaton_(automaton),
+        bounds_(automaton, c, o.homogeneous),
+        chordal_(o.chordal),
+        homogeneous_(o.homogeneous) {
+    if (chordal_) ends_ = end_functionals(automaton);
+  }
+
+  Value operator()(StateId s, const Points& net, double epsilon) const {
+    const PieceBound bound = bounds_(s, net);
+    if (!chordal_) return {.bound = bound, .size = bound.diameter};
+    const Point a = ends_.start[s] * net, b = ends_.end[s] * net;
+    double deviation = std::numeric_limits<double>::infinity();
+    if (!homogeneous_) {
+      deviation = cover_deviation(s, net, a, b, epsilon);
+    } else if (const Eigen::Index c = net.cols() - 1; a(c) != 0 && b(c) != 0) {
+      deviation = cover_deviation(s, net, a.head(c) / a(c), b.head(c) / b(c), epsilon);
+    }
+    return {.bound = bound, .deviation = deviation, .size = deviation};
+  }
+
+ private:
+  /// Nodes of the cover refined per piece before the bound is reported as not below epsilon (the
+  /// traversal then splits the piece: sound either way, only the number of chords changes).
+  static constexpr int kCoverNodes = 160;
+
+  /// The largest bound over the cover (below epsilon), or the first bound at or above epsilon
+  /// that the refinement budget leaves.
+  double cover_deviation(StateId s, const Points& net, const Point& a, const Point& b, double epsilon) const {
+    const Graph& g = automaton_.graph;
+    double worst = 0;
+    int nodes = 0;
+    std::vector<std::pair<StateId, Points>> stack{{s, net}};
+    while (!stack.empty()) {
+      auto [t, N] = std::move(stack.back());
+      stack.pop_back();
+      const double d = bounds_.chord_deviation(t, N, a, b);
+      if (d < epsilon) {
+        worst = std::max(worst, d);
+        continue;
+      }
+      if (!(d < std::numeric_limits<double>::infinity()) || ++nodes > kCoverNodes) return d;
+      for (auto [e, end] = boost::out_edges(t, g); e != end; ++e)
+        stack.emplace_back(boost::target(*e, g), g[*e].matrix * N);
+    }
+    return worst;
+  }
+
+  const Automaton& automaton_;
+  PieceBounds bounds_;
+  EndFunctionals ends_;
+  bool chordal_;
+  bool homogeneous_;
+};
+
+}  // namespace
+
 void for_each_leaf(const Automaton& automaton, std::span<const Points> nets, int depth,
                    const LeafCallback& callback) {
   validate(automaton);
@@ -64,25 +141,26 @@ ToleranceResult for_each_leaf_to_tolerance(const Automaton& automaton, std::span
   result.contraction = contraction(automaton, ContractionOptions{.max_length = options.max_length});
   if (options.homogeneous && nets.front().cols() < 2)
     throw InvalidInput("rational nets need at least 2 columns (w·x, w)");
-  const PieceBounds bounds(automaton, result.contraction, options.homogeneous);
+  const PieceMeasure measure(automaton, result.contraction, options);
   detail::depth_first(
       automaton, nets, options.max_depth,
       [&](std::size_t i, StateId s, const Points& net, int d, std::span<const int> word) {
-        const PieceBound b = bounds(s, net);
+        const PieceMeasure::Value v = measure(s, net, options.epsilon);
+        const PieceBound& b = v.bound;
         // A missing bound (homogeneous rows whose weight is not bounded away from 0)
         // may appear near the root and vanish deeper, where the nets are small; one
         // that persists would expand every branch to max_depth (2^max_depth leaves).
-        if (std::isnan(b.diameter) || (std::isinf(b.diameter) && d >= kUnboundedDepth))
+        if (std::isnan(v.size) || (std::isinf(v.size) && d >= kUnboundedDepth))
           throw InvalidInput("the piece of state " + std::to_string(s) +
                              " has no Cartesian size bound at depth " + std::to_string(d) +
                              (options.homogeneous ? " (its weights come near 0); evaluate to a depth instead"
                                                   : " (its size overflows a double); scale the shape down"));
-        const bool converged = b.diameter < options.epsilon;
+        const bool converged = v.size < options.epsilon;
         if (!converged && d < options.max_depth) return true;
         ++result.leaves;
         if (!converged) ++result.unconverged;
         result.deepest = std::max(result.deepest, d);
-        callback(ToleranceLeaf{Leaf{i, s, net, d, word}, b.radius, converged, b.diameter});
+        callback(ToleranceLeaf{Leaf{i, s, net, d, word}, b.radius, converged, b.diameter, v.deviation});
         return false;
       });
   return result;
@@ -97,7 +175,7 @@ ToleranceEstimate estimate_tolerance_leaves(const Automaton& automaton, std::spa
   const Contraction c = contraction(automaton, ContractionOptions{.max_length = options.max_length});
   if (options.homogeneous && nets.front().cols() < 2)
     throw InvalidInput("rational nets need at least 2 columns (w·x, w)");
-  const PieceBounds bounds(automaton, c, options.homogeneous);
+  const PieceMeasure measure(automaton, c, options);
   // Leaves at tolerance e, or budget + 1 as soon as there are more.
   struct Full {};
   const auto count = [&](double e) {
@@ -105,7 +183,7 @@ ToleranceEstimate estimate_tolerance_leaves(const Automaton& automaton, std::spa
     try {
       detail::depth_first(automaton, nets, options.max_depth,
                           [&](std::size_t, StateId s, const Points& net, int d, std::span<const int>) {
-                            if (!(bounds(s, net).diameter < e) && d < options.max_depth) return true;
+                            if (!(measure(s, net, e).size < e) && d < options.max_depth) return true;
                             if (++n > budget) throw Full{};
                             return false;
                           });
@@ -116,7 +194,7 @@ ToleranceEstimate estimate_tolerance_leaves(const Automaton& automaton, std::spa
   // Coarsest tolerance of the ladder ε·2^k: above every root's bound (one leaf per root).
   double top = 0;
   for (std::size_t i = 0; i < nets.size(); ++i)
-    top = std::max(top, bounds(automaton.initial[i].state, nets[i]).diameter);
+    top = std::max(top, measure(automaton.initial[i].state, nets[i], options.epsilon).size);
   if (!std::isfinite(top)) top = 4 * nets_diameter(nets, options.homogeneous);
   int k = std::isfinite(top) && top > options.epsilon
               ? std::min(static_cast<int>(std::ceil(std::log2(top / options.epsilon))) + 1, 2100)

@@ -70,7 +70,8 @@ std::string tolerance_text(const SampleOptions& o) {
 }
 
 ToleranceOptions tolerance_options(const SampleOptions& o) {
-  return {.epsilon = o.tolerance, .max_depth = o.max_depth, .homogeneous = o.homogeneous};
+  return {
+      .epsilon = o.tolerance, .max_depth = o.max_depth, .homogeneous = o.homogeneous, .chordal = o.chordal};
 }
 
 /// Tolerance mode: every leaf to `visit`, after an estimate, both against max_points — a traversal
@@ -91,8 +92,10 @@ ToleranceResult visit_leaves(const Automaton& a, std::span<const Points> nets, c
   std::size_t n = o.closed ? 0 : 1;  // the end point
   return for_each_leaf_to_tolerance(a, nets, to, [&](const ToleranceLeaf& t) {
     if (!t.converged)
-      throw InvalidInput(tolerance_text(o) + ": a piece is still " + number_text(t.diameter, 3) +
-                         " wide at depth " + std::to_string(o.max_depth) + "; give a larger tolerance");
+      throw InvalidInput(tolerance_text(o) + ": a piece " +
+                         (o.chordal ? "still strays " + number_text(t.deviation, 3) + " from its chord"
+                                    : "is still " + number_text(t.diameter, 3) + " wide") +
+                         " at depth " + std::to_string(o.max_depth) + "; give a larger tolerance");
     if (++n > o.max_points)
       refuse(o, tolerance_text(o) + " gives more than " + std::to_string(o.max_points) + " points", kAdvice);
     visit(t);

@@ -39,6 +39,7 @@ struct ToleranceLeafView {
   double radius = 0;
   double diameter = 0;
   bool converged = false;
+  double deviation = 0;
 };
 
 LeafView view(const ifs::Leaf& leaf) {
@@ -204,7 +205,11 @@ void bind_ifs(py::module_& m) {
       .def_readonly("diameter", &ToleranceLeafView::diameter,
                     "Bound on the piece's diameter (PieceBounds), ≤ 2·radius.")
       .def_readonly("converged", &ToleranceLeafView::converged,
-                    "True when diameter < epsilon; False when the branch stopped at max_depth.")
+                    "True when diameter < epsilon (deviation < epsilon with chordal=True); False when the "
+                    "branch stopped at max_depth.")
+      .def_readonly(
+          "deviation", &ToleranceLeafView::deviation,
+          "With chordal=True: bound on the distance of the piece's points to its chord (0 otherwise).")
       .def("__repr__", [](const ToleranceLeafView& t) {
         return "ToleranceLeaf(depth=" + std::to_string(t.leaf.depth) + ", diameter=" + num(t.diameter) +
                ", converged=" + (t.converged ? "True" : "False") + ")";
@@ -223,19 +228,21 @@ void bind_ifs(py::module_& m) {
       "for_each_leaf_to_tolerance",
       // NOLINTNEXTLINE(performance-unnecessary-value-param): a copy, as for for_each_leaf.
       [](const Automaton a, const std::vector<Points>& nets, const py::function& callback, double epsilon,
-         int max_depth, int max_length, bool homogeneous) {
+         int max_depth, int max_length, bool homogeneous, bool chordal) {
         return ifs::for_each_leaf_to_tolerance(
             a, nets,
             ifs::ToleranceOptions{.epsilon = epsilon,
                                   .max_depth = max_depth,
                                   .max_length = max_length,
-                                  .homogeneous = homogeneous},
+                                  .homogeneous = homogeneous,
+                                  .chordal = chordal},
             [&](const ifs::ToleranceLeaf& t) {
-              callback(ToleranceLeafView{view(t.leaf), t.radius, t.diameter, t.converged});
+              callback(ToleranceLeafView{view(t.leaf), t.radius, t.diameter, t.converged, t.deviation});
             });
       },
       py::arg("automaton"), py::arg("nets"), py::arg("callback"), py::kw_only(), py::arg("epsilon") = 1e-6,
       py::arg("max_depth") = 64, py::arg("max_length") = 8, py::arg("homogeneous").noconvert() = false,
+      py::arg("chordal").noconvert() = false,
       "Depth-first traversal that stops a branch once its attractor piece is proved smaller than epsilon "
       "(PieceBounds: the hull of the net where every path is non-negative, else the contraction bound); "
       "calls callback(ToleranceLeaf) per leaf and returns a ToleranceResult.\n\n"
@@ -328,10 +335,11 @@ void bind_ifs(py::module_& m) {
                     "The depth, or the deepest leaf of the tolerance traversal.");
   m.def(
       "sample_attractor",
-      [](const Automaton& a, const std::vector<Points>& nets, int depth, double tolerance, bool homogeneous,
-         bool closed, bool states, int max_depth, std::int64_t max_points) {
+      [](const Automaton& a, const std::vector<Points>& nets, int depth, double tolerance, bool chordal,
+         bool homogeneous, bool closed, bool states, int max_depth, std::int64_t max_points) {
         const ifs::SampleOptions o{.depth = depth,
                                    .tolerance = tolerance,
+                                   .chordal = chordal,
                                    .homogeneous = homogeneous,
                                    .closed = closed,
                                    .states = states,
@@ -341,12 +349,14 @@ void bind_ifs(py::module_& m) {
         return ifs::sample_attractor(a, nets, o);
       },
       py::arg("automaton"), py::arg("nets"), py::kw_only(), py::arg("depth") = -1, py::arg("tolerance") = 0.0,
-      py::arg("homogeneous").noconvert() = false, py::arg("closed").noconvert() = false,
-      py::arg("states").noconvert() = false, py::arg("max_depth") = 64,
+      py::arg("chordal").noconvert() = false, py::arg("homogeneous").noconvert() = false,
+      py::arg("closed").noconvert() = false, py::arg("states").noconvert() = false, py::arg("max_depth") = 64,
       py::arg("max_points") = std::int64_t{1} << 27,
       "The attractor's points to `depth` (≥ 0) or, when depth is negative, to a proven `tolerance`: every "
       "piece's diameter below it (Cartesian with homogeneous nets, whose points come back Cartesian), plus "
-      "the end point unless closed. Returns a Sample. Raises InvalidInput for more than max_points points "
+      "the end point unless closed. chordal=True: every piece within `tolerance` of its chord instead — the "
+      "points are a polyline proven within the tolerance of the curve (chordal deviation), with far fewer "
+      "points. Returns a Sample. Raises InvalidInput for more than max_points points "
       "(before computing them, from an estimate in tolerance mode), a tolerance that is not positive, a "
       "branch unresolved at max_depth, and as attractor_points.");
   m.def("attractor_point_count", &ifs::attractor_point_count, py::arg("automaton"), py::arg("depth"),

@@ -244,6 +244,28 @@ TEST_CASE("cifs automaton, attractor and check", "[cli]") {
   REQUIRE(tol.status == 0);
   CHECK_THAT(tol.out, Catch::Contains("\nl 1 2 3"));
   CHECK_THAT(cifs_cli("attractor " + shape + " --depth 2 --format svg").out, Catch::StartsWith("<svg"));
+  // A chordal deviation: the polyline holds every curve point (Cox–de Boor, dense) within 0.01,
+  // with far fewer points than pieces of that size.
+  const json chords = json::parse(cifs_cli("attractor " + shape + " --deviation 0.01").out)["points"];
+  Points L(static_cast<Eigen::Index>(chords.size()), 3);
+  for (std::size_t k = 0; k < chords.size(); ++k)
+    for (int i = 0; i < 3; ++i)
+      L(static_cast<Eigen::Index>(k), i) = chords[k][static_cast<std::size_t>(i)].get<double>();
+  double far = 0;
+  for (int j = 0; j <= 3000; ++j) {
+    const Eigen::RowVector3d p = nurbs::evaluate(c, 4.0 * j / 3000);
+    double near = std::numeric_limits<double>::infinity();
+    for (Eigen::Index k = 1; k < L.rows(); ++k) {
+      const Eigen::RowVector3d a0 = L.row(k - 1), d = L.row(k) - L.row(k - 1);
+      const double t = std::clamp((p - a0).dot(d) / d.squaredNorm(), 0.0, 1.0);
+      near = std::min(near, (p - a0 - t * d).norm());
+    }
+    far = std::max(far, near);
+  }
+  CHECK(far <= 0.01);
+  const json pieces = json::parse(cifs_cli("attractor " + shape + " --tolerance 0.01").out)["points"];
+  CHECK(5 * chords.size() < pieces.size());
+  check_error(cifs_cli("attractor " + shape + " --deviation -1"), "--deviation: must be a positive number");
 
   const Run ok = cifs_cli("check " + shape + " --depth 6 --json");
   REQUIRE(ok.status == 0);
@@ -264,7 +286,8 @@ TEST_CASE("cifs automaton, attractor and check", "[cli]") {
   CHECK(json::parse(cifs_cli("attractor " + shape + " --chaos 200 --seed 7").out)["seed"] == 7);
   check_error(cifs_cli("attractor " + shape + " --chaos 10 --format svg"), "unordered");
   check_error(cifs_cli("attractor " + shape + " --chaos -5"), "--chaos -5");
-  check_error(cifs_cli("attractor " + shape), "exactly one of --depth K, --tolerance E and --chaos N");
+  check_error(cifs_cli("attractor " + shape),
+              "exactly one of --depth K, --tolerance E, --deviation D and --chaos N");
   check_error(cifs_cli("attractor " + shape + " --depth 3 --format png"), "--format 'png'");
   check_error(cifs_cli("attractor " + shape + " --depth 40"), "");
   check_error(cifs_cli("check " + shape + " --depth 31"), "depth 31 is outside [0, 30]");

@@ -4,10 +4,14 @@
 // bounds every Cartesian piece), depth samples = attractor_points and the states of for_each_leaf.
 #include "cifs/ifs/sample.hpp"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <numbers>
 #include <random>
 
 #include "cifs/errors.hpp"
+#include "cifs/ifs/attractor.hpp"
 #include "ifs/helpers.hpp"
 
 using namespace cifs;
@@ -52,6 +56,17 @@ Sample stacked(const Automaton& a, std::span<const Points> nets, const SampleOpt
     at += p.rows();
   }
   return out;
+}
+
+/// Distance from p to the polyline through the rows of `L`.
+double polyline_distance(const Eigen::RowVectorXd& p, const Points& L) {
+  double best = (p - L.row(0)).norm();
+  for (Eigen::Index i = 1; i < L.rows(); ++i) {
+    const Eigen::RowVectorXd a = L.row(i - 1), d = L.row(i) - L.row(i - 1);
+    const double t = d.squaredNorm() > 0 ? std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+    best = std::min(best, (p - a - t * d).norm());
+  }
+  return best;
 }
 
 }  // namespace
@@ -172,4 +187,108 @@ TEST_CASE(
     }
   }
   CHECK(depth_for_tolerance(a, nets, {.epsilon = 1e-300, .max_depth = 20}, 1) == 20);  // capped
+}
+
+TEST_CASE("Chordal tolerance: a polyline within the deviation of a quarter circle, with few points",
+          "[ifs][sample]") {
+  const Automaton a = quadratic_automaton(0, 1, 0);
+  const auto nets = quarter_circle();
+  for (const double deviation : {0.1, 1e-3, 1e-6}) {
+    INFO("deviation " << deviation);
+    const Sample s =
+        sample_attractor(a, nets, {.tolerance = deviation, .chordal = true, .homogeneous = true});
+    REQUIRE(s.points.rows() >= 2);
+    CHECK((s.points.rowwise().norm().array() - 1).abs().maxCoeff() <= 1e-14);  // vertices on the circle
+    // The chord between two points of the unit circle an angle θ apart strays 1 − cos(θ/2) from the arc.
+    double sagitta = 0, angle = 0;
+    for (Eigen::Index i = 1; i < s.points.rows(); ++i) {
+      const Eigen::RowVector2d p = s.points.row(i - 1), q = s.points.row(i);
+      const double theta = std::atan2(p(0) * q(1) - p(1) * q(0), p.dot(q));
+      sagitta = std::max(sagitta, 1 - std::cos(theta / 2));
+      angle += theta;
+    }
+    CHECK(sagitta <= deviation);
+    CHECK(std::abs(angle - std::numbers::pi / 2) <= 1e-12);
+    // Not wastefully conservative: at most 4 times the fewest chords of that sagitta (the hull of a
+    // quadratic piece's net strays twice as far as the arc, and depths come in halvings).
+    const double fewest = std::ceil(std::numbers::pi / 2 / (2 * std::acos(1 - deviation)));
+    CHECK(static_cast<double>(s.points.rows() - 1) <= 4 * fewest);
+  }
+  // A piece size of 1e-4 needs ≥ π/2·10^4 pieces; a deviation of 1e-4 about 100.
+  const auto chords = sample_attractor(a, nets, {.tolerance = 1e-4, .chordal = true, .homogeneous = true});
+  const auto pieces = sample_attractor(a, nets, {.tolerance = 1e-4, .homogeneous = true});
+  CHECK(pieces.points.rows() > 100 * chords.points.rows());
+  // Streamed: the same points.
+  std::size_t announced = 0;
+  const Sample c = stacked(a, nets, {.tolerance = 1e-3, .chordal = true, .homogeneous = true}, 7, announced);
+  CHECK(c.points ==
+        sample_attractor(a, nets, {.tolerance = 1e-3, .chordal = true, .homogeneous = true}).points);
+  CHECK(announced == static_cast<std::size_t>(c.points.rows()));
+}
+
+TEST_CASE("Chordal tolerance: a cubic B-spline within the deviation both ways (Cox–de Boor)",
+          "[ifs][sample]") {
+  std::mt19937_64 rng(31);
+  const int d = 3, segments = 5;
+  const Automaton a = uniform_automaton(d, segments);
+  const Points P = random_points(segments + d, 2, rng);
+  std::vector<Points> nets;
+  for (int k = 0; k < segments; ++k) nets.push_back(P.middleRows(k, d + 1));
+  for (const double deviation : {1e-2, 1e-4}) {
+    INFO("deviation " << deviation);
+    const Points L = sample_attractor(a, nets, {.tolerance = deviation, .chordal = true}).points;
+    // Every curve point within the deviation of the polyline, and every chord's midpoint within it
+    // (plus the sampling step) of the curve.
+    const int n = 400;
+    Points curve(segments * n + 1, 2);
+    for (int j = 0; j <= segments * n; ++j) {
+      const int k = std::min(j / n, segments - 1);
+      const Eigen::RowVectorXd x = uniform_reference(P, d, k, static_cast<long double>(j - n * k) / n);
+      curve(j, 0) =
+          x(0);  // by coefficient: GCC 12 misreads a dynamic row stored into a row (stringop-overread)
+      curve(j, 1) = x(1);
+    }
+    double far = 0;
+    for (Eigen::Index j = 0; j < curve.rows(); ++j) far = std::max(far, polyline_distance(curve.row(j), L));
+    CHECK(far <= deviation);
+    double step = 0;
+    for (Eigen::Index j = 1; j < curve.rows(); ++j)
+      step = std::max(step, (curve.row(j) - curve.row(j - 1)).norm());
+    double back = 0;
+    for (Eigen::Index i = 1; i < L.rows(); ++i) {
+      const Eigen::RowVectorXd mid = (L.row(i) + L.row(i - 1)) / 2;
+      back = std::max(back, (curve.rowwise() - mid).rowwise().norm().minCoeff());
+    }
+    CHECK(back <= deviation + step);
+    CHECK(far >= deviation / 64);  // proven, and still the tolerance asked for
+  }
+}
+
+TEST_CASE("Chordal tolerance without the hull property: every point of a fractal curve within the deviation",
+          "[ifs][sample]") {
+  // De Casteljau's quadratic split with negative middle rows: G keeps the start, D the end and both
+  // meet at the midpoint row, so the attractor is a continuous (fractal) curve from P0 to P2, and
+  // the negative entries leave no hull property (the radius bound is the one used).
+  Automaton a;
+  const StateId s = add_state(a, 3, "mixed");
+  Eigen::MatrixXd G(3, 3), D(3, 3);
+  G << 1, 0, 0, 0.6, 0.6, -0.2, 0.25, 0.5, 0.25;
+  D << 0.25, 0.5, 0.25, -0.2, 0.6, 0.6, 0, 0, 1;
+  add_transition(a, s, s, G, "G");
+  add_transition(a, s, s, D, "D");
+  add_initial(a, s, 0);
+  REQUIRE_FALSE(convex_states(a)[s]);
+  std::mt19937_64 rng(5);
+  const std::vector<Points> nets{random_points(3, 2, rng)};
+  for (const double deviation : {0.05, 0.02, 0.005}) {
+    INFO("deviation " << deviation);
+    const Sample sample = sample_attractor(a, nets, {.tolerance = deviation, .chordal = true});
+    const Points deep = attractor_points(a, nets, 14);  // attractor points, in curve order
+    double far = 0;
+    for (Eigen::Index j = 0; j < deep.rows(); ++j)
+      far = std::max(far, polyline_distance(deep.row(j), sample.points));
+    CHECK(far <= deviation);
+  }
+  CHECK_THROWS_WITH(sample_attractor(a, nets, {.tolerance = 1e-9, .chordal = true, .max_depth = 3}),
+                    Catch::Contains("tolerance 1e-09: a piece still strays"));
 }

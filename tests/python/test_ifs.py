@@ -155,6 +155,18 @@ class AttractorTest(unittest.TestCase):
         self.assertIn("above the limit of 10", message(self, lambda: ifs.sample_attractor(a, [NET], depth=9,
                                                                                             max_points=10)))
         self.assertIn("is not a positive number", message(self, lambda: ifs.sample_attractor(a, [NET])))
+        # Chordal: a polyline within 1e-3 of the parabola (numpy, dense), with far fewer points.
+        c = ifs.sample_attractor(a, [NET], tolerance=1e-3, chordal=True)
+        dense = curve(np.linspace(0, 1, 20001))
+        p0, d = c.points[:-1], np.diff(c.points, axis=0)
+        t = np.clip(np.einsum("nsk,sk->ns", dense[:, None, :] - p0[None], d) / (d * d).sum(1), 0, 1)
+        distance = np.linalg.norm(dense[:, None, :] - p0[None] - t[..., None] * d[None], axis=2).min(axis=1)
+        self.assertLessEqual(distance.max(), 1e-3)
+        self.assertLess(10 * len(c.points), len(ifs.sample_attractor(a, [NET], tolerance=1e-3).points))
+        leaves = []
+        ifs.for_each_leaf_to_tolerance(a, [NET], leaves.append, epsilon=1e-3, chordal=True)
+        self.assertEqual(len(leaves), len(c.points) - 1)
+        self.assertTrue(all(0 < x.deviation < 1e-3 and x.converged for x in leaves))
 
     def test_a_stencil_table_is_applied_to_new_nets(self):
         a = chaikin()

@@ -99,6 +99,12 @@ class PieceBounds {
  public:
   PieceBounds(const automata::Automaton& automaton, const Contraction& contraction, bool homogeneous);
   PieceBound operator()(automata::StateId state, const Points& net) const;
+  /// A bound on the distance of every point of the piece to the segment [a, b] (Cartesian points,
+  /// the piece's ends for a chordal tolerance): for convex states the largest distance of a
+  /// (Cartesian) row of the net to the segment — distance to a convex set is a convex function, so
+  /// its maximum over the hull is at a row — else the distance of the first row plus the piece's
+  /// radius. Infinite when the piece has no bound.
+  double chord_deviation(automata::StateId state, const Points& net, const Point& a, const Point& b) const;
 
  private:
   std::vector<bool> convex_;

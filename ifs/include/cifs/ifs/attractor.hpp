@@ -49,17 +49,24 @@ struct ToleranceOptions {
   int max_length = 8;
   /// Rows are homogeneous `(w·x, w)` and epsilon, radius and diameter are Cartesian (PieceBounds).
   bool homogeneous = false;
+  /// epsilon bounds the distance of every point of a piece to its chord — the segment between the
+  /// piece's end points (end_functionals) — instead of its diameter (PieceBounds::chord_deviation).
+  /// The polyline through the leaves' end points then holds every attractor point within epsilon,
+  /// and, when the pieces are connected (curves), lies within epsilon of the attractor: a proven
+  /// chordal (Hausdorff) deviation, with far fewer leaves than a piece size on smooth curves.
+  bool chordal = false;
 };
 
 /// A leaf of the tolerance traversal. Every attractor point below it lies within `radius` of
 /// `leaf.net.row(0)` (of its Cartesian image with `homogeneous`), any two of them within
-/// `diameter` (PieceBounds); `converged` when `diameter < epsilon`, otherwise the branch stopped
-/// at `max_depth`.
+/// `diameter` (PieceBounds), and with `chordal` within `deviation` of its chord; `converged` when
+/// `diameter < epsilon` (`deviation < epsilon`), otherwise the branch stopped at `max_depth`.
 struct ToleranceLeaf {
   Leaf leaf;
   double radius;
   bool converged;
   double diameter;
+  double deviation = 0;  // chordal only
 };
 
 using ToleranceCallback = std::function<void(const ToleranceLeaf&)>;
@@ -72,10 +79,10 @@ struct ToleranceResult {
 };
 
 /// Depth-first traversal that stops a branch as soon as its whole attractor piece is known to have
-/// diameter < epsilon: by PieceBounds, the hull of the net for states whose paths carry only
-/// non-negative matrices, else `2·radius·diam(N)` with `radius` from `contraction` (sound also for
-/// matrices with negative entries). Throws InvalidInput for epsilon ≤ 0, a negative max_depth
-/// or a system that is not contractive.
+/// diameter < epsilon (with `chordal`: to lie within epsilon of its chord): by PieceBounds, the hull of the
+/// net for states whose paths carry only non-negative matrices, else `2·radius·diam(N)` with `radius` from
+/// `contraction` (sound also for matrices with negative entries). Throws InvalidInput for epsilon ≤ 0, a
+/// negative max_depth or a system that is not contractive.
 ToleranceResult for_each_leaf_to_tolerance(const automata::Automaton& automaton, std::span<const Points> nets,
                                            const ToleranceOptions& options,
                                            const ToleranceCallback& callback);

@@ -23,6 +23,10 @@ struct SampleOptions {
   /// Proven piece size (depth < 0): every leaf's whole attractor piece has a diameter below it
   /// (for_each_leaf_to_tolerance), in the units of the points returned.
   double tolerance = 0;
+  /// The tolerance bounds each piece's distance to its chord instead of its diameter
+  /// (ToleranceOptions::chordal): the points, in order, are a polyline within the tolerance of the
+  /// curve — what CAD calls a chordal deviation.
+  bool chordal = false;
   /// Nets hold homogeneous rows `(w·x, w)`: the tolerance bounds Cartesian pieces (PieceBounds) and
   /// the points returned are Cartesian.
   bool homogeneous = false;
