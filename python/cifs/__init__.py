@@ -18,7 +18,17 @@ of the ``cifs`` command line.
 """
 import sys as _sys
 
-from . import _cifs
+try:
+    import numpy as _numpy  # noqa: F401 — every array crosses as numpy: fail here, not at the first call
+    from . import _cifs
+except ImportError as _error:  # another interpreter than the build's, or one without numpy
+    import glob as _glob
+    import os as _os
+    _built = sorted(_os.path.basename(p) for p in _glob.glob(_os.path.join(_os.path.dirname(__file__), "_cifs*")))
+    raise ImportError(
+        f"cifs: the extension {', '.join(_built) or '(missing)'} does not load in this interpreter "
+        f"({_sys.executable}, Python {_sys.version.split()[0]}): {_error}. Run scripts with build/cifs-python, "
+        "which uses the interpreter the module was built for") from _error
 from ._cifs import InvalidInput, IoError, __version__
 
 nurbs = _cifs.nurbs

@@ -171,7 +171,8 @@ def main() -> int:
                 report.by_language[b.language] = report.by_language.get(b.language, 0) + 1
             elif b.skip_reason is not None:
                 report.marked.append(b)
-            elif not args.python_module and (b.language == "python" or "build/python" in "\n".join(b.lines)):
+            elif not args.python_module and (b.language == "python" or any(
+                    name in "\n".join(b.lines) for name in ("build/python", "build/cifs-python"))):
                 report.without_python.append(b)
             else:
                 runnable.append(b)

@@ -1,7 +1,13 @@
 # SPDX-License-Identifier: MIT
 """The package itself: submodules, error types, version, docstrings everywhere."""
 import inspect
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
 import unittest
+from pathlib import Path
 
 import cifs
 from support import SOURCE_DIR
@@ -45,6 +51,37 @@ class PackageTest(unittest.TestCase):
         missing = [f"cifs.{name}.{attr}" for name in SUBMODULES for attr in vars(getattr(cifs, name))
                    if not attr.startswith("_") and f"`{attr}`" not in text and f"`{attr}(" not in text]
         self.assertEqual(missing, [], "public objects that docs/python.md does not name")
+
+
+
+class InterpreterTest(unittest.TestCase):
+    """build/cifs-python runs the build's interpreter; another interpreter is told to use it."""
+
+    def setUp(self):
+        self.package = Path(cifs.__file__).resolve().parent  # build/python/cifs (ctest's PYTHONPATH)
+        self.env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+
+    def test_the_launcher_runs_the_build_interpreter_with_the_package(self):
+        launcher = self.package.parents[1] / "cifs-python"
+        self.assertTrue(os.access(launcher, os.X_OK), launcher)
+        with tempfile.TemporaryDirectory() as folder:  # from anywhere, without PYTHONPATH
+            run = subprocess.run([str(launcher), "-c", "import cifs, sys; print(cifs.__version__, sys.executable)"],
+                                 cwd=folder, env=self.env, capture_output=True, text=True, check=True)
+        version, executable = run.stdout.split()
+        self.assertEqual(version, cifs.__version__)
+        self.assertEqual(Path(executable).resolve(), Path(sys.executable).resolve())
+
+    def test_an_extension_for_another_interpreter_names_the_launcher(self):
+        with tempfile.TemporaryDirectory() as folder:
+            copy = Path(folder) / "cifs"
+            copy.mkdir()
+            shutil.copy(self.package / "__init__.py", copy)
+            (copy / "_cifs.cpython-39-x86_64-linux-gnu.so").write_bytes(b"")  # built for another Python
+            run = subprocess.run([sys.executable, "-c", "import cifs"], cwd=folder, env=dict(self.env, PYTHONPATH=folder),
+                                 capture_output=True, text=True)
+        self.assertNotEqual(run.returncode, 0)
+        self.assertIn("_cifs.cpython-39-x86_64-linux-gnu.so does not load in this interpreter", run.stderr)
+        self.assertIn("Run scripts with build/cifs-python", run.stderr)
 
 
 if __name__ == "__main__":
