@@ -648,9 +648,11 @@ std::string render(const RenderOptions& o) {
   return summary;
 }
 
-std::string dimension(const DimensionOptions& o) {
-  // A shape file holds "curve" or "surface", or "shape" alone (geomdl), or is an OBJ; anything else
-  // is an experiment.
+namespace {
+
+/// The input as an experiment. A shape file holds "curve" or "surface", or "shape" alone (geomdl),
+/// or is an OBJ; anything else is an experiment.
+io::Experiment dimension_input(const DimensionOptions& o) {
   bool shape = o.input.extension() == ".obj";
   if (o.input.extension() == ".json") {
     std::ifstream in(o.input);
@@ -669,16 +671,11 @@ std::string dimension(const DimensionOptions& o) {
   } else {
     e = io::read_experiment(o.input);
   }
-  if (o.depth && o.tolerance) throw InvalidInput("dimension: give --depth or --tolerance, not both");
-  // The sample is held in memory and its walk takes about 1 µs per point: a budget of 2^40 ran for days.
-  if (o.max_points < 1 || o.max_points > static_cast<std::size_t>(kMaxPoints))
-    throw InvalidInput("--max-points " + std::to_string(o.max_points) + ": expected 1 to " +
-                       std::to_string(kMaxPoints) + " points (the sample is held in memory)");
-  // Default: a tolerance sample, whose piece size is proven; --depth: the file's evaluation.
-  const bool sampled = !o.depth;
-  const experiment::Evaluation ev =
-      sampled ? experiment::sample(e, {.tolerance = o.tolerance.value_or(0), .max_points = o.max_points})
-              : experiment::evaluate(e, o.depth);
+  return e;
+}
+
+ifs::BoxCountingResult count_boxes(const experiment::Evaluation& ev, const DimensionOptions& o,
+                                   bool sampled) {
   ifs::BoxCountingOptions bo;
   bo.resolution = ev.resolution;
   bo.min_boxes = o.min_boxes;
@@ -687,19 +684,20 @@ std::string dimension(const DimensionOptions& o) {
   if (sampled) bo.points_per_box = 1;
   bo.min_level = o.min_level;
   bo.max_level = o.max_level;
-  const ifs::BoxCountingResult r = [&] {
-    try {
-      return ifs::box_counting(ev.points, bo);
-    } catch (const InvalidInput& error) {
-      // The proven piece bound may be loose (signed matrices): say that a depth evaluation is the way out.
-      if (!sampled || o.min_level >= 0) throw;
-      throw InvalidInput(std::string(error.what()) +
-                         "; or raise --max-points, or measure a depth evaluation (--depth K)");
-    }
-  }();
-  // The similarity dimension applies when every map is a similarity; say why when it does not.
+  try {
+    return ifs::box_counting(ev.points, bo);
+  } catch (const InvalidInput& error) {
+    // The proven piece bound may be loose (signed matrices): say that a depth evaluation is the way out.
+    if (!sampled || o.min_level >= 0) throw;
+    throw InvalidInput(std::string(error.what()) +
+                       "; or raise --max-points, or measure a depth evaluation (--depth K)");
+  }
+}
+
+/// The similarity dimension applies when every map is a similarity; `why_not` says why when it
+/// does not.
+std::optional<double> similarity_of(const experiment::Evaluation& ev, std::string& why_not) {
   std::optional<double> similarity;
-  std::string why_not;
   try {
     if (!ev.maps.empty())
       similarity = ifs::similarity_dimension(ev.maps);
@@ -710,31 +708,39 @@ std::string dimension(const DimensionOptions& o) {
   } catch (const InvalidInput& error) {
     why_not = error.what();
   }
+  return similarity;
+}
 
-  if (o.json) {
-    json j;
-    j["input"] = o.input.string();
-    j["kind"] = ev.kind;
-    j["mode"] = sampled ? "tolerance" : "depth";
-    j["depth"] = ev.depth;
-    j["points"] = ev.points.rows();
-    j["resolution"] = ev.resolution;
-    json box;
-    box["dimension"] = r.dimension;
-    box["levels"] = {r.min_level, r.max_level};
-    box["epsilon"] = {r.max_epsilon, r.min_epsilon};
-    box["r_squared"] = r.r_squared;
-    box["residual"] = r.residual;
-    box["size"] = r.size;
-    json counts = json::array();
-    for (const ifs::BoxCount& c : r.counts)
-      counts.push_back({{"level", c.level}, {"epsilon", c.epsilon}, {"boxes", c.boxes}});
-    box["counts"] = counts;
-    j["box_counting"] = box;
-    j["similarity_dimension"] = similarity ? json(*similarity) : json(nullptr);
-    if (!similarity) j["similarity_note"] = why_not;
-    return j.dump(2) + "\n";
-  }
+std::string dimension_json(const DimensionOptions& o, const experiment::Evaluation& ev, bool sampled,
+                           const ifs::BoxCountingResult& r, std::optional<double> similarity,
+                           const std::string& why_not) {
+  json j;
+  j["input"] = o.input.string();
+  j["kind"] = ev.kind;
+  j["mode"] = sampled ? "tolerance" : "depth";
+  j["depth"] = ev.depth;
+  j["points"] = ev.points.rows();
+  j["resolution"] = ev.resolution;
+  json box;
+  box["dimension"] = r.dimension;
+  box["levels"] = {r.min_level, r.max_level};
+  box["epsilon"] = {r.max_epsilon, r.min_epsilon};
+  box["r_squared"] = r.r_squared;
+  box["residual"] = r.residual;
+  box["size"] = r.size;
+  json counts = json::array();
+  for (const ifs::BoxCount& c : r.counts)
+    counts.push_back({{"level", c.level}, {"epsilon", c.epsilon}, {"boxes", c.boxes}});
+  box["counts"] = counts;
+  j["box_counting"] = box;
+  j["similarity_dimension"] = similarity ? json(*similarity) : json(nullptr);
+  if (!similarity) j["similarity_note"] = why_not;
+  return j.dump(2) + "\n";
+}
+
+std::string dimension_text(const DimensionOptions& o, const experiment::Evaluation& ev, bool sampled,
+                           const ifs::BoxCountingResult& r, std::optional<double> similarity,
+                           const std::string& why_not) {
   const std::string resolution = number_text(ev.resolution, 4);
   std::string out = o.input.string() + ": " + ev.kind + ", " +
                     (sampled ? "pieces < " + resolution + " (deepest " + std::to_string(ev.depth) + ")"
@@ -758,6 +764,27 @@ std::string dimension(const DimensionOptions& o) {
     out += line;
   }
   return out;
+}
+
+}  // namespace
+
+std::string dimension(const DimensionOptions& o) {
+  const io::Experiment e = dimension_input(o);
+  if (o.depth && o.tolerance) throw InvalidInput("dimension: give --depth or --tolerance, not both");
+  // The sample is held in memory and its walk takes about 1 µs per point: a budget of 2^40 ran for days.
+  if (o.max_points < 1 || o.max_points > static_cast<std::size_t>(kMaxPoints))
+    throw InvalidInput("--max-points " + std::to_string(o.max_points) + ": expected 1 to " +
+                       std::to_string(kMaxPoints) + " points (the sample is held in memory)");
+  // Default: a tolerance sample, whose piece size is proven; --depth: the file's evaluation.
+  const bool sampled = !o.depth;
+  const experiment::Evaluation ev =
+      sampled ? experiment::sample(e, {.tolerance = o.tolerance.value_or(0), .max_points = o.max_points})
+              : experiment::evaluate(e, o.depth);
+  const ifs::BoxCountingResult r = count_boxes(ev, o, sampled);
+  std::string why_not;
+  const std::optional<double> similarity = similarity_of(ev, why_not);
+  return o.json ? dimension_json(o, ev, sampled, r, similarity, why_not)
+                : dimension_text(o, ev, sampled, r, similarity, why_not);
 }
 
 std::string gallery(const std::filesystem::path& out, const std::filesystem::path& examples, bool quiet) {

@@ -51,227 +51,273 @@ int help_or_version(const CLI::App& app, const CLI::Error& e, std::string& resul
   return status;
 }
 
-/// Parses and runs one command; everything it prints on stdout goes to `result`.
-int run(int argc, char** argv, std::string& result) {
-  using namespace cifs::cli;
-  CLI::App app{"cifs — NURBS curves and surfaces as controlled iterated function systems"};
-  app.require_subcommand(1);
-  app.set_version_flag("--version", "cifs 0.1.0");
+namespace cli = cifs::cli;
 
-  EvalOptions ev;
+/// The options of every command: the parser binds them, the command's callback reads them.
+struct Commands {
+  explicit Commands(std::string& out) : result(out) {}
+  std::string& result;  // what the command prints on stdout
+  int status = 0;       // check's: 1 above tolerance
+  bool quiet = false;   // commands without a bar of their own show a Stage
+  cli::EvalOptions ev;
+  cli::InsertOptions in;
+  std::filesystem::path info_shape;
+  cli::ShapeSelection info_select;
+  cli::AutomatonOptions au;
+  cli::AttractorOptions at;
+  cli::CheckOptions ch;
+  cli::SchemeOptions sc;
+  cli::RenderOptions re;
+  cli::SubdivideOptions su;
+  cli::LimitCommandOptions li;
+  cli::DimensionOptions di;
+  std::filesystem::path gallery_out = "out";
+  std::filesystem::path gallery_examples = CIFS_EXAMPLES_DIR;
+};
+
+void add_eval(CLI::App& app, Commands& c) {
   auto* eval_cmd =
       app.add_subcommand("eval", "Evaluate a curve or surface; prints {\"points\": [...]} or writes -o FILE");
-  eval_cmd->add_option("shape", ev.shape, "Shape file (.json or .obj)")->required();
-  eval_cmd->add_option("--at", ev.at, "Parameter U (curves) or U,V (surfaces); repeatable")
+  eval_cmd->add_option("shape", c.ev.shape, "Shape file (.json or .obj)")->required();
+  eval_cmd->add_option("--at", c.ev.at, "Parameter U (curves) or U,V (surfaces); repeatable")
       ->allow_extra_args(false);
-  eval_cmd->add_option("--samples", ev.samples,
+  eval_cmd->add_option("--samples", c.ev.samples,
                        "N parameters evenly spaced over the domain (surfaces: N×N grid)");
-  eval_cmd->add_option("-o,--output", ev.output,
+  eval_cmd->add_option("-o,--output", c.ev.output,
                        "Write the points to a file as they are computed: .json, .npy, .ply or .obj");
-  eval_cmd->add_flag("--quiet", ev.quiet, "No progress bar (-o)");
-  add_shape_selection(eval_cmd, ev.select);
-  eval_cmd->callback([&] { result = eval(ev); });
+  eval_cmd->add_flag("--quiet", c.ev.quiet, "No progress bar (-o)");
+  add_shape_selection(eval_cmd, c.ev.select);
+  eval_cmd->callback([&] { c.result = cli::eval(c.ev); });
+}
 
-  InsertOptions in;
+void add_insert(CLI::App& app, Commands& c) {
   auto* insert_cmd = app.add_subcommand("insert", "Insert knots; prints the refined shape as JSON");
-  insert_cmd->add_option("shape", in.shape, "Shape file (.json or .obj)")->required();
-  insert_cmd->add_option("--knot", in.knots, "Knot to insert; repeatable")->allow_extra_args(false);
-  insert_cmd->add_option("--dir", in.dir, "Surface direction: u or v");
-  insert_cmd->add_flag("--midpoints", in.midpoints,
+  insert_cmd->add_option("shape", c.in.shape, "Shape file (.json or .obj)")->required();
+  insert_cmd->add_option("--knot", c.in.knots, "Knot to insert; repeatable")->allow_extra_args(false);
+  insert_cmd->add_option("--dir", c.in.dir, "Surface direction: u or v");
+  insert_cmd->add_flag("--midpoints", c.in.midpoints,
                        "Insert the midpoint of every span (both directions for surfaces)");
-  add_shape_selection(insert_cmd, in.select);
-  bool quiet = false;  // commands without a bar of their own show a Stage
-  add_quiet(insert_cmd, quiet);
+  add_shape_selection(insert_cmd, c.in.select);
+  add_quiet(insert_cmd, c.quiet);
   insert_cmd->callback([&] {
-    const cifs::render::Stage stage("insert", quiet);
-    result = insert(in);
+    const cifs::render::Stage stage("insert", c.quiet);
+    c.result = cli::insert(c.in);
   });
+}
 
-  std::filesystem::path info_shape;
-  ShapeSelection info_select;
+void add_info(CLI::App& app, Commands& c) {
   auto* info_cmd = app.add_subcommand(
       "info",
       "Degree, counts, domain and segments of a shape (of each shape of the file); counts, valences and "
       "topology of a mesh");
-  info_cmd->add_option("shape", info_shape, "Shape file (.json or .obj) or polygon mesh (.obj or .ply)")
+  info_cmd->add_option("shape", c.info_shape, "Shape file (.json or .obj) or polygon mesh (.obj or .ply)")
       ->required();
-  add_shape_selection(info_cmd, info_select);
-  add_quiet(info_cmd, quiet);
+  add_shape_selection(info_cmd, c.info_select);
+  add_quiet(info_cmd, c.quiet);
   info_cmd->callback([&] {
-    const cifs::render::Stage stage("info", quiet);
-    result = info(info_shape, info_select);
+    const cifs::render::Stage stage("info", c.quiet);
+    c.result = cli::info(c.info_shape, c.info_select);
   });
+}
 
-  AutomatonOptions au;
+void add_automaton(CLI::App& app, Commands& c) {
   auto* automaton_cmd =
       app.add_subcommand("automaton",
                          "The knot-doubling automaton of a curve, the tensor-product automaton of a surface "
                          "(JSON, DOT or SVG)");
-  automaton_cmd->add_option("shape", au.shape, "Shape file (.json or .obj)")->required();
-  automaton_cmd->add_option("--format", au.format, "json (default), dot or svg");
-  automaton_cmd->add_flag("--minimize", au.minimize, "Merge states that no control net can tell apart");
-  add_shape_selection(automaton_cmd, au.select);
-  add_quiet(automaton_cmd, quiet);
+  automaton_cmd->add_option("shape", c.au.shape, "Shape file (.json or .obj)")->required();
+  automaton_cmd->add_option("--format", c.au.format, "json (default), dot or svg");
+  automaton_cmd->add_flag("--minimize", c.au.minimize, "Merge states that no control net can tell apart");
+  add_shape_selection(automaton_cmd, c.au.select);
+  add_quiet(automaton_cmd, c.quiet);
   automaton_cmd->callback([&] {
-    const cifs::render::Stage stage("automaton", quiet);
-    result = automaton(au);
+    const cifs::render::Stage stage("automaton", c.quiet);
+    c.result = cli::automaton(c.au);
   });
+}
 
-  AttractorOptions at;
+void add_attractor(CLI::App& app, Commands& c) {
   auto* attractor_cmd = app.add_subcommand(
       "attractor",
       "The attractor of a curve's automaton (in curve order) or a surface's (its quad mesh, "
       "or points)");
-  attractor_cmd->add_option("shape", at.shape, "Shape file (.json or .obj)")->required();
-  attractor_cmd->add_option("--depth", at.depth, "2^K leaves per segment");
-  attractor_cmd->add_option("--tolerance", at.tolerance,
+  attractor_cmd->add_option("shape", c.at.shape, "Shape file (.json or .obj)")->required();
+  attractor_cmd->add_option("--depth", c.at.depth, "2^K leaves per segment");
+  attractor_cmd->add_option("--tolerance", c.at.tolerance,
                             "Proven piece size: stop each branch when its whole piece is smaller than E");
-  attractor_cmd->add_option("--deviation", at.deviation,
+  attractor_cmd->add_option("--deviation", c.at.deviation,
                             "Curves: a polyline proven within D of the curve (chordal deviation, far fewer "
                             "points than --tolerance)");
-  attractor_cmd->add_option("--chaos", at.chaos, "N chaos-game points (a random walk over the automaton)");
+  attractor_cmd->add_option("--chaos", c.at.chaos, "N chaos-game points (a random walk over the automaton)");
   attractor_cmd
-      ->add_option("--seed", at.seed, "Chaos-game seed (default: drawn, and printed with the points)")
+      ->add_option("--seed", c.at.seed, "Chaos-game seed (default: drawn, and printed with the points)")
       ->check(seed_text);
   attractor_cmd->add_option(
-      "--format", at.format,
+      "--format", c.at.format,
       "json (default), npy, ply, obj or svg (surfaces at a depth: ply and obj the mesh)");
   attractor_cmd->add_option(
-      "-o,--output", at.output,
+      "-o,--output", c.at.output,
       "Output file, its format from the extension (.json, .npy, .ply, .obj: written as computed; .svg)");
-  attractor_cmd->add_flag("--quiet", at.quiet, "No progress on the terminal");
-  add_shape_selection(attractor_cmd, at.select);
-  attractor_cmd->callback([&] { result = attractor(at); });
+  attractor_cmd->add_flag("--quiet", c.at.quiet, "No progress on the terminal");
+  add_shape_selection(attractor_cmd, c.at.select);
+  attractor_cmd->callback([&] { c.result = cli::attractor(c.at); });
+}
 
-  CheckOptions ch;
-  int status = 0;
+void add_check(CLI::App& app, Commands& c) {
   auto* check_cmd =
       app.add_subcommand("check", "Attractor vs knot insertion vs Cox-de Boor; exit 1 above tolerance");
-  check_cmd->add_option("shape", ch.shape, "Shape file (.json or .obj)")->required();
-  check_cmd->add_option("--depth", ch.depth, "Depth K (2^K leaves per segment and direction; default 8)");
-  check_cmd->add_option("--tolerance", ch.tolerance, "Relative tolerance (default 1e-12)");
-  check_cmd->add_flag("--json", ch.json, "Machine-readable report");
-  add_shape_selection(check_cmd, ch.select);
-  add_quiet(check_cmd, quiet);
+  check_cmd->add_option("shape", c.ch.shape, "Shape file (.json or .obj)")->required();
+  check_cmd->add_option("--depth", c.ch.depth, "Depth K (2^K leaves per segment and direction; default 8)");
+  check_cmd->add_option("--tolerance", c.ch.tolerance, "Relative tolerance (default 1e-12)");
+  check_cmd->add_flag("--json", c.ch.json, "Machine-readable report");
+  add_shape_selection(check_cmd, c.ch.select);
+  add_quiet(check_cmd, c.quiet);
   check_cmd->callback([&] {
-    const cifs::render::Stage stage("check", quiet);
-    result = check(ch, status);
+    const cifs::render::Stage stage("check", c.quiet);
+    c.result = cli::check(c.ch, c.status);
   });
+}
 
-  SchemeOptions sc;
+void add_scheme(CLI::App& app, Commands& c) {
   auto* scheme_cmd =
       app.add_subcommand("scheme",
                          "Subdivision schemes: --analyze (JSON), --refine a polygon, --list; mesh schemes: "
                          "--valence N --analyze");
-  scheme_cmd->add_option("name", sc.name, "Scheme name (cifs scheme --list)");
-  scheme_cmd->add_option("--param", sc.params, "Scheme parameter NAME=VALUE; repeatable")
+  scheme_cmd->add_option("name", c.sc.name, "Scheme name (cifs scheme --list)");
+  scheme_cmd->add_option("--param", c.sc.params, "Scheme parameter NAME=VALUE; repeatable")
       ->allow_extra_args(false);
-  scheme_cmd->add_flag("--analyze", sc.analyze, "Print the analysis as JSON");
-  scheme_cmd->add_option("--refine", sc.refine, "Polygon file to refine (docs/formats.md)");
-  scheme_cmd->add_option("--steps", sc.steps, "Refinement steps (default 1)");
-  scheme_cmd->add_option("--ends", sc.ends, "Open polygons: auto (default), reflect or keep");
+  scheme_cmd->add_flag("--analyze", c.sc.analyze, "Print the analysis as JSON");
+  scheme_cmd->add_option("--refine", c.sc.refine, "Polygon file to refine (docs/formats.md)");
+  scheme_cmd->add_option("--steps", c.sc.steps, "Refinement steps (default 1)");
+  scheme_cmd->add_option("--ends", c.sc.ends, "Open polygons: auto (default), reflect or keep");
   scheme_cmd->add_option(
-      "--format", sc.format,
+      "--format", c.sc.format,
       "Refined polygon as json (default), svg or obj; mesh schemes' analysis: json or table");
-  scheme_cmd->add_option("--max-power", sc.max_power,
+  scheme_cmd->add_option("--max-power", c.sc.max_power,
                          "Analysis: largest power L of the difference schemes (default 20)");
-  scheme_cmd->add_flag("--list", sc.list, "List the schemes and their parameters");
-  scheme_cmd->add_option("--valence", sc.valence,
+  scheme_cmd->add_flag("--list", c.sc.list, "List the schemes and their parameters");
+  scheme_cmd->add_option("--valence", c.sc.valence,
                          "Mesh schemes (catmull-clark, loop, doo-sabin, butterfly, sqrt3): analyse the local "
                          "subdivision matrix at a vertex of valence N (doo-sabin: an N-gon face)");
-  scheme_cmd->add_option("--valences", sc.valences, "Mesh schemes: several valences, A..B or A,B,C");
+  scheme_cmd->add_option("--valences", c.sc.valences, "Mesh schemes: several valences, A..B or A,B,C");
   scheme_cmd->add_option(
-      "--boundary", sc.boundary,
+      "--boundary", c.sc.boundary,
       "Mesh schemes: a boundary vertex (catmull-clark, loop), rule edge or corner at valence 2");
-  add_quiet(scheme_cmd, quiet);
+  add_quiet(scheme_cmd, c.quiet);
   scheme_cmd->callback([&] {
-    const cifs::render::Stage stage("scheme", quiet);
-    result = scheme(sc);
+    const cifs::render::Stage stage("scheme", c.quiet);
+    c.result = cli::scheme(c.sc);
   });
+}
 
-  RenderOptions re;
+void add_render(CLI::App& app, Commands& c) {
   auto* render_cmd =
       app.add_subcommand("render", "Run experiment files: OpenEXR image, PNG preview, geometry");
-  render_cmd->add_option("experiment", re.experiments, "Experiment files (docs/experiments.md), run in order")
+  render_cmd
+      ->add_option("experiment", c.re.experiments, "Experiment files (docs/experiments.md), run in order")
       ->required();
-  render_cmd->add_option("-o,--output", re.exr, "OpenEXR image (default: the file's outputs.exr)");
-  render_cmd->add_option("--png", re.png, "PNG preview (default: the file's outputs.png)");
+  render_cmd->add_option("-o,--output", c.re.exr, "OpenEXR image (default: the file's outputs.exr)");
+  render_cmd->add_option("--png", c.re.png, "PNG preview (default: the file's outputs.png)");
   render_cmd->add_option(
-      "--out-dir", re.out_dir,
+      "--out-dir", c.re.out_dir,
       "Folder of the file's other outputs (default: the folder of -o, else the current one)");
-  render_cmd->add_option("--threads", re.threads,
+  render_cmd->add_option("--threads", c.re.threads,
                          "Worker threads (default: the file's render.threads; 0: all)");
-  render_cmd->add_option("--max-memory", re.max_memory,
+  render_cmd->add_option("--max-memory", c.re.max_memory,
                          "Refuse (before any work) an image, mesh or curve above SIZE (e.g. 4G; default 2G)");
-  render_cmd->add_flag("--quiet", re.quiet, "No progress on the terminal");
-  render_cmd->callback([&] { result = render(re); });
+  render_cmd->add_flag("--quiet", c.re.quiet, "No progress on the terminal");
+  render_cmd->callback([&] { c.result = cli::render(c.re); });
+}
 
-  SubdivideOptions su;
+void add_subdivide(CLI::App& app, Commands& c) {
   auto* subdivide_cmd = app.add_subcommand(
       "subdivide", "Subdivide a polygon mesh: Catmull-Clark, Loop, Doo-Sabin, Butterfly, sqrt3");
-  subdivide_cmd->add_option("mesh", su.mesh, "Polygon mesh (.obj or .ply)")->required();
-  subdivide_cmd->add_option("--scheme", su.scheme, "catmull-clark, loop, doo-sabin, butterfly or sqrt3")
+  subdivide_cmd->add_option("mesh", c.su.mesh, "Polygon mesh (.obj or .ply)")->required();
+  subdivide_cmd->add_option("--scheme", c.su.scheme, "catmull-clark, loop, doo-sabin, butterfly or sqrt3")
       ->required();
-  subdivide_cmd->add_option("--levels", su.levels, "Subdivision steps (default 1)");
-  subdivide_cmd->add_option("--boundary", su.boundary,
+  subdivide_cmd->add_option("--levels", c.su.levels, "Subdivision steps (default 1)");
+  subdivide_cmd->add_option("--boundary", c.su.boundary,
                             "Boundary corners (one face): edge (smoothed, default) or corner (kept)");
-  subdivide_cmd->add_flag("--factored", su.factored,
+  subdivide_cmd->add_flag("--factored", c.su.factored,
                           "Linear subdivision then averaging (catmull-clark on quads, loop); same result");
-  subdivide_cmd->add_flag("--quiet", su.quiet, "No progress bar");
-  subdivide_cmd->add_option("-o,--output", su.output, "Output mesh (.obj or .ply; default: OBJ on stdout)");
-  subdivide_cmd->callback([&] { result = subdivide(su); });
+  subdivide_cmd->add_flag("--quiet", c.su.quiet, "No progress bar");
+  subdivide_cmd->add_option("-o,--output", c.su.output, "Output mesh (.obj or .ply; default: OBJ on stdout)");
+  subdivide_cmd->callback([&] { c.result = cli::subdivide(c.su); });
+}
 
-  LimitCommandOptions li;
+void add_limit(CLI::App& app, Commands& c) {
   auto* limit_cmd = app.add_subcommand(
       "limit", "Limit points (and normals) of a subdivision surface: catmull-clark, loop, butterfly, sqrt3");
-  limit_cmd->add_option("mesh", li.mesh, "Polygon mesh (.obj or .ply)")->required();
-  limit_cmd->add_option("--scheme", li.scheme, "catmull-clark, loop, butterfly or sqrt3")->required();
-  limit_cmd->add_option("--levels", li.levels,
+  limit_cmd->add_option("mesh", c.li.mesh, "Polygon mesh (.obj or .ply)")->required();
+  limit_cmd->add_option("--scheme", c.li.scheme, "catmull-clark, loop, butterfly or sqrt3")->required();
+  limit_cmd->add_option("--levels", c.li.levels,
                         "Subdivision steps before the vertices go to the limit (default 1)");
-  limit_cmd->add_option("--boundary", li.boundary,
+  limit_cmd->add_option("--boundary", c.li.boundary,
                         "Boundary corners (one face): edge (smoothed, default) or corner (kept)");
-  limit_cmd->add_flag("--normals", li.normals, "Write unit limit normals (closed meshes)");
-  limit_cmd->add_option("-o,--output", li.output, "Output mesh (.obj or .ply; default: OBJ on stdout)");
-  add_quiet(limit_cmd, quiet);
+  limit_cmd->add_flag("--normals", c.li.normals, "Write unit limit normals (closed meshes)");
+  limit_cmd->add_option("-o,--output", c.li.output, "Output mesh (.obj or .ply; default: OBJ on stdout)");
+  add_quiet(limit_cmd, c.quiet);
   limit_cmd->callback([&] {
-    const cifs::render::Stage stage("limit", quiet);
-    result = limit(li);
+    const cifs::render::Stage stage("limit", c.quiet);
+    c.result = cli::limit(c.li);
   });
+}
 
-  DimensionOptions di;
+void add_dimension(CLI::App& app, Commands& c) {
   auto* dimension_cmd = app.add_subcommand(
       "dimension",
       "Box-counting dimension of an experiment's or shape's attractor (and similarity dimension)");
-  dimension_cmd->add_option("input", di.input, "Experiment file, or shape file (.json or .obj)")->required();
+  dimension_cmd->add_option("input", c.di.input, "Experiment file, or shape file (.json or .obj)")
+      ->required();
   auto* dimension_depth = dimension_cmd->add_option(
-      "--depth", di.depth, "Evaluate to this depth instead of sampling to a tolerance");
+      "--depth", c.di.depth, "Evaluate to this depth instead of sampling to a tolerance");
   dimension_cmd
-      ->add_option("--tolerance", di.tolerance,
+      ->add_option("--tolerance", c.di.tolerance,
                    "Sample: every piece smaller than this fraction of the control nets' extent (default: "
                    "the smallest 2^-j within --max-points)")
       ->excludes(dimension_depth);
-  dimension_cmd->add_option("--max-points", di.max_points,
+  dimension_cmd->add_option("--max-points", c.di.max_points,
                             "Point budget of the tolerance sample (default 2^21)");
-  dimension_cmd->add_option("--min-level", di.min_level, "Fit range: coarsest box level k (ε = size·2^-k)");
-  dimension_cmd->add_option("--max-level", di.max_level, "Fit range: finest box level");
-  dimension_cmd->add_option("--min-boxes", di.min_boxes,
+  dimension_cmd->add_option("--min-level", c.di.min_level, "Fit range: coarsest box level k (ε = size·2^-k)");
+  dimension_cmd->add_option("--max-level", c.di.max_level, "Fit range: finest box level");
+  dimension_cmd->add_option("--min-boxes", c.di.min_boxes,
                             "Automatic fit range: only levels with at least this many boxes (default 1000)");
-  dimension_cmd->add_flag("--json", di.json, "Machine-readable report");
-  add_shape_selection(dimension_cmd, di.select);
-  add_quiet(dimension_cmd, quiet);
+  dimension_cmd->add_flag("--json", c.di.json, "Machine-readable report");
+  add_shape_selection(dimension_cmd, c.di.select);
+  add_quiet(dimension_cmd, c.quiet);
   dimension_cmd->callback([&] {
-    const cifs::render::Stage stage("dimension", quiet);
-    result = dimension(di);
+    const cifs::render::Stage stage("dimension", c.quiet);
+    c.result = cli::dimension(c.di);
   });
+}
 
-  std::filesystem::path gallery_out = "out";
+void add_gallery(CLI::App& app, Commands& c) {
   auto* gallery_cmd = app.add_subcommand("gallery", "Write the example gallery (the built-in default job)");
-  std::filesystem::path gallery_examples = CIFS_EXAMPLES_DIR;
-  gallery_cmd->add_option("out", gallery_out, "Output folder (default: out)");
-  gallery_cmd->add_option("--examples", gallery_examples,
+  gallery_cmd->add_option("out", c.gallery_out, "Output folder (default: out)");
+  gallery_cmd->add_option("--examples", c.gallery_examples,
                           "Folder with shapes/ and experiments/ (default: the source tree's examples/)");
-  gallery_cmd->add_flag("--quiet", quiet, "No progress on the terminal");
-  gallery_cmd->callback([&] { result = gallery(gallery_out, gallery_examples, quiet); });
+  gallery_cmd->add_flag("--quiet", c.quiet, "No progress on the terminal");
+  gallery_cmd->callback([&] { c.result = cli::gallery(c.gallery_out, c.gallery_examples, c.quiet); });
+}
+
+/// Parses and runs one command; everything it prints on stdout goes to `result`.
+int run(int argc, char** argv, std::string& result) {
+  CLI::App app{"cifs — NURBS curves and surfaces as controlled iterated function systems"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "cifs 0.1.0");
+  Commands c(result);
+  add_eval(app, c);
+  add_insert(app, c);
+  add_info(app, c);
+  add_automaton(app, c);
+  add_attractor(app, c);
+  add_check(app, c);
+  add_scheme(app, c);
+  add_render(app, c);
+  add_subdivide(app, c);
+  add_limit(app, c);
+  add_dimension(app, c);
+  add_gallery(app, c);
 
   try {
     const std::string first = argc > 1 ? argv[1] : "-";
@@ -301,7 +347,7 @@ int run(int argc, char** argv, std::string& result) {
     std::cerr << "cifs: " << message << "\n";
     return 2;
   }
-  return status;
+  return c.status;
 }
 
 }  // namespace

@@ -233,16 +233,22 @@ std::string scheme(const SchemeOptions& o) {
   return io::encode(io::Polygon{out, polygon.closed}, o.format);
 }
 
-std::string write_scheme_gallery(const std::filesystem::path& folder, const std::filesystem::path& examples) {
-  std::error_code ec;
-  std::filesystem::create_directories(folder, ec);
-  if (ec) throw IoError(folder.string() + ": cannot create the folder (" + ec.message() + ")");
+namespace {
+
+/// The gallery's folder and the lines of its summary.
+struct SchemeGallery {
+  const std::filesystem::path& folder;
   std::string summary;
-  const auto write = [&](const std::string& name, const std::string& svg) {
+  void write(const std::string& name, const std::string& svg) {
     write_file_atomically(folder / name, svg);
     summary += "scheme gallery: wrote " + (folder / name).string() + "\n";
-  };
-  constexpr int kSteps = 5;
+  }
+};
+
+constexpr int kSteps = 5;
+
+/// Seed 000: the Lane-Riesenfeld family and its variants on the example polygons.
+void seed_000_figures(SchemeGallery& gallery, const std::filesystem::path& examples) {
   // Seed 000: "degree" = averaging passes + 1 = B-spline degree + 1 = smoothing stages + 1.
   const int seed_degrees[] = {2, 3, 5, 10, 30};
   const char* dashes[] = {"", "10 5", "10 4 2 4", "10 4 2 4 2 4", "2 4"};
@@ -257,7 +263,7 @@ std::string write_scheme_gallery(const std::filesystem::path& folder, const std:
   const char* colours[] = {"#1f77b4", "#ff7f0e", "#2ca02c"};
   for (const auto& [shape, P] : seed_shapes(examples)) {
     for (const auto& alg : algorithms) {
-      write(
+      gallery.write(
           alg.key + "_" + shape + "_degree3.svg",
           strokes_svg(
               {control(P), {sd::refine(alg.make(3), P, true, kSteps), true, "#1f77b4", 1.8, "", ""}},
@@ -266,22 +272,25 @@ std::string write_scheme_gallery(const std::filesystem::path& folder, const std:
       for (int i = 0; i < 5; ++i)
         strokes.push_back({sd::refine(alg.make(seed_degrees[i]), P, true, kSteps), true, "#1f77b4", 1.5,
                            dashes[i], "seed degree " + std::to_string(seed_degrees[i])});
-      write(alg.key + "_" + shape + "_degrees.svg",
-            strokes_svg(strokes, "\"" + shape + "\", seed degrees 2, 3, 5, 10, 30, " +
-                                     std::to_string(kSteps) + " subdivisions, " + alg.title));
+      gallery.write(alg.key + "_" + shape + "_degrees.svg",
+                    strokes_svg(strokes, "\"" + shape + "\", seed degrees 2, 3, 5, 10, 30, " +
+                                             std::to_string(kSteps) + " subdivisions, " + alg.title));
     }
     std::vector<Stroke> compare{control(P)};
     for (int a = 0; a < 3; ++a)
       compare.push_back({sd::refine(algorithms[a].make(30), P, true, kSteps), true, colours[a], 1.8, "",
                          algorithms[a].title});
-    write("compare_" + shape + ".svg", strokes_svg(compare, "\"" + shape + "\", seed degree 30, " +
-                                                                std::to_string(kSteps) + " subdivisions"));
+    gallery.write("compare_" + shape + ".svg",
+                  strokes_svg(compare, "\"" + shape + "\", seed degree 30, " + std::to_string(kSteps) +
+                                           " subdivisions"));
   }
+}
 
-  // Seed 001.
+/// Seed 001: Chaikin, the 4-point scheme's tension, corner cutting.
+void seed_001_figures(SchemeGallery& gallery, const std::filesystem::path& examples) {
   const Points zigzag = rows({{0, 0}, {1, 2}, {2, 0}, {3, 2}, {4, 0}, {5, 1.5}});
   const Points square = rows({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
-  write(
+  gallery.write(
       "chaikin_open_closed.svg",
       strokes_svg({control(zigzag, false),
                    {sd::refine(sd::chaikin(), zigzag, false, kSteps), false, "#1f77b4", 1.8, "",
@@ -296,8 +305,8 @@ std::string write_scheme_gallery(const std::filesystem::path& folder, const std:
       strokes.push_back(
           {sd::refine(sd::generalized_four_point(sd::parse_rational(ws[i], "w")), square, true, 7), true,
            cs[i], 1.5, "", std::string("w = ") + ws[i] + " (eps = 16w)"});
-    write("four_point_tension.svg",
-          strokes_svg(strokes, "Generalised 4-point scheme, tension sweep, 7 subdivisions"));
+    gallery.write("four_point_tension.svg",
+                  strokes_svg(strokes, "Generalised 4-point scheme, tension sweep, 7 subdivisions"));
   }
   {
     std::vector<Stroke> strokes{control(square)};
@@ -308,8 +317,8 @@ std::string write_scheme_gallery(const std::filesystem::path& folder, const std:
       strokes.push_back({sd::refine(sd::corner_cutting(a, 1 - a), square, true, 7), true, cs[i], 1.5, "",
                          std::string("a = ") + as[i] + ", b = 1 - a"});
     }
-    write("corner_cutting_symmetric.svg",
-          strokes_svg(strokes, "Corner cutting with b = 1 - a, 7 subdivisions"));
+    gallery.write("corner_cutting_symmetric.svg",
+                  strokes_svg(strokes, "Corner cutting with b = 1 - a, 7 subdivisions"));
   }
   {
     std::vector<Stroke> strokes{control(square)};
@@ -321,12 +330,12 @@ std::string write_scheme_gallery(const std::filesystem::path& folder, const std:
                                                        sd::parse_rational(ab[i].second, "b")),
                                     square, true, 7),
                          true, cs[i], 1.5, "", std::string("a = ") + ab[i].first + ", b = " + ab[i].second});
-    write("corner_cutting_asymmetric.svg",
-          strokes_svg(strokes, "Corner cutting with b != 1 - a, 7 subdivisions"));
+    gallery.write("corner_cutting_asymmetric.svg",
+                  strokes_svg(strokes, "Corner cutting with b != 1 - a, 7 subdivisions"));
   }
   {
     const Points P = seed_shapes(examples)[0].second;
-    write(
+    gallery.write(
         "approximating_interpolating.svg",
         strokes_svg(
             {control(P),
@@ -334,7 +343,18 @@ std::string write_scheme_gallery(const std::filesystem::path& folder, const std:
              {sd::refine(sd::four_point(), P, true, 6), true, "#ff7f0e", 1.8, "", "4-point (interpolating)"}},
             "\"hepta\": approximating vs interpolating"));
   }
-  return summary;
+}
+
+}  // namespace
+
+std::string write_scheme_gallery(const std::filesystem::path& folder, const std::filesystem::path& examples) {
+  std::error_code ec;
+  std::filesystem::create_directories(folder, ec);
+  if (ec) throw IoError(folder.string() + ": cannot create the folder (" + ec.message() + ")");
+  SchemeGallery gallery{folder, {}};
+  seed_000_figures(gallery, examples);
+  seed_001_figures(gallery, examples);
+  return gallery.summary;
 }
 
 }  // namespace cifs::cli

@@ -828,10 +828,23 @@ render::PreviewOptions preview_options(const io::RenderSettings& r, const render
   return po;
 }
 
-}  // namespace
+/// Stages without a count show their name and time on a terminal (render::Stage).
+struct Stages {
+  const io::Experiment& e;
+  const RunOptions& o;
+  std::optional<render::Stage> stage;
+  void begin(const std::string& what) { stage.emplace(e.name + ": " + what, o.quiet); }
+  void end() { stage.reset(); }
+};
 
-RunReport run(const io::Experiment& e, const RunOptions& o) {
-  RunReport report;
+/// The image paths (empty: none) and whether anything is drawn.
+struct ImagePaths {
+  std::filesystem::path exr, png;
+  bool drawn;
+};
+
+/// Refuses a run without output and an image that would not fit, before any work.
+ImagePaths image_paths(const io::Experiment& e, const RunOptions& o) {
   const std::filesystem::path exr = !o.exr.empty()          ? o.exr
                                     : e.outputs.exr.empty() ? ""
                                                             : o.out_dir / e.outputs.exr;
@@ -850,30 +863,21 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
     throw InvalidInput("render: a " + std::to_string(e.render.width) + " × " +
                        std::to_string(e.render.height) + " image needs " + number_text(image_bytes / 1e9, 6) +
                        " GB, above the limit of " + number_text(double(o.max_bytes) / 1e9, 6) + " GB");
-  render::check_part(o.part, "run");
-  const bool distributed = o.part.count > 1, writer = o.part.index == 0;
-  if (distributed && !o.combine) throw InvalidInput("run: a distributed run needs a combine function");
-  Outputs outputs;
-  if (writer) reserve_outputs(outputs, e, o, exr, png);
-  const unsigned threads = o.threads.value_or(e.render.threads);
+  return {exr, png, drawn};
+}
 
-  std::string kind;
-  // Stages without a count show their name and time on a terminal (render::Stage).
-  std::optional<render::Stage> stage;
-  const auto begin = [&](const std::string& what) { stage.emplace(e.name + ": " + what, o.quiet); };
-  begin("evaluation");
-  Scene scene = make_scene(e, o, report, kind);
-  stage.reset();
-  if (!drawn) {
-    report.depth = scene.depth;
-    if (!writer) return report;  // a distributed run's files are rank 0's
-    begin("writing files");
-    report.written = write_files(scene, e, outputs);
-    stage.reset();
-    outputs.files.commit();
-    report.summary = summary(e, kind, scene, report);
-    return report;
-  }
+/// A run without an image: its geometry and automaton files only.
+void write_without_image(const Scene& scene, const io::Experiment& e, const std::string& kind,
+                         Outputs& outputs, Stages& stages, RunReport& report) {
+  stages.begin("writing files");
+  report.written = write_files(scene, e, outputs);
+  stages.end();
+  outputs.files.commit();
+  report.summary = summary(e, kind, scene, report);
+}
+
+/// The camera: the shape's extent, with the chaos game's first points or the drawn control net.
+render::Camera frame(Scene& scene, const io::Experiment& e) {
   if (e.evaluation.mode == Mode::chaos && !e.ifs) {
     // Frame the chaos game from a short walk of the same automaton.
     ifs::ChaosOptions co;
@@ -891,9 +895,12 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
     both << scene.extent, scene.control->vertices;
     scene.extent = std::move(both);
   }
-  const render::Camera camera = make_camera(e.camera, e.render, drawable(scene.extent, "the shape"));
-  begin("drawing");
-  render::Image image = render::make_framebuffer(camera);
+  return make_camera(e.camera, e.render, drawable(scene.extent, "the shape"));
+}
+
+/// The rasterised layers: control net, mesh, control mesh, curves.
+void draw_layers(render::Image& image, const render::Camera& camera, const Scene& scene,
+                 const io::Experiment& e, const RunOptions& o, unsigned threads) {
   render::CurveStyle control_style;
   control_style.width = std::max(1.0, 0.5 * e.render.line_width);
   control_style.color = {0.55, 0.55, 0.55};
@@ -921,8 +928,12 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
     style.part = o.part;
     render_coloured_segments(image, camera, *scene.curves, style, scene.state_colors);
   }
-  stage.reset();  // the chaos game has its progress bar
-  // The chaos game's hits, composited here or, in a distributed run, combined with the other parts'.
+}
+
+/// The chaos game's hits (or a classic IFS's points), not yet composited; sets the scene's depth.
+std::optional<render::DensityLayer> draw_points(render::Image& image, const render::Camera& camera,
+                                                Scene& scene, const io::Experiment& e, const RunOptions& o,
+                                                unsigned threads) {
   std::optional<render::DensityLayer> points;
   if (!scene.maps.empty()) {
     points = render_classic(camera, scene, e, o, threads);
@@ -941,28 +952,32 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
     points.emplace();
     scene.depth = render::chaos_density_layer(*points, image, camera, scene.automaton, scene.nets, co).depth;
   }
-  if (distributed) {
-    // The chaos game's layers are divided by samples; every other layer by rows (a classic IFS to a
-    // depth is drawn whole by every part and shared by rows too).
-    render::Share share;
-    share.kind =
-        points && e.evaluation.mode == Mode::chaos ? render::Share::Kind::points : render::Share::Kind::bands;
-    share.part = o.part;
-    share.color = e.render.color;
-    if (points && share.kind == render::Share::Kind::bands) render::composite(image, *points, e.render.color);
-    if (points && share.kind == render::Share::Kind::points) share.points = std::move(*points);
-    share.image = std::move(image);
-    o.combine(share);
-    if (!writer) {
-      report.depth = scene.depth;
-      return report;
-    }
-    image = std::move(share.image);
-  } else if (points) {
-    render::composite(image, *points, e.render.color);
-  }
-  report.depth = scene.depth;
+  return points;
+}
 
+/// A distributed run hands its part to the other parts; false on every part but the writer, whose
+/// image is then the combined one.
+bool combine_parts(render::Image& image, std::optional<render::DensityLayer>& points, const io::Experiment& e,
+                   const RunOptions& o) {
+  // The chaos game's layers are divided by samples; every other layer by rows (a classic IFS to a
+  // depth is drawn whole by every part and shared by rows too).
+  render::Share share;
+  share.kind =
+      points && e.evaluation.mode == Mode::chaos ? render::Share::Kind::points : render::Share::Kind::bands;
+  share.part = o.part;
+  share.color = e.render.color;
+  if (points && share.kind == render::Share::Kind::bands) render::composite(image, *points, e.render.color);
+  if (points && share.kind == render::Share::Kind::points) share.points = std::move(*points);
+  share.image = std::move(image);
+  o.combine(share);
+  if (o.part.index != 0) return false;
+  image = std::move(share.image);
+  return true;
+}
+
+/// The EXR header's attributes.
+void label_image(render::Image& image, const io::Experiment& e, const std::string& kind, const Scene& scene,
+                 const RunReport& report) {
   image.attributes["experiment"] = e.name;
   if (!e.description.empty()) image.attributes["description"] = e.description;
   image.attributes["source"] = kind;
@@ -986,28 +1001,75 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
         scene.junction + ", " + std::to_string(report.free_coefficients) + " free coefficients";
     image.attributes["residual"] = number_text(report.residual, 6);
   }
+}
 
-  // Geometry and automaton files (encoded a chunk at a time straight into their temporaries), the
-  // images after them; then all renamed together (all are written or none is).
-  begin("writing files");
+/// Geometry and automaton files (encoded a chunk at a time straight into their temporaries), the
+/// images after them; then all renamed together (all are written or none is).
+void write_outputs(const render::Image& image, const Scene& scene, const io::Experiment& e,
+                   const std::string& kind, const ImagePaths& paths, Outputs& outputs, Stages& stages,
+                   RunReport& report) {
+  stages.begin("writing files");
   const std::vector<std::filesystem::path> geometry = write_files(scene, e, outputs);  // reported last
   if (scene.curves && e.outputs.geometry.contains("svg"))
     if (std::string w = io::svg_dropped_coordinates(scene.curves->vertices); !w.empty())
       report.warnings.push_back("outputs.svg: " + w);
   if (outputs.exr) {
-    begin("writing " + exr.filename().string());
+    stages.begin("writing " + paths.exr.filename().string());
     render::write_exr(*outputs.exr, image);
-    report.written.push_back(exr);
+    report.written.push_back(paths.exr);
   }
   if (outputs.png) {
-    begin("writing " + png.filename().string());
+    stages.begin("writing " + paths.png.filename().string());
     render::preview_png(*outputs.png, image, preview_options(e.render, image));
-    report.written.push_back(png);
+    report.written.push_back(paths.png);
   }
-  stage.reset();
+  stages.end();
   report.written.insert(report.written.end(), geometry.begin(), geometry.end());
   outputs.files.commit();
   report.summary = summary(e, kind, scene, report);
+}
+
+}  // namespace
+
+RunReport run(const io::Experiment& e, const RunOptions& o) {
+  RunReport report;
+  const ImagePaths paths = image_paths(e, o);
+  render::check_part(o.part, "run");
+  const bool distributed = o.part.count > 1, writer = o.part.index == 0;
+  if (distributed && !o.combine) throw InvalidInput("run: a distributed run needs a combine function");
+  Outputs outputs;
+  if (writer) reserve_outputs(outputs, e, o, paths.exr, paths.png);
+  const unsigned threads = o.threads.value_or(e.render.threads);
+
+  std::string kind;
+  Stages stages{e, o, {}};
+  stages.begin("evaluation");
+  Scene scene = make_scene(e, o, report, kind);
+  stages.end();
+  if (!paths.drawn) {
+    report.depth = scene.depth;
+    if (writer)
+      write_without_image(scene, e, kind, outputs, stages, report);  // a distributed run's files are rank 0's
+    return report;
+  }
+  const render::Camera camera = frame(scene, e);
+  stages.begin("drawing");
+  render::Image image = render::make_framebuffer(camera);
+  draw_layers(image, camera, scene, e, o, threads);
+  stages.end();  // the chaos game has its progress bar
+  // The chaos game's hits, composited here or, in a distributed run, combined with the other parts'.
+  std::optional<render::DensityLayer> points = draw_points(image, camera, scene, e, o, threads);
+  if (distributed) {
+    if (!combine_parts(image, points, e, o)) {
+      report.depth = scene.depth;
+      return report;
+    }
+  } else if (points) {
+    render::composite(image, *points, e.render.color);
+  }
+  report.depth = scene.depth;
+  label_image(image, e, kind, scene, report);
+  write_outputs(image, scene, e, kind, paths, outputs, stages, report);
   return report;
 }
 

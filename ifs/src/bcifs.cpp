@@ -229,132 +229,171 @@ void check_admissible(const Bcifs& sys, double tolerance) {
                        number_text(tolerance, 3) + ")");
 }
 
-AdmissibleSpace admissible_space(const Bcifs& sys, const SolveOptions& options) {
-  // threshold ≥ 1 makes every rank 0: the basic-column QR below would factor an m × 0 matrix.
-  if (!(options.threshold >= 0 && options.threshold < 1))
-    throw InvalidInput("admissible_space: threshold " + number_text(options.threshold, 3) +
-                       " is outside [0, 1)");
-  validate(sys);
-  const Graph& g = sys.automaton.graph;
-  AdmissibleSpace space;
+namespace {
+
+/// The unknowns are the entries of the free matrices, row-major, one matrix after the other.
+struct Numbering {
   std::map<TransitionRef, std::size_t> free_index;
   std::vector<std::size_t> base;  // first unknown of each free matrix
+};
+
+Numbering number_unknowns(const Bcifs& sys, std::vector<Coefficient>& unknowns) {
+  const Graph& g = sys.automaton.graph;
+  Numbering num;
   for (std::size_t f = 0; f < sys.free.size(); ++f) {
-    free_index.emplace(sys.free[f], f);
-    base.push_back(space.unknowns.size());
+    num.free_index.emplace(sys.free[f], f);
+    num.base.push_back(unknowns.size());
     const auto& M = g[transition_id(sys.automaton, sys.free[f])].matrix;
     for (int r = 0; r < M.rows(); ++r)
-      for (int c = 0; c < M.cols(); ++c) space.unknowns.push_back(Coefficient{sys.free[f], r, c});
+      for (int c = 0; c < M.cols(); ++c) unknowns.push_back(Coefficient{sys.free[f], r, c});
   }
-  const auto unknown = [&](std::size_t f, Eigen::Index r, Eigen::Index c) {
-    const auto& M = g[transition_id(sys.automaton, sys.free[f])].matrix;
-    return base[f] + static_cast<std::size_t>(r * M.cols() + c);
-  };
+  return num;
+}
 
-  // Equations: one per entry of each constraint, one per row of each free matrix; those reading
-  // x_a = x_b only merge classes of equal unknowns (`same`, see the substitution below).
-  std::vector<Equation> equations;
-  UnionFind same(space.unknowns.size());
-  for (std::size_t ci = 0; ci < sys.constraints.size(); ++ci) {
-    const Constraint& con = sys.constraints[ci];
-    const int source = cell_size(sys, factor_cells(sys, con.left.back()).first);
-    const int target = cell_size(sys, factor_cells(sys, con.left.front()).second);
-    std::vector<std::map<std::size_t, double>> terms(static_cast<std::size_t>(source * target));
-    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(target, source);
-    for (int side = 0; side < 2; ++side) {
-      const std::span<const Factor> factors = side ? con.right : con.left;
-      const double sign = side ? -1.0 : 1.0;
-      const int u = free_position(factors, free_index);
-      if (u < 0) {
-        rhs -= sign * product(sys, factors, source);
+std::size_t unknown_index(const Bcifs& sys, const Numbering& num, std::size_t f, Eigen::Index r,
+                          Eigen::Index c) {
+  const auto& M = sys.automaton.graph[transition_id(sys.automaton, sys.free[f])].matrix;
+  return num.base[f] + static_cast<std::size_t>(r * M.cols() + c);
+}
+
+/// Name of an equation's source in messages.
+std::string source_name(const Bcifs& sys, int src) {
+  return src >= 0
+             ? sys.constraints[static_cast<std::size_t>(src)].name
+             : transition_name(sys.automaton, sys.free[static_cast<std::size_t>(-1 - src)]) + " row sums";
+}
+
+/// Constraint ci as left − right = 0, linear in the unknowns: the terms of each entry
+/// (row-major, `target by source`) and the known part moved to the right-hand side.
+struct LinearConstraint {
+  std::vector<std::map<std::size_t, double>> terms;
+  Eigen::MatrixXd rhs;
+};
+
+LinearConstraint linearize(const Bcifs& sys, const Numbering& num, const Constraint& con, int source,
+                           int target) {
+  LinearConstraint out{std::vector<std::map<std::size_t, double>>(static_cast<std::size_t>(source * target)),
+                       Eigen::MatrixXd::Zero(target, source)};
+  for (int side = 0; side < 2; ++side) {
+    const std::span<const Factor> factors = side ? con.right : con.left;
+    const double sign = side ? -1.0 : 1.0;
+    const int u = free_position(factors, num.free_index);
+    if (u < 0) {
+      out.rhs -= sign * product(sys, factors, source);
+      continue;
+    }
+    const Factor& x = factors[static_cast<std::size_t>(u)];
+    const auto [x_from, x_to] = factor_cells(sys, x);
+    const Eigen::MatrixXd A = product(sys, factors.first(static_cast<std::size_t>(u)), cell_size(sys, x_to));
+    const Eigen::MatrixXd C = product(sys, factors.subspan(static_cast<std::size_t>(u) + 1), source);
+    const std::size_t f = num.free_index.at(x.transition);
+    for (Eigen::Index r = 0; r < A.rows(); ++r)
+      for (Eigen::Index p = 0; p < A.cols(); ++p) {
+        if (A(r, p) == 0) continue;
+        for (Eigen::Index q = 0; q < C.rows(); ++q)
+          for (Eigen::Index c = 0; c < C.cols(); ++c)
+            if (C(q, c) != 0)
+              out.terms[static_cast<std::size_t>(r) * static_cast<std::size_t>(source) +
+                        static_cast<std::size_t>(c)][unknown_index(sys, num, f, p, q)] +=
+                  sign * A(r, p) * C(q, c);
+      }
+  }
+  return out;
+}
+
+/// The equations of constraint ci, one per entry; those reading x_a = x_b only merge classes of
+/// equal unknowns (`same`, see the substitution below).
+void add_constraint_equations(const Bcifs& sys, const Numbering& num, std::size_t ci, UnionFind& same,
+                              std::vector<Equation>& equations) {
+  const Constraint& con = sys.constraints[ci];
+  const int source = cell_size(sys, factor_cells(sys, con.left.back()).first);
+  const int target = cell_size(sys, factor_cells(sys, con.left.front()).second);
+  const LinearConstraint lin = linearize(sys, num, con, source, target);
+  for (int r = 0; r < target; ++r)
+    for (int c = 0; c < source; ++c) {
+      Equation eq;
+      eq.source = static_cast<int>(ci);
+      eq.rhs = lin.rhs(r, c);
+      for (const auto& [k, v] : lin.terms[static_cast<std::size_t>(r) * static_cast<std::size_t>(source) +
+                                          static_cast<std::size_t>(c)])
+        if (v != 0) eq.terms.emplace_back(k, v);
+      if (eq.terms.empty()) {
+        // Both sides known: the entry must already agree.
+        if (std::abs(eq.rhs) > 1e-12 * std::max(1.0, std::abs(eq.rhs)))
+          throw InvalidInput("BC-IFS: constraint \"" + con.name + "\" involves no free matrix at entry (" +
+                             std::to_string(r) + "," + std::to_string(c) + ") and fails there by " +
+                             number_text(std::abs(eq.rhs), 3));
         continue;
       }
-      const Factor& x = factors[static_cast<std::size_t>(u)];
-      const auto [x_from, x_to] = factor_cells(sys, x);
-      const Eigen::MatrixXd A =
-          product(sys, factors.first(static_cast<std::size_t>(u)), cell_size(sys, x_to));
-      const Eigen::MatrixXd C = product(sys, factors.subspan(static_cast<std::size_t>(u) + 1), source);
-      const std::size_t f = free_index.at(x.transition);
-      for (Eigen::Index r = 0; r < A.rows(); ++r)
-        for (Eigen::Index p = 0; p < A.cols(); ++p) {
-          if (A(r, p) == 0) continue;
-          for (Eigen::Index q = 0; q < C.rows(); ++q)
-            for (Eigen::Index c = 0; c < C.cols(); ++c)
-              if (C(q, c) != 0)
-                terms[static_cast<std::size_t>(r) * static_cast<std::size_t>(source) +
-                      static_cast<std::size_t>(c)][unknown(f, p, q)] += sign * A(r, p) * C(q, c);
-        }
-    }
-    for (int r = 0; r < target; ++r)
-      for (int c = 0; c < source; ++c) {
-        Equation eq;
-        eq.source = static_cast<int>(ci);
-        eq.rhs = rhs(r, c);
-        for (const auto& [k, v] : terms[static_cast<std::size_t>(r) * static_cast<std::size_t>(source) +
-                                        static_cast<std::size_t>(c)])
-          if (v != 0) eq.terms.emplace_back(k, v);
-        if (eq.terms.empty()) {
-          // Both sides known: the entry must already agree.
-          if (std::abs(eq.rhs) > 1e-12 * std::max(1.0, std::abs(eq.rhs)))
-            throw InvalidInput("BC-IFS: constraint \"" + con.name + "\" involves no free matrix at entry (" +
-                               std::to_string(r) + "," + std::to_string(c) + ") and fails there by " +
-                               number_text(std::abs(eq.rhs), 3));
-          continue;
-        }
-        if (eq.terms.size() == 2 && eq.rhs == 0 && eq.terms[0].second == -eq.terms[1].second) {
-          same.unite(eq.terms[0].first, eq.terms[1].first);  // x_a = x_b: substituted below
-          continue;
-        }
-        equations.push_back(std::move(eq));
+      if (eq.terms.size() == 2 && eq.rhs == 0 && eq.terms[0].second == -eq.terms[1].second) {
+        same.unite(eq.terms[0].first, eq.terms[1].first);  // x_a = x_b: substituted below
+        continue;
       }
-  }
+      equations.push_back(std::move(eq));
+    }
+}
+
+/// One equation per row of each free matrix: its entries sum to 1.
+void add_row_sum_equations(const Bcifs& sys, const Numbering& num, std::vector<Equation>& equations) {
   for (std::size_t f = 0; f < sys.free.size(); ++f) {
-    const auto& M = g[transition_id(sys.automaton, sys.free[f])].matrix;
+    const auto& M = sys.automaton.graph[transition_id(sys.automaton, sys.free[f])].matrix;
     for (Eigen::Index r = 0; r < M.rows(); ++r) {
       Equation eq;
       eq.source = -1 - static_cast<int>(f);
       eq.rhs = 1;
-      for (Eigen::Index c = 0; c < M.cols(); ++c) eq.terms.emplace_back(unknown(f, r, c), 1.0);
+      for (Eigen::Index c = 0; c < M.cols(); ++c)
+        eq.terms.emplace_back(unknown_index(sys, num, f, r, c), 1.0);
       equations.push_back(std::move(eq));
     }
   }
+}
 
-  // Substitution first: most constraint equations read x_a = x_b (an entry of one side is an entry
-  // of the other) or x_a = c (the other side is fixed). Classes of equal unknowns, with their
-  // constant when they have one, leave a far smaller system for the dense QR (a surface system
-  // ties thousands of entries into one component otherwise).
-  const std::size_t n = space.unknowns.size();
-  const auto source_name = [&](int src) {
-    return src >= 0
-               ? sys.constraints[static_cast<std::size_t>(src)].name
-               : transition_name(sys.automaton, sys.free[static_cast<std::size_t>(-1 - src)]) + " row sums";
-  };
-  std::vector<const Equation*> constants, others_eq;
-  for (const Equation& eq : equations)
-    (eq.source >= 0 && eq.terms.size() == 1 ? constants : others_eq).push_back(&eq);
-  std::vector<double> value(n, std::numeric_limits<double>::quiet_NaN());
-  std::vector<int> value_source(n, 0);
+/// The system once classes of equal unknowns and their constants are substituted.
+struct Substitution {
+  std::vector<double> value;                            // constant of each class (at its root), NaN when none
+  std::vector<std::size_t> reduced_of, representative;  // class root ↔ reduced variable
+  std::vector<Equation> reduced;                        // over the reduced variables
+};
+
+/// The constants: equations x_a = c set their class's value; two different ones throw.
+void set_constants(const Bcifs& sys, const std::vector<Coefficient>& unknowns,
+                   std::span<const Equation* const> constants, UnionFind& same, Substitution& s) {
+  std::vector<int> value_source(unknowns.size(), 0);
   for (const Equation* eq : constants) {
     const std::size_t r = same.find(eq->terms[0].first);
     const double v = eq->rhs / eq->terms[0].second;
-    if (std::isnan(value[r])) {
-      value[r] = v;
+    if (std::isnan(s.value[r])) {
+      s.value[r] = v;
       value_source[r] = eq->source;
-    } else if (std::abs(value[r] - v) > 1e-12 * std::max({1.0, std::abs(v), std::abs(value[r])})) {
-      throw InvalidInput("BC-IFS: the constraints \"" + source_name(value_source[r]) + "\", \"" +
-                         source_name(eq->source) + "\" have no common solution (they set " +
-                         coefficient_name(sys.automaton, space.unknowns[eq->terms[0].first]) + " to " +
-                         number_text(value[r], 3) + " and to " + number_text(v, 3) + ")");
+    } else if (std::abs(s.value[r] - v) > 1e-12 * std::max({1.0, std::abs(v), std::abs(s.value[r])})) {
+      throw InvalidInput("BC-IFS: the constraints \"" + source_name(sys, value_source[r]) + "\", \"" +
+                         source_name(sys, eq->source) + "\" have no common solution (they set " +
+                         coefficient_name(sys.automaton, unknowns[eq->terms[0].first]) + " to " +
+                         number_text(s.value[r], 3) + " and to " + number_text(v, 3) + ")");
     }
   }
+}
+
+/// Substitution first: most constraint equations read x_a = x_b (an entry of one side is an entry
+/// of the other) or x_a = c (the other side is fixed). Classes of equal unknowns, with their
+/// constant when they have one, leave a far smaller system for the dense QR (a surface system
+/// ties thousands of entries into one component otherwise).
+Substitution substitute(const Bcifs& sys, const std::vector<Coefficient>& unknowns,
+                        const std::vector<Equation>& equations, UnionFind& same) {
+  const std::size_t n = unknowns.size();
+  Substitution s;
+  std::vector<const Equation*> constants, others_eq;
+  for (const Equation& eq : equations)
+    (eq.source >= 0 && eq.terms.size() == 1 ? constants : others_eq).push_back(&eq);
+  s.value.assign(n, std::numeric_limits<double>::quiet_NaN());
+  set_constants(sys, unknowns, constants, same, s);
   // Reduced variables: the classes without a constant, named by their smallest unknown.
-  std::vector<std::size_t> reduced_of(n, 0), representative;
+  s.reduced_of.assign(n, 0);
   for (std::size_t k = 0; k < n; ++k)
-    if (same.find(k) == k && std::isnan(value[k])) {
-      reduced_of[k] = representative.size();
-      representative.push_back(k);
+    if (same.find(k) == k && std::isnan(s.value[k])) {
+      s.reduced_of[k] = s.representative.size();
+      s.representative.push_back(k);
     }
-  std::vector<Equation> reduced;
   for (const Equation* eq : others_eq) {
     Equation r;
     r.source = eq->source;
@@ -362,26 +401,92 @@ AdmissibleSpace admissible_space(const Bcifs& sys, const SolveOptions& options) 
     std::map<std::size_t, double> terms;
     for (const auto& [k, v] : eq->terms) {
       const std::size_t root = same.find(k);
-      if (std::isnan(value[root]))
-        terms[reduced_of[root]] += v;
+      if (std::isnan(s.value[root]))
+        terms[s.reduced_of[root]] += v;
       else
-        r.rhs -= v * value[root];
+        r.rhs -= v * s.value[root];
     }
     for (const auto& [k, v] : terms)
       if (v != 0) r.terms.emplace_back(k, v);
     if (r.terms.empty()) {
       if (std::abs(r.rhs) > 1e-9 * std::max(1.0, std::abs(eq->rhs)))
         throw InvalidInput(
-            "BC-IFS: \"" + source_name(eq->source) +
+            "BC-IFS: \"" + source_name(sys, eq->source) +
             "\" has no solution once the constraints' fixed entries are substituted (it misses by " +
             number_text(std::abs(r.rhs), 3) + ")");
       continue;
     }
-    reduced.push_back(std::move(r));
+    s.reduced.push_back(std::move(r));
   }
+  return s;
+}
 
-  // Connected components of the unknown/equation graph.
-  const std::size_t nr = representative.size();
+/// The solution over the reduced variables: x0 + a combination of the free ones.
+struct ReducedSolution {
+  Eigen::VectorXd x0;
+  std::vector<char> is_free;
+  // Dependent unknown → (its coefficient on each free unknown of its component).
+  std::vector<std::pair<std::size_t, std::vector<std::pair<std::size_t, double>>>> dependents;
+};
+
+/// One component (variables `vars`, equations `eqs` of `reduced`) by a column-pivoting QR.
+void solve_component(const Bcifs& sys, const std::vector<Equation>& reduced,
+                     const std::vector<std::size_t>& vars, const std::vector<std::size_t>& eqs,
+                     double threshold, ReducedSolution& out) {
+  std::map<std::size_t, Eigen::Index> local;
+  for (std::size_t k = 0; k < vars.size(); ++k) local[vars[k]] = static_cast<Eigen::Index>(k);
+  const auto m = static_cast<Eigen::Index>(eqs.size()), nv = static_cast<Eigen::Index>(vars.size());
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(m, nv);
+  Eigen::VectorXd b(m);
+  for (Eigen::Index i = 0; i < m; ++i) {
+    const Equation& eq = reduced[eqs[static_cast<std::size_t>(i)]];
+    for (const auto& [k, v] : eq.terms) A(i, local[k]) += v;
+    b(i) = eq.rhs;
+  }
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
+  qr.setThreshold(threshold);
+  const Eigen::Index rank = qr.rank();
+  const auto& perm = qr.colsPermutation().indices();
+  std::vector<Eigen::Index> basic(perm.data(), perm.data() + rank),
+      others(perm.data() + rank, perm.data() + nv);
+  std::sort(basic.begin(), basic.end());
+  std::sort(others.begin(), others.end());
+  Eigen::MatrixXd AB(m, rank), AF(m, nv - rank);
+  for (Eigen::Index j = 0; j < rank; ++j) AB.col(j) = A.col(basic[static_cast<std::size_t>(j)]);
+  for (Eigen::Index j = 0; j < nv - rank; ++j) AF.col(j) = A.col(others[static_cast<std::size_t>(j)]);
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qrb(AB);
+  // Eigen's triangular solve binds a reference to the first coefficient of its right-hand side,
+  // null for an empty one (UBSan: MapBase.h:262): solve only what is not empty.
+  const Eigen::VectorXd xb = rank > 0 ? Eigen::VectorXd(qrb.solve(b)) : Eigen::VectorXd(0);
+  const Eigen::MatrixXd KB =
+      rank > 0 && nv > rank ? Eigen::MatrixXd(-qrb.solve(AF)) : Eigen::MatrixXd::Zero(rank, nv - rank);
+  const double scale = std::max(1.0, b.cwiseAbs().maxCoeff());
+  const double miss = (AB * xb - b).cwiseAbs().maxCoeff() / scale;
+  const double slack = nv > rank ? (AB * KB + AF).cwiseAbs().maxCoeff() : 0.0;
+  if (!(miss <= 1e-9) || !(slack <= 1e-9)) {
+    std::set<std::string> names;
+    for (const std::size_t e : eqs) names.insert(source_name(sys, reduced[e].source));
+    std::string list;
+    for (const auto& s : names) list += (list.empty() ? "\"" : ", \"") + s + "\"";
+    throw InvalidInput("BC-IFS: the constraints " + list +
+                       " have no common solution (least-squares residual " +
+                       number_text(std::max(miss, slack), 3) + ")");
+  }
+  for (Eigen::Index j = 0; j < rank; ++j) {
+    const std::size_t k = vars[static_cast<std::size_t>(basic[static_cast<std::size_t>(j)])];
+    out.x0(static_cast<Eigen::Index>(k)) = xb(j);
+    std::vector<std::pair<std::size_t, double>> row;
+    for (Eigen::Index i = 0; i < nv - rank; ++i)
+      if (KB(j, i) != 0)
+        row.emplace_back(vars[static_cast<std::size_t>(others[static_cast<std::size_t>(i)])], KB(j, i));
+    out.dependents.emplace_back(k, std::move(row));
+  }
+  for (const Eigen::Index i : others) out.is_free[vars[static_cast<std::size_t>(i)]] = 1;
+}
+
+/// Connected components of the unknown/equation graph, each solved on its own.
+ReducedSolution solve_reduced(const Bcifs& sys, const std::vector<Equation>& reduced, std::size_t nr,
+                              double threshold, std::size_t& components) {
   UnionFind uf(nr);
   for (const Equation& eq : reduced)
     for (const auto& t : eq.terms) uf.unite(eq.terms.front().first, t.first);
@@ -390,97 +495,67 @@ AdmissibleSpace admissible_space(const Bcifs& sys, const SolveOptions& options) 
   for (std::size_t e = 0; e < reduced.size(); ++e)
     comp_equations[uf.find(reduced[e].terms.front().first)].push_back(e);
 
-  Eigen::VectorXd x0 = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(nr));
-  std::vector<char> is_free(nr, 0);
-  // Dependent unknown → (its coefficient on each free unknown of its component).
-  std::vector<std::pair<std::size_t, std::vector<std::pair<std::size_t, double>>>> dependents;
+  ReducedSolution out{Eigen::VectorXd::Zero(static_cast<Eigen::Index>(nr)), std::vector<char>(nr, 0), {}};
   for (const auto& [root, vars] : comp_unknowns) {
-    const auto& eqs = comp_equations[root];
-    std::map<std::size_t, Eigen::Index> local;
-    for (std::size_t k = 0; k < vars.size(); ++k) local[vars[k]] = static_cast<Eigen::Index>(k);
-    const auto m = static_cast<Eigen::Index>(eqs.size()), nv = static_cast<Eigen::Index>(vars.size());
-    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(m, nv);
-    Eigen::VectorXd b(m);
-    for (Eigen::Index i = 0; i < m; ++i) {
-      const Equation& eq = reduced[eqs[static_cast<std::size_t>(i)]];
-      for (const auto& [k, v] : eq.terms) A(i, local[k]) += v;
-      b(i) = eq.rhs;
-    }
-    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
-    qr.setThreshold(options.threshold);
-    const Eigen::Index rank = qr.rank();
-    const auto& perm = qr.colsPermutation().indices();
-    std::vector<Eigen::Index> basic(perm.data(), perm.data() + rank),
-        others(perm.data() + rank, perm.data() + nv);
-    std::sort(basic.begin(), basic.end());
-    std::sort(others.begin(), others.end());
-    Eigen::MatrixXd AB(m, rank), AF(m, nv - rank);
-    for (Eigen::Index j = 0; j < rank; ++j) AB.col(j) = A.col(basic[static_cast<std::size_t>(j)]);
-    for (Eigen::Index j = 0; j < nv - rank; ++j) AF.col(j) = A.col(others[static_cast<std::size_t>(j)]);
-    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qrb(AB);
-    // Eigen's triangular solve binds a reference to the first coefficient of its right-hand side,
-    // null for an empty one (UBSan: MapBase.h:262): solve only what is not empty.
-    const Eigen::VectorXd xb = rank > 0 ? Eigen::VectorXd(qrb.solve(b)) : Eigen::VectorXd(0);
-    const Eigen::MatrixXd KB =
-        rank > 0 && nv > rank ? Eigen::MatrixXd(-qrb.solve(AF)) : Eigen::MatrixXd::Zero(rank, nv - rank);
-    const double scale = std::max(1.0, b.cwiseAbs().maxCoeff());
-    const double miss = (AB * xb - b).cwiseAbs().maxCoeff() / scale;
-    const double slack = nv > rank ? (AB * KB + AF).cwiseAbs().maxCoeff() : 0.0;
-    if (!(miss <= 1e-9) || !(slack <= 1e-9)) {
-      std::set<std::string> names;
-      for (const std::size_t e : eqs) {
-        const int src = reduced[e].source;
-        names.insert(src >= 0 ? sys.constraints[static_cast<std::size_t>(src)].name
-                              : transition_name(sys.automaton, sys.free[static_cast<std::size_t>(-1 - src)]) +
-                                    " row sums");
-      }
-      std::string list;
-      for (const auto& s : names) list += (list.empty() ? "\"" : ", \"") + s + "\"";
-      throw InvalidInput("BC-IFS: the constraints " + list +
-                         " have no common solution (least-squares residual " +
-                         number_text(std::max(miss, slack), 3) + ")");
-    }
-    for (Eigen::Index j = 0; j < rank; ++j) {
-      const std::size_t k = vars[static_cast<std::size_t>(basic[static_cast<std::size_t>(j)])];
-      x0(static_cast<Eigen::Index>(k)) = xb(j);
-      std::vector<std::pair<std::size_t, double>> row;
-      for (Eigen::Index i = 0; i < nv - rank; ++i)
-        if (KB(j, i) != 0)
-          row.emplace_back(vars[static_cast<std::size_t>(others[static_cast<std::size_t>(i)])], KB(j, i));
-      dependents.emplace_back(k, std::move(row));
-    }
-    for (const Eigen::Index i : others) is_free[vars[static_cast<std::size_t>(i)]] = 1;
-    ++space.components;
+    solve_component(sys, reduced, vars, comp_equations[root], threshold, out);
+    ++components;
   }
-  // Back to the unknowns: a class's members share its constant, or its reduced variable's
-  // expression; a free reduced variable is named by the class's smallest unknown.
+  return out;
+}
+
+/// Back to the unknowns: a class's members share its constant, or its reduced variable's
+/// expression; a free reduced variable is named by the class's smallest unknown.
+void expand_solution(const Substitution& s, ReducedSolution& x, UnionFind& same, AdmissibleSpace& space) {
+  const std::size_t n = space.unknowns.size(), nr = s.representative.size();
   std::vector<Eigen::Index> column(nr, -1);
   for (std::size_t r = 0; r < nr; ++r)
-    if (is_free[r]) {
+    if (x.is_free[r]) {
       column[r] = static_cast<Eigen::Index>(space.free.size());
-      space.free.push_back(representative[r]);
+      space.free.push_back(s.representative[r]);
     }
   std::vector<std::vector<std::pair<std::size_t, double>>> dependent_row(nr);
-  for (auto& [r, row] : dependents) dependent_row[r] = std::move(row);
+  for (auto& [r, row] : x.dependents) dependent_row[r] = std::move(row);
   space.x0 = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
   std::vector<Eigen::Triplet<double>> triplets;
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t root = same.find(k);
     const auto i = static_cast<Eigen::Index>(k);
-    if (!std::isnan(value[root])) {
-      space.x0(i) = value[root];
+    if (!std::isnan(s.value[root])) {
+      space.x0(i) = s.value[root];
       continue;
     }
-    const std::size_t r = reduced_of[root];
-    if (is_free[r]) {
+    const std::size_t r = s.reduced_of[root];
+    if (x.is_free[r]) {
       triplets.emplace_back(i, column[r], 1.0);
       continue;
     }
-    space.x0(i) = x0(static_cast<Eigen::Index>(r));
+    space.x0(i) = x.x0(static_cast<Eigen::Index>(r));
     for (const auto& [fr, v] : dependent_row[r]) triplets.emplace_back(i, column[fr], v);
   }
   space.K.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(space.free.size()));
   space.K.setFromTriplets(triplets.begin(), triplets.end());
+}
+
+}  // namespace
+
+AdmissibleSpace admissible_space(const Bcifs& sys, const SolveOptions& options) {
+  // threshold ≥ 1 makes every rank 0: the basic-column QR below would factor an m × 0 matrix.
+  if (!(options.threshold >= 0 && options.threshold < 1))
+    throw InvalidInput("admissible_space: threshold " + number_text(options.threshold, 3) +
+                       " is outside [0, 1)");
+  validate(sys);
+  AdmissibleSpace space;
+  const Numbering num = number_unknowns(sys, space.unknowns);
+  // Equations: one per entry of each constraint, one per row of each free matrix.
+  std::vector<Equation> equations;
+  UnionFind same(space.unknowns.size());
+  for (std::size_t ci = 0; ci < sys.constraints.size(); ++ci)
+    add_constraint_equations(sys, num, ci, same, equations);
+  add_row_sum_equations(sys, num, equations);
+  const Substitution s = substitute(sys, space.unknowns, equations, same);
+  ReducedSolution x =
+      solve_reduced(sys, s.reduced, s.representative.size(), options.threshold, space.components);
+  expand_solution(s, x, same, space);
   return space;
 }
 

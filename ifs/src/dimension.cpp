@@ -121,7 +121,10 @@ ToleranceSample tolerance_sample(const automata::Automaton& a, std::span<const P
   return out;
 }
 
-BoxCountingResult box_counting(const Points& P, const BoxCountingOptions& o) {
+namespace {
+
+/// The finest level of the grid, after the checks of the points and options.
+int box_levels(const Points& P, const BoxCountingOptions& o) {
   if (P.rows() == 0 || P.cols() == 0) throw InvalidInput("box counting: no points");
   if (!P.allFinite()) throw InvalidInput("box counting: a point is not finite");
   if (!(o.points_per_box >= 1) || !(o.resolution >= 0) || !std::isfinite(o.resolution))
@@ -132,10 +135,13 @@ BoxCountingResult box_counting(const Points& P, const BoxCountingOptions& o) {
   // One spare bit per axis: the shifted origin makes the grid one box wider than the points.
   const int levels = std::min(o.levels, 64 / dim - 1);
   if (levels < 3) throw InvalidInput("box counting: too many coordinates (" + std::to_string(dim) + ")");
+  return levels;
+}
 
-  const Point lo = P.colwise().minCoeff(), hi = P.colwise().maxCoeff();
-  const double size = (hi - lo).maxCoeff();
-  if (!(size > 0)) throw InvalidInput("box counting: all points are equal");
+/// The boxes of every level: each point's finest box as a Morton key, sorted, then the distinct
+/// keys of each level counted.
+void count_boxes(const Points& P, int levels, const Point& lo, double size, BoxCountingResult& r) {
+  const auto dim = static_cast<int>(P.cols());
   const double fine = std::ldexp(size, -levels);
   std::vector<std::uint64_t> keys(static_cast<std::size_t>(P.rows()));
   std::vector<std::uint64_t> c(static_cast<std::size_t>(dim));
@@ -148,9 +154,6 @@ BoxCountingResult box_counting(const Points& P, const BoxCountingOptions& o) {
     keys[static_cast<std::size_t>(i)] = morton(c, levels + 1);
   }
   std::sort(keys.begin(), keys.end());
-
-  BoxCountingResult r;
-  r.size = size;
   for (int k = 0; k <= levels; ++k) {
     const int shift = dim * (levels - k);
     std::size_t n = 0;
@@ -162,7 +165,11 @@ BoxCountingResult box_counting(const Points& P, const BoxCountingOptions& o) {
     }
     r.counts.push_back({k, std::ldexp(size, -k), n});
   }
+}
 
+/// The fit range: the caller's, or the longest run of consecutive admissible levels (counts grow
+/// with k, so it is one run unless the sample is degenerate).
+void choose_fit_range(const BoxCountingOptions& o, int levels, Eigen::Index points, BoxCountingResult& r) {
   if (o.min_level >= 0 || o.max_level >= 0) {
     if (o.min_level < 0 || o.max_level > levels || o.min_level + 2 > o.max_level)
       throw InvalidInput("box counting: the fit range " + std::to_string(o.min_level) + " … " +
@@ -170,36 +177,36 @@ BoxCountingResult box_counting(const Points& P, const BoxCountingOptions& o) {
                          " with at least 3 levels");
     r.min_level = o.min_level;
     r.max_level = o.max_level;
-  } else {
-    // The longest run of consecutive admissible levels (counts grow with k, so it is one run
-    // unless the sample is degenerate).
-    const auto n_points = static_cast<double>(P.rows());
-    const auto admissible = [&](const BoxCount& b) {
-      return b.boxes >= o.min_boxes && static_cast<double>(b.boxes) * o.points_per_box <= n_points &&
-             b.epsilon >= 2 * o.resolution;
-    };
-    int best = -1, best_len = 0;
-    for (int k = 0; k <= levels;) {
-      if (!admissible(r.counts[static_cast<std::size_t>(k)])) {
-        ++k;
-        continue;
-      }
-      int j = k;
-      while (j <= levels && admissible(r.counts[static_cast<std::size_t>(j)])) ++j;
-      if (j - k > best_len) best = k, best_len = j - k;
-      k = j;
-    }
-    if (best_len < 3)
-      throw InvalidInput("box counting: only " + std::to_string(best_len) + " scale(s) with ≥ " +
-                         std::to_string(o.min_boxes) + " boxes, ≥ " + number_text(o.points_per_box, 6) +
-                         " points per box" + (o.resolution > 0 ? " and boxes ≥ 2× the pieces" : "") +
-                         " among " + std::to_string(P.rows()) +
-                         " points; evaluate deeper (at least 3 are needed)");
-    r.min_level = best;
-    r.max_level = best + best_len - 1;
+    return;
   }
+  const auto n_points = static_cast<double>(points);
+  const auto admissible = [&](const BoxCount& b) {
+    return b.boxes >= o.min_boxes && static_cast<double>(b.boxes) * o.points_per_box <= n_points &&
+           b.epsilon >= 2 * o.resolution;
+  };
+  int best = -1, best_len = 0;
+  for (int k = 0; k <= levels;) {
+    if (!admissible(r.counts[static_cast<std::size_t>(k)])) {
+      ++k;
+      continue;
+    }
+    int j = k;
+    while (j <= levels && admissible(r.counts[static_cast<std::size_t>(j)])) ++j;
+    if (j - k > best_len) best = k, best_len = j - k;
+    k = j;
+  }
+  if (best_len < 3)
+    throw InvalidInput("box counting: only " + std::to_string(best_len) + " scale(s) with ≥ " +
+                       std::to_string(o.min_boxes) + " boxes, ≥ " + number_text(o.points_per_box, 6) +
+                       " points per box" + (o.resolution > 0 ? " and boxes ≥ 2× the pieces" : "") +
+                       " among " + std::to_string(points) +
+                       " points; evaluate deeper (at least 3 are needed)");
+  r.min_level = best;
+  r.max_level = best + best_len - 1;
+}
 
-  // Least squares of y = log N on x = log(1/ε).
+/// Least squares of y = log N on x = log(1/ε) over the fit range.
+void fit_dimension(BoxCountingResult& r) {
   const int m = r.max_level - r.min_level + 1;
   double sx = 0, sy = 0;
   for (int k = r.min_level; k <= r.max_level; ++k) {
@@ -229,6 +236,20 @@ BoxCountingResult box_counting(const Points& P, const BoxCountingOptions& o) {
   r.r_squared = syy > 0 ? 1 - ss_res / syy : 1;
   r.max_epsilon = r.counts[static_cast<std::size_t>(r.min_level)].epsilon;
   r.min_epsilon = r.counts[static_cast<std::size_t>(r.max_level)].epsilon;
+}
+
+}  // namespace
+
+BoxCountingResult box_counting(const Points& P, const BoxCountingOptions& o) {
+  const int levels = box_levels(P, o);
+  const Point lo = P.colwise().minCoeff(), hi = P.colwise().maxCoeff();
+  const double size = (hi - lo).maxCoeff();
+  if (!(size > 0)) throw InvalidInput("box counting: all points are equal");
+  BoxCountingResult r;
+  r.size = size;
+  count_boxes(P, levels, lo, size, r);
+  choose_fit_range(o, levels, P.rows(), r);
+  fit_dimension(r);
   return r;
 }
 

@@ -118,12 +118,10 @@ Bcifs uniform_curve_bcifs(const Eigen::MatrixXd& S0, const Eigen::MatrixXd& S1,
   return sys;
 }
 
-Junction join(const Bcifs& a, std::span<const Points> nets_a, const Bcifs& b, std::span<const Points> nets_b,
-              std::span<const Glue> glue, const JoinOptions& options) {
-  validate(a);
-  validate(b);
-  const auto& ga = a.automaton.graph;
-  const auto& gb = b.automaton.graph;
+namespace {
+
+void check_join_nets(const Bcifs& a, std::span<const Points> nets_a, const Bcifs& b,
+                     std::span<const Points> nets_b, std::span<const Glue> glue) {
   if (!nets_a.empty() && nets_a.size() != a.automaton.initial.size())
     throw InvalidInput("join: " + std::to_string(nets_a.size()) + " nets for A's " +
                        std::to_string(a.automaton.initial.size()) + " initial entries");
@@ -131,9 +129,12 @@ Junction join(const Bcifs& a, std::span<const Points> nets_a, const Bcifs& b, st
     throw InvalidInput("join: " + std::to_string(nets_b.size()) + " nets for B's " +
                        std::to_string(b.automaton.initial.size()) + " initial entries");
   if (glue.empty()) throw InvalidInput("join: no glued boundary");
+}
 
-  // The glued boundaries: (A boundary index, B boundary index) per glue.
-  std::vector<std::pair<int, int>> glued_boundaries;
+/// The glued boundaries: (A boundary index, B boundary index) per glue.
+std::vector<std::pair<int, int>> glued_boundaries(const Bcifs& a, const Bcifs& b,
+                                                  std::span<const Glue> glue) {
+  std::vector<std::pair<int, int>> out;
   for (std::size_t k = 0; k < glue.size(); ++k) {
     const Glue& gl = glue[k];
     const std::string where = "join: glue[" + std::to_string(k) + "]";
@@ -147,21 +148,46 @@ Junction join(const Bcifs& a, std::span<const Points> nets_a, const Bcifs& b, st
     if (bb < 0)
       throw InvalidInput(where + ": B's cell " + cell_text(b, cb) + " has no boundary \"" + gl.b_boundary +
                          "\"");
-    glued_boundaries.emplace_back(ba, bb);
+    out.emplace_back(ba, bb);
   }
+  return out;
+}
 
-  // Shared cells: closure of the glued pairs under children and boundaries.
+/// B's shared cells and boundaries and their partners in A.
+struct Sharing {
   std::map<StateId, StateId> partner;   // B cell → A cell
   std::map<int, int> boundary_partner;  // B boundary index → A boundary index (on shared cells)
+};
+
+/// The pair (xa, xb) is glued: it must hold alike, and its boundaries pair up by name.
+void check_glued_pair(const Bcifs& a, StateId xa, const Bcifs& b, StateId xb) {
+  const auto& ga = a.automaton.graph;
+  const auto& gb = b.automaton.graph;
+  const std::string pair = "join: A's " + cell_text(a, xa) + " and B's " + cell_text(b, xb);
+  if (ga[xa].size != gb[xb].size)
+    throw InvalidInput(pair + " are glued but hold " + std::to_string(ga[xa].size) + " and " +
+                       std::to_string(gb[xb].size) + " points");
+  if (a.dimension[xa] != b.dimension[xb])
+    throw InvalidInput(pair + " are glued but have dimensions " + std::to_string(a.dimension[xa]) + " and " +
+                       std::to_string(b.dimension[xb]));
+  if (boost::out_degree(xa, ga) != boost::out_degree(xb, gb))
+    throw InvalidInput(pair + " are glued but have " + std::to_string(boost::out_degree(xa, ga)) + " and " +
+                       std::to_string(boost::out_degree(xb, gb)) + " children");
+}
+
+/// Shared cells: closure of the glued pairs under children and boundaries, in the order found.
+Sharing share_cells(const Bcifs& a, const Bcifs& b, std::span<const std::pair<int, int>> glued,
+                    std::vector<std::pair<StateId, StateId>>& shared) {
+  const auto& gb = b.automaton.graph;
+  Sharing out;
   std::deque<std::pair<StateId, StateId>> todo;
-  for (const auto& [ba, bb] : glued_boundaries)
+  for (const auto& [ba, bb] : glued)
     todo.emplace_back(a.boundaries[static_cast<std::size_t>(ba)].boundary,
                       b.boundaries[static_cast<std::size_t>(bb)].boundary);
-  Junction result;
   while (!todo.empty()) {
     const auto [xa, xb] = todo.front();
     todo.pop_front();
-    const auto [it, added] = partner.try_emplace(xb, xa);
+    const auto [it, added] = out.partner.try_emplace(xb, xa);
     if (!added) {
       if (it->second != xa)
         throw InvalidInput("join: B's cell " + cell_text(b, xb) + " would be both " +
@@ -169,17 +195,8 @@ Junction join(const Bcifs& a, std::span<const Points> nets_a, const Bcifs& b, st
                            " of A (the glued boundaries do not subdivide alike)");
       continue;
     }
-    const std::string pair = "join: A's " + cell_text(a, xa) + " and B's " + cell_text(b, xb);
-    if (ga[xa].size != gb[xb].size)
-      throw InvalidInput(pair + " are glued but hold " + std::to_string(ga[xa].size) + " and " +
-                         std::to_string(gb[xb].size) + " points");
-    if (a.dimension[xa] != b.dimension[xb])
-      throw InvalidInput(pair + " are glued but have dimensions " + std::to_string(a.dimension[xa]) +
-                         " and " + std::to_string(b.dimension[xb]));
-    if (boost::out_degree(xa, ga) != boost::out_degree(xb, gb))
-      throw InvalidInput(pair + " are glued but have " + std::to_string(boost::out_degree(xa, ga)) + " and " +
-                         std::to_string(boost::out_degree(xb, gb)) + " children");
-    result.shared.emplace_back(xa, xb);
+    check_glued_pair(a, xa, b, xb);
+    shared.emplace_back(xa, xb);
     for (int c = 0; c < static_cast<int>(boost::out_degree(xb, gb)); ++c)
       todo.emplace_back(child_of(a, xa, c), child_of(b, xb, c));
     for (std::size_t i = 0; i < b.boundaries.size(); ++i) {
@@ -187,15 +204,21 @@ Junction join(const Bcifs& a, std::span<const Points> nets_a, const Bcifs& b, st
       if (op.cell != xb) continue;
       const int j = find_boundary(a, xa, op.name);
       if (j < 0 || a.boundaries[static_cast<std::size_t>(j)].rows != op.rows)
-        throw InvalidInput(pair + " are glued but A's has no boundary \"" + op.name +
-                           "\" with the same rows");
-      boundary_partner[static_cast<int>(i)] = j;
+        throw InvalidInput("join: A's " + cell_text(a, xa) + " and B's " + cell_text(b, xb) +
+                           " are glued but A's has no boundary \"" + op.name + "\" with the same rows");
+      out.boundary_partner[static_cast<int>(i)] = j;
       todo.emplace_back(a.boundaries[static_cast<std::size_t>(j)].boundary, op.boundary);
     }
   }
+  return out;
+}
 
-  // The joined system: A as it is, then B's cells that are not shared.
-  Bcifs& sys = result.system;
+/// The joined automaton's cells and transitions: A's as they are, then B's cells that are not
+/// shared. Returns the joined id of every cell of B.
+std::vector<StateId> join_cells(const Bcifs& a, const Bcifs& b, const Sharing& sharing,
+                                const JoinOptions& options, Bcifs& sys) {
+  const auto& ga = a.automaton.graph;
+  const auto& gb = b.automaton.graph;
   auto& g = sys.automaton.graph;
   for (StateId s = 0; s < boost::num_vertices(ga); ++s) {
     automata::State st = ga[s];
@@ -205,7 +228,7 @@ Junction join(const Bcifs& a, std::span<const Points> nets_a, const Bcifs& b, st
   }
   std::vector<StateId> id(boost::num_vertices(gb));
   for (StateId s = 0; s < boost::num_vertices(gb); ++s) {
-    if (const auto it = partner.find(s); it != partner.end()) {
+    if (const auto it = sharing.partner.find(s); it != sharing.partner.end()) {
       id[s] = it->second;
       continue;
     }
@@ -217,14 +240,22 @@ Junction join(const Bcifs& a, std::span<const Points> nets_a, const Bcifs& b, st
   for (auto [e, end] = boost::edges(ga); e != end; ++e)
     boost::add_edge(boost::source(*e, ga), boost::target(*e, ga), ga[*e], g);
   for (StateId s = 0; s < boost::num_vertices(gb); ++s) {
-    if (partner.count(s)) continue;
+    if (sharing.partner.count(s)) continue;
     for (auto [e, end] = boost::out_edges(s, gb); e != end; ++e)
       boost::add_edge(id[s], id[boost::target(*e, gb)], gb[*e], g);
   }
+  return id;
+}
+
+/// A's boundary operators, then B's that are not shared. Returns the joined index of every
+/// boundary of B.
+std::vector<int> join_boundaries(const Bcifs& a, const Bcifs& b, const Sharing& sharing,
+                                 std::span<const StateId> id, Bcifs& sys) {
   sys.boundaries = a.boundaries;
   std::vector<int> boundary_id(b.boundaries.size());
   for (std::size_t i = 0; i < b.boundaries.size(); ++i) {
-    if (const auto it = boundary_partner.find(static_cast<int>(i)); it != boundary_partner.end()) {
+    if (const auto it = sharing.boundary_partner.find(static_cast<int>(i));
+        it != sharing.boundary_partner.end()) {
       boundary_id[i] = it->second;
       continue;
     }
@@ -234,6 +265,14 @@ Junction join(const Bcifs& a, std::span<const Points> nets_a, const Bcifs& b, st
     boundary_id[i] = static_cast<int>(sys.boundaries.size());
     sys.boundaries.push_back(std::move(op));
   }
+  return boundary_id;
+}
+
+/// A's constraints, then B's on cells that are not shared; B's that read a shared cell are the
+/// junction constraints.
+void join_constraints(const Bcifs& a, const Bcifs& b, const Sharing& sharing, std::span<const StateId> id,
+                      std::span<const int> boundary_id, const JoinOptions& options, Junction& result) {
+  Bcifs& sys = result.system;
   // A transition of B names its source by B's id; a shared source reads A's transition.
   const auto map_factor = [&](Factor f) {
     if (f.kind == Factor::Kind::boundary)
@@ -247,24 +286,62 @@ Junction join(const Bcifs& a, std::span<const Points> nets_a, const Bcifs& b, st
     sys.constraints.push_back(std::move(c));
   }
   for (const Constraint& c : b.constraints) {
-    if (partner.count(source_cell(b, c))) continue;  // on a shared cell: A's constraints hold
+    if (sharing.partner.count(source_cell(b, c))) continue;  // on a shared cell: A's constraints hold
     Constraint out{options.b_name + ":" + c.name, {}, {}};
     bool reads_shared = false;
     for (int side = 0; side < 2; ++side)
       for (const Factor& f : side ? c.right : c.left) {
         (side ? out.right : out.left).push_back(map_factor(f));
         if (f.kind == Factor::Kind::transition
-                ? partner.count(f.transition.from) > 0
-                : boundary_partner.count(f.boundary) > 0 ||
-                      partner.count(b.boundaries[static_cast<std::size_t>(f.boundary)].boundary) > 0)
+                ? sharing.partner.count(f.transition.from) > 0
+                : sharing.boundary_partner.count(f.boundary) > 0 ||
+                      sharing.partner.count(b.boundaries[static_cast<std::size_t>(f.boundary)].boundary) > 0)
           reads_shared = true;
       }
     if (reads_shared) result.junction_constraints.push_back(out.name);
     sys.constraints.push_back(std::move(out));
   }
+}
+
+/// Nets: A's, then B's with their glued rows replaced by A's.
+std::vector<Points> glue_nets(const Bcifs& a, std::span<const Points> nets_a, const Bcifs& b,
+                              std::span<const Points> nets_b, std::span<const Glue> glue,
+                              std::span<const std::pair<int, int>> glued) {
+  std::vector<Points> nets(nets_a.begin(), nets_a.end());
+  std::vector<Points> nb(nets_b.begin(), nets_b.end());
+  for (std::size_t k = 0; k < glue.size(); ++k) {
+    const auto& ra = a.boundaries[static_cast<std::size_t>(glued[k].first)].rows;
+    const auto& rb = b.boundaries[static_cast<std::size_t>(glued[k].second)].rows;
+    const Points& Na = nets_a[glue[k].a_entry];
+    Points& Nb = nb[glue[k].b_entry];
+    if (Na.cols() != Nb.cols())
+      throw InvalidInput("join: A's nets have " + std::to_string(Na.cols()) + " columns, B's " +
+                         std::to_string(Nb.cols()));
+    for (std::size_t i = 0; i < ra.size(); ++i) Nb.row(rb[i]) = Na.row(ra[i]);
+  }
+  nets.insert(nets.end(), nb.begin(), nb.end());
+  return nets;
+}
+
+}  // namespace
+
+Junction join(const Bcifs& a, std::span<const Points> nets_a, const Bcifs& b, std::span<const Points> nets_b,
+              std::span<const Glue> glue, const JoinOptions& options) {
+  validate(a);
+  validate(b);
+  check_join_nets(a, nets_a, b, nets_b, glue);
+  const std::vector<std::pair<int, int>> glued = glued_boundaries(a, b, glue);
+  Junction result;
+  const Sharing sharing = share_cells(a, b, glued, result.shared);
+
+  // The joined system: A as it is, then B's cells that are not shared.
+  Bcifs& sys = result.system;
+  const std::vector<StateId> id = join_cells(a, b, sharing, options, sys);
+  const std::vector<int> boundary_id = join_boundaries(a, b, sharing, id, sys);
+  join_constraints(a, b, sharing, id, boundary_id, options, result);
   if (options.free_a) sys.free = a.free;
   for (const TransitionRef& t : b.free)
-    if (!partner.count(t.from)) sys.free.push_back(TransitionRef{id[t.from], t.child});
+    if (!sharing.partner.count(t.from)) sys.free.push_back(TransitionRef{id[t.from], t.child});
   sys.automaton.initial = a.automaton.initial;
   for (automata::Initial init : b.automaton.initial) {
     init.state = id[init.state];
@@ -272,23 +349,7 @@ Junction join(const Bcifs& a, std::span<const Points> nets_a, const Bcifs& b, st
   }
   automata::mark_recurrent(sys.automaton);
   validate(sys);
-
-  // Nets: B's glued rows are A's.
-  if (!nets_a.empty() && !nets_b.empty()) {
-    result.nets.assign(nets_a.begin(), nets_a.end());
-    std::vector<Points> nb(nets_b.begin(), nets_b.end());
-    for (std::size_t k = 0; k < glue.size(); ++k) {
-      const auto& ra = a.boundaries[static_cast<std::size_t>(glued_boundaries[k].first)].rows;
-      const auto& rb = b.boundaries[static_cast<std::size_t>(glued_boundaries[k].second)].rows;
-      const Points& Na = nets_a[glue[k].a_entry];
-      Points& Nb = nb[glue[k].b_entry];
-      if (Na.cols() != Nb.cols())
-        throw InvalidInput("join: A's nets have " + std::to_string(Na.cols()) + " columns, B's " +
-                           std::to_string(Nb.cols()));
-      for (std::size_t i = 0; i < ra.size(); ++i) Nb.row(rb[i]) = Na.row(ra[i]);
-    }
-    result.nets.insert(result.nets.end(), nb.begin(), nb.end());
-  }
+  if (!nets_a.empty() && !nets_b.empty()) result.nets = glue_nets(a, nets_a, b, nets_b, glue, glued);
 
   // Project the free matrices onto the admissible space.
   const AdmissibleSpace space = admissible_space(sys, options.solve);

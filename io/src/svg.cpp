@@ -151,7 +151,23 @@ std::string strokes_svg(const std::vector<Stroke>& strokes, const std::string& t
   return o;
 }
 
-std::string to_svg(const automata::Automaton& a) {
+namespace {
+
+/// Where each state is drawn: its column and row on the grid.
+struct Layout {
+  std::vector<int> column, row;
+  int columns = 0, tallest = 0;
+};
+
+double x_of(const Layout& l, automata::StateId s) {
+  return kMargin + kRadius + kColumn * l.column[s];
+}
+
+double y_of(const Layout& l, automata::StateId s) {
+  return kMargin + kRadius + kRow * l.row[s] + 20;
+}
+
+Layout layout_states(const automata::Automaton& a) {
   const std::size_t n = boost::num_vertices(a.graph);
   // Layers: breadth-first distance from the initial states; unreachable states go last.
   std::vector<int> layer(n, -1);
@@ -182,31 +198,24 @@ std::string to_svg(const automata::Automaton& a) {
     }
   // Tall layers wrap into several columns of at most kMaxRows states.
   std::vector<int> in_layer(static_cast<std::size_t>(deepest + 2), 0), first_column(in_layer.size() + 1, 0);
-  std::vector<int> column(n, 0), row(n, 0);
+  Layout out{std::vector<int>(n, 0), std::vector<int>(n, 0)};
   for (const automata::StateId s : order) ++in_layer[static_cast<std::size_t>(layer[s])];
   for (std::size_t l = 0; l < in_layer.size(); ++l)
     first_column[l + 1] = first_column[l] + (in_layer[l] + kMaxRows - 1) / kMaxRows;
   std::vector<int> seen(in_layer.size(), 0);
   for (const automata::StateId s : order) {
     const auto l = static_cast<std::size_t>(layer[s]);
-    column[s] = first_column[l] + seen[l] / kMaxRows;
-    row[s] = seen[l]++ % kMaxRows;
+    out.column[s] = first_column[l] + seen[l] / kMaxRows;
+    out.row[s] = seen[l]++ % kMaxRows;
   }
-  const int columns = first_column.back();
-  const int tallest = std::min(kMaxRows, *std::max_element(in_layer.begin(), in_layer.end()));
-  const auto x_of = [&](automata::StateId s) { return kMargin + kRadius + kColumn * column[s]; };
-  const auto y_of = [&](automata::StateId s) { return kMargin + kRadius + kRow * row[s] + 20; };
-  const double width = 2 * (kMargin + kRadius) + kColumn * std::max(columns - 1, 0);
-  const double height = 2 * (kMargin + kRadius) + kRow * std::max(tallest - 1, 0) + 20;
+  out.columns = first_column.back();
+  out.tallest = std::min(kMaxRows, *std::max_element(in_layer.begin(), in_layer.end()));
+  return out;
+}
 
-  std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + fixed(width) + "\" height=\"" +
-                    fixed(height) + "\" viewBox=\"0 0 " + fixed(width) + " " + fixed(height) + "\">\n";
-  svg +=
-      "<defs><marker id=\"arrow\" viewBox=\"0 0 10 10\" refX=\"10\" refY=\"5\" markerWidth=\"7\" "
-      "markerHeight=\"7\" orient=\"auto-start-reverse\"><path d=\"M0,0 L10,5 L0,10 z\" fill=\"#444\"/>"
-      "</marker></defs>\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  svg += "<g font-family=\"sans-serif\" font-size=\"12\" text-anchor=\"middle\">\n";
-  // Parallel transitions (e.g. G and D both to the uniform state) share one arrow, "G,D".
+/// The transitions as arrows. Parallel transitions (e.g. G and D both to the uniform state)
+/// share one arrow, "G,D".
+void append_arrows(std::string& svg, const automata::Automaton& a, const Layout& layout) {
   std::map<std::pair<automata::StateId, automata::StateId>, std::string> arrows;
   for (auto [e, end] = boost::edges(a.graph); e != end; ++e) {
     std::string& label = arrows[{boost::source(*e, a.graph), boost::target(*e, a.graph)}];
@@ -214,7 +223,7 @@ std::string to_svg(const automata::Automaton& a) {
   }
   for (const auto& [ends, label] : arrows) {
     const auto [s, t] = ends;
-    const double x0 = x_of(s), y0 = y_of(s), x1 = x_of(t), y1 = y_of(t);
+    const double x0 = x_of(layout, s), y0 = y_of(layout, s), x1 = x_of(layout, t), y1 = y_of(layout, t);
     if (s == t) {  // self-loop above the state
       svg += "<path d=\"M" + fixed(x0 - 10) + "," + fixed(y0 - kRadius + 2) + " C" + fixed(x0 - 30) + "," +
              fixed(y0 - kRadius - 38) + " " + fixed(x0 + 30) + "," + fixed(y0 - kRadius - 38) + " " +
@@ -238,17 +247,40 @@ std::string to_svg(const automata::Automaton& a) {
     const double lx = 0.25 * x0 + 0.5 * cx + 0.25 * x1, ly = 0.25 * y0 + 0.5 * cy + 0.25 * y1;
     svg += "<text x=\"" + fixed(lx) + "\" y=\"" + fixed(ly - 3) + "\" fill=\"#a33\">" + label + "</text>\n";
   }
+}
+
+/// The states as circles (recurrent ones tinted, initial ones with a thick outline) and names.
+void append_states(std::string& svg, const automata::Automaton& a, const Layout& layout) {
+  const std::size_t n = boost::num_vertices(a.graph);
   std::vector<bool> is_initial(n, false);
   for (const automata::Initial& i : a.initial) is_initial[i.state] = true;
   for (automata::StateId s = 0; s < n; ++s) {
     const automata::State& st = a.graph[s];
     const std::string fill = st.recurrent ? "#dfe9f7" : "#f4f4f4";
-    svg += "<circle cx=\"" + fixed(x_of(s)) + "\" cy=\"" + fixed(y_of(s)) + "\" r=\"" + fixed(kRadius) +
-           "\" fill=\"" + fill + "\" stroke=\"#222\" stroke-width=\"" + (is_initial[s] ? "2.5" : "1") +
-           "\"/>\n";
+    svg += "<circle cx=\"" + fixed(x_of(layout, s)) + "\" cy=\"" + fixed(y_of(layout, s)) + "\" r=\"" +
+           fixed(kRadius) + "\" fill=\"" + fill + "\" stroke=\"#222\" stroke-width=\"" +
+           (is_initial[s] ? "2.5" : "1") + "\"/>\n";
     const std::string name = st.name.empty() ? "s" + std::to_string(s) : xml_escape(st.name);
-    svg += "<text x=\"" + fixed(x_of(s)) + "\" y=\"" + fixed(y_of(s) + 4) + "\">" + name + "</text>\n";
+    svg += "<text x=\"" + fixed(x_of(layout, s)) + "\" y=\"" + fixed(y_of(layout, s) + 4) + "\">" + name +
+           "</text>\n";
   }
+}
+
+}  // namespace
+
+std::string to_svg(const automata::Automaton& a) {
+  const Layout layout = layout_states(a);
+  const double width = 2 * (kMargin + kRadius) + kColumn * std::max(layout.columns - 1, 0);
+  const double height = 2 * (kMargin + kRadius) + kRow * std::max(layout.tallest - 1, 0) + 20;
+  std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + fixed(width) + "\" height=\"" +
+                    fixed(height) + "\" viewBox=\"0 0 " + fixed(width) + " " + fixed(height) + "\">\n";
+  svg +=
+      "<defs><marker id=\"arrow\" viewBox=\"0 0 10 10\" refX=\"10\" refY=\"5\" markerWidth=\"7\" "
+      "markerHeight=\"7\" orient=\"auto-start-reverse\"><path d=\"M0,0 L10,5 L0,10 z\" fill=\"#444\"/>"
+      "</marker></defs>\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  svg += "<g font-family=\"sans-serif\" font-size=\"12\" text-anchor=\"middle\">\n";
+  append_arrows(svg, a, layout);
+  append_states(svg, a, layout);
   svg += "</g>\n</svg>\n";
   return svg;
 }

@@ -115,11 +115,8 @@ std::string state_repr(const StateView& s) {
          " values, recurrent=" + (s.recurrent ? "True" : "False") + ", name='" + s.name + "')";
 }
 
-}  // namespace
-
-void bind_automata(py::module_& m) {
-  using nurbs::TensorAutomaton;
-
+/// States, initial entries and transitions as Python reads them (copies).
+void bind_automata_views(py::module_& m) {
   py::class_<StateView>(m, "State", "A state of an automaton: the control nets it holds have `size` points.")
       .def_readonly("size", &StateView::size, "Number of points of the nets of this state.")
       .def_readonly("window", &StateView::window,
@@ -167,17 +164,11 @@ void bind_automata(py::module_& m) {
                std::to_string(t.child) + ", label='" + t.label + "', " + std::to_string(t.matrix.rows()) +
                "x" + std::to_string(t.matrix.cols()) + ")";
       });
+}
 
-  py::class_<KnotAutomaton>(
-      m, "Automaton",
-      "An automaton whose transitions carry subdivision matrices (a controlled IFS).\n\n"
-      "Automaton() is empty: add states, transitions (in the order of the children along the "
-      "shape) and initial entries. knot_automaton and tensor_automaton build one from knots.\n"
-      "Ids, matrix shapes and finiteness are checked as they are added (InvalidInput); rows "
-      "summing to 1 and every state having a transition are checked by cifs.ifs.validate, "
-      "which every engine function calls. Knot-doubling automata also hold the windows of their "
-      "states and the knot intervals of their initial entries (C++ nurbs::KnotAutomaton).")
-      .def(py::init<>(), "An empty automaton: no state, no transition, no initial entry.")
+/// Building: states, transitions and their matrices.
+void bind_automaton_building(py::class_<KnotAutomaton>& automaton) {
+  automaton.def(py::init<>(), "An empty automaton: no state, no transition, no initial entry.")
       .def(
           "add_state",
           [](KnotAutomaton& k, int size, const std::string& name) {
@@ -229,7 +220,12 @@ void bind_automata(py::module_& m) {
             a.graph[e].matrix = matrix;
           },
           py::arg("source"), py::arg("child"), py::arg("matrix"),
-          "Replaces the matrix of child `child` of state `source` (same checks as add_transition).")
+          "Replaces the matrix of child `child` of state `source` (same checks as add_transition).");
+}
+
+/// Reading: states, children, labels, transitions.
+void bind_automaton_reading(py::class_<KnotAutomaton>& automaton) {
+  automaton
       .def(
           "state",
           [](const KnotAutomaton& k, std::int64_t id) {
@@ -271,7 +267,12 @@ void bind_automata(py::module_& m) {
           py::arg("source"), "Labels of the transitions out of `source`, in child order (list of str).")
       .def_property_readonly(
           "transitions", [](const KnotAutomaton& k) { return transitions(k.automaton); },
-          "Every transition, in state order then child order (list of Transition, copies).")
+          "Every transition, in state order then child order (list of Transition, copies).");
+}
+
+/// Initial entries, copies, repr.
+void bind_automaton_entries(py::class_<KnotAutomaton>& automaton) {
+  automaton
       .def(
           "add_initial",
           [](KnotAutomaton& k, std::int64_t state, std::optional<int> segment, double start, double end,
@@ -305,7 +306,27 @@ void bind_automata(py::module_& m) {
                std::to_string(boost::num_edges(a.graph)) + " transitions, " +
                std::to_string(a.initial.size()) + " initial entries)";
       });
+}
 
+/// The Automaton class.
+void bind_automata_class(py::module_& m) {
+  py::class_<KnotAutomaton> automaton(
+      m, "Automaton",
+      "An automaton whose transitions carry subdivision matrices (a controlled IFS).\n\n"
+      "Automaton() is empty: add states, transitions (in the order of the children along the "
+      "shape) and initial entries. knot_automaton and tensor_automaton build one from knots.\n"
+      "Ids, matrix shapes and finiteness are checked as they are added (InvalidInput); rows "
+      "summing to 1 and every state having a transition are checked by cifs.ifs.validate, "
+      "which every engine function calls. Knot-doubling automata also hold the windows of their "
+      "states and the knot intervals of their initial entries (C++ nurbs::KnotAutomaton).");
+  bind_automaton_building(automaton);
+  bind_automaton_reading(automaton);
+  bind_automaton_entries(automaton);
+}
+
+/// Knot automata, minimisation, initial nets, the writers.
+void bind_automata_functions(py::module_& m) {
+  using nurbs::TensorAutomaton;
   m.def("knot_automaton", &nurbs::knot_automaton, py::arg("curve"), py::call_guard<py::gil_scoped_release>(),
         "The knot-doubling automaton of a nurbs.Curve, from its knots alone: one initial entry per segment, "
         "transitions G and D with the subdivision matrices, recurrent states marked.");
@@ -338,7 +359,11 @@ void bind_automata(py::module_& m) {
       "to_svg", py::overload_cast<const Automaton&>(&io::to_svg), py::arg("automaton"),
       "A self-contained SVG drawing of the automaton (text): states in columns by distance from the initial "
       "states, recurrent states shaded.");
+}
 
+/// Tensor-product automata.
+void bind_automata_tensor(py::module_& m) {
+  using nurbs::TensorAutomaton;
   py::class_<TensorAutomaton>(
       m, "TensorAutomaton",
       "The tensor-product automaton of a surface: pairs of u and v knot-doubling states, "
@@ -369,6 +394,15 @@ void bind_automata(py::module_& m) {
   m.def("v_label", &automata::v_label, py::arg("label"),
         "The v direction's name of a knot-doubling label: G → H (first half), D → B (second half); other "
         "labels unchanged.");
+}
+
+}  // namespace
+
+void bind_automata(py::module_& m) {
+  bind_automata_views(m);
+  bind_automata_class(m);
+  bind_automata_functions(m);
+  bind_automata_tensor(m);
 }
 
 }  // namespace cifs::python

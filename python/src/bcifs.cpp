@@ -71,9 +71,8 @@ std::string factor_repr(const ifs::Factor& f) {
          std::to_string(f.transition.child) + "))";
 }
 
-}  // namespace
-
-void bind_bcifs(py::module_& m) {
+/// Constraints: boundary operators, factors, constraints, coefficients.
+void bind_bcifs_constraints(py::module_& m) {
   py::class_<ifs::BoundaryOperator>(
       m, "BoundaryOperator",
       R"doc(A 0/1 selection: the net of cell `boundary` is rows `rows` of the net of `cell`.
@@ -151,7 +150,10 @@ same target cell and hold at most one free transition each (checked by the Bcifs
                std::to_string(c.transition.child) + "), " + std::to_string(c.row) + ", " +
                std::to_string(c.col) + ")";
       });
+}
 
+/// The system: Bcifs, names, selections, residuals, admissibility.
+void bind_bcifs_system(py::module_& m) {
   py::class_<ifs::Bcifs>(
       m, "Bcifs",
       R"doc(A boundary controlled IFS (docs/bcifs.md): cells, boundary operators, constraints, free transitions.
@@ -215,7 +217,10 @@ sums") the largest |row sum − 1|.)doc");
   m.def("check_admissible", &ifs::check_admissible, py::arg("system"), py::arg("tolerance") = 1e-12,
         py::call_guard<py::gil_scoped_release>(),
         "Raises cifs.InvalidInput naming the worst constraint when a residual exceeds `tolerance`.");
+}
 
+/// Systems of NURBS curves and surfaces.
+void bind_bcifs_builders(py::module_& m) {
   m.def(
       "curve_bcifs",
       [](const nurbs::Curve& curve, bool free_vertices) {
@@ -256,7 +261,10 @@ frees every operator.)doc");
       py::arg("automaton"), py::kw_only(), py::arg("free_knot_lines").noconvert() = false,
       py::call_guard<py::gil_scoped_release>(),
       "The same from a cifs.automata.TensorAutomaton (cifs.automata.tensor_automaton).");
+}
 
+/// The admissible space and the free coefficients.
+void bind_bcifs_space(py::module_& m) {
   py::class_<Space>(m, "AdmissibleSpace", R"doc(The admissible matrices: every unknown entry is x = x0 + K·c.
 
 c holds the values of the free coefficients (unknowns[free[j]]); K has a unit row at each free
@@ -342,7 +350,10 @@ have no solution (naming the constraints of the inconsistent component and the r
       py::arg("system"), py::arg("space"), py::arg("c"),
       "The system with every free matrix set to x0 + K·c (c: one value per free coefficient). Raises "
       "cifs.InvalidInput for a wrong number of values or a space solved for another system.");
+}
 
+/// Perturbation and edge pieces.
+void bind_bcifs_perturbation(py::module_& m) {
   py::class_<ifs::Perturbation>(m, "Perturbation",
                                 "Result of perturb: the perturbed system and how it was made.")
       .def_readonly("system", &ifs::Perturbation::system, "The perturbed Bcifs.")
@@ -419,7 +430,10 @@ cell it selects. Raises cifs.InvalidInput when an edge cell lacks a "start" or "
 nets: one float64 array (size(state), cols) per initial entry. Returns EdgePieces. Raises
 cifs.InvalidInput for nets that do not fit the entries, a negative depth, more than 2^26 pieces,
 or a piece in a cell that is not an edge.)doc");
+}
 
+/// Uniform curves, products and junctions.
+void bind_bcifs_joining(py::module_& m) {
   m.def(
       "uniform_curve_bcifs",
       [](const Eigen::MatrixXd& S0, const Eigen::MatrixXd& S1, int pieces, int layer, bool free) {
@@ -472,6 +486,17 @@ glue: list of (A entry, A boundary name, B entry, B boundary name), e.g. [(2, "e
 The shared cells keep A's operators; B's constraints that meet them are solved again and the free
 matrices projected onto the admissible space. Returns a Junction. Raises cifs.InvalidInput when
 glued cells differ (size, dimension, children, boundaries) or the constraints have no solution.)doc");
+}
+
+}  // namespace
+
+void bind_bcifs(py::module_& m) {
+  bind_bcifs_constraints(m);
+  bind_bcifs_system(m);
+  bind_bcifs_builders(m);
+  bind_bcifs_space(m);
+  bind_bcifs_perturbation(m);
+  bind_bcifs_joining(m);
 }
 
 void bind_bcifs_io(py::module_& m) {

@@ -64,12 +64,9 @@ ifs::SimilarityEdge similarity_edge(const py::handle& item, std::size_t index) {
   return {static_cast<StateId>(from), static_cast<StateId>(to), t[2].cast<double>()};
 }
 
-}  // namespace
-
-void bind_ifs(py::module_& m) {
+/// Analysis: reachable states, validation, contraction, end functionals, spectra.
+void bind_analysis(py::module_& m) {
   const auto release = py::call_guard<py::gil_scoped_release>();
-
-  // Analysis.
   m.def("reachable_states", &ifs::reachable_states, py::arg("automaton"),
         "Ids of the states reachable from the initial entries (every state when there is none), sorted.");
   m.def("validate", &ifs::validate, py::arg("automaton"),
@@ -161,8 +158,10 @@ void bind_ifs(py::module_& m) {
   m.def("spectra", &ifs::spectra, py::arg("automaton"),
         "Spectra of every transition out of a reachable state, in state order then child order (list of "
         "TransitionSpectrum).");
+}
 
-  // Attractors.
+/// Attractors: Cartesian rows, the subdivision tree and its leaves.
+void bind_leaves(py::module_& m) {
   m.def(
       "cartesian", &ifs::cartesian, py::arg("homogeneous"),
       "Homogeneous rows (w·x, w), float `(n, dim+1)` → Cartesian rows x, `(n, dim)`. Raises InvalidInput for "
@@ -250,6 +249,10 @@ void bind_ifs(py::module_& m) {
       "unconverged); max_length: for the contraction check; homogeneous: rows are (w·x, w) and epsilon and "
       "the bounds are Cartesian. Raises InvalidInput for epsilon ≤ 0, a negative max_depth, a system that is "
       "not contractive, and as for_each_leaf.");
+}
+
+/// Attractors: convex states, piece bounds and tolerance samples.
+void bind_piece_bounds(py::module_& m) {
   m.def("convex_states", &ifs::convex_states, py::arg("automaton"),
         "Per state id: True when every matrix on every path from the state has no negative entry, so each "
         "attractor piece lies in the convex hull of its net (hull property).");
@@ -324,6 +327,10 @@ void bind_ifs(py::module_& m) {
       "epsilon, "
       "a sample above max_points (before allocating it), a branch unresolved at max_depth, and as "
       "for_each_leaf_to_tolerance.");
+}
+
+/// Attractors: points to a depth or a tolerance, stencil tables.
+void bind_samples(py::module_& m) {
   py::class_<ifs::Sample>(m, "Sample", "Attractor points to a depth or a tolerance (sample_attractor).")
       .def_property_readonly(
           "points", [](const ifs::Sample& s) { return s.points; },
@@ -417,7 +424,10 @@ void bind_ifs(py::module_& m) {
       "Builds the StencilTable of `automaton` at `depth` (checks, counts, end functionals, tables: the work "
       "that depends on the automaton alone). Raises InvalidInput for an invalid automaton, a negative depth "
       "or a count that overflows.");
+}
 
+/// Attractors: the chaos game.
+void bind_chaos(py::module_& m) {
   py::class_<ifs::ChaosResult>(m, "ChaosResult", "Result of the chaos game.")
       .def_property_readonly(
           "points", [](const ifs::ChaosResult& r) { return r.points; },
@@ -456,8 +466,10 @@ void bind_ifs(py::module_& m) {
       "is not contractive, restart_diameter outside (0, 1), negative samples, an output (8 bytes per "
       "coordinate\n"
       "and address) above max_bytes (checked before allocating), and as for_each_leaf.");
+}
 
-  // Meshes.
+/// Meshes.
+void bind_meshes(py::module_& m) {
   m.def(
       "mesh_bytes",
       [](std::int64_t vertices, std::int64_t cols, std::int64_t quads) {
@@ -545,8 +557,10 @@ void bind_ifs(py::module_& m) {
       py::arg("max_table_depth") = 6,
       "Builds the MeshStencilTable of `automaton` at `depth`: patches as quad_mesh's, or None for "
       "patch_meshes' layout (each initial entry on its own). Raises InvalidInput as quad_mesh.");
+}
 
-  // Classic affine IFS.
+/// Classic affine IFS.
+void bind_classic(py::module_& m) {
   py::class_<AffineMap>(
       m, "AffineMap",
       "w(x, y) = (a·x + b·y + e, c·x + d·y + f), chosen with weight `probability` (Barnsley).")
@@ -600,8 +614,10 @@ void bind_ifs(py::module_& m) {
       py::arg("maps"), py::arg("triangle"),
       "The one-state CIFS of a planar affine IFS on a control triangle: one transition \"w<i>\" per map, one "
       "initial entry whose net is `triangle`. Raises InvalidInput as barycentric_matrix, or for no map.");
+}
 
-  // Dimension.
+/// Dimension: box counting.
+void bind_box_counting(py::module_& m) {
   py::class_<ifs::BoxCount>(m, "BoxCount", "One scale of box counting: level k, box side ε, occupied boxes.")
       .def_readonly("level", &ifs::BoxCount::level, "Level k (box side size·2^-k).")
       .def_readonly("epsilon", &ifs::BoxCount::epsilon, "Box side ε.")
@@ -676,7 +692,10 @@ void bind_ifs(py::module_& m) {
       "min_boxes: the automatic fit range's fine and coarse limits; min_level, max_level: a fit range given "
       "by the user (-1: automatic); levels: finest level counted. Raises InvalidInput for no points, a "
       "non-finite point, all points equal, a bad range, or fewer than 3 reliable levels.");
+}
 
+/// Dimension: similarity and Mauldin–Williams dimensions.
+void bind_similarity(py::module_& m) {
   py::class_<ifs::SimilarityEdge>(
       m, "SimilarityEdge", "A map of a graph-directed system: from state `source` into `target`, ratio.")
       .def(py::init([](std::int64_t source, std::int64_t target, double ratio) {
@@ -729,6 +748,20 @@ void bind_ifs(py::module_& m) {
       "(one Cartesian net per initial entry): the Mauldin–Williams dimension of their ratios. Raises "
       "InvalidInput when a transition is not a similarity between the reference nets (named), and as "
       "mauldin_williams_dimension.");
+}
+
+}  // namespace
+
+void bind_ifs(py::module_& m) {
+  bind_analysis(m);
+  bind_leaves(m);
+  bind_piece_bounds(m);
+  bind_samples(m);
+  bind_chaos(m);
+  bind_meshes(m);
+  bind_classic(m);
+  bind_box_counting(m);
+  bind_similarity(m);
 }
 
 }  // namespace cifs::python

@@ -253,7 +253,8 @@ void bind_polygons(py::module_& m) {
         "The polygon file text (JSON, round-trip precision); parse_polygon_json reads it back bit for bit.");
 }
 
-void bind_geometry(py::module_& m) {
+/// Polylines as OBJ and SVG text.
+void bind_geometry_polylines(py::module_& m) {
   m.def(
       "polyline_obj",
       [](const DoubleArray& points, bool closed) {
@@ -271,7 +272,10 @@ void bind_geometry(py::module_& m) {
       py::arg("stroke") = 1.5,
       "SVG text of the x, y coordinates of a polyline (n, dim ≥ 2), `width` pixels wide.\n\n"
       "Raises InvalidInput for bad points, width or stroke.");
+}
 
+/// Meshes and segments.
+void bind_geometry_types(py::module_& m) {
   py::class_<Mesh>(m, "Mesh",
                    "A polygon mesh: faces of any size over vertex rows (face_offsets + face_vertices), with\n"
                    "optional normals and face states.")
@@ -360,6 +364,10 @@ void bind_geometry(py::module_& m) {
       },
       py::arg("points"), py::arg("closed").noconvert() = false, py::arg("state") = 0,
       "The segments (i, i + 1) of a polyline (n, 2|3), plus (n − 1, 0) when closed, all with `state`.");
+}
+
+/// Mesh and segment files: OBJ, PLY, SVG.
+void bind_geometry_files(py::module_& m) {
   m.def("vertex_normals", &vertex_normals, py::arg("mesh"),
         "Area-weighted unit vertex normals (V, 3); zero rows for vertices without area.");
   m.def("mesh_obj", py::overload_cast<const Mesh&>(&io::mesh_obj), py::arg("mesh"),
@@ -415,6 +423,12 @@ void bind_geometry(py::module_& m) {
       py::arg("stroke") = io::SvgOptions{}.stroke, py::arg("color") = io::SvgOptions{}.color,
       "SVG text of the x, y coordinates (y up), fitted with a 5 % margin into `width` pixels.\n\n"
       "stroke: width in pixels; color: an SVG colour. Raises InvalidInput for a bad width or stroke.");
+}
+
+void bind_geometry(py::module_& m) {
+  bind_geometry_polylines(m);
+  bind_geometry_types(m);
+  bind_geometry_files(m);
 }
 
 void bind_automaton_files(py::module_& m) {
@@ -709,7 +723,10 @@ void bind_verify(py::module_& m) {
       "the memory limit.");
 }
 
-void bind_experiment(py::module_& m) {
+namespace {
+
+/// Run reports and evaluations.
+void bind_experiment_types(py::module_& m) {
   using namespace cifs::experiment;
   py::class_<RunReport>(m, "RunReport", "Result of run.")
       .def_readonly("written", &RunReport::written, "Paths of the files written, in order.")
@@ -745,7 +762,11 @@ void bind_experiment(py::module_& m) {
                    ", points=" + std::to_string(e.points.rows()) + ")";
           },
           "Short description.");
+}
 
+/// Running, evaluating and sampling experiments.
+void bind_experiment_functions(py::module_& m) {
+  using namespace cifs::experiment;
   // Shared keyword checks: negative counts would wrap around in the unsigned C++ fields.
   const auto options = [](std::optional<int> threads, long long max_bytes) {
     if (threads && *threads < 0) throw InvalidInput("threads: " + std::to_string(*threads) + " is negative");
@@ -814,6 +835,13 @@ void bind_experiment(py::module_& m) {
       "What `cifs dimension` measures by default.\n\n"
       "Returns an Evaluation (depth = the deepest piece). Raises InvalidInput as run, for a negative\n"
       "tolerance and for a sample above max_points (before allocating it).");
+}
+
+}  // namespace
+
+void bind_experiment(py::module_& m) {
+  bind_experiment_types(m);
+  bind_experiment_functions(m);
 }
 
 }  // namespace cifs::python

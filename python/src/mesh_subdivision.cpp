@@ -56,9 +56,8 @@ Points apply_checked(const sd::Stencils& s, const py::handle& vertices, const ch
   return sd::apply(s, P);
 }
 
-}  // namespace
-
-void bind_mesh_subdivision(py::module_& m) {
+/// Subdividing polygon meshes, limit points and the limit surface.
+void bind_mesh_subdivision_meshes(py::module_& m) {
   m.def(
       "mesh_schemes",
       []() {
@@ -125,6 +124,10 @@ void bind_mesh_subdivision(py::module_& m) {
       "or "
       "loop (triangles, u + v <= 1). (positions, du, dv), each (n, 3). Exact, extraordinary patches "
       "included.");
+}
+
+/// Limit surfaces as automata, the fractal Catmull–Clark surface.
+void bind_mesh_subdivision_surfaces(py::module_& m) {
   py::class_<sd::SurfaceAutomaton>(
       m, "SurfaceAutomaton",
       "A subdivision surface's limit as one controlled IFS: a patch per face, four children per state; "
@@ -181,6 +184,10 @@ void bind_mesh_subdivision(py::module_& m) {
       "A fractal Catmull–Clark surface with the mesh's topology: the regular state replaced by the uniform "
       "bicubic patch's BC-IFS, perturbed (cifs.ifs.perturb's amplitude, seed, values). Every face keeps the "
       "smooth surface's boundary curves. Returns (SurfaceAutomaton, cifs.ifs.Perturbation).");
+}
+
+/// One function per mesh scheme.
+void bind_mesh_subdivision_schemes(py::module_& m) {
   const auto one = [&m](const char* name, sd::MeshScheme scheme, const char* doc) {
     m.def(
         name,
@@ -198,7 +205,10 @@ void bind_mesh_subdivision(py::module_& m) {
   one("butterfly", sd::MeshScheme::butterfly,
       "Modified Butterfly, Zorin–Schröder–Sweldens (triangles; interpolating).");
   one("sqrt3", sd::MeshScheme::sqrt3, "Kobbelt's √3 (triangles).");
+}
 
+/// Stencils and refinements (topology only).
+void bind_mesh_subdivision_refinement(py::module_& m) {
   py::class_<sd::Stencils>(m, "Stencils",
                            "Sparse weights, one row per new vertex: row i is Σ weights[k]·old[columns[k]] "
                            "for k in offsets[i]..offsets[i+1].")
@@ -272,6 +282,10 @@ void bind_mesh_subdivision(py::module_& m) {
       py::arg("mesh"), py::arg("scheme"), py::arg("levels") = 1, py::kw_only(), py::arg("boundary") = "edge",
       py::arg("max_bytes") = kDefaultBytes,
       "The refinement's topology and weights only; MeshRefinement.apply replays it on vertex data.");
+}
+
+/// Local analysis at a vertex or face.
+void bind_mesh_subdivision_analysis(py::module_& m) {
   m.def(
       "local_analysis",
       [](const std::string& scheme, int valence, const std::optional<std::string>& boundary) {
@@ -337,6 +351,16 @@ void bind_mesh_subdivision(py::module_& m) {
       "labels, steps, matrix, exact (Fractions or None), eigenvalues by modulus, dominant_simple, "
       "subdominant_pair, gap, lambda1, lambda2, mu, curvature_ratio (lambda2^2/|mu|), curvature, "
       "subdominant_basis, limit_stencil (docs/subdivision-surfaces.md).");
+}
+
+}  // namespace
+
+void bind_mesh_subdivision(py::module_& m) {
+  bind_mesh_subdivision_meshes(m);
+  bind_mesh_subdivision_surfaces(m);
+  bind_mesh_subdivision_schemes(m);
+  bind_mesh_subdivision_refinement(m);
+  bind_mesh_subdivision_analysis(m);
 }
 
 }  // namespace cifs::python

@@ -170,7 +170,8 @@ int enum_value(E e) {
 
 constexpr const char* kRampDoc = "colour stops `(k, 3)` (8-bit sRGB, k ≥ 1) spread evenly over [0, 1]";
 
-void bind_camera(py::module_& m) {
+/// Cameras.
+void bind_camera_type(py::module_& m) {
   py::enum_<Projection>(m, "Projection", "Camera projection.")
       .value("orthographic", Projection::orthographic, "Parallel projection (Camera.ortho_height).")
       .value("perspective", Projection::perspective, "Pinhole projection (Camera.fov_y, Camera.near).")
@@ -241,7 +242,10 @@ ortho_height: visible height in world units (orthographic); near: smallest visib
                ", eye=" + v(cam.eye) + ", target=" + v(cam.target) + ", " + std::to_string(cam.width) +
                " by " + std::to_string(cam.height) + ")";
       });
+}
 
+/// Projection and framing.
+void bind_camera_projection(py::module_& m) {
   py::class_<Projected>(m, "Projected", "A projected point: pixel coordinates x (right), y (down) and depth.")
       .def_readonly("x", &Projected::x, "Pixel x coordinate (to the right).")
       .def_readonly("y", &Projected::y, "Pixel y coordinate (down).")
@@ -328,7 +332,13 @@ Raises InvalidInput for no points, non-finite points, a column count other than 
 outside [0, 0.45] or a zero image size.)");
 }
 
-void bind_image(py::module_& m) {
+void bind_camera(py::module_& m) {
+  bind_camera_type(m);
+  bind_camera_projection(m);
+}
+
+/// The channels of an image.
+void bind_image_channels(py::module_& m) {
   py::class_<ImageChannels>(m, "ImageChannels",
                             "The float channels of an Image by name, dict-like: each value is a float32 copy "
                             "of shape (height, width).")
@@ -390,7 +400,10 @@ void bind_image(py::module_& m) {
         for (const auto& [name, values] : c.image->channels) names += (names.empty() ? "" : ", ") + name;
         return "ImageChannels(" + names + ")";
       });
+}
 
+/// Images, framebuffers and OpenEXR files.
+void bind_image_type(py::module_& m) {
   py::class_<Image>(m, "Image", R"(A multi-channel, scene-referred image (framebuffer; OpenEXR contents).
 
 Float channels by name (R G B A Z density N.x N.y N.z …), an optional uint32 `state` channel and
@@ -475,7 +488,13 @@ when the file cannot be written.)");
         "state channel, string attributes). Raises IoError naming `path` when it is missing or unreadable.");
 }
 
-void bind_raster(py::module_& m) {
+void bind_image(py::module_& m) {
+  bind_image_channels(m);
+  bind_image_type(m);
+}
+
+/// States, segments and polylines.
+void bind_raster_curves(py::module_& m) {
   m.attr("kNoState") = kNoState;
 
   const CurveStyle cs{};
@@ -518,7 +537,10 @@ or dtypes, indices out of range, a width ≤ 0, or an image of another size than
 
 Polyline i gets state i; `closed` joins each last point to the first. Same strokes, errors and
 in-place update as render_segments.)");
+}
 
+/// Meshes and points.
+void bind_raster_surfaces(py::module_& m) {
   const SurfaceStyle ss{};
   m.def(
       "render_mesh",
@@ -593,7 +615,10 @@ and state. Raises InvalidInput for a bad mesh, bad shapes or dtypes, samples_per
 `density` of its pixel; hit pixels get A = 1, R G B = color, Z and state (None or n integers) of
 the nearest point. Raises InvalidInput for non-finite points, a column count other than 2 or 3, a
 states size mismatch or an image of another size than the camera.)");
+}
 
+/// The chaos-game density.
+void bind_raster_chaos(py::module_& m) {
   py::class_<ChaosDensityResult>(m, "ChaosDensityResult", "What chaos_density did: samples, outside, depth.")
       .def_readonly("samples", &ChaosDensityResult::samples, "Points drawn.")
       .def_readonly("outside", &ChaosDensityResult::outside,
@@ -642,7 +667,14 @@ an invalid automaton or nets, a system that is not contractive (automatic depth)
 depth outside 0 … 64, rational without depth, or an image of another size than the camera.)");
 }
 
-void bind_png(py::module_& m) {
+void bind_raster(py::module_& m) {
+  bind_raster_curves(m);
+  bind_raster_surfaces(m);
+  bind_raster_chaos(m);
+}
+
+/// PNG files and the log-density tone mapping.
+void bind_png_files(py::module_& m) {
   py::enum_<PixelFormat>(m, "PixelFormat", "Interleaved 8-bit pixel layouts.")
       .value("rgb8", PixelFormat::rgb8, "3 bytes per pixel: R G B.")
       .value("rgba8", PixelFormat::rgba8, "4 bytes per pixel: R G B A.")
@@ -717,7 +749,10 @@ max_density: density at the top of the ramp (0: the data's maximum); ramp: )") +
 Negative and non-finite values count as 0. Returns uint8 of shape density.shape + (3,). Raises
 InvalidInput for an empty ramp, values outside 0 … 255, or gamma ≤ 0.)")
           .c_str());
+}
 
+/// Previews of an image.
+void bind_png_preview(py::module_& m) {
   py::enum_<PreviewMode>(m, "PreviewMode", "What preview_rgb8 shows.")
       .value("automatic", PreviewMode::automatic,
              "density when the image has a positive density, else shaded.")
@@ -769,6 +804,11 @@ size, or exposure is negative or not finite.)";
       (std::string("Writes preview_rgb8 of `image` as a PNG (IoError naming `path` when it cannot).") +
        preview_doc)
           .c_str());
+}
+
+void bind_png(py::module_& m) {
+  bind_png_files(m);
+  bind_png_preview(m);
 }
 
 void bind_point_ifs(py::module_& m) {

@@ -99,9 +99,8 @@ py::array_t<std::complex<double>> complex_array(const std::vector<std::complex<d
   return py::array_t<std::complex<double>>(static_cast<py::ssize_t>(values.size()), values.data());
 }
 
-}  // namespace
-
-void bind_subdivision(py::module_& m) {
+/// The Scheme type and the named schemes.
+void bind_subdivision_schemes(py::module_& m) {
   py::class_<sd::Scheme>(m, "Scheme",
                          R"doc(A uniform binary subdivision scheme: a name, its parameters and its exact mask.
 
@@ -186,7 +185,10 @@ a, b: exact values. Raises cifs.InvalidInput when the mask is degenerate.)doc");
         "The polynomial of a symbol expression (list of Fractions, lowest power first, shifted to start at "
         "z^0), "
         "without the mask checks. Raises cifs.InvalidInput.");
+}
 
+/// The catalogue of named schemes, mask properties.
+void bind_subdivision_catalogue(py::module_& m) {
   py::class_<sd::ParameterSpec>(m, "ParameterSpec", "A parameter of a named scheme in the catalogue.")
       .def_readonly("name", &sd::ParameterSpec::name, "Parameter name, e.g. 'w'.")
       .def_readonly("default_value", &sd::ParameterSpec::default_value, "Default as text ('' when required).")
@@ -230,7 +232,10 @@ repeated one, a value that does not parse, a non-integer or out-of-range integer
         "N: the mask has N + 1 coefficients (support [0, N], IFS matrices N by N).");
   m.def("is_symmetric", &sd::is_symmetric, py::arg("scheme"),
         "True when a_k = a_{N−k} for every k (exactly).");
+}
 
+/// Refinement, IFS matrices, automata and limit points.
+void bind_subdivision_refinement(py::module_& m) {
   py::enum_<sd::Ends> end_rule(m, "Ends", "End rule of open polygons in refine (docs/schemes.md).");
   end_rule.value("automatic", sd::Ends::automatic, "reflect for symmetric masks, keep otherwise")
       .value("reflect", sd::Ends::reflect,
@@ -304,7 +309,10 @@ Returns a cifs.automata.Automaton. Raises cifs.InvalidInput for negative segment
 
 Piece k (window k) gives 2^depth points at parameters j/2^depth. Raises cifs.InvalidInput for an
 empty polygon, a negative depth or too many points.)doc");
+}
 
+/// Smoothness analysis, difference masks, exact numbers.
+void bind_subdivision_analysis(py::module_& m) {
   py::class_<sd::ContinuityProof>(m, "ContinuityProof", "The certificate of C^k: ‖S_{d_k}^L‖_∞ = norm < 1.")
       .def_readonly("k", &sd::ContinuityProof::k, "The order k proved (−1: none).")
       .def_readonly("power", &sd::ContinuityProof::power, "The power L of the difference scheme.")
@@ -386,6 +394,15 @@ upper Hölder bound. Returns a SchemeAnalysis. Raises cifs.InvalidInput for opti
 what: the name used in the error message. Raises cifs.InvalidInput for anything else.)doc");
   m.def("to_string", &sd::to_string, py::arg("x"),
         "Shortest exact text of a rational: a decimal when finite ('0.0625'), else a fraction ('1/3').");
+}
+
+}  // namespace
+
+void bind_subdivision(py::module_& m) {
+  bind_subdivision_schemes(m);
+  bind_subdivision_catalogue(m);
+  bind_subdivision_refinement(m);
+  bind_subdivision_analysis(m);
 }
 
 }  // namespace cifs::python

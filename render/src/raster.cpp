@@ -336,11 +336,8 @@ struct Shader {
   }
 };
 
-}  // namespace
-
-void render_mesh(Image& image, const Camera& camera, const Mesh& mesh, const SurfaceStyle& style) {
-  const ViewTransform view = detail::prepare(image, camera, "render_mesh");
-  check_mesh(mesh, "render_mesh");
+/// The light direction of the style (unit; unused with a headlight), after the style's checks.
+Eigen::Vector3d checked_light(const SurfaceStyle& style) {
   const int S = style.samples_per_side;
   if (S < 1 || S > 8)
     throw InvalidInput("render_mesh: samples_per_side = " + std::to_string(S) + " is outside 1 … 8");
@@ -354,17 +351,24 @@ void render_mesh(Image& image, const Camera& camera, const Mesh& mesh, const Sur
       throw InvalidInput("render_mesh: light_direction must be finite and non-zero");
     light = style.light_direction.normalized();
   }
-  const Scene scene = build_scene(mesh, view);
-  const Shader shader{scene, view, style, !style.state_colors.empty() && !mesh.states.empty(), light};
+  return light;
+}
 
-  const std::size_t W = image.width, H = image.height;
+struct Box {
+  std::size_t x0, x1, y0, y1;  // inclusive pixel range
+};
+
+/// The primitives binned by the tiles their screen boxes overlap.
+struct Bins {
+  std::size_t tiles_x;
+  std::vector<std::vector<std::uint32_t>> tiles;
+  std::vector<Box> boxes;  // of each primitive
+};
+
+Bins bin_primitives(const Scene& scene, std::size_t W, std::size_t H) {
   const std::size_t tiles_x = (W + kTile - 1) / kTile, tiles_y = (H + kTile - 1) / kTile;
-  // Bin the primitives by the tiles their screen boxes overlap.
-  std::vector<std::vector<std::uint32_t>> bins(tiles_x * tiles_y);
-  struct Box {
-    std::size_t x0, x1, y0, y1;  // inclusive pixel range
-  };
-  std::vector<Box> boxes(scene.primitives.size());
+  Bins bins{tiles_x, std::vector<std::vector<std::uint32_t>>(tiles_x * tiles_y),
+            std::vector<Box>(scene.primitives.size())};
   for (std::size_t k = 0; k < scene.primitives.size(); ++k) {
     const Primitive& p = scene.primitives[k];
     double lx = std::numeric_limits<double>::infinity(), hx = -lx, ly = lx, hy = -lx;
@@ -375,17 +379,26 @@ void render_mesh(Image& image, const Camera& camera, const Mesh& mesh, const Sur
     lx = std::max(lx, 0.0), ly = std::max(ly, 0.0);
     hx = std::min(hx, static_cast<double>(W) - 1e-9), hy = std::min(hy, static_cast<double>(H) - 1e-9);
     if (!(lx <= hx && ly <= hy)) {
-      boxes[k] = {1, 0, 1, 0};  // off screen
+      bins.boxes[k] = {1, 0, 1, 0};  // off screen
       continue;
     }
     const Box b{static_cast<std::size_t>(lx), static_cast<std::size_t>(hx), static_cast<std::size_t>(ly),
                 static_cast<std::size_t>(hy)};
-    boxes[k] = b;
+    bins.boxes[k] = b;
     for (std::size_t ty = b.y0 / kTile; ty <= b.y1 / kTile; ++ty)
       for (std::size_t tx = b.x0 / kTile; tx <= b.x1 / kTile; ++tx)
-        bins[ty * tiles_x + tx].push_back(static_cast<std::uint32_t>(k));
+        bins.tiles[ty * tiles_x + tx].push_back(static_cast<std::uint32_t>(k));
   }
+  return bins;
+}
 
+/// The channels render_mesh writes.
+struct MeshChannels {
+  std::vector<float>&R, &G, &B, &A, &Z, &Nx, &Ny, &Nz;
+  std::vector<std::uint32_t>& state;
+};
+
+MeshChannels mesh_channels(Image& image) {
   std::vector<float>& R = image.channels["R"];
   std::vector<float>& G = image.channels["G"];
   std::vector<float>& B = image.channels["B"];
@@ -394,131 +407,214 @@ void render_mesh(Image& image, const Camera& camera, const Mesh& mesh, const Sur
   std::vector<float>& Nx = detail::channel(image, "N.x");
   std::vector<float>& Ny = detail::channel(image, "N.y");
   std::vector<float>& Nz = detail::channel(image, "N.z");
-  std::vector<std::uint32_t>& state = *image.state;
+  return {R, G, B, A, Z, Nx, Ny, Nz, *image.state};
+}
 
+constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+
+/// What every tile reads.
+struct TileContext {
+  const Scene& scene;
+  const Shader& shader;
+  const Bins& bins;
+  int S;            // samples per side
+  std::size_t spp;  // samples per pixel
+  std::size_t W, H;
+};
+
+/// The pixels [x0, x1) × [y0, y1) of a tile.
+struct TileRect {
+  std::size_t x0, y0, x1, y1;
+};
+
+/// A tile's supersamples (pixel-major, then row-major in the pixel): the nearest depth and its
+/// primitive; one buffer per worker.
+struct Samples {
+  std::vector<double> depth;
+  std::vector<std::uint32_t> prim;
+};
+
+std::size_t first_sample(const TileContext& c, const TileRect& r, std::size_t x, std::size_t y) {
+  return ((y - r.y0) * kTile + (x - r.x0)) * c.spp;
+}
+
+/// Samples start just behind the image's depth: earlier layers are opaque at their Z, and
+/// a fragment at the same depth is drawn over them (2-D scenes have one depth).
+void clear_samples(const TileContext& c, const TileRect& r, const std::vector<float>& Z, Samples& samples) {
+  std::fill(samples.prim.begin(), samples.prim.end(), kNone);
+  for (std::size_t y = r.y0; y < r.y1; ++y)
+    for (std::size_t x = r.x0; x < r.x1; ++x) {
+      const std::size_t local = first_sample(c, r, x, y);
+      std::fill_n(
+          samples.depth.begin() + static_cast<std::ptrdiff_t>(local), c.spp,
+          std::nextafter(static_cast<double>(Z[y * c.W + x]), std::numeric_limits<double>::infinity()));
+    }
+}
+
+/// The depth test of every primitive of the tile at every sample it covers.
+void rasterize_tile(const TileContext& c, std::uint64_t tile, const TileRect& r, Samples& samples) {
+  const int S = c.S;
+  for (const std::uint32_t k : c.bins.tiles[tile]) {
+    const Primitive& p = c.scene.primitives[k];
+    const Box& b = c.bins.boxes[k];
+    for (std::size_t y = std::max(b.y0, r.y0); y <= std::min(b.y1, r.y1 - 1); ++y)
+      for (std::size_t x = std::max(b.x0, r.x0); x <= std::min(b.x1, r.x1 - 1); ++x) {
+        const std::size_t local = first_sample(c, r, x, y);
+        for (int j = 0; j < S; ++j)
+          for (int i = 0; i < S; ++i) {
+            const double sx = static_cast<double>(x) + (i + 0.5) / S;
+            const double sy = static_cast<double>(y) + (j + 0.5) / S;
+            const Eigen::Vector3d l = screen_barycentrics(c.scene, p, sx, sy);
+            // Closed triangles: samples on a shared edge belong to both, so there are no
+            // cracks; the depth test keeps one.
+            if (l.minCoeff() < 0) continue;
+            const double z = interpolate(c.scene, p, l, c.shader.view.perspective).depth;
+            const std::size_t at = local + static_cast<std::size_t>(j * S + i);
+            if (z < samples.depth[at]) {
+              samples.depth[at] = z;
+              samples.prim[at] = k;
+            }
+          }
+      }
+  }
+}
+
+/// The primitives seen by a pixel's samples (with their sample counts, in order of first
+/// appearance) and the nearest of them, or kNone.
+std::uint32_t tally_samples(const TileContext& c, const Samples& samples, std::size_t local,
+                            std::vector<std::pair<std::uint32_t, int>>& seen) {
+  seen.clear();
+  std::uint32_t nearest = kNone;
+  double nearest_depth = std::numeric_limits<double>::infinity();
+  for (std::size_t s = 0; s < c.spp; ++s) {
+    const std::uint32_t k = samples.prim[local + s];
+    if (k == kNone) continue;
+    auto it = std::find_if(seen.begin(), seen.end(), [k](const auto& e) { return e.first == k; });
+    if (it == seen.end())
+      seen.emplace_back(k, 1);
+    else
+      ++it->second;
+    // Ties go to the lower primitive index, whatever the sample order.
+    const double z = samples.depth[local + s];
+    if (z < nearest_depth || (z == nearest_depth && k < nearest)) nearest_depth = z, nearest = k;
+  }
+  return nearest;
+}
+
+/// The pixel's colour (the sum of each seen primitive shaded at the centroid of its samples, over
+/// spp) and its coverage; the centroid of the nearest primitive's samples.
+struct PixelColour {
+  Eigen::Vector3d colour;
+  double alpha;
+  Eigen::Vector2d nearest_centroid;
+};
+
+PixelColour shade_pixel(const TileContext& c, const Samples& samples, std::size_t local, std::size_t x,
+                        std::size_t y, std::span<const std::pair<std::uint32_t, int>> seen,
+                        std::uint32_t nearest) {
+  const int S = c.S;
+  Eigen::Vector3d colour = Eigen::Vector3d::Zero();
+  int covered = 0;
+  Eigen::Vector2d nearest_centroid = Eigen::Vector2d::Zero();  // set: nearest is seen
+  for (const auto& [k, count] : seen) {
+    Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+    for (std::size_t s = 0; s < c.spp; ++s)
+      if (samples.prim[local + s] == k) {
+        const std::size_t column = s % S, row = s / S;  // the sample's place in its pixel
+        centroid += Eigen::Vector2d(static_cast<double>(x) + (static_cast<double>(column) + 0.5) / S,
+                                    static_cast<double>(y) + (static_cast<double>(row) + 0.5) / S);
+      }
+    centroid /= count;
+    if (k == nearest) nearest_centroid = centroid;
+    const Primitive& p = c.scene.primitives[k];
+    colour += count * c.shader.shade(p, c.shader.at(p, centroid.x(), centroid.y()));
+    covered += count;
+  }
+  const double a = static_cast<double>(covered) / static_cast<double>(c.spp);
+  colour /= static_cast<double>(c.spp);
+  return {colour, a, nearest_centroid};
+}
+
+/// Z, N and state are point-sampled at the pixel centre: the nearest of the layer's triangles
+/// that cover it; when none does (edge pixels), the nearest sample's triangle at the centroid of
+/// its samples. Returns the primitive and sets its surface there.
+std::uint32_t centre_surface(const TileContext& c, std::size_t x, std::size_t y,
+                             std::span<const std::pair<std::uint32_t, int>> seen, std::uint32_t nearest,
+                             const Eigen::Vector2d& nearest_centroid, Shader::Surface& s) {
+  const double cx = static_cast<double>(x) + 0.5, cy = static_cast<double>(y) + 0.5;
+  std::uint32_t chosen = kNone;
+  for (const auto& entry : seen) {
+    const Primitive& q = c.scene.primitives[entry.first];
+    if (screen_barycentrics(c.scene, q, cx, cy).minCoeff() < 0) continue;
+    const Shader::Surface candidate = c.shader.at(q, cx, cy);
+    if (chosen == kNone || candidate.depth < s.depth || (candidate.depth == s.depth && entry.first < chosen))
+      chosen = entry.first, s = candidate;
+  }
+  if (chosen == kNone) {
+    chosen = nearest;
+    s = c.shader.at(c.scene.primitives[nearest], nearest_centroid.x(), nearest_centroid.y());
+  }
+  return chosen;
+}
+
+/// Resolve every pixel of the tile into the channels.
+void resolve_tile(const TileContext& c, const TileRect& r, const Samples& samples, MeshChannels& out) {
+  std::vector<std::pair<std::uint32_t, int>> seen;  // primitive, samples
+  for (std::size_t y = r.y0; y < r.y1; ++y)
+    for (std::size_t x = r.x0; x < r.x1; ++x) {
+      const std::size_t local = first_sample(c, r, x, y);
+      const std::uint32_t nearest = tally_samples(c, samples, local, seen);
+      if (nearest == kNone) continue;
+      const std::size_t i = y * c.W + x;
+      const PixelColour pixel = shade_pixel(c, samples, local, x, y, seen, nearest);
+      const double a = pixel.alpha;
+      const auto over = [a](float& v, double value) { v = static_cast<float>(value + (1 - a) * v); };
+      over(out.R[i], pixel.colour.x());
+      over(out.G[i], pixel.colour.y());
+      over(out.B[i], pixel.colour.z());
+      over(out.A[i], a);
+      Shader::Surface s{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), 0};
+      const std::uint32_t chosen = centre_surface(c, x, y, seen, nearest, pixel.nearest_centroid, s);
+      const Primitive& p = c.scene.primitives[chosen];
+      out.Z[i] = static_cast<float>(s.depth);
+      out.Nx[i] = static_cast<float>(s.normal.x());
+      out.Ny[i] = static_cast<float>(s.normal.y());
+      out.Nz[i] = static_cast<float>(s.normal.z());
+      out.state[i] = p.state;
+    }
+}
+
+}  // namespace
+
+void render_mesh(Image& image, const Camera& camera, const Mesh& mesh, const SurfaceStyle& style) {
+  const ViewTransform view = detail::prepare(image, camera, "render_mesh");
+  check_mesh(mesh, "render_mesh");
+  const Eigen::Vector3d light = checked_light(style);
+  const Scene scene = build_scene(mesh, view);
+  const Shader shader{scene, view, style, !style.state_colors.empty() && !mesh.states.empty(), light};
+  const std::size_t W = image.width, H = image.height;
+  const Bins bins = bin_primitives(scene, W, H);
+  MeshChannels out = mesh_channels(image);
+
+  const int S = style.samples_per_side;
   const std::size_t spp = static_cast<std::size_t>(S) * static_cast<std::size_t>(S);
-  constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
-  const unsigned threads = detail::worker_count(style.threads, bins.size());
-  std::vector<std::vector<double>> depth_of(threads);
-  std::vector<std::vector<std::uint32_t>> prim_of(threads);
+  const TileContext context{scene, shader, bins, S, spp, W, H};
+  const unsigned threads = detail::worker_count(style.threads, bins.tiles.size());
+  std::vector<Samples> samples(threads);
   detail::run_chunks(
-      bins.size(), threads,
+      bins.tiles.size(), threads,
       [&](unsigned t) {
-        depth_of[t].resize(kTile * kTile * spp);
-        prim_of[t].resize(kTile * kTile * spp);
+        samples[t].depth.resize(kTile * kTile * spp);
+        samples[t].prim.resize(kTile * kTile * spp);
       },
       [&](unsigned t, std::uint64_t tile) {
-        std::vector<double>& sample_depth = depth_of[t];
-        std::vector<std::uint32_t>& sample_prim = prim_of[t];
-        const std::size_t tx0 = (tile % tiles_x) * kTile, ty0 = (tile / tiles_x) * kTile;
+        const std::size_t tx0 = (tile % bins.tiles_x) * kTile, ty0 = (tile / bins.tiles_x) * kTile;
         static_assert(kTile == kBandRows, "a tile lies in one band");
         if (!owns_row(style.part, ty0)) return;
-        const std::size_t tx1 = std::min(tx0 + kTile, W), ty1 = std::min(ty0 + kTile, H);
-        std::fill(sample_prim.begin(), sample_prim.end(), kNone);
-        // Samples start just behind the image's depth: earlier layers are opaque at their Z, and
-        // a fragment at the same depth is drawn over them (2-D scenes have one depth).
-        for (std::size_t y = ty0; y < ty1; ++y)
-          for (std::size_t x = tx0; x < tx1; ++x) {
-            const std::size_t local = ((y - ty0) * kTile + (x - tx0)) * spp;
-            std::fill_n(
-                sample_depth.begin() + static_cast<std::ptrdiff_t>(local), spp,
-                std::nextafter(static_cast<double>(Z[y * W + x]), std::numeric_limits<double>::infinity()));
-          }
-        for (const std::uint32_t k : bins[tile]) {
-          const Primitive& p = scene.primitives[k];
-          const Box& b = boxes[k];
-          for (std::size_t y = std::max(b.y0, ty0); y <= std::min(b.y1, ty1 - 1); ++y)
-            for (std::size_t x = std::max(b.x0, tx0); x <= std::min(b.x1, tx1 - 1); ++x) {
-              const std::size_t local = ((y - ty0) * kTile + (x - tx0)) * spp;
-              for (int j = 0; j < S; ++j)
-                for (int i = 0; i < S; ++i) {
-                  const double sx = static_cast<double>(x) + (i + 0.5) / S;
-                  const double sy = static_cast<double>(y) + (j + 0.5) / S;
-                  const Eigen::Vector3d l = screen_barycentrics(scene, p, sx, sy);
-                  // Closed triangles: samples on a shared edge belong to both, so there are no
-                  // cracks; the depth test keeps one.
-                  if (l.minCoeff() < 0) continue;
-                  const double z = interpolate(scene, p, l, view.perspective).depth;
-                  const std::size_t at = local + static_cast<std::size_t>(j * S + i);
-                  if (z < sample_depth[at]) {
-                    sample_depth[at] = z;
-                    sample_prim[at] = k;
-                  }
-                }
-            }
-        }
-        // Resolve every pixel of the tile.
-        std::vector<std::pair<std::uint32_t, int>> seen;  // primitive, samples
-        for (std::size_t y = ty0; y < ty1; ++y)
-          for (std::size_t x = tx0; x < tx1; ++x) {
-            const std::size_t local = ((y - ty0) * kTile + (x - tx0)) * spp;
-            seen.clear();
-            std::uint32_t nearest = kNone;
-            double nearest_depth = std::numeric_limits<double>::infinity();
-            for (std::size_t s = 0; s < spp; ++s) {
-              const std::uint32_t k = sample_prim[local + s];
-              if (k == kNone) continue;
-              auto it = std::find_if(seen.begin(), seen.end(), [k](const auto& e) { return e.first == k; });
-              if (it == seen.end())
-                seen.emplace_back(k, 1);
-              else
-                ++it->second;
-              // Ties go to the lower primitive index, whatever the sample order.
-              const double z = sample_depth[local + s];
-              if (z < nearest_depth || (z == nearest_depth && k < nearest)) nearest_depth = z, nearest = k;
-            }
-            if (nearest == kNone) continue;
-            const std::size_t i = y * W + x;
-            Eigen::Vector3d colour = Eigen::Vector3d::Zero();
-            int covered = 0;
-            Eigen::Vector2d nearest_centroid;
-            for (const auto& [k, count] : seen) {
-              Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
-              for (std::size_t s = 0; s < spp; ++s)
-                if (sample_prim[local + s] == k) {
-                  const std::size_t column = s % S, row = s / S;  // the sample's place in its pixel
-                  centroid +=
-                      Eigen::Vector2d(static_cast<double>(x) + (static_cast<double>(column) + 0.5) / S,
-                                      static_cast<double>(y) + (static_cast<double>(row) + 0.5) / S);
-                }
-              centroid /= count;
-              if (k == nearest) nearest_centroid = centroid;
-              const Primitive& p = scene.primitives[k];
-              colour += count * shader.shade(p, shader.at(p, centroid.x(), centroid.y()));
-              covered += count;
-            }
-            const double a = static_cast<double>(covered) / static_cast<double>(spp);
-            colour /= static_cast<double>(spp);
-            const auto over = [a](float& c, double v) { c = static_cast<float>(v + (1 - a) * c); };
-            over(R[i], colour.x());
-            over(G[i], colour.y());
-            over(B[i], colour.z());
-            over(A[i], a);
-            // Z, N and state are point-sampled at the pixel centre: the nearest of the layer's
-            // triangles that cover it; when none does (edge pixels), the nearest sample's triangle
-            // at the centroid of its samples.
-            const double cx = static_cast<double>(x) + 0.5, cy = static_cast<double>(y) + 0.5;
-            std::uint32_t chosen = kNone;
-            Shader::Surface s{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), 0};
-            for (const auto& entry : seen) {
-              const Primitive& q = scene.primitives[entry.first];
-              if (screen_barycentrics(scene, q, cx, cy).minCoeff() < 0) continue;
-              const Shader::Surface candidate = shader.at(q, cx, cy);
-              if (chosen == kNone || candidate.depth < s.depth ||
-                  (candidate.depth == s.depth && entry.first < chosen))
-                chosen = entry.first, s = candidate;
-            }
-            if (chosen == kNone) {
-              chosen = nearest;
-              s = shader.at(scene.primitives[nearest], nearest_centroid.x(), nearest_centroid.y());
-            }
-            const Primitive& p = scene.primitives[chosen];
-            Z[i] = static_cast<float>(s.depth);
-            Nx[i] = static_cast<float>(s.normal.x());
-            Ny[i] = static_cast<float>(s.normal.y());
-            Nz[i] = static_cast<float>(s.normal.z());
-            state[i] = p.state;
-          }
+        const TileRect rect{tx0, ty0, std::min(tx0 + kTile, W), std::min(ty0 + kTile, H)};
+        clear_samples(context, rect, out.Z, samples[t]);
+        rasterize_tile(context, tile, rect, samples[t]);
+        resolve_tile(context, rect, samples[t], out);
       });
 }
 

@@ -327,6 +327,112 @@ void face_partials(bool quad, int turn, const Eigen::RowVectorXd& ps, const Eige
   }
 }
 
+/// The points first: a bad one is named before any work.
+void check_face_points(MeshScheme scheme, int F, std::span<const FacePoint> at) {
+  const bool quad = quads(scheme);
+  // Triangles: u + v may pass 1 by a rounding of the caller's sum.
+  const double sum_limit = quad ? 2 : 1 + 1e-12;
+  for (std::size_t p = 0; p < at.size(); ++p) {
+    const FacePoint& q = at[p];
+    const bool no_face = q.face < 0 || q.face >= F;
+    if (!no_face && q.u >= 0 && q.u <= 1 && q.v >= 0 && q.v <= 1 && q.u + q.v <= sum_limit) continue;
+    const std::string where = std::string(scheme_name(scheme)) + " limit: point " + std::to_string(p) +
+                              " (face " + std::to_string(q.face) + ")";
+    if (no_face) throw InvalidInput(where + ": no such face; the mesh has " + std::to_string(F));
+    throw InvalidInput(where + ": (u, v) = (" + std::to_string(q.u) + ", " + std::to_string(q.v) +
+                       ") is outside " + (quad ? "[0, 1]²" : "the triangle u, v ≥ 0, u + v ≤ 1"));
+  }
+}
+
+/// The patches' automaton and what evaluating a point of one reads.
+struct Patches {
+  const SurfaceAutomaton& s;
+  bool quad;
+  /// The extraordinary point itself is the fixed point of the corner child (no partials there).
+  std::vector<Eigen::RowVectorXd> corner_point;
+  std::vector<char> regular;  // per state
+  /// Loop's regular nets are evaluated in Bernstein form: B·net once per net.
+  Eigen::MatrixXd bezier;
+};
+
+Patches patches(const SurfaceAutomaton& s, bool quad) {
+  Patches P{s, quad, ifs::repeated_child_functionals(s.automaton, 0),
+            std::vector<char>(boost::num_vertices(s.automaton.graph)), Eigen::MatrixXd()};
+  for (automata::StateId k = 0; k < P.regular.size(); ++k) P.regular[k] = is_regular(s.automaton, k) ? 1 : 0;
+  P.bezier = quad ? Eigen::MatrixXd() : quartic_bezier(s, 0);
+  return P;
+}
+
+void evaluate_regular(const Patches& P, const Points& net, double a, double b, double scale, double* value,
+                      double* du, double* dv) {
+  if (P.quad)
+    bicubic(net, a, b, scale, value, du, dv);
+  else
+    quartic(net, a, b, scale, value, du, dv);
+}
+
+Points regular_form(const Patches& P, const Points& net) {
+  return P.quad ? net : Points(P.bezier * net);
+}
+
+/// Per face, the nets met going down: the corner parts' chain (level j: the corner part j levels
+/// down, a net of its extraordinary state) and, per level, the other parts' nets (Loop: in
+/// Bernstein form). Built once per face and level, so a point costs one polynomial evaluation
+/// whatever its depth.
+struct Descent {
+  Points own;  // a regular face's net in evaluation form
+  std::vector<Points> chain;
+  std::vector<automata::StateId> state;
+  std::vector<std::array<Points, 4>> part;
+};
+
+/// A point (a, b) of an extraordinary patch (net, state first) other than its corner: down the
+/// corner's part while the point lies in it, then the regular part that holds it.
+void evaluate_extraordinary(const Patches& P, const Points& net0, automata::StateId first, double a, double b,
+                            Descent& down, double* value, double* du, double* dv) {
+  const bool quad = P.quad;
+  const automata::Graph& g = P.s.automaton.graph;
+  if (down.chain.empty()) {
+    down.chain.push_back(net0);
+    down.state.push_back(first);
+  }
+  std::size_t level = 0;
+  double scale = 2;
+  // Down the corner's part (quads: both below ½; triangles: a + b below ½).
+  for (; quad ? std::max(a, b) < 0.5 : a + b < 0.5; ++level, a *= 2, b *= 2, scale *= 2)
+    if (level + 1 == down.chain.size()) {
+      const auto edge = *boost::out_edges(down.state[level], g).first;
+      down.chain.push_back(g[edge].matrix * down.chain[level]);
+      down.state.push_back(boost::target(edge, g));
+      if (P.regular[down.state.back()] != 0)
+        throw std::logic_error("limit surface: the corner part of an extraordinary patch is regular");
+    }
+  if (down.part.size() <= level) down.part.resize(level + 1);
+  // The child holding (a, b) and the point in its own parameters.
+  int c = 0;
+  double s_child = 0, t_child = 0, sign = 1;
+  if (quad) {
+    const int iu = a >= 0.5 ? 1 : 0, iv = b >= 0.5 ? 1 : 0;
+    c = 2 * iu + iv;
+    s_child = 2 * a - iu, t_child = 2 * b - iv;
+  } else if (a >= 0.5) {
+    c = 1, s_child = 2 * a - 1, t_child = 2 * b;
+  } else if (b >= 0.5) {
+    c = 2, s_child = 2 * a, t_child = 2 * b - 1;
+  } else {
+    c = 3, s_child = 1 - 2 * a, t_child = 1 - 2 * b, sign = -1;  // the middle triangle, turned
+  }
+  Points& net = down.part[level][static_cast<std::size_t>(c)];
+  if (net.size() == 0) {
+    auto edge = boost::out_edges(down.state[level], g).first;
+    std::advance(edge, c);
+    if (P.regular[boost::target(*edge, g)] == 0)
+      throw std::logic_error("limit surface: a side part of an extraordinary patch is not regular");
+    net = regular_form(P, g[*edge].matrix * down.chain[level]);
+  }
+  evaluate_regular(P, net, s_child, t_child, sign * scale, value, du, dv);
+}
+
 }  // namespace
 
 SurfaceAutomaton surface_automaton(const Mesh& mesh, MeshScheme scheme) {
@@ -343,18 +449,7 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::s
   const MeshTopology t = build_topology(mesh);
   const Eigen::Index d = mesh.vertices.cols();
   const auto F = static_cast<int>(face_count(t));
-  // Triangles: u + v may pass 1 by a rounding of the caller's sum.
-  const double sum_limit = quad ? 2 : 1 + 1e-12;
-  for (std::size_t p = 0; p < at.size(); ++p) {  // the points first: a bad one is named before any work
-    const FacePoint& q = at[p];
-    const bool no_face = q.face < 0 || q.face >= F;
-    if (!no_face && q.u >= 0 && q.u <= 1 && q.v >= 0 && q.v <= 1 && q.u + q.v <= sum_limit) continue;
-    const std::string where = std::string(scheme_name(scheme)) + " limit: point " + std::to_string(p) +
-                              " (face " + std::to_string(q.face) + ")";
-    if (no_face) throw InvalidInput(where + ": no such face; the mesh has " + std::to_string(F));
-    throw InvalidInput(where + ": (u, v) = (" + std::to_string(q.u) + ", " + std::to_string(q.v) +
-                       ") is outside " + (quad ? "[0, 1]²" : "the triangle u, v ≥ 0, u + v ≤ 1"));
-  }
+  check_face_points(scheme, F, at);
   // Only the faces asked for: the others may be boundary faces.
   std::vector<int> faces, entry(static_cast<std::size_t>(F), -1);
   for (const FacePoint& q : at)
@@ -363,93 +458,31 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::s
       faces.push_back(q.face);
     }
   const SurfaceAutomaton s = build_automaton(mesh, t, scheme, faces);
-  const automata::Graph& g = s.automaton.graph;
-  // The extraordinary point itself is the fixed point of the corner child (no partials there).
-  const std::vector<Eigen::RowVectorXd> corner_point = ifs::repeated_child_functionals(s.automaton, 0);
-  std::vector<char> regular(boost::num_vertices(g));
-  for (automata::StateId k = 0; k < regular.size(); ++k) regular[k] = is_regular(s.automaton, k) ? 1 : 0;
-  // Loop's regular nets are evaluated in Bernstein form: B·net once per net.
-  const Eigen::MatrixXd bezier = quad ? Eigen::MatrixXd() : quartic_bezier(s, 0);
-  const auto evaluate_regular = [&](const Points& net, double a, double b, double scale, double* value,
-                                    double* du, double* dv) {
-    if (quad)
-      bicubic(net, a, b, scale, value, du, dv);
-    else
-      quartic(net, a, b, scale, value, du, dv);
-  };
-  const auto regular_form = [&](const Points& net) { return quad ? net : Points(bezier * net); };
+  const Patches P = patches(s, quad);
   SurfaceSample out;
   const auto count = static_cast<Eigen::Index>(at.size());
   out.positions.resize(count, d);
   out.du.resize(count, d);
   out.dv.resize(count, d);
-  // Per face, the nets met going down: the corner parts' chain (level j: the corner part j levels
-  // down, a net of its extraordinary state) and, per level, the other parts' nets (Loop: in
-  // Bernstein form). Built once per face and level, so a point costs one polynomial evaluation
-  // whatever its depth.
-  struct Descent {
-    Points own;  // a regular face's net in evaluation form
-    std::vector<Points> chain;
-    std::vector<automata::StateId> state;
-    std::vector<std::array<Points, 4>> part;
-  };
   std::vector<Descent> descents(faces.size());
   Eigen::RowVectorXd ps(d), pt(d);
   for (Eigen::Index p = 0; p < count; ++p) {
     const FacePoint& q = at[static_cast<std::size_t>(p)];
     const auto f = static_cast<std::size_t>(entry[static_cast<std::size_t>(q.face)]);
     const int turn = corner_index(t, q.face, s.corners[f][0]);
-    auto [a, b] = patch_parameters(quad, turn, q.u, q.v);
+    const auto [a, b] = patch_parameters(quad, turn, q.u, q.v);
     const automata::StateId first = s.automaton.initial[f].state;
     Descent& down = descents[f];
-    if (regular[first] != 0) {
-      if (down.own.size() == 0) down.own = regular_form(s.nets[f]);
-      evaluate_regular(down.own, a, b, 1, out.positions.row(p).data(), ps.data(), pt.data());
+    if (P.regular[first] != 0) {
+      if (down.own.size() == 0) down.own = regular_form(P, s.nets[f]);
+      evaluate_regular(P, down.own, a, b, 1, out.positions.row(p).data(), ps.data(), pt.data());
     } else if (a == 0 && b == 0) {
-      out.positions.row(p) = corner_point[first] * s.nets[f];
+      out.positions.row(p) = P.corner_point[first] * s.nets[f];
       ps.setZero();
       pt.setZero();
     } else {
-      if (down.chain.empty()) {
-        down.chain.push_back(s.nets[f]);
-        down.state.push_back(first);
-      }
-      std::size_t level = 0;
-      double scale = 2;
-      // Down the corner's part (quads: both below ½; triangles: a + b below ½).
-      for (; quad ? std::max(a, b) < 0.5 : a + b < 0.5; ++level, a *= 2, b *= 2, scale *= 2)
-        if (level + 1 == down.chain.size()) {
-          const auto edge = *boost::out_edges(down.state[level], g).first;
-          down.chain.push_back(g[edge].matrix * down.chain[level]);
-          down.state.push_back(boost::target(edge, g));
-          if (regular[down.state.back()] != 0)
-            throw std::logic_error("limit surface: the corner part of an extraordinary patch is regular");
-        }
-      if (down.part.size() <= level) down.part.resize(level + 1);
-      // The child holding (a, b) and the point in its own parameters.
-      int c = 0;
-      double s_child = 0, t_child = 0, sign = 1;
-      if (quad) {
-        const int iu = a >= 0.5 ? 1 : 0, iv = b >= 0.5 ? 1 : 0;
-        c = 2 * iu + iv;
-        s_child = 2 * a - iu, t_child = 2 * b - iv;
-      } else if (a >= 0.5) {
-        c = 1, s_child = 2 * a - 1, t_child = 2 * b;
-      } else if (b >= 0.5) {
-        c = 2, s_child = 2 * a, t_child = 2 * b - 1;
-      } else {
-        c = 3, s_child = 1 - 2 * a, t_child = 1 - 2 * b, sign = -1;  // the middle triangle, turned
-      }
-      Points& net = down.part[level][static_cast<std::size_t>(c)];
-      if (net.size() == 0) {
-        auto edge = boost::out_edges(down.state[level], g).first;
-        std::advance(edge, c);
-        if (regular[boost::target(*edge, g)] == 0)
-          throw std::logic_error("limit surface: a side part of an extraordinary patch is not regular");
-        net = regular_form(g[*edge].matrix * down.chain[level]);
-      }
-      evaluate_regular(net, s_child, t_child, sign * scale, out.positions.row(p).data(), ps.data(),
-                       pt.data());
+      evaluate_extraordinary(P, s.nets[f], first, a, b, down, out.positions.row(p).data(), ps.data(),
+                             pt.data());
     }
     face_partials(quad, turn, ps, pt, out.du.row(p), out.dv.row(p));
   }

@@ -102,158 +102,190 @@ Dense<T> product(const Dense<T>& A, const Dense<T>& B) {
   return C;
 }
 
+/// Catmull–Clark at a vertex of valence n (on the boundary: n − 1 faces).
+template <class T>
+Dense<T> catmull_clark_rules(int n, const LocalOptions& o) {
+  const T one(1), half = one / 2, quarter = one / 4, eighth = one / 8;
+  const T nn(n);
+  const int N = o.boundary ? 2 * n : 2 * n + 1;
+  const int faces = o.boundary ? n - 1 : n;
+  Dense<T> S(N);
+  const auto r = [&](int j) { return 1 + 2 * (o.boundary ? j : wrap(j, n)); };
+  const auto f = [&](int j) { return 2 + 2 * (o.boundary ? j : wrap(j, n)); };
+  // Face point of quad j = (c + r_j + f_j + r_{j+1})/4, added with weight w to row i.
+  const auto face_point = [&](int i, int j, const T& w) {
+    for (const int v : {0, r(j), f(j), r(j + 1)}) S(i, v) += w / 4;
+  };
+  if (o.boundary && n == 2 && o.rule == BoundaryRule::edge_and_corner) {
+    S(0, 0) = one;
+  } else if (o.boundary) {  // (1, 6, 1)/8 along the boundary
+    S(0, 0) = 3 * quarter;
+    S(0, r(0)) += eighth;
+    S(0, r(n - 1)) += eighth;
+  } else {  // (n − 2)/n on c, 1/n² on each neighbour and each face point
+    S(0, 0) = (nn - 2) / nn;
+    for (int j = 0; j < n; ++j) {
+      S(0, r(j)) += one / (nn * nn);
+      face_point(0, j, one / (nn * nn));
+    }
+  }
+  for (int j = 0; j < n; ++j) {
+    if (o.boundary && (j == 0 || j == n - 1)) {  // boundary edge: its midpoint
+      S(r(j), 0) += half;
+      S(r(j), r(j)) += half;
+      continue;
+    }
+    S(r(j), 0) += quarter;
+    S(r(j), r(j)) += quarter;
+    face_point(r(j), j - 1, quarter);
+    face_point(r(j), j, quarter);
+  }
+  for (int j = 0; j < faces; ++j) face_point(f(j), j, one);
+  return S;
+}
+
+/// Loop at a vertex of valence n.
+template <class T, class Cos>
+Dense<T> loop_rules(int n, const LocalOptions& o, Cos cos_of) {
+  const T one(1), half = one / 2, quarter = one / 4, eighth = one / 8;
+  const T nn(n);
+  Dense<T> S(n + 1);
+  const auto r = [&](int j) { return 1 + (o.boundary ? j : wrap(j, n)); };
+  if (o.boundary && n == 2 && o.rule == BoundaryRule::edge_and_corner) {
+    S(0, 0) = one;
+  } else if (o.boundary) {
+    S(0, 0) = 3 * quarter;
+    S(0, r(0)) += eighth;
+    S(0, r(n - 1)) += eighth;
+  } else {  // β = (5/8 − (3/8 + ¼cos(2π/n))²)/n
+    const T a = 3 * eighth + quarter * cos_of(1, n);
+    const T beta = (5 * eighth - a * a) / nn;
+    S(0, 0) = one - nn * beta;
+    for (int j = 0; j < n; ++j) S(0, r(j)) += beta;
+  }
+  for (int j = 0; j < n; ++j) {
+    if (o.boundary && (j == 0 || j == n - 1)) {
+      S(r(j), 0) += half;
+      S(r(j), r(j)) += half;
+      continue;
+    }
+    S(r(j), 0) += 3 * eighth;
+    S(r(j), r(j)) += 3 * eighth;
+    S(r(j), r(j - 1)) += eighth;
+    S(r(j), r(j + 1)) += eighth;
+  }
+  return S;
+}
+
+/// The modified Butterfly at a vertex of valence n (ZSS's stencils).
+template <class T, class Cos>
+Dense<T> butterfly_rules(int n, Cos cos_of) {
+  const T one(1), half = one / 2, quarter = one / 4, eighth = one / 8, sixteenth = one / 16;
+  const T nn(n);
+  Dense<T> S(3 * n + 1);
+  const auto r = [&](int j) { return 1 + 3 * wrap(j, n); };
+  const auto p = [&](int j) { return 2 + 3 * wrap(j, n); };
+  const auto q = [&](int j) { return 3 + 3 * wrap(j, n); };
+  S(0, 0) = one;  // interpolating: old vertices stay (c, and r_j becomes p_j)
+  for (int j = 0; j < n; ++j) {
+    S(p(j), r(j)) = one;
+    // Edge c r_j: ZSS's stencil of the extraordinary end, or the 10-point one at n = 6.
+    if (n == 6) {
+      S(r(j), 0) += half;
+      S(r(j), r(j)) += half;
+      S(r(j), r(j - 1)) += eighth;
+      S(r(j), r(j + 1)) += eighth;
+      for (const int w : {r(j - 2), r(j + 2), q(j), q(j - 1)}) S(r(j), w) -= sixteenth;
+    } else {
+      S(r(j), 0) += 3 * quarter;
+      for (int m = 0; m < n; ++m) {
+        T s(0);
+        if (n == 3)
+          s = m == 0 ? T(5) / 12 : T(-1) / 12;
+        else if (n == 4)
+          s = m == 0 ? 3 * eighth : (m == 2 ? -eighth : T(0));
+        else
+          s = (quarter + cos_of(m, n) + half * cos_of(2 * m, n)) / nn;
+        S(r(j), r(j + m)) += s;
+      }
+    }
+    // Edge r_j r_{j+1}: both ends regular, the 10-point stencil (opposite corners c and q_j;
+    // wings r_{j−1}, r_{j+2}, p_j, p_{j+1}).
+    S(q(j), r(j)) += half;
+    S(q(j), r(j + 1)) += half;
+    S(q(j), 0) += eighth;
+    S(q(j), q(j)) += eighth;
+    for (const int w : {r(j - 1), r(j + 2), p(j), p(j + 1)}) S(q(j), w) -= sixteenth;
+  }
+  return S;
+}
+
+/// Two steps of √3 at a vertex of valence n (one step leaves a ring of face points).
+template <class T, class Cos>
+Dense<T> sqrt3_rules(int n, Cos cos_of) {
+  const T one(1);
+  const T nn(n);
+  // One step: c¹ = (1 − α)c + (α/n)Σ r_j, α = (4 − 2cos(2π/n))/9, and a ring point per face,
+  // the centroid (c + r_j + r_{j+1})/3 (first step) — on the second step numbered so that
+  // (c¹ + m_{j−1} + m_j)/3 is ring point j.
+  const T alpha = (4 - 2 * cos_of(1, n)) / 9;
+  const auto one_step = [&](int shift) {
+    Dense<T> A(n + 1);
+    A(0, 0) = one - alpha;
+    for (int j = 0; j < n; ++j) {
+      A(0, 1 + j) += alpha / nn;
+      A(1 + j, 0) += one / 3;
+      A(1 + j, 1 + wrap(j + shift, n)) += one / 3;
+      A(1 + j, 1 + wrap(j + shift + 1, n)) += one / 3;
+    }
+    return A;
+  };
+  return product(one_step(-1), one_step(0));
+}
+
+/// Doo–Sabin at an n-gon face.
+template <class T, class Cos>
+Dense<T> doo_sabin_rules(int n, Cos cos_of) {
+  const T one(1), quarter = one / 4;
+  const int k = n;
+  Dense<T> S(4 * k);
+  const auto g = [&](int i) { return 4 * wrap(i, k); };
+  const auto a = [&](int i) { return 4 * wrap(i, k) + 1; };
+  const auto b = [&](int i) { return 4 * wrap(i, k) + 2; };
+  const auto cq = [&](int i) { return 4 * wrap(i, k) + 3; };
+  // Corner point of a face with corners v_0 … v_{m−1} at corner i: Σ_j α_{j−i} v_j,
+  // α_0 = ¼ + 5/(4m), α_d = (3 + 2cos(2πd/m))/(4m).
+  const auto corner_point = [&](int row, const std::vector<int>& corners, int i) {
+    const int m = static_cast<int>(corners.size());
+    for (int d = 0; d < m; ++d)
+      S(row, corners[static_cast<std::size_t>(wrap(i + d, m))]) +=
+          (d == 0 ? quarter : T(0)) + (3 + 2 * cos_of(d, m)) / (4 * T(m));
+  };
+  std::vector<int> gon(static_cast<std::size_t>(k));
+  for (int i = 0; i < k; ++i) gon[static_cast<std::size_t>(i)] = g(i);
+  for (int i = 0; i < k; ++i) {
+    corner_point(g(i), gon, i);
+    corner_point(a(i), {g(i + 1), g(i), a(i), b(i)}, 1);    // edge quad i at g_i
+    corner_point(b(i), {g(i + 1), g(i), a(i), b(i)}, 0);    // edge quad i at g_{i+1}
+    corner_point(cq(i), {g(i), b(i - 1), cq(i), a(i)}, 0);  // corner quad at g_i
+  }
+  return S;
+}
+
 /// The rules of each scheme on its neighbourhood; `cos_of(m, n)` gives cos(2πm/n) in T.
 template <class T, class Cos>
 Dense<T> rules(MeshScheme scheme, int n, const LocalOptions& o, Cos cos_of) {
-  const T one(1), half = one / 2, quarter = one / 4, eighth = one / 8, sixteenth = one / 16;
-  const T nn(n);
   switch (scheme) {
-    case MeshScheme::catmull_clark: {
-      const int N = o.boundary ? 2 * n : 2 * n + 1;
-      const int faces = o.boundary ? n - 1 : n;
-      Dense<T> S(N);
-      const auto r = [&](int j) { return 1 + 2 * (o.boundary ? j : wrap(j, n)); };
-      const auto f = [&](int j) { return 2 + 2 * (o.boundary ? j : wrap(j, n)); };
-      // Face point of quad j = (c + r_j + f_j + r_{j+1})/4, added with weight w to row i.
-      const auto face_point = [&](int i, int j, const T& w) {
-        for (const int v : {0, r(j), f(j), r(j + 1)}) S(i, v) += w / 4;
-      };
-      if (o.boundary && n == 2 && o.rule == BoundaryRule::edge_and_corner) {
-        S(0, 0) = one;
-      } else if (o.boundary) {  // (1, 6, 1)/8 along the boundary
-        S(0, 0) = 3 * quarter;
-        S(0, r(0)) += eighth;
-        S(0, r(n - 1)) += eighth;
-      } else {  // (n − 2)/n on c, 1/n² on each neighbour and each face point
-        S(0, 0) = (nn - 2) / nn;
-        for (int j = 0; j < n; ++j) {
-          S(0, r(j)) += one / (nn * nn);
-          face_point(0, j, one / (nn * nn));
-        }
-      }
-      for (int j = 0; j < n; ++j) {
-        if (o.boundary && (j == 0 || j == n - 1)) {  // boundary edge: its midpoint
-          S(r(j), 0) += half;
-          S(r(j), r(j)) += half;
-          continue;
-        }
-        S(r(j), 0) += quarter;
-        S(r(j), r(j)) += quarter;
-        face_point(r(j), j - 1, quarter);
-        face_point(r(j), j, quarter);
-      }
-      for (int j = 0; j < faces; ++j) face_point(f(j), j, one);
-      return S;
-    }
-    case MeshScheme::loop: {
-      Dense<T> S(n + 1);
-      const auto r = [&](int j) { return 1 + (o.boundary ? j : wrap(j, n)); };
-      if (o.boundary && n == 2 && o.rule == BoundaryRule::edge_and_corner) {
-        S(0, 0) = one;
-      } else if (o.boundary) {
-        S(0, 0) = 3 * quarter;
-        S(0, r(0)) += eighth;
-        S(0, r(n - 1)) += eighth;
-      } else {  // β = (5/8 − (3/8 + ¼cos(2π/n))²)/n
-        const T a = 3 * eighth + quarter * cos_of(1, n);
-        const T beta = (5 * eighth - a * a) / nn;
-        S(0, 0) = one - nn * beta;
-        for (int j = 0; j < n; ++j) S(0, r(j)) += beta;
-      }
-      for (int j = 0; j < n; ++j) {
-        if (o.boundary && (j == 0 || j == n - 1)) {
-          S(r(j), 0) += half;
-          S(r(j), r(j)) += half;
-          continue;
-        }
-        S(r(j), 0) += 3 * eighth;
-        S(r(j), r(j)) += 3 * eighth;
-        S(r(j), r(j - 1)) += eighth;
-        S(r(j), r(j + 1)) += eighth;
-      }
-      return S;
-    }
-    case MeshScheme::butterfly: {
-      Dense<T> S(3 * n + 1);
-      const auto r = [&](int j) { return 1 + 3 * wrap(j, n); };
-      const auto p = [&](int j) { return 2 + 3 * wrap(j, n); };
-      const auto q = [&](int j) { return 3 + 3 * wrap(j, n); };
-      S(0, 0) = one;  // interpolating: old vertices stay (c, and r_j becomes p_j)
-      for (int j = 0; j < n; ++j) {
-        S(p(j), r(j)) = one;
-        // Edge c r_j: ZSS's stencil of the extraordinary end, or the 10-point one at n = 6.
-        if (n == 6) {
-          S(r(j), 0) += half;
-          S(r(j), r(j)) += half;
-          S(r(j), r(j - 1)) += eighth;
-          S(r(j), r(j + 1)) += eighth;
-          for (const int w : {r(j - 2), r(j + 2), q(j), q(j - 1)}) S(r(j), w) -= sixteenth;
-        } else {
-          S(r(j), 0) += 3 * quarter;
-          for (int m = 0; m < n; ++m) {
-            T s(0);
-            if (n == 3)
-              s = m == 0 ? T(5) / 12 : T(-1) / 12;
-            else if (n == 4)
-              s = m == 0 ? 3 * eighth : (m == 2 ? -eighth : T(0));
-            else
-              s = (quarter + cos_of(m, n) + half * cos_of(2 * m, n)) / nn;
-            S(r(j), r(j + m)) += s;
-          }
-        }
-        // Edge r_j r_{j+1}: both ends regular, the 10-point stencil (opposite corners c and q_j;
-        // wings r_{j−1}, r_{j+2}, p_j, p_{j+1}).
-        S(q(j), r(j)) += half;
-        S(q(j), r(j + 1)) += half;
-        S(q(j), 0) += eighth;
-        S(q(j), q(j)) += eighth;
-        for (const int w : {r(j - 1), r(j + 2), p(j), p(j + 1)}) S(q(j), w) -= sixteenth;
-      }
-      return S;
-    }
-    case MeshScheme::sqrt3: {
-      // One step: c¹ = (1 − α)c + (α/n)Σ r_j, α = (4 − 2cos(2π/n))/9, and a ring point per face,
-      // the centroid (c + r_j + r_{j+1})/3 (first step) — on the second step numbered so that
-      // (c¹ + m_{j−1} + m_j)/3 is ring point j.
-      const T alpha = (4 - 2 * cos_of(1, n)) / 9;
-      const auto one_step = [&](int shift) {
-        Dense<T> A(n + 1);
-        A(0, 0) = one - alpha;
-        for (int j = 0; j < n; ++j) {
-          A(0, 1 + j) += alpha / nn;
-          A(1 + j, 0) += one / 3;
-          A(1 + j, 1 + wrap(j + shift, n)) += one / 3;
-          A(1 + j, 1 + wrap(j + shift + 1, n)) += one / 3;
-        }
-        return A;
-      };
-      return product(one_step(-1), one_step(0));
-    }
-    case MeshScheme::doo_sabin: {
-      const int k = n;
-      Dense<T> S(4 * k);
-      const auto g = [&](int i) { return 4 * wrap(i, k); };
-      const auto a = [&](int i) { return 4 * wrap(i, k) + 1; };
-      const auto b = [&](int i) { return 4 * wrap(i, k) + 2; };
-      const auto cq = [&](int i) { return 4 * wrap(i, k) + 3; };
-      // Corner point of a face with corners v_0 … v_{m−1} at corner i: Σ_j α_{j−i} v_j,
-      // α_0 = ¼ + 5/(4m), α_d = (3 + 2cos(2πd/m))/(4m).
-      const auto corner_point = [&](int row, const std::vector<int>& corners, int i) {
-        const int m = static_cast<int>(corners.size());
-        for (int d = 0; d < m; ++d)
-          S(row, corners[static_cast<std::size_t>(wrap(i + d, m))]) +=
-              (d == 0 ? quarter : T(0)) + (3 + 2 * cos_of(d, m)) / (4 * T(m));
-      };
-      std::vector<int> gon(static_cast<std::size_t>(k));
-      for (int i = 0; i < k; ++i) gon[static_cast<std::size_t>(i)] = g(i);
-      for (int i = 0; i < k; ++i) {
-        corner_point(g(i), gon, i);
-        corner_point(a(i), {g(i + 1), g(i), a(i), b(i)}, 1);    // edge quad i at g_i
-        corner_point(b(i), {g(i + 1), g(i), a(i), b(i)}, 0);    // edge quad i at g_{i+1}
-        corner_point(cq(i), {g(i), b(i - 1), cq(i), a(i)}, 0);  // corner quad at g_i
-      }
-      return S;
-    }
+    case MeshScheme::catmull_clark:
+      return catmull_clark_rules<T>(n, o);
+    case MeshScheme::loop:
+      return loop_rules<T>(n, o, cos_of);
+    case MeshScheme::butterfly:
+      return butterfly_rules<T>(n, cos_of);
+    case MeshScheme::sqrt3:
+      return sqrt3_rules<T>(n, cos_of);
+    case MeshScheme::doo_sabin:
+      return doo_sabin_rules<T>(n, cos_of);
   }
   return Dense<T>(0);
 }

@@ -195,9 +195,8 @@ LocalPatch local_patch(const nurbs::Surface& s, const Points& net, const std::ar
   return out;
 }
 
-}  // namespace
-
-SurfaceCheckReport check_surface(const nurbs::Surface& s, const CheckOptions& o) {
+/// Refuses bad options and a depth whose references would not fit, before any work.
+void check_surface_options(const nurbs::Surface& s, const CheckOptions& o) {
   if (o.depth < 0 || o.depth > 30)
     throw InvalidInput("check: depth " + std::to_string(o.depth) + " is outside [0, 30]");
   if (!(o.tolerance > 0) || !std::isfinite(o.tolerance))
@@ -214,46 +213,66 @@ SurfaceCheckReport check_surface(const nurbs::Surface& s, const CheckOptions& o)
                        number_text(reference, 3) +
                        " control points per patch (limit 2^23, about the memory of the machine's budget); "
                        "lower --depth");
-  const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
-  const std::vector<Points> nets = nurbs::initial_nets(t, s);
+}
+
+/// The surface's automaton, nets and patches, as both checks read them.
+struct SurfaceCheck {
+  const nurbs::Surface& s;
+  int depth;
+  double leaves;  // 2^depth
+  nurbs::TensorAutomaton t;
+  std::vector<Points> nets;
+  double scale, weight_scale;
+  std::array<std::vector<LocalKnots>, 2> knots;  // per direction and interval
+  std::vector<LocalPatch> locals;                // per patch
+};
+
+/// The check's data, and the report with one entry per patch.
+SurfaceCheck prepare_check(const nurbs::Surface& s, int depth, SurfaceCheckReport& report) {
+  nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
+  std::vector<Points> nets = nurbs::initial_nets(t, s);
   const Points cart = nurbs::cartesian_points(s);
   const double scale = std::max(cart.cwiseAbs().maxCoeff(), 1e-300);
   const double weight_scale = nurbs::weights(s).maxCoeff();
-
-  std::array<std::vector<LocalKnots>, 2> knots;
+  SurfaceCheck c{s,  depth, std::ldexp(1.0, depth), std::move(t), std::move(nets), scale, weight_scale,
+                 {}, {}};
   for (std::size_t dir = 0; dir < 2; ++dir)
-    for (const nurbs::KnotInterval& interval : t.factors[dir].intervals)
-      knots[dir].push_back(local_knots(s.knots[dir], s.degree[dir], interval.span));
-  SurfaceCheckReport report{o.depth, o.tolerance, {}, {}, {}, false};
-  std::vector<LocalPatch> locals;
-  for (std::size_t k = 0; k < t.patches.size(); ++k) {
-    const auto [a, b] = t.patches[k];
-    const nurbs::KnotInterval& iu = t.factors[0].intervals[static_cast<std::size_t>(a)];
-    const nurbs::KnotInterval& iv = t.factors[1].intervals[static_cast<std::size_t>(b)];
-    locals.push_back(local_patch(
-        s, nets[k], {knots[0][static_cast<std::size_t>(a)], knots[1][static_cast<std::size_t>(b)]}));
+    for (const nurbs::KnotInterval& interval : c.t.factors[dir].intervals)
+      c.knots[dir].push_back(local_knots(s.knots[dir], s.degree[dir], interval.span));
+  for (std::size_t k = 0; k < c.t.patches.size(); ++k) {
+    const auto [a, b] = c.t.patches[k];
+    const nurbs::KnotInterval& iu = c.t.factors[0].intervals[static_cast<std::size_t>(a)];
+    const nurbs::KnotInterval& iv = c.t.factors[1].intervals[static_cast<std::size_t>(b)];
+    c.locals.push_back(local_patch(
+        s, c.nets[k], {c.knots[0][static_cast<std::size_t>(a)], c.knots[1][static_cast<std::size_t>(b)]}));
     report.patches.push_back(PatchReport{{a, b}, {iu.start, iu.end}, {iv.start, iv.end}, {}, {}});
   }
+  return c;
+}
 
-  // (a) Leaf nets against the refined wide patch, one patch's reference in memory at a time (the
-  // leaves come patch by patch).
-  std::size_t current = t.patches.size();
+/// (a) Leaf nets against the refined wide patch, one patch's reference in memory at a time (the
+/// leaves come patch by patch).
+void check_leaf_nets(const SurfaceCheck& c, SurfaceCheckReport& report) {
+  const nurbs::Surface& s = c.s;
+  const int p = s.degree[0], q = s.degree[1];
+  const double leaves = c.leaves;
+  std::size_t current = c.t.patches.size();
   nurbs::Surface refined;
-  ifs::for_each_leaf(t.product, nets, o.depth, [&](const ifs::Leaf& leaf) {
+  ifs::for_each_leaf(c.t.product, c.nets, c.depth, [&](const ifs::Leaf& leaf) {
     const std::size_t k = leaf.initial;
-    const LocalPatch& local = locals[k];
+    const LocalPatch& local = c.locals[k];
     if (k != current) {
-      const auto [a, b] = t.patches[k];
+      const auto [a, b] = c.t.patches[k];
       refined = nurbs::refine(local.wide, nurbs::Direction::u,
-                              dyadic_knots(knots[0][static_cast<std::size_t>(a)].window, leaves));
+                              dyadic_knots(c.knots[0][static_cast<std::size_t>(a)].window, leaves));
       refined = nurbs::refine(refined, nurbs::Direction::v,
-                              dyadic_knots(knots[1][static_cast<std::size_t>(b)].window, leaves));
+                              dyadic_knots(c.knots[1][static_cast<std::size_t>(b)].window, leaves));
       current = k;
     }
     long long iu = 0, iv = 0;
-    for (int c : leaf.word) {
-      iu = 2 * iu + c / 2;
-      iv = 2 * iv + c % 2;
+    for (int w : leaf.word) {
+      iu = 2 * iu + w / 2;
+      iv = 2 * iv + w % 2;
     }
     // The inserted knots, bit for bit.
     const double u = static_cast<double>(iu) * (local.length[0] / leaves);
@@ -269,19 +288,22 @@ SurfaceCheckReport check_surface(const nurbs::Surface& s, const CheckOptions& o)
               .rowwise()
               .norm()
               .maxCoeff(),
-          scale);
+          c.scale);
     if (s.rational)
       track(patch.nets,
             (leaf.net.col(leaf.net.cols() - 1) - expected.col(expected.cols() - 1)).cwiseAbs().maxCoeff(),
-            weight_scale);
+            c.weight_scale);
   });
+}
 
-  // (b) Mesh vertices against evaluate_grid, each in the patch that owns it.
+/// (b) Mesh vertices against evaluate_grid, each in the patch that owns it.
+void check_mesh_vertices(const SurfaceCheck& c, SurfaceCheckReport& report) {
+  const double leaves = c.leaves;
   ifs::MeshOptions mesh_options;
-  mesh_options.homogeneous = s.rational;
-  const Mesh mesh = ifs::surface_mesh(t, nets, o.depth, mesh_options);
-  const int A = static_cast<int>(t.factors[0].automaton.initial.size()),
-            B = static_cast<int>(t.factors[1].automaton.initial.size());
+  mesh_options.homogeneous = c.s.rational;
+  const Mesh mesh = ifs::surface_mesh(c.t, c.nets, c.depth, mesh_options);
+  const int A = static_cast<int>(c.t.factors[0].automaton.initial.size()),
+            B = static_cast<int>(c.t.factors[1].automaton.initial.size());
   const auto n = static_cast<int>(leaves);
   const Eigen::Index row = static_cast<Eigen::Index>(B) * n + 1;
   const auto parameters = [&](double length, int count) {
@@ -289,11 +311,11 @@ SurfaceCheckReport check_surface(const nurbs::Surface& s, const CheckOptions& o)
     for (int m = 0; m < count; ++m) ts[static_cast<std::size_t>(m)] = m * (length / leaves);
     return ts;
   };
-  for (std::size_t k = 0; k < t.patches.size(); ++k) {
-    const auto [a, b] = t.patches[k];
+  for (std::size_t k = 0; k < c.t.patches.size(); ++k) {
+    const auto [a, b] = c.t.patches[k];
     const int rows = n + (a + 1 == A ? 1 : 0), cols = n + (b + 1 == B ? 1 : 0);
-    const Points expected = nurbs::evaluate_grid(locals[k].piece, parameters(locals[k].length[0], rows),
-                                                 parameters(locals[k].length[1], cols));
+    const Points expected = nurbs::evaluate_grid(c.locals[k].piece, parameters(c.locals[k].length[0], rows),
+                                                 parameters(c.locals[k].length[1], cols));
     for (int i = 0; i < rows; ++i)
       track(report.patches[k].points,
             (mesh.vertices.middleRows(
@@ -302,8 +324,18 @@ SurfaceCheckReport check_surface(const nurbs::Surface& s, const CheckOptions& o)
                 .rowwise()
                 .norm()
                 .maxCoeff(),
-            scale);
+            c.scale);
   }
+}
+
+}  // namespace
+
+SurfaceCheckReport check_surface(const nurbs::Surface& s, const CheckOptions& o) {
+  check_surface_options(s, o);
+  SurfaceCheckReport report{o.depth, o.tolerance, {}, {}, {}, false};
+  const SurfaceCheck c = prepare_check(s, o.depth, report);
+  check_leaf_nets(c, report);
+  check_mesh_vertices(c, report);
   for (const PatchReport& patch : report.patches) {
     merge(report.nets, patch.nets);
     merge(report.points, patch.points);
