@@ -128,12 +128,12 @@ class RealArrayCaster {
   /// An array over `heap`, which a capsule deletes with the array.
   static handle owned(Type* heap) {
     const capsule owner(heap, [](void* p) { delete static_cast<Type*>(p); });
-    constexpr auto item = static_cast<ssize_t>(sizeof(double));
+    constexpr auto kItem = static_cast<ssize_t>(sizeof(double));
     if constexpr (kRow || kColumn)
-      return array_t<double>({static_cast<ssize_t>(heap->size())}, {item}, heap->data(), owner).release();
+      return array_t<double>({static_cast<ssize_t>(heap->size())}, {kItem}, heap->data(), owner).release();
     const auto rows = static_cast<ssize_t>(heap->rows()), cols = static_cast<ssize_t>(heap->cols());
-    const std::vector<ssize_t> strides =
-        Type::IsRowMajor ? std::vector<ssize_t>{cols * item, item} : std::vector<ssize_t>{item, rows * item};
+    const std::vector<ssize_t> strides = Type::IsRowMajor ? std::vector<ssize_t>{cols * kItem, kItem}
+                                                          : std::vector<ssize_t>{kItem, rows * kItem};
     return array_t<double>({rows, cols}, strides, heap->data(), owner).release();
   }
 };
