@@ -19,10 +19,14 @@
 
 #include <array>
 #include <cstddef>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "cifs/automata/automaton.hpp"
+#include "cifs/errors.hpp"
 #include "cifs/nurbs/knot_automaton.hpp"
+#include "cifs/types.hpp"
 
 // Python has one automaton class, cifs.automata.Automaton, bound to nurbs::KnotAutomaton (an
 // automaton with its knot data; hand-made ones have none), so that `state.window` and
@@ -60,6 +64,110 @@ class type_caster<cifs::automata::Automaton> {
   }
   // NOLINTNEXTLINE(google-explicit-constructor): pybind11's caster protocol
   operator cifs::automata::Automaton&() { return static_cast<Knots&>(knots_).automaton; }
+};
+
+// Real arrays: the float64 matrices and vectors of the library (Points, Point, MatrixXd, VectorXd)
+// cross as numpy arrays, copied. pybind11's Eigen caster converts any dtype numpy can cast to
+// float64, so a complex array lost its imaginary part with a mere ComplexWarning and a boolean one
+// became 0/1; here numbers (float, int, unsigned) convert and complex or boolean arrays are
+// refused with InvalidInput. Shapes as pybind11's: a vector takes a 1-D array (or one row / column),
+// a matrix a 2-D array (a 1-D one is a column); results are new arrays that own their copy.
+template <class Type>
+class RealArrayCaster {
+  static constexpr bool kRow = Type::RowsAtCompileTime == 1, kColumn = Type::ColsAtCompileTime == 1;
+
+ public:
+  PYBIND11_TYPE_CASTER(
+      Type, const_name<kRow>(const_name("numpy.ndarray[numpy.float64[1, n]]"),
+                             const_name<kColumn>(const_name("numpy.ndarray[numpy.float64[m, 1]]"),
+                                                 const_name("numpy.ndarray[numpy.float64[m, n]]"))));
+
+  bool load(handle src, bool convert) {
+    // The first overload pass takes float64 arrays only, as pybind11's own caster.
+    if (!convert && !isinstance<array_t<double>>(src)) return false;
+    array a = array::ensure(src);
+    if (!a) {
+      PyErr_Clear();
+      return false;
+    }
+    const char kind = a.dtype().kind();
+    if (kind == 'c' || kind == 'b')
+      throw cifs::InvalidInput("expected an array of real numbers, got dtype " + std::string(str(a.dtype())));
+    if (kind != 'f' && kind != 'i' && kind != 'u') return false;
+    Eigen::Index rows = 0, cols = 0;
+    if (a.ndim() == 1) {
+      rows = kRow ? 1 : a.shape(0);
+      cols = kRow ? a.shape(0) : 1;
+    } else if (a.ndim() == 2) {
+      rows = a.shape(0);
+      cols = a.shape(1);
+      if ((kRow && rows != 1) || (kColumn && cols != 1)) return false;
+    } else {
+      return false;
+    }
+    const auto c = array_t<double, array::c_style | array::forcecast>::ensure(a);
+    if (!c) {
+      PyErr_Clear();
+      return false;
+    }
+    value.resize(rows, cols);
+    const double* in = c.data();
+    for (Eigen::Index i = 0; i < rows; ++i)
+      for (Eigen::Index j = 0; j < cols; ++j) value(i, j) = in[i * cols + j];
+    return true;
+  }
+
+  static handle cast(const Type& src, return_value_policy /*policy*/, handle /*parent*/) {
+    return owned(new Type(src));
+  }
+  static handle cast(Type&& src, return_value_policy /*policy*/, handle /*parent*/) {
+    return owned(new Type(std::move(src)));
+  }
+
+ private:
+  /// An array over `heap`, which a capsule deletes with the array.
+  static handle owned(Type* heap) {
+    const capsule owner(heap, [](void* p) { delete static_cast<Type*>(p); });
+    constexpr auto kItem = static_cast<ssize_t>(sizeof(double));
+    if constexpr (kRow || kColumn)
+      return array_t<double>({static_cast<ssize_t>(heap->size())}, {kItem}, heap->data(), owner).release();
+    const auto rows = static_cast<ssize_t>(heap->rows()), cols = static_cast<ssize_t>(heap->cols());
+    const std::vector<ssize_t> strides = Type::IsRowMajor ? std::vector<ssize_t>{cols * kItem, kItem}
+                                                          : std::vector<ssize_t>{kItem, rows * kItem};
+    return array_t<double>({rows, cols}, strides, heap->data(), owner).release();
+  }
+};
+
+template <>
+class type_caster<cifs::Points> : public RealArrayCaster<cifs::Points> {};
+template <>
+class type_caster<Eigen::MatrixXd> : public RealArrayCaster<Eigen::MatrixXd> {};
+template <>
+class type_caster<Eigen::VectorXd> : public RealArrayCaster<Eigen::VectorXd> {};
+template <>
+class type_caster<cifs::Point> : public RealArrayCaster<cifs::Point> {};
+
+// Functions bound by pointer that read points through Eigen::Ref (ifs::cartesian, …) take the same
+// checked copy.
+template <>
+class type_caster<Eigen::Ref<const cifs::Points>> {
+  type_caster<cifs::Points> points_;
+  std::optional<Eigen::Ref<const cifs::Points>> ref_;
+
+ public:
+  // NOLINTNEXTLINE(readability-identifier-naming): the member pybind11 reads for signatures
+  static constexpr auto name = type_caster<cifs::Points>::name;
+
+  bool load(handle src, bool convert) {
+    if (!points_.load(src, convert)) return false;
+    ref_.emplace(static_cast<cifs::Points&>(points_));
+    return true;
+  }
+
+  template <typename>
+  using cast_op_type = Eigen::Ref<const cifs::Points>&;
+  // NOLINTNEXTLINE(google-explicit-constructor): pybind11's caster protocol
+  operator Eigen::Ref<const cifs::Points>&() { return *ref_; }
 };
 }  // namespace pybind11::detail
 

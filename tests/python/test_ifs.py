@@ -168,6 +168,20 @@ class AttractorTest(unittest.TestCase):
         self.assertEqual(len(leaves), len(c.points) - 1)
         self.assertTrue(all(0 < x.deviation < 1e-3 and x.converged for x in leaves))
 
+    def test_complex_and_boolean_arrays_are_refused(self):
+        a = chaikin()
+        for bad in (NET.astype(complex), NET > 0):
+            for call in (lambda: ifs.attractor_points(a, [bad], 3), lambda: ifs.cartesian(bad),
+                         lambda: ifs.eigenvalues(bad[:2, :2])):
+                self.assertIn(f"expected an array of real numbers, got dtype {bad.dtype}", message(self, call))
+        # Integers convert (exactly); a 1-D array is a column; results are new float64 arrays.
+        assert_close(self, ifs.attractor_points(a, [NET.astype(np.int64)], 3), ifs.attractor_points(a, [NET], 3),
+                     rel=0)
+        self.assertIn("at least 2 columns", message(self, lambda: ifs.cartesian(np.array([2, 4]))))
+        points = ifs.cartesian(np.array([[2, 4]]))
+        np.testing.assert_array_equal(points, [[0.5]])
+        self.assertEqual(points.dtype, np.float64)
+
     def test_a_stencil_table_is_applied_to_new_nets(self):
         a = chaikin()
         table = ifs.stencil_table(a, 7)
