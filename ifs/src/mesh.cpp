@@ -197,10 +197,12 @@ std::size_t mesh_bytes(std::size_t vertices, std::size_t cols, std::size_t quads
   return v > kSaturated - q ? kSaturated : v + q;
 }
 
-void surface_mesh(const nurbs::TensorAutomaton& t, std::span<const Points> nets, int depth, Mesh& mesh,
-                  const MeshOptions& options) {
-  // The route reads the factors and the state pairs, never the product's matrices: validating the
-  // product (every 16 by 16 matrix of a bicubic surface) costs as much as a depth-8 mesh's quads.
+namespace {
+
+/// The separable route's checks. It reads the factors and the state pairs, never the product's
+/// matrices: validating the product (every 16 by 16 matrix of a bicubic surface) costs as much as a
+/// depth-8 mesh's quads.
+void check_tensor(const nurbs::TensorAutomaton& t, std::span<const Points> nets) {
   for (const auto& f : t.factors) validate(f.automaton);
   check_nets(t.product, nets, "surface_mesh");
   if (t.factor_states.size() != boost::num_vertices(t.product.graph))
@@ -222,42 +224,47 @@ void surface_mesh(const nurbs::TensorAutomaton& t, std::span<const Points> nets,
   for (std::size_t k = 0; k < t.patches.size(); ++k)
     if (t.patches[k] != std::array<int, 2>{static_cast<int>(k) / B, static_cast<int>(k) % B})
       throw InvalidInput("surface_mesh: patch " + std::to_string(k) + " is not in u-major order");
-  const Eigen::Index C = nets[0].cols();
-  if (options.homogeneous && C < 2)
-    throw InvalidInput("surface_mesh: homogeneous rows need at least 2 columns (w·x, w), got " +
-                       std::to_string(C));
-  const Grid grid = make_grid(A, B, depth, static_cast<std::size_t>(C), options, "surface_mesh");
+}
 
-  // Curve stencil tables: row I of F[dir] is the functional, on the net of the segment owning
-  // node I, of the point at node I — the factor's attractor under identity nets.
+/// Curve stencil tables: row I of F[dir] is the functional, on the net of the segment owning node
+/// I, of the point at node I — the factor's attractor under identity nets; and the factors' leaf
+/// states.
+struct FactorTables {
   std::array<Points, 2> F;
   std::array<std::vector<StateId>, 2> leaves;
+};
+
+FactorTables factor_tables(const nurbs::TensorAutomaton& t, int depth, std::size_t max_bytes) {
+  FactorTables out;
+  auto& [F, leaves] = out;
   for (std::size_t dir = 0; dir < 2; ++dir) {
     const Automaton& f = t.factors[dir].automaton;
     std::vector<Points> identity;
     for (const auto& init : f.initial)
       identity.push_back(Points::Identity(f.graph[init.state].size, f.graph[init.state].size));
-    F[dir] = attractor_points(
-        f, identity, depth,
-        PointsOptions{.closed = false, .max_bytes = options.max_bytes, .max_table_depth = 8});
+    F[dir] = attractor_points(f, identity, depth,
+                              PointsOptions{.closed = false, .max_bytes = max_bytes, .max_table_depth = 8});
     leaves[dir] = leaf_states(f, depth);
   }
-  const Eigen::Index p1 = F[0].cols(), q1 = F[1].cols();
-  if (nets[0].rows() != p1 * q1)
-    throw InvalidInput("surface_mesh: nets of " + std::to_string(nets[0].rows()) +
-                       " rows, the factors give " + std::to_string(p1) + " by " + std::to_string(q1));
-  // Homogeneous rows are divided by w a vertex row at a time, straight into the output: no whole
-  // homogeneous mesh, and no second allocation of the vertices.
-  const Eigen::Index D = options.homogeneous ? C - 1 : C;
-  allocate(grid, D, mesh);
+  return out;
+}
 
-  // v pass once per patch row a: Y_k (k ≤ p) is row k of every patch net of the row taken along v
-  // at the nodes the patch owns, i.e. Y_k(J) = Σ_l F_v(J, l)·N_b(k·(q+1) + l) — a `cv + 1 by C`
-  // vertex row, stored contiguously. Each vertex row I of the patch row is then the (p + 1)-term
-  // combination Σ_k F_u(I, k)·Y_k over one contiguous run of (cv + 1)·C doubles.
+/// The vertices, a patch row at a time. Homogeneous rows are divided by w a vertex row at a time,
+/// straight into the output: no whole homogeneous mesh, and no second allocation of the vertices.
+///
+/// v pass once per patch row a: Y_k (k ≤ p) is row k of every patch net of the row taken along v
+/// at the nodes the patch owns, i.e. Y_k(J) = Σ_l F_v(J, l)·N_b(k·(q+1) + l) — a `cv + 1 by C`
+/// vertex row, stored contiguously. Each vertex row I of the patch row is then the (p + 1)-term
+/// combination Σ_k F_u(I, k)·Y_k over one contiguous run of (cv + 1)·C doubles.
+void write_vertices(const FactorTables& tables, std::span<const Points> nets, const Grid& grid,
+                    bool homogeneous, Mesh& mesh) {
+  const auto& F = tables.F;
+  const int A = grid.A, B = grid.B;
+  const Eigen::Index C = nets[0].cols(), D = homogeneous ? C - 1 : C;
+  const Eigen::Index p1 = F[0].cols(), q1 = F[1].cols();
   const Eigen::Index width = static_cast<Eigen::Index>(grid.cv + 1) * C;
   std::vector<double> Y(static_cast<std::size_t>(p1 * width));
-  std::vector<double> H(options.homogeneous ? static_cast<std::size_t>(width) : 0);  // one homogeneous row
+  std::vector<double> H(homogeneous ? static_cast<std::size_t>(width) : 0);  // one homogeneous row
   const RowKernel combine = row_kernel(p1);
   for (int a = 0; a < A; ++a) {
     for (int b = 0; b < B; ++b) {
@@ -277,7 +284,7 @@ void surface_mesh(const nurbs::TensorAutomaton& t, std::span<const Points> nets,
     for (int I = a * grid.side, end = I + owned(grid, a, A); I < end; ++I) {
       const double* f = F[0].data() + static_cast<Eigen::Index>(I) * p1;
       double* row = mesh.vertices.data() + static_cast<Eigen::Index>(I) * (grid.cv + 1) * D;
-      if (!options.homogeneous) {
+      if (!homogeneous) {
         combine(f, p1, Y.data(), width, row);
         continue;
       }
@@ -293,9 +300,12 @@ void surface_mesh(const nurbs::TensorAutomaton& t, std::span<const Points> nets,
       }
     }
   }
+}
 
-  // Leaf states: the product state of the pair of factor leaf states. Rows I with the same u leaf
-  // state are equal, so each distinct row is built once and copied.
+/// Leaf states: the product state of the pair of factor leaf states. Rows I with the same u leaf
+/// state are equal, so each distinct row is built once and copied.
+void write_states(const nurbs::TensorAutomaton& t, const FactorTables& tables, const Grid& grid, Mesh& mesh) {
+  const auto& leaves = tables.leaves;
   const auto nv_states = boost::num_vertices(t.factors[1].automaton.graph);
   std::vector<std::uint32_t> pair_id(boost::num_vertices(t.factors[0].automaton.graph) * nv_states, 0);
   for (StateId s = 0; s < t.factor_states.size(); ++s)
@@ -312,6 +322,28 @@ void surface_mesh(const nurbs::TensorAutomaton& t, std::span<const Points> nets,
     }
     mesh.states.insert(mesh.states.end(), states.begin(), states.end());
   }
+}
+
+}  // namespace
+
+void surface_mesh(const nurbs::TensorAutomaton& t, std::span<const Points> nets, int depth, Mesh& mesh,
+                  const MeshOptions& options) {
+  check_tensor(t, nets);
+  const int A = static_cast<int>(t.factors[0].automaton.initial.size()),
+            B = static_cast<int>(t.factors[1].automaton.initial.size());
+  const Eigen::Index C = nets[0].cols();
+  if (options.homogeneous && C < 2)
+    throw InvalidInput("surface_mesh: homogeneous rows need at least 2 columns (w·x, w), got " +
+                       std::to_string(C));
+  const Grid grid = make_grid(A, B, depth, static_cast<std::size_t>(C), options, "surface_mesh");
+  const FactorTables tables = factor_tables(t, depth, options.max_bytes);
+  const Eigen::Index p1 = tables.F[0].cols(), q1 = tables.F[1].cols();
+  if (nets[0].rows() != p1 * q1)
+    throw InvalidInput("surface_mesh: nets of " + std::to_string(nets[0].rows()) +
+                       " rows, the factors give " + std::to_string(p1) + " by " + std::to_string(q1));
+  allocate(grid, options.homogeneous ? C - 1 : C, mesh);
+  write_vertices(tables, nets, grid, options.homogeneous, mesh);
+  write_states(t, tables, grid, mesh);
 }
 
 Mesh surface_mesh(const nurbs::TensorAutomaton& automaton, std::span<const Points> nets, int depth,
