@@ -654,9 +654,9 @@ namespace {
 /// The sample a dimension is measured on, how it was had, and its fit.
 struct Measured {
   experiment::Evaluation ev;
-  std::string route;  // "tolerance" or "depth"
-  double resolution = 0;  // passed to the fit (0: none)
-  bool estimated = false;  // resolution from the leaves' nets, not proven
+  std::string route;                 // "tolerance" or "depth"
+  double resolution = 0;             // passed to the fit (0: none)
+  bool estimated = false;            // resolution from the leaves' nets, not proven
   std::vector<std::string> relaxed;  // fit requirements dropped, as said to the user
   ifs::BoxCountingResult fit;
   /// The same route on a sample about 4× smaller (tolerance 2ε, or depth K − 1): its dimension,
@@ -671,7 +671,8 @@ std::string route_name(const Measured& m) {
     return "proven tolerance sample (every piece < " + number_text(m.resolution, 4) + ", deepest " +
            std::to_string(m.ev.depth) + ")";
   return "depth evaluation " + std::to_string(m.ev.depth) + " (pieces " +
-         (m.estimated ? "≈ " + number_text(m.resolution, 4) + ", resolution estimated from the leaves' nets, not proven"
+         (m.estimated ? "≈ " + number_text(m.resolution, 4) +
+                            ", resolution estimated from the leaves' nets, not proven"
                       : "≤ " + number_text(m.resolution, 4) + ", proven") +
          ")";
 }
@@ -689,7 +690,8 @@ void fit(Measured& m, ifs::BoxCountingOptions bo, bool relax) {
   const std::string fewer = "≥ 100 boxes per fitted level (not " + std::to_string(bo.min_boxes) + ")";
   const std::string pieces = "boxes ≥ 1× the pieces (not 2×)";
   const std::string none = "no piece-size rule: ≥ 4 points per box on average bounds the fine end";
-  const std::size_t hundred = std::min<std::size_t>(bo.min_boxes, 100), thirty = std::min<std::size_t>(bo.min_boxes, 30);
+  const std::size_t hundred = std::min<std::size_t>(bo.min_boxes, 100),
+                    thirty = std::min<std::size_t>(bo.min_boxes, 30);
   // The piece-size rule goes first: its size is a loose proven bound or an estimate from the
   // largest net, while the points-per-box rule measures the sample's own coverage; the coarse end
   // (boundary and overall-shape terms) is given up last.
@@ -703,7 +705,8 @@ void fit(Measured& m, ifs::BoxCountingOptions bo, bool relax) {
       if (bo.resolution > 0) tries.push_back({hundred, 0.5, {fewer, pieces}});
     }
     if (thirty < hundred)
-      tries.push_back({thirty, 0, {"≥ 30 boxes per fitted level (not " + std::to_string(bo.min_boxes) + ")", none}});
+      tries.push_back(
+          {thirty, 0, {"≥ 30 boxes per fitted level (not " + std::to_string(bo.min_boxes) + ")", none}});
   }
   for (std::size_t i = 0; i < tries.size(); ++i) {
     ifs::BoxCountingOptions t = bo;
@@ -722,7 +725,8 @@ void fit(Measured& m, ifs::BoxCountingOptions bo, bool relax) {
 
 /// `--depth K`: the proven piece bound when it leaves 3 levels, else (or when it is infinite) the
 /// leaves' net diameters as an estimated resolution, with relaxed requirements.
-Measured measure_depth(const io::Experiment& e, int depth, const ifs::BoxCountingOptions& bo, bool user_levels) {
+Measured measure_depth(const io::Experiment& e, int depth, const ifs::BoxCountingOptions& bo,
+                       bool user_levels) {
   Measured m;
   m.ev = experiment::evaluate(e, depth);
   m.route = "depth";
@@ -776,8 +780,8 @@ void compare_coarser(Measured& m, const ifs::BoxCountingOptions& bo, bool relax)
 /// than 3 levels qualify; when no sample can be had within the budget (or no Cartesian bound), the
 /// deepest depth sample within the budget with a resolution estimated from the leaves' nets.
 /// `fallback` gets why the proven route was left.
-Measured measure_automatic(const io::Experiment& e, const DimensionOptions& o, const ifs::BoxCountingOptions& bo,
-                           std::string& fallback) {
+Measured measure_automatic(const io::Experiment& e, const DimensionOptions& o,
+                           const ifs::BoxCountingOptions& bo, std::string& fallback) {
   Measured m;
   m.ev = experiment::evaluate(e, 0);  // builds the source once: automaton and nets
   ifs::ToleranceSample ts;
@@ -805,8 +809,8 @@ Measured measure_automatic(const io::Experiment& e, const DimensionOptions& o, c
     fit(m, so, true);
     return m;
   }
-  ifs::DepthSample ds =
-      ifs::depth_sample(m.ev.automaton, m.ev.nets, {.homogeneous = m.ev.rational, .max_points = o.max_points});
+  ifs::DepthSample ds = ifs::depth_sample(m.ev.automaton, m.ev.nets,
+                                          {.homogeneous = m.ev.rational, .max_points = o.max_points});
   m.route = "depth";
   m.ev.points = std::move(ds.points);
   m.ev.depth = ds.depth;
@@ -816,8 +820,9 @@ Measured measure_automatic(const io::Experiment& e, const DimensionOptions& o, c
   try {
     fit(m, bo, true);
   } catch (const InvalidInput& error) {
-    throw InvalidInput(std::string(error.what()) + " (depth " + std::to_string(m.ev.depth) +
-                       ", the deepest within --max-points); raise --max-points, or give --min-level and --max-level");
+    throw InvalidInput(
+        std::string(error.what()) + " (depth " + std::to_string(m.ev.depth) +
+        ", the deepest within --max-points); raise --max-points, or give --min-level and --max-level");
   }
   return m;
 }
@@ -937,19 +942,21 @@ std::string dimension(const DimensionOptions& o) {
     out += m.route == "tolerance" ? "  (strict fit refused: " + fallback + ")\n"
                                   : "  (no proven tolerance sample: " + fallback + ")\n";
   char line[512];
-  std::snprintf(line, sizeof line,
-                "box-counting dimension %.4f ± %.2g (levels %d … %d, ε %.4g … %.4g, R² %.6f, max residual %.3g)\n",
-                r.dimension, m.uncertainty, r.min_level, r.max_level, r.max_epsilon, r.min_epsilon, r.r_squared,
-                r.residual);
+  std::snprintf(
+      line, sizeof line,
+      "box-counting dimension %.4f ± %.2g (levels %d … %d, ε %.4g … %.4g, R² %.6f, max residual %.3g)\n",
+      r.dimension, m.uncertainty, r.min_level, r.max_level, r.max_epsilon, r.min_epsilon, r.r_squared,
+      r.residual);
   out += line;
-  std::snprintf(line, sizeof line,
-                "  uncertainty: the largest of the slope's standard error %.2g, the largest deviation %.2g of a "
-                "local slope (consecutive levels) and ",
-                r.standard_error, r.spread);
+  std::snprintf(
+      line, sizeof line,
+      "  uncertainty: the largest of the slope's standard error %.2g, the largest deviation %.2g of a "
+      "local slope (consecutive levels) and ",
+      r.standard_error, r.spread);
   out += line;
   out += m.coarser ? "the change " + number_text(std::abs(r.dimension - *m.coarser), 2) +
-                         " from the coarser sample (" + (m.route == "tolerance" ? "tolerance 2ε" : "depth − 1") +
-                         ")\n"
+                         " from the coarser sample (" +
+                         (m.route == "tolerance" ? "tolerance 2ε" : "depth − 1") + ")\n"
                    : "no coarser comparison (" + m.coarser_note + ")\n";
   for (const std::string& relaxed : m.relaxed) out += "  relaxed: " + relaxed + "\n";
   if (similarity) {

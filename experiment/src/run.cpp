@@ -1056,7 +1056,8 @@ Evaluation evaluate(const io::Experiment& experiment, std::optional<int> depth, 
   const ifs::PieceBounds bounds(scene.automaton, ifs::contraction(scene.automaton), scene.rational);
   ifs::for_each_leaf(scene.automaton, scene.nets, out.depth, [&](const ifs::Leaf& leaf) {
     out.resolution = std::max(out.resolution, bounds(leaf.state, leaf.net).diameter);
-    out.estimated_resolution = std::max(out.estimated_resolution, cartesian_diameter(leaf.net, scene.rational));
+    out.estimated_resolution =
+        std::max(out.estimated_resolution, cartesian_diameter(leaf.net, scene.rational));
   });
   out.automaton = std::move(scene.automaton);
   out.nets = std::move(scene.nets);

@@ -137,7 +137,8 @@ ToleranceSample tolerance_sample(const automata::Automaton& a, std::span<const P
   return out;
 }
 
-DepthSample depth_sample(const automata::Automaton& a, std::span<const Points> nets, const DepthSampleOptions& o) {
+DepthSample depth_sample(const automata::Automaton& a, std::span<const Points> nets,
+                         const DepthSampleOptions& o) {
   validate(a);
   check_nets(a, nets, "depth sample");
   const auto count = [&](int depth) {
@@ -148,7 +149,8 @@ DepthSample depth_sample(const automata::Automaton& a, std::span<const Points> n
     }
   };
   if (count(0) > o.max_points)
-    throw InvalidInput("depth sample: even depth 0 has more than " + std::to_string(o.max_points) + " points");
+    throw InvalidInput("depth sample: even depth 0 has more than " + std::to_string(o.max_points) +
+                       " points");
   DepthSample out;
   while (out.depth < o.max_depth && count(out.depth + 1) <= o.max_points) ++out.depth;
   Points P = attractor_points(a, nets, out.depth);

@@ -455,11 +455,12 @@ TEST_CASE("cifs dimension: box counting and similarity dimension", "[cli][dimens
   // The proven route asked for (--tolerance 0: automatic tolerance, no fallback): where the proven
   // bound leaves too few scales, the error names the way out; a rational piece without a Cartesian
   // bound says so instead of "inf wide".
-  check_error(cifs_cli("dimension " CIFS_EXAMPLES_DIR "/experiments/hills.json --max-points 20000 --tolerance 0"),
-              "measure a depth evaluation (--depth K)");
   check_error(
-      cifs_cli("dimension " CIFS_EXAMPLES_DIR "/experiments/wave_fractal.json --max-points 20000 --tolerance 0"),
-      "has no Cartesian size bound at depth");
+      cifs_cli("dimension " CIFS_EXAMPLES_DIR "/experiments/hills.json --max-points 20000 --tolerance 0"),
+      "measure a depth evaluation (--depth K)");
+  check_error(cifs_cli("dimension " CIFS_EXAMPLES_DIR
+                       "/experiments/wave_fractal.json --max-points 20000 --tolerance 0"),
+              "has no Cartesian size bound at depth");
 }
 
 TEST_CASE("cifs dimension: tolerance samples by default", "[cli][dimension]") {

@@ -347,7 +347,9 @@ TEST_CASE("depth sample: deepest depth within the budget, nets' diameters, uncer
   const ifs::BoxCountingResult r = ifs::box_counting(s.points);
   double spread = 0;
   for (int k = r.min_level; k < r.max_level; ++k) {
-    const auto n = [&](int level) { return static_cast<double>(r.counts[static_cast<std::size_t>(level)].boxes); };
+    const auto n = [&](int level) {
+      return static_cast<double>(r.counts[static_cast<std::size_t>(level)].boxes);
+    };
     spread = std::max(spread, std::abs(std::log2(n(k + 1) / n(k)) - r.dimension));
   }
   CHECK(r.spread == Approx(spread).epsilon(1e-9));

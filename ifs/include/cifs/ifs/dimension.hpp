@@ -41,10 +41,10 @@ struct BoxCountingResult {
   double intercept = 0;  // of that line (natural logarithms)
   int min_level = 0;     // fit range (inclusive)
   int max_level = 0;
-  double max_epsilon = 0;        // ε at min_level
-  double min_epsilon = 0;        // ε at max_level
-  double r_squared = 0;          // coefficient of determination of the fit
-  double residual = 0;           // largest |log N − line| over the fit range
+  double max_epsilon = 0;  // ε at min_level
+  double min_epsilon = 0;  // ε at max_level
+  double r_squared = 0;    // coefficient of determination of the fit
+  double residual = 0;     // largest |log N − line| over the fit range
   /// Standard error of the slope (least squares over the m fitted levels, m − 2 degrees of freedom).
   double standard_error = 0;
   /// Largest |local slope − dimension| over the pairs of consecutive levels of the fit range
