@@ -659,7 +659,7 @@ struct Measured {
   bool estimated = false;            // resolution from the leaves' nets, not proven
   std::vector<std::string> relaxed;  // fit requirements dropped, as said to the user
   ifs::BoxCountingResult fit;
-  /// The same route on a sample about 4× smaller (tolerance 2ε, or depth K − 1): its dimension,
+  /// The same route on a sample 2–4× smaller (tolerance 2ε, or depth K − 1): its dimension,
   /// when it can be fitted, and why not otherwise.
   std::optional<double> coarser;
   std::string coarser_note;
@@ -671,9 +671,10 @@ std::string route_name(const Measured& m) {
     return "proven tolerance sample (every piece < " + number_text(m.resolution, 4) + ", deepest " +
            std::to_string(m.ev.depth) + ")";
   return "depth evaluation " + std::to_string(m.ev.depth) + " (pieces " +
-         (m.estimated ? "≈ " + number_text(m.resolution, 4) +
-                            ", resolution estimated from the leaves' nets, not proven"
-                      : "≤ " + number_text(m.resolution, 4) + ", proven") +
+         (m.estimated && m.resolution == 0 ? std::string("of unknown size: a leaf's weights reach 0")
+          : m.estimated                    ? "≈ " + number_text(m.resolution, 4) +
+                              ", resolution estimated from the leaves' nets, not proven"
+                        : "≤ " + number_text(m.resolution, 4) + ", proven") +
          ")";
 }
 
@@ -784,6 +785,8 @@ Measured measure_automatic(const io::Experiment& e, const DimensionOptions& o,
                            const ifs::BoxCountingOptions& bo, std::string& fallback) {
   Measured m;
   m.ev = experiment::evaluate(e, 0);  // builds the source once: automaton and nets
+  // Refusals of the input itself (an extent beyond a double) are not a reason to change routes.
+  (void)ifs::nets_diameter(m.ev.nets, m.ev.rational);
   ifs::ToleranceSample ts;
   try {
     ts = ifs::tolerance_sample(m.ev.automaton, m.ev.nets,
