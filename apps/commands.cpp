@@ -650,7 +650,190 @@ std::string render(const RenderOptions& o) {
 
 namespace {
 
-/// The input as an experiment. A shape file holds "curve" or "surface", or "shape" alone (geomdl),
+/// The sample a dimension is measured on, how it was had, and its fit.
+struct Measured {
+  experiment::Evaluation ev;
+  std::string route;                 // "tolerance" or "depth"
+  double resolution = 0;             // passed to the fit (0: none)
+  bool estimated = false;            // resolution from the leaves' nets, not proven
+  std::vector<std::string> relaxed;  // fit requirements dropped, as said to the user
+  ifs::BoxCountingResult fit;
+  /// The same route on a sample 2–4× smaller (tolerance 2ε, or depth K − 1): its dimension,
+  /// when it can be fitted, and why not otherwise.
+  std::optional<double> coarser;
+  std::string coarser_note;
+  double uncertainty = 0;  // max(fit.uncertainty, |fit.dimension − coarser|)
+};
+
+std::string route_name(const Measured& m) {
+  if (m.route == "tolerance")
+    return "proven tolerance sample (every piece < " + number_text(m.resolution, 4) + ", deepest " +
+           std::to_string(m.ev.depth) + ")";
+  return "depth evaluation " + std::to_string(m.ev.depth) + " (pieces " +
+         (m.estimated && m.resolution == 0 ? std::string("of unknown size: a leaf's weights reach 0")
+          : m.estimated                    ? "≈ " + number_text(m.resolution, 4) +
+                              ", resolution estimated from the leaves' nets, not proven"
+                        : "≤ " + number_text(m.resolution, 4) + ", proven") +
+         ")";
+}
+
+/// Box counting on m.ev.points with the automatic range; when `relax` and fewer than 3 levels
+/// qualify, looser sets of requirements are tried in turn, loosest last, and the first that gives
+/// 3 levels is named in m.relaxed. Throws the last InvalidInput when none does.
+void fit(Measured& m, ifs::BoxCountingOptions bo, bool relax) {
+  bo.resolution = m.resolution;
+  struct Relaxation {
+    std::size_t min_boxes;
+    double resolution;  // factor on bo.resolution (0: no piece-size rule)
+    std::vector<std::string> said;
+  };
+  const std::string fewer = "≥ 100 boxes per fitted level (not " + std::to_string(bo.min_boxes) + ")";
+  const std::string pieces = "boxes ≥ 1× the pieces (not 2×)";
+  const std::string none = "no piece-size rule: ≥ 4 points per box on average bounds the fine end";
+  const std::size_t hundred = std::min<std::size_t>(bo.min_boxes, 100),
+                    thirty = std::min<std::size_t>(bo.min_boxes, 30);
+  // The piece-size rule goes first: its size is a loose proven bound or an estimate from the
+  // largest net, while the points-per-box rule measures the sample's own coverage; the coarse end
+  // (boundary and overall-shape terms) is given up last.
+  std::vector<Relaxation> tries = {{bo.min_boxes, 1, {}}};
+  if (relax) {
+    const bool piece_rule = bo.resolution > 0 || bo.points_per_box < 4;
+    if (piece_rule) tries.push_back({bo.min_boxes, 0, {none}});
+    if (bo.resolution > 0) tries.push_back({bo.min_boxes, 0.5, {pieces}});
+    if (hundred < bo.min_boxes) {
+      tries.push_back({hundred, 0, {fewer, none}});
+      if (bo.resolution > 0) tries.push_back({hundred, 0.5, {fewer, pieces}});
+    }
+    if (thirty < hundred)
+      tries.push_back(
+          {thirty, 0, {"≥ 30 boxes per fitted level (not " + std::to_string(bo.min_boxes) + ")", none}});
+  }
+  for (std::size_t i = 0; i < tries.size(); ++i) {
+    ifs::BoxCountingOptions t = bo;
+    t.min_boxes = tries[i].min_boxes;
+    t.resolution = bo.resolution * tries[i].resolution;
+    if (tries[i].resolution == 0) t.points_per_box = std::max(t.points_per_box, 4.0);
+    try {
+      m.fit = ifs::box_counting(m.ev.points, t);
+      m.relaxed = tries[i].said;
+      return;
+    } catch (const InvalidInput&) {
+      if (i + 1 == tries.size()) throw;
+    }
+  }
+}
+
+/// `--depth K`: the proven piece bound when it leaves 3 levels, else (or when it is infinite) the
+/// leaves' net diameters as an estimated resolution, with relaxed requirements.
+Measured measure_depth(const io::Experiment& e, int depth, const ifs::BoxCountingOptions& bo,
+                       bool user_levels) {
+  Measured m;
+  m.ev = experiment::evaluate(e, depth);
+  m.route = "depth";
+  if (std::isfinite(m.ev.resolution)) {
+    m.resolution = m.ev.resolution;
+    try {
+      fit(m, bo, false);
+      return m;
+    } catch (const InvalidInput&) {
+      if (user_levels) throw;
+    }
+  }
+  m.resolution = std::isfinite(m.ev.estimated_resolution) ? m.ev.estimated_resolution : 0;
+  m.estimated = true;
+  fit(m, bo, !user_levels);
+  return m;
+}
+
+/// Fits the same route on a coarser sample (tolerance 2ε, or depth K − 1; about 4× fewer points
+/// on a surface, 2× on a curve) and widens the uncertainty to the change of the dimension: the
+/// budget's own effect, which the spread of the local slopes misses when the fit range is short.
+void compare_coarser(Measured& m, const ifs::BoxCountingOptions& bo, bool relax) {
+  Measured c;
+  c.route = m.route;
+  c.estimated = m.estimated;
+  try {
+    if (m.route == "tolerance") {
+      const ifs::ToleranceSample ts = ifs::tolerance_sample(
+          m.ev.automaton, m.ev.nets, {.epsilon = 2 * m.ev.resolution, .homogeneous = m.ev.rational});
+      c.ev.points = ts.points;
+      c.resolution = m.resolution > 0 ? ts.resolution : 0;
+    } else {
+      if (m.ev.depth < 1) throw InvalidInput("depth 0 has no coarser depth");
+      const ifs::DepthSample ds = ifs::depth_sample(
+          m.ev.automaton, m.ev.nets,
+          {.homogeneous = m.ev.rational, .max_points = std::size_t{1} << 40, .max_depth = m.ev.depth - 1});
+      c.ev.points = ds.points;
+      c.resolution = !m.estimated || !std::isfinite(ds.resolution) ? 0 : ds.resolution;
+    }
+    ifs::BoxCountingOptions co = bo;
+    if (m.route == "tolerance") co.points_per_box = 1;
+    fit(c, co, relax);
+    m.coarser = c.fit.dimension;
+  } catch (const InvalidInput& error) {
+    m.coarser_note = error.what();
+  }
+  m.uncertainty = std::max(m.fit.uncertainty, m.coarser ? std::abs(m.fit.dimension - *m.coarser) : 0.0);
+}
+
+/// The default route: the proven tolerance sample; its fit with relaxed requirements when fewer
+/// than 3 levels qualify; when no sample can be had within the budget (or no Cartesian bound), the
+/// deepest depth sample within the budget with a resolution estimated from the leaves' nets.
+/// `fallback` gets why the proven route was left.
+Measured measure_automatic(const io::Experiment& e, const DimensionOptions& o,
+                           const ifs::BoxCountingOptions& bo, std::string& fallback) {
+  Measured m;
+  m.ev = experiment::evaluate(e, 0);  // builds the source once: automaton and nets
+  // Refusals of the input itself (an extent beyond a double) are not a reason to change routes.
+  (void)ifs::nets_diameter(m.ev.nets, m.ev.rational);
+  ifs::ToleranceSample ts;
+  try {
+    ts = ifs::tolerance_sample(m.ev.automaton, m.ev.nets,
+                               {.homogeneous = m.ev.rational, .max_points = o.max_points});
+  } catch (const InvalidInput& error) {
+    fallback = error.what();
+  }
+  if (fallback.empty()) {
+    m.route = "tolerance";
+    m.ev.points = std::move(ts.points);
+    m.ev.depth = ts.deepest;
+    m.ev.resolution = m.resolution = ts.resolution;
+    // A tolerance sample covers the attractor to its resolution by construction: the
+    // points-per-box rule (a proxy for coverage of depth samples) does not apply.
+    ifs::BoxCountingOptions so = bo;
+    so.points_per_box = 1;
+    try {
+      fit(m, so, false);
+      return m;
+    } catch (const InvalidInput& error) {
+      fallback = error.what();
+    }
+    fit(m, so, true);
+    return m;
+  }
+  ifs::DepthSample ds = ifs::depth_sample(m.ev.automaton, m.ev.nets,
+                                          {.homogeneous = m.ev.rational, .max_points = o.max_points});
+  m.route = "depth";
+  m.ev.points = std::move(ds.points);
+  m.ev.depth = ds.depth;
+  m.ev.estimated_resolution = ds.resolution;
+  m.estimated = true;
+  m.resolution = std::isfinite(ds.resolution) ? ds.resolution : 0;
+  try {
+    fit(m, bo, true);
+  } catch (const InvalidInput& error) {
+    throw InvalidInput(
+        std::string(error.what()) + " (depth " + std::to_string(m.ev.depth) +
+        ", the deepest within --max-points); raise --max-points, or give --min-level and --max-level");
+  }
+  return m;
+}
+
+}  // namespace
+
+namespace {
+
+/// The input as an experiment: a shape file holds "curve" or "surface", or "shape" alone (geomdl),
 /// or is an OBJ; anything else is an experiment.
 io::Experiment dimension_input(const DimensionOptions& o) {
   bool shape = o.input.extension() == ".obj";
@@ -674,28 +857,49 @@ io::Experiment dimension_input(const DimensionOptions& o) {
   return e;
 }
 
-ifs::BoxCountingResult count_boxes(const experiment::Evaluation& ev, const DimensionOptions& o,
-                                   bool sampled) {
+/// The sample and its fit, by the route the options ask for (or the automatic one); `fallback`
+/// gets why the proven route was left.
+Measured dimension_measure(const io::Experiment& e, const DimensionOptions& o, std::string& fallback) {
+  if (o.depth && o.tolerance) throw InvalidInput("dimension: give --depth or --tolerance, not both");
+  // The sample is held in memory and its walk takes about 1 µs per point: a budget of 2^40 ran for days.
+  if (o.max_points < 1 || o.max_points > static_cast<std::size_t>(kMaxPoints))
+    throw InvalidInput("--max-points " + std::to_string(o.max_points) + ": expected 1 to " +
+                       std::to_string(kMaxPoints) + " points (the sample is held in memory)");
+  const bool user_levels = o.min_level >= 0 || o.max_level >= 0;
+  // Without --depth or --tolerance the route chooses itself (proven sample, else a depth
+  // evaluation) and relaxes the fit's requirements where they cannot hold.
+  const bool automatic = !o.depth && !o.tolerance && !user_levels;
   ifs::BoxCountingOptions bo;
-  bo.resolution = ev.resolution;
   bo.min_boxes = o.min_boxes;
-  // A tolerance sample covers the attractor to its resolution by construction: the
-  // points-per-box rule (a proxy for coverage of depth samples) does not apply.
-  if (sampled) bo.points_per_box = 1;
   bo.min_level = o.min_level;
   bo.max_level = o.max_level;
-  try {
-    return ifs::box_counting(ev.points, bo);
-  } catch (const InvalidInput& error) {
-    // The proven piece bound may be loose (signed matrices): say that a depth evaluation is the way out.
-    if (!sampled || o.min_level >= 0) throw;
-    throw InvalidInput(std::string(error.what()) +
-                       "; or raise --max-points, or measure a depth evaluation (--depth K)");
+
+  Measured m;
+  if (automatic) {
+    m = measure_automatic(e, o, bo, fallback);
+  } else if (o.depth) {
+    m = measure_depth(e, *o.depth, bo, user_levels);
+  } else {
+    m.ev = experiment::sample(e, {.tolerance = o.tolerance.value_or(0), .max_points = o.max_points});
+    m.route = "tolerance";
+    m.resolution = m.ev.resolution;
+    ifs::BoxCountingOptions so = bo;
+    so.points_per_box = 1;
+    try {
+      fit(m, so, false);
+    } catch (const InvalidInput& error) {
+      // The proven piece bound may be loose (signed matrices): say that a depth evaluation is the way out.
+      if (user_levels) throw;
+      throw InvalidInput(std::string(error.what()) +
+                         "; or raise --max-points, or measure a depth evaluation (--depth K)");
+    }
   }
+  // A user's fit range is fitted as given on the coarser sample too.
+  compare_coarser(m, bo, !user_levels);
+  return m;
 }
 
-/// The similarity dimension applies when every map is a similarity; `why_not` says why when it
-/// does not.
+/// The similarity dimension, when every map is a similarity; `why_not` says why when it is not.
 std::optional<double> similarity_of(const experiment::Evaluation& ev, std::string& why_not) {
   std::optional<double> similarity;
   try {
@@ -711,18 +915,28 @@ std::optional<double> similarity_of(const experiment::Evaluation& ev, std::strin
   return similarity;
 }
 
-std::string dimension_json(const DimensionOptions& o, const experiment::Evaluation& ev, bool sampled,
-                           const ifs::BoxCountingResult& r, std::optional<double> similarity,
-                           const std::string& why_not) {
+std::string dimension_json(const DimensionOptions& o, const Measured& m, const std::string& fallback,
+                           std::optional<double> similarity, const std::string& why_not) {
+  const experiment::Evaluation& ev = m.ev;
+  const ifs::BoxCountingResult& r = m.fit;
   json j;
   j["input"] = o.input.string();
   j["kind"] = ev.kind;
-  j["mode"] = sampled ? "tolerance" : "depth";
+  j["mode"] = m.route == "tolerance" ? "tolerance" : m.route == "chaos" ? "chaos" : "depth";
+  j["route"] = route_name(m);
   j["depth"] = ev.depth;
   j["points"] = ev.points.rows();
-  j["resolution"] = ev.resolution;
+  j["resolution"] = m.resolution;
+  j["resolution_estimated"] = m.estimated;
+  j["relaxed"] = m.relaxed;
+  if (!fallback.empty()) j["fallback_reason"] = fallback;
   json box;
   box["dimension"] = r.dimension;
+  box["uncertainty"] = m.uncertainty;
+  box["standard_error"] = r.standard_error;
+  box["spread"] = r.spread;
+  box["coarser_dimension"] = m.coarser ? json(*m.coarser) : json(nullptr);
+  if (!m.coarser) box["coarser_note"] = m.coarser_note;
   box["levels"] = {r.min_level, r.max_level};
   box["epsilon"] = {r.max_epsilon, r.min_epsilon};
   box["r_squared"] = r.r_squared;
@@ -738,19 +952,33 @@ std::string dimension_json(const DimensionOptions& o, const experiment::Evaluati
   return j.dump(2) + "\n";
 }
 
-std::string dimension_text(const DimensionOptions& o, const experiment::Evaluation& ev, bool sampled,
-                           const ifs::BoxCountingResult& r, std::optional<double> similarity,
-                           const std::string& why_not) {
-  const std::string resolution = number_text(ev.resolution, 4);
-  std::string out = o.input.string() + ": " + ev.kind + ", " +
-                    (sampled ? "pieces < " + resolution + " (deepest " + std::to_string(ev.depth) + ")"
-                             : "depth " + std::to_string(ev.depth) + ", pieces ≤ " + resolution) +
-                    ", " + std::to_string(ev.points.rows()) + " points\n";
-  char line[256];
-  std::snprintf(line, sizeof line,
-                "box-counting dimension %.4f (levels %d … %d, ε %.4g … %.4g, R² %.6f, max residual %.3g)\n",
-                r.dimension, r.min_level, r.max_level, r.max_epsilon, r.min_epsilon, r.r_squared, r.residual);
+std::string dimension_text(const DimensionOptions& o, const Measured& m, const std::string& fallback,
+                           std::optional<double> similarity, const std::string& why_not) {
+  const experiment::Evaluation& ev = m.ev;
+  const ifs::BoxCountingResult& r = m.fit;
+  std::string out = o.input.string() + ": " + ev.kind + ", " + std::to_string(ev.points.rows()) + " points\n";
+  out += "route: " + route_name(m) + "\n";
+  if (!fallback.empty())
+    out += m.route == "tolerance" ? "  (strict fit refused: " + fallback + ")\n"
+                                  : "  (no proven tolerance sample: " + fallback + ")\n";
+  char line[512];
+  std::snprintf(
+      line, sizeof line,
+      "box-counting dimension %.4f ± %.2g (levels %d … %d, ε %.4g … %.4g, R² %.6f, max residual %.3g)\n",
+      r.dimension, m.uncertainty, r.min_level, r.max_level, r.max_epsilon, r.min_epsilon, r.r_squared,
+      r.residual);
   out += line;
+  std::snprintf(
+      line, sizeof line,
+      "  uncertainty: the largest of the slope's standard error %.2g, the largest deviation %.2g of a "
+      "local slope (consecutive levels) and ",
+      r.standard_error, r.spread);
+  out += line;
+  out += m.coarser ? "the change " + number_text(std::abs(r.dimension - *m.coarser), 2) +
+                         " from the coarser sample (" +
+                         (m.route == "tolerance" ? "tolerance 2ε" : "depth − 1") + ")\n"
+                   : "no coarser comparison (" + m.coarser_note + ")\n";
+  for (const std::string& relaxed : m.relaxed) out += "  relaxed: " + relaxed + "\n";
   if (similarity) {
     std::snprintf(line, sizeof line, "similarity dimension %.12g\n", *similarity);
     out += line;
@@ -770,21 +998,11 @@ std::string dimension_text(const DimensionOptions& o, const experiment::Evaluati
 
 std::string dimension(const DimensionOptions& o) {
   const io::Experiment e = dimension_input(o);
-  if (o.depth && o.tolerance) throw InvalidInput("dimension: give --depth or --tolerance, not both");
-  // The sample is held in memory and its walk takes about 1 µs per point: a budget of 2^40 ran for days.
-  if (o.max_points < 1 || o.max_points > static_cast<std::size_t>(kMaxPoints))
-    throw InvalidInput("--max-points " + std::to_string(o.max_points) + ": expected 1 to " +
-                       std::to_string(kMaxPoints) + " points (the sample is held in memory)");
-  // Default: a tolerance sample, whose piece size is proven; --depth: the file's evaluation.
-  const bool sampled = !o.depth;
-  const experiment::Evaluation ev =
-      sampled ? experiment::sample(e, {.tolerance = o.tolerance.value_or(0), .max_points = o.max_points})
-              : experiment::evaluate(e, o.depth);
-  const ifs::BoxCountingResult r = count_boxes(ev, o, sampled);
-  std::string why_not;
-  const std::optional<double> similarity = similarity_of(ev, why_not);
-  return o.json ? dimension_json(o, ev, sampled, r, similarity, why_not)
-                : dimension_text(o, ev, sampled, r, similarity, why_not);
+  std::string fallback, why_not;
+  const Measured m = dimension_measure(e, o, fallback);
+  const std::optional<double> similarity = similarity_of(m.ev, why_not);
+  return o.json ? dimension_json(o, m, fallback, similarity, why_not)
+                : dimension_text(o, m, fallback, similarity, why_not);
 }
 
 std::string gallery(const std::filesystem::path& out, const std::filesystem::path& examples, bool quiet) {

@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <optional>
@@ -14,6 +15,7 @@
 #include "cifs/format.hpp"
 #include "cifs/ifs/affine.hpp"
 #include "cifs/ifs/affine_cifs.hpp"
+#include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/ifs/bcifs.hpp"
 #include "cifs/ifs/bcifs_curve.hpp"
@@ -1082,6 +1084,15 @@ void refuse_mesh(const io::Experiment& e) {
                        ": a subdivision surface has no attractor to evaluate or sample");
 }
 
+/// Diameter of a net's Cartesian points (homogeneous rows `(w·x, w)` when `rational`); infinite
+/// when a weight is 0 or the points are not finite.
+double cartesian_diameter(const Points& net, bool rational) {
+  if (!rational) return ifs::diameter(net);
+  if (!(net.col(net.cols() - 1).array() != 0).all()) return std::numeric_limits<double>::infinity();
+  const Points x = ifs::cartesian(net);
+  return x.allFinite() ? ifs::diameter(x) : std::numeric_limits<double>::infinity();
+}
+
 }  // namespace
 
 Evaluation evaluate(const io::Experiment& experiment, std::optional<int> depth, const RunOptions& o) {
@@ -1107,6 +1118,8 @@ Evaluation evaluate(const io::Experiment& experiment, std::optional<int> depth, 
   const ifs::PieceBounds bounds(scene.automaton, ifs::contraction(scene.automaton), scene.rational);
   ifs::for_each_leaf(scene.automaton, scene.nets, out.depth, [&](const ifs::Leaf& leaf) {
     out.resolution = std::max(out.resolution, bounds(leaf.state, leaf.net).diameter);
+    out.estimated_resolution =
+        std::max(out.estimated_resolution, cartesian_diameter(leaf.net, scene.rational));
   });
   out.automaton = std::move(scene.automaton);
   out.nets = std::move(scene.nets);

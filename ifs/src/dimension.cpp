@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <deque>
+#include <limits>
 #include <map>
 #include <string>
 
@@ -30,6 +31,21 @@ std::uint64_t morton(const std::vector<std::uint64_t>& c, int levels) {
 }
 
 struct Full {};
+
+/// Least-squares slope of log N against log(1/ε) over levels lo … hi of `counts`.
+double slope(const std::vector<BoxCount>& counts, int lo, int hi) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double m = hi - lo + 1;
+  for (int k = lo; k <= hi; ++k) {
+    const BoxCount& b = counts[static_cast<std::size_t>(k)];
+    const double x = -std::log(b.epsilon), y = std::log(static_cast<double>(b.boxes));
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    sxy += x * y;
+  }
+  return (sxy - sx * sy / m) / (sxx - sx * sx / m);
+}
 
 /// Point budgets above this are checked against an estimate before each counting walk.
 constexpr std::size_t kEstimateAbove = std::size_t{1} << 22;
@@ -118,6 +134,37 @@ ToleranceSample tolerance_sample(const automata::Automaton& a, std::span<const P
   out.points = std::move(sample.points);
   out.resolution = to.epsilon;
   out.deepest = sample.depth;
+  return out;
+}
+
+DepthSample depth_sample(const automata::Automaton& a, std::span<const Points> nets,
+                         const DepthSampleOptions& o) {
+  validate(a);
+  check_nets(a, nets, "depth sample");
+  const auto count = [&](int depth) {
+    try {
+      return attractor_point_count(a, depth);
+    } catch (const InvalidInput&) {  // overflow: certainly above the budget
+      return std::numeric_limits<std::size_t>::max();
+    }
+  };
+  if (count(0) > o.max_points)
+    throw InvalidInput("depth sample: even depth 0 has more than " + std::to_string(o.max_points) +
+                       " points");
+  DepthSample out;
+  while (out.depth < o.max_depth && count(out.depth + 1) <= o.max_points) ++out.depth;
+  Points P = attractor_points(a, nets, out.depth);
+  out.points = o.homogeneous ? cartesian(P) : std::move(P);
+  for_each_leaf(a, nets, out.depth, [&](const Leaf& leaf) {
+    if (!o.homogeneous) {
+      out.resolution = std::max(out.resolution, diameter(leaf.net));
+      return;
+    }
+    const bool positive = (leaf.net.col(leaf.net.cols() - 1).array() != 0).all();
+    const Points x = positive ? cartesian(leaf.net) : Points();
+    out.resolution = positive && x.allFinite() ? std::max(out.resolution, diameter(x))
+                                               : std::numeric_limits<double>::infinity();
+  });
   return out;
 }
 
@@ -234,6 +281,11 @@ void fit_dimension(BoxCountingResult& r) {
     r.residual = std::max(r.residual, std::abs(e));
   }
   r.r_squared = syy > 0 ? 1 - ss_res / syy : 1;
+  r.standard_error = m > 2 ? std::sqrt(ss_res / (m - 2) / sxx) : 0;
+  // Local slopes between consecutive levels: the fit's drift across the scales it spans.
+  for (int k = r.min_level; k < r.max_level; ++k)
+    r.spread = std::max(r.spread, std::abs(slope(r.counts, k, k + 1) - r.dimension));
+  r.uncertainty = std::max(r.standard_error, r.spread);
   r.max_epsilon = r.counts[static_cast<std::size_t>(r.min_level)].epsilon;
   r.min_epsilon = r.counts[static_cast<std::size_t>(r.max_level)].epsilon;
 }

@@ -639,6 +639,12 @@ void bind_box_counting(py::module_& m) {
                     "Coefficient of determination of the fit.")
       .def_readonly("residual", &ifs::BoxCountingResult::residual,
                     "Largest |log N − line| over the fit range.")
+      .def_readonly("standard_error", &ifs::BoxCountingResult::standard_error,
+                    "Standard error of the slope (m − 2 degrees of freedom).")
+      .def_readonly("spread", &ifs::BoxCountingResult::spread,
+                    "Largest |local slope − dimension| over consecutive levels of the fit range.")
+      .def_readonly("uncertainty", &ifs::BoxCountingResult::uncertainty,
+                    "max(standard_error, spread): the reported uncertainty of the dimension.")
       .def_readonly("size", &ifs::BoxCountingResult::size,
                     "Side of the bounding cube of the points (ε at level 0).")
       .def_readonly("counts", &ifs::BoxCountingResult::counts, "List of BoxCount for levels 0 … levels.")

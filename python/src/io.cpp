@@ -748,7 +748,10 @@ void bind_experiment_types(py::module_& m) {
       .def_readonly("depth", &Evaluation::depth, "Depth evaluated.")
       .def_readonly("kind", &Evaluation::kind, "Source kind, e.g. 'NURBS curve', 'classic IFS koch'.")
       .def_readonly("resolution", &Evaluation::resolution,
-                    "Bound on the diameter of the depth-K pieces; 0 when unknown (rational nets).")
+                    "Bound on the diameter of the depth-K pieces; infinite when unknown (rational nets).")
+      .def_readonly("estimated_resolution", &Evaluation::estimated_resolution,
+                    "evaluate only: largest Cartesian diameter of the depth-K nets, an estimate of the\n"
+                    "pieces' size (not a bound); infinite when a weight reaches 0.")
       .def_readonly("automaton", &Evaluation::automaton,
                     "The (perturbed) automaton (cifs.automata.Automaton).")
       .def_readonly("nets", &Evaluation::nets,
@@ -832,7 +835,7 @@ void bind_experiment_functions(py::module_& m) {
       "Builds the experiment's source (perturbed as the file says) and samples its attractor to a tolerance\n"
       "(ifs.tolerance_sample): one point per piece, every piece proven smaller than `resolution` =\n"
       "tolerance × the extent of the initial nets (0: the largest 2^-j, j ≥ 4, within max_points).\n"
-      "What `cifs dimension` measures by default.\n\n"
+      "The first route of `cifs dimension`.\n\n"
       "Returns an Evaluation (depth = the deepest piece). Raises InvalidInput as run, for a negative\n"
       "tolerance and for a sample above max_points (before allocating it).");
 }

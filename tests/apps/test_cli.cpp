@@ -452,11 +452,14 @@ TEST_CASE("cifs dimension: box counting and similarity dimension", "[cli][dimens
   check_error(cifs_cli("dimension " + sierpinski + " --depth 2"), "evaluate deeper");
   check_error(cifs_cli("dimension " + sierpinski + " --depth -1"), "negative");
   check_error(cifs_cli("dimension /no/such/file.json"), "/no/such/file.json");
-  // Default (sampled) mode: where the proven bound leaves too few scales, the error names the way
-  // out; a rational piece without a Cartesian bound says so instead of "inf wide".
-  check_error(cifs_cli("dimension " CIFS_EXAMPLES_DIR "/experiments/hills.json --max-points 20000"),
-              "measure a depth evaluation (--depth K)");
-  check_error(cifs_cli("dimension " CIFS_EXAMPLES_DIR "/experiments/wave_fractal.json --max-points 20000"),
+  // The proven route asked for (--tolerance 0: automatic tolerance, no fallback): where the proven
+  // bound leaves too few scales, the error names the way out; a rational piece without a Cartesian
+  // bound says so instead of "inf wide".
+  check_error(
+      cifs_cli("dimension " CIFS_EXAMPLES_DIR "/experiments/hills.json --max-points 20000 --tolerance 0"),
+      "measure a depth evaluation (--depth K)");
+  check_error(cifs_cli("dimension " CIFS_EXAMPLES_DIR
+                       "/experiments/wave_fractal.json --max-points 20000 --tolerance 0"),
               "has no Cartesian size bound at depth");
 }
 
@@ -467,6 +470,7 @@ TEST_CASE("cifs dimension: tolerance samples by default", "[cli][dimension]") {
     REQUIRE(r.status == 0);
     const auto j = nlohmann::json::parse(r.out);
     CHECK(j["mode"] == "tolerance");
+    CHECK(j["relaxed"].empty());
     CHECK(j["box_counting"]["epsilon"][1].get<double>() >= 2 * j["resolution"].get<double>());
     return j["box_counting"]["dimension"].get<double>();
   };
@@ -477,4 +481,83 @@ TEST_CASE("cifs dimension: tolerance samples by default", "[cli][dimension]") {
   check_error(
       cifs_cli("dimension " CIFS_EXAMPLES_DIR "/experiments/koch.json --tolerance 1e-9 --max-points 1000"),
       "needs more than 1000 points");
+}
+
+namespace {
+
+struct Dimension {
+  double value = 0, uncertainty = 0;
+  nlohmann::json report;
+};
+
+/// `cifs dimension FILE ARGS --json` on an example, which must succeed.
+Dimension dimension_of(const std::string& args) {
+  const Run r = cifs_cli("dimension " CIFS_EXAMPLES_DIR "/" + args + " --json");
+  INFO(args << ": " << r.err);
+  REQUIRE(r.status == 0);
+  Dimension d;
+  d.report = nlohmann::json::parse(r.out);
+  d.value = d.report["box_counting"]["dimension"].get<double>();
+  d.uncertainty = d.report["box_counting"]["uncertainty"].get<double>();
+  CHECK(d.uncertainty >= d.report["box_counting"]["standard_error"].get<double>());
+  CHECK(d.uncertainty >= d.report["box_counting"]["spread"].get<double>());
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("cifs dimension: the default route chooses itself and reports an uncertainty", "[cli][dimension]") {
+  // Closed forms within the reported uncertainty: Koch, Sierpinski (proven route), a smooth curve.
+  const Dimension koch = dimension_of("experiments/koch.json --max-points 1048576");
+  CHECK(koch.report["route"].get<std::string>().starts_with("proven tolerance sample"));
+  CHECK(std::abs(koch.value - std::log(4.0) / std::log(3.0)) <= koch.uncertainty);
+  const Dimension sierpinski = dimension_of("experiments/sierpinski.json");
+  CHECK(std::abs(sierpinski.value - std::log2(3.0)) <= sierpinski.uncertainty);
+  const Dimension circle = dimension_of("experiments/circle.json --max-points 524288");
+  CHECK(std::abs(circle.value - 1) <= circle.uncertainty);
+  // A smooth surface: 2 less the boundary's bias (perimeter·ε/area, ~0.07 at 2^19 points), which
+  // the drift of the local slopes does not measure.
+  const Dimension hills = dimension_of("experiments/hills.json --max-points 524288");
+  CHECK(hills.report["resolution_estimated"] == true);
+  CHECK(std::abs(hills.value - 2) <= hills.uncertainty + 0.1);
+
+  // Fractal supports that failed before (no closed form): a number at two budgets 8× apart (the
+  // larger's coarser comparison is not the smaller's sample), which agree within the larger
+  // reported uncertainty.
+  const auto stable = [](const std::string& file, const std::string& mode, const std::string& reason) {
+    const Dimension a = dimension_of(file + " --max-points 131072");
+    const Dimension b = dimension_of(file + " --max-points 1048576");
+    INFO(file << ": " << a.value << " ± " << a.uncertainty << ", " << b.value << " ± " << b.uncertainty);
+    for (const Dimension* d : {&a, &b}) {
+      CHECK(d->report["mode"] == mode);
+      CHECK_THAT(d->report["fallback_reason"].get<std::string>(), Catch::Contains(reason));
+      CHECK(!d->report["relaxed"].empty());
+      CHECK(d->report["box_counting"]["coarser_dimension"].is_number());
+      CHECK(d->uncertainty < 0.5);
+    }
+    CHECK(std::abs(a.value - b.value) <= std::max(a.uncertainty, b.uncertainty));
+    return b;
+  };
+  // Rational and perturbed: no Cartesian bound, a depth evaluation with an estimated resolution.
+  const Dimension wave = stable("experiments/wave_fractal.json", "depth", "no Cartesian size bound");
+  CHECK(wave.report["resolution_estimated"] == true);
+  CHECK(wave.value + wave.uncertainty >= 1);  // a curve: at least 1
+  // Signed surface matrices: the proven tolerance sample is beyond the budget.
+  stable("experiments/junction_fractal.json", "depth", "points; raise the point limit");
+  // A classic IFS whose proven bound is loose: the proven sample, refitted with relaxed rules.
+  const Dimension fern = stable("experiments/fern.json", "tolerance", "only 0 scale(s)");
+  CHECK(fern.value > 1.4);
+  CHECK(fern.value < 2);
+
+  // The text report names the route, the uncertainty and what was relaxed.
+  const Run t = cifs_cli("dimension " CIFS_EXAMPLES_DIR "/experiments/wave_fractal.json --max-points 65536");
+  REQUIRE(t.status == 0);
+  CHECK_THAT(t.out, Catch::Contains("route: depth evaluation"));
+  CHECK_THAT(t.out, Catch::Contains("resolution estimated from the leaves' nets, not proven"));
+  CHECK_THAT(t.out, Catch::Contains(" ± "));
+  CHECK_THAT(t.out, Catch::Contains("relaxed: "));
+  // --depth on a rational perturbed curve: the proven resolution is infinite, the estimate stands in.
+  const Dimension depth = dimension_of("experiments/wave_fractal.json --depth 14");
+  CHECK(depth.report["resolution_estimated"] == true);
+  CHECK(std::isfinite(depth.report["resolution"].get<double>()));
 }

@@ -322,3 +322,38 @@ TEST_CASE("tolerance sample: Sierpinski and Koch within 0.01, a smooth curve 1",
                       Contains("nets[1] has 3 columns, nets[0] has 2"));
   }
 }
+
+TEST_CASE("depth sample: deepest depth within the budget, nets' diameters, uncertainty", "[ifs][dimension]") {
+  // Sierpinski: 3^K + 1 points at depth K, each depth-K net the unit triangle scaled by 2^-K.
+  const Points T = unit_triangle();
+  const automata::Automaton a = ifs::affine_automaton(ifs::sierpinski_triangle(), T);
+  const std::vector<Points> nets{T};
+  ifs::DepthSampleOptions o;
+  o.max_points = 6562;  // 3^8 + 1
+  ifs::DepthSample s = ifs::depth_sample(a, nets, o);
+  CHECK(s.depth == 8);
+  CHECK(s.points.rows() == 6562);
+  CHECK(s.resolution == Approx(std::ldexp(1.0, -8)).epsilon(1e-12));
+  o.max_points = 6561;
+  CHECK(ifs::depth_sample(a, nets, o).depth == 7);
+  o.max_points = 1;
+  CHECK_THROWS_WITH(ifs::depth_sample(a, nets, o), Contains("even depth 0 has more than 1 points"));
+
+  // The uncertainty: local slopes log2(N_{k+1}/N_k) recomputed from the counts, and log 3/log 2
+  // within it on a depth-13 sample (3^13 points).
+  o.max_points = std::size_t{1} << 22;
+  s = ifs::depth_sample(a, nets, o);
+  CHECK(s.depth == 13);
+  const ifs::BoxCountingResult r = ifs::box_counting(s.points);
+  double spread = 0;
+  for (int k = r.min_level; k < r.max_level; ++k) {
+    const auto n = [&](int level) {
+      return static_cast<double>(r.counts[static_cast<std::size_t>(level)].boxes);
+    };
+    spread = std::max(spread, std::abs(std::log2(n(k + 1) / n(k)) - r.dimension));
+  }
+  CHECK(r.spread == Approx(spread).epsilon(1e-9));
+  CHECK(r.uncertainty == std::max(r.spread, r.standard_error));
+  CHECK(r.standard_error > 0);
+  CHECK(std::abs(r.dimension - std::log2(3.0)) <= r.uncertainty);
+}

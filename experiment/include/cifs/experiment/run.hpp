@@ -64,6 +64,11 @@ struct Evaluation {
   /// largest bound over the depth-K pieces, or the tolerance of `sample`; infinite when unknown
   /// (a rational piece whose weights may vanish).
   double resolution = 0;
+  /// Largest Cartesian diameter of the depth-K leaves' nets (evaluate only; 0 for sample): an
+  /// estimate of the pieces' size, not a bound (the attractor piece may stick out of its net's hull
+  /// when matrices are signed), finite where `resolution` is not; infinite when a leaf's weights
+  /// reach 0.
+  double estimated_resolution = 0;
   automata::Automaton automaton;  // the (perturbed) automaton; for a classic IFS its CIFS form
   std::vector<Points> nets;       // one per initial entry (homogeneous rows when `rational`)
   bool rational = false;

@@ -41,10 +41,17 @@ struct BoxCountingResult {
   double intercept = 0;  // of that line (natural logarithms)
   int min_level = 0;     // fit range (inclusive)
   int max_level = 0;
-  double max_epsilon = 0;        // ε at min_level
-  double min_epsilon = 0;        // ε at max_level
-  double r_squared = 0;          // coefficient of determination of the fit
-  double residual = 0;           // largest |log N − line| over the fit range
+  double max_epsilon = 0;  // ε at min_level
+  double min_epsilon = 0;  // ε at max_level
+  double r_squared = 0;    // coefficient of determination of the fit
+  double residual = 0;     // largest |log N − line| over the fit range
+  /// Standard error of the slope (least squares over the m fitted levels, m − 2 degrees of freedom).
+  double standard_error = 0;
+  /// Largest |local slope − dimension| over the pairs of consecutive levels of the fit range
+  /// (local slope log₂(N_{k+1}/N_k)): how much the slope drifts across the scales fitted.
+  double spread = 0;
+  /// max(standard_error, spread): the reported uncertainty of the dimension.
+  double uncertainty = 0;
   double size = 0;               // side of the bounding cube of the points (ε at level 0)
   std::vector<BoxCount> counts;  // levels 0 … options.levels, whether fitted or not
 };
@@ -93,6 +100,34 @@ struct ToleranceSampleOptions {
 /// for_each_leaf_to_tolerance and end_functionals.
 ToleranceSample tolerance_sample(const automata::Automaton& automaton, std::span<const Points> nets,
                                  const ToleranceSampleOptions& options = {});
+
+/// A sample of an attractor at one depth, with an estimated (not proven) resolution: the route
+/// when no tolerance sample can be had (signed matrices whose proven bound is loose, rational
+/// pieces without a Cartesian bound).
+struct DepthSample {
+  Points points;  // `#P by dim` Cartesian: attractor_points at `depth` (start points, and the end)
+  int depth = 0;
+  /// Largest Cartesian diameter of the depth-K nets: the size of the pieces if they stay near the
+  /// hulls of their nets — an estimate, not a bound (signed matrices let a piece leave its hull).
+  /// Infinite when a weight of a rational net is 0.
+  double resolution = 0;
+};
+
+struct DepthSampleOptions {
+  /// Nets hold homogeneous rows `(w·x, w)` (rational shapes).
+  bool homogeneous = false;
+  /// The deepest depth whose attractor_point_count is at most this many points.
+  std::size_t max_points = std::size_t{1} << 21;
+  /// Deepest depth tried (an automaton whose count never grows stops here).
+  int max_depth = 40;
+};
+
+/// Attractor points at the deepest depth K ≤ max_depth with attractor_point_count(K) ≤ max_points
+/// (counted from the out-degrees, nothing allocated before), and the estimated resolution (one
+/// for_each_leaf at K). Throws InvalidInput when even depth 0 has more than max_points points, and
+/// as attractor_points.
+DepthSample depth_sample(const automata::Automaton& automaton, std::span<const Points> nets,
+                         const DepthSampleOptions& options = {});
 
 /// A map of a graph-directed system: from state `from` into state `to`, contracting by `ratio`.
 struct SimilarityEdge {
