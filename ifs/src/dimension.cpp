@@ -122,13 +122,15 @@ ToleranceSample tolerance_sample(const automata::Automaton& a, std::span<const P
       n = m;
     }
   }
-  // One point per leaf, no end point: each piece counts once.
+  // One point per leaf, no end point: each piece counts once. The n leaves were counted above:
+  // no estimate (it may overshoot that count and refuse a tolerance the search accepted).
   Sample sample = sample_attractor(a, nets,
                                    {.tolerance = to.epsilon,
                                     .homogeneous = o.homogeneous,
                                     .closed = true,
                                     .max_depth = o.max_depth,
-                                    .max_points = std::max(n, o.max_points)});
+                                    .max_points = std::max(n, o.max_points),
+                                    .estimate = false});
   ToleranceSample out;
   out.leaves = static_cast<std::size_t>(sample.points.rows());
   out.points = std::move(sample.points);

@@ -83,7 +83,7 @@ ToleranceResult visit_leaves(const Automaton& a, std::span<const Points> nets, c
     throw InvalidInput(tolerance_text(o) + " is not a positive number");
   const ToleranceOptions to = tolerance_options(o);
   constexpr std::string_view kAdvice = "; give a larger tolerance";
-  if (const ToleranceEstimate est = estimate_tolerance_leaves(a, nets, to);
+  if (const ToleranceEstimate est = o.estimate ? estimate_tolerance_leaves(a, nets, to) : ToleranceEstimate{};
       !est.exact && est.leaves > static_cast<double>(o.max_points))
     refuse(o,
            tolerance_text(o) + ": about " + number_text(est.leaves, 3) +

@@ -518,7 +518,10 @@ TEST_CASE("cifs dimension: the default route chooses itself and reports an uncer
   // A smooth surface: 2 less the boundary's bias (perimeter·ε/area, ~0.07 at 2^19 points), which
   // the drift of the local slopes does not measure.
   const Dimension hills = dimension_of("experiments/hills.json --max-points 524288");
-  CHECK(hills.report["resolution_estimated"] == true);
+  // The proven route: its search counted the leaves within the budget (an estimate above it used to
+  // refuse the sample and send hills to a depth evaluation).
+  CHECK(hills.report["route"].get<std::string>().starts_with("proven tolerance sample"));
+  CHECK(hills.report["resolution_estimated"] == false);
   CHECK(std::abs(hills.value - 2) <= hills.uncertainty + 0.1);
 
   // Fractal supports that failed before (no closed form): a number at two budgets 8× apart (the

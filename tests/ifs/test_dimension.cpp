@@ -9,6 +9,8 @@
 #include "cifs/ifs/affine_cifs.hpp"
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/ifs/mesh.hpp"
+#include "cifs/ifs/sample.hpp"
+#include "cifs/io/io.hpp"
 #include "cifs/nurbs/curve.hpp"
 #include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/nurbs/surface.hpp"
@@ -356,4 +358,29 @@ TEST_CASE("depth sample: deepest depth within the budget, nets' diameters, uncer
   CHECK(r.uncertainty == std::max(r.spread, r.standard_error));
   CHECK(r.standard_error > 0);
   CHECK(std::abs(r.dimension - std::log2(3.0)) <= r.uncertainty);
+}
+
+TEST_CASE("tolerance sample: the tolerance its search counted is sampled, whatever the estimate says",
+          "[ifs][dimension]") {
+  // hills.json at a budget of 500000: the search counts its leaves within the budget at a tolerance
+  // where the estimate from coarser tolerances is above it; the sample used to be refused there.
+  const auto s = std::get<nurbs::Surface>(io::read_shape(CIFS_EXAMPLES_DIR "/shapes/hills.json"));
+  const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
+  const std::vector<Points> nets = nurbs::initial_nets(t, s);
+  const std::size_t budget = 500000;
+  const ifs::ToleranceSample sample =
+      ifs::tolerance_sample(t.product, nets, {.homogeneous = s.rational, .max_points = budget});
+  CHECK(sample.leaves <= budget);
+  const ifs::ToleranceEstimate estimate = ifs::estimate_tolerance_leaves(
+      t.product, nets, {.epsilon = sample.resolution, .homogeneous = s.rational});
+  CHECK_FALSE(estimate.exact);
+  CHECK(estimate.leaves > static_cast<double>(budget));
+  // The walk is still held to the limit: the same tolerance with fewer points allowed is refused.
+  CHECK_THROWS_WITH(ifs::sample_attractor(t.product, nets,
+                                          {.tolerance = sample.resolution,
+                                           .homogeneous = s.rational,
+                                           .closed = true,
+                                           .max_points = sample.leaves - 1,
+                                           .estimate = false}),
+                    Catch::Contains("gives more than"));
 }

@@ -39,6 +39,10 @@ struct SampleOptions {
   /// Refuse, before the points are computed, more points than this (in tolerance mode from an
   /// estimate at coarser tolerances, then from the count).
   std::size_t max_points = std::size_t{1} << 27;
+  /// Tolerance mode: refuse on the estimate before the walk. Off when the caller has counted the
+  /// leaves at this tolerance itself (an extrapolated estimate may overshoot a count within the
+  /// limit); the count is still held to max_points during the walk.
+  bool estimate = true;
   /// How messages name the tolerance ("tolerance", "--tolerance", "evaluation.tolerance") and what
   /// they add after the limit's figure (where the limit comes from, what to do instead; empty: "; lower
   /// the depth" or "; give a larger tolerance").
