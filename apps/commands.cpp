@@ -374,10 +374,10 @@ std::string surface_attractor(const nurbs::Surface& s, const std::string& format
   if (o.deviation > 0)
     throw InvalidInput(
         "--deviation bounds a curve's polyline; for a surface give --depth K (its quad mesh) or "
-        "--tolerance E");
+        "--piece-size E");
   if (o.depth < 0 && format == "obj")
     throw InvalidInput(
-        "obj: a surface's points are unordered with --tolerance and --chaos, use json, npy or ply");
+        "obj: a surface's points are unordered with --piece-size and --chaos, use json, npy or ply");
   const nurbs::TensorAutomaton ta = nurbs::tensor_automaton(s);
   const std::vector<Points> nets = nurbs::initial_nets(ta, s);
   const Eigen::Index dim = nurbs::dimension(s);
@@ -413,9 +413,10 @@ std::string surface_attractor(const nurbs::Surface& s, const std::string& format
 
   // One attractor point per piece, every piece proven smaller than the tolerance (Cartesian).
   ifs::ToleranceSampleOptions so;
-  so.epsilon = o.tolerance;
+  so.epsilon = o.piece_size;
   so.homogeneous = s.rational;
   so.max_points = kMemoryBytes / (sizeof(double) * static_cast<std::size_t>(nets.front().cols()));
+  so.tolerance_name = "--piece-size";
   ifs::ToleranceSample sample = ifs::tolerance_sample(ta.product, nets, so);
   return write_whole(std::move(sample.points), cloud, format, o);
 }
@@ -425,13 +426,13 @@ std::string surface_attractor(const nurbs::Surface& s, const std::string& format
 std::string attractor(const AttractorOptions& o) {
   // The attractor is a polyline (in curve order) written as a point set, or drawn as SVG.
   const std::string format = attractor_format(o);
-  if (o.tolerance < 0 || !std::isfinite(o.tolerance))
-    throw InvalidInput("--tolerance: must be a positive number");
+  if (o.piece_size < 0 || !std::isfinite(o.piece_size))
+    throw InvalidInput("--piece-size: must be a positive number");
   if (o.deviation < 0 || !std::isfinite(o.deviation))
     throw InvalidInput("--deviation: must be a positive number");
-  if ((o.depth >= 0) + (o.tolerance > 0) + (o.deviation > 0) + (o.chaos != 0) != 1)
+  if ((o.depth >= 0) + (o.piece_size > 0) + (o.deviation > 0) + (o.chaos != 0) != 1)
     throw InvalidInput(
-        "attractor: give exactly one of --depth K, --tolerance E, --deviation D and --chaos N");
+        "attractor: give exactly one of --depth K, --piece-size E, --deviation D and --chaos N");
   if (o.chaos < 0 || o.chaos > kMaxPoints)
     throw InvalidInput("--chaos " + std::to_string(o.chaos) + ": expected 1 to " +
                        std::to_string(kMaxPoints) + " points");
@@ -488,16 +489,16 @@ std::string attractor(const AttractorOptions& o) {
   const double row_bytes = static_cast<double>(dim) * sizeof(double);
   const bool chordal = o.deviation > 0;
   const ifs::SampleOptions so{
-      .tolerance = chordal ? o.deviation : o.tolerance,
+      .tolerance = chordal ? o.deviation : o.piece_size,
       .chordal = chordal,
       .homogeneous = c->rational,
       .closed = c->closed,
       .max_depth = 40,
       .max_points = static_cast<std::size_t>(streamed ? kMaxTolerancePoints
                                                       : static_cast<double>(kMemoryBytes) / row_bytes),
-      .tolerance_name = chordal ? "--deviation" : "--tolerance",
-      .limit_hint = streamed ? " written to a file; give a larger tolerance"
-                             : " held in memory for standard output and SVG; give a larger tolerance, or "
+      .tolerance_name = chordal ? "--deviation" : "--piece-size",
+      .limit_hint = streamed ? " written to a file; give a larger bound"
+                             : " held in memory for standard output and SVG; give a larger bound, or "
                                "write them to a file with -o points.npy, which is streamed"};
   if (!streamed) return write_whole(ifs::sample_attractor(a, nets, so).points, style, format, o);
   std::optional<PointsOutput> out;
@@ -520,7 +521,8 @@ std::string check_verdict(bool pass) {
 }
 
 std::string check_surface(const nurbs::Surface& s, const CheckOptions& o, int& status) {
-  const verify::SurfaceCheckReport r = verify::check_surface(s, {.depth = o.depth, .tolerance = o.tolerance});
+  const verify::SurfaceCheckReport r =
+      verify::check_surface(s, {.depth = o.depth, .tolerance = o.relative_tolerance});
   status = r.pass ? 0 : 1;
   if (o.json) {
     json patches = json::array();
@@ -565,7 +567,8 @@ std::string check(const CheckOptions& o, int& status) {
   const io::Shape shape = read_shape(o.shape, o.select);
   const auto* c = std::get_if<nurbs::Curve>(&shape);
   if (!c) return check_surface(std::get<nurbs::Surface>(shape), o, status);
-  const verify::CheckReport r = verify::check_curve(*c, {.depth = o.depth, .tolerance = o.tolerance});
+  const verify::CheckReport r =
+      verify::check_curve(*c, {.depth = o.depth, .tolerance = o.relative_tolerance});
   status = r.pass ? 0 : 1;
   if (o.json) {
     json segments = json::array();
@@ -663,7 +666,17 @@ struct Measured {
   std::optional<double> coarser;
   std::string coarser_note;
   double uncertainty = 0;  // max(fit.uncertainty, |fit.dimension − coarser|)
+  /// Growth of the proven cover (tolerance route): an upper estimate free of the box count's
+  /// boundary term.
+  std::optional<ifs::CoverExponent> cover;
 };
+
+/// The range the dimension is reported in: the box count ± its uncertainty, widened up to the
+/// proven cover's growth where that lies above it (the box count's finite-scale bias is downward).
+std::pair<double, double> dimension_range(const Measured& m) {
+  const double lo = m.fit.dimension - m.uncertainty, hi = m.fit.dimension + m.uncertainty;
+  return {lo, m.cover ? std::max(hi, m.cover->dimension) : hi};
+}
 
 std::string route_name(const Measured& m) {
   if (m.route == "tolerance")
@@ -798,6 +811,9 @@ Measured measure_automatic(const io::Experiment& e, const DimensionOptions& o,
     m.ev.points = std::move(ts.points);
     m.ev.depth = ts.deepest;
     m.ev.resolution = m.resolution = ts.resolution;
+    // Only a cover whose counts follow one power law: self-similar sets whose ratio is not 1/2
+    // count in steps as ε halves (Koch: local slopes 0 … 2.4), which says nothing.
+    if (const auto cover = ifs::cover_exponent(ts.cover); cover && cover->spread <= 0.1) m.cover = cover;
     // A tolerance sample covers the attractor to its resolution by construction: the
     // points-per-box rule (a proxy for coverage of depth samples) does not apply.
     ifs::BoxCountingOptions so = bo;
@@ -860,15 +876,16 @@ io::Experiment dimension_input(const DimensionOptions& o) {
 /// The sample and its fit, by the route the options ask for (or the automatic one); `fallback`
 /// gets why the proven route was left.
 Measured dimension_measure(const io::Experiment& e, const DimensionOptions& o, std::string& fallback) {
-  if (o.depth && o.tolerance) throw InvalidInput("dimension: give --depth or --tolerance, not both");
+  if (o.depth && o.relative_piece_size)
+    throw InvalidInput("dimension: give --depth or --relative-piece-size, not both");
   // The sample is held in memory and its walk takes about 1 µs per point: a budget of 2^40 ran for days.
   if (o.max_points < 1 || o.max_points > static_cast<std::size_t>(kMaxPoints))
     throw InvalidInput("--max-points " + std::to_string(o.max_points) + ": expected 1 to " +
                        std::to_string(kMaxPoints) + " points (the sample is held in memory)");
   const bool user_levels = o.min_level >= 0 || o.max_level >= 0;
-  // Without --depth or --tolerance the route chooses itself (proven sample, else a depth
+  // Without --depth or --relative-piece-size the route chooses itself (proven sample, else a depth
   // evaluation) and relaxes the fit's requirements where they cannot hold.
-  const bool automatic = !o.depth && !o.tolerance && !user_levels;
+  const bool automatic = !o.depth && !o.relative_piece_size && !user_levels;
   ifs::BoxCountingOptions bo;
   bo.min_boxes = o.min_boxes;
   bo.min_level = o.min_level;
@@ -880,7 +897,8 @@ Measured dimension_measure(const io::Experiment& e, const DimensionOptions& o, s
   } else if (o.depth) {
     m = measure_depth(e, *o.depth, bo, user_levels);
   } else {
-    m.ev = experiment::sample(e, {.tolerance = o.tolerance.value_or(0), .max_points = o.max_points});
+    m.ev =
+        experiment::sample(e, {.tolerance = o.relative_piece_size.value_or(0), .max_points = o.max_points});
     m.route = "tolerance";
     m.resolution = m.ev.resolution;
     ifs::BoxCountingOptions so = bo;
@@ -942,11 +960,20 @@ std::string dimension_json(const DimensionOptions& o, const Measured& m, const s
   box["r_squared"] = r.r_squared;
   box["residual"] = r.residual;
   box["size"] = r.size;
+  const auto [lo, hi] = dimension_range(m);
+  box["range"] = {lo, hi};
   json counts = json::array();
   for (const ifs::BoxCount& c : r.counts)
     counts.push_back({{"level", c.level}, {"epsilon", c.epsilon}, {"boxes", c.boxes}});
   box["counts"] = counts;
   j["box_counting"] = box;
+  if (m.cover)
+    j["cover"] = {{"dimension", m.cover->dimension},
+                  {"spread", m.cover->spread},
+                  {"epsilon", {m.cover->max_epsilon, m.cover->min_epsilon}},
+                  {"levels", m.cover->levels}};
+  else
+    j["cover"] = nullptr;
   j["similarity_dimension"] = similarity ? json(*similarity) : json(nullptr);
   if (!similarity) j["similarity_note"] = why_not;
   return j.dump(2) + "\n";
@@ -979,6 +1006,22 @@ std::string dimension_text(const DimensionOptions& o, const Measured& m, const s
                          (m.route == "tolerance" ? "tolerance 2ε" : "depth − 1") + ")\n"
                    : "no coarser comparison (" + m.coarser_note + ")\n";
   for (const std::string& relaxed : m.relaxed) out += "  relaxed: " + relaxed + "\n";
+  if (m.cover) {
+    std::snprintf(line, sizeof line,
+                  "proven cover: n(ε) pieces grow as ε^-%.4f (%d counts, ε %.4g … %.4g, local slopes within "
+                  "%.2g): its limit bounds the dimension from above, and it has no boundary term\n",
+                  m.cover->dimension, m.cover->levels, m.cover->max_epsilon, m.cover->min_epsilon,
+                  m.cover->spread);
+    out += line;
+    if (const auto [lo, hi] = dimension_range(m); m.cover->dimension > r.dimension + m.uncertainty) {
+      std::snprintf(
+          line, sizeof line,
+          "  the boxes read %.2g below it at these scales (a boundary or shape term that vanishes as "
+          "ε → 0): range %.4f … %.4f\n",
+          m.cover->dimension - r.dimension, lo, hi);
+      out += line;
+    }
+  }
   if (similarity) {
     std::snprintf(line, sizeof line, "similarity dimension %.12g\n", *similarity);
     out += line;

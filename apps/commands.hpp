@@ -88,7 +88,7 @@ struct AttractorOptions {
   std::filesystem::path shape;
   ShapeSelection select;
   int depth = -1;                // 2^depth leaves per segment, or
-  double tolerance = 0;          // every leaf's piece smaller than this (Cartesian units), or
+  double piece_size = 0;         // every leaf's piece smaller than this (Cartesian units), or
   double deviation = 0;          // curves: every piece within this of its chord (Cartesian units), or
   long long chaos = 0;           // that many chaos-game points
   std::uint64_t seed = 0;        // chaos game: 0 draws one (printed with the points)
@@ -102,7 +102,7 @@ struct CheckOptions {
   std::filesystem::path shape;
   ShapeSelection select;
   int depth = 8;
-  double tolerance = 1e-12;
+  double relative_tolerance = 1e-12;  // of each deviation, relative to the largest control point
   bool json = false;
 };
 /// `status` becomes 1 when a deviation exceeds the tolerance.
@@ -124,7 +124,8 @@ struct DimensionOptions {
   std::filesystem::path input;  // experiment file, or shape file (.json with "curve"/"surface"/"shape", .obj)
   ShapeSelection select;        // shape files
   std::optional<int> depth;     // evaluate to this depth (shapes: default 8 when no other mode)
-  std::optional<double> tolerance;  // sample to this relative piece size; default (no depth): from max_points
+  std::optional<double>
+      relative_piece_size;  // sample: pieces below this fraction of the extent; default: from max_points
   std::size_t max_points = std::size_t{1} << 21;  // point budget of the tolerance sample
   int min_level = -1, max_level = -1;             // fit range (box levels); -1: automatic
   std::size_t min_boxes = 1000;                   // automatic range: coarsest level with this many boxes

@@ -37,6 +37,16 @@ void add_shape_selection(CLI::App* command, cifs::cli::ShapeSelection& select) {
                     "Read trimmed surfaces (OBJ trim/hole, geomdl trims) whole, with a warning");
 }
 
+/// An option that was renamed: refused with its new name, so an old command line says what to change
+/// instead of "unknown option".
+void add_renamed(CLI::App* command, const std::string& old_name, const std::string& new_name) {
+  command->add_option(old_name)
+      ->group("")  // hidden from --help
+      ->each([=](const std::string&) {
+        throw cifs::InvalidInput(command->get_name() + " " + old_name + " is now " + new_name);
+      });
+}
+
 /// `--quiet` on a command without a progress bar of its own: once it has run for a second, its name
 /// and time on a terminal (render::Stage), none with the flag.
 void add_quiet(CLI::App* command, bool& quiet) {
@@ -143,11 +153,13 @@ void add_attractor(CLI::App& app, Commands& c) {
       "or points)");
   attractor_cmd->add_option("shape", c.at.shape, "Shape file (.json or .obj)")->required();
   attractor_cmd->add_option("--depth", c.at.depth, "2^K leaves per segment");
-  attractor_cmd->add_option("--tolerance", c.at.tolerance,
-                            "Proven piece size: stop each branch when its whole piece is smaller than E");
+  attractor_cmd->add_option("--piece-size", c.at.piece_size,
+                            "One point per piece, every piece proven smaller than E (its diameter)");
   attractor_cmd->add_option("--deviation", c.at.deviation,
                             "Curves: a polyline proven within D of the curve (chordal deviation, far fewer "
-                            "points than --tolerance)");
+                            "points than --piece-size)");
+  add_renamed(attractor_cmd, "--tolerance",
+              "--piece-size (every piece smaller than E) or --deviation (a polyline within D)");
   attractor_cmd->add_option("--chaos", c.at.chaos, "N chaos-game points (a random walk over the automaton)");
   attractor_cmd
       ->add_option("--seed", c.at.seed, "Chaos-game seed (default: drawn, and printed with the points)")
@@ -168,7 +180,9 @@ void add_check(CLI::App& app, Commands& c) {
       app.add_subcommand("check", "Attractor vs knot insertion vs Cox-de Boor; exit 1 above tolerance");
   check_cmd->add_option("shape", c.ch.shape, "Shape file (.json or .obj)")->required();
   check_cmd->add_option("--depth", c.ch.depth, "Depth K (2^K leaves per segment and direction; default 8)");
-  check_cmd->add_option("--tolerance", c.ch.tolerance, "Relative tolerance (default 1e-12)");
+  check_cmd->add_option("--relative-tolerance", c.ch.relative_tolerance,
+                        "Largest deviation relative to the largest control point (default 1e-12)");
+  add_renamed(check_cmd, "--tolerance", "--relative-tolerance");
   check_cmd->add_flag("--json", c.ch.json, "Machine-readable report");
   add_shape_selection(check_cmd, c.ch.select);
   add_quiet(check_cmd, c.quiet);
@@ -272,10 +286,11 @@ void add_dimension(CLI::App& app, Commands& c) {
   auto* dimension_depth = dimension_cmd->add_option(
       "--depth", c.di.depth, "Evaluate to this depth instead of sampling to a tolerance");
   dimension_cmd
-      ->add_option("--tolerance", c.di.tolerance,
-                   "Sample: every piece smaller than this fraction of the control nets' extent (default: "
+      ->add_option("--relative-piece-size", c.di.relative_piece_size,
+                   "Sample: every piece smaller than this fraction of the control nets' extent (0: "
                    "the smallest 2^-j within --max-points)")
       ->excludes(dimension_depth);
+  add_renamed(dimension_cmd, "--tolerance", "--relative-piece-size");
   dimension_cmd->add_option("--max-points", c.di.max_points,
                             "Point budget of the tolerance sample (default 2^21)");
   dimension_cmd->add_option("--min-level", c.di.min_level, "Fit range: coarsest box level k (ε = size·2^-k)");

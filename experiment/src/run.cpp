@@ -94,8 +94,8 @@ Segments evaluate_curve(Scene& scene, const io::Evaluation& ev, bool closed, con
        .closed = closed,
        .states = true,
        .max_points = o.max_bytes / row_bytes,
-       .tolerance_name = "evaluation.tolerance",
-       .limit_hint = depth ? "; lower evaluation.depth" : "; give a larger evaluation.tolerance"});
+       .tolerance_name = "evaluation.relative_piece_size",
+       .limit_hint = depth ? "; lower evaluation.depth" : "; give a larger evaluation.relative_piece_size"});
   scene.depth = sample.depth;
   Segments s = polyline_segments(drawable(sample.points, "the curve"), closed);
   if (sample.states.size() == s.segments.size()) s.states = std::move(sample.states);
@@ -206,7 +206,8 @@ Scene bcifs_scene(const io::Experiment& e, const RunOptions& o, RunReport& repor
   scene.nets = std::move(file.nets);
   if (e.evaluation.mode == Mode::depth || e.evaluation.mode == Mode::tolerance) {
     if (e.evaluation.mode == Mode::tolerance)
-      throw InvalidInput("evaluation.tolerance: BC-IFS files are evaluated to a depth or by the chaos game");
+      throw InvalidInput(
+          "evaluation.relative_piece_size: BC-IFS files are evaluated to a depth or by the chaos game");
     const ifs::EdgePieces pieces = ifs::edge_pieces(system, scene.nets, e.evaluation.depth, o.max_bytes);
     Segments s;
     const Eigen::Index n = pieces.start.rows();
@@ -670,7 +671,8 @@ render::DensityLayer render_classic(const render::Camera& camera, const Scene& s
     density.assign(h.counts.begin(), h.counts.end());
   } else {
     if (e.evaluation.mode == Mode::tolerance)
-      throw InvalidInput("evaluation.tolerance: a classic IFS is evaluated to a depth or by the chaos game");
+      throw InvalidInput(
+          "evaluation.relative_piece_size: a classic IFS is evaluated to a depth or by the chaos game");
     density = render::hutchinson_measure(scene.maps, static_cast<unsigned>(e.evaluation.depth), camera.width,
                                          camera.height, bounds);
   }
@@ -987,7 +989,7 @@ void label_image(render::Image& image, const io::Experiment& e, const std::strin
       e.mesh                             ? "subdivision, " + std::to_string(e.mesh->levels) + " levels"
       : e.evaluation.mode == Mode::chaos ? "chaos game, " + std::to_string(e.evaluation.samples) + " samples"
       : e.evaluation.mode == Mode::depth ? "depth"
-                                         : "tolerance " + number_text(e.evaluation.tolerance, 6);
+                                         : "relative piece size " + number_text(e.evaluation.tolerance, 6);
   image.attributes["depth"] = std::to_string(scene.depth);
   image.attributes["seed"] = std::to_string(e.evaluation.mode == Mode::chaos ? e.evaluation.seed
                                             : e.perturbation                 ? e.perturbation->seed

@@ -91,21 +91,24 @@ ToleranceSample tolerance_sample(const automata::Automaton& a, std::span<const P
     return !e.exact && e.leaves > 1.5 * static_cast<double>(o.max_points) ? e.leaves : 0.0;
   };
   std::size_t n = 0;
+  std::vector<CoverCount> cover;
   if (o.epsilon > 0) {
+    const std::string name = std::string(o.tolerance_name) + " " + number_text(o.epsilon, 6);
     if (const double about = clearly_above(to); about > 0)
-      throw InvalidInput("tolerance " + number_text(o.epsilon, 6) + " needs about " + number_text(about, 6) +
+      throw InvalidInput(name + " needs about " + number_text(about, 6) +
                          " points (estimated from coarser tolerances), more than " +
-                         std::to_string(o.max_points) + "; raise the tolerance");
+                         std::to_string(o.max_points) + "; raise " + std::string(o.tolerance_name));
     n = count_leaves(a, nets, to, o.max_points);
     if (n > o.max_points)
-      throw InvalidInput("tolerance " + number_text(o.epsilon, 6) + " needs more than " +
-                         std::to_string(o.max_points) + " points; raise the tolerance or the point limit");
+      throw InvalidInput(name + " needs more than " + std::to_string(o.max_points) + " points; raise " +
+                         std::string(o.tolerance_name) + " or the point limit");
   } else {
     // The largest power-of-2 fraction of the nets' extent within the point budget.
     const double extent = nets_diameter(nets, o.homogeneous);
     if (!(extent > 0)) throw InvalidInput("the control points are all one point: there is nothing to sample");
     to.epsilon = std::ldexp(extent, -4);
     n = count_leaves(a, nets, to, o.max_points);
+    cover.push_back({to.epsilon, n});
     if (n > o.max_points)
       throw InvalidInput("even tolerance " + number_text(to.epsilon, 6) +
                          " (1/16 of the nets' extent) needs more than " + std::to_string(o.max_points) +
@@ -120,6 +123,7 @@ ToleranceSample tolerance_sample(const automata::Automaton& a, std::span<const P
       if (m > o.max_points) break;
       to = finer;
       n = m;
+      cover.push_back({to.epsilon, n});
     }
   }
   // One point per leaf, no end point: each piece counts once. The n leaves were counted above:
@@ -136,7 +140,38 @@ ToleranceSample tolerance_sample(const automata::Automaton& a, std::span<const P
   out.points = std::move(sample.points);
   out.resolution = to.epsilon;
   out.deepest = sample.depth;
+  out.cover = cover.empty() ? std::vector<CoverCount>{{to.epsilon, out.leaves}} : std::move(cover);
   return out;
+}
+
+std::optional<CoverExponent> cover_exponent(std::span<const CoverCount> counts, std::size_t min_leaves,
+                                            int levels) {
+  std::vector<CoverCount> fitted;
+  for (auto c = counts.rbegin(); c != counts.rend() && std::ssize(fitted) < levels; ++c)
+    if (c->leaves >= min_leaves && c->epsilon > 0) fitted.push_back(*c);
+  if (fitted.size() < 3) return std::nullopt;
+  // Least squares of y = log n against x = log(1/ε).
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (const CoverCount& c : fitted) {
+    const double x = -std::log(c.epsilon), y = std::log(static_cast<double>(c.leaves));
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    sxy += x * y;
+  }
+  const auto m = static_cast<double>(fitted.size());
+  CoverExponent e;
+  e.dimension = (m * sxy - sx * sy) / (m * sxx - sx * sx);
+  for (std::size_t i = 0; i + 1 < fitted.size(); ++i) {
+    const double local =
+        std::log(static_cast<double>(fitted[i].leaves) / static_cast<double>(fitted[i + 1].leaves)) /
+        std::log(fitted[i + 1].epsilon / fitted[i].epsilon);
+    e.spread = std::max(e.spread, std::abs(local - e.dimension));
+  }
+  e.min_epsilon = fitted.front().epsilon;
+  e.max_epsilon = fitted.back().epsilon;
+  e.levels = static_cast<int>(fitted.size());
+  return e;
 }
 
 DepthSample depth_sample(const automata::Automaton& a, std::span<const Points> nets,

@@ -294,16 +294,22 @@ Perturbation read_perturbation(const Reader& r, const json& v) {
 
 Evaluation read_evaluation(const Reader& r, const json& v) {
   r.object(v, "evaluation");
-  r.only(v, "evaluation", {"depth", "tolerance", "chaos", "seed"});
+  if (v.contains("tolerance"))
+    r.fail("evaluation.tolerance",
+           "is now \"relative_piece_size\" (every piece smaller than this fraction of "
+           "the control nets' diameter)");
+  r.only(v, "evaluation", {"depth", "relative_piece_size", "chaos", "seed"});
   Evaluation e;
-  const int modes = int(v.contains("depth")) + int(v.contains("tolerance")) + int(v.contains("chaos"));
-  if (modes != 1) r.fail("evaluation", "expected exactly one of \"depth\", \"tolerance\", \"chaos\"");
+  const int modes =
+      int(v.contains("depth")) + int(v.contains("relative_piece_size")) + int(v.contains("chaos"));
+  if (modes != 1)
+    r.fail("evaluation", "expected exactly one of \"depth\", \"relative_piece_size\", \"chaos\"");
   if (v.contains("depth")) {
     e.mode = Evaluation::Mode::depth;
     e.depth = bounded_integer(r, v["depth"], "evaluation.depth", 0, 30);
-  } else if (v.contains("tolerance")) {
+  } else if (v.contains("relative_piece_size")) {
     e.mode = Evaluation::Mode::tolerance;
-    e.tolerance = positive(r, v["tolerance"], "evaluation.tolerance");
+    e.tolerance = positive(r, v["relative_piece_size"], "evaluation.relative_piece_size");
   } else {
     e.mode = Evaluation::Mode::chaos;
     // Below 2^53, where the summed counts stay exact; each process draws fewer than 2^32 (cifs render
@@ -472,8 +478,8 @@ Experiment parse_experiment(std::string_view text, std::string_view where,
         doc["perturbation"].contains("keep_vertices"))
       r.fail("perturbation.keep_vertices", "a junction's sides say which matrices are free (\"free\")");
     if (doc.contains("evaluation") && doc["evaluation"].is_object() &&
-        doc["evaluation"].contains("tolerance"))
-      r.fail("evaluation.tolerance", "a junction is evaluated to a depth or by the chaos game");
+        doc["evaluation"].contains("relative_piece_size"))
+      r.fail("evaluation.relative_piece_size", "a junction is evaluated to a depth or by the chaos game");
   }
   if (doc.contains("perturbation")) {
     if (e.ifs) r.fail("perturbation", "a classic IFS has no constraints to perturb under");

@@ -171,7 +171,7 @@ TEST_CASE("cifs attractor and eval -o: the file written as computed = standard o
   for (const std::string format : {"json", "obj", "npy", "ply"}) {
     same("attractor " + rational + " --depth 16", format);
     same("attractor " + closed + " --depth 9", format);
-    same("attractor " + rational + " --tolerance 0.001", format);
+    same("attractor " + rational + " --piece-size 0.001", format);
   }
   same("attractor " + rational + " --chaos 1000 --seed 5", "npy");
   // eval: the stdout route evaluates all parameters at once, the file route 2^16 at a time.
@@ -240,7 +240,7 @@ TEST_CASE("cifs automaton, attractor and check", "[cli]") {
     for (int i = 0; i < 3; ++i)
       CHECK(pts[k][static_cast<std::size_t>(i)].get<double>() == Approx(p(i)).margin(1e-13));
   }
-  const Run tol = cifs_cli("attractor " + shape + " --tolerance 0.01 --format obj");
+  const Run tol = cifs_cli("attractor " + shape + " --piece-size 0.01 --format obj");
   REQUIRE(tol.status == 0);
   CHECK_THAT(tol.out, Catch::Contains("\nl 1 2 3"));
   CHECK_THAT(cifs_cli("attractor " + shape + " --depth 2 --format svg").out, Catch::StartsWith("<svg"));
@@ -263,7 +263,7 @@ TEST_CASE("cifs automaton, attractor and check", "[cli]") {
     far = std::max(far, near);
   }
   CHECK(far <= 0.01);
-  const json pieces = json::parse(cifs_cli("attractor " + shape + " --tolerance 0.01").out)["points"];
+  const json pieces = json::parse(cifs_cli("attractor " + shape + " --piece-size 0.01").out)["points"];
   CHECK(5 * chords.size() < pieces.size());
   check_error(cifs_cli("attractor " + shape + " --deviation -1"), "--deviation: must be a positive number");
 
@@ -274,7 +274,7 @@ TEST_CASE("cifs automaton, attractor and check", "[cli]") {
   CHECK(report["segments"].size() == 3);
   CHECK(report["nets"]["max_rel"].get<double>() <= 1e-12);
   // An impossible tolerance fails with exit status 1 and a report, not an error.
-  const Run fail = cifs_cli("check " + shape + " --depth 6 --tolerance 1e-30");
+  const Run fail = cifs_cli("check " + shape + " --depth 6 --relative-tolerance 1e-30");
   CHECK(fail.status == 1);
   CHECK_THAT(fail.out, Catch::Contains("FAIL"));
 
@@ -287,10 +287,17 @@ TEST_CASE("cifs automaton, attractor and check", "[cli]") {
   check_error(cifs_cli("attractor " + shape + " --chaos 10 --format svg"), "unordered");
   check_error(cifs_cli("attractor " + shape + " --chaos -5"), "--chaos -5");
   check_error(cifs_cli("attractor " + shape),
-              "exactly one of --depth K, --tolerance E, --deviation D and --chaos N");
+              "exactly one of --depth K, --piece-size E, --deviation D and --chaos N");
   check_error(cifs_cli("attractor " + shape + " --depth 3 --format png"), "--format 'png'");
   check_error(cifs_cli("attractor " + shape + " --depth 40"), "");
   check_error(cifs_cli("check " + shape + " --depth 31"), "depth 31 is outside [0, 30]");
+  // --tolerance meant three things; an old command line is told the new name of each.
+  check_error(cifs_cli("attractor " + shape + " --tolerance 0.01"),
+              "attractor --tolerance is now --piece-size (every piece smaller than E) or --deviation");
+  check_error(cifs_cli("check " + shape + " --tolerance 1e-9"),
+              "check --tolerance is now --relative-tolerance");
+  check_error(cifs_cli("dimension " + shape + " --tolerance 0"),
+              "dimension --tolerance is now --relative-piece-size");
 
   // Surfaces: per patch, the same options and report.
   const std::string surface = file("s.json", kSurface);
@@ -304,7 +311,7 @@ TEST_CASE("cifs automaton, attractor and check", "[cli]") {
   const Run stext = cifs_cli("check " + surface + " --depth 3");
   CHECK(stext.status == 0);
   CHECK_THAT(stext.out, Catch::Contains("1 patches") && Catch::Contains("PASS"));
-  CHECK(cifs_cli("check " + surface + " --depth 3 --tolerance 1e-30").status == 1);
+  CHECK(cifs_cli("check " + surface + " --depth 3 --relative-tolerance 1e-30").status == 1);
   check_error(cifs_cli("check " + surface + " --depth 14"), "lower --depth");
   // A surface's automaton is its tensor product: one patch, four children per state.
   const json sa = json::parse(cifs_cli("automaton " + file("s.json", kSurface)).out);
@@ -452,15 +459,34 @@ TEST_CASE("cifs dimension: box counting and similarity dimension", "[cli][dimens
   check_error(cifs_cli("dimension " + sierpinski + " --depth 2"), "evaluate deeper");
   check_error(cifs_cli("dimension " + sierpinski + " --depth -1"), "negative");
   check_error(cifs_cli("dimension /no/such/file.json"), "/no/such/file.json");
-  // The proven route asked for (--tolerance 0: automatic tolerance, no fallback): where the proven
+  // The proven route asked for (--relative-piece-size 0: automatic tolerance, no fallback): where the proven
   // bound leaves too few scales, the error names the way out; a rational piece without a Cartesian
   // bound says so instead of "inf wide".
-  check_error(
-      cifs_cli("dimension " CIFS_EXAMPLES_DIR "/experiments/hills.json --max-points 20000 --tolerance 0"),
-      "measure a depth evaluation (--depth K)");
   check_error(cifs_cli("dimension " CIFS_EXAMPLES_DIR
-                       "/experiments/wave_fractal.json --max-points 20000 --tolerance 0"),
+                       "/experiments/hills.json --max-points 20000 --relative-piece-size 0"),
+              "measure a depth evaluation (--depth K)");
+  check_error(cifs_cli("dimension " CIFS_EXAMPLES_DIR
+                       "/experiments/wave_fractal.json --max-points 20000 --relative-piece-size 0"),
               "has no Cartesian size bound at depth");
+}
+
+TEST_CASE("cifs dimension: a smooth surface's range reaches 2, which its boxes read low", "[cli][dimension]") {
+  const Run r = cifs_cli("dimension " CIFS_EXAMPLES_DIR "/experiments/hills.json --max-points 250000 --json");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  const auto& box = j["box_counting"];
+  // The boundary's boxes pull the slope below 2 at this budget, beyond its uncertainty: the proven
+  // cover (pieces tile the patch) grows as ε^-2 and widens the range up to it.
+  CHECK(box["dimension"].get<double>() + box["uncertainty"].get<double>() < 2);
+  REQUIRE(j["cover"].is_object());
+  CHECK(std::abs(j["cover"]["dimension"].get<double>() - 2) < 0.1);
+  CHECK(box["range"][0].get<double>() <= 2);
+  CHECK(box["range"][1].get<double>() >= 2);
+  // Koch's pieces (ratio 1/3) count in steps as ε halves: no cover is claimed.
+  const Run koch = cifs_cli("dimension " CIFS_EXAMPLES_DIR "/experiments/koch.json --json");
+  REQUIRE(koch.status == 0);
+  CHECK(nlohmann::json::parse(koch.out)["cover"].is_null());
 }
 
 TEST_CASE("cifs dimension: tolerance samples by default", "[cli][dimension]") {
@@ -478,9 +504,9 @@ TEST_CASE("cifs dimension: tolerance samples by default", "[cli][dimension]") {
   CHECK(std::abs(dim("experiments/koch.json --max-points 1048576") - std::log(4.0) / std::log(3.0)) < 0.01);
   CHECK(std::abs(dim("shapes/wave.json --max-points 1048576") - 1) < 0.02);  // rational: Cartesian bound
   CHECK(dim("experiments/clover_fractal.json --max-points 1048576") >= 1);
-  check_error(
-      cifs_cli("dimension " CIFS_EXAMPLES_DIR "/experiments/koch.json --tolerance 1e-9 --max-points 1000"),
-      "needs more than 1000 points");
+  check_error(cifs_cli("dimension " CIFS_EXAMPLES_DIR
+                       "/experiments/koch.json --relative-piece-size 1e-9 --max-points 1000"),
+              "needs more than 1000 points");
 }
 
 namespace {

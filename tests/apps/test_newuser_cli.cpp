@@ -87,7 +87,7 @@ TEST_CASE("cifs automaton and attractor take surfaces", "[cli][newuser]") {
   const json chaos = json::parse(cifs_cli("attractor " + kHills + " --chaos 500 --seed 3").out);
   CHECK(chaos["points"].size() == 500);
   CHECK(chaos["seed"] == 3);
-  const Run tol = cifs_cli("attractor " + kHills + " --tolerance 0.5");
+  const Run tol = cifs_cli("attractor " + kHills + " --piece-size 0.5");
   REQUIRE(tol.status == 0);
   CHECK(json::parse(tol.out)["points"].size() >= patches);
   check_error(cifs_cli("attractor " + kHills + " --depth 2 --format svg"), "draws curves");

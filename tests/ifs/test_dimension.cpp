@@ -384,3 +384,55 @@ TEST_CASE("tolerance sample: the tolerance its search counted is sampled, whatev
                                            .estimate = false}),
                     Catch::Contains("gives more than"));
 }
+
+TEST_CASE("proven cover: the pieces' growth is the dimension, without the boxes' boundary term",
+          "[ifs][dimension]") {
+  SECTION("the slope of exact power laws, and too few counts") {
+    std::vector<ifs::CoverCount> counts;
+    for (int j = 0; j < 8; ++j)
+      counts.push_back({std::ldexp(1.0, -j), static_cast<std::size_t>(std::llround(std::pow(3.0, j + 4)))});
+    const std::optional<ifs::CoverExponent> e = ifs::cover_exponent(counts, 1000);
+    REQUIRE(e);
+    CHECK(std::abs(e->dimension - std::log2(3.0)) < 1e-12);
+    CHECK(e->spread < 1e-12);
+    CHECK(e->levels == 4);  // the finest four
+    CHECK(e->min_epsilon == std::ldexp(1.0, -7));
+    CHECK(e->max_epsilon == std::ldexp(1.0, -4));
+    CHECK_FALSE(ifs::cover_exponent(std::span(counts).first(5), 1000));  // 3^7, 3^8 only ≥ 1000
+  }
+  const auto cover_of = [](const automata::Automaton& a, const std::vector<Points>& nets,
+                           std::size_t budget) {
+    ifs::ToleranceSampleOptions so;
+    so.max_points = budget;
+    const ifs::ToleranceSample s = ifs::tolerance_sample(a, nets, so);
+    // The search's counts: ε halves from diam·2^-4, the sample's own count last.
+    REQUIRE(s.cover.size() >= 2);
+    CHECK(s.cover.back().leaves == s.leaves);
+    CHECK(s.cover.back().epsilon == s.resolution);
+    for (std::size_t i = 1; i < s.cover.size(); ++i) {
+      CHECK(s.cover[i].epsilon == s.cover[i - 1].epsilon / 2);
+      CHECK(s.cover[i].leaves >= s.cover[i - 1].leaves);
+    }
+    const std::optional<ifs::CoverExponent> e = ifs::cover_exponent(s.cover);
+    REQUIRE(e);
+    return e->dimension;
+  };
+  // Sierpinski: the pieces at depth k are the 3^k triangles of side 2^-k, so each halving of ε
+  // triples the count exactly.
+  const Points T = unit_triangle();
+  CHECK(std::abs(cover_of(ifs::affine_automaton(ifs::sierpinski_triangle(), T), {T}, 1u << 20) -
+                 std::log2(3.0)) < 1e-12);
+  std::mt19937_64 rng(3);
+  CHECK(std::abs(cover_of(ifs_test::uniform_automaton(3), {ifs_test::random_points(4, 2, rng)}, 1u << 18) -
+                 1) < 0.01);
+  // A smooth bicubic patch: the boxes read 1.95 at this budget (the boundary term, see "box
+  // counting: smooth curve 1, surface mesh 2"); the proven pieces tile it and grow as ε^-2.
+  Points Q(16, 3);
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) Q.row(4 * i + j) << i, j, 0.6 * std::sin(i + 2.0 * j);
+  const nurbs::Surface s = nurbs::make_surface(
+      {3, 3}, {nurbs::Knots{0, 0, 0, 0, 1, 1, 1, 1}, nurbs::Knots{0, 0, 0, 0, 1, 1, 1, 1}}, {4, 4}, Q);
+  const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
+  const double surface = cover_of(t.product, nurbs::initial_nets(t, s), 1u << 20);
+  CHECK(std::abs(surface - 2) < 0.02);
+}

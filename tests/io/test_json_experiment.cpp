@@ -295,8 +295,8 @@ TEST_CASE("Experiments: a junction of two sides, and bad descriptions one line e
       "junction: A has 2 coordinates and B 3");
   one_line(with_b(b4 + R"(, "boundary": "start")", R"(, "perturbation": {"keep_vertices": false})"),
            "perturbation.keep_vertices: a junction's sides say which matrices are free");
-  one_line(with_b(b4 + R"(, "boundary": "start")", R"(, "evaluation": {"tolerance": 0.01})"),
-           "evaluation.tolerance: a junction is evaluated to a depth or by the chaos game");
+  one_line(with_b(b4 + R"(, "boundary": "start")", R"(, "evaluation": {"relative_piece_size": 0.01})"),
+           "evaluation.relative_piece_size: a junction is evaluated to a depth or by the chaos game");
   one_line(error_of(R"({"junction": {)" + a + "}}"), "junction: missing \"b\"");
   one_line(error_of(R"({"junction": {)" + a + R"(, "b": {}, "c": {}}})"), "junction.c: unknown member");
   one_line(error_of(R"({"junction": {)" + a + R"(, "b": {}}, "ifs": "fern"})"),

@@ -481,7 +481,7 @@ class NurbsAttractorTest(unittest.TestCase):
         ifs.for_each_leaf_to_tolerance(a, nets, lambda t: (rows.append(f.start[t.leaf.state] @ t.leaf.net),
                                                            ends.append(f.end[t.leaf.state] @ t.leaf.net)),
                                        epsilon=1e-3, max_depth=40)
-        expected = np.array(cli_json("attractor", path, "--tolerance", 1e-3)["points"])
+        expected = np.array(cli_json("attractor", path, "--piece-size", 1e-3)["points"])
         assert_close(self, np.array(rows + ends[-1:]), expected, rel=0, what="tolerance")
         chaos = cli_json("attractor", path, "--chaos", 500, "--seed", 11)
         r = ifs.chaos_game(a, nets, samples=500, seed=11)

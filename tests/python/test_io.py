@@ -379,7 +379,7 @@ class VerifyTest(unittest.TestCase):
         r = verify.check_curve(io.read_shape(SHAPES / "circle.json"), depth=4, tolerance=1e-300)
         self.assertFalse(r.passed)
         self.assertIn("failed", repr(r))
-        self.assertEqual(cli("check", SHAPES / "circle.json", "--depth", 4, "--tolerance", 1e-300,
+        self.assertEqual(cli("check", SHAPES / "circle.json", "--depth", 4, "--relative-tolerance", 1e-300,
                              check=False).returncode, 1)
 
     def test_bad_depth(self):
@@ -389,7 +389,7 @@ class VerifyTest(unittest.TestCase):
         self.assertEqual(str(caught.exception), cli_error("check", SHAPES / "cubic.json", "--depth", 31))
         with self.assertRaises(cifs.InvalidInput) as caught:
             verify.check_surface(io.read_shape(SHAPES / "saddle.json"), tolerance=0.0)
-        self.assertEqual(str(caught.exception), cli_error("check", SHAPES / "saddle.json", "--tolerance", 0))
+        self.assertEqual(str(caught.exception), cli_error("check", SHAPES / "saddle.json", "--relative-tolerance", 0))
 
 
 class ExperimentTest(ScratchTestCase):

@@ -5,7 +5,9 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "cifs/automata/automaton.hpp"
@@ -70,6 +72,12 @@ struct BoxCountingResult {
 /// fewer than 3 levels (the message says to evaluate deeper).
 BoxCountingResult box_counting(const Points& points, const BoxCountingOptions& options = {});
 
+/// The number of pieces a tolerance traversal needs at one epsilon (each proven smaller than it).
+struct CoverCount {
+  double epsilon = 0;
+  std::size_t leaves = 0;
+};
+
 /// A sample of an attractor whose resolution is proven: every attractor piece it stands for has
 /// diameter < `resolution`.
 struct ToleranceSample {
@@ -77,7 +85,27 @@ struct ToleranceSample {
   double resolution = 0;   // the epsilon used (Cartesian units)
   int deepest = 0;         // largest leaf depth
   std::size_t leaves = 0;  // = #P
+  /// The counts of the search for epsilon (epsilon 0: diam(nets)·2^-j, j = 4, 5, …), coarsest
+  /// first, the sample's own last; one entry when epsilon was given.
+  std::vector<CoverCount> cover;
 };
+
+/// Growth of the proven cover: the slope of log n(ε) against log(1/ε) over counts of a tolerance
+/// search. A set covered by n(ε) pieces of diameter < ε meets at most 2^dim·n(ε) boxes of side
+/// ε, so the limit of this slope bounds the upper box-counting dimension from above; unlike the
+/// box count, it has no boundary term (pieces tile the attractor: a smooth patch gives 2, not
+/// the 1.9 its boxes give at 10^6 points).
+struct CoverExponent {
+  double dimension = 0;  // least-squares slope over the fitted counts
+  double spread = 0;     // largest |local slope − dimension| over consecutive fitted counts
+  double max_epsilon = 0, min_epsilon = 0;  // fitted range
+  int levels = 0;                           // counts fitted
+};
+
+/// The finest `levels` counts with at least `min_leaves` leaves (at least 3 of them, else
+/// nullopt; counts must be in the order of ToleranceSample::cover).
+std::optional<CoverExponent> cover_exponent(std::span<const CoverCount> counts, std::size_t min_leaves = 1000,
+                                            int levels = 64);
 
 struct ToleranceSampleOptions {
   /// Cartesian piece diameter; 0: the largest diam(nets)·2^-j (j ≥ 4) whose sample has at most
@@ -90,6 +118,8 @@ struct ToleranceSampleOptions {
   std::size_t max_points = std::size_t{1} << 21;
   /// Depth cap of the traversal: a branch still unresolved there is refused.
   int max_depth = 64;
+  /// How refusals name epsilon (a CLI option, say).
+  std::string_view tolerance_name = "tolerance";
 };
 
 /// Samples the attractor to a tolerance (for_each_leaf_to_tolerance with PieceBounds): one point
