@@ -188,6 +188,25 @@ Surface make_surface_from(std::array<int, 2> degree, std::array<Knots, 2> knots,
   return make_surface(degree, std::move(knots), *count, P, w);
 }
 
+/// The bytes of a vector or matrix, for hashing: == compares values exactly, and x + 0.0 maps −0.0 to
+/// 0.0 (equal values, different bytes); no NaN gets past validation.
+template <typename Values>
+py::bytes raw_bytes(const Values& values) {
+  std::vector<double> v(values.data(), values.data() + values.size());
+  for (double& x : v) x += 0.0;
+  return {reinterpret_cast<const char*>(v.data()), sizeof(double) * v.size()};
+}
+
+py::int_ curve_hash(const Curve& c) {
+  return py::int_(py::hash(
+      py::make_tuple(c.degree, c.rational, c.closed, raw_bytes(c.knots), c.P.cols(), raw_bytes(c.P))));
+}
+
+py::int_ surface_hash(const Surface& s) {
+  return py::int_(py::hash(py::make_tuple(s.degree[0], s.degree[1], s.count[0], s.count[1], s.rational,
+                                          raw_bytes(s.knots[0]), raw_bytes(s.knots[1]), raw_bytes(s.P))));
+}
+
 void bind_knots(py::module_& m) {
   m.attr("kMaxDegree") = kMaxDegree;
   m.def("validate_degree", &validate_degree, py::arg("degree"), py::arg("where") = "degree",
@@ -365,6 +384,7 @@ void bind_curve(py::module_& m) {
           },
           py::arg("other"),
           "Exact equality: same degree, knots, stored control rows, rational and closed flags.")
+      .def("__hash__", &curve_hash, "A hash consistent with == (curves are immutable).")
       .def(
           "__copy__", [](const Curve& c) { return c; }, "A copy (curves are immutable).")
       .def(
@@ -576,6 +596,7 @@ void bind_surface(py::module_& m) {
           },
           py::arg("other"),
           "Exact equality: same degrees, knots, net size, stored control rows and rational flag.")
+      .def("__hash__", &surface_hash, "A hash consistent with == (surfaces are immutable).")
       .def(
           "__copy__", [](const Surface& s) { return s; }, "A copy (surfaces are immutable).")
       .def(

@@ -116,6 +116,10 @@ class CurveMethodsTest(unittest.TestCase):
         self.assertNotEqual(self.curve, self.rational)
         self.assertNotEqual(self.curve, nurbs.Curve(3, KNOTS, POINTS + [0, 1e-12]))
         self.assertNotEqual(self.curve, "curve")
+        self.assertEqual(hash(self.curve), hash(nurbs.Curve(3, KNOTS, POINTS)))
+        self.assertEqual(len({self.curve, nurbs.Curve(3, KNOTS, POINTS), self.rational}), 2)
+        negative_zeros = nurbs.Curve(3, KNOTS, np.where(POINTS == 0, -0.0, POINTS))
+        self.assertEqual((negative_zeros, hash(negative_zeros)), (self.curve, hash(self.curve)))  # -0.0 == 0.0
         for c in (self.curve, self.rational, self.closed):
             back = pickle.loads(pickle.dumps(c))
             self.assertEqual(back, c)
@@ -179,6 +183,7 @@ class SurfaceMethodsTest(unittest.TestCase):
         np.testing.assert_array_equal(s.weights, self.weights)
         self.assertEqual((s.dimension, s.domain), (3, ((0.0, 2.0), (0.0, 2.0))))
         self.assertEqual(pickle.loads(pickle.dumps(s)), s)
+        self.assertEqual(hash(pickle.loads(pickle.dumps(s))), hash(s))
         self.assertNotEqual(s, self.surface)
         self.assertIn("Surface(degree=(2, 3), knots=([0, 0, 0, 1, 2, 2, 2], [0, 0, 0, 0, 1, 2, 2, 2, 2]), "
                       "count=(4, 5), dimension=3", repr(s))
