@@ -76,7 +76,7 @@ def hills(args):
     # Node (I, J) of the mesh is the surface at the dyadic parameters of its patch.
     us = np.unique(np.concatenate([np.linspace(e.start, e.end, 2**depth + 1) for e in tensor.factors[0].initial]))
     vs = np.unique(np.concatenate([np.linspace(e.start, e.end, 2**depth + 1) for e in tensor.factors[1].initial]))
-    reference = nurbs.evaluate_grid(surface, us, vs)
+    reference = nurbs.evaluate_grid(surface, us, vs).reshape(-1, 3)  # (nu, nv, 3) → the mesh's vertex rows
     deviation = np.max(np.abs(mesh.vertices - reference)) / np.max(np.abs(reference))
     assert deviation < 1e-12, f"hills: mesh deviates from surface evaluation by {deviation:.2e}"
 

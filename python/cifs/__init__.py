@@ -44,5 +44,109 @@ experiment = _cifs.experiment
 for _name in ("nurbs", "automata", "ifs", "subdivision", "render", "io", "verify", "experiment"):
     _sys.modules[f"{__name__}.{_name}"] = getattr(_cifs, _name)
 
+
+
+# --- One rule for arrays read from attributes: they are read-only ---------------------------------------------
+# Every attribute (property) of every bound type returns a copy of the object's data; writing into that copy
+# (`curve.P[0, 0] = 99`) would be silently lost, so the arrays an attribute returns (also inside the tuples,
+# lists and dicts it returns) are marked read-only and such a write raises ValueError. Change an object
+# through its constructor, its methods or a property setter; `.copy()` an array to edit it.
+def _read_only(value):
+    if isinstance(value, _numpy.ndarray):
+        value.flags.writeable = False
+    elif isinstance(value, (list, tuple)):
+        for item in value:
+            _read_only(item)
+    elif isinstance(value, dict):
+        for item in value.values():
+            _read_only(item)
+    return value
+
+
+def _read_only_getter(fget):
+    def get(self):
+        return _read_only(fget(self))
+
+    get.__doc__ = fget.__doc__
+    get.__wrapped__ = fget  # the pybind11 getter, whose docstring signature the stub generator reads
+    return get
+
+
+def _read_only_attributes(module):
+    for cls in vars(module).values():
+        if not isinstance(cls, type) or getattr(cls, "__module__", "").split(".")[:2] != ["cifs", "_cifs"]:
+            continue
+        for name, attribute in list(vars(cls).items()):
+            if type(attribute) is property and attribute.fget is not None and not hasattr(attribute.fget,
+                                                                                           "__wrapped__"):
+                setattr(cls, name, property(_read_only_getter(attribute.fget), attribute.fset, attribute.fdel,
+                                            attribute.__doc__))
+
+
+for _name in ("nurbs", "automata", "ifs", "subdivision", "render", "io", "verify", "experiment"):
+    _read_only_attributes(getattr(_cifs, _name))
+
+
+# --- Notebook previews: _repr_png_ on images and shapes ---------------------------------------------------------
+def _png_bytes(image):
+    """The PNG that render.preview_png writes for `image`, as bytes (None when it has nothing to show)."""
+    import os
+    import tempfile
+    if image.width == 0 or image.height == 0:
+        return None
+    with tempfile.TemporaryDirectory(prefix="cifs-png-") as folder:
+        path = os.path.join(folder, "preview.png")
+        try:
+            render.preview_png(path, image)
+        except InvalidInput:  # e.g. no colour or density channel: the notebook falls back to repr
+            return None
+        with open(path, "rb") as file:
+            return file.read()
+
+
+_PREVIEW_SIZE = (320, 240)
+
+
+def _curve_image(curve, width=_PREVIEW_SIZE[0], height=_PREVIEW_SIZE[1]):
+    """A small preview render of a 2-D or 3-D curve: the curve over its control polygon (None otherwise)."""
+    if curve.dimension not in (2, 3):
+        return None
+    points = curve.evaluate(nurbs.uniform_parameters(curve.domain, 513))
+    polygon = curve.points
+    camera = render.frame(_numpy.vstack([points, polygon]), width=width, height=height, margin=0.05)
+    image = render.make_framebuffer(camera)
+    render.render_polylines(image, camera, [polygon], width=1, color=(0.45, 0.45, 0.45), closed=curve.closed)
+    render.render_polylines(image, camera, [points], width=2, color=(0.1, 0.3, 0.9))
+    return image
+
+
+def _surface_image(surface, width=_PREVIEW_SIZE[0], height=_PREVIEW_SIZE[1], samples=33):
+    """A small shaded preview render of a 3-D surface (None otherwise)."""
+    if surface.dimension != 3:
+        return None
+    (u0, u1), (v0, v1) = surface.domain
+    grid = surface.evaluate_grid(_numpy.linspace(u0, u1, samples), _numpy.linspace(v0, v1, samples))
+    vertices = grid.reshape(-1, 3)
+    i, j = _numpy.meshgrid(_numpy.arange(samples - 1), _numpy.arange(samples - 1), indexing="ij")
+    corner = (i * samples + j).ravel()
+    quads = _numpy.stack([corner, corner + samples, corner + samples + 1, corner + 1], axis=1)
+    camera = render.frame(vertices, width=width, height=height)
+    image = render.make_framebuffer(camera)
+    render.render_mesh(image, camera, vertices, quads=quads)
+    return image
+
+
+def _shape_png(self):
+    image = _curve_image(self) if isinstance(self, nurbs.Curve) else _surface_image(self)
+    return None if image is None else _png_bytes(image)
+
+
+render.Image._repr_png_ = _png_bytes
+render.Image._repr_png_.__doc__ = "The image's preview_png as PNG bytes, shown by notebooks (None when empty)."
+nurbs.Curve._repr_png_ = _shape_png
+nurbs.Surface._repr_png_ = _shape_png
+_shape_png.__doc__ = ("A small preview render (320 by 240) as PNG bytes, shown by notebooks: curves of 2 or 3\n"
+                      "dimensions over their control polygon, 3-D surfaces shaded; None for other dimensions.")
+
 __all__ = ["InvalidInput", "IoError", "__version__", "nurbs", "automata", "ifs", "subdivision", "render", "io",
            "verify", "experiment"]

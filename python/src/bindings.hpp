@@ -186,6 +186,15 @@ py::array_t<T> index_array(const std::vector<std::array<T, N>>& rows) {
   return out;
 }
 
+/// `a` marked read-only. Arrays read from an object are copies, so a write into one would be lost: the
+/// attributes of every bound type return read-only arrays (python/cifs/__init__.py applies it to every
+/// property), and so do dict-like views such as Image.channels (docs/python.md, "Arrays").
+template <typename Array>
+Array read_only(Array a) {
+  a.attr("setflags")(py::arg("write") = false);
+  return a;
+}
+
 /// A vector as a 1-D numpy array (copy).
 template <typename T>
 py::array_t<T> vector_array(const std::vector<T>& values) {

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 // cifs Python bindings — cifs.nurbs: knot vectors, curves, refinement, surfaces, knot doubling.
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <sstream>
@@ -56,19 +57,103 @@ void check_breakpoints(const Knots& b, int degree) {
   if (!(b.back() > b.front())) throw InvalidInput("breakpoints: the period is empty");
 }
 
+/// Up to 12 values in full, else the first and last four around an ellipsis.
+void write_values(std::ostream& out, const Knots& values) {
+  const std::size_t n = values.size();
+  out << "[";
+  for (std::size_t i = 0; i < n; ++i) {
+    if (n > 12 && i == 4) {
+      out << ", …";
+      i = n - 4;
+    }
+    out << (i ? ", " : "") << values[i];
+  }
+  out << "]";
+}
+
 std::string curve_repr(const Curve& c) {
   std::ostringstream out;
-  out << "Curve(degree=" << c.degree << ", points=" << distinct_count(c) << ", dimension=" << dimension(c)
-      << ", domain=(" << domain(c).start << ", " << domain(c).end << ")" << (c.rational ? ", rational" : "")
-      << (c.closed ? ", closed" : "") << ")";
+  out << "Curve(degree=" << c.degree << ", knots=";
+  write_values(out, defining_knots(c));
+  out << ", points=" << distinct_count(c) << ", dimension=" << dimension(c) << ", domain=(" << domain(c).start
+      << ", " << domain(c).end << ")" << (c.rational ? ", rational" : "") << (c.closed ? ", closed" : "")
+      << ")";
   return out.str();
 }
 
 std::string surface_repr(const Surface& s) {
   std::ostringstream out;
-  out << "Surface(degree=(" << s.degree[0] << ", " << s.degree[1] << "), count=(" << s.count[0] << ", "
-      << s.count[1] << "), dimension=" << dimension(s) << (s.rational ? ", rational" : "") << ")";
+  out << "Surface(degree=(" << s.degree[0] << ", " << s.degree[1] << "), knots=(";
+  write_values(out, s.knots[0]);
+  out << ", ";
+  write_values(out, s.knots[1]);
+  out << "), count=(" << s.count[0] << ", " << s.count[1] << "), dimension=" << dimension(s) << ", domain=(("
+      << domain(s, Direction::u).start << ", " << domain(s, Direction::u).end << "), ("
+      << domain(s, Direction::v).start << ", " << domain(s, Direction::v).end << "))"
+      << (s.rational ? ", rational" : "") << ")";
   return out.str();
+}
+
+/// Parameters from a number or an array: ndim 0 gives one value, 1-D many; `scalar` says which.
+std::vector<double> parameters_from(const py::object& object, const std::string& where, bool& scalar) {
+  const DoubleArray a = DoubleArray::ensure(numeric(object, where, "iuf"));
+  if (a.ndim() > 1)
+    throw InvalidInput(where + ": expected a number or a 1-D array, got shape " + shape_text(a));
+  scalar = a.ndim() == 0;
+  return {a.data(), a.data() + a.size()};
+}
+
+/// A grid of points (row a·nv + b = S(us[a], vs[b])) as the array (nu, nv, dim) that Surface takes.
+py::array grid_points(Points&& points, std::size_t nu, std::size_t nv) {
+  auto* heap = new Points(std::move(points));
+  const py::capsule owner(heap, [](void* p) { delete static_cast<Points*>(p); });
+  constexpr auto kItem = static_cast<py::ssize_t>(sizeof(double));
+  const auto dim = static_cast<py::ssize_t>(heap->cols());
+  return py::array_t<double>({static_cast<py::ssize_t>(nu), static_cast<py::ssize_t>(nv), dim},
+                             {static_cast<py::ssize_t>(nv) * dim * kItem, dim * kItem, kItem}, heap->data(),
+                             owner);
+}
+
+py::array surface_grid(const Surface& s, const std::vector<double>& us, const std::vector<double>& vs) {
+  Points points;
+  {
+    const py::gil_scoped_release release;
+    points = evaluate_grid(s, us, vs);
+  }
+  return grid_points(std::move(points), us.size(), vs.size());
+}
+
+/// Pickled state: the stored fields, so that a curve comes back bit for bit (re-validated on load).
+py::tuple curve_state(const Curve& c) {
+  return py::make_tuple(c.degree, c.knots, c.P, c.rational, c.closed);
+}
+
+Curve curve_from_state(const py::tuple& t) {
+  if (t.size() != 5)
+    throw InvalidInput("Curve: pickled state has " + std::to_string(t.size()) + " items, expected 5");
+  Curve c{.degree = t[0].cast<int>(),
+          .knots = t[1].cast<Knots>(),
+          .P = t[2].cast<Points>(),
+          .rational = t[3].cast<bool>(),
+          .closed = t[4].cast<bool>()};
+  validate(c);
+  return c;
+}
+
+py::tuple surface_state(const Surface& s) {
+  return py::make_tuple(s.degree, s.knots, s.count, s.P, s.rational);
+}
+
+Surface surface_from_state(const py::tuple& t) {
+  if (t.size() != 5)
+    throw InvalidInput("Surface: pickled state has " + std::to_string(t.size()) + " items, expected 5");
+  Surface s{.degree = t[0].cast<std::array<int, 2>>(),
+            .knots = t[1].cast<std::array<Knots, 2>>(),
+            .count = t[2].cast<std::array<Eigen::Index, 2>>(),
+            .P = t[3].cast<Points>(),
+            .rational = t[4].cast<bool>()};
+  validate(s);
+  return s;
 }
 
 /// Surface control points `(nu, nv, dim)`, or `(nu·nv, dim)` with `count`; weights `(nu, nv)` or `(nu·nv,)`.
@@ -101,6 +186,25 @@ Surface make_surface_from(std::array<int, 2> degree, std::array<Knots, 2> knots,
     }
   }
   return make_surface(degree, std::move(knots), *count, P, w);
+}
+
+/// The bytes of a vector or matrix, for hashing: == compares values exactly, and x + 0.0 maps −0.0 to
+/// 0.0 (equal values, different bytes); no NaN gets past validation.
+template <typename Values>
+py::bytes raw_bytes(const Values& values) {
+  std::vector<double> v(values.data(), values.data() + values.size());
+  for (double& x : v) x += 0.0;
+  return {reinterpret_cast<const char*>(v.data()), sizeof(double) * v.size()};
+}
+
+py::int_ curve_hash(const Curve& c) {
+  return py::int_(py::hash(
+      py::make_tuple(c.degree, c.rational, c.closed, raw_bytes(c.knots), c.P.cols(), raw_bytes(c.P))));
+}
+
+py::int_ surface_hash(const Surface& s) {
+  return py::int_(py::hash(py::make_tuple(s.degree[0], s.degree[1], s.count[0], s.count[1], s.rational,
+                                          raw_bytes(s.knots[0]), raw_bytes(s.knots[1]), raw_bytes(s.P))));
 }
 
 void bind_knots(py::module_& m) {
@@ -234,7 +338,61 @@ void bind_curve(py::module_& m) {
           "repeat their first `degree` points at the end.")
       .def_readonly("rational", &Curve::rational, "True for a NURBS (weighted) curve.")
       .def_readonly("closed", &Curve::closed, "True for a closed (periodic) curve.")
-      .def("__repr__", &curve_repr, "Short description.");
+      .def_property_readonly(
+          "points", [](const Curve& c) { return cartesian_points(c); },
+          "Cartesian control points (distinct_count, dim): divided by w when rational, without the\n"
+          "repeated points of a closed curve (what the constructor takes; P keeps the stored rows).")
+      .def_property_readonly(
+          "weights", [](const Curve& c) { return weights(c); },
+          "Weights (distinct_count,); ones for a non-rational curve.")
+      .def_property_readonly(
+          "domain", [](const Curve& c) { return as_tuple(domain(c)); },
+          "The parameter domain (start, end); one period for closed curves.")
+      .def_property_readonly(
+          "dimension", [](const Curve& c) { return dimension(c); }, "Cartesian dimension.")
+      .def(
+          "evaluate",
+          [](const Curve& c, const py::object& u) -> py::object {
+            bool scalar = false;
+            const std::vector<double> us = parameters_from(u, "Curve.evaluate: u", scalar);
+            if (scalar) return py::cast(evaluate(c, us[0]));
+            Points points;
+            {
+              const py::gil_scoped_release release;
+              points = evaluate(c, us);
+            }
+            return py::cast(std::move(points));
+          },
+          py::arg("u"),
+          "The curve at u: a number gives one point (1-D array of dim values), a 1-D array (or list) of\n"
+          "parameters the points (len(u), dim), in order. Same as nurbs.evaluate(curve, u).\n\n"
+          "Closed curves wrap u; open curves raise InvalidInput outside the domain.")
+      .def(
+          "insert", [](const Curve& c, double knot, int times) { return insert_knot(c, knot, times); },
+          py::arg("knot"), py::arg("times") = 1,
+          "A new curve with `knot` inserted `times` times (nurbs.insert_knot); this one is unchanged.\n\n"
+          "Raises InvalidInput when the knot is outside the domain or its multiplicity would exceed the "
+          "degree.")
+      .def(
+          "__eq__",
+          [](const Curve& a, const py::object& other) -> py::object {
+            if (!py::isinstance<Curve>(other)) return py::reinterpret_borrow<py::object>(Py_NotImplemented);
+            const auto& b = other.cast<const Curve&>();
+            return py::bool_(a.degree == b.degree && a.rational == b.rational && a.closed == b.closed &&
+                             a.knots == b.knots && a.P.rows() == b.P.rows() && a.P.cols() == b.P.cols() &&
+                             a.P == b.P);
+          },
+          py::arg("other"),
+          "Exact equality: same degree, knots, stored control rows, rational and closed flags.")
+      .def("__hash__", &curve_hash, "A hash consistent with == (curves are immutable).")
+      .def(
+          "__copy__", [](const Curve& c) { return c; }, "A copy (curves are immutable).")
+      .def(
+          "__deepcopy__", [](const Curve& c, const py::object& /*memo*/) { return c; }, py::arg("memo"),
+          "A copy (curves are immutable).")
+      .def(py::pickle(&curve_state, &curve_from_state))
+      .def("__repr__", &curve_repr,
+           "Short description: degree, knots, control point count, dimension, domain.");
 
   m.def(
       "uniform_bspline",
@@ -367,7 +525,85 @@ void bind_surface(py::module_& m) {
           "P", [](const Surface& s) { return Points(s.P); },
           "Stored control rows (nu·nv, dim + rational), homogeneous (w·x, w) when rational.")
       .def_readonly("rational", &Surface::rational, "True for a NURBS (weighted) surface.")
-      .def("__repr__", &surface_repr, "Short description.");
+      .def_property_readonly(
+          "points",
+          [](const Surface& s) {
+            return grid_points(cartesian_points(s), static_cast<std::size_t>(s.count[0]),
+                               static_cast<std::size_t>(s.count[1]));
+          },
+          "Cartesian control points (nu, nv, dim), divided by w when rational (what the constructor takes).")
+      .def_property_readonly(
+          "weights",
+          [](const Surface& s) {
+            const Eigen::VectorXd w = weights(s);
+            py::array_t<double> out(
+                {static_cast<py::ssize_t>(s.count[0]), static_cast<py::ssize_t>(s.count[1])});
+            std::copy(w.data(), w.data() + w.size(), out.mutable_data());
+            return out;
+          },
+          "Weights (nu, nv); ones for a non-rational surface.")
+      .def_property_readonly(
+          "domain",
+          [](const Surface& s) {
+            return py::make_tuple(as_tuple(domain(s, Direction::u)), as_tuple(domain(s, Direction::v)));
+          },
+          "The parameter domains ((u0, u1), (v0, v1)).")
+      .def_property_readonly(
+          "dimension", [](const Surface& s) { return dimension(s); }, "Cartesian dimension.")
+      .def(
+          "evaluate",
+          [](const Surface& s, const py::object& u, const py::object& v) -> py::object {
+            bool u_scalar = false, v_scalar = false;
+            const std::vector<double> us = parameters_from(u, "Surface.evaluate: u", u_scalar);
+            const std::vector<double> vs = parameters_from(v, "Surface.evaluate: v", v_scalar);
+            if (u_scalar && v_scalar) return py::cast(evaluate(s, us[0], vs[0]));
+            if (us.size() != vs.size())
+              throw InvalidInput("Surface.evaluate: u and v hold " + std::to_string(us.size()) + " and " +
+                                 std::to_string(vs.size()) + " parameters (use evaluate_grid for a grid)");
+            Points points(static_cast<Eigen::Index>(us.size()), dimension(s));
+            for (std::size_t i = 0; i < us.size(); ++i)
+              points.row(static_cast<Eigen::Index>(i)) = evaluate(s, us[i], vs[i]);
+            return py::cast(std::move(points));
+          },
+          py::arg("u"), py::arg("v"),
+          "The surface at (u, v): numbers give one point (1-D array), 1-D arrays of equal length the points\n"
+          "(len(u), dim) at the pairs (u[i], v[i]) (nurbs.evaluate(surface, u, v) for each).\n\n"
+          "Raises InvalidInput outside the domain.")
+      .def(
+          "evaluate_grid",
+          [](const Surface& s, const std::vector<double>& us, const std::vector<double>& vs) {
+            return surface_grid(s, us, vs);
+          },
+          py::arg("us"), py::arg("vs"),
+          "Points on the grid us × vs: array (len(us), len(vs), dim), [a, b] = S(us[a], vs[b])\n"
+          "(nurbs.evaluate_grid). Raises InvalidInput for parameters outside the domain.")
+      .def(
+          "insert",
+          [](const Surface& s, Direction direction, double knot, int times) {
+            return insert_knot(s, direction, knot, times);
+          },
+          py::arg("direction"), py::arg("knot"), py::arg("times") = 1,
+          "A new surface with `knot` inserted `times` times in `direction` (nurbs.insert_knot); this one is\n"
+          "unchanged. Raises InvalidInput outside the domain or beyond multiplicity degree.")
+      .def(
+          "__eq__",
+          [](const Surface& a, const py::object& other) -> py::object {
+            if (!py::isinstance<Surface>(other)) return py::reinterpret_borrow<py::object>(Py_NotImplemented);
+            const auto& b = other.cast<const Surface&>();
+            return py::bool_(a.degree == b.degree && a.count == b.count && a.rational == b.rational &&
+                             a.knots == b.knots && a.P.rows() == b.P.rows() && a.P.cols() == b.P.cols() &&
+                             a.P == b.P);
+          },
+          py::arg("other"),
+          "Exact equality: same degrees, knots, net size, stored control rows and rational flag.")
+      .def("__hash__", &surface_hash, "A hash consistent with == (surfaces are immutable).")
+      .def(
+          "__copy__", [](const Surface& s) { return s; }, "A copy (surfaces are immutable).")
+      .def(
+          "__deepcopy__", [](const Surface& s, const py::object& /*memo*/) { return s; }, py::arg("memo"),
+          "A copy (surfaces are immutable).")
+      .def(py::pickle(&surface_state, &surface_from_state))
+      .def("__repr__", &surface_repr, "Short description: degrees, knots, net size, dimension, domains.");
 
   m.def("dimension", py::overload_cast<const Surface&>(&dimension), py::arg("surface"),
         "Cartesian dimension.");
@@ -384,11 +620,11 @@ void bind_surface(py::module_& m) {
   m.def(
       "evaluate_grid",
       [](const Surface& s, const std::vector<double>& us, const std::vector<double>& vs) {
-        return evaluate_grid(s, us, vs);
+        return surface_grid(s, us, vs);
       },
-      Release(), py::arg("surface"), py::arg("us"), py::arg("vs"),
-      "Points on the grid us × vs: array (len(us)·len(vs), dim), row a·len(vs) + b = S(us[a], vs[b]).\n\n"
-      "Raises InvalidInput for parameters outside the domain.");
+      py::arg("surface"), py::arg("us"), py::arg("vs"),
+      "Points on the grid us × vs: array (len(us), len(vs), dim), [a, b] = S(us[a], vs[b]) — the shape\n"
+      "Surface takes. Raises InvalidInput for parameters outside the domain.");
   m.def("derivatives", py::overload_cast<const Surface&, double, double, int>(&derivatives),
         py::arg("surface"), py::arg("u"), py::arg("v"), py::arg("order"),
         "Partial derivatives ∂^{k+l}S/∂u^k∂v^l for k + l ≤ order: array ((order+1)², dim),\n"

@@ -345,10 +345,11 @@ void bind_image_channels(py::module_& m) {
       .def(
           "__getitem__",
           [](const ImageChannels& c, const std::string& name) {
-            return grid(channel(*c.image, name), c.image->width, c.image->height,
-                        "channels[\"" + name + "\"]");
+            return read_only(
+                grid(channel(*c.image, name), c.image->width, c.image->height, "channels[\"" + name + "\"]"));
           },
-          py::arg("name"), "The channel `name` as float32 (height, width) (a copy); InvalidInput if missing.")
+          py::arg("name"),
+          "The channel `name` as float32 (height, width) (a read-only copy); InvalidInput if missing.")
       .def(
           "__setitem__",
           [](ImageChannels& c, const std::string& name, const py::object& v) {
@@ -390,11 +391,11 @@ void bind_image_channels(py::module_& m) {
           [](const ImageChannels& c) {
             py::list out;
             for (const auto& [name, values] : c.image->channels)
-              out.append(py::make_tuple(
-                  name, grid(values, c.image->width, c.image->height, "channels[\"" + name + "\"]")));
+              out.append(py::make_tuple(name, read_only(grid(values, c.image->width, c.image->height,
+                                                             "channels[\"" + name + "\"]"))));
             return out;
           },
-          "(name, float32 (height, width) copy) pairs, sorted by name.")
+          "(name, float32 (height, width) read-only copy) pairs, sorted by name.")
       .def("__repr__", [](const ImageChannels& c) {
         std::string names;
         for (const auto& [name, values] : c.image->channels) names += (names.empty() ? "" : ", ") + name;

@@ -16,8 +16,9 @@
 namespace sd = cifs::subdivision;
 
 // Rational ↔ fractions.Fraction. Accepted: Fraction, int (and numpy integers), str in parse_rational
-// syntax ("1/16", "0.0625"), and a float only when it is exactly the decimal it prints as (0.0625,
-// 0.25, 3.0): 0.1 is refused rather than silently turned into 3602879701896397/36028797018963968.
+// syntax ("1/16", "0.0625"), and floats (Python and numpy): a float stands for the decimal it prints
+// as, its shortest round-trip text, as the CLI reads `--param w=0.1` — so 0.1 is 1/10, not
+// 3602879701896397/36028797018963968 (that exact binary value stays available as fractions.Fraction(x)).
 namespace pybind11::detail {
 template <>
 struct type_caster<sd::Rational> {
@@ -29,15 +30,19 @@ struct type_caster<sd::Rational> {
       value = sd::parse_rational(src.cast<std::string>(), "rational");
       return true;
     }
-    if (PyFloat_Check(src.ptr())) {
-      const double x = src.cast<double>();
-      const std::string text = repr(src).cast<std::string>();
-      if (!std::isfinite(x)) throw cifs::InvalidInput("rational: " + text + " is not a finite number");
-      const auto exact = module_::import("fractions").attr("Fraction")(src);
-      value = ratio(exact.attr("numerator"), exact.attr("denominator"));
-      if (value != sd::parse_rational(text, "rational"))
-        throw cifs::InvalidInput("rational: the float " + text + " is exactly " + sd::to_string(value) +
-                                 ", not " + text + " (pass fractions.Fraction or the text '" + text + "')");
+    if (PyFloat_Check(src.ptr()) || isinstance(src, module_::import("numpy").attr("floating"))) {
+      const auto x = reinterpret_steal<object>(PyNumber_Float(src.ptr()));
+      if (!x) throw error_already_set();
+      // str, not repr: numpy 2's repr of a scalar is "np.float64(0.1)"; str is the shortest text of its type.
+      const std::string text = str(src).cast<std::string>();
+      if (!std::isfinite(x.cast<double>()))
+        throw cifs::InvalidInput("rational: " + text + " is not a finite number");
+      try {
+        value = sd::parse_rational(text, "rational");
+      } catch (const cifs::InvalidInput&) {  // beyond the parser's exponent range (1e-310): the exact value
+        const auto exact = module_::import("fractions").attr("Fraction")(x);
+        value = ratio(exact.attr("numerator"), exact.attr("denominator"));
+      }
       return true;
     }
     if (PyIndex_Check(src.ptr())) {
@@ -105,7 +110,7 @@ void bind_subdivision_schemes(py::module_& m) {
                          R"doc(A uniform binary subdivision scheme: a name, its parameters and its exact mask.
 
 Scheme(name, mask, parameters={}) validates like make_scheme: mask a_0 … a_N (Fractions, ints, exact
-decimal strings such as "0.0625" or "1/16", floats only when exactly their printed decimal) refines
+decimal strings such as "0.0625" or "1/16", floats as the decimal they print as: 0.1 is 1/10) refines
 q_i = Σ_j a_{i−2j} p_j; leading and trailing zeros are dropped. Raises cifs.InvalidInput when the mask
 is empty or all zero, a single coefficient, longer than 512, or does not sum to 2 with even- and
 odd-indexed halves summing to 1 each.)doc")
@@ -224,7 +229,7 @@ void bind_subdivision_catalogue(py::module_& m) {
 
 name: catalogue name ('four-point', 'mask', …); parameters: dict name → value and/or keyword
 arguments (named_scheme('romani', n=2, w='1/32')). Values: text as on the command line, or exact
-numbers (Fraction, int, float exactly equal to its decimal). Missing parameters take their defaults.
+numbers (Fraction, int, a Python or numpy float read as the decimal it prints as: 0.1 is 1/10). Missing parameters take their defaults.
 Raises cifs.InvalidInput with the CLI's message for an unknown scheme or parameter, a missing or
 repeated one, a value that does not parse, a non-integer or out-of-range integer.)doc");
 

@@ -11,6 +11,8 @@ set(check [=[
 import sys, cifs
 from pathlib import Path
 assert Path(cifs.__file__).resolve().is_relative_to(Path(sys.argv[1]).resolve()), cifs.__file__
+for stub in ("py.typed", "__init__.pyi", "nurbs.pyi", "render.pyi"):  # the type stubs ship with the package
+    assert (Path(cifs.__file__).parent / stub).is_file(), stub
 c = cifs.nurbs.uniform_bspline([[0.0, 0.0], [1.0, 2.0], [2.0, 0.0]], 2, False)
 print("installed cifs", cifs.__version__, "at", Path(cifs.__file__).parent, "C(0.5) =", list(cifs.nurbs.evaluate(c, 0.5)))
 ]=])

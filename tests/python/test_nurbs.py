@@ -320,17 +320,17 @@ class SurfaceTest(unittest.TestCase):
             np.testing.assert_array_equal(nurbs.evaluate(s, 0.5, 0.25), expected[0])
             us = nurbs.uniform_parameters(nurbs.domain(s, nurbs.Direction.u), 7)
             vs = nurbs.uniform_parameters(nurbs.domain(s, nurbs.Direction.v), 7)
-            np.testing.assert_array_equal(nurbs.evaluate_grid(s, us, vs), expected[1:])
+            np.testing.assert_array_equal(nurbs.evaluate_grid(s, us, vs), expected[1:].reshape(7, 7, -1))
 
     def test_grid_equals_pointwise_evaluation(self):
         for s in (self.saddle, self.grid):
             us = [0.0, 0.3, 1.0, 1.7][:3 if s is self.grid else 4]
             vs = [0.0, 0.4, 1.0]
             G = nurbs.evaluate_grid(s, us, vs)
-            self.assertEqual(G.shape, (len(us) * len(vs), 3))
+            self.assertEqual(G.shape, (len(us), len(vs), 3))  # (nu, nv, dim), as Surface takes its points
             for a, u in enumerate(us):
                 for b, v in enumerate(vs):
-                    assert_close(self, G[a * len(vs) + b], nurbs.evaluate(s, u, v))
+                    assert_close(self, G[a, b], nurbs.evaluate(s, u, v))
 
     def test_derivatives_and_normal(self):
         h = 1e-5

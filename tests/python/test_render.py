@@ -50,7 +50,8 @@ class CameraTest(unittest.TestCase):
     def test_properties_are_copies_and_settable(self):
         c = R.Camera(width=10, height=20, eye=[1, 2, 3])
         eye = c.eye
-        eye[0] = 99
+        with self.assertRaises(ValueError):  # read-only: a write into the copy would be lost
+            eye[0] = 99
         self.assertEqual(list(c.eye), [1, 2, 3])
         c.eye = np.array([4, 5, 6])
         c.width = 30
@@ -176,7 +177,9 @@ class ImageTest(ScratchTestCase):
         self.assertTrue("R" in image.channels and "G" not in image.channels)
         r = image.channels["R"]
         self.assertEqual((r.dtype, r.shape), (np.float32, (2, 3)))
-        r[0, 0] = 100  # a copy
+        with self.assertRaises(ValueError):  # a read-only copy: the write would be lost
+            r[0, 0] = 100
+        self.assertFalse(dict(image.channels.items())["R"].flags.writeable)
         self.assertEqual(image.channels["R"][0, 0], 1)
         self.assertEqual(dict(image.channels.items())["R"].tolist(), [[1, 2, 3], [4, 5, 6]])
         del image.channels["A"]

@@ -73,15 +73,28 @@ class RationalTest(unittest.TestCase):
         self.assertEqual(sd.j_spline(1).mask, sd.j_spline(np.int64(1)).mask)
         self.assertTrue(all(isinstance(x, Fraction) for x in expected))
 
-    def test_float_must_be_its_decimal(self):
-        with self.assertRaises(cifs.InvalidInput) as e:
-            sd.generalized_four_point(0.1)
-        self.assertEqual(str(e.exception), "rational: the float 0.1 is exactly "
-                         "0.1000000000000000055511151231257827021181583404541015625, not 0.1 (pass "
-                         "fractions.Fraction or the text '0.1')")
+    def test_floats_are_the_decimal_they_print_as(self):
+        # Issue 15: numpy and Python floats are accepted and mean their printed decimal, as the CLI's
+        # `--param w=0.1`; the exact binary value and exact rationals stay available as Fraction or text.
+        tenth = sd.generalized_four_point(Fraction(1, 10)).mask
+        for w in (0.1, np.float64(0.1), np.float32(0.1), np.linspace(0, 0.2, 3)[1], "0.1", "1/10"):
+            self.assertEqual(sd.generalized_four_point(w).mask, tenth, repr(w))
+        self.assertEqual(sd.generalized_four_point(w=0.1).parameters, {"w": Fraction(1, 10)})
+        binary = sd.generalized_four_point(Fraction(0.1)).parameters["w"]
+        self.assertEqual(binary, Fraction(3602879701896397, 36028797018963968))
+        self.assertEqual(sd.named_scheme("corner-cutting", a=np.float64(0.1), b=0.6).mask,
+                         sd.corner_cutting("1/10", "3/5").mask)
+        # A float from arithmetic means what it prints as, not the number it rounds from.
+        self.assertEqual(sd.generalized_four_point(0.1 + 0.2).parameters["w"],
+                         Fraction(30000000000000004, 10**17))
+        # Beyond the decimal parser's exponent range, the exact value.
+        self.assertEqual(sd.generalized_four_point(5e-324).parameters["w"], Fraction(5e-324))
         with self.assertRaises(cifs.InvalidInput) as e:
             sd.j_spline(float("inf"))
         self.assertEqual(str(e.exception), "rational: inf is not a finite number")
+        with self.assertRaises(cifs.InvalidInput) as e:
+            sd.j_spline(np.float32("nan"))
+        self.assertEqual(str(e.exception), "rational: nan is not a finite number")
         with self.assertRaises(TypeError):
             sd.j_spline(True)
 
