@@ -4,9 +4,12 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <fstream>
+#include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
 
@@ -67,23 +70,30 @@ io::Shape read_shape(const std::filesystem::path& path, const ShapeSelection& se
   return std::move(read_shapes(path, select, true).front());
 }
 
-void check_samples(long long count) {
-  if (count > kMaxPoints)
-    throw InvalidInput(
-        "--samples: " + std::to_string(count) + " points exceed the limit of " + std::to_string(kMaxPoints) +
-        " held in memory for standard output; write them to a file with -o points.npy (or .json, "
-        ".ply, .obj), which is streamed");
-}
+/// Standard output as a sink: the bytes go out as they come, so a pipe or a redirected file takes
+/// any number of points in the memory of a chunk; a failed write stops the command at once.
+class StdoutSink final : public ByteSink {
+ public:
+  void write(std::string_view bytes) override {
+    errno = 0;
+    std::cout.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    if (!std::cout.good()) {
+      const int error = errno;
+      throw StdoutError(std::string("cannot write to standard output") + (error != 0 ? ": " : "") +
+                        (error != 0 ? std::strerror(error) : ""));
+    }
+  }
+};
 
 /// Where a command's points go: a file written as they come (PointsFile: its format from the extension,
-/// a chunk in memory), or the text for standard output (a PointsWriter on a string).
+/// a chunk in memory), or standard output, also as they come (a PointsWriter on StdoutSink).
 class PointsOutput {
  public:
   PointsOutput(const std::filesystem::path& output, const std::string& format, std::uint64_t count,
                Eigen::Index dim, const io::PointsStyle& style, const std::string& label, bool quiet)
       : count_(count), bar_(label, quiet || output.empty()) {
     if (output.empty())
-      text_.emplace(string_, format, count, dim, style);
+      text_.emplace(stdout_, format, count, dim, style);
     else
       file_.emplace(output, count, dim, style);
   }
@@ -102,11 +112,11 @@ class PointsOutput {
     done_ += static_cast<std::uint64_t>(rows.rows());
     bar_(done_, count_);
   }
-  /// The text for stdout, or a line that says what was written.
+  /// Nothing more for stdout (the points are out), or a line that says what was written.
   std::string finish(const std::filesystem::path& output, const std::string& note = "") {
     if (!file_) {
       text_->finish();
-      return std::move(string_.bytes);
+      return {};
     }
     file_->commit();
     return "wrote " + output.string() + ": " + std::to_string(count_) + " points" + note + "\n";
@@ -115,7 +125,7 @@ class PointsOutput {
  private:
   std::uint64_t count_, done_ = 0;
   render::ProgressBar bar_;
-  StringSink string_;
+  StdoutSink stdout_;
   std::optional<io::PointsWriter> text_;
   std::optional<io::PointsFile> file_;
 };
@@ -127,7 +137,7 @@ void write_in_chunks(PointsOutput& out, std::int64_t count, std::int64_t chunk, 
     out.write(rows(first, std::min(chunk, count - first)));
 }
 
-/// Rows per chunk of a streamed output (one chunk when the points go to stdout: they are in memory anyway).
+/// Rows per chunk of a streamed output (a file or stdout).
 constexpr std::int64_t kChunkPoints = std::int64_t{1} << 16;
 
 std::string eval_curve(const nurbs::Curve& c, const EvalOptions& o) {
@@ -137,14 +147,12 @@ std::string eval_curve(const nurbs::Curve& c, const EvalOptions& o) {
       throw InvalidInput("--at '" + a + "': a curve takes one parameter U");
     at.push_back(parse_number(a, "--at"));
   }
-  if (o.output.empty()) check_samples(o.samples);
   const Points first = nurbs::evaluate(c, at);  // checks the parameters before any file is created
   const nurbs::Domain dom = nurbs::domain(c);
   PointsOutput out(o.output, "json", static_cast<std::uint64_t>(first.rows() + o.samples), first.cols(), {},
                    "eval", o.quiet);
   out.write(first);
-  const std::int64_t chunk = o.output.empty() ? std::max(o.samples, 1) : kChunkPoints;
-  write_in_chunks(out, o.samples, chunk, [&](std::int64_t i, std::int64_t n) {
+  write_in_chunks(out, o.samples, kChunkPoints, [&](std::int64_t i, std::int64_t n) {
     return nurbs::evaluate(
         c, nurbs::uniform_parameters(dom, o.samples, static_cast<int>(i), static_cast<int>(n)));
   });
@@ -162,16 +170,13 @@ std::string eval_surface(const nurbs::Surface& s, const EvalOptions& o) {
     first.row(static_cast<Eigen::Index>(i)) = nurbs::evaluate(s, u, v);
   }
   const auto n = static_cast<std::int64_t>(o.samples);
-  if (o.output.empty()) check_samples(n * n);
   const auto u_domain = nurbs::domain(s, nurbs::Direction::u);
   const auto vs = nurbs::uniform_parameters(nurbs::domain(s, nurbs::Direction::v), o.samples);
   PointsOutput out(o.output, "json", static_cast<std::uint64_t>(first.rows() + n * n), first.cols(), {},
                    "eval", o.quiet);
   out.write(first);
   // Grid rows a chunk at a time: row a·N + b at (u_a, v_b).
-  const std::int64_t rows = o.output.empty()
-                                ? std::max<std::int64_t>(n, 1)
-                                : std::max<std::int64_t>(kChunkPoints / std::max<std::int64_t>(n, 1), 1);
+  const std::int64_t rows = std::max<std::int64_t>(kChunkPoints / std::max<std::int64_t>(n, 1), 1);
   Points grid;  // one chunk of rows, its storage reused from chunk to chunk
   write_in_chunks(out, n, rows, [&](std::int64_t a, std::int64_t k) -> const Points& {
     nurbs::evaluate_grid(
@@ -445,8 +450,9 @@ std::string attractor(const AttractorOptions& o) {
   const automata::Automaton& a = knots.automaton;
   const std::vector<Points> nets = nurbs::initial_nets(knots, *c);
   const Eigen::Index dim = nurbs::dimension(*c);
-  // Streamed: the points go to the file a chunk at a time, as they are computed.
-  const bool streamed = !o.output.empty() && format != "svg";
+  // Streamed: the points go to the file or stdout a chunk at a time, as they are computed; SVG is
+  // drawn whole.
+  const bool streamed = format != "svg";
   io::PointsStyle style{.polyline = true, .closed = c->closed, .seed = {}};
 
   if (o.chaos != 0) {
@@ -474,8 +480,8 @@ std::string attractor(const AttractorOptions& o) {
       throw InvalidInput(
           "attractor: depth " + std::to_string(o.depth) + " gives " + std::to_string(count) + " points (" +
           number_text(bytes / static_cast<double>(kMemoryBytes), 3) +
-          " GiB), more than the 1 GiB held in memory for standard output and SVG; write them to "
-          "a file with -o points.npy (or .json, .ply, .obj), which is streamed");
+          " GiB), more than the 1 GiB held in memory for SVG; write them as points (json, npy, ply, obj), "
+          "which are streamed");
     options.max_bytes = kMemoryBytes;
     Points H = ifs::attractor_points(a, nets, o.depth, options);
     if (c->rational) H = ifs::cartesian(H);
@@ -497,9 +503,9 @@ std::string attractor(const AttractorOptions& o) {
       .max_points = static_cast<std::size_t>(streamed ? kMaxTolerancePoints
                                                       : static_cast<double>(kMemoryBytes) / row_bytes),
       .tolerance_name = chordal ? "--deviation" : "--piece-size",
-      .limit_hint = streamed ? " written to a file; give a larger bound"
-                             : " held in memory for standard output and SVG; give a larger bound, or "
-                               "write them to a file with -o points.npy, which is streamed"};
+      .limit_hint = streamed ? " streamed; give a larger bound"
+                             : " held in memory for SVG; give a larger bound, or write them as points "
+                               "(json, npy, ply, obj), which are streamed"};
   if (!streamed) return write_whole(ifs::sample_attractor(a, nets, so).points, style, format, o);
   std::optional<PointsOutput> out;
   ifs::for_each_sample_chunk(

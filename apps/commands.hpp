@@ -1,17 +1,25 @@
 // SPDX-License-Identifier: MIT
 // cifs CLI — one function per subcommand; each returns the text for stdout, so that an error
-// leaves stdout empty.
+// leaves stdout empty. Point sets are the exception: they are streamed to stdout as computed (their
+// size has no memory limit), after every check that can refuse them.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "cifs/subdivision/mesh.hpp"
 
 namespace cifs::cli {
+
+/// Standard output failed while a command streamed to it (a full disk, a closed pipe): exit status 1,
+/// as when main's own write fails.
+struct StdoutError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 /// The shape readers' warnings, held until the command has succeeded: main then writes them on stderr,
 /// so that a command that fails prints its one error line only.

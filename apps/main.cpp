@@ -353,6 +353,9 @@ int run(int argc, char** argv, std::string& result) {
     return help_or_version(app, e, result);
   } catch (const CLI::CallForVersion& e) {
     return help_or_version(app, e, result);
+  } catch (const cli::StdoutError& e) {  // streamed points that stdout could not take
+    std::cerr << "cifs: " << e.what() << "\n";
+    return 1;
   } catch (const CLI::ParseError& e) {
     std::cerr << "cifs: " << e.what() << " (see cifs --help)\n";
     return 2;
@@ -392,6 +395,7 @@ int main(int argc, char** argv) {
   if (world.size > 1 && status == 2) cifs::cli::abort_world(2);
   cifs::cli::end_world();
   if (status == 2 && result.empty()) return 2;
+  if (!std::cout.good()) return 1;  // a streamed write failed, and said so
   // Every command's output, help and version included, is written and checked here once: a full disk or a
   // closed pipe shows only when the buffer goes out, so the flush comes before the check. errno
   // tells why when the failing write was one of these.

@@ -193,11 +193,10 @@ TEST_CASE("cifs attractor -o: refusals name the memory or the disk, and leave no
   std::filesystem::create_directories(folder);
   const std::string shape = file("refusals/c.json", kCurve);
   const auto count = [&] { return std::distance(std::filesystem::directory_iterator(folder), {}); };
-  // 3 · 2^24 + 1 points of 4 homogeneous coordinates do not fit the 1 GiB of standard output…
-  check_error(cifs_cli("attractor " + shape + " --depth 24"),
+  // 3 · 2^24 + 1 points of 4 homogeneous coordinates do not fit the 1 GiB an SVG is drawn in…
+  check_error(cifs_cli("attractor " + shape + " --depth 24 --format svg"),
               "attractor: depth 24 gives 50331649 points (1.5 GiB), more than the 1 GiB held in memory for "
-              "standard output and SVG; write them to a file with -o points.npy");
-  check_error(cifs_cli("eval " + shape + " --samples 60000000"), "write them to a file with -o points.npy");
+              "SVG; write them as points (json, npy, ply, obj), which are streamed");
   // …while a file of any size is refused only for the disk's free space (3 · 2^40 + 1 points · 24 bytes).
   check_error(cifs_cli("attractor " + shape + " --depth 40 -o " + (folder / "big.npy").string()),
               (folder / "big.npy").string() + ": the file needs 79165 GB of disk space, ");
@@ -470,7 +469,8 @@ TEST_CASE("cifs dimension: box counting and similarity dimension", "[cli][dimens
               "has no Cartesian size bound at depth");
 }
 
-TEST_CASE("cifs dimension: a smooth surface's range reaches 2, which its boxes read low", "[cli][dimension]") {
+TEST_CASE("cifs dimension: a smooth surface's range reaches 2, which its boxes read low",
+          "[cli][dimension]") {
   const Run r = cifs_cli("dimension " CIFS_EXAMPLES_DIR "/experiments/hills.json --max-points 250000 --json");
   INFO(r.err);
   REQUIRE(r.status == 0);

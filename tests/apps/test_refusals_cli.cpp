@@ -168,7 +168,7 @@ TEST_CASE("cifs: tolerance modes are bounded before the work, with the estimated
       // The cubic's length is about 4.6: 4.6e10 pieces of 1e-9 (counted at 1e-4: 421642).
       {"attractor " + shapes + "cubic.json --piece-size 1e-9", "--piece-size 1e-09: about 4.6"},
       {"attractor " + shapes + "cubic.json --piece-size 1e-9 -o " + out,
-       "above the limit of 1.07e+09 written"},
+       "above the limit of 1.07e+09 streamed"},
       {"attractor " + tall + " --piece-size 0.01", "e+25 points"},
       {"attractor " + shapes + "saddle.json --piece-size 1e-4 -o " + out, "needs about 2.0"},
       {"attractor " + shapes + "saddle.json --piece-size 1e-9 -o " + out, "e+20 points"},

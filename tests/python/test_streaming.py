@@ -104,13 +104,30 @@ class StreamedFiles(ScratchTestCase):
         self.assertEqual(out.stat().st_size, 128 + (3 * 2**21 + 1) * 24)
         self.assertLess(peak_kib, 48 * 1024, f"peak RSS {peak_kib} KiB for a {out.stat().st_size} byte file")
 
+    @unittest.skipIf(SANITIZED, "the sanitizer's own memory is not the program's")
+    def test_stdout_is_streamed_too(self):
+        # The same 151 MB through standard output (a redirected file): the same bytes as -o, and the
+        # process holds a chunk, not the output.
+        if not CLI:
+            raise unittest.SkipTest("CIFS_CLI is not set")
+        shape = EXAMPLES / "shapes" / "cubic.json"
+        out, piped = self.scratch / "p.npy", self.scratch / "stdout.npy"
+        cli("attractor", shape, "--depth", 21, "-o", out)
+        child = ("import resource, subprocess, sys; subprocess.run(sys.argv[2:], check=True, "
+                 "stdout=open(sys.argv[1], 'wb')); print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)")
+        run = subprocess.run([sys.executable, "-c", child, piped, CLI, "attractor", shape, "--depth", "21",
+                              "--format", "npy"], capture_output=True, text=True, check=True)
+        self.assertEqual(piped.read_bytes(), out.read_bytes())
+        peak_kib = int(run.stdout.split()[-1])
+        self.assertLess(peak_kib, 48 * 1024, f"peak RSS {peak_kib} KiB for {piped.stat().st_size} bytes on stdout")
+
     def test_refused_in_memory_streamed_to_file_atomically(self):
-        # Depth 24 (1.2 GB of points) is refused on standard output and accepted to a file. The run is
+        # Depth 24 (1.2 GB of points) is refused as SVG (drawn whole) and accepted to a file. The run is
         # stopped once the temporary holds 64 MB: the target never holds a partial file.
         shape = EXAMPLES / "shapes" / "cubic.json"
-        refused = cli("attractor", shape, "--depth", 24, check=False)
+        refused = cli("attractor", shape, "--depth", 24, "--format", "svg", check=False)
         self.assertEqual(refused.returncode, 2)
-        self.assertIn("write them to a file with -o points.npy", refused.stderr)
+        self.assertIn("more than the 1 GiB held in memory for SVG", refused.stderr)
         if not CLI:
             raise unittest.SkipTest("CIFS_CLI is not set")
         target = self.scratch / "big.npy"
