@@ -103,7 +103,7 @@ TEST_CASE("cifs render: geometry alone, several experiments, --max-memory", "[cl
   const Run r = cifs_cli("render " + geometry + " --out-dir " + out.string());
   INFO(r.err);
   REQUIRE(r.status == 0);
-  CHECK(io::read_mesh(out / "geo.ply").vertices.rows() == 17 * 17);
+  CHECK(io::read_mesh(out / "geo.ply").vertices.rows() == Eigen::Index{17} * 17);
   CHECK(std::filesystem::directory_iterator(out) != std::filesystem::directory_iterator());
   std::size_t files = 0;
   for ([[maybe_unused]] const auto& f : std::filesystem::directory_iterator(out)) ++files;
