@@ -7,8 +7,10 @@
 #include <charconv>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
+#include <system_error>
 
 #include "cifs/errors.hpp"
 #include "cifs/render/progress.hpp"
@@ -63,6 +65,18 @@ int help_or_version(const CLI::App& app, const CLI::Error& e, std::string& resul
 
 namespace cli = cifs::cli;
 
+/// The gallery's default input: the source tree's examples/ for the cifs of the build tree, else the
+/// installed examples, found relative to the executable (CIFS_INSTALLED_EXAMPLES, relative to the
+/// install's bin folder) so that a moved prefix still finds its own, never the source tree.
+std::filesystem::path default_examples() {
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::canonical("/proc/self/exe", ec);
+  if (ec) return CIFS_EXAMPLES_DIR;  // no /proc: the build tree's default
+  const std::filesystem::path build = std::filesystem::weakly_canonical(CIFS_BUILD_BIN_DIR, ec);
+  if (!ec && self.parent_path() == build) return CIFS_EXAMPLES_DIR;
+  return (self.parent_path() / CIFS_INSTALLED_EXAMPLES).lexically_normal();
+}
+
 /// The options of every command: the parser binds them, the command's callback reads them.
 struct Commands {
   explicit Commands(std::string& out) : result(out) {}
@@ -82,7 +96,7 @@ struct Commands {
   cli::LimitCommandOptions li;
   cli::DimensionOptions di;
   std::filesystem::path gallery_out = "out";
-  std::filesystem::path gallery_examples = CIFS_EXAMPLES_DIR;
+  std::filesystem::path gallery_examples = default_examples();
 };
 
 void add_eval(CLI::App& app, Commands& c) {
@@ -310,7 +324,8 @@ void add_gallery(CLI::App& app, Commands& c) {
   auto* gallery_cmd = app.add_subcommand("gallery", "Write the example gallery (the built-in default job)");
   gallery_cmd->add_option("out", c.gallery_out, "Output folder (default: out)");
   gallery_cmd->add_option("--examples", c.gallery_examples,
-                          "Folder with shapes/ and experiments/ (default: the source tree's examples/)");
+                          "Folder with shapes/ and experiments/ (default: " + c.gallery_examples.string() +
+                              ": the installed examples, or the source tree's for the build tree's cifs)");
   gallery_cmd->add_flag("--quiet", c.quiet, "No progress on the terminal");
   gallery_cmd->callback([&] { c.result = cli::gallery(c.gallery_out, c.gallery_examples, c.quiet); });
 }

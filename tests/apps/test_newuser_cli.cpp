@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// The frictions of a new user (issue 15, items 8, 9, 10, 12): surfaces in every command, runs without
-// an image, polygons in `info`, several experiments per render, progress and --quiet, the colour of
-// density previews, --max-memory.
+// The frictions of a new user (issue 15, items 8, 9, 10, 12, 14): surfaces in every command, runs
+// without an image, polygons in `info`, several experiments per render, progress and --quiet, the
+// colour of density previews, --max-memory, the gallery's examples.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <nlohmann/json.hpp>
@@ -103,7 +103,7 @@ TEST_CASE("cifs render: geometry alone, several experiments, --max-memory", "[cl
   const Run r = cifs_cli("render " + geometry + " --out-dir " + out.string());
   INFO(r.err);
   REQUIRE(r.status == 0);
-  CHECK(io::read_mesh(out / "geo.ply").vertices.rows() == 17 * 17);
+  CHECK(io::read_mesh(out / "geo.ply").vertices.rows() == Eigen::Index{17} * 17);
   CHECK(std::filesystem::directory_iterator(out) != std::filesystem::directory_iterator());
   std::size_t files = 0;
   for ([[maybe_unused]] const auto& f : std::filesystem::directory_iterator(out)) ++files;
@@ -140,6 +140,13 @@ TEST_CASE("cifs render: geometry alone, several experiments, --max-memory", "[cl
   CHECK_THAT(raised.err, !Catch::Contains("limit"));
   check_error(cifs_cli("render " + small + " --max-memory 4X"), "--max-memory '4X'");
   check_error(cifs_cli("render " + small + " --max-memory -1G"), "--max-memory");
+}
+
+// The installed cifs reads the installed examples: tests/package/run.cmake.
+TEST_CASE("cifs gallery: the build tree's cifs defaults to the source tree's examples", "[cli][newuser]") {
+  const Run r = cifs_cli("gallery --help");
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("(default: " CIFS_EXAMPLES_DIR ":"));
 }
 
 TEST_CASE("cifs info describes a control polygon", "[cli][newuser]") {
