@@ -267,7 +267,6 @@ void seed_000_figures(SchemeGallery& gallery, const std::filesystem::path& examp
     for (const auto& alg : algorithms) {
       gallery.write(
           alg.key + "_" + shape + "_degree3.svg",
-
           {control(P), {sd::refine(alg.make(3), P, true, kSteps), true, "#1f77b4", 1.8, "", ""}},
           "\"" + shape + "\", seed degree 3, " + std::to_string(kSteps) + " subdivisions, " + alg.title);
       std::vector<Stroke> strokes{control(P)};
@@ -335,7 +334,6 @@ void seed_001_figures(SchemeGallery& gallery, const std::filesystem::path& examp
     const Points P = seed_shapes(examples)[0].second;
     gallery.write(
         "approximating_interpolating.svg",
-
         {control(P),
          {sd::refine(sd::chaikin(), P, true, 6), true, "#1f77b4", 1.8, "", "Chaikin (approximating)"},
          {sd::refine(sd::four_point(), P, true, 6), true, "#ff7f0e", 1.8, "", "4-point (interpolating)"}},

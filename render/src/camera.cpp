@@ -49,7 +49,7 @@ double decreasing_root(F g, double lo, double hi) {
 /// With the eye at centre + a·r + b·u + c·f, a point q (relative to the centre) is inside the left
 /// and right planes when c·tx − a ≤ q·(tx·f − r) and c·tx + a ≤ q·(tx·f + r) (likewise b, ty, u):
 /// the largest c meets the tighter pair, and a (b) then centres the other pair's projections.
-/// Empty when the points give no positive depth (e.g. a segment along the view direction).
+/// Empty when a point would be (nearly) at the eye: e.g. a segment along the view direction.
 std::optional<Camera> tight_perspective(const Points& points, const Eigen::Vector3d& centre,
                                         const Camera& sphere, const ViewTransform& view, double usable,
                                         double aspect) {
@@ -68,7 +68,8 @@ std::optional<Camera> tight_perspective(const Points& points, const Eigen::Vecto
   }
   const double c = std::min((L + R) / (2 * tx), (B + T) / (2 * ty));
   const double nearest = *std::min_element(qf.begin(), qf.end()) - c;
-  if (!std::isfinite(c) || !std::isfinite(nearest) || !(nearest > 0) || !(-c > 0)) return std::nullopt;
+  if (!std::isfinite(c) || !std::isfinite(nearest) || !(-c > 0) || !(nearest > 1e-9 * -c))
+    return std::nullopt;
   // The sum of the extreme tangents, which decreases as the eye moves along the axis.
   const auto centring = [&](const std::vector<double>& qa) {
     return [&qa, &qf, c, n](double a) {
