@@ -501,8 +501,8 @@ std::array<double, 4> empty_border(const render::Image& image) {
 
 TEST_CASE("Surfaces and 3-D curves are framed by their projected extent", "[experiment][camera]") {
   // The hills seen from the default direction: the bounding sphere left 31 % of the rows above it and
-  // 15–18 % of the columns on either side empty (docs/img/hills.png before). Now the tighter direction
-  // (here the width) has only the 2 % margin, and the other one is centred.
+  // 15–18 % of the columns on either side empty (at 1200 × 900, before the tight fit). Now the tighter
+  // direction (here the width) has only the 2 % margin, and the other one is centred.
   ScratchDir dir;
   (void)run_in(dir, R"({"shape": "../shapes/hills.json", "evaluation": {"depth": 4},
       "camera": {"projection": "perspective", "margin": 0.02},
