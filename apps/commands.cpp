@@ -1028,6 +1028,7 @@ std::string gallery(const std::filesystem::path& out, const std::filesystem::pat
   const std::filesystem::path base = std::filesystem::weakly_canonical(out);
   const auto relative = [&base](const std::vector<std::filesystem::path>& written) {
     std::vector<std::filesystem::path> links;
+    links.reserve(written.size());
     for (const auto& path : written)
       links.push_back(std::filesystem::weakly_canonical(path).lexically_relative(base));
     return links;

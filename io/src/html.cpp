@@ -92,15 +92,16 @@ std::string gallery_html(const std::vector<GallerySection>& sections, const std:
       const std::string href = relative_href(s.files[i]), name = html_escape(s.files[i].generic_string());
       if (is_image(s.files[i])) {
         const std::string caption = i < s.captions.size() && !s.captions[i].empty() ? s.captions[i] : "";
-        figures += "<figure><a href=\"" + href + "\"><img src=\"" + href + "\" alt=\"" + name +
-                   "\"></a><figcaption>" + name + (caption.empty() ? "" : ": " + html_escape(caption)) +
-                   "</figcaption></figure>\n";
+        figures.append("<figure><a href=\"").append(href).append("\"><img src=\"").append(href);
+        figures.append("\" alt=\"").append(name).append("\"></a><figcaption>").append(name);
+        if (!caption.empty()) figures.append(": ").append(html_escape(caption));
+        figures += "</figcaption></figure>\n";
       } else {
-        links += "<li><a href=\"" + href + "\">" + name + "</a></li>\n";
+        links.append("<li><a href=\"").append(href).append("\">").append(name).append("</a></li>\n");
       }
     }
-    if (!figures.empty()) out += "<div class=\"figures\">\n" + figures + "</div>\n";
-    if (!links.empty()) out += "<ul class=\"files\">\n" + links + "</ul>\n";
+    if (!figures.empty()) out.append("<div class=\"figures\">\n").append(figures).append("</div>\n");
+    if (!links.empty()) out.append("<ul class=\"files\">\n").append(links).append("</ul>\n");
     out += "</section>\n";
   }
   out += "</body>\n</html>\n";
