@@ -24,8 +24,8 @@ section { margin: 1.5em 0; padding: 1em; background: #fff; border: 1px solid #dd
 section h2 { margin: 0 0 0.3em; font-size: 1.2em; }
 section p { margin: 0 0 0.8em; }
 .figures { display: flex; flex-wrap: wrap; gap: 1em; }
-figure { margin: 0; max-width: 420px; }
-figure img { max-width: 100%; max-height: 320px; border: 1px solid #eee; background: #fff; }
+figure { margin: 0; max-width: 360px; }
+figure img { max-width: 100%; max-height: 260px; border: 1px solid #eee; background: #fff; }
 figcaption { font-size: 0.85em; color: #555; }
 ul.files { margin: 0.6em 0 0; padding-left: 1.2em; font-size: 0.9em; }
 )";
