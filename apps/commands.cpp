@@ -16,6 +16,7 @@
 #include "cifs/automata/automaton.hpp"
 #include "cifs/errors.hpp"
 #include "cifs/experiment/run.hpp"
+#include "cifs/files.hpp"
 #include "cifs/format.hpp"
 #include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/attractor.hpp"
@@ -23,6 +24,7 @@
 #include "cifs/ifs/dimension.hpp"
 #include "cifs/ifs/mesh.hpp"
 #include "cifs/ifs/sample.hpp"
+#include "cifs/io/html.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/io/json.hpp"
 #include "cifs/io/svg.hpp"
@@ -1066,17 +1068,39 @@ std::string gallery(const std::filesystem::path& out, const std::filesystem::pat
     if (entry.path().extension() == ".json") files.push_back(entry.path());
   std::sort(files.begin(), files.end());
   std::string summary;
+  std::vector<io::GallerySection> sections;
   experiment::RunOptions ro;
   ro.out_dir = out;
   ro.quiet = true;  // one bar for the whole gallery, by experiments run
   render::ProgressBar bar("gallery", quiet);
+  // The page links to what each run wrote, relative to `out` (the folder moves whole).
+  const std::filesystem::path base = std::filesystem::weakly_canonical(out);
+  const auto relative = [&base](const std::vector<std::filesystem::path>& written) {
+    std::vector<std::filesystem::path> links;
+    links.reserve(written.size());
+    for (const auto& path : written)
+      links.push_back(std::filesystem::weakly_canonical(path).lexically_relative(base));
+    return links;
+  };
   for (std::size_t i = 0; i < files.size(); ++i) {
     bar(i, files.size() + 1);
-    summary += experiment::run(io::read_experiment(files[i]), ro).summary;
+    const io::Experiment e = io::read_experiment(files[i]);
+    const experiment::RunReport report = experiment::run(e, ro);
+    summary += report.summary;
+    sections.push_back({.name = e.name, .description = e.description, .files = relative(report.written)});
   }
   bar(files.size(), files.size() + 1);
   // The seeds' subdivision schemes: shapes, degree overlays, algorithms compared.
-  summary += write_scheme_gallery(out / "schemes", examples);
+  SchemeFigures schemes = write_scheme_gallery(out / "schemes", examples);
+  summary += schemes.summary;
+  sections.push_back({.name = "subdivision schemes",
+                      .description =
+                          "The seeds' curve subdivision schemes on the example polygons (cifs scheme; "
+                          "docs/schemes.md)",
+                      .files = relative(schemes.files),
+                      .captions = std::move(schemes.titles)});
+  write_file_atomically(out / "index.html", io::gallery_html(sections, "cifs gallery"));
+  summary += "gallery: wrote " + (out / "index.html").string() + "\n";
   bar(files.size() + 1, files.size() + 1);
   return summary;
 }

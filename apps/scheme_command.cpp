@@ -235,13 +235,15 @@ std::string scheme(const SchemeOptions& o) {
 
 namespace {
 
-/// The gallery's folder and the lines of its summary.
+/// The gallery's folder and what it wrote.
 struct SchemeGallery {
   const std::filesystem::path& folder;
-  std::string summary;
-  void write(const std::string& name, const std::string& svg) {
-    write_file_atomically(folder / name, svg);
-    summary += "scheme gallery: wrote " + (folder / name).string() + "\n";
+  SchemeFigures figures;
+  void write(const std::string& name, const std::vector<Stroke>& strokes, const std::string& title) {
+    write_file_atomically(folder / name, strokes_svg(strokes, title));
+    figures.files.push_back(folder / name);
+    figures.titles.push_back(title);
+    figures.summary += "scheme gallery: wrote " + (folder / name).string() + "\n";
   }
 };
 
@@ -265,24 +267,22 @@ void seed_000_figures(SchemeGallery& gallery, const std::filesystem::path& examp
     for (const auto& alg : algorithms) {
       gallery.write(
           alg.key + "_" + shape + "_degree3.svg",
-          strokes_svg(
-              {control(P), {sd::refine(alg.make(3), P, true, kSteps), true, "#1f77b4", 1.8, "", ""}},
-              "\"" + shape + "\", seed degree 3, " + std::to_string(kSteps) + " subdivisions, " + alg.title));
+          {control(P), {sd::refine(alg.make(3), P, true, kSteps), true, "#1f77b4", 1.8, "", ""}},
+          "\"" + shape + "\", seed degree 3, " + std::to_string(kSteps) + " subdivisions, " + alg.title);
       std::vector<Stroke> strokes{control(P)};
       for (int i = 0; i < 5; ++i)
         strokes.push_back({sd::refine(alg.make(seed_degrees[i]), P, true, kSteps), true, "#1f77b4", 1.5,
                            dashes[i], "seed degree " + std::to_string(seed_degrees[i])});
-      gallery.write(alg.key + "_" + shape + "_degrees.svg",
-                    strokes_svg(strokes, "\"" + shape + "\", seed degrees 2, 3, 5, 10, 30, " +
-                                             std::to_string(kSteps) + " subdivisions, " + alg.title));
+      gallery.write(alg.key + "_" + shape + "_degrees.svg", strokes,
+                    "\"" + shape + "\", seed degrees 2, 3, 5, 10, 30, " + std::to_string(kSteps) +
+                        " subdivisions, " + alg.title);
     }
     std::vector<Stroke> compare{control(P)};
     for (int a = 0; a < 3; ++a)
       compare.push_back({sd::refine(algorithms[a].make(30), P, true, kSteps), true, colours[a], 1.8, "",
                          algorithms[a].title});
-    gallery.write("compare_" + shape + ".svg",
-                  strokes_svg(compare, "\"" + shape + "\", seed degree 30, " + std::to_string(kSteps) +
-                                           " subdivisions"));
+    gallery.write("compare_" + shape + ".svg", compare,
+                  "\"" + shape + "\", seed degree 30, " + std::to_string(kSteps) + " subdivisions");
   }
 }
 
@@ -290,13 +290,12 @@ void seed_000_figures(SchemeGallery& gallery, const std::filesystem::path& examp
 void seed_001_figures(SchemeGallery& gallery, const std::filesystem::path& examples) {
   const Points zigzag = rows({{0, 0}, {1, 2}, {2, 0}, {3, 2}, {4, 0}, {5, 1.5}});
   const Points square = rows({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
-  gallery.write(
-      "chaikin_open_closed.svg",
-      strokes_svg({control(zigzag, false),
-                   {sd::refine(sd::chaikin(), zigzag, false, kSteps), false, "#1f77b4", 1.8, "",
-                    "open (end points kept)"},
-                   {sd::refine(sd::chaikin(), zigzag, true, kSteps), true, "#ff7f0e", 1.8, "6 3", "closed"}},
-                  "Chaikin, open and closed, 5 subdivisions"));
+  gallery.write("chaikin_open_closed.svg",
+                {control(zigzag, false),
+                 {sd::refine(sd::chaikin(), zigzag, false, kSteps), false, "#1f77b4", 1.8, "",
+                  "open (end points kept)"},
+                 {sd::refine(sd::chaikin(), zigzag, true, kSteps), true, "#ff7f0e", 1.8, "6 3", "closed"}},
+                "Chaikin, open and closed, 5 subdivisions");
   {
     std::vector<Stroke> strokes{control(square)};
     const char* ws[] = {"0", "0.03125", "0.0625", "0.1", "0.15", "0.2"};
@@ -305,8 +304,8 @@ void seed_001_figures(SchemeGallery& gallery, const std::filesystem::path& examp
       strokes.push_back(
           {sd::refine(sd::generalized_four_point(sd::parse_rational(ws[i], "w")), square, true, 7), true,
            cs[i], 1.5, "", std::string("w = ") + ws[i] + " (eps = 16w)"});
-    gallery.write("four_point_tension.svg",
-                  strokes_svg(strokes, "Generalised 4-point scheme, tension sweep, 7 subdivisions"));
+    gallery.write("four_point_tension.svg", strokes,
+                  "Generalised 4-point scheme, tension sweep, 7 subdivisions");
   }
   {
     std::vector<Stroke> strokes{control(square)};
@@ -317,8 +316,7 @@ void seed_001_figures(SchemeGallery& gallery, const std::filesystem::path& examp
       strokes.push_back({sd::refine(sd::corner_cutting(a, 1 - a), square, true, 7), true, cs[i], 1.5, "",
                          std::string("a = ") + as[i] + ", b = 1 - a"});
     }
-    gallery.write("corner_cutting_symmetric.svg",
-                  strokes_svg(strokes, "Corner cutting with b = 1 - a, 7 subdivisions"));
+    gallery.write("corner_cutting_symmetric.svg", strokes, "Corner cutting with b = 1 - a, 7 subdivisions");
   }
   {
     std::vector<Stroke> strokes{control(square)};
@@ -330,31 +328,30 @@ void seed_001_figures(SchemeGallery& gallery, const std::filesystem::path& examp
                                                        sd::parse_rational(ab[i].second, "b")),
                                     square, true, 7),
                          true, cs[i], 1.5, "", std::string("a = ") + ab[i].first + ", b = " + ab[i].second});
-    gallery.write("corner_cutting_asymmetric.svg",
-                  strokes_svg(strokes, "Corner cutting with b != 1 - a, 7 subdivisions"));
+    gallery.write("corner_cutting_asymmetric.svg", strokes, "Corner cutting with b != 1 - a, 7 subdivisions");
   }
   {
     const Points P = seed_shapes(examples)[0].second;
     gallery.write(
         "approximating_interpolating.svg",
-        strokes_svg(
-            {control(P),
-             {sd::refine(sd::chaikin(), P, true, 6), true, "#1f77b4", 1.8, "", "Chaikin (approximating)"},
-             {sd::refine(sd::four_point(), P, true, 6), true, "#ff7f0e", 1.8, "", "4-point (interpolating)"}},
-            "\"hepta\": approximating vs interpolating"));
+        {control(P),
+         {sd::refine(sd::chaikin(), P, true, 6), true, "#1f77b4", 1.8, "", "Chaikin (approximating)"},
+         {sd::refine(sd::four_point(), P, true, 6), true, "#ff7f0e", 1.8, "", "4-point (interpolating)"}},
+        "\"hepta\": approximating vs interpolating");
   }
 }
 
 }  // namespace
 
-std::string write_scheme_gallery(const std::filesystem::path& folder, const std::filesystem::path& examples) {
+SchemeFigures write_scheme_gallery(const std::filesystem::path& folder,
+                                   const std::filesystem::path& examples) {
   std::error_code ec;
   std::filesystem::create_directories(folder, ec);
   if (ec) throw IoError(folder.string() + ": cannot create the folder (" + ec.message() + ")");
   SchemeGallery gallery{folder, {}};
   seed_000_figures(gallery, examples);
   seed_001_figures(gallery, examples);
-  return gallery.summary;
+  return std::move(gallery.figures);
 }
 
 }  // namespace cifs::cli

@@ -29,10 +29,19 @@ struct SchemeOptions {
 /// The text for stdout; InvalidInput / IoError on bad input.
 std::string scheme(const SchemeOptions& options);
 
+/// What write_scheme_gallery wrote: the SVG files (under its folder) with their titles, and a
+/// one-line-per-file summary.
+struct SchemeFigures {
+  std::vector<std::filesystem::path> files;
+  std::vector<std::string> titles;
+  std::string summary;
+};
+
 /// Writes the seed figures (seed 000: Lane–Riesenfeld and its 4-/6-point variants on hepta, bone,
 /// infinity, sumsign, clover; seed 001: Chaikin open/closed, the generalised 4-point tension
 /// sweep, corner cutting with b = 1 − a and b ≠ 1 − a) as SVG into `folder` (created), the seed
-/// shapes read from `examples`/shapes. Returns a one-line-per-file summary.
-std::string write_scheme_gallery(const std::filesystem::path& folder, const std::filesystem::path& examples);
+/// shapes read from `examples`/shapes.
+SchemeFigures write_scheme_gallery(const std::filesystem::path& folder,
+                                   const std::filesystem::path& examples);
 
 }  // namespace cifs::cli

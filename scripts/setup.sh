@@ -14,6 +14,7 @@ packages=(
   libopenmpi-dev openmpi-bin  # cifs render across processes (-DCIFS_MPI=ON, on in the presets)
   python3-mpi4py  # examples/python/sweep.py across processes under mpirun (optional: one process without)
   clang-format clang-tidy  # scripts/lint.sh (CI)
+  chromium  # headless browser of the gallery page's test (tests/gallery/test_index.py)
   libclang-rt-14-dev  # libFuzzer and the sanitizer runtimes of clang 14: scripts/fuzz.sh (the fuzz preset)
 )
 

@@ -618,6 +618,8 @@ render::Camera make_camera(const io::CameraSpec& spec, const io::RenderSettings&
   f.perspective = spec.projection != io::CameraSpec::Projection::orthographic;
   f.fov_y = spec.fov_degrees;
   f.up = Eigen::Vector3d(spec.up[0], spec.up[1], spec.up[2]);
+  // A given eye keeps the sphere's framing: its target is the centre of the bounds (docs/experiments.md).
+  f.tight = !spec.eye;
   if (spec.eye) {
     const Eigen::Vector3d target =
         spec.target ? Eigen::Vector3d((*spec.target)[0], (*spec.target)[1], (*spec.target)[2])

@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "cifs/errors.hpp"
 #include "cifs/format.hpp"
@@ -28,6 +30,88 @@ std::string vector_text(const Eigen::Vector3d& v) {
 
 double radians(double degrees) {
   return degrees * std::numbers::pi / 180;
+}
+
+/// The root of a decreasing function on [lo, hi] (or the nearer end when it has none there).
+template <class F>
+double decreasing_root(F g, double lo, double hi) {
+  if (!(lo < hi)) return (lo + hi) / 2;
+  for (int i = 0; i < 64; ++i) {
+    const double mid = lo + (hi - lo) / 2;
+    if (mid <= lo || mid >= hi) break;
+    (g(mid) > 0 ? lo : hi) = mid;
+  }
+  return lo + (hi - lo) / 2;
+}
+
+/// The closest perspective camera along the sphere camera's direction (same fov and basis) whose
+/// frustum, shrunk to the usable fraction, holds every point; centred on the projected extent.
+/// With the eye at centre + a·r + b·u + c·f, a point q (relative to the centre) is inside the left
+/// and right planes when c·tx − a ≤ q·(tx·f − r) and c·tx + a ≤ q·(tx·f + r) (likewise b, ty, u):
+/// the largest c meets the tighter pair, and a (b) then centres the other pair's projections.
+/// Empty when a point would be (nearly) at the eye: e.g. a segment along the view direction.
+std::optional<Camera> tight_perspective(const Points& points, const Eigen::Vector3d& centre,
+                                        const Camera& sphere, const ViewTransform& view, double usable,
+                                        double aspect) {
+  const double ty = usable * std::tan(radians(sphere.fov_y) / 2), tx = ty * aspect;
+  // The points in the camera's basis, relative to the centre.
+  const auto n = static_cast<std::size_t>(points.rows());
+  std::vector<double> qr(n), qu(n), qf(n);
+  double L = INFINITY, R = INFINITY, B = INFINITY, T = INFINITY;
+  for (std::size_t i = 0; i < n; ++i) {
+    Eigen::Vector3d q = Eigen::Vector3d::Zero();
+    q.head(points.cols()) = points.row(static_cast<Eigen::Index>(i)).transpose();
+    q -= centre;
+    qr[i] = q.dot(view.right), qu[i] = q.dot(view.up), qf[i] = q.dot(view.forward);
+    L = std::min(L, tx * qf[i] - qr[i]), R = std::min(R, tx * qf[i] + qr[i]);
+    B = std::min(B, ty * qf[i] - qu[i]), T = std::min(T, ty * qf[i] + qu[i]);
+  }
+  const double c = std::min((L + R) / (2 * tx), (B + T) / (2 * ty));
+  const double nearest = *std::min_element(qf.begin(), qf.end()) - c;
+  if (!std::isfinite(c) || !std::isfinite(nearest) || !(-c > 0) || !(nearest > 1e-9 * -c))
+    return std::nullopt;
+  // The sum of the extreme tangents, which decreases as the eye moves along the axis.
+  const auto centring = [&](const std::vector<double>& qa) {
+    return [&qa, &qf, c, n](double a) {
+      double lo = INFINITY, hi = -INFINITY;
+      for (std::size_t i = 0; i < n; ++i) {
+        const double x = (qa[i] - a) / (qf[i] - c);
+        lo = std::min(lo, x), hi = std::max(hi, x);
+      }
+      return lo + hi;
+    };
+  };
+  const double a = decreasing_root(centring(qr), c * tx - L, R - c * tx);
+  const double b = decreasing_root(centring(qu), c * ty - B, T - c * ty);
+  Camera camera = sphere;
+  camera.eye = centre + a * view.right + b * view.up + c * view.forward;
+  camera.target = camera.eye + view.forward * -c;  // on the axis, at the centre's depth
+  camera.near = std::min(1e-4 * -c, nearest / 2);
+  if (!camera.eye.allFinite() || !camera.target.allFinite() || !(camera.near > 0)) return std::nullopt;
+  return camera;
+}
+
+/// The orthographic camera of the sphere camera's direction whose window is the projected extent's
+/// box over the usable fraction (tighter direction), centred on it.
+std::optional<Camera> tight_orthographic(const Points& points, const Eigen::Vector3d& centre,
+                                         const Camera& sphere, const ViewTransform& view, double usable,
+                                         double aspect) {
+  double s_lo = INFINITY, s_hi = -INFINITY, t_lo = INFINITY, t_hi = -INFINITY;
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    Eigen::Vector3d q = Eigen::Vector3d::Zero();
+    q.head(points.cols()) = points.row(i).transpose();
+    q -= centre;
+    s_lo = std::min(s_lo, q.dot(view.right)), s_hi = std::max(s_hi, q.dot(view.right));
+    t_lo = std::min(t_lo, q.dot(view.up)), t_hi = std::max(t_hi, q.dot(view.up));
+  }
+  const double height = std::max(t_hi - t_lo, (s_hi - s_lo) / aspect) / usable;
+  if (!(height > 0) || !std::isfinite(height)) return std::nullopt;
+  Camera camera = sphere;
+  camera.ortho_height = height;
+  camera.target = centre + view.right * (s_lo + s_hi) / 2 + view.up * (t_lo + t_hi) / 2;
+  camera.eye = camera.target + (sphere.eye - sphere.target);
+  if (!camera.eye.allFinite() || !camera.target.allFinite()) return std::nullopt;
+  return camera;
 }
 
 }  // namespace
@@ -121,6 +205,7 @@ Camera frame(const Points& points, const FramingOptions& options) {
   double radius = 0;
   for (Eigen::Index i = 0; i < points.rows(); ++i)
     radius = std::max(radius, (points.row(i).transpose() - centre).norm());
+  // The bounding sphere first: a valid camera for any input, kept when the tight fit below degenerates.
   camera.target = centre;
   camera.up = options.up;
   if (options.perspective) {
@@ -137,8 +222,14 @@ Camera frame(const Points& points, const FramingOptions& options) {
     camera.ortho_height = 2 * radius / usable * std::max(1.0, H / W);
     camera.eye = centre + direction * (2 * radius + 1);
   }
-  (void)view_transform(camera);  // refuses an up parallel to view_direction
-  return camera;
+  const ViewTransform view = view_transform(camera);  // refuses an up parallel to view_direction
+  // The sphere leaves the corners of the image empty and, for flat shapes seen at an angle, much
+  // more (the hills filled 60% of the picture): fit the projected extent itself.
+  if (!options.tight) return camera;
+  const std::optional<Camera> tight = options.perspective
+                                          ? tight_perspective(points, centre, camera, view, usable, W / H)
+                                          : tight_orthographic(points, centre, camera, view, usable, W / H);
+  return tight ? *tight : camera;
 }
 
 }  // namespace cifs::render

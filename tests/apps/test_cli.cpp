@@ -10,6 +10,7 @@
 
 #include "apps/cli_runner.hpp"
 
+#include "cifs/files.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/io/json.hpp"
 
@@ -379,6 +380,32 @@ TEST_CASE("cifs gallery runs every example experiment", "[cli]") {
   CHECK_THAT(r.out, Catch::Contains(
                         "subdivision-torus: catmull-clark subdivision of torus.obj, 3 levels, 6144 faces") &&
                         Catch::Contains("sqrt3 subdivision of tetrahedron.obj, 6 levels"));
+  // index.html: every experiment's description (read here from its file), every image the gallery
+  // wrote shown, every other file linked, relative to the folder (the shipped names need no encoding).
+  const std::string page = cifs::read_file(out / "index.html");
+  for (const auto& entry : std::filesystem::directory_iterator(CIFS_EXAMPLES_DIR "/experiments")) {
+    if (entry.path().extension() != ".json") continue;
+    std::string expected;
+    for (const char c : json::parse(cifs::read_file(entry.path()))["description"].get<std::string>())
+      expected += c == '\''  ? std::string("&#39;")
+                  : c == '"' ? std::string("&quot;")
+                  : c == '&' ? std::string("&amp;")
+                  : c == '<' ? std::string("&lt;")
+                  : c == '>' ? std::string("&gt;")
+                             : std::string(1, c);
+    CHECK_THAT(page, Catch::Contains("<p>" + expected + "</p>"));
+  }
+  std::size_t images = 0;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(out)) {
+    if (!entry.is_regular_file() || entry.path().filename() == "index.html") continue;
+    const std::string name = entry.path().lexically_relative(out).generic_string();
+    const bool image = entry.path().extension() == ".png" || entry.path().extension() == ".svg";
+    images += image;
+    INFO(name);
+    CHECK_THAT(page, Catch::Contains((image ? "src=\"" : "href=\"") + name + "\""));
+  }
+  CHECK(images >= 2 * experiments);
+  CHECK_THAT(r.out, Catch::Contains("gallery: wrote " + (out / "index.html").string()));
   std::filesystem::remove_all(out);
   // A wrong examples folder is one clear error.
   check_error(cifs_cli("gallery " + out.string() + " --examples /no/such/folder"), "/no/such/folder");

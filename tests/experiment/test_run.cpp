@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Experiments run end to end: every kind of source, the OpenEXR written and read back, the
 // geometry files, the perturbation's record, and bad experiments that leave no file behind.
+#include <algorithm>
+#include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <fstream>
@@ -476,4 +478,52 @@ TEST_CASE("The gallery's NURBS and fractal junction: B's boundary is A's NURBS b
   o.png = dir.path() / "f.png";
   small.render.width = small.render.height = 64;
   CHECK(experiment::run(small, o).residual <= 1e-12);
+}
+
+namespace {
+
+/// The empty border of an image's coverage (A > 0), as fractions of its size: {left, right, top, bottom}.
+std::array<double, 4> empty_border(const render::Image& image) {
+  const std::vector<float>& a = image.channels.at("A");
+  std::size_t left = image.width, right = 0, top = image.height, bottom = 0;
+  for (std::size_t y = 0; y < image.height; ++y)
+    for (std::size_t x = 0; x < image.width; ++x)
+      if (a[y * image.width + x] > 0)
+        left = std::min(left, x), right = std::max(right, x), top = std::min(top, y),
+        bottom = std::max(bottom, y);
+  REQUIRE(right >= left);
+  const double W = double(image.width), H = double(image.height);
+  return {double(left) / W, double(image.width - 1 - right) / W, double(top) / H,
+          double(image.height - 1 - bottom) / H};
+}
+
+}  // namespace
+
+TEST_CASE("Surfaces and 3-D curves are framed by their projected extent", "[experiment][camera]") {
+  // The hills seen from the default direction: the bounding sphere left 31 % of the rows above it and
+  // 15–18 % of the columns on either side empty (at 1200 × 900, before the tight fit). Now the tighter
+  // direction (here the width) has only the 2 % margin, and the other one is centred.
+  ScratchDir dir;
+  (void)run_in(dir, R"({"shape": "../shapes/hills.json", "evaluation": {"depth": 4},
+      "camera": {"projection": "perspective", "margin": 0.02},
+      "render": {"width": 240, "height": 180}, "outputs": {"exr": "h.exr"}})");
+  const auto [left, right, top, bottom] = empty_border(render::read_exr(dir.path() / "h.exr"));
+  INFO("empty border: left " << left << ", right " << right << ", top " << top << ", bottom " << bottom);
+  const double pixel_w = 1.0 / 240, pixel_h = 1.0 / 180;
+  CHECK(std::max(left, right) <= 0.02 + 2 * pixel_w);
+  CHECK(std::min(left, right) >= 0.02 - 2 * pixel_w);
+  CHECK(std::abs(top - bottom) <= 2 * pixel_h);
+  CHECK(std::max(top, bottom) <= 0.16);  // the aspect ratio kept: the hills are wider than 4:3
+  // A 3-D curve (and its control net), long and thin: the margin on the tighter side (it was 11 %
+  // with the sphere), centred; its lines (3 px) may reach 2 px past the points.
+  ScratchDir curve;
+  (void)run_in(curve, R"({"shape": "../shapes/cubic.json", "evaluation": {"depth": 6},
+      "camera": {"projection": "perspective", "margin": 0.05},
+      "render": {"width": 200, "height": 200, "line_width": 3, "control_net": true}, "outputs": {"exr": "c.exr"}})");
+  const auto c = empty_border(render::read_exr(curve.path() / "c.exr"));
+  INFO("curve's empty border: " << c[0] << ", " << c[1] << ", " << c[2] << ", " << c[3]);
+  const double p = 1.0 / 200;
+  CHECK(std::min(std::max(c[0], c[1]), std::max(c[2], c[3])) <= 0.05 + 2 * p);
+  CHECK(std::abs(c[0] - c[1]) <= 4 * p);
+  CHECK(std::abs(c[2] - c[3]) <= 4 * p);
 }

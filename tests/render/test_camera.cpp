@@ -1,4 +1,6 @@
 // SPDX-License-Identifier: MIT
+#include <algorithm>
+#include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
@@ -94,10 +96,11 @@ TEST_CASE("Framing: planar shapes get a top view, 3-D shapes fit the image", "[r
         hi_y = std::max(hi_y, p.y);
       }
       INFO("perspective " << perspective << ", width " << width);
-      CHECK(lo_x >= 0.05 * static_cast<double>(width));
-      CHECK(hi_x <= 0.95 * static_cast<double>(width));
-      CHECK(lo_y >= 5);
-      CHECK(hi_y <= 95);
+      // The tight fit meets the margin in one direction: to rounding.
+      CHECK(lo_x >= 0.05 * static_cast<double>(width) - 1e-9);
+      CHECK(hi_x <= 0.95 * static_cast<double>(width) + 1e-9);
+      CHECK(lo_y >= 5 - 1e-9);
+      CHECK(hi_y <= 95 + 1e-9);
     }
 }
 
@@ -130,4 +133,63 @@ TEST_CASE("Cameras refuse bad input", "[render][camera]") {
   FramingOptions o;
   o.margin = 0.5;
   CHECK_THROWS_AS(frame(Points::Zero(2, 2), o), InvalidInput);
+}
+
+namespace {
+
+/// The pixel box of the points' projections: {left, right, top, bottom}.
+std::array<double, 4> pixel_box(const Camera& camera, const Points& points) {
+  const ViewTransform v = view_transform(camera);
+  std::array<double, 4> box{1e300, -1e300, 1e300, -1e300};
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    const Projected p = v.project(points.row(i).transpose());
+    REQUIRE(p.depth > camera.near);
+    box = {std::min(box[0], p.x), std::max(box[1], p.x), std::min(box[2], p.y), std::max(box[3], p.y)};
+  }
+  return box;
+}
+
+}  // namespace
+
+TEST_CASE("Framing: 3-D shapes fill the image to the margin in the tighter direction, centred",
+          "[render][camera]") {
+  // A flat, wide cloud (as the hills surface), and a 3-D curve: a helix.
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> g(0, 1);
+  Points cloud(300, 3);
+  for (Eigen::Index i = 0; i < cloud.rows(); ++i) cloud.row(i) << 3 * g(rng), 2 + 2 * g(rng), 0.3 * g(rng);
+  Points helix(400, 3);
+  for (Eigen::Index i = 0; i < helix.rows(); ++i) {
+    const double t = 0.05 * static_cast<double>(i);
+    helix.row(i) << std::cos(t), std::sin(t), 0.1 * t;
+  }
+  for (const Points* shape : {&cloud, &helix})
+    for (const bool perspective : {true, false})
+      for (const std::size_t width : {120u, 400u}) {
+        FramingOptions o{.width = width, .height = 150, .margin = 0.04, .perspective = perspective};
+        INFO("shape " << (shape == &cloud ? "cloud" : "helix") << ", perspective " << perspective
+                      << ", width " << width);
+        const auto [left, right, top, bottom] = pixel_box(frame(*shape, o), *shape);
+        const double W = static_cast<double>(width), H = 150;
+        // Inside the margins; the tighter direction meets them (to rounding); centred both ways.
+        CHECK(left >= 0.04 * W - 1e-6);
+        CHECK(right <= 0.96 * W + 1e-6);
+        CHECK(top >= 0.04 * H - 1e-6);
+        CHECK(bottom <= 0.96 * H + 1e-6);
+        CHECK(std::max((right - left) / (0.92 * W), (bottom - top) / (0.92 * H)) == Approx(1).epsilon(1e-9));
+        CHECK((left + right) / 2 == Approx(W / 2).margin(1e-6));
+        CHECK((top + bottom) / 2 == Approx(H / 2).margin(1e-6));
+        // Never smaller than the bounding sphere's framing (the former one, `tight` off).
+        o.tight = false;
+        const auto sphere = pixel_box(frame(*shape, o), *shape);
+        CHECK(right - left >= (sphere[1] - sphere[0]) * (1 - 1e-12));
+        CHECK(bottom - top >= (sphere[3] - sphere[2]) * (1 - 1e-12));
+      }
+  // A segment along the view direction has no tight perspective fit: the sphere's camera is kept.
+  Points along(2, 3);
+  along << 0, 0, 0, 1, -1.6, 1.1;
+  const FramingOptions o{.width = 64, .height = 64};
+  const Camera c = frame(along, o);
+  CHECK(c.eye.allFinite());
+  CHECK(pixel_box(c, along)[0] == Approx(32));
 }

@@ -82,16 +82,23 @@ struct FramingOptions {
   Eigen::Vector3d view_direction{1.0, -1.6, 1.1};
   Eigen::Vector3d up{0, 0, 1};
   double fov_y = 35;
+  /// 3-D shapes: fit the points' projection (true) or only their bounding sphere (false).
+  bool tight = true;
 };
 
 /// A camera that shows all of `points` (`#P by 2` or `#P by 3`) with the margin.
 /// - Planar shapes (2 columns, or 3 with every z equal): an orthographic top view (eye above the
 ///   plane, looking down −z, x right and y up in the image); the bounding box is centred and fills
 ///   the image up to the margin in its tighter direction.
-/// - Other shapes: the bounding sphere (centre of the box, radius of the farthest point) is
-///   centred and fits in the image minus the margin, seen along `view_direction`; perspective
-///   places the eye at distance r / sin(half the smaller field of view), orthographic sets
-///   ortho_height to the sphere's diameter over the usable fraction.
+/// - Other shapes, seen along `view_direction`: with `tight`, the closest camera whose image, less
+///   the margin, holds the points' projection, centred on it — perspective keeps fov_y and moves
+///   the eye along the view direction and across it (the largest eye depth that keeps every point
+///   inside the four shrunk frustum planes, then the projection's extent centred by bisection),
+///   orthographic takes the projected box; the margin is met exactly in the tighter direction.
+///   Without `tight` (or when the fit degenerates: no point in front of the eye) the bounding
+///   sphere (centre of the box, radius of the farthest point) is centred and fits in the image minus
+///   the margin: perspective places the eye at distance r / sin(half the smaller field of view),
+///   orthographic sets ortho_height to the sphere's diameter over the usable fraction.
 /// Throws InvalidInput for no points, non-finite points, a column count other than 2 or 3, a
 /// margin outside [0, 0.45], or a zero image size.
 Camera frame(const Points& points, const FramingOptions& options = {});

@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: MIT
+// The gallery page's writer: escaped text, relative percent-encoded links, images shown, files linked.
+#include <catch2/catch.hpp>
+#include <string>
+
+#include "cifs/errors.hpp"
+#include "cifs/io/html.hpp"
+
+using namespace cifs;
+
+namespace {
+
+std::size_t count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("html_escape replaces the five characters of markup", "[io][html]") {
+  CHECK(io::html_escape(R"(a<b>&"c"'d')") == "a&lt;b&gt;&amp;&quot;c&quot;&#39;d&#39;");
+  CHECK(io::html_escape("plain text, é") == "plain text, é");
+  CHECK(io::html_escape("&amp;") == "&amp;amp;");  // escaped again: the text is not markup
+}
+
+TEST_CASE("relative_href percent-encodes and refuses paths outside the folder", "[io][html]") {
+  CHECK(io::relative_href("hills.png") == "hills.png");
+  CHECK(io::relative_href("schemes/lr_bone_degree3.svg") == "schemes/lr_bone_degree3.svg");
+  // Hand-encoded: space 0x20, '#' 0x23, '&' 0x26, '%' 0x25, '?' 0x3F, '"' 0x22, 'é' C3 A9.
+  CHECK(io::relative_href("a b#1&c%?\".png") == "a%20b%231%26c%25%3F%22.png");
+  CHECK(io::relative_href("é.exr") == "%C3%A9.exr");
+  CHECK_THROWS_WITH(io::relative_href("/tmp/out/hills.png"), Catch::Contains("not a path relative"));
+  CHECK_THROWS_WITH(io::relative_href("../hills.png"), Catch::Contains("leaves the page's folder"));
+  CHECK_THROWS_WITH(io::relative_href("a/../../b.png"), Catch::Contains("leaves"));
+  CHECK_THROWS_AS(io::relative_href(""), InvalidInput);
+}
+
+TEST_CASE("gallery_html shows images, links the other files, escapes every text", "[io][html]") {
+  const std::vector<io::GallerySection> sections{
+      {.name = "hills <3",
+       .description = R"(A "bicubic" surface & <b>its</b> mesh)",
+       .files = {"hills.exr", "hills.png", "hills.ply", "hills mesh.SVG"}},
+      {.name = "schemes",
+       .description = "",
+       .files = {"schemes/a.svg", "schemes/b.svg"},
+       .captions = {"Chaikin <open>", ""}},
+  };
+  const std::string page = io::gallery_html(sections, "My <gallery>");
+  CHECK(page.starts_with("<!DOCTYPE html>"));
+  CHECK_THAT(page, Catch::Contains("<title>My &lt;gallery&gt;</title>"));
+  CHECK_THAT(page, Catch::Contains("<h2>hills &lt;3</h2>"));
+  CHECK_THAT(page, Catch::Contains("<p>A &quot;bicubic&quot; surface &amp; &lt;b&gt;its&lt;/b&gt; mesh</p>"));
+  CHECK(page.find("<b>") == std::string::npos);
+  // Four images (PNG, SVG of either case), each also a link to itself; the EXR and PLY are links.
+  CHECK(count(page, "<img ") == 4);
+  for (const char* src : {"hills.png", "hills%20mesh.SVG", "schemes/a.svg", "schemes/b.svg"}) {
+    CHECK(count(page, std::string("src=\"") + src + "\"") == 1);
+    CHECK(count(page, std::string("href=\"") + src + "\"") == 1);
+  }
+  CHECK_THAT(page, Catch::Contains("<a href=\"hills.exr\">hills.exr</a>"));
+  CHECK_THAT(page, Catch::Contains("<a href=\"hills.ply\">hills.ply</a>"));
+  CHECK(count(page, "href=") == 6);
+  CHECK_THAT(page, Catch::Contains("schemes/a.svg: Chaikin &lt;open&gt;</figcaption>"));
+  // A section without a description has no empty paragraph; self-contained: no script, no URL scheme.
+  CHECK(count(page, "<p>") == 1);
+  CHECK(page.find("<script") == std::string::npos);
+  CHECK(page.find("://") == std::string::npos);
+  CHECK(count(page, "<section>") == 2);
+  CHECK_THROWS_WITH(io::gallery_html({{.name = "x", .description = "", .files = {"../x.png"}}}, "t"),
+                    Catch::Contains("../x.png"));
+}
