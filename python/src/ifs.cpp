@@ -300,10 +300,42 @@ void bind_piece_bounds(py::module_& m) {
                     "Every piece the points stand for has a diameter below this (Cartesian units).")
       .def_readonly("deepest", &ifs::ToleranceSample::deepest, "Largest leaf depth.")
       .def_readonly("leaves", &ifs::ToleranceSample::leaves, "Number of leaves (= number of points).")
+      .def_property_readonly(
+          "cover",
+          [](const ifs::ToleranceSample& t) {
+            py::list out;
+            for (const ifs::CoverCount& c : t.cover) out.append(py::make_tuple(c.epsilon, c.leaves));
+            return out;
+          },
+          "The search's (epsilon, leaves) counts, coarsest first, this sample's last (cover_exponent).")
       .def("__repr__", [](const ifs::ToleranceSample& t) {
         return "ToleranceSample(leaves=" + std::to_string(t.leaves) + ", resolution=" + num(t.resolution) +
                ", deepest=" + std::to_string(t.deepest) + ")";
       });
+  py::class_<ifs::CoverExponent>(m, "CoverExponent", "Growth of a proven cover (cover_exponent).")
+      .def_readonly("dimension", &ifs::CoverExponent::dimension,
+                    "Least-squares slope of log n against log(1/ε).")
+      .def_readonly("spread", &ifs::CoverExponent::spread,
+                    "Largest |local slope − dimension| over consecutive fitted counts.")
+      .def_readonly("max_epsilon", &ifs::CoverExponent::max_epsilon, "Coarsest fitted ε.")
+      .def_readonly("min_epsilon", &ifs::CoverExponent::min_epsilon, "Finest fitted ε.")
+      .def_readonly("levels", &ifs::CoverExponent::levels, "Counts fitted.")
+      .def("__repr__", [](const ifs::CoverExponent& e) {
+        return "CoverExponent(dimension=" + num(e.dimension) + ", spread=" + num(e.spread) +
+               ", levels=" + std::to_string(e.levels) + ")";
+      });
+  m.def(
+      "cover_exponent",
+      [](const std::vector<std::pair<double, std::int64_t>>& counts, std::int64_t min_leaves, int levels) {
+        std::vector<ifs::CoverCount> c;
+        for (const auto& [epsilon, leaves] : counts)
+          c.push_back({epsilon, count_arg(leaves, "cover_exponent: leaves")});
+        return ifs::cover_exponent(c, count_arg(min_leaves, "cover_exponent: min_leaves"), levels);
+      },
+      py::arg("counts"), py::arg("min_leaves") = 1000, py::arg("levels") = 64,
+      "Growth of a proven cover: the slope of log n(ε) against log(1/ε) over the finest `levels` counts "
+      "(epsilon, leaves) with at least `min_leaves` leaves, in ToleranceSample.cover's order; None with "
+      "fewer than 3. Its limit bounds the upper box-counting dimension from above; it has no boundary term.");
   m.def(
       "tolerance_sample",
       [](const Automaton& a, const std::vector<Points>& nets, double epsilon, bool homogeneous,

@@ -395,9 +395,13 @@ TEST_CASE("proven cover: the pieces' growth is the dimension, without the boxes'
     REQUIRE(e);
     CHECK(std::abs(e->dimension - std::log2(3.0)) < 1e-12);
     CHECK(e->spread < 1e-12);
-    CHECK(e->levels == 4);  // the finest four
+    CHECK(e->levels == 5);  // 3^7 … 3^11 have ≥ 1000 leaves
     CHECK(e->min_epsilon == std::ldexp(1.0, -7));
-    CHECK(e->max_epsilon == std::ldexp(1.0, -4));
+    CHECK(e->max_epsilon == std::ldexp(1.0, -3));
+    const std::optional<ifs::CoverExponent> finest = ifs::cover_exponent(counts, 1000, 4);
+    REQUIRE(finest);
+    CHECK(finest->levels == 4);
+    CHECK(finest->max_epsilon == std::ldexp(1.0, -4));
     CHECK_FALSE(ifs::cover_exponent(std::span(counts).first(5), 1000));  // 3^7, 3^8 only ≥ 1000
   }
   const auto cover_of = [](const automata::Automaton& a, const std::vector<Points>& nets,

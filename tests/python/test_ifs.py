@@ -231,6 +231,21 @@ class AttractorTest(unittest.TestCase):
         self.assertEqual(message(self, lambda: ifs.for_each_leaf(a, [NET], -2, print)),
                          "for_each_leaf: depth is -2, must be ≥ 0")
 
+    def test_proven_cover_of_a_tolerance_sample(self):
+        # Chaikin's curve: the search's counts at ε halving from diam/16; their growth is the curve's
+        # dimension 1, and cover_exponent is the least-squares slope numpy gives on the same counts.
+        sample = ifs.tolerance_sample(chaikin(), [NET], max_points=1 << 16)
+        cover = sample.cover
+        self.assertEqual(cover[-1], (sample.resolution, sample.leaves))
+        self.assertTrue(all(b[0] == a[0] / 2 and b[1] >= a[1] for a, b in zip(cover, cover[1:])))
+        fit = ifs.cover_exponent(cover)
+        used = [c for c in cover if c[1] >= 1000]
+        slope = np.polyfit([-math.log(e) for e, _ in used], [math.log(n) for _, n in used], 1)[0]
+        self.assertEqual(fit.levels, len(used))
+        self.assertAlmostEqual(fit.dimension, slope, delta=1e-12)
+        self.assertAlmostEqual(fit.dimension, 1.0, delta=0.01)
+        self.assertIsNone(ifs.cover_exponent(cover[:2]))
+
     def test_tolerance_leaves_bound_their_piece(self):
         a = chaikin()
         leaves = []
