@@ -2,6 +2,8 @@
 #include "commands.hpp"
 #include "world.hpp"
 
+#include <sys/stat.h>
+#include <unistd.h>
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -87,6 +89,22 @@ class StdoutSink final : public ByteSink {
   }
 };
 
+/// Standard output redirected to a regular file is held to the free disk space as `-o FILE` is, before
+/// any work (depth 40 must not run for hours into ENOSPC); a pipe or a terminal takes what it reads.
+/// Text formats are held to a lower bound of their size (a digit and a separator per coordinate).
+void check_stdout_space(const std::string& format, std::uint64_t count, Eigen::Index dim) {
+  struct stat st {};
+  if (fstat(STDOUT_FILENO, &st) != 0 || !S_ISREG(st.st_mode)) return;
+  std::error_code ec;
+  const std::filesystem::path target = std::filesystem::read_symlink("/proc/self/fd/1", ec);
+  if (ec) return;
+  const std::optional<std::uint64_t> size = io::points_file_size(format, count, dim);
+  const double bytes =
+      size ? static_cast<double>(*size)
+           : static_cast<double>(count) * 2.0 * static_cast<double>(std::max<Eigen::Index>(dim, 1));
+  check_disk_space(target, static_cast<std::uint64_t>(std::min(bytes, 1.8e19)), !size);
+}
+
 /// Where a command's points go: a file written as they come (PointsFile: its format from the extension,
 /// a chunk in memory), or standard output, also as they come (a PointsWriter on StdoutSink).
 class PointsOutput {
@@ -94,9 +112,10 @@ class PointsOutput {
   PointsOutput(const std::filesystem::path& output, const std::string& format, std::uint64_t count,
                Eigen::Index dim, const io::PointsStyle& style, const std::string& label, bool quiet)
       : count_(count), bar_(label, quiet || output.empty()) {
-    if (output.empty())
+    if (output.empty()) {
+      check_stdout_space(format, count, dim);
       text_.emplace(stdout_, format, count, dim, style);
-    else
+    } else
       file_.emplace(output, count, dim, style);
   }
   /// Homogeneous rows `(w·x, w)` when `rational`: written as their Cartesian points.
