@@ -328,6 +328,7 @@ void bind_piece_bounds(py::module_& m) {
       "cover_exponent",
       [](const std::vector<std::pair<double, std::int64_t>>& counts, std::int64_t min_leaves, int levels) {
         std::vector<ifs::CoverCount> c;
+        c.reserve(counts.size());
         for (const auto& [epsilon, leaves] : counts)
           c.push_back({epsilon, count_arg(leaves, "cover_exponent: leaves")});
         return ifs::cover_exponent(c, count_arg(min_leaves, "cover_exponent: min_leaves"), levels);
