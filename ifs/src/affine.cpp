@@ -65,9 +65,9 @@ automata::Automaton affine_automaton(std::span<const AffineMap> maps, const Poin
   if (maps.empty()) throw InvalidInput("affine_automaton: no map");
   automata::Automaton a;
   const auto s =
-      boost::add_vertex(automata::State{.size = 3, .recurrent = true, .name = "triangle"}, a.graph);
+      add_vertex(automata::State{.size = 3, .recurrent = true, .name = "triangle"}, a.graph);
   for (std::size_t i = 0; i < maps.size(); ++i)
-    boost::add_edge(
+    add_edge(
         s, s, automata::Transition{"w" + std::to_string(i), barycentric_matrix(maps[i], triangle)}, a.graph);
   automata::Initial init;
   init.state = s;
