@@ -86,8 +86,7 @@ std::vector<std::size_t> minimize_classes(const Automaton& a) {
     std::vector<std::size_t> next(n);
     for (StateId s = 0; s < n; ++s) {
       std::vector<std::size_t> key{cls[s]};
-      for (auto [e, end] = out_edges(s, a.graph); e != end; ++e)
-        key.push_back(cls[target(*e, a.graph)]);
+      for (auto [e, end] = out_edges(s, a.graph); e != end; ++e) key.push_back(cls[target(*e, a.graph)]);
       next[s] = next_ids.try_emplace(key, next_ids.size()).first->second;
     }
     cls.swap(next);

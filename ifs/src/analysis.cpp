@@ -578,8 +578,8 @@ std::vector<Eigen::RowVectorXd> repeated_child_functionals(const Automaton& auto
   for (const StateId s : reachable_states(automaton))
     if (child < 0 || static_cast<std::size_t>(child) >= out_degree(s, g))
       throw InvalidInput("repeated_child_functionals: child " + std::to_string(child) + " but " +
-                         detail::state_label(automaton, s) + " has " +
-                         std::to_string(out_degree(s, g)) + " children");
+                         detail::state_label(automaton, s) + " has " + std::to_string(out_degree(s, g)) +
+                         " children");
   return chain_functionals(
       automaton, [&](StateId) { return static_cast<std::size_t>(child); }, "child-" + std::to_string(child));
 }

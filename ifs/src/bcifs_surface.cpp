@@ -28,8 +28,7 @@ StateId source_cell(const Bcifs& sys, const Constraint& c) {
 
 std::vector<std::pair<StateId, automata::TransitionId>> children(const automata::Graph& graph, StateId s) {
   std::vector<std::pair<StateId, automata::TransitionId>> out;
-  for (auto [e, end] = out_edges(s, graph); e != end; ++e)
-    out.emplace_back(target(*e, graph), *e);
+  for (auto [e, end] = out_edges(s, graph); e != end; ++e) out.emplace_back(target(*e, graph), *e);
   return out;
 }
 
@@ -52,9 +51,9 @@ StateId cell_of(Product& p, std::array<StateId, 2> c, std::deque<StateId>& todo)
   const auto [it, added] = p.ids.try_emplace(c, 0);
   if (added) {
     it->second = add_vertex(automata::State{.size = gu[c[0]].size * gv[c[1]].size,
-                                                   .recurrent = false,
-                                                   .name = "(" + gu[c[0]].name + "," + gv[c[1]].name + ")"},
-                                   p.sys.automaton.graph);
+                                            .recurrent = false,
+                                            .name = "(" + gu[c[0]].name + "," + gv[c[1]].name + ")"},
+                            p.sys.automaton.graph);
     p.pair.push_back(c);
     p.sys.dimension.push_back(p.curves[0]->dimension[c[0]] + p.curves[1]->dimension[c[1]]);
     todo.push_back(it->second);
@@ -106,8 +105,8 @@ void add_transitions(Product& p, const ProductOptions& options) {
         const auto& tu = gu[cu[i].second];
         const auto& tv = gv[cv[j].second];
         add_edge(s, p.ids.at({cu[i].first, cv[j].first}),
-                        automata::Transition{tu.label + v_label(tv.label), kron(tu.matrix, tv.matrix)},
-                        p.sys.automaton.graph);
+                 automata::Transition{tu.label + v_label(tv.label), kron(tu.matrix, tv.matrix)},
+                 p.sys.automaton.graph);
         const bool fu = is_free(0, x, static_cast<int>(i)), fv = is_free(1, y, static_cast<int>(j));
         if (options.free_when_either ? fu || fv : fu && fv)
           p.sys.free.push_back(TransitionRef{s, static_cast<int>(i * cv.size() + j)});

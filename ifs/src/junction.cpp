@@ -52,8 +52,8 @@ Bcifs uniform_curve_bcifs(const Eigen::MatrixXd& S0, const Eigen::MatrixXd& S1,
   Bcifs sys;
   auto& g = sys.automaton.graph;
   const auto add = [&](const std::string& name, Eigen::Index size, int dimension) {
-    const StateId s = add_vertex(
-        automata::State{.size = static_cast<int>(size), .recurrent = true, .name = name}, g);
+    const StateId s =
+        add_vertex(automata::State{.size = static_cast<int>(size), .recurrent = true, .name = name}, g);
     sys.dimension.push_back(dimension);
     return s;
   };
@@ -237,12 +237,10 @@ std::vector<StateId> join_cells(const Bcifs& a, const Bcifs& b, const Sharing& s
     id[s] = add_vertex(st, g);
     sys.dimension.push_back(b.dimension[s]);
   }
-  for (const automata::TransitionId e : edges(ga))
-    add_edge(source(e, ga), target(e, ga), ga[e], g);
+  for (const automata::TransitionId e : edges(ga)) add_edge(source(e, ga), target(e, ga), ga[e], g);
   for (StateId s = 0; s < num_vertices(gb); ++s) {
     if (sharing.partner.count(s)) continue;
-    for (auto [e, end] = out_edges(s, gb); e != end; ++e)
-      add_edge(id[s], id[target(*e, gb)], gb[*e], g);
+    for (auto [e, end] = out_edges(s, gb); e != end; ++e) add_edge(id[s], id[target(*e, gb)], gb[*e], g);
   }
   return id;
 }

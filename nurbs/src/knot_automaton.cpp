@@ -51,10 +51,9 @@ KnotAutomaton knot_automaton(const Curve& curve) {
     const Window window = k.windows[s];
     for (auto half : {Half::G, Half::D}) {
       const StateId child = state_of(child_window(window, d, half));
-      add_edge(
-          s, child,
-          automata::Transition{kHalfLabel[static_cast<int>(half)], subdivision_matrix(window, d, half)},
-          a.graph);
+      add_edge(s, child,
+               automata::Transition{kHalfLabel[static_cast<int>(half)], subdivision_matrix(window, d, half)},
+               a.graph);
     }
   }
   automata::mark_recurrent(a);

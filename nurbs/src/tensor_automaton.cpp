@@ -29,9 +29,9 @@ TensorAutomaton tensor_automaton(const nurbs::Surface& surface) {
     if (added) {
       const StateId s =
           add_vertex(automata::State{.size = gu[pair[0]].size * gv[pair[1]].size,
-                                            .recurrent = false,
-                                            .name = "(" + gu[pair[0]].name + "," + gv[pair[1]].name + ")"},
-                            t.product.graph);
+                                     .recurrent = false,
+                                     .name = "(" + gu[pair[0]].name + "," + gv[pair[1]].name + ")"},
+                     t.product.graph);
       it->second = s;
       t.factor_states.push_back(pair);
       todo.push_back(s);
@@ -55,9 +55,9 @@ TensorAutomaton tensor_automaton(const nurbs::Surface& surface) {
       for (auto [ev, ev_end] = out_edges(q, gv); ev != ev_end; ++ev) {
         const StateId child = state_of({target(*eu, gu), target(*ev, gv)});
         add_edge(s, child,
-                        automata::Transition{gu[*eu].label + v_label(gv[*ev].label),
-                                             kron(gu[*eu].matrix, gv[*ev].matrix)},
-                        t.product.graph);
+                 automata::Transition{gu[*eu].label + v_label(gv[*ev].label),
+                                      kron(gu[*eu].matrix, gv[*ev].matrix)},
+                 t.product.graph);
       }
   }
   automata::mark_recurrent(t.product);

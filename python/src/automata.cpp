@@ -177,7 +177,7 @@ void bind_automaton_building(py::class_<KnotAutomaton>& automaton) {
                                  ", a state holds at least 1 point");
             k.windows.resize(num_vertices(k.automaton.graph) + 1);
             return add_vertex(automata::State{.size = size, .recurrent = false, .name = name},
-                                     k.automaton.graph);
+                              k.automaton.graph);
           },
           py::arg("size"), py::arg("name") = "",
           "Adds a state whose nets have `size` (≥ 1) points; returns its id (0, 1, …).\n\n"
@@ -236,8 +236,7 @@ void bind_automaton_reading(py::class_<KnotAutomaton>& automaton) {
           "states",
           [](const KnotAutomaton& k) {
             std::vector<StateView> out;
-            for (StateId s = 0; s < num_vertices(k.automaton.graph); ++s)
-              out.push_back(state_view(k, s));
+            for (StateId s = 0; s < num_vertices(k.automaton.graph); ++s) out.push_back(state_view(k, s));
             return out;
           },
           "Every state, by id (list of State, copies).")
@@ -250,8 +249,7 @@ void bind_automaton_reading(py::class_<KnotAutomaton>& automaton) {
             const Automaton& a = k.automaton;
             const StateId s = state_id(a, source, "children");
             std::vector<StateId> out;
-            for (auto [b, e] = out_edges(s, a.graph); b != e; ++b)
-              out.push_back(target(*b, a.graph));
+            for (auto [b, e] = out_edges(s, a.graph); b != e; ++b) out.push_back(target(*b, a.graph));
             return out;
           },
           py::arg("source"), "Target ids of the transitions out of `source`, in child order (list of int).")
@@ -303,8 +301,8 @@ void bind_automaton_entries(py::class_<KnotAutomaton>& automaton) {
       .def("__repr__", [](const KnotAutomaton& k) {
         const Automaton& a = k.automaton;
         return "Automaton(" + std::to_string(num_vertices(a.graph)) + " states, " +
-               std::to_string(num_edges(a.graph)) + " transitions, " +
-               std::to_string(a.initial.size()) + " initial entries)";
+               std::to_string(num_edges(a.graph)) + " transitions, " + std::to_string(a.initial.size()) +
+               " initial entries)";
       });
 }
 
@@ -381,8 +379,8 @@ void bind_automata_tensor(py::module_& m) {
           "patches", [](const TensorAutomaton& t) { return index_array(t.patches); },
           "Per product initial entry, its (u segment, v segment): int array `(patches, 2)`.")
       .def("__repr__", [](const TensorAutomaton& t) {
-        return "TensorAutomaton(" + std::to_string(num_vertices(t.product.graph)) +
-               " product states, " + std::to_string(t.patches.size()) + " patches)";
+        return "TensorAutomaton(" + std::to_string(num_vertices(t.product.graph)) + " product states, " +
+               std::to_string(t.patches.size()) + " patches)";
       });
 
   m.def("tensor_automaton", &nurbs::tensor_automaton, py::arg("surface"),

@@ -51,8 +51,8 @@ Tables tables(const automata::Automaton& automaton) {
     t.max_size = std::max(t.max_size, g[s].size);
     for (auto [b, e] = out_edges(s, g); b != e; ++b) {
       const Eigen::MatrixXd& M = g[*b].matrix;
-      t.edges.push_back({static_cast<std::uint32_t>(target(*b, g)), M.data(),
-                         static_cast<int>(M.rows()), static_cast<int>(M.cols())});
+      t.edges.push_back({static_cast<std::uint32_t>(target(*b, g)), M.data(), static_cast<int>(M.rows()),
+                         static_cast<int>(M.cols())});
     }
   }
   t.start = ifs::end_functionals(automaton).start;

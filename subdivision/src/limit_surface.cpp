@@ -133,8 +133,8 @@ SurfaceAutomaton build_automaton(const Mesh& mesh, const MeshTopology& t, MeshSc
   automata::Graph& g = out.automaton.graph;
   const auto labels = child_labels(scheme);
   const ExtraordinaryPatch regular_patch = quads(scheme) ? ExtraordinaryPatch{} : loop_patch(6);
-  const automata::StateId regular = add_vertex(
-      automata::State{.size = quads(scheme) ? 16 : 12, .recurrent = false, .name = "regular"}, g);
+  const automata::StateId regular =
+      add_vertex(automata::State{.size = quads(scheme) ? 16 : 12, .recurrent = false, .name = "regular"}, g);
   for (std::size_t c = 0; c < 4; ++c) {
     Eigen::MatrixXd M;
     if (quads(scheme))
@@ -147,11 +147,10 @@ SurfaceAutomaton build_automaton(const Mesh& mesh, const MeshTopology& t, MeshSc
   const auto state_of = [&](int n) {
     if (const auto it = extraordinary.find(n); it != extraordinary.end()) return it->second;
     const ExtraordinaryPatch patch = quads(scheme) ? catmull_clark_patch(n) : loop_patch(n);
-    const automata::StateId s =
-        add_vertex(automata::State{.size = static_cast<int>(patch.subdivide.rows()),
-                                          .recurrent = false,
-                                          .name = "E" + std::to_string(n)},
-                          g);
+    const automata::StateId s = add_vertex(automata::State{.size = static_cast<int>(patch.subdivide.rows()),
+                                                           .recurrent = false,
+                                                           .name = "E" + std::to_string(n)},
+                                           g);
     add_edge(s, s, automata::Transition{labels[0], patch.subdivide}, g);
     // Quads: child 2·iu + iv, (0, 1) regular[2], (1, 0) regular[0], (1, 1) regular[1]. Triangles:
     // C1, C2, M are regular[0], [1], [2].
@@ -576,8 +575,7 @@ Mesh triangle_mesh(const SurfaceAutomaton& surface, int depth, const ifs::MeshOp
                                                      {i + sign * half, j + sign * half, -sign}}};
       std::size_t k = 0;
       for (auto [e, end] = out_edges(state, g); e != end; ++e, ++k)
-        self(self, target(*e, g), Points(g[*e].matrix * net), child[k][0], child[k][1], child[k][2],
-             half);
+        self(self, target(*e, g), Points(g[*e].matrix * net), child[k][0], child[k][1], child[k][2], half);
     };
     visit(visit, surface.automaton.initial[f].state, surface.nets[f], 0, 0, 1, side);
   }

@@ -122,8 +122,7 @@ TEST_CASE("Minimisation merges states no net can tell apart", "[automata]") {
   const Eigen::MatrixXd D = nurbs::subdivision_matrix(nurbs::Window{1, 1, 1}, 2, nurbs::Half::D);
   const Eigen::MatrixXd G2 = nurbs::subdivision_matrix(nurbs::Window{2, 1, 1}, 2, nurbs::Half::G);
   automata::Automaton a;
-  for (int i = 0; i < 3; ++i)
-    add_vertex(automata::State{.size = 3, .recurrent = false, .name = ""}, a.graph);
+  for (int i = 0; i < 3; ++i) add_vertex(automata::State{.size = 3, .recurrent = false, .name = ""}, a.graph);
   add_edge(0, 1, automata::Transition{"G", G}, a.graph);
   add_edge(0, 1, automata::Transition{"D", D}, a.graph);
   add_edge(1, 0, automata::Transition{"G", G}, a.graph);
@@ -159,8 +158,7 @@ TEST_CASE("Minimisation keeps the knot data beside the automaton", "[automata]")
   const Eigen::MatrixXd G = nurbs::subdivision_matrix(nurbs::Window{1, 1, 1}, 2, nurbs::Half::G);
   const Eigen::MatrixXd D = nurbs::subdivision_matrix(nurbs::Window{1, 1, 1}, 2, nurbs::Half::D);
   automata::Automaton a;
-  for (int i = 0; i < 3; ++i)
-    add_vertex(automata::State{.size = 3, .recurrent = false, .name = ""}, a.graph);
+  for (int i = 0; i < 3; ++i) add_vertex(automata::State{.size = 3, .recurrent = false, .name = ""}, a.graph);
   add_edge(2, 1, automata::Transition{"G", G}, a.graph);
   add_edge(2, 1, automata::Transition{"D", G}, a.graph);
   for (StateId s = 0; s < 2; ++s) {

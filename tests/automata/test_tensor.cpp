@@ -81,8 +81,7 @@ TEST_CASE("Tensor automaton: reachable pairs, sizes, Kronecker matrices in GH GB
         std::advance(eu, child / 2);
         std::advance(ev, child % 2);
         CHECK(g[*e].label == labels[child]);
-        CHECK(t.factor_states[target(*e, g)] ==
-              std::array<StateId, 2>{target(*eu, gu), target(*ev, gv)});
+        CHECK(t.factor_states[target(*e, g)] == std::array<StateId, 2>{target(*eu, gu), target(*ev, gv)});
         const Eigen::MatrixXd K = Eigen::kroneckerProduct(gu[*eu].matrix, gv[*ev].matrix);
         REQUIRE(g[*e].matrix.rows() == K.rows());
         REQUIRE(g[*e].matrix.cols() == K.cols());

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // cifs — automata whose transitions carry subdivision matrices (topology and stencils, no
 // coordinates), as plain data: Boost.Graph stays inside the algorithms' sources (strong
-// components), out of this header, which most of the library includes. Generic: the knot-doubling automaton of a NURBS curve and its knot
-// data (windows, intervals, spans) live in nurbs (cifs/nurbs/knot_automaton.hpp).
+// components), out of this header, which most of the library includes. Generic: the knot-doubling automaton
+// of a NURBS curve and its knot data (windows, intervals, spans) live in nurbs
+// (cifs/nurbs/knot_automaton.hpp).
 #pragma once
 
 #include <Eigen/Core>
@@ -68,11 +69,21 @@ struct OutEdges {
   const TransitionId* end() const { return second; }
 };
 
-inline std::size_t num_vertices(const Graph& g) { return g.states.size(); }
-inline std::size_t num_edges(const Graph& g) { return g.transitions.size(); }
-inline StateId source(TransitionId e, const Graph& g) { return g.transitions[e.index].source; }
-inline StateId target(TransitionId e, const Graph& g) { return g.transitions[e.index].target; }
-inline std::size_t out_degree(StateId s, const Graph& g) { return g.out[s].size(); }
+inline std::size_t num_vertices(const Graph& g) {
+  return g.states.size();
+}
+inline std::size_t num_edges(const Graph& g) {
+  return g.transitions.size();
+}
+inline StateId source(TransitionId e, const Graph& g) {
+  return g.transitions[e.index].source;
+}
+inline StateId target(TransitionId e, const Graph& g) {
+  return g.transitions[e.index].target;
+}
+inline std::size_t out_degree(StateId s, const Graph& g) {
+  return g.out[s].size();
+}
 inline OutEdges out_edges(StateId s, const Graph& g) {
   return {g.out[s].data(), g.out[s].data() + g.out[s].size()};
 }
@@ -82,7 +93,9 @@ inline StateId add_vertex(State state, Graph& g) {
   g.out.emplace_back();
   return g.states.size() - 1;
 }
-inline StateId add_vertex(Graph& g) { return add_vertex(State{}, g); }
+inline StateId add_vertex(Graph& g) {
+  return add_vertex(State{}, g);
+}
 
 /// Appends `from → to` after the other out-transitions of `from`; the bool is always true
 /// (parallel transitions allowed). As in Boost (vecS), states up to `max(from, to)` are added.
