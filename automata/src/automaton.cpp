@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "cifs/automata/automaton.hpp"
 
+#include <boost/graph/adjacency_list.hpp>
 #include <boost/graph/strong_components.hpp>
 #include <map>
 
@@ -15,27 +16,44 @@ std::vector<double> matrix_key(const Eigen::MatrixXd& M) {
 
 }  // namespace
 
+std::pair<TransitionId, bool> edge(StateId from, StateId to, const Graph& g) {
+  for (const TransitionId e : out_edges(from, g))
+    if (target(e, g) == to) return {e, true};
+  return {TransitionId{}, false};
+}
+
+std::vector<TransitionId> edges(const Graph& g) {
+  std::vector<TransitionId> out;
+  out.reserve(num_edges(g));
+  for (const std::vector<TransitionId>& list : g.out) out.insert(out.end(), list.begin(), list.end());
+  return out;
+}
+
 void mark_recurrent(Automaton& a) {
   // A state recurs when it occurs at arbitrarily deep levels of the unfolded automaton: it lies on
   // a cycle (a strong component with more than one state or a self-loop) or below one.
-  const auto n = boost::num_vertices(a.graph);
+  const auto n = num_vertices(a.graph);
+  // Boost.Graph on a bare copy of the topology: the public Graph stays plain data, so that the
+  // headers most of the library includes do not pull Boost.Graph in.
+  boost::adjacency_list<boost::vecS, boost::vecS, boost::directedS> topology(n);
+  for (const Graph::Edge& e : a.graph.transitions) boost::add_edge(e.source, e.target, topology);
   std::vector<std::size_t> component(n);
-  boost::strong_components(a.graph, boost::make_iterator_property_map(
-                                        component.begin(), boost::get(boost::vertex_index, a.graph)));
+  boost::strong_components(topology, boost::make_iterator_property_map(
+                                         component.begin(), boost::get(boost::vertex_index, topology)));
   std::vector<int> members(n, 0);
   for (std::size_t c : component) ++members[c];
   std::vector<StateId> stack;
   for (StateId s = 0; s < n; ++s) {
     a.graph[s].recurrent = members[component[s]] > 1;
-    for (auto [e, end] = boost::out_edges(s, a.graph); e != end; ++e)
-      a.graph[s].recurrent = a.graph[s].recurrent || boost::target(*e, a.graph) == s;
+    for (auto [e, end] = out_edges(s, a.graph); e != end; ++e)
+      a.graph[s].recurrent = a.graph[s].recurrent || target(*e, a.graph) == s;
     if (a.graph[s].recurrent) stack.push_back(s);
   }
   while (!stack.empty()) {
     const StateId s = stack.back();
     stack.pop_back();
-    for (auto [e, end] = boost::out_edges(s, a.graph); e != end; ++e) {
-      const StateId t = boost::target(*e, a.graph);
+    for (auto [e, end] = out_edges(s, a.graph); e != end; ++e) {
+      const StateId t = target(*e, a.graph);
       if (!a.graph[t].recurrent) {
         a.graph[t].recurrent = true;
         stack.push_back(t);
@@ -45,7 +63,7 @@ void mark_recurrent(Automaton& a) {
 }
 
 std::vector<std::size_t> minimize_classes(const Automaton& a) {
-  const auto n = boost::num_vertices(a.graph);
+  const auto n = num_vertices(a.graph);
   // Initial classes: size and the ordered (label, matrix) of the out-edges.
   std::vector<std::size_t> cls(n);
   {
@@ -54,7 +72,7 @@ std::vector<std::size_t> minimize_classes(const Automaton& a) {
     for (StateId s = 0; s < n; ++s) {
       std::vector<std::vector<double>> key{{static_cast<double>(a.graph[s].size)}};
       std::vector<std::string> label_key;
-      for (auto [e, end] = boost::out_edges(s, a.graph); e != end; ++e) {
+      for (auto [e, end] = out_edges(s, a.graph); e != end; ++e) {
         key.push_back(matrix_key(a.graph[*e].matrix));
         label_key.push_back(a.graph[*e].label);
       }
@@ -68,8 +86,7 @@ std::vector<std::size_t> minimize_classes(const Automaton& a) {
     std::vector<std::size_t> next(n);
     for (StateId s = 0; s < n; ++s) {
       std::vector<std::size_t> key{cls[s]};
-      for (auto [e, end] = boost::out_edges(s, a.graph); e != end; ++e)
-        key.push_back(cls[boost::target(*e, a.graph)]);
+      for (auto [e, end] = out_edges(s, a.graph); e != end; ++e) key.push_back(cls[target(*e, a.graph)]);
       next[s] = next_ids.try_emplace(key, next_ids.size()).first->second;
     }
     cls.swap(next);
@@ -80,22 +97,22 @@ std::vector<std::size_t> minimize_classes(const Automaton& a) {
 }
 
 Automaton minimize(const Automaton& a) {
-  const auto n = boost::num_vertices(a.graph);
+  const auto n = num_vertices(a.graph);
   const std::vector<std::size_t> cls = minimize_classes(a);
   // Quotient: the first state of each class represents it.
   Automaton out;
   std::map<std::size_t, StateId> rep;
   for (StateId s = 0; s < n; ++s)
     if (rep.try_emplace(cls[s], 0).second) {
-      rep[cls[s]] = boost::add_vertex(a.graph[s], out.graph);
+      rep[cls[s]] = add_vertex(a.graph[s], out.graph);
       out.graph[rep[cls[s]]].name = "s" + std::to_string(rep[cls[s]]);
     }
   std::vector<bool> done(rep.size(), false);
   for (StateId s = 0; s < n; ++s) {
     if (done[cls[s]]) continue;
     done[cls[s]] = true;
-    for (auto [e, end] = boost::out_edges(s, a.graph); e != end; ++e)
-      boost::add_edge(rep[cls[s]], rep[cls[boost::target(*e, a.graph)]], a.graph[*e], out.graph);
+    for (auto [e, end] = out_edges(s, a.graph); e != end; ++e)
+      add_edge(rep[cls[s]], rep[cls[target(*e, a.graph)]], a.graph[*e], out.graph);
   }
   for (Initial i : a.initial) {
     i.state = rep[cls[i.state]];

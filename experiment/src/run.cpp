@@ -512,7 +512,7 @@ Scene junction_scene(const io::Junction& junction, const io::Experiment& e, cons
   const render::Rgb color_a = junction.a.color.value_or(e.render.color);
   const render::Rgb color_b = junction.b.color.value_or(render::Rgb{0.85, 0.40, 0.08});
   const auto& g = scene.automaton.graph;
-  for (automata::StateId s = 0; s < boost::num_vertices(g); ++s)
+  for (automata::StateId s = 0; s < num_vertices(g); ++s)
     scene.state_colors.push_back(g[s].name.starts_with("B:") ? color_b : color_a);
 
   const std::size_t na = a.nets.size();

@@ -103,7 +103,7 @@ void check_nets(const Automaton& automaton, std::span<const Points> nets, std::s
   if (cols < 1) fail("nets[0] has no column");
   for (std::size_t i = 0; i < nets.size(); ++i) {
     const StateId s = automaton.initial[i].state;
-    if (s >= boost::num_vertices(automaton.graph))
+    if (s >= num_vertices(automaton.graph))
       fail("initial[" + std::to_string(i) + "] names state " + std::to_string(s) + ", which does not exist");
     const int size = automaton.graph[s].size;
     if (nets[i].rows() != size)
@@ -119,7 +119,7 @@ void check_nets(const Automaton& automaton, std::span<const Points> nets, std::s
 
 std::vector<StateId> reachable_states(const Automaton& automaton) {
   const Graph& g = automaton.graph;
-  const auto n = boost::num_vertices(g);
+  const auto n = num_vertices(g);
   std::vector<char> seen(n, 0);
   std::vector<StateId> todo;
   if (automaton.initial.empty()) {
@@ -133,7 +133,7 @@ std::vector<StateId> reachable_states(const Automaton& automaton) {
     todo.pop_back();
     if (seen[s]) continue;
     seen[s] = 1;
-    for (auto [b, e] = boost::out_edges(s, g); b != e; ++b) todo.push_back(boost::target(*b, g));
+    for (auto [b, e] = out_edges(s, g); b != e; ++b) todo.push_back(target(*b, g));
   }
   std::vector<StateId> out;
   for (StateId s = 0; s < n; ++s)
@@ -143,7 +143,7 @@ std::vector<StateId> reachable_states(const Automaton& automaton) {
 
 void validate(const Automaton& automaton) {
   const Graph& g = automaton.graph;
-  const auto n = boost::num_vertices(g);
+  const auto n = num_vertices(g);
   for (std::size_t i = 0; i < automaton.initial.size(); ++i)
     if (automaton.initial[i].state >= n)
       throw InvalidInput("initial[" + std::to_string(i) + "] names state " +
@@ -153,12 +153,12 @@ void validate(const Automaton& automaton) {
     const auto label = [&] { return detail::state_label(automaton, s); };
     if (g[s].size < 1)
       throw InvalidInput(label() + " holds no point (size " + std::to_string(g[s].size) + ")");
-    if (boost::out_degree(s, g) == 0)
+    if (out_degree(s, g) == 0)
       throw InvalidInput(label() + " has no transition: its attractor would be empty");
     int child = 0;
-    for (auto [b, e] = boost::out_edges(s, g); b != e; ++b, ++child) {
+    for (auto [b, e] = out_edges(s, g); b != e; ++b, ++child) {
       const auto& M = g[*b].matrix;
-      const StateId t = boost::target(*b, g);
+      const StateId t = target(*b, g);
       const auto where = [&] {
         return "transition " + std::to_string(child) + " of " + label() + " (to " +
                detail::state_label(automaton, t) + ")";
@@ -230,15 +230,15 @@ double delta(const Eigen::MatrixXd& M) noexcept {
 
 std::vector<bool> convex_states(const Automaton& automaton) {
   const Graph& g = automaton.graph;
-  const auto n = boost::num_vertices(g);
+  const auto n = num_vertices(g);
   // A state is not convex when it has a negative matrix or reaches such a state: propagate
   // backwards from the states with a negative out-transition.
   std::vector<std::vector<StateId>> into(n);
   std::vector<StateId> todo;
   std::vector<bool> convex(n, true);
   for (StateId s = 0; s < n; ++s)
-    for (auto [b, e] = boost::out_edges(s, g); b != e; ++b) {
-      into[boost::target(*b, g)].push_back(s);
+    for (auto [b, e] = out_edges(s, g); b != e; ++b) {
+      into[target(*b, g)].push_back(s);
       if (convex[s] && (g[*b].matrix.array() < 0).any()) {
         convex[s] = false;
         todo.push_back(s);
@@ -355,10 +355,10 @@ struct PathScan {
       return !(stop_at_first_failure && d >= 1);
     }
     int child = 0;
-    for (auto [b, e] = boost::out_edges(s, g); b != e; ++b, ++child) {
+    for (auto [b, e] = out_edges(s, g); b != e; ++b, ++child) {
       word[static_cast<std::size_t>(k)] = child;
       product[static_cast<std::size_t>(k) + 1].noalias() = g[*b].matrix * P;
-      if (!descend(from, boost::target(*b, g), k + 1)) return false;
+      if (!descend(from, target(*b, g), k + 1)) return false;
     }
     return true;
   }
@@ -410,8 +410,8 @@ Eigen::RowVectorXd unit_fixed_point(const Eigen::MatrixXd& P, const std::string&
 }
 
 /// The transition `child` of `s` (out-edge position).
-Graph::edge_descriptor out_edge(const Graph& g, StateId s, std::size_t child) {
-  auto [b, e] = boost::out_edges(s, g);
+automata::TransitionId out_edge(const Graph& g, StateId s, std::size_t child) {
+  auto [b, e] = out_edges(s, g);
   std::advance(b, static_cast<std::ptrdiff_t>(child));
   return *b;
 }
@@ -455,11 +455,11 @@ Contraction contraction(const Automaton& automaton, const ContractionOptions& op
   double n = 1;
   for (const StateId s : states) n = std::max(n, static_cast<double>(g[s].size));
   const double max_paths = std::max(1.0, 65536 * std::pow(16 / std::max(n, 16.0), 3));
-  std::vector<double> paths(boost::num_vertices(g), 1.0), next_paths(paths.size());
+  std::vector<double> paths(num_vertices(g), 1.0), next_paths(paths.size());
   for (int k = 1; k <= out.m; ++k) {
     for (const StateId s : states) {
       next_paths[s] = 0;
-      for (auto [b, e] = boost::out_edges(s, g); b != e; ++b) next_paths[s] += paths[boost::target(*b, g)];
+      for (auto [b, e] = out_edges(s, g); b != e; ++b) next_paths[s] += paths[target(*b, g)];
     }
     std::swap(paths, next_paths);
   }
@@ -467,7 +467,7 @@ Contraction contraction(const Automaton& automaton, const ContractionOptions& op
     double total = 0;
     for (const StateId s : states) {
       next_paths[s] = 0;
-      for (auto [b, e] = boost::out_edges(s, g); b != e; ++b) next_paths[s] += paths[boost::target(*b, g)];
+      for (auto [b, e] = out_edges(s, g); b != e; ++b) next_paths[s] += paths[target(*b, g)];
       total += next_paths[s];
     }
     std::swap(paths, next_paths);
@@ -488,21 +488,21 @@ Contraction contraction(const Automaton& automaton, const ContractionOptions& op
 Eigen::RowVectorXd fixed_point(const Automaton& automaton, StateId state, std::span<const int> word) {
   validate(automaton);
   const Graph& g = automaton.graph;
-  if (state >= boost::num_vertices(g))
+  if (state >= num_vertices(g))
     throw InvalidInput("fixed_point: state " + std::to_string(state) + " does not exist");
   const std::string context =
       "fixed_point of the word " + detail::word_text(word) + " from " + detail::state_label(automaton, state);
   Eigen::MatrixXd P = Eigen::MatrixXd::Identity(g[state].size, g[state].size);
   StateId s = state;
   for (std::size_t k = 0; k < word.size(); ++k) {
-    const auto degree = boost::out_degree(s, g);
+    const auto degree = out_degree(s, g);
     if (word[k] < 0 || static_cast<std::size_t>(word[k]) >= degree)
       throw InvalidInput(context + ": child index " + std::to_string(word[k]) + " at position " +
                          std::to_string(k) + " but " + detail::state_label(automaton, s) + " has " +
                          std::to_string(degree) + " children");
     const auto e = out_edge(g, s, static_cast<std::size_t>(word[k]));
     P = (g[e].matrix * P).eval();
-    s = boost::target(e, g);
+    s = target(e, g);
   }
   if (s != state)
     throw InvalidInput(context + ": the word ends at " + detail::state_label(automaton, s) +
@@ -519,7 +519,7 @@ template <class Child>
 std::vector<Eigen::RowVectorXd> chain_functionals(const Automaton& automaton, Child child_of,
                                                   const std::string& what) {
   const Graph& g = automaton.graph;
-  const auto n = boost::num_vertices(g);
+  const auto n = num_vertices(g);
   std::vector<Eigen::RowVectorXd> F(n);
   std::vector<char> done(n, 0);
   const auto next = [&](StateId s) { return out_edge(g, s, child_of(s)); };
@@ -532,7 +532,7 @@ std::vector<Eigen::RowVectorXd> chain_functionals(const Automaton& automaton, Ch
     while (!done[v] && pos[v] < 0) {
       pos[v] = static_cast<std::ptrdiff_t>(path.size());
       path.push_back(v);
-      v = boost::target(next(v), g);
+      v = target(next(v), g);
     }
     for (const StateId p : path) pos[p] = -1;
     std::ptrdiff_t skip = -1;
@@ -554,7 +554,7 @@ std::vector<Eigen::RowVectorXd> chain_functionals(const Automaton& automaton, Ch
     for (auto k = static_cast<std::ptrdiff_t>(path.size()) - 1; k >= 0; --k) {
       if (k == skip) continue;
       const auto e = next(path[static_cast<std::size_t>(k)]);
-      F[path[static_cast<std::size_t>(k)]] = F[boost::target(e, g)] * g[e].matrix;
+      F[path[static_cast<std::size_t>(k)]] = F[target(e, g)] * g[e].matrix;
       done[path[static_cast<std::size_t>(k)]] = 1;
     }
   }
@@ -569,17 +569,17 @@ EndFunctionals end_functionals(const Automaton& automaton) {
   return EndFunctionals{chain_functionals(
                             automaton, [](StateId) { return std::size_t{0}; }, "start"),
                         chain_functionals(
-                            automaton, [&](StateId s) { return boost::out_degree(s, g) - 1; }, "end")};
+                            automaton, [&](StateId s) { return out_degree(s, g) - 1; }, "end")};
 }
 
 std::vector<Eigen::RowVectorXd> repeated_child_functionals(const Automaton& automaton, int child) {
   validate(automaton);
   const Graph& g = automaton.graph;
   for (const StateId s : reachable_states(automaton))
-    if (child < 0 || static_cast<std::size_t>(child) >= boost::out_degree(s, g))
+    if (child < 0 || static_cast<std::size_t>(child) >= out_degree(s, g))
       throw InvalidInput("repeated_child_functionals: child " + std::to_string(child) + " but " +
-                         detail::state_label(automaton, s) + " has " +
-                         std::to_string(boost::out_degree(s, g)) + " children");
+                         detail::state_label(automaton, s) + " has " + std::to_string(out_degree(s, g)) +
+                         " children");
   return chain_functionals(
       automaton, [&](StateId) { return static_cast<std::size_t>(child); }, "child-" + std::to_string(child));
 }
@@ -615,10 +615,10 @@ std::vector<TransitionSpectrum> spectra(const Automaton& automaton) {
   std::vector<TransitionSpectrum> out;
   for (const StateId s : reachable_states(automaton)) {
     int child = 0;
-    for (auto [b, e] = boost::out_edges(s, g); b != e; ++b, ++child) {
+    for (auto [b, e] = out_edges(s, g); b != e; ++b, ++child) {
       TransitionSpectrum t;
       t.from = s;
-      t.to = boost::target(*b, g);
+      t.to = target(*b, g);
       t.child = child;
       t.label = g[*b].label;
       if (g[*b].matrix.rows() == g[*b].matrix.cols()) t.eigenvalues = eigenvalues(g[*b].matrix);

@@ -100,8 +100,8 @@ class PieceMeasure {
         continue;
       }
       if (!(d < std::numeric_limits<double>::infinity()) || ++nodes > kCoverNodes) return d;
-      for (auto [e, end] = boost::out_edges(t, g); e != end; ++e)
-        stack.emplace_back(boost::target(*e, g), g[*e].matrix * N);
+      for (auto [e, end] = out_edges(t, g); e != end; ++e)
+        stack.emplace_back(target(*e, g), g[*e].matrix * N);
     }
     return worst;
   }
@@ -242,7 +242,7 @@ struct Counts {
 
 Counts node_counts(const Automaton& automaton, int depth, int keep) {
   const Graph& g = automaton.graph;
-  const auto n = boost::num_vertices(g);
+  const auto n = num_vertices(g);
   const auto states = reachable_states(automaton);
   Counts out;
   std::vector<std::size_t> cur(n, 0), nxt(n, 0);
@@ -252,7 +252,7 @@ Counts node_counts(const Automaton& automaton, int depth, int keep) {
     if (k == depth) break;
     for (const StateId s : states) {
       std::size_t c = 0;
-      for (auto [b, e] = boost::out_edges(s, g); b != e; ++b) c = add_sat(c, cur[boost::target(*b, g)]);
+      for (auto [b, e] = out_edges(s, g); b != e; ++b) c = add_sat(c, cur[target(*b, g)]);
       nxt[s] = c;
     }
     std::swap(cur, nxt);
@@ -298,7 +298,7 @@ StencilTable build_table(const Automaton& automaton, int depth, bool closed, int
   if (depth < 0)
     throw InvalidInput(std::string(who) + ": depth is " + std::to_string(depth) + ", must be ≥ 0");
   const Graph& g = automaton.graph;
-  const auto n = boost::num_vertices(g);
+  const auto n = num_vertices(g);
   const auto states = reachable_states(automaton);
   const int max_L = std::clamp(max_table_depth, 0, depth);
   const Counts counts = node_counts(automaton, depth, max_L);
@@ -331,8 +331,8 @@ StencilTable build_table(const Automaton& automaton, int depth, bool closed, int
       RowMatrix& F = next[s];
       F.resize(static_cast<Eigen::Index>(counts.low[static_cast<std::size_t>(l)][s]), g[s].size);
       Eigen::Index row = 0;
-      for (auto [b, e] = boost::out_edges(s, g); b != e; ++b) {
-        const RowMatrix& child = out.tables[boost::target(*b, g)];
+      for (auto [b, e] = out_edges(s, g); b != e; ++b) {
+        const RowMatrix& child = out.tables[target(*b, g)];
         F.middleRows(row, child.rows()).noalias() = child * g[*b].matrix;
         row += child.rows();
       }
@@ -402,7 +402,7 @@ void check_table(const StencilTable& t, std::span<const Points> nets, std::strin
   check_nets(a, nets, who);
   const Graph& g = a.graph;
   bool fits = t.depth >= 0 && t.table_depth >= 0 && t.table_depth <= t.depth &&
-              t.tables.size() == boost::num_vertices(g) && (t.closed || t.end.size() == nets.back().rows());
+              t.tables.size() == num_vertices(g) && (t.closed || t.end.size() == nets.back().rows());
   if (fits) {
     const Counts counts = node_counts(a, t.depth, t.table_depth);
     fits = t.points == total_count(a, counts.at_depth, t.closed);

@@ -44,7 +44,7 @@ std::pair<StateId, StateId> factor_cells(const Bcifs& sys, const Factor& f) {
     return {b.cell, b.boundary};
   }
   const TransitionId e = transition_id(sys.automaton, f.transition);
-  return {f.transition.from, boost::target(e, sys.automaton.graph)};
+  return {f.transition.from, target(e, sys.automaton.graph)};
 }
 
 std::string factor_text(const Bcifs& sys, const Factor& f) {
@@ -93,13 +93,13 @@ struct Equation {
 
 TransitionId transition_id(const Automaton& a, TransitionRef ref) {
   const Graph& g = a.graph;
-  if (ref.from >= boost::num_vertices(g))
+  if (ref.from >= num_vertices(g))
     throw InvalidInput("transition of state " + std::to_string(ref.from) + ", which does not exist");
-  const auto degree = static_cast<int>(boost::out_degree(ref.from, g));
+  const auto degree = static_cast<int>(out_degree(ref.from, g));
   if (ref.child < 0 || ref.child >= degree)
     throw InvalidInput("transition " + std::to_string(ref.child) + " of state " + state_text(a, ref.from) +
                        ", which has " + std::to_string(degree) + " transitions");
-  auto it = boost::out_edges(ref.from, g).first;
+  auto it = out_edges(ref.from, g).first;
   std::advance(it, ref.child);
   return *it;
 }
@@ -117,7 +117,7 @@ Eigen::MatrixXd selection_matrix(const Bcifs& sys, int boundary) {
 
 void validate(const Bcifs& sys) {
   const Graph& g = sys.automaton.graph;
-  const auto n = boost::num_vertices(g);
+  const auto n = num_vertices(g);
   if (sys.dimension.size() != n)
     throw InvalidInput("BC-IFS: " + std::to_string(sys.dimension.size()) + " cell dimensions for " +
                        std::to_string(n) + " states");
@@ -126,7 +126,7 @@ void validate(const Bcifs& sys) {
       throw InvalidInput("BC-IFS: cell " + state_text(sys.automaton, s) + " has dimension " +
                          std::to_string(sys.dimension[s]) + ", expected 0 (vertex), 1 (edge) or 2 (face)");
     std::set<std::string> labels;
-    for (auto [b, e] = boost::out_edges(s, g); b != e; ++b)
+    for (auto [b, e] = out_edges(s, g); b != e; ++b)
       if (!labels.insert(g[*b].label).second)
         throw InvalidInput("BC-IFS: cell " + state_text(sys.automaton, s) +
                            " has two transitions labelled \"" + g[*b].label +
@@ -644,7 +644,7 @@ Perturbation perturb(const Bcifs& sys, const PerturbOptions& options) {
 EndFunctionals edge_end_functionals(const Bcifs& sys) {
   validate(sys);
   const Automaton& a = sys.automaton;
-  const auto n = boost::num_vertices(a.graph);
+  const auto n = num_vertices(a.graph);
   const auto cells = reachable_states(a);
   // Boundary operators "start" and "end" of each reachable edge cell.
   std::vector<std::array<int, 2>> ends(n, {-1, -1});

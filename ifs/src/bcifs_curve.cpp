@@ -34,8 +34,8 @@ Unfolding unfold(const automata::Automaton& knots) {
   for (const automata::Initial& init : knots.initial) cell_of(init.state, true, true);
   for (StateId s = 0; s < u.origin.size(); ++s) {
     const auto [k, a, b] = u.origin[s];
-    cell_of(boost::target(transition_id(knots, TransitionRef{k, 0}), knots.graph), a, false);
-    cell_of(boost::target(transition_id(knots, TransitionRef{k, 1}), knots.graph), false, b);
+    cell_of(target(transition_id(knots, TransitionRef{k, 0}), knots.graph), a, false);
+    cell_of(target(transition_id(knots, TransitionRef{k, 1}), knots.graph), false, b);
   }
   return u;
 }
@@ -50,10 +50,10 @@ int knot_doubling_degree(const nurbs::KnotAutomaton& knot_automaton) {
   if (knots.initial.empty()) throw InvalidInput("curve_bcifs: the knot automaton has no segment");
   const int d = knots.graph[knots.initial.front().state].size - 1;
   if (d < 1) throw InvalidInput("curve_bcifs: degree " + std::to_string(d) + " has no edge to subdivide");
-  for (StateId s = 0; s < boost::num_vertices(knots.graph); ++s)
+  for (StateId s = 0; s < num_vertices(knots.graph); ++s)
     if (knots.graph[s].size != d + 1 ||
         window_size(knot_automaton, s) != static_cast<std::size_t>(2 * d - 1) ||
-        boost::out_degree(s, knots.graph) != 2)
+        out_degree(s, knots.graph) != 2)
       throw InvalidInput("curve_bcifs: state " + std::to_string(s) +
                          " is not a knot-doubling state of degree " + std::to_string(d) +
                          " (d + 1 points, a window of 2d − 1 intervals, two children)");
@@ -68,7 +68,7 @@ std::vector<bool> add_edge_cells(const automata::Automaton& knots, const Unfoldi
   std::vector<bool> at_knot;
   for (const auto& [k, a, b] : origin) {
     const auto& st = knots.graph[k];
-    boost::add_vertex(
+    add_vertex(
         automata::State{
             .size = st.size, .recurrent = false, .name = st.name + (a ? "a" : "") + (b ? "b" : "")},
         g);
@@ -83,9 +83,9 @@ std::vector<bool> add_edge_cells(const automata::Automaton& knots, const Unfoldi
     const auto [k, a, b] = origin[s];
     for (int c = 0; c < 2; ++c) {
       const auto e = transition_id(knots, TransitionRef{k, c});
-      const StateId t = c == 0 ? unfolding.ids.at({boost::target(e, knots.graph), a, false})
-                               : unfolding.ids.at({boost::target(e, knots.graph), false, b});
-      boost::add_edge(s, t, knots.graph[e], g);
+      const StateId t = c == 0 ? unfolding.ids.at({target(e, knots.graph), a, false})
+                               : unfolding.ids.at({target(e, knots.graph), false, b});
+      add_edge(s, t, knots.graph[e], g);
     }
   }
   return at_knot;
@@ -106,7 +106,7 @@ std::vector<int> end_rows(const nurbs::KnotAutomaton& knot_automaton, const Unfo
 }
 
 StateId child_cell(const Bcifs& sys, StateId s, int c) {
-  return boost::target(transition_id(sys.automaton, TransitionRef{s, c}), sys.automaton.graph);
+  return target(transition_id(sys.automaton, TransitionRef{s, c}), sys.automaton.graph);
 }
 
 /// Vertex keys 2s + side; the child of a key follows G from a start, D from an end.
@@ -150,7 +150,7 @@ std::map<std::size_t, StateId> add_vertex_cells(const nurbs::KnotAutomaton& knot
         static_cast<int>(end_rows(knot_automaton, unfolding, d, key / 2, static_cast<int>(key % 2)).size());
     const auto [it, added] = vertex.try_emplace(rep, 0);
     if (added) {
-      it->second = boost::add_vertex(g);
+      it->second = add_vertex(g);
       g[it->second].size = size;
       g[it->second].name = "v" + std::to_string(it->second - edges);
       sys.dimension.push_back(0);
@@ -179,7 +179,7 @@ void add_vertex_transitions(const nurbs::KnotAutomaton& knot_automaton, const Un
     for (std::size_t i = 0; i < to.size(); ++i)
       for (std::size_t j = 0; j < from.size(); ++j)
         V(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = T(to[i], from[j]);
-    boost::add_edge(v, vertex.at(classes.find(child_key(sys, rep))), automata::Transition{"V", V}, g);
+    add_edge(v, vertex.at(classes.find(child_key(sys, rep))), automata::Transition{"V", V}, g);
     if (free_vertices || !at_knot[rep]) sys.free.push_back(TransitionRef{v, 0});
   }
 }
@@ -230,7 +230,7 @@ Bcifs curve_bcifs(const nurbs::KnotAutomaton& knot_automaton, bool closed, const
   const Unfolding unfolding = unfold(knot_automaton.automaton);
   const std::vector<bool> at_knot = add_edge_cells(knot_automaton.automaton, unfolding, sys);
   automata::mark_recurrent(sys.automaton);
-  const std::size_t edges = boost::num_vertices(sys.automaton.graph);
+  const std::size_t edges = num_vertices(sys.automaton.graph);
   detail::UnionFind classes = vertex_classes(sys, edges, closed);
   const std::map<std::size_t, StateId> vertex =
       add_vertex_cells(knot_automaton, unfolding, d, edges, classes, sys);
@@ -241,11 +241,11 @@ Bcifs curve_bcifs(const nurbs::KnotAutomaton& knot_automaton, bool closed, const
 
 nurbs::KnotAutomaton curve_bcifs_knots(automata::Automaton automaton, const nurbs::KnotAutomaton& knots) {
   const Unfolding unfolding = unfold(knots.automaton);
-  if (boost::num_vertices(automaton.graph) < unfolding.origin.size() ||
+  if (num_vertices(automaton.graph) < unfolding.origin.size() ||
       automaton.initial.size() != knots.automaton.initial.size())
     throw InvalidInput(
         "curve_bcifs_knots: the automaton is not that of curve_bcifs of this knot automaton (" +
-        std::to_string(boost::num_vertices(automaton.graph)) + " states and " +
+        std::to_string(num_vertices(automaton.graph)) + " states and " +
         std::to_string(automaton.initial.size()) + " initial entries for " +
         std::to_string(unfolding.origin.size()) + " edge cells and " +
         std::to_string(knots.automaton.initial.size()) + " segments)");

@@ -28,8 +28,7 @@ StateId source_cell(const Bcifs& sys, const Constraint& c) {
 
 std::vector<std::pair<StateId, automata::TransitionId>> children(const automata::Graph& graph, StateId s) {
   std::vector<std::pair<StateId, automata::TransitionId>> out;
-  for (auto [e, end] = boost::out_edges(s, graph); e != end; ++e)
-    out.emplace_back(boost::target(*e, graph), *e);
+  for (auto [e, end] = out_edges(s, graph); e != end; ++e) out.emplace_back(target(*e, graph), *e);
   return out;
 }
 
@@ -51,10 +50,10 @@ StateId cell_of(Product& p, std::array<StateId, 2> c, std::deque<StateId>& todo)
   const auto& gv = p.curves[1]->automaton.graph;
   const auto [it, added] = p.ids.try_emplace(c, 0);
   if (added) {
-    it->second = boost::add_vertex(automata::State{.size = gu[c[0]].size * gv[c[1]].size,
-                                                   .recurrent = false,
-                                                   .name = "(" + gu[c[0]].name + "," + gv[c[1]].name + ")"},
-                                   p.sys.automaton.graph);
+    it->second = add_vertex(automata::State{.size = gu[c[0]].size * gv[c[1]].size,
+                                            .recurrent = false,
+                                            .name = "(" + gu[c[0]].name + "," + gv[c[1]].name + ")"},
+                            p.sys.automaton.graph);
     p.pair.push_back(c);
     p.sys.dimension.push_back(p.curves[0]->dimension[c[0]] + p.curves[1]->dimension[c[1]]);
     todo.push_back(it->second);
@@ -70,7 +69,7 @@ void add_cells(Product& p) {
   const auto& iv = p.curves[1]->automaton.initial;
   std::deque<StateId> todo;
   for (int dir = 0; dir < 2; ++dir) {
-    p.factor_boundaries[dir].resize(boost::num_vertices(p.curves[dir]->automaton.graph));
+    p.factor_boundaries[dir].resize(num_vertices(p.curves[dir]->automaton.graph));
     for (std::size_t b = 0; b < p.curves[dir]->boundaries.size(); ++b)
       p.factor_boundaries[dir][p.curves[dir]->boundaries[b].cell].push_back(static_cast<int>(b));
   }
@@ -105,9 +104,9 @@ void add_transitions(Product& p, const ProductOptions& options) {
       for (std::size_t j = 0; j < cv.size(); ++j) {
         const auto& tu = gu[cu[i].second];
         const auto& tv = gv[cv[j].second];
-        boost::add_edge(s, p.ids.at({cu[i].first, cv[j].first}),
-                        automata::Transition{tu.label + v_label(tv.label), kron(tu.matrix, tv.matrix)},
-                        p.sys.automaton.graph);
+        add_edge(s, p.ids.at({cu[i].first, cv[j].first}),
+                 automata::Transition{tu.label + v_label(tv.label), kron(tu.matrix, tv.matrix)},
+                 p.sys.automaton.graph);
         const bool fu = is_free(0, x, static_cast<int>(i)), fv = is_free(1, y, static_cast<int>(j));
         if (options.free_when_either ? fu || fv : fu && fv)
           p.sys.free.push_back(TransitionRef{s, static_cast<int>(i * cv.size() + j)});
@@ -167,7 +166,7 @@ std::vector<Factor> lift_side(const Product& p, int dir, const std::vector<Facto
     const StateId z = f.transition.from;
     const StateId cell = dir == 0 ? p.ids.at({z, ycur}) : p.ids.at({ycur, z});
     const int n_other = static_cast<int>(cy.size());
-    const int n_z = static_cast<int>(boost::out_degree(z, curve.automaton.graph));
+    const int n_z = static_cast<int>(out_degree(z, curve.automaton.graph));
     const int child = dir == 0 ? f.transition.child * n_other + static_cast<int>(j)
                                : static_cast<int>(j) * n_z + f.transition.child;
     out[k] = Factor{Factor::Kind::transition, 0, TransitionRef{cell, child}};
@@ -182,7 +181,7 @@ void add_constraints(Product& p) {
   for (int dir = 0; dir < 2; ++dir) {
     const Bcifs& curve = *p.curves[dir];
     const auto& other = p.curves[1 - dir]->automaton.graph;
-    std::vector<std::vector<std::size_t>> on_cell(boost::num_vertices(curve.automaton.graph));
+    std::vector<std::vector<std::size_t>> on_cell(num_vertices(curve.automaton.graph));
     for (std::size_t c = 0; c < curve.constraints.size(); ++c)
       on_cell[source_cell(curve, curve.constraints[c])].push_back(c);
     for (StateId s = 0; s < p.pair.size(); ++s) {

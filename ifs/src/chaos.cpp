@@ -76,13 +76,13 @@ ChaosResult chaos_game(const Automaton& automaton, std::span<const Points> nets,
   };
   restart();
   for (std::size_t k = 0; k < options.samples; ++k) {
-    const auto degree = boost::out_degree(state, g);
+    const auto degree = out_degree(state, g);
     const std::size_t c = draw(rng, degree);
-    auto [b, e] = boost::out_edges(state, g);
+    auto [b, e] = out_edges(state, g);
     std::advance(b, static_cast<std::ptrdiff_t>(c));
     child.noalias() = g[*b].matrix * net;
     std::swap(net, child);
-    state = boost::target(*b, g);
+    state = target(*b, g);
     share /= static_cast<double>(degree);
     t += static_cast<double>(c) * share;
     ++steps;

@@ -421,7 +421,7 @@ double similarity_dimension(const automata::Automaton& a, std::span<const Points
   if (nets.size() != a.initial.size())
     throw InvalidInput("similarity dimension: " + std::to_string(nets.size()) + " nets for " +
                        std::to_string(a.initial.size()) + " initial entries");
-  const auto n = boost::num_vertices(a.graph);
+  const auto n = num_vertices(a.graph);
   std::vector<Points> reference(n);
   std::deque<automata::StateId> queue;
   for (std::size_t i = 0; i < nets.size(); ++i) {
@@ -440,8 +440,8 @@ double similarity_dimension(const automata::Automaton& a, std::span<const Points
   while (!queue.empty()) {
     const automata::StateId u = queue.front();
     queue.pop_front();
-    for (const auto e : boost::make_iterator_range(boost::out_edges(u, a.graph))) {
-      const automata::StateId v = boost::target(e, a.graph);
+    for (const automata::TransitionId e : out_edges(u, a.graph)) {
+      const automata::StateId v = target(e, a.graph);
       if (reference[v].size() == 0) {
         reference[v] = a.graph[e].matrix * reference[u];
         queue.push_back(v);
@@ -451,8 +451,8 @@ double similarity_dimension(const automata::Automaton& a, std::span<const Points
   std::vector<SimilarityEdge> edges;
   for (automata::StateId u = 0; u < n; ++u) {
     if (reference[u].size() == 0) continue;
-    for (const auto e : boost::make_iterator_range(boost::out_edges(u, a.graph))) {
-      const automata::StateId v = boost::target(e, a.graph);
+    for (const automata::TransitionId e : out_edges(u, a.graph)) {
+      const automata::StateId v = target(e, a.graph);
       const std::string name =
           "transition '" + a.graph[e].label + "' " + std::to_string(u) + " → " + std::to_string(v);
       // f(x) = x·L + b with [N_v 1]·[L; b] = M·N_u: determined when N_v spans its space affinely.

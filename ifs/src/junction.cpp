@@ -22,7 +22,7 @@ int find_boundary(const Bcifs& sys, StateId cell, const std::string& name) {
 }
 
 StateId child_of(const Bcifs& sys, StateId s, int c) {
-  return boost::target(transition_id(sys.automaton, TransitionRef{s, c}), sys.automaton.graph);
+  return target(transition_id(sys.automaton, TransitionRef{s, c}), sys.automaton.graph);
 }
 
 std::string cell_text(const Bcifs& sys, StateId s) {
@@ -52,8 +52,8 @@ Bcifs uniform_curve_bcifs(const Eigen::MatrixXd& S0, const Eigen::MatrixXd& S1,
   Bcifs sys;
   auto& g = sys.automaton.graph;
   const auto add = [&](const std::string& name, Eigen::Index size, int dimension) {
-    const StateId s = boost::add_vertex(
-        automata::State{.size = static_cast<int>(size), .recurrent = true, .name = name}, g);
+    const StateId s =
+        add_vertex(automata::State{.size = static_cast<int>(size), .recurrent = true, .name = name}, g);
     sys.dimension.push_back(dimension);
     return s;
   };
@@ -72,8 +72,8 @@ Bcifs uniform_curve_bcifs(const Eigen::MatrixXd& S0, const Eigen::MatrixXd& S1,
   for (int p = 0; p <= L; ++p) {
     const StateId s = edge_at(p);
     const bool interior = p == L;
-    boost::add_edge(s, edge_at(interior ? L : 2 * p), automata::Transition{"G", S0}, g);
-    boost::add_edge(s, edge_at(interior ? L : 2 * p + 1), automata::Transition{"D", S1}, g);
+    add_edge(s, edge_at(interior ? L : 2 * p), automata::Transition{"G", S0}, g);
+    add_edge(s, edge_at(interior ? L : 2 * p + 1), automata::Transition{"D", S1}, g);
     if (options.free || !interior) {
       sys.free.push_back(TransitionRef{s, 0});
       sys.free.push_back(TransitionRef{s, 1});
@@ -81,7 +81,7 @@ Bcifs uniform_curve_bcifs(const Eigen::MatrixXd& S0, const Eigen::MatrixXd& S1,
   }
   for (int q = 0; q <= L; ++q) {
     const StateId v = vertex_at(q);
-    boost::add_edge(v, vertex_at(q == L ? L : 2 * q), automata::Transition{"V", V}, g);
+    add_edge(v, vertex_at(q == L ? L : 2 * q), automata::Transition{"V", V}, g);
     if (options.free || (q > 0 && q < L)) sys.free.push_back(TransitionRef{v, 0});
   }
   std::vector<int> start_rows(static_cast<std::size_t>(N - 1)), end_rows(start_rows.size());
@@ -170,9 +170,9 @@ void check_glued_pair(const Bcifs& a, StateId xa, const Bcifs& b, StateId xb) {
   if (a.dimension[xa] != b.dimension[xb])
     throw InvalidInput(pair + " are glued but have dimensions " + std::to_string(a.dimension[xa]) + " and " +
                        std::to_string(b.dimension[xb]));
-  if (boost::out_degree(xa, ga) != boost::out_degree(xb, gb))
-    throw InvalidInput(pair + " are glued but have " + std::to_string(boost::out_degree(xa, ga)) + " and " +
-                       std::to_string(boost::out_degree(xb, gb)) + " children");
+  if (out_degree(xa, ga) != out_degree(xb, gb))
+    throw InvalidInput(pair + " are glued but have " + std::to_string(out_degree(xa, ga)) + " and " +
+                       std::to_string(out_degree(xb, gb)) + " children");
 }
 
 /// Shared cells: closure of the glued pairs under children and boundaries, in the order found.
@@ -197,7 +197,7 @@ Sharing share_cells(const Bcifs& a, const Bcifs& b, std::span<const std::pair<in
     }
     check_glued_pair(a, xa, b, xb);
     shared.emplace_back(xa, xb);
-    for (int c = 0; c < static_cast<int>(boost::out_degree(xb, gb)); ++c)
+    for (int c = 0; c < static_cast<int>(out_degree(xb, gb)); ++c)
       todo.emplace_back(child_of(a, xa, c), child_of(b, xb, c));
     for (std::size_t i = 0; i < b.boundaries.size(); ++i) {
       const auto& op = b.boundaries[i];
@@ -220,29 +220,27 @@ std::vector<StateId> join_cells(const Bcifs& a, const Bcifs& b, const Sharing& s
   const auto& ga = a.automaton.graph;
   const auto& gb = b.automaton.graph;
   auto& g = sys.automaton.graph;
-  for (StateId s = 0; s < boost::num_vertices(ga); ++s) {
+  for (StateId s = 0; s < num_vertices(ga); ++s) {
     automata::State st = ga[s];
     st.name = options.a_name + ":" + cell_text(a, s);
-    boost::add_vertex(st, g);
+    add_vertex(st, g);
     sys.dimension.push_back(a.dimension[s]);
   }
-  std::vector<StateId> id(boost::num_vertices(gb));
-  for (StateId s = 0; s < boost::num_vertices(gb); ++s) {
+  std::vector<StateId> id(num_vertices(gb));
+  for (StateId s = 0; s < num_vertices(gb); ++s) {
     if (const auto it = sharing.partner.find(s); it != sharing.partner.end()) {
       id[s] = it->second;
       continue;
     }
     automata::State st = gb[s];
     st.name = options.b_name + ":" + cell_text(b, s);
-    id[s] = boost::add_vertex(st, g);
+    id[s] = add_vertex(st, g);
     sys.dimension.push_back(b.dimension[s]);
   }
-  for (auto [e, end] = boost::edges(ga); e != end; ++e)
-    boost::add_edge(boost::source(*e, ga), boost::target(*e, ga), ga[*e], g);
-  for (StateId s = 0; s < boost::num_vertices(gb); ++s) {
+  for (const automata::TransitionId e : edges(ga)) add_edge(source(e, ga), target(e, ga), ga[e], g);
+  for (StateId s = 0; s < num_vertices(gb); ++s) {
     if (sharing.partner.count(s)) continue;
-    for (auto [e, end] = boost::out_edges(s, gb); e != end; ++e)
-      boost::add_edge(id[s], id[boost::target(*e, gb)], gb[*e], g);
+    for (auto [e, end] = out_edges(s, gb); e != end; ++e) add_edge(id[s], id[target(*e, gb)], gb[*e], g);
   }
   return id;
 }

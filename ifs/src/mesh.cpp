@@ -142,9 +142,9 @@ std::vector<StateId> leaf_states(const Automaton& automaton, int depth) {
         continue;
       }
       // Pushed in reverse so that the first child is visited first.
-      const auto [b, e] = boost::out_edges(s, g);
+      const auto [b, e] = out_edges(s, g);
       std::vector<StateId> children;
-      for (auto it = b; it != e; ++it) children.push_back(boost::target(*it, g));
+      for (auto it = b; it != e; ++it) children.push_back(target(*it, g));
       for (auto it = children.rbegin(); it != children.rend(); ++it) stack.emplace_back(*it, d + 1);
     }
   }
@@ -205,13 +205,13 @@ namespace {
 void check_tensor(const nurbs::TensorAutomaton& t, std::span<const Points> nets) {
   for (const auto& f : t.factors) validate(f.automaton);
   check_nets(t.product, nets, "surface_mesh");
-  if (t.factor_states.size() != boost::num_vertices(t.product.graph))
+  if (t.factor_states.size() != num_vertices(t.product.graph))
     throw InvalidInput("surface_mesh: " + std::to_string(t.factor_states.size()) +
-                       " factor state pairs for " + std::to_string(boost::num_vertices(t.product.graph)) +
+                       " factor state pairs for " + std::to_string(num_vertices(t.product.graph)) +
                        " product states");
   for (StateId s = 0; s < t.factor_states.size(); ++s)
     for (std::size_t dir = 0; dir < 2; ++dir)
-      if (t.factor_states[s][dir] >= boost::num_vertices(t.factors[dir].automaton.graph))
+      if (t.factor_states[s][dir] >= num_vertices(t.factors[dir].automaton.graph))
         throw InvalidInput("surface_mesh: product state " + std::to_string(s) + " names factor state " +
                            std::to_string(t.factor_states[s][dir]) + " of direction " + std::to_string(dir) +
                            ", which does not exist");
@@ -306,11 +306,11 @@ void write_vertices(const FactorTables& tables, std::span<const Points> nets, co
 /// state are equal, so each distinct row is built once and copied.
 void write_states(const nurbs::TensorAutomaton& t, const FactorTables& tables, const Grid& grid, Mesh& mesh) {
   const auto& leaves = tables.leaves;
-  const auto nv_states = boost::num_vertices(t.factors[1].automaton.graph);
-  std::vector<std::uint32_t> pair_id(boost::num_vertices(t.factors[0].automaton.graph) * nv_states, 0);
+  const auto nv_states = num_vertices(t.factors[1].automaton.graph);
+  std::vector<std::uint32_t> pair_id(num_vertices(t.factors[0].automaton.graph) * nv_states, 0);
   for (StateId s = 0; s < t.factor_states.size(); ++s)
     pair_id[t.factor_states[s][0] * nv_states + t.factor_states[s][1]] = static_cast<std::uint32_t>(s);
-  std::vector<std::vector<std::uint32_t>> state_row(boost::num_vertices(t.factors[0].automaton.graph));
+  std::vector<std::vector<std::uint32_t>> state_row(num_vertices(t.factors[0].automaton.graph));
   mesh.states.clear();
   reserve_huge(mesh.states, grid.quads);
   for (int I = 0; I < grid.cu; ++I) {
@@ -459,9 +459,9 @@ std::vector<StateId> surface_states(const Automaton& automaton, const std::strin
   const Graph& g = automaton.graph;
   auto states = reachable_states(automaton);
   for (const StateId s : states)
-    if (boost::out_degree(s, g) != 4)
+    if (out_degree(s, g) != 4)
       throw InvalidInput(who + ": " + detail::state_label(automaton, s) + " has " +
-                         std::to_string(boost::out_degree(s, g)) +
+                         std::to_string(out_degree(s, g)) +
                          " children, a surface state needs 4 (GH, GB, DH, DB)");
   return states;
 }
@@ -480,7 +480,7 @@ void build_tables(const Automaton& automaton, std::span<const StateId> states, i
   };
   int L = std::max(max_depth, 0);
   while (L > 0 && table_size(L) + table_size(L - 1) > max_entries) --L;
-  const auto n = boost::num_vertices(g);
+  const auto n = num_vertices(g);
   out.table_depth = L;
   auto& table = out.tables;
   auto& leaf = out.leaf_states;
@@ -506,8 +506,8 @@ void build_tables(const Automaton& automaton, std::span<const StateId> states, i
       std::vector<std::uint32_t>& S = next_leaf[s];
       S.assign(4 * static_cast<std::size_t>(h) * static_cast<std::size_t>(h), 0);
       int c = 0;
-      for (auto [e, end] = boost::out_edges(s, g); e != end; ++e, ++c) {
-        const StateId child = boost::target(*e, g);
+      for (auto [e, end] = out_edges(s, g); e != end; ++e, ++c) {
+        const StateId child = target(*e, g);
         const RowMatrix P = table[child] * g[*e].matrix;  // (h+1)² functionals on the parent's net
         const int iu = c / 2, iv = c % 2;
         for (int i = 0; i <= h; ++i)
@@ -598,7 +598,7 @@ void check_table(const MeshStencilTable& t, std::span<const Points> nets, const 
   const Automaton& a = t.automaton;
   const auto states = surface_states(a, who, nets);
   const Graph& g = a.graph;
-  const auto n = boost::num_vertices(g);
+  const auto n = num_vertices(g);
   bool fits = t.depth >= 0 && t.table_depth >= 0 && t.table_depth <= t.depth && t.table_depth < 16 &&
               t.tables.size() == n && t.leaf_states.size() == n;
   if (fits) {

@@ -34,18 +34,16 @@ class StateWalk {
       if (stack_.empty()) {
         const StateId root = automaton_.initial[root_++].state;
         if (depth_ == 0) return root;
-        const auto [b, e] = boost::out_edges(root, g_);
-        stack_.emplace_back(b, e);
+        stack_.push_back(out_edges(root, g_));
       }
       auto& [it, end] = stack_.back();
       if (it == end) {
         stack_.pop_back();
         continue;
       }
-      const StateId s = boost::target(*it++, g_);
+      const StateId s = target(*it++, g_);
       if (static_cast<int>(stack_.size()) == depth_) return s;
-      const auto [b, e] = boost::out_edges(s, g_);
-      stack_.emplace_back(b, e);
+      stack_.push_back(out_edges(s, g_));
     }
   }
 
@@ -54,7 +52,7 @@ class StateWalk {
   const Automaton& automaton_;
   int depth_;
   std::size_t root_ = 0;
-  std::vector<std::pair<Graph::out_edge_iterator, Graph::out_edge_iterator>> stack_;
+  std::vector<automata::OutEdges> stack_;  // (next, end) per level
 };
 
 [[noreturn]] void refuse(const SampleOptions& o, const std::string& what, std::string_view advice) {

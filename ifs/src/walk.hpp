@@ -3,7 +3,6 @@
 // subdivision tree that every traversal shares.
 #pragma once
 
-#include <boost/graph/adjacency_list.hpp>
 #include <span>
 #include <string>
 #include <string_view>
@@ -32,7 +31,7 @@ std::string word_text(std::span<const int> word);
 template <class Visit>
 void depth_first(const Automaton& automaton, std::span<const Points> nets, int max_depth, Visit&& visit) {
   const Graph& g = automaton.graph;
-  using OutIt = Graph::out_edge_iterator;
+  using OutIt = const automata::TransitionId*;
   struct Frame {
     OutIt it, end;
     int child;
@@ -45,7 +44,7 @@ void depth_first(const Automaton& automaton, std::span<const Points> nets, int m
   for (std::size_t i = 0; i < automaton.initial.size(); ++i) {
     const StateId root = automaton.initial[i].state;
     if (!visit(i, root, nets[i], 0, std::span<const int>{}) || max_depth == 0) continue;
-    auto [b, e] = boost::out_edges(root, g);
+    auto [b, e] = out_edges(root, g);
     stack.push_back(Frame{b, e, 0});
     while (!stack.empty()) {
       Frame& top = stack.back();
@@ -60,11 +59,11 @@ void depth_first(const Automaton& automaton, std::span<const Points> nets, int m
       const Points& parent = d == 1 ? nets[i] : level[d - 1];
       Points& net = level[d];
       net.noalias() = g[edge].matrix * parent;
-      const StateId state = boost::target(edge, g);
+      const StateId state = target(edge, g);
       const bool descend = visit(i, state, static_cast<const Points&>(net), static_cast<int>(d),
                                  std::span<const int>(word.data(), d));
       if (descend && static_cast<int>(d) < max_depth) {
-        auto [cb, ce] = boost::out_edges(state, g);
+        auto [cb, ce] = out_edges(state, g);
         stack.push_back(Frame{cb, ce, 0});  // no reallocation: reserved max_depth + 1
       }
     }

@@ -20,25 +20,25 @@ std::string default_name(StateId s) {
 std::string to_json(const nurbs::KnotAutomaton& k) {
   const automata::Automaton& a = k.automaton;
   json states = json::array(), transitions = json::array(), initial = json::array();
-  for (StateId s = 0; s < boost::num_vertices(a.graph); ++s) {
+  for (StateId s = 0; s < num_vertices(a.graph); ++s) {
     const automata::State& st = a.graph[s];
     json j{{"id", s}, {"size", st.size}, {"recurrent", st.recurrent}};
     if (s < k.windows.size() && !k.windows[s].empty()) j["window"] = k.windows[s];
     if (st.name != default_name(s)) j["name"] = st.name;
     states.push_back(std::move(j));
   }
-  // boost::edges visits the states in order and each state's out-edges in order.
-  for (auto [e, end] = boost::edges(a.graph); e != end; ++e) {
-    const Eigen::MatrixXd& M = a.graph[*e].matrix;
+  // edges() visits the states in order and each state's out-edges in order.
+  for (const automata::TransitionId e : edges(a.graph)) {
+    const Eigen::MatrixXd& M = a.graph[e].matrix;
     json rows = json::array();
     for (Eigen::Index r = 0; r < M.rows(); ++r) {
       std::vector<double> row(static_cast<std::size_t>(M.cols()));
       for (Eigen::Index c = 0; c < M.cols(); ++c) row[static_cast<std::size_t>(c)] = M(r, c);
       rows.push_back(std::move(row));
     }
-    transitions.push_back({{"from", boost::source(*e, a.graph)},
-                           {"to", boost::target(*e, a.graph)},
-                           {"label", a.graph[*e].label},
+    transitions.push_back({{"from", source(e, a.graph)},
+                           {"to", target(e, a.graph)},
+                           {"label", a.graph[e].label},
                            {"matrix", rows}});
   }
   for (std::size_t n = 0; n < a.initial.size(); ++n) {
@@ -77,7 +77,7 @@ nurbs::KnotAutomaton parse_automaton_json(std::string_view text, std::string_vie
     if (s.contains("recurrent")) state.recurrent = r.boolean(s["recurrent"], path + ".recurrent");
     k.windows.push_back(s.contains("window") ? r.numbers(s["window"], path + ".window") : nurbs::Window{});
     state.name = s.contains("name") ? r.string(s["name"], path + ".name") : default_name(i);
-    boost::add_vertex(state, g);
+    add_vertex(state, g);
   }
   const auto state_id = [&](const json& v, const std::string& path) {
     const int id = r.integer(v, path);
@@ -99,7 +99,7 @@ nurbs::KnotAutomaton parse_automaton_json(std::string_view text, std::string_vie
     transition.matrix =
         r.matrix(r.member(t, path, "matrix"), path + ".matrix", g[to].size, g[from].size,
                  "size of state " + std::to_string(to), "size of state " + std::to_string(from));
-    boost::add_edge(from, to, transition, g);
+    add_edge(from, to, transition, g);
   }
 
   const json& initial = r.array(r.member(doc, "", "initial"), "initial");

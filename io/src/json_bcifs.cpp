@@ -69,7 +69,7 @@ class BcifsReader {
       if (size < 1) r_.fail(path + ".size", "a cell holds at least one point");
       const int dim = r_.integer(r_.member(c, path, "dimension"), path + ".dimension");
       if (dim < 0 || dim > 2) r_.fail(path + ".dimension", "expected 0 (vertex), 1 (edge) or 2 (face)");
-      const StateId s = boost::add_vertex(g);
+      const StateId s = add_vertex(g);
       g[s].size = size;
       g[s].name = name;
       sys().dimension.push_back(dim);
@@ -94,15 +94,15 @@ class BcifsReader {
                     to = cell(r_.member(t, path, "to"), path + ".to");
       const std::string label = r_.string(r_.member(t, path, "label"), path + ".label");
       if (label.empty()) r_.fail(path + ".label", "empty label (labels name the transitions)");
-      for (auto [e, end] = boost::out_edges(from, g); e != end; ++e)
+      for (auto [e, end] = out_edges(from, g); e != end; ++e)
         if (g[*e].label == label)
           r_.fail(path + ".label", "cell " + g[from].name + " has two transitions \"" + label + "\"");
       const std::string shape = "size of " + g[to].name + " by size of " + g[from].name;
       Eigen::MatrixXd M =
           r_.matrix(r_.member(t, path, "matrix"), path + ".matrix", g[to].size, g[from].size, shape, shape);
       const bool free = t.contains("free") && r_.boolean(t["free"], path + ".free");
-      const int child = static_cast<int>(boost::out_degree(from, g));
-      boost::add_edge(from, to, automata::Transition{label, std::move(M)}, g);
+      const int child = static_cast<int>(out_degree(from, g));
+      add_edge(from, to, automata::Transition{label, std::move(M)}, g);
       if (free) sys().free.push_back(ifs::TransitionRef{from, child});
     }
   }
@@ -148,7 +148,7 @@ class BcifsReader {
     const std::string rest = f.substr(split + 1);
     if (slash != std::string::npos) {
       int child = 0;
-      for (auto [e, end] = boost::out_edges(it->second, g); e != end; ++e, ++child)
+      for (auto [e, end] = out_edges(it->second, g); e != end; ++e, ++child)
         if (g[*e].label == rest) return ifs::Factor{ifs::Factor::Kind::transition, 0, {it->second, child}};
       r_.fail(path, "\"" + f + "\": cell " + it->first + " has no transition \"" + rest + "\"");
     }
@@ -220,15 +220,15 @@ std::string to_json(const ifs::Bcifs& sys, std::span<const Points> nets) {
   const std::set<ifs::TransitionRef> free(sys.free.begin(), sys.free.end());
   json cells = json::array(), transitions = json::array(), boundaries = json::array(),
        constraints = json::array(), initial = json::array();
-  for (StateId s = 0; s < boost::num_vertices(g); ++s) {
+  for (StateId s = 0; s < num_vertices(g); ++s) {
     const std::string name = cell_name(a, s);
     if (name.find_first_of("./") != std::string::npos)
       throw InvalidInput("to_json: cell name \"" + name + "\" has a '.' or '/'");
     cells.push_back({{"name", name}, {"size", g[s].size}, {"dimension", sys.dimension[s]}});
     int child = 0;
-    for (auto [e, end] = boost::out_edges(s, g); e != end; ++e, ++child)
+    for (auto [e, end] = out_edges(s, g); e != end; ++e, ++child)
       transitions.push_back({{"from", name},
-                             {"to", cell_name(a, boost::target(*e, g))},
+                             {"to", cell_name(a, target(*e, g))},
                              {"label", g[*e].label},
                              {"free", free.count(ifs::TransitionRef{s, child}) > 0},
                              {"matrix", detail::rows_json(g[*e].matrix)}});

@@ -168,7 +168,7 @@ double y_of(const Layout& l, automata::StateId s) {
 }
 
 Layout layout_states(const automata::Automaton& a) {
-  const std::size_t n = boost::num_vertices(a.graph);
+  const std::size_t n = num_vertices(a.graph);
   // Layers: breadth-first distance from the initial states; unreachable states go last.
   std::vector<int> layer(n, -1);
   std::deque<automata::StateId> queue;
@@ -182,8 +182,8 @@ Layout layout_states(const automata::Automaton& a) {
     const automata::StateId s = queue.front();
     queue.pop_front();
     order.push_back(s);
-    for (auto [e, end] = boost::out_edges(s, a.graph); e != end; ++e) {
-      const automata::StateId t = boost::target(*e, a.graph);
+    for (auto [e, end] = out_edges(s, a.graph); e != end; ++e) {
+      const automata::StateId t = target(*e, a.graph);
       if (layer[t] < 0) {
         layer[t] = layer[s] + 1;
         queue.push_back(t);
@@ -217,9 +217,9 @@ Layout layout_states(const automata::Automaton& a) {
 /// share one arrow, "G,D".
 void append_arrows(std::string& svg, const automata::Automaton& a, const Layout& layout) {
   std::map<std::pair<automata::StateId, automata::StateId>, std::string> arrows;
-  for (auto [e, end] = boost::edges(a.graph); e != end; ++e) {
-    std::string& label = arrows[{boost::source(*e, a.graph), boost::target(*e, a.graph)}];
-    label += (label.empty() ? "" : ",") + xml_escape(a.graph[*e].label);
+  for (const automata::TransitionId e : edges(a.graph)) {
+    std::string& label = arrows[{source(e, a.graph), target(e, a.graph)}];
+    label += (label.empty() ? "" : ",") + xml_escape(a.graph[e].label);
   }
   for (const auto& [ends, label] : arrows) {
     const auto [s, t] = ends;
@@ -251,7 +251,7 @@ void append_arrows(std::string& svg, const automata::Automaton& a, const Layout&
 
 /// The states as circles (recurrent ones tinted, initial ones with a thick outline) and names.
 void append_states(std::string& svg, const automata::Automaton& a, const Layout& layout) {
-  const std::size_t n = boost::num_vertices(a.graph);
+  const std::size_t n = num_vertices(a.graph);
   std::vector<bool> is_initial(n, false);
   for (const automata::Initial& i : a.initial) is_initial[i.state] = true;
   for (automata::StateId s = 0; s < n; ++s) {

@@ -25,7 +25,7 @@ KnotAutomaton knot_automaton(const Curve& curve) {
   const auto state_of = [&](Window window) {
     const auto [it, added] = ids.try_emplace(window, 0);
     if (added) {
-      it->second = boost::add_vertex(automata::State{.size = d + 1, .recurrent = false, .name = ""}, a.graph);
+      it->second = add_vertex(automata::State{.size = d + 1, .recurrent = false, .name = ""}, a.graph);
       a.graph[it->second].name = "s" + std::to_string(it->second);
       k.windows.push_back(std::move(window));
       todo.push_back(it->second);
@@ -51,10 +51,9 @@ KnotAutomaton knot_automaton(const Curve& curve) {
     const Window window = k.windows[s];
     for (auto half : {Half::G, Half::D}) {
       const StateId child = state_of(child_window(window, d, half));
-      boost::add_edge(
-          s, child,
-          automata::Transition{kHalfLabel[static_cast<int>(half)], subdivision_matrix(window, d, half)},
-          a.graph);
+      add_edge(s, child,
+               automata::Transition{kHalfLabel[static_cast<int>(half)], subdivision_matrix(window, d, half)},
+               a.graph);
     }
   }
   automata::mark_recurrent(a);
@@ -63,7 +62,7 @@ KnotAutomaton knot_automaton(const Curve& curve) {
 
 KnotAutomaton without_knots(automata::Automaton automaton) {
   KnotAutomaton k;
-  k.windows.resize(boost::num_vertices(automaton.graph));
+  k.windows.resize(num_vertices(automaton.graph));
   k.intervals.resize(automaton.initial.size());
   k.automaton = std::move(automaton);
   return k;
@@ -72,7 +71,7 @@ KnotAutomaton without_knots(automata::Automaton automaton) {
 KnotAutomaton minimize(const KnotAutomaton& k) {
   KnotAutomaton out{.automaton = automata::minimize(k.automaton), .windows = {}, .intervals = k.intervals};
   const std::vector<std::size_t> cls = automata::minimize_classes(k.automaton);
-  out.windows.resize(boost::num_vertices(out.automaton.graph));
+  out.windows.resize(num_vertices(out.automaton.graph));
   std::vector<bool> done(out.windows.size(), false);
   for (std::size_t s = 0; s < cls.size() && s < k.windows.size(); ++s)
     if (!done[cls[s]]) {

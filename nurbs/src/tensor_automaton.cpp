@@ -28,10 +28,10 @@ TensorAutomaton tensor_automaton(const nurbs::Surface& surface) {
     const auto [it, added] = ids.try_emplace(pair, 0);
     if (added) {
       const StateId s =
-          boost::add_vertex(automata::State{.size = gu[pair[0]].size * gv[pair[1]].size,
-                                            .recurrent = false,
-                                            .name = "(" + gu[pair[0]].name + "," + gv[pair[1]].name + ")"},
-                            t.product.graph);
+          add_vertex(automata::State{.size = gu[pair[0]].size * gv[pair[1]].size,
+                                     .recurrent = false,
+                                     .name = "(" + gu[pair[0]].name + "," + gv[pair[1]].name + ")"},
+                     t.product.graph);
       it->second = s;
       t.factor_states.push_back(pair);
       todo.push_back(s);
@@ -51,13 +51,13 @@ TensorAutomaton tensor_automaton(const nurbs::Surface& surface) {
     const StateId s = todo.front();
     todo.pop_front();
     const auto [p, q] = t.factor_states[s];
-    for (auto [eu, eu_end] = boost::out_edges(p, gu); eu != eu_end; ++eu)
-      for (auto [ev, ev_end] = boost::out_edges(q, gv); ev != ev_end; ++ev) {
-        const StateId child = state_of({boost::target(*eu, gu), boost::target(*ev, gv)});
-        boost::add_edge(s, child,
-                        automata::Transition{gu[*eu].label + v_label(gv[*ev].label),
-                                             kron(gu[*eu].matrix, gv[*ev].matrix)},
-                        t.product.graph);
+    for (auto [eu, eu_end] = out_edges(p, gu); eu != eu_end; ++eu)
+      for (auto [ev, ev_end] = out_edges(q, gv); ev != ev_end; ++ev) {
+        const StateId child = state_of({target(*eu, gu), target(*ev, gv)});
+        add_edge(s, child,
+                 automata::Transition{gu[*eu].label + v_label(gv[*ev].label),
+                                      kron(gu[*eu].matrix, gv[*ev].matrix)},
+                 t.product.graph);
       }
   }
   automata::mark_recurrent(t.product);

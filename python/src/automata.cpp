@@ -74,19 +74,19 @@ struct TransitionView {
 
 /// `id` as a state of `a`; ids come from Python ints, so negative ones are refused here too.
 StateId state_id(const Automaton& a, std::int64_t id, const std::string& where) {
-  if (id < 0 || static_cast<std::uint64_t>(id) >= boost::num_vertices(a.graph))
+  if (id < 0 || static_cast<std::uint64_t>(id) >= num_vertices(a.graph))
     throw InvalidInput(where + ": state " + std::to_string(id) + " does not exist (the automaton has " +
-                       std::to_string(boost::num_vertices(a.graph)) + " states)");
+                       std::to_string(num_vertices(a.graph)) + " states)");
   return static_cast<StateId>(id);
 }
 
 automata::TransitionId out_edge(const Automaton& a, StateId source, std::int64_t child,
                                 const std::string& where) {
-  const auto degree = boost::out_degree(source, a.graph);
+  const auto degree = out_degree(source, a.graph);
   if (child < 0 || static_cast<std::uint64_t>(child) >= degree)
     throw InvalidInput(where + ": child " + std::to_string(child) + " but state " + std::to_string(source) +
                        " has " + std::to_string(degree) + " children");
-  return *std::next(boost::out_edges(source, a.graph).first, static_cast<std::ptrdiff_t>(child));
+  return *std::next(out_edges(source, a.graph).first, static_cast<std::ptrdiff_t>(child));
 }
 
 /// A transition `source → target` carries a finite `size(target) by size(source)` matrix.
@@ -102,10 +102,10 @@ void check_matrix(const Automaton& a, StateId source, StateId target, const Eige
 
 std::vector<TransitionView> transitions(const Automaton& a) {
   std::vector<TransitionView> out;
-  for (StateId s = 0; s < boost::num_vertices(a.graph); ++s) {
+  for (StateId s = 0; s < num_vertices(a.graph); ++s) {
     int child = 0;
-    for (auto [b, e] = boost::out_edges(s, a.graph); b != e; ++b, ++child)
-      out.push_back({s, child, boost::target(*b, a.graph), a.graph[*b].label, a.graph[*b].matrix});
+    for (auto [b, e] = out_edges(s, a.graph); b != e; ++b, ++child)
+      out.push_back({s, child, target(*b, a.graph), a.graph[*b].label, a.graph[*b].matrix});
   }
   return out;
 }
@@ -175,9 +175,9 @@ void bind_automaton_building(py::class_<KnotAutomaton>& automaton) {
             if (size < 1)
               throw InvalidInput("add_state: size is " + std::to_string(size) +
                                  ", a state holds at least 1 point");
-            k.windows.resize(boost::num_vertices(k.automaton.graph) + 1);
-            return boost::add_vertex(automata::State{.size = size, .recurrent = false, .name = name},
-                                     k.automaton.graph);
+            k.windows.resize(num_vertices(k.automaton.graph) + 1);
+            return add_vertex(automata::State{.size = size, .recurrent = false, .name = name},
+                              k.automaton.graph);
           },
           py::arg("size"), py::arg("name") = "",
           "Adds a state whose nets have `size` (≥ 1) points; returns its id (0, 1, …).\n\n"
@@ -190,8 +190,8 @@ void bind_automaton_building(py::class_<KnotAutomaton>& automaton) {
             const StateId s = state_id(a, source, "add_transition");
             const StateId t = state_id(a, target, "add_transition");
             check_matrix(a, s, t, matrix, "add_transition " + std::to_string(s) + " -> " + std::to_string(t));
-            const auto child = boost::out_degree(s, a.graph);
-            boost::add_edge(s, t, automata::Transition{label, matrix}, a.graph);
+            const auto child = out_degree(s, a.graph);
+            add_edge(s, t, automata::Transition{label, matrix}, a.graph);
             return child;
           },
           py::arg("source"), py::arg("target"), py::arg("matrix"), py::arg("label") = "",
@@ -215,7 +215,7 @@ void bind_automaton_building(py::class_<KnotAutomaton>& automaton) {
             Automaton& a = k.automaton;
             const StateId s = state_id(a, source, "set_matrix");
             const auto e = out_edge(a, s, child, "set_matrix");
-            check_matrix(a, s, boost::target(e, a.graph), matrix,
+            check_matrix(a, s, target(e, a.graph), matrix,
                          "set_matrix " + std::to_string(s) + " child " + std::to_string(child));
             a.graph[e].matrix = matrix;
           },
@@ -236,13 +236,12 @@ void bind_automaton_reading(py::class_<KnotAutomaton>& automaton) {
           "states",
           [](const KnotAutomaton& k) {
             std::vector<StateView> out;
-            for (StateId s = 0; s < boost::num_vertices(k.automaton.graph); ++s)
-              out.push_back(state_view(k, s));
+            for (StateId s = 0; s < num_vertices(k.automaton.graph); ++s) out.push_back(state_view(k, s));
             return out;
           },
           "Every state, by id (list of State, copies).")
       .def_property_readonly(
-          "state_count", [](const KnotAutomaton& k) { return boost::num_vertices(k.automaton.graph); },
+          "state_count", [](const KnotAutomaton& k) { return num_vertices(k.automaton.graph); },
           "Number of states.")
       .def(
           "children",
@@ -250,8 +249,7 @@ void bind_automaton_reading(py::class_<KnotAutomaton>& automaton) {
             const Automaton& a = k.automaton;
             const StateId s = state_id(a, source, "children");
             std::vector<StateId> out;
-            for (auto [b, e] = boost::out_edges(s, a.graph); b != e; ++b)
-              out.push_back(boost::target(*b, a.graph));
+            for (auto [b, e] = out_edges(s, a.graph); b != e; ++b) out.push_back(target(*b, a.graph));
             return out;
           },
           py::arg("source"), "Target ids of the transitions out of `source`, in child order (list of int).")
@@ -261,7 +259,7 @@ void bind_automaton_reading(py::class_<KnotAutomaton>& automaton) {
             const Automaton& a = k.automaton;
             const StateId s = state_id(a, source, "labels");
             std::vector<std::string> out;
-            for (auto [b, e] = boost::out_edges(s, a.graph); b != e; ++b) out.push_back(a.graph[*b].label);
+            for (auto [b, e] = out_edges(s, a.graph); b != e; ++b) out.push_back(a.graph[*b].label);
             return out;
           },
           py::arg("source"), "Labels of the transitions out of `source`, in child order (list of str).")
@@ -302,9 +300,9 @@ void bind_automaton_entries(py::class_<KnotAutomaton>& automaton) {
           "An independent copy.")
       .def("__repr__", [](const KnotAutomaton& k) {
         const Automaton& a = k.automaton;
-        return "Automaton(" + std::to_string(boost::num_vertices(a.graph)) + " states, " +
-               std::to_string(boost::num_edges(a.graph)) + " transitions, " +
-               std::to_string(a.initial.size()) + " initial entries)";
+        return "Automaton(" + std::to_string(num_vertices(a.graph)) + " states, " +
+               std::to_string(num_edges(a.graph)) + " transitions, " + std::to_string(a.initial.size()) +
+               " initial entries)";
       });
 }
 
@@ -381,8 +379,8 @@ void bind_automata_tensor(py::module_& m) {
           "patches", [](const TensorAutomaton& t) { return index_array(t.patches); },
           "Per product initial entry, its (u segment, v segment): int array `(patches, 2)`.")
       .def("__repr__", [](const TensorAutomaton& t) {
-        return "TensorAutomaton(" + std::to_string(boost::num_vertices(t.product.graph)) +
-               " product states, " + std::to_string(t.patches.size()) + " patches)";
+        return "TensorAutomaton(" + std::to_string(num_vertices(t.product.graph)) + " product states, " +
+               std::to_string(t.patches.size()) + " patches)";
       });
 
   m.def("tensor_automaton", &nurbs::tensor_automaton, py::arg("surface"),

@@ -184,7 +184,7 @@ one side, a transition listed free twice …)doc")
       .def_readonly("constraints", &ifs::Bcifs::constraints, "The constraints (list of Constraint).")
       .def_readonly("free", &ifs::Bcifs::free, "The free transitions, as (source, child) tuples.")
       .def("__repr__", [](const ifs::Bcifs& s) {
-        return "Bcifs(cells=" + std::to_string(boost::num_vertices(s.automaton.graph)) +
+        return "Bcifs(cells=" + std::to_string(num_vertices(s.automaton.graph)) +
                ", boundaries=" + std::to_string(s.boundaries.size()) +
                ", constraints=" + std::to_string(s.constraints.size()) +
                ", free=" + std::to_string(s.free.size()) + ")";
@@ -506,7 +506,7 @@ void bind_bcifs_io(py::module_& m) {
           "nets", &io::BcifsFile::nets,
           "One float64 array (size(state), cols) per initial entry (empty list when the file gives none).")
       .def("__repr__", [](const io::BcifsFile& f) {
-        return "BcifsFile(cells=" + std::to_string(boost::num_vertices(f.system.automaton.graph)) +
+        return "BcifsFile(cells=" + std::to_string(num_vertices(f.system.automaton.graph)) +
                ", nets=" + std::to_string(f.nets.size()) + ")";
       });
   m.def("read_bcifs", &io::read_bcifs, py::arg("path"),

@@ -280,7 +280,7 @@ void bind_piece_bounds(py::module_& m) {
       .def(
           "__call__",
           [](const ifs::PieceBounds& bounds, const Automaton& a, std::int64_t state, const Points& net) {
-            if (state < 0 || state >= static_cast<std::int64_t>(boost::num_vertices(a.graph)))
+            if (state < 0 || state >= static_cast<std::int64_t>(num_vertices(a.graph)))
               throw InvalidInput("PieceBounds: state " + std::to_string(state) + " does not exist");
             if (net.rows() != a.graph[static_cast<StateId>(state)].size)
               throw InvalidInput("PieceBounds: the net has " + std::to_string(net.rows()) + " rows, state " +

@@ -42,17 +42,17 @@ struct Tables {
 Tables tables(const automata::Automaton& automaton) {
   const Graph& g = automaton.graph;
   Tables t;
-  const auto states = boost::num_vertices(g);
+  const auto states = num_vertices(g);
   t.first.resize(states);
   t.degree.resize(states);
   for (StateId s = 0; s < states; ++s) {
     t.first[s] = static_cast<std::uint32_t>(t.edges.size());
-    t.degree[s] = static_cast<std::uint32_t>(boost::out_degree(s, g));
+    t.degree[s] = static_cast<std::uint32_t>(out_degree(s, g));
     t.max_size = std::max(t.max_size, g[s].size);
-    for (auto [b, e] = boost::out_edges(s, g); b != e; ++b) {
+    for (auto [b, e] = out_edges(s, g); b != e; ++b) {
       const Eigen::MatrixXd& M = g[*b].matrix;
-      t.edges.push_back({static_cast<std::uint32_t>(boost::target(*b, g)), M.data(),
-                         static_cast<int>(M.rows()), static_cast<int>(M.cols())});
+      t.edges.push_back({static_cast<std::uint32_t>(target(*b, g)), M.data(), static_cast<int>(M.rows()),
+                         static_cast<int>(M.cols())});
     }
   }
   t.start = ifs::end_functionals(automaton).start;
@@ -126,7 +126,7 @@ void check_budget(const automata::Automaton& automaton, const ChaosDensityOption
   // Each sample descends `depth` levels, a `size × size` matrix times the net per level: refuse a
   // game past ~2^38 multiply-adds (minutes) before it starts; 2^32 − 1 samples took hours.
   int size = 1;
-  for (std::size_t s = 0; s < boost::num_vertices(automaton.graph); ++s)
+  for (std::size_t s = 0; s < num_vertices(automaton.graph); ++s)
     size = std::max(size, automaton.graph[s].size);
   // The limit is per process: a distributed game (options.part) divides the samples.
   const double count = options.part.count > 1 ? static_cast<double>(options.part.count) : 1.0;

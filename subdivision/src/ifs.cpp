@@ -51,10 +51,10 @@ automata::Automaton scheme_automaton(const Scheme& scheme, int segments) {
   state.size = mask_degree(scheme);
   state.recurrent = true;
   state.name = scheme.name;
-  const auto s = boost::add_vertex(state, a.graph);
+  const auto s = add_vertex(state, a.graph);
   const auto S = ifs_matrices(scheme);
-  boost::add_edge(s, s, automata::Transition{"0", S[0]}, a.graph);
-  boost::add_edge(s, s, automata::Transition{"1", S[1]}, a.graph);
+  add_edge(s, s, automata::Transition{"0", S[0]}, a.graph);
+  add_edge(s, s, automata::Transition{"1", S[1]}, a.graph);
   for (int k = 0; k < segments; ++k) a.initial.push_back({.segment = k, .state = s});
   return a;
 }

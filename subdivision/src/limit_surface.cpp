@@ -133,32 +133,31 @@ SurfaceAutomaton build_automaton(const Mesh& mesh, const MeshTopology& t, MeshSc
   automata::Graph& g = out.automaton.graph;
   const auto labels = child_labels(scheme);
   const ExtraordinaryPatch regular_patch = quads(scheme) ? ExtraordinaryPatch{} : loop_patch(6);
-  const automata::StateId regular = boost::add_vertex(
-      automata::State{.size = quads(scheme) ? 16 : 12, .recurrent = false, .name = "regular"}, g);
+  const automata::StateId regular =
+      add_vertex(automata::State{.size = quads(scheme) ? 16 : 12, .recurrent = false, .name = "regular"}, g);
   for (std::size_t c = 0; c < 4; ++c) {
     Eigen::MatrixXd M;
     if (quads(scheme))
       M = automata::kron(cubic_half(static_cast<int>(c / 2)), cubic_half(static_cast<int>(c % 2)));
     else
       M = c == 0 ? regular_patch.subdivide : regular_patch.regular[c - 1];
-    boost::add_edge(regular, regular, automata::Transition{labels[c], M}, g);
+    add_edge(regular, regular, automata::Transition{labels[c], M}, g);
   }
   std::map<int, automata::StateId> extraordinary;  // by valence
   const auto state_of = [&](int n) {
     if (const auto it = extraordinary.find(n); it != extraordinary.end()) return it->second;
     const ExtraordinaryPatch patch = quads(scheme) ? catmull_clark_patch(n) : loop_patch(n);
-    const automata::StateId s =
-        boost::add_vertex(automata::State{.size = static_cast<int>(patch.subdivide.rows()),
-                                          .recurrent = false,
-                                          .name = "E" + std::to_string(n)},
-                          g);
-    boost::add_edge(s, s, automata::Transition{labels[0], patch.subdivide}, g);
+    const automata::StateId s = add_vertex(automata::State{.size = static_cast<int>(patch.subdivide.rows()),
+                                                           .recurrent = false,
+                                                           .name = "E" + std::to_string(n)},
+                                           g);
+    add_edge(s, s, automata::Transition{labels[0], patch.subdivide}, g);
     // Quads: child 2·iu + iv, (0, 1) regular[2], (1, 0) regular[0], (1, 1) regular[1]. Triangles:
     // C1, C2, M are regular[0], [1], [2].
     const std::array<std::size_t, 3> order =
         quads(scheme) ? std::array<std::size_t, 3>{2, 0, 1} : std::array<std::size_t, 3>{0, 1, 2};
     for (std::size_t c = 1; c < 4; ++c)
-      boost::add_edge(s, regular, automata::Transition{labels[c], patch.regular[order[c - 1]]}, g);
+      add_edge(s, regular, automata::Transition{labels[c], patch.regular[order[c - 1]]}, g);
     return extraordinary.emplace(n, s).first->second;
   };
   const Eigen::Index d = mesh.vertices.cols();
@@ -258,7 +257,7 @@ Eigen::MatrixXd quartic_bezier(const SurfaceAutomaton& s, automata::StateId regu
   std::array<Eigen::MatrixXd, 4> child;
   {
     std::size_t c = 0;
-    for (auto [e, end] = boost::out_edges(regular, g); e != end; ++e) child[c++] = g[*e].matrix;
+    for (auto [e, end] = out_edges(regular, g); e != end; ++e) child[c++] = g[*e].matrix;
   }
   std::array<Eigen::RowVectorXd, 3> fixed;  // the corners (0, 0), (1, 0), (0, 1)
   for (std::size_t c = 0; c < 3; ++c)
@@ -357,7 +356,7 @@ struct Patches {
 
 Patches patches(const SurfaceAutomaton& s, bool quad) {
   Patches P{s, quad, ifs::repeated_child_functionals(s.automaton, 0),
-            std::vector<char>(boost::num_vertices(s.automaton.graph)), Eigen::MatrixXd()};
+            std::vector<char>(num_vertices(s.automaton.graph)), Eigen::MatrixXd()};
   for (automata::StateId k = 0; k < P.regular.size(); ++k) P.regular[k] = is_regular(s.automaton, k) ? 1 : 0;
   P.bezier = quad ? Eigen::MatrixXd() : quartic_bezier(s, 0);
   return P;
@@ -401,9 +400,9 @@ void evaluate_extraordinary(const Patches& P, const Points& net0, automata::Stat
   // Down the corner's part (quads: both below ½; triangles: a + b below ½).
   for (; quad ? std::max(a, b) < 0.5 : a + b < 0.5; ++level, a *= 2, b *= 2, scale *= 2)
     if (level + 1 == down.chain.size()) {
-      const auto edge = *boost::out_edges(down.state[level], g).first;
+      const auto edge = *out_edges(down.state[level], g).first;
       down.chain.push_back(g[edge].matrix * down.chain[level]);
-      down.state.push_back(boost::target(edge, g));
+      down.state.push_back(target(edge, g));
       if (P.regular[down.state.back()] != 0)
         throw std::logic_error("limit surface: the corner part of an extraordinary patch is regular");
     }
@@ -424,9 +423,9 @@ void evaluate_extraordinary(const Patches& P, const Points& net0, automata::Stat
   }
   Points& net = down.part[level][static_cast<std::size_t>(c)];
   if (net.size() == 0) {
-    auto edge = boost::out_edges(down.state[level], g).first;
+    auto edge = out_edges(down.state[level], g).first;
     std::advance(edge, c);
-    if (P.regular[boost::target(*edge, g)] == 0)
+    if (P.regular[target(*edge, g)] == 0)
       throw std::logic_error("limit surface: a side part of an extraordinary patch is not regular");
     net = regular_form(P, g[*edge].matrix * down.chain[level]);
   }
@@ -575,9 +574,8 @@ Mesh triangle_mesh(const SurfaceAutomaton& surface, int depth, const ifs::MeshOp
                                                      {i, j + sign * half, sign},
                                                      {i + sign * half, j + sign * half, -sign}}};
       std::size_t k = 0;
-      for (auto [e, end] = boost::out_edges(state, g); e != end; ++e, ++k)
-        self(self, boost::target(*e, g), Points(g[*e].matrix * net), child[k][0], child[k][1], child[k][2],
-             half);
+      for (auto [e, end] = out_edges(state, g); e != end; ++e, ++k)
+        self(self, target(*e, g), Points(g[*e].matrix * net), child[k][0], child[k][1], child[k][2], half);
     };
     visit(visit, surface.automaton.initial[f].state, surface.nets[f], 0, 0, 1, side);
   }
@@ -675,15 +673,15 @@ FractalSurface fractal_catmull_clark(const SurfaceAutomaton& smooth, const ifs::
   automata::Graph g = cells.graph;
   const automata::StateId root = cells.initial.at(0).state;
   const automata::Graph& old = smooth.automaton.graph;
-  std::vector<automata::StateId> moved(boost::num_vertices(old), root);
-  for (automata::StateId s = 0; s < boost::num_vertices(old); ++s)
-    if (!is_regular(smooth.automaton, s)) moved[s] = boost::add_vertex(old[s], g);
-  for (automata::StateId s = 0; s < boost::num_vertices(old); ++s) {
+  std::vector<automata::StateId> moved(num_vertices(old), root);
+  for (automata::StateId s = 0; s < num_vertices(old); ++s)
+    if (!is_regular(smooth.automaton, s)) moved[s] = add_vertex(old[s], g);
+  for (automata::StateId s = 0; s < num_vertices(old); ++s) {
     if (is_regular(smooth.automaton, s)) continue;
-    for (auto [e, end] = boost::out_edges(s, old); e != end; ++e)
-      boost::add_edge(moved[s], moved[boost::target(*e, old)], old[*e], g);
+    for (auto [e, end] = out_edges(s, old); e != end; ++e)
+      add_edge(moved[s], moved[target(*e, old)], old[*e], g);
   }
-  out.surface.automaton.graph = g;  // boost::adjacency_list has no move assignment
+  out.surface.automaton.graph = std::move(g);
   for (const automata::Initial& i : smooth.automaton.initial)
     out.surface.automaton.initial.push_back(automata::Initial{.segment = i.segment, .state = moved[i.state]});
   out.surface.nets = smooth.nets;

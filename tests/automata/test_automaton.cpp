@@ -28,16 +28,16 @@ std::set<StateId> reachable(const automata::Automaton& a, StateId from) {
   while (!stack.empty()) {
     const StateId s = stack.back();
     stack.pop_back();
-    for (auto [e, end] = boost::out_edges(s, a.graph); e != end; ++e)
-      if (seen.insert(boost::target(*e, a.graph)).second) stack.push_back(boost::target(*e, a.graph));
+    for (auto [e, end] = out_edges(s, a.graph); e != end; ++e)
+      if (seen.insert(target(*e, a.graph)).second) stack.push_back(target(*e, a.graph));
   }
   return seen;
 }
 
 StateId uniform_state(const nurbs::KnotAutomaton& k, int d) {
-  for (StateId s = 0; s < boost::num_vertices(k.automaton.graph); ++s)
+  for (StateId s = 0; s < num_vertices(k.automaton.graph); ++s)
     if (k.windows[s] == std::vector<double>(static_cast<std::size_t>(2 * d - 1), 1.0)) return s;
-  return boost::num_vertices(k.automaton.graph);
+  return num_vertices(k.automaton.graph);
 }
 
 }  // namespace
@@ -50,10 +50,10 @@ TEST_CASE("Generic knots: 4(d-1) states per segment, 2d-1 recur, one shared unif
         nurbs::make_curve(d, random_knots(rng, static_cast<std::size_t>(n + d + 1)), Points::Random(n, 2));
     const nurbs::KnotAutomaton k = nurbs::knot_automaton(c);
     const automata::Automaton& a = k.automaton;
-    REQUIRE(k.windows.size() == boost::num_vertices(a.graph));
+    REQUIRE(k.windows.size() == num_vertices(a.graph));
     CHECK(static_cast<int>(a.initial.size()) == n - d);
     const StateId uniform = uniform_state(k, d);
-    REQUIRE(uniform < boost::num_vertices(a.graph));
+    REQUIRE(uniform < num_vertices(a.graph));
     for (const automata::Initial& init : a.initial) {
       const std::set<StateId> states = reachable(a, init.state);
       INFO("degree " << d << ", segment " << init.segment);
@@ -64,14 +64,14 @@ TEST_CASE("Generic knots: 4(d-1) states per segment, 2d-1 recur, one shared unif
       CHECK(!a.graph[init.state].recurrent);
     }
     // Every state has exactly the two children G, D with the matrices of its window.
-    for (StateId s = 0; s < boost::num_vertices(a.graph); ++s) {
-      REQUIRE(boost::out_degree(s, a.graph) == 2);
+    for (StateId s = 0; s < num_vertices(a.graph); ++s) {
+      REQUIRE(out_degree(s, a.graph) == 2);
       int half = 0;
-      for (auto [e, end] = boost::out_edges(s, a.graph); e != end; ++e, ++half) {
+      for (auto [e, end] = out_edges(s, a.graph); e != end; ++e, ++half) {
         CHECK(a.graph[*e].label == (half == 0 ? "G" : "D"));
         CHECK(a.graph[*e].matrix ==
               nurbs::subdivision_matrix(k.windows[s], d, static_cast<nurbs::Half>(half)));
-        CHECK(k.windows[boost::target(*e, a.graph)] ==
+        CHECK(k.windows[target(*e, a.graph)] ==
               nurbs::child_window(k.windows[s], d, static_cast<nurbs::Half>(half)));
       }
       CHECK(k.windows[s][static_cast<std::size_t>(d - 1)] == 1.0);
@@ -83,7 +83,7 @@ TEST_CASE("Uniform, clamped, closed and repeated knots", "[automata]") {
   SECTION("a uniform closed curve is one state") {
     const nurbs::Curve c = nurbs::make_closed_curve(3, {0, 1, 2, 3, 4, 5, 6}, Points::Random(6, 3));
     const automata::Automaton a = nurbs::knot_automaton(c).automaton;
-    CHECK(boost::num_vertices(a.graph) == 1);
+    CHECK(num_vertices(a.graph) == 1);
     CHECK(a.initial.size() == 6);
     CHECK(a.graph[0].recurrent);
   }
@@ -104,7 +104,7 @@ TEST_CASE("Uniform, clamped, closed and repeated knots", "[automata]") {
     const nurbs::Curve c = nurbs::make_curve(3, {0, 0, 0, 0, 1, 1, 3, 4, 4, 4, 4}, Points::Random(7, 2));
     const nurbs::KnotAutomaton k = nurbs::knot_automaton(c);
     CHECK(k.automaton.initial.size() == 3);
-    for (StateId s = 0; s < boost::num_vertices(k.automaton.graph); ++s) {
+    for (StateId s = 0; s < num_vertices(k.automaton.graph); ++s) {
       const auto& w = k.windows[s];
       for (std::size_t i = 0; i + 2 < w.size(); ++i) CHECK(!(w[i] == 0 && w[i + 1] == 0 && w[i + 2] == 0));
     }
@@ -112,7 +112,7 @@ TEST_CASE("Uniform, clamped, closed and repeated knots", "[automata]") {
   SECTION("degree 1 is one uniform state") {
     const auto a =
         nurbs::knot_automaton(nurbs::make_curve(1, {0, 0, 0.3, 2, 2}, Points::Random(3, 2))).automaton;
-    CHECK(boost::num_vertices(a.graph) == 1);
+    CHECK(num_vertices(a.graph) == 1);
   }
 }
 
@@ -122,27 +122,26 @@ TEST_CASE("Minimisation merges states no net can tell apart", "[automata]") {
   const Eigen::MatrixXd D = nurbs::subdivision_matrix(nurbs::Window{1, 1, 1}, 2, nurbs::Half::D);
   const Eigen::MatrixXd G2 = nurbs::subdivision_matrix(nurbs::Window{2, 1, 1}, 2, nurbs::Half::G);
   automata::Automaton a;
-  for (int i = 0; i < 3; ++i)
-    boost::add_vertex(automata::State{.size = 3, .recurrent = false, .name = ""}, a.graph);
-  boost::add_edge(0, 1, automata::Transition{"G", G}, a.graph);
-  boost::add_edge(0, 1, automata::Transition{"D", D}, a.graph);
-  boost::add_edge(1, 0, automata::Transition{"G", G}, a.graph);
-  boost::add_edge(1, 0, automata::Transition{"D", D}, a.graph);
-  boost::add_edge(2, 0, automata::Transition{"G", G2}, a.graph);
-  boost::add_edge(2, 1, automata::Transition{"D", D}, a.graph);
+  for (int i = 0; i < 3; ++i) add_vertex(automata::State{.size = 3, .recurrent = false, .name = ""}, a.graph);
+  add_edge(0, 1, automata::Transition{"G", G}, a.graph);
+  add_edge(0, 1, automata::Transition{"D", D}, a.graph);
+  add_edge(1, 0, automata::Transition{"G", G}, a.graph);
+  add_edge(1, 0, automata::Transition{"D", D}, a.graph);
+  add_edge(2, 0, automata::Transition{"G", G2}, a.graph);
+  add_edge(2, 1, automata::Transition{"D", D}, a.graph);
   a.initial = {{.segment = 0, .state = 2}, {.segment = 1, .state = 1}};
   automata::mark_recurrent(a);
   const automata::Automaton m = automata::minimize(a);
-  CHECK(boost::num_vertices(m.graph) == 2);
+  CHECK(num_vertices(m.graph) == 2);
   CHECK(m.initial[0].state != m.initial[1].state);  // states 0 and 1 are one class, state 2 another
-  CHECK(boost::out_degree(m.initial[1].state, m.graph) == 2);
-  for (auto [e, end] = boost::out_edges(m.initial[1].state, m.graph); e != end; ++e)
-    CHECK(boost::target(*e, m.graph) == m.initial[1].state);  // the merged class loops on itself
+  CHECK(out_degree(m.initial[1].state, m.graph) == 2);
+  for (auto [e, end] = out_edges(m.initial[1].state, m.graph); e != end; ++e)
+    CHECK(target(*e, m.graph) == m.initial[1].state);  // the merged class loops on itself
   CHECK(!m.graph[m.initial[0].state].recurrent);
   // Same matrices but different children classes are not merged.
   const automata::Automaton k =
       nurbs::knot_automaton(nurbs::make_curve(2, {0, 0, 0, 1, 3, 4, 4, 4}, Points::Random(5, 2))).automaton;
-  CHECK(boost::num_vertices(automata::minimize(k).graph) == boost::num_vertices(k.graph));
+  CHECK(num_vertices(automata::minimize(k).graph) == num_vertices(k.graph));
 }
 
 TEST_CASE("Initial nets are the segments' control points", "[automata]") {
@@ -159,13 +158,12 @@ TEST_CASE("Minimisation keeps the knot data beside the automaton", "[automata]")
   const Eigen::MatrixXd G = nurbs::subdivision_matrix(nurbs::Window{1, 1, 1}, 2, nurbs::Half::G);
   const Eigen::MatrixXd D = nurbs::subdivision_matrix(nurbs::Window{1, 1, 1}, 2, nurbs::Half::D);
   automata::Automaton a;
-  for (int i = 0; i < 3; ++i)
-    boost::add_vertex(automata::State{.size = 3, .recurrent = false, .name = ""}, a.graph);
-  boost::add_edge(2, 1, automata::Transition{"G", G}, a.graph);
-  boost::add_edge(2, 1, automata::Transition{"D", G}, a.graph);
+  for (int i = 0; i < 3; ++i) add_vertex(automata::State{.size = 3, .recurrent = false, .name = ""}, a.graph);
+  add_edge(2, 1, automata::Transition{"G", G}, a.graph);
+  add_edge(2, 1, automata::Transition{"D", G}, a.graph);
   for (StateId s = 0; s < 2; ++s) {
-    boost::add_edge(s, 1 - s, automata::Transition{"G", G}, a.graph);
-    boost::add_edge(s, 1 - s, automata::Transition{"D", D}, a.graph);
+    add_edge(s, 1 - s, automata::Transition{"G", G}, a.graph);
+    add_edge(s, 1 - s, automata::Transition{"D", D}, a.graph);
   }
   a.initial = {{.segment = 0, .state = 2}, {.segment = 1, .state = 1}};
   CHECK(automata::minimize_classes(a) == std::vector<std::size_t>{0, 0, 1});
@@ -174,7 +172,7 @@ TEST_CASE("Minimisation keeps the knot data beside the automaton", "[automata]")
       .windows = {{1, 1, 1}, {2, 1, 2}, {3, 1, 3}},
       .intervals = {{.start = 0, .end = 1, .span = 2}, {.start = 1, .end = 3, .span = 3}}};
   const nurbs::KnotAutomaton m = nurbs::minimize(k);
-  REQUIRE(boost::num_vertices(m.automaton.graph) == 2);
+  REQUIRE(num_vertices(m.automaton.graph) == 2);
   // Class {0, 1} is state 0 with state 0's window; state 2 became state 1.
   CHECK(m.windows == std::vector<nurbs::Window>{{1, 1, 1}, {3, 1, 3}});
   CHECK(m.automaton.initial[0].state == 1);

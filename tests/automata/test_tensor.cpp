@@ -36,10 +36,10 @@ TEST_CASE("Tensor automaton: reachable pairs, sizes, Kronecker matrices in GH GB
     const automata::Graph& g = t.product.graph;
     const automata::Graph& gu = t.factors[0].automaton.graph;
     const automata::Graph& gv = t.factors[1].automaton.graph;
-    const auto n = boost::num_vertices(g);
+    const auto n = num_vertices(g);
     INFO("trial " << trial << ", degrees " << degree[0] << ", " << degree[1]);
     REQUIRE(t.factor_states.size() == n);
-    CHECK(n <= boost::num_vertices(gu) * boost::num_vertices(gv));
+    CHECK(n <= num_vertices(gu) * num_vertices(gv));
     // One state per pair.
     std::set<std::array<StateId, 2>> pairs(t.factor_states.begin(), t.factor_states.end());
     CHECK(pairs.size() == n);
@@ -64,8 +64,8 @@ TEST_CASE("Tensor automaton: reachable pairs, sizes, Kronecker matrices in GH GB
     while (!stack.empty()) {
       const StateId s0 = stack.back();
       stack.pop_back();
-      for (auto [e, end] = boost::out_edges(s0, g); e != end; ++e)
-        if (seen.insert(boost::target(*e, g)).second) stack.push_back(boost::target(*e, g));
+      for (auto [e, end] = out_edges(s0, g); e != end; ++e)
+        if (seen.insert(target(*e, g)).second) stack.push_back(target(*e, g));
     }
     CHECK(seen.size() == n);
     // Sizes, labels, targets and matrices.
@@ -73,16 +73,15 @@ TEST_CASE("Tensor automaton: reachable pairs, sizes, Kronecker matrices in GH GB
     for (StateId s0 = 0; s0 < n; ++s0) {
       const auto [p, q] = t.factor_states[s0];
       CHECK(g[s0].size == gu[p].size * gv[q].size);
-      REQUIRE(boost::out_degree(s0, g) == 4);
+      REQUIRE(out_degree(s0, g) == 4);
       int child = 0;
-      for (auto [e, end] = boost::out_edges(s0, g); e != end; ++e, ++child) {
-        auto eu = boost::out_edges(p, gu).first;
-        auto ev = boost::out_edges(q, gv).first;
+      for (auto [e, end] = out_edges(s0, g); e != end; ++e, ++child) {
+        auto eu = out_edges(p, gu).first;
+        auto ev = out_edges(q, gv).first;
         std::advance(eu, child / 2);
         std::advance(ev, child % 2);
         CHECK(g[*e].label == labels[child]);
-        CHECK(t.factor_states[boost::target(*e, g)] ==
-              std::array<StateId, 2>{boost::target(*eu, gu), boost::target(*ev, gv)});
+        CHECK(t.factor_states[target(*e, g)] == std::array<StateId, 2>{target(*eu, gu), target(*ev, gv)});
         const Eigen::MatrixXd K = Eigen::kroneckerProduct(gu[*eu].matrix, gv[*ev].matrix);
         REQUIRE(g[*e].matrix.rows() == K.rows());
         REQUIRE(g[*e].matrix.cols() == K.cols());
@@ -99,8 +98,8 @@ TEST_CASE("Tensor automaton: uniform bicubic surfaces share one recurrent unifor
   const nurbs::Surface s = nurbs::make_surface({3, 3}, {t, t}, {8, 8}, Points::Random(64, 3));
   const nurbs::TensorAutomaton a = nurbs::tensor_automaton(s);
   // Uniform knots: each factor has one state, so the product has one state reached by all 25 patches.
-  CHECK(boost::num_vertices(a.factors[0].automaton.graph) == 1);
-  CHECK(boost::num_vertices(a.product.graph) == 1);
+  CHECK(num_vertices(a.factors[0].automaton.graph) == 1);
+  CHECK(num_vertices(a.product.graph) == 1);
   CHECK(a.product.initial.size() == 25);
   CHECK(a.product.graph[0].recurrent);
   CHECK(a.product.graph[0].size == 16);

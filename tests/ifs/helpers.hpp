@@ -21,7 +21,7 @@ using cifs::automata::StateId;
 using cifs::automata::Transition;
 
 inline StateId add_state(Automaton& a, int size, const std::string& name = {}) {
-  const StateId s = boost::add_vertex(a.graph);
+  const StateId s = add_vertex(a.graph);
   a.graph[s].size = size;
   a.graph[s].name = name;
   return s;
@@ -29,7 +29,7 @@ inline StateId add_state(Automaton& a, int size, const std::string& name = {}) {
 
 inline void add_transition(Automaton& a, StateId from, StateId to, const Eigen::MatrixXd& M,
                            const std::string& label) {
-  boost::add_edge(from, to, Transition{label, M}, a.graph);
+  add_edge(from, to, Transition{label, M}, a.graph);
 }
 
 inline void add_initial(Automaton& a, StateId s, int segment = 0) {

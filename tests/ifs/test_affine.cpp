@@ -48,8 +48,8 @@ TEST_CASE("affine IFS as a one-state CIFS: leaf nets are the maps' compositions"
   const Points T = control_triangle();
   for (const auto& maps : {barnsley_fern(), sierpinski_triangle(), koch_curve()}) {
     const automata::Automaton a = affine_automaton(maps, T);
-    for (auto [e, end] = boost::edges(a.graph); e != end; ++e)
-      CHECK((a.graph[*e].matrix.rowwise().sum().array() - 1).abs().maxCoeff() <= 1e-14);
+    for (const automata::TransitionId e : edges(a.graph))
+      CHECK((a.graph[e].matrix.rowwise().sum().array() - 1).abs().maxCoeff() <= 1e-14);
     int leaves = 0;
     for_each_leaf(a, std::span<const Points>(&T, 1), 4, [&](const Leaf& leaf) {
       // The net of word w1…wk is w1∘…∘wk applied to the corners (barycentric coordinates are

@@ -132,7 +132,7 @@ TEST_CASE("Fixed points of words: Chaikin G^inf, D^inf, (GD)^inf against Cox-de 
   // A non-uniform word: (G D)^∞ from the G state is not a cycle, (G)^∞ is: the start of the piece.
   const Points Q = random_points(3, 3, rng);
   const Eigen::RowVectorXd start =
-      fixed_point(q, 1, std::vector<int>{0}) * (q.graph[boost::edge(0, 1, q.graph).first].matrix * Q);
+      fixed_point(q, 1, std::vector<int>{0}) * (q.graph[edge(0, 1, q.graph).first].matrix * Q);
   CHECK((start - quadratic_reference(Q, 0.5, 2, 3, 0)).cwiseAbs().maxCoeff() <= 1e-12 * scale_of(Q));
 }
 

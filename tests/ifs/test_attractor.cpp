@@ -82,7 +82,7 @@ TEST_CASE("for_each_leaf visits the depth-K nodes in order, one net per level", 
   // The leaf net is the product of the word's matrices.
   const auto& g = a.graph;
   Eigen::MatrixXd Gm, Dm;
-  for (auto [b, e] = boost::out_edges(0, g); b != e; ++b) (g[*b].label == "G" ? Gm : Dm) = g[*b].matrix;
+  for (auto [b, e] = out_edges(0, g); b != e; ++b) (g[*b].label == "G" ? Gm : Dm) = g[*b].matrix;
   for_each_leaf(a, nets, 3, [&](const Leaf& leaf) {
     Points net = nets[leaf.initial];
     for (const int c : leaf.word) net = ((c == 0 ? Gm : Dm) * net).eval();

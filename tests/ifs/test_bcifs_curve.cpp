@@ -72,7 +72,7 @@ TEST_CASE("curve BC-IFS: the NURBS matrices are admissible", "[bcifs][curve]") {
       const nurbs::KnotAutomaton knot = nurbs::knot_automaton(curve);
       const nurbs::KnotAutomaton knots = curve_bcifs_knots(sys.automaton, knot);
       // Edge cell "s3ab" unfolds knot state "s3" and has its window; vertex cells have none.
-      REQUIRE(knots.windows.size() == boost::num_vertices(sys.automaton.graph));
+      REQUIRE(knots.windows.size() == num_vertices(sys.automaton.graph));
       for (automata::StateId s = 0; s < knots.windows.size(); ++s) {
         std::string name = sys.automaton.graph[s].name;
         if (sys.dimension[s] == 0) {
@@ -100,8 +100,8 @@ TEST_CASE("curve BC-IFS: the NURBS matrices are admissible", "[bcifs][curve]") {
       // Amplitude 0 gives back the NURBS matrices and the NURBS attractor.
       const Perturbation p = perturb(sys);
       CHECK(p.residual <= 1e-14);
-      for (automata::StateId s = 0; s < boost::num_vertices(sys.automaton.graph); ++s)
-        for (int c = 0; c < static_cast<int>(boost::out_degree(s, sys.automaton.graph)); ++c) {
+      for (automata::StateId s = 0; s < num_vertices(sys.automaton.graph); ++s)
+        for (int c = 0; c < static_cast<int>(out_degree(s, sys.automaton.graph)); ++c) {
           const auto& before = sys.automaton.graph[transition_id(sys.automaton, {s, c})].matrix;
           const auto& after = p.system.automaton.graph[transition_id(p.system.automaton, {s, c})].matrix;
           CHECK((before - after).cwiseAbs().maxCoeff() <= 1e-14);

@@ -134,10 +134,10 @@ TEST_CASE("surface_bcifs: cost on an 8×8 non-uniform bicubic surface", "[ifs][b
   const Perturbation p = perturb(sys, po);
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   CHECK(p.residual <= 1e-12);
-  WARN("8x8 non-uniform bicubic: " << boost::num_vertices(sys.automaton.graph) << " cells, "
-                                   << space.unknowns.size() << " unknowns, " << space.free.size() << " free, "
-                                   << space.components << " components; surface_bcifs " << build
-                                   << " s, admissible_space " << solve << " s, perturb " << total << " s");
+  WARN("8x8 non-uniform bicubic: " << num_vertices(sys.automaton.graph) << " cells, " << space.unknowns.size()
+                                   << " unknowns, " << space.free.size() << " free, " << space.components
+                                   << " components; surface_bcifs " << build << " s, admissible_space "
+                                   << solve << " s, perturb " << total << " s");
 }
 
 namespace {

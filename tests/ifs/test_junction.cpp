@@ -91,7 +91,7 @@ TEST_CASE("junction: B's interior keeps its scheme and A keeps its matrices", "[
   CurveJunction c;
   const auto S = subdivision::padded_ifs_matrices(subdivision::four_point(), 6);
   const auto& g = c.j.system.automaton.graph;
-  for (automata::StateId s = 0; s < boost::num_vertices(g); ++s) {
+  for (automata::StateId s = 0; s < num_vertices(g); ++s) {
     if (g[s].name != "B:e") continue;
     CHECK((g[transition_id(c.j.system.automaton, {s, 0})].matrix - S[0]).norm() == 0);
     CHECK((g[transition_id(c.j.system.automaton, {s, 1})].matrix - S[1]).norm() == 0);

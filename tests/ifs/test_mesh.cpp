@@ -345,6 +345,6 @@ TEST_CASE("Meshes refuse bad input before any work", "[ifs][mesh]") {
   broken.factor_states.pop_back();
   CHECK_THROWS_WITH(ifs::surface_mesh(broken, nets, 2), Catch::Contains("factor state pairs"));
   broken = t;
-  broken.factor_states[0][1] = static_cast<StateId>(boost::num_vertices(t.factors[1].automaton.graph));
+  broken.factor_states[0][1] = static_cast<StateId>(num_vertices(t.factors[1].automaton.graph));
   CHECK_THROWS_WITH(ifs::surface_mesh(broken, nets, 2), Catch::Contains("does not exist"));
 }

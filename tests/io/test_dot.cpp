@@ -28,10 +28,10 @@ TEST_CASE("Automaton DOT", "[io][dot]") {
   CHECK_THAT(dot, Catch::StartsWith("digraph G {") && Catch::Contains("[label=\"G\"]") &&
                       Catch::Contains("peripheries=2"));
   // One line per transition, one bold node per initial state, a window in every label.
-  CHECK(count(dot, "->") == boost::num_edges(a.graph));
+  CHECK(count(dot, "->") == num_edges(a.graph));
   std::set<automata::StateId> initial;
   for (const automata::Initial& i : a.initial) initial.insert(i.state);
   CHECK(count(dot, "style=bold") == initial.size());
-  CHECK(count(dot, "\\n(") == boost::num_vertices(a.graph));
+  CHECK(count(dot, "\\n(") == num_vertices(a.graph));
   CHECK_THAT(dot, Catch::Contains("rankdir=LR;"));
 }

@@ -27,10 +27,10 @@ bool same_bits(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
 /// Everything the JSON holds, compared exactly: states, out-edges in order, initial entries.
 void require_same(const nurbs::KnotAutomaton& ka, const nurbs::KnotAutomaton& kb) {
   const automata::Automaton &a = ka.automaton, &b = kb.automaton;
-  const auto n = boost::num_vertices(a.graph);
+  const auto n = num_vertices(a.graph);
   REQUIRE(ka.windows.size() == n);
   REQUIRE(kb.windows.size() == n);
-  REQUIRE(boost::num_vertices(b.graph) == n);
+  REQUIRE(num_vertices(b.graph) == n);
   for (StateId s = 0; s < n; ++s) {
     INFO("state " << s);
     const automata::State &x = a.graph[s], &y = b.graph[s];
@@ -38,11 +38,11 @@ void require_same(const nurbs::KnotAutomaton& ka, const nurbs::KnotAutomaton& kb
     CHECK(x.name == y.name);
     CHECK(ka.windows[s] == kb.windows[s]);
     CHECK(x.recurrent == y.recurrent);
-    REQUIRE(boost::out_degree(s, a.graph) == boost::out_degree(s, b.graph));
-    auto [e, end] = boost::out_edges(s, a.graph);
-    auto f = boost::out_edges(s, b.graph).first;
+    REQUIRE(out_degree(s, a.graph) == out_degree(s, b.graph));
+    auto [e, end] = out_edges(s, a.graph);
+    auto f = out_edges(s, b.graph).first;
     for (; e != end; ++e, ++f) {
-      CHECK(boost::target(*e, a.graph) == boost::target(*f, b.graph));
+      CHECK(target(*e, a.graph) == target(*f, b.graph));
       CHECK(a.graph[*e].label == b.graph[*f].label);
       CHECK(same_bits(a.graph[*e].matrix, b.graph[*f].matrix));
     }
@@ -63,16 +63,16 @@ void require_same(const nurbs::KnotAutomaton& ka, const nurbs::KnotAutomaton& kb
 /// irrational entries, no windows.
 nurbs::KnotAutomaton hand_made() {
   automata::Automaton a;
-  boost::add_vertex(automata::State{.size = 2, .recurrent = true, .name = ""}, a.graph);
-  boost::add_vertex(automata::State{.size = 3, .recurrent = false, .name = "E"}, a.graph);
-  boost::add_vertex(automata::State{.size = 1, .recurrent = true, .name = "s2"}, a.graph);
+  add_vertex(automata::State{.size = 2, .recurrent = true, .name = ""}, a.graph);
+  add_vertex(automata::State{.size = 3, .recurrent = false, .name = "E"}, a.graph);
+  add_vertex(automata::State{.size = 1, .recurrent = true, .name = "s2"}, a.graph);
   Eigen::MatrixXd M(3, 2);
   M << 1, 0, 1 / 3.0, 2 / 3.0, std::sqrt(0.5), 1 - std::sqrt(0.5);
-  boost::add_edge(0, 1, automata::Transition{"w0", M}, a.graph);
-  boost::add_edge(0, 1, automata::Transition{"w1", M.colwise().reverse()}, a.graph);
-  boost::add_edge(1, 2, automata::Transition{"", Eigen::MatrixXd::Constant(1, 3, 1 / 3.0)}, a.graph);
-  boost::add_edge(2, 2, automata::Transition{"loop", Eigen::MatrixXd::Ones(1, 1)}, a.graph);
-  boost::add_edge(1, 0, automata::Transition{"back", M.transpose().topRows(2) / 1.5}, a.graph);
+  add_edge(0, 1, automata::Transition{"w0", M}, a.graph);
+  add_edge(0, 1, automata::Transition{"w1", M.colwise().reverse()}, a.graph);
+  add_edge(1, 2, automata::Transition{"", Eigen::MatrixXd::Constant(1, 3, 1 / 3.0)}, a.graph);
+  add_edge(2, 2, automata::Transition{"loop", Eigen::MatrixXd::Ones(1, 1)}, a.graph);
+  add_edge(1, 0, automata::Transition{"back", M.transpose().topRows(2) / 1.5}, a.graph);
   a.initial = {{.segment = 0, .state = 1}, {.segment = 3, .state = 0}};
   nurbs::KnotAutomaton k = nurbs::without_knots(a);
   k.intervals[0] = {.start = -0.5, .end = 1e-300, .span = 7};
@@ -95,8 +95,8 @@ TEST_CASE("Automaton JSON: counts, intervals, stochastic rows", "[io][json]") {
   const nurbs::KnotAutomaton k = nurbs::knot_automaton(c);
   const automata::Automaton& a = k.automaton;
   const auto j = nlohmann::json::parse(to_json(k));
-  CHECK(j["states"].size() == boost::num_vertices(a.graph));
-  CHECK(j["transitions"].size() == 2 * boost::num_vertices(a.graph));
+  CHECK(j["states"].size() == num_vertices(a.graph));
+  CHECK(j["transitions"].size() == 2 * num_vertices(a.graph));
   CHECK(j["initial"].size() == 3);
   CHECK(j["initial"][1]["interval"] == nlohmann::json::array({1.0, 3.0}));
   for (const auto& t : j["transitions"]) {
@@ -147,7 +147,7 @@ TEST_CASE("Automaton JSON: names only when not the default, read from text writt
       "initial": [{"segment": 4, "state": 0, "interval": [1, 2.5]}, {"segment": 5, "state": 1}]})",
                                                       "hand");
   const automata::Automaton& a = k.automaton;
-  REQUIRE(boost::num_vertices(a.graph) == 2);
+  REQUIRE(num_vertices(a.graph) == 2);
   CHECK(a.graph[0].name == "s0");
   REQUIRE(k.windows.size() == 2);
   CHECK(k.windows[0] == std::vector<double>{0.5, 1, 2});
@@ -157,11 +157,11 @@ TEST_CASE("Automaton JSON: names only when not the default, read from text writt
   CHECK(a.graph[1].recurrent);
   // Out-edges of state 0 in file order: x then z.
   std::vector<std::string> labels;
-  for (auto [e, end] = boost::out_edges(0, a.graph); e != end; ++e) labels.push_back(a.graph[*e].label);
+  for (auto [e, end] = out_edges(0, a.graph); e != end; ++e) labels.push_back(a.graph[*e].label);
   CHECK(labels == std::vector<std::string>{"x", "z"});
   Eigen::MatrixXd z(2, 2);
   z << 1, 0, 0.5, 0.5;
-  CHECK(a.graph[boost::edge(0, 0, a.graph).first].matrix == z);
+  CHECK(a.graph[edge(0, 0, a.graph).first].matrix == z);
   REQUIRE(a.initial.size() == 2);
   CHECK(a.initial[0].segment == 4);
   REQUIRE(k.intervals.size() == 2);

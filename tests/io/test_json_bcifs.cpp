@@ -17,14 +17,14 @@ namespace {
 void check_same(const ifs::Bcifs& a, const ifs::Bcifs& b) {
   const auto& ga = a.automaton.graph;
   const auto& gb = b.automaton.graph;
-  REQUIRE(boost::num_vertices(ga) == boost::num_vertices(gb));
+  REQUIRE(num_vertices(ga) == num_vertices(gb));
   CHECK(a.dimension == b.dimension);
-  for (automata::StateId s = 0; s < boost::num_vertices(ga); ++s) {
+  for (automata::StateId s = 0; s < num_vertices(ga); ++s) {
     CHECK(ga[s].size == gb[s].size);
-    REQUIRE(boost::out_degree(s, ga) == boost::out_degree(s, gb));
-    for (int c = 0; c < static_cast<int>(boost::out_degree(s, ga)); ++c) {
+    REQUIRE(out_degree(s, ga) == out_degree(s, gb));
+    for (int c = 0; c < static_cast<int>(out_degree(s, ga)); ++c) {
       const auto ea = ifs::transition_id(a.automaton, {s, c}), eb = ifs::transition_id(b.automaton, {s, c});
-      CHECK(boost::target(ea, ga) == boost::target(eb, gb));
+      CHECK(target(ea, ga) == target(eb, gb));
       CHECK(ga[ea].label == gb[eb].label);
       CHECK(ga[ea].matrix == gb[eb].matrix);  // exact: JSON numbers round-trip
     }

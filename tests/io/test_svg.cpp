@@ -84,10 +84,10 @@ TEST_CASE("Automaton SVG: one circle per state, one arrow per connected pair", "
     return n;
   };
   std::set<std::pair<StateId, StateId>> pairs;
-  for (auto [e, end] = boost::edges(a.graph); e != end; ++e)
-    pairs.insert({boost::source(*e, a.graph), boost::target(*e, a.graph)});
+  for (const automata::TransitionId e : edges(a.graph))
+    pairs.insert({source(e, a.graph), target(e, a.graph)});
   CHECK_THAT(svg, Catch::StartsWith("<svg ") && Catch::EndsWith("</svg>\n"));
-  CHECK(count("<circle ") == boost::num_vertices(a.graph));
+  CHECK(count("<circle ") == num_vertices(a.graph));
   CHECK(count("marker-end=") == pairs.size());
   CHECK(count("stroke-width=\"2.5\"") == a.initial.size());  // initial states in bold
 }

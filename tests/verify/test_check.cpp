@@ -80,8 +80,8 @@ TEST_CASE("Junctions: the end of G is the start of D, neighbouring segments agre
     for (std::size_t i = 0; i < nets.size(); ++i) {
       std::vector<automata::StateId> child;
       std::vector<Points> child_net;
-      for (auto [e, end] = boost::out_edges(a.initial[i].state, a.graph); e != end; ++e) {
-        child.push_back(boost::target(*e, a.graph));
+      for (auto [e, end] = out_edges(a.initial[i].state, a.graph); e != end; ++e) {
+        child.push_back(target(*e, a.graph));
         child_net.push_back(a.graph[*e].matrix * nets[i]);
       }
       CHECK((f.end[child[0]] * child_net[0] - f.start[child[1]] * child_net[1]).norm() <= 1e-12 * scale);
