@@ -21,13 +21,22 @@ struct Run {
 };
 
 /// One scratch folder per test process.
+/// This process's folder for the CLI's inputs and outputs, removed when the process exits (ctest runs
+/// each test case in its own process: thousands of folders were left in /tmp).
 inline const std::filesystem::path& scratch() {
-  static const std::filesystem::path dir = [] {
-    auto d = std::filesystem::temp_directory_path() / ("cifs_cli_test_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(d);
-    return d;
-  }();
-  return dir;
+  struct Folder {
+    std::filesystem::path path =
+        std::filesystem::temp_directory_path() / ("cifs_cli_test_" + std::to_string(::getpid()));
+    Folder() { std::filesystem::create_directories(path); }
+    Folder(const Folder&) = delete;
+    Folder& operator=(const Folder&) = delete;
+    ~Folder() {
+      std::error_code ec;
+      std::filesystem::remove_all(path, ec);
+    }
+  };
+  static const Folder folder;
+  return folder.path;
 }
 
 inline std::string slurp(const std::filesystem::path& p) {
