@@ -121,6 +121,19 @@ void BM_surface_separable_into(benchmark::State& state) {
   report(state, point_count(c));
 }
 
+// The sweep case: the mesh holds the faces and states of the previous call (same automaton and
+// depth), so only the vertices are written (MeshOptions::keep_faces).
+void BM_surface_separable_keep(benchmark::State& state) {
+  const SurfaceCase& c = case_for(state);
+  cifs::Mesh m;
+  ifs::surface_mesh(c.automaton, c.nets, kDepth, m);  // faulted in once, as SISL's buffer
+  for (auto _ : state) {
+    ifs::surface_mesh(c.automaton, c.nets, kDepth, m, {.keep_faces = true});
+    benchmark::DoNotOptimize(m.vertices.data());
+  }
+  report(state, point_count(c));
+}
+
 void BM_surface_generic(benchmark::State& state) {
   const SurfaceCase& c = case_for(state);
   for (auto _ : state) {
@@ -202,6 +215,7 @@ BENCHMARK(BM_surface_sisl_s1506)->Apply(sizes);
 #endif
 BENCHMARK(BM_surface_separable)->Apply(sizes);
 BENCHMARK(BM_surface_separable_into)->Apply(sizes);
+BENCHMARK(BM_surface_separable_keep)->Apply(sizes);
 BENCHMARK(BM_surface_grid)->Apply(sizes);
 BENCHMARK(BM_surface_grid_into)->Apply(sizes);
 BENCHMARK(BM_surface_deboor)->Apply(sizes);

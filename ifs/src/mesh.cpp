@@ -341,9 +341,16 @@ void surface_mesh(const nurbs::TensorAutomaton& t, std::span<const Points> nets,
   if (nets[0].rows() != p1 * q1)
     throw InvalidInput("surface_mesh: nets of " + std::to_string(nets[0].rows()) +
                        " rows, the factors give " + std::to_string(p1) + " by " + std::to_string(q1));
-  allocate(grid, options.homogeneous ? C - 1 : C, mesh);
+  const bool keep = options.keep_faces && mesh.face_vertices.size() == 4 * grid.quads &&
+                    mesh.face_offsets.size() == grid.quads + 1 && mesh.states.size() == grid.quads;
+  if (keep) {
+    resize_huge(mesh.vertices, static_cast<Eigen::Index>(grid.vertices), options.homogeneous ? C - 1 : C);
+    mesh.normals.resize(0, 0);
+  } else {
+    allocate(grid, options.homogeneous ? C - 1 : C, mesh);
+  }
   write_vertices(tables, nets, grid, options.homogeneous, mesh);
-  write_states(t, tables, grid, mesh);
+  if (!keep) write_states(t, tables, grid, mesh);
 }
 
 Mesh surface_mesh(const nurbs::TensorAutomaton& automaton, std::span<const Points> nets, int depth,
