@@ -179,7 +179,7 @@ void grid_rows(const Surface& s, std::span<const double> us, std::span<const int
   const Eigen::Index cols = Cols > 0 ? Cols : s.P.cols();
   const int dim = dimension(s);
   const auto width = static_cast<Eigen::Index>(vspan.size()) * cols;
-  const auto p1 = static_cast<std::size_t>(p + 1);
+  const auto p1 = static_cast<std::size_t>(p) + 1;
   std::vector<double> slots(p1 * static_cast<std::size_t>(width));
   std::vector<Eigen::Index> held(p1, -1);                                   // the control row each slot holds
   std::vector<double> H(s.rational ? static_cast<std::size_t>(width) : 0);  // one homogeneous row
