@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <cstdint>
 #include <optional>
 #include <sstream>
 
@@ -12,6 +13,10 @@
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/memory.hpp"
 #include "walk.hpp"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace cifs::ifs {
 
@@ -76,18 +81,56 @@ Grid make_grid(int A, int B, int depth, std::size_t cols, const MeshOptions& opt
   return Grid{A, B, depth, static_cast<int>(cu), static_cast<int>(cv), 1 << depth, vertices, mul_sat(cu, cv)};
 }
 
+/// Outputs of at least this many bytes are written with streaming stores where the storage is reused.
+constexpr std::size_t kStreamBytes = std::size_t{1} << 23;
+
+/// dst[0 … n) = src[0 … n) for 4-byte T. With `stream`, non-temporal stores (SSE2): the lines are not
+/// read into the cache before being overwritten, which halves the memory traffic of an output far
+/// larger than the cache. The caller fences (`stream_fence`) after its last streaming store.
+template <class T>
+void put(T* dst, const T* src, std::size_t n, bool stream) noexcept {
+  static_assert(sizeof(T) == 4);
+  std::size_t k = 0;
+#if defined(__SSE2__)
+  if (stream) {
+    for (; k < n && (reinterpret_cast<std::uintptr_t>(dst + k) & 15) != 0; ++k) dst[k] = src[k];
+    for (; k + 4 <= n; k += 4)
+      _mm_stream_si128(reinterpret_cast<__m128i*>(dst + k),
+                       _mm_loadu_si128(reinterpret_cast<const __m128i*>(src + k)));
+  }
+#endif
+  for (; k < n; ++k) dst[k] = src[k];
+}
+
+void stream_fence() noexcept {
+#if defined(__SSE2__)
+  _mm_sfence();
+#endif
+}
+
 /// The corners of `blocks` grids of bu × bv cells, block after block, cell (I, J) of block b at face
 /// b·bu·bv + I·bv + J with the corners (I, J), (I+1, J), (I+1, J+1), (I, J+1) of the block's
 /// (bu + 1) × (bv + 1) nodes, and the offsets 0, 4, 8, …: one pass over the output, never zeroed
 /// first (appended a row of cells at a time from one row shifted by a vertex row each time). The
 /// storage of `mesh` is reused when it is large enough (no page faults when a caller meshes into
-/// the same object again). States and normals are the routes'.
+/// the same object again), and overwritten in place when it has the size (streaming stores when large).
+/// States and normals are the routes'.
 void write_quads(int blocks, int bu, int bv, Mesh& mesh) {
   const std::size_t faces =
       static_cast<std::size_t>(blocks) * static_cast<std::size_t>(bu) * static_cast<std::size_t>(bv);
   std::vector<int>& corners = mesh.face_vertices;
-  corners.clear();
-  reserve_huge(corners, 4 * faces);
+  std::vector<int>& offsets = mesh.face_offsets;
+  // Storage of the right size is overwritten in place (no clearing, no capacity checks); other storage
+  // is rebuilt by appending.
+  const bool in_place = corners.size() == 4 * faces && offsets.size() == faces + 1;
+  const bool stream = in_place && (5 * faces + 1) * sizeof(int) >= kStreamBytes;
+  if (!in_place) {
+    corners.clear();
+    reserve_huge(corners, 4 * faces);
+    offsets.clear();
+    reserve_huge(offsets, faces + 1);
+  }
+  std::size_t written = 0;
   const int row = bv + 1;
   std::vector<int> line(4 * static_cast<std::size_t>(bv));
   for (int b = 0; b < blocks; ++b) {
@@ -99,20 +142,24 @@ void write_quads(int blocks, int bu, int bv, Mesh& mesh) {
       line[at + 2] = first + row + J + 1;
       line[at + 3] = first + J + 1;
     }
-    for (int I = 0; I < bu; ++I) {
-      corners.insert(corners.end(), line.begin(), line.end());
+    for (int I = 0; I < bu; ++I, written += line.size()) {
+      if (in_place)
+        put(corners.data() + written, line.data(), line.size(), stream);
+      else
+        corners.insert(corners.end(), line.begin(), line.end());
       for (int& v : line) v += row;
     }
   }
-  std::vector<int>& offsets = mesh.face_offsets;
-  offsets.clear();
-  reserve_huge(offsets, faces + 1);
   std::array<int, 1024> run{};
   for (std::size_t f = 0; f <= faces; f += run.size()) {
     const std::size_t n = std::min(run.size(), faces + 1 - f);
     for (std::size_t k = 0; k < n; ++k) run[k] = static_cast<int>(4 * (f + k));
-    offsets.insert(offsets.end(), run.begin(), run.begin() + static_cast<std::ptrdiff_t>(n));
+    if (in_place)
+      put(offsets.data() + f, run.data(), n, stream);
+    else
+      offsets.insert(offsets.end(), run.begin(), run.begin() + static_cast<std::ptrdiff_t>(n));
   }
+  if (stream) stream_fence();
   mesh.normals.resize(0, 0);
 }
 
@@ -311,8 +358,12 @@ void write_states(const nurbs::TensorAutomaton& t, const FactorTables& tables, c
   for (StateId s = 0; s < t.factor_states.size(); ++s)
     pair_id[t.factor_states[s][0] * nv_states + t.factor_states[s][1]] = static_cast<std::uint32_t>(s);
   std::vector<std::vector<std::uint32_t>> state_row(boost::num_vertices(t.factors[0].automaton.graph));
-  mesh.states.clear();
-  reserve_huge(mesh.states, grid.quads);
+  const bool in_place = mesh.states.size() == grid.quads;
+  const bool stream = in_place && grid.quads * sizeof(std::uint32_t) >= kStreamBytes;
+  if (!in_place) {
+    mesh.states.clear();
+    reserve_huge(mesh.states, grid.quads);
+  }
   for (int I = 0; I < grid.cu; ++I) {
     const StateId su = leaves[0][static_cast<std::size_t>(I)];
     std::vector<std::uint32_t>& states = state_row[su];
@@ -320,8 +371,13 @@ void write_states(const nurbs::TensorAutomaton& t, const FactorTables& tables, c
       states.resize(static_cast<std::size_t>(grid.cv));
       for (std::size_t J = 0; J < states.size(); ++J) states[J] = pair_id[su * nv_states + leaves[1][J]];
     }
-    mesh.states.insert(mesh.states.end(), states.begin(), states.end());
+    if (in_place)
+      put(mesh.states.data() + static_cast<std::size_t>(I) * states.size(), states.data(), states.size(),
+          stream);
+    else
+      mesh.states.insert(mesh.states.end(), states.begin(), states.end());
   }
+  if (stream) stream_fence();
 }
 
 }  // namespace
