@@ -82,7 +82,7 @@ Grid make_grid(int A, int B, int depth, std::size_t cols, const MeshOptions& opt
 }
 
 /// Outputs of at least this many bytes are written with streaming stores where the storage is reused.
-constexpr std::size_t kStreamBytes = std::size_t{1} << 23;
+constexpr std::size_t kStreamBytes = std::size_t{1} << 21;
 
 /// dst[0 … n) = src[0 … n) for 4-byte T. With `stream`, non-temporal stores (SSE2): the lines are not
 /// read into the cache before being overwritten, which halves the memory traffic of an output far
@@ -216,20 +216,52 @@ void combine_rows(const double* f, Eigen::Index p1, const double* __restrict Y, 
   }
 }
 
+/// combine_rows with streaming stores (SSE2; the same products and sums in the same order, so the
+/// same bits): a large output is written without first reading its lines into the cache.
+template <int P1>
+void combine_rows_stream(const double* f, Eigen::Index p1, const double* __restrict Y, Eigen::Index n,
+                         double* __restrict out) noexcept {
+#if defined(__SSE2__)
+  if constexpr (P1 > 0) {
+    Eigen::Index e = 0;
+    if ((reinterpret_cast<std::uintptr_t>(out) & 15) != 0 && n > 0) {
+      double acc = f[0] * Y[0];
+      for (Eigen::Index k = 1; k < P1; ++k) acc += f[k] * Y[k * n];
+      out[0] = acc;
+      e = 1;
+    }
+    __m128d fk[P1];
+    for (int k = 0; k < P1; ++k) fk[k] = _mm_set1_pd(f[k]);
+    for (; e + 2 <= n; e += 2) {
+      __m128d acc = _mm_mul_pd(fk[0], _mm_loadu_pd(Y + e));
+      for (int k = 1; k < P1; ++k) acc = _mm_add_pd(acc, _mm_mul_pd(fk[k], _mm_loadu_pd(Y + k * n + e)));
+      _mm_stream_pd(out + e, acc);
+    }
+    for (; e < n; ++e) {
+      double acc = f[0] * Y[e];
+      for (Eigen::Index k = 1; k < P1; ++k) acc += f[k] * Y[k * n + e];
+      out[e] = acc;
+    }
+    return;
+  }
+#endif
+  combine_rows<P1>(f, p1, Y, n, out);
+}
+
 using RowKernel = void (*)(const double*, Eigen::Index, const double*, Eigen::Index, double*) noexcept;
 
-RowKernel row_kernel(Eigen::Index p1) noexcept {
+RowKernel row_kernel(Eigen::Index p1, bool stream) noexcept {
   switch (p1) {
     case 2:
-      return combine_rows<2>;
+      return stream ? combine_rows_stream<2> : combine_rows<2>;
     case 3:
-      return combine_rows<3>;
+      return stream ? combine_rows_stream<3> : combine_rows<3>;
     case 4:
-      return combine_rows<4>;
+      return stream ? combine_rows_stream<4> : combine_rows<4>;
     case 5:
-      return combine_rows<5>;
+      return stream ? combine_rows_stream<5> : combine_rows<5>;
     case 6:
-      return combine_rows<6>;
+      return stream ? combine_rows_stream<6> : combine_rows<6>;
     default:
       return combine_rows<0>;
   }
@@ -304,7 +336,7 @@ FactorTables factor_tables(const nurbs::TensorAutomaton& t, int depth, std::size
 /// vertex row, stored contiguously. Each vertex row I of the patch row is then the (p + 1)-term
 /// combination Σ_k F_u(I, k)·Y_k over one contiguous run of (cv + 1)·C doubles.
 void write_vertices(const FactorTables& tables, std::span<const Points> nets, const Grid& grid,
-                    bool homogeneous, Mesh& mesh) {
+                    bool homogeneous, bool reused, Mesh& mesh) {
   const auto& F = tables.F;
   const int A = grid.A, B = grid.B;
   const Eigen::Index C = nets[0].cols(), D = homogeneous ? C - 1 : C;
@@ -312,7 +344,11 @@ void write_vertices(const FactorTables& tables, std::span<const Points> nets, co
   const Eigen::Index width = static_cast<Eigen::Index>(grid.cv + 1) * C;
   std::vector<double> Y(static_cast<std::size_t>(p1 * width));
   std::vector<double> H(homogeneous ? static_cast<std::size_t>(width) : 0);  // one homogeneous row
-  const RowKernel combine = row_kernel(p1);
+  // Streaming stores for a large reused output (fresh pages are zeroed by the kernel on the first
+  // write, in the cache: streaming over them was slower; homogeneous rows go through the row H).
+  const bool stream = reused && !homogeneous &&
+                      static_cast<std::size_t>(mesh.vertices.size()) * sizeof(double) >= kStreamBytes;
+  const RowKernel combine = row_kernel(p1, stream);
   for (int a = 0; a < A; ++a) {
     for (int b = 0; b < B; ++b) {
       const Points& N = nets[static_cast<std::size_t>(a) * B + b];
@@ -347,6 +383,7 @@ void write_vertices(const FactorTables& tables, std::span<const Points> nets, co
       }
     }
   }
+  if (stream) stream_fence();
 }
 
 /// Leaf states: the product state of the pair of factor leaf states. Rows I with the same u leaf
@@ -399,13 +436,16 @@ void surface_mesh(const nurbs::TensorAutomaton& t, std::span<const Points> nets,
                        " rows, the factors give " + std::to_string(p1) + " by " + std::to_string(q1));
   const bool keep = options.keep_faces && mesh.face_vertices.size() == 4 * grid.quads &&
                     mesh.face_offsets.size() == grid.quads + 1 && mesh.states.size() == grid.quads;
+  const Eigen::Index D = options.homogeneous ? C - 1 : C;
+  const bool reused =
+      static_cast<std::size_t>(mesh.vertices.size()) == grid.vertices * static_cast<std::size_t>(D);
   if (keep) {
-    resize_huge(mesh.vertices, static_cast<Eigen::Index>(grid.vertices), options.homogeneous ? C - 1 : C);
+    resize_huge(mesh.vertices, static_cast<Eigen::Index>(grid.vertices), D);
     mesh.normals.resize(0, 0);
   } else {
-    allocate(grid, options.homogeneous ? C - 1 : C, mesh);
+    allocate(grid, D, mesh);
   }
-  write_vertices(tables, nets, grid, options.homogeneous, mesh);
+  write_vertices(tables, nets, grid, options.homogeneous, reused, mesh);
   if (!keep) write_states(t, tables, grid, mesh);
 }
 
