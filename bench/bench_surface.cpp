@@ -9,7 +9,8 @@
 // twice: returning a fresh output (the default allocator: every output above the threshold is a
 // fresh mmap, faulted in on each call) and writing into the caller's output (`_into`: storage reused,
 // as SISL's buffer, allocated once outside the loop). The meshes also fill their quads and leaf
-// states (20 bytes per quad); the grid evaluators return points only.
+// states (20 bytes per quad), except `_keep` (MeshOptions::keep_faces: the mesh holds them from the
+// previous call, only the vertices are written); the grid evaluators return points only.
 
 #include <benchmark/benchmark.h>
 

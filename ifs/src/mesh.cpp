@@ -396,7 +396,8 @@ void write_states(const nurbs::TensorAutomaton& t, const FactorTables& tables, c
     pair_id[t.factor_states[s][0] * nv_states + t.factor_states[s][1]] = static_cast<std::uint32_t>(s);
   std::vector<std::vector<std::uint32_t>> state_row(boost::num_vertices(t.factors[0].automaton.graph));
   const bool in_place = mesh.states.size() == grid.quads;
-  const bool stream = in_place && grid.quads * sizeof(std::uint32_t) >= kStreamBytes;
+  // Streamed with the rest of a large mesh (the states alone are a fifth of the faces).
+  const bool stream = in_place && mesh_bytes(grid.vertices, 3, grid.quads) >= kStreamBytes;
   if (!in_place) {
     mesh.states.clear();
     reserve_huge(mesh.states, grid.quads);
