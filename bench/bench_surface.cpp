@@ -9,7 +9,8 @@
 // twice: returning a fresh output (the default allocator: every output above the threshold is a
 // fresh mmap, faulted in on each call) and writing into the caller's output (`_into`: storage reused,
 // as SISL's buffer, allocated once outside the loop). The meshes also fill their quads and leaf
-// states (20 bytes per quad); the grid evaluators return points only.
+// states (20 bytes per quad), except `_keep` (MeshOptions::keep_faces: the mesh holds them from the
+// previous call, only the vertices are written); the grid evaluators return points only.
 
 #include <benchmark/benchmark.h>
 
@@ -121,6 +122,19 @@ void BM_surface_separable_into(benchmark::State& state) {
   report(state, point_count(c));
 }
 
+// The sweep case: the mesh holds the faces and states of the previous call (same automaton and
+// depth), so only the vertices are written (MeshOptions::keep_faces).
+void BM_surface_separable_keep(benchmark::State& state) {
+  const SurfaceCase& c = case_for(state);
+  cifs::Mesh m;
+  ifs::surface_mesh(c.automaton, c.nets, kDepth, m);  // faulted in once, as SISL's buffer
+  for (auto _ : state) {
+    ifs::surface_mesh(c.automaton, c.nets, kDepth, m, {.keep_faces = true});
+    benchmark::DoNotOptimize(m.vertices.data());
+  }
+  report(state, point_count(c));
+}
+
 void BM_surface_generic(benchmark::State& state) {
   const SurfaceCase& c = case_for(state);
   for (auto _ : state) {
@@ -202,6 +216,7 @@ BENCHMARK(BM_surface_sisl_s1506)->Apply(sizes);
 #endif
 BENCHMARK(BM_surface_separable)->Apply(sizes);
 BENCHMARK(BM_surface_separable_into)->Apply(sizes);
+BENCHMARK(BM_surface_separable_keep)->Apply(sizes);
 BENCHMARK(BM_surface_grid)->Apply(sizes);
 BENCHMARK(BM_surface_grid_into)->Apply(sizes);
 BENCHMARK(BM_surface_deboor)->Apply(sizes);

@@ -288,6 +288,33 @@ namespace {
 /// so that they give the same bits.
 constexpr std::size_t kTableBudget = std::size_t{1} << 21;
 
+/// out (`child.rows() by M.cols()`, row-major) = child·M, each entry summed in k order. The rows are
+/// many and M is small (a transition, 4 by 4 for cubics): a row at a time against M's rows, which
+/// vectorises over the columns; Eigen's general product packed the whole child table per call.
+template <int N>
+void stack_rows_fixed(const RowMatrix& child, const RowMatrix& Mr, double* __restrict out) noexcept {
+  const Eigen::Index k_end = Mr.rows(), n = N > 0 ? N : Mr.cols();
+  const double* m = Mr.data();
+  for (Eigen::Index i = 0; i < child.rows(); ++i, out += n) {
+    const double* c = child.data() + i * k_end;
+    for (Eigen::Index j = 0; j < n; ++j) out[j] = c[0] * m[j];
+    for (Eigen::Index k = 1; k < k_end; ++k)
+      for (Eigen::Index j = 0; j < n; ++j) out[j] += c[k] * m[k * n + j];
+  }
+}
+
+void stack_rows(const RowMatrix& child, const Eigen::MatrixXd& M, double* out) {
+  const RowMatrix Mr = M;  // rows of M contiguous
+  switch (M.cols()) {
+    case 3:
+      return stack_rows_fixed<3>(child, Mr, out);
+    case 4:
+      return stack_rows_fixed<4>(child, Mr, out);
+    default:
+      return stack_rows_fixed<0>(child, Mr, out);
+  }
+}
+
 /// Counts the points and builds the tables of depth L of a validated automaton (without its copy):
 /// the largest L ≤ max_table_depth whose tables (and, while building, the previous level) stay
 /// within `entries(count)` doubles; L = 0 (one functional per state) always. `entries` may throw
@@ -333,7 +360,7 @@ StencilTable build_table(const Automaton& automaton, int depth, bool closed, int
       Eigen::Index row = 0;
       for (auto [b, e] = out_edges(s, g); b != e; ++b) {
         const RowMatrix& child = out.tables[target(*b, g)];
-        F.middleRows(row, child.rows()).noalias() = child * g[*b].matrix;
+        stack_rows(child, g[*b].matrix, F.data() + row * F.cols());
         row += child.rows();
       }
     }

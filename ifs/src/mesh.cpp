@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <cstdint>
 #include <optional>
 #include <sstream>
 
@@ -12,6 +13,10 @@
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/memory.hpp"
 #include "walk.hpp"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace cifs::ifs {
 
@@ -76,18 +81,56 @@ Grid make_grid(int A, int B, int depth, std::size_t cols, const MeshOptions& opt
   return Grid{A, B, depth, static_cast<int>(cu), static_cast<int>(cv), 1 << depth, vertices, mul_sat(cu, cv)};
 }
 
+/// Outputs of at least this many bytes are written with streaming stores where the storage is reused.
+constexpr std::size_t kStreamBytes = std::size_t{1} << 21;
+
+/// dst[0 … n) = src[0 … n) for 4-byte T. With `stream`, non-temporal stores (SSE2): the lines are not
+/// read into the cache before being overwritten, which halves the memory traffic of an output far
+/// larger than the cache. The caller fences (`stream_fence`) after its last streaming store.
+template <class T>
+void put(T* dst, const T* src, std::size_t n, bool stream) noexcept {
+  static_assert(sizeof(T) == 4);
+  std::size_t k = 0;
+#if defined(__SSE2__)
+  if (stream) {
+    for (; k < n && (reinterpret_cast<std::uintptr_t>(dst + k) & 15) != 0; ++k) dst[k] = src[k];
+    for (; k + 4 <= n; k += 4)
+      _mm_stream_si128(reinterpret_cast<__m128i*>(dst + k),
+                       _mm_loadu_si128(reinterpret_cast<const __m128i*>(src + k)));
+  }
+#endif
+  for (; k < n; ++k) dst[k] = src[k];
+}
+
+void stream_fence() noexcept {
+#if defined(__SSE2__)
+  _mm_sfence();
+#endif
+}
+
 /// The corners of `blocks` grids of bu × bv cells, block after block, cell (I, J) of block b at face
 /// b·bu·bv + I·bv + J with the corners (I, J), (I+1, J), (I+1, J+1), (I, J+1) of the block's
 /// (bu + 1) × (bv + 1) nodes, and the offsets 0, 4, 8, …: one pass over the output, never zeroed
 /// first (appended a row of cells at a time from one row shifted by a vertex row each time). The
 /// storage of `mesh` is reused when it is large enough (no page faults when a caller meshes into
-/// the same object again). States and normals are the routes'.
+/// the same object again), and overwritten in place when it has the size (streaming stores when large).
+/// States and normals are the routes'.
 void write_quads(int blocks, int bu, int bv, Mesh& mesh) {
   const std::size_t faces =
       static_cast<std::size_t>(blocks) * static_cast<std::size_t>(bu) * static_cast<std::size_t>(bv);
   std::vector<int>& corners = mesh.face_vertices;
-  corners.clear();
-  reserve_huge(corners, 4 * faces);
+  std::vector<int>& offsets = mesh.face_offsets;
+  // Storage of the right size is overwritten in place (no clearing, no capacity checks); other storage
+  // is rebuilt by appending.
+  const bool in_place = corners.size() == 4 * faces && offsets.size() == faces + 1;
+  const bool stream = in_place && (5 * faces + 1) * sizeof(int) >= kStreamBytes;
+  if (!in_place) {
+    corners.clear();
+    reserve_huge(corners, 4 * faces);
+    offsets.clear();
+    reserve_huge(offsets, faces + 1);
+  }
+  std::size_t written = 0;
   const int row = bv + 1;
   std::vector<int> line(4 * static_cast<std::size_t>(bv));
   for (int b = 0; b < blocks; ++b) {
@@ -99,20 +142,24 @@ void write_quads(int blocks, int bu, int bv, Mesh& mesh) {
       line[at + 2] = first + row + J + 1;
       line[at + 3] = first + J + 1;
     }
-    for (int I = 0; I < bu; ++I) {
-      corners.insert(corners.end(), line.begin(), line.end());
+    for (int I = 0; I < bu; ++I, written += line.size()) {
+      if (in_place)
+        put(corners.data() + written, line.data(), line.size(), stream);
+      else
+        corners.insert(corners.end(), line.begin(), line.end());
       for (int& v : line) v += row;
     }
   }
-  std::vector<int>& offsets = mesh.face_offsets;
-  offsets.clear();
-  reserve_huge(offsets, faces + 1);
   std::array<int, 1024> run{};
   for (std::size_t f = 0; f <= faces; f += run.size()) {
     const std::size_t n = std::min(run.size(), faces + 1 - f);
     for (std::size_t k = 0; k < n; ++k) run[k] = static_cast<int>(4 * (f + k));
-    offsets.insert(offsets.end(), run.begin(), run.begin() + static_cast<std::ptrdiff_t>(n));
+    if (in_place)
+      put(offsets.data() + f, run.data(), n, stream);
+    else
+      offsets.insert(offsets.end(), run.begin(), run.begin() + static_cast<std::ptrdiff_t>(n));
   }
+  if (stream) stream_fence();
   mesh.normals.resize(0, 0);
 }
 
@@ -169,20 +216,52 @@ void combine_rows(const double* f, Eigen::Index p1, const double* __restrict Y, 
   }
 }
 
+/// combine_rows with streaming stores (SSE2; the same products and sums in the same order, so the
+/// same bits): a large output is written without first reading its lines into the cache.
+template <int P1>
+void combine_rows_stream(const double* f, Eigen::Index p1, const double* __restrict Y, Eigen::Index n,
+                         double* __restrict out) noexcept {
+#if defined(__SSE2__)
+  if constexpr (P1 > 0) {
+    Eigen::Index e = 0;
+    if ((reinterpret_cast<std::uintptr_t>(out) & 15) != 0 && n > 0) {
+      double acc = f[0] * Y[0];
+      for (Eigen::Index k = 1; k < P1; ++k) acc += f[k] * Y[k * n];
+      out[0] = acc;
+      e = 1;
+    }
+    __m128d fk[P1];
+    for (int k = 0; k < P1; ++k) fk[k] = _mm_set1_pd(f[k]);
+    for (; e + 2 <= n; e += 2) {
+      __m128d acc = _mm_mul_pd(fk[0], _mm_loadu_pd(Y + e));
+      for (int k = 1; k < P1; ++k) acc = _mm_add_pd(acc, _mm_mul_pd(fk[k], _mm_loadu_pd(Y + k * n + e)));
+      _mm_stream_pd(out + e, acc);
+    }
+    for (; e < n; ++e) {
+      double acc = f[0] * Y[e];
+      for (Eigen::Index k = 1; k < P1; ++k) acc += f[k] * Y[k * n + e];
+      out[e] = acc;
+    }
+    return;
+  }
+#endif
+  combine_rows<P1>(f, p1, Y, n, out);
+}
+
 using RowKernel = void (*)(const double*, Eigen::Index, const double*, Eigen::Index, double*) noexcept;
 
-RowKernel row_kernel(Eigen::Index p1) noexcept {
+RowKernel row_kernel(Eigen::Index p1, bool stream) noexcept {
   switch (p1) {
     case 2:
-      return combine_rows<2>;
+      return stream ? combine_rows_stream<2> : combine_rows<2>;
     case 3:
-      return combine_rows<3>;
+      return stream ? combine_rows_stream<3> : combine_rows<3>;
     case 4:
-      return combine_rows<4>;
+      return stream ? combine_rows_stream<4> : combine_rows<4>;
     case 5:
-      return combine_rows<5>;
+      return stream ? combine_rows_stream<5> : combine_rows<5>;
     case 6:
-      return combine_rows<6>;
+      return stream ? combine_rows_stream<6> : combine_rows<6>;
     default:
       return combine_rows<0>;
   }
@@ -257,7 +336,7 @@ FactorTables factor_tables(const nurbs::TensorAutomaton& t, int depth, std::size
 /// vertex row, stored contiguously. Each vertex row I of the patch row is then the (p + 1)-term
 /// combination Σ_k F_u(I, k)·Y_k over one contiguous run of (cv + 1)·C doubles.
 void write_vertices(const FactorTables& tables, std::span<const Points> nets, const Grid& grid,
-                    bool homogeneous, Mesh& mesh) {
+                    bool homogeneous, bool reused, Mesh& mesh) {
   const auto& F = tables.F;
   const int A = grid.A, B = grid.B;
   const Eigen::Index C = nets[0].cols(), D = homogeneous ? C - 1 : C;
@@ -265,7 +344,11 @@ void write_vertices(const FactorTables& tables, std::span<const Points> nets, co
   const Eigen::Index width = static_cast<Eigen::Index>(grid.cv + 1) * C;
   std::vector<double> Y(static_cast<std::size_t>(p1 * width));
   std::vector<double> H(homogeneous ? static_cast<std::size_t>(width) : 0);  // one homogeneous row
-  const RowKernel combine = row_kernel(p1);
+  // Streaming stores for a large reused output (fresh pages are zeroed by the kernel on the first
+  // write, in the cache: streaming over them was slower; homogeneous rows go through the row H).
+  const bool stream = reused && !homogeneous &&
+                      static_cast<std::size_t>(mesh.vertices.size()) * sizeof(double) >= kStreamBytes;
+  const RowKernel combine = row_kernel(p1, stream);
   for (int a = 0; a < A; ++a) {
     for (int b = 0; b < B; ++b) {
       const Points& N = nets[static_cast<std::size_t>(a) * B + b];
@@ -300,6 +383,7 @@ void write_vertices(const FactorTables& tables, std::span<const Points> nets, co
       }
     }
   }
+  if (stream) stream_fence();
 }
 
 /// Leaf states: the product state of the pair of factor leaf states. Rows I with the same u leaf
@@ -311,8 +395,13 @@ void write_states(const nurbs::TensorAutomaton& t, const FactorTables& tables, c
   for (StateId s = 0; s < t.factor_states.size(); ++s)
     pair_id[t.factor_states[s][0] * nv_states + t.factor_states[s][1]] = static_cast<std::uint32_t>(s);
   std::vector<std::vector<std::uint32_t>> state_row(num_vertices(t.factors[0].automaton.graph));
-  mesh.states.clear();
-  reserve_huge(mesh.states, grid.quads);
+  const bool in_place = mesh.states.size() == grid.quads;
+  // Streamed with the rest of a large mesh (the states alone are a fifth of the faces).
+  const bool stream = in_place && mesh_bytes(grid.vertices, 3, grid.quads) >= kStreamBytes;
+  if (!in_place) {
+    mesh.states.clear();
+    reserve_huge(mesh.states, grid.quads);
+  }
   for (int I = 0; I < grid.cu; ++I) {
     const StateId su = leaves[0][static_cast<std::size_t>(I)];
     std::vector<std::uint32_t>& states = state_row[su];
@@ -320,8 +409,13 @@ void write_states(const nurbs::TensorAutomaton& t, const FactorTables& tables, c
       states.resize(static_cast<std::size_t>(grid.cv));
       for (std::size_t J = 0; J < states.size(); ++J) states[J] = pair_id[su * nv_states + leaves[1][J]];
     }
-    mesh.states.insert(mesh.states.end(), states.begin(), states.end());
+    if (in_place)
+      put(mesh.states.data() + static_cast<std::size_t>(I) * states.size(), states.data(), states.size(),
+          stream);
+    else
+      mesh.states.insert(mesh.states.end(), states.begin(), states.end());
   }
+  if (stream) stream_fence();
 }
 
 }  // namespace
@@ -341,9 +435,19 @@ void surface_mesh(const nurbs::TensorAutomaton& t, std::span<const Points> nets,
   if (nets[0].rows() != p1 * q1)
     throw InvalidInput("surface_mesh: nets of " + std::to_string(nets[0].rows()) +
                        " rows, the factors give " + std::to_string(p1) + " by " + std::to_string(q1));
-  allocate(grid, options.homogeneous ? C - 1 : C, mesh);
-  write_vertices(tables, nets, grid, options.homogeneous, mesh);
-  write_states(t, tables, grid, mesh);
+  const bool keep = options.keep_faces && mesh.face_vertices.size() == 4 * grid.quads &&
+                    mesh.face_offsets.size() == grid.quads + 1 && mesh.states.size() == grid.quads;
+  const Eigen::Index D = options.homogeneous ? C - 1 : C;
+  const bool reused =
+      static_cast<std::size_t>(mesh.vertices.size()) == grid.vertices * static_cast<std::size_t>(D);
+  if (keep) {
+    resize_huge(mesh.vertices, static_cast<Eigen::Index>(grid.vertices), D);
+    mesh.normals.resize(0, 0);
+  } else {
+    allocate(grid, D, mesh);
+  }
+  write_vertices(tables, nets, grid, options.homogeneous, reused, mesh);
+  if (!keep) write_states(t, tables, grid, mesh);
 }
 
 Mesh surface_mesh(const nurbs::TensorAutomaton& automaton, std::span<const Points> nets, int depth,

@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: MIT
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -149,6 +151,112 @@ TEST_CASE("surface_mesh into a mesh: the returned mesh and cartesian(homogeneous
   CHECK_THROWS_AS(ifs::surface_mesh(t, nurbs::initial_nets(t, s), 6, out, {.max_bytes = 1000}), InvalidInput);
   CHECK(out.vertices == before.vertices);
   CHECK(out.face_vertices == before.face_vertices);
+}
+
+TEST_CASE("surface_mesh keep_faces: a sweep over nets rewrites only the vertices, bit for bit",
+          "[ifs][mesh]") {
+  cifs_test::Rng rng(29);
+  for (int trial = 0; trial < 6; ++trial) {
+    const std::array<int, 2> degree{cifs_test::uniform_int(rng, 1, 4), cifs_test::uniform_int(rng, 1, 3)};
+    const std::array<int, 2> count{degree[0] + cifs_test::uniform_int(rng, 1, 3),
+                                   degree[1] + cifs_test::uniform_int(rng, 1, 3)};
+    const bool rational = trial % 2 == 1;
+    const nurbs::Surface first = random_surface(rng, degree, count, cifs_test::coin(rng), rational);
+    const nurbs::TensorAutomaton t = nurbs::tensor_automaton(first);
+    const int depth = 1 + trial % 3;
+    const ifs::MeshOptions keep{.homogeneous = rational, .keep_faces = true};
+    Mesh out;
+    // Another depth first: the sizes differ, so faces and states are written although keep_faces is set.
+    ifs::surface_mesh(t, nurbs::initial_nets(t, first), depth + 1, out, keep);
+    for (int frame = 0; frame < 3; ++frame) {
+      // Same knots and degrees (so the same automaton), other control points and weights.
+      nurbs::Surface s = first;
+      s.P = nurbs::make_surface(
+                degree, first.knots, first.count, ifs_test::random_points(s.P.rows(), 3, rng),
+                rational ? Eigen::VectorXd(nurbs::weights(first) * (1.0 + frame)) : Eigen::VectorXd())
+                .P;
+      const auto nets = nurbs::initial_nets(t, s);
+      ifs::surface_mesh(t, nets, depth, out, keep);
+      const Mesh fresh = ifs::surface_mesh(t, nets, depth, {.homogeneous = rational});
+      INFO("trial " << trial << ", frame " << frame << ", depth " << depth << ", rational " << rational);
+      CHECK(out.vertices == fresh.vertices);
+      CHECK(out.face_vertices == fresh.face_vertices);
+      CHECK(out.face_offsets == fresh.face_offsets);
+      CHECK(out.states == fresh.states);
+      // Against the independent route: the surface at the dyadic nodes.
+      const auto bu = breaks(s, 0), bv = breaks(s, 1);
+      const int nu = static_cast<int>(bu.size() - 1) << depth, nv = static_cast<int>(bv.size() - 1) << depth;
+      const double scale = nurbs::cartesian_points(s).cwiseAbs().maxCoeff();
+      double worst = 0;
+      for (int I = 0; I <= nu; ++I)
+        for (int J = 0; J <= nv; ++J)
+          worst =
+              std::max(worst, (out.vertices.row(I * (nv + 1) + J) -
+                               nurbs::evaluate(s, node_parameter(bu, I, depth), node_parameter(bv, J, depth)))
+                                      .norm() /
+                                  scale);
+      CHECK(worst < 1e-12);
+    }
+    // The contents are the caller's promise, not checked: a changed corner is kept as it is.
+    out.face_vertices.front() = -5;
+    ifs::surface_mesh(t, nurbs::initial_nets(t, first), depth, out, keep);
+    CHECK(out.face_vertices.front() == -5);
+    ifs::surface_mesh(t, nurbs::initial_nets(t, first), depth, out, {.homogeneous = rational});
+    CHECK(
+        out.face_vertices ==
+        ifs::surface_mesh(t, nurbs::initial_nets(t, first), depth, {.homogeneous = rational}).face_vertices);
+  }
+}
+
+TEST_CASE("surface_mesh into a large mesh of the same size: overwritten in place (streaming stores)",
+          "[ifs][mesh]") {
+  // 2 by 2 bicubic patches at depth 9: 1025² vertices (25 MB), 1024² quads, above the streaming threshold.
+  cifs_test::Rng rng(31);
+  const nurbs::Surface s = random_surface(rng, {3, 3}, {5, 5}, true, false);
+  const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
+  const auto nets = nurbs::initial_nets(t, s);
+  const int depth = 9;
+  const Mesh fresh = ifs::surface_mesh(t, nets, depth);
+  Mesh out = fresh;
+  out.vertices.setConstant(std::numeric_limits<double>::quiet_NaN());
+  std::fill(out.face_vertices.begin(), out.face_vertices.end(), -1);
+  std::fill(out.face_offsets.begin(), out.face_offsets.end(), -1);
+  std::fill(out.states.begin(), out.states.end(), 12345U);
+  const double* storage = out.vertices.data();
+  ifs::surface_mesh(t, nets, depth, out);
+  CHECK(out.vertices.data() == storage);
+  CHECK((out.vertices.array() == fresh.vertices.array()).all());  // no 25 MB printout on failure
+  CHECK(std::equal(out.face_vertices.begin(), out.face_vertices.end(), fresh.face_vertices.begin(),
+                   fresh.face_vertices.end()));
+  CHECK(std::equal(out.face_offsets.begin(), out.face_offsets.end(), fresh.face_offsets.begin(),
+                   fresh.face_offsets.end()));
+  CHECK(std::equal(out.states.begin(), out.states.end(), fresh.states.begin(), fresh.states.end()));
+  // The corners against their closed form, and a sample of vertices against evaluate().
+  const int n = 1 + (2 << depth);
+  bool corners = true;
+  for (int I = 0; I + 1 < n; ++I)
+    for (int J = 0; J + 1 < n; ++J) {
+      const auto f = 4 * (static_cast<std::size_t>(I) * (n - 1) + J);
+      corners = corners && out.face_vertices[f] == I * n + J && out.face_vertices[f + 1] == (I + 1) * n + J &&
+                out.face_vertices[f + 2] == (I + 1) * n + J + 1 && out.face_vertices[f + 3] == I * n + J + 1;
+    }
+  CHECK(corners);
+  const auto bu = breaks(s, 0), bv = breaks(s, 1);
+  const double scale = nurbs::cartesian_points(s).cwiseAbs().maxCoeff();
+  double worst = 0;
+  for (int I = 0; I < n; I += 37)
+    for (int J = 0; J < n; J += 41)
+      worst = std::max(worst, (out.vertices.row(static_cast<Eigen::Index>(I) * n + J) -
+                               nurbs::evaluate(s, node_parameter(bu, I, depth), node_parameter(bv, J, depth)))
+                                      .norm() /
+                                  scale);
+  CHECK(worst < 1e-12);
+  // keep_faces over a large mesh: the vertices streamed, the faces left as they are.
+  out.vertices.setConstant(std::numeric_limits<double>::quiet_NaN());
+  ifs::surface_mesh(t, nets, depth, out, {.keep_faces = true});
+  CHECK((out.vertices.array() == fresh.vertices.array()).all());  // no 25 MB printout on failure
+  CHECK(std::equal(out.face_vertices.begin(), out.face_vertices.end(), fresh.face_vertices.begin(),
+                   fresh.face_vertices.end()));
 }
 
 TEST_CASE("Quad meshes are watertight disks", "[ifs][mesh]") {

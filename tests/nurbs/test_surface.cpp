@@ -195,6 +195,35 @@ TEST_CASE("evaluate_grid into an output: pointwise evaluation to the last bit, w
   }
 }
 
+TEST_CASE("evaluate_grid into a large output of the same size (streaming stores): pointwise bits",
+          "[nurbs][surface]") {
+  // 400 by 400 points of 2 to 4 coordinates: 2.6 MB or more, above the streaming threshold (2 MiB).
+  for (int seed = 0; seed < 4; ++seed) {
+    Rng rng(5000 + seed);
+    RandomSurface r = random_surface(rng);
+    while (r.s.rational) r = random_surface(rng);  // rational grids go through a cached row
+    INFO("seed " << seed << ": " << r.what);
+    auto us = direction_probes(rng, r, 0, 400), vs = direction_probes(rng, r, 1, 400);
+    if (seed % 2 == 0) {
+      std::sort(us.begin(), us.end());
+      std::sort(vs.begin(), vs.end());
+    }
+    Points out = evaluate_grid(r.s, us, vs);
+    const double* storage = out.data();
+    out.setConstant(std::numeric_limits<double>::quiet_NaN());
+    evaluate_grid(r.s, us, vs, out);
+    REQUIRE(out.data() == storage);
+    REQUIRE(out.cols() == r.cart.cols());
+    double worst = 0;
+    for (std::size_t a = 0; a < us.size(); a += 7)
+      for (std::size_t b = 0; b < vs.size(); ++b)
+        worst = std::max(
+            worst, diff(out.row(static_cast<Eigen::Index>(a * vs.size() + b)), evaluate(r.s, us[a], vs[b])));
+    CHECK(worst == 0.0);
+    CHECK(out.allFinite());
+  }
+}
+
 TEST_CASE("surface partial derivatives: definition, Leibniz' rule, finite differences", "[nurbs][surface]") {
   for (int seed = 0; seed < 150; ++seed) {
     Rng rng(2000 + seed);

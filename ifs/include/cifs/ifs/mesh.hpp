@@ -44,6 +44,11 @@ struct MeshOptions {
   /// Generic route: depth L of the precomposed stencil tables ((2^L + 1)² functionals per state;
   /// lowered automatically so that the tables stay below half of the output). Not read by apply_table.
   int max_table_depth = 6;
+  /// surface_mesh into a Mesh only: the mesh holds the faces and states of an earlier call with the
+  /// same automaton and depth (a sweep or animation: they do not depend on the nets), so only the
+  /// vertices are written — 24 of the 48 bytes per vertex. Their sizes are checked (any other size
+  /// rewrites them), their contents are not: set it only for a mesh this route filled.
+  bool keep_faces = false;
 };
 
 /// Bytes of a quad mesh of `vertices` nodes with `cols` coordinates and `quads` quads: vertices,
