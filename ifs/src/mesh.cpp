@@ -12,6 +12,7 @@
 #include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/memory.hpp"
+#include "cifs/row_combination.hpp"
 #include "walk.hpp"
 
 #if defined(__SSE2__)
@@ -81,9 +82,6 @@ Grid make_grid(int A, int B, int depth, std::size_t cols, const MeshOptions& opt
   return Grid{A, B, depth, static_cast<int>(cu), static_cast<int>(cv), 1 << depth, vertices, mul_sat(cu, cv)};
 }
 
-/// Outputs of at least this many bytes are written with streaming stores where the storage is reused.
-constexpr std::size_t kStreamBytes = std::size_t{1} << 21;
-
 /// dst[0 … n) = src[0 … n) for 4-byte T. With `stream`, non-temporal stores (SSE2): the lines are not
 /// read into the cache before being overwritten, which halves the memory traffic of an output far
 /// larger than the cache. The caller fences (`stream_fence`) after its last streaming store.
@@ -100,12 +98,6 @@ void put(T* dst, const T* src, std::size_t n, bool stream) noexcept {
   }
 #endif
   for (; k < n; ++k) dst[k] = src[k];
-}
-
-void stream_fence() noexcept {
-#if defined(__SSE2__)
-  _mm_sfence();
-#endif
 }
 
 /// The corners of `blocks` grids of bu × bv cells, block after block, cell (I, J) of block b at face
@@ -203,70 +195,6 @@ int owned(const Grid& grid, int patch, int patches) {
   return grid.side + (patch + 1 == patches ? 1 : 0);
 }
 
-/// One vertex row of the separable route: out[e] = Σ_k f[k]·Y[k·n + e] for e < n, summed in k order.
-/// P1 > 0 fixes p + 1 so that the k sum unrolls and the e loop vectorises; 0 reads p1 at run time.
-template <int P1>
-void combine_rows(const double* f, Eigen::Index p1, const double* __restrict Y, Eigen::Index n,
-                  double* __restrict out) noexcept {
-  if constexpr (P1 > 0) p1 = P1;
-  for (Eigen::Index e = 0; e < n; ++e) {
-    double acc = f[0] * Y[e];
-    for (Eigen::Index k = 1; k < p1; ++k) acc += f[k] * Y[k * n + e];
-    out[e] = acc;
-  }
-}
-
-/// combine_rows with streaming stores (SSE2; the same products and sums in the same order, so the
-/// same bits): a large output is written without first reading its lines into the cache.
-template <int P1>
-void combine_rows_stream(const double* f, Eigen::Index p1, const double* __restrict Y, Eigen::Index n,
-                         double* __restrict out) noexcept {
-#if defined(__SSE2__)
-  if constexpr (P1 > 0) {
-    Eigen::Index e = 0;
-    if ((reinterpret_cast<std::uintptr_t>(out) & 15) != 0 && n > 0) {
-      double acc = f[0] * Y[0];
-      for (Eigen::Index k = 1; k < P1; ++k) acc += f[k] * Y[k * n];
-      out[0] = acc;
-      e = 1;
-    }
-    __m128d fk[P1];
-    for (int k = 0; k < P1; ++k) fk[k] = _mm_set1_pd(f[k]);
-    for (; e + 2 <= n; e += 2) {
-      __m128d acc = _mm_mul_pd(fk[0], _mm_loadu_pd(Y + e));
-      for (int k = 1; k < P1; ++k) acc = _mm_add_pd(acc, _mm_mul_pd(fk[k], _mm_loadu_pd(Y + k * n + e)));
-      _mm_stream_pd(out + e, acc);
-    }
-    for (; e < n; ++e) {
-      double acc = f[0] * Y[e];
-      for (Eigen::Index k = 1; k < P1; ++k) acc += f[k] * Y[k * n + e];
-      out[e] = acc;
-    }
-    return;
-  }
-#endif
-  combine_rows<P1>(f, p1, Y, n, out);
-}
-
-using RowKernel = void (*)(const double*, Eigen::Index, const double*, Eigen::Index, double*) noexcept;
-
-RowKernel row_kernel(Eigen::Index p1, bool stream) noexcept {
-  switch (p1) {
-    case 2:
-      return stream ? combine_rows_stream<2> : combine_rows<2>;
-    case 3:
-      return stream ? combine_rows_stream<3> : combine_rows<3>;
-    case 4:
-      return stream ? combine_rows_stream<4> : combine_rows<4>;
-    case 5:
-      return stream ? combine_rows_stream<5> : combine_rows<5>;
-    case 6:
-      return stream ? combine_rows_stream<6> : combine_rows<6>;
-    default:
-      return combine_rows<0>;
-  }
-}
-
 }  // namespace
 
 std::size_t mesh_bytes(std::size_t vertices, std::size_t cols, std::size_t quads) noexcept {
@@ -348,7 +276,9 @@ void write_vertices(const FactorTables& tables, std::span<const Points> nets, co
   // write, in the cache: streaming over them was slower; homogeneous rows go through the row H).
   const bool stream = reused && !homogeneous &&
                       static_cast<std::size_t>(mesh.vertices.size()) * sizeof(double) >= kStreamBytes;
-  const RowKernel combine = row_kernel(p1, stream);
+  const RowCombination combine = row_combination(static_cast<int>(p1), stream);
+  std::vector<const double*> rows(static_cast<std::size_t>(p1));  // the p + 1 rows Y_k
+  for (Eigen::Index k = 0; k < p1; ++k) rows[static_cast<std::size_t>(k)] = Y.data() + k * width;
   for (int a = 0; a < A; ++a) {
     for (int b = 0; b < B; ++b) {
       const Points& N = nets[static_cast<std::size_t>(a) * B + b];
@@ -368,10 +298,10 @@ void write_vertices(const FactorTables& tables, std::span<const Points> nets, co
       const double* f = F[0].data() + static_cast<Eigen::Index>(I) * p1;
       double* row = mesh.vertices.data() + static_cast<Eigen::Index>(I) * (grid.cv + 1) * D;
       if (!homogeneous) {
-        combine(f, p1, Y.data(), width, row);
+        combine(f, static_cast<int>(p1), rows.data(), width, row);
         continue;
       }
-      combine(f, p1, Y.data(), width, H.data());
+      combine(f, static_cast<int>(p1), rows.data(), width, H.data());
       for (int J = 0; J <= grid.cv; ++J, row += D) {
         const double* h = H.data() + static_cast<Eigen::Index>(J) * C;
         const double w = h[D];

@@ -9,11 +9,8 @@
 
 #include "cifs/memory.hpp"
 #include "cifs/nurbs/refine.hpp"
+#include "cifs/row_combination.hpp"
 #include "detail.hpp"
-
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 namespace cifs::nurbs {
 namespace {
@@ -130,81 +127,6 @@ void contract_v(const Surface& s, Eigen::Index i, std::span<const int> vspan, co
   }
 }
 
-/// One grid row: out[e] = Σ_r Nu[r]·W_r[e] for e < n, summed in r order. The coefficients are the
-/// row's, not the point's: a (p + 1)-term axpy over one contiguous run, which vectorises. P1 > 0 fixes
-/// p + 1 so that the r sum unrolls; 0 reads p1 at run time.
-template <int P1>
-void combine_rows(const double* Nu, int p1, const double* const* W, Eigen::Index n,
-                  double* __restrict out) noexcept {
-  if constexpr (P1 > 0) {
-    const double* w[P1];
-    for (int r = 0; r < P1; ++r) w[r] = W[r];
-    for (Eigen::Index e = 0; e < n; ++e) {
-      double acc = Nu[0] * w[0][e];
-      for (int r = 1; r < P1; ++r) acc += Nu[r] * w[r][e];
-      out[e] = acc;
-    }
-  } else {
-    for (Eigen::Index e = 0; e < n; ++e) {
-      double acc = Nu[0] * W[0][e];
-      for (int r = 1; r < p1; ++r) acc += Nu[r] * W[r][e];
-      out[e] = acc;
-    }
-  }
-}
-
-/// combine_rows with streaming stores (SSE2; the same products and sums in the same order, so the same
-/// bits): a grid far larger than the cache is written without first reading its lines into it.
-template <int P1>
-void combine_rows_stream(const double* Nu, int p1, const double* const* W, Eigen::Index n,
-                         double* __restrict out) noexcept {
-#if defined(__SSE2__)
-  if constexpr (P1 > 0) {
-    const double* w[P1];
-    for (int r = 0; r < P1; ++r) w[r] = W[r];
-    const auto one = [&](Eigen::Index e) {
-      double acc = Nu[0] * w[0][e];
-      for (int r = 1; r < P1; ++r) acc += Nu[r] * w[r][e];
-      out[e] = acc;
-    };
-    Eigen::Index e = 0;
-    if ((reinterpret_cast<std::uintptr_t>(out) & 15) != 0 && n > 0) one(e++);
-    __m128d f[P1];
-    for (int r = 0; r < P1; ++r) f[r] = _mm_set1_pd(Nu[r]);
-    for (; e + 2 <= n; e += 2) {
-      __m128d acc = _mm_mul_pd(f[0], _mm_loadu_pd(w[0] + e));
-      for (int r = 1; r < P1; ++r) acc = _mm_add_pd(acc, _mm_mul_pd(f[r], _mm_loadu_pd(w[r] + e)));
-      _mm_stream_pd(out + e, acc);
-    }
-    for (; e < n; ++e) one(e);
-    return;
-  }
-#endif
-  combine_rows<P1>(Nu, p1, W, n, out);
-}
-
-using CombineKernel = void (*)(const double*, int, const double* const*, Eigen::Index, double*) noexcept;
-
-CombineKernel combine_kernel(int p1, bool stream) noexcept {
-  switch (p1) {
-    case 2:
-      return stream ? combine_rows_stream<2> : combine_rows<2>;
-    case 3:
-      return stream ? combine_rows_stream<3> : combine_rows<3>;
-    case 4:
-      return stream ? combine_rows_stream<4> : combine_rows<4>;
-    case 5:
-      return stream ? combine_rows_stream<5> : combine_rows<5>;
-    case 6:
-      return stream ? combine_rows_stream<6> : combine_rows<6>;
-    default:
-      return combine_rows<0>;
-  }
-}
-
-/// Outputs of at least this many bytes (the L2 cache of the machines measured) use streaming stores.
-constexpr std::size_t kStreamBytes = std::size_t{1} << 21;
-
 /// The grid rows, v first: the p + 1 control rows of a u span contracted along v at every grid
 /// column (contract_v, kept in p + 1 slots by control row index mod p + 1), then every grid row of
 /// the span as the (p + 1)-term combination of those rows. Rows are visited by span (`order`), so
@@ -226,7 +148,7 @@ void grid_rows(const Surface& s, std::span<const double> us, std::span<const int
   // write, in the cache: streaming over them was 1.6-3x slower; rational rows go through the row H).
   const bool stream =
       reused && !s.rational && us.size() * static_cast<std::size_t>(width) * sizeof(double) >= kStreamBytes;
-  const CombineKernel combine = combine_kernel(p + 1, stream);
+  const RowCombination combine = row_combination(p + 1, stream);
   const double* tu = s.knots[0].data();
   double Nu[kMaxDegree + 1];
   const double* W[kMaxDegree + 1];
@@ -255,9 +177,7 @@ void grid_rows(const Surface& s, std::span<const double> us, std::span<const int
       for (int k = 0; k < dim; ++k) row[k] = h[k] * scale;
     }
   }
-#if defined(__SSE2__)
-  if (stream) _mm_sfence();
-#endif
+  if (stream) stream_fence();
 }
 
 }  // namespace
