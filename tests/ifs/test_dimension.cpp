@@ -37,6 +37,15 @@ Points classic_points(const std::vector<ifs::AffineMap>& maps, int depth) {
   return ifs::attractor_points(a, nets, depth);
 }
 
+/// A smooth bicubic Bézier patch over [0, 3]², heights 0.6·sin(i + 2j).
+nurbs::Surface wavy_bicubic_patch() {
+  Points Q(16, 3);
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) Q.row(4 * i + j) << i, j, 0.6 * std::sin(i + 2.0 * j);
+  return nurbs::make_surface(
+      {3, 3}, {nurbs::Knots{0, 0, 0, 0, 1, 1, 1, 1}, nurbs::Knots{0, 0, 0, 0, 1, 1, 1, 1}}, {4, 4}, Q);
+}
+
 /// Rotation by `angle` scaled by r, optionally reflected, then translated.
 ifs::AffineMap similarity(double r, double angle, bool reflect, double e, double f) {
   const double c = r * std::cos(angle), s = r * std::sin(angle), m = reflect ? -1 : 1;
@@ -168,11 +177,7 @@ TEST_CASE("box counting: smooth curve 1, surface mesh 2", "[ifs][dimension]") {
   INFO("curve: " << r.dimension << " over levels " << r.min_level << " … " << r.max_level);
   CHECK(std::abs(r.dimension - 1) < 0.02);
 
-  Points Q(16, 3);
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) Q.row(4 * i + j) << i, j, 0.6 * std::sin(i + 2.0 * j);
-  const nurbs::Surface s = nurbs::make_surface(
-      {3, 3}, {nurbs::Knots{0, 0, 0, 0, 1, 1, 1, 1}, nurbs::Knots{0, 0, 0, 0, 1, 1, 1, 1}}, {4, 4}, Q);
+  const nurbs::Surface s = wavy_bicubic_patch();
   const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
   // Boundary boxes bias the slope by about perimeter·ε/area: depth 10 gives 1.947, 11 gives 1.959.
   const Mesh mesh = ifs::surface_mesh(t, nurbs::initial_nets(t, s), 11);
@@ -431,11 +436,7 @@ TEST_CASE("proven cover: the pieces' growth is the dimension, without the boxes'
                  1) < 0.01);
   // A smooth bicubic patch: the boxes read 1.95 at this budget (the boundary term, see "box
   // counting: smooth curve 1, surface mesh 2"); the proven pieces tile it and grow as ε^-2.
-  Points Q(16, 3);
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) Q.row(4 * i + j) << i, j, 0.6 * std::sin(i + 2.0 * j);
-  const nurbs::Surface s = nurbs::make_surface(
-      {3, 3}, {nurbs::Knots{0, 0, 0, 0, 1, 1, 1, 1}, nurbs::Knots{0, 0, 0, 0, 1, 1, 1, 1}}, {4, 4}, Q);
+  const nurbs::Surface s = wavy_bicubic_patch();
   const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
   const double surface = cover_of(t.product, nurbs::initial_nets(t, s), 1u << 20);
   CHECK(std::abs(surface - 2) < 0.02);
