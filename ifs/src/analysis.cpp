@@ -400,8 +400,11 @@ Eigen::RowVectorXd unit_fixed_point(const Eigen::MatrixXd& P, const std::string&
   // weight up to 1e6 times the others; the iteration damps them at the rate of the subdominant
   // eigenvalues. Kept only when its residual stays at rounding level (a product whose other
   // eigenvalues do not shrink could make it drift).
-  Eigen::RowVectorXd polished = l;
-  for (int k = 0; k < 64; ++k) polished = (polished * P).eval();
+  Eigen::RowVectorXd polished = l, next(n);
+  for (int k = 0; k < 64; ++k) {
+    next.noalias() = polished * P;  // no temporary per step: this runs for every cycle of every table build
+    polished.swap(next);
+  }
   polished /= polished.sum();
   const auto residual = [&](const Eigen::RowVectorXd& x) { return (x * P - x).cwiseAbs().maxCoeff(); };
   const double floor = 4 * std::numeric_limits<double>::epsilon() * static_cast<double>(n) *

@@ -290,10 +290,11 @@ constexpr std::size_t kTableBudget = std::size_t{1} << 21;
 
 /// out (`child.rows() by M.cols()`, row-major) = child·M, each entry summed in k order. The rows are
 /// many and M is small (a transition, 4 by 4 for cubics): a row at a time against M's rows, which
-/// vectorises over the columns; Eigen's general product packed the whole child table per call.
-template <int N>
+/// vectorises over the columns; Eigen's general product packed the whole child table per call. K and
+/// N > 0 fix M's shape (square transitions of quadratics and cubics), which keeps M in registers.
+template <int K, int N>
 void stack_rows_fixed(const RowMatrix& child, const RowMatrix& Mr, double* __restrict out) noexcept {
-  const Eigen::Index k_end = Mr.rows(), n = N > 0 ? N : Mr.cols();
+  const Eigen::Index k_end = K > 0 ? K : Mr.rows(), n = N > 0 ? N : Mr.cols();
   const double* m = Mr.data();
   for (Eigen::Index i = 0; i < child.rows(); ++i, out += n) {
     const double* c = child.data() + i * k_end;
@@ -305,20 +306,44 @@ void stack_rows_fixed(const RowMatrix& child, const RowMatrix& Mr, double* __res
 
 void stack_rows(const RowMatrix& child, const Eigen::MatrixXd& M, double* out) {
   const RowMatrix Mr = M;  // rows of M contiguous
+  if (M.rows() == 3 && M.cols() == 3) return stack_rows_fixed<3, 3>(child, Mr, out);
+  if (M.rows() == 4 && M.cols() == 4) return stack_rows_fixed<4, 4>(child, Mr, out);
   switch (M.cols()) {
     case 3:
-      return stack_rows_fixed<3>(child, Mr, out);
+      return stack_rows_fixed<0, 3>(child, Mr, out);
     case 4:
-      return stack_rows_fixed<4>(child, Mr, out);
+      return stack_rows_fixed<0, 4>(child, Mr, out);
     default:
-      return stack_rows_fixed<0>(child, Mr, out);
+      return stack_rows_fixed<0, 0>(child, Mr, out);
   }
+}
+
+/// at[k][s]: whether a node at depth `from + k` of the tree (from the initial entries) is in state s,
+/// for k = 0 … to − from. Level ℓ of the tables is needed only for the states at depth K − ℓ: the
+/// walk emits at depth K − L, and a level-ℓ table is stacked from its children's, one level deeper.
+std::vector<std::vector<char>> states_at_depths(const Automaton& automaton, int from, int to) {
+  const Graph& g = automaton.graph;
+  const auto n = num_vertices(g);
+  std::vector<char> cur(n, 0), nxt(n, 0);
+  for (const auto& init : automaton.initial) cur[init.state] = 1;
+  std::vector<std::vector<char>> out;
+  for (int d = 0; d <= to; ++d) {
+    if (d >= from) out.push_back(cur);
+    if (d == to) break;
+    std::fill(nxt.begin(), nxt.end(), 0);
+    for (StateId s = 0; s < n; ++s)
+      if (cur[s])
+        for (auto [b, e] = out_edges(s, g); b != e; ++b) nxt[target(*b, g)] = 1;
+    std::swap(cur, nxt);
+  }
+  return out;
 }
 
 /// Counts the points and builds the tables of depth L of a validated automaton (without its copy):
 /// the largest L ≤ max_table_depth whose tables (and, while building, the previous level) stay
-/// within `entries(count)` doubles; L = 0 (one functional per state) always. `entries` may throw
-/// (a refusal) before any work on the tables.
+/// within `entries(count)` doubles; L = 0 (one functional per state) always. Only the states of the
+/// depth-(K − L) nodes get a table (the others' are empty). `entries` may throw (a refusal) before
+/// any work on the tables.
 template <class Entries>
 StencilTable build_table(const Automaton& automaton, int depth, bool closed, int max_table_depth,
                          std::string_view who, Entries&& entries) {
@@ -326,9 +351,11 @@ StencilTable build_table(const Automaton& automaton, int depth, bool closed, int
     throw InvalidInput(std::string(who) + ": depth is " + std::to_string(depth) + ", must be ≥ 0");
   const Graph& g = automaton.graph;
   const auto n = num_vertices(g);
-  const auto states = reachable_states(automaton);
   const int max_L = std::clamp(max_table_depth, 0, depth);
   const Counts counts = node_counts(automaton, depth, max_L);
+  // needed[K − d]: the states at depth d, for d = K − max_L … K.
+  auto needed = states_at_depths(automaton, depth - max_L, depth);
+  std::reverse(needed.begin(), needed.end());  // needed[ℓ]: the states whose level-ℓ table is used
 
   StencilTable out;
   out.depth = depth;
@@ -336,11 +363,12 @@ StencilTable build_table(const Automaton& automaton, int depth, bool closed, int
   out.points = total_count(automaton, counts.at_depth, closed);
   const std::size_t budget = entries(out.points);
 
-  const auto table_size = [&](int L) {
+  const auto table_size = [&](int l) {
+    const auto level = static_cast<std::size_t>(l);
     std::size_t t = 0;
-    for (const StateId s : states)
-      t = add_sat(t,
-                  mul_sat(counts.low[static_cast<std::size_t>(L)][s], static_cast<std::size_t>(g[s].size)));
+    for (StateId s = 0; s < n; ++s)
+      if (needed[level][s])
+        t = add_sat(t, mul_sat(counts.low[level][s], static_cast<std::size_t>(g[s].size)));
     return t;
   };
   int L = max_L;
@@ -352,9 +380,11 @@ StencilTable build_table(const Automaton& automaton, int depth, bool closed, int
   if (!closed) out.end = functionals.end[automaton.initial.back().state];
   std::vector<RowMatrix> next(n);
   out.tables.resize(n);
-  for (const StateId s : states) out.tables[s] = functionals.start[s];
+  for (StateId s = 0; s < n; ++s)
+    if (needed[0][s]) out.tables[s] = functionals.start[s];
   for (int l = 1; l <= L; ++l) {
-    for (const StateId s : states) {
+    for (StateId s = 0; s < n; ++s) {
+      if (!needed[static_cast<std::size_t>(l)][s]) continue;
       RowMatrix& F = next[s];
       F.resize(static_cast<Eigen::Index>(counts.low[static_cast<std::size_t>(l)][s]), g[s].size);
       Eigen::Index row = 0;
@@ -367,7 +397,7 @@ StencilTable build_table(const Automaton& automaton, int depth, bool closed, int
     std::swap(out.tables, next);
     for (auto& F : next) F.resize(0, 0);  // free the previous level
   }
-  for (const StateId s : states) out.max_rows = std::max(out.max_rows, out.tables[s].rows());
+  for (const auto& F : out.tables) out.max_rows = std::max(out.max_rows, F.rows());
   return out;
 }
 
@@ -375,29 +405,35 @@ StencilTable build_table(const Automaton& automaton, int depth, bool closed, int
 /// product each, at `place(rows)` (a pointer to room for that many rows); then the end point of the
 /// very last node unless closed (the end of the last root: end functionals propagate).
 template <class Place>
-void emit_points(const Automaton& automaton, std::span<const Points> nets, const StencilTable& t,
+void emit_points(const Automaton& automaton, std::span<const Points> nets, const StencilTable& t, bool stream,
                  Place&& place) {
   const int walk_depth = t.depth - t.table_depth;
   detail::depth_first(automaton, nets, walk_depth,
                       [&](std::size_t, StateId s, const Points& net, int d, std::span<const int>) {
                         if (d < walk_depth) return true;
                         const RowMatrix& F = t.tables[s];
-                        detail::emit(F.data(), F.rows(), F.cols(), net, place(F.rows()));
+                        detail::emit(F.data(), F.rows(), F.cols(), net, place(F.rows()), stream);
                         return false;
                       });
   if (!t.closed) Eigen::Map<Point>(place(1), nets.back().cols()) = t.end * nets.back();
 }
 
-/// Every point into `out` (`t.points by cols`, storage reused when it has the size).
+/// Every point into `out` (`t.points by cols`, storage reused when it has the size). A reused output
+/// larger than the cache is written with streaming stores (fresh pages are zeroed by the kernel on
+/// the first write, in the cache: streaming over them is slower).
 void emit_into(const Automaton& automaton, std::span<const Points> nets, const StencilTable& t, Points& out) {
   const auto cols = nets[0].cols();
-  resize_huge(out, static_cast<Eigen::Index>(t.points), cols);
+  const auto rows = static_cast<Eigen::Index>(t.points);
+  const bool stream = out.rows() == rows && out.cols() == cols &&
+                      static_cast<std::size_t>(out.size()) * sizeof(double) >= kStreamBytes;
+  resize_huge(out, rows, cols);
   double* cursor = out.data();
-  emit_points(automaton, nets, t, [&](Eigen::Index rows) {
+  emit_points(automaton, nets, t, stream, [&](Eigen::Index n) {
     double* at = cursor;
-    cursor += rows * cols;
+    cursor += n * cols;
     return at;
   });
+  if (stream) stream_fence();
 }
 
 /// "depth 20 gives 17825793 points of 3 coordinates (0.4 GiB), more than the limit of 1 GiB (…)".
@@ -431,13 +467,18 @@ void check_table(const StencilTable& t, std::span<const Points> nets, std::strin
   bool fits = t.depth >= 0 && t.table_depth >= 0 && t.table_depth <= t.depth &&
               t.tables.size() == num_vertices(g) && (t.closed || t.end.size() == nets.back().rows());
   if (fits) {
+    // Every table is empty or of its state's shape, and those of the walk's states are not empty.
     const Counts counts = node_counts(a, t.depth, t.table_depth);
+    const std::vector<char> walked = states_at_depths(a, t.depth - t.table_depth, t.depth - t.table_depth)[0];
     fits = t.points == total_count(a, counts.at_depth, t.closed);
-    for (const StateId s : reachable_states(a))
-      fits = fits && t.tables[s].cols() == g[s].size &&
-             static_cast<std::size_t>(t.tables[s].rows()) ==
-                 counts.low[static_cast<std::size_t>(t.table_depth)][s] &&
-             t.tables[s].rows() <= t.max_rows;
+    for (StateId s = 0; s < num_vertices(g); ++s) {
+      const RowMatrix& F = t.tables[s];
+      const bool empty = F.size() == 0 && !walked[s];
+      fits = fits && (empty || (F.cols() == g[s].size &&
+                                static_cast<std::size_t>(F.rows()) ==
+                                    counts.low[static_cast<std::size_t>(t.table_depth)][s] &&
+                                F.rows() <= t.max_rows));
+    }
   }
   if (!fits)
     throw InvalidInput(std::string(who) +
@@ -484,7 +525,7 @@ std::size_t emit_in_chunks(const Automaton& automaton, std::span<const Points> n
     if (used > 0) callback(chunk.topRows(used));
     used = 0;
   };
-  emit_points(automaton, nets, t, [&](Eigen::Index rows) {
+  emit_points(automaton, nets, t, false, [&](Eigen::Index rows) {
     if (used + rows > capacity) flush();
     double* at = chunk.data() + used * cols;
     used += rows;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cifs/automata/automaton.hpp"
+#include "cifs/row_combination.hpp"
 #include "cifs/types.hpp"
 
 namespace cifs::ifs::detail {
@@ -73,8 +74,9 @@ void depth_first(const Automaton& automaton, std::span<const Points> nets, int m
 /// out (`rows by C`, row-major, contiguous) = F (`rows by n`, row-major at `F`) · N (`n by C`): the
 /// hot loop of the stencil-table routes, n·C multiply-adds per point, the point kept in registers.
 /// N_ > 0 fixes n (cubic and quadratic curve nets) so that the k sum unrolls; the sums run in k order
-/// either way, so both give the same bits.
-template <int C, int N_>
+/// either way, so both give the same bits. `Stream` writes with streaming stores (stream_store: an
+/// output far larger than the cache is then written without first reading its lines).
+template <int C, int N_, bool Stream>
 void emit_fixed(const double* f, Eigen::Index rows, Eigen::Index n, const Points& N, double* out) noexcept {
   if constexpr (N_ > 0) n = N_;
   const double* p = N.data();
@@ -82,32 +84,38 @@ void emit_fixed(const double* f, Eigen::Index rows, Eigen::Index n, const Points
     double acc[C] = {};
     for (Eigen::Index k = 0; k < n; ++k)
       for (int c = 0; c < C; ++c) acc[c] += f[k] * p[k * C + c];
-    for (int c = 0; c < C; ++c) out[c] = acc[c];
+    for (int c = 0; c < C; ++c) {
+      if constexpr (Stream)
+        stream_store(out + c, acc[c]);
+      else
+        out[c] = acc[c];
+    }
   }
 }
 
-template <int C>
+template <int C, bool Stream>
 void emit_cols(const double* f, Eigen::Index rows, Eigen::Index n, const Points& N, double* out) noexcept {
   switch (n) {
     case 3:
-      return emit_fixed<C, 3>(f, rows, n, N, out);
+      return emit_fixed<C, 3, Stream>(f, rows, n, N, out);
     case 4:
-      return emit_fixed<C, 4>(f, rows, n, N, out);
+      return emit_fixed<C, 4, Stream>(f, rows, n, N, out);
     default:
-      return emit_fixed<C, 0>(f, rows, n, N, out);
+      return emit_fixed<C, 0, Stream>(f, rows, n, N, out);
   }
 }
 
-inline void emit(const double* f, Eigen::Index rows, Eigen::Index n, const Points& N, double* out) noexcept {
+template <bool Stream>
+void emit_as(const double* f, Eigen::Index rows, Eigen::Index n, const Points& N, double* out) noexcept {
   switch (N.cols()) {
     case 1:
-      return emit_cols<1>(f, rows, n, N, out);
+      return emit_cols<1, Stream>(f, rows, n, N, out);
     case 2:
-      return emit_cols<2>(f, rows, n, N, out);
+      return emit_cols<2, Stream>(f, rows, n, N, out);
     case 3:
-      return emit_cols<3>(f, rows, n, N, out);
+      return emit_cols<3, Stream>(f, rows, n, N, out);
     case 4:
-      return emit_cols<4>(f, rows, n, N, out);
+      return emit_cols<4, Stream>(f, rows, n, N, out);
     default: {
       const Eigen::Index C = N.cols();
       for (Eigen::Index r = 0; r < rows; ++r, f += n, out += C) {
@@ -117,6 +125,12 @@ inline void emit(const double* f, Eigen::Index rows, Eigen::Index n, const Point
       }
     }
   }
+}
+
+/// emit_as<stream>; after streamed writes the caller calls stream_fence.
+inline void emit(const double* f, Eigen::Index rows, Eigen::Index n, const Points& N, double* out,
+                 bool stream = false) noexcept {
+  return stream ? emit_as<true>(f, rows, n, N, out) : emit_as<false>(f, rows, n, N, out);
 }
 
 }  // namespace cifs::ifs::detail

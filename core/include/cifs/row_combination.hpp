@@ -2,9 +2,11 @@
 // cifs — one row of a separable evaluation as a combination of rows: out[e] = Σ_r f[r]·rows[r][e]
 // for e < n, summed in r order. The coefficients are the row's, not the point's, so this is a
 // (p + 1)-term axpy over contiguous runs, which vectorises. Used by nurbs::evaluate_grid and
-// ifs::surface_mesh, whose grids are such rows.
+// ifs::surface_mesh, whose grids are such rows; and the streaming stores that write outputs far larger
+// than the cache (these and the stencil-table routes of ifs).
 #pragma once
 
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 
@@ -83,6 +85,15 @@ inline RowCombination row_combination(int terms, bool stream) noexcept {
     default:
       return detail::combine_rows<0>;
   }
+}
+
+/// *p = v with a streaming store (8 bytes, any 8-byte alignment; a plain store without SSE2 on x86-64).
+inline void stream_store(double* p, double v) noexcept {
+#if defined(__SSE2__) && defined(__x86_64__)
+  _mm_stream_si64(reinterpret_cast<long long*>(p), std::bit_cast<long long>(v));
+#else
+  *p = v;
+#endif
 }
 
 /// Orders the streaming stores before what follows (a no-op without SSE2).

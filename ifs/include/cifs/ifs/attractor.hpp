@@ -158,7 +158,8 @@ struct StencilTable {
   int table_depth = 0;  // L ≤ K
   bool closed = false;
   std::size_t points = 0;  // rows of every application (attractor_point_count)
-  std::vector<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> tables;  // F_s by state
+  // F_s by state; empty for the states of no depth-(K − L) node (the walk never reads them)
+  std::vector<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> tables;
   Eigen::RowVectorXd end;     // end functional of the last root (empty when closed)
   Eigen::Index max_rows = 0;  // largest c_L(s)
 };
