@@ -107,6 +107,9 @@ ifs::PerturbOptions perturb_options(const io::Perturbation& p) {
   po.amplitude = p.amplitude;
   po.seed = p.seed;
   po.values = p.values;
+  // Only contractivity is checked here: the piece bound (A and radius: every path product of 16 × 16
+  // matrices for bicubic patches, seconds) serves tolerance searches, which compute their own.
+  po.contraction.bound = false;
   return po;
 }
 
@@ -201,7 +204,7 @@ Scene bcifs_scene(const io::Experiment& e, const RunOptions& o, RunReport& repor
   }
   // The file's matrices are the user's: an attractor exists only when they shrink nets. A depth
   // evaluation would draw a finite composition of anything; dimension and the chaos game refuse too.
-  (void)ifs::contraction(system.automaton);
+  (void)ifs::contraction(system.automaton, {.bound = false});
   scene.automaton = system.automaton;
   scene.nets = std::move(file.nets);
   if (e.evaluation.mode == Mode::depth || e.evaluation.mode == Mode::tolerance) {
@@ -498,7 +501,7 @@ Scene junction_scene(const io::Junction& junction, const io::Experiment& e, cons
     report.residual = std::max(report.residual, p.residual);
     system = std::move(p.system);
   }
-  (void)ifs::contraction(system.automaton);
+  (void)ifs::contraction(system.automaton, {.bound = false});
   kind = "junction of a " + a.kind + " and a " + b.kind;
   Scene scene;
   scene.junction = "A's " + junction.a.boundary + " = B's " + junction.b.boundary + ", " +

@@ -59,6 +59,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 
 #include "cifs/errors.hpp"
 #include "cifs/format.hpp"
@@ -324,14 +325,33 @@ double PieceBounds::chord_deviation(StateId state, const Points& net, const Poin
 
 namespace {
 
+/// Per state t, bounds over the paths of `length` transitions from t: the largest δ of their
+/// products and the largest ∞-norm of the products of their prefixes (the empty one included, so ≥ 1).
+struct SuffixBounds {
+  int length = 0;
+  std::vector<double> delta, norm;  // by state
+};
+
 /// Enumerates the paths of exactly `length` transitions from every reachable state, with the
 /// products along the way (`size(target) by size(start)`).
+///
+/// With `suffix` (length h < `length`), a branch and bound: δ and the ∞-norm are submultiplicative on
+/// products whose rows sum to 1 (δ is the norm induced by ‖·‖₁ on the row vectors summing to 0, which
+/// such products map into themselves), so below a node at depth `length − h` in state t with product
+/// P, every path's product B·P has δ ≤ δ(P)·delta[t] and every prefix ‖B·P‖∞ ≤ ‖P‖∞·norm[t]. When
+/// both bounds are within what the scan has found, the subtree cannot change `worst` or `A` (beyond
+/// rounding: A takes the bound, a sound upper bound) and is skipped. On the 369-state perturbed bicubic
+/// surface (m = 6: 1.5 M paths) 98 % of the depth-3 subtrees are skipped.
+/// Without `norms` (ContractionOptions::bound off) A is not tracked and only δ bounds the skipping.
 struct PathScan {
-  explicit PathScan(const Automaton& a, int len, bool stop)
-      : automaton(a), length(len), stop_at_first_failure(stop) {}
+  explicit PathScan(const Automaton& a, int len, bool stop, const SuffixBounds* bounds = nullptr,
+                    bool with_norms = true)
+      : automaton(a), length(len), stop_at_first_failure(stop), suffix(bounds), norms(with_norms) {}
   const Automaton& automaton;
   int length = 0;
   bool stop_at_first_failure = false;
+  const SuffixBounds* suffix = nullptr;
+  bool norms = true;
   // Results.
   double A = 1, worst = 0;
   StateId worst_state = 0;
@@ -344,7 +364,8 @@ struct PathScan {
   bool descend(StateId from, StateId s, int k) {
     const Graph& g = automaton.graph;
     const auto& P = product[static_cast<std::size_t>(k)];
-    A = std::max(A, P.cwiseAbs().rowwise().sum().maxCoeff());
+    const double norm = norms ? P.cwiseAbs().rowwise().sum().maxCoeff() : 1.0;
+    A = std::max(A, norm);
     if (k == length) {
       const double d = delta(P);
       if (d > worst || worst_word.empty()) {
@@ -353,6 +374,13 @@ struct PathScan {
         worst_word.assign(word.begin(), word.begin() + k);
       }
       return !(stop_at_first_failure && d >= 1);
+    }
+    if (suffix && k == length - suffix->length && !worst_word.empty()) {
+      const double norm_bound = norms ? norm * suffix->norm[s] : 1.0;
+      if (delta(P) * suffix->delta[s] <= worst && norm_bound <= A * (1 + 1e-12)) {
+        A = std::max(A, norm_bound);
+        return true;
+      }
     }
     int child = 0;
     for (auto [b, e] = out_edges(s, g); b != e; ++b, ++child) {
@@ -374,6 +402,21 @@ struct PathScan {
     return true;
   }
 };
+
+/// The suffix bounds of paths of `length` transitions from every state in `states` (exact maxima: one
+/// full scan per state, about 1/out-degree of the work of a scan one level longer).
+SuffixBounds suffix_bounds(const Automaton& automaton, const std::vector<StateId>& states, int length) {
+  SuffixBounds out{.length = length,
+                   .delta = std::vector<double>(num_vertices(automaton.graph), 0),
+                   .norm = std::vector<double>(num_vertices(automaton.graph), 1)};
+  for (const StateId s : states) {
+    PathScan scan(automaton, length, false);
+    scan.run({s});
+    out.delta[s] = scan.worst;
+    out.norm[s] = scan.A;
+  }
+  return out;
+}
 
 /// ℓ with ℓ·P = ℓ, Σℓ = 1, for a square P whose rows sum to 1 (P·1 = 1).
 /// K = I − P + 1·1ᵀ is invertible exactly when 1 is an algebraically simple eigenvalue of P: if
@@ -429,14 +472,22 @@ Contraction contraction(const Automaton& automaton, const ContractionOptions& op
   // Iterative deepening: the shortest m wins, and paths of length < max_length stop at the first
   // failing product (their A is not needed); the last length is scanned fully for the message.
   Contraction out;
+  // Scans longer than kSuffixLength transitions skip the subtrees that cannot change their result.
+  constexpr int kSuffixLength = 3;
+  std::optional<SuffixBounds> suffix;
+  const auto bounds_for = [&](int m) -> const SuffixBounds* {
+    if (m <= kSuffixLength) return nullptr;
+    if (!suffix) suffix = suffix_bounds(automaton, states, kSuffixLength);
+    return &*suffix;
+  };
   for (int m = 1; m <= options.max_length; ++m) {
-    PathScan scan(automaton, m, m < options.max_length);
+    PathScan scan(automaton, m, m < options.max_length, bounds_for(m), options.bound);
     const bool complete = scan.run(states);
     if (complete && scan.worst < 1) {
       out.m = m;
       out.delta = scan.worst;
-      out.A = scan.A;
-      out.radius = (1 + scan.A) / (2 * (1 - scan.worst));
+      out.A = options.bound ? scan.A : std::numeric_limits<double>::infinity();
+      out.radius = options.bound ? (1 + scan.A) / (2 * (1 - scan.worst)) : out.A;
       out.radius_length = m;
       break;
     }
@@ -448,7 +499,7 @@ Contraction contraction(const Automaton& automaton, const ContractionOptions& op
                          " gives δ < 1)");
     }
   }
-  if (!options.tighten) return out;
+  if (!options.tighten || !options.bound) return out;
   // Longer blocks usually give a much smaller factor (δ_k decays geometrically while A_k grows
   // slowly); every k with δ_k < 1 gives a sound bound, so keep the smallest.
   const Graph& g = automaton.graph;
@@ -475,7 +526,7 @@ Contraction contraction(const Automaton& automaton, const ContractionOptions& op
     }
     std::swap(paths, next_paths);
     if (total > max_paths) break;  // the scan would cost more than the levels it saves
-    PathScan scan(automaton, k, true);
+    PathScan scan(automaton, k, true, bounds_for(k));
     if (!scan.run(states) || !(scan.worst < 1)) continue;
     const double radius = (1 + scan.A) / (2 * (1 - scan.worst));
     const bool improves = radius < 0.95 * out.radius;

@@ -35,7 +35,7 @@ ChaosResult chaos_game(const Automaton& automaton, std::span<const Points> nets,
                        ", must lie in (0, 1)");
   // A walk on a system that does not shrink nets would never restart and lose all precision. Only
   // the verdict is needed: the tightened factor costs seconds for large states (degree 64).
-  (void)contraction(automaton, ContractionOptions{.max_length = 8, .tighten = false});
+  (void)contraction(automaton, ContractionOptions{.max_length = 8, .tighten = false, .bound = false});
   const Graph& g = automaton.graph;
   const EndFunctionals functionals = end_functionals(automaton);
 

@@ -201,3 +201,58 @@ TEST_CASE("curve BC-IFS: free vertex operators move the knots, junctions hold", 
   }
   CHECK(knot_moved > 1e-4);
 }
+
+namespace {
+
+/// Brute force over every path of `m` transitions from every reachable state: the largest δ of the
+/// products of length m and the largest ∞-norm of the products of length 0 … m (Contraction's δ_m, A_m).
+std::pair<double, double> all_paths(const automata::Automaton& a, int m) {
+  double worst = 0, A = 1;
+  const auto walk = [&](auto&& self, automata::StateId s, const Eigen::MatrixXd& P, int k) -> void {
+    A = std::max(A, P.cwiseAbs().rowwise().sum().maxCoeff());
+    if (k == m) {
+      worst = std::max(worst, delta(P));
+      return;
+    }
+    for (auto [b, e] = out_edges(s, a.graph); b != e; ++b)
+      self(self, target(*b, a.graph), (a.graph[*b].matrix * P).eval(), k + 1);
+  };
+  for (const automata::StateId s : reachable_states(a)) {
+    const auto n = a.graph[s].size;
+    walk(walk, s, Eigen::MatrixXd::Identity(n, n), 0);
+  }
+  return {worst, A};
+}
+
+}  // namespace
+
+TEST_CASE("contraction: skipping bounded subtrees gives the full scan's δ and A", "[bcifs][curve]") {
+  // Perturbed cubic BC-IFS of 18 states whose witnesses have length 4 and 7: the scans past length 3
+  // skip subtrees by δ(B·P) ≤ δ(B)·δ(P) and ‖B·P‖ ≤ ‖B‖·‖P‖; brute force enumerates every path.
+  const Bcifs system = curve_bcifs(nurbs::make_curve(3, {0, 0, 0, 0, 1, 2, 4, 4, 4, 4}, polygon(6)));
+  int longest = 0;
+  for (const auto& [amplitude, seed] : {std::pair{0.3, 1}, {0.3, 2}, {0.3, 4}, {0.5, 2}, {0.5, 5}}) {
+    PerturbOptions options;
+    options.amplitude = amplitude;
+    options.seed = static_cast<std::uint64_t>(seed);
+    options.contraction.tighten = false;
+    const automata::Automaton a = perturb(system, options).system.automaton;
+    const Contraction c = contraction(a, {.tighten = false});
+    INFO("amplitude " << amplitude << ", seed " << seed << ": m = " << c.m);
+    longest = std::max(longest, c.m);
+    const auto [worst, A] = all_paths(a, c.m);
+    CHECK(c.delta == Approx(worst).epsilon(1e-14));
+    CHECK(c.A >= A * (1 - 1e-14));
+    CHECK(c.A <= A * (1 + 1e-12));
+    CHECK(c.radius == Approx((1 + c.A) / (2 * (1 - c.delta))).epsilon(1e-14));
+    // Shorter lengths fail (m is the smallest witness).
+    if (c.m > 1) CHECK(all_paths(a, c.m - 1).first >= 1);
+    // Contractivity alone: the same witness and δ, no bound.
+    const Contraction proof = contraction(a, {.tighten = false, .bound = false});
+    CHECK(proof.m == c.m);
+    CHECK(proof.delta == Approx(worst).epsilon(1e-14));
+    CHECK(std::isinf(proof.A));
+    CHECK(std::isinf(proof.radius));
+  }
+  CHECK(longest >= 7);
+}

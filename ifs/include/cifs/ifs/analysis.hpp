@@ -52,6 +52,11 @@ struct ContractionOptions {
   /// uniform degree-6 B-spline the factor drops from 64 (m = 1) to about 1.1 (m = 5), saving six levels of
   /// subdivision.
   bool tighten = true;
+  /// Compute A and `radius` (the piece bound of tolerance searches). Without, only contractivity is
+  /// proved: m, delta and the worst path as with it, A and radius infinite, tighten ignored — and the
+  /// scans skip every subtree whose δ cannot exceed the worst found (A would need them), which on
+  /// perturbed bicubic surfaces (m = 6 to 8, up to 1.5 M paths) is most of the work.
+  bool bound = true;
 };
 
 /// Result of the contractivity check: the products along every path of `m` transitions (from
