@@ -21,7 +21,9 @@ Window segment_window(const Curve& curve, int span) {
   const int d = curve.degree;
   if (!curve.closed) return segment_window(curve.knots, d, span);
   const int m = static_cast<int>(curve.P.rows()) - d;
-  const auto b = [&](int k) { return curve.knots[static_cast<std::size_t>(d + k)]; };
+  const auto b = [&](int k) {
+    return curve.knots[static_cast<std::size_t>(d) + static_cast<std::size_t>(k)];
+  };
   Window w(static_cast<std::size_t>(2 * d - 1));
   for (int i = 0; i < 2 * d - 1; ++i) {
     const int k = detail::periodic_index(span - d + 1 + i, d, m).k;

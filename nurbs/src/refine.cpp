@@ -26,8 +26,9 @@ Piece piece_for(const Curve& c, const Knots& target, int q, int k, int hint) {
   if (c.closed) {
     const int m = static_cast<int>(target.size()) - 2 * q - 1;
     const detail::PeriodicIndex at = detail::periodic_index(k, q, m);
-    lo = target[static_cast<std::size_t>(q + at.k)];
-    hi = target[static_cast<std::size_t>(q + at.k) + 1];
+    const auto first = static_cast<std::size_t>(q) + static_cast<std::size_t>(at.k);
+    lo = target[first];
+    hi = target[first + 1];
     periods = at.q;
   }
   const double mid = 0.5 * (lo + hi);
