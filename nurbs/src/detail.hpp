@@ -234,11 +234,15 @@ inline SpanKnots span_knots(std::span<const double> t, int p, int m, int span, d
   return {std::span<const double>(local, static_cast<std::size_t>(2 * p)), p - 1, origin};
 }
 
-/// span_knots of a curve's span: relative for closed curves, the stored knots for open ones.
-/// `local` holds 2·degree values.
+/// The knots a kernel reads on a curve's span (`local` holds 2·degree values): relative ones only for
+/// the spans of a closed curve that read a knot beyond the period (span − p + 1 < p or span + p > p + m:
+/// the 2(p − 1) spans around the seam). Every other span reads breakpoints only, exact as given, and
+/// keeps the plain arithmetic (no cost, the open-curve bound, the same bits as an open curve).
 inline SpanKnots span_knots(const Curve& c, int span, double* local) noexcept {
-  const int m = c.closed ? static_cast<int>(c.P.rows()) - c.degree : 0;
-  return span_knots(c.knots, c.degree, m, span, local);
+  const int p = c.degree;
+  const int m = c.closed ? static_cast<int>(c.P.rows()) - p : 0;
+  const bool seam = m > 0 && (span - p + 1 < p || span + p > p + m);
+  return span_knots(c.knots, p, seam ? m : 0, span, local);
 }
 
 // ------------------------------------------------------------------------------------------------

@@ -66,8 +66,10 @@ void set_blossom_point(const Curve& c, const Knots& target, int raise, Eigen::In
   // The arguments are consecutive knots: increasing, also with one dropped. Closed curves take them
   // relative to the piece's span, from differences of breakpoints (detail::span_knots).
   double args[kMaxDegree + 1], sub[kMaxDegree], W[kMaxDegree + 1], local[2 * kMaxDegree];
-  const detail::SpanKnots knots = detail::span_knots(c, piece.span, local);
+  // Always relative for closed curves: the arguments may reach beyond the period (q ≠ 0).
   const int m = tn - 2 * q - 1;
+  const detail::SpanKnots knots =
+      detail::span_knots(c.knots, p, c.closed ? static_cast<int>(c.P.rows()) - p : 0, piece.span, local);
   const Domain dom = domain(c);
   for (int a = 0; a < q; ++a) {
     const int i = jj + 1 + a;
