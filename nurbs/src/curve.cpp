@@ -164,14 +164,17 @@ template <int Cols>
 void de_boor(const Curve& c, double u, double* out, double* scratch) noexcept {
   const int p = c.degree;
   const Eigen::Index cols = Cols > 0 ? Cols : c.P.cols();
-  const double* t = c.knots.data();
-  const int span = detail::find_span(t, p, static_cast<int>(c.P.rows()), u);
+  const int span = detail::find_span(c.knots.data(), p, static_cast<int>(c.P.rows()), u);
+  double local[2 * kMaxDegree];
+  const detail::SpanKnots knots = detail::span_knots(c, span, local);
+  const double* t = knots.t.data();
+  u -= knots.origin;
   double fixed[Cols > 0 ? (kMaxDegree + 1) * Cols : 1];
   double* d = Cols > 0 ? fixed : scratch;
   std::copy_n(c.P.data() + (span - p) * cols, (p + 1) * cols, d);
   for (int r = 1; r <= p; ++r)
     for (int j = p; j >= r; --j) {
-      const int i = j + span - p;
+      const int i = j + knots.span - p;
       // Both weights from their own differences: 1 − alpha would cancel next to a knot.
       const double hi = t[i + p + 1 - r], den = hi - t[i];
       const double left = (hi - u) / den, right = (u - t[i]) / den;
@@ -194,12 +197,15 @@ void evaluate_rows(const Curve& c, std::span<const double> us, const detail::Spa
   const double* P = c.P.data();
   double fixed[Cols > 0 ? Cols : 1];
   double* acc = Cols > 0 ? fixed : scratch;
-  double N[kMaxDegree + 1];
+  double N[kMaxDegree + 1], local[2 * kMaxDegree];
   int span = p;
+  detail::SpanKnots knots = detail::span_knots(c, span, local);
   for (std::size_t i = 0; i < us.size(); ++i, out += dim) {
     const double u = us[i];
+    const int previous = span;
     span = table ? table->find(u) : detail::find_span(t, p, n, u, span);
-    detail::basis(t, p, span, u, N);
+    if (span != previous) knots = detail::span_knots(c, span, local);
+    detail::basis(knots.t.data(), p, knots.span, u - knots.origin, N);
     const double* base = P + (span - p) * cols;
     for (Eigen::Index k = 0; k < cols; ++k) acc[k] = N[0] * base[k];
     for (int r = 1; r <= p; ++r)
@@ -270,7 +276,9 @@ Points derivatives(const Curve& c, double u, int order) {
   u = domain_parameter(c, u);
   const int p = c.degree;
   const int span = find_span(c.knots, p, u);
-  const Eigen::MatrixXd ders = basis_derivatives(c.knots, p, span, u, order);
+  double local[2 * kMaxDegree];
+  const detail::SpanKnots knots = detail::span_knots(c, span, local);
+  const Eigen::MatrixXd ders = basis_derivatives(knots.t, p, knots.span, u - knots.origin, order);
   Points H = ders * c.P.middleRows(span - p, p + 1);  // homogeneous derivatives
   if (!c.rational) return H;
   return detail::rational_derivatives(H, dimension(c));
@@ -285,7 +293,7 @@ Point blossom(const Curve& c, std::span<const double> args, int span) {
   if (span < p || span >= c.P.rows() ||
       !(c.knots[static_cast<std::size_t>(span)] < c.knots[static_cast<std::size_t>(span) + 1]))
     detail::fail("blossom: span ", span, " is not a non-empty span of the domain");
-  return detail::blossom_row(c.knots, p, c.P, args, span);
+  return detail::blossom_row(c, args, span);
 }
 
 Point blossom(const Curve& c, std::span<const double> args) {
@@ -297,13 +305,18 @@ Point blossom(const Curve& c, std::span<const double> args) {
   if (!std::isfinite(mean)) detail::fail("blossom: arguments are not finite");
   std::vector<double> shifted(args.begin(), args.end());
   if (c.closed) {
+    // The mean as an offset from the first argument: equal arguments give it exactly, so that
+    // blossom(b_0, …, b_0) is not wrapped to the period's end by a rounding of Σ a / p.
+    double offset = 0;
+    for (double a : args) offset += (a - args[0]) / p;
+    if (std::isfinite(args[0] + offset)) mean = args[0] + offset;
     const double shift = domain_parameter(c, mean) - mean;  // a whole number of periods
     for (double& a : shifted) a += shift;
     mean += shift;
   }
   const Domain dom = domain(c);
   const int span = find_span(c.knots, p, std::min(std::max(mean, dom.start), dom.end));
-  return detail::blossom_row(c.knots, p, c.P, shifted, span);
+  return detail::blossom_row(c, shifted, span);
 }
 
 }  // namespace cifs::nurbs

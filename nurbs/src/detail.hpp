@@ -12,6 +12,7 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/format.hpp"
+#include "cifs/nurbs/curve.hpp"
 #include "cifs/nurbs/knots.hpp"
 #include "cifs/types.hpp"
 
@@ -179,6 +180,72 @@ inline void basis(const double* t, int p, int span, double u, double* N) noexcep
 }
 
 // ------------------------------------------------------------------------------------------------
+// Closed curves: knots relative to a span.
+//
+// A closed curve stores its knots expanded (periodic_knots): beyond the period they are b_k ± T,
+// rounded to u·|t|. Next to a short interval h that rounding is a relative error u·|t|/h in every
+// coefficient (knots [0, 0.001, …, 1000.004]: 1e-10), and no knot vector of doubles avoids it
+// (1000.004 + 0.001 has no exact double). Cox–de Boor, de Boor and blossoms are translation
+// invariant, so the algorithms run instead on the knots relative to the span's own breakpoint, each
+// a sum of differences of breakpoints that never cancel (below), and on parameters u − t_span.
+
+/// Knot j of a periodic knot vector of degree p over m intervals is b_k + q·T: index k ∈ [0, m) of
+/// the period's breakpoints and whole periods q.
+struct PeriodicIndex {
+  int k;
+  int q;
+};
+inline PeriodicIndex periodic_index(int j, int p, int m) noexcept {
+  const int s = j - p;
+  const int q = s >= 0 ? s / m : -((m - 1 - s) / m);  // floor(s / m)
+  return {s - q * m, q};
+}
+
+/// (x + q·T) − y for x, y in [b0, bm], T = bm − b0: for q ≠ 0 a sum of non-negative differences
+/// ((x − b0) + (q − 1)·T + (bm − y) when q > 0), so the result is correct to a few roundings relative
+/// to itself; for q = 0 the one rounding of x − y.
+inline double periodic_difference(double x, int q, double y, double b0, double bm) noexcept {
+  if (q == 0) return x - y;
+  const double period = bm - b0;
+  if (q > 0) return (x - b0) + (q - 1) * period + (bm - y);
+  return -((bm - x) + (-q - 1) * period + (y - b0));
+}
+
+/// Knots of one span for an algorithm that is translation invariant: it reads t[span − p + 1 …
+/// span + p] and takes its parameters and blossom arguments as x − origin.
+struct SpanKnots {
+  std::span<const double> t;
+  int span = 0;
+  double origin = 0;
+};
+
+/// The knots of `span` (a span of the domain) of a knot vector of degree p. Open vectors (m = 0):
+/// the stored knots and origin 0, so that every result is bit-identical to the plain algorithm.
+/// Periodic vectors over m intervals (periodic_knots, base breakpoints at t[p … p + m]): the 2p knots
+/// t_{span−p+1 … span+p} − t_span by periodic_difference, written to `local`, with the span at p − 1.
+inline SpanKnots span_knots(std::span<const double> t, int p, int m, int span, double* local) noexcept {
+  if (m == 0) return {t, span, 0.0};
+  const auto at = [&](int i) { return t[static_cast<std::size_t>(i)]; };
+  const double b0 = at(p), bm = at(p + m), origin = at(span);
+  for (int i = 0; i < 2 * p; ++i) {
+    const PeriodicIndex pi = periodic_index(span - p + 1 + i, p, m);
+    local[i] = periodic_difference(at(p + pi.k), pi.q, origin, b0, bm);
+  }
+  return {std::span<const double>(local, static_cast<std::size_t>(2 * p)), p - 1, origin};
+}
+
+/// The knots a kernel reads on a curve's span (`local` holds 2·degree values): relative ones only for
+/// the spans of a closed curve that read a knot beyond the period (span − p + 1 < p or span + p > p + m:
+/// the 2(p − 1) spans around the seam). Every other span reads breakpoints only, exact as given, and
+/// keeps the plain arithmetic (no cost, the open-curve bound, the same bits as an open curve).
+inline SpanKnots span_knots(const Curve& c, int span, double* local) noexcept {
+  const int p = c.degree;
+  const int m = c.closed ? static_cast<int>(c.P.rows()) - p : 0;
+  const bool seam = m > 0 && (span - p + 1 < p || span + p > p + m);
+  return span_knots(c.knots, p, seam ? m : 0, span, local);
+}
+
+// ------------------------------------------------------------------------------------------------
 // Blossoms.
 
 /// The blossom recursion on `span` with the arguments x in the order given, one per level.
@@ -251,13 +318,15 @@ inline void blossom_recurrence(const double* t, int p, int span, const double* i
   }
 }
 
-/// Blossom of the piece on `span` at `args`, as a row of the stored coordinates.
-inline Point blossom_row(std::span<const double> knots, int p, const Points& P, std::span<const double> args,
-                         int span) {
-  double W[kMaxDegree + 1];
-  blossom_weights(knots, p, span, args, W);
-  Point out = Point::Zero(P.cols());
-  for (int j = 0; j <= p; ++j) out += W[j] * P.row(span - p + j);
+/// Blossom of the curve's piece on `span` at `args`, as a row of the stored coordinates.
+inline Point blossom_row(const Curve& c, std::span<const double> args, int span) {
+  const int p = c.degree;
+  double local[2 * kMaxDegree], x[kMaxDegree], W[kMaxDegree + 1];
+  const SpanKnots knots = span_knots(c, span, local);
+  for (int i = 0; i < p; ++i) x[i] = args[static_cast<std::size_t>(i)] - knots.origin;
+  blossom_weights(knots.t, p, knots.span, std::span<const double>(x, static_cast<std::size_t>(p)), W);
+  Point out = Point::Zero(c.P.cols());
+  for (int j = 0; j <= p; ++j) out += W[j] * c.P.row(span - p + j);
   return out;
 }
 

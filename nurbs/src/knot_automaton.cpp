@@ -6,6 +6,7 @@
 #include <string>
 
 #include "cifs/errors.hpp"
+#include "detail.hpp"
 
 namespace cifs::nurbs {
 namespace {
@@ -15,6 +16,21 @@ using automata::StateId;
 constexpr const char* kHalfLabel[2] = {"G", "D"};
 
 }  // namespace
+
+Window segment_window(const Curve& curve, int span) {
+  const int d = curve.degree;
+  if (!curve.closed) return segment_window(curve.knots, d, span);
+  const int m = static_cast<int>(curve.P.rows()) - d;
+  const auto b = [&](int k) {
+    return curve.knots[static_cast<std::size_t>(d) + static_cast<std::size_t>(k)];
+  };
+  Window w(static_cast<std::size_t>(2 * d - 1));
+  for (int i = 0; i < 2 * d - 1; ++i) {
+    const int k = detail::periodic_index(span - d + 1 + i, d, m).k;
+    w[static_cast<std::size_t>(i)] = b(k + 1) - b(k);
+  }
+  return w;
+}
 
 KnotAutomaton knot_automaton(const Curve& curve) {
   const int d = curve.degree;
@@ -37,7 +53,7 @@ KnotAutomaton knot_automaton(const Curve& curve) {
     const double lo = curve.knots[static_cast<std::size_t>(span)],
                  hi = curve.knots[static_cast<std::size_t>(span) + 1];
     if (!(lo < hi)) continue;
-    Window w = segment_window(curve.knots, d, span);
+    Window w = segment_window(curve, span);
     const double centre = w[static_cast<std::size_t>(d - 1)];
     for (double& x : w) x /= centre;  // up to scale: the centre is 1 (exactly)
     a.initial.push_back(automata::Initial{.segment = segment++, .state = state_of(std::move(w))});

@@ -10,22 +10,29 @@
 namespace cifs::nurbs {
 namespace {
 
-/// The old piece that covers the new interval [lo, hi] (a refinement keeps the pieces): its span
-/// and the shift, a whole number of periods for closed curves, that brings the interval there.
+/// The old piece that covers the new interval k of `target` (a refinement keeps the pieces): its span
+/// and, for closed curves, the whole periods by which the interval lies past the period.
 struct Piece {
   int span;
-  double shift;
+  int periods;
 };
 
-Piece piece_for(const Curve& c, double lo, double hi, int hint) {
+/// Closed curves: `target` is periodic of degree q over the same period as c's, and the interval is
+/// read as b'_K + q·T from its index (periodic_index), so that no rounded shift is needed.
+Piece piece_for(const Curve& c, const Knots& target, int q, int k, int hint) {
   const Domain dom = domain(c);
-  double mid = 0.5 * (lo + hi);
-  double shift = 0;
+  double lo = target[static_cast<std::size_t>(k)], hi = target[static_cast<std::size_t>(k) + 1];
+  int periods = 0;
   if (c.closed) {
-    shift = domain_parameter(c, mid) - mid;
-    mid += shift;
+    const int m = static_cast<int>(target.size()) - 2 * q - 1;
+    const detail::PeriodicIndex at = detail::periodic_index(k, q, m);
+    const auto first = static_cast<std::size_t>(q) + static_cast<std::size_t>(at.k);
+    lo = target[first];
+    hi = target[first + 1];
+    periods = at.q;
   }
-  return {find_span(c.knots, c.degree, std::min(std::max(mid, dom.start), dom.end), hint), shift};
+  const double mid = 0.5 * (lo + hi);
+  return {find_span(c.knots, c.degree, std::min(std::max(mid, dom.start), dom.end), hint), periods};
 }
 
 /// Row j of the control points of the same piecewise polynomial, seen with degree `c.degree + raise`
@@ -40,33 +47,47 @@ void set_blossom_point(const Curve& c, const Knots& target, int raise, Eigen::In
   const auto tn = static_cast<int>(target.size());
   const int jj = static_cast<int>(j);
   // Closed curves: closed_on picks a copy j of the point whose support starts with an interval of
-  // the period, so that no shift by whole periods (which rounds the arguments) is needed.
+  // the period, so that the piece is mostly found without a shift by whole periods.
   // Any piece of the support gives the same blossom, but not the same rounding: a piece evaluated
   // far outside its own interval amplifies errors by (distance / width)^d. Take the widest.
   const int k_begin = c.closed ? jj : std::max(jj, q);
   const int k_end = std::min(jj + q, c.closed ? tn - 2 : tn - q - 2);
   const auto at = [&](int i) { return target[static_cast<std::size_t>(i)]; };
-  Piece piece{-1, 0.0};
+  Piece piece{-1, 0};
   double widest = -1;
   for (int k = k_begin; k <= k_end; ++k) {
     if (!(at(k) < at(k + 1)) && !(k == k_end && piece.span < 0)) continue;
-    const Piece candidate = piece_for(c, at(k), at(k + 1), hint);
+    const Piece candidate = piece_for(c, target, q, k, hint);
     hint = candidate.span;
     const double width = c.knots[static_cast<std::size_t>(candidate.span) + 1] -
                          c.knots[static_cast<std::size_t>(candidate.span)];
     if (width > widest) piece = candidate, widest = width;
   }
-  // The arguments are consecutive knots (plus a common shift): increasing, also with one dropped.
-  double args[kMaxDegree + 1], sub[kMaxDegree], W[kMaxDegree + 1];
-  for (int a = 0; a < q; ++a)
-    args[a] = target[static_cast<std::size_t>(jj) + 1 + static_cast<std::size_t>(a)] + piece.shift;
+  // The arguments are consecutive knots: increasing, also with one dropped. Closed curves take them
+  // relative to the piece's span, from differences of breakpoints (detail::span_knots).
+  double args[kMaxDegree + 1], sub[kMaxDegree], W[kMaxDegree + 1], local[2 * kMaxDegree];
+  // Always relative for closed curves: the arguments may reach beyond the period (q ≠ 0).
+  const int m = tn - 2 * q - 1;
+  const detail::SpanKnots knots =
+      detail::span_knots(c.knots, p, c.closed ? static_cast<int>(c.P.rows()) - p : 0, piece.span, local);
+  const Domain dom = domain(c);
+  for (int a = 0; a < q; ++a) {
+    const int i = jj + 1 + a;
+    if (!c.closed) {
+      args[a] = at(i) + 0.0;  // −0 → +0, as the shift of 0 did before: outputs stay bit-identical
+      continue;
+    }
+    const detail::PeriodicIndex pi = detail::periodic_index(i, q, m);
+    args[a] =
+        detail::periodic_difference(at(q + pi.k), pi.q - piece.periods, knots.origin, dom.start, dom.end);
+  }
   const Eigen::Index cols = c.P.cols();
   double* out = Q.row(row).data();
   std::fill_n(out, cols, 0.0);
   for (int drop = 0; drop < (raise ? q : 1); ++drop) {
     for (int a = 0, b = 0; a < q; ++a)
       if (!raise || a != drop) sub[b++] = args[a];
-    detail::blossom_weights_increasing(c.knots.data(), p, piece.span, sub, W);
+    detail::blossom_weights_increasing(knots.t.data(), p, knots.span, sub, W);
     for (int i = 0; i <= p; ++i) {
       const double* P = c.P.row(piece.span - p + i).data();
       for (Eigen::Index k = 0; k < cols; ++k) out[k] += W[i] * P[k];
@@ -376,7 +397,7 @@ std::vector<Curve> split_bezier(const Curve& c) {
     for (int r = 0; r <= p; ++r) {  // Bézier point r = blossom(a^{p−r}, b^r)
       std::fill(args.begin(), args.end() - r, a);
       std::fill(args.end() - r, args.end(), b);
-      piece.P.row(r) = detail::blossom_row(c.knots, p, c.P, args, k);
+      piece.P.row(r) = detail::blossom_row(c, args, k);
     }
     pieces.push_back(std::move(piece));
   }

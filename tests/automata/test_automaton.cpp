@@ -87,6 +87,27 @@ TEST_CASE("Uniform, clamped, closed and repeated knots", "[automata]") {
     CHECK(a.initial.size() == 6);
     CHECK(a.graph[0].recurrent);
   }
+  SECTION("a closed curve's windows are the cyclic differences of its breakpoints") {
+    // Not differences of the extended knots b_k ± T, which are rounded: 1000.004 + 0.001 has no double.
+    const nurbs::Knots b{0, 0.001, 0.002, 1000.002, 1000.003, 1000.004};
+    const int m = 5;
+    for (int d = 1; d <= 7; ++d) {
+      const nurbs::KnotAutomaton k =
+          nurbs::knot_automaton(nurbs::make_closed_curve(d, b, Points::Random(m, 2)));
+      REQUIRE(static_cast<int>(k.automaton.initial.size()) == m);
+      for (int seg = 0; seg < m; ++seg) {
+        const auto h = [&](int j) {
+          const auto i = static_cast<std::size_t>(((j % m) + m) % m);
+          return b[i + 1] - b[i];
+        };
+        nurbs::Window expected(static_cast<std::size_t>(2 * d - 1));
+        for (int i = 0; i < 2 * d - 1; ++i)
+          expected[static_cast<std::size_t>(i)] = h(seg - d + 1 + i) / h(seg);
+        INFO("degree " << d << ", segment " << seg);
+        CHECK(k.windows[k.automaton.initial[static_cast<std::size_t>(seg)].state] == expected);
+      }
+    }
+  }
   SECTION("uniform interior knots share states; scaled knots give the same automaton") {
     const nurbs::Knots t{0, 0, 0, 0, 1, 2, 3, 4, 5, 5, 5, 5};
     nurbs::Knots scaled = t;

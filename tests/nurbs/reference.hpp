@@ -55,15 +55,29 @@ using Rng = std::mt19937_64;
 /// derivative N'_{i,q} = q (N_{i,q−1}/(t_{i+q}−t_i) − N_{i+1,q−1}/(t_{i+q+1}−t_{i+1})), with 0/0 = 0.
 /// Degree 0 is [t_i ≤ u < t_{i+1}] (right-continuous), or [t_i < u ≤ t_{i+1}] when `left` (the left
 /// limit, which is how the domain end t_n is evaluated).
-inline RealVec ref_basis(const Knots& t, int p, double u, bool left, int k = 0) {
+/// The knots as the reference reads them, in long double, and the parameter x among them: a knot
+/// vector as stored and x = u, or (closed curves, ref_closed_knots) the exact periodic knots
+/// relative to u and x = 0.
+struct RefKnots {
+  RealVec t;
+  Real x = 0;
+  bool left = false;  // evaluate by the left limit (the domain end)
+  int span = -1;      // ≥ 0: the interval of x, decided outside (the degree-0 indicator)
+};
+
+inline RealVec ref_basis(const RefKnots& knots, int p, int k = 0) {
+  const RealVec& t = knots.t;
+  const bool left = knots.left;
   const int m = static_cast<int>(t.size());
   if (k > p) return RealVec(static_cast<std::size_t>(m - p - 1), Real(0));
-  const Real x = u;
-  auto T = [&](int i) { return static_cast<Real>(t[static_cast<std::size_t>(i)]); };
+  const Real x = knots.x;
+  auto T = [&](int i) { return t[static_cast<std::size_t>(i)]; };
   auto ratio = [](Real num, Real den) { return den == 0 ? Real(0) : num / den; };
   RealVec N(static_cast<std::size_t>(m - 1));
   for (int i = 0; i + 1 < m; ++i)
-    N[static_cast<std::size_t>(i)] = left ? (T(i) < x && x <= T(i + 1)) : (T(i) <= x && x < T(i + 1));
+    N[static_cast<std::size_t>(i)] = knots.span >= 0 ? i == knots.span
+                                     : left          ? (T(i) < x && x <= T(i + 1))
+                                                     : (T(i) <= x && x < T(i + 1));
   for (int q = 1; q <= p; ++q) {
     RealVec M(static_cast<std::size_t>(m - q - 1));
     for (int i = 0; i < m - q - 1; ++i) {
@@ -77,18 +91,31 @@ inline RealVec ref_basis(const Knots& t, int p, double u, bool left, int k = 0) 
   return N;
 }
 
+inline RealVec ref_basis(const Knots& t, int p, double u, bool left, int k = 0) {
+  return ref_basis(RefKnots{RealVec(t.begin(), t.end()), u, left}, p, k);
+}
+
 /// Whether the library evaluates u by the left limit: only at the domain end t_n.
 inline bool at_end(const Knots& t, int p, double u) {
   return u == t[t.size() - static_cast<std::size_t>(p) - 1];
 }
 
+inline RefKnots plain_knots(const Knots& t, int p, double u) {
+  return {RealVec(t.begin(), t.end()), u, at_end(t, p, u)};
+}
+
 /// Homogeneous k-th derivative Σ N_i^{(k)}(u) H_i over all control rows (long double).
-inline Eigen::Matrix<Real, 1, Eigen::Dynamic> ref_homogeneous(const Knots& t, int p, const Points& H,
-                                                              double u, int k = 0) {
-  const RealVec N = ref_basis(t, p, u, at_end(t, p, u), k);
+inline Eigen::Matrix<Real, 1, Eigen::Dynamic> ref_homogeneous(const RefKnots& t, int p, const Points& H,
+                                                              int k = 0) {
+  const RealVec N = ref_basis(t, p, k);
   Eigen::Matrix<Real, 1, Eigen::Dynamic> out = Eigen::Matrix<Real, 1, Eigen::Dynamic>::Zero(H.cols());
   for (Eigen::Index i = 0; i < H.rows(); ++i) out += N[static_cast<std::size_t>(i)] * H.row(i).cast<Real>();
   return out;
+}
+
+inline Eigen::Matrix<Real, 1, Eigen::Dynamic> ref_homogeneous(const Knots& t, int p, const Points& H,
+                                                              double u, int k = 0) {
+  return ref_homogeneous(plain_knots(t, p, u), p, H, k);
 }
 
 inline double binomial(int n, int k) {
@@ -98,10 +125,10 @@ inline double binomial(int n, int k) {
 }
 
 /// Cartesian derivatives 0..order: non-rational directly, rational by Leibniz' rule on A = w·C.
-inline Points ref_derivatives(const Knots& t, int p, const Points& H, bool rational, double u, int order) {
+inline Points ref_derivatives(const RefKnots& t, int p, const Points& H, bool rational, int order) {
   const Eigen::Index dim = H.cols() - (rational ? 1 : 0);
   std::vector<Eigen::Matrix<Real, 1, Eigen::Dynamic>> A;
-  for (int k = 0; k <= order; ++k) A.push_back(ref_homogeneous(t, p, H, u, k));
+  for (int k = 0; k <= order; ++k) A.push_back(ref_homogeneous(t, p, H, k));
   std::vector<Eigen::Matrix<Real, 1, Eigen::Dynamic>> C(static_cast<std::size_t>(order + 1));
   for (int k = 0; k <= order; ++k) {
     Eigen::Matrix<Real, 1, Eigen::Dynamic> v = A[static_cast<std::size_t>(k)].head(dim);
@@ -116,6 +143,10 @@ inline Points ref_derivatives(const Knots& t, int p, const Points& H, bool ratio
   Points out(order + 1, dim);
   for (int k = 0; k <= order; ++k) out.row(k) = C[static_cast<std::size_t>(k)].cast<double>();
   return out;
+}
+
+inline Points ref_derivatives(const Knots& t, int p, const Points& H, bool rational, double u, int order) {
+  return ref_derivatives(plain_knots(t, p, u), p, H, rational, order);
 }
 
 inline Point ref_point(const Knots& t, int p, const Points& H, bool rational, double u) {
@@ -140,6 +171,28 @@ inline Knots ref_periodic_knots(const Knots& b, int d) {
   return out;
 }
 
+/// The exact periodic knots t_j = b_k + q·T of breakpoints b (k = (j − d) mod m, q = ⌊(j − d)/m⌋), relative
+/// to u: (b_k − u) + q·(b_m − b_0) in long double, where the differences of doubles are exact and only
+/// the sum rounds, relative to itself — unlike the stored knots, whose rounding u·|t| is a relative
+/// error u·|t|/h next to an interval h (1e-9 for |t| = 3, h = 1e-6). x = 0. The interval of u is
+/// found among the doubles (ref_periodic_knots: exact in the period), as the sums may round (u a
+/// denormal next to b_m: b_k − u is not exact).
+inline RefKnots ref_closed_knots(const Knots& b, int d, double u) {
+  const int m = static_cast<int>(b.size()) - 1;
+  const Real period = static_cast<Real>(b.back()) - static_cast<Real>(b.front());
+  RefKnots out{RealVec(), 0, u == b.back()};
+  const Knots t = ref_periodic_knots(b, d);
+  for (std::size_t i = 0; i + 1 < t.size(); ++i)
+    if (out.left ? (t[i] < u && u <= t[i + 1]) : (t[i] <= u && u < t[i + 1])) out.span = static_cast<int>(i);
+  for (int j = 0; j < m + 2 * d + 1; ++j) {
+    const int s = j - d;
+    const int q = s >= 0 ? s / m : -((m - 1 - s) / m);
+    out.t.push_back((static_cast<Real>(b[static_cast<std::size_t>(s - q * m)]) - static_cast<Real>(u)) +
+                    q * period);
+  }
+  return out;
+}
+
 /// The naive formula, rounded at every step, for an ulp-level comparison.
 inline Knots naive_periodic_knots(const Knots& b, int d) {
   const int m = static_cast<int>(b.size()) - 1;
@@ -155,7 +208,9 @@ inline Knots naive_periodic_knots(const Knots& b, int d) {
 
 /// Blossom of the piece on span k by de Boor's triangle with argument x_r at level r, on the weights
 /// of the d + 1 control rows (long double): returns W with blossom = Σ_j W_j H_{k−d+j}.
-inline RealVec ref_blossom_weights(const Knots& t, int d, const std::vector<double>& x, int k) {
+/// With `origin`: the knots are t − origin (ref_closed_knots) and so are the arguments.
+inline RealVec ref_blossom_weights(const RealVec& t, int d, const std::vector<double>& x, int k,
+                                   Real origin) {
   const auto D = static_cast<std::size_t>(d);
   std::vector<RealVec> c(D + 1, RealVec(D + 1, Real(0)));
   for (std::size_t j = 0; j <= D; ++j) c[j][j] = 1;
@@ -163,12 +218,16 @@ inline RealVec ref_blossom_weights(const Knots& t, int d, const std::vector<doub
     for (int j = d; j >= r; --j) {
       const int i = k - d + j;
       const Real ti = t[static_cast<std::size_t>(i)], tr = t[static_cast<std::size_t>(i + d + 1 - r)];
-      const Real a = (static_cast<Real>(x[static_cast<std::size_t>(r - 1)]) - ti) / (tr - ti);
+      const Real a = (static_cast<Real>(x[static_cast<std::size_t>(r - 1)]) - origin - ti) / (tr - ti);
       for (std::size_t q = 0; q <= D; ++q)
         c[static_cast<std::size_t>(j)][q] =
             (1 - a) * c[static_cast<std::size_t>(j - 1)][q] + a * c[static_cast<std::size_t>(j)][q];
     }
   return c[D];
+}
+
+inline RealVec ref_blossom_weights(const Knots& t, int d, const std::vector<double>& x, int k) {
+  return ref_blossom_weights(RealVec(t.begin(), t.end()), d, x, k, 0);
 }
 
 /// The arguments reordered for a well-conditioned triangle: the farthest from the span [t_k, t_{k+1}]
@@ -180,9 +239,7 @@ inline std::vector<double> conditioned_order(const Knots& t, std::vector<double>
   return x;
 }
 
-inline Point ref_blossom(const Knots& t, int d, const Points& H, const std::vector<double>& x, int k,
-                         double* l1 = nullptr) {
-  const RealVec W = ref_blossom_weights(t, d, x, k);
+inline Point ref_blossom_of(const RealVec& W, int d, const Points& H, int k, double* l1) {
   Eigen::Matrix<Real, 1, Eigen::Dynamic> out = Eigen::Matrix<Real, 1, Eigen::Dynamic>::Zero(H.cols());
   Real sum = 0;
   for (int j = 0; j <= d; ++j) {
@@ -191,6 +248,11 @@ inline Point ref_blossom(const Knots& t, int d, const Points& H, const std::vect
   }
   if (l1) *l1 = static_cast<double>(sum);
   return out.cast<double>();
+}
+
+inline Point ref_blossom(const Knots& t, int d, const Points& H, const std::vector<double>& x, int k,
+                         double* l1 = nullptr) {
+  return ref_blossom_of(ref_blossom_weights(t, d, x, k), d, H, k, l1);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -402,6 +464,26 @@ inline RandomCurve random_curve(Rng& rng, int d, int dim, bool rational, Kind ki
   return r;
 }
 
+/// The reference's knots of r at u: the exact periodic knots for a closed curve, the knot vector
+/// otherwise.
+inline RefKnots ref_knots(const RandomCurve& r, double u) {
+  return r.kind == Kind::closed ? ref_closed_knots(r.breaks, r.degree, u) : plain_knots(r.knots, r.degree, u);
+}
+inline Points ref_derivatives(const RandomCurve& r, double u, int order) {
+  return ref_derivatives(ref_knots(r, u), r.degree, r.H, r.rational, order);
+}
+inline Point ref_point(const RandomCurve& r, double u) {
+  return ref_derivatives(r, u, 0).row(0);
+}
+
+/// ref_blossom of r's piece on span k: closed curves on the exact periodic knots relative to t_k.
+inline Point ref_blossom(const RandomCurve& r, const std::vector<double>& x, int k, double* l1 = nullptr) {
+  if (r.kind != Kind::closed) return ref_blossom(r.knots, r.degree, r.H, x, k, l1);
+  const double origin = r.knots[static_cast<std::size_t>(k)];
+  const RealVec t = ref_closed_knots(r.breaks, r.degree, origin).t;
+  return ref_blossom_of(ref_blossom_weights(t, r.degree, x, k, origin), r.degree, r.H, k, l1);
+}
+
 /// A random curve of random kind, degree 1..max_degree, dimension 1..4.
 inline RandomCurve any_curve(Rng& rng, int max_degree = 10) {
   const int d = uniform_int(rng, 1, max_degree);
@@ -545,17 +627,6 @@ inline std::vector<double> magnitudes(const RandomCurve& r, double u, int order)
     M.push_back(m / w);
   }
   return M;
-}
-
-/// Closed curves are periodic only up to the rounding of their knot copies (t_{j+m} − t_j is T up
-/// to an ulp), so the curve near b_0 and near b_m differ by about slope × ulp. This returns that
-/// allowance (zero for open curves): 8 ulps of the parameters times the largest first-derivative
-/// term over the probes.
-inline double seam_allowance(const RandomCurve& r, const std::vector<double>& us) {
-  if (r.kind != Kind::closed) return 0;
-  double slope = 0;
-  for (double u : us) slope = std::max(slope, magnitudes(r, u, 1)[1]);
-  return 8 * std::numeric_limits<double>::epsilon() * (std::abs(r.lo) + std::abs(r.hi)) * slope;
 }
 
 // ---------------------------------------------------------------------------------------------

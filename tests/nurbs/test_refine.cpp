@@ -20,18 +20,18 @@ namespace {
 
 /// Largest distance between the curve and the test's reference of the original curve, over the
 /// probes of both knot vectors, in units of the allowed error: 1e-12 of the scale of the control
-/// points (plus, for closed curves, the seam's slope × ulp, see seam_allowance).
+/// points (closed curves too: the reference is their exact periodic curve, ref_closed_knots).
 double moved(const RandomCurve& r, const Curve& c2, Rng& rng) {
   std::vector<double> us = probe_parameters(rng, r.knots, r.degree, 40);
   const auto more = probe_parameters(rng, c2.knots, c2.degree, 0);
   us.insert(us.end(), more.begin(), more.end());
   double worst = 0;
   for (double u : us) {
-    const Point ref = ref_point(r.knots, r.degree, r.H, r.rational, u);
+    const Point ref = ref_point(r, u);
     worst = std::max(worst, diff(evaluate(c2, u), ref));
     worst = std::max(worst, diff(evaluate_basis(c2, u), ref));
   }
-  return worst / (1e-12 * r.scale + seam_allowance(r, us));
+  return worst / (1e-12 * r.scale);
 }
 
 /// Multiplicity of every knot value as seen in the full knot vector.
@@ -396,8 +396,7 @@ TEST_CASE("split_bezier: one clamped piece per span, equal to the curve there, j
       for (int k = 0; k <= 20; ++k) {
         const double u = k == 20 ? b[i + 1] : b[i] + (b[i + 1] - b[i]) * k / 20;
         // The piece on [b_i, b_{i+1}] is the curve's polynomial there (left limit at its end).
-        const Points D =
-            ref_derivatives(r.knots, d, r.H, r.rational, u == b[i + 1] ? std::nextafter(u, -HUGE_VAL) : u, 1);
+        const Points D = ref_derivatives(r, u == b[i + 1] ? std::nextafter(u, -HUGE_VAL) : u, 1);
         const double allowed =
             1e-12 * r.scale + 4 * D.row(1).cwiseAbs().maxCoeff() * (std::nextafter(u, HUGE_VAL) - u);
         worst = std::max(worst, diff(evaluate(p, u), D.row(0)) / allowed);
@@ -580,8 +579,7 @@ TEST_CASE("remove_knot keeps essential knots at tolerance 0 and respects a toler
     CHECK(some.curve.P.rows() == r.H.rows() - some.removed);
     double dev = 0;
     for (double x : probe_parameters(rng, r.knots, r.degree, 200))
-      dev =
-          std::max(dev, (evaluate(some.curve, x) - ref_point(r.knots, r.degree, r.H, r.rational, x)).norm());
+      dev = std::max(dev, (evaluate(some.curve, x) - ref_point(r, x)).norm());
     CHECK(dev <= some.deviation_bound * (1 + 1e-9) + 1e-12 * r.scale);
   }
 }

@@ -9,6 +9,7 @@
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/ifs/mesh.hpp"
 #include "cifs/nurbs/doubling.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/nurbs/refine.hpp"
 #include "cifs/nurbs/tensor_automaton.hpp"
 
@@ -27,8 +28,7 @@ struct LocalKnots {
   std::vector<double> window;  // window knots T_0 … T_{2d−1}, T_{d−1} = 0
 };
 
-LocalKnots local_knots(std::span<const double> t, int d, int k) {
-  const nurbs::Window w = nurbs::segment_window(t, d, k);
+LocalKnots local_knots(const nurbs::Window& w, int d) {
   std::vector<double> T(static_cast<std::size_t>(2 * d));
   for (int i = d - 1; i + 1 < 2 * d; ++i)
     T[static_cast<std::size_t>(i) + 1] = T[static_cast<std::size_t>(i)] + w[static_cast<std::size_t>(i)];
@@ -73,7 +73,7 @@ struct LocalSegment {
 
 LocalSegment local_segment(const nurbs::Curve& c, int k) {
   const int d = c.degree;
-  LocalKnots knots = local_knots(c.knots, d, k);
+  LocalKnots knots = local_knots(nurbs::segment_window(c, k), d);
   const Points net = c.P.middleRows(k - d, d + 1);
   Points P(3 * d + 1, net.cols());
   for (int i = 0; i < P.rows(); ++i) P.row(i) = net.row(wide_row(i, d));
@@ -238,7 +238,8 @@ SurfaceCheck prepare_check(const nurbs::Surface& s, int depth, SurfaceCheckRepor
                  {}, {}};
   for (std::size_t dir = 0; dir < 2; ++dir)
     for (const nurbs::KnotInterval& interval : c.t.factors[dir].intervals)
-      c.knots[dir].push_back(local_knots(s.knots[dir], s.degree[dir], interval.span));
+      c.knots[dir].push_back(
+          local_knots(nurbs::segment_window(s.knots[dir], s.degree[dir], interval.span), s.degree[dir]));
   for (std::size_t k = 0; k < c.t.patches.size(); ++k) {
     const auto [a, b] = c.t.patches[k];
     const nurbs::KnotInterval& iu = c.t.factors[0].intervals[static_cast<std::size_t>(a)];

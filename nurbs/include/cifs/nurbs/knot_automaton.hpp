@@ -32,6 +32,12 @@ struct KnotAutomaton {
   std::vector<KnotInterval> intervals;
 };
 
+/// The window of the curve's segment on the non-empty span `span`: segment_window of its knots for
+/// an open curve; for a closed curve the cyclic differences `b_{k+1} − b_k` of its breakpoints, never
+/// differences of the extended knots (`b_k ± T` are rounded: next to a short interval, the rounding
+/// of a long period would be a relative error in every matrix).
+Window segment_window(const Curve& curve, int span);
+
 /// The knot-doubling automaton of a curve: one initial state per segment, states = windows up to
 /// scale (shared between segments, e.g. the uniform state), transitions G and D with the matrices
 /// of nurbs::subdivision_matrix; recurrent states marked. Built from the knots alone.
