@@ -33,12 +33,13 @@ void add_face(Mesh& mesh, std::span<const int> corners) {
 }
 
 Mesh uniform_mesh(Points vertices, std::vector<int> corners, int arity) {
-  if (arity < 3) throw InvalidInput("uniform_mesh: faces of " + std::to_string(arity) + " corners");
+  if (arity < 3) throw InvalidInput("a mesh face needs at least 3 corners, got " + std::to_string(arity));
   if (corners.size() % static_cast<std::size_t>(arity) != 0)
-    throw InvalidInput("uniform_mesh: " + std::to_string(corners.size()) + " indices are not a multiple of " +
-                       std::to_string(arity));
+    throw InvalidInput("the mesh's " + std::to_string(corners.size()) +
+                       " corner indices are not a whole number of faces of " + std::to_string(arity) +
+                       " corners");
   if (corners.size() > static_cast<std::size_t>(INT_MAX))
-    throw InvalidInput("uniform_mesh: more corners than 32-bit offsets hold");
+    throw InvalidInput("the mesh has more face corners than 32-bit offsets hold; use fewer faces");
   Mesh mesh;
   mesh.vertices = std::move(vertices);
   const std::size_t faces = corners.size() / static_cast<std::size_t>(arity);
@@ -116,7 +117,7 @@ void check_mesh(const Mesh& mesh, std::string_view who) {
 }
 
 Points vertex_normals(const Mesh& mesh) {
-  check_mesh(mesh, "vertex_normals");
+  check_mesh(mesh, "the mesh");
   Points N = Points::Zero(mesh.vertices.rows(), 3);
   const auto v = [&](int i) { return Eigen::Vector3d(mesh.vertices.row(i).transpose()); };
   for (std::size_t f = 0; f < face_count(mesh); ++f) {
@@ -156,8 +157,8 @@ void append(Segments& into, const Segments& more) {
     return;
   }
   if (into.vertices.cols() != more.vertices.cols())
-    throw InvalidInput("append: segments with " + std::to_string(into.vertices.cols()) + " and " +
-                       std::to_string(more.vertices.cols()) + " coordinates");
+    throw InvalidInput("segments with " + std::to_string(into.vertices.cols()) + " and with " +
+                       std::to_string(more.vertices.cols()) + " coordinates cannot be drawn together");
   const int offset = static_cast<int>(into.vertices.rows());
   const bool states = !into.states.empty() || !more.states.empty();
   if (states) {

@@ -869,9 +869,10 @@ ImagePaths image_paths(const io::Experiment& e, const RunOptions& o) {
   // Ten float channels and the state: refuse an image that would not fit before any work.
   const double image_bytes = double(e.render.width) * double(e.render.height) * 44.0;
   if (drawn && image_bytes > double(o.max_bytes))
-    throw InvalidInput("render: a " + std::to_string(e.render.width) + " × " +
-                       std::to_string(e.render.height) + " image needs " + number_text(image_bytes / 1e9, 6) +
-                       " GB, above the limit of " + number_text(double(o.max_bytes) / 1e9, 6) + " GB");
+    throw InvalidInput("the image of " + std::to_string(e.render.width) + " × " +
+                       std::to_string(e.render.height) + " pixels (render.width × render.height) needs " +
+                       number_text(image_bytes / 1e9, 6) + " GB, above the limit of " +
+                       number_text(double(o.max_bytes) / 1e9, 6) + " GB; lower the image size");
   return {exr, png, drawn};
 }
 
@@ -1043,9 +1044,10 @@ void write_outputs(const render::Image& image, const Scene& scene, const io::Exp
 RunReport run(const io::Experiment& e, const RunOptions& o) {
   RunReport report;
   const ImagePaths paths = image_paths(e, o);
-  render::check_part(o.part, "run");
+  render::check_part(o.part);
   const bool distributed = o.part.count > 1, writer = o.part.index == 0;
-  if (distributed && !o.combine) throw InvalidInput("run: a distributed run needs a combine function");
+  if (distributed && !o.combine)
+    throw InvalidInput("a distributed run needs a combine function to merge its parts");
   Outputs outputs;
   if (writer) reserve_outputs(outputs, e, o, paths.exr, paths.png);
   const unsigned threads = o.threads.value_or(e.render.threads);
@@ -1108,7 +1110,7 @@ Evaluation evaluate(const io::Experiment& experiment, std::optional<int> depth, 
   e.evaluation.mode = Mode::depth;
   if (depth) e.evaluation.depth = *depth;
   if (e.evaluation.depth < 0)
-    throw InvalidInput("depth: " + std::to_string(e.evaluation.depth) + " is negative");
+    throw InvalidInput("the depth " + std::to_string(e.evaluation.depth) + " is negative; give a depth ≥ 0");
   RunReport report;
   Evaluation out;
   Scene scene = make_scene(e, o, report, out.kind);
@@ -1137,7 +1139,10 @@ Evaluation evaluate(const io::Experiment& experiment, std::optional<int> depth, 
 
 Evaluation sample(const io::Experiment& experiment, const SampleOptions& options, const RunOptions& o) {
   if (!(options.tolerance >= 0) || !std::isfinite(options.tolerance))
-    throw InvalidInput("tolerance: " + number_text(options.tolerance, 6) + " must be finite and ≥ 0");
+    throw InvalidInput("the tolerance " +
+                       (std::isfinite(options.tolerance) ? number_text(options.tolerance, 6) + " is negative"
+                                                         : std::string("is not a finite number")) +
+                       "; give a finite tolerance ≥ 0");
   refuse_mesh(experiment);
   // Chaos mode builds the automaton and nets without evaluating them.
   io::Experiment e = experiment;
@@ -1150,7 +1155,9 @@ Evaluation sample(const io::Experiment& experiment, const SampleOptions& options
   so.max_points = options.max_points;
   so.epsilon = options.tolerance * ifs::nets_diameter(scene.nets, scene.rational);
   if (options.tolerance > 0 && !(so.epsilon > 0))
-    throw InvalidInput("tolerance: the control nets are single points");
+    throw InvalidInput(
+        "the tolerance is relative to the size of the control nets, which are single points; give a depth "
+        "instead");
   ifs::ToleranceSample ts = ifs::tolerance_sample(scene.automaton, scene.nets, so);
   out.points = std::move(ts.points);
   out.resolution = ts.resolution;

@@ -42,12 +42,11 @@ Point apply(const AffineMap& m, const Point& p) {
 
 Eigen::MatrixXd barycentric_matrix(const AffineMap& map, const Points& triangle) {
   if (triangle.rows() != 3 || triangle.cols() != 2)
-    throw InvalidInput("barycentric_matrix: the control triangle is " + std::to_string(triangle.rows()) +
-                       " by " + std::to_string(triangle.cols()) + ", expected 3 by 2");
-  if (!triangle.allFinite())
-    throw InvalidInput("barycentric_matrix: the control triangle has a non-finite coordinate");
+    throw InvalidInput("the control triangle is " + std::to_string(triangle.rows()) + " by " +
+                       std::to_string(triangle.cols()) + ", expected 3 by 2");
+  if (!triangle.allFinite()) throw InvalidInput("the control triangle has a coordinate that is not finite");
   for (const double x : {map.a, map.b, map.c, map.d, map.e, map.f})
-    if (!std::isfinite(x)) throw InvalidInput("barycentric_matrix: the map has a non-finite coefficient");
+    if (!std::isfinite(x)) throw InvalidInput("an affine map has a coefficient that is not finite");
   Eigen::Matrix3d H, W;
   for (int i = 0; i < 3; ++i) {
     const Point corner = triangle.row(i);
@@ -57,12 +56,14 @@ Eigen::MatrixXd barycentric_matrix(const AffineMap& map, const Points& triangle)
   }
   const double diam = diameter(triangle);
   if (!(std::abs(H.determinant()) > 1e-12 * diam * diam))
-    throw InvalidInput("barycentric_matrix: the control triangle is degenerate (its corners are collinear)");
+    throw InvalidInput(
+        "the control triangle is degenerate (its corners are collinear); give three corners that span the "
+        "plane");
   return W * H.inverse();
 }
 
 automata::Automaton affine_automaton(std::span<const AffineMap> maps, const Points& triangle) {
-  if (maps.empty()) throw InvalidInput("affine_automaton: no map");
+  if (maps.empty()) throw InvalidInput("an IFS needs at least one affine map, none is given");
   automata::Automaton a;
   const auto s = add_vertex(automata::State{.size = 3, .recurrent = true, .name = "triangle"}, a.graph);
   for (std::size_t i = 0; i < maps.size(); ++i)
@@ -103,7 +104,7 @@ std::vector<AffineMap> named_ifs(std::string_view name) {
     if (s.name == name) return s.maps();
   std::string names;
   for (const std::string& n : ifs_names()) names += (names.empty() ? "" : ", ") + n;
-  throw InvalidInput("named_ifs: unknown IFS \"" + std::string(name) + "\" (" + names + ")");
+  throw InvalidInput("unknown IFS \"" + std::string(name) + "\"; give one of " + names);
 }
 
 }  // namespace cifs::ifs

@@ -94,27 +94,29 @@ std::string word_text(std::span<const int> word) {
 
 }  // namespace detail
 
-void check_nets(const Automaton& automaton, std::span<const Points> nets, std::string_view who) {
-  const auto fail = [&](const std::string& what) { throw InvalidInput(std::string(who) + ": " + what); };
+// The messages name the nets, not `who`: callers passed their own function names, which users of
+// the CLI and of Python never called.
+void check_nets(const Automaton& automaton, std::span<const Points> nets, std::string_view /*who*/) {
+  const auto fail = [&](const std::string& what) { throw InvalidInput(what); };
   if (nets.size() != automaton.initial.size())
-    fail(std::to_string(nets.size()) + " nets given for " + std::to_string(automaton.initial.size()) +
-         " initial entries (one net per entry)");
-  if (nets.empty()) fail("the automaton has no initial entry");
+    fail(std::to_string(nets.size()) + " control nets given for the automaton's " +
+         std::to_string(automaton.initial.size()) + " initial entries (one net per entry)");
+  if (nets.empty()) fail("the automaton has no initial entry, so there is nothing to draw; add one");
   const Eigen::Index cols = nets[0].cols();
-  if (cols < 1) fail("nets[0] has no column");
+  if (cols < 1) fail("control net 0 has no coordinate column");
   for (std::size_t i = 0; i < nets.size(); ++i) {
     const StateId s = automaton.initial[i].state;
     if (s >= num_vertices(automaton.graph))
       fail("initial[" + std::to_string(i) + "] names state " + std::to_string(s) + ", which does not exist");
     const int size = automaton.graph[s].size;
     if (nets[i].rows() != size)
-      fail("nets[" + std::to_string(i) + "] has " + std::to_string(nets[i].rows()) +
-           " rows but its initial " + detail::state_label(automaton, s) + " holds " + std::to_string(size) +
-           " points");
+      fail("control net " + std::to_string(i) + " has " + std::to_string(nets[i].rows()) +
+           " points but its initial " + detail::state_label(automaton, s) + " holds " + std::to_string(size));
     if (nets[i].cols() != cols)
-      fail("nets[" + std::to_string(i) + "] has " + std::to_string(nets[i].cols()) +
-           " columns, nets[0] has " + std::to_string(cols));
-    if (!nets[i].allFinite()) fail("nets[" + std::to_string(i) + "] has a non-finite coordinate");
+      fail("control net " + std::to_string(i) + " has " + std::to_string(nets[i].cols()) +
+           " columns, control net 0 has " + std::to_string(cols));
+    if (!nets[i].allFinite())
+      fail("control net " + std::to_string(i) + " has a coordinate that is not finite");
   }
 }
 
@@ -195,8 +197,9 @@ double nets_diameter(std::span<const Points> nets, bool homogeneous) {
     // Stacked below: nets of other widths wrote past the rows (the robustness test's mismatched
     // nets under ASan, called from tolerance_sample before any other check).
     if (nets[i].cols() != cols)
-      throw InvalidInput("nets[" + std::to_string(i) + "] has " + std::to_string(nets[i].cols()) +
-                         " columns, nets[0] has " + std::to_string(cols) + "; every net needs the same");
+      throw InvalidInput("control net " + std::to_string(i) + " has " + std::to_string(nets[i].cols()) +
+                         " columns, control net 0 has " + std::to_string(cols) +
+                         "; every net needs the same");
     rows += nets[i].rows();
   }
   Points all(rows, cols);
@@ -467,7 +470,8 @@ automata::TransitionId out_edge(const Graph& g, StateId s, std::size_t child) {
 Contraction contraction(const Automaton& automaton, const ContractionOptions& options) {
   validate(automaton);
   if (options.max_length < 1)
-    throw InvalidInput("contraction: max_length is " + std::to_string(options.max_length) + ", must be ≥ 1");
+    throw InvalidInput("the contraction check's path length " + std::to_string(options.max_length) +
+                       " is below 1; give at least 1");
   const auto states = reachable_states(automaton);
   // Iterative deepening: the shortest m wins, and paths of length < max_length stop at the first
   // failing product (their A is not needed); the last length is scanned fully for the message.
@@ -543,9 +547,10 @@ Eigen::RowVectorXd fixed_point(const Automaton& automaton, StateId state, std::s
   validate(automaton);
   const Graph& g = automaton.graph;
   if (state >= num_vertices(g))
-    throw InvalidInput("fixed_point: state " + std::to_string(state) + " does not exist");
-  const std::string context =
-      "fixed_point of the word " + detail::word_text(word) + " from " + detail::state_label(automaton, state);
+    throw InvalidInput("state " + std::to_string(state) + " does not exist (the automaton has " +
+                       std::to_string(num_vertices(g)) + " states)");
+  const std::string context = "the fixed point of the word " + detail::word_text(word) + " from " +
+                              detail::state_label(automaton, state);
   Eigen::MatrixXd P = Eigen::MatrixXd::Identity(g[state].size, g[state].size);
   StateId s = state;
   for (std::size_t k = 0; k < word.size(); ++k) {
@@ -631,17 +636,17 @@ std::vector<Eigen::RowVectorXd> repeated_child_functionals(const Automaton& auto
   const Graph& g = automaton.graph;
   for (const StateId s : reachable_states(automaton))
     if (child < 0 || static_cast<std::size_t>(child) >= out_degree(s, g))
-      throw InvalidInput("repeated_child_functionals: child " + std::to_string(child) + " but " +
-                         detail::state_label(automaton, s) + " has " + std::to_string(out_degree(s, g)) +
-                         " children");
+      throw InvalidInput("child " + std::to_string(child) +
+                         " does not exist: " + detail::state_label(automaton, s) + " has " +
+                         std::to_string(out_degree(s, g)) + " children");
   return chain_functionals(
       automaton, [&](StateId) { return static_cast<std::size_t>(child); }, "child-" + std::to_string(child));
 }
 
 std::vector<std::complex<double>> eigenvalues(const Eigen::MatrixXd& M) {
   if (M.rows() != M.cols())
-    throw InvalidInput("eigenvalues: the matrix is " + std::to_string(M.rows()) + " by " +
-                       std::to_string(M.cols()) + ", not square");
+    throw InvalidInput("a " + std::to_string(M.rows()) + " by " + std::to_string(M.cols()) +
+                       " matrix has no eigenvalues: it is not square");
   if (M.rows() == 0) return {};
   if (!M.allFinite()) throw InvalidInput("a matrix entry is not finite: it has no eigenvalues");
   // Solved on M / max|M_ij| and scaled back: entries of 1e300 overflowed inside the QR iteration,

@@ -541,7 +541,9 @@ void expand_solution(const Substitution& s, ReducedSolution& x, UnionFind& same,
 AdmissibleSpace admissible_space(const Bcifs& sys, const SolveOptions& options) {
   // threshold ≥ 1 makes every rank 0: the basic-column QR below would factor an m × 0 matrix.
   if (!(options.threshold >= 0 && options.threshold < 1))
-    throw InvalidInput("admissible_space: threshold " + number_text(options.threshold, 3) +
+    throw InvalidInput("the rank threshold " +
+                       (std::isfinite(options.threshold) ? number_text(options.threshold, 3)
+                                                         : std::string("(not a finite number)")) +
                        " is outside [0, 1)");
   validate(sys);
   AdmissibleSpace space;
@@ -589,10 +591,25 @@ Bcifs with_free_values(const Bcifs& sys, const AdmissibleSpace& space, const Eig
   return out;
 }
 
+namespace {
+
+/// The first few names, for a message: "A, B, C, … (12 in all)".
+std::string name_list(const std::vector<std::string>& names) {
+  constexpr std::size_t kShown = 6;
+  std::string out;
+  for (std::size_t j = 0; j < std::min(names.size(), kShown); ++j) out += (j ? ", " : "") + names[j];
+  if (names.size() > kShown) out += ", … (" + std::to_string(names.size()) + " in all)";
+  return names.empty() ? std::string("none") : out;
+}
+
+}  // namespace
+
 Perturbation perturb(const Bcifs& sys, const PerturbOptions& options) {
   if (!(options.amplitude >= 0) || !std::isfinite(options.amplitude))
-    throw InvalidInput("perturb: amplitude " + number_text(options.amplitude, 3) +
-                       " is not a finite value ≥ 0");
+    throw InvalidInput("the perturbation amplitude " +
+                       (std::isfinite(options.amplitude) ? number_text(options.amplitude, 3) + " is negative"
+                                                         : std::string("is not a finite number")) +
+                       "; give a finite amplitude ≥ 0");
   const AdmissibleSpace space = admissible_space(sys, options.solve);
   const auto names = free_names(sys, space);
   std::map<std::string, std::size_t> index;
@@ -604,12 +621,13 @@ Perturbation perturb(const Bcifs& sys, const PerturbOptions& options) {
       const bool dependent =
           std::any_of(space.unknowns.begin(), space.unknowns.end(),
                       [&](const Coefficient& u) { return coefficient_name(sys.automaton, u) == given; });
-      throw InvalidInput("perturb: values: \"" + name + "\" is " +
+      throw InvalidInput("the perturbation value \"" + name + "\" is " +
                          (dependent ? "a dependent coefficient (solved from the constraints)"
                                     : "not an entry of a free matrix") +
-                         "; the free coefficients are listed by free_names");
+                         "; the free coefficients are " + name_list(names));
     }
-    if (!std::isfinite(value)) throw InvalidInput("perturb: values: \"" + name + "\" is not finite");
+    if (!std::isfinite(value))
+      throw InvalidInput("the perturbation value \"" + name + "\" is not a finite number");
   }
   Eigen::VectorXd c = free_values(sys, space);
   Random random(options.seed);
@@ -624,8 +642,8 @@ Perturbation perturb(const Bcifs& sys, const PerturbOptions& options) {
   out.system = with_free_values(sys, space, c);
   for (const auto& [name, r] : constraint_residuals(out.system)) out.residual = std::max(out.residual, r);
   if (!(out.residual <= 1e-12))
-    throw InvalidInput("perturb: the solved matrices miss the constraints by " +
-                       number_text(out.residual, 3) + " (the system is ill-conditioned)");
+    throw InvalidInput("the perturbed matrices miss the constraints by " + number_text(out.residual, 3) +
+                       " (the system is ill-conditioned); lower the amplitude");
   try {
     out.contraction = contraction(out.system.automaton, options.contraction);
   } catch (const InvalidInput& e) {
@@ -635,7 +653,7 @@ Perturbation perturb(const Bcifs& sys, const PerturbOptions& options) {
       cause = "amplitude " + number_text(options.amplitude, 3) + ", seed " + std::to_string(options.seed);
     for (const auto& [name, value] : options.values)
       cause += (cause.empty() ? "" : ", ") + name + " = " + number_text(value, 3);
-    throw InvalidInput("perturb: the system is non-contractive with " +
+    throw InvalidInput("the perturbed system is not contractive with " +
                        (cause.empty() ? std::string("its current values") : cause) + ": " + e.what());
   }
   return out;
@@ -664,7 +682,7 @@ EndFunctionals edge_end_functionals(const Bcifs& sys) {
   out.end.resize(n);
   for (const StateId s : cells)
     if (sys.dimension[s] == 1 && (ends[s][0] < 0 || ends[s][1] < 0))
-      throw InvalidInput("edge_end_functionals: edge cell " + state_text(a, s) +
+      throw InvalidInput("the edge cell " + state_text(a, s) +
                          " has no \"start\" or no \"end\" boundary onto a vertex cell");
   if (vertices.initial.empty()) return out;
   const EndFunctionals fixed = end_functionals(vertices);
@@ -692,17 +710,16 @@ EdgePieces edge_pieces(const Bcifs& sys, std::span<const Points> nets, int depth
                             sizeof(automata::StateId) + sizeof(std::size_t) + sizeof(std::vector<int>) +
                             sizeof(int) * static_cast<std::size_t>(depth));
     if (bytes > static_cast<double>(max_bytes))
-      throw InvalidInput("edge_pieces: " + std::to_string(nodes) + " pieces at depth " +
-                         std::to_string(depth) + " need " + number_text(bytes / 1e9, 3) +
-                         " GB, above the limit of " + number_text(static_cast<double>(max_bytes) / 1e9, 3) +
-                         " GB; lower the depth");
+      throw InvalidInput(std::to_string(nodes) + " edge pieces at depth " + std::to_string(depth) + " need " +
+                         number_text(bytes / 1e9, 3) + " GB, above the limit of " +
+                         number_text(static_cast<double>(max_bytes) / 1e9, 3) + " GB; lower the depth");
   }
   const EndFunctionals F = edge_end_functionals(sys);
   std::vector<Point> starts, ends;
   EdgePieces out;
   for_each_leaf(sys.automaton, nets, depth, [&](const Leaf& leaf) {
     if (F.start[leaf.state].size() == 0)
-      throw InvalidInput("edge_pieces: cell " + state_text(sys.automaton, leaf.state) + " has dimension " +
+      throw InvalidInput("the cell " + state_text(sys.automaton, leaf.state) + " has dimension " +
                          std::to_string(sys.dimension[leaf.state]) + ": it is not an edge cell");
     starts.push_back(F.start[leaf.state] * leaf.net);
     ends.push_back(F.end[leaf.state] * leaf.net);

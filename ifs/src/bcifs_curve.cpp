@@ -47,14 +47,17 @@ std::size_t window_size(const nurbs::KnotAutomaton& knots, StateId s) {
 /// The degree d of a knot automaton whose states are all knot-doubling states of degree d.
 int knot_doubling_degree(const nurbs::KnotAutomaton& knot_automaton) {
   const automata::Automaton& knots = knot_automaton.automaton;
-  if (knots.initial.empty()) throw InvalidInput("curve_bcifs: the knot automaton has no segment");
+  if (knots.initial.empty())
+    throw InvalidInput("the knot automaton has no segment, so there is no BC-IFS to build");
   const int d = knots.graph[knots.initial.front().state].size - 1;
-  if (d < 1) throw InvalidInput("curve_bcifs: degree " + std::to_string(d) + " has no edge to subdivide");
+  if (d < 1)
+    throw InvalidInput("a curve of degree " + std::to_string(d) +
+                       " has no edge to subdivide into a BC-IFS; elevate its degree");
   for (StateId s = 0; s < num_vertices(knots.graph); ++s)
     if (knots.graph[s].size != d + 1 ||
         window_size(knot_automaton, s) != static_cast<std::size_t>(2 * d - 1) ||
         out_degree(s, knots.graph) != 2)
-      throw InvalidInput("curve_bcifs: state " + std::to_string(s) +
+      throw InvalidInput("the knot automaton's state " + std::to_string(s) +
                          " is not a knot-doubling state of degree " + std::to_string(d) +
                          " (d + 1 points, a window of 2d − 1 intervals, two children)");
   return d;
@@ -155,7 +158,7 @@ std::map<std::size_t, StateId> add_vertex_cells(const nurbs::KnotAutomaton& knot
       g[it->second].name = "v" + std::to_string(it->second - edges);
       sys.dimension.push_back(0);
     } else if (g[it->second].size != size) {
-      throw InvalidInput("curve_bcifs: the vertex cell " + g[it->second].name + " is reached with " +
+      throw InvalidInput("the BC-IFS vertex cell " + g[it->second].name + " is reached with " +
                          std::to_string(g[it->second].size) + " and with " + std::to_string(size) +
                          " rows (knot multiplicities disagree)");
     }
@@ -220,7 +223,8 @@ void add_edge_constraints(const nurbs::KnotAutomaton& knot_automaton, const Unfo
 Bcifs curve_bcifs(const nurbs::Curve& curve, const CurveBcifsOptions& options) {
   nurbs::validate(curve);
   if (curve.degree < 1)
-    throw InvalidInput("curve_bcifs: degree " + std::to_string(curve.degree) + " has no edge to subdivide");
+    throw InvalidInput("a curve of degree " + std::to_string(curve.degree) +
+                       " has no edge to subdivide into a BC-IFS; elevate its degree");
   return curve_bcifs(nurbs::knot_automaton(curve), curve.closed, options);
 }
 
@@ -243,12 +247,11 @@ nurbs::KnotAutomaton curve_bcifs_knots(automata::Automaton automaton, const nurb
   const Unfolding unfolding = unfold(knots.automaton);
   if (num_vertices(automaton.graph) < unfolding.origin.size() ||
       automaton.initial.size() != knots.automaton.initial.size())
-    throw InvalidInput(
-        "curve_bcifs_knots: the automaton is not that of curve_bcifs of this knot automaton (" +
-        std::to_string(num_vertices(automaton.graph)) + " states and " +
-        std::to_string(automaton.initial.size()) + " initial entries for " +
-        std::to_string(unfolding.origin.size()) + " edge cells and " +
-        std::to_string(knots.automaton.initial.size()) + " segments)");
+    throw InvalidInput("the automaton is not the BC-IFS of this knot automaton (" +
+                       std::to_string(num_vertices(automaton.graph)) + " states and " +
+                       std::to_string(automaton.initial.size()) + " initial entries for " +
+                       std::to_string(unfolding.origin.size()) + " edge cells and " +
+                       std::to_string(knots.automaton.initial.size()) + " segments)");
   nurbs::KnotAutomaton out = nurbs::without_knots(std::move(automaton));
   for (StateId s = 0; s < unfolding.origin.size(); ++s) {
     const StateId k = std::get<0>(unfolding.origin[s]);

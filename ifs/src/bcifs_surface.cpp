@@ -207,9 +207,8 @@ Bcifs surface_bcifs(const nurbs::TensorAutomaton& automaton, const SurfaceBcifsO
   const Bcifs cu = curve_bcifs(automaton.factors[0], false, {.free_vertices = options.free_knot_lines});
   const Bcifs cv = curve_bcifs(automaton.factors[1], false, {.free_vertices = options.free_knot_lines});
   if (automaton.product.initial.size() != cu.automaton.initial.size() * cv.automaton.initial.size())
-    throw InvalidInput("surface_bcifs: the tensor automaton has " +
-                       std::to_string(automaton.product.initial.size()) + " patches, its factors " +
-                       std::to_string(cu.automaton.initial.size()) + " × " +
+    throw InvalidInput("the tensor automaton has " + std::to_string(automaton.product.initial.size()) +
+                       " patches, its factors " + std::to_string(cu.automaton.initial.size()) + " × " +
                        std::to_string(cv.automaton.initial.size()));
   Bcifs sys = product_bcifs(cu, cv);
   // The tensor automaton's entries (patch order, segments) on the product's cells.

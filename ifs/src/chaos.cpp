@@ -2,10 +2,12 @@
 // cifs — the chaos game: a random walk down the subdivision tree emitting exact attractor points.
 #include "cifs/ifs/chaos.hpp"
 
+#include <cmath>
 #include <random>
 #include <string>
 
 #include "cifs/errors.hpp"
+#include "cifs/format.hpp"
 #include "cifs/ifs/analysis.hpp"
 #include "cifs/memory.hpp"
 #include "cifs/random.hpp"
@@ -29,10 +31,12 @@ std::size_t draw(Random& rng, std::size_t bound) noexcept {
 ChaosResult chaos_game(const Automaton& automaton, std::span<const Points> nets,
                        const ChaosOptions& options) {
   validate(automaton);
-  check_nets(automaton, nets, "chaos_game");
+  check_nets(automaton, nets);
   if (!(options.restart_diameter > 0 && options.restart_diameter < 1))
-    throw InvalidInput("chaos_game: restart_diameter is " + std::to_string(options.restart_diameter) +
-                       ", must lie in (0, 1)");
+    throw InvalidInput("the chaos game's restart diameter " +
+                       (std::isfinite(options.restart_diameter) ? number_text(options.restart_diameter, 6)
+                                                                : std::string("(not a finite number)")) +
+                       " is outside (0, 1)");
   // A walk on a system that does not shrink nets would never restart and lose all precision. Only
   // the verdict is needed: the tightened factor costs seconds for large states (degree 64).
   (void)contraction(automaton, ContractionOptions{.max_length = 8, .tighten = false, .bound = false});
@@ -50,9 +54,9 @@ ChaosResult chaos_game(const Automaton& automaton, std::span<const Points> nets,
   const std::size_t per_sample =
       (static_cast<std::size_t>(cols) + (options.record_address ? 1 : 0)) * sizeof(double);
   if (options.samples > options.max_bytes / per_sample)
-    throw InvalidInput("chaos_game: " + std::to_string(options.samples) + " samples of " +
+    throw InvalidInput(std::to_string(options.samples) + " chaos-game samples of " +
                        std::to_string(per_sample) + " bytes exceed the limit of " +
-                       std::to_string(options.max_bytes) + " bytes (ChaosOptions::max_bytes)");
+                       std::to_string(options.max_bytes) + " bytes (max_bytes); ask for fewer samples");
   result.points.resize(static_cast<Eigen::Index>(options.samples), cols);
   advise_huge_pages(result.points.data(), static_cast<std::size_t>(result.points.size()) * sizeof(double));
   if (options.record_address) result.address.resize(options.samples);

@@ -177,7 +177,7 @@ std::optional<CoverExponent> cover_exponent(std::span<const CoverCount> counts, 
 DepthSample depth_sample(const automata::Automaton& a, std::span<const Points> nets,
                          const DepthSampleOptions& o) {
   validate(a);
-  check_nets(a, nets, "depth sample");
+  check_nets(a, nets);
   const auto count = [&](int depth) {
     try {
       return attractor_point_count(a, depth);
@@ -186,8 +186,8 @@ DepthSample depth_sample(const automata::Automaton& a, std::span<const Points> n
     }
   };
   if (count(0) > o.max_points)
-    throw InvalidInput("depth sample: even depth 0 has more than " + std::to_string(o.max_points) +
-                       " points");
+    throw InvalidInput("even depth 0 has more than " + std::to_string(o.max_points) +
+                       " points, the most the sample may hold; raise the point limit");
   DepthSample out;
   while (out.depth < o.max_depth && count(out.depth + 1) <= o.max_points) ++out.depth;
   Points P = attractor_points(a, nets, out.depth);

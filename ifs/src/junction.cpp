@@ -43,11 +43,11 @@ Bcifs uniform_curve_bcifs(const Eigen::MatrixXd& S0, const Eigen::MatrixXd& S1,
                           const UniformCurveOptions& options) {
   const Eigen::Index N = S0.rows();
   if (N < 2 || S0.cols() != N || S1.rows() != N || S1.cols() != N)
-    throw InvalidInput("uniform_curve_bcifs: S0 and S1 must be N by N with N ≥ 2");
+    throw InvalidInput("the subdivision matrices S0 and S1 must both be N by N with N ≥ 2");
   if (options.pieces < 0 || options.layer < 0)
-    throw InvalidInput("uniform_curve_bcifs: pieces and layer must not be negative");
+    throw InvalidInput("the number of pieces and the layer must not be negative");
   if (options.pieces > (1 << 20) || options.layer > 4096)
-    throw InvalidInput("uniform_curve_bcifs: at most 2^20 pieces and a layer of 4096");
+    throw InvalidInput("at most 2^20 pieces and a layer of 4096 are supported; ask for fewer");
   const int L = options.layer;
   Bcifs sys;
   auto& g = sys.automaton.graph;
@@ -123,12 +123,12 @@ namespace {
 void check_join_nets(const Bcifs& a, std::span<const Points> nets_a, const Bcifs& b,
                      std::span<const Points> nets_b, std::span<const Glue> glue) {
   if (!nets_a.empty() && nets_a.size() != a.automaton.initial.size())
-    throw InvalidInput("join: " + std::to_string(nets_a.size()) + " nets for A's " +
-                       std::to_string(a.automaton.initial.size()) + " initial entries");
+    throw InvalidInput(std::to_string(nets_a.size()) + " control nets given for A's " +
+                       std::to_string(a.automaton.initial.size()) + " initial entries (one per entry)");
   if (!nets_b.empty() && nets_b.size() != b.automaton.initial.size())
-    throw InvalidInput("join: " + std::to_string(nets_b.size()) + " nets for B's " +
-                       std::to_string(b.automaton.initial.size()) + " initial entries");
-  if (glue.empty()) throw InvalidInput("join: no glued boundary");
+    throw InvalidInput(std::to_string(nets_b.size()) + " control nets given for B's " +
+                       std::to_string(b.automaton.initial.size()) + " initial entries (one per entry)");
+  if (glue.empty()) throw InvalidInput("no boundary of A is glued to B; give at least one glue");
 }
 
 /// The glued boundaries: (A boundary index, B boundary index) per glue.
@@ -163,7 +163,7 @@ struct Sharing {
 void check_glued_pair(const Bcifs& a, StateId xa, const Bcifs& b, StateId xb) {
   const auto& ga = a.automaton.graph;
   const auto& gb = b.automaton.graph;
-  const std::string pair = "join: A's " + cell_text(a, xa) + " and B's " + cell_text(b, xb);
+  const std::string pair = "A's " + cell_text(a, xa) + " and B's " + cell_text(b, xb);
   if (ga[xa].size != gb[xb].size)
     throw InvalidInput(pair + " are glued but hold " + std::to_string(ga[xa].size) + " and " +
                        std::to_string(gb[xb].size) + " points");
@@ -190,8 +190,8 @@ Sharing share_cells(const Bcifs& a, const Bcifs& b, std::span<const std::pair<in
     const auto [it, added] = out.partner.try_emplace(xb, xa);
     if (!added) {
       if (it->second != xa)
-        throw InvalidInput("join: B's cell " + cell_text(b, xb) + " would be both " +
-                           cell_text(a, it->second) + " and " + cell_text(a, xa) +
+        throw InvalidInput("B's cell " + cell_text(b, xb) + " would be both " + cell_text(a, it->second) +
+                           " and " + cell_text(a, xa) +
                            " of A (the glued boundaries do not subdivide alike)");
       continue;
     }
@@ -204,7 +204,7 @@ Sharing share_cells(const Bcifs& a, const Bcifs& b, std::span<const std::pair<in
       if (op.cell != xb) continue;
       const int j = find_boundary(a, xa, op.name);
       if (j < 0 || a.boundaries[static_cast<std::size_t>(j)].rows != op.rows)
-        throw InvalidInput("join: A's " + cell_text(a, xa) + " and B's " + cell_text(b, xb) +
+        throw InvalidInput("A's " + cell_text(a, xa) + " and B's " + cell_text(b, xb) +
                            " are glued but A's has no boundary \"" + op.name + "\" with the same rows");
       out.boundary_partner[static_cast<int>(i)] = j;
       todo.emplace_back(a.boundaries[static_cast<std::size_t>(j)].boundary, op.boundary);
@@ -313,8 +313,8 @@ std::vector<Points> glue_nets(const Bcifs& a, std::span<const Points> nets_a, co
     const Points& Na = nets_a[glue[k].a_entry];
     Points& Nb = nb[glue[k].b_entry];
     if (Na.cols() != Nb.cols())
-      throw InvalidInput("join: A's nets have " + std::to_string(Na.cols()) + " columns, B's " +
-                         std::to_string(Nb.cols()));
+      throw InvalidInput("A's control nets have " + std::to_string(Na.cols()) + " columns, B's " +
+                         std::to_string(Nb.cols()) + "; give both the same");
     for (std::size_t i = 0; i < ra.size(); ++i) Nb.row(rb[i]) = Na.row(ra[i]);
   }
   nets.insert(nets.end(), nb.begin(), nb.end());

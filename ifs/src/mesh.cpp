@@ -72,9 +72,8 @@ std::size_t cells(int patches, int depth) {
 }
 
 /// Checks the depth and the sizes, and refuses a mesh above the byte limit before any work.
-Grid make_grid(int A, int B, int depth, std::size_t cols, const MeshOptions& options,
-               const std::string& who) {
-  if (depth < 0) throw InvalidInput(who + ": depth is " + std::to_string(depth) + ", must be ≥ 0");
+Grid make_grid(int A, int B, int depth, std::size_t cols, const MeshOptions& options) {
+  if (depth < 0) throw InvalidInput("the depth " + std::to_string(depth) + " is negative; give a depth ≥ 0");
   const std::size_t cu = cells(A, depth), cv = cells(B, depth);
   const std::size_t vertices = mul_sat(cu + (cu < kSaturated), cv + (cv < kSaturated));
   check_size(vertices, mul_sat(cu, cv), cols, depth,
@@ -211,26 +210,27 @@ namespace {
 /// depth-8 mesh's quads.
 void check_tensor(const nurbs::TensorAutomaton& t, std::span<const Points> nets) {
   for (const auto& f : t.factors) validate(f.automaton);
-  check_nets(t.product, nets, "surface_mesh");
+  check_nets(t.product, nets);
   if (t.factor_states.size() != num_vertices(t.product.graph))
-    throw InvalidInput("surface_mesh: " + std::to_string(t.factor_states.size()) +
+    throw InvalidInput("the tensor automaton has " + std::to_string(t.factor_states.size()) +
                        " factor state pairs for " + std::to_string(num_vertices(t.product.graph)) +
                        " product states");
   for (StateId s = 0; s < t.factor_states.size(); ++s)
     for (std::size_t dir = 0; dir < 2; ++dir)
       if (t.factor_states[s][dir] >= num_vertices(t.factors[dir].automaton.graph))
-        throw InvalidInput("surface_mesh: product state " + std::to_string(s) + " names factor state " +
-                           std::to_string(t.factor_states[s][dir]) + " of direction " + std::to_string(dir) +
-                           ", which does not exist");
+        throw InvalidInput("the tensor automaton's product state " + std::to_string(s) +
+                           " names factor state " + std::to_string(t.factor_states[s][dir]) +
+                           " of direction " + std::to_string(dir) + ", which does not exist");
   const int A = static_cast<int>(t.factors[0].automaton.initial.size()),
             B = static_cast<int>(t.factors[1].automaton.initial.size());
   if (t.patches.size() != t.product.initial.size() || t.patches.size() != static_cast<std::size_t>(A) * B)
-    throw InvalidInput("surface_mesh: the automaton has " + std::to_string(t.patches.size()) +
-                       " patches for " + std::to_string(t.product.initial.size()) + " initial entries and " +
+    throw InvalidInput("the tensor automaton has " + std::to_string(t.patches.size()) + " patches for " +
+                       std::to_string(t.product.initial.size()) + " initial entries and " +
                        std::to_string(A) + " by " + std::to_string(B) + " factor segments");
   for (std::size_t k = 0; k < t.patches.size(); ++k)
     if (t.patches[k] != std::array<int, 2>{static_cast<int>(k) / B, static_cast<int>(k) % B})
-      throw InvalidInput("surface_mesh: patch " + std::to_string(k) + " is not in u-major order");
+      throw InvalidInput("the tensor automaton's patch " + std::to_string(k) +
+                         " is not in u-major order; build it with tensor_automaton");
 }
 
 /// Curve stencil tables: row I of F[dir] is the functional, on the net of the segment owning node
@@ -306,9 +306,9 @@ void write_vertices(const FactorTables& tables, std::span<const Points> nets, co
         const double* h = H.data() + static_cast<Eigen::Index>(J) * C;
         const double w = h[D];
         if (w == 0)
-          throw InvalidInput("surface_mesh: vertex " +
+          throw InvalidInput("mesh vertex " +
                              std::to_string(static_cast<std::size_t>(I) * (grid.cv + 1) + J) +
-                             " has weight 0 (a point at infinity)");
+                             " has weight 0 (a point at infinity); give the surface positive weights");
         for (Eigen::Index c = 0; c < D; ++c) row[c] = h[c] / w;  // as cartesian(): the same bits
       }
     }
@@ -357,14 +357,14 @@ void surface_mesh(const nurbs::TensorAutomaton& t, std::span<const Points> nets,
             B = static_cast<int>(t.factors[1].automaton.initial.size());
   const Eigen::Index C = nets[0].cols();
   if (options.homogeneous && C < 2)
-    throw InvalidInput("surface_mesh: homogeneous rows need at least 2 columns (w·x, w), got " +
-                       std::to_string(C));
-  const Grid grid = make_grid(A, B, depth, static_cast<std::size_t>(C), options, "surface_mesh");
+    throw InvalidInput("rational control nets need at least 2 columns (w·x, w), got " + std::to_string(C));
+  const Grid grid = make_grid(A, B, depth, static_cast<std::size_t>(C), options);
   const FactorTables tables = factor_tables(t, depth, options.max_bytes);
   const Eigen::Index p1 = tables.F[0].cols(), q1 = tables.F[1].cols();
   if (nets[0].rows() != p1 * q1)
-    throw InvalidInput("surface_mesh: nets of " + std::to_string(nets[0].rows()) +
-                       " rows, the factors give " + std::to_string(p1) + " by " + std::to_string(q1));
+    throw InvalidInput("the control nets have " + std::to_string(nets[0].rows()) +
+                       " points, the tensor automaton's factors give " + std::to_string(p1) + " by " +
+                       std::to_string(q1));
   const bool keep = options.keep_faces && mesh.face_vertices.size() == 4 * grid.quads &&
                     mesh.face_offsets.size() == grid.quads + 1 && mesh.states.size() == grid.quads;
   const Eigen::Index D = options.homogeneous ? C - 1 : C;
@@ -407,15 +407,14 @@ struct Layout {
 };
 
 /// quad_mesh's layout: `patches` must fill their A × B grid exactly once.
-Layout grid_layout(std::span<const std::array<int, 2>> patches, std::size_t initial, int depth,
-                   const std::string& who) {
+Layout grid_layout(std::span<const std::array<int, 2>> patches, std::size_t initial, int depth) {
   if (patches.size() != initial)
-    throw InvalidInput(who + ": " + std::to_string(patches.size()) + " patches for " +
-                       std::to_string(initial) + " initial entries");
+    throw InvalidInput(std::to_string(patches.size()) + " patches given for the automaton's " +
+                       std::to_string(initial) + " initial entries (one patch per entry)");
   int A = 0, B = 0;
   for (const auto& [a, b] : patches) {
     if (a < 0 || b < 0)
-      throw InvalidInput(who + ": patch (" + std::to_string(a) + ", " + std::to_string(b) + ") is negative");
+      throw InvalidInput("patch (" + std::to_string(a) + ", " + std::to_string(b) + ") has a negative index");
     A = std::max(A, a + 1);
     B = std::max(B, b + 1);
   }
@@ -423,15 +422,15 @@ Layout grid_layout(std::span<const std::array<int, 2>> patches, std::size_t init
   for (std::size_t i = 0; i < patches.size(); ++i) {
     int& slot = patch_at[static_cast<std::size_t>(patches[i][0]) * B + patches[i][1]];
     if (slot >= 0)
-      throw InvalidInput(who + ": initial entries " + std::to_string(slot) + " and " + std::to_string(i) +
+      throw InvalidInput("initial entries " + std::to_string(slot) + " and " + std::to_string(i) +
                          " are both placed at patch (" + std::to_string(patches[i][0]) + ", " +
                          std::to_string(patches[i][1]) + ")");
     slot = static_cast<int>(i);
   }
   if (patches.size() != patch_at.size())
-    throw InvalidInput(who + ": " + std::to_string(patches.size()) + " patches do not fill their " +
-                       std::to_string(A) + " by " + std::to_string(B) + " grid");
-  if (depth < 0) throw InvalidInput(who + ": depth is " + std::to_string(depth) + ", must be ≥ 0");
+    throw InvalidInput(std::to_string(patches.size()) + " patches do not fill their " + std::to_string(A) +
+                       " by " + std::to_string(B) + " grid");
+  if (depth < 0) throw InvalidInput("the depth " + std::to_string(depth) + " is negative; give a depth ≥ 0");
   const std::size_t cu = cells(A, depth), cv = cells(B, depth);
   Layout out{.blocks = 1,
              .vertices = mul_sat(cu + (cu < kSaturated), cv + (cv < kSaturated)),
@@ -456,8 +455,8 @@ Layout grid_layout(std::span<const std::array<int, 2>> patches, std::size_t init
 }
 
 /// patch_meshes' layout: entry i is the block of (2^K + 1)² vertices and 4^K faces i.
-Layout block_layout(std::size_t initial, int depth, const std::string& who) {
-  if (depth < 0) throw InvalidInput(who + ": depth is " + std::to_string(depth) + ", must be ≥ 0");
+Layout block_layout(std::size_t initial, int depth) {
+  if (depth < 0) throw InvalidInput("the depth " + std::to_string(depth) + " is negative; give a depth ≥ 0");
   const std::size_t side = cells(1, depth),
                     nodes = side < kSaturated ? mul_sat(side + 1, side + 1) : kSaturated;
   Layout out{.blocks = static_cast<int>(std::min(initial, static_cast<std::size_t>(INT_MAX))),
@@ -478,24 +477,23 @@ Layout block_layout(std::size_t initial, int depth, const std::string& who) {
 }
 
 /// A table's layout: a grid when it has patches.
-Layout layout(const MeshStencilTable& table, const std::string& who) {
+Layout layout(const MeshStencilTable& table) {
   const std::size_t initial = table.automaton.initial.size();
-  return table.patches.empty() ? block_layout(initial, table.depth, who)
-                               : grid_layout(table.patches, initial, table.depth, who);
+  return table.patches.empty() ? block_layout(initial, table.depth)
+                               : grid_layout(table.patches, initial, table.depth);
 }
 
 /// Checks that the automaton is valid, then the nets when given, then that every reachable state has
 /// four children.
-std::vector<StateId> surface_states(const Automaton& automaton, const std::string& who,
+std::vector<StateId> surface_states(const Automaton& automaton,
                                     std::optional<std::span<const Points>> nets = std::nullopt) {
   validate(automaton);
-  if (nets) check_nets(automaton, *nets, who);
+  if (nets) check_nets(automaton, *nets);
   const Graph& g = automaton.graph;
   auto states = reachable_states(automaton);
   for (const StateId s : states)
     if (out_degree(s, g) != 4)
-      throw InvalidInput(who + ": " + detail::state_label(automaton, s) + " has " +
-                         std::to_string(out_degree(s, g)) +
+      throw InvalidInput(detail::state_label(automaton, s) + " has " + std::to_string(out_degree(s, g)) +
                          " children, a surface state needs 4 (GH, GB, DH, DB)");
   return states;
 }
@@ -613,11 +611,11 @@ void emit_mesh(const MeshStencilTable& table, const Layout& layout, std::span<co
 /// before any work.
 Mesh generic_mesh(const Automaton& automaton, std::span<const Points> nets,
                   std::optional<std::span<const std::array<int, 2>>> grid, int depth,
-                  const MeshOptions& options, const std::string& who) {
-  const auto states = surface_states(automaton, who, nets);
+                  const MeshOptions& options) {
+  const auto states = surface_states(automaton, nets);
   const std::span<const std::array<int, 2>> patches = grid.value_or(std::span<const std::array<int, 2>>{});
-  const Layout place = grid ? grid_layout(patches, automaton.initial.size(), depth, who)
-                            : block_layout(automaton.initial.size(), depth, who);
+  const Layout place = grid ? grid_layout(patches, automaton.initial.size(), depth)
+                            : block_layout(automaton.initial.size(), depth);
   const Eigen::Index C = nets[0].cols();
   check_size(place.vertices, place.faces, static_cast<std::size_t>(C), depth, place.what, options.max_bytes);
   const MeshStencilTable table = build_table(automaton, states, depth, patches, options.max_table_depth,
@@ -628,9 +626,9 @@ Mesh generic_mesh(const Automaton& automaton, std::span<const Points> nets,
 }
 
 /// Checks a table that may have been edited against its automaton, as mesh_stencil_table built it.
-void check_table(const MeshStencilTable& t, std::span<const Points> nets, const std::string& who) {
+void check_table(const MeshStencilTable& t, std::span<const Points> nets) {
   const Automaton& a = t.automaton;
-  const auto states = surface_states(a, who, nets);
+  const auto states = surface_states(a, nets);
   const Graph& g = a.graph;
   const auto n = num_vertices(g);
   bool fits = t.depth >= 0 && t.table_depth >= 0 && t.table_depth <= t.depth && t.table_depth < 16 &&
@@ -645,29 +643,27 @@ void check_table(const MeshStencilTable& t, std::span<const Points> nets, const 
     }
   }
   if (!fits)
-    throw InvalidInput(
-        who + ": the mesh stencil table does not fit its automaton; build it with mesh_stencil_table");
+    throw InvalidInput("the mesh stencil table does not fit its automaton; build it with mesh_stencil_table");
 }
 
 }  // namespace
 
 Mesh quad_mesh(const Automaton& automaton, std::span<const Points> nets,
                std::span<const std::array<int, 2>> patches, int depth, const MeshOptions& options) {
-  return generic_mesh(automaton, nets, patches, depth, options, "quad_mesh");
+  return generic_mesh(automaton, nets, patches, depth, options);
 }
 
 Mesh patch_meshes(const Automaton& automaton, std::span<const Points> nets, int depth,
                   const MeshOptions& options) {
-  return generic_mesh(automaton, nets, std::nullopt, depth, options, "patch_meshes");
+  return generic_mesh(automaton, nets, std::nullopt, depth, options);
 }
 
 MeshStencilTable mesh_stencil_table(const Automaton& automaton, int depth,
                                     const MeshStencilOptions& options) {
-  const std::string who = "mesh_stencil_table";
-  const auto states = surface_states(automaton, who);
+  const auto states = surface_states(automaton);
   const std::size_t initial = automaton.initial.size();
-  const Layout place = options.patches.empty() ? block_layout(initial, depth, who)
-                                               : grid_layout(options.patches, initial, depth, who);
+  const Layout place =
+      options.patches.empty() ? block_layout(initial, depth) : grid_layout(options.patches, initial, depth);
   // Only the index limits: the bytes depend on the nets' columns and are checked when applied.
   check_size(place.vertices, place.faces, 3, depth, place.what, kSaturated);
   return build_table(automaton, states, depth, options.patches, options.max_table_depth, options.max_entries);
@@ -675,9 +671,8 @@ MeshStencilTable mesh_stencil_table(const Automaton& automaton, int depth,
 
 void apply_table(const MeshStencilTable& table, std::span<const Points> nets, Mesh& mesh,
                  const MeshOptions& options) {
-  const std::string who = "apply_table";
-  check_table(table, nets, who);
-  const Layout place = layout(table, who);
+  check_table(table, nets);
+  const Layout place = layout(table);
   check_size(place.vertices, place.faces, static_cast<std::size_t>(nets[0].cols()), table.depth, place.what,
              options.max_bytes);
   emit_mesh(table, place, nets, mesh, options);

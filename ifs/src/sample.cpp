@@ -102,7 +102,7 @@ ToleranceResult visit_leaves(const Automaton& a, std::span<const Points> nets, c
 
 void check_input(const Automaton& a, std::span<const Points> nets, const SampleOptions& o) {
   validate(a);
-  check_nets(a, nets, "the sample");
+  check_nets(a, nets);
   if (o.homogeneous && nets.front().cols() < 2)
     throw InvalidInput("rational nets need at least 2 columns (w·x, w)");
 }
@@ -202,7 +202,8 @@ Sample sample_attractor(const Automaton& automaton, std::span<const Points> nets
     }
     const double w = p(D);
     if (w == 0)
-      throw InvalidInput("cartesian: row " + std::to_string(used) + " has weight 0 (a point at infinity)");
+      throw InvalidInput("sample point " + std::to_string(used) +
+                         " has weight 0 (a point at infinity); give the shape positive weights");
     P.row(used++) = p.head(D) / w;
   };
   Point last_end;  // the end of the last leaf closes an open curve

@@ -215,15 +215,16 @@ std::string to_json(const ifs::Bcifs& sys, std::span<const Points> nets) {
   const auto& a = sys.automaton;
   const auto& g = a.graph;
   if (!nets.empty() && nets.size() != a.initial.size())
-    throw InvalidInput("to_json: " + std::to_string(nets.size()) + " nets for " +
-                       std::to_string(a.initial.size()) + " initial entries");
+    throw InvalidInput("the BC-IFS has " + std::to_string(a.initial.size()) + " initial entries but " +
+                       std::to_string(nets.size()) + " control nets are given");
   const std::set<ifs::TransitionRef> free(sys.free.begin(), sys.free.end());
   json cells = json::array(), transitions = json::array(), boundaries = json::array(),
        constraints = json::array(), initial = json::array();
   for (StateId s = 0; s < num_vertices(g); ++s) {
     const std::string name = cell_name(a, s);
     if (name.find_first_of("./") != std::string::npos)
-      throw InvalidInput("to_json: cell name \"" + name + "\" has a '.' or '/'");
+      throw InvalidInput("the cell name \"" + name +
+                         "\" has a '.' or '/', which BC-IFS files use as separators");
     cells.push_back({{"name", name}, {"size", g[s].size}, {"dimension", sys.dimension[s]}});
     int child = 0;
     for (auto [e, end] = out_edges(s, g); e != end; ++e, ++child)

@@ -146,7 +146,7 @@ Mesh parse_mesh_obj(std::string_view text, std::string_view where) {
 }
 
 void mesh_obj(const Mesh& mesh, ByteSink& sink) {
-  check_mesh(mesh, "mesh_obj");
+  check_mesh(mesh, "the mesh to write as OBJ");
   const bool normals = mesh.normals.size() != 0;
   ChunkBuffer out(sink);
   out.text = "# cifs mesh, " + std::to_string(mesh.vertices.rows()) + " vertices, " +
@@ -173,7 +173,7 @@ std::string mesh_obj(const Mesh& mesh) {
 }
 
 void segments_obj(const Segments& segments, ByteSink& sink) {
-  check_segments(segments, "segments_obj");
+  check_segments(segments, "the segments to write as OBJ");
   ChunkBuffer out(sink);
   out.text = "# cifs segments, " + std::to_string(segments.vertices.rows()) + " vertices, " +
              std::to_string(segments.segments.size()) + " segments\n";

@@ -543,8 +543,8 @@ void put_list(std::string& out, const std::string& keyword, const Values& values
 
 void check_dimension(int dim, const char* what) {
   if (dim > 3)
-    throw InvalidInput("to_obj: a " + std::to_string(dim) + "-D " + what +
-                       " cannot be written as OBJ, which holds 3-D geometry");
+    throw InvalidInput("a " + std::to_string(dim) + "-D " + what +
+                       " cannot be written as OBJ, which holds 3-D geometry; write it as JSON");
 }
 
 std::vector<long long> one_to(Eigen::Index n) {

@@ -459,7 +459,7 @@ void read_faces(BodyReader& r, const Element& e, Mesh& mesh, const std::string& 
 }  // namespace
 
 void mesh_ply(const Mesh& mesh, PlyFormat format, ByteSink& sink) {
-  check_mesh(mesh, "mesh_ply");
+  check_mesh(mesh, "the mesh to write as PLY");
   const Points* normals = mesh.normals.size() != 0 ? &mesh.normals : nullptr;
   const std::size_t faces = face_count(mesh);
   int largest = 0;
@@ -493,7 +493,7 @@ std::string mesh_ply(const Mesh& mesh, PlyFormat format) {
 }
 
 void segments_ply(const Segments& segments, PlyFormat format, ByteSink& sink) {
-  check_segments(segments, "segments_ply");
+  check_segments(segments, "the segments to write as PLY");
   PlyWriter w(format, sink);
   ply_vertices(w, segments.vertices, nullptr, "cifs segments");
   w.out += "element edge " + std::to_string(segments.segments.size()) +

@@ -50,14 +50,14 @@ std::string svg_dropped_coordinates(const Eigen::Ref<const Points>& points) {
 }
 
 void segments_svg(const Segments& segments, const SvgOptions& options, ByteSink& sink) {
-  check_segments(segments, "segments_svg");
+  check_segments(segments, "the segments to draw as SVG");
   const Points& P = segments.vertices;
-  if (P.rows() == 0) throw InvalidInput("segments_svg: no vertices");
+  if (P.rows() == 0) throw InvalidInput("an SVG needs at least one vertex to draw, none is given");
   const int width = options.width;
   if (width < 16 || width > 100000)
-    throw InvalidInput("segments_svg: width " + std::to_string(width) + " is outside [16, 100000]");
+    throw InvalidInput("the SVG width " + std::to_string(width) + " is outside [16, 100000]");
   if (!(options.stroke > 0) || !std::isfinite(options.stroke))
-    throw InvalidInput("segments_svg: the stroke width must be positive");
+    throw InvalidInput("the SVG stroke width must be a positive finite number");
   const Eigen::Vector2d lo = P.leftCols(2).colwise().minCoeff().transpose();
   const Eigen::Vector2d hi = P.leftCols(2).colwise().maxCoeff().transpose();
   const double span = std::max({hi.x() - lo.x(), hi.y() - lo.y(), 1e-300});
@@ -100,7 +100,7 @@ std::string segments_svg(const Segments& segments, const SvgOptions& options) {
 }
 
 std::string polyline_svg(const Points& points, bool closed, int width, double stroke) {
-  if (points.cols() < 2) throw InvalidInput("SVG: points need at least 2 coordinates");
+  if (points.cols() < 2) throw InvalidInput("an SVG needs points of at least 2 coordinates (x, y)");
   Segments s = polyline_segments(points.leftCols(2), closed);
   s.states.clear();
   SvgOptions options;

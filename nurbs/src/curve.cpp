@@ -132,7 +132,7 @@ int segment_count(const Curve& c) noexcept {
 
 double domain_parameter(const Curve& c, double u) {
   const Domain dom = domain(c);
-  if (!std::isfinite(u)) detail::fail("parameter ", u, " is not finite");
+  if (!std::isfinite(u)) detail::fail("the parameter is not a finite number");
   if (c.closed) {
     if (u >= dom.start && u <= dom.end) return u;
     const double period = dom.end - dom.start;
@@ -287,22 +287,22 @@ Points derivatives(const Curve& c, double u, int order) {
 Point blossom(const Curve& c, std::span<const double> args, int span) {
   const int p = c.degree;
   if (static_cast<int>(args.size()) != p)
-    detail::fail("blossom: ", args.size(), " arguments given, degree ", p, " takes ", p);
+    detail::fail("the blossom of a degree-", p, " curve takes ", p, " arguments, ", args.size(), " given");
   for (std::size_t i = 0; i < args.size(); ++i)
-    if (!std::isfinite(args[i])) detail::fail("blossom: argument ", i, " is not finite");
+    if (!std::isfinite(args[i])) detail::fail("blossom argument ", i, " is not a finite number");
   if (span < p || span >= c.P.rows() ||
       !(c.knots[static_cast<std::size_t>(span)] < c.knots[static_cast<std::size_t>(span) + 1]))
-    detail::fail("blossom: span ", span, " is not a non-empty span of the domain");
+    detail::fail("the blossom's span ", span, " is not a non-empty span of the domain");
   return detail::blossom_row(c, args, span);
 }
 
 Point blossom(const Curve& c, std::span<const double> args) {
   const int p = c.degree;
   if (static_cast<int>(args.size()) != p)
-    detail::fail("blossom: ", args.size(), " arguments given, degree ", p, " takes ", p);
+    detail::fail("the blossom of a degree-", p, " curve takes ", p, " arguments, ", args.size(), " given");
   double mean = 0;
   for (double a : args) mean += a / p;
-  if (!std::isfinite(mean)) detail::fail("blossom: arguments are not finite");
+  if (!std::isfinite(mean)) detail::fail("the blossom's arguments are not all finite numbers");
   std::vector<double> shifted(args.begin(), args.end());
   if (c.closed) {
     // The mean as an offset from the first argument: equal arguments give it exactly, so that

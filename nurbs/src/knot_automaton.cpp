@@ -102,8 +102,8 @@ std::vector<Points> initial_nets(const KnotAutomaton& k, const Curve& curve) {
   for (std::size_t i = 0; i < k.automaton.initial.size(); ++i) {
     const int span = i < k.intervals.size() ? k.intervals[i].span : -1;
     if (span < curve.degree || span >= curve.P.rows())
-      throw InvalidInput("initial_nets: segment " + std::to_string(k.automaton.initial[i].segment) +
-                         " has no span in this curve");
+      throw InvalidInput("the knot automaton's segment " + std::to_string(k.automaton.initial[i].segment) +
+                         " has no span in this curve; build it with knot_automaton from this curve");
     nets.push_back(curve.P.middleRows(span - curve.degree, curve.degree + 1));
   }
   return nets;

@@ -372,7 +372,7 @@ Curve refine(const Curve& c, std::span<const double> new_knots) {
 }
 
 Curve insert_knot(const Curve& c, double u, int times) {
-  if (times < 1) detail::fail("insert: times = ", times, " must be at least 1");
+  if (times < 1) detail::fail("the knot count times = ", times, " must be at least 1");
   const std::vector<double> X(static_cast<std::size_t>(times), u);
   return refine(c, X);
 }
@@ -405,9 +405,9 @@ std::vector<Curve> split_bezier(const Curve& c) {
 }
 
 Curve elevate_degree(const Curve& c, int times) {
-  if (times < 0) detail::fail("elevate: times = ", times, " is negative");
+  if (times < 0) detail::fail("the degree elevation times = ", times, " is negative");
   if (c.degree + times > kMaxDegree)
-    detail::fail("elevate: degree ", c.degree + times, " exceeds the maximum ", kMaxDegree);
+    detail::fail("the elevated degree ", c.degree + times, " exceeds the maximum ", kMaxDegree);
   Curve out = c;
   for (int step = 0; step < times; ++step) {
     // Every knot value of the domain gains one in multiplicity (the ends too).

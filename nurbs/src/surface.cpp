@@ -19,7 +19,9 @@ constexpr const char* kDirName[2] = {"u", "v"};
 
 double checked_parameter(const Surface& s, Direction dir, double t) {
   const Domain dom = domain(s, dir);
-  if (!std::isfinite(t) || t < dom.start || t > dom.end)
+  if (!std::isfinite(t))
+    detail::fail("parameter ", kDirName[static_cast<int>(dir)], " is not a finite number");
+  if (t < dom.start || t > dom.end)
     detail::fail("parameter ", kDirName[static_cast<int>(dir)], " = ", t, " is outside the domain [",
                  dom.start, ", ", dom.end, "]");
   return t;
@@ -270,12 +272,13 @@ Points derivatives(const Surface& s, double u, double v, int order) {
 }
 
 Eigen::Vector3d normal(const Surface& s, double u, double v) {
-  if (dimension(s) != 3) detail::fail("normal: the surface is ", dimension(s), "-D, normals need 3-D");
+  if (dimension(s) != 3) detail::fail("the surface is ", dimension(s), "-D; a normal needs a 3-D surface");
   const Points D = derivatives(s, u, v, 1);
   const Eigen::Vector3d Su = D.row(2).transpose(), Sv = D.row(1).transpose();  // rows (1,0) and (0,1)
   const Eigen::Vector3d n = Su.cross(Sv);
   if (!(n.norm() > 1e-14 * Su.norm() * Sv.norm()) || n.norm() == 0)
-    detail::fail("normal: undefined at (", u, ", ", v, "): the partial derivatives are parallel or zero");
+    detail::fail("the surface normal is undefined at (", u, ", ", v,
+                 "): the partial derivatives are parallel or zero");
   return n.normalized();
 }
 
@@ -316,7 +319,7 @@ Surface refine(const Surface& s, Direction dir, std::span<const double> new_knot
 }
 
 Surface insert_knot(const Surface& s, Direction dir, double t, int times) {
-  if (times < 1) detail::fail("insert: times = ", times, " must be at least 1");
+  if (times < 1) detail::fail("the knot count times = ", times, " must be at least 1");
   const std::vector<double> X(static_cast<std::size_t>(times), t);
   return refine(s, dir, X);
 }

@@ -67,8 +67,9 @@ TensorAutomaton tensor_automaton(const nurbs::Surface& surface) {
 std::vector<Points> initial_nets(const TensorAutomaton& t, const Surface& s) {
   const int p = s.degree[0], q = s.degree[1];
   if (t.patches.size() != t.product.initial.size())
-    throw InvalidInput("initial_nets: the automaton has " + std::to_string(t.product.initial.size()) +
-                       " initial entries but " + std::to_string(t.patches.size()) + " patches");
+    throw InvalidInput("the tensor automaton has " + std::to_string(t.product.initial.size()) +
+                       " initial entries but " + std::to_string(t.patches.size()) +
+                       " patches; build it with tensor_automaton from this surface");
   std::vector<Points> nets;
   nets.reserve(t.patches.size());
   for (std::size_t k = 0; k < t.patches.size(); ++k) {
@@ -78,19 +79,20 @@ std::vector<Points> initial_nets(const TensorAutomaton& t, const Surface& s) {
       const auto& intervals = t.factors[dir].intervals;
       const int segment = t.patches[k][dir];
       if (segment < 0 || static_cast<std::size_t>(segment) >= initial.size())
-        throw InvalidInput("initial_nets: patch " + std::to_string(k) + " names segment " +
+        throw InvalidInput("the tensor automaton's patch " + std::to_string(k) + " names segment " +
                            std::to_string(segment) + " of direction " + (dir ? "v" : "u") + ", which has " +
                            std::to_string(initial.size()));
       span[dir] = static_cast<std::size_t>(segment) < intervals.size()
                       ? intervals[static_cast<std::size_t>(segment)].span
                       : -1;
       if (span[dir] < s.degree[dir] || span[dir] >= s.count[dir])
-        throw InvalidInput("initial_nets: patch " + std::to_string(k) + " has no span in direction " +
-                           (dir ? "v" : "u") + " of this surface");
+        throw InvalidInput("the tensor automaton's patch " + std::to_string(k) +
+                           " has no span in direction " + (dir ? "v" : "u") +
+                           " of this surface; build it from this surface");
     }
     const StateId state = t.product.initial[k].state;
     if (t.product.graph[state].size != (p + 1) * (q + 1))
-      throw InvalidInput("initial_nets: patch " + std::to_string(k) + " has a state of " +
+      throw InvalidInput("the tensor automaton's patch " + std::to_string(k) + " has a state of " +
                          std::to_string(t.product.graph[state].size) + " points but the surface's degrees (" +
                          std::to_string(p) + ", " + std::to_string(q) + ") give " +
                          std::to_string((p + 1) * (q + 1)));

@@ -16,12 +16,13 @@
 namespace cifs::render {
 namespace {
 
-void check_size(std::size_t width, std::size_t height, const char* who) {
+void check_size(std::size_t width, std::size_t height) {
   if (width == 0 || height == 0)
-    throw InvalidInput(std::string(who) + ": the image size " + std::to_string(width) + " by " +
-                       std::to_string(height) + " is empty");
+    throw InvalidInput("the image size " + std::to_string(width) + " by " + std::to_string(height) +
+                       " is empty");
   if (width > 65536 || height > 65536)
-    throw InvalidInput(std::string(who) + ": the image is larger than 65536 pixels on a side");
+    throw InvalidInput("the image size " + std::to_string(width) + " by " + std::to_string(height) +
+                       " is larger than 65536 pixels on a side");
 }
 
 std::string vector_text(const Eigen::Vector3d& v) {
@@ -117,18 +118,19 @@ std::optional<Camera> tight_orthographic(const Points& points, const Eigen::Vect
 }  // namespace
 
 ViewTransform view_transform(const Camera& camera) {
-  check_size(camera.width, camera.height, "camera");
+  check_size(camera.width, camera.height);
   if (!camera.eye.allFinite() || !camera.target.allFinite() || !camera.up.allFinite())
-    throw InvalidInput("camera: eye, target and up must be finite");
+    throw InvalidInput("the camera's eye, target and up must be finite");
   const Eigen::Vector3d view = camera.target - camera.eye;
   if (!view.allFinite())
-    throw InvalidInput("camera: eye " + vector_text(camera.eye) + " and target " +
+    throw InvalidInput("the camera's eye " + vector_text(camera.eye) + " and target " +
                        vector_text(camera.target) +
                        " are farther apart than a double holds; move them closer (scale the scene down)");
   // Scaled before the norms: the squares of coordinates above ~1e154 overflow (an eye at 1e308 was
   // reported as "up is zero or parallel").
   const double view_scale = view.cwiseAbs().maxCoeff();
-  if (!(view_scale > 0)) throw InvalidInput("camera: eye and target coincide");
+  if (!(view_scale > 0))
+    throw InvalidInput("the camera's eye and target coincide; move the eye away from the target");
   ViewTransform t;
   t.eye = camera.eye;
   t.forward = (view / view_scale).normalized();
@@ -137,7 +139,7 @@ ViewTransform view_transform(const Camera& camera) {
   const Eigen::Vector3d side = t.forward.cross(up);
   // Relative test: up must have a component orthogonal to the view direction.
   if (!(side.norm() > 1e-9 * up.norm()))
-    throw InvalidInput("camera: up " + vector_text(camera.up) +
+    throw InvalidInput("the camera's up " + vector_text(camera.up) +
                        (up_scale > 0 ? " is parallel to" : " is zero, not across") +
                        " the viewing direction from eye to target; give an up vector across it");
   t.right = side.normalized();
@@ -147,15 +149,18 @@ ViewTransform view_transform(const Camera& camera) {
   const double H = static_cast<double>(camera.height);
   if (camera.projection == Projection::perspective) {
     if (!(camera.fov_y > 0 && camera.fov_y < 180))
-      throw InvalidInput("camera: fov_y = " + std::to_string(camera.fov_y) + " degrees is outside (0, 180)");
+      throw InvalidInput("the camera's field of view " +
+                         (std::isfinite(camera.fov_y) ? number_text(camera.fov_y, 6) + " degrees"
+                                                      : std::string("(not a finite number)")) +
+                         " is outside (0, 180)");
     if (!(camera.near > 0) || !std::isfinite(camera.near))
-      throw InvalidInput("camera: near must be positive and finite");
+      throw InvalidInput("the camera's near distance must be a positive finite number");
     t.perspective = true;
     t.scale = (H / 2) / std::tan(radians(camera.fov_y) / 2);
     t.near = camera.near;
   } else {
     if (!(camera.ortho_height > 0) || !std::isfinite(camera.ortho_height))
-      throw InvalidInput("camera: ortho_height must be positive and finite");
+      throw InvalidInput("the camera's orthographic height must be a positive finite number");
     t.scale = H / camera.ortho_height;
   }
   return t;
@@ -166,13 +171,17 @@ Projected project(const Camera& camera, const Eigen::Vector3d& point) {
 }
 
 Camera frame(const Points& points, const FramingOptions& options) {
-  check_size(options.width, options.height, "frame");
-  if (points.rows() == 0) throw InvalidInput("frame: no points");
+  check_size(options.width, options.height);
+  if (points.rows() == 0) throw InvalidInput("there are no points to frame in the image");
   if (points.cols() != 2 && points.cols() != 3)
-    throw InvalidInput("frame: points have " + std::to_string(points.cols()) + " columns, expected 2 or 3");
-  if (!points.allFinite()) throw InvalidInput("frame: the points are not all finite");
+    throw InvalidInput("the points to frame have " + std::to_string(points.cols()) +
+                       " coordinates, expected 2 or 3");
+  if (!points.allFinite()) throw InvalidInput("a point to frame in the image is not finite");
   if (!(options.margin >= 0 && options.margin <= 0.45))
-    throw InvalidInput("frame: margin " + std::to_string(options.margin) + " is outside [0, 0.45]");
+    throw InvalidInput("the camera margin " +
+                       (std::isfinite(options.margin) ? number_text(options.margin, 6)
+                                                      : std::string("(not a finite number)")) +
+                       " is outside [0, 0.45]");
   const double W = static_cast<double>(options.width), H = static_cast<double>(options.height);
   const double usable = 1 - 2 * options.margin;
   Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();
@@ -199,7 +208,8 @@ Camera frame(const Points& points, const FramingOptions& options) {
   }
   const Eigen::Vector3d& v = options.view_direction;
   if (!v.allFinite() || !(v.cwiseAbs().maxCoeff() > 0))
-    throw InvalidInput("camera: the view direction " + vector_text(v) + " is not finite and non-zero");
+    throw InvalidInput(v.allFinite() ? "the camera's view direction is zero; give a non-zero direction"
+                                     : "the camera's view direction has a coordinate that is not finite");
   // Scaled first: the norm of a direction of 1e308 overflows, and its normalization gave 0.
   const Eigen::Vector3d direction = (v / v.cwiseAbs().maxCoeff()).normalized();
   double radius = 0;

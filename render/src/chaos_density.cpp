@@ -60,12 +60,12 @@ Tables tables(const automata::Automaton& automaton) {
 }
 
 void check_nets(const automata::Automaton& automaton, std::span<const Points> nets, bool rational) {
-  ifs::check_nets(automaton, nets, "chaos_density");
+  ifs::check_nets(automaton, nets);
   const auto cols = nets[0].cols();
   const auto dim = rational ? cols - 1 : cols;
   if (dim != 2 && dim != 3)
-    throw InvalidInput("chaos_density: nets have " + std::to_string(cols) + " columns, expected " +
-                       (rational ? "3 or 4 (homogeneous)" : "2 or 3"));
+    throw InvalidInput("the control nets have " + std::to_string(cols) + " columns, the chaos game draws " +
+                       (rational ? "3 or 4 (homogeneous)" : "2 or 3") + std::string(" (2-D or 3-D points)"));
 }
 
 constexpr double kMaxChaosWork = 0x1p38;
@@ -102,14 +102,14 @@ struct Local {
 
 void check_input(const automata::Automaton& automaton, std::span<const Points> nets,
                  const ChaosDensityOptions& options) {
-  check_part(options.part, "chaos_density");
+  check_part(options.part);
   ifs::validate(automaton);
   check_nets(automaton, nets, options.rational);
   if (options.depth < 0 || options.depth > 64)
-    throw InvalidInput("chaos_density: depth " + std::to_string(options.depth) + " is outside 0 … 64");
+    throw InvalidInput("the chaos game's depth " + std::to_string(options.depth) + " is outside 0 … 64");
   if (options.rational && options.depth == 0)
-    throw InvalidInput("chaos_density: rational nets need an explicit depth");
-  if (!(options.pixel_tolerance > 0)) throw InvalidInput("chaos_density: pixel_tolerance must be positive");
+    throw InvalidInput("the chaos game of a rational shape needs an explicit depth; give one");
+  if (!(options.pixel_tolerance > 0)) throw InvalidInput("the chaos game's pixel tolerance must be positive");
 }
 
 /// Refuses a game this part cannot count (uint32) or that would take too long, before it starts.
@@ -119,9 +119,10 @@ void check_budget(const automata::Automaton& automaton, const ChaosDensityOption
   // Counts are uint32 per process: more samples are drawn by more processes.
   if (part_samples >= (std::uint64_t{1} << 32))
     throw InvalidInput(part.count == 1
-                           ? std::string("chaos_density: samples must be below 2^32 (uint32 counts)")
-                           : "chaos_density: part " + std::to_string(part.index) + " of " +
-                                 std::to_string(part.count) + " draws " + std::to_string(part_samples) +
+                           ? std::to_string(part_samples) +
+                                 " chaos-game samples are too many: they must be below 2^32 (uint32 counts)"
+                           : "part " + std::to_string(part.index) + " of " + std::to_string(part.count) +
+                                 " draws " + std::to_string(part_samples) +
                                  " samples, at most 2^32 - 1 per part (uint32 counts)");
   // Each sample descends `depth` levels, a `size × size` matrix times the net per level: refuse a
   // game past ~2^38 multiply-adds (minutes) before it starts; 2^32 − 1 samples took hours.
@@ -280,7 +281,7 @@ ChaosDensityResult chaos_density(Image& image, const Camera& camera, const autom
 ChaosDensityResult chaos_density_layer(DensityLayer& layer, Image& image, const Camera& camera,
                                        const automata::Automaton& automaton, std::span<const Points> nets,
                                        const ChaosDensityOptions& options) {
-  const ViewTransform view = detail::prepare(image, camera, "chaos_density");
+  const ViewTransform view = detail::prepare(image, camera);
   check_input(automaton, nets, options);
   const Tables t = tables(automaton);
   ChaosDensityResult result;

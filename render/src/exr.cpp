@@ -23,22 +23,22 @@ constexpr const char* kStateChannel = "state";
 
 void check_image(const Image& image) {
   if (image.width == 0 || image.height == 0)
-    throw InvalidInput("write_exr: the image is empty (" + std::to_string(image.width) + " by " +
+    throw InvalidInput("the EXR image is empty (" + std::to_string(image.width) + " by " +
                        std::to_string(image.height) + ")");
   if (image.width > INT_MAX || image.height > INT_MAX || image.width > INT_MAX / image.height)
-    throw InvalidInput("write_exr: the image is too large for OpenEXR");
-  if (image.channels.empty() && !image.state) throw InvalidInput("write_exr: the image has no channel");
+    throw InvalidInput("the image is too large for OpenEXR; lower the image size");
+  if (image.channels.empty() && !image.state) throw InvalidInput("the EXR image has no channel");
   const std::size_t n = image.width * image.height;
   for (const auto& [name, values] : image.channels) {
-    if (name.empty()) throw InvalidInput("write_exr: a channel has an empty name");
+    if (name.empty()) throw InvalidInput("an EXR channel has an empty name");
     if (name == kStateChannel)
-      throw InvalidInput("write_exr: channels[\"state\"]: the name is reserved for the UINT state channel");
+      throw InvalidInput("the EXR channel name \"state\" is reserved for the UINT state channel");
     if (values.size() != n)
-      throw InvalidInput("write_exr: channels[\"" + name + "\"] holds " + std::to_string(values.size()) +
+      throw InvalidInput("the EXR channel \"" + name + "\" holds " + std::to_string(values.size()) +
                          " values, expected " + std::to_string(n));
   }
   if (image.state && image.state->size() != n)
-    throw InvalidInput("write_exr: state holds " + std::to_string(image.state->size()) +
+    throw InvalidInput("the EXR state channel holds " + std::to_string(image.state->size()) +
                        " values, expected " + std::to_string(n));
 }
 
@@ -54,7 +54,7 @@ void write_exr(AtomicFile& file, const Image& image) {
     // The default header already holds the standard attributes; overwriting one of them with a
     // string would make an invalid file, so those names are refused.
     if (key.empty() || header.find(key) != header.end())
-      throw InvalidInput("write_exr: attributes[\"" + key + "\"]: the name is empty or reserved by OpenEXR");
+      throw InvalidInput("the EXR attribute name \"" + key + "\" is empty or reserved by OpenEXR");
     header.insert(key, Imf::StringAttribute(value));
   }
   Imf::FrameBuffer frame;

@@ -14,8 +14,8 @@
 namespace cifs::render::detail {
 
 /// Validates the camera, initialises an empty image (make_framebuffer) or checks that its size is
-/// the camera's and adds missing R G B A Z and state. `who` prefixes error messages.
-ViewTransform prepare(Image& image, const Camera& camera, const char* who);
+/// the camera's and adds missing R G B A Z and state.
+ViewTransform prepare(Image& image, const Camera& camera);
 
 /// The float channel `name`, created with `fill` when missing.
 std::vector<float>& channel(Image& image, const std::string& name, float fill = 0);

@@ -24,10 +24,10 @@ std::vector<float>* find(Image& image, const char* name) {
 
 }  // namespace
 
-void check_part(const Part& part, const char* who) {
+void check_part(const Part& part) {
   if (part.count == 0 || part.index >= part.count)
-    throw InvalidInput(std::string(who) + ": part " + std::to_string(part.index) + " of " +
-                       std::to_string(part.count) + " (expected 0 ≤ index < count)");
+    throw InvalidInput("part " + std::to_string(part.index) + " of " + std::to_string(part.count) +
+                       " does not exist (expected 0 ≤ index < count)");
 }
 
 DensityLayer empty_density_layer(std::size_t pixels) {
@@ -52,7 +52,7 @@ void combine_shares(std::span<const PixelShare> in, std::span<PixelShare> inout)
 void pack(const Share& share, std::size_t first, std::span<PixelShare> out) {
   const Image& image = share.image;
   const std::size_t W = image.width;
-  if (first + out.size() > W * image.height) throw InvalidInput("pack: pixels beyond the image");
+  if (first + out.size() > W * image.height) throw InvalidInput("the pixels to share run beyond the image");
   std::fill(out.begin(), out.end(), PixelShare{});
   if (share.kind == Share::Kind::points) {
     const DensityLayer& l = share.points;
@@ -79,7 +79,8 @@ void pack(const Share& share, std::size_t first, std::span<PixelShare> out) {
         *A = find(image, "A"), *Z = find(image, "Z");
   const std::vector<float>*Nx = find(image, "N.x"), *Ny = find(image, "N.y"), *Nz = find(image, "N.z");
   const std::vector<float>* density = find(image, "density");
-  if (!R || !G || !B || !A || !Z || !image.state) throw InvalidInput("pack: the image is not a framebuffer");
+  if (!R || !G || !B || !A || !Z || !image.state)
+    throw InvalidInput("the image to share is not a framebuffer (R, G, B, A, Z and state)");
   for (std::size_t k = 0; k < out.size(); ++k) {
     const std::size_t i = first + k;
     if (!owns_row(share.part, i / W)) continue;
@@ -95,7 +96,8 @@ void pack(const Share& share, std::size_t first, std::span<PixelShare> out) {
 
 void unpack(Share& share, std::size_t first, std::span<const PixelShare> in) {
   Image& image = share.image;
-  if (first + in.size() > image.width * image.height) throw InvalidInput("unpack: pixels beyond the image");
+  if (first + in.size() > image.width * image.height)
+    throw InvalidInput("the shared pixels run beyond the image");
   std::vector<float>&R = detail::channel(image, "R"), &G = detail::channel(image, "G"),
   &B = detail::channel(image, "B"), &A = detail::channel(image, "A"), &Z = detail::channel(image, "Z", kInf);
   std::vector<std::uint32_t>& state = *image.state;

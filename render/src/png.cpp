@@ -10,6 +10,7 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/files.hpp"
+#include "cifs/format.hpp"
 #include "cifs/render/png.hpp"
 
 namespace cifs::render {
@@ -22,12 +23,13 @@ png_uint_32 png_format(PixelFormat format) noexcept {
 
 void check_pixels(std::span<const std::uint8_t> pixels, std::size_t width, std::size_t height,
                   PixelFormat format) {
-  if (width == 0 || height == 0) throw InvalidInput("write_png: the image is empty");
+  if (width == 0 || height == 0) throw InvalidInput("the PNG image is empty");
   // libpng's row stride is an int: keep a row (and the whole image) addressable.
-  if (width > INT_MAX / 4 || height > INT_MAX) throw InvalidInput("write_png: the image is too large");
+  if (width > INT_MAX / 4 || height > INT_MAX)
+    throw InvalidInput("the image is too large for PNG; lower the image size");
   const std::size_t stride = width * channel_count(format);
   if (pixels.size() != stride * height)
-    throw InvalidInput("write_png: " + std::to_string(pixels.size()) + " bytes given, expected " +
+    throw InvalidInput("the PNG pixels hold " + std::to_string(pixels.size()) + " bytes, expected " +
                        std::to_string(stride * height) + " (" + std::to_string(width) + " by " +
                        std::to_string(height) + " by " + std::to_string(channel_count(format)) + ")");
 }
@@ -85,9 +87,12 @@ PngImage read_png(const std::filesystem::path& path, PixelFormat format) {
 
 std::vector<std::uint8_t> tone_map_log_density(std::span<const float> density,
                                                const ToneMapOptions& options) {
-  if (options.ramp.empty()) throw InvalidInput("tone_map_log_density: the colour ramp is empty");
+  if (options.ramp.empty()) throw InvalidInput("the colour ramp is empty; give at least one colour");
   if (!(options.gamma > 0) || !std::isfinite(options.gamma))
-    throw InvalidInput("tone_map_log_density: gamma is " + std::to_string(options.gamma) + ", must be > 0");
+    throw InvalidInput("the tone-mapping gamma " +
+                       (std::isfinite(options.gamma) ? number_text(options.gamma, 6) + " is not positive"
+                                                     : std::string("is not a finite number")) +
+                       "; give a positive gamma");
   const auto clean = [](float d) { return std::isfinite(d) && d > 0 ? static_cast<double>(d) : 0.0; };
   double top = options.max_density;
   if (!(top > 0)) {

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "cifs/errors.hpp"
+#include "cifs/format.hpp"
 #include "cifs/random.hpp"
 #include "parallel.hpp"
 
@@ -41,32 +42,33 @@ struct Prepared {
 };
 
 std::string where(std::size_t i) {
-  return "maps[" + std::to_string(i) + "]";
+  return "affine map " + std::to_string(i);
 }
 
-Prepared prepare(std::span<const AffineMap> maps, const char* function) {
-  const std::string fn = function;
-  if (maps.empty()) throw InvalidInput(fn + ": no maps");
-  if (maps.size() > (std::size_t{1} << 31)) throw InvalidInput(fn + ": too many maps");
+Prepared prepare(std::span<const AffineMap> maps) {
+  if (maps.empty()) throw InvalidInput("the IFS has no affine map; give at least one");
+  if (maps.size() > (std::size_t{1} << 31))
+    throw InvalidInput("the IFS has " + std::to_string(maps.size()) + " affine maps, more than 2^31");
   Prepared p;
   double total = 0;
   for (std::size_t i = 0; i < maps.size(); ++i) {
     const AffineMap& m = maps[i];
     for (const double v : {m.a, m.b, m.c, m.d, m.e, m.f, m.probability})
-      if (!std::isfinite(v)) throw InvalidInput(fn + ": " + where(i) + " has a non-finite coefficient");
-    if (m.probability < 0) throw InvalidInput(fn + ": " + where(i) + ".probability is negative");
+      if (!std::isfinite(v)) throw InvalidInput(where(i) + " has a coefficient that is not finite");
+    if (m.probability < 0) throw InvalidInput("the probability of " + where(i) + " is negative");
     // Spectral norm of [[a, b], [c, d]]: σ² = (s + √(s² − 4·det²)) / 2 with s the squared
     // Frobenius norm. A map with σ ≥ 1 may throw the walk out of any bounds.
     const double s = m.a * m.a + m.b * m.b + m.c * m.c + m.d * m.d;
     const double det = m.a * m.d - m.b * m.c;
     const double sigma2 = (s + std::sqrt(std::max(0.0, s * s - 4 * det * det))) / 2;
     if (!(sigma2 < 1))
-      throw InvalidInput(fn + ": " + where(i) + " is not a contraction (spectral norm " +
-                         std::to_string(std::sqrt(sigma2)) + ")");
+      throw InvalidInput(where(i) + " is not a contraction (spectral norm " +
+                         number_text(std::sqrt(sigma2), 6) + "); scale its linear part below 1");
     p.maps.push_back({m.a, m.b, m.c, m.d, m.e, m.f});
     total += m.probability;
   }
-  if (!(total > 0)) throw InvalidInput(fn + ": the probabilities sum to 0");
+  if (!(total > 0))
+    throw InvalidInput("the probabilities of the affine maps sum to 0; give one a positive probability");
   for (const AffineMap& m : maps) p.probability.push_back(m.probability / total);
 
   // Vose's alias method: column i keeps i with probability q_i = n·p_i and gives the rest to a
@@ -102,15 +104,17 @@ Prepared prepare(std::span<const AffineMap> maps, const char* function) {
   return p;
 }
 
-void check_grid(std::size_t width, std::size_t height, const Bounds& b, const char* function) {
-  const std::string fn = function;
-  if (width == 0 || height == 0) throw InvalidInput(fn + ": the image is empty");
+void check_grid(std::size_t width, std::size_t height, const Bounds& b) {
+  if (width == 0 || height == 0)
+    throw InvalidInput("the image size " + std::to_string(width) + " by " + std::to_string(height) +
+                       " is empty");
   if (width > (std::size_t{1} << 16) || height > (std::size_t{1} << 16))
-    throw InvalidInput(fn + ": the image is larger than 65536 pixels on a side");
+    throw InvalidInput("the image size " + std::to_string(width) + " by " + std::to_string(height) +
+                       " is larger than 65536 pixels on a side");
   if (!(std::isfinite(b.x_min) && std::isfinite(b.x_max) && std::isfinite(b.y_min) &&
         std::isfinite(b.y_max)) ||
       !(b.x_max > b.x_min) || !(b.y_max > b.y_min))
-    throw InvalidInput(fn + ": the bounds are empty or not finite");
+    throw InvalidInput("the image bounds are empty or not finite");
 }
 
 /// Pixel addressing shared by the chaos game and the Hutchinson measure, so both bin alike.
@@ -232,10 +236,11 @@ std::uint64_t run_chunk(const Prepared& p, const Grid& grid, std::uint64_t seed,
 }  // namespace
 
 Histogram chaos_game_histogram(std::span<const AffineMap> maps, const ChaosHistogramOptions& options) {
-  const Prepared p = prepare(maps, "chaos_game_histogram");
-  check_grid(options.width, options.height, options.bounds, "chaos_game_histogram");
+  const Prepared p = prepare(maps);
+  check_grid(options.width, options.height, options.bounds);
   if (options.burn_in > kChaosChunk)  // dropped in every chunk
-    throw InvalidInput("chaos_game_histogram: burn_in must be at most kChaosChunk = 2^20");
+    throw InvalidInput("the chaos game's burn-in of " + std::to_string(options.burn_in) +
+                       " points is above 2^20; lower it");
 
   Histogram result;
   result.width = options.width;
@@ -244,7 +249,7 @@ Histogram chaos_game_histogram(std::span<const AffineMap> maps, const ChaosHisto
   result.samples = options.samples;
   const std::size_t pixels = options.width * options.height;
   const Grid grid(options.width, options.height, options.bounds);
-  check_part(options.part, "chaos_game_histogram");
+  check_part(options.part);
   // This part's chunks: part.index, part.index + part.count, …
   const Part part = options.part;
   const PartChunks dealt = part_chunks(part, options.samples, kChaosChunk);
@@ -252,10 +257,11 @@ Histogram chaos_game_histogram(std::span<const AffineMap> maps, const ChaosHisto
   // Counts are uint32: a part draws fewer than 2^32 points (more are drawn by more parts).
   if (part_samples >= (std::uint64_t{1} << 32))
     throw InvalidInput(part.count == 1
-                           ? std::string("chaos_game_histogram: samples must be below 2^32 (uint32 "
-                                         "counts); sum histograms instead")
-                           : "chaos_game_histogram: part " + std::to_string(part.index) + " of " +
-                                 std::to_string(part.count) + " draws " + std::to_string(part_samples) +
+                           ? std::to_string(part_samples) +
+                                 " chaos-game samples are too many for one histogram (below 2^32: uint32 "
+                                 "counts); ask for fewer samples, or sum several histograms"
+                           : "part " + std::to_string(part.index) + " of " + std::to_string(part.count) +
+                                 " draws " + std::to_string(part_samples) +
                                  " points, at most 2^32 - 1 per part (uint32 counts)");
   const unsigned threads = detail::worker_count(options.threads, chunks);
 
@@ -291,9 +297,11 @@ Histogram chaos_game_histogram(std::span<const AffineMap> maps, const ChaosHisto
 }
 
 Bounds estimate_bounds(std::span<const AffineMap> maps, double margin, std::uint64_t points) {
-  const Prepared p = prepare(maps, "estimate_bounds");
-  if (!(margin >= 0) || !std::isfinite(margin)) throw InvalidInput("estimate_bounds: margin must be >= 0");
-  if (points >= (std::uint64_t{1} << 32)) throw InvalidInput("estimate_bounds: points must be below 2^32");
+  const Prepared p = prepare(maps);
+  if (!(margin >= 0) || !std::isfinite(margin))
+    throw InvalidInput("the bounds margin must be a finite number ≥ 0");
+  if (points >= (std::uint64_t{1} << 32))
+    throw InvalidInput("the bounds estimate's " + std::to_string(points) + " points are not below 2^32");
   Random rng(0x5EED, 0);
   double x = p.x0, y = p.y0;
   Bounds b{x, x, y, y};
@@ -322,12 +330,13 @@ Bounds estimate_bounds(std::span<const AffineMap> maps, double margin, std::uint
 
 std::vector<double> hutchinson_measure(std::span<const AffineMap> maps, unsigned depth, std::size_t width,
                                        std::size_t height, const Bounds& bounds) {
-  const Prepared p = prepare(maps, "hutchinson_measure");
-  check_grid(width, height, bounds, "hutchinson_measure");
+  const Prepared p = prepare(maps);
+  check_grid(width, height, bounds);
   const double words = std::pow(static_cast<double>(p.maps.size()), depth);
   if (words > static_cast<double>(std::uint64_t{1} << 28))
-    throw InvalidInput("hutchinson_measure: " + std::to_string(p.maps.size()) + "^" + std::to_string(depth) +
-                       " points is more than 2^28");
+    throw InvalidInput("the measure at depth " + std::to_string(depth) + " needs " +
+                       std::to_string(p.maps.size()) + "^" + std::to_string(depth) +
+                       " points, more than 2^28; lower the depth");
   const Grid grid(width, height, bounds);
   std::vector<double> mass(width * height, 0.0);
   // Depth-first over the words: memory O(depth), and a fixed visiting order, so the sums are

@@ -14,9 +14,9 @@ namespace {
 const std::vector<float>& need(const Image& image, const char* name) {
   const auto it = image.channels.find(name);
   if (it == image.channels.end())
-    throw InvalidInput(std::string("preview: the image has no channel ") + name);
+    throw InvalidInput(std::string("the image to preview has no channel ") + name + " for this preview mode");
   if (it->second.size() != image.width * image.height)
-    throw InvalidInput(std::string("preview: channel ") + name + " has the wrong size");
+    throw InvalidInput(std::string("the image to preview has a channel ") + name + " of the wrong size");
   return it->second;
 }
 
@@ -34,9 +34,9 @@ std::uint8_t linear_to_srgb8(double v) {
 }  // namespace
 
 std::vector<std::uint8_t> preview_rgb8(const Image& image, const PreviewOptions& options) {
-  if (image.width == 0 || image.height == 0) throw InvalidInput("preview: the image is empty");
+  if (image.width == 0 || image.height == 0) throw InvalidInput("the image to preview is empty");
   if (!(options.exposure >= 0) || !std::isfinite(options.exposure))
-    throw InvalidInput("preview: exposure must be finite and >= 0");
+    throw InvalidInput("the preview exposure must be a finite number ≥ 0");
   PreviewMode mode = options.mode;
   if (mode == PreviewMode::automatic) {
     const auto it = image.channels.find("density");

@@ -32,27 +32,28 @@ std::vector<float>& channel(Image& image, const std::string& name, float fill) {
   return it->second;
 }
 
-ViewTransform prepare(Image& image, const Camera& camera, const char* who) {
+ViewTransform prepare(Image& image, const Camera& camera) {
   ViewTransform view = view_transform(camera);
   if (image.width == 0 && image.height == 0 && image.channels.empty()) {
     image = make_framebuffer(camera);
     return view;
   }
   if (image.width != camera.width || image.height != camera.height)
-    throw InvalidInput(std::string(who) + ": the image is " + std::to_string(image.width) + " by " +
+    throw InvalidInput("the image to draw into is " + std::to_string(image.width) + " by " +
                        std::to_string(image.height) + ", the camera " + std::to_string(camera.width) +
                        " by " + std::to_string(camera.height));
   const std::size_t pixels = image.width * image.height;
   for (const auto& [name, values] : image.channels)
     if (values.size() != pixels)
-      throw InvalidInput(std::string(who) + ": channel " + name + " has " + std::to_string(values.size()) +
+      throw InvalidInput("the image's channel " + name + " has " + std::to_string(values.size()) +
                          " values for " + std::to_string(pixels) + " pixels");
   for (const char* name : {"R", "G", "B", "A"}) channel(image, name);
   channel(image, "Z", kInf);
   if (!image.state)
     image.state.emplace(pixels, kNoState);
   else if (image.state->size() != pixels)
-    throw InvalidInput(std::string(who) + ": the state channel has the wrong size");
+    throw InvalidInput("the image's state channel has " + std::to_string(image.state->size()) +
+                       " values for " + std::to_string(pixels) + " pixels");
   return view;
 }
 
@@ -115,11 +116,11 @@ bool clip_segment(const ViewTransform& view, Eigen::Vector3d& a, Eigen::Vector3d
 }  // namespace
 
 void render_segments(Image& image, const Camera& camera, const Segments& segments, const CurveStyle& style) {
-  const ViewTransform view = detail::prepare(image, camera, "render_segments");
-  check_segments(segments, "render_segments");
+  const ViewTransform view = detail::prepare(image, camera);
+  check_segments(segments, "the segments to draw");
   const double w = style.width;
-  if (!(w > 0) || !std::isfinite(w)) throw InvalidInput("render_segments: the width must be positive");
-  check_part(style.part, "render_segments");
+  if (!(w > 0) || !std::isfinite(w)) throw InvalidInput("the line width must be a positive finite number");
+  check_part(style.part);
   const std::size_t W = image.width, H = image.height, pixels = W * H;
   const double reach = w / 2 + 0.5;  // beyond it the coverage is 0
 
@@ -187,8 +188,8 @@ void render_polylines(Image& image, const Camera& camera, std::span<const Points
   Segments all;
   for (std::size_t i = 0; i < polylines.size(); ++i) {
     if (polylines[i].rows() > 0 && polylines[i].cols() != 2 && polylines[i].cols() != 3)
-      throw InvalidInput("render_polylines: polylines[" + std::to_string(i) + "] has " +
-                         std::to_string(polylines[i].cols()) + " columns, expected 2 or 3");
+      throw InvalidInput("polyline " + std::to_string(i) + " has " + std::to_string(polylines[i].cols()) +
+                         " coordinates, expected 2 or 3");
     append(all, polyline_segments(polylines[i], closed, static_cast<std::uint32_t>(i)));
   }
   render_segments(image, camera, all, style);
@@ -340,15 +341,16 @@ struct Shader {
 Eigen::Vector3d checked_light(const SurfaceStyle& style) {
   const int S = style.samples_per_side;
   if (S < 1 || S > 8)
-    throw InvalidInput("render_mesh: samples_per_side = " + std::to_string(S) + " is outside 1 … 8");
-  check_part(style.part, "render_mesh");
+    throw InvalidInput("the samples per pixel side, " + std::to_string(S) + ", are outside 1 … 8");
+  check_part(style.part);
   for (const double k : {style.ambient, style.diffuse, style.specular, style.shininess})
     if (!(k >= 0) || !std::isfinite(k))
-      throw InvalidInput("render_mesh: shading coefficients must be finite and >= 0");
+      throw InvalidInput(
+          "the shading coefficients (ambient, diffuse, specular, shininess) must be finite numbers ≥ 0");
   Eigen::Vector3d light = Eigen::Vector3d::UnitZ();
   if (!style.headlight) {
     if (!style.light_direction.allFinite() || !(style.light_direction.norm() > 0))
-      throw InvalidInput("render_mesh: light_direction must be finite and non-zero");
+      throw InvalidInput("the light direction must be finite and non-zero");
     light = style.light_direction.normalized();
   }
   return light;
@@ -587,8 +589,8 @@ void resolve_tile(const TileContext& c, const TileRect& r, const Samples& sample
 }  // namespace
 
 void render_mesh(Image& image, const Camera& camera, const Mesh& mesh, const SurfaceStyle& style) {
-  const ViewTransform view = detail::prepare(image, camera, "render_mesh");
-  check_mesh(mesh, "render_mesh");
+  const ViewTransform view = detail::prepare(image, camera);
+  check_mesh(mesh, "the mesh to draw");
   const Eigen::Vector3d light = checked_light(style);
   const Scene scene = build_scene(mesh, view);
   const Shader shader{scene, view, style, !style.state_colors.empty() && !mesh.states.empty(), light};
@@ -623,15 +625,15 @@ void render_mesh(Image& image, const Camera& camera, const Mesh& mesh, const Sur
 
 void render_points(Image& image, const Camera& camera, const Points& points,
                    std::span<const std::uint32_t> states, const PointStyle& style) {
-  const ViewTransform view = detail::prepare(image, camera, "render_points");
+  const ViewTransform view = detail::prepare(image, camera);
   if (points.rows() > 0 && points.cols() != 2 && points.cols() != 3)
-    throw InvalidInput("render_points: points have " + std::to_string(points.cols()) +
-                       " columns, expected 2 or 3");
-  if (!points.allFinite()) throw InvalidInput("render_points: the points are not all finite");
+    throw InvalidInput("the points to draw have " + std::to_string(points.cols()) +
+                       " coordinates, expected 2 or 3");
+  if (!points.allFinite()) throw InvalidInput("a point to draw is not finite");
   if (!states.empty() && states.size() != static_cast<std::size_t>(points.rows()))
-    throw InvalidInput("render_points: " + std::to_string(states.size()) + " states for " +
-                       std::to_string(points.rows()) + " points");
-  if (!std::isfinite(style.weight)) throw InvalidInput("render_points: the weight must be finite");
+    throw InvalidInput(std::to_string(states.size()) + " states given for " + std::to_string(points.rows()) +
+                       " points");
+  if (!std::isfinite(style.weight)) throw InvalidInput("the point weight must be a finite number");
   const std::size_t W = image.width, H = image.height;
   const std::vector<float>& Z = image.channels["Z"];
   detail::PointLayer layer{std::vector<double>(W * H, 0), std::vector<float>(W * H, kInf),

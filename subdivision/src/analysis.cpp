@@ -186,16 +186,18 @@ Polynomial difference_mask(const Polynomial& a, int k) {
   Polynomial d = a;
   for (int i = 0; i <= k; ++i)
     if (!detail::divide_by_one_plus_z(d))
-      throw InvalidInput("difference_mask: (1+z)^" + std::to_string(k + 1) + " does not divide the symbol");
+      throw InvalidInput("(1+z)^" + std::to_string(k + 1) + " does not divide the symbol");
   for (int i = 0; i < k; ++i) d = detail::scale(d, 2);
   return d;
 }
 
 Rational power_norm(const Polynomial& c, int L, std::size_t max_coefficients) {
-  if (L < 1) throw InvalidInput("power_norm: L = " + std::to_string(L) + " is below 1");
+  if (L < 1) throw InvalidInput("the power L = " + std::to_string(L) + " is below 1");
   if (c.empty()) return 0;
   if (L > 40 || power_length(c.size(), L) > max_coefficients)
-    throw InvalidInput("power_norm: the " + std::to_string(L) + "-th power has too many coefficients");
+    throw InvalidInput(
+        "the " + std::to_string(L) +
+        "-th power of the difference symbol has too many coefficients; lower the maximum power");
   cpp_int D = 1;
   for (const Rational& x : c) D = boost::multiprecision::lcm(D, denominator(x));
   std::vector<cpp_int> ci;

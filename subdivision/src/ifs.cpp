@@ -11,8 +11,9 @@ namespace cifs::subdivision {
 
 Eigen::MatrixXd ifs_matrix(std::span<const double> mask, int epsilon) {
   const int N = static_cast<int>(mask.size()) - 1;
-  if (N < 1) throw InvalidInput("ifs_matrix: a mask needs at least 2 coefficients");
-  if (epsilon != 0 && epsilon != 1) throw InvalidInput("ifs_matrix: epsilon is 0 or 1");
+  if (N < 1) throw InvalidInput("a subdivision mask needs at least 2 coefficients");
+  if (epsilon != 0 && epsilon != 1)
+    throw InvalidInput("the IFS matrix index epsilon " + std::to_string(epsilon) + " is neither 0 nor 1");
   Eigen::MatrixXd S = Eigen::MatrixXd::Zero(N, N);
   for (int s = 0; s < N; ++s)
     for (int r = 0; r < N; ++r) {
@@ -29,11 +30,11 @@ std::array<Eigen::MatrixXd, 2> ifs_matrices(const Scheme& scheme) {
 std::array<Eigen::MatrixXd, 2> padded_ifs_matrices(const Scheme& scheme, int window) {
   const int N = mask_degree(scheme);
   if (window < N)
-    throw InvalidInput("padded_ifs_matrices: a window of " + std::to_string(window) +
-                       " points is narrower than the " + std::to_string(N) + " of the scheme");
+    throw InvalidInput("a window of " + std::to_string(window) + " points is narrower than the " +
+                       std::to_string(N) + " of the scheme");
   if (window >= kMaxMaskSize)
-    throw InvalidInput("padded_ifs_matrices: a window of " + std::to_string(window) +
-                       " points is wider than " + std::to_string(kMaxMaskSize - 1));
+    throw InvalidInput("a window of " + std::to_string(window) + " points is wider than " +
+                       std::to_string(kMaxMaskSize - 1));
   std::vector<double> mask(static_cast<std::size_t>(window) + 1, 0.0);
   std::copy(scheme.weights.begin(), scheme.weights.end(), mask.begin() + (window - N) / 2);
   return {ifs_matrix(mask, 0), ifs_matrix(mask, 1)};
@@ -45,7 +46,7 @@ ifs::Bcifs scheme_bcifs(const Scheme& scheme, int window, const ifs::UniformCurv
 }
 
 automata::Automaton scheme_automaton(const Scheme& scheme, int segments) {
-  if (segments < 0) throw InvalidInput("scheme_automaton: segments is negative");
+  if (segments < 0) throw InvalidInput("the number of segments " + std::to_string(segments) + " is negative");
   automata::Automaton a;
   automata::State state;
   state.size = mask_degree(scheme);
@@ -61,7 +62,7 @@ automata::Automaton scheme_automaton(const Scheme& scheme, int segments) {
 
 std::vector<Points> closed_windows(const Scheme& scheme, const Points& P) {
   const Eigen::Index n = P.rows(), N = mask_degree(scheme);
-  if (n < 1) throw InvalidInput("closed_windows: the polygon has no point");
+  if (n < 1) throw InvalidInput("the closed polygon has no point");
   std::vector<Points> nets;
   nets.reserve(static_cast<std::size_t>(n));
   for (Eigen::Index k = 0; k < n; ++k) {

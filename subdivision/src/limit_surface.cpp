@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "cifs/errors.hpp"
+#include "cifs/format.hpp"
 #include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/bcifs_surface.hpp"
 #include "cifs/nurbs/surface.hpp"
@@ -338,7 +339,9 @@ void check_face_points(MeshScheme scheme, int F, std::span<const FacePoint> at) 
     const std::string where = std::string(scheme_name(scheme)) + " limit: point " + std::to_string(p) +
                               " (face " + std::to_string(q.face) + ")";
     if (no_face) throw InvalidInput(where + ": no such face; the mesh has " + std::to_string(F));
-    throw InvalidInput(where + ": (u, v) = (" + std::to_string(q.u) + ", " + std::to_string(q.v) +
+    if (!std::isfinite(q.u) || !std::isfinite(q.v))
+      throw InvalidInput(where + ": (u, v) is not a pair of finite numbers");
+    throw InvalidInput(where + ": (u, v) = (" + number_text(q.u, 6) + ", " + number_text(q.v, 6) +
                        ") is outside " + (quad ? "[0, 1]²" : "the triangle u, v ≥ 0, u + v ≤ 1"));
   }
 }

@@ -852,7 +852,7 @@ Stencils stencil_table(const MeshRefinement& refinement) {
 
 Points apply(const MeshRefinement& refinement, const Points& vertices) {
   if (vertices.rows() != refinement.levels.front().vertex_count)
-    throw InvalidInput("apply: " + std::to_string(vertices.rows()) + " vertex rows for a mesh of " +
+    throw InvalidInput(std::to_string(vertices.rows()) + " vertex rows given for a refinement of a mesh of " +
                        std::to_string(refinement.levels.front().vertex_count) + " vertices");
   Points P = vertices;
   for (const Stencils& s : refinement.steps) P = apply(s, P);

@@ -190,8 +190,9 @@ void run_kernel(const double* P, double* out, Index dim, Index begin, Index end,
 
 void check_size(Index rows, const RefineOptions& options) {
   if (rows < 0 || static_cast<std::size_t>(rows) > options.max_points)
-    throw InvalidInput("refine: the result would have " + std::to_string(rows) +
-                       " points, beyond the limit of " + std::to_string(options.max_points));
+    throw InvalidInput("the refined polygon would have " + std::to_string(rows) +
+                       " points, beyond the limit of " + std::to_string(options.max_points) +
+                       "; refine fewer steps");
 }
 
 /// Point-reflection extension of an open polygon (n ≥ 2) at any index j.
@@ -205,12 +206,13 @@ Point extended(const Points& P, Index j) {
 
 Points refine_open(const Scheme& scheme, const Points& P, const RefineOptions& options) {
   const Index n = P.rows(), dim = P.cols();
-  if (n < 2) throw InvalidInput("refine: an open polygon needs at least 2 points, got " + std::to_string(n));
+  if (n < 2)
+    throw InvalidInput("an open polygon needs at least 2 points to refine, got " + std::to_string(n));
   const bool symmetric = is_symmetric(scheme);
   Ends ends = options.ends;
   if (ends == Ends::automatic) ends = symmetric ? Ends::reflect : Ends::keep;
   if (ends == Ends::reflect && !symmetric)
-    throw InvalidInput("refine: the reflect end rule needs a symmetric mask (" + scheme.name +
+    throw InvalidInput("the reflect end rule needs a symmetric mask (" + scheme.name +
                        " is not); use the keep rule");
   const auto t = taps(scheme);
   const Index low = std::min(t[0].low, t[1].low), high = std::max(t[0].high, t[1].high);
@@ -294,8 +296,8 @@ void refine_closed(const Scheme& scheme, const Points& P, Points& out) {
 }
 
 Points refine(const Scheme& scheme, const Points& P, bool closed, const RefineOptions& options) {
-  if (P.rows() == 0) throw InvalidInput("refine: the polygon has no point");
-  if (!P.allFinite()) throw InvalidInput("refine: the polygon has a coordinate that is not finite");
+  if (P.rows() == 0) throw InvalidInput("the polygon has no point to refine");
+  if (!P.allFinite()) throw InvalidInput("the polygon has a coordinate that is not finite");
   if (!closed) return refine_open(scheme, P, options);
   check_size(2 * P.rows(), options);
   Points out;
@@ -304,15 +306,17 @@ Points refine(const Scheme& scheme, const Points& P, bool closed, const RefineOp
 }
 
 Points refine(const Scheme& scheme, const Points& P, bool closed, int steps, const RefineOptions& options) {
-  if (steps < 0) throw InvalidInput("refine: steps = " + std::to_string(steps) + " is negative");
-  if (P.rows() == 0) throw InvalidInput("refine: the polygon has no point");
+  if (steps < 0)
+    throw InvalidInput("the number of refinement steps " + std::to_string(steps) + " is negative");
+  if (P.rows() == 0) throw InvalidInput("the polygon has no point to refine");
   // Size check before any work: each step at most doubles the count (plus 2 for open ends).
   long double rows = static_cast<long double>(P.rows());
   for (int s = 0; s < steps; ++s) {
     rows = 2 * rows + 2;
     if (rows > static_cast<long double>(options.max_points))
-      throw InvalidInput("refine: " + std::to_string(steps) + " steps of " + std::to_string(P.rows()) +
-                         " points exceed the limit of " + std::to_string(options.max_points) + " points");
+      throw InvalidInput(std::to_string(steps) + " refinement steps of " + std::to_string(P.rows()) +
+                         " points exceed the limit of " + std::to_string(options.max_points) +
+                         " points; refine fewer steps");
   }
   Points current = P;
   for (int s = 0; s < steps; ++s) current = refine(scheme, current, closed, options);

@@ -315,7 +315,7 @@ TEST_CASE("cifs automaton, attractor and check", "[cli]") {
   CHECK(stext.status == 0);
   CHECK_THAT(stext.out, Catch::Contains("1 patches") && Catch::Contains("PASS"));
   CHECK(cifs_cli("check " + surface + " --depth 3 --relative-tolerance 1e-30").status == 1);
-  check_error(cifs_cli("check " + surface + " --depth 14"), "lower --depth");
+  check_error(cifs_cli("check " + surface + " --depth 14"), "lower the depth");
   // A surface's automaton is its tensor product: one patch, four children per state.
   const json sa = json::parse(cifs_cli("automaton " + file("s.json", kSurface)).out);
   CHECK(sa["initial"].size() == 1);
@@ -436,7 +436,7 @@ TEST_CASE("cifs render refuses junctions that cannot be joined, one line each", 
       // A NURBS patch and a uniform scheme's: the boundaries do not subdivide alike.
       {experiment("junction_structure.json", nurbs,
                   R"({"scheme": "b-spline", "boundary": "ustart", "points": )" + grid + "}"),
-       "junction: join: B's cell"},
+       "junction: B's cell"},
       {experiment("junction_points.json", nurbs,
                   R"({"shape": ")" CIFS_EXAMPLES_DIR
                   R"(/shapes/junction_nurbs.json", "boundary": "ustart"})"),

@@ -239,7 +239,7 @@ TEST_CASE("cifs: messages at the edges name what the user gave", "[cli][reliabil
       "camera.eye: the eye is farther from the target than a double holds");
   check_error(cifs_cli("render " + camera("parallel_up", "[1, 1, 1]", "[0, 0, 0]", "[2, 2, 2]") +
                        " --out-dir " + scratch().string()),
-              "camera: up (2, 2, 2) is parallel to the viewing direction");
+              "the camera's up (2, 2, 2) is parallel to the viewing direction");
   // "eigenvalues: the QR iteration did not converge".
   check_error(cifs_cli("scheme corner-cutting --param a=1e300 --analyze"),
               "--analyze of corner-cutting with --param a=1e300: ");

@@ -48,7 +48,7 @@ TEST_CASE("Segments: polylines, appending, checks", "[core][mesh]") {
   CHECK(all.segments == std::vector<std::array<int, 2>>{{0, 1}, {1, 2}, {5, 3}});
   CHECK(all.states == std::vector<std::uint32_t>{4, 4, 0});
   CHECK_THROWS_WITH(append(all, polyline_segments(Points::Zero(2, 3))),
-                    "append: segments with 2 and 3 coordinates");
+                    "segments with 2 and with 3 coordinates cannot be drawn together");
   bare.segments = {{0, 3}};
   CHECK_THROWS_WITH(check_segments(bare, "w"), "w: segments[0][1] = 3 is out of range (3 vertices)");
 }

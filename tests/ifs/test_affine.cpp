@@ -125,6 +125,6 @@ TEST_CASE("named affine IFS: one registry for the experiment files, the runner a
   const auto koch = named_ifs("koch");
   REQUIRE(koch.size() == 4);
   CHECK(std::hypot(koch[1].a, koch[1].c) == Approx(1.0 / 3).epsilon(1e-15));
-  CHECK_THROWS_WITH(named_ifs("Fern"), "named_ifs: unknown IFS \"Fern\" (fern, sierpinski, koch)");
+  CHECK_THROWS_WITH(named_ifs("Fern"), "unknown IFS \"Fern\"; give one of fern, sierpinski, koch");
   CHECK_THROWS_AS(named_ifs(""), InvalidInput);
 }

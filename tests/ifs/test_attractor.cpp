@@ -89,7 +89,7 @@ TEST_CASE("for_each_leaf visits the depth-K nodes in order, one net per level", 
     CHECK((net - leaf.net).cwiseAbs().maxCoeff() <= 1e-15);
   });
   CHECK_THROWS_WITH(for_each_leaf(a, std::span<const Points>(nets.data(), 1), 2, [](const Leaf&) {}),
-                    Catch::Contains("1 nets given for 2 initial entries"));
+                    "1 control nets given for the automaton's 2 initial entries (one net per entry)");
   CHECK_THROWS_AS(for_each_leaf(a, nets, -1, [](const Leaf&) {}), InvalidInput);
 }
 

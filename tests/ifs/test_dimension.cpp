@@ -326,7 +326,7 @@ TEST_CASE("tolerance sample: Sierpinski and Koch within 0.01, a smooth curve 1",
     // robustness test under ASan, through the automatic tolerance before any other check).
     so.epsilon = 0;
     CHECK_THROWS_WITH(ifs::nets_diameter(std::vector<Points>{Points::Zero(4, 2), Points::Zero(3, 3)}),
-                      Contains("nets[1] has 3 columns, nets[0] has 2"));
+                      Contains("control net 1 has 3 columns, control net 0 has 2"));
   }
 }
 

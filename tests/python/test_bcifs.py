@@ -89,7 +89,7 @@ class TreeFileTest(ScratchTestCase):
         self.assertNotIn("initial\": [{\"net\"", cifs.io.to_json(self.system))
         with self.assertRaises(cifs.InvalidInput) as e:
             cifs.io.to_json(self.system, self.file.nets * 2)
-        self.assertEqual(str(e.exception), "to_json: 2 nets for 1 initial entries")
+        self.assertEqual(str(e.exception), "the BC-IFS has 1 initial entries but 2 control nets are given")
 
     def test_residuals_and_admissibility(self):
         residuals = ifs.constraint_residuals(self.system)
@@ -191,11 +191,12 @@ class TreeFileTest(ScratchTestCase):
 
     def test_perturb_bad_input(self):
         checks = [
-            (dict(amplitude=-1.0), "perturb: amplitude -1 is not a finite value ≥ 0"),
-            (dict(values={"E/G[0,0]": 1.0}), 'perturb: values: "E/G[0,0]" is a dependent coefficient (solved from '
-                                             'the constraints); the free coefficients are listed by free_names'),
-            (dict(values={"E/X[0,0]": 1.0}), 'perturb: values: "E/X[0,0]" is not an entry of a free matrix; the '
-                                             'free coefficients are listed by free_names'),
+            (dict(amplitude=-1.0), "the perturbation amplitude -1 is negative; give a finite amplitude ≥ 0"),
+            (dict(values={"E/G[0,0]": 1.0}), 'the perturbation value "E/G[0,0]" is a dependent coefficient (solved from the constraints); the '
+                                             'free coefficients are E/G[1,1], E/G[1,2], E/G[2,1], E/G[2,2], E/D[1,1], '
+                                             'E/D[1,2], … (10 in all)'),
+            (dict(values={"E/X[0,0]": 1.0}), 'the perturbation value "E/X[0,0]" is not an entry of a free matrix; the free coefficients are '
+                                             'E/G[1,1], E/G[1,2], E/G[2,1], E/G[2,2], E/D[1,1], E/D[1,2], … (10 in all)'),
             (dict(max_length=0), "perturb: max_length is 0, must be in [1, 16]"),
         ]
         for kwargs, message in checks:
@@ -205,7 +206,7 @@ class TreeFileTest(ScratchTestCase):
                 self.assertEqual(str(e.exception), message)
         with self.assertRaises(cifs.InvalidInput) as e:
             ifs.perturb(self.system, amplitude=5.0, seed=1)
-        self.assertIn("perturb: the system is non-contractive with amplitude 5, seed 1: not contractive",
+        self.assertIn("the perturbed system is not contractive with amplitude 5, seed 1: not contractive",
                       str(e.exception))
         with self.assertRaises(TypeError):
             ifs.perturb(self.system, 0.1)  # keyword-only
@@ -274,13 +275,13 @@ class TreeFileTest(ScratchTestCase):
         self.assertEqual(repr(one), "EdgePieces(count=3)")
         self.assertEqual(repr(ifs.perturb(self.system)), "Perturbation(values=10, residual=0.0)")
         checks = [
-            (lambda: ifs.edge_pieces(self.system, [], 1), "for_each_leaf: 0 nets given for 1 initial entries (one net "
-                                                          "per entry)"),
+            (lambda: ifs.edge_pieces(self.system, [], 1), "0 control nets given for the automaton's 1 initial "
+                                                          "entries (one net per entry)"),
             (lambda: ifs.edge_pieces(self.system, [net[:1]], 1),
-             "for_each_leaf: nets[0] has 1 rows but its initial state 0 (E) holds 3 points"),
+             "control net 0 has 1 points but its initial state 0 (E) holds 3"),
             (lambda: ifs.edge_pieces(self.system, self.file.nets, -1), "for_each_leaf: depth is -1, must be ≥ 0"),
             (lambda: ifs.edge_pieces(self.system, self.file.nets, 30),
-             "edge_pieces: 205891132094649 pieces at depth 30 need 3.95e+07 GB, above the limit of 1.07 GB; "
+             "205891132094649 edge pieces at depth 30 need 3.95e+07 GB, above the limit of 1.07 GB; "
              "lower the depth"),
         ]
         for call, message in checks:

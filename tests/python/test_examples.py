@@ -82,8 +82,8 @@ class SweepTest(ScratchTestCase):
         # rule 1/8, 6/8, 1/8), swept over ±0.8: the ends are not contractive, and the mirror values
         # 1/8 ± t give mirror-image curves, hence equal dimensions up to the grid.
         self.assertAlmostEqual(values[2], 0.125, delta=1e-15)
-        self.assertIn("perturb: the system is non-contractive with v2/V[1,2] = -0.675", rows[0]["note"])
-        self.assertIn("non-contractive", rows[-1]["note"])
+        self.assertIn("the perturbed system is not contractive with v2/V[1,2] = -0.675", rows[0]["note"])
+        self.assertIn("the perturbed system is not contractive", rows[-1]["note"])
         dims = [float(r["dimension"]) for r in rows[1:4]]
         self.assertAlmostEqual(dims[1], 1.0, delta=0.03)  # the smooth NURBS curve
         self.assertGreater(dims[0], dims[1] + 0.03)  # rougher away from it

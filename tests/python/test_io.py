@@ -202,7 +202,7 @@ class GeometryTest(ScratchTestCase):
             (lambda: io.Segments(v, [[0, 3]]), "Segments: segments[0][1] = 3 is out of range (3 vertices)"),
             (lambda: io.polyline_obj(np.zeros((2, 4))), None),
             (lambda: io.segments_svg(io.Segments(v, [[0, 1]]), width=2),
-             "segments_svg: width 2 is outside [16, 100000]"),
+             "the SVG width 2 is outside [16, 100000]"),
         ]
         for call, message in cases:
             with self.subTest(message=message), self.assertRaises(cifs.InvalidInput) as caught:
@@ -488,7 +488,7 @@ class ExperimentTest(ScratchTestCase):
         self.assertEqual(str(caught.exception), cli_error("render", svg, "--out-dir", self.scratch / "out"))
         self.assertFalse((self.scratch / "out" / "s.svg").exists())
         koch = io.read_experiment(EXPERIMENTS / "koch.json")
-        for call, message in ((lambda: experiment.evaluate(koch, -1), "depth: -1 is negative"),
+        for call, message in ((lambda: experiment.evaluate(koch, -1), "the depth -1 is negative; give a depth ≥ 0"),
                               (lambda: experiment.run(koch, threads=-2), "threads: -2 is negative"),
                               (lambda: experiment.run(koch, max_bytes=-1), "max_bytes: -1 is negative")):
             with self.subTest(message=message), self.assertRaises(cifs.InvalidInput) as caught:

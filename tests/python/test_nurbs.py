@@ -255,9 +255,9 @@ class CurveTest(ScratchTestCase):
             (lambda: nurbs.evaluate(shape("cubic"), 5.0), "parameter 5 is outside the domain [0, 4]"),
             (lambda: nurbs.evaluate(shape("cubic"), [1.0, -1.0]), "parameter -1 is outside the domain [0, 4]"),
             (lambda: nurbs.derivatives(shape("cubic"), 1.0, -2), "derivative order -2 is outside 0 … 64"),
-            (lambda: nurbs.blossom(shape("cubic"), [1, 2]), "blossom: 2 arguments given, degree 3 takes 3"),
+            (lambda: nurbs.blossom(shape("cubic"), [1, 2]), "the blossom of a degree-3 curve takes 3 arguments, 2 given"),
             (lambda: nurbs.insert_knot(shape("cubic"), 9.0), "knot 9 is outside the domain [0, 4]"),
-            (lambda: nurbs.insert_knot(shape("cubic"), 1.0, 0), "insert: times = 0 must be at least 1"),
+            (lambda: nurbs.insert_knot(shape("cubic"), 1.0, 0), "the knot count times = 0 must be at least 1"),
             (lambda: nurbs.remove_knot(shape("closed_cubic"), 1.0, 1, 0.0),
              "remove: knot removal on closed curves is not supported"),
             (lambda: nurbs.uniform_bspline(np.zeros((2, 2)), 3, False),
@@ -392,7 +392,7 @@ class SurfaceTest(unittest.TestCase):
             (lambda: nurbs.evaluate(self.grid, 1.5, 0.0), "parameter u = 1.5 is outside the domain [0, 1]"),
             (lambda: nurbs.evaluate_grid(self.grid, [0.0], [3.0]), "parameter v = 3 is outside the domain [0, 2]"),
             (lambda: nurbs.normal(nurbs.Surface((1, 1), ([0, 0, 1, 1], [0, 0, 1, 1]), np.zeros((2, 2, 2))), 0.5, 0.5),
-             "normal: the surface is 2-D, normals need 3-D"),
+             "the surface is 2-D; a normal needs a 3-D surface"),
         ]
         for call, message in cases:
             with self.subTest(message=message), self.assertRaises(cifs.InvalidInput) as caught:

@@ -124,12 +124,12 @@ class CameraTest(unittest.TestCase):
                 R.Camera(**kwargs)
             self.assertEqual(str(e.exception), message)
         for camera, message in [
-            (R.Camera(width=0), "camera: the image size 0 by 512 is empty"),
-            (R.Camera(eye=(0, 0, 0)), "camera: eye and target coincide"),
-            (R.Camera(up=(0, 0, 2)), "camera: up (0, 0, 2) is parallel to the viewing direction from eye to target; give an up vector across it"),
-            (R.Camera(ortho_height=0), "camera: ortho_height must be positive and finite"),
+            (R.Camera(width=0), "the image size 0 by 512 is empty"),
+            (R.Camera(eye=(0, 0, 0)), "the camera's eye and target coincide; move the eye away from the target"),
+            (R.Camera(up=(0, 0, 2)), "the camera's up (0, 0, 2) is parallel to the viewing direction from eye to target; give an up vector across it"),
+            (R.Camera(ortho_height=0), "the camera's orthographic height must be a positive finite number"),
             (R.Camera(projection=R.Projection.perspective, fov_y=180),
-             "camera: fov_y = 180.000000 degrees is outside (0, 180)"),
+             "the camera's field of view 180 degrees is outside (0, 180)"),
         ]:
             with self.assertRaises(cifs.InvalidInput) as e:
                 R.view_transform(camera)
@@ -138,18 +138,18 @@ class CameraTest(unittest.TestCase):
             R.project(R.Camera(), (1, 2, 3, 4))
         self.assertEqual(str(e.exception), "project: point: expected 3 numbers, got shape (4,)")
         for points, message in [
-            (np.zeros((0, 2)), "frame: no points"),
-            (np.zeros((3, 4)), "frame: points have 4 columns, expected 2 or 3"),
+            (np.zeros((0, 2)), "there are no points to frame in the image"),
+            (np.zeros((3, 4)), "the points to frame have 4 coordinates, expected 2 or 3"),
             (np.zeros(3), "frame: points: expected a 2-D array (n, dim), got shape (3,)"),
             ([["a", "b"]], "frame: points: expected an array of numbers, got dtype <U1"),
-            (np.array([[0, 0], [1, np.nan]]), "frame: the points are not all finite"),
+            (np.array([[0, 0], [1, np.nan]]), "a point to frame in the image is not finite"),
         ]:
             with self.assertRaises(cifs.InvalidInput) as e:
                 R.frame(points)
             self.assertEqual(str(e.exception), message)
         with self.assertRaises(cifs.InvalidInput) as e:
             R.frame(np.eye(2), margin=0.5)
-        self.assertEqual(str(e.exception), "frame: margin 0.500000 is outside [0, 0.45]")
+        self.assertEqual(str(e.exception), "the camera margin 0.5 is outside [0, 0.45]")
 
 
 class ImageTest(ScratchTestCase):
@@ -230,8 +230,8 @@ class ImageTest(ScratchTestCase):
 
     def test_exr_errors(self):
         for image, message in [
-            (R.Image(), "write_exr: the image is empty (0 by 0)"),
-            (R.Image(2, 2), "write_exr: the image has no channel"),
+            (R.Image(), "the EXR image is empty (0 by 0)"),
+            (R.Image(2, 2), "the EXR image has no channel"),
         ]:
             with self.assertRaises(cifs.InvalidInput) as e:
                 R.write_exr(self.scratch / "x.exr", image)
@@ -241,7 +241,7 @@ class ImageTest(ScratchTestCase):
         with self.assertRaises(cifs.InvalidInput) as e:
             R.write_exr(self.scratch / "x.exr", image)
         self.assertEqual(str(e.exception),
-                         'write_exr: attributes["channels"]: the name is empty or reserved by OpenEXR')
+                         'the EXR attribute name "channels" is empty or reserved by OpenEXR')
         missing = self.scratch / "missing.exr"
         with self.assertRaises(cifs.IoError) as e:
             R.read_exr(missing)
@@ -288,7 +288,7 @@ class PngTest(ScratchTestCase):
             (np.zeros((2, 2), dtype=np.uint8), "write_png: pixels must have shape (height, width, 3|4), got (2, 2)"),
             (np.zeros((2, 2, 2), dtype=np.uint8),
              "write_png: pixels must have shape (height, width, 3|4), got (2, 2, 2)"),
-            (np.zeros((0, 2, 3), dtype=np.uint8), "write_png: the image is empty"),
+            (np.zeros((0, 2, 3), dtype=np.uint8), "the PNG image is empty"),
         ]:
             with self.assertRaises(cifs.InvalidInput) as e:
                 R.write_png(self.scratch / "x.png", pixels)
@@ -328,8 +328,8 @@ class PngTest(ScratchTestCase):
 
     def test_tone_map_errors(self):
         for kwargs, message in [
-            (dict(gamma=0), "tone_map_log_density: gamma is 0.000000, must be > 0"),
-            (dict(ramp=np.zeros((0, 3), dtype=int)), "tone_map_log_density: the colour ramp is empty"),
+            (dict(gamma=0), "the tone-mapping gamma 0 is not positive; give a positive gamma"),
+            (dict(ramp=np.zeros((0, 3), dtype=int)), "the colour ramp is empty; give at least one colour"),
             (dict(ramp=[(0, 0, 256)]), "tone_map_log_density: ramp[0][2] = 256 is outside 0 … 255"),
             (dict(ramp=[(0, 0)]),
              "tone_map_log_density: ramp: expected an integer array of shape (k, 3), got shape (1, 2)"),
@@ -358,11 +358,11 @@ class PngTest(ScratchTestCase):
                                        R.tone_map_log_density(density, gamma=2)))
         image.remove_channel("density")
         for call, message in [
-            (lambda: R.preview_rgb8(image, mode=R.PreviewMode.density), "preview: the image has no channel density"),
-            (lambda: R.preview_rgb8(image, exposure=-1), "preview: exposure must be finite and >= 0"),
+            (lambda: R.preview_rgb8(image, mode=R.PreviewMode.density), "the image to preview has no channel density for this preview mode"),
+            (lambda: R.preview_rgb8(image, exposure=-1), "the preview exposure must be a finite number ≥ 0"),
             (lambda: R.preview_rgb8(image, background=(0, 0)),
              "preview_rgb8: background: expected 3 integers, got shape (2,)"),
-            (lambda: R.preview_rgb8(R.Image()), "preview: the image is empty"),
+            (lambda: R.preview_rgb8(R.Image()), "the image to preview is empty"),
         ]:
             with self.assertRaises(cifs.InvalidInput) as e:
                 call()
@@ -506,15 +506,15 @@ class RasterTest(unittest.TestCase):
         square = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], dtype=float)
         cases = [
             (lambda: R.render_segments(R.Image(), camera, square, [[0, 4]]),
-             "render_segments: segments[0][1] = 4 is out of range (4 vertices)"),
+             "the segments to draw: segments[0][1] = 4 is out of range (4 vertices)"),
             (lambda: R.render_segments(R.Image(), camera, square, [[0, 1]], width=0),
-             "render_segments: the width must be positive"),
+             "the line width must be a positive finite number"),
             (lambda: R.render_segments(R.Image(), camera, square, [[0.0, 1.0]]),
              "render_segments: segments: expected an array of integers, got dtype float64"),
             (lambda: R.render_segments(R.Image(), camera, square, [[0, 1, 2]]),
              "render_segments: segments: expected an integer array of shape (n, 2), got shape (1, 3)"),
             (lambda: R.render_segments(R.Image(), camera, square, [[0, 1]], states=[1, 2]),
-             "render_segments: 2 states for 1 segments"),
+             "the segments to draw: 2 states for 1 segments"),
             (lambda: R.render_segments(R.Image(), camera, square, [[0, 1]], color=(1, 2)),
              "render_segments: color: expected 3 numbers, got shape (2,)"),
             (lambda: R.render_segments(R.Image(), camera, square, [[0, 1]], states=[-1]),
@@ -526,17 +526,17 @@ class RasterTest(unittest.TestCase):
             (lambda: R.render_mesh(R.Image(), camera, square[:, :2], quads=[[0, 1, 2, 3]]),
              "render_mesh: mesh vertices have 2 columns, expected 3"),
             (lambda: R.render_mesh(R.Image(), camera, square, quads=[[0, 1, 2, 3]], samples_per_side=9),
-             "render_mesh: samples_per_side = 9 is outside 1 … 8"),
+             "the samples per pixel side, 9, are outside 1 … 8"),
             (lambda: R.render_mesh(R.Image(), camera, square, quads=[[0, 1, 2, 3]], normals=np.ones((3, 3))),
              "render_mesh: normals are 3 by 3, expected 4 by 3 (one per vertex)"),
             (lambda: R.render_mesh(R.Image(), camera, square, quads=[[0, 1, 2, 3]], threads=-1),
              "render_mesh: threads = -1 is outside 0 … 4294967295"),
             (lambda: R.render_points(R.Image(), camera, np.zeros((2, 4))),
-             "render_points: points have 4 columns, expected 2 or 3"),
+             "the points to draw have 4 coordinates, expected 2 or 3"),
             (lambda: R.render_points(R.Image(), camera, np.zeros((2, 2)), states=[1]),
-             "render_points: 1 states for 2 points"),
+             "1 states given for 2 points"),
             (lambda: R.render_points(R.Image(4, 4), camera, np.zeros((2, 2))),
-             "render_points: the image is 4 by 4, the camera 8 by 8"),
+             "the image to draw into is 4 by 4, the camera 8 by 8"),
         ]
         for call, message in cases:
             with self.assertRaises(cifs.InvalidInput) as e:
@@ -582,15 +582,15 @@ class PointIfsTest(ScratchTestCase):
     def test_point_ifs_errors(self):
         maps = cifs.ifs.sierpinski_triangle()
         for call, message in [
-            (lambda: R.chaos_game_histogram([], samples=10), "chaos_game_histogram: no maps"),
-            (lambda: R.chaos_game_histogram(maps, samples=10, width=0), "chaos_game_histogram: the image is empty"),
+            (lambda: R.chaos_game_histogram([], samples=10), "the IFS has no affine map; give at least one"),
+            (lambda: R.chaos_game_histogram(maps, samples=10, width=0), "the image size 0 by 1024 is empty"),
             (lambda: R.chaos_game_histogram(maps, samples=-1), "chaos_game_histogram: samples = -1 is negative"),
             (lambda: R.chaos_game_histogram(maps, samples=10, bounds=R.Bounds(x_min=1, x_max=0)),
-             "chaos_game_histogram: the bounds are empty or not finite"),
-            (lambda: R.chaos_game_histogram(maps, samples=2**32), "chaos_game_histogram: samples must be below 2^32"),
+             "the image bounds are empty or not finite"),
+            (lambda: R.chaos_game_histogram(maps, samples=2**32), "4294967296 chaos-game samples are too many for one histogram"),
             (lambda: R.hutchinson_measure(maps, -1, 4, 4, R.Bounds()),
              "hutchinson_measure: depth = -1 is outside 0 … 4294967295"),
-            (lambda: R.estimate_bounds(maps, -1.0), "estimate_bounds: margin must be >= 0"),
+            (lambda: R.estimate_bounds(maps, -1.0), "the bounds margin must be a finite number ≥ 0"),
         ]:
             with self.assertRaises(cifs.InvalidInput) as e:
                 call()
@@ -702,16 +702,16 @@ class ChaosDensityTest(unittest.TestCase):
 
     def test_chaos_density_errors(self):
         for kwargs, message in [
-            (dict(samples=2**32), "chaos_density: samples must be below 2^32 (uint32 counts)"),
-            (dict(depth=65), "chaos_density: depth 65 is outside 0 … 64"),
+            (dict(samples=2**32), "4294967296 chaos-game samples are too many: they must be below 2^32 (uint32 counts)"),
+            (dict(depth=65), "the chaos game's depth 65 is outside 0 … 64"),
             (dict(samples=-3), "chaos_density: samples = -3 is negative"),
         ]:
             with self.assertRaises(cifs.InvalidInput) as e:
                 R.chaos_density(R.Image(), self.camera, self.automaton, [self.triangle], **kwargs)
             self.assertEqual(str(e.exception), message)
         for columns, kwargs, message in [
-            (3, dict(rational=True), "chaos_density: rational nets need an explicit depth"),
-            (4, dict(depth=3), "chaos_density: nets have 4 columns, expected 2 or 3"),
+            (3, dict(rational=True), "the chaos game of a rational shape needs an explicit depth; give one"),
+            (4, dict(depth=3), "the control nets have 4 columns, the chaos game draws 2 or 3 (2-D or 3-D points)"),
         ]:
             net = np.column_stack([self.triangle, np.ones((3, columns - 2))])
             with self.assertRaises(cifs.InvalidInput) as e:
@@ -722,10 +722,10 @@ class ChaosDensityTest(unittest.TestCase):
         self.assertEqual(str(e.exception), "chaos_density: nets[0]: expected a 2-D array (n, dim), got shape (2,)")
         with self.assertRaises(cifs.InvalidInput) as e:
             R.chaos_density(R.Image(), self.camera, self.automaton, [self.triangle, self.triangle])
-        self.assertTrue(str(e.exception).startswith("chaos_density: 2 nets given for 1"), str(e.exception))
+        self.assertTrue(str(e.exception).startswith("2 control nets given for the automaton's 1"), str(e.exception))
         with self.assertRaises(cifs.InvalidInput) as e:
             R.chaos_density(R.Image(3, 3), self.camera, self.automaton, [self.triangle])
-        self.assertEqual(str(e.exception), "chaos_density: the image is 3 by 3, the camera 64 by 56")
+        self.assertEqual(str(e.exception), "the image to draw into is 3 by 3, the camera 64 by 56")
 
 
 if __name__ == "__main__":

@@ -270,12 +270,12 @@ class RefineTest(ScratchTestCase):
 
     def test_refine_bad_input(self):
         checks = [
-            (lambda: sd.refine(sd.chaikin(), np.zeros((0, 2)), True), "refine: the polygon has no point"),
+            (lambda: sd.refine(sd.chaikin(), np.zeros((0, 2)), True), "the polygon has no point to refine"),
             (lambda: sd.refine(sd.chaikin(), self.P[:1], False),
-             "refine: an open polygon needs at least 2 points, got 1"),
-            (lambda: sd.refine(sd.chaikin(), self.P, True, -1), "refine: steps = -1 is negative"),
+             "an open polygon needs at least 2 points to refine, got 1"),
+            (lambda: sd.refine(sd.chaikin(), self.P, True, -1), "the number of refinement steps -1 is negative"),
             (lambda: sd.refine(sd.chaikin(), np.array([[0, np.nan], [1, 1]]), True),
-             "refine: the polygon has a coordinate that is not finite"),
+             "the polygon has a coordinate that is not finite"),
         ]
         for call, message in checks:
             with self.assertRaises(cifs.InvalidInput) as e:
@@ -289,7 +289,7 @@ class RefineTest(ScratchTestCase):
                                                      "b=0.6", "--refine", path, "--ends", "reflect"))
         with self.assertRaises(cifs.InvalidInput) as e:
             sd.refine(sd.chaikin(), self.P, True, 10, max_points=1000)
-        self.assertIn("refine: ", str(e.exception))
+        self.assertIn("10 refinement steps of", str(e.exception))
         with self.assertRaises(TypeError):
             sd.refine(sd.chaikin(), np.zeros((2, 2, 2)), True)
 
@@ -313,10 +313,10 @@ class IfsTest(unittest.TestCase):
         assert_close(self, sd.ifs_matrices(sd.chaikin())[0], [[0.75, 0.25, 0], [0.25, 0.75, 0], [0, 0.75, 0.25]])
         with self.assertRaises(cifs.InvalidInput) as e:
             sd.ifs_matrix([1.0, 1.0], 2)
-        self.assertEqual(str(e.exception), "ifs_matrix: epsilon is 0 or 1")
+        self.assertEqual(str(e.exception), "the IFS matrix index epsilon 2 is neither 0 nor 1")
         with self.assertRaises(cifs.InvalidInput) as e:
             sd.ifs_matrix([2.0], 0)
-        self.assertEqual(str(e.exception), "ifs_matrix: a mask needs at least 2 coefficients")
+        self.assertEqual(str(e.exception), "a subdivision mask needs at least 2 coefficients")
 
     def test_closed_windows(self):
         windows = sd.closed_windows(sd.four_point(), self.P)
@@ -325,7 +325,7 @@ class IfsTest(unittest.TestCase):
             assert_close(self, W, self.P[[(k + r) % 6 for r in range(6)]], rel=0)
         with self.assertRaises(cifs.InvalidInput) as e:
             sd.closed_windows(sd.chaikin(), np.zeros((0, 2)))
-        self.assertEqual(str(e.exception), "closed_windows: the polygon has no point")
+        self.assertEqual(str(e.exception), "the closed polygon has no point")
 
     def test_limit_points_lie_on_the_refined_polygon_of_an_interpolating_scheme(self):
         # After K steps the 4-point scheme's points are limit points at the dyadic parameters j/2^K,
@@ -351,7 +351,7 @@ class IfsTest(unittest.TestCase):
         self.assertIsInstance(automaton, cifs.automata.Automaton)
         with self.assertRaises(cifs.InvalidInput) as e:
             sd.scheme_automaton(sd.chaikin(), -1)
-        self.assertEqual(str(e.exception), "scheme_automaton: segments is negative")
+        self.assertEqual(str(e.exception), "the number of segments -1 is negative")
 
 
 class AnalysisTest(unittest.TestCase):
@@ -441,13 +441,13 @@ class AnalysisTest(unittest.TestCase):
                 self.assertEqual(sd.power_norm(d, L), norm_by_definition(d, L))
         with self.assertRaises(cifs.InvalidInput) as e:
             sd.difference_mask(a, 4)
-        self.assertEqual(str(e.exception), "difference_mask: (1+z)^5 does not divide the symbol")
+        self.assertEqual(str(e.exception), "(1+z)^5 does not divide the symbol")
         with self.assertRaises(cifs.InvalidInput) as e:
             sd.power_norm([1, 1], 0)
-        self.assertEqual(str(e.exception), "power_norm: L = 0 is below 1")
+        self.assertEqual(str(e.exception), "the power L = 0 is below 1")
         with self.assertRaises(cifs.InvalidInput) as e:
             sd.power_norm([1, 1], 30, 1000)
-        self.assertEqual(str(e.exception), "power_norm: the 30-th power has too many coefficients")
+        self.assertEqual(str(e.exception), "the 30-th power of the difference symbol has too many coefficients; lower the maximum power")
 
     def test_symbol_texts_read_back(self):
         self.assertEqual(sd.polynomial_text(sd.chaikin().mask), "(1+3z+3z^2+z^3)/4")

@@ -203,12 +203,13 @@ TEST_CASE("CIFS chaos density refuses bad input", "[render][chaos]") {
   camera.ortho_height = 5;
   camera.width = camera.height = 16;
   Image image;
-  CHECK_THROWS_WITH(chaos_density(image, camera, a, std::vector<Points>{}), Catch::Contains("0 nets"));
+  CHECK_THROWS_WITH(chaos_density(image, camera, a, std::vector<Points>{}),
+                    "0 control nets given for the automaton's 1 initial entries (one net per entry)");
   CHECK_THROWS_WITH(chaos_density(image, camera, a, std::vector<Points>{Points::Zero(2, 2)}),
-                    Catch::Contains("nets[0] has 2 rows but its initial state 0 (uniform) holds 3 points"));
+                    "control net 0 has 2 points but its initial state 0 (uniform) holds 3");
   net(1, 1) = std::nan("");
   CHECK_THROWS_WITH(chaos_density(image, camera, a, std::vector<Points>{net}),
-                    Catch::Contains("nets[0] has a non-finite coordinate"));
+                    "control net 0 has a coordinate that is not finite");
   net = planar_net();
   ChaosDensityOptions options;
   options.depth = 65;

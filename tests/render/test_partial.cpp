@@ -90,9 +90,9 @@ TEST_CASE("combine_shares: densities add, the nearest (then smallest key) brings
 }
 
 TEST_CASE("check_part refuses a part outside its count", "[render][partial]") {
-  CHECK_NOTHROW(check_part({2, 3}, "f"));
-  CHECK_THROWS_AS(check_part({3, 3}, "f"), InvalidInput);
-  CHECK_THROWS_AS(check_part({0, 0}, "f"), InvalidInput);
+  CHECK_NOTHROW(check_part({2, 3}));
+  CHECK_THROWS_AS(check_part({3, 3}), InvalidInput);
+  CHECK_THROWS_AS(check_part({0, 0}), InvalidInput);
 }
 
 TEST_CASE("Chaos density in three parts combines into the single-process image", "[render][partial][chaos]") {

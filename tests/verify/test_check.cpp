@@ -122,10 +122,10 @@ TEST_CASE("check refuses bad depths and work beyond its budget", "[verify]") {
   CHECK_THROWS_WITH(verify::check_curve(c, {.depth = 24, .tolerance = 1e-12}),
                     Catch::Contains("would insert"));
   CHECK_THROWS_WITH(verify::check_curve(c, {.depth = 4, .tolerance = 0}),
-                    Catch::Contains("tolerance must be positive"));
+                    "the check tolerance 0 is not positive; give a positive finite tolerance");
   // An infinite tolerance would pass anything.
   CHECK_THROWS_WITH(verify::check_curve(c, {.depth = 4, .tolerance = INFINITY}),
-                    Catch::Contains("tolerance must be positive and finite (got inf)"));
+                    "the check tolerance is not a finite number; give a positive finite tolerance");
 }
 
 namespace {
@@ -191,7 +191,7 @@ TEST_CASE("Surface check refuses bad depths and work beyond its budget", "[verif
   CHECK_THROWS_AS(verify::check_surface(s, {.depth = -1, .tolerance = 1e-12}), InvalidInput);
   CHECK_THROWS_AS(verify::check_surface(s, {.depth = 31, .tolerance = 1e-12}), InvalidInput);
   CHECK_THROWS_WITH(verify::check_surface(s, {.depth = 12, .tolerance = 1e-12}),
-                    Catch::Contains("lower --depth"));
+                    Catch::Contains("lower the depth"));
   // The largest depth gives the figure (2^30 leaves overflowed a long long: "-9223372036854775808").
   CHECK_THROWS_WITH(verify::check_surface(s, {.depth = 30}), Catch::Contains("needs references of ") &&
                                                                  !Catch::Contains("-9") &&

@@ -101,18 +101,20 @@ void merge(Deviation& into, const Deviation& d) {
 
 CheckReport check_curve(const nurbs::Curve& c, const CheckOptions& o) {
   if (o.depth < 0 || o.depth > 30)
-    throw InvalidInput("check: depth " + std::to_string(o.depth) + " is outside [0, 30]");
+    throw InvalidInput("the check depth " + std::to_string(o.depth) + " is outside [0, 30]");
   if (!(o.tolerance > 0) || !std::isfinite(o.tolerance))
-    throw InvalidInput("check: the tolerance must be positive and finite (got " +
-                       number_text(o.tolerance, 6) + ")");
+    throw InvalidInput("the check tolerance " +
+                       (std::isfinite(o.tolerance) ? number_text(o.tolerance, 6) + " is not positive"
+                                                   : std::string("is not a finite number")) +
+                       "; give a positive finite tolerance");
   const int d = c.degree;
   const nurbs::KnotAutomaton knots = nurbs::knot_automaton(c);
   const automata::Automaton& a = knots.automaton;
   const double inserted = static_cast<double>(a.initial.size()) * (2 * d - 1) * std::ldexp(1.0, o.depth);
   if (inserted > kMaxInsertedKnots)
     throw InvalidInput(
-        "check: depth " + std::to_string(o.depth) + " would insert " + number_text(inserted, 3) +
-        " knots in the references (limit 2^26, about the memory of the machine's budget); lower --depth");
+        "the check depth " + std::to_string(o.depth) + " would insert " + number_text(inserted, 3) +
+        " knots in the references (limit 2^26, about the memory of the machine's budget); lower the depth");
 
   const Points cart = nurbs::cartesian_points(c);
   const double scale = std::max(cart.cwiseAbs().maxCoeff(), 1e-300);
@@ -198,10 +200,12 @@ LocalPatch local_patch(const nurbs::Surface& s, const Points& net, const std::ar
 /// Refuses bad options and a depth whose references would not fit, before any work.
 void check_surface_options(const nurbs::Surface& s, const CheckOptions& o) {
   if (o.depth < 0 || o.depth > 30)
-    throw InvalidInput("check: depth " + std::to_string(o.depth) + " is outside [0, 30]");
+    throw InvalidInput("the check depth " + std::to_string(o.depth) + " is outside [0, 30]");
   if (!(o.tolerance > 0) || !std::isfinite(o.tolerance))
-    throw InvalidInput("check: the tolerance must be positive and finite (got " +
-                       number_text(o.tolerance, 6) + ")");
+    throw InvalidInput("the check tolerance " +
+                       (std::isfinite(o.tolerance) ? number_text(o.tolerance, 6) + " is not positive"
+                                                   : std::string("is not a finite number")) +
+                       "; give a positive finite tolerance");
   nurbs::validate(s);
   const int p = s.degree[0], q = s.degree[1];
   const double leaves = std::ldexp(1.0, o.depth);
@@ -209,10 +213,10 @@ void check_surface_options(const nurbs::Surface& s, const CheckOptions& o) {
   const double reference =
       (3 * p + 1 + (2 * p - 1) * (leaves - 1)) * (3 * q + 1 + (2 * q - 1) * (leaves - 1));
   if (reference > kMaxReferencePoints)
-    throw InvalidInput("check: depth " + std::to_string(o.depth) + " needs references of " +
+    throw InvalidInput("the check depth " + std::to_string(o.depth) + " needs references of " +
                        number_text(reference, 3) +
                        " control points per patch (limit 2^23, about the memory of the machine's budget); "
-                       "lower --depth");
+                       "lower the depth");
 }
 
 /// The surface's automaton, nets and patches, as both checks read them.

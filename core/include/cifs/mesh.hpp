@@ -55,11 +55,11 @@ Mesh uniform_mesh(Points vertices, std::vector<int> corners, int arity);
 /// their normals and states when both meshes have them (dropped otherwise). Vertices are not welded.
 void append(Mesh& into, const Mesh& more);
 
-/// Throws InvalidInput (the message starts with `who`) unless the mesh is well formed: vertices
-/// `#V by 3` and finite, offsets starting at 0 and non-decreasing up to the number of corners,
-/// every face with at least 3 corners, every index in [0, #V), normals empty or `#V by 3` and
-/// finite, states empty or one per face. Adjacency (manifold, orientation) is checked by
-/// build_topology, not here: renderers and exporters take any polygon soup.
+/// Throws InvalidInput (the message starts with `who`, what the mesh is to the user: "the mesh to
+/// render") unless the mesh is well formed: vertices `#V by 3` and finite, offsets starting at 0 and
+/// non-decreasing up to the number of corners, every face with at least 3 corners, every index in [0, #V),
+/// normals empty or `#V by 3` and finite, states empty or one per face. Adjacency (manifold, orientation) is
+/// checked by build_topology, not here: renderers and exporters take any polygon soup.
 void check_mesh(const Mesh& mesh, std::string_view who);
 
 /// Area-weighted vertex normals (`#V by 3`): each face adds its vector area to its corners
@@ -84,8 +84,8 @@ Segments polyline_segments(const Points& polyline, bool closed = false, std::uin
 /// of columns; states are kept when both or neither carry them, otherwise missing ones become 0.
 void append(Segments& into, const Segments& more);
 
-/// Throws InvalidInput (the message starts with `who`) unless: vertices `#V by 2|3` and finite,
-/// indices in range, states empty or one per segment.
+/// Throws InvalidInput (the message starts with `who`, what the segments are to the user) unless:
+/// vertices `#V by 2|3` and finite, indices in range, states empty or one per segment.
 void check_segments(const Segments& segments, std::string_view who);
 
 }  // namespace cifs

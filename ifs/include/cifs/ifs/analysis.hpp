@@ -27,9 +27,11 @@ std::vector<automata::StateId> reachable_states(const automata::Automaton& autom
 /// rows sum to 1 (to 1e-10 of the row's 1-norm). Every engine entry point calls it.
 void validate(const automata::Automaton& automaton);
 
-/// Throws InvalidInput (prefixed by `who`) unless `nets` has one net per initial entry, each
-/// `size(state) by cols` with one common cols ≥ 1, finite: the check of every route that takes nets.
-void check_nets(const automata::Automaton& automaton, std::span<const Points> nets, std::string_view who);
+/// Throws InvalidInput unless `nets` has one net per initial entry, each `size(state) by cols` with
+/// one common cols ≥ 1, finite: the check of every route that takes nets. The messages name the
+/// control nets; `who` is not printed (callers named internal functions) and may be left out.
+void check_nets(const automata::Automaton& automaton, std::span<const Points> nets,
+                std::string_view who = {});
 
 /// Diameter of a net: the largest Euclidean distance between two of its rows (0 for < 2 rows).
 double diameter(const Points& net) noexcept;

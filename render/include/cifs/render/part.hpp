@@ -14,8 +14,8 @@ struct Part {
   unsigned count = 1;
 };
 
-/// Throws InvalidInput unless count ≥ 1 and index < count; `who` prefixes the message.
-void check_part(const Part& part, const char* who);
+/// Throws InvalidInput unless count ≥ 1 and index < count.
+void check_part(const Part& part);
 
 /// Rasterised layers are divided by rows, in bands of kBandRows (the mesh tiles' height) dealt out
 /// in turn: band b belongs to part b mod count. Every part draws the whole scene into its own bands
