@@ -26,19 +26,25 @@ constexpr int kUnboundedDepth = 32;
 Points cartesian(const Eigen::Ref<const Points>& homogeneous) {
   const Eigen::Index c = homogeneous.cols();
   if (c < 2)
-    throw InvalidInput("cartesian: homogeneous rows need at least 2 columns (w·x, w), got " +
-                       std::to_string(c));
+    throw InvalidInput("homogeneous points need at least 2 columns (w·x, w), got " + std::to_string(c));
   Points out(homogeneous.rows(), c - 1);
   for (Eigen::Index i = 0; i < homogeneous.rows(); ++i) {
     const double w = homogeneous(i, c - 1);
     if (w == 0)
-      throw InvalidInput("cartesian: row " + std::to_string(i) + " has weight 0 (a point at infinity)");
+      throw InvalidInput("homogeneous point " + std::to_string(i) +
+                         " has weight 0 (a point at infinity): it has no Cartesian coordinates");
     out.row(i) = homogeneous.row(i).head(c - 1) / w;
   }
   return out;
 }
 
 namespace {
+
+/// "the tolerance -1 is not a positive number" (a NaN or infinity named as such, not printed).
+std::string tolerance_refusal(double epsilon) {
+  if (!std::isfinite(epsilon)) return "the tolerance is not a finite number";
+  return "the tolerance " + number_text(epsilon, 6) + " is not a positive number";
+}
 
 /// What for_each_leaf_to_tolerance compares with epsilon: the bound on the piece's diameter, or
 /// with `chordal` a bound on its distance to the chord between its end points (end_functionals,
@@ -118,8 +124,8 @@ class PieceMeasure {
 void for_each_leaf(const Automaton& automaton, std::span<const Points> nets, int depth,
                    const LeafCallback& callback) {
   validate(automaton);
-  check_nets(automaton, nets, "for_each_leaf");
-  if (depth < 0) throw InvalidInput("for_each_leaf: depth is " + std::to_string(depth) + ", must be ≥ 0");
+  check_nets(automaton, nets);
+  if (depth < 0) throw InvalidInput("the depth " + std::to_string(depth) + " is negative; give a depth ≥ 0");
   detail::depth_first(automaton, nets, depth,
                       [&](std::size_t i, StateId s, const Points& net, int d, std::span<const int> word) {
                         if (d < depth) return true;
@@ -132,9 +138,8 @@ ToleranceResult for_each_leaf_to_tolerance(const Automaton& automaton, std::span
                                            const ToleranceOptions& options,
                                            const ToleranceCallback& callback) {
   validate(automaton);
-  check_nets(automaton, nets, "for_each_leaf_to_tolerance");
-  if (!(options.epsilon > 0))
-    throw InvalidInput("tolerance " + number_text(options.epsilon, 6) + " is not a positive number");
+  check_nets(automaton, nets);
+  if (!(options.epsilon > 0)) throw InvalidInput(tolerance_refusal(options.epsilon));
   if (options.max_depth < 0)
     throw InvalidInput("maximum depth " + std::to_string(options.max_depth) + " is negative");
   ToleranceResult result;
@@ -169,9 +174,8 @@ ToleranceResult for_each_leaf_to_tolerance(const Automaton& automaton, std::span
 ToleranceEstimate estimate_tolerance_leaves(const Automaton& automaton, std::span<const Points> nets,
                                             const ToleranceOptions& options, std::size_t budget) {
   validate(automaton);
-  check_nets(automaton, nets, "the tolerance estimate");
-  if (!(options.epsilon > 0))
-    throw InvalidInput("tolerance " + number_text(options.epsilon, 6) + " is not a positive number");
+  check_nets(automaton, nets);
+  if (!(options.epsilon > 0)) throw InvalidInput(tolerance_refusal(options.epsilon));
   const Contraction c = contraction(automaton, ContractionOptions{.max_length = options.max_length});
   if (options.homogeneous && nets.front().cols() < 2)
     throw InvalidInput("rational nets need at least 2 columns (w·x, w)");
@@ -273,8 +277,7 @@ using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::R
 
 std::size_t attractor_point_count(const Automaton& automaton, int depth, bool closed) {
   validate(automaton);
-  if (depth < 0)
-    throw InvalidInput("attractor_point_count: depth is " + std::to_string(depth) + ", must be ≥ 0");
+  if (depth < 0) throw InvalidInput("the depth " + std::to_string(depth) + " is negative; give a depth ≥ 0");
   const auto count = total_count(automaton, node_counts(automaton, depth, 0).at_depth, closed);
   if (count == kSaturated)
     throw InvalidInput("depth " + std::to_string(depth) + " gives more than 2^64 points; lower the depth");
@@ -346,9 +349,8 @@ std::vector<std::vector<char>> states_at_depths(const Automaton& automaton, int 
 /// any work on the tables.
 template <class Entries>
 StencilTable build_table(const Automaton& automaton, int depth, bool closed, int max_table_depth,
-                         std::string_view who, Entries&& entries) {
-  if (depth < 0)
-    throw InvalidInput(std::string(who) + ": depth is " + std::to_string(depth) + ", must be ≥ 0");
+                         Entries&& entries) {
+  if (depth < 0) throw InvalidInput("the depth " + std::to_string(depth) + " is negative; give a depth ≥ 0");
   const Graph& g = automaton.graph;
   const auto n = num_vertices(g);
   const int max_L = std::clamp(max_table_depth, 0, depth);
@@ -437,13 +439,13 @@ void emit_into(const Automaton& automaton, std::span<const Points> nets, const S
 }
 
 /// "depth 20 gives 17825793 points of 3 coordinates (0.4 GiB), more than the limit of 1 GiB (…)".
-[[noreturn]] void refuse_output(std::string_view who, int depth, std::size_t count, Eigen::Index cols,
-                                std::size_t bytes, std::size_t max_bytes, std::string_view limit_name) {
+[[noreturn]] void refuse_output(int depth, std::size_t count, Eigen::Index cols, std::size_t bytes,
+                                std::size_t max_bytes, std::string_view limit_name) {
   const auto gib = [](std::size_t b) {
     return static_cast<double>(b) / static_cast<double>(std::size_t{1} << 30);
   };
   std::ostringstream msg;
-  msg << who << ": depth " << depth << " gives ";
+  msg << "depth " << depth << " gives ";
   if (count == kSaturated)
     msg << "more points than fit in size_t";
   else
@@ -459,10 +461,10 @@ std::size_t output_bytes(std::size_t count, Eigen::Index cols) {
 
 /// Throws unless `t` is a table stencil_table could have built for its automaton (so that a table
 /// whose fields were edited cannot write out of bounds) and the nets fit it.
-void check_table(const StencilTable& t, std::span<const Points> nets, std::string_view who) {
+void check_table(const StencilTable& t, std::span<const Points> nets) {
   const Automaton& a = t.automaton;
   validate(a);
-  check_nets(a, nets, who);
+  check_nets(a, nets);
   const Graph& g = a.graph;
   bool fits = t.depth >= 0 && t.table_depth >= 0 && t.table_depth <= t.depth &&
               t.tables.size() == num_vertices(g) && (t.closed || t.end.size() == nets.back().rows());
@@ -480,9 +482,7 @@ void check_table(const StencilTable& t, std::span<const Points> nets, std::strin
                                 F.rows() <= t.max_rows));
     }
   }
-  if (!fits)
-    throw InvalidInput(std::string(who) +
-                       ": the stencil table does not fit its automaton; build it with stencil_table");
+  if (!fits) throw InvalidInput("the stencil table does not fit its automaton; build it with stencil_table");
 }
 
 }  // namespace
@@ -490,15 +490,14 @@ void check_table(const StencilTable& t, std::span<const Points> nets, std::strin
 void attractor_points(const Automaton& automaton, std::span<const Points> nets, int depth, Points& out,
                       const PointsOptions& options) {
   validate(automaton);
-  check_nets(automaton, nets, "attractor_points");
+  check_nets(automaton, nets);
   // Refuse before any work: the output is allocated once, exactly.
   const auto cols = nets[0].cols();
-  const StencilTable t = build_table(
-      automaton, depth, options.closed, options.max_table_depth, "attractor_points", [&](std::size_t count) {
+  const StencilTable t =
+      build_table(automaton, depth, options.closed, options.max_table_depth, [&](std::size_t count) {
         const std::size_t bytes = output_bytes(count, cols);
         if (bytes > options.max_bytes)
-          refuse_output("attractor_points", depth, count, cols, bytes, options.max_bytes,
-                        "PointsOptions::max_bytes");
+          refuse_output(depth, count, cols, bytes, options.max_bytes, "PointsOptions::max_bytes");
         return std::min(mul_sat(count, static_cast<std::size_t>(cols)) / 2, kTableBudget);
       });
   emit_into(automaton, nets, t, out);
@@ -535,10 +534,10 @@ std::size_t emit_in_chunks(const Automaton& automaton, std::span<const Points> n
   return t.points;
 }
 
-void refuse_saturated(std::string_view who, int depth, std::size_t count) {
+void refuse_saturated(int depth, std::size_t count) {
   if (count == kSaturated)
-    throw InvalidInput(std::string(who) + ": depth " + std::to_string(depth) +
-                       " gives more points than fit in size_t");
+    throw InvalidInput("depth " + std::to_string(depth) +
+                       " gives more points than fit in size_t; lower the depth");
 }
 
 }  // namespace
@@ -546,34 +545,33 @@ void refuse_saturated(std::string_view who, int depth, std::size_t count) {
 std::size_t for_each_attractor_chunk(const Automaton& automaton, std::span<const Points> nets, int depth,
                                      const PointsOptions& options, const PointsChunkCallback& callback) {
   validate(automaton);
-  check_nets(automaton, nets, "for_each_attractor_chunk");
+  check_nets(automaton, nets);
   const auto cols = static_cast<std::size_t>(nets[0].cols());
-  const StencilTable t = build_table(automaton, depth, options.closed, options.max_table_depth,
-                                     "for_each_attractor_chunk", [&](std::size_t count) {
-                                       refuse_saturated("for_each_attractor_chunk", depth, count);
-                                       return std::min(mul_sat(count, cols) / 2, kTableBudget);
-                                     });
+  const StencilTable t =
+      build_table(automaton, depth, options.closed, options.max_table_depth, [&](std::size_t count) {
+        refuse_saturated(depth, count);
+        return std::min(mul_sat(count, cols) / 2, kTableBudget);
+      });
   return emit_in_chunks(automaton, nets, t, options.chunk_points, callback);
 }
 
 StencilTable stencil_table(const Automaton& automaton, int depth, const StencilOptions& options) {
   validate(automaton);
-  StencilTable t = build_table(automaton, depth, options.closed, options.max_table_depth, "stencil_table",
-                               [&](std::size_t count) {
-                                 refuse_saturated("stencil_table", depth, count);
-                                 return options.max_entries;
-                               });
+  StencilTable t =
+      build_table(automaton, depth, options.closed, options.max_table_depth, [&](std::size_t count) {
+        refuse_saturated(depth, count);
+        return options.max_entries;
+      });
   t.automaton = automaton;
   return t;
 }
 
 void apply_table(const StencilTable& table, std::span<const Points> nets, Points& out,
                  std::size_t max_bytes) {
-  check_table(table, nets, "apply_table");
+  check_table(table, nets);
   const auto cols = nets[0].cols();
   const std::size_t bytes = output_bytes(table.points, cols);
-  if (bytes > max_bytes)
-    refuse_output("apply_table", table.depth, table.points, cols, bytes, max_bytes, "max_bytes");
+  if (bytes > max_bytes) refuse_output(table.depth, table.points, cols, bytes, max_bytes, "max_bytes");
   emit_into(table.automaton, nets, table, out);
 }
 
@@ -585,7 +583,7 @@ Points apply_table(const StencilTable& table, std::span<const Points> nets, std:
 
 std::size_t apply_table_in_chunks(const StencilTable& table, std::span<const Points> nets,
                                   std::size_t chunk_points, const PointsChunkCallback& callback) {
-  check_table(table, nets, "apply_table_in_chunks");
+  check_table(table, nets);
   return emit_in_chunks(table.automaton, nets, table, chunk_points, callback);
 }
 

@@ -279,7 +279,7 @@ class TreeFileTest(ScratchTestCase):
                                                           "entries (one net per entry)"),
             (lambda: ifs.edge_pieces(self.system, [net[:1]], 1),
              "control net 0 has 1 points but its initial state 0 (E) holds 3"),
-            (lambda: ifs.edge_pieces(self.system, self.file.nets, -1), "for_each_leaf: depth is -1, must be ≥ 0"),
+            (lambda: ifs.edge_pieces(self.system, self.file.nets, -1), "the depth -1 is negative; give a depth ≥ 0"),
             (lambda: ifs.edge_pieces(self.system, self.file.nets, 30),
              "205891132094649 edge pieces at depth 30 need 3.95e+07 GB, above the limit of 1.07 GB; "
              "lower the depth"),

@@ -136,7 +136,7 @@ class AttractorTest(unittest.TestCase):
         self.assertEqual(len(closed), ifs.attractor_point_count(a, 4, closed=True))
         assert_close(self, closed, curve(np.arange(16) / 16))
         self.assertEqual(message(self, lambda: ifs.attractor_points(a, [NET], -1)),
-                         "attractor_points: depth is -1, must be ≥ 0")
+                         "the depth -1 is negative; give a depth ≥ 0")
         self.assertIn("attractor_points", message(self, lambda: ifs.attractor_points(a, [NET], 20, max_bytes=1000)))
         self.assertEqual(message(self, lambda: ifs.attractor_points(a, [NET[:2]], 2)),
                          "control net 0 has 2 points but its initial state 0 (uniform) holds 3")
@@ -204,7 +204,7 @@ class AttractorTest(unittest.TestCase):
         H = np.array([[2.0, 4.0, 2.0], [3.0, -3.0, 0.5]])
         np.testing.assert_array_equal(ifs.cartesian(H), [[1, 2], [6, -6]])
         self.assertEqual(message(self, lambda: ifs.cartesian(np.array([[1.0, 0.0]]))),
-                         "cartesian: row 0 has weight 0 (a point at infinity)")
+                         "homogeneous point 0 has weight 0 (a point at infinity): it has no Cartesian coordinates")
 
     def test_for_each_leaf_gives_the_matrix_products_in_order(self):
         a = chaikin()
@@ -230,7 +230,7 @@ class AttractorTest(unittest.TestCase):
         self.assertEqual(len(count), 8)
         self.assertEqual(len(a.children(0)), 10)
         self.assertEqual(message(self, lambda: ifs.for_each_leaf(a, [NET], -2, print)),
-                         "for_each_leaf: depth is -2, must be ≥ 0")
+                         "the depth -2 is negative; give a depth ≥ 0")
 
     def test_proven_cover_of_a_tolerance_sample(self):
         # Chaikin's curve: the search's counts at ε halving from diam/16; their growth is the curve's

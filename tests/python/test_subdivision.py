@@ -343,7 +343,7 @@ class IfsTest(unittest.TestCase):
         self.assertTrue(all(np.min(np.abs(mid - p).sum(axis=1)) < 1e-12 for p in limit))
         with self.assertRaises(cifs.InvalidInput) as e:
             sd.limit_points(sd.chaikin(), self.P, -1)
-        self.assertEqual(str(e.exception), "attractor_points: depth is -1, must be ≥ 0")
+        self.assertEqual(str(e.exception), "the depth -1 is negative; give a depth ≥ 0")
 
     @unittest.skipUnless(hasattr(cifs.automata, "Automaton"), "cifs.automata.Automaton is bound elsewhere")
     def test_scheme_automaton(self):
