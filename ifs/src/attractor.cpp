@@ -321,6 +321,29 @@ void stack_rows(const RowMatrix& child, const Eigen::MatrixXd& M, double* out) {
   }
 }
 
+/// The functional of the address (last child)^∞ from state s, the end point of its piece: the fixed
+/// point of the last-child cycle the chain from s enters, carried back along the chain (λ_v = λ_child·M).
+Eigen::RowVectorXd last_child_functional(const Automaton& automaton, StateId s) {
+  const Graph& g = automaton.graph;
+  std::vector<StateId> path;
+  std::vector<automata::TransitionId> steps;
+  std::vector<std::ptrdiff_t> at(num_vertices(g), -1);
+  for (StateId v = s; at[v] < 0;) {
+    at[v] = static_cast<std::ptrdiff_t>(path.size());
+    path.push_back(v);
+    const auto [b, e] = out_edges(v, g);
+    steps.push_back(*(e - 1));
+    v = target(steps.back(), g);
+  }
+  const StateId entry = target(steps.back(), g);  // the cycle starts where the chain came back
+  const auto c = static_cast<std::size_t>(at[entry]);
+  std::vector<int> word;
+  for (std::size_t k = c; k < path.size(); ++k) word.push_back(static_cast<int>(out_degree(path[k], g)) - 1);
+  Eigen::RowVectorXd F = fixed_point(automaton, entry, word);
+  for (std::size_t k = c; k-- > 0;) F = (F * g[steps[k]].matrix).eval();
+  return F;
+}
+
 /// at[k][s]: whether a node at depth `from + k` of the tree (from the initial entries) is in state s,
 /// for k = 0 … to − from. Level ℓ of the tables is needed only for the states at depth K − ℓ: the
 /// walk emits at depth K − L, and a level-ℓ table is stacked from its children's, one level deeper.
@@ -377,13 +400,14 @@ StencilTable build_table(const Automaton& automaton, int depth, bool closed, int
   while (L > 0 && add_sat(table_size(L), table_size(L - 1)) > budget) --L;
   out.table_depth = L;
 
-  // Level 0 is the start functional itself; level ℓ stacks F_t^(ℓ−1)·M_e over the children e.
-  const EndFunctionals functionals = end_functionals(automaton);
-  if (!closed) out.end = functionals.end[automaton.initial.back().state];
+  // Level 0 is the start functional itself; level ℓ stacks F_t^(ℓ−1)·M_e over the children e. Of the
+  // end functionals only the last root's is needed (end_functionals chains every state's: twice the cycles).
+  const std::vector<Eigen::RowVectorXd> start = repeated_child_functionals(automaton, 0);
+  if (!closed) out.end = last_child_functional(automaton, automaton.initial.back().state);
   std::vector<RowMatrix> next(n);
   out.tables.resize(n);
   for (StateId s = 0; s < n; ++s)
-    if (needed[0][s]) out.tables[s] = functionals.start[s];
+    if (needed[0][s]) out.tables[s] = start[s];
   for (int l = 1; l <= L; ++l) {
     for (StateId s = 0; s < n; ++s) {
       if (!needed[static_cast<std::size_t>(l)][s]) continue;
