@@ -34,6 +34,7 @@ struct Entry {
   bool overloaded = false;   // other overloads share the name: conversions may not throw
   std::vector<std::string> names = {};  // per argument, from the signature (a setter's value: the property)
   std::vector<bool> flags = {};         // per argument: declared bool
+  std::vector<long long> members = {};  // an enum's __init__ and __setstate__: the values of its members
 };
 
 /// Filled while the module is imported, read-only afterwards.
@@ -105,6 +106,18 @@ std::string parameter_of(const detail::function_call& call, const Entry& entry, 
   return "argument";
 }
 
+/// pybind11 builds an enum from any integer of its underlying type (Direction(-1)): only its members' values.
+void check_member(const Entry& entry, py::handle value) {
+  std::string values;
+  for (const long long v : entry.members) {
+    if (PyLong_Check(value.ptr()) && PyLong_AsLongLong(value.ptr()) == v && !PyErr_Occurred()) return;
+    values += (values.empty() ? "" : ", ") + std::to_string(v);
+  }
+  PyErr_Clear();
+  throw InvalidInput(entry.who + ": " + entry.names.back() + ": expected one of " + values + ", got " +
+                     describe(value));
+}
+
 /// Sets strict_arguments() for one call, restoring the caller's (a callback may call another function).
 class StrictScope {
  public:
@@ -125,6 +138,7 @@ py::handle checked_call(detail::function_call& call) {
       if (entry.flags[i] && !is_bool(call.args[i]))
         throw InvalidInput(entry.who + ": " + entry.names[i] + ": expected True or False, got " +
                            describe(call.args[i]));
+  if (!entry.members.empty() && !call.args.empty()) check_member(entry, call.args.back());
   try {
     return entry.impl(call);
   } catch (const ArgumentError& e) {
@@ -133,7 +147,8 @@ py::handle checked_call(detail::function_call& call) {
 }
 
 /// Wraps every overload of `function` (a pybind11 function, method or property accessor) once.
-void wrap(py::handle function, const std::string& who, const std::string& value_name) {
+void wrap(py::handle function, const std::string& who, const std::string& value_name,
+          const std::vector<long long>& members = {}) {
   function = detail::get_function(function);
   if (!function || !PyCFunction_Check(function.ptr())) return;
   const py::handle self = PyCFunction_GET_SELF(function.ptr());
@@ -143,7 +158,7 @@ void wrap(py::handle function, const std::string& who, const std::string& value_
   auto* head = capsule.get_pointer<detail::function_record>();
   if (entries().count(head)) return;
   for (auto* rec = head; rec; rec = rec->next) {
-    Entry entry{.impl = rec->impl, .who = who, .overloaded = head->next != nullptr};
+    Entry entry{.impl = rec->impl, .who = who, .overloaded = head->next != nullptr, .members = members};
     for (const Parameter& p : parameters(rec->signature ? rec->signature : "")) {
       entry.names.push_back(p.name);
       entry.flags.push_back(p.type == "bool");
@@ -160,6 +175,9 @@ void wrap(py::handle function, const std::string& who, const std::string& value_
 void wrap_class(py::handle type) {
   const std::string name = py::str(type.attr("__name__"));
   const py::dict dict(type.attr("__dict__"));  // a copy of the mappingproxy
+  std::vector<long long> members;                // a py::enum_: its values, for __init__ and __setstate__
+  if (py::hasattr(type, "__members__"))
+    for (const auto& [key, member] : py::dict(type.attr("__members__"))) members.push_back(py::int_(py::reinterpret_borrow<py::object>(member)));
   for (const auto& [key, value] : dict) {
     const std::string attribute = py::str(key);
     if (PyObject_TypeCheck(value.ptr(), &PyProperty_Type)) {  // def_property / def_readwrite: the setter's value by name
@@ -168,7 +186,9 @@ void wrap_class(py::handle type) {
     } else if (PyObject_TypeCheck(value.ptr(), &PyStaticMethod_Type)) {
       wrap(value.attr("__func__"), name + "." + attribute, {});
     } else {
-      wrap(value, attribute == "__init__" ? name : name + "." + attribute, {});
+      const bool construct = attribute == "__init__" || attribute == "__setstate__";
+      wrap(value, attribute == "__init__" ? name : name + "." + attribute, {},
+           construct ? members : std::vector<long long>{});
     }
   }
 }
