@@ -655,7 +655,8 @@ void check_table(const MeshStencilTable& t, std::span<const Points> nets, const 
 }  // namespace
 
 void quad_mesh(const Automaton& automaton, std::span<const Points> nets,
-               std::span<const std::array<int, 2>> patches, int depth, Mesh& mesh, const MeshOptions& options) {
+               std::span<const std::array<int, 2>> patches, int depth, Mesh& mesh,
+               const MeshOptions& options) {
   generic_mesh(automaton, nets, patches, depth, mesh, options, "quad_mesh");
 }
 

@@ -29,9 +29,9 @@ thread_local bool strict = false;
 
 /// What checked_call knows of one overload of a bound function.
 struct Entry {
-  Impl impl = nullptr;       // pybind11's reader of the arguments, which then calls the function
-  std::string who;           // "surface_mesh", "MeshStencilTable.apply", "Curve" (constructors), "Camera.fov_y"
-  bool overloaded = false;   // other overloads share the name: conversions may not throw
+  Impl impl = nullptr;  // pybind11's reader of the arguments, which then calls the function
+  std::string who;      // "surface_mesh", "MeshStencilTable.apply", "Curve" (constructors), "Camera.fov_y"
+  bool overloaded = false;              // other overloads share the name: conversions may not throw
   std::vector<std::string> names = {};  // per argument, from the signature (a setter's value: the property)
   std::vector<bool> flags = {};         // per argument: declared bool
   std::vector<long long> members = {};  // an enum's __init__ and __setstate__: the values of its members
@@ -87,7 +87,8 @@ std::vector<Parameter> parameters(std::string_view signature) {
 }
 
 bool is_bool(py::handle value) {
-  static PyObject* numpy_bool = py::object(py::module_::import("numpy").attr("bool_")).release().ptr();  // never released
+  static PyObject* numpy_bool =
+      py::object(py::module_::import("numpy").attr("bool_")).release().ptr();  // never released
   return PyBool_Check(value.ptr()) || PyObject_IsInstance(value.ptr(), numpy_bool) == 1;
 }
 
@@ -175,12 +176,14 @@ void wrap(py::handle function, const std::string& who, const std::string& value_
 void wrap_class(py::handle type) {
   const std::string name = py::str(type.attr("__name__"));
   const py::dict dict(type.attr("__dict__"));  // a copy of the mappingproxy
-  std::vector<long long> members;                // a py::enum_: its values, for __init__ and __setstate__
+  std::vector<long long> members;              // a py::enum_: its values, for __init__ and __setstate__
   if (py::hasattr(type, "__members__"))
-    for (const auto& [key, member] : py::dict(type.attr("__members__"))) members.push_back(py::int_(py::reinterpret_borrow<py::object>(member)));
+    for (const auto& [key, member] : py::dict(type.attr("__members__")))
+      members.push_back(py::int_(py::reinterpret_borrow<py::object>(member)));
   for (const auto& [key, value] : dict) {
     const std::string attribute = py::str(key);
-    if (PyObject_TypeCheck(value.ptr(), &PyProperty_Type)) {  // def_property / def_readwrite: the setter's value by name
+    if (PyObject_TypeCheck(value.ptr(),
+                           &PyProperty_Type)) {  // def_property / def_readwrite: the setter's value by name
       wrap(value.attr("fget"), name + "." + attribute, {});
       wrap(value.attr("fset"), name, attribute);
     } else if (PyObject_TypeCheck(value.ptr(), &PyStaticMethod_Type)) {
@@ -211,7 +214,9 @@ void wrap_module(py::module_ m, std::unordered_set<PyObject*>& seen) {
 
 }  // namespace
 
-bool strict_arguments() noexcept { return strict; }
+bool strict_arguments() noexcept {
+  return strict;
+}
 
 std::string describe(py::handle value) {
   if (value.is_none()) return "None";

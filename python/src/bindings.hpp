@@ -37,8 +37,8 @@ namespace cifs::python {
 /// A value a checked conversion refused (the casters below), thrown before the parameter it was given for is
 /// known: `value` is the Python object refused (a whole argument, or an item of a list or tuple argument),
 /// `path` the place of the refused item inside it ("[2][0]", prefixed by each list caster on the way out).
-/// The bound function reading its arguments names the parameter (checked_call, arguments.cpp): cifs.InvalidInput
-/// "surface_mesh: nets[2]: expected an array of real numbers, got dtype complex128".
+/// The bound function reading its arguments names the parameter (checked_call, arguments.cpp):
+/// cifs.InvalidInput "surface_mesh: nets[2]: expected an array of real numbers, got dtype complex128".
 struct ArgumentError : InvalidInput {
   ArgumentError(PyObject* refused, std::string where, const std::string& what)
       : InvalidInput(what), value(refused), path(std::move(where)), detail(what) {}
@@ -48,8 +48,8 @@ struct ArgumentError : InvalidInput {
 };
 
 /// True while a bound function without overloads reads its arguments (arguments.cpp): a conversion then
-/// refuses a value by throwing ArgumentError. With overloads it returns false, so that pybind11 tries the next
-/// overload and raises TypeError (listing the signatures) when none takes the arguments.
+/// refuses a value by throwing ArgumentError. With overloads it returns false, so that pybind11 tries the
+/// next overload and raises TypeError (listing the signatures) when none takes the arguments.
 bool strict_arguments() noexcept;
 
 /// A refused value for messages: "str 'abc'", "float 1.5", "an array of dtype complex128 and shape (3,)".
@@ -130,8 +130,8 @@ class RealArrayCaster {
     }
     const char kind = a.dtype().kind();
     if (kind == 'c' || kind == 'b')
-      throw cifs::python::ArgumentError(src.ptr(), {},
-                                        "expected an array of real numbers, got dtype " + std::string(str(a.dtype())));
+      throw cifs::python::ArgumentError(
+          src.ptr(), {}, "expected an array of real numbers, got dtype " + std::string(str(a.dtype())));
     if (kind != 'f' && kind != 'i' && kind != 'u')
       return refuse(src, "expected an array of real numbers, got " + cifs::python::describe(src));
     Eigen::Index rows = 0, cols = 0;
@@ -222,9 +222,9 @@ class type_caster<Eigen::Ref<const cifs::Points>> {
   operator Eigen::Ref<const cifs::Points>&() { return *ref_; }
 };
 
-// Integers: Python ints and objects with __index__ (numpy integers), range-checked for the C++ type. pybind11's
-// caster refused -1 for a size_t, 2**64 and 1.5 only with a TypeError listing the signatures; these name the value
-// and its range. numpy booleans are refused (Python's True stays the int 1).
+// Integers: Python ints and objects with __index__ (numpy integers), range-checked for the C++ type.
+// pybind11's caster refused -1 for a size_t, 2**64 and 1.5 only with a TypeError listing the signatures;
+// these name the value and its range. numpy booleans are refused (Python's True stays the int 1).
 template <class T>
 class IntegerCaster {
  public:
@@ -235,7 +235,8 @@ class IntegerCaster {
     PyObject* p = src.ptr();
     const auto integer = [&] { return "expected an integer, got " + cifs::python::describe(src); };
     if (!p || PyFloat_Check(p) || !(PyLong_Check(p) || PyIndex_Check(p)) ||
-        (!PyLong_Check(p) && hasattr(src, "dtype") && str(src.attr("dtype").attr("kind")).cast<std::string>() == "b"))
+        (!PyLong_Check(p) && hasattr(src, "dtype") &&
+         str(src.attr("dtype").attr("kind")).cast<std::string>() == "b"))
       return refuse(src, integer());
     const auto index = reinterpret_steal<object>(PyNumber_Index(p));
     if (!index) {
@@ -288,7 +289,8 @@ class type_caster<unsigned long long> : public IntegerCaster<unsigned long long>
 
 // Real numbers: Python floats and ints, numpy real scalars, and other numbers with __float__ (Fraction,
 // Decimal). pybind11's caster also took numpy complex scalars (dropping the imaginary part with a
-// ComplexWarning), numpy booleans and one-element arrays; those are refused. Finiteness is the library's check.
+// ComplexWarning), numpy booleans and one-element arrays; those are refused. Finiteness is the library's
+// check.
 template <class T>
 class RealCaster {
  public:
@@ -308,8 +310,8 @@ class RealCaster {
       const auto kind = str(src.attr("dtype").attr("kind")).cast<std::string>();
       if ((kind != "f" && kind != "i" && kind != "u") || getattr(src, "ndim", int_(0)).cast<long>() != 0)
         return refuse(src, number());
-    } else if (!PyLong_Check(p) && (PyComplex_Check(p) || !PyNumber_Check(p) ||
-                                    Py_TYPE(p)->tp_as_number->nb_float == nullptr)) {
+    } else if (!PyLong_Check(p) &&
+               (PyComplex_Check(p) || !PyNumber_Check(p) || Py_TYPE(p)->tp_as_number->nb_float == nullptr)) {
       return refuse(src, number());
     }
     const auto f = reinterpret_steal<object>(PyNumber_Float(p));
@@ -351,8 +353,8 @@ class type_caster<array_t<double, array::c_style | array::forcecast>> {
     }
     const char kind = a.dtype().kind();
     if (kind == 'c' || kind == 'b')
-      throw cifs::python::ArgumentError(src.ptr(), {},
-                                        "expected an array of real numbers, got dtype " + std::string(str(a.dtype())));
+      throw cifs::python::ArgumentError(
+          src.ptr(), {}, "expected an array of real numbers, got dtype " + std::string(str(a.dtype())));
     if (kind != 'f' && kind != 'i' && kind != 'u')
       return refuse(src, "expected an array of real numbers, got " + cifs::python::describe(src));
     value = Type::ensure(a);
@@ -371,7 +373,8 @@ std::string expected_item() {
   if constexpr (std::is_same_v<Value, bool>) return "True or False";
   if constexpr (std::is_integral_v<Value>) return "an integer";
   if constexpr (std::is_floating_point_v<Value>) return "a real number";
-  if constexpr (std::is_base_of_v<type_caster_generic, make_caster<Value>>) {  // a bound class: its Python name
+  if constexpr (std::is_base_of_v<type_caster_generic,
+                                  make_caster<Value>>) {  // a bound class: its Python name
     const type_info* info = get_type_info(typeid(Value));
     const std::string name = info ? info->type->tp_name : type_id<Value>();
     return name.substr(name.rfind('.') + 1);
@@ -413,7 +416,8 @@ bool check_sequence(handle src) {
     if constexpr (std::is_arithmetic_v<Value> && !std::is_same_v<Value, bool>) {
       const bool integral = std::is_integral_v<Value>;
       if (a.ndim() != 1 || !std::strchr(integral ? "iu" : "iuf", kind))
-        return refuse(src, std::string(integral ? "expected a 1-D array of integers" : "expected a 1-D array of numbers") +
+        return refuse(src, std::string(integral ? "expected a 1-D array of integers"
+                                                : "expected a 1-D array of numbers") +
                                ", got " + cifs::python::describe(src));
     }
   }
@@ -432,7 +436,8 @@ struct type_caster<std::vector<Value, std::allocator<Value>>> : list_caster<std:
     this->value.reserve(items.size());
     std::size_t k = 0;
     for (const auto& item : items)
-      if (!load_item<Value>(src, item, k++, convert, [&](auto&& v) { this->value.push_back(std::forward<decltype(v)>(v)); }))
+      if (!load_item<Value>(src, item, k++, convert,
+                            [&](auto&& v) { this->value.push_back(std::forward<decltype(v)>(v)); }))
         return false;
     return true;
   }
@@ -445,9 +450,11 @@ struct StrictArrayCaster : array_caster<std::array<Value, N>, Value, false, N> {
     if (!check_sequence<Value>(src)) return false;
     const auto items = reinterpret_borrow<sequence>(src);
     if (items.size() != N)
-      return cifs::python::refuse(src, "expected " + std::to_string(N) + " items, got " + cifs::python::describe(src));
+      return cifs::python::refuse(
+          src, "expected " + std::to_string(N) + " items, got " + cifs::python::describe(src));
     for (std::size_t k = 0; k < N; ++k)
-      if (!load_item<Value>(src, items[k], k, convert, [&](auto&& v) { this->value[k] = std::forward<decltype(v)>(v); }))
+      if (!load_item<Value>(src, items[k], k, convert,
+                            [&](auto&& v) { this->value[k] = std::forward<decltype(v)>(v); }))
         return false;
     return true;
   }

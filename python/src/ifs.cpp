@@ -408,9 +408,10 @@ void bind_samples(py::module_& m) {
       "attractor_points",
       [](const Automaton& a, const std::vector<Points>& nets, int depth, bool closed, std::int64_t max_bytes,
          int max_table_depth) {
-        const ifs::PointsOptions o{.closed = closed,
-                                   .max_bytes = count_arg(max_bytes, "attractor_points: max_bytes"),
-                                   .max_table_depth = non_negative(max_table_depth, "attractor_points: max_table_depth")};
+        const ifs::PointsOptions o{
+            .closed = closed,
+            .max_bytes = count_arg(max_bytes, "attractor_points: max_bytes"),
+            .max_table_depth = non_negative(max_table_depth, "attractor_points: max_table_depth")};
         py::gil_scoped_release unlocked;
         return ifs::attractor_points(a, nets, depth, o);
       },
@@ -452,7 +453,9 @@ void bind_samples(py::module_& m) {
       [](const Automaton& a, int depth, bool closed, int max_table_depth) {
         py::gil_scoped_release unlocked;
         return ifs::stencil_table(
-            a, depth, {.closed = closed, .max_table_depth = non_negative(max_table_depth, "stencil_table: max_table_depth")});
+            a, depth,
+            {.closed = closed,
+             .max_table_depth = non_negative(max_table_depth, "stencil_table: max_table_depth")});
       },
       py::arg("automaton"), py::arg("depth"), py::kw_only(), py::arg("closed").noconvert() = false,
       py::arg("max_table_depth") = 8,
@@ -503,21 +506,25 @@ void bind_chaos(py::module_& m) {
       "and address) above max_bytes (checked before allocating), and as for_each_leaf.");
 }
 
-/// The `out` mesh of the mesh routes, checked: with keep_faces it must hold the faces and states of an earlier
-/// call (`initial` patches of 4^depth quads each); the C++ route would silently rewrite other sizes, Python
-/// refuses them, before any work. Returns the mesh to write into (out, or `fresh`).
-Mesh& out_mesh(Mesh* out, Mesh& fresh, bool keep_faces, std::size_t initial, int depth, const std::string& who) {
+/// The `out` mesh of the mesh routes, checked: with keep_faces it must hold the faces and states of an
+/// earlier call (`initial` patches of 4^depth quads each); the C++ route would silently rewrite other sizes,
+/// Python refuses them, before any work. Returns the mesh to write into (out, or `fresh`).
+Mesh& out_mesh(Mesh* out, Mesh& fresh, bool keep_faces, std::size_t initial, int depth,
+               const std::string& who) {
   if (!out) {
     if (keep_faces) throw InvalidInput(who + ": keep_faces: needs the mesh of an earlier call as out=");
     return fresh;
   }
   if (keep_faces && depth >= 0 && depth < 24) {
     const std::size_t faces = initial << (2 * depth);
-    if (out->face_offsets.size() != faces + 1 || out->face_vertices.size() != 4 * faces || out->states.size() != faces)
-      throw InvalidInput(who + ": out: keep_faces needs the faces and states of an earlier call with the same "
-                               "automaton and depth (" + std::to_string(faces) + " quads), out has " +
-                         std::to_string(out->states.size()) + " states and " +
-                         std::to_string(out->face_offsets.empty() ? 0 : out->face_offsets.size() - 1) + " faces");
+    if (out->face_offsets.size() != faces + 1 || out->face_vertices.size() != 4 * faces ||
+        out->states.size() != faces)
+      throw InvalidInput(
+          who +
+          ": out: keep_faces needs the faces and states of an earlier call with the same "
+          "automaton and depth (" +
+          std::to_string(faces) + " quads), out has " + std::to_string(out->states.size()) + " states and " +
+          std::to_string(out->face_offsets.empty() ? 0 : out->face_offsets.size() - 1) + " faces");
   }
   return *out;
 }
@@ -542,14 +549,15 @@ void bind_meshes(py::module_& m) {
       "surface_mesh",
       [](const nurbs::TensorAutomaton& a, const std::vector<Points>& nets, int depth, bool homogeneous,
          std::int64_t max_bytes, int max_table_depth, Mesh* out, bool keep_faces) {
-        const ifs::MeshOptions o{.homogeneous = homogeneous,
-                                 .max_bytes = count_arg(max_bytes, "surface_mesh: max_bytes"),
-                                 .max_table_depth = non_negative(max_table_depth, "surface_mesh: max_table_depth"),
-                                 .keep_faces = keep_faces};
+        const ifs::MeshOptions o{
+            .homogeneous = homogeneous,
+            .max_bytes = count_arg(max_bytes, "surface_mesh: max_bytes"),
+            .max_table_depth = non_negative(max_table_depth, "surface_mesh: max_table_depth"),
+            .keep_faces = keep_faces};
         Mesh fresh;
         Mesh& mesh = out_mesh(out, fresh, keep_faces,
-                              a.factors[0].automaton.initial.size() * a.factors[1].automaton.initial.size(), depth,
-                              "surface_mesh");
+                              a.factors[0].automaton.initial.size() * a.factors[1].automaton.initial.size(),
+                              depth, "surface_mesh");
         {
           py::gil_scoped_release unlocked;
           ifs::surface_mesh(a, nets, depth, mesh, o);
@@ -568,17 +576,21 @@ void bind_meshes(py::module_& m) {
       "are divided by w; max_bytes: refuse a larger mesh. Raises InvalidInput for a negative depth, nets "
       "that "
       "do not fit, or a mesh above max_bytes.\n\n"
-      "out: an io.Mesh written in place and returned (its storage reused: a sweep or an animation); keep_faces: "
-      "out holds the faces and states of an earlier call with the same automaton and depth, only the vertices "
+      "out: an io.Mesh written in place and returned (its storage reused: a sweep or an animation); "
+      "keep_faces: "
+      "out holds the faces and states of an earlier call with the same automaton and depth, only the "
+      "vertices "
       "are written (InvalidInput for an out of other sizes).");
   m.def(
       "quad_mesh",
       [](const Automaton& a, const std::vector<Points>& nets, const std::vector<std::array<int, 2>>& patches,
-         int depth, bool homogeneous, std::int64_t max_bytes, int max_table_depth, Mesh* out, bool keep_faces) {
-        const ifs::MeshOptions o{.homogeneous = homogeneous,
-                                 .max_bytes = count_arg(max_bytes, "quad_mesh: max_bytes"),
-                                 .max_table_depth = non_negative(max_table_depth, "quad_mesh: max_table_depth"),
-                                 .keep_faces = keep_faces};
+         int depth, bool homogeneous, std::int64_t max_bytes, int max_table_depth, Mesh* out,
+         bool keep_faces) {
+        const ifs::MeshOptions o{
+            .homogeneous = homogeneous,
+            .max_bytes = count_arg(max_bytes, "quad_mesh: max_bytes"),
+            .max_table_depth = non_negative(max_table_depth, "quad_mesh: max_table_depth"),
+            .keep_faces = keep_faces};
         Mesh fresh;
         Mesh& mesh = out_mesh(out, fresh, keep_faces, patches.size(), depth, "quad_mesh");
         {
@@ -593,7 +605,8 @@ void bind_meshes(py::module_& m) {
       "The attractor at `depth` of any automaton with four children per state (GH, GB, DH, DB) as an "
       "io.Mesh of quads laid out as surface_mesh's.\n\n"
       "patches: per initial entry its (a, b) place in a grid they fill exactly once (int `(n, 2)` or list of "
-      "pairs); other arguments (out, keep_faces too) as surface_mesh. Raises InvalidInput as surface_mesh, and "
+      "pairs); other arguments (out, keep_faces too) as surface_mesh. Raises InvalidInput as surface_mesh, "
+      "and "
       "for a state without four children or patches that do not tile a grid.");
   py::class_<ifs::MeshStencilTable>(
       m, "MeshStencilTable",
@@ -618,8 +631,10 @@ void bind_meshes(py::module_& m) {
             return mesh_result(out, std::move(fresh));
           },
           py::arg("nets"), py::kw_only(), py::arg("homogeneous").noconvert() = false,
-          py::arg("max_bytes") = std::int64_t{1} << 30, py::arg("out") = py::none(), py::arg("keep_faces") = false,
-          "The io.Mesh of these nets, the same as quad_mesh (patch_meshes). out, keep_faces: as surface_mesh's. "
+          py::arg("max_bytes") = std::int64_t{1} << 30, py::arg("out") = py::none(),
+          py::arg("keep_faces") = false,
+          "The io.Mesh of these nets, the same as quad_mesh (patch_meshes). out, keep_faces: as "
+          "surface_mesh's. "
           "Raises InvalidInput for nets that do not fit and a mesh above max_bytes.")
       .def("__repr__", [](const ifs::MeshStencilTable& t) {
         return "MeshStencilTable(depth " + std::to_string(t.depth) + ", table depth " +
@@ -631,9 +646,10 @@ void bind_meshes(py::module_& m) {
       [](const Automaton& a, int depth, const std::optional<std::vector<std::array<int, 2>>>& patches,
          int max_table_depth) {
         py::gil_scoped_release unlocked;
-        return ifs::mesh_stencil_table(a, depth,
-                                       {.patches = patches.value_or(std::vector<std::array<int, 2>>{}),
-                                        .max_table_depth = non_negative(max_table_depth, "mesh_stencil_table: max_table_depth")});
+        return ifs::mesh_stencil_table(
+            a, depth,
+            {.patches = patches.value_or(std::vector<std::array<int, 2>>{}),
+             .max_table_depth = non_negative(max_table_depth, "mesh_stencil_table: max_table_depth")});
       },
       py::arg("automaton"), py::arg("depth"), py::kw_only(), py::arg("patches") = py::none(),
       py::arg("max_table_depth") = 6,

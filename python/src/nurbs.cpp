@@ -222,7 +222,9 @@ void bind_knots(py::module_& m) {
       "Raises InvalidInput (message prefixed by `where`) otherwise.");
   m.def(
       "control_count",
-      [](const Knots& knots, int degree) { return control_count(knots, non_negative(degree, "control_count: degree")); },
+      [](const Knots& knots, int degree) {
+        return control_count(knots, non_negative(degree, "control_count: degree"));
+      },
       py::arg("knots"), py::arg("degree"),
       "Number of control points a knot vector serves: len(knots) − degree − 1.");
   m.def(

@@ -389,9 +389,9 @@ upper Hölder bound. Returns a SchemeAnalysis. Raises cifs.InvalidInput for opti
         return sd::difference_mask(a, non_negative(k, "difference_mask: k"));
       },
       py::arg("a"), py::arg("k"),
-        "d_k(z) = 2^k a(z)/(1+z)^{k+1} (list of Fractions). Raises cifs.InvalidInput unless (1+z)^{k+1} "
-        "divides "
-        "a(z).");
+      "d_k(z) = 2^k a(z)/(1+z)^{k+1} (list of Fractions). Raises cifs.InvalidInput unless (1+z)^{k+1} "
+      "divides "
+      "a(z).");
   m.def("power_norm", &sd::power_norm, py::arg("c"), py::arg("L"),
         py::arg("max_coefficients") = std::size_t{1} << 22, py::call_guard<py::gil_scoped_release>(),
         "‖S_c^L‖_∞ exactly (Fraction) for a mask c (exact values), L ≥ 1. Raises cifs.InvalidInput for L < 1 "

@@ -86,7 +86,8 @@ Mesh quad_mesh(const automata::Automaton& automaton, std::span<const Points> net
 /// The same into `mesh`, whose storage is reused (and whose faces are kept with options.keep_faces), as
 /// surface_mesh's. Refusals leave `mesh` unchanged.
 void quad_mesh(const automata::Automaton& automaton, std::span<const Points> nets,
-               std::span<const std::array<int, 2>> patches, int depth, Mesh& mesh, const MeshOptions& options = {});
+               std::span<const std::array<int, 2>> patches, int depth, Mesh& mesh,
+               const MeshOptions& options = {});
 
 /// The generic route with every initial entry meshed on its own, for patches that do not tile a
 /// grid (the faces of a subdivision surface): patch i is the block of (2^K + 1)² vertices from
