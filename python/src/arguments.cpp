@@ -182,15 +182,16 @@ void wrap_class(py::handle type) {
       members.push_back(py::int_(py::reinterpret_borrow<py::object>(member)));
   for (const auto& [key, value] : dict) {
     const std::string attribute = py::str(key);
-    if (PyObject_TypeCheck(value.ptr(),
-                           &PyProperty_Type)) {  // def_property / def_readwrite: the setter's value by name
-      wrap(value.attr("fget"), name + "." + attribute, {});
+    std::string qualified = name;
+    qualified.append(1, '.').append(attribute);
+    if (PyObject_TypeCheck(value.ptr(), &PyProperty_Type)) {  // the setter's value is named for the property
+      wrap(value.attr("fget"), qualified, {});
       wrap(value.attr("fset"), name, attribute);
     } else if (PyObject_TypeCheck(value.ptr(), &PyStaticMethod_Type)) {
-      wrap(value.attr("__func__"), name + "." + attribute, {});
+      wrap(value.attr("__func__"), qualified, {});
     } else {
       const bool construct = attribute == "__init__" || attribute == "__setstate__";
-      wrap(value, attribute == "__init__" ? name : name + "." + attribute, {},
+      wrap(value, attribute == "__init__" ? name : qualified, {},
            construct ? members : std::vector<long long>{});
     }
   }
