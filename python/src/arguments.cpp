@@ -229,7 +229,11 @@ std::string describe(py::handle value) {
            (a.ndim() == 1 ? ",)" : ")");
   }
   std::string text = py::repr(value);
-  if (text.size() > 40) text = text.substr(0, 37) + "...";
+  if (text.size() > 40) {  // cut at a character boundary: the message must stay valid UTF-8
+    std::size_t n = 37;
+    while (n > 0 && (static_cast<unsigned char>(text[n]) & 0xC0) == 0x80) --n;
+    text = text.substr(0, n) + "...";
+  }
   return std::string(Py_TYPE(value.ptr())->tp_name) + " " + text;
 }
 

@@ -271,6 +271,9 @@ class MessageTest(unittest.TestCase):
             (lambda: setattr(cifs.render.Camera(), "fov_y", "wide"), r"^Camera: fov_y: expected a real number"),
             (lambda: cifs.ifs.mesh_stencil_table(automaton, 1, patches=[[0, 0, 0]]),
              r"^mesh_stencil_table: patches\[0\]: expected 2 items"),
+            (lambda: cifs.nurbs.Direction(-1), r"^Direction: value: expected one of 0, 1, got int -1$"),
+            # A long value is cut at a character boundary (the message stays valid UTF-8).
+            (lambda: cifs.nurbs.control_count("é" * 50, 1), r"^control_count: knots: expected a list, got str 'é+\.\.\.$"),
         ]
         for call, pattern in cases:
             with self.assertRaises(cifs.InvalidInput) as e:
