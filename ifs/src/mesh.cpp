@@ -577,9 +577,14 @@ void emit_mesh(const MeshStencilTable& table, const Layout& layout, std::span<co
   const Automaton& automaton = table.automaton;
   const int depth = table.depth, L = table.table_depth, side_L = 1 << L, m = side_L + 1;
   const Eigen::Index C = nets[0].cols();
+  const bool keep = options.keep_faces && mesh.face_vertices.size() == 4 * layout.faces &&
+                    mesh.face_offsets.size() == layout.faces + 1 && mesh.states.size() == layout.faces;
   resize_huge(mesh.vertices, static_cast<Eigen::Index>(layout.vertices), C);
-  write_quads(layout.blocks, layout.block_u, layout.block_v, mesh);
-  assign_huge(mesh.states, layout.faces, std::uint32_t{0});  // written block by block, out of order
+  mesh.normals.resize(0, 0);  // a reused mesh's normals belong to its old vertices
+  if (!keep) {
+    write_quads(layout.blocks, layout.block_u, layout.block_v, mesh);
+    assign_huge(mesh.states, layout.faces, std::uint32_t{0});  // written block by block, out of order
+  }
   detail::depth_first(
       automaton, nets, depth - L,
       [&](std::size_t i, StateId s, const Points& net, int d, std::span<const int> word) {
@@ -598,7 +603,7 @@ void emit_mesh(const MeshStencilTable& table, const Layout& layout, std::span<co
               table.tables[s].data() + static_cast<Eigen::Index>(r) * m * size, cols, size, net,
               mesh.vertices.data() +
                   (static_cast<Eigen::Index>(p.vertex) + static_cast<Eigen::Index>(I0 + r) * p.row + J0) * C);
-        for (int r = 0; r < side_L; ++r)
+        for (int r = 0; r < side_L && !keep; ++r)
           std::copy_n(table.leaf_states[s].begin() + static_cast<std::ptrdiff_t>(r) * side_L, side_L,
                       mesh.states.begin() + static_cast<std::ptrdiff_t>(p.face) +
                           static_cast<std::ptrdiff_t>(I0 + r) * p.face_row + J0);
@@ -609,8 +614,8 @@ void emit_mesh(const MeshStencilTable& table, const Layout& layout, std::span<co
 
 /// The generic route for quad_mesh (a grid of `patches`) and patch_meshes (no grid): every refusal
 /// before any work.
-Mesh generic_mesh(const Automaton& automaton, std::span<const Points> nets,
-                  std::optional<std::span<const std::array<int, 2>>> grid, int depth,
+void generic_mesh(const Automaton& automaton, std::span<const Points> nets,
+                  std::optional<std::span<const std::array<int, 2>>> grid, int depth, Mesh& mesh,
                   const MeshOptions& options) {
   const auto states = surface_states(automaton, nets);
   const std::span<const std::array<int, 2>> patches = grid.value_or(std::span<const std::array<int, 2>>{});
@@ -620,9 +625,7 @@ Mesh generic_mesh(const Automaton& automaton, std::span<const Points> nets,
   check_size(place.vertices, place.faces, static_cast<std::size_t>(C), depth, place.what, options.max_bytes);
   const MeshStencilTable table = build_table(automaton, states, depth, patches, options.max_table_depth,
                                              place.vertices * static_cast<std::size_t>(C) / 2);
-  Mesh mesh;
   emit_mesh(table, place, nets, mesh, options);
-  return mesh;
 }
 
 /// Checks a table that may have been edited against its automaton, as mesh_stencil_table built it.
@@ -648,14 +651,24 @@ void check_table(const MeshStencilTable& t, std::span<const Points> nets) {
 
 }  // namespace
 
+void quad_mesh(const Automaton& automaton, std::span<const Points> nets,
+               std::span<const std::array<int, 2>> patches, int depth, Mesh& mesh,
+               const MeshOptions& options) {
+  generic_mesh(automaton, nets, patches, depth, mesh, options);
+}
+
 Mesh quad_mesh(const Automaton& automaton, std::span<const Points> nets,
                std::span<const std::array<int, 2>> patches, int depth, const MeshOptions& options) {
-  return generic_mesh(automaton, nets, patches, depth, options);
+  Mesh mesh;
+  quad_mesh(automaton, nets, patches, depth, mesh, options);
+  return mesh;
 }
 
 Mesh patch_meshes(const Automaton& automaton, std::span<const Points> nets, int depth,
                   const MeshOptions& options) {
-  return generic_mesh(automaton, nets, std::nullopt, depth, options);
+  Mesh mesh;
+  generic_mesh(automaton, nets, std::nullopt, depth, mesh, options);
+  return mesh;
 }
 
 MeshStencilTable mesh_stencil_table(const Automaton& automaton, int depth,

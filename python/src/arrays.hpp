@@ -166,6 +166,12 @@ inline std::size_t count_arg(std::int64_t value, const std::string& where) {
   return static_cast<std::size_t>(value);
 }
 
+/// An index, depth or degree from a Python int: negative values are refused.
+inline int non_negative(int value, const std::string& where) {
+  if (value < 0) throw InvalidInput(where + " = " + std::to_string(value) + " is negative");
+  return value;
+}
+
 /// A 1-D array as a vector (copy).
 inline Eigen::VectorXd to_vector(const DoubleArray& a, std::string_view where) {
   if (a.ndim() != 1)

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "arrays.hpp"
 #include "bindings.hpp"
 #include "cifs/automata/automaton.hpp"
 #include "cifs/automata/tensor.hpp"
@@ -277,8 +278,10 @@ void bind_automaton_entries(py::class_<KnotAutomaton>& automaton) {
              int span) {
             Automaton& a = k.automaton;
             const StateId s = state_id(a, state, "add_initial");
-            a.initial.push_back(automata::Initial{
-                .segment = segment ? *segment : static_cast<int>(a.initial.size()), .state = s});
+            a.initial.push_back(
+                automata::Initial{.segment = segment ? non_negative(*segment, "add_initial: segment")
+                                                     : static_cast<int>(a.initial.size()),
+                                  .state = s});
             k.intervals.resize(a.initial.size() - 1);
             k.intervals.push_back(nurbs::KnotInterval{.start = start, .end = end, .span = span});
             return a.initial.size() - 1;

@@ -8,6 +8,7 @@
 #include <string>
 #include <tuple>
 
+#include "arrays.hpp"
 #include "bindings.hpp"
 #include "cifs/errors.hpp"
 #include "cifs/ifs/bcifs.hpp"
@@ -105,7 +106,7 @@ Factor(transition=(source, child)): the matrix of that transition.)doc");
   kind.attr("value").attr("__doc__") = "The integer value of the kind.";
   factor
       .def(py::init([](int boundary) {
-             return ifs::Factor{ifs::Factor::Kind::boundary, boundary, {}};
+             return ifs::Factor{ifs::Factor::Kind::boundary, non_negative(boundary, "Factor: boundary"), {}};
            }),
            py::kw_only(), py::arg("boundary"), "A boundary-operator factor (index into Bcifs.boundaries).")
       .def(py::init([](ifs::TransitionRef transition) {
@@ -138,7 +139,8 @@ same target cell and hold at most one free transition each (checked by the Bcifs
 
   py::class_<ifs::Coefficient>(m, "Coefficient", "An entry (row, col) of the matrix of a free transition.")
       .def(py::init([](ifs::TransitionRef transition, int row, int col) {
-             return ifs::Coefficient{transition, row, col};
+             return ifs::Coefficient{transition, non_negative(row, "Coefficient: row"),
+                                     non_negative(col, "Coefficient: col")};
            }),
            py::arg("transition"), py::arg("row"), py::arg("col"),
            "Entry (row, col) of transition (source, child).")

@@ -331,7 +331,8 @@ void bind_piece_bounds(py::module_& m) {
         c.reserve(counts.size());
         for (const auto& [epsilon, leaves] : counts)
           c.push_back({epsilon, count_arg(leaves, "cover_exponent: leaves")});
-        return ifs::cover_exponent(c, count_arg(min_leaves, "cover_exponent: min_leaves"), levels);
+        return ifs::cover_exponent(c, count_arg(min_leaves, "cover_exponent: min_leaves"),
+                                   non_negative(levels, "cover_exponent: levels"));
       },
       py::arg("counts"), py::arg("min_leaves") = 1000, py::arg("levels") = 64,
       "Growth of a proven cover: the slope of log n(ε) against log(1/ε) over the finest `levels` counts "
@@ -383,7 +384,7 @@ void bind_samples(py::module_& m) {
                                    .homogeneous = homogeneous,
                                    .closed = closed,
                                    .states = states,
-                                   .max_depth = max_depth,
+                                   .max_depth = non_negative(max_depth, "sample_attractor: max_depth"),
                                    .max_points = count_arg(max_points, "sample_attractor: max_points")};
         py::gil_scoped_release unlocked;
         return ifs::sample_attractor(a, nets, o);
@@ -407,9 +408,10 @@ void bind_samples(py::module_& m) {
       "attractor_points",
       [](const Automaton& a, const std::vector<Points>& nets, int depth, bool closed, std::int64_t max_bytes,
          int max_table_depth) {
-        const ifs::PointsOptions o{.closed = closed,
-                                   .max_bytes = count_arg(max_bytes, "attractor_points: max_bytes"),
-                                   .max_table_depth = max_table_depth};
+        const ifs::PointsOptions o{
+            .closed = closed,
+            .max_bytes = count_arg(max_bytes, "attractor_points: max_bytes"),
+            .max_table_depth = non_negative(max_table_depth, "attractor_points: max_table_depth")};
         py::gil_scoped_release unlocked;
         return ifs::attractor_points(a, nets, depth, o);
       },
@@ -450,7 +452,10 @@ void bind_samples(py::module_& m) {
       "stencil_table",
       [](const Automaton& a, int depth, bool closed, int max_table_depth) {
         py::gil_scoped_release unlocked;
-        return ifs::stencil_table(a, depth, {.closed = closed, .max_table_depth = max_table_depth});
+        return ifs::stencil_table(
+            a, depth,
+            {.closed = closed,
+             .max_table_depth = non_negative(max_table_depth, "stencil_table: max_table_depth")});
       },
       py::arg("automaton"), py::arg("depth"), py::kw_only(), py::arg("closed").noconvert() = false,
       py::arg("max_table_depth") = 8,
@@ -501,6 +506,34 @@ void bind_chaos(py::module_& m) {
       "and address) above max_bytes (checked before allocating), and as for_each_leaf.");
 }
 
+/// The `out` mesh of the mesh routes, checked: with keep_faces it must hold the faces and states of an
+/// earlier call (`initial` patches of 4^depth quads each); the C++ route would silently rewrite other sizes,
+/// Python refuses them, before any work. Returns the mesh to write into (out, or `fresh`).
+Mesh& out_mesh(Mesh* out, Mesh& fresh, bool keep_faces, std::size_t initial, int depth,
+               const std::string& who) {
+  if (!out) {
+    if (keep_faces) throw InvalidInput(who + ": keep_faces: needs the mesh of an earlier call as out=");
+    return fresh;
+  }
+  if (keep_faces && depth >= 0 && depth < 24) {
+    const std::size_t faces = initial << (2 * depth);
+    if (out->face_offsets.size() != faces + 1 || out->face_vertices.size() != 4 * faces ||
+        out->states.size() != faces)
+      throw InvalidInput(
+          who +
+          ": out: keep_faces needs the faces and states of an earlier call with the same "
+          "automaton and depth (" +
+          std::to_string(faces) + " quads), out has " + std::to_string(out->states.size()) + " states and " +
+          std::to_string(out->face_offsets.empty() ? 0 : out->face_offsets.size() - 1) + " faces");
+  }
+  return *out;
+}
+
+/// The result of a mesh route: `out` itself (the same Python object) or the new mesh.
+py::object mesh_result(Mesh* out, Mesh&& fresh) {
+  return out ? py::cast(out, py::return_value_policy::reference) : py::cast(std::move(fresh));
+}
+
 /// Meshes.
 void bind_meshes(py::module_& m) {
   m.def(
@@ -515,16 +548,25 @@ void bind_meshes(py::module_& m) {
   m.def(
       "surface_mesh",
       [](const nurbs::TensorAutomaton& a, const std::vector<Points>& nets, int depth, bool homogeneous,
-         std::int64_t max_bytes, int max_table_depth) {
-        const ifs::MeshOptions o{.homogeneous = homogeneous,
-                                 .max_bytes = count_arg(max_bytes, "surface_mesh: max_bytes"),
-                                 .max_table_depth = max_table_depth};
-        py::gil_scoped_release unlocked;
-        return ifs::surface_mesh(a, nets, depth, o);
+         std::int64_t max_bytes, int max_table_depth, Mesh* out, bool keep_faces) {
+        const ifs::MeshOptions o{
+            .homogeneous = homogeneous,
+            .max_bytes = count_arg(max_bytes, "surface_mesh: max_bytes"),
+            .max_table_depth = non_negative(max_table_depth, "surface_mesh: max_table_depth"),
+            .keep_faces = keep_faces};
+        Mesh fresh;
+        Mesh& mesh = out_mesh(out, fresh, keep_faces,
+                              a.factors[0].automaton.initial.size() * a.factors[1].automaton.initial.size(),
+                              depth, "surface_mesh");
+        {
+          py::gil_scoped_release unlocked;
+          ifs::surface_mesh(a, nets, depth, mesh, o);
+        }
+        return mesh_result(out, std::move(fresh));
       },
       py::arg("automaton"), py::arg("nets"), py::arg("depth"), py::kw_only(),
       py::arg("homogeneous").noconvert() = false, py::arg("max_bytes") = std::int64_t{1} << 30,
-      py::arg("max_table_depth") = 6,
+      py::arg("max_table_depth") = 6, py::arg("out") = py::none(), py::arg("keep_faces") = false,
       "The attractor at `depth` of a TensorAutomaton as one io.Mesh of quads (separable route): node (I, J) "
       "of "
       "the global grid is vertex I·(B·2^K + 1) + J, cell (I, J) face I·(B·2^K) + J with corners (I, J), "
@@ -533,25 +575,39 @@ void bind_meshes(py::module_& m) {
       "nets: automata.initial_nets(automaton, surface); homogeneous: the nets hold (w·x, w) rows, vertices "
       "are divided by w; max_bytes: refuse a larger mesh. Raises InvalidInput for a negative depth, nets "
       "that "
-      "do not fit, or a mesh above max_bytes.");
+      "do not fit, or a mesh above max_bytes.\n\n"
+      "out: an io.Mesh written in place and returned (its storage reused: a sweep or an animation); "
+      "keep_faces: "
+      "out holds the faces and states of an earlier call with the same automaton and depth, only the "
+      "vertices "
+      "are written (InvalidInput for an out of other sizes).");
   m.def(
       "quad_mesh",
       [](const Automaton& a, const std::vector<Points>& nets, const std::vector<std::array<int, 2>>& patches,
-         int depth, bool homogeneous, std::int64_t max_bytes, int max_table_depth) {
-        const ifs::MeshOptions o{.homogeneous = homogeneous,
-                                 .max_bytes = count_arg(max_bytes, "quad_mesh: max_bytes"),
-                                 .max_table_depth = max_table_depth};
-        py::gil_scoped_release unlocked;
-        return ifs::quad_mesh(a, nets, patches, depth, o);
+         int depth, bool homogeneous, std::int64_t max_bytes, int max_table_depth, Mesh* out,
+         bool keep_faces) {
+        const ifs::MeshOptions o{
+            .homogeneous = homogeneous,
+            .max_bytes = count_arg(max_bytes, "quad_mesh: max_bytes"),
+            .max_table_depth = non_negative(max_table_depth, "quad_mesh: max_table_depth"),
+            .keep_faces = keep_faces};
+        Mesh fresh;
+        Mesh& mesh = out_mesh(out, fresh, keep_faces, patches.size(), depth, "quad_mesh");
+        {
+          py::gil_scoped_release unlocked;
+          ifs::quad_mesh(a, nets, patches, depth, mesh, o);
+        }
+        return mesh_result(out, std::move(fresh));
       },
       py::arg("automaton"), py::arg("nets"), py::arg("patches"), py::arg("depth"), py::kw_only(),
       py::arg("homogeneous").noconvert() = false, py::arg("max_bytes") = std::int64_t{1} << 30,
-      py::arg("max_table_depth") = 6,
+      py::arg("max_table_depth") = 6, py::arg("out") = py::none(), py::arg("keep_faces") = false,
       "The attractor at `depth` of any automaton with four children per state (GH, GB, DH, DB) as an "
       "io.Mesh of quads laid out as surface_mesh's.\n\n"
       "patches: per initial entry its (a, b) place in a grid they fill exactly once (int `(n, 2)` or list of "
-      "pairs); other arguments as surface_mesh. Raises InvalidInput as surface_mesh, and for a state without "
-      "four children or patches that do not tile a grid.");
+      "pairs); other arguments (out, keep_faces too) as surface_mesh. Raises InvalidInput as surface_mesh, "
+      "and "
+      "for a state without four children or patches that do not tile a grid.");
   py::class_<ifs::MeshStencilTable>(
       m, "MeshStencilTable",
       "quad_mesh's (patch_meshes') topology built once (mesh_stencil_table) and applied to any nets of the "
@@ -561,17 +617,25 @@ void bind_meshes(py::module_& m) {
       .def(
           "apply",
           [](const ifs::MeshStencilTable& t, const std::vector<Points>& nets, bool homogeneous,
-             std::int64_t max_bytes) {
+             std::int64_t max_bytes, Mesh* out, bool keep_faces) {
             const ifs::MeshOptions o{.homogeneous = homogeneous,
-                                     .max_bytes = count_arg(max_bytes, "MeshStencilTable.apply: max_bytes")};
-            py::gil_scoped_release unlocked;
-            return ifs::apply_table(t, nets, o);
+                                     .max_bytes = count_arg(max_bytes, "MeshStencilTable.apply: max_bytes"),
+                                     .keep_faces = keep_faces};
+            Mesh fresh;
+            Mesh& mesh = out_mesh(out, fresh, keep_faces, t.automaton.initial.size(), t.depth,
+                                  "MeshStencilTable.apply");
+            {
+              py::gil_scoped_release unlocked;
+              ifs::apply_table(t, nets, mesh, o);
+            }
+            return mesh_result(out, std::move(fresh));
           },
           py::arg("nets"), py::kw_only(), py::arg("homogeneous").noconvert() = false,
-          py::arg("max_bytes") = std::int64_t{1} << 30,
-          "The io.Mesh of these nets, the same as quad_mesh (patch_meshes). Raises InvalidInput for nets "
-          "that "
-          "do not fit and a mesh above max_bytes.")
+          py::arg("max_bytes") = std::int64_t{1} << 30, py::arg("out") = py::none(),
+          py::arg("keep_faces") = false,
+          "The io.Mesh of these nets, the same as quad_mesh (patch_meshes). out, keep_faces: as "
+          "surface_mesh's. "
+          "Raises InvalidInput for nets that do not fit and a mesh above max_bytes.")
       .def("__repr__", [](const ifs::MeshStencilTable& t) {
         return "MeshStencilTable(depth " + std::to_string(t.depth) + ", table depth " +
                std::to_string(t.table_depth) + ", " +
@@ -582,9 +646,10 @@ void bind_meshes(py::module_& m) {
       [](const Automaton& a, int depth, const std::optional<std::vector<std::array<int, 2>>>& patches,
          int max_table_depth) {
         py::gil_scoped_release unlocked;
-        return ifs::mesh_stencil_table(a, depth,
-                                       {.patches = patches.value_or(std::vector<std::array<int, 2>>{}),
-                                        .max_table_depth = max_table_depth});
+        return ifs::mesh_stencil_table(
+            a, depth,
+            {.patches = patches.value_or(std::vector<std::array<int, 2>>{}),
+             .max_table_depth = non_negative(max_table_depth, "mesh_stencil_table: max_table_depth")});
       },
       py::arg("automaton"), py::arg("depth"), py::kw_only(), py::arg("patches") = py::none(),
       py::arg("max_table_depth") = 6,

@@ -49,4 +49,5 @@ PYBIND11_MODULE(_cifs, m) {
                                     "Running experiment files: build, perturb, evaluate, "
                                     "render, export.");
   bind_experiment(experiment);
+  check_arguments(m);  // after every function exists
 }

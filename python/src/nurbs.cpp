@@ -221,7 +221,10 @@ void bind_knots(py::module_& m) {
       "Finite, non-decreasing, count + degree + 1 values, multiplicities ≤ degree + 1, non-empty domain.\n"
       "Raises InvalidInput (message prefixed by `where`) otherwise.");
   m.def(
-      "control_count", [](const Knots& knots, int degree) { return control_count(knots, degree); },
+      "control_count",
+      [](const Knots& knots, int degree) {
+        return control_count(knots, non_negative(degree, "control_count: degree"));
+      },
       py::arg("knots"), py::arg("degree"),
       "Number of control points a knot vector serves: len(knots) − degree − 1.");
   m.def(
@@ -397,7 +400,7 @@ void bind_curve(py::module_& m) {
   m.def(
       "uniform_bspline",
       [](const DoubleArray& polygon, int degree, bool closed) {
-        return uniform_bspline(points_from(polygon, "points"), degree, closed);
+        return uniform_bspline(points_from(polygon, "uniform_bspline: polygon"), degree, closed);
       },
       py::arg("polygon"), py::arg("degree"), py::arg("closed").noconvert(),
       "The uniform B-spline of `degree` on a control polygon (n, dim).\n\n"

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "arrays.hpp"
 #include "bindings.hpp"
 #include "cifs/automata/automaton.hpp"
 #include "cifs/errors.hpp"
@@ -382,10 +383,15 @@ max_coefficients: cap on the coefficients of c^[L]; max_word_length: longest wor
 upper Hölder bound. Returns a SchemeAnalysis. Raises cifs.InvalidInput for options out of range.)doc");
   m.def("analysis_json", &io::analysis_json, py::arg("scheme"), py::arg("analysis"),
         "JSON text of an analysis, as printed by `cifs scheme NAME --analyze`.");
-  m.def("difference_mask", &sd::difference_mask, py::arg("a"), py::arg("k"),
-        "d_k(z) = 2^k a(z)/(1+z)^{k+1} (list of Fractions). Raises cifs.InvalidInput unless (1+z)^{k+1} "
-        "divides "
-        "a(z).");
+  m.def(
+      "difference_mask",
+      [](const sd::Polynomial& a, int k) {
+        return sd::difference_mask(a, non_negative(k, "difference_mask: k"));
+      },
+      py::arg("a"), py::arg("k"),
+      "d_k(z) = 2^k a(z)/(1+z)^{k+1} (list of Fractions). Raises cifs.InvalidInput unless (1+z)^{k+1} "
+      "divides "
+      "a(z).");
   m.def("power_norm", &sd::power_norm, py::arg("c"), py::arg("L"),
         py::arg("max_coefficients") = std::size_t{1} << 22, py::call_guard<py::gil_scoped_release>(),
         "‖S_c^L‖_∞ exactly (Fraction) for a mask c (exact values), L ≥ 1. Raises cifs.InvalidInput for L < 1 "

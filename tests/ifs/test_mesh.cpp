@@ -373,6 +373,26 @@ TEST_CASE("quad_mesh on a perturbed (non-Kronecker) automaton: corners of the le
   ifs::apply_table(table, other, applied);
   CHECK(applied.vertices.data() == storage);
   CHECK(applied.vertices == ifs::quad_mesh(a, other, patches, depth, {.max_table_depth = 3}).vertices);
+  // keep_faces: only the vertices are written (the faces are the caller's promise: a changed corner stays),
+  // the bits of a fresh mesh; without it the faces are written again. quad_mesh into a Mesh the same.
+  Mesh kept = applied;
+  kept.face_vertices.front() = -5;
+  ifs::apply_table(table, nets, kept, {.keep_faces = true});
+  CHECK(kept.face_vertices.front() == -5);
+  CHECK(kept.vertices == direct.vertices);
+  ifs::apply_table(table, nets, kept);
+  CHECK(kept.face_vertices == direct.face_vertices);
+  Mesh reused = direct;
+  reused.face_vertices.front() = -5;
+  ifs::quad_mesh(a, other, patches, depth, reused, {.max_table_depth = 3, .keep_faces = true});
+  CHECK(reused.face_vertices.front() == -5);
+  CHECK(reused.vertices == ifs::quad_mesh(a, other, patches, depth, {.max_table_depth = 3}).vertices);
+  CHECK(reused.states == direct.states);
+  Mesh small = ifs::quad_mesh(a, nets, patches, depth - 1);  // other sizes: everything is written
+  ifs::quad_mesh(a, nets, patches, depth, small, {.max_table_depth = 3, .keep_faces = true});
+  CHECK(small.face_vertices == direct.face_vertices);
+  CHECK(small.states == direct.states);
+  CHECK(small.vertices == direct.vertices);
   const Mesh side_by_side = ifs::apply_table(table, both);
   // Six columns take another kernel than three: the same sums to rounding.
   const double scale = direct.vertices.cwiseAbs().maxCoeff();

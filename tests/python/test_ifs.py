@@ -529,6 +529,53 @@ class NurbsAttractorTest(unittest.TestCase):
         self.assertEqual(message(self, lambda: table.apply(nets[:1])),
                          "1 control nets given for the automaton's 2 initial entries (one net per entry)")
 
+    def test_meshes_into_out_with_keep_faces(self):
+        """out= reuses a mesh (the same object is returned); keep_faces=True writes only its vertices: a sweep over
+        nets gives, bit for bit, the meshes computed afresh, for the three routes."""
+        _, s = self.shape("saddle.json")
+        t = automata.tensor_automaton(s)
+        nets = automata.initial_nets(t, s)
+        homogeneous = nets[0].shape[1] == 4
+        table = ifs.mesh_stencil_table(t.product, 3, patches=t.patches)
+        routes = {
+            "surface_mesh": lambda n, **k: ifs.surface_mesh(t, n, 3, homogeneous=homogeneous, **k),
+            "quad_mesh": lambda n, **k: ifs.quad_mesh(t.product, n, t.patches, 3, homogeneous=homogeneous, **k),
+            "MeshStencilTable.apply": lambda n, **k: table.apply(n, homogeneous=homogeneous, **k),
+        }
+        rng = np.random.default_rng(5)
+        for name, route in routes.items():
+            out = route(nets)
+            for frame in range(3):
+                moved = [n + rng.normal(scale=0.1, size=n.shape) * (np.arange(n.shape[1]) < 3) for n in nets]
+                self.assertIs(route(moved, out=out, keep_faces=True), out, name)
+                fresh = route(moved)
+                np.testing.assert_array_equal(out.vertices, fresh.vertices, err_msg=f"{name} frame {frame}")
+                np.testing.assert_array_equal(out.face_vertices, fresh.face_vertices, err_msg=name)
+                np.testing.assert_array_equal(out.face_offsets, fresh.face_offsets, err_msg=name)
+                np.testing.assert_array_equal(out.states, fresh.states, err_msg=name)
+            # out without keep_faces: everything written, into the same object.
+            self.assertIs(route(nets, out=out), out)
+            np.testing.assert_array_equal(out.vertices, route(nets).vertices)
+        # keep_faces with the mesh of another depth (or none, or another mesh) is refused before any work.
+        depth2 = ifs.surface_mesh(t, nets, 2, homogeneous=homogeneous)
+        before = depth2.vertices.copy()
+        for name, call in [
+            ("surface_mesh", lambda: ifs.surface_mesh(t, nets, 3, homogeneous=homogeneous, out=depth2, keep_faces=True)),
+            ("quad_mesh", lambda: ifs.quad_mesh(t.product, nets, t.patches, 3, homogeneous=homogeneous, out=depth2,
+                                                keep_faces=True)),
+            ("MeshStencilTable.apply", lambda: table.apply(nets, homogeneous=homogeneous, out=depth2,
+                                                           keep_faces=True)),
+        ]:
+            text = message(self, call)
+            self.assertTrue(text.startswith(f"{name}: out: keep_faces"), text)
+            self.assertIn(f"({4**3 * len(t.patches)} quads), out has {4**2 * len(t.patches)} states", text)
+        np.testing.assert_array_equal(depth2.vertices, before)
+        self.assertEqual(message(self, lambda: ifs.surface_mesh(t, nets, 3, keep_faces=True)),
+                         "surface_mesh: keep_faces: needs the mesh of an earlier call as out=")
+        triangles = cifs.io.Mesh(np.zeros((3, 3)), np.array([[0, 1, 2]]))
+        self.assertIn("out: keep_faces", message(self, lambda: ifs.surface_mesh(t, nets, 3, out=triangles,
+                                                                               keep_faces=True)))
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -363,7 +363,9 @@ class RobustnessTest(unittest.TestCase):
 
 class StrictBoolTest(unittest.TestCase):
     """Every `bool` parameter refuses values that merely have a truth value (2, 0.5, None, "yes"):
-    pybind11's bool caster converts anything with __bool__ unless the argument is noconvert()."""
+    pybind11's bool caster converts anything with __bool__ unless the argument is noconvert(). Functions
+    without overloads refuse them with InvalidInput naming the parameter (python/src/arguments.cpp),
+    overloaded ones with pybind11's TypeError (the next overload may take the value)."""
 
     def test_bool_parameters(self):
         import numpy as np
@@ -383,11 +385,13 @@ class StrictBoolTest(unittest.TestCase):
                         for i, (pname, annotation, _, _) in enumerate(params):
                             if annotation != "bool":
                                 continue
-                            def incompatible(value):
+                            def incompatible(value, pname=pname):
                                 try:
                                     _call(fn, params, samples, {i: value}, cheap)
                                 except TypeError as error:
                                     return "incompatible function arguments" in str(error)
+                                except cifs.InvalidInput as error:
+                                    return f": {pname}: expected True or False" in str(error)
                                 except Exception:  # noqa: BLE001 — refused for another reason: converted
                                     pass
                                 return False

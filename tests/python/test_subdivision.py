@@ -290,8 +290,9 @@ class RefineTest(ScratchTestCase):
         with self.assertRaises(cifs.InvalidInput) as e:
             sd.refine(sd.chaikin(), self.P, True, 10, max_points=1000)
         self.assertIn("10 refinement steps of", str(e.exception))
-        with self.assertRaises(TypeError):
+        with self.assertRaises(cifs.InvalidInput) as e:  # a wrong shape names the argument
             sd.refine(sd.chaikin(), np.zeros((2, 2, 2)), True)
+        self.assertRegex(str(e.exception), r"\bP: ")
 
 
 class IfsTest(unittest.TestCase):

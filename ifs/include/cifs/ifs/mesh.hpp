@@ -44,10 +44,11 @@ struct MeshOptions {
   /// Generic route: depth L of the precomposed stencil tables ((2^L + 1)² functionals per state;
   /// lowered automatically so that the tables stay below half of the output). Not read by apply_table.
   int max_table_depth = 6;
-  /// surface_mesh into a Mesh only: the mesh holds the faces and states of an earlier call with the
-  /// same automaton and depth (a sweep or animation: they do not depend on the nets), so only the
-  /// vertices are written — 24 of the 48 bytes per vertex. Their sizes are checked (any other size
-  /// rewrites them), their contents are not: set it only for a mesh this route filled.
+  /// Into a Mesh only (surface_mesh, quad_mesh, apply_table): the mesh holds the faces and states of an
+  /// earlier call of the same route with the same automaton, depth (and patches, table) — a sweep or
+  /// animation: they do not depend on the nets — so only the vertices are written (24 of the 48 bytes
+  /// per vertex for surface_mesh). Their sizes are checked (any other size rewrites them), their contents
+  /// are not: set it only for a mesh this route filled.
   bool keep_faces = false;
 };
 
@@ -82,6 +83,11 @@ void surface_mesh(const nurbs::TensorAutomaton& automaton, std::span<const Point
 /// state without four children or patches that do not tile a grid.
 Mesh quad_mesh(const automata::Automaton& automaton, std::span<const Points> nets,
                std::span<const std::array<int, 2>> patches, int depth, const MeshOptions& options = {});
+/// The same into `mesh`, whose storage is reused (and whose faces are kept with options.keep_faces), as
+/// surface_mesh's. Refusals leave `mesh` unchanged.
+void quad_mesh(const automata::Automaton& automaton, std::span<const Points> nets,
+               std::span<const std::array<int, 2>> patches, int depth, Mesh& mesh,
+               const MeshOptions& options = {});
 
 /// The generic route with every initial entry meshed on its own, for patches that do not tile a
 /// grid (the faces of a subdivision surface): patch i is the block of (2^K + 1)² vertices from
