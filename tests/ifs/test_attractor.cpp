@@ -53,7 +53,7 @@ TEST_CASE("cartesian divides by the last column", "[ifs]") {
   CHECK(x(1, 0) == -6);
   CHECK(x(1, 1) == 3);
   h(1, 2) = 0;
-  CHECK_THROWS_WITH(cartesian(h), Catch::Contains("row 1 has weight 0"));
+  CHECK_THROWS_WITH(cartesian(h), Catch::Contains("point 1 has weight 0"));
   CHECK_THROWS_AS(cartesian(Points(3, 1)), InvalidInput);
 }
 
@@ -405,7 +405,7 @@ TEST_CASE("Stencil table: what it refuses", "[ifs][stencil]") {
   std::mt19937_64 rng(23);
   const Automaton a = mixed_automaton(rng, 0.7);
   const std::vector<Points> nets{random_points(3, 2, rng), random_points(4, 2, rng)};
-  CHECK_THROWS_WITH(stencil_table(a, -1), Catch::Contains("depth is -1"));
+  CHECK_THROWS_WITH(stencil_table(a, -1), Catch::Contains("depth -1 is negative"));
   CHECK_THROWS_WITH(stencil_table(a, 100), Catch::Contains("more points than fit in size_t"));
   const StencilTable t = stencil_table(a, 5);
   // Nets of another automaton, and a table whose fields were edited.
