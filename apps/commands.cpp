@@ -1104,8 +1104,11 @@ std::string gallery(const std::filesystem::path& out, const std::filesystem::pat
   for (std::size_t i = 0; i < files.size(); ++i) {
     bar(i, files.size() + 1);
     const io::Experiment e = io::read_experiment(files[i]);
-    const experiment::RunReport report = experiment::run(e, ro);
+    experiment::RunReport report = experiment::run(e, ro);
     summary += report.summary;
+    // What an output drops (a 3-D shape's SVG), said as `cifs render` says it, naming the experiment.
+    for (const std::string& warning : report.warnings)
+      pending_warnings().push_back(files[i].filename().string() + ": " + warning);
     sections.push_back({.name = e.name, .description = e.description, .files = relative(report.written)});
   }
   bar(files.size(), files.size() + 1);

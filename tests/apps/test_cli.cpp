@@ -414,6 +414,28 @@ TEST_CASE("cifs gallery runs every example experiment", "[cli]") {
   check_error(cifs_cli("gallery " + out.string() + " --examples /no/such/folder"), "/no/such/folder");
 }
 
+TEST_CASE("cifs gallery says what an experiment's output drops, naming the experiment", "[cli]") {
+  // An examples folder of one experiment: a 3-D cubic drawn as SVG (the SVG keeps x and y only).
+  const auto examples = scratch() / "gallery_warn_examples";
+  std::filesystem::create_directories(examples / "experiments");
+  for (const char* sub : {"shapes", "polygons", "meshes"})
+    std::filesystem::create_directory_symlink(std::filesystem::path(CIFS_EXAMPLES_DIR) / sub, examples / sub);
+  cifs::write_file_atomically(examples / "experiments" / "flat.json",
+                              R"({"name": "flat", "shape": "../shapes/cubic.json", "evaluation": {"depth": 4},
+                                  "render": {"width": 32, "height": 24},
+                                  "outputs": {"exr": "flat.exr", "svg": "flat.svg"}})");
+  const auto out = scratch() / "gallery_warn";
+  const Run r = cifs_cli("gallery " + out.string() + " --examples " + examples.string() + " --quiet");
+  REQUIRE(r.status == 0);
+  CHECK(std::filesystem::is_regular_file(out / "flat.svg"));
+  CHECK_THAT(r.err, Catch::Contains("cifs: warning: flat.json: outputs.svg: "));
+  // The same experiment through cifs render says it too (the gallery adds the file's name).
+  const Run one = cifs_cli("render " + (examples / "experiments" / "flat.json").string() + " --out-dir " +
+                           out.string() + " -o " + (out / "one.exr").string() + " --quiet");
+  REQUIRE(one.status == 0);
+  CHECK_THAT(one.err, Catch::Contains("cifs: warning: outputs.svg: "));
+}
+
 TEST_CASE("cifs render refuses junctions that cannot be joined, one line each", "[cli][junction]") {
   const std::string nurbs =
       R"({"shape": ")" CIFS_EXAMPLES_DIR R"(/shapes/junction_nurbs.json", "boundary": "uend"})";
