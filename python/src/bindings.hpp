@@ -61,6 +61,25 @@ inline bool refuse(pybind11::handle value, const std::string& what, std::string 
   return false;
 }
 
+/// `src` as a numpy array of real numbers (dtype kind f, i or u). A complex or bool array throws
+/// ArgumentError (never cast, even for another overload); anything else is refused (see refuse) and
+/// gives a null array.
+inline pybind11::array real_array(pybind11::handle src) {
+  pybind11::array a = pybind11::array::ensure(src);
+  if (!a) PyErr_Clear();
+  const char kind = a ? a.dtype().kind() : '\0';
+  if (kind == 'c' || kind == 'b')
+    throw ArgumentError(
+        src.ptr(), {},
+        "expected an array of real numbers, got dtype " + std::string(pybind11::str(a.dtype())));
+  if (kind != 'f' && kind != 'i' && kind != 'u') {
+    refuse(src, "expected an array of real numbers, got " + describe(src));
+    return pybind11::reinterpret_steal<pybind11::array>(
+        pybind11::handle());  // null (array{} is a 0-size array)
+  }
+  return a;
+}
+
 }  // namespace cifs::python
 
 // Python has one automaton class, cifs.automata.Automaton, bound to nurbs::KnotAutomaton (an
@@ -123,17 +142,8 @@ class RealArrayCaster {
     using cifs::python::refuse;
     // The first overload pass takes float64 arrays only, as pybind11's own caster.
     if (!convert && !isinstance<array_t<double>>(src)) return false;
-    array a = array::ensure(src);
-    if (!a) {
-      PyErr_Clear();
-      return refuse(src, "expected an array of real numbers, got " + cifs::python::describe(src));
-    }
-    const char kind = a.dtype().kind();
-    if (kind == 'c' || kind == 'b')
-      throw cifs::python::ArgumentError(
-          src.ptr(), {}, "expected an array of real numbers, got dtype " + std::string(str(a.dtype())));
-    if (kind != 'f' && kind != 'i' && kind != 'u')
-      return refuse(src, "expected an array of real numbers, got " + cifs::python::describe(src));
+    const array a = cifs::python::real_array(src);
+    if (!a) return false;
     Eigen::Index rows = 0, cols = 0;
     if (a.ndim() == 1) {
       rows = kRow ? 1 : a.shape(0);
@@ -344,19 +354,9 @@ class type_caster<array_t<double, array::c_style | array::forcecast>> {
   PYBIND11_TYPE_CASTER(Type, handle_type_name<Type>::name);
 
   bool load(handle src, bool convert) {
-    using cifs::python::refuse;
     if (!convert && !Type::check_(src)) return false;
-    const array a = array::ensure(src);
-    if (!a) {
-      PyErr_Clear();
-      return refuse(src, "expected an array of real numbers, got " + cifs::python::describe(src));
-    }
-    const char kind = a.dtype().kind();
-    if (kind == 'c' || kind == 'b')
-      throw cifs::python::ArgumentError(
-          src.ptr(), {}, "expected an array of real numbers, got dtype " + std::string(str(a.dtype())));
-    if (kind != 'f' && kind != 'i' && kind != 'u')
-      return refuse(src, "expected an array of real numbers, got " + cifs::python::describe(src));
+    const array a = cifs::python::real_array(src);
+    if (!a) return false;
     value = Type::ensure(a);
     if (!value) PyErr_Clear();
     return static_cast<bool>(value);
