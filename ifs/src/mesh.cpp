@@ -165,28 +165,21 @@ void finish(Mesh& mesh, const MeshOptions& options) {
 }
 
 /// States of the depth-K nodes of a (binary or any) automaton in order: initial entries in order,
-/// children in out-edge order. States only: no nets are computed.
+/// children in out-edge order. States only: no nets are computed. Level by level (each level is the
+/// previous one's children in order), so two vectors serve the whole expansion.
 std::vector<StateId> leaf_states(const Automaton& automaton, int depth) {
   const Graph& g = automaton.graph;
-  std::vector<StateId> out;
-  std::vector<std::pair<StateId, int>> stack;
-  for (const automata::Initial& init : automaton.initial) {
-    stack.emplace_back(init.state, 0);
-    while (!stack.empty()) {
-      const auto [s, d] = stack.back();
-      stack.pop_back();
-      if (d == depth) {
-        out.push_back(s);
-        continue;
-      }
-      // Pushed in reverse so that the first child is visited first.
+  std::vector<StateId> level, next;
+  for (const automata::Initial& init : automaton.initial) level.push_back(init.state);
+  for (int d = 0; d < depth; ++d) {
+    next.clear();
+    for (const StateId s : level) {
       const auto [b, e] = out_edges(s, g);
-      std::vector<StateId> children;
-      for (auto it = b; it != e; ++it) children.push_back(target(*it, g));
-      for (auto it = children.rbegin(); it != children.rend(); ++it) stack.emplace_back(*it, d + 1);
+      for (auto it = b; it != e; ++it) next.push_back(target(*it, g));
     }
+    level.swap(next);
   }
-  return out;
+  return level;
 }
 
 /// Nodes [first, first + side) of a patch along one direction, plus the far node for the last patch.
@@ -234,16 +227,9 @@ void check_tensor(const nurbs::TensorAutomaton& t, std::span<const Points> nets)
 }
 
 /// Curve stencil tables: row I of F[dir] is the functional, on the net of the segment owning node
-/// I, of the point at node I — the factor's attractor under identity nets; and the factors' leaf
-/// states.
-struct FactorTables {
+/// I, of the point at node I — the factor's attractor under identity nets.
+std::array<Points, 2> factor_tables(const nurbs::TensorAutomaton& t, int depth, std::size_t max_bytes) {
   std::array<Points, 2> F;
-  std::array<std::vector<StateId>, 2> leaves;
-};
-
-FactorTables factor_tables(const nurbs::TensorAutomaton& t, int depth, std::size_t max_bytes) {
-  FactorTables out;
-  auto& [F, leaves] = out;
   for (std::size_t dir = 0; dir < 2; ++dir) {
     const Automaton& f = t.factors[dir].automaton;
     std::vector<Points> identity;
@@ -251,9 +237,8 @@ FactorTables factor_tables(const nurbs::TensorAutomaton& t, int depth, std::size
       identity.push_back(Points::Identity(f.graph[init.state].size, f.graph[init.state].size));
     F[dir] = attractor_points(f, identity, depth,
                               PointsOptions{.closed = false, .max_bytes = max_bytes, .max_table_depth = 8});
-    leaves[dir] = leaf_states(f, depth);
   }
-  return out;
+  return F;
 }
 
 /// The vertices, a patch row at a time. Homogeneous rows are divided by w a vertex row at a time,
@@ -263,9 +248,8 @@ FactorTables factor_tables(const nurbs::TensorAutomaton& t, int depth, std::size
 /// at the nodes the patch owns, i.e. Y_k(J) = Σ_l F_v(J, l)·N_b(k·(q+1) + l) — a `cv + 1 by C`
 /// vertex row, stored contiguously. Each vertex row I of the patch row is then the (p + 1)-term
 /// combination Σ_k F_u(I, k)·Y_k over one contiguous run of (cv + 1)·C doubles.
-void write_vertices(const FactorTables& tables, std::span<const Points> nets, const Grid& grid,
+void write_vertices(const std::array<Points, 2>& F, std::span<const Points> nets, const Grid& grid,
                     bool homogeneous, bool reused, Mesh& mesh) {
-  const auto& F = tables.F;
   const int A = grid.A, B = grid.B;
   const Eigen::Index C = nets[0].cols(), D = homogeneous ? C - 1 : C;
   const Eigen::Index p1 = F[0].cols(), q1 = F[1].cols();
@@ -318,8 +302,9 @@ void write_vertices(const FactorTables& tables, std::span<const Points> nets, co
 
 /// Leaf states: the product state of the pair of factor leaf states. Rows I with the same u leaf
 /// state are equal, so each distinct row is built once and copied.
-void write_states(const nurbs::TensorAutomaton& t, const FactorTables& tables, const Grid& grid, Mesh& mesh) {
-  const auto& leaves = tables.leaves;
+void write_states(const nurbs::TensorAutomaton& t, const Grid& grid, Mesh& mesh) {
+  const std::array<std::vector<StateId>, 2> leaves{leaf_states(t.factors[0].automaton, grid.depth),
+                                                   leaf_states(t.factors[1].automaton, grid.depth)};
   const auto nv_states = num_vertices(t.factors[1].automaton.graph);
   std::vector<std::uint32_t> pair_id(num_vertices(t.factors[0].automaton.graph) * nv_states, 0);
   for (StateId s = 0; s < t.factor_states.size(); ++s)
@@ -359,8 +344,8 @@ void surface_mesh(const nurbs::TensorAutomaton& t, std::span<const Points> nets,
   if (options.homogeneous && C < 2)
     throw InvalidInput("rational control nets need at least 2 columns (w·x, w), got " + std::to_string(C));
   const Grid grid = make_grid(A, B, depth, static_cast<std::size_t>(C), options);
-  const FactorTables tables = factor_tables(t, depth, options.max_bytes);
-  const Eigen::Index p1 = tables.F[0].cols(), q1 = tables.F[1].cols();
+  const std::array<Points, 2> F = factor_tables(t, depth, options.max_bytes);
+  const Eigen::Index p1 = F[0].cols(), q1 = F[1].cols();
   if (nets[0].rows() != p1 * q1)
     throw InvalidInput("the control nets have " + std::to_string(nets[0].rows()) +
                        " points, the tensor automaton's factors give " + std::to_string(p1) + " by " +
@@ -376,8 +361,8 @@ void surface_mesh(const nurbs::TensorAutomaton& t, std::span<const Points> nets,
   } else {
     allocate(grid, D, mesh);
   }
-  write_vertices(tables, nets, grid, options.homogeneous, reused, mesh);
-  if (!keep) write_states(t, tables, grid, mesh);
+  write_vertices(F, nets, grid, options.homogeneous, reused, mesh);
+  if (!keep) write_states(t, grid, mesh);
 }
 
 Mesh surface_mesh(const nurbs::TensorAutomaton& automaton, std::span<const Points> nets, int depth,
