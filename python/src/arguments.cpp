@@ -34,8 +34,8 @@ using Impl = py::handle (*)(detail::function_call&);
 thread_local bool strict = false;
 
 /// A parameter's type as the signature spells it, as far as checked_call tests arguments against it.
-/// `any` for the types whose casters refuse with a message of their own (numbers, arrays, lists: bindings.hpp)
-/// or take everything (object).
+/// `any` for the types whose casters refuse with a message of their own (numbers, arrays, lists:
+/// bindings.hpp) or take everything (object).
 struct Type {
   enum class Kind { any, bound, str, path, callable, dict, iterable, list, tuple, map, optional, one_of };
   Kind kind = Kind::any;
@@ -166,7 +166,8 @@ Type read_type(std::string_view text, const Classes& classes) {
   }
   if (text == "str") return {.kind = Kind::str, .text = "a str"};
   if (text == "os.PathLike") return {.kind = Kind::path, .text = "a str or os.PathLike"};
-  if (text == "function" || !generic("Callable").empty()) return {.kind = Kind::callable, .text = "a callable"};
+  if (text == "function" || !generic("Callable").empty())
+    return {.kind = Kind::callable, .text = "a callable"};
   if (text == "dict") return {.kind = Kind::dict, .text = "a dict"};
   if (text == "Iterable") return {.kind = Kind::iterable, .text = "an iterable"};
   if (const auto it = classes.find(std::string(text)); it != classes.end() && it->second)
@@ -181,10 +182,13 @@ struct Misfit {
 };
 
 /// The first place where `value` does not fit `type`, as pybind11's casters read it. None fits a bound class
-/// (read as a null pointer) unless `none_refused`: pybind11 then failed to pass a null pointer as a reference.
+/// (read as a null pointer) unless `none_refused`: pybind11 then failed to pass a null pointer as a
+/// reference.
 std::optional<Misfit> misfit(const Type& type, py::handle value, bool none_refused) {
   using Kind = Type::Kind;
-  const auto refused = [&] { return std::optional<Misfit>(Misfit{.path = {}, .expected = type.text, .value = value}); };
+  const auto refused = [&] {
+    return std::optional<Misfit>(Misfit{.path = {}, .expected = type.text, .value = value});
+  };
   const auto inside = [&](std::optional<Misfit> m, const std::string& at) {
     if (m) m->path = at + m->path;
     return m;
@@ -253,13 +257,14 @@ std::optional<Misfit> misfit(const Type& type, py::handle value, bool none_refus
 
 /// pybind11 could not read the arguments of `call` (a function without overloads): a TypeError naming the
 /// first argument that does not fit its type, or none when no argument can be blamed (pybind11's message).
-std::optional<py::type_error> refusal(const detail::function_call& call, const Entry& entry, bool none_refused) {
+std::optional<py::type_error> refusal(const detail::function_call& call, const Entry& entry,
+                                      bool none_refused) {
   // A constructor's first argument is the instance being made, not a Python object.
   const std::size_t first = call.func.is_new_style_constructor ? 1 : 0;
   for (std::size_t i = first; i < call.args.size() && i < entry.expected.size(); ++i) {
     if (const auto m = misfit(entry.expected[i], call.args[i], none_refused))
-      return py::type_error(entry.who + ": " + entry.names[i] + m->path + ": expected " + m->expected + ", got " +
-                            describe(m->value));
+      return py::type_error(entry.who + ": " + entry.names[i] + m->path + ": expected " + m->expected +
+                            ", got " + describe(m->value));
   }
   return std::nullopt;
 }
@@ -324,7 +329,8 @@ py::handle checked_call(detail::function_call& call) {
       if (auto error = refusal(call, entry, false)) throw *std::move(error);
     return result;
   } catch (const ArgumentError& e) {
-    const std::string message = entry.who + ": " + parameter_of(call, entry, e.value) + e.path + ": " + e.detail;
+    const std::string message =
+        entry.who + ": " + parameter_of(call, entry, e.value) + e.path + ": " + e.detail;
     if (e.wrong_type) throw py::type_error(message);
     throw InvalidInput(message);
   } catch (const py::reference_cast_error&) {  // None read for a class taken by reference
@@ -413,7 +419,9 @@ Classes bound_classes() {
     bool implicit = false;
     for (const detail::type_info* info : infos) implicit = implicit || !info->implicit_conversions.empty();
     PyTypeObject* bound = implicit ? nullptr : type;
-    classes[module + "." + qualified] = bound;
+    std::string name = module;
+    name.append(1, '.').append(qualified);
+    classes[name] = bound;
     for (const detail::type_info* info : infos) {
       std::string cpp = info->cpptype->name();
       detail::clean_type_id(cpp);

@@ -403,9 +403,9 @@ bool load_item(handle whole, handle item, std::size_t k, bool convert, Store&& s
     throw;
   }
   if (!loaded)
-    return cifs::python::refuse(whole,
-                                "expected " + expected_item<Value>() + ", got " + cifs::python::describe(item),
-                                at, std::is_base_of_v<type_caster_generic, make_caster<Value>>);
+    return cifs::python::refuse(
+        whole, "expected " + expected_item<Value>() + ", got " + cifs::python::describe(item), at,
+        std::is_base_of_v<type_caster_generic, make_caster<Value>>);
   store(cast_op<Value&&>(std::move(conv)));
   return true;
 }
@@ -415,9 +415,9 @@ template <class Value>
 bool check_sequence(handle src) {
   using cifs::python::refuse;
   if (!isinstance<sequence>(src) || isinstance<bytes>(src) || isinstance<str>(src)) {
-    constexpr bool bound = std::is_base_of_v<type_caster_generic, make_caster<Value>>;  // a wrong type
-    const std::string list = bound ? "a list of " + expected_item<Value>().substr(2) : "a list";
-    return refuse(src, "expected " + list + ", got " + cifs::python::describe(src), {}, bound);
+    constexpr bool kBound = std::is_base_of_v<type_caster_generic, make_caster<Value>>;  // a wrong type
+    const std::string list = kBound ? "a list of " + expected_item<Value>().substr(2) : "a list";
+    return refuse(src, "expected " + list + ", got " + cifs::python::describe(src), {}, kBound);
   }
   if (isinstance<array>(src)) {
     const auto a = reinterpret_borrow<array>(src);
