@@ -6,10 +6,16 @@
 // - refuses a bool parameter given anything but True, False or a numpy bool (pybind11 took 2, "yes" as an
 //   error only, and None as False); with overloads such parameters are noconvert instead (a TypeError);
 // - turns an ArgumentError into cifs.InvalidInput naming the function and the parameter:
-//   "surface_mesh: nets[1]: expected an array of real numbers, got dtype complex128".
+//   "surface_mesh: nets[1]: expected an array of real numbers, got dtype complex128";
+// - when pybind11 could not read the arguments of a function without overloads (a bound class, str, path,
+//   callable or dict parameter given another object: pybind11's casters for those refuse by returning false),
+//   finds the argument refused from the signature's types and raises a TypeError naming it:
+//   "render_mesh: camera: expected a cifs.render.Camera, got int 3". pybind11 reads the arguments in order
+//   and stops at the first refused one, so the first argument that does not fit its type is the one.
 #include <Python.h>
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -27,6 +33,21 @@ using Impl = py::handle (*)(detail::function_call&);
 
 thread_local bool strict = false;
 
+/// A parameter's type as the signature spells it, as far as checked_call tests arguments against it.
+/// `any` for the types whose casters refuse with a message of their own (numbers, arrays, lists:
+/// bindings.hpp) or take everything (object).
+struct Type {
+  enum class Kind { any, bound, str, path, callable, dict, iterable, list, tuple, map, optional, one_of };
+  Kind kind = Kind::any;
+  PyTypeObject* bound = nullptr;  // a bound class (none when it converts implicitly from other types)
+  std::string text;               // what a refusal says was expected: "a cifs.render.Camera", "a str"
+  std::vector<Type> items = {};   // list, optional: the item; tuple: each; map: key, value; one_of: each
+};
+
+/// The bound classes by the names signatures give them: "cifs._cifs.render.Camera" (module and qualified
+/// name), and "cifs::Mesh" for a class bound after the function whose signature names it.
+using Classes = std::unordered_map<std::string, PyTypeObject*>;
+
 /// What checked_call knows of one overload of a bound function.
 struct Entry {
   Impl impl = nullptr;  // pybind11's reader of the arguments, which then calls the function
@@ -35,6 +56,7 @@ struct Entry {
   std::vector<std::string> names = {};  // per argument, from the signature (a setter's value: the property)
   std::vector<bool> flags = {};         // per argument: declared bool
   std::vector<long long> members = {};  // an enum's __init__ and __setstate__: the values of its members
+  std::vector<Type> expected = {};      // per argument: its type in the signature, read (see Type)
 };
 
 /// Filled while the module is imported, read-only afterwards.
@@ -84,6 +106,166 @@ std::vector<Parameter> parameters(std::string_view signature) {
     }
   }
   return out;
+}
+
+/// "A, B[C, D], E" split at its top-level commas.
+std::vector<std::string_view> split_top(std::string_view text) {
+  std::vector<std::string_view> out;
+  int depth = 0;
+  std::size_t start = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '[') ++depth;
+    if (text[i] == ']') --depth;
+    if (text[i] == ',' && depth == 0) {
+      out.push_back(text.substr(start, i - start));
+      start = i + 1;
+      while (start < text.size() && text[start] == ' ') ++start;
+    }
+  }
+  out.push_back(text.substr(start));
+  return out;
+}
+
+/// `text` as a Type ("Optional[List[cifs._cifs.ifs.AffineMap]]", "os.PathLike", "function", …).
+Type read_type(std::string_view text, const Classes& classes) {
+  using Kind = Type::Kind;
+  const auto generic = [&](std::string_view name) {  // "List[" … "]": the inner text, or empty
+    return text.size() > name.size() + 2 && text.substr(0, name.size()) == name && text[name.size()] == '[' &&
+                   text.back() == ']'
+               ? text.substr(name.size() + 1, text.size() - name.size() - 2)
+               : std::string_view();
+  };
+  const auto read_all = [&](std::string_view inner) {
+    std::vector<Type> out;
+    for (const std::string_view item : split_top(inner)) out.push_back(read_type(item, classes));
+    return out;
+  };
+  if (const auto inner = generic("Optional"); !inner.empty()) {
+    Type item = read_type(inner, classes);
+    return {.kind = Kind::optional, .text = item.text + " or None", .items = {item}};
+  }
+  if (const auto inner = generic("List"); !inner.empty())
+    return {.kind = Kind::list, .text = "a list", .items = {read_type(inner, classes)}};
+  if (auto inner = generic("Tuple"); !inner.empty() || !(inner = generic("tuple")).empty()) {
+    std::vector<Type> items = read_all(inner);
+    const std::string expected = "a sequence of " + std::to_string(items.size()) + " items";
+    return {.kind = Kind::tuple, .text = expected, .items = std::move(items)};
+  }
+  if (const auto inner = generic("Dict"); !inner.empty()) {
+    std::vector<Type> items = read_all(inner);
+    if (items.size() == 2) return {.kind = Kind::map, .text = "a dict", .items = std::move(items)};
+  }
+  if (const auto inner = generic("Union"); !inner.empty()) {
+    Type type{.kind = Kind::one_of, .text = {}, .items = read_all(inner)};
+    for (const Type& item : type.items) {
+      if (item.kind == Kind::any) return {};
+      type.text += (type.text.empty() ? "" : " or ") + item.text;
+    }
+    return type;
+  }
+  if (text == "str") return {.kind = Kind::str, .text = "a str"};
+  if (text == "os.PathLike") return {.kind = Kind::path, .text = "a str or os.PathLike"};
+  if (text == "function" || !generic("Callable").empty())
+    return {.kind = Kind::callable, .text = "a callable"};
+  if (text == "dict") return {.kind = Kind::dict, .text = "a dict"};
+  if (text == "Iterable") return {.kind = Kind::iterable, .text = "an iterable"};
+  if (const auto it = classes.find(std::string(text)); it != classes.end() && it->second)
+    return {.kind = Kind::bound, .bound = it->second, .text = "a " + class_name(it->second)};
+  return {};
+}
+
+/// Where `value` does not fit `type`: the place inside it ("", "[1]", "['key']") and what was expected.
+struct Misfit {
+  std::string path, expected;
+  py::handle value;
+};
+
+/// The first place where `value` does not fit `type`, as pybind11's casters read it. None fits a bound class
+/// (read as a null pointer) unless `none_refused`: pybind11 then failed to pass a null pointer as a
+/// reference.
+std::optional<Misfit> misfit(const Type& type, py::handle value, bool none_refused) {
+  using Kind = Type::Kind;
+  const auto refused = [&] {
+    return std::optional<Misfit>(Misfit{.path = {}, .expected = type.text, .value = value});
+  };
+  const auto inside = [&](std::optional<Misfit> m, const std::string& at) {
+    if (m) m->path = at + m->path;
+    return m;
+  };
+  PyObject* object = value.ptr();
+  switch (type.kind) {
+    case Kind::any:
+      return std::nullopt;
+    case Kind::bound:
+      if (value.is_none()) return none_refused ? refused() : std::nullopt;
+      return PyObject_IsInstance(object, reinterpret_cast<PyObject*>(type.bound)) == 1 ? std::nullopt
+                                                                                       : refused();
+    case Kind::str:  // pybind11's std::string caster: a str (UTF-8 encodable), bytes or bytearray
+      if (PyBytes_Check(object) || PyByteArray_Check(object)) return std::nullopt;
+      if (PyUnicode_Check(object) && PyUnicode_AsUTF8AndSize(object, nullptr)) return std::nullopt;
+      PyErr_Clear();
+      return refused();
+    case Kind::path: {  // pybind11's path caster: os.fspath, then a file system encoding without NUL
+      const py::object path = py::reinterpret_steal<py::object>(PyOS_FSPath(object));
+      PyObject* bytes = nullptr;
+      const bool encoded = path && PyUnicode_FSConverter(path.ptr(), &bytes) != 0;
+      Py_XDECREF(bytes);
+      PyErr_Clear();
+      if (encoded) return std::nullopt;
+      if (!path) return refused();
+      return Misfit{.path = {}, .expected = type.text + " without NUL characters", .value = value};
+    }
+    case Kind::callable:  // None is an empty std::function
+      return value.is_none() || PyCallable_Check(object) ? std::nullopt : refused();
+    case Kind::dict:
+      return PyDict_Check(object) ? std::nullopt : refused();
+    case Kind::iterable: {
+      const py::object iterator = py::reinterpret_steal<py::object>(PyObject_GetIter(object));
+      PyErr_Clear();
+      return iterator ? std::nullopt : refused();
+    }
+    case Kind::optional:
+      return value.is_none() ? std::nullopt : misfit(type.items.front(), value, none_refused);
+    case Kind::one_of:
+      for (const Type& item : type.items)
+        if (!misfit(item, value, none_refused)) return std::nullopt;
+      return refused();
+    case Kind::list:
+    case Kind::tuple: {
+      if (!PySequence_Check(object) || PyUnicode_Check(object) || PyBytes_Check(object)) return refused();
+      const auto items = py::reinterpret_borrow<py::sequence>(value);
+      if (type.kind == Kind::tuple && items.size() != type.items.size()) return refused();
+      for (std::size_t k = 0; k < items.size(); ++k) {
+        const Type& item = type.kind == Kind::list ? type.items.front() : type.items[k];
+        if (auto m = inside(misfit(item, items[k], none_refused), "[" + std::to_string(k) + "]")) return m;
+      }
+      return std::nullopt;
+    }
+    case Kind::map: {
+      if (!PyDict_Check(object)) return refused();
+      for (const auto& [key, item] : py::reinterpret_borrow<py::dict>(value)) {
+        const std::string at = "[" + std::string(py::repr(key)) + "]";
+        if (auto m = inside(misfit(type.items[0], key, none_refused), at)) return m;
+        if (auto m = inside(misfit(type.items[1], item, none_refused), at)) return m;
+      }
+      return std::nullopt;
+    }
+  }
+  return std::nullopt;
+}
+
+/// pybind11 could not read the arguments of `call` (a function without overloads): a TypeError naming the
+/// first argument that does not fit its type, or none when no argument can be blamed (pybind11's message).
+std::optional<py::type_error> refusal(const detail::function_call& call, const Entry& entry,
+                                      bool none_refused) {
+  // A constructor's first argument is the instance being made, not a Python object.
+  const std::size_t first = call.func.is_new_style_constructor ? 1 : 0;
+  for (std::size_t i = first; i < call.args.size() && i < entry.expected.size(); ++i) {
+    if (const auto m = misfit(entry.expected[i], call.args[i], none_refused))
+      return py::type_error(entry.who + ": " + entry.names[i] + m->path + ": expected " + m->expected +
+                            ", got " + describe(m->value));
+  }
+  return std::nullopt;
 }
 
 bool is_bool(py::handle value) {
@@ -141,14 +323,24 @@ py::handle checked_call(detail::function_call& call) {
                            describe(call.args[i]));
   if (!entry.members.empty() && !call.args.empty()) check_member(entry, call.args.back());
   try {
-    return entry.impl(call);
+    const py::handle result = entry.impl(call);
+    if (result.ptr() == PYBIND11_TRY_NEXT_OVERLOAD && !entry.overloaded)
+      if (auto error = refusal(call, entry, false)) throw *std::move(error);
+    return result;
   } catch (const ArgumentError& e) {
-    throw InvalidInput(entry.who + ": " + parameter_of(call, entry, e.value) + e.path + ": " + e.detail);
+    const std::string message =
+        entry.who + ": " + parameter_of(call, entry, e.value) + e.path + ": " + e.detail;
+    if (e.wrong_type) throw py::type_error(message);
+    throw InvalidInput(message);
+  } catch (const py::reference_cast_error&) {  // None read for a class taken by reference
+    if (!entry.overloaded)
+      if (auto error = refusal(call, entry, true)) throw *std::move(error);
+    throw;
   }
 }
 
 /// Wraps every overload of `function` (a pybind11 function, method or property accessor) once.
-void wrap(py::handle function, const std::string& who, const std::string& value_name,
+void wrap(py::handle function, const std::string& who, const std::string& value_name, const Classes& classes,
           const std::vector<long long>& members = {}) {
   function = detail::get_function(function);
   if (!function || !PyCFunction_Check(function.ptr())) return;
@@ -163,6 +355,7 @@ void wrap(py::handle function, const std::string& who, const std::string& value_
     for (const Parameter& p : parameters(rec->signature ? rec->signature : "")) {
       entry.names.push_back(p.name);
       entry.flags.push_back(p.type == "bool");
+      entry.expected.push_back(read_type(p.type, classes));
     }
     if (!value_name.empty() && !entry.names.empty()) entry.names.back() = value_name;
     if (entry.overloaded)  // pybind11 then refuses anything but True, False and numpy bools (a TypeError)
@@ -173,7 +366,7 @@ void wrap(py::handle function, const std::string& who, const std::string& value_
   }
 }
 
-void wrap_class(py::handle type) {
+void wrap_class(py::handle type, const Classes& classes) {
   const std::string name = py::str(type.attr("__name__"));
   const py::dict dict(type.attr("__dict__"));  // a copy of the mappingproxy
   std::vector<long long> members;              // a py::enum_: its values, for __init__ and __setstate__
@@ -185,32 +378,55 @@ void wrap_class(py::handle type) {
     std::string qualified = name;
     qualified.append(1, '.').append(attribute);
     if (PyObject_TypeCheck(value.ptr(), &PyProperty_Type)) {  // the setter's value is named for the property
-      wrap(value.attr("fget"), qualified, {});
-      wrap(value.attr("fset"), name, attribute);
+      wrap(value.attr("fget"), qualified, {}, classes);
+      wrap(value.attr("fset"), name, attribute, classes);
     } else if (PyObject_TypeCheck(value.ptr(), &PyStaticMethod_Type)) {
-      wrap(value.attr("__func__"), qualified, {});
+      wrap(value.attr("__func__"), qualified, {}, classes);
     } else {
       const bool construct = attribute == "__init__" || attribute == "__setstate__";
-      wrap(value, attribute == "__init__" ? name : qualified, {},
+      wrap(value, attribute == "__init__" ? name : qualified, {}, classes,
            construct ? members : std::vector<long long>{});
     }
   }
 }
 
-void wrap_module(py::module_ m, std::unordered_set<PyObject*>& seen) {
+void wrap_module(py::module_ m, const Classes& classes, std::unordered_set<PyObject*>& seen) {
   if (!seen.insert(m.ptr()).second) return;
   const std::string prefix = py::str(m.attr("__name__"));
   for (const auto& [key, value] : py::reinterpret_borrow<py::dict>(m.attr("__dict__"))) {
     if (py::isinstance<py::module_>(value)) {
       if (std::string(py::str(value.attr("__name__"))).rfind(prefix, 0) == 0)
-        wrap_module(py::reinterpret_borrow<py::module_>(value), seen);
+        wrap_module(py::reinterpret_borrow<py::module_>(value), classes, seen);
     } else if (PyType_Check(value.ptr())) {
       if (std::string(py::str(py::getattr(value, "__module__", py::str("")))).rfind("cifs", 0) == 0)
-        wrap_class(value);
+        wrap_class(value, classes);
     } else {
-      wrap(value, py::str(key), {});
+      wrap(value, py::str(key), {}, classes);
     }
   }
+}
+
+/// Every bound class by its signature names (see Classes). A class that converts implicitly from other types
+/// maps to null: an argument of another type may be one it converts.
+Classes bound_classes() {
+  Classes classes;
+  for (const auto& [type, infos] : detail::get_internals().registered_types_py) {
+    const py::handle handle(reinterpret_cast<PyObject*>(type));
+    const std::string module = py::str(py::getattr(handle, "__module__", py::str("")));
+    const std::string qualified = py::str(py::getattr(handle, "__qualname__", py::str(type->tp_name)));
+    bool implicit = false;
+    for (const detail::type_info* info : infos) implicit = implicit || !info->implicit_conversions.empty();
+    PyTypeObject* bound = implicit ? nullptr : type;
+    std::string name = module;
+    name.append(1, '.').append(qualified);
+    classes[name] = bound;
+    for (const detail::type_info* info : infos) {
+      std::string cpp = info->cpptype->name();
+      detail::clean_type_id(cpp);
+      classes[cpp] = bound;
+    }
+  }
+  return classes;
 }
 
 }  // namespace
@@ -234,12 +450,22 @@ std::string describe(py::handle value) {
     while (n > 0 && (static_cast<unsigned char>(text[n]) & 0xC0) == 0x80) --n;
     text = text.substr(0, n) + "...";
   }
-  return std::string(Py_TYPE(value.ptr())->tp_name) + " " + text;
+  std::string type = Py_TYPE(value.ptr())->tp_name;
+  if (type.rfind("cifs._cifs.", 0) == 0) type = class_name(Py_TYPE(value.ptr()));  // as the user names it
+  return type + " " + text;
+}
+
+std::string class_name(PyTypeObject* type) {
+  const py::handle handle(reinterpret_cast<PyObject*>(type));
+  std::string module = py::str(py::getattr(handle, "__module__", py::str("")));
+  if (module.rfind("cifs._cifs", 0) == 0) module.erase(4, 6);  // "cifs._cifs.render" → "cifs.render"
+  const std::string name = py::str(py::getattr(handle, "__qualname__", py::str(type->tp_name)));
+  return module.empty() ? name : module + "." + name;
 }
 
 void check_arguments(py::module_& m) {
   std::unordered_set<PyObject*> seen;
-  wrap_module(m, seen);
+  wrap_module(m, bound_classes(), seen);
 }
 
 }  // namespace cifs::python

@@ -39,12 +39,14 @@ namespace cifs::python {
 /// `path` the place of the refused item inside it ("[2][0]", prefixed by each list caster on the way out).
 /// The bound function reading its arguments names the parameter (checked_call, arguments.cpp):
 /// cifs.InvalidInput "surface_mesh: nets[2]: expected an array of real numbers, got dtype complex128".
+/// A refused item of a bound class (a wrong type, not a wrong value) is `wrong_type`: raised as TypeError.
 struct ArgumentError : InvalidInput {
-  ArgumentError(PyObject* refused, std::string where, const std::string& what)
-      : InvalidInput(what), value(refused), path(std::move(where)), detail(what) {}
+  ArgumentError(PyObject* refused, std::string where, const std::string& what, bool type = false)
+      : InvalidInput(what), value(refused), path(std::move(where)), detail(what), wrong_type(type) {}
   PyObject* value;  // borrowed: compared with the call's arguments, never dereferenced
   std::string path;
   std::string detail;
+  bool wrong_type;
 };
 
 /// True while a bound function without overloads reads its arguments (arguments.cpp): a conversion then
@@ -56,10 +58,14 @@ bool strict_arguments() noexcept;
 std::string describe(pybind11::handle value);
 
 /// Refuses `value` (see strict_arguments): throws ArgumentError, or returns false for the next overload.
-inline bool refuse(pybind11::handle value, const std::string& what, std::string path = {}) {
-  if (strict_arguments()) throw ArgumentError(value.ptr(), std::move(path), what);
+inline bool refuse(pybind11::handle value, const std::string& what, std::string path = {},
+                   bool wrong_type = false) {
+  if (strict_arguments()) throw ArgumentError(value.ptr(), std::move(path), what, wrong_type);
   return false;
 }
+
+/// A bound class as a message names it: "cifs.render.Camera" (the public module, not cifs._cifs.render).
+std::string class_name(PyTypeObject* type);
 
 /// `src` as a numpy array of real numbers (dtype kind f, i or u). A complex or bool array throws
 /// ArgumentError (never cast, even for another overload); anything else is refused (see refuse) and
@@ -376,27 +382,30 @@ std::string expected_item() {
   if constexpr (std::is_base_of_v<type_caster_generic,
                                   make_caster<Value>>) {  // a bound class: its Python name
     const type_info* info = get_type_info(typeid(Value));
-    const std::string name = info ? info->type->tp_name : type_id<Value>();
-    return name.substr(name.rfind('.') + 1);
+    return "a " + (info ? cifs::python::class_name(info->type) : type_id<Value>());
   }
   return std::string(make_caster<Value>::name.text);
 }
 
 /// `item`, the `k`-th of `whole`, loaded and handed to `store`; a refusal of the item (its own, or here) is
-/// rebased onto `whole` with the place `[k]`.
+/// rebased onto `whole` with the place `[k]`. An item that is no instance of a bound class is a wrong type.
 template <class Value, class Store>
 bool load_item(handle whole, handle item, std::size_t k, bool convert, Store&& store) {
   make_caster<Value> conv;
   const std::string at = "[" + std::to_string(k) + "]";
-  try {
-    if (!conv.load(item, convert))
-      return cifs::python::refuse(
-          whole, "expected " + expected_item<Value>() + ", got " + cifs::python::describe(item), at);
+  bool loaded = false;
+  try {  // a bound class reads None as a null pointer, which cast_op then refuses (reference_cast_error)
+    loaded = !(std::is_base_of_v<type_caster_generic, make_caster<Value>> && item.is_none()) &&
+             conv.load(item, convert);
   } catch (cifs::python::ArgumentError& e) {
     e.value = whole.ptr();
     e.path = at + e.path;
     throw;
   }
+  if (!loaded)
+    return cifs::python::refuse(
+        whole, "expected " + expected_item<Value>() + ", got " + cifs::python::describe(item), at,
+        std::is_base_of_v<type_caster_generic, make_caster<Value>>);
   store(cast_op<Value&&>(std::move(conv)));
   return true;
 }
@@ -405,8 +414,11 @@ bool load_item(handle whole, handle item, std::size_t k, bool convert, Store&& s
 template <class Value>
 bool check_sequence(handle src) {
   using cifs::python::refuse;
-  if (!isinstance<sequence>(src) || isinstance<bytes>(src) || isinstance<str>(src))
-    return refuse(src, "expected a list, got " + cifs::python::describe(src));
+  if (!isinstance<sequence>(src) || isinstance<bytes>(src) || isinstance<str>(src)) {
+    constexpr bool kBound = std::is_base_of_v<type_caster_generic, make_caster<Value>>;  // a wrong type
+    const std::string list = kBound ? "a list of " + expected_item<Value>().substr(2) : "a list";
+    return refuse(src, "expected " + list + ", got " + cifs::python::describe(src), {}, kBound);
+  }
   if (isinstance<array>(src)) {
     const auto a = reinterpret_borrow<array>(src);
     const char kind = a.dtype().kind();
