@@ -37,7 +37,7 @@ thread_local bool strict = false;
 /// `any` for the types whose casters refuse with a message of their own (numbers, arrays, lists:
 /// bindings.hpp) or take everything (object).
 struct Type {
-  enum class Kind { any, bound, str, path, callable, dict, iterable, list, tuple, map, optional, one_of };
+  enum class Kind { any, bound, str, path, function, callable, dict, iterable, list, tuple, map, optional, one_of };
   Kind kind = Kind::any;
   PyTypeObject* bound = nullptr;  // a bound class (none when it converts implicitly from other types)
   std::string text;               // what a refusal says was expected: "a cifs.render.Camera", "a str"
@@ -165,8 +165,8 @@ Type read_type(std::string_view text, const Classes& classes) {
   }
   if (text == "str") return {.kind = Kind::str, .text = "a str"};
   if (text == "os.PathLike") return {.kind = Kind::path, .text = "a str or os.PathLike"};
-  if (text == "function" || !generic("Callable").empty())
-    return {.kind = Kind::callable, .text = "a callable"};
+  if (text == "function") return {.kind = Kind::function, .text = "a callable"};  // py::function: not None
+  if (!generic("Callable").empty()) return {.kind = Kind::callable, .text = "a callable"};
   if (text == "dict") return {.kind = Kind::dict, .text = "a dict"};
   if (text == "Iterable") return {.kind = Kind::iterable, .text = "an iterable"};
   if (const auto it = classes.find(std::string(text)); it != classes.end() && it->second)
@@ -175,10 +175,21 @@ Type read_type(std::string_view text, const Classes& classes) {
 }
 
 /// Where `value` does not fit `type`: the place inside it ("", "[1]", "['key']") and what was expected.
+/// `value` is owned: an item read from a sequence (`__getitem__`) may exist only as long as it is held.
 struct Misfit {
   std::string path, expected;
-  py::handle value;
+  py::object value;
 };
+
+/// repr(value), or a placeholder when its __repr__ raises or returns text that is not UTF-8 (the error is
+/// cleared: a message about a wrong argument must not become the error of its repr).
+std::string safe_repr(py::handle value) {
+  try {
+    return py::repr(value);
+  } catch (const py::error_already_set&) {  // fetched, so cleared
+    return std::string("<") + Py_TYPE(value.ptr())->tp_name + " object, repr failed>";
+  }
+}
 
 /// The first place where `value` does not fit `type`, as pybind11's casters read it. None fits a bound class
 /// (read as a null pointer) unless `none_refused`: pybind11 then failed to pass a null pointer as a
@@ -186,7 +197,8 @@ struct Misfit {
 std::optional<Misfit> misfit(const Type& type, py::handle value, bool none_refused) {
   using Kind = Type::Kind;
   const auto refused = [&] {
-    return std::optional<Misfit>(Misfit{.path = {}, .expected = type.text, .value = value});
+    return std::optional<Misfit>(
+        Misfit{.path = {}, .expected = type.text, .value = py::reinterpret_borrow<py::object>(value)});
   };
   const auto inside = [&](std::optional<Misfit> m, const std::string& at) {
     if (m) m->path = at + m->path;
@@ -196,10 +208,9 @@ std::optional<Misfit> misfit(const Type& type, py::handle value, bool none_refus
   switch (type.kind) {
     case Kind::any:
       return std::nullopt;
-    case Kind::bound:
+    case Kind::bound:  // by the real type, as pybind11 reads it (PyObject_IsInstance runs __class__)
       if (value.is_none()) return none_refused ? refused() : std::nullopt;
-      return PyObject_IsInstance(object, reinterpret_cast<PyObject*>(type.bound)) == 1 ? std::nullopt
-                                                                                       : refused();
+      return PyObject_TypeCheck(object, type.bound) ? std::nullopt : refused();
     case Kind::str:  // pybind11's std::string caster: a str (UTF-8 encodable), bytes or bytearray
       if (PyBytes_Check(object) || PyByteArray_Check(object)) return std::nullopt;
       if (PyUnicode_Check(object) && PyUnicode_AsUTF8AndSize(object, nullptr)) return std::nullopt;
@@ -213,8 +224,12 @@ std::optional<Misfit> misfit(const Type& type, py::handle value, bool none_refus
       PyErr_Clear();
       if (encoded) return std::nullopt;
       if (!path) return refused();
-      return Misfit{.path = {}, .expected = type.text + " without NUL characters", .value = value};
+      return Misfit{.path = {},
+                    .expected = type.text + " without NUL characters",
+                    .value = py::reinterpret_borrow<py::object>(value)};
     }
+    case Kind::function:
+      return PyCallable_Check(object) ? std::nullopt : refused();
     case Kind::callable:  // None is an empty std::function
       return value.is_none() || PyCallable_Check(object) ? std::nullopt : refused();
     case Kind::dict:
@@ -244,9 +259,9 @@ std::optional<Misfit> misfit(const Type& type, py::handle value, bool none_refus
     case Kind::map: {
       if (!PyDict_Check(object)) return refused();
       for (const auto& [key, item] : py::reinterpret_borrow<py::dict>(value)) {
-        const std::string at = "[" + std::string(py::repr(key)) + "]";
-        if (auto m = inside(misfit(type.items[0], key, none_refused), at)) return m;
-        if (auto m = inside(misfit(type.items[1], item, none_refused), at)) return m;
+        auto m = misfit(type.items[0], key, none_refused);
+        if (!m) m = misfit(type.items[1], item, none_refused);
+        if (m) return inside(std::move(m), "[" + safe_repr(key) + "]");  // the key's repr only for a misfit
       }
       return std::nullopt;
     }
@@ -269,18 +284,22 @@ std::optional<py::type_error> refusal(const detail::function_call& call, const E
 }
 
 bool is_bool(py::handle value) {
-  static PyObject* numpy_bool =
-      py::object(py::module_::import("numpy").attr("bool_")).release().ptr();  // never released
-  return PyBool_Check(value.ptr()) || PyObject_IsInstance(value.ptr(), numpy_bool) == 1;
+  static auto* numpy_bool = reinterpret_cast<PyTypeObject*>(
+      py::object(py::module_::import("numpy").attr("bool_")).release().ptr());  // never released
+  return PyBool_Check(value.ptr()) || PyObject_TypeCheck(value.ptr(), numpy_bool);  // runs no __class__
 }
 
-/// The parameter holding `value` (or `value` as an item of a list or tuple argument: "nets[1]").
+/// The parameter holding `value` (or `value` as an item of a list or tuple argument, "nets[1]", or as a key
+/// or value of a dict argument, "values['a']": pybind11's dict caster does not say where it failed).
 std::string parameter_of(const detail::function_call& call, const Entry& entry, PyObject* value) {
   const auto name = [&](std::size_t i) { return i < entry.names.size() ? entry.names[i] : "argument"; };
   for (std::size_t i = 0; i < call.args.size(); ++i)
     if (call.args[i].ptr() == value) return name(i);
   for (std::size_t i = 0; i < call.args.size(); ++i) {
     const py::handle arg = call.args[i];
+    if (PyDict_Check(arg.ptr()))
+      for (const auto& [key, item] : py::reinterpret_borrow<py::dict>(arg))
+        if (key.ptr() == value || item.ptr() == value) return name(i) + "[" + safe_repr(key) + "]";
     if (!PyList_Check(arg.ptr()) && !PyTuple_Check(arg.ptr())) continue;
     const auto items = py::reinterpret_borrow<py::sequence>(arg);
     for (std::size_t k = 0; k < items.size(); ++k)
@@ -444,7 +463,7 @@ std::string describe(py::handle value) {
     return "an array of dtype " + std::string(py::str(a.dtype())) + " and shape " + shape +
            (a.ndim() == 1 ? ",)" : ")");
   }
-  std::string text = py::repr(value);
+  std::string text = safe_repr(value);
   if (text.size() > 40) {  // cut at a character boundary: the message must stay valid UTF-8
     std::size_t n = 37;
     while (n > 0 && (static_cast<unsigned char>(text[n]) & 0xC0) == 0x80) --n;
