@@ -203,5 +203,71 @@ class ClassMessageTest(unittest.TestCase):
         self.assertEqual(cifs.render.view_transform(camera).cx, cifs.render.view_transform(cifs.render.Camera(width=8, height=8)).cx)
 
 
+class HostileObjectTest(unittest.TestCase):
+    """Arguments whose __class__, __repr__ or dict keys raise: the TypeError naming the parameter, never the
+    object's own error, nor a SystemError for an exception left set ("returned a result with an exception set")."""
+
+    def setUp(self):
+        curve = cifs.nurbs.Curve(1, [0, 0, 1, 1], np.array([[0.0, 0.0], [1.0, 1.0]]))
+        self.automaton = cifs.automata.knot_automaton(curve)
+        self.nets = cifs.automata.initial_nets(self.automaton, curve)
+        self.system = cifs.ifs.curve_bcifs(curve)
+
+    def check(self, call, error, pattern):
+        with self.assertRaises(Exception) as e:
+            call()
+        self.assertIs(type(e.exception), error, f"{type(e.exception).__name__}: {e.exception}")
+        self.assertRegex(str(e.exception), pattern)
+
+    def test_class_that_raises(self):
+        class Spoof:  # isinstance() asks __class__, which raises; its repr is Python code, run afterwards
+            @property
+            def __class__(self):
+                raise RuntimeError("no class")
+
+            def __repr__(self):
+                return "Spoof()"
+        got = r"got Spoof Spoof\(\)$"
+        self.check(lambda: cifs.ifs.admissible_space(Spoof()), TypeError, r"^admissible_space: system: expected a cifs\.ifs\.Bcifs, " + got)
+        self.check(lambda: cifs.io.to_obj(Spoof()), TypeError, r"^to_obj: shape: expected a cifs\.nurbs\.Curve or a cifs\.nurbs\.Surface, " + got)
+        self.check(lambda: cifs.ifs.for_each_leaf_to_tolerance(self.automaton, self.nets, print, homogeneous=Spoof()),
+                   cifs.InvalidInput, r"^for_each_leaf_to_tolerance: homogeneous: expected True or False, " + got)
+
+    def test_repr_that_raises(self):
+        class BadRepr:
+            def __repr__(self):
+                raise RuntimeError("repr raised")
+
+        class NotUtf8:
+            def __repr__(self):
+                return "\ud800"
+        for value in (BadRepr(), NotUtf8()):
+            name = type(value).__name__
+            with self.subTest(name):
+                got = rf"got {name} <{name} object, repr failed>$"
+                self.check(lambda: cifs.ifs.admissible_space(value), TypeError, r"^admissible_space: system: expected a cifs\.ifs\.Bcifs, " + got)
+                self.check(lambda: cifs.nurbs.uniform_parameters((0.0, 1.0), value), cifs.InvalidInput,
+                           r"^uniform_parameters: count: expected an integer, " + got)
+                # With overloads the casters refuse quietly, so that pybind11 tries the next one.
+                self.check(lambda: cifs.nurbs.domain(value, 1), TypeError, r"^domain\(\): incompatible function arguments")
+
+    def test_dict_keys_and_values(self):
+        class Key(str):
+            def __repr__(self):
+                raise RuntimeError("key repr raised")
+        # The keys' repr is read only for the key or value named, and a value refused is named by its key.
+        self.check(lambda: cifs.ifs.perturb(self.system, values={Key("a"): 1.0, 3: 2.0}), TypeError,
+                   r"^perturb: values\[3\]: expected a str, got int 3$")
+        self.check(lambda: cifs.ifs.perturb(self.system, values={"a": "x"}), cifs.InvalidInput,
+                   r"^perturb: values\['a'\]: expected a real number, got str 'x'$")
+
+    def test_none_for_a_callback(self):
+        """A callback parameter (py::function) refuses None (a std::function would take it as empty)."""
+        self.check(lambda: cifs.ifs.for_each_leaf(self.automaton, self.nets, 1, None), TypeError,
+                   r"^for_each_leaf: callback: expected a callable, got None$")
+        self.check(lambda: cifs.ifs.for_each_leaf_to_tolerance(self.automaton, self.nets, callback=None), TypeError,
+                   r"^for_each_leaf_to_tolerance: callback: expected a callable, got None$")
+
+
 if __name__ == "__main__":
     unittest.main()
