@@ -37,7 +37,21 @@ thread_local bool strict = false;
 /// `any` for the types whose casters refuse with a message of their own (numbers, arrays, lists:
 /// bindings.hpp) or take everything (object).
 struct Type {
-  enum class Kind { any, bound, str, path, function, callable, dict, iterable, list, tuple, map, optional, one_of };
+  enum class Kind {
+    any,
+    bound,
+    str,
+    path,
+    function,
+    callable,
+    dict,
+    iterable,
+    list,
+    tuple,
+    map,
+    optional,
+    one_of
+  };
   Kind kind = Kind::any;
   PyTypeObject* bound = nullptr;  // a bound class (none when it converts implicitly from other types)
   std::string text;               // what a refusal says was expected: "a cifs.render.Camera", "a str"
@@ -285,7 +299,7 @@ std::optional<py::type_error> refusal(const detail::function_call& call, const E
 
 bool is_bool(py::handle value) {
   static auto* numpy_bool = reinterpret_cast<PyTypeObject*>(
-      py::object(py::module_::import("numpy").attr("bool_")).release().ptr());  // never released
+      py::object(py::module_::import("numpy").attr("bool_")).release().ptr());      // never released
   return PyBool_Check(value.ptr()) || PyObject_TypeCheck(value.ptr(), numpy_bool);  // runs no __class__
 }
 
