@@ -33,7 +33,7 @@ std::string tree_experiment(const std::string& name, const std::string& from, co
   return file(name, text);
 }
 
-std::string polygon(const std::string& name, const std::string& points) {
+std::string polygon_json(const std::string& name, const std::string& points) {
   return file(name, R"({"polygon": {"points": )" + points + R"(, "closed": false}})");
 }
 
@@ -90,9 +90,9 @@ TEST_CASE("cifs render names the edge pieces of a deep BC-IFS, not edge_pieces:"
 
 TEST_CASE("cifs scheme --refine names the polygon and the steps, not refine:",
           "[cli][reliability][messages]") {
-  check_message(cifs_cli("scheme four-point --refine " + polygon("one_point.json", "[[0, 0]]")),
+  check_message(cifs_cli("scheme four-point --refine " + polygon_json("one_point.json", "[[0, 0]]")),
                 "an open polygon needs at least 2 points to refine, got 1", "refine:");
-  const std::string two = polygon("two_points.json", "[[0, 0], [1, 1]]");
+  const std::string two = polygon_json("two_points.json", "[[0, 0], [1, 1]]");
   check_message(cifs_cli("scheme four-point --refine " + two + " --steps 40"),
                 "40 refinement steps of 2 points exceed the limit of 50000000 points; refine fewer steps",
                 "refine:");

@@ -41,7 +41,7 @@ std::set<std::string> names(const fs::path& dir) {
 }
 
 /// Writes `text` to `dir/name` and returns the path.
-std::string put(const fs::path& dir, const std::string& name, const std::string& text) {
+std::string put_in(const fs::path& dir, const std::string& name, const std::string& text) {
   std::ofstream(dir / name) << text;
   return (dir / name).string();
 }
@@ -56,11 +56,11 @@ const std::string kExrMagic = "\x76\x2f\x31\x01", kPngMagic = "\x89PNG";
 /// An experiment on the cubic of examples/shapes (a copy in `dir`, so that it is an input there).
 std::string cubic_experiment(const fs::path& dir, const std::string& outputs,
                              const std::string& name = "e.json") {
-  put(dir, "cubic.json", slurp(CIFS_EXAMPLES_DIR "/shapes/cubic.json"));
-  return put(dir, name,
-             R"({"shape": "cubic.json", "evaluation": {"depth": 3},
+  put_in(dir, "cubic.json", slurp(CIFS_EXAMPLES_DIR "/shapes/cubic.json"));
+  return put_in(dir, name,
+                R"({"shape": "cubic.json", "evaluation": {"depth": 3},
     "render": {"width": 16, "height": 16}, "outputs": )" +
-                 outputs + "}");
+                    outputs + "}");
 }
 
 /// A folder where no file can be created: read-only for a user, /sys for root (which may write
@@ -113,7 +113,7 @@ bool has_temporary(const fs::path& dir) {
 
 /// A chaos game of 4·10⁹ samples: about a minute of work, long enough to be interrupted.
 std::string long_experiment(const fs::path& dir) {
-  return put(dir, "big.json", R"({"ifs": "fern", "evaluation": {"chaos": 4000000000},
+  return put_in(dir, "big.json", R"({"ifs": "fern", "evaluation": {"chaos": 4000000000},
     "render": {"width": 16, "height": 16, "threads": 2}, "outputs": {"exr": "big.exr", "png": "big.png"}})");
 }
 
@@ -132,7 +132,7 @@ TEST_CASE("cifs render writes all its outputs or none", "[cli][reliability][outp
               (locked / "x.png").string() + ": cannot create a file in " + locked.string() + " (");
   CHECK(names(dir) == inputs);
   // An SVG path under a regular file: EXR and PNG were left behind.
-  put(dir, "plain", "not a folder");
+  put_in(dir, "plain", "not a folder");
   const std::string under_file =
       cubic_experiment(dir, R"({"exr": "a.exr", "png": "a.png", "svg": "plain/a.svg"})");
   check_error(render(under_file, dir), (dir / "plain").string() + " is not a folder");
@@ -144,9 +144,9 @@ TEST_CASE("cifs render writes all its outputs or none", "[cli][reliability][outp
   check_error(render(made, dir, " --png " + dir.string()), ": is a directory");
   CHECK(names(dir) == inputs);
   // A PLY name that is a folder (a mesh experiment): EXR and PNG were left behind.
-  put(dir, "cube.obj", slurp(CIFS_EXAMPLES_DIR "/meshes/cube.obj"));
+  put_in(dir, "cube.obj", slurp(CIFS_EXAMPLES_DIR "/meshes/cube.obj"));
   const std::string mesh =
-      put(dir, "m.json", R"({"mesh": "cube.obj", "subdivision": {"scheme": "catmull-clark",
+      put_in(dir, "m.json", R"({"mesh": "cube.obj", "subdivision": {"scheme": "catmull-clark",
     "levels": 1}, "render": {"width": 16, "height": 16}, "outputs": {"exr": "m.exr", "png": "m.png", "ply": "m.ply"}})");
   fs::create_directory(dir / "m.ply");
   check_error(render(mesh, dir), (dir / "m.ply").string() + ": is a directory");
@@ -189,13 +189,13 @@ TEST_CASE("cifs never overwrites its inputs", "[cli][reliability][outputs]") {
   check_error(render(onto_shape, dir), input((dir / "cubic.json").string(), (dir / "cubic.json").string()));
   CHECK(slurp(dir / "cubic.json") == cubic_text);
   // The BC-IFS file of an automaton experiment, and the mesh of a subdivision experiment.
-  put(dir, "tree.json", slurp(CIFS_EXAMPLES_DIR "/automata/tree.json"));
-  const std::string tree = put(dir, "t.json", R"({"automaton": "tree.json", "evaluation": {"depth": 2},
+  put_in(dir, "tree.json", slurp(CIFS_EXAMPLES_DIR "/automata/tree.json"));
+  const std::string tree = put_in(dir, "t.json", R"({"automaton": "tree.json", "evaluation": {"depth": 2},
     "render": {"width": 8, "height": 8}, "outputs": {"exr": "t.exr", "png": "tree.json"}})");
   check_error(render(tree, dir), input((dir / "tree.json").string(), (dir / "tree.json").string()));
-  put(dir, "cube.obj", slurp(CIFS_EXAMPLES_DIR "/meshes/cube.obj"));
+  put_in(dir, "cube.obj", slurp(CIFS_EXAMPLES_DIR "/meshes/cube.obj"));
   const std::string mesh =
-      put(dir, "m.json", R"({"mesh": "cube.obj", "subdivision": {"scheme": "catmull-clark",
+      put_in(dir, "m.json", R"({"mesh": "cube.obj", "subdivision": {"scheme": "catmull-clark",
     "levels": 1}, "render": {"width": 8, "height": 8}, "outputs": {"exr": "m.exr", "obj": "cube.obj"}})");
   check_error(render(mesh, dir), input((dir / "cube.obj").string(), (dir / "cube.obj").string()));
   // subdivide -o onto its mesh, directly and through a symbolic link.
@@ -215,7 +215,7 @@ TEST_CASE("cifs writes through symbolic links and replaces only regular files",
   const fs::path dir = folder("links");
   const std::string exp = cubic_experiment(dir, R"({"png": "a.png"})");
   fs::create_directory(dir / "real");
-  put(dir / "real", "image.exr", "old");
+  put_in(dir / "real", "image.exr", "old");
   fs::create_symlink("real/image.exr", dir / "link.exr");
   fs::create_symlink("real/preview.png", dir / "dangling.png");
   REQUIRE(cifs_cli("render " + exp + " -o " + (dir / "link.exr").string() + " --png " +
@@ -278,7 +278,7 @@ TEST_CASE("SIGTERM and SIGINT during a render leave no temporary; the next run r
   // SIGKILL cannot be handled: its temporaries stay, and a later write into the folder removes them.
   interrupted(SIGKILL);
   CHECK(has_temporary(dir));
-  const std::string small = put(dir, "small.json", R"({"ifs": "fern", "evaluation": {"chaos": 1000},
+  const std::string small = put_in(dir, "small.json", R"({"ifs": "fern", "evaluation": {"chaos": 1000},
     "render": {"width": 8, "height": 8}, "outputs": {"png": "small.png"}})");
   REQUIRE(render(small, dir).status == 0);
   CHECK(names(dir) == std::set<std::string>{"big.json", "small.json", "small.png"});

@@ -15,7 +15,7 @@ using automata::StateId;
 
 namespace {
 
-nurbs::Knots random_knots(std::mt19937_64& rng, std::size_t count) {
+nurbs::Knots automaton_random_knots(std::mt19937_64& rng, std::size_t count) {
   std::uniform_real_distribution<double> len(0.5, 2.0);
   nurbs::Knots t(count);
   for (std::size_t i = 1; i < count; ++i) t[i] = t[i - 1] + len(rng);
@@ -46,8 +46,8 @@ TEST_CASE("Generic knots: 4(d-1) states per segment, 2d-1 recur, one shared unif
   std::mt19937_64 rng(99);
   for (int d = 2; d <= 8; ++d) {
     const int n = 4 * d;
-    const nurbs::Curve c =
-        nurbs::make_curve(d, random_knots(rng, static_cast<std::size_t>(n + d + 1)), Points::Random(n, 2));
+    const nurbs::Curve c = nurbs::make_curve(
+        d, automaton_random_knots(rng, static_cast<std::size_t>(n + d + 1)), Points::Random(n, 2));
     const nurbs::KnotAutomaton k = nurbs::knot_automaton(c);
     const automata::Automaton& a = k.automaton;
     REQUIRE(k.windows.size() == num_vertices(a.graph));

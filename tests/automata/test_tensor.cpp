@@ -12,8 +12,8 @@ using automata::StateId;
 
 namespace {
 
-nurbs::Surface random_surface(cifs_test::Rng& rng, std::array<int, 2> degree, std::array<int, 2> count,
-                              bool clamped, bool rational) {
+nurbs::Surface random_tensor_surface(cifs_test::Rng& rng, std::array<int, 2> degree, std::array<int, 2> count,
+                                     bool clamped, bool rational) {
   std::array<nurbs::Knots, 2> knots;
   for (std::size_t d = 0; d < 2; ++d) knots[d] = cifs_test::random_knots(rng, degree[d], count[d], clamped);
   const Points P = Points::Random(count[0] * count[1], 3);
@@ -31,7 +31,8 @@ TEST_CASE("Tensor automaton: reachable pairs, sizes, Kronecker matrices in GH GB
     const std::array<int, 2> degree{cifs_test::uniform_int(rng, 1, 5), cifs_test::uniform_int(rng, 1, 5)};
     const std::array<int, 2> count{degree[0] + cifs_test::uniform_int(rng, 1, 4),
                                    degree[1] + cifs_test::uniform_int(rng, 1, 4)};
-    const nurbs::Surface s = random_surface(rng, degree, count, cifs_test::coin(rng), cifs_test::coin(rng));
+    const nurbs::Surface s =
+        random_tensor_surface(rng, degree, count, cifs_test::coin(rng), cifs_test::coin(rng));
     const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
     const automata::Graph& g = t.product.graph;
     const automata::Graph& gu = t.factors[0].automaton.graph;
@@ -107,7 +108,7 @@ TEST_CASE("Tensor automaton: uniform bicubic surfaces share one recurrent unifor
 
 TEST_CASE("Tensor automaton: initial nets are the patches' control points", "[automata][tensor]") {
   cifs_test::Rng rng(11);
-  const nurbs::Surface s = random_surface(rng, {2, 3}, {5, 7}, false, true);
+  const nurbs::Surface s = random_tensor_surface(rng, {2, 3}, {5, 7}, false, true);
   const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
   const std::vector<Points> nets = nurbs::initial_nets(t, s);
   REQUIRE(nets.size() == t.product.initial.size());
@@ -119,6 +120,6 @@ TEST_CASE("Tensor automaton: initial nets are the patches' control points", "[au
       for (int j = 0; j <= 3; ++j) CHECK(nets[k].row(i * 4 + j) == s.P.row((su - 2 + i) * 7 + (sv - 3 + j)));
   }
   // A surface of other degrees does not fit.
-  const nurbs::Surface other = random_surface(rng, {3, 3}, {5, 7}, false, false);
+  const nurbs::Surface other = random_tensor_surface(rng, {3, 3}, {5, 7}, false, false);
   CHECK_THROWS_AS(nurbs::initial_nets(t, other), InvalidInput);
 }

@@ -30,14 +30,14 @@ namespace {
 
 /// A fresh folder under the system's temporary directory, removed afterwards. Each test case names
 /// its own: the writer sweeps a folder for stale temporaries once per process.
-struct Scratch {
+struct FilesScratch {
   fs::path dir;
-  explicit Scratch(const std::string& name = "") {
+  explicit FilesScratch(const std::string& name = "") {
     dir = fs::temp_directory_path() / ("cifs_test_files_" + std::to_string(::getpid()) + name);
     fs::remove_all(dir);
     fs::create_directories(dir);
   }
-  ~Scratch() {
+  ~FilesScratch() {
     std::error_code ec;
     fs::permissions(dir, fs::perms::owner_all, fs::perm_options::add, ec);
     fs::remove_all(dir, ec);
@@ -76,7 +76,7 @@ std::string temporary_for(const std::string& name, pid_t pid, int n) {
 }  // namespace
 
 TEST_CASE("write_file_atomically writes the bytes and leaves no temporary", "[core][files]") {
-  Scratch s;
+  FilesScratch s;
   const auto path = s.dir / "a.bin";
   write_file_atomically(path, all_bytes());
   CHECK(read_file(path) == all_bytes());
@@ -88,7 +88,7 @@ TEST_CASE("write_file_atomically writes the bytes and leaves no temporary", "[co
 }
 
 TEST_CASE("write_file_atomically refuses bad targets before creating anything", "[core][files]") {
-  Scratch s;
+  FilesScratch s;
   CHECK_THROWS_WITH(write_file_atomically("", "x"), "empty output path");
   CHECK_THROWS_WITH(write_file_atomically(s.dir, "x"), s.dir.string() + ": is a directory");
   const auto missing = s.dir / "missing" / "b.txt";
@@ -110,7 +110,7 @@ TEST_CASE("write_file_atomically refuses bad targets before creating anything", 
 
 TEST_CASE("An unwritable folder is refused when the output is opened, before any work", "[core][files]") {
   // Root writes anywhere in its own folders; /sys refuses new files even to root.
-  Scratch s;
+  FilesScratch s;
   const fs::path folder = ::geteuid() == 0 ? fs::path("/sys") : s.dir / "read_only";
   if (::geteuid() != 0) {
     fs::create_directory(folder);
@@ -123,7 +123,7 @@ TEST_CASE("An unwritable folder is refused when the output is opened, before any
 }
 
 TEST_CASE("Outputs onto an input are refused, by any name", "[core][files]") {
-  Scratch s;
+  FilesScratch s;
   const auto input = s.dir / "e.json";
   put(input, "{}");
   const OutputOptions options{.inputs = {input}};
@@ -149,7 +149,7 @@ TEST_CASE("Outputs onto an input are refused, by any name", "[core][files]") {
 }
 
 TEST_CASE("Symbolic links are written through and kept", "[core][files]") {
-  Scratch s;
+  FilesScratch s;
   fs::create_directories(s.dir / "real");
   put(s.dir / "real" / "image.exr", "old");
   // A relative link to another folder, reached through a second link.
@@ -180,7 +180,7 @@ TEST_CASE("Symbolic links are written through and kept", "[core][files]") {
 }
 
 TEST_CASE("Replacing a file keeps its permission bits", "[core][files]") {
-  Scratch s;
+  FilesScratch s;
   const auto path = s.dir / "private.txt";
   put(path, "old");
   fs::permissions(path, fs::perms::owner_read | fs::perms::owner_write);
@@ -193,7 +193,7 @@ TEST_CASE("Replacing a file keeps its permission bits", "[core][files]") {
 
 TEST_CASE("AtomicFile: the temporary is made up front, hidden, renamed on commit, removed otherwise",
           "[core][files]") {
-  Scratch s;
+  FilesScratch s;
   const auto target = s.dir / "image.exr";
   {
     put(target, "old");
@@ -227,7 +227,7 @@ TEST_CASE("AtomicFile: the temporary is made up front, hidden, renamed on commit
 }
 
 TEST_CASE("AtomicFiles: two names of one file are refused", "[core][files]") {
-  Scratch s;
+  FilesScratch s;
   AtomicFiles files;
   files.add(s.dir / "same", "outputs.exr");
   CHECK_THROWS_WITH(
@@ -242,7 +242,7 @@ TEST_CASE("AtomicFiles: two names of one file are refused", "[core][files]") {
 }
 
 TEST_CASE("AtomicFiles: all outputs are renamed or none is", "[core][files]") {
-  Scratch s;
+  FilesScratch s;
   put(s.dir / "a.exr", "old a");
   {
     AtomicFiles files;
@@ -274,7 +274,7 @@ TEST_CASE("AtomicFiles: all outputs are renamed or none is", "[core][files]") {
 
 TEST_CASE("Stale temporaries of dead processes are removed by the next write into their folder",
           "[core][files]") {
-  Scratch s("_stale");
+  FilesScratch s("_stale");
   const pid_t dead = dead_pid();
   const std::string stale = temporary_for("a.exr", dead, 0), live = temporary_for("a.exr", 1, 0),
                     mine = temporary_for("a.exr", ::getpid(), 999999), held = temporary_for("b.exr", dead, 7),
@@ -292,7 +292,7 @@ TEST_CASE("Stale temporaries of dead processes are removed by the next write int
 TEST_CASE("SIGTERM and SIGINT remove the open temporaries and end the process by the signal",
           "[core][files]") {
   for (const int signal : {SIGTERM, SIGINT}) {
-    Scratch s("_signal" + std::to_string(signal));
+    FilesScratch s("_signal" + std::to_string(signal));
     const pid_t child = ::fork();
     if (child == 0) {
       // The writer only handles signals whose action is the default; Catch2 has its own handlers,
@@ -313,7 +313,7 @@ TEST_CASE("SIGTERM and SIGINT remove the open temporaries and end the process by
 }
 
 TEST_CASE("Temporary names differ between calls and threads", "[core][files]") {
-  Scratch s;
+  FilesScratch s;
   std::set<fs::path> names;
   for (int k = 0; k < 100; ++k) names.insert(AtomicFile(s.dir / "t").temporary());
   CHECK(names.size() == 100);
@@ -343,7 +343,7 @@ TEST_CASE("Temporary names differ between calls and threads", "[core][files]") {
 }
 
 TEST_CASE("read_file names the path", "[core][files]") {
-  Scratch s;
+  FilesScratch s;
   CHECK_THROWS_WITH(read_file(s.dir), s.dir.string() + ": is a directory");
   CHECK_THROWS_WITH(read_file(s.dir / "none"),
                     (s.dir / "none").string() + ": cannot open (No such file or directory)");
@@ -351,7 +351,7 @@ TEST_CASE("read_file names the path", "[core][files]") {
 
 TEST_CASE("AtomicFile as a ByteSink: pieces into a temporary, renamed on commit, removed otherwise",
           "[core][files]") {
-  Scratch s;
+  FilesScratch s;
   const auto target = s.dir / "points.npy";
   std::ofstream(target) << "old";
   {
@@ -408,7 +408,7 @@ TEST_CASE("ChunkBuffer hands its bytes on a chunk at a time", "[core][files]") {
 }
 
 TEST_CASE("check_disk_space names the bytes needed and those free", "[core][files]") {
-  Scratch s;
+  FilesScratch s;
   const auto target = s.dir / "huge.npy";
   const std::uint64_t free = std::filesystem::space(s.dir).available;
   CHECK_NOTHROW(check_disk_space(target, 1000));

@@ -15,7 +15,7 @@ using namespace cifs;
 namespace {
 
 /// Doubles over the whole range: random bit patterns (finite ones), and a few chosen values.
-std::vector<double> samples() {
+std::vector<double> sample_values() {
   std::vector<double> xs{0.0,
                          -0.0,
                          1.0,
@@ -38,7 +38,7 @@ std::vector<double> samples() {
 }  // namespace
 
 TEST_CASE("number_text: shortest text that reads back as the same double", "[core][format]") {
-  for (const double x : samples()) {
+  for (const double x : sample_values()) {
     const std::string text = number_text(x);
     INFO(text);
     CHECK(std::bit_cast<std::uint64_t>(std::strtod(text.c_str(), nullptr)) ==
@@ -60,7 +60,7 @@ TEST_CASE("number_text: shortest text that reads back as the same double", "[cor
 }
 
 TEST_CASE("number_text with digits and fixed_text match the iostream forms", "[core][format]") {
-  for (const double x : samples()) {
+  for (const double x : sample_values()) {
     for (const int digits : {1, 3, 4, 6, 12, 17}) {
       std::ostringstream general;
       general << std::setprecision(digits) << x;

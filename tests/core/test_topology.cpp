@@ -18,12 +18,12 @@ Mesh faces_mesh(int vertices, const std::vector<std::vector<int>>& faces) {
   return m;
 }
 
-Mesh cube() {
+Mesh topology_cube() {
   return faces_mesh(8, {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}});
 }
 
 /// n by m quads on a torus (both directions wrap).
-Mesh torus(int n, int m) {
+Mesh topology_torus(int n, int m) {
   std::vector<std::vector<int>> faces;
   const auto id = [&](int i, int j) { return ((i + n) % n) * m + (j + m) % m; };
   for (int i = 0; i < n; ++i)
@@ -91,7 +91,7 @@ void check_rotation(const MeshTopology& t) {
 
 TEST_CASE("topology of closed meshes: counts, Euler characteristic, rotations", "[core][topology]") {
   SECTION("cube") {
-    const MeshTopology t = build_topology(cube());
+    const MeshTopology t = build_topology(topology_cube());
     CHECK(t.edges.size() == 12);
     CHECK(face_count(t) == 6);
     CHECK(euler_characteristic(t) == 2);
@@ -106,7 +106,7 @@ TEST_CASE("topology of closed meshes: counts, Euler characteristic, rotations", 
     check_rotation(t);
   }
   SECTION("torus") {
-    const MeshTopology t = build_topology(torus(5, 7));
+    const MeshTopology t = build_topology(topology_torus(5, 7));
     CHECK(euler_characteristic(t) == 0);
     CHECK(t.edges.size() == 70);
     for (int v = 0; v < 35; ++v) CHECK(valence(t, static_cast<std::size_t>(v)) == 4);

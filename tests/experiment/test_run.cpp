@@ -31,7 +31,7 @@ using render_test::ScratchDir;
 
 namespace {
 
-io::Experiment parse(const std::string& text) {
+io::Experiment parse_named_experiment(const std::string& text) {
   io::Experiment e = io::parse_experiment(text, "t.json", CIFS_EXAMPLES_DIR "/experiments");
   if (e.name.empty()) e.name = "t";
   return e;
@@ -42,7 +42,7 @@ experiment::RunReport run_in(const ScratchDir& dir, const std::string& text) {
   o.out_dir = dir.path();
   o.quiet = true;
   o.threads = 2;
-  return experiment::run(parse(text), o);
+  return experiment::run(parse_named_experiment(text), o);
 }
 
 std::size_t covered(const render::Image& image) {
@@ -86,7 +86,7 @@ TEST_CASE("The automaton output in JSON is the evaluated automaton, readable", "
   run_in(dir, R"({"shape": "../shapes/wave.json", "evaluation": {"depth": 2},
       "render": {"width": 16, "height": 16}, "outputs": {"exr": "w.exr", "automaton_json": "a.json"}})");
   const nurbs::KnotAutomaton a = io::read_automaton(dir.path() / "a.json");
-  const io::Experiment e = parse(R"({"shape": "../shapes/wave.json"})");
+  const io::Experiment e = parse_named_experiment(R"({"shape": "../shapes/wave.json"})");
   const nurbs::KnotAutomaton knots = nurbs::knot_automaton(std::get<nurbs::Curve>(*e.shape));
   CHECK(io::to_json(a) == io::to_json(knots));
 }
@@ -138,8 +138,9 @@ TEST_CASE("Chaos experiments: density channel; the same seed gives the same imag
       o.quiet = true;
       o.threads = threads;
       experiment::run(
-          parse(std::string("{") + source +
-                R"(, "evaluation": {"chaos": 200000, "seed": 9}, "render": {"width": 80, "height": 60},
+          parse_named_experiment(
+              std::string("{") + source +
+              R"(, "evaluation": {"chaos": 200000, "seed": 9}, "render": {"width": 80, "height": 60},
                             "outputs": {"exr": "c.exr", "png": "c.png"}})"),
           o);
       const render::Image image = render::read_exr(dir.path() / "c.exr");
@@ -276,7 +277,7 @@ TEST_CASE("Mesh experiments: every scheme, boundaries, and what a mesh cannot do
       {R"({"mesh": "../meshes/tetrahedron.obj", "subdivision": {"scheme": "butterfly", "levels": 2}, "outputs": {"exr": "a.exr", "obj": "a.obj"}, "render": {"width": 40, "height": 30}})",
        R"({"mesh": "../meshes/open_grid_triangles.obj", "subdivision": {"scheme": "sqrt3", "levels": 2, "boundary": "corner"}, "outputs": {"exr": "a.exr", "obj": "a.obj"}, "render": {"width": 40, "height": 30, "control_net": true}})",
        R"({"mesh": "../meshes/open_grid.obj", "subdivision": {"scheme": "doo-sabin", "levels": 2}, "outputs": {"exr": "a.exr", "obj": "a.obj"}, "render": {"width": 40, "height": 30, "control_net": true}})"}) {
-    const io::Experiment e = parse(text);
+    const io::Experiment e = parse_named_experiment(text);
     run_in(dir, text);
     const Mesh refined =
         subdivision::subdivide(e.mesh->mesh, e.mesh->scheme, e.mesh->levels, {.boundary = e.mesh->boundary});
@@ -289,8 +290,8 @@ TEST_CASE("Mesh experiments: every scheme, boundaries, and what a mesh cannot do
   o.out_dir = empty.path();
   o.quiet = true;
   o.max_bytes = 1 << 20;
-  const io::Experiment big =
-      parse(R"({"mesh": "../meshes/torus.obj", "subdivision": {"scheme": "catmull-clark", "levels": 9},
+  const io::Experiment big = parse_named_experiment(
+      R"({"mesh": "../meshes/torus.obj", "subdivision": {"scheme": "catmull-clark", "levels": 9},
       "render": {"width": 8, "height": 8}, "outputs": {"exr": "t.exr", "obj": "t.obj"}})");
   try {
     experiment::run(big, o);
@@ -306,8 +307,8 @@ TEST_CASE("Mesh experiments: every scheme, boundaries, and what a mesh cannot do
   CHECK_THROWS_WITH(run_in(empty, R"({"mesh": "../meshes/cube.obj", "subdivision": {"scheme": "doo-sabin"},
       "render": {"width": 8, "height": 8}, "outputs": {"exr": "c.exr", "svg": "c.svg"}})"),
                     Catch::Contains("outputs.svg: SVG is for curves"));
-  CHECK_THROWS_WITH(experiment::evaluate(
-                        parse(R"({"mesh": "../meshes/tetrahedron.obj", "subdivision": {"scheme": "loop"}})")),
+  CHECK_THROWS_WITH(experiment::evaluate(parse_named_experiment(
+                        R"({"mesh": "../meshes/tetrahedron.obj", "subdivision": {"scheme": "loop"}})")),
                     "mesh: tetrahedron.obj: a subdivision surface has no attractor to evaluate or sample");
   CHECK(empty.files().empty());
 }
@@ -330,7 +331,7 @@ std::string points_json(const Points& P, int columns = 0) {
 }
 
 /// Windows of N consecutive points, or of N × N points of a grid with `columns` points a line.
-std::vector<Points> windows(const Points& P, int N, int columns = 0) {
+std::vector<Points> windows_of_grid(const Points& P, int N, int columns = 0) {
   std::vector<Points> nets;
   if (columns == 0) {
     for (Eigen::Index k = 0; k + N <= P.rows(); ++k) nets.push_back(P.middleRows(k, N));
@@ -364,12 +365,12 @@ TEST_CASE("A junction of curves: the experiment draws what ifs::join gives, the 
       "evaluation": {"depth": 7}, "render": {"width": 200, "height": 100, "line_width": 3},
       "outputs": {"exr": "j.exr"}})";
   const int depth = 7;
-  const experiment::Evaluation ev = experiment::evaluate(parse(text));
+  const experiment::Evaluation ev = experiment::evaluate(parse_named_experiment(text));
   // Library route: ifs::join of the two scheme systems, edge pieces at the same depth.
   const ifs::Bcifs A = subdivision::scheme_bcifs(subdivision::b_spline(3), 6, {.pieces = 3});
   const ifs::Bcifs B = subdivision::scheme_bcifs(subdivision::four_point(), 6, {.pieces = 4, .layer = 3});
   const std::vector<ifs::Glue> glue{{2, "end", 0, "start"}};
-  const ifs::Junction j = ifs::join(A, windows(PA, 6), B, windows(PB, 6), glue);
+  const ifs::Junction j = ifs::join(A, windows_of_grid(PA, 6), B, windows_of_grid(PB, 6), glue);
   const ifs::EdgePieces pieces = ifs::edge_pieces(j.system, j.nets, depth);
   const Eigen::Index n = pieces.start.rows();
   REQUIRE(ev.points.rows() == 2 * n);
@@ -417,7 +418,7 @@ TEST_CASE("A junction of a bicubic and a biquadratic patch: the experiment's mes
             "points": )" + points_json(GB, 5) +
                            R"(}},
       "evaluation": {"depth": 3}})";
-  const experiment::Evaluation ev = experiment::evaluate(parse(text));
+  const experiment::Evaluation ev = experiment::evaluate(parse_named_experiment(text));
   const auto curve = [](int degree, int window, int pieces, int layer) {
     return subdivision::scheme_bcifs(subdivision::b_spline(degree), window,
                                      {.pieces = pieces, .layer = layer});
@@ -426,7 +427,7 @@ TEST_CASE("A junction of a bicubic and a biquadratic patch: the experiment's mes
   const ifs::Bcifs B = ifs::product_bcifs(curve(2, 4, 4, 2), curve(2, 4, 2, 0), {.free_when_either = true});
   std::vector<ifs::Glue> glue;
   for (std::size_t b = 0; b < 2; ++b) glue.push_back({2 + b, "uend", b, "ustart"});
-  const ifs::Junction j = ifs::join(A, windows(GA, 4, 5), B, windows(GB, 4, 5), glue);
+  const ifs::Junction j = ifs::join(A, windows_of_grid(GA, 4, 5), B, windows_of_grid(GB, 4, 5), glue);
   CHECK(j.residual <= 1e-12);
   const auto side = [&](std::size_t first, std::size_t count, int nu, int nv) {
     automata::Automaton a = j.system.automaton;

@@ -3,6 +3,8 @@
 // built directly.
 #pragma once
 
+#include <algorithm>
+
 #include "cifs/ifs/bcifs.hpp"
 #include "ifs/helpers.hpp"
 
@@ -41,6 +43,13 @@ inline Points tree_net() {
   Points P(3, 2);
   P << 0, 0, 0.5, 0.5, 1, 0;
   return P;
+}
+
+/// The largest residual of the system's constraints.
+inline double max_residual(const cifs::ifs::Bcifs& sys) {
+  double worst = 0;
+  for (const auto& [name, r] : cifs::ifs::constraint_residuals(sys)) worst = std::max(worst, r);
+  return worst;
 }
 
 }  // namespace ifs_test

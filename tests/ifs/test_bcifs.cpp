@@ -14,12 +14,6 @@ using namespace ifs_test;
 
 namespace {
 
-double max_residual(const Bcifs& sys) {
-  double worst = 0;
-  for (const auto& [name, r] : constraint_residuals(sys)) worst = std::max(worst, r);
-  return worst;
-}
-
 const Eigen::MatrixXd& matrix(const Bcifs& sys, TransitionRef t) {
   return sys.automaton.graph[transition_id(sys.automaton, t)].matrix;
 }

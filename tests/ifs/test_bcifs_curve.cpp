@@ -8,9 +8,11 @@
 #include "cifs/errors.hpp"
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/nurbs/refine.hpp"
+#include "ifs/bcifs_helpers.hpp"
 
 using namespace cifs;
 using namespace cifs::ifs;
+using ifs_test::max_residual;
 
 namespace {
 
@@ -27,12 +29,6 @@ nurbs::Curve uniform_curve(int d, int n) {
   nurbs::Knots U(static_cast<std::size_t>(n + d + 1));
   for (std::size_t i = 0; i < U.size(); ++i) U[i] = static_cast<double>(i);
   return nurbs::make_curve(d, U, polygon(n));
-}
-
-double max_residual(const Bcifs& sys) {
-  double worst = 0;
-  for (const auto& [name, r] : constraint_residuals(sys)) worst = std::max(worst, r);
-  return worst;
 }
 
 /// Curves of every kind the builder must handle: simple, double, triple and clamped knots,

@@ -11,14 +11,16 @@
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/ifs/bcifs_curve.hpp"
 #include "cifs/ifs/mesh.hpp"
+#include "ifs/bcifs_helpers.hpp"
 
 using namespace cifs;
 using namespace cifs::ifs;
+using ifs_test::max_residual;
 
 namespace {
 
 /// Clamped knots of degree d with n control points, interior knots at `interior`.
-nurbs::Knots clamped(int d, std::vector<double> interior) {
+nurbs::Knots clamped_knots(int d, std::vector<double> interior) {
   nurbs::Knots U(static_cast<std::size_t>(d + 1), 0.0);
   const double last = interior.empty() ? 1.0 : interior.back() + 1.0;
   U.insert(U.end(), interior.begin(), interior.end());
@@ -26,7 +28,7 @@ nurbs::Knots clamped(int d, std::vector<double> interior) {
   return U;
 }
 
-nurbs::Knots uniform(int d, int n) {
+nurbs::Knots uniform_knots(int d, int n) {
   nurbs::Knots U(static_cast<std::size_t>(n + d + 1));
   for (std::size_t i = 0; i < U.size(); ++i) U[i] = static_cast<double>(i);
   return U;
@@ -51,31 +53,27 @@ nurbs::Surface make(std::array<int, 2> degree, std::array<nurbs::Knots, 2> knots
   return nurbs::make_surface(degree, knots, {nu, nv}, P, w);
 }
 
-double max_residual(const Bcifs& sys) {
-  double worst = 0;
-  for (const auto& [name, r] : constraint_residuals(sys)) worst = std::max(worst, r);
-  return worst;
-}
-
 struct Sample {
   std::string name;
   nurbs::Surface surface;
 };
 
-std::vector<Sample> samples() {
+std::vector<Sample> sample_surfaces() {
   std::vector<Sample> out;
-  out.push_back({"uniform bicubic", make({3, 3}, {uniform(3, 6), uniform(3, 6)})});
-  out.push_back({"uniform biquadratic", make({2, 2}, {uniform(2, 5), uniform(2, 5)})});
-  out.push_back({"non-uniform bicubic", make({3, 3}, {clamped(3, {0.3, 1.1, 1.5}), clamped(3, {0.7, 2.6})})});
-  out.push_back({"mixed degrees", make({2, 3}, {clamped(2, {0.4, 1.7}), clamped(3, {1, 1, 2.5})})});
-  out.push_back({"rational", make({2, 2}, {clamped(2, {0.5, 1.25}), uniform(2, 5)}, true)});
+  out.push_back({"uniform bicubic", make({3, 3}, {uniform_knots(3, 6), uniform_knots(3, 6)})});
+  out.push_back({"uniform biquadratic", make({2, 2}, {uniform_knots(2, 5), uniform_knots(2, 5)})});
+  out.push_back({"non-uniform bicubic",
+                 make({3, 3}, {clamped_knots(3, {0.3, 1.1, 1.5}), clamped_knots(3, {0.7, 2.6})})});
+  out.push_back(
+      {"mixed degrees", make({2, 3}, {clamped_knots(2, {0.4, 1.7}), clamped_knots(3, {1, 1, 2.5})})});
+  out.push_back({"rational", make({2, 2}, {clamped_knots(2, {0.5, 1.25}), uniform_knots(2, 5)}, true)});
   return out;
 }
 
 }  // namespace
 
 TEST_CASE("surface_bcifs: the NURBS matrices are admissible", "[ifs][bcifs][surface]") {
-  for (const auto& [name, s] : samples()) {
+  for (const auto& [name, s] : sample_surfaces()) {
     INFO(name);
     const auto ta = nurbs::tensor_automaton(s);
     const Bcifs sys = surface_bcifs(ta);
@@ -96,14 +94,14 @@ TEST_CASE("surface_bcifs: free coefficients of uniform surfaces (hand counts)", 
   // curve (2 free coefficients there), so its 4×4 product is free up to its row sums: 16 − 4 = 12.
   // (The free coefficients are named at the smallest entry of their class of equal entries, a
   // face entry: the central corner rows of the children.)
-  const auto quadratic = surface_bcifs(make({2, 2}, {uniform(2, 5), uniform(2, 5)}));
+  const auto quadratic = surface_bcifs(make({2, 2}, {uniform_knots(2, 5), uniform_knots(2, 5)}));
   const AdmissibleSpace q = admissible_space(quadratic);
   CHECK(q.free.size() == 12);
   // Uniform bicubic: the curve leaves only the middle row of M's 3×3 operator free (rows 0 and 2
   // are forced to the midpoint weights); measured: 8 = one free row of 9 entries less its row sum
   // (the central point's row (1, 1) of the 9×9 corner (M, M), by analogy with the curve; the free
   // coefficients are named at the smallest entry of their class, a face entry).
-  const auto cubic = surface_bcifs(make({3, 3}, {uniform(3, 6), uniform(3, 6)}));
+  const auto cubic = surface_bcifs(make({3, 3}, {uniform_knots(3, 6), uniform_knots(3, 6)}));
   const AdmissibleSpace c = admissible_space(cubic);
   CHECK(c.free.size() == 8);
   // The entries of free corner operators (label VV) that depend on the free coefficients all lie in
@@ -119,8 +117,8 @@ TEST_CASE("surface_bcifs: free coefficients of uniform surfaces (hand counts)", 
 }
 
 TEST_CASE("surface_bcifs: cost on an 8×8 non-uniform bicubic surface", "[ifs][bcifs][surface]") {
-  const auto s = make({3, 3}, {clamped(3, {0.3, 1.1, 1.5, 2.6, 2.9, 3.7, 4.8}),
-                               clamped(3, {0.6, 0.9, 2.2, 3, 3.4, 4.5, 5.1})});
+  const auto s = make({3, 3}, {clamped_knots(3, {0.3, 1.1, 1.5, 2.6, 2.9, 3.7, 4.8}),
+                               clamped_knots(3, {0.6, 0.9, 2.2, 3, 3.4, 4.5, 5.1})});
   const auto ta = nurbs::tensor_automaton(s);
   auto t0 = std::chrono::steady_clock::now();
   const Bcifs sys = surface_bcifs(ta);
@@ -158,7 +156,7 @@ Points rows(const Points& N, const std::vector<int>& r) {
 }  // namespace
 
 TEST_CASE("surface_bcifs: amplitude 0 gives back the NURBS mesh", "[ifs][bcifs][surface]") {
-  for (const auto& [name, s] : samples()) {
+  for (const auto& [name, s] : sample_surfaces()) {
     INFO(name);
     const auto ta = nurbs::tensor_automaton(s);
     const auto nets = nurbs::initial_nets(ta, s);
@@ -176,7 +174,7 @@ TEST_CASE("surface_bcifs: amplitude 0 gives back the NURBS mesh", "[ifs][bcifs][
 TEST_CASE("surface_bcifs: perturbed surfaces keep their knot lines and stay joined",
           "[ifs][bcifs][surface]") {
   const int K = 3;
-  for (const auto& [name, s] : samples()) {
+  for (const auto& [name, s] : sample_surfaces()) {
     INFO(name);
     const auto ta = nurbs::tensor_automaton(s);
     const auto nets = nurbs::initial_nets(ta, s);
@@ -236,7 +234,7 @@ TEST_CASE("surface_bcifs: perturbed surfaces keep their knot lines and stay join
 }
 
 TEST_CASE("surface_bcifs: bad input", "[ifs][bcifs][surface]") {
-  auto ta = nurbs::tensor_automaton(make({2, 2}, {uniform(2, 5), uniform(2, 5)}));
+  auto ta = nurbs::tensor_automaton(make({2, 2}, {uniform_knots(2, 5), uniform_knots(2, 5)}));
   auto missing = ta;
   missing.product.initial.pop_back();
   CHECK_THROWS_WITH(surface_bcifs(missing), Catch::Contains("patches"));
@@ -248,7 +246,7 @@ TEST_CASE("surface_bcifs: bad input", "[ifs][bcifs][surface]") {
 }
 
 TEST_CASE("surface_bcifs: free_knot_lines frees the knot lines too", "[ifs][bcifs][surface]") {
-  const auto s = make({3, 3}, {clamped(3, {0.3, 1.1}), clamped(3, {0.7})});
+  const auto s = make({3, 3}, {clamped_knots(3, {0.3, 1.1}), clamped_knots(3, {0.7})});
   const auto ta = nurbs::tensor_automaton(s);
   const auto nets = nurbs::initial_nets(ta, s);
   const Bcifs fixed = surface_bcifs(ta), loose = surface_bcifs(ta, {.free_knot_lines = true});

@@ -18,8 +18,8 @@ using automata::StateId;
 
 namespace {
 
-nurbs::Surface random_surface(cifs_test::Rng& rng, std::array<int, 2> degree, std::array<int, 2> count,
-                              bool clamped, bool rational, int mode = 3) {
+nurbs::Surface random_mesh_surface(cifs_test::Rng& rng, std::array<int, 2> degree, std::array<int, 2> count,
+                                   bool clamped, bool rational, int mode = 3) {
   std::array<nurbs::Knots, 2> knots;
   for (std::size_t d = 0; d < 2; ++d)
     knots[d] = cifs_test::random_knots(rng, degree[d], count[d], clamped, degree[d], mode);
@@ -55,7 +55,7 @@ TEST_CASE("surface_mesh: vertices = surface evaluation at the dyadic nodes", "[i
     const std::array<int, 2> count{degree[0] + cifs_test::uniform_int(rng, 1, 3),
                                    degree[1] + cifs_test::uniform_int(rng, 1, 3)};
     const bool rational = cifs_test::coin(rng);
-    const nurbs::Surface s = random_surface(rng, degree, count, cifs_test::coin(rng), rational);
+    const nurbs::Surface s = random_mesh_surface(rng, degree, count, cifs_test::coin(rng), rational);
     const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
     const int depth = 3;
     const Mesh mesh = ifs::surface_mesh(t, nurbs::initial_nets(t, s), depth, {.homogeneous = rational});
@@ -82,7 +82,7 @@ TEST_CASE("surface_mesh and quad_mesh agree on tensor automata", "[ifs][mesh]") 
     const std::array<int, 2> count{degree[0] + cifs_test::uniform_int(rng, 1, 3),
                                    degree[1] + cifs_test::uniform_int(rng, 1, 3)};
     const bool rational = cifs_test::coin(rng);
-    const nurbs::Surface s = random_surface(rng, degree, count, cifs_test::coin(rng), rational);
+    const nurbs::Surface s = random_mesh_surface(rng, degree, count, cifs_test::coin(rng), rational);
     const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
     const auto nets = nurbs::initial_nets(t, s);
     const int depth = cifs_test::uniform_int(rng, 0, 4);
@@ -111,7 +111,7 @@ TEST_CASE("surface_mesh into a mesh: the returned mesh and cartesian(homogeneous
     const std::array<int, 2> count{degree[0] + cifs_test::uniform_int(rng, 1, 3),
                                    degree[1] + cifs_test::uniform_int(rng, 1, 3)};
     const bool rational = trial % 3 != 0;
-    const nurbs::Surface s = random_surface(rng, degree, count, cifs_test::coin(rng), rational);
+    const nurbs::Surface s = random_mesh_surface(rng, degree, count, cifs_test::coin(rng), rational);
     const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
     const auto nets = nurbs::initial_nets(t, s);
     const int depth = trial % 4 == 3 ? 1 : 3 - trial % 4;
@@ -145,7 +145,7 @@ TEST_CASE("surface_mesh into a mesh: the returned mesh and cartesian(homogeneous
     CHECK(out.states == fresh.states);
   }
   // A refusal leaves the mesh as it was.
-  const nurbs::Surface s = random_surface(rng, {2, 2}, {4, 4}, true, false);
+  const nurbs::Surface s = random_mesh_surface(rng, {2, 2}, {4, 4}, true, false);
   const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
   const Mesh before = out;
   CHECK_THROWS_AS(ifs::surface_mesh(t, nurbs::initial_nets(t, s), 6, out, {.max_bytes = 1000}), InvalidInput);
@@ -161,7 +161,7 @@ TEST_CASE("surface_mesh keep_faces: a sweep over nets rewrites only the vertices
     const std::array<int, 2> count{degree[0] + cifs_test::uniform_int(rng, 1, 3),
                                    degree[1] + cifs_test::uniform_int(rng, 1, 3)};
     const bool rational = trial % 2 == 1;
-    const nurbs::Surface first = random_surface(rng, degree, count, cifs_test::coin(rng), rational);
+    const nurbs::Surface first = random_mesh_surface(rng, degree, count, cifs_test::coin(rng), rational);
     const nurbs::TensorAutomaton t = nurbs::tensor_automaton(first);
     const int depth = 1 + trial % 3;
     const ifs::MeshOptions keep{.homogeneous = rational, .keep_faces = true};
@@ -212,7 +212,7 @@ TEST_CASE("surface_mesh into a large mesh of the same size: overwritten in place
           "[ifs][mesh]") {
   // 2 by 2 bicubic patches at depth 9: 1025² vertices (25 MB), 1024² quads, above the streaming threshold.
   cifs_test::Rng rng(31);
-  const nurbs::Surface s = random_surface(rng, {3, 3}, {5, 5}, true, false);
+  const nurbs::Surface s = random_mesh_surface(rng, {3, 3}, {5, 5}, true, false);
   const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
   const auto nets = nurbs::initial_nets(t, s);
   const int depth = 9;
@@ -261,7 +261,7 @@ TEST_CASE("surface_mesh into a large mesh of the same size: overwritten in place
 
 TEST_CASE("Quad meshes are watertight disks", "[ifs][mesh]") {
   cifs_test::Rng rng(9);
-  const nurbs::Surface s = random_surface(rng, {3, 2}, {6, 5}, false, true);
+  const nurbs::Surface s = random_mesh_surface(rng, {3, 2}, {6, 5}, false, true);
   const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
   const Mesh mesh = ifs::surface_mesh(t, nurbs::initial_nets(t, s), 3, {.homogeneous = true});
   const auto V = static_cast<std::size_t>(mesh.vertices.rows());
@@ -424,7 +424,7 @@ TEST_CASE("quad_mesh on a perturbed (non-Kronecker) automaton: corners of the le
 TEST_CASE("Corner functionals of a tensor automaton are Kronecker products of end functionals",
           "[ifs][mesh]") {
   cifs_test::Rng rng(21);
-  const nurbs::Surface s = random_surface(rng, {2, 3}, {5, 6}, false, false);
+  const nurbs::Surface s = random_mesh_surface(rng, {2, 3}, {5, 6}, false, false);
   const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
   const ifs::EndFunctionals fu = ifs::end_functionals(t.factors[0].automaton),
                             fv = ifs::end_functionals(t.factors[1].automaton);
@@ -443,7 +443,7 @@ TEST_CASE("Corner functionals of a tensor automaton are Kronecker products of en
 
 TEST_CASE("Meshes refuse bad input before any work", "[ifs][mesh]") {
   cifs_test::Rng rng(23);
-  const nurbs::Surface s = random_surface(rng, {3, 3}, {8, 8}, true, false);
+  const nurbs::Surface s = random_mesh_surface(rng, {3, 3}, {8, 8}, true, false);
   const nurbs::TensorAutomaton t = nurbs::tensor_automaton(s);
   const auto nets = nurbs::initial_nets(t, s);
   ifs::MeshOptions small;

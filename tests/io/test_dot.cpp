@@ -12,7 +12,7 @@ using namespace cifs::io;
 
 namespace {
 
-std::size_t count(const std::string& text, const std::string& what) {
+std::size_t count_in_dot(const std::string& text, const std::string& what) {
   std::size_t n = 0;
   for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
   return n;
@@ -28,10 +28,10 @@ TEST_CASE("Automaton DOT", "[io][dot]") {
   CHECK_THAT(dot, Catch::StartsWith("digraph G {") && Catch::Contains("[label=\"G\"]") &&
                       Catch::Contains("peripheries=2"));
   // One line per transition, one bold node per initial state, a window in every label.
-  CHECK(count(dot, "->") == num_edges(a.graph));
+  CHECK(count_in_dot(dot, "->") == num_edges(a.graph));
   std::set<automata::StateId> initial;
   for (const automata::Initial& i : a.initial) initial.insert(i.state);
-  CHECK(count(dot, "style=bold") == initial.size());
-  CHECK(count(dot, "\\n(") == num_vertices(a.graph));
+  CHECK(count_in_dot(dot, "style=bold") == initial.size());
+  CHECK(count_in_dot(dot, "\\n(") == num_vertices(a.graph));
   CHECK_THAT(dot, Catch::Contains("rankdir=LR;"));
 }

@@ -10,7 +10,7 @@ using namespace cifs;
 
 namespace {
 
-std::size_t count(const std::string& text, const std::string& what) {
+std::size_t count_in_html(const std::string& text, const std::string& what) {
   std::size_t n = 0;
   for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) ++n;
   return n;
@@ -53,20 +53,20 @@ TEST_CASE("gallery_html shows images, links the other files, escapes every text"
   CHECK_THAT(page, Catch::Contains("<p>A &quot;bicubic&quot; surface &amp; &lt;b&gt;its&lt;/b&gt; mesh</p>"));
   CHECK(page.find("<b>") == std::string::npos);
   // Four images (PNG, SVG of either case), each also a link to itself; the EXR and PLY are links.
-  CHECK(count(page, "<img ") == 4);
+  CHECK(count_in_html(page, "<img ") == 4);
   for (const char* src : {"hills.png", "hills%20mesh.SVG", "schemes/a.svg", "schemes/b.svg"}) {
-    CHECK(count(page, std::string("src=\"") + src + "\"") == 1);
-    CHECK(count(page, std::string("href=\"") + src + "\"") == 1);
+    CHECK(count_in_html(page, std::string("src=\"") + src + "\"") == 1);
+    CHECK(count_in_html(page, std::string("href=\"") + src + "\"") == 1);
   }
   CHECK_THAT(page, Catch::Contains("<a href=\"hills.exr\">hills.exr</a>"));
   CHECK_THAT(page, Catch::Contains("<a href=\"hills.ply\">hills.ply</a>"));
-  CHECK(count(page, "href=") == 6);
+  CHECK(count_in_html(page, "href=") == 6);
   CHECK_THAT(page, Catch::Contains("schemes/a.svg: Chaikin &lt;open&gt;</figcaption>"));
   // A section without a description has no empty paragraph; self-contained: no script, no URL scheme.
-  CHECK(count(page, "<p>") == 1);
+  CHECK(count_in_html(page, "<p>") == 1);
   CHECK(page.find("<script") == std::string::npos);
   CHECK(page.find("://") == std::string::npos);
-  CHECK(count(page, "<section>") == 2);
+  CHECK(count_in_html(page, "<section>") == 2);
   CHECK_THROWS_WITH(io::gallery_html({{.name = "x", .description = "", .files = {"../x.png"}}}, "t"),
                     Catch::Contains("../x.png"));
 }

@@ -21,14 +21,14 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-struct Scratch {
+struct IoScratch {
   std::filesystem::path dir;
-  Scratch() {
+  IoScratch() {
     dir = std::filesystem::temp_directory_path() / ("cifs_test_io_" + std::to_string(::getpid()));
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
   }
-  ~Scratch() { std::filesystem::remove_all(dir); }
+  ~IoScratch() { std::filesystem::remove_all(dir); }
 };
 
 std::string table(Content content) {
@@ -68,7 +68,7 @@ TEST_CASE("The format table: every content, its formats in order", "[io][dispatc
 }
 
 TEST_CASE("write and read by extension: the bytes of encode, read back", "[io][dispatch]") {
-  Scratch s;
+  IoScratch s;
   const Mesh m = pentagon_and_triangle();
   for (const char* name : {"m.obj", "m.ply"}) {
     const auto path = s.dir / name;
@@ -128,7 +128,7 @@ TEST_CASE("write and read by extension: the bytes of encode, read back", "[io][d
 }
 
 TEST_CASE("write and read refuse unknown extensions before touching the disk", "[io][dispatch]") {
-  Scratch s;
+  IoScratch s;
   const Mesh m = pentagon_and_triangle();
   CHECK_THROWS_WITH(write(s.dir / "m.stl", m),
                     (s.dir / "m.stl").string() + ": a mesh is written as .obj or .ply");

@@ -19,13 +19,13 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-bool same_bits(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+bool same_matrix_bits(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   return a.rows() == b.rows() && a.cols() == b.cols() &&
          std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
 }
 
 /// Everything the JSON holds, compared exactly: states, out-edges in order, initial entries.
-void require_same(const nurbs::KnotAutomaton& ka, const nurbs::KnotAutomaton& kb) {
+void require_same_automaton(const nurbs::KnotAutomaton& ka, const nurbs::KnotAutomaton& kb) {
   const automata::Automaton &a = ka.automaton, &b = kb.automaton;
   const auto n = num_vertices(a.graph);
   REQUIRE(ka.windows.size() == n);
@@ -44,7 +44,7 @@ void require_same(const nurbs::KnotAutomaton& ka, const nurbs::KnotAutomaton& kb
     for (; e != end; ++e, ++f) {
       CHECK(target(*e, a.graph) == target(*f, b.graph));
       CHECK(a.graph[*e].label == b.graph[*f].label);
-      CHECK(same_bits(a.graph[*e].matrix, b.graph[*f].matrix));
+      CHECK(same_matrix_bits(a.graph[*e].matrix, b.graph[*f].matrix));
     }
   }
   REQUIRE(a.initial.size() == b.initial.size());
@@ -79,7 +79,7 @@ nurbs::KnotAutomaton hand_made() {
   return k;
 }
 
-std::string error_of(const std::string& text) {
+std::string automaton_error_of(const std::string& text) {
   try {
     parse_automaton_json(text, "a.json");
   } catch (const std::exception& e) {
@@ -129,7 +129,7 @@ TEST_CASE("Automaton JSON reads back exactly (knot, minimised, tensor, BC-IFS, h
     INFO(what);
     const std::string text = to_json(a);
     const nurbs::KnotAutomaton back = parse_automaton_json(text, what);
-    require_same(a, back);
+    require_same_automaton(a, back);
     CHECK(to_json(back) == text);
   }
 }
@@ -176,23 +176,25 @@ TEST_CASE("Automaton JSON: bad input names the JSON path", "[io][json]") {
   const auto doc = [&](const std::string& transitions, const std::string& initial = "[]") {
     return "{" + states + R"(, "transitions": )" + transitions + R"(, "initial": )" + initial + "}";
   };
-  CHECK(error_of(doc(R"([{"from": 0, "to": 1, "label": "a", "matrix": [[0.5, 0.5]]}])")) == "(no error)");
-  CHECK(error_of(doc(R"([{"from": 0, "to": 1, "label": "a", "matrix": [[0.5, 0.5], [1, 0]]}])")) ==
+  CHECK(automaton_error_of(doc(R"([{"from": 0, "to": 1, "label": "a", "matrix": [[0.5, 0.5]]}])")) ==
+        "(no error)");
+  CHECK(automaton_error_of(doc(R"([{"from": 0, "to": 1, "label": "a", "matrix": [[0.5, 0.5], [1, 0]]}])")) ==
         "a.json: transitions[0].matrix: 2 rows, expected 1 (size of state 1)");
-  CHECK(error_of(doc(R"([{"from": 0, "to": 1, "label": "a", "matrix": [[0.5]]}])")) ==
+  CHECK(automaton_error_of(doc(R"([{"from": 0, "to": 1, "label": "a", "matrix": [[0.5]]}])")) ==
         "a.json: transitions[0].matrix[0]: 1 entries, expected 2 (size of state 0)");
-  CHECK(error_of(doc(R"([{"from": 0, "to": 2, "label": "a", "matrix": [[1]]}])")) ==
+  CHECK(automaton_error_of(doc(R"([{"from": 0, "to": 2, "label": "a", "matrix": [[1]]}])")) ==
         "a.json: transitions[0].to: state 2 does not exist (2 states)");
-  CHECK(error_of(doc(R"([{"from": 0, "to": 1, "label": "a", "matrix": [[1, 0]], "free": true}])")) ==
-        "a.json: transitions[0].free: unknown member");
-  CHECK(error_of(doc("[]", R"([{"segment": 0, "state": 5}])")) ==
+  CHECK(
+      automaton_error_of(doc(R"([{"from": 0, "to": 1, "label": "a", "matrix": [[1, 0]], "free": true}])")) ==
+      "a.json: transitions[0].free: unknown member");
+  CHECK(automaton_error_of(doc("[]", R"([{"segment": 0, "state": 5}])")) ==
         "a.json: initial[0].state: state 5 does not exist (2 states)");
-  CHECK(error_of(doc("[]", R"([{"segment": 0, "state": 0, "interval": [1]}])")) ==
+  CHECK(automaton_error_of(doc("[]", R"([{"segment": 0, "state": 0, "interval": [1]}])")) ==
         "a.json: initial[0].interval: expected [start, end]");
-  CHECK(error_of(R"({"states": [{"id": 1, "size": 2}], "transitions": [], "initial": []})") ==
+  CHECK(automaton_error_of(R"({"states": [{"id": 1, "size": 2}], "transitions": [], "initial": []})") ==
         "a.json: states[0].id: expected 0 (states are listed by id, from 0)");
-  CHECK(error_of(R"({"states": [{"id": 0, "size": 0}], "transitions": [], "initial": []})") ==
+  CHECK(automaton_error_of(R"({"states": [{"id": 0, "size": 0}], "transitions": [], "initial": []})") ==
         "a.json: states[0].size: 0 points, expected at least 1");
-  CHECK(error_of(R"({"transitions": [], "initial": []})") == "a.json: missing \"states\"");
+  CHECK(automaton_error_of(R"({"transitions": [], "initial": []})") == "a.json: missing \"states\"");
   CHECK_THROWS_AS(parse_automaton_json("{\"states\": [", "a.json"), IoError);
 }

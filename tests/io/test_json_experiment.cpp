@@ -10,26 +10,26 @@ using namespace cifs;
 
 namespace {
 
-io::Experiment parse(const std::string& text) {
+io::Experiment parse_experiment_text(const std::string& text) {
   return io::parse_experiment(text, "e.json", CIFS_SOURCE_DIR "/examples/shapes");
 }
 
-std::string error_of(const std::string& text) {
+std::string experiment_error_of(const std::string& text) {
   try {
-    parse(text);
+    parse_experiment_text(text);
   } catch (const std::exception& e) {
     return e.what();
   }
   return "no error";
 }
 
-const std::string kCurve =
+const std::string kCurveShape =
     R"("shape": {"curve": {"degree": 1, "knots": [0, 0, 1, 1], "points": [[0, 0], [1, 0]]}})";
 
 }  // namespace
 
 TEST_CASE("Experiments: every section read with its defaults", "[io][experiment]") {
-  const io::Experiment e = parse("{" + kCurve + R"(,
+  const io::Experiment e = parse_experiment_text("{" + kCurveShape + R"(,
       "perturbation": {"amplitude": 0.1, "seed": 7, "values": {"G[1,2]": 0.25}},
       "evaluation": {"chaos": 1000, "seed": 3},
       "camera": {"projection": "perspective", "eye": [1, 2, 3], "target": [0, 0, 0], "fov": 20},
@@ -55,28 +55,28 @@ TEST_CASE("Experiments: every section read with its defaults", "[io][experiment]
   CHECK(e.outputs.png == std::filesystem::path("img/a.png"));
   CHECK(e.outputs.geometry.count("ply") == 0);
 
-  const io::Experiment b = parse(R"({"shape": {"polygon": "bone.json", "degree": 3}})");
+  const io::Experiment b = parse_experiment_text(R"({"shape": {"polygon": "bone.json", "degree": 3}})");
   REQUIRE(b.shape);
   CHECK(std::get<nurbs::Curve>(*b.shape).closed);
   CHECK(std::get<nurbs::Curve>(*b.shape).degree == 3);
 
-  const io::Experiment d = parse(R"({"ifs": "fern"})");
+  const io::Experiment d = parse_experiment_text(R"({"ifs": "fern"})");
   REQUIRE(d.ifs);
   CHECK(d.ifs->name == "fern");
   CHECK(d.evaluation.mode == io::Evaluation::Mode::depth);
   CHECK(d.camera.projection == io::CameraSpec::Projection::automatic);
   const io::Experiment m =
-      parse(R"({"ifs": {"maps": [[0.5, 0, 0, 0.5, 0, 0], [0.5, 0, 0, 0.5, 0.5, 0, 2]]}})");
+      parse_experiment_text(R"({"ifs": {"maps": [[0.5, 0, 0, 0.5, 0, 0], [0.5, 0, 0, 0.5, 0.5, 0, 2]]}})");
   REQUIRE(m.ifs);
   CHECK(m.ifs->maps[0][6] == 1);
   CHECK(m.ifs->maps[1][6] == 2);
 }
 
 TEST_CASE("Experiments: bad files name the file, the member and the problem", "[io][experiment]") {
-  CHECK_THAT(error_of("{"), Catch::StartsWith("e.json: malformed JSON"));
-  CHECK_THAT(error_of("[]"), Catch::Contains("expected an experiment object"));
-  CHECK_THAT(error_of("{}"), Catch::Contains("exactly one of \"shape\", \"automaton\", \"ifs\""));
-  CHECK_THAT(error_of(R"({"ifs": "fern", "evaluation": {"depth": 3}, "colour": 1})"),
+  CHECK_THAT(experiment_error_of("{"), Catch::StartsWith("e.json: malformed JSON"));
+  CHECK_THAT(experiment_error_of("[]"), Catch::Contains("expected an experiment object"));
+  CHECK_THAT(experiment_error_of("{}"), Catch::Contains("exactly one of \"shape\", \"automaton\", \"ifs\""));
+  CHECK_THAT(experiment_error_of(R"({"ifs": "fern", "evaluation": {"depth": 3}, "colour": 1})"),
              Catch::Contains("e.json: colour: unknown member"));
   // In every section: a misspelt option must not fall back to its default silently.
   for (const auto& [section, typo] : {std::pair{"evaluation", R"("depth": 3, "sed": 1)"},
@@ -84,72 +84,74 @@ TEST_CASE("Experiments: bad files name the file, the member and the problem", "[
                                       {"render", R"("width": 8, "hieght": 8)"},
                                       {"perturbation", R"("amplitude": 0.1, "keep_vertex": true)"}})
     CHECK_THAT(
-        error_of("{" + kCurve + ", " +
-                 (section == std::string("evaluation") ? "" : R"("evaluation": {"depth": 3}, )") + "\"" +
-                 section + "\": {" + typo + "}}"),
+        experiment_error_of("{" + kCurveShape + ", " +
+                            (section == std::string("evaluation") ? "" : R"("evaluation": {"depth": 3}, )") +
+                            "\"" + section + "\": {" + typo + "}}"),
         Catch::Contains(std::string("e.json: ") + section + ".") && Catch::Contains(": unknown member"));
-  CHECK_THAT(error_of(R"({"ifs": "fern", "evaluation": {"depth": 31}})"),
+  CHECK_THAT(experiment_error_of(R"({"ifs": "fern", "evaluation": {"depth": 31}})"),
              Catch::Contains("evaluation.depth: 31 is outside [0, 30]"));
-  CHECK_THAT(error_of(R"({"ifs": "fern", "evaluation": {"depth": 3, "chaos": 5}})"),
+  CHECK_THAT(experiment_error_of(R"({"ifs": "fern", "evaluation": {"depth": 3, "chaos": 5}})"),
              Catch::Contains("evaluation: expected exactly one"));
-  CHECK_THAT(error_of(R"({"ifs": "fern", "evaluation": {"chaos": -5}})"),
+  CHECK_THAT(experiment_error_of(R"({"ifs": "fern", "evaluation": {"chaos": -5}})"),
              Catch::Contains("evaluation.chaos: expected a non-negative integer"));
-  CHECK_THAT(error_of(R"({"ifs": "fern", "evaluation": {"chaos": 9007199254740992}})"),
+  CHECK_THAT(experiment_error_of(R"({"ifs": "fern", "evaluation": {"chaos": 9007199254740992}})"),
              Catch::Contains("above the limit"));
-  CHECK_NOTHROW(parse(R"({"ifs": "fern", "evaluation": {"chaos": 9007199254740991}})"));
+  CHECK_NOTHROW(parse_experiment_text(R"({"ifs": "fern", "evaluation": {"chaos": 9007199254740991}})"));
   // Seeds outside 0 … 2^64 − 1 or not integers are refused, not clamped to 2^64 − 1 (issue 16 defect 10).
   for (const std::string seed : {"-1", "18446744073709551616", "1e23", "1.5", "\"7\""}) {
-    CHECK_THAT(error_of(R"({"ifs": "fern", "evaluation": {"chaos": 5, "seed": )" + seed + "}}"),
+    CHECK_THAT(experiment_error_of(R"({"ifs": "fern", "evaluation": {"chaos": 5, "seed": )" + seed + "}}"),
                Catch::Contains("e.json: evaluation.seed: expected a non-negative integer"));
-    std::string perturbation = "{" + kCurve;
+    std::string perturbation = "{" + kCurveShape;
     perturbation += R"(, "perturbation": {"seed": )" + seed + "}}";
-    CHECK_THAT(error_of(perturbation),
+    CHECK_THAT(experiment_error_of(perturbation),
                Catch::Contains("e.json: perturbation.seed: expected a non-negative integer"));
   }
-  CHECK(
-      parse(R"({"ifs": "fern", "evaluation": {"chaos": 5, "seed": 18446744073709551615}})").evaluation.seed ==
-      18446744073709551615ULL);
-  CHECK_THAT(error_of(R"({"ifs": "fractal"})"), Catch::Contains("ifs: unknown IFS \"fractal\""));
-  CHECK_THAT(error_of(R"({"ifs": {"maps": [[1, 2, 3]]}})"), Catch::Contains("ifs.maps[0]: expected [a, b"));
-  CHECK_THAT(error_of(R"({"ifs": "fern", "perturbation": {}})"),
+  CHECK(parse_experiment_text(R"({"ifs": "fern", "evaluation": {"chaos": 5, "seed": 18446744073709551615}})")
+            .evaluation.seed == 18446744073709551615ULL);
+  CHECK_THAT(experiment_error_of(R"({"ifs": "fractal"})"), Catch::Contains("ifs: unknown IFS \"fractal\""));
+  CHECK_THAT(experiment_error_of(R"({"ifs": {"maps": [[1, 2, 3]]}})"),
+             Catch::Contains("ifs.maps[0]: expected [a, b"));
+  CHECK_THAT(experiment_error_of(R"({"ifs": "fern", "perturbation": {}})"),
              Catch::Contains("perturbation: a classic IFS"));
-  CHECK_THAT(error_of("{" + kCurve + R"(, "perturbation": {"amplitude": -1}})"),
+  CHECK_THAT(experiment_error_of("{" + kCurveShape + R"(, "perturbation": {"amplitude": -1}})"),
              Catch::Contains("perturbation.amplitude: expected a number ≥ 0"));
-  CHECK_THAT(error_of(R"({"ifs": "fern", "camera": {"projection": "fisheye"}})"),
+  CHECK_THAT(experiment_error_of(R"({"ifs": "fern", "camera": {"projection": "fisheye"}})"),
              Catch::Contains("camera.projection: expected"));
-  CHECK_THAT(error_of(R"({"ifs": "fern", "camera": {"eye": [1, 1, 1], "target": [1, 1, 1]}})"),
+  CHECK_THAT(experiment_error_of(R"({"ifs": "fern", "camera": {"eye": [1, 1, 1], "target": [1, 1, 1]}})"),
              Catch::Contains("camera: eye and target coincide"));
-  CHECK_THAT(error_of(R"({"ifs": "fern", "render": {"width": 0}})"),
+  CHECK_THAT(experiment_error_of(R"({"ifs": "fern", "render": {"width": 0}})"),
              Catch::Contains("render.width: 0 is outside [1, 16384]"));
-  CHECK_THAT(error_of(R"({"ifs": "fern", "render": {"color": [2, 0, 0]}})"),
+  CHECK_THAT(experiment_error_of(R"({"ifs": "fern", "render": {"color": [2, 0, 0]}})"),
              Catch::Contains("render.color: colour components"));
-  CHECK_THAT(error_of(R"({"ifs": "fern", "outputs": {"exr": "../x.exr"}})"),
+  CHECK_THAT(experiment_error_of(R"({"ifs": "fern", "outputs": {"exr": "../x.exr"}})"),
              Catch::Contains("outputs.exr: \"..\" would leave the output directory"));
-  CHECK_THAT(error_of(R"({"ifs": "fern", "outputs": {"png": "/tmp/x.png"}})"),
+  CHECK_THAT(experiment_error_of(R"({"ifs": "fern", "outputs": {"png": "/tmp/x.png"}})"),
              Catch::Contains("outputs.png: expected a relative file name"));
-  CHECK_THAT(error_of(R"({"shape": "no/such/shape.json"})"), Catch::Contains("e.json: shape: "));
-  CHECK_THAT(error_of(R"({"shape": {"curve": {"degree": 0}}})"), Catch::Contains("e.json: shape: "));
-  CHECK_THAT(error_of(R"({"shape": {"polygon": "bone.json", "degree": 0}})"),
+  CHECK_THAT(experiment_error_of(R"({"shape": "no/such/shape.json"})"), Catch::Contains("e.json: shape: "));
+  CHECK_THAT(experiment_error_of(R"({"shape": {"curve": {"degree": 0}}})"),
+             Catch::Contains("e.json: shape: "));
+  CHECK_THAT(experiment_error_of(R"({"shape": {"polygon": "bone.json", "degree": 0}})"),
              Catch::Contains("e.json: shape: degree"));
-  CHECK_THAT(error_of(R"({"automaton": "missing.json"})"), Catch::Contains("automaton: no such file"));
+  CHECK_THAT(experiment_error_of(R"({"automaton": "missing.json"})"),
+             Catch::Contains("automaton: no such file"));
 }
 
 TEST_CASE("Experiments: output keys are the formats of the format table", "[io][experiment]") {
   const io::Experiment e =
-      parse(R"({"ifs": "fern", "outputs": {"obj": "g.obj", "ply": "g.ply", "svg": "g.svg",
+      parse_experiment_text(R"({"ifs": "fern", "outputs": {"obj": "g.obj", "ply": "g.ply", "svg": "g.svg",
       "automaton_json": "a.json", "automaton_dot": "a.dot", "automaton_svg": "a.svg"}})");
   CHECK(e.outputs.geometry ==
         std::map<std::string, std::filesystem::path>{{"obj", "g.obj"}, {"ply", "g.ply"}, {"svg", "g.svg"}});
   CHECK(e.outputs.automaton ==
         std::map<std::string, std::filesystem::path>{{"json", "a.json"}, {"dot", "a.dot"}, {"svg", "a.svg"}});
-  CHECK_THAT(error_of(R"({"ifs": "fern", "outputs": {"automaton_obj": "a.obj"}})"),
+  CHECK_THAT(experiment_error_of(R"({"ifs": "fern", "outputs": {"automaton_obj": "a.obj"}})"),
              Catch::Contains("outputs.automaton_obj: unknown member"));
-  CHECK_THAT(error_of(R"({"ifs": "fern", "outputs": {"dot": "g.dot"}})"),
+  CHECK_THAT(experiment_error_of(R"({"ifs": "fern", "outputs": {"dot": "g.dot"}})"),
              Catch::Contains("outputs.dot: unknown member"));
 }
 
 TEST_CASE("Experiments: a polygon mesh and its subdivision scheme", "[io][experiment][mesh]") {
-  const io::Experiment e = parse(R"({"mesh": "../meshes/open_grid.obj",
+  const io::Experiment e = parse_experiment_text(R"({"mesh": "../meshes/open_grid.obj",
       "subdivision": {"scheme": "doo-sabin", "levels": 2, "boundary": "corner"}, "render": {"control_net": true}})");
   REQUIRE(e.mesh);
   CHECK_FALSE(e.shape);
@@ -161,7 +163,7 @@ TEST_CASE("Experiments: a polygon mesh and its subdivision scheme", "[io][experi
   CHECK(e.render.control_net);
   // Defaults: 3 levels, the edge rule.
   const io::Experiment d =
-      parse(R"({"mesh": "../meshes/cube.obj", "subdivision": {"scheme": "catmull-clark"}})");
+      parse_experiment_text(R"({"mesh": "../meshes/cube.obj", "subdivision": {"scheme": "catmull-clark"}})");
   CHECK(d.mesh->levels == 3);
   CHECK(d.mesh->boundary == subdivision::BoundaryRule::edge_only);
 }
@@ -173,48 +175,52 @@ TEST_CASE("Experiments: bad mesh sources are one line naming the file and the me
     CHECK_THAT(message, Catch::StartsWith("e.json: ") && Catch::Contains(expected));
     CHECK(message.find('\n') == std::string::npos);
   };
-  one_line(error_of("{" + cube + R"(, "subdivision": {"scheme": "kobbelt"}})"),
+  one_line(experiment_error_of("{" + cube + R"(, "subdivision": {"scheme": "kobbelt"}})"),
            "e.json: subdivision.scheme: unknown mesh scheme 'kobbelt' (catmull-clark, loop");
-  one_line(error_of("{" + cube + R"(, "subdivision": {"scheme": "loop", "levels": 2}})"),
+  one_line(experiment_error_of("{" + cube + R"(, "subdivision": {"scheme": "loop", "levels": 2}})"),
            "subdivision.scheme: loop refines triangles only; cube.obj has a face of 4 corners (face 0)");
-  one_line(error_of("{" + cube + R"(, "subdivision": {"scheme": "catmull-clark", "levels": -1}})"),
+  one_line(experiment_error_of("{" + cube + R"(, "subdivision": {"scheme": "catmull-clark", "levels": -1}})"),
            "e.json: subdivision.levels: -1 is outside [0, 16]");
-  one_line(error_of("{" + cube + R"(, "subdivision": {"scheme": "catmull-clark", "boundary": "crease"}})"),
+  one_line(experiment_error_of("{" + cube +
+                               R"(, "subdivision": {"scheme": "catmull-clark", "boundary": "crease"}})"),
            "e.json: subdivision.boundary: expected \"edge\"");
-  one_line(error_of("{" + cube + R"(, "subdivision": {"scheme": "catmull-clark", "level": 2}})"),
+  one_line(experiment_error_of("{" + cube + R"(, "subdivision": {"scheme": "catmull-clark", "level": 2}})"),
            "e.json: subdivision.level: unknown member");
-  one_line(error_of("{" + cube + R"(, "subdivision": {"levels": 2}})"),
+  one_line(experiment_error_of("{" + cube + R"(, "subdivision": {"levels": 2}})"),
            "e.json: subdivision: missing \"scheme\"");
-  one_line(error_of("{" + cube + "}"), "e.json: missing \"subdivision\"");
-  one_line(error_of(R"({"mesh": "../meshes/no_such.obj", "subdivision": {"scheme": "loop"}})"),
+  one_line(experiment_error_of("{" + cube + "}"), "e.json: missing \"subdivision\"");
+  one_line(experiment_error_of(R"({"mesh": "../meshes/no_such.obj", "subdivision": {"scheme": "loop"}})"),
            "e.json: mesh: ");
-  CHECK_THAT(error_of(R"({"mesh": "../meshes/no_such.obj", "subdivision": {"scheme": "loop"}})"),
+  CHECK_THAT(experiment_error_of(R"({"mesh": "../meshes/no_such.obj", "subdivision": {"scheme": "loop"}})"),
              Catch::Contains("no_such.obj"));
-  one_line(error_of("{" + cube + ", " + kCurve + R"(, "subdivision": {"scheme": "catmull-clark"}})"),
+  one_line(experiment_error_of("{" + cube + ", " + kCurveShape +
+                               R"(, "subdivision": {"scheme": "catmull-clark"}})"),
            "e.json: expected exactly one of \"shape\", \"automaton\", \"ifs\", \"mesh\"");
-  one_line(error_of("{" + kCurve + R"(, "subdivision": {"scheme": "loop"}})"),
+  one_line(experiment_error_of("{" + kCurveShape + R"(, "subdivision": {"scheme": "loop"}})"),
            "e.json: subdivision: only with a \"mesh\" source");
-  one_line(
-      error_of("{" + cube + R"(, "subdivision": {"scheme": "catmull-clark"}, "evaluation": {"depth": 2}})"),
-      "e.json: evaluation: a mesh is refined by subdivision.levels");
+  one_line(experiment_error_of(
+               "{" + cube + R"(, "subdivision": {"scheme": "catmull-clark"}, "evaluation": {"depth": 2}})"),
+           "e.json: evaluation: a mesh is refined by subdivision.levels");
   // Fractal subdivision surfaces are Catmull–Clark's; limit surfaces Catmull–Clark's and Loop's.
   one_line(
-      error_of(
+      experiment_error_of(
           R"({"mesh": "../meshes/tetrahedron.obj", "subdivision": {"scheme": "loop"}, "perturbation": {}})"),
       "e.json: perturbation: fractal subdivision surfaces are built for catmull-clark, not loop");
-  one_line(
-      error_of("{" + cube +
+  one_line(experiment_error_of(
+               "{" + cube +
                R"(, "subdivision": {"scheme": "catmull-clark"}, "perturbation": {"keep_vertices": false}})"),
-      "e.json: perturbation.keep_vertices: NURBS sources only: a mesh's face boundaries always stay");
-  one_line(error_of("{" + cube +
-                    R"(, "subdivision": {"scheme": "catmull-clark", "limit": true}, "perturbation": {}})"),
-           "e.json: perturbation: a fractal surface has no limit normals (drop subdivision.limit)");
+           "e.json: perturbation.keep_vertices: NURBS sources only: a mesh's face boundaries always stay");
   one_line(
-      error_of(
+      experiment_error_of(
+          "{" + cube + R"(, "subdivision": {"scheme": "catmull-clark", "limit": true}, "perturbation": {}})"),
+      "e.json: perturbation: a fractal surface has no limit normals (drop subdivision.limit)");
+  one_line(
+      experiment_error_of(
           R"({"mesh": "../meshes/tetrahedron.obj", "subdivision": {"scheme": "butterfly", "limit": true}})"),
       "e.json: subdivision.limit: limit surfaces are built for catmull-clark and loop, not butterfly");
-  CHECK(parse("{" + cube + R"(, "subdivision": {"scheme": "catmull-clark", "limit": true}})").mesh->limit);
-  one_line(error_of(R"({"mesh": "../shapes/hills.json", "subdivision": {"scheme": "loop"}})"),
+  CHECK(parse_experiment_text("{" + cube + R"(, "subdivision": {"scheme": "catmull-clark", "limit": true}})")
+            .mesh->limit);
+  one_line(experiment_error_of(R"({"mesh": "../shapes/hills.json", "subdivision": {"scheme": "loop"}})"),
            "e.json: mesh: ");
 }
 
@@ -238,8 +244,9 @@ TEST_CASE("Experiments: a junction of two sides, and bad descriptions one line e
       "points": [[0, 0], [1, 1], [2, 0], [3, 1], [4, 0], [5, 1], [6, 0]], "boundary": "end"})";
   const std::string b4 =
       R"("scheme": "four-point", "window": 6, "points": [[4, 0], [5, 1], [6, 0], [7, 1], [8, 0], [9, 1]])";
-  const io::Experiment e = parse(R"({"junction": {)" + a + R"(, "b": {)" + b4 +
-                                 R"(, "layer": 3, "boundary": "start", "color": [1, 0.5, 0]}}})");
+  const io::Experiment e =
+      parse_experiment_text(R"({"junction": {)" + a + R"(, "b": {)" + b4 +
+                            R"(, "layer": 3, "boundary": "start", "color": [1, 0.5, 0]}}})");
   REQUIRE(e.junction);
   CHECK(e.junction->a.scheme->name == "b-spline");
   CHECK(e.junction->a.window == 6);
@@ -248,7 +255,8 @@ TEST_CASE("Experiments: a junction of two sides, and bad descriptions one line e
   CHECK(e.junction->b.layer == 3);
   CHECK(e.junction->b.color == std::array<double, 3>{1, 0.5, 0});
   // A grid: lines of constant v; a NURBS side from a shape file, which becomes an input.
-  const io::Experiment s = parse(R"({"junction": {"a": {"shape": "saddle.json", "boundary": "uend"},
+  const io::Experiment s =
+      parse_experiment_text(R"({"junction": {"a": {"shape": "saddle.json", "boundary": "uend"},
       "b": {"scheme": "b-spline", "boundary": "ustart", "free": true,
             "points": [[[0, 0, 0], [0, 1, 0], [0, 2, 0], [0, 3, 0]], [[1, 0, 0], [1, 1, 0], [1, 2, 0], [1, 3, 0]],
                        [[2, 0, 0], [2, 1, 0], [2, 2, 0], [2, 3, 0]], [[3, 0, 0], [3, 1, 0], [3, 2, 0], [3, 3, 0]],
@@ -264,7 +272,7 @@ TEST_CASE("Experiments: a junction of two sides, and bad descriptions one line e
     CHECK(message.find('\n') == std::string::npos);
   };
   const auto with_b = [&](const std::string& b, const std::string& rest = "") {
-    return error_of(R"({"junction": {)" + a + R"(, "b": {)" + b + "}}" + rest + "}");
+    return experiment_error_of(R"({"junction": {)" + a + R"(, "b": {)" + b + "}}" + rest + "}");
   };
   one_line(with_b(b4), "junction.b: missing \"boundary\"");
   one_line(with_b(b4 + R"(, "boundary": "ustart")"),
@@ -297,8 +305,9 @@ TEST_CASE("Experiments: a junction of two sides, and bad descriptions one line e
            "perturbation.keep_vertices: a junction's sides say which matrices are free");
   one_line(with_b(b4 + R"(, "boundary": "start")", R"(, "evaluation": {"relative_piece_size": 0.01})"),
            "evaluation.relative_piece_size: a junction is evaluated to a depth or by the chaos game");
-  one_line(error_of(R"({"junction": {)" + a + "}}"), "junction: missing \"b\"");
-  one_line(error_of(R"({"junction": {)" + a + R"(, "b": {}, "c": {}}})"), "junction.c: unknown member");
-  one_line(error_of(R"({"junction": {)" + a + R"(, "b": {}}, "ifs": "fern"})"),
+  one_line(experiment_error_of(R"({"junction": {)" + a + "}}"), "junction: missing \"b\"");
+  one_line(experiment_error_of(R"({"junction": {)" + a + R"(, "b": {}, "c": {}}})"),
+           "junction.c: unknown member");
+  one_line(experiment_error_of(R"({"junction": {)" + a + R"(, "b": {}}, "ifs": "fern"})"),
            "expected exactly one of \"shape\", \"automaton\", \"ifs\", \"mesh\", \"junction\"");
 }

@@ -11,14 +11,14 @@ using namespace cifs;
 
 namespace {
 
-io::Shape parse(const std::string& text) {
+io::Shape parse_shape(const std::string& text) {
   return io::parse_shape_json(text, "s.json");
 }
 
 /// The message of the InvalidInput/IoError that parsing `text` raises.
-std::string error_of(const std::string& text) {
+std::string shape_error_of(const std::string& text) {
   try {
-    parse(text);
+    parse_shape(text);
   } catch (const InvalidInput& e) {
     return e.what();
   } catch (const IoError& e) {
@@ -32,10 +32,10 @@ std::string error_of(const std::string& text) {
 TEST_CASE("JSON curves round-trip bit for bit", "[io][json]") {
   const std::string text = R"({"curve": {"degree": 2, "knots": [0, 0, 0, 0.1, 0.7, 1, 1, 1],
       "points": [[0, 0.1], [1, 2.3], [3, 3], [4, 0], [6.2, 1e-7]], "weights": [1, 0.5, 3, 1e-3, 1e3]}})";
-  const auto c = std::get<nurbs::Curve>(parse(text));
+  const auto c = std::get<nurbs::Curve>(parse_shape(text));
   CHECK(c.rational);
   CHECK(c.degree == 2);
-  const auto back = std::get<nurbs::Curve>(parse(io::to_json(c)));
+  const auto back = std::get<nurbs::Curve>(parse_shape(io::to_json(c)));
   CHECK(back.knots == c.knots);
   CHECK(back.P == c.P);  // exact: Cartesian ↔ homogeneous through the same operations
   CHECK(nurbs::cartesian_points(back) == nurbs::cartesian_points(c));
@@ -44,12 +44,12 @@ TEST_CASE("JSON curves round-trip bit for bit", "[io][json]") {
 TEST_CASE("JSON closed curves keep their period and round-trip", "[io][json]") {
   const std::string text = R"({"curve": {"degree": 3, "closed": true, "knots": [0, 1, 2, 3.5, 4],
       "points": [[0, 0], [1, 0], [1, 1], [0, 1]]}})";
-  const auto c = std::get<nurbs::Curve>(parse(text));
+  const auto c = std::get<nurbs::Curve>(parse_shape(text));
   CHECK(c.closed);
   CHECK(nurbs::distinct_count(c) == 4);
   CHECK(c.P.rows() == 7);
   CHECK(nurbs::defining_knots(c) == nurbs::Knots{0, 1, 2, 3.5, 4});
-  const auto back = std::get<nurbs::Curve>(parse(io::to_json(c)));
+  const auto back = std::get<nurbs::Curve>(parse_shape(io::to_json(c)));
   CHECK(back.closed);
   CHECK(back.knots == c.knots);
   CHECK(back.P == c.P);
@@ -62,80 +62,82 @@ TEST_CASE("JSON surfaces keep points[i][j] with i along u", "[io][json]") {
   const std::string text = R"({"surface": {"degree": [1, 2], "knots": [[0, 0, 1, 1], [0, 0, 0, 1, 1, 1]],
       "points": [[[0, 0, 0], [0, 1, 0], [0, 2, 0]], [[1, 0, 5], [1, 1, 5], [1, 2, 6]]],
       "weights": [[1, 2, 1], [1, 1, 3]]}})";
-  const auto s = std::get<nurbs::Surface>(parse(text));
+  const auto s = std::get<nurbs::Surface>(parse_shape(text));
   CHECK(s.count == std::array<Eigen::Index, 2>{2, 3});
   // Corner (u, v) = (1, 1) interpolates points[1][2] whatever the weights.
   const Point corner = nurbs::evaluate(s, 1, 1);
   CHECK(corner(0) == Approx(1).margin(1e-15));
   CHECK(corner(1) == Approx(2).margin(1e-15));
   CHECK(corner(2) == Approx(6).margin(1e-15));
-  const auto back = std::get<nurbs::Surface>(parse(io::to_json(s)));
+  const auto back = std::get<nurbs::Surface>(parse_shape(io::to_json(s)));
   CHECK(back.knots == s.knots);
   CHECK(back.P == s.P);
 }
 
 TEST_CASE("JSON errors name the file, the path and the problem", "[io][json]") {
   const std::string curve_head = R"({"curve": {"degree": 2, )";
-  CHECK_THAT(error_of("{"), Catch::Contains("s.json: malformed JSON"));
-  CHECK_THAT(error_of("[]"), Catch::Contains("one member, \"curve\" or \"surface\""));
-  CHECK_THAT(error_of(R"({"curve": 3})"), Catch::Contains("curve: expected an object"));
-  CHECK_THAT(error_of(R"({"curve": {"degree": 2, "knots": [0,0,0,1,1,1]}})"),
+  CHECK_THAT(shape_error_of("{"), Catch::Contains("s.json: malformed JSON"));
+  CHECK_THAT(shape_error_of("[]"), Catch::Contains("one member, \"curve\" or \"surface\""));
+  CHECK_THAT(shape_error_of(R"({"curve": 3})"), Catch::Contains("curve: expected an object"));
+  CHECK_THAT(shape_error_of(R"({"curve": {"degree": 2, "knots": [0,0,0,1,1,1]}})"),
              Catch::Contains("curve: missing \"points\""));
-  CHECK_THAT(error_of(curve_head + R"("knots": [0,0,0,1,"a",1], "points": [[0],[1],[2]]}})"),
+  CHECK_THAT(shape_error_of(curve_head + R"("knots": [0,0,0,1,"a",1], "points": [[0],[1],[2]]}})"),
              Catch::Contains("s.json: curve.knots[4]: expected a number"));
-  CHECK_THAT(error_of(curve_head + R"("knots": [0,0,0,1,1e999,1], "points": [[0],[1],[2]]}})"),
+  CHECK_THAT(shape_error_of(curve_head + R"("knots": [0,0,0,1,1e999,1], "points": [[0],[1],[2]]}})"),
              Catch::Contains("s.json: malformed JSON: number overflow parsing '1e999'"));
-  CHECK_THAT(error_of(curve_head + R"("knots": [0,0,0,2,1,1,1], "points": [[0],[1],[2],[3]]}})"),
+  CHECK_THAT(shape_error_of(curve_head + R"("knots": [0,0,0,2,1,1,1], "points": [[0],[1],[2],[3]]}})"),
              Catch::Contains("s.json: curve.knots[4]: 1 is less than the previous knot 2"));
-  CHECK_THAT(error_of(curve_head + R"("knots": [0,0,0,1,1], "points": [[0],[1],[2]]}})"),
+  CHECK_THAT(shape_error_of(curve_head + R"("knots": [0,0,0,1,1], "points": [[0],[1],[2]]}})"),
              Catch::Contains("curve.knots: 5 knots given, 3 control points of degree 2 need 6"));
-  CHECK_THAT(error_of(curve_head + R"("knots": [0,0,0,1,1,1], "points": [[0,1],[1],[2,3]]}})"),
+  CHECK_THAT(shape_error_of(curve_head + R"("knots": [0,0,0,1,1,1], "points": [[0,1],[1],[2,3]]}})"),
              Catch::Contains("curve.points[1]: 1 coordinates, the first point has 2"));
   CHECK_THAT(
-      error_of(curve_head + R"("knots": [0,0,0,1,1,1], "points": [[0],[1],[2]], "weights": [1,0,1]}})"),
+      shape_error_of(curve_head + R"("knots": [0,0,0,1,1,1], "points": [[0],[1],[2]], "weights": [1,0,1]}})"),
       Catch::Contains("curve.weights[1]: weight 0 is not a positive finite number"));
-  CHECK_THAT(error_of(curve_head + R"("knots": [0,0,0,1,1,1], "points": [[0],[1],[2]], "weights": [1,1]}})"),
-             Catch::Contains("2 weights given for 3"));
   CHECK_THAT(
-      error_of(curve_head + R"("knots": [0,0,0,1,1,1], "points": [[0],[1],[2]], "weigths": [1,1,1]}})"),
+      shape_error_of(curve_head + R"("knots": [0,0,0,1,1,1], "points": [[0],[1],[2]], "weights": [1,1]}})"),
+      Catch::Contains("2 weights given for 3"));
+  CHECK_THAT(
+      shape_error_of(curve_head + R"("knots": [0,0,0,1,1,1], "points": [[0],[1],[2]], "weigths": [1,1,1]}})"),
       Catch::Contains("curve.weigths: unknown member"));
-  CHECK_THAT(error_of(R"({"curve": {"degree": 0, "knots": [0,1], "points": [[0]]}, "curv": 1})"),
+  CHECK_THAT(shape_error_of(R"({"curve": {"degree": 0, "knots": [0,1], "points": [[0]]}, "curv": 1})"),
              Catch::Contains("s.json: curv: unknown member"));
-  CHECK_THAT(error_of(R"({"surface": {"degree": [1, 1], "knots": [[0,0,1,1],[0,0,1,1]],
+  CHECK_THAT(shape_error_of(R"({"surface": {"degree": [1, 1], "knots": [[0,0,1,1],[0,0,1,1]],
       "points": [[[0,0,0],[0,1,0]],[[1,0,0],[1,1,1]]], "closed": true}})"),
              Catch::Contains("surface.closed: unknown member"));
-  CHECK_THAT(error_of(R"({"curve": {"degree": 0, "knots": [0,1], "points": [[0]]}})"),
+  CHECK_THAT(shape_error_of(R"({"curve": {"degree": 0, "knots": [0,1], "points": [[0]]}})"),
              Catch::Contains("degree 0 is outside [1, 64]"));
-  CHECK_THAT(error_of(R"({"curve": {"degree": 2.5, "knots": [0,1], "points": [[0]]}})"),
+  CHECK_THAT(shape_error_of(R"({"curve": {"degree": 2.5, "knots": [0,1], "points": [[0]]}})"),
              Catch::Contains("curve.degree: expected an integer"));
-  CHECK_THAT(error_of(R"({"curve": {"degree": 1, "knots": [0,0,0,1], "points": [[0],[1]]}})"),
+  CHECK_THAT(shape_error_of(R"({"curve": {"degree": 1, "knots": [0,0,0,1], "points": [[0],[1]]}})"),
              Catch::Contains("curve.knots[2]: knot 0 has multiplicity 3 > degree + 1 = 2"));
-  CHECK_THAT(error_of(R"({"curve": {"degree": 1, "knots": [0,0,0,0], "points": [[0],[1]]}})"),
+  CHECK_THAT(shape_error_of(R"({"curve": {"degree": 1, "knots": [0,0,0,0], "points": [[0],[1]]}})"),
              Catch::Contains("multiplicity"));
-  CHECK_THAT(error_of(R"({"curve": {"degree": 1, "knots": [0,1,1,2], "points": [[0],[1]]}})"),
+  CHECK_THAT(shape_error_of(R"({"curve": {"degree": 1, "knots": [0,1,1,2], "points": [[0],[1]]}})"),
              Catch::Contains("curve.knots: empty domain"));
+  CHECK_THAT(shape_error_of(
+                 R"({"curve": {"degree": 3, "closed": true, "knots": [0,1,2], "points": [[0],[1],[2]]}})"),
+             Catch::Contains("takes 4 breakpoints"));
+  CHECK_THAT(shape_error_of(
+                 R"({"curve": {"degree": 3, "closed": true, "knots": [0,0,0,0], "points": [[0],[1],[2]]}})"),
+             Catch::Contains("period [0, 0] is empty"));
   CHECK_THAT(
-      error_of(R"({"curve": {"degree": 3, "closed": true, "knots": [0,1,2], "points": [[0],[1],[2]]}})"),
-      Catch::Contains("takes 4 breakpoints"));
-  CHECK_THAT(
-      error_of(R"({"curve": {"degree": 3, "closed": true, "knots": [0,0,0,0], "points": [[0],[1],[2]]}})"),
-      Catch::Contains("period [0, 0] is empty"));
-  CHECK_THAT(
-      error_of(R"({"curve": {"degree": 3, "closed": 1, "knots": [0,1,2,3], "points": [[0],[1],[2]]}})"),
+      shape_error_of(R"({"curve": {"degree": 3, "closed": 1, "knots": [0,1,2,3], "points": [[0],[1],[2]]}})"),
       Catch::Contains("curve.closed: expected true or false"));
   const std::string surface_head = R"({"surface": {"degree": [1, 1], "knots": [[0,0,1,1],[0,0,1,1]], )";
-  CHECK_THAT(error_of(surface_head + R"("points": [[[0,0],[0,1]], [[1,0]]]}})"),
+  CHECK_THAT(shape_error_of(surface_head + R"("points": [[[0,0],[0,1]], [[1,0]]]}})"),
              Catch::Contains("surface.points[1]: 1 points, the first row has 2"));
+  CHECK_THAT(shape_error_of(surface_head +
+                            R"("points": [[[0,0],[0,1]], [[1,0],[1,1]]], "weights": [[1,1],[1,-2]]}})"),
+             Catch::Contains("surface.weights[1][1]: weight -2"));
   CHECK_THAT(
-      error_of(surface_head + R"("points": [[[0,0],[0,1]], [[1,0],[1,1]]], "weights": [[1,1],[1,-2]]}})"),
-      Catch::Contains("surface.weights[1][1]: weight -2"));
-  CHECK_THAT(error_of(surface_head + R"("points": [[[0,0],[0,1]], [[1,0],[1,1]]], "weights": [[1,1]]}})"),
-             Catch::Contains("surface.weights: 1 rows, the net has 2"));
+      shape_error_of(surface_head + R"("points": [[[0,0],[0,1]], [[1,0],[1,1]]], "weights": [[1,1]]}})"),
+      Catch::Contains("surface.weights: 1 rows, the net has 2"));
   CHECK_THAT(
-      error_of(
+      shape_error_of(
           R"({"surface": {"degree": [1, 1], "knots": [[0,0,1,1],[0,1,0,1]], "points": [[[0],[0]], [[1],[1]]]}})"),
       Catch::Contains("surface.knots[1][2]: 0 is less than the previous knot 1"));
-  CHECK_THAT(error_of(R"({"surface": {"degree": 1, "knots": [], "points": []}})"),
+  CHECK_THAT(shape_error_of(R"({"surface": {"degree": 1, "knots": [], "points": []}})"),
              Catch::Contains("surface.degree: expected an array"));
 }
 
@@ -165,8 +167,8 @@ TEST_CASE("JSON knots in the Rhino convention (n + d - 1, end knots implicit)", 
       "}}";
   const std::string standard =
       R"({"curve": {"degree": 3, "knots": [-1.5, 0, 1, 2.5, 3, 4, 6, 7, 9], )" + points + "}}";
-  const auto a = std::get<nurbs::Curve>(parse(rhino)), b = std::get<nurbs::Curve>(parse(stated)),
-             c = std::get<nurbs::Curve>(parse(standard));
+  const auto a = std::get<nurbs::Curve>(parse_shape(rhino)), b = std::get<nurbs::Curve>(parse_shape(stated)),
+             c = std::get<nurbs::Curve>(parse_shape(standard));
   CHECK(a.knots == nurbs::Knots{0, 0, 1, 2.5, 3, 4, 6, 7, 7});
   CHECK(b.knots == a.knots);
   CHECK(nurbs::domain(a).start == 2.5);
@@ -176,11 +178,11 @@ TEST_CASE("JSON knots in the Rhino convention (n + d - 1, end knots implicit)", 
     CHECK((p - q).norm() <= 1e-15 * (1 + q.norm()));
   }
   // A clamped rational quadratic as Rhino stores it: [0, 0, 1, 2, 2] for 4 points.
-  const auto r = std::get<nurbs::Curve>(parse(
+  const auto r = std::get<nurbs::Curve>(parse_shape(
       R"({"curve": {"degree": 2, "knots": [0, 0, 1, 2, 2], "points": [[0], [1], [3], [4]], "weights": [1, 2, 1, 1]}})"));
   CHECK(r.knots == nurbs::Knots{0, 0, 0, 1, 2, 2, 2});
   // A surface: u in the Rhino convention, v standard, each told by its count.
-  const auto s = std::get<nurbs::Surface>(parse(R"({"surface": {"degree": [1, 2],
+  const auto s = std::get<nurbs::Surface>(parse_shape(R"({"surface": {"degree": [1, 2],
       "knots": [[0, 1, 2], [0, 0, 0, 1, 1, 1]],
       "points": [[[0, 0, 0], [0, 1, 0], [0, 2, 0]], [[1, 0, 1], [1, 1, 1], [1, 2, 1]], [[2, 0, 0], [2, 1, 0], [2, 2, 3]]]}})"));
   CHECK(s.knots[0] == nurbs::Knots{0, 0, 1, 2, 2});
@@ -189,28 +191,29 @@ TEST_CASE("JSON knots in the Rhino convention (n + d - 1, end knots implicit)", 
   CHECK(corner(2) == 3);
   // Stated conventions are checked; the standard one is the default.
   CHECK_THAT(
-      error_of(
+      shape_error_of(
           R"({"curve": {"degree": 3, "knot_convention": "standard", "knots": [0, 1, 2.5, 3, 4, 6, 7], )" +
           points + "}}"),
       Catch::Contains("curve.knots: 7 knots given, 5 control points of degree 3 need 9"));
   CHECK_THAT(
-      error_of(
+      shape_error_of(
           R"({"curve": {"degree": 3, "knot_convention": "rhino", "knots": [0, 1, 2, 3, 4, 5, 6, 7, 8], )" +
           points + "}}"),
       Catch::Contains("curve.knots: 9 knots given, 5 control points of degree 3 need 7 in the rhino "
                       "convention (n + d - 1)"));
-  CHECK_THAT(error_of(R"({"curve": {"degree": 3, "knots": [0, 1, 2, 3, 4, 5, 6, 7], )" + points + "}}"),
+  CHECK_THAT(shape_error_of(R"({"curve": {"degree": 3, "knots": [0, 1, 2, 3, 4, 5, 6, 7], )" + points + "}}"),
              Catch::Contains("8 knots given, 5 control points of degree 3 need 9 (or 7 without the first and "
                              "the last knot, as Rhino and openNURBS store them)"));
-  CHECK_THAT(
-      error_of(R"({"curve": {"degree": 3, "knot_convention": "opennurbs", "knots": [0], )" + points + "}}"),
-      Catch::Contains("curve.knot_convention: 'opennurbs': expected \"standard\""));
-  CHECK_THAT(
-      error_of(R"({"curve": {"degree": 1, "closed": true, "knot_convention": "rhino", "knots": [0, 1, 2],
+  CHECK_THAT(shape_error_of(R"({"curve": {"degree": 3, "knot_convention": "opennurbs", "knots": [0], )" +
+                            points + "}}"),
+             Catch::Contains("curve.knot_convention: 'opennurbs': expected \"standard\""));
+  CHECK_THAT(shape_error_of(
+                 R"({"curve": {"degree": 1, "closed": true, "knot_convention": "rhino", "knots": [0, 1, 2],
       "points": [[0], [1]]}})"),
-      Catch::Contains("curve.knot_convention: a closed curve's knots are the m + 1 breakpoints"));
+             Catch::Contains("curve.knot_convention: a closed curve's knots are the m + 1 breakpoints"));
   CHECK_THAT(
-      error_of(R"({"surface": {"degree": [1, 1], "knot_convention": "rhino", "knots": [[0, 1], [0, 0, 1, 1]],
+      shape_error_of(
+          R"({"surface": {"degree": [1, 1], "knot_convention": "rhino", "knots": [[0, 1], [0, 0, 1, 1]],
       "points": [[[0], [1]], [[2], [3]]]}})"),
       Catch::Contains("surface.knots[1]: 4 knots given, 2 control points of degree 1 need 2 in the rhino"));
 }
@@ -273,13 +276,13 @@ TEST_CASE("geomdl JSON exports: several shapes, options and errors", "[io][json]
   CHECK(nurbs::evaluate(line, 0.25) == Point(Eigen::Vector2d(0.5, 1)));
   const auto arc = std::get<nurbs::Curve>(shapes[1]);
   CHECK(std::abs(nurbs::evaluate(arc, 0.5).norm() - 1) <= 1e-15);
-  CHECK_THAT(error_of(two),
+  CHECK_THAT(shape_error_of(two),
              Catch::Contains("s.json: holds 2 shapes (curves and surfaces): choose one with --index"));
   CHECK(std::get<nurbs::Curve>(
             io::parse_shape_json(two, "g.json", {.ignore_trim = false, .index = 1, .warn = {}}))
             .rational);
   // The equivalent cifs curve gives the same points.
-  const auto same = std::get<nurbs::Curve>(parse(R"({"curve": {"degree": 2, "knots": [0, 0, 0, 1, 1, 1],
+  const auto same = std::get<nurbs::Curve>(parse_shape(R"({"curve": {"degree": 2, "knots": [0, 0, 0, 1, 1, 1],
       "points": [[1, 0], [1, 1], [0, 1]], "weights": [1, 0.7071067811865476, 1]}})"));
   CHECK(same.P == arc.P);
   CHECK(same.knots == arc.knots);
@@ -290,7 +293,7 @@ TEST_CASE("geomdl JSON exports: several shapes, options and errors", "[io][json]
       "control_points": {"points": [[0, 0, 0], [0, 1, 0], [1, 0, 0], [1, 1, 1]]},
       "trims": {"count": 1, "data": [{"type": "freeform", "points": [[0.2, 0.2], [0.8, 0.2], [0.5, 0.8]]}]}}]}})";
   CHECK_THAT(
-      error_of(trimmed),
+      shape_error_of(trimmed),
       Catch::Contains("s.json: shape.data[0].trims: trimmed surfaces are not supported; --ignore-trim"));
   std::vector<std::string> warnings;
   const auto s = std::get<nurbs::Surface>(io::parse_shape_json(
@@ -303,38 +306,38 @@ TEST_CASE("geomdl JSON exports: several shapes, options and errors", "[io][json]
   CHECK(nurbs::evaluate(s, 1, 1) == Point(Eigen::Vector3d(1, 1, 1)));
   CHECK(nurbs::evaluate(s, 0, 1) == Point(Eigen::Vector3d(0, 1, 0)));
 
-  CHECK_THAT(error_of(R"({"shape": {"type": "volume", "data": []}})"),
+  CHECK_THAT(shape_error_of(R"({"shape": {"type": "volume", "data": []}})"),
              Catch::Contains("shape.type: volumes are not read"));
-  CHECK_THAT(error_of(R"({"shape": {"type": "curve", "data": []}})"),
+  CHECK_THAT(shape_error_of(R"({"shape": {"type": "curve", "data": []}})"),
              Catch::Contains("shape.data: no curve"));
-  CHECK_THAT(error_of(geomdl_curves(kLine, R"("count": 3, )")),
+  CHECK_THAT(shape_error_of(geomdl_curves(kLine, R"("count": 3, )")),
              Catch::Contains("shape.count: 3, but shape.data holds 1"));
   CHECK_THAT(
-      error_of(geomdl_curves(
+      shape_error_of(geomdl_curves(
           R"({"degree": 1, "knotvector": [0, 0, 1], "control_points": {"points": [[0, 0], [2, 4]]}})")),
       Catch::Contains("shape.data[0].knotvector: 3 knots given, 2 control points of degree 1 need 4"));
-  CHECK_THAT(error_of(geomdl_curves(
+  CHECK_THAT(shape_error_of(geomdl_curves(
                  R"({"degree": 1, "knotvector": [0, 0, 1, 1], "control_points": {"points": [[0, 0], [2, 4]],
                      "weights": [1, -1]}})")),
              Catch::Contains("shape.data[0].control_points.weights[1]: weight -1"));
-  CHECK_THAT(error_of(geomdl_curves(
+  CHECK_THAT(shape_error_of(geomdl_curves(
                  R"({"degree": 1, "knotvector": [0, 0, 1, 1], "control_points": {"points": [[0, 0], [2, 4]]},
                      "dimension": 3})")),
              Catch::Contains("shape.data[0].dimension: 3, but the control points have 2 coordinates"));
-  CHECK_THAT(error_of(geomdl_curves(
+  CHECK_THAT(shape_error_of(geomdl_curves(
                  R"({"degree": 1, "knotvector": [0, 0, 1, 1], "control_points": {"points": [[0, 0], [2, 4]]},
                      "knots": [0, 1]})")),
              Catch::Contains("shape.data[0].knots: unknown member"));
-  CHECK_THAT(error_of(geomdl_curves(R"({"type": "freeform", "points": [[0, 0]]})")),
+  CHECK_THAT(shape_error_of(geomdl_curves(R"({"type": "freeform", "points": [[0, 0]]})")),
              Catch::Contains("shape.data[0].type: 'freeform': only \"spline\" entries are read"));
-  CHECK_THAT(error_of(R"({"shape": {"type": "surface", "data": [{"degree_u": 1, "degree_v": 1,
+  CHECK_THAT(shape_error_of(R"({"shape": {"type": "surface", "data": [{"degree_u": 1, "degree_v": 1,
       "knotvector_u": [0, 0, 1, 1], "knotvector_v": [0, 0, 1, 1], "size_u": 2, "size_v": 3,
       "control_points": {"points": [[0, 0, 0], [0, 1, 0], [1, 0, 0], [1, 1, 1]]}}]}})"),
              Catch::Contains("shape.data[0].control_points.points: 4 points, size_u × size_v = 2 × 3"));
-  CHECK_THAT(error_of(R"({"shape": {"type": "surface", "data": [{"degree_u": 1, "degree_v": 1,
+  CHECK_THAT(shape_error_of(R"({"shape": {"type": "surface", "data": [{"degree_u": 1, "degree_v": 1,
       "knotvector_u": [0, 0, 1, 1], "knotvector_v": [0, 2, 1, 1], "size_u": 2, "size_v": 2,
       "control_points": {"points": [[0, 0, 0], [0, 1, 0], [1, 0, 0], [1, 1, 1]]}}]}})"),
              Catch::Contains("shape.data[0].knotvector_v[2]: 1 is less than the previous knot 2"));
-  CHECK_THAT(error_of(R"({"shape": {"type": "curve", "data": [], "extra": 1}})"),
+  CHECK_THAT(shape_error_of(R"({"shape": {"type": "curve", "data": [], "extra": 1}})"),
              Catch::Contains("shape.extra: unknown member"));
 }

@@ -17,7 +17,7 @@ using Catch::Matchers::Contains;
 namespace {
 
 /// Two triangles and a skew quad with values that need 17 digits.
-Mesh sample_mesh(bool normals, bool states) {
+Mesh obj_sample_mesh(bool normals, bool states) {
   Mesh m;
   m.vertices.resize(5, 3);
   m.vertices << 0.1, 0.2, 0.3, 1.0 / 3, -2.5e-7, 1e10, 1, 1, 0, 0, 1, 0.7, -0.5, 0.25, std::sqrt(2.0);
@@ -29,7 +29,7 @@ Mesh sample_mesh(bool normals, bool states) {
   return m;
 }
 
-Mesh cube() {
+Mesh obj_cube() {
   Mesh m;
   m.vertices.resize(8, 3);
   for (int i = 0; i < 8; ++i) m.vertices.row(i) << (i & 1), ((i >> 1) & 1), ((i >> 2) & 1);
@@ -39,7 +39,7 @@ Mesh cube() {
   return m;
 }
 
-Mesh open_grid(int n) {
+Mesh obj_open_grid(int n) {
   Mesh m;
   m.vertices.resize((n + 1) * (n + 1), 3);
   for (int j = 0; j <= n; ++j)
@@ -53,7 +53,7 @@ Mesh open_grid(int n) {
   return m;
 }
 
-Mesh mixed_polygons() {
+Mesh obj_mixed_polygons() {
   Mesh m;
   m.vertices.resize(9, 3);
   for (int k = 0; k < 9; ++k) m.vertices.row(k) << std::cos(k * 0.7), std::sin(k * 0.7), 0.01 * k * k;
@@ -65,7 +65,7 @@ Mesh mixed_polygons() {
   return m;
 }
 
-void require_same(const Mesh& a, const Mesh& b) {
+void require_same_obj_mesh(const Mesh& a, const Mesh& b) {
   REQUIRE(a.vertices.rows() == b.vertices.rows());
   REQUIRE(a.vertices.cols() == b.vertices.cols());
   CHECK(std::memcmp(a.vertices.data(), b.vertices.data(), sizeof(double) * a.vertices.size()) == 0);
@@ -77,7 +77,7 @@ void require_same(const Mesh& a, const Mesh& b) {
          std::memcmp(a.normals.data(), b.normals.data(), sizeof(double) * a.normals.size()) == 0));
 }
 
-std::string error_of(const std::string& text) {
+std::string obj_error_of(const std::string& text) {
   try {
     parse_mesh_obj(text, "m.obj");
   } catch (const std::exception& e) {
@@ -118,7 +118,7 @@ TEST_CASE("Segment OBJ parses back", "[io][obj]") {
 }
 
 TEST_CASE("Mesh OBJ parses back, with normals as f v//n", "[io][obj]") {
-  const Mesh m = sample_mesh(true, false);
+  const Mesh m = obj_sample_mesh(true, false);
   std::istringstream obj(mesh_obj(m));
   std::string line;
   int v = 0, vn = 0;
@@ -151,15 +151,16 @@ TEST_CASE("Polyline OBJ: v lines and one l element, closed back to the first poi
 }
 
 TEST_CASE("OBJ meshes read back bit for bit (cube, open grid, mixed polygons, normals)", "[io][obj]") {
-  const std::vector<std::pair<const char*, Mesh>> meshes = {{"sample", sample_mesh(false, false)},
-                                                            {"sample with normals", sample_mesh(true, false)},
-                                                            {"cube", cube()},
-                                                            {"open grid", open_grid(6)},
-                                                            {"mixed polygons", mixed_polygons()}};
+  const std::vector<std::pair<const char*, Mesh>> meshes = {
+      {"sample", obj_sample_mesh(false, false)},
+      {"sample with normals", obj_sample_mesh(true, false)},
+      {"cube", obj_cube()},
+      {"open grid", obj_open_grid(6)},
+      {"mixed polygons", obj_mixed_polygons()}};
   for (const auto& [what, m] : meshes) {
     INFO(what);
     const Mesh back = parse_mesh_obj(mesh_obj(m), "m.obj");
-    require_same(back, m);
+    require_same_obj_mesh(back, m);
     CHECK(mesh_obj(back) == mesh_obj(m));
   }
 }
@@ -199,30 +200,30 @@ TEST_CASE("OBJ reader: other writers' files (references, negative indices, ignor
 
 TEST_CASE("OBJ reader: bad input is a one-line error naming the file and the line", "[io][obj]") {
   const std::string v = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
-  CHECK(error_of(v + "f 1 2 3\n") == "(no error)");
-  CHECK(error_of(v + "f 1 2 4\n") ==
+  CHECK(obj_error_of(v + "f 1 2 3\n") == "(no error)");
+  CHECK(obj_error_of(v + "f 1 2 4\n") ==
         "m.obj: line 4: vertex index 4 is out of range: 3 vertices are defined before this line");
-  CHECK(error_of(v + "f 1 2 -4\n") ==
+  CHECK(obj_error_of(v + "f 1 2 -4\n") ==
         "m.obj: line 4: vertex index -4 is out of range: 3 vertices are defined before this line");
-  CHECK(error_of(v + "f 0 1 2\n") ==
+  CHECK(obj_error_of(v + "f 0 1 2\n") ==
         "m.obj: line 4: vertex index 0 is invalid (indices start at 1, negative ones count back)");
-  CHECK(error_of(v + "f 1 2\n") == "m.obj: line 4: f: 2 vertices, a face needs at least 3");
-  CHECK(error_of("v 0 nan 0\n" + v + "f 1 2 3\n") == "m.obj: line 1: v: 'nan' is not finite");
-  CHECK(error_of(v + "f 1 2 x\n") == "m.obj: line 4: f: expected an integer, got 'x'");
-  CHECK(error_of(v + "f 1 2 3/1/1/1\n") ==
+  CHECK(obj_error_of(v + "f 1 2\n") == "m.obj: line 4: f: 2 vertices, a face needs at least 3");
+  CHECK(obj_error_of("v 0 nan 0\n" + v + "f 1 2 3\n") == "m.obj: line 1: v: 'nan' is not finite");
+  CHECK(obj_error_of(v + "f 1 2 x\n") == "m.obj: line 4: f: expected an integer, got 'x'");
+  CHECK(obj_error_of(v + "f 1 2 3/1/1/1\n") ==
         "m.obj: line 4: f: expected v, v/vt, v/vt/vn or v//vn, got '3/1/1/1'");
-  CHECK(error_of(v + "f 1 2 3//1\n") ==
+  CHECK(obj_error_of(v + "f 1 2 3//1\n") ==
         "m.obj: line 4: normal index 1 is out of range: 0 normals are defined before this line");
-  CHECK(error_of(v + "f 1 2 3/\n") == "m.obj: line 4: f: expected v, v/vt, v/vt/vn or v//vn, got '3/'");
-  CHECK(error_of(v) == "m.obj: no faces (f lines) in the file");
-  CHECK(error_of("v 1 2\n") == "m.obj: line 1: v: expected x y z [w], got 2 numbers");
+  CHECK(obj_error_of(v + "f 1 2 3/\n") == "m.obj: line 4: f: expected v, v/vt, v/vt/vn or v//vn, got '3/'");
+  CHECK(obj_error_of(v) == "m.obj: no faces (f lines) in the file");
+  CHECK(obj_error_of("v 1 2\n") == "m.obj: line 1: v: expected x y z [w], got 2 numbers");
 }
 
 TEST_CASE("OBJ writers refuse bad meshes and segments", "[io][obj]") {
-  Mesh m = sample_mesh(false, false);
+  Mesh m = obj_sample_mesh(false, false);
   m.face_vertices[8] = -1;
   CHECK_THROWS_AS(mesh_obj(m), InvalidInput);
-  m = sample_mesh(false, false);
+  m = obj_sample_mesh(false, false);
   m.vertices(3, 1) = std::nan("");
   CHECK_THROWS_WITH(mesh_obj(m), Contains("vertices[3] is not finite"));
   Segments s;

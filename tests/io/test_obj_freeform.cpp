@@ -38,7 +38,7 @@ bool same_bits(const nurbs::Knots& a, const nurbs::Knots& b) {
 }
 
 /// `rows by dim` coordinates with full mantissas, from a fixed seed.
-Points random_points(Eigen::Index rows, int dim, unsigned seed) {
+Points obj_random_points(Eigen::Index rows, int dim, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> coord(-10, 10);
   Points P(rows, dim);
@@ -47,7 +47,7 @@ Points random_points(Eigen::Index rows, int dim, unsigned seed) {
   return P;
 }
 
-Eigen::VectorXd random_weights(Eigen::Index n, unsigned seed) {
+Eigen::VectorXd obj_random_weights(Eigen::Index n, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> weight(0.1, 7);
   Eigen::VectorXd w(n);
@@ -57,17 +57,17 @@ Eigen::VectorXd random_weights(Eigen::Index n, unsigned seed) {
 
 nurbs::Curve sample_curve(bool rational, int dim = 3, unsigned seed = 1) {
   const nurbs::Knots knots{0, 0, 0, 0, 0.1, 0.3, 1.0 / 3.0, 0.7, 1, 1, 1, 1};
-  const Points P = random_points(8, dim, seed);
-  return nurbs::make_curve(3, knots, P, rational ? random_weights(8, seed + 100) : Eigen::VectorXd());
+  const Points P = obj_random_points(8, dim, seed);
+  return nurbs::make_curve(3, knots, P, rational ? obj_random_weights(8, seed + 100) : Eigen::VectorXd());
 }
 
 nurbs::Surface sample_surface(bool rational, unsigned seed = 2) {
   // nu = 5 (degree 2), nv = 4 (degree 3): a transposed net would not even have the right count.
   const std::array<nurbs::Knots, 2> knots{nurbs::Knots{0, 0, 0, 0.25, 0.6, 1, 1, 1},
                                           nurbs::Knots{-1, -1, -1, -1, 2, 2, 2, 2}};
-  const Points P = random_points(20, 3, seed);
+  const Points P = obj_random_points(20, 3, seed);
   return nurbs::make_surface({2, 3}, knots, {5, 4}, P,
-                             rational ? random_weights(20, seed + 100) : Eigen::VectorXd());
+                             rational ? obj_random_weights(20, seed + 100) : Eigen::VectorXd());
 }
 
 template <class T>
@@ -77,7 +77,7 @@ T only(const std::vector<io::Shape>& shapes) {
   return std::get<T>(shapes[0]);
 }
 
-void require_same(const nurbs::Curve& a, const nurbs::Curve& b) {
+void require_same_shape(const nurbs::Curve& a, const nurbs::Curve& b) {
   CHECK(a.degree == b.degree);
   CHECK(a.rational == b.rational);
   CHECK(a.closed == b.closed);
@@ -85,7 +85,7 @@ void require_same(const nurbs::Curve& a, const nurbs::Curve& b) {
   CHECK(same_bits(a.P, b.P));
 }
 
-void require_same(const nurbs::Surface& a, const nurbs::Surface& b) {
+void require_same_shape(const nurbs::Surface& a, const nurbs::Surface& b) {
   CHECK(a.degree == b.degree);
   CHECK(a.count == b.count);
   CHECK(a.rational == b.rational);
@@ -95,19 +95,19 @@ void require_same(const nurbs::Surface& a, const nurbs::Surface& b) {
 }
 
 const std::string kVertices = "v 0 0 0\nv 1 2 0\nv 3 2 1\nv 4 0 0\n";  // lines 1-4
-const std::string kCurve = kVertices +
-                           "cstype bspline\n"        // 5
-                           "deg 2\n"                 // 6
-                           "curv 0 2 1 2 3 4\n"      // 7
-                           "parm u 0 0 0 1 2 2 2\n"  // 8
-                           "end\n";                  // 9
+const std::string kCurveObj = kVertices +
+                              "cstype bspline\n"        // 5
+                              "deg 2\n"                 // 6
+                              "curv 0 2 1 2 3 4\n"      // 7
+                              "parm u 0 0 0 1 2 2 2\n"  // 8
+                              "end\n";                  // 9
 
 }  // namespace
 
 TEST_CASE("OBJ round trip: B-spline curve", "[obj]") {
   const nurbs::Curve c = sample_curve(false);
   const std::string text = io::to_obj(c);
-  require_same(only<nurbs::Curve>(io::parse_obj(text, "c.obj")), c);
+  require_same_shape(only<nurbs::Curve>(io::parse_obj(text, "c.obj")), c);
   CHECK_THAT(text, Contains("cstype bspline\n"));
   CHECK_THAT(text, Contains("deg 3\n"));
   CHECK_THAT(text, Contains("curv 0 1 1 2 3 4 5 6 7 8\n"));
@@ -120,7 +120,7 @@ TEST_CASE("OBJ round trip: rational curve", "[obj]") {
     const nurbs::Curve c = sample_curve(true, 3, seed);
     const std::string text = io::to_obj(c);
     CHECK_THAT(text, Contains("cstype rat bspline\n"));
-    require_same(only<nurbs::Curve>(io::parse_obj(text, "c.obj")), c);
+    require_same_shape(only<nurbs::Curve>(io::parse_obj(text, "c.obj")), c);
   }
 }
 
@@ -143,13 +143,13 @@ TEST_CASE("OBJ round trip: surface", "[obj]") {
   const std::string text = io::to_obj(s);
   CHECK_THAT(text, Contains("deg 2 3\n"));
   CHECK_THAT(text, Contains("surf 0 1 -1 2 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 \\\n 17 18 19 20\n"));
-  require_same(only<nurbs::Surface>(io::parse_obj(text, "s.obj")), s);
+  require_same_shape(only<nurbs::Surface>(io::parse_obj(text, "s.obj")), s);
 }
 
 TEST_CASE("OBJ round trip: rational surface", "[obj]") {
   for (unsigned seed = 1; seed <= 10; ++seed) {
     const nurbs::Surface s = sample_surface(true, seed);
-    require_same(only<nurbs::Surface>(io::parse_obj(io::to_obj(s), "s.obj")), s);
+    require_same_shape(only<nurbs::Surface>(io::parse_obj(io::to_obj(s), "s.obj")), s);
   }
 }
 
@@ -168,8 +168,8 @@ TEST_CASE("OBJ round trip: 2-D curve is padded with z = 0", "[obj]") {
 }
 
 TEST_CASE("OBJ writes a closed curve as its expanded unclamped curve", "[obj]") {
-  const Points P = random_points(5, 3, 11);
-  const nurbs::Curve c = nurbs::make_closed_curve(3, {0, 1, 2, 3, 4, 5}, P, random_weights(5, 12));
+  const Points P = obj_random_points(5, 3, 11);
+  const nurbs::Curve c = nurbs::make_closed_curve(3, {0, 1, 2, 3, 4, 5}, P, obj_random_weights(5, 12));
   const std::string text = io::to_obj(c);
   CHECK_THAT(text, Contains("# closed curve"));
   const auto back = only<nurbs::Curve>(io::parse_obj(text, "c.obj"));
@@ -183,17 +183,17 @@ TEST_CASE("OBJ writes a closed curve as its expanded unclamped curve", "[obj]") 
 }
 
 TEST_CASE("OBJ round trip: unclamped open curve writes its domain as the range", "[obj]") {
-  const nurbs::Curve c = nurbs::make_curve(2, {0, 1, 2, 3, 4, 5, 6}, random_points(4, 3, 5));
+  const nurbs::Curve c = nurbs::make_curve(2, {0, 1, 2, 3, 4, 5, 6}, obj_random_points(4, 3, 5));
   const std::string text = io::to_obj(c);
   CHECK_THAT(text, Contains("curv 2 4 1 2 3 4\n"));
-  require_same(only<nurbs::Curve>(io::parse_obj(text, "c.obj")), c);
+  require_same_shape(only<nurbs::Curve>(io::parse_obj(text, "c.obj")), c);
 }
 
 TEST_CASE("OBJ writing refuses more than three dimensions", "[obj]") {
   CHECK_THROWS_AS(io::to_obj(sample_curve(false, 4)), InvalidInput);
   CHECK_THROWS_WITH(io::to_obj(sample_curve(true, 4)), Contains("4-D"));
   const nurbs::Surface s = nurbs::make_surface({1, 1}, {nurbs::Knots{0, 0, 1, 1}, nurbs::Knots{0, 0, 1, 1}},
-                                               {2, 2}, random_points(4, 5, 3));
+                                               {2, 2}, obj_random_points(4, 5, 3));
   CHECK_THROWS_AS(io::to_obj(s), InvalidInput);
 }
 
@@ -241,8 +241,8 @@ TEST_CASE("OBJ relative (negative) vertex indices", "[obj]") {
                            "end\n";
   const auto shapes = io::parse_obj(text, "r.obj");
   REQUIRE(shapes.size() == 3);
-  const auto absolute = only<nurbs::Curve>(io::parse_obj(kCurve, "a.obj"));
-  require_same(std::get<nurbs::Curve>(shapes[0]), absolute);
+  const auto absolute = only<nurbs::Curve>(io::parse_obj(kCurveObj, "a.obj"));
+  require_same_shape(std::get<nurbs::Curve>(shapes[0]), absolute);
   const Points second = (Points(4, 3) << 10, 0, 0, 11, 1, 0, 12, 0, 1, 13, 1, 1).finished();
   CHECK(std::get<nurbs::Curve>(shapes[1]).P == second);
   const Points third = (Points(4, 3) << 0, 0, 0, 1, 2, 0, 3, 2, 1, 13, 1, 1).finished();
@@ -279,14 +279,15 @@ TEST_CASE("OBJ comments, continuation lines, blank lines and ignored statements"
       "end\n"
       "con 1 0 1 1 2 0 1 1\n";
   const auto c = only<nurbs::Curve>(io::parse_obj(text, "c.obj"));
-  require_same(c, only<nurbs::Curve>(io::parse_obj(kCurve, "a.obj")));
+  require_same_shape(c, only<nurbs::Curve>(io::parse_obj(kCurveObj, "a.obj")));
   CHECK(io::parse_obj("", "e.obj").empty());
   CHECK(io::parse_obj("# nothing\n\nv 1 2 3\nf 1 1 1\n", "e.obj").empty());
-  CHECK(io::parse_obj(kCurve.substr(0, kCurve.size() - 1) + " \\", "e.obj").size() == 1);  // "end \" at EOF
+  CHECK(io::parse_obj(kCurveObj.substr(0, kCurveObj.size() - 1) + " \\", "e.obj").size() ==
+        1);  // "end \" at EOF
 }
 
 TEST_CASE("OBJ cstype and deg carry over to later elements", "[obj]") {
-  const std::string text = kCurve +
+  const std::string text = kCurveObj +
                            "curv 0 2 4 3 2 1\n"
                            "parm u 0 0 0 1 2 2 2\n"
                            "end\n"
@@ -499,7 +500,7 @@ TEST_CASE("OBJ errors name the line and the problem", "[obj]") {
 
 TEST_CASE("OBJ reader never fails otherwise on truncated or mutated input", "[obj]") {
   const std::string valid =
-      io::to_obj(sample_surface(true)) + io::to_obj(sample_curve(true)) + kCurve +
+      io::to_obj(sample_surface(true)) + io::to_obj(sample_curve(true)) + kCurveObj +
       "cstype bezier\ndeg 1 1\nsurf 0 2 0 2 1 2 3 4\nparm u 0 2\nparm v 0 2\ntrim 0 4 1\nend\n";
   const auto parse = [](const std::string& text) {
     try {
@@ -525,8 +526,8 @@ TEST_CASE("read_shape reads a one-shape .obj file", "[obj]") {
   std::filesystem::create_directories(dir);
   const nurbs::Surface s = sample_surface(true, 5);
   write_file_atomically(dir / "one.obj", io::to_obj(s));
-  require_same(std::get<nurbs::Surface>(io::read_shape(dir / "one.obj")), s);
-  write_file_atomically(dir / "two.obj", kCurve + kCurve);
+  require_same_shape(std::get<nurbs::Surface>(io::read_shape(dir / "one.obj")), s);
+  write_file_atomically(dir / "two.obj", kCurveObj + kCurveObj);
   CHECK_THROWS_AS(io::read_shape(dir / "two.obj"), InvalidInput);
   CHECK_THROWS_WITH(io::read_shape(dir / "two.obj"),
                     (dir / "two.obj").string() +
@@ -579,7 +580,7 @@ TEST_CASE("OBJ reads Blender's curv 0.0 1.0 over the knot domain, with one warni
   CHECK(start(1) == Approx((0 + 4 * 0.5 + 0.5) / 6).margin(1e-5));
   // The default warning goes to stderr, and a file whose range is the domain gives none.
   warnings.clear();
-  parse_warned(kCurve, warnings);
+  parse_warned(kCurveObj, warnings);
   CHECK(warnings.empty());
 }
 
@@ -782,8 +783,8 @@ TEST_CASE("read_shape chooses among several shapes by index", "[obj]") {
   second.replace(second.find(indices), indices.size(), "curv 0 1 -8 -7 -6 -5 -4 -3 -2 -1\n");
   write_file_atomically(dir / "two.obj", io::to_obj(a) + second);
   CHECK(io::read_shapes(dir / "two.obj").size() == 2);
-  require_same(std::get<nurbs::Curve>(io::read_shape(dir / "two.obj", by_index(0))), a);
-  require_same(std::get<nurbs::Curve>(io::read_shape(dir / "two.obj", by_index(1))), b);
+  require_same_shape(std::get<nurbs::Curve>(io::read_shape(dir / "two.obj", by_index(0))), a);
+  require_same_shape(std::get<nurbs::Curve>(io::read_shape(dir / "two.obj", by_index(1))), b);
   CHECK_THROWS_WITH(io::read_shape(dir / "two.obj", by_index(2)),
                     Contains("two.obj: --index 2 is out of range: the file holds 2 shapes (0 to 1)"));
   write_file_atomically(dir / "none.obj", "v 0 0 0\n");

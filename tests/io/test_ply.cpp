@@ -124,7 +124,7 @@ std::vector<PlyElement> read_ply(const std::string& text, std::string* format) {
 }
 
 /// Two triangles and a skew quad with values that need 17 digits.
-Mesh sample_mesh(bool normals, bool states) {
+Mesh ply_sample_mesh(bool normals, bool states) {
   Mesh m;
   m.vertices.resize(5, 3);
   m.vertices << 0.1, 0.2, 0.3, 1.0 / 3, -2.5e-7, 1e10, 1, 1, 0, 0, 1, 0.7, -0.5, 0.25, std::sqrt(2.0);
@@ -137,7 +137,7 @@ Mesh sample_mesh(bool normals, bool states) {
 }
 
 /// A closed unit cube of outward quads.
-Mesh cube() {
+Mesh ply_cube() {
   Mesh m;
   m.vertices.resize(8, 3);
   for (int i = 0; i < 8; ++i) m.vertices.row(i) << (i & 1), ((i >> 1) & 1), ((i >> 2) & 1);
@@ -148,7 +148,7 @@ Mesh cube() {
 }
 
 /// An open n × n grid of quads over a wavy height field (irrational coordinates).
-Mesh open_grid(int n) {
+Mesh ply_open_grid(int n) {
   Mesh m;
   m.vertices.resize(static_cast<Eigen::Index>(n + 1) * (n + 1), 3);
   for (int j = 0; j <= n; ++j)
@@ -163,7 +163,7 @@ Mesh open_grid(int n) {
 }
 
 /// Triangles, a quad, a pentagon and a hexagon sharing vertices, with per-face states.
-Mesh mixed_polygons() {
+Mesh ply_mixed_polygons() {
   Mesh m;
   m.vertices.resize(9, 3);
   for (int k = 0; k < 9; ++k) m.vertices.row(k) << std::cos(k * 0.7), std::sin(k * 0.7), 0.01 * k * k;
@@ -176,7 +176,7 @@ Mesh mixed_polygons() {
   return m;
 }
 
-void require_same(const Mesh& a, const Mesh& b) {
+void require_same_ply_mesh(const Mesh& a, const Mesh& b) {
   REQUIRE(a.vertices.rows() == b.vertices.rows());
   REQUIRE(a.vertices.cols() == b.vertices.cols());
   CHECK(std::memcmp(a.vertices.data(), b.vertices.data(), sizeof(double) * a.vertices.size()) == 0);
@@ -189,7 +189,7 @@ void require_same(const Mesh& a, const Mesh& b) {
   CHECK(a.states == b.states);
 }
 
-std::string error_of(const std::string& bytes) {
+std::string ply_error_of(const std::string& bytes) {
   try {
     parse_mesh_ply(bytes, "m.ply");
   } catch (const std::exception& e) {
@@ -220,7 +220,7 @@ TEST_CASE("Mesh PLY (ASCII and binary) parses back with every count and value", 
   for (const PlyFormat format :
        {PlyFormat::ascii, PlyFormat::binary_little_endian, PlyFormat::binary_big_endian})
     for (const bool normals : {false, true}) {
-      const Mesh m = sample_mesh(normals, true);
+      const Mesh m = ply_sample_mesh(normals, true);
       std::string name;
       const auto elements = read_ply(mesh_ply(m, format), &name);
       INFO(name << (normals ? " with normals" : ""));
@@ -284,23 +284,23 @@ TEST_CASE("PLY writers: a face of more than 255 corners gets a uint count", "[io
   CHECK(elements[1].rows[0].size() == 301);
   CHECK(elements[1].rows[0][0] == 300);
   CHECK(elements[1].rows[0][300] == 299);
-  require_same(parse_mesh_ply(text, "ring"), m);
-  CHECK_THAT(mesh_ply(sample_mesh(false, false)), Contains("property list uchar int vertex_indices"));
+  require_same_ply_mesh(parse_mesh_ply(text, "ring"), m);
+  CHECK_THAT(mesh_ply(ply_sample_mesh(false, false)), Contains("property list uchar int vertex_indices"));
 }
 
 TEST_CASE("PLY meshes read back bit for bit in every encoding", "[io][ply]") {
   const std::vector<std::pair<const char*, Mesh>> meshes = {
-      {"sample", sample_mesh(false, false)},
-      {"sample, normals and states", sample_mesh(true, true)},
-      {"cube", cube()},
-      {"open grid", open_grid(6)},
-      {"mixed polygons", mixed_polygons()}};
+      {"sample", ply_sample_mesh(false, false)},
+      {"sample, normals and states", ply_sample_mesh(true, true)},
+      {"cube", ply_cube()},
+      {"open grid", ply_open_grid(6)},
+      {"mixed polygons", ply_mixed_polygons()}};
   for (const auto& [what, m] : meshes)
     for (const PlyFormat format :
          {PlyFormat::ascii, PlyFormat::binary_little_endian, PlyFormat::binary_big_endian}) {
       INFO(what << ", format " << static_cast<int>(format));
       const Mesh back = parse_mesh_ply(mesh_ply(m, format), "m.ply");
-      require_same(back, m);
+      require_same_ply_mesh(back, m);
       CHECK(mesh_ply(back, format) == mesh_ply(m, format));
     }
 }
@@ -364,30 +364,34 @@ TEST_CASE("PLY reader: bad input is a one-line error naming the file and the ele
       "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\nproperty double z\n"
       "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
   const std::string vertices = "0 0 0\n1 0 0\n0 1 0\n";
-  CHECK(error_of(header + vertices + "3 0 1 2\n") == "(no error)");
-  CHECK(error_of(header + vertices + "3 0 1 3\n") ==
+  CHECK(ply_error_of(header + vertices + "3 0 1 2\n") == "(no error)");
+  CHECK(ply_error_of(header + vertices + "3 0 1 3\n") ==
         "m.ply: face 0 corner 2 = 3 is out of range (3 vertices)");
-  CHECK(error_of(header + vertices + "2 0 1\n") == "m.ply: face 0 has 2 vertices, a face needs at least 3");
-  CHECK(error_of(header + "0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n") == "m.ply: vertex 1: y is not finite");
-  CHECK(error_of(header + vertices + "3 0 1\n") == "m.ply: the data ends in face 0 of 1 (truncated file)");
-  CHECK(error_of(header + vertices + "3 0 1 2 7\n") ==
+  CHECK(ply_error_of(header + vertices + "2 0 1\n") ==
+        "m.ply: face 0 has 2 vertices, a face needs at least 3");
+  CHECK(ply_error_of(header + "0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n") == "m.ply: vertex 1: y is not finite");
+  CHECK(ply_error_of(header + vertices + "3 0 1\n") ==
+        "m.ply: the data ends in face 0 of 1 (truncated file)");
+  CHECK(ply_error_of(header + vertices + "3 0 1 2 7\n") ==
         "m.ply: data after the last element (the counts do not match)");
-  CHECK(error_of(header + vertices + "3 0 x 2\n") == "m.ply: face 0: expected an integer, got 'x'");
-  CHECK(error_of(header + vertices + "300 0 1 2\n") == "m.ply: face 0: 300 is outside the range of its type");
-  CHECK(error_of("solid cube\n") == "m.ply: not a PLY file (no 'ply' line)");
-  CHECK(error_of("ply\nformat binary_middle_endian 1.0\nend_header\n") ==
+  CHECK(ply_error_of(header + vertices + "3 0 x 2\n") == "m.ply: face 0: expected an integer, got 'x'");
+  CHECK(ply_error_of(header + vertices + "300 0 1 2\n") ==
+        "m.ply: face 0: 300 is outside the range of its type");
+  CHECK(ply_error_of("solid cube\n") == "m.ply: not a PLY file (no 'ply' line)");
+  CHECK(ply_error_of("ply\nformat binary_middle_endian 1.0\nend_header\n") ==
         "m.ply: header line 2: unknown format 'binary_middle_endian'");
-  CHECK(error_of("ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n") ==
+  CHECK(ply_error_of("ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n") ==
         "m.ply: header line 4: unknown type 'quad'");
-  CHECK(error_of("ply\nformat ascii 1.0\nelement vertex 1\n") == "m.ply: the header has no end_header line");
-  CHECK(error_of("ply\nformat ascii 1.0\nelement vertex 1\nproperty double x\nend_header\n1\n") ==
+  CHECK(ply_error_of("ply\nformat ascii 1.0\nelement vertex 1\n") ==
+        "m.ply: the header has no end_header line");
+  CHECK(ply_error_of("ply\nformat ascii 1.0\nelement vertex 1\nproperty double x\nend_header\n1\n") ==
         "m.ply: element vertex has no x, y and z");
-  CHECK(error_of("ply\nformat ascii 1.0\nelement vertex 1\nproperty double x\nproperty double y\n"
-                 "property double z\nend_header\n0 0 0\n") ==
+  CHECK(ply_error_of("ply\nformat ascii 1.0\nelement vertex 1\nproperty double x\nproperty double y\n"
+                     "property double z\nend_header\n0 0 0\n") ==
         "m.ply: no faces (a mesh file needs element face)");
 
   // Binary: a NaN coordinate, a file cut short, a count larger than the data.
-  const Mesh good = sample_mesh(false, false);
+  const Mesh good = ply_sample_mesh(false, false);
   for (const PlyFormat format : {PlyFormat::binary_little_endian, PlyFormat::binary_big_endian}) {
     Mesh nan = good;
     nan.vertices(3, 2) = std::numeric_limits<double>::quiet_NaN();
@@ -399,26 +403,26 @@ TEST_CASE("PLY reader: bad input is a one-line error naming the file and the ele
     for (std::size_t i = 0; i < 8; ++i)
       patched[body + std::size_t{8} * 11 + i] =
           static_cast<char>((bits >> (8 * (format == PlyFormat::binary_big_endian ? 7 - i : i))) & 0xFF);
-    CHECK(error_of(patched) == "m.ply: vertex 3: z is not finite");
-    CHECK(error_of(bytes.substr(0, bytes.size() - 3)) ==
+    CHECK(ply_error_of(patched) == "m.ply: vertex 3: z is not finite");
+    CHECK(ply_error_of(bytes.substr(0, bytes.size() - 3)) ==
           "m.ply: the data ends in face 2 of 3 (truncated file)");
-    CHECK(error_of(bytes + "x") == "m.ply: 1 bytes after the last element (the counts do not match)");
+    CHECK(ply_error_of(bytes + "x") == "m.ply: 1 bytes after the last element (the counts do not match)");
     std::string huge = bytes;
     huge.replace(huge.find("element face 3"), 14, "element face 99999999");
-    CHECK(error_of(huge) ==
+    CHECK(ply_error_of(huge) ==
           "m.ply: the header announces 99999999 face elements, the data is too short for them (truncated "
           "file?)");
   }
 }
 
 TEST_CASE("PLY writers refuse bad meshes and segments", "[io][ply]") {
-  Mesh m = sample_mesh(false, false);
+  Mesh m = ply_sample_mesh(false, false);
   m.face_vertices[8] = 5;  // quad 0 (face 2), corner 2
   CHECK_THROWS_WITH(mesh_ply(m), Contains("face 2 corner 2 = 5 is out of range (5 vertices)"));
-  m = sample_mesh(false, true);
+  m = ply_sample_mesh(false, true);
   m.states.pop_back();
   CHECK_THROWS_WITH(mesh_ply(m), Contains("2 states for 3 faces"));
-  m = sample_mesh(false, false);
+  m = ply_sample_mesh(false, false);
   m.normals = Points::Zero(4, 3);
   CHECK_THROWS_WITH(mesh_ply(m), Contains("normals are 4 by 3"));
   Segments s;

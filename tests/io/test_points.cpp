@@ -24,14 +24,14 @@ using Catch::Matchers::StartsWith;
 
 namespace {
 
-struct Scratch {
+struct PointsScratch {
   std::filesystem::path dir;
-  Scratch() {
+  PointsScratch() {
     dir = std::filesystem::temp_directory_path() / ("cifs_test_points_" + std::to_string(::getpid()));
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
   }
-  ~Scratch() { std::filesystem::remove_all(dir); }
+  ~PointsScratch() { std::filesystem::remove_all(dir); }
   std::set<std::string> names() const {
     std::set<std::string> out;
     for (const auto& entry : std::filesystem::directory_iterator(dir)) out.insert(entry.path().filename());
@@ -145,7 +145,7 @@ TEST_CASE("PointsWriter refuses rows that do not match its header", "[io][points
 }
 
 TEST_CASE("PointsFile: by extension, atomic, the disk space checked", "[io][points]") {
-  Scratch s;
+  PointsScratch s;
   const Points P = some_points(5000, 3);
   for (const char* format : {"json", "npy", "ply", "obj"}) {
     const auto path = s.dir / (std::string("p.") + format);
@@ -185,7 +185,7 @@ TEST_CASE("PointsFile: by extension, atomic, the disk space checked", "[io][poin
 
 TEST_CASE("io::write of meshes and segments: the bytes of encode, written a chunk at a time",
           "[io][points]") {
-  Scratch s;
+  PointsScratch s;
   Segments segs;
   segs.vertices = some_points(200000, 3);  // several chunks of text
   for (int i = 0; i + 1 < 200000; ++i) segs.segments.push_back({i, i + 1});

@@ -16,7 +16,7 @@ using automata::StateId;
 
 namespace {
 
-std::size_t count(const std::string& text, const std::string& what) {
+std::size_t count_in_svg(const std::string& text, const std::string& what) {
   std::size_t n = 0;
   for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
   return n;
@@ -62,9 +62,9 @@ TEST_CASE("Multi-stroke SVG: one element per stroke, fitted together, a legend o
   const std::string svg = strokes_svg(strokes, "Title", 420);
   CHECK_THAT(svg, Catch::StartsWith("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"420\"") &&
                       Catch::EndsWith("</svg>\n"));
-  CHECK(count(svg, "<polygon ") == 1);
-  CHECK(count(svg, "<polyline ") == 1);
-  CHECK(count(svg, "<line ") == 1);  // only the labelled stroke is in the legend
+  CHECK(count_in_svg(svg, "<polygon ") == 1);
+  CHECK(count_in_svg(svg, "<polyline ") == 1);
+  CHECK(count_in_svg(svg, "<line ") == 1);  // only the labelled stroke is in the legend
   CHECK_THAT(svg, Catch::Contains(">Title</text>") && Catch::Contains(">the square</text>") &&
                       Catch::Contains("stroke-dasharray=\"4 3\""));
   // Width 420 with 20 px margins: 2 units of x span 380 px, so the scale is 190 px per unit; y is

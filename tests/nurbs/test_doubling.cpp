@@ -12,7 +12,7 @@ using namespace cifs::nurbs;
 
 namespace {
 
-double max_abs(const Eigen::MatrixXd& m) {
+double max_abs_entry(const Eigen::MatrixXd& m) {
   return m.cwiseAbs().maxCoeff();
 }
 
@@ -60,8 +60,8 @@ TEST_CASE("Degree 2: the closed forms of Morlet et al.", "[nurbs][doubling]") {
     D << u2 / a, (2 * u1 + u2) / a, 0,  //
         0, (u2 + 2 * u3) / b, u2 / b,   //
         0, u3 / b, (2 * u2 + u3) / b;
-    CHECK(max_abs(subdivision_matrix(w, 2, Half::G) - G) <= 1e-14);
-    CHECK(max_abs(subdivision_matrix(w, 2, Half::D) - D) <= 1e-14);
+    CHECK(max_abs_entry(subdivision_matrix(w, 2, Half::G) - G) <= 1e-14);
+    CHECK(max_abs_entry(subdivision_matrix(w, 2, Half::D) - D) <= 1e-14);
     CHECK(child_window(w, 2, Half::G) == Window{u1, u2, u2});
     CHECK(child_window(w, 2, Half::D) == Window{u2, u2, u3});
   }
@@ -71,8 +71,8 @@ TEST_CASE("Uniform knots give Chaikin and the Lane-Riesenfeld masks", "[nurbs][d
   Eigen::Matrix3d chaikin_G, chaikin_D;
   chaikin_G << 0.75, 0.25, 0, 0.25, 0.75, 0, 0, 0.75, 0.25;
   chaikin_D << 0.25, 0.75, 0, 0, 0.75, 0.25, 0, 0.25, 0.75;
-  CHECK(max_abs(subdivision_matrix(Window{1, 1, 1}, 2, Half::G) - chaikin_G) == 0);
-  CHECK(max_abs(subdivision_matrix(Window{1, 1, 1}, 2, Half::D) - chaikin_D) == 0);
+  CHECK(max_abs_entry(subdivision_matrix(Window{1, 1, 1}, 2, Half::G) - chaikin_G) == 0);
+  CHECK(max_abs_entry(subdivision_matrix(Window{1, 1, 1}, 2, Half::D) - chaikin_D) == 0);
   // Degree d uniform: rows are the binomial mask (1/2^d)·C(d+1, k) taken alternately.
   for (int d = 1; d <= 10; ++d) {
     const Window w(static_cast<std::size_t>(2 * d - 1), 1.0);
@@ -127,15 +127,16 @@ TEST_CASE("G/D matrices equal midpoint knot insertion on random curves", "[nurbs
         }
         for (Half half : {Half::G, Half::D}) {
           const Eigen::MatrixXd M = subdivision_matrix(w, d, half);
-          INFO("d = " << d << ", rowsum error " << max_abs(M.rowwise().sum() - Eigen::VectorXd::Ones(d + 1)));
-          CHECK(max_abs(M.rowwise().sum() - Eigen::VectorXd::Ones(d + 1)) <= 1e-13);
+          INFO("d = " << d << ", rowsum error "
+                      << max_abs_entry(M.rowwise().sum() - Eigen::VectorXd::Ones(d + 1)));
+          CHECK(max_abs_entry(M.rowwise().sum() - Eigen::VectorXd::Ones(d + 1)) <= 1e-13);
           const Points Q = M * P.middleRows(k - d, d + 1);
           // Point i of the half is the blossom at the d consecutive refined knots ending at span+i.
           const std::size_t j = centre + static_cast<std::size_t>(half);
           for (int i = 0; i <= d; ++i) {
             const std::vector<long double> args(S.begin() + static_cast<std::ptrdiff_t>(j) - d + 1 + i,
                                                 S.begin() + static_cast<std::ptrdiff_t>(j) + 1 + i);
-            CHECK(max_abs(Q.row(i) - blossom_ld(T, P, d, k, args)) <= 1e-12 * (1 + max_abs(P)));
+            CHECK(max_abs_entry(Q.row(i) - blossom_ld(T, P, d, k, args)) <= 1e-12 * (1 + max_abs_entry(P)));
           }
         }
       }
@@ -151,7 +152,8 @@ TEST_CASE("G/D matrices equal midpoint knot insertion on random curves", "[nurbs
         const int kd = find_span(r.knots, d, mid);
         for (auto [half, span] : {std::pair{Half::G, kg}, std::pair{Half::D, kd}}) {
           const Points Q = subdivision_matrix(w, d, half) * P.middleRows(k - d, d + 1);
-          CHECK(max_abs(Q - r.P.middleRows(span - d, d + 1)) <= 1e-15 * kappa * (1 + max_abs(P)) * d * d);
+          CHECK(max_abs_entry(Q - r.P.middleRows(span - d, d + 1)) <=
+                1e-15 * kappa * (1 + max_abs_entry(P)) * d * d);
           // The child window is the refined segment's window, scaled by 2.
           Window child = segment_window(r.knots, d, span);
           for (double& x : child) x *= 2;

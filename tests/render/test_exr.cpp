@@ -41,7 +41,7 @@ Image full_image(std::size_t w, std::size_t h) {
   return image;
 }
 
-bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
+bool same_float_bits(const std::vector<float>& a, const std::vector<float>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
 }
 
@@ -62,7 +62,7 @@ TEST_CASE("EXR: every channel and attribute survives a round trip bit for bit", 
     INFO("channel " << name);
     REQUIRE(back.channels.count(name) == 1);
     for (const float v : back.channels.at(name)) REQUIRE(!std::isnan(v));
-    CHECK(same_bits(back.channels.at(name), values));
+    CHECK(same_float_bits(back.channels.at(name), values));
   }
   REQUIRE(back.state.has_value());
   CHECK(*back.state == *image.state);

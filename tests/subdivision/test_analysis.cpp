@@ -9,15 +9,13 @@
 #include "cifs/errors.hpp"
 #include "cifs/subdivision/analysis.hpp"
 #include "cifs/subdivision/ifs.hpp"
+#include "subdivision/rational.hpp"
 
 using namespace cifs;
 using namespace cifs::subdivision;
+using cifs_test::q;
 
 namespace {
-
-Rational q(long long p, long long d = 1) {
-  return Rational(p) / Rational(d);
-}
 
 bool contains(const std::vector<std::complex<double>>& values, double x) {
   for (const auto& z : values)

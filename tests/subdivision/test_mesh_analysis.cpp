@@ -25,8 +25,8 @@ namespace {
 using Complex = std::complex<long double>;
 constexpr long double kPi = std::numbers::pi_v<long double>;
 
-constexpr MeshScheme kAll[] = {MeshScheme::catmull_clark, MeshScheme::loop, MeshScheme::doo_sabin,
-                               MeshScheme::butterfly, MeshScheme::sqrt3};
+constexpr MeshScheme kAllSchemes[] = {MeshScheme::catmull_clark, MeshScheme::loop, MeshScheme::doo_sabin,
+                                      MeshScheme::butterfly, MeshScheme::sqrt3};
 
 long double cos_2pi(long double m, long double n) {
   return std::cos(2 * kPi * m / n);
@@ -216,7 +216,7 @@ TEST_CASE("local matrices: the rules equal the general refinement, every scheme 
         }
       }
   };
-  for (const MeshScheme scheme : kAll)
+  for (const MeshScheme scheme : kAllSchemes)
     for (int n = kMinValence; n <= kMaxValence; ++n) compare(scheme, n, {});
   for (const MeshScheme scheme : {MeshScheme::catmull_clark, MeshScheme::loop})
     for (int n = kMinBoundaryValence; n <= kMaxBoundaryValence; ++n)
@@ -227,7 +227,7 @@ TEST_CASE("local matrices: the rules equal the general refinement, every scheme 
 TEST_CASE("local matrices are exact where the weights are rational, and affine",
           "[subdivision][mesh_analysis]") {
   const auto rational_cos = [](int n) { return n == 3 || n == 4 || n == 6; };
-  for (const MeshScheme scheme : kAll)
+  for (const MeshScheme scheme : kAllSchemes)
     for (int n = kMinValence; n <= kMaxValence; ++n) {
       const LocalMatrix S = local_matrix(scheme, n);
       INFO(scheme_name(scheme) << " valence " << n);
@@ -251,7 +251,7 @@ TEST_CASE("local matrices are exact where the weights are rational, and affine",
 }
 
 TEST_CASE("local spectra equal the Fourier blocks of the rules", "[subdivision][mesh_analysis]") {
-  for (const MeshScheme scheme : kAll)
+  for (const MeshScheme scheme : kAllSchemes)
     for (int n = kMinValence; n <= kMaxValence; ++n) {
       if (scheme == MeshScheme::butterfly && n == 6) continue;  // regular: the 10-point rule, below
       INFO(scheme_name(scheme) << " valence " << n);
@@ -385,7 +385,7 @@ TEST_CASE("local matrices: bad valences are one-line InvalidInputs", "[subdivisi
 
 TEST_CASE("C1 verdicts: every scheme is C1 at every interior valence, proved where it is polynomial",
           "[subdivision][mesh_analysis][c1]") {
-  for (const MeshScheme scheme : kAll) {
+  for (const MeshScheme scheme : kAllSchemes) {
     const bool polynomial =
         scheme == MeshScheme::catmull_clark || scheme == MeshScheme::loop || scheme == MeshScheme::doo_sabin;
     for (int n = kMinValence; n <= kMaxValence; ++n) {

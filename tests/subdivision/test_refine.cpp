@@ -10,15 +10,13 @@
 #include "cifs/nurbs/doubling.hpp"
 #include "cifs/subdivision/ifs.hpp"
 #include "cifs/subdivision/refine.hpp"
+#include "subdivision/rational.hpp"
 
 using namespace cifs;
 using namespace cifs::subdivision;
+using cifs_test::q;
 
 namespace {
-
-Rational q(long long p, long long d = 1) {
-  return Rational(p) / Rational(d);
-}
 
 Points random_polygon(Eigen::Index n, int dim, unsigned seed) {
   std::mt19937 rng(seed);

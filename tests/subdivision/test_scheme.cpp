@@ -4,15 +4,13 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/subdivision/scheme.hpp"
+#include "subdivision/rational.hpp"
 
 using namespace cifs;
 using namespace cifs::subdivision;
+using cifs_test::q;
 
 namespace {
-
-Rational q(long long p, long long d = 1) {
-  return Rational(p) / Rational(d);
-}
 
 /// Mask from integer numerators over a common denominator.
 Polynomial over(std::initializer_list<long long> numerators, long long denominator) {

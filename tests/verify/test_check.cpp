@@ -16,12 +16,12 @@ using namespace cifs;
 
 namespace {
 
-struct Kind {
+struct CurveKind {
   bool clamped, rational, closed;
 };
 
 /// A random curve: interval lengths 10^[-3, 3] (ratios up to 1e6), weights 10^[-3, 3].
-nurbs::Curve random_curve(std::mt19937_64& rng, int d, int dim, Kind kind) {
+nurbs::Curve random_checked_curve(std::mt19937_64& rng, int d, int dim, CurveKind kind) {
   std::uniform_real_distribution<double> exponent(-3, 3);
   const int n = d + 4;
   const Points P = Points::Random(n, dim) * 10;
@@ -46,11 +46,11 @@ nurbs::Curve random_curve(std::mt19937_64& rng, int d, int dim, Kind kind) {
 TEST_CASE("Attractor = knot insertion = Cox-de Boor, degrees 1-10, ratios 1e6, weights 1e-3..1e3",
           "[verify]") {
   std::mt19937_64 rng(20261121);
-  const Kind kinds[] = {{true, false, false}, {false, false, false}, {true, true, false},
-                        {false, true, false}, {false, false, true},  {false, true, true}};
+  const CurveKind kinds[] = {{true, false, false}, {false, false, false}, {true, true, false},
+                             {false, true, false}, {false, false, true},  {false, true, true}};
   for (int d = 1; d <= 10; ++d)
-    for (const Kind& kind : kinds) {
-      const nurbs::Curve c = random_curve(rng, d, 1 + d % 4, kind);
+    for (const CurveKind& kind : kinds) {
+      const nurbs::Curve c = random_checked_curve(rng, d, 1 + d % 4, kind);
       const verify::CheckReport r = verify::check_curve(c, {.depth = d <= 3 ? 10 : 7, .tolerance = 1e-12});
       INFO("degree " << d << " clamped " << kind.clamped << " rational " << kind.rational << " closed "
                      << kind.closed << ": nets " << r.nets.max_rel << ", points " << r.points.max_rel);
@@ -61,8 +61,8 @@ TEST_CASE("Attractor = knot insertion = Cox-de Boor, degrees 1-10, ratios 1e6, w
 
 TEST_CASE("A deep check of a cubic", "[verify]") {
   std::mt19937_64 rng(3);
-  const verify::CheckReport r =
-      verify::check_curve(random_curve(rng, 3, 3, {false, true, false}), {.depth = 14, .tolerance = 1e-12});
+  const verify::CheckReport r = verify::check_curve(random_checked_curve(rng, 3, 3, {false, true, false}),
+                                                    {.depth = 14, .tolerance = 1e-12});
   INFO("nets " << r.nets.max_rel << ", points " << r.points.max_rel);
   CHECK(r.pass);
   CHECK(r.depth == 14);
@@ -71,7 +71,7 @@ TEST_CASE("A deep check of a cubic", "[verify]") {
 TEST_CASE("Junctions: the end of G is the start of D, neighbouring segments agree", "[verify]") {
   std::mt19937_64 rng(11);
   for (int d = 2; d <= 6; ++d) {
-    const nurbs::Curve c = random_curve(rng, d, 2, {false, true, false});
+    const nurbs::Curve c = random_checked_curve(rng, d, 2, {false, true, false});
     const nurbs::KnotAutomaton ka = nurbs::knot_automaton(c);
     const automata::Automaton& a = ka.automaton;
     const ifs::EndFunctionals f = ifs::end_functionals(a);
@@ -94,7 +94,7 @@ TEST_CASE("Junctions: the end of G is the start of D, neighbouring segments agre
 
 TEST_CASE("Chaos-game points lie on the curve at their recorded parameter", "[verify]") {
   std::mt19937_64 rng(17);
-  const nurbs::Curve c = random_curve(rng, 3, 3, {true, true, false});
+  const nurbs::Curve c = random_checked_curve(rng, 3, 3, {true, true, false});
   const nurbs::KnotAutomaton ka = nurbs::knot_automaton(c);
   const automata::Automaton& a = ka.automaton;
   ifs::ChaosOptions options;
@@ -116,7 +116,7 @@ TEST_CASE("Chaos-game points lie on the curve at their recorded parameter", "[ve
 
 TEST_CASE("check refuses bad depths and work beyond its budget", "[verify]") {
   std::mt19937_64 rng(1);
-  const nurbs::Curve c = random_curve(rng, 3, 2, {true, false, false});
+  const nurbs::Curve c = random_checked_curve(rng, 3, 2, {true, false, false});
   CHECK_THROWS_WITH(verify::check_curve(c, {.depth = -1, .tolerance = 1e-12}),
                     Catch::Contains("depth -1 is outside [0, 30]"));
   CHECK_THROWS_WITH(verify::check_curve(c, {.depth = 24, .tolerance = 1e-12}),
@@ -132,7 +132,8 @@ namespace {
 
 /// A random surface of `degree` (1 … 6 per direction): interval lengths 10^[-3, 3] (ratios up to
 /// 1e6), weights 10^[-3, 3], clamped or not.
-nurbs::Surface random_surface(std::mt19937_64& rng, std::array<int, 2> degree, bool clamped, bool rational) {
+nurbs::Surface random_checked_surface(std::mt19937_64& rng, std::array<int, 2> degree, bool clamped,
+                                      bool rational) {
   std::uniform_real_distribution<double> exponent(-3, 3);
   std::array<nurbs::Knots, 2> knots;
   std::array<Eigen::Index, 2> count{};
@@ -164,7 +165,7 @@ TEST_CASE("Surface attractor = knot insertion = evaluation, degrees 1-6, ratios 
   for (int p = 1; p <= 6; ++p)
     for (int q = 1; q <= 6; ++q) {
       const bool clamped = (p + q) % 2 == 0, rational = (p * q) % 3 != 1;
-      const nurbs::Surface s = random_surface(rng, {p, q}, clamped, rational);
+      const nurbs::Surface s = random_checked_surface(rng, {p, q}, clamped, rational);
       const double tolerance = rational ? 5e-12 : 1e-12;
       const verify::SurfaceCheckReport r = verify::check_surface(s, {.depth = 3, .tolerance = tolerance});
       INFO("degrees " << p << ", " << q << ", clamped " << clamped << ", rational " << rational << ": nets "
@@ -178,7 +179,7 @@ TEST_CASE("Surface attractor = knot insertion = evaluation, degrees 1-6, ratios 
 
 TEST_CASE("Surface check: a deeper rational bicubic", "[verify][surface]") {
   std::mt19937_64 rng(37);
-  const nurbs::Surface s = random_surface(rng, {3, 3}, false, true);
+  const nurbs::Surface s = random_checked_surface(rng, {3, 3}, false, true);
   const verify::SurfaceCheckReport r = verify::check_surface(s, {.depth = 6, .tolerance = 5e-12});
   CHECK(r.pass);
   CHECK(r.patches[3].patch == std::array<int, 2>{1, 1});
@@ -187,7 +188,7 @@ TEST_CASE("Surface check: a deeper rational bicubic", "[verify][surface]") {
 
 TEST_CASE("Surface check refuses bad depths and work beyond its budget", "[verify][surface]") {
   std::mt19937_64 rng(41);
-  const nurbs::Surface s = random_surface(rng, {3, 3}, true, false);
+  const nurbs::Surface s = random_checked_surface(rng, {3, 3}, true, false);
   CHECK_THROWS_AS(verify::check_surface(s, {.depth = -1, .tolerance = 1e-12}), InvalidInput);
   CHECK_THROWS_AS(verify::check_surface(s, {.depth = 31, .tolerance = 1e-12}), InvalidInput);
   CHECK_THROWS_WITH(verify::check_surface(s, {.depth = 12, .tolerance = 1e-12}),
