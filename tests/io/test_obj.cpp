@@ -9,49 +9,13 @@
 #include <vector>
 
 #include "cifs/errors.hpp"
+#include "io/mesh_samples.hpp"
 
 using namespace cifs;
 using namespace cifs::io;
 using Catch::Matchers::Contains;
 
 namespace {
-
-/// Two triangles and a skew quad with values that need 17 digits.
-Mesh obj_sample_mesh(bool normals, bool states) {
-  Mesh m;
-  m.vertices.resize(5, 3);
-  m.vertices << 0.1, 0.2, 0.3, 1.0 / 3, -2.5e-7, 1e10, 1, 1, 0, 0, 1, 0.7, -0.5, 0.25, std::sqrt(2.0);
-  add_face(m, {0, 1, 2});
-  add_face(m, {2, 3, 4});
-  add_face(m, {0, 1, 3, 4});
-  if (normals) m.normals = vertex_normals(m);
-  if (states) m.states = {7, 4000000000u, 0};
-  return m;
-}
-
-Mesh obj_cube() {
-  Mesh m;
-  m.vertices.resize(8, 3);
-  for (int i = 0; i < 8; ++i) m.vertices.row(i) << (i & 1), ((i >> 1) & 1), ((i >> 2) & 1);
-  for (const auto& q : std::vector<std::vector<int>>{
-           {0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}})
-    add_face(m, q);
-  return m;
-}
-
-Mesh obj_open_grid(int n) {
-  Mesh m;
-  m.vertices.resize((n + 1) * (n + 1), 3);
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i)
-      m.vertices.row(j * (n + 1) + i) << i / 3.0, j / 7.0, std::sin(i * 0.7) * std::cos(j * 1.3);
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const int v = j * (n + 1) + i;
-      add_face(m, {v, v + 1, v + n + 2, v + n + 1});
-    }
-  return m;
-}
 
 Mesh obj_mixed_polygons() {
   Mesh m;
@@ -118,7 +82,7 @@ TEST_CASE("Segment OBJ parses back", "[io][obj]") {
 }
 
 TEST_CASE("Mesh OBJ parses back, with normals as f v//n", "[io][obj]") {
-  const Mesh m = obj_sample_mesh(true, false);
+  const Mesh m = io_test::sample_mesh(true, false);
   std::istringstream obj(mesh_obj(m));
   std::string line;
   int v = 0, vn = 0;
@@ -152,10 +116,10 @@ TEST_CASE("Polyline OBJ: v lines and one l element, closed back to the first poi
 
 TEST_CASE("OBJ meshes read back bit for bit (cube, open grid, mixed polygons, normals)", "[io][obj]") {
   const std::vector<std::pair<const char*, Mesh>> meshes = {
-      {"sample", obj_sample_mesh(false, false)},
-      {"sample with normals", obj_sample_mesh(true, false)},
-      {"cube", obj_cube()},
-      {"open grid", obj_open_grid(6)},
+      {"sample", io_test::sample_mesh(false, false)},
+      {"sample with normals", io_test::sample_mesh(true, false)},
+      {"cube", io_test::cube()},
+      {"open grid", io_test::open_grid(6)},
       {"mixed polygons", obj_mixed_polygons()}};
   for (const auto& [what, m] : meshes) {
     INFO(what);
@@ -220,10 +184,10 @@ TEST_CASE("OBJ reader: bad input is a one-line error naming the file and the lin
 }
 
 TEST_CASE("OBJ writers refuse bad meshes and segments", "[io][obj]") {
-  Mesh m = obj_sample_mesh(false, false);
+  Mesh m = io_test::sample_mesh(false, false);
   m.face_vertices[8] = -1;
   CHECK_THROWS_AS(mesh_obj(m), InvalidInput);
-  m = obj_sample_mesh(false, false);
+  m = io_test::sample_mesh(false, false);
   m.vertices(3, 1) = std::nan("");
   CHECK_THROWS_WITH(mesh_obj(m), Contains("vertices[3] is not finite"));
   Segments s;

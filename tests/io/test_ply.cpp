@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cifs/errors.hpp"
+#include "io/mesh_samples.hpp"
 
 using namespace cifs;
 using namespace cifs::io;
@@ -123,45 +124,6 @@ std::vector<PlyElement> read_ply(const std::string& text, std::string* format) {
   return elements;
 }
 
-/// Two triangles and a skew quad with values that need 17 digits.
-Mesh ply_sample_mesh(bool normals, bool states) {
-  Mesh m;
-  m.vertices.resize(5, 3);
-  m.vertices << 0.1, 0.2, 0.3, 1.0 / 3, -2.5e-7, 1e10, 1, 1, 0, 0, 1, 0.7, -0.5, 0.25, std::sqrt(2.0);
-  add_face(m, {0, 1, 2});
-  add_face(m, {2, 3, 4});
-  add_face(m, {0, 1, 3, 4});
-  if (normals) m.normals = vertex_normals(m);
-  if (states) m.states = {7, 4000000000u, 0};
-  return m;
-}
-
-/// A closed unit cube of outward quads.
-Mesh ply_cube() {
-  Mesh m;
-  m.vertices.resize(8, 3);
-  for (int i = 0; i < 8; ++i) m.vertices.row(i) << (i & 1), ((i >> 1) & 1), ((i >> 2) & 1);
-  for (const auto& q : std::vector<std::vector<int>>{
-           {0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}})
-    add_face(m, q);
-  return m;
-}
-
-/// An open n × n grid of quads over a wavy height field (irrational coordinates).
-Mesh ply_open_grid(int n) {
-  Mesh m;
-  m.vertices.resize(static_cast<Eigen::Index>(n + 1) * (n + 1), 3);
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i)
-      m.vertices.row(j * (n + 1) + i) << i / 3.0, j / 7.0, std::sin(i * 0.7) * std::cos(j * 1.3);
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const int v = j * (n + 1) + i;
-      add_face(m, {v, v + 1, v + n + 2, v + n + 1});
-    }
-  return m;
-}
-
 /// Triangles, a quad, a pentagon and a hexagon sharing vertices, with per-face states.
 Mesh ply_mixed_polygons() {
   Mesh m;
@@ -220,7 +182,7 @@ TEST_CASE("Mesh PLY (ASCII and binary) parses back with every count and value", 
   for (const PlyFormat format :
        {PlyFormat::ascii, PlyFormat::binary_little_endian, PlyFormat::binary_big_endian})
     for (const bool normals : {false, true}) {
-      const Mesh m = ply_sample_mesh(normals, true);
+      const Mesh m = io_test::sample_mesh(normals, true);
       std::string name;
       const auto elements = read_ply(mesh_ply(m, format), &name);
       INFO(name << (normals ? " with normals" : ""));
@@ -285,15 +247,16 @@ TEST_CASE("PLY writers: a face of more than 255 corners gets a uint count", "[io
   CHECK(elements[1].rows[0][0] == 300);
   CHECK(elements[1].rows[0][300] == 299);
   require_same_ply_mesh(parse_mesh_ply(text, "ring"), m);
-  CHECK_THAT(mesh_ply(ply_sample_mesh(false, false)), Contains("property list uchar int vertex_indices"));
+  CHECK_THAT(mesh_ply(io_test::sample_mesh(false, false)),
+             Contains("property list uchar int vertex_indices"));
 }
 
 TEST_CASE("PLY meshes read back bit for bit in every encoding", "[io][ply]") {
   const std::vector<std::pair<const char*, Mesh>> meshes = {
-      {"sample", ply_sample_mesh(false, false)},
-      {"sample, normals and states", ply_sample_mesh(true, true)},
-      {"cube", ply_cube()},
-      {"open grid", ply_open_grid(6)},
+      {"sample", io_test::sample_mesh(false, false)},
+      {"sample, normals and states", io_test::sample_mesh(true, true)},
+      {"cube", io_test::cube()},
+      {"open grid", io_test::open_grid(6)},
       {"mixed polygons", ply_mixed_polygons()}};
   for (const auto& [what, m] : meshes)
     for (const PlyFormat format :
@@ -391,7 +354,7 @@ TEST_CASE("PLY reader: bad input is a one-line error naming the file and the ele
         "m.ply: no faces (a mesh file needs element face)");
 
   // Binary: a NaN coordinate, a file cut short, a count larger than the data.
-  const Mesh good = ply_sample_mesh(false, false);
+  const Mesh good = io_test::sample_mesh(false, false);
   for (const PlyFormat format : {PlyFormat::binary_little_endian, PlyFormat::binary_big_endian}) {
     Mesh nan = good;
     nan.vertices(3, 2) = std::numeric_limits<double>::quiet_NaN();
@@ -416,13 +379,13 @@ TEST_CASE("PLY reader: bad input is a one-line error naming the file and the ele
 }
 
 TEST_CASE("PLY writers refuse bad meshes and segments", "[io][ply]") {
-  Mesh m = ply_sample_mesh(false, false);
+  Mesh m = io_test::sample_mesh(false, false);
   m.face_vertices[8] = 5;  // quad 0 (face 2), corner 2
   CHECK_THROWS_WITH(mesh_ply(m), Contains("face 2 corner 2 = 5 is out of range (5 vertices)"));
-  m = ply_sample_mesh(false, true);
+  m = io_test::sample_mesh(false, true);
   m.states.pop_back();
   CHECK_THROWS_WITH(mesh_ply(m), Contains("2 states for 3 faces"));
-  m = ply_sample_mesh(false, false);
+  m = io_test::sample_mesh(false, false);
   m.normals = Points::Zero(4, 3);
   CHECK_THROWS_WITH(mesh_ply(m), Contains("normals are 4 by 3"));
   Segments s;
