@@ -18,7 +18,7 @@ import unittest
 import numpy as np
 
 import cifs
-from test_robustness import SUBMODULES, _call, _Samples, _signatures  # noqa: I100
+from test_robustness import SUBMODULES, _call, _instances, _Samples, _signatures  # noqa: I100
 
 # Integer parameters where -1 is a documented value ("none", "automatic", "the whole range", or a signed
 # quantity): the call may succeed with it. Everything else must refuse -1 naming the parameter.
@@ -129,18 +129,12 @@ def _bad_values(kind, annotation):
 
 def _callables(samples):
     """(display name, callable, overloads as parameter lists, overloaded) for everything bound."""
-    instances = {
-        "Curve": samples.curve, "Surface": samples.surface, "Automaton": samples.automaton.copy(),
-        "TensorAutomaton": samples.tensor, "Bcifs": samples.system, "AdmissibleSpace": samples.space,
-        "Scheme": samples.scheme, "Camera": samples.camera, "Image": samples.image.copy(),
-        "ImageChannels": samples.image.copy().channels, "Mesh": samples.mesh, "Segments": samples.segments,
-        "Polygon": samples.polygon, "Bounds": cifs.render.Bounds(),
-        "ViewTransform": cifs.render.view_transform(samples.camera),
-        "PieceBounds": cifs.ifs.PieceBounds(samples.automaton), "AffineMap": samples.maps[0],
+    instances = _instances(samples)
+    instances.update({
         "StencilTable": cifs.ifs.stencil_table(samples.automaton, 2),
         "MeshStencilTable": cifs.ifs.mesh_stencil_table(samples.tensor.automaton, 1, patches=[[0, 0]])
         if hasattr(samples.tensor, "automaton") else None,
-    }
+    })
     fresh = {"Camera": lambda: cifs.render.Camera(width=16, height=16), "Bounds": cifs.render.Bounds,
              "AffineMap": cifs.ifs.AffineMap, "Image": lambda: samples.image.copy()}
     for submodule in SUBMODULES:

@@ -176,6 +176,20 @@ def _split_top(text):
     return parts
 
 
+def _instances(samples):
+    """An instance of every bound class the walks call methods on, by class name."""
+    import cifs  # imported where used, as in _run_child (the parent process does not load the module)
+    return {
+        "Curve": samples.curve, "Surface": samples.surface, "Automaton": samples.automaton.copy(),
+        "TensorAutomaton": samples.tensor, "Bcifs": samples.system, "AdmissibleSpace": samples.space,
+        "Scheme": samples.scheme, "Camera": samples.camera, "Image": samples.image.copy(),
+        "ImageChannels": samples.image.copy().channels, "Mesh": samples.mesh, "Segments": samples.segments,
+        "Polygon": samples.polygon, "Bounds": cifs.render.Bounds(),
+        "ViewTransform": cifs.render.view_transform(samples.camera),
+        "PieceBounds": cifs.ifs.PieceBounds(samples.automaton), "AffineMap": samples.maps[0],
+    }
+
+
 def _signatures(obj, name):
     """Each overload as a list of (name, annotation, optional, keyword_only), from the docstring."""
     doc = obj.__doc__ or ""
@@ -277,15 +291,7 @@ def _run_child(submodule, scratch):
                         attempt(f"{display} {pname}={hname}",
                                 lambda: _call(fn, params, samples, {i: value}, cheap))
 
-    instances = {
-        "Curve": samples.curve, "Surface": samples.surface, "Automaton": samples.automaton.copy(),
-        "TensorAutomaton": samples.tensor, "Bcifs": samples.system, "AdmissibleSpace": samples.space,
-        "Scheme": samples.scheme, "Camera": samples.camera, "Image": samples.image.copy(),
-        "ImageChannels": samples.image.copy().channels, "Mesh": samples.mesh, "Segments": samples.segments,
-        "Polygon": samples.polygon, "Bounds": cifs.render.Bounds(),
-        "ViewTransform": cifs.render.view_transform(samples.camera),
-        "PieceBounds": cifs.ifs.PieceBounds(samples.automaton), "AffineMap": samples.maps[0],
-    }
+    instances = _instances(samples)
     for attr in sorted(vars(module)):
         obj = getattr(module, attr)
         if attr.startswith("_") or not callable(obj):
