@@ -10,7 +10,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -223,6 +222,8 @@ std::string insert(const InsertOptions& o) {
   if (o.dir != "u" && o.dir != "v") throw InvalidInput("--dir '" + o.dir + "': expected u or v");
   if (o.knots.empty() && !o.midpoints)
     throw InvalidInput("insert: give --knot U (repeatable) or --midpoints");
+  for (const double u : o.knots)
+    if (!std::isfinite(u)) throw InvalidInput("--knot: a knot is not a finite number");
   const io::Shape shape = read_shape(o.shape, o.select);
   if (const auto* c = std::get_if<nurbs::Curve>(&shape)) {
     if (o.dir != "u") throw InvalidInput("--dir v: a curve has one direction");
@@ -279,9 +280,7 @@ namespace {
 /// A JSON file whose object holds "polygon" (docs/formats.md, control polygons of the seeds).
 bool is_polygon_file(const std::filesystem::path& path) {
   if (path.extension() != ".json") return false;
-  std::ifstream in(path);
-  if (!in) return false;  // the shape reader names the problem
-  const json j = json::parse(in, nullptr, false);
+  const json j = json::parse(read_file(path), nullptr, false);
   return j.is_object() && j.contains("polygon");
 }
 
@@ -881,9 +880,7 @@ namespace {
 io::Experiment dimension_input(const DimensionOptions& o) {
   bool shape = o.input.extension() == ".obj";
   if (o.input.extension() == ".json") {
-    std::ifstream in(o.input);
-    if (!in) throw IoError(o.input.string() + ": cannot open");
-    const json j = json::parse(in, nullptr, false);
+    const json j = json::parse(read_file(o.input), nullptr, false);
     shape = j.is_object() &&
             (j.contains("curve") || j.contains("surface") || (j.size() == 1 && j.contains("shape")));
   }
@@ -1075,17 +1072,12 @@ std::string dimension(const DimensionOptions& o) {
                 : dimension_text(o, m, fallback, similarity, why_not);
 }
 
-std::string gallery(const std::filesystem::path& out, const std::filesystem::path& examples, bool quiet) {
-  // Every experiment of examples/experiments, in name order; each writes its own outputs.
-  std::vector<std::filesystem::path> files;
-  const std::filesystem::path folder = examples / "experiments";
-  if (!std::filesystem::is_directory(folder)) throw IoError(folder.string() + ": no such folder");
-  std::error_code ec;
-  std::filesystem::create_directories(out, ec);
-  if (ec) throw IoError(out.string() + ": cannot create the folder (" + ec.message() + ")");
-  for (const auto& entry : std::filesystem::directory_iterator(folder))
-    if (entry.path().extension() == ".json") files.push_back(entry.path());
-  std::sort(files.begin(), files.end());
+namespace {
+
+/// The gallery once its experiments are read and its folder made: every run, the schemes, the page.
+std::string gallery_run(const std::filesystem::path& out, const std::filesystem::path& examples,
+                        const std::vector<io::Experiment>& experiments,
+                        const std::vector<std::filesystem::path>& files, bool quiet) {
   std::string summary;
   std::vector<io::GallerySection> sections;
   experiment::RunOptions ro;
@@ -1103,7 +1095,7 @@ std::string gallery(const std::filesystem::path& out, const std::filesystem::pat
   };
   for (std::size_t i = 0; i < files.size(); ++i) {
     bar(i, files.size() + 1);
-    const io::Experiment e = io::read_experiment(files[i]);
+    const io::Experiment& e = experiments[i];
     experiment::RunReport report = experiment::run(e, ro);
     summary += report.summary;
     // What an output drops (a 3-D shape's SVG), said as `cifs render` says it, naming the experiment.
@@ -1125,6 +1117,37 @@ std::string gallery(const std::filesystem::path& out, const std::filesystem::pat
   summary += "gallery: wrote " + (out / "index.html").string() + "\n";
   bar(files.size() + 1, files.size() + 1);
   return summary;
+}
+
+}  // namespace
+
+std::string gallery(const std::filesystem::path& out, const std::filesystem::path& examples, bool quiet) {
+  // Every experiment of examples/experiments, in name order; each writes its own outputs.
+  std::vector<std::filesystem::path> files;
+  const std::filesystem::path folder = examples / "experiments";
+  std::error_code ec;
+  if (!std::filesystem::is_directory(folder, ec)) throw IoError(folder.string() + ": no such folder");
+  for (std::filesystem::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec))
+    if (it->path().extension() == ".json") files.push_back(it->path());
+  if (ec) throw IoError(folder.string() + ": cannot list the folder (" + ec.message() + ")");
+  std::sort(files.begin(), files.end());
+  // Every experiment is read, and so checked, before anything is written (as render does): an invalid
+  // later file left the outputs of the earlier ones.
+  std::vector<io::Experiment> experiments;
+  for (const auto& file : files) experiments.push_back(io::read_experiment(file));
+  // The folders made here are removed again, when still empty, if the gallery fails.
+  std::vector<std::filesystem::path> made;  // deepest first
+  if (!std::filesystem::exists(out / "schemes", ec)) made.push_back(out / "schemes");
+  for (std::filesystem::path up = out; !up.empty() && !std::filesystem::exists(up, ec); up = up.parent_path())
+    made.push_back(up);
+  std::filesystem::create_directories(out, ec);
+  if (ec) throw IoError(out.string() + ": cannot create the folder (" + ec.message() + ")");
+  try {
+    return gallery_run(out, examples, experiments, files, quiet);
+  } catch (...) {
+    for (const auto& f : made) std::filesystem::remove(f, ec);  // only when empty
+    throw;
+  }
 }
 
 }  // namespace cifs::cli

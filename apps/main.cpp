@@ -9,10 +9,12 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <new>
 #include <sstream>
 #include <system_error>
 
 #include "cifs/errors.hpp"
+#include "cifs/files.hpp"
 #include "cifs/render/progress.hpp"
 #include "commands.hpp"
 #include "scheme_command.hpp"
@@ -30,6 +32,13 @@ const CLI::Validator seed_text(
       return {};
     },
     "SEED");
+
+/// An output option given an empty name (`-o ''`) wrote to standard output as if it were left out.
+const CLI::Validator output_name(
+    [](std::string& text) -> std::string {
+      return text.empty() ? "an empty file name; name a file, or leave the option out" : std::string();
+    },
+    "FILE");
 
 /// `--index N` and `--ignore-trim` of the commands that read a shape file.
 void add_shape_selection(CLI::App* command, cifs::cli::ShapeSelection& select) {
@@ -107,8 +116,10 @@ void add_eval(CLI::App& app, Commands& c) {
       ->allow_extra_args(false);
   eval_cmd->add_option("--samples", c.ev.samples,
                        "N parameters evenly spaced over the domain (surfaces: N×N grid)");
-  eval_cmd->add_option("-o,--output", c.ev.output,
-                       "Write the points to a file as they are computed: .json, .npy, .ply or .obj");
+  eval_cmd
+      ->add_option("-o,--output", c.ev.output,
+                   "Write the points to a file as they are computed: .json, .npy, .ply or .obj")
+      ->check(output_name);
   eval_cmd->add_flag("--quiet", c.ev.quiet, "No progress bar (-o)");
   add_shape_selection(eval_cmd, c.ev.select);
   eval_cmd->callback([&] { c.result = cli::eval(c.ev); });
@@ -181,9 +192,11 @@ void add_attractor(CLI::App& app, Commands& c) {
   attractor_cmd->add_option(
       "--format", c.at.format,
       "json (default), npy, ply, obj or svg (surfaces at a depth: ply and obj the mesh)");
-  attractor_cmd->add_option(
-      "-o,--output", c.at.output,
-      "Output file, its format from the extension (.json, .npy, .ply, .obj: written as computed; .svg)");
+  attractor_cmd
+      ->add_option(
+          "-o,--output", c.at.output,
+          "Output file, its format from the extension (.json, .npy, .ply, .obj: written as computed; .svg)")
+      ->check(output_name);
   attractor_cmd->add_flag("--quiet", c.at.quiet, "No progress on the terminal");
   add_shape_selection(attractor_cmd, c.at.select);
   attractor_cmd->callback([&] { c.result = cli::attractor(c.at); });
@@ -244,8 +257,10 @@ void add_render(CLI::App& app, Commands& c) {
   render_cmd
       ->add_option("experiment", c.re.experiments, "Experiment files (docs/experiments.md), run in order")
       ->required();
-  render_cmd->add_option("-o,--output", c.re.exr, "OpenEXR image (default: the file's outputs.exr)");
-  render_cmd->add_option("--png", c.re.png, "PNG preview (default: the file's outputs.png)");
+  render_cmd->add_option("-o,--output", c.re.exr, "OpenEXR image (default: the file's outputs.exr)")
+      ->check(output_name);
+  render_cmd->add_option("--png", c.re.png, "PNG preview (default: the file's outputs.png)")
+      ->check(output_name);
   render_cmd->add_option(
       "--out-dir", c.re.out_dir,
       "Folder of the file's other outputs (default: the folder of -o, else the current one)");
@@ -269,7 +284,8 @@ void add_subdivide(CLI::App& app, Commands& c) {
   subdivide_cmd->add_flag("--factored", c.su.factored,
                           "Linear subdivision then averaging (catmull-clark on quads, loop); same result");
   subdivide_cmd->add_flag("--quiet", c.su.quiet, "No progress bar");
-  subdivide_cmd->add_option("-o,--output", c.su.output, "Output mesh (.obj or .ply; default: OBJ on stdout)");
+  subdivide_cmd->add_option("-o,--output", c.su.output, "Output mesh (.obj or .ply; default: OBJ on stdout)")
+      ->check(output_name);
   subdivide_cmd->callback([&] { c.result = cli::subdivide(c.su); });
 }
 
@@ -283,7 +299,8 @@ void add_limit(CLI::App& app, Commands& c) {
   limit_cmd->add_option("--boundary", c.li.boundary,
                         "Boundary corners (one face): edge (smoothed, default) or corner (kept)");
   limit_cmd->add_flag("--normals", c.li.normals, "Write unit limit normals (closed meshes)");
-  limit_cmd->add_option("-o,--output", c.li.output, "Output mesh (.obj or .ply; default: OBJ on stdout)");
+  limit_cmd->add_option("-o,--output", c.li.output, "Output mesh (.obj or .ply; default: OBJ on stdout)")
+      ->check(output_name);
   add_quiet(limit_cmd, c.quiet);
   limit_cmd->callback([&] {
     const cifs::render::Stage stage("limit", c.quiet);
@@ -336,6 +353,8 @@ int run(int argc, char** argv, std::string& result) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "cifs 0.1.0");
   Commands c(result);
+  // Every file the command reads is an input no output of it may replace (cifs/files.hpp).
+  const cifs::RunInputs inputs;
   add_eval(app, c);
   add_insert(app, c);
   add_info(app, c);
@@ -373,6 +392,10 @@ int run(int argc, char** argv, std::string& result) {
     return 1;
   } catch (const CLI::ParseError& e) {
     std::cerr << "cifs: " << e.what() << " (see cifs --help)\n";
+    return 2;
+  } catch (const std::bad_alloc&) {  // said "cifs: std::bad_alloc" under a memory limit
+    std::cerr << "cifs: out of memory: the system refused an allocation; ask for less (a lower --depth, "
+                 "fewer points or samples, a smaller image)\n";
     return 2;
   } catch (const std::exception& e) {
     std::string message = e.what();

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
 // cifs CLI — polygon meshes: `cifs subdivide` and `cifs info` on an OBJ/PLY mesh.
-#include <fstream>
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numeric>
 #include <optional>
+#include <sstream>
 
 #include "cifs/errors.hpp"
 #include "cifs/files.hpp"
@@ -62,7 +62,7 @@ bool is_polygon_mesh_file(const std::filesystem::path& path) {
   if (ext == ".ply") return true;
   if (ext != ".obj") return false;
   // An OBJ is a polygon mesh when it has faces and no free-form geometry.
-  std::ifstream in(path);
+  std::istringstream in(read_file(path));
   bool faces = false;
   for (std::string line; std::getline(in, line);) {
     const auto start = line.find_first_not_of(" \t");

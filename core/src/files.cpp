@@ -14,10 +14,10 @@
 #include <csignal>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
+#include <memory>
 #include <mutex>
+#include <optional>
 #include <set>
-#include <sstream>
 #include <system_error>
 
 #include "cifs/errors.hpp"
@@ -226,17 +226,92 @@ bool exists_at(const fs::path& p) {
   return fs::exists(fs::status(p.empty() ? fs::path(".") : p, ec));
 }
 
+// ---- Inputs --------------------------------------------------------------------------------------
+
+/// The files read while a RunInputs lives (device and inode, and the path as read for messages).
+struct ReadInput {
+  dev_t device;
+  ino_t inode;
+  fs::path path;
+};
+std::mutex inputs_mutex;
+int recording = 0;  // RunInputs alive
+std::vector<ReadInput> read_inputs;
+
+void record_input(const struct stat& st, const fs::path& path) {
+  const std::lock_guard lock(inputs_mutex);
+  if (recording == 0) return;
+  for (const ReadInput& r : read_inputs)
+    if (r.device == st.st_dev && r.inode == st.st_ino) return;
+  read_inputs.push_back({st.st_dev, st.st_ino, path});
+}
+
+/// The recorded input that `st` is, if any.
+std::optional<fs::path> recorded_input(const struct stat& st) {
+  const std::lock_guard lock(inputs_mutex);
+  for (const ReadInput& r : read_inputs)
+    if (r.device == st.st_dev && r.inode == st.st_ino) return r.path;
+  return std::nullopt;
+}
+
+/// Half the physical memory: a file above it could not be held with what its parser makes of it.
+std::uint64_t largest_input() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
+  if (pages <= 0 || page <= 0) return std::uint64_t{1} << 34;
+  return static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) / 2;
+}
+
+/// "19.3", "0.00412", "79200": gigabytes with 3 significant digits, no exponent.
+std::string gigabytes(std::uint64_t bytes) {
+  const double x = static_cast<double>(bytes) / 1e9;
+  return x < 100 ? number_text(x, 3) : fixed_text(x, 0);
+}
+
 }  // namespace
 
 std::string read_file(const fs::path& path) {
+  const std::string name = path.string();
+  if (path.empty()) throw IoError("empty input path");
+  // O_NONBLOCK: opening a FIFO waits for a writer, possibly forever; it is refused below instead.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) throw IoError(name + ": cannot open (" + std::strerror(errno) + ")");
+  const std::unique_ptr<const int, void (*)(const int*)> closer(&fd, [](const int* f) { ::close(*f); });
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) throw IoError(name + ": cannot read (" + std::strerror(errno) + ")");
+  // A device or a FIFO has no end (/dev/zero, /dev/urandom) or none yet: only regular files are read.
+  if (S_ISDIR(st.st_mode)) throw IoError(name + ": is a directory");
   std::error_code ec;
-  if (fs::is_directory(path, ec)) throw IoError(path.string() + ": is a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(path.string() + ": cannot open (" + std::strerror(errno) + ")");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw IoError(path.string() + ": read error");
-  return text.str();
+  if (!S_ISREG(st.st_mode))
+    throw IoError(name + ": is " + kind_of(fs::status(path, ec).type()) + "; only regular files are read");
+  const auto size = static_cast<std::uint64_t>(st.st_size);
+  if (const std::uint64_t limit = largest_input(); size > limit)
+    throw IoError(name + ": the file holds " + gigabytes(size) + " GB, more than the " + gigabytes(limit) +
+                  " GB (half the memory) an input may hold");
+  record_input(st, path);
+  std::string text;
+  text.reserve(static_cast<std::size_t>(size));
+  std::array<char, 1 << 16> chunk{};
+  for (;;) {
+    const ssize_t n = ::read(fd, chunk.data(), chunk.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw IoError(name + ": read error (" + std::strerror(errno) + ")");
+    if (n == 0) break;
+    text.append(chunk.data(), static_cast<std::size_t>(n));
+    // A file that grows while it is read (a log being written) is held to the same limit.
+    if (text.size() > size + largest_input() / 2)
+      throw IoError(name + ": the file grows while it is read; read a file that is complete");
+  }
+  return text;
+}
+
+RunInputs::RunInputs() {
+  const std::lock_guard lock(inputs_mutex);
+  ++recording;
+}
+
+RunInputs::~RunInputs() {
+  const std::lock_guard lock(inputs_mutex);
+  if (--recording == 0) read_inputs.clear();
 }
 
 AtomicFile::AtomicFile(fs::path target, const OutputOptions& options) : target_(std::move(target)) {
@@ -252,6 +327,10 @@ AtomicFile::AtomicFile(fs::path target, const OutputOptions& options) : target_(
     for (const fs::path& input : options.inputs)
       if (fs::equivalent(destination_, input, ec))
         throw IoError(name + ": is the input " + input.string() + "; choose another output file");
+    struct stat st {};
+    if (::stat(destination_.c_str(), &st) == 0)
+      if (const std::optional<fs::path> input = recorded_input(st))
+        throw IoError(name + ": is the input " + input->string() + "; choose another output file");
     mode_ = static_cast<int>(status.permissions() & fs::perms::mask);
   }
 
@@ -409,16 +488,6 @@ void write_file_atomically(const fs::path& path, std::string_view bytes, const O
   file.write(bytes);
   file.commit();
 }
-
-namespace {
-
-/// "19.3", "0.00412", "79200": gigabytes with 3 significant digits, no exponent.
-std::string gigabytes(std::uint64_t bytes) {
-  const double x = static_cast<double>(bytes) / 1e9;
-  return x < 100 ? number_text(x, 3) : fixed_text(x, 0);
-}
-
-}  // namespace
 
 void check_disk_space(const std::filesystem::path& target, std::uint64_t bytes, bool about,
                       std::uint64_t written) {

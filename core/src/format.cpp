@@ -61,4 +61,11 @@ std::string fixed_text(double x, int decimals) {
   return out;
 }
 
+std::string excerpt(std::string_view text, std::size_t max) {
+  if (text.size() <= max) return std::string(text);
+  std::size_t cut = max / 2;
+  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0U) == 0x80U) --cut;  // continuation byte
+  return std::string(text.substr(0, cut)) + "… (" + std::to_string(text.size()) + " characters)";
+}
+
 }  // namespace cifs

@@ -156,38 +156,55 @@ std::vector<int> find_twins(std::span<const int> face_offsets, std::span<const i
       target[static_cast<std::size_t>(h)] = face_vertices[static_cast<std::size_t>(h + 1 < e ? h + 1 : b)];
     }
   }
-  // Half-edges grouped by origin (CSR), in corner order.
-  std::vector<int> out_offsets(V + 1, 0), out_list(H);
-  for (std::size_t h = 0; h < H; ++h) ++out_offsets[static_cast<std::size_t>(face_vertices[h]) + 1];
-  for (std::size_t v = 0; v < V; ++v) out_offsets[v + 1] += out_offsets[v];
-  {
-    std::vector<int> fill(out_offsets.begin(), out_offsets.end() - 1);
-    for (std::size_t h = 0; h < H; ++h)
-      out_list[static_cast<std::size_t>(fill[static_cast<std::size_t>(face_vertices[h])]++)] =
-          static_cast<int>(h);
-  }
+  // Half-edges grouped by origin and, within an origin, by target, each group in corner order: two
+  // stable counting sorts, so that the time is linear in the mesh whatever the valences (a search
+  // of the other half-edges at each vertex was quadratic in its valence: 41 s for one vertex of
+  // valence 100,000).
+  const auto counting_sort = [&](const std::vector<int>& order, const auto& key) {
+    std::vector<int> offsets(V + 1, 0), sorted(H);
+    for (std::size_t h = 0; h < H; ++h) ++offsets[static_cast<std::size_t>(key(h)) + 1];
+    for (std::size_t v = 0; v < V; ++v) offsets[v + 1] += offsets[v];
+    for (const int h : order)
+      sorted[static_cast<std::size_t>(
+          offsets[static_cast<std::size_t>(key(static_cast<std::size_t>(h)))]++)] = h;
+    return std::pair{std::move(sorted), std::move(offsets)};
+  };
+  std::vector<int> corner_order(H);
+  for (std::size_t h = 0; h < H; ++h) corner_order[h] = static_cast<int>(h);
+  const auto by_target = counting_sort(corner_order, [&](std::size_t h) { return target[h]; }).first;
+  const auto [out_list, out_end] = counting_sort(by_target, [&](std::size_t h) { return face_vertices[h]; });
+  // out_end[v] is now where v's half-edges end (the counting sort advanced each start to its end).
+  const auto begin_of = [&](std::size_t v) { return v == 0 ? 0 : out_end[v - 1]; };
+  const auto target_of = [&](int h) { return target[static_cast<std::size_t>(h)]; };
+
   std::vector<int> twin(H, -1);
   for (std::size_t v = 0; v < V; ++v) {
-    for (int k = out_offsets[v]; k < out_offsets[v + 1]; ++k) {
-      const int h = out_list[static_cast<std::size_t>(k)];
-      const int b = target[static_cast<std::size_t>(h)];
-      for (int j = out_offsets[v]; j < k; ++j) {
-        const int g = out_list[static_cast<std::size_t>(j)];
-        if (target[static_cast<std::size_t>(g)] == b) {
-          // Two faces run along v → b in the same direction: either a third face on the edge or
-          // inconsistent orientation.
-          throw InvalidInput(who + ": faces " + std::to_string(face_of[static_cast<std::size_t>(g)]) +
-                             " and " + std::to_string(face_of[static_cast<std::size_t>(h)]) +
-                             " both use edge " + pair_text(static_cast<int>(v), b) +
-                             " in the same direction (inconsistent orientation, or an edge of more than two "
-                             "faces: not an oriented manifold)");
-        }
-      }
-      for (int j = out_offsets[static_cast<std::size_t>(b)]; j < out_offsets[static_cast<std::size_t>(b) + 1];
-           ++j) {
-        const int g = out_list[static_cast<std::size_t>(j)];
-        if (target[static_cast<std::size_t>(g)] == static_cast<int>(v)) twin[static_cast<std::size_t>(h)] = g;
-      }
+    const auto b = out_list.begin() + begin_of(v), e = out_list.begin() + out_end[v];
+    // Two faces that run along v → w in the same direction: either a third face on the edge or
+    // inconsistent orientation. Named as the search in corner order found them: the earliest
+    // half-edge that repeats an earlier one's target, and the first of those.
+    const std::vector<int>::const_iterator none = e;
+    auto repeat = none;
+    for (auto it = b; it + 1 < e; ++it)
+      if (target_of(*it) == target_of(*(it + 1)) && (repeat == none || *(it + 1) < *repeat)) repeat = it + 1;
+    if (repeat != none) {
+      auto g = repeat;
+      while (g > b && target_of(*(g - 1)) == target_of(*repeat)) --g;
+      const int w = target_of(*repeat);
+      throw InvalidInput(who + ": faces " + std::to_string(face_of[static_cast<std::size_t>(*g)]) + " and " +
+                         std::to_string(face_of[static_cast<std::size_t>(*repeat)]) + " both use edge " +
+                         pair_text(static_cast<int>(v), w) +
+                         " in the same direction (inconsistent orientation, or an edge of more than two "
+                         "faces: not an oriented manifold)");
+    }
+    for (auto it = b; it < e; ++it) {
+      // The half-edge w → v, if any: a binary search among w's half-edges, sorted by target.
+      const auto w = static_cast<std::size_t>(target_of(*it));
+      const auto wb = out_list.begin() + begin_of(w), we = out_list.begin() + out_end[w];
+      const auto found = std::lower_bound(wb, we, static_cast<int>(v),
+                                          [&](int g, int value) { return target_of(g) < value; });
+      if (found != we && target_of(*found) == static_cast<int>(v))
+        twin[static_cast<std::size_t>(*it)] = *found;
     }
   }
   return twin;

@@ -200,8 +200,10 @@ ToleranceEstimate estimate_tolerance_leaves(const Automaton& automaton, std::spa
   for (std::size_t i = 0; i < nets.size(); ++i)
     top = std::max(top, measure(automaton.initial[i].state, nets[i], options.epsilon).size);
   if (!std::isfinite(top)) top = 4 * nets_diameter(nets, options.homogeneous);
+  // log2(top) − log2(ε), not log2(top / ε): the quotient overflows for a subnormal ε (3e-308, and
+  // casting its infinite log to int was undefined: the ladder was skipped).
   int k = std::isfinite(top) && top > options.epsilon
-              ? std::min(static_cast<int>(std::ceil(std::log2(top / options.epsilon))) + 1, 2100)
+              ? std::min(static_cast<int>(std::ceil(std::log2(top) - std::log2(options.epsilon))) + 1, 2100)
               : 0;
   // Halve the tolerance while the count stays within the budget; the last three counts give the
   // growth per halving (2^dimension of the pieces: 2 for curves, 4 for surfaces).
@@ -258,6 +260,12 @@ Counts node_counts(const Automaton& automaton, int depth, int keep) {
       std::size_t c = 0;
       for (auto [b, e] = out_edges(s, g); b != e; ++b) c = add_sat(c, cur[target(*b, g)]);
       nxt[s] = c;
+    }
+    // Saturated (a knot automaton by depth 64) or stationary: every deeper level is the same, so a
+    // depth of 10^9 is counted, and refused, at once.
+    if (std::ranges::equal(cur, nxt)) {
+      while (static_cast<int>(out.low.size()) <= std::min(keep, depth)) out.low.push_back(cur);
+      break;
     }
     std::swap(cur, nxt);
   }
@@ -360,6 +368,11 @@ std::vector<std::vector<char>> states_at_depths(const Automaton& automaton, int 
     for (StateId s = 0; s < n; ++s)
       if (cur[s])
         for (auto [b, e] = out_edges(s, g); b != e; ++b) nxt[target(*b, g)] = 1;
+    // A repeated set repeats for ever (as node_counts stops): depth 10^9 is not walked level by level.
+    if (nxt == cur) {
+      while (static_cast<int>(out.size()) < to - from + 1) out.push_back(cur);
+      break;
+    }
     std::swap(cur, nxt);
   }
   return out;
@@ -464,7 +477,7 @@ void emit_into(const Automaton& automaton, std::span<const Points> nets, const S
 
 /// "depth 20 gives 17825793 points of 3 coordinates (0.4 GiB), more than the limit of 1 GiB (…)".
 [[noreturn]] void refuse_output(int depth, std::size_t count, Eigen::Index cols, std::size_t bytes,
-                                std::size_t max_bytes, std::string_view limit_name) {
+                                std::size_t max_bytes) {
   const auto gib = [](std::size_t b) {
     return static_cast<double>(b) / static_cast<double>(std::size_t{1} << 30);
   };
@@ -474,8 +487,7 @@ void emit_into(const Automaton& automaton, std::span<const Points> nets, const S
     msg << "more points than fit in size_t";
   else
     msg << count << " points of " << cols << " coordinates (" << gib(bytes) << " GiB)";
-  msg << ", more than the limit of " << gib(max_bytes) << " GiB (" << limit_name
-      << "); lower the depth or raise the limit";
+  msg << ", more than the limit of " << gib(max_bytes) << " GiB held in memory; lower the depth";
   throw InvalidInput(msg.str());
 }
 
@@ -520,8 +532,7 @@ void attractor_points(const Automaton& automaton, std::span<const Points> nets, 
   const StencilTable t =
       build_table(automaton, depth, options.closed, options.max_table_depth, [&](std::size_t count) {
         const std::size_t bytes = output_bytes(count, cols);
-        if (bytes > options.max_bytes)
-          refuse_output(depth, count, cols, bytes, options.max_bytes, "PointsOptions::max_bytes");
+        if (bytes > options.max_bytes) refuse_output(depth, count, cols, bytes, options.max_bytes);
         return std::min(mul_sat(count, static_cast<std::size_t>(cols)) / 2, kTableBudget);
       });
   emit_into(automaton, nets, t, out);
@@ -595,7 +606,7 @@ void apply_table(const StencilTable& table, std::span<const Points> nets, Points
   check_table(table, nets);
   const auto cols = nets[0].cols();
   const std::size_t bytes = output_bytes(table.points, cols);
-  if (bytes > max_bytes) refuse_output(table.depth, table.points, cols, bytes, max_bytes, "max_bytes");
+  if (bytes > max_bytes) refuse_output(table.depth, table.points, cols, bytes, max_bytes);
   emit_into(table.automaton, nets, table, out);
 }
 

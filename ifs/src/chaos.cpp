@@ -56,7 +56,7 @@ ChaosResult chaos_game(const Automaton& automaton, std::span<const Points> nets,
   if (options.samples > options.max_bytes / per_sample)
     throw InvalidInput(std::to_string(options.samples) + " chaos-game samples of " +
                        std::to_string(per_sample) + " bytes exceed the limit of " +
-                       std::to_string(options.max_bytes) + " bytes (max_bytes); ask for fewer samples");
+                       std::to_string(options.max_bytes) + " bytes held in memory; ask for fewer samples");
   result.points.resize(static_cast<Eigen::Index>(options.samples), cols);
   advise_huge_pages(result.points.data(), static_cast<std::size_t>(result.points.size()) * sizeof(double));
   if (options.record_address) result.address.resize(options.samples);

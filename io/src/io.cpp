@@ -4,6 +4,7 @@
 #include "cifs/io/io.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <span>
 
 #include "cifs/errors.hpp"
@@ -165,8 +166,28 @@ std::string listing(std::span<const Format> formats, bool write, bool extensions
   return out;
 }
 
+/// The numbers of what is written, checked before its first byte (detail::check_finite). Shapes,
+/// automata and BC-IFS files are checked when they are made; points, polygons, meshes and segments
+/// are computed results.
+template <class T>
+void check_numbers(const T&) {}
+void check_numbers(const PointSet& p) {
+  detail::check_finite(p.points, "the points");
+}
+void check_numbers(const Polygon& p) {
+  detail::check_finite(p.points, "the polygon");
+}
+void check_numbers(const Mesh& m) {
+  detail::check_finite(m.vertices, "the mesh's vertices");
+  detail::check_finite(m.normals, "the mesh's normals");
+}
+void check_numbers(const Segments& s) {
+  detail::check_finite(s.vertices, "the segments' vertices");
+}
+
 template <class T>
 void encode_as(const T& thing, Content content, std::string_view format, ByteSink& out) {
+  check_numbers(thing);
   for (const Codec<T>& c : table<T>())
     if (c.write && c.name == format) return c.write(thing, out);
   writable_format(content, format, "format");  // throws, naming the formats
@@ -271,6 +292,17 @@ Format format_of(const std::filesystem::path& path, Content content) {
     if (f.write && f.extension == path.extension().string()) return f;
   throw InvalidInput(path.string() + ": " + std::string(content_name(content)) + " is written as " +
                      listing(all, true, true));
+}
+
+void detail::check_finite(const Eigen::Ref<const Points>& rows, std::string_view what, std::uint64_t first) {
+  if (rows.allFinite()) return;
+  for (Eigen::Index r = 0; r < rows.rows(); ++r)
+    for (Eigen::Index c = 0; c < rows.cols(); ++c)
+      if (!std::isfinite(rows(r, c)))
+        throw InvalidInput(
+            std::string(what) + ": point " + std::to_string(first + static_cast<std::uint64_t>(r)) +
+            " coordinate " + std::to_string(c) +
+            " is not a finite number (an overflow or 0/0 in the computation); nothing is written");
 }
 
 const detail::PointsFormat& detail::points_format(std::string_view name, std::string_view who) {

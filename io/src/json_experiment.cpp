@@ -451,8 +451,12 @@ Experiment parse_experiment(std::string_view text, std::string_view where,
   if (doc.contains("automaton")) {
     e.automaton = base / r.string(doc["automaton"], "automaton");
     e.inputs.push_back(e.automaton);
-    if (!std::filesystem::is_regular_file(e.automaton))
-      r.fail("automaton", "no such file: " + e.automaton.string());
+    // The error_code form: a name longer than the file system allows threw filesystem_error.
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(e.automaton, ec))
+      r.fail("automaton", ec && ec != std::errc::no_such_file_or_directory
+                              ? "cannot read " + e.automaton.string() + " (" + ec.message() + ")"
+                              : "no such file: " + e.automaton.string());
   }
   if (doc.contains("ifs")) e.ifs = read_ifs(r, doc["ifs"]);
   if (doc.contains("mesh")) {

@@ -37,6 +37,7 @@ void PointsWriter::write(const Eigen::Ref<const Points>& rows) {
   if (static_cast<std::uint64_t>(rows.rows()) > count_ - written_)
     throw InvalidInput(std::string(name_) + ": more than the " + std::to_string(count_) +
                        " points of the header");
+  detail::check_finite(rows, "the points", written_);
   for (Eigen::Index r = 0; r < rows.rows(); r += kRowsPerPiece) {
     const Eigen::Index n = std::min(kRowsPerPiece, rows.rows() - r);
     format_->rows(out_.text, rows.middleRows(r, n), written_);

@@ -31,6 +31,12 @@ extern const PointsFormat kNpyPoints;   // npy.cpp
 extern const PointsFormat kPlyPoints;   // ply.cpp
 extern const PointsFormat kObjPoints;   // obj.cpp
 
+/// No writer emits a number that is not finite: JSON has none (`nan` made the file invalid), and in
+/// OBJ, PLY, NPY and SVG it passes a wrong answer on. InvalidInput naming `what`, the row (counted from
+/// `first`) and the coordinate of the first one: "the points: point 3 coordinate 0 is not a finite
+/// number (an overflow or 0/0 in the computation); nothing is written" (io.cpp).
+void check_finite(const Eigen::Ref<const Points>& rows, std::string_view what, std::uint64_t first = 0);
+
 /// The table's point-set format called `name`: InvalidInput "`who` 'name': expected json, npy, ply or
 /// obj" otherwise (io.cpp).
 const PointsFormat& points_format(std::string_view name, std::string_view who);

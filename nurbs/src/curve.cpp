@@ -87,7 +87,12 @@ void validate(const Curve& c) {
     if (!(w > 0) || !std::isfinite(w))
       detail::fail("weights[", i, "]: weight ", w, " is not a positive finite number");
     for (Eigen::Index j = 0; j < c.P.cols(); ++j)
-      if (!std::isfinite(c.P(i, j))) detail::fail("points[", i, "][", j, "]: coordinate is not finite");
+      if (!std::isfinite(c.P(i, j)))
+        detail::fail("points[", i, "][", j, "]: ",
+                     c.rational && j + 1 < c.P.cols()
+                         ? "the coordinate times its weight (w·x) is not finite; "
+                           "lower the weights (a common factor leaves the curve)"
+                         : "coordinate is not finite");
   }
   if (c.closed) {
     const Eigen::Index m = c.P.rows() - c.degree;

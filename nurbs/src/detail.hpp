@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <span>
 #include <sstream>
 #include <string_view>
@@ -171,9 +172,16 @@ inline void basis(const double* t, int p, int span, double u, double* N) noexcep
     right[j] = t[span + j] - u;
     double saved = 0.0;
     for (int r = 0; r < j; ++r) {
-      const double temp = N[r] / (right[r + 1] + left[j - r]);
-      N[r] = saved + right[r + 1] * temp;
-      saved = left[j - r] * temp;
+      const double den = right[r + 1] + left[j - r];
+      if (den >= std::numeric_limits<double>::min()) {
+        const double temp = N[r] / den;
+        N[r] = saved + right[r + 1] * temp;
+        saved = left[j - r] * temp;
+      } else {  // a subnormal knot interval: N[r] / den overflowed (inf · 0 = NaN); the ratios lie in [0, 1]
+        const double n = N[r];
+        N[r] = saved + right[r + 1] / den * n;
+        saved = left[j - r] / den * n;
+      }
     }
     N[j] = saved;
   }

@@ -373,6 +373,8 @@ Curve refine(const Curve& c, std::span<const double> new_knots) {
 
 Curve insert_knot(const Curve& c, double u, int times) {
   if (times < 1) detail::fail("the knot count times = ", times, " must be at least 1");
+  // Before the copies are made: times = 10^9 allocated 8 GB to be refused by refine.
+  if (times > c.degree) detail::fail("knot ", u, " would reach multiplicity ", times, " > degree ", c.degree);
   const std::vector<double> X(static_cast<std::size_t>(times), u);
   return refine(c, X);
 }

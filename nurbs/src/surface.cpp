@@ -56,7 +56,12 @@ void validate(const Surface& s) {
     if (!(w > 0) || !std::isfinite(w))
       detail::fail("weights[", i, "][", j, "]: weight ", w, " is not a positive finite number");
     for (Eigen::Index k = 0; k < s.P.cols(); ++k)
-      if (!std::isfinite(s.P(r, k))) detail::fail("points[", i, "][", j, "]: coordinate is not finite");
+      if (!std::isfinite(s.P(r, k)))
+        detail::fail("points[", i, "][", j, "]: ",
+                     s.rational && k + 1 < s.P.cols()
+                         ? "the coordinate times its weight (w·x) is not finite; "
+                           "lower the weights (a common factor leaves the surface)"
+                         : "coordinate is not finite");
   }
 }
 
@@ -320,6 +325,9 @@ Surface refine(const Surface& s, Direction dir, std::span<const double> new_knot
 
 Surface insert_knot(const Surface& s, Direction dir, double t, int times) {
   if (times < 1) detail::fail("the knot count times = ", times, " must be at least 1");
+  // Before the copies are made (times = 10^9: 8 GB), as refine would refuse them.
+  if (const int degree = s.degree[static_cast<int>(dir)]; times > degree)
+    detail::fail("knot ", t, " would reach multiplicity ", times, " > degree ", degree);
   const std::vector<double> X(static_cast<std::size_t>(times), t);
   return refine(s, dir, X);
 }

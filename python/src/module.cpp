@@ -1,5 +1,9 @@
 // SPDX-License-Identifier: MIT
 // cifs Python bindings — the extension module `cifs._cifs`: error types and submodules.
+#include <exception>
+#include <filesystem>
+#include <new>
+
 #include "bindings.hpp"
 #include "cifs/errors.hpp"
 
@@ -11,7 +15,22 @@ PYBIND11_MODULE(_cifs, m) {
       "cifs — NURBS curves and surfaces and subdivision schemes as controlled iterated function systems.";
   m.attr("__version__") = CIFS_VERSION;
   py::register_exception<cifs::InvalidInput>(m, "InvalidInput", PyExc_ValueError);
-  py::register_exception<cifs::IoError>(m, "IoError", PyExc_OSError);
+  static const py::exception<cifs::IoError> io_error =
+      py::register_exception<cifs::IoError>(m, "IoError", PyExc_OSError);
+  // A refused allocation (the machine's memory, a ulimit) said "MemoryError: std::bad_alloc"; a
+  // file-system error that escaped the readers' own checks, a bare RuntimeError.
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const std::filesystem::filesystem_error& e) {
+      const std::string path = e.path1().string();
+      io_error(((path.empty() ? std::string() : path + ": ") + e.code().message()).c_str());
+    } catch (const std::bad_alloc&) {
+      PyErr_SetString(PyExc_MemoryError,
+                      "out of memory: the system refused an allocation; ask for less (a lower depth, fewer "
+                      "points or samples, a smaller image)");
+    }
+  });
 
   // Order: a submodule's types are registered before the submodules whose signatures use them.
   auto nurbs = m.def_submodule("nurbs",

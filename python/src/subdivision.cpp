@@ -69,6 +69,29 @@ struct type_caster<sd::Rational> {
   }
   static sd::Rational ratio(handle p, handle q) { return sd::Rational(integer(p), integer(q)); }
 };
+
+// A mask (list of Rationals): its length is checked before any coefficient is converted, so that
+// np.zeros(10**7) is refused at once (each conversion costs a microsecond or more: 22 s), and an
+// array of several dimensions is named as such instead of failing on its rows.
+template <>
+struct type_caster<sd::Polynomial> : list_caster<sd::Polynomial, sd::Rational> {
+  bool load(handle src, bool convert) {
+    if (src && hasattr(src, "ndim") && hasattr(src, "shape")) {
+      const auto ndim = src.attr("ndim").cast<ssize_t>();
+      if (ndim != 1)
+        throw cifs::InvalidInput("mask: an array of " + std::to_string(ndim) +
+                                 " dimensions; give the coefficients as a list or a 1-D array");
+    }
+    if (src && PySequence_Check(src.ptr()) && !PyUnicode_Check(src.ptr()) && !PyBytes_Check(src.ptr())) {
+      const Py_ssize_t n = PySequence_Size(src.ptr());
+      if (n < 0) throw error_already_set();
+      if (n > sd::kMaxMaskSize)
+        throw cifs::InvalidInput("mask: " + std::to_string(n) + " coefficients exceed the limit of " +
+                                 std::to_string(sd::kMaxMaskSize));
+    }
+    return list_caster<sd::Polynomial, sd::Rational>::load(src, convert);
+  }
+};
 }  // namespace pybind11::detail
 
 namespace cifs::python {

@@ -514,7 +514,7 @@ Mesh triangle_mesh(const SurfaceAutomaton& surface, int depth, const ifs::MeshOp
     throw InvalidInput("loop limit surface mesh: depth " + std::to_string(depth) + " on " +
                        std::to_string(faces) + " faces gives " + std::to_string(cells) +
                        " triangles, more than the limit of " + std::to_string(options.max_bytes >> 20) +
-                       " MiB (MeshOptions::max_bytes); lower the depth");
+                       " MiB held in memory; lower the depth");
   std::array<std::vector<Eigen::RowVectorXd>, 3> fixed;
   for (std::size_t c = 0; c < 3; ++c)
     fixed[c] = ifs::repeated_child_functionals(surface.automaton, static_cast<int>(c));

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cifs/errors.hpp"
+#include "cifs/format.hpp"
 
 namespace cifs::subdivision {
 namespace {
@@ -298,10 +299,19 @@ void refine_closed(const Scheme& scheme, const Points& P, Points& out) {
 Points refine(const Scheme& scheme, const Points& P, bool closed, const RefineOptions& options) {
   if (P.rows() == 0) throw InvalidInput("the polygon has no point to refine");
   if (!P.allFinite()) throw InvalidInput("the polygon has a coordinate that is not finite");
-  if (!closed) return refine_open(scheme, P, options);
-  check_size(2 * P.rows(), options);
   Points out;
-  refine_closed(scheme, P, out);
+  if (closed) {
+    check_size(2 * P.rows(), options);
+    refine_closed(scheme, P, out);
+  } else {
+    out = refine_open(scheme, P, options);
+  }
+  // Finite points whose combinations overflow (coordinates near 1.7e308): the result is refused
+  // here, naming the cause, instead of printed as inf or refused at the next step as "not finite".
+  if (!out.allFinite())
+    throw InvalidInput("refining the polygon overflows a double: its coordinates (up to " +
+                       number_text(P.cwiseAbs().maxCoeff(), 6) +
+                       ") combined by the mask pass 1.8e308; scale the polygon down");
   return out;
 }
 

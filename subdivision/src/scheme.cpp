@@ -6,6 +6,7 @@
 #include <set>
 
 #include "cifs/errors.hpp"
+#include "cifs/format.hpp"
 #include "polynomial.hpp"
 
 namespace cifs::subdivision {
@@ -24,7 +25,7 @@ Rational ratio(long long p, long long q) {
 Rational parse_decimal(std::string_view s, std::string_view what, std::string_view whole) {
   const auto fail = [&]() -> Rational {
     throw InvalidInput(
-        std::string(what) + ": '" + std::string(whole) +
+        std::string(what) + ": '" + excerpt(whole) +
         "' is not a number (an integer, a decimal such as -0.0625 or a fraction such as 1/16)");
   };
   std::size_t i = 0;
@@ -112,7 +113,7 @@ Rational parse_rational(std::string_view text, std::string_view what) {
   if (slash == std::string::npos) return parse_decimal(t, what, t);
   const Rational p = parse_decimal(trimmed(std::string_view(t).substr(0, slash)), what, t);
   const Rational q = parse_decimal(trimmed(std::string_view(t).substr(slash + 1)), what, t);
-  if (q == 0) throw InvalidInput(std::string(what) + ": '" + t + "' divides by zero");
+  if (q == 0) throw InvalidInput(std::string(what) + ": '" + excerpt(t) + "' divides by zero");
   return p / q;
 }
 

@@ -4,6 +4,7 @@
 #include <cctype>
 
 #include "cifs/errors.hpp"
+#include "cifs/format.hpp"
 #include "cifs/subdivision/scheme.hpp"
 #include "polynomial.hpp"
 
@@ -17,6 +18,9 @@ struct Laurent {
 };
 
 constexpr long kMaxExponent = 1024;
+/// Brackets and unary signs nested within each other: each is a call of the parser, and 5,000 of them
+/// (a 10 kB argument) overflowed the stack. A mask's symbol never needs more than a few.
+constexpr int kMaxNesting = 200;
 
 Laurent normalised(Laurent p) {
   while (!p.c.empty() && p.c.back() == 0) p.c.pop_back();
@@ -60,8 +64,8 @@ class Parser {
 
  private:
   [[noreturn]] void fail(const std::string& why) const {
-    throw InvalidInput("symbol: " + why + " at character " + std::to_string(i_ + 1) + " of '" +
-                       std::string(s_) + "'");
+    throw InvalidInput("symbol: " + why + " at character " + std::to_string(i_ + 1) + " of '" + excerpt(s_) +
+                       "'");
   }
 
   void skip() {
@@ -124,10 +128,26 @@ class Parser {
     }
   }
 
+  /// Counts one level of nesting while it lives (a bracket, a unary sign).
+  class Nested {
+   public:
+    explicit Nested(Parser& p) : p_(p) {
+      if (++p_.depth_ > kMaxNesting)
+        p_.fail("more than " + std::to_string(kMaxNesting) + " brackets or signs nested within each other");
+    }
+    Nested(const Nested&) = delete;
+    Nested& operator=(const Nested&) = delete;
+    ~Nested() { --p_.depth_; }
+
+   private:
+    Parser& p_;
+  };
+
   Laurent unary() {
     skip();
     if (i_ < s_.size() && (s_[i_] == '-' || s_[i_] == '+')) {
       const bool negative = s_[i_++] == '-';
+      const Nested nested(*this);
       Laurent p = unary();
       if (negative)
         for (Rational& x : p.c) x = -x;
@@ -176,6 +196,7 @@ class Parser {
     if (i_ >= s_.size()) fail("expression ends early");
     const char c = s_[i_];
     if (c == '(') {
+      const Nested nested(*this);
       ++i_;
       Laurent p = expression();
       skip();
@@ -205,13 +226,14 @@ class Parser {
 
   std::string_view s_;
   std::size_t i_ = 0;
+  int depth_ = 0;  // brackets and signs open
 };
 
 }  // namespace
 
 Polynomial parse_symbol(std::string_view expression) {
   Laurent p = Parser(expression).parse();
-  if (p.c.empty()) throw InvalidInput("symbol: '" + std::string(expression) + "' is zero");
+  if (p.c.empty()) throw InvalidInput("symbol: '" + excerpt(expression) + "' is zero");
   return p.c;  // the lowest power shifted to z^0
 }
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <set>
 
 #include "cifs/errors.hpp"
@@ -182,6 +183,35 @@ TEST_CASE("topology refuses what is not an oriented manifold, naming the element
   fails(faces_mesh(3, {{0, 1, 1}}), "face 0 repeats vertex 1");
   fails(faces_mesh(3, {{0, 1, 7}}), "face 0 corner 2 is vertex 7, out of range (3 vertices)");
   fails(faces_mesh(3, {{0, -1, 2}}), "out of range");
+}
+
+TEST_CASE("topology is linear in the valence: a double pyramid of one vertex of valence 60,000",
+          "[core][topology][reliability]") {
+  // The twin search scanned every half-edge leaving a vertex for each one: 41 s for valence 100,000
+  // (issue 33). Two apexes (0 above, 1 below) over a ring of n vertices: apex valence n, ring 4.
+  const int n = 60000;
+  std::vector<std::vector<int>> faces;
+  for (int i = 0; i < n; ++i) {
+    const int a = 2 + i, b = 2 + (i + 1) % n;
+    faces.push_back({0, a, b});
+    faces.push_back({1, b, a});
+  }
+  const Mesh m = faces_mesh(n + 2, faces);
+  const auto start = std::chrono::steady_clock::now();
+  const MeshTopology t = build_topology(m, "pyramid");
+  CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 2);
+  CHECK(t.edges.size() == static_cast<std::size_t>(3 * n));
+  CHECK(vertex_faces(t, 0).size() == static_cast<std::size_t>(n));
+  CHECK(vertex_edges(t, 1).size() == static_cast<std::size_t>(n));
+  for (std::size_t e = 0; e < t.edges.size(); ++e) CHECK(t.edge_faces[e][1] >= 0);  // closed
+  // The rotations against their invariants on a smaller one (the checks are quadratic themselves).
+  std::vector<std::vector<int>> small;
+  for (int i = 0; i < 50; ++i) {
+    const int a = 2 + i, b = 2 + (i + 1) % 50;
+    small.push_back({0, a, b});
+    small.push_back({1, b, a});
+  }
+  check_rotation(build_topology(faces_mesh(52, small), "small"));
 }
 
 TEST_CASE("meshes: faces, uniform meshes, checks and normals", "[core][mesh]") {

@@ -2,6 +2,7 @@
 #include "cifs/ifs/attractor.hpp"
 
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <random>
 
 #include "cifs/errors.hpp"
@@ -582,4 +583,38 @@ TEST_CASE("estimate_tolerance_leaves: exact within its budget, close to the coun
       CHECK(small.leaves < exact * 1.3);
     }
   }
+}
+
+TEST_CASE("estimate_tolerance_leaves: subnormal tolerances give an estimate, not a crash",
+          "[ifs][tolerance][reliability]") {
+  // log2(top / ε) overflowed for ε below ~1e-307: an undefined cast skipped the ladder and the
+  // estimate read an empty vector (SIGSEGV from cifs attractor --piece-size 3e-308, issue 33).
+  std::mt19937_64 rng(33);
+  const Automaton a = uniform_automaton(3);
+  const std::vector<Points> nets{random_points(a.graph[a.initial[0].state].size, 2, rng)};
+  for (const double epsilon : {3e-308, 2.2e-308, 1e-310, 5e-324}) {
+    for (const bool chordal : {false, true}) {
+      ToleranceOptions o;
+      o.max_depth = 40;
+      o.epsilon = epsilon;
+      o.chordal = chordal;
+      const ToleranceEstimate e = estimate_tolerance_leaves(a, nets, o, 256);
+      INFO(epsilon << (chordal ? " chordal" : "") << ": " << e.leaves);
+      CHECK(!e.exact);
+      CHECK(e.leaves > 1e30);  // far beyond any limit: refused by the callers
+    }
+  }
+}
+
+TEST_CASE("attractor_point_count: a huge depth is counted at once", "[ifs][reliability]") {
+  // The node counts were iterated once per level: 10^9 levels took 27 CPU-s before the refusal.
+  const Automaton a = uniform_automaton(3);
+  const auto start = std::chrono::steady_clock::now();
+  CHECK_THROWS_WITH(attractor_point_count(a, 1000000000),
+                    "depth 1000000000 gives more than 2^64 points; lower the depth");
+  const std::vector<Points> nets{Points::Zero(4, 2)};
+  CHECK_THROWS_AS(attractor_points(a, nets, 1000000000), InvalidInput);
+  CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 1);
+  // Below saturation the counts are exact: 2^k + 1 points at depth k.
+  for (int k : {0, 1, 10, 62}) CHECK(attractor_point_count(a, k) == (std::size_t{1} << k) + 1);
 }

@@ -8,8 +8,10 @@
 
 #include <bit>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <set>
 
 #include "cifs/errors.hpp"
@@ -142,6 +144,35 @@ TEST_CASE("PointsWriter refuses rows that do not match its header", "[io][points
   w.write(Points::Zero(2, 2));
   CHECK_THROWS_WITH(w.write(Points::Zero(2, 2)), "npy: more than the 3 points of the header");
   CHECK_THROWS_WITH(w.finish(), "npy: 2 points written, the header says 3");
+}
+
+TEST_CASE("No writer emits a number that is not finite", "[io][points][reliability]") {
+  // write_points wrote nan and inf into JSON (invalid JSON) and OBJ, exit 0 (issue 33).
+  PointsScratch s;
+  for (const double bad :
+       {std::nan(""), std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()}) {
+    Points P = Points::Zero(4, 3);
+    P(2, 1) = bad;
+    const std::string why = "point 2 coordinate 1 is not a finite number";
+    for (const char* format : {"json", "npy", "ply", "obj"}) {
+      INFO(format);
+      CHECK_THROWS_WITH(encode(PointSet{P, {}}, format), Catch::Contains("the points: " + why));
+      CHECK_THROWS_WITH(write(s.dir / (std::string("p.") + format), PointSet{P, {}}), Catch::Contains(why));
+      StringSink out;
+      PointsWriter w(out, format, 6, 3);
+      w.write(Points::Zero(2, 3));
+      // Rows are numbered in the whole file.
+      CHECK_THROWS_WITH(w.write(P), Catch::Contains("point 4 coordinate 1 is not a finite number"));
+    }
+    CHECK_THROWS_WITH(encode(Polygon{P, false}, "json"), Catch::Contains("the polygon: " + why));
+    CHECK_THROWS_WITH(encode(Polygon{P, false}, "svg"), Catch::Contains("the polygon: " + why));
+    Mesh m;
+    m.vertices = P;
+    m.face_offsets = {0, 3};
+    m.face_vertices = {0, 1, 2};
+    CHECK_THROWS_WITH(encode(m, "obj"), Catch::Contains("the mesh's vertices: " + why));
+  }
+  CHECK(s.names().empty());
 }
 
 TEST_CASE("PointsFile: by extension, atomic, the disk space checked", "[io][points]") {

@@ -608,3 +608,23 @@ TEST_CASE("Open curves at the edges of double: within γ_4p of the control point
     }
   }
 }
+
+TEST_CASE("Evaluation on subnormal knot intervals is exact, not NaN", "[nurbs][reliability]") {
+  // Cox–de Boor divided 1 by the interval 1e-320 (inf), then inf · 0: eval printed [[nan]] (issue 33).
+  const double h = 1e-320;
+  const Curve line = make_curve(1, {0, 0, h, h}, (Points(2, 1) << 0, 2).finished());
+  for (const double u : {0.0, h / 2, h}) {
+    const double expected = 2 * (u / h);  // the ratio of two subnormals is exact here (multiples of 2^-1074)
+    CHECK(evaluate(line, u)(0) == expected);
+    CHECK(evaluate_basis(line, u)(0) == expected);
+    CHECK(evaluate(line, std::vector<double>{u})(0, 0) == expected);
+  }
+  // Quadratic: the basis sums to 1 and matches de Boor.
+  const Curve quad =
+      make_curve(2, {0, 0, 0, h, 2 * h, 2 * h, 2 * h}, (Points(4, 1) << 0, 1, 3, 4).finished());
+  for (const double u : {0.0, h / 4, h, 1.5 * h, 2 * h}) {
+    INFO(u);
+    CHECK(std::isfinite(evaluate_basis(quad, u)(0)));
+    CHECK(evaluate_basis(quad, u)(0) == Approx(evaluate(quad, u)(0)).epsilon(1e-15));
+  }
+}

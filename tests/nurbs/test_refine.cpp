@@ -658,3 +658,12 @@ TEST_CASE("insertion, refinement, elevation and removal reject bad arguments", "
   CHECK_THROWS_WITH(remove_knot(c, 1.0, 1, nan), Contains("tolerance"));
   CHECK(remove_knot(c, 1.0, 0, 1.0).removed == 0);
 }
+
+TEST_CASE("insert_knot refuses a count above the degree before making the copies", "[nurbs][reliability]") {
+  // times = 10^9 allocated 8 GB of copies before refine refused them (issue 33).
+  const Curve c = make_curve(3, {0, 0, 0, 0, 1, 2, 2, 2, 2}, Points::Random(5, 2));
+  CHECK_THROWS_WITH(insert_knot(c, 1.5, 1000000000),
+                    "knot 1.5 would reach multiplicity 1000000000 > degree 3");
+  CHECK_THROWS_WITH(insert_knot(c, 1, 3), "knot 1 would reach multiplicity 4 > degree 3");
+  CHECK(insert_knot(c, 1.5, 3).P.rows() == 8);
+}

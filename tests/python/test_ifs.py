@@ -137,7 +137,7 @@ class AttractorTest(unittest.TestCase):
         assert_close(self, closed, curve(np.arange(16) / 16))
         self.assertEqual(message(self, lambda: ifs.attractor_points(a, [NET], -1)),
                          "the depth -1 is negative; give a depth ≥ 0")
-        self.assertIn("lower the depth or raise the limit", message(self, lambda: ifs.attractor_points(a, [NET], 20, max_bytes=1000)))
+        self.assertIn("held in memory; lower the depth", message(self, lambda: ifs.attractor_points(a, [NET], 20, max_bytes=1000)))
         self.assertEqual(message(self, lambda: ifs.attractor_points(a, [NET[:2]], 2)),
                          "control net 0 has 2 points but its initial state 0 (uniform) holds 3")
         self.assertIn("1 initial entries", message(self, lambda: ifs.attractor_points(a, [NET, NET], 2)))

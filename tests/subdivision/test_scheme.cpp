@@ -196,3 +196,26 @@ TEST_CASE("symbols beyond the largest mask are refused before they are expanded"
   CHECK_THROWS_WITH(from_symbol("(1+z)^300*(1+z)^300"), Catch::Contains("the product has 601 coefficients"));
   CHECK(from_symbol("(1+z)^511/2^510").mask.size() == 512);  // the largest mask is still accepted
 }
+
+TEST_CASE("parse_symbol bounds the nesting of brackets and signs", "[subdivision][reliability]") {
+  // Each bracket and unary sign was a recursive call: 5,000 brackets (a 10 kB argument) or 100,000
+  // signs overflowed the stack, in the CLI and in Python (issue 33).
+  const auto nested = [](int n) {
+    return std::string(static_cast<std::size_t>(n), '(') + "1+z" +
+           std::string(static_cast<std::size_t>(n), ')');
+  };
+  CHECK(parse_symbol(nested(200)) == Polynomial{1, 1});
+  CHECK(parse_symbol(std::string(199, '-') + "(1+z)") == Polynomial{-1, -1});
+  for (const std::string& text :
+       {nested(201), nested(5000), std::string(100000, '-') + "1", std::string(100000, '+') + "z"}) {
+    try {
+      (void)parse_symbol(text);
+      FAIL("accepted");
+    } catch (const InvalidInput& e) {
+      const std::string message = e.what();
+      CHECK_THAT(message, Catch::Contains("more than 200 brackets or signs nested within each other"));
+      CHECK(message.size() < 200);  // the expression is not echoed whole
+      CHECK_THAT(message, Catch::Contains(std::to_string(text.size()) + " characters)"));
+    }
+  }
+}

@@ -58,8 +58,17 @@ std::vector<double> dyadic_knots(const std::vector<double>& T, double leaves) {
   for (std::size_t j = 0; j + 1 < T.size(); ++j) {
     const double step = (T[j + 1] - T[j]) / leaves;
     if (step > 0)
-      for (long long m = 1; m < static_cast<long long>(leaves); ++m)
-        dyadic.push_back(T[j] + static_cast<double>(m) * step);
+      for (long long m = 1; m < static_cast<long long>(leaves); ++m) {
+        const double x = T[j] + static_cast<double>(m) * step;
+        // An interval of a few subnormals (knots [0, 1e-320]) has fewer doubles than dyadic knots: they
+        // coincided, and refine said "would reach multiplicity 2", as if the shape were wrong.
+        if (!(x > (dyadic.empty() || m == 1 ? T[j] : dyadic.back())) || !(x < T[j + 1]))
+          throw InvalidInput("the check depth " + number_text(std::log2(leaves), 3) +
+                             " splits a knot interval of length " + number_text(T[j + 1] - T[j], 6) +
+                             " into " + number_text(leaves, 6) +
+                             " pieces, more than the doubles it holds; lower the depth");
+        dyadic.push_back(x);
+      }
   }
   return dyadic;
 }
@@ -87,6 +96,8 @@ Points cartesian_rows(const Points& H, bool rational) {
   return rational ? ifs::cartesian(H) : H;
 }
 
+/// Distances are measured with stableNorm: the square of a deviation of 1e293 (points near 1.7e308
+/// agreeing to 16 digits) overflows, and norm() reported inf and FAIL for a correct shape.
 void track(Deviation& dev, double abs, double scale) {
   dev.max_abs = std::max(dev.max_abs, abs);
   dev.max_rel = std::max(dev.max_rel, abs / scale);
@@ -145,7 +156,7 @@ CheckReport check_curve(const nurbs::Curve& c, const CheckOptions& o) {
     track(seg.nets,
           (cartesian_rows(leaf.net, c.rational) - cartesian_rows(expected, c.rational))
               .rowwise()
-              .norm()
+              .stableNorm()
               .maxCoeff(),
           scale);
     if (c.rational)
@@ -161,7 +172,7 @@ CheckReport check_curve(const nurbs::Curve& c, const CheckOptions& o) {
     const bool last = m + 1 == points.rows();
     const auto i = static_cast<std::size_t>(last ? m / per_segment - 1 : m / per_segment);
     const double u = last ? length(i) : static_cast<double>(m % per_segment) * (length(i) / leaves);
-    track(report.segments[i].points, (points.row(m) - nurbs::evaluate_basis(locals[i].piece, u)).norm(),
+    track(report.segments[i].points, (points.row(m) - nurbs::evaluate_basis(locals[i].piece, u)).stableNorm(),
           scale);
   }
   for (const SegmentReport& seg : report.segments) {
@@ -291,7 +302,7 @@ void check_leaf_nets(const SurfaceCheck& c, SurfaceCheckReport& report) {
     track(patch.nets,
           (cartesian_rows(leaf.net, s.rational) - cartesian_rows(expected, s.rational))
               .rowwise()
-              .norm()
+              .stableNorm()
               .maxCoeff(),
           c.scale);
     if (s.rational)
@@ -327,7 +338,7 @@ void check_mesh_vertices(const SurfaceCheck& c, SurfaceCheckReport& report) {
                  (static_cast<Eigen::Index>(a) * n + i) * row + static_cast<Eigen::Index>(b) * n, cols) -
              expected.middleRows(static_cast<Eigen::Index>(i) * cols, cols))
                 .rowwise()
-                .norm()
+                .stableNorm()
                 .maxCoeff(),
             c.scale);
   }

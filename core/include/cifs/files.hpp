@@ -26,8 +26,24 @@ namespace cifs {
 /// leftover of a writer that was killed before it could clean up.
 inline constexpr std::string_view kTemporaryMarker = ".cifs-tmp.";
 
-/// The whole file as bytes. IoError naming the path when it is a directory or cannot be read.
+/// The whole file as bytes. IoError naming the path when it is not a regular file (a directory, a
+/// device such as /dev/zero, a FIFO: refused without waiting for a writer), holds more than half the
+/// physical memory (with both figures), or cannot be read. While a RunInputs lives, the file is
+/// recorded as an input of the run.
 std::string read_file(const std::filesystem::path& path);
+
+/// The inputs of one run (a command of the CLI), for its whole lifetime: every file read_file reads
+/// meanwhile is recorded (device and inode), and every AtomicFile created meanwhile refuses a target
+/// that is one of them — by any name, hard link or symbolic link — so that no command overwrites what
+/// it read, whichever files those were. Without one (Python, the C++ API) reading a file and writing
+/// it back is allowed; OutputOptions::inputs names the files to protect there.
+class RunInputs {
+ public:
+  RunInputs();
+  RunInputs(const RunInputs&) = delete;
+  RunInputs& operator=(const RunInputs&) = delete;
+  ~RunInputs();
+};
 
 /// What an output must not be, and what may be made for it.
 struct OutputOptions {

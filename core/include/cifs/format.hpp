@@ -3,7 +3,9 @@
 // double; messages and labels get a fixed count of significant digits or decimals.
 #pragma once
 
+#include <cstddef>
 #include <string>
+#include <string_view>
 
 namespace cifs {
 
@@ -21,5 +23,10 @@ std::string number_text(double x, int digits);
 /// `decimals` digits after the point, as printf's `%.<decimals>f`: screen coordinates (SVG).
 void append_fixed(std::string& out, double x, int decimals);
 std::string fixed_text(double x, int decimals);
+
+/// Text the user gave, for a message: whole when it has at most `max` characters, else its first
+/// ones and how long it is ("((((((((((((((((((((… (10001 characters)"), so that a 5,000-digit
+/// number or a 10 kB expression is not echoed whole. A UTF-8 sequence is never cut.
+std::string excerpt(std::string_view text, std::size_t max = 40);
 
 }  // namespace cifs

@@ -1,0 +1,52 @@
+# SPDX-License-Identifier: MIT
+"""Issue 33 through Python: a deep symbol killed the interpreter, a huge mask was converted for 22 s
+before its refusal, write_points wrote nan and inf, and a huge depth was refused after minutes."""
+import math
+import os
+import time
+import unittest
+
+import numpy as np
+
+import cifs
+from cifs import subdivision as sd
+from support import ScratchTestCase
+
+
+class ReliabilityTest(ScratchTestCase):
+    def assert_quick_refusal(self, call, needle, seconds=1.0):
+        start = time.monotonic()
+        with self.assertRaises(cifs.InvalidInput) as raised:
+            call()
+        self.assertLess(time.monotonic() - start, seconds)
+        self.assertIn(needle, str(raised.exception))
+        self.assertLess(len(str(raised.exception)), 300)  # the input is not echoed whole
+        return raised.exception
+
+    def test_deep_symbols_are_refused(self):
+        # Before the fix the stack overflow killed the interpreter (the test process) itself.
+        for text in ["(" * 5000 + "1+z" + ")" * 5000, "-" * 100000 + "1"]:
+            self.assert_quick_refusal(lambda: sd.parse_symbol(text), "nested within each other")
+            self.assert_quick_refusal(lambda: sd.from_symbol(text), "nested within each other")
+
+    def test_masks_are_bounded_before_conversion(self):
+        self.assert_quick_refusal(lambda: sd.from_mask(np.zeros(10**7)),
+                                  "mask: 10000000 coefficients exceed the limit of 512")
+        self.assert_quick_refusal(lambda: sd.from_mask([0] * 10**6), "1000000 coefficients")
+        self.assert_quick_refusal(lambda: sd.from_mask(np.zeros((2, 2, 2))), "an array of 3 dimensions")
+        self.assertEqual(sd.from_mask([0.5, 1, 0.5]).mask, sd.from_mask(np.array([0.5, 1, 0.5])).mask)
+
+    def test_writers_refuse_non_finite_numbers(self):
+        for bad in (math.nan, math.inf, -math.inf):
+            points = np.zeros((3, 2))
+            points[1, 0] = bad
+            for ext in ("json", "obj", "npy", "ply"):
+                path = str(self.scratch / ("p." + ext))
+                with self.assertRaises(cifs.InvalidInput) as raised:
+                    cifs.io.write_points(path, points)
+                self.assertIn("point 1 coordinate 0 is not a finite number", str(raised.exception))
+                self.assertFalse(os.path.exists(path))
+
+
+if __name__ == "__main__":
+    unittest.main()
