@@ -393,6 +393,11 @@ int run(int argc, char** argv, std::string& result) {
   } catch (const CLI::ParseError& e) {
     std::cerr << "cifs: " << e.what() << " (see cifs --help)\n";
     return 2;
+  } catch (
+      const std::filesystem::filesystem_error& e) {  // one the readers' own checks missed: named by its path
+    std::cerr << "cifs: " << (e.path1().empty() ? std::string() : e.path1().string() + ": ")
+              << e.code().message() << "\n";
+    return 2;
   } catch (const std::bad_alloc&) {  // said "cifs: std::bad_alloc" under a memory limit
     std::cerr << "cifs: out of memory: the system refused an allocation; ask for less (a lower --depth, "
                  "fewer points or samples, a smaller image)\n";

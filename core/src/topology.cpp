@@ -172,7 +172,10 @@ std::vector<int> find_twins(std::span<const int> face_offsets, std::span<const i
   std::vector<int> corner_order(H);
   for (std::size_t h = 0; h < H; ++h) corner_order[h] = static_cast<int>(h);
   const auto by_target = counting_sort(corner_order, [&](std::size_t h) { return target[h]; }).first;
-  const auto [out_list, out_end] = counting_sort(by_target, [&](std::size_t h) { return face_vertices[h]; });
+  const auto by_origin = counting_sort(by_target, [&](std::size_t h) { return face_vertices[h]; });
+  // Named references, not a structured binding: clang 14 (the fuzz build) cannot capture those.
+  const std::vector<int>& out_list = by_origin.first;
+  const std::vector<int>& out_end = by_origin.second;
   // out_end[v] is now where v's half-edges end (the counting sort advanced each start to its end).
   const auto begin_of = [&](std::size_t v) { return v == 0 ? 0 : out_end[v - 1]; };
   const auto target_of = [&](int h) { return target[static_cast<std::size_t>(h)]; };

@@ -82,8 +82,10 @@ ToleranceResult visit_leaves(const Automaton& a, std::span<const Points> nets, c
   const ToleranceOptions to = tolerance_options(o);
   constexpr std::string_view kAdvice = "; give a larger tolerance";
   // A chordal piece costs its cover's refinement (up to 160 nodes): its estimate counts to 2^12 leaves,
-  // not 2^16, so that a refusal stays within a second (--deviation 1e-15 took 2.5 s).
-  const std::size_t budget = o.chordal ? std::size_t{1} << 12 : std::size_t{1} << 16;
+  // not 2^16, so that a refusal stays within a second (--deviation 1e-15 took 2.5 s). Nor beyond
+  // max_points + 1: a coarser tolerance's count above max_points already bounds this one's from below.
+  const std::size_t budget = std::min(o.chordal ? std::size_t{1} << 12 : std::size_t{1} << 16,
+                                      std::max<std::size_t>(o.max_points, 1) + 1);
   if (const ToleranceEstimate est =
           o.estimate ? estimate_tolerance_leaves(a, nets, to, budget) : ToleranceEstimate{};
       !est.exact && est.leaves > static_cast<double>(o.max_points))

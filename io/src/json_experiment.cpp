@@ -455,8 +455,8 @@ Experiment parse_experiment(std::string_view text, std::string_view where,
     std::error_code ec;
     if (!std::filesystem::is_regular_file(e.automaton, ec))
       r.fail("automaton", ec && ec != std::errc::no_such_file_or_directory
-                              ? "cannot read " + e.automaton.string() + " (" + ec.message() + ")"
-                              : "no such file: " + e.automaton.string());
+                              ? "cannot read " + excerpt(e.automaton.string()) + " (" + ec.message() + ")"
+                              : "no such file: " + excerpt(e.automaton.string()));
   }
   if (doc.contains("ifs")) e.ifs = read_ifs(r, doc["ifs"]);
   if (doc.contains("mesh")) {

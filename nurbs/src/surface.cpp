@@ -327,7 +327,8 @@ Surface insert_knot(const Surface& s, Direction dir, double t, int times) {
   if (times < 1) detail::fail("the knot count times = ", times, " must be at least 1");
   // Before the copies are made (times = 10^9: 8 GB), as refine would refuse them.
   if (const int degree = s.degree[static_cast<int>(dir)]; times > degree)
-    detail::fail("knot ", t, " would reach multiplicity ", times, " > degree ", degree);
+    detail::fail("direction ", kDirName[static_cast<int>(dir)], ": knot ", t, " would reach multiplicity ",
+                 times, " > degree ", degree);
   const std::vector<double> X(static_cast<std::size_t>(times), t);
   return refine(s, dir, X);
 }

@@ -24,7 +24,8 @@ PYBIND11_MODULE(_cifs, m) {
       if (p) std::rethrow_exception(p);
     } catch (const std::filesystem::filesystem_error& e) {
       const std::string path = e.path1().string();
-      io_error(((path.empty() ? std::string() : path + ": ") + e.code().message()).c_str());
+      PyErr_SetString(io_error.ptr(),
+                      ((path.empty() ? std::string() : path + ": ") + e.code().message()).c_str());
     } catch (const std::bad_alloc&) {
       PyErr_SetString(PyExc_MemoryError,
                       "out of memory: the system refused an allocation; ask for less (a lower depth, fewer "

@@ -144,3 +144,15 @@ TEST_CASE("cifs gallery checks every experiment before it writes anything", "[cl
               "b.json: evaluation.depht: unknown member");
   CHECK(!std::filesystem::exists(out));
 }
+
+TEST_CASE("cifs names the member of an experiment path the file system refuses", "[cli][reliability]") {
+  // A path longer than the file system allows threw std::filesystem::filesystem_error out of the
+  // experiment reader: a raw message without the member (found by fuzz_experiment, issue 33).
+  const std::string experiment =
+      file("long_automaton.json", R"({"name": "x", "automaton": ")" + std::string(5000, 'a') + R"(.json",
+      "evaluation": {"depth": 1}, "outputs": {"png": "x.png"}})");
+  const Run r = cifs_cli("render " + experiment);
+  check_error(r, "long_automaton.json: automaton: cannot read");
+  CHECK_THAT(r.err, Catch::Contains("(File name too long)"));
+  CHECK(r.err.size() < 300);
+}
