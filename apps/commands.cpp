@@ -368,6 +368,9 @@ std::string attractor_format(const AttractorOptions& o) {
 
 /// Points held in memory before they are written (stdout, svg): refused above this.
 constexpr std::size_t kMemoryBytes = std::size_t{1} << 30;
+/// The chaos game's points, held in memory: kMaxPoints of up to 4 doubles (a rational 3-D shape), so
+/// that every --chaos up to kMaxPoints runs (5·10^7 on a 3-D curve was refused at 1 GiB).
+constexpr std::size_t kChaosBytes = static_cast<std::size_t>(kMaxPoints) * 4 * sizeof(double);
 /// Points a tolerance traversal may stream to a file (two walks of about 1 µs per point each).
 constexpr double kMaxTolerancePoints = 1U << 30;
 
@@ -431,6 +434,7 @@ std::string surface_attractor(const nurbs::Surface& s, const std::string& format
     ifs::ChaosOptions options;
     options.samples = static_cast<std::size_t>(o.chaos);
     options.seed = o.seed;
+    options.max_bytes = kChaosBytes;
     ifs::ChaosResult r = ifs::chaos_game(ta.product, nets, options);
     if (s.rational) r.points = ifs::cartesian(r.points);
     return write_whole(std::move(r.points), {.polyline = false, .closed = false, .seed = r.seed}, format, o);
@@ -479,6 +483,7 @@ std::string attractor(const AttractorOptions& o) {
     ifs::ChaosOptions options;
     options.samples = static_cast<std::size_t>(o.chaos);
     options.seed = o.seed;
+    options.max_bytes = kChaosBytes;
     ifs::ChaosResult r = ifs::chaos_game(a, nets, options);
     if (c->rational) r.points = ifs::cartesian(r.points);
     style = {.polyline = false, .closed = false, .seed = r.seed};

@@ -54,9 +54,10 @@ ChaosResult chaos_game(const Automaton& automaton, std::span<const Points> nets,
   const std::size_t per_sample =
       (static_cast<std::size_t>(cols) + (options.record_address ? 1 : 0)) * sizeof(double);
   if (options.samples > options.max_bytes / per_sample)
-    throw InvalidInput(std::to_string(options.samples) + " chaos-game samples of " +
-                       std::to_string(per_sample) + " bytes exceed the limit of " +
-                       std::to_string(options.max_bytes) + " bytes held in memory; ask for fewer samples");
+    throw InvalidInput(
+        std::to_string(options.samples) + " chaos-game samples of " + std::to_string(per_sample) +
+        " bytes exceed the " + number_text(static_cast<double>(options.max_bytes) / 1e9, 3) +
+        " GB held in memory; ask for at most " + std::to_string(options.max_bytes / per_sample) + " samples");
   result.points.resize(static_cast<Eigen::Index>(options.samples), cols);
   advise_huge_pages(result.points.data(), static_cast<std::size_t>(result.points.size()) * sizeof(double));
   if (options.record_address) result.address.resize(options.samples);
