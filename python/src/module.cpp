@@ -19,6 +19,7 @@ PYBIND11_MODULE(_cifs, m) {
       py::register_exception<cifs::IoError>(m, "IoError", PyExc_OSError);
   // A refused allocation (the machine's memory, a ulimit) said "MemoryError: std::bad_alloc"; a
   // file-system error that escaped the readers' own checks, a bare RuntimeError.
+  // NOLINTNEXTLINE(performance-unnecessary-value-param): pybind11 takes a void (*)(std::exception_ptr)
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);

@@ -3,6 +3,8 @@
 before its refusal, write_points wrote nan and inf, and a huge depth was refused after minutes."""
 import math
 import os
+import subprocess
+import sys
 import time
 import unittest
 
@@ -10,7 +12,7 @@ import numpy as np
 
 import cifs
 from cifs import subdivision as sd
-from support import ScratchTestCase
+from support import EXAMPLES, ScratchTestCase
 
 
 class ReliabilityTest(ScratchTestCase):
@@ -46,6 +48,25 @@ class ReliabilityTest(ScratchTestCase):
                     cifs.io.write_points(path, points)
                 self.assertIn("point 1 coordinate 0 is not a finite number", str(raised.exception))
                 self.assertFalse(os.path.exists(path))
+
+    @unittest.skipIf("asan" in os.environ.get("LD_PRELOAD", ""),
+                     "AddressSanitizer reserves more address space than the limit allows")
+    def test_refused_allocation_is_named(self):
+        # "MemoryError: std::bad_alloc" (7 calls of the audit): in a child with 3 GiB of address space.
+        code = """
+import resource
+resource.setrlimit(resource.RLIMIT_AS, (3 * 2**30, 3 * 2**30))
+import cifs
+from cifs import automata, ifs
+c = cifs.io.read_shape(%r)
+a = automata.knot_automaton(c)
+try:
+    ifs.chaos_game(a, automata.initial_nets(a, c), samples=10**9, max_bytes=2**60)
+except MemoryError as e:
+    print(e)
+""" % str(EXAMPLES / "shapes" / "cubic.json")
+        out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+        self.assertIn("out of memory: the system refused an allocation", out.stdout, out.stderr)
 
 
 if __name__ == "__main__":
