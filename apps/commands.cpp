@@ -1139,6 +1139,7 @@ std::string gallery(const std::filesystem::path& out, const std::filesystem::pat
   // Every experiment is read, and so checked, before anything is written (as render does): an invalid
   // later file left the outputs of the earlier ones.
   std::vector<io::Experiment> experiments;
+  experiments.reserve(files.size());
   for (const auto& file : files) experiments.push_back(io::read_experiment(file));
   // The folders made here are removed again, when still empty, if the gallery fails.
   std::vector<std::filesystem::path> made;  // deepest first
