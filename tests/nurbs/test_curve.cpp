@@ -628,3 +628,12 @@ TEST_CASE("Evaluation on subnormal knot intervals is exact, not NaN", "[nurbs][r
     CHECK(evaluate_basis(quad, u)(0) == Approx(evaluate(quad, u)(0)).epsilon(1e-15));
   }
 }
+
+TEST_CASE("A weight whose product with its coordinate overflows is named as such", "[nurbs][reliability]") {
+  // Weight 1e308 on the coordinate 2: the stored w·x is inf, and the message blamed the coordinate,
+  // "points[0][0]: coordinate is not finite" (issue 33).
+  const Points P = (Points(2, 1) << 2, 3).finished();
+  CHECK_THROWS_WITH(make_curve(1, {0, 0, 1, 1}, P, (Eigen::VectorXd(2) << 1e308, 1).finished()),
+                    Contains("points[0][0]: the coordinate times its weight (w·x) is not finite"));
+  CHECK_NOTHROW(make_curve(1, {0, 0, 1, 1}, P, (Eigen::VectorXd(2) << 1e300, 1).finished()));
+}

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The CIFS attractor of NURBS curves against knot insertion and Cox–de Boor, on random curves.
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <random>
 
 #include "cifs/automata/automaton.hpp"
@@ -198,4 +199,28 @@ TEST_CASE("Surface check refuses bad depths and work beyond its budget", "[verif
                                                                  !Catch::Contains("-9") &&
                                                                  Catch::Contains("e+"));
   CHECK_THROWS_AS(verify::check_surface(s, {.depth = 2, .tolerance = 0}), InvalidInput);
+}
+
+TEST_CASE("check measures deviations near the largest doubles without overflow", "[verify][reliability]") {
+  // Coordinates near ±1.7e308 agree to 16 digits, deviations ~1e292: their squares overflowed in
+  // norm() and check reported inf and FAIL for a shape eval, attractor and insert handle (issue 33).
+  cifs::Points P(5, 2);
+  P << -1.7e308, 0, -1e308, 1.7e308, 0, -1.7e308, 1e308, 1.7e308, 1.7e308, 0;
+  const cifs::nurbs::Curve c = cifs::nurbs::make_curve(3, {0, 0, 0, 0, 1, 2, 2, 2, 2}, P);
+  const cifs::verify::CheckReport r = cifs::verify::check_curve(c, {.depth = 4, .tolerance = 1e-12});
+  CHECK(r.pass);
+  CHECK(std::isfinite(r.nets.max_abs));
+  CHECK(r.nets.max_rel < 1e-14);
+  CHECK(r.points.max_rel < 1e-14);
+}
+
+TEST_CASE("check names a depth finer than a subnormal knot interval holds", "[verify][reliability]") {
+  // Knots [0, 0, 1e-320, 1e-320]: the 2^8 dyadic knots of one interval coincided, and check said
+  // "knot … would reach multiplicity 2 > degree 1", as if the shape were at fault (issue 33).
+  const cifs::nurbs::Curve c =
+      cifs::nurbs::make_curve(1, {0, 0, 1e-320, 1e-320}, (cifs::Points(2, 1) << 0, 2).finished());
+  CHECK_THROWS_WITH(
+      cifs::verify::check_curve(c, {.depth = 8, .tolerance = 1e-12}),
+      Catch::Contains("the check depth 8 splits a knot interval of length 9.99989e-321 into 256 "
+                      "pieces, more than the doubles it holds; lower the depth"));
 }
