@@ -161,3 +161,21 @@ TEST_CASE("cifs names the member of an experiment path the file system refuses",
   CHECK_THAT(r.err, Catch::Contains("(File name too long)"));
   CHECK(r.err.size() < 300);
 }
+
+TEST_CASE("cifs scheme --refine near the largest doubles: the point, or a refusal naming the overflow",
+          "[cli][reliability]") {
+  // One four-point step on coordinates 1.7e308 printed inf (9/16·(b + c) overflowed before the
+  // negative weights), exit 0 (issue 33). The result fits a double: it is printed.
+  const std::string fits = file("big_polygon.json", R"({"polygon": {"points": [[1.7e308, 0], [1.7e308, 1],
+      [1.7e308, 2], [1.7e308, 3]], "closed": true}})");
+  const Run r = cifs_cli("scheme four-point --refine " + fits);
+  INFO(r.err);
+  CHECK(r.status == 0);
+  CHECK(r.out.find("inf") == std::string::npos);
+  // The edge point of (0, 1): x = 1.7e308 to a rounding (1.6999999999999997e+308), y = (9 − 5)/16.
+  CHECK(r.out.find("[1.6999999999999997e+308, 0.25]") != std::string::npos);
+  // The result does not fit (1.25 · 1.79e308): refused, naming the cause.
+  const std::string over = file("over_polygon.json", R"({"polygon": {"points": [[-1.79e308, 0], [1.79e308, 1],
+      [1.79e308, 2], [-1.79e308, 3]], "closed": true}})");
+  check_error(cifs_cli("scheme four-point --refine " + over), "refining the polygon overflows a double");
+}
