@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "scheme_command.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <iomanip>
@@ -19,6 +20,7 @@
 #include "cifs/subdivision/mesh_analysis.hpp"
 #include "cifs/subdivision/refine.hpp"
 #include "cifs/subdivision/scheme.hpp"
+#include "cifs/suggest.hpp"
 #include "commands.hpp"
 
 namespace cifs::cli {
@@ -62,11 +64,23 @@ sd::Ends parse_ends(const std::string& ends) {
 // ------------------------------------------------------------------------------------------------
 // Mesh schemes: local subdivision matrices
 
+constexpr sd::MeshScheme kMeshSchemes[] = {sd::MeshScheme::catmull_clark, sd::MeshScheme::loop,
+                                           sd::MeshScheme::doo_sabin, sd::MeshScheme::butterfly,
+                                           sd::MeshScheme::sqrt3};
+
 std::optional<sd::MeshScheme> mesh_scheme_named(const std::string& name) {
-  for (const sd::MeshScheme s : {sd::MeshScheme::catmull_clark, sd::MeshScheme::loop,
-                                 sd::MeshScheme::doo_sabin, sd::MeshScheme::butterfly, sd::MeshScheme::sqrt3})
+  for (const sd::MeshScheme s : kMeshSchemes)
     if (sd::scheme_name(s) == name) return s;
   return std::nullopt;
+}
+
+/// Refuses a name that is neither a curve scheme nor a mesh scheme, suggesting the nearest of both.
+void check_scheme_name(const std::string& name) {
+  std::vector<std::string> names;
+  for (const sd::SchemeSpec& s : sd::scheme_catalogue()) names.push_back(s.name);
+  for (const sd::MeshScheme s : kMeshSchemes) names.emplace_back(sd::scheme_name(s));
+  if (std::find(names.begin(), names.end(), name) == names.end())
+    throw InvalidInput("unknown scheme '" + name + "'" + did_you_mean(name, names) + " (see cifs scheme --list)");
 }
 
 int integer_text(const std::string& text, const std::string& option, const std::string& given) {
@@ -194,6 +208,7 @@ Stroke control(const Points& P, bool closed = true) {
 std::string scheme(const SchemeOptions& o) {
   if (o.list) return catalogue_text();
   if (o.name.empty()) throw InvalidInput("scheme: a scheme name is required (see cifs scheme --list)");
+  check_scheme_name(o.name);
   if (const auto mesh = mesh_scheme_named(o.name)) return analyze_mesh_scheme(*mesh, o);
   const bool refine = !o.refine.empty();
   if (o.analyze == refine)

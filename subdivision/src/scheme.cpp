@@ -6,6 +6,7 @@
 #include <set>
 
 #include "cifs/errors.hpp"
+#include "cifs/suggest.hpp"
 #include "polynomial.hpp"
 
 namespace cifs::subdivision {
@@ -315,7 +316,9 @@ Scheme named_scheme(std::string_view name_view, const std::map<std::string, std:
   if (spec == catalogue.end()) {
     std::string names;
     for (const SchemeSpec& s : catalogue) names += (names.empty() ? "" : ", ") + s.name;
-    throw InvalidInput("unknown scheme '" + name + "' (schemes: " + names + ")");
+    std::vector<std::string> listed;
+    for (const SchemeSpec& s : catalogue) listed.push_back(s.name);
+    throw InvalidInput("unknown scheme '" + name + "'" + did_you_mean(name, listed) + " (schemes: " + names + ")");
   }
   std::map<std::string, std::string> values;
   for (const ParameterSpec& p : spec->parameters) values[p.name] = p.default_value;
