@@ -159,6 +159,17 @@ void write_in_chunks(PointsOutput& out, std::int64_t count, std::int64_t chunk, 
     out.write(rows(first, std::min(chunk, count - first)));
 }
 
+/// The shape's own refusals of what the user gave (a parameter or a knot outside its domain) name its
+/// file: `cifs: <where>: <what>`.
+template <class Work>
+auto naming_shape(const std::filesystem::path& shape, Work&& work) {
+  try {
+    return work();
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(shape.string() + ": " + e.what());
+  }
+}
+
 /// Rows per chunk of a streamed output (a file or stdout).
 constexpr std::int64_t kChunkPoints = std::int64_t{1} << 16;
 
@@ -169,7 +180,8 @@ std::string eval_curve(const nurbs::Curve& c, const EvalOptions& o) {
       throw InvalidInput("--at '" + a + "': a curve takes one parameter U");
     at.push_back(parse_number(a, "--at"));
   }
-  const Points first = nurbs::evaluate(c, at);  // checks the parameters before any file is created
+  // Checks the parameters before any file is created.
+  const Points first = naming_shape(o.shape, [&] { return nurbs::evaluate(c, at); });
   const nurbs::Domain dom = nurbs::domain(c);
   PointsOutput out(o.output, "json", static_cast<std::uint64_t>(first.rows() + o.samples), first.cols(), {},
                    "eval", o.quiet);
@@ -189,7 +201,7 @@ std::string eval_surface(const nurbs::Surface& s, const EvalOptions& o) {
     if (comma == std::string::npos) throw InvalidInput("--at '" + a + "': a surface takes U,V");
     const double u = parse_number(std::string_view(a).substr(0, comma), "--at");
     const double v = parse_number(std::string_view(a).substr(comma + 1), "--at");
-    first.row(static_cast<Eigen::Index>(i)) = nurbs::evaluate(s, u, v);
+    first.row(static_cast<Eigen::Index>(i)) = naming_shape(o.shape, [&] { return nurbs::evaluate(s, u, v); });
   }
   const auto n = static_cast<std::int64_t>(o.samples);
   const auto u_domain = nurbs::domain(s, nurbs::Direction::u);
@@ -227,12 +239,13 @@ std::string insert(const InsertOptions& o) {
   const io::Shape shape = read_shape(o.shape, o.select);
   if (const auto* c = std::get_if<nurbs::Curve>(&shape)) {
     if (o.dir != "u") throw InvalidInput("--dir v: a curve has one direction");
-    nurbs::Curve out = nurbs::refine(*c, o.knots);
+    nurbs::Curve out = naming_shape(o.shape, [&] { return nurbs::refine(*c, o.knots); });
     if (o.midpoints) out = nurbs::refine_midpoints(out);
     return io::to_json(out);
   }
   const auto dir = o.dir == "u" ? nurbs::Direction::u : nurbs::Direction::v;
-  nurbs::Surface out = nurbs::refine(std::get<nurbs::Surface>(shape), dir, o.knots);
+  nurbs::Surface out =
+      naming_shape(o.shape, [&] { return nurbs::refine(std::get<nurbs::Surface>(shape), dir, o.knots); });
   if (o.midpoints) out = nurbs::refine_midpoints(out);
   return io::to_json(out);
 }
@@ -671,10 +684,7 @@ std::string render(const RenderOptions& o) {
   return summary;
 }
 
-namespace {
-
-
-}  // namespace
+namespace {}  // namespace
 
 namespace {
 

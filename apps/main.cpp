@@ -308,7 +308,8 @@ void add_dimension(CLI::App& app, Commands& c) {
   add_renamed(dimension_cmd, "--tolerance", "--relative-piece-size");
   dimension_cmd->add_option("--max-points", c.di.measure.max_points,
                             "Point budget of the tolerance sample (default 2^21)");
-  dimension_cmd->add_option("--min-level", c.di.measure.min_level, "Fit range: coarsest box level k (ε = size·2^-k)");
+  dimension_cmd->add_option("--min-level", c.di.measure.min_level,
+                            "Fit range: coarsest box level k (ε = size·2^-k)");
   dimension_cmd->add_option("--max-level", c.di.measure.max_level, "Fit range: finest box level");
   dimension_cmd->add_option("--min-boxes", c.di.measure.min_boxes,
                             "Automatic fit range: only levels with at least this many boxes (default 1000)");
@@ -334,7 +335,8 @@ void add_gallery(CLI::App& app, Commands& c) {
 /// `--name` and `-n` of the options of `command` shown in its help.
 std::vector<std::string> option_names(const CLI::App& command) {
   std::vector<std::string> names;
-  for (const CLI::Option* o : command.get_options([](const CLI::Option* o) { return !o->get_group().empty(); })) {
+  for (const CLI::Option* o :
+       command.get_options([](const CLI::Option* o) { return !o->get_group().empty(); })) {
     for (const std::string& n : o->get_lnames()) names.push_back("--" + n);
     for (const std::string& n : o->get_snames()) names.push_back("-" + n);
   }
@@ -365,8 +367,9 @@ std::string unexpected_argument(const CLI::App& command, int argc, char** argv) 
       const std::string name = arg.substr(0, arg.find('='));
       const CLI::Option* option = command.get_option_no_throw(name);
       if (option == nullptr)
-        return "unknown option '" + name + "' of " + command.get_name() + did_you_mean(name, option_names(command)) +
-               " (see cifs " + command.get_name() + " --help)";
+        return "unknown option '" + name + "' of " + command.get_name() +
+               cifs::did_you_mean(name, option_names(command)) + " (see cifs " + command.get_name() +
+               " --help)";
       last = nullptr;
       if (option->get_type_size() == 0 || arg.find('=') != std::string::npos || i + 1 == argc) continue;
       last = option;
@@ -380,8 +383,8 @@ std::string unexpected_argument(const CLI::App& command, int argc, char** argv) 
     } else {
       std::string message = command.get_name() + ": unexpected argument '" + arg + "'";
       if (last != nullptr)
-        message += " after " + last_text + ": " + last->get_name() + " takes one value (" + last->get_description() +
-                   ")";
+        message += " after " + last_text + ": " + last->get_name() + " takes one value (" +
+                   last->get_description() + ")";
       return message;
     }
   }
@@ -421,9 +424,10 @@ int run(int argc, char** argv, std::string& result) {
     const std::string option = first.substr(0, first.find('='));
     if (first.size() > 1 && first[0] == '-' && app.get_option_no_throw(option) == nullptr) {
       const std::string near = cifs::did_you_mean(option, option_names(app));
-      throw cifs::InvalidInput("unknown option '" + option + "'" +
-                               (near.empty() ? "; options follow the command: cifs COMMAND [OPTIONS]" : near) +
-                               " (see cifs --help)");
+      throw cifs::InvalidInput(
+          "unknown option '" + option + "'" +
+          (near.empty() ? "; options follow the command: cifs COMMAND [OPTIONS]" : near) +
+          " (see cifs --help)");
     }
     try {
       app.parse(argc, argv);

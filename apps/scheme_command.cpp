@@ -74,13 +74,17 @@ std::optional<sd::MeshScheme> mesh_scheme_named(const std::string& name) {
   return std::nullopt;
 }
 
-/// Refuses a name that is neither a curve scheme nor a mesh scheme, suggesting the nearest of both.
+/// Refuses a name that is neither a curve scheme nor a mesh scheme: a typo of a mesh scheme is named here
+/// (the curve schemes' refusal, the library's, knows only theirs), anything else by the library.
 void check_scheme_name(const std::string& name) {
-  std::vector<std::string> names;
-  for (const sd::SchemeSpec& s : sd::scheme_catalogue()) names.push_back(s.name);
-  for (const sd::MeshScheme s : kMeshSchemes) names.emplace_back(sd::scheme_name(s));
-  if (std::find(names.begin(), names.end(), name) == names.end())
-    throw InvalidInput("unknown scheme '" + name + "'" + did_you_mean(name, names) + " (see cifs scheme --list)");
+  std::vector<std::string> curves, all;
+  for (const sd::SchemeSpec& s : sd::scheme_catalogue()) curves.push_back(s.name);
+  if (mesh_scheme_named(name) || std::find(curves.begin(), curves.end(), name) != curves.end()) return;
+  all = curves;
+  for (const sd::MeshScheme s : kMeshSchemes) all.emplace_back(sd::scheme_name(s));
+  if (const auto near = nearest(name, all); near && mesh_scheme_named(*near))
+    throw InvalidInput("unknown scheme '" + name + "'; did you mean " + *near + "? (see cifs scheme --list)");
+  (void)sd::named_scheme(name, {});  // throws the library's "unknown scheme 'NAME'" with its suggestion
 }
 
 int integer_text(const std::string& text, const std::string& option, const std::string& given) {

@@ -245,7 +245,8 @@ int components(const MeshTopology& t) {
   for (int v = 0; v < t.vertex_count; ++v) parent[static_cast<std::size_t>(v)] = v;
   const auto find = [&](int v) {
     while (parent[static_cast<std::size_t>(v)] != v)
-      v = parent[static_cast<std::size_t>(v)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(v)])];
+      v = parent[static_cast<std::size_t>(v)] =
+          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(v)])];
     return v;
   };
   for (const auto& [a, b] : t.edges) parent[static_cast<std::size_t>(find(a))] = find(b);
@@ -268,7 +269,8 @@ MeshStatistics mesh_statistics(const MeshTopology& t) {
   s.boundary_loops = boundary_loops(t).size();
   s.components = components(t);
   s.euler_characteristic = euler_characteristic(t);
-  if (s.boundary_loops == 0) s.genus = (2LL * s.components - (s.euler_characteristic - s.isolated_vertices)) / 2;
+  if (s.boundary_loops == 0)
+    s.genus = (2LL * s.components - (s.euler_characteristic - s.isolated_vertices)) / 2;
   return s;
 }
 

@@ -85,7 +85,7 @@ void fit(DimensionMeasurement& m, ifs::BoxCountingOptions bo, bool relax) {
 /// `--depth K`: the proven piece bound when it leaves 3 levels, else (or when it is infinite) the
 /// leaves' net diameters as an estimated resolution, with relaxed requirements.
 DimensionMeasurement measure_depth(const io::Experiment& e, int depth, const ifs::BoxCountingOptions& bo,
-                       bool user_levels) {
+                                   bool user_levels) {
   DimensionMeasurement m;
   m.sample = evaluate(e, depth);
   m.route = "depth";
@@ -113,15 +113,17 @@ void compare_coarser(DimensionMeasurement& m, const ifs::BoxCountingOptions& bo,
   c.estimated = m.estimated;
   try {
     if (m.route == "tolerance") {
-      const ifs::ToleranceSample ts = ifs::tolerance_sample(
-          m.sample.automaton, m.sample.nets, {.epsilon = 2 * m.sample.resolution, .homogeneous = m.sample.rational});
+      const ifs::ToleranceSample ts =
+          ifs::tolerance_sample(m.sample.automaton, m.sample.nets,
+                                {.epsilon = 2 * m.sample.resolution, .homogeneous = m.sample.rational});
       c.sample.points = ts.points;
       c.resolution = m.resolution > 0 ? ts.resolution : 0;
     } else {
       if (m.sample.depth < 1) throw InvalidInput("depth 0 has no coarser depth");
-      const ifs::DepthSample ds = ifs::depth_sample(
-          m.sample.automaton, m.sample.nets,
-          {.homogeneous = m.sample.rational, .max_points = std::size_t{1} << 40, .max_depth = m.sample.depth - 1});
+      const ifs::DepthSample ds = ifs::depth_sample(m.sample.automaton, m.sample.nets,
+                                                    {.homogeneous = m.sample.rational,
+                                                     .max_points = std::size_t{1} << 40,
+                                                     .max_depth = m.sample.depth - 1});
       c.sample.points = ds.points;
       c.resolution = !m.estimated || !std::isfinite(ds.resolution) ? 0 : ds.resolution;
     }
@@ -140,7 +142,7 @@ void compare_coarser(DimensionMeasurement& m, const ifs::BoxCountingOptions& bo,
 /// deepest depth sample within the budget with a resolution estimated from the leaves' nets.
 /// `fallback` gets why the proven route was left.
 DimensionMeasurement measure_automatic(const io::Experiment& e, const DimensionOptions& o,
-                           const ifs::BoxCountingOptions& bo, std::string& fallback) {
+                                       const ifs::BoxCountingOptions& bo, std::string& fallback) {
   DimensionMeasurement m;
   m.sample = evaluate(e, 0);  // builds the source once: automaton and nets
   // Refusals of the input itself (an extent beyond a double) are not a reason to change routes.
@@ -193,7 +195,8 @@ DimensionMeasurement measure_automatic(const io::Experiment& e, const DimensionO
 
 /// The sample and its fit, by the route the options ask for (or the automatic one); `fallback`
 /// gets why the proven route was left.
-DimensionMeasurement dimension_measure(const io::Experiment& e, const DimensionOptions& o, std::string& fallback) {
+DimensionMeasurement dimension_measure(const io::Experiment& e, const DimensionOptions& o,
+                                       std::string& fallback) {
   if (o.depth && o.relative_piece_size)
     throw InvalidInput("dimension: give --depth or --relative-piece-size, not both");
   // The sample is held in memory and its walk takes about 1 µs per point: a budget of 2^40 ran for days.
@@ -215,8 +218,7 @@ DimensionMeasurement dimension_measure(const io::Experiment& e, const DimensionO
   } else if (o.depth) {
     m = measure_depth(e, *o.depth, bo, user_levels);
   } else {
-    m.sample =
-        sample(e, {.tolerance = o.relative_piece_size.value_or(0), .max_points = o.max_points});
+    m.sample = sample(e, {.tolerance = o.relative_piece_size.value_or(0), .max_points = o.max_points});
     m.route = "tolerance";
     m.resolution = m.sample.resolution;
     ifs::BoxCountingOptions so = bo;

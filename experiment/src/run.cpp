@@ -752,9 +752,9 @@ std::optional<io::Content> geometry_content(const io::Experiment& e) {
   return surface(e.shape) ? io::Content::mesh : io::Content::segments;  // BC-IFS files draw curves
 }
 
-/// Refuses, before any work, a geometry output that the evaluation cannot give and an image path whose
-/// extension is not its format's (`-o foo.png` would be OpenEXR bytes in a .png file).
-void check_outputs(const io::Experiment& e, const RunOptions& o) {
+/// Refuses an image path whose extension is not its format's (`-o foo.png` would be OpenEXR bytes in a
+/// .png file); after the paths themselves are checked (reserve_outputs), before any work.
+void check_image_extensions(const io::Experiment& e, const RunOptions& o) {
   const auto image = [](const std::filesystem::path& path, const std::string& label, const char* extension,
                         const char* what) {
     if (!path.empty() && path.extension() != extension)
@@ -764,6 +764,10 @@ void check_outputs(const io::Experiment& e, const RunOptions& o) {
         "image is OpenEXR");
   image(o.png.empty() ? e.outputs.png : o.png, o.png.empty() ? "outputs.png" : "the PNG path", ".png",
         "preview is PNG");
+}
+
+/// Refuses, before any work, a geometry output that the evaluation cannot give.
+void check_geometry_outputs(const io::Experiment& e) {
   if (e.outputs.geometry.empty()) return;
   const std::optional<io::Content> content = geometry_content(e);
   if (!content)
@@ -787,7 +791,7 @@ void check_outputs(const io::Experiment& e, const RunOptions& o) {
 
 /// The geometry and automaton files, in the order of the format table (io::formats), encoded a chunk
 /// at a time into their temporaries (no file's bytes are ever whole in memory); returns their paths.
-/// check_outputs has refused what the scene cannot give.
+/// check_geometry_outputs has refused what the scene cannot give.
 std::vector<std::filesystem::path> write_files(const Scene& scene, const io::Experiment& e,
                                                Outputs& outputs) {
   std::vector<std::filesystem::path> geometry;
@@ -1074,7 +1078,6 @@ void write_outputs(const render::Image& image, const Scene& scene, const io::Exp
 
 RunReport run(const io::Experiment& e, const RunOptions& o) {
   RunReport report;
-  check_outputs(e, o);
   const ImagePaths paths = image_paths(e, o);
   render::check_part(o.part);
   const bool distributed = o.part.count > 1, writer = o.part.index == 0;
@@ -1082,6 +1085,8 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
     throw InvalidInput("a distributed run needs a combine function to merge its parts");
   Outputs outputs;
   if (writer) reserve_outputs(outputs, e, o, paths.exr, paths.png);
+  check_geometry_outputs(e);
+  check_image_extensions(e, o);
   const unsigned threads = o.threads.value_or(e.render.threads);
 
   std::string kind;

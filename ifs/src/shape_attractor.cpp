@@ -17,8 +17,11 @@ Points attractor(const nurbs::Curve& curve, int depth, std::size_t max_points) {
   const nurbs::KnotAutomaton a = nurbs::knot_automaton(curve);
   const std::vector<Points> nets = nurbs::initial_nets(a, curve);
   return sample_attractor(a.automaton, nets,
-                          {.depth = depth, .homogeneous = curve.rational, .closed = curve.closed,
-                           .max_points = max_points, .limit_hint = "; lower the depth"})
+                          {.depth = depth,
+                           .homogeneous = curve.rational,
+                           .closed = curve.closed,
+                           .max_points = max_points,
+                           .limit_hint = "; lower the depth"})
       .points;
 }
 

@@ -9,8 +9,8 @@
 #include "arrays.hpp"
 #include "cifs/experiment/dimension.hpp"
 #include "cifs/experiment/run.hpp"
-#include "cifs/format.hpp"
 #include "cifs/files.hpp"
+#include "cifs/format.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/io/json.hpp"
 #include "cifs/io/obj.hpp"
@@ -429,7 +429,6 @@ void bind_geometry_files(py::module_& m) {
 
 void bind_geometry(py::module_& m) {
   bind_geometry_polylines(m);
-  bind_geometry_types(m);
   bind_geometry_files(m);
 }
 
@@ -620,6 +619,10 @@ void bind_experiment_file(py::module_& m) {
 
 }  // namespace
 
+void bind_io_types(py::module_& m) {
+  bind_geometry_types(m);
+}
+
 void bind_io(py::module_& m) {
   bind_shapes(m);
   bind_polygons(m);
@@ -772,12 +775,14 @@ void bind_experiment_types(py::module_& m) {
 /// cifs dimension's measurement (experiment::measure_dimension).
 void bind_dimension(py::module_& m) {
   using namespace cifs::experiment;
-  py::class_<DimensionMeasurement>(m, "DimensionMeasurement",
-                                   "The dimension of an attractor as `cifs dimension` measures and reports it.")
+  py::class_<DimensionMeasurement>(
+      m, "DimensionMeasurement", "The dimension of an attractor as `cifs dimension` measures and reports it.")
       .def_readonly("sample", &DimensionMeasurement::sample, "The sample measured (Evaluation).")
       .def_readonly("route", &DimensionMeasurement::route, "'tolerance' or 'depth'.")
-      .def_readonly("description", &DimensionMeasurement::description, "The route in words, as the CLI prints it.")
-      .def_readonly("resolution", &DimensionMeasurement::resolution, "Resolution passed to the fit (0: none).")
+      .def_readonly("description", &DimensionMeasurement::description,
+                    "The route in words, as the CLI prints it.")
+      .def_readonly("resolution", &DimensionMeasurement::resolution,
+                    "Resolution passed to the fit (0: none).")
       .def_readonly("estimated", &DimensionMeasurement::estimated,
                     "True when the resolution is estimated from the leaves' nets, not proven.")
       .def_readonly("fallback", &DimensionMeasurement::fallback,
@@ -785,11 +790,13 @@ void bind_dimension(py::module_& m) {
       .def_readonly("relaxed", &DimensionMeasurement::relaxed, "Fit requirements dropped, in words.")
       .def_readonly("fit", &DimensionMeasurement::fit, "The box count (cifs.ifs.BoxCountingResult).")
       .def_property_readonly(
-          "dimension", [](const DimensionMeasurement& d) { return d.fit.dimension; }, "The box-counting dimension.")
+          "dimension", [](const DimensionMeasurement& d) { return d.fit.dimension; },
+          "The box-counting dimension.")
       .def_readonly("uncertainty", &DimensionMeasurement::uncertainty,
                     "max(fit.uncertainty, |dimension − coarser|): the ± the CLI prints.")
-      .def_readonly("coarser", &DimensionMeasurement::coarser,
-                    "Dimension of the same route on a 2–4× smaller sample; None (see coarser_note) when none.")
+      .def_readonly(
+          "coarser", &DimensionMeasurement::coarser,
+          "Dimension of the same route on a 2–4× smaller sample; None (see coarser_note) when none.")
       .def_readonly("coarser_note", &DimensionMeasurement::coarser_note, "Why there is no coarser dimension.")
       .def_readonly("cover", &DimensionMeasurement::cover,
                     "Growth of the proven cover (cifs.ifs.CoverExponent), or None.")
@@ -821,7 +828,8 @@ void bind_dimension(py::module_& m) {
     py::gil_scoped_release release;
     return measure_dimension(e, o);
   };
-  const auto shape_measure = [measure](io::Shape shape, auto... rest) {  // a shape file's experiment (the CLI's)
+  const auto shape_measure = [measure](io::Shape shape,
+                                       auto... rest) {  // a shape file's experiment (the CLI's)
     io::Experiment e;
     e.name = std::holds_alternative<nurbs::Curve>(shape) ? "curve" : "surface";
     e.shape = std::move(shape);
@@ -842,13 +850,17 @@ void bind_dimension(py::module_& m) {
           py::arg("min_boxes") = static_cast<long long>(defaults.min_boxes), doc);
   };
   def(measure, "experiment");
-  def([shape_measure](const nurbs::Curve& c, std::optional<int> depth, std::optional<double> piece,
-                      long long max_points, int min_level, int max_level,
-                      long long min_boxes) { return shape_measure(c, depth, piece, max_points, min_level, max_level, min_boxes); },
+  def(
+      [shape_measure](const nurbs::Curve& c, std::optional<int> depth, std::optional<double> piece,
+                      long long max_points, int min_level, int max_level, long long min_boxes) {
+        return shape_measure(c, depth, piece, max_points, min_level, max_level, min_boxes);
+      },
       "shape");
-  def([shape_measure](const nurbs::Surface& s, std::optional<int> depth, std::optional<double> piece,
-                      long long max_points, int min_level, int max_level,
-                      long long min_boxes) { return shape_measure(s, depth, piece, max_points, min_level, max_level, min_boxes); },
+  def(
+      [shape_measure](const nurbs::Surface& s, std::optional<int> depth, std::optional<double> piece,
+                      long long max_points, int min_level, int max_level, long long min_boxes) {
+        return shape_measure(s, depth, piece, max_points, min_level, max_level, min_boxes);
+      },
       "shape");
 }
 

@@ -364,7 +364,8 @@ void bind_curve(py::module_& m) {
           py::arg("depth"), py::kw_only(), py::arg("max_points") = std::int64_t{1} << 27,
           "The curve as the attractor of its knot-doubling automaton at `depth` (ifs::attractor): Cartesian\n"
           "points (n, dimension) in curve order, 2^depth per segment plus the end point unless closed — the\n"
-          "curve at the dyadic parameters, rational or not. Raises InvalidInput for a negative depth or more\n"
+          "curve at the dyadic parameters, rational or not. Raises InvalidInput for a negative depth or "
+          "more\n"
           "than max_points points.")
       .def(
           "evaluate",
@@ -575,7 +576,8 @@ void bind_surface(py::module_& m) {
           },
           py::arg("depth"), py::kw_only(), py::arg("max_bytes") = std::int64_t{1} << 30,
           "The surface as the attractor of its tensor-product automaton at `depth` (ifs::attractor): its\n"
-          "watertight quad mesh (io.Mesh, the layout of ifs.surface_mesh) with Cartesian vertices, rational or\n"
+          "watertight quad mesh (io.Mesh, the layout of ifs.surface_mesh) with Cartesian vertices, rational "
+          "or\n"
           "not. Raises InvalidInput for a negative depth or a mesh above max_bytes.")
       .def(
           "evaluate",

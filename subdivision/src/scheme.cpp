@@ -318,7 +318,8 @@ Scheme named_scheme(std::string_view name_view, const std::map<std::string, std:
     for (const SchemeSpec& s : catalogue) names += (names.empty() ? "" : ", ") + s.name;
     std::vector<std::string> listed;
     for (const SchemeSpec& s : catalogue) listed.push_back(s.name);
-    throw InvalidInput("unknown scheme '" + name + "'" + did_you_mean(name, listed) + " (schemes: " + names + ")");
+    throw InvalidInput("unknown scheme '" + name + "'" + did_you_mean(name, listed) + " (schemes: " + names +
+                       ")");
   }
   std::map<std::string, std::string> values;
   for (const ParameterSpec& p : spec->parameters) values[p.name] = p.default_value;

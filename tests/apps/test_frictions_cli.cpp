@@ -16,7 +16,8 @@ const std::string kCube = kExamples + "/meshes/cube.obj";
 /// A small experiment of the wave curve in the scratch folder (its shape path absolute).
 std::string wave_experiment(const std::string& name, const std::string& outputs) {
   return file(name, R"({"shape": ")" + kWave + R"(", "evaluation": {"depth": 4},
-      "render": {"width": 32, "height": 32}, "outputs": {)" + outputs + "}}");
+      "render": {"width": 32, "height": 32}, "outputs": {)" +
+                        outputs + "}}");
 }
 
 }  // namespace
@@ -81,4 +82,13 @@ TEST_CASE("cifs --version is the project's version", "[cli][frictions]") {
   const auto start = cmake.find("project(cifs VERSION ") + std::string("project(cifs VERSION ").size();
   REQUIRE(start > 30);
   CHECK(cifs_cli("--version").out == "cifs " + cmake.substr(start, cmake.find(' ', start) - start) + "\n");
+}
+
+TEST_CASE("A parameter or knot outside the domain names the shape file", "[cli][frictions][messages]") {
+  const std::string hills = kExamples + "/shapes/hills.json";
+  check_error(cifs_cli("eval " + hills + " --at -0.5,0.5"),
+              "cifs: " + hills + ": parameter u = -0.5 is outside");
+  check_error(cifs_cli("eval " + kWave + " --at 7"),
+              "cifs: " + kWave + ": parameter 7 is outside the domain");
+  check_error(cifs_cli("insert " + kWave + " --knot 9"), "cifs: " + kWave + ": knot 9 is outside the domain");
 }

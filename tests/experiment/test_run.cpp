@@ -186,7 +186,6 @@ TEST_CASE("Outputs and image paths are checked before any work", "[experiment]")
   experiment::RunOptions o;
   o.out_dir = dir.path();
   o.quiet = true;
-  o.max_bytes = 1;  // every image and geometry too large: the outputs' check must come first
   const auto refused = [&](const std::string& text) {
     try {
       experiment::run(parse_named_experiment(text), o);
@@ -195,17 +194,18 @@ TEST_CASE("Outputs and image paths are checked before any work", "[experiment]")
     }
     return std::string("no error");
   };
-  // A chaos game gives a density: its geometry output is refused before the game's samples are drawn.
-  CHECK(refused(R"({"shape": "../shapes/wave.json", "evaluation": {"chaos": 1000000},
-      "outputs": {"png": "w.png", "ply": "w.ply"}})") ==
+  // Each of these sources fails in its evaluation (not contractive, a mesh too large): the outputs are
+  // refused before it. A chaos game gives a density, a surface no segments.
+  CHECK(refused(R"({"shape": "../shapes/wave.json", "perturbation": {"amplitude": 50},
+      "evaluation": {"chaos": 1000000}, "outputs": {"png": "w.png", "ply": "w.ply"}})") ==
         "outputs.ply: a chaos game gives a density, no geometry to export");
-  CHECK(refused(R"({"ifs": "fern", "evaluation": {"depth": 8}, "outputs": {"png": "f.png", "obj": "f.obj"}})") ==
+  CHECK(refused(
+            R"({"ifs": "fern", "evaluation": {"depth": 8}, "outputs": {"png": "f.png", "obj": "f.obj"}})") ==
         "outputs.obj: a classic IFS gives a density, no geometry to export");
   CHECK(refused(R"({"shape": "../shapes/saddle.json", "evaluation": {"depth": 30},
       "outputs": {"png": "s.png", "svg": "s.svg"}})") ==
         "outputs.svg: SVG is for curves; use obj or ply for surfaces");
   // The image files are OpenEXR and PNG: another extension is refused, not written with the wrong bytes.
-  o.max_bytes = std::size_t{1} << 31;
   CHECK(refused(R"({"shape": "../shapes/wave.json", "outputs": {"exr": "w.png"}})") ==
         "outputs.exr: w.png: the image is OpenEXR, written as .exr");
   CHECK(refused(R"({"shape": "../shapes/wave.json", "outputs": {"png": "w.jpg"}})") ==

@@ -33,8 +33,9 @@ void check_against_evaluation(const nurbs::Curve& c, int depth) {
   for (Eigen::Index i = 0; i < A.rows(); ++i) scale = std::max(scale, A.row(i).cwiseAbs().maxCoeff());
   for (std::size_t i = 0; i < us.size(); ++i) {
     INFO("u = " << us[i]);
-    CHECK((A.row(static_cast<Eigen::Index>(i)) - nurbs::evaluate(c, us[i]).transpose()).cwiseAbs().maxCoeff() <=
-          1e-12 * scale);
+    CHECK(
+        (A.row(static_cast<Eigen::Index>(i)) - nurbs::evaluate(c, us[i]).transpose()).cwiseAbs().maxCoeff() <=
+        1e-12 * scale);
   }
 }
 
@@ -44,8 +45,10 @@ TEST_CASE("ifs::attractor of a curve: Cartesian points at the dyadic parameters,
           "[ifs][attractor]") {
   Points P(6, 3);
   P << 0, 0, 1, 1, 2, 3, 3, 2, 0.5, 4, 0, 2, 5, 1, 1, 6, 3, 0.25;
-  const nurbs::Knots knots{0, 0, 0, 0, 1, 3, 3.5, 6, 6, 6, 6};
-  SECTION("a non-rational 3-D curve keeps its z") { check_against_evaluation(nurbs::make_curve(3, knots, P), 5); }
+  const nurbs::Knots knots{0, 0, 0, 0, 1, 3.5, 6, 6, 6, 6};
+  SECTION("a non-rational 3-D curve keeps its z") {
+    check_against_evaluation(nurbs::make_curve(3, knots, P), 5);
+  }
   SECTION("a rational 3-D curve comes back Cartesian") {
     Eigen::VectorXd w(6);
     w << 1, 3, 0.5, 2, 1, 0.7;
@@ -65,8 +68,8 @@ TEST_CASE("ifs::attractor of a rational surface: its quad mesh's vertices are Ca
     for (int j = 0; j < 3; ++j) P.row(i * 3 + j) << i, j, (i * j) % 3 + 0.5;
   Eigen::VectorXd w(12);
   w << 1, 2, 1, 0.5, 1, 3, 1, 1, 2, 0.25, 1, 1;
-  const nurbs::Surface s = nurbs::make_surface({2, 2}, {nurbs::Knots{0, 0, 0, 1, 2, 2, 2}, {0, 0, 0, 1, 1, 1}},
-                                               {4, 3}, P, w);
+  const nurbs::Surface s =
+      nurbs::make_surface({2, 2}, {nurbs::Knots{0, 0, 0, 1, 2, 2, 2}, {0, 0, 0, 1, 1, 1}}, {4, 3}, P, w);
   const int depth = 3;
   const Mesh mesh = ifs::attractor(s, depth);
   const std::vector<double> us = dyadic({0, 1, 2}, depth, true), vs = dyadic({0, 1}, depth, true);

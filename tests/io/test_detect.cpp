@@ -23,10 +23,11 @@ TEST_CASE("io::detect tells meshes, shapes, polygons and experiments apart", "[i
     return dir.path() / name;
   };
   CHECK(io::detect(write("m.ply", "not even read")) == io::Content::mesh);
-  CHECK(io::detect(write("c.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\ncstype bspline\ndeg 3\n"
-                                  "curv 0 1 1 2 3 4\nparm u 0 0 0 0 1 1 1 1\nend\n")) == io::Content::shape);
+  CHECK(io::detect(write("c.obj",
+                         "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\ncstype bspline\ndeg 3\n"
+                         "curv 0 1 1 2 3 4\nparm u 0 0 0 0 1 1 1 1\nend\n")) == io::Content::shape);
   CHECK(io::detect(write("f.obj", "v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\n  f 1 2 3\r\n")) == io::Content::mesh);
   CHECK(io::detect(write("p.obj", "v 0 0 0\nv 1 0 0\n")) == io::Content::shape);  // no faces
-  CHECK(io::detect(write("bad.json", "{not json")) == io::Content::shape);          // its reader says why
+  CHECK(io::detect(write("bad.json", "{not json")) == io::Content::shape);        // its reader says why
   CHECK_THROWS_AS(io::detect(dir.path() / "missing.json"), IoError);
 }

@@ -279,11 +279,11 @@ class CurveTest(ScratchTestCase):
         with self.assertRaises(cifs.InvalidInput) as caught:
             nurbs.Curve(2, [0, 0, 0, 1, 1], np.array([[0, 0], [1, 1]], float))
         self.assertEqual(f"{bad}: curve.{caught.exception}", expected)
-        # Outside the domain: the CLI's line without its prefix.
+        # Outside the domain: the CLI's line without its prefix and the file it names.
         expected = cli("eval", SHAPES / "cubic.json", "--at", "5", check=False).stderr.strip()
         with self.assertRaises(cifs.InvalidInput) as caught:
             nurbs.evaluate(shape("cubic"), 5.0)
-        self.assertEqual("cifs: " + str(caught.exception), expected)
+        self.assertEqual(f"cifs: {SHAPES / 'cubic.json'}: {caught.exception}", expected)
 
 
 class AttractorMethodTest(unittest.TestCase):

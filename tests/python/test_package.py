@@ -29,6 +29,20 @@ class PackageTest(unittest.TestCase):
         text = (SOURCE_DIR / "CMakeLists.txt").read_text()
         self.assertIn(f"project(cifs VERSION {cifs.__version__} ", text)
 
+    def test_signatures_name_python_types_not_cpp_ones(self):
+        """A type registered after a function that takes it shows as its C++ name (`cifs::Mesh`) in the
+        signature, pydoc and the stubs (where it became `Any`)."""
+        import re
+        leaks = []
+        for name in SUBMODULES:
+            for attr, obj in vars(getattr(cifs, name)).items():
+                members = [(attr, obj)] + ([(f"{attr}.{m}", v) for m, v in vars(obj).items()]
+                                           if inspect.isclass(obj) else [])
+                for where, value in members:
+                    found = re.findall(r"\bcifs::[\w:]+", getattr(value, "__doc__", None) or "")
+                    leaks += [f"cifs.{name}.{where}: {t}" for t in sorted(set(found))]
+        self.assertEqual(leaks, [])
+
     def test_every_public_object_has_a_docstring(self):
         missing = []
         for name in SUBMODULES:

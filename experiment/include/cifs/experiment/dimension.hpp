@@ -62,6 +62,7 @@ struct DimensionMeasurement {
 /// Measures the box-counting dimension of `experiment`'s attractor (docs/dimension.md). Throws
 /// InvalidInput for options that contradict each other or are out of range, and when no route gives
 /// 3 fitted levels (the message says what to change); the errors of evaluate and sample.
-DimensionMeasurement measure_dimension(const io::Experiment& experiment, const DimensionOptions& options = {});
+DimensionMeasurement measure_dimension(const io::Experiment& experiment,
+                                       const DimensionOptions& options = {});
 
 }  // namespace cifs::experiment
