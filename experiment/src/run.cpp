@@ -784,8 +784,13 @@ void check_geometry_outputs(const io::Experiment& e) {
     for (const io::Format& f : formats)
       if (f.write) ours += (ours.empty() ? "" : " or ") + std::string(f.name);
     const bool mesh = content == io::Content::mesh;
-    throw InvalidInput("outputs." + format + ": " + upper + " is for " + (mesh ? "curves" : "surfaces") +
-                       "; use " + ours + " for " + (mesh ? "surfaces" : "curves"));
+    std::string message = "outputs.";
+    message += format + ": ";
+    message += upper + " is for ";
+    message += mesh ? "curves" : "surfaces";
+    message += "; use " + ours + " for ";
+    message += mesh ? "surfaces" : "curves";
+    throw InvalidInput(message);
   }
 }
 

@@ -315,9 +315,12 @@ Scheme named_scheme(std::string_view name_view, const std::map<std::string, std:
       std::find_if(catalogue.begin(), catalogue.end(), [&](const SchemeSpec& s) { return s.name == name; });
   if (spec == catalogue.end()) {
     std::string names;
-    for (const SchemeSpec& s : catalogue) names += (names.empty() ? "" : ", ") + s.name;
     std::vector<std::string> listed;
-    for (const SchemeSpec& s : catalogue) listed.push_back(s.name);
+    listed.reserve(catalogue.size());
+    for (const SchemeSpec& s : catalogue) {
+      names += (names.empty() ? "" : ", ") + s.name;
+      listed.push_back(s.name);
+    }
     throw InvalidInput("unknown scheme '" + name + "'" + did_you_mean(name, listed) + " (schemes: " + names +
                        ")");
   }
