@@ -16,6 +16,7 @@
 
 #include "cifs/automata/automaton.hpp"
 #include "cifs/errors.hpp"
+#include "cifs/experiment/dimension.hpp"
 #include "cifs/experiment/run.hpp"
 #include "cifs/files.hpp"
 #include "cifs/format.hpp"
@@ -157,6 +158,17 @@ void write_in_chunks(PointsOutput& out, std::int64_t count, std::int64_t chunk, 
     out.write(rows(first, std::min(chunk, count - first)));
 }
 
+/// The shape's own refusals of what the user gave (a parameter or a knot outside its domain) name its
+/// file: `cifs: <where>: <what>`.
+template <class Work>
+auto naming_shape(const std::filesystem::path& shape, Work&& work) {
+  try {
+    return work();
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(shape.string() + ": " + e.what());
+  }
+}
+
 /// Rows per chunk of a streamed output (a file or stdout).
 constexpr std::int64_t kChunkPoints = std::int64_t{1} << 16;
 
@@ -167,7 +179,8 @@ std::string eval_curve(const nurbs::Curve& c, const EvalOptions& o) {
       throw InvalidInput("--at '" + a + "': a curve takes one parameter U");
     at.push_back(parse_number(a, "--at"));
   }
-  const Points first = nurbs::evaluate(c, at);  // checks the parameters before any file is created
+  // Checks the parameters before any file is created.
+  const Points first = naming_shape(o.shape, [&] { return nurbs::evaluate(c, at); });
   const nurbs::Domain dom = nurbs::domain(c);
   PointsOutput out(o.output, "json", static_cast<std::uint64_t>(first.rows() + o.samples), first.cols(), {},
                    "eval", o.quiet);
@@ -187,7 +200,7 @@ std::string eval_surface(const nurbs::Surface& s, const EvalOptions& o) {
     if (comma == std::string::npos) throw InvalidInput("--at '" + a + "': a surface takes U,V");
     const double u = parse_number(std::string_view(a).substr(0, comma), "--at");
     const double v = parse_number(std::string_view(a).substr(comma + 1), "--at");
-    first.row(static_cast<Eigen::Index>(i)) = nurbs::evaluate(s, u, v);
+    first.row(static_cast<Eigen::Index>(i)) = naming_shape(o.shape, [&] { return nurbs::evaluate(s, u, v); });
   }
   const auto n = static_cast<std::int64_t>(o.samples);
   const auto u_domain = nurbs::domain(s, nurbs::Direction::u);
@@ -227,12 +240,13 @@ std::string insert(const InsertOptions& o) {
   const io::Shape shape = read_shape(o.shape, o.select);
   if (const auto* c = std::get_if<nurbs::Curve>(&shape)) {
     if (o.dir != "u") throw InvalidInput("--dir v: a curve has one direction");
-    nurbs::Curve out = nurbs::refine(*c, o.knots);
+    nurbs::Curve out = naming_shape(o.shape, [&] { return nurbs::refine(*c, o.knots); });
     if (o.midpoints) out = nurbs::refine_midpoints(out);
     return io::to_json(out);
   }
   const auto dir = o.dir == "u" ? nurbs::Direction::u : nurbs::Direction::v;
-  nurbs::Surface out = nurbs::refine(std::get<nurbs::Surface>(shape), dir, o.knots);
+  nurbs::Surface out =
+      naming_shape(o.shape, [&] { return nurbs::refine(std::get<nurbs::Surface>(shape), dir, o.knots); });
   if (o.midpoints) out = nurbs::refine_midpoints(out);
   return io::to_json(out);
 }
@@ -277,13 +291,6 @@ json shape_info(const io::Shape& shape) {
 
 namespace {
 
-/// A JSON file whose object holds "polygon" (docs/formats.md, control polygons of the seeds).
-bool is_polygon_file(const std::filesystem::path& path) {
-  if (path.extension() != ".json") return false;
-  const json j = json::parse(read_file(path), nullptr, false);
-  return j.is_object() && j.contains("polygon");
-}
-
 /// Points, dimension, closed, edges, length and bounds of a control polygon.
 std::string polygon_info(const std::filesystem::path& path) {
   const io::Polygon p = io::read_polygon(path);
@@ -304,8 +311,9 @@ std::string polygon_info(const std::filesystem::path& path) {
 }  // namespace
 
 std::string info(const std::filesystem::path& path, const ShapeSelection& select) {
-  if (is_polygon_mesh_file(path)) return mesh_info(path);
-  if (is_polygon_file(path)) {
+  const io::Content content = io::detect(path);
+  if (content == io::Content::mesh) return mesh_info(path);
+  if (content == io::Content::polygon) {
     if (select.index || select.ignore_trim)
       throw InvalidInput(path.string() + ": --index and --ignore-trim apply to shape files, not polygons");
     return polygon_info(path);
@@ -682,213 +690,13 @@ std::string render(const RenderOptions& o) {
   return summary;
 }
 
-namespace {
-
-/// The sample a dimension is measured on, how it was had, and its fit.
-struct Measured {
-  experiment::Evaluation ev;
-  std::string route;                 // "tolerance" or "depth"
-  double resolution = 0;             // passed to the fit (0: none)
-  bool estimated = false;            // resolution from the leaves' nets, not proven
-  std::vector<std::string> relaxed;  // fit requirements dropped, as said to the user
-  ifs::BoxCountingResult fit;
-  /// The same route on a sample 2–4× smaller (tolerance 2ε, or depth K − 1): its dimension,
-  /// when it can be fitted, and why not otherwise.
-  std::optional<double> coarser;
-  std::string coarser_note;
-  double uncertainty = 0;  // max(fit.uncertainty, |fit.dimension − coarser|)
-  /// Growth of the proven cover (tolerance route): an upper estimate free of the box count's
-  /// boundary term.
-  std::optional<ifs::CoverExponent> cover;
-};
-
-/// The range the dimension is reported in: the box count ± its uncertainty, widened up to the
-/// proven cover's growth where that lies above it (the box count's finite-scale bias is downward).
-std::pair<double, double> dimension_range(const Measured& m) {
-  const double lo = m.fit.dimension - m.uncertainty, hi = m.fit.dimension + m.uncertainty;
-  return {lo, m.cover ? std::max(hi, m.cover->dimension) : hi};
-}
-
-std::string route_name(const Measured& m) {
-  if (m.route == "tolerance")
-    return "proven tolerance sample (every piece < " + number_text(m.resolution, 4) + ", deepest " +
-           std::to_string(m.ev.depth) + ")";
-  return "depth evaluation " + std::to_string(m.ev.depth) + " (pieces " +
-         (m.estimated && m.resolution == 0 ? std::string("of unknown size: a leaf's weights reach 0")
-          : m.estimated                    ? "≈ " + number_text(m.resolution, 4) +
-                              ", resolution estimated from the leaves' nets, not proven"
-                        : "≤ " + number_text(m.resolution, 4) + ", proven") +
-         ")";
-}
-
-/// Box counting on m.ev.points with the automatic range; when `relax` and fewer than 3 levels
-/// qualify, looser sets of requirements are tried in turn, loosest last, and the first that gives
-/// 3 levels is named in m.relaxed. Throws the last InvalidInput when none does.
-void fit(Measured& m, ifs::BoxCountingOptions bo, bool relax) {
-  bo.resolution = m.resolution;
-  struct Relaxation {
-    std::size_t min_boxes;
-    double resolution;  // factor on bo.resolution (0: no piece-size rule)
-    std::vector<std::string> said;
-  };
-  const std::string fewer = "≥ 100 boxes per fitted level (not " + std::to_string(bo.min_boxes) + ")";
-  const std::string pieces = "boxes ≥ 1× the pieces (not 2×)";
-  const std::string none = "no piece-size rule: ≥ 4 points per box on average bounds the fine end";
-  const std::size_t hundred = std::min<std::size_t>(bo.min_boxes, 100),
-                    thirty = std::min<std::size_t>(bo.min_boxes, 30);
-  // The piece-size rule goes first: its size is a loose proven bound or an estimate from the
-  // largest net, while the points-per-box rule measures the sample's own coverage; the coarse end
-  // (boundary and overall-shape terms) is given up last.
-  std::vector<Relaxation> tries = {{bo.min_boxes, 1, {}}};
-  if (relax) {
-    const bool piece_rule = bo.resolution > 0 || bo.points_per_box < 4;
-    if (piece_rule) tries.push_back({bo.min_boxes, 0, {none}});
-    if (bo.resolution > 0) tries.push_back({bo.min_boxes, 0.5, {pieces}});
-    if (hundred < bo.min_boxes) {
-      tries.push_back({hundred, 0, {fewer, none}});
-      if (bo.resolution > 0) tries.push_back({hundred, 0.5, {fewer, pieces}});
-    }
-    if (thirty < hundred)
-      tries.push_back(
-          {thirty, 0, {"≥ 30 boxes per fitted level (not " + std::to_string(bo.min_boxes) + ")", none}});
-  }
-  for (std::size_t i = 0; i < tries.size(); ++i) {
-    ifs::BoxCountingOptions t = bo;
-    t.min_boxes = tries[i].min_boxes;
-    t.resolution = bo.resolution * tries[i].resolution;
-    if (tries[i].resolution == 0) t.points_per_box = std::max(t.points_per_box, 4.0);
-    try {
-      m.fit = ifs::box_counting(m.ev.points, t);
-      m.relaxed = tries[i].said;
-      return;
-    } catch (const InvalidInput&) {
-      if (i + 1 == tries.size()) throw;
-    }
-  }
-}
-
-/// `--depth K`: the proven piece bound when it leaves 3 levels, else (or when it is infinite) the
-/// leaves' net diameters as an estimated resolution, with relaxed requirements.
-Measured measure_depth(const io::Experiment& e, int depth, const ifs::BoxCountingOptions& bo,
-                       bool user_levels) {
-  Measured m;
-  m.ev = experiment::evaluate(e, depth);
-  m.route = "depth";
-  if (std::isfinite(m.ev.resolution)) {
-    m.resolution = m.ev.resolution;
-    try {
-      fit(m, bo, false);
-      return m;
-    } catch (const InvalidInput&) {
-      if (user_levels) throw;
-    }
-  }
-  m.resolution = std::isfinite(m.ev.estimated_resolution) ? m.ev.estimated_resolution : 0;
-  m.estimated = true;
-  fit(m, bo, !user_levels);
-  return m;
-}
-
-/// Fits the same route on a coarser sample (tolerance 2ε, or depth K − 1; about 4× fewer points
-/// on a surface, 2× on a curve) and widens the uncertainty to the change of the dimension: the
-/// budget's own effect, which the spread of the local slopes misses when the fit range is short.
-void compare_coarser(Measured& m, const ifs::BoxCountingOptions& bo, bool relax) {
-  Measured c;
-  c.route = m.route;
-  c.estimated = m.estimated;
-  try {
-    if (m.route == "tolerance") {
-      const ifs::ToleranceSample ts = ifs::tolerance_sample(
-          m.ev.automaton, m.ev.nets, {.epsilon = 2 * m.ev.resolution, .homogeneous = m.ev.rational});
-      c.ev.points = ts.points;
-      c.resolution = m.resolution > 0 ? ts.resolution : 0;
-    } else {
-      if (m.ev.depth < 1) throw InvalidInput("depth 0 has no coarser depth");
-      const ifs::DepthSample ds = ifs::depth_sample(
-          m.ev.automaton, m.ev.nets,
-          {.homogeneous = m.ev.rational, .max_points = std::size_t{1} << 40, .max_depth = m.ev.depth - 1});
-      c.ev.points = ds.points;
-      c.resolution = !m.estimated || !std::isfinite(ds.resolution) ? 0 : ds.resolution;
-    }
-    ifs::BoxCountingOptions co = bo;
-    if (m.route == "tolerance") co.points_per_box = 1;
-    fit(c, co, relax);
-    m.coarser = c.fit.dimension;
-  } catch (const InvalidInput& error) {
-    m.coarser_note = error.what();
-  }
-  m.uncertainty = std::max(m.fit.uncertainty, m.coarser ? std::abs(m.fit.dimension - *m.coarser) : 0.0);
-}
-
-/// The default route: the proven tolerance sample; its fit with relaxed requirements when fewer
-/// than 3 levels qualify; when no sample can be had within the budget (or no Cartesian bound), the
-/// deepest depth sample within the budget with a resolution estimated from the leaves' nets.
-/// `fallback` gets why the proven route was left.
-Measured measure_automatic(const io::Experiment& e, const DimensionOptions& o,
-                           const ifs::BoxCountingOptions& bo, std::string& fallback) {
-  Measured m;
-  m.ev = experiment::evaluate(e, 0);  // builds the source once: automaton and nets
-  // Refusals of the input itself (an extent beyond a double) are not a reason to change routes.
-  (void)ifs::nets_diameter(m.ev.nets, m.ev.rational);
-  ifs::ToleranceSample ts;
-  try {
-    ts = ifs::tolerance_sample(m.ev.automaton, m.ev.nets,
-                               {.homogeneous = m.ev.rational, .max_points = o.max_points});
-  } catch (const InvalidInput& error) {
-    fallback = error.what();
-  }
-  if (fallback.empty()) {
-    m.route = "tolerance";
-    m.ev.points = std::move(ts.points);
-    m.ev.depth = ts.deepest;
-    m.ev.resolution = m.resolution = ts.resolution;
-    // Only a cover whose counts follow one power law: self-similar sets whose ratio is not 1/2
-    // count in steps as ε halves (Koch: local slopes 0 … 2.4), which says nothing.
-    if (const auto cover = ifs::cover_exponent(ts.cover); cover && cover->spread <= 0.1) m.cover = cover;
-    // A tolerance sample covers the attractor to its resolution by construction: the
-    // points-per-box rule (a proxy for coverage of depth samples) does not apply.
-    ifs::BoxCountingOptions so = bo;
-    so.points_per_box = 1;
-    try {
-      fit(m, so, false);
-      return m;
-    } catch (const InvalidInput& error) {
-      fallback = error.what();
-    }
-    fit(m, so, true);
-    return m;
-  }
-  ifs::DepthSample ds = ifs::depth_sample(m.ev.automaton, m.ev.nets,
-                                          {.homogeneous = m.ev.rational, .max_points = o.max_points});
-  m.route = "depth";
-  m.ev.points = std::move(ds.points);
-  m.ev.depth = ds.depth;
-  m.ev.estimated_resolution = ds.resolution;
-  m.estimated = true;
-  m.resolution = std::isfinite(ds.resolution) ? ds.resolution : 0;
-  try {
-    fit(m, bo, true);
-  } catch (const InvalidInput& error) {
-    throw InvalidInput(
-        std::string(error.what()) + " (depth " + std::to_string(m.ev.depth) +
-        ", the deepest within --max-points); raise --max-points, or give --min-level and --max-level");
-  }
-  return m;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 namespace {
 
-/// The input as an experiment: a shape file holds "curve" or "surface", or "shape" alone (geomdl),
-/// or is an OBJ; anything else is an experiment.
+/// The input as an experiment: a shape file (io::detect) is measured as an experiment of its shape.
 io::Experiment dimension_input(const DimensionOptions& o) {
-  bool shape = o.input.extension() == ".obj";
-  if (o.input.extension() == ".json") {
-    const json j = json::parse(read_file(o.input), nullptr, false);
-    shape = j.is_object() &&
-            (j.contains("curve") || j.contains("surface") || (j.size() == 1 && j.contains("shape")));
-  }
+  const bool shape = io::detect(o.input) != io::Content::experiment;
   if (!shape && (o.select.index || o.select.ignore_trim))
     throw InvalidInput(o.input.string() +
                        ": --index and --ignore-trim apply to shape files, not experiments");
@@ -902,75 +710,15 @@ io::Experiment dimension_input(const DimensionOptions& o) {
   return e;
 }
 
-/// The sample and its fit, by the route the options ask for (or the automatic one); `fallback`
-/// gets why the proven route was left.
-Measured dimension_measure(const io::Experiment& e, const DimensionOptions& o, std::string& fallback) {
-  if (o.depth && o.relative_piece_size)
-    throw InvalidInput("dimension: give --depth or --relative-piece-size, not both");
-  // The sample is held in memory and its walk takes about 1 µs per point: a budget of 2^40 ran for days.
-  if (o.max_points < 1 || o.max_points > static_cast<std::size_t>(kMaxPoints))
-    throw InvalidInput("--max-points " + std::to_string(o.max_points) + ": expected 1 to " +
-                       std::to_string(kMaxPoints) + " points (the sample is held in memory)");
-  const bool user_levels = o.min_level >= 0 || o.max_level >= 0;
-  // Without --depth or --relative-piece-size the route chooses itself (proven sample, else a depth
-  // evaluation) and relaxes the fit's requirements where they cannot hold.
-  const bool automatic = !o.depth && !o.relative_piece_size && !user_levels;
-  ifs::BoxCountingOptions bo;
-  bo.min_boxes = o.min_boxes;
-  bo.min_level = o.min_level;
-  bo.max_level = o.max_level;
-
-  Measured m;
-  if (automatic) {
-    m = measure_automatic(e, o, bo, fallback);
-  } else if (o.depth) {
-    m = measure_depth(e, *o.depth, bo, user_levels);
-  } else {
-    m.ev =
-        experiment::sample(e, {.tolerance = o.relative_piece_size.value_or(0), .max_points = o.max_points});
-    m.route = "tolerance";
-    m.resolution = m.ev.resolution;
-    ifs::BoxCountingOptions so = bo;
-    so.points_per_box = 1;
-    try {
-      fit(m, so, false);
-    } catch (const InvalidInput& error) {
-      // The proven piece bound may be loose (signed matrices): say that a depth evaluation is the way out.
-      if (user_levels) throw;
-      throw InvalidInput(std::string(error.what()) +
-                         "; or raise --max-points, or measure a depth evaluation (--depth K)");
-    }
-  }
-  // A user's fit range is fitted as given on the coarser sample too.
-  compare_coarser(m, bo, !user_levels);
-  return m;
-}
-
-/// The similarity dimension, when every map is a similarity; `why_not` says why when it is not.
-std::optional<double> similarity_of(const experiment::Evaluation& ev, std::string& why_not) {
-  std::optional<double> similarity;
-  try {
-    if (!ev.maps.empty())
-      similarity = ifs::similarity_dimension(ev.maps);
-    else if (ev.rational)
-      why_not = "rational nets (homogeneous maps are not similarities of the plane)";
-    else
-      similarity = ifs::similarity_dimension(ev.automaton, ev.nets);
-  } catch (const InvalidInput& error) {
-    why_not = error.what();
-  }
-  return similarity;
-}
-
-std::string dimension_json(const DimensionOptions& o, const Measured& m, const std::string& fallback,
-                           std::optional<double> similarity, const std::string& why_not) {
-  const experiment::Evaluation& ev = m.ev;
+std::string dimension_json(const DimensionOptions& o, const experiment::DimensionMeasurement& m) {
+  const experiment::Evaluation& ev = m.sample;
+  const std::string& fallback = m.fallback;
   const ifs::BoxCountingResult& r = m.fit;
   json j;
   j["input"] = o.input.string();
   j["kind"] = ev.kind;
   j["mode"] = m.route == "tolerance" ? "tolerance" : m.route == "chaos" ? "chaos" : "depth";
-  j["route"] = route_name(m);
+  j["route"] = m.description;
   j["depth"] = ev.depth;
   j["points"] = ev.points.rows();
   j["resolution"] = m.resolution;
@@ -989,8 +737,7 @@ std::string dimension_json(const DimensionOptions& o, const Measured& m, const s
   box["r_squared"] = r.r_squared;
   box["residual"] = r.residual;
   box["size"] = r.size;
-  const auto [lo, hi] = dimension_range(m);
-  box["range"] = {lo, hi};
+  box["range"] = {m.range[0], m.range[1]};
   json counts = json::array();
   for (const ifs::BoxCount& c : r.counts)
     counts.push_back({{"level", c.level}, {"epsilon", c.epsilon}, {"boxes", c.boxes}});
@@ -1003,17 +750,17 @@ std::string dimension_json(const DimensionOptions& o, const Measured& m, const s
                   {"levels", m.cover->levels}};
   else
     j["cover"] = nullptr;
-  j["similarity_dimension"] = similarity ? json(*similarity) : json(nullptr);
-  if (!similarity) j["similarity_note"] = why_not;
+  j["similarity_dimension"] = m.similarity ? json(*m.similarity) : json(nullptr);
+  if (!m.similarity) j["similarity_note"] = m.similarity_note;
   return j.dump(2) + "\n";
 }
 
-std::string dimension_text(const DimensionOptions& o, const Measured& m, const std::string& fallback,
-                           std::optional<double> similarity, const std::string& why_not) {
-  const experiment::Evaluation& ev = m.ev;
+std::string dimension_text(const DimensionOptions& o, const experiment::DimensionMeasurement& m) {
+  const experiment::Evaluation& ev = m.sample;
+  const std::string& fallback = m.fallback;
   const ifs::BoxCountingResult& r = m.fit;
   std::string out = o.input.string() + ": " + ev.kind + ", " + std::to_string(ev.points.rows()) + " points\n";
-  out += "route: " + route_name(m) + "\n";
+  out += "route: " + m.description + "\n";
   if (!fallback.empty())
     out += m.route == "tolerance" ? "  (strict fit refused: " + fallback + ")\n"
                                   : "  (no proven tolerance sample: " + fallback + ")\n";
@@ -1042,20 +789,20 @@ std::string dimension_text(const DimensionOptions& o, const Measured& m, const s
                   m.cover->dimension, m.cover->levels, m.cover->max_epsilon, m.cover->min_epsilon,
                   m.cover->spread);
     out += line;
-    if (const auto [lo, hi] = dimension_range(m); m.cover->dimension > r.dimension + m.uncertainty) {
+    if (m.cover->dimension > r.dimension + m.uncertainty) {
       std::snprintf(
           line, sizeof line,
           "  the boxes read %.2g below it at these scales (a boundary or shape term that vanishes as "
           "ε → 0): range %.4f … %.4f\n",
-          m.cover->dimension - r.dimension, lo, hi);
+          m.cover->dimension - r.dimension, m.range[0], m.range[1]);
       out += line;
     }
   }
-  if (similarity) {
-    std::snprintf(line, sizeof line, "similarity dimension %.12g\n", *similarity);
+  if (m.similarity) {
+    std::snprintf(line, sizeof line, "similarity dimension %.12g\n", *m.similarity);
     out += line;
   } else {
-    out += "similarity dimension: not applicable (" + why_not + ")\n";
+    out += "similarity dimension: not applicable (" + m.similarity_note + ")\n";
   }
   out += "  level  epsilon       boxes\n";
   for (const ifs::BoxCount& c : r.counts) {
@@ -1069,12 +816,8 @@ std::string dimension_text(const DimensionOptions& o, const Measured& m, const s
 }  // namespace
 
 std::string dimension(const DimensionOptions& o) {
-  const io::Experiment e = dimension_input(o);
-  std::string fallback, why_not;
-  const Measured m = dimension_measure(e, o, fallback);
-  const std::optional<double> similarity = similarity_of(m.ev, why_not);
-  return o.json ? dimension_json(o, m, fallback, similarity, why_not)
-                : dimension_text(o, m, fallback, similarity, why_not);
+  const experiment::DimensionMeasurement m = experiment::measure_dimension(dimension_input(o), o.measure);
+  return o.json ? dimension_json(o, m) : dimension_text(o, m);
 }
 
 namespace {
@@ -1121,7 +864,7 @@ std::string gallery_run(const std::filesystem::path& out, const std::filesystem:
   write_file_atomically(out / "index.html", io::gallery_html(sections, "cifs gallery"));
   summary += "gallery: wrote " + (out / "index.html").string() + "\n";
   bar(files.size() + 1, files.size() + 1);
-  return summary;
+  return quiet ? "" : summary;  // --quiet: errors and warnings only
 }
 
 }  // namespace

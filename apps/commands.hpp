@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "cifs/experiment/dimension.hpp"
 #include "cifs/subdivision/mesh.hpp"
 
 namespace cifs::cli {
@@ -55,8 +56,6 @@ std::string insert(const InsertOptions& options);
 /// meshes through mesh_info; control polygons (JSON "polygon") by points, edges, length and bounds.
 std::string info(const std::filesystem::path& shape, const ShapeSelection& select = {});
 
-/// A PLY file, or an OBJ with faces and no free-form geometry.
-bool is_polygon_mesh_file(const std::filesystem::path& path);
 /// Counts, face sizes, valences, boundary loops, Euler characteristic (and genus when closed), as JSON.
 std::string mesh_info(const std::filesystem::path& mesh);
 
@@ -131,12 +130,7 @@ std::string render(const RenderOptions& options);
 struct DimensionOptions {
   std::filesystem::path input;  // experiment file, or shape file (.json with "curve"/"surface"/"shape", .obj)
   ShapeSelection select;        // shape files
-  std::optional<int> depth;     // evaluate to this depth (shapes: default 8 when no other mode)
-  std::optional<double>
-      relative_piece_size;  // sample: pieces below this fraction of the extent; default: from max_points
-  std::size_t max_points = std::size_t{1} << 21;  // point budget of the tolerance sample
-  int min_level = -1, max_level = -1;             // fit range (box levels); -1: automatic
-  std::size_t min_boxes = 1000;                   // automatic range: coarsest level with this many boxes
+  experiment::DimensionOptions measure;
   bool json = false;
 };
 /// `cifs dimension`: box-counting fit of the deterministic evaluation, and the similarity

@@ -16,6 +16,7 @@
 #include "cifs/errors.hpp"
 #include "cifs/files.hpp"
 #include "cifs/render/progress.hpp"
+#include "cifs/suggest.hpp"
 #include "commands.hpp"
 #include "scheme_command.hpp"
 #include "world.hpp"
@@ -315,18 +316,19 @@ void add_dimension(CLI::App& app, Commands& c) {
   dimension_cmd->add_option("input", c.di.input, "Experiment file, or shape file (.json or .obj)")
       ->required();
   auto* dimension_depth = dimension_cmd->add_option(
-      "--depth", c.di.depth, "Evaluate to this depth instead of sampling to a tolerance");
+      "--depth", c.di.measure.depth, "Evaluate to this depth instead of sampling to a tolerance");
   dimension_cmd
-      ->add_option("--relative-piece-size", c.di.relative_piece_size,
+      ->add_option("--relative-piece-size", c.di.measure.relative_piece_size,
                    "Sample: every piece smaller than this fraction of the control nets' extent (0: "
                    "the smallest 2^-j within --max-points)")
       ->excludes(dimension_depth);
   add_renamed(dimension_cmd, "--tolerance", "--relative-piece-size");
-  dimension_cmd->add_option("--max-points", c.di.max_points,
+  dimension_cmd->add_option("--max-points", c.di.measure.max_points,
                             "Point budget of the tolerance sample (default 2^21)");
-  dimension_cmd->add_option("--min-level", c.di.min_level, "Fit range: coarsest box level k (ε = size·2^-k)");
-  dimension_cmd->add_option("--max-level", c.di.max_level, "Fit range: finest box level");
-  dimension_cmd->add_option("--min-boxes", c.di.min_boxes,
+  dimension_cmd->add_option("--min-level", c.di.measure.min_level,
+                            "Fit range: coarsest box level k (ε = size·2^-k)");
+  dimension_cmd->add_option("--max-level", c.di.measure.max_level, "Fit range: finest box level");
+  dimension_cmd->add_option("--min-boxes", c.di.measure.min_boxes,
                             "Automatic fit range: only levels with at least this many boxes (default 1000)");
   dimension_cmd->add_flag("--json", c.di.json, "Machine-readable report");
   add_shape_selection(dimension_cmd, c.di.select);
@@ -347,11 +349,70 @@ void add_gallery(CLI::App& app, Commands& c) {
   gallery_cmd->callback([&] { c.result = cli::gallery(c.gallery_out, c.gallery_examples, c.quiet); });
 }
 
+/// `--name` and `-n` of the options of `command` shown in its help.
+std::vector<std::string> option_names(const CLI::App& command) {
+  std::vector<std::string> names;
+  for (const CLI::Option* o :
+       command.get_options([](const CLI::Option* o) { return !o->get_group().empty(); })) {
+    for (const std::string& n : o->get_lnames()) names.push_back("--" + n);
+    for (const std::string& n : o->get_snames()) names.push_back("-" + n);
+  }
+  return names;
+}
+
+std::vector<std::string> command_names(const CLI::App& app) {
+  std::vector<std::string> names;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+    names.push_back(sub->get_name());
+  return names;
+}
+
+/// CLI11's "The following arguments were not expected" made specific: the first unexpected argument of
+/// `command` — an unknown option (and the one it may be a typo of), or a value beyond what the option
+/// before it takes (`--at 0.5 0.5`). Empty when the arguments do not show it.
+std::string unexpected_argument(const CLI::App& command, int argc, char** argv) {
+  std::size_t positionals = 0;
+  for (const CLI::Option* o : command.get_options([](const CLI::Option* o) { return o->get_positional(); }))
+    positionals += o->get_items_expected_max() > 1 ? std::size_t{1} << 30 : 1;
+  const CLI::Option* last = nullptr;  // the option whose value came just before
+  std::string last_text;
+  bool list = false;  // `last` takes every value up to the next option
+  for (int i = 2; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const bool number = arg.find_first_not_of("-+.0123456789eE,") == std::string::npos;
+    if (arg.size() > 1 && arg[0] == '-' && !number) {
+      const std::string name = arg.substr(0, arg.find('='));
+      const CLI::Option* option = command.get_option_no_throw(name);
+      if (option == nullptr)
+        return "unknown option '" + name + "' of " + command.get_name() +
+               cifs::did_you_mean(name, option_names(command)) + " (see cifs " + command.get_name() +
+               " --help)";
+      last = nullptr;
+      if (option->get_type_size() == 0 || arg.find('=') != std::string::npos || i + 1 == argc) continue;
+      last = option;
+      last_text = name + " " + argv[++i];
+      list = option->get_allow_extra_args() && option->get_items_expected_max() > 1;
+    } else if (last != nullptr && list) {
+      continue;
+    } else if (positionals > 0) {
+      --positionals;
+      last = nullptr;
+    } else {
+      std::string message = command.get_name() + ": unexpected argument '" + arg + "'";
+      if (last != nullptr)
+        message += " after " + last_text + ": " + last->get_name() + " takes one value (" +
+                   last->get_description() + ")";
+      return message;
+    }
+  }
+  return {};
+}
+
 /// Parses and runs one command; everything it prints on stdout goes to `result`.
 int run(int argc, char** argv, std::string& result) {
   CLI::App app{"cifs — NURBS curves and surfaces as controlled iterated function systems"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "cifs 0.1.0");
+  app.set_version_flag("--version", "cifs " CIFS_VERSION);  // CMake's PROJECT_VERSION
   Commands c(result);
   // Every file the command reads is an input no output of it may replace (cifs/files.hpp).
   const cifs::RunInputs inputs;
@@ -371,16 +432,29 @@ int run(int argc, char** argv, std::string& result) {
   try {
     const std::string first = argc > 1 ? argv[1] : "-";
     const auto known = app.get_subcommands([&](const CLI::App* sub) { return sub->get_name() == first; });
-    if (first[0] != '-' && known.empty())
-      throw cifs::InvalidInput("unknown command '" + first +
-                               "' (commands: eval, insert, info, automaton, attractor, check, scheme, "
-                               "subdivide, limit, render, dimension, gallery; see cifs --help)");
+    if (first[0] != '-' && known.empty()) {
+      const std::vector<std::string> commands = command_names(app);
+      std::string list;
+      for (const std::string& name : commands) list += (list.empty() ? "" : ", ") + name;
+      throw cifs::InvalidInput("unknown command '" + first + "'" + cifs::did_you_mean(first, commands) +
+                               " (commands: " + list + "; see cifs --help)");
+    }
     // CLI11 would report the missing command ("A subcommand is required") instead of the option.
     const std::string option = first.substr(0, first.find('='));
-    if (first.size() > 1 && first[0] == '-' && app.get_option_no_throw(option) == nullptr)
-      throw cifs::InvalidInput("unknown option '" + option +
-                               "'; options follow the command: cifs COMMAND [OPTIONS] (see cifs --help)");
-    app.parse(argc, argv);
+    if (first.size() > 1 && first[0] == '-' && app.get_option_no_throw(option) == nullptr) {
+      const std::string near = cifs::did_you_mean(option, option_names(app));
+      throw cifs::InvalidInput(
+          "unknown option '" + option + "'" +
+          (near.empty() ? "; options follow the command: cifs COMMAND [OPTIONS]" : near) +
+          " (see cifs --help)");
+    }
+    try {
+      app.parse(argc, argv);
+    } catch (const CLI::ExtrasError&) {
+      const std::string message = known.empty() ? "" : unexpected_argument(*known.front(), argc, argv);
+      if (message.empty()) throw;
+      throw cifs::InvalidInput(message);
+    }
   } catch (const CLI::CallForHelp& e) {
     return help_or_version(app, e, result);
   } catch (const CLI::CallForAllHelp& e) {

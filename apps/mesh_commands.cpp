@@ -3,7 +3,6 @@
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <numeric>
 #include <optional>
 #include <sstream>
 
@@ -20,23 +19,6 @@ namespace cifs::cli {
 namespace {
 
 using nlohmann::json;
-
-/// Connected components of the faces (through shared vertices).
-int components(const MeshTopology& t) {
-  std::vector<int> parent(static_cast<std::size_t>(t.vertex_count));
-  std::iota(parent.begin(), parent.end(), 0);
-  const auto find = [&](int v) {
-    while (parent[static_cast<std::size_t>(v)] != v)
-      v = parent[static_cast<std::size_t>(v)] =
-          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(v)])];
-    return v;
-  };
-  for (const auto& [a, b] : t.edges) parent[static_cast<std::size_t>(find(a))] = find(b);
-  int count = 0;
-  for (int v = 0; v < t.vertex_count; ++v)
-    if (find(v) == v && valence(t, static_cast<std::size_t>(v)) > 0) ++count;
-  return count;
-}
 
 /// Refused before the work: the output must be a mesh format the table writes. Its name.
 std::string mesh_output_format(const std::filesystem::path& output) {
@@ -57,53 +39,24 @@ subdivision::BoundaryRule boundary_rule(const std::string& name) {
   throw InvalidInput("--boundary " + name + ": expected edge (boundary corners smoothed) or corner (kept)");
 }
 
-bool is_polygon_mesh_file(const std::filesystem::path& path) {
-  const std::string ext = path.extension().string();
-  if (ext == ".ply") return true;
-  if (ext != ".obj") return false;
-  // An OBJ is a polygon mesh when it has faces and no free-form geometry.
-  std::istringstream in(read_file(path));
-  bool faces = false;
-  for (std::string line; std::getline(in, line);) {
-    const auto start = line.find_first_not_of(" \t");
-    if (start == std::string::npos) continue;
-    const std::string_view word =
-        std::string_view(line).substr(start, line.find_first_of(" \t", start) - start);
-    if (word == "cstype" || word == "curv" || word == "surf") return false;
-    faces = faces || word == "f";
-  }
-  return faces;
-}
-
 std::string mesh_info(const std::filesystem::path& path) {
-  const Mesh mesh = io::read_mesh(path);
-  const MeshTopology t = build_topology(mesh, path.string());
-  std::map<std::string, int> sizes, valences;
-  for (std::size_t f = 0; f < face_count(t); ++f) ++sizes[std::to_string(face(t, f).size())];
-  int isolated = 0;
-  for (int v = 0; v < t.vertex_count; ++v) {
-    const int n = valence(t, static_cast<std::size_t>(v));
-    if (n == 0)
-      ++isolated;
-    else
-      ++valences[std::to_string(n)];
-  }
-  const auto loops = boundary_loops(t);
-  const long long chi = euler_characteristic(t) - isolated;
-  const int parts = components(t);
+  const MeshTopology t = build_topology(io::read_mesh(path), path.string());
+  const MeshStatistics s = mesh_statistics(t);
+  std::map<std::string, std::size_t> sizes, valences;  // JSON keys
+  for (const auto& [corners, faces] : s.faces_by_corners) sizes[std::to_string(corners)] = faces;
+  for (const auto& [valence, vertices] : s.valences) valences[std::to_string(valence)] = vertices;
   json out = {{"type", "mesh"},
               {"vertices", t.vertex_count},
               {"edges", t.edges.size()},
               {"faces", face_count(t)},
               {"faces_by_corners", sizes},
               {"valences", valences},
-              {"isolated_vertices", isolated},
-              {"boundary_loops", loops.size()},
-              {"closed", loops.empty()},
-              {"components", parts},
-              {"euler_characteristic", euler_characteristic(t)}};
-  // An oriented closed surface of c components has χ = 2c − 2g (g the total genus).
-  if (loops.empty()) out["genus"] = (2LL * parts - chi) / 2;
+              {"isolated_vertices", s.isolated_vertices},
+              {"boundary_loops", s.boundary_loops},
+              {"closed", s.boundary_loops == 0},
+              {"components", s.components},
+              {"euler_characteristic", s.euler_characteristic}};
+  if (s.genus) out["genus"] = *s.genus;
   return out.dump(1) + "\n";
 }
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "scheme_command.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <iomanip>
@@ -19,6 +20,7 @@
 #include "cifs/subdivision/mesh_analysis.hpp"
 #include "cifs/subdivision/refine.hpp"
 #include "cifs/subdivision/scheme.hpp"
+#include "cifs/suggest.hpp"
 #include "commands.hpp"
 
 namespace cifs::cli {
@@ -62,11 +64,27 @@ sd::Ends parse_ends(const std::string& ends) {
 // ------------------------------------------------------------------------------------------------
 // Mesh schemes: local subdivision matrices
 
+constexpr sd::MeshScheme kMeshSchemes[] = {sd::MeshScheme::catmull_clark, sd::MeshScheme::loop,
+                                           sd::MeshScheme::doo_sabin, sd::MeshScheme::butterfly,
+                                           sd::MeshScheme::sqrt3};
+
 std::optional<sd::MeshScheme> mesh_scheme_named(const std::string& name) {
-  for (const sd::MeshScheme s : {sd::MeshScheme::catmull_clark, sd::MeshScheme::loop,
-                                 sd::MeshScheme::doo_sabin, sd::MeshScheme::butterfly, sd::MeshScheme::sqrt3})
+  for (const sd::MeshScheme s : kMeshSchemes)
     if (sd::scheme_name(s) == name) return s;
   return std::nullopt;
+}
+
+/// Refuses a name that is neither a curve scheme nor a mesh scheme: a typo of a mesh scheme is named here
+/// (the curve schemes' refusal, the library's, knows only theirs), anything else by the library.
+void check_scheme_name(const std::string& name) {
+  std::vector<std::string> curves, all;
+  for (const sd::SchemeSpec& s : sd::scheme_catalogue()) curves.push_back(s.name);
+  if (mesh_scheme_named(name) || std::find(curves.begin(), curves.end(), name) != curves.end()) return;
+  all = curves;
+  for (const sd::MeshScheme s : kMeshSchemes) all.emplace_back(sd::scheme_name(s));
+  if (const auto near = nearest(name, all); near && mesh_scheme_named(*near))
+    throw InvalidInput("unknown scheme '" + name + "'; did you mean " + *near + "? (see cifs scheme --list)");
+  (void)sd::named_scheme(name, {});  // throws the library's "unknown scheme 'NAME'" with its suggestion
 }
 
 int integer_text(const std::string& text, const std::string& option, const std::string& given) {
@@ -194,6 +212,7 @@ Stroke control(const Points& P, bool closed = true) {
 std::string scheme(const SchemeOptions& o) {
   if (o.list) return catalogue_text();
   if (o.name.empty()) throw InvalidInput("scheme: a scheme name is required (see cifs scheme --list)");
+  check_scheme_name(o.name);
   if (const auto mesh = mesh_scheme_named(o.name)) return analyze_mesh_scheme(*mesh, o);
   const bool refine = !o.refine.empty();
   if (o.analyze == refine)

@@ -259,4 +259,39 @@ std::vector<std::vector<int>> boundary_loops(const MeshTopology& t) {
   return loops;
 }
 
+int components(const MeshTopology& t) {
+  // Union–find over the vertices, joined along the edges; a component is a root that is in a face.
+  std::vector<int> parent(static_cast<std::size_t>(t.vertex_count));
+  for (int v = 0; v < t.vertex_count; ++v) parent[static_cast<std::size_t>(v)] = v;
+  const auto find = [&](int v) {
+    while (parent[static_cast<std::size_t>(v)] != v)
+      v = parent[static_cast<std::size_t>(v)] =
+          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(v)])];
+    return v;
+  };
+  for (const auto& [a, b] : t.edges) parent[static_cast<std::size_t>(find(a))] = find(b);
+  int count = 0;
+  for (int v = 0; v < t.vertex_count; ++v)
+    if (find(v) == v && valence(t, static_cast<std::size_t>(v)) > 0) ++count;
+  return count;
+}
+
+MeshStatistics mesh_statistics(const MeshTopology& t) {
+  MeshStatistics s;
+  for (std::size_t f = 0; f < face_count(t); ++f) ++s.faces_by_corners[face(t, f).size()];
+  for (int v = 0; v < t.vertex_count; ++v) {
+    const int n = valence(t, static_cast<std::size_t>(v));
+    if (n == 0)
+      ++s.isolated_vertices;
+    else
+      ++s.valences[n];
+  }
+  s.boundary_loops = boundary_loops(t).size();
+  s.components = components(t);
+  s.euler_characteristic = euler_characteristic(t);
+  if (s.boundary_loops == 0)
+    s.genus = (2LL * s.components - (s.euler_characteristic - s.isolated_vertices)) / 2;
+  return s;
+}
+
 }  // namespace cifs

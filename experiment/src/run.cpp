@@ -737,34 +737,74 @@ void reserve_outputs(Outputs& out, const io::Experiment& e, const RunOptions& o,
     out.automaton[format] = &out.files.add(o.out_dir / path, "outputs.automaton_" + format, own);
 }
 
+/// What the evaluation gives to export, known from the file before any work: a mesh, a segment set, or
+/// nothing (a chaos game or a classic IFS gives a density).
+std::optional<io::Content> geometry_content(const io::Experiment& e) {
+  if (e.mesh) return io::Content::mesh;
+  if (e.ifs || e.evaluation.mode == Mode::chaos) return std::nullopt;
+  const auto surface = [](const std::optional<io::Shape>& shape) {
+    return shape && std::holds_alternative<nurbs::Surface>(*shape);
+  };
+  if (e.junction) {
+    const io::JunctionSide& a = e.junction->a;  // both sides are curves or both surfaces (ifs::join)
+    return (a.scheme ? a.columns > 0 : surface(a.shape)) ? io::Content::mesh : io::Content::segments;
+  }
+  return surface(e.shape) ? io::Content::mesh : io::Content::segments;  // BC-IFS files draw curves
+}
+
+/// Refuses an image path whose extension is not its format's (`-o foo.png` would be OpenEXR bytes in a
+/// .png file); after the paths themselves are checked (reserve_outputs), before any work.
+void check_image_extensions(const io::Experiment& e, const RunOptions& o) {
+  const auto image = [](const std::filesystem::path& path, const std::string& label, const char* extension,
+                        const char* what) {
+    if (!path.empty() && path.extension() != extension)
+      throw InvalidInput(label + ": " + path.string() + ": the " + what + ", written as " + extension);
+  };
+  image(o.exr.empty() ? e.outputs.exr : o.exr, o.exr.empty() ? "outputs.exr" : "the EXR path", ".exr",
+        "image is OpenEXR");
+  image(o.png.empty() ? e.outputs.png : o.png, o.png.empty() ? "outputs.png" : "the PNG path", ".png",
+        "preview is PNG");
+}
+
+/// Refuses, before any work, a geometry output that the evaluation cannot give.
+void check_geometry_outputs(const io::Experiment& e) {
+  if (e.outputs.geometry.empty()) return;
+  const std::optional<io::Content> content = geometry_content(e);
+  if (!content)
+    throw InvalidInput("outputs." + e.outputs.geometry.begin()->first + ": a " +
+                       (e.ifs ? "classic IFS" : "chaos game") + " gives a density, no geometry to export");
+  // The parser accepts the formats of meshes and of segment sets: say which one this source takes.
+  const std::vector<io::Format> formats = io::formats(*content);
+  for (const auto& output : e.outputs.geometry) {
+    const std::string& format = output.first;
+    const auto writes = [&](const io::Format& f) { return f.write && f.name == format; };
+    if (std::any_of(formats.begin(), formats.end(), writes)) continue;
+    std::string upper = format, ours;
+    for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    for (const io::Format& f : formats)
+      if (f.write) ours += (ours.empty() ? "" : " or ") + std::string(f.name);
+    const bool mesh = content == io::Content::mesh;
+    std::string message = "outputs.";
+    message += format + ": ";
+    message += upper + " is for ";
+    message += mesh ? "curves" : "surfaces";
+    message += "; use " + ours + " for ";
+    message += mesh ? "surfaces" : "curves";
+    throw InvalidInput(message);
+  }
+}
+
 /// The geometry and automaton files, in the order of the format table (io::formats), encoded a chunk
 /// at a time into their temporaries (no file's bytes are ever whole in memory); returns their paths.
+/// check_geometry_outputs has refused what the scene cannot give.
 std::vector<std::filesystem::path> write_files(const Scene& scene, const io::Experiment& e,
                                                Outputs& outputs) {
   std::vector<std::filesystem::path> geometry;
   if (!e.outputs.geometry.empty()) {
-    const std::string& first = e.outputs.geometry.begin()->first;
-    if (!scene.mesh && !scene.curves)
-      throw InvalidInput("outputs." + first + ": this evaluation gives a density, no geometry to export");
+    if (scene.mesh.has_value() != (geometry_content(e) == io::Content::mesh) ||
+        scene.curves.has_value() != (geometry_content(e) == io::Content::segments))
+      throw std::logic_error("write_files: the scene is not what geometry_content foretold");
     const io::Content content = scene.mesh ? io::Content::mesh : io::Content::segments;
-    // The parser accepts the formats of meshes and of segment sets: say which one this scene takes.
-    const std::vector<io::Format> formats = io::formats(content);
-    for (const auto& output : e.outputs.geometry) {
-      const std::string& format = output.first;
-      const auto writes = [&](const io::Format& f) { return f.write && f.name == format; };
-      if (std::any_of(formats.begin(), formats.end(), writes)) continue;
-      std::string upper = format, ours;
-      for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-      for (const io::Format& f : formats)
-        if (f.write) ours += (ours.empty() ? "" : " or ") + std::string(f.name);
-      std::string message = "outputs.";
-      message += format + ": ";
-      message += upper + " is for ";
-      message += scene.mesh ? "curves" : "surfaces";
-      message += "; use " + ours + " for ";
-      message += scene.mesh ? "surfaces" : "curves";
-      throw InvalidInput(message);
-    }
     for (const io::Format& f : io::formats(content))
       if (const auto it = e.outputs.geometry.find(std::string(f.name)); it != e.outputs.geometry.end()) {
         AtomicFile& out = *outputs.geometry.at(it->first);
@@ -1050,6 +1090,8 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
     throw InvalidInput("a distributed run needs a combine function to merge its parts");
   Outputs outputs;
   if (writer) reserve_outputs(outputs, e, o, paths.exr, paths.png);
+  check_geometry_outputs(e);
+  check_image_extensions(e, o);
   const unsigned threads = o.threads.value_or(e.render.threads);
 
   std::string kind;

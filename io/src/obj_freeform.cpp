@@ -427,6 +427,15 @@ class ObjReader {
                           std::to_string(e.degree[0]) + " (at least " + std::to_string(e.degree[0] + 1) +
                           " needed)");
     nurbs::Knots knots = *e.parm[0];
+    // The JSON reader detects Rhino's count (n + d − 1: without the first and the last knot); OBJ files give
+    // every knot, so that count is refused, naming the convention it comes from.
+    if (const auto d = static_cast<Eigen::Index>(e.degree[0]);
+        !e.bezier && static_cast<Eigen::Index>(knots.size()) == n + d - 1)
+      invalid(e.parm_line[0], "parm u: " + std::to_string(knots.size()) + " knots given, " +
+                                  std::to_string(n) + " control points of degree " + std::to_string(d) +
+                                  " need " + std::to_string(n + d + 1) +
+                                  " (the count given leaves out the first and the last knot, as Rhino and "
+                                  "openNURBS store them; OBJ files give all n + d + 1)");
     if (e.bezier) {
       const int d = e.degree[0];
       if ((n - 1) % d != 0)

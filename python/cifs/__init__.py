@@ -24,9 +24,14 @@ try:
 except ImportError as _error:  # another interpreter than the build's, or one without numpy
     import glob as _glob
     import os as _os
-    _built = sorted(_os.path.basename(p) for p in _glob.glob(_os.path.join(_os.path.dirname(__file__), "_cifs*")))
+    _here = _os.path.dirname(_os.path.abspath(__file__))
+    _built = sorted(_os.path.basename(p) for p in _glob.glob(_os.path.join(_here, "_cifs*")))
+    if not _built:  # only a build tree (build/python/cifs) has the package without its extension
+        raise ImportError(
+            f"cifs: the extension cifs._cifs is not built: cmake --build {_os.path.dirname(_os.path.dirname(_here))} "
+            "--target cifs_python") from _error
     raise ImportError(
-        f"cifs: the extension {', '.join(_built) or '(missing)'} does not load in this interpreter "
+        f"cifs: the extension {', '.join(_built)} does not load in this interpreter "
         f"({_sys.executable}, Python {_sys.version.split()[0]}): {_error}. Run scripts with build/cifs-python, "
         "which uses the interpreter the module was built for") from _error
 from ._cifs import InvalidInput, IoError, __version__

@@ -402,8 +402,8 @@ void bind_automata_tensor(py::module_& m) {
 void bind_automata(py::module_& m) {
   bind_automata_views(m);
   bind_automata_class(m);
+  bind_automata_tensor(m);  // before initial_nets, whose signature names TensorAutomaton
   bind_automata_functions(m);
-  bind_automata_tensor(m);
 }
 
 }  // namespace cifs::python

@@ -513,6 +513,7 @@ py::array_t<T> vector_array(const std::vector<T>& values) {
 }
 
 void bind_nurbs(py::module_& m);
+void bind_io_types(py::module_& m);  // cifs.Mesh and cifs.Segments, before every signature that names them
 void bind_io(py::module_& m);
 void bind_verify(py::module_& m);
 void bind_experiment(py::module_& m);

@@ -771,8 +771,9 @@ void bind_box_counting(py::module_& m) {
           },
           "The counts' occupied boxes as an int array.")
       .def("__repr__", [](const ifs::BoxCountingResult& r) {
-        return "BoxCountingResult(dimension=" + num(r.dimension) + ", levels " + std::to_string(r.min_level) +
-               "…" + std::to_string(r.max_level) + ", r_squared=" + num(r.r_squared) + ")";
+        return "BoxCountingResult(dimension=" + num(r.dimension) + " ± " + num(r.uncertainty) + ", levels " +
+               std::to_string(r.min_level) + "…" + std::to_string(r.max_level) +
+               ", r_squared=" + num(r.r_squared) + ")";
       });
   m.def(
       "box_counting",

@@ -7,8 +7,10 @@
 #include <variant>
 
 #include "arrays.hpp"
+#include "cifs/experiment/dimension.hpp"
 #include "cifs/experiment/run.hpp"
 #include "cifs/files.hpp"
+#include "cifs/format.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/io/json.hpp"
 #include "cifs/io/obj.hpp"
@@ -427,7 +429,6 @@ void bind_geometry_files(py::module_& m) {
 
 void bind_geometry(py::module_& m) {
   bind_geometry_polylines(m);
-  bind_geometry_types(m);
   bind_geometry_files(m);
 }
 
@@ -618,6 +619,10 @@ void bind_experiment_file(py::module_& m) {
 
 }  // namespace
 
+void bind_io_types(py::module_& m) {
+  bind_geometry_types(m);
+}
+
 void bind_io(py::module_& m) {
   bind_shapes(m);
   bind_polygons(m);
@@ -767,6 +772,98 @@ void bind_experiment_types(py::module_& m) {
           "Short description.");
 }
 
+/// cifs dimension's measurement (experiment::measure_dimension).
+void bind_dimension(py::module_& m) {
+  using namespace cifs::experiment;
+  py::class_<DimensionMeasurement>(
+      m, "DimensionMeasurement", "The dimension of an attractor as `cifs dimension` measures and reports it.")
+      .def_readonly("sample", &DimensionMeasurement::sample, "The sample measured (Evaluation).")
+      .def_readonly("route", &DimensionMeasurement::route, "'tolerance' or 'depth'.")
+      .def_readonly("description", &DimensionMeasurement::description,
+                    "The route in words, as the CLI prints it.")
+      .def_readonly("resolution", &DimensionMeasurement::resolution,
+                    "Resolution passed to the fit (0: none).")
+      .def_readonly("estimated", &DimensionMeasurement::estimated,
+                    "True when the resolution is estimated from the leaves' nets, not proven.")
+      .def_readonly("fallback", &DimensionMeasurement::fallback,
+                    "Why the proven tolerance sample (or its strict fit) was left; empty when it was not.")
+      .def_readonly("relaxed", &DimensionMeasurement::relaxed, "Fit requirements dropped, in words.")
+      .def_readonly("fit", &DimensionMeasurement::fit, "The box count (cifs.ifs.BoxCountingResult).")
+      .def_property_readonly(
+          "dimension", [](const DimensionMeasurement& d) { return d.fit.dimension; },
+          "The box-counting dimension.")
+      .def_readonly("uncertainty", &DimensionMeasurement::uncertainty,
+                    "max(fit.uncertainty, |dimension − coarser|): the ± the CLI prints.")
+      .def_readonly(
+          "coarser", &DimensionMeasurement::coarser,
+          "Dimension of the same route on a 2–4× smaller sample; None (see coarser_note) when none.")
+      .def_readonly("coarser_note", &DimensionMeasurement::coarser_note, "Why there is no coarser dimension.")
+      .def_readonly("cover", &DimensionMeasurement::cover,
+                    "Growth of the proven cover (cifs.ifs.CoverExponent), or None.")
+      .def_property_readonly(
+          "range", [](const DimensionMeasurement& d) { return py::make_tuple(d.range[0], d.range[1]); },
+          "(low, high): dimension ± uncertainty, widened up to the cover's growth.")
+      .def_readonly("similarity", &DimensionMeasurement::similarity,
+                    "Similarity dimension when every map is a similarity, else None (see similarity_note).")
+      .def_readonly("similarity_note", &DimensionMeasurement::similarity_note,
+                    "Why there is no similarity dimension.")
+      .def(
+          "__repr__",
+          [](const DimensionMeasurement& d) {
+            return "DimensionMeasurement(dimension=" + number_text(d.fit.dimension, 6) + " ± " +
+                   number_text(d.uncertainty, 2) + ", route='" + d.route + "')";
+          },
+          "Short description.");
+  const DimensionOptions defaults;
+  const auto measure = [](const io::Experiment& e, std::optional<int> depth, std::optional<double> piece,
+                          long long max_points, int min_level, int max_level, long long min_boxes) {
+    if (max_points < 0) throw InvalidInput("max_points: " + std::to_string(max_points) + " is negative");
+    if (min_boxes < 0) throw InvalidInput("min_boxes: " + std::to_string(min_boxes) + " is negative");
+    const DimensionOptions o{.depth = depth,
+                             .relative_piece_size = piece,
+                             .max_points = static_cast<std::size_t>(max_points),
+                             .min_level = min_level,
+                             .max_level = max_level,
+                             .min_boxes = static_cast<std::size_t>(min_boxes)};
+    py::gil_scoped_release release;
+    return measure_dimension(e, o);
+  };
+  const auto shape_measure = [measure](io::Shape shape,
+                                       auto... rest) {  // a shape file's experiment (the CLI's)
+    io::Experiment e;
+    e.name = std::holds_alternative<nurbs::Curve>(shape) ? "curve" : "surface";
+    e.shape = std::move(shape);
+    return measure(e, rest...);
+  };
+  const char* doc =
+      "The box-counting dimension of the attractor of an experiment (cifs.io.Experiment) or of a curve or\n"
+      "surface, measured as `cifs dimension` measures it: without depth or relative_piece_size the route\n"
+      "chooses itself (a proven tolerance sample within max_points, else the deepest depth evaluation),\n"
+      "relaxes the fit's requirements where they cannot hold, and sizes the uncertainty by a coarser\n"
+      "sample. min_level, max_level: a fit range (-1: automatic); min_boxes: the automatic range's coarse\n"
+      "end. Returns a DimensionMeasurement. Raises InvalidInput as the CLI does.";
+  const auto def = [&](auto function, const char* source) {
+    m.def("measure_dimension", function, py::arg(source), py::kw_only(), py::arg("depth") = py::none(),
+          py::arg("relative_piece_size") = py::none(),
+          py::arg("max_points") = static_cast<long long>(defaults.max_points),
+          py::arg("min_level") = defaults.min_level, py::arg("max_level") = defaults.max_level,
+          py::arg("min_boxes") = static_cast<long long>(defaults.min_boxes), doc);
+  };
+  def(measure, "experiment");
+  def(
+      [shape_measure](const nurbs::Curve& c, std::optional<int> depth, std::optional<double> piece,
+                      long long max_points, int min_level, int max_level, long long min_boxes) {
+        return shape_measure(c, depth, piece, max_points, min_level, max_level, min_boxes);
+      },
+      "shape");
+  def(
+      [shape_measure](const nurbs::Surface& s, std::optional<int> depth, std::optional<double> piece,
+                      long long max_points, int min_level, int max_level, long long min_boxes) {
+        return shape_measure(s, depth, piece, max_points, min_level, max_level, min_boxes);
+      },
+      "shape");
+}
+
 /// Running, evaluating and sampling experiments.
 void bind_experiment_functions(py::module_& m) {
   using namespace cifs::experiment;
@@ -845,6 +942,7 @@ void bind_experiment_functions(py::module_& m) {
 void bind_experiment(py::module_& m) {
   bind_experiment_types(m);
   bind_experiment_functions(m);
+  bind_dimension(m);
 }
 
 }  // namespace cifs::python

@@ -34,7 +34,14 @@ PYBIND11_MODULE(_cifs, m) {
     }
   });
 
-  // Order: a submodule's types are registered before the submodules whose signatures use them.
+  // Order: a submodule's types are registered before the submodules whose signatures use them (else the
+  // signatures, docstrings and stubs show C++ names: `limit(mesh: cifs::Mesh)`). The meshes and segment
+  // sets of io come first: nurbs, ifs, subdivision and render take and return them.
+  auto io = m.def_submodule(
+      "io",
+      "Every file format: shapes, polygons, meshes, segment sets, automata, BC-IFS and experiment\n"
+      "files; the format table and read/write by extension.");
+  bind_io_types(io);
   auto nurbs = m.def_submodule("nurbs",
                                "B-spline and NURBS curves and surfaces: evaluation, knot insertion, "
                                "blossoms, knot-doubling matrices.");
@@ -56,10 +63,6 @@ PYBIND11_MODULE(_cifs, m) {
   bind_mesh_subdivision(subdivision);
   auto render = m.def_submodule("render", "Cameras, rasterisers, the chaos-game density, OpenEXR and PNG.");
   bind_render(render);
-  auto io = m.def_submodule(
-      "io",
-      "Every file format: shapes, polygons, meshes, segment sets, automata, BC-IFS and experiment\n"
-      "files; the format table and read/write by extension.");
   bind_io(io);
   bind_bcifs_io(io);
   bind_io_dispatch(io);

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "arrays.hpp"
+#include "cifs/ifs/shape_attractor.hpp"
 #include "cifs/nurbs/curve.hpp"
 #include "cifs/nurbs/doubling.hpp"
 #include "cifs/nurbs/knots.hpp"
@@ -354,6 +355,19 @@ void bind_curve(py::module_& m) {
       .def_property_readonly(
           "dimension", [](const Curve& c) { return dimension(c); }, "Cartesian dimension.")
       .def(
+          "attractor",
+          [](const Curve& c, int depth, std::int64_t max_points) {
+            const std::size_t limit = count_arg(max_points, "Curve.attractor: max_points");
+            py::gil_scoped_release unlocked;
+            return cifs::ifs::attractor(c, depth, limit);
+          },
+          py::arg("depth"), py::kw_only(), py::arg("max_points") = std::int64_t{1} << 27,
+          "The curve as the attractor of its knot-doubling automaton at `depth` (ifs::attractor): Cartesian\n"
+          "points (n, dimension) in curve order, 2^depth per segment plus the end point unless closed — the\n"
+          "curve at the dyadic parameters, rational or not. Raises InvalidInput for a negative depth or "
+          "more\n"
+          "than max_points points.")
+      .def(
           "evaluate",
           [](const Curve& c, const py::object& u) -> py::object {
             bool scalar = false;
@@ -553,6 +567,18 @@ void bind_surface(py::module_& m) {
           "The parameter domains ((u0, u1), (v0, v1)).")
       .def_property_readonly(
           "dimension", [](const Surface& s) { return dimension(s); }, "Cartesian dimension.")
+      .def(
+          "attractor",
+          [](const Surface& s, int depth, std::int64_t max_bytes) {
+            const std::size_t limit = count_arg(max_bytes, "Surface.attractor: max_bytes");
+            py::gil_scoped_release unlocked;
+            return cifs::ifs::attractor(s, depth, limit);
+          },
+          py::arg("depth"), py::kw_only(), py::arg("max_bytes") = std::int64_t{1} << 30,
+          "The surface as the attractor of its tensor-product automaton at `depth` (ifs::attractor): its\n"
+          "watertight quad mesh (io.Mesh, the layout of ifs.surface_mesh) with Cartesian vertices, rational "
+          "or\n"
+          "not. Raises InvalidInput for a negative depth or a mesh above max_bytes.")
       .def(
           "evaluate",
           [](const Surface& s, const py::object& u, const py::object& v) -> py::object {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "cifs/errors.hpp"
@@ -98,7 +99,9 @@ LimitStencils limit_stencils(const MeshTopology& t, MeshScheme scheme, BoundaryR
       try {
         out.masks.push_back(mask(scheme, n, LocalOptions{.boundary = on_boundary, .rule = boundary}));
       } catch (const InvalidInput& e) {
-        throw InvalidInput(where() + ": " + e.what());
+        std::string_view what = e.what();  // the scheme's name once: where() starts with it
+        if (what.starts_with(who + ": ")) what.remove_prefix(who.size() + 2);
+        throw InvalidInput(where() + ": " + std::string(what));
       }
       k = static_cast<int>(out.masks.size()) - 1;
     }

@@ -14,6 +14,7 @@
 #include "cifs/errors.hpp"
 #include "cifs/format.hpp"
 #include "cifs/memory.hpp"
+#include "cifs/suggest.hpp"
 
 namespace cifs::subdivision {
 namespace {
@@ -692,8 +693,9 @@ MeshScheme named_mesh_scheme(std::string_view name) {
   for (const MeshScheme s : {MeshScheme::catmull_clark, MeshScheme::loop, MeshScheme::doo_sabin,
                              MeshScheme::butterfly, MeshScheme::sqrt3})
     if (scheme_name(s) == name) return s;
-  throw InvalidInput("unknown mesh scheme '" + std::string(name) +
-                     "' (catmull-clark, loop, doo-sabin, butterfly, sqrt3)");
+  throw InvalidInput("unknown mesh scheme '" + std::string(name) + "'" +
+                     did_you_mean(name, {"catmull-clark", "loop", "doo-sabin", "butterfly", "sqrt3"}) +
+                     " (catmull-clark, loop, doo-sabin, butterfly, sqrt3)");
 }
 
 std::string_view scheme_name(MeshScheme scheme) noexcept {

@@ -7,6 +7,7 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/format.hpp"
+#include "cifs/suggest.hpp"
 #include "polynomial.hpp"
 
 namespace cifs::subdivision {
@@ -315,8 +316,14 @@ Scheme named_scheme(std::string_view name_view, const std::map<std::string, std:
       std::find_if(catalogue.begin(), catalogue.end(), [&](const SchemeSpec& s) { return s.name == name; });
   if (spec == catalogue.end()) {
     std::string names;
-    for (const SchemeSpec& s : catalogue) names += (names.empty() ? "" : ", ") + s.name;
-    throw InvalidInput("unknown scheme '" + name + "' (schemes: " + names + ")");
+    std::vector<std::string> listed;
+    listed.reserve(catalogue.size());
+    for (const SchemeSpec& s : catalogue) {
+      names += (names.empty() ? "" : ", ") + s.name;
+      listed.push_back(s.name);
+    }
+    throw InvalidInput("unknown scheme '" + name + "'" + did_you_mean(name, listed) + " (schemes: " + names +
+                       ")");
   }
   std::map<std::string, std::string> values;
   for (const ParameterSpec& p : spec->parameters) values[p.name] = p.default_value;

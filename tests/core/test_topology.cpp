@@ -240,3 +240,30 @@ TEST_CASE("meshes: faces, uniform meshes, checks and normals", "[core][mesh]") {
   bad.states = {1, 2};
   CHECK_THROWS_WITH(check_mesh(bad, "w"), "w: 2 states for 1 faces");
 }
+
+TEST_CASE("mesh_statistics: components, genus, face sizes and valences counted by hand", "[core][topology]") {
+  const MeshStatistics cube = mesh_statistics(build_topology(topology_cube()));
+  CHECK(cube.faces_by_corners == std::map<std::size_t, std::size_t>{{4, 6}});
+  CHECK(cube.valences == std::map<int, std::size_t>{{3, 8}});
+  CHECK(cube.components == 1);
+  CHECK(cube.boundary_loops == 0);
+  CHECK(cube.euler_characteristic == 2);
+  CHECK(cube.genus == 0);
+
+  // Two tori (genus 1 each) and an isolated vertex: χ = 0 + 0 + 1 counts the vertex, the genus does not.
+  Mesh two = topology_torus(3, 4);
+  append(two, topology_torus(4, 3));
+  two.vertices.conservativeResize(two.vertices.rows() + 1, 3);
+  two.vertices.bottomRows(1).setZero();
+  const MeshStatistics tori = mesh_statistics(build_topology(two));
+  CHECK(tori.components == 2);
+  CHECK(tori.isolated_vertices == 1);
+  CHECK(tori.euler_characteristic == 1);
+  CHECK(tori.genus == 2);
+  CHECK(tori.valences == std::map<int, std::size_t>{{4, 24}});
+
+  const MeshStatistics open = mesh_statistics(build_topology(grid(2, 3)));
+  CHECK(open.boundary_loops == 1);
+  CHECK_FALSE(open.genus);
+  CHECK(open.valences == std::map<int, std::size_t>{{2, 4}, {3, 6}, {4, 2}});
+}

@@ -125,6 +125,47 @@ def copy_source(source: Path, build: Path, target: Path):
     (target / "build").symlink_to(build, target_is_directory=True)
 
 
+def run_blocks(runnable, rel, cwd, work, shim, env, args, report):
+    """Runs one markdown file's blocks in its copy of the source tree, in order."""
+    for b in runnable:
+        if b.language == "python":
+            code = work / "blocks" / f"{rel.replace('/', '_')}_{b.line}.py"
+            code.parent.mkdir(exist_ok=True)
+            code.write_text(script(b), encoding="utf-8")
+            # Compiled under the markdown's name: tracebacks say docs/python.md, line N.
+            driver = ("import sys; path, name = sys.argv[1:]; sys.argv = [name]; "
+                      "exec(compile(open(path, encoding='utf-8').read(), name, 'exec'), {'__name__': '__main__'})")
+            command = [str(shim), "-c", driver, str(code), rel]
+            block_env = dict(env, PYTHONPATH=str(args.python_module.resolve()))
+        else:
+            command = ["bash", "-e", "-c", script(b), rel]
+            block_env = env
+        t0 = time.monotonic()
+        # A session of its own: a timeout ends the block's whole process group, not just bash.
+        process = subprocess.Popen(command, cwd=cwd, env=block_env, stdout=subprocess.PIPE,
+                                   stderr=subprocess.PIPE, text=True, errors="replace", start_new_session=True)
+        try:
+            out, err = process.communicate(timeout=args.timeout)
+            status = process.returncode
+        except subprocess.TimeoutExpired:
+            os.killpg(process.pid, signal.SIGKILL)
+            out, err = process.communicate()
+            status = f"none: killed after {args.timeout:g} s"
+        seconds = time.monotonic() - t0
+        report.ran += 1
+        where = f"{rel}:{b.line}"
+        if status == 0:
+            print(f"ok      {where} ({b.language}, {seconds:.1f} s)")
+            continue
+        print(f"FAILED  {where} ({b.language}, exit {status}, {seconds:.1f} s)")
+        detail = f"{b.language} block, exit status {status}, run in {cwd}"
+        if err.strip():
+            detail += "\n stderr:\n" + tail(err, 60)
+        if out.strip():
+            detail += "\n stdout:\n" + tail(out, 15)
+        report.failures.append((where, detail))
+
+
 def tail(text: str, count: int) -> str:
     lines = text.rstrip("\n").split("\n")
     kept = lines[-count:]
@@ -183,43 +224,10 @@ def main() -> int:
             continue
         cwd = work / "files" / rel.replace("/", "_")
         copy_source(source, build, cwd)
-        for b in runnable:
-            if b.language == "python":
-                code = work / "blocks" / f"{rel.replace('/', '_')}_{b.line}.py"
-                code.parent.mkdir(exist_ok=True)
-                code.write_text(script(b), encoding="utf-8")
-                # Compiled under the markdown's name: tracebacks say docs/python.md, line N.
-                driver = ("import sys; path, name = sys.argv[1:]; sys.argv = [name]; "
-                          "exec(compile(open(path, encoding='utf-8').read(), name, 'exec'), {'__name__': '__main__'})")
-                command = [str(shim), "-c", driver, str(code), rel]
-                block_env = dict(env, PYTHONPATH=str(args.python_module.resolve()))
-            else:
-                command = ["bash", "-e", "-c", script(b), rel]
-                block_env = env
-            t0 = time.monotonic()
-            # A session of its own: a timeout ends the block's whole process group, not just bash.
-            process = subprocess.Popen(command, cwd=cwd, env=block_env, stdout=subprocess.PIPE,
-                                       stderr=subprocess.PIPE, text=True, errors="replace", start_new_session=True)
-            try:
-                out, err = process.communicate(timeout=args.timeout)
-                status = process.returncode
-            except subprocess.TimeoutExpired:
-                os.killpg(process.pid, signal.SIGKILL)
-                out, err = process.communicate()
-                status = f"none: killed after {args.timeout:g} s"
-            seconds = time.monotonic() - t0
-            report.ran += 1
-            where = f"{rel}:{b.line}"
-            if status == 0:
-                print(f"ok      {where} ({b.language}, {seconds:.1f} s)")
-                continue
-            print(f"FAILED  {where} ({b.language}, exit {status}, {seconds:.1f} s)")
-            detail = f"{b.language} block, exit status {status}, run in {cwd}"
-            if err.strip():
-                detail += "\n stderr:\n" + tail(err, 60)
-            if out.strip():
-                detail += "\n stdout:\n" + tail(out, 15)
-            report.failures.append((where, detail))
+        try:
+            run_blocks(runnable, rel, cwd, work, shim, env, args, report)
+        finally:  # the copy is in the build tree: its `build` link would make any recursive walk of it loop
+            (cwd / "build").unlink()
         sys.stdout.flush()
 
     for b in report.marked:

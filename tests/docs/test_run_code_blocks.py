@@ -32,6 +32,18 @@ class RunCodeBlocks(unittest.TestCase):
         self.assertEqual(status, 0, out)
         self.assertIn("ok      README.md:1 (sh", out)
 
+    def test_no_link_to_the_build_tree_is_left_behind(self):
+        """The copies sit in the build tree: a `build` link left there makes a recursive walk loop forever."""
+        with tempfile.TemporaryDirectory() as folder:
+            root = Path(folder)
+            source, build = root / "src", root / "build"
+            source.mkdir()
+            (source / "README.md").write_text("```sh\ntest -L build\n```\n\n```sh\nfalse\n```\n")
+            subprocess.run([sys.executable, str(RUNNER), "--source", str(source), "--build", str(build), "--cli",
+                            "/bin/true", "--work", str(build / "docs_blocks"), "README.md"], capture_output=True)
+            links = [p for p in (build / "docs_blocks").rglob("*") if p.is_symlink()]
+            self.assertEqual(links, [])
+
     def test_a_failing_block_names_its_line_and_stderr(self):
         status, out = self.run_on("text\n\n```bash\ntrue\necho oops >&2; false\necho never\n```\n")
         self.assertEqual(status, 1, out)

@@ -181,6 +181,45 @@ TEST_CASE("Bad experiments leave no file behind", "[experiment]") {
   CHECK(dir.files().empty());
 }
 
+TEST_CASE("Outputs and image paths are checked before any work", "[experiment]") {
+  ScratchDir dir;
+  experiment::RunOptions o;
+  o.out_dir = dir.path();
+  o.quiet = true;
+  const auto refused = [&](const std::string& text) {
+    try {
+      experiment::run(parse_named_experiment(text), o);
+    } catch (const InvalidInput& error) {
+      return std::string(error.what());
+    }
+    return std::string("no error");
+  };
+  // Each of these sources fails in its evaluation (not contractive, a mesh too large): the outputs are
+  // refused before it. A chaos game gives a density, a surface no segments.
+  CHECK(refused(R"({"shape": "../shapes/wave.json", "perturbation": {"amplitude": 50},
+      "evaluation": {"chaos": 1000000}, "outputs": {"png": "w.png", "ply": "w.ply"}})") ==
+        "outputs.ply: a chaos game gives a density, no geometry to export");
+  CHECK(refused(
+            R"({"ifs": "fern", "evaluation": {"depth": 8}, "outputs": {"png": "f.png", "obj": "f.obj"}})") ==
+        "outputs.obj: a classic IFS gives a density, no geometry to export");
+  CHECK(refused(R"({"shape": "../shapes/saddle.json", "evaluation": {"depth": 30},
+      "outputs": {"png": "s.png", "svg": "s.svg"}})") ==
+        "outputs.svg: SVG is for curves; use obj or ply for surfaces");
+  // The image files are OpenEXR and PNG: another extension is refused, not written with the wrong bytes.
+  CHECK(refused(R"({"shape": "../shapes/wave.json", "outputs": {"exr": "w.png"}})") ==
+        "outputs.exr: w.png: the image is OpenEXR, written as .exr");
+  CHECK(refused(R"({"shape": "../shapes/wave.json", "outputs": {"png": "w.jpg"}})") ==
+        "outputs.png: w.jpg: the preview is PNG, written as .png");
+  o.exr = dir.path() / "foo.png";
+  CHECK(refused(R"({"shape": "../shapes/wave.json", "outputs": {"png": "w.png"}})") ==
+        "the EXR path: " + (dir.path() / "foo.png").string() + ": the image is OpenEXR, written as .exr");
+  o.exr.clear();
+  o.png = dir.path() / "x.jpg";
+  CHECK(refused(R"({"shape": "../shapes/wave.json", "outputs": {"exr": "w.exr"}})") ==
+        "the PNG path: " + (dir.path() / "x.jpg").string() + ": the preview is PNG, written as .png");
+  CHECK(dir.files().empty());
+}
+
 TEST_CASE("A mesh experiment: the subdivision surface shaded, its control mesh over it, OBJ and PLY",
           "[experiment][mesh]") {
   ScratchDir dir;

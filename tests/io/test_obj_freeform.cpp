@@ -791,3 +791,14 @@ TEST_CASE("read_shape chooses among several shapes by index", "[obj]") {
   CHECK_THROWS_WITH(io::read_shape(dir / "none.obj"), Contains("none.obj: holds no curve or surface"));
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("OBJ: Rhino's knot count (n + d - 1) is refused with the convention named", "[obj][messages]") {
+  const std::string text =
+      "v 0 0 0\nv 1 2 0\nv 3 2 0\nv 4 0 0\ncstype bspline\ndeg 3\ncurv 0 1 1 2 3 4\nparm u 0 0 0 1 1 "
+      "1\nend\n";
+  CHECK_THROWS_WITH(
+      io::parse_obj(text, "rh.obj"),
+      "rh.obj: line 8: parm u: 6 knots given, 4 control points of degree 3 need 8 (the count given "
+      "leaves out the first and the last knot, as Rhino and openNURBS store them; OBJ files give "
+      "all n + d + 1)");
+}

@@ -22,3 +22,11 @@ if(NOT status EQUAL 0)
   message(FATAL_ERROR "import of the installed package failed:\n${out}\n${err}")
 endif()
 message(STATUS "${out}")
+# PREFIX/bin/cifs-python imports the installed package from anywhere, without PYTHONPATH.
+execute_process(COMMAND ${CMAKE_COMMAND} -E env --unset=PYTHONPATH ${WORK}/bin/cifs-python -c "${check}" ${WORK}
+  WORKING_DIRECTORY ${WORK}/bin RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "the installed launcher bin/cifs-python failed:\n${out}\n${err}")
+endif()
+message(STATUS "bin/cifs-python: ${out}")
+

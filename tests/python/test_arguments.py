@@ -26,6 +26,8 @@ NEGATIVE_MEANINGFUL = {
     ("ifs.sample_attractor", "depth"),           # -1: no depth, the tolerance decides
     ("ifs.box_counting", "min_level"),           # -1: automatic
     ("ifs.box_counting", "max_level"),           # -1: automatic
+    ("experiment.measure_dimension", "min_level"),  # -1: automatic (as cifs dimension)
+    ("experiment.measure_dimension", "max_level"),  # -1: automatic
     ("automata.Automaton.add_initial", "span"),  # -1: no knot span
 }
 

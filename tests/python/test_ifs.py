@@ -455,6 +455,39 @@ class ExperimentDimensionTest(unittest.TestCase):
                 self.assertAlmostEqual(ifs.similarity_dimension(ev.automaton, ev.nets), report["similarity_dimension"],
                                        delta=1e-12)
 
+    def test_measure_dimension_is_the_cli_measurement(self):
+        """The whole policy of `cifs dimension` (route, relaxation, coarser sample, cover, similarity)."""
+        cases = (("clover_fractal.json", {}, ()), ("sierpinski.json", {"depth": 10}, ("--depth", 10)))
+        for name, keywords, flags in cases:
+            with self.subTest(name):
+                path = EXAMPLES / "experiments" / name
+                report = cli_json("dimension", path, "--json", *flags)
+                m = cifs.experiment.measure_dimension(cifs.io.read_experiment(path), **keywords)
+                box = report["box_counting"]
+                self.assertEqual((m.route, m.description, m.sample.depth, len(m.sample.points), m.resolution),
+                                 (report["mode"], report["route"], report["depth"], report["points"],
+                                  report["resolution"]))
+                self.assertEqual((m.dimension, m.uncertainty, list(m.range), m.coarser, m.relaxed),
+                                 (box["dimension"], box["uncertainty"], box["range"], box["coarser_dimension"],
+                                  report["relaxed"]))
+                self.assertEqual([m.fit.min_level, m.fit.max_level], box["levels"])
+                self.assertEqual(m.similarity, report["similarity_dimension"])
+                self.assertEqual(m.cover.dimension if m.cover else None,
+                                 report["cover"]["dimension"] if report["cover"] else None)
+                self.assertIn(" ± ", repr(m))
+        curve = cifs.io.read_shape(EXAMPLES / "shapes" / "wave.json")
+        report = cli_json("dimension", EXAMPLES / "shapes" / "wave.json", "--json")
+        m = cifs.experiment.measure_dimension(curve)
+        self.assertEqual((m.dimension, m.uncertainty), (report["box_counting"]["dimension"],
+                                                         report["box_counting"]["uncertainty"]))
+        self.assertLess(abs(m.dimension - 1), 0.05)
+
+    def test_box_counting_reports_its_uncertainty(self):
+        r = ifs.box_counting(ifs.attractor_points(ifs.affine_automaton(ifs.sierpinski_triangle(), AffineTest.TRIANGLE),
+                                                  [AffineTest.TRIANGLE], 10))
+        self.assertEqual(r.uncertainty, max(r.standard_error, r.spread))
+        self.assertIn(f"dimension={r.dimension!r} ± {r.uncertainty!r}", repr(r))
+
     def test_tolerance_sample_same_result_as_cli(self):
         # The CLI's default: a sample of proven resolution, fitted without the points-per-box rule.
         path = EXAMPLES / "experiments" / "clover_fractal.json"

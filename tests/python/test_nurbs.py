@@ -279,11 +279,45 @@ class CurveTest(ScratchTestCase):
         with self.assertRaises(cifs.InvalidInput) as caught:
             nurbs.Curve(2, [0, 0, 0, 1, 1], np.array([[0, 0], [1, 1]], float))
         self.assertEqual(f"{bad}: curve.{caught.exception}", expected)
-        # Outside the domain: the CLI's line without its prefix.
+        # Outside the domain: the CLI's line without its prefix and the file it names.
         expected = cli("eval", SHAPES / "cubic.json", "--at", "5", check=False).stderr.strip()
         with self.assertRaises(cifs.InvalidInput) as caught:
             nurbs.evaluate(shape("cubic"), 5.0)
-        self.assertEqual("cifs: " + str(caught.exception), expected)
+        self.assertEqual(f"cifs: {SHAPES / 'cubic.json'}: {caught.exception}", expected)
+
+
+class AttractorMethodTest(unittest.TestCase):
+    """curve.attractor / surface.attractor know whether the shape is rational: Cartesian points at the
+    dyadic parameters (Cox–de Boor, cox_de_boor above, the independent route)."""
+
+    @staticmethod
+    def dyadic(breaks, depth, end):
+        n = 2 ** depth
+        us = [a + (b - a) * j / n for a, b in zip(breaks[:-1], breaks[1:]) for j in range(n)]
+        return us + [breaks[-1]] if end else us
+
+    def test_curves_rational_or_not_open_or_closed(self):
+        weights = [1, 3, 0.5, 2, 1, 0.7]
+        for rational in (False, True):
+            curve = nurbs.Curve(3, CUBIC_KNOTS, CUBIC_POINTS, weights if rational else None)
+            points = curve.attractor(4)
+            us = self.dyadic(nurbs.breakpoints(curve.knots, curve.degree), 4, True)
+            self.assertEqual(points.shape, (len(us), 3))  # z is a coordinate, never a weight
+            assert_close(self, points, np.array([cox_de_boor(curve, u) for u in us]), 1e-12)
+        closed = shape("closed_cubic")
+        us = self.dyadic(nurbs.breakpoints(closed.knots, closed.degree), 3, False)
+        assert_close(self, closed.attractor(3), closed.evaluate(us), 1e-12)
+        with self.assertRaisesRegex(cifs.InvalidInput, "depth -1 is negative"):
+            curve.attractor(-1)
+
+    def test_a_rational_surface_gives_its_cartesian_quad_mesh(self):
+        self.assertTrue(shape("saddle").rational)
+        hills = shape("saddle")  # rational: weights up to 2
+        mesh = hills.attractor(2)
+        us = self.dyadic(nurbs.breakpoints(hills.knots[0], hills.degree[0]), 2, True)
+        vs = self.dyadic(nurbs.breakpoints(hills.knots[1], hills.degree[1]), 2, True)
+        grid = np.array([hills.evaluate(u, v) for u in us for v in vs])
+        assert_close(self, mesh.vertices, grid, 1e-12)
 
 
 class SurfaceTest(unittest.TestCase):

@@ -29,6 +29,20 @@ class PackageTest(unittest.TestCase):
         text = (SOURCE_DIR / "CMakeLists.txt").read_text()
         self.assertIn(f"project(cifs VERSION {cifs.__version__} ", text)
 
+    def test_signatures_name_python_types_not_cpp_ones(self):
+        """A type registered after a function that takes it shows as its C++ name (`cifs::Mesh`) in the
+        signature, pydoc and the stubs (where it became `Any`)."""
+        import re
+        leaks = []
+        for name in SUBMODULES:
+            for attr, obj in vars(getattr(cifs, name)).items():
+                members = [(attr, obj)] + ([(f"{attr}.{m}", v) for m, v in vars(obj).items()]
+                                           if inspect.isclass(obj) else [])
+                for where, value in members:
+                    found = re.findall(r"\bcifs::[\w:]+", getattr(value, "__doc__", None) or "")
+                    leaks += [f"cifs.{name}.{where}: {t}" for t in sorted(set(found))]
+        self.assertEqual(leaks, [])
+
     def test_every_public_object_has_a_docstring(self):
         missing = []
         for name in SUBMODULES:
@@ -82,6 +96,27 @@ class InterpreterTest(unittest.TestCase):
         self.assertNotEqual(run.returncode, 0)
         self.assertIn("_cifs.cpython-39-x86_64-linux-gnu.so does not load in this interpreter", run.stderr)
         self.assertIn("Run scripts with build/cifs-python", run.stderr)
+
+    def test_an_extension_not_built_names_the_command_that_builds_it(self):
+        with tempfile.TemporaryDirectory() as folder:
+            build = Path(folder) / "build"
+            copy = build / "python" / "cifs"
+            copy.mkdir(parents=True)
+            shutil.copy(self.package / "__init__.py", copy)  # configured, the extension not built
+            run = subprocess.run([sys.executable, "-c", "import cifs"], cwd=folder,
+                                 env=dict(self.env, PYTHONPATH=str(build / "python")), capture_output=True, text=True)
+        self.assertNotEqual(run.returncode, 0)
+        self.assertIn(f"the extension cifs._cifs is not built: cmake --build {build} --target cifs_python", run.stderr)
+        self.assertNotIn("Run scripts with build/cifs-python", run.stderr)
+
+    def test_the_gallery_preset_builds_what_the_readme_runs_next(self):
+        """README: `cmake --workflow --preset gallery`, then build/apps/cifs … and build/cifs-python …"""
+        import json
+        presets = json.loads((SOURCE_DIR / "CMakePresets.json").read_text())
+        workflow = next(w for w in presets["workflowPresets"] if w["name"] == "gallery")
+        builds = {b["name"]: b for b in presets["buildPresets"]}
+        targets = {t for step in workflow["steps"] if step["type"] == "build" for t in builds[step["name"]]["targets"]}
+        self.assertLessEqual({"cifs_cli", "cifs_python", "gallery"}, targets)
 
 
 if __name__ == "__main__":

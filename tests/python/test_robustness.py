@@ -35,6 +35,7 @@ SANITIZED_VALUES = ("None", "str", "nan", "-1", "2**63", "(0, 2) array", "comple
 CHEAP = {
     "ifs.tolerance_sample": {"max_points": 4096}, "ifs.for_each_leaf_to_tolerance": {"epsilon": 0.1}, "experiment.sample": {"max_points": 4096},
     "experiment.evaluate": {"depth": 3}, "experiment.run": {"quiet": True},
+    "experiment.measure_dimension": {"max_points": 4096},
     "verify.check_curve": {"depth": 3}, "verify.check_surface": {"depth": 2},
 }
 # Requests that are legitimate and merely long (time linear in the count, nothing allocated up front):
@@ -44,6 +45,7 @@ LONG = {
     ("ifs.for_each_leaf", "depth"): ("60", "10**6"),
     ("ifs.tolerance_sample", "max_points"): ("10**6", "2**31", "2**32", "2**40"),
     ("experiment.sample", "max_points"): ("10**6", "2**31", "2**32", "2**40"),
+    ("experiment.measure_dimension", "max_points"): ("10**6",),
     ("render.chaos_game_histogram", "samples"): ("2**31",),
     ("render.estimate_bounds", "points"): ("2**31",),
 }

@@ -150,7 +150,7 @@ TEST_CASE("limit stencils: what is not built is refused, naming the vertex", "[s
   CHECK_THROWS_WITH(limit_mesh(bipyramid(), MeshScheme::butterfly, 1, {.normals = true}),
                     Contains("butterfly: limit normals are not built"));
   CHECK_THROWS_WITH(limit_stencils(build_topology(fan(17)), MeshScheme::loop),
-                    Contains("loop: vertex 0 (valence 17): loop: valence 17 is out of range"));
+                    Contains("loop: vertex 0 (valence 17): valence 17 is out of range"));
   CHECK_THROWS_WITH(limit_stencils(build_topology(fan(5)), MeshScheme::sqrt3),
                     Contains("is on the boundary"));
   CHECK_THROWS_WITH(limit_mesh(quad_grid(3, 3), MeshScheme::catmull_clark, 1, {.normals = true}),

@@ -172,8 +172,9 @@ TEST_CASE("named_scheme reads text parameters and defaults", "[subdivision]") {
   CHECK(named_scheme("mask", {{"coefficients", "1/4 3/4 3/4 1/4"}}).mask == chaikin().mask);
   CHECK(named_scheme("symbol", {{"symbol", "(1+z)^4/8"}}).mask == lane_riesenfeld(3).mask);
   CHECK(named_scheme("lr-six-point", {{"stages", "2"}}).mask == lr_six_point(2).mask);
-  CHECK_THROWS_WITH(named_scheme("four-points", {}),
-                    Catch::Contains("unknown scheme 'four-points' (schemes: chaikin"));
+  CHECK_THROWS_WITH(
+      named_scheme("four-points", {}),
+      Catch::Contains("unknown scheme 'four-points'; did you mean four-point? (schemes: chaikin"));
   CHECK_THROWS_WITH(named_scheme("chaikin", {{"w", "1"}}), Catch::Contains("unknown parameter 'w'"));
   CHECK_THROWS_WITH(named_scheme("lr-four-point", {{"stages", "1.5"}}),
                     Catch::Contains("stages = 1.5 is not an integer"));

@@ -6,6 +6,8 @@
 
 #include <array>
 #include <cstddef>
+#include <map>
+#include <optional>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -109,5 +111,22 @@ inline long long euler_characteristic(const MeshTopology& t) noexcept {
   return static_cast<long long>(t.vertex_count) - static_cast<long long>(t.edges.size()) +
          static_cast<long long>(face_count(t));
 }
+
+/// Connected components of the faces (faces that share a vertex are connected); isolated vertices are
+/// none.
+int components(const MeshTopology& topology);
+
+/// What `cifs info` reports of a mesh's topology.
+struct MeshStatistics {
+  std::map<std::size_t, std::size_t> faces_by_corners;  // corners → faces
+  std::map<int, std::size_t> valences;                  // valence → vertices (isolated vertices apart)
+  int isolated_vertices = 0;                            // in no face
+  std::size_t boundary_loops = 0;
+  int components = 0;
+  long long euler_characteristic = 0;  // V − E + F, isolated vertices counted
+  /// Closed meshes: the total genus g of the oriented surface, from χ = 2c − 2g over the vertices in faces.
+  std::optional<long long> genus;
+};
+MeshStatistics mesh_statistics(const MeshTopology& topology);
 
 }  // namespace cifs

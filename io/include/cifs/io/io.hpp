@@ -85,6 +85,14 @@ void write(const std::filesystem::path& path, const nurbs::KnotAutomaton& automa
 void write(const std::filesystem::path& path, const automata::Automaton& automaton);  // without knot data
 void write(const std::filesystem::path& path, const BcifsFile& file);
 
+/// What a file to read holds, for the commands that take several kinds (cifs info, cifs dimension): by
+/// extension, and for .obj and .json by content — a .ply is a mesh; an .obj a mesh when it has faces and no
+/// free-form geometry (cstype, curv, surf), else a shape; a .json object a polygon when it holds "polygon",
+/// a shape when it holds "curve" or "surface" or "shape" alone (geomdl), else an experiment. Any other
+/// extension (and a .json that does not parse: its reader names the problem) is read as a shape. IoError
+/// when the file cannot be read.
+Content detect(const std::filesystem::path& path);
+
 /// Reads a file in the format its extension names. Shapes, polygons, automata, BC-IFS files and
 /// experiments, whose own format is JSON, read any other extension as JSON; meshes must be `.obj` or
 /// `.ply` (IoError "m.stl: a mesh is read from .obj or .ply"). IoError naming the path when it
