@@ -22,7 +22,13 @@ std::string fit(const FitOptions& o) {
   options.tolerance = o.tolerance;
   options.measure = measure;
   options.closed = o.closed;
-  const nurbs::CurveFit result = nurbs::approximate(points, options);
+  const nurbs::CurveFit result = [&] {
+    try {
+      return nurbs::approximate(points, options);
+    } catch (const InvalidInput& e) {  // the library names the point; the file goes first
+      throw InvalidInput(o.points.string() + ": " + e.what());
+    }
+  }();
   if (o.output.empty()) return io::to_json(io::Shape(result.curve));
   io::write(o.output, io::Shape(result.curve));
   const nlohmann::json summary{{"written", o.output.string()},
