@@ -36,9 +36,75 @@ void collocation_rows(const Knots& t, int p, std::span<const double> params, int
   }
 }
 
-/// Solves A X = B by sparse LU with one step of iterative refinement (the collocation matrices are
-/// well conditioned; the step takes the residual to the rounding of the data).
-Points solve_lu(const Sparse& A, const Points& B, std::string_view what) {
+/// LU factors of a band matrix without pivoting: the collocation matrices of B-splines are totally
+/// positive (de Boor), so Gaussian elimination needs no row exchanges, and the factors keep the band
+/// (kl below, ku above the diagonal). Row i keeps columns i − kl … i + ku.
+class BandLU {
+ public:
+  /// False when the matrix is not a narrow band or a pivot is not clearly non-zero (then another
+  /// solver is needed).
+  bool factor(const Triplets& entries, Eigen::Index n) {
+    n_ = n;
+    for (const auto& e : entries) {
+      kl_ = std::max<Eigen::Index>(kl_, e.row() - e.col());
+      ku_ = std::max<Eigen::Index>(ku_, e.col() - e.row());
+    }
+    w_ = kl_ + ku_ + 1;
+    if (w_ > 2 * kMaxDegree + 3) return false;  // not a band (the wrapped rows of a closed curve)
+    band_.assign(static_cast<std::size_t>(n * w_), 0.0);
+    std::vector<double> size(static_cast<std::size_t>(n), 0.0);
+    for (const auto& e : entries) {
+      at(e.row(), e.col()) += e.value();
+      size[static_cast<std::size_t>(e.row())] = std::max(size[static_cast<std::size_t>(e.row())], std::abs(e.value()));
+    }
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const double pivot = at(k, k);
+      if (!(std::abs(pivot) > 1e-12 * size[static_cast<std::size_t>(k)])) return false;
+      const Eigen::Index last = std::min(n - 1, k + ku_);
+      for (Eigen::Index i = k + 1; i <= std::min(n - 1, k + kl_); ++i) {
+        const double l = at(i, k) / pivot;
+        at(i, k) = l;
+        if (l != 0)
+          for (Eigen::Index j = k + 1; j <= last; ++j) at(i, j) -= l * at(k, j);
+      }
+    }
+    return true;
+  }
+  /// X ← A⁻¹ X, in place (rows of X are the unknowns' coordinates).
+  void solve(Points& X) const {
+    for (Eigen::Index i = 0; i < n_; ++i)
+      for (Eigen::Index k = std::max<Eigen::Index>(0, i - kl_); k < i; ++k) X.row(i) -= at(i, k) * X.row(k);
+    for (Eigen::Index i = n_ - 1; i >= 0; --i) {
+      for (Eigen::Index j = i + 1; j <= std::min(n_ - 1, i + ku_); ++j) X.row(i) -= at(i, j) * X.row(j);
+      X.row(i) /= at(i, i);
+    }
+  }
+
+ private:
+  double& at(Eigen::Index i, Eigen::Index j) { return band_[static_cast<std::size_t>(i * w_ + j - i + kl_)]; }
+  double at(Eigen::Index i, Eigen::Index j) const { return band_[static_cast<std::size_t>(i * w_ + j - i + kl_)]; }
+  Eigen::Index n_ = 0, kl_ = 0, ku_ = 0, w_ = 1;
+  std::vector<double> band_;
+};
+
+/// Solves A X = B (A square, given by its entries) with one step of iterative refinement, which takes
+/// the residual to the rounding of the data: band LU without pivoting for the (totally positive)
+/// collocation matrix of an open curve, else sparse LU with pivoting (the cyclic matrices of closed
+/// curves are not totally positive; or a pivot was too small).
+Points solve_collocation(const Triplets& entries, Eigen::Index n, const Points& B, bool totally_positive,
+                         std::string_view what) {
+  Sparse A(n, n);
+  A.setFromTriplets(entries.begin(), entries.end());
+  BandLU band;
+  if (totally_positive && band.factor(entries, n)) {
+    Points X = B;
+    band.solve(X);
+    Points residual = B - A * X;
+    band.solve(residual);
+    X += residual;
+    if (!X.allFinite()) detail::fail(what, ": the interpolation system is singular");
+    return X;
+  }
   Eigen::SparseLU<Sparse> lu;
   lu.compute(A);
   if (lu.info() != Eigen::Success) detail::fail(what, ": the interpolation system is singular");
@@ -146,9 +212,7 @@ Points interpolate_open(const Knots& t, int p, std::span<const double> params, c
   for (Eigen::Index k = 1; k + 1 < m; ++k) add_point(k);
   if (e) add_derivative(n - 2, t[static_cast<std::size_t>(n + p)] - t[static_cast<std::size_t>(n - 1)], d1);
   add_point(m - 1);
-  Sparse A(n, n);
-  A.setFromTriplets(triplets.begin(), triplets.end());
-  return solve_lu(A, B, "points");
+  return solve_collocation(triplets, n, B, true, "points");
 }
 
 /// Parameters of one line of points, or an empty vector when all its chords vanish (chord kinds).
@@ -226,9 +290,7 @@ Curve interpolate_closed(const Points& data, const InterpolateOptions& o) {
     for (int j = 0; j <= p; ++j)
       if (N[j] != 0) triplets.emplace_back(k, (span - p + j) % m, N[j]);
   }
-  Sparse A(m, m);
-  A.setFromTriplets(triplets.begin(), triplets.end());
-  return make_closed_curve(p, b, solve_lu(A, Q, "points"));
+  return make_closed_curve(p, b, solve_collocation(triplets, m, Q, false, "points"));
 }
 
 /// The polyline bound of CurveFit on one piece: coefficients d (p + 1 rows, Bézier form of C − L on

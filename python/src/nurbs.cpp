@@ -816,7 +816,7 @@ void bind_fit(py::module_& m) {
       "over the lines). Raises InvalidInput for too few points or lines that coincide.");
   m.def(
       "approximate_surface",
-      [](const DoubleArray& points, std::array<int, 2> degree, std::array<Eigen::Index, 2> control_points,
+      [](const DoubleArray& points, std::array<Eigen::Index, 2> control_points, std::array<int, 2> degree,
          const std::string& parametrization) {
         SurfaceFitOptions o;
         o.degree = degree;
@@ -826,7 +826,7 @@ void bind_fit(py::module_& m) {
         const py::gil_scoped_release release;
         return approximate_surface(g, o);
       },
-      py::arg("points"), py::arg("degree") = std::array<int, 2>{3, 3}, py::arg("control_points"),
+      py::arg("points"), py::arg("control_points"), py::arg("degree") = std::array<int, 2>{3, 3},
       py::arg("parametrization") = "chord_length",
       "Least-squares surface with control_points (cu, cv) near the grid points (nu, nv, dim): fits with\n"
       "fixed ends in u, then in v; the corners are interpolated. Raises InvalidInput for bad counts.");
