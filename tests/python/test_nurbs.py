@@ -433,5 +433,65 @@ class DoublingTest(unittest.TestCase):
                              refined.P[left + 1 - d:left + 2], what="D half")
 
 
+class FitTest(unittest.TestCase):
+    """Fitting: the points hit at their parameters, the least-squares solution against numpy's lstsq on the
+    collocation matrix of the knot functions, the same curve as `cifs fit`, bad input."""
+
+    def setUp(self):
+        x = np.linspace(0, 5, 40)
+        self.points = np.stack([x, np.sin(x), np.cos(2 * x)], axis=1)
+
+    def test_interpolate_hits_every_point(self):
+        for kind in ("uniform", "chord_length", "centripetal"):
+            for degree in (1, 2, 3, 5):
+                curve = nurbs.interpolate(self.points, degree, parametrization=kind)
+                u = nurbs.fit_parameters(self.points, kind)
+                np.testing.assert_allclose(nurbs.evaluate(curve, u), self.points, rtol=0, atol=1e-14 * 5)
+        ring = nurbs.interpolate(self.points[:-1], 3, closed=True)
+        u = nurbs.fit_parameters(self.points[:-1], closed=True)
+        np.testing.assert_allclose(nurbs.evaluate(ring, u), self.points[:-1], rtol=0, atol=1e-13)
+        tangent = np.array([1.0, 0.0, 2.0])
+        ends = nurbs.interpolate(self.points, 3, start_derivative=tangent, end_derivative=-tangent)
+        np.testing.assert_allclose(nurbs.derivatives(ends, 0.0, 1)[1], tangent, atol=1e-12)
+        np.testing.assert_allclose(nurbs.derivatives(ends, 1.0, 1)[1], -tangent, atol=1e-12)
+
+    def test_approximate_is_the_least_squares_solution(self):
+        curve = nurbs.approximate(self.points, 3, control_points=9, fix_ends=False)
+        u = nurbs.fit_parameters(self.points)
+        A = np.zeros((len(u), 9))
+        for k, x in enumerate(u):
+            span = nurbs.find_span(curve.knots, 3, x)
+            A[k, span - 3:span + 1] = nurbs.basis_functions(curve.knots, 3, span, x)
+        expected = np.linalg.lstsq(A, self.points, rcond=None)[0]
+        np.testing.assert_allclose(curve.points, expected, rtol=0, atol=1e-12)
+        near = nurbs.approximate(self.points, 3, tolerance=1e-2)
+        fit = nurbs.fit_distances(near, self.points)
+        self.assertLessEqual(fit.point_distance, 1e-2)
+        self.assertLessEqual(fit.point_distance, fit.polyline_bound)
+        self.assertLess(nurbs.distinct_count(near), len(self.points))
+
+    def test_surfaces(self):
+        grid = np.array([[[i, j, np.sin(i + j)] for j in range(7)] for i in range(6)], dtype=float)
+        surface = nurbs.interpolate_surface(grid, (3, 2), parametrization="uniform")
+        self.assertEqual(surface.count, (6, 7))
+        for i, j in ((0, 0), (2, 3), (5, 6), (4, 1)):
+            np.testing.assert_allclose(nurbs.evaluate(surface, i / 5, j / 6), grid[i, j], rtol=0, atol=1e-13)
+        smooth = nurbs.approximate_surface(grid, (4, 5), degree=(2, 2))
+        self.assertEqual(smooth.count, (4, 5))
+        np.testing.assert_allclose(nurbs.evaluate(smooth, 0, 0), grid[0, 0], atol=1e-13)
+
+    def test_bad_input(self):
+        with self.assertRaisesRegex(cifs.InvalidInput, r"points\[2\]: coincides with points\[1\]"):
+            nurbs.interpolate(np.array([[0, 0], [1, 1], [1, 1], [2, 0]]), 2)
+        with self.assertRaisesRegex(cifs.InvalidInput, "needs at least 4 points, got 3"):
+            nurbs.interpolate(np.array([[0, 0], [1, 1], [2, 0]]))
+        with self.assertRaisesRegex(cifs.InvalidInput, "give control_points or tolerance"):
+            nurbs.approximate(self.points)
+        with self.assertRaisesRegex(cifs.InvalidInput, "parametrization 'chord'"):
+            nurbs.interpolate(self.points, parametrization="chord")
+        with self.assertRaisesRegex(cifs.InvalidInput, "expected a grid"):
+            nurbs.interpolate_surface(self.points)
+
+
 if __name__ == "__main__":
     unittest.main()
