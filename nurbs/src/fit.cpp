@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numeric>
 
 #include "detail.hpp"
@@ -19,6 +20,7 @@ using Triplets = std::vector<Eigen::Triplet<double>>;
 
 void check_points(const Points& points, std::string_view where) {
   if (points.cols() < 1) detail::fail(where, ": points have no coordinates");
+  if (points.allFinite()) return;  // one vectorised pass; the loop below names the culprit
   for (Eigen::Index i = 0; i < points.rows(); ++i)
     for (Eigen::Index j = 0; j < points.cols(); ++j)
       if (!std::isfinite(points(i, j))) detail::fail(where, "[", i, "][", j, "]: coordinate is not finite");
@@ -36,6 +38,47 @@ void collocation_rows(const Knots& t, int p, std::span<const double> params, int
   }
 }
 
+/// A square collocation matrix by rows: row r holds `count[r]` values from column `first[r]` on (at most
+/// `stride` of them: the p + 1 basis functions of a span, or the two entries of an end derivative), the
+/// columns taken modulo n (the wrapped rows of a closed curve).
+struct Runs {
+  Eigen::Index n = 0;
+  int stride = 0;
+  std::vector<Eigen::Index> first;
+  std::vector<int> count;
+  std::vector<double> values;  // row r at r·stride
+
+  Runs(Eigen::Index size, int width)
+      : n(size), stride(width), first(static_cast<std::size_t>(size)), count(static_cast<std::size_t>(size)),
+        values(static_cast<std::size_t>(size * width)) {}
+  double* row(Eigen::Index r) { return values.data() + r * stride; }
+  const double* row(Eigen::Index r) const { return values.data() + r * stride; }
+
+  /// out ← B − A·X (all `n by cols`, row-major).
+  void residual(const Points& B, const Points& X, Points& out) const {
+    const Eigen::Index cols = B.cols();
+    out = B;
+    for (Eigen::Index r = 0; r < n; ++r) {
+      double* o = out.data() + r * cols;
+      for (int j = 0; j < count[static_cast<std::size_t>(r)]; ++j) {
+        const double a = row(r)[j];
+        const double* x = X.data() + ((first[static_cast<std::size_t>(r)] + j) % n) * cols;
+        for (Eigen::Index c = 0; c < cols; ++c) o[c] -= a * x[c];
+      }
+    }
+  }
+
+  Sparse sparse() const {
+    Triplets entries;
+    for (Eigen::Index r = 0; r < n; ++r)
+      for (int j = 0; j < count[static_cast<std::size_t>(r)]; ++j)
+        entries.emplace_back(r, (first[static_cast<std::size_t>(r)] + j) % n, row(r)[j]);
+    Sparse A(n, n);
+    A.setFromTriplets(entries.begin(), entries.end());
+    return A;
+  }
+};
+
 /// LU factors of a band matrix without pivoting: the collocation matrices of B-splines are totally
 /// positive (de Boor), so Gaussian elimination needs no row exchanges, and the factors keep the band
 /// (kl below, ku above the diagonal). Row i keeps columns i − kl … i + ku.
@@ -43,40 +86,50 @@ class BandLU {
  public:
   /// False when the matrix is not a narrow band or a pivot is not clearly non-zero (then another
   /// solver is needed).
-  bool factor(const Triplets& entries, Eigen::Index n) {
-    n_ = n;
-    for (const auto& e : entries) {
-      kl_ = std::max<Eigen::Index>(kl_, e.row() - e.col());
-      ku_ = std::max<Eigen::Index>(ku_, e.col() - e.row());
+  bool factor(const Runs& A) {
+    n_ = A.n;
+    for (Eigen::Index r = 0; r < n_; ++r) {
+      const Eigen::Index f = A.first[static_cast<std::size_t>(r)], l = f + A.count[static_cast<std::size_t>(r)] - 1;
+      if (l >= n_) return false;  // a wrapped row
+      kl_ = std::max(kl_, r - f);
+      ku_ = std::max(ku_, l - r);
     }
     w_ = kl_ + ku_ + 1;
-    if (w_ > 2 * kMaxDegree + 3) return false;  // not a band (the wrapped rows of a closed curve)
-    band_.assign(static_cast<std::size_t>(n * w_), 0.0);
-    std::vector<double> size(static_cast<std::size_t>(n), 0.0);
-    for (const auto& e : entries) {
-      at(e.row(), e.col()) += e.value();
-      size[static_cast<std::size_t>(e.row())] = std::max(size[static_cast<std::size_t>(e.row())], std::abs(e.value()));
-    }
-    for (Eigen::Index k = 0; k < n; ++k) {
-      const double pivot = at(k, k);
-      if (!(std::abs(pivot) > 1e-12 * size[static_cast<std::size_t>(k)])) return false;
-      const Eigen::Index last = std::min(n - 1, k + ku_);
-      for (Eigen::Index i = k + 1; i <= std::min(n - 1, k + kl_); ++i) {
-        const double l = at(i, k) / pivot;
-        at(i, k) = l;
-        if (l != 0)
-          for (Eigen::Index j = k + 1; j <= last; ++j) at(i, j) -= l * at(k, j);
+    if (w_ > 2 * kMaxDegree + 3) return false;
+    band_.assign(static_cast<std::size_t>(n_ * w_), 0.0);
+    for (Eigen::Index r = 0; r < n_; ++r) {
+      double size = 0;
+      for (int j = 0; j < A.count[static_cast<std::size_t>(r)]; ++j) {
+        at(r, A.first[static_cast<std::size_t>(r)] + j) = A.row(r)[j];
+        size = std::max(size, std::abs(A.row(r)[j]));
       }
+      // Row r is final when its turn comes; its entries left of the diagonal are eliminated first.
+      for (Eigen::Index k = std::max<Eigen::Index>(0, r - kl_); k < r; ++k) {
+        const double l = at(r, k) / at(k, k);
+        at(r, k) = l;
+        if (l != 0)
+          for (Eigen::Index j = k + 1; j <= std::min(n_ - 1, k + ku_); ++j) at(r, j) -= l * at(k, j);
+      }
+      if (!(std::abs(at(r, r)) > 1e-12 * size)) return false;
     }
     return true;
   }
-  /// X ← A⁻¹ X, in place (rows of X are the unknowns' coordinates).
+  /// X ← A⁻¹ X, in place (`n by cols`, row-major).
   void solve(Points& X) const {
+    const Eigen::Index cols = X.cols();
+    double* x = X.data();
     for (Eigen::Index i = 0; i < n_; ++i)
-      for (Eigen::Index k = std::max<Eigen::Index>(0, i - kl_); k < i; ++k) X.row(i) -= at(i, k) * X.row(k);
+      for (Eigen::Index k = std::max<Eigen::Index>(0, i - kl_); k < i; ++k) {
+        const double l = at(i, k);
+        for (Eigen::Index c = 0; c < cols; ++c) x[i * cols + c] -= l * x[k * cols + c];
+      }
     for (Eigen::Index i = n_ - 1; i >= 0; --i) {
-      for (Eigen::Index j = i + 1; j <= std::min(n_ - 1, i + ku_); ++j) X.row(i) -= at(i, j) * X.row(j);
-      X.row(i) /= at(i, i);
+      for (Eigen::Index j = i + 1; j <= std::min(n_ - 1, i + ku_); ++j) {
+        const double u = at(i, j);
+        for (Eigen::Index c = 0; c < cols; ++c) x[i * cols + c] -= u * x[j * cols + c];
+      }
+      const double d = at(i, i);
+      for (Eigen::Index c = 0; c < cols; ++c) x[i * cols + c] /= d;
     }
   }
 
@@ -87,31 +140,22 @@ class BandLU {
   std::vector<double> band_;
 };
 
-/// Solves A X = B (A square, given by its entries) with one step of iterative refinement, which takes
-/// the residual to the rounding of the data: band LU without pivoting for the (totally positive)
-/// collocation matrix of an open curve, else sparse LU with pivoting (the cyclic matrices of closed
-/// curves are not totally positive; or a pivot was too small).
-Points solve_collocation(const Triplets& entries, Eigen::Index n, const Points& B, bool totally_positive,
-                         std::string_view what) {
-  Sparse A(n, n);
-  A.setFromTriplets(entries.begin(), entries.end());
+/// Solves A X = B: band LU without pivoting for the (totally positive) collocation matrix of an open
+/// curve, else sparse LU with pivoting and one step of iterative refinement (the cyclic matrices of
+/// closed curves are not totally positive; or a pivot was too small).
+Points solve_collocation(const Runs& A, Points B, std::string_view what) {
   BandLU band;
-  if (totally_positive && band.factor(entries, n)) {
-    Points X = B;
-    band.solve(X);
-    Points residual = B - A * X;
-    band.solve(residual);
-    X += residual;
-    if (!X.allFinite()) detail::fail(what, ": the interpolation system is singular");
-    return X;
+  if (band.factor(A)) {
+    band.solve(B);
+    if (!B.allFinite()) detail::fail(what, ": the interpolation system is singular");
+    return B;  // no refinement: elimination without pivoting is backward stable on these matrices
   }
   Eigen::SparseLU<Sparse> lu;
-  lu.compute(A);
+  lu.compute(A.sparse());
   if (lu.info() != Eigen::Success) detail::fail(what, ": the interpolation system is singular");
-  const Eigen::MatrixXd rhs = B;
-  Eigen::MatrixXd X = lu.solve(rhs);
-  const Eigen::MatrixXd residual = rhs - A * X;
-  X += lu.solve(residual);
+  Points X = Eigen::MatrixXd(lu.solve(Eigen::MatrixXd(B))), residual;
+  A.residual(B, X, residual);
+  X += Points(Eigen::MatrixXd(lu.solve(Eigen::MatrixXd(residual))));
   if (!X.allFinite()) detail::fail(what, ": the interpolation system is singular");
   return X;
 }
@@ -182,29 +226,109 @@ void check_fit_degree(int degree, Eigen::Index needed, Eigen::Index given, std::
     detail::fail("points: ", what, " of degree ", degree, " needs at least ", needed, " points, got ", given);
 }
 
+/// The open collocation system (below) streamed through band LU without pivoting: row r (columns
+/// r − p … r + p: the column of a row's own point is in its span's run, Schoenberg–Whitney) is filled,
+/// eliminated against the rows before it and its right-hand side forward-substituted while it is in
+/// cache; then one back substitution. False when a pivot is not clearly non-zero.
+template <int Cols>
+bool banded_interpolation(const Knots& t, int p, std::span<const double> params, const Points& Q, const Point& d0,
+                          const Point& d1, Points& X) {
+  const auto m = static_cast<Eigen::Index>(params.size());
+  const bool s = d0.size() > 0, e = d1.size() > 0;
+  const Eigen::Index n = m + s + e, cols = Cols > 0 ? Cols : Q.cols();
+  const int w = 2 * p + 1;
+  std::unique_ptr<double[]> band(new double[static_cast<std::size_t>(n * w)]);
+  std::unique_ptr<double[]> inverse(new double[static_cast<std::size_t>(n)]);
+  X.resize(n, cols);
+  double* x = X.data();
+  Eigen::Index row = 0;
+  int span = p;
+  const auto finish_row = [&](double size) {
+    double* a = band.get() + row * w;  // a[c − row + p] = A(row, c)
+    double* xr = x + row * cols;
+    for (Eigen::Index k = std::max<Eigen::Index>(0, row - p); k < row; ++k) {
+      const double l = a[k - row + p] * inverse[static_cast<std::size_t>(k)];
+      if (l == 0) continue;
+      const double* ak = band.get() + k * w;
+      for (Eigen::Index c = k + 1; c <= std::min(n - 1, k + p); ++c) a[c - row + p] -= l * ak[c - k + p];
+      const double* xk = x + k * cols;
+      for (Eigen::Index c = 0; c < cols; ++c) xr[c] -= l * xk[c];
+    }
+    const double pivot = a[p];
+    if (!(std::abs(pivot) > 1e-12 * size)) return false;
+    inverse[static_cast<std::size_t>(row++)] = 1 / pivot;
+    return true;
+  };
+  const auto add_point = [&](Eigen::Index k) {
+    const double u = params[static_cast<std::size_t>(k)];
+    span = detail::find_span(t.data(), p, static_cast<int>(n), u, span);  // sorted: the next span at most
+    double* a = band.get() + row * w;
+    const Eigen::Index first = span - p;
+    if (first < row - p || span > row + p) return false;  // outside the band: not this solver's system
+    std::fill_n(a, w, 0.0);
+    detail::basis(t.data(), p, span, u, a + (first - row + p));
+    std::copy_n(Q.data() + k * cols, cols, x + row * cols);
+    return finish_row(1.0);
+  };
+  const auto add_derivative = [&](Eigen::Index first, double h, const Point& D) {
+    double* a = band.get() + row * w;
+    std::fill_n(a, w, 0.0);
+    a[first - row + p] = -p / h;
+    a[first + 1 - row + p] = p / h;
+    std::copy_n(D.data(), cols, x + row * cols);
+    return finish_row(p / h);
+  };
+  if (!add_point(0)) return false;
+  if (s && !add_derivative(0, t[static_cast<std::size_t>(p + 1)] - t[0], d0)) return false;
+  for (Eigen::Index k = 1; k + 1 < m; ++k)
+    if (!add_point(k)) return false;
+  if (e && !add_derivative(n - 2, t[static_cast<std::size_t>(n + p)] - t[static_cast<std::size_t>(n - 1)], d1))
+    return false;
+  if (!add_point(m - 1)) return false;
+  for (Eigen::Index r = n - 1; r >= 0; --r) {
+    const double* a = band.get() + r * w;
+    double* xr = x + r * cols;
+    for (Eigen::Index c = r + 1; c <= std::min(n - 1, r + p); ++c) {
+      const double* xc = x + c * cols;
+      for (Eigen::Index d = 0; d < cols; ++d) xr[d] -= a[c - r + p] * xc[d];
+    }
+    for (Eigen::Index d = 0; d < cols; ++d) xr[d] *= inverse[static_cast<std::size_t>(r)];
+  }
+  return X.allFinite();
+}
+
 /// Open interpolation: control points on averaged knots through Q at params, with optional end
 /// derivatives (rows P_1 − P_0 = t_{p+1}/p · D_0 and P_{n−1} − P_{n−2} = (1 − t_{n−1})/p · D_1, in the
 /// order of the unknowns so that the matrix stays banded).
 Points interpolate_open(const Knots& t, int p, std::span<const double> params, const Points& Q,
                         const Point& d0, const Point& d1) {
+  Points X;
+  const bool banded = detail::with_cols(Q.cols(), [&](auto cols) {
+    return banded_interpolation<decltype(cols)::value>(t, p, params, Q, d0, d1, X);
+  });
+  if (banded) return X;
+  // A pivot too small (or rounding put a row out of the band): the general solver.
   const auto m = static_cast<Eigen::Index>(params.size());
   const bool s = d0.size() > 0, e = d1.size() > 0;
   const Eigen::Index n = m + s + e;
-  Triplets triplets;
-  Points B(n, Q.cols());
-  double N[kMaxDegree + 1];
+  Runs A(n, p + 1);
+  Points B = s || e ? Points(n, Q.cols()) : Q;
   Eigen::Index row = 0;
+  int span = p;
   const auto add_point = [&](Eigen::Index k) {
     const double u = params[static_cast<std::size_t>(k)];
-    const int span = find_span(t, p, u);
-    basis_functions(t, p, span, u, N);
-    for (int j = 0; j <= p; ++j)
-      if (N[j] != 0) triplets.emplace_back(row, span - p + j, N[j]);
-    B.row(row++) = Q.row(k);
+    span = detail::find_span(t.data(), p, static_cast<int>(n), u, span);  // sorted: the next span at most
+    detail::basis(t.data(), p, span, u, A.row(row));
+    A.first[static_cast<std::size_t>(row)] = span - p;
+    A.count[static_cast<std::size_t>(row)] = p + 1;
+    if (s || e) B.row(row) = Q.row(k);
+    ++row;
   };
   const auto add_derivative = [&](Eigen::Index first_col, double h, const Point& D) {
-    triplets.emplace_back(row, first_col, -p / h);
-    triplets.emplace_back(row, first_col + 1, p / h);
+    A.row(row)[0] = -p / h;
+    A.row(row)[1] = p / h;
+    A.first[static_cast<std::size_t>(row)] = first_col;
+    A.count[static_cast<std::size_t>(row)] = 2;
     B.row(row++) = D;
   };
   add_point(0);
@@ -212,33 +336,39 @@ Points interpolate_open(const Knots& t, int p, std::span<const double> params, c
   for (Eigen::Index k = 1; k + 1 < m; ++k) add_point(k);
   if (e) add_derivative(n - 2, t[static_cast<std::size_t>(n + p)] - t[static_cast<std::size_t>(n - 1)], d1);
   add_point(m - 1);
-  return solve_collocation(triplets, n, B, true, "points");
+  return solve_collocation(A, std::move(B), "points");
 }
 
 /// Parameters of one line of points, or an empty vector when all its chords vanish (chord kinds).
 std::vector<double> line_parameters(const Points& points, Parametrization kind, bool closed,
                                     bool allow_coincident) {
-  const Eigen::Index m = points.rows();
+  const Eigen::Index m = points.rows(), dim = points.cols();
   const Eigen::Index chords = closed ? m : m - 1;
-  std::vector<double> length(static_cast<std::size_t>(chords));
-  for (Eigen::Index k = 0; k < chords; ++k) {
-    const double d = (points.row((k + 1) % m) - points.row(k)).norm();
-    if (kind != Parametrization::uniform && d == 0 && !allow_coincident)
-      detail::fail("points[", (k + 1) % m, "]: coincides with points[", k,
-                   "] (chord-length and centripetal parameters need distinct consecutive points)");
-    length[static_cast<std::size_t>(k)] = kind == Parametrization::uniform       ? 1.0
-                                          : kind == Parametrization::centripetal ? std::sqrt(d)
-                                                                                 : d;
-  }
-  const double total = std::accumulate(length.begin(), length.end(), 0.0);
-  if (!(total > 0)) return {};
-  if (!std::isfinite(total)) detail::fail("points: the polygon's length overflows a double");
-  std::vector<double> u(static_cast<std::size_t>(m));
+  // u_k holds the running sum of the chords' lengths before point k, then is divided by the total.
+  std::vector<double> u(static_cast<std::size_t>(m) + 1);
+  const double* P = points.data();
   double sum = 0;
-  for (Eigen::Index k = 0; k < m; ++k) {
-    u[static_cast<std::size_t>(k)] = sum / total;
-    if (k < chords) sum += length[static_cast<std::size_t>(k)];
+  for (Eigen::Index k = 0; k < chords; ++k) {
+    u[static_cast<std::size_t>(k)] = sum;
+    double length = 1.0;
+    if (kind != Parametrization::uniform) {
+      const double* a = P + k * dim;
+      const double* b = P + ((k + 1) % m) * dim;
+      double d2 = 0;
+      for (Eigen::Index c = 0; c < dim; ++c) d2 += (b[c] - a[c]) * (b[c] - a[c]);
+      const double d = std::sqrt(d2);
+      if (d == 0 && !allow_coincident)
+        detail::fail("points[", (k + 1) % m, "]: coincides with points[", k,
+                     "] (chord-length and centripetal parameters need distinct consecutive points)");
+      length = kind == Parametrization::centripetal ? std::sqrt(d) : d;
+    }
+    sum += length;
   }
+  u[static_cast<std::size_t>(chords)] = sum;
+  u.resize(static_cast<std::size_t>(m));
+  if (!(sum > 0)) return {};
+  if (!std::isfinite(sum)) detail::fail("points: the polygon's length overflows a double");
+  for (double& x : u) x /= sum;
   if (!closed) u.back() = 1.0;
   return u;
 }
@@ -279,18 +409,18 @@ Curve interpolate_closed(const Points& data, const InterpolateOptions& o) {
   const auto m = static_cast<int>(Q.rows());
   // The curve's knots and spans from a placeholder net; columns wrap modulo m.
   Curve shape = make_closed_curve(p, b, Points::Zero(m, Q.cols()));
-  Triplets triplets;
-  double N[kMaxDegree + 1], local[2 * kMaxDegree];
+  Runs A(m, p + 1);
+  double local[2 * kMaxDegree];
   for (int k = 0; k < m; ++k) {
     const double x = domain_parameter(shape, u[static_cast<std::size_t>(k)]);
     const int span = find_span(shape.knots, p, x);
     // The knots relative to the span near the seam, as evaluation uses them (detail::span_knots).
     const detail::SpanKnots rel = detail::span_knots(shape, span, local);
-    detail::basis(rel.t.data(), p, rel.span, x - rel.origin, N);
-    for (int j = 0; j <= p; ++j)
-      if (N[j] != 0) triplets.emplace_back(k, (span - p + j) % m, N[j]);
+    detail::basis(rel.t.data(), p, rel.span, x - rel.origin, A.row(k));
+    A.first[static_cast<std::size_t>(k)] = span - p;
+    A.count[static_cast<std::size_t>(k)] = p + 1;
   }
-  return make_closed_curve(p, b, solve_collocation(triplets, m, Q, false, "points"));
+  return make_closed_curve(p, b, solve_collocation(A, Q, "points"));
 }
 
 /// The polyline bound of CurveFit on one piece: coefficients d (p + 1 rows, Bézier form of C − L on
@@ -386,7 +516,9 @@ Curve interpolate(const Points& points, const InterpolateOptions& o) {
   check_fit_degree(p, std::max<Eigen::Index>(2, p + 1 - s - e), points.rows(), "an interpolating curve");
   const std::vector<double> u = fit_parameters(points, o.parametrization);
   const Knots t = averaged_knots(u, p, s + e, e && !s);
-  return make_curve(p, t, interpolate_open(t, p, u, points, o.start_derivative, o.end_derivative));
+  Curve c{p, t, interpolate_open(t, p, u, points, o.start_derivative, o.end_derivative), false, false};
+  validate(c);
+  return c;
 }
 
 CurveFit measure_fit(const Curve& c, const Points& Q, std::vector<double> u) {
