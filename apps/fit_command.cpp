@@ -31,13 +31,11 @@ std::string fit(const FitOptions& o) {
   }();
   if (o.output.empty()) return io::to_json(io::Shape(result.curve));
   io::write(o.output, io::Shape(result.curve));
-  const nlohmann::json summary{{"written", o.output.string()},
-                               {"points", points.rows()},
-                               {"degree", result.curve.degree},
-                               {"control_points", nurbs::distinct_count(result.curve)},
-                               {"closed", result.curve.closed},
-                               {"point_distance", result.point_distance},
-                               {"polyline_bound", result.polyline_bound}};
+  const nlohmann::json summary{
+      {"written", o.output.string()},           {"points", points.rows()},
+      {"degree", result.curve.degree},          {"control_points", nurbs::distinct_count(result.curve)},
+      {"closed", result.curve.closed},          {"point_distance", result.point_distance},
+      {"polyline_bound", result.polyline_bound}};
   return summary.dump() + "\n";
 }
 

@@ -335,16 +335,20 @@ void add_gallery(CLI::App& app, Commands& c) {
 void add_fit(CLI::App& app, Commands& c) {
   auto* fit_cmd = app.add_subcommand(
       "fit", "Fit a curve to points: interpolation, or least squares by --control-points or --tolerance");
-  fit_cmd->add_option("points", c.fi.points, "Points file (.csv, .txt, .xyz, .npy, .json or .obj)")->required();
+  fit_cmd->add_option("points", c.fi.points, "Points file (.csv, .txt, .xyz, .npy, .json or .obj)")
+      ->required();
   fit_cmd->add_option("--degree", c.fi.degree, "Degree of the curve (default 3)");
   fit_cmd->add_option("--control-points", c.fi.control_points, "Least squares with N control points");
   fit_cmd->add_option("--tolerance", c.fi.tolerance,
                       "Least squares with the fewest knots so that every point is within E of the curve");
-  fit_cmd->add_option("--parametrization", c.fi.parametrization, "uniform, chord_length (default) or centripetal");
-  fit_cmd->add_option("--measure", c.fi.measure,
-                      "What --tolerance bounds: points (default) or polyline (the Hausdorff distance to the polyline)");
+  fit_cmd->add_option("--parametrization", c.fi.parametrization,
+                      "uniform, chord_length (default) or centripetal");
+  fit_cmd->add_option(
+      "--measure", c.fi.measure,
+      "What --tolerance bounds: points (default) or polyline (the Hausdorff distance to the polyline)");
   fit_cmd->add_flag("--closed", c.fi.closed, "A closed (periodic) interpolating curve");
-  fit_cmd->add_option("-o,--output", c.fi.output, "Shape file to write (.json or .obj); default: JSON on stdout");
+  fit_cmd->add_option("-o,--output", c.fi.output,
+                      "Shape file to write (.json or .obj); default: JSON on stdout");
   add_quiet(fit_cmd, c.quiet);
   fit_cmd->callback([&] {
     const cifs::render::Stage stage("fit", c.quiet);

@@ -549,7 +549,6 @@ void register_refine_benchmarks(Eigen::Index n, int per_span) {
     });
 }
 
-
 // ------------------------------------------------------------------------------------------------
 // Fitting: cubic interpolation through n points with chord-length parameters (cifs interpolate, SISL
 // s1356 with order 4, no end conditions). The two libraries choose different knots (cifs averages the
@@ -599,8 +598,8 @@ void register_fit_benchmarks(Eigen::Index n) {
     double end = 0;
     int count = 0, status = 0;
     std::vector<int> kinds = types;
-    s1356(points.data(), static_cast<int>(Q->rows()), 3, kinds.data(), 0, 0, 1, 4, 0.0, &end, out, par, &count,
-          &status);
+    s1356(points.data(), static_cast<int>(Q->rows()), 3, kinds.data(), 0, 0, 1, 4, 0.0, &end, out, par,
+          &count, &status);
     require_sisl_ok(status, "s1356");
   };
   {

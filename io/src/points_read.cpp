@@ -63,8 +63,9 @@ Points parse_points_text(const std::string& text, const std::string& where) {
     }
     if (header || row.empty()) continue;
     if (!rows.empty() && row.size() != rows.front().size())
-      fail(where + ":" + std::to_string(number),
-           std::to_string(row.size()) + " values, the first point has " + std::to_string(rows.front().size()));
+      fail(
+          where + ":" + std::to_string(number),
+          std::to_string(row.size()) + " values, the first point has " + std::to_string(rows.front().size()));
     rows.push_back(std::move(row));
   }
   return to_points(rows, where);
@@ -76,11 +77,13 @@ Points parse_npy(const std::string& bytes, const std::string& where) {
   const int major = static_cast<unsigned char>(bytes[6]);
   std::size_t length = 0, start = 0;
   if (major == 1) {
-    length = static_cast<unsigned char>(bytes[8]) | static_cast<std::size_t>(static_cast<unsigned char>(bytes[9])) << 8;
+    length = static_cast<unsigned char>(bytes[8]) |
+             static_cast<std::size_t>(static_cast<unsigned char>(bytes[9])) << 8;
     start = 10;
   } else {
     if (bytes.size() < 12) fail(where, "truncated .npy header");
-    for (int i = 0; i < 4; ++i) length |= static_cast<std::size_t>(static_cast<unsigned char>(bytes[8 + i])) << (8 * i);
+    for (int i = 0; i < 4; ++i)
+      length |= static_cast<std::size_t>(static_cast<unsigned char>(bytes[8 + i])) << (8 * i);
     start = 12;
   }
   if (bytes.size() < start + length) fail(where, "truncated .npy header");
@@ -102,11 +105,15 @@ Points parse_npy(const std::string& bytes, const std::string& where) {
       shape.push_back(std::stoll(shape_text.substr(i), &used));
       i += used - 1;
     }
-  if (shape.size() != 2) fail(where, "expected a 2-D array (points, dim), got " + std::to_string(shape.size()) + "-D");
+  if (shape.size() != 2)
+    fail(where, "expected a 2-D array (points, dim), got " + std::to_string(shape.size()) + "-D");
   std::size_t item = 0;
-  if (type == "<f8" || type == "<i8") item = 8;
-  else if (type == "<f4" || type == "<i4") item = 4;
-  else fail(where, "dtype '" + type + "' is not read (little-endian f8, f4, i8 or i4 are)");
+  if (type == "<f8" || type == "<i8")
+    item = 8;
+  else if (type == "<f4" || type == "<i4")
+    item = 4;
+  else
+    fail(where, "dtype '" + type + "' is not read (little-endian f8, f4, i8 or i4 are)");
   const auto rows = static_cast<Eigen::Index>(shape[0]), cols = static_cast<Eigen::Index>(shape[1]);
   const std::size_t data = start + length;
   if (bytes.size() - data != static_cast<std::size_t>(rows * cols) * item)
@@ -119,10 +126,21 @@ Points parse_npy(const std::string& bytes, const std::string& where) {
       const std::size_t index = static_cast<std::size_t>(fortran ? k * rows + i : i * cols + k);
       const char* at = bytes.data() + data + index * item;
       double x = 0;
-      if (type == "<f8") std::memcpy(&x, at, 8);
-      else if (type == "<f4") { float f; std::memcpy(&f, at, 4); x = f; }
-      else if (type == "<i8") { std::int64_t v; std::memcpy(&v, at, 8); x = static_cast<double>(v); }
-      else { std::int32_t v; std::memcpy(&v, at, 4); x = v; }
+      if (type == "<f8")
+        std::memcpy(&x, at, 8);
+      else if (type == "<f4") {
+        float f;
+        std::memcpy(&f, at, 4);
+        x = f;
+      } else if (type == "<i8") {
+        std::int64_t v;
+        std::memcpy(&v, at, 8);
+        x = static_cast<double>(v);
+      } else {
+        std::int32_t v;
+        std::memcpy(&v, at, 4);
+        x = v;
+      }
       if (!std::isfinite(x)) fail(where, "point " + std::to_string(i) + ": a coordinate is not finite");
       P(i, k) = x;
     }

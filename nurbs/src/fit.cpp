@@ -49,7 +49,10 @@ struct Runs {
   std::vector<double> values;  // row r at r·stride
 
   Runs(Eigen::Index size, int width)
-      : n(size), stride(width), first(static_cast<std::size_t>(size)), count(static_cast<std::size_t>(size)),
+      : n(size),
+        stride(width),
+        first(static_cast<std::size_t>(size)),
+        count(static_cast<std::size_t>(size)),
         values(static_cast<std::size_t>(size * width)) {}
   double* row(Eigen::Index r) { return values.data() + r * stride; }
   const double* row(Eigen::Index r) const { return values.data() + r * stride; }
@@ -89,7 +92,8 @@ class BandLU {
   bool factor(const Runs& A) {
     n_ = A.n;
     for (Eigen::Index r = 0; r < n_; ++r) {
-      const Eigen::Index f = A.first[static_cast<std::size_t>(r)], l = f + A.count[static_cast<std::size_t>(r)] - 1;
+      const Eigen::Index f = A.first[static_cast<std::size_t>(r)],
+                         l = f + A.count[static_cast<std::size_t>(r)] - 1;
       if (l >= n_) return false;  // a wrapped row
       kl_ = std::max(kl_, r - f);
       ku_ = std::max(ku_, l - r);
@@ -135,7 +139,9 @@ class BandLU {
 
  private:
   double& at(Eigen::Index i, Eigen::Index j) { return band_[static_cast<std::size_t>(i * w_ + j - i + kl_)]; }
-  double at(Eigen::Index i, Eigen::Index j) const { return band_[static_cast<std::size_t>(i * w_ + j - i + kl_)]; }
+  double at(Eigen::Index i, Eigen::Index j) const {
+    return band_[static_cast<std::size_t>(i * w_ + j - i + kl_)];
+  }
   Eigen::Index n_ = 0, kl_ = 0, ku_ = 0, w_ = 1;
   std::vector<double> band_;
 };
@@ -231,8 +237,8 @@ void check_fit_degree(int degree, Eigen::Index needed, Eigen::Index given, std::
 /// eliminated against the rows before it and its right-hand side forward-substituted while it is in
 /// cache; then one back substitution. False when a pivot is not clearly non-zero.
 template <int Cols>
-bool banded_interpolation(const Knots& t, int p, std::span<const double> params, const Points& Q, const Point& d0,
-                          const Point& d1, Points& X) {
+bool banded_interpolation(const Knots& t, int p, std::span<const double> params, const Points& Q,
+                          const Point& d0, const Point& d1, Points& X) {
   const auto m = static_cast<Eigen::Index>(params.size());
   const bool s = d0.size() > 0, e = d1.size() > 0;
   const Eigen::Index n = m + s + e, cols = Cols > 0 ? Cols : Q.cols();
@@ -279,10 +285,11 @@ bool banded_interpolation(const Knots& t, int p, std::span<const double> params,
     return finish_row(p / h);
   };
   if (!add_point(0)) return false;
-  if (s && !add_derivative(0, t[static_cast<std::size_t>(p + 1)] - t[0], d0)) return false;
+  if (s && !add_derivative(0, t[static_cast<std::size_t>(p) + 1] - t[0], d0)) return false;
   for (Eigen::Index k = 1; k + 1 < m; ++k)
     if (!add_point(k)) return false;
-  if (e && !add_derivative(n - 2, t[static_cast<std::size_t>(n + p)] - t[static_cast<std::size_t>(n - 1)], d1))
+  if (e &&
+      !add_derivative(n - 2, t[static_cast<std::size_t>(n + p)] - t[static_cast<std::size_t>(n - 1)], d1))
     return false;
   if (!add_point(m - 1)) return false;
   for (Eigen::Index r = n - 1; r >= 0; --r) {
@@ -332,7 +339,7 @@ Points interpolate_open(const Knots& t, int p, std::span<const double> params, c
     B.row(row++) = D;
   };
   add_point(0);
-  if (s) add_derivative(0, t[static_cast<std::size_t>(p + 1)] - t[0], d0);
+  if (s) add_derivative(0, t[static_cast<std::size_t>(p) + 1] - t[0], d0);
   for (Eigen::Index k = 1; k + 1 < m; ++k) add_point(k);
   if (e) add_derivative(n - 2, t[static_cast<std::size_t>(n + p)] - t[static_cast<std::size_t>(n - 1)], d1);
   add_point(m - 1);
@@ -437,7 +444,8 @@ double piece_bound(Points d, int depth, double& floor) {
     right.row(p - r) = d.row(p - r);
     for (Eigen::Index i = 0; i < p - r; ++i) d.row(i) = 0.5 * (d.row(i) + d.row(i + 1));
   }
-  return std::max(piece_bound(std::move(left), depth - 1, floor), piece_bound(std::move(right), depth - 1, floor));
+  return std::max(piece_bound(std::move(left), depth - 1, floor),
+                  piece_bound(std::move(right), depth - 1, floor));
 }
 
 }  // namespace
@@ -475,7 +483,7 @@ Knots averaged_knots(std::span<const double> u, int degree, int extra, bool end_
     for (int i = j; i < j + p; ++i) sum += x[static_cast<std::size_t>(i)];
     t.push_back(sum / p);
   }
-  t.insert(t.end(), static_cast<std::size_t>(p + 1), u.back());
+  t.insert(t.end(), static_cast<std::size_t>(p) + 1, u.back());
   return t;
 }
 
@@ -492,7 +500,7 @@ Knots approximation_knots(std::span<const double> u, int degree, Eigen::Index co
     const double b = u[static_cast<std::size_t>(std::min(whole + 1, m - 1))];
     t.push_back(a + alpha * (b - a));
   }
-  t.insert(t.end(), static_cast<std::size_t>(p + 1), u.back());
+  t.insert(t.end(), static_cast<std::size_t>(p) + 1, u.back());
   return t;
 }
 
@@ -538,8 +546,10 @@ CurveFit measure_fit(const Curve& c, const Points& Q, std::vector<double> u) {
   for (Eigen::Index k = 0; k < m; ++k) {
     const double uk = fit.parameters[static_cast<std::size_t>(k)];
     const double step = k == 0 ? 0 : uk - fit.parameters[static_cast<std::size_t>(k - 1)];
-    x[static_cast<std::size_t>(k)] =
-        k == 0 ? uk : x[static_cast<std::size_t>(k - 1)] + (c.closed ? step - std::floor(step / period) * period : step);
+    x[static_cast<std::size_t>(k)] = k == 0
+                                         ? uk
+                                         : x[static_cast<std::size_t>(k - 1)] +
+                                               (c.closed ? step - std::floor(step / period) * period : step);
     fit.point_distance = std::max(fit.point_distance, (evaluate(c, uk) - Q.row(k)).norm());
   }
   if (c.closed) x.back() = x.front() + period;
@@ -608,8 +618,8 @@ CurveFit approximate(const Points& points, const ApproximateOptions& o) {
 
   if (by_count) {
     if (o.control_points < p + 1 || o.control_points > m)
-      detail::fail("control_points: ", o.control_points, " is outside ", p + 1, " … ", m,
-                   " (degree ", p, ", ", m, " points)");
+      detail::fail("control_points: ", o.control_points, " is outside ", p + 1, " … ", m, " (degree ", p,
+                   ", ", m, " points)");
     if (o.control_points == m) return interpolation();
     const Knots t = approximation_knots(u, p, o.control_points);
     return measure_fit(make_curve(p, t, least_squares(t, p, u, points, o.weights, o.fix_ends)), points, u);
@@ -618,7 +628,8 @@ CurveFit approximate(const Points& points, const ApproximateOptions& o) {
   const bool polyline = o.measure == FitMeasure::polyline;
   Knots t = approximation_knots(u, p, p + 1);
   while (control_count(t, p) < m) {
-    CurveFit fit = measure_fit(make_curve(p, t, least_squares(t, p, u, points, o.weights, o.fix_ends)), points, u);
+    CurveFit fit =
+        measure_fit(make_curve(p, t, least_squares(t, p, u, points, o.weights, o.fix_ends)), points, u);
     if ((polyline ? fit.polyline_bound : fit.point_distance) <= o.tolerance) return fit;
     // The spans to split: those of the points too far (points), of the polyline edges too far (polyline).
     const Eigen::Index n = control_count(t, p);
@@ -641,7 +652,8 @@ CurveFit approximate(const Points& points, const ApproximateOptions& o) {
     for (Eigen::Index s = p; s < n; ++s) {
       if (!split[static_cast<std::size_t>(s)]) continue;
       const double lo = t[static_cast<std::size_t>(s)], hi = t[static_cast<std::size_t>(s + 1)];
-      const auto first = std::upper_bound(u.begin(), u.end(), lo), last = std::lower_bound(u.begin(), u.end(), hi);
+      const auto first = std::upper_bound(u.begin(), u.end(), lo),
+                 last = std::lower_bound(u.begin(), u.end(), hi);
       if (last - first < 2) continue;
       const auto mid = first + (last - first) / 2;
       added.push_back(0.5 * (*(mid - 1) + *mid));
@@ -709,12 +721,12 @@ Surface fit_surface(const Grid& g, const SurfaceFitOptions& o, std::array<Eigen:
   // In u: lines i of count[1]·dim values; then the control rows regrouped by v.
   const Points flat_u = Eigen::Map<const Points>(g.points.data(), g.count[0], g.count[1] * dim);
   const Points Ru = fit_direction(flat_u, u[0], o.degree[0], count[0], knots[0]);
-  const Points by_v = transposed(Eigen::Map<const Points>(Ru.data(), count[0] * g.count[1], dim), count[0],
-                                 g.count[1], dim);
+  const Points by_v =
+      transposed(Eigen::Map<const Points>(Ru.data(), count[0] * g.count[1], dim), count[0], g.count[1], dim);
   const Points flat_v = Eigen::Map<const Points>(by_v.data(), g.count[1], count[0] * dim);
   const Points Rv = fit_direction(flat_v, u[1], o.degree[1], count[1], knots[1]);
-  const Points net = transposed(Eigen::Map<const Points>(Rv.data(), count[1] * count[0], dim), count[1],
-                                count[0], dim);
+  const Points net =
+      transposed(Eigen::Map<const Points>(Rv.data(), count[1] * count[0], dim), count[1], count[0], dim);
   return make_surface(o.degree, std::move(knots), count, net);
 }
 
@@ -725,7 +737,8 @@ std::array<std::vector<double>, 2> grid_parameters(const Grid& g, Parametrizatio
   std::array<std::vector<double>, 2> out;
   const Eigen::Index dim = g.points.cols();
   for (int d = 0; d < 2; ++d) {
-    const Eigen::Index along = g.count[static_cast<std::size_t>(d)], across = g.count[static_cast<std::size_t>(1 - d)];
+    const Eigen::Index along = g.count[static_cast<std::size_t>(d)],
+                       across = g.count[static_cast<std::size_t>(1 - d)];
     std::vector<double> sum(static_cast<std::size_t>(along), 0.0);
     int lines = 0;
     Points line(along, dim);
@@ -754,7 +767,8 @@ Surface interpolate_surface(const Grid& g, const SurfaceFitOptions& o) {
   check_grid(g);
   for (int d = 0; d < 2; ++d)
     check_fit_degree(o.degree[static_cast<std::size_t>(d)], o.degree[static_cast<std::size_t>(d)] + 1,
-                     g.count[static_cast<std::size_t>(d)], d == 0 ? "an interpolating surface (u)" : "an interpolating surface (v)");
+                     g.count[static_cast<std::size_t>(d)],
+                     d == 0 ? "an interpolating surface (u)" : "an interpolating surface (v)");
   return fit_surface(g, o, g.count);
 }
 
@@ -763,7 +777,8 @@ Surface approximate_surface(const Grid& g, const SurfaceFitOptions& o) {
   for (int d = 0; d < 2; ++d) {
     const auto i = static_cast<std::size_t>(d);
     const int p = o.degree[i];
-    check_fit_degree(p, p + 1, g.count[i], d == 0 ? "an approximating surface (u)" : "an approximating surface (v)");
+    check_fit_degree(p, p + 1, g.count[i],
+                     d == 0 ? "an approximating surface (u)" : "an approximating surface (v)");
     if (o.control_points[i] < p + 1 || o.control_points[i] > g.count[i])
       detail::fail("control_points[", d, "]: ", o.control_points[i], " is outside ", p + 1, " … ", g.count[i],
                    " (degree ", p, ", ", g.count[i], " points along ", d == 0 ? "u" : "v", ")");

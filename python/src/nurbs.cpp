@@ -688,7 +688,6 @@ void bind_doubling(py::module_& m) {
       "Raises InvalidInput for invalid knots or span.");
 }
 
-
 /// A grid of points (nu, nv, dim) as a fitting Grid.
 Grid grid_from(const DoubleArray& points) {
   if (points.ndim() != 3)
@@ -713,9 +712,10 @@ void bind_fit(py::module_& m) {
           "The data points' parameters (1-D array).")
       .def_readonly("point_distance", &CurveFit::point_distance,
                     "max_k |C(u_k) − Q_k|: every data point is at most this far from the curve.")
-      .def_readonly("polyline_bound", &CurveFit::polyline_bound,
-                    "Proven bound on sup |C(u) − L(u)|, L the data polyline on its parameters: the curve and\n"
-                    "the polyline are within this (Hausdorff) distance of each other.")
+      .def_readonly(
+          "polyline_bound", &CurveFit::polyline_bound,
+          "Proven bound on sup |C(u) − L(u)|, L the data polyline on its parameters: the curve and\n"
+          "the polyline are within this (Hausdorff) distance of each other.")
       .def(
           "__repr__",
           [](const CurveFit& f) {
@@ -727,7 +727,8 @@ void bind_fit(py::module_& m) {
   m.def(
       "fit_parameters",
       [](const py::object& points, const std::string& parametrization, bool closed) {
-        return vector_array(fit_parameters(points_from(points, "points"), parametrization_named(parametrization), closed));
+        return vector_array(
+            fit_parameters(points_from(points, "points"), parametrization_named(parametrization), closed));
       },
       py::arg("points"), py::arg("parametrization") = "chord_length", py::arg("closed") = false,
       "Parameters in [0, 1] of the rows of points (n, dim): 'uniform', 'chord_length' or 'centripetal'.\n\n"
@@ -768,7 +769,8 @@ void bind_fit(py::module_& m) {
         if (control_points && *control_points <= 0)
           throw InvalidInput("control_points: " + std::to_string(*control_points) + " is not positive");
         if (tolerance && !(*tolerance > 0)) throw InvalidInput("tolerance: expected a positive number");
-        if (!control_points && !tolerance) throw InvalidInput("approximate: give control_points or tolerance");
+        if (!control_points && !tolerance)
+          throw InvalidInput("approximate: give control_points or tolerance");
         o.parametrization = parametrization_named(parametrization);
         o.measure = fit_measure_named(measure);
         o.weights = optional_weights(weights);
@@ -791,8 +793,9 @@ void bind_fit(py::module_& m) {
       [](const Curve& c, const py::object& points, std::optional<std::vector<double>> parameters,
          const std::string& parametrization) {
         const Points P = points_from(points, "points");
-        std::vector<double> u =
-            parameters ? std::move(*parameters) : fit_parameters(P, parametrization_named(parametrization), c.closed);
+        std::vector<double> u = parameters
+                                    ? std::move(*parameters)
+                                    : fit_parameters(P, parametrization_named(parametrization), c.closed);
         const py::gil_scoped_release release;
         return measure_fit(c, P, std::move(u));
       },
@@ -810,7 +813,8 @@ void bind_fit(py::module_& m) {
         const py::gil_scoped_release release;
         return interpolate_surface(g, o);
       },
-      py::arg("points"), py::arg("degree") = std::array<int, 2>{3, 3}, py::arg("parametrization") = "chord_length",
+      py::arg("points"), py::arg("degree") = std::array<int, 2>{3, 3},
+      py::arg("parametrization") = "chord_length",
       "The surface of degree (p, q) through every point of the grid points (nu, nv, dim), clamped on\n"
       "[0, 1]²: curves through the lines in u, then through the control lines in v (parameters averaged\n"
       "over the lines). Raises InvalidInput for too few points or lines that coincide.");

@@ -64,16 +64,22 @@ TEST_CASE("cifs fit approximates by a count or a tolerance", "[cli][fit]") {
 TEST_CASE("cifs fit refuses bad input in one line, writing nothing", "[cli][fit]") {
   const std::string out = (scratch() / "never.json").string();
   const std::string three = file("three.csv", "0 0\n1 1\n2 0\n");
-  check_error(cifs_cli("fit " + three + " --degree 3 -o " + out), "three.csv: points: an interpolating curve of degree 3 needs at least 4 points, got 3");
+  check_error(cifs_cli("fit " + three + " --degree 3 -o " + out),
+              "three.csv: points: an interpolating curve of degree 3 needs at least 4 points, got 3");
   const std::string twice = file("twice.csv", "0 0\n1 1\n1 1\n2 0\n3 1\n");
   check_error(cifs_cli("fit " + twice + " -o " + out), "twice.csv: points[2]: coincides with points[1]");
-  check_error(cifs_cli("fit " + three + " --degree 2 --control-points 9 -o " + out), "control_points: 9 is outside 3 … 3");
-  check_error(cifs_cli("fit " + three + " --degree 1 --control-points 2 --tolerance 1 -o " + out), "not both");
-  check_error(cifs_cli("fit " + three + " --degree 1 --control-points 2 --closed -o " + out), "closed curves are interpolated");
+  check_error(cifs_cli("fit " + three + " --degree 2 --control-points 9 -o " + out),
+              "control_points: 9 is outside 3 … 3");
+  check_error(cifs_cli("fit " + three + " --degree 1 --control-points 2 --tolerance 1 -o " + out),
+              "not both");
+  check_error(cifs_cli("fit " + three + " --degree 1 --control-points 2 --closed -o " + out),
+              "closed curves are interpolated");
   check_error(cifs_cli("fit " + three + " --parametrization chordal"), "parametrization 'chordal'");
-  check_error(cifs_cli("fit " + three + " -o " + (scratch() / "x.svg").string()), "a shape is written as .json or .obj");
+  check_error(cifs_cli("fit " + three + " -o " + (scratch() / "x.svg").string()),
+              "a shape is written as .json or .obj");
   check_error(cifs_cli("fit " + file("word.csv", "0 0\n1 x\n")), "word.csv:2: 'x' is not a number");
-  check_error(cifs_cli("fit " + file("ragged.csv", "0 0\n1 1 1\n")), "ragged.csv:2: 3 values, the first point has 2");
+  check_error(cifs_cli("fit " + file("ragged.csv", "0 0\n1 1 1\n")),
+              "ragged.csv:2: 3 values, the first point has 2");
   check_error(cifs_cli("fit " + file("p.dat", "0 0\n")), "points are read from");
   check_error(cifs_cli("fit " + three + " --degree 0"), "degree");
   CHECK(!std::filesystem::exists(out));

@@ -68,8 +68,8 @@ std::vector<RationalVec> exact_solve(std::vector<RationalVec> A, std::vector<Rat
 
 /// The interpolant's control points in exact rationals from integer points and exact parameters:
 /// knots by averaging (The NURBS Book eq. 9.8), the collocation system solved exactly.
-std::vector<RationalVec> exact_interpolant(const std::vector<std::vector<int>>& Q, const RationalVec& u, int p,
-                                           RationalVec& knots) {
+std::vector<RationalVec> exact_interpolant(const std::vector<std::vector<int>>& Q, const RationalVec& u,
+                                           int p, RationalVec& knots) {
   const int m = static_cast<int>(Q.size());
   knots.assign(static_cast<std::size_t>(p + 1), Rational(0));
   for (int j = 1; j <= m - p - 1; ++j) {
@@ -107,7 +107,9 @@ Points random_path(Rng& rng, Eigen::Index m, Eigen::Index dim) {
   Points Q(m, dim);
   Point x = Point::Zero(dim);
   for (Eigen::Index k = 0; k < m; ++k) {
-    for (Eigen::Index j = 0; j < dim; ++j) x(j) += uniform(rng, 0.1, 1.0) * (j == 0 ? 1 : std::sin(0.7 * static_cast<double>(k) + static_cast<double>(j)));
+    for (Eigen::Index j = 0; j < dim; ++j)
+      x(j) += uniform(rng, 0.1, 1.0) *
+              (j == 0 ? 1 : std::sin(0.7 * static_cast<double>(k) + static_cast<double>(j)));
     Q.row(k) = x;
   }
   return Q;
@@ -139,8 +141,8 @@ TEST_CASE("interpolate equals the collocation system solved in exact rationals",
   // Chords 5, 13, 17, 25 (Pythagorean) for chord length; 25, 9, 16, 4 (squares) for centripetal.
   const std::vector<std::vector<int>> pythagorean{{0, 0}, {3, 4}, {8, 16}, {16, 1}, {9, 25}};
   const std::vector<std::vector<int>> squares{{1, 2}, {8, 26}, {8, 17}, {24, 17}, {24, 21}, {0, 28}};
-  const std::vector<std::vector<int>> wavy{{0, 0, 1}, {1, 3, -2}, {2, -1, 0}, {4, 2, 5}, {5, 0, 2}, {7, 1, 1},
-                                           {8, -3, 0}};
+  const std::vector<std::vector<int>> wavy{{0, 0, 1}, {1, 3, -2}, {2, -1, 0}, {4, 2, 5},
+                                           {5, 0, 2}, {7, 1, 1},  {8, -3, 0}};
   const std::vector<Case> cases{{pythagorean, Parametrization::chord_length},
                                 {squares, Parametrization::centripetal},
                                 {wavy, Parametrization::uniform},
@@ -154,7 +156,8 @@ TEST_CASE("interpolate equals the collocation system solved in exact rationals",
       for (int k = 1; k < m; ++k) {
         long long d2 = 0;
         for (std::size_t j = 0; j < c.points[0].size(); ++j) {
-          const long long d = c.points[static_cast<std::size_t>(k)][j] - c.points[static_cast<std::size_t>(k - 1)][j];
+          const long long d =
+              c.points[static_cast<std::size_t>(k)][j] - c.points[static_cast<std::size_t>(k - 1)][j];
           d2 += d * d;
         }
         long long d = std::llround(std::sqrt(static_cast<double>(d2)));
@@ -180,7 +183,8 @@ TEST_CASE("interpolate equals the collocation system solved in exact rationals",
         for (std::size_t j = 0; j < exact[i].size(); ++j) {
           const double x = exact[i][j].convert_to<double>();
           scale = std::max(scale, std::abs(x));
-          worst = std::max(worst, std::abs(curve.P(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) - x));
+          worst = std::max(worst,
+                           std::abs(curve.P(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) - x));
         }
       CHECK(worst <= 1e-14 * scale);
       std::vector<double> ud;
@@ -198,8 +202,8 @@ TEST_CASE("interpolate hits every point to 1e-14, open and closed, any degree", 
     const auto kind = static_cast<Parametrization>(uniform_int(rng, 0, 2));
     CAPTURE(trial, p, closed, m, dim, static_cast<int>(kind));
     const Points Q = random_path(rng, m, dim);
-    InterpolateOptions options{.degree = p, .parametrization = kind, .start_derivative = {},
-                               .end_derivative = {}, .closed = closed};
+    InterpolateOptions options{
+        .degree = p, .parametrization = kind, .start_derivative = {}, .end_derivative = {}, .closed = closed};
     const Curve c = interpolate(Q, options);
     CHECK(c.closed == closed);
     CHECK(distinct_count(c) == m);
@@ -249,7 +253,8 @@ TEST_CASE("approximate with a number of control points: the dense least-squares 
     const Knots& t = fit.curve.knots;
     Eigen::MatrixXd A(m, n);
     for (Eigen::Index k = 0; k < m; ++k) {
-      const RealVec N = ref_basis(t, p, fit.parameters[static_cast<std::size_t>(k)], at_end(t, p, fit.parameters[static_cast<std::size_t>(k)]));
+      const RealVec N = ref_basis(t, p, fit.parameters[static_cast<std::size_t>(k)],
+                                  at_end(t, p, fit.parameters[static_cast<std::size_t>(k)]));
       for (Eigen::Index i = 0; i < n; ++i) A(k, i) = static_cast<double>(N[static_cast<std::size_t>(i)]);
     }
     const Eigen::Index first = fixed ? 1 : 0, free = fixed ? n - 2 : n;
@@ -269,7 +274,8 @@ TEST_CASE("approximate with a number of control points: the dense least-squares 
     // The distances it reports, measured here.
     double worst = 0;
     for (Eigen::Index k = 0; k < m; ++k)
-      worst = std::max(worst, (evaluate(fit.curve, fit.parameters[static_cast<std::size_t>(k)]) - Q.row(k)).norm());
+      worst = std::max(worst,
+                       (evaluate(fit.curve, fit.parameters[static_cast<std::size_t>(k)]) - Q.row(k)).norm());
     CHECK(std::abs(fit.point_distance - worst) <= 1e-12 * scale);
   }
 }
@@ -311,30 +317,31 @@ TEST_CASE("approximate to a tolerance: the bound holds and is tight", "[nurbs][f
   for (FitMeasure measure : {FitMeasure::points, FitMeasure::polyline})
     for (auto kind : {Parametrization::uniform, Parametrization::chord_length})
       for (double tol : {1e-1, 1e-2, 1e-4, 1e-6}) {
-      // The polyline is 2e-3 from any smooth curve through the points (its sagitta).
-      if (measure == FitMeasure::polyline && tol < 1e-2) continue;
-      ApproximateOptions options;
-      options.tolerance = tol;
-      options.measure = measure;
-      options.parametrization = kind;
-      CAPTURE(tol, static_cast<int>(measure), static_cast<int>(kind));
-      const CurveFit fit = approximate(Q, options);
-      CHECK((measure == FitMeasure::points ? fit.point_distance : fit.polyline_bound) <= tol);
-      if (kind == Parametrization::uniform && tol >= 1e-4) CHECK(distinct_count(fit.curve) < m / 2);
-      // Dense sampling of |C(u) − L(u)| never exceeds the bound, and reaches 98 % of it.
-      double sampled = 0;
-      for (Eigen::Index k = 0; k + 1 < m; ++k) {
-        const double a = fit.parameters[static_cast<std::size_t>(k)], b = fit.parameters[static_cast<std::size_t>(k + 1)];
-        for (int s = 0; s <= 64; ++s) {
-          const double f = s / 64.0, x = a + f * (b - a);
-          const Point L = (1 - f) * Q.row(k) + f * Q.row(k + 1);
-          sampled = std::max(sampled, (evaluate(fit.curve, x) - L).norm());
+        // The polyline is 2e-3 from any smooth curve through the points (its sagitta).
+        if (measure == FitMeasure::polyline && tol < 1e-2) continue;
+        ApproximateOptions options;
+        options.tolerance = tol;
+        options.measure = measure;
+        options.parametrization = kind;
+        CAPTURE(tol, static_cast<int>(measure), static_cast<int>(kind));
+        const CurveFit fit = approximate(Q, options);
+        CHECK((measure == FitMeasure::points ? fit.point_distance : fit.polyline_bound) <= tol);
+        if (kind == Parametrization::uniform && tol >= 1e-4) CHECK(distinct_count(fit.curve) < m / 2);
+        // Dense sampling of |C(u) − L(u)| never exceeds the bound, and reaches 98 % of it.
+        double sampled = 0;
+        for (Eigen::Index k = 0; k + 1 < m; ++k) {
+          const double a = fit.parameters[static_cast<std::size_t>(k)],
+                       b = fit.parameters[static_cast<std::size_t>(k + 1)];
+          for (int s = 0; s <= 64; ++s) {
+            const double f = s / 64.0, x = a + f * (b - a);
+            const Point L = (1 - f) * Q.row(k) + f * Q.row(k + 1);
+            sampled = std::max(sampled, (evaluate(fit.curve, x) - L).norm());
+          }
         }
+        CHECK(sampled <= fit.polyline_bound);
+        CHECK(sampled >= 0.98 * fit.polyline_bound);
+        CHECK(fit.point_distance <= fit.polyline_bound);
       }
-      CHECK(sampled <= fit.polyline_bound);
-      CHECK(sampled >= 0.98 * fit.polyline_bound);
-      CHECK(fit.point_distance <= fit.polyline_bound);
-    }
   // Below what the polyline allows: interpolation does not reach it either, and says so.
   ApproximateOptions tight;
   tight.tolerance = 1e-9;
@@ -357,7 +364,8 @@ TEST_CASE("approximation_knots: NURBS-Python's knot vector properties", "[nurbs]
       CHECK(t[static_cast<std::size_t>(i)] == 0.0);
       CHECK(t[t.size() - 1 - static_cast<std::size_t>(i)] == 1.0);
     }
-    for (std::size_t i = static_cast<std::size_t>(p) + 1; i + p + 1 < t.size(); ++i) CHECK((t[i] > 0 && t[i] < 1));
+    for (std::size_t i = static_cast<std::size_t>(p) + 1; i + p + 1 < t.size(); ++i)
+      CHECK((t[i] > 0 && t[i] < 1));
     CHECK(std::is_sorted(t.begin(), t.end()));
     for (std::size_t s = static_cast<std::size_t>(p); s + p + 1 < t.size(); ++s) {
       bool inside = false;
@@ -405,8 +413,8 @@ TEST_CASE("interpolate_surface and approximate_surface", "[nurbs][fit]") {
     Grid g{Points(count[0] * count[1], 3), count};
     for (Eigen::Index i = 0; i < count[0]; ++i)
       for (Eigen::Index j = 0; j < count[1]; ++j)
-        g.points.row(i * count[1] + j) << static_cast<double>(i) + uniform(rng, 0, 0.3), static_cast<double>(j) + uniform(rng, 0, 0.3),
-            uniform(rng, -1, 1);
+        g.points.row(i * count[1] + j) << static_cast<double>(i) + uniform(rng, 0, 0.3),
+            static_cast<double>(j) + uniform(rng, 0, 0.3), uniform(rng, -1, 1);
     SurfaceFitOptions options;
     options.degree = p;
     const Surface s = interpolate_surface(g, options);
@@ -414,25 +422,32 @@ TEST_CASE("interpolate_surface and approximate_surface", "[nurbs][fit]") {
     double worst = 0;
     for (Eigen::Index i = 0; i < count[0]; ++i)
       for (Eigen::Index j = 0; j < count[1]; ++j)
-        worst = std::max(worst, diff(evaluate(s, uv[0][static_cast<std::size_t>(i)], uv[1][static_cast<std::size_t>(j)]),
-                                     g.points.row(i * count[1] + j)));
+        worst = std::max(
+            worst, diff(evaluate(s, uv[0][static_cast<std::size_t>(i)], uv[1][static_cast<std::size_t>(j)]),
+                        g.points.row(i * count[1] + j)));
     CHECK(worst <= 1e-14 * g.points.cwiseAbs().maxCoeff());
     // The approximation with every point is the interpolation; with fewer it keeps the corners.
     options.control_points = count;
     CHECK(diff(approximate_surface(g, options).P, s.P) <= 1e-12 * g.points.cwiseAbs().maxCoeff());
     options.control_points = {p[0] + 1, p[1] + 1};
     const Surface a = approximate_surface(g, options);
-    for (auto [i, j] : {std::pair<Eigen::Index, Eigen::Index>{0, 0}, {0, count[1] - 1}, {count[0] - 1, 0}, {count[0] - 1, count[1] - 1}})
-      CHECK(diff(evaluate(a, uv[0][static_cast<std::size_t>(i)], uv[1][static_cast<std::size_t>(j)]), g.points.row(i * count[1] + j)) <= 1e-13 * 12);
+    for (auto [i, j] : {std::pair<Eigen::Index, Eigen::Index>{0, 0},
+                        {0, count[1] - 1},
+                        {count[0] - 1, 0},
+                        {count[0] - 1, count[1] - 1}})
+      CHECK(diff(evaluate(a, uv[0][static_cast<std::size_t>(i)], uv[1][static_cast<std::size_t>(j)]),
+                 g.points.row(i * count[1] + j)) <= 1e-13 * 12);
   }
   // A bilinear-in-parameters grid is reproduced by any approximation (uniform parameters).
   Grid plane{Points(36, 3), {6, 6}};
   for (int i = 0; i < 6; ++i)
     for (int j = 0; j < 6; ++j) plane.points.row(i * 6 + j) << i, 2 * j, i * j;
-  SurfaceFitOptions o{.degree = {1, 2}, .parametrization = Parametrization::uniform, .control_points = {2, 4}};
+  SurfaceFitOptions o{
+      .degree = {1, 2}, .parametrization = Parametrization::uniform, .control_points = {2, 4}};
   const Surface s = approximate_surface(plane, o);
   for (int i = 0; i < 6; ++i)
-    for (int j = 0; j < 6; ++j) CHECK(diff(evaluate(s, i / 5.0, j / 5.0), plane.points.row(i * 6 + j)) <= 1e-13);
+    for (int j = 0; j < 6; ++j)
+      CHECK(diff(evaluate(s, i / 5.0, j / 5.0), plane.points.row(i * 6 + j)) <= 1e-13);
 }
 
 TEST_CASE("fitting refuses bad input in one line", "[nurbs][fit]") {
@@ -485,7 +500,8 @@ TEST_CASE("fitting refuses bad input in one line", "[nurbs][fit]") {
   a.weights(1) = -1;
   CHECK_THROWS_WITH(approximate(few, a), Contains("weights[1]"));
 
-  CHECK_THROWS_WITH(interpolate_surface(Grid{Points(5, 3), {2, 3}}), Contains("grid: 5 points for a 2 by 3 grid"));
+  CHECK_THROWS_WITH(interpolate_surface(Grid{Points(5, 3), {2, 3}}),
+                    Contains("grid: 5 points for a 2 by 3 grid"));
   Grid flat{Points::Zero(9, 3), {3, 3}};
   SurfaceFitOptions o;
   o.degree = {2, 2};
