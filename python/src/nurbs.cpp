@@ -263,7 +263,7 @@ void bind_knots(py::module_& m) {
   m.def(
       "basis_functions",
       [](const Knots& knots, int degree, int span, double u) {
-        check_span(knots, degree, span);
+        validate_span_query(knots, degree, span);
         check_finite(u, "u");
         std::vector<double> N(static_cast<std::size_t>(degree) + 1);
         basis_functions(knots, degree, span, u, N.data());
@@ -271,11 +271,12 @@ void bind_knots(py::module_& m) {
       },
       py::arg("knots"), py::arg("degree"), py::arg("span"), py::arg("u"),
       "The degree + 1 non-zero basis functions N_{span−d..span}(u) (1-D array; Cox–de Boor).\n\n"
-      "Raises InvalidInput for invalid knots or a span that is not a non-empty span of the domain.");
+      "Any degree 0 … kMaxDegree on any knot vector where they are defined (validate_span_query). Raises\n"
+      "InvalidInput for knots that are not finite and non-decreasing or an empty or out-of-range span.");
   m.def(
       "blossom_weights",
       [](const Knots& knots, int degree, int span, const std::vector<double>& args) {
-        check_span(knots, degree, span);
+        validate_span_query(knots, degree, span);
         if (static_cast<int>(args.size()) != degree)
           throw InvalidInput("blossom: " + std::to_string(args.size()) + " arguments given, degree " +
                              std::to_string(degree) + " takes " + std::to_string(degree));
@@ -290,7 +291,7 @@ void bind_knots(py::module_& m) {
   m.def(
       "basis_derivatives",
       [](const Knots& knots, int degree, int span, double u, int order) {
-        check_span(knots, degree, span);
+        validate_span_query(knots, degree, span);
         check_finite(u, "u");
         if (order < 0 || order > kMaxDegree)
           throw InvalidInput("derivative order " + std::to_string(order) + " is outside 0 … " +

@@ -71,8 +71,8 @@ class KnotTest(unittest.TestCase):
             (lambda: nurbs.find_span([0, 0, 1], 1, 0.5),
              "knots: 1 control points are too few for degree 1 (need at least 2)"),
             (lambda: nurbs.find_span(CUBIC_KNOTS, 3, float("nan")), "u is not finite"),
-            (lambda: nurbs.basis_functions(CUBIC_KNOTS, 3, 2, 0.5), "span 2 is not a non-empty span of the domain"),
-            (lambda: nurbs.basis_functions(CUBIC_KNOTS, 3, 6, 0.5), "span 6 is not a non-empty span of the domain"),
+            (lambda: nurbs.basis_functions(CUBIC_KNOTS, 3, 2, 0.5), "span 2 is outside 3 … 6 (degree 3, 10 knots)"),
+            (lambda: nurbs.basis_functions(CUBIC_KNOTS, 3, 6, 0.5), "span 6 is empty: knots[6] = knots[7]"),
             (lambda: nurbs.blossom_weights(CUBIC_KNOTS, 3, 4, [1, 2]), "blossom: 2 arguments given, degree 3 takes 3"),
             (lambda: nurbs.basis_derivatives(CUBIC_KNOTS, 3, 4, 1.5, -1), "derivative order -1 is outside 0 … 64"),
             (lambda: nurbs.periodic_knots([1], 2), "breakpoints: 1 given, need at least 2"),
@@ -431,6 +431,37 @@ class DoublingTest(unittest.TestCase):
                              refined.P[left - d:left + 1], what="G half")
                 assert_close(self, nurbs.subdivision_matrix(window, d, nurbs.Half.D) @ P,
                              refined.P[left + 1 - d:left + 2], what="D half")
+
+
+class AnyDegreeBasisTest(unittest.TestCase):
+    """Basis functions of any degree on any knot vector where they are defined (issue 30: degree 1 on a clamped
+    quadratic knot vector was refused for its triple knots), against Cox–de Boor in plain Python."""
+
+    @staticmethod
+    def cox_de_boor(t, p, i, u):
+        if p == 0:
+            return 1.0 if t[i] <= u < t[i + 1] else 0.0
+        a = (u - t[i]) / (t[i + p] - t[i]) * AnyDegreeBasisTest.cox_de_boor(t, p - 1, i, u) if t[i + p] > t[i] else 0
+        b = ((t[i + p + 1] - u) / (t[i + p + 1] - t[i + 1]) * AnyDegreeBasisTest.cox_de_boor(t, p - 1, i + 1, u)
+             if t[i + p + 1] > t[i + 1] else 0)
+        return a + b
+
+    def test_every_degree_on_a_vector_with_high_multiplicities(self):
+        np.testing.assert_allclose(nurbs.basis_functions([0, 0, 0, 0.5, 1, 1, 1], 1, 2, 0.25), [0.5, 0.5])
+        t = [0, 0, 0, 0, 0.3, 0.3, 0.3, 0.7, 1, 1, 1, 1]
+        for p in range(0, 5):
+            for span in range(p, len(t) - p - 1):
+                if not t[span] < t[span + 1]:
+                    with self.assertRaisesRegex(cifs.InvalidInput, "is empty"):
+                        nurbs.basis_functions(t, p, span, t[span])
+                    continue
+                for u in np.linspace(t[span], t[span + 1], 5, endpoint=False):
+                    N = nurbs.basis_functions(t, p, span, u)
+                    expected = [self.cox_de_boor(t, p, span - p + j, u) for j in range(p + 1)]
+                    np.testing.assert_allclose(N, expected, rtol=1e-14, atol=1e-15, err_msg=f"p={p} span={span}")
+                    self.assertEqual(nurbs.basis_derivatives(t, p, span, u, 0).shape, (1, p + 1))
+        with self.assertRaisesRegex(cifs.InvalidInput, "knots\\[2\\]: 0.5 is less than the previous knot 1"):
+            nurbs.basis_functions([0, 1, 0.5, 2], 1, 1, 0.5)
 
 
 class FitTest(unittest.TestCase):
