@@ -57,8 +57,9 @@ void validate_span_query(std::span<const double> knots, int degree, int span) {
          degree, ", ", size, " knots)");
   if (!(knots[static_cast<std::size_t>(span)] < knots[static_cast<std::size_t>(span) + 1]))
     fail("span ", span, " is empty: knots[", span, "] = knots[", span + 1, "]");
-  if (!std::isfinite(knots[static_cast<std::size_t>(span + degree)] -
-                     knots[static_cast<std::size_t>(span - degree)]))
+  const auto first = static_cast<std::size_t>(span - degree),
+             last = first + 2 * static_cast<std::size_t>(degree);
+  if (!std::isfinite(knots[last] - knots[first]))
     fail("knots: the differences around span ", span, " are not finite");
 }
 

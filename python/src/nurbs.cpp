@@ -476,6 +476,19 @@ void bind_refine(py::module_& m) {
         "Inserts the midpoint of every non-empty span (one knot-doubling step).");
   m.def("split_bezier", &split_bezier, Release(), py::arg("curve"),
         "The polynomial pieces as clamped Bézier curves (list of Curve), one per segment, in order.");
+  m.def(
+      "split",
+      [](const Curve& c, double u) {
+        auto parts = split(c, u);
+        return py::make_tuple(std::move(parts[0]), std::move(parts[1]));
+      },
+      py::arg("curve"), py::arg("u"),
+      "The open curve cut at u (strictly inside the domain): (left, right), on [start, u] and [u, end],\n"
+      "each clamped at u and keeping the original parameters. Raises InvalidInput for a closed curve or u\n"
+      "not strictly inside the domain.");
+  m.def("reverse", &reverse, py::arg("curve"),
+        "The same curve traversed backwards: C'(a + b − u) = C(u) on the same domain [a, b]; closed curves\n"
+        "stay closed.");
   m.def("elevate_degree", &elevate_degree, Release(), py::arg("curve"), py::arg("times") = 1,
         "Raises the degree by `times`; the curve is unchanged.\n\n"
         "Raises InvalidInput for negative times or a degree above kMaxDegree.");

@@ -464,6 +464,22 @@ class AnyDegreeBasisTest(unittest.TestCase):
             nurbs.basis_functions([0, 1, 0.5, 2], 1, 1, 0.5)
 
 
+class SplitReverseTest(unittest.TestCase):
+    def test_split_and_reverse_keep_the_curve(self):
+        curve = nurbs.Curve(3, CUBIC_KNOTS, CUBIC_POINTS)
+        left, right = nurbs.split(curve, 1.5)
+        self.assertEqual((left.domain, right.domain), ((0.0, 1.5), (1.5, 4.0)))
+        for u in np.linspace(0, 1.5, 7):
+            assert_close(self, nurbs.evaluate(left, u), nurbs.evaluate(curve, u), rel=1e-13)
+        for u in np.linspace(1.5, 4, 7):
+            assert_close(self, nurbs.evaluate(right, u), nurbs.evaluate(curve, u), rel=1e-13)
+        back = nurbs.reverse(curve)
+        for u in np.linspace(0, 4, 9):
+            assert_close(self, nurbs.evaluate(back, 4 - u), nurbs.evaluate(curve, u), rel=1e-13)
+        with self.assertRaisesRegex(cifs.InvalidInput, "not strictly inside the domain"):
+            nurbs.split(curve, 4.0)
+
+
 class FitTest(unittest.TestCase):
     """Fitting: the points hit at their parameters, the least-squares solution against numpy's lstsq on the
     collocation matrix of the knot functions, the same curve as `cifs fit`, bad input."""
