@@ -18,6 +18,7 @@
 #include "cifs/render/progress.hpp"
 #include "cifs/suggest.hpp"
 #include "commands.hpp"
+#include "fit_command.hpp"
 #include "scheme_command.hpp"
 #include "world.hpp"
 
@@ -105,6 +106,7 @@ struct Commands {
   cli::SubdivideOptions su;
   cli::LimitCommandOptions li;
   cli::DimensionOptions di;
+  cli::FitOptions fi;
   std::filesystem::path gallery_out = "out";
   std::filesystem::path gallery_examples = default_examples();
 };
@@ -408,6 +410,30 @@ std::string unexpected_argument(const CLI::App& command, int argc, char** argv) 
   return {};
 }
 
+void add_fit(CLI::App& app, Commands& c) {
+  auto* fit_cmd = app.add_subcommand(
+      "fit", "Fit a curve to points: interpolation, or least squares by --control-points or --tolerance");
+  fit_cmd->add_option("points", c.fi.points, "Points file (.csv, .txt, .xyz, .npy, .json or .obj)")
+      ->required();
+  fit_cmd->add_option("--degree", c.fi.degree, "Degree of the curve (default 3)");
+  fit_cmd->add_option("--control-points", c.fi.control_points, "Least squares with N control points");
+  fit_cmd->add_option("--tolerance", c.fi.tolerance,
+                      "Least squares with the fewest knots so that every point is within E of the curve");
+  fit_cmd->add_option("--parametrization", c.fi.parametrization,
+                      "uniform, chord_length (default) or centripetal");
+  fit_cmd->add_option(
+      "--measure", c.fi.measure,
+      "What --tolerance bounds: points (default) or polyline (the Hausdorff distance to the polyline)");
+  fit_cmd->add_flag("--closed", c.fi.closed, "A closed (periodic) interpolating curve");
+  fit_cmd->add_option("-o,--output", c.fi.output,
+                      "Shape file to write (.json or .obj); default: JSON on stdout");
+  add_quiet(fit_cmd, c.quiet);
+  fit_cmd->callback([&] {
+    const cifs::render::Stage stage("fit", c.quiet);
+    c.result = cli::fit(c.fi);
+  });
+}
+
 /// Parses and runs one command; everything it prints on stdout goes to `result`.
 int run(int argc, char** argv, std::string& result) {
   CLI::App app{"cifs — NURBS curves and surfaces as controlled iterated function systems"};
@@ -427,6 +453,7 @@ int run(int argc, char** argv, std::string& result) {
   add_subdivide(app, c);
   add_limit(app, c);
   add_dimension(app, c);
+  add_fit(app, c);
   add_gallery(app, c);
 
   try {

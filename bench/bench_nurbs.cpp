@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "cifs/nurbs/curve.hpp"
+#include "cifs/nurbs/fit.hpp"
 #include "cifs/nurbs/knots.hpp"
 #include "cifs/nurbs/refine.hpp"
 #include "cifs/nurbs/surface.hpp"
@@ -548,6 +549,86 @@ void register_refine_benchmarks(Eigen::Index n, int per_span) {
     });
 }
 
+// ------------------------------------------------------------------------------------------------
+// Fitting: cubic interpolation through n points with chord-length parameters (cifs interpolate, SISL
+// s1356 with order 4, no end conditions). The two libraries choose different knots (cifs averages the
+// parameters, SISL its own rule), so the cross-check is that each curve passes through every point at
+// its own parameters, to 1e-12 of the data scale.
+
+Points fit_points(Eigen::Index n) {
+  std::mt19937_64 rng(56);
+  std::uniform_real_distribution<double> step(0.2, 1.0), wiggle(-1.0, 1.0);
+  Points Q(n, 3);
+  double x = 0;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    x += step(rng);
+    Q.row(k) << x, std::sin(0.1 * x) * kScale + wiggle(rng), wiggle(rng);
+  }
+  return Q;
+}
+
+double worst_miss(const nurbs::Curve& c, const Points& Q, std::span<const double> u) {
+  double worst = 0;
+  for (Eigen::Index k = 0; k < Q.rows(); ++k)
+    worst = std::max(worst, (nurbs::evaluate(c, u[static_cast<std::size_t>(k)]) - Q.row(k)).norm());
+  return worst;
+}
+
+void register_fit_benchmarks(Eigen::Index n) {
+  const std::string group = "BM_fit_interpolate_" + std::to_string(n) + "/";
+  const auto Q = std::make_shared<Points>(fit_points(n));
+  const double scale = Q->cwiseAbs().maxCoeff();
+  {
+    const nurbs::Curve c = nurbs::interpolate(*Q);
+    const auto u = nurbs::fit_parameters(*Q, nurbs::Parametrization::chord_length);
+    if (worst_miss(c, *Q, u) > kRelTol * scale) fail("cifs interpolate misses its points");
+  }
+  benchmark::RegisterBenchmark((group + "cifs").c_str(), [Q](benchmark::State& state) {
+    for (auto _ : state) {
+      nurbs::Curve c = nurbs::interpolate(*Q);
+      benchmark::DoNotOptimize(c.P.data());
+      benchmark::ClobberMemory();
+    }
+    report_rate(state, static_cast<std::size_t>(Q->rows()), "per_point");
+  })->Unit(benchmark::kMicrosecond);
+#ifdef CIFS_HAVE_SISL
+  std::vector<int> types(static_cast<std::size_t>(n), 1);
+  const auto run_sisl = [Q, types](SISLCurve** out, double** par) {
+    std::vector<double> points(Q->data(), Q->data() + Q->size());  // s1356 takes a non-const array
+    double end = 0;
+    int count = 0, status = 0;
+    std::vector<int> kinds = types;
+    s1356(points.data(), static_cast<int>(Q->rows()), 3, kinds.data(), 0, 0, 1, 4, 0.0, &end, out, par,
+          &count, &status);
+    require_sisl_ok(status, "s1356");
+  };
+  {
+    SISLCurve* sc = nullptr;
+    double* par = nullptr;
+    run_sisl(&sc, &par);
+    const std::vector<double> knots(sc->et, sc->et + sc->in + sc->ik);
+    Points P(sc->in, 3);
+    std::copy_n(sc->ecoef, sc->in * 3, P.data());
+    const nurbs::Curve twin = nurbs::make_curve(sc->ik - 1, knots, P);
+    if (worst_miss(twin, *Q, std::span<const double>(par, static_cast<std::size_t>(n))) > kRelTol * scale)
+      fail("SISL s1356 misses its points");
+    freeCurve(sc);
+    std::free(par);
+  }
+  benchmark::RegisterBenchmark((group + "sisl").c_str(), [Q, run_sisl](benchmark::State& state) {
+    for (auto _ : state) {
+      SISLCurve* sc = nullptr;
+      double* par = nullptr;
+      run_sisl(&sc, &par);
+      benchmark::DoNotOptimize(sc);
+      freeCurve(sc);
+      std::free(par);
+    }
+    report_rate(state, static_cast<std::size_t>(Q->rows()), "per_point");
+  })->Unit(benchmark::kMicrosecond);
+#endif
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -558,6 +639,7 @@ int main(int argc, char** argv) {
   register_refine_benchmarks(1000, 1);
   register_refine_benchmarks(100000, 1);
   register_refine_benchmarks(10000, kDensePerSpan);
+  register_fit_benchmarks(10000);
   benchmark::AddCustomContext("sisl", kSislContext);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

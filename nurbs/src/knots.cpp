@@ -44,6 +44,25 @@ void validate_knots(std::span<const double> knots, int degree, Eigen::Index coun
     fail(where, ": empty domain [t_", degree, ", t_", count, "] = [", dom.start, ", ", dom.end, "]");
 }
 
+void validate_span_query(std::span<const double> knots, int degree, int span) {
+  if (degree < 0 || degree > kMaxDegree) fail("degree: degree ", degree, " is outside [0, ", kMaxDegree, "]");
+  for (std::size_t i = 0; i < knots.size(); ++i) {
+    if (!std::isfinite(knots[i])) fail("knots[", i, "]: knot is not finite");
+    if (i > 0 && knots[i] < knots[i - 1])
+      fail("knots[", i, "]: ", knots[i], " is less than the previous knot ", knots[i - 1]);
+  }
+  const auto size = static_cast<long long>(knots.size());
+  if (span < degree || span + degree >= size || span + 1 >= size)
+    fail("span ", span, " is outside ", degree, " … ", std::min(size - 1 - degree, size - 2), " (degree ",
+         degree, ", ", size, " knots)");
+  if (!(knots[static_cast<std::size_t>(span)] < knots[static_cast<std::size_t>(span) + 1]))
+    fail("span ", span, " is empty: knots[", span, "] = knots[", span + 1, "]");
+  const auto first = static_cast<std::size_t>(span - degree),
+             last = first + 2 * static_cast<std::size_t>(degree);
+  if (!std::isfinite(knots[last] - knots[first]))
+    fail("knots: the differences around span ", span, " are not finite");
+}
+
 Domain domain(std::span<const double> knots, int degree) noexcept {
   const auto n = static_cast<std::size_t>(control_count(knots, degree));
   return {knots[static_cast<std::size_t>(degree)], knots[n]};

@@ -406,6 +406,48 @@ std::vector<Curve> split_bezier(const Curve& c) {
   return pieces;
 }
 
+std::array<Curve, 2> split(const Curve& c, double u) {
+  if (c.closed) detail::fail("split: a closed curve has no ends to keep; cut it open first");
+  const Domain dom = domain(c);
+  if (!std::isfinite(u) || !(u > dom.start && u < dom.end))
+    detail::fail("split: parameter ", u, " is not strictly inside the domain [", dom.start, ", ", dom.end,
+                 "]");
+  const int p = c.degree;
+  const int has = multiplicity(c.knots, u);
+  const Curve d = has < p ? insert_knot(c, u, p - has) : c;
+  const auto& t = d.knots;
+  const auto f = static_cast<Eigen::Index>(std::lower_bound(t.begin(), t.end(), u) - t.begin());
+  const Eigen::Index k = std::max(has, p);  // copies of u now: p, or p + 1 at a break
+  Curve left{p, Knots(t.begin(), t.begin() + f + k), d.P.topRows(f), d.rational, false};
+  left.knots.insert(left.knots.end(), static_cast<std::size_t>(p + 1 - k), u);
+  Knots right_knots(static_cast<std::size_t>(p + 1 - k), u);
+  right_knots.insert(right_knots.end(), t.begin() + f, t.end());
+  const Eigen::Index first = f + k - p - 1;
+  Curve right{p, std::move(right_knots), d.P.bottomRows(d.P.rows() - first), d.rational, false};
+  validate(left);
+  validate(right);
+  return {std::move(left), std::move(right)};
+}
+
+Curve reverse(const Curve& c) {
+  const Domain dom = domain(c);
+  const auto mirror = [&](double t) {  // a + b − t, the domain's ends exactly
+    return t == dom.start ? dom.end : t == dom.end ? dom.start : dom.start + dom.end - t;
+  };
+  Curve out = c;
+  const auto N = c.knots.size();
+  for (std::size_t j = 0; j < N; ++j) out.knots[j] = mirror(c.knots[N - 1 - j]);
+  out.P = c.P.colwise().reverse();
+  if (c.closed) {  // the periodic knots of the mirrored breakpoints (the same values up to rounding)
+    Knots b = defining_knots(c);
+    Knots mirrored(b.size());
+    for (std::size_t i = 0; i < b.size(); ++i) mirrored[i] = mirror(b[b.size() - 1 - i]);
+    out.knots = periodic_knots(mirrored, c.degree);
+  }
+  validate(out);
+  return out;
+}
+
 Curve elevate_degree(const Curve& c, int times) {
   if (times < 0) detail::fail("the degree elevation times = ", times, " is negative");
   if (c.degree + times > kMaxDegree)

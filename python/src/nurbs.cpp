@@ -10,6 +10,7 @@
 #include "cifs/ifs/shape_attractor.hpp"
 #include "cifs/nurbs/curve.hpp"
 #include "cifs/nurbs/doubling.hpp"
+#include "cifs/nurbs/fit.hpp"
 #include "cifs/nurbs/knots.hpp"
 #include "cifs/nurbs/refine.hpp"
 #include "cifs/nurbs/surface.hpp"
@@ -263,7 +264,7 @@ void bind_knots(py::module_& m) {
   m.def(
       "basis_functions",
       [](const Knots& knots, int degree, int span, double u) {
-        check_span(knots, degree, span);
+        validate_span_query(knots, degree, span);
         check_finite(u, "u");
         std::vector<double> N(static_cast<std::size_t>(degree) + 1);
         basis_functions(knots, degree, span, u, N.data());
@@ -271,11 +272,12 @@ void bind_knots(py::module_& m) {
       },
       py::arg("knots"), py::arg("degree"), py::arg("span"), py::arg("u"),
       "The degree + 1 non-zero basis functions N_{span−d..span}(u) (1-D array; Cox–de Boor).\n\n"
-      "Raises InvalidInput for invalid knots or a span that is not a non-empty span of the domain.");
+      "Any degree 0 … kMaxDegree on any knot vector where they are defined (validate_span_query). Raises\n"
+      "InvalidInput for knots that are not finite and non-decreasing or an empty or out-of-range span.");
   m.def(
       "blossom_weights",
       [](const Knots& knots, int degree, int span, const std::vector<double>& args) {
-        check_span(knots, degree, span);
+        validate_span_query(knots, degree, span);
         if (static_cast<int>(args.size()) != degree)
           throw InvalidInput("blossom: " + std::to_string(args.size()) + " arguments given, degree " +
                              std::to_string(degree) + " takes " + std::to_string(degree));
@@ -290,7 +292,7 @@ void bind_knots(py::module_& m) {
   m.def(
       "basis_derivatives",
       [](const Knots& knots, int degree, int span, double u, int order) {
-        check_span(knots, degree, span);
+        validate_span_query(knots, degree, span);
         check_finite(u, "u");
         if (order < 0 || order > kMaxDegree)
           throw InvalidInput("derivative order " + std::to_string(order) + " is outside 0 … " +
@@ -488,6 +490,19 @@ void bind_refine(py::module_& m) {
         "Inserts the midpoint of every non-empty span (one knot-doubling step).");
   m.def("split_bezier", &split_bezier, Release(), py::arg("curve"),
         "The polynomial pieces as clamped Bézier curves (list of Curve), one per segment, in order.");
+  m.def(
+      "split",
+      [](const Curve& c, double u) {
+        auto parts = split(c, u);
+        return py::make_tuple(std::move(parts[0]), std::move(parts[1]));
+      },
+      py::arg("curve"), py::arg("u"),
+      "The open curve cut at u (strictly inside the domain): (left, right), on [start, u] and [u, end],\n"
+      "each clamped at u and keeping the original parameters. Raises InvalidInput for a closed curve or u\n"
+      "not strictly inside the domain.");
+  m.def("reverse", &reverse, py::arg("curve"),
+        "The same curve traversed backwards: C'(a + b − u) = C(u) on the same domain [a, b]; closed curves\n"
+        "stay closed.");
   m.def("elevate_degree", &elevate_degree, Release(), py::arg("curve"), py::arg("times") = 1,
         "Raises the degree by `times`; the curve is unchanged.\n\n"
         "Raises InvalidInput for negative times or a degree above kMaxDegree.");
@@ -713,6 +728,154 @@ void bind_doubling(py::module_& m) {
       "Raises InvalidInput for invalid knots or span.");
 }
 
+/// A grid of points (nu, nv, dim) as a fitting Grid.
+Grid grid_from(const DoubleArray& points) {
+  if (points.ndim() != 3)
+    throw InvalidInput("points: expected a grid (nu, nv, dim), got shape " + shape_text(points));
+  Grid g;
+  g.count = {points.shape(0), points.shape(1)};
+  g.points = Eigen::Map<const Points>(points.data(), g.count[0] * g.count[1], points.shape(2));
+  return g;
+}
+
+Point optional_point(const std::optional<DoubleArray>& a, const char* where) {
+  if (!a) return {};
+  const Eigen::VectorXd v = to_vector(*a, where);
+  return v.transpose();
+}
+
+void bind_fit(py::module_& m) {
+  py::class_<CurveFit>(m, "CurveFit", "A fitted curve and its distances to the data (fit_distances).")
+      .def_readonly("curve", &CurveFit::curve, "The curve.")
+      .def_property_readonly(
+          "parameters", [](const CurveFit& f) { return vector_array(f.parameters); },
+          "The data points' parameters (1-D array).")
+      .def_readonly("point_distance", &CurveFit::point_distance,
+                    "max_k |C(u_k) − Q_k|: every data point is at most this far from the curve.")
+      .def_readonly(
+          "polyline_bound", &CurveFit::polyline_bound,
+          "Proven bound on sup |C(u) − L(u)|, L the data polyline on its parameters: the curve and\n"
+          "the polyline are within this (Hausdorff) distance of each other.")
+      .def(
+          "__repr__",
+          [](const CurveFit& f) {
+            return "CurveFit(control_points=" + std::to_string(distinct_count(f.curve)) +
+                   ", point_distance=" + py::repr(py::float_(f.point_distance)).cast<std::string>() +
+                   ", polyline_bound=" + py::repr(py::float_(f.polyline_bound)).cast<std::string>() + ")";
+          },
+          "Short description.");
+  m.def(
+      "fit_parameters",
+      [](const py::object& points, const std::string& parametrization, bool closed) {
+        return vector_array(
+            fit_parameters(points_from(points, "points"), parametrization_named(parametrization), closed));
+      },
+      py::arg("points"), py::arg("parametrization") = "chord_length", py::arg("closed") = false,
+      "Parameters in [0, 1] of the rows of points (n, dim): 'uniform', 'chord_length' or 'centripetal'.\n\n"
+      "closed: the chord back to the first point counts (the period is [0, 1]). Raises InvalidInput for\n"
+      "fewer than 2 points or (chord kinds) coincident consecutive points.");
+  m.def(
+      "interpolate",
+      [](const py::object& points, int degree, const std::string& parametrization,
+         const std::optional<DoubleArray>& start_derivative, const std::optional<DoubleArray>& end_derivative,
+         bool closed) {
+        InterpolateOptions o;
+        o.degree = degree;
+        o.parametrization = parametrization_named(parametrization);
+        o.start_derivative = optional_point(start_derivative, "start_derivative");
+        o.end_derivative = optional_point(end_derivative, "end_derivative");
+        o.closed = closed;
+        const Points P = points_from(points, "points");
+        const py::gil_scoped_release release;
+        return interpolate(P, o);
+      },
+      py::arg("points"), py::arg("degree") = 3, py::arg("parametrization") = "chord_length",
+      py::arg("start_derivative") = py::none(), py::arg("end_derivative") = py::none(),
+      py::arg("closed") = false,
+      "The curve of `degree` through every row of points (n, dim): C(u_k) = Q_k with u =\n"
+      "fit_parameters(points, parametrization, closed). Open: clamped on [0, 1], averaged knots;\n"
+      "start_derivative / end_derivative: dC/du at the ends (degree ≥ 2). closed: a periodic curve\n"
+      "(a last point equal to the first is dropped). Raises InvalidInput for too few points, coincident\n"
+      "consecutive points (chord kinds), or a singular system.");
+  m.def(
+      "approximate",
+      [](const py::object& points, int degree, std::optional<Eigen::Index> control_points,
+         std::optional<double> tolerance, const std::string& parametrization, const std::string& measure,
+         const std::optional<DoubleArray>& weights, bool fix_ends) {
+        ApproximateOptions o;
+        o.degree = degree;
+        o.control_points = control_points.value_or(0);
+        o.tolerance = tolerance.value_or(0);
+        if (control_points && *control_points <= 0)
+          throw InvalidInput("control_points: " + std::to_string(*control_points) + " is not positive");
+        if (tolerance && !(*tolerance > 0)) throw InvalidInput("tolerance: expected a positive number");
+        if (!control_points && !tolerance)
+          throw InvalidInput("approximate: give control_points or tolerance");
+        o.parametrization = parametrization_named(parametrization);
+        o.measure = fit_measure_named(measure);
+        o.weights = optional_weights(weights);
+        o.fix_ends = fix_ends;
+        const Points P = points_from(points, "points");
+        const py::gil_scoped_release release;
+        return approximate(P, o).curve;
+      },
+      py::arg("points"), py::arg("degree") = 3, py::arg("control_points") = py::none(),
+      py::arg("tolerance") = py::none(), py::arg("parametrization") = "chord_length",
+      py::arg("measure") = "points", py::arg("weights") = py::none(), py::arg("fix_ends") = true,
+      "Least-squares curve of `degree` near the rows of points (n, dim), clamped on [0, 1].\n\n"
+      "control_points=N: N control points (degree + 1 … n; n interpolates). tolerance=E: the fewest\n"
+      "knots, inserted where the error is largest, so that every point is within E of the curve\n"
+      "(measure='points') or the curve within E of the data polyline (measure='polyline', a proven\n"
+      "bound). weights: one positive weight per point. fix_ends: the curve starts and ends on the data.\n"
+      "fit_distances(curve, points) gives the distances. Raises InvalidInput for bad input.");
+  m.def(
+      "fit_distances",
+      [](const Curve& c, const py::object& points, std::optional<std::vector<double>> parameters,
+         const std::string& parametrization) {
+        const Points P = points_from(points, "points");
+        std::vector<double> u = parameters
+                                    ? std::move(*parameters)
+                                    : fit_parameters(P, parametrization_named(parametrization), c.closed);
+        const py::gil_scoped_release release;
+        return measure_fit(c, P, std::move(u));
+      },
+      py::arg("curve"), py::arg("points"), py::arg("parameters") = py::none(),
+      py::arg("parametrization") = "chord_length",
+      "A CurveFit: the distances of a (non-rational) curve to points (n, dim) at parameters (default:\n"
+      "fit_parameters(points, parametrization, curve.closed)).");
+  m.def(
+      "interpolate_surface",
+      [](const DoubleArray& points, std::array<int, 2> degree, const std::string& parametrization) {
+        SurfaceFitOptions o;
+        o.degree = degree;
+        o.parametrization = parametrization_named(parametrization);
+        const Grid g = grid_from(points);
+        const py::gil_scoped_release release;
+        return interpolate_surface(g, o);
+      },
+      py::arg("points"), py::arg("degree") = std::array<int, 2>{3, 3},
+      py::arg("parametrization") = "chord_length",
+      "The surface of degree (p, q) through every point of the grid points (nu, nv, dim), clamped on\n"
+      "[0, 1]²: curves through the lines in u, then through the control lines in v (parameters averaged\n"
+      "over the lines). Raises InvalidInput for too few points or lines that coincide.");
+  m.def(
+      "approximate_surface",
+      [](const DoubleArray& points, std::array<Eigen::Index, 2> control_points, std::array<int, 2> degree,
+         const std::string& parametrization) {
+        SurfaceFitOptions o;
+        o.degree = degree;
+        o.control_points = control_points;
+        o.parametrization = parametrization_named(parametrization);
+        const Grid g = grid_from(points);
+        const py::gil_scoped_release release;
+        return approximate_surface(g, o);
+      },
+      py::arg("points"), py::arg("control_points"), py::arg("degree") = std::array<int, 2>{3, 3},
+      py::arg("parametrization") = "chord_length",
+      "Least-squares surface with control_points (cu, cv) near the grid points (nu, nv, dim): fits with\n"
+      "fixed ends in u, then in v; the corners are interpolated. Raises InvalidInput for bad counts.");
+}
+
 }  // namespace
 
 void bind_nurbs(py::module_& m) {
@@ -721,6 +884,7 @@ void bind_nurbs(py::module_& m) {
   bind_refine(m);
   bind_surface(m);
   bind_doubling(m);
+  bind_fit(m);
 }
 
 }  // namespace cifs::python

@@ -302,3 +302,30 @@ TEST_CASE("validate_degree and validate_knots name the problem and its place", "
   // Multiplicity d + 1 inside is allowed (a break in the curve), d + 2 is not.
   CHECK_NOTHROW(validate_knots(Knots{0, 0, 1, 1, 2, 2}, 1, 4));
 }
+
+TEST_CASE("validate_span_query: any degree on any knot vector where the basis is defined", "[nurbs][knots]") {
+  // Degree 1 on a clamped quadratic vector (a triple knot): defined, and refused by validate_knots.
+  const Knots t{0, 0, 0, 0.5, 1, 1, 1};
+  CHECK_THROWS_AS(validate_knots(t, 1, control_count(t, 1)), InvalidInput);
+  CHECK_NOTHROW(validate_span_query(t, 1, 2));
+  CHECK_NOTHROW(validate_span_query(t, 0, 3));
+  for (int p = 0; p <= 2; ++p)
+    for (int span = p; span + p + 1 < static_cast<int>(t.size()); ++span) {
+      if (!(t[static_cast<std::size_t>(span)] < t[static_cast<std::size_t>(span) + 1])) {
+        CHECK_THROWS_WITH(validate_span_query(t, p, span), Catch::Matchers::Contains("is empty"));
+        continue;
+      }
+      for (double u : {t[static_cast<std::size_t>(span)],
+                       0.5 * (t[static_cast<std::size_t>(span)] + t[static_cast<std::size_t>(span) + 1])}) {
+        std::vector<double> N(static_cast<std::size_t>(p) + 1);
+        basis_functions(t, p, span, u, N.data());
+        const RealVec ref = ref_basis(t, p, u, false);
+        for (int j = 0; j <= p; ++j)
+          CHECK(std::abs(N[static_cast<std::size_t>(j)] -
+                         static_cast<double>(ref[static_cast<std::size_t>(span - p + j)])) <= 1e-15);
+      }
+    }
+  CHECK_THROWS_WITH(validate_span_query(t, 1, 0), Catch::Matchers::Contains("span 0 is outside 1 … 5"));
+  CHECK_THROWS_WITH(validate_span_query(t, 65, 3), Catch::Matchers::Contains("degree 65 is outside [0, 64]"));
+  CHECK_THROWS_WITH(validate_span_query(Knots{0, 1, 0.5, 2}, 1, 1), Catch::Matchers::Contains("knots[2]"));
+}

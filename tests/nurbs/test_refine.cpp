@@ -666,4 +666,58 @@ TEST_CASE("insert_knot refuses a count above the degree before making the copies
                     "knot 1.5 would reach multiplicity 1000000000 > degree 3");
   CHECK_THROWS_WITH(insert_knot(c, 1, 3), "knot 1 would reach multiplicity 4 > degree 3");
   CHECK(insert_knot(c, 1.5, 3).P.rows() == 8);
+TEST_CASE("split: both parts are the curve, clamped at the cut", "[nurbs][refine][split]") {
+  Rng rng(3030);
+  for (int trial = 0; trial < 300; ++trial) {
+    const int d = uniform_int(rng, 1, 7);
+    const Kind kind = coin(rng) ? Kind::clamped : Kind::unclamped;
+    const RandomCurve r = random_curve(rng, d, uniform_int(rng, 1, 3), coin(rng, 0.3), kind);
+    CAPTURE(trial, r.what);
+    // A knot of the curve or any parameter inside the domain.
+    double u = uniform(rng, r.lo, r.hi);
+    if (coin(rng, 0.3))
+      u = r.knots[static_cast<std::size_t>(uniform_int(rng, d, static_cast<int>(r.H.rows())))];
+    if (!(u > r.lo && u < r.hi)) continue;
+    const auto [left, right] = split(r.c, u);
+    CHECK(domain(left).start == r.lo);
+    CHECK(domain(left).end == u);
+    CHECK(domain(right).start == u);
+    CHECK(domain(right).end == r.hi);
+    CHECK(multiplicity(left.knots, u) == d + 1);
+    CHECK(multiplicity(right.knots, u) == d + 1);
+    for (int s = 0; s <= 8; ++s) {
+      const double a = s == 8 ? u : r.lo + (u - r.lo) * s / 8, b = s == 8 ? r.hi : u + (r.hi - u) * s / 8;
+      CHECK(diff(evaluate(left, a), ref_point(r, a)) <= 1e-12 * r.scale);
+      CHECK(diff(evaluate(right, b), ref_point(r, b)) <= 1e-12 * r.scale);
+    }
+  }
+  const RandomCurve closed = random_curve(rng, 3, 2, false, Kind::closed);
+  CHECK_THROWS_WITH(split(closed.c, 0.5 * (closed.lo + closed.hi)), Contains("closed curve"));
+  const RandomCurve open = random_curve(rng, 2, 2, false, Kind::clamped);
+  CHECK_THROWS_WITH(split(open.c, open.lo), Contains("not strictly inside the domain"));
+  CHECK_THROWS_WITH(split(open.c, NAN), Contains("not strictly inside the domain"));
+}
+
+TEST_CASE("reverse: C'(a + b − u) = C(u), open and closed, twice is the identity",
+          "[nurbs][refine][reverse]") {
+  Rng rng(3031);
+  for (int trial = 0; trial < 300; ++trial) {
+    const int d = uniform_int(rng, 1, 7);
+    const auto kind = static_cast<Kind>(uniform_int(rng, 0, 2));
+    const RandomCurve r = random_curve(rng, d, uniform_int(rng, 1, 3), coin(rng, 0.3), kind);
+    CAPTURE(trial, r.what);
+    const Curve back = reverse(r.c);
+    CHECK(domain(back).start == r.lo);
+    CHECK(domain(back).end == r.hi);
+    CHECK(back.closed == r.c.closed);
+    for (int s = 0; s <= 16; ++s) {
+      const double u = s == 16 ? r.hi : r.lo + (r.hi - r.lo) * s / 16;
+      const double mirrored = s == 0 ? r.hi : s == 16 ? r.lo : r.lo + r.hi - u;
+      // a + b − u rounds: the parameter moves by up to an ulp of |a| + |b|, the point by that times |C'|.
+      const double slack =
+          4 * kEps * (std::abs(r.lo) + std::abs(r.hi)) * derivatives(r.c, u, 1).row(1).norm();
+      CHECK(diff(evaluate(back, mirrored), ref_point(r, u)) <= 1e-12 * r.scale + slack);
+    }
+    CHECK(reverse(back).P == r.c.P);
+  }
 }

@@ -77,7 +77,14 @@ class _Plausible(_Samples):
         chaikin = np.array([[0.75, 0.25, 0], [0.25, 0.75, 0], [0, 0.75, 0.25]])
         points = np.random.default_rng(1).random((2000, 2))
         mesh_call = {"scheme": "catmull-clark", "valence": 4}
+        data = np.array([[0, 0], [1, 2], [2, 1], [3, 3], [4, 0], [5, 2]], dtype=float)  # distinct, 2-D
+        on_curve = cifs.nurbs.evaluate(self.curve, np.linspace(0, 3, 6))
+        grid = np.array([[[i, j, i * j % 3] for j in range(5)] for i in range(4)], dtype=float)
         return {
+            "nurbs.interpolate": {"points": data}, "nurbs.fit_parameters": {"points": data},
+            "nurbs.approximate": {"points": data, "control_points": 4},
+            "nurbs.fit_distances": {"points": on_curve},
+            "nurbs.interpolate_surface": {"points": grid}, "nurbs.approximate_surface": {"points": grid},
             "nurbs.Surface": {"degree": [1, 1], "knots": [[0, 0, 1, 1]] * 2, "points": np.zeros((2, 2, 3))},
             "ifs.surface_mesh": {"nets": surface_nets},
             "ifs.quad_mesh": {"automaton": t.product, "nets": surface_nets, "patches": t.patches},

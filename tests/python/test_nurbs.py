@@ -71,8 +71,8 @@ class KnotTest(unittest.TestCase):
             (lambda: nurbs.find_span([0, 0, 1], 1, 0.5),
              "knots: 1 control points are too few for degree 1 (need at least 2)"),
             (lambda: nurbs.find_span(CUBIC_KNOTS, 3, float("nan")), "u is not finite"),
-            (lambda: nurbs.basis_functions(CUBIC_KNOTS, 3, 2, 0.5), "span 2 is not a non-empty span of the domain"),
-            (lambda: nurbs.basis_functions(CUBIC_KNOTS, 3, 6, 0.5), "span 6 is not a non-empty span of the domain"),
+            (lambda: nurbs.basis_functions(CUBIC_KNOTS, 3, 2, 0.5), "span 2 is outside 3 … 6 (degree 3, 10 knots)"),
+            (lambda: nurbs.basis_functions(CUBIC_KNOTS, 3, 6, 0.5), "span 6 is empty: knots[6] = knots[7]"),
             (lambda: nurbs.blossom_weights(CUBIC_KNOTS, 3, 4, [1, 2]), "blossom: 2 arguments given, degree 3 takes 3"),
             (lambda: nurbs.basis_derivatives(CUBIC_KNOTS, 3, 4, 1.5, -1), "derivative order -1 is outside 0 … 64"),
             (lambda: nurbs.periodic_knots([1], 2), "breakpoints: 1 given, need at least 2"),
@@ -465,6 +465,113 @@ class DoublingTest(unittest.TestCase):
                              refined.P[left - d:left + 1], what="G half")
                 assert_close(self, nurbs.subdivision_matrix(window, d, nurbs.Half.D) @ P,
                              refined.P[left + 1 - d:left + 2], what="D half")
+
+
+class AnyDegreeBasisTest(unittest.TestCase):
+    """Basis functions of any degree on any knot vector where they are defined (issue 30: degree 1 on a clamped
+    quadratic knot vector was refused for its triple knots), against Cox–de Boor in plain Python."""
+
+    @staticmethod
+    def cox_de_boor(t, p, i, u):
+        if p == 0:
+            return 1.0 if t[i] <= u < t[i + 1] else 0.0
+        a = (u - t[i]) / (t[i + p] - t[i]) * AnyDegreeBasisTest.cox_de_boor(t, p - 1, i, u) if t[i + p] > t[i] else 0
+        b = ((t[i + p + 1] - u) / (t[i + p + 1] - t[i + 1]) * AnyDegreeBasisTest.cox_de_boor(t, p - 1, i + 1, u)
+             if t[i + p + 1] > t[i + 1] else 0)
+        return a + b
+
+    def test_every_degree_on_a_vector_with_high_multiplicities(self):
+        np.testing.assert_allclose(nurbs.basis_functions([0, 0, 0, 0.5, 1, 1, 1], 1, 2, 0.25), [0.5, 0.5])
+        t = [0, 0, 0, 0, 0.3, 0.3, 0.3, 0.7, 1, 1, 1, 1]
+        for p in range(0, 5):
+            for span in range(p, len(t) - p - 1):
+                if not t[span] < t[span + 1]:
+                    with self.assertRaisesRegex(cifs.InvalidInput, "is empty"):
+                        nurbs.basis_functions(t, p, span, t[span])
+                    continue
+                for u in np.linspace(t[span], t[span + 1], 5, endpoint=False):
+                    N = nurbs.basis_functions(t, p, span, u)
+                    expected = [self.cox_de_boor(t, p, span - p + j, u) for j in range(p + 1)]
+                    np.testing.assert_allclose(N, expected, rtol=1e-14, atol=1e-15, err_msg=f"p={p} span={span}")
+                    self.assertEqual(nurbs.basis_derivatives(t, p, span, u, 0).shape, (1, p + 1))
+        with self.assertRaisesRegex(cifs.InvalidInput, "knots\\[2\\]: 0.5 is less than the previous knot 1"):
+            nurbs.basis_functions([0, 1, 0.5, 2], 1, 1, 0.5)
+
+
+class SplitReverseTest(unittest.TestCase):
+    def test_split_and_reverse_keep_the_curve(self):
+        curve = nurbs.Curve(3, CUBIC_KNOTS, CUBIC_POINTS)
+        left, right = nurbs.split(curve, 1.5)
+        self.assertEqual((left.domain, right.domain), ((0.0, 1.5), (1.5, 4.0)))
+        for u in np.linspace(0, 1.5, 7):
+            assert_close(self, nurbs.evaluate(left, u), nurbs.evaluate(curve, u), rel=1e-13)
+        for u in np.linspace(1.5, 4, 7):
+            assert_close(self, nurbs.evaluate(right, u), nurbs.evaluate(curve, u), rel=1e-13)
+        back = nurbs.reverse(curve)
+        for u in np.linspace(0, 4, 9):
+            assert_close(self, nurbs.evaluate(back, 4 - u), nurbs.evaluate(curve, u), rel=1e-13)
+        with self.assertRaisesRegex(cifs.InvalidInput, "not strictly inside the domain"):
+            nurbs.split(curve, 4.0)
+
+
+class FitTest(unittest.TestCase):
+    """Fitting: the points hit at their parameters, the least-squares solution against numpy's lstsq on the
+    collocation matrix of the knot functions, the same curve as `cifs fit`, bad input."""
+
+    def setUp(self):
+        x = np.linspace(0, 5, 40)
+        self.points = np.stack([x, np.sin(x), np.cos(2 * x)], axis=1)
+
+    def test_interpolate_hits_every_point(self):
+        for kind in ("uniform", "chord_length", "centripetal"):
+            for degree in (1, 2, 3, 5):
+                curve = nurbs.interpolate(self.points, degree, parametrization=kind)
+                u = nurbs.fit_parameters(self.points, kind)
+                np.testing.assert_allclose(nurbs.evaluate(curve, u), self.points, rtol=0, atol=1e-14 * 5)
+        ring = nurbs.interpolate(self.points[:-1], 3, closed=True)
+        u = nurbs.fit_parameters(self.points[:-1], closed=True)
+        np.testing.assert_allclose(nurbs.evaluate(ring, u), self.points[:-1], rtol=0, atol=1e-13)
+        tangent = np.array([1.0, 0.0, 2.0])
+        ends = nurbs.interpolate(self.points, 3, start_derivative=tangent, end_derivative=-tangent)
+        np.testing.assert_allclose(nurbs.derivatives(ends, 0.0, 1)[1], tangent, atol=1e-12)
+        np.testing.assert_allclose(nurbs.derivatives(ends, 1.0, 1)[1], -tangent, atol=1e-12)
+
+    def test_approximate_is_the_least_squares_solution(self):
+        curve = nurbs.approximate(self.points, 3, control_points=9, fix_ends=False)
+        u = nurbs.fit_parameters(self.points)
+        A = np.zeros((len(u), 9))
+        for k, x in enumerate(u):
+            span = nurbs.find_span(curve.knots, 3, x)
+            A[k, span - 3:span + 1] = nurbs.basis_functions(curve.knots, 3, span, x)
+        expected = np.linalg.lstsq(A, self.points, rcond=None)[0]
+        np.testing.assert_allclose(curve.points, expected, rtol=0, atol=1e-12)
+        near = nurbs.approximate(self.points, 3, tolerance=1e-2)
+        fit = nurbs.fit_distances(near, self.points)
+        self.assertLessEqual(fit.point_distance, 1e-2)
+        self.assertLessEqual(fit.point_distance, fit.polyline_bound)
+        self.assertLess(nurbs.distinct_count(near), len(self.points))
+
+    def test_surfaces(self):
+        grid = np.array([[[i, j, np.sin(i + j)] for j in range(7)] for i in range(6)], dtype=float)
+        surface = nurbs.interpolate_surface(grid, (3, 2), parametrization="uniform")
+        self.assertEqual(surface.count, (6, 7))
+        for i, j in ((0, 0), (2, 3), (5, 6), (4, 1)):
+            np.testing.assert_allclose(nurbs.evaluate(surface, i / 5, j / 6), grid[i, j], rtol=0, atol=1e-13)
+        smooth = nurbs.approximate_surface(grid, (4, 5), degree=(2, 2))
+        self.assertEqual(smooth.count, (4, 5))
+        np.testing.assert_allclose(nurbs.evaluate(smooth, 0, 0), grid[0, 0], atol=1e-13)
+
+    def test_bad_input(self):
+        with self.assertRaisesRegex(cifs.InvalidInput, r"points\[2\]: coincides with points\[1\]"):
+            nurbs.interpolate(np.array([[0, 0], [1, 1], [1, 1], [2, 0]]), 2)
+        with self.assertRaisesRegex(cifs.InvalidInput, "needs at least 4 points, got 3"):
+            nurbs.interpolate(np.array([[0, 0], [1, 1], [2, 0]]))
+        with self.assertRaisesRegex(cifs.InvalidInput, "give control_points or tolerance"):
+            nurbs.approximate(self.points)
+        with self.assertRaisesRegex(cifs.InvalidInput, "parametrization 'chord'"):
+            nurbs.interpolate(self.points, parametrization="chord")
+        with self.assertRaisesRegex(cifs.InvalidInput, "expected a grid"):
+            nurbs.interpolate_surface(self.points)
 
 
 if __name__ == "__main__":

@@ -86,4 +86,11 @@ class PointsFile {
   bool space_checked_ = false;
 };
 
+/// Points read back for fitting (cifs fit), by extension: .csv/.txt/.xyz (one point a line, numbers
+/// separated by commas or blanks; '#' comments, blank lines and a header line skipped), .npy (2-D,
+/// little-endian f8, f4, i8 or i4), .json (`{"points": …}` as cifs eval writes it, a polygon file, or a
+/// bare array of points), .obj (the `v` lines in order). InvalidInput naming the file and the line or
+/// point otherwise; IoError when it cannot be read.
+Points read_points(const std::filesystem::path& path);
+
 }  // namespace cifs::io

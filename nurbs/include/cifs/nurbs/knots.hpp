@@ -26,6 +26,13 @@ struct Domain {
 void validate_knots(std::span<const double> knots, int degree, Eigen::Index count,
                     std::string_view where = "knots");
 
+/// Throws InvalidInput unless the basis functions of `degree` on `span` are defined (basis_functions,
+/// basis_derivatives, blossom_weights): 0 ≤ degree ≤ kMaxDegree, finite non-decreasing knots, degree ≤
+/// span, span + degree < #knots and a non-empty span `t_span < t_{span+1}`. The multiplicities of the
+/// other knots do not matter: the recursion divides only by the lengths of intervals that contain the
+/// span (degree 1 on a clamped quadratic knot vector is defined).
+void validate_span_query(std::span<const double> knots, int degree, int span);
+
 /// Throws InvalidInput unless 1 ≤ degree ≤ kMaxDegree.
 void validate_degree(int degree, std::string_view where = "degree");
 

@@ -2,6 +2,7 @@
 // cifs — knot insertion, refinement, Bézier splitting, degree elevation and knot removal.
 #pragma once
 
+#include <array>
 #include <span>
 #include <vector>
 
@@ -27,6 +28,15 @@ Curve refine_midpoints(const Curve& c);
 
 /// The polynomial pieces as clamped Bézier curves of the same degree, one per non-empty span, in order.
 std::vector<Curve> split_bezier(const Curve& c);
+
+/// The open curve cut at `u`, strictly inside the domain: the part on [start, u] and the part on [u, end],
+/// each clamped at u (u inserted up to multiplicity degree) and keeping the parameters of the original.
+/// Throws InvalidInput for a closed curve or u not strictly inside the domain.
+std::array<Curve, 2> split(const Curve& c, double u);
+
+/// The same curve traversed backwards: knots `t'_j = a + b − t_{N−1−j}` (a, b the domain's ends, kept
+/// exactly), control points in reverse order, so that `C'(a + b − u) = C(u)`. Closed curves stay closed.
+Curve reverse(const Curve& c);
 
 /// Raises the degree by `times`; the curve is unchanged. Each knot value of the domain gains
 /// `times` in multiplicity; control points are blossoms of the raised degree.
