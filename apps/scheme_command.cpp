@@ -63,9 +63,8 @@ sd::Ends parse_ends(const std::string& ends) {
 // Mesh schemes: local subdivision matrices
 
 std::optional<sd::MeshScheme> mesh_scheme_named(const std::string& name) {
-  for (const sd::MeshScheme s : {sd::MeshScheme::catmull_clark, sd::MeshScheme::loop,
-                                 sd::MeshScheme::doo_sabin, sd::MeshScheme::butterfly, sd::MeshScheme::sqrt3})
-    if (sd::scheme_name(s) == name) return s;
+  for (const sd::SchemeTraits& t : sd::mesh_schemes())
+    if (t.name == name) return t.scheme;
   return std::nullopt;
 }
 
@@ -151,7 +150,7 @@ std::string analyze_mesh_scheme(sd::MeshScheme scheme, const SchemeOptions& o) {
     throw InvalidInput("--format '" + o.format + "': json or table for a mesh scheme's analysis");
   const sd::LocalOptions local{
       .boundary = !o.boundary.empty(),
-      .rule = o.boundary.empty() ? sd::BoundaryRule::edge_only : boundary_rule(o.boundary)};
+      .rule = o.boundary.empty() ? sd::BoundaryRule::edge_only : named_boundary_rule(o.boundary)};
   const std::vector<int> valences = o.valence.empty()
                                         ? parse_valences(o.valences, "--valences")
                                         : std::vector<int>{integer_text(o.valence, "--valence", o.valence)};

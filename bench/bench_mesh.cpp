@@ -73,8 +73,7 @@ using cifs_test::OsdVertex;
 
 std::unique_ptr<Far::TopologyRefiner> osd_topology(const Mesh& m, sd::MeshScheme scheme, int levels) {
   return cifs_test::osd_refiner(
-      m, scheme == sd::MeshScheme::catmull_clark ? Sdc::SCHEME_CATMARK : Sdc::SCHEME_LOOP,
-      Sdc::Options::VTX_BOUNDARY_EDGE_ONLY, levels);
+      m, scheme == sd::MeshScheme::catmull_clark ? Sdc::SCHEME_CATMARK : Sdc::SCHEME_LOOP, levels);
 }
 
 /// Positions of every level, level by level (OSD's primvar refinement); returns the last level's.
@@ -388,8 +387,7 @@ void cifs_limit_stencils_build(benchmark::State& state, sd::MeshScheme scheme) {
 void osd_limit_case(benchmark::State& state, sd::MeshScheme scheme) {
   const Mesh& m = input(scheme);
   const auto refiner = cifs_test::osd_refiner(
-      m, scheme == sd::MeshScheme::catmull_clark ? Sdc::SCHEME_CATMARK : Sdc::SCHEME_LOOP,
-      Sdc::Options::VTX_BOUNDARY_EDGE_ONLY, kLevels, true);
+      m, scheme == sd::MeshScheme::catmull_clark ? Sdc::SCHEME_CATMARK : Sdc::SCHEME_LOOP, kLevels, true);
   std::vector<OsdVertex> verts;
   const OsdVertex* last = osd_positions(*refiner, m, verts);
   const auto n = static_cast<std::size_t>(refiner->GetLevel(kLevels).GetNumVertices());
@@ -482,7 +480,7 @@ std::array<Points, 3> bfr_surface(const OpenSubdiv::Bfr::RefinerSurfaceFactory<>
 /// vertices; 6: equal to the exact surface to 1e-12, see surface_cross_check).
 void osd_bfr_surface_case(benchmark::State& state, sd::MeshScheme scheme) {
   const Mesh& m = surface_mesh(scheme);
-  const auto refiner = cifs_test::osd_refiner(m, osd_type(scheme), Sdc::Options::VTX_BOUNDARY_EDGE_ONLY, 0);
+  const auto refiner = cifs_test::osd_refiner(m, osd_type(scheme), 0);
   OpenSubdiv::Bfr::SurfaceFactory::Options options;
   options.SetApproxLevelSmooth(static_cast<int>(state.range(0)));
   const OpenSubdiv::Bfr::RefinerSurfaceFactory<> factory(*refiner, options);
@@ -505,7 +503,7 @@ void osd_bfr_surface_case(benchmark::State& state, sd::MeshScheme scheme) {
 void surface_cross_check(sd::MeshScheme scheme) {
   const Mesh& m = surface_mesh(scheme);
   const std::span<const sd::FacePoint> points(surface_points(scheme).data(), 20'000);
-  const auto refiner = cifs_test::osd_refiner(m, osd_type(scheme), Sdc::Options::VTX_BOUNDARY_EDGE_ONLY, 0);
+  const auto refiner = cifs_test::osd_refiner(m, osd_type(scheme), 0);
   const sd::SurfaceSample ours = sd::evaluate_limit_surface(m, scheme, points);
   for (const int level : {2, 6, 10}) {  // Bfr's default is 2
     OpenSubdiv::Bfr::SurfaceFactory::Options options;

@@ -280,7 +280,7 @@ TEST_CASE("Mesh experiments: every scheme, boundaries, and what a mesh cannot do
     const io::Experiment e = parse_named_experiment(text);
     run_in(dir, text);
     const Mesh refined =
-        subdivision::subdivide(e.mesh->mesh, e.mesh->scheme, e.mesh->levels, {.boundary = e.mesh->boundary});
+        subdivision::subdivide(e.mesh->mesh, e.mesh->scheme, e.mesh->levels);
     CHECK(read_file(dir.path() / "a.obj") == io::encode(refined, "obj"));
     CHECK(covered(render::read_exr(dir.path() / "a.exr")) > 40 * 30 / 8);
   }

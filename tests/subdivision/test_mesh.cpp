@@ -110,6 +110,7 @@ TEST_CASE("counts per level: V − E + F kept, faces by the scheme's factor", "[
       const std::size_t F = face_count(a), E = a.edges.size(), V = static_cast<std::size_t>(a.vertex_count);
       switch (scheme) {
         case MeshScheme::catmull_clark:
+        case MeshScheme::bilinear:
           CHECK(face_count(b) == a.face_vertices.size());
           break;
         case MeshScheme::loop:
@@ -258,14 +259,13 @@ TEST_CASE("the factored forms (linear subdivision, then averaging) equal the mas
       {"fan of 7", fan(7)},           {"torus", torus(6, 5, true)}};
   for (const BoundaryRule rule : {BoundaryRule::edge_only, BoundaryRule::edge_and_corner})
     for (int levels = 1; levels <= 3; ++levels) {
-      const MeshOptions o{.boundary = rule};
       for (const auto& [cases, scheme] :
            {std::pair{&quads, MeshScheme::catmull_clark}, std::pair{&triangles, MeshScheme::loop}})
-        for (const auto& [name, m] : *cases) {
+        for (auto [name, m] : *cases) {
+          m.tags.boundary = rule;
           INFO(scheme_name(scheme) << ", " << name << ", level " << levels << ", corners "
                                    << (rule == BoundaryRule::edge_and_corner));
-          const Mesh masks = subdivide(m, scheme, levels, o),
-                     factored = factored_subdivide(m, scheme, levels, o);
+          const Mesh masks = subdivide(m, scheme, levels), factored = factored_subdivide(m, scheme, levels);
           CHECK(factored.face_vertices == masks.face_vertices);
           CHECK((factored.vertices - masks.vertices).cwiseAbs().maxCoeff() <=
                 1e-14 * masks.vertices.cwiseAbs().maxCoeff());
