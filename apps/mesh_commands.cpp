@@ -125,6 +125,25 @@ std::string mesh_to_mesh(const std::filesystem::path& input, const std::filesyst
   return "wrote " + output_path.string() + ": " + summary(result) + "\n";
 }
 
+/// The file's options replaced by the flags given ("" keeps the file's), a wrong name reported with
+/// its flag.
+TagOverrides tag_overrides(const std::string& boundary, const std::string& crease_method,
+                           const std::string& triangles, const std::string& fvar_interpolation) {
+  const auto parse = [](const char* flag, const std::string& value, auto named) {
+    using Option = decltype(named(value));
+    if (value.empty()) return std::optional<Option>();
+    try {
+      return std::optional<Option>(named(value));
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(std::string(flag) + " " + value + ": " + e.what());
+    }
+  };
+  return {.boundary = parse("--boundary", boundary, named_boundary_rule),
+          .crease_method = parse("--crease-method", crease_method, named_crease_method),
+          .triangles = parse("--triangles", triangles, named_triangle_rule),
+          .face_varying = parse("--fvar-interpolation", fvar_interpolation, named_face_varying_rule)};
+}
+
 }  // namespace
 
 std::string subdivide(const SubdivideOptions& o) {

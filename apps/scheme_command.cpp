@@ -25,6 +25,21 @@ namespace cifs::cli {
 namespace {
 
 namespace sd = cifs::subdivision;
+
+/// `--boundary NAME` of a local analysis: edge or corner, the flag named in a refusal.
+sd::BoundaryRule boundary_flag(const std::string& name) {
+  const sd::BoundaryRule rule = name == "none" ? sd::BoundaryRule::none : [&] {
+    try {
+      return named_boundary_rule(name);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput("--boundary " + name + ": " + e.what());
+    }
+  }();
+  if (rule == sd::BoundaryRule::none)
+    throw InvalidInput(
+        "--boundary none: a local analysis takes a boundary vertex with the rule edge or corner");
+  return rule;
+}
 using io::Stroke;
 using io::strokes_svg;
 
@@ -150,7 +165,7 @@ std::string analyze_mesh_scheme(sd::MeshScheme scheme, const SchemeOptions& o) {
     throw InvalidInput("--format '" + o.format + "': json or table for a mesh scheme's analysis");
   const sd::LocalOptions local{
       .boundary = !o.boundary.empty(),
-      .rule = o.boundary.empty() ? sd::BoundaryRule::edge_only : named_boundary_rule(o.boundary)};
+      .rule = o.boundary.empty() ? sd::BoundaryRule::edge_only : boundary_flag(o.boundary)};
   const std::vector<int> valences = o.valence.empty()
                                         ? parse_valences(o.valences, "--valences")
                                         : std::vector<int>{integer_text(o.valence, "--valence", o.valence)};

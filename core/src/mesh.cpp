@@ -176,16 +176,6 @@ FaceVaryingRule named_face_varying_rule(std::string_view name) {
   return named<FaceVaryingRule>(name, kFaceVaryingNames, "face-varying interpolation");
 }
 
-TagOverrides tag_overrides(std::string_view boundary, std::string_view crease_method,
-                           std::string_view triangles, std::string_view face_varying) {
-  TagOverrides o;
-  if (!boundary.empty()) o.boundary = named_boundary_rule(boundary);
-  if (!crease_method.empty()) o.crease_method = named_crease_method(crease_method);
-  if (!triangles.empty()) o.triangles = named_triangle_rule(triangles);
-  if (!face_varying.empty()) o.face_varying = named_face_varying_rule(face_varying);
-  return o;
-}
-
 void apply(const TagOverrides& o, MeshTags& tags) {
   if (o.boundary) tags.boundary = *o.boundary;
   if (o.crease_method) tags.crease_method = *o.crease_method;

@@ -8,6 +8,7 @@
 #include <climits>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -15,6 +16,7 @@
 #include "cifs/errors.hpp"
 #include "cifs/format.hpp"
 #include "cifs/memory.hpp"
+#include "non_manifold.hpp"
 
 namespace cifs::subdivision {
 namespace {
@@ -301,24 +303,23 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
     const auto faces = vertex_faces(t, static_cast<std::size_t>(v));
     VertexMask m;  // a vertex without faces stays
     if (!ring.empty()) {
-      pe.clear();
-      ce.clear();
-      for (const int e : ring) pe.push_back(edge_sharpness(L, static_cast<std::size_t>(e)));
-      if (!smooth)
+      VertexNeighbourhood n;
+      n.faces = static_cast<int>(faces.size());  // smooth level: no sharpness
+      if (!smooth) {
+        pe.clear();
+        for (const int e : ring) pe.push_back(edge_sharpness(L, static_cast<std::size_t>(e)));
+        ce.resize(pe.size());
+        child_edge_sharpness(tags.crease_method, pe, ce);
         for (std::size_t i = 0; i < ring.size(); ++i) {
-          ce.push_back(child_edge_sharpness(tags.crease_method, pe[i], pe));
           const auto e = static_cast<std::size_t>(ring[i]);
-          halves[2 * e + (t.edges[e][0] == v ? 0 : 1)] = ce.back();
+          halves[2 * e + (t.edges[e][0] == v ? 0 : 1)] = ce[i];
         }
-      else
-        ce = pe;
-      const double vs = vertex_sharpness(L, static_cast<std::size_t>(v));
-      m = vertex_mask(scheme, tags.crease_method,
-                      {.faces = static_cast<int>(faces.size()),
-                       .edges = pe,
-                       .child_edges = ce,
-                       .sharpness = vs,
-                       .child_sharpness = decremented_sharpness(vs)});
+        n.edges = pe;
+        n.child_edges = ce;
+        n.sharpness = vertex_sharpness(L, static_cast<std::size_t>(v));
+        n.child_sharpness = decremented_sharpness(n.sharpness);
+      }
+      m = vertex_mask(scheme, tags.crease_method, n);
     }
     if (m.face != 0)
       for (const int f : faces) add_face_point(t, static_cast<std::size_t>(f), m.face, row);
@@ -927,7 +928,14 @@ MeshRefinement refine_topology(const Mesh& mesh, MeshScheme scheme, int levels, 
   const std::string who(scheme_name(scheme));
   MeshRefinement r{
       .scheme = scheme, .options = options, .levels = {}, .features = {}, .tags = {}, .steps = {}};
-  r.levels.push_back(checked_input(mesh, scheme, levels, options, true));
+  try {
+    r.levels.push_back(checked_input(mesh, scheme, levels, options, true));
+  } catch (const InvalidInput& e) {
+    if (traits(scheme).sharpness && detail::split_non_manifold(mesh, who))
+      throw InvalidInput(std::string(e.what()) + "; subdivide refines non-manifold meshes, refine_topology " +
+                         "(a replayable refinement) does not yet");
+    throw;
+  }
   r.tags.push_back(mesh.tags);
   r.features.push_back(level_features(r.levels.back(), r.tags.back(), scheme, who));
   std::vector<double> halves;
@@ -1022,17 +1030,27 @@ Points apply(const MeshRefinement& refinement, const Points& vertices) {
 Mesh subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOptions& options) {
   const std::string who(scheme_name(scheme));
   check_mesh(mesh, who);
-  // One level at a time: only the current level's topology, weights and positions live, and the
-  // last level's faces need no adjacency.
-  MeshTopology t = checked_input(mesh, scheme, levels, options, false);
-  MeshTags tags = mesh.tags;
+  // A non-manifold mesh is refined through its manifold stand-in (non_manifold.hpp), whose copies of
+  // vertices are merged back at the end.
+  std::optional<detail::ManifoldSplit> split;
+  MeshTopology t;
+  try {
+    t = checked_input(mesh, scheme, levels, options, false);
+  } catch (const InvalidInput&) {
+    if (!traits(scheme).sharpness || !(split = detail::split_non_manifold(mesh, who))) throw;
+    t = checked_input(split->mesh, scheme, levels, options, false);
+  }
+  const Mesh& source = split ? split->mesh : mesh;
+  detail::Representatives same;  // of the stand-in's vertices and edges, level by level
+  if (split) same = detail::initial_representatives(t, std::move(split->representative));
+  MeshTags tags = source.tags;
   LevelFeatures features = level_features(t, tags, scheme, who);
   LevelProgress progress(t, scheme, levels, options);
   Mesh out;
-  out.vertices = mesh.vertices;
-  out.face_offsets = mesh.face_offsets;
-  out.face_vertices = mesh.face_vertices;
-  out.face_varying = mesh.face_varying;
+  out.vertices = source.vertices;
+  out.face_offsets = source.face_offsets;
+  out.face_vertices = source.face_vertices;
+  out.face_varying = source.face_varying;
   std::vector<double> halves;
   for (int level = 0; level < levels; ++level) {
     const bool last = level + 1 == levels, split_last = last && splits_faces(scheme);
@@ -1040,6 +1058,8 @@ Mesh subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOption
     out.vertices = std::move(s.output);
     s.output = Points();  // the parent's positions, swapped in by the move
     if (traits(scheme).sharpness) tags = child_tags(scheme, t, features, halves, tags);
+    std::vector<int> child_vertices;
+    if (split) child_vertices = detail::child_vertex_representatives(t, same, s.vertex_count);
     for (FaceVaryingChannel& c : out.face_varying) c = refine_channel(t, traits(scheme).split, c);
     if (split_last) {
       // Only the faces are left to make, from the parent's faces and face_edges: free its rings
@@ -1056,13 +1076,16 @@ Mesh subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOption
       out.face_offsets = std::move(s.face_offsets);
       out.face_vertices = std::move(s.face_vertices);
     } else {
-      t = child_topology(scheme, t, s, who);
+      MeshTopology child = child_topology(scheme, t, s, who);
+      if (split) same.edge = detail::child_edge_representatives(t, same, child);  // the parent's vertices
+      t = std::move(child);
       features = level_features(t, tags, scheme, who);
     }
+    if (split) same.vertex = std::move(child_vertices);
     progress.level_done(level);
   }
   out.tags = std::move(tags);
-  return out;
+  return split ? detail::merge_copies(std::move(out), same.vertex) : out;
 }
 
 namespace {

@@ -155,21 +155,32 @@ double decremented_sharpness(double s) noexcept {
   return s > 1 ? static_cast<float>(s) - 1.0F : 0.0;
 }
 
-double child_edge_sharpness(CreaseMethod method, double s, std::span<const double> around) noexcept {
-  if (method == CreaseMethod::uniform || around.size() < 2) return decremented_sharpness(s);
-  if (!sharp(s)) return 0;
-  if (s >= kInfiniteSharpness) return kInfiniteSharpness;
-  float sum = 0, own = static_cast<float>(s);
+void child_edge_sharpness(CreaseMethod method, std::span<const double> around,
+                          std::span<double> out) noexcept {
+  if (method == CreaseMethod::uniform || around.size() < 2) {
+    for (std::size_t i = 0; i < around.size(); ++i) out[i] = decremented_sharpness(around[i]);
+    return;
+  }
+  // The semi-sharp edges' sum, once (in the order OpenSubdiv adds them: the same float).
+  float sum = 0;
   int count = 0;
   for (const double x : around)
     if (sharp(x) && x < kInfiniteSharpness) {
       sum += static_cast<float>(x);
       ++count;
     }
-  // Chaikin: ¾ of its own sharpness and ¼ of the mean of the other semi-sharp edges at this end.
-  if (count > 1) own = 0.75F * own + 0.25F * ((sum - own) / static_cast<float>(count - 1));
-  own -= 1.0F;
-  return own > 0 ? own : 0.0;
+  for (std::size_t i = 0; i < around.size(); ++i) {
+    const double s = around[i];
+    if (!sharp(s) || s >= kInfiniteSharpness) {
+      out[i] = sharp(s) ? kInfiniteSharpness : 0.0;
+      continue;
+    }
+    // Chaikin: ¾ of its own sharpness and ¼ of the mean of the other semi-sharp edges here.
+    float own = static_cast<float>(s);
+    if (count > 1) own = 0.75F * own + 0.25F * ((sum - own) / static_cast<float>(count - 1));
+    own -= 1.0F;
+    out[i] = own > 0 ? own : 0.0;
+  }
 }
 
 VertexMask vertex_mask(MeshScheme scheme, CreaseMethod method, const VertexNeighbourhood& n) {

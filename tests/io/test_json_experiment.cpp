@@ -183,7 +183,7 @@ TEST_CASE("Experiments: bad mesh sources are one line naming the file and the me
            "e.json: subdivision.levels: -1 is outside [0, 16]");
   one_line(experiment_error_of("{" + cube +
                                R"(, "subdivision": {"scheme": "catmull-clark", "boundary": "crease"}})"),
-           "e.json: subdivision.boundary: expected \"edge\"");
+           "e.json: subdivision.boundary: unknown boundary rule 'crease' (none, edge, corner)");
   one_line(experiment_error_of("{" + cube + R"(, "subdivision": {"scheme": "catmull-clark", "level": 2}})"),
            "e.json: subdivision.level: unknown member");
   one_line(experiment_error_of("{" + cube + R"(, "subdivision": {"levels": 2}})"),

@@ -228,7 +228,9 @@ TEST_CASE("bad meshes and requests: one-line errors naming the element", "[subdi
   CHECK_THROWS_WITH(butterfly(cube(), 1), Contains("butterfly: face 0 has 4 corners"));
   Mesh bowtie = make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {2, 0, 0}},
                           {{0, 1, 2}, {1, 3, 2}, {1, 2, 4}});  // edge 1–2 in three faces
-  CHECK_THROWS_AS(catmull_clark(bowtie, 1), InvalidInput);
+  // Refined as OpenSubdiv refines it (test_mesh_features.cpp) by the schemes with crease rules only.
+  CHECK(face_count(catmull_clark(bowtie, 1)) == 9);
+  CHECK_THROWS_WITH(butterfly(bowtie, 1), Contains("both use edge (1, 2)"));
   Mesh nan = cube();
   nan.vertices(3, 1) = std::nan("");
   CHECK_THROWS_AS(catmull_clark(nan, 1), InvalidInput);

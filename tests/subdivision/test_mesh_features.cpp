@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <map>
+#include <numbers>
 #include <random>
 
 #include "cifs/subdivision/mesh.hpp"
@@ -221,7 +222,72 @@ FaceVaryingChannel lattice_uvs(const Mesh& m, int n, int rows, bool wraps) {
   return c;
 }
 
+/// Three sheets of 2 × 1 quads (or 4 triangles) meeting along the chain 0 – 1 – 2 on the x axis, all
+/// running 0 → 1 → 2: the chain's edges have three faces (non-manifold); vertex 1 lies on exactly two
+/// of them with more faces than edges (OpenSubdiv's crease-along case), its ends on boundaries.
+Mesh three_sheets(bool triangles) {
+  std::vector<std::array<double, 3>> p{{0, 0, 0}, {1, 0.1, 0}, {2, 0, 0.1}};
+  std::vector<std::vector<int>> f;
+  for (int k = 0; k < 3; ++k) {
+    const double a = 2 * std::numbers::pi * k / 3 + 0.2 * k;
+    const int b = static_cast<int>(p.size());
+    for (int i = 0; i < 3; ++i) p.push_back({double(i) + 0.1 * k, std::cos(a) * (1 + 0.2 * i), std::sin(a)});
+    for (int i = 0; i < 2; ++i) {
+      if (triangles) {
+        f.push_back({i, i + 1, b + i + 1});
+        f.push_back({i, b + i + 1, b + i});
+      } else {
+        f.push_back({i, i + 1, b + i + 1, b + i});
+      }
+    }
+  }
+  return make_mesh(p, f);
+}
+
+/// Two closed tetrahedra (or cubes) sharing one vertex: two fans of faces around it.
+Mesh touching_solids(bool triangles) {
+  if (triangles)
+    return make_mesh(
+        {{0, 0, 0}, {1, 0.1, 0}, {0.1, 1, 0}, {0.2, 0.1, 1}, {-1, 0, 0.1}, {0, -1.1, 0}, {0.1, -0.2, -1}},
+        {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}, {0, 4, 5}, {0, 6, 4}, {0, 5, 6}, {4, 6, 5}});
+  Mesh a = cube(), b = cube();
+  b.vertices = (-b.vertices).rowwise() + Eigen::RowVector3d(0, 0, 0);
+  b.vertices.col(2) *= 1.3;
+  // Glue b's vertex 0 (the origin, as a's) onto a's: drop it and renumber b's faces.
+  Mesh m = a;
+  Points v(a.vertices.rows() + b.vertices.rows() - 1, 3);
+  v << a.vertices, b.vertices.bottomRows(b.vertices.rows() - 1);
+  m.vertices = v;
+  for (std::size_t f = 0; f < face_count(b); ++f) {
+    std::vector<int> face;
+    for (int x : cifs::face(b, f)) face.push_back(x == 0 ? 0 : x - 1 + static_cast<int>(a.vertices.rows()));
+    std::reverse(face.begin(), face.end());  // the point reflection flips orientation back
+    add_face(m, std::span<const int>(face));
+  }
+  return m;
+}
+
 }  // namespace
+
+TEST_CASE("non-manifold edges and vertices = OpenSubdiv Far: split by fans, sharpened, welded back",
+          "[subdivision][mesh][oracle][creases]") {
+  for (const bool triangles : {false, true}) {
+    const MeshScheme scheme = triangles ? MeshScheme::loop : MeshScheme::catmull_clark;
+    for (Mesh m : {three_sheets(triangles), touching_solids(triangles)})
+      for (const BoundaryRule rule :
+           {BoundaryRule::edge_only, BoundaryRule::edge_and_corner, BoundaryRule::none}) {
+        if (rule == BoundaryRule::none && m.vertices.rows() == 12) continue;  // the sheets: every face a hole
+        m.tags.boundary = rule;
+        check_against_osd(m, scheme, 3);
+        m.tags.creases = {{0, 1, 1.5}};  // on the non-manifold chain (infinite anyway) or the shared vertex
+        m.tags.corners = {{2, 0.5}};
+        check_against_osd(m, scheme, 3);
+        m.tags = MeshTags{};
+      }
+  }
+  CHECK_THROWS_WITH(refine_topology(three_sheets(false), MeshScheme::catmull_clark, 1),
+                    Catch::Contains("refine_topology (a replayable refinement) does not yet"));
+}
 
 TEST_CASE("creases and corners = OpenSubdiv Far: semi-sharp, sharp, blended, both crease methods, levels 1–4",
           "[subdivision][mesh][oracle][creases]") {

@@ -113,9 +113,6 @@ struct TagOverrides {
   std::optional<TriangleRule> triangles;
   std::optional<FaceVaryingRule> face_varying;
 };
-/// Names as option_name spells them ("" leaves the file's value), parsed into overrides.
-TagOverrides tag_overrides(std::string_view boundary, std::string_view crease_method,
-                           std::string_view triangles, std::string_view face_varying);
 void apply(const TagOverrides& overrides, MeshTags& tags);
 
 /// Whether face f is a hole (listed in mesh.tags.holes); renderers and exporters skip holes.

@@ -58,10 +58,11 @@ std::string_view rule_name(VertexRule rule) noexcept;
 double held_sharpness(double s) noexcept;
 /// Sharpness after one level: s − 1 (0 once s ≤ 1), infinite stays infinite.
 double decremented_sharpness(double s) noexcept;
-/// The sharpness of the half of an edge (sharpness `s`) at one of its ends after one level, given the
-/// sharpness of every edge at that end (`around`, the edge itself included): `decremented_sharpness`
-/// under the uniform method; under Chaikin's, ¾s + ¼(mean of the other semi-sharp edges there) − 1.
-double child_edge_sharpness(CreaseMethod method, double s, std::span<const double> around) noexcept;
+/// The sharpness after one level of the halves, at a vertex, of the edges around it (`around`, their
+/// sharpness; `out` the same size): `decremented_sharpness` under the uniform method; under Chaikin's,
+/// ¾s + ¼(mean of the other semi-sharp edges at the vertex) − 1. Linear in the valence.
+void child_edge_sharpness(CreaseMethod method, std::span<const double> around,
+                          std::span<double> out) noexcept;
 
 /// A vertex's neighbourhood as its rule sees it: incident face count and the sharpness of its
 /// incident edges (in ring order) and of itself, before and after the step.
