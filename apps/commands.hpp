@@ -63,10 +63,11 @@ struct SubdivideOptions {
   std::filesystem::path mesh;
   std::string scheme;  // subdivision::named_mesh_scheme
   int levels = 1;
-  std::string boundary = "edge";  // edge | corner
-  bool factored = false;          // linear subdivision + averaging (catmull-clark, loop)
-  bool quiet = false;             // no progress bar
-  std::filesystem::path output;   // .obj or .ply; empty: OBJ on stdout
+  // Replace the file's tags when given ("" keeps them): option_name's spellings.
+  std::string boundary, crease_method, triangles, fvar_interpolation;
+  bool factored = false;         // linear subdivision + averaging (catmull-clark, loop)
+  bool quiet = false;            // no progress bar
+  std::filesystem::path output;  // .obj or .ply; empty: OBJ on stdout
 };
 std::string subdivide(const SubdivideOptions& options);
 
@@ -75,13 +76,11 @@ struct LimitCommandOptions {
   std::filesystem::path mesh;
   std::string scheme;
   int levels = 1;
-  std::string boundary = "edge";
+  std::string boundary;          // "" keeps the file's boundary rule
   bool normals = false;          // unit limit normals (PLY nx ny nz, OBJ vn)
   std::filesystem::path output;  // .obj or .ply; empty: OBJ on stdout
 };
 std::string limit(const LimitCommandOptions& options);
-/// `--boundary edge|corner` (cifs subdivide, cifs scheme): InvalidInput naming the two otherwise.
-subdivision::BoundaryRule boundary_rule(const std::string& name);
 
 struct AutomatonOptions {
   std::filesystem::path shape;

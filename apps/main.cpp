@@ -282,8 +282,18 @@ void add_subdivide(CLI::App& app, Commands& c) {
   subdivide_cmd->add_option("--scheme", c.su.scheme, "catmull-clark, loop, doo-sabin, butterfly or sqrt3")
       ->required();
   subdivide_cmd->add_option("--levels", c.su.levels, "Subdivision steps (default 1)");
-  subdivide_cmd->add_option("--boundary", c.su.boundary,
-                            "Boundary corners (one face): edge (smoothed, default) or corner (kept)");
+  subdivide_cmd->add_option(
+      "--boundary", c.su.boundary,
+      "Boundary rule, replacing the file's: edge (default: corners smoothed), corner (one-face "
+      "corners kept) or none (the faces around the boundary left out)");
+  subdivide_cmd->add_option("--crease-method", c.su.crease_method,
+                            "Semi-sharp creases decay uniform (default) or chaikin, replacing the file's");
+  subdivide_cmd->add_option(
+      "--triangles", c.su.triangles,
+      "Catmull-Clark next to triangles: catmark (default) or smooth, replacing the file's");
+  subdivide_cmd->add_option(
+      "--fvar-interpolation", c.su.fvar_interpolation,
+      "Face-varying data (UVs): all (linear, default); the smooth modes are not built yet");
   subdivide_cmd->add_flag("--factored", c.su.factored,
                           "Linear subdivision then averaging (catmull-clark on quads, loop); same result");
   subdivide_cmd->add_flag("--quiet", c.su.quiet, "No progress bar");
@@ -299,8 +309,9 @@ void add_limit(CLI::App& app, Commands& c) {
   limit_cmd->add_option("--scheme", c.li.scheme, "catmull-clark, loop, butterfly or sqrt3")->required();
   limit_cmd->add_option("--levels", c.li.levels,
                         "Subdivision steps before the vertices go to the limit (default 1)");
-  limit_cmd->add_option("--boundary", c.li.boundary,
-                        "Boundary corners (one face): edge (smoothed, default) or corner (kept)");
+  limit_cmd->add_option(
+      "--boundary", c.li.boundary,
+      "Boundary rule, replacing the file's: edge (default: corners smoothed) or corner (kept)");
   limit_cmd->add_flag("--normals", c.li.normals, "Write unit limit normals (closed meshes)");
   limit_cmd->add_option("-o,--output", c.li.output, "Output mesh (.obj or .ply; default: OBJ on stdout)")
       ->check(output_name);

@@ -33,12 +33,6 @@ std::string mesh_output_format(const std::filesystem::path& output) {
 
 }  // namespace
 
-subdivision::BoundaryRule boundary_rule(const std::string& name) {
-  if (name == "edge") return subdivision::BoundaryRule::edge_only;
-  if (name == "corner") return subdivision::BoundaryRule::edge_and_corner;
-  throw InvalidInput("--boundary " + name + ": expected edge (boundary corners smoothed) or corner (kept)");
-}
-
 std::string mesh_info(const std::filesystem::path& path) {
   const MeshTopology t = build_topology(io::read_mesh(path), path.string());
   const MeshStatistics s = mesh_statistics(t);
@@ -66,15 +60,15 @@ namespace {
 /// folder, a device…) and its temporary made before the work; errors of the work name the input; the
 /// result goes out a chunk at a time (its text is never whole in memory), or to standard output as OBJ.
 std::string mesh_to_mesh(const std::filesystem::path& input, const std::filesystem::path& output_path,
-                         const std::function<Mesh(const Mesh&)>& make,
+                         const std::function<Mesh(Mesh)>& make,
                          const std::function<std::string(const Mesh&)>& summary) {
   const std::string format = output_path.empty() ? "obj" : mesh_output_format(output_path);
   std::optional<AtomicFile> output;
   if (!output_path.empty()) output.emplace(output_path, OutputOptions{.inputs = {input}});
-  const Mesh mesh = io::read_mesh(input);
+  Mesh mesh = io::read_mesh(input);
   Mesh result;
   try {
-    result = make(mesh);
+    result = make(std::move(mesh));
   } catch (const InvalidInput& e) {
     throw InvalidInput(input.string() + ": " + e.what());
   }
@@ -84,17 +78,38 @@ std::string mesh_to_mesh(const std::filesystem::path& input, const std::filesyst
   return "wrote " + output_path.string() + ": " + summary(result) + "\n";
 }
 
+/// The file's options replaced by the flags given ("" keeps the file's), a wrong name reported with
+/// its flag.
+TagOverrides tag_overrides(const std::string& boundary, const std::string& crease_method,
+                           const std::string& triangles, const std::string& fvar_interpolation) {
+  const auto parse = [](const char* flag, const std::string& value, auto named) {
+    using Option = decltype(named(value));
+    if (value.empty()) return std::optional<Option>();
+    try {
+      return std::optional<Option>(named(value));
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(std::string(flag) + " " + value + ": " + e.what());
+    }
+  };
+  return {.boundary = parse("--boundary", boundary, named_boundary_rule),
+          .crease_method = parse("--crease-method", crease_method, named_crease_method),
+          .triangles = parse("--triangles", triangles, named_triangle_rule),
+          .face_varying = parse("--fvar-interpolation", fvar_interpolation, named_face_varying_rule)};
+}
+
 }  // namespace
 
 std::string subdivide(const SubdivideOptions& o) {
   const subdivision::MeshScheme scheme = subdivision::named_mesh_scheme(o.scheme);
   render::ProgressBar bar("subdivide", o.quiet);
   const subdivision::MeshOptions options{
-      .boundary = boundary_rule(o.boundary),
       .progress = [&bar](std::uint64_t done, std::uint64_t total) { bar(done, total); }};
+  const TagOverrides overrides =
+      tag_overrides(o.boundary, o.crease_method, o.triangles, o.fvar_interpolation);
   return mesh_to_mesh(
       o.mesh, o.output,
-      [&](const Mesh& mesh) {
+      [&](Mesh mesh) {
+        apply(overrides, mesh.tags);
         return o.factored ? subdivision::factored_subdivide(mesh, scheme, o.levels, options)
                           : subdivision::subdivide(mesh, scheme, o.levels, options);
       },
@@ -107,10 +122,14 @@ std::string subdivide(const SubdivideOptions& o) {
 
 std::string limit(const LimitCommandOptions& o) {
   const subdivision::MeshScheme scheme = subdivision::named_mesh_scheme(o.scheme);
-  const subdivision::LimitOptions options{.boundary = boundary_rule(o.boundary), .normals = o.normals};
+  const subdivision::LimitOptions options{.normals = o.normals};
+  const TagOverrides overrides = tag_overrides(o.boundary, "", "", "");
   return mesh_to_mesh(
       o.mesh, o.output,
-      [&](const Mesh& mesh) { return subdivision::limit_mesh(mesh, scheme, o.levels, options); },
+      [&](Mesh mesh) {
+        apply(overrides, mesh.tags);
+        return subdivision::limit_mesh(mesh, scheme, o.levels, options);
+      },
       [&](const Mesh& surface) {
         return std::to_string(surface.vertices.rows()) + " limit points" +
                (o.normals ? " with normals, " : ", ") + std::to_string(face_count(surface)) + " faces (" +

@@ -27,6 +27,21 @@ namespace cifs::cli {
 namespace {
 
 namespace sd = cifs::subdivision;
+
+/// `--boundary NAME` of a local analysis: edge or corner, the flag named in a refusal.
+sd::BoundaryRule boundary_flag(const std::string& name) {
+  const sd::BoundaryRule rule = name == "none" ? sd::BoundaryRule::none : [&] {
+    try {
+      return named_boundary_rule(name);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput("--boundary " + name + ": " + e.what());
+    }
+  }();
+  if (rule == sd::BoundaryRule::none)
+    throw InvalidInput(
+        "--boundary none: a local analysis takes a boundary vertex with the rule edge or corner");
+  return rule;
+}
 using io::Stroke;
 using io::strokes_svg;
 
@@ -64,13 +79,9 @@ sd::Ends parse_ends(const std::string& ends) {
 // ------------------------------------------------------------------------------------------------
 // Mesh schemes: local subdivision matrices
 
-constexpr sd::MeshScheme kMeshSchemes[] = {sd::MeshScheme::catmull_clark, sd::MeshScheme::loop,
-                                           sd::MeshScheme::doo_sabin, sd::MeshScheme::butterfly,
-                                           sd::MeshScheme::sqrt3};
-
 std::optional<sd::MeshScheme> mesh_scheme_named(const std::string& name) {
-  for (const sd::MeshScheme s : kMeshSchemes)
-    if (sd::scheme_name(s) == name) return s;
+  for (const sd::SchemeTraits& t : sd::mesh_schemes())
+    if (t.name == name) return t.scheme;
   return std::nullopt;
 }
 
@@ -81,7 +92,7 @@ void check_scheme_name(const std::string& name) {
   for (const sd::SchemeSpec& s : sd::scheme_catalogue()) curves.push_back(s.name);
   if (mesh_scheme_named(name) || std::find(curves.begin(), curves.end(), name) != curves.end()) return;
   all = curves;
-  for (const sd::MeshScheme s : kMeshSchemes) all.emplace_back(sd::scheme_name(s));
+  for (const sd::SchemeTraits& t : sd::mesh_schemes()) all.emplace_back(t.name);
   if (const auto near = nearest(name, all); near && mesh_scheme_named(*near))
     throw InvalidInput("unknown scheme '" + name + "'; did you mean " + *near + "? (see cifs scheme --list)");
   (void)sd::named_scheme(name, {});  // throws the library's "unknown scheme 'NAME'" with its suggestion
@@ -169,7 +180,7 @@ std::string analyze_mesh_scheme(sd::MeshScheme scheme, const SchemeOptions& o) {
     throw InvalidInput("--format '" + o.format + "': json or table for a mesh scheme's analysis");
   const sd::LocalOptions local{
       .boundary = !o.boundary.empty(),
-      .rule = o.boundary.empty() ? sd::BoundaryRule::edge_only : boundary_rule(o.boundary)};
+      .rule = o.boundary.empty() ? sd::BoundaryRule::edge_only : boundary_flag(o.boundary)};
   const std::vector<int> valences = o.valence.empty()
                                         ? parse_valences(o.valences, "--valences")
                                         : std::vector<int>{integer_text(o.valence, "--valence", o.valence)};

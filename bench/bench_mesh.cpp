@@ -61,10 +61,29 @@ namespace Sdc = OpenSubdiv::Sdc;
 
 constexpr int kLevels = 4;
 
-const Mesh& input(sd::MeshScheme scheme) {
-  static const Mesh quads = cifs_test::torus(64, 128);            // 8192 quads
-  static const Mesh triangles = cifs_test::torus(64, 128, true);  // 16384 triangles
-  return scheme == sd::MeshScheme::catmull_clark ? quads : triangles;
+/// A production-like version of a mesh: an eighth of its edges semi-sharp (0.5 … 3, so that every
+/// rule and blend is exercised for the first levels), one edge in 64 infinitely sharp, a corner every
+/// 512 vertices, two holes.
+Mesh creased(Mesh m) {
+  const cifs::MeshTopology t = cifs::build_topology(m);
+  constexpr double sharpness[] = {0.5, 1.5, 2.5, 3};
+  for (std::size_t e = 0; e < t.edges.size(); ++e)
+    if (e % 8 == 0)
+      m.tags.creases.push_back({t.edges[e][0], t.edges[e][1], sharpness[(e / 8) % 4]});
+    else if (e % 64 == 1)
+      m.tags.creases.push_back({t.edges[e][0], t.edges[e][1], cifs::kInfiniteSharpness});
+  for (int v = 0; v < t.vertex_count; v += 512) m.tags.corners.push_back({v, 2});
+  m.tags.holes = {100, 5000};
+  return m;
+}
+
+/// The benchmark meshes: a torus of 8192 quads (Catmull–Clark) or 16384 triangles (Loop), plain or
+/// creased.
+const Mesh& input(sd::MeshScheme scheme, bool with_creases = false) {
+  static const Mesh quads = cifs_test::torus(64, 128), triangles = cifs_test::torus(64, 128, true),
+                    creased_quads = creased(quads), creased_triangles = creased(triangles);
+  if (scheme == sd::MeshScheme::catmull_clark) return with_creases ? creased_quads : quads;
+  return with_creases ? creased_triangles : triangles;
 }
 
 // ---- OpenSubdiv ------------------------------------------------------------------------------
@@ -73,8 +92,7 @@ using cifs_test::OsdVertex;
 
 std::unique_ptr<Far::TopologyRefiner> osd_topology(const Mesh& m, sd::MeshScheme scheme, int levels) {
   return cifs_test::osd_refiner(
-      m, scheme == sd::MeshScheme::catmull_clark ? Sdc::SCHEME_CATMARK : Sdc::SCHEME_LOOP,
-      Sdc::Options::VTX_BOUNDARY_EDGE_ONLY, levels);
+      m, scheme == sd::MeshScheme::catmull_clark ? Sdc::SCHEME_CATMARK : Sdc::SCHEME_LOOP, levels);
 }
 
 /// Positions of every level, level by level (OSD's primvar refinement); returns the last level's.
@@ -241,6 +259,12 @@ bool same_points(const Points& a, const Points& b) {
 
 void cross_check() {
   for (const auto scheme : {sd::MeshScheme::catmull_clark, sd::MeshScheme::loop}) {
+    const Mesh& c = input(scheme, true);
+    if (!same_points(sd::subdivide(c, scheme, 2).vertices, osd_one_shot(c, scheme, 2).vertices)) {
+      std::fprintf(stderr, "cifs_bench_mesh: OpenSubdiv differs from cifs (creased %s, 2 levels)\n",
+                   std::string(sd::scheme_name(scheme)).c_str());
+      std::exit(1);
+    }
     const Mesh& m = input(scheme);
     const Mesh ours = sd::subdivide(m, scheme, 2);
     std::vector<std::pair<const char*, Mesh>> theirs{{"OpenSubdiv", osd_one_shot(m, scheme, 2)},
@@ -271,8 +295,8 @@ void counters(benchmark::State& state, const Mesh& out) {
   state.counters["vertices_out"] = static_cast<double>(out.vertices.rows());
 }
 
-void cifs_one_shot(benchmark::State& state, sd::MeshScheme scheme) {
-  const Mesh& m = input(scheme);
+void cifs_one_shot(benchmark::State& state, sd::MeshScheme scheme, bool with_creases) {
+  const Mesh& m = input(scheme, with_creases);
   Mesh out;
   for (auto _ : state) {
     out = sd::subdivide(m, scheme, kLevels);
@@ -281,8 +305,8 @@ void cifs_one_shot(benchmark::State& state, sd::MeshScheme scheme) {
   counters(state, out);
 }
 
-void cifs_topology(benchmark::State& state, sd::MeshScheme scheme) {
-  const Mesh& m = input(scheme);
+void cifs_topology(benchmark::State& state, sd::MeshScheme scheme, bool with_creases) {
+  const Mesh& m = input(scheme, with_creases);
   for (auto _ : state) {
     const sd::MeshRefinement r = sd::refine_topology(m, scheme, kLevels);
     benchmark::DoNotOptimize(r.levels.back().face_vertices.data());
@@ -298,8 +322,8 @@ void cifs_replay(benchmark::State& state, sd::MeshScheme scheme) {
   }
 }
 
-void cifs_stencil_table(benchmark::State& state, sd::MeshScheme scheme) {
-  const Mesh& m = input(scheme);
+void cifs_stencil_table(benchmark::State& state, sd::MeshScheme scheme, bool with_creases) {
+  const Mesh& m = input(scheme, with_creases);
   const sd::Stencils table = sd::stencil_table(sd::refine_topology(m, scheme, kLevels));
   Points out;
   sd::apply(table, m.vertices, out);
@@ -322,8 +346,8 @@ void osd_stencil_table_build(benchmark::State& state, sd::MeshScheme scheme) {
   for (auto _ : state) benchmark::DoNotOptimize(osd_stencils(*refiner).get());
 }
 
-void osd_one_shot_case(benchmark::State& state, sd::MeshScheme scheme) {
-  const Mesh& m = input(scheme);
+void osd_one_shot_case(benchmark::State& state, sd::MeshScheme scheme, bool with_creases) {
+  const Mesh& m = input(scheme, with_creases);
   Mesh out;
   for (auto _ : state) {
     out = osd_one_shot(m, scheme, kLevels);
@@ -332,8 +356,8 @@ void osd_one_shot_case(benchmark::State& state, sd::MeshScheme scheme) {
   counters(state, out);
 }
 
-void osd_topology_case(benchmark::State& state, sd::MeshScheme scheme) {
-  const Mesh& m = input(scheme);
+void osd_topology_case(benchmark::State& state, sd::MeshScheme scheme, bool with_creases) {
+  const Mesh& m = input(scheme, with_creases);
   for (auto _ : state) {
     const auto refiner = osd_topology(m, scheme, kLevels);
     benchmark::DoNotOptimize(refiner.get());
@@ -347,8 +371,8 @@ void osd_primvar_case(benchmark::State& state, sd::MeshScheme scheme) {
   for (auto _ : state) benchmark::DoNotOptimize(osd_positions(*refiner, m, verts));
 }
 
-void osd_stencil_case(benchmark::State& state, sd::MeshScheme scheme) {
-  const Mesh& m = input(scheme);
+void osd_stencil_case(benchmark::State& state, sd::MeshScheme scheme, bool with_creases) {
+  const Mesh& m = input(scheme, with_creases);
   const auto refiner = osd_topology(m, scheme, kLevels);
   const auto stencils = osd_stencils(*refiner);
   std::vector<OsdVertex> base(static_cast<std::size_t>(m.vertices.rows()));
@@ -388,8 +412,7 @@ void cifs_limit_stencils_build(benchmark::State& state, sd::MeshScheme scheme) {
 void osd_limit_case(benchmark::State& state, sd::MeshScheme scheme) {
   const Mesh& m = input(scheme);
   const auto refiner = cifs_test::osd_refiner(
-      m, scheme == sd::MeshScheme::catmull_clark ? Sdc::SCHEME_CATMARK : Sdc::SCHEME_LOOP,
-      Sdc::Options::VTX_BOUNDARY_EDGE_ONLY, kLevels, true);
+      m, scheme == sd::MeshScheme::catmull_clark ? Sdc::SCHEME_CATMARK : Sdc::SCHEME_LOOP, kLevels, true);
   std::vector<OsdVertex> verts;
   const OsdVertex* last = osd_positions(*refiner, m, verts);
   const auto n = static_cast<std::size_t>(refiner->GetLevel(kLevels).GetNumVertices());
@@ -482,7 +505,7 @@ std::array<Points, 3> bfr_surface(const OpenSubdiv::Bfr::RefinerSurfaceFactory<>
 /// vertices; 6: equal to the exact surface to 1e-12, see surface_cross_check).
 void osd_bfr_surface_case(benchmark::State& state, sd::MeshScheme scheme) {
   const Mesh& m = surface_mesh(scheme);
-  const auto refiner = cifs_test::osd_refiner(m, osd_type(scheme), Sdc::Options::VTX_BOUNDARY_EDGE_ONLY, 0);
+  const auto refiner = cifs_test::osd_refiner(m, osd_type(scheme), 0);
   OpenSubdiv::Bfr::SurfaceFactory::Options options;
   options.SetApproxLevelSmooth(static_cast<int>(state.range(0)));
   const OpenSubdiv::Bfr::RefinerSurfaceFactory<> factory(*refiner, options);
@@ -505,7 +528,7 @@ void osd_bfr_surface_case(benchmark::State& state, sd::MeshScheme scheme) {
 void surface_cross_check(sd::MeshScheme scheme) {
   const Mesh& m = surface_mesh(scheme);
   const std::span<const sd::FacePoint> points(surface_points(scheme).data(), 20'000);
-  const auto refiner = cifs_test::osd_refiner(m, osd_type(scheme), Sdc::Options::VTX_BOUNDARY_EDGE_ONLY, 0);
+  const auto refiner = cifs_test::osd_refiner(m, osd_type(scheme), 0);
   const sd::SurfaceSample ours = sd::evaluate_limit_surface(m, scheme, points);
   for (const int level : {2, 6, 10}) {  // Bfr's default is 2
     OpenSubdiv::Bfr::SurfaceFactory::Options options;
@@ -581,18 +604,24 @@ int main(int argc, char** argv) {
     const auto reg = [&](const std::string& name, void (*f)(benchmark::State&, sd::MeshScheme)) {
       benchmark::RegisterBenchmark((s + "/L4/" + name).c_str(), f, scheme)->Unit(benchmark::kMillisecond);
     };
-    reg("one_shot/cifs", cifs_one_shot);
-    reg("one_shot/osd", osd_one_shot_case);
+    const auto pair = [&](const std::string& name, void (*f)(benchmark::State&, sd::MeshScheme, bool)) {
+      for (const bool with_creases : {false, true})
+        benchmark::RegisterBenchmark((s + (with_creases ? "/L4_creased/" : "/L4/") + name).c_str(), f, scheme,
+                                     with_creases)
+            ->Unit(benchmark::kMillisecond);
+    };
+    pair("one_shot/cifs", cifs_one_shot);
+    pair("one_shot/osd", osd_one_shot_case);
     reg("one_shot/openmesh", openmesh_case);
 #ifdef CIFS_HAVE_CGAL
     reg("one_shot/cgal", cgal_case);
 #endif
-    reg("topology/cifs", cifs_topology);
-    reg("topology/osd", osd_topology_case);
+    pair("topology/cifs", cifs_topology);
+    pair("topology/osd", osd_topology_case);
     reg("replay/cifs", cifs_replay);
     reg("replay/osd_primvar", osd_primvar_case);
-    reg("replay/cifs_stencil_table", cifs_stencil_table);
-    reg("replay/osd_stencil_table", osd_stencil_case);
+    pair("replay/cifs_stencil_table", cifs_stencil_table);
+    pair("replay/osd_stencil_table", osd_stencil_case);
     reg("stencil_table_build/cifs", cifs_stencil_table_build);
     reg("stencil_table_build/osd", osd_stencil_table_build);
     reg("limit/cifs", cifs_limit_case);

@@ -3,11 +3,14 @@
 #include "cifs/mesh.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
 #include <climits>
 #include <cmath>
 #include <string>
 
 #include "cifs/errors.hpp"
+#include "cifs/format.hpp"
 
 namespace cifs {
 namespace {
@@ -51,7 +54,56 @@ Mesh uniform_mesh(Points vertices, std::vector<int> corners, int arity) {
   return mesh;
 }
 
+namespace {
+
+/// `more`'s tags and face-varying channels after `into`'s (indices shifted); channels are kept when
+/// both meshes have the same ones (names and widths), dropped otherwise.
+void append_tags(Mesh& into, const Mesh& more, int base, int face_base) {
+  for (EdgeSharpness c : more.tags.creases) {
+    c.a += base;
+    c.b += base;
+    into.tags.creases.push_back(c);
+  }
+  for (VertexSharpness c : more.tags.corners) {
+    c.vertex += base;
+    into.tags.corners.push_back(c);
+  }
+  for (const int f : more.tags.holes) into.tags.holes.push_back(face_base + f);
+  const bool same = into.face_varying.size() == more.face_varying.size() &&
+                    std::equal(into.face_varying.begin(), into.face_varying.end(), more.face_varying.begin(),
+                               [](const FaceVaryingChannel& x, const FaceVaryingChannel& y) {
+                                 return x.name == y.name && x.values.cols() == y.values.cols();
+                               });
+  if (!same || face_base + static_cast<int>(face_count(more)) == 0) {
+    into.face_varying.clear();
+    return;
+  }
+  for (std::size_t i = 0; i < more.face_varying.size(); ++i) {
+    FaceVaryingChannel& to = into.face_varying[i];
+    const FaceVaryingChannel& from = more.face_varying[i];
+    const auto value_base = static_cast<int>(to.values.rows());
+    Points values(to.values.rows() + from.values.rows(), from.values.cols());
+    values << to.values, from.values;
+    to.values = std::move(values);
+    for (const int k : from.indices) to.indices.push_back(value_base + k);
+  }
+}
+
+}  // namespace
+
 void append(Mesh& into, const Mesh& more) {
+  if (face_count(into) == 0 && into.vertices.rows() == 0) {
+    into.tags = more.tags;  // the options of the first mesh appended
+    into.tags.creases.clear();
+    into.tags.corners.clear();
+    into.tags.holes.clear();
+    into.face_varying = more.face_varying;
+    for (FaceVaryingChannel& c : into.face_varying) {
+      c.values.resize(0, c.values.cols());
+      c.indices.clear();
+    }
+  }
+  const int face_base = static_cast<int>(face_count(into));
   const Eigen::Index base = into.vertices.rows();
   const bool normals =
       (base == 0 || into.normals.rows() == base) && more.normals.rows() == more.vertices.rows();
@@ -76,7 +128,146 @@ void append(Mesh& into, const Mesh& more) {
     into.states.insert(into.states.end(), more.states.begin(), more.states.end());
   else
     into.states.clear();
+  append_tags(into, more, static_cast<int>(base), face_base);
 }
+
+namespace {
+
+constexpr std::array<std::string_view, 3> kBoundaryNames{"none", "edge", "corner"};
+constexpr std::array<std::string_view, 2> kCreaseNames{"uniform", "chaikin"};
+constexpr std::array<std::string_view, 2> kTriangleNames{"catmark", "smooth"};
+constexpr std::array<std::string_view, 6> kFaceVaryingNames{"none",      "corners-only", "corners+1",
+                                                            "corners+2", "boundaries",   "all"};
+
+template <class Enum, std::size_t N>
+Enum named(std::string_view name, const std::array<std::string_view, N>& names, std::string_view what) {
+  std::string list;
+  for (std::size_t i = 0; i < N; ++i) {
+    if (names[i] == name) return static_cast<Enum>(i);
+    list += (i ? ", " : "") + std::string(names[i]);
+  }
+  throw InvalidInput("unknown " + std::string(what) + " '" + std::string(name) + "' (" + list + ")");
+}
+
+}  // namespace
+
+std::string_view option_name(BoundaryRule rule) noexcept {
+  return kBoundaryNames[static_cast<std::size_t>(rule)];
+}
+std::string_view option_name(CreaseMethod method) noexcept {
+  return kCreaseNames[static_cast<std::size_t>(method)];
+}
+std::string_view option_name(TriangleRule rule) noexcept {
+  return kTriangleNames[static_cast<std::size_t>(rule)];
+}
+std::string_view option_name(FaceVaryingRule rule) noexcept {
+  return kFaceVaryingNames[static_cast<std::size_t>(rule)];
+}
+BoundaryRule named_boundary_rule(std::string_view name) {
+  return named<BoundaryRule>(name, kBoundaryNames, "boundary rule");
+}
+CreaseMethod named_crease_method(std::string_view name) {
+  return named<CreaseMethod>(name, kCreaseNames, "crease method");
+}
+TriangleRule named_triangle_rule(std::string_view name) {
+  return named<TriangleRule>(name, kTriangleNames, "triangle rule");
+}
+FaceVaryingRule named_face_varying_rule(std::string_view name) {
+  return named<FaceVaryingRule>(name, kFaceVaryingNames, "face-varying interpolation");
+}
+
+void apply(const TagOverrides& o, MeshTags& tags) {
+  if (o.boundary) tags.boundary = *o.boundary;
+  if (o.crease_method) tags.crease_method = *o.crease_method;
+  if (o.triangles) tags.triangles = *o.triangles;
+  if (o.face_varying) tags.face_varying = *o.face_varying;
+}
+
+std::string first_feature(const MeshTags& tags) {
+  for (const EdgeSharpness& c : tags.creases)
+    if (c.sharpness > 0)
+      return "a crease (" + std::to_string(c.a) + " " + std::to_string(c.b) + ", sharpness " +
+             number_text(c.sharpness, 6) + ")";
+  for (const VertexSharpness& c : tags.corners)
+    if (c.sharpness > 0)
+      return "a corner (vertex " + std::to_string(c.vertex) + ", sharpness " + number_text(c.sharpness, 6) +
+             ")";
+  if (!tags.holes.empty()) return "a hole (face " + std::to_string(tags.holes.front()) + ")";
+  if (tags.boundary == BoundaryRule::none) return "the boundary rule 'none'";
+  return "";
+}
+
+std::vector<char> hole_flags(const Mesh& mesh) {
+  std::vector<char> hole(face_count(mesh), 0);
+  for (const int f : mesh.tags.holes)
+    if (f >= 0 && static_cast<std::size_t>(f) < hole.size()) hole[static_cast<std::size_t>(f)] = 1;
+  return hole;
+}
+
+namespace {
+
+void check_sharpness(double s, const std::string& where) {
+  if (!std::isfinite(s) || s < 0)
+    throw InvalidInput(where + " has sharpness " + (std::isnan(s) ? std::string("NaN") : number_text(s, 6)) +
+                       "; sharpness is a finite number ≥ 0 (" + number_text(kInfiniteSharpness, 3) +
+                       " or more: infinitely sharp)");
+}
+
+void check_tags(const Mesh& mesh, const std::string& w) {
+  const auto V = static_cast<long long>(mesh.vertices.rows());
+  const auto vertex_text = [](int v) { return std::to_string(v); };
+  std::vector<std::pair<int, int>> edges;
+  for (std::size_t i = 0; i < mesh.tags.creases.size(); ++i) {
+    const auto& c = mesh.tags.creases[i];
+    const std::string where =
+        w + ": crease " + std::to_string(i) + " (" + vertex_text(c.a) + " " + vertex_text(c.b) + ")";
+    if (c.a < 0 || c.a >= V || c.b < 0 || c.b >= V)
+      throw InvalidInput(where + " names a vertex out of range (" + std::to_string(V) + " vertices)");
+    if (c.a == c.b) throw InvalidInput(where + " joins a vertex to itself");
+    check_sharpness(c.sharpness, where);
+    edges.emplace_back(std::min(c.a, c.b), std::max(c.a, c.b));
+  }
+  std::sort(edges.begin(), edges.end());
+  if (const auto twice = std::adjacent_find(edges.begin(), edges.end()); twice != edges.end())
+    throw InvalidInput(w + ": the edge " + std::to_string(twice->first) + " " +
+                       std::to_string(twice->second) + " is creased twice");
+  std::vector<int> vertices;
+  for (std::size_t i = 0; i < mesh.tags.corners.size(); ++i) {
+    const auto& c = mesh.tags.corners[i];
+    const std::string where = w + ": corner " + std::to_string(i) + " (vertex " + vertex_text(c.vertex) + ")";
+    if (c.vertex < 0 || c.vertex >= V)
+      throw InvalidInput(where + " is out of range (" + std::to_string(V) + " vertices)");
+    check_sharpness(c.sharpness, where);
+    vertices.push_back(c.vertex);
+  }
+  std::sort(vertices.begin(), vertices.end());
+  if (const auto twice = std::adjacent_find(vertices.begin(), vertices.end()); twice != vertices.end())
+    throw InvalidInput(w + ": vertex " + std::to_string(*twice) + " has two corner sharpnesses");
+  const std::size_t F = face_count(mesh);
+  std::vector<char> hole(F, 0);
+  for (const int f : mesh.tags.holes) {
+    if (f < 0 || static_cast<std::size_t>(f) >= F)
+      throw InvalidInput(w + ": hole face " + std::to_string(f) + " is out of range (" + std::to_string(F) +
+                         " faces)");
+    hole[static_cast<std::size_t>(f)] = 1;
+  }
+  if (F > 0 && std::all_of(hole.begin(), hole.end(), [](char h) { return h != 0; }))
+    throw InvalidInput(w + ": every face is a hole; nothing is left to refine or draw");
+  for (const FaceVaryingChannel& c : mesh.face_varying) {
+    const std::string where = w + ": face-varying channel '" + c.name + "'";
+    if (c.indices.size() != mesh.face_vertices.size())
+      throw InvalidInput(where + " has " + std::to_string(c.indices.size()) + " corner indices for " +
+                         std::to_string(mesh.face_vertices.size()) + " face corners");
+    for (std::size_t k = 0; k < c.indices.size(); ++k)
+      if (c.indices[k] < 0 || c.indices[k] >= c.values.rows())
+        throw InvalidInput(where + ": corner " + std::to_string(k) + " refers to value " +
+                           std::to_string(c.indices[k]) + ", out of range (" +
+                           std::to_string(c.values.rows()) + " values)");
+    check_rows(c.values, where, "values");
+  }
+}
+
+}  // namespace
 
 void check_mesh(const Mesh& mesh, std::string_view who) {
   const std::string w(who);
@@ -114,6 +305,7 @@ void check_mesh(const Mesh& mesh, std::string_view who) {
   if (!mesh.states.empty() && mesh.states.size() != faces)
     throw InvalidInput(w + ": " + std::to_string(mesh.states.size()) + " states for " +
                        std::to_string(faces) + " faces");
+  check_tags(mesh, w);
 }
 
 Points vertex_normals(const Mesh& mesh) {

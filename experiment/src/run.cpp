@@ -238,7 +238,7 @@ Scene bcifs_scene(const io::Experiment& e, const RunOptions& o, RunReport& repor
 /// mesh is refined once or twice first and the attractor drawn at the remaining depth.
 Mesh fractal_mesh(const io::MeshSource& m, const io::Perturbation& perturbation, const RunOptions& o,
                   RunReport& report) {
-  const subdivision::MeshOptions options{.boundary = m.boundary, .max_bytes = double(o.max_bytes)};
+  const subdivision::MeshOptions options{.max_bytes = double(o.max_bytes)};
   for (int first = 1; first <= 2; ++first) {
     if (m.levels < first)
       throw InvalidInput("subdivision.levels: " + m.path.filename().string() + ": a fractal surface needs " +
@@ -271,7 +271,7 @@ Mesh fractal_mesh(const io::MeshSource& m, const io::Perturbation& perturbation,
 /// control mesh is the mesh's edges.
 Scene mesh_scene(const io::MeshSource& m, const io::Experiment& e, const RunOptions& o, RunReport& report) {
   Scene scene;
-  const subdivision::MeshOptions options{.boundary = m.boundary, .max_bytes = double(o.max_bytes)};
+  const subdivision::MeshOptions options{.max_bytes = double(o.max_bytes)};
   try {
     if (e.perturbation) {
       scene.mesh = fractal_mesh(m, *e.perturbation, o, report);
@@ -279,9 +279,8 @@ Scene mesh_scene(const io::MeshSource& m, const io::Experiment& e, const RunOpti
       const MeshTopology t = build_topology(m.mesh);
       const bool closed =
           std::none_of(t.boundary_vertex.begin(), t.boundary_vertex.end(), [](auto b) { return b; });
-      scene.mesh = subdivision::limit_mesh(
-          m.mesh, m.scheme, m.levels,
-          {.boundary = m.boundary, .normals = closed, .max_bytes = double(o.max_bytes)});
+      scene.mesh = subdivision::limit_mesh(m.mesh, m.scheme, m.levels,
+                                           {.normals = closed, .max_bytes = double(o.max_bytes)});
     } else {
       scene.mesh = subdivision::subdivide(m.mesh, m.scheme, m.levels, options);
     }

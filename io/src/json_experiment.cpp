@@ -135,12 +135,13 @@ MeshSource read_mesh_source(const Reader& r, const json& doc, const std::filesys
                                          " corners (face " + std::to_string(f) + ")");
   // The size limit is checked when the experiment runs (subdivision::MeshOptions::max_bytes).
   if (v.contains("levels")) m.levels = bounded_integer(r, v["levels"], "subdivision.levels", 0, 16);
-  if (v.contains("boundary")) {
+  if (v.contains("boundary")) {  // replaces the mesh file's boundary rule
     const std::string b = r.string(v["boundary"], "subdivision.boundary");
-    if (b == "corner")
-      m.boundary = subdivision::BoundaryRule::edge_and_corner;
-    else if (b != "edge")
-      r.fail("subdivision.boundary", "expected \"edge\" (boundary corners smoothed) or \"corner\" (kept)");
+    try {
+      m.mesh.tags.boundary = named_boundary_rule(b);
+    } catch (const InvalidInput& e) {
+      r.fail("subdivision.boundary", e.what());
+    }
   }
   if (v.contains("limit")) {
     m.limit = r.boolean(v["limit"], "subdivision.limit");

@@ -21,19 +21,17 @@ namespace {
 
 namespace sd = cifs::subdivision;
 
-sd::MeshOptions mesh_options(const std::string& boundary, double max_bytes) {
-  sd::MeshOptions o;
-  if (boundary == "edge")
-    o.boundary = sd::BoundaryRule::edge_only;
-  else if (boundary == "corner")
-    o.boundary = sd::BoundaryRule::edge_and_corner;
-  else
-    throw InvalidInput("boundary '" + boundary + "': expected 'edge' (corners smoothed) or 'corner' (kept)");
+sd::MeshOptions mesh_options(double max_bytes) {
   if (!(max_bytes > 0)) throw InvalidInput("max_bytes must be positive");
-  o.max_bytes = max_bytes;
-  return o;
+  return {.max_bytes = max_bytes};
 }
 
+/// The mesh with its boundary rule replaced when `boundary` is given ("edge", "corner", "none").
+Mesh with_boundary(const Mesh& mesh, const std::optional<std::string>& boundary) {
+  Mesh out = mesh;
+  if (boundary) out.tags.boundary = cifs::named_boundary_rule(*boundary);
+  return out;
+}
 constexpr double kDefaultBytes = 4.0 * (1ull << 30);
 
 /// A level's faces as (face_offsets, face_vertices) integer arrays.
@@ -62,40 +60,42 @@ void bind_mesh_subdivision_meshes(py::module_& m) {
       "mesh_schemes",
       []() {
         py::list out;
-        for (const auto s : {sd::MeshScheme::catmull_clark, sd::MeshScheme::loop, sd::MeshScheme::doo_sabin,
-                             sd::MeshScheme::butterfly, sd::MeshScheme::sqrt3})
-          out.append(std::string(sd::scheme_name(s)));
+        for (const sd::SchemeTraits& t : sd::mesh_schemes()) out.append(std::string(t.name));
         return out;
       },
-      "Names of the mesh schemes: catmull-clark, loop, doo-sabin, butterfly, sqrt3.");
+      "Names of the mesh schemes: catmull-clark, loop, doo-sabin, butterfly, sqrt3, bilinear.");
   m.def(
       "subdivide",
-      [](const Mesh& mesh, const std::string& scheme, int levels, const std::string& boundary,
+      [](const Mesh& mesh, const std::string& scheme, int levels, const std::optional<std::string>& boundary,
          double max_bytes, bool factored) {
         const sd::MeshScheme s = sd::named_mesh_scheme(scheme);
-        const sd::MeshOptions o = mesh_options(boundary, max_bytes);
+        const sd::MeshOptions o = mesh_options(max_bytes);
+        const Mesh tagged = with_boundary(mesh, boundary);
         py::gil_scoped_release release;
-        return factored ? sd::factored_subdivide(mesh, s, levels, o) : sd::subdivide(mesh, s, levels, o);
+        return factored ? sd::factored_subdivide(tagged, s, levels, o) : sd::subdivide(tagged, s, levels, o);
       },
-      py::arg("mesh"), py::arg("scheme"), py::arg("levels") = 1, py::kw_only(), py::arg("boundary") = "edge",
-      py::arg("max_bytes") = kDefaultBytes, py::arg("factored").noconvert() = false,
-      "The mesh refined `levels` times by a named scheme (mesh_schemes()). boundary='edge' smooths "
-      "boundary corners along the boundary curve, 'corner' keeps them (Catmull–Clark, Loop). "
+      py::arg("mesh"), py::arg("scheme"), py::arg("levels") = 1, py::kw_only(),
+      py::arg("boundary") = py::none(), py::arg("max_bytes") = kDefaultBytes,
+      py::arg("factored").noconvert() = false,
+      "The mesh refined `levels` times by a named scheme (mesh_schemes()) under its tags (creases, corners, "
+      "holes, options: mesh.tags). boundary, when given, replaces the mesh's boundary rule: 'edge' smooths "
+      "boundary corners along the boundary curve, 'corner' keeps them, 'none' leaves out the faces around "
+      "the boundary (Catmull–Clark, Loop). "
       "factored=True: linear subdivision then averaging (catmull-clark on quads, loop), the same mesh to "
       "round-off. Refused before any work when the result would need more than max_bytes.");
   m.def(
       "limit",
-      [](const Mesh& mesh, const std::string& scheme, int levels, const std::string& boundary, bool normals,
-         double max_bytes) {
+      [](const Mesh& mesh, const std::string& scheme, int levels, const std::optional<std::string>& boundary,
+         bool normals, double max_bytes) {
         const sd::MeshScheme s = sd::named_mesh_scheme(scheme);
-        const sd::LimitOptions o{.boundary = mesh_options(boundary, max_bytes).boundary,
-                                 .normals = normals,
-                                 .max_bytes = max_bytes};
+        const sd::LimitOptions o{.normals = normals, .max_bytes = mesh_options(max_bytes).max_bytes};
+        const Mesh tagged = with_boundary(mesh, boundary);
         py::gil_scoped_release release;
-        return sd::limit_mesh(mesh, s, levels, o);
+        return sd::limit_mesh(tagged, s, levels, o);
       },
-      py::arg("mesh"), py::arg("scheme"), py::arg("levels") = 1, py::kw_only(), py::arg("boundary") = "edge",
-      py::arg("normals").noconvert() = false, py::arg("max_bytes") = kDefaultBytes,
+      py::arg("mesh"), py::arg("scheme"), py::arg("levels") = 1, py::kw_only(),
+      py::arg("boundary") = py::none(), py::arg("normals").noconvert() = false,
+      py::arg("max_bytes") = kDefaultBytes,
       "The mesh after `levels` steps with every vertex on the limit surface (left eigenvectors of the local "
       "subdivision matrices), and unit limit normals when normals=True (closed meshes; not Butterfly). "
       "catmull-clark, loop, butterfly (interpolating: the vertices themselves), sqrt3.");
@@ -191,12 +191,13 @@ void bind_mesh_subdivision_schemes(py::module_& m) {
   const auto one = [&m](const char* name, sd::MeshScheme scheme, const char* doc) {
     m.def(
         name,
-        [scheme](const Mesh& mesh, int levels, const std::string& boundary, double max_bytes) {
-          const sd::MeshOptions o = mesh_options(boundary, max_bytes);
+        [scheme](const Mesh& mesh, int levels, const std::optional<std::string>& boundary, double max_bytes) {
+          const sd::MeshOptions o = mesh_options(max_bytes);
+          const Mesh tagged = with_boundary(mesh, boundary);
           py::gil_scoped_release release;
-          return sd::subdivide(mesh, scheme, levels, o);
+          return sd::subdivide(tagged, scheme, levels, o);
         },
-        py::arg("mesh"), py::arg("levels") = 1, py::kw_only(), py::arg("boundary") = "edge",
+        py::arg("mesh"), py::arg("levels") = 1, py::kw_only(), py::arg("boundary") = py::none(),
         py::arg("max_bytes") = kDefaultBytes, doc);
   };
   one("catmull_clark", sd::MeshScheme::catmull_clark, "Catmull–Clark (any polygons; quads after one level).");
@@ -205,6 +206,8 @@ void bind_mesh_subdivision_schemes(py::module_& m) {
   one("butterfly", sd::MeshScheme::butterfly,
       "Modified Butterfly, Zorin–Schröder–Sweldens (triangles; interpolating).");
   one("sqrt3", sd::MeshScheme::sqrt3, "Kobbelt's √3 (triangles).");
+  one("bilinear", sd::MeshScheme::bilinear,
+      "Bilinear (any polygons; quads at edge midpoints and centroids).");
 }
 
 /// Stencils and refinements (topology only).
@@ -272,15 +275,16 @@ void bind_mesh_subdivision_refinement(py::module_& m) {
       });
   m.def(
       "refine_topology",
-      [](const Mesh& mesh, const std::string& scheme, int levels, const std::string& boundary,
+      [](const Mesh& mesh, const std::string& scheme, int levels, const std::optional<std::string>& boundary,
          double max_bytes) {
         const sd::MeshScheme s = sd::named_mesh_scheme(scheme);
-        const sd::MeshOptions o = mesh_options(boundary, max_bytes);
+        const sd::MeshOptions o = mesh_options(max_bytes);
+        const Mesh tagged = with_boundary(mesh, boundary);
         py::gil_scoped_release release;
-        return sd::refine_topology(mesh, s, levels, o);
+        return sd::refine_topology(tagged, s, levels, o);
       },
-      py::arg("mesh"), py::arg("scheme"), py::arg("levels") = 1, py::kw_only(), py::arg("boundary") = "edge",
-      py::arg("max_bytes") = kDefaultBytes,
+      py::arg("mesh"), py::arg("scheme"), py::arg("levels") = 1, py::kw_only(),
+      py::arg("boundary") = py::none(), py::arg("max_bytes") = kDefaultBytes,
       "The refinement's topology and weights only; MeshRefinement.apply replays it on vertex data.");
 }
 
@@ -291,7 +295,7 @@ void bind_mesh_subdivision_analysis(py::module_& m) {
       [](const std::string& scheme, int valence, const std::optional<std::string>& boundary) {
         const sd::LocalOptions o{
             .boundary = boundary.has_value(),
-            .rule = boundary ? mesh_options(*boundary, kDefaultBytes).boundary : sd::BoundaryRule::edge_only};
+            .rule = boundary ? cifs::named_boundary_rule(*boundary) : sd::BoundaryRule::edge_only};
         const sd::LocalMatrix S = sd::local_matrix(sd::named_mesh_scheme(scheme), valence, o);
         const sd::LocalSpectrum sp = sd::local_spectrum(S);
         const auto complex_of = [](const std::complex<long double>& z) {

@@ -80,7 +80,7 @@ LimitStencils limit_stencils(const MeshTopology& t, MeshScheme scheme, BoundaryR
     const int n = valence(t, static_cast<std::size_t>(v));
     const bool on_boundary = t.boundary_vertex[static_cast<std::size_t>(v)] != 0;
     // Isolated vertices stay where they are; Butterfly interpolates: the vertex is its limit.
-    if (n == 0 || scheme == MeshScheme::butterfly) {
+    if (n == 0 || traits(scheme).interpolating) {
       out.columns.push_back(v);
       out.offsets.push_back(static_cast<int>(out.columns.size()));
       out.mask_of.push_back(0);
@@ -171,13 +171,22 @@ LimitFrame evaluate_limit(const LimitStencils& stencils, const Points& vertices,
 }
 
 Mesh limit_mesh(const Mesh& mesh, MeshScheme scheme, int levels, const LimitOptions& options) {
-  const MeshRefinement r = refine_topology(
-      mesh, scheme, levels, MeshOptions{.boundary = options.boundary, .max_bytes = options.max_bytes});
+  if (const std::string feature = first_feature(mesh.tags); !feature.empty())
+    throw InvalidInput(
+        std::string(scheme_name(scheme)) + ": the mesh has " + feature +
+        "; limits under creases, corners and holes are not built yet (cifs subdivide refines them)");
+  if (mesh.tags.triangles == TriangleRule::smooth && scheme == MeshScheme::catmull_clark)
+    throw InvalidInput(
+        "catmull-clark: limits under the smooth-triangle rule are not built yet; subdivide instead");
+  const MeshRefinement r = refine_topology(mesh, scheme, levels, MeshOptions{.max_bytes = options.max_bytes});
   const MeshTopology& last = r.levels.back();
   if (options.normals && scheme == MeshScheme::butterfly)
     throw InvalidInput(
         "butterfly: limit normals are not built (next to an extraordinary vertex the invariant neighbourhood "
         "is not the regular one)");
+  if (options.normals && scheme == MeshScheme::bilinear)
+    throw InvalidInput(
+        "bilinear: the limit surface is the refined mesh, with no normal at its vertices (only C0)");
   if (options.normals &&
       std::any_of(last.boundary_vertex.begin(), last.boundary_vertex.end(), [](char b) { return b != 0; }))
     throw InvalidInput(
@@ -186,7 +195,7 @@ Mesh limit_mesh(const Mesh& mesh, MeshScheme scheme, int levels, const LimitOpti
   if (options.normals && mesh.vertices.cols() != 3)
     throw InvalidInput(std::string(scheme_name(scheme)) + ": limit normals need 3-D vertices, not " +
                        std::to_string(mesh.vertices.cols()) + "-D");
-  const LimitFrame frame = evaluate_limit(limit_stencils(last, scheme, options.boundary),
+  const LimitFrame frame = evaluate_limit(limit_stencils(last, scheme, mesh.tags.boundary),
                                           apply(r, mesh.vertices), options.normals);
   Mesh out;
   out.vertices = frame.positions;

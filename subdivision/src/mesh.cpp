@@ -8,13 +8,15 @@
 #include <climits>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string>
+#include <unordered_map>
 #include <utility>
 
 #include "cifs/errors.hpp"
 #include "cifs/format.hpp"
 #include "cifs/memory.hpp"
-#include "cifs/suggest.hpp"
+#include "non_manifold.hpp"
 
 namespace cifs::subdivision {
 namespace {
@@ -138,20 +140,6 @@ bool on_boundary(const MeshTopology& t, int v) {
   return t.boundary_vertex[static_cast<std::size_t>(v)] != 0;
 }
 
-/// Boundary vertex rule shared by Catmull–Clark and Loop: the cubic B-spline rule (1, 6, 1)/8 along
-/// the boundary curve, or the vertex kept when it is a corner (one face) and corners are asked for.
-void boundary_vertex_row(const MeshTopology& t, int v, const MeshOptions& o, RowWriter& row) {
-  const auto ring = ring_edges(t, v);
-  if (ring.size() == 2 && o.boundary == BoundaryRule::edge_and_corner) {
-    row.add(v, 1);
-    return;
-  }
-  // Edges 0 and n − 1 of a boundary vertex's ring are its boundary edges.
-  row.add(v, 0.75);
-  row.add(other_vertex(t, static_cast<std::size_t>(ring.front()), v), 0.125);
-  row.add(other_vertex(t, static_cast<std::size_t>(ring.back()), v), 0.125);
-}
-
 void add_face_point(const MeshTopology& t, std::size_t f, double weight, RowWriter& row) {
   const auto corners = face(t, f);
   const double w = weight / static_cast<double>(corners.size());
@@ -220,53 +208,6 @@ std::vector<int> polygon_split_twins(const MeshTopology& t) {
   return twins;
 }
 
-Step catmull_clark_step(const MeshTopology& t, const MeshOptions& o, const Points* input) {
-  const int V = t.vertex_count, E = static_cast<int>(t.edges.size()), F = static_cast<int>(face_count(t));
-  Step s;
-  s.input = input;
-  s.vertex_count = V + E + F;  // vertex points, edge points, face points
-  const std::size_t H = t.face_vertices.size();
-  // Vertex rows: itself, n neighbours, the corners of n faces; edge rows: both faces' corners.
-  reserve_rows(s, static_cast<std::size_t>(s.vertex_count), static_cast<std::size_t>(V) + 2 * H + 2 * H + H);
-  RowWriter row(s, t.vertex_count);
-  for (int v = 0; v < V; ++v) {
-    const auto ring = ring_edges(t, v);
-    if (ring.empty()) {
-      row.add(v, 1);
-    } else if (on_boundary(t, v)) {
-      boundary_vertex_row(t, v, o, row);
-    } else {
-      // (F + 2R + (n − 3)V)/n with R the mean of the edge midpoints: V (n − 2)/n, each neighbour
-      // and each face point 1/n².
-      const double n = static_cast<double>(ring.size()), w = 1 / (n * n);
-      row.add(v, (n - 2) / n);
-      for (const int e : ring) row.add(other_vertex(t, static_cast<std::size_t>(e), v), w);
-      for (const int f : vertex_faces(t, static_cast<std::size_t>(v)))
-        add_face_point(t, static_cast<std::size_t>(f), w, row);
-    }
-    row.finish();
-  }
-  for (int e = 0; e < E; ++e) {
-    const auto [a, b] = t.edges[static_cast<std::size_t>(e)];
-    const auto [f0, f1] = t.edge_faces[static_cast<std::size_t>(e)];
-    if (f1 < 0) {
-      row.add(a, 0.5);
-      row.add(b, 0.5);
-    } else {
-      row.add(a, 0.25);
-      row.add(b, 0.25);
-      add_face_point(t, static_cast<std::size_t>(f0), 0.25, row);
-      add_face_point(t, static_cast<std::size_t>(f1), 0.25, row);
-    }
-    row.finish();
-  }
-  for (int f = 0; f < F; ++f) {
-    add_face_point(t, static_cast<std::size_t>(f), 1, row);
-    row.finish();
-  }
-  return s;
-}
-
 /// The corner of triangle f that is not on edge e.
 int opposite_corner(const MeshTopology& t, int f, int e) {
   const auto corners = face(t, static_cast<std::size_t>(f));
@@ -325,42 +266,100 @@ double loop_beta(int n) {
   return (0.625 - c * c) / n;
 }
 
-Step loop_step(const MeshTopology& t, const MeshOptions& o, const Points* input) {
-  const int V = t.vertex_count, E = static_cast<int>(t.edges.size());
+/// The sharpness of an edge, of a vertex, and whether a face is a hole, at a level whose features
+/// may be empty (all smooth, no hole).
+double edge_sharpness(const LevelFeatures& L, std::size_t e) {
+  return L.edge_sharpness.empty() ? 0 : L.edge_sharpness[e];
+}
+double vertex_sharpness(const LevelFeatures& L, std::size_t v) {
+  return L.vertex_sharpness.empty() ? 0 : L.vertex_sharpness[v];
+}
+bool smooth_level(const LevelFeatures& L) {
+  return L.edge_sharpness.empty() && L.vertex_sharpness.empty();
+}
+
+/// Catmull–Clark, Loop and bilinear (the primal schemes with OpenSubdiv's rules): a vertex point per
+/// vertex, an edge point per edge and, for the quad split, a face point per face, each from the
+/// rules' masks (cifs/subdivision/rules.hpp). `halves[2e + k]` receives the sharpness after the step
+/// of edge e's half at its end k (edges[e][k]); left empty on a smooth level.
+Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& L, const MeshTags& tags,
+                 const Points* input, std::vector<double>& halves) {
+  const bool quads = traits(scheme).split == Split::quads;
+  const int V = t.vertex_count, E = static_cast<int>(t.edges.size()), F = static_cast<int>(face_count(t));
   Step s;
   s.input = input;
-  s.vertex_count = V + E;
-  const auto Vs = static_cast<std::size_t>(V), Es = static_cast<std::size_t>(E);
-  reserve_rows(s, Vs + Es, Vs + 6 * Es);  // vertex rows ~ 1 + n, edge rows 4
+  s.vertex_count = V + E + (quads ? F : 0);  // vertex points, edge points, face points
+  const std::size_t H = t.face_vertices.size();
+  // Vertex rows: itself, n neighbours, the corners of n faces; edge rows: both faces' corners.
+  reserve_rows(
+      s, static_cast<std::size_t>(s.vertex_count),
+      quads ? static_cast<std::size_t>(V) + 5 * H : static_cast<std::size_t>(V) + 6 * t.edges.size());
   RowWriter row(s, t.vertex_count);
+  const bool smooth = smooth_level(L);
+  halves.assign(smooth ? 0 : 2 * t.edges.size(), 0.0);
+  std::vector<double> pe, ce;  // sharpness of a vertex's edges before and after the step
   for (int v = 0; v < V; ++v) {
     const auto ring = ring_edges(t, v);
-    if (ring.empty()) {
-      row.add(v, 1);
-    } else if (on_boundary(t, v)) {
-      boundary_vertex_row(t, v, o, row);
-    } else {
-      const int n = static_cast<int>(ring.size());
-      const double beta = loop_beta(n);
-      row.add(v, 1 - n * beta);
-      for (const int e : ring) row.add(other_vertex(t, static_cast<std::size_t>(e), v), beta);
+    const auto faces = vertex_faces(t, static_cast<std::size_t>(v));
+    VertexMask m;  // a vertex without faces stays
+    if (!ring.empty()) {
+      VertexNeighbourhood n;
+      n.faces = static_cast<int>(faces.size());  // smooth level: no sharpness
+      if (!smooth) {
+        pe.clear();
+        for (const int e : ring) pe.push_back(edge_sharpness(L, static_cast<std::size_t>(e)));
+        ce.resize(pe.size());
+        child_edge_sharpness(tags.crease_method, pe, ce);
+        for (std::size_t i = 0; i < ring.size(); ++i) {
+          const auto e = static_cast<std::size_t>(ring[i]);
+          halves[2 * e + (t.edges[e][0] == v ? 0 : 1)] = ce[i];
+        }
+        n.edges = pe;
+        n.child_edges = ce;
+        n.sharpness = vertex_sharpness(L, static_cast<std::size_t>(v));
+        n.child_sharpness = decremented_sharpness(n.sharpness);
+      }
+      m = vertex_mask(scheme, tags.crease_method, n);
     }
+    if (m.face != 0)
+      for (const int f : faces) add_face_point(t, static_cast<std::size_t>(f), m.face, row);
+    if (m.edge != 0)
+      for (const int e : ring) row.add(other_vertex(t, static_cast<std::size_t>(e), v), m.edge);
+    if (m.crease_ends[0] >= 0)
+      for (const int k : m.crease_ends)
+        row.add(other_vertex(t, static_cast<std::size_t>(ring[static_cast<std::size_t>(k)]), v), m.crease);
+    row.add(v, m.vertex);
     row.finish();
   }
   for (int e = 0; e < E; ++e) {
-    const auto [a, b] = t.edges[static_cast<std::size_t>(e)];
-    const auto [f0, f1] = t.edge_faces[static_cast<std::size_t>(e)];
-    if (f1 < 0) {
-      row.add(a, 0.5);
-      row.add(b, 0.5);
-    } else {
-      row.add(a, 0.375);
-      row.add(b, 0.375);
-      row.add(opposite_corner(t, f0, e), 0.125);
-      row.add(opposite_corner(t, f1, e), 0.125);
-    }
+    const auto ue = static_cast<std::size_t>(e);
+    const auto [a, b] = t.edges[ue];
+    const auto [f0, f1] = t.edge_faces[ue];
+    const auto size = [&](int f) {
+      return f < 0 ? 0 : static_cast<int>(face(t, static_cast<std::size_t>(f)).size());
+    };
+    const EdgeMask m =
+        edge_mask(scheme, tags.triangles,
+                  {.sharpness = edge_sharpness(L, ue),
+                   .child_sharpness = {smooth ? 0 : halves[2 * ue], smooth ? 0 : halves[2 * ue + 1]},
+                   .face_sizes = {size(f0), size(f1)}});
+    if (m.face != 0)
+      for (const int f : {f0, f1}) {
+        if (f < 0) continue;
+        if (quads)
+          add_face_point(t, static_cast<std::size_t>(f), m.face, row);
+        else
+          row.add(opposite_corner(t, f, e), m.face);
+      }
+    row.add(a, m.end);
+    row.add(b, m.end);
     row.finish();
   }
+  if (quads)
+    for (int f = 0; f < F; ++f) {
+      add_face_point(t, static_cast<std::size_t>(f), 1, row);
+      row.finish();
+    }
   return s;
 }
 
@@ -438,7 +437,7 @@ void butterfly_regular(const MeshTopology& t, int e, RowWriter& row) {
 /// stencil unless an end is an interior vertex of valence ≠ 6, whose ring stencil is then used
 /// (the mean of the two when both are). Boundary ends count as regular (OpenMesh's rule; ZSS's
 /// boundary tables are not implemented).
-Step butterfly_step(const MeshTopology& t, const MeshOptions&, const Points* input) {
+Step butterfly_step(const MeshTopology& t, const Points* input) {
   const int V = t.vertex_count, E = static_cast<int>(t.edges.size());
   Step s;
   s.input = input;
@@ -563,7 +562,7 @@ Step sqrt3_step(const MeshTopology& t, bool refine_boundary, const Points* input
 /// interior edge (a quad) and per interior vertex (its corner points around it). Boundary edges
 /// and vertices make no face, so the surface shrinks away from the boundary (CGAL's rule:
 /// corner points are the same at the boundary).
-Step doo_sabin_step(const MeshTopology& t, const MeshOptions&, const Points* input) {
+Step doo_sabin_step(const MeshTopology& t, const Points* input) {
   Step s;
   s.input = input;
   s.vertex_count = static_cast<int>(t.face_vertices.size());  // corner (f, i) → face_offsets[f] + i
@@ -605,50 +604,55 @@ Step doo_sabin_step(const MeshTopology& t, const MeshOptions&, const Points* inp
 }
 
 /// The adjacency of a step's child faces (taken over from it): paired by construction where the
-/// split is Catmull–Clark's or the triangle split, searched otherwise.
+/// split is the quad or the triangle split, searched otherwise.
 MeshTopology child_topology(MeshScheme scheme, const MeshTopology& parent, Step& s, const std::string& who) {
   std::vector<int> twins;
-  if (scheme == MeshScheme::catmull_clark)
-    twins = polygon_split_twins(parent);
-  else if (scheme == MeshScheme::loop || scheme == MeshScheme::butterfly)
-    twins = triangle_split_twins(parent);
-  else
-    return build_topology(std::move(s.face_offsets), std::move(s.face_vertices), s.vertex_count, who);
+  switch (traits(scheme).split) {
+    case Split::quads:
+      twins = polygon_split_twins(parent);
+      break;
+    case Split::triangles:
+      twins = triangle_split_twins(parent);
+      break;
+    case Split::dual:
+    case Split::sqrt3:
+      return build_topology(std::move(s.face_offsets), std::move(s.face_vertices), s.vertex_count, who);
+  }
   return assemble_topology(std::move(s.face_offsets), std::move(s.face_vertices), twins, s.vertex_count);
 }
 
 /// Whether a scheme's child faces are a split of the parent's faces alone, made after the rows
-/// (Catmull–Clark's quads, the triangle split of Loop and Butterfly).
+/// (the quad split, the triangle split).
 bool splits_faces(MeshScheme scheme) {
-  return scheme == MeshScheme::catmull_clark || scheme == MeshScheme::loop || scheme == MeshScheme::butterfly;
+  const Split split = traits(scheme).split;
+  return split == Split::quads || split == Split::triangles;
 }
 
 /// Makes the child faces of a scheme that splits_faces.
 void split_faces(MeshScheme scheme, const MeshTopology& t, Step& s) {
-  if (scheme == MeshScheme::catmull_clark)
+  if (traits(scheme).split == Split::quads)
     split_polygons(t, s);
   else
     split_triangles(t, s);
 }
 
 /// Step `level` (0 for the first) of a refinement: its rows and, unless `faces` is false for a
-/// scheme that splits_faces (then split_faces makes them), its child faces.
-/// With `input`, the rows are applied to it as they are made (Step::output) instead of kept.
-Step step(MeshScheme scheme, const MeshTopology& t, const MeshOptions& o, int level,
-          const Points* input = nullptr, bool faces = true) {
+/// scheme that splits_faces (then split_faces makes them), its child faces. With `input`, the rows
+/// are applied to it as they are made (Step::output) instead of kept. `halves` as primal_step.
+Step step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& L, const MeshTags& tags, int level,
+          std::vector<double>& halves, const Points* input = nullptr, bool faces = true) {
   Step s;
   switch (scheme) {
     case MeshScheme::catmull_clark:
-      s = catmull_clark_step(t, o, input);
-      break;
     case MeshScheme::loop:
-      s = loop_step(t, o, input);
+    case MeshScheme::bilinear:
+      s = primal_step(scheme, t, L, tags, input, halves);
       break;
     case MeshScheme::butterfly:
-      s = butterfly_step(t, o, input);
+      s = butterfly_step(t, input);
       break;
     case MeshScheme::doo_sabin:
-      return doo_sabin_step(t, o, input);
+      return doo_sabin_step(t, input);
     case MeshScheme::sqrt3:
       return sqrt3_step(t, level % 2 == 1, input);
   }
@@ -663,21 +667,20 @@ struct Counts {
 
 /// The counts after one step, by formula (closed meshes where the scheme requires them).
 Counts next_counts(MeshScheme scheme, const Counts& c) {
-  switch (scheme) {
-    case MeshScheme::catmull_clark:
+  switch (traits(scheme).split) {
+    case Split::quads:
       return {c.vertices + c.edges + c.faces, 2 * c.edges + c.corners, c.corners, 4 * c.corners};
-    case MeshScheme::loop:
-    case MeshScheme::butterfly:
+    case Split::triangles:
       return {c.vertices + c.edges, 2 * c.edges + 3 * c.faces, 4 * c.faces, 12 * c.faces};
-    case MeshScheme::doo_sabin:
+    case Split::dual:
       return {c.corners, 2 * c.corners, c.faces + c.edges + c.vertices, c.corners + 6 * c.edges};
-    case MeshScheme::sqrt3:
+    case Split::sqrt3:
       return {c.vertices + c.faces, c.edges + 3 * c.faces, 3 * c.faces, 9 * c.faces};
   }
   return c;
 }
 
-void check_scheme_input(const MeshTopology& t, MeshScheme scheme) {
+void check_scheme_input(const MeshTopology& t, const Mesh& mesh, MeshScheme scheme) {
   const std::string who(scheme_name(scheme));
   if (triangles_only(scheme))
     for (std::size_t f = 0; f < face_count(t); ++f)
@@ -685,38 +688,184 @@ void check_scheme_input(const MeshTopology& t, MeshScheme scheme) {
         throw InvalidInput(
             who + ": face " + std::to_string(f) + " has " + std::to_string(face(t, f).size()) +
             " corners; this scheme runs on triangles (triangulate first, or use catmull-clark)");
+  if (!traits(scheme).sharpness)
+    if (const std::string tag = first_feature(mesh.tags); !tag.empty())
+      throw InvalidInput(who + ": the mesh has " + tag +
+                         "; this scheme has no rules for creases, corners, holes " +
+                         "or the boundary rule 'none' (catmull-clark, loop and bilinear have)");
+  if (!mesh.face_varying.empty() && mesh.tags.face_varying != FaceVaryingRule::all)
+    throw InvalidInput(
+        who + ": face-varying channel '" + mesh.face_varying.front().name +
+        "' asks for face-varying interpolation other than 'all' (linear everywhere), which is " +
+        "not built yet; ask for 'all' (--fvar-interpolation all) or drop the channel");
+}
+
+/// Edge index of every vertex pair, for tags that name edges by their vertices.
+class EdgeIndex {
+ public:
+  explicit EdgeIndex(const MeshTopology& t) {
+    index_.reserve(t.edges.size());
+    for (std::size_t e = 0; e < t.edges.size(); ++e)
+      index_.emplace(key(t.edges[e][0], t.edges[e][1]), static_cast<int>(e));
+  }
+  int find(int a, int b) const {
+    const auto it = index_.find(key(a, b));
+    return it == index_.end() ? -1 : it->second;
+  }
+
+ private:
+  static std::uint64_t key(int a, int b) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::min(a, b))) << 32) |
+           static_cast<std::uint32_t>(std::max(a, b));
+  }
+  std::unordered_map<std::uint64_t, int> index_;
+};
+
+/// The features of a level from its tags, as OpenSubdiv's factory prepares its base level: boundary
+/// edges infinitely sharp; under `edge_and_corner` a boundary vertex with one face an infinitely sharp
+/// corner; under `none` (schemes with rules beyond the face itself) the faces around a boundary vertex
+/// with a boundary edge not tagged infinitely sharp become holes.
+LevelFeatures level_features(const MeshTopology& t, const MeshTags& tags, MeshScheme scheme,
+                             const std::string& who) {
+  LevelFeatures L;
+  const std::size_t V = static_cast<std::size_t>(t.vertex_count), E = t.edges.size(), F = face_count(t);
+  std::vector<double> es(E, 0), vs(V, 0);
+  std::vector<char> holes(F, 0);
+  if (!tags.creases.empty()) {
+    const EdgeIndex index(t);
+    for (std::size_t i = 0; i < tags.creases.size(); ++i) {
+      const EdgeSharpness& c = tags.creases[i];
+      const int e = index.find(c.a, c.b);
+      if (e < 0)
+        throw InvalidInput(who + ": crease " + std::to_string(i) + " joins vertices " + std::to_string(c.a) +
+                           " and " + std::to_string(c.b) + ", which are not an edge of the mesh");
+      es[static_cast<std::size_t>(e)] = held_sharpness(c.sharpness);
+    }
+  }
+  for (const VertexSharpness& c : tags.corners)
+    vs[static_cast<std::size_t>(c.vertex)] = held_sharpness(c.sharpness);
+  for (const int f : tags.holes) holes[static_cast<std::size_t>(f)] = 1;
+  if (tags.boundary == BoundaryRule::none && scheme != MeshScheme::bilinear)
+    for (std::size_t v = 0; v < V; ++v) {
+      if (!t.boundary_vertex[v]) continue;
+      const auto ring = vertex_edges(t, v);
+      if (std::any_of(ring.begin(), ring.end(), [&](int e) {
+            return is_boundary_edge(t, static_cast<std::size_t>(e)) &&
+                   es[static_cast<std::size_t>(e)] < kInfiniteSharpness;
+          }))
+        for (const int f : vertex_faces(t, v)) holes[static_cast<std::size_t>(f)] = 1;
+    }
+  for (std::size_t e = 0; e < E; ++e)
+    if (is_boundary_edge(t, e)) es[e] = kInfiniteSharpness;
+  if (tags.boundary == BoundaryRule::edge_and_corner)
+    for (std::size_t v = 0; v < V; ++v)
+      if (vertex_faces(t, v).size() == 1 && vertex_edges(t, v).size() == 2) vs[v] = kInfiniteSharpness;
+  const auto any = [](const auto& x) {
+    return std::any_of(x.begin(), x.end(), [](auto y) { return y > 0; });
+  };
+  if (any(es) || any(vs)) {
+    L.edge_sharpness = std::move(es);
+    L.vertex_sharpness = std::move(vs);
+  }
+  if (any(holes)) L.holes = std::move(holes);
+  return L;
+}
+
+/// The tags after a step of a primal scheme (vertex points first, then edge points): each sharp
+/// edge's two halves with their sharpness after the step, corners decremented, the children of holes
+/// (a quad per parent corner, four triangles per triangle). Boundary edges are listed only under
+/// the boundary rule `none`, where level_features must not make new holes of them.
+MeshTags child_tags(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& L,
+                    const std::vector<double>& halves, const MeshTags& tags) {
+  MeshTags out = tags;
+  out.creases.clear();
+  out.corners.clear();
+  out.holes.clear();
+  const int V = t.vertex_count;
+  if (!halves.empty())
+    for (std::size_t e = 0; e < t.edges.size(); ++e) {
+      if (is_boundary_edge(t, e) && tags.boundary != BoundaryRule::none) continue;
+      const int mid = V + static_cast<int>(e);
+      if (halves[2 * e] > 0) out.creases.push_back({t.edges[e][0], mid, halves[2 * e]});
+      if (halves[2 * e + 1] > 0) out.creases.push_back({mid, t.edges[e][1], halves[2 * e + 1]});
+    }
+  for (std::size_t v = 0; v < L.vertex_sharpness.size(); ++v)
+    if (const double s = decremented_sharpness(L.vertex_sharpness[v]); s > 0 && vertex_faces(t, v).size() > 0)
+      if (!(tags.boundary == BoundaryRule::edge_and_corner && vertex_faces(t, v).size() == 1 &&
+            vertex_edges(t, v).size() == 2))  // made sharp again by the boundary rule
+        out.corners.push_back({static_cast<int>(v), s});
+  if (!L.holes.empty()) {
+    const bool quads = traits(scheme).split == Split::quads;
+    for (std::size_t f = 0; f < face_count(t); ++f) {
+      if (!L.holes[f]) continue;
+      if (quads)
+        for (int h = t.face_offsets[f]; h < t.face_offsets[f + 1]; ++h) out.holes.push_back(h);
+      else
+        for (int k = 0; k < 4; ++k) out.holes.push_back(4 * static_cast<int>(f) + k);
+    }
+  }
+  return out;
+}
+
+/// A face-varying channel after one step of the quad or triangle split, interpolated linearly (the
+/// face-varying rule `all`): the parent values, then a value per face-varying edge (an edge whose two
+/// faces give it the same two values is one edge; across a seam, two), then (quads) one per face;
+/// child corners in the order split_polygons and split_triangles make the faces.
+FaceVaryingChannel refine_channel(const MeshTopology& t, Split split, const FaceVaryingChannel& c) {
+  const std::size_t H = t.face_vertices.size();
+  const auto next_corner = [&](std::size_t f, std::size_t h) {
+    return h + 1 == static_cast<std::size_t>(t.face_offsets[f + 1])
+               ? static_cast<std::size_t>(t.face_offsets[f])
+               : h + 1;
+  };
+  std::vector<int> edge_value(H, -1);
+  std::vector<std::array<int, 2>> edge_ends;
+  const int base = static_cast<int>(c.values.rows());
+  for (std::size_t f = 0; f < face_count(t); ++f)
+    for (auto h = static_cast<std::size_t>(t.face_offsets[f]);
+         h < static_cast<std::size_t>(t.face_offsets[f + 1]); ++h) {
+      if (edge_value[h] >= 0) continue;
+      const std::size_t n = next_corner(f, h);
+      edge_value[h] = base + static_cast<int>(edge_ends.size());
+      edge_ends.push_back({c.indices[h], c.indices[n]});
+      const Across a = across(t, static_cast<int>(f), static_cast<int>(h));
+      if (a.face < 0) continue;
+      const auto g = static_cast<std::size_t>(a.half_edge);
+      if (c.indices[g] == c.indices[n] &&
+          c.indices[next_corner(static_cast<std::size_t>(a.face), g)] == c.indices[h])
+        edge_value[g] = edge_value[h];
+    }
+  const bool quads = split == Split::quads;
+  FaceVaryingChannel out;
+  out.name = c.name;
+  out.values.resize(base + static_cast<Eigen::Index>(edge_ends.size()) +
+                        (quads ? static_cast<Eigen::Index>(face_count(t)) : 0),
+                    c.values.cols());
+  out.values.topRows(base) = c.values;
+  for (std::size_t k = 0; k < edge_ends.size(); ++k)
+    out.values.row(base + static_cast<Eigen::Index>(k)) =
+        0.5 * (c.values.row(edge_ends[k][0]) + c.values.row(edge_ends[k][1]));
+  const int face_base = base + static_cast<int>(edge_ends.size());
+  for (std::size_t f = 0; f < face_count(t); ++f) {
+    const auto b = static_cast<std::size_t>(t.face_offsets[f]), k = face(t, f).size();
+    if (quads) {
+      Eigen::RowVectorXd centre = Eigen::RowVectorXd::Zero(c.values.cols());
+      for (std::size_t i = 0; i < k; ++i) centre += c.values.row(c.indices[b + i]);
+      out.values.row(face_base + static_cast<Eigen::Index>(f)) = centre / static_cast<double>(k);
+      for (std::size_t i = 0; i < k; ++i)
+        out.indices.insert(out.indices.end(),
+                           {c.indices[b + i], edge_value[b + i], face_base + static_cast<int>(f),
+                            edge_value[b + (i + k - 1) % k]});
+    } else {
+      const int c0 = c.indices[b], c1 = c.indices[b + 1], c2 = c.indices[b + 2];
+      const int ab = edge_value[b], bc = edge_value[b + 1], ca = edge_value[b + 2];
+      out.indices.insert(out.indices.end(), {c0, ab, ca, ab, c1, bc, ca, bc, c2, ab, bc, ca});
+    }
+  }
+  return out;
 }
 
 }  // namespace
-
-MeshScheme named_mesh_scheme(std::string_view name) {
-  for (const MeshScheme s : {MeshScheme::catmull_clark, MeshScheme::loop, MeshScheme::doo_sabin,
-                             MeshScheme::butterfly, MeshScheme::sqrt3})
-    if (scheme_name(s) == name) return s;
-  throw InvalidInput("unknown mesh scheme '" + std::string(name) + "'" +
-                     did_you_mean(name, {"catmull-clark", "loop", "doo-sabin", "butterfly", "sqrt3"}) +
-                     " (catmull-clark, loop, doo-sabin, butterfly, sqrt3)");
-}
-
-std::string_view scheme_name(MeshScheme scheme) noexcept {
-  switch (scheme) {
-    case MeshScheme::catmull_clark:
-      return "catmull-clark";
-    case MeshScheme::loop:
-      return "loop";
-    case MeshScheme::doo_sabin:
-      return "doo-sabin";
-    case MeshScheme::butterfly:
-      return "butterfly";
-    case MeshScheme::sqrt3:
-      return "sqrt3";
-  }
-  return "";
-}
-
-bool triangles_only(MeshScheme scheme) noexcept {
-  return scheme == MeshScheme::loop || scheme == MeshScheme::butterfly || scheme == MeshScheme::sqrt3;
-}
 
 namespace {
 
@@ -727,8 +876,9 @@ MeshTopology checked_input(const Mesh& mesh, MeshScheme scheme, int levels, cons
                            bool keep_levels) {
   const std::string who(scheme_name(scheme));
   if (levels < 0) throw InvalidInput(who + ": " + std::to_string(levels) + " levels; expected 0 or more");
+  check_mesh(mesh, who);
   MeshTopology t0 = build_topology(mesh, who);
-  check_scheme_input(t0, scheme);
+  check_scheme_input(t0, mesh, scheme);
   Counts c{static_cast<double>(t0.vertex_count), static_cast<double>(t0.edges.size()),
            static_cast<double>(face_count(t0)), static_cast<double>(t0.face_vertices.size())};
   double bytes = 0;
@@ -776,12 +926,28 @@ class LevelProgress {
 
 MeshRefinement refine_topology(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOptions& options) {
   const std::string who(scheme_name(scheme));
-  MeshRefinement r{.scheme = scheme, .options = options, .levels = {}, .steps = {}};
-  r.levels.push_back(checked_input(mesh, scheme, levels, options, true));
+  MeshRefinement r{
+      .scheme = scheme, .options = options, .levels = {}, .features = {}, .tags = {}, .steps = {}};
+  try {
+    r.levels.push_back(checked_input(mesh, scheme, levels, options, true));
+  } catch (const InvalidInput& e) {
+    if (traits(scheme).sharpness && detail::split_non_manifold(mesh, who))
+      throw InvalidInput(std::string(e.what()) + "; subdivide refines non-manifold meshes, refine_topology " +
+                         "(a replayable refinement) does not yet");
+    throw;
+  }
+  r.tags.push_back(mesh.tags);
+  r.features.push_back(level_features(r.levels.back(), r.tags.back(), scheme, who));
+  std::vector<double> halves;
   for (int level = 0; level < levels; ++level) {
-    Step s = step(scheme, r.levels.back(), options, level);
+    const MeshTopology& t = r.levels.back();
+    Step s = step(scheme, t, r.features.back(), r.tags.back(), level, halves);
     r.steps.push_back(std::move(s.stencils));
-    r.levels.push_back(child_topology(scheme, r.levels.back(), s, who));
+    r.tags.push_back(traits(scheme).sharpness
+                         ? child_tags(scheme, t, r.features.back(), halves, r.tags.back())
+                         : r.tags.back());
+    r.levels.push_back(child_topology(scheme, t, s, who));
+    r.features.push_back(level_features(r.levels.back(), r.tags.back(), scheme, who));
   }
   return r;
 }
@@ -864,19 +1030,37 @@ Points apply(const MeshRefinement& refinement, const Points& vertices) {
 Mesh subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOptions& options) {
   const std::string who(scheme_name(scheme));
   check_mesh(mesh, who);
-  // One level at a time: only the current level's topology, weights and positions live, and the
-  // last level's faces need no adjacency.
-  MeshTopology t = checked_input(mesh, scheme, levels, options, false);
+  // A non-manifold mesh is refined through its manifold stand-in (non_manifold.hpp), whose copies of
+  // vertices are merged back at the end.
+  std::optional<detail::ManifoldSplit> split;
+  MeshTopology t;
+  try {
+    t = checked_input(mesh, scheme, levels, options, false);
+  } catch (const InvalidInput&) {
+    if (!traits(scheme).sharpness || !(split = detail::split_non_manifold(mesh, who))) throw;
+    t = checked_input(split->mesh, scheme, levels, options, false);
+  }
+  const Mesh& source = split ? split->mesh : mesh;
+  detail::Representatives same;  // of the stand-in's vertices and edges, level by level
+  if (split) same = detail::initial_representatives(t, std::move(split->representative));
+  MeshTags tags = source.tags;
+  LevelFeatures features = level_features(t, tags, scheme, who);
   LevelProgress progress(t, scheme, levels, options);
   Mesh out;
-  out.vertices = mesh.vertices;
-  out.face_offsets = mesh.face_offsets;
-  out.face_vertices = mesh.face_vertices;
+  out.vertices = source.vertices;
+  out.face_offsets = source.face_offsets;
+  out.face_vertices = source.face_vertices;
+  out.face_varying = source.face_varying;
+  std::vector<double> halves;
   for (int level = 0; level < levels; ++level) {
     const bool last = level + 1 == levels, split_last = last && splits_faces(scheme);
-    Step s = step(scheme, t, options, level, &out.vertices, !split_last);
+    Step s = step(scheme, t, features, tags, level, halves, &out.vertices, !split_last);
     out.vertices = std::move(s.output);
     s.output = Points();  // the parent's positions, swapped in by the move
+    if (traits(scheme).sharpness) tags = child_tags(scheme, t, features, halves, tags);
+    std::vector<int> child_vertices;
+    if (split) child_vertices = detail::child_vertex_representatives(t, same, s.vertex_count);
+    for (FaceVaryingChannel& c : out.face_varying) c = refine_channel(t, traits(scheme).split, c);
     if (split_last) {
       // Only the faces are left to make, from the parent's faces and face_edges: free its rings
       // and edge lists first, so that they, the parent's positions and the whole output never
@@ -892,11 +1076,16 @@ Mesh subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOption
       out.face_offsets = std::move(s.face_offsets);
       out.face_vertices = std::move(s.face_vertices);
     } else {
-      t = child_topology(scheme, t, s, who);
+      MeshTopology child = child_topology(scheme, t, s, who);
+      if (split) same.edge = detail::child_edge_representatives(t, same, child);  // the parent's vertices
+      t = std::move(child);
+      features = level_features(t, tags, scheme, who);
     }
+    if (split) same.vertex = std::move(child_vertices);
     progress.level_done(level);
   }
-  return out;
+  out.tags = std::move(tags);
+  return split ? detail::merge_copies(std::move(out), same.vertex) : out;
 }
 
 namespace {
@@ -909,7 +1098,7 @@ namespace {
 /// n = 4 and never Loop; these weights make both forms equal. A boundary vertex of the split mesh
 /// moves to x/2 + (x₋ + x₊)/4 along the boundary (the curve's linear-then-average form of
 /// (1, 6, 1)/8 and midpoints), or stays when it has one face under `edge_and_corner`.
-Points factored_step(const MeshTopology& t, MeshScheme scheme, const MeshOptions& o, const Points& P,
+Points factored_step(const MeshTopology& t, MeshScheme scheme, BoundaryRule boundary, const Points& P,
                      MeshTopology& split, const std::string& who) {
   const bool cc = scheme == MeshScheme::catmull_clark;
   const int V = t.vertex_count, E = static_cast<int>(t.edges.size()), F = static_cast<int>(face_count(t));
@@ -943,7 +1132,7 @@ Points factored_step(const MeshTopology& t, MeshScheme scheme, const MeshOptions
     const auto faces = vertex_faces(split, static_cast<std::size_t>(v));
     const auto ring = ring_edges(split, v);
     if (faces.empty() ||
-        (on_boundary(split, v) && faces.size() == 1 && o.boundary == BoundaryRule::edge_and_corner)) {
+        (on_boundary(split, v) && faces.size() == 1 && boundary == BoundaryRule::edge_and_corner)) {
       out.row(v) = linear.row(v);
     } else if (on_boundary(split, v)) {
       out.row(v) = 0.5 * linear.row(v) +
@@ -962,9 +1151,16 @@ Points factored_step(const MeshTopology& t, MeshScheme scheme, const MeshOptions
 
 Mesh factored_subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOptions& options) {
   const std::string who = std::string(scheme_name(scheme)) + " (factored)";
-  if (scheme != MeshScheme::catmull_clark && scheme != MeshScheme::loop)
+  if (!traits(scheme).factored)
     throw InvalidInput(who + ": the factored form exists for catmull-clark and loop");
   check_mesh(mesh, who);
+  if (const std::string tag = first_feature(mesh.tags); !tag.empty())
+    throw InvalidInput(who + ": the mesh has " + tag +
+                       "; the factored form has only the smooth and boundary " +
+                       "rules (subdivide without --factored)");
+  if (!mesh.face_varying.empty())
+    throw InvalidInput(
+        who + ": the factored form does not refine face-varying channels (subdivide without --factored)");
   MeshTopology t = checked_input(mesh, scheme, levels, options, false);
   if (scheme == MeshScheme::catmull_clark)
     for (std::size_t f = 0; f < face_count(t); ++f)
@@ -975,7 +1171,7 @@ Mesh factored_subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const M
   Points P = mesh.vertices;
   for (int level = 0; level < levels; ++level) {
     MeshTopology split;
-    P = factored_step(t, scheme, options, P, split, who);
+    P = factored_step(t, scheme, mesh.tags.boundary, P, split, who);
     t = std::move(split);
     progress.level_done(level);
   }
@@ -1000,6 +1196,9 @@ Mesh butterfly(const Mesh& mesh, int levels, const MeshOptions& options) {
 }
 Mesh sqrt3(const Mesh& mesh, int levels, const MeshOptions& options) {
   return subdivide(mesh, MeshScheme::sqrt3, levels, options);
+}
+Mesh bilinear(const Mesh& mesh, int levels, const MeshOptions& options) {
+  return subdivide(mesh, MeshScheme::bilinear, levels, options);
 }
 
 Eigen::SparseMatrix<double, Eigen::RowMajor> subdivision_matrix(const Stencils& step, int old_vertex_count) {

@@ -34,6 +34,10 @@ constexpr long double kPi = std::numbers::pi_v<long double>;
 
 void check_valence(MeshScheme scheme, int valence, const LocalOptions& o) {
   const std::string who(scheme_name(scheme));
+  if (scheme == MeshScheme::bilinear)
+    throw InvalidInput(who +
+                       ": the limit surface is the refined mesh itself (C0 at every vertex, its vertices "
+                       "interpolated); there is no local subdivision matrix to analyse");
   if (o.boundary) {
     if (scheme != MeshScheme::catmull_clark && scheme != MeshScheme::loop)
       throw InvalidInput(who + ": boundary vertices are analysed for catmull-clark and loop only");
@@ -286,6 +290,8 @@ Dense<T> rules(MeshScheme scheme, int n, const LocalOptions& o, Cos cos_of) {
       return sqrt3_rules<T>(n, cos_of);
     case MeshScheme::doo_sabin:
       return doo_sabin_rules<T>(n, cos_of);
+    case MeshScheme::bilinear:  // refused by check_valence
+      break;
   }
   return Dense<T>(0);
 }
@@ -566,9 +572,9 @@ namespace detail {
 LocalRefinement refine_local(MeshScheme scheme, int n, const LocalOptions& options, int rings) {
   LocalRefinement out;
   out.mesh = local_mesh(scheme, n, options, rings);
+  out.mesh.tags.boundary = options.rule;
   const int steps = scheme == MeshScheme::sqrt3 ? 2 : 1;
-  out.refinement =
-      refine_topology(out.mesh, scheme, steps, MeshOptions{.boundary = options.rule, .max_bytes = 1e9});
+  out.refinement = refine_topology(out.mesh, scheme, steps, MeshOptions{.max_bytes = 1e9});
   const MeshRefinement& r = out.refinement;
   out.stencils = steps == 1 ? r.steps.front() : stencil_table(r);
   const Stencils& stencils = out.stencils;

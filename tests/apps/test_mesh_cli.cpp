@@ -94,14 +94,14 @@ TEST_CASE("cifs subdivide: bad meshes and requests exit 2 with one line and writ
   check_error(cifs_cli("subdivide " + example("cube.obj") + " --scheme catmull-clark --levels 14" + o),
               "catmull-clark: 14 levels of 6 faces reach");
   check_error(cifs_cli("subdivide " + example("cube.obj") + " --scheme catmull-clark --boundary sharp" + o),
-              "--boundary sharp: expected edge");
+              "--boundary sharp: unknown boundary rule 'sharp' (none, edge, corner)");
   check_error(cifs_cli("subdivide " + example("cube.obj") + " --scheme catmull-clark -o x.stl"),
               "-o x.stl: expected a .obj or .ply file name");
   check_error(cifs_cli("subdivide " +
                        file("fan.obj",
                             "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 2 0 0\n"
                             "f 1 2 3\nf 2 4 3\nf 2 3 5\n") +
-                       " --scheme loop" + o),
+                       " --scheme butterfly" + o),
               "edge");
   check_error(cifs_cli("subdivide " + file("nan.obj", "v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n") +
                        " --scheme loop" + o),

@@ -318,8 +318,7 @@ TEST_CASE("Mesh experiments: every scheme, boundaries, and what a mesh cannot do
        R"({"mesh": "../meshes/open_grid.obj", "subdivision": {"scheme": "doo-sabin", "levels": 2}, "outputs": {"exr": "a.exr", "obj": "a.obj"}, "render": {"width": 40, "height": 30, "control_net": true}})"}) {
     const io::Experiment e = parse_named_experiment(text);
     run_in(dir, text);
-    const Mesh refined =
-        subdivision::subdivide(e.mesh->mesh, e.mesh->scheme, e.mesh->levels, {.boundary = e.mesh->boundary});
+    const Mesh refined = subdivision::subdivide(e.mesh->mesh, e.mesh->scheme, e.mesh->levels);
     CHECK(read_file(dir.path() / "a.obj") == io::encode(refined, "obj"));
     CHECK(covered(render::read_exr(dir.path() / "a.exr")) > 40 * 30 / 8);
   }

@@ -159,13 +159,13 @@ TEST_CASE("Experiments: a polygon mesh and its subdivision scheme", "[io][experi
   CHECK(e.mesh->mesh.vertices.rows() == 35);
   CHECK(e.mesh->scheme == subdivision::MeshScheme::doo_sabin);
   CHECK(e.mesh->levels == 2);
-  CHECK(e.mesh->boundary == subdivision::BoundaryRule::edge_and_corner);
+  CHECK(e.mesh->mesh.tags.boundary == BoundaryRule::edge_and_corner);
   CHECK(e.render.control_net);
   // Defaults: 3 levels, the edge rule.
   const io::Experiment d =
       parse_experiment_text(R"({"mesh": "../meshes/cube.obj", "subdivision": {"scheme": "catmull-clark"}})");
   CHECK(d.mesh->levels == 3);
-  CHECK(d.mesh->boundary == subdivision::BoundaryRule::edge_only);
+  CHECK(d.mesh->mesh.tags.boundary == BoundaryRule::edge_only);
 }
 
 TEST_CASE("Experiments: bad mesh sources are one line naming the file and the member",
@@ -183,7 +183,7 @@ TEST_CASE("Experiments: bad mesh sources are one line naming the file and the me
            "e.json: subdivision.levels: -1 is outside [0, 16]");
   one_line(experiment_error_of("{" + cube +
                                R"(, "subdivision": {"scheme": "catmull-clark", "boundary": "crease"}})"),
-           "e.json: subdivision.boundary: expected \"edge\"");
+           "e.json: subdivision.boundary: unknown boundary rule 'crease' (none, edge, corner)");
   one_line(experiment_error_of("{" + cube + R"(, "subdivision": {"scheme": "catmull-clark", "level": 2}})"),
            "e.json: subdivision.level: unknown member");
   one_line(experiment_error_of("{" + cube + R"(, "subdivision": {"levels": 2}})"),

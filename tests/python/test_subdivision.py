@@ -538,7 +538,7 @@ class MeshSubdivisionTest(ScratchTestCase):
             sd.loop(cube)
         with self.assertRaisesRegex(cifs.InvalidInput, "unknown mesh scheme 'kobbelt'"):
             sd.subdivide(cube, "kobbelt")
-        with self.assertRaisesRegex(cifs.InvalidInput, "boundary 'sharp'"):
+        with self.assertRaisesRegex(cifs.InvalidInput, "unknown boundary rule 'sharp'"):
             sd.catmull_clark(cube, boundary="sharp")
         with self.assertRaisesRegex(cifs.InvalidInput, "ask for fewer levels"):
             sd.catmull_clark(cube, 20)
@@ -658,5 +658,5 @@ class LocalAnalysisTest(unittest.TestCase):
             sd.local_analysis("loop", 2)
         with self.assertRaisesRegex(cifs.InvalidInput, "catmull-clark and loop only"):
             sd.local_analysis("butterfly", 5, boundary="edge")
-        with self.assertRaisesRegex(cifs.InvalidInput, "boundary 'sharp'"):
+        with self.assertRaisesRegex(cifs.InvalidInput, "unknown boundary rule 'sharp'"):
             sd.local_analysis("loop", 4, boundary="sharp")

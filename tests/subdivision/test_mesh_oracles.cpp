@@ -41,11 +41,7 @@ struct OsdRefined {
 
 OsdRefined osd_interpolate(const Mesh& m, Sdc::SchemeType type, BoundaryRule boundary, int levels,
                            bool full_topology = false) {
-  OsdRefined r{.refiner = osd_refiner(m, type,
-                                      boundary == BoundaryRule::edge_only
-                                          ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
-                                          : Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER,
-                                      levels, full_topology)};
+  OsdRefined r{.refiner = osd_refiner(with_boundary(m, boundary), type, levels, full_topology)};
   REQUIRE(r.refiner);
   r.vertices.resize(static_cast<std::size_t>(r.refiner->GetNumVerticesTotal()));
   for (Eigen::Index i = 0; i < m.vertices.rows(); ++i)
@@ -100,10 +96,10 @@ std::array<Points, 3> osd_limit(const Mesh& m, Sdc::SchemeType type, BoundaryRul
 /// Our limit mesh against OpenSubdiv's, vertices matched by their refined positions.
 void check_same_limit(const Mesh& m, MeshScheme scheme, Sdc::SchemeType type, BoundaryRule rule, int levels,
                       bool normals) {
-  const Mesh ours = limit_mesh(m, scheme, levels, {.boundary = rule, .normals = normals});
+  const Mesh ours = limit_mesh(with_boundary(m, rule), scheme, levels, {.normals = normals});
   const auto [refined, positions, osd_normals] = osd_limit(m, type, rule, levels);
   const std::vector<int> to_osd =
-      match_vertices(subdivide(m, scheme, levels, {.boundary = rule}).vertices, refined, 1e-12);
+      match_vertices(subdivide(with_boundary(m, rule), scheme, levels).vertices, refined, 1e-12);
   const double scale = m.vertices.cwiseAbs().maxCoeff();
   double position_error = 0, normal_error = 0;
   for (std::size_t i = 0; i < to_osd.size(); ++i) {
@@ -163,7 +159,7 @@ TEST_CASE("Catmull–Clark = OpenSubdiv Far, closed and open meshes, both bounda
     for (const BoundaryRule rule : {BoundaryRule::edge_only, BoundaryRule::edge_and_corner})
       for (int levels = 1; levels <= 4; ++levels) {
         INFO(name << ", level " << levels << ", corners " << (rule == BoundaryRule::edge_and_corner));
-        check_same_mesh(catmull_clark(m, levels, {.boundary = rule}),
+        check_same_mesh(catmull_clark(with_boundary(m, rule), levels),
                         osd_refine(m, Sdc::SCHEME_CATMARK, rule, levels));
       }
 }
@@ -179,7 +175,7 @@ TEST_CASE("Loop = OpenSubdiv Far, closed and open meshes, both boundary rules, l
     for (const BoundaryRule rule : {BoundaryRule::edge_only, BoundaryRule::edge_and_corner})
       for (int levels = 1; levels <= 4; ++levels) {
         INFO(name << ", level " << levels << ", corners " << (rule == BoundaryRule::edge_and_corner));
-        check_same_mesh(loop(m, levels, {.boundary = rule}), osd_refine(m, Sdc::SCHEME_LOOP, rule, levels));
+        check_same_mesh(loop(with_boundary(m, rule), levels), osd_refine(m, Sdc::SCHEME_LOOP, rule, levels));
       }
 }
 
@@ -267,7 +263,7 @@ TEST_CASE("the limit surface at (face, u, v) = OpenSubdiv Bfr, positions and par
                                 std::array{0.12, 0.55}, std::array{0.5, 0.5}, std::array{0.7, 0.2}})
         points.push_back({.face = f, .u = u, .v = triangles && u + v > 1 ? 1 - u : v});
     const SurfaceSample ours = evaluate_limit_surface(c.mesh, c.scheme, points);
-    const auto refiner = osd_refiner(c.mesh, c.type, Sdc::Options::VTX_BOUNDARY_EDGE_ONLY, 0);
+    const auto refiner = osd_refiner(c.mesh, c.type, 0);
     Bfr::SurfaceFactory::Options options;
     options.SetApproxLevelSmooth(10);
     const Bfr::RefinerSurfaceFactory<> factory(*refiner, options);

@@ -7,13 +7,86 @@
 #include <cstddef>
 #include <cstdint>
 #include <initializer_list>
+#include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
 #include "cifs/types.hpp"
 
 namespace cifs {
+
+/// Sharpness at and above which a crease or corner is infinitely sharp (OpenSubdiv's
+/// Sdc::Crease::SHARPNESS_INFINITE); 0 is smooth, values between are semi-sharp (DeRose, Kass, Truong
+/// 1998: the sharp rules for that many levels, then a blend, then the smooth rules).
+inline constexpr double kInfiniteSharpness = 10;
+
+/// How boundary vertices are refined (OpenSubdiv's VtxBoundaryInterpolation). Boundary edges are
+/// always infinitely sharp; `edge_and_corner` also makes a boundary vertex with one face an
+/// infinitely sharp corner; `none` leaves the faces around boundary vertices out of the surface (they
+/// become holes: the surface stops one face short of the boundary).
+enum class BoundaryRule { none, edge_only, edge_and_corner };
+/// How semi-sharp edge sharpness decays per level: by 1 (`uniform`), or Chaikin's rule (¾ of the
+/// edge's own sharpness + ¼ of its semi-sharp neighbours' at each end, then − 1), which smooths
+/// sharpness that varies along a crease.
+enum class CreaseMethod { uniform, chaikin };
+/// Catmull–Clark's edge rule next to triangles: `catmark` (the plain rule) or `smooth` (OpenSubdiv's
+/// TRI_SUB_SMOOTH: face weight 0.47 for a triangle, a rounder limit on triangle-heavy meshes).
+enum class TriangleRule { catmark, smooth };
+/// Where face-varying data (UVs) is interpolated linearly instead of smoothly (OpenSubdiv's
+/// FVarLinearInterpolation): nowhere, at corners only, corners plus 1 or 2 (also at seam junctions),
+/// along boundaries, or everywhere (`all`, OpenSubdiv's default: UVs follow the faces bilinearly).
+enum class FaceVaryingRule { none, corners_only, corners_plus1, corners_plus2, boundaries, all };
+
+/// The options' names as files, the CLI and Python spell them ("none", "edge", "corner"; "uniform",
+/// "chaikin"; "catmark", "smooth"; "none", "corners-only", "corners+1", "corners+2", "boundaries",
+/// "all"), and back: InvalidInput naming the choices for any other name.
+std::string_view option_name(BoundaryRule rule) noexcept;
+std::string_view option_name(CreaseMethod method) noexcept;
+std::string_view option_name(TriangleRule rule) noexcept;
+std::string_view option_name(FaceVaryingRule rule) noexcept;
+BoundaryRule named_boundary_rule(std::string_view name);
+CreaseMethod named_crease_method(std::string_view name);
+TriangleRule named_triangle_rule(std::string_view name);
+FaceVaryingRule named_face_varying_rule(std::string_view name);
+
+/// A sharp edge, given by its two vertices (either order).
+struct EdgeSharpness {
+  int a = 0, b = 0;
+  double sharpness = 0;
+};
+/// A sharp vertex (a corner when its sharpness is positive).
+struct VertexSharpness {
+  int vertex = 0;
+  double sharpness = 0;
+};
+
+/// What a production mesh carries beside its faces (OpenSubdiv's topology tags and Sdc::Options):
+/// topology data, no coordinates. Read from OBJ `t` lines and JSON, written back after refinement.
+struct MeshTags {
+  std::vector<EdgeSharpness> creases;  // each edge at most once; sharpness ≥ 0, finite
+  std::vector<VertexSharpness> corners;
+  std::vector<int> holes;  // faces left out of the surface (with their descendants)
+  BoundaryRule boundary = BoundaryRule::edge_only;
+  CreaseMethod crease_method = CreaseMethod::uniform;
+  TriangleRule triangles = TriangleRule::catmark;
+  FaceVaryingRule face_varying = FaceVaryingRule::all;
+};
+
+/// The first tag that makes a mesh refine differently from a plain one, in words for messages ("a
+/// crease (3 7, sharpness 2)", "a corner (vertex 5, sharpness 10)", "a hole (face 4)", "the boundary
+/// rule 'none'"), or "" when there is none. Zero sharpness does not count; the options `edge_and_corner`,
+/// the crease method and the triangle rule are not features.
+std::string first_feature(const MeshTags& tags);
+
+/// Face-varying data: a value per face corner through its own indices (UVs: `vt` rows and the `/t`
+/// of OBJ face corners), so that a seam can give one vertex several values.
+struct FaceVaryingChannel {
+  std::string name = "uv";
+  Points values;             // `#values by dim`
+  std::vector<int> indices;  // parallel to Mesh::face_vertices: corner k's value row
+};
 
 /// A polygon mesh. Face f has the corners `face_vertices[face_offsets[f] … face_offsets[f + 1])`,
 /// 0-based rows of `vertices`, counter-clockwise seen from the side the normal points to (the
@@ -27,7 +100,23 @@ struct Mesh {
   Points normals;
   /// Optional per-face state (the automaton state that produced the face): empty or one per face.
   std::vector<std::uint32_t> states;
+  /// Creases, corners, holes and the refinement options a production mesh carries.
+  MeshTags tags;
+  /// Face-varying channels (UVs), refined with the faces.
+  std::vector<FaceVaryingChannel> face_varying;
 };
+
+/// Options given beside a mesh file (CLI flags, Python keywords) that replace the file's own.
+struct TagOverrides {
+  std::optional<BoundaryRule> boundary;
+  std::optional<CreaseMethod> crease_method;
+  std::optional<TriangleRule> triangles;
+  std::optional<FaceVaryingRule> face_varying;
+};
+void apply(const TagOverrides& overrides, MeshTags& tags);
+
+/// Whether face f is a hole (listed in mesh.tags.holes); renderers and exporters skip holes.
+std::vector<char> hole_flags(const Mesh& mesh);
 
 /// Number of faces (`face_offsets.size() − 1`).
 inline std::size_t face_count(const Mesh& mesh) noexcept {
@@ -58,7 +147,9 @@ void append(Mesh& into, const Mesh& more);
 /// Throws InvalidInput (the message starts with `who`, what the mesh is to the user: "the mesh to
 /// render") unless the mesh is well formed: vertices `#V by 3` and finite, offsets starting at 0 and
 /// non-decreasing up to the number of corners, every face with at least 3 corners, every index in [0, #V),
-/// normals empty or `#V by 3` and finite, states empty or one per face. Adjacency (manifold, orientation) is
+/// normals empty or `#V by 3` and finite, states empty or one per face; tags: vertex and face indices in
+/// range, sharpness finite and ≥ 0, no edge or vertex tagged twice, not every face a hole; face-varying
+/// channels: one index per corner, in range, finite values. Adjacency (manifold, orientation) is
 /// checked by build_topology, not here: renderers and exporters take any polygon soup.
 void check_mesh(const Mesh& mesh, std::string_view who);
 

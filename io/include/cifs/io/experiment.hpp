@@ -44,7 +44,6 @@ struct MeshSource {
   Mesh mesh;                   // the control mesh
   subdivision::MeshScheme scheme = subdivision::MeshScheme::catmull_clark;
   int levels = 3;
-  subdivision::BoundaryRule boundary = subdivision::BoundaryRule::edge_only;
   /// Draw the limit surface itself: the refined vertices at their limit positions, with the limit
   /// normals on closed meshes (Catmull–Clark and Loop; subdivision/limit.hpp).
   bool limit = false;

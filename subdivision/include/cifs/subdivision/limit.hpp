@@ -62,8 +62,9 @@ void evaluate_limit(const LimitStencils& stencils, const Points& vertices, Limit
 LimitStencils limit_stencils(const MeshTopology& topology, MeshScheme scheme,
                              BoundaryRule boundary = BoundaryRule::edge_only);
 
+/// The mesh's own tags give the boundary rule; creases, corners, holes and the rule `none` are
+/// refused by limit_mesh (limits under them are not built yet).
 struct LimitOptions {
-  BoundaryRule boundary = BoundaryRule::edge_only;
   bool normals = false;  // unit normals; refused on a mesh with a boundary (not built there)
   double max_bytes = 4.0 * (1ull << 30);
 };

@@ -13,27 +13,15 @@
 #include <vector>
 
 #include "cifs/mesh.hpp"
+#include "cifs/subdivision/rules.hpp"
 #include "cifs/topology.hpp"
 #include "cifs/types.hpp"
 
 namespace cifs::subdivision {
 
-enum class MeshScheme { catmull_clark, loop, doo_sabin, butterfly, sqrt3 };
-
-/// "catmull-clark", "loop", "doo-sabin", "butterfly", "sqrt3"; InvalidInput naming the list otherwise.
-MeshScheme named_mesh_scheme(std::string_view name);
-std::string_view scheme_name(MeshScheme scheme) noexcept;
-/// Loop, Butterfly and √3 run on triangles only.
-bool triangles_only(MeshScheme scheme) noexcept;
-
-/// Rule at boundary vertices of valence 2 (two boundary edges, one face): `edge_only` smooths
-/// them with the boundary curve's B-spline rule (OpenSubdiv VTX_BOUNDARY_EDGE_ONLY), `edge_and_corner`
-/// keeps them in place (VTX_BOUNDARY_EDGE_AND_CORNER). Other boundary vertices always follow the
-/// boundary curve.
-enum class BoundaryRule { edge_only, edge_and_corner };
+using cifs::BoundaryRule;
 
 struct MeshOptions {
-  BoundaryRule boundary = BoundaryRule::edge_only;
   /// Refinements whose topology and weights would need more than this are refused before any work.
   double max_bytes = 4.0 * (1ull << 30);
   /// Called after every level with (faces made so far, faces of all levels): a progress bar.
@@ -52,20 +40,38 @@ inline std::size_t row_count(const Stencils& s) noexcept {
   return s.offsets.size() - 1;
 }
 
+/// A level's features — the state of the crease automaton (docs/subdivision-surfaces.md, "Creases as
+/// an automaton"): the sharpness of every edge and vertex (0 smooth, ≥ kInfiniteSharpness infinite;
+/// boundary edges are infinitely sharp) and the hole flag of every face. Empty vectors: all smooth,
+/// no hole (a plain closed mesh refines by the smooth rules alone).
+struct LevelFeatures {
+  std::vector<double> edge_sharpness;    // per edge of the level
+  std::vector<double> vertex_sharpness;  // per vertex
+  std::vector<char> holes;               // per face
+};
+
 /// A refinement, topology only: `levels[0]` is the input's topology, `levels[k]` the mesh after k
-/// steps, `steps[k]` the weights from level k's vertices to level k + 1's.
+/// steps, `steps[k]` the weights from level k's vertices to level k + 1's, `features[k]` level k's
+/// sharpness and holes, `tags[k]` level k's tags as a mesh of that level carries them (creases and
+/// corners with their remaining sharpness, holes; the input's options): subdividing level k's mesh
+/// with `tags[k]` once equals step k.
 struct MeshRefinement {
   MeshScheme scheme = MeshScheme::catmull_clark;
   MeshOptions options;
   std::vector<MeshTopology> levels;
+  std::vector<LevelFeatures> features;
+  std::vector<MeshTags> tags;
   std::vector<Stencils> steps;
 };
 
-/// Refines the faces `levels` times. Throws InvalidInput (naming the face, edge or vertex) for a
-/// mesh that is not an oriented 2-manifold, for non-triangles under Loop, Butterfly and √3, and,
-/// before any work, for a result larger than `options.max_bytes` (the message gives the figure).
-/// √3 treats boundaries every second step (Kobbelt): refining k levels then m is the same as
-/// k + m levels at once only for closed meshes or an even k.
+/// Refines the faces `levels` times under the mesh's tags (creases, corners, holes, boundary rule,
+/// crease method, triangle rule: OpenSubdiv's semi-sharp rules, docs/subdivision-surfaces.md).
+/// Throws InvalidInput (naming the face, edge or vertex) for a mesh that is not an oriented
+/// 2-manifold, for non-triangles under Loop, Butterfly and √3, for tags the scheme has no rules for
+/// (Doo–Sabin, Butterfly and √3 refuse creases, corners and holes), for a crease on a pair of vertices
+/// that is not an edge, and, before any work, for a result larger than `options.max_bytes` (the
+/// message gives the figure). √3 treats boundaries every second step (Kobbelt): refining k levels
+/// then m is the same as k + m levels at once only for closed meshes or an even k.
 MeshRefinement refine_topology(const Mesh& mesh, MeshScheme scheme, int levels,
                                const MeshOptions& options = {});
 
@@ -82,18 +88,21 @@ void apply(const Stencils& step, const Points& vertices, Points& out);
 /// round-off in one pass over small, cached input data. Built once per topology.
 Stencils stencil_table(const MeshRefinement& refinement);
 
-/// The refined mesh (positions through apply; normals and states are not carried).
+/// The refined mesh (positions through apply; normals and states are not carried), with the last
+/// level's tags (as MeshRefinement::tags) and face-varying channels (UVs) refined with the faces.
 Mesh subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOptions& options = {});
 Mesh catmull_clark(const Mesh& mesh, int levels, const MeshOptions& options = {});
 /// The factored form of Catmull–Clark (quad meshes) or Loop (triangles): linear subdivision, then
 /// one averaging pass (seed 003 §3–4, Warren–Weimer), computed on the split mesh's positions, not
 /// through the weights; equal to `subdivide` to round-off (docs/subdivision-surfaces.md gives the
-/// averaging weights at extraordinary vertices, which the seed gets wrong).
+/// averaging weights at extraordinary vertices, which the seed gets wrong). Refuses creases, corners
+/// and holes (the factored form has only the smooth and boundary rules).
 Mesh factored_subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOptions& options = {});
 Mesh loop(const Mesh& mesh, int levels, const MeshOptions& options = {});
 Mesh doo_sabin(const Mesh& mesh, int levels, const MeshOptions& options = {});
 Mesh butterfly(const Mesh& mesh, int levels, const MeshOptions& options = {});
 Mesh sqrt3(const Mesh& mesh, int levels, const MeshOptions& options = {});
+Mesh bilinear(const Mesh& mesh, int levels, const MeshOptions& options = {});
 
 /// Seed 003 §1: a step as a sparse matrix, `#new by #old` (row i = stencil of new vertex i), for the
 /// analysis of the scheme — never used for the refinement itself.
