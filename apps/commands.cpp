@@ -304,8 +304,9 @@ std::string polygon_info(const std::filesystem::path& path) {
 
 }  // namespace
 
-std::string info(const std::filesystem::path& path, const ShapeSelection& select) {
-  if (is_polygon_mesh_file(path)) return mesh_info(path);
+std::string info(const std::filesystem::path& path, const ShapeSelection& select,
+                 const io::MeshReadOptions& mesh) {
+  if (is_polygon_mesh_file(path)) return mesh_info(path, mesh);
   if (is_polygon_file(path)) {
     if (select.index || select.ignore_trim)
       throw InvalidInput(path.string() + ": --index and --ignore-trim apply to shape files, not polygons");
