@@ -202,17 +202,16 @@ class MeshReader {
         const std::string_view rest = tok.substr(first + 1);
         const std::size_t second = rest.find('/');
         const std::string_view texture = rest.substr(0, second);
+        const std::string_view normal =
+            second == std::string_view::npos ? std::string_view() : rest.substr(second + 1);
+        // The syntax first: "3/", "3//", "3/1/" and "3/1/1/1" are malformed whatever is defined.
+        const bool cut = second != std::string_view::npos && normal.empty();
+        if ((texture.empty() && normal.empty()) || cut || normal.find('/') != std::string_view::npos)
+          place_.syntax(place_.line, "f: expected v, v/vt, v/vt/vn or v//vn, got " + detail::quote(tok));
         if (!texture.empty())
           uv = place_.resolve(place_.integer(texture, "f"), uv_dim_ == 0 ? 0 : uvs_.size() / uv_dim_,
                               "texture");
-        if (second != std::string_view::npos) {
-          const std::string_view normal = rest.substr(second + 1);
-          if (normal.empty() || normal.find('/') != std::string_view::npos)
-            place_.syntax(place_.line, "f: expected v, v/vt, v/vt/vn or v//vn, got " + detail::quote(tok));
-          n = place_.resolve(place_.integer(normal, "f"), normals_.size() / 3, "normal");
-        } else if (texture.empty()) {
-          place_.syntax(place_.line, "f: expected v, v/vt, v/vt/vn or v//vn, got " + detail::quote(tok));
-        }
+        if (!normal.empty()) n = place_.resolve(place_.integer(normal, "f"), normals_.size() / 3, "normal");
       }
       // UVs are one channel only when every corner of every face has its vt.
       const int textured = uv ? 1 : 0;

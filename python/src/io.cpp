@@ -319,7 +319,9 @@ void bind_mesh_tags(py::module_& m) {
   py::class_<EdgeSharpness>(m, "EdgeSharpness",
                             "A sharp edge: its two vertices (either order) and sharpness.")
       .def(py::init([](int a, int b, double sharpness) {
-             return EdgeSharpness{.a = a, .b = b, .sharpness = sharpness_from(sharpness, "EdgeSharpness")};
+             return EdgeSharpness{.a = non_negative(a, "EdgeSharpness: a"),
+                                  .b = non_negative(b, "EdgeSharpness: b"),
+                                  .sharpness = sharpness_from(sharpness, "EdgeSharpness")};
            }),
            py::arg("a"), py::arg("b"), py::arg("sharpness"),
            "a, b: 0-based vertex rows. sharpness: >= 0; 0 smooth, 10 or more infinitely sharp.")
@@ -335,7 +337,7 @@ void bind_mesh_tags(py::module_& m) {
           "Short description.");
   py::class_<VertexSharpness>(m, "VertexSharpness", "A sharp vertex (a corner): its row and sharpness.")
       .def(py::init([](int vertex, double sharpness) {
-             return VertexSharpness{.vertex = vertex,
+             return VertexSharpness{.vertex = non_negative(vertex, "VertexSharpness: vertex"),
                                     .sharpness = sharpness_from(sharpness, "VertexSharpness")};
            }),
            py::arg("vertex"), py::arg("sharpness"), "vertex: 0-based row. sharpness: >= 0.")
