@@ -449,7 +449,8 @@ void mesh_obj(const Mesh& mesh, ByteSink& sink) {
   if (mesh.face_varying.size() > 1)
     throw InvalidInput("the mesh to write as OBJ has " + std::to_string(mesh.face_varying.size()) +
                        " face-varying channels; OBJ holds one (vt)");
-  if (!mesh.face_varying.empty() && mesh.face_varying[0].values.cols() > 3)
+  if (!mesh.face_varying.empty() &&
+      (mesh.face_varying[0].values.cols() < 1 || mesh.face_varying[0].values.cols() > 3))
     throw InvalidInput("the mesh to write as OBJ has face-varying values of " +
                        std::to_string(mesh.face_varying[0].values.cols()) + " columns; vt holds 1 to 3");
   const bool normals = mesh.normals.size() != 0;
