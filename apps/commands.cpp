@@ -310,9 +310,10 @@ std::string polygon_info(const std::filesystem::path& path) {
 
 }  // namespace
 
-std::string info(const std::filesystem::path& path, const ShapeSelection& select) {
+std::string info(const std::filesystem::path& path, const ShapeSelection& select,
+                 const io::MeshReadOptions& mesh) {
   const io::Content content = io::detect(path);
-  if (content == io::Content::mesh) return mesh_info(path);
+  if (content == io::Content::mesh) return mesh_info(path, mesh);
   if (content == io::Content::polygon) {
     if (select.index || select.ignore_trim)
       throw InvalidInput(path.string() + ": --index and --ignore-trim apply to shape files, not polygons");

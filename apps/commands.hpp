@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cifs/experiment/dimension.hpp"
+#include "cifs/io/obj.hpp"
 #include "cifs/subdivision/mesh.hpp"
 
 namespace cifs::cli {
@@ -54,10 +55,11 @@ std::string insert(const InsertOptions& options);
 
 /// Shapes (every shape of the file, one JSON object each, unless `select.index` picks one); polygon
 /// meshes through mesh_info; control polygons (JSON "polygon") by points, edges, length and bounds.
-std::string info(const std::filesystem::path& shape, const ShapeSelection& select = {});
+std::string info(const std::filesystem::path& shape, const ShapeSelection& select = {},
+                 const io::MeshReadOptions& mesh = {});
 
 /// Counts, face sizes, valences, boundary loops, Euler characteristic (and genus when closed), as JSON.
-std::string mesh_info(const std::filesystem::path& mesh);
+std::string mesh_info(const std::filesystem::path& mesh, const io::MeshReadOptions& read = {});
 
 struct SubdivideOptions {
   std::filesystem::path mesh;
@@ -66,6 +68,7 @@ struct SubdivideOptions {
   // Replace the file's tags when given ("" keeps them): option_name's spellings.
   std::string boundary, crease_method, triangles, fvar_interpolation;
   bool factored = false;         // linear subdivision + averaging (catmull-clark, loop)
+  bool strict = false;           // an OBJ tag cifs does not read is an error, not a warning
   bool quiet = false;            // no progress bar
   std::filesystem::path output;  // .obj or .ply; empty: OBJ on stdout
 };
@@ -78,6 +81,7 @@ struct LimitCommandOptions {
   int levels = 1;
   std::string boundary;          // "" keeps the file's boundary rule
   bool normals = false;          // unit limit normals (PLY nx ny nz, OBJ vn)
+  bool strict = false;           // an OBJ tag cifs does not read is an error, not a warning
   std::filesystem::path output;  // .obj or .ply; empty: OBJ on stdout
 };
 std::string limit(const LimitCommandOptions& options);

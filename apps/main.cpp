@@ -98,6 +98,7 @@ struct Commands {
   cli::InsertOptions in;
   std::filesystem::path info_shape;
   cli::ShapeSelection info_select;
+  bool info_strict = false;
   cli::AutomatonOptions au;
   cli::AttractorOptions at;
   cli::CheckOptions ch;
@@ -143,6 +144,12 @@ void add_insert(CLI::App& app, Commands& c) {
   });
 }
 
+/// --strict: an OBJ mesh tag cifs does not read (`t vertexedit`, …) is an error (exit 2), not a warning.
+void add_strict(CLI::App* command, bool& strict) {
+  command->add_flag("--strict", strict,
+                    "An OBJ mesh tag cifs does not read (t vertexedit, ...) is an error, not a warning");
+}
+
 void add_info(CLI::App& app, Commands& c) {
   auto* info_cmd = app.add_subcommand(
       "info",
@@ -151,10 +158,11 @@ void add_info(CLI::App& app, Commands& c) {
   info_cmd->add_option("shape", c.info_shape, "Shape file (.json or .obj) or polygon mesh (.obj or .ply)")
       ->required();
   add_shape_selection(info_cmd, c.info_select);
+  add_strict(info_cmd, c.info_strict);
   add_quiet(info_cmd, c.quiet);
   info_cmd->callback([&] {
     const cifs::render::Stage stage("info", c.quiet);
-    c.result = cli::info(c.info_shape, c.info_select);
+    c.result = cli::info(c.info_shape, c.info_select, {.strict = c.info_strict, .warn = {}});
   });
 }
 
@@ -296,6 +304,7 @@ void add_subdivide(CLI::App& app, Commands& c) {
       "Face-varying data (UVs): all (linear, default); the smooth modes are not built yet");
   subdivide_cmd->add_flag("--factored", c.su.factored,
                           "Linear subdivision then averaging (catmull-clark on quads, loop); same result");
+  add_strict(subdivide_cmd, c.su.strict);
   subdivide_cmd->add_flag("--quiet", c.su.quiet, "No progress bar");
   subdivide_cmd->add_option("-o,--output", c.su.output, "Output mesh (.obj or .ply; default: OBJ on stdout)")
       ->check(output_name);
@@ -313,6 +322,7 @@ void add_limit(CLI::App& app, Commands& c) {
       "--boundary", c.li.boundary,
       "Boundary rule, replacing the file's: edge (default: corners smoothed) or corner (kept)");
   limit_cmd->add_flag("--normals", c.li.normals, "Write unit limit normals (closed meshes)");
+  add_strict(limit_cmd, c.li.strict);
   limit_cmd->add_option("-o,--output", c.li.output, "Output mesh (.obj or .ply; default: OBJ on stdout)")
       ->check(output_name);
   add_quiet(limit_cmd, c.quiet);

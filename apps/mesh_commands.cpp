@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 // cifs CLI — polygon meshes: `cifs subdivide` and `cifs info` on an OBJ/PLY mesh.
+#include <algorithm>
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -33,24 +34,69 @@ std::string mesh_output_format(const std::filesystem::path& output) {
 
 }  // namespace
 
-std::string mesh_info(const std::filesystem::path& path) {
-  const MeshTopology t = build_topology(io::read_mesh(path), path.string());
-  const MeshStatistics s = mesh_statistics(t);
-  std::map<std::string, std::size_t> sizes, valences;  // JSON keys
-  for (const auto& [corners, faces] : s.faces_by_corners) sizes[std::to_string(corners)] = faces;
-  for (const auto& [valence, vertices] : s.valences) valences[std::to_string(valence)] = vertices;
+namespace {
+
+/// Count, sharpness range and infinitely sharp count of creases or corners.
+template <class Tagged>
+json sharpness_summary(const std::vector<Tagged>& tagged) {
+  json out = {{"count", tagged.size()}};
+  if (tagged.empty()) return out;
+  const auto [lo, hi] =
+      std::minmax_element(tagged.begin(), tagged.end(),
+                          [](const Tagged& a, const Tagged& b) { return a.sharpness < b.sharpness; });
+  out["sharpness"] = {lo->sharpness, hi->sharpness};
+  out["infinite"] = std::count_if(tagged.begin(), tagged.end(),
+                                  [](const Tagged& t) { return t.sharpness >= kInfiniteSharpness; });
+  return out;
+}
+
+/// What a production mesh carries beside its faces: tags, options and face-varying channels.
+json tags_info(const Mesh& mesh) {
+  json channels = json::array();
+  for (const FaceVaryingChannel& c : mesh.face_varying)
+    channels.push_back({{"name", c.name}, {"values", c.values.rows()}, {"dimension", c.values.cols()}});
+  return {{"creases", sharpness_summary(mesh.tags.creases)},
+          {"corners", sharpness_summary(mesh.tags.corners)},
+          {"holes", mesh.tags.holes.size()},
+          {"boundary", option_name(mesh.tags.boundary)},
+          {"crease_method", option_name(mesh.tags.crease_method)},
+          {"triangles", option_name(mesh.tags.triangles)},
+          {"fvar_interpolation", option_name(mesh.tags.face_varying)},
+          {"face_varying", channels}};
+}
+
+}  // namespace
+
+std::string mesh_info(const std::filesystem::path& path, const io::MeshReadOptions& read) {
+  const Mesh mesh = io::read_mesh(path, read);
+  std::map<std::string, std::size_t> sizes;  // JSON keys
+  for (std::size_t f = 0; f < face_count(mesh); ++f) ++sizes[std::to_string(face(mesh, f).size())];
   json out = {{"type", "mesh"},
-              {"vertices", t.vertex_count},
-              {"edges", t.edges.size()},
-              {"faces", face_count(t)},
-              {"faces_by_corners", sizes},
+              {"vertices", mesh.vertices.rows()},
+              {"faces", face_count(mesh)},
+              {"faces_by_corners", sizes}};
+  out.update(tags_info(mesh));
+  std::optional<MeshTopology> topology;
+  try {
+    topology = build_topology(mesh, path.string());
+  } catch (const InvalidInput& e) {
+    // Non-manifold or inconsistently oriented: the facts above, and why adjacency is not built.
+    out["manifold"] = false;
+    out["topology_refused"] = e.what();
+    return out.dump(1) + "\n";
+  }
+  const MeshStatistics st = mesh_statistics(*topology);
+  std::map<std::string, std::size_t> valences;
+  for (const auto& [valence, vertices] : st.valences) valences[std::to_string(valence)] = vertices;
+  out["manifold"] = true;
+  out.update({{"edges", topology->edges.size()},
               {"valences", valences},
-              {"isolated_vertices", s.isolated_vertices},
-              {"boundary_loops", s.boundary_loops},
-              {"closed", s.boundary_loops == 0},
-              {"components", s.components},
-              {"euler_characteristic", s.euler_characteristic}};
-  if (s.genus) out["genus"] = *s.genus;
+              {"isolated_vertices", st.isolated_vertices},
+              {"boundary_loops", st.boundary_loops},
+              {"closed", st.boundary_loops == 0},
+              {"components", st.components},
+              {"euler_characteristic", st.euler_characteristic}});
+  if (st.genus) out["genus"] = *st.genus;
   return out.dump(1) + "\n";
 }
 
@@ -59,13 +105,13 @@ namespace {
 /// The frame of the commands that make a mesh from a mesh: the output is checked (not the input mesh, a
 /// folder, a device…) and its temporary made before the work; errors of the work name the input; the
 /// result goes out a chunk at a time (its text is never whole in memory), or to standard output as OBJ.
-std::string mesh_to_mesh(const std::filesystem::path& input, const std::filesystem::path& output_path,
-                         const std::function<Mesh(Mesh)>& make,
+std::string mesh_to_mesh(const std::filesystem::path& input, const io::MeshReadOptions& read,
+                         const std::filesystem::path& output_path, const std::function<Mesh(Mesh)>& make,
                          const std::function<std::string(const Mesh&)>& summary) {
   const std::string format = output_path.empty() ? "obj" : mesh_output_format(output_path);
   std::optional<AtomicFile> output;
   if (!output_path.empty()) output.emplace(output_path, OutputOptions{.inputs = {input}});
-  Mesh mesh = io::read_mesh(input);
+  Mesh mesh = io::read_mesh(input, read);
   Mesh result;
   try {
     result = make(std::move(mesh));
@@ -107,7 +153,7 @@ std::string subdivide(const SubdivideOptions& o) {
   const TagOverrides overrides =
       tag_overrides(o.boundary, o.crease_method, o.triangles, o.fvar_interpolation);
   return mesh_to_mesh(
-      o.mesh, o.output,
+      o.mesh, {.strict = o.strict, .warn = {}}, o.output,
       [&](Mesh mesh) {
         apply(overrides, mesh.tags);
         return o.factored ? subdivision::factored_subdivide(mesh, scheme, o.levels, options)
@@ -125,7 +171,7 @@ std::string limit(const LimitCommandOptions& o) {
   const subdivision::LimitOptions options{.normals = o.normals};
   const TagOverrides overrides = tag_overrides(o.boundary, "", "", "");
   return mesh_to_mesh(
-      o.mesh, o.output,
+      o.mesh, {.strict = o.strict, .warn = {}}, o.output,
       [&](Mesh mesh) {
         apply(overrides, mesh.tags);
         return subdivision::limit_mesh(mesh, scheme, o.levels, options);

@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: MIT
 """Writes the example polygon meshes of examples/meshes/ (OBJ, faces counter-clockwise seen from
-outside). `make_meshes.py --check` compares the files with what this script writes (a ctest test)."""
+outside), and one production-style mesh with creases, corners, a hole and UVs (OBJ `t` tags and `vt`,
+docs/formats.md). `make_meshes.py --check` compares the files with what this script writes (a ctest
+test)."""
 import math
 import pathlib
 import sys
@@ -107,6 +109,60 @@ def rings(sizes=(3, 7, 5)):
     return p, f
 
 
+def creased_box(n=3):
+    """A box of n x n quads a side (vertices shared along its edges). Its 12 edges are creased: the
+    bottom square infinitely sharp, the vertical edges sharpness 2, the top square 1 (semi-sharp:
+    rounder); one top corner has vertex sharpness 3; the middle quad of the top is a hole; the UVs
+    are a 3 x 2 atlas of the six sides, so every box edge is a UV seam."""
+    index, points = {}, []
+
+    def vertex(p):
+        if p not in index:
+            index[p] = len(points)
+            points.append((p[0] / n - 0.5, p[1] / n - 0.5, 0.8 * p[2] / n - 0.4))
+        return index[p]
+
+    # Each side: an origin and two axes on the integer lattice 0..n, counter-clockwise from outside.
+    sides = [((0, 0, 0), (0, 1, 0), (1, 0, 0)), ((0, 0, n), (1, 0, 0), (0, 1, 0)),
+             ((0, 0, 0), (1, 0, 0), (0, 0, 1)), ((n, 0, 0), (0, 1, 0), (0, 0, 1)),
+             ((n, n, 0), (-1, 0, 0), (0, 0, 1)), ((0, n, 0), (0, -1, 0), (0, 0, 1))]
+    faces, uvs, face_uvs = [], [], []
+    for k, (o, u, v) in enumerate(sides):
+        base, col, row = len(uvs), k % 3, k // 3
+        uvs += [((col + 0.05 + 0.9 * i / n) / 3, (row + 0.05 + 0.9 * j / n) / 2) for j in range(n + 1) for i in range(n + 1)]
+        for j in range(n):
+            for i in range(n):
+                corners = ((i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1))
+                faces.append(tuple(vertex(tuple(o[a] + ci * u[a] + cj * v[a] for a in range(3))) for ci, cj in corners))
+                face_uvs.append(tuple(base + cj * (n + 1) + ci for ci, cj in corners))
+
+    def box_edge(axis, fixed, sharpness):
+        # The n mesh edges along `axis`, the other two lattice coordinates `fixed` (in axis order).
+        at = lambda t: index[tuple(list(fixed[:axis]) + [t] + list(fixed[axis:]))]
+        return [(at(t), at(t + 1), sharpness) for t in range(n)]
+
+    creases = []
+    for z, sharpness in ((0, 10), (n, 1)):
+        for c in (0, n):
+            creases += box_edge(0, (c, z), sharpness) + box_edge(1, (c, z), sharpness)
+    for x in (0, n):
+        for y in (0, n):
+            creases += box_edge(2, (x, y), 2)
+    tags = [f"t crease 2/1/0 {a} {b} {s}" for a, b, s in creases]
+    tags += [f"t corner 1/1/0 {index[(n, n, n)]} 3", f"t hole 1/0/0 {n * n + (n // 2) * n + n // 2}"]
+    return points, faces, uvs, face_uvs, tags
+
+
+def tagged_obj(name, comment, points, faces, uvs, face_uvs, tags):
+    """OBJ with `vt` rows, `f v/vt` corners and `t` tag lines (0-based indices, as OpenSubdiv's shapes)."""
+    lines = [f"# {name}: {comment}",
+             f"# {len(points)} vertices, {len(faces)} faces, {len(uvs)} UVs, {len(tags)} tags (scripts/make_meshes.py)"]
+    lines += ["v " + " ".join(repr(round(c, 12) + 0.0) for c in p) for p in points]
+    lines += ["vt " + " ".join(repr(round(c, 12) + 0.0) for c in t) for t in uvs]
+    lines += ["f " + " ".join(f"{v + 1}/{t + 1}" for v, t in zip(f, ft)) for f, ft in zip(faces, face_uvs)]
+    return "\n".join(lines + tags) + "\n"
+
+
 MESHES = {
     "cube": ("unit cube, 6 quads, valence 3", cube),
     "cube_triangles": ("cube split into 12 triangles, valences 3 and 6", cube_triangles),
@@ -118,6 +174,10 @@ MESHES = {
     "torus_triangles": ("the torus split into triangles, valence 6", lambda: torus(triangles=True)),
     "rings": ("closed triangles, a pole and rings of 3, 7 and 5 vertices: valences 3 to 7", rings),
 }
+# Meshes with tags and UVs (tagged_obj).
+TAGGED = {
+    "creased_box": ("a box of 3 x 3 quads a side: creases infinite, 2 and 1, a corner, a hole on top, UVs", creased_box),
+}
 
 
 def main():
@@ -126,8 +186,9 @@ def main():
     out = pathlib.Path(args[0]) if args else pathlib.Path(__file__).resolve().parent.parent / "examples" / "meshes"
     out.mkdir(parents=True, exist_ok=True)
     stale = []
-    for name, (comment, make) in MESHES.items():
-        text = obj(name, comment, *make())
+    texts = {name: obj(name, comment, *make()) for name, (comment, make) in MESHES.items()}
+    texts.update({name: tagged_obj(name, comment, *make()) for name, (comment, make) in TAGGED.items()})
+    for name, text in texts.items():
         path = out / f"{name}.obj"
         if check:
             if not path.exists() or path.read_text() != text:

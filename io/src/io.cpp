@@ -35,6 +35,10 @@ T parse_at(std::string_view text, const std::filesystem::path& path) {
   return parse(text, path.string());
 }
 
+Mesh parse_mesh_obj_at(std::string_view text, std::string_view where) {
+  return parse_mesh_obj(text, where);
+}
+
 Shape parse_shape_json_at(std::string_view text, const std::filesystem::path& path) {
   return parse_shape_json(text, path.string());
 }
@@ -82,7 +86,8 @@ const Codec<Polygon> kPolygon[] = {
     {"svg", ".svg", [](const Polygon& p, ByteSink& out) { out.write(polyline_svg(p.points, p.closed)); }},
 };
 const Codec<Mesh> kMesh[] = {
-    {"obj", ".obj", [](const Mesh& m, ByteSink& out) { mesh_obj(m, out); }, parse_at<Mesh, parse_mesh_obj>},
+    {"obj", ".obj", [](const Mesh& m, ByteSink& out) { mesh_obj(m, out); },
+     parse_at<Mesh, parse_mesh_obj_at>},
     {"ply", ".ply", [](const Mesh& m, ByteSink& out) { mesh_ply(m, PlyFormat::binary_little_endian, out); },
      parse_at<Mesh, parse_mesh_ply>, true},
 };
@@ -380,7 +385,8 @@ Shape read_shape(const std::filesystem::path& path, const ShapeReadOptions& opti
 Polygon read_polygon(const std::filesystem::path& path) {
   return read_as<Polygon>(path, Content::polygon);
 }
-Mesh read_mesh(const std::filesystem::path& path) {
+Mesh read_mesh(const std::filesystem::path& path, const MeshReadOptions& options) {
+  if (path.extension() == ".obj") return parse_mesh_obj(read_file(path), path.string(), options);
   return read_as<Mesh>(path, Content::mesh);
 }
 nurbs::KnotAutomaton read_automaton(const std::filesystem::path& path) {

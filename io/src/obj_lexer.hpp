@@ -112,6 +112,12 @@ struct ObjPlace {
     return x;
   }
 
+  static std::string plural(std::string_view what) {
+    if (what == "vertex") return "vertices";
+    if (what == "texture") return "texture coordinates (vt)";
+    return std::string(what) + "s";
+  }
+
   long long integer(std::string_view tok, std::string_view what) const {
     std::string_view s = tok;
     if (s.size() > 1 && s[0] == '+' && s[1] != '-' && s[1] != '+') s.remove_prefix(1);
@@ -131,8 +137,7 @@ struct ObjPlace {
     const long long k = index > 0 ? index - 1 : n + index;
     if (k < 0 || k >= n)
       invalid(line, std::string(what) + " index " + std::to_string(index) + " is out of range: " +
-                        std::to_string(n) + " " + std::string(what == "vertex" ? "vertices" : "normals") +
-                        " are defined before this line");
+                        std::to_string(n) + " " + plural(what) + " are defined before this line");
     return static_cast<std::size_t>(k);
   }
 };

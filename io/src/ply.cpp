@@ -461,9 +461,11 @@ void read_faces(BodyReader& r, const Element& e, Mesh& mesh, const std::string& 
 void mesh_ply(const Mesh& mesh, PlyFormat format, ByteSink& sink) {
   check_mesh(mesh, "the mesh to write as PLY");
   const Points* normals = mesh.normals.size() != 0 ? &mesh.normals : nullptr;
-  const std::size_t faces = face_count(mesh);
+  // Holes are left out: PLY has no tags, and its readers would draw them.
+  const std::vector<char> hole = hole_flags(mesh);
+  const auto faces = static_cast<std::size_t>(std::count(hole.begin(), hole.end(), 0));
   int largest = 0;
-  for (std::size_t f = 0; f < faces; ++f)
+  for (std::size_t f = 0; f < face_count(mesh); ++f)
     largest = std::max(largest, mesh.face_offsets[f + 1] - mesh.face_offsets[f]);
   const bool wide = largest > 255;  // the usual uchar count holds up to 255 corners
   PlyWriter w(format, sink);
@@ -473,7 +475,8 @@ void mesh_ply(const Mesh& mesh, PlyFormat format, ByteSink& sink) {
   if (!mesh.states.empty()) w.out += "property uint state\n";
   w.out += "end_header\n";
   ply_vertex_rows(w, mesh.vertices, normals);
-  for (std::size_t f = 0; f < faces; ++f) {
+  for (std::size_t f = 0; f < face_count(mesh); ++f) {
+    if (hole[f] != 0) continue;
     const auto corners = face(mesh, f);
     if (wide)
       w.u32(static_cast<std::uint32_t>(corners.size()));

@@ -2,7 +2,10 @@
 // cifs Python bindings — cifs.io (shape, polygon, mesh, automaton and experiment files, the format
 // table and the dispatcher),
 // cifs.verify (the attractor against the NURBS core) and cifs.experiment (running experiment files).
+#include <cmath>
+#include <filesystem>
 #include <optional>
+#include <string_view>
 #include <type_traits>
 #include <variant>
 
@@ -79,12 +82,33 @@ void add_faces(Mesh& mesh, const py::object& faces) {
   }
 }
 
+MeshTags make_tags(const std::optional<std::vector<EdgeSharpness>>& creases,
+                   const std::optional<std::vector<VertexSharpness>>& corners,
+                   const std::optional<std::vector<int>>& holes, const std::string& boundary,
+                   const std::string& crease_method, const std::string& triangles,
+                   const std::string& fvar_interpolation) {
+  MeshTags tags;
+  tags.creases = creases.value_or(std::vector<EdgeSharpness>{});
+  tags.corners = corners.value_or(std::vector<VertexSharpness>{});
+  tags.holes = holes.value_or(std::vector<int>{});
+  apply(tag_overrides(boundary, crease_method, triangles, fvar_interpolation), tags);
+  return tags;
+}
+
+/// Sharpness as the tags take it: finite and ≥ 0.
+double sharpness_from(double s, const char* where) {
+  if (!std::isfinite(s) || s < 0)
+    throw InvalidInput(std::string(where) + ": sharpness must be finite and >= 0 (" +
+                       std::to_string(kInfiniteSharpness) + " or more: infinitely sharp)");
+  return s;
+}
+
 /// Triangles and quads (the C++ order: triangles first), or `faces`, or face_offsets and
 /// face_vertices; one of the three.
-Mesh make_mesh(const DoubleArray& vertices, const py::object& triangles, const py::object& quads,
-               const std::optional<DoubleArray>& normals,
-               const std::optional<std::vector<std::uint32_t>>& states, const py::object& faces,
-               const py::object& face_offsets, const py::object& face_vertices) {
+Mesh make_plain_mesh(const DoubleArray& vertices, const py::object& triangles, const py::object& quads,
+                     const std::optional<DoubleArray>& normals,
+                     const std::optional<std::vector<std::uint32_t>>& states, const py::object& faces,
+                     const py::object& face_offsets, const py::object& face_vertices) {
   const bool tables = !triangles.is_none() || !quads.is_none();
   const bool lists = !faces.is_none();
   const bool arrays = !face_offsets.is_none() || !face_vertices.is_none();
@@ -109,6 +133,21 @@ Mesh make_mesh(const DoubleArray& vertices, const py::object& triangles, const p
   }
   mesh.normals = std::move(N);
   mesh.states = std::move(S);
+  check_mesh(mesh, "Mesh");
+  return mesh;
+}
+
+/// make_plain_mesh with tags and face-varying channels.
+Mesh make_mesh(const DoubleArray& vertices, const py::object& triangles, const py::object& quads,
+               const std::optional<DoubleArray>& normals,
+               const std::optional<std::vector<std::uint32_t>>& states, const py::object& faces,
+               const py::object& face_offsets, const py::object& face_vertices,
+               const std::optional<MeshTags>& tags,
+               const std::optional<std::vector<FaceVaryingChannel>>& face_varying) {
+  Mesh mesh =
+      make_plain_mesh(vertices, triangles, quads, normals, states, faces, face_offsets, face_vertices);
+  if (tags) mesh.tags = *tags;
+  mesh.face_varying = face_varying.value_or(std::vector<FaceVaryingChannel>{});
   check_mesh(mesh, "Mesh");
   return mesh;
 }
@@ -276,15 +315,147 @@ void bind_geometry_polylines(py::module_& m) {
       "Raises InvalidInput for bad points, width or stroke.");
 }
 
+/// The tags of production meshes: sharp edges and vertices, the tags, face-varying channels.
+void bind_mesh_tags(py::module_& m) {
+  py::class_<EdgeSharpness>(m, "EdgeSharpness",
+                            "A sharp edge: its two vertices (either order) and sharpness.")
+      .def(py::init([](int a, int b, double sharpness) {
+             return EdgeSharpness{.a = non_negative(a, "EdgeSharpness: a"),
+                                  .b = non_negative(b, "EdgeSharpness: b"),
+                                  .sharpness = sharpness_from(sharpness, "EdgeSharpness")};
+           }),
+           py::arg("a"), py::arg("b"), py::arg("sharpness"),
+           "a, b: 0-based vertex rows. sharpness: >= 0; 0 smooth, 10 or more infinitely sharp.")
+      .def_readonly("a", &EdgeSharpness::a, "First vertex.")
+      .def_readonly("b", &EdgeSharpness::b, "Second vertex.")
+      .def_readonly("sharpness", &EdgeSharpness::sharpness, "Sharpness (0 smooth, 10 or more infinite).")
+      .def(
+          "__repr__",
+          [](const EdgeSharpness& e) {
+            return "EdgeSharpness(a=" + std::to_string(e.a) + ", b=" + std::to_string(e.b) +
+                   ", sharpness=" + number_text(e.sharpness) + ")";
+          },
+          "Short description.");
+  py::class_<VertexSharpness>(m, "VertexSharpness", "A sharp vertex (a corner): its row and sharpness.")
+      .def(py::init([](int vertex, double sharpness) {
+             return VertexSharpness{.vertex = non_negative(vertex, "VertexSharpness: vertex"),
+                                    .sharpness = sharpness_from(sharpness, "VertexSharpness")};
+           }),
+           py::arg("vertex"), py::arg("sharpness"), "vertex: 0-based row. sharpness: >= 0.")
+      .def_readonly("vertex", &VertexSharpness::vertex, "The vertex.")
+      .def_readonly("sharpness", &VertexSharpness::sharpness, "Sharpness (0 smooth, 10 or more infinite).")
+      .def(
+          "__repr__",
+          [](const VertexSharpness& v) {
+            return "VertexSharpness(vertex=" + std::to_string(v.vertex) +
+                   ", sharpness=" + number_text(v.sharpness) + ")";
+          },
+          "Short description.");
+  py::class_<MeshTags>(
+      m, "MeshTags",
+      "Creases, corners, holes and the refinement options of a production mesh (OBJ `t` lines).")
+      .def(
+          py::init(&make_tags), py::kw_only(), py::arg("creases") = py::none(),
+          py::arg("corners") = py::none(), py::arg("holes") = py::none(), py::arg("boundary") = "edge",
+          py::arg("crease_method") = "uniform", py::arg("triangles") = "catmark",
+          py::arg("fvar_interpolation") = "all",
+          "creases: list of EdgeSharpness; corners: list of VertexSharpness; holes: face indices.\n"
+          "boundary: edge, corner or none; crease_method: uniform or chaikin; triangles: catmark or smooth;\n"
+          "fvar_interpolation: none, corners-only, corners+1, corners+2, boundaries or all.\n"
+          "Indices are checked with the mesh (Mesh(..., tags=...)).")
+      .def_readonly("creases", &MeshTags::creases, "The sharp edges (list of EdgeSharpness).")
+      .def_readonly("corners", &MeshTags::corners, "The sharp vertices (list of VertexSharpness).")
+      .def_property_readonly(
+          "crease_edges",
+          [](const MeshTags& t) {
+            std::vector<std::array<int, 2>> rows;
+            for (const EdgeSharpness& e : t.creases) rows.push_back({e.a, e.b});
+            return index_array(rows);
+          },
+          "The creased edges as an int array (C, 2).")
+      .def_property_readonly(
+          "crease_sharpness",
+          [](const MeshTags& t) {
+            std::vector<double> s;
+            for (const EdgeSharpness& e : t.creases) s.push_back(e.sharpness);
+            return vector_array(s);
+          },
+          "The creases' sharpness (C,).")
+      .def_property_readonly(
+          "corner_vertices",
+          [](const MeshTags& t) {
+            std::vector<int> v;
+            for (const VertexSharpness& c : t.corners) v.push_back(c.vertex);
+            return vector_array(v);
+          },
+          "The corners' vertices (K,).")
+      .def_property_readonly(
+          "corner_sharpness",
+          [](const MeshTags& t) {
+            std::vector<double> s;
+            for (const VertexSharpness& c : t.corners) s.push_back(c.sharpness);
+            return vector_array(s);
+          },
+          "The corners' sharpness (K,).")
+      .def_property_readonly(
+          "holes", [](const MeshTags& t) { return vector_array(t.holes); }, "The hole faces (H,).")
+      .def_property_readonly(
+          "boundary", [](const MeshTags& t) { return std::string(option_name(t.boundary)); },
+          "Boundary rule: edge, corner or none.")
+      .def_property_readonly(
+          "crease_method", [](const MeshTags& t) { return std::string(option_name(t.crease_method)); },
+          "uniform or chaikin.")
+      .def_property_readonly(
+          "triangles", [](const MeshTags& t) { return std::string(option_name(t.triangles)); },
+          "Catmull-Clark next to triangles: catmark or smooth.")
+      .def_property_readonly(
+          "fvar_interpolation", [](const MeshTags& t) { return std::string(option_name(t.face_varying)); },
+          "Face-varying linear interpolation: none, corners-only, corners+1, corners+2, boundaries or all.")
+      .def(
+          "__repr__",
+          [](const MeshTags& t) {
+            return "MeshTags(creases=" + std::to_string(t.creases.size()) +
+                   ", corners=" + std::to_string(t.corners.size()) +
+                   ", holes=" + std::to_string(t.holes.size()) + ", boundary='" +
+                   std::string(option_name(t.boundary)) + "')";
+          },
+          "Short description.");
+  py::class_<FaceVaryingChannel>(m, "FaceVaryingChannel",
+                                 "Face-varying data (UVs): value rows and one value index per face corner.")
+      .def(py::init([](std::string name, const DoubleArray& values, std::vector<int> indices) {
+             return FaceVaryingChannel{.name = std::move(name),
+                                       .values = points_from(values, "FaceVaryingChannel: values"),
+                                       .indices = std::move(indices)};
+           }),
+           py::arg("name"), py::arg("values"), py::arg("indices"),
+           "values: (N, dim) floats; indices: one value row per face corner, parallel to Mesh.face_vertices\n"
+           "(checked with the mesh).")
+      .def_readonly("name", &FaceVaryingChannel::name, "The channel's name (\"uv\" from OBJ vt).")
+      .def_property_readonly(
+          "values", [](const FaceVaryingChannel& c) { return Points(c.values); }, "Value rows (N, dim).")
+      .def_property_readonly(
+          "indices", [](const FaceVaryingChannel& c) { return vector_array(c.indices); },
+          "One value row per face corner (parallel to Mesh.face_vertices).")
+      .def(
+          "__repr__",
+          [](const FaceVaryingChannel& c) {
+            return "FaceVaryingChannel(name='" + c.name + "', values=" + std::to_string(c.values.rows()) +
+                   ")";
+          },
+          "Short description.");
+}
+
 /// Meshes and segments.
 void bind_geometry_types(py::module_& m) {
+  bind_mesh_tags(m);
   py::class_<Mesh>(m, "Mesh",
                    "A polygon mesh: faces of any size over vertex rows (face_offsets + face_vertices), with\n"
                    "optional normals and face states.")
       .def(py::init(&make_mesh), py::arg("vertices"), py::arg("triangles") = py::none(),
            py::arg("quads") = py::none(), py::arg("normals") = py::none(), py::arg("states") = py::none(),
            py::kw_only(), py::arg("faces") = py::none(), py::arg("face_offsets") = py::none(),
-           py::arg("face_vertices") = py::none(),
+           py::arg("face_vertices") = py::none(), py::arg("tags") = py::none(),
+           py::arg("face_varying") = py::none(),
            "vertices: (V, 3). Faces, 0-based rows of vertices, counter-clockwise, given in one of three "
            "ways:\n"
            "triangles: int (T, 3) and quads: int (Q, 4) (triangles first); faces: a list of lists of any\n"
@@ -292,6 +463,8 @@ void bind_geometry_types(py::module_& m) {
            "being\n"
            "face_vertices[face_offsets[f]:face_offsets[f + 1]].\n"
            "normals: None or (V, 3). states: None or one non-negative int per face, in face order.\n"
+           "tags: None or MeshTags (creases, corners, holes, options); face_varying: None or a list of\n"
+           "FaceVaryingChannel (UVs).\n"
            "Raises InvalidInput for a malformed mesh (check_mesh).")
       .def_property_readonly(
           "vertices", [](const Mesh& mesh) { return Points(mesh.vertices); }, "Vertex rows (V, 3).")
@@ -320,6 +493,9 @@ void bind_geometry_types(py::module_& m) {
       .def_property_readonly(
           "states", [](const Mesh& mesh) { return vector_array(mesh.states); },
           "Per-face states (1-D, in face order), or empty.")
+      .def_readonly("tags", &Mesh::tags, "Creases, corners, holes and refinement options (MeshTags).")
+      .def_readonly("face_varying", &Mesh::face_varying,
+                    "Face-varying channels (list of FaceVaryingChannel).")
       .def(
           "__repr__",
           [](const Mesh& mesh) {
@@ -376,10 +552,16 @@ void bind_geometry_files(py::module_& m) {
         "OBJ text of a mesh (with `vn` rows when it has normals).");
   m.def("segments_obj", py::overload_cast<const Segments&>(&io::segments_obj), py::arg("segments"),
         "OBJ text of segments: `v` rows and `l a b` lines.");
-  m.def("parse_mesh_obj", &io::parse_mesh_obj, py::arg("text"), py::arg("where") = kDefaultWhere,
-        "A polygon mesh from OBJ text (`v`, `f` with v, v/vt, v/vt/vn or v//vn references, negative ones\n"
-        "counting back; other statements ignored). Raises IoError (syntax) or InvalidInput (content) naming\n"
-        "`where` and the line.");
+  m.def(
+      "parse_mesh_obj",
+      [](std::string_view text, std::string_view where, bool strict) {
+        return io::parse_mesh_obj(text, where, {.strict = strict, .warn = {}});
+      },
+      py::arg("text"), py::arg("where") = kDefaultWhere, py::kw_only(), py::arg("strict") = false,
+      "A polygon mesh from OBJ text (`v`, `vt`, `f` with v, v/vt, v/vt/vn or v//vn references, negative\n"
+      "ones counting back; `t` tags: creases, corners, holes, options; other statements ignored). An\n"
+      "unknown tag is a warning on stderr, or InvalidInput when strict. Raises IoError (syntax) or\n"
+      "InvalidInput (content) naming `where` and the line.");
 
   py::enum_<io::PlyFormat>(m, "PlyFormat", "PLY encodings.")
       .value("ascii", io::PlyFormat::ascii, "Text PLY.")
@@ -413,9 +595,16 @@ void bind_geometry_files(py::module_& m) {
       "A polygon mesh from PLY bytes (or ASCII text): ascii, binary_little_endian or binary_big_endian,\n"
       "vertex x y z (nx ny nz), face vertex_indices of any types, other properties skipped. Raises\n"
       "IoError (header, truncated data) or InvalidInput (content) naming `where` and the element.");
-  m.def("read_mesh", &io::read_mesh, Release(), py::arg("path"),
-        "Reads a polygon mesh from a .obj or .ply file (checked with check_mesh).\n\n"
-        "Raises IoError or InvalidInput naming the path and the line or element.");
+  m.def(
+      "read_mesh",
+      [](const std::filesystem::path& path, bool strict) {
+        return io::read_mesh(path, {.strict = strict, .warn = {}});
+      },
+      Release(), py::arg("path"), py::kw_only(), py::arg("strict") = false,
+      "Reads a polygon mesh from a .obj or .ply file (checked with check_mesh), with its tags (Mesh.tags)\n"
+      "and UVs (Mesh.face_varying) from OBJ. An unknown OBJ tag is a warning on stderr, or InvalidInput\n"
+      "when strict.\n\n"
+      "Raises IoError or InvalidInput naming the path and the line or element.");
   m.def(
       "segments_svg",
       [](const Segments& s, int width, double stroke, std::string color) {

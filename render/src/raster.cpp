@@ -290,8 +290,10 @@ Scene build_scene(const Mesh& mesh, const ViewTransform& view) {
     if (count >= 3) emit({out[0], out[1], out[2]});
     if (count == 4) emit({out[0], out[2], out[3]});
   };
-  // The fan (0, i, i + 1) of every face: a quad along its 0–2 diagonal.
+  // The fan (0, i, i + 1) of every face but the holes: a quad along its 0–2 diagonal.
+  const std::vector<char> hole = hole_flags(mesh);
   for (std::size_t f = 0; f < face_count(mesh); ++f) {
+    if (hole[f] != 0) continue;
     const auto c = face(mesh, f);
     const std::uint32_t state = mesh.states.empty() ? 0u : mesh.states[f];
     for (std::size_t i = 1; i + 1 < c.size(); ++i) add_triangle({c[0], c[i], c[i + 1]}, state);

@@ -2,6 +2,7 @@
 // cifs subdivide and cifs info on polygon meshes, run as a user runs them.
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "apps/cli_runner.hpp"
@@ -206,4 +207,105 @@ TEST_CASE("cifs limit: what is not built exits 2 with one line", "[cli][mesh][li
   check_error(cifs_cli("limit " + example("cube_triangles.obj") + " --scheme catmull-clark --levels 0" + o),
               "touches a face that is not a quad (refine one level first)");
   CHECK(!std::filesystem::exists(out));
+}
+
+namespace {
+
+/// A 4 × 4 grid of quads (vertex j·5 + i at (i, j, wave)) with semi-sharp and infinite creases, a
+/// corner, a hole and UVs with a seam: the OBJ text the tagged-mesh tests read.
+std::string tagged_grid_obj() {
+  Mesh m;
+  m.vertices.resize(25, 3);
+  for (int j = 0; j < 5; ++j)
+    for (int i = 0; i < 5; ++i) m.vertices.row(j * 5 + i) << i, j, 0.3 * std::sin(i + 2.0 * j);
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) add_face(m, {j * 5 + i, j * 5 + i + 1, j * 5 + i + 6, j * 5 + i + 5});
+  m.tags.creases = {{.a = 6, .b = 7, .sharpness = 2},
+                    {.a = 7, .b = 8, .sharpness = 1.5},
+                    {.a = 11, .b = 16, .sharpness = 10}};
+  m.tags.corners = {{.vertex = 12, .sharpness = 3}};
+  m.tags.holes = {15};
+  FaceVaryingChannel uv;
+  uv.values.resize(26, 2);
+  for (int v = 0; v < 25; ++v) uv.values.row(v) << (v % 5) / 4.0, (v / 5) / 4.0;
+  uv.values.row(25) << 0.6, 0.3;
+  uv.indices = m.face_vertices;
+  uv.indices[5] = 25;  // face 1's corner at vertex 2: a seam
+  m.face_varying.push_back(uv);
+  return io::mesh_obj(m);
+}
+
+}  // namespace
+
+TEST_CASE("cifs subdivide keeps tags and UVs: refining its output once equals refining one level more",
+          "[cli][mesh][tags]") {
+  const std::string in = file("tagged.obj", tagged_grid_obj());
+  const auto once = scratch() / "once.obj", twice = scratch() / "twice.obj", two = scratch() / "two.obj";
+  REQUIRE(cifs_cli("subdivide " + in + " --scheme catmull-clark -o " + once.string()).status == 0);
+  REQUIRE(cifs_cli("subdivide " + once.string() + " --scheme catmull-clark -o " + twice.string()).status ==
+          0);
+  REQUIRE(cifs_cli("subdivide " + in + " --scheme catmull-clark --levels 2 -o " + two.string()).status == 0);
+  const Mesh a = io::read_mesh(twice), b = io::read_mesh(two);
+  const Mesh direct = subdivision::subdivide(io::read_mesh(in), subdivision::MeshScheme::catmull_clark, 2);
+  REQUIRE(b.vertices == direct.vertices);  // the file is the library's result, bit for bit
+  REQUIRE(a.vertices.rows() == b.vertices.rows());
+  CHECK((a.vertices - b.vertices).cwiseAbs().maxCoeff() <= 1e-12 * b.vertices.cwiseAbs().maxCoeff());
+  CHECK(a.face_vertices == b.face_vertices);
+  CHECK(a.face_offsets == b.face_offsets);
+  CHECK(a.tags.holes == b.tags.holes);
+  CHECK(!b.tags.holes.empty());
+  REQUIRE(a.tags.creases.size() == b.tags.creases.size());
+  CHECK(!b.tags.creases.empty());
+  for (std::size_t i = 0; i < a.tags.creases.size(); ++i) {
+    CHECK(a.tags.creases[i].a == b.tags.creases[i].a);
+    CHECK(a.tags.creases[i].b == b.tags.creases[i].b);
+    CHECK(a.tags.creases[i].sharpness == b.tags.creases[i].sharpness);
+  }
+  REQUIRE(a.face_varying.size() == 1);
+  REQUIRE(b.face_varying.size() == 1);
+  CHECK(a.face_varying[0].indices == b.face_varying[0].indices);
+  CHECK((a.face_varying[0].values - b.face_varying[0].values).cwiseAbs().maxCoeff() <= 1e-12);
+}
+
+TEST_CASE("cifs subdivide and info: unknown OBJ tags warn, --strict refuses", "[cli][mesh][tags]") {
+  const std::string in = file("edits.obj", tagged_grid_obj() + "t vertexedit 1/1/1 0 0.5 add\n");
+  const auto out = scratch() / "edits_out.obj";
+  std::filesystem::remove(out);
+  const Run warned = cifs_cli("subdivide " + in + " --scheme catmull-clark --quiet -o " + out.string());
+  CHECK(warned.status == 0);
+  CHECK_THAT(warned.err, Catch::Contains("cifs: warning: " + in + ": line ") &&
+                             Catch::Contains(": t vertexedit: unknown tag, ignored\n"));
+  CHECK(std::filesystem::exists(out));
+  std::filesystem::remove(out);
+  check_error(cifs_cli("subdivide " + in + " --scheme catmull-clark --strict -o " + out.string()),
+              "t vertexedit: unknown tag (cifs reads crease");
+  CHECK(!std::filesystem::exists(out));
+  check_error(cifs_cli("info " + in + " --strict"), "t vertexedit: unknown tag");
+  check_error(cifs_cli("subdivide " + file("bad_crease.obj", tagged_grid_obj() + "t crease 2/1/0 0 6 1\n") +
+                       " --scheme catmull-clark -o " + out.string()),
+              "bad_crease.obj: line ");
+  CHECK(!std::filesystem::exists(out));
+}
+
+TEST_CASE("cifs info on a tagged mesh: creases, corners, holes, options, UV channels; non-manifold meshes",
+          "[cli][mesh][tags]") {
+  const json info = json::parse(cifs_cli("info " + file("tagged_info.obj", tagged_grid_obj())).out);
+  CHECK(info["creases"] == json{{"count", 3}, {"sharpness", {1.5, 10}}, {"infinite", 1}});
+  CHECK(info["corners"] == json{{"count", 1}, {"sharpness", {3, 3}}, {"infinite", 0}});
+  CHECK(info["holes"] == 1);
+  CHECK(info["boundary"] == "edge");
+  CHECK(info["crease_method"] == "uniform");
+  CHECK(info["fvar_interpolation"] == "all");
+  CHECK(info["face_varying"] == json::array({{{"name", "uv"}, {"values", 26}, {"dimension", 2}}}));
+  CHECK(info["manifold"] == true);
+  CHECK(info["edges"] == 40);
+  // Three triangles on one edge: the facts, and why adjacency is not built, instead of an error.
+  const Run fan = cifs_cli("info " + file("fan3.obj",
+                                          "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\n"
+                                          "f 1 2 3\nf 2 1 4\nf 1 2 5\n"));
+  REQUIRE(fan.status == 0);
+  const json nonmanifold = json::parse(fan.out);
+  CHECK(nonmanifold["manifold"] == false);
+  CHECK(nonmanifold["faces"] == 3);
+  CHECK_THAT(nonmanifold["topology_refused"].get<std::string>(), Catch::Contains("fan3.obj"));
 }

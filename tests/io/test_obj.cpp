@@ -144,9 +144,9 @@ TEST_CASE("OBJ reader: other writers' files (references, negative indices, ignor
       "vt 0 0\nvt 1 0\nvt 1 1\n"
       "vn 0 0 1\n"
       "g front\nusemtl red\ns 1\n"
-      "f 1/1/1 2/2/1 \\\n  3/3/1 4//1\n"
+      "f 1/1/1 2/2/1 \\\n  3/3/1 4/1/1\n"
       "l 1 2\n"
-      "f -4/1 -2 -1\n"
+      "f -4/1 -2/-1 -1/-2\n"
       "cstype bspline\n";
   const Mesh m = parse_mesh_obj(text, "hand.obj");
   Points expected(4, 3);
@@ -154,7 +154,11 @@ TEST_CASE("OBJ reader: other writers' files (references, negative indices, ignor
   CHECK(m.vertices == expected);
   CHECK(m.face_offsets == std::vector<int>{0, 4, 7});
   CHECK(m.face_vertices == std::vector<int>{0, 1, 2, 3, 0, 2, 3});
-  CHECK(m.normals.size() == 0);  // per-corner normals (all corners share normal 1) are not per vertex
+  CHECK(m.normals.size() == 0);         // per-corner normals (all corners share normal 1) are not per vertex
+  REQUIRE(m.face_varying.size() == 1);  // the vt rows and the corners' /vt: one channel "uv"
+  CHECK(m.face_varying[0].name == "uv");
+  CHECK(m.face_varying[0].values == (Points(3, 2) << 0, 0, 1, 0, 1, 1).finished());
+  CHECK(m.face_varying[0].indices == std::vector<int>{0, 1, 2, 0, 0, 2, 1});
   // Normals that are per vertex (f a//a, one vn per v) are kept.
   const Mesh n =
       parse_mesh_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvn 0 0 -1\nvn 1 0 0\nf 1//1 2//2 3//3\n", "n");
@@ -194,4 +198,183 @@ TEST_CASE("OBJ writers refuse bad meshes and segments", "[io][obj]") {
   s.vertices = Points::Zero(2, 4);
   s.segments = {{0, 1}};
   CHECK_THROWS_WITH(segments_obj(s), Contains("4 columns"));
+}
+
+namespace {
+
+/// A 3 × 3 grid of quads with creases, corners, a hole, UVs (a seam: two values at vertices 1 and 5)
+/// and every option away from its default: the tags and channel mesh_obj must write back.
+Mesh tagged_grid() {
+  Mesh m = io_test::open_grid(3);
+  m.tags.creases = {{.a = 5, .b = 6, .sharpness = 2.5},
+                    {.a = 1, .b = 5, .sharpness = 1.0 / 3},
+                    {.a = 10, .b = 9, .sharpness = kInfiniteSharpness}};
+  m.tags.corners = {{.vertex = 0, .sharpness = 0.1}, {.vertex = 15, .sharpness = 10}};
+  m.tags.holes = {4, 7};
+  m.tags.boundary = BoundaryRule::none;
+  m.tags.crease_method = CreaseMethod::chaikin;
+  m.tags.triangles = TriangleRule::smooth;
+  m.tags.face_varying = FaceVaryingRule::corners_plus2;
+  FaceVaryingChannel uv;
+  uv.values.resize(17, 2);
+  for (int k = 0; k < 17; ++k) uv.values.row(k) << std::sqrt(k + 0.5), 1.0 / (k + 3);
+  uv.indices = m.face_vertices;
+  uv.indices[1] = 16;  // face 0's corner at vertex 1 takes its own value
+  m.face_varying.push_back(uv);
+  return m;
+}
+
+void require_same_tags(const Mesh& a, const Mesh& b) {
+  REQUIRE(a.tags.creases.size() == b.tags.creases.size());
+  for (std::size_t i = 0; i < a.tags.creases.size(); ++i) {
+    CHECK(a.tags.creases[i].a == b.tags.creases[i].a);
+    CHECK(a.tags.creases[i].b == b.tags.creases[i].b);
+    CHECK(std::memcmp(&a.tags.creases[i].sharpness, &b.tags.creases[i].sharpness, sizeof(double)) == 0);
+  }
+  REQUIRE(a.tags.corners.size() == b.tags.corners.size());
+  for (std::size_t i = 0; i < a.tags.corners.size(); ++i) {
+    CHECK(a.tags.corners[i].vertex == b.tags.corners[i].vertex);
+    CHECK(std::memcmp(&a.tags.corners[i].sharpness, &b.tags.corners[i].sharpness, sizeof(double)) == 0);
+  }
+  CHECK(a.tags.holes == b.tags.holes);
+  CHECK(a.tags.boundary == b.tags.boundary);
+  CHECK(a.tags.crease_method == b.tags.crease_method);
+  CHECK(a.tags.triangles == b.tags.triangles);
+  CHECK(a.tags.face_varying == b.tags.face_varying);
+  REQUIRE(a.face_varying.size() == b.face_varying.size());
+  for (std::size_t i = 0; i < a.face_varying.size(); ++i) {
+    CHECK(a.face_varying[i].name == b.face_varying[i].name);
+    REQUIRE(a.face_varying[i].values.rows() == b.face_varying[i].values.rows());
+    REQUIRE(a.face_varying[i].values.cols() == b.face_varying[i].values.cols());
+    CHECK(std::memcmp(a.face_varying[i].values.data(), b.face_varying[i].values.data(),
+                      sizeof(double) * static_cast<std::size_t>(a.face_varying[i].values.size())) == 0);
+    CHECK(a.face_varying[i].indices == b.face_varying[i].indices);
+  }
+}
+
+/// The grid of io_test::open_grid(1): one quad, vertices 1 to 4 in OBJ.
+const std::string kQuad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+
+}  // namespace
+
+TEST_CASE("OBJ tags and UVs read back bit for bit", "[io][obj][tags]") {
+  Mesh m = tagged_grid();
+  const Mesh back = parse_mesh_obj(mesh_obj(m), "m.obj");
+  require_same_obj_mesh(back, m);
+  require_same_tags(back, m);
+  CHECK(mesh_obj(back) == mesh_obj(m));
+  // With normals too (f v/t/n), and with every option at its default (no option lines).
+  m.normals = vertex_normals(m);
+  m.tags.boundary = BoundaryRule::edge_only;
+  m.tags.crease_method = CreaseMethod::uniform;
+  m.tags.triangles = TriangleRule::catmark;
+  m.tags.face_varying = FaceVaryingRule::all;
+  const std::string text = mesh_obj(m);
+  CHECK(text.find("t interpolateboundary") == std::string::npos);
+  CHECK(text.find("f 1/1/1 2/17/2 6/6/6 5/5/5\n") != std::string::npos);
+  const Mesh again = parse_mesh_obj(text, "m.obj");
+  require_same_obj_mesh(again, m);
+  require_same_tags(again, m);
+}
+
+TEST_CASE("OBJ tags as OpenSubdiv's shapes write them", "[io][obj][tags]") {
+  // Pairs with one sharpness or one each, corners, holes, every option, RenderMan's "normal" method.
+  const std::string grid = mesh_obj(io_test::open_grid(3));
+  const Mesh m = parse_mesh_obj(grid +
+                                    "t crease 2/1/0 5 6 3\n"
+                                    "t crease 4/2/0 1 5 9 10 0.5 10\n"
+                                    "t crease 2/1/0 6 5 1\n"  // the same edge again: replaces 3
+                                    "t corner 1/1/0 0 2\n"
+                                    "t corner 2/1/0 3 12 4\n"
+                                    "t hole 2/0/0 4 8\n"
+                                    "t interpolateboundary 1/0/0 1\n"
+                                    "t facevaryinginterpolateboundary 1/0/0 2\n"
+                                    "t facevaryingpropagatecorners 1/0/0 1\n"
+                                    "t creasemethod 0/0/1 normal\n"
+                                    "t smoothtriangles 0/0/1 smooth\n",
+                                "m.obj");
+  REQUIRE(m.tags.creases.size() == 3);
+  CHECK((m.tags.creases[0].a == 6 && m.tags.creases[0].b == 5 && m.tags.creases[0].sharpness == 1));
+  CHECK((m.tags.creases[1].a == 1 && m.tags.creases[1].b == 5 && m.tags.creases[1].sharpness == 0.5));
+  CHECK((m.tags.creases[2].a == 9 && m.tags.creases[2].b == 10 && m.tags.creases[2].sharpness == 10));
+  REQUIRE(m.tags.corners.size() == 3);
+  CHECK((m.tags.corners[0].vertex == 0 && m.tags.corners[0].sharpness == 2));
+  CHECK((m.tags.corners[2].vertex == 12 && m.tags.corners[2].sharpness == 4));
+  CHECK(m.tags.holes == std::vector<int>{4, 8});
+  CHECK(m.tags.boundary == BoundaryRule::edge_and_corner);
+  CHECK(m.tags.face_varying == FaceVaryingRule::corners_plus2);  // corners+1 with propagate corners
+  CHECK(m.tags.crease_method == CreaseMethod::uniform);
+  CHECK(m.tags.triangles == TriangleRule::smooth);
+  const Mesh c = parse_mesh_obj(grid + "t creasemethod 0/0/1 chaikin\nt interpolateboundary 1/0/0 0\n", "m");
+  CHECK(c.tags.crease_method == CreaseMethod::chaikin);
+  CHECK(c.tags.boundary == BoundaryRule::none);
+}
+
+TEST_CASE("OBJ unknown tags: a warning naming the tag and line, an error when strict", "[io][obj][tags]") {
+  const std::string text = kQuad + "t vertexedit 4/2/1 0 1 2 3 0.5 1 value\nt faceedit 1/0/1 0 x\n";
+  std::vector<std::string> warnings;
+  const Mesh m = parse_mesh_obj(
+      text, "m.obj", {.strict = false, .warn = [&](const std::string& w) { warnings.push_back(w); }});
+  CHECK(face_count(m) == 1);
+  CHECK(warnings == std::vector<std::string>{"m.obj: line 6: t vertexedit: unknown tag, ignored",
+                                             "m.obj: line 7: t faceedit: unknown tag, ignored"});
+  CHECK_THROWS_WITH(parse_mesh_obj(text, "m.obj", {.strict = true, .warn = {}}),
+                    Catch::StartsWith("m.obj: line 6: t vertexedit: unknown tag (cifs reads crease, corner"));
+  CHECK_THROWS_AS(parse_mesh_obj(text, "m.obj", {.strict = true, .warn = {}}), InvalidInput);
+}
+
+TEST_CASE("OBJ tags and UVs: bad input is a one-line error naming the file and the line", "[io][obj][tags]") {
+  CHECK(obj_error_of(kQuad + "t crease 2/1/0 0 1 2\n") == "(no error)");
+  CHECK(obj_error_of(kQuad + "t crease 2/1/0 0 1\n") ==
+        "m.obj: line 6: t crease: 2/1/0 announces 3 arguments, got 2");
+  CHECK(obj_error_of(kQuad + "t crease 3/1/0 0 1 2 1\n") ==
+        "m.obj: line 6: t crease: expected vertex pairs and their sharpness (2/1/0, 4/2/0, 4/1/0, ...), got "
+        "3/1/0");
+  CHECK(obj_error_of(kQuad + "t crease 4/3/0 0 1 1 2 1 1 1\n") ==
+        "m.obj: line 6: t crease: 3 sharpness values for 2 elements; give one for all or one each");
+  CHECK(obj_error_of(kQuad + "t crease 2/1/0 0 1 -1\n") ==
+        "m.obj: line 6: t crease: sharpness -1 is negative");
+  CHECK(obj_error_of(kQuad + "t crease 2/1/0 0 1 nan\n") == "m.obj: line 6: t crease: 'nan' is not finite");
+  CHECK(obj_error_of(kQuad + "t crease 2/1/0 0 2 1\n") ==
+        "m.obj: line 6: t crease: no face has the edge 0 2");
+  CHECK(obj_error_of(kQuad + "t crease 2/1/0 0 4 1\n") ==
+        "m.obj: line 6: t crease: vertex 4 is out of range (4 vertices, numbered from 0)");
+  CHECK(obj_error_of(kQuad + "t corner 1/1/0 7 1\n") ==
+        "m.obj: line 6: t corner: vertex 7 is out of range (4 vertices, numbered from 0)");
+  CHECK(obj_error_of(kQuad + "t corner 1/0/0 1\n") ==
+        "m.obj: line 6: t corner: expected N/1/0 arguments, got 1/0/0");
+  CHECK(obj_error_of(kQuad + "t hole 1/0/0 3\n") ==
+        "m.obj: line 6: t hole: face 3 is out of range (1 faces, numbered from 0)");
+  CHECK(obj_error_of(kQuad + "t hole 1/0/0 0\n") ==
+        "m.obj: every face is a hole; nothing is left to refine or draw");
+  CHECK(obj_error_of(kQuad + "t interpolateboundary 1/0/0 3\n") ==
+        "m.obj: line 6: t interpolateboundary: 3 is not one of 0 to 2");
+  CHECK(obj_error_of(kQuad + "t facevaryinginterpolateboundary 1/0/0 6\n") ==
+        "m.obj: line 6: t facevaryinginterpolateboundary: 6 is not one of 0 to 5");
+  CHECK(obj_error_of(kQuad + "t creasemethod 0/0/1 sharp\n") ==
+        "m.obj: line 6: t creasemethod: expected normal or chaikin, got 'sharp'");
+  CHECK(obj_error_of(kQuad + "t smoothtriangles 1/0/0 1\n") ==
+        "m.obj: line 6: t smoothtriangles: expected 0/0/1 arguments, got 1/0/0");
+  CHECK(obj_error_of(kQuad + "t crease x/1/0 0 1 1\n") ==
+        "m.obj: line 6: t crease: expected an integer, got 'x'");
+  CHECK(obj_error_of(kQuad + "t crease\n") ==
+        "m.obj: line 6: t: expected a name and ints/floats/strings counts");
+  // UVs: every corner has one or none does; indices in range; rows of one size.
+  const std::string v = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\n";
+  CHECK(obj_error_of(v + "f 1/1 2/2 3/2\n") == "(no error)");
+  CHECK(obj_error_of(v + "f 1/1 2/2 3\n") ==
+        "m.obj: line 6: f: corner '3' has no texture index (v/vt) but earlier corners have one");
+  CHECK(obj_error_of(v + "f 1 2 3\nf 1/1 2/2 3/1\n") ==
+        "m.obj: line 7: f: corner '1/1' has a texture index (v/vt) but earlier corners have none");
+  CHECK(obj_error_of(v + "f 1/1 2/2 3/3\n") ==
+        "m.obj: line 6: texture index 3 is out of range: 2 texture coordinates (vt) are defined before this "
+        "line");
+  CHECK(obj_error_of(v + "vt 1 1 1\nf 1/1 2/2 3/3\n") ==
+        "m.obj: line 6: vt: 3 numbers, the earlier vt lines have 2");
+}
+
+TEST_CASE("OBJ writer refuses what OBJ cannot hold", "[io][obj][tags]") {
+  Mesh m = tagged_grid();
+  m.face_varying.push_back(m.face_varying[0]);
+  CHECK_THROWS_WITH(mesh_obj(m), "the mesh to write as OBJ has 2 face-varying channels; OBJ holds one (vt)");
 }

@@ -404,3 +404,16 @@ TEST_CASE("PLY: an element without properties holds no data, whatever its count"
   CHECK(m.vertices.rows() == 3);
   CHECK(cifs::face_count(m) == 1);
 }
+
+TEST_CASE("PLY leaves hole faces out (it holds no tags)", "[io][ply][tags]") {
+  Mesh m = io_test::sample_mesh(false, true);
+  m.tags.holes = {1};
+  for (const PlyFormat format : {PlyFormat::ascii, PlyFormat::binary_little_endian}) {
+    const Mesh back = parse_mesh_ply(mesh_ply(m, format), "m.ply");
+    CHECK(back.face_offsets == std::vector<int>{0, 3, 7});
+    CHECK(back.face_vertices == std::vector<int>{0, 1, 2, 0, 1, 3, 4});
+    CHECK(back.states == std::vector<std::uint32_t>{7, 0});
+    CHECK(back.vertices == m.vertices);
+    CHECK(back.tags.holes.empty());
+  }
+}

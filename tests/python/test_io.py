@@ -279,6 +279,53 @@ class MeshFileTest(ScratchTestCase):
         self.assertEqual(hand.faces, [[0, 1, 2]])
         obj = io.parse_mesh_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1 -1/1\n", "hand.obj")
         self.assertEqual(obj.faces, [[0, 1, 2, 3]])
+        self.assertEqual(obj.face_varying[0].indices.tolist(), [0, 0, 0, 0])
+
+    def test_mesh_tags_and_uvs(self):
+        # The gallery's creased box: creases, a corner, a hole and UVs from OBJ tags and vt.
+        box = io.read_mesh(EXAMPLES / "meshes" / "creased_box.obj")
+        tags = box.tags
+        self.assertEqual(len(tags.creases), 36)
+        self.assertIsInstance(tags.creases[0], io.EdgeSharpness)
+        self.assertEqual(tags.crease_edges.shape, (36, 2))
+        self.assertEqual(sorted(set(tags.crease_sharpness.tolist())), [1.0, 2.0, 10.0])
+        self.assertEqual(tags.corner_vertices.tolist(), [tags.corners[0].vertex])
+        self.assertEqual(tags.corner_sharpness.tolist(), [3.0])
+        self.assertEqual(tags.holes.tolist(), [13])
+        self.assertEqual((tags.boundary, tags.crease_method, tags.triangles, tags.fvar_interpolation),
+                         ("edge", "uniform", "catmark", "all"))
+        self.assertEqual(len(box.face_varying), 1)
+        uv = box.face_varying[0]
+        self.assertEqual((uv.name, uv.values.shape, uv.indices.shape), ("uv", (96, 2), (216,)))
+        # Built in Python, written and read back bit for bit.
+        v = pentagon_and_apex()
+        made = io.Mesh(v, faces=[[0, 1, 2, 3, 4], [0, 1, 5], [1, 2, 5]],
+                       tags=io.MeshTags(creases=[io.EdgeSharpness(0, 1, 2.5)], corners=[io.VertexSharpness(5, 1 / 3)],
+                                        holes=[2], boundary="corner", crease_method="chaikin"),
+                       face_varying=[io.FaceVaryingChannel("uv", [[0, 0], [1, 0], [0.5, 1 / 7]],
+                                                           [0, 1, 2, 0, 1, 1, 2, 0, 2, 2, 1])])
+        path = self.scratch / "tagged.obj"
+        io.write(path, made)
+        back = io.read_mesh(path)
+        self.assertEqual(io.mesh_obj(back), io.mesh_obj(made))
+        self.assertEqual((back.tags.creases[0].a, back.tags.creases[0].b, back.tags.creases[0].sharpness), (0, 1, 2.5))
+        self.assertEqual(back.tags.corners[0].sharpness, 1 / 3)
+        self.assertEqual((back.tags.boundary, back.tags.crease_method), ("corner", "chaikin"))
+        np.testing.assert_array_equal(back.face_varying[0].values, made.face_varying[0].values)
+        # Bad tags: one line naming what is wrong.
+        with self.assertRaises(cifs.InvalidInput):
+            io.EdgeSharpness(0, 1, -1)
+        with self.assertRaises(cifs.InvalidInput):
+            io.MeshTags(boundary="sharp")
+        with self.assertRaises(cifs.InvalidInput) as caught:
+            io.Mesh(v, faces=[[0, 1, 2]], tags=io.MeshTags(holes=[0]))
+        self.assertIn("every face is a hole", str(caught.exception))
+        # Unknown tags: a warning, or InvalidInput with strict.
+        edits = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nt vertexedit 1/1/1 0 0.5 add\n"
+        self.assertEqual(io.parse_mesh_obj(edits, "e.obj").faces, [[0, 1, 2]])
+        with self.assertRaises(cifs.InvalidInput) as caught:
+            io.parse_mesh_obj(edits, "e.obj", strict=True)
+        self.assertTrue(str(caught.exception).startswith("e.obj: line 5: t vertexedit: unknown tag"))
 
     def test_bad_mesh_files(self):
         stl = self.scratch / "m.stl"

@@ -371,3 +371,28 @@ TEST_CASE("Strokes at equal depth: the later layer wins even where float rounds 
   CHECK(image.channels["B"][centre] == 1.0f);
   CHECK(image.channels["R"][centre] == 0.0f);
 }
+
+TEST_CASE("Hole faces are not drawn: the image of the mesh without them", "[render][raster][tags]") {
+  const Camera camera = unit_camera(24, 20);
+  // Two squares side by side, the right one a hole; the same normals for both meshes.
+  Mesh holed = square(-8, 0, -6, 6, 1, 3);
+  holed.vertices.conservativeResize(6, 3);
+  holed.vertices.bottomRows(2) << 8, -6, 1, 8, 6, 1;
+  add_face(holed, {1, 4, 5, 2});
+  holed.states = {3, 4};
+  holed.normals = vertex_normals(holed);
+  Mesh left = holed;
+  left.face_offsets = {0, 4};
+  left.face_vertices.resize(4);
+  left.states = {3};
+  holed.tags.holes = {1};
+  Image a, b;
+  render_mesh(a, camera, holed);
+  render_mesh(b, camera, left);
+  CHECK(sum(a.channels.at("A")) > 50);
+  for (const auto& [name, values] : a.channels) {
+    INFO("channel " << name);
+    CHECK(values == b.channels.at(name));
+  }
+  CHECK(*a.state == *b.state);
+}

@@ -14,6 +14,7 @@
 #include "cifs/files.hpp"
 #include "cifs/io/bcifs_file.hpp"
 #include "cifs/io/experiment.hpp"
+#include "cifs/io/obj.hpp"
 #include "cifs/io/points.hpp"
 #include "cifs/io/polygon.hpp"
 #include "cifs/io/shape.hpp"
@@ -102,7 +103,8 @@ Content detect(const std::filesystem::path& path);
 std::vector<Shape> read_shapes(const std::filesystem::path& path, const ShapeReadOptions& options = {});
 Shape read_shape(const std::filesystem::path& path, const ShapeReadOptions& options = {});
 Polygon read_polygon(const std::filesystem::path& path);
-Mesh read_mesh(const std::filesystem::path& path);  // checked with check_mesh
+/// Meshes: checked with check_mesh; `options` apply to OBJ (tags cifs does not read).
+Mesh read_mesh(const std::filesystem::path& path, const MeshReadOptions& options = {});
 /// Automata: with their knot data (windows, intervals) when the file has them.
 nurbs::KnotAutomaton read_automaton(const std::filesystem::path& path);
 BcifsFile read_bcifs(const std::filesystem::path& path);

@@ -17,7 +17,9 @@ enum class PlyFormat { ascii, binary_little_endian, binary_big_endian };
 /// PLY: `element vertex` (double x y z, plus double nx ny nz when the mesh has normals) and
 /// `element face` (list uchar int vertex_indices — list uint int when a face has more than 255
 /// corners —, plus uint state when the mesh has states). Binary files have the byte order their
-/// format names, whatever the host.
+/// format names, whatever the host. PLY holds no tags or UVs: hole faces are left out (the surface
+/// without them, as renderers draw it); creases, corners, options and face-varying channels are not
+/// written (OBJ keeps them).
 std::string mesh_ply(const Mesh& mesh, PlyFormat format = PlyFormat::ascii);
 void mesh_ply(const Mesh& mesh, PlyFormat format, ByteSink& out);  // the same bytes, a chunk at a time
 /// PLY: `element vertex` (double x y z; z = 0 for planar vertices) and `element edge` (int vertex1,
