@@ -91,7 +91,10 @@ MeshTags make_tags(const std::optional<std::vector<EdgeSharpness>>& creases,
   tags.creases = creases.value_or(std::vector<EdgeSharpness>{});
   tags.corners = corners.value_or(std::vector<VertexSharpness>{});
   tags.holes = holes.value_or(std::vector<int>{});
-  apply(tag_overrides(boundary, crease_method, triangles, fvar_interpolation), tags);
+  if (!boundary.empty()) tags.boundary = named_boundary_rule(boundary);
+  if (!crease_method.empty()) tags.crease_method = named_crease_method(crease_method);
+  if (!triangles.empty()) tags.triangles = named_triangle_rule(triangles);
+  if (!fvar_interpolation.empty()) tags.face_varying = named_face_varying_rule(fvar_interpolation);
   return tags;
 }
 
