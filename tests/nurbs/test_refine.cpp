@@ -666,6 +666,8 @@ TEST_CASE("insert_knot refuses a count above the degree before making the copies
                     "knot 1.5 would reach multiplicity 1000000000 > degree 3");
   CHECK_THROWS_WITH(insert_knot(c, 1, 3), "knot 1 would reach multiplicity 4 > degree 3");
   CHECK(insert_knot(c, 1.5, 3).P.rows() == 8);
+}
+
 TEST_CASE("split: both parts are the curve, clamped at the cut", "[nurbs][refine][split]") {
   Rng rng(3030);
   for (int trial = 0; trial < 300; ++trial) {
