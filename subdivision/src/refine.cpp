@@ -303,7 +303,7 @@ Points refine(const Scheme& scheme, const Points& P, bool closed, const RefineOp
   // Coordinates near the largest doubles: the sums of a rule overflow before its negative weights
   // bring them back (9/16·(b + c) of 1.7e308). The rules are affine, so the polygon is refined scaled
   // by a power of 2 (exact) and scaled back; below 2^1000 nothing changes, bit for bit.
-  const double top = P.cwiseAbs().maxCoeff();
+  const double top = P.size() == 0 ? 0.0 : P.cwiseAbs().maxCoeff();  // (0 columns: no coordinate)
   int exponent = 0;
   if (top > 0x1p1000) std::frexp(top, &exponent);
   const Points scaled = exponent != 0

@@ -544,7 +544,7 @@ class MeshSubdivisionTest(ScratchTestCase):
             sd.catmull_clark(cube, 20)
         with self.assertRaisesRegex(cifs.InvalidInput, "rows"):
             sd.refine_topology(cube, "catmull-clark").steps[0].apply(np.zeros((3, 3)))
-        self.assertEqual(sd.mesh_schemes(), ["catmull-clark", "loop", "doo-sabin", "butterfly", "sqrt3"])
+        self.assertEqual(sd.mesh_schemes(), ["catmull-clark", "loop", "doo-sabin", "butterfly", "sqrt3", "bilinear"])
 
 
 class LimitTest(unittest.TestCase):

@@ -389,6 +389,10 @@ TEST_CASE("open vs closed: away from the ends both refinements agree", "[subdivi
 }
 
 TEST_CASE("refinement: sizes, limits and bad input", "[subdivision]") {
+  // Points without coordinates refine to points without coordinates (the overflow guard's largest
+  // coordinate of an empty matrix crashed).
+  CHECK(refine(chaikin(), Points(3, 0), false).rows() == 6);
+  CHECK(refine(chaikin(), Points(3, 0), true).cols() == 0);
   const Points P = random_polygon(5, 3, 9);
   CHECK(refine(four_point(), P, true, 3).rows() == 40);
   CHECK(refine(four_point(), P, false, 3).rows() == 33);
