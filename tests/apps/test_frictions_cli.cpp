@@ -9,9 +9,9 @@ using namespace cifs_test;
 
 namespace {
 
-const std::string kExamples = CIFS_EXAMPLES_DIR;
-const std::string kWave = kExamples + "/shapes/wave.json";
-const std::string kCube = kExamples + "/meshes/cube.obj";
+const std::string kFrictionExamples = CIFS_EXAMPLES_DIR;
+const std::string kWave = kFrictionExamples + "/shapes/wave.json";
+const std::string kCube = kFrictionExamples + "/meshes/cube.obj";
 
 /// A small experiment of the wave curve in the scratch folder (its shape path absolute).
 std::string wave_experiment(const std::string& name, const std::string& outputs) {
@@ -61,7 +61,7 @@ TEST_CASE("Mistyped options, commands and scheme names get a suggestion", "[cli]
 TEST_CASE("cifs gallery --quiet prints nothing but errors and warnings", "[cli][frictions]") {
   const auto examples = scratch() / "gallery_examples";
   std::filesystem::create_directories(examples / "experiments");
-  std::filesystem::create_directory_symlink(kExamples + "/shapes", examples / "shapes");
+  std::filesystem::create_directory_symlink(kFrictionExamples + "/shapes", examples / "shapes");
   std::ofstream(examples / "experiments" / "wave.json")
       << R"({"shape": "../shapes/wave.json", "evaluation": {"depth": 4},
       "render": {"width": 32, "height": 32}, "outputs": {"png": "wave.png"}})";
@@ -85,7 +85,7 @@ TEST_CASE("cifs --version is the project's version", "[cli][frictions]") {
 }
 
 TEST_CASE("A parameter or knot outside the domain names the shape file", "[cli][frictions][messages]") {
-  const std::string hills = kExamples + "/shapes/hills.json";
+  const std::string hills = kFrictionExamples + "/shapes/hills.json";
   check_error(cifs_cli("eval " + hills + " --at -0.5,0.5"),
               "cifs: " + hills + ": parameter u = -0.5 is outside");
   check_error(cifs_cli("eval " + kWave + " --at 7"),
