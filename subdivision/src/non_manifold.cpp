@@ -199,7 +199,10 @@ std::vector<int> child_vertex_representatives(const MeshTopology& parent, const 
   std::vector<int> out(static_cast<std::size_t>(child_vertex_count));
   std::iota(out.begin(), out.end(), 0);
   for (int v = 0; v < V; ++v) out[static_cast<std::size_t>(v)] = r.vertex[static_cast<std::size_t>(v)];
-  for (int e = 0; e < E; ++e) out[static_cast<std::size_t>(V + e)] = V + r.edge[static_cast<std::size_t>(e)];
+  for (int e = 0; e < E; ++e) {
+    const int point = V + e;  // edge e's point
+    out[static_cast<std::size_t>(point)] = V + r.edge[static_cast<std::size_t>(e)];
+  }
   return out;
 }
 
