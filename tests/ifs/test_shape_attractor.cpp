@@ -33,9 +33,8 @@ void check_against_evaluation(const nurbs::Curve& c, int depth) {
   for (Eigen::Index i = 0; i < A.rows(); ++i) scale = std::max(scale, A.row(i).cwiseAbs().maxCoeff());
   for (std::size_t i = 0; i < us.size(); ++i) {
     INFO("u = " << us[i]);
-    CHECK(
-        (A.row(static_cast<Eigen::Index>(i)) - nurbs::evaluate(c, us[i]).transpose()).cwiseAbs().maxCoeff() <=
-        1e-12 * scale);
+    CHECK((A.row(static_cast<Eigen::Index>(i)) - nurbs::evaluate(c, us[i])).cwiseAbs().maxCoeff() <=
+          1e-12 * scale);
   }
 }
 
@@ -78,8 +77,7 @@ TEST_CASE("ifs::attractor of a rational surface: its quad mesh's vertices are Ca
   for (std::size_t a = 0; a < us.size(); ++a)
     for (std::size_t b = 0; b < vs.size(); ++b) {
       const Eigen::Index row = static_cast<Eigen::Index>(a * vs.size() + b);
-      CHECK((mesh.vertices.row(row) - nurbs::evaluate(s, us[a], vs[b]).transpose()).cwiseAbs().maxCoeff() <=
-            1e-12 * 4);
+      CHECK((mesh.vertices.row(row) - nurbs::evaluate(s, us[a], vs[b])).cwiseAbs().maxCoeff() <= 1e-12 * 4);
     }
   CHECK_THROWS_AS(ifs::attractor(s, 20, 1 << 20), InvalidInput);
 }
