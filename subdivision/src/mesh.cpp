@@ -728,6 +728,10 @@ class EdgeIndex {
 LevelFeatures level_features(const MeshTopology& t, const MeshTags& tags, MeshScheme scheme,
                              const std::string& who) {
   LevelFeatures L;
+  const bool boundary =
+      std::any_of(t.boundary_vertex.begin(), t.boundary_vertex.end(), [](char b) { return b != 0; });
+  if (tags.creases.empty() && tags.corners.empty() && tags.holes.empty() && !boundary)
+    return L;  // a plain closed level: smooth rules everywhere, nothing to allocate
   const std::size_t V = static_cast<std::size_t>(t.vertex_count), E = t.edges.size(), F = face_count(t);
   std::vector<double> es(E, 0), vs(V, 0);
   std::vector<char> holes(F, 0);
