@@ -10,6 +10,7 @@
 #include "cifs/errors.hpp"
 #include "cifs/files.hpp"
 #include "cifs/io/io.hpp"
+#include "cifs/io/ply.hpp"
 #include "cifs/render/progress.hpp"
 #include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/mesh.hpp"
@@ -118,6 +119,10 @@ std::string mesh_to_mesh(const std::filesystem::path& input, const io::MeshReadO
   } catch (const InvalidInput& e) {
     throw InvalidInput(input.string() + ": " + e.what());
   }
+  if (format == "ply")
+    if (const std::string dropped = io::ply_leaves_out(result); !dropped.empty())
+      pending_warnings().push_back(output_path.string() + ": PLY holds no tags or UVs: " + dropped +
+                                   " are left out (write .obj to keep them)");
   if (!output) return io::encode(result, format);
   io::encode(result, format, *output);
   output->commit();

@@ -267,6 +267,20 @@ TEST_CASE("cifs subdivide keeps tags and UVs: refining its output once equals re
   CHECK((a.face_varying[0].values - b.face_varying[0].values).cwiseAbs().maxCoeff() <= 1e-12);
 }
 
+TEST_CASE("cifs subdivide -o .ply says what PLY leaves out of a tagged mesh", "[cli][mesh][tags]") {
+  const std::string in = file("tagged_for_ply.obj", tagged_grid_obj());
+  const auto ply = scratch() / "tagged.ply", plain = scratch() / "plain.ply";
+  const auto r = cifs_cli("subdivide " + in + " --scheme catmull-clark -o " + ply.string());
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.err, Catch::StartsWith("cifs: warning: ") && Catch::Contains("PLY holds no tags or UVs") &&
+                        Catch::Contains("hole faces") && Catch::Contains("creases") &&
+                        Catch::Contains("face-varying channel 'uv'"));
+  const auto quiet =
+      cifs_cli("subdivide " + example("cube.obj") + " --scheme catmull-clark -o " + plain.string());
+  REQUIRE(quiet.status == 0);
+  CHECK(quiet.err.empty());  // nothing to leave out: no warning
+}
+
 TEST_CASE("cifs subdivide and info: unknown OBJ tags warn, --strict refuses", "[cli][mesh][tags]") {
   const std::string in = file("edits.obj", tagged_grid_obj() + "t vertexedit 1/1/1 0 0.5 add\n");
   const auto out = scratch() / "edits_out.obj";
