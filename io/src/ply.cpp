@@ -491,16 +491,16 @@ void mesh_ply(const Mesh& mesh, PlyFormat format, ByteSink& sink) {
 
 std::string ply_leaves_out(const Mesh& mesh) {
   std::vector<std::string> parts;
-  const auto count = [&](std::size_t n, const char* what) {
-    if (n > 0) parts.push_back(std::to_string(n) + " " + what);
+  const auto count = [&](std::size_t n, const std::string& what) {
+    if (n > 0) parts.push_back(std::to_string(n) + " " + what + (n == 1 ? "" : "s"));
   };
-  count(mesh.tags.holes.size(), "hole faces");
+  count(mesh.tags.holes.size(), "hole face");
   count(static_cast<std::size_t>(std::count_if(mesh.tags.creases.begin(), mesh.tags.creases.end(),
                                                [](const EdgeSharpness& c) { return c.sharpness > 0; })),
-        "creases");
+        "crease");
   count(static_cast<std::size_t>(std::count_if(mesh.tags.corners.begin(), mesh.tags.corners.end(),
                                                [](const VertexSharpness& c) { return c.sharpness > 0; })),
-        "corners");
+        "corner");
   for (const FaceVaryingChannel& c : mesh.face_varying)
     parts.push_back("the face-varying channel '" + c.name + "'");
   std::string out;
