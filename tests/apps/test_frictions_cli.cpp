@@ -59,7 +59,7 @@ TEST_CASE("Mistyped options, commands and scheme names get a suggestion", "[cli]
 }
 
 TEST_CASE("cifs gallery --quiet prints nothing but errors and warnings", "[cli][frictions]") {
-  const auto examples = scratch() / "gallery_examples";
+  const auto examples = scratch() / "quiet_gallery_examples";
   std::filesystem::create_directories(examples / "experiments");
   std::filesystem::create_directory_symlink(kFrictionExamples + "/shapes", examples / "shapes");
   std::ofstream(examples / "experiments" / "wave.json")
