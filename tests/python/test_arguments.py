@@ -44,7 +44,7 @@ ANY_SHAPE = {("render.tone_map_log_density", "density")}
 CHEAP = {
     "ifs.tolerance_sample": {"max_points": 4096}, "ifs.for_each_leaf_to_tolerance": {"epsilon": 0.1},
     "experiment.sample": {"max_points": 4096}, "experiment.evaluate": {"depth": 3},
-    "experiment.run": {"quiet": True}, "verify.check_curve": {"depth": 3}, "verify.check_surface": {"depth": 2},
+    "experiment.run": {"quiet": True}, "experiment.measure_dimension": {"max_points": 4096}, "verify.check_curve": {"depth": 3}, "verify.check_surface": {"depth": 2},
     "render.chaos_game_histogram": {"samples": 1000, "width": 8, "height": 8},
     "render.chaos_density": {"samples": 1000}, "render.estimate_bounds": {"points": 1000},
     "ifs.chaos_game": {"samples": 1000}, "ifs.sample_attractor": {"depth": 2},

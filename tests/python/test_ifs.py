@@ -457,7 +457,12 @@ class ExperimentDimensionTest(unittest.TestCase):
 
     def test_measure_dimension_is_the_cli_measurement(self):
         """The whole policy of `cifs dimension` (route, relaxation, coarser sample, cover, similarity)."""
-        cases = (("clover_fractal.json", {}, ()), ("sierpinski.json", {"depth": 10}, ("--depth", 10)))
+        # 2^18 points keep it seconds under the sanitizers (the default 2^21: a minute per side); levels of
+        # 200 boxes keep the fit strict.
+        budget, boxes = 2**18, 200
+        cases = (("clover_fractal.json", {"max_points": budget, "min_boxes": boxes},
+                  ("--max-points", budget, "--min-boxes", boxes)),
+                 ("sierpinski.json", {"depth": 10}, ("--depth", 10)))
         for name, keywords, flags in cases:
             with self.subTest(name):
                 path = EXAMPLES / "experiments" / name
@@ -491,9 +496,12 @@ class ExperimentDimensionTest(unittest.TestCase):
     def test_tolerance_sample_same_result_as_cli(self):
         # The CLI's default: a sample of proven resolution, fitted without the points-per-box rule.
         path = EXAMPLES / "experiments" / "clover_fractal.json"
-        report = cli_json("dimension", path, "--json")
-        ev = cifs.experiment.sample(cifs.io.read_experiment(path))
-        r = ifs.box_counting(ev.points, resolution=ev.resolution, points_per_box=1)
+        # 2^18 points (seconds under the sanitizers; the default 2^21 takes a minute per side) fit strictly
+        # from levels of 200 boxes.
+        budget, boxes = 2**18, 200
+        report = cli_json("dimension", path, "--json", "--max-points", budget, "--min-boxes", boxes)
+        ev = cifs.experiment.sample(cifs.io.read_experiment(path), max_points=budget)
+        r = ifs.box_counting(ev.points, resolution=ev.resolution, points_per_box=1, min_boxes=boxes)
         box = report["box_counting"]
         self.assertEqual((r.dimension, [r.min_level, r.max_level]), (box["dimension"], box["levels"]))
         self.assertGreaterEqual(r.dimension, 1.0)
