@@ -392,7 +392,7 @@ void cifs_limit_case(benchmark::State& state, sd::MeshScheme scheme) {
   const Mesh& m = input(scheme);
   const sd::MeshRefinement r = sd::refine_topology(m, scheme, kLevels);
   const Points x = sd::apply(r, m.vertices);
-  const sd::LimitStencils st = sd::limit_stencils(r.levels.back(), scheme);
+  const sd::LimitStencils st = sd::limit_stencils(r);
   sd::LimitFrame f;  // reused, as OSD's output vectors are
   for (auto _ : state) {
     sd::evaluate_limit(st, x, f);
@@ -404,7 +404,7 @@ void cifs_limit_case(benchmark::State& state, sd::MeshScheme scheme) {
 void cifs_limit_stencils_build(benchmark::State& state, sd::MeshScheme scheme) {
   const sd::MeshRefinement r = sd::refine_topology(input(scheme), scheme, kLevels);
   for (auto _ : state) {
-    const sd::LimitStencils st = sd::limit_stencils(r.levels.back(), scheme);
+    const sd::LimitStencils st = sd::limit_stencils(r);
     benchmark::DoNotOptimize(st.columns.data());
   }
 }

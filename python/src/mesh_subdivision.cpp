@@ -97,7 +97,8 @@ void bind_mesh_subdivision_meshes(py::module_& m) {
       py::arg("boundary") = py::none(), py::arg("normals").noconvert() = false,
       py::arg("max_bytes") = kDefaultBytes,
       "The mesh after `levels` steps with every vertex on the limit surface (left eigenvectors of the local "
-      "subdivision matrices), and unit limit normals when normals=True (closed meshes; not Butterfly). "
+      "subdivision matrices; creases, corners, holes and boundaries followed exactly, any valence), and unit "
+      "limit normals when normals=True (not at crease and corner vertices between sectors; not Butterfly). "
       "catmull-clark, loop, butterfly (interpolating: the vertices themselves), sqrt3.");
   m.def(
       "limit_surface",

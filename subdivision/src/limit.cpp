@@ -2,10 +2,17 @@
 // cifs — limit stencils from the left eigenvectors of S_n (cifs/subdivision/limit.hpp).
 #include "cifs/subdivision/limit.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <Eigen/QR>
 #include <Eigen/SVD>
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <complex>
+#include <map>
+#include <numbers>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -18,8 +25,9 @@
 namespace cifs::subdivision {
 namespace {
 
-LimitMask mask(MeshScheme scheme, int valence, const LocalOptions& local) {
-  const LocalMatrix S = local_matrix(scheme, valence, local);
+/// √3's masks (interior vertices, valences 3 … 16) from the left eigenvectors of local_matrix.
+LimitMask eigen_mask(MeshScheme scheme, int valence) {
+  const LocalMatrix S = local_matrix(scheme, valence);
   const LocalSpectrum spectrum = local_spectrum(S);
   const auto doubles = [](const LongVector& w) {
     std::vector<double> out(static_cast<std::size_t>(w.size()));
@@ -27,14 +35,13 @@ LimitMask mask(MeshScheme scheme, int valence, const LocalOptions& local) {
     return out;
   };
   LimitMask out{.position = doubles(spectrum.limit_stencil), .tangent_u = {}, .tangent_v = {}};
-  if (local.boundary) return out;
   const auto N = S.values.rows();
   const LongMatrix A = (S.values - spectrum.subdominant * LongMatrix::Identity(N, N)).transpose();
   const Eigen::JacobiSVD<LongMatrix> svd(A, Eigen::ComputeFullV);
   LongMatrix left = svd.matrixV().rightCols(2);
   // Orientation: on the planar local mesh (counter-clockwise faces, normal +z) the pair must give
   // a positive frame.
-  const Mesh plane = local_mesh(scheme, valence, local, 3);
+  const Mesh plane = local_mesh(scheme, valence, {}, 3);
   const MeshTopology t = build_topology(plane, "local mesh");
   const std::vector<int> nb =
       detail::neighbourhood(t, scheme, 0, 1, false);  // vertex 0, sector 0 at vertex 1
@@ -50,20 +57,269 @@ LimitMask mask(MeshScheme scheme, int valence, const LocalOptions& local) {
   return out;
 }
 
-/// Why the neighbourhood of v cannot be walked, or nothing.
-const char* unsupported(const MeshTopology& t, MeshScheme scheme, int v) {
-  const std::size_t corners = scheme == MeshScheme::catmull_clark ? 4 : 3;
-  for (const int f : vertex_faces(t, static_cast<std::size_t>(v)))
-    if (face(t, static_cast<std::size_t>(f)).size() != corners)
-      return scheme == MeshScheme::catmull_clark
-                 ? "touches a face that is not a quad (refine one level first)"
-                 : "touches a face that is not a triangle";
-  return nullptr;
+/// The closed-form masks at a smooth interior vertex of valence n, every n, on (c, r_j, f_j) for
+/// Catmull–Clark and (c, r_j) for Loop (mesh_analysis.hpp's numbering). Positions: Catmull–Clark
+/// (n² c + 4 Σ r_j + Σ f_j) / (n (n + 5)); Loop (ω c + Σ r_j) / (ω + n), ω = 3 / (8 β(n)). Tangents:
+/// the two left eigenvectors of the subdominant λ — Loop's cos(2πj/n), sin(2πj/n) on r_j
+/// (λ = 3/8 + ¼ cos(2π/n)); Catmull–Clark's A_n cos(2πj/n) on r_j and cos(2πj/n) + cos(2π(j+1)/n) on
+/// f_j, A_n = 1 + cos(2π/n) + cos(π/n) √(2 (9 + cos(2π/n))) (Halstead, Kass, DeRose 1993), and the
+/// same with sines. tests/subdivision/test_mesh_limit.cpp checks them against the eigenvectors.
+LimitMask smooth_mask(MeshScheme scheme, int n) {
+  const double N = n;
+  const bool quads = scheme == MeshScheme::catmull_clark;
+  const std::size_t size = quads ? 2 * static_cast<std::size_t>(n) + 1 : static_cast<std::size_t>(n) + 1;
+  LimitMask m{.position = std::vector<double>(size),
+              .tangent_u = std::vector<double>(size, 0.0),
+              .tangent_v = std::vector<double>(size, 0.0)};
+  const double step = 2 * std::numbers::pi / N;
+  if (quads) {
+    const double d = N * (N + 5);
+    m.position[0] = N / (N + 5);
+    const double a = 1 + std::cos(step) + std::cos(step / 2) * std::sqrt(2 * (9 + std::cos(step)));
+    for (int j = 0; j < n; ++j) {
+      const auto r = 1 + 2 * static_cast<std::size_t>(j), f = r + 1;
+      m.position[r] = 4 / d;
+      m.position[f] = 1 / d;
+      m.tangent_u[r] = a * std::cos(step * j);
+      m.tangent_v[r] = a * std::sin(step * j);
+      m.tangent_u[f] = std::cos(step * j) + std::cos(step * (j + 1));
+      m.tangent_v[f] = std::sin(step * j) + std::sin(step * (j + 1));
+    }
+    return m;
+  }
+  const double c = 0.375 + 0.25 * std::cos(step);
+  const double beta = (0.625 - c * c) / N;
+  const double omega = 3 / (8 * beta);
+  m.position[0] = omega / (omega + N);
+  for (int j = 0; j < n; ++j) {
+    const auto r = 1 + static_cast<std::size_t>(j);
+    m.position[r] = 1 / (omega + N);
+    m.tangent_u[r] = std::cos(step * j);
+    m.tangent_v[r] = std::sin(step * j);
+  }
+  return m;
+}
+
+double edge_sharpness(const LevelFeatures& f, int e) {
+  return f.edge_sharpness.empty() ? 0.0 : f.edge_sharpness[static_cast<std::size_t>(e)];
+}
+double vertex_sharpness(const LevelFeatures& f, int v) {
+  return f.vertex_sharpness.empty() ? 0.0 : f.vertex_sharpness[static_cast<std::size_t>(v)];
+}
+
+/// The faces around v counter-clockwise — from the boundary, or at an interior vertex from
+/// vertex_faces' first (`smallest_first`: from the face of smallest index) — and the ring's vertices
+/// in the order the walk meets them, v first: (c, r_0, f_0, r_1, …) on quads, (c, r_0, r_1, …) on
+/// triangles, as mesh_analysis.hpp numbers them.
+void walk_ring(const MeshTopology& t, int v, bool smallest_first, std::vector<int>& faces,
+               std::vector<int>& vertices) {
+  const auto around = vertex_faces(t, static_cast<std::size_t>(v));
+  std::size_t shift = 0;
+  if (smallest_first && t.boundary_vertex[static_cast<std::size_t>(v)] == 0)
+    shift = static_cast<std::size_t>(std::min_element(around.begin(), around.end()) - around.begin());
+  faces.clear();
+  vertices.assign(1, v);
+  for (std::size_t k = 0; k < around.size(); ++k) {
+    const int f = around[(k + shift) % around.size()];
+    faces.push_back(f);
+    const auto corners = face(t, static_cast<std::size_t>(f));
+    const auto at = static_cast<std::size_t>(std::find(corners.begin(), corners.end(), v) - corners.begin());
+    for (std::size_t i = 1; i < corners.size(); ++i) {
+      const int w = corners[(at + i) % corners.size()];
+      if (std::find(vertices.begin(), vertices.end(), w) == vertices.end()) vertices.push_back(w);
+    }
+  }
+}
+
+/// Vertex v's one-ring cut out of its level as a mesh of its own (vertex 0 = v, the others in
+/// walk_ring's order, faces in its order turned to start at v) with the sharpness of v and of its
+/// edges as tags. Nothing else is needed: the one-ring of v's child — its vertex point, the edge
+/// points of its edges, the face points of its faces — reads v's rule and its edges' alone (the outer
+/// edges, boundary edges of the cut, only move the outer vertices; holes leave the rules alone: they
+/// only keep faces out of the surface).
+struct Ring {
+  Mesh mesh;
+  std::vector<int> vertices;  // the level's vertex of each ring vertex
+  bool boundary = false;
+};
+
+Ring cut_ring(const MeshTopology& t, const LevelFeatures& f, const MeshTags& options, int v,
+              bool smallest_first) {
+  Ring ring;
+  std::vector<int> faces;
+  walk_ring(t, v, smallest_first, faces, ring.vertices);
+  ring.boundary = t.boundary_vertex[static_cast<std::size_t>(v)] != 0;
+  const auto local = [&](int w) {
+    return static_cast<int>(std::find(ring.vertices.begin(), ring.vertices.end(), w) - ring.vertices.begin());
+  };
+  Mesh& m = ring.mesh;
+  m.vertices = Points::Zero(static_cast<Eigen::Index>(ring.vertices.size()), 3);
+  for (std::size_t k = 0; k < faces.size(); ++k) {
+    const auto corners = face(t, static_cast<std::size_t>(faces[k]));
+    const auto at = static_cast<std::size_t>(std::find(corners.begin(), corners.end(), v) - corners.begin());
+    for (std::size_t i = 0; i < corners.size(); ++i)
+      m.face_vertices.push_back(local(corners[(at + i) % corners.size()]));
+    m.face_offsets.push_back(static_cast<int>(m.face_vertices.size()));
+  }
+  for (const int e : vertex_edges(t, static_cast<std::size_t>(v)))
+    if (const double s = edge_sharpness(f, e); s > 0)
+      m.tags.creases.push_back(
+          {.a = 0, .b = local(other_vertex(t, static_cast<std::size_t>(e), v)), .sharpness = s});
+  if (const double s = vertex_sharpness(f, v); s > 0) m.tags.corners.push_back({.vertex = 0, .sharpness = s});
+  m.tags.crease_method = options.crease_method;
+  m.tags.triangles = options.triangles;
+  return ring;
+}
+
+/// Whether the ring's next step is the same matrix as this one: regular faces, and every sharpness
+/// at v infinite (no sharpness left to spend, no rule to change).
+bool stationary(const Ring& ring, MeshScheme scheme) {
+  const int size = scheme == MeshScheme::catmull_clark ? 4 : 3;
+  for (std::size_t f = 0; f + 1 < ring.mesh.face_offsets.size(); ++f)
+    if (ring.mesh.face_offsets[f + 1] - ring.mesh.face_offsets[f] != size) return false;
+  const auto spent = [](double s) { return s >= kInfiniteSharpness; };
+  return std::all_of(ring.mesh.tags.creases.begin(), ring.mesh.tags.creases.end(),
+                     [&](const EdgeSharpness& c) { return spent(c.sharpness); }) &&
+         std::all_of(ring.mesh.tags.corners.begin(), ring.mesh.tags.corners.end(),
+                     [&](const VertexSharpness& c) { return spent(c.sharpness); });
+}
+
+/// The ring of v's child, in the same numbering: `ring` refined once by the production refiner and
+/// cut again around vertex 0 (v's child: vertex points come first) from the child of the first face.
+/// `weights` (a row per ring vertex) become the child ring's rows.
+Ring refine_ring(const Ring& ring, MeshScheme scheme, Points& weights) {
+  const MeshRefinement r = refine_topology(ring.mesh, scheme, 1);
+  Ring child = cut_ring(r.levels[1], r.features[1], r.tags[1], 0, true);
+  const Points all = apply(r.steps[0], weights);
+  Points rows(static_cast<Eigen::Index>(child.vertices.size()), weights.cols());
+  for (std::size_t i = 0; i < child.vertices.size(); ++i)
+    rows.row(static_cast<Eigen::Index>(i)) = all.row(child.vertices[i]);
+  weights = std::move(rows);
+  return child;
+}
+
+/// What a stationary ring's masks depend on: the scheme, the faces, which edges are sharp, whether v
+/// is.
+std::vector<int> class_key(const Ring& ring, MeshScheme scheme) {
+  std::vector<int> key{static_cast<int>(scheme), ring.boundary ? 1 : 0,
+                       static_cast<int>(face_count(ring.mesh)), static_cast<int>(ring.vertices.size()),
+                       static_cast<int>(ring.mesh.tags.corners.size())};
+  for (const EdgeSharpness& c : ring.mesh.tags.creases) key.push_back(c.b);
+  return key;
+}
+
+/// The ring's sectors: its faces split by the sharp edges between two faces (a boundary vertex's
+/// boundary edges, and an interior vertex's single sharp edge — a dart — do not split).
+int sectors(const Ring& ring) {
+  int inner = 0;
+  for (const EdgeSharpness& c : ring.mesh.tags.creases) {
+    // On a boundary ring the first and last edge neighbours are the boundary edges' ends.
+    const bool boundary_edge =
+        ring.boundary && (c.b == ring.mesh.face_vertices[1] || c.b == ring.mesh.face_vertices.back());
+    inner += boundary_edge ? 0 : 1;
+  }
+  return ring.boundary ? inner + 1 : std::max(inner, 1);
+}
+
+/// The masks of a stationary ring's class from its one-step matrix S (child ring = S · ring): the left
+/// eigenvector of 1 (the position), and where the ring is one sector, the left eigenvectors of the
+/// two subdominant eigenvalues (the tangent plane), oriented on a planar embedding of the ring whose
+/// faces turn counter-clockwise. Multi-sector rings (creases, corners between sharp edges) have a
+/// tangent plane per sector: their tangents are left empty.
+LimitMask class_mask(const Ring& ring, MeshScheme scheme) {
+  const auto N = static_cast<Eigen::Index>(ring.vertices.size());
+  Points S = Points::Identity(N, N);
+  (void)refine_ring(ring, scheme, S);
+  if (S.rows() != N) throw std::logic_error("limit: a stationary ring changed size");
+  using Long = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
+  const Long St = S.transpose().cast<long double>();
+  Long A(N + 1, N);
+  A.topRows(N) = St - Long::Identity(N, N);
+  A.row(N).setOnes();
+  Eigen::Matrix<long double, Eigen::Dynamic, 1> b =
+      Eigen::Matrix<long double, Eigen::Dynamic, 1>::Zero(N + 1);
+  b(N) = 1;
+  const Eigen::Matrix<long double, Eigen::Dynamic, 1> l = A.colPivHouseholderQr().solve(b);
+  LimitMask out;
+  out.position.resize(static_cast<std::size_t>(N));
+  for (Eigen::Index i = 0; i < N; ++i) out.position[static_cast<std::size_t>(i)] = static_cast<double>(l(i));
+  // Tangents: one sector only, and a dense eigenproblem of modest size (valence ≤ 128).
+  if (sectors(ring) != 1 || N > 257) return out;
+  const Eigen::EigenSolver<Eigen::MatrixXd> eigen(S.transpose(), false);
+  std::vector<std::complex<double>> values(eigen.eigenvalues().begin(), eigen.eigenvalues().end());
+  std::sort(values.begin(), values.end(), [](auto x, auto y) { return std::abs(x) > std::abs(y); });
+  if (values.size() < 4 || std::abs(values[0] - 1.0) > 1e-9) return out;
+  const std::complex<double> l1 = values[1], l2 = values[2];
+  constexpr double kReal = 1e-9;
+  if (std::abs(l1.imag()) > kReal || std::abs(l2.imag()) > kReal || l2.real() <= std::abs(values[3]) + kReal)
+    return out;  // no tangent plane from the spectrum: no pair of real subdominant eigenvalues above the rest
+  const auto null_space = [&](double lambda, int count) {
+    const Eigen::MatrixXd M = S.transpose() - lambda * Eigen::MatrixXd::Identity(N, N);
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(M, Eigen::ComputeFullV);
+    return Eigen::MatrixXd(svd.matrixV().rightCols(count));
+  };
+  Eigen::MatrixXd pair(N, 2);
+  if (std::abs(l1.real() - l2.real()) < 1e-9) {
+    pair = null_space(l1.real(), 2);
+  } else {
+    pair.col(0) = null_space(l1.real(), 1);
+    pair.col(1) = null_space(l2.real(), 1);
+  }
+  // A planar ring: v at 0, the edge neighbours on a circle (less than a half circle at the boundary) in walk
+  // order, a quad's far corner at the sum of its two edge neighbours.
+  const auto faces = static_cast<int>(face_count(ring.mesh));
+  const double span = ring.boundary ? std::numbers::pi / (faces + 1) : 2 * std::numbers::pi / faces;
+  std::vector<Eigen::Vector2d> p(static_cast<std::size_t>(N), Eigen::Vector2d::Zero());
+  for (int k = 0; k < faces; ++k) {
+    const auto corners = face(ring.mesh, static_cast<std::size_t>(k));
+    const Eigen::Vector2d a(std::cos(span * k), std::sin(span * k)),
+        c(std::cos(span * (k + 1)), std::sin(span * (k + 1)));
+    p[static_cast<std::size_t>(corners[1])] = a;
+    p[static_cast<std::size_t>(corners.back())] = c;
+    if (corners.size() == 4) p[static_cast<std::size_t>(corners[2])] = a + c;
+  }
+  Eigen::Vector2d u = Eigen::Vector2d::Zero(), w = Eigen::Vector2d::Zero();
+  for (Eigen::Index i = 0; i < N; ++i) {
+    u += pair(i, 0) * p[static_cast<std::size_t>(i)];
+    w += pair(i, 1) * p[static_cast<std::size_t>(i)];
+  }
+  const double cross = u.x() * w.y() - u.y() * w.x();
+  if (std::abs(cross) <= 1e-9 * u.norm() * w.norm()) return out;  // the pair spans no plane
+  if (cross < 0) pair.col(1) *= -1;
+  out.tangent_u.assign(pair.col(0).begin(), pair.col(0).end());
+  out.tangent_v.assign(pair.col(1).begin(), pair.col(1).end());
+  return out;
+}
+
+/// Whether v's limit needs the ring route: a sharp edge or vertex, the boundary, or faces the closed
+/// forms do not take (Catmull–Clark before its first step).
+bool featured(const MeshTopology& t, const LevelFeatures& f, MeshScheme scheme, int v) {
+  if (t.boundary_vertex[static_cast<std::size_t>(v)] != 0 || vertex_sharpness(f, v) > 0) return true;
+  for (const int e : vertex_edges(t, static_cast<std::size_t>(v)))
+    if (edge_sharpness(f, e) > 0) return true;
+  const std::size_t size = scheme == MeshScheme::catmull_clark ? 4 : 3;
+  for (const int face_index : vertex_faces(t, static_cast<std::size_t>(v)))
+    if (face(t, static_cast<std::size_t>(face_index)).size() != size) return true;
+  return false;
+}
+
+/// The weighted sum of rows of `w` by `mask` (a mask on the stationary ring, rows on the first).
+std::vector<double> through(const std::vector<double>& mask, const Points& w) {
+  if (mask.empty()) return {};
+  std::vector<double> out(static_cast<std::size_t>(w.cols()), 0.0);
+  for (Eigen::Index i = 0; i < w.rows(); ++i)
+    for (Eigen::Index j = 0; j < w.cols(); ++j)
+      out[static_cast<std::size_t>(j)] += mask[static_cast<std::size_t>(i)] * w(i, j);
+  return out;
 }
 
 }  // namespace
 
-LimitStencils limit_stencils(const MeshTopology& t, MeshScheme scheme, BoundaryRule boundary) {
+LimitStencils limit_stencils(const MeshRefinement& r) {
+  const MeshScheme scheme = r.scheme;
+  const MeshTopology& t = r.levels.back();
+  const LevelFeatures& f = r.features.back();
+  const MeshTags& tags = r.tags.back();
   const std::string who(scheme_name(scheme));
   if (scheme == MeshScheme::doo_sabin)
     throw InvalidInput(who + ": limit points belong to faces under this dual scheme; not built");
@@ -72,45 +328,81 @@ LimitStencils limit_stencils(const MeshTopology& t, MeshScheme scheme, BoundaryR
   out.offsets.reserve(V + 1);
   out.mask_of.reserve(V);
   out.columns.reserve(V * (scheme == MeshScheme::catmull_clark ? 9 : 7));
-  // Masks by kind: [valence][boundary]; −1 until first needed. Kind 0 is "the vertex itself".
+  // Kind 0 is "the vertex itself"; smooth masks by valence; stationary classes by their key.
   out.masks.push_back(LimitMask{.position = {1.0}, .tangent_u = {}, .tangent_v = {}});
-  std::vector<std::array<int, 2>> kind;
-  std::vector<int> nb;
+  std::vector<int> smooth;
+  std::map<std::vector<int>, int> classes;
+  std::vector<int> faces, nb;
+  const bool rings = scheme == MeshScheme::catmull_clark || scheme == MeshScheme::loop;
   for (int v = 0; v < t.vertex_count; ++v) {
     const int n = valence(t, static_cast<std::size_t>(v));
-    const bool on_boundary = t.boundary_vertex[static_cast<std::size_t>(v)] != 0;
-    // Isolated vertices stay where they are; Butterfly interpolates: the vertex is its limit.
+    const auto where = [&] {
+      return who + ": vertex " + std::to_string(v) + " (valence " + std::to_string(n) + ")";
+    };
+    // Isolated vertices stay where they are; Butterfly and bilinear interpolate: the vertex is its limit.
     if (n == 0 || traits(scheme).interpolating) {
       out.columns.push_back(v);
       out.offsets.push_back(static_cast<int>(out.columns.size()));
       out.mask_of.push_back(0);
       continue;
     }
-    const auto where = [&] {
-      return who + ": vertex " + std::to_string(v) + " (valence " + std::to_string(n) + ")";
-    };
-    if (on_boundary && scheme != MeshScheme::catmull_clark && scheme != MeshScheme::loop)
-      throw InvalidInput(where() +
-                         " is on the boundary: limit points there are built for catmull-clark and loop only");
-    if (const char* why = unsupported(t, scheme, v)) throw InvalidInput(where() + " " + why);
-    if (kind.size() <= static_cast<std::size_t>(n)) kind.resize(static_cast<std::size_t>(n) + 1, {-1, -1});
-    int& k = kind[static_cast<std::size_t>(n)][on_boundary ? 1 : 0];
-    if (k < 0) {
-      try {
-        out.masks.push_back(mask(scheme, n, LocalOptions{.boundary = on_boundary, .rule = boundary}));
-      } catch (const InvalidInput& e) {
-        std::string_view what = e.what();  // the scheme's name once: where() starts with it
-        if (what.starts_with(who + ": ")) what.remove_prefix(who.size() + 2);
-        throw InvalidInput(where() + ": " + std::string(what));
+    int mask = -1;
+    if (!rings) {  // √3: interior vertices of valence 3 … 16, from the eigenvectors
+      if (t.boundary_vertex[static_cast<std::size_t>(v)] != 0)
+        throw InvalidInput(where() +
+                           " is on the boundary: limit points there are built for catmull-clark and "
+                           "loop only");
+      if (smooth.size() <= static_cast<std::size_t>(n)) smooth.resize(static_cast<std::size_t>(n) + 1, -1);
+      if (smooth[static_cast<std::size_t>(n)] < 0) {
+        try {
+          out.masks.push_back(eigen_mask(scheme, n));
+        } catch (const InvalidInput& e) {
+          std::string_view what = e.what();  // the scheme's name once: where() starts with it
+          if (what.starts_with(who + ": ")) what.remove_prefix(who.size() + 2);
+          throw InvalidInput(where() + ": " + std::string(what));
+        }
+        smooth[static_cast<std::size_t>(n)] = static_cast<int>(out.masks.size()) - 1;
       }
-      k = static_cast<int>(out.masks.size()) - 1;
+      mask = smooth[static_cast<std::size_t>(n)];
+      const int start =
+          other_vertex(t, static_cast<std::size_t>(vertex_edges(t, static_cast<std::size_t>(v))[0]), v);
+      detail::neighbourhood(t, scheme, v, start, false, nb);
+    } else if (!featured(t, f, scheme, v)) {  // the closed forms, any valence
+      if (smooth.size() <= static_cast<std::size_t>(n)) smooth.resize(static_cast<std::size_t>(n) + 1, -1);
+      if (smooth[static_cast<std::size_t>(n)] < 0) {
+        out.masks.push_back(smooth_mask(scheme, n));
+        smooth[static_cast<std::size_t>(n)] = static_cast<int>(out.masks.size()) - 1;
+      }
+      mask = smooth[static_cast<std::size_t>(n)];
+      walk_ring(t, v, false, faces, nb);
+    } else {  // the ring route: refined until stationary, then its class's masks
+      Ring ring = cut_ring(t, f, tags, v, false);
+      nb = ring.vertices;
+      Points w = Points::Identity(static_cast<Eigen::Index>(nb.size()), static_cast<Eigen::Index>(nb.size()));
+      int steps = 0;
+      for (; !stationary(ring, scheme); ++steps) {
+        // Sharpness is spent by one a step (infinite: 10), faces are regular after one.
+        if (steps > 2 * static_cast<int>(kInfiniteSharpness))
+          throw std::logic_error("limit: a ring never settles");
+        ring = refine_ring(ring, scheme, w);
+      }
+      const auto [it, fresh] = classes.try_emplace(class_key(ring, scheme), -1);
+      if (fresh) {
+        out.masks.push_back(class_mask(ring, scheme));
+        it->second = static_cast<int>(out.masks.size()) - 1;
+      }
+      mask = it->second;
+      if (steps > 0) {  // this vertex's own masks: the class's, through the steps to its level
+        const LimitMask& m = out.masks[static_cast<std::size_t>(mask)];
+        out.masks.push_back({.position = through(m.position, w),
+                             .tangent_u = through(m.tangent_u, w),
+                             .tangent_v = through(m.tangent_v, w)});
+        mask = static_cast<int>(out.masks.size()) - 1;
+      }
     }
-    const int start =
-        other_vertex(t, static_cast<std::size_t>(vertex_edges(t, static_cast<std::size_t>(v))[0]), v);
-    detail::neighbourhood(t, scheme, v, start, on_boundary, nb);
     out.columns.insert(out.columns.end(), nb.begin(), nb.end());
     out.offsets.push_back(static_cast<int>(out.columns.size()));
-    out.mask_of.push_back(k);
+    out.mask_of.push_back(mask);
   }
   return out;
 }
@@ -171,13 +463,7 @@ LimitFrame evaluate_limit(const LimitStencils& stencils, const Points& vertices,
 }
 
 Mesh limit_mesh(const Mesh& mesh, MeshScheme scheme, int levels, const LimitOptions& options) {
-  if (const std::string feature = first_feature(mesh.tags); !feature.empty())
-    throw InvalidInput(
-        std::string(scheme_name(scheme)) + ": the mesh has " + feature +
-        "; limits under creases, corners and holes are not built yet (cifs subdivide refines them)");
-  if (mesh.tags.triangles == TriangleRule::smooth && scheme == MeshScheme::catmull_clark)
-    throw InvalidInput(
-        "catmull-clark: limits under the smooth-triangle rule are not built yet; subdivide instead");
+  const std::string who(scheme_name(scheme));
   const MeshRefinement r = refine_topology(mesh, scheme, levels, MeshOptions{.max_bytes = options.max_bytes});
   const MeshTopology& last = r.levels.back();
   if (options.normals && scheme == MeshScheme::butterfly)
@@ -187,20 +473,41 @@ Mesh limit_mesh(const Mesh& mesh, MeshScheme scheme, int levels, const LimitOpti
   if (options.normals && scheme == MeshScheme::bilinear)
     throw InvalidInput(
         "bilinear: the limit surface is the refined mesh, with no normal at its vertices (only C0)");
-  if (options.normals &&
-      std::any_of(last.boundary_vertex.begin(), last.boundary_vertex.end(), [](char b) { return b != 0; }))
-    throw InvalidInput(
-        std::string(scheme_name(scheme)) +
-        ": limit normals at boundary vertices are not built; the mesh has a boundary (drop the normals)");
   if (options.normals && mesh.vertices.cols() != 3)
-    throw InvalidInput(std::string(scheme_name(scheme)) + ": limit normals need 3-D vertices, not " +
+    throw InvalidInput(who + ": limit normals need 3-D vertices, not " +
                        std::to_string(mesh.vertices.cols()) + "-D");
-  const LimitFrame frame = evaluate_limit(limit_stencils(last, scheme, mesh.tags.boundary),
-                                          apply(r, mesh.vertices), options.normals);
+  const LimitStencils stencils = limit_stencils(r);
+  if (options.normals)
+    for (int v = 0; v < last.vertex_count; ++v) {
+      const LimitMask& m =
+          stencils.masks[static_cast<std::size_t>(stencils.mask_of[static_cast<std::size_t>(v)])];
+      if (!m.tangent_u.empty() || valence(last, static_cast<std::size_t>(v)) == 0) continue;
+      const LevelFeatures& f = r.features.back();
+      int sharp = 0;
+      for (const int e : vertex_edges(last, static_cast<std::size_t>(v)))
+        sharp += edge_sharpness(f, e) > 0 && !is_boundary_edge(last, static_cast<std::size_t>(e)) ? 1 : 0;
+      throw InvalidInput(
+          who + ": vertex " + std::to_string(v) + " (valence " +
+          std::to_string(valence(last, static_cast<std::size_t>(v))) + ") " +
+          (sharp > 1 || (sharp == 1 && last.boundary_vertex[static_cast<std::size_t>(v)] != 0)
+               ? "is on a crease or a corner: the surface has a tangent plane per sector there, and limit "
+                 "normals "
+                 "per sector are not built (drop the normals)"
+               : std::string(
+                     "has no tangent plane that its spectrum proves (no real subdominant pair above the "
+                     "rest, or a valence above 128): limit normals there are not built (drop the normals") +
+                     (r.tags.back().boundary == BoundaryRule::edge_only &&
+                              vertex_faces(last, static_cast<std::size_t>(v)).size() == 1
+                          ? "; or keep boundary vertices with one face as corners: boundary rule "
+                            "edge_and_corner)"
+                          : ")")));
+    }
+  const LimitFrame frame = evaluate_limit(stencils, apply(r, mesh.vertices), options.normals);
   Mesh out;
   out.vertices = frame.positions;
   out.face_offsets = last.face_offsets;
   out.face_vertices = last.face_vertices;
+  out.tags = r.tags.back();  // holes stay holes; creases and corners as the last level holds them
   if (options.normals) {
     out.normals.resize(out.vertices.rows(), 3);
     for (Eigen::Index i = 0; i < out.vertices.rows(); ++i) {

@@ -61,7 +61,7 @@ TEST_CASE("limit stencils: the same limit position and normal at every level", "
     std::vector<Points> data{c.mesh.vertices};
     for (const Stencils& s : r.steps) data.push_back(apply(s, data.back()));
     const auto at_level = [&](int level) {
-      const LimitFrame f = evaluate_limit(limit_stencils(r.levels[static_cast<std::size_t>(level)], c.scheme),
+      const LimitFrame f = evaluate_limit(limit_stencils(refine_topology(c.mesh, c.scheme, level)),
                                           data[static_cast<std::size_t>(level)]);
       return std::array<Points, 3>{f.positions, f.tangent_u, f.tangent_v};
     };
@@ -87,8 +87,7 @@ TEST_CASE("limit stencils: vertices converge to their limit positions geometrica
     Points x = c.mesh.vertices;
     for (int l = 0; l < c.first_level; ++l) x = apply(r.steps[static_cast<std::size_t>(l)], x);
     const Points limit =
-        evaluate_limit(limit_stencils(r.levels[static_cast<std::size_t>(c.first_level)], c.scheme), x, false)
-            .positions;
+        evaluate_limit(limit_stencils(refine_topology(c.mesh, c.scheme, c.first_level)), x, false).positions;
     std::vector<double> error;
     for (int l = c.first_level; l <= c.first_level + steps; ++l) {
       if (l > c.first_level) x = apply(r.steps[static_cast<std::size_t>(l - 1)], x);
@@ -120,7 +119,7 @@ TEST_CASE("regular Catmull–Clark limit points and normals are the bicubic surf
   const int n = 10, m = 9, levels = 2;
   const auto [shape, params, surface] = bicubic_grid(n, m);
   const MeshRefinement r = refine_topology(shape, MeshScheme::catmull_clark, levels);
-  const LimitStencils st = limit_stencils(r.levels.back(), MeshScheme::catmull_clark);
+  const LimitStencils st = limit_stencils(r);
   const Points uv = evaluate_limit(st, apply(r, params.vertices), false).positions;
   const LimitFrame f = evaluate_limit(st, apply(r, shape.vertices));
   const Points &p = f.positions, &tu = f.tangent_u, &tv = f.tangent_v;
@@ -140,21 +139,17 @@ TEST_CASE("regular Catmull–Clark limit points and normals are the bicubic surf
 }
 
 TEST_CASE("limit stencils: what is not built is refused, naming the vertex", "[subdivision][limit]") {
-  CHECK_THROWS_WITH(limit_stencils(build_topology(cube()), MeshScheme::doo_sabin),
+  CHECK_THROWS_WITH(limit_stencils(refine_topology(cube(), MeshScheme::doo_sabin, 0)),
                     Contains("doo-sabin: limit points belong to faces"));
-  CHECK_THROWS_WITH(limit_stencils(build_topology(pyramid()), MeshScheme::catmull_clark),
-                    Contains("catmull-clark: vertex 0 (valence 3) touches a face that is not a quad"));
   // Butterfly interpolates: every vertex is its own limit; its tangents are not built.
   const Mesh b = limit_mesh(bipyramid(), MeshScheme::butterfly, 2);
   CHECK(b.vertices == butterfly(bipyramid(), 2).vertices);
   CHECK_THROWS_WITH(limit_mesh(bipyramid(), MeshScheme::butterfly, 1, {.normals = true}),
                     Contains("butterfly: limit normals are not built"));
-  CHECK_THROWS_WITH(limit_stencils(build_topology(fan(17)), MeshScheme::loop),
-                    Contains("loop: vertex 0 (valence 17): valence 17 is out of range"));
-  CHECK_THROWS_WITH(limit_stencils(build_topology(fan(5)), MeshScheme::sqrt3),
+  CHECK_THROWS_WITH(limit_stencils(refine_topology(fan(17), MeshScheme::sqrt3, 0)),
+                    Contains("sqrt3: vertex 0 (valence 17): valence 17 is out of range"));
+  CHECK_THROWS_WITH(limit_stencils(refine_topology(fan(5), MeshScheme::sqrt3, 0)),
                     Contains("is on the boundary"));
-  CHECK_THROWS_WITH(limit_mesh(quad_grid(3, 3), MeshScheme::catmull_clark, 1, {.normals = true}),
-                    Contains("limit normals at boundary vertices are not built"));
   // Positions on the boundary: the cubic B-spline limit (1, 4, 1)/6 of the boundary polygon.
   const Mesh grid = quad_grid(4, 3);
   const Mesh limit = limit_mesh(grid, MeshScheme::catmull_clark, 0);
@@ -218,8 +213,7 @@ TEST_CASE("Catmull–Clark at (face, u, v): extraordinary patches equal the limi
   for (const Mesh& m : meshes) {
     const int levels = 3, N = 1 << levels;
     const MeshRefinement r = refine_topology(m, MeshScheme::catmull_clark, levels);
-    const LimitFrame limit =
-        evaluate_limit(limit_stencils(r.levels.back(), MeshScheme::catmull_clark), apply(r, m.vertices));
+    const LimitFrame limit = evaluate_limit(limit_stencils(r), apply(r, m.vertices));
     std::vector<FacePoint> points;
     std::vector<int> expected;
     for (int f = 0; f < static_cast<int>(face_count(m)); ++f) {
@@ -497,8 +491,7 @@ TEST_CASE("Loop at (face, u, v): every patch equals the limits of refined vertic
     INFO(name);
     const int levels = 7, N = 1 << levels;
     const MeshRefinement r = refine_topology(m, MeshScheme::loop, levels);
-    const LimitFrame limit =
-        evaluate_limit(limit_stencils(r.levels.back(), MeshScheme::loop), apply(r, m.vertices));
+    const LimitFrame limit = evaluate_limit(limit_stencils(r), apply(r, m.vertices));
     std::vector<FacePoint> points;
     std::vector<int> expected;
     for (int f = 0; f < static_cast<int>(face_count(m)); ++f) {

@@ -232,6 +232,48 @@ TEST_CASE("limit positions and normals = OpenSubdiv Far's Limit, valences 3–8,
   }
 }
 
+TEST_CASE("limit positions and normals = OpenSubdiv Far's Limit at poles of valence 64 and 360",
+          "[subdivision][limit][oracle]") {
+  // Smooth interior vertices: Far's masks are exact there, as cifs's closed forms (no eigensolver).
+  for (const int k : {64, 360}) {
+    INFO("valence " << k);
+    check_same_limit(bipyramid_of(k), MeshScheme::catmull_clark, Sdc::SCHEME_CATMARK, BoundaryRule::edge_only,
+                     1, true);
+    check_same_limit(bipyramid_of(k), MeshScheme::loop, Sdc::SCHEME_LOOP, BoundaryRule::edge_only, 1, true);
+  }
+}
+
+TEST_CASE("limit positions = OpenSubdiv Far's Limit under infinitely sharp creases and corners",
+          "[subdivision][limit][oracle]") {
+  // Far is exact where every sharpness is infinite and no dart is present (it applies the smooth mask at
+  // darts and the sharp one where sharpness is left to spend; test_mesh_limit_classes.cpp checks those
+  // against deep refinement).
+  Mesh box = cube();
+  box.tags.creases = {{4, 5, 10}, {5, 6, 10}, {6, 7, 10}, {7, 4, 10}};
+  box.tags.corners = {{0, 10}};
+  Mesh ring = torus(6, 5);
+  for (int i = 0; i < 6; ++i) ring.tags.creases.push_back({i, (i + 1) % 6, 10});
+  Mesh belt = octahedron();
+  belt.tags.creases = {{0, 2, 10}, {2, 1, 10}, {1, 3, 10}, {3, 0, 10}};
+  Mesh grid = quad_grid(5, 4), trigrid = quad_grid(5, 4, true);
+  for (Mesh* g : {&grid, &trigrid}) {
+    for (int i = 6; i < 11; ++i) g->tags.creases.push_back({i, i + 1, 10});  // across, boundary to boundary
+    g->tags.corners = {{14, 10}};
+  }
+  for (int levels = 1; levels <= 2; ++levels) {
+    INFO("level " << levels);
+    check_same_limit(box, MeshScheme::catmull_clark, Sdc::SCHEME_CATMARK, BoundaryRule::edge_only, levels,
+                     false);
+    check_same_limit(ring, MeshScheme::catmull_clark, Sdc::SCHEME_CATMARK, BoundaryRule::edge_only, levels,
+                     false);
+    check_same_limit(belt, MeshScheme::loop, Sdc::SCHEME_LOOP, BoundaryRule::edge_only, levels, false);
+    for (const BoundaryRule rule : {BoundaryRule::edge_only, BoundaryRule::edge_and_corner}) {
+      check_same_limit(grid, MeshScheme::catmull_clark, Sdc::SCHEME_CATMARK, rule, levels, false);
+      check_same_limit(trigrid, MeshScheme::loop, Sdc::SCHEME_LOOP, rule, levels, false);
+    }
+  }
+}
+
 TEST_CASE("the limit surface at (face, u, v) = OpenSubdiv Bfr, positions and partials, valences 3–8",
           "[subdivision][limit][oracle]") {
   // Bfr evaluates regular patches exactly and approximates irregular ones below its approximation

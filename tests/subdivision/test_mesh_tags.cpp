@@ -217,7 +217,6 @@ TEST_CASE("bad tags are refused with one line naming them", "[subdivision][mesh]
   refused(m, MeshScheme::doo_sabin, "doo-sabin: the mesh has a corner (vertex 2, sharpness 1)");
   CHECK_THROWS_WITH(factored_subdivide(m, MeshScheme::catmull_clark, 1),
                     Catch::Contains("the factored form"));
-  CHECK_THROWS_WITH(limit_mesh(m, MeshScheme::catmull_clark, 1), Catch::Contains("limits under creases"));
   m.tags.corners.clear();
   FaceVaryingChannel uv;
   uv.values = Points::Zero(4, 2);

@@ -52,25 +52,31 @@ LimitFrame evaluate_limit(const LimitStencils& stencils, const Points& vertices,
 void evaluate_limit(const LimitStencils& stencils, const Points& vertices, LimitFrame& out,
                     bool tangents = true);
 
-/// The stencils of every vertex of `topology`, a mesh produced (or to be refined) by `scheme`.
-/// Catmull–Clark needs quads around each vertex (true after one level). Butterfly interpolates:
-/// every vertex is its own limit; its tangents are not built (next to an extraordinary vertex the
-/// invariant neighbourhood of a regular vertex is not the regular one). Boundary vertices are Catmull–Clark's
-/// and Loop's only (the boundary curve's limit (1, 4, 1)/6, or the corner itself under `edge_and_corner` at
-/// valence 2); Doo–Sabin's limit points belong to faces and are not built. InvalidInput naming the vertex
-/// otherwise, and for valences above 16 (boundary: 8).
-LimitStencils limit_stencils(const MeshTopology& topology, MeshScheme scheme,
-                             BoundaryRule boundary = BoundaryRule::edge_only);
+/// The stencils of every vertex of a refinement's last level, under its features (creases, corners,
+/// holes, boundary rules; docs/subdivision-surfaces.md, "Limit points"):
+/// - Catmull–Clark and Loop, every vertex class and valence. A smooth interior vertex (regular faces
+///   around it) takes the closed-form masks (smooth_mask in limit.cpp, any valence). Any other — on
+///   the boundary, on or next to a sharp edge, a corner, a dart, next to a hole or a non-quad, semi-sharp
+///   — is cut out with its one-ring and refined by the production rules until the ring is stationary
+///   (its sharpness spent: at most ⌈s⌉ steps), where its class's matrix S gives the position (the left
+///   eigenvector of 1) and, when the ring is one sector (smooth, dart, boundary), the tangents (the left
+///   eigenvectors of the real subdominant pair, valence ≤ 128); its own masks are the class's through
+///   those steps: exact at any level, the sharpness still to spend included.
+/// - Butterfly and bilinear interpolate: every vertex is its own limit, with no tangents. √3: interior
+///   vertices of valence 3 … 16, from the eigenvectors of local_matrix.
+/// Tangents are left empty on crease and corner vertices between sectors (a tangent plane per sector).
+/// InvalidInput naming the vertex for what is not built; Doo–Sabin's limit points belong to faces.
+LimitStencils limit_stencils(const MeshRefinement& refinement);
 
-/// The mesh's own tags give the boundary rule; creases, corners, holes and the rule `none` are
-/// refused by limit_mesh (limits under them are not built yet).
+/// The mesh's own tags give the features.
 struct LimitOptions {
-  bool normals = false;  // unit normals; refused on a mesh with a boundary (not built there)
+  bool normals = false;  // unit normals; refused at vertices without a tangent plane (creases, corners)
   double max_bytes = 4.0 * (1ull << 30);
 };
 
 /// The mesh after `levels` steps with every vertex moved to its limit position (and `normals` set
-/// when asked): a sampling of the limit surface itself, exact at the vertices.
+/// when asked): a sampling of the limit surface itself, exact at the vertices. It carries the last
+/// level's tags (holes stay holes).
 Mesh limit_mesh(const Mesh& mesh, MeshScheme scheme, int levels, const LimitOptions& options = {});
 
 /// A point of a face's parameter domain (OpenSubdiv's): a quad's square [0, 1]² with corner 0 at

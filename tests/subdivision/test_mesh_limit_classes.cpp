@@ -1,0 +1,323 @@
+// SPDX-License-Identifier: MIT
+// Limits at every vertex class — smooth, boundary, crease, dart, corner, semi-sharp, next to holes and
+// non-quads, any valence — against routes that do not use the limit stencils: the refinement of the
+// whole mesh (each vertex's positions at three deep levels converge geometrically to our limit, and
+// Aitken's Δ² from them lands much closer to it than the positions do), a limit functional's invariance
+// (the same limit from every level, sharpness still to spend included: exact), and the closed-form masks
+// against the eigenvectors of the local matrices. OpenSubdiv's Limit, where it is exact:
+// test_mesh_features.cpp.
+#include <Eigen/Geometry>
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "cifs/errors.hpp"
+#include "cifs/subdivision/limit.hpp"
+#include "cifs/subdivision/mesh_analysis.hpp"
+#include "subdivision/meshes.hpp"
+
+using namespace cifs;
+using namespace cifs::subdivision;
+using namespace cifs_test;
+using Catch::Matchers::Contains;
+
+namespace {
+
+struct ClassCase {
+  std::string name;
+  MeshScheme scheme;
+  Mesh mesh;
+  int deep;  // the deepest level refined (the checks use deep − 2 … deep)
+};
+
+/// A cube with every Catmull–Clark class at valence 3: crease (1), darts (0, 2), semi-sharp crease and
+/// darts (4, 5, 6: sharpness 1.5 and 2.25), an infinitely sharp corner (7), a semi-sharp corner (3).
+Mesh cube_of_classes(CreaseMethod method) {
+  Mesh m = cube();
+  m.tags.creases = {{0, 1, 10}, {1, 2, 10}, {4, 5, 1.5}, {5, 6, 2.25}};
+  m.tags.corners = {{7, 10}, {3, 1.5}};
+  m.tags.crease_method = method;
+  return m;
+}
+
+/// A torus (regular everywhere) with an infinitely sharp ring (regular crease vertices, two faces on
+/// each side), a semi-sharp ring at 1.7 and one sharp edge (a dart at each end).
+Mesh torus_of_classes(bool triangles) {
+  Mesh m = torus(6, 5, triangles);
+  const auto id = [](int i, int j) { return (j % 5) * 6 + (i % 6); };
+  for (int i = 0; i < 6; ++i) {
+    m.tags.creases.push_back({id(i, 0), id(i + 1, 0), 10});
+    m.tags.creases.push_back({id(i, 3), id(i + 1, 3), 1.7});
+  }
+  m.tags.creases.push_back({id(2, 1), id(3, 1), 10});
+  return m;
+}
+
+/// An open wavy grid with a hole, a sharp and a semi-sharp run of edges and a corner, under `rule`.
+Mesh open_grid_of_classes(BoundaryRule rule, bool triangles) {
+  Mesh m = quad_grid(5, 4, triangles);
+  for (Eigen::Index i = 0; i < m.vertices.rows(); ++i)
+    m.vertices(i, 2) = 0.3 * std::sin(1.3 * m.vertices(i, 0) + 0.7 * m.vertices(i, 1));
+  m.tags.boundary = rule;
+  m.tags.holes = {triangles ? 14 : 7};
+  m.tags.creases = {{7, 8, 10}, {8, 9, 10}, {13, 14, 1.25}, {14, 15, 0.5}};
+  m.tags.corners = {{16, 10}};
+  return m;
+}
+
+std::vector<ClassCase> class_cases() {
+  std::vector<ClassCase> cases{
+      {"cube, uniform", MeshScheme::catmull_clark, cube_of_classes(CreaseMethod::uniform), 7},
+      {"cube, chaikin", MeshScheme::catmull_clark, cube_of_classes(CreaseMethod::chaikin), 7},
+      {"pyramid (non-quads), crease 1.5", MeshScheme::catmull_clark, pyramid(), 7},
+      {"torus of quads", MeshScheme::catmull_clark, torus_of_classes(false), 6},
+      {"torus of triangles", MeshScheme::loop, torus_of_classes(true), 6},
+      {"octahedron", MeshScheme::loop, octahedron(), 7},
+  };
+  cases[2].mesh.tags.creases = {{0, 4, 1.5}, {0, 1, 10}};
+  cases[5].mesh.tags.creases = {{0, 2, 0.3}, {2, 4, 1.5}, {4, 0, 2.5}, {1, 3, 10}};
+  cases[5].mesh.tags.corners = {{5, 1.25}};
+  for (const BoundaryRule rule : {BoundaryRule::none, BoundaryRule::edge_only, BoundaryRule::edge_and_corner})
+    for (const bool triangles : {false, true})
+      cases.push_back({std::string("open grid, boundary ") + std::string(option_name(rule)),
+                       triangles ? MeshScheme::loop : MeshScheme::catmull_clark,
+                       open_grid_of_classes(rule, triangles), 6});
+  return cases;
+}
+
+}  // namespace
+
+TEST_CASE("limits at every vertex class: the same limit from every level, sharpness still to spend included",
+          "[subdivision][limit][classes]") {
+  for (const ClassCase& c : class_cases()) {
+    INFO(c.name);
+    const Mesh base = limit_mesh(c.mesh, c.scheme, 0);
+    const double scale = c.mesh.vertices.cwiseAbs().maxCoeff();
+    for (int level = 1; level <= 3; ++level) {
+      INFO("level " << level);
+      const Mesh finer = limit_mesh(c.mesh, c.scheme, level);
+      // Vertex points keep their index: the old vertices are the first rows.
+      const double error =
+          (finer.vertices.topRows(base.vertices.rows()) - base.vertices).cwiseAbs().maxCoeff();
+      CHECK(error <= 1e-13 * scale);
+    }
+  }
+}
+
+namespace {
+
+/// Vertex v's limit by a route that shares nothing with limit_stencils but the refinement's weights: the
+/// matrices S_k taking v's ring at level k (v, its edge neighbours, the far corners of its quads) to its
+/// children at level k + 1 (v, the edge points of v's edges, the face points of v's faces), read off the
+/// global refinement's steps, multiplied from level `from` to the last (where every sharpness at v is
+/// spent), the last one raised to the power 2^8 (every other eigenvalue below 0.7: 0.7^256 < 1e-39).
+Eigen::RowVectorXd ring_power_limit(const MeshRefinement& r, const std::vector<Points>& x, int from, int v) {
+  std::vector<int> ring{v};
+  const MeshTopology& t0 = r.levels[static_cast<std::size_t>(from)];
+  for (const int f : vertex_faces(t0, static_cast<std::size_t>(v)))
+    for (const int w : face(t0, static_cast<std::size_t>(f)))
+      if (std::find(ring.begin(), ring.end(), w) == ring.end()) ring.push_back(w);
+  const std::vector<int> start = ring;
+  const auto n = static_cast<Eigen::Index>(ring.size());
+  Eigen::MatrixXd product = Eigen::MatrixXd::Identity(n, n), last;
+  for (std::size_t k = static_cast<std::size_t>(from); k < r.steps.size(); ++k) {
+    const MeshTopology& t = r.levels[k];
+    const int V = t.vertex_count, E = static_cast<int>(t.edges.size());
+    std::vector<int> children;
+    for (const int w : ring) {
+      if (w == v) {
+        children.push_back(v);
+        continue;
+      }
+      int child = -1;
+      for (const int e : vertex_edges(t, static_cast<std::size_t>(v)))
+        if (other_vertex(t, static_cast<std::size_t>(e), v) == w) child = V + e;
+      if (child < 0)
+        for (const int f : vertex_faces(t, static_cast<std::size_t>(v))) {
+          const auto c = face(t, static_cast<std::size_t>(f));
+          if (std::find(c.begin(), c.end(), w) != c.end()) child = V + E + f;
+        }
+      REQUIRE(child >= 0);
+      children.push_back(child);
+    }
+    Eigen::MatrixXd S = Eigen::MatrixXd::Zero(n, n);
+    const Stencils& step = r.steps[k];
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const auto row = static_cast<std::size_t>(children[static_cast<std::size_t>(i)]);
+      for (int h = step.offsets[row]; h < step.offsets[row + 1]; ++h) {
+        const auto j =
+            std::find(ring.begin(), ring.end(), step.columns[static_cast<std::size_t>(h)]) - ring.begin();
+        REQUIRE(j < n);  // the ring is invariant: its children's weights stay on it
+        S(i, j) += step.weights[static_cast<std::size_t>(h)];
+      }
+    }
+    product = S * product;
+    last = S;
+    ring = children;
+  }
+  for (int k = 0; k < 8; ++k) last = last * last;
+  Eigen::MatrixXd at(n, x[static_cast<std::size_t>(from)].cols());
+  for (Eigen::Index i = 0; i < n; ++i)
+    at.row(i) = x[static_cast<std::size_t>(from)].row(start[static_cast<std::size_t>(i)]);
+  return (last * product).row(0) * at;
+}
+
+}  // namespace
+
+TEST_CASE("limits at every vertex class = the powers of the ring matrices of the global refinement",
+          "[subdivision][limit][classes]") {
+  for (const ClassCase& c : class_cases()) {
+    INFO(c.name);
+    // From level 1 where level 0 has faces other than the scheme's (the ring of an n-gon's corner has
+    // several far corners).
+    const int from = c.name.starts_with("pyramid") ? 1 : 0;
+    const Mesh limit = limit_mesh(c.mesh, c.scheme, from);
+    const MeshRefinement r = refine_topology(c.mesh, c.scheme, from + 4);  // sharpness ≤ 3 spent, a step more
+    std::vector<Points> x{c.mesh.vertices};
+    for (const Stencils& s : r.steps) x.push_back(apply(s, x.back()));
+    const double scale = c.mesh.vertices.cwiseAbs().maxCoeff();
+    for (Eigen::Index v = 0; v < limit.vertices.rows(); ++v) {
+      INFO("vertex " << v);
+      CHECK((ring_power_limit(r, x, from, static_cast<int>(v)) - limit.vertices.row(v)).norm() <=
+            1e-12 * scale);
+    }
+  }
+}
+
+TEST_CASE("limits at every vertex class = the limit of deep refinement", "[subdivision][limit][classes]") {
+  for (const ClassCase& c : class_cases()) {
+    INFO(c.name);
+    const Mesh limit = limit_mesh(c.mesh, c.scheme, 0);
+    const MeshRefinement r = refine_topology(c.mesh, c.scheme, c.deep);
+    std::vector<Points> x{c.mesh.vertices};
+    for (const Stencils& s : r.steps) x.push_back(apply(s, x.back()));
+    const double scale = c.mesh.vertices.cwiseAbs().maxCoeff();
+    for (Eigen::Index v = 0; v < limit.vertices.rows(); ++v) {
+      INFO("vertex " << v);
+      // Geometric, not always monotone: a dart's modes of rates ¼ and ≈ ½ can cancel at one level.
+      const double early = (x[static_cast<std::size_t>(c.deep - 3)].row(v) - limit.vertices.row(v)).norm();
+      const double deep = (x[static_cast<std::size_t>(c.deep)].row(v) - limit.vertices.row(v)).norm();
+      CHECK(deep <= 0.1 * early + 1e-13 * scale);
+      CHECK(deep <= 1e-3 * scale);
+    }
+  }
+}
+
+TEST_CASE("a regular crease vertex and a regular smooth vertex converge at 1/4, the cubic B-spline's rate",
+          "[subdivision][limit][classes]") {
+  for (const bool triangles : {false, true}) {
+    const Mesh m = torus_of_classes(triangles);
+    const MeshScheme scheme = triangles ? MeshScheme::loop : MeshScheme::catmull_clark;
+    const Mesh limit = limit_mesh(m, scheme, 0);
+    const MeshRefinement r = refine_topology(m, scheme, 6);
+    std::vector<Points> x{m.vertices};
+    for (const Stencils& s : r.steps) x.push_back(apply(s, x.back()));
+    // Vertex 2 on the sharp ring (j = 0), vertex 27 smooth (j = 4), away from the dart and the semi-sharp
+    // ring's neighbourhood. Loop's regular vertex converges at 1/4 too (its box spline's rate).
+    for (const int v : {2, 27}) {
+      INFO((triangles ? "loop" : "catmull-clark") << ", vertex " << v);
+      const double e5 = (x[5].row(v) - limit.vertices.row(v)).norm(),
+                   e6 = (x[6].row(v) - limit.vertices.row(v)).norm();
+      CHECK(std::abs(e6 / e5 - 0.25) <= 0.01);
+    }
+  }
+}
+
+TEST_CASE("the closed-form smooth masks are the left eigenvectors of the local matrices, valences 3–16",
+          "[subdivision][limit][classes]") {
+  for (const MeshScheme scheme : {MeshScheme::catmull_clark, MeshScheme::loop})
+    for (int n = 3; n <= 16; ++n) {
+      INFO(scheme_name(scheme) << ", valence " << n);
+      // The apex of a bipyramid (Catmull–Clark: after one step, when its ring is quads).
+      const int levels = scheme == MeshScheme::catmull_clark ? 1 : 0;
+      const MeshRefinement r = refine_topology(bipyramid_of(n), scheme, levels);
+      const LimitStencils st = limit_stencils(r);
+      const int apex = n;
+      const LimitMask& m = st.masks[static_cast<std::size_t>(st.mask_of[static_cast<std::size_t>(apex)])];
+      const LocalMatrix S = local_matrix(scheme, n);
+      const LocalSpectrum spectrum = local_spectrum(S);
+      REQUIRE(static_cast<Eigen::Index>(m.position.size()) == S.values.rows());
+      // The position: the spectrum's stencil (rotation-invariant: every r_j alike, every f_j alike).
+      for (std::size_t i = 0; i < m.position.size(); ++i)
+        CHECK(std::abs(m.position[i] -
+                       static_cast<double>(spectrum.limit_stencil(static_cast<Eigen::Index>(i)))) <= 1e-14);
+      // The tangents: left eigenvectors of the subdominant λ (S commutes with the ring's rotation, so the
+      // walk's start does not matter).
+      const Eigen::MatrixXd Sd = S.values.cast<double>();
+      const auto lambda = static_cast<double>(spectrum.subdominant);
+      for (const auto* t : {&m.tangent_u, &m.tangent_v}) {
+        const Eigen::RowVectorXd l =
+            Eigen::Map<const Eigen::RowVectorXd>(t->data(), static_cast<Eigen::Index>(t->size()));
+        REQUIRE(l.norm() > 0.1);
+        CHECK((l * Sd - lambda * l).norm() <= 1e-13 * l.norm());
+      }
+    }
+}
+
+TEST_CASE("limits at high valence: poles of valence 64 and 360 converge to their closed-form limits",
+          "[subdivision][limit][classes]") {
+  for (const int n : {64, 360})
+    for (const MeshScheme scheme : {MeshScheme::catmull_clark, MeshScheme::loop}) {
+      INFO(scheme_name(scheme) << ", valence " << n);
+      const Mesh m = bipyramid_of(n);
+      const Mesh limit = limit_mesh(m, scheme, 0);
+      const MeshRefinement r = refine_topology(m, scheme, 4);
+      std::vector<Points> x{m.vertices};
+      for (const Stencils& s : r.steps) x.push_back(apply(s, x.back()));
+      for (const int apex : {n, n + 1}) {
+        const Eigen::RowVectorXd p = limit.vertices.row(apex), d1 = x[3].row(apex) - x[2].row(apex),
+                                 d2 = x[4].row(apex) - x[3].row(apex);
+        const double rho = d2.norm() / d1.norm();
+        CHECK(rho < 1);
+        const Eigen::RowVectorXd aitken = x[4].row(apex) + d2 * (rho / (1 - rho));
+        CHECK((aitken - p).norm() <= 0.05 * (x[4].row(apex) - p).norm());
+      }
+    }
+}
+
+TEST_CASE("limit normals: on the boundary and at darts from the one-sector spectrum; refused on creases",
+          "[subdivision][limit][classes]") {
+  // Boundary and dart vertices have a tangent plane: the normal of deep refinement's limit points around
+  // the vertex approaches ours as the ring shrinks.
+  // Under edge_and_corner (a boundary vertex with one face is a corner: its two boundary curves span the
+  // plane); under edge_only such a vertex has λ1 = ½ and λ2 = λ3 = ¼, no tangent plane its spectrum proves.
+  Mesh m = open_grid_of_classes(BoundaryRule::edge_and_corner, false);
+  m.tags.creases = {{7, 8, 10}};  // a dart at 7 and at 8
+  m.tags.corners.clear();
+  m.tags.holes.clear();
+  const Mesh with_normals = limit_mesh(m, MeshScheme::catmull_clark, 0, {.normals = true});
+  std::vector<double> angle;
+  for (int level = 4; level <= 6; ++level) {
+    const Mesh deep = limit_mesh(m, MeshScheme::catmull_clark, level);
+    const MeshTopology t = build_topology(deep);
+    double worst = 0;
+    for (const int v : {0, 1, 5, 7, 8, 12, 15}) {  // corners, boundary, dart ends, smooth
+      const auto ring = vertex_edges(t, static_cast<std::size_t>(v));
+      const auto faces = vertex_faces(t, static_cast<std::size_t>(v));
+      // The ring's limit points as seen from v's: consecutive pairs' cross products, summed.
+      Eigen::Vector3d n = Eigen::Vector3d::Zero();
+      for (std::size_t k = 0; k < faces.size(); ++k) {
+        const int a = other_vertex(t, static_cast<std::size_t>(ring[k]), v);
+        const int b = other_vertex(t, static_cast<std::size_t>(ring[(k + 1) % ring.size()]), v);
+        const Eigen::Vector3d pa = (deep.vertices.row(a) - deep.vertices.row(v)).transpose(),
+                              pb = (deep.vertices.row(b) - deep.vertices.row(v)).transpose();
+        n += pa.cross(pb);
+      }
+      const Eigen::Vector3d ours = with_normals.normals.row(v).transpose();
+      worst = std::max(worst, std::acos(std::min(1.0, n.normalized().dot(ours))));
+    }
+    angle.push_back(worst);
+  }
+  // The ring's normal converges as (λ3/λ2)^k: ≈ 0.65 a step at the darts, 1/2 on the regular boundary.
+  CHECK(angle[2] < 0.7 * angle[1]);
+  CHECK(angle[1] < 0.7 * angle[0]);
+  CHECK(angle[2] < 2e-3);
+  m.tags.boundary = BoundaryRule::edge_only;
+  CHECK_THROWS_WITH(limit_mesh(m, MeshScheme::catmull_clark, 0, {.normals = true}),
+                    Contains("vertex 0 (valence 2) has no tangent plane that its spectrum proves"));
+  // A crease vertex has a tangent plane per side: refused, naming it.
+  CHECK_THROWS_WITH(limit_mesh(torus_of_classes(false), MeshScheme::catmull_clark, 0, {.normals = true}),
+                    Contains("is on a crease or a corner"));
+}
