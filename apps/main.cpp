@@ -321,7 +321,8 @@ void add_limit(CLI::App& app, Commands& c) {
   limit_cmd->add_option(
       "--boundary", c.li.boundary,
       "Boundary rule, replacing the file's: edge (default: corners smoothed) or corner (kept)");
-  limit_cmd->add_flag("--normals", c.li.normals, "Write unit limit normals (refused at crease and corner vertices between sectors)");
+  limit_cmd->add_flag("--normals", c.li.normals,
+                      "Write unit limit normals (refused at crease and corner vertices between sectors)");
   add_strict(limit_cmd, c.li.strict);
   limit_cmd->add_option("-o,--output", c.li.output, "Output mesh (.obj or .ply; default: OBJ on stdout)")
       ->check(output_name);
