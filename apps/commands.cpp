@@ -33,6 +33,8 @@
 #include "cifs/nurbs/refine.hpp"
 #include "cifs/nurbs/tensor_automaton.hpp"
 #include "cifs/render/progress.hpp"
+#include "cifs/subdivision/limit.hpp"
+#include "cifs/subdivision/mesh.hpp"
 #include "cifs/verify/check.hpp"
 #include "scheme_command.hpp"
 
@@ -333,6 +335,35 @@ std::string info(const std::filesystem::path& path, const ShapeSelection& select
 
 std::string automaton(const AutomatonOptions& o) {
   io::writable_format(io::Content::automaton, o.format, "--format");
+  if (io::detect(o.shape) == io::Content::mesh) {
+    // A mesh: the surface automaton of its scheme (subdivision/limit.hpp), after `levels` steps.
+    if (o.scheme.empty())
+      throw InvalidInput(o.shape.string() +
+                         " is a mesh: give --scheme catmull-clark or loop (its surface automaton)");
+    if (o.minimize || o.select.index || o.select.ignore_trim)
+      throw InvalidInput(std::string(o.minimize       ? "--minimize"
+                                     : o.select.index ? "--index"
+                                                      : "--ignore-trim") +
+                         " applies to shapes, not to a mesh's surface automaton");
+    if (o.levels < 0 || o.levels > 8)
+      throw InvalidInput("--levels " + std::to_string(o.levels) + ": expected 0 to 8");
+    const subdivision::MeshScheme scheme = subdivision::named_mesh_scheme(o.scheme);
+    Mesh mesh = io::read_mesh(o.shape);
+    if (o.levels > 0) mesh = subdivision::subdivide(mesh, scheme, o.levels);
+    try {
+      return io::encode(subdivision::surface_automaton(mesh, scheme).automaton, o.format);
+    } catch (const InvalidInput& e) {
+      // Faces with several extraordinary corners part after a step: say it in the CLI's words.
+      std::string what = e.what();
+      const std::string library = "(refine one level first)";
+      if (const auto at = what.find(library); at != std::string::npos)
+        throw InvalidInput(what.replace(at, library.size(), "(--levels 1 refines them apart)"));
+      throw;
+    }
+  }
+  if (!o.scheme.empty() || o.levels != 0)
+    throw InvalidInput(std::string(o.scheme.empty() ? "--levels" : "--scheme") + " applies to meshes; " +
+                       o.shape.string() + " is a shape");
   const io::Shape shape = read_shape(o.shape, o.select);
   // Curves: the knot-doubling automaton; surfaces: the tensor product of their two direction curves'.
   const auto* c = std::get_if<nurbs::Curve>(&shape);

@@ -87,10 +87,12 @@ struct LimitCommandOptions {
 std::string limit(const LimitCommandOptions& options);
 
 struct AutomatonOptions {
-  std::filesystem::path shape;
+  std::filesystem::path shape;  // a shape, or a mesh (OBJ faces, PLY) with `scheme`
   ShapeSelection select;
   std::string format = "json";  // a writable format of io::formats(Content::automaton)
   bool minimize = false;
+  std::string scheme;  // a mesh's: catmull-clark or loop (the surface automaton)
+  int levels = 0;      // a mesh's steps of refinement before its automaton is built
 };
 std::string automaton(const AutomatonOptions& options);
 

@@ -169,11 +169,17 @@ void add_info(CLI::App& app, Commands& c) {
 void add_automaton(CLI::App& app, Commands& c) {
   auto* automaton_cmd =
       app.add_subcommand("automaton",
-                         "The knot-doubling automaton of a curve, the tensor-product automaton of a surface "
-                         "(JSON, DOT or SVG)");
-  automaton_cmd->add_option("shape", c.au.shape, "Shape file (.json or .obj)")->required();
+                         "The knot-doubling automaton of a curve, the tensor-product automaton of a surface, "
+                         "the surface automaton of a mesh under a scheme (JSON, DOT or SVG)");
+  automaton_cmd->add_option("shape", c.au.shape, "Shape file (.json or .obj), or a mesh (.obj, .ply)")
+      ->required();
   automaton_cmd->add_option("--format", c.au.format, "json (default), dot or svg");
   automaton_cmd->add_flag("--minimize", c.au.minimize, "Merge states that no control net can tell apart");
+  automaton_cmd->add_option(
+      "--scheme", c.au.scheme,
+      "A mesh's scheme: catmull-clark or loop (its surface automaton: closed meshes whose "
+      "faces have at most one extraordinary corner)");
+  automaton_cmd->add_option("--levels", c.au.levels, "A mesh's steps of refinement first (default 0)");
   add_shape_selection(automaton_cmd, c.au.select);
   add_quiet(automaton_cmd, c.quiet);
   automaton_cmd->callback([&] {

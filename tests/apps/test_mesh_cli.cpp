@@ -8,6 +8,7 @@
 #include "apps/cli_runner.hpp"
 #include "cifs/files.hpp"
 #include "cifs/io/io.hpp"
+#include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/mesh.hpp"
 
 using namespace cifs;
@@ -320,4 +321,37 @@ TEST_CASE("cifs info on a tagged mesh: creases, corners, holes, options, UV chan
   CHECK(nonmanifold["manifold"] == false);
   CHECK(nonmanifold["faces"] == 3);
   CHECK_THAT(nonmanifold["topology_refused"].get<std::string>(), Catch::Contains("fan3.obj"));
+}
+
+TEST_CASE("cifs automaton MESH --scheme S: the mesh's surface automaton, JSON, DOT and SVG",
+          "[cli][mesh][automaton]") {
+  // A closed regular torus: one state, the four quarters of a bicubic patch looping on it.
+  const Run torus = cifs_cli("automaton " + example("torus.obj") + " --scheme catmull-clark --format dot");
+  REQUIRE(torus.status == 0);
+  for (const char* quarter : {"GH", "GB", "DH", "DB"})
+    CHECK(torus.out.find(std::string("0->0 [label=\"") + quarter + "\"]") != std::string::npos);
+  // The icosahedron after a step under Loop: a regular state and the valence-5 corner's, one initial
+  // entry per face (80), as the library builds it.
+  const Run ico = cifs_cli("automaton " + example("icosahedron.obj") + " --scheme loop --levels 1");
+  REQUIRE(ico.status == 0);
+  const json a = json::parse(ico.out);
+  CHECK(a["initial"].size() == 80);
+  const Mesh refined = subdivision::loop(io::read_mesh(example("icosahedron.obj")), 1);
+  CHECK(ico.out ==
+        io::encode(subdivision::surface_automaton(refined, subdivision::MeshScheme::loop).automaton, "json"));
+  const Run svg =
+      cifs_cli("automaton " + example("icosahedron.obj") + " --scheme loop --levels 1 --format svg");
+  CHECK(svg.out.starts_with("<svg"));
+  // Refusals, one line each.
+  check_error(cifs_cli("automaton " + example("cube.obj")), "is a mesh: give --scheme catmull-clark or loop");
+  check_error(cifs_cli("automaton " + example("cube.obj") + " --scheme catmull-clark"),
+              "4 extraordinary corners (--levels 1 refines them apart)");
+  check_error(cifs_cli("automaton " + example("open_grid.obj") + " --scheme catmull-clark"),
+              "touches the boundary; boundary patches are not built");
+  check_error(cifs_cli("automaton " + example("cube.obj") + " --scheme catmull-clark --minimize"),
+              "--minimize applies to shapes");
+  check_error(cifs_cli("automaton " + example("cube.obj") + " --scheme catmull-clark --levels 9"),
+              "--levels 9: expected 0 to 8");
+  check_error(cifs_cli("automaton " CIFS_EXAMPLES_DIR "/shapes/hills.json --scheme loop"),
+              "--scheme applies to meshes");
 }
