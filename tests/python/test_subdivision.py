@@ -560,6 +560,19 @@ class LimitTest(unittest.TestCase):
         with self.assertRaisesRegex(cifs.InvalidInput, "limit points belong to faces"):
             sd.limit(cube, "doo-sabin")
 
+    def test_limits_follow_the_tags(self):
+        # The creased box (creases infinite, 2 and 1, a corner, a hole): the limit from level 0 and from
+        # level 2 agree on the old vertices (semi-sharp ones too: the sharpness still to spend is followed).
+        # Normals are refused on the creases, naming a vertex.
+        path = EXAMPLES / "meshes" / "creased_box.obj"
+        box = cifs.io.read_mesh(str(path))
+        coarse, fine = sd.limit(box, "catmull-clark", 0), sd.limit(box, "catmull-clark", 2)
+        n = box.vertices.shape[0]
+        np.testing.assert_allclose(np.asarray(fine.vertices)[:n], coarse.vertices, rtol=0, atol=1e-13)
+        self.assertEqual(len(fine.tags.holes), 16)  # the hole's grandchildren
+        with self.assertRaisesRegex(cifs.InvalidInput, r"vertex \d+ \(valence \d\) is on a crease or a corner"):
+            sd.limit(box, "catmull-clark", 1, normals=True)
+
     def test_limit_surface_at_face_points(self):
         # At the corners of a once-refined cube's faces the surface is the limit of those vertices.
         cube = sd.catmull_clark(cifs.io.read_mesh(str(EXAMPLES / "meshes" / "cube.obj")), 1)
