@@ -10,7 +10,6 @@
 #include <numbers>
 #include <optional>
 #include <string>
-#include <unordered_map>
 #include <utility>
 
 #include "cifs/errors.hpp"
@@ -700,27 +699,6 @@ void check_scheme_input(const MeshTopology& t, const Mesh& mesh, MeshScheme sche
         "not built yet; ask for 'all' (--fvar-interpolation all) or drop the channel");
 }
 
-/// Edge index of every vertex pair, for tags that name edges by their vertices.
-class EdgeIndex {
- public:
-  explicit EdgeIndex(const MeshTopology& t) {
-    index_.reserve(t.edges.size());
-    for (std::size_t e = 0; e < t.edges.size(); ++e)
-      index_.emplace(key(t.edges[e][0], t.edges[e][1]), static_cast<int>(e));
-  }
-  int find(int a, int b) const {
-    const auto it = index_.find(key(a, b));
-    return it == index_.end() ? -1 : it->second;
-  }
-
- private:
-  static std::uint64_t key(int a, int b) {
-    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::min(a, b))) << 32) |
-           static_cast<std::uint32_t>(std::max(a, b));
-  }
-  std::unordered_map<std::uint64_t, int> index_;
-};
-
 /// The features of a level from its tags, as OpenSubdiv's factory prepares its base level: boundary
 /// edges infinitely sharp; under `edge_and_corner` a boundary vertex with one face an infinitely sharp
 /// corner; under `none` (schemes with rules beyond the face itself) the faces around a boundary vertex
@@ -736,10 +714,9 @@ LevelFeatures level_features(const MeshTopology& t, const MeshTags& tags, MeshSc
   std::vector<double> es(E, 0), vs(V, 0);
   std::vector<char> holes(F, 0);
   if (!tags.creases.empty()) {
-    const EdgeIndex index(t);
     for (std::size_t i = 0; i < tags.creases.size(); ++i) {
       const EdgeSharpness& c = tags.creases[i];
-      const int e = index.find(c.a, c.b);
+      const int e = find_edge(t, c.a, c.b);
       if (e < 0)
         throw InvalidInput(who + ": crease " + std::to_string(i) + " joins vertices " + std::to_string(c.a) +
                            " and " + std::to_string(c.b) + ", which are not an edge of the mesh");

@@ -82,6 +82,14 @@ inline int other_vertex(const MeshTopology& t, std::size_t e, int v) noexcept {
   return t.edges[e][0] == v ? t.edges[e][1] : t.edges[e][0];
 }
 
+/// The edge joining vertices a and b, or −1 (a walk around a: no index to build).
+inline int find_edge(const MeshTopology& t, int a, int b) noexcept {
+  if (a < 0 || a >= t.vertex_count) return -1;
+  for (const int e : vertex_edges(t, static_cast<std::size_t>(a)))
+    if (other_vertex(t, static_cast<std::size_t>(e), a) == b) return e;
+  return -1;
+}
+
 /// Builds the adjacency of faces over `vertex_count` vertices. Throws InvalidInput naming the
 /// offending element unless the mesh is an oriented 2-manifold: every face has ≥ 3 corners, in
 /// range, without a repeated vertex; every edge has one or two faces, and two faces use it in
