@@ -12,7 +12,7 @@ The server is started on a copy of examples/shapes/hills.json; the page must
 - survive hostile requests (bad JSON, a huge depth, a path outside the folder, a foreign Host header, no
   token), each refused with a 4xx, the page still answering edits afterwards;
 - and the exported page (--export DIR) opens from file:// with no server, no console error, pixels drawn.
-Screenshots go to --screenshots (docs/images).
+Screenshots go to --screenshots (docs/img).
 
     tests/view/test_view.py --cli build/apps/cifs --python build/python --examples examples --work /tmp/v
 """
@@ -70,10 +70,12 @@ copy.width = c.width; copy.height = c.height;
 const g = copy.getContext('2d');
 g.drawImage(c, 0, 0);
 const d = g.getImageData(0, 0, copy.width, copy.height).data;
-let drawn = 0;
-for (let i = 0; i < d.length; i += 4)
+let drawn = 0, sum = 0;
+for (let i = 0; i < d.length; i += 4) {
   if (Math.abs(d[i] - 247) + Math.abs(d[i + 1] - 247) + Math.abs(d[i + 2] - 245) > 24) ++drawn;
-return drawn;
+  sum += d[i] + 3 * d[i + 1] + 7 * d[i + 2];
+}
+return arguments.length ? sum : drawn;
 """
 
 
@@ -242,8 +244,14 @@ def main():
         errors = console_errors(driver)
         if errors:
             fail(f"console errors on the exported page: {errors}")
+        circles = driver.find_elements(By.CSS_SELECTOR, "#automaton circle")
+        before_click = driver.execute_script(PIXELS, "sum")
+        circles[3].click()  # state s3: its pieces light up
+        if driver.execute_script("return window.cifsView.selected") != 3:
+            fail("clicking state s3 of the automaton did not select it")
+        if driver.execute_script(PIXELS, "sum") == before_click:
+            fail("selecting state s3 did not change the picture")
         if args.screenshots:
-            driver.find_element(By.CSS_SELECTOR, "#automaton circle").click()
             driver.save_screenshot(str(Path(args.screenshots) / "view-wave-export.png"))
         print("export: loads from file://, the library's checksum, drawn")
     finally:

@@ -113,6 +113,8 @@ json parse_body(const Request& r, std::string_view where) {
     return body;
   } catch (const json::parse_error& e) {
     throw Refusal{400, std::string(where) + ": malformed JSON at byte " + std::to_string(e.byte)};
+  } catch (const json::exception& e) {  // a number beyond a double (1e400): out_of_range
+    throw Refusal{400, std::string(where) + ": " + e.what()};
   }
 }
 

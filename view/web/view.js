@@ -113,8 +113,10 @@
       geometry.computeBoundingSphere();
       const s = geometry.boundingSphere;
       controls.target.copy(s.center);
-      camera.position.copy(s.center).add(new THREE.Vector3(0.6, -1.2, 1.4).normalize().multiplyScalar(3 * s.radius + 1e-9));
-      camera.up.set(0, 0, 1);
+      const flat = doc.dimension === 2; // plane shapes seen from above
+      const from = flat ? new THREE.Vector3(0, 0, 1) : new THREE.Vector3(0.6, -1.2, 1.4).normalize();
+      camera.position.copy(s.center).add(from.multiplyScalar(3 * s.radius + 1e-9));
+      camera.up.set(0, flat ? 1 : 0, flat ? 0 : 1);
       camera.near = s.radius * 0.01; camera.far = s.radius * 100;
       camera.updateProjectionMatrix();
       controls.update();
