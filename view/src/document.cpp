@@ -275,10 +275,7 @@ Geometry geometry(const Document& document, const Params& params, const Limits& 
 
 std::uint32_t geometry_checksum(const std::vector<float>& positions) noexcept {
   std::uint32_t h = 2166136261U;
-  for (const float x : positions) {
-    auto bits = std::bit_cast<std::uint32_t>(x);
-    for (int k = 0; k < 4; ++k, bits >>= 8) h = (h ^ (bits & 0xffU)) * 16777619U;
-  }
+  for (const float x : positions) h = (h ^ std::bit_cast<std::uint32_t>(x)) * 16777619U;
   return h;
 }
 

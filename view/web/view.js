@@ -46,9 +46,9 @@
   }
 
   // --- the wire format (view::encode_geometry) ---
-  function fnv1a(bytes) {
+  function fnv1a(words) { // view::geometry_checksum: FNV-1a a 32-bit word at a time
     let h = 0x811c9dc5;
-    for (let i = 0; i < bytes.length; ++i) h = Math.imul(h ^ bytes[i], 0x01000193);
+    for (let i = 0; i < words.length; ++i) h = Math.imul(h ^ words[i], 0x01000193);
     return h >>> 0;
   }
   function parse(buffer) {
@@ -65,7 +65,7 @@
     g.states = take(Uint32Array, header.states);
     g.net = take(Float32Array, header.net);
     g.netLines = take(Uint32Array, header.net_lines);
-    g.checksum = fnv1a(new Uint8Array(g.positions.buffer, g.positions.byteOffset, g.positions.byteLength));
+    g.checksum = fnv1a(new Uint32Array(g.positions.buffer, g.positions.byteOffset, g.positions.length));
     if (g.checksum !== header.checksum) throw new Error('the geometry arrived damaged (checksum)');
     return g;
   }

@@ -85,8 +85,8 @@ struct Geometry {
 /// InvalidInput (before any work) for a parameter out of `limits`, and as those calls.
 Geometry geometry(const Document& document, const Params& params, const Limits& limits = {});
 
-/// FNV-1a (32-bit) of the bytes of the float32 positions, little-endian: what the page computes on the
-/// buffer it received, and a test from the library's own points.
+/// FNV-1a (32-bit) taken a 32-bit word at a time over the float32 positions (h = (h ^ bits) · 16777619 from
+/// 2166136261): what the page computes on the buffer it received, and a test from the library's points.
 std::uint32_t geometry_checksum(const std::vector<float>& positions) noexcept;
 
 /// The wire form: "CIFSVIEW", a little-endian uint32 header length, a JSON header (kind, counts,
