@@ -76,7 +76,7 @@ TEST_CASE("view geometry is the library's: curves, surfaces, meshes", "[view]") 
     const auto& curve = std::get<nurbs::Curve>(*d.shape);
     CHECK(g.positions == as_floats(ifs::attractor(curve, 6)));
     CHECK(g.states.size() == g.positions.size() / 3);
-    CHECK(g.lines.size() == 2 * (g.positions.size() / 3 - 1));
+    CHECK(!g.closed);
     CHECK(g.checksum == view::geometry_checksum(g.positions));
     CHECK(g.net == as_floats(nurbs::cartesian_points(curve)));
   }
@@ -103,7 +103,16 @@ TEST_CASE("view geometry is the library's: curves, surfaces, meshes", "[view]") 
     const view::Geometry g = view::geometry(d, p);
     const Mesh m = ifs::attractor(std::get<nurbs::Surface>(*d.shape), 3);
     CHECK(g.positions == as_floats(m.vertices));
-    CHECK(g.triangles.size() == 6 * m.states.size());
+    CHECK(g.triangles.empty());  // the page makes them from the grid
+    REQUIRE(g.grid[0] * g.grid[1] == g.positions.size() / 3);
+    for (std::size_t f = 0; f < m.states.size(); ++f) {  // the grid's cells are the mesh's faces
+      const std::uint32_t v = g.grid[1] * static_cast<std::uint32_t>(f / (g.grid[1] - 1)) +
+                              static_cast<std::uint32_t>(f % (g.grid[1] - 1));
+      CHECK(m.face_vertices[4 * f] == static_cast<int>(v));
+      CHECK(m.face_vertices[4 * f + 1] == static_cast<int>(v + g.grid[1]));
+      CHECK(m.face_vertices[4 * f + 2] == static_cast<int>(v + g.grid[1] + 1));
+      CHECK(m.face_vertices[4 * f + 3] == static_cast<int>(v + 1));
+    }
     REQUIRE(g.states.size() == g.positions.size() / 3);
     for (const std::uint32_t s : g.states)
       CHECK(std::find(m.states.begin(), m.states.end(), s) != m.states.end());
@@ -148,8 +157,8 @@ TEST_CASE("view encode_geometry: header, then the arrays on 4-byte boundaries", 
   std::memcpy(positions.data(), bytes.data() + 12 + length, 4 * positions.size());
   CHECK(positions == g.positions);
   CHECK(bytes.size() == 12 + length +
-                            4 * (g.positions.size() + g.lines.size() + g.triangles.size() + g.states.size() +
-                                 g.net.size() + g.net_lines.size()));
+                            4 * (g.positions.size() + g.triangles.size() + g.states.size() + g.net.size() +
+                                 g.net_lines.size()));
 }
 
 TEST_CASE("view handle: hostile requests refused with a 4xx, the session still answers", "[view]") {
@@ -171,7 +180,9 @@ TEST_CASE("view handle: hostile requests refused with a 4xx, the session still a
     CHECK(f.get("/", "127.0.0.1:9999").status == 403);  // another port: another origin
     CHECK(f.get("/api/document" + q, "localhost:8765").status == 200);
     CHECK(f.get("/api/document").status == 403);
-    CHECK(f.get("/api/document?token=0" + f.session.token.substr(1)).status == 403);
+    std::string wrong = f.session.token;
+    wrong[0] = wrong[0] == '0' ? '1' : '0';  // one digit off
+    CHECK(f.get("/api/document?token=" + wrong).status == 403);
     CHECK(f.get("/api/document?token=" + f.session.token + "x").status == 403);
   }
   SECTION("paths outside the page and the folder") {

@@ -7,6 +7,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <variant>
@@ -38,6 +39,16 @@ Point cartesian_row(const Points& P, Eigen::Index row, bool rational) {
 
 void append_xyz(std::vector<float>& out, const Eigen::Ref<const Eigen::RowVectorXd>& row) {
   for (Eigen::Index k = 0; k < 3; ++k) out.push_back(k < row.size() ? static_cast<float>(row(k)) : 0.0F);
+}
+
+/// The rows of `points` as float x, y, z (z = 0 for 2-D points), in one pass.
+std::vector<float> xyz(const Points& points) {
+  std::vector<float> out(3 * static_cast<std::size_t>(points.rows()), 0.0F);
+  const Eigen::Index dim = std::min<Eigen::Index>(points.cols(), 3);
+  float* o = out.data();
+  for (Eigen::Index i = 0; i < points.rows(); ++i, o += 3)
+    for (Eigen::Index k = 0; k < dim; ++k) o[k] = static_cast<float>(points(i, k));
+  return out;
 }
 
 /// Moves stored row `row` to the Cartesian `position`, keeping its weight.
@@ -171,13 +182,10 @@ void curve_geometry(const nurbs::Curve& c, const Params& params, const Limits& l
                                                     .max_points = limits.max_points,
                                                     .limit_hint = "; lower the depth"});
   const auto n = static_cast<std::uint32_t>(sample.points.rows());
-  g.positions.reserve(3 * std::size_t{n});
-  for (Eigen::Index i = 0; i < sample.points.rows(); ++i) append_xyz(g.positions, sample.points.row(i));
+  g.positions = xyz(sample.points);
   g.states = sample.states;
   if (!g.states.empty()) g.states.resize(n, g.states.back());  // the end point: its piece's
-  g.lines.reserve(2 * std::size_t{n});
-  for (std::uint32_t i = 0; i + 1 < n; ++i) g.lines.insert(g.lines.end(), {i, i + 1});
-  if (c.closed && n > 1) g.lines.insert(g.lines.end(), {n - 1, 0});
+  g.closed = c.closed;
   const Eigen::Index m = nurbs::distinct_count(c);
   for (Eigen::Index i = 0; i < m; ++i) append_xyz(g.net, cartesian_row(c.P, i, c.rational).transpose());
   for (std::uint32_t i = 0; i + 1 < static_cast<std::uint32_t>(m); ++i)
@@ -188,22 +196,25 @@ void curve_geometry(const nurbs::Curve& c, const Params& params, const Limits& l
 void surface_geometry(const nurbs::Surface& s, const Params& params, const Limits& limits, Geometry& g) {
   const Mesh mesh = ifs::attractor(s, params.depth, ifs::mesh_bytes(limits.max_points, 3, limits.max_points));
   const auto n = static_cast<std::size_t>(mesh.vertices.rows());
-  g.positions.reserve(3 * n);
-  for (Eigen::Index i = 0; i < mesh.vertices.rows(); ++i) append_xyz(g.positions, mesh.vertices.row(i));
+  g.positions = xyz(mesh.vertices);
   const std::size_t faces = mesh.face_offsets.size() - 1;
-  constexpr std::uint32_t unset = 0xffffffffU;
-  g.states.assign(n, unset);
+  constexpr std::uint32_t kUnset = 0xffffffffU;
+  g.states.assign(n, kUnset);
   // Node (I, J) is computed by the leaf of cell (I, J), corner 0 of its quad; the last row and column
   // take a neighbouring leaf's state.
   for (std::size_t f = 0; f < faces; ++f) g.states[mesh.face_vertices[4 * f]] = mesh.states[f];
-  g.triangles.reserve(6 * faces);
-  for (std::size_t f = 0; f < faces; ++f) {
-    const int* q = &mesh.face_vertices[4 * f];
+  for (std::size_t f = 0; f < faces; ++f)
     for (int k = 1; k < 4; ++k)
-      if (g.states[q[k]] == unset) g.states[q[k]] = mesh.states[f];
-    const auto v = [&](int k) { return static_cast<std::uint32_t>(q[k]); };
-    g.triangles.insert(g.triangles.end(), {v(0), v(1), v(2), v(0), v(2), v(3)});
-  }
+      if (g.states[mesh.face_vertices[4 * f + k]] == kUnset)
+        g.states[mesh.face_vertices[4 * f + k]] = mesh.states[f];
+  // The faces are the grid's cells (ifs::surface_mesh's layout: node (I, J) is vertex I·cols + J, face 0
+  // has the corners 0, cols, cols + 1, 1): the page makes the triangles from the grid's size once per
+  // depth, and the 6 indices per cell are not sent with every edit.
+  const auto cols = static_cast<std::uint32_t>(mesh.face_vertices[1]);
+  const auto rows = static_cast<std::uint32_t>(n / cols);
+  if (std::size_t{rows} * cols != n || std::size_t{rows - 1} * (cols - 1) != faces)
+    throw std::logic_error("view: the surface mesh is not ifs::surface_mesh's grid");
+  g.grid = {rows, cols};
   const Eigen::Index nu = s.count[0], nv = s.count[1];
   for (Eigen::Index i = 0; i < s.P.rows(); ++i)
     append_xyz(g.net, cartesian_row(s.P, i, s.rational).transpose());
@@ -234,7 +245,7 @@ void mesh_geometry(const Document& document, const Params& params, const Limits&
   options.max_bytes = 64.0 * static_cast<double>(limits.max_points);  // about 64 bytes per vertex
   const Mesh refined =
       subdivision::subdivide(control, subdivision::named_mesh_scheme(params.scheme), params.levels, options);
-  for (Eigen::Index i = 0; i < refined.vertices.rows(); ++i) append_xyz(g.positions, refined.vertices.row(i));
+  g.positions = xyz(refined.vertices);
   append_faces(refined, g.triangles);
   for (Eigen::Index i = 0; i < control.vertices.rows(); ++i) append_xyz(g.net, control.vertices.row(i));
   std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;  // each edge once
@@ -290,10 +301,15 @@ void append_bytes(std::string& out, const std::vector<T>& values) {
 }  // namespace
 
 std::string encode_geometry(const Geometry& g) {
-  const nlohmann::json header = {{"kind", kind_name(g.kind)},       {"positions", g.positions.size()},
-                                 {"lines", g.lines.size()},         {"triangles", g.triangles.size()},
-                                 {"states", g.states.size()},       {"net", g.net.size()},
-                                 {"net_lines", g.net_lines.size()}, {"checksum", g.checksum}};
+  const nlohmann::json header = {{"kind", kind_name(g.kind)},
+                                 {"positions", g.positions.size()},
+                                 {"closed", g.closed},
+                                 {"triangles", g.triangles.size()},
+                                 {"grid", g.grid},
+                                 {"states", g.states.size()},
+                                 {"net", g.net.size()},
+                                 {"net_lines", g.net_lines.size()},
+                                 {"checksum", g.checksum}};
   std::string text = header.dump();
   text.resize((text.size() + 12 + 3) / 4 * 4 - 12, ' ');  // the arrays start on a 4-byte boundary
   std::string out = "CIFSVIEW";
@@ -301,7 +317,6 @@ std::string encode_geometry(const Geometry& g) {
   out.append(reinterpret_cast<const char*>(&length), 4);
   out += text;
   append_bytes(out, g.positions);
-  append_bytes(out, g.lines);
   append_bytes(out, g.triangles);
   append_bytes(out, g.states);
   append_bytes(out, g.net);

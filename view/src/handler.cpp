@@ -96,7 +96,7 @@ std::filesystem::path in_folder(const Session& s, const std::string& name, std::
   if (!plain)
     throw Refusal{
         403, std::string(where) + ": '" + name + "' is not a plain file name of the opened file's folder"};
-  const std::filesystem::path path = s.folder / name;
+  std::filesystem::path path = s.folder / name;
   std::error_code ec;
   if (std::filesystem::is_symlink(path, ec)) {
     const std::filesystem::path target = std::filesystem::weakly_canonical(path, ec);

@@ -60,7 +60,6 @@
     const take = (Type, n) => { const a = new Type(buffer, at, n); at += 4 * n; return a; };
     const g = { header };
     g.positions = take(Float32Array, header.positions);
-    g.lines = take(Uint32Array, header.lines);
     g.triangles = take(Uint32Array, header.triangles);
     g.states = take(Uint32Array, header.states);
     g.net = take(Float32Array, header.net);
@@ -83,6 +82,22 @@
     colors.needsUpdate = true;
     draw();
   }
+  let gridCache = { key: '', index: null };
+  /// The two triangles of each cell of a rows × cols grid (view::Geometry::grid), made once per size.
+  function gridTriangles([rows, cols]) {
+    const key = rows + 'x' + cols;
+    if (gridCache.key === key) return gridCache.index;
+    const index = new Uint32Array(6 * (rows - 1) * (cols - 1));
+    let at = 0;
+    for (let i = 0; i + 1 < rows; ++i)
+      for (let j = 0; j + 1 < cols; ++j) {
+        const v = i * cols + j;
+        index.set([v, v + cols, v + cols + 1, v, v + cols + 1, v + 1], at);
+        at += 6;
+      }
+    gridCache = { key, index };
+    return index;
+  }
   function show(g, frame) {
     for (const o of [shapeObject, netPoints, netLines]) if (o) { scene.remove(o); o.geometry.dispose(); }
     const geometry = new THREE.BufferGeometry();
@@ -91,10 +106,9 @@
     colors = new THREE.BufferAttribute(new Float32Array(g.positions.length).fill(0.6), 3);
     geometry.setAttribute('color', colors);
     if (g.header.kind === 'curve') {
-      geometry.setIndex(new THREE.BufferAttribute(g.lines, 1));
-      shapeObject = new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ vertexColors: THREE.VertexColors }));
+      shapeObject = new (g.header.closed ? THREE.LineLoop : THREE.Line)(geometry, new THREE.LineBasicMaterial({ vertexColors: THREE.VertexColors }));
     } else {
-      geometry.setIndex(new THREE.BufferAttribute(g.triangles, 1));
+      geometry.setIndex(new THREE.BufferAttribute(g.header.grid[0] > 0 ? gridTriangles(g.header.grid) : g.triangles, 1));
       geometry.computeVertexNormals();
       shapeObject = new THREE.Mesh(geometry, new THREE.MeshPhongMaterial({
         vertexColors: THREE.VertexColors, side: THREE.DoubleSide, shininess: 20 }));

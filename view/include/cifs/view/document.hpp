@@ -4,6 +4,7 @@
 // library calls of `cifs attractor` and `cifs subdivide` (no second evaluator).
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -71,9 +72,12 @@ Mesh edited_mesh(const Document& document, const Params& params);
 /// The buffers the page draws, little-endian on the wire (encode_geometry).
 struct Geometry {
   Kind kind = Kind::curve;
-  std::vector<float> positions;          // x, y, z per point (2-D shapes get z = 0)
-  std::vector<std::uint32_t> lines;      // curves: index pairs
-  std::vector<std::uint32_t> triangles;  // surfaces, meshes: index triples (polygons as fans)
+  std::vector<float> positions;  // x, y, z per point (2-D shapes get z = 0)
+  bool closed = false;           // curves: the points in order are a polyline, closed back to the first one
+  std::vector<std::uint32_t> triangles;  // meshes: index triples (polygons as fans)
+  /// Surfaces: rows × cols nodes, node (I, J) at I·cols + J, each cell two triangles (I, J), (I+1, J),
+  /// (I+1, J+1) and (I, J), (I+1, J+1), (I, J+1): the page makes them (ifs::surface_mesh's layout).
+  std::array<std::uint32_t, 2> grid{};
   std::vector<std::uint32_t> states;     // per point: the automaton state of its piece (empty for meshes)
   std::vector<float> net;                // the (edited) control net's points, x, y, z
   std::vector<std::uint32_t> net_lines;  // the net's edges, index pairs
@@ -90,7 +94,7 @@ Geometry geometry(const Document& document, const Params& params, const Limits& 
 std::uint32_t geometry_checksum(const std::vector<float>& positions) noexcept;
 
 /// The wire form: "CIFSVIEW", a little-endian uint32 header length, a JSON header (kind, counts,
-/// checksum), padding to 4 bytes, then positions, lines, triangles, states, net, net_lines in that
+/// checksum, grid), padding to 4 bytes, then positions, triangles, states, net, net_lines in that
 /// order (the counts in the header).
 std::string encode_geometry(const Geometry& geometry);
 
