@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -265,4 +266,25 @@ TEST_CASE("view export_page writes the page, its geometry and three.js", "[view]
   const std::string baked((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   CHECK(baked.starts_with("window.cifsBaked = {document: {"));
   CHECK(baked.find("</") == std::string::npos);  // nothing that could close the script
+}
+
+TEST_CASE("view handle: the dimension readout and a render through the experiment runner", "[view]") {
+  Fixture f("shapes/hills.json");
+  const view::Response d = f.post("/api/dimension", R"({"params": {"depth": 4}})");
+  REQUIRE(d.status == 200);
+  const auto m = nlohmann::json::parse(d.body);
+  // A smooth surface: 2, within three of the reported uncertainties (1.84 ± 0.075 at this small budget).
+  CHECK(std::abs(m["dimension"].get<double>() - 2.0) <= 3 * m["uncertainty"].get<double>());
+  const view::Response png = f.post("/api/render", R"({"name": "hills.png", "params": {"depth": 3}})");
+  REQUIRE(png.status == 200);
+  std::ifstream in(f.dir.path() / "hills.png", std::ios::binary);
+  std::string magic(8, '\0');
+  in.read(magic.data(), 8);
+  CHECK(magic == "\x89PNG\r\n\x1a\n");
+  CHECK(f.post("/api/render", R"({"name": "../hills.png"})").status == 403);
+  CHECK(f.post("/api/render", R"({"name": "hills.svg"})").status == 400);
+  Fixture curve("shapes/cubic.json");
+  const auto c = nlohmann::json::parse(curve.post("/api/dimension", R"({"params": {"depth": 10}})").body);
+  CHECK(std::abs(c["dimension"].get<double>() - 1.0) <=
+        3 * c["uncertainty"].get<double>());  // a smooth curve
 }

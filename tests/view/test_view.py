@@ -192,6 +192,17 @@ def main():
             fail(f"the saved point {index} is {moved}, the page shows {after}")
         print(f"drag: point {index} {np.round(before, 3)} -> {np.round(after, 3)}; saved, cifs info reads it")
 
+        # The dimension readout and a render through the experiment runner.
+        driver.find_element(By.ID, "dimension").click()
+        measured = wait_for(driver, "window.cifsView.dimension", "the dimension readout")
+        if abs(measured["dimension"] - 2) > 3 * measured["uncertainty"]:
+            fail(f"the dimension readout of a smooth surface: {measured}")
+        driver.find_element(By.ID, "render").click()
+        wait_for(driver, "window.cifsView.rendered", "the render")
+        if (work / "hills-edited.png").read_bytes()[:8] != b"\x89PNG\r\n\x1a\n":
+            fail("the render wrote no PNG")
+        print(f"dimension {measured['dimension']:.3f} ± {measured['uncertainty']:.3f}; rendered hills-edited.png")
+
         # Hostile requests: each refused, the server still there.
         q = "?token=" + token
         hostile = [

@@ -10,6 +10,8 @@
 #include <variant>
 
 #include "cifs/errors.hpp"
+#include "cifs/experiment/dimension.hpp"
+#include "cifs/experiment/run.hpp"
 #include "cifs/files.hpp"
 #include "cifs/ifs/mesh.hpp"
 #include "cifs/ifs/shape_attractor.hpp"
@@ -228,6 +230,69 @@ Response save(Session& s, const Request& r) {
   return json_response({{"written", name}});
 }
 
+/// The document with `params` as an experiment (the runner's input): the edited shape at the depth, or the
+/// edited mesh with its scheme and levels; `control_net` drawn.
+io::Experiment as_experiment(const Session& s, const Params& params) {
+  io::Experiment e;
+  e.name = s.document.path.stem().string();
+  if (s.document.kind == Kind::mesh) {
+    if (params.levels < 0 || params.levels > s.limits.max_levels)
+      throw InvalidInput("levels " + std::to_string(params.levels) + " is outside 0.." +
+                         std::to_string(s.limits.max_levels));
+    e.mesh = io::MeshSource{.path = s.document.path,
+                            .mesh = edited_mesh(s.document, params),
+                            .scheme = subdivision::named_mesh_scheme(params.scheme),
+                            .levels = params.levels,
+                            .limit = false};
+  } else {
+    const int high = s.document.kind == Kind::curve ? s.limits.max_depth_curve : s.limits.max_depth_surface;
+    if (params.depth < 0 || params.depth > high)
+      throw InvalidInput("depth " + std::to_string(params.depth) + " is outside 0.." + std::to_string(high));
+    e.shape = edited_shape(s.document, params);
+    e.evaluation.depth = params.depth;
+  }
+  e.render.width = 1024;
+  e.render.height = 768;
+  e.render.control_net = true;
+  e.inputs = {s.document.path};
+  return e;
+}
+
+/// The dimension readout: experiment::measure_dimension at a small budget (2^16 points).
+Response dimension(const Session& s, const Request& r) {
+  const json body = parse_body(r, "/api/dimension");
+  const io::Experiment e = as_experiment(s, parse_params(s.document, body, "/api/dimension"));
+  experiment::DimensionOptions options;
+  options.max_points = std::size_t{1} << 16;
+  options.min_boxes = 100;
+  const experiment::DimensionMeasurement m = experiment::measure_dimension(e, options);
+  return json_response({{"dimension", m.fit.dimension},
+                        {"uncertainty", m.uncertainty},
+                        {"range", m.range},
+                        {"route", m.description}});
+}
+
+/// Render PNG or EXR through the experiment runner (cifs render's), into the folder.
+Response render_image(const Session& s, const Request& r) {
+  const json body = parse_body(r, "/api/render");
+  if (!body.contains("name") || !body.at("name").is_string())
+    throw Refusal{400, "/api/render: name (a .png or .exr of the opened file's folder) is missing"};
+  const std::string name = body.at("name").get<std::string>();
+  const std::filesystem::path path = in_folder(s, name, "/api/render");
+  io::Experiment e = as_experiment(s, parse_params(s.document, body, "/api/render"));
+  if (path.extension() == ".png")
+    e.outputs.png = path;
+  else if (path.extension() == ".exr")
+    e.outputs.exr = path;
+  else
+    throw InvalidInput(name + ": an image is rendered as .png or .exr");
+  experiment::RunOptions options;
+  options.out_dir = s.folder;
+  options.quiet = true;
+  experiment::run(e, options);
+  return json_response({{"written", name}});
+}
+
 Response route(Session& s, const Request& r) {
   const std::size_t question = r.target.find('?');
   const std::string path = decode(std::string_view(r.target).substr(0, question), "path");
@@ -272,6 +337,14 @@ Response route(Session& s, const Request& r) {
   if (r.method == "POST" && path == "/api/save") {
     const std::scoped_lock lock(s.document_mutex);
     return save(s, r);
+  }
+  if (r.method == "POST" && path == "/api/dimension") {
+    const std::scoped_lock lock(s.document_mutex);
+    return dimension(s, r);
+  }
+  if (r.method == "POST" && path == "/api/render") {
+    const std::scoped_lock lock(s.document_mutex);
+    return render_image(s, r);
   }
   if (r.method == "POST" && path == "/api/open") {
     const json body = parse_body(r, path);

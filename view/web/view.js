@@ -70,15 +70,20 @@
   }
 
   // --- drawing ---
-  function stateColor(s, out, i) {
+  /// The colour of state s (golden-ratio hues), the selected state's orange and the others faded.
+  function stateColor(s) {
     const c = new THREE.Color().setHSL(((s * 0.618034) % 1 + 1) % 1, 0.55, 0.55);
     if (selected >= 0) { if (s === selected) c.setRGB(1, 0.55, 0); else c.lerp(new THREE.Color(0xdddddd), 0.75); }
-    out[3 * i] = c.r; out[3 * i + 1] = c.g; out[3 * i + 2] = c.b;
+    return c;
   }
   function recolor() {
     if (!colors || !states || states.length === 0) return;
-    const a = colors.array;
-    for (let i = 0; i < states.length; ++i) stateColor(states[i], a, i);
+    const a = colors.array, palette = new Map();
+    for (let i = 0; i < states.length; ++i) {
+      let c = palette.get(states[i]);
+      if (!c) palette.set(states[i], (c = stateColor(states[i])));
+      a[3 * i] = c.r; a[3 * i + 1] = c.g; a[3 * i + 2] = c.b;
+    }
     colors.needsUpdate = true;
     draw();
   }
@@ -202,6 +207,7 @@
     if (doc.ranges.levels) slider('levels', doc.ranges.levels, params.levels);
     const stem = doc.name.replace(/\.[^.]*$/, '');
     $('save-name').value = stem + '-edited.' + (doc.kind === 'mesh' ? 'obj' : 'json');
+    $('render-name').value = stem + '-edited.png';
   }
   async function save() {
     const r = await fetch(api('save'), { method: 'POST', body: body({ name: $('save-name').value }) });
@@ -210,6 +216,24 @@
     view.saved = r.ok ? JSON.parse(text).written : null;
   }
   $('save').addEventListener('click', save);
+  async function render() {
+    status('rendering…');
+    const r = await fetch(api('render'), { method: 'POST', body: body({ name: $('render-name').value }) });
+    const text = await r.text();
+    status(r.ok ? 'wrote ' + JSON.parse(text).written : text.trim(), !r.ok);
+    view.rendered = r.ok ? JSON.parse(text).written : null;
+  }
+  $('render').addEventListener('click', render);
+  async function dimension() {
+    $('dimension-readout').textContent = 'measuring…';
+    const r = await fetch(api('dimension'), { method: 'POST', body: body() });
+    if (!r.ok) { $('dimension-readout').textContent = (await r.text()).trim(); return; }
+    const d = await r.json();
+    view.dimension = d;
+    $('dimension-readout').textContent = 'dimension ' + d.dimension.toFixed(3) + ' ± ' + d.uncertainty.toFixed(3) +
+      ' (' + d.route + ')';
+  }
+  $('dimension').addEventListener('click', dimension);
 
   // --- the automaton: click a state to light up its pieces ---
   function automaton(svg) {
