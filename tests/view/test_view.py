@@ -231,6 +231,18 @@ def main():
         expected = fnv1a(np.asarray(edited.attractor(depth).vertices))
         if state["checksum"] != expected:
             fail(f"after the hostile requests: the page holds {state['checksum']:08x}, the library {expected:08x}")
+        # 10^5 points and more: depth 7 (513² vertices), timed from the edit to the drawn geometry.
+        old = state["checksum"]
+        driver.execute_script("const s = document.getElementById('depth'); s.value = 7;"
+                              "s.dispatchEvent(new Event('input'));")
+        state = settle(driver, old, "the depth-7 geometry")
+        expected = fnv1a(np.asarray(edited.attractor(7).vertices))
+        if state["checksum"] != expected:
+            fail(f"depth 7: the page holds {state['checksum']:08x}, the library {expected:08x}")
+        print(f"depth 7: {state['pointCount']} points, edit to drawn in {state['lastMs']:.0f} ms")
+        driver.execute_script("const s = document.getElementById('depth'); s.value = 5;"
+                              "s.dispatchEvent(new Event('input'));")
+        settle(driver, state["checksum"], "depth 5 again")
         errors = console_errors(driver)
         if errors:
             fail(f"console errors: {errors}")
