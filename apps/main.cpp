@@ -266,10 +266,12 @@ void add_scheme(CLI::App& app, Commands& c) {
 }
 
 void add_render(CLI::App& app, Commands& c) {
-  auto* render_cmd =
-      app.add_subcommand("render", "Run experiment files: OpenEXR image, PNG preview, geometry");
+  auto* render_cmd = app.add_subcommand(
+      "render", "Run experiment files (or look at a shape or mesh): OpenEXR image, PNG preview, geometry");
   render_cmd
-      ->add_option("experiment", c.re.experiments, "Experiment files (docs/experiments.md), run in order")
+      ->add_option("experiment", c.re.experiments,
+                   "Experiment files (docs/experiments.md), run in order; a shape or mesh file: a look at it "
+                   "with the default camera")
       ->required();
   render_cmd->add_option("-o,--output", c.re.exr, "OpenEXR image (default: the file's outputs.exr)")
       ->check(output_name);
