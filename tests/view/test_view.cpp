@@ -142,6 +142,45 @@ TEST_CASE("view geometry is the library's: curves, surfaces, meshes", "[view]") 
   }
 }
 
+TEST_CASE("view geometry with an amplitude: the perturbed BC-IFS, knot and end points kept", "[view]") {
+  const view::Document d = view::open_document(kExamples + "/shapes/wave.json");
+  view::Params p = view::default_params(d);
+  p.depth = 6;
+  const view::Geometry smooth = view::geometry(d, p);
+  p.amplitude = 0.1;
+  p.seed = 7;
+  const view::Geometry fractal = view::geometry(d, p);
+  REQUIRE(fractal.positions.size() == smooth.positions.size());
+  // Point i·2^6 is the start of segment i (a knot point) or the end point: kept on the NURBS curve.
+  const std::size_t points = smooth.positions.size() / 3, segment = std::size_t{1} << 6;
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < points; ++i) {
+    const bool knot = i % segment == 0 || i + 1 == points;
+    bool same = true;
+    for (int k = 0; k < 3; ++k)
+      same = same && std::abs(fractal.positions[3 * i + k] - smooth.positions[3 * i + k]) <=
+                         1e-5F * (1 + std::abs(smooth.positions[3 * i + k]));
+    if (knot) CHECK(same);
+    moved += same ? 0 : 1;
+  }
+  CHECK(moved > points / 2);
+  CHECK(fractal.states.empty());
+  p.seed = 8;
+  CHECK(view::geometry(d, p).checksum != fractal.checksum);  // another seed, another fractal
+  p.amplitude = 2;
+  CHECK_THROWS_WITH(view::geometry(d, p), Catch::Contains("amplitude"));
+  // A surface: the grid of its patches, 2^depth cells each way.
+  const view::Document hills = view::open_document(kExamples + "/shapes/hills.json");
+  view::Params h = view::default_params(hills);
+  h.depth = 3;
+  const view::Geometry flat = view::geometry(hills, h);
+  h.amplitude = 0.05;
+  const view::Geometry rough = view::geometry(hills, h);
+  CHECK(rough.grid == flat.grid);
+  CHECK(rough.positions.size() == flat.positions.size());
+  CHECK(rough.checksum != flat.checksum);
+}
+
 TEST_CASE("view encode_geometry: header, then the arrays on 4-byte boundaries", "[view]") {
   const view::Document d = view::open_document(kExamples + "/shapes/cubic.json");
   view::Params p = view::default_params(d);
@@ -215,7 +254,8 @@ TEST_CASE("view handle: hostile requests refused with a 4xx, the session still a
     CHECK(f.post("/api/geometry", R"({"params": {"depth": 1000000000000}})").status == 400);
     CHECK(f.post("/api/geometry", R"({"params": {"depth": "7"}})").status == 400);
     CHECK(f.post("/api/geometry", R"({"params": {"dpeth": 7}})").body ==
-          "cifs view: /api/geometry: unknown parameter 'dpeth' (depth, scheme, levels, points)\n");
+          "cifs view: /api/geometry: unknown parameter 'dpeth' (depth, scheme, levels, points, amplitude, "
+          "seed)\n");
     CHECK(f.post("/api/geometry", R"({"params": {"depth": 11}})").status == 400);
     CHECK(f.post("/api/geometry", R"({"params": {"points": [[0, 1e400, 0, 0]]}})").status == 400);
     CHECK(f.post("/api/geometry", R"({"params": {"points": [[0, 1, 2]]}})").status ==

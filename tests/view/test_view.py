@@ -192,6 +192,35 @@ def main():
             fail(f"the saved point {index} is {moved}, the page shows {after}")
         print(f"drag: point {index} {np.round(before, 3)} -> {np.round(after, 3)}; saved, cifs info reads it")
 
+        # The tensor-product automaton's states ("(s0,s1)") are clickable too; a second click deselects.
+        click = "document.querySelectorAll('#automaton circle')[3].dispatchEvent(new MouseEvent('click'))"
+        driver.execute_script(click)
+        if driver.execute_script("return window.cifsView.selected") != 3:
+            fail("clicking state 3 of the surface's automaton did not select it")
+        driver.execute_script(click)
+
+        # The amplitude slider: the shape's BC-IFS perturbed, as an experiment file with that perturbation
+        # evaluates it (read and evaluated here by the library through Python).
+        old = state["checksum"]
+        driver.execute_script("const s = document.getElementById('amplitude'); s.value = 0.05;"
+                              "s.dispatchEvent(new Event('input'));")
+        state = settle(driver, old, "the perturbed geometry")
+        perturbed = work / "perturbed.json"
+        perturbed.write_text(json.dumps({"shape": str(saved), "evaluation": {"depth": depth + 1},
+                                         "perturbation": {"amplitude": 0.05, "seed": 1},
+                                         "outputs": {"ply": "unused.ply"}}))
+        points = np.asarray(cifs.experiment.evaluate(cifs.io.read_experiment(str(perturbed)), depth + 1).points)
+        expected = fnv1a(points)
+        if state["checksum"] != expected:
+            fail(f"amplitude 0.05: the page holds {state['checksum']:08x}, the library {expected:08x}")
+        if args.screenshots:
+            driver.save_screenshot(str(Path(args.screenshots) / "view-hills-fractal.png"))
+        old = state["checksum"]
+        driver.execute_script("const s = document.getElementById('amplitude'); s.value = 0;"
+                              "s.dispatchEvent(new Event('input'));")
+        state = settle(driver, old, "the smooth geometry again")
+        print(f"amplitude 0.05: the perturbed surface, {len(points)} points, as the experiment evaluates it")
+
         # The dimension readout and a render through the experiment runner.
         driver.find_element(By.ID, "dimension").click()
         measured = wait_for(driver, "window.cifsView.dimension", "the dimension readout")

@@ -13,6 +13,7 @@
 #include <variant>
 
 #include "cifs/errors.hpp"
+#include "cifs/experiment/run.hpp"
 #include "cifs/ifs/mesh.hpp"
 #include "cifs/ifs/sample.hpp"
 #include "cifs/ifs/shape_attractor.hpp"
@@ -186,11 +187,6 @@ void curve_geometry(const nurbs::Curve& c, const Params& params, const Limits& l
   g.states = sample.states;
   if (!g.states.empty()) g.states.resize(n, g.states.back());  // the end point: its piece's
   g.closed = c.closed;
-  const Eigen::Index m = nurbs::distinct_count(c);
-  for (Eigen::Index i = 0; i < m; ++i) append_xyz(g.net, cartesian_row(c.P, i, c.rational).transpose());
-  for (std::uint32_t i = 0; i + 1 < static_cast<std::uint32_t>(m); ++i)
-    g.net_lines.insert(g.net_lines.end(), {i, i + 1});
-  if (c.closed && m > 1) g.net_lines.insert(g.net_lines.end(), {static_cast<std::uint32_t>(m - 1), 0});
 }
 
 void surface_geometry(const nurbs::Surface& s, const Params& params, const Limits& limits, Geometry& g) {
@@ -215,6 +211,19 @@ void surface_geometry(const nurbs::Surface& s, const Params& params, const Limit
   if (std::size_t{rows} * cols != n || std::size_t{rows - 1} * (cols - 1) != faces)
     throw std::logic_error("view: the surface mesh is not ifs::surface_mesh's grid");
   g.grid = {rows, cols};
+}
+
+/// The control polygon (the distinct points of a closed curve) or the control grid, Cartesian.
+void append_net(const io::Shape& shape, Geometry& g) {
+  if (const auto* c = std::get_if<nurbs::Curve>(&shape)) {
+    const Eigen::Index m = nurbs::distinct_count(*c);
+    for (Eigen::Index i = 0; i < m; ++i) append_xyz(g.net, cartesian_row(c->P, i, c->rational).transpose());
+    for (std::uint32_t i = 0; i + 1 < static_cast<std::uint32_t>(m); ++i)
+      g.net_lines.insert(g.net_lines.end(), {i, i + 1});
+    if (c->closed && m > 1) g.net_lines.insert(g.net_lines.end(), {static_cast<std::uint32_t>(m - 1), 0});
+    return;
+  }
+  const auto& s = std::get<nurbs::Surface>(shape);
   const Eigen::Index nu = s.count[0], nv = s.count[1];
   for (Eigen::Index i = 0; i < s.P.rows(); ++i)
     append_xyz(g.net, cartesian_row(s.P, i, s.rational).transpose());
@@ -262,6 +271,42 @@ void mesh_geometry(const Document& document, const Params& params, const Limits&
   for (const auto& [a, b] : edges) g.net_lines.insert(g.net_lines.end(), {a, b});
 }
 
+/// Non-empty knot intervals of one direction's domain: the patches along it.
+std::uint32_t spans(const nurbs::Knots& knots, int degree, Eigen::Index count) {
+  std::uint32_t n = 0;
+  for (auto i = static_cast<std::size_t>(degree); i < static_cast<std::size_t>(count); ++i)
+    n += knots[i + 1] > knots[i] ? 1U : 0U;
+  return n;
+}
+
+/// The perturbed shape, as an experiment with a "perturbation" evaluates it (experiment::evaluate).
+void perturbed_geometry(const io::Shape& shape, const Params& params, const Limits& limits, Geometry& g) {
+  if (!std::isfinite(params.amplitude) || params.amplitude < 0 || params.amplitude > 1)
+    throw InvalidInput("amplitude " + std::to_string(params.amplitude) + " is outside 0..1");
+  io::Experiment e;
+  e.shape = shape;
+  e.evaluation.depth = params.depth;
+  e.perturbation = io::Perturbation{
+      .amplitude = params.amplitude, .seed = params.seed, .values = {}, .keep_vertices = true};
+  experiment::RunOptions options;
+  options.max_bytes = ifs::mesh_bytes(limits.max_points, 3, limits.max_points);
+  const experiment::Evaluation ev = experiment::evaluate(e, params.depth, options);
+  if (static_cast<std::size_t>(ev.points.rows()) > limits.max_points)
+    throw InvalidInput(std::to_string(ev.points.rows()) + " points, above the view's limit of " +
+                       std::to_string(limits.max_points) + "; lower the depth");
+  g.positions = xyz(ev.points);
+  if (const auto* c = std::get_if<nurbs::Curve>(&shape)) {
+    g.closed = c->closed;
+  } else {  // quad_mesh's grid: the surface's patches, 2^depth cells each way
+    const auto& s = std::get<nurbs::Surface>(shape);
+    const std::uint32_t cells = 1U << params.depth;
+    g.grid = {spans(s.knots[0], s.degree[0], s.count[0]) * cells + 1,
+              spans(s.knots[1], s.degree[1], s.count[1]) * cells + 1};
+    if (std::size_t{g.grid[0]} * g.grid[1] != static_cast<std::size_t>(ev.points.rows()))
+      throw std::logic_error("view: the perturbed surface is not its patches' grid");
+  }
+}
+
 }  // namespace
 
 Geometry geometry(const Document& document, const Params& params, const Limits& limits) {
@@ -272,13 +317,15 @@ Geometry geometry(const Document& document, const Params& params, const Limits& 
     mesh_geometry(document, params, limits, g);
   } else {
     const io::Shape shape = edited_shape(document, params);
-    if (const auto* c = std::get_if<nurbs::Curve>(&shape)) {
-      check_range("depth", params.depth, limits.max_depth_curve);
+    const auto* c = std::get_if<nurbs::Curve>(&shape);
+    check_range("depth", params.depth, c != nullptr ? limits.max_depth_curve : limits.max_depth_surface);
+    if (params.amplitude != 0)
+      perturbed_geometry(shape, params, limits, g);
+    else if (c != nullptr)
       curve_geometry(*c, params, limits, g);
-    } else {
-      check_range("depth", params.depth, limits.max_depth_surface);
+    else
       surface_geometry(std::get<nurbs::Surface>(shape), params, limits, g);
-    }
+    append_net(shape, g);
   }
   g.checksum = geometry_checksum(g.positions);
   return g;

@@ -136,9 +136,20 @@ Params parse_params(const Document& d, const json& body, std::string_view where)
   const json& j = body.at("params");
   if (!j.is_object()) throw Refusal{400, std::string(where) + ": params is not an object"};
   for (const auto& [key, value] : j.items())
-    if (key != "depth" && key != "scheme" && key != "levels" && key != "points")
-      throw Refusal{400,
-                    std::string(where) + ": unknown parameter '" + key + "' (depth, scheme, levels, points)"};
+    if (key != "depth" && key != "scheme" && key != "levels" && key != "points" && key != "amplitude" &&
+        key != "seed")
+      throw Refusal{400, std::string(where) + ": unknown parameter '" + key +
+                             "' (depth, scheme, levels, points, amplitude, seed)"};
+  if (j.contains("amplitude")) {
+    if (!j.at("amplitude").is_number())
+      throw Refusal{400, std::string(where) + ": amplitude is not a number"};
+    p.amplitude = j.at("amplitude").get<double>();
+  }
+  if (j.contains("seed")) {
+    if (!j.at("seed").is_number_unsigned())
+      throw Refusal{400, std::string(where) + ": seed is not an integer ≥ 0"};
+    p.seed = j.at("seed").get<std::uint64_t>();
+  }
   p.depth = int_field(j, "depth", p.depth, where);
   p.levels = int_field(j, "levels", p.levels, where);
   if (j.contains("scheme")) {
@@ -161,7 +172,11 @@ Params parse_params(const Document& d, const json& body, std::string_view where)
 }
 
 json params_json(const Params& p) {
-  return {{"depth", p.depth}, {"scheme", p.scheme}, {"levels", p.levels}};
+  return {{"depth", p.depth},
+          {"scheme", p.scheme},
+          {"levels", p.levels},
+          {"amplitude", p.amplitude},
+          {"seed", p.seed}};
 }
 
 int shape_dimension(const Document& d) {
@@ -183,7 +198,8 @@ json document_json(const Session& s) {
     j["ranges"] = {{"levels", {0, s.limits.max_levels}}};
   } else {
     j["ranges"] = {
-        {"depth", {0, d.kind == Kind::curve ? s.limits.max_depth_curve : s.limits.max_depth_surface}}};
+        {"depth", {0, d.kind == Kind::curve ? s.limits.max_depth_curve : s.limits.max_depth_surface}},
+        {"amplitude", {0, 0.5}}};
   }
   return j;
 }
@@ -250,6 +266,9 @@ io::Experiment as_experiment(const Session& s, const Params& params) {
       throw InvalidInput("depth " + std::to_string(params.depth) + " is outside 0.." + std::to_string(high));
     e.shape = edited_shape(s.document, params);
     e.evaluation.depth = params.depth;
+    if (params.amplitude != 0)
+      e.perturbation = io::Perturbation{
+          .amplitude = params.amplitude, .seed = params.seed, .values = {}, .keep_vertices = true};
   }
   e.render.width = 1024;
   e.render.height = 768;

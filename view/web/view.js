@@ -180,11 +180,11 @@
   }
 
   // --- the panel ---
-  function slider(name, range, value) {
+  function slider(name, range, value, step) {
     const label = document.createElement('label');
     label.textContent = name + ' ' + value;
     const input = document.createElement('input');
-    Object.assign(input, { type: 'range', min: range[0], max: range[1], step: 1, value, id: name });
+    Object.assign(input, { type: 'range', min: range[0], max: range[1], step: step || 1, value, id: name });
     input.addEventListener('input', () => {
       label.textContent = name + ' ' + input.value;
       params[name] = Number(input.value);
@@ -205,6 +205,15 @@
       $('panel').append(label, select);
     }
     if (doc.ranges.levels) slider('levels', doc.ranges.levels, params.levels);
+    if (doc.ranges.amplitude) { // the shape's BC-IFS, its free coefficients perturbed (an experiment's "perturbation")
+      slider('amplitude', doc.ranges.amplitude, params.amplitude, 0.005);
+      const label = document.createElement('label');
+      label.textContent = 'seed';
+      const seed = document.createElement('input');
+      Object.assign(seed, { type: 'number', min: 0, step: 1, value: params.seed, id: 'seed' });
+      seed.addEventListener('change', () => { params.seed = Math.max(0, Math.floor(Number(seed.value))); refresh(false); });
+      $('panel').append(label, seed);
+    }
     const stem = doc.name.replace(/\.[^.]*$/, '');
     $('save-name').value = stem + '-edited.' + (doc.kind === 'mesh' ? 'obj' : 'json');
     $('render-name').value = stem + '-edited.png';
@@ -238,10 +247,8 @@
   // --- the automaton: click a state to light up its pieces ---
   function automaton(svg) {
     $('automaton').innerHTML = svg;
-    for (const circle of $('automaton').querySelectorAll('circle')) {
-      const name = circle.nextElementSibling && circle.nextElementSibling.textContent;
-      if (!/^s\d+$/.test(name || '')) continue;
-      const s = Number(name.slice(1));
+    // io::to_svg draws one circle per state, in state order (names "s3", or "(s0,s1)" for a tensor product).
+    $('automaton').querySelectorAll('circle').forEach((circle, s) => {
       circle.addEventListener('click', () => {
         selected = selected === s ? -1 : s;
         for (const c of $('automaton').querySelectorAll('circle')) c.classList.remove('selected');
@@ -249,7 +256,7 @@
         view.selected = selected;
         recolor();
       });
-    }
+    });
   }
 
   // --- dragging control points ---

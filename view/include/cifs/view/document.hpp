@@ -49,6 +49,10 @@ struct Params {
   std::string scheme;             // meshes: subdivision::named_mesh_scheme
   int levels = 0;                 // meshes: subdivision steps
   std::vector<PointEdit> points;  // curves, surfaces, meshes: moved control points (mesh: vertices)
+  /// Curves, surfaces: above 0, the shape's BC-IFS with its free coefficients perturbed (as an experiment's
+  /// "perturbation": amplitude and seed, knot and end points kept), evaluated by experiment::evaluate.
+  double amplitude = 0;
+  std::uint64_t seed = 1;
 };
 
 /// The admissible ranges of the parameters (the page's sliders), and the size guards behind them.
@@ -85,7 +89,8 @@ struct Geometry {
 };
 
 /// The geometry of the document with `params`: ifs::sample_attractor (curves, with the states of the
-/// pieces; the points of ifs::attractor), ifs::attractor (surfaces), subdivision::subdivide (meshes).
+/// pieces; the points of ifs::attractor), ifs::attractor (surfaces), subdivision::subdivide (meshes);
+/// with an amplitude, experiment::evaluate of the perturbed shape (no states), as `cifs render` evaluates it.
 /// InvalidInput (before any work) for a parameter out of `limits`, and as those calls.
 Geometry geometry(const Document& document, const Params& params, const Limits& limits = {});
 
