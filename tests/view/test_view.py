@@ -128,6 +128,12 @@ def main():
         if not url.startswith("http://127.0.0.1:"):
             fail(f"cifs view printed {url!r}, stderr {server.stderr.read()[-500:]!r}")
         token = urllib.parse.parse_qs(urllib.parse.urlsplit(url).query)["token"][0]
+        # A second server on the same port is refused (it shared the port through SO_REUSEPORT).
+        port = str(urllib.parse.urlsplit(url).port)
+        second = subprocess.run([args.cli, "view", str(shape), "--port", port], capture_output=True, text=True,
+                                timeout=10)
+        if second.returncode != 2 or "cannot listen" not in second.stderr:
+            fail(f"a second cifs view on port {port}: exit {second.returncode}, {second.stderr!r}")
         driver = webdriver.Chrome(service=Service(shutil.which(args.chromedriver) or args.chromedriver),
                                   options=options)
         driver.get(url)

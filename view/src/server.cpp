@@ -39,6 +39,11 @@ void open_url(const std::string& url) {
 void serve(const std::filesystem::path& path, const ServeOptions& options) {
   Session session;
   httplib::Server server;
+  // httplib's default also sets SO_REUSEPORT: a second cifs view on the port would share it silently.
+  server.set_socket_options([](socket_t sock) {
+    int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+  });
   int port = options.port;
   if (port == 0) {
     port = server.bind_to_any_port(options.host);
