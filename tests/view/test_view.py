@@ -19,6 +19,7 @@ Screenshots go to --screenshots (docs/img).
 import argparse
 import http.client
 import json
+import os
 import shutil
 import subprocess
 import sys
@@ -107,6 +108,9 @@ def main():
     from selenium.webdriver.common.action_chains import ActionChains
     from selenium.webdriver.common.by import By
 
+    # The sanitized build preloads the ASan runtime into this interpreter (for the module); Chromium and the
+    # CLI (linked with it) run without.
+    os.environ.pop("LD_PRELOAD", None)
     work = Path(args.work)
     shutil.rmtree(work, ignore_errors=True)
     work.mkdir(parents=True)
