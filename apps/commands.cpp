@@ -699,7 +699,7 @@ std::string render(const RenderOptions& o) {
                        " experiments the files' own outputs go to --out-dir");
   // Every file is read (and refused) before the first one runs.
   std::vector<io::Experiment> experiments;
-  for (const auto& path : o.experiments) experiments.push_back(io::read_experiment(path));
+  for (const auto& path : o.experiments) experiments.push_back(io::read_as_experiment(path));
   experiment::RunOptions ro;
   ro.exr = o.exr;
   ro.png = o.png;

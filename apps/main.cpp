@@ -17,6 +17,7 @@
 #include "cifs/files.hpp"
 #include "cifs/render/progress.hpp"
 #include "cifs/suggest.hpp"
+#include "cifs/view/server.hpp"
 #include "commands.hpp"
 #include "fit_command.hpp"
 #include "scheme_command.hpp"
@@ -108,6 +109,8 @@ struct Commands {
   cli::LimitCommandOptions li;
   cli::DimensionOptions di;
   cli::FitOptions fi;
+  std::filesystem::path view_path, view_export;
+  cifs::view::ServeOptions view;
   std::filesystem::path gallery_out = "out";
   std::filesystem::path gallery_examples = default_examples();
 };
@@ -269,10 +272,12 @@ void add_scheme(CLI::App& app, Commands& c) {
 }
 
 void add_render(CLI::App& app, Commands& c) {
-  auto* render_cmd =
-      app.add_subcommand("render", "Run experiment files: OpenEXR image, PNG preview, geometry");
+  auto* render_cmd = app.add_subcommand(
+      "render", "Run experiment files (or look at a shape or mesh): OpenEXR image, PNG preview, geometry");
   render_cmd
-      ->add_option("experiment", c.re.experiments, "Experiment files (docs/experiments.md), run in order")
+      ->add_option("experiment", c.re.experiments,
+                   "Experiment files (docs/experiments.md), run in order; a shape or mesh file: a look at it "
+                   "with the default camera")
       ->required();
   render_cmd->add_option("-o,--output", c.re.exr, "OpenEXR image (default: the file's outputs.exr)")
       ->check(output_name);
@@ -379,6 +384,35 @@ void add_gallery(CLI::App& app, Commands& c) {
   gallery_cmd->callback([&] { c.result = cli::gallery(c.gallery_out, c.gallery_examples, c.quiet); });
 }
 
+void add_view(CLI::App& app, Commands& c) {
+  auto* view_cmd = app.add_subcommand(
+      "view", "Explore a shape or mesh in the browser: a local web page (prints its URL), or --export DIR");
+  view_cmd->add_option("file", c.view_path, "Shape file (.json or .obj) or polygon mesh (.obj or .ply)")
+      ->required();
+  view_cmd->add_option("--host", c.view.host,
+                       "Address to listen on (default 127.0.0.1; any other is reachable from the network)");
+  view_cmd->add_option("--port", c.view.port, "Port (default 8765; 0: any free port)");
+  view_cmd->add_flag("--open", c.view.open, "Open the page with xdg-open");
+  view_cmd
+      ->add_option("--export", c.view_export,
+                   "Write a self-contained static page (geometry baked in, three.js copied) into DIR")
+      ->check(output_name);
+  view_cmd->callback([&] {
+    if (!c.view_export.empty()) {
+      cifs::view::export_page(c.view_path, c.view_export);
+      c.result = "wrote " + (c.view_export / "index.html").string() + "\n";
+      return;
+    }
+    if (c.view.host != "127.0.0.1" && c.view.host != "localhost")
+      std::cerr
+          << "cifs: warning: --host " << c.view.host
+          << ": the page (and saving into the file's folder) is open to whoever reaches this address and "
+             "has the URL\n";
+    c.view.listening = [](const std::string& url) { std::cout << url << std::endl; };
+    cifs::view::serve(c.view_path, c.view);
+  });
+}
+
 /// `--name` and `-n` of the options of `command` shown in its help.
 std::vector<std::string> option_names(const CLI::App& command) {
   std::vector<std::string> names;
@@ -483,6 +517,7 @@ int run(int argc, char** argv, std::string& result) {
   add_dimension(app, c);
   add_fit(app, c);
   add_gallery(app, c);
+  add_view(app, c);
 
   try {
     const std::string first = argc > 1 ? argv[1] : "-";

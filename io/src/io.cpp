@@ -399,4 +399,34 @@ Experiment read_experiment(const std::filesystem::path& path) {
   return read_as<Experiment>(path, Content::experiment);
 }
 
+Experiment read_as_experiment(const std::filesystem::path& path) {
+  const Content content = detect(path);
+  if (content == Content::experiment) return read_experiment(path);
+  Experiment e;
+  e.name = path.stem().string();
+  if (content == Content::mesh) {
+    Mesh mesh = read_mesh(path);
+    const bool triangles =
+        std::adjacent_find(mesh.face_offsets.begin(), mesh.face_offsets.end(),
+                           [](int a, int b) { return b - a != 3; }) == mesh.face_offsets.end();
+    e.mesh = MeshSource{
+        .path = path,
+        .mesh = std::move(mesh),
+        .scheme = triangles ? subdivision::MeshScheme::loop : subdivision::MeshScheme::catmull_clark,
+        .levels = 2,
+        .limit = false};
+  } else if (content == Content::shape) {
+    e.shape = read_shape(path);
+  } else {
+    throw InvalidInput(path.string() + ": " + std::string(content_name(content)) +
+                       ", not a shape, mesh or experiment; an experiment file renders it (\"polygon\": \"" +
+                       path.filename().string() + "\", docs/experiments.md)");
+  }
+  e.render.control_net = true;
+  e.outputs.exr = e.name + ".exr";
+  e.outputs.png = e.name + ".png";
+  e.inputs = {path};
+  return e;
+}
+
 }  // namespace cifs::io

@@ -323,6 +323,10 @@ void bind_automata_class(py::module_& m) {
   bind_automaton_building(automaton);
   bind_automaton_reading(automaton);
   bind_automaton_entries(automaton);
+  // Jupyter shows an object through its _repr_*_ methods: an automaton as its drawing.
+  automaton.def(
+      "_repr_svg_", [](const KnotAutomaton& a) { return io::to_svg(a.automaton); },
+      "The drawing of to_svg(automaton), for notebooks (IPython's rich display).");
 }
 
 /// Knot automata, minimisation, initial nets, the writers.

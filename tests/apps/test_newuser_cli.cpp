@@ -242,3 +242,30 @@ TEST_CASE("Every command takes --quiet and progress shows only on a terminal", "
   REQUIRE(std::system(quiet.c_str()) == 0);
   CHECK_THAT(slurp(log), !Catch::Contains("check  done") && !Catch::Contains("check …"));
 }
+
+TEST_CASE("cifs render SHAPE or MESH: a look at the file with the default camera and style",
+          "[cli][newuser]") {
+  const auto out = scratch() / "render_file";
+  std::filesystem::remove_all(out);
+  const std::string examples = CIFS_EXAMPLES_DIR;
+  // A mesh: its Catmull–Clark surface at 2 levels, as the experiment file that says so draws it.
+  const Run mesh = cifs_cli("render " + examples + "/meshes/cube.obj --out-dir " + out.string());
+  INFO(mesh.err);
+  REQUIRE(mesh.status == 0);
+  const std::string same = experiment("cube_default.json", R"({"name": "cube", "mesh": ")" + examples +
+                                                               R"(/meshes/cube.obj",
+      "subdivision": {"scheme": "catmull-clark", "levels": 2}, "render": {"control_net": true},
+      "outputs": {"png": "by_file.png"}})");
+  REQUIRE(cifs_cli("render " + same + " --out-dir " + out.string()).status == 0);
+  CHECK(slurp(out / "cube.png") == slurp(out / "by_file.png"));
+  CHECK(std::filesystem::is_regular_file(out / "cube.exr"));
+  // A shape (the issue's "malformed JSON at byte 1" was an OBJ mesh; a shape JSON was "no output").
+  const Run shape = cifs_cli("render " + examples + "/shapes/wave.json --out-dir " + out.string());
+  INFO(shape.err);
+  REQUIRE(shape.status == 0);
+  CHECK(std::filesystem::is_regular_file(out / "wave.png"));
+  CHECK(std::filesystem::is_regular_file(out / "wave.exr"));
+  // A polygon file is not a shape to render: refused by name.
+  check_error(cifs_cli("render " + examples + "/shapes/clover.json --out-dir " + out.string()),
+              "clover.json");
+}

@@ -105,6 +105,13 @@ class HandMadeAutomatonTest(unittest.TestCase):
         self.assertIn("<svg", svg)
         self.assertTrue(svg.rstrip().endswith("</svg>"))
 
+    def test_notebooks_show_the_drawing(self):
+        # IPython's rich display calls _repr_svg_: the automaton's drawing, one circle per state.
+        a = automata.knot_automaton(cifs.io.read_shape(str(EXAMPLES / "shapes" / "wave.json")))
+        svg = a._repr_svg_()
+        self.assertTrue(svg.startswith("<svg"))
+        self.assertEqual(svg.count("<circle"), a.state_count)
+
     def test_mark_recurrent(self):
         # 0 → 1 ⟲: 0 is transient, 1 recurs, 2 hangs below the cycle (recurrent by definition).
         a = automata.Automaton()

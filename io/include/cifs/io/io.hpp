@@ -110,5 +110,11 @@ nurbs::KnotAutomaton read_automaton(const std::filesystem::path& path);
 BcifsFile read_bcifs(const std::filesystem::path& path);
 /// Inputs (shape, automaton) are resolved against the file's folder; the name defaults to its stem.
 Experiment read_experiment(const std::filesystem::path& path);
+/// Any file `cifs render` takes as an experiment: an experiment file as read_experiment; a shape file (curve,
+/// surface) as the experiment of its shape; a polygon mesh as the experiment of its Catmull–Clark surface
+/// (Loop for a mesh of triangles) at 2 levels — each with the default evaluation, camera and style, the
+/// control net drawn, and the outputs NAME.exr and NAME.png (NAME: the file's stem). InvalidInput for other
+/// contents.
+Experiment read_as_experiment(const std::filesystem::path& path);
 
 }  // namespace cifs::io

@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: MIT
+// cifs — `cifs view`'s edit round trip inside cifs: a geometry request (a moved control point) through
+// view::handle — the JSON parsed, the edited shape validated, its attractor computed by the library,
+// the binary buffers encoded with their checksum — for the hills surface at depth 7 (513² vertices) and
+// a cubic curve at depth 16. Target (issue 31): ≤ 20 ms. Run on one core: taskset -c 1.
+#include <benchmark/benchmark.h>
+
+#include <string>
+
+#include "cifs/view/server.hpp"
+
+namespace {
+
+void edit(benchmark::State& state, const char* example, int depth) {
+  cifs::view::Session session;
+  cifs::view::open_session(session, std::string(CIFS_EXAMPLES_DIR) + "/shapes/" + example, "127.0.0.1", 8765);
+  double x = 0.5;
+  std::size_t bytes = 0;
+  for (auto _ : state) {
+    x += 1e-3;  // a new edit every time, as a drag sends
+    const std::string body = "{\"params\": {\"depth\": " + std::to_string(depth) + ", \"points\": [[2, " +
+                             std::to_string(x) + ", 0.5, 0.5]]}}";
+    const cifs::view::Response r =
+        cifs::view::handle(session, {.method = "POST",
+                                     .target = "/api/geometry?token=" + session.token,
+                                     .host = "127.0.0.1:8765",
+                                     .body = body});
+    if (r.status != 200) state.SkipWithError(r.body.c_str());
+    bytes = r.body.size();
+    benchmark::DoNotOptimize(r.body.data());
+  }
+  state.counters["MB"] = static_cast<double>(bytes) / 1e6;
+}
+
+void BM_view_edit_hills_depth7(benchmark::State& state) {
+  edit(state, "hills.json", 7);
+}
+void BM_view_edit_cubic_depth16(benchmark::State& state) {
+  edit(state, "cubic.json", 16);
+}
+BENCHMARK(BM_view_edit_hills_depth7)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_view_edit_cubic_depth16)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,330 @@
+// SPDX-License-Identifier: MIT
+// cifs view without a browser: the document's geometry against the library's own calls, the
+// checksum against values computed apart (Python's struct + FNV-1a), and the request handler as a
+// function: tokens, Host headers, traversal, bad JSON and huge depths refused, the server still answering.
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+
+#include "cifs/errors.hpp"
+#include "cifs/ifs/shape_attractor.hpp"
+#include "cifs/io/io.hpp"
+#include "cifs/subdivision/mesh.hpp"
+#include "cifs/view/server.hpp"
+#include "render/scratch.hpp"
+
+using namespace cifs;
+
+namespace {
+
+const std::string kExamples = CIFS_EXAMPLES_DIR;
+
+/// The floats the page receives, from a library result computed apart.
+std::vector<float> as_floats(const Points& points) {
+  std::vector<float> out;
+  for (Eigen::Index i = 0; i < points.rows(); ++i)
+    for (Eigen::Index k = 0; k < 3; ++k)
+      out.push_back(k < points.cols() ? static_cast<float>(points(i, k)) : 0.0F);
+  return out;
+}
+
+/// A session on a copy of `example` in a scratch folder, answering Host "127.0.0.1:8765".
+struct Fixture {
+  explicit Fixture(const std::string& example) {
+    const std::filesystem::path copy = dir.path() / std::filesystem::path(example).filename();
+    std::filesystem::copy_file(kExamples + "/" + example, copy);
+    view::open_session(session, copy, "127.0.0.1", 8765);
+  }
+  view::Response get(const std::string& target, const std::string& host = "127.0.0.1:8765") {
+    return view::handle(session, {.method = "GET", .target = target, .host = host, .body = {}});
+  }
+  view::Response post(const std::string& path, const std::string& body) {
+    return view::handle(session, {.method = "POST",
+                                  .target = path + "?token=" + session.token,
+                                  .host = "127.0.0.1:8765",
+                                  .body = body});
+  }
+  render_test::ScratchDir dir;
+  view::Session session;
+};
+
+}  // namespace
+
+TEST_CASE("view geometry_checksum is FNV-1a a 32-bit word at a time over the float32 positions", "[view]") {
+  // Python: FNV-1a over struct.unpack('<3I', struct.pack('<3f', 1.0, -2.5, 0.1)).
+  CHECK(view::geometry_checksum({1.0F, -2.5F, 0.1F}) == 0xf2fd4100U);
+  // One word 0x61 takes FNV-1a's one step for the byte 'a': the published test vector 0xe40c292c.
+  float a = 0;
+  const std::uint32_t bits = 0x61;
+  std::memcpy(&a, &bits, 4);
+  CHECK(view::geometry_checksum({a}) == 0xe40c292cU);
+  CHECK(view::geometry_checksum({}) == 0x811c9dc5U);
+}
+
+TEST_CASE("view geometry is the library's: curves, surfaces, meshes", "[view]") {
+  SECTION("a rational curve: ifs::attractor's points, one state per point, the net") {
+    const view::Document d = view::open_document(kExamples + "/shapes/wave.json");
+    REQUIRE(d.kind == view::Kind::curve);
+    view::Params p = view::default_params(d);
+    p.depth = 6;
+    const view::Geometry g = view::geometry(d, p);
+    const auto& curve = std::get<nurbs::Curve>(*d.shape);
+    CHECK(g.positions == as_floats(ifs::attractor(curve, 6)));
+    CHECK(g.states.size() == g.positions.size() / 3);
+    CHECK(!g.closed);
+    CHECK(g.checksum == view::geometry_checksum(g.positions));
+    CHECK(g.net == as_floats(nurbs::cartesian_points(curve)));
+  }
+  SECTION("a moved control point: the curve made with that point, its weight kept") {
+    const view::Document d = view::open_document(kExamples + "/shapes/wave.json");
+    const auto& curve = std::get<nurbs::Curve>(*d.shape);
+    Points cartesian = nurbs::cartesian_points(curve);
+    cartesian.row(2) = Eigen::RowVector3d(0.25, -1.5, 0.75).head(cartesian.cols());
+    std::vector<double> moved(cartesian.row(2).data(), cartesian.row(2).data() + cartesian.cols());
+    const nurbs::Curve by_hand =
+        nurbs::make_curve(curve.degree, curve.knots, cartesian, nurbs::weights(curve));
+    view::Params p = view::default_params(d);
+    p.depth = 5;
+    p.points = {{.index = 2, .position = moved}};
+    CHECK(view::geometry(d, p).positions == as_floats(ifs::attractor(by_hand, 5)));
+    p.points = {{.index = 99, .position = moved}};
+    CHECK_THROWS_WITH(view::geometry(d, p), Catch::Contains("point 99") && Catch::Contains("control points"));
+  }
+  SECTION("a surface: ifs::attractor's mesh as triangles, a state per vertex") {
+    const view::Document d = view::open_document(kExamples + "/shapes/hills.json");
+    REQUIRE(d.kind == view::Kind::surface);
+    view::Params p = view::default_params(d);
+    p.depth = 3;
+    const view::Geometry g = view::geometry(d, p);
+    const Mesh m = ifs::attractor(std::get<nurbs::Surface>(*d.shape), 3);
+    CHECK(g.positions == as_floats(m.vertices));
+    CHECK(g.triangles.empty());  // the page makes them from the grid
+    REQUIRE(g.grid[0] * g.grid[1] == g.positions.size() / 3);
+    for (std::size_t f = 0; f < m.states.size(); ++f) {  // the grid's cells are the mesh's faces
+      const std::uint32_t v = g.grid[1] * static_cast<std::uint32_t>(f / (g.grid[1] - 1)) +
+                              static_cast<std::uint32_t>(f % (g.grid[1] - 1));
+      CHECK(m.face_vertices[4 * f] == static_cast<int>(v));
+      CHECK(m.face_vertices[4 * f + 1] == static_cast<int>(v + g.grid[1]));
+      CHECK(m.face_vertices[4 * f + 2] == static_cast<int>(v + g.grid[1] + 1));
+      CHECK(m.face_vertices[4 * f + 3] == static_cast<int>(v + 1));
+    }
+    REQUIRE(g.states.size() == g.positions.size() / 3);
+    for (const std::uint32_t s : g.states)
+      CHECK(std::find(m.states.begin(), m.states.end(), s) != m.states.end());
+  }
+  SECTION("a mesh: subdivision::subdivide, quads as two triangles") {
+    const view::Document d = view::open_document(kExamples + "/meshes/cube.obj");
+    REQUIRE(d.kind == view::Kind::mesh);
+    view::Params p = view::default_params(d);
+    CHECK(p.scheme == "catmull-clark");
+    p.levels = 2;
+    const view::Geometry g = view::geometry(d, p);
+    const Mesh m = subdivision::catmull_clark(d.mesh, 2);
+    CHECK(g.positions == as_floats(m.vertices));
+    CHECK(g.triangles.size() == 3 * 2 * (m.face_offsets.size() - 1));
+    CHECK(g.net_lines.size() == 2 * 12);  // the cube's 12 edges, once each
+  }
+  SECTION("refused before any work: depth and levels beyond the limits, other files") {
+    const view::Document d = view::open_document(kExamples + "/shapes/hills.json");
+    view::Params p = view::default_params(d);
+    p.depth = 40;
+    CHECK_THROWS_WITH(view::geometry(d, p), "depth 40 is outside 0..10 (the view's limit)");
+    p.depth = 9;  // within the range, above the point budget
+    CHECK_THROWS_AS(view::geometry(d, p, {.max_points = 100000}), InvalidInput);
+    CHECK_THROWS_WITH(view::open_document(kExamples + "/experiments/clover.json"),
+                      Catch::Contains("clover.json: cifs view shows shapes"));
+  }
+}
+
+TEST_CASE("view geometry with an amplitude: the perturbed BC-IFS, knot and end points kept", "[view]") {
+  const view::Document d = view::open_document(kExamples + "/shapes/wave.json");
+  view::Params p = view::default_params(d);
+  p.depth = 6;
+  const view::Geometry smooth = view::geometry(d, p);
+  p.amplitude = 0.1;
+  p.seed = 7;
+  const view::Geometry fractal = view::geometry(d, p);
+  REQUIRE(fractal.positions.size() == smooth.positions.size());
+  // Point i·2^6 is the start of segment i (a knot point) or the end point: kept on the NURBS curve.
+  const std::size_t points = smooth.positions.size() / 3, segment = std::size_t{1} << 6;
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < points; ++i) {
+    const bool knot = i % segment == 0 || i + 1 == points;
+    bool same = true;
+    for (int k = 0; k < 3; ++k)
+      same = same && std::abs(fractal.positions[3 * i + k] - smooth.positions[3 * i + k]) <=
+                         1e-5F * (1 + std::abs(smooth.positions[3 * i + k]));
+    if (knot) CHECK(same);
+    moved += same ? 0 : 1;
+  }
+  CHECK(moved > points / 2);
+  CHECK(fractal.states.empty());
+  p.seed = 8;
+  CHECK(view::geometry(d, p).checksum != fractal.checksum);  // another seed, another fractal
+  p.amplitude = 2;
+  CHECK_THROWS_WITH(view::geometry(d, p), Catch::Contains("amplitude"));
+  // A surface: the grid of its patches, 2^depth cells each way.
+  const view::Document hills = view::open_document(kExamples + "/shapes/hills.json");
+  view::Params h = view::default_params(hills);
+  h.depth = 3;
+  const view::Geometry flat = view::geometry(hills, h);
+  h.amplitude = 0.05;
+  const view::Geometry rough = view::geometry(hills, h);
+  CHECK(rough.grid == flat.grid);
+  CHECK(rough.positions.size() == flat.positions.size());
+  CHECK(rough.checksum != flat.checksum);
+}
+
+TEST_CASE("view encode_geometry: header, then the arrays on 4-byte boundaries", "[view]") {
+  const view::Document d = view::open_document(kExamples + "/shapes/cubic.json");
+  view::Params p = view::default_params(d);
+  p.depth = 2;
+  const view::Geometry g = view::geometry(d, p);
+  const std::string bytes = view::encode_geometry(g);
+  REQUIRE(bytes.starts_with("CIFSVIEW"));
+  std::uint32_t length = 0;
+  std::memcpy(&length, bytes.data() + 8, 4);
+  CHECK((12 + length) % 4 == 0);
+  const auto header = nlohmann::json::parse(bytes.substr(12, length));
+  CHECK(header["checksum"] == g.checksum);
+  std::vector<float> positions(g.positions.size());
+  std::memcpy(positions.data(), bytes.data() + 12 + length, 4 * positions.size());
+  CHECK(positions == g.positions);
+  CHECK(bytes.size() == 12 + length +
+                            4 * (g.positions.size() + g.triangles.size() + g.states.size() + g.net.size() +
+                                 g.net_lines.size()));
+}
+
+TEST_CASE("view handle: hostile requests refused with a 4xx, the session still answers", "[view]") {
+  Fixture f("shapes/hills.json");
+  const std::string q = "?token=" + f.session.token;
+  const auto good = [&] {
+    const view::Response r = f.post("/api/geometry", R"({"params": {"depth": 2}})");
+    CHECK(r.status == 200);
+    CHECK(r.body.starts_with("CIFSVIEW"));
+  };
+  good();
+  CHECK(f.get("/api/document" + q).status == 200);
+  CHECK(f.get("/").body.find("view.js") != std::string::npos);  // the page itself needs no token
+
+  SECTION("Host header and token") {
+    const view::Response foreign = f.get("/api/document" + q, "evil.example");
+    CHECK(foreign.status == 403);
+    CHECK(foreign.body == "cifs view: Host 'evil.example' is not the address cifs view serves\n");
+    CHECK(f.get("/", "127.0.0.1:9999").status == 403);  // another port: another origin
+    CHECK(f.get("/api/document" + q, "localhost:8765").status == 200);
+    CHECK(f.get("/api/document").status == 403);
+    std::string wrong = f.session.token;
+    wrong[0] = wrong[0] == '0' ? '1' : '0';  // one digit off
+    CHECK(f.get("/api/document?token=" + wrong).status == 403);
+    CHECK(f.get("/api/document?token=" + f.session.token + "x").status == 403);
+  }
+  SECTION("paths outside the page and the folder") {
+    for (const std::string target :
+         {"/../../etc/passwd", "/%2e%2e/%2e%2e/etc/passwd", "/%2E%2E%2Fetc%2Fpasswd",
+          "/three/../../../etc/passwd", "/view.js%00", "/%zz"}) {
+      const view::Response r = f.get(target);
+      CAPTURE(target, r.body);
+      CHECK(r.status >= 400);
+      CHECK(r.status < 500);
+    }
+    CHECK(f.get("/etc/passwd").status == 404);
+    for (const std::string name :
+         {"../x.json", "/tmp/x.json", "..", ".hidden.json", "a/b.json", "%2e%2e%2fx.json"}) {
+      const nlohmann::json body = {{"name", name}};
+      CAPTURE(name);
+      CHECK(f.post("/api/save", body.dump()).status == 403);
+      CHECK(f.post("/api/open", body.dump()).status == 403);
+    }
+    std::filesystem::create_symlink("/etc/passwd", f.dir.path() / "link.json");
+    CHECK(f.post("/api/open", R"({"name": "link.json"})").status == 403);
+    CHECK(!std::filesystem::exists(f.dir.path().parent_path() / "x.json"));
+  }
+  SECTION("bad bodies and parameters") {
+    const view::Response bad = f.post("/api/geometry", R"({"params": )");
+    CHECK(bad.status == 400);
+    CHECK(bad.body == "cifs view: /api/geometry: malformed JSON at byte 12\n");
+    CHECK(f.post("/api/geometry", "[1, 2]").status == 400);
+    CHECK(f.post("/api/geometry", R"({"params": {"depth": 1000000000000}})").status == 400);
+    CHECK(f.post("/api/geometry", R"({"params": {"depth": "7"}})").status == 400);
+    CHECK(f.post("/api/geometry", R"({"params": {"dpeth": 7}})").body ==
+          "cifs view: /api/geometry: unknown parameter 'dpeth' (depth, scheme, levels, points, amplitude, "
+          "seed)\n");
+    CHECK(f.post("/api/geometry", R"({"params": {"depth": 11}})").status == 400);
+    CHECK(f.post("/api/geometry", R"({"params": {"points": [[0, 1e400, 0, 0]]}})").status == 400);
+    CHECK(f.post("/api/geometry", R"({"params": {"points": [[0, 1, 2]]}})").status ==
+          400);  // 2 of 3 coordinates
+    CHECK(f.post("/api/geometry", R"({"params": {"points": [[-1, 1, 2, 3]]}})").status == 400);
+    CHECK(f.post("/api/geometry", std::string(f.session.max_body + 1, ' ')).status == 413);
+    CHECK(f.get("/api/geometry" + q).status == 404);  // GET of a POST route
+  }
+  good();
+}
+
+TEST_CASE("view handle: save writes the edited shape into the folder, atomically", "[view]") {
+  Fixture f("shapes/cubic.json");
+  const view::Response r =
+      f.post("/api/save", R"({"name": "edited.json", "params": {"points": [[1, 0.5, 0.5, 0.5]]}})");
+  REQUIRE(r.status == 200);
+  const auto saved = std::get<nurbs::Curve>(io::read_shape(f.dir.path() / "edited.json"));
+  CHECK(nurbs::cartesian_points(saved).row(1) == Eigen::RowVector3d(0.5, 0.5, 0.5));
+  CHECK(f.post("/api/save", R"({"name": "edited.png"})").status == 400);
+  // The opened file itself is an input of the run: cifs view's CLI refuses to overwrite it (RunInputs).
+}
+
+TEST_CASE("view handle: a geometry request overtaken while it waited is answered 204 unevaluated", "[view]") {
+  Fixture f("shapes/hills.json");
+  view::Response first, second;
+  {
+    std::unique_lock hold(f.session.evaluating);  // an evaluation in progress
+    std::thread a([&] { first = f.post("/api/geometry", R"({"params": {"depth": 3}})"); });
+    while (f.session.latest < 1) std::this_thread::yield();
+    std::thread b([&] { second = f.post("/api/geometry", R"({"params": {"depth": 4}})"); });
+    while (f.session.latest < 2) std::this_thread::yield();
+    hold.unlock();
+    a.join();
+    b.join();
+  }
+  CHECK(first.status == 204);
+  CHECK(first.body.empty());
+  CHECK(second.status == 200);
+}
+
+TEST_CASE("view export_page writes the page, its geometry and three.js", "[view]") {
+  render_test::ScratchDir dir;
+  view::export_page(kExamples + "/shapes/wave.json", dir.path() / "page");
+  for (const char* name :
+       {"index.html", "view.js", "geometry.js", "three/three.min.js", "three/OrbitControls.js"})
+    CHECK(std::filesystem::is_regular_file(dir.path() / "page" / name));
+  std::ifstream in(dir.path() / "page" / "geometry.js");
+  const std::string baked((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CHECK(baked.starts_with("window.cifsBaked = {document: {"));
+  CHECK(baked.find("</") == std::string::npos);  // nothing that could close the script
+}
+
+TEST_CASE("view handle: the dimension readout and a render through the experiment runner", "[view]") {
+  Fixture f("shapes/hills.json");
+  const view::Response d = f.post("/api/dimension", R"({"params": {"depth": 4}})");
+  REQUIRE(d.status == 200);
+  const auto m = nlohmann::json::parse(d.body);
+  // A smooth surface: 2, within three of the reported uncertainties (1.84 ± 0.075 at this small budget).
+  CHECK(std::abs(m["dimension"].get<double>() - 2.0) <= 3 * m["uncertainty"].get<double>());
+  const view::Response png = f.post("/api/render", R"({"name": "hills.png", "params": {"depth": 3}})");
+  REQUIRE(png.status == 200);
+  std::ifstream in(f.dir.path() / "hills.png", std::ios::binary);
+  std::string magic(8, '\0');
+  in.read(magic.data(), 8);
+  CHECK(magic == "\x89PNG\r\n\x1a\n");
+  CHECK(f.post("/api/render", R"({"name": "../hills.png"})").status == 403);
+  CHECK(f.post("/api/render", R"({"name": "hills.svg"})").status == 400);
+  Fixture curve("shapes/cubic.json");
+  const auto c = nlohmann::json::parse(curve.post("/api/dimension", R"({"params": {"depth": 10}})").body);
+  CHECK(std::abs(c["dimension"].get<double>() - 1.0) <=
+        3 * c["uncertainty"].get<double>());  // a smooth curve
+}

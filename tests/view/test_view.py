@@ -1,0 +1,328 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+"""`cifs view` in headless Chromium (selenium + chromedriver), against the library through Python.
+
+The server is started on a copy of examples/shapes/hills.json; the page must
+- load with no console error and draw (the canvas holds pixels other than the background);
+- hold the geometry the library computes for the same parameters: window.cifsView.checksum (FNV-1a of
+  the float32 positions, computed by the page on the buffer it received) equals the checksum computed
+  here from cifs.io.read_shape(...).attractor(depth) (the Python module: the library, not the server);
+- after the depth slider moves, and after a control point is dragged, hold the library's new output;
+- save the edited shape into the folder, a file `cifs info` reads, whose attractor is what the page shows;
+- survive hostile requests (bad JSON, a huge depth, a path outside the folder, a foreign Host header, no
+  token), each refused with a 4xx, the page still answering edits afterwards;
+- and the exported page (--export DIR) opens from file:// with no server, no console error, pixels drawn.
+Screenshots go to --screenshots (docs/img).
+
+    tests/view/test_view.py --cli build/apps/cifs --python build/python --examples examples --work /tmp/v
+"""
+import argparse
+import http.client
+import json
+import os
+import shutil
+import subprocess
+import sys
+import time
+import urllib.parse
+from pathlib import Path
+
+import numpy as np
+
+
+def fnv1a(points):
+    """view::geometry_checksum: FNV-1a (32-bit) a word at a time over the float32 x, y, z of each point."""
+    p = np.zeros((len(points), 3), dtype="<f4")
+    p[:, : points.shape[1]] = points
+    h = 0x811C9DC5
+    for word in p.view("<u4").ravel().tolist():
+        h = ((h ^ word) * 0x01000193) & 0xFFFFFFFF
+    return h
+
+
+def fail(message):
+    sys.exit("test_view: " + message)
+
+
+def wait_for(driver, condition, what, timeout=30):
+    end = time.time() + timeout
+    while time.time() < end:
+        value = driver.execute_script("return " + condition)
+        if value:
+            return value
+        time.sleep(0.05)
+    fail(f"timed out waiting for {what} ({condition})")
+
+
+def settle(driver, old_checksum, what):
+    """The page's state once a new geometry has arrived."""
+    wait_for(driver, f"window.cifsView.ready && window.cifsView.checksum !== {old_checksum}", what)
+    return driver.execute_script("return window.cifsView")
+
+
+def console_errors(driver):
+    return [e for e in driver.get_log("browser") if e["level"] == "SEVERE"]
+
+
+PIXELS = """
+const c = document.getElementById('canvas');
+const copy = document.createElement('canvas');
+copy.width = c.width; copy.height = c.height;
+const g = copy.getContext('2d');
+g.drawImage(c, 0, 0);
+const d = g.getImageData(0, 0, copy.width, copy.height).data;
+let drawn = 0, sum = 0;
+for (let i = 0; i < d.length; i += 4) {
+  if (Math.abs(d[i] - 247) + Math.abs(d[i + 1] - 247) + Math.abs(d[i + 2] - 245) > 24) ++drawn;
+  sum += d[i] + 3 * d[i + 1] + 7 * d[i + 2];
+}
+return arguments.length ? sum : drawn;
+"""
+
+
+def request(url, method, path, body=None, host=None):
+    """(status, text) of one raw request to the server (http.client: no path normalisation)."""
+    parts = urllib.parse.urlsplit(url)
+    connection = http.client.HTTPConnection(parts.hostname, parts.port, timeout=30)
+    headers = {"Host": host} if host else {}
+    connection.request(method, path, body=body, headers=headers)
+    response = connection.getresponse()
+    return response.status, response.read().decode("utf-8", "replace")
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--cli", required=True)
+    parser.add_argument("--python", required=True, help="folder of the built cifs package")
+    parser.add_argument("--examples", required=True)
+    parser.add_argument("--work", required=True)
+    parser.add_argument("--chromium", default="chromium")
+    parser.add_argument("--chromedriver", default="chromedriver")
+    parser.add_argument("--screenshots", help="folder for the docs' screenshots")
+    args = parser.parse_args()
+    sys.path.insert(0, args.python)
+    import cifs  # noqa: E402 (the build tree's package)
+
+    from selenium import webdriver
+    from selenium.webdriver.chrome.service import Service
+    from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.common.by import By
+
+    # The sanitized build preloads the ASan runtime into this interpreter (for the module); Chromium and the
+    # CLI (linked with it) run without.
+    os.environ.pop("LD_PRELOAD", None)
+    work = Path(args.work)
+    shutil.rmtree(work, ignore_errors=True)
+    work.mkdir(parents=True)
+    shape = work / "hills.json"
+    shutil.copy(Path(args.examples) / "shapes" / "hills.json", shape)
+    original = cifs.io.read_shape(str(shape))
+
+    server = subprocess.Popen([args.cli, "view", str(shape), "--port", "0"], stdout=subprocess.PIPE,
+                              stderr=subprocess.PIPE, text=True)
+    options = webdriver.ChromeOptions()
+    options.binary_location = shutil.which(args.chromium) or args.chromium
+    for flag in ("--headless=new", "--no-sandbox", "--disable-gpu", "--window-size=1100,700",
+                 "--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--disable-dev-shm-usage"):
+        options.add_argument(flag)
+    options.set_capability("goog:loggingPrefs", {"browser": "ALL"})
+    driver = None
+    try:
+        url = server.stdout.readline().strip()
+        if not url.startswith("http://127.0.0.1:"):
+            fail(f"cifs view printed {url!r}, stderr {server.stderr.read()[-500:]!r}")
+        token = urllib.parse.parse_qs(urllib.parse.urlsplit(url).query)["token"][0]
+        # A second server on the same port is refused (it shared the port through SO_REUSEPORT).
+        port = str(urllib.parse.urlsplit(url).port)
+        second = subprocess.run([args.cli, "view", str(shape), "--port", port], capture_output=True, text=True,
+                                timeout=10)
+        if second.returncode != 2 or "cannot listen" not in second.stderr:
+            fail(f"a second cifs view on port {port}: exit {second.returncode}, {second.stderr!r}")
+        driver = webdriver.Chrome(service=Service(shutil.which(args.chromedriver) or args.chromedriver),
+                                  options=options)
+        driver.get(url)
+        wait_for(driver, "window.cifsView && window.cifsView.ready", "the first geometry")
+        state = driver.execute_script("return window.cifsView")
+        if state.get("error"):
+            fail("the page reports " + state["error"])
+        errors = console_errors(driver)
+        if errors:
+            fail(f"console errors on load: {errors}")
+        if driver.execute_script(PIXELS) < 1000:
+            fail("the canvas is (nearly) empty")
+
+        depth = driver.execute_script("return Number(document.getElementById('depth').value)")
+        expected = fnv1a(np.asarray(original.attractor(depth).vertices))
+        if state["checksum"] != expected or state["pointCount"] != len(original.attractor(depth).vertices):
+            fail(f"depth {depth}: the page holds {state['checksum']:08x} ({state['pointCount']} points), "
+                 f"the library {expected:08x}")
+        print(f"load: depth {depth}, {state['pointCount']} points, checksum {expected:08x}")
+
+        # The slider: one step deeper.
+        driver.execute_script("const s = document.getElementById('depth'); s.value = Number(s.value) + 1;"
+                              "s.dispatchEvent(new Event('input'));")
+        state = settle(driver, expected, "the deeper geometry")
+        expected = fnv1a(np.asarray(original.attractor(depth + 1).vertices))
+        if state["checksum"] != expected:
+            fail(f"after the slider: the page holds {state['checksum']:08x}, the library {expected:08x}")
+        print(f"slider: depth {depth + 1}, {state['pointCount']} points in {state['lastMs']:.0f} ms (edit to drawn)")
+
+        # Drag control point 24 (inside the 7×7 net) by 40 pixels.
+        index = 24
+        before = state["net"][3 * index: 3 * index + 3]
+        x, y = driver.execute_script(f"return window.cifsView.screenOf({index})")
+        canvas = driver.find_element(By.ID, "canvas")
+        rect = driver.execute_script("return arguments[0].getBoundingClientRect()", canvas)
+        dx, dy = x - rect["left"] - rect["width"] / 2, y - rect["top"] - rect["height"] / 2
+        ActionChains(driver).move_to_element_with_offset(canvas, int(round(dx)), int(round(dy))).click_and_hold() \
+            .move_by_offset(20, -20).move_by_offset(20, -20).release().perform()
+        state = settle(driver, expected, "the dragged geometry")
+        wait_for(driver, "window.cifsView.ready", "the last drag edit")
+        time.sleep(0.5)
+        state = driver.execute_script("return window.cifsView")
+        after = state["net"][3 * index: 3 * index + 3]
+        if np.allclose(before, after):
+            fail(f"the drag did not move control point {index}")
+
+        # Save; the saved shape is what the page shows.
+        driver.find_element(By.ID, "save-name").clear()
+        driver.find_element(By.ID, "save-name").send_keys("hills-edited.json")
+        driver.find_element(By.ID, "save").click()
+        wait_for(driver, "window.cifsView.saved", "the save")
+        saved = work / "hills-edited.json"
+        info = subprocess.run([args.cli, "info", str(saved)], capture_output=True, text=True)
+        if info.returncode != 0:
+            fail(f"cifs info cannot read the saved file: {info.stderr}")
+        edited = cifs.io.read_shape(str(saved))
+        expected = fnv1a(np.asarray(edited.attractor(depth + 1).vertices))
+        if state["checksum"] != expected:
+            fail(f"after the drag: the page holds {state['checksum']:08x}, the saved shape gives {expected:08x}")
+        moved = np.asarray(edited.P)[index, :3]
+        if not np.allclose(moved, after, rtol=1e-6, atol=1e-6) or np.allclose(moved, before):
+            fail(f"the saved point {index} is {moved}, the page shows {after}")
+        print(f"drag: point {index} {np.round(before, 3)} -> {np.round(after, 3)}; saved, cifs info reads it")
+
+        # The tensor-product automaton's states ("(s0,s1)") are clickable too; a second click deselects.
+        click = "document.querySelectorAll('#automaton circle')[3].dispatchEvent(new MouseEvent('click'))"
+        driver.execute_script(click)
+        if driver.execute_script("return window.cifsView.selected") != 3:
+            fail("clicking state 3 of the surface's automaton did not select it")
+        driver.execute_script(click)
+
+        # The amplitude slider: the shape's BC-IFS perturbed, as an experiment file with that perturbation
+        # evaluates it (read and evaluated here by the library through Python).
+        old = state["checksum"]
+        driver.execute_script("const s = document.getElementById('amplitude'); s.value = 0.05;"
+                              "s.dispatchEvent(new Event('input'));")
+        state = settle(driver, old, "the perturbed geometry")
+        perturbed = work / "perturbed.json"
+        perturbed.write_text(json.dumps({"shape": str(saved), "evaluation": {"depth": depth + 1},
+                                         "perturbation": {"amplitude": 0.05, "seed": 1},
+                                         "outputs": {"ply": "unused.ply"}}))
+        points = np.asarray(cifs.experiment.evaluate(cifs.io.read_experiment(str(perturbed)), depth + 1).points)
+        expected = fnv1a(points)
+        if state["checksum"] != expected:
+            fail(f"amplitude 0.05: the page holds {state['checksum']:08x}, the library {expected:08x}")
+        if args.screenshots:
+            driver.save_screenshot(str(Path(args.screenshots) / "view-hills-fractal.png"))
+        old = state["checksum"]
+        driver.execute_script("const s = document.getElementById('amplitude'); s.value = 0;"
+                              "s.dispatchEvent(new Event('input'));")
+        state = settle(driver, old, "the smooth geometry again")
+        print(f"amplitude 0.05: the perturbed surface, {len(points)} points, as the experiment evaluates it")
+
+        # The dimension readout and a render through the experiment runner.
+        driver.find_element(By.ID, "dimension").click()
+        measured = wait_for(driver, "window.cifsView.dimension", "the dimension readout")
+        if abs(measured["dimension"] - 2) > 3 * measured["uncertainty"]:
+            fail(f"the dimension readout of a smooth surface: {measured}")
+        driver.find_element(By.ID, "render").click()
+        wait_for(driver, "window.cifsView.rendered", "the render")
+        if (work / "hills-edited.png").read_bytes()[:8] != b"\x89PNG\r\n\x1a\n":
+            fail("the render wrote no PNG")
+        print(f"dimension {measured['dimension']:.3f} ± {measured['uncertainty']:.3f}; rendered hills-edited.png")
+
+        # Hostile requests: each refused, the server still there.
+        q = "?token=" + token
+        hostile = [
+            ("bad JSON", "POST", "/api/geometry" + q, "{\"params\":", None, 400),
+            ("huge depth", "POST", "/api/geometry" + q, json.dumps({"params": {"depth": 10**6}}), None, 400),
+            ("depth as text", "POST", "/api/geometry" + q, json.dumps({"params": {"depth": "7"}}), None, 400),
+            ("save outside", "POST", "/api/save" + q, json.dumps({"name": "../outside.json"}), None, 403),
+            ("save absolute", "POST", "/api/save" + q, json.dumps({"name": "/tmp/outside.json"}), None, 403),
+            ("open outside", "POST", "/api/open" + q, json.dumps({"name": "..%2f..%2fetc%2fpasswd"}), None, 403),
+            ("traversal", "GET", "/../../etc/passwd", None, None, 403),
+            ("encoded traversal", "GET", "/%2e%2e/%2e%2e/etc/passwd", None, None, 403),
+            ("foreign Host", "GET", "/api/document" + q, None, "evil.example:80", 403),
+            ("no token", "GET", "/api/document", None, None, 403),
+        ]
+        for what, method, path, body, host, status in hostile:
+            got, text = request(url, method, path, body, host)
+            if got != status or not text.startswith("cifs view: "):
+                fail(f"{what}: {got} {text!r}, expected {status} and a one-line refusal")
+        if (work.parent / "outside.json").exists() or Path("/tmp/outside.json").exists():
+            fail("a refused save wrote a file")
+        print(f"hostile: {len(hostile)} requests refused")
+        old = state["checksum"]
+        driver.execute_script("const s = document.getElementById('depth'); s.value = Number(s.value) - 1;"
+                              "s.dispatchEvent(new Event('input'));")
+        state = settle(driver, old, "the geometry after the hostile requests")
+        expected = fnv1a(np.asarray(edited.attractor(depth).vertices))
+        if state["checksum"] != expected:
+            fail(f"after the hostile requests: the page holds {state['checksum']:08x}, the library {expected:08x}")
+        # 10^5 points and more: depth 7 (513² vertices), timed from the edit to the drawn geometry.
+        old = state["checksum"]
+        driver.execute_script("const s = document.getElementById('depth'); s.value = 7;"
+                              "s.dispatchEvent(new Event('input'));")
+        state = settle(driver, old, "the depth-7 geometry")
+        expected = fnv1a(np.asarray(edited.attractor(7).vertices))
+        if state["checksum"] != expected:
+            fail(f"depth 7: the page holds {state['checksum']:08x}, the library {expected:08x}")
+        print(f"depth 7: {state['pointCount']} points, edit to drawn in {state['lastMs']:.0f} ms")
+        driver.execute_script("const s = document.getElementById('depth'); s.value = 5;"
+                              "s.dispatchEvent(new Event('input'));")
+        settle(driver, state["checksum"], "depth 5 again")
+        errors = console_errors(driver)
+        if errors:
+            fail(f"console errors: {errors}")
+        if args.screenshots:
+            driver.save_screenshot(str(Path(args.screenshots) / "view-hills.png"))
+
+        # The exported page, from file:// (a curve: the automaton beside it).
+        exported = work / "export"
+        subprocess.run([args.cli, "view", str(Path(args.examples) / "shapes" / "wave.json"), "--export",
+                        str(exported)], check=True, capture_output=True)
+        driver.get((exported / "index.html").as_uri())
+        wait_for(driver, "window.cifsView && window.cifsView.ready", "the exported page")
+        state = driver.execute_script("return window.cifsView")
+        wave = cifs.io.read_shape(str(Path(args.examples) / "shapes" / "wave.json"))
+        depth = state["pointCount"]
+        document = driver.execute_script("return window.cifsBaked.document")
+        expected = fnv1a(np.asarray(wave.attractor(document["params"]["depth"])))
+        if state.get("error") or state["checksum"] != expected:
+            fail(f"the exported page: {state.get('error')}, {state['checksum']:08x} against {expected:08x}")
+        if driver.execute_script(PIXELS) < 200:
+            fail("the exported page's canvas is (nearly) empty")
+        errors = console_errors(driver)
+        if errors:
+            fail(f"console errors on the exported page: {errors}")
+        circles = driver.find_elements(By.CSS_SELECTOR, "#automaton circle")
+        before_click = driver.execute_script(PIXELS, "sum")
+        circles[3].click()  # state s3: its pieces light up
+        if driver.execute_script("return window.cifsView.selected") != 3:
+            fail("clicking state s3 of the automaton did not select it")
+        if driver.execute_script(PIXELS, "sum") == before_click:
+            fail("selecting state s3 did not change the picture")
+        if args.screenshots:
+            driver.save_screenshot(str(Path(args.screenshots) / "view-wave-export.png"))
+        print("export: loads from file://, the library's checksum, drawn")
+    finally:
+        if driver:
+            driver.quit()
+        server.terminate()
+        server.wait(timeout=10)
+    print("test_view: ok")
+
+
+if __name__ == "__main__":
+    main()

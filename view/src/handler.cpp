@@ -1,0 +1,420 @@
+// SPDX-License-Identifier: MIT
+// The request handler of `cifs view`: a pure function of the session and the request.
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <variant>
+
+#include "cifs/errors.hpp"
+#include "cifs/experiment/dimension.hpp"
+#include "cifs/experiment/run.hpp"
+#include "cifs/files.hpp"
+#include "cifs/ifs/mesh.hpp"
+#include "cifs/ifs/shape_attractor.hpp"
+#include "cifs/io/io.hpp"
+#include "cifs/io/svg.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
+#include "cifs/nurbs/tensor_automaton.hpp"
+#include "cifs/subdivision/mesh.hpp"
+#include "cifs/subdivision/rules.hpp"
+#include "cifs/view/server.hpp"
+#include "web_files.hpp"
+
+namespace cifs::view {
+
+namespace {
+
+using nlohmann::json;
+
+/// A refusal: status and the one-line message.
+struct Refusal {
+  int status;
+  std::string message;
+};
+
+Response text(int status, std::string body) {
+  return {.status = status, .content_type = "text/plain; charset=utf-8", .body = std::move(body) + "\n"};
+}
+
+Response json_response(const json& value) {
+  return {.status = 200, .content_type = "application/json", .body = value.dump()};
+}
+
+int hex_digit(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+/// Percent-decoding ('+' stays: these are paths and tokens, not form fields).
+std::string decode(std::string_view s, std::string_view where) {
+  std::string out;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (s[i] != '%') {
+      out += s[i];
+      continue;
+    }
+    const int hi = i + 2 < s.size() ? hex_digit(s[i + 1]) : -1,
+              lo = i + 2 < s.size() ? hex_digit(s[i + 2]) : -1;
+    if (hi < 0 || lo < 0) throw Refusal{400, std::string(where) + ": a bad percent escape"};
+    out += static_cast<char>(hi * 16 + lo);
+    i += 2;
+  }
+  return out;
+}
+
+/// The value of `key` in the query, decoded; empty when absent.
+std::string query_value(std::string_view query, std::string_view key) {
+  while (!query.empty()) {
+    const std::size_t amp = query.find('&');
+    const std::string_view pair = query.substr(0, amp);
+    const std::size_t eq = pair.find('=');
+    if (pair.substr(0, eq) == key)
+      return eq == std::string_view::npos ? "" : decode(pair.substr(eq + 1), "query");
+    if (amp == std::string_view::npos) break;
+    query.remove_prefix(amp + 1);
+  }
+  return {};
+}
+
+/// Equal in time independent of where they differ.
+bool same_token(const std::string& a, const std::string& b) {
+  if (a.size() != b.size()) return false;
+  unsigned diff = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) diff |= static_cast<unsigned>(a[i] ^ b[i]);
+  return diff == 0;
+}
+
+/// `name` as a file of the session's folder: a plain name (no folder part, no leading dot), and no
+/// symbolic link out of the folder.
+std::filesystem::path in_folder(const Session& s, const std::string& name, std::string_view where) {
+  const bool plain = !name.empty() && name.size() < 256 && name.front() != '.' &&
+                     name.find_first_of("/\\%:") == std::string::npos && name.find('\0') == std::string::npos;
+  if (!plain)
+    throw Refusal{
+        403, std::string(where) + ": '" + name + "' is not a plain file name of the opened file's folder"};
+  std::filesystem::path path = s.folder / name;
+  std::error_code ec;
+  if (std::filesystem::is_symlink(path, ec)) {
+    const std::filesystem::path target = std::filesystem::weakly_canonical(path, ec);
+    if (ec || target.parent_path() != std::filesystem::weakly_canonical(s.folder, ec))
+      throw Refusal{403, std::string(where) + ": '" + name + "' links outside the opened file's folder"};
+  }
+  return path;
+}
+
+json parse_body(const Request& r, std::string_view where) {
+  try {
+    json body = json::parse(r.body);
+    if (!body.is_object()) throw Refusal{400, std::string(where) + ": the body is not a JSON object"};
+    return body;
+  } catch (const json::parse_error& e) {
+    throw Refusal{400, std::string(where) + ": malformed JSON at byte " + std::to_string(e.byte)};
+  } catch (const json::exception& e) {  // a number beyond a double (1e400): out_of_range
+    throw Refusal{400, std::string(where) + ": " + e.what()};
+  }
+}
+
+int int_field(const json& j, const char* key, int fallback, std::string_view where) {
+  if (!j.contains(key)) return fallback;
+  const json& v = j.at(key);
+  if (!v.is_number_integer() || v.get<std::int64_t>() < -1000000 || v.get<std::int64_t>() > 1000000)
+    throw Refusal{400,
+                  std::string(where) + ": " + key + " is not an integer (" + v.dump().substr(0, 40) + ")"};
+  return v.get<int>();
+}
+
+/// Params from the body's "params" object (absent keys: default_params).
+Params parse_params(const Document& d, const json& body, std::string_view where) {
+  Params p = default_params(d);
+  if (!body.contains("params")) return p;
+  const json& j = body.at("params");
+  if (!j.is_object()) throw Refusal{400, std::string(where) + ": params is not an object"};
+  for (const auto& [key, value] : j.items())
+    if (key != "depth" && key != "scheme" && key != "levels" && key != "points" && key != "amplitude" &&
+        key != "seed")
+      throw Refusal{400, std::string(where) + ": unknown parameter '" + key +
+                             "' (depth, scheme, levels, points, amplitude, seed)"};
+  if (j.contains("amplitude")) {
+    if (!j.at("amplitude").is_number())
+      throw Refusal{400, std::string(where) + ": amplitude is not a number"};
+    p.amplitude = j.at("amplitude").get<double>();
+  }
+  if (j.contains("seed")) {
+    if (!j.at("seed").is_number_unsigned())
+      throw Refusal{400, std::string(where) + ": seed is not an integer ≥ 0"};
+    p.seed = j.at("seed").get<std::uint64_t>();
+  }
+  p.depth = int_field(j, "depth", p.depth, where);
+  p.levels = int_field(j, "levels", p.levels, where);
+  if (j.contains("scheme")) {
+    if (!j.at("scheme").is_string()) throw Refusal{400, std::string(where) + ": scheme is not a string"};
+    p.scheme = j.at("scheme").get<std::string>();
+  }
+  if (j.contains("points")) {
+    const json& points = j.at("points");
+    if (!points.is_array()) throw Refusal{400, std::string(where) + ": points is not an array"};
+    for (const json& e : points) {
+      if (!e.is_array() || e.size() < 2 || e.size() > 4 || !e[0].is_number_unsigned() ||
+          !std::all_of(e.begin() + 1, e.end(), [](const json& x) { return x.is_number(); }))
+        throw Refusal{400, std::string(where) + ": each edit of points is [index, x, y(, z)]"};
+      PointEdit edit{.index = e[0].get<std::size_t>(), .position = {}};
+      for (auto x = e.begin() + 1; x != e.end(); ++x) edit.position.push_back(x->get<double>());
+      p.points.push_back(std::move(edit));
+    }
+  }
+  return p;
+}
+
+json params_json(const Params& p) {
+  return {{"depth", p.depth},
+          {"scheme", p.scheme},
+          {"levels", p.levels},
+          {"amplitude", p.amplitude},
+          {"seed", p.seed}};
+}
+
+int shape_dimension(const Document& d) {
+  if (d.kind == Kind::mesh) return static_cast<int>(d.mesh.vertices.cols());
+  return std::visit([](const auto& s) { return nurbs::dimension(s); }, *d.shape);
+}
+
+json document_json(const Session& s) {
+  const Document& d = s.document;
+  json j = {{"name", d.path.filename().string()},
+            {"kind", kind_name(d.kind)},
+            {"dimension", shape_dimension(d)},
+            {"params", params_json(default_params(d))}};
+  if (d.kind == Kind::mesh) {
+    json schemes = json::array();
+    for (const char* name : {"catmull-clark", "loop", "doo-sabin", "butterfly", "sqrt3", "bilinear"})
+      schemes.push_back(name);
+    j["schemes"] = schemes;
+    j["ranges"] = {{"levels", {0, s.limits.max_levels}}};
+  } else {
+    j["ranges"] = {
+        {"depth", {0, d.kind == Kind::curve ? s.limits.max_depth_curve : s.limits.max_depth_surface}},
+        {"amplitude", {0, 0.5}}};
+  }
+  return j;
+}
+
+automata::Automaton document_automaton(const Document& d) {
+  if (const auto* c = std::get_if<nurbs::Curve>(&*d.shape)) return nurbs::knot_automaton(*c).automaton;
+  return nurbs::tensor_automaton(std::get<nurbs::Surface>(*d.shape)).product;
+}
+
+Response save(Session& s, const Request& r) {
+  const json body = parse_body(r, "/api/save");
+  if (!body.contains("name") || !body.at("name").is_string())
+    throw Refusal{400, "/api/save: name (a file name in the opened file's folder) is missing"};
+  const std::string name = body.at("name").get<std::string>();
+  const std::filesystem::path path = in_folder(s, name, "/api/save");
+  const Params params = parse_params(s.document, body, "/api/save");
+  const std::string ext = path.extension().string();
+  if (s.document.kind == Kind::mesh) {
+    if (ext == ".obj" || ext == ".ply") {  // the refined mesh, as cifs subdivide writes it
+      const Mesh control = edited_mesh(s.document, params);
+      subdivision::MeshOptions options;
+      options.max_bytes = 64.0 * static_cast<double>(s.limits.max_points);
+      if (params.levels < 0 || params.levels > s.limits.max_levels)
+        throw InvalidInput("levels " + std::to_string(params.levels) + " is outside 0.." +
+                           std::to_string(s.limits.max_levels));
+      io::write(path, subdivision::subdivide(control, subdivision::named_mesh_scheme(params.scheme),
+                                             params.levels, options));
+    } else {
+      throw InvalidInput(name + ": a mesh is saved as .obj or .ply");
+    }
+  } else if (ext == ".json") {
+    io::write(path, edited_shape(s.document, params));
+  } else if ((ext == ".obj" || ext == ".ply") && s.document.kind == Kind::surface) {
+    if (params.depth < 0 || params.depth > s.limits.max_depth_surface)
+      throw InvalidInput("depth " + std::to_string(params.depth) + " is outside 0.." +
+                         std::to_string(s.limits.max_depth_surface));
+    io::write(path, ifs::attractor(std::get<nurbs::Surface>(edited_shape(s.document, params)), params.depth,
+                                   ifs::mesh_bytes(s.limits.max_points, 3, s.limits.max_points)));
+  } else {
+    throw InvalidInput(
+        name + ": a " + std::string(kind_name(s.document.kind)) + " is saved as .json" +
+        (s.document.kind == Kind::surface ? " (the shape), .obj or .ply (its attractor mesh)" : ""));
+  }
+  return json_response({{"written", name}});
+}
+
+/// The document with `params` as an experiment (the runner's input): the edited shape at the depth, or the
+/// edited mesh with its scheme and levels; `control_net` drawn.
+io::Experiment as_experiment(const Session& s, const Params& params) {
+  io::Experiment e;
+  e.name = s.document.path.stem().string();
+  if (s.document.kind == Kind::mesh) {
+    if (params.levels < 0 || params.levels > s.limits.max_levels)
+      throw InvalidInput("levels " + std::to_string(params.levels) + " is outside 0.." +
+                         std::to_string(s.limits.max_levels));
+    e.mesh = io::MeshSource{.path = s.document.path,
+                            .mesh = edited_mesh(s.document, params),
+                            .scheme = subdivision::named_mesh_scheme(params.scheme),
+                            .levels = params.levels,
+                            .limit = false};
+  } else {
+    const int high = s.document.kind == Kind::curve ? s.limits.max_depth_curve : s.limits.max_depth_surface;
+    if (params.depth < 0 || params.depth > high)
+      throw InvalidInput("depth " + std::to_string(params.depth) + " is outside 0.." + std::to_string(high));
+    e.shape = edited_shape(s.document, params);
+    e.evaluation.depth = params.depth;
+    if (params.amplitude != 0)
+      e.perturbation = io::Perturbation{
+          .amplitude = params.amplitude, .seed = params.seed, .values = {}, .keep_vertices = true};
+  }
+  e.render.width = 1024;
+  e.render.height = 768;
+  e.render.control_net = true;
+  e.inputs = {s.document.path};
+  return e;
+}
+
+/// The dimension readout: experiment::measure_dimension at a small budget (2^16 points).
+Response dimension(const Session& s, const Request& r) {
+  const json body = parse_body(r, "/api/dimension");
+  const io::Experiment e = as_experiment(s, parse_params(s.document, body, "/api/dimension"));
+  experiment::DimensionOptions options;
+  options.max_points = std::size_t{1} << 16;
+  options.min_boxes = 100;
+  const experiment::DimensionMeasurement m = experiment::measure_dimension(e, options);
+  return json_response({{"dimension", m.fit.dimension},
+                        {"uncertainty", m.uncertainty},
+                        {"range", m.range},
+                        {"route", m.description}});
+}
+
+/// Render PNG or EXR through the experiment runner (cifs render's), into the folder.
+Response render_image(const Session& s, const Request& r) {
+  const json body = parse_body(r, "/api/render");
+  if (!body.contains("name") || !body.at("name").is_string())
+    throw Refusal{400, "/api/render: name (a .png or .exr of the opened file's folder) is missing"};
+  const std::string name = body.at("name").get<std::string>();
+  const std::filesystem::path path = in_folder(s, name, "/api/render");
+  io::Experiment e = as_experiment(s, parse_params(s.document, body, "/api/render"));
+  if (path.extension() == ".png")
+    e.outputs.png = path;
+  else if (path.extension() == ".exr")
+    e.outputs.exr = path;
+  else
+    throw InvalidInput(name + ": an image is rendered as .png or .exr");
+  experiment::RunOptions options;
+  options.out_dir = s.folder;
+  options.quiet = true;
+  experiment::run(e, options);
+  return json_response({{"written", name}});
+}
+
+Response route(Session& s, const Request& r) {
+  const std::size_t question = r.target.find('?');
+  const std::string path = decode(std::string_view(r.target).substr(0, question), "path");
+  const std::string_view query =
+      question == std::string::npos ? std::string_view() : std::string_view(r.target).substr(question + 1);
+  if (path.find("..") != std::string::npos || path.find('\0') != std::string::npos)
+    throw Refusal{403, path.substr(0, 80) + ": no path outside the page"};
+  if (r.method == "GET") {
+    if (path == "/" || path == "/index.html")
+      return {200, "text/html; charset=utf-8", std::string(web::kIndexHtml)};
+    if (path == "/view.js") return {200, "text/javascript; charset=utf-8", std::string(web::kViewJs)};
+    if (path == "/three/three.min.js")
+      return {200, "text/javascript", read_file(web::three_file("three.min.js"))};
+    if (path == "/three/OrbitControls.js")
+      return {200, "text/javascript", read_file(web::three_file("OrbitControls.js"))};
+  }
+  if (!path.starts_with("/api/")) throw Refusal{404, path.substr(0, 80) + ": no such page"};
+  if (!same_token(query_value(query, "token"), s.token))
+    throw Refusal{403, path + ": a missing or wrong token (use the URL cifs view printed)"};
+  if (r.body.size() > s.max_body)
+    throw Refusal{413, path + ": a body of " + std::to_string(r.body.size()) + " bytes, above the limit of " +
+                           std::to_string(s.max_body)};
+  if (r.method == "GET" && path == "/api/document") {
+    const std::scoped_lock lock(s.document_mutex);
+    return json_response(document_json(s));
+  }
+  if (r.method == "GET" && path == "/api/automaton.svg") {
+    const std::scoped_lock lock(s.document_mutex);
+    if (s.document.kind == Kind::mesh) throw Refusal{404, path + ": a mesh has no automaton here"};
+    return {200, "image/svg+xml", io::to_svg(document_automaton(s.document))};
+  }
+  if (r.method == "POST" && path == "/api/geometry") {
+    const json body = parse_body(r, path);
+    const std::uint64_t ticket = ++s.latest;
+    const std::scoped_lock evaluating(s.evaluating);
+    // Superseded by a newer edit: 204 (no content), which the page ignores.
+    if (ticket != s.latest) return {204, "text/plain; charset=utf-8", ""};
+    const std::scoped_lock lock(s.document_mutex);
+    return {200, "application/octet-stream",
+            encode_geometry(geometry(s.document, parse_params(s.document, body, path), s.limits))};
+  }
+  if (r.method == "POST" && path == "/api/save") {
+    const std::scoped_lock lock(s.document_mutex);
+    return save(s, r);
+  }
+  if (r.method == "POST" && path == "/api/dimension") {
+    const std::scoped_lock lock(s.document_mutex);
+    return dimension(s, r);
+  }
+  if (r.method == "POST" && path == "/api/render") {
+    const std::scoped_lock lock(s.document_mutex);
+    return render_image(s, r);
+  }
+  if (r.method == "POST" && path == "/api/open") {
+    const json body = parse_body(r, path);
+    if (!body.contains("name") || !body.at("name").is_string())
+      throw Refusal{400, path + ": name is missing"};
+    Document d = open_document(in_folder(s, body.at("name").get<std::string>(), path));
+    const std::scoped_lock lock(s.document_mutex);
+    s.document = std::move(d);
+    return json_response(document_json(s));
+  }
+  throw Refusal{404, r.method + " " + path + ": no such request"};
+}
+
+}  // namespace
+
+std::string random_token() {
+  std::random_device device;
+  std::string token;
+  for (int k = 0; k < 4; ++k) {
+    std::array<char, 9> part{};
+    std::snprintf(part.data(), part.size(), "%08x", static_cast<unsigned>(device()));
+    token += part.data();
+  }
+  return token;
+}
+
+void open_session(Session& session, const std::filesystem::path& path, const std::string& host, int port) {
+  session.document = open_document(path);
+  session.folder = std::filesystem::absolute(path).parent_path();
+  session.token = random_token();
+  const std::string p = ":" + std::to_string(port);
+  session.hosts = {host + p};
+  if (host == "127.0.0.1") session.hosts.push_back("localhost" + p);
+}
+
+Response handle(Session& session, const Request& request) {
+  try {
+    if (std::find(session.hosts.begin(), session.hosts.end(), request.host) == session.hosts.end())
+      throw Refusal{403, "Host '" + request.host.substr(0, 80) + "' is not the address cifs view serves"};
+    return route(session, request);
+  } catch (const Refusal& e) {
+    return text(e.status, "cifs view: " + e.message);
+  } catch (const InvalidInput& e) {
+    return text(400, std::string("cifs view: ") + e.what());
+  } catch (const IoError& e) {
+    return text(400, std::string("cifs view: ") + e.what());
+  } catch (const std::bad_alloc&) {
+    return text(507, "cifs view: out of memory; ask for less");
+  } catch (const std::exception& e) {
+    return text(500, std::string("cifs view: ") + e.what());
+  }
+}
+
+}  // namespace cifs::view

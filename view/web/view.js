@@ -1,0 +1,362 @@
+// SPDX-License-Identifier: MIT
+// cifs view: the page. The server (or, exported, geometry.js) gives the document and its geometry as
+// binary buffers; the page draws them with three.js (Debian's libjs-three), sends edits back and
+// draws the library's answer. Nothing is evaluated here.
+'use strict';
+(function () {
+  const view = (window.cifsView = { ready: false, checksum: null, pointCount: 0, lastMs: 0, net: [], error: null });
+  const token = new URLSearchParams(location.search).get('token') || '';
+  const api = (name) => 'api/' + name + '?token=' + encodeURIComponent(token);
+  const $ = (id) => document.getElementById(id);
+  let doc = null; // the document's description
+  let params = null; // depth, scheme, levels
+  const edits = new Map(); // point index -> coordinates
+  let controller = null; // the geometry request in flight
+  let editStart = 0;
+  let selected = -1; // the highlighted state
+
+  // --- three.js scene ---
+  const canvas = $('canvas');
+  const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+  renderer.setPixelRatio(window.devicePixelRatio || 1);
+  const scene = new THREE.Scene();
+  scene.background = new THREE.Color(0xf7f7f5);
+  const camera = new THREE.PerspectiveCamera(40, 1, 0.001, 1000);
+  const controls = new THREE.OrbitControls(camera, canvas);
+  scene.add(new THREE.HemisphereLight(0xffffff, 0x667788, 0.7));
+  const sun = new THREE.DirectionalLight(0xffffff, 0.6);
+  sun.position.set(1, 2, 3);
+  scene.add(sun);
+  let shapeObject = null, netPoints = null, netLines = null, states = null, colors = null;
+
+  function resize() {
+    const r = canvas.parentElement.getBoundingClientRect();
+    renderer.setSize(r.width, r.height, false);
+    camera.aspect = r.width / Math.max(1, r.height);
+    camera.updateProjectionMatrix();
+    draw();
+  }
+  function draw() { renderer.render(scene, camera); }
+  controls.addEventListener('change', draw);
+  window.addEventListener('resize', resize);
+
+  function status(text, error) {
+    $('status').textContent = text;
+    $('status').className = error ? 'error' : '';
+  }
+
+  // --- the wire format (view::encode_geometry) ---
+  function fnv1a(words) { // view::geometry_checksum: FNV-1a a 32-bit word at a time
+    let h = 0x811c9dc5;
+    for (let i = 0; i < words.length; ++i) h = Math.imul(h ^ words[i], 0x01000193);
+    return h >>> 0;
+  }
+  function parse(buffer) {
+    const magic = new TextDecoder().decode(new Uint8Array(buffer, 0, 8));
+    if (magic !== 'CIFSVIEW') throw new Error('not a cifs view geometry');
+    const length = new DataView(buffer).getUint32(8, true);
+    const header = JSON.parse(new TextDecoder().decode(new Uint8Array(buffer, 12, length)));
+    let at = 12 + length;
+    const take = (Type, n) => { const a = new Type(buffer, at, n); at += 4 * n; return a; };
+    const g = { header };
+    g.positions = take(Float32Array, header.positions);
+    g.triangles = take(Uint32Array, header.triangles);
+    g.states = take(Uint32Array, header.states);
+    g.net = take(Float32Array, header.net);
+    g.netLines = take(Uint32Array, header.net_lines);
+    g.checksum = fnv1a(new Uint32Array(g.positions.buffer, g.positions.byteOffset, g.positions.length));
+    if (g.checksum !== header.checksum) throw new Error('the geometry arrived damaged (checksum)');
+    return g;
+  }
+
+  // --- drawing ---
+  /// The colour of state s (golden-ratio hues), the selected state's orange and the others faded.
+  function stateColor(s) {
+    const c = new THREE.Color().setHSL(((s * 0.618034) % 1 + 1) % 1, 0.55, 0.55);
+    if (selected >= 0) { if (s === selected) c.setRGB(1, 0.55, 0); else c.lerp(new THREE.Color(0xdddddd), 0.75); }
+    return c;
+  }
+  function recolor() {
+    if (!colors || !states || states.length === 0) return;
+    const a = colors.array, palette = new Map();
+    for (let i = 0; i < states.length; ++i) {
+      let c = palette.get(states[i]);
+      if (!c) palette.set(states[i], (c = stateColor(states[i])));
+      a[3 * i] = c.r; a[3 * i + 1] = c.g; a[3 * i + 2] = c.b;
+    }
+    colors.needsUpdate = true;
+    draw();
+  }
+  let gridCache = { key: '', index: null };
+  /// The two triangles of each cell of a rows × cols grid (view::Geometry::grid), made once per size.
+  function gridTriangles([rows, cols]) {
+    const key = rows + 'x' + cols;
+    if (gridCache.key === key) return gridCache.index;
+    const index = new Uint32Array(6 * (rows - 1) * (cols - 1));
+    let at = 0;
+    for (let i = 0; i + 1 < rows; ++i)
+      for (let j = 0; j + 1 < cols; ++j) {
+        const v = i * cols + j;
+        index.set([v, v + cols, v + cols + 1, v, v + cols + 1, v + 1], at);
+        at += 6;
+      }
+    gridCache = { key, index };
+    return index;
+  }
+  function show(g, frame) {
+    for (const o of [shapeObject, netPoints, netLines]) if (o) { scene.remove(o); o.geometry.dispose(); }
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.BufferAttribute(g.positions, 3));
+    states = g.states;
+    colors = new THREE.BufferAttribute(new Float32Array(g.positions.length).fill(0.6), 3);
+    geometry.setAttribute('color', colors);
+    if (g.header.kind === 'curve') {
+      shapeObject = new (g.header.closed ? THREE.LineLoop : THREE.Line)(geometry, new THREE.LineBasicMaterial({ vertexColors: THREE.VertexColors }));
+    } else {
+      geometry.setIndex(new THREE.BufferAttribute(g.header.grid[0] > 0 ? gridTriangles(g.header.grid) : g.triangles, 1));
+      geometry.computeVertexNormals();
+      shapeObject = new THREE.Mesh(geometry, new THREE.MeshPhongMaterial({
+        vertexColors: THREE.VertexColors, side: THREE.DoubleSide, shininess: 20 }));
+    }
+    recolor();
+    scene.add(shapeObject);
+    const netGeometry = new THREE.BufferGeometry();
+    netGeometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(g.net), 3));
+    netPoints = new THREE.Points(netGeometry, new THREE.PointsMaterial({ color: 0xc02020, size: 8, sizeAttenuation: false }));
+    const lineGeometry = new THREE.BufferGeometry();
+    lineGeometry.setAttribute('position', netGeometry.getAttribute('position'));
+    lineGeometry.setIndex(new THREE.BufferAttribute(g.netLines, 1));
+    netLines = new THREE.LineSegments(lineGeometry, new THREE.LineBasicMaterial({ color: 0x999999 }));
+    scene.add(netLines, netPoints);
+    if (frame) {
+      geometry.computeBoundingSphere();
+      const s = geometry.boundingSphere;
+      controls.target.copy(s.center);
+      const flat = doc.dimension === 2; // plane shapes seen from above
+      const from = flat ? new THREE.Vector3(0, 0, 1) : new THREE.Vector3(0.6, -1.2, 1.4).normalize();
+      camera.position.copy(s.center).add(from.multiplyScalar(3 * s.radius + 1e-9));
+      camera.up.set(0, flat ? 1 : 0, flat ? 0 : 1);
+      camera.near = s.radius * 0.01; camera.far = s.radius * 100;
+      camera.updateProjectionMatrix();
+      controls.update();
+    }
+    view.net = Array.from(g.net);
+    view.pointCount = g.positions.length / 3;
+    view.checksum = g.checksum;
+    draw();
+  }
+
+  // --- requests ---
+  function body(extra) {
+    const points = [];
+    for (const [i, p] of edits) points.push([i, ...p]);
+    return JSON.stringify(Object.assign({ params: Object.assign({}, params, { points }) }, extra || {}));
+  }
+  async function refresh(frame) {
+    if (window.cifsBaked) return;
+    if (controller) controller.abort();
+    controller = new AbortController();
+    const mine = controller;
+    editStart = performance.now();
+    view.ready = false;
+    try {
+      const r = await fetch(api('geometry'), { method: 'POST', body: body(), signal: mine.signal });
+      if (r.status === 204) return; // superseded by a newer edit
+      if (!r.ok) { status((await r.text()).trim(), true); view.ready = true; return; }
+      const g = parse(await r.arrayBuffer());
+      if (mine !== controller) return;
+      show(g, frame);
+      view.lastMs = performance.now() - editStart;
+      status(view.pointCount + ' points, ' + view.lastMs.toFixed(0) + ' ms');
+      readout();
+      view.ready = true;
+    } catch (e) {
+      if (e.name !== 'AbortError') { status(String(e.message || e), true); view.error = String(e); view.ready = true; }
+    }
+  }
+  function readout() {
+    $('readout').textContent = doc.kind + ', ' + doc.dimension + '-D\npoints   ' + view.pointCount +
+      '\nchecksum ' + (view.checksum >>> 0).toString(16).padStart(8, '0') + '\nedited   ' + edits.size + ' control points';
+  }
+
+  // --- the panel ---
+  function slider(name, range, value, step) {
+    const label = document.createElement('label');
+    label.textContent = name + ' ' + value;
+    const input = document.createElement('input');
+    Object.assign(input, { type: 'range', min: range[0], max: range[1], step: step || 1, value, id: name });
+    input.addEventListener('input', () => {
+      label.textContent = name + ' ' + input.value;
+      params[name] = Number(input.value);
+      refresh(false);
+    });
+    $('panel').append(label, input);
+  }
+  function panel() {
+    $('panel').textContent = '';
+    if (doc.ranges.depth) slider('depth', doc.ranges.depth, params.depth);
+    if (doc.schemes) {
+      const label = document.createElement('label');
+      label.textContent = 'scheme';
+      const select = document.createElement('select');
+      select.id = 'scheme';
+      for (const s of doc.schemes) select.add(new Option(s, s, false, s === params.scheme));
+      select.addEventListener('change', () => { params.scheme = select.value; refresh(false); });
+      $('panel').append(label, select);
+    }
+    if (doc.ranges.levels) slider('levels', doc.ranges.levels, params.levels);
+    if (doc.ranges.amplitude) { // the shape's BC-IFS, its free coefficients perturbed (an experiment's "perturbation")
+      slider('amplitude', doc.ranges.amplitude, params.amplitude, 0.005);
+      const label = document.createElement('label');
+      label.textContent = 'seed';
+      const seed = document.createElement('input');
+      Object.assign(seed, { type: 'number', min: 0, step: 1, value: params.seed, id: 'seed' });
+      seed.addEventListener('change', () => { params.seed = Math.max(0, Math.floor(Number(seed.value))); refresh(false); });
+      $('panel').append(label, seed);
+    }
+    const stem = doc.name.replace(/\.[^.]*$/, '');
+    $('save-name').value = stem + '-edited.' + (doc.kind === 'mesh' ? 'obj' : 'json');
+    $('render-name').value = stem + '-edited.png';
+  }
+  async function save() {
+    const r = await fetch(api('save'), { method: 'POST', body: body({ name: $('save-name').value }) });
+    const text = await r.text();
+    status(r.ok ? 'wrote ' + JSON.parse(text).written : text.trim(), !r.ok);
+    view.saved = r.ok ? JSON.parse(text).written : null;
+  }
+  $('save').addEventListener('click', save);
+  async function render() {
+    status('rendering…');
+    const r = await fetch(api('render'), { method: 'POST', body: body({ name: $('render-name').value }) });
+    const text = await r.text();
+    status(r.ok ? 'wrote ' + JSON.parse(text).written : text.trim(), !r.ok);
+    view.rendered = r.ok ? JSON.parse(text).written : null;
+  }
+  $('render').addEventListener('click', render);
+  async function dimension() {
+    $('dimension-readout').textContent = 'measuring…';
+    const r = await fetch(api('dimension'), { method: 'POST', body: body() });
+    if (!r.ok) { $('dimension-readout').textContent = (await r.text()).trim(); return; }
+    const d = await r.json();
+    view.dimension = d;
+    $('dimension-readout').textContent = 'dimension ' + d.dimension.toFixed(3) + ' ± ' + d.uncertainty.toFixed(3) +
+      ' (' + d.route + ')';
+  }
+  $('dimension').addEventListener('click', dimension);
+
+  // --- the automaton: click a state to light up its pieces ---
+  function automaton(svg) {
+    $('automaton').innerHTML = svg;
+    // io::to_svg draws one circle per state, in state order (names "s3", or "(s0,s1)" for a tensor product).
+    $('automaton').querySelectorAll('circle').forEach((circle, s) => {
+      circle.addEventListener('click', () => {
+        selected = selected === s ? -1 : s;
+        for (const c of $('automaton').querySelectorAll('circle')) c.classList.remove('selected');
+        if (selected >= 0) circle.classList.add('selected');
+        view.selected = selected;
+        recolor();
+      });
+    });
+  }
+
+  // --- dragging control points ---
+  const raycaster = new THREE.Raycaster();
+  let dragging = -1;
+  const plane = new THREE.Plane();
+  function pointer(event) {
+    const r = canvas.getBoundingClientRect();
+    return new THREE.Vector2(((event.clientX - r.left) / r.width) * 2 - 1, -((event.clientY - r.top) / r.height) * 2 + 1);
+  }
+  function netPoint(i) {
+    const a = netPoints.geometry.getAttribute('position');
+    return new THREE.Vector3(a.getX(i), a.getY(i), a.getZ(i));
+  }
+  /// The client coordinates of control point i (tests drag it from there).
+  view.screenOf = (i) => {
+    const p = netPoint(i).project(camera);
+    const r = canvas.getBoundingClientRect();
+    return [r.left + ((p.x + 1) / 2) * r.width, r.top + ((1 - p.y) / 2) * r.height];
+  };
+  canvas.addEventListener('pointerdown', (event) => {
+    if (!netPoints || window.cifsBaked) return;
+    // The nearest control point within 10 pixels.
+    let best = -1, bestDistance = 10;
+    const n = netPoints.geometry.getAttribute('position').count;
+    for (let i = 0; i < n; ++i) {
+      const [x, y] = view.screenOf(i);
+      const d = Math.hypot(x - event.clientX, y - event.clientY);
+      if (d < bestDistance) { best = i; bestDistance = d; }
+    }
+    if (best < 0) return;
+    dragging = best;
+    controls.enabled = false;
+    const normal = new THREE.Vector3();
+    camera.getWorldDirection(normal);
+    if (doc.dimension === 2) normal.set(0, 0, 1); // plane curves stay in their plane
+    plane.setFromNormalAndCoplanarPoint(normal, netPoint(best));
+    canvas.setPointerCapture(event.pointerId);
+    event.preventDefault();
+  });
+  canvas.addEventListener('pointermove', (event) => {
+    if (dragging < 0) return;
+    raycaster.setFromCamera(pointer(event), camera);
+    const hit = new THREE.Vector3();
+    if (!raycaster.ray.intersectPlane(plane, hit)) return;
+    const a = netPoints.geometry.getAttribute('position');
+    a.setXYZ(dragging, hit.x, hit.y, hit.z);
+    a.needsUpdate = true;
+    edits.set(dragging, doc.dimension === 2 ? [hit.x, hit.y] : [hit.x, hit.y, hit.z]);
+    draw();
+    refresh(false);
+  });
+  const release = () => { if (dragging >= 0) { dragging = -1; controls.enabled = true; } };
+  canvas.addEventListener('pointerup', release);
+  canvas.addEventListener('pointercancel', release);
+
+  // --- start ---
+  function base64(text) {
+    const bytes = atob(text);
+    const out = new Uint8Array(bytes.length);
+    for (let i = 0; i < bytes.length; ++i) out[i] = bytes.charCodeAt(i);
+    return out.buffer;
+  }
+  function start() {
+    document.title = 'cifs view: ' + doc.name;
+    $('title').textContent = doc.name;
+    params = Object.assign({}, doc.params);
+    panel();
+    resize();
+  }
+  async function load() {
+    try {
+      if (location.protocol === 'file:' || !token) { // the exported page: geometry.js holds everything
+        await new Promise((resolve, reject) => {
+          const s = document.createElement('script');
+          s.src = 'geometry.js'; s.onload = resolve; s.onerror = () => reject(new Error('geometry.js is missing'));
+          document.head.append(s);
+        });
+        doc = window.cifsBaked.document;
+        start();
+        $('files').style.display = 'none';
+        for (const input of $('panel').querySelectorAll('input, select')) input.disabled = true;
+        if (window.cifsBaked.automaton) automaton(window.cifsBaked.automaton);
+        show(parse(base64(window.cifsBaked.geometry)), true);
+        readout();
+        status(view.pointCount + ' points (exported page)');
+        view.ready = true;
+        return;
+      }
+      const r = await fetch(api('document'));
+      if (!r.ok) throw new Error((await r.text()).trim());
+      doc = await r.json();
+      start();
+      if (doc.kind !== 'mesh') fetch(api('automaton.svg')).then((a) => a.text()).then(automaton);
+      await refresh(true);
+    } catch (e) {
+      status(String(e.message || e), true);
+      view.error = String(e);
+      view.ready = true;
+    }
+  }
+  load();
+})();
