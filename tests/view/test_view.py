@@ -12,7 +12,7 @@ The server is started on a copy of examples/shapes/hills.json; the page must
 - survive hostile requests (bad JSON, a huge depth, a path outside the folder, a foreign Host header, no
   token), each refused with a 4xx, the page still answering edits afterwards;
 - and the exported page (--export DIR) opens from file:// with no server, no console error, pixels drawn.
-Screenshots go to --screenshots (docs/img).
+Screenshots go to --screenshots (ctest: the build tree; `--screenshots docs/img` refreshes the docs' images).
 
     tests/view/test_view.py --cli build/apps/cifs --python build/python --examples examples --work /tmp/v
 """
