@@ -2,6 +2,7 @@
 // cifs CLI — polygon meshes: `cifs subdivide` and `cifs info` on an OBJ/PLY mesh.
 #include <algorithm>
 #include <functional>
+#include <iomanip>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -14,6 +15,7 @@
 #include "cifs/render/progress.hpp"
 #include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/mesh.hpp"
+#include "cifs/subdivision/mesh_analysis.hpp"
 #include "cifs/topology.hpp"
 #include "commands.hpp"
 
@@ -186,6 +188,67 @@ std::string limit(const LimitCommandOptions& o) {
                (o.normals ? " with normals, " : ", ") + std::to_string(face_count(surface)) + " faces (" +
                o.scheme + ", " + std::to_string(o.levels) + " levels)";
       });
+}
+
+namespace {
+
+std::string number(long double x) {
+  std::ostringstream s;
+  s << std::setprecision(6) << static_cast<double>(x);
+  return s.str();
+}
+
+std::string sectors_text(const std::vector<int>& sectors) {
+  std::string out;
+  for (const int k : sectors) out += (out.empty() ? "" : ",") + std::to_string(k);
+  return out;
+}
+
+std::string verdict_word(const subdivision::C1Verdict& v) {
+  return v.c1 ? "yes" : v.decided ? "no" : "undecided";
+}
+
+}  // namespace
+
+std::string analyze(const AnalyzeOptions& o) {
+  const subdivision::MeshScheme scheme = subdivision::named_mesh_scheme(o.scheme);
+  if (o.format != "table" && o.format != "json")
+    throw InvalidInput("--format '" + o.format + "': table or json for cifs analyze");
+  Mesh mesh = io::read_mesh(o.mesh, {.strict = o.strict, .warn = {}});
+  apply(tag_overrides(o.boundary, "", "", ""), mesh.tags);
+  const subdivision::MeshSmoothness a = subdivision::analyze_mesh(mesh, scheme, o.mesh.string());
+  if (o.format == "json") {
+    json vertices = json::array();
+    for (const subdivision::VertexSmoothness& v : a.vertices)
+      vertices.push_back({{"vertex", v.vertex},
+                          {"class", v.vertex_class},
+                          {"valence", v.valence},
+                          {"sector_faces", v.sectors},
+                          {"lambda1", static_cast<double>(v.lambda1)},
+                          {"lambda2", static_cast<double>(v.lambda2)},
+                          {"curvature_ratio",
+                           v.curvature_ratio ? json(static_cast<double>(*v.curvature_ratio)) : json(nullptr)},
+                          {"c1", verdict_word(v.verdict)},
+                          {"method", v.verdict.method},
+                          {"reason", v.verdict.reason}});
+    const json out = {
+        {"scheme", o.scheme},  {"vertices", vertices}, {"regular", a.regular},     {"in_no_face", a.isolated},
+        {"c1", a.c1},          {"not_c1", a.not_c1},   {"undecided", a.undecided}, {"analyses", a.analyses},
+        {"summary", a.summary}};
+    return out.dump(1) + "\n";
+  }
+  std::ostringstream s;
+  s << std::left << std::setw(9) << "vertex" << std::setw(10) << "class" << std::setw(8) << "valence"
+    << std::setw(9) << "sectors" << std::setw(11) << "lambda1" << std::setw(11) << "lambda2" << std::setw(11)
+    << "l2^2/|mu|"
+    << "C1\n";
+  for (const subdivision::VertexSmoothness& v : a.vertices)
+    s << std::setw(9) << v.vertex << std::setw(10) << v.vertex_class << std::setw(8) << v.valence
+      << std::setw(9) << sectors_text(v.sectors) << std::setw(11) << number(v.lambda1) << std::setw(11)
+      << number(v.lambda2) << std::setw(11) << (v.curvature_ratio ? number(*v.curvature_ratio) : "-")
+      << verdict_word(v.verdict) << (v.verdict.c1 ? "" : ": " + v.verdict.reason) << "\n";
+  s << a.summary << "\n";
+  return s.str();
 }
 
 }  // namespace cifs::cli
