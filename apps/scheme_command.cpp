@@ -257,6 +257,9 @@ std::string analyze_mesh_scheme(sd::MeshScheme scheme, const SchemeOptions& o) {
   std::vector<sd::LocalMatrix> matrices;
   std::vector<sd::LocalSpectrum> spectra;
   std::vector<sd::C1Verdict> verdicts;
+  matrices.reserve(cases.size());
+  spectra.reserve(cases.size());
+  verdicts.reserve(cases.size());
   for (const auto& [n, local] : cases)  // every case checked before any output
     matrices.push_back(sd::local_matrix(scheme, n, local));
   for (const sd::LocalMatrix& m : matrices) {
@@ -304,7 +307,8 @@ std::string scheme(const SchemeOptions& o) {
       !o.crease.empty() || o.dart || o.corner || o.concave)
     throw InvalidInput(
         "scheme " + o.name +
-        ": --valence, --valences and --boundary are for the mesh schemes (catmull-clark, loop, "
+        ": --valence, --valences, --boundary, --boundary-valence, --crease, --dart, --corner and --concave "
+        "are for the mesh schemes (catmull-clark, loop, "
         "doo-sabin, butterfly, sqrt3)");
   const sd::Scheme s = sd::named_scheme(o.name, parse_params(o.params));
   if (o.analyze) {
