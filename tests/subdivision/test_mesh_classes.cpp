@@ -311,3 +311,19 @@ TEST_CASE("analyze_mesh: every irregular vertex, its class and verdict, each con
   CHECK_THROWS_WITH(analyze_mesh(classes_cube(), MeshScheme::loop),
                     Contains("loop runs on triangles; face 0 has 4"));
 }
+
+TEST_CASE("C1 verdicts per sector: the sampled verdicts do not depend on the net's level",
+          "[subdivision][mesh_analysis][classes][c1]") {
+  for (const MeshScheme scheme : {MeshScheme::catmull_clark, MeshScheme::loop})
+    for (int k = 1; k <= 8; ++k)
+      for (const bool corner : {false, true}) {
+        INFO(scheme_name(scheme) << ", boundary vertex of " << k << " faces" << (corner ? ", corner" : ""));
+        const LocalMatrix S = local_matrix(scheme, k + 1, boundary(corner));
+        const LocalSpectrum sp = local_spectrum(S);
+        const C1Verdict three = c1_verdict(S, sp, {.sampled = true, .levels = 3});
+        const C1Verdict five = c1_verdict(S, sp, {.sampled = true, .levels = 5});
+        CHECK(three.c1 == five.c1);
+        CHECK(three.decided == five.decided);
+        if (three.c1) CHECK(std::abs(three.sectors[0].verdict.angle - five.sectors[0].verdict.angle) < 0.2L);
+      }
+}
