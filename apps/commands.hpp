@@ -93,6 +93,7 @@ struct AnalyzeOptions {
   std::string format = "table";  // table | json
   std::string boundary;          // "" keeps the file's boundary rule
   bool strict = false;           // an OBJ tag cifs does not read is an error, not a warning
+  std::filesystem::path png;     // optional: the surface (3 levels) with the irregular vertices marked
 };
 std::string analyze(const AnalyzeOptions& options);
 

@@ -332,6 +332,11 @@ void add_analyze(CLI::App& app, Commands& c) {
   analyze_cmd->add_option("--boundary", c.an.boundary,
                           "Boundary rule, replacing the file's: edge (default) or corner");
   add_strict(analyze_cmd, c.an.strict);
+  analyze_cmd
+      ->add_option("--png", c.an.png,
+                   "Also write the surface (3 levels) as PNG with the irregular vertices marked: green C1, "
+                   "red not C1, orange undecided")
+      ->check(output_name);
   analyze_cmd->callback([&] {
     const cifs::render::Stage stage("analyze", c.quiet);
     c.result = cli::analyze(c.an);

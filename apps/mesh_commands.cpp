@@ -12,7 +12,10 @@
 #include "cifs/files.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/io/ply.hpp"
+#include "cifs/render/camera.hpp"
+#include "cifs/render/preview.hpp"
 #include "cifs/render/progress.hpp"
+#include "cifs/render/raster.hpp"
 #include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/mesh.hpp"
 #include "cifs/subdivision/mesh_analysis.hpp"
@@ -208,6 +211,47 @@ std::string verdict_word(const subdivision::C1Verdict& v) {
   return v.c1 ? "yes" : v.decided ? "no" : "undecided";
 }
 
+/// The surface three levels down, shaded, with a cross at each irregular vertex (vertex points keep
+/// their index: the level-3 point is next to the limit) coloured by its verdict; written atomically.
+void analysis_png(const std::filesystem::path& path, const Mesh& mesh, subdivision::MeshScheme scheme,
+                  const subdivision::MeshSmoothness& a) {
+  const Mesh surface = subdivision::subdivide(mesh, scheme, 3);
+  render::FramingOptions framing;
+  framing.width = framing.height = 800;
+  const render::Camera camera = render::frame(surface.vertices, framing);
+  render::Image image = render::make_framebuffer(camera);
+  render::render_mesh(image, camera, surface);
+  const Eigen::RowVector3d extent =
+      surface.vertices.colwise().maxCoeff() - surface.vertices.colwise().minCoeff();
+  const double arm = 0.015 * extent.maxCoeff();
+  const std::array<std::pair<int, render::Rgb>, 3> kinds{
+      {{0, {0.05, 0.6, 0.1}}, {1, {0.85, 0.05, 0.05}}, {2, {0.95, 0.55, 0.0}}}};
+  for (const auto& [kind, color] : kinds) {
+    Segments marks;
+    marks.vertices.resize(0, 3);
+    for (const subdivision::VertexSmoothness& v : a.vertices) {
+      if ((v.verdict.c1 ? 0 : v.verdict.decided ? 1 : 2) != kind) continue;
+      const Eigen::RowVector3d p = surface.vertices.row(v.vertex);
+      for (int axis = 0; axis < 3; ++axis) {
+        Eigen::RowVector3d d = Eigen::RowVector3d::Zero();
+        d(axis) = arm;
+        const auto at = static_cast<int>(marks.vertices.rows());
+        marks.vertices.conservativeResize(at + 2, 3);
+        marks.vertices.row(at) = p - d;
+        marks.vertices.row(at + 1) = p + d;
+        marks.segments.push_back({at, at + 1});
+      }
+    }
+    render::CurveStyle style;
+    style.width = 3.0;
+    style.color = color;
+    if (!marks.segments.empty()) render::render_segments(image, camera, marks, style);
+  }
+  render::PreviewOptions preview;
+  preview.mode = render::PreviewMode::shaded;
+  render::preview_png(path, image, preview);
+}
+
 }  // namespace
 
 std::string analyze(const AnalyzeOptions& o) {
@@ -217,6 +261,7 @@ std::string analyze(const AnalyzeOptions& o) {
   Mesh mesh = io::read_mesh(o.mesh, {.strict = o.strict, .warn = {}});
   apply(tag_overrides(o.boundary, "", "", ""), mesh.tags);
   const subdivision::MeshSmoothness a = subdivision::analyze_mesh(mesh, scheme, o.mesh.string());
+  if (!o.png.empty()) analysis_png(o.png, mesh, scheme, a);
   if (o.format == "json") {
     json vertices = json::array();
     for (const subdivision::VertexSmoothness& v : a.vertices)

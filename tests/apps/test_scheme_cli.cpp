@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "apps/cli_runner.hpp"
@@ -264,6 +265,17 @@ TEST_CASE("cifs analyze MESH --scheme S: which points are not smooth", "[cli][me
                                        .out);
   CHECK(corners["c1"] == 4);
   CHECK(corners["vertices"][0]["class"] == "corner");
-  check_error(cifs_cli("analyze " + grid + " --scheme loop"), "loop runs on triangles");
+  // --png: the surface with the four corners marked, written whole; nothing written when refused.
+  const auto png = scratch() / "analyze.png";
+  std::filesystem::remove(png);
+  REQUIRE(cifs_cli("analyze " + grid + " --scheme catmull-clark --png " + png.string()).status == 0);
+  std::ifstream in(png, std::ios::binary);
+  std::string signature(8, '\0');
+  in.read(signature.data(), 8);
+  CHECK(signature == "\x89PNG\r\n\x1a\n");
+  const auto refused = scratch() / "refused.png";
+  check_error(cifs_cli("analyze " + grid + " --scheme loop --png " + refused.string()),
+              "loop runs on triangles");
+  CHECK_FALSE(std::filesystem::exists(refused));
   check_error(cifs_cli("analyze " + grid + " --scheme catmull-clark --format svg"), "--format 'svg'");
 }
