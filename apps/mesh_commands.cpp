@@ -273,6 +273,7 @@ std::string analyze(const AnalyzeOptions& o) {
                           {"lambda2", static_cast<double>(v.lambda2)},
                           {"curvature_ratio",
                            v.curvature_ratio ? json(static_cast<double>(*v.curvature_ratio)) : json(nullptr)},
+                          {"semi_sharp", v.semi_sharp},
                           {"c1", verdict_word(v.verdict)},
                           {"method", v.verdict.method},
                           {"reason", v.verdict.reason}});
@@ -291,7 +292,8 @@ std::string analyze(const AnalyzeOptions& o) {
     s << std::setw(9) << v.vertex << std::setw(10) << v.vertex_class << std::setw(8) << v.valence
       << std::setw(9) << sectors_text(v.sectors) << std::setw(11) << number(v.lambda1) << std::setw(11)
       << number(v.lambda2) << std::setw(11) << (v.curvature_ratio ? number(*v.curvature_ratio) : "-")
-      << verdict_word(v.verdict) << (v.verdict.c1 ? "" : ": " + v.verdict.reason) << "\n";
+      << verdict_word(v.verdict) << (v.verdict.c1 && v.semi_sharp == 0 ? "" : ": " + v.verdict.reason)
+      << "\n";
   s << a.summary << "\n";
   return s.str();
 }

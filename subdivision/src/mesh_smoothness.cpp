@@ -3,6 +3,7 @@
 // its topology and tags and given the local analysis of its class, computed once per configuration
 // (cifs/subdivision/mesh_analysis.hpp; docs/subdivision-surfaces.md, "Which points are not smooth").
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -29,32 +30,32 @@ std::string sharpness_text(double s) {
 }
 
 /// The configuration of a vertex as the local analysis sees it; nothing for a regular vertex.
+/// Semi-sharp tags decay to 0 within ceil(s) levels (either crease method: Chaikin's new sharpness is
+/// at most the largest at the vertex less 1), after which the stationary rules are those of the
+/// infinitely sharp tags alone: they decide the limit at the vertex. `semi_sharp` receives the largest
+/// semi-sharp value at the vertex (0: none).
 std::optional<LocalOptions> local_class(const MeshTopology& t, const MeshTags& tags,
                                         const std::map<std::uint64_t, double>& sharpness,
                                         const std::vector<double>& corner, MeshScheme scheme, int v,
-                                        const std::string& who) {
+                                        double& semi_sharp) {
   const auto ring = vertex_edges(t, static_cast<std::size_t>(v));
   const int n = static_cast<int>(ring.size());
   const bool boundary = t.boundary_vertex[static_cast<std::size_t>(v)] != 0;
-  const std::string where = who + ": vertex " + std::to_string(v);
   LocalOptions o{.boundary = boundary};
+  semi_sharp = 0;
   for (int j = 0; j < n; ++j) {
     const int w = other_vertex(t, static_cast<std::size_t>(ring[static_cast<std::size_t>(j)]), v);
     const auto it = sharpness.find(edge_key(v, w));
     if (it == sharpness.end() || it->second <= 0) continue;
     if (it->second < kInfiniteSharpness)
-      throw InvalidInput(where + ": semi-sharp crease to vertex " + std::to_string(w) + " (sharpness " +
-                         sharpness_text(it->second) +
-                         ") is not analysed (its rules change after ceil(s) levels); only infinitely sharp "
-                         "creases are");
-    if (!(boundary && (j == 0 || j == n - 1))) o.sharp.push_back(j);
+      semi_sharp = std::max(semi_sharp, it->second);
+    else if (!(boundary && (j == 0 || j == n - 1)))
+      o.sharp.push_back(j);
   }
   const double s = corner[static_cast<std::size_t>(v)];
-  if (s > 0 && s < kInfiniteSharpness)
-    throw InvalidInput(where + ": semi-sharp corner (sharpness " + sharpness_text(s) +
-                       ") is not analysed (its rule changes after ceil(s) levels); only infinitely sharp "
-                       "corners are");
-  o.corner = s > 0 || (boundary && n == 2 && tags.boundary == BoundaryRule::edge_and_corner);
+  if (s > 0 && s < kInfiniteSharpness) semi_sharp = std::max(semi_sharp, s);
+  o.corner =
+      s >= kInfiniteSharpness || (boundary && n == 2 && tags.boundary == BoundaryRule::edge_and_corner);
   // Interior: turn the ring so that the first sharp edge is r_0 (the class does not depend on it).
   if (!boundary && !o.sharp.empty()) {
     const int first = o.sharp.front();
@@ -62,10 +63,12 @@ std::optional<LocalOptions> local_class(const MeshTopology& t, const MeshTags& t
   }
   const int regular = traits(scheme).regular_valence;
   const bool plain = o.sharp.empty() && !o.corner;
-  if (plain && !boundary && n == regular) return std::nullopt;
-  if (plain && boundary && n == regular / 2 + 1) return std::nullopt;
-  if (!boundary && !o.corner && o.sharp.size() == 2 && o.sharp[1] == regular / 2 && n == regular)
-    return std::nullopt;  // the regular crease: both sides regular
+  if (semi_sharp == 0) {
+    if (plain && !boundary && n == regular) return std::nullopt;
+    if (plain && boundary && n == regular / 2 + 1) return std::nullopt;
+    if (!boundary && !o.corner && o.sharp.size() == 2 && o.sharp[1] == regular / 2 && n == regular)
+      return std::nullopt;  // the regular crease: both sides regular
+  }
   return o;
 }
 
@@ -107,7 +110,8 @@ MeshSmoothness analyze_mesh(const Mesh& mesh, MeshScheme scheme, std::string_vie
       ++out.isolated;
       continue;
     }
-    const auto o = local_class(t, mesh.tags, sharpness, corner, scheme, v, who);
+    double semi_sharp = 0;
+    const auto o = local_class(t, mesh.tags, sharpness, corner, scheme, v, semi_sharp);
     if (!o) {
       ++out.regular;
       continue;
@@ -135,9 +139,14 @@ MeshSmoothness analyze_mesh(const Mesh& mesh, MeshScheme scheme, std::string_vie
                        .lambda1 = spectrum.subdominant,
                        .lambda2 = spectrum.second,
                        .curvature_ratio = spectrum.curvature_ratio,
+                       .semi_sharp = semi_sharp,
                        .verdict = verdict};
-    r.verdict.sectors
-        .clear();  // per configuration, not per vertex: the verdict's reason names the failing sector
+    if (semi_sharp > 0)
+      r.verdict.reason = "semi-sharp (s = " + sharpness_text(semi_sharp) + "): analysed after " +
+                         std::to_string(static_cast<int>(std::ceil(semi_sharp))) + " levels, class " +
+                         r.vertex_class + " from then on; " + r.verdict.reason;
+    // Per configuration, not per vertex: the verdict's reason names the failing sector.
+    r.verdict.sectors.clear();
     (verdict.c1 ? out.c1 : verdict.decided ? out.not_c1 : out.undecided) += 1;
     out.vertices.push_back(std::move(r));
   }

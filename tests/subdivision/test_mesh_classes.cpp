@@ -300,12 +300,19 @@ TEST_CASE("analyze_mesh: every irregular vertex, its class and verdict, each con
   cube.tags.holes = {0};
   CHECK(analyze_mesh(cube, MeshScheme::catmull_clark).c1 == 8);
 
-  // Semi-sharp tags and other schemes are refused with one line naming the place.
+  // A semi-sharp crease decays within ceil(s) levels: its ends are analysed as they are from then on
+  // (valence-3 interior vertices here), and say so.
   Mesh semi = classes_cube();
   semi.tags.creases.push_back({0, 1, 1.5});
-  CHECK_THROWS_WITH(
-      analyze_mesh(semi, MeshScheme::catmull_clark),
-      Contains("mesh: vertex 0: semi-sharp crease to vertex 1 (sharpness 1.5) is not analysed"));
+  const MeshSmoothness decayed = analyze_mesh(semi, MeshScheme::catmull_clark);
+  CHECK(decayed.c1 == 8);
+  CHECK(decayed.vertices[0].semi_sharp == 1.5);
+  CHECK(decayed.vertices[0].vertex_class == "interior");
+  CHECK_THAT(
+      decayed.vertices[1].verdict.reason,
+      Contains("semi-sharp (s = 1.5): analysed after 2 levels, class interior from then on; C1, proved"));
+  CHECK(decayed.vertices[2].semi_sharp == 0);
+  // Other schemes are refused with one line.
   CHECK_THROWS_WITH(analyze_mesh(classes_cube(), MeshScheme::doo_sabin),
                     Contains("catmull-clark and loop only"));
   CHECK_THROWS_WITH(analyze_mesh(classes_cube(), MeshScheme::loop),

@@ -217,6 +217,9 @@ struct VertexSmoothness {
   std::vector<int> sectors;  // faces per sector
   long double lambda1 = 0, lambda2 = 0;
   std::optional<long double> curvature_ratio;  // λ2²/|μ|
+  /// The largest semi-sharp value at the vertex (0: none): its tags decay within ceil(s) levels, and
+  /// the vertex is analysed as it is from then on (the class of its infinitely sharp tags alone).
+  double semi_sharp = 0;
   C1Verdict verdict;
 };
 
@@ -235,8 +238,9 @@ struct MeshSmoothness {
 /// The analysis of every vertex of a Catmull–Clark or Loop mesh with its tags (infinitely sharp creases
 /// and corners, the boundary rules edge and corner). Throws InvalidInput, one line naming the vertex or
 /// the tag, for what it does not analyse: another scheme, a non-manifold mesh, the boundary rule none,
-/// semi-sharp creases and corners (their rules change after ceil(s) levels), valences out of the local
-/// analysis's range, non-triangles under Loop. Catmull–Clark vertices next to non-quads are analysed as they
+/// valences out of the local analysis's range, non-triangles under Loop. A vertex with semi-sharp tags
+/// is analysed as it is after ceil(s) levels (they have decayed; its reason says so) and is always
+/// listed. Catmull–Clark vertices next to non-quads are analysed as they
 /// are after one level (same valence and sectors, all quads). Holes change no rule (they leave faces out of
 /// the surface only): the vertices around them are analysed as they are.
 MeshSmoothness analyze_mesh(const Mesh& mesh, MeshScheme scheme, std::string_view who = "mesh");
