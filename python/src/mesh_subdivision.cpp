@@ -391,6 +391,7 @@ void bind_mesh_subdivision_analysis(py::module_& m) {
           d["class"] = v.vertex_class;
           d["valence"] = v.valence;
           d["sector_faces"] = v.sectors;
+          d["semi_sharp"] = v.semi_sharp;
           d["lambda1"] = static_cast<double>(v.lambda1);
           d["lambda2"] = static_cast<double>(v.lambda2);
           d["curvature_ratio"] = v.curvature_ratio

@@ -677,6 +677,7 @@ class LocalAnalysisTest(unittest.TestCase):
         self.assertEqual({v["class"] for v in a["vertices"]}, {"boundary"})
         self.assertEqual(sorted(v["sector_faces"][0] for v in a["vertices"]), [1, 1, 2, 2])
         self.assertTrue(all(v["c1"] for v in a["vertices"]))
+        self.assertEqual({v["semi_sharp"] for v in a["vertices"]}, {0.0})
         self.assertEqual(a["analyses"], 2)
         self.assertEqual(a["summary"], cli("analyze", str(EXAMPLES / "meshes" / "open_grid_triangles.obj"),
                                            "--scheme", "loop").stdout.strip().splitlines()[-1])
