@@ -86,6 +86,17 @@ struct LimitCommandOptions {
 };
 std::string limit(const LimitCommandOptions& options);
 
+/// `cifs analyze`: every irregular vertex of a Catmull–Clark or Loop mesh, its class and C1 verdict.
+struct AnalyzeOptions {
+  std::filesystem::path mesh;
+  std::string scheme;
+  std::string format = "table";  // table | json
+  std::string boundary;          // "" keeps the file's boundary rule
+  bool strict = false;           // an OBJ tag cifs does not read is an error, not a warning
+  std::filesystem::path png;     // optional: the surface (3 levels) with the irregular vertices marked
+};
+std::string analyze(const AnalyzeOptions& options);
+
 struct AutomatonOptions {
   std::filesystem::path shape;  // a shape, or a mesh (OBJ faces, PLY) with `scheme`
   ShapeSelection select;

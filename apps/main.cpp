@@ -107,6 +107,7 @@ struct Commands {
   cli::RenderOptions re;
   cli::SubdivideOptions su;
   cli::LimitCommandOptions li;
+  cli::AnalyzeOptions an;
   cli::DimensionOptions di;
   cli::FitOptions fi;
   std::filesystem::path view_path, view_export;
@@ -243,7 +244,7 @@ void add_scheme(CLI::App& app, Commands& c) {
   auto* scheme_cmd =
       app.add_subcommand("scheme",
                          "Subdivision schemes: --analyze (JSON), --refine a polygon, --list; mesh schemes: "
-                         "--valence N --analyze");
+                         "--valence N --analyze (--crease K, --dart, --corner, --boundary-valence K)");
   scheme_cmd->add_option("name", c.sc.name, "Scheme name (cifs scheme --list)");
   scheme_cmd->add_option("--param", c.sc.params, "Scheme parameter NAME=VALUE; repeatable")
       ->allow_extra_args(false);
@@ -264,6 +265,17 @@ void add_scheme(CLI::App& app, Commands& c) {
   scheme_cmd->add_option(
       "--boundary", c.sc.boundary,
       "Mesh schemes: a boundary vertex (catmull-clark, loop), rule edge or corner at valence 2");
+  scheme_cmd->add_option("--boundary-valence", c.sc.boundary_valence,
+                         "Mesh schemes: a boundary vertex with K faces (K + 1 edges; K, A..B or A,B,C)");
+  scheme_cmd->add_option(
+      "--crease", c.sc.crease,
+      "Mesh schemes: infinitely sharp edges r_0 and r_K at --valence N: K faces on one side, "
+      "N - K on the other (K, A..B, A,B,C or all)");
+  scheme_cmd->add_flag("--dart", c.sc.dart, "Mesh schemes: one infinitely sharp edge (r_0) at --valence N");
+  scheme_cmd->add_flag("--corner", c.sc.corner,
+                       "Mesh schemes: the vertex infinitely sharp, on a --crease or a --boundary-valence");
+  scheme_cmd->add_flag("--concave", c.sc.concave,
+                       "Mesh schemes: the --corner's first sector is meant to span more than 180 degrees");
   add_quiet(scheme_cmd, c.quiet);
   scheme_cmd->callback([&] {
     const cifs::render::Stage stage("scheme", c.quiet);
@@ -320,6 +332,26 @@ void add_subdivide(CLI::App& app, Commands& c) {
   subdivide_cmd->add_option("-o,--output", c.su.output, "Output mesh (.obj or .ply; default: OBJ on stdout)")
       ->check(output_name);
   subdivide_cmd->callback([&] { c.result = cli::subdivide(c.su); });
+}
+
+void add_analyze(CLI::App& app, Commands& c) {
+  auto* analyze_cmd = app.add_subcommand(
+      "analyze", "Which points of a mesh are not smooth: every irregular vertex's class and C1 verdict");
+  analyze_cmd->add_option("mesh", c.an.mesh, "Polygon mesh (.obj or .ply)")->required();
+  analyze_cmd->add_option("--scheme", c.an.scheme, "catmull-clark or loop")->required();
+  analyze_cmd->add_option("--format", c.an.format, "table (default) or json");
+  analyze_cmd->add_option("--boundary", c.an.boundary,
+                          "Boundary rule, replacing the file's: edge (default) or corner");
+  add_strict(analyze_cmd, c.an.strict);
+  analyze_cmd
+      ->add_option("--png", c.an.png,
+                   "Also write the surface (3 levels) as PNG with the irregular vertices marked: green C1, "
+                   "red not C1, orange undecided")
+      ->check(output_name);
+  analyze_cmd->callback([&] {
+    const cifs::render::Stage stage("analyze", c.quiet);
+    c.result = cli::analyze(c.an);
+  });
 }
 
 void add_limit(CLI::App& app, Commands& c) {
@@ -514,6 +546,7 @@ int run(int argc, char** argv, std::string& result) {
   add_render(app, c);
   add_subdivide(app, c);
   add_limit(app, c);
+  add_analyze(app, c);
   add_dimension(app, c);
   add_fit(app, c);
   add_gallery(app, c);

@@ -2,6 +2,7 @@
 // cifs CLI — polygon meshes: `cifs subdivide` and `cifs info` on an OBJ/PLY mesh.
 #include <algorithm>
 #include <functional>
+#include <iomanip>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -11,9 +12,13 @@
 #include "cifs/files.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/io/ply.hpp"
+#include "cifs/render/camera.hpp"
+#include "cifs/render/preview.hpp"
 #include "cifs/render/progress.hpp"
+#include "cifs/render/raster.hpp"
 #include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/mesh.hpp"
+#include "cifs/subdivision/mesh_analysis.hpp"
 #include "cifs/topology.hpp"
 #include "commands.hpp"
 
@@ -186,6 +191,111 @@ std::string limit(const LimitCommandOptions& o) {
                (o.normals ? " with normals, " : ", ") + std::to_string(face_count(surface)) + " faces (" +
                o.scheme + ", " + std::to_string(o.levels) + " levels)";
       });
+}
+
+namespace {
+
+std::string number(long double x) {
+  std::ostringstream s;
+  s << std::setprecision(6) << static_cast<double>(x);
+  return s.str();
+}
+
+std::string sectors_text(const std::vector<int>& sectors) {
+  std::string out;
+  for (const int k : sectors) out += (out.empty() ? "" : ",") + std::to_string(k);
+  return out;
+}
+
+std::string verdict_word(const subdivision::C1Verdict& v) {
+  return v.c1 ? "yes" : v.decided ? "no" : "undecided";
+}
+
+/// The surface three levels down, shaded, with a cross at each irregular vertex (vertex points keep
+/// their index: the level-3 point is next to the limit) coloured by its verdict; written atomically.
+void analysis_png(const std::filesystem::path& path, const Mesh& mesh, subdivision::MeshScheme scheme,
+                  const subdivision::MeshSmoothness& a) {
+  const Mesh surface = subdivision::subdivide(mesh, scheme, 3);
+  render::FramingOptions framing;
+  framing.width = framing.height = 800;
+  const render::Camera camera = render::frame(surface.vertices, framing);
+  render::Image image = render::make_framebuffer(camera);
+  render::render_mesh(image, camera, surface);
+  const Eigen::RowVector3d extent =
+      surface.vertices.colwise().maxCoeff() - surface.vertices.colwise().minCoeff();
+  const double arm = 0.015 * extent.maxCoeff();
+  const std::array<std::pair<int, render::Rgb>, 3> kinds{
+      {{0, {0.05, 0.6, 0.1}}, {1, {0.85, 0.05, 0.05}}, {2, {0.95, 0.55, 0.0}}}};
+  for (const auto& [kind, color] : kinds) {
+    Segments marks;
+    marks.vertices.resize(0, 3);
+    for (const subdivision::VertexSmoothness& v : a.vertices) {
+      if ((v.verdict.c1 ? 0 : v.verdict.decided ? 1 : 2) != kind) continue;
+      const Eigen::RowVector3d p = surface.vertices.row(v.vertex);
+      for (int axis = 0; axis < 3; ++axis) {
+        Eigen::RowVector3d d = Eigen::RowVector3d::Zero();
+        d(axis) = arm;
+        const auto at = static_cast<int>(marks.vertices.rows());
+        marks.vertices.conservativeResize(at + 2, 3);
+        marks.vertices.row(at) = p - d;
+        marks.vertices.row(at + 1) = p + d;
+        marks.segments.push_back({at, at + 1});
+      }
+    }
+    render::CurveStyle style;
+    style.width = 3.0;
+    style.color = color;
+    if (!marks.segments.empty()) render::render_segments(image, camera, marks, style);
+  }
+  render::PreviewOptions preview;
+  preview.mode = render::PreviewMode::shaded;
+  render::preview_png(path, image, preview);
+}
+
+}  // namespace
+
+std::string analyze(const AnalyzeOptions& o) {
+  const subdivision::MeshScheme scheme = subdivision::named_mesh_scheme(o.scheme);
+  if (o.format != "table" && o.format != "json")
+    throw InvalidInput("--format '" + o.format + "': table or json for cifs analyze");
+  Mesh mesh = io::read_mesh(o.mesh, {.strict = o.strict, .warn = {}});
+  apply(tag_overrides(o.boundary, "", "", ""), mesh.tags);
+  const subdivision::MeshSmoothness a = subdivision::analyze_mesh(mesh, scheme, o.mesh.string());
+  if (!o.png.empty()) analysis_png(o.png, mesh, scheme, a);
+  if (o.format == "json") {
+    json vertices = json::array();
+    for (const subdivision::VertexSmoothness& v : a.vertices)
+      vertices.push_back({{"vertex", v.vertex},
+                          {"class", v.vertex_class},
+                          {"valence", v.valence},
+                          {"sector_faces", v.sectors},
+                          {"lambda1", static_cast<double>(v.lambda1)},
+                          {"lambda2", static_cast<double>(v.lambda2)},
+                          {"curvature_ratio",
+                           v.curvature_ratio ? json(static_cast<double>(*v.curvature_ratio)) : json(nullptr)},
+                          {"semi_sharp", v.semi_sharp},
+                          {"c1", verdict_word(v.verdict)},
+                          {"method", v.verdict.method},
+                          {"reason", v.verdict.reason}});
+    const json out = {
+        {"scheme", o.scheme},  {"vertices", vertices}, {"regular", a.regular},     {"in_no_face", a.isolated},
+        {"c1", a.c1},          {"not_c1", a.not_c1},   {"undecided", a.undecided}, {"analyses", a.analyses},
+        {"summary", a.summary}};
+    return out.dump(1) + "\n";
+  }
+  std::ostringstream s;
+  s << std::left << std::setw(9) << "vertex" << std::setw(10) << "class" << std::setw(8) << "valence"
+    << std::setw(9) << "sectors" << std::setw(11) << "lambda1" << std::setw(11) << "lambda2" << std::setw(11)
+    << "l2^2/|mu|"
+    << "C1\n";
+  for (const subdivision::VertexSmoothness& v : a.vertices)
+    s << std::setw(9) << v.vertex << std::setw(10) << v.vertex_class << std::setw(8) << v.valence
+      << std::setw(9) << sectors_text(v.sectors) << std::setw(11) << number(v.lambda1) << std::setw(11)
+      << number(v.lambda2) << std::setw(11) << (v.curvature_ratio ? number(*v.curvature_ratio) : "-")
+      << verdict_word(v.verdict) << (v.verdict.c1 && v.semi_sharp == 0 ? "" : ": " + v.verdict.reason)
+      << "\n";
+  s << a.summary << "\n";
+  return s.str();
 }
 
 }  // namespace cifs::cli

@@ -106,12 +106,15 @@ int integer_text(const std::string& text, const std::string& option, const std::
   return value;
 }
 
-/// "5", "3..16" or "3,5,8".
+/// "5", "3..16", "3-16" or "3,5,8".
 std::vector<int> parse_valences(const std::string& text, const std::string& option) {
   std::vector<int> out;
-  if (const auto dots = text.find(".."); dots != std::string::npos) {
-    const int first = integer_text(text.substr(0, dots), option, text);
-    const int last = integer_text(text.substr(dots + 2), option, text);
+  const auto dots = text.find("..");
+  const auto dash = text.find('-', 1);
+  if (dots != std::string::npos || dash != std::string::npos) {
+    const std::size_t at = dots != std::string::npos ? dots : dash;
+    const int first = integer_text(text.substr(0, at), option, text);
+    const int last = integer_text(text.substr(at + (dots != std::string::npos ? 2 : 1)), option, text);
     if (first > last)
       throw InvalidInput(option + " '" + text + "': the range is empty (write A..B with A ≤ B)");
     for (int n = first; n <= last; ++n) out.push_back(n);
@@ -131,39 +134,113 @@ std::string local_table(const std::vector<sd::LocalMatrix>& matrices,
                         const std::vector<sd::LocalSpectrum>& spectra,
                         const std::vector<sd::C1Verdict>& verdicts) {
   const sd::LocalMatrix& first = matrices.front();
+  const bool tagged = std::any_of(matrices.begin(), matrices.end(), [](const sd::LocalMatrix& m) {
+    return m.options.boundary || !m.options.sharp.empty() || m.options.corner;
+  });
   std::ostringstream s;
   s << "# " << sd::scheme_name(first.scheme) << ", "
-    << (first.options.boundary
-            ? std::string("boundary vertices (--boundary ") +
-                  (first.options.rule == sd::BoundaryRule::edge_only ? "edge" : "corner") + ")"
-            : std::string(first.scheme == sd::MeshScheme::doo_sabin ? "k-gon faces" : "interior vertices"))
+    << (tagged ? std::string("tagged and boundary vertices (sectors: faces between sharp edges)")
+               : std::string(first.scheme == sd::MeshScheme::doo_sabin ? "k-gon faces" : "interior vertices"))
     << ", S_n over " << first.steps << (first.steps == 1 ? " step" : " steps") << "\n";
-  s << std::left << std::setw(4) << "n" << std::setw(6) << "size" << std::setw(7) << "exact" << std::setw(17)
-    << "lambda1" << std::setw(17) << "lambda2" << std::setw(17) << "|mu|" << std::setw(17) << "lambda2^2/|mu|"
-    << std::setw(11) << "curvature" << std::setw(21) << "spectral conditions"
-    << (verdicts.empty() ? "" : "C1") << "\n";
+  s << std::left << std::setw(4) << "n";
+  if (tagged) s << std::setw(10) << "class" << std::setw(10) << "sectors";
+  s << std::setw(6) << "size" << std::setw(7) << "exact" << std::setw(17) << "lambda1" << std::setw(17)
+    << "lambda2" << std::setw(17) << "|mu|" << std::setw(17) << "lambda2^2/|mu|" << std::setw(11)
+    << "curvature" << std::setw(24) << "spectral conditions" << (verdicts.empty() ? "" : "C1") << "\n";
   for (std::size_t i = 0; i < matrices.size(); ++i) {
     const sd::LocalSpectrum& sp = spectra[i];
     std::string checks;
     if (!sp.dominant_simple) checks += " lambda0=1-not-simple";
     if (!sp.subdominant_pair) checks += " lambda1!=lambda2";
     if (!sp.gap) checks += " no-gap";
-    s << std::setw(4) << matrices[i].valence << std::setw(6) << matrices[i].values.rows() << std::setw(7)
-      << (matrices[i].exact ? "yes" : "no") << std::setw(17)
-      << number_text(static_cast<double>(sp.subdominant), 12) << std::setw(17)
+    s << std::setw(4) << matrices[i].valence;
+    if (tagged) {
+      std::string sectors;
+      for (const int k : sd::sector_sizes(matrices[i].valence, matrices[i].options))
+        sectors += (sectors.empty() ? "" : ",") + std::to_string(k);
+      s << std::setw(10) << sd::vertex_class(matrices[i].valence, matrices[i].options) << std::setw(10)
+        << sectors;
+    }
+    s << std::setw(6) << matrices[i].values.rows() << std::setw(7) << (matrices[i].exact ? "yes" : "no")
+      << std::setw(17) << number_text(static_cast<double>(sp.subdominant), 12) << std::setw(17)
       << number_text(static_cast<double>(sp.second), 12) << std::setw(17)
       << number_text(static_cast<double>(std::abs(sp.mu)), 12) << std::setw(17)
       << (sp.curvature_ratio ? number_text(static_cast<double>(*sp.curvature_ratio), 12) : "-")
-      << std::setw(11) << sp.curvature << std::setw(21) << (checks.empty() ? "ok" : checks.substr(1));
+      << std::setw(11) << sp.curvature << std::setw(24) << (checks.empty() ? "ok" : checks.substr(1));
     if (!verdicts.empty()) {
       const sd::C1Verdict& v = verdicts[i];
       s << (v.c1 ? "yes" : v.decided ? "no" : "undecided");
-      if (v.spectral)
+      if (!v.sectors.empty()) {
+        s << " (sampled; sector angles";
+        for (const sd::C1Verdict::Sector& sector : v.sectors)
+          s << " "
+            << (sector.verdict.spectral && !sector.verdict.through_centre
+                    ? number_text(
+                          static_cast<double>(sector.verdict.angle * 180 / std::numbers::pi_v<long double>),
+                          4)
+                    : "-");
+        s << ")" << (v.c1 ? "" : ": " + v.reason);
+      } else if (v.spectral) {
         s << " (" << (v.method == "bernstein" ? "proved" : "sampled") << ", winding " << v.winding << ")";
+      }
     }
     s << "\n";
   }
   return s.str();
+}
+
+/// The (valence, options) pairs the flags ask for, in the order given.
+std::vector<std::pair<int, sd::LocalOptions>> local_cases(const std::string& name, const SchemeOptions& o) {
+  const bool boundary_faces = !o.boundary_valence.empty();
+  if (boundary_faces == (!o.valence.empty() || !o.valences.empty()) ||
+      (!o.valence.empty() && !o.valences.empty()))
+    throw InvalidInput("scheme " + name +
+                       ": give --valence N or --valences A..B (one of them), or --boundary-valence K");
+  if (boundary_faces && (!o.boundary.empty() || !o.crease.empty() || o.dart))
+    throw InvalidInput("scheme " + name + ": --boundary-valence K takes no --boundary, --crease or --dart");
+  if (o.dart && (!o.crease.empty() || o.corner || !o.boundary.empty()))
+    throw InvalidInput("scheme " + name +
+                       ": --dart is one sharp edge at an interior vertex: no --crease, "
+                       "--corner or --boundary");
+  if (o.corner && o.crease.empty() && !boundary_faces && o.boundary.empty())
+    throw InvalidInput("scheme " + name + ": --corner needs --crease K or --boundary-valence K");
+  if (o.concave && !o.corner) throw InvalidInput("scheme " + name + ": --concave is said of a --corner");
+  if (!o.crease.empty() && !o.boundary.empty())
+    throw InvalidInput("scheme " + name + ": --crease is at an interior vertex (no --boundary)");
+  sd::LocalOptions base{.boundary = boundary_faces || !o.boundary.empty(),
+                        .rule = o.boundary.empty() ? sd::BoundaryRule::edge_only : boundary_flag(o.boundary),
+                        .sharp = {},
+                        .corner = o.corner,
+                        .concave = o.concave};
+  if (o.dart) base.sharp = {0};
+  std::vector<std::pair<int, sd::LocalOptions>> out;
+  if (boundary_faces) {
+    for (const int k : parse_valences(o.boundary_valence, "--boundary-valence"))
+      out.emplace_back(k + 1, base);
+    return out;
+  }
+  const std::vector<int> valences =
+      o.valence.empty() ? parse_valences(o.valences, "--valences") : parse_valences(o.valence, "--valence");
+  for (const int n : valences) {
+    if (o.crease.empty()) {
+      out.emplace_back(n, base);
+      continue;
+    }
+    std::vector<int> sides;
+    if (o.crease == "all")
+      for (int k = 1; k < n; ++k) sides.push_back(k);
+    else
+      sides = parse_valences(o.crease, "--crease");
+    for (const int k : sides) {
+      sd::LocalOptions crease = base;
+      crease.sharp = {0, k};
+      if (k <= 0 || k >= n)  // the library would name edge K; the flag counts faces
+        throw InvalidInput("--crease " + std::to_string(k) + ": expected 1 to " + std::to_string(n - 1) +
+                           " faces on one side at valence " + std::to_string(n));
+      out.emplace_back(n, crease);
+    }
+  }
+  return out;
 }
 
 std::string analyze_mesh_scheme(sd::MeshScheme scheme, const SchemeOptions& o) {
@@ -174,26 +251,23 @@ std::string analyze_mesh_scheme(sd::MeshScheme scheme, const SchemeOptions& o) {
                        "(to refine a mesh: cifs subdivide MESH --scheme " + name + ")");
   if (!o.params.empty())
     throw InvalidInput("scheme " + name + ": --param: the mesh schemes take no parameters");
-  if (o.valence.empty() == o.valences.empty())
-    throw InvalidInput("scheme " + name + ": give --valence N or --valences A..B (one of them)");
   if (o.format != "json" && o.format != "table")
     throw InvalidInput("--format '" + o.format + "': json or table for a mesh scheme's analysis");
-  const sd::LocalOptions local{
-      .boundary = !o.boundary.empty(),
-      .rule = o.boundary.empty() ? sd::BoundaryRule::edge_only : boundary_flag(o.boundary)};
-  const std::vector<int> valences = o.valence.empty()
-                                        ? parse_valences(o.valences, "--valences")
-                                        : std::vector<int>{integer_text(o.valence, "--valence", o.valence)};
+  const auto cases = local_cases(name, o);
   std::vector<sd::LocalMatrix> matrices;
   std::vector<sd::LocalSpectrum> spectra;
-  std::vector<sd::C1Verdict> verdicts;  // interior vertices only: Reif's test needs a whole ring
-  for (const int n : valences) {        // every valence checked before any output
+  std::vector<sd::C1Verdict> verdicts;
+  matrices.reserve(cases.size());
+  spectra.reserve(cases.size());
+  verdicts.reserve(cases.size());
+  for (const auto& [n, local] : cases)  // every case checked before any output
     matrices.push_back(sd::local_matrix(scheme, n, local));
-    spectra.push_back(sd::local_spectrum(matrices.back()));
-    if (!local.boundary) verdicts.push_back(sd::c1_verdict(matrices.back(), spectra.back()));
+  for (const sd::LocalMatrix& m : matrices) {
+    spectra.push_back(sd::local_spectrum(m));
+    verdicts.push_back(sd::c1_verdict(m, spectra.back()));
   }
   if (o.format == "table") return local_table(matrices, spectra, verdicts);
-  return io::local_analysis_json(matrices, spectra, verdicts, !o.valences.empty());
+  return io::local_analysis_json(matrices, spectra, verdicts, cases.size() > 1 || !o.valences.empty());
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -229,10 +303,12 @@ std::string scheme(const SchemeOptions& o) {
   if (o.analyze == refine)
     throw InvalidInput(o.analyze ? "scheme: --analyze and --refine are exclusive"
                                  : "scheme: choose --analyze or --refine POLYGON.json (or --list)");
-  if (!o.valence.empty() || !o.valences.empty() || !o.boundary.empty())
+  if (!o.valence.empty() || !o.valences.empty() || !o.boundary.empty() || !o.boundary_valence.empty() ||
+      !o.crease.empty() || o.dart || o.corner || o.concave)
     throw InvalidInput(
         "scheme " + o.name +
-        ": --valence, --valences and --boundary are for the mesh schemes (catmull-clark, loop, "
+        ": --valence, --valences, --boundary, --boundary-valence, --crease, --dart, --corner and --concave "
+        "are for the mesh schemes (catmull-clark, loop, "
         "doo-sabin, butterfly, sqrt3)");
   const sd::Scheme s = sd::named_scheme(o.name, parse_params(o.params));
   if (o.analyze) {

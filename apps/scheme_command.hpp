@@ -24,6 +24,11 @@ struct SchemeOptions {
   std::string valence;   // mesh schemes: "5"
   std::string valences;  // mesh schemes: "3..16" or "3,5,8"
   std::string boundary;  // mesh schemes: empty (interior vertex), or edge | corner (boundary vertex)
+  std::string crease;    // mesh schemes: "K" (or a list, or "all"): sharp edges r_0 and r_K at --valence N
+  std::string boundary_valence;  // mesh schemes: "K" (or a list): a boundary vertex with K faces
+  bool dart = false;             // mesh schemes: one sharp edge (r_0)
+  bool corner = false;           // mesh schemes: the vertex infinitely sharp (with --crease or a boundary)
+  bool concave = false;          // a corner meant to span more than 180 degrees
 };
 
 /// The text for stdout; InvalidInput / IoError on bad input.

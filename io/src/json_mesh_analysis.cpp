@@ -3,6 +3,9 @@
 // (`cifs scheme MESH-SCHEME --valence N --analyze`, docs/cli.md).
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <numbers>
+
 #include "cifs/io/json.hpp"
 
 namespace cifs::io {
@@ -37,6 +40,24 @@ json c1_json(const subdivision::C1Verdict& v) {
   j["regular"] = v.regular;
   j["winding"] = v.winding;
   j["margin"] = static_cast<double>(v.margin);
+  if (v.through_centre) j["through_centre"] = true;
+  if (v.angle != 0 && !v.through_centre)
+    j["sector_angle_degrees"] = static_cast<double>(v.angle * 180 / std::numbers::pi_v<long double>);
+  if (v.sectors.empty()) return j;
+  json sectors = json::array();
+  for (const subdivision::C1Verdict::Sector& sector : v.sectors) {
+    const LocalSpectrum& s = sector.spectrum;
+    json spectrum = json::array();
+    for (std::size_t i = 0; i < std::min<std::size_t>(s.eigenvalues.size(), 6); ++i)
+      spectrum.push_back(complex_json(s.eigenvalues[i]));
+    sectors.push_back({{"faces", sector.faces},
+                       {"leading_eigenvalues", spectrum},
+                       {"lambda1", static_cast<double>(s.subdominant)},
+                       {"lambda2", static_cast<double>(s.second)},
+                       {"mu", complex_json(s.mu)},
+                       {"c1", c1_json(sector.verdict)}});
+  }
+  j["sectors"] = sectors;
   return j;
 }
 
@@ -44,9 +65,13 @@ json local_json(const LocalMatrix& m, const LocalSpectrum& s) {
   json j;
   j["scheme"] = std::string(subdivision::scheme_name(m.scheme));
   j["valence"] = m.valence;
-  j["vertex"] = m.options.boundary ? "boundary" : "interior";
+  j["vertex"] = subdivision::vertex_class(m.valence, m.options);
   if (m.options.boundary)
     j["boundary_rule"] = m.options.rule == subdivision::BoundaryRule::edge_only ? "edge" : "corner";
+  if (!m.options.sharp.empty()) j["sharp_edges"] = m.options.sharp;
+  if (m.options.concave) j["concave"] = true;
+  if (m.options.boundary || !m.options.sharp.empty() || m.options.corner)
+    j["sector_faces"] = subdivision::sector_sizes(m.valence, m.options);
   j["steps"] = m.steps;
   j["neighbourhood"] = m.labels;
   j["exact"] = m.exact.has_value();

@@ -293,10 +293,14 @@ void bind_mesh_subdivision_refinement(py::module_& m) {
 void bind_mesh_subdivision_analysis(py::module_& m) {
   m.def(
       "local_analysis",
-      [](const std::string& scheme, int valence, const std::optional<std::string>& boundary) {
+      [](const std::string& scheme, int valence, const std::optional<std::string>& boundary,
+         const std::vector<int>& sharp, bool corner, bool concave) {
         const sd::LocalOptions o{
             .boundary = boundary.has_value(),
-            .rule = boundary ? cifs::named_boundary_rule(*boundary) : sd::BoundaryRule::edge_only};
+            .rule = boundary ? cifs::named_boundary_rule(*boundary) : sd::BoundaryRule::edge_only,
+            .sharp = sharp,
+            .corner = corner,
+            .concave = concave};
         const sd::LocalMatrix S = sd::local_matrix(sd::named_mesh_scheme(scheme), valence, o);
         const sd::LocalSpectrum sp = sd::local_spectrum(S);
         const auto complex_of = [](const std::complex<long double>& z) {
@@ -332,8 +336,8 @@ void bind_mesh_subdivision_analysis(py::module_& m) {
                                      : py::none();
         out["curvature"] = sp.curvature;
         out["subdominant_basis"] = Points(sp.subdominant_basis.cast<double>());
-        if (!o.boundary) {
-          const sd::C1Verdict v = sd::c1_verdict(S, sp);
+        out["vertex"] = sd::vertex_class(valence, o);
+        const auto verdict = [](const sd::C1Verdict& v) {
           py::dict c1;
           c1["verdict"] = v.c1;
           c1["reason"] = v.reason;
@@ -343,19 +347,80 @@ void bind_mesh_subdivision_analysis(py::module_& m) {
           c1["regular"] = v.regular;
           c1["winding"] = v.winding;
           c1["margin"] = static_cast<double>(v.margin);
-          out["c1"] = c1;
-        } else {
-          out["c1"] = py::none();
+          c1["angle"] = static_cast<double>(v.angle);
+          return c1;
+        };
+        const sd::C1Verdict v = sd::c1_verdict(S, sp);
+        py::dict c1 = verdict(v);
+        py::list sectors;
+        for (const sd::C1Verdict::Sector& sector : v.sectors) {
+          py::dict d;
+          d["faces"] = sector.faces;
+          d["lambda1"] = static_cast<double>(sector.spectrum.subdominant);
+          d["lambda2"] = static_cast<double>(sector.spectrum.second);
+          d["c1"] = verdict(sector.verdict);
+          sectors.append(d);
         }
+        c1["sectors"] = sectors;
+        out["c1"] = c1;
         out["limit_stencil"] = Eigen::VectorXd(sp.limit_stencil.cast<double>());
         return out;
       },
       py::arg("scheme"), py::arg("valence"), py::kw_only(), py::arg("boundary") = py::none(),
+      py::arg("sharp") = std::vector<int>{}, py::arg("corner") = false, py::arg("concave") = false,
       "The local subdivision matrix S_n at a vertex of this valence (doo-sabin: an n-gon face; "
-      "boundary='edge'|'corner': a boundary vertex, catmull-clark and loop) and its spectrum, as a dict: "
+      "boundary='edge'|'corner': a boundary vertex of valence - 1 faces; sharp: the infinitely sharp "
+      "edges c r_j by j; corner: c infinitely sharp; concave: a corner meant to span more than 180 "
+      "degrees — catmull-clark and loop) and its spectrum and C1 verdict (per sector at tagged and "
+      "boundary vertices), as a dict: vertex (its class), c1, "
       "labels, steps, matrix, exact (Fractions or None), eigenvalues by modulus, dominant_simple, "
       "subdominant_pair, gap, lambda1, lambda2, mu, curvature_ratio (lambda2^2/|mu|), curvature, "
       "subdominant_basis, limit_stencil (docs/subdivision-surfaces.md).");
+  m.def(
+      "analyze_mesh",
+      [](const Mesh& mesh, const std::string& scheme) {
+        const sd::MeshScheme s = sd::named_mesh_scheme(scheme);
+        sd::MeshSmoothness a;
+        {
+          py::gil_scoped_release release;
+          a = sd::analyze_mesh(mesh, s);
+        }
+        py::list vertices;
+        for (const sd::VertexSmoothness& v : a.vertices) {
+          py::dict d;
+          d["vertex"] = v.vertex;
+          d["class"] = v.vertex_class;
+          d["valence"] = v.valence;
+          d["sector_faces"] = v.sectors;
+          d["semi_sharp"] = v.semi_sharp;
+          d["lambda1"] = static_cast<double>(v.lambda1);
+          d["lambda2"] = static_cast<double>(v.lambda2);
+          d["curvature_ratio"] = v.curvature_ratio
+                                     ? py::object(py::float_(static_cast<double>(*v.curvature_ratio)))
+                                     : py::none();
+          d["c1"] = v.verdict.c1        ? py::object(py::bool_(true))
+                    : v.verdict.decided ? py::object(py::bool_(false))
+                                        : py::none();
+          d["method"] = v.verdict.method;
+          d["reason"] = v.verdict.reason;
+          vertices.append(d);
+        }
+        py::dict out;
+        out["vertices"] = vertices;
+        out["regular"] = a.regular;
+        out["in_no_face"] = a.isolated;
+        out["c1"] = a.c1;
+        out["not_c1"] = a.not_c1;
+        out["undecided"] = a.undecided;
+        out["analyses"] = a.analyses;
+        out["summary"] = a.summary;
+        return out;
+      },
+      py::arg("mesh"), py::arg("scheme"),
+      "Which points of the mesh are not smooth: every irregular vertex (extraordinary, boundary, crease, "
+      "dart, corner) of a catmull-clark or loop mesh with its class, valence, sector faces, lambda1, "
+      "lambda2, curvature_ratio and C1 verdict (True, False, or None when undecided) with its reason; "
+      "counts and a summary line (docs/subdivision-surfaces.md).");
 }
 
 }  // namespace

@@ -2,9 +2,11 @@
 // cifs — C¹ at extraordinary vertices: Reif's characteristic map, its Jacobian bounded in
 // Bernstein form and its winding (cifs/subdivision/mesh_analysis.hpp; docs/subdivision-surfaces.md).
 #include <Eigen/LU>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <span>
@@ -253,9 +255,13 @@ struct CharacteristicNet {
   std::vector<char> known;  // per level-0 vertex: inside the region, where X is the eigen-extension
 };
 
-CharacteristicNet characteristic_net(MeshScheme scheme, int n, long double lambda, const LongMatrix& pair) {
+/// `lambdas`: the eigenvalue of each column of `pair` (any number of columns; the characteristic
+/// map's two, or an eigenspace whose eigenfunctions are tested).
+CharacteristicNet characteristic_net(MeshScheme scheme, int n, const LocalOptions& options,
+                                     const std::vector<long double>& lambdas, const LongMatrix& pair) {
   const bool dual = scheme == MeshScheme::doo_sabin;
-  CharacteristicNet net{.local = detail::refine_local(scheme, n, {}, dual ? 5 : 7), .X = {}, .known = {}};
+  CharacteristicNet net{
+      .local = detail::refine_local(scheme, n, options, dual ? 5 : 7), .X = {}, .known = {}};
   const auto& local = net.local;
   const MeshTopology& t0 = local.refinement.levels.front();
   const MeshTopology& t1 = local.refinement.levels.back();
@@ -280,11 +286,12 @@ CharacteristicNet characteristic_net(MeshScheme scheme, int n, long double lambd
       S(k, column) += st.weights[static_cast<std::size_t>(e)];
     }
   }
-  const std::vector<int> nb = detail::neighbourhood(t0, scheme, local.centre, local.start, false);
+  const std::vector<int> nb = detail::neighbourhood(t0, scheme, local.centre, local.start, options.boundary);
   if (static_cast<Eigen::Index>(nb.size()) != pair.rows())
     throw std::logic_error("characteristic map: the eigenvectors do not fit the neighbourhood");
   std::vector<char> in_nb(static_cast<std::size_t>(K), 0);
-  LongMatrix XK = LongMatrix::Zero(K, 2);
+  const Eigen::Index columns = pair.cols();
+  LongMatrix XK = LongMatrix::Zero(K, columns);
   for (std::size_t i = 0; i < nb.size(); ++i) {
     const int k = position[static_cast<std::size_t>(nb[i])];
     in_nb[static_cast<std::size_t>(k)] = 1;
@@ -294,18 +301,22 @@ CharacteristicNet characteristic_net(MeshScheme scheme, int n, long double lambd
   std::vector<Eigen::Index> outer, inner;
   for (Eigen::Index k = 0; k < K; ++k) (in_nb[static_cast<std::size_t>(k)] ? inner : outer).push_back(k);
   const auto O = static_cast<Eigen::Index>(outer.size());
-  LongMatrix A(O, O), B = LongMatrix::Zero(O, 2);
-  for (Eigen::Index a = 0; a < O; ++a) {
-    for (Eigen::Index b = 0; b < O; ++b)
-      A(a, b) =
-          (a == b ? lambda : 0) - S(outer[static_cast<std::size_t>(a)], outer[static_cast<std::size_t>(b)]);
-    for (const Eigen::Index j : inner) B.row(a) += S(outer[static_cast<std::size_t>(a)], j) * XK.row(j);
+  for (Eigen::Index column = 0; column < columns; ++column) {
+    const long double lambda = lambdas[static_cast<std::size_t>(column)];
+    LongMatrix A(O, O);
+    LongVector B = LongVector::Zero(O);
+    for (Eigen::Index a = 0; a < O; ++a) {
+      for (Eigen::Index b = 0; b < O; ++b)
+        A(a, b) =
+            (a == b ? lambda : 0) - S(outer[static_cast<std::size_t>(a)], outer[static_cast<std::size_t>(b)]);
+      for (const Eigen::Index j : inner) B(a) += S(outer[static_cast<std::size_t>(a)], j) * XK(j, column);
+    }
+    const LongVector XO = A.fullPivLu().solve(B);
+    for (Eigen::Index a = 0; a < O; ++a) XK(outer[static_cast<std::size_t>(a)], column) = XO(a);
   }
-  const LongMatrix XO = A.fullPivLu().solve(B);
-  for (Eigen::Index a = 0; a < O; ++a) XK.row(outer[static_cast<std::size_t>(a)]) = XO.row(a);
   // Scale to a unit box: the margins below are relative anyway, this keeps doubles well away from underflow.
   XK /= XK.cwiseAbs().maxCoeff();
-  net.X = Points::Zero(t0.vertex_count, 2);
+  net.X = Points::Zero(t0.vertex_count, columns);
   net.known.assign(static_cast<std::size_t>(t0.vertex_count), 0);
   for (Eigen::Index k = 0; k < K; ++k) {
     const auto v = static_cast<Eigen::Index>(order[static_cast<std::size_t>(k)]);
@@ -638,6 +649,7 @@ C1Verdict sampled_verdict(MeshScheme scheme, int n, const CharacteristicNet& net
       ring.push_back(other_vertex(t, static_cast<std::size_t>(e), centre));
   }
   if (static_cast<int>(ring.size()) != n) throw std::logic_error("characteristic map: lost the centre");
+  const bool open = !dual && t.boundary_vertex[static_cast<std::size_t>(centre)];
   const auto x = [&](int v) { return Vec2(X.row(v).transpose().cast<long double>()); };
   C1Verdict out;
   out.method = "sampled";
@@ -659,12 +671,262 @@ C1Verdict sampled_verdict(MeshScheme scheme, int n, const CharacteristicNet& net
   out.regular =
       out.pieces > 0 && (positive == 0 || negative == 0) && smallest > std::max(kMargin * largest, kFloor);
   out.margin = out.regular ? smallest / largest : 0;
-  long double angle = 0;
-  for (std::size_t k = 0; k < ring.size(); ++k) {
+  // The ring round the centre (on an open fan from one boundary edge to the other): the angle it
+  // sweeps, unless a point of it sits on 0 (relative to the ring's size).
+  long double angle = 0, nearest = std::numeric_limits<long double>::max(), farthest = 0;
+  for (const int v : ring) {
+    nearest = std::min(nearest, x(v).norm());
+    farthest = std::max(farthest, x(v).norm());
+  }
+  out.through_centre = !(nearest > 1e-9L * farthest);
+  for (std::size_t k = 0; k + (open ? 1 : 0) < ring.size(); ++k) {
     const Vec2 a = x(ring[k]), b = x(ring[(k + 1) % ring.size()]);
     angle += std::atan2(cross(a, b), a.dot(b));
   }
-  out.winding = static_cast<int>(std::lround(angle / (2 * kPi))) * (negative > 0 ? -1 : 1);
+  const int orientation = negative > 0 ? -1 : 1;
+  out.angle = open ? angle * static_cast<long double>(orientation) : 0;
+  out.winding = open ? 0 : static_cast<int>(std::lround(angle / (2 * kPi))) * orientation;
+  return out;
+}
+
+}  // namespace
+
+namespace {
+
+constexpr long double kSpectralTolerance = 1e-12L;
+
+/// The eigenfunctions of an eigenspace (the columns of `basis`, eigenvalue `lambda`) at a boundary
+/// vertex: their limit values at every vertex two steps down whose limit is the regular one (an
+/// interior vertex of the regular valence, or a boundary vertex of the regular boundary valence:
+/// the boundary curve's (1, 4, 1)/6), off the centre. An eigenvector whose eigenfunction is 0 —
+/// its limit values all vanish — does not shape the surface (the third ½ of a regular corner:
+/// c stays, the two curves are straight in the characteristic map, and the quad between them
+/// reproduces the plane). Returns the live combinations: the basis times the right singular
+/// vectors of the limit values above 1e-9 (the net is scaled to 1).
+LongMatrix live_eigenfunctions(MeshScheme scheme, int n, const LocalOptions& options, long double lambda,
+                               const LongMatrix& basis) {
+  const CharacteristicNet net = characteristic_net(
+      scheme, n, options, std::vector<long double>(static_cast<std::size_t>(basis.cols()), lambda), basis);
+  const MeshRefinement r = refine_topology(net.local.mesh, scheme, 2, MeshOptions{.max_bytes = 1e9});
+  const Points X = apply(r, net.X);
+  const std::vector<char> known = known_after(r.steps[1], known_after(r.steps[0], net.known));
+  const MeshTopology& t = r.levels[2];
+  const int regular = scheme == MeshScheme::catmull_clark ? 4 : 6;
+  const LongVector stencil = local_spectrum(local_matrix(scheme, regular)).limit_stencil;
+  std::vector<LongVector> rows;
+  for (int v = 0; v < t.vertex_count; ++v) {
+    if (v == net.local.centre) continue;
+    const auto ring = vertex_edges(t, static_cast<std::size_t>(v));
+    const auto around = [&](std::size_t e) { return other_vertex(t, static_cast<std::size_t>(ring[e]), v); };
+    std::vector<std::pair<int, long double>> weights;
+    if (t.boundary_vertex[static_cast<std::size_t>(v)]) {
+      if (static_cast<int>(ring.size()) != regular / 2 + 1) continue;
+      weights = {{v, 4.0L / 6}, {around(0), 1.0L / 6}, {around(ring.size() - 1), 1.0L / 6}};
+    } else {
+      if (static_cast<int>(ring.size()) != regular) continue;
+      const std::vector<int> nb = detail::neighbourhood(t, scheme, v, around(0), false);
+      for (std::size_t i = 0; i < nb.size(); ++i)
+        weights.emplace_back(nb[i], stencil(static_cast<Eigen::Index>(i)));
+    }
+    if (!std::all_of(weights.begin(), weights.end(),
+                     [&](const auto& w) { return known[static_cast<std::size_t>(w.first)] != 0; }))
+      continue;
+    LongVector row = LongVector::Zero(basis.cols());
+    for (const auto& [u, w] : weights) row += w * X.row(u).transpose().cast<long double>();
+    rows.push_back(row);
+  }
+  LongMatrix L(static_cast<Eigen::Index>(rows.size()), basis.cols());
+  for (std::size_t i = 0; i < rows.size(); ++i) L.row(static_cast<Eigen::Index>(i)) = rows[i].transpose();
+  const Eigen::JacobiSVD<LongMatrix> svd(L, Eigen::ComputeFullV);
+  Eigen::Index live = 0;
+  while (live < svd.singularValues().size() && svd.singularValues()(live) > 1e-9L) ++live;
+  return basis * svd.matrixV().leftCols(live);
+}
+
+/// The spectral conditions; nothing when they hold, else the verdict that says which fails.
+/// `pair`: λ1 = λ2 required (an untagged interior vertex), else only both real and positive.
+std::optional<C1Verdict> spectral_failure(const LocalSpectrum& spectrum, bool pair) {
+  C1Verdict out;
+  if (!spectrum.dominant_simple) {
+    out.reason = "not C1: the eigenvalue 1 is not simple and dominant (no convergence to a point)";
+  } else if (pair && !spectrum.subdominant_pair) {
+    out.reason = "not C1: the subdominant eigenvalue " +
+                 number_text(static_cast<double>(spectrum.subdominant), 3) +
+                 " is not a real double eigenvalue (no tangent plane for generic data)";
+  } else if (!pair && (std::abs(spectrum.eigenvalues[1].imag()) > kSpectralTolerance ||
+                       std::abs(spectrum.eigenvalues[2].imag()) > kSpectralTolerance ||
+                       spectrum.second <= kSpectralTolerance)) {
+    out.reason =
+        "not C1: lambda1 and lambda2 are not both real and positive (no tangent plane for generic data)";
+  } else if (!spectrum.gap) {
+    out.reason = "not C1: no gap below lambda2 (|lambda3| = lambda2 = " +
+                 number_text(static_cast<double>(spectrum.second), 3) +
+                 "): the tangent plane depends on the data";
+  } else {
+    return std::nullopt;
+  }
+  return out;
+}
+
+/// No gap at a sector (|λ3| = λ2): the eigenvalues that share λ2 may belong to eigenfunctions that
+/// vanish (live_eigenfunctions). Nothing when exactly two live eigenfunctions lead — the spectrum's
+/// subdominant basis and gap are then replaced by them — else the verdict.
+std::optional<C1Verdict> shared_subdominant(const LocalMatrix& S, LocalSpectrum& spectrum) {
+  C1Verdict out;
+  const auto& ev = spectrum.eigenvalues;
+  const long double l1 = spectrum.subdominant, l2 = spectrum.second;
+  const auto real_positive = [&](const std::complex<long double>& z) {
+    return std::abs(z.imag()) < kSpectralTolerance && z.real() > kSpectralTolerance;
+  };
+  // The eigenvalues equal to λ2 (real, positive), and what follows them.
+  std::size_t first = 1;
+  while (first < ev.size() && std::abs(ev[first] - l2) > kSpectralTolerance) ++first;
+  std::size_t last = first;
+  while (last < ev.size() && std::abs(ev[last] - l2) < kSpectralTolerance) ++last;
+  const bool next_smaller = last >= ev.size() || std::abs(ev[last]) < l2 - kSpectralTolerance;
+  if (!real_positive(ev[1]) || !real_positive(ev[2]) || !next_smaller) {
+    out.decided = false;
+    out.reason =
+        "undecided: |lambda3| = lambda2 = " + number_text(static_cast<double>(l2), 3) +
+        " and the eigenvalues there are not all real and equal (their eigenfunctions are not tested)";
+    return out;
+  }
+  const auto N = S.values.rows();
+  const auto d = static_cast<Eigen::Index>(last - first);
+  const LongMatrix I = LongMatrix::Identity(N, N);
+  const Eigen::JacobiSVD<LongMatrix> svd(S.values - l2 * I, Eigen::ComputeFullV);
+  const LongMatrix space = svd.matrixV().rightCols(d);
+  if ((S.values * space - l2 * space).cwiseAbs().maxCoeff() > 1e-12L) {
+    out.decided = false;
+    out.reason = "undecided: lambda2 = " + number_text(static_cast<double>(l2), 3) +
+                 " is defective (a Jordan block): its eigenfunctions are not tested";
+    return out;
+  }
+  const LongMatrix live = live_eigenfunctions(S.scheme, S.valence, S.options, l2, space);
+  const Eigen::Index needed = first == 1 ? 2 : 1;  // λ1 = λ2: both from this eigenspace
+  if (live.cols() > needed) {
+    out.reason = "not C1: " + std::to_string(live.cols()) +
+                 " live eigenfunctions share lambda2 = " + number_text(static_cast<double>(l2), 3) +
+                 " beside lambda1 (no gap: the tangent plane depends on the data)";
+    return out;
+  }
+  if (live.cols() < needed) {
+    out.decided = false;
+    out.reason = "undecided: the eigenfunctions of lambda2 = " + number_text(static_cast<double>(l2), 3) +
+                 " vanish; the next eigenvalues are not tested";
+    return out;
+  }
+  // Exactly the two leading eigenfunctions: λ1's (when it is another eigenvalue) and the live one.
+  LongMatrix basis(N, 2);
+  if (needed == 2) {
+    basis = live;
+  } else {
+    basis.col(0) = spectrum.subdominant_basis.col(0);
+    basis.col(1) = live.col(0);
+  }
+  spectrum.subdominant_basis = basis;
+  (void)l1;
+  return std::nullopt;
+}
+
+/// The verdict of a characteristic net (the reason included); `corner`/`concave`: the sector angle
+/// asked of a corner sector.
+C1Verdict net_verdict(MeshScheme scheme, int valence, const CharacteristicNet& net, const C1Options& options,
+                      bool polynomial, bool corner, bool concave) {
+  if (options.levels < 1 || options.levels > 6)
+    throw InvalidInput("characteristic map: levels " + std::to_string(options.levels) +
+                       " is out of range; expected 1 to 6");
+  C1Verdict out =
+      polynomial ? bernstein_verdict(scheme, net) : sampled_verdict(scheme, valence, net, options.levels);
+  out.spectral = true;
+  const bool open =
+      net.local.refinement.levels.front().boundary_vertex[static_cast<std::size_t>(net.local.centre)] &&
+      scheme != MeshScheme::doo_sabin;
+  const std::string pieces = std::to_string(out.pieces) + (polynomial ? " patches" : " faces of the net");
+  const std::string degrees = number_text(static_cast<double>(out.angle * 180 / kPi), 4) + " degrees";
+  if (!out.decided) {
+    out.reason =
+        "undecided: a patch's Jacobian or the boundary's winding stayed inconclusive after the splits";
+  } else if (out.through_centre) {
+    out.reason =
+        "not C1: the characteristic map sends a vertex next to the centre to the centre (the "
+        "eigenvectors vanish on the sharp edges: the sector's curves shrink faster than its inside, "
+        "not injective)";
+  } else if (!out.regular) {
+    out.reason =
+        "not C1: the characteristic map is singular or folds (its Jacobian takes both signs on the " +
+        pieces + ")";
+  } else if (!open && out.winding != 1) {
+    out.reason = "not C1: the characteristic map winds " + std::to_string(std::abs(out.winding)) +
+                 " times around the centre (not injective)";
+  } else if (open && (out.angle <= 0 || out.angle >= 2 * kPi)) {
+    out.reason = "not C1: the sector's image spans " + degrees + ", outside (0, 360) (not injective)";
+  } else if (open && corner && concave && out.angle <= kPi) {
+    out.reason = "not C1 as a concave corner: the sector's image spans " + degrees +
+                 " (a convex cone; a concave corner needs more than 180): the surface folds over";
+  } else if (open && corner && !concave && out.angle >= kPi) {
+    out.reason = "not C1 as a convex corner: the sector's image spans " + degrees + " (at least 180)";
+  } else {
+    out.c1 = true;
+    out.reason = std::string(polynomial ? "C1, proved: " : "C1 (sampled, not a proof): ") +
+                 "Jacobian of one sign on " + pieces +
+                 (polynomial ? " (Bernstein bound " : " (smallest area ") +
+                 number_text(static_cast<double>(out.margin), 3) + " of the largest), " +
+                 (open ? "sector image spans " + degrees : std::string("inner boundary winds once"));
+  }
+  return out;
+}
+
+/// Each sector of a boundary, crease or corner vertex as the boundary vertex of as many faces.
+C1Verdict sector_verdicts(const LocalMatrix& matrix, const C1Options& options) {
+  const bool corner = vertex_class(matrix.valence, matrix.options) == "corner";
+  C1Verdict out;
+  out.method = "sampled";
+  out.spectral = true;
+  out.c1 = true;
+  const std::vector<int> sizes = sector_sizes(matrix.valence, matrix.options);
+  std::string failed, undecided;
+  for (std::size_t i = 0; i < sizes.size(); ++i) {
+    const LocalOptions o{.boundary = true,
+                         .rule = BoundaryRule::edge_only,
+                         .sharp = {},
+                         .corner = corner,
+                         .concave = corner && matrix.options.concave};
+    C1Verdict::Sector sector{.faces = sizes[i], .spectrum = {}, .verdict = {}};
+    const LocalMatrix S = local_matrix(matrix.scheme, sizes[i] + 1, o);
+    sector.spectrum = local_spectrum(S);
+    auto failure = spectral_failure(sector.spectrum, false);
+    if (failure && sector.spectrum.dominant_simple && !sector.spectrum.gap)
+      failure = shared_subdominant(S, sector.spectrum);
+    if (failure) {
+      sector.verdict = std::move(*failure);
+    } else {
+      const LongMatrix& basis = sector.spectrum.subdominant_basis;
+      const CharacteristicNet net = characteristic_net(
+          matrix.scheme, sizes[i] + 1, o, {sector.spectrum.subdominant, sector.spectrum.second}, basis);
+      sector.verdict = net_verdict(matrix.scheme, sizes[i] + 1, net, options, false, corner, o.concave);
+      if (!sector.spectrum.gap && sector.verdict.c1)
+        sector.verdict.reason +=
+            "; lambda2 is shared with eigenvectors whose eigenfunctions vanish (their "
+            "limit values two steps down are 0)";
+    }
+    out.spectral = out.spectral && sector.verdict.spectral;
+    out.regular = (i == 0 || out.regular) && sector.verdict.regular;
+    out.levels = sector.verdict.levels;
+    out.pieces += sector.verdict.pieces;
+    std::string& first = sector.verdict.decided ? failed : undecided;
+    if (!sector.verdict.c1 && first.empty())
+      first = "sector " + std::to_string(i) + " (" + std::to_string(sizes[i]) +
+              (sizes[i] == 1 ? " face): " : " faces): ") + sector.verdict.reason;
+    out.c1 = out.c1 && sector.verdict.c1;
+    out.sectors.push_back(std::move(sector));
+  }
+  // Not C1 when a sector is not; undecided when none fails but one is undecided.
+  out.decided = out.c1 || !failed.empty();
+  out.reason = out.c1 ? "C1 (sampled, not a proof) on each of the " + std::to_string(sizes.size()) +
+                            (sizes.size() == 1 ? " sector" : " sectors")
+               : !failed.empty() ? failed
+                                 : undecided;
   return out;
 }
 
@@ -676,52 +938,27 @@ C1Verdict characteristic_map_verdict(MeshScheme scheme, int valence, long double
   if (pair.rows() != shape.values.rows() || pair.cols() != 2)
     throw InvalidInput("characteristic map: expected " + std::to_string(shape.values.rows()) +
                        " by 2 eigenvectors");
-  const CharacteristicNet net = characteristic_net(scheme, valence, lambda, pair);
-  if (options.levels < 1 || options.levels > 6)
-    throw InvalidInput("characteristic map: levels " + std::to_string(options.levels) +
-                       " is out of range; expected 1 to 6");
+  const CharacteristicNet net = characteristic_net(scheme, valence, {}, {lambda, lambda}, pair);
   const bool polynomial = !options.sampled && (scheme == MeshScheme::catmull_clark ||
                                                scheme == MeshScheme::loop || scheme == MeshScheme::doo_sabin);
-  C1Verdict out =
-      polynomial ? bernstein_verdict(scheme, net) : sampled_verdict(scheme, valence, net, options.levels);
-  out.spectral = true;
-  const std::string pieces = std::to_string(out.pieces) + (polynomial ? " patches" : " faces of the net");
-  if (!out.decided) {
-    out.reason =
-        "undecided: a patch's Jacobian or the boundary's winding stayed inconclusive after the splits";
-  } else if (!out.regular) {
-    out.reason =
-        "not C1: the characteristic map is singular or folds (its Jacobian takes both signs on the " +
-        pieces + ")";
-  } else if (out.winding != 1) {
-    out.reason = "not C1: the characteristic map winds " + std::to_string(std::abs(out.winding)) +
-                 " times around the centre (not injective)";
-  } else {
-    out.c1 = true;
-    out.reason =
-        std::string(polynomial ? "C1, proved: " : "C1 (sampled, not a proof): ") +
-        "Jacobian of one sign on " + pieces + (polynomial ? " (Bernstein bound " : " (smallest area ") +
-        number_text(static_cast<double>(out.margin), 3) + " of the largest), inner boundary winds once";
-  }
-  return out;
+  return net_verdict(scheme, valence, net, options, polynomial, false, false);
 }
 
 C1Verdict c1_verdict(const LocalMatrix& matrix, const LocalSpectrum& spectrum, const C1Options& options) {
-  if (matrix.options.boundary)
-    throw InvalidInput(std::string(scheme_name(matrix.scheme)) + ": C1 verdicts are for interior vertices");
-  if (!spectrum.dominant_simple || !spectrum.subdominant_pair || !spectrum.gap) {
-    C1Verdict out;
-    out.reason = !spectrum.dominant_simple
-                     ? "not C1: the eigenvalue 1 is not simple and dominant (no convergence to a point)"
-                 : !spectrum.subdominant_pair
-                     ? "not C1: the subdominant eigenvalue " +
-                           number_text(static_cast<double>(spectrum.subdominant), 3) +
-                           " is not a real double eigenvalue (no tangent plane for generic data)"
-                     : "not C1: no gap below the subdominant pair (|lambda3| = lambda2)";
-    return out;
+  const std::string type = vertex_class(matrix.valence, matrix.options);
+  if (type == "interior" && !matrix.options.boundary) {
+    if (auto failure = spectral_failure(spectrum, true)) return *failure;
+    return characteristic_map_verdict(matrix.scheme, matrix.valence, spectrum.subdominant,
+                                      spectrum.subdominant_basis, options);
   }
-  return characteristic_map_verdict(matrix.scheme, matrix.valence, spectrum.subdominant,
-                                    spectrum.subdominant_basis, options);
+  if (type == "dart") {
+    if (auto failure = spectral_failure(spectrum, false)) return *failure;
+    const CharacteristicNet net =
+        characteristic_net(matrix.scheme, matrix.valence, matrix.options,
+                           {spectrum.subdominant, spectrum.second}, spectrum.subdominant_basis);
+    return net_verdict(matrix.scheme, matrix.valence, net, options, false, false, false);
+  }
+  return sector_verdicts(matrix, options);
 }
 
 }  // namespace cifs::subdivision

@@ -32,12 +32,26 @@ namespace {
 
 constexpr long double kPi = std::numbers::pi_v<long double>;
 
+VertexRule centre_rule(int n, const LocalOptions& o);
+
 void check_valence(MeshScheme scheme, int valence, const LocalOptions& o) {
   const std::string who(scheme_name(scheme));
   if (scheme == MeshScheme::bilinear)
     throw InvalidInput(who +
                        ": the limit surface is the refined mesh itself (C0 at every vertex, its vertices "
                        "interpolated); there is no local subdivision matrix to analyse");
+  const bool tagged = !o.sharp.empty() || o.corner;
+  if (tagged && scheme != MeshScheme::catmull_clark && scheme != MeshScheme::loop)
+    throw InvalidInput(who + ": sharp edges and corners are analysed for catmull-clark and loop only");
+  if (o.concave && centre_rule(valence, o) != VertexRule::corner)
+    throw InvalidInput(who + ": concave is said of a corner (a sharp vertex on a boundary or crease)");
+  const int first = o.boundary ? 1 : 0, last = o.boundary ? valence - 2 : valence - 1;
+  for (std::size_t i = 0; i < o.sharp.size(); ++i)
+    if (o.sharp[i] < first || o.sharp[i] > last || (i > 0 && o.sharp[i] <= o.sharp[i - 1]))
+      throw InvalidInput(who + ": sharp edge " + std::to_string(o.sharp[i]) +
+                         " is out of place; expected increasing edge numbers " + std::to_string(first) +
+                         " to " + std::to_string(last) +
+                         (o.boundary ? " (the boundary edges are sharp anyway)" : ""));
   if (o.boundary) {
     if (scheme != MeshScheme::catmull_clark && scheme != MeshScheme::loop)
       throw InvalidInput(who + ": boundary vertices are analysed for catmull-clark and loop only");
@@ -106,10 +120,46 @@ Dense<T> product(const Dense<T>& A, const Dense<T>& B) {
   return C;
 }
 
+/// The sharp edges c r_j at a vertex of valence n, by j: the boundary's two and the tagged ones.
+std::vector<int> sharp_edges(int n, const LocalOptions& o) {
+  std::vector<int> out;
+  if (o.boundary) out.push_back(0);
+  out.insert(out.end(), o.sharp.begin(), o.sharp.end());
+  if (o.boundary) out.push_back(n - 1);
+  return out;
+}
+
+/// The rule of the centre (rules.hpp's vertex_rule on the local options).
+VertexRule centre_rule(int n, const LocalOptions& o) {
+  const bool sharp_vertex = o.corner || (o.boundary && n == 2 && o.rule == BoundaryRule::edge_and_corner);
+  return vertex_rule(sharp_vertex ? kInfiniteSharpness : 0, static_cast<int>(sharp_edges(n, o).size()));
+}
+
+bool is_sharp(int n, const LocalOptions& o, int j) {
+  const std::vector<int> sharp = sharp_edges(n, o);
+  return std::find(sharp.begin(), sharp.end(), j) != sharp.end();
+}
+
+/// The centre's row when it follows the crease or corner rule (¾c + ⅛ on the two sharp ends, or c);
+/// false for the smooth and dart rules, which the schemes write themselves.
+template <class T, class Neighbour>
+bool sharp_centre(Dense<T>& S, int n, const LocalOptions& o, Neighbour r) {
+  const VertexRule rule = centre_rule(n, o);
+  if (rule == VertexRule::corner) {
+    S(0, 0) = T(1);
+  } else if (rule == VertexRule::crease) {  // (1, 6, 1)/8 along the crease
+    const std::vector<int> ends = sharp_edges(n, o);
+    S(0, 0) = T(3) / 4;
+    S(0, r(ends[0])) += T(1) / 8;
+    S(0, r(ends[1])) += T(1) / 8;
+  }
+  return rule == VertexRule::corner || rule == VertexRule::crease;
+}
+
 /// Catmull–Clark at a vertex of valence n (on the boundary: n − 1 faces).
 template <class T>
 Dense<T> catmull_clark_rules(int n, const LocalOptions& o) {
-  const T one(1), half = one / 2, quarter = one / 4, eighth = one / 8;
+  const T one(1), half = one / 2, quarter = one / 4;
   const T nn(n);
   const int N = o.boundary ? 2 * n : 2 * n + 1;
   const int faces = o.boundary ? n - 1 : n;
@@ -120,13 +170,7 @@ Dense<T> catmull_clark_rules(int n, const LocalOptions& o) {
   const auto face_point = [&](int i, int j, const T& w) {
     for (const int v : {0, r(j), f(j), r(j + 1)}) S(i, v) += w / 4;
   };
-  if (o.boundary && n == 2 && o.rule == BoundaryRule::edge_and_corner) {
-    S(0, 0) = one;
-  } else if (o.boundary) {  // (1, 6, 1)/8 along the boundary
-    S(0, 0) = 3 * quarter;
-    S(0, r(0)) += eighth;
-    S(0, r(n - 1)) += eighth;
-  } else {  // (n − 2)/n on c, 1/n² on each neighbour and each face point
+  if (!sharp_centre(S, n, o, r)) {  // (n − 2)/n on c, 1/n² on each neighbour and each face point
     S(0, 0) = (nn - 2) / nn;
     for (int j = 0; j < n; ++j) {
       S(0, r(j)) += one / (nn * nn);
@@ -134,7 +178,7 @@ Dense<T> catmull_clark_rules(int n, const LocalOptions& o) {
     }
   }
   for (int j = 0; j < n; ++j) {
-    if (o.boundary && (j == 0 || j == n - 1)) {  // boundary edge: its midpoint
+    if (is_sharp(n, o, j)) {  // sharp edge: its midpoint
       S(r(j), 0) += half;
       S(r(j), r(j)) += half;
       continue;
@@ -155,20 +199,14 @@ Dense<T> loop_rules(int n, const LocalOptions& o, Cos cos_of) {
   const T nn(n);
   Dense<T> S(n + 1);
   const auto r = [&](int j) { return 1 + (o.boundary ? j : wrap(j, n)); };
-  if (o.boundary && n == 2 && o.rule == BoundaryRule::edge_and_corner) {
-    S(0, 0) = one;
-  } else if (o.boundary) {
-    S(0, 0) = 3 * quarter;
-    S(0, r(0)) += eighth;
-    S(0, r(n - 1)) += eighth;
-  } else {  // β = (5/8 − (3/8 + ¼cos(2π/n))²)/n
+  if (!sharp_centre(S, n, o, r)) {  // β = (5/8 − (3/8 + ¼cos(2π/n))²)/n
     const T a = 3 * eighth + quarter * cos_of(1, n);
     const T beta = (5 * eighth - a * a) / nn;
     S(0, 0) = one - nn * beta;
     for (int j = 0; j < n; ++j) S(0, r(j)) += beta;
   }
   for (int j = 0; j < n; ++j) {
-    if (o.boundary && (j == 0 || j == n - 1)) {
+    if (is_sharp(n, o, j)) {
       S(r(j), 0) += half;
       S(r(j), r(j)) += half;
       continue;
@@ -555,16 +593,67 @@ LocalMatrix local_matrix(MeshScheme scheme, int valence, const LocalOptions& opt
   return out;
 }
 
+std::string vertex_class(int valence, const LocalOptions& options) {
+  switch (centre_rule(valence, options)) {
+    case VertexRule::smooth:
+      return "interior";
+    case VertexRule::dart:
+      return "dart";
+    case VertexRule::crease:
+      return options.boundary ? "boundary" : "crease";
+    case VertexRule::corner:
+      return "corner";
+  }
+  return "";
+}
+
+std::vector<int> sector_sizes(int valence, const LocalOptions& options) {
+  const std::vector<int> sharp = sharp_edges(valence, options);
+  if (sharp.size() < 2 && !options.boundary) return {valence};
+  std::vector<int> out;
+  for (std::size_t i = 0; i + 1 < sharp.size(); ++i) out.push_back(sharp[i + 1] - sharp[i]);
+  if (!options.boundary) out.push_back(valence - sharp.back() + sharp.front());
+  return out;
+}
+
 Mesh local_mesh(MeshScheme scheme, int valence, const LocalOptions& options, int rings) {
   check_valence(scheme, valence, options);
+  Mesh m;
   switch (scheme) {
     case MeshScheme::catmull_clark:
-      return primal_local_mesh(true, valence, options.boundary, rings);
+      m = primal_local_mesh(true, valence, options.boundary, rings);
+      break;
     case MeshScheme::doo_sabin:
       return dual_mesh(primal_local_mesh(true, valence, false, rings + 1));
     default:
-      return primal_local_mesh(false, valence, options.boundary, rings);
+      m = primal_local_mesh(false, valence, options.boundary, rings);
   }
+  // The sharp edges run out along their rays (vertex j + 1 … of the ray: r_j is vertex j + 1 on the
+  // closed fan by construction, found by the walk below on either fan).
+  m.tags.boundary = options.rule;
+  if (options.corner) m.tags.corners.push_back({0, kInfiniteSharpness});
+  if (!options.sharp.empty()) {
+    const MeshTopology t = build_topology(m, "local mesh");
+    const auto ring = vertex_edges(t, 0);
+    for (const int j : options.sharp) {
+      int previous = 0, v = other_vertex(t, static_cast<std::size_t>(ring[static_cast<std::size_t>(j)]), 0);
+      m.tags.creases.push_back({previous, v, kInfiniteSharpness});
+      // Straight on: the edge opposite the one we came by (valence 4 or 6 ring vertices).
+      for (int step = 1; step < rings; ++step) {
+        const auto around = vertex_edges(t, static_cast<std::size_t>(v));
+        const int m_edges = static_cast<int>(around.size());
+        if (t.boundary_vertex[static_cast<std::size_t>(v)]) break;
+        const int back = edge_between(t, v, previous);
+        const auto at = static_cast<int>(std::find(around.begin(), around.end(), back) - around.begin());
+        const int next = other_vertex(
+            t, static_cast<std::size_t>(around[static_cast<std::size_t>((at + m_edges / 2) % m_edges)]), v);
+        m.tags.creases.push_back({v, next, kInfiniteSharpness});
+        previous = v;
+        v = next;
+      }
+    }
+  }
+  return m;
 }
 
 namespace detail {
@@ -572,7 +661,6 @@ namespace detail {
 LocalRefinement refine_local(MeshScheme scheme, int n, const LocalOptions& options, int rings) {
   LocalRefinement out;
   out.mesh = local_mesh(scheme, n, options, rings);
-  out.mesh.tags.boundary = options.rule;
   const int steps = scheme == MeshScheme::sqrt3 ? 2 : 1;
   out.refinement = refine_topology(out.mesh, scheme, steps, MeshOptions{.max_bytes = 1e9});
   const MeshRefinement& r = out.refinement;
@@ -625,10 +713,13 @@ std::vector<int> canonical_order(const MeshTopology& t, MeshScheme scheme, int c
   } else {
     visit(centre, start, 0);
   }
+  // Around a boundary vertex the local mesh is an open fan: its boundary is the real one (its outer
+  // rim lies beyond `depth` by construction).
+  const bool open = scheme != MeshScheme::doo_sabin && t.boundary_vertex[static_cast<std::size_t>(centre)];
   for (std::size_t q = 0; q < order.size(); ++q) {
     const int v = order[q];
     if (distance[static_cast<std::size_t>(v)] == depth) continue;
-    if (t.boundary_vertex[static_cast<std::size_t>(v)])
+    if (!open && t.boundary_vertex[static_cast<std::size_t>(v)])
       throw std::logic_error("local mesh: too few rings for the region asked");
     const auto ring = vertex_edges(t, static_cast<std::size_t>(v));
     const int m = static_cast<int>(ring.size());

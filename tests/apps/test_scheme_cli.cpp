@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "apps/cli_runner.hpp"
@@ -167,7 +168,8 @@ TEST_CASE("cifs scheme MESH-SCHEME --valence N --analyze: local subdivision matr
   const json boundary = analyze("loop --valence 4 --boundary edge");
   CHECK(boundary["vertex"] == "boundary");
   CHECK(boundary["boundary_rule"] == "edge");
-  CHECK_FALSE(boundary.contains("c1"));  // Reif's test needs a whole ring
+  CHECK(boundary["c1"]["verdict"] == true);  // per sector: a boundary vertex has one
+  CHECK(boundary["c1"]["sectors"].size() == 1);
   CHECK(analyze("doo-sabin --valences 3,5")[1]["valence"] == 5);
 
   const Run table = cifs_cli("scheme loop --valences 3..16 --analyze --format table");
@@ -195,8 +197,85 @@ TEST_CASE("cifs scheme MESH-SCHEME: bad valences and options on one line, exit 2
   check_error(cifs_cli("scheme loop --valence 5 --analyze --param w=1"), "take no parameters");
   check_error(cifs_cli("scheme butterfly --valence 5 --analyze --boundary edge"),
               "boundary vertices are analysed for catmull-clark and loop only");
-  check_error(cifs_cli("scheme loop --valence 12 --analyze --boundary edge"),
-              "boundary valence 12 is out of range");
+  check_error(cifs_cli("scheme loop --valence 17 --analyze --boundary edge"),
+              "boundary valence 17 is out of range");
   check_error(cifs_cli("scheme loop --valence 4 --analyze --boundary sideways"), "--boundary sideways");
   check_error(cifs_cli("scheme chaikin --valence 5 --analyze"), "are for the mesh schemes");
+}
+
+TEST_CASE("cifs scheme MESH-SCHEME --crease K | --dart | --corner | --boundary-valence K --analyze",
+          "[cli][mesh_analysis]") {
+  const json crease = analyze("catmull-clark --valence 4 --crease 2");
+  CHECK(crease["vertex"] == "crease");
+  CHECK(crease["sharp_edges"] == json::array({0, 2}));
+  CHECK(crease["sector_faces"] == json::array({2, 2}));
+  CHECK(crease["c1"]["verdict"] == true);
+  REQUIRE(crease["c1"]["sectors"].size() == 2);
+  CHECK(crease["c1"]["sectors"][0]["faces"] == 2);
+  CHECK(crease["c1"]["sectors"][0]["lambda1"].get<double>() == Approx(0.5).epsilon(1e-15));
+  CHECK(crease["c1"]["sectors"][1]["c1"]["sector_angle_degrees"].get<double>() == Approx(180).epsilon(1e-9));
+  // The cubic B-spline curve's limit on c, r0 and r2 (c, r0, f0, r1, f1, r2, …).
+  CHECK(crease["limit_stencil"][0].get<double>() == Approx(4.0 / 6).epsilon(1e-15));
+  CHECK(crease["limit_stencil"][5].get<double>() == Approx(1.0 / 6).epsilon(1e-15));
+
+  CHECK(analyze("loop --valence 5 --dart")["vertex"] == "dart");
+  CHECK(analyze("loop --valence 5 --dart")["c1"]["winding"] == 1);
+  const json boundary = analyze("loop --boundary-valence 8");  // 8 faces, 9 edges
+  CHECK(boundary["valence"] == 9);
+  CHECK(boundary["c1"]["verdict"] == false);
+  CHECK(boundary["c1"]["sectors"][0]["c1"]["through_centre"] == true);
+  const json concave = analyze("catmull-clark --boundary-valence 1 --corner --concave");
+  CHECK(concave["vertex"] == "corner");
+  CHECK(concave["concave"] == true);
+  CHECK(concave["c1"]["verdict"] == false);
+  CHECK_THAT(concave["c1"]["reason"].get<std::string>(), Catch::Contains("concave"));
+  CHECK(analyze("catmull-clark --boundary-valence 1 --corner")["c1"]["verdict"] == true);
+  CHECK(analyze("loop --valence 6 --crease all").size() == 5);
+
+  const Run table = cifs_cli("scheme loop --boundary-valence 1-9 --analyze --format table");
+  REQUIRE(table.status == 0);
+  CHECK(std::count(table.out.begin(), table.out.end(), '\n') == 11);  // title, header, 9 rows
+  CHECK_THAT(table.out, Catch::Contains("\n4   boundary  3         5     yes    0.5"));
+
+  check_error(cifs_cli("scheme loop --valence 6 --crease 6 --analyze"),
+              "--crease 6: expected 1 to 5 faces on one side at valence 6");
+  check_error(cifs_cli("scheme loop --valence 6 --dart --crease 2 --analyze"), "--dart is one sharp edge");
+  check_error(cifs_cli("scheme loop --valence 6 --corner --analyze"), "--corner needs --crease K");
+  check_error(cifs_cli("scheme loop --valence 6 --crease 2 --concave --analyze"),
+              "--concave is said of a --corner");
+  check_error(cifs_cli("scheme loop --boundary-valence 3 --valence 4 --analyze"), "--boundary-valence K");
+  check_error(cifs_cli("scheme loop --boundary-valence 16 --analyze"), "boundary valence 17 is out of range");
+  check_error(cifs_cli("scheme sqrt3 --valence 6 --crease 3 --analyze"),
+              "sharp edges and corners are analysed for catmull-clark and loop only");
+  check_error(cifs_cli("scheme chaikin --analyze --dart"), "are for the mesh schemes");
+}
+
+TEST_CASE("cifs analyze MESH --scheme S: which points are not smooth", "[cli][mesh_analysis]") {
+  const std::string grid = std::string(CIFS_EXAMPLES_DIR) + "/meshes/open_grid.obj";
+  const Run table = cifs_cli("analyze " + grid + " --scheme catmull-clark");
+  REQUIRE(table.status == 0);
+  // The grid's four corners: one face each, the smooth boundary rule — the curve's ¼ and the face's
+  // form a Jordan block: undecided, said so; with the corner rule they are C1 corners.
+  CHECK_THAT(table.out,
+             Catch::Contains("catmull-clark: 35 vertices, 31 regular, 4 irregular: 0 C1, 0 not C1, "
+                             "4 undecided (1 local analysis)"));
+  const json corners = json::parse(cifs_cli("analyze " + grid +
+                                            " --scheme catmull-clark --boundary corner "
+                                            "--format json")
+                                       .out);
+  CHECK(corners["c1"] == 4);
+  CHECK(corners["vertices"][0]["class"] == "corner");
+  // --png: the surface with the four corners marked, written whole; nothing written when refused.
+  const auto png = scratch() / "analyze.png";
+  std::filesystem::remove(png);
+  REQUIRE(cifs_cli("analyze " + grid + " --scheme catmull-clark --png " + png.string()).status == 0);
+  std::ifstream in(png, std::ios::binary);
+  std::string signature(8, '\0');
+  in.read(signature.data(), 8);
+  CHECK(signature == "\x89PNG\r\n\x1a\n");
+  const auto refused = scratch() / "refused.png";
+  check_error(cifs_cli("analyze " + grid + " --scheme loop --png " + refused.string()),
+              "loop runs on triangles");
+  CHECK_FALSE(std::filesystem::exists(refused));
+  check_error(cifs_cli("analyze " + grid + " --scheme catmull-clark --format svg"), "--format 'svg'");
 }

@@ -93,6 +93,7 @@ class _Plausible(_Samples):
             "ifs.uniform_curve_bcifs": {"S0": chaikin, "S1": chaikin[::-1, ::-1]},
             "subdivision.limit": mesh_call, "subdivision.local_analysis": mesh_call,
             "subdivision.refine_topology": mesh_call, "subdivision.subdivide": mesh_call,
+            "subdivision.analyze_mesh": {"scheme": "catmull-clark"},
         }.get(display, {})
 
     def value(self, name, annotation):

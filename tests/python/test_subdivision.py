@@ -664,7 +664,38 @@ class LocalAnalysisTest(unittest.TestCase):
             self.assertEqual(c1["method"], method)
             self.assertEqual(c1["winding"], 1)
             self.assertEqual(c1["verdict"], cli_json("scheme", scheme, "--valence", "5", "--analyze")["c1"]["verdict"])
-        self.assertIsNone(sd.local_analysis("loop", 5, boundary="edge")["c1"])
+        boundary = sd.local_analysis("loop", 5, boundary="edge")
+        self.assertEqual(boundary["vertex"], "boundary")
+        self.assertTrue(boundary["c1"]["verdict"])
+        self.assertEqual(len(boundary["c1"]["sectors"]), 1)
+        import math
+
+        # Issue 29 §4: per sector at tagged vertices; Loop's boundary of 7 faces is not C1.
+        crease = sd.local_analysis("catmull-clark", 4, sharp=[0, 2])
+        self.assertEqual(crease["vertex"], "crease")
+        self.assertEqual([s["faces"] for s in crease["c1"]["sectors"]], [2, 2])
+        self.assertAlmostEqual(crease["c1"]["sectors"][0]["c1"]["angle"], math.pi, places=9)
+        self.assertFalse(sd.local_analysis("loop", 8, boundary="edge")["c1"]["verdict"])
+        self.assertTrue(sd.local_analysis("loop", 5, sharp=[0])["c1"]["verdict"])
+        concave = sd.local_analysis("loop", 2, boundary="edge", corner=True, concave=True)
+        self.assertIn("concave", concave["c1"]["reason"])
+        with self.assertRaisesRegex(cifs.InvalidInput, "sharp edge 6 is out of place"):
+            sd.local_analysis("loop", 6, sharp=[0, 6])
+
+    def test_analyze_mesh(self):
+        """Issue 29 §5: which points of a mesh are not smooth (the CLI's cifs analyze, the same library call)."""
+        mesh = cifs.io.read_mesh(str(EXAMPLES / "meshes" / "open_grid_triangles.obj"))
+        a = sd.analyze_mesh(mesh, "loop")
+        self.assertEqual(a["regular"] + len(a["vertices"]), 35)
+        self.assertEqual({v["class"] for v in a["vertices"]}, {"boundary"})
+        self.assertEqual(sorted(v["sector_faces"][0] for v in a["vertices"]), [1, 1, 2, 2])
+        self.assertTrue(all(v["c1"] for v in a["vertices"]))
+        self.assertEqual({v["semi_sharp"] for v in a["vertices"]}, {0.0})
+        self.assertEqual(a["analyses"], 2)
+        self.assertEqual(a["summary"], cli("analyze", str(EXAMPLES / "meshes" / "open_grid_triangles.obj"),
+                                           "--scheme", "loop").stdout.strip().splitlines()[-1])
+        with self.assertRaisesRegex(cifs.InvalidInput, "catmull-clark and loop only"):
+            sd.analyze_mesh(mesh, "butterfly")
 
     def test_errors(self):
         with self.assertRaisesRegex(cifs.InvalidInput, "valence 2 is out of range"):

@@ -23,6 +23,7 @@
 #include <complex>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "cifs/mesh.hpp"
@@ -45,18 +46,37 @@ struct RationalMatrix {
   }
 };
 
-/// Where the extraordinary vertex is. Boundary vertices (valence = number of edges, 2 … 8) are
-/// analysed for Catmull–Clark and Loop only, with `rule` at valence 2 (one face).
+/// Where the extraordinary vertex is and what is tagged there. Boundary vertices (valence = number
+/// of edges, 2 … 16: valence − 1 faces), infinitely sharp edges and corners are analysed for
+/// Catmull–Clark and Loop only, with the rules OpenSubdiv uses (rules.hpp): `rule` at valence 2
+/// (one face); a sharp edge's point is its midpoint; the vertex follows the smooth rule with no or
+/// one sharp edge (a dart), the crease rule ¾c + ⅛(ends) with two (a boundary's edges count), and
+/// stays (a corner) with more or when `corner`.
 struct LocalOptions {
   bool boundary = false;
   BoundaryRule rule = BoundaryRule::edge_only;
+  /// Infinitely sharp edges c r_j, by j (increasing; on the boundary 1 … valence − 2: the boundary
+  /// edges are sharp anyway). They cut the faces around c into sectors.
+  std::vector<int> sharp{};
+  bool corner = false;  // c infinitely sharp
+  /// A corner whose sectors are meant to span more than π together (Biermann, Levin, Zorin 2000):
+  /// the verdict asks for a sector image angle above π instead of below.
+  bool concave = false;
 };
 
-/// Valences analysed: interior 3 … 16 (Doo–Sabin: the face's corners), boundary 2 … 8.
+/// What the options make of the vertex: "interior", "dart", "boundary", "crease" or "corner" (the
+/// vertex rule; "boundary" for the crease rule along a boundary).
+std::string vertex_class(int valence, const LocalOptions& options);
+
+/// The faces of each sector between consecutive sharp edges (boundary edges included),
+/// counter-clockwise from r_0; a smooth or dart vertex has one sector of all its faces.
+std::vector<int> sector_sizes(int valence, const LocalOptions& options);
+
+/// Valences analysed: interior 3 … 16 (Doo–Sabin: the face's corners), boundary 2 … 16 (1 … 15 faces).
 inline constexpr int kMinValence = 3;
 inline constexpr int kMaxValence = 16;
 inline constexpr int kMinBoundaryValence = 2;
-inline constexpr int kMaxBoundaryValence = 8;
+inline constexpr int kMaxBoundaryValence = 16;
 
 /// S_n: new neighbourhood = S_n · old neighbourhood, in the numbering above. Rows sum to 1.
 struct LocalMatrix {
@@ -133,20 +153,48 @@ LocalSpectrum local_spectrum(const LocalMatrix& matrix);
 /// (1e-12 of the largest coefficient) exceeds. `sampled` (Butterfly, √3: no polynomial pieces):
 /// the orientation of every triangle of the net after `levels` steps and the winding of the
 /// centre's ring there — evidence, not a proof.
+///
+/// Tagged vertices (Zorin 2000, "A method for analysis of C1-continuity of subdivision surfaces";
+/// Biermann, Levin, Zorin 2000): the limit surface is piecewise smooth, one piece per sector, and the
+/// rows of a sector's vertices (c, its two sharp edges' points, the points inside it) read nothing
+/// from the other sectors, so each sector is the boundary vertex of as many faces under the same
+/// centre rule, analysed on its own: λ0 = 1 simple, λ1 ≥ λ2 real and positive (equal or not: a
+/// boundary's curve gives ½, its inside another value), |λ3| < λ2, and the characteristic map of the
+/// eigenvectors of λ1 and λ2 regular on the sector and injective — its inner boundary, from one
+/// sharp edge to the other, sweeps an angle in (0, 2π) without passing through 0 (it does when
+/// both eigenvectors vanish on the sharp edges: the sector's curves then shrink faster than its
+/// inside and the surface folds onto the tangent plane of the inside). A corner sector must span
+/// less than π (convex) or more (concave: `LocalOptions::concave`); the standard corner rule
+/// spans the convex cone of its two curves' tangents, so it cannot make a concave corner. A dart
+/// is checked like an interior vertex on its tagged net (λ1 ≠ λ2 allowed). Tagged vertices are
+/// `sampled`, not proved (the patches along a sharp edge are not the regular polynomials).
 struct C1Verdict {
-  bool spectral = false;  // λ0 simple, subdominant pair, gap
-  std::string method;     // "bernstein" or "sampled"; empty when the spectrum already fails
-  int levels = 0;         // sampled: the net's level
-  int pieces = 0;         // patches (triangles) checked
-  int splits = 0;         // deepest de Casteljau split a patch needed
-  bool decided = true;    // false when a patch's Jacobian stayed undecided after the splits
-  bool regular = false;   // Jacobian of one sign on every piece
-  int winding = 0;        // of the inner boundary around 0 (sign: the eigenvectors' orientation)
+  bool spectral = false;        // λ0 simple, subdominant pair, gap
+  std::string method;           // "bernstein" or "sampled"; empty when the spectrum already fails
+  int levels = 0;               // sampled: the net's level
+  int pieces = 0;               // patches (triangles) checked
+  int splits = 0;               // deepest de Casteljau split a patch needed
+  bool decided = true;          // false when a patch's Jacobian stayed undecided after the splits
+  bool regular = false;         // Jacobian of one sign on every piece
+  int winding = 0;              // of the inner boundary around 0 (sign: the eigenvectors' orientation)
+  bool through_centre = false;  // sampled: a point of the centre's ring maps to 0
   /// Smallest lower bound of |Jacobian| found (bernstein) or smallest |triangle area| (sampled),
   /// over the largest: how far from singular.
   long double margin = 0;
+  /// A sector: the angle its image spans at 0 (radians; π along a smooth boundary or crease).
+  long double angle = 0;
   bool c1 = false;
   std::string reason;  // one sentence: what decided
+  struct Sector;
+  /// Boundary, crease and corner vertices: each sector's verdict, counter-clockwise from r_0; the
+  /// vertex is C¹ (on each sector up to its sharp edges) when every sector is.
+  std::vector<Sector> sectors;
+};
+
+struct C1Verdict::Sector {
+  int faces = 0;
+  LocalSpectrum spectrum;  // of the sector's own matrix
+  C1Verdict verdict;
 };
 
 /// `sampled` on any scheme (a cross-check of the Bernstein proof), at `levels` steps.
@@ -155,9 +203,47 @@ struct C1Options {
   int levels = 4;
 };
 
-/// The verdict for a matrix of `local_matrix` (interior vertices only; InvalidInput on the
-/// boundary) and its spectrum.
+/// The verdict for a matrix of `local_matrix` (any class) and its spectrum.
 C1Verdict c1_verdict(const LocalMatrix& matrix, const LocalSpectrum& spectrum, const C1Options& options = {});
+
+/// "Which points of my model are not smooth?" One vertex of a mesh whose neighbourhood is not the
+/// regular grid's (an extraordinary interior vertex, a boundary vertex of other than the regular
+/// number of faces, a crease with irregular sides, any dart or corner) and its local analysis.
+struct VertexSmoothness {
+  int vertex = 0;
+  int valence = 0;           // edges
+  LocalOptions options;      // its class as the local analysis sees it (sharp edges rotated to start at 0)
+  std::string vertex_class;  // vertex_class(valence, options)
+  std::vector<int> sectors;  // faces per sector
+  long double lambda1 = 0, lambda2 = 0;
+  std::optional<long double> curvature_ratio;  // λ2²/|μ|
+  /// The largest semi-sharp value at the vertex (0: none): its tags decay within ceil(s) levels, and
+  /// the vertex is analysed as it is from then on (the class of its infinitely sharp tags alone).
+  double semi_sharp = 0;
+  C1Verdict verdict;
+};
+
+/// Every irregular vertex of a mesh, by index, and the counts: regular vertices (not listed), vertices in
+/// no face or only in holes (not on the surface), and the verdicts. `analyses`: the distinct (class, valence,
+/// sectors) configurations analysed — each once, whatever the number of its vertices.
+struct MeshSmoothness {
+  MeshScheme scheme = MeshScheme::catmull_clark;
+  std::vector<VertexSmoothness> vertices;
+  int regular = 0, isolated = 0;
+  int c1 = 0, not_c1 = 0, undecided = 0;
+  int analyses = 0;
+  std::string summary;  // one line
+};
+
+/// The analysis of every vertex of a Catmull–Clark or Loop mesh with its tags (infinitely sharp creases
+/// and corners, the boundary rules edge and corner). Throws InvalidInput, one line naming the vertex or
+/// the tag, for what it does not analyse: another scheme, a non-manifold mesh, the boundary rule none,
+/// valences out of the local analysis's range, non-triangles under Loop. A vertex with semi-sharp tags
+/// is analysed as it is after ceil(s) levels (they have decayed; its reason says so) and is always
+/// listed. Catmull–Clark vertices next to non-quads are analysed as they
+/// are after one level (same valence and sectors, all quads). Holes change no rule (they leave faces out of
+/// the surface only): the vertices around them are analysed as they are.
+MeshSmoothness analyze_mesh(const Mesh& mesh, MeshScheme scheme, std::string_view who = "mesh");
 
 /// The regularity and winding test alone, on any pair of eigenvectors of S_n for `lambda` (N by 2,
 /// the numbering above): e.g. a higher Fourier mode's pair, whose map winds more than once.
