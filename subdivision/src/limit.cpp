@@ -248,22 +248,41 @@ LimitMask class_mask(const Ring& ring, MeshScheme scheme) {
   const Eigen::EigenSolver<Eigen::MatrixXd> eigen(S.transpose(), false);
   std::vector<std::complex<double>> values(eigen.eigenvalues().begin(), eigen.eigenvalues().end());
   std::sort(values.begin(), values.end(), [](auto x, auto y) { return std::abs(x) > std::abs(y); });
-  if (values.size() < 4 || std::abs(values[0] - 1.0) > 1e-9) return out;
+  if (values.size() < 3 || std::abs(values[0] - 1.0) > 1e-9) return out;
   const std::complex<double> l1 = values[1], l2 = values[2];
+  const double l3 = values.size() > 3 ? std::abs(values[3]) : 0.0;  // a ring of three: nothing below
   constexpr double kReal = 1e-9;
-  if (std::abs(l1.imag()) > kReal || std::abs(l2.imag()) > kReal || l2.real() <= std::abs(values[3]) + kReal)
+  if (std::abs(l1.imag()) > kReal || std::abs(l2.imag()) > kReal || l2.real() <= l3 + kReal)
     return out;  // no tangent plane from the spectrum: no pair of real subdominant eigenvalues above the rest
-  const auto null_space = [&](double lambda, int count) {
-    const Eigen::MatrixXd M = S.transpose() - lambda * Eigen::MatrixXd::Identity(N, N);
+  // The null space of S − λ (right eigenvectors) or of Sᵀ − λ (left), when it has `count` dimensions;
+  // empty when λ is defective there (a Jordan block: no pair of eigenvectors to span a plane).
+  const auto null_space = [&](const Eigen::MatrixXd& matrix, double lambda, int count) {
+    const Eigen::MatrixXd M = matrix - lambda * Eigen::MatrixXd::Identity(N, N);
     const Eigen::JacobiSVD<Eigen::MatrixXd> svd(M, Eigen::ComputeFullV);
+    const auto& sigma = svd.singularValues();
+    if (sigma(N - count) > 1e-9 * std::max(1.0, sigma(0))) return Eigen::MatrixXd();
     return Eigen::MatrixXd(svd.matrixV().rightCols(count));
   };
-  Eigen::MatrixXd pair(N, 2);
-  if (std::abs(l1.real() - l2.real()) < 1e-9) {
-    pair = null_space(l1.real(), 2);
-  } else {
-    pair.col(0) = null_space(l1.real(), 1);
-    pair.col(1) = null_space(l2.real(), 1);
+  const auto eigenpair = [&](const Eigen::MatrixXd& matrix) {
+    Eigen::MatrixXd pair(N, 2);
+    if (std::abs(l1.real() - l2.real()) < 1e-9) return null_space(matrix, l1.real(), 2);
+    const Eigen::MatrixXd first = null_space(matrix, l1.real(), 1), second = null_space(matrix, l2.real(), 1);
+    if (first.size() == 0 || second.size() == 0) return Eigen::MatrixXd();
+    pair << first, second;
+    return pair;
+  };
+  Eigen::MatrixXd pair = eigenpair(S.transpose());
+  if (pair.size() == 0) return out;
+  // At a boundary the characteristic map (the right eigenvectors) must not send both boundary
+  // neighbours to the centre: when the inside's eigenvalues pass the curve's ½ (Catmull–Clark from 5
+  // faces, Loop from 7), both vanish on the boundary, whose curve leaves their plane — not C¹
+  // (docs/subdivision-surfaces.md, "The verdict per sector").
+  if (ring.boundary) {
+    const Eigen::MatrixXd right = eigenpair(S);
+    if (right.size() == 0) return out;
+    const auto first = ring.mesh.face_vertices[1], last = ring.mesh.face_vertices.back();
+    if (right.row(first).norm() <= 1e-9 * right.norm() && right.row(last).norm() <= 1e-9 * right.norm())
+      return out;
   }
   // A planar ring: v at 0, the edge neighbours on a circle (less than a half circle at the boundary) in walk
   // order, a quad's far corner at the sum of its two edge neighbours.

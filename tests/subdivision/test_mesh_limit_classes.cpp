@@ -321,3 +321,37 @@ TEST_CASE("limit normals: on the boundary and at darts from the one-sector spect
   CHECK_THROWS_WITH(limit_mesh(torus_of_classes(false), MeshScheme::catmull_clark, 0, {.normals = true}),
                     Contains("is on a crease or a corner"));
 }
+
+TEST_CASE("limit normals at boundary vertices: given where the sector is C1, refused where it is not",
+          "[subdivision][limit][classes]") {
+  // docs/subdivision-surfaces.md, "The verdict per sector": a smooth boundary vertex of k faces is C1 for
+  // Catmull–Clark at 2–3 faces (4: a Jordan block; 5 and more: the inside's two eigenvalues pass the
+  // curve's ½ and vanish on the boundary), for Loop at 1–5 faces (6: Jordan block; 7 and more: not C1).
+  // The centre's tangents (limit_stencils: the other vertices of the small fan are not in question).
+  const auto has_tangents = [](MeshScheme scheme, int faces) {
+    const Mesh m = local_mesh(scheme, faces + 1, LocalOptions{.boundary = true}, 2);
+    const MeshRefinement r = refine_topology(m, scheme, 0);
+    const LimitStencils st = limit_stencils(r);
+    const LimitMask& mask = st.masks[static_cast<std::size_t>(st.mask_of[0])];
+    if (mask.tangent_u.empty()) return false;
+    const LimitFrame f = evaluate_limit(st, m.vertices);
+    const Eigen::Vector3d u = f.tangent_u.row(0).transpose(), v = f.tangent_v.row(0).transpose();
+    return u.cross(v).norm() > 1e-6 * u.norm() * v.norm();
+  };
+  for (const int faces : {2, 3}) {
+    INFO("catmull-clark, " << faces << " faces");
+    CHECK(has_tangents(MeshScheme::catmull_clark, faces));
+  }
+  for (const int faces : {1, 2, 3, 4, 5}) {
+    INFO("loop, " << faces << " faces");
+    CHECK(has_tangents(MeshScheme::loop, faces));
+  }
+  for (const int faces : {1, 4, 5, 6, 7}) {
+    INFO("catmull-clark, " << faces << " faces");
+    CHECK(!has_tangents(MeshScheme::catmull_clark, faces));
+  }
+  for (const int faces : {6, 7}) {
+    INFO("loop, " << faces << " faces");
+    CHECK(!has_tangents(MeshScheme::loop, faces));
+  }
+}
