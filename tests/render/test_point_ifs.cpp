@@ -12,11 +12,11 @@ using namespace cifs::render;
 
 namespace {
 
-struct Point {
+struct PlanePoint {
   double x, y;
 };
 
-Point apply(const AffineMap& m, Point p) {
+PlanePoint apply(const AffineMap& m, PlanePoint p) {
   return {m.a * p.x + m.b * p.y + m.e, m.c * p.x + m.d * p.y + m.f};
 }
 
@@ -27,7 +27,7 @@ bool is_similarity(const AffineMap& m, double r) {
          std::abs(m.a * m.b + m.c * m.d) < tol;
 }
 
-bool near(Point p, Point q) {
+bool near(PlanePoint p, PlanePoint q) {
   return std::abs(p.x - q.x) < 1e-14 && std::abs(p.y - q.y) < 1e-14;
 }
 
@@ -84,7 +84,7 @@ TEST_CASE("Named point IFS match the literature", "[render]") {
   SECTION("Sierpinski's triangle: three halvings, each fixing a vertex") {
     const auto s = sierpinski_triangle();
     REQUIRE(s.size() == 3);
-    const Point vertex[3] = {{0, 0}, {1, 0}, {0.5, std::numbers::sqrt3 / 2}};
+    const PlanePoint vertex[3] = {{0, 0}, {1, 0}, {0.5, std::numbers::sqrt3 / 2}};
     for (std::size_t i = 0; i < 3; ++i) {
       CHECK(is_similarity(s[i], 0.5));
       CHECK(s[i].a == 0.5);
@@ -96,7 +96,7 @@ TEST_CASE("Named point IFS match the literature", "[render]") {
   SECTION("Koch's curve: four thirds following the polyline, the middle ones rotated by ±60°") {
     const auto k = koch_curve();
     REQUIRE(k.size() == 4);
-    const Point polyline[5] = {{0, 0}, {1.0 / 3, 0}, {0.5, std::numbers::sqrt3 / 6}, {2.0 / 3, 0}, {1, 0}};
+    const PlanePoint polyline[5] = {{0, 0}, {1.0 / 3, 0}, {0.5, std::numbers::sqrt3 / 6}, {2.0 / 3, 0}, {1, 0}};
     for (std::size_t i = 0; i < 4; ++i) {
       CHECK(is_similarity(k[i], 1.0 / 3));
       CHECK(near(apply(k[i], {0, 0}), polyline[i]));
