@@ -96,7 +96,8 @@ TEST_CASE("Named point IFS match the literature", "[render]") {
   SECTION("Koch's curve: four thirds following the polyline, the middle ones rotated by ±60°") {
     const auto k = koch_curve();
     REQUIRE(k.size() == 4);
-    const PlanePoint polyline[5] = {{0, 0}, {1.0 / 3, 0}, {0.5, std::numbers::sqrt3 / 6}, {2.0 / 3, 0}, {1, 0}};
+    const PlanePoint polyline[5] = {
+        {0, 0}, {1.0 / 3, 0}, {0.5, std::numbers::sqrt3 / 6}, {2.0 / 3, 0}, {1, 0}};
     for (std::size_t i = 0; i < 4; ++i) {
       CHECK(is_similarity(k[i], 1.0 / 3));
       CHECK(near(apply(k[i], {0, 0}), polyline[i]));
