@@ -3,6 +3,7 @@
 // one read off the general refinement, and the spectra equal what the Fourier blocks of the rules
 // give — derived here, by hand, from the rules as the papers state them, not from the code.
 #include "cifs/subdivision/mesh_analysis.hpp"
+#include "subdivision/spectra.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -19,6 +20,7 @@
 using namespace cifs;
 using namespace cifs::subdivision;
 using Catch::Matchers::Contains;
+using cifs_test::check_same_spectrum;
 
 namespace {
 
@@ -30,23 +32,6 @@ constexpr MeshScheme kAllSchemes[] = {MeshScheme::catmull_clark, MeshScheme::loo
 
 long double cos_2pi(long double m, long double n) {
   return std::cos(2 * kPi * m / n);
-}
-
-/// Every expected eigenvalue matched to a distinct computed one within `tol` (multisets equal).
-void check_same_spectrum(const std::vector<Complex>& computed, std::vector<Complex> expected,
-                         long double tol) {
-  REQUIRE(computed.size() == expected.size());
-  std::vector<bool> used(computed.size(), false);
-  for (const Complex& e : expected) {
-    std::size_t best = computed.size();
-    for (std::size_t i = 0; i < computed.size(); ++i)
-      if (!used[i] && (best == computed.size() || std::abs(computed[i] - e) < std::abs(computed[best] - e)))
-        best = i;
-    INFO("expected eigenvalue " << static_cast<double>(e.real()) << " + " << static_cast<double>(e.imag())
-                                << "i");
-    REQUIRE(std::abs(computed[best] - e) < tol);
-    used[best] = true;
-  }
 }
 
 /// The 4th largest modulus of a multiset (μ after 1 and the subdominant pair).
