@@ -2,12 +2,16 @@
 // Test meshes for the subdivision surfaces: closed and open, regular and with extraordinary vertices.
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <vector>
 
 #include "cifs/mesh.hpp"
 #include "cifs/nurbs/surface.hpp"
+#include "cifs/topology.hpp"
 
 namespace cifs_test {
 
@@ -173,6 +177,53 @@ inline cifs::Mesh torus(int n, int m, bool triangles = false) {
       }
     }
   return make_mesh(p, f);
+}
+
+/// The unit cube with semi-sharp and sharp edges and corners of every kind: an edge at 0.3 (blended
+/// from the first level), 1 (sharp one level), 1.7, 2.25, a chain at 3 and 10 (infinite), corners at
+/// 0.5 and 2.
+inline cifs::Mesh creased_cube() {
+  cifs::Mesh m = cube();
+  m.tags.creases = {{0, 1, 0.3}, {1, 2, 1.0}, {2, 3, 1.7}, {4, 5, 2.25}, {5, 6, 3}, {6, 7, 3}, {3, 7, 10}};
+  m.tags.corners = {{0, 0.5}, {6, 2}};
+  return m;
+}
+
+/// An open n × m grid (quads or triangles) over a wavy height field.
+inline cifs::Mesh wavy_grid(int n, int m, bool triangles) {
+  cifs::Mesh g = quad_grid(n, m, triangles);
+  for (Eigen::Index i = 0; i < g.vertices.rows(); ++i)
+    g.vertices(i, 2) = 0.3 * std::sin(1.3 * g.vertices(i, 0) + 0.7 * g.vertices(i, 1));
+  return g;
+}
+
+/// Every edge of `m` as a vertex pair.
+inline std::vector<std::array<int, 2>> edges_of(const cifs::Mesh& m) {
+  const cifs::MeshTopology t = cifs::build_topology(m);
+  return t.edges;
+}
+
+/// Random tags: about a third of the edges creased, a few corners, a hole (when `holes`), with
+/// sharpness drawn from values that floats do not hold exactly as well as from dyadic ones.
+inline void random_tags(cifs::Mesh& m, std::mt19937& rng, bool holes) {
+  constexpr double values[] = {0.1, 0.3, 0.5, 0.75, 1, 1.2, 1.5, 1.7, 2, 2.25, 2.9, 3.5, 4, 10, 12};
+  std::uniform_int_distribution<int> pick(0, std::size(values) - 1), third(0, 2), coin(0, 1);
+  m.tags.creases.clear();
+  m.tags.corners.clear();
+  m.tags.holes.clear();
+  for (const auto& [a, b] : edges_of(m))
+    if (third(rng) == 0) m.tags.creases.push_back({a, b, values[pick(rng)]});
+  std::uniform_int_distribution<int> vertex(0, static_cast<int>(m.vertices.rows()) - 1),
+      face(0, static_cast<int>(cifs::face_count(m)) - 1);
+  for (int k = 0; k < 3; ++k) {
+    const int v = vertex(rng);
+    if (std::none_of(m.tags.corners.begin(), m.tags.corners.end(),
+                     [&](const auto& c) { return c.vertex == v; }))
+      m.tags.corners.push_back({v, values[pick(rng)]});
+  }
+  if (holes) m.tags.holes.push_back(face(rng));
+  m.tags.boundary = static_cast<cifs::BoundaryRule>(third(rng));
+  m.tags.crease_method = coin(rng) ? cifs::CreaseMethod::chaikin : cifs::CreaseMethod::uniform;
 }
 
 }  // namespace cifs_test

@@ -18,6 +18,7 @@
 #include "cifs/ifs/chaos.hpp"
 #include "cifs/nurbs/surface.hpp"
 #include "cifs/subdivision/mesh_analysis.hpp"
+#include "subdivision/dyadic.hpp"
 #include "subdivision/meshes.hpp"
 
 using namespace cifs;
@@ -163,45 +164,6 @@ TEST_CASE("limit stencils: what is not built is refused, naming the vertex", "[s
 // ------------------------------------------------------------------------------------------------
 // Catmull–Clark at any (face, u, v).
 
-namespace {
-
-/// The vertices of `levels` more Catmull–Clark steps at the dyadic points (i, j)/2^levels of face f
-/// of level 0, [i][j] flattened by i: each level's grid refined by the child numbering (vertex
-/// points keep their index, edge e's point is V + e, face f's V + E + f).
-std::vector<int> dyadic_vertices(const MeshRefinement& r, int f, int levels) {
-  const auto c = face(r.levels[0], static_cast<std::size_t>(f));
-  int m = 1;
-  std::vector<int> grid{c[0], c[3], c[1], c[2]};  // [i][j], i along corner 0 → 1
-  for (int l = 0; l < levels; ++l) {
-    const MeshTopology& t = r.levels[static_cast<std::size_t>(l)];
-    const int M = 2 * m, V = t.vertex_count, E = static_cast<int>(t.edges.size());
-    std::vector<int> next(static_cast<std::size_t>((M + 1) * (M + 1)));
-    const auto g = [&](int i, int j) { return grid[static_cast<std::size_t>(i * (m + 1) + j)]; };
-    const auto set = [&](int i, int j, int v) { next[static_cast<std::size_t>(i * (M + 1) + j)] = v; };
-    const auto edge = [&](int a, int b) {
-      for (const int e : vertex_edges(t, static_cast<std::size_t>(a)))
-        if (other_vertex(t, static_cast<std::size_t>(e), a) == b) return e;
-      FAIL("no edge");
-      return -1;
-    };
-    for (int i = 0; i <= m; ++i)
-      for (int j = 0; j <= m; ++j) {
-        set(2 * i, 2 * j, g(i, j));
-        if (i < m) set(2 * i + 1, 2 * j, V + edge(g(i, j), g(i + 1, j)));
-        if (j < m) set(2 * i, 2 * j + 1, V + edge(g(i, j), g(i, j + 1)));
-        if (i < m && j < m)
-          for (const int a : vertex_faces(t, static_cast<std::size_t>(g(i, j))))
-            for (const int b : vertex_faces(t, static_cast<std::size_t>(g(i + 1, j + 1))))
-              if (a == b) set(2 * i + 1, 2 * j + 1, V + E + a);
-      }
-    grid = std::move(next);
-    m = M;
-  }
-  return grid;
-}
-
-}  // namespace
-
 TEST_CASE("Catmull–Clark at (face, u, v): extraordinary patches equal the limits of refined vertices",
           "[subdivision][limit]") {
   // Each face of these refined meshes has at most one extraordinary corner (the cube's valence 3;
@@ -267,7 +229,7 @@ TEST_CASE("Catmull–Clark at (face, u, v): regular patches are the bicubic surf
   }
 }
 
-TEST_CASE("Catmull–Clark at (face, u, v): what is not built is refused, naming the point",
+TEST_CASE("Catmull–Clark at (face, u, v): points off the surface are refused, naming the point",
           "[subdivision][limit]") {
   const Mesh cube1 = catmull_clark(cube(), 1);
   const std::vector<FacePoint> outside{{.face = 0, .u = 1.5, .v = 0}};
@@ -276,13 +238,18 @@ TEST_CASE("Catmull–Clark at (face, u, v): what is not built is refused, naming
   const std::vector<FacePoint> no_face{{.face = 99, .u = 0, .v = 0}};
   CHECK_THROWS_WITH(evaluate_limit_surface(cube1, MeshScheme::catmull_clark, no_face),
                     Contains("no such face; the mesh has 24"));
-  const std::vector<FacePoint> first{{.face = 0, .u = 0.5, .v = 0.5}};
-  CHECK_THROWS_WITH(evaluate_limit_surface(cube(), MeshScheme::catmull_clark, first),
-                    Contains("extraordinary corners (refine one level first)"));
-  CHECK_THROWS_WITH(evaluate_limit_surface(quad_grid(3, 3), MeshScheme::catmull_clark, first),
-                    Contains("touches the boundary"));
-  CHECK_THROWS_WITH(evaluate_limit_surface(pyramid(), MeshScheme::catmull_clark, first),
-                    Contains("not a quad"));
+  // A hole has no surface; an n-gon's domain is OpenSubdiv's sub-faces, [i mod D, + ½] × [i div D, + ½].
+  Mesh holed = quad_grid(3, 3);
+  holed.tags.holes = {4};
+  const std::vector<FacePoint> in_hole{{.face = 4, .u = 0.5, .v = 0.5}};
+  CHECK_THROWS_WITH(evaluate_limit_surface(holed, MeshScheme::catmull_clark, in_hole),
+                    Contains("point 0 (face 4): the face is a hole"));
+  const std::vector<FacePoint> between{{.face = 1, .u = 0.75, .v = 0.25}};  // the triangle's sub-faces: 3
+  CHECK_THROWS_WITH(evaluate_limit_surface(pyramid(), MeshScheme::catmull_clark, between),
+                    Contains("(u, v) = (0.75, 0.25) is outside the 3-gon's sub-faces"));
+  const std::vector<FacePoint> fourth{{.face = 1, .u = 1.25, .v = 1.25}};
+  CHECK_THROWS_WITH(evaluate_limit_surface(pyramid(), MeshScheme::catmull_clark, fourth),
+                    Contains("outside the 3-gon's sub-faces"));
 }
 
 namespace {
@@ -446,39 +413,6 @@ std::vector<std::pair<const char*, Mesh>> loop_meshes() {
           {"torus (6)", turned(torus(6, 5, true))}};
 }
 
-/// The vertices of `levels` more Loop steps at the points (i, j)/2^levels of triangle f of level 0
-/// (corner 1 at (1, 0), 2 at (0, 1)), [i][j] flattened by i over a square: each level's points
-/// refined by the child numbering (vertex points keep their index, edge e's point is V + e).
-std::vector<int> dyadic_triangle_vertices(const MeshRefinement& r, int f, int levels) {
-  const auto c = face(r.levels[0], static_cast<std::size_t>(f));
-  int m = 1;
-  std::vector<int> grid{c[0], c[2], c[1], -1};  // [i][j], i along corner 0 → 1
-  for (int l = 0; l < levels; ++l) {
-    const MeshTopology& t = r.levels[static_cast<std::size_t>(l)];
-    const int M = 2 * m, V = t.vertex_count;
-    std::vector<int> next(static_cast<std::size_t>((M + 1) * (M + 1)), -1);
-    const auto g = [&](int i, int j) { return grid[static_cast<std::size_t>(i * (m + 1) + j)]; };
-    const auto set = [&](int i, int j, int v) { next[static_cast<std::size_t>(i * (M + 1) + j)] = v; };
-    const auto edge = [&](int a, int b) {
-      for (const int e : vertex_edges(t, static_cast<std::size_t>(a)))
-        if (other_vertex(t, static_cast<std::size_t>(e), a) == b) return e;
-      FAIL("no edge");
-      return -1;
-    };
-    for (int i = 0; i <= m; ++i)
-      for (int j = 0; i + j <= m; ++j) {
-        set(2 * i, 2 * j, g(i, j));
-        if (i + j == m) continue;
-        set(2 * i + 1, 2 * j, V + edge(g(i, j), g(i + 1, j)));
-        set(2 * i, 2 * j + 1, V + edge(g(i, j), g(i, j + 1)));
-        set(2 * i + 1, 2 * j + 1, V + edge(g(i + 1, j), g(i, j + 1)));
-      }
-    grid = std::move(next);
-    m = M;
-  }
-  return grid;
-}
-
 }  // namespace
 
 TEST_CASE("Loop at (face, u, v): every patch equals the limits of refined vertices, normals included",
@@ -547,15 +481,17 @@ TEST_CASE("Loop at (face, u, v): the partials are the derivatives of the positio
   }
 }
 
-TEST_CASE("Loop at (face, u, v): what is not built is refused, naming the point", "[subdivision][limit]") {
+TEST_CASE("Loop at (face, u, v): points off the surface are refused, naming the point",
+          "[subdivision][limit]") {
   const Mesh tet1 = loop(tetrahedron(), 1);
   const std::vector<FacePoint> outside{{.face = 2, .u = 0.6, .v = 0.6}};
   CHECK_THROWS_WITH(evaluate_limit_surface(tet1, MeshScheme::loop, outside),
                     Contains("point 0 (face 2): (u, v) = (0.6") && Contains("outside the triangle"));
   const std::vector<FacePoint> first{{.face = 0, .u = 0.25, .v = 0.25}};
-  CHECK_THROWS_WITH(evaluate_limit_surface(tetrahedron(), MeshScheme::loop, first),
-                    Contains("3 extraordinary corners (refine one level first)"));
-  CHECK_THROWS_WITH(evaluate_limit_surface(cube(), MeshScheme::loop, first), Contains("not a triangle"));
+  CHECK_THROWS_WITH(evaluate_limit_surface(cube(), MeshScheme::loop, first), Contains("runs on triangles"));
+  Mesh holed = tet1;
+  holed.tags.holes = {0};
+  CHECK_THROWS_WITH(evaluate_limit_surface(holed, MeshScheme::loop, first), Contains("the face is a hole"));
   CHECK_THROWS_WITH(evaluate_limit_surface(tet1, MeshScheme::doo_sabin, first),
                     Contains("doo-sabin is not built"));
   CHECK_THROWS_WITH(fractal_catmull_clark(surface_automaton(tet1, MeshScheme::loop), {}),

@@ -1,0 +1,713 @@
+// SPDX-License-Identifier: MIT
+// cifs — the limit surface at any (face, u, v) of any mesh the production refiner takes (creases,
+// corners, holes, boundaries, non-quads), through an automaton of local configurations
+// (cifs/subdivision/limit.hpp, evaluate_limit_surface; docs/subdivision-surfaces.md, "The limit
+// surface at any point").
+//
+// A state is a face's configuration: the face and the one-rings of its corners, with the tags the
+// rules read there (the sharpness of the edges at its corners and of the corners, holes, the crease
+// method and triangle rule), in an order that only depends on the topology seen from the face's first
+// corner — its key. The children of a state are the configurations of the face's children after one
+// step of the production refiner run on the configuration itself (the vertex data the identity: the
+// step's rows are the child's control points on the parent's). Every child's configuration lies in
+// the refined configuration, with correct rows: its vertices are vertex points of the face's corners,
+// edge points of their edges and face points of their faces, which read nothing outside.
+//
+// A state whose patch is a polynomial (bicubic, quartic on triangles) is a leaf: the regular interior
+// patch, and also the regular boundary, crease and corner patches. Which states are is proved, not
+// assumed: the polynomial through the limit points at the 16 (15) points (a, b)/4 of the state's
+// domain is fitted, and every state reachable from it must be fitted too and agree with it on the
+// child's domain (Bézier coefficients of the restriction = the child's, on the parent's control
+// points). Then the control points of every level are those of the polynomial's restrictions, and the
+// limit is the polynomial at every dyadic point: the patch. A state with sharpness left to spend, an
+// extraordinary vertex, a dart or a smooth boundary corner fails the check and is descended.
+#include <Eigen/Dense>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <deque>
+#include <map>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "cifs/errors.hpp"
+#include "cifs/format.hpp"
+#include "cifs/subdivision/limit.hpp"
+#include "cifs/subdivision/rules.hpp"
+
+namespace cifs::subdivision {
+namespace {
+
+double edge_sharpness(const LevelFeatures& f, int e) {
+  return f.edge_sharpness.empty() ? 0.0 : f.edge_sharpness[static_cast<std::size_t>(e)];
+}
+double vertex_sharpness(const LevelFeatures& f, int v) {
+  return f.vertex_sharpness.empty() ? 0.0 : f.vertex_sharpness[static_cast<std::size_t>(v)];
+}
+bool is_hole(const LevelFeatures& f, int g) {
+  return !f.holes.empty() && f.holes[static_cast<std::size_t>(g)] != 0;
+}
+
+int corner_of(std::span<const int> corners, int v) {
+  return static_cast<int>(std::find(corners.begin(), corners.end(), v) - corners.begin());
+}
+
+/// A face's configuration: its local mesh (the face first, from its first corner, so that vertices
+/// 0 … n − 1 are its corners; then, corner after corner, the faces around it counter-clockwise from
+/// the face, each from the corner it was met at), the level's vertex of each local vertex, and the
+/// key. A vertex away from the face's corners met by faces that share no edge at it there (a small
+/// mesh folding back) is one local vertex per fan: only its position is read, never its rule.
+struct Configuration {
+  Mesh mesh;
+  std::vector<int> vertices;
+  std::string key;
+};
+
+template <typename T>
+void put(std::string& key, T x) {
+  key.append(reinterpret_cast<const char*>(&x), sizeof x);
+}
+
+Configuration configuration(const MeshTopology& t, const LevelFeatures& f, const MeshTags& options, int face0,
+                            int first) {
+  std::vector<int> faces{face0}, start{first};
+  const auto c0 = face(t, static_cast<std::size_t>(face0));
+  const auto n = static_cast<int>(c0.size());
+  const auto index_of = [&](int g) {
+    return static_cast<int>(std::find(faces.begin(), faces.end(), g) - faces.begin());
+  };
+  for (int k = 0; k < n; ++k) {
+    const int v = c0[static_cast<std::size_t>((first + k) % n)];
+    const auto around = vertex_faces(t, static_cast<std::size_t>(v));
+    const auto m = around.size();
+    const auto at = static_cast<std::size_t>(std::find(around.begin(), around.end(), face0) - around.begin());
+    for (std::size_t i = 1; i < m; ++i) {
+      const int g = around[(at + i) % m];
+      if (index_of(g) < static_cast<int>(faces.size())) continue;
+      faces.push_back(g);
+      start.push_back(corner_of(face(t, static_cast<std::size_t>(g)), v));
+    }
+  }
+  // Under Chaikin's crease method the point of a semi-sharp edge also reads the other semi-sharp edges
+  // at its far end (its half there decays with their mean): that vertex comes with its one-ring too,
+  // from the face left of the edge.
+  std::vector<int> full;  // the vertices whose one-ring is in the configuration, beyond the corners
+  if (options.crease_method == CreaseMethod::chaikin)
+    for (int k = 0; k < n; ++k) {
+      const int v = c0[static_cast<std::size_t>((first + k) % n)];
+      for (const int e : vertex_edges(t, static_cast<std::size_t>(v))) {
+        const double s = edge_sharpness(f, e);
+        const int x = other_vertex(t, static_cast<std::size_t>(e), v);
+        if (s <= 0 || s >= kInfiniteSharpness || corner_of(c0, x) < n ||
+            std::find(full.begin(), full.end(), x) != full.end())
+          continue;
+        full.push_back(x);
+        const int left = t.edges[static_cast<std::size_t>(e)][0] == v
+                             ? t.edge_faces[static_cast<std::size_t>(e)][0]
+                             : t.edge_faces[static_cast<std::size_t>(e)][1];
+        const auto around = vertex_faces(t, static_cast<std::size_t>(x));
+        const auto at =
+            static_cast<std::size_t>(std::find(around.begin(), around.end(), left) - around.begin());
+        for (std::size_t i = 0; i < around.size(); ++i) {
+          const int g = around[(at + i) % around.size()];
+          if (index_of(g) < static_cast<int>(faces.size())) continue;
+          faces.push_back(g);
+          start.push_back(corner_of(face(t, static_cast<std::size_t>(g)), x));
+        }
+      }
+    }
+  // Corner items (face j, corner i from its start), joined across the edges two support faces share.
+  std::vector<int> offset{0};
+  for (const int g : faces)
+    offset.push_back(offset.back() + static_cast<int>(face(t, static_cast<std::size_t>(g)).size()));
+  std::vector<int> parent(static_cast<std::size_t>(offset.back()));
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto find = [&](int x) {
+    while (parent[static_cast<std::size_t>(x)] != x)
+      x = parent[static_cast<std::size_t>(x)] =
+          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
+    return x;
+  };
+  const auto unite = [&](int a, int b) { parent[static_cast<std::size_t>(find(a))] = find(b); };
+  // Item of face j's corner at mesh corner index `c` (the face's own numbering).
+  const auto item = [&](std::size_t j, int c) {
+    const auto size = offset[j + 1] - offset[j];
+    return offset[j] + (c - start[j] + size) % size;
+  };
+  for (std::size_t j = 0; j < faces.size(); ++j) {
+    const auto g = static_cast<std::size_t>(faces[j]);
+    const auto corners = face(t, g);
+    const auto edges = face_edges(t, g);
+    const auto size = static_cast<int>(corners.size());
+    for (int c = 0; c < size; ++c) {
+      const auto e = static_cast<std::size_t>(edges[static_cast<std::size_t>(c)]);
+      const int h = t.edge_faces[e][0] == faces[j] ? t.edge_faces[e][1] : t.edge_faces[e][0];
+      if (h < 0) continue;
+      const auto jh = static_cast<std::size_t>(index_of(h));
+      if (jh >= faces.size() || jh <= j) continue;
+      const auto hc = face(t, static_cast<std::size_t>(h));
+      const int x = corners[static_cast<std::size_t>(c)],
+                y = corners[static_cast<std::size_t>((c + 1) % size)];
+      unite(item(j, c), item(jh, corner_of(hc, x)));
+      unite(item(j, (c + 1) % size), item(jh, corner_of(hc, y)));
+    }
+  }
+  Configuration out;
+  std::vector<int> slot(parent.size(), -1);
+  std::string& key = out.key;
+  put(key, static_cast<int>(faces.size()));
+  for (std::size_t j = 0; j < faces.size(); ++j) {
+    const auto corners = face(t, static_cast<std::size_t>(faces[j]));
+    const auto size = static_cast<int>(corners.size());
+    put(key, size);
+    for (int i = 0; i < size; ++i) {
+      int& s = slot[static_cast<std::size_t>(find(offset[j] + i))];
+      if (s < 0) {
+        s = static_cast<int>(out.vertices.size());
+        out.vertices.push_back(corners[static_cast<std::size_t>((start[j] + i) % size)]);
+      }
+      out.mesh.face_vertices.push_back(s);
+      put(key, s);
+    }
+    out.mesh.face_offsets.push_back(static_cast<int>(out.mesh.face_vertices.size()));
+  }
+  out.mesh.vertices = Points::Zero(static_cast<Eigen::Index>(out.vertices.size()), 3);
+  // The tags the rules read: edges at the face's corners (boundary edges are sharp by the topology),
+  // the corners' sharpness, holes; the boundary rule's effects are in the level's features already.
+  MeshTags& tags = out.mesh.tags;
+  tags.boundary = BoundaryRule::edge_only;
+  tags.crease_method = options.crease_method;
+  tags.triangles = options.triangles;
+  std::vector<int> seen;
+  for (std::size_t j = 0; j < faces.size(); ++j) {
+    const auto g = static_cast<std::size_t>(faces[j]);
+    const auto edges = face_edges(t, g);
+    const auto size = static_cast<int>(edges.size());
+    for (int i = 0; i < size; ++i) {
+      const int a = out.mesh.face_vertices[static_cast<std::size_t>(offset[j] + i)],
+                b = out.mesh.face_vertices[static_cast<std::size_t>(offset[j] + (i + 1) % size)];
+      const int e = edges[static_cast<std::size_t>((start[j] + i) % size)];
+      const auto ringed = [&](int local, int vertex) {
+        return local < n || std::find(full.begin(), full.end(), vertex) != full.end();
+      };
+      if (!ringed(a, out.vertices[static_cast<std::size_t>(a)]) &&
+          !ringed(b, out.vertices[static_cast<std::size_t>(b)]))
+        continue;
+      const double s = edge_sharpness(f, e);
+      if (s <= 0 || is_boundary_edge(t, static_cast<std::size_t>(e)) ||
+          std::find(seen.begin(), seen.end(), e) != seen.end())
+        continue;
+      seen.push_back(e);
+      tags.creases.push_back({.a = a, .b = b, .sharpness = s});
+      put(key, a), put(key, b), put(key, s);
+    }
+  }
+  put(key, -1);
+  for (int k = 0; k < n; ++k)
+    if (const double s = vertex_sharpness(f, out.vertices[static_cast<std::size_t>(k)]); s > 0) {
+      tags.corners.push_back({.vertex = k, .sharpness = s});
+      put(key, k), put(key, s);
+    }
+  put(key, -1);
+  for (std::size_t j = 0; j < faces.size(); ++j)
+    if (is_hole(f, faces[j])) {
+      tags.holes.push_back(static_cast<int>(j));
+      put(key, static_cast<int>(j));
+    }
+  return out;
+}
+
+bool quad_scheme(MeshScheme scheme) {
+  return scheme == MeshScheme::catmull_clark;
+}
+
+/// Where a child's parameters come from: (s, t) = A (u, v) + b on the parent's.
+struct ChildMap {
+  std::array<double, 4> A;  // row-major
+  std::array<double, 2> b;
+  [[nodiscard]] std::array<double, 2> operator()(double u, double v) const {
+    return {A[0] * u + A[1] * v + b[0], A[2] * u + A[3] * v + b[1]};
+  }
+};
+
+/// Quads: child k at corner k (corner (0, 0), (1, 0), (1, 1), (0, 1)), its corner 0 the corner's vertex
+/// point, its corner 1 the edge point after it: the quarter turned by k. Triangles: child k at corner k
+/// the same way (corners (0, 0), (1, 0), (0, 1)), child 3 the middle one with its corner 0 at (½, ½).
+ChildMap child_map(bool quad, int k) {
+  if (quad) {
+    switch (k) {
+      case 0:
+        return {{2, 0, 0, 2}, {0, 0}};
+      case 1:  // (s, t) = (v', 1 − u') with u' = 2u − 1, v' = 2v
+        return {{0, 2, -2, 0}, {0, 2}};
+      case 2:  // (1 − u', 1 − v'), u' = 2u − 1, v' = 2v − 1
+        return {{-2, 0, 0, -2}, {2, 2}};
+      default:  // (1 − v', u'), u' = 2u, v' = 2v − 1
+        return {{0, -2, 2, 0}, {2, 0}};
+    }
+  }
+  switch (k) {
+    case 0:
+      return {{2, 0, 0, 2}, {0, 0}};
+    case 1:  // (v', 1 − u' − v'), u' = 2u − 1, v' = 2v
+      return {{0, 2, -2, -2}, {0, 2}};
+    case 2:  // (1 − u' − v', u'), u' = 2u, v' = 2v − 1
+      return {{-2, -2, 2, 0}, {2, 0}};
+    default:
+      return {{-2, 0, 0, -2}, {1, 1}};
+  }
+}
+
+/// The child holding (u, v) of a quad or triangle domain.
+int child_at(bool quad, double u, double v) {
+  if (quad) {
+    const bool iu = u >= 0.5, iv = v >= 0.5;
+    return iu ? (iv ? 2 : 1) : (iv ? 3 : 0);
+  }
+  if (u >= 0.5) return 1;
+  if (v >= 0.5) return 2;
+  return u + v < 0.5 ? 0 : 3;
+}
+
+/// Bernstein basis of the patch polynomial and its partials: bicubic (16, index 4i + j for
+/// B_i(u) B_j(v)) or quartic on the triangle (15).
+int basis_size(bool quad) {
+  return quad ? 16 : 15;
+}
+
+void cubic_bernstein(double t, std::array<double, 4>& b, std::array<double, 4>& d) {
+  const double s = 1 - t;
+  b = {s * s * s, 3 * t * s * s, 3 * t * t * s, t * t * t};
+  d = {-3 * s * s, 3 * s * s - 6 * t * s, 6 * t * s - 3 * t * t, 3 * t * t};
+}
+
+/// Index of the quartic Bernstein coefficient of u^a v^b w^(4 − a − b) (w = 1 − u − v).
+constexpr int tri(int a, int b) {
+  return a * (11 - a) / 2 + b;
+}
+
+void basis(bool quad, double u, double v, double* b, double* bu, double* bv) {
+  if (quad) {
+    std::array<double, 4> pu{}, du{}, pv{}, dv{};
+    cubic_bernstein(u, pu, du);
+    cubic_bernstein(v, pv, dv);
+    for (std::size_t i = 0; i < 4; ++i)
+      for (std::size_t j = 0; j < 4; ++j) {
+        b[4 * i + j] = pu[i] * pv[j];
+        bu[4 * i + j] = du[i] * pv[j];
+        bv[4 * i + j] = pu[i] * dv[j];
+      }
+    return;
+  }
+  const double w = 1 - u - v;
+  const auto power = [](double x, int k) { return k < 0 ? 0.0 : std::pow(x, k); };
+  static constexpr std::array<double, 5> kFactorial{1, 1, 2, 6, 24};
+  for (int a = 0; a <= 4; ++a)
+    for (int c = 0; a + c <= 4; ++c) {
+      const int r = 4 - a - c;
+      const double m =
+          24 / (kFactorial[static_cast<std::size_t>(a)] * kFactorial[static_cast<std::size_t>(c)] *
+                kFactorial[static_cast<std::size_t>(r)]);
+      const auto k = static_cast<std::size_t>(tri(a, c));
+      b[k] = m * power(u, a) * power(v, c) * power(w, r);
+      const double dw = r * power(u, a) * power(v, c) * power(w, r - 1);
+      bu[k] = m * (a * power(u, a - 1) * power(v, c) * power(w, r) - dw);
+      bv[k] = m * (c * power(u, a) * power(v, c - 1) * power(w, r) - dw);
+    }
+}
+
+/// The points where the polynomial is fitted: (a, b)/4, a, b ∈ {0, 1, 3, 4} on quads (a tensor grid),
+/// a + b ≤ 4 on triangles (the principal lattice).
+std::vector<std::array<int, 2>> fit_points(bool quad) {
+  std::vector<std::array<int, 2>> out;
+  if (quad) {
+    for (const int a : {0, 1, 3, 4})
+      for (const int b : {0, 1, 3, 4}) out.push_back({a, b});
+  } else {
+    for (int a = 0; a <= 4; ++a)
+      for (int b = 0; a + b <= 4; ++b) out.push_back({a, b});
+  }
+  return out;
+}
+
+}  // namespace
+
+namespace detail {
+
+/// The automaton of configurations, built lazily and cached by key.
+class SurfaceStates {
+ public:
+  struct State {
+    Mesh mesh;
+    int sides = 0;
+    bool expanded = false;
+    std::vector<int> child;
+    std::vector<Eigen::MatrixXd> to_child;  // child's slots × this state's
+    Eigen::RowVectorXd corner;              // the limit at corner 0 on the slots (empty until asked)
+    int polynomial = -1;                    // unknown, 0, 1
+    Eigen::MatrixXd bezier;                 // basis_size × slots when polynomial
+  };
+
+  explicit SurfaceStates(MeshScheme scheme) : scheme_(scheme), quad_(quad_scheme(scheme)) {
+    const auto points = fit_points(quad_);
+    const int N = basis_size(quad_);
+    Eigen::MatrixXd colloc(N, N);
+    std::vector<double> b(static_cast<std::size_t>(N)), bu(b), bv(b);
+    for (std::size_t p = 0; p < points.size(); ++p) {
+      basis(quad_, points[p][0] / 4.0, points[p][1] / 4.0, b.data(), bu.data(), bv.data());
+      for (int k = 0; k < N; ++k) colloc(static_cast<Eigen::Index>(p), k) = b[static_cast<std::size_t>(k)];
+    }
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(colloc);
+    solve_ = lu.inverse();
+    // Restriction to child k: the child's coefficients from the parent's, through the values at the
+    // fit points mapped into the parent (the inverse of child_map).
+    const int children = 4;
+    for (int k = 0; k < children; ++k) {
+      const ChildMap m = child_map(quad_, k);
+      const double det = m.A[0] * m.A[3] - m.A[1] * m.A[2];
+      Eigen::MatrixXd values(N, N);
+      for (std::size_t p = 0; p < points.size(); ++p) {
+        const double s = points[p][0] / 4.0 - m.b[0], t = points[p][1] / 4.0 - m.b[1];
+        const double u = (m.A[3] * s - m.A[1] * t) / det, v = (-m.A[2] * s + m.A[0] * t) / det;
+        basis(quad_, u, v, b.data(), bu.data(), bv.data());
+        for (int q = 0; q < N; ++q) values(static_cast<Eigen::Index>(p), q) = b[static_cast<std::size_t>(q)];
+      }
+      restrict_[static_cast<std::size_t>(k)] = solve_ * values;
+    }
+  }
+
+  [[nodiscard]] bool quad() const { return quad_; }
+
+  int state(Configuration&& c) {
+    const auto [it, fresh] = index_.try_emplace(std::move(c.key), static_cast<int>(states_.size()));
+    if (fresh) {
+      State s;
+      s.sides = static_cast<int>(face(c.mesh, 0).size());
+      s.mesh = std::move(c.mesh);
+      states_.push_back(std::move(s));
+    }
+    return it->second;
+  }
+
+  const State& at(int s) const { return states_[static_cast<std::size_t>(s)]; }
+
+  /// The state's children, made on first use.
+  const State& expand(int s) {
+    if (states_[static_cast<std::size_t>(s)].expanded) return at(s);
+    const MeshRefinement r = refine_topology(states_[static_cast<std::size_t>(s)].mesh, scheme_, 1);
+    const Stencils& step = r.steps[0];
+    const int slots = static_cast<int>(states_[static_cast<std::size_t>(s)].mesh.vertices.rows());
+    const int sides = states_[static_cast<std::size_t>(s)].sides;
+    std::vector<int> child;
+    std::vector<Eigen::MatrixXd> to_child;
+    const int count = quad_ ? sides : 4;
+    for (int k = 0; k < count; ++k) {
+      // Catmull–Clark: face 0's corner k becomes child face k from the corner's vertex point; Loop: its
+      // corner triangles (from the corner) then the middle one (from the edge point of edge 1 → 2).
+      const int first = quad_ ? 0 : (k == 3 ? 1 : k);
+      Configuration c = configuration(r.levels[1], r.features[1], r.tags[1], k, first);
+      Eigen::MatrixXd M = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(c.vertices.size()), slots);
+      for (std::size_t i = 0; i < c.vertices.size(); ++i) {
+        const auto w = static_cast<std::size_t>(c.vertices[i]);
+        for (int q = step.offsets[w]; q < step.offsets[w + 1]; ++q)
+          M(static_cast<Eigen::Index>(i), step.columns[static_cast<std::size_t>(q)]) +=
+              step.weights[static_cast<std::size_t>(q)];
+      }
+      to_child.push_back(std::move(M));
+      child.push_back(state(std::move(c)));
+    }
+    State& x = states_[static_cast<std::size_t>(s)];
+    x.child = std::move(child);
+    x.to_child = std::move(to_child);
+    x.expanded = true;
+    return x;
+  }
+
+  /// The limit at the state's corner 0 as weights on its slots: limit_stencils on the corner's
+  /// one-ring cut out with its tags.
+  const Eigen::RowVectorXd& corner(int s) {
+    State& x = states_[static_cast<std::size_t>(s)];
+    if (x.corner.size() > 0) return x.corner;
+    const MeshTopology t = build_topology(x.mesh, "limit surface state");
+    Mesh ring;
+    std::vector<int> local(static_cast<std::size_t>(t.vertex_count), -1), global;
+    const auto slot = [&](int v) {
+      int& l = local[static_cast<std::size_t>(v)];
+      if (l < 0) {
+        l = static_cast<int>(global.size());
+        global.push_back(v);
+      }
+      return l;
+    };
+    slot(0);
+    for (const int g : vertex_faces(t, 0)) {
+      for (const int v : face(t, static_cast<std::size_t>(g))) ring.face_vertices.push_back(slot(v));
+      ring.face_offsets.push_back(static_cast<int>(ring.face_vertices.size()));
+    }
+    ring.vertices = Points::Zero(static_cast<Eigen::Index>(global.size()), 3);
+    ring.tags.boundary = BoundaryRule::edge_only;
+    ring.tags.crease_method = x.mesh.tags.crease_method;
+    ring.tags.triangles = x.mesh.tags.triangles;
+    for (const EdgeSharpness& c : x.mesh.tags.creases)
+      if (c.a == 0 || c.b == 0)
+        ring.tags.creases.push_back({.a = slot(c.a), .b = slot(c.b), .sharpness = c.sharpness});
+    for (const VertexSharpness& c : x.mesh.tags.corners)
+      if (c.vertex == 0) ring.tags.corners.push_back({.vertex = 0, .sharpness = c.sharpness});
+    const LimitStencils st = limit_stencils(refine_topology(ring, scheme_, 0));
+    const LimitMask& m = st.masks[static_cast<std::size_t>(st.mask_of[0])];
+    x.corner = Eigen::RowVectorXd::Zero(x.mesh.vertices.rows());
+    for (int q = st.offsets[0]; q < st.offsets[1]; ++q)
+      x.corner(global[static_cast<std::size_t>(st.columns[static_cast<std::size_t>(q)])]) +=
+          m.position[static_cast<std::size_t>(q - st.offsets[0])];
+    return x.corner;
+  }
+
+  /// Whether the state's patch is a polynomial (proved on the states it reaches, see the top).
+  bool polynomial(int s) {
+    if (states_[static_cast<std::size_t>(s)].polynomial >= 0)
+      return states_[static_cast<std::size_t>(s)].polynomial == 1;
+    std::vector<int> closure{s};
+    std::map<int, Eigen::MatrixXd> fitted;
+    bool ok = true;
+    for (std::size_t i = 0; ok && i < closure.size(); ++i) {
+      const int x = closure[i];
+      if (!fit(x, fitted)) {
+        ok = false;
+        break;
+      }
+      const State& X = expand(x);
+      const std::vector<int> kids = X.child;
+      for (std::size_t k = 0; k < kids.size(); ++k) {
+        const int y = kids[k];
+        if (at(y).polynomial == 0 || !fit(y, fitted)) {
+          ok = false;
+          break;
+        }
+        const Eigen::MatrixXd lhs = fitted.at(y) * at(x).to_child[k];
+        const Eigen::MatrixXd rhs = restrict_[k] * fitted.at(x);
+        if ((lhs - rhs).cwiseAbs().maxCoeff() > 1e-11 * std::max(1.0, rhs.cwiseAbs().maxCoeff())) {
+          ok = false;
+          break;
+        }
+        if (std::find(closure.begin(), closure.end(), y) == closure.end()) closure.push_back(y);
+      }
+    }
+    if (!ok) {
+      states_[static_cast<std::size_t>(s)].polynomial = 0;
+      return false;
+    }
+    for (const int x : closure) {
+      states_[static_cast<std::size_t>(x)].polynomial = 1;
+      states_[static_cast<std::size_t>(x)].bezier = fitted.at(x);
+    }
+    return true;
+  }
+
+ private:
+  /// The candidate polynomial of a state (false when it cannot be one: wrong face, sharpness left).
+  bool fit(int s, std::map<int, Eigen::MatrixXd>& fitted) {
+    if (fitted.count(s) != 0) return true;
+    const State& x = at(s);
+    if (x.polynomial == 1) {
+      fitted[s] = x.bezier;
+      return true;
+    }
+    if (x.sides != (quad_ ? 4 : 3)) return false;
+    for (const EdgeSharpness& c : x.mesh.tags.creases)
+      if (c.sharpness < kInfiniteSharpness) return false;
+    for (const VertexSharpness& c : x.mesh.tags.corners)
+      if (c.sharpness < kInfiniteSharpness) return false;
+    const auto points = fit_points(quad_);
+    Eigen::MatrixXd values(static_cast<Eigen::Index>(points.size()), x.mesh.vertices.rows());
+    for (std::size_t p = 0; p < points.size(); ++p)
+      values.row(static_cast<Eigen::Index>(p)) = functional(s, points[p][0] / 4.0, points[p][1] / 4.0);
+    fitted[s] = solve_ * values;
+    return true;
+  }
+
+  /// The limit at a dyadic point of a state's domain as weights on its slots.
+  Eigen::RowVectorXd functional(int s, double u, double v) {
+    if (u == 0 && v == 0) return corner(s);
+    const int k = child_at(quad_, u, v);
+    const auto [a, b] = child_map(quad_, k)(u, v);
+    const State& x = expand(s);
+    const int y = x.child[static_cast<std::size_t>(k)];
+    const Eigen::MatrixXd M = x.to_child[static_cast<std::size_t>(k)];
+    return functional(y, a, b) * M;
+  }
+
+  MeshScheme scheme_;
+  bool quad_;
+  std::map<std::string, int> index_;
+  std::deque<State> states_;
+  Eigen::MatrixXd solve_;
+  std::array<Eigen::MatrixXd, 4> restrict_;
+};
+
+}  // namespace detail
+
+namespace {
+
+/// OpenSubdiv's parametrisation of an n-gon under Catmull–Clark (Bfr::Parameterization, quad
+/// sub-faces): sub-face i, the quad of corner i after one step, is the square [x, x + ½] × [y, y + ½],
+/// x = i mod D, y = i div D, D = 2 for triangles, 3 for 5 … 9 corners, 1 + ⌊√(n − 1)⌋ from 10; its own
+/// (s, t) = 2 (u − x, v − y), s towards the edge after corner i.
+int tiles(int n) {
+  return n < 10 ? (n > 4 ? 3 : 2) : 1 + static_cast<int>(std::sqrt(static_cast<double>(n - 1)));
+}
+
+/// Per face, the tree of nets met going down (built once per node, so that a point costs its
+/// descent and one polynomial evaluation).
+struct Node {
+  int state = 0;
+  Points net;     // the state's slots
+  Points bezier;  // when the state is a polynomial
+  std::vector<int> kids;
+};
+
+}  // namespace
+
+SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::span<const FacePoint> at) {
+  if (scheme != MeshScheme::catmull_clark && scheme != MeshScheme::loop)
+    throw InvalidInput("limit surface: " + std::string(scheme_name(scheme)) +
+                       " is not built (catmull-clark and loop are)");
+  const std::string who = std::string(scheme_name(scheme)) + " limit surface";
+  // Topology and tags only: the vertex data may have any number of columns.
+  Mesh shape;
+  shape.vertices = Points::Zero(mesh.vertices.rows(), 3);
+  shape.face_offsets = mesh.face_offsets;
+  shape.face_vertices = mesh.face_vertices;
+  shape.tags = mesh.tags;
+  const MeshRefinement r = refine_topology(shape, scheme, 0);
+  const MeshTopology& t = r.levels[0];
+  const LevelFeatures& features = r.features[0];
+  const bool quad = quad_scheme(scheme);
+  const auto F = static_cast<int>(face_count(t));
+  // The points first: a bad one is named before any work.
+  for (std::size_t p = 0; p < at.size(); ++p) {
+    const FacePoint& q = at[p];
+    const std::string where = std::string(scheme_name(scheme)) + " limit: point " + std::to_string(p) +
+                              " (face " + std::to_string(q.face) + ")";
+    if (q.face < 0 || q.face >= F)
+      throw InvalidInput(where + ": no such face; the mesh has " + std::to_string(F));
+    if (!std::isfinite(q.u) || !std::isfinite(q.v))
+      throw InvalidInput(where + ": (u, v) is not a pair of finite numbers");
+    if (is_hole(features, q.face))
+      throw InvalidInput(where +
+                         ": the face is a hole (tagged, or next to the boundary under the boundary "
+                         "rule 'none'): it has no limit surface");
+    const auto n = static_cast<int>(face(t, static_cast<std::size_t>(q.face)).size());
+    bool inside = q.u >= 0 && q.v >= 0;
+    std::string domain;
+    if (!quad) {
+      inside = inside && q.u + q.v <= 1 + 1e-12;  // u + v may pass 1 by a rounding of the caller's sum
+      domain = "the triangle u, v ≥ 0, u + v ≤ 1";
+    } else if (n == 4) {
+      inside = inside && q.u <= 1 && q.v <= 1;
+      domain = "[0, 1]²";
+    } else {
+      const int D = tiles(n);
+      const int x = std::min(static_cast<int>(q.u + 0.25), D - 1), y = static_cast<int>(q.v + 0.25);
+      inside = inside && y * D + x < n && q.u >= x && q.u - x <= 0.5 && q.v >= y && q.v - y <= 0.5;
+      domain = "the " + std::to_string(n) + "-gon's sub-faces [i mod " + std::to_string(D) +
+               ", + ½] × [i div " + std::to_string(D) + ", + ½] (OpenSubdiv's parametrisation)";
+    }
+    if (!inside)
+      throw InvalidInput(where + ": (u, v) = (" + number_text(q.u, 6) + ", " + number_text(q.v, 6) +
+                         ") is outside " + domain);
+  }
+  const Eigen::Index d = mesh.vertices.cols();
+  detail::SurfaceStates states(scheme);
+  std::vector<std::vector<Node>> trees(static_cast<std::size_t>(F));
+  SurfaceSample out;
+  const auto count = static_cast<Eigen::Index>(at.size());
+  out.positions.resize(count, d);
+  out.du.resize(count, d);
+  out.dv.resize(count, d);
+  const int N = basis_size(quad);
+  std::vector<double> b(static_cast<std::size_t>(N)), bu(b), bv(b);
+  const auto kid = [&](std::vector<Node>& tree, std::size_t node, int k) {
+    if (tree[node].kids.empty()) tree[node].kids.assign(states.expand(tree[node].state).child.size(), -1);
+    if (const int existing = tree[node].kids[static_cast<std::size_t>(k)]; existing >= 0) return existing;
+    const auto& x = states.expand(tree[node].state);
+    Node child;
+    child.state = x.child[static_cast<std::size_t>(k)];
+    child.net = x.to_child[static_cast<std::size_t>(k)] * tree[node].net;
+    if (states.polynomial(child.state)) child.bezier = states.at(child.state).bezier * child.net;
+    tree.push_back(std::move(child));
+    tree[node].kids[static_cast<std::size_t>(k)] = static_cast<int>(tree.size()) - 1;
+    return static_cast<int>(tree.size()) - 1;
+  };
+  for (Eigen::Index p = 0; p < count; ++p) {
+    const FacePoint& q = at[static_cast<std::size_t>(p)];
+    std::vector<Node>& tree = trees[static_cast<std::size_t>(q.face)];
+    if (tree.empty()) {
+      Node root;
+      Configuration c = configuration(t, features, r.tags[0], q.face, 0);
+      root.net.resize(static_cast<Eigen::Index>(c.vertices.size()), d);
+      for (std::size_t i = 0; i < c.vertices.size(); ++i)
+        root.net.row(static_cast<Eigen::Index>(i)) = mesh.vertices.row(c.vertices[i]);
+      root.state = states.state(std::move(c));
+      if (states.polynomial(root.state)) root.bezier = states.at(root.state).bezier * root.net;
+      tree.push_back(std::move(root));
+    }
+    double u = q.u, v = q.v;
+    std::array<double, 4> J{1, 0, 0, 1};  // ∂(s, t)/∂(u, v), row-major
+    int node = 0;
+    const int sides = states.at(tree[0].state).sides;
+    if (quad && sides != 4) {  // the sub-face holding (u, v), in its own (s, t)
+      const int D = tiles(sides);
+      const int x = std::min(static_cast<int>(u + 0.25), D - 1), y = static_cast<int>(v + 0.25);
+      node = kid(tree, 0, y * D + x);
+      u = 2 * (u - x), v = 2 * (v - y);
+      J = {2, 0, 0, 2};
+    }
+    double* value = out.positions.row(p).data();
+    Eigen::RowVectorXd ds = Eigen::RowVectorXd::Zero(d), dt = Eigen::RowVectorXd::Zero(d);
+    for (int depth = 0;; ++depth) {
+      const Node& here = tree[static_cast<std::size_t>(node)];
+      if (here.bezier.size() > 0) {
+        basis(quad, u, v, b.data(), bu.data(), bv.data());
+        for (Eigen::Index c = 0; c < d; ++c) {
+          double x = 0, xs = 0, xt = 0;
+          for (int k = 0; k < N; ++k) {
+            const double coefficient = here.bezier(k, c);
+            x += b[static_cast<std::size_t>(k)] * coefficient;
+            xs += bu[static_cast<std::size_t>(k)] * coefficient;
+            xt += bv[static_cast<std::size_t>(k)] * coefficient;
+          }
+          value[c] = x;
+          ds(c) = xs;
+          dt(c) = xt;
+        }
+        break;
+      }
+      if (depth > 64)
+        throw std::logic_error(who + ": face " + std::to_string(q.face) +
+                               ": no polynomial patch after 64 levels");
+      // At the corner: down the corner's children while they change (sharpness being spent, other
+      // corners left behind); once the corner's child is its own state, the corner never becomes a
+      // polynomial patch — its limit point, without partials.
+      if (u == 0 && v == 0 && states.expand(here.state).child[0] == here.state) {
+        out.positions.row(p) = states.corner(here.state) * here.net;
+        ds.setZero();
+        dt.setZero();
+        break;
+      }
+      const int k = child_at(quad, u, v);
+      const ChildMap m = child_map(quad, k);
+      const auto [s2, t2] = m(u, v);
+      u = s2, v = t2;
+      J = {m.A[0] * J[0] + m.A[1] * J[2], m.A[0] * J[1] + m.A[1] * J[3], m.A[2] * J[0] + m.A[3] * J[2],
+           m.A[2] * J[1] + m.A[3] * J[3]};
+      node = kid(tree, static_cast<std::size_t>(node), k);
+    }
+    out.du.row(p) = J[0] * ds + J[2] * dt;
+    out.dv.row(p) = J[1] * ds + J[3] * dt;
+  }
+  return out;
+}
+
+}  // namespace cifs::subdivision
