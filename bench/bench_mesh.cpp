@@ -435,16 +435,31 @@ Sdc::SchemeType osd_type(sd::MeshScheme scheme) {
   return quads(scheme) ? Sdc::SCHEME_CATMARK : Sdc::SCHEME_LOOP;
 }
 
-const Mesh& surface_mesh(sd::MeshScheme scheme) {
+/// A creased open mesh: a 24 × 20 grid over a wavy height field (Loop: its 960 triangles), boundary
+/// rule edge_and_corner (sharp grid corners), an infinitely sharp crease across it from boundary to
+/// boundary, a semi-sharp one (2.5) ending inside, an infinitely sharp corner inside.
+Mesh make_creased_surface_mesh(bool triangles) {
+  Mesh m = cifs_test::quad_grid(24, 20, triangles);
+  const auto id = [](int i, int j) { return j * 25 + i; };
+  m.tags.boundary = cifs::BoundaryRule::edge_and_corner;
+  for (int i = 0; i < 24; ++i) m.tags.creases.push_back({id(i, 10), id(i + 1, 10), 10});
+  for (int j = 2; j < 8; ++j) m.tags.creases.push_back({id(8, j), id(8, j + 1), 2.5});
+  m.tags.corners.push_back({id(16, 5), 10});
+  return m;
+}
+
+const Mesh& surface_mesh(sd::MeshScheme scheme, bool creased = false) {
   static const Mesh cc = sd::catmull_clark(cifs_test::bipyramid(), 3),
-                    loop = sd::loop(cifs_test::bipyramid(), 3);
+                    loop = sd::loop(cifs_test::bipyramid(), 3), cc_creased = make_creased_surface_mesh(false),
+                    loop_creased = make_creased_surface_mesh(true);
+  if (creased) return quads(scheme) ? cc_creased : loop_creased;
   return quads(scheme) ? cc : loop;
 }
 
 /// 1 M points (face, u, v), uniform over the faces (triangles: (u, v) folded into u + v ≤ 1), sorted
 /// by face (cifs::Random-free: a fixed LCG).
-std::vector<sd::FacePoint> make_surface_points(sd::MeshScheme scheme) {
-  const auto faces = static_cast<int>(cifs::face_count(surface_mesh(scheme)));
+std::vector<sd::FacePoint> make_surface_points(sd::MeshScheme scheme, bool creased) {
+  const auto faces = static_cast<int>(cifs::face_count(surface_mesh(scheme, creased)));
   std::vector<sd::FacePoint> out(1'000'000);
   std::uint64_t x = 12345;
   const auto next = [&x] {
@@ -459,20 +474,24 @@ std::vector<sd::FacePoint> make_surface_points(sd::MeshScheme scheme) {
   return out;
 }
 
-const std::vector<sd::FacePoint>& surface_points(sd::MeshScheme scheme) {
-  static const std::vector<sd::FacePoint> cc = make_surface_points(sd::MeshScheme::catmull_clark),
-                                          loop = make_surface_points(sd::MeshScheme::loop);
+const std::vector<sd::FacePoint>& surface_points(sd::MeshScheme scheme, bool creased = false) {
+  static const std::vector<sd::FacePoint> cc = make_surface_points(sd::MeshScheme::catmull_clark, false),
+                                          loop = make_surface_points(sd::MeshScheme::loop, false),
+                                          cc_creased =
+                                              make_surface_points(sd::MeshScheme::catmull_clark, true),
+                                          loop_creased = make_surface_points(sd::MeshScheme::loop, true);
+  if (creased) return quads(scheme) ? cc_creased : loop_creased;
   return quads(scheme) ? cc : loop;
 }
 
-void cifs_surface_case(benchmark::State& state, sd::MeshScheme scheme) {
+void cifs_surface_case(benchmark::State& state, sd::MeshScheme scheme, bool creased) {
   sd::SurfaceSample s;
   for (auto _ : state) {
-    s = sd::evaluate_limit_surface(surface_mesh(scheme), scheme, surface_points(scheme));
+    s = sd::evaluate_limit_surface(surface_mesh(scheme, creased), scheme, surface_points(scheme, creased));
     benchmark::DoNotOptimize(s.dv.data());
   }
   state.counters["ns_per_point"] =
-      benchmark::Counter(static_cast<double>(surface_points(scheme).size()),
+      benchmark::Counter(static_cast<double>(surface_points(scheme, creased).size()),
                          benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
@@ -503,19 +522,20 @@ std::array<Points, 3> bfr_surface(const OpenSubdiv::Bfr::RefinerSurfaceFactory<>
 
 /// Bfr at its approximation level `state.range(0)` (2: its default, approximate near extraordinary
 /// vertices; 6: equal to the exact surface to 1e-12, see surface_cross_check).
-void osd_bfr_surface_case(benchmark::State& state, sd::MeshScheme scheme) {
-  const Mesh& m = surface_mesh(scheme);
+void osd_bfr_surface_case(benchmark::State& state, sd::MeshScheme scheme, bool creased) {
+  const Mesh& m = surface_mesh(scheme, creased);
   const auto refiner = cifs_test::osd_refiner(m, osd_type(scheme), 0);
   OpenSubdiv::Bfr::SurfaceFactory::Options options;
   options.SetApproxLevelSmooth(static_cast<int>(state.range(0)));
+  options.SetApproxLevelSharp(std::max(6, static_cast<int>(state.range(0))));  // Bfr's default sharp level: 6
   const OpenSubdiv::Bfr::RefinerSurfaceFactory<> factory(*refiner, options);
   std::array<Points, 3> out;
   for (auto _ : state) {
-    out = bfr_surface(factory, m, surface_points(scheme));
+    out = bfr_surface(factory, m, surface_points(scheme, creased));
     benchmark::DoNotOptimize(out[2].data());
   }
   state.counters["ns_per_point"] =
-      benchmark::Counter(static_cast<double>(surface_points(scheme).size()),
+      benchmark::Counter(static_cast<double>(surface_points(scheme, creased).size()),
                          benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
@@ -563,6 +583,34 @@ void surface_cross_check(sd::MeshScheme scheme) {
   }
 }
 
+/// The creased open mesh against Bfr at approximation level 10 (smooth and sharp: exact under uniform
+/// creasing away from semi-sharp vertices and darts, which random points miss): 1e-10 of the size, or
+/// the run aborts.
+void creased_surface_cross_check(sd::MeshScheme scheme) {
+  const Mesh& m = surface_mesh(scheme, true);
+  const std::span<const sd::FacePoint> points(surface_points(scheme, true).data(), 20'000);
+  const auto refiner = cifs_test::osd_refiner(m, osd_type(scheme), 0);
+  const sd::SurfaceSample ours = sd::evaluate_limit_surface(m, scheme, points);
+  OpenSubdiv::Bfr::SurfaceFactory::Options options;
+  options.SetApproxLevelSmooth(10);
+  options.SetApproxLevelSharp(10);
+  const OpenSubdiv::Bfr::RefinerSurfaceFactory<> factory(*refiner, options);
+  const auto theirs = bfr_surface(factory, m, points);
+  double position = 0, partials = 0;
+  for (Eigen::Index r = 0; r < static_cast<Eigen::Index>(points.size()); ++r) {
+    position = std::max(position, (ours.positions.row(r) - theirs[0].row(r)).norm());
+    partials = std::max(
+        {partials, (ours.du.row(r) - theirs[1].row(r)).norm(), (ours.dv.row(r) - theirs[2].row(r)).norm()});
+  }
+  const double scale = (m.vertices.colwise().maxCoeff() - m.vertices.colwise().minCoeff()).norm();
+  std::printf(
+      "%s creased open surface cross-check against Bfr (approximation level 10): %.3g (positions), %.3g "
+      "(partials), relative to the size\n",
+      sd::scheme_name(scheme).data(), position / scale, partials / scale);
+  std::fflush(stdout);
+  if (!(position <= 1e-10 * scale) || !(partials <= 1e-10 * scale)) std::abort();
+}
+
 void openmesh_case(benchmark::State& state, sd::MeshScheme scheme) {
   const Mesh& m = input(scheme);
   Mesh out;
@@ -591,13 +639,17 @@ int main(int argc, char** argv) {
   cross_check();
   for (const auto scheme : {sd::MeshScheme::catmull_clark, sd::MeshScheme::loop}) {
     surface_cross_check(scheme);
+    creased_surface_cross_check(scheme);
     const std::string s(sd::scheme_name(scheme));
-    benchmark::RegisterBenchmark((s + "/surface_1M/cifs").c_str(), cifs_surface_case, scheme)
-        ->Unit(benchmark::kMillisecond);
-    benchmark::RegisterBenchmark((s + "/surface_1M/osd_bfr_level").c_str(), osd_bfr_surface_case, scheme)
-        ->Arg(2)
-        ->Arg(6)
-        ->Unit(benchmark::kMillisecond);
+    for (const bool creased : {false, true}) {
+      const std::string name = s + (creased ? "/surface_1M_creased_open/" : "/surface_1M/");
+      benchmark::RegisterBenchmark((name + "cifs").c_str(), cifs_surface_case, scheme, creased)
+          ->Unit(benchmark::kMillisecond);
+      benchmark::RegisterBenchmark((name + "osd_bfr_level").c_str(), osd_bfr_surface_case, scheme, creased)
+          ->Arg(2)
+          ->Arg(6)
+          ->Unit(benchmark::kMillisecond);
+    }
   }
   for (const auto scheme : {sd::MeshScheme::catmull_clark, sd::MeshScheme::loop}) {
     const std::string s(sd::scheme_name(scheme));

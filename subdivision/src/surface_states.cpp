@@ -271,51 +271,68 @@ int child_at(bool quad, double u, double v) {
   return u + v < 0.5 ? 0 : 3;
 }
 
-/// Bernstein basis of the patch polynomial and its partials: bicubic (16, index 4i + j for
-/// B_i(u) B_j(v)) or quartic on the triangle (15).
+/// The patch polynomial: bicubic (16 coefficients, index 4a + b for the a-th in u and b-th in v) or
+/// quartic on the triangle (15, index tri(a, b) for u^a v^b). Fitted and restricted in the Bernstein
+/// basis (well conditioned), evaluated per point in the monomial basis by Horner's scheme.
 int basis_size(bool quad) {
   return quad ? 16 : 15;
 }
 
-void cubic_bernstein(double t, std::array<double, 4>& b, std::array<double, 4>& d) {
-  const double s = 1 - t;
-  b = {s * s * s, 3 * t * s * s, 3 * t * t * s, t * t * t};
-  d = {-3 * s * s, 3 * s * s - 6 * t * s, 6 * t * s - 3 * t * t, 3 * t * t};
-}
-
-/// Index of the quartic Bernstein coefficient of u^a v^b w^(4 − a − b) (w = 1 − u − v).
+/// Index of the quartic coefficient of u^a v^b (Bernstein: u^a v^b w^(4 − a − b), w = 1 − u − v).
 constexpr int tri(int a, int b) {
   return a * (11 - a) / 2 + b;
 }
 
-void basis(bool quad, double u, double v, double* b, double* bu, double* bv) {
-  if (quad) {
-    std::array<double, 4> pu{}, du{}, pv{}, dv{};
-    cubic_bernstein(u, pu, du);
-    cubic_bernstein(v, pv, dv);
-    for (std::size_t i = 0; i < 4; ++i)
-      for (std::size_t j = 0; j < 4; ++j) {
-        b[4 * i + j] = pu[i] * pv[j];
-        bu[4 * i + j] = du[i] * pv[j];
-        bv[4 * i + j] = pu[i] * dv[j];
-      }
-    return;
-  }
-  const double w = 1 - u - v;
-  const auto power = [](double x, int k) { return k < 0 ? 0.0 : std::pow(x, k); };
+/// The Bernstein polynomials (`monomials`: the monomials) at (u, v).
+void basis(bool quad, bool monomials, double u, double v, double* b) {
   static constexpr std::array<double, 5> kFactorial{1, 1, 2, 6, 24};
-  for (int a = 0; a <= 4; ++a)
-    for (int c = 0; a + c <= 4; ++c) {
-      const int r = 4 - a - c;
-      const double m =
-          24 / (kFactorial[static_cast<std::size_t>(a)] * kFactorial[static_cast<std::size_t>(c)] *
-                kFactorial[static_cast<std::size_t>(r)]);
-      const auto k = static_cast<std::size_t>(tri(a, c));
-      b[k] = m * power(u, a) * power(v, c) * power(w, r);
-      const double dw = r * power(u, a) * power(v, c) * power(w, r - 1);
-      bu[k] = m * (a * power(u, a - 1) * power(v, c) * power(w, r) - dw);
-      bv[k] = m * (c * power(u, a) * power(v, c - 1) * power(w, r) - dw);
+  const int degree = quad ? 3 : 4;
+  const auto power = [](double x, int k) { return std::pow(x, k); };
+  for (int a = 0; a <= degree; ++a)
+    for (int c = 0; c <= degree && (quad || a + c <= degree); ++c) {
+      const int k = quad ? 4 * a + c : tri(a, c);
+      if (monomials) {
+        b[k] = power(u, a) * power(v, c);
+      } else if (quad) {
+        const auto cubic = [&](double t, int i) {
+          return kFactorial[3] /
+                 (kFactorial[static_cast<std::size_t>(i)] * kFactorial[static_cast<std::size_t>(3 - i)]) *
+                 power(t, i) * power(1 - t, 3 - i);
+        };
+        b[k] = cubic(u, a) * cubic(v, c);
+      } else {
+        const int r = 4 - a - c;
+        b[k] = kFactorial[4] /
+               (kFactorial[static_cast<std::size_t>(a)] * kFactorial[static_cast<std::size_t>(c)] *
+                kFactorial[static_cast<std::size_t>(r)]) *
+               power(u, a) * power(v, c) * power(1 - u - v, r);
+      }
     }
+}
+
+/// Value and partials of a patch from its monomial rows (`coefficients`, basis_size rows of d), by
+/// Horner's scheme in v, then in u; D = 3 keeps the sums in registers.
+template <int D>
+void patch_sums(bool quad, const double* coefficients, Eigen::Index d, double u, double v, double* value,
+                double* du, double* dv) {
+  const Eigen::Index dims = D > 0 ? D : d;
+  const int degree = quad ? 3 : 4;
+  for (Eigen::Index k = 0; k < dims; ++k) {
+    double x = 0, xu = 0, xv = 0;
+    for (int a = degree; a >= 0; --a) {  // q_a(v) = Σ_b c_ab v^b and q_a', then Horner in u
+      const int top = quad ? 3 : degree - a;
+      const double* c = coefficients + static_cast<Eigen::Index>(quad ? 4 * a : tri(a, 0)) * dims + k;
+      double q = c[top * dims], r = 0;
+      for (int b = top - 1; b >= 0; --b) {
+        r = r * v + q;
+        q = q * v + c[b * dims];
+      }
+      xu = xu * u + x;
+      x = x * u + q;
+      xv = xv * u + r;
+    }
+    value[k] = x, du[k] = xu, dv[k] = xv;
+  }
 }
 
 /// The points where the polynomial is fitted: (a, b)/4, a, b ∈ {0, 1, 3, 4} on quads (a tensor grid),
@@ -347,20 +364,25 @@ class SurfaceStates {
     std::vector<Eigen::MatrixXd> to_child;  // child's slots × this state's
     Eigen::RowVectorXd corner;              // the limit at corner 0 on the slots (empty until asked)
     int polynomial = -1;                    // unknown, 0, 1
-    Eigen::MatrixXd bezier;                 // basis_size × slots when polynomial
+    Eigen::MatrixXd bezier;                 // basis_size × slots when polynomial: Bernstein
+    Eigen::MatrixXd monomials;              // the same in the monomial basis
   };
 
   explicit SurfaceStates(MeshScheme scheme) : scheme_(scheme), quad_(quad_scheme(scheme)) {
     const auto points = fit_points(quad_);
     const int N = basis_size(quad_);
     Eigen::MatrixXd colloc(N, N);
-    std::vector<double> b(static_cast<std::size_t>(N)), bu(b), bv(b);
+    Eigen::MatrixXd monomials(N, N);
+    std::vector<double> b(static_cast<std::size_t>(N));
     for (std::size_t p = 0; p < points.size(); ++p) {
-      basis(quad_, points[p][0] / 4.0, points[p][1] / 4.0, b.data(), bu.data(), bv.data());
+      basis(quad_, false, points[p][0] / 4.0, points[p][1] / 4.0, b.data());
       for (int k = 0; k < N; ++k) colloc(static_cast<Eigen::Index>(p), k) = b[static_cast<std::size_t>(k)];
+      basis(quad_, true, points[p][0] / 4.0, points[p][1] / 4.0, b.data());
+      for (int k = 0; k < N; ++k) monomials(static_cast<Eigen::Index>(p), k) = b[static_cast<std::size_t>(k)];
     }
-    const Eigen::FullPivLU<Eigen::MatrixXd> lu(colloc);
-    solve_ = lu.inverse();
+    solve_ = colloc.fullPivLu().inverse();
+    // Bernstein to monomial coefficients: an integer matrix (binomials with signs), rounded exact.
+    to_monomials_ = monomials.fullPivLu().solve(colloc).array().round().matrix();
     // Restriction to child k: the child's coefficients from the parent's, through the values at the
     // fit points mapped into the parent (the inverse of child_map).
     const int children = 4;
@@ -371,7 +393,7 @@ class SurfaceStates {
       for (std::size_t p = 0; p < points.size(); ++p) {
         const double s = points[p][0] / 4.0 - m.b[0], t = points[p][1] / 4.0 - m.b[1];
         const double u = (m.A[3] * s - m.A[1] * t) / det, v = (-m.A[2] * s + m.A[0] * t) / det;
-        basis(quad_, u, v, b.data(), bu.data(), bv.data());
+        basis(quad_, false, u, v, b.data());
         for (int q = 0; q < N; ++q) values(static_cast<Eigen::Index>(p), q) = b[static_cast<std::size_t>(q)];
       }
       restrict_[static_cast<std::size_t>(k)] = solve_ * values;
@@ -501,6 +523,7 @@ class SurfaceStates {
     for (const int x : closure) {
       states_[static_cast<std::size_t>(x)].polynomial = 1;
       states_[static_cast<std::size_t>(x)].bezier = fitted.at(x);
+      states_[static_cast<std::size_t>(x)].monomials = to_monomials_ * fitted.at(x);
     }
     return true;
   }
@@ -544,6 +567,7 @@ class SurfaceStates {
   std::deque<State> states_;
   Eigen::MatrixXd solve_;
   std::array<Eigen::MatrixXd, 4> restrict_;
+  Eigen::MatrixXd to_monomials_;
 };
 
 }  // namespace detail
@@ -558,12 +582,24 @@ int tiles(int n) {
   return n < 10 ? (n > 4 ? 3 : 2) : 1 + static_cast<int>(std::sqrt(static_cast<double>(n - 1)));
 }
 
+/// Whether (u, v) lies in the domain of a face with n corners: the triangle (u + v may pass 1 by a
+/// rounding of the caller's sum), the unit square, an n-gon's sub-faces.
+bool inside(bool quad, int n, double u, double v) {
+  if (!(u >= 0 && v >= 0)) return false;  // NaN too
+  if (!quad) return u + v <= 1 + 1e-12;
+  if (n == 4) return u <= 1 && v <= 1;
+  const int D = tiles(n);
+  if (!(u < D + 1.0 && v < n)) return false;
+  const int x = std::min(static_cast<int>(u + 0.25), D - 1), y = static_cast<int>(v + 0.25);
+  return y * D + x < n && u >= x && u - x <= 0.5 && v >= y && v - y <= 0.5;
+}
+
 /// Per face, the tree of nets met going down (built once per node, so that a point costs its
 /// descent and one polynomial evaluation).
 struct Node {
   int state = 0;
-  Points net;     // the state's slots
-  Points bezier;  // when the state is a polynomial
+  Points net;         // the state's slots
+  Points polynomial;  // its monomial coefficients, when the state is a polynomial
   std::vector<int> kids;
 };
 
@@ -588,35 +624,26 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::s
   // The points first: a bad one is named before any work.
   for (std::size_t p = 0; p < at.size(); ++p) {
     const FacePoint& q = at[p];
+    const bool known = q.face >= 0 && q.face < F;
+    const int n = known ? static_cast<int>(face(t, static_cast<std::size_t>(q.face)).size()) : 0;
+    if (known && !is_hole(features, q.face) && inside(quad, n, q.u, q.v)) continue;
     const std::string where = std::string(scheme_name(scheme)) + " limit: point " + std::to_string(p) +
                               " (face " + std::to_string(q.face) + ")";
-    if (q.face < 0 || q.face >= F)
-      throw InvalidInput(where + ": no such face; the mesh has " + std::to_string(F));
+    if (!known) throw InvalidInput(where + ": no such face; the mesh has " + std::to_string(F));
     if (!std::isfinite(q.u) || !std::isfinite(q.v))
       throw InvalidInput(where + ": (u, v) is not a pair of finite numbers");
     if (is_hole(features, q.face))
       throw InvalidInput(where +
                          ": the face is a hole (tagged, or next to the boundary under the boundary "
                          "rule 'none'): it has no limit surface");
-    const auto n = static_cast<int>(face(t, static_cast<std::size_t>(q.face)).size());
-    bool inside = q.u >= 0 && q.v >= 0;
-    std::string domain;
-    if (!quad) {
-      inside = inside && q.u + q.v <= 1 + 1e-12;  // u + v may pass 1 by a rounding of the caller's sum
-      domain = "the triangle u, v ≥ 0, u + v ≤ 1";
-    } else if (n == 4) {
-      inside = inside && q.u <= 1 && q.v <= 1;
-      domain = "[0, 1]²";
-    } else {
-      const int D = tiles(n);
-      const int x = std::min(static_cast<int>(q.u + 0.25), D - 1), y = static_cast<int>(q.v + 0.25);
-      inside = inside && y * D + x < n && q.u >= x && q.u - x <= 0.5 && q.v >= y && q.v - y <= 0.5;
-      domain = "the " + std::to_string(n) + "-gon's sub-faces [i mod " + std::to_string(D) +
-               ", + ½] × [i div " + std::to_string(D) + ", + ½] (OpenSubdiv's parametrisation)";
-    }
-    if (!inside)
-      throw InvalidInput(where + ": (u, v) = (" + number_text(q.u, 6) + ", " + number_text(q.v, 6) +
-                         ") is outside " + domain);
+    const std::string domain = !quad ? std::string("the triangle u, v ≥ 0, u + v ≤ 1")
+                               : n == 4
+                                   ? std::string("[0, 1]²")
+                                   : "the " + std::to_string(n) + "-gon's sub-faces [i mod " +
+                                         std::to_string(tiles(n)) + ", + ½] × [i div " +
+                                         std::to_string(tiles(n)) + ", + ½] (OpenSubdiv's parametrisation)";
+    throw InvalidInput(where + ": (u, v) = (" + number_text(q.u, 6) + ", " + number_text(q.v, 6) +
+                       ") is outside " + domain);
   }
   const Eigen::Index d = mesh.vertices.cols();
   detail::SurfaceStates states(scheme);
@@ -626,8 +653,7 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::s
   out.positions.resize(count, d);
   out.du.resize(count, d);
   out.dv.resize(count, d);
-  const int N = basis_size(quad);
-  std::vector<double> b(static_cast<std::size_t>(N)), bu(b), bv(b);
+  std::vector<double> ds(static_cast<std::size_t>(d)), dt(ds);  // partials in the leaf's (s, t)
   const auto kid = [&](std::vector<Node>& tree, std::size_t node, int k) {
     if (tree[node].kids.empty()) tree[node].kids.assign(states.expand(tree[node].state).child.size(), -1);
     if (const int existing = tree[node].kids[static_cast<std::size_t>(k)]; existing >= 0) return existing;
@@ -635,7 +661,7 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::s
     Node child;
     child.state = x.child[static_cast<std::size_t>(k)];
     child.net = x.to_child[static_cast<std::size_t>(k)] * tree[node].net;
-    if (states.polynomial(child.state)) child.bezier = states.at(child.state).bezier * child.net;
+    if (states.polynomial(child.state)) child.polynomial = states.at(child.state).monomials * child.net;
     tree.push_back(std::move(child));
     tree[node].kids[static_cast<std::size_t>(k)] = static_cast<int>(tree.size()) - 1;
     return static_cast<int>(tree.size()) - 1;
@@ -650,13 +676,13 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::s
       for (std::size_t i = 0; i < c.vertices.size(); ++i)
         root.net.row(static_cast<Eigen::Index>(i)) = mesh.vertices.row(c.vertices[i]);
       root.state = states.state(std::move(c));
-      if (states.polynomial(root.state)) root.bezier = states.at(root.state).bezier * root.net;
+      if (states.polynomial(root.state)) root.polynomial = states.at(root.state).monomials * root.net;
       tree.push_back(std::move(root));
     }
     double u = q.u, v = q.v;
     std::array<double, 4> J{1, 0, 0, 1};  // ∂(s, t)/∂(u, v), row-major
     int node = 0;
-    const int sides = states.at(tree[0].state).sides;
+    const auto sides = static_cast<int>(face(t, static_cast<std::size_t>(q.face)).size());
     if (quad && sides != 4) {  // the sub-face holding (u, v), in its own (s, t)
       const int D = tiles(sides);
       const int x = std::min(static_cast<int>(u + 0.25), D - 1), y = static_cast<int>(v + 0.25);
@@ -665,23 +691,13 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::s
       J = {2, 0, 0, 2};
     }
     double* value = out.positions.row(p).data();
-    Eigen::RowVectorXd ds = Eigen::RowVectorXd::Zero(d), dt = Eigen::RowVectorXd::Zero(d);
     for (int depth = 0;; ++depth) {
       const Node& here = tree[static_cast<std::size_t>(node)];
-      if (here.bezier.size() > 0) {
-        basis(quad, u, v, b.data(), bu.data(), bv.data());
-        for (Eigen::Index c = 0; c < d; ++c) {
-          double x = 0, xs = 0, xt = 0;
-          for (int k = 0; k < N; ++k) {
-            const double coefficient = here.bezier(k, c);
-            x += b[static_cast<std::size_t>(k)] * coefficient;
-            xs += bu[static_cast<std::size_t>(k)] * coefficient;
-            xt += bv[static_cast<std::size_t>(k)] * coefficient;
-          }
-          value[c] = x;
-          ds(c) = xs;
-          dt(c) = xt;
-        }
+      if (here.polynomial.size() > 0) {
+        if (d == 3)
+          patch_sums<3>(quad, here.polynomial.data(), d, u, v, value, ds.data(), dt.data());
+        else
+          patch_sums<0>(quad, here.polynomial.data(), d, u, v, value, ds.data(), dt.data());
         break;
       }
       if (depth > 64)
@@ -692,8 +708,8 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::s
       // polynomial patch — its limit point, without partials.
       if (u == 0 && v == 0 && states.expand(here.state).child[0] == here.state) {
         out.positions.row(p) = states.corner(here.state) * here.net;
-        ds.setZero();
-        dt.setZero();
+        std::fill(ds.begin(), ds.end(), 0.0);
+        std::fill(dt.begin(), dt.end(), 0.0);
         break;
       }
       const int k = child_at(quad, u, v);
@@ -704,8 +720,11 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::s
            m.A[2] * J[1] + m.A[3] * J[3]};
       node = kid(tree, static_cast<std::size_t>(node), k);
     }
-    out.du.row(p) = J[0] * ds + J[2] * dt;
-    out.dv.row(p) = J[1] * ds + J[3] * dt;
+    for (Eigen::Index c = 0; c < d; ++c) {
+      const auto k = static_cast<std::size_t>(c);
+      out.du(p, c) = J[0] * ds[k] + J[2] * dt[k];
+      out.dv(p, c) = J[1] * ds[k] + J[3] * dt[k];
+    }
   }
   return out;
 }
