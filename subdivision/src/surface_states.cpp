@@ -34,6 +34,7 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/format.hpp"
+#include "cifs/memory.hpp"
 #include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/rules.hpp"
 
@@ -315,23 +316,33 @@ void basis(bool quad, bool monomials, double u, double v, double* b) {
 template <int D>
 void patch_sums(bool quad, const double* coefficients, Eigen::Index d, double u, double v, double* value,
                 double* du, double* dv) {
+  constexpr int kFixed = D > 0 ? D : 1;
   const Eigen::Index dims = D > 0 ? D : d;
   const int degree = quad ? 3 : 4;
-  for (Eigen::Index k = 0; k < dims; ++k) {
-    double x = 0, xu = 0, xv = 0;
+  // D > 0: every coordinate in the same pass (independent chains interleave); else one at a time.
+  for (Eigen::Index k0 = 0; k0 < dims; k0 += kFixed) {
+    std::array<double, kFixed> x{}, xu{}, xv{};
     for (int a = degree; a >= 0; --a) {  // q_a(v) = Σ_b c_ab v^b and q_a', then Horner in u
       const int top = quad ? 3 : degree - a;
-      const double* c = coefficients + static_cast<Eigen::Index>(quad ? 4 * a : tri(a, 0)) * dims + k;
-      double q = c[top * dims], r = 0;
-      for (int b = top - 1; b >= 0; --b) {
-        r = r * v + q;
-        q = q * v + c[b * dims];
+      const double* c = coefficients + static_cast<Eigen::Index>(quad ? 4 * a : tri(a, 0)) * dims + k0;
+      std::array<double, kFixed> q{}, r{};
+      for (int k = 0; k < kFixed; ++k) q[static_cast<std::size_t>(k)] = c[top * dims + k];
+      for (int b = top - 1; b >= 0; --b)
+        for (std::size_t k = 0; k < kFixed; ++k) {
+          r[k] = r[k] * v + q[k];
+          q[k] = q[k] * v + c[b * dims + static_cast<Eigen::Index>(k)];
+        }
+      for (std::size_t k = 0; k < kFixed; ++k) {
+        xu[k] = xu[k] * u + x[k];
+        x[k] = x[k] * u + q[k];
+        xv[k] = xv[k] * u + r[k];
       }
-      xu = xu * u + x;
-      x = x * u + q;
-      xv = xv * u + r;
     }
-    value[k] = x, du[k] = xu, dv[k] = xv;
+    for (std::size_t k = 0; k < kFixed; ++k) {
+      value[k0 + static_cast<Eigen::Index>(k)] = x[k];
+      du[k0 + static_cast<Eigen::Index>(k)] = xu[k];
+      dv[k0 + static_cast<Eigen::Index>(k)] = xv[k];
+    }
   }
 }
 
@@ -650,9 +661,10 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::s
   std::vector<std::vector<Node>> trees(static_cast<std::size_t>(F));
   SurfaceSample out;
   const auto count = static_cast<Eigen::Index>(at.size());
-  out.positions.resize(count, d);
-  out.du.resize(count, d);
-  out.dv.resize(count, d);
+  for (Points* P : {&out.positions, &out.du, &out.dv}) {
+    P->resize(count, d);
+    advise_huge_pages(P->data(), static_cast<std::size_t>(P->size()) * sizeof(double));
+  }
   std::vector<double> ds(static_cast<std::size_t>(d)), dt(ds);  // partials in the leaf's (s, t)
   const auto kid = [&](std::vector<Node>& tree, std::size_t node, int k) {
     if (tree[node].kids.empty()) tree[node].kids.assign(states.expand(tree[node].state).child.size(), -1);

@@ -357,3 +357,96 @@ TEST_CASE("the limit surface at (face, u, v) with features = the limits of deepl
     CHECK(worst <= (float_order ? 1e-7 : 1e-12) * scale);
   }
 }
+
+TEST_CASE("the limit surface at (face, u, v) with features: partials = differences of positions",
+          "[subdivision][limit]") {
+  // Central differences at points inside the faces (sub-faces), off the dyadic grid: agreement to
+  // the differences' own error (1e-6 relative), on every featured mesh, both crease methods.
+  const double h = 1e-5;
+  for (const Case& c : feature_cases()) {
+    INFO(c.name << ", " << scheme_name(c.scheme));
+    std::vector<FacePoint> centres;
+    for (const FacePoint& q : sample_points(c.mesh, c.scheme))
+      if (!at_vertex(c.mesh, c.scheme, q)) {
+        const double s = 2 * (q.u - std::floor(q.u)), t = 2 * (q.v - std::floor(q.v));  // n-gons: sub-face
+        const bool inner =
+            c.scheme == MeshScheme::loop || face(c.mesh, static_cast<std::size_t>(q.face)).size() == 4
+                ? q.u > 2 * h && q.v > 2 * h && q.u < 1 - 2 * h && q.v < 1 - 2 * h &&
+                      q.u + q.v < (c.scheme == MeshScheme::loop ? 1 - 2 * h : 3)
+                : s > 4 * h && t > 4 * h && s < 1 - 4 * h && t < 1 - 4 * h;
+        if (inner) centres.push_back(q);
+      }
+    std::vector<FacePoint> points;
+    for (const FacePoint& q : centres)
+      for (const auto [du, dv] : {std::array{0.0, 0.0}, std::array{h, 0.0}, std::array{-h, 0.0},
+                                  std::array{0.0, h}, std::array{0.0, -h}})
+        points.push_back({.face = q.face, .u = q.u + du, .v = q.v + dv});
+    const SurfaceSample s = evaluate_limit_surface(c.mesh, c.scheme, points);
+    double worst = 0;
+    for (Eigen::Index p = 0; p < s.positions.rows(); p += 5) {
+      const Eigen::RowVectorXd fu = (s.positions.row(p + 1) - s.positions.row(p + 2)) / (2 * h),
+                               fv = (s.positions.row(p + 3) - s.positions.row(p + 4)) / (2 * h);
+      const double size = std::max({s.du.row(p).norm(), s.dv.row(p).norm(), 1e-3 * size_of(c.mesh)});
+      worst = std::max({worst, (s.du.row(p) - fu).norm() / size, (s.dv.row(p) - fv).norm() / size});
+    }
+    CHECK(worst <= 1e-6);
+  }
+}
+
+TEST_CASE("the limit surface at (face, u, v) with features: refined vertices converge to it",
+          "[subdivision][limit]") {
+  // The vertices at the dyadic points (i, j)/8 of every face, refined 3 … 8 levels by the production
+  // refiner (positions, not limits), approach the evaluated surface geometrically — by a factor 0.55
+  // or less per level (semi-sharp creases ending on a sharp one leave a ½ mode), and by 4 in the end on the
+  // open grid with sharp creases and corners, whose patches are polynomials (their control points converge as
+  // h²) — Chaikin's crease method included.
+  for (const bool chaikin : {false, true}) {
+    Mesh g = wavy_grid(5, 4, false);
+    g.tags.boundary = BoundaryRule::edge_and_corner;
+    g.tags.creases = {{7, 8, 10}, {8, 9, 10}, {9, 10, 10}};
+    g.tags.corners = {{14, 10}};
+    if (chaikin) {
+      g.tags.crease_method = CreaseMethod::chaikin;
+      g.tags.creases.push_back({1, 7, 1.5});
+      g.tags.creases.push_back({2, 8, 2.5});
+    }
+    INFO((chaikin ? "chaikin, semi-sharp" : "sharp creases"));
+    constexpr int kFirst = 3, kLast = 8;
+    const MeshRefinement r = refine_topology(g, MeshScheme::catmull_clark, kLast);
+    std::vector<FacePoint> points;
+    std::vector<std::vector<int>> ids;
+    const int N = 1 << kFirst;
+    for (int f = 0; f < static_cast<int>(face_count(g)); ++f)
+      for (int i = 0; i <= N; ++i)
+        for (int j = 0; j <= N; ++j) points.push_back({.face = f, .u = double(i) / N, .v = double(j) / N});
+    const SurfaceSample s = evaluate_limit_surface(g, MeshScheme::catmull_clark, points);
+    std::vector<double> distance;
+    Points level = g.vertices;
+    for (int l = 1; l <= kLast; ++l) {
+      level = apply(r.steps[static_cast<std::size_t>(l - 1)], level);
+      if (l < kFirst) continue;
+      const int M = 1 << l, stride = M / N;
+      double worst = 0;
+      std::size_t k = 0;
+      for (int f = 0; f < static_cast<int>(face_count(g)); ++f) {
+        const std::vector<int> at = dyadic_vertices(r, f, l);
+        for (int i = 0; i <= N; ++i)
+          for (int j = 0; j <= N; ++j, ++k)
+            worst =
+                std::max(worst, (level.row(at[static_cast<std::size_t>(i * stride * (M + 1) + j * stride)]) -
+                                 s.positions.row(static_cast<Eigen::Index>(k)))
+                                    .norm());
+      }
+      distance.push_back(worst);
+    }
+    for (std::size_t l = 0; l + 1 < distance.size(); ++l) {
+      INFO("levels " << l + kFirst << " → " << l + kFirst + 1 << ": " << distance[l] << " → "
+                     << distance[l + 1]);
+      CHECK(distance[l + 1] <= (chaikin ? 0.55 : 0.35) * distance[l]);
+      if (!chaikin && l + 3 >= distance.size()) {  // the last two steps: 1/4
+        CHECK(distance[l + 1] <= 0.26 * distance[l]);
+        CHECK(distance[l + 1] >= 0.24 * distance[l]);
+      }
+    }
+  }
+}

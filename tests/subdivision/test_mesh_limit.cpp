@@ -229,6 +229,87 @@ TEST_CASE("Catmull–Clark at (face, u, v): regular patches are the bicubic surf
   }
 }
 
+namespace {
+
+/// The uniform cubic B-spline patch of a 4 × 4 net ([a][b], a along u) on its middle cell: value and
+/// both partials (Cox–de Boor's segment polynomials written out).
+std::array<Eigen::RowVector3d, 3> bspline_patch(const std::array<std::array<Eigen::RowVector3d, 4>, 4>& net,
+                                                double u, double v) {
+  const auto basis = [](double t) {
+    const double s = 1 - t;
+    return std::pair{
+        std::array{s * s * s / 6, (3 * t * t * t - 6 * t * t + 4) / 6,
+                   (-3 * t * t * t + 3 * t * t + 3 * t + 1) / 6, t * t * t / 6},
+        std::array{-s * s / 2, (3 * t * t - 4 * t) / 2, (-3 * t * t + 2 * t + 1) / 2, t * t / 2}};
+  };
+  const auto [bu, du] = basis(u);
+  const auto [bv, dv] = basis(v);
+  std::array<Eigen::RowVector3d, 3> out{Eigen::RowVector3d::Zero(), Eigen::RowVector3d::Zero(),
+                                        Eigen::RowVector3d::Zero()};
+  for (std::size_t a = 0; a < 4; ++a)
+    for (std::size_t b = 0; b < 4; ++b) {
+      out[0] += bu[a] * bv[b] * net[a][b];
+      out[1] += du[a] * bv[b] * net[a][b];
+      out[2] += bu[a] * dv[b] * net[a][b];
+    }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "Catmull–Clark at (face, u, v): boundary, crease and corner patches are B-splines with phantom points",
+    "[subdivision][limit]") {
+  // On an open grid (boundary rule edge_and_corner) with an infinitely sharp crease across it, the
+  // patch of a face whose corners are regular except on a boundary or the crease is the bicubic
+  // B-spline of its 4 × 4 net with the missing row reflected, P(x, −1) = 2 P(x, 0) − P(x, 1) (both
+  // sides at a corner: 4 P00 − 2 P10 − 2 P01 + P11) — the rules of the boundary curve (1, 6, 1)/8 and
+  // (1, 1)/2 are those of the reflected B-spline. Value and partials to 1e-12.
+  const int n = 7, m = 6, c = 3;  // the crease runs along the grid line j = c
+  Mesh g = quad_grid(n, m);
+  g.tags.boundary = BoundaryRule::edge_and_corner;
+  const auto id = [&](int i, int j) { return j * (n + 1) + i; };
+  for (int i = 0; i < n; ++i) g.tags.creases.push_back({id(i, c), id(i + 1, c), 10});
+  const auto P = [&](int i, int j) -> Eigen::RowVector3d { return g.vertices.row(id(i, j)); };
+  // The net point (i, j) of the side of the crease that holds row `side` (j ≤ c or j ≥ c), reflected
+  // across the grid's border and the crease.
+  const auto net_point = [&](int i, int j, int lo, int hi) -> Eigen::RowVector3d {
+    const auto column = [&](int x) -> Eigen::RowVector3d {
+      if (j < lo) return 2 * P(x, lo) - P(x, lo + 1);
+      if (j > hi) return 2 * P(x, hi) - P(x, hi - 1);
+      return P(x, j);
+    };
+    if (i < 0) return 2 * column(0) - column(1);
+    if (i > n) return 2 * column(n) - column(n - 1);
+    return column(i);
+  };
+  std::vector<FacePoint> points;
+  std::vector<std::array<Eigen::RowVector3d, 3>> expected;
+  for (int j0 = 0; j0 < m; ++j0)
+    for (int i0 = 0; i0 < n; ++i0) {
+      const int lo = j0 < c ? 0 : c, hi = j0 < c ? c : m;  // the face's side of the crease
+      std::array<std::array<Eigen::RowVector3d, 4>, 4> net;
+      for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b)
+          net[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)] =
+              net_point(i0 - 1 + a, j0 - 1 + b, lo, hi);
+      for (const auto [u, v] : {std::array{0.0, 0.0}, std::array{0.3, 0.7}, std::array{1.0, 0.45},
+                                std::array{0.9, 0.1}, std::array{0.5, 0.0}}) {
+        points.push_back({.face = j0 * n + i0, .u = u, .v = v});
+        expected.push_back(bspline_patch(net, u, v));
+      }
+    }
+  const SurfaceSample got = evaluate_limit_surface(g, MeshScheme::catmull_clark, points);
+  const double scale = g.vertices.cwiseAbs().maxCoeff();
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const auto p = static_cast<Eigen::Index>(k);
+    INFO("face " << points[k].face << " at (" << points[k].u << ", " << points[k].v << ")");
+    CHECK((got.positions.row(p) - expected[k][0]).norm() <= 1e-12 * scale);
+    CHECK((got.du.row(p) - expected[k][1]).norm() <= 1e-12 * scale);
+    CHECK((got.dv.row(p) - expected[k][2]).norm() <= 1e-12 * scale);
+  }
+}
+
 TEST_CASE("Catmull–Clark at (face, u, v): points off the surface are refused, naming the point",
           "[subdivision][limit]") {
   const Mesh cube1 = catmull_clark(cube(), 1);
