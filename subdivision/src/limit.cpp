@@ -12,6 +12,7 @@
 #include <complex>
 #include <map>
 #include <numbers>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -171,10 +172,24 @@ Ring cut_ring(const MeshTopology& t, const LevelFeatures& f, const MeshTags& opt
   return ring;
 }
 
-/// Whether the ring's next step is the same matrix as this one: regular faces, and every sharpness
-/// at v infinite (no sharpness left to spend, no rule to change).
+/// Whether a walk's vertices (walk_ring: v, then each face's corners after v not met before) are
+/// distinct points: 1 + Σ (|f| − 2), one more on the boundary. Not when a neighbour of valence 2
+/// makes two of v's faces share their far corner — a ring that grows when refined (then its children
+/// are distinct).
+bool distinct(const MeshTopology& t, int v, std::span<const int> faces, std::size_t walked) {
+  std::size_t expected = t.boundary_vertex[static_cast<std::size_t>(v)] != 0 ? 2 : 1;
+  for (const int g : faces) expected += face(t, static_cast<std::size_t>(g)).size() - 2;
+  return walked == expected;
+}
+
+/// Whether the ring's next step is the same matrix as this one: regular faces, distinct vertices,
+/// and every sharpness at v infinite (no sharpness left to spend, no rule to change).
 bool stationary(const Ring& ring, MeshScheme scheme) {
   const int size = scheme == MeshScheme::catmull_clark ? 4 : 3;
+  std::size_t expected = ring.boundary ? 2 : 1;
+  for (std::size_t f = 0; f + 1 < ring.mesh.face_offsets.size(); ++f)
+    expected += static_cast<std::size_t>(ring.mesh.face_offsets[f + 1] - ring.mesh.face_offsets[f]) - 2;
+  if (ring.vertices.size() != expected) return false;
   for (std::size_t f = 0; f + 1 < ring.mesh.face_offsets.size(); ++f)
     if (ring.mesh.face_offsets[f + 1] - ring.mesh.face_offsets[f] != size) return false;
   const auto spent = [](double s) { return s >= kInfiniteSharpness; };
@@ -366,6 +381,12 @@ LimitStencils limit_stencils(const MeshRefinement& r) {
       continue;
     }
     int mask = -1;
+    // A smooth interior vertex whose ring's vertices are distinct (walked into nb).
+    const auto closed_form = [&] {
+      if (featured(t, f, scheme, v)) return false;
+      walk_ring(t, v, false, faces, nb);
+      return distinct(t, v, faces, nb.size());
+    };
     if (!rings) {  // √3: interior vertices of valence 3 … 16, from the eigenvectors
       if (t.boundary_vertex[static_cast<std::size_t>(v)] != 0)
         throw InvalidInput(where() +
@@ -386,14 +407,13 @@ LimitStencils limit_stencils(const MeshRefinement& r) {
       const int start =
           other_vertex(t, static_cast<std::size_t>(vertex_edges(t, static_cast<std::size_t>(v))[0]), v);
       detail::neighbourhood(t, scheme, v, start, false, nb);
-    } else if (!featured(t, f, scheme, v)) {  // the closed forms, any valence
+    } else if (closed_form()) {  // the closed forms, any valence
       if (smooth.size() <= static_cast<std::size_t>(n)) smooth.resize(static_cast<std::size_t>(n) + 1, -1);
       if (smooth[static_cast<std::size_t>(n)] < 0) {
         out.masks.push_back(smooth_mask(scheme, n));
         smooth[static_cast<std::size_t>(n)] = static_cast<int>(out.masks.size()) - 1;
       }
       mask = smooth[static_cast<std::size_t>(n)];
-      walk_ring(t, v, false, faces, nb);
     } else {  // the ring route: refined until stationary, then its class's masks
       Ring ring = cut_ring(t, f, tags, v, false);
       nb = ring.vertices;

@@ -461,8 +461,17 @@ class SurfaceStates {
   /// The limit at the state's corner 0 as weights on its slots: limit_stencils on the corner's
   /// one-ring cut out with its tags.
   const Eigen::RowVectorXd& corner(int s) {
-    State& x = states_[static_cast<std::size_t>(s)];
-    if (x.corner.size() > 0) return x.corner;
+    if (states_[static_cast<std::size_t>(s)].corner.size() == 0) {
+      Eigen::RowVectorXd weights = ring_limit(s);
+      states_[static_cast<std::size_t>(s)].corner = std::move(weights);
+    }
+    return states_[static_cast<std::size_t>(s)].corner;
+  }
+
+ private:
+  /// The limit at a state's corner 0 from the one-ring there.
+  Eigen::RowVectorXd ring_limit(int s) {
+    const State& x = at(s);
     const MeshTopology t = build_topology(x.mesh, "limit surface state");
     Mesh ring;
     std::vector<int> local(static_cast<std::size_t>(t.vertex_count), -1), global;
@@ -490,13 +499,14 @@ class SurfaceStates {
       if (c.vertex == 0) ring.tags.corners.push_back({.vertex = 0, .sharpness = c.sharpness});
     const LimitStencils st = limit_stencils(refine_topology(ring, scheme_, 0));
     const LimitMask& m = st.masks[static_cast<std::size_t>(st.mask_of[0])];
-    x.corner = Eigen::RowVectorXd::Zero(x.mesh.vertices.rows());
+    Eigen::RowVectorXd out = Eigen::RowVectorXd::Zero(x.mesh.vertices.rows());
     for (int q = st.offsets[0]; q < st.offsets[1]; ++q)
-      x.corner(global[static_cast<std::size_t>(st.columns[static_cast<std::size_t>(q)])]) +=
+      out(global[static_cast<std::size_t>(st.columns[static_cast<std::size_t>(q)])]) +=
           m.position[static_cast<std::size_t>(q - st.offsets[0])];
-    return x.corner;
+    return out;
   }
 
+ public:
   /// Whether the state's patch is a polynomial (proved on the states it reaches, see the top).
   bool polynomial(int s) {
     if (states_[static_cast<std::size_t>(s)].polynomial >= 0)

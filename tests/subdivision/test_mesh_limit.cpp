@@ -101,6 +101,51 @@ TEST_CASE("limit stencils: vertices converge to their limit positions geometrica
   }
 }
 
+TEST_CASE("limit stencils next to a valence-2 vertex: its two faces share a far corner",
+          "[subdivision][limit]") {
+  // OpenSubdiv's catmark_val2_interior: vertex 16 has valence 2, its faces (12, 13, 14, 16) and
+  // (12, 16, 14, 15) share the corner 14 across from 12 and 12 across from 14 — one vertex twice in
+  // their rings, a ring that grows when refined (it was refused: "a stationary ring changed size").
+  // The limit computed at level 0 equals the one at levels 1 and 2, and the refined vertices converge
+  // to it.
+  const Mesh m = make_mesh({{-1.75, 0, 0.75},
+                            {-1.42, 0, 0.75},
+                            {-1.08, 0, 0.75},
+                            {-0.75, 0, 0.75},
+                            {-0.75, 0, 1.08},
+                            {-0.75, 0, 1.42},
+                            {-0.75, 0, 1.75},
+                            {-1.08, 0, 1.75},
+                            {-1.42, 0, 1.75},
+                            {-1.75, 0, 1.75},
+                            {-1.75, 0, 1.42},
+                            {-1.75, 0, 1.08},
+                            {-1.42, 0, 1.08},
+                            {-1.08, 0, 1.08},
+                            {-1.08, 0, 1.42},
+                            {-1.42, 0, 1.42},
+                            {-1.25, -0.5, 1.25}},
+                           {{0, 1, 12, 11},
+                            {1, 2, 13, 12},
+                            {2, 3, 4, 13},
+                            {13, 4, 5, 14},
+                            {14, 5, 6, 7},
+                            {15, 14, 7, 8},
+                            {10, 15, 8, 9},
+                            {11, 12, 15, 10},
+                            {12, 13, 14, 16},
+                            {12, 16, 14, 15}});
+  for (const MeshScheme scheme : {MeshScheme::catmull_clark}) {
+    const Mesh l0 = limit_mesh(m, scheme, 0);
+    for (const int levels : {1, 2}) {
+      const Mesh l = limit_mesh(m, scheme, levels);
+      CHECK((l.vertices.topRows(l0.vertices.rows()) - l0.vertices).cwiseAbs().maxCoeff() <= 1e-13);
+    }
+    const Mesh deep = subdivide(m, scheme, 10);
+    CHECK((deep.vertices.topRows(l0.vertices.rows()) - l0.vertices).cwiseAbs().maxCoeff() <= 1e-5);
+  }
+}
+
 TEST_CASE("limit normals point out of convex closed shapes", "[subdivision][limit]") {
   for (const Case& c : cases()) {
     INFO(c.name);
