@@ -22,6 +22,7 @@
 // limit is the polynomial at every dyadic point: the patch. A state with sharpness left to spend, an
 // extraordinary vertex, a dart or a smooth boundary corner fails the check and is descended.
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -367,16 +368,18 @@ namespace detail {
 /// The automaton of configurations, built lazily and cached by key.
 class SurfaceStates {
  public:
+  using Step = Eigen::SparseMatrix<double, Eigen::RowMajor>;
   struct State {
     Mesh mesh;
     int sides = 0;
     bool expanded = false;
     std::vector<int> child;
-    std::vector<Eigen::MatrixXd> to_child;  // child's slots × this state's
-    Eigen::RowVectorXd corner;              // the limit at corner 0 on the slots (empty until asked)
-    int polynomial = -1;                    // unknown, 0, 1
-    Eigen::MatrixXd bezier;                 // basis_size × slots when polynomial: Bernstein
-    Eigen::MatrixXd monomials;              // the same in the monomial basis
+    std::vector<Step> to_child;  // child's slots × this state's (sparse: a vertex of valence
+                                 // n reads 2n + 1 slots of up to 2n + 8)
+    Eigen::RowVectorXd corner;   // the limit at corner 0 on the slots (empty until asked)
+    int polynomial = -1;         // unknown, 0, 1
+    Eigen::MatrixXd bezier;      // basis_size × slots when polynomial: Bernstein
+    Eigen::MatrixXd monomials;   // the same in the monomial basis
   };
 
   explicit SurfaceStates(MeshScheme scheme) : scheme_(scheme), quad_(quad_scheme(scheme)) {
@@ -434,20 +437,22 @@ class SurfaceStates {
     const int slots = static_cast<int>(states_[static_cast<std::size_t>(s)].mesh.vertices.rows());
     const int sides = states_[static_cast<std::size_t>(s)].sides;
     std::vector<int> child;
-    std::vector<Eigen::MatrixXd> to_child;
+    std::vector<Step> to_child;
     const int count = quad_ ? sides : 4;
     for (int k = 0; k < count; ++k) {
       // Catmull–Clark: face 0's corner k becomes child face k from the corner's vertex point; Loop: its
       // corner triangles (from the corner) then the middle one (from the edge point of edge 1 → 2).
       const int first = quad_ ? 0 : (k == 3 ? 1 : k);
       Configuration c = configuration(r.levels[1], r.features[1], r.tags[1], k, first);
-      Eigen::MatrixXd M = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(c.vertices.size()), slots);
+      std::vector<Eigen::Triplet<double>> entries;
       for (std::size_t i = 0; i < c.vertices.size(); ++i) {
         const auto w = static_cast<std::size_t>(c.vertices[i]);
         for (int q = step.offsets[w]; q < step.offsets[w + 1]; ++q)
-          M(static_cast<Eigen::Index>(i), step.columns[static_cast<std::size_t>(q)]) +=
-              step.weights[static_cast<std::size_t>(q)];
+          entries.emplace_back(static_cast<int>(i), step.columns[static_cast<std::size_t>(q)],
+                               step.weights[static_cast<std::size_t>(q)]);
       }
+      Step M(static_cast<Eigen::Index>(c.vertices.size()), slots);
+      M.setFromTriplets(entries.begin(), entries.end());
       to_child.push_back(std::move(M));
       child.push_back(state(std::move(c)));
     }
@@ -578,7 +583,7 @@ class SurfaceStates {
     const auto [a, b] = child_map(quad_, k)(u, v);
     const State& x = expand(s);
     const int y = x.child[static_cast<std::size_t>(k)];
-    const Eigen::MatrixXd M = x.to_child[static_cast<std::size_t>(k)];
+    const Step M = x.to_child[static_cast<std::size_t>(k)];
     return functional(y, a, b) * M;
   }
 
