@@ -313,10 +313,11 @@ void basis(bool quad, bool monomials, double u, double v, double* b) {
 }
 
 /// Value and partials of a patch from its monomial rows (`coefficients`, basis_size rows of d), by
-/// Horner's scheme in v, then in u; D = 3 keeps the sums in registers.
+/// Horner's scheme in v, then in u, the partials taken to the face's (u, v) by J; D = 3 keeps the
+/// sums in registers.
 template <int D>
-void patch_sums(bool quad, const double* coefficients, Eigen::Index d, double u, double v, double* value,
-                double* du, double* dv) {
+void patch_sums(bool quad, const double* coefficients, Eigen::Index d, double u, double v,
+                const std::array<double, 4>& J, double* value, double* du, double* dv) {
   constexpr int kFixed = D > 0 ? D : 1;
   const Eigen::Index dims = D > 0 ? D : d;
   const int degree = quad ? 3 : 4;
@@ -339,10 +340,10 @@ void patch_sums(bool quad, const double* coefficients, Eigen::Index d, double u,
         xv[k] = xv[k] * u + r[k];
       }
     }
-    for (std::size_t k = 0; k < kFixed; ++k) {
+    for (std::size_t k = 0; k < kFixed; ++k) {  // ∂/∂u = ∂s/∂u ∂/∂s + ∂t/∂u ∂/∂t, J = ∂(s, t)/∂(u, v)
       value[k0 + static_cast<Eigen::Index>(k)] = x[k];
-      du[k0 + static_cast<Eigen::Index>(k)] = xu[k];
-      dv[k0 + static_cast<Eigen::Index>(k)] = xv[k];
+      du[k0 + static_cast<Eigen::Index>(k)] = J[0] * xu[k] + J[2] * xv[k];
+      dv[k0 + static_cast<Eigen::Index>(k)] = J[1] * xu[k] + J[3] * xv[k];
     }
   }
 }
@@ -680,7 +681,8 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::s
     P->resize(count, d);
     advise_huge_pages(P->data(), static_cast<std::size_t>(P->size()) * sizeof(double));
   }
-  std::vector<double> ds(static_cast<std::size_t>(d)), dt(ds);  // partials in the leaf's (s, t)
+  std::vector<int> sides(static_cast<std::size_t>(F));
+  for (std::size_t f = 0; f < sides.size(); ++f) sides[f] = static_cast<int>(face(t, f).size());
   const auto kid = [&](std::vector<Node>& tree, std::size_t node, int k) {
     if (tree[node].kids.empty()) tree[node].kids.assign(states.expand(tree[node].state).child.size(), -1);
     if (const int existing = tree[node].kids[static_cast<std::size_t>(k)]; existing >= 0) return existing;
@@ -709,22 +711,22 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::s
     double u = q.u, v = q.v;
     std::array<double, 4> J{1, 0, 0, 1};  // ∂(s, t)/∂(u, v), row-major
     int node = 0;
-    const auto sides = static_cast<int>(face(t, static_cast<std::size_t>(q.face)).size());
-    if (quad && sides != 4) {  // the sub-face holding (u, v), in its own (s, t)
-      const int D = tiles(sides);
+    const int n = sides[static_cast<std::size_t>(q.face)];
+    if (quad && n != 4) {  // the sub-face holding (u, v), in its own (s, t)
+      const int D = tiles(n);
       const int x = std::min(static_cast<int>(u + 0.25), D - 1), y = static_cast<int>(v + 0.25);
       node = kid(tree, 0, y * D + x);
       u = 2 * (u - x), v = 2 * (v - y);
       J = {2, 0, 0, 2};
     }
-    double* value = out.positions.row(p).data();
+    double *value = out.positions.row(p).data(), *du = out.du.row(p).data(), *dv = out.dv.row(p).data();
     for (int depth = 0;; ++depth) {
       const Node& here = tree[static_cast<std::size_t>(node)];
       if (here.polynomial.size() > 0) {
         if (d == 3)
-          patch_sums<3>(quad, here.polynomial.data(), d, u, v, value, ds.data(), dt.data());
+          patch_sums<3>(quad, here.polynomial.data(), d, u, v, J, value, du, dv);
         else
-          patch_sums<0>(quad, here.polynomial.data(), d, u, v, value, ds.data(), dt.data());
+          patch_sums<0>(quad, here.polynomial.data(), d, u, v, J, value, du, dv);
         break;
       }
       if (depth > 64)
@@ -735,8 +737,8 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::s
       // polynomial patch — its limit point, without partials.
       if (u == 0 && v == 0 && states.expand(here.state).child[0] == here.state) {
         out.positions.row(p) = states.corner(here.state) * here.net;
-        std::fill(ds.begin(), ds.end(), 0.0);
-        std::fill(dt.begin(), dt.end(), 0.0);
+        out.du.row(p).setZero();
+        out.dv.row(p).setZero();
         break;
       }
       const int k = child_at(quad, u, v);
@@ -746,11 +748,6 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::s
       J = {m.A[0] * J[0] + m.A[1] * J[2], m.A[0] * J[1] + m.A[1] * J[3], m.A[2] * J[0] + m.A[3] * J[2],
            m.A[2] * J[1] + m.A[3] * J[3]};
       node = kid(tree, static_cast<std::size_t>(node), k);
-    }
-    for (Eigen::Index c = 0; c < d; ++c) {
-      const auto k = static_cast<std::size_t>(c);
-      out.du(p, c) = J[0] * ds[k] + J[2] * dt[k];
-      out.dv(p, c) = J[1] * ds[k] + J[3] * dt[k];
     }
   }
   return out;
