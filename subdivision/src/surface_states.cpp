@@ -187,9 +187,10 @@ Configuration configuration(const MeshTopology& t, const LevelFeatures& f, const
     const auto g = static_cast<std::size_t>(faces[j]);
     const auto edges = face_edges(t, g);
     const auto size = static_cast<int>(edges.size());
+    const auto base = static_cast<std::size_t>(offset[j]);
     for (int i = 0; i < size; ++i) {
-      const int a = out.mesh.face_vertices[static_cast<std::size_t>(offset[j] + i)],
-                b = out.mesh.face_vertices[static_cast<std::size_t>(offset[j] + (i + 1) % size)];
+      const int a = out.mesh.face_vertices[base + static_cast<std::size_t>(i)],
+                b = out.mesh.face_vertices[base + static_cast<std::size_t>((i + 1) % size)];
       const int e = edges[static_cast<std::size_t>((start[j] + i) % size)];
       const auto ringed = [&](int local, int vertex) {
         return local < n || std::find(full.begin(), full.end(), vertex) != full.end();
@@ -621,6 +622,32 @@ bool inside(bool quad, int n, double u, double v) {
   return y * D + x < n && u >= x && u - x <= 0.5 && v >= y && v - y <= 0.5;
 }
 
+/// Why point p is refused: no such face, not numbers, a hole, outside the face's domain (n corners).
+[[noreturn]] void refuse_point(MeshScheme scheme, std::size_t p, const FacePoint& q, int F, bool hole,
+                               int n) {
+  const std::string where = std::string(scheme_name(scheme)) + " limit: point " + std::to_string(p) +
+                            " (face " + std::to_string(q.face) + ")";
+  if (q.face < 0 || q.face >= F)
+    throw InvalidInput(where + ": no such face; the mesh has " + std::to_string(F));
+  if (!std::isfinite(q.u) || !std::isfinite(q.v))
+    throw InvalidInput(where + ": (u, v) is not a pair of finite numbers");
+  if (hole)
+    throw InvalidInput(
+        where +
+        ": the face is a hole (tagged, or next to the boundary under the boundary rule 'none'): "
+        "it has no limit surface");
+  std::string domain = "the triangle u, v ≥ 0, u + v ≤ 1";
+  if (quad_scheme(scheme) && n == 4) {
+    domain = "[0, 1]²";
+  } else if (quad_scheme(scheme)) {
+    const std::string D = std::to_string(tiles(n));
+    domain = "the " + std::to_string(n) + "-gon's sub-faces [i mod " + D + ", + ½] × [i div " + D +
+             ", + ½] (OpenSubdiv's parametrisation)";
+  }
+  throw InvalidInput(where + ": (u, v) = (" + number_text(q.u, 6) + ", " + number_text(q.v, 6) +
+                     ") is outside " + domain);
+}
+
 /// Per face, the tree of nets met going down (built once per node, so that a point costs its
 /// descent and one polynomial evaluation).
 struct Node {
@@ -654,23 +681,7 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::s
     const bool known = q.face >= 0 && q.face < F;
     const int n = known ? static_cast<int>(face(t, static_cast<std::size_t>(q.face)).size()) : 0;
     if (known && !is_hole(features, q.face) && inside(quad, n, q.u, q.v)) continue;
-    const std::string where = std::string(scheme_name(scheme)) + " limit: point " + std::to_string(p) +
-                              " (face " + std::to_string(q.face) + ")";
-    if (!known) throw InvalidInput(where + ": no such face; the mesh has " + std::to_string(F));
-    if (!std::isfinite(q.u) || !std::isfinite(q.v))
-      throw InvalidInput(where + ": (u, v) is not a pair of finite numbers");
-    if (is_hole(features, q.face))
-      throw InvalidInput(where +
-                         ": the face is a hole (tagged, or next to the boundary under the boundary "
-                         "rule 'none'): it has no limit surface");
-    const std::string domain = !quad ? std::string("the triangle u, v ≥ 0, u + v ≤ 1")
-                               : n == 4
-                                   ? std::string("[0, 1]²")
-                                   : "the " + std::to_string(n) + "-gon's sub-faces [i mod " +
-                                         std::to_string(tiles(n)) + ", + ½] × [i div " +
-                                         std::to_string(tiles(n)) + ", + ½] (OpenSubdiv's parametrisation)";
-    throw InvalidInput(where + ": (u, v) = (" + number_text(q.u, 6) + ", " + number_text(q.v, 6) +
-                       ") is outside " + domain);
+    refuse_point(scheme, p, q, F, known && is_hole(features, q.face), n);
   }
   const Eigen::Index d = mesh.vertices.cols();
   detail::SurfaceStates states(scheme);
