@@ -161,6 +161,13 @@ void check_scheme(MeshScheme scheme) {
 
 SurfaceAutomaton surface_automaton(const Mesh& mesh, MeshScheme scheme) {
   check_scheme(scheme);
+  // Its states are the smooth rules' patches: a tagged mesh would be taken for a smooth one.
+  MeshTags features = mesh.tags;
+  features.boundary = BoundaryRule::edge_only;  // boundaries are refused by the faces below
+  if (const std::string feature = first_feature(features); !feature.empty())
+    throw InvalidInput(std::string(scheme_name(scheme)) + " surface automaton: the mesh has " + feature +
+                       ": crease, corner and hole patches are not built for the whole-surface automaton "
+                       "(attractor meshes, fractal surfaces); evaluate_limit_surface takes them");
   const MeshTopology t = build_topology(mesh);
   std::vector<int> faces(face_count(t));
   std::iota(faces.begin(), faces.end(), 0);

@@ -137,7 +137,9 @@ std::vector<FacePoint> sample_points(const Mesh& m, MeshScheme scheme) {
                                                                   {0.7, 0.2},
                                                                   {1, 0.37},
                                                                   {0.002, 0.6}}};
-  static constexpr std::array<std::array<double, 2>, 10> kTriangle{{{0, 0},
+  static constexpr std::array<std::array<double, 2>, 12> kTriangle{{{0.37, 0},
+                                                                    {0.37, 0.63},
+                                                                    {0, 0},
                                                                     {1, 0},
                                                                     {0, 1},
                                                                     {0.5, 0},

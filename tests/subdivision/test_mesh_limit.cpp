@@ -376,6 +376,12 @@ TEST_CASE("Catmull–Clark at (face, u, v): points off the surface are refused, 
   const std::vector<FacePoint> fourth{{.face = 1, .u = 1.25, .v = 1.25}};
   CHECK_THROWS_WITH(evaluate_limit_surface(pyramid(), MeshScheme::catmull_clark, fourth),
                     Contains("outside the 3-gon's sub-faces"));
+  // The whole-surface automaton (attractor meshes, fractal surfaces) has the smooth patches only: a
+  // tagged mesh is refused, not taken for a smooth one.
+  Mesh creased = catmull_clark(cube(), 1);
+  creased.tags.creases = {{0, 8, 10}};
+  CHECK_THROWS_WITH(surface_automaton(creased, MeshScheme::catmull_clark),
+                    Contains("the mesh has a crease (0 8, sharpness 10)") && Contains("evaluate_limit_surface takes them"));
 }
 
 namespace {

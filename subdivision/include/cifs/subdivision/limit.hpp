@@ -135,15 +135,26 @@ struct SurfaceAutomaton {
 };
 /// The automaton of a closed mesh under Catmull–Clark (quads) or Loop (triangles) whose faces have
 /// at most one extraordinary corner (InvalidInput naming the face otherwise, and for other schemes;
-/// one level of refinement gives that).
+/// one level of refinement gives that), without tags (InvalidInput naming the first crease, corner or
+/// hole: those patches are built for evaluate_limit_surface, not for this whole-surface IFS).
 SurfaceAutomaton surface_automaton(const Mesh& mesh, MeshScheme scheme);
 
-/// The limit surface at any (face, u, v), exactly, partials included — for quads (u, v) ∈ [0, 1]²
-/// (corner 0 at (0, 0), 1 at (1, 0), 3 at (0, 1)), for triangles u, v ≥ 0, u + v ≤ 1 (corner 1 at
-/// (1, 0), 2 at (0, 1)), as OpenSubdiv parametrises faces. A regular face is a bicubic B-spline
-/// (Loop: quartic box-spline) patch; a face with an extraordinary corner goes down its "E<n>"
-/// state until the point leaves the corner's part, then is evaluated in a regular one. No partials
-/// at the extraordinary vertex itself (0 there). The mesh: as surface_automaton.
+/// The limit surface at any (face, u, v) of any mesh refine_topology takes under Catmull–Clark or
+/// Loop, with its tags (boundaries under the three rules, sharp and semi-sharp creases under both
+/// crease methods, corners, darts, holes) and any valence, exactly, partials included, in OpenSubdiv's
+/// parametrisation (Bfr::Parameterization): quads (u, v) ∈ [0, 1]² (corner 0 at (0, 0), 1 at (1, 0), 3
+/// at (0, 1)); triangles u, v ≥ 0, u + v ≤ 1 (corner 1 at (1, 0), 2 at (0, 1)); Catmull–Clark's n-gons
+/// (triangles too) as n quad sub-faces, sub-face i (the quad of corner i one level down, its own u
+/// towards the edge after corner i) the square [x, x + ½] × [y, y + ½], x = i mod D, y = i div D, D = 2
+/// for triangles, 3 for 5 … 9 corners, 1 + ⌊√(n − 1)⌋ from 10.
+/// An automaton of local configurations (a face, the one-rings of its corners, their tags) refined by
+/// the production rules: a point descends until its configuration's patch is a polynomial — proved
+/// so, not assumed: regular interior, boundary, crease and corner patches — and is evaluated there
+/// (docs/subdivision-surfaces.md, "The limit surface at any (face, u, v)"). At a vertex whose
+/// configuration never becomes one (extraordinary, dart, a boundary corner under edge_only) the value
+/// is its limit point (limit_stencils' route) and the partials are 0. InvalidInput naming the point for
+/// a face that does not exist, a hole (tagged, or under the boundary rule `none`), (u, v) outside the
+/// domain or not finite; refine_topology's refusals for the mesh (non-manifold, Loop on non-triangles).
 SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::span<const FacePoint> at);
 
 /// The attractor of a surface automaton at `depth` as one mesh, 4^depth cells per face in face
