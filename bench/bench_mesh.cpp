@@ -12,8 +12,11 @@
 //   limit     limit positions and tangents of every level-4 vertex (limit stencils / Far Limit)
 //   surface   the limit surface at 1 M points (face, u, v), sorted by face, of a bipyramid refined 3
 //             times (Catmull–Clark: 480 quads, valences 3, 4, 5; Loop: 640 triangles, valences 4,
-//             5): evaluate_limit_surface (the surface automaton) / Bfr::Surface (InitVertexSurface +
-//             PreparePatchPoints per face, Evaluate per point); both give positions and both partials
+//             5) and of a creased open grid (24 × 20 quads or their 960 triangles: boundary rule
+//             edge_and_corner, a sharp crease across, a semi-sharp one ending inside, a corner):
+//             evaluate_limit_surface (the automaton of configurations) / Bfr::Surface
+//             (InitVertexSurface + PreparePatchPoints per face, Evaluate per point); both give
+//             positions and both partials
 //
 // Before timing, every library's result is checked against cifs's to 1e-12 (vertices matched by
 // position on the level-2 result); a mismatch aborts the run.

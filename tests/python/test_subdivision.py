@@ -587,6 +587,24 @@ class LimitTest(unittest.TestCase):
         with self.assertRaisesRegex(cifs.InvalidInput, "one entry per point"):
             sd.limit_surface(cube, [0], [0.5], [])
 
+    def test_limit_surface_follows_the_tags(self):
+        # The creased box (creases infinite, 2 and 1, a corner, a hole): at the corners of every face but
+        # the hole the surface is the limit of those vertices (semi-sharp ones too); the hole is refused.
+        box = cifs.io.read_mesh(str(EXAMPLES / "meshes" / "creased_box.obj"))
+        limit = np.asarray(sd.limit(box, "catmull-clark", 0).vertices)
+        counts = np.diff(np.asarray(box.face_offsets))
+        self.assertTrue((counts == 4).all())
+        faces = np.asarray(box.face_vertices).reshape(-1, 4)
+        hole = box.tags.holes[0]
+        keep = [f for f in range(len(faces)) if f != hole]
+        f = np.repeat(keep, 4)
+        u = np.tile([0.0, 1.0, 1.0, 0.0], len(keep))
+        v = np.tile([0.0, 0.0, 1.0, 1.0], len(keep))
+        positions, du, dv = sd.limit_surface(box, f.tolist(), u.tolist(), v.tolist())
+        np.testing.assert_allclose(positions, limit[faces[keep].reshape(-1)], rtol=0, atol=1e-13)
+        with self.assertRaisesRegex(cifs.InvalidInput, f"face {hole}\\): the face is a hole"):
+            sd.limit_surface(box, [hole], [0.5], [0.5])
+
     def test_loop_limit_surface_and_automaton(self):
         # Loop on triangles: at the corners of every face of a once-refined tetrahedron (corner 1 at
         # (1, 0), 2 at (0, 1)) the surface is the limit of those vertices; the attractor at depth 2
