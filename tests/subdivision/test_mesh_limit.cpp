@@ -380,8 +380,9 @@ TEST_CASE("Catmull–Clark at (face, u, v): points off the surface are refused, 
   // tagged mesh is refused, not taken for a smooth one.
   Mesh creased = catmull_clark(cube(), 1);
   creased.tags.creases = {{0, 8, 10}};
-  CHECK_THROWS_WITH(surface_automaton(creased, MeshScheme::catmull_clark),
-                    Contains("the mesh has a crease (0 8, sharpness 10)") && Contains("evaluate_limit_surface takes them"));
+  CHECK_THROWS_WITH(
+      surface_automaton(creased, MeshScheme::catmull_clark),
+      Contains("the mesh has a crease (0 8, sharpness 10)") && Contains("evaluate_limit_surface takes them"));
 }
 
 namespace {
