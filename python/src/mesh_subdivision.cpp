@@ -121,7 +121,8 @@ void bind_mesh_subdivision_meshes(py::module_& m) {
       py::arg("mesh"), py::arg("faces"), py::arg("u"), py::arg("v"), py::kw_only(),
       py::arg("scheme") = "catmull-clark",
       "The limit surface at points (faces[i], u[i], v[i]) of any mesh under its tags (boundaries, creases, "
-      "corners, darts, holes; any valence), in OpenSubdiv's parametrisation: catmull-clark ((u, v) in [0, 1]^2 "
+      "corners, darts, holes; any valence), in OpenSubdiv's parametrisation: catmull-clark ((u, v) in [0, "
+      "1]^2 "
       "on quads; an n-gon's sub-face i at [i mod D, + 1/2] x [i div D, + 1/2], D = 2 for triangles, 3 for "
       "5-9 corners) or loop (triangles, u + v <= 1). (positions, du, dv), each (n, d). Exact; partials 0 at "
       "an extraordinary vertex itself. Points on holes or outside their face are refused.");
