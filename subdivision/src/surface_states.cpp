@@ -2,25 +2,27 @@
 // cifs — the limit surface at any (face, u, v) of any mesh the production refiner takes (creases,
 // corners, holes, boundaries, non-quads), through an automaton of local configurations
 // (cifs/subdivision/limit.hpp, evaluate_limit_surface; docs/subdivision-surfaces.md, "The limit
-// surface at any point").
+// surface at any (face, u, v)").
 //
 // A state is a face's configuration: the face and the one-rings of its corners, with the tags the
 // rules read there (the sharpness of the edges at its corners and of the corners, holes, the crease
-// method and triangle rule), in an order that only depends on the topology seen from the face's first
-// corner — its key. The children of a state are the configurations of the face's children after one
-// step of the production refiner run on the configuration itself (the vertex data the identity: the
-// step's rows are the child's control points on the parent's). Every child's configuration lies in
-// the refined configuration, with correct rows: its vertices are vertex points of the face's corners,
-// edge points of their edges and face points of their faces, which read nothing outside.
+// method and triangle rule; under Chaikin's method also the far ends of its semi-sharp edges with their
+// rings), in an order that only depends on the topology seen from the face's first corner — its key. The
+// children of a state are the configurations of the face's children after one step of the production refiner
+// run on the configuration itself (the vertex data the identity: the step's rows are the child's control
+// points on the parent's). Every child's configuration lies in the refined configuration, with correct rows:
+// its vertices are vertex points of the face's corners, edge points of their edges and face points of their
+// faces, which read nothing outside.
 //
 // A state whose patch is a polynomial (bicubic, quartic on triangles) is a leaf: the regular interior
 // patch, and also the regular boundary, crease and corner patches. Which states are is proved, not
 // assumed: the polynomial through the limit points at the 16 (15) points (a, b)/4 of the state's
-// domain is fitted, and every state reachable from it must be fitted too and agree with it on the
-// child's domain (Bézier coefficients of the restriction = the child's, on the parent's control
-// points). Then the control points of every level are those of the polynomial's restrictions, and the
+// domain is fitted (Bernstein basis), and every state reachable from it must be fitted too and agree
+// with it on the child's domain (coefficients of the restriction = the child's, on the parent's
+// control points). Then the control points of every level are those of the polynomial's restrictions, and the
 // limit is the polynomial at every dyadic point: the patch. A state with sharpness left to spend, an
-// extraordinary vertex, a dart or a smooth boundary corner fails the check and is descended.
+// extraordinary vertex, a dart or a smooth boundary corner fails the check and is descended; at such
+// a corner itself the value is its limit point (limit_stencils' route), without partials.
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 #include <algorithm>
