@@ -481,8 +481,8 @@ class ExperimentDimensionTest(unittest.TestCase):
                                  report["cover"]["dimension"] if report["cover"] else None)
                 self.assertIn(" ± ", repr(m))
         curve = cifs.io.read_shape(EXAMPLES / "shapes" / "wave.json")
-        report = cli_json("dimension", EXAMPLES / "shapes" / "wave.json", "--json")
-        m = cifs.experiment.measure_dimension(curve)
+        report = cli_json("dimension", EXAMPLES / "shapes" / "wave.json", "--json", "--max-points", budget)
+        m = cifs.experiment.measure_dimension(curve, max_points=budget)
         self.assertEqual((m.dimension, m.uncertainty), (report["box_counting"]["dimension"],
                                                          report["box_counting"]["uncertainty"]))
         self.assertLess(abs(m.dimension - 1), 0.05)
