@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numbers>
 
@@ -40,28 +41,37 @@ struct Pieces {
   [[nodiscard]] std::size_t count() const { return start.size(); }
 };
 
+/// The Bézier coefficients of the piece on the non-empty span k into out ((p + 1)·cols values).
+void span_bezier(const Curve& c, int k, double* out) {
+  const int p = c.degree;
+  const Eigen::Index cols = c.P.cols();
+  double local[2 * kMaxDegree], args[kMaxDegree], W[kMaxDegree + 1];
+  const detail::SpanKnots knots = detail::span_knots(c, k, local);
+  const double a = knots.t[static_cast<std::size_t>(knots.span)];
+  const double b = knots.t[static_cast<std::size_t>(knots.span) + 1];
+  std::fill_n(out, (p + 1) * cols, 0.0);
+  for (int j = 0; j <= p; ++j) {
+    for (int i = 0; i < p; ++i) args[i] = i < p - j ? a : b;
+    detail::blossom_weights_increasing(knots.t.data(), p, knots.span, args, W);  // arguments in order
+    double* dst = out + j * cols;
+    for (int i = 0; i <= p; ++i) {
+      const double* src = c.P.data() + (k - p + i) * cols;  // row-major rows
+      for (Eigen::Index m = 0; m < cols; ++m) dst[m] += W[i] * src[m];
+    }
+  }
+}
+
 Pieces bezier_pieces(const Curve& c) {
   Pieces out{layout(c), {}, {}, {}};
   const int p = c.degree;
-  const auto cols = static_cast<std::size_t>(out.l.cols);
-  double local[2 * kMaxDegree], args[kMaxDegree], W[kMaxDegree + 1];
+  out.coef.reserve(static_cast<std::size_t>(c.P.rows()) * out.l.size());
   for (int k = p; k < c.P.rows(); ++k) {
     const double t0 = c.knots[static_cast<std::size_t>(k)], t1 = c.knots[static_cast<std::size_t>(k) + 1];
     if (!(t0 < t1)) continue;
     out.start.push_back(t0);
     out.end.push_back(t1);
-    const detail::SpanKnots knots = detail::span_knots(c, k, local);
-    const double a = knots.t[static_cast<std::size_t>(knots.span)];
-    const double b = knots.t[static_cast<std::size_t>(knots.span) + 1];
-    for (int j = 0; j <= p; ++j) {
-      for (int i = 0; i < p; ++i) args[i] = i < p - j ? a : b;
-      blossom_weights(knots.t, p, knots.span, std::span<const double>(args, static_cast<std::size_t>(p)), W);
-      const std::size_t row = out.coef.size();
-      out.coef.resize(row + cols, 0.0);
-      for (int i = 0; i <= p; ++i)
-        for (std::size_t m = 0; m < cols; ++m)
-          out.coef[row + m] += W[i] * c.P(k - p + i, static_cast<Eigen::Index>(m));
-    }
+    out.coef.resize(out.coef.size() + out.l.size());
+    span_bezier(c, k, out.coef.data() + out.coef.size() - out.l.size());
   }
   return out;
 }
@@ -139,27 +149,28 @@ void control_box(const double* B, const Layout& l, double* lo, double* hi, doubl
 }
 
 /// Whether a piece is flat: its Cartesian control points advance along the chord (each step has a
-/// non-negative component along it) and lie within 2 % of the chord's length from its line.
-bool flat(const double* B, const Layout& l) {
+/// non-negative component along it) and lie within 2 % of the chord's length from its line. `x` holds
+/// (p + 1)·dim values.
+bool flat(const double* B, const Layout& l, double* x) {
   const int d = l.dim;
-  std::vector<double> x(static_cast<std::size_t>((l.p + 1) * d));
-  for (int j = 0; j <= l.p; ++j) control_point(B, l, j, x.data() + j * d);
-  const double* a = x.data();
-  const double* b = x.data() + l.p * d;
+  for (int j = 0; j <= l.p; ++j) control_point(B, l, j, x + j * d);
+  const double* a = x;
+  const double* b = x + l.p * d;
   double len2 = 0;
   for (int k = 0; k < d; ++k) len2 += (b[k] - a[k]) * (b[k] - a[k]);
   if (!(len2 > 0)) return false;
+  double prev_along = 0;
   for (int j = 1; j <= l.p; ++j) {
-    double along = 0, prev_along = 0, dist2 = 0;
-    const double* xj = x.data() + j * d;
-    const double* xi = xj - d;
-    for (int k = 0; k < d; ++k) {
-      along += (xj[k] - a[k]) * (b[k] - a[k]);
-      prev_along += (xi[k] - a[k]) * (b[k] - a[k]);
-    }
+    double along = 0, dist2 = 0;
+    const double* xj = x + j * d;
+    for (int k = 0; k < d; ++k) along += (xj[k] - a[k]) * (b[k] - a[k]);
     if (along < prev_along) return false;
+    prev_along = along;
     const double f = along / len2;
-    for (int k = 0; k < d; ++k) dist2 += (xj[k] - a[k] - f * (b[k] - a[k])) * (xj[k] - a[k] - f * (b[k] - a[k]));
+    for (int k = 0; k < d; ++k) {
+      const double off = xj[k] - a[k] - f * (b[k] - a[k]);
+      dist2 += off * off;
+    }
     if (dist2 > 4e-4 * len2) return false;
   }
   return true;
@@ -168,10 +179,17 @@ bool flat(const double* B, const Layout& l) {
 /// The size the tolerances scale with: the larger of the control points' bounding-box diagonal and their
 /// largest coordinate (the rounding of coordinates grows with it), 1 for a curve at the origin.
 double size_of(const Curve& c) {
-  const Points X = cartesian_points(c);
-  const double diagonal = (X.colwise().maxCoeff() - X.colwise().minCoeff()).norm();
-  const double largest = X.cwiseAbs().maxCoeff();
-  const double size = std::max(diagonal, largest);
+  const int d = dimension(c);
+  Eigen::VectorXd lo = Eigen::VectorXd::Constant(d, HUGE_VAL), hi = Eigen::VectorXd::Constant(d, -HUGE_VAL);
+  double largest = 0;
+  for (Eigen::Index i = 0; i < c.P.rows(); ++i)
+    for (int k = 0; k < d; ++k) {
+      const double x = c.rational ? c.P(i, k) / c.P(i, d) : c.P(i, k);
+      lo(k) = std::min(lo(k), x);
+      hi(k) = std::max(hi(k), x);
+      largest = std::max(largest, std::abs(x));
+    }
+  const double size = std::max((hi - lo).norm(), largest);
   return size > 0 ? size : 1.0;
 }
 
@@ -537,8 +555,7 @@ Frenet frenet_frame(const Curve& c, double u) {
 
 ClosestPoints closest_point(const Curve& c, const Point& q, double tolerance) {
   check_tolerance(tolerance);
-  const Pieces P = bezier_pieces(c);
-  const Layout& l = P.l;
+  const Layout l = layout(c);
   if (q.size() != l.dim) detail::fail("closest point: the point has ", q.size(), " coordinates, the curve ", l.dim);
   if (!q.allFinite()) detail::fail("closest point: the point is not finite");
   const double eq = tolerance * size_of(c);
@@ -548,17 +565,52 @@ ClosestPoints closest_point(const Curve& c, const Point& q, double tolerance) {
     for (int k = 0; k < d; ++k) s += (x[k] - q(k)) * (x[k] - q(k));
     return std::sqrt(s);
   };
-  std::vector<double> box_lo(static_cast<std::size_t>(d)), box_hi(box_lo), xs(box_lo);
-  const auto box_distance = [&](const double* B) {
+  std::vector<double> box_lo(static_cast<std::size_t>(d)), box_hi(box_lo), xs(static_cast<std::size_t>((l.p + 1) * d));
+  /// A lower bound on the distance from q to the convex hull of the Cartesian points of `count` rows
+  /// (l.cols values each): the larger of the distance to their bounding box and the distance to the
+  /// segment between the first and the last, less the farthest point's distance from that segment
+  /// (the hull lies within that of the segment, which is convex). The second is tight for flat pieces.
+  const auto rows_box_distance = [&](const double* rows, int count) {
+    std::fill(box_lo.begin(), box_lo.end(), HUGE_VAL);
+    std::fill(box_hi.begin(), box_hi.end(), -HUGE_VAL);
+    for (int j = 0; j < count; ++j) {
+      double* x = xs.data() + j * d;
+      detail::project(rows + j * l.cols, d, l.rational, x);
+      for (int k = 0; k < d; ++k) {
+        const auto kk = static_cast<std::size_t>(k);
+        box_lo[kk] = std::min(box_lo[kk], x[k]);
+        box_hi[kk] = std::max(box_hi[kk], x[k]);
+      }
+    }
     double s = 0;
-    control_box(B, l, box_lo.data(), box_hi.data(), xs.data());
     for (int k = 0; k < d; ++k) {
       const auto kk = static_cast<std::size_t>(k);
       const double out = std::max({box_lo[kk] - q(k), q(k) - box_hi[kk], 0.0});
       s += out * out;
     }
-    return std::sqrt(s);
+    const double* a = xs.data();
+    const double* b = xs.data() + (count - 1) * d;
+    double len2 = 0;
+    for (int k = 0; k < d; ++k) len2 += (b[k] - a[k]) * (b[k] - a[k]);
+    // Distance from a point to the segment [a, b].
+    const auto to_segment = [&](const double* y) {
+      double t = 0;
+      if (len2 > 0) {
+        for (int k = 0; k < d; ++k) t += (y[k] - a[k]) * (b[k] - a[k]);
+        t = std::clamp(t / len2, 0.0, 1.0);
+      }
+      double r = 0;
+      for (int k = 0; k < d; ++k) {
+        const double e = y[k] - a[k] - t * (b[k] - a[k]);
+        r += e * e;
+      }
+      return std::sqrt(r);
+    };
+    double spread = 0;
+    for (int j = 1; j + 1 < count; ++j) spread = std::max(spread, to_segment(xs.data() + j * d));
+    return std::max(std::sqrt(s), to_segment(q.data()) - spread);
   };
+  const auto box_distance = [&](const double* B) { return rows_box_distance(B, l.p + 1); };
   std::vector<double> work(l.size()), H(static_cast<std::size_t>(3 * l.cols)),
       C(static_cast<std::size_t>(3 * d)), x(static_cast<std::size_t>(d));
   const auto point_at = [&](const double* B, double s) {
@@ -577,13 +629,6 @@ ClosestPoints closest_point(const Curve& c, const Point& q, double tolerance) {
   };
 
   double best = HUGE_VAL;
-  for (std::size_t k = 0; k < P.count(); ++k) {
-    control_point(P.at(k), l, 0, x.data());
-    best = std::min(best, distance_to(x.data()));
-    control_point(P.at(k), l, l.p, x.data());
-    best = std::min(best, distance_to(x.data()));
-  }
-
   struct Leaf {
     double u0, u1, u, dist;
     bool level;  // flat, and its ends, middle and minimum all at the leaf's minimum distance
@@ -596,18 +641,30 @@ ClosestPoints closest_point(const Curve& c, const Point& q, double tolerance) {
   };
   std::vector<Item> items;
   std::vector<double> stack;  // the items' coefficients, l.size() each
-  for (std::size_t k = P.count(); k-- > 0;) {
-    items.push_back({P.start[k], P.end[k], 0});
-    stack.insert(stack.end(), P.at(k), P.at(k) + l.size());
-  }
-  std::vector<double> B(l.size()), L(l.size()), R(l.size());
+  // The spans by the box of their p + 1 B-spline control points (the span's piece lies in their hull),
+  // nearest first; a span's Bézier piece is made only when its bound is below the best distance.
+  std::vector<std::pair<double, int>> order;
+  for (int k = l.p; k < c.P.rows(); ++k)
+    if (c.knots[static_cast<std::size_t>(k)] < c.knots[static_cast<std::size_t>(k) + 1])
+      order.emplace_back(rows_box_distance(c.P.data() + (k - l.p) * l.cols, l.p + 1), k);
+  std::sort(order.begin(), order.end());
+  std::vector<double> B(l.size()), L(l.size()), R(l.size()), flat_scratch(static_cast<std::size_t>((l.p + 1) * d));
+  for (const auto& [span_bound, k] : order) {
+    if (span_bound > best + eq) break;
+    items.push_back({c.knots[static_cast<std::size_t>(k)], c.knots[static_cast<std::size_t>(k) + 1], 0});
+    stack.resize(l.size());
+    span_bezier(c, k, stack.data());
+    for (int end : {0, l.p}) {  // the span's ends are curve points
+      control_point(stack.data(), l, end, x.data());
+      best = std::min(best, distance_to(x.data()));
+    }
   while (!items.empty()) {
     const Item it = items.back();
     items.pop_back();
     std::copy(stack.end() - static_cast<std::ptrdiff_t>(l.size()), stack.end(), B.begin());
     stack.resize(stack.size() - l.size());
     if (box_distance(B.data()) > best + eq) continue;
-    const bool is_flat = flat(B.data(), l);
+    const bool is_flat = flat(B.data(), l, flat_scratch.data());
     if (is_flat || it.depth >= 40) {
       // Newton on g in [0, 1], kept in the bracket where g changes sign; else the nearer end.
       point_at(B.data(), 0);
@@ -645,18 +702,22 @@ ClosestPoints closest_point(const Curve& c, const Point& q, double tolerance) {
     }
     bezier_split(B.data(), l.p, l.cols, 0.5, L.data(), R.data(), work.data());
     const double um = 0.5 * (it.u0 + it.u1);
-    const bool left_first = box_distance(L.data()) <= box_distance(R.data());
-    const auto push = [&](const std::vector<double>& piece, double a, double b) {
+    control_point(R.data(), l, 0, x.data());  // the cut is a curve point: a distance to beat
+    best = std::min(best, distance_to(x.data()));
+    const double lb_left = box_distance(L.data()), lb_right = box_distance(R.data());
+    const auto push = [&](const std::vector<double>& piece, double a, double b, double lb) {
+      if (lb > best + eq) return;
       items.push_back({a, b, it.depth + 1});
       stack.insert(stack.end(), piece.begin(), piece.end());
     };
-    if (left_first) {
-      push(R, um, it.u1);
-      push(L, it.u0, um);
+    if (lb_left <= lb_right) {  // the nearer half on top
+      push(R, um, it.u1, lb_right);
+      push(L, it.u0, um, lb_left);
     } else {
-      push(L, it.u0, um);
-      push(R, um, it.u1);
+      push(L, it.u0, um, lb_left);
+      push(R, um, it.u1, lb_right);
     }
+  }
   }
 
   ClosestPoints out;
@@ -752,6 +813,7 @@ std::vector<CurveIntersection> intersect_curves(const Curve& a, const Curve& b, 
   std::vector<Found> found;
   int leaves = 0;
   std::vector<double> loA(static_cast<std::size_t>(d)), hiA(loA), loB(loA), hiB(loA), xs(loA), F(loA);
+  std::vector<double> flat_scratch(static_cast<std::size_t>((std::max(la.p, lb.p) + 1) * d));
   while (!items.empty()) {
     Item it = std::move(items.back());
     items.pop_back();
@@ -765,7 +827,7 @@ std::vector<CurveIntersection> intersect_curves(const Curve& a, const Curve& b, 
       diagB += (hiB[k] - loB[k]) * (hiB[k] - loB[k]);
     }
     if (apart) continue;
-    const bool flatA = flat(it.A.data(), la), flatB = flat(it.B.data(), lb);
+    const bool flatA = flat(it.A.data(), la, flat_scratch.data()), flatB = flat(it.B.data(), lb, flat_scratch.data());
     const bool tinyA = diagA <= absolute * absolute, tinyB = diagB <= absolute * absolute;
     if (((flatA || tinyA) && (flatB || tinyB)) || it.depth >= 50) {
       if (++leaves > 4096)
