@@ -378,25 +378,24 @@ void bezier_roots(const std::vector<double>& h, double u0, double u1, double tol
     if ((h0 <= 0) != (h1 <= 0) || h0 == 0 || h1 == 0) root_between(0, 1);
     return;
   }
-  if (convex || concave) {  // h′ monotone: one extremum at most
-    if ((h0 < 0) != (h1 < 0) && h0 != 0 && h1 != 0) {
-      root_between(0, 1);
-      return;
-    }
+  if (convex || concave) {  // h′ monotone: one extremum at most, roots on either side of it
     if (h0 == 0) out.at.push_back(u0);
     if (h1 == 0) out.at.push_back(u1);
     std::vector<double> dh(static_cast<std::size_t>(m));
     for (int j = 0; j < m; ++j)
       dh[static_cast<std::size_t>(j)] = m * (h[static_cast<std::size_t>(j) + 1] - h[static_cast<std::size_t>(j)]);
-    if ((dh.front() < 0) == (dh.back() < 0) || dh.front() == 0 || dh.back() == 0) return;  // extremum at an end
+    if ((dh.front() < 0) == (dh.back() < 0) || dh.front() == 0 || dh.back() == 0) {  // monotone after all
+      if (h0 != 0 && h1 != 0 && (h0 < 0) != (h1 < 0)) root_between(0, 1);
+      return;
+    }
     const double se = bracketed_root(dh, 0, 1, work);
     const double v = scalar_eval(h, se, work)[0];
     if (std::abs(v) <= tol) {
       out.at.push_back(to_u(se));  // a tangential contact, once
-    } else if ((v < 0) != (h0 < 0) && h0 != 0 && h1 != 0) {
-      root_between(0, se);
-      root_between(se, 1);
+      return;
     }
+    if (h0 != 0 && (h0 < 0) != (v < 0)) root_between(0, se);
+    if (h1 != 0 && (h1 < 0) != (v < 0)) root_between(se, 1);
     return;
   }
   if (depth >= 60) {
@@ -434,6 +433,71 @@ std::vector<double> merge_roots(std::vector<double> at, std::vector<std::array<d
     out.push_back(u);
   }
   return out;
+}
+
+
+// ------------------------------------------------------------------------------------------------
+// Critical points of the distance to a point.
+
+/// Binomial coefficients C(n, k) for n ≤ 3·kMaxDegree, row n at n(n+1)/2.
+double binomial(int n, int k) {
+  static const std::vector<double> table = [] {
+    std::vector<double> t;
+    for (int m = 0; m <= 3 * kMaxDegree; ++m)
+      for (int j = 0; j <= m; ++j)
+        t.push_back(j == 0 || j == m ? 1.0 : t[static_cast<std::size_t>((m - 1) * m / 2 + j - 1)] +
+                                                 t[static_cast<std::size_t>((m - 1) * m / 2 + j)]);
+    return t;
+  }();
+  return table[static_cast<std::size_t>(n * (n + 1) / 2 + k)];
+}
+
+/// out += factor · f·g in Bernstein form: f of degree m (stride sf), g of degree n (stride sg), out of
+/// degree m + n.
+void add_product(const double* f, int m, int sf, const double* g, int n, int sg, double factor, double* out) {
+  for (int i = 0; i <= m; ++i)
+    for (int j = 0; j <= n; ++j)
+      out[i + j] += factor * binomial(m, i) * binomial(n, j) / binomial(m + n, i + j) * f[i * sf] * g[j * sg];
+}
+
+/// The Bézier coefficients of a polynomial whose roots in [0, 1] are the critical points of |C(s) − q|²
+/// on the piece B: (C − q)·C′ (degree 2p − 1) when polynomial, (A − q·w)·(A′w − A·w′) (degree 3p − 1)
+/// when rational (C = A/w: the same roots, w > 0). `magnitude` gets the same sums of absolute values,
+/// the scale of the rounding of `out`.
+void critical_polynomial(const double* B, const Layout& l, const Point& q, std::vector<double>& out,
+                         std::vector<double>& magnitude) {
+  const int p = l.p, d = l.dim, n = l.cols;
+  const int degree = l.rational ? 3 * p - 1 : 2 * p - 1;
+  out.assign(static_cast<std::size_t>(degree + 1), 0.0);
+  magnitude.assign(out.size(), 0.0);
+  std::vector<double> e(static_cast<std::size_t>(p + 1)), de(static_cast<std::size_t>(p)), ea(e), dea(de);
+  std::vector<double> v(static_cast<std::size_t>(2 * p)), va(v), dw(static_cast<std::size_t>(p));
+  if (l.rational)
+    for (int j = 0; j < p; ++j) dw[static_cast<std::size_t>(j)] = p * (B[(j + 1) * n + d] - B[j * n + d]);
+  for (int k = 0; k < d; ++k) {
+    for (int j = 0; j <= p; ++j) {
+      const double w = l.rational ? B[j * n + d] : 1.0;
+      e[static_cast<std::size_t>(j)] = B[j * n + k] - q(k) * w;
+      ea[static_cast<std::size_t>(j)] = std::abs(B[j * n + k]) + std::abs(q(k) * w);
+    }
+    for (int j = 0; j < p; ++j) {
+      de[static_cast<std::size_t>(j)] = p * (B[(j + 1) * n + k] - B[j * n + k]);
+      dea[static_cast<std::size_t>(j)] = std::abs(de[static_cast<std::size_t>(j)]);
+    }
+    if (!l.rational) {
+      add_product(e.data(), p, 1, de.data(), p - 1, 1, 1.0, out.data());
+      add_product(ea.data(), p, 1, dea.data(), p - 1, 1, 1.0, magnitude.data());
+      continue;
+    }
+    // V = A′w − A·w′ in degree 2p − 1.
+    std::fill(v.begin(), v.end(), 0.0);
+    std::fill(va.begin(), va.end(), 0.0);
+    add_product(de.data(), p - 1, 1, B + d, p, n, 1.0, v.data());
+    add_product(dw.data(), p - 1, 1, B + k, p, n, -1.0, v.data());
+    for (std::size_t j = 0; j < v.size(); ++j) va[j] = std::abs(v[j]);
+    add_product(e.data(), p, 1, v.data(), 2 * p - 1, 1, 1.0, out.data());
+    add_product(ea.data(), p, 1, va.data(), 2 * p - 1, 1, 1.0, magnitude.data());
+  }
 }
 
 }  // namespace
@@ -617,21 +681,11 @@ ClosestPoints closest_point(const Curve& c, const Point& q, double tolerance) {
     bezier_eval(B, l.p, l.cols, s, 2, H.data(), work.data());
     cartesian(H.data(), l, 2, C.data());
   };
-  // g(s) = (C − q)·C′ and g′ = |C′|² + (C − q)·C″ at s (after point_at).
-  const auto g = [&] {
-    double v = 0, dv = 0;
-    for (int k = 0; k < d; ++k) {
-      const double r = C[static_cast<std::size_t>(k)] - q(k);
-      v += r * C[static_cast<std::size_t>(d + k)];
-      dv += C[static_cast<std::size_t>(d + k)] * C[static_cast<std::size_t>(d + k)] + r * C[static_cast<std::size_t>(2 * d + k)];
-    }
-    return std::array<double, 2>{v, dv};
-  };
 
   double best = HUGE_VAL;
   struct Leaf {
     double u0, u1, u, dist;
-    bool level;  // flat, and its ends, middle and minimum all at the leaf's minimum distance
+    bool level;  // the critical polynomial vanishes on the whole leaf: the distance is constant
     double ends_mid;  // the largest distance at its ends and middle
   };
   std::vector<Leaf> leaves;
@@ -649,6 +703,7 @@ ClosestPoints closest_point(const Curve& c, const Point& q, double tolerance) {
       order.emplace_back(rows_box_distance(c.P.data() + (k - l.p) * l.cols, l.p + 1), k);
   std::sort(order.begin(), order.end());
   std::vector<double> B(l.size()), L(l.size()), R(l.size()), flat_scratch(static_cast<std::size_t>((l.p + 1) * d));
+  std::vector<double> crit, crit_magnitude, crit_work;
   for (const auto& [span_bound, k] : order) {
     if (span_bound > best + eq) break;
     items.push_back({c.knots[static_cast<std::size_t>(k)], c.knots[static_cast<std::size_t>(k) + 1], 0});
@@ -666,38 +721,34 @@ ClosestPoints closest_point(const Curve& c, const Point& q, double tolerance) {
     if (box_distance(B.data()) > best + eq) continue;
     const bool is_flat = flat(B.data(), l, flat_scratch.data());
     if (is_flat || it.depth >= 40) {
-      // Newton on g in [0, 1], kept in the bracket where g changes sign; else the nearer end.
+      // Every critical point of the distance in the leaf: the roots of critical_polynomial; the
+      // distance is smallest at one of them or at an end. A polynomial that vanishes (within its
+      // rounding) on the whole leaf: the distance is constant there (a circle about q).
       point_at(B.data(), 0);
       const double d0 = distance_to(C.data());
-      const double g0 = g()[0];
       point_at(B.data(), 1);
       const double d1 = distance_to(C.data());
-      const double g1 = g()[0];
       double s_best = d0 <= d1 ? 0 : 1, d_best = std::min(d0, d1);
-      if (g0 < 0 && g1 > 0) {
-        double lo = 0, hi = 1, s = 0.5;
-        for (int iter = 0; iter < 100; ++iter) {
-          point_at(B.data(), s);
-          const auto [v, dv] = g();
-          if (v == 0) break;
-          (v < 0 ? lo : hi) = s;
-          double next = dv > 0 ? s - v / dv : 0.5 * (lo + hi);
-          if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-          if (hi - lo <= 4 * kEps || next == s) break;
-          s = next;
-        }
-        point_at(B.data(), s);
-        const double ds = distance_to(C.data());
-        if (ds < d_best) {
-          d_best = ds;
-          s_best = s;
+      critical_polynomial(B.data(), l, q, crit, crit_magnitude);
+      const double rounding = 1e3 * kEps * *std::max_element(crit_magnitude.begin(), crit_magnitude.end());
+      Roots roots;
+      crit_work.resize(crit.size());
+      bezier_roots(crit, 0, 1, rounding, 0, roots, crit_work);
+      const bool constant = roots.intervals.size() == 1 && roots.intervals[0] == std::array<double, 2>{0, 1};
+      for (const auto& iv : roots.intervals) roots.at.insert(roots.at.end(), {iv[0], iv[1]});
+      for (double r : roots.at) {
+        point_at(B.data(), r);
+        const double dr = distance_to(C.data());
+        if (dr < d_best) {
+          d_best = dr;
+          s_best = r;
         }
       }
       point_at(B.data(), 0.5);
       const double dm = distance_to(C.data());
       best = std::min(best, d_best);
       const double u = s_best >= 1 ? it.u1 : it.u0 + s_best * (it.u1 - it.u0);
-      leaves.push_back({it.u0, it.u1, u, d_best, is_flat, std::max({d0, d1, dm})});
+      leaves.push_back({it.u0, it.u1, u, d_best, constant, std::max({d0, d1, dm})});
       continue;
     }
     bezier_split(B.data(), l.p, l.cols, 0.5, L.data(), R.data(), work.data());

@@ -366,6 +366,41 @@ TEST_CASE("closest_point: random curves against dense sampling refined by golden
   }
 }
 
+TEST_CASE("closest_point: mirror-symmetric curves and points on the mirror give every minimum in pairs",
+          "[nurbs][measure][closest]") {
+  Rng rng(30'2008);
+  for (int trial = 0; trial < 40; ++trial) {
+    // Uniform clamped knots and control points mirrored in x = 0: C(1 − u) = (−x(u), y(u)).
+    const int d = uniform_int(rng, 2, 4), n = d + 1 + uniform_int(rng, 0, 6);
+    Points P(n, 2);
+    for (int i = 0; i < n; ++i) {
+      if (i < n - 1 - i) {
+        P(i, 0) = uniform(rng, -2, 0.5);
+        P(i, 1) = uniform(rng, -1, 1);
+      } else if (i == n - 1 - i) {
+        P(i, 0) = 0;
+        P(i, 1) = uniform(rng, -1, 1);
+      } else {
+        P(i, 0) = -P(n - 1 - i, 0);
+        P(i, 1) = P(n - 1 - i, 1);
+      }
+    }
+    const Curve c = uniform_bspline(P, d, false);
+    const Domain dom = domain(c);
+    const Point q = (Point(2) << 0, uniform(rng, -3, 3)).finished();
+    const ClosestPoints cp = closest_point(c, q);
+    INFO("degree " << d << " points\n" << P.format(Eigen::IOFormat(17)) << "\nq " << q.format(Eigen::IOFormat(17)) << " cifs " << cp.distance << " brute " << brute_distance(c, q));
+    CHECK(std::abs(cp.distance - brute_distance(c, q)) <= 1e-9 * 2);
+    REQUIRE(!cp.parameters.empty());
+    for (double u : cp.parameters) {
+      const double mirror = dom.start + dom.end - u;
+      const bool paired = std::any_of(cp.parameters.begin(), cp.parameters.end(),
+                                      [&](double v) { return std::abs(v - mirror) <= 1e-7 * (dom.end - dom.start); });
+      CHECK(paired);
+    }
+  }
+}
+
 // ------------------------------------------------------------------------------------------------
 // Intersections.
 
@@ -405,6 +440,17 @@ TEST_CASE("intersect_plane: line × circle exactly, tangency once, curves in the
     CHECK_THROWS_WITH(intersect_plane(c, Point::Zero(2), 1), Contains("normal is zero"));
     CHECK_THROWS_WITH(intersect_plane(c, Point::Ones(3), 1), Contains("3 coordinates, the curve 2"));
   }
+}
+
+TEST_CASE("intersect_plane: a root at a piece's end does not hide the root next to it",
+          "[nurbs][measure][intersect]") {
+  // y = s(s − 0.3) on a parabola: h = y is 0 at s = 0 exactly, and convex; its second root is 0.3.
+  Points P(3, 2);
+  P << 0, 0, 0.5, -0.15, 1, 0.7;
+  const PlaneIntersection hit = intersect_plane(make_curve(2, {0, 0, 0, 1, 1, 1}, P), (Point(2) << 0, 1).finished(), 0);
+  REQUIRE(hit.parameters.size() == 2);
+  CHECK(hit.parameters[0] == 0);
+  CHECK(std::abs(hit.parameters[1] - 0.3) <= 1e-15);
 }
 
 TEST_CASE("intersect_plane: random curves against sign changes of dense samples", "[nurbs][measure][intersect]") {

@@ -65,14 +65,18 @@ struct ClosestPoints {
   std::vector<double> parameters;
   Points points;
   /// Parameter intervals on which the curve stays at the nearest distance (a circle about the point):
-  /// flat pieces whose ends and interior minimum are all at that distance, merged.
+  /// merged pieces on which (C − q)·C′ vanishes to its rounding (the distance is constant there).
   std::vector<std::array<double, 2>> intervals;
 };
 
 /// The points of the curve nearest to q (dim values), all of them whose distance is within
-/// `tolerance`·size of the smallest (size: the diagonal of the control points' bounding box, 1 if it is
-/// 0). Global: a piece whose control points' bounding box is farther than the best distance found is
-/// dropped; the others are halved until flat, and a safeguarded Newton on (C − q)·C′ runs in each.
+/// `tolerance`·size of the smallest (size: the larger of the control points' bounding-box diagonal and
+/// their largest coordinate). Global: the spans are taken nearest first by the hull of their B-spline
+/// control points, and a Bézier piece whose hull is farther than the best distance found so far is
+/// dropped (the bound: its control points' box, and their chord less their spread about it); the
+/// others are halved until flat. In each flat piece every critical point of the distance is a root
+/// of the polynomial (C − q)·C′ (times w³ when rational: degree 2p − 1, or 3p − 1), found by the
+/// root finder of intersect_plane, so no minimum is missed where a piece holds several.
 /// Throws InvalidInput for q of the wrong size or not finite, or a tolerance not in [1e-15, 1).
 ClosestPoints closest_point(const Curve& c, const Point& q, double tolerance = 1e-12);
 
