@@ -381,7 +381,8 @@ void bezier_roots(const std::vector<double>& h, double u0, double u1, double tol
   if (convex || concave) {  // h′ monotone: one extremum at most, roots on either side of it
     if (h0 == 0) out.at.push_back(u0);
     if (h1 == 0) out.at.push_back(u1);
-    std::vector<double> dh(static_cast<std::size_t>(m));
+    thread_local std::vector<double> dh;  // no recursion below: one per thread
+    dh.resize(static_cast<std::size_t>(m));
     for (int j = 0; j < m; ++j)
       dh[static_cast<std::size_t>(j)] = m * (h[static_cast<std::size_t>(j) + 1] - h[static_cast<std::size_t>(j)]);
     if ((dh.front() < 0) == (dh.back() < 0) || dh.front() == 0 || dh.back() == 0) {  // monotone after all
@@ -403,7 +404,13 @@ void bezier_roots(const std::vector<double>& h, double u0, double u1, double tol
     if (std::abs(v) <= tol) out.at.push_back(to_u(0.5));
     return;
   }
-  std::vector<double> L(h.size()), R(h.size());
+  // The halves, in storage kept per thread and depth (the caller's h is at depth − 1).
+  // Sized once: growing it would move the vector the caller's h refers to (depth < 60 below).
+  thread_local std::vector<std::vector<double>> halves(2 * 61);
+  std::vector<double>& L = halves[static_cast<std::size_t>(2 * depth)];
+  std::vector<double>& R = halves[static_cast<std::size_t>(2 * depth + 1)];
+  L.resize(h.size());
+  R.resize(h.size());
   bezier_split(h.data(), m, 1, 0.5, L.data(), R.data(), work.data());
   const double um = to_u(0.5);
   bezier_roots(L, u0, um, tol, depth + 1, out, work);
@@ -470,8 +477,8 @@ void critical_polynomial(const double* B, const Layout& l, const Point& q, std::
   const int degree = l.rational ? 3 * p - 1 : 2 * p - 1;
   out.assign(static_cast<std::size_t>(degree + 1), 0.0);
   magnitude.assign(out.size(), 0.0);
-  std::vector<double> e(static_cast<std::size_t>(p + 1)), de(static_cast<std::size_t>(p)), ea(e), dea(de);
-  std::vector<double> v(static_cast<std::size_t>(2 * p)), va(v), dw(static_cast<std::size_t>(p));
+  std::array<double, kMaxDegree + 1> e{}, de{}, ea{}, dea{}, dw{};
+  std::array<double, 2 * kMaxDegree> v{}, va{};
   if (l.rational)
     for (int j = 0; j < p; ++j) dw[static_cast<std::size_t>(j)] = p * (B[(j + 1) * n + d] - B[j * n + d]);
   for (int k = 0; k < d; ++k) {
@@ -490,11 +497,10 @@ void critical_polynomial(const double* B, const Layout& l, const Point& q, std::
       continue;
     }
     // V = A′w − A·w′ in degree 2p − 1.
-    std::fill(v.begin(), v.end(), 0.0);
-    std::fill(va.begin(), va.end(), 0.0);
+    std::fill_n(v.begin(), 2 * p, 0.0);
     add_product(de.data(), p - 1, 1, B + d, p, n, 1.0, v.data());
     add_product(dw.data(), p - 1, 1, B + k, p, n, -1.0, v.data());
-    for (std::size_t j = 0; j < v.size(); ++j) va[j] = std::abs(v[j]);
+    for (std::size_t j = 0; j < static_cast<std::size_t>(2 * p); ++j) va[j] = std::abs(v[j]);
     add_product(e.data(), p, 1, v.data(), 2 * p - 1, 1, 1.0, out.data());
     add_product(ea.data(), p, 1, va.data(), 2 * p - 1, 1, 1.0, magnitude.data());
   }
@@ -675,112 +681,61 @@ ClosestPoints closest_point(const Curve& c, const Point& q, double tolerance) {
     return std::max(std::sqrt(s), to_segment(q.data()) - spread);
   };
   const auto box_distance = [&](const double* B) { return rows_box_distance(B, l.p + 1); };
-  std::vector<double> work(l.size()), H(static_cast<std::size_t>(3 * l.cols)),
-      C(static_cast<std::size_t>(3 * d)), x(static_cast<std::size_t>(d));
+  std::vector<double> work(l.size()), H(static_cast<std::size_t>(3 * l.cols)), C(static_cast<std::size_t>(3 * d));
   const auto point_at = [&](const double* B, double s) {
     bezier_eval(B, l.p, l.cols, s, 2, H.data(), work.data());
     cartesian(H.data(), l, 2, C.data());
   };
 
   double best = HUGE_VAL;
-  struct Leaf {
-    double u0, u1, u, dist;
-    bool level;  // the critical polynomial vanishes on the whole leaf: the distance is constant
-    double ends_mid;  // the largest distance at its ends and middle
+  struct Found {
+    double u, dist;
   };
-  std::vector<Leaf> leaves;
-  struct Item {
-    double u0, u1;
-    int depth;
-  };
-  std::vector<Item> items;
-  std::vector<double> stack;  // the items' coefficients, l.size() each
-  // The spans by the box of their p + 1 B-spline control points (the span's piece lies in their hull),
-  // nearest first; a span's Bézier piece is made only when its bound is below the best distance.
+  std::vector<Found> found;                   // span ends and critical points
+  std::vector<std::array<double, 3>> constant;  // spans at a constant distance: u0, u1, that distance
+  // The spans by the hull of their p + 1 B-spline control points (the span's piece lies in it),
+  // nearest first; a span's Bézier piece is made only when that bound is below the best distance.
   std::vector<std::pair<double, int>> order;
   for (int k = l.p; k < c.P.rows(); ++k)
     if (c.knots[static_cast<std::size_t>(k)] < c.knots[static_cast<std::size_t>(k) + 1])
       order.emplace_back(rows_box_distance(c.P.data() + (k - l.p) * l.cols, l.p + 1), k);
   std::sort(order.begin(), order.end());
-  std::vector<double> B(l.size()), L(l.size()), R(l.size()), flat_scratch(static_cast<std::size_t>((l.p + 1) * d));
-  std::vector<double> crit, crit_magnitude, crit_work;
+  std::vector<double> B(l.size()), crit, crit_magnitude, crit_work;
   for (const auto& [span_bound, k] : order) {
     if (span_bound > best + eq) break;
-    items.push_back({c.knots[static_cast<std::size_t>(k)], c.knots[static_cast<std::size_t>(k) + 1], 0});
-    stack.resize(l.size());
-    span_bezier(c, k, stack.data());
-    for (int end : {0, l.p}) {  // the span's ends are curve points
-      control_point(stack.data(), l, end, x.data());
-      best = std::min(best, distance_to(x.data()));
-    }
-  while (!items.empty()) {
-    const Item it = items.back();
-    items.pop_back();
-    std::copy(stack.end() - static_cast<std::ptrdiff_t>(l.size()), stack.end(), B.begin());
-    stack.resize(stack.size() - l.size());
-    if (box_distance(B.data()) > best + eq) continue;
-    const bool is_flat = flat(B.data(), l, flat_scratch.data());
-    if (is_flat || it.depth >= 40) {
-      // Every critical point of the distance in the leaf: the roots of critical_polynomial; the
-      // distance is smallest at one of them or at an end. A polynomial that vanishes (within its
-      // rounding) on the whole leaf: the distance is constant there (a circle about q).
-      point_at(B.data(), 0);
-      const double d0 = distance_to(C.data());
-      point_at(B.data(), 1);
-      const double d1 = distance_to(C.data());
-      double s_best = d0 <= d1 ? 0 : 1, d_best = std::min(d0, d1);
-      critical_polynomial(B.data(), l, q, crit, crit_magnitude);
-      const double rounding = 1e3 * kEps * *std::max_element(crit_magnitude.begin(), crit_magnitude.end());
-      Roots roots;
-      crit_work.resize(crit.size());
-      bezier_roots(crit, 0, 1, rounding, 0, roots, crit_work);
-      const bool constant = roots.intervals.size() == 1 && roots.intervals[0] == std::array<double, 2>{0, 1};
-      for (const auto& iv : roots.intervals) roots.at.insert(roots.at.end(), {iv[0], iv[1]});
-      for (double r : roots.at) {
-        point_at(B.data(), r);
-        const double dr = distance_to(C.data());
-        if (dr < d_best) {
-          d_best = dr;
-          s_best = r;
-        }
-      }
-      point_at(B.data(), 0.5);
-      const double dm = distance_to(C.data());
-      best = std::min(best, d_best);
-      const double u = s_best >= 1 ? it.u1 : it.u0 + s_best * (it.u1 - it.u0);
-      leaves.push_back({it.u0, it.u1, u, d_best, constant, std::max({d0, d1, dm})});
-      continue;
-    }
-    bezier_split(B.data(), l.p, l.cols, 0.5, L.data(), R.data(), work.data());
-    const double um = 0.5 * (it.u0 + it.u1);
-    control_point(R.data(), l, 0, x.data());  // the cut is a curve point: a distance to beat
-    best = std::min(best, distance_to(x.data()));
-    const double lb_left = box_distance(L.data()), lb_right = box_distance(R.data());
-    const auto push = [&](const std::vector<double>& piece, double a, double b, double lb) {
-      if (lb > best + eq) return;
-      items.push_back({a, b, it.depth + 1});
-      stack.insert(stack.end(), piece.begin(), piece.end());
+    span_bezier(c, k, B.data());
+    if (box_distance(B.data()) > best + eq) continue;  // the Bézier hull is tighter
+    const double u0 = c.knots[static_cast<std::size_t>(k)], u1 = c.knots[static_cast<std::size_t>(k) + 1];
+    const auto at = [&](double s) {
+      point_at(B.data(), s);
+      const double dist = distance_to(C.data());
+      best = std::min(best, dist);
+      found.push_back({s >= 1 ? u1 : u0 + s * (u1 - u0), dist});
+      return dist;
     };
-    if (lb_left <= lb_right) {  // the nearer half on top
-      push(R, um, it.u1, lb_right);
-      push(L, it.u0, um, lb_left);
-    } else {
-      push(L, it.u0, um, lb_left);
-      push(R, um, it.u1, lb_right);
+    const double d0 = at(0), d1 = at(1);
+    // Every critical point of the distance on the span is a root of critical_polynomial; one that
+    // vanishes on the whole span (to its rounding) means a constant distance (a circle about q).
+    critical_polynomial(B.data(), l, q, crit, crit_magnitude);
+    const double rounding = 1e3 * kEps * *std::max_element(crit_magnitude.begin(), crit_magnitude.end());
+    Roots roots;
+    crit_work.resize(crit.size());
+    bezier_roots(crit, 0, 1, rounding, 0, roots, crit_work);
+    for (const auto& iv : roots.intervals) roots.at.insert(roots.at.end(), {iv[0], iv[1]});
+    for (double r : roots.at) (void)at(r);
+    if (roots.intervals.size() == 1 && roots.intervals[0] == std::array<double, 2>{0, 1}) {
+      point_at(B.data(), 0.5);
+      constant.push_back({u0, u1, std::max({d0, d1, distance_to(C.data())})});
     }
-  }
   }
 
   ClosestPoints out;
   out.distance = best;
+  for (const auto& iv : constant)
+    if (iv[2] <= best + eq) out.intervals.push_back({iv[0], iv[1]});
   std::vector<double> at;
-  for (const Leaf& leaf : leaves) {
-    if (leaf.dist > best + eq) continue;
-    if (leaf.level && leaf.ends_mid <= best + eq)
-      out.intervals.push_back({leaf.u0, leaf.u1});
-    else
-      at.push_back(leaf.u);
-  }
+  for (const Found& f : found)
+    if (f.dist <= best + eq) at.push_back(f.u);
   const Domain dom = domain(c);
   if (c.closed)
     for (double& u : at)

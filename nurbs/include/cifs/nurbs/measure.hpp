@@ -4,8 +4,9 @@
 //
 // The global searches (closest point, intersections, bounding box) work on the Bézier pieces of the
 // curve's spans: a piece lies in the convex hull of its control points (projected when rational: the
-// weights are positive), so a piece whose hull misses what is sought is dropped, the others are halved
-// by de Casteljau until they are flat, and Newton's method finishes in each survivor.
+// weights are positive), so a piece whose hull misses what is sought is dropped; the roots of a scalar
+// Bézier polynomial are isolated by halving until it is monotone or has one extremum, then found by
+// Newton's method kept in a bracket.
 #pragma once
 
 #include <array>
@@ -65,18 +66,18 @@ struct ClosestPoints {
   std::vector<double> parameters;
   Points points;
   /// Parameter intervals on which the curve stays at the nearest distance (a circle about the point):
-  /// merged pieces on which (C − q)·C′ vanishes to its rounding (the distance is constant there).
+  /// merged spans on which (C − q)·C′ vanishes to its rounding (the distance is constant there).
   std::vector<std::array<double, 2>> intervals;
 };
 
 /// The points of the curve nearest to q (dim values), all of them whose distance is within
 /// `tolerance`·size of the smallest (size: the larger of the control points' bounding-box diagonal and
-/// their largest coordinate). Global: the spans are taken nearest first by the hull of their B-spline
-/// control points, and a Bézier piece whose hull is farther than the best distance found so far is
-/// dropped (the bound: its control points' box, and their chord less their spread about it); the
-/// others are halved until flat. In each flat piece every critical point of the distance is a root
-/// of the polynomial (C − q)·C′ (times w³ when rational: degree 2p − 1, or 3p − 1), found by the
-/// root finder of intersect_plane, so no minimum is missed where a piece holds several.
+/// their largest coordinate). Global: the spans are taken nearest first by the hull of their p + 1
+/// B-spline control points, and a span whose hull is farther than the best distance found so far is
+/// dropped (the bound: the points' box, and their chord less their spread about it; then the same on
+/// the tighter Bézier control points). On each remaining span every critical point of the distance is
+/// a root of the polynomial (C − q)·C′ (times w³ when rational: degree 2p − 1, or 3p − 1), found by
+/// the root finder of intersect_plane, so no minimum is missed where a span holds several.
 /// Throws InvalidInput for q of the wrong size or not finite, or a tolerance not in [1e-15, 1).
 ClosestPoints closest_point(const Curve& c, const Point& q, double tolerance = 1e-12);
 
