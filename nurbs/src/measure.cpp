@@ -459,12 +459,19 @@ double binomial(int n, int k) {
   return table[static_cast<std::size_t>(n * (n + 1) / 2 + k)];
 }
 
-/// out += factor · f·g in Bernstein form: f of degree m (stride sf), g of degree n (stride sg), out of
-/// degree m + n.
+/// out += factor · f·g in Bernstein form, times C(m + n, k) on coefficient k (finish_products divides):
+/// f of degree m (stride sf), g of degree n (stride sg), out of degree m + n.
 void add_product(const double* f, int m, int sf, const double* g, int n, int sg, double factor, double* out) {
+  double cf[kMaxDegree + 1], cg[2 * kMaxDegree + 1];
+  for (int i = 0; i <= m; ++i) cf[i] = factor * binomial(m, i) * f[i * sf];
+  for (int j = 0; j <= n; ++j) cg[j] = binomial(n, j) * g[j * sg];
   for (int i = 0; i <= m; ++i)
-    for (int j = 0; j <= n; ++j)
-      out[i + j] += factor * binomial(m, i) * binomial(n, j) / binomial(m + n, i + j) * f[i * sf] * g[j * sg];
+    for (int j = 0; j <= n; ++j) out[i + j] += cf[i] * cg[j];
+}
+
+/// Divides the coefficients of a product of degree `degree` accumulated by add_product by C(degree, k).
+void finish_products(double* out, int degree) {
+  for (int k = 0; k <= degree; ++k) out[k] /= binomial(degree, k);
 }
 
 /// The Bézier coefficients of a polynomial whose roots in [0, 1] are the critical points of |C(s) − q|²
@@ -500,10 +507,13 @@ void critical_polynomial(const double* B, const Layout& l, const Point& q, std::
     std::fill_n(v.begin(), 2 * p, 0.0);
     add_product(de.data(), p - 1, 1, B + d, p, n, 1.0, v.data());
     add_product(dw.data(), p - 1, 1, B + k, p, n, -1.0, v.data());
+    finish_products(v.data(), 2 * p - 1);
     for (std::size_t j = 0; j < static_cast<std::size_t>(2 * p); ++j) va[j] = std::abs(v[j]);
     add_product(e.data(), p, 1, v.data(), 2 * p - 1, 1, 1.0, out.data());
     add_product(ea.data(), p, 1, va.data(), 2 * p - 1, 1, 1.0, magnitude.data());
   }
+  finish_products(out.data(), degree);
+  finish_products(magnitude.data(), degree);
 }
 
 }  // namespace
@@ -683,8 +693,8 @@ ClosestPoints closest_point(const Curve& c, const Point& q, double tolerance) {
   const auto box_distance = [&](const double* B) { return rows_box_distance(B, l.p + 1); };
   std::vector<double> work(l.size()), H(static_cast<std::size_t>(3 * l.cols)), C(static_cast<std::size_t>(3 * d));
   const auto point_at = [&](const double* B, double s) {
-    bezier_eval(B, l.p, l.cols, s, 2, H.data(), work.data());
-    cartesian(H.data(), l, 2, C.data());
+    bezier_eval(B, l.p, l.cols, s, 0, H.data(), work.data());
+    cartesian(H.data(), l, 0, C.data());
   };
 
   double best = HUGE_VAL;
