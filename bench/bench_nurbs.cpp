@@ -630,7 +630,6 @@ void register_fit_benchmarks(Eigen::Index n) {
 #endif
 }
 
-
 // ------------------------------------------------------------------------------------------------
 // Case 6: measuring (issue 30 §2) — the arc length of 10⁴ cubic curves (SISL s1240) and 10⁶ projections
 // of points on a curve (SISL s1953, global, all closest points; s1957, one closest point).
@@ -728,11 +727,16 @@ MeasureCase& measure_case() {
 
 void register_measure_benchmarks() {
   const auto add = [](const std::string& name, std::size_t items, auto run) {
-    benchmark::RegisterBenchmark(name.c_str(), [items, run](benchmark::State& state) {
-      MeasureCase& mc = measure_case();
-      run(state, mc);
-      report_rate(state, items, "per_item");
-    })->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)->ReportAggregatesOnly(false);
+    benchmark::RegisterBenchmark(name.c_str(),
+                                 [items, run](benchmark::State& state) {
+                                   MeasureCase& mc = measure_case();
+                                   run(state, mc);
+                                   report_rate(state, items, "per_item");
+                                 })
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1)
+        ->Repetitions(3)
+        ->ReportAggregatesOnly(false);
   };
   add("BM_length_1e4/cifs", kLengthCurves, [](benchmark::State& state, MeasureCase& mc) {
     for (auto _ : state) {

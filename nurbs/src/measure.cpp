@@ -20,15 +20,15 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 // parameter interval, local parameter s ∈ [0, 1].
 
 struct Layout {
-  int p = 0;      // degree
-  int cols = 0;   // stored coordinates per row
-  int dim = 0;    // Cartesian coordinates
+  int p = 0;                // degree
+  std::ptrdiff_t cols = 0;  // stored coordinates per row (a factor of offsets)
+  int dim = 0;              // Cartesian coordinates
   bool rational = false;
   [[nodiscard]] std::size_t size() const { return static_cast<std::size_t>((p + 1) * cols); }
 };
 
 Layout layout(const Curve& c) {
-  return {c.degree, static_cast<int>(c.P.cols()), dimension(c), c.rational};
+  return {c.degree, c.P.cols(), dimension(c), c.rational};
 }
 
 /// The Bézier coefficients of every non-empty span of the domain, in order: the blossoms
@@ -78,7 +78,8 @@ Pieces bezier_pieces(const Curve& c) {
 
 /// De Casteljau at s: the value and the s-derivatives up to `order` (≤ 2) in stored coordinates,
 /// out[r·cols …]. `work` holds (p + 1)·cols values.
-void bezier_eval(const double* B, int p, int cols, double s, int order, double* out, double* work) {
+void bezier_eval(const double* B, int p, std::ptrdiff_t cols, double s, int order, double* out,
+                 double* work) {
   const double t = 1 - s;
   std::copy_n(B, (p + 1) * cols, work);
   std::fill_n(out, (order + 1) * cols, 0.0);
@@ -93,7 +94,8 @@ void bezier_eval(const double* B, int p, int cols, double s, int order, double* 
   capture(0);
   for (int r = 1; r <= p; ++r) {
     for (int j = 0; j <= p - r; ++j)
-      for (int k = 0; k < cols; ++k) work[j * cols + k] = t * work[j * cols + k] + s * work[(j + 1) * cols + k];
+      for (int k = 0; k < cols; ++k)
+        work[j * cols + k] = t * work[j * cols + k] + s * work[(j + 1) * cols + k];
     capture(r);
   }
   std::copy_n(work, cols, out);
@@ -103,10 +105,11 @@ void bezier_eval(const double* B, int p, int cols, double s, int order, double* 
 /// by the quotient rule: C = A/w, C′ = (A′ − w′C)/w, C″ = (A″ − 2w′C′ − w″C)/w.
 void cartesian(const double* H, const Layout& l, int order, double* C) {
   if (!l.rational) {
-    for (int r = 0; r <= order; ++r) std::copy_n(H + r * l.cols, l.dim, C + r * l.dim);
+    for (int r = 0; r <= order; ++r) std::copy_n(H + r * l.cols, l.dim, C + std::ptrdiff_t{r} * l.dim);
     return;
   }
-  const int d = l.dim, n = l.cols;
+  const int d = l.dim;
+  const std::ptrdiff_t n = l.cols;
   const double w = H[d];
   for (int k = 0; k < d; ++k) C[k] = H[k] / w;
   if (order >= 1)
@@ -117,14 +120,15 @@ void cartesian(const double* H, const Layout& l, int order, double* C) {
 }
 
 /// Splits the piece B at s into L (on [0, s]) and R (on [s, 1]).
-void bezier_split(const double* B, int p, int cols, double s, double* L, double* R, double* work) {
+void bezier_split(const double* B, int p, std::ptrdiff_t cols, double s, double* L, double* R, double* work) {
   const double t = 1 - s;
   std::copy_n(B, (p + 1) * cols, work);
   std::copy_n(work, cols, L);
   std::copy_n(work + p * cols, cols, R + p * cols);
   for (int r = 1; r <= p; ++r) {
     for (int j = 0; j <= p - r; ++j)
-      for (int k = 0; k < cols; ++k) work[j * cols + k] = t * work[j * cols + k] + s * work[(j + 1) * cols + k];
+      for (int k = 0; k < cols; ++k)
+        work[j * cols + k] = t * work[j * cols + k] + s * work[(j + 1) * cols + k];
     std::copy_n(work, cols, L + r * cols);
     std::copy_n(work + (p - r) * cols, cols, R + (p - r) * cols);
   }
@@ -153,16 +157,16 @@ void control_box(const double* B, const Layout& l, double* lo, double* hi, doubl
 /// (p + 1)·dim values.
 bool flat(const double* B, const Layout& l, double* x) {
   const int d = l.dim;
-  for (int j = 0; j <= l.p; ++j) control_point(B, l, j, x + j * d);
+  for (int j = 0; j <= l.p; ++j) control_point(B, l, j, x + std::ptrdiff_t{j} * d);
   const double* a = x;
-  const double* b = x + l.p * d;
+  const double* b = x + std::ptrdiff_t{l.p} * d;
   double len2 = 0;
   for (int k = 0; k < d; ++k) len2 += (b[k] - a[k]) * (b[k] - a[k]);
   if (!(len2 > 0)) return false;
   double prev_along = 0;
   for (int j = 1; j <= l.p; ++j) {
     double along = 0, dist2 = 0;
-    const double* xj = x + j * d;
+    const double* xj = x + std::ptrdiff_t{j} * d;
     for (int k = 0; k < d; ++k) along += (xj[k] - a[k]) * (b[k] - a[k]);
     if (along < prev_along) return false;
     prev_along = along;
@@ -194,8 +198,7 @@ double size_of(const Curve& c) {
 }
 
 void check_tolerance(double tolerance) {
-  if (!(tolerance >= 1e-15 && tolerance < 1))
-    detail::fail("tolerance ", tolerance, " is outside [1e-15, 1)");
+  if (!(tolerance >= 1e-15 && tolerance < 1)) detail::fail("tolerance ", tolerance, " is outside [1e-15, 1)");
 }
 
 double norm(const double* x, int n) {
@@ -209,20 +212,20 @@ double norm(const double* x, int n) {
 
 /// Gauss–Legendre nodes and weights of 8 points on [0, 1], by Newton's method on P_8.
 struct Gauss {
-  static constexpr int n = 8;
-  std::array<double, n> x{}, w{};
+  static constexpr int kPoints = 8;
+  std::array<double, kPoints> x{}, w{};
   Gauss() {
-    for (int i = 0; i < n; ++i) {
-      double z = std::cos(std::numbers::pi * (i + 0.75) / (n + 0.5));
+    for (int i = 0; i < kPoints; ++i) {
+      double z = std::cos(std::numbers::pi * (i + 0.75) / (kPoints + 0.5));
       double dp = 0;
       for (int it = 0; it < 100; ++it) {
         double p0 = 1, p1 = z;
-        for (int k = 2; k <= n; ++k) {
+        for (int k = 2; k <= kPoints; ++k) {
           const double p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
           p0 = p1;
           p1 = p2;
         }
-        dp = n * (z * p1 - p0) / (z * z - 1);
+        dp = kPoints * (z * p1 - p0) / (z * z - 1);
         const double step = p1 / dp;
         z -= step;
         if (std::abs(step) < 1e-17) break;
@@ -242,19 +245,22 @@ const Gauss& gauss_rule() {
 class Speed {
  public:
   Speed(const double* B, const Layout& l)
-      : B_(B), l_(l), work_(l.size()), H_(static_cast<std::size_t>(2 * l.cols)),
-        C_(static_cast<std::size_t>(2 * l.dim)) {}
+      : piece_(B),
+        l_(l),
+        work_(l.size()),
+        homogeneous_(static_cast<std::size_t>(2 * l.cols)),
+        cartesian_(static_cast<std::size_t>(2 * l.dim)) {}
 
   [[nodiscard]] double operator()(double s) {
-    bezier_eval(B_, l_.p, l_.cols, s, 1, H_.data(), work_.data());
-    cartesian(H_.data(), l_, 1, C_.data());
-    return norm(C_.data() + l_.dim, l_.dim);
+    bezier_eval(piece_, l_.p, l_.cols, s, 1, homogeneous_.data(), work_.data());
+    cartesian(homogeneous_.data(), l_, 1, cartesian_.data());
+    return norm(cartesian_.data() + l_.dim, l_.dim);
   }
 
   [[nodiscard]] double rule(double s0, double s1) {
     const Gauss& g = gauss_rule();
     double sum = 0;
-    for (int i = 0; i < Gauss::n; ++i) {
+    for (int i = 0; i < Gauss::kPoints; ++i) {
       const auto k = static_cast<std::size_t>(i);
       sum += g.w[k] * (*this)(s0 + (s1 - s0) * g.x[k]);
     }
@@ -284,9 +290,9 @@ class Speed {
   }
 
  private:
-  const double* B_;
+  const double* piece_;
   Layout l_;
-  std::vector<double> work_, H_, C_;
+  std::vector<double> work_, homogeneous_, cartesian_;
 };
 
 void check_parameter(const Curve& c, double u, const char* what) {
@@ -373,7 +379,9 @@ void bezier_roots(const std::vector<double>& h, double u0, double u1, double tol
     }
   }
   const double h0 = h.front(), h1 = h.back();
-  const auto root_between = [&](double a, double b) { out.at.push_back(to_u(bracketed_root(h, a, b, work))); };
+  const auto root_between = [&](double a, double b) {
+    out.at.push_back(to_u(bracketed_root(h, a, b, work)));
+  };
   if (up || down) {  // monotone: one root where the ends differ in sign
     if ((h0 <= 0) != (h1 <= 0) || h0 == 0 || h1 == 0) root_between(0, 1);
     return;
@@ -384,7 +392,8 @@ void bezier_roots(const std::vector<double>& h, double u0, double u1, double tol
     thread_local std::vector<double> dh;  // no recursion below: one per thread
     dh.resize(static_cast<std::size_t>(m));
     for (int j = 0; j < m; ++j)
-      dh[static_cast<std::size_t>(j)] = m * (h[static_cast<std::size_t>(j) + 1] - h[static_cast<std::size_t>(j)]);
+      dh[static_cast<std::size_t>(j)] =
+          m * (h[static_cast<std::size_t>(j) + 1] - h[static_cast<std::size_t>(j)]);
     if ((dh.front() < 0) == (dh.back() < 0) || dh.front() == 0 || dh.back() == 0) {  // monotone after all
       if (h0 != 0 && h1 != 0 && (h0 < 0) != (h1 < 0)) root_between(0, 1);
       return;
@@ -406,9 +415,9 @@ void bezier_roots(const std::vector<double>& h, double u0, double u1, double tol
   }
   // The halves, in storage kept per thread and depth (the caller's h is at depth − 1).
   // Sized once: growing it would move the vector the caller's h refers to (depth < 60 below).
-  thread_local std::vector<std::vector<double>> halves(2 * 61);
-  std::vector<double>& L = halves[static_cast<std::size_t>(2 * depth)];
-  std::vector<double>& R = halves[static_cast<std::size_t>(2 * depth + 1)];
+  thread_local std::vector<std::vector<double>> halves(std::size_t{122});
+  std::vector<double>& L = halves[2 * static_cast<std::size_t>(depth)];
+  std::vector<double>& R = halves[2 * static_cast<std::size_t>(depth) + 1];
   L.resize(h.size());
   R.resize(h.size());
   bezier_split(h.data(), m, 1, 0.5, L.data(), R.data(), work.data());
@@ -442,26 +451,30 @@ std::vector<double> merge_roots(std::vector<double> at, std::vector<std::array<d
   return out;
 }
 
-
 // ------------------------------------------------------------------------------------------------
 // Critical points of the distance to a point.
 
 /// Binomial coefficients C(n, k) for n ≤ 3·kMaxDegree, row n at n(n+1)/2.
 double binomial(int n, int k) {
+  static const auto row = [](int m) {
+    return static_cast<std::size_t>(m) * static_cast<std::size_t>(m + 1) / 2;
+  };
   static const std::vector<double> table = [] {
     std::vector<double> t;
     for (int m = 0; m <= 3 * kMaxDegree; ++m)
-      for (int j = 0; j <= m; ++j)
-        t.push_back(j == 0 || j == m ? 1.0 : t[static_cast<std::size_t>((m - 1) * m / 2 + j - 1)] +
-                                                 t[static_cast<std::size_t>((m - 1) * m / 2 + j)]);
+      for (int j = 0; j <= m; ++j) {
+        const std::size_t above = m > 0 ? row(m - 1) + static_cast<std::size_t>(j) : 0;  // C(m − 1, j)
+        t.push_back(j == 0 || j == m ? 1.0 : t[above - 1] + t[above]);
+      }
     return t;
   }();
-  return table[static_cast<std::size_t>(n * (n + 1) / 2 + k)];
+  return table[row(n) + static_cast<std::size_t>(k)];
 }
 
 /// out += factor · f·g in Bernstein form, times C(m + n, k) on coefficient k (finish_products divides):
 /// f of degree m (stride sf), g of degree n (stride sg), out of degree m + n.
-void add_product(const double* f, int m, int sf, const double* g, int n, int sg, double factor, double* out) {
+void add_product(const double* f, int m, std::ptrdiff_t sf, const double* g, int n, std::ptrdiff_t sg,
+                 double factor, double* out) {
   double cf[kMaxDegree + 1], cg[2 * kMaxDegree + 1];
   for (int i = 0; i <= m; ++i) cf[i] = factor * binomial(m, i) * f[i * sf];
   for (int j = 0; j <= n; ++j) cg[j] = binomial(n, j) * g[j * sg];
@@ -480,12 +493,13 @@ void finish_products(double* out, int degree) {
 /// the scale of the rounding of `out`.
 void critical_polynomial(const double* B, const Layout& l, const Point& q, std::vector<double>& out,
                          std::vector<double>& magnitude) {
-  const int p = l.p, d = l.dim, n = l.cols;
+  const int p = l.p, d = l.dim;
+  const std::ptrdiff_t n = l.cols;
   const int degree = l.rational ? 3 * p - 1 : 2 * p - 1;
-  out.assign(static_cast<std::size_t>(degree + 1), 0.0);
+  out.assign(static_cast<std::size_t>(degree) + 1, 0.0);
   magnitude.assign(out.size(), 0.0);
   std::array<double, kMaxDegree + 1> e{}, de{}, ea{}, dea{}, dw{};
-  std::array<double, 2 * kMaxDegree> v{}, va{};
+  std::array<double, std::size_t{2} * kMaxDegree> v{}, va{};
   if (l.rational)
     for (int j = 0; j < p; ++j) dw[static_cast<std::size_t>(j)] = p * (B[(j + 1) * n + d] - B[j * n + d]);
   for (int k = 0; k < d; ++k) {
@@ -508,7 +522,7 @@ void critical_polynomial(const double* B, const Layout& l, const Point& q, std::
     add_product(de.data(), p - 1, 1, B + d, p, n, 1.0, v.data());
     add_product(dw.data(), p - 1, 1, B + k, p, n, -1.0, v.data());
     finish_products(v.data(), 2 * p - 1);
-    for (std::size_t j = 0; j < static_cast<std::size_t>(2 * p); ++j) va[j] = std::abs(v[j]);
+    for (std::size_t j = 0; j < 2 * static_cast<std::size_t>(p); ++j) va[j] = std::abs(v[j]);
     add_product(e.data(), p, 1, v.data(), 2 * p - 1, 1, 1.0, out.data());
     add_product(ea.data(), p, 1, va.data(), 2 * p - 1, 1, 1.0, magnitude.data());
   }
@@ -607,9 +621,12 @@ Frenet frenet_frame(const Curve& c, double u) {
   const Points D = derivatives(c, u, 3);
   Frenet f;
   f.point = D.row(0);
-  const Eigen::Vector3d d1 = dim == 3 ? Eigen::Vector3d(D(1, 0), D(1, 1), D(1, 2)) : Eigen::Vector3d(D(1, 0), D(1, 1), 0);
-  const Eigen::Vector3d d2 = dim == 3 ? Eigen::Vector3d(D(2, 0), D(2, 1), D(2, 2)) : Eigen::Vector3d(D(2, 0), D(2, 1), 0);
-  const Eigen::Vector3d d3 = dim == 3 ? Eigen::Vector3d(D(3, 0), D(3, 1), D(3, 2)) : Eigen::Vector3d(D(3, 0), D(3, 1), 0);
+  const Eigen::Vector3d d1 =
+      dim == 3 ? Eigen::Vector3d(D(1, 0), D(1, 1), D(1, 2)) : Eigen::Vector3d(D(1, 0), D(1, 1), 0);
+  const Eigen::Vector3d d2 =
+      dim == 3 ? Eigen::Vector3d(D(2, 0), D(2, 1), D(2, 2)) : Eigen::Vector3d(D(2, 0), D(2, 1), 0);
+  const Eigen::Vector3d d3 =
+      dim == 3 ? Eigen::Vector3d(D(3, 0), D(3, 1), D(3, 2)) : Eigen::Vector3d(D(3, 0), D(3, 1), 0);
   f.speed = d1.norm();
   if (!(f.speed > 0))
     detail::fail("Frenet frame: the tangent is undefined at u = ", u, " (the derivative vanishes)");
@@ -636,7 +653,8 @@ Frenet frenet_frame(const Curve& c, double u) {
 ClosestPoints closest_point(const Curve& c, const Point& q, double tolerance) {
   check_tolerance(tolerance);
   const Layout l = layout(c);
-  if (q.size() != l.dim) detail::fail("closest point: the point has ", q.size(), " coordinates, the curve ", l.dim);
+  if (q.size() != l.dim)
+    detail::fail("closest point: the point has ", q.size(), " coordinates, the curve ", l.dim);
   if (!q.allFinite()) detail::fail("closest point: the point is not finite");
   const double eq = tolerance * size_of(c);
   const int d = l.dim;
@@ -645,7 +663,8 @@ ClosestPoints closest_point(const Curve& c, const Point& q, double tolerance) {
     for (int k = 0; k < d; ++k) s += (x[k] - q(k)) * (x[k] - q(k));
     return std::sqrt(s);
   };
-  std::vector<double> box_lo(static_cast<std::size_t>(d)), box_hi(box_lo), xs(static_cast<std::size_t>((l.p + 1) * d));
+  std::vector<double> box_lo(static_cast<std::size_t>(d)), box_hi(box_lo),
+      xs(static_cast<std::size_t>((l.p + 1) * d));
   /// A lower bound on the distance from q to the convex hull of the Cartesian points of `count` rows
   /// (l.cols values each): the larger of the distance to their bounding box and the distance to the
   /// segment between the first and the last, less the farthest point's distance from that segment
@@ -654,7 +673,7 @@ ClosestPoints closest_point(const Curve& c, const Point& q, double tolerance) {
     std::fill(box_lo.begin(), box_lo.end(), HUGE_VAL);
     std::fill(box_hi.begin(), box_hi.end(), -HUGE_VAL);
     for (int j = 0; j < count; ++j) {
-      double* x = xs.data() + j * d;
+      double* x = xs.data() + std::ptrdiff_t{j} * d;
       detail::project(rows + j * l.cols, d, l.rational, x);
       for (int k = 0; k < d; ++k) {
         const auto kk = static_cast<std::size_t>(k);
@@ -669,7 +688,7 @@ ClosestPoints closest_point(const Curve& c, const Point& q, double tolerance) {
       s += out * out;
     }
     const double* a = xs.data();
-    const double* b = xs.data() + (count - 1) * d;
+    const double* b = xs.data() + std::ptrdiff_t{count - 1} * d;
     double len2 = 0;
     for (int k = 0; k < d; ++k) len2 += (b[k] - a[k]) * (b[k] - a[k]);
     // Distance from a point to the segment [a, b].
@@ -687,11 +706,13 @@ ClosestPoints closest_point(const Curve& c, const Point& q, double tolerance) {
       return std::sqrt(r);
     };
     double spread = 0;
-    for (int j = 1; j + 1 < count; ++j) spread = std::max(spread, to_segment(xs.data() + j * d));
+    for (int j = 1; j + 1 < count; ++j)
+      spread = std::max(spread, to_segment(xs.data() + std::ptrdiff_t{j} * d));
     return std::max(std::sqrt(s), to_segment(q.data()) - spread);
   };
   const auto box_distance = [&](const double* B) { return rows_box_distance(B, l.p + 1); };
-  std::vector<double> work(l.size()), H(static_cast<std::size_t>(3 * l.cols)), C(static_cast<std::size_t>(3 * d));
+  std::vector<double> work(l.size()), H(static_cast<std::size_t>(3 * l.cols)),
+      C(static_cast<std::size_t>(3 * d));
   const auto point_at = [&](const double* B, double s) {
     bezier_eval(B, l.p, l.cols, s, 0, H.data(), work.data());
     cartesian(H.data(), l, 0, C.data());
@@ -701,7 +722,7 @@ ClosestPoints closest_point(const Curve& c, const Point& q, double tolerance) {
   struct Found {
     double u, dist;
   };
-  std::vector<Found> found;                   // span ends and critical points
+  std::vector<Found> found;                     // span ends and critical points
   std::vector<std::array<double, 3>> constant;  // spans at a constant distance: u0, u1, that distance
   // The spans by the hull of their p + 1 B-spline control points (the span's piece lies in it),
   // nearest first; a span's Bézier piece is made only when that bound is below the best distance.
@@ -751,7 +772,8 @@ ClosestPoints closest_point(const Curve& c, const Point& q, double tolerance) {
     for (double& u : at)
       if (u == dom.end) u = dom.start;
   const double close = 1e-9 * (dom.end - dom.start);
-  out.parameters = merge_roots(std::move(at), out.intervals, [&](double a, double b) { return b - a <= close; });
+  out.parameters =
+      merge_roots(std::move(at), out.intervals, [&](double a, double b) { return b - a <= close; });
   out.points.resize(static_cast<Eigen::Index>(out.parameters.size()), d);
   for (std::size_t i = 0; i < out.parameters.size(); ++i)
     out.points.row(static_cast<Eigen::Index>(i)) = evaluate(c, out.parameters[i]);
@@ -763,7 +785,8 @@ PlaneIntersection intersect_plane(const Curve& c, const Point& normal, double of
   const int d = dimension(c);
   if (normal.size() != d)
     detail::fail("plane: the normal has ", normal.size(), " coordinates, the curve ", d);
-  if (!normal.allFinite() || !std::isfinite(offset)) detail::fail("plane: the normal or offset is not finite");
+  if (!normal.allFinite() || !std::isfinite(offset))
+    detail::fail("plane: the normal or offset is not finite");
   const double length = normal.norm();
   if (!(length > 0)) detail::fail("plane: the normal is zero");
   const Point n = normal / length;
@@ -814,12 +837,18 @@ std::vector<CurveIntersection> intersect_curves(const Curve& a, const Curve& b, 
   std::vector<Item> items;
   for (std::size_t i = 0; i < PA.count(); ++i)
     for (std::size_t j = 0; j < PB.count(); ++j)
-      items.push_back({{PA.at(i), PA.at(i) + la.size()}, {PB.at(j), PB.at(j) + lb.size()}, PA.start[i], PA.end[i],
-                       PB.start[j], PB.end[j], 0});
-  std::vector<double> wa(la.size()), wb(lb.size()), H(static_cast<std::size_t>(3 * std::max(la.cols, lb.cols))),
-      CA(static_cast<std::size_t>(3 * d)), CB(static_cast<std::size_t>(3 * d));
-  const auto eval = [&](const std::vector<double>& piece, const Layout& l, std::vector<double>& work, double s,
-                        std::vector<double>& out) {
+      items.push_back({{PA.at(i), PA.at(i) + la.size()},
+                       {PB.at(j), PB.at(j) + lb.size()},
+                       PA.start[i],
+                       PA.end[i],
+                       PB.start[j],
+                       PB.end[j],
+                       0});
+  std::vector<double> wa(la.size()), wb(lb.size()),
+      H(static_cast<std::size_t>(3 * std::max(la.cols, lb.cols))), CA(static_cast<std::size_t>(3 * d)),
+      CB(static_cast<std::size_t>(3 * d));
+  const auto eval = [&](const std::vector<double>& piece, const Layout& l, std::vector<double>& work,
+                        double s, std::vector<double>& out) {
     bezier_eval(piece.data(), l.p, l.cols, s, 1, H.data(), work.data());
     cartesian(H.data(), l, 1, out.data());
   };
@@ -843,11 +872,13 @@ std::vector<CurveIntersection> intersect_curves(const Curve& a, const Curve& b, 
       diagB += (hiB[k] - loB[k]) * (hiB[k] - loB[k]);
     }
     if (apart) continue;
-    const bool flatA = flat(it.A.data(), la, flat_scratch.data()), flatB = flat(it.B.data(), lb, flat_scratch.data());
+    const bool flatA = flat(it.A.data(), la, flat_scratch.data()),
+               flatB = flat(it.B.data(), lb, flat_scratch.data());
     const bool tinyA = diagA <= absolute * absolute, tinyB = diagB <= absolute * absolute;
     if (((flatA || tinyA) && (flatB || tinyB)) || it.depth >= 50) {
       if (++leaves > 4096)
-        detail::fail("intersect curves: the curves overlap along an arc (near u = ", it.a0, ", v = ", it.b0, ")");
+        detail::fail("intersect curves: the curves overlap along an arc (near u = ", it.a0, ", v = ", it.b0,
+                     ")");
       // Gauss–Newton on F(s, t) = A(s) − B(t) in [0, 1]².
       double s = 0.5, t = 0.5, dist = HUGE_VAL;
       for (int iter = 0; iter < 60; ++iter) {
@@ -879,7 +910,8 @@ std::vector<CurveIntersection> intersect_curves(const Curve& a, const Curve& b, 
         F[static_cast<std::size_t>(k)] = CA[static_cast<std::size_t>(k)] - CB[static_cast<std::size_t>(k)];
       dist = norm(F.data(), d);
       if (dist <= absolute)
-        found.push_back({s >= 1 ? it.a1 : it.a0 + s * (it.a1 - it.a0), t >= 1 ? it.b1 : it.b0 + t * (it.b1 - it.b0), dist});
+        found.push_back({s >= 1 ? it.a1 : it.a0 + s * (it.a1 - it.a0),
+                         t >= 1 ? it.b1 : it.b0 + t * (it.b1 - it.b0), dist});
       continue;
     }
     const auto halve = [&](const std::vector<double>& piece, const Layout& l, std::vector<double>& work) {
@@ -901,7 +933,8 @@ std::vector<CurveIntersection> intersect_curves(const Curve& a, const Curve& b, 
     }
   }
   // One point per contact: found points whose midpoint pair is also within the tolerance are one.
-  std::sort(found.begin(), found.end(), [](const Found& x, const Found& y) { return x.u < y.u || (x.u == y.u && x.v < y.v); });
+  std::sort(found.begin(), found.end(),
+            [](const Found& x, const Found& y) { return x.u < y.u || (x.u == y.u && x.v < y.v); });
   std::vector<CurveIntersection> out;
   for (const Found& f : found) {
     if (!out.empty()) {
@@ -950,12 +983,13 @@ Box bounding_box(const Curve& c) {
       } else {
         // A′w − Aw′ in degree 2p − 1: A′, w′ have degree p − 1, A, w degree p.
         const int n1 = p - 1, n2 = p;
-        num.assign(static_cast<std::size_t>(n1 + n2 + 1), 0.0);
+        num.assign(static_cast<std::size_t>(n1) + static_cast<std::size_t>(n2) + 1, 0.0);
         for (int i = 0; i <= n1; ++i)
           for (int j = 0; j <= n2; ++j) {
             const double dA = p * (coord(i + 1, k) - coord(i, k)), dw = p * (coord(i + 1, d) - coord(i, d));
             const double f = binom(n1, i) * binom(n2, j) / binom(n1 + n2, i + j);
-            num[static_cast<std::size_t>(i + j)] += f * (dA * coord(j, d) - coord(j, k) * dw);
+            num[static_cast<std::size_t>(i) + static_cast<std::size_t>(j)] +=
+                f * (dA * coord(j, d) - coord(j, k) * dw);
           }
       }
       double largest = 0;
@@ -972,8 +1006,8 @@ Box bounding_box(const Curve& c) {
 Curve transform(const Curve& c, const Eigen::MatrixXd& matrix) {
   const int d = dimension(c);
   if (matrix.rows() != d + 1 || matrix.cols() != d + 1)
-    detail::fail("transform: a ", d, "-D curve takes a ", d + 1, "×", d + 1, " matrix, got ", matrix.rows(), "×",
-                 matrix.cols());
+    detail::fail("transform: a ", d, "-D curve takes a ", d + 1, "×", d + 1, " matrix, got ", matrix.rows(),
+                 "×", matrix.cols());
   if (!matrix.allFinite()) detail::fail("transform: the matrix is not finite");
   bool affine = matrix(d, d) == 1;
   for (int k = 0; k < d; ++k) affine = affine && matrix(d, k) == 0;

@@ -877,7 +877,6 @@ void bind_fit(py::module_& m) {
       "fixed ends in u, then in v; the corners are interpolated. Raises InvalidInput for bad counts.");
 }
 
-
 py::list interval_list(const std::vector<std::array<double, 2>>& intervals) {
   py::list out;
   for (const auto& iv : intervals) out.append(py::make_tuple(iv[0], iv[1]));
@@ -916,22 +915,26 @@ void bind_measure(py::module_& m) {
       [](const Curve& c, double length, std::optional<double> start, double tolerance) {
         return parameter_at_length(c, length, start.value_or(domain(c).start), tolerance);
       },
-      Release(), py::arg("curve"), py::arg("length"), py::arg("start") = py::none(), py::arg("tolerance") = 1e-12,
+      Release(), py::arg("curve"), py::arg("length"), py::arg("start") = py::none(),
+      py::arg("tolerance") = 1e-12,
       "The parameter u with length(curve, start, u) = length (start: the domain's start): Newton on the\n"
       "length inside a bisection bracket. Raises InvalidInput for a negative length or one beyond the end.");
   py::class_<Frenet>(m, "Frenet", "The Frenet frame of a 2-D or 3-D curve at a parameter (frenet_frame).")
       .def_readonly("point", &Frenet::point, "C(u).")
       .def_readonly("tangent", &Frenet::tangent, "C′/|C′|.")
       .def_property_readonly(
-          "normal", [](const Frenet& f) -> py::object { return f.normal.size() ? py::cast(f.normal) : py::none(); },
+          "normal",
+          [](const Frenet& f) -> py::object { return f.normal.size() ? py::cast(f.normal) : py::none(); },
           "The principal normal; None where the curvature is zero (undefined). 2-D: the tangent turned +90°.")
       .def_property_readonly(
           "binormal",
           [](const Frenet& f) -> py::object { return f.binormal.size() ? py::cast(f.binormal) : py::none(); },
           "T × N (3-D, where the normal is defined; else None).")
       .def_readonly("speed", &Frenet::speed, "|C′(u)|.")
-      .def_readonly("curvature", &Frenet::curvature, "|C′ × C″| / |C′|³ (2-D: signed, positive turning left).")
-      .def_readonly("torsion", &Frenet::torsion, "(C′ × C″)·C‴ / |C′ × C″|² (3-D; 0 where the normal is undefined).")
+      .def_readonly("curvature", &Frenet::curvature,
+                    "|C′ × C″| / |C′|³ (2-D: signed, positive turning left).")
+      .def_readonly("torsion", &Frenet::torsion,
+                    "(C′ × C″)·C‴ / |C′ × C″|² (3-D; 0 where the normal is undefined).")
       .def(
           "__repr__",
           [](const Frenet& f) {
@@ -1016,9 +1019,8 @@ void bind_measure(py::module_& m) {
       "The smallest axis-aligned box that holds the curve: (lower, upper), from the extremes of its\n"
       "polynomial (or rational) pieces.");
   m.def(
-      "transform",
-      [](const Curve& c, const Eigen::MatrixXd& matrix) { return transform(c, matrix); }, Release(),
-      py::arg("curve"), py::arg("matrix"),
+      "transform", [](const Curve& c, const Eigen::MatrixXd& matrix) { return transform(c, matrix); },
+      Release(), py::arg("curve"), py::arg("matrix"),
       "The curve mapped by a (dim + 1)² matrix acting on homogeneous points (x, 1): affine maps keep a\n"
       "polynomial curve polynomial, projective ones make it rational. Raises InvalidInput for a matrix of\n"
       "the wrong size or a weight that would become ≤ 0.");

@@ -22,8 +22,8 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-/// The unit circle (radius r, centre (cx, cy)) as 4 rational quadratic quarters, u ∈ [0, 1], C(0) = (cx + r, cy),
-/// counter-clockwise: quarter k covers the angles [kπ/2, (k+1)π/2] on u ∈ [k/4, (k+1)/4].
+/// The unit circle (radius r, centre (cx, cy)) as 4 rational quadratic quarters, u ∈ [0, 1], C(0) = (cx + r,
+/// cy), counter-clockwise: quarter k covers the angles [kπ/2, (k+1)π/2] on u ∈ [k/4, (k+1)/4].
 Curve circle(double r = 1, double cx = 0, double cy = 0) {
   Points P(9, 2);
   P << 1, 0, 1, 1, 0, 1, -1, 1, -1, 0, -1, -1, 0, -1, 1, -1, 1, 0;
@@ -68,11 +68,12 @@ double simpson_length(const RandomCurve& r, double a, double b) {
     const auto simpson = [&](double x0, double x1, double f0, double fm, double f1) {
       return (x1 - x0) * (f0 + 4 * fm + f1) / 6;
     };
-    const auto adapt = [&](const auto& self, double x0, double x1, double f0, double fm, double f1, double whole,
-                           double eps, int depth) -> double {
+    const auto adapt = [&](const auto& self, double x0, double x1, double f0, double fm, double f1,
+                           double whole, double eps, int depth) -> double {
       const double m = 0.5 * (x0 + x1), fl = speed(0.5 * (x0 + m)), fr = speed(0.5 * (m + x1));
       const double left = simpson(x0, m, f0, fl, fm), right = simpson(m, x1, fm, fr, f1);
-      if (depth > 40 || std::abs(left + right - whole) <= 15 * eps) return left + right + (left + right - whole) / 15;
+      if (depth > 40 || std::abs(left + right - whole) <= 15 * eps)
+        return left + right + (left + right - whole) / 15;
       return self(self, x0, m, f0, fl, fm, left, eps / 2, depth + 1) +
              self(self, m, x1, fm, fr, f1, right, eps / 2, depth + 1);
     };
@@ -183,7 +184,8 @@ TEST_CASE("arc_length: random curves against Simpson's rule on the reference der
     const auto kind = static_cast<Kind>(trial % 3);
     const RandomCurve r = test_curve(rng, rational, kind);
     INFO(r.what);
-    const double a = r.lo + (r.hi - r.lo) * uniform(rng, 0, 0.3), b = r.hi - (r.hi - r.lo) * uniform(rng, 0, 0.3);
+    const double a = r.lo + (r.hi - r.lo) * uniform(rng, 0, 0.3),
+                 b = r.hi - (r.hi - r.lo) * uniform(rng, 0, 0.3);
     const Length L = arc_length(r.c, a, b, 1e-12);
     const double ref = simpson_length(r, a, b);
     CHECK(std::abs(L.value - ref) <= 1e-11 * ref);
@@ -196,7 +198,8 @@ TEST_CASE("arc_length: random curves against Simpson's rule on the reference der
 
 TEST_CASE("arc_length and parameter_at_length refuse bad input in one line", "[nurbs][measure][length]") {
   const Curve c = circle();
-  CHECK_THROWS_WITH(arc_length(c, -0.1, 0.5), Contains("start -0.1") && Contains("outside the domain [0, 1]"));
+  CHECK_THROWS_WITH(arc_length(c, -0.1, 0.5),
+                    Contains("start -0.1") && Contains("outside the domain [0, 1]"));
   CHECK_THROWS_WITH(arc_length(c, 0.6, 0.5), Contains("after the end"));
   CHECK_THROWS_WITH(arc_length(c, 0, std::nan("")), Contains("end nan"));
   CHECK_THROWS_WITH(arc_length(c, 0, 1, 0), Contains("tolerance 0 is outside"));
@@ -343,7 +346,8 @@ TEST_CASE("closest_point: exact cases — circle centre, symmetric pairs, inside
   }
   SECTION("bad input") {
     CHECK_THROWS_WITH(closest_point(circle(), Point::Zero(3)), Contains("3 coordinates, the curve 2"));
-    CHECK_THROWS_WITH(closest_point(circle(), (Point(2) << 0, std::nan("")).finished()), Contains("not finite"));
+    CHECK_THROWS_WITH(closest_point(circle(), (Point(2) << 0, std::nan("")).finished()),
+                      Contains("not finite"));
   }
 }
 
@@ -389,13 +393,16 @@ TEST_CASE("closest_point: mirror-symmetric curves and points on the mirror give 
     const Domain dom = domain(c);
     const Point q = (Point(2) << 0, uniform(rng, -3, 3)).finished();
     const ClosestPoints cp = closest_point(c, q);
-    INFO("degree " << d << " points\n" << P.format(Eigen::IOFormat(17)) << "\nq " << q.format(Eigen::IOFormat(17)) << " cifs " << cp.distance << " brute " << brute_distance(c, q));
+    INFO("degree " << d << " points\n"
+                   << P.format(Eigen::IOFormat(17)) << "\nq " << q.format(Eigen::IOFormat(17)) << " cifs "
+                   << cp.distance << " brute " << brute_distance(c, q));
     CHECK(std::abs(cp.distance - brute_distance(c, q)) <= 1e-9 * 2);
     REQUIRE(!cp.parameters.empty());
     for (double u : cp.parameters) {
       const double mirror = dom.start + dom.end - u;
-      const bool paired = std::any_of(cp.parameters.begin(), cp.parameters.end(),
-                                      [&](double v) { return std::abs(v - mirror) <= 1e-7 * (dom.end - dom.start); });
+      const bool paired = std::any_of(cp.parameters.begin(), cp.parameters.end(), [&](double v) {
+        return std::abs(v - mirror) <= 1e-7 * (dom.end - dom.start);
+      });
       CHECK(paired);
     }
   }
@@ -447,13 +454,15 @@ TEST_CASE("intersect_plane: a root at a piece's end does not hide the root next 
   // y = s(s − 0.3) on a parabola: h = y is 0 at s = 0 exactly, and convex; its second root is 0.3.
   Points P(3, 2);
   P << 0, 0, 0.5, -0.15, 1, 0.7;
-  const PlaneIntersection hit = intersect_plane(make_curve(2, {0, 0, 0, 1, 1, 1}, P), (Point(2) << 0, 1).finished(), 0);
+  const PlaneIntersection hit =
+      intersect_plane(make_curve(2, {0, 0, 0, 1, 1, 1}, P), (Point(2) << 0, 1).finished(), 0);
   REQUIRE(hit.parameters.size() == 2);
   CHECK(hit.parameters[0] == 0);
   CHECK(std::abs(hit.parameters[1] - 0.3) <= 1e-15);
 }
 
-TEST_CASE("intersect_plane: random curves against sign changes of dense samples", "[nurbs][measure][intersect]") {
+TEST_CASE("intersect_plane: random curves against sign changes of dense samples",
+          "[nurbs][measure][intersect]") {
   Rng rng(30'2004);
   for (int trial = 0; trial < 60; ++trial) {
     const RandomCurve r = test_curve(rng, trial % 2 == 1, static_cast<Kind>(trial % 3));
@@ -510,10 +519,13 @@ TEST_CASE("intersect_curves: line × circle, tangency once, random curves agains
       const int n = 3000;
       const Points A = evaluate(a.c, uniform_parameters(domain(a.c), n + 1));
       const Points B = evaluate(b.c, uniform_parameters(domain(b.c), n + 1));
-      const auto cross2 = [](Eigen::RowVector2d x, Eigen::RowVector2d y) { return x(0) * y(1) - x(1) * y(0); };
+      const auto cross2 = [](Eigen::RowVector2d x, Eigen::RowVector2d y) {
+        return x(0) * y(1) - x(1) * y(0);
+      };
       for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) {
-          const Eigen::RowVector2d p = A.row(i), r = A.row(i + 1) - A.row(i), s0 = B.row(j), s = B.row(j + 1) - B.row(j);
+          const Eigen::RowVector2d p = A.row(i), r = A.row(i + 1) - A.row(i), s0 = B.row(j),
+                                   s = B.row(j + 1) - B.row(j);
           const double den = cross2(r, s);
           if (den == 0) continue;
           const double t = cross2(s0 - p, s) / den, v = cross2(s0 - p, r) / den;

@@ -93,13 +93,14 @@ struct PlaneIntersection {
 /// h; a piece whose coefficients all have one sign is dropped, a piece where h is monotone holds one root
 /// (found by Newton inside its bracket), a piece where h′ is monotone holds one extremum: a tangential
 /// contact when |h| there is within the tolerance (reported once), else the roots on either side.
-PlaneIntersection intersect_plane(const Curve& c, const Point& normal, double offset, double tolerance = 1e-12);
+PlaneIntersection intersect_plane(const Curve& c, const Point& normal, double offset,
+                                  double tolerance = 1e-12);
 
 /// A point where two curves meet.
 struct CurveIntersection {
-  double u = 0;  // parameter on the first curve
-  double v = 0;  // parameter on the second
-  Point point;   // the first curve's point
+  double u = 0;         // parameter on the first curve
+  double v = 0;         // parameter on the second
+  Point point;          // the first curve's point
   double distance = 0;  // |A(u) − B(v)| (≤ the tolerance)
 };
 
