@@ -693,6 +693,19 @@ void bind_surface(py::module_& m) {
   m.def("direction_curve", &direction_curve, py::arg("surface"), py::arg("direction"),
         "The curve of control lines along `direction`: each row of its points is a whole line of the net,\n"
         "flattened (stored coordinates).");
+  m.def(
+      "split",
+      [](const Surface& s, Direction dir, double t) {
+        auto parts = split(s, dir, t);
+        return py::make_tuple(std::move(parts[0]), std::move(parts[1]));
+      },
+      py::arg("surface"), py::arg("direction"), py::arg("t"),
+      "The surface cut at t in `direction` (strictly inside its domain): (first, second), on [start, t]\n"
+      "and [t, end], each clamped at t and keeping the original parameters.");
+  m.def("iso_curve", &iso_curve, Release(), py::arg("surface"), py::arg("direction"), py::arg("t"),
+        "The iso-parametric curve at parameter t of `direction`, running along the other one:\n"
+        "iso_curve(s, Direction.u, t) evaluated at v is S(t, v), exactly. Raises InvalidInput outside the "
+        "domain.");
 }
 
 void bind_doubling(py::module_& m) {

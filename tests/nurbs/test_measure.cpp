@@ -590,3 +590,46 @@ TEST_CASE("transform: affine and projective maps of points, refusals", "[nurbs][
   M(2, 0) = 2;  // w' = w(1 + 2x): negative at x = −1
   CHECK_THROWS_WITH(transform(c, M), Contains("gets weight"));
 }
+
+// ------------------------------------------------------------------------------------------------
+// Surfaces: split and iso-curves.
+
+TEST_CASE("surface split and iso-curves equal the surface, against the reference evaluation",
+          "[nurbs][measure][surface]") {
+  Rng rng(30'2009);
+  for (int trial = 0; trial < 30; ++trial) {
+    const RandomSurface r = random_surface(rng);
+    INFO(r.what);
+    const double tol = 1e-13 * std::max(r.scale, 1e-300);
+    const std::array<Domain, 2> dom{domain(r.s, Direction::u), domain(r.s, Direction::v)};
+    const auto ref = [&](double u, double v) {
+      const auto h = ref_surface_homogeneous(r, u, v, 0, 0);
+      Point x(r.cart.cols());
+      for (Eigen::Index k = 0; k < x.size(); ++k)
+        x(k) = static_cast<double>(r.rational ? h(k) / h(h.size() - 1) : h(k));
+      return x;
+    };
+    for (Direction dir : {Direction::u, Direction::v}) {
+      const auto d = static_cast<std::size_t>(dir);
+      const double t = dom[d].start + (dom[d].end - dom[d].start) * uniform(rng, 0.05, 0.95);
+      const Curve iso = iso_curve(r.s, dir, t);
+      const auto [left, right] = split(r.s, dir, t);
+      CHECK(domain(left, dir).end == t);
+      CHECK(domain(right, dir).start == t);
+      for (int k = 0; k < 12; ++k) {
+        const double a = dom[d].start + (dom[d].end - dom[d].start) * uniform(rng, 0, 1);
+        const double b = dom[1 - d].start + (dom[1 - d].end - dom[1 - d].start) * uniform(rng, 0, 1);
+        const double u = dir == Direction::u ? a : b, v = dir == Direction::u ? b : a;
+        // the iso-curve at t, at the other parameter b
+        const Point on_iso = evaluate(iso, b);
+        const Point expected_iso = dir == Direction::u ? ref(t, b) : ref(b, t);
+        CHECK((on_iso - expected_iso).norm() <= tol);
+        const Surface& part = a <= t ? left : right;
+        CHECK((evaluate(part, u, v) - ref(u, v)).norm() <= tol);
+      }
+    }
+  }
+  const RandomSurface r = random_surface(rng);
+  CHECK_THROWS_WITH(split(r.s, Direction::v, domain(r.s, Direction::v).end), Contains("direction v"));
+  CHECK_THROWS_WITH(iso_curve(r.s, Direction::u, 1e9), Contains("iso-curve: u = 1000000000 is outside"));
+}

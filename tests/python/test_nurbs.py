@@ -625,6 +625,16 @@ class MeasureTest(unittest.TestCase):
         with self.assertRaisesRegex(cifs.InvalidInput, "coordinates"):
             nurbs.closest_point(self.circle, [0, 0, 0])
 
+    def test_surface_split_and_iso_curves(self):
+        grid = np.array([[[i, j, np.sin(i) * np.cos(j)] for j in range(5)] for i in range(6)], dtype=float)
+        surface = nurbs.interpolate_surface(grid, (3, 2))
+        iso = nurbs.iso_curve(surface, nurbs.Direction.u, 0.3)
+        for v in (0.0, 0.4, 1.0):
+            assert_close(self, nurbs.evaluate(iso, v), surface.evaluate(0.3, v), rel=1e-14)
+        first, second = nurbs.split(surface, nurbs.Direction.v, 0.6)
+        assert_close(self, first.evaluate(0.2, 0.5), surface.evaluate(0.2, 0.5), rel=1e-14)
+        assert_close(self, second.evaluate(0.2, 0.7), surface.evaluate(0.2, 0.7), rel=1e-14)
+
 
 if __name__ == "__main__":
     unittest.main()
