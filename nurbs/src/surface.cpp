@@ -301,17 +301,15 @@ Curve direction_curve(const Surface& s, Direction dir) {
   return c;
 }
 
-Surface refine(const Surface& s, Direction dir, std::span<const double> new_knots) {
-  const int d = static_cast<int>(dir);
-  Curve c;
-  try {
-    c = refine(direction_curve(s, dir), new_knots);
-  } catch (const InvalidInput& e) {
-    detail::fail("direction ", kDirName[d], ": ", e.what());
-  }
+namespace {
+
+/// The surface whose net along `dir` is the direction curve c (as direction_curve makes it), the other
+/// direction as in s.
+Surface from_direction_curve(const Surface& s, Direction dir, const Curve& c) {
+  const auto d = static_cast<std::size_t>(dir);
   Surface out = s;
-  out.knots[static_cast<std::size_t>(d)] = c.knots;
-  out.count[static_cast<std::size_t>(d)] = c.P.rows();
+  out.knots[d] = c.knots;
+  out.count[d] = c.P.rows();
   const Eigen::Index nu = out.count[0], nv = out.count[1], cols = s.P.cols();
   out.P.resize(nu * nv, cols);
   if (dir == Direction::u) {
@@ -320,6 +318,45 @@ Surface refine(const Surface& s, Direction dir, std::span<const double> new_knot
     for (Eigen::Index i = 0; i < nu; ++i)
       for (Eigen::Index j = 0; j < nv; ++j) out.P.row(i * nv + j) = c.P.block(j, i * cols, 1, cols);
   }
+  return out;
+}
+
+}  // namespace
+
+Surface refine(const Surface& s, Direction dir, std::span<const double> new_knots) {
+  const int d = static_cast<int>(dir);
+  Curve c;
+  try {
+    c = refine(direction_curve(s, dir), new_knots);
+  } catch (const InvalidInput& e) {
+    detail::fail("direction ", kDirName[d], ": ", e.what());
+  }
+  return from_direction_curve(s, dir, c);
+}
+
+std::array<Surface, 2> split(const Surface& s, Direction dir, double t) {
+  std::array<Curve, 2> parts;
+  try {
+    parts = split(direction_curve(s, dir), t);
+  } catch (const InvalidInput& e) {
+    detail::fail("direction ", kDirName[static_cast<int>(dir)], ": ", e.what());
+  }
+  return {from_direction_curve(s, dir, parts[0]), from_direction_curve(s, dir, parts[1])};
+}
+
+Curve iso_curve(const Surface& s, Direction dir, double t) {
+  const int d = static_cast<int>(dir);
+  const Curve lines = direction_curve(s, dir);
+  const Domain dom = domain(lines);
+  if (!std::isfinite(t) || t < dom.start || t > dom.end)
+    detail::fail("iso-curve: ", kDirName[d], " = ", t, " is outside the domain [", dom.start, ", ", dom.end,
+                 "]");
+  // The lines' combination at t (homogeneous rows combine linearly): the other direction's net.
+  const Point row = evaluate(lines, t);
+  const auto other = static_cast<std::size_t>(1 - d);
+  Curve out{s.degree[other], s.knots[other], Eigen::Map<const Points>(row.data(), s.count[other], s.P.cols()),
+            s.rational, false};
+  validate(out);
   return out;
 }
 

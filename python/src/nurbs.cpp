@@ -12,6 +12,7 @@
 #include "cifs/nurbs/doubling.hpp"
 #include "cifs/nurbs/fit.hpp"
 #include "cifs/nurbs/knots.hpp"
+#include "cifs/nurbs/measure.hpp"
 #include "cifs/nurbs/refine.hpp"
 #include "cifs/nurbs/surface.hpp"
 
@@ -692,6 +693,19 @@ void bind_surface(py::module_& m) {
   m.def("direction_curve", &direction_curve, py::arg("surface"), py::arg("direction"),
         "The curve of control lines along `direction`: each row of its points is a whole line of the net,\n"
         "flattened (stored coordinates).");
+  m.def(
+      "split",
+      [](const Surface& s, Direction dir, double t) {
+        auto parts = split(s, dir, t);
+        return py::make_tuple(std::move(parts[0]), std::move(parts[1]));
+      },
+      py::arg("surface"), py::arg("direction"), py::arg("t"),
+      "The surface cut at t in `direction` (strictly inside its domain): (first, second), on [start, t]\n"
+      "and [t, end], each clamped at t and keeping the original parameters.");
+  m.def("iso_curve", &iso_curve, Release(), py::arg("surface"), py::arg("direction"), py::arg("t"),
+        "The iso-parametric curve at parameter t of `direction`, running along the other one:\n"
+        "iso_curve(s, Direction.u, t) evaluated at v is S(t, v), exactly. Raises InvalidInput outside the "
+        "domain.");
 }
 
 void bind_doubling(py::module_& m) {
@@ -876,6 +890,155 @@ void bind_fit(py::module_& m) {
       "fixed ends in u, then in v; the corners are interpolated. Raises InvalidInput for bad counts.");
 }
 
+py::list interval_list(const std::vector<std::array<double, 2>>& intervals) {
+  py::list out;
+  for (const auto& iv : intervals) out.append(py::make_tuple(iv[0], iv[1]));
+  return out;
+}
+
+Point point_from(const DoubleArray& a, const char* where) {
+  const Eigen::VectorXd v = to_vector(a, where);
+  return v.transpose();
+}
+
+void bind_measure(py::module_& m) {
+  m.def(
+      "length",
+      [](const Curve& c, std::optional<double> a, std::optional<double> b, double tolerance) {
+        const Domain dom = domain(c);
+        return arc_length(c, a.value_or(dom.start), b.value_or(dom.end), tolerance).value;
+      },
+      Release(), py::arg("curve"), py::arg("a") = py::none(), py::arg("b") = py::none(),
+      py::arg("tolerance") = 1e-12,
+      "Arc length of the curve between the parameters a ≤ b (default: the domain's ends), to `tolerance`\n"
+      "relative to the length (adaptive 8-point Gauss–Legendre per span; its error estimate is\n"
+      "length_error). Raises InvalidInput for a or b outside the domain or a > b.");
+  m.def(
+      "length_error",
+      [](const Curve& c, std::optional<double> a, std::optional<double> b, double tolerance) {
+        const Domain dom = domain(c);
+        return arc_length(c, a.value_or(dom.start), b.value_or(dom.end), tolerance).error;
+      },
+      Release(), py::arg("curve"), py::arg("a") = py::none(), py::arg("b") = py::none(),
+      py::arg("tolerance") = 1e-12,
+      "The error estimate of length(curve, a, b, tolerance): Σ |G(I) − G(left) − G(right)| over the\n"
+      "accepted intervals (G the 8-point rule), an over-estimate where |C′| is smooth.");
+  m.def(
+      "parameter_at_length",
+      [](const Curve& c, double length, std::optional<double> start, double tolerance) {
+        return parameter_at_length(c, length, start.value_or(domain(c).start), tolerance);
+      },
+      Release(), py::arg("curve"), py::arg("length"), py::arg("start") = py::none(),
+      py::arg("tolerance") = 1e-12,
+      "The parameter u with length(curve, start, u) = length (start: the domain's start): Newton on the\n"
+      "length inside a bisection bracket. Raises InvalidInput for a negative length or one beyond the end.");
+  py::class_<Frenet>(m, "Frenet", "The Frenet frame of a 2-D or 3-D curve at a parameter (frenet_frame).")
+      .def_readonly("point", &Frenet::point, "C(u).")
+      .def_readonly("tangent", &Frenet::tangent, "C′/|C′|.")
+      .def_property_readonly(
+          "normal",
+          [](const Frenet& f) -> py::object { return f.normal.size() ? py::cast(f.normal) : py::none(); },
+          "The principal normal; None where the curvature is zero (undefined). 2-D: the tangent turned +90°.")
+      .def_property_readonly(
+          "binormal",
+          [](const Frenet& f) -> py::object { return f.binormal.size() ? py::cast(f.binormal) : py::none(); },
+          "T × N (3-D, where the normal is defined; else None).")
+      .def_readonly("speed", &Frenet::speed, "|C′(u)|.")
+      .def_readonly("curvature", &Frenet::curvature,
+                    "|C′ × C″| / |C′|³ (2-D: signed, positive turning left).")
+      .def_readonly("torsion", &Frenet::torsion,
+                    "(C′ × C″)·C‴ / |C′ × C″|² (3-D; 0 where the normal is undefined).")
+      .def(
+          "__repr__",
+          [](const Frenet& f) {
+            return "Frenet(curvature=" + py::repr(py::float_(f.curvature)).cast<std::string>() +
+                   ", torsion=" + py::repr(py::float_(f.torsion)).cast<std::string>() +
+                   ", speed=" + py::repr(py::float_(f.speed)).cast<std::string>() + ")";
+          },
+          "Short description.");
+  m.def("frenet_frame", &frenet_frame, py::arg("curve"), py::arg("u"),
+        "The Frenet frame at u: point, tangent, normal, binormal, speed, curvature, torsion (from the\n"
+        "derivatives, quotient rule when rational). Raises InvalidInput outside the domain, for a curve\n"
+        "that is not 2-D or 3-D, and where C′(u) = 0 (no tangent).");
+  py::class_<ClosestPoints>(m, "ClosestPoints", "Every nearest point of a curve to a point (closest_point).")
+      .def_readonly("distance", &ClosestPoints::distance, "The smallest distance.")
+      .def_property_readonly(
+          "parameters", [](const ClosestPoints& r) { return vector_array(r.parameters); },
+          "Parameters of the isolated nearest points, ascending (1-D array).")
+      .def_readonly("points", &ClosestPoints::points, "Their curve points (k, dim).")
+      .def_property_readonly(
+          "intervals", [](const ClosestPoints& r) { return interval_list(r.intervals); },
+          "Parameter intervals (a, b) on which the curve stays at the distance (a circle about the point).")
+      .def(
+          "__repr__",
+          [](const ClosestPoints& r) {
+            return "ClosestPoints(distance=" + py::repr(py::float_(r.distance)).cast<std::string>() +
+                   ", parameters=" + std::to_string(r.parameters.size()) +
+                   ", intervals=" + std::to_string(r.intervals.size()) + ")";
+          },
+          "Short description.");
+  m.def(
+      "closest_point",
+      [](const Curve& c, const DoubleArray& point, double tolerance) {
+        const Point q = point_from(point, "point");
+        const py::gil_scoped_release release;
+        return closest_point(c, q, tolerance);
+      },
+      py::arg("curve"), py::arg("point"), py::arg("tolerance") = 1e-12,
+      "The points of the curve nearest to `point`, every one whose distance is within tolerance·size of\n"
+      "the smallest (global: convex hulls of the Bézier pieces prune, Newton finishes). Raises\n"
+      "InvalidInput for a point of the wrong size.");
+  m.def(
+      "intersect_plane",
+      [](const Curve& c, const DoubleArray& normal, double offset, double tolerance) {
+        const Point n = point_from(normal, "normal");
+        PlaneIntersection hit;
+        {
+          const py::gil_scoped_release release;
+          hit = intersect_plane(c, n, offset, tolerance);
+        }
+        return py::make_tuple(vector_array(hit.parameters), interval_list(hit.intervals));
+      },
+      py::arg("curve"), py::arg("normal"), py::arg("offset"), py::arg("tolerance") = 1e-12,
+      "Where the curve meets the plane normal·x = offset: (parameters, intervals) — every crossing and\n"
+      "tangential contact once (1-D array, ascending), and the parameter intervals on which the curve lies\n"
+      "in the plane.");
+  m.def(
+      "intersect_curves",
+      [](const Curve& a, const Curve& b, double tolerance) {
+        std::vector<CurveIntersection> hits;
+        {
+          const py::gil_scoped_release release;
+          hits = intersect_curves(a, b, tolerance);
+        }
+        py::list out;
+        for (const auto& h : hits) out.append(py::make_tuple(h.u, h.v, h.point));
+        return out;
+      },
+      py::arg("a"), py::arg("b"), py::arg("tolerance") = 1e-9,
+      "Where two curves meet, within tolerance·size: a list of (u, v, point), ordered by u; tangential\n"
+      "contacts once. Raises InvalidInput for different dimensions or curves that overlap along an arc.");
+  m.def(
+      "bounding_box",
+      [](const Curve& c) {
+        Box box;
+        {
+          const py::gil_scoped_release release;
+          box = bounding_box(c);
+        }
+        return py::make_tuple(box.lower, box.upper);
+      },
+      py::arg("curve"),
+      "The smallest axis-aligned box that holds the curve: (lower, upper), from the extremes of its\n"
+      "polynomial (or rational) pieces.");
+  m.def(
+      "transform", [](const Curve& c, const Eigen::MatrixXd& matrix) { return transform(c, matrix); },
+      Release(), py::arg("curve"), py::arg("matrix"),
+      "The curve mapped by a (dim + 1)² matrix acting on homogeneous points (x, 1): affine maps keep a\n"
+      "polynomial curve polynomial, projective ones make it rational. Raises InvalidInput for a matrix of\n"
+      "the wrong size or a weight that would become ≤ 0.");
+}
+
 }  // namespace
 
 void bind_nurbs(py::module_& m) {
@@ -885,6 +1048,7 @@ void bind_nurbs(py::module_& m) {
   bind_surface(m);
   bind_doubling(m);
   bind_fit(m);
+  bind_measure(m);
 }
 
 }  // namespace cifs::python

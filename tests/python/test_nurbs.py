@@ -574,5 +574,67 @@ class FitTest(unittest.TestCase):
             nurbs.interpolate_surface(self.points)
 
 
+class MeasureTest(unittest.TestCase):
+    """Measuring: the bindings of measure.hpp against closed forms (the unit circle, the parabola) and
+    numpy's own sums, and their refusals."""
+
+    def setUp(self):
+        h = np.sqrt(0.5)
+        points = np.array([[1, 0], [1, 1], [0, 1], [-1, 1], [-1, 0], [-1, -1], [0, -1], [1, -1], [1, 0]], float)
+        self.circle = nurbs.Curve(2, [0, 0, 0, .25, .25, .5, .5, .75, .75, 1, 1, 1], points,
+                                  np.array([1, h, 1, h, 1, h, 1, h, 1]))
+
+    def test_length_and_its_inverse(self):
+        self.assertAlmostEqual(nurbs.length(self.circle), 2 * np.pi, delta=1e-13)
+        self.assertAlmostEqual(nurbs.length(self.circle, a=0.25, b=0.75), np.pi, delta=1e-13)
+        self.assertLessEqual(nurbs.length_error(self.circle), 1e-12 * 2 * np.pi)
+        parabola = nurbs.Curve(2, [0, 0, 0, 1, 1, 1], np.array([[0, 0], [0.5, 0], [1, 1]], float))
+        exact = np.sqrt(5) / 2 + np.arcsinh(2) / 4
+        self.assertAlmostEqual(nurbs.length(parabola), exact, delta=1e-14)
+        for s in (0.5, 2.0, 5.0):
+            u = nurbs.parameter_at_length(self.circle, s)
+            x, y = nurbs.evaluate(self.circle, u)
+            self.assertAlmostEqual(np.arctan2(y, x) % (2 * np.pi), s, delta=1e-12)
+        with self.assertRaisesRegex(cifs.InvalidInput, "outside the domain"):
+            nurbs.length(self.circle, a=0.5, b=2)
+        with self.assertRaisesRegex(cifs.InvalidInput, "beyond the end"):
+            nurbs.parameter_at_length(self.circle, 7)
+
+    def test_frenet_closest_intersections_box_transform(self):
+        frame = nurbs.frenet_frame(self.circle, 0.3)
+        self.assertAlmostEqual(frame.curvature, 1, delta=1e-14)
+        assert_close(self, frame.point + frame.normal, np.zeros(2), rel=1e-13)
+        line = nurbs.Curve(2, [0, 0, 0, 1, 1, 1], np.array([[0, 0, 0], [1, 1, 1], [2, 2, 2]], float))
+        self.assertIsNone(nurbs.frenet_frame(line, 0.5).normal)
+        near = nurbs.closest_point(self.circle, [3, 0])
+        self.assertEqual(list(near.parameters), [0.0, 1.0])  # the clamped circle's two ends
+        self.assertAlmostEqual(near.distance, 2, delta=1e-14)
+        self.assertEqual(nurbs.closest_point(self.circle, [0, 0]).intervals, [(0.0, 1.0)])
+        parameters, intervals = nurbs.intersect_plane(self.circle, [0, 1], 0.5)
+        np.testing.assert_allclose(nurbs.evaluate(self.circle, parameters)[:, 0], [np.sqrt(3) / 2, -np.sqrt(3) / 2],
+                                   atol=1e-14)
+        self.assertEqual(intervals, [])
+        chord = nurbs.Curve(1, [0, 0, 1, 1], np.array([[-2, 0.5], [2, 0.5]]))
+        self.assertEqual(len(nurbs.intersect_curves(chord, self.circle)), 2)
+        lower, upper = nurbs.bounding_box(self.circle)
+        np.testing.assert_allclose(np.concatenate([lower, upper]), [-1, -1, 1, 1], atol=1e-15)
+        turned = nurbs.transform(self.circle, np.array([[0, -1, 0], [1, 0, 0], [0, 0, 1.0]]))
+        assert_close(self, nurbs.evaluate(turned, 0.0), np.array([0.0, 1.0]), rel=1e-15)
+        with self.assertRaisesRegex(cifs.InvalidInput, "3×3 matrix"):
+            nurbs.transform(self.circle, np.eye(4))
+        with self.assertRaisesRegex(cifs.InvalidInput, "coordinates"):
+            nurbs.closest_point(self.circle, [0, 0, 0])
+
+    def test_surface_split_and_iso_curves(self):
+        grid = np.array([[[i, j, np.sin(i) * np.cos(j)] for j in range(5)] for i in range(6)], dtype=float)
+        surface = nurbs.interpolate_surface(grid, (3, 2))
+        iso = nurbs.iso_curve(surface, nurbs.Direction.u, 0.3)
+        for v in (0.0, 0.4, 1.0):
+            assert_close(self, nurbs.evaluate(iso, v), surface.evaluate(0.3, v), rel=1e-14)
+        first, second = nurbs.split(surface, nurbs.Direction.v, 0.6)
+        assert_close(self, first.evaluate(0.2, 0.5), surface.evaluate(0.2, 0.5), rel=1e-14)
+        assert_close(self, second.evaluate(0.2, 0.7), surface.evaluate(0.2, 0.7), rel=1e-14)
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -65,6 +65,16 @@ Surface insert_knot(const Surface& s, Direction dir, double t, int times = 1);
 Surface refine(const Surface& s, Direction dir, std::span<const double> new_knots);
 Surface refine_midpoints(const Surface& s);
 
+/// The surface cut at t in direction `dir`, strictly inside that domain: the parts on [start, t] and
+/// [t, end], each clamped at t and keeping the original parameters (split of the direction curve).
+/// Throws InvalidInput, naming the direction, for t not strictly inside.
+std::array<Surface, 2> split(const Surface& s, Direction dir, double t);
+
+/// The iso-parametric curve at parameter t of direction `dir`, running along the other direction:
+/// `iso_curve(s, u, t)(v) = S(t, v)`, exactly (its net is the combination of the net's lines at t).
+/// Throws InvalidInput for t outside the domain.
+Curve iso_curve(const Surface& s, Direction dir, double t);
+
 /// The curve of control rows along `dir`: row i of its points holds a whole line of the net
 /// (nv or nu points, flattened), so every curve algorithm applies to surfaces direction by direction.
 Curve direction_curve(const Surface& s, Direction dir);
