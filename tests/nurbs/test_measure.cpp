@@ -24,7 +24,7 @@ constexpr double kPi = std::numbers::pi;
 
 /// The unit circle (radius r, centre (cx, cy)) as 4 rational quadratic quarters, u ∈ [0, 1], C(0) = (cx + r,
 /// cy), counter-clockwise: quarter k covers the angles [kπ/2, (k+1)π/2] on u ∈ [k/4, (k+1)/4].
-Curve circle(double r = 1, double cx = 0, double cy = 0) {
+Curve rational_circle(double r = 1, double cx = 0, double cy = 0) {
   Points P(9, 2);
   P << 1, 0, 1, 1, 0, 1, -1, 1, -1, 0, -1, -1, 0, -1, 1, -1, 1, 0;
   P *= r;
@@ -157,7 +157,7 @@ TEST_CASE("arc_length: closed forms — line, circle arcs, full circle, parabola
       }
   }
   SECTION("the full circle 2πr, and half of it between the knots 0.25 and 0.75") {
-    const Curve c = circle(3, 1, -2);
+    const Curve c = rational_circle(3, 1, -2);
     const Length L = arc_length(c);
     CHECK(std::abs(L.value - 6 * kPi) <= 1e-13 * 6 * kPi);
     CHECK(std::abs(arc_length(c, 0.25, 0.75).value - 3 * kPi) <= 1e-13 * 3 * kPi);
@@ -197,7 +197,7 @@ TEST_CASE("arc_length: random curves against Simpson's rule on the reference der
 }
 
 TEST_CASE("arc_length and parameter_at_length refuse bad input in one line", "[nurbs][measure][length]") {
-  const Curve c = circle();
+  const Curve c = rational_circle();
   CHECK_THROWS_WITH(arc_length(c, -0.1, 0.5),
                     Contains("start -0.1") && Contains("outside the domain [0, 1]"));
   CHECK_THROWS_WITH(arc_length(c, 0.6, 0.5), Contains("after the end"));
@@ -211,7 +211,7 @@ TEST_CASE("arc_length and parameter_at_length refuse bad input in one line", "[n
 TEST_CASE("parameter_at_length: the circle's angle, and round trips on random curves",
           "[nurbs][measure][length]") {
   const double r = 2.5;
-  const Curve c = circle(r);
+  const Curve c = rational_circle(r);
   for (double s : {0.0, 0.3, 1.0, kPi * r / 2, 7.0, 2 * kPi * r - 1e-9}) {
     const double u = parameter_at_length(c, s, 0);
     INFO("s " << s << " u " << u);
@@ -238,7 +238,7 @@ TEST_CASE("parameter_at_length: the circle's angle, and round trips on random cu
 TEST_CASE("frenet_frame: circles (κ = 1/r), the twisted cubic's κ and τ, lines, stops",
           "[nurbs][measure][frenet]") {
   SECTION("a circle in 2-D turns left at 1/r, its normal points to the centre") {
-    const Curve c = circle(4, 1, 2);
+    const Curve c = rational_circle(4, 1, 2);
     for (double u : {0.0, 0.1, 0.25, 0.6, 0.99, 1.0}) {
       const Frenet f = frenet_frame(c, u);
       CHECK(std::abs(f.curvature - 0.25) <= 1e-14);
@@ -249,7 +249,7 @@ TEST_CASE("frenet_frame: circles (κ = 1/r), the twisted cubic's κ and τ, line
   }
   SECTION("a circle in 3-D: κ = 1/r, τ = 0, binormal the plane's normal") {
     Points P(9, 3);
-    const Curve flat = circle(0.5);
+    const Curve flat = rational_circle(0.5);
     const Eigen::VectorXd w = weights(flat);
     const Points X = cartesian_points(flat);
     P.leftCols(2) = X;
@@ -296,7 +296,7 @@ TEST_CASE("frenet_frame: circles (κ = 1/r), the twisted cubic's κ and τ, line
     Points Q(2, 4);
     Q.setRandom();
     CHECK_THROWS_WITH(frenet_frame(make_curve(1, {0, 0, 1, 1}, Q), 0.5), Contains("4-D"));
-    CHECK_THROWS_WITH(frenet_frame(circle(), 1.5), Contains("outside the domain"));
+    CHECK_THROWS_WITH(frenet_frame(rational_circle(), 1.5), Contains("outside the domain"));
   }
 }
 
@@ -306,7 +306,7 @@ TEST_CASE("frenet_frame: circles (κ = 1/r), the twisted cubic's κ and τ, line
 TEST_CASE("closest_point: exact cases — circle centre, symmetric pairs, inside and outside",
           "[nurbs][measure][closest]") {
   SECTION("the centre of a circle: every parameter, one interval") {
-    const Curve c = circle(2, 1, 1);
+    const Curve c = rational_circle(2, 1, 1);
     const ClosestPoints cp = closest_point(c, (Point(2) << 1, 1).finished());
     CHECK(std::abs(cp.distance - 2) <= 1e-14);
     REQUIRE(cp.intervals.size() == 1);
@@ -315,7 +315,7 @@ TEST_CASE("closest_point: exact cases — circle centre, symmetric pairs, inside
     CHECK(cp.parameters.empty());
   }
   SECTION("a point off the centre: the one circle point on its ray") {
-    const Curve c = circle(2);
+    const Curve c = rational_circle(2);
     for (double angle : {0.0, 0.3, kPi / 2, 2.0, 4.0, 6.0}) {
       for (double radius : {0.5, 1.9, 3.0, 100.0}) {
         const Point q = (Point(2) << radius * std::cos(angle), radius * std::sin(angle)).finished();
@@ -345,8 +345,9 @@ TEST_CASE("closest_point: exact cases — circle centre, symmetric pairs, inside
     CHECK(std::abs(below.distance - 4.5) <= 1e-14 * 5);  // C(1/2) = (0, −1/2)
   }
   SECTION("bad input") {
-    CHECK_THROWS_WITH(closest_point(circle(), Point::Zero(3)), Contains("3 coordinates, the curve 2"));
-    CHECK_THROWS_WITH(closest_point(circle(), (Point(2) << 0, std::nan("")).finished()),
+    CHECK_THROWS_WITH(closest_point(rational_circle(), Point::Zero(3)),
+                      Contains("3 coordinates, the curve 2"));
+    CHECK_THROWS_WITH(closest_point(rational_circle(), (Point(2) << 0, std::nan("")).finished()),
                       Contains("not finite"));
   }
 }
@@ -413,7 +414,7 @@ TEST_CASE("closest_point: mirror-symmetric curves and points on the mirror give 
 
 TEST_CASE("intersect_plane: line × circle exactly, tangency once, curves in the plane",
           "[nurbs][measure][intersect]") {
-  const Curve c = circle();
+  const Curve c = rational_circle();
   SECTION("x = 1/2 meets the unit circle at y = ±√3/2") {
     const PlaneIntersection hit = intersect_plane(c, (Point(2) << 2, 0).finished(), 1);
     REQUIRE(hit.parameters.size() == 2);
@@ -493,7 +494,7 @@ TEST_CASE("intersect_plane: random curves against sign changes of dense samples"
 
 TEST_CASE("intersect_curves: line × circle, tangency once, random curves against polylines",
           "[nurbs][measure][intersect]") {
-  const Curve c = circle();
+  const Curve c = rational_circle();
   SECTION("y = 1/2 crosses at x = ±√3/2; y = 1 touches once") {
     Points L(2, 2);
     L << -2, 0.5, 2, 0.5;
@@ -544,7 +545,7 @@ TEST_CASE("intersect_curves: line × circle, tangency once, random curves agains
 // Bounding boxes and transforms.
 
 TEST_CASE("bounding_box: the circle's square, random curves against dense samples", "[nurbs][measure][box]") {
-  const Box box = bounding_box(circle(2, 1, -1));
+  const Box box = bounding_box(rational_circle(2, 1, -1));
   CHECK((box.lower - (Point(2) << -1, -3).finished()).norm() <= 1e-15);
   CHECK((box.upper - (Point(2) << 3, 1).finished()).norm() <= 1e-15);
   Rng rng(30'2006);
@@ -584,7 +585,7 @@ TEST_CASE("transform: affine and projective maps of points, refusals", "[nurbs][
       CHECK((evaluate(t, u).transpose() - expected).norm() <= 1e-12 * std::max(1.0, expected.norm()) * 10);
     }
   }
-  const Curve c = circle();
+  const Curve c = rational_circle();
   CHECK_THROWS_WITH(transform(c, Eigen::MatrixXd::Identity(4, 4)), Contains("takes a 3×3 matrix, got 4×4"));
   Eigen::Matrix3d M = Eigen::Matrix3d::Identity();
   M(2, 0) = 2;  // w' = w(1 + 2x): negative at x = −1
