@@ -3,7 +3,7 @@
 // file given, and every file of every folder given, to LLVMFuzzerTestOneInput in name order, and
 // fails when one takes more than --budget seconds of CPU time (hangs are bugs, docs/reliability.md;
 // CPU, not wall time: the test machine may be busy).
-// With --mutate SECONDS it then fuzzes blind for that much CPU time: each input is a seed with 1–4
+// With --mutate SECONDS it fuzzes blind instead for that much CPU time: each input is a seed with 1–4
 // random edits (bits, bytes, ranges, the harness's dictionary tokens, numbers swapped for edge
 // values, splices of two seeds), from --seed (reproducible for a given count of inputs). No coverage
 // guides it — that is libFuzzer's job in scripts/fuzz.sh — but it runs in every sanitized build, so
@@ -186,6 +186,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> seeds;
   for (const fs::path& file : files) {
     seeds.push_back(read_bytes(file));
+    if (mutate > 0) continue;  // fuzz.replay.NAME runs the seeds themselves
     const double seconds = run(seeds.back());
     total += seconds;
     if (seconds > slowest) slowest = seconds, slowest_file = file;
@@ -195,9 +196,11 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
-  std::printf("replay: %zu inputs in %.2f s, slowest %.3f s (%s)\n", files.size(), total, slowest,
-              slowest_file.filename().c_str());
-  if (mutate <= 0) return 0;
+  if (mutate <= 0) {
+    std::printf("replay: %zu inputs in %.2f s, slowest %.3f s (%s)\n", files.size(), total, slowest,
+                slowest_file.filename().c_str());
+    return 0;
+  }
 
   std::printf("mutate: seed %llu for %.0f s of CPU; the input under test is kept in %s\n",
               static_cast<unsigned long long>(seed), mutate, keep.c_str());

@@ -27,10 +27,9 @@ inline std::vector<int> dyadic_quad_vertices(const cifs::subdivision::MeshRefine
     const auto g = [&](int i, int j) { return grid[static_cast<std::size_t>(i * (m + 1) + j)]; };
     const auto set = [&](int i, int j, int v) { next[static_cast<std::size_t>(i * (M + 1) + j)] = v; };
     const auto edge = [&](int a, int b) {
-      for (const int e : cifs::vertex_edges(t, static_cast<std::size_t>(a)))
-        if (cifs::other_vertex(t, static_cast<std::size_t>(e), a) == b) return e;
-      FAIL("no edge");
-      return -1;
+      const int e = cifs::find_edge(t, a, b);
+      if (e < 0) FAIL("no edge");
+      return e;
     };
     for (int i = 0; i <= m; ++i)
       for (int j = 0; j <= m; ++j) {
@@ -68,10 +67,9 @@ inline std::vector<int> dyadic_triangle_vertices(const cifs::subdivision::MeshRe
     const auto g = [&](int i, int j) { return grid[static_cast<std::size_t>(i * (m + 1) + j)]; };
     const auto set = [&](int i, int j, int v) { next[static_cast<std::size_t>(i * (M + 1) + j)] = v; };
     const auto edge = [&](int a, int b) {
-      for (const int e : cifs::vertex_edges(t, static_cast<std::size_t>(a)))
-        if (cifs::other_vertex(t, static_cast<std::size_t>(e), a) == b) return e;
-      FAIL("no edge");
-      return -1;
+      const int e = cifs::find_edge(t, a, b);
+      if (e < 0) FAIL("no edge");
+      return e;
     };
     for (int i = 0; i <= m; ++i)
       for (int j = 0; i + j <= m; ++j) {
