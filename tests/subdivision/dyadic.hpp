@@ -13,6 +13,13 @@
 
 namespace cifs_test {
 
+/// The edge joining a and b of a refined level (they are neighbours by construction).
+inline int dyadic_edge(const cifs::MeshTopology& t, int a, int b) {
+  const int e = cifs::find_edge(t, a, b);
+  if (e < 0) FAIL("no edge");
+  return e;
+}
+
 /// The vertices of `levels` Catmull–Clark steps after level `start` at the points (i, j)/2^levels of
 /// the quad whose corners (at level `start`) are `c` (counter-clockwise, c[0] at (0, 0), c[1] at
 /// (1, 0)), [i][j] flattened by i.
@@ -26,11 +33,7 @@ inline std::vector<int> dyadic_quad_vertices(const cifs::subdivision::MeshRefine
     std::vector<int> next(static_cast<std::size_t>((M + 1) * (M + 1)));
     const auto g = [&](int i, int j) { return grid[static_cast<std::size_t>(i * (m + 1) + j)]; };
     const auto set = [&](int i, int j, int v) { next[static_cast<std::size_t>(i * (M + 1) + j)] = v; };
-    const auto edge = [&](int a, int b) {
-      const int e = cifs::find_edge(t, a, b);
-      if (e < 0) FAIL("no edge");
-      return e;
-    };
+    const auto edge = [&](int a, int b) { return dyadic_edge(t, a, b); };
     for (int i = 0; i <= m; ++i)
       for (int j = 0; j <= m; ++j) {
         set(2 * i, 2 * j, g(i, j));
@@ -66,11 +69,7 @@ inline std::vector<int> dyadic_triangle_vertices(const cifs::subdivision::MeshRe
     std::vector<int> next(static_cast<std::size_t>((M + 1) * (M + 1)), -1);
     const auto g = [&](int i, int j) { return grid[static_cast<std::size_t>(i * (m + 1) + j)]; };
     const auto set = [&](int i, int j, int v) { next[static_cast<std::size_t>(i * (M + 1) + j)] = v; };
-    const auto edge = [&](int a, int b) {
-      const int e = cifs::find_edge(t, a, b);
-      if (e < 0) FAIL("no edge");
-      return e;
-    };
+    const auto edge = [&](int a, int b) { return dyadic_edge(t, a, b); };
     for (int i = 0; i <= m; ++i)
       for (int j = 0; i + j <= m; ++j) {
         set(2 * i, 2 * j, g(i, j));
