@@ -13,6 +13,8 @@
 #include <sstream>
 #include <string>
 
+#include "support/scratch.hpp"
+
 namespace cifs_test {
 
 struct Run {
@@ -20,23 +22,11 @@ struct Run {
   std::string out, err;
 };
 
-/// One scratch folder per test process.
 /// This process's folder for the CLI's inputs and outputs, removed when the process exits (ctest runs
 /// each test case in its own process: thousands of folders were left in /tmp).
 inline const std::filesystem::path& scratch() {
-  struct Folder {
-    std::filesystem::path path =
-        std::filesystem::temp_directory_path() / ("cifs_cli_test_" + std::to_string(::getpid()));
-    Folder() { std::filesystem::create_directories(path); }
-    Folder(const Folder&) = delete;
-    Folder& operator=(const Folder&) = delete;
-    ~Folder() {
-      std::error_code ec;
-      std::filesystem::remove_all(path, ec);
-    }
-  };
-  static const Folder folder;
-  return folder.path;
+  static const ScratchDir folder("cli");
+  return folder.path();
 }
 
 inline std::string slurp(const std::filesystem::path& p) {

@@ -24,10 +24,10 @@
 #include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/mesh.hpp"
 #include "cifs/topology.hpp"
-#include "render/scratch.hpp"
+#include "support/scratch.hpp"
 
 using namespace cifs;
-using render_test::ScratchDir;
+using cifs_test::ScratchDir;
 
 namespace {
 
@@ -59,8 +59,7 @@ TEST_CASE("A NURBS curve experiment: EXR channels and header, PNG, SVG, PLY, aut
       "render": {"width": 160, "height": 90, "control_net": true},
       "outputs": {"exr": "w.exr", "png": "w.png", "svg": "w.svg", "ply": "w.ply", "obj": "w.obj",
                   "automaton_svg": "a.svg", "automaton_dot": "a.dot"}})");
-  CHECK(dir.files() ==
-        std::vector<std::string>{"a.dot", "a.svg", "w.exr", "w.obj", "w.ply", "w.png", "w.svg"});
+  CHECK(dir.names() == std::set<std::string>{"a.dot", "a.svg", "w.exr", "w.obj", "w.ply", "w.png", "w.svg"});
   CHECK(report.depth == 6);
   const render::Image image = render::read_exr(dir.path() / "w.exr");
   CHECK(image.width == 160);
@@ -178,7 +177,7 @@ TEST_CASE("Bad experiments leave no file behind", "[experiment]") {
                     Catch::Contains("847288609443 edge pieces at depth 25"));
   CHECK_THROWS_WITH(run_in(dir, R"({"ifs": "fern", "render": {"width": 8, "height": 8}})"),
                     Catch::Contains("no output"));
-  CHECK(dir.files().empty());
+  CHECK(dir.names().empty());
 }
 
 TEST_CASE("Outputs and image paths are checked before any work", "[experiment]") {
@@ -217,7 +216,7 @@ TEST_CASE("Outputs and image paths are checked before any work", "[experiment]")
   o.png = dir.path() / "x.jpg";
   CHECK(refused(R"({"shape": "../shapes/wave.json", "outputs": {"exr": "w.exr"}})") ==
         "the PNG path: " + (dir.path() / "x.jpg").string() + ": the preview is PNG, written as .png");
-  CHECK(dir.files().empty());
+  CHECK(dir.names().empty());
 }
 
 TEST_CASE("A mesh experiment: the subdivision surface shaded, its control mesh over it, OBJ and PLY",
@@ -228,7 +227,7 @@ TEST_CASE("A mesh experiment: the subdivision surface shaded, its control mesh o
       "camera": {"projection": "perspective", "eye": [2.5, -1.3, 2.1], "target": [0.5, 0.5, 0.5]},
       "render": {"width": 120, "height": 90, "color": [0.8, 0.8, 0.8], "control_net": true},
       "outputs": {"exr": "c.exr", "png": "c.png", "obj": "c.obj", "ply": "c.ply"}})");
-  CHECK(dir.files() == std::vector<std::string>{"c.exr", "c.obj", "c.ply", "c.png"});
+  CHECK(dir.names() == std::set<std::string>{"c.exr", "c.obj", "c.ply", "c.png"});
   CHECK(report.depth == 3);
   CHECK_THAT(report.summary,
              Catch::StartsWith("cube: catmull-clark subdivision of cube.obj, 3 levels, 384 faces"));
@@ -348,7 +347,7 @@ TEST_CASE("Mesh experiments: every scheme, boundaries, and what a mesh cannot do
   CHECK_THROWS_WITH(experiment::evaluate(parse_named_experiment(
                         R"({"mesh": "../meshes/tetrahedron.obj", "subdivision": {"scheme": "loop"}})")),
                     "mesh: tetrahedron.obj: a subdivision surface has no attractor to evaluate or sample");
-  CHECK(empty.files().empty());
+  CHECK(empty.names().empty());
 }
 
 namespace {

@@ -5,7 +5,7 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/io/io.hpp"
-#include "render/scratch.hpp"
+#include "support/scratch.hpp"
 
 using namespace cifs;
 
@@ -17,7 +17,7 @@ TEST_CASE("io::detect tells meshes, shapes, polygons and experiments apart", "[i
   CHECK(io::detect(examples + "/shapes/geomdl_curve.json") == io::Content::shape);  // "shape" alone
   CHECK(io::detect(examples + "/shapes/clover.json") == io::Content::polygon);
   CHECK(io::detect(examples + "/experiments/clover.json") == io::Content::experiment);  // inline "shape"
-  render_test::ScratchDir dir;
+  cifs_test::ScratchDir dir;
   const auto write = [&](const std::string& name, const std::string& text) {
     std::ofstream(dir.path() / name) << text;
     return dir.path() / name;

@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "cifs/io/io.hpp"
 
-#include <unistd.h>
-
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
@@ -14,23 +12,13 @@
 #include "cifs/io/json.hpp"
 #include "cifs/io/obj.hpp"
 #include "cifs/nurbs/knot_automaton.hpp"
+#include "support/scratch.hpp"
 
 using namespace cifs;
 using namespace cifs::io;
 using Catch::Matchers::Contains;
 
 namespace {
-
-struct IoScratch {
-  std::filesystem::path dir;
-  IoScratch() {
-    dir = std::filesystem::temp_directory_path() / ("cifs_test_io_" + std::to_string(::getpid()));
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-  }
-  ~IoScratch() { std::filesystem::remove_all(dir); }
-};
-
 std::string table(Content content) {
   std::string out;
   for (const Format& f : formats(content))
@@ -68,10 +56,10 @@ TEST_CASE("The format table: every content, its formats in order", "[io][dispatc
 }
 
 TEST_CASE("write and read by extension: the bytes of encode, read back", "[io][dispatch]") {
-  IoScratch s;
+  cifs_test::ScratchDir s("io");
   const Mesh m = pentagon_and_triangle();
   for (const char* name : {"m.obj", "m.ply"}) {
-    const auto path = s.dir / name;
+    const auto path = s.path() / name;
     write(path, m);
     CHECK(read_file(path) == encode(m, path.extension().string().substr(1)));
     const Mesh back = read_mesh(path);
@@ -79,12 +67,12 @@ TEST_CASE("write and read by extension: the bytes of encode, read back", "[io][d
     CHECK(back.face_vertices == m.face_vertices);
     CHECK(back.face_offsets == m.face_offsets);
   }
-  CHECK(read_mesh(s.dir / "m.ply").states == m.states);  // OBJ has no face states
-  CHECK(read_mesh(s.dir / "m.obj").states.empty());
+  CHECK(read_mesh(s.path() / "m.ply").states == m.states);  // OBJ has no face states
+  CHECK(read_mesh(s.path() / "m.obj").states.empty());
 
   Segments seg = polyline_segments(m.vertices, true, 2);
   for (const char* ext : {"obj", "ply", "svg"}) {
-    const auto path = s.dir / (std::string("s.") + ext);
+    const auto path = s.path() / (std::string("s.") + ext);
     write(path, seg);
     CHECK(read_file(path) == encode(seg, ext));
   }
@@ -93,59 +81,59 @@ TEST_CASE("write and read by extension: the bytes of encode, read back", "[io][d
   P << 0, 0, 1, 0, 1, 1, 0.5, 2;
   const nurbs::Curve curve = nurbs::make_curve(2, {0, 0, 0, 1, 2, 2, 2}, P);
   for (const char* ext : {"json", "obj"}) {
-    const auto path = s.dir / (std::string("c.") + ext);
+    const auto path = s.path() / (std::string("c.") + ext);
     write(path, Shape(curve));
     CHECK(read_file(path) == encode(Shape(curve), ext));
     CHECK(std::get<nurbs::Curve>(read_shape(path)).knots == curve.knots);
   }
   // Shapes, polygons, automata, BC-IFS files and experiments read any other extension as JSON.
-  write_file_atomically(s.dir / "c.txt", to_json(Shape(curve)));
-  CHECK(std::get<nurbs::Curve>(read_shape(s.dir / "c.txt")).P == curve.P);
+  write_file_atomically(s.path() / "c.txt", to_json(Shape(curve)));
+  CHECK(std::get<nurbs::Curve>(read_shape(s.path() / "c.txt")).P == curve.P);
 
   const Polygon polygon{P, true};
-  write(s.dir / "p.json", polygon);
-  CHECK(read_polygon(s.dir / "p.json").points == P);
-  CHECK(read_polygon(s.dir / "p.json").closed);
+  write(s.path() / "p.json", polygon);
+  CHECK(read_polygon(s.path() / "p.json").points == P);
+  CHECK(read_polygon(s.path() / "p.json").closed);
   CHECK_THROWS_WITH(parse_polygon_json(R"({"polygon": {"points": [[0]]}, "closd": true})", "p.json"),
                     "p.json: closd: unknown member");
-  write(s.dir / "p.obj", polygon);
-  CHECK(read_file(s.dir / "p.obj") == polyline_obj(P, true));
-  write(s.dir / "p.svg", polygon);
-  CHECK(read_file(s.dir / "p.svg") == encode(polygon, "svg"));
+  write(s.path() / "p.obj", polygon);
+  CHECK(read_file(s.path() / "p.obj") == polyline_obj(P, true));
+  write(s.path() / "p.svg", polygon);
+  CHECK(read_file(s.path() / "p.svg") == encode(polygon, "svg"));
 
   const nurbs::KnotAutomaton ka = nurbs::knot_automaton(curve);
   for (const char* ext : {"json", "svg", "dot"}) {
-    const auto path = s.dir / (std::string("a.") + ext);
+    const auto path = s.path() / (std::string("a.") + ext);
     write(path, ka);
     CHECK(read_file(path) == encode(ka, ext));
   }
-  CHECK(to_json(read_automaton(s.dir / "a.json")) == to_json(ka));
+  CHECK(to_json(read_automaton(s.path() / "a.json")) == to_json(ka));
 
   const BcifsFile file{ifs::curve_bcifs(curve), nurbs::initial_nets(ka, curve)};
-  write(s.dir / "b.json", file);
-  const BcifsFile back = read_bcifs(s.dir / "b.json");
+  write(s.path() / "b.json", file);
+  const BcifsFile back = read_bcifs(s.path() / "b.json");
   CHECK(to_json(back.system, back.nets) == to_json(file.system, file.nets));
 }
 
 TEST_CASE("write and read refuse unknown extensions before touching the disk", "[io][dispatch]") {
-  IoScratch s;
+  cifs_test::ScratchDir s("io");
   const Mesh m = pentagon_and_triangle();
-  CHECK_THROWS_WITH(write(s.dir / "m.stl", m),
-                    (s.dir / "m.stl").string() + ": a mesh is written as .obj or .ply");
-  CHECK_THROWS_AS(write(s.dir / "m.stl", m), InvalidInput);
-  CHECK_THROWS_WITH(write(s.dir / "s.dot", polyline_segments(m.vertices)),
-                    (s.dir / "s.dot").string() + ": a segment set is written as .obj, .ply or .svg");
-  CHECK_THROWS_WITH(write(s.dir / "a.obj", automata::Automaton{}),
-                    (s.dir / "a.obj").string() + ": an automaton is written as .json, .svg or .dot");
-  CHECK(std::filesystem::is_empty(s.dir));
-  CHECK_THROWS_WITH(read_mesh(s.dir / "m.stl"),
-                    (s.dir / "m.stl").string() + ": a mesh is read from .obj or .ply");
-  CHECK_THROWS_AS(read_mesh(s.dir / "m.stl"), IoError);
-  CHECK_THROWS_WITH(read_mesh(s.dir / "none.obj"), Contains("none.obj: cannot open"));
+  CHECK_THROWS_WITH(write(s.path() / "m.stl", m),
+                    (s.path() / "m.stl").string() + ": a mesh is written as .obj or .ply");
+  CHECK_THROWS_AS(write(s.path() / "m.stl", m), InvalidInput);
+  CHECK_THROWS_WITH(write(s.path() / "s.dot", polyline_segments(m.vertices)),
+                    (s.path() / "s.dot").string() + ": a segment set is written as .obj, .ply or .svg");
+  CHECK_THROWS_WITH(write(s.path() / "a.obj", automata::Automaton{}),
+                    (s.path() / "a.obj").string() + ": an automaton is written as .json, .svg or .dot");
+  CHECK(std::filesystem::is_empty(s.path()));
+  CHECK_THROWS_WITH(read_mesh(s.path() / "m.stl"),
+                    (s.path() / "m.stl").string() + ": a mesh is read from .obj or .ply");
+  CHECK_THROWS_AS(read_mesh(s.path() / "m.stl"), IoError);
+  CHECK_THROWS_WITH(read_mesh(s.path() / "none.obj"), Contains("none.obj: cannot open"));
   // Content errors name the file and the line or element.
-  write_file_atomically(s.dir / "bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");
-  CHECK_THROWS_WITH(read_mesh(s.dir / "bad.obj"),
-                    (s.dir / "bad.obj").string() +
+  write_file_atomically(s.path() / "bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");
+  CHECK_THROWS_WITH(read_mesh(s.path() / "bad.obj"),
+                    (s.path() / "bad.obj").string() +
                         ": line 4: vertex index 7 is out of range: 3 vertices are defined before this line");
 }
 

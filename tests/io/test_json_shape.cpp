@@ -6,6 +6,7 @@
 #include "cifs/files.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/io/json.hpp"
+#include "support/scratch.hpp"
 
 using namespace cifs;
 
@@ -146,14 +147,13 @@ TEST_CASE("Shape files: unreadable paths and atomic writes", "[io]") {
   CHECK_THROWS_WITH(io::read_shape("/nonexistent/shape.json"),
                     Catch::Contains("/nonexistent/shape.json: cannot open"));
   CHECK_THROWS_WITH(io::read_shape("/tmp"), Catch::Contains("/tmp: is a directory"));
-  const auto dir = std::filesystem::temp_directory_path() / "cifs_test_io";
-  std::filesystem::create_directories(dir);
+  const cifs_test::ScratchDir scratch("json_shape");
+  const auto& dir = scratch.path();
   write_file_atomically(dir / "a.txt", "hello");
   CHECK(read_file(dir / "a.txt") == "hello");
   for (const auto& entry : std::filesystem::directory_iterator(dir))
     CHECK(entry.path().filename() == "a.txt");  // no temporary left behind
   CHECK_THROWS_AS(write_file_atomically(dir / "missing" / "b.txt", "x"), IoError);
-  std::filesystem::remove_all(dir);
 }
 
 TEST_CASE("JSON knots in the Rhino convention (n + d - 1, end knots implicit)", "[io][json]") {

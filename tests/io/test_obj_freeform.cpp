@@ -1,5 +1,4 @@
 // SPDX-License-Identifier: MIT
-#include <unistd.h>
 
 #include <bit>
 #include <catch2/catch.hpp>
@@ -14,6 +13,7 @@
 #include "cifs/io/io.hpp"
 #include "cifs/io/obj.hpp"
 #include "cifs/nurbs/refine.hpp"
+#include "support/scratch.hpp"
 
 namespace {
 
@@ -521,9 +521,8 @@ TEST_CASE("OBJ reader never fails otherwise on truncated or mutated input", "[ob
 }
 
 TEST_CASE("read_shape reads a one-shape .obj file", "[obj]") {
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("cifs_test_obj_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
+  const cifs_test::ScratchDir scratch("obj");
+  const auto& dir = scratch.path();
   const nurbs::Surface s = sample_surface(true, 5);
   write_file_atomically(dir / "one.obj", io::to_obj(s));
   require_same_shape(std::get<nurbs::Surface>(io::read_shape(dir / "one.obj")), s);
@@ -532,7 +531,6 @@ TEST_CASE("read_shape reads a one-shape .obj file", "[obj]") {
   CHECK_THROWS_WITH(io::read_shape(dir / "two.obj"),
                     (dir / "two.obj").string() +
                         ": holds 2 shapes (curves and surfaces): choose one with --index N, N from 0 to 1");
-  std::filesystem::remove_all(dir);
 }
 
 namespace {
@@ -772,9 +770,8 @@ io::ShapeReadOptions by_index(std::size_t index) {
 }  // namespace
 
 TEST_CASE("read_shape chooses among several shapes by index", "[obj]") {
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("cifs_test_obj_index_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
+  const cifs_test::ScratchDir scratch("obj_index");
+  const auto& dir = scratch.path();
   const nurbs::Curve a = sample_curve(false, 3, 11), b = sample_curve(true, 3, 12);
   // to_obj numbers the vertices from 1: the second curve refers to its own by negative indices.
   std::string second = io::to_obj(b);
@@ -789,7 +786,6 @@ TEST_CASE("read_shape chooses among several shapes by index", "[obj]") {
                     Contains("two.obj: --index 2 is out of range: the file holds 2 shapes (0 to 1)"));
   write_file_atomically(dir / "none.obj", "v 0 0 0\n");
   CHECK_THROWS_WITH(io::read_shape(dir / "none.obj"), Contains("none.obj: holds no curve or surface"));
-  std::filesystem::remove_all(dir);
 }
 
 TEST_CASE("OBJ: Rhino's knot count (n + d - 1) is refused with the convention named", "[obj][messages]") {

@@ -18,6 +18,7 @@
 #include "cifs/files.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/io/obj.hpp"
+#include "support/scratch.hpp"
 
 using namespace cifs;
 using namespace cifs::io;
@@ -25,22 +26,6 @@ using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
 
 namespace {
-
-struct PointsScratch {
-  std::filesystem::path dir;
-  PointsScratch() {
-    dir = std::filesystem::temp_directory_path() / ("cifs_test_points_" + std::to_string(::getpid()));
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-  }
-  ~PointsScratch() { std::filesystem::remove_all(dir); }
-  std::set<std::string> names() const {
-    std::set<std::string> out;
-    for (const auto& entry : std::filesystem::directory_iterator(dir)) out.insert(entry.path().filename());
-    return out;
-  }
-};
-
 Points some_points(Eigen::Index n, Eigen::Index dim) {
   Points P(n, dim);
   for (Eigen::Index i = 0; i < n; ++i)
@@ -148,7 +133,7 @@ TEST_CASE("PointsWriter refuses rows that do not match its header", "[io][points
 
 TEST_CASE("No writer emits a number that is not finite", "[io][points][reliability]") {
   // write_points wrote nan and inf into JSON (invalid JSON) and OBJ, exit 0 (issue 33).
-  PointsScratch s;
+  cifs_test::ScratchDir s("points");
   for (const double bad :
        {std::nan(""), std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()}) {
     Points P = Points::Zero(4, 3);
@@ -157,7 +142,8 @@ TEST_CASE("No writer emits a number that is not finite", "[io][points][reliabili
     for (const char* format : {"json", "npy", "ply", "obj"}) {
       INFO(format);
       CHECK_THROWS_WITH(encode(PointSet{P, {}}, format), Catch::Contains("the points: " + why));
-      CHECK_THROWS_WITH(write(s.dir / (std::string("p.") + format), PointSet{P, {}}), Catch::Contains(why));
+      CHECK_THROWS_WITH(write(s.path() / (std::string("p.") + format), PointSet{P, {}}),
+                        Catch::Contains(why));
       StringSink out;
       PointsWriter w(out, format, 6, 3);
       w.write(Points::Zero(2, 3));
@@ -176,10 +162,10 @@ TEST_CASE("No writer emits a number that is not finite", "[io][points][reliabili
 }
 
 TEST_CASE("PointsFile: by extension, atomic, the disk space checked", "[io][points]") {
-  PointsScratch s;
+  cifs_test::ScratchDir s("points");
   const Points P = some_points(5000, 3);
   for (const char* format : {"json", "npy", "ply", "obj"}) {
-    const auto path = s.dir / (std::string("p.") + format);
+    const auto path = s.path() / (std::string("p.") + format);
     PointsFile file(path, 5000, 3);
     for (Eigen::Index i = 0; i < 5000; i += 1234)
       file.write(P.middleRows(i, std::min<Eigen::Index>(1234, 5000 - i)));
@@ -188,27 +174,27 @@ TEST_CASE("PointsFile: by extension, atomic, the disk space checked", "[io][poin
     CHECK(read_file(path) == encode(PointSet{P, {}}, format));
   }
   CHECK(s.names() == std::set<std::string>{"p.json", "p.npy", "p.ply", "p.obj"});
-  CHECK_THROWS_WITH(PointsFile(s.dir / "p.txt", 1, 3),
-                    (s.dir / "p.txt").string() + ": a point set is written as .json, .npy, .ply or .obj");
+  CHECK_THROWS_WITH(PointsFile(s.path() / "p.txt", 1, 3),
+                    (s.path() / "p.txt").string() + ": a point set is written as .json, .npy, .ply or .obj");
   // An error before commit (too few rows) leaves nothing behind, and the old file untouched.
   {
-    PointsFile file(s.dir / "p.npy", 5000, 3);
+    PointsFile file(s.path() / "p.npy", 5000, 3);
     file.write(P.topRows(10));
     CHECK_THROWS_WITH(file.commit(), "npy: 10 points written, the header says 5000");
   }
-  CHECK(read_file(s.dir / "p.npy") == encode(PointSet{P, {}}, "npy"));
+  CHECK(read_file(s.path() / "p.npy") == encode(PointSet{P, {}}, "npy"));
   CHECK(s.names() == std::set<std::string>{"p.json", "p.npy", "p.ply", "p.obj"});
   // A size beyond the disk: refused before the header (npy, exact: 2^55 × 24 bytes + 128) or after the
   // first rows (text).
   const std::uint64_t huge = std::uint64_t{1} << 55;
   CHECK_THROWS_WITH(
-      PointsFile(s.dir / "huge.npy", huge, 3),
-      StartsWith((s.dir / "huge.npy").string() + ": the file needs 864691128 GB of disk space"));
+      PointsFile(s.path() / "huge.npy", huge, 3),
+      StartsWith((s.path() / "huge.npy").string() + ": the file needs 864691128 GB of disk space"));
   {
-    PointsFile file(s.dir / "huge.json", huge, 3);
+    PointsFile file(s.path() / "huge.json", huge, 3);
     file.write(P.topRows(4095));
     CHECK_THROWS_WITH(file.write(P.topRows(1)),
-                      StartsWith((s.dir / "huge.json").string() + ": the file needs about ") &&
+                      StartsWith((s.path() / "huge.json").string() + ": the file needs about ") &&
                           Contains(" GB of disk space, "));
   }
   CHECK(s.names() == std::set<std::string>{"p.json", "p.npy", "p.ply", "p.obj"});
@@ -216,12 +202,12 @@ TEST_CASE("PointsFile: by extension, atomic, the disk space checked", "[io][poin
 
 TEST_CASE("io::write of meshes and segments: the bytes of encode, written a chunk at a time",
           "[io][points]") {
-  PointsScratch s;
+  cifs_test::ScratchDir s("points");
   Segments segs;
   segs.vertices = some_points(200000, 3);  // several chunks of text
   for (int i = 0; i + 1 < 200000; ++i) segs.segments.push_back({i, i + 1});
   for (const char* format : {"obj", "ply", "svg"}) {
-    const auto path = s.dir / (std::string("s.") + format);
+    const auto path = s.path() / (std::string("s.") + format);
     write(path, segs);
     StringSink sink;
     encode(segs, format, sink);

@@ -6,11 +6,11 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/render/image.hpp"
-#include "render/scratch.hpp"
+#include "support/scratch.hpp"
 
 using namespace cifs;
 using namespace cifs::render;
-using render_test::ScratchDir;
+using cifs_test::ScratchDir;
 
 namespace {
 
@@ -52,7 +52,7 @@ TEST_CASE("EXR: every channel and attribute survives a round trip bit for bit", 
   const Image image = full_image(37, 23);  // odd sizes: rows are not padded
   const auto path = dir.path() / "image.exr";
   write_exr(path, image);
-  CHECK(dir.files() == std::vector<std::string>{"image.exr"});  // no temporary file left behind
+  CHECK(dir.names() == std::set<std::string>{"image.exr"});  // no temporary file left behind
 
   const Image back = read_exr(path);
   CHECK(back.width == 37);
@@ -98,7 +98,7 @@ TEST_CASE("EXR: a state-only image and overwriting an existing file", "[render]"
   const Image back = read_exr(path);
   CHECK(back.channels.empty());
   CHECK(*back.state == std::vector<std::uint32_t>{1, 2, 3, 4});
-  CHECK(dir.files() == std::vector<std::string>{"state.exr"});
+  CHECK(dir.names() == std::set<std::string>{"state.exr"});
 }
 
 TEST_CASE("EXR: bad paths throw IoError naming the path and leave no file", "[render]") {
@@ -111,7 +111,7 @@ TEST_CASE("EXR: bad paths throw IoError naming the path and leave no file", "[re
 
   std::filesystem::create_directory(dir.path() / "folder");
   CHECK_THROWS_AS(write_exr(dir.path() / "folder", image), IoError);
-  CHECK(dir.files() == std::vector<std::string>{"folder"});
+  CHECK(dir.names() == std::set<std::string>{"folder"});
 
   CHECK_THROWS_AS(read_exr(dir.path() / "absent.exr"), IoError);
   std::filesystem::path not_exr = dir.path() / "text.exr";
@@ -143,5 +143,5 @@ TEST_CASE("EXR: invalid images are refused before any file is made", "[render]")
     image = Image{};
   }
   CHECK_THROWS_AS(write_exr(path, image), InvalidInput);
-  CHECK(dir.files().empty());
+  CHECK(dir.names().empty());
 }

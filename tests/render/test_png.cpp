@@ -5,11 +5,11 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/render/png.hpp"
-#include "render/scratch.hpp"
+#include "support/scratch.hpp"
 
 using namespace cifs;
 using namespace cifs::render;
-using render_test::ScratchDir;
+using cifs_test::ScratchDir;
 
 TEST_CASE("PNG: RGB and RGBA written and read back through libpng", "[render]") {
   ScratchDir dir;
@@ -32,7 +32,7 @@ TEST_CASE("PNG: RGB and RGBA written and read back through libpng", "[render]") 
       for (std::size_t c = 0; c < n; ++c) CHECK(int{back.pixels[p * n + c]} == int{pixels[p * n + c]});
     CHECK(back.pixels == pixels);
   }
-  CHECK(dir.files() == std::vector<std::string>{"rgb.png", "rgba.png"});
+  CHECK(dir.names() == std::set<std::string>{"rgb.png", "rgba.png"});
 }
 
 TEST_CASE("PNG: bad sizes and paths", "[render]") {
@@ -43,7 +43,7 @@ TEST_CASE("PNG: bad sizes and paths", "[render]") {
   const auto missing = dir.path() / "none" / "a.png";
   CHECK_THROWS_AS(write_png(missing, pixels, 2, 2, PixelFormat::rgb8), IoError);
   CHECK_THROWS_WITH(write_png(missing, pixels, 2, 2, PixelFormat::rgb8), Catch::Contains(missing.string()));
-  CHECK(dir.files().empty());
+  CHECK(dir.names().empty());
   CHECK_THROWS_AS(read_png(dir.path() / "absent.png"), IoError);
 }
 

@@ -4,11 +4,11 @@
 #include "cifs/errors.hpp"
 #include "cifs/render/preview.hpp"
 #include "cifs/render/raster.hpp"
-#include "render/scratch.hpp"
+#include "support/scratch.hpp"
 
 using namespace cifs;
 using namespace cifs::render;
-using render_test::ScratchDir;
+using cifs_test::ScratchDir;
 
 namespace {
 

@@ -17,7 +17,7 @@
 #include "cifs/io/io.hpp"
 #include "cifs/subdivision/mesh.hpp"
 #include "cifs/view/server.hpp"
-#include "render/scratch.hpp"
+#include "support/scratch.hpp"
 
 using namespace cifs;
 
@@ -50,7 +50,7 @@ struct Fixture {
                                   .host = "127.0.0.1:8765",
                                   .body = body});
   }
-  render_test::ScratchDir dir;
+  cifs_test::ScratchDir dir;
   view::Session session;
 };
 
@@ -297,7 +297,7 @@ TEST_CASE("view handle: a geometry request overtaken while it waited is answered
 }
 
 TEST_CASE("view export_page writes the page, its geometry and three.js", "[view]") {
-  render_test::ScratchDir dir;
+  cifs_test::ScratchDir dir;
   view::export_page(kExamples + "/shapes/wave.json", dir.path() / "page");
   for (const char* name :
        {"index.html", "view.js", "geometry.js", "three/three.min.js", "three/OrbitControls.js"})
