@@ -12,7 +12,7 @@
 //   finds the argument refused from the signature's types and raises a TypeError naming it:
 //   "render_mesh: camera: expected a cifs.render.Camera, got int 3". pybind11 reads the arguments in order
 //   and stops at the first refused one, so the first argument that does not fit its type is the one.
-// It reads pybind11's internals (pybind11::detail): python/CMakeLists.txt pins the minor version they come from.
+// It reads pybind11's internals (pybind11::detail): python/CMakeLists.txt pins their minor version.
 #include <Python.h>
 
 #include <cstddef>
