@@ -25,9 +25,9 @@ std::vector<std::vector<double>> eval_at(const std::string& shape, const std::ve
 TEST_CASE("cifs fit interpolates the points of csv, json and obj files", "[cli][fit]") {
   // Uniform parameters 0, 1/4, …, 1: the curve passes through each point there.
   const std::string csv = file("fit.csv", "x,y\n0,0\n1,2\n2,1\n3,3 # comment\n\n4,0\n");
-  const std::string json = file("fit_points.json", R"({"points": [[0,0],[1,2],[2,1],[3,3],[4,0]]})");
+  const std::string json_file = file("fit_points.json", R"({"points": [[0,0],[1,2],[2,1],[3,3],[4,0]]})");
   const std::string obj = file("fit.obj", "v 0 0 0\nv 1 2 0\nv 2 1 0\nv 3 3 0\nv 4 0 0\n");
-  for (const std::string& input : {csv, json, obj}) {
+  for (const std::string& input : {csv, json_file, obj}) {
     const std::string out = (scratch() / "fitted.json").string();
     const Run r = cifs_cli("fit " + input + " --degree 3 --parametrization uniform -o " + out);
     INFO(r.err);
