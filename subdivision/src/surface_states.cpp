@@ -34,11 +34,13 @@
 #include <complex>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <deque>
 #include <map>
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cifs/errors.hpp"
@@ -322,39 +324,74 @@ void basis(bool quad, bool monomials, double u, double v, double* b) {
 }
 
 /// Value and partials of a patch from its monomial rows (`coefficients`, basis_size rows of d), by
-/// Horner's scheme in v, then in u, the partials taken to the face's (u, v) by J; D = 3 keeps the
-/// sums in registers.
-template <int D>
-void patch_sums(bool quad, const double* coefficients, Eigen::Index d, double u, double v,
+/// Horner's scheme in v, then in u, one coordinate at a time, the partials taken to the face's (u, v) by J.
+template <bool Quad>
+void patch_sums(const double* coefficients, Eigen::Index d, double u, double v,
                 const std::array<double, 4>& J, double* value, double* du, double* dv) {
-  constexpr int kFixed = D > 0 ? D : 1;
-  const Eigen::Index dims = D > 0 ? D : d;
-  const int degree = quad ? 3 : 4;
-  // D > 0: every coordinate in the same pass (independent chains interleave); else one at a time.
-  for (Eigen::Index k0 = 0; k0 < dims; k0 += kFixed) {
-    std::array<double, kFixed> x{}, xu{}, xv{};
-    for (int a = degree; a >= 0; --a) {  // q_a(v) = Σ_b c_ab v^b and q_a', then Horner in u
-      const int top = quad ? 3 : degree - a;
-      const double* c = coefficients + static_cast<Eigen::Index>(quad ? 4 * a : tri(a, 0)) * dims + k0;
-      std::array<double, kFixed> q{}, r{};
-      for (int k = 0; k < kFixed; ++k) q[static_cast<std::size_t>(k)] = c[top * dims + k];
-      for (int b = top - 1; b >= 0; --b)
-        for (std::size_t k = 0; k < kFixed; ++k) {
-          r[k] = r[k] * v + q[k];
-          q[k] = q[k] * v + c[b * dims + static_cast<Eigen::Index>(k)];
-        }
-      for (std::size_t k = 0; k < kFixed; ++k) {
-        xu[k] = xu[k] * u + x[k];
-        x[k] = x[k] * u + q[k];
-        xv[k] = xv[k] * u + r[k];
+  constexpr int kDegree = Quad ? 3 : 4;
+  for (Eigen::Index k = 0; k < d; ++k) {
+    double x = 0, xu = 0, xv = 0;
+    for (int a = kDegree; a >= 0; --a) {  // q_a(v) = Σ_b c_ab v^b and q_a'(v), then one Horner step in u
+      const int top = Quad ? 3 : kDegree - a;
+      const double* c = coefficients + static_cast<Eigen::Index>(Quad ? 4 * a : tri(a, 0)) * d + k;
+      double q = c[top * d], r = 0;
+      for (int b = top - 1; b >= 0; --b) {
+        r = r * v + q;
+        q = q * v + c[b * d];
       }
+      xu = xu * u + x;
+      x = x * u + q;
+      xv = xv * u + r;
     }
-    for (std::size_t k = 0; k < kFixed; ++k) {  // ∂/∂u = ∂s/∂u ∂/∂s + ∂t/∂u ∂/∂t, J = ∂(s, t)/∂(u, v)
-      value[k0 + static_cast<Eigen::Index>(k)] = x[k];
-      du[k0 + static_cast<Eigen::Index>(k)] = J[0] * xu[k] + J[2] * xv[k];
-      dv[k0 + static_cast<Eigen::Index>(k)] = J[1] * xu[k] + J[3] * xv[k];
-    }
+    value[k] = x;  // ∂/∂u = ∂s/∂u ∂/∂s + ∂t/∂u ∂/∂t, J = ∂(s, t)/∂(u, v)
+    du[k] = J[0] * xu + J[2] * xv;
+    dv[k] = J[1] * xu + J[3] * xv;
   }
+}
+
+/// 3-D data stored 4 columns a row (the fourth 0): a row of coefficients is two pairs of doubles (GCC/Clang
+/// vector extensions: an SSE2 register each), so the three coordinates' chains run together.
+using Pair = double __attribute__((vector_size(16)));
+struct Row4 {
+  Pair a, b;
+};
+inline Row4 load4(const double* p) {
+  Row4 out;
+  std::memcpy(&out, p, sizeof out);
+  return out;
+}
+inline Row4 fma4(const Row4& x, double s, const Row4& y) {
+  return {x.a * s + y.a, x.b * s + y.b};
+}
+
+/// Horner's steps in u for rows A, A − 1, …, 0 of the coefficients, each row's q_a(v) = Σ_b c_ab v^b and
+/// q_a'(v) of fixed length (compile-time recursion: unrolled and inlined, the sums kept in registers).
+template <bool Quad, int A>
+inline void horner_rows(const double* coefficients, double u, double v, Row4& x, Row4& xu, Row4& xv) {
+  constexpr int kTop = Quad ? 3 : 4 - A;
+  const double* c = coefficients + 4 * (Quad ? 4 * A : tri(A, 0));
+  Row4 q = load4(c + 4 * kTop), r{};
+  for (int b = kTop - 1; b >= 0; --b) {
+    r = fma4(r, v, q);
+    q = fma4(q, v, load4(c + 4 * b));
+  }
+  xu = fma4(xu, u, x);
+  x = fma4(x, u, q);
+  xv = fma4(xv, u, r);
+  if constexpr (A > 0) horner_rows<Quad, A - 1>(coefficients, u, v, x, xu, xv);
+}
+
+/// patch_sums for 3-D data stored 4 columns a row.
+template <bool Quad>
+void patch_sums_3d(const double* coefficients, double u, double v, const std::array<double, 4>& J,
+                   double* value, double* du, double* dv) {
+  Row4 x{}, xu{}, xv{};
+  horner_rows<Quad, Quad ? 3 : 4>(coefficients, u, v, x, xu, xv);
+  const Row4 pu = fma4(xu, J[0], Row4{xv.a * J[2], xv.b * J[2]}),  // J = ∂(s, t)/∂(u, v)
+      pv = fma4(xu, J[1], Row4{xv.a * J[3], xv.b * J[3]});
+  value[0] = x.a[0], value[1] = x.a[1], value[2] = x.b[0];
+  du[0] = pu.a[0], du[1] = pu.a[1], du[2] = pu.b[0];
+  dv[0] = pv.a[0], dv[1] = pv.a[1], dv[2] = pv.b[0];
 }
 
 /// The points where the polynomial is fitted: (a, b)/4, a, b ∈ {0, 1, 3, 4} on quads (a tensor grid),
@@ -792,7 +829,7 @@ bool inside(bool quad, int n, double u, double v) {
 struct Node {
   int state = 0;
   Points net;         // the state's slots
-  Points polynomial;  // its monomial coefficients, when the state is a polynomial
+  Points polynomial;  // its monomial coefficients when the state is a polynomial (3-D: padded to 4 columns)
   std::vector<int> kids;
 };
 
@@ -800,6 +837,13 @@ struct Node {
 
 SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::span<const FacePoint> at,
                                      const SurfaceOptions& options) {
+  SurfaceSample out;
+  evaluate_limit_surface(mesh, scheme, at, out, options);
+  return out;
+}
+
+void evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::span<const FacePoint> at,
+                            SurfaceSample& out, const SurfaceOptions& options) {
   if (scheme != MeshScheme::catmull_clark && scheme != MeshScheme::loop)
     throw InvalidInput("limit surface: " + std::string(scheme_name(scheme)) +
                        " is not built (catmull-clark and loop are)");
@@ -826,16 +870,26 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::s
   const Eigen::Index d = mesh.vertices.cols();
   detail::SurfaceStates states(scheme);
   std::vector<std::vector<Node>> trees(static_cast<std::size_t>(F));
-  SurfaceSample out;
   const auto count = static_cast<Eigen::Index>(at.size());
   const bool partials = options.partials;
   for (Points* P : {&out.positions, &out.du, &out.dv}) {
-    if (!partials && P != &out.positions) continue;
+    if (!partials && P != &out.positions) {
+      P->resize(0, d);
+      continue;
+    }
+    if (P->rows() == count && P->cols() == d) continue;  // storage reused: no page faults on repeated calls
     P->resize(count, d);
     advise_huge_pages(P->data(), static_cast<std::size_t>(P->size()) * sizeof(double));
   }
   std::vector<int> sides(static_cast<std::size_t>(F));
   for (std::size_t f = 0; f < sides.size(); ++f) sides[f] = static_cast<int>(face(t, f).size());
+  // A leaf's monomial coefficients; 3-D data padded to 4 columns for patch_sums_3d.
+  const auto leaf = [&](const Eigen::MatrixXd& monomials, const Points& net) {
+    if (d != 3) return Points(monomials * net);
+    Points padded = Points::Zero(monomials.rows(), 4);
+    padded.leftCols(3) = monomials * net;
+    return padded;
+  };
   const auto kid = [&](std::vector<Node>& tree, std::size_t node, int k) {
     if (tree[node].kids.empty()) tree[node].kids.assign(states.expand(tree[node].state).child.size(), -1);
     if (const int existing = tree[node].kids[static_cast<std::size_t>(k)]; existing >= 0) return existing;
@@ -843,7 +897,7 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::s
     Node child;
     child.state = x.child[static_cast<std::size_t>(k)];
     child.net = x.to_child[static_cast<std::size_t>(k)] * tree[node].net;
-    if (states.polynomial(child.state)) child.polynomial = states.at(child.state).monomials * child.net;
+    if (states.polynomial(child.state)) child.polynomial = leaf(states.at(child.state).monomials, child.net);
     tree.push_back(std::move(child));
     tree[node].kids[static_cast<std::size_t>(k)] = static_cast<int>(tree.size()) - 1;
     return static_cast<int>(tree.size()) - 1;
@@ -859,7 +913,7 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::s
       for (std::size_t i = 0; i < c.vertices.size(); ++i)
         root.net.row(static_cast<Eigen::Index>(i)) = mesh.vertices.row(c.vertices[i]);
       root.state = states.state(std::move(c));
-      if (states.polynomial(root.state)) root.polynomial = states.at(root.state).monomials * root.net;
+      if (states.polynomial(root.state)) root.polynomial = leaf(states.at(root.state).monomials, root.net);
       tree.push_back(std::move(root));
     }
     double u = q.u, v = q.v;
@@ -879,10 +933,13 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::s
     for (int depth = 0;; ++depth) {
       const Node& here = tree[static_cast<std::size_t>(node)];
       if (here.polynomial.size() > 0) {
+        const double* c = here.polynomial.data();
         if (d == 3)
-          patch_sums<3>(quad, here.polynomial.data(), d, u, v, J, value, du, dv);
+          quad ? patch_sums_3d<true>(c, u, v, J, value, du, dv)
+               : patch_sums_3d<false>(c, u, v, J, value, du, dv);
         else
-          patch_sums<0>(quad, here.polynomial.data(), d, u, v, J, value, du, dv);
+          quad ? patch_sums<true>(c, d, u, v, J, value, du, dv)
+               : patch_sums<false>(c, d, u, v, J, value, du, dv);
         break;
       }
       if (depth > 64)
@@ -922,7 +979,6 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::s
       node = kid(tree, static_cast<std::size_t>(node), k);
     }
   }
-  return out;
 }
 
 }  // namespace cifs::subdivision

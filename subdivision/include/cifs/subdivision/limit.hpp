@@ -174,6 +174,10 @@ SurfaceAutomaton surface_automaton(const Mesh& mesh, MeshScheme scheme);
 /// refine_topology's refusals for the mesh (non-manifold, Loop on non-triangles).
 SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::span<const FacePoint> at,
                                      const SurfaceOptions& options = {});
+/// The same into `out`, whose storage is reused when it already has the size (no fresh pages for the
+/// kernel to clear on repeated calls: on 1 M points most of the time of a fresh output).
+void evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::span<const FacePoint> at,
+                            SurfaceSample& out, const SurfaceOptions& options = {});
 
 /// The attractor of a surface automaton at `depth` as one mesh, 4^depth cells per face in face
 /// order, `states` the leaves' automaton states. Quads: cell (I, J) of face f at f·4^depth +
