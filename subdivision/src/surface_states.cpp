@@ -871,9 +871,11 @@ void evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::span<const
   detail::SurfaceStates states(scheme);
   std::vector<std::vector<Node>> trees(static_cast<std::size_t>(F));
   const auto count = static_cast<Eigen::Index>(at.size());
-  const bool partials = options.partials;
-  for (Points* P : {&out.positions, &out.du, &out.dv}) {
-    if (!partials && P != &out.positions) {
+  const bool partials = options.partials || options.normals;
+  if (options.normals && d != 3)
+    throw InvalidInput(who + ": normals need 3-D vertices, not " + std::to_string(d) + "-D");
+  for (Points* P : {&out.positions, &out.du, &out.dv, &out.normals}) {
+    if ((!partials && P != &out.positions) || (!options.normals && P == &out.normals)) {
       P->resize(0, d);
       continue;
     }
@@ -978,6 +980,20 @@ void evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::span<const
            m.A[2] * J[1] + m.A[3] * J[3]};
       node = kid(tree, static_cast<std::size_t>(node), k);
     }
+  }
+  if (!options.normals) return;
+  for (Eigen::Index p = 0; p < count; ++p) {
+    const Eigen::Vector3d a = out.du.row(p).transpose(), b = out.dv.row(p).transpose();
+    const Eigen::Vector3d n = a.cross(b);
+    if (!(n.norm() > 1e-10 * a.norm() * b.norm())) {
+      const FacePoint& q = at[static_cast<std::size_t>(p)];
+      throw InvalidInput(
+          who + ": point " + std::to_string(p) + " (face " + std::to_string(q.face) + ") at (" +
+          number_text(q.u, 6) + ", " + number_text(q.v, 6) +
+          "): du and dv are parallel there (the face's edges leave the point along one curve, a "
+          "straight crease or boundary): no normal");
+    }
+    out.normals.row(p) = n.normalized().transpose();
   }
 }
 

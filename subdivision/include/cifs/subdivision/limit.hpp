@@ -87,14 +87,16 @@ struct FacePoint {
   double u = 0, v = 0;
 };
 
-/// Positions and first partials ∂/∂u, ∂/∂v, `#points by d` (du, dv empty when not asked for).
+/// Positions and first partials ∂/∂u, ∂/∂v, `#points by d` (du, dv empty when not asked for), unit
+/// normals du × dv / |du × dv| when asked (`#points by 3`, else empty).
 struct SurfaceSample {
-  Points positions, du, dv;
+  Points positions, du, dv, normals;
 };
 
 /// What evaluate_limit_surface computes beside the positions.
 struct SurfaceOptions {
   bool partials = true;  // du, dv; without them no point is refused for want of a tangent plane
+  bool normals = false;  // with the partials; 3-D data only; refused where du and dv are parallel
 };
 
 /// A patch with one extraordinary corner of valence n as a controlled IFS (Stam 1998 without the
@@ -169,7 +171,9 @@ SurfaceAutomaton surface_automaton(const Mesh& mesh, MeshScheme scheme);
 /// InvalidInput naming the point where that sector's spectrum proves no tangent plane (no real
 /// subdominant pair above the rest, the curves bounding the sector leaving its plane, the face alone
 /// between two sharp or boundary edges — a smooth corner —, a sector of more than 128 faces) unless the
-/// partials are not asked for. InvalidInput naming the point for a face that does not exist, a hole
+/// partials are not asked for; normals are refused, naming the point, where du and dv are parallel (a
+/// polynomial patch's corner on a straight crease or boundary, where the parametric partials span no
+/// plane). InvalidInput naming the point for a face that does not exist, a hole
 /// (tagged, or under the boundary rule `none`), (u, v) outside the domain or not finite;
 /// refine_topology's refusals for the mesh (non-manifold, Loop on non-triangles).
 SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::span<const FacePoint> at,
