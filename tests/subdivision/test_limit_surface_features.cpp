@@ -634,3 +634,27 @@ TEST_CASE("the limit surface's partials at extraordinary vertices: along OpenSub
     CHECK(worst <= (c.name.find("refined") != std::string::npos ? 1e-6 : 1e-10));
   }
 }
+
+TEST_CASE("the limit surface's normals: du × dv made unit, refused where the partials are parallel",
+          "[subdivision][limit]") {
+  // Random tags on a Loop torus (seed 2): the corner (1, 0) of face 6 is a regular patch's corner on a
+  // straight sharp crease, where ∂/∂u and ∂/∂v are parallel — no normal; elsewhere the normals are du × dv
+  // made unit.
+  const std::vector<Case> cases = feature_cases();
+  const Case& c = *std::find_if(cases.begin(), cases.end(),
+                                [](const Case& x) { return x.name == "random tags, seed 2"; });
+  REQUIRE(c.scheme == MeshScheme::loop);
+  const std::vector<FacePoint> inside{{0, 0.3, 0.2}, {6, 0.9, 0.05}, {12, 0.1, 0.6}};
+  const SurfaceSample s = evaluate_limit_surface(c.mesh, c.scheme, inside, {.normals = true});
+  REQUIRE(s.normals.rows() == 3);
+  for (Eigen::Index i = 0; i < 3; ++i)
+    CHECK((s.normals.row(i).transpose() - unit_normal(s, i)).norm() <= 1e-15);
+  const std::vector<FacePoint> corner{{0, 0.3, 0.2}, {6, 1, 0}};
+  CHECK_THROWS_WITH(evaluate_limit_surface(c.mesh, c.scheme, corner, {.normals = true}),
+                    Contains("point 1 (face 6) at (1, 0): du and dv are parallel there"));
+  CHECK(evaluate_limit_surface(c.mesh, c.scheme, corner).du.rows() == 2);  // partials alone: given
+  Mesh flat = c.mesh;
+  flat.vertices = c.mesh.vertices.leftCols(2);
+  CHECK_THROWS_WITH(evaluate_limit_surface(flat, c.scheme, inside, {.normals = true}),
+                    Contains("normals need 3-D vertices, not 2-D"));
+}
