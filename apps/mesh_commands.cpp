@@ -202,8 +202,12 @@ std::vector<subdivision::FacePoint> face_points(const std::string& at) {
     for (std::string w; fields >> w;) words.push_back(w);
     if (words.empty()) continue;
     const auto bad = [&](const std::string& why) {
-      return InvalidInput(where + ": point " + std::to_string(out.size()) + " '" + item + "': " + why +
-                          (file ? "" : " (or a file of such points: there is no file '" + at + "')"));
+      std::string message = where;
+      message += ": point " + std::to_string(out.size()) + " '";
+      message += item;
+      message += "': " + why;
+      if (!file) message += " (or a file of such points: there is no file '" + at + "')";
+      return InvalidInput(message);
     };
     if (words.size() != 3) throw bad("expected face,u,v");
     subdivision::FacePoint q;
@@ -251,7 +255,7 @@ std::string limit_at(const LimitCommandOptions& o, subdivision::MeshScheme schem
     if (o.normals) p["normal"] = row(s.normals, i);
     list.push_back(std::move(p));
   }
-  const std::string text = json{{"scheme", o.scheme}, {"points", std::move(list)}}.dump(1) + "\n";
+  std::string text = json{{"scheme", o.scheme}, {"points", std::move(list)}}.dump(1) + "\n";
   if (!output) return text;
   output->write(text);
   output->commit();

@@ -32,6 +32,7 @@
 #include <array>
 #include <cmath>
 #include <complex>
+#include <cstddef>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -368,10 +369,10 @@ inline Row4 fma4(const Row4& x, double s, const Row4& y) {
 /// q_a'(v) of fixed length (compile-time recursion: unrolled and inlined, the sums kept in registers).
 template <bool Quad, int A>
 inline void horner_rows(const double* coefficients, double u, double v, Row4& x, Row4& xu, Row4& xv) {
-  constexpr int kTop = Quad ? 3 : 4 - A;
-  const double* c = coefficients + 4 * (Quad ? 4 * A : tri(A, 0));
+  constexpr std::ptrdiff_t kTop = Quad ? 3 : 4 - A, kRow = Quad ? 4 * A : tri(A, 0);
+  const double* c = coefficients + 4 * kRow;
   Row4 q = load4(c + 4 * kTop), r{};
-  for (int b = kTop - 1; b >= 0; --b) {
+  for (std::ptrdiff_t b = kTop - 1; b >= 0; --b) {
     r = fma4(r, v, q);
     q = fma4(q, v, load4(c + 4 * b));
   }

@@ -179,7 +179,8 @@ SurfaceAutomaton surface_automaton(const Mesh& mesh, MeshScheme scheme);
 SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::span<const FacePoint> at,
                                      const SurfaceOptions& options = {});
 /// The same into `out`, whose storage is reused when it already has the size (no fresh pages for the
-/// kernel to clear on repeated calls: on 1 M points most of the time of a fresh output).
+/// kernel to clear on repeated calls: on 1 M points most of the time of a fresh output). After an
+/// InvalidInput its contents are unspecified.
 void evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::span<const FacePoint> at,
                             SurfaceSample& out, const SurfaceOptions& options = {});
 
