@@ -359,13 +359,19 @@ void add_limit(CLI::App& app, Commands& c) {
       "limit", "Limit points (and normals) of a subdivision surface: catmull-clark, loop, butterfly, sqrt3");
   limit_cmd->add_option("mesh", c.li.mesh, "Polygon mesh (.obj or .ply)")->required();
   limit_cmd->add_option("--scheme", c.li.scheme, "catmull-clark, loop, butterfly or sqrt3")->required();
-  limit_cmd->add_option("--levels", c.li.levels,
-                        "Subdivision steps before the vertices go to the limit (default 1)");
+  auto* levels = limit_cmd->add_option("--levels", c.li.levels,
+                                       "Subdivision steps before the vertices go to the limit (default 1)");
   limit_cmd->add_option(
       "--boundary", c.li.boundary,
       "Boundary rule, replacing the file's: edge (default: corners smoothed) or corner (kept)");
   limit_cmd->add_flag("--normals", c.li.normals,
                       "Write unit limit normals (refused at crease and corner vertices between sectors)");
+  auto* at = limit_cmd
+                 ->add_option("--at", c.li.at,
+                              "The limit surface at points 'face,u,v;face,u,v…' (or a file of them, one a "
+                              "line) in OpenSubdiv's parametrisation, as JSON (catmull-clark, loop)")
+                 ->excludes(levels);
+  limit_cmd->add_flag("--partials", c.li.partials, "With --at: the partials du, dv too")->needs(at);
   add_strict(limit_cmd, c.li.strict);
   limit_cmd->add_option("-o,--output", c.li.output, "Output mesh (.obj or .ply; default: OBJ on stdout)")
       ->check(output_name);

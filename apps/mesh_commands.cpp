@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // cifs CLI — polygon meshes: `cifs subdivide` and `cifs info` on an OBJ/PLY mesh.
 #include <algorithm>
+#include <charconv>
+#include <filesystem>
 #include <functional>
 #include <iomanip>
 #include <map>
@@ -176,8 +178,96 @@ std::string subdivide(const SubdivideOptions& o) {
       });
 }
 
+namespace {
+
+/// Points "face,u,v" separated by ';' or line ends (commas or blanks within a point, '#' to the end of
+/// its line a comment), from --at's text, or from the file it names.
+std::vector<subdivision::FacePoint> face_points(const std::string& at) {
+  std::error_code error;
+  const bool file = std::filesystem::is_regular_file(at, error);
+  const std::string text = file ? read_file(at) : at;
+  const std::string where = file ? "--at " + at : "--at";
+  std::vector<subdivision::FacePoint> out;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    std::size_t end = text.find_first_of(";\n", start);
+    if (end == std::string::npos) end = text.size();
+    const std::string item =
+        text.substr(start, end - start).substr(0, text.substr(start, end - start).find('#'));
+    start = end + 1;
+    std::string blanks = item;
+    std::replace(blanks.begin(), blanks.end(), ',', ' ');
+    std::istringstream fields(blanks);
+    std::vector<std::string> words;
+    for (std::string w; fields >> w;) words.push_back(w);
+    if (words.empty()) continue;
+    const auto bad = [&](const std::string& why) {
+      std::string message = where;
+      message += ": point " + std::to_string(out.size()) + " '";
+      message += item;
+      message += "': " + why;
+      if (!file) message += " (or a file of such points: there is no file '" + at + "')";
+      return InvalidInput(message);
+    };
+    if (words.size() != 3) throw bad("expected face,u,v");
+    subdivision::FacePoint q;
+    const auto [face_end, face_error] =
+        std::from_chars(words[0].data(), words[0].data() + words[0].size(), q.face);
+    if (face_error != std::errc() || face_end != words[0].data() + words[0].size())
+      throw bad("the face '" + words[0] + "' is not a whole number");
+    for (const auto& [word, value] : {std::pair{&words[1], &q.u}, std::pair{&words[2], &q.v}}) {
+      const auto [number_end, number_error] =
+          std::from_chars(word->data(), word->data() + word->size(), *value);
+      if (number_error != std::errc() || number_end != word->data() + word->size())
+        throw bad("'" + *word + "' is not a number");
+    }
+    out.push_back(q);
+  }
+  if (out.empty()) throw InvalidInput(where + ": no points (expected face,u,v;face,u,v…)");
+  return out;
+}
+
+/// `cifs limit MESH --at POINTS`: the limit surface at the points, as JSON.
+std::string limit_at(const LimitCommandOptions& o, subdivision::MeshScheme scheme) {
+  if (!o.output.empty() && o.output.extension() != ".json")
+    throw InvalidInput("-o " + o.output.string() + ": expected a .json file name (--at writes JSON)");
+  const std::vector<subdivision::FacePoint> points = face_points(o.at);
+  std::optional<AtomicFile> output;
+  if (!o.output.empty()) output.emplace(o.output, OutputOptions{.inputs = {o.mesh}});
+  Mesh mesh = io::read_mesh(o.mesh, {.strict = o.strict, .warn = {}});
+  apply(tag_overrides(o.boundary, "", "", ""), mesh.tags);
+  subdivision::SurfaceSample s;
+  try {
+    s = subdivision::evaluate_limit_surface(mesh, scheme, points,
+                                            {.partials = o.partials || o.normals, .normals = o.normals});
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(o.mesh.string() + ": " + e.what());
+  }
+  const auto row = [](const Points& P, std::size_t i) {
+    const auto r = static_cast<Eigen::Index>(i);
+    return std::vector<double>(P.row(r).begin(), P.row(r).end());
+  };
+  json list = json::array();
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    json p = {
+        {"face", points[i].face}, {"u", points[i].u}, {"v", points[i].v}, {"position", row(s.positions, i)}};
+    if (o.partials) p["du"] = row(s.du, i), p["dv"] = row(s.dv, i);
+    if (o.normals) p["normal"] = row(s.normals, i);
+    list.push_back(std::move(p));
+  }
+  std::string text = json{{"scheme", o.scheme}, {"points", std::move(list)}}.dump(1) + "\n";
+  if (!output) return text;
+  output->write(text);
+  output->commit();
+  return "wrote " + o.output.string() + ": the limit surface at " + std::to_string(points.size()) +
+         " points (" + o.scheme + ")\n";
+}
+
+}  // namespace
+
 std::string limit(const LimitCommandOptions& o) {
   const subdivision::MeshScheme scheme = subdivision::named_mesh_scheme(o.scheme);
+  if (!o.at.empty()) return limit_at(o, scheme);
   const subdivision::LimitOptions options{.normals = o.normals};
   const TagOverrides overrides = tag_overrides(o.boundary, "", "", "");
   return mesh_to_mesh(

@@ -487,10 +487,13 @@ const std::vector<sd::FacePoint>& surface_points(sd::MeshScheme scheme, bool cre
   return quads(scheme) ? cc : loop;
 }
 
+/// Both sides write into outputs allocated once (Bfr's Evaluate writes into the caller's buffers;
+/// evaluate_limit_surface's overload reuses `out`): a fresh 72 MB output costs the kernel more time
+/// clearing its pages than the evaluation itself (docs/performance.md).
 void cifs_surface_case(benchmark::State& state, sd::MeshScheme scheme, bool creased) {
   sd::SurfaceSample s;
   for (auto _ : state) {
-    s = sd::evaluate_limit_surface(surface_mesh(scheme, creased), scheme, surface_points(scheme, creased));
+    sd::evaluate_limit_surface(surface_mesh(scheme, creased), scheme, surface_points(scheme, creased), s);
     benchmark::DoNotOptimize(s.dv.data());
   }
   state.counters["ns_per_point"] =
@@ -498,12 +501,14 @@ void cifs_surface_case(benchmark::State& state, sd::MeshScheme scheme, bool crea
                          benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
-/// Bfr's positions and partials at the points, (P, Du, Dv) each `points by 3`.
-std::array<Points, 3> bfr_surface(const OpenSubdiv::Bfr::RefinerSurfaceFactory<>& factory, const Mesh& m,
-                                  std::span<const sd::FacePoint> points) {
+/// Bfr's positions and partials at the points, (P, Du, Dv) each `points by 3`, into `out` (its storage
+/// reused when it has the size).
+void bfr_surface(const OpenSubdiv::Bfr::RefinerSurfaceFactory<>& factory, const Mesh& m,
+                 std::span<const sd::FacePoint> points, std::array<Points, 3>& out) {
   namespace Bfr = OpenSubdiv::Bfr;
   const auto n = static_cast<Eigen::Index>(points.size());
-  std::array<Points, 3> out{Points(n, 3), Points(n, 3), Points(n, 3)};
+  for (Points& P : out)
+    if (P.rows() != n || P.cols() != 3) P.resize(n, 3);
   Bfr::Surface<double> surface;
   std::vector<double> patch;
   const Bfr::Surface<double>::PointDescriptor desc(3);
@@ -520,6 +525,12 @@ std::array<Points, 3> bfr_surface(const OpenSubdiv::Bfr::RefinerSurfaceFactory<>
     surface.Evaluate(uv, patch.data(), desc, out[0].row(i).data(), out[1].row(i).data(),
                      out[2].row(i).data());
   }
+}
+
+std::array<Points, 3> bfr_surface(const OpenSubdiv::Bfr::RefinerSurfaceFactory<>& factory, const Mesh& m,
+                                  std::span<const sd::FacePoint> points) {
+  std::array<Points, 3> out;
+  bfr_surface(factory, m, points, out);
   return out;
 }
 
@@ -534,7 +545,7 @@ void osd_bfr_surface_case(benchmark::State& state, sd::MeshScheme scheme, bool c
   const OpenSubdiv::Bfr::RefinerSurfaceFactory<> factory(*refiner, options);
   std::array<Points, 3> out;
   for (auto _ : state) {
-    out = bfr_surface(factory, m, surface_points(scheme, creased));
+    bfr_surface(factory, m, surface_points(scheme, creased), out);
     benchmark::DoNotOptimize(out[2].data());
   }
   state.counters["ns_per_point"] =

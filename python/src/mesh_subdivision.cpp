@@ -103,7 +103,7 @@ void bind_mesh_subdivision_meshes(py::module_& m) {
   m.def(
       "limit_surface",
       [](const Mesh& mesh, const std::vector<int>& faces, const std::vector<double>& u,
-         const std::vector<double>& v, const std::string& scheme) {
+         const std::vector<double>& v, const std::string& scheme, bool partials) {
         const sd::MeshScheme s_scheme = sd::named_mesh_scheme(scheme);
         if (faces.size() != u.size() || faces.size() != v.size())
           throw InvalidInput("limit_surface: faces, u and v must have one entry per point (" +
@@ -114,18 +114,23 @@ void bind_mesh_subdivision_meshes(py::module_& m) {
         sd::SurfaceSample s;
         {
           py::gil_scoped_release release;  // the tuple below needs the GIL back
-          s = sd::evaluate_limit_surface(mesh, s_scheme, at);
+          s = sd::evaluate_limit_surface(mesh, s_scheme, at, {.partials = partials});
         }
+        if (!partials) return py::make_tuple(s.positions, py::none(), py::none());
         return py::make_tuple(s.positions, s.du, s.dv);
       },
       py::arg("mesh"), py::arg("faces"), py::arg("u"), py::arg("v"), py::kw_only(),
-      py::arg("scheme") = "catmull-clark",
+      py::arg("scheme") = "catmull-clark", py::arg("partials").noconvert() = true,
       "The limit surface at points (faces[i], u[i], v[i]) of any mesh under its tags (boundaries, creases, "
       "corners, darts, holes; any valence), in OpenSubdiv's parametrisation: catmull-clark ((u, v) in [0, "
       "1]^2 "
       "on quads; an n-gon's sub-face i at [i mod D, + 1/2] x [i div D, + 1/2], D = 2 for triangles, 3 for "
-      "5-9 corners) or loop (triangles, u + v <= 1). (positions, du, dv), each (n, d). Exact; partials 0 at "
-      "an extraordinary vertex itself. Points on holes or outside their face are refused.");
+      "5-9 corners) or loop (triangles, u + v <= 1). (positions, du, dv), each (n, d) (du, dv None when "
+      "partials=False). Exact. At a vertex that is never a polynomial patch (extraordinary, dart, irregular "
+      "crease sector) du, dv are the face's two edges' parts in the tangent plane (their cross product is "
+      "along the limit normal; not derivatives, which are 0 or unbounded there); such a point is refused "
+      "where the spectrum proves no tangent plane, unless partials=False. Points on holes or outside their "
+      "face are refused.");
 }
 
 /// Limit surfaces as automata, the fractal Catmull–Clark surface.

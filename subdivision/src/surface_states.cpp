@@ -22,17 +22,26 @@
 // control points). Then the control points of every level are those of the polynomial's restrictions, and the
 // limit is the polynomial at every dyadic point: the patch. A state with sharpness left to spend, an
 // extraordinary vertex, a dart or a smooth boundary corner fails the check and is descended; at such
-// a corner itself the value is its limit point (limit_stencils' route), without partials.
+// a corner itself the value is its limit point (limit_stencils' route) and the partials are the face's
+// edges' parts in the tangent plane of the corner's sector (CornerTangents).
 #include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <complex>
+#include <cstddef>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <deque>
 #include <map>
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cifs/errors.hpp"
@@ -316,39 +325,74 @@ void basis(bool quad, bool monomials, double u, double v, double* b) {
 }
 
 /// Value and partials of a patch from its monomial rows (`coefficients`, basis_size rows of d), by
-/// Horner's scheme in v, then in u, the partials taken to the face's (u, v) by J; D = 3 keeps the
-/// sums in registers.
-template <int D>
-void patch_sums(bool quad, const double* coefficients, Eigen::Index d, double u, double v,
+/// Horner's scheme in v, then in u, one coordinate at a time, the partials taken to the face's (u, v) by J.
+template <bool Quad>
+void patch_sums(const double* coefficients, Eigen::Index d, double u, double v,
                 const std::array<double, 4>& J, double* value, double* du, double* dv) {
-  constexpr int kFixed = D > 0 ? D : 1;
-  const Eigen::Index dims = D > 0 ? D : d;
-  const int degree = quad ? 3 : 4;
-  // D > 0: every coordinate in the same pass (independent chains interleave); else one at a time.
-  for (Eigen::Index k0 = 0; k0 < dims; k0 += kFixed) {
-    std::array<double, kFixed> x{}, xu{}, xv{};
-    for (int a = degree; a >= 0; --a) {  // q_a(v) = Σ_b c_ab v^b and q_a', then Horner in u
-      const int top = quad ? 3 : degree - a;
-      const double* c = coefficients + static_cast<Eigen::Index>(quad ? 4 * a : tri(a, 0)) * dims + k0;
-      std::array<double, kFixed> q{}, r{};
-      for (int k = 0; k < kFixed; ++k) q[static_cast<std::size_t>(k)] = c[top * dims + k];
-      for (int b = top - 1; b >= 0; --b)
-        for (std::size_t k = 0; k < kFixed; ++k) {
-          r[k] = r[k] * v + q[k];
-          q[k] = q[k] * v + c[b * dims + static_cast<Eigen::Index>(k)];
-        }
-      for (std::size_t k = 0; k < kFixed; ++k) {
-        xu[k] = xu[k] * u + x[k];
-        x[k] = x[k] * u + q[k];
-        xv[k] = xv[k] * u + r[k];
+  constexpr int kDegree = Quad ? 3 : 4;
+  for (Eigen::Index k = 0; k < d; ++k) {
+    double x = 0, xu = 0, xv = 0;
+    for (int a = kDegree; a >= 0; --a) {  // q_a(v) = Σ_b c_ab v^b and q_a'(v), then one Horner step in u
+      const int top = Quad ? 3 : kDegree - a;
+      const double* c = coefficients + static_cast<Eigen::Index>(Quad ? 4 * a : tri(a, 0)) * d + k;
+      double q = c[top * d], r = 0;
+      for (int b = top - 1; b >= 0; --b) {
+        r = r * v + q;
+        q = q * v + c[b * d];
       }
+      xu = xu * u + x;
+      x = x * u + q;
+      xv = xv * u + r;
     }
-    for (std::size_t k = 0; k < kFixed; ++k) {  // ∂/∂u = ∂s/∂u ∂/∂s + ∂t/∂u ∂/∂t, J = ∂(s, t)/∂(u, v)
-      value[k0 + static_cast<Eigen::Index>(k)] = x[k];
-      du[k0 + static_cast<Eigen::Index>(k)] = J[0] * xu[k] + J[2] * xv[k];
-      dv[k0 + static_cast<Eigen::Index>(k)] = J[1] * xu[k] + J[3] * xv[k];
-    }
+    value[k] = x;  // ∂/∂u = ∂s/∂u ∂/∂s + ∂t/∂u ∂/∂t, J = ∂(s, t)/∂(u, v)
+    du[k] = J[0] * xu + J[2] * xv;
+    dv[k] = J[1] * xu + J[3] * xv;
   }
+}
+
+/// 3-D data stored 4 columns a row (the fourth 0): a row of coefficients is two pairs of doubles (GCC/Clang
+/// vector extensions: an SSE2 register each), so the three coordinates' chains run together.
+using Pair = double __attribute__((vector_size(16)));
+struct Row4 {
+  Pair a, b;
+};
+inline Row4 load4(const double* p) {
+  Row4 out;
+  std::memcpy(&out, p, sizeof out);
+  return out;
+}
+inline Row4 fma4(const Row4& x, double s, const Row4& y) {
+  return {x.a * s + y.a, x.b * s + y.b};
+}
+
+/// Horner's steps in u for rows A, A − 1, …, 0 of the coefficients, each row's q_a(v) = Σ_b c_ab v^b and
+/// q_a'(v) of fixed length (compile-time recursion: unrolled and inlined, the sums kept in registers).
+template <bool Quad, int A>
+inline void horner_rows(const double* coefficients, double u, double v, Row4& x, Row4& xu, Row4& xv) {
+  constexpr std::ptrdiff_t kTop = Quad ? 3 : 4 - A, kRow = Quad ? 4 * A : tri(A, 0);
+  const double* c = coefficients + 4 * kRow;
+  Row4 q = load4(c + 4 * kTop), r{};
+  for (std::ptrdiff_t b = kTop - 1; b >= 0; --b) {
+    r = fma4(r, v, q);
+    q = fma4(q, v, load4(c + 4 * b));
+  }
+  xu = fma4(xu, u, x);
+  x = fma4(x, u, q);
+  xv = fma4(xv, u, r);
+  if constexpr (A > 0) horner_rows<Quad, A - 1>(coefficients, u, v, x, xu, xv);
+}
+
+/// patch_sums for 3-D data stored 4 columns a row.
+template <bool Quad>
+void patch_sums_3d(const double* coefficients, double u, double v, const std::array<double, 4>& J,
+                   double* value, double* du, double* dv) {
+  Row4 x{}, xu{}, xv{};
+  horner_rows<Quad, Quad ? 3 : 4>(coefficients, u, v, x, xu, xv);
+  const Row4 pu = fma4(xu, J[0], Row4{xv.a * J[2], xv.b * J[2]}),  // J = ∂(s, t)/∂(u, v)
+      pv = fma4(xu, J[1], Row4{xv.a * J[3], xv.b * J[3]});
+  value[0] = x.a[0], value[1] = x.a[1], value[2] = x.b[0];
+  du[0] = pu.a[0], du[1] = pu.a[1], du[2] = pu.b[0];
+  dv[0] = pv.a[0], dv[1] = pv.a[1], dv[2] = pv.b[0];
 }
 
 /// The points where the polynomial is fitted: (a, b)/4, a, b ∈ {0, 1, 3, 4} on quads (a tensor grid),
@@ -367,6 +411,22 @@ std::vector<std::array<int, 2>> fit_points(bool quad) {
 
 }  // namespace
 
+/// The tangent plane at a corner that never becomes a polynomial patch, from the spectrum of the
+/// corner's sector (the faces around it between sharp edges, the face's among them): its two
+/// subdominant eigenvalues λ_i, their left eigenvectors l_i on the state's slots and the right
+/// eigenvectors' entries r_i(e) at the face's two edge neighbours e (corners 1 and n − 1),
+/// biorthonormal (l_i · r_j = δ_ij). The part of edge e in the tangent plane at level k,
+/// Σ_i r_i(e) (l_i · net_k), shrinks by λ_i a level: Σ_i r_i(e) λ_i^−k (l_i · net_k) is the same at
+/// every level (the vertex's, not the face's), and at a regular vertex it is the parametric derivative
+/// along e.
+struct CornerTangents {
+  bool known = false;
+  std::string refused;  // why the sector has no tangent plane its spectrum proves (then nothing else)
+  std::array<double, 2> lambda{};
+  Eigen::MatrixXd left;   // 2 × slots
+  Eigen::Matrix2d along;  // row: the edge (s, then t); column i: r_i there
+};
+
 namespace detail {
 
 /// The automaton of configurations, built lazily and cached by key.
@@ -384,6 +444,7 @@ class SurfaceStates {
     int polynomial = -1;         // unknown, 0, 1
     Eigen::MatrixXd bezier;      // basis_size × slots when polynomial: Bernstein
     Eigen::MatrixXd monomials;   // the same in the monomial basis
+    CornerTangents tangents;     // at corner 0 of a state that is its own child there (once asked)
   };
 
   explicit SurfaceStates(MeshScheme scheme) : scheme_(scheme), quad_(quad_scheme(scheme)) {
@@ -467,6 +528,17 @@ class SurfaceStates {
     return x;
   }
 
+  /// The tangent plane at corner 0 of a state that is its own child there (CornerTangents).
+  const CornerTangents& tangents(int s) {
+    auto& x = states_[static_cast<std::size_t>(s)];
+    if (!x.tangents.known) {
+      CornerTangents out = corner_tangents(s);
+      out.known = true;
+      states_[static_cast<std::size_t>(s)].tangents = std::move(out);
+    }
+    return states_[static_cast<std::size_t>(s)].tangents;
+  }
+
   /// The limit at the state's corner 0 as weights on its slots: limit_stencils on the corner's
   /// one-ring cut out with its tags.
   const Eigen::RowVectorXd& corner(int s) {
@@ -478,6 +550,109 @@ class SurfaceStates {
   }
 
  private:
+  /// The corner's sector in the state's mesh — its rows of the step (the vertex point, the edge and
+  /// face points of the sector) read nothing outside it — and that block's spectrum: 1 simple, then a
+  /// real pair above the rest (as limit_stencils asks of a one-sector ring, class_mask in limit.cpp,
+  /// here per sector), and where the sector is bounded by sharp or boundary edges the right
+  /// eigenvectors must not vanish at both of them (else the curves there leave the pair's plane: not
+  /// C¹). Refused otherwise, and where the face's two edges have parallel parts in the plane.
+  CornerTangents corner_tangents(int s) {
+    const State& x = expand(s);
+    CornerTangents out;
+    const MeshTopology t = build_topology(x.mesh, "limit surface state");
+    const auto edges = vertex_edges(t, 0);
+    const auto faces = vertex_faces(t, 0);
+    const auto sharp = [&](std::size_t k) {  // edge k around the corner: a boundary or sharp edge
+      const auto e = static_cast<std::size_t>(edges[k % edges.size()]);
+      if (is_boundary_edge(t, e)) return true;
+      const int w = other_vertex(t, e, 0);
+      return std::any_of(x.mesh.tags.creases.begin(), x.mesh.tags.creases.end(), [&](const EdgeSharpness& c) {
+        return c.sharpness > 0 && ((c.a == 0 && c.b == w) || (c.b == 0 && c.a == w));
+      });
+    };
+    // Face k lies between edges k and k + 1 (cifs/topology.hpp): the sector is faces first … last.
+    const std::size_t m = faces.size();
+    std::size_t first = static_cast<std::size_t>(std::find(faces.begin(), faces.end(), 0) - faces.begin());
+    std::size_t last = first, count = 1;
+    while (count < m && !sharp(first)) first = (first + m - 1) % m, ++count;
+    while (count < m && !sharp(last + 1)) last = (last + 1) % m, ++count;
+    const bool bounded = sharp(first) && sharp(last + 1) && (count < m || t.boundary_vertex[0] != 0);
+    const auto refuse = [&](const std::string& why) {
+      out.refused = why;
+      return out;
+    };
+    // A sector of one face (a smooth corner, or a face between two sharp edges): the face's edges are
+    // the curves, its inside direction comes from beyond the corner's ring.
+    if (bounded && count == 1)
+      return refuse("the face is its corner's whole sector, between two boundary or sharp edges: not built");
+    std::vector<int> rows{0};
+    for (std::size_t i = 0; i < count; ++i)
+      for (const int w : face(t, static_cast<std::size_t>(faces[(first + i) % m])))
+        if (std::find(rows.begin(), rows.end(), w) == rows.end()) rows.push_back(w);
+    const Eigen::MatrixXd M(x.to_child[0]);
+    const auto N = static_cast<Eigen::Index>(rows.size());
+    const auto row = [&](Eigen::Index i) { return rows[static_cast<std::size_t>(i)]; };
+    Eigen::MatrixXd A(N, N);
+    for (Eigen::Index i = 0; i < N; ++i) {
+      for (Eigen::Index j = 0; j < N; ++j) A(i, j) = M(row(i), row(j));
+      if (std::abs(M.row(row(i)).cwiseAbs().sum() - A.row(i).cwiseAbs().sum()) > 1e-12)
+        throw std::logic_error("limit surface: a corner's sector reads outside it");
+    }
+    if (N > 257) return refuse("a sector of more than 128 faces (the eigenproblem is not run there)");
+    const Eigen::EigenSolver<Eigen::MatrixXd> eigen(A, false);
+    std::vector<std::complex<double>> values(eigen.eigenvalues().begin(), eigen.eigenvalues().end());
+    std::sort(values.begin(), values.end(), [](auto a, auto b) { return std::abs(a) > std::abs(b); });
+    constexpr double kTight = 1e-9;
+    if (values.size() < 3 || std::abs(values[0] - 1.0) > kTight || std::abs(values[1]) >= 1 - kTight)
+      return refuse("1 is not a simple eigenvalue of its sector");
+    const std::complex<double> l1 = values[1], l2 = values[2];
+    const double l3 = values.size() > 3 ? std::abs(values[3]) : 0.0;
+    if (std::abs(l1.imag()) > kTight || std::abs(l2.imag()) > kTight || l2.real() <= l3 + kTight)
+      return refuse("no pair of real subdominant eigenvalues above the rest in its sector");
+    const auto null_space = [&](const Eigen::MatrixXd& B, double lambda, int dimension) {
+      const Eigen::JacobiSVD<Eigen::MatrixXd> svd(B - lambda * Eigen::MatrixXd::Identity(N, N),
+                                                  Eigen::ComputeFullV);
+      const auto& sigma = svd.singularValues();
+      if (sigma(N - dimension) > kTight * std::max(1.0, sigma(0))) return Eigen::MatrixXd();
+      return Eigen::MatrixXd(svd.matrixV().rightCols(dimension));
+    };
+    const auto pair = [&](const Eigen::MatrixXd& B) {
+      if (std::abs(l1.real() - l2.real()) < kTight) return null_space(B, l1.real(), 2);
+      const Eigen::MatrixXd a = null_space(B, l1.real(), 1), b = null_space(B, l2.real(), 1);
+      if (a.size() == 0 || b.size() == 0) return Eigen::MatrixXd();
+      Eigen::MatrixXd both(N, 2);
+      both << a, b;
+      return both;
+    };
+    const Eigen::MatrixXd right = pair(A), left = pair(A.transpose());
+    if (right.size() == 0 || left.size() == 0) return refuse("its subdominant eigenvalue is defective");
+    const Eigen::Matrix2d gram = left.transpose() * right;
+    if (std::abs(gram.determinant()) <= kTight) return refuse("its subdominant eigenvectors are degenerate");
+    const Eigen::MatrixXd dual = left * gram.inverse().transpose();  // dualᵀ right = I
+    const auto at = [&](int vertex) {
+      return Eigen::RowVector2d(right.row(std::find(rows.begin(), rows.end(), vertex) - rows.begin()));
+    };
+    if (bounded) {
+      const int a = other_vertex(t, static_cast<std::size_t>(edges[first]), 0),
+                b = other_vertex(t, static_cast<std::size_t>(edges[(last + 1) % edges.size()]), 0);
+      if (at(a).norm() <= kTight * right.norm() && at(b).norm() <= kTight * right.norm())
+        return refuse(
+            "the curves bounding its sector leave the plane of its subdominant eigenvectors (not C¹)");
+    }
+    const auto n = static_cast<int>(face(t, 0).size());
+    out.along.row(0) = at(1);
+    out.along.row(1) = at(n - 1);
+    if (std::abs(out.along.determinant()) <= kTight * out.along.row(0).norm() * out.along.row(1).norm())
+      return refuse("the face's two edges have parallel parts in its tangent plane");
+    out.lambda = {l1.real(), l2.real()};
+    if (std::getenv("S3DEBUG"))
+      std::fprintf(stderr, "DBG sector %zu/%zu bounded %d N %ld l %.17g %.17g %.17g\n", count, m,
+                   bounded ? 1 : 0, (long)N, l1.real(), l2.real(), l3);
+    out.left = Eigen::MatrixXd::Zero(2, x.mesh.vertices.rows());
+    for (Eigen::Index i = 0; i < N; ++i) out.left.col(row(i)) = dual.row(i).transpose();
+    return out;
+  }
+
   /// The limit at a state's corner 0 from the one-ring there.
   Eigen::RowVectorXd ring_limit(int s) {
     const State& x = at(s);
@@ -655,13 +830,21 @@ bool inside(bool quad, int n, double u, double v) {
 struct Node {
   int state = 0;
   Points net;         // the state's slots
-  Points polynomial;  // its monomial coefficients, when the state is a polynomial
+  Points polynomial;  // its monomial coefficients when the state is a polynomial (3-D: padded to 4 columns)
   std::vector<int> kids;
 };
 
 }  // namespace
 
-SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::span<const FacePoint> at) {
+SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::span<const FacePoint> at,
+                                     const SurfaceOptions& options) {
+  SurfaceSample out;
+  evaluate_limit_surface(mesh, scheme, at, out, options);
+  return out;
+}
+
+void evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::span<const FacePoint> at,
+                            SurfaceSample& out, const SurfaceOptions& options) {
   if (scheme != MeshScheme::catmull_clark && scheme != MeshScheme::loop)
     throw InvalidInput("limit surface: " + std::string(scheme_name(scheme)) +
                        " is not built (catmull-clark and loop are)");
@@ -688,14 +871,28 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::s
   const Eigen::Index d = mesh.vertices.cols();
   detail::SurfaceStates states(scheme);
   std::vector<std::vector<Node>> trees(static_cast<std::size_t>(F));
-  SurfaceSample out;
   const auto count = static_cast<Eigen::Index>(at.size());
-  for (Points* P : {&out.positions, &out.du, &out.dv}) {
+  const bool partials = options.partials || options.normals;
+  if (options.normals && d != 3)
+    throw InvalidInput(who + ": normals need 3-D vertices, not " + std::to_string(d) + "-D");
+  for (Points* P : {&out.positions, &out.du, &out.dv, &out.normals}) {
+    if ((!partials && P != &out.positions) || (!options.normals && P == &out.normals)) {
+      P->resize(0, d);
+      continue;
+    }
+    if (P->rows() == count && P->cols() == d) continue;  // storage reused: no page faults on repeated calls
     P->resize(count, d);
     advise_huge_pages(P->data(), static_cast<std::size_t>(P->size()) * sizeof(double));
   }
   std::vector<int> sides(static_cast<std::size_t>(F));
   for (std::size_t f = 0; f < sides.size(); ++f) sides[f] = static_cast<int>(face(t, f).size());
+  // A leaf's monomial coefficients; 3-D data padded to 4 columns for patch_sums_3d.
+  const auto leaf = [&](const Eigen::MatrixXd& monomials, const Points& net) {
+    if (d != 3) return Points(monomials * net);
+    Points padded = Points::Zero(monomials.rows(), 4);
+    padded.leftCols(3) = monomials * net;
+    return padded;
+  };
   const auto kid = [&](std::vector<Node>& tree, std::size_t node, int k) {
     if (tree[node].kids.empty()) tree[node].kids.assign(states.expand(tree[node].state).child.size(), -1);
     if (const int existing = tree[node].kids[static_cast<std::size_t>(k)]; existing >= 0) return existing;
@@ -703,11 +900,12 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::s
     Node child;
     child.state = x.child[static_cast<std::size_t>(k)];
     child.net = x.to_child[static_cast<std::size_t>(k)] * tree[node].net;
-    if (states.polynomial(child.state)) child.polynomial = states.at(child.state).monomials * child.net;
+    if (states.polynomial(child.state)) child.polynomial = leaf(states.at(child.state).monomials, child.net);
     tree.push_back(std::move(child));
     tree[node].kids[static_cast<std::size_t>(k)] = static_cast<int>(tree.size()) - 1;
     return static_cast<int>(tree.size()) - 1;
   };
+  std::vector<double> scratch(2 * static_cast<std::size_t>(d));  // partials not asked for
   for (Eigen::Index p = 0; p < count; ++p) {
     const FacePoint& q = at[static_cast<std::size_t>(p)];
     std::vector<Node>& tree = trees[static_cast<std::size_t>(q.face)];
@@ -718,7 +916,7 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::s
       for (std::size_t i = 0; i < c.vertices.size(); ++i)
         root.net.row(static_cast<Eigen::Index>(i)) = mesh.vertices.row(c.vertices[i]);
       root.state = states.state(std::move(c));
-      if (states.polynomial(root.state)) root.polynomial = states.at(root.state).monomials * root.net;
+      if (states.polynomial(root.state)) root.polynomial = leaf(states.at(root.state).monomials, root.net);
       tree.push_back(std::move(root));
     }
     double u = q.u, v = q.v;
@@ -732,14 +930,19 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::s
       u = 2 * (u - x), v = 2 * (v - y);
       J = {2, 0, 0, 2};
     }
-    double *value = out.positions.row(p).data(), *du = out.du.row(p).data(), *dv = out.dv.row(p).data();
+    double* value = out.positions.row(p).data();
+    double* du = partials ? out.du.row(p).data() : scratch.data();
+    double* dv = partials ? out.dv.row(p).data() : scratch.data() + d;
     for (int depth = 0;; ++depth) {
       const Node& here = tree[static_cast<std::size_t>(node)];
       if (here.polynomial.size() > 0) {
+        const double* c = here.polynomial.data();
         if (d == 3)
-          patch_sums<3>(quad, here.polynomial.data(), d, u, v, J, value, du, dv);
+          quad ? patch_sums_3d<true>(c, u, v, J, value, du, dv)
+               : patch_sums_3d<false>(c, u, v, J, value, du, dv);
         else
-          patch_sums<0>(quad, here.polynomial.data(), d, u, v, J, value, du, dv);
+          quad ? patch_sums<true>(c, d, u, v, J, value, du, dv)
+               : patch_sums<false>(c, d, u, v, J, value, du, dv);
         break;
       }
       if (depth > 64)
@@ -747,11 +950,27 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::s
                                ": no polynomial patch after 64 levels");
       // At the corner: down the corner's children while they change (sharpness being spent, other
       // corners left behind); once the corner's child is its own state, the corner never becomes a
-      // polynomial patch — its limit point, without partials.
+      // polynomial patch — its limit point, and as partials the parts of the face's edges in the
+      // tangent plane (CornerTangents) taken to the face's (u, v) by J's turn.
       if (u == 0 && v == 0 && states.expand(here.state).child[0] == here.state) {
+        if (!partials) {
+          out.positions.row(p) = states.corner(here.state) * here.net;
+          break;
+        }
+        const CornerTangents& tangent = states.tangents(here.state);
+        if (!tangent.refused.empty())
+          throw InvalidInput(who + ": point " + std::to_string(p) + " (face " + std::to_string(q.face) +
+                             ") at (" + number_text(q.u, 6) + ", " + number_text(q.v, 6) +
+                             "): the vertex there has no tangent plane its spectrum proves (" +
+                             tangent.refused + "): no partials");
         out.positions.row(p) = states.corner(here.state) * here.net;
-        out.du.row(p).setZero();
-        out.dv.row(p).setZero();
+        const double scale = std::sqrt(std::abs(J[0] * J[3] - J[1] * J[2]));  // 2^k, k levels down
+        const double k = std::round(std::log2(scale));
+        Eigen::MatrixXd parts = tangent.left * here.net;  // 2 × d
+        for (int i = 0; i < 2; ++i) parts.row(i) *= std::pow(tangent.lambda[static_cast<std::size_t>(i)], -k);
+        const Eigen::MatrixXd along = tangent.along * parts;  // the edges s, t
+        out.du.row(p) = (J[0] * along.row(0) + J[2] * along.row(1)) / scale;
+        out.dv.row(p) = (J[1] * along.row(0) + J[3] * along.row(1)) / scale;
         break;
       }
       const int k = child_at(quad, u, v);
@@ -763,7 +982,20 @@ SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::s
       node = kid(tree, static_cast<std::size_t>(node), k);
     }
   }
-  return out;
+  if (!options.normals) return;
+  for (Eigen::Index p = 0; p < count; ++p) {
+    const Eigen::Vector3d a = out.du.row(p).transpose(), b = out.dv.row(p).transpose();
+    const Eigen::Vector3d n = a.cross(b);
+    if (!(n.norm() > 1e-10 * a.norm() * b.norm())) {
+      const FacePoint& q = at[static_cast<std::size_t>(p)];
+      throw InvalidInput(
+          who + ": point " + std::to_string(p) + " (face " + std::to_string(q.face) + ") at (" +
+          number_text(q.u, 6) + ", " + number_text(q.v, 6) +
+          "): du and dv are parallel there (the face's edges leave the point along one curve, a "
+          "straight crease or boundary): no normal");
+    }
+    out.normals.row(p) = n.normalized().transpose();
+  }
 }
 
 }  // namespace cifs::subdivision

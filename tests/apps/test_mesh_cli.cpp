@@ -208,6 +208,85 @@ TEST_CASE("cifs limit: what is not built exits 2 with one line", "[cli][mesh][li
   CHECK(!std::filesystem::exists(out));
 }
 
+TEST_CASE("cifs limit --at: the limit surface at points, as JSON", "[cli][mesh][limit]") {
+  // The cube under Catmull–Clark: at a face's corners Halstead's limit point ¼(1, 1, 1) + ½ corner with
+  // the outward diagonal as the normal and du × dv along it (valence-3 vertices: du, dv the directions of
+  // the tangent plane); at the centre of face 2 (y = 0), by symmetry, x = z = ½ and the normal −y. The same
+  // points from a file (comments, blank lines, commas or blanks) give the same JSON.
+  const Mesh cube = io::read_mesh(example("cube.obj"));
+  const Run r =
+      cifs_cli("limit " + example("cube.obj") +
+               " --scheme catmull-clark --at '0,0,0;0,1,0;3,1,1;5,0,1;2,0.5,0.5' --partials --normals");
+  REQUIRE(r.status == 0);
+  const json j = json::parse(r.out);
+  CHECK(j["scheme"] == "catmull-clark");
+  REQUIRE(j["points"].size() == 5);
+  const auto vec = [](const json& a) {
+    return Eigen::Vector3d(a[0].get<double>(), a[1].get<double>(), a[2].get<double>());
+  };
+  for (int i = 0; i < 4; ++i) {
+    const json& p = j["points"][static_cast<std::size_t>(i)];
+    const subdivision::FacePoint q{p["face"].get<int>(), p["u"].get<double>(), p["v"].get<double>()};
+    const auto corners = face(cube, static_cast<std::size_t>(q.face));
+    const int corner = corners[static_cast<std::size_t>(q.u == 0 ? (q.v == 0 ? 0 : 3) : (q.v == 0 ? 1 : 2))];
+    const Eigen::Vector3d at = cube.vertices.row(corner).transpose();
+    CHECK((vec(p["position"]) - (Eigen::Vector3d::Constant(0.25) + 0.5 * at)).norm() < 1e-15);
+    CHECK((vec(p["normal"]) - (at - Eigen::Vector3d::Constant(0.5)).normalized()).norm() < 1e-14);
+    CHECK(vec(p["du"]).cross(vec(p["dv"])).normalized().dot(vec(p["normal"])) > 1 - 1e-14);
+  }
+  const json& centre = j["points"][4];  // face 2 is y = 0: its centre's normal is −y
+  CHECK((vec(centre["normal"]) - Eigen::Vector3d(0, -1, 0)).norm() < 1e-14);
+  CHECK(std::abs(vec(centre["position"]).x() - 0.5) < 1e-15);
+  CHECK(std::abs(vec(centre["position"]).z() - 0.5) < 1e-15);
+  const std::string points =
+      file("limit_points.txt", "# face u v\n0 0 0\n0, 1, 0\n\n3 1 1;5,0,1\n2 0.5 0.5 # the centre\n");
+  const Run from_file = cifs_cli("limit " + example("cube.obj") + " --scheme catmull-clark --at " + points +
+                                 " --partials --normals");
+  REQUIRE(from_file.status == 0);
+  CHECK(from_file.out == r.out);
+  // Positions only by default; -o writes the JSON atomically and prints one line.
+  const Run plain = cifs_cli("limit " + example("cube.obj") + " --scheme catmull-clark --at '2,0.5,0.5'");
+  REQUIRE(plain.status == 0);
+  CHECK(!json::parse(plain.out)["points"][0].contains("du"));
+  CHECK(json::parse(plain.out)["points"][0]["position"] == centre["position"]);
+  const auto out = scratch() / "limit_at.json";
+  const Run written = cifs_cli("limit " + example("cube.obj") +
+                               " --scheme catmull-clark --at '2,0.5,0.5' -o " + out.string());
+  REQUIRE(written.status == 0);
+  CHECK_THAT(written.out, Catch::Contains("wrote ") && Catch::Contains("at 1 points"));
+  CHECK(json::parse(slurp(out)) == json::parse(plain.out));
+}
+
+TEST_CASE("cifs limit --at: bad points exit 2 with one line, nothing written", "[cli][mesh][limit]") {
+  const auto out = scratch() / "never_at.json";
+  std::filesystem::remove(out);
+  const std::string cube =
+      "limit " + example("cube.obj") + " --scheme catmull-clark -o " + out.string() + " --at ";
+  check_error(cifs_cli(cube + "'7,0.5,0.5'"), "point 0 (face 7): no such face; the mesh has 6");
+  check_error(cifs_cli(cube + "'0,0.5,0.5;0,1.5,0.5'"),
+              "point 1 (face 0): (u, v) = (1.5, 0.5) is outside [0, 1]²");
+  check_error(cifs_cli(cube + "'0,-0.1,0.5'"), "is outside [0, 1]²");
+  check_error(cifs_cli(cube + "'0,x,0.5'"), "--at: point 0 '0,x,0.5': 'x' is not a number");
+  check_error(cifs_cli(cube + "'0.5,0,0'"), "the face '0.5' is not a whole number");
+  check_error(cifs_cli(cube + "'0,0'"), "expected face,u,v");
+  check_error(cifs_cli(cube + "';'"), "--at: no points");
+  check_error(cifs_cli("limit " + example("creased_box.obj") + " --scheme catmull-clark -o " + out.string() +
+                       " --at '13,0.5,0.5'"),
+              "point 0 (face 13): the face is a hole");
+  check_error(cifs_cli("limit " + example("creased_box.obj") + " --scheme catmull-clark -o " + out.string() +
+                       " --at '0,0,0' --partials"),
+              "point 0 (face 0) at (0, 0): the vertex there has no tangent plane its spectrum proves");
+  check_error(cifs_cli("limit " + example("cube.obj") + " --scheme catmull-clark --at '0,0,0' -o " +
+                       (scratch() / "never_at.obj").string()),
+              "expected a .json file name (--at writes JSON)");
+  check_error(
+      cifs_cli("limit " + example("cube.obj") + " --scheme butterfly --at '0,0,0' -o " + out.string()),
+      "limit surface: butterfly is not built");
+  check_error(cifs_cli("limit " + example("cube.obj") + " --scheme catmull-clark --levels 2 --at '0,0,0'"),
+              "--levels excludes --at");
+  CHECK(!std::filesystem::exists(out));
+}
+
 namespace {
 
 /// A 4 × 4 grid of quads (vertex j·5 + i at (i, j, wave)) with semi-sharp and infinite creases, a

@@ -600,8 +600,12 @@ class LimitTest(unittest.TestCase):
         f = np.repeat(keep, 4)
         u = np.tile([0.0, 1.0, 1.0, 0.0], len(keep))
         v = np.tile([0.0, 0.0, 1.0, 1.0], len(keep))
-        positions, du, dv = sd.limit_surface(box, f.tolist(), u.tolist(), v.tolist())
+        positions, du, dv = sd.limit_surface(box, f.tolist(), u.tolist(), v.tolist(), partials=False)
         np.testing.assert_allclose(positions, limit[faces[keep].reshape(-1)], rtol=0, atol=1e-13)
+        self.assertIsNone(du)
+        # With partials, a corner whose face is alone between two sharp edges has no tangent plane to give.
+        with self.assertRaisesRegex(cifs.InvalidInput, r"point 0 \(face 0\) at \(0, 0\): the vertex there has no"):
+            sd.limit_surface(box, [0], [0.0], [0.0])
         with self.assertRaisesRegex(cifs.InvalidInput, f"face {hole}\\): the face is a hole"):
             sd.limit_surface(box, [hole], [0.5], [0.5])
 

@@ -87,9 +87,16 @@ struct FacePoint {
   double u = 0, v = 0;
 };
 
-/// Positions and first partials ∂/∂u, ∂/∂v, `#points by d`.
+/// Positions and first partials ∂/∂u, ∂/∂v, `#points by d` (du, dv empty when not asked for), unit
+/// normals du × dv / |du × dv| when asked (`#points by 3`, else empty).
 struct SurfaceSample {
-  Points positions, du, dv;
+  Points positions, du, dv, normals;
+};
+
+/// What evaluate_limit_surface computes beside the positions.
+struct SurfaceOptions {
+  bool partials = true;  // du, dv; without them no point is refused for want of a tangent plane
+  bool normals = false;  // with the partials; 3-D data only; refused where du and dv are parallel
 };
 
 /// A patch with one extraordinary corner of valence n as a controlled IFS (Stam 1998 without the
@@ -150,12 +157,32 @@ SurfaceAutomaton surface_automaton(const Mesh& mesh, MeshScheme scheme);
 /// An automaton of local configurations (a face, the one-rings of its corners, their tags) refined by
 /// the production rules: a point descends until its configuration's patch is a polynomial — proved
 /// so, not assumed: regular interior, boundary, crease and corner patches — and is evaluated there
-/// (docs/subdivision-surfaces.md, "The limit surface at any (face, u, v)"). At a vertex whose
-/// configuration never becomes one (extraordinary, dart, a boundary corner under edge_only) the value
-/// is its limit point (limit_stencils' route) and the partials are 0. InvalidInput naming the point for
-/// a face that does not exist, a hole (tagged, or under the boundary rule `none`), (u, v) outside the
-/// domain or not finite; refine_topology's refusals for the mesh (non-manifold, Loop on non-triangles).
-SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::span<const FacePoint> at);
+/// (docs/subdivision-surfaces.md, "The limit surface at any (face, u, v)").
+/// At a vertex whose configuration never becomes one (extraordinary, dart, a crease vertex's sector that
+/// is not regular) the value is its limit point (limit_stencils' route), and the parametric partials do
+/// not exist there (they tend to 0 where the subdominant eigenvalue λ < ½, grow without bound where
+/// λ > ½): du and dv are instead the parts of the face's two edges out of the vertex in its tangent
+/// plane — the plane of the subdominant eigenvectors of the vertex's sector (the faces around it between
+/// sharp edges, the point's face among them) — signed as ∂/∂u, ∂/∂v are (the edge along u, the other
+/// along v, each leaving the corner with the sign of the parameter's change), measured at the face's
+/// level: Σ_i r_i(e) λ_i^−k (l_i · ring_k) over the pair, which is the parametric derivative at a
+/// regular vertex. Their cross product is along the limit normal (the limit of the normals at points
+/// approaching the vertex; limit_stencils' normal where it has one); their lengths are a convention.
+/// InvalidInput naming the point where that sector's spectrum proves no tangent plane (no real
+/// subdominant pair above the rest, the curves bounding the sector leaving its plane, the face alone
+/// between two sharp or boundary edges — a smooth corner —, a sector of more than 128 faces) unless the
+/// partials are not asked for; normals are refused, naming the point, where du and dv are parallel (a
+/// polynomial patch's corner on a straight crease or boundary, where the parametric partials span no
+/// plane). InvalidInput naming the point for a face that does not exist, a hole
+/// (tagged, or under the boundary rule `none`), (u, v) outside the domain or not finite;
+/// refine_topology's refusals for the mesh (non-manifold, Loop on non-triangles).
+SurfaceSample evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::span<const FacePoint> at,
+                                     const SurfaceOptions& options = {});
+/// The same into `out`, whose storage is reused when it already has the size (no fresh pages for the
+/// kernel to clear on repeated calls: on 1 M points most of the time of a fresh output). After an
+/// InvalidInput its contents are unspecified.
+void evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::span<const FacePoint> at,
+                            SurfaceSample& out, const SurfaceOptions& options = {});
 
 /// The attractor of a surface automaton at `depth` as one mesh, 4^depth cells per face in face
 /// order, `states` the leaves' automaton states. Quads: cell (I, J) of face f at f·4^depth +
