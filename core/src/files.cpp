@@ -382,6 +382,13 @@ AtomicFile::~AtomicFile() {
   }
 }
 
+std::string AtomicFile::about_target(std::string message) const {
+  for (const std::string& name : {temporary_.string(), temporary_.filename().string()})
+    for (auto at = message.find(name); !name.empty() && at != std::string::npos; at = message.find(name, at))
+      message.replace(at, name.size(), target_.string());
+  return message;
+}
+
 void AtomicFile::write(std::string_view bytes) {
   if (committed_ || fd_ < 0) throw IoError(target_.string() + ": written after it was closed");
   std::size_t done = 0;

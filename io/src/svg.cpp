@@ -10,6 +10,7 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/format.hpp"
+#include "points_format.hpp"
 
 namespace cifs::io {
 namespace {
@@ -58,10 +59,12 @@ void segments_svg(const Segments& segments, const SvgOptions& options, ByteSink&
     throw InvalidInput("the SVG width " + std::to_string(width) + " is outside [16, 100000]");
   if (!(options.stroke > 0) || !std::isfinite(options.stroke))
     throw InvalidInput("the SVG stroke width must be a positive finite number");
-  const Eigen::Vector2d lo = P.leftCols(2).colwise().minCoeff().transpose();
-  const Eigen::Vector2d hi = P.leftCols(2).colwise().maxCoeff().transpose();
-  const double span = std::max({hi.x() - lo.x(), hi.y() - lo.y(), 1e-300});
-  const double margin = 0.05 * width, scale = (width - 2 * margin) / span;
+  // Halves: hi − lo overflows for coordinates near ±1.7e308, x/2 − lo/2 never does, and in the
+  // normal range the pixels are bit for bit those of (x − lo) · scale.
+  const Eigen::Vector2d lo = P.leftCols(2).colwise().minCoeff().transpose() / 2;
+  const Eigen::Vector2d hi = P.leftCols(2).colwise().maxCoeff().transpose() / 2;
+  const double half_span = std::max({hi.x() - lo.x(), hi.y() - lo.y(), 0.5e-300});
+  const double margin = 0.05 * width, scale = (width - 2 * margin) / half_span;  // pixels per half unit
   const int height = static_cast<int>(std::ceil((hi.y() - lo.y()) * scale + 2 * margin));
   ChunkBuffer buffer(sink);
   std::string& out = buffer.text;
@@ -72,9 +75,9 @@ void segments_svg(const Segments& segments, const SvgOptions& options, ByteSink&
   append_number(out, options.stroke, 6);
   out += "\" d=\"";
   const auto point = [&](int i) {
-    append_fixed(out, margin + (P(i, 0) - lo.x()) * scale, 3);
+    append_fixed(out, margin + (P(i, 0) / 2 - lo.x()) * scale, 3);
     out += ',';
-    append_fixed(out, height - margin - (P(i, 1) - lo.y()) * scale, 3);
+    append_fixed(out, height - margin - (P(i, 1) / 2 - lo.y()) * scale, 3);
   };
   int previous = -1;
   for (const auto& s : segments.segments) {
@@ -110,14 +113,22 @@ std::string polyline_svg(const Points& points, bool closed, int width, double st
 }
 
 std::string strokes_svg(const std::vector<Stroke>& strokes, const std::string& title, int width) {
+  if (width < 64 || width > 100000)
+    throw InvalidInput("the SVG figure's width " + std::to_string(width) + " is outside [64, 100000]");
+  if (std::all_of(strokes.begin(), strokes.end(), [](const Stroke& s) { return s.points.rows() == 0; }))
+    throw InvalidInput("an SVG figure needs at least one point to draw, none is given");
+  // Halved coordinates, as in segments_svg: no overflow of the spans near ±1.7e308.
   double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
-  for (const Stroke& s : strokes)
+  for (std::size_t k = 0; k < strokes.size(); ++k) {
+    const Stroke& s = strokes[k];
+    detail::check_finite(s.points, "the figure's stroke " + std::to_string(k + 1));
     for (Eigen::Index i = 0; i < s.points.rows(); ++i) {
-      x0 = std::min(x0, s.points(i, 0)), x1 = std::max(x1, s.points(i, 0));
-      y0 = std::min(y0, s.points(i, 1)), y1 = std::max(y1, s.points(i, 1));
+      x0 = std::min(x0, s.points(i, 0) / 2), x1 = std::max(x1, s.points(i, 0) / 2);
+      y0 = std::min(y0, s.points(i, 1) / 2), y1 = std::max(y1, s.points(i, 1) / 2);
     }
-  const double margin = 20, span = std::max({x1 - x0, y1 - y0, 1e-12});
-  const double scale = (width - 2 * margin) / std::max(x1 - x0, 1e-12 * span);
+  }
+  const double margin = 20, span = std::max({x1 - x0, y1 - y0, 0.5e-12});
+  const double scale = (width - 2 * margin) / std::max(x1 - x0, 1e-12 * span);  // pixels per half unit
   const double legend =
       22.0 * static_cast<double>(std::count_if(strokes.begin(), strokes.end(),
                                                [](const Stroke& s) { return !s.label.empty(); }));
@@ -134,8 +145,8 @@ std::string strokes_svg(const std::vector<Stroke>& strokes, const std::string& t
     if (!s.dash.empty()) o += " stroke-dasharray=\"" + s.dash + "\"";
     o += " points=\"";
     for (Eigen::Index i = 0; i < s.points.rows(); ++i)
-      o += (i ? " " : "") + n(margin + (s.points(i, 0) - x0) * scale) + "," +
-           n(26 + margin + (y1 - s.points(i, 1)) * scale);
+      o += (i ? " " : "") + n(margin + (s.points(i, 0) / 2 - x0) * scale) + "," +
+           n(26 + margin + (y1 - s.points(i, 1) / 2) * scale);
     o += "\"/>\n";
   }
   double y = height - legend + 4;

@@ -308,9 +308,12 @@ bool is_bool(py::handle value) {
 /// or value of a dict argument, "values['a']": pybind11's dict caster does not say where it failed).
 std::string parameter_of(const detail::function_call& call, const Entry& entry, PyObject* value) {
   const auto name = [&](std::size_t i) { return i < entry.names.size() ? entry.names[i] : "argument"; };
-  for (std::size_t i = 0; i < call.args.size(); ++i)
+  // A constructor's first argument is the instance being made, not a Python object: never read it (an
+  // element of a list given to a constructor was looked for in it, a crash found by test_hostile.py).
+  const std::size_t first = call.func.is_new_style_constructor ? 1 : 0;
+  for (std::size_t i = first; i < call.args.size(); ++i)
     if (call.args[i].ptr() == value) return name(i);
-  for (std::size_t i = 0; i < call.args.size(); ++i) {
+  for (std::size_t i = first; i < call.args.size(); ++i) {
     const py::handle arg = call.args[i];
     if (PyDict_Check(arg.ptr()))
       for (const auto& [key, item] : py::reinterpret_borrow<py::dict>(arg))

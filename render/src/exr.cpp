@@ -79,7 +79,7 @@ void write_exr(AtomicFile& file, const Image& image) {
     out.setFrameBuffer(frame);
     out.writePixels(h);
   } catch (const std::exception& e) {
-    throw IoError(file.target().string() + ": cannot write OpenEXR (" + e.what() + ")");
+    throw IoError(file.target().string() + ": cannot write OpenEXR (" + file.about_target(e.what()) + ")");
   }
 }
 

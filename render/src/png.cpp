@@ -4,6 +4,7 @@
 #include <png.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <climits>
 #include <cmath>
 #include <cstring>
@@ -46,10 +47,14 @@ void write_png(AtomicFile& file, std::span<const std::uint8_t> pixels, std::size
   image.width = static_cast<png_uint_32>(width);
   image.height = static_cast<png_uint_32>(height);
   image.format = png_format(format);
+  errno = 0;
   const int ok = png_image_write_to_file(&image, file.temporary().c_str(), 0, pixels.data(),
                                          static_cast<png_int_32>(stride), nullptr);
   if (!ok) {
-    const std::string message = image.message;
+    // libpng says "Write Error" for any failed write: the system's reason (a full disk) is errno's.
+    const int error = errno;
+    std::string message = file.about_target(image.message);
+    if (error != 0) message += std::string(": ") + std::strerror(error);
     png_image_free(&image);
     throw IoError(file.target().string() + ": cannot write PNG (" + message + ")");
   }

@@ -22,6 +22,12 @@ Rational ratio(long long p, long long q) {
   return Rational(p) / Rational(q);
 }
 
+/// The exact numbers read: at most kMaxDigits digits as written (and exponents within ±300), and a
+/// value within detail::kMaxNumberBits (1,414 digits a side). to_string prints such a value in at most
+/// 1,475 digits (a fraction: 1,414 a side; a decimal: 60 more), so that what it prints of a number
+/// read reads back (a 400-digit limit on the text alone did not: "1e300/1e-300" printed as 601 digits).
+constexpr int kMaxDigits = 1500;
+
 /// Exact decimal: [sign] digits [. digits] [e [sign] digits].
 Rational parse_decimal(std::string_view s, std::string_view what, std::string_view whole) {
   const auto fail = [&]() -> Rational {
@@ -46,7 +52,7 @@ Rational parse_decimal(std::string_view s, std::string_view what, std::string_vi
       --scale10;
     }
   }
-  if (count == 0 || count > 400) return fail();
+  if (count == 0 || count > kMaxDigits) return fail();
   if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
     ++i;
     bool eneg = false;
@@ -111,11 +117,20 @@ const std::string kFamilyMeaning =
 Rational parse_rational(std::string_view text, std::string_view what) {
   const std::string t = trimmed(text);
   const auto slash = t.find('/');
-  if (slash == std::string::npos) return parse_decimal(t, what, t);
-  const Rational p = parse_decimal(trimmed(std::string_view(t).substr(0, slash)), what, t);
-  const Rational q = parse_decimal(trimmed(std::string_view(t).substr(slash + 1)), what, t);
-  if (q == 0) throw InvalidInput(std::string(what) + ": '" + excerpt(t) + "' divides by zero");
-  return p / q;
+  Rational x;
+  if (slash == std::string::npos) {
+    x = parse_decimal(t, what, t);
+  } else {
+    const Rational p = parse_decimal(trimmed(std::string_view(t).substr(0, slash)), what, t);
+    const Rational q = parse_decimal(trimmed(std::string_view(t).substr(slash + 1)), what, t);
+    if (q == 0) throw InvalidInput(std::string(what) + ": '" + excerpt(t) + "' divides by zero");
+    x = p / q;
+  }
+  if (detail::bits(x) > detail::kMaxNumberBits)
+    throw InvalidInput(std::string(what) + ": '" + excerpt(t) +
+                       "' is beyond the exact numbers read (a numerator and a denominator of at most 1,414 "
+                       "digits)");
+  return x;
 }
 
 std::string to_string(const Rational& x) {

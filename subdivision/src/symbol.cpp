@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Symbol expressions: a small recursive-descent parser over Laurent polynomials with exact
 // coefficients.
+#include <bit>
 #include <cctype>
 
 #include "cifs/errors.hpp"
@@ -18,6 +19,9 @@ struct Laurent {
 };
 
 constexpr long kMaxExponent = 1024;
+/// The largest power of z: a symbol is shifted to start at z^0, so only its span matters (at most a mask's
+/// 511); this bound keeps the exponents' arithmetic far from overflowing ("((z^1024)^1024)^1024…").
+constexpr long kMaxShift = 1L << 20;
 /// Brackets and unary signs nested within each other: each is a call of the parser, and 5,000 of them
 /// (a 10 kB argument) overflowed the stack. A mask's symbol never needs more than a few.
 constexpr int kMaxNesting = 200;
@@ -31,20 +35,19 @@ Laurent normalised(Laurent p) {
   return p;
 }
 
-Laurent add(const Laurent& a, const Laurent& b, int sign) {
-  if (a.c.empty()) {
-    Laurent r = b;
-    for (Rational& x : r.c) x *= sign;
-    return r;
-  }
-  if (b.c.empty()) return a;
+/// a += sign · b, in place: a sum of n terms costs n times a term, not n times the sum so far (the
+/// 512 terms of a printed degree-511 symbol took a second).
+void add(Laurent& a, const Laurent& b, int sign) {
+  if (b.c.empty()) return;
+  if (a.c.empty()) a.low = b.low;
   const long low = std::min(a.low, b.low);
   const long high = std::max(a.low + static_cast<long>(a.c.size()), b.low + static_cast<long>(b.c.size()));
-  Laurent r{low, Polynomial(static_cast<std::size_t>(high - low))};
-  for (std::size_t i = 0; i < a.c.size(); ++i) r.c[static_cast<std::size_t>(a.low - low) + i] += a.c[i];
+  a.c.insert(a.c.begin(), static_cast<std::size_t>(a.low - low), Rational(0));
+  a.c.resize(static_cast<std::size_t>(high - low));
+  a.low = low;
   for (std::size_t i = 0; i < b.c.size(); ++i)
-    r.c[static_cast<std::size_t>(b.low - low) + i] += sign * b.c[i];
-  return normalised(r);
+    a.c[static_cast<std::size_t>(b.low - low) + i] += sign * b.c[i];
+  a = normalised(std::move(a));
 }
 
 Laurent times(const Laurent& a, const Laurent& b) {
@@ -87,7 +90,7 @@ class Parser {
       skip();
       if (i_ < s_.size() && (s_[i_] == '+' || s_[i_] == '-')) {
         const int sign = s_[i_++] == '+' ? 1 : -1;
-        p = add(p, term(), sign);
+        add(p, term(), sign);
       } else {
         return p;
       }
@@ -111,7 +114,9 @@ class Parser {
           fail("the product has " + std::to_string(p.c.size() + q.c.size() - 1) +
                " coefficients, above the largest mask (" + std::to_string(kMaxMaskSize) + ")");
         }
+        check_size(detail::bits(p.c) + detail::bits(q.c) + std::bit_width(q.c.size()), at, "product");
         p = times(p, q);
+        check_size(detail::bits(p.c), at, "product", 1);
       } else if (skip(), i_ < s_.size() && s_[i_] == '/') {
         ++i_;
         const std::size_t at = i_;
@@ -122,10 +127,20 @@ class Parser {
                            : "division by a polynomial that is not a constant or a power of z");
         }
         p = normalised({p.low - d.low, detail::scale(p.c, 1 / d.c[0])});
+        check_size(detail::bits(p.c), at, "quotient", 1);
       } else {
         return p;
       }
     }
+  }
+
+  /// Refuses a result whose coefficients need more than detail::kMaxNumberBits (`bits`, the largest
+  /// numerator's or denominator's, after the arithmetic: `slack` 1), or may need more than twice that
+  /// (`bits` a bound computed before it: `slack` 2, which bounds its time — "((1e300)^1024)^3" took hours).
+  void check_size(std::size_t bits, std::size_t at, const char* what, std::size_t slack = 2) {
+    if (bits <= slack * detail::kMaxNumberBits) return;
+    i_ = at;
+    fail("the " + std::string(what) + "'s coefficients would exceed the exact numbers read (1,414 digits)");
   }
 
   /// Counts one level of nesting while it lives (a bracket, a unary sign).
@@ -171,12 +186,19 @@ class Parser {
       if (i_ == start || (i_ < s_.size() && (s_[i_] == '.' || s_[i_] == 'e' || s_[i_] == 'E')))
         fail("an exponent must be an integer");
       if (e > kMaxExponent) fail("exponent beyond " + std::to_string(kMaxExponent));
-      if (negative) {
-        if (base.c.size() != 1) fail("a negative power of a polynomial that is not a power of z");
-        const Rational inverse = 1 / base.c[0];
-        Rational value = 1;
-        for (long k = 0; k < e; ++k) value *= inverse;
-        return normalised({-base.low * e, {value}});
+      // Each coefficient of base^e has at most e times the base's bits, and e·log2(terms) more.
+      check_size(static_cast<std::size_t>(e) * (detail::bits(base.c) + std::bit_width(base.c.size())), start,
+                 "power");
+      if (negative && base.c.size() != 1) fail("a negative power of a polynomial that is not a power of z");
+      if (std::abs(base.low) > kMaxShift / std::max(e, 1L))
+        fail("the power of z is beyond z^" + std::to_string(kMaxShift) + " or z^-" +
+             std::to_string(kMaxShift));
+      if (base.c.size() == 1) {  // c·z^low: its power at once (z^k term by term took k products)
+        const Rational c = negative ? Rational(1 / base.c[0]) : base.c[0];
+        const auto u = static_cast<unsigned>(e);
+        const Rational value = Rational(pow(numerator(c), u)) / Rational(pow(denominator(c), u));
+        check_size(detail::bits(value), start, "power", 1);
+        return normalised({(negative ? -base.low : base.low) * e, {value}});
       }
       // A mask holds at most kMaxMaskSize coefficients: refuse a larger power before computing it
       // (the exact coefficients of (1+z)^1024 took 17 s, for a mask refused afterwards).
@@ -185,7 +207,11 @@ class Parser {
              ", above the largest mask (" + std::to_string(kMaxMaskSize) + " coefficients, degree " +
              std::to_string(kMaxMaskSize - 1) + ")");
       Laurent r{0, {Rational(1)}};
-      for (long k = 0; k < e; ++k) r = times(r, base);
+      for (long k = e; k > 0; k >>= 1) {  // by squaring: log2(e) products (e products took seconds)
+        if ((k & 1) != 0) r = times(r, base);
+        if (k > 1) base = times(base, base);
+      }
+      check_size(detail::bits(r.c), start, "power", 1);
       return r;
     }
     return base;

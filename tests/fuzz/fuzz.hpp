@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <string_view>
 
 #include "cifs/errors.hpp"
@@ -36,6 +37,25 @@ inline void require(bool ok, const char* what) {
   if (ok) return;
   std::fprintf(stderr, "fuzz: property failed: %s\n", what);
   std::abort();
+}
+
+/// Runs `f`, which must not refuse: the second half of a round trip (what was read is written, what
+/// was written is read). A refusal there fails the property `what`, with the refusal's message.
+template <class F>
+auto no_refusal(F&& f, const char* what) {
+  const auto refused = [&](const std::exception& e) {
+    std::fprintf(stderr, "fuzz: refused: %s\n", e.what());
+    require(false, what);
+  };
+  try {
+    return f();
+  } catch (const InvalidInput& e) {
+    refused(e);
+    throw;
+  } catch (const IoError& e) {
+    refused(e);
+    throw;
+  }
 }
 
 }  // namespace cifs::fuzz

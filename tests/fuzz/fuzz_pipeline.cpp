@@ -16,6 +16,11 @@
 
 namespace {
 
+// The work per input (each seed within 1 s of CPU in Release, docs/reliability.md).
+constexpr int kSide = 32, kDepth = 5;
+constexpr double kTolerance = 2e-2;
+constexpr std::uint64_t kSamples = 1000;
+
 const std::filesystem::path& scratch() {
   static const std::filesystem::path folder = [] {
     auto path = std::filesystem::temp_directory_path() / ("cifs_fuzz_pipeline." + std::to_string(getpid()));
@@ -33,12 +38,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   fuzz::refusals_allowed([&] {
     io::Experiment e =
         io::parse_experiment(fuzz::text(data, size), "fuzz.json", CIFS_EXAMPLES_DIR "/experiments");
-    e.render.width = std::min(e.render.width, 48);
-    e.render.height = std::min(e.render.height, 48);
+    e.render.width = std::min(e.render.width, kSide);
+    e.render.height = std::min(e.render.height, kSide);
     e.render.threads = 1;
-    e.evaluation.depth = std::min(e.evaluation.depth, 6);
-    e.evaluation.tolerance = std::max(e.evaluation.tolerance, 1e-2);
-    e.evaluation.samples = std::min<std::uint64_t>(e.evaluation.samples, 2000);
+    e.evaluation.depth = std::min(e.evaluation.depth, kDepth);
+    e.evaluation.tolerance = std::max(e.evaluation.tolerance, kTolerance);
+    e.evaluation.samples = std::min<std::uint64_t>(e.evaluation.samples, kSamples);
     if (e.mesh) e.mesh->levels = std::min(e.mesh->levels, 2);
     experiment::RunOptions options;
     options.out_dir = scratch();

@@ -35,3 +35,14 @@ TEST_CASE("Automaton DOT", "[io][dot]") {
   CHECK(count_in_dot(dot, "\\n(") == num_vertices(a.graph));
   CHECK_THAT(dot, Catch::Contains("rankdir=LR;"));
 }
+
+TEST_CASE("Automaton DOT: labels escaped, non-finite windows refused", "[io][dot]") {
+  // Found by fuzz_writers: labels (any text in an automaton file) were written between quotes as
+  // they are, so a quote or a newline in one broke the DOT file.
+  nurbs::KnotAutomaton k;
+  add_vertex(k.automaton.graph);
+  add_edge(0, 0, {"a\"b\\c\nd", Eigen::MatrixXd()}, k.automaton.graph);
+  CHECK_THAT(to_dot(k), Catch::Contains("0->0 [label=\"a\\\"b\\\\c\\nd\"];\n"));
+  k.windows = {{1, INFINITY, 1}};
+  CHECK_THROWS_WITH(to_dot(k), Catch::Contains("state 0") && Catch::Contains("not a finite number"));
+}

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <set>
 #include <string>
 
@@ -90,4 +91,37 @@ TEST_CASE("Automaton SVG: one circle per state, one arrow per connected pair", "
   CHECK(count("<circle ") == num_vertices(a.graph));
   CHECK(count("marker-end=") == pairs.size());
   CHECK(count("stroke-width=\"2.5\"") == a.initial.size());  // initial states in bold
+}
+
+TEST_CASE("SVG of coordinates near the largest double: finite pixels, non-finite points refused",
+          "[io][svg]") {
+  // Found by fuzz_writers: the span hi − lo overflowed to inf, the scale became 0 and every pixel
+  // coordinate 0 · inf = nan, written without a word.
+  Points P(3, 2);
+  P << -1.7e308, 0, 1.7e308, 1, 0, 1.7e308;
+  for (const std::string& svg :
+       {polyline_svg(P, true),
+        strokes_svg(
+            {Stroke{.points = P, .closed = true, .colour = "#000", .width = 1, .dash = "", .label = "huge"}},
+            "huge")}) {
+    CHECK(svg.find("nan") == std::string::npos);
+    CHECK(svg.find("inf") == std::string::npos);
+  }
+  // The same picture as at a moderate scale: pixels depend on the shape, not on its size.
+  CHECK(polyline_svg(P, true) == polyline_svg(P * std::ldexp(1.0, -1000), true));
+  P(1, 0) = NAN;
+  CHECK_THROWS_AS(polyline_svg(P), InvalidInput);
+  CHECK_THROWS_WITH(
+      strokes_svg(
+          {Stroke{.points = P, .closed = true, .colour = "#000", .width = 1, .dash = "", .label = ""}},
+          "nan"),
+      Catch::Contains("not a finite number"));
+  // A figure without points, or narrower than its margins, had an infinite or negative height.
+  CHECK_THROWS_WITH(strokes_svg({Stroke{}}, "empty"), Catch::Contains("none is given"));
+  P(1, 0) = 0;
+  CHECK_THROWS_WITH(
+      strokes_svg(
+          {Stroke{.points = P, .closed = true, .colour = "#000", .width = 1, .dash = "", .label = ""}},
+          "narrow", 16),
+      Catch::Contains("outside [64, 100000]"));
 }

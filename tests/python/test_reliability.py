@@ -25,6 +25,15 @@ class ReliabilityTest(ScratchTestCase):
         self.assertLess(len(str(raised.exception)), 300)  # the input is not echoed whole
         return raised.exception
 
+    def test_constructor_given_a_list_of_lists(self):
+        # Found by test_hostile.py: a constructor refusing an element of a list argument looked for it in
+        # its first argument, the instance being made (not a Python object): a segmentation fault.
+        code = "import cifs\ncifs.ifs.Coefficient([[0, 1], [1, 2]], 1, 1)"
+        child = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=False)
+        self.assertIn("cifs.InvalidInput", child.stderr)
+        self.assertIn("Coefficient: transition[0]", child.stderr)
+        self.assertEqual(child.returncode, 1, child.stderr[-2000:])
+
     def test_deep_symbols_are_refused(self):
         # Before the fix the stack overflow killed the interpreter (the test process) itself.
         for text in ["(" * 5000 + "1+z" + ")" * 5000, "-" * 100000 + "1"]:

@@ -1,11 +1,16 @@
 // SPDX-License-Identifier: MIT
+#include <sys/resource.h>
+
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <csignal>
 #include <cstring>
 #include <fstream>
+#include <random>
 
 #include "cifs/errors.hpp"
 #include "cifs/render/image.hpp"
+#include "cifs/render/png.hpp"
 #include "support/scratch.hpp"
 
 using namespace cifs;
@@ -121,6 +126,42 @@ TEST_CASE("EXR: bad paths throw IoError naming the path and leave no file", "[re
   }
   CHECK_THROWS_AS(read_exr(not_exr), IoError);
   CHECK_THROWS_WITH(read_exr(not_exr), Catch::Contains("text.exr"));
+}
+
+TEST_CASE("EXR and PNG: a failed write names the target, never the temporary", "[render][reliability]") {
+  // Issue 33: OpenEXR's message named the file it wrote, the temporary (".out.exr.cifs-tmp.5232.0"),
+  // and libpng's said "Write Error" without the reason. A limit on the file size makes the write fail.
+  ScratchDir dir;
+  const Image image = full_image(64, 64);
+  std::vector<std::uint8_t> pixels(64 * 64 * 4);
+  std::mt19937 random(7);  // noise: the PNG cannot compress below the limit
+  for (std::uint8_t& p : pixels) p = static_cast<std::uint8_t>(random());
+  struct rlimit old {};
+  REQUIRE(::getrlimit(RLIMIT_FSIZE, &old) == 0);
+  const auto previous = std::signal(SIGXFSZ, SIG_IGN);  // the write fails with EFBIG instead
+  struct rlimit small = old;
+  small.rlim_cur = 2000;
+  REQUIRE(::setrlimit(RLIMIT_FSIZE, &small) == 0);
+  std::string exr_message, png_message;
+  try {
+    write_exr(dir.path() / "out.exr", image);
+  } catch (const IoError& e) {
+    exr_message = e.what();
+  }
+  try {
+    write_png(dir.path() / "out.png", pixels, 64, 64, PixelFormat::rgba8);
+  } catch (const IoError& e) {
+    png_message = e.what();
+  }
+  ::setrlimit(RLIMIT_FSIZE, &old);
+  std::signal(SIGXFSZ, previous);
+  CHECK_THAT(exr_message, Catch::StartsWith((dir.path() / "out.exr").string() + ": cannot write OpenEXR") &&
+                              Catch::Contains("File too large"));
+  CHECK_THAT(png_message, Catch::StartsWith((dir.path() / "out.png").string() + ": cannot write PNG") &&
+                              Catch::Contains("File too large"));
+  for (const std::string& message : {exr_message, png_message})
+    CHECK(message.find("cifs-tmp") == std::string::npos);
+  CHECK(dir.names().empty());
 }
 
 TEST_CASE("EXR: invalid images are refused before any file is made", "[render]") {

@@ -58,6 +58,22 @@ TEST_CASE("to_string prints finite decimals, otherwise fractions", "[subdivision
   CHECK(to_string(q(0)) == "0");
 }
 
+TEST_CASE("what to_string prints of a number read reads back to it", "[subdivision]") {
+  // Found by fuzz_rational: 400 digits and exponents of ±300 on both sides of a fraction make
+  // numbers of up to 1,401 digits, which to_string printed and parse_rational refused.
+  const std::string digits400(400, '9');
+  for (const std::string& text :
+       {std::string("1e300/1e-300"), digits400 + "e300/0." + std::string(399, '0') + "1e-300",
+        "0." + std::string(399, '0') + "1e-300/" + digits400 + "e300",
+        "-" + std::string(200, '9') + "." + std::string(200, '9') + "e300/7"}) {
+    const Rational x = parse_rational(text, "w");
+    CHECK(parse_rational(to_string(x), "w") == x);
+  }
+  CHECK_THROWS_WITH(parse_rational(std::string(1501, '1'), "w"), Catch::Contains("is not a number"));
+  CHECK_THROWS_WITH(parse_rational(std::string(1500, '1') + "e300/1e-300", "w"),
+                    Catch::Contains("beyond the exact numbers read"));
+}
+
 TEST_CASE("named masks are the published rules", "[subdivision]") {
   // Seed 001: Chaikin x_{2i} = ¾x_i + ¼x_{i+1}, x_{2i+1} = ¼x_i + ¾x_{i+1}.
   CHECK(chaikin().mask == over({1, 3, 3, 1}, 4));
@@ -196,6 +212,18 @@ TEST_CASE("symbols beyond the largest mask are refused before they are expanded"
                     Catch::Contains("the power has degree 1024, above the largest mask"));
   CHECK_THROWS_WITH(from_symbol("(1+z)^300*(1+z)^300"), Catch::Contains("the product has 601 coefficients"));
   CHECK(from_symbol("(1+z)^511/2^510").mask.size() == 512);  // the largest mask is still accepted
+}
+
+TEST_CASE("symbols whose numbers grow beyond the exact numbers read are refused before they are computed",
+          "[subdivision][reliability]") {
+  // Found by fuzz_symbol: powers of constants had no bound, "((1e300)^1024)^3" ran for hours (its
+  // coefficient has 921,600 digits); products and quotients of such numbers likewise.
+  for (const char* text : {"((1e300)^1024)^3", "(1e300+z)^100", "(1e300)^5*(1e300)^5", "z/(1e-300)^16"})
+    CHECK_THROWS_WITH(parse_symbol(text), Catch::Contains("would exceed the exact numbers read"));
+  CHECK(parse_symbol("(1e300)^4/1e300^4") == Polynomial{1});
+  // Powers of z: their exponents overflowed a long after six nested powers of 1024 (undefined behaviour).
+  CHECK_THROWS_WITH(parse_symbol("(((z^1024)^1024)^1024)^1024"), Catch::Contains("the power of z is beyond"));
+  CHECK(parse_symbol("z^-3(1+z)^2+z^-1") == Polynomial{1, 2, 2});
 }
 
 TEST_CASE("parse_symbol bounds the nesting of brackets and signs", "[subdivision][reliability]") {

@@ -130,6 +130,9 @@ class AtomicFile final : public ByteSink {
   /// The file that is replaced: the target, or the final target of the symbolic link it is.
   const std::filesystem::path& destination() const noexcept { return destination_; }
   const std::filesystem::path& temporary() const noexcept { return temporary_; }
+  /// A message of a library that wrote the temporary itself (OpenEXR, libpng), with the temporary's
+  /// name replaced by the target's: no error names a temporary file.
+  std::string about_target(std::string message) const;
 
   /// Appends `bytes` to the temporary. IoError naming the target (a full disk, a quota).
   void write(std::string_view bytes) override;

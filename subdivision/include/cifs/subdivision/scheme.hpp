@@ -23,8 +23,9 @@ using Rational = boost::multiprecision::cpp_rational;
 using Polynomial = std::vector<Rational>;
 
 /// Exact value of an integer ("3"), a decimal ("-0.0625", "1e-3") or a fraction ("1/16",
-/// "0.5/3"). Throws InvalidInput naming `what` for anything else (empty, "nan", "1/0", an exponent
-/// beyond ±300, …).
+/// "0.5/3"). Throws InvalidInput naming `what` for anything else (empty, "nan", "1/0", more than 1,500
+/// digits, an exponent beyond ±300, a value whose numerator or denominator exceeds 1,414 digits, …).
+/// to_string prints every number read as text that reads back to it.
 Rational parse_rational(std::string_view text, std::string_view what);
 
 /// Shortest exact text: a decimal when the value has a finite decimal expansion ("0.0625",
