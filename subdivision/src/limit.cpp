@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "cifs/errors.hpp"
+#include "cifs/format.hpp"
 #include "cifs/memory.hpp"
 #include "cifs/subdivision/mesh_analysis.hpp"
 #include "local_mesh.hpp"
@@ -449,12 +450,14 @@ LimitStencils limit_stencils(const MeshRefinement& r) {
 namespace {
 
 /// One pass, each neighbourhood gathered once for the three weighted sums; D = 3 lets the compiler
-/// keep the sums in registers.
+/// keep the sums in registers. False when a result is not finite (0 · each result, summed, stays 0
+/// only when every one is finite: no second pass over the outputs).
 template <int D>
-void limit_rows(const LimitStencils& s, const Points& x, LimitFrame& out, bool tangents) {
+bool limit_rows(const LimitStencils& s, const Points& x, LimitFrame& out, bool tangents) {
   using Row = Eigen::Matrix<double, 1, D>;
   const Eigen::Index d = x.cols();
   const auto V = static_cast<Eigen::Index>(s.mask_of.size());
+  Row zero_if_finite = Row::Zero(d);
   for (Eigen::Index v = 0; v < V; ++v) {
     const LimitMask& m = s.masks[static_cast<std::size_t>(s.mask_of[static_cast<std::size_t>(v)])];
     const int* column = s.columns.data() + s.offsets[static_cast<std::size_t>(v)];
@@ -467,11 +470,13 @@ void limit_rows(const LimitStencils& s, const Points& x, LimitFrame& out, bool t
       u += m.tangent_u[i] * row;
       w += m.tangent_v[i] * row;
     }
+    zero_if_finite += 0.0 * p + 0.0 * u + 0.0 * w;  // each term 0, or NaN from an infinite or NaN sum
     Eigen::Map<Row>(out.positions.data() + v * d, d) = p;
     if (!tangents) continue;
     Eigen::Map<Row>(out.tangent_u.data() + v * d, d) = u;
     Eigen::Map<Row>(out.tangent_v.data() + v * d, d) = w;
   }
+  return (zero_if_finite.array() == 0.0).all();
 }
 
 }  // namespace
@@ -489,10 +494,16 @@ void evaluate_limit(const LimitStencils& s, const Points& x, LimitFrame& out, bo
     resize(out.tangent_u);
     resize(out.tangent_v);
   }
-  if (d == 3)
-    limit_rows<3>(s, x, out, tangents);
-  else
-    limit_rows<Eigen::Dynamic>(s, x, out, tangents);
+  const bool finite =
+      d == 3 ? limit_rows<3>(s, x, out, tangents) : limit_rows<Eigen::Dynamic>(s, x, out, tangents);
+  // Positions are affine combinations of the vertices; tangents are differences, up to the valence
+  // times the coordinates: near ±1.8e308 they leave the range of doubles, which is no answer to return.
+  if (!finite)
+    throw InvalidInput(
+        "limit: " + std::string(out.positions.allFinite() ? "a tangent" : "a limit position") +
+        " exceeds the range of doubles (the vertices reach " +
+        (x.allFinite() ? number_text(x.cwiseAbs().maxCoeff(), 3) : std::string("a non-finite value")) +
+        "): scale the mesh down");
 }
 
 LimitFrame evaluate_limit(const LimitStencils& stencils, const Points& vertices, bool tangents) {
@@ -541,9 +552,17 @@ Mesh limit_mesh(const Mesh& mesh, MeshScheme scheme, int levels, const LimitOpti
                             "edge_and_corner)"
                           : ")")));
     }
-  const LimitFrame frame = evaluate_limit(stencils, apply(r, mesh.vertices), options.normals);
+  // Normals do not depend on the scale: the frame is computed on the vertices scaled by a power of two
+  // (exact) to magnitudes below 1, so tangents near ±1.8e308 stay finite; the positions scale back exactly.
+  const double largest = mesh.vertices.size() > 0 ? mesh.vertices.cwiseAbs().maxCoeff() : 0.0;
+  int exponent = 0;
+  if (std::isfinite(largest) && largest > 0) std::frexp(largest, &exponent);
+  // std::ldexp, not a product: the factor can be 2^1024, which is no double.
+  const auto times_two_to = [](int e) { return [e](double x) { return std::ldexp(x, e); }; };
+  const Points scaled = mesh.vertices.unaryExpr(times_two_to(-exponent));
+  const LimitFrame frame = evaluate_limit(stencils, apply(r, scaled), options.normals);
   Mesh out;
-  out.vertices = frame.positions;
+  out.vertices = frame.positions.unaryExpr(times_two_to(exponent));
   out.face_offsets = last.face_offsets;
   out.face_vertices = last.face_vertices;
   out.tags = r.tags.back();  // holes stay holes; creases and corners as the last level holds them

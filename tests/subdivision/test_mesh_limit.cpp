@@ -158,6 +158,38 @@ TEST_CASE("limit normals point out of convex closed shapes", "[subdivision][limi
   }
 }
 
+TEST_CASE("limits near the largest doubles: normals from the scaled mesh, tangents refused, never inf",
+          "[subdivision][limit]") {
+  // Tangents are differences of up to the valence times the coordinates: at 2^1023 they overflow.
+  // limit_mesh's normals do not depend on the scale (computed at a power of two below 1, exactly);
+  // evaluate_limit's tangents cannot be returned and are refused, where they came back inf (issue 33).
+  int refused = 0;
+  for (const Case& c : cases()) {
+    INFO(c.name);
+    Mesh big = c.mesh;
+    big.vertices *= std::ldexp(1.0, 1023);
+    const Mesh unit = limit_mesh(c.mesh, c.scheme, c.first_level + 1, {.normals = true});
+    const Mesh huge = limit_mesh(big, c.scheme, c.first_level + 1, {.normals = true});
+    REQUIRE(huge.vertices.allFinite());
+    REQUIRE(huge.normals.allFinite());
+    CHECK(huge.normals == unit.normals);
+    CHECK(huge.vertices == unit.vertices * std::ldexp(1.0, 1023));
+    // Where a tangent leaves the range (Catmull–Clark's masks weigh more than Loop's and √3's), a refusal
+    // naming it; elsewhere finite tangents.
+    const MeshRefinement r = refine_topology(big, c.scheme, c.first_level + 1);
+    try {
+      const LimitFrame f = evaluate_limit(limit_stencils(r), apply(r, big.vertices));
+      CHECK((f.positions.allFinite() && f.tangent_u.allFinite() && f.tangent_v.allFinite()));
+    } catch (const InvalidInput& e) {
+      CHECK_THAT(e.what(), Contains("limit: a tangent exceeds the range of doubles") &&
+                               Contains("scale the mesh down"));
+      ++refused;
+    }
+    CHECK(evaluate_limit(limit_stencils(r), apply(r, big.vertices), false).positions.allFinite());
+  }
+  CHECK(refused >= 2);  // the Catmull–Clark cases
+}
+
 TEST_CASE("regular Catmull–Clark limit points and normals are the bicubic surface's",
           "[subdivision][limit]") {
   // The open grid is a uniform bicubic B-spline (`bicubic_grid`); level-2 vertices away from the
