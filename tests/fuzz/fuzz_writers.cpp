@@ -149,7 +149,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::size_t count = std::min((size - kHeader) / sizeof(double), kMaxNumbers);
   const Eigen::Index rows = static_cast<Eigen::Index>(count) / dim;
   Points P(rows, dim);
-  std::memcpy(P.data(), data + kHeader, static_cast<std::size_t>(P.size()) * sizeof(double));
+  if (P.size() > 0)  // memcpy from or to null is undefined even for 0 bytes (UBSan)
+    std::memcpy(P.data(), data + kHeader, static_cast<std::size_t>(P.size()) * sizeof(double));
   fuzz::refusals_allowed([&] {
     if (writer < 4) return points(P, writer, flags);
     if (writer == 7) return dot(P, 1 + flags % 4, labels);
