@@ -5,16 +5,32 @@
 // tests/fuzz/regressions/ through it.
 #pragma once
 
+#include <unistd.h>
+
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <filesystem>
+#include <string>
 #include <string_view>
 
 #include "cifs/errors.hpp"
 
 namespace cifs::fuzz {
+
+/// This process's folder for a harness that writes files (`cifs_fuzz_HARNESS.PID`, made on the first
+/// call; libFuzzer leaves by exit, so it stays: inputs that crashed can be replayed against it).
+inline const std::filesystem::path& scratch(const char* harness) {
+  static const std::filesystem::path folder = [harness] {
+    auto path = std::filesystem::temp_directory_path() /
+                ("cifs_fuzz_" + std::string(harness) + "." + std::to_string(::getpid()));
+    std::filesystem::create_directories(path);
+    return path;
+  }();
+  return folder;
+}
 
 inline std::string_view text(const std::uint8_t* data, std::size_t size) {
   return {reinterpret_cast<const char*>(data), size};  // NOLINT(cppcoreguidelines-pro-type-reinterpret-cast)

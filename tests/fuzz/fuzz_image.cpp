@@ -19,12 +19,7 @@ namespace {
 using namespace cifs;
 
 const std::filesystem::path& scratch() {
-  static const std::filesystem::path folder = [] {
-    auto path = std::filesystem::temp_directory_path() / ("cifs_fuzz_image." + std::to_string(getpid()));
-    std::filesystem::create_directories(path);
-    return path;
-  }();
-  return folder;
+  return fuzz::scratch("image");
 }
 
 bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {

@@ -22,12 +22,7 @@ constexpr double kTolerance = 2e-2;
 constexpr std::uint64_t kSamples = 1000;
 
 const std::filesystem::path& scratch() {
-  static const std::filesystem::path folder = [] {
-    auto path = std::filesystem::temp_directory_path() / ("cifs_fuzz_pipeline." + std::to_string(getpid()));
-    std::filesystem::create_directories(path);
-    return path;
-  }();
-  return folder;
+  return cifs::fuzz::scratch("pipeline");
 }
 
 }  // namespace

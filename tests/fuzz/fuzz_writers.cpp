@@ -35,12 +35,7 @@ constexpr std::size_t kMaxNumbers = 256;
 const char* const kPointFormats[] = {"json", "obj", "npy", "ply"};
 
 const std::filesystem::path& scratch() {
-  static const std::filesystem::path folder = [] {
-    auto path = std::filesystem::temp_directory_path() / ("cifs_fuzz_writers." + std::to_string(getpid()));
-    std::filesystem::create_directories(path);
-    return path;
-  }();
-  return folder;
+  return fuzz::scratch("writers");
 }
 
 /// Whether the text holds a non-number as the writers would print it.
