@@ -205,20 +205,36 @@ std::string eval_surface(const nurbs::Surface& s, const EvalOptions& o) {
     first.row(static_cast<Eigen::Index>(i)) = naming_shape(o.shape, [&] { return nurbs::evaluate(s, u, v); });
   }
   const auto n = static_cast<std::int64_t>(o.samples);
-  const auto u_domain = nurbs::domain(s, nurbs::Direction::u);
-  const auto vs = nurbs::uniform_parameters(nurbs::domain(s, nurbs::Direction::v), o.samples);
+  // The output is checked (free space, formats) before any parameter is made.
   PointsOutput out(o.output, "json", static_cast<std::uint64_t>(first.rows() + n * n), first.cols(), {},
                    "eval", o.quiet);
   out.write(first);
-  // Grid rows a chunk at a time: row a·N + b at (u_a, v_b).
-  const std::int64_t rows = std::max<std::int64_t>(kChunkPoints / std::max<std::int64_t>(n, 1), 1);
-  Points grid;  // one chunk of rows, its storage reused from chunk to chunk
-  write_in_chunks(out, n, rows, [&](std::int64_t a, std::int64_t k) -> const Points& {
-    nurbs::evaluate_grid(
-        s, nurbs::uniform_parameters(u_domain, o.samples, static_cast<int>(a), static_cast<int>(k)), vs,
-        grid);
-    return grid;
-  });
+  const auto u_domain = nurbs::domain(s, nurbs::Direction::u);
+  const auto v_domain = nurbs::domain(s, nurbs::Direction::v);
+  // Row a·N + b at (u_a, v_b), a chunk of at most kChunkPoints points at a time: whole grid rows while
+  // a row fits a chunk, else pieces of one row, so that memory stays bounded whatever N.
+  Points grid;  // one chunk, its storage reused from chunk to chunk
+  if (n <= kChunkPoints) {
+    const auto vs = nurbs::uniform_parameters(v_domain, o.samples);
+    write_in_chunks(
+        out, n, std::max<std::int64_t>(kChunkPoints / std::max<std::int64_t>(n, 1), 1),
+        [&](std::int64_t a, std::int64_t k) -> const Points& {
+          nurbs::evaluate_grid(
+              s, nurbs::uniform_parameters(u_domain, o.samples, static_cast<int>(a), static_cast<int>(k)), vs,
+              grid);
+          return grid;
+        });
+  } else {
+    for (std::int64_t a = 0; a < n; ++a) {
+      const auto u = nurbs::uniform_parameters(u_domain, o.samples, static_cast<int>(a), 1);
+      write_in_chunks(out, n, kChunkPoints, [&](std::int64_t b, std::int64_t k) -> const Points& {
+        nurbs::evaluate_grid(
+            s, u, nurbs::uniform_parameters(v_domain, o.samples, static_cast<int>(b), static_cast<int>(k)),
+            grid);
+        return grid;
+      });
+    }
+  }
   return out.finish(o.output);
 }
 

@@ -37,12 +37,27 @@ inline std::string slurp(const std::filesystem::path& p) {
 }
 
 /// `stdout_to`: where standard output goes instead of being captured (e.g. /dev/full; `out` is then empty).
-inline Run cifs_cli(const std::string& args, const std::string& stdout_to = "") {
+/// `shell_before`: shell commands run first in the same shell (e.g. a `ulimit`).
+inline Run cifs_cli(const std::string& args, const std::string& stdout_to = "",
+                    const std::string& shell_before = "") {
   const auto out = scratch() / "stdout", err = scratch() / "stderr";
   const std::string target = stdout_to.empty() ? out.string() : stdout_to;
-  const std::string cmd = std::string(CIFS_CLI_PATH) + " " + args + " >" + target + " 2>" + err.string();
+  const std::string cmd =
+      shell_before + std::string(CIFS_CLI_PATH) + " " + args + " >" + target + " 2>" + err.string();
   const int raw = std::system(cmd.c_str());
   return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, stdout_to.empty() ? slurp(out) : "", slurp(err)};
+}
+
+/// A shell prefix that caps the CLI's address space at `gib` GiB, to prove that work is refused or
+/// streamed before memory is exhausted; empty under AddressSanitizer, which reserves terabytes of
+/// address space for its shadow memory.
+inline std::string address_space_cap(int gib) {
+#if defined(__SANITIZE_ADDRESS__)
+  (void)gib;
+  return "";
+#else
+  return "ulimit -v " + std::to_string(gib * 1024 * 1024) + "; ";
+#endif
 }
 
 /// Writes `content` to a scratch file and returns its path.
