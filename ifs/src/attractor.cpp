@@ -12,6 +12,7 @@
 #include "cifs/errors.hpp"
 #include "cifs/format.hpp"
 #include "cifs/memory.hpp"
+#include "saturating.hpp"
 #include "walk.hpp"
 
 namespace cifs::ifs {
@@ -229,15 +230,6 @@ ToleranceEstimate estimate_tolerance_leaves(const Automaton& automaton, std::spa
 }
 
 namespace {
-
-constexpr std::size_t kSaturated = std::numeric_limits<std::size_t>::max();
-
-std::size_t add_sat(std::size_t a, std::size_t b) noexcept {
-  return a > kSaturated - b ? kSaturated : a + b;
-}
-std::size_t mul_sat(std::size_t a, std::size_t b) noexcept {
-  return (a != 0 && b > kSaturated / a) ? kSaturated : a * b;
-}
 
 /// Node counts c_k(s) (paths of k transitions from s) for k = 0 … depth, by state; only the
 /// levels k ≤ keep are returned (index k), the last one computed is `depth` and returned apart.

@@ -219,6 +219,12 @@ std::vector<std::pair<std::string, double>> constraint_residuals(const Bcifs& sy
   return out;
 }
 
+automata::StateId source_cell(const Bcifs& sys, const Constraint& c) {
+  const Factor& f = c.left.back();
+  return f.kind == Factor::Kind::transition ? f.transition.from
+                                            : sys.boundaries[static_cast<std::size_t>(f.boundary)].cell;
+}
+
 void check_admissible(const Bcifs& sys, double tolerance) {
   const auto residuals = constraint_residuals(sys);
   const auto worst = std::max_element(residuals.begin(), residuals.end(),

@@ -20,12 +20,6 @@ namespace {
 using automata::kron;
 using automata::v_label;
 
-StateId source_cell(const Bcifs& sys, const Constraint& c) {
-  const Factor& f = c.left.back();
-  return f.kind == Factor::Kind::transition ? f.transition.from
-                                            : sys.boundaries[static_cast<std::size_t>(f.boundary)].cell;
-}
-
 std::vector<std::pair<StateId, automata::TransitionId>> children(const automata::Graph& graph, StateId s) {
   std::vector<std::pair<StateId, automata::TransitionId>> out;
   for (auto [e, end] = out_edges(s, graph); e != end; ++e) out.emplace_back(target(*e, graph), *e);

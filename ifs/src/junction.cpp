@@ -30,13 +30,6 @@ std::string cell_text(const Bcifs& sys, StateId s) {
   return name.empty() ? "s" + std::to_string(s) : name;
 }
 
-/// The cell read by a constraint (the source of its last factor on the left).
-StateId source_cell(const Bcifs& sys, const Constraint& c) {
-  const Factor& f = c.left.back();
-  return f.kind == Factor::Kind::transition ? f.transition.from
-                                            : sys.boundaries[static_cast<std::size_t>(f.boundary)].cell;
-}
-
 }  // namespace
 
 Bcifs uniform_curve_bcifs(const Eigen::MatrixXd& S0, const Eigen::MatrixXd& S1,

@@ -13,6 +13,7 @@
 #include "cifs/ifs/attractor.hpp"
 #include "cifs/memory.hpp"
 #include "cifs/row_combination.hpp"
+#include "saturating.hpp"
 #include "walk.hpp"
 
 #if defined(__SSE2__)
@@ -26,12 +27,6 @@ using automata::Graph;
 using automata::StateId;
 
 namespace {
-
-constexpr std::size_t kSaturated = std::numeric_limits<std::size_t>::max();
-
-std::size_t mul_sat(std::size_t a, std::size_t b) noexcept {
-  return (a != 0 && b > kSaturated / a) ? kSaturated : a * b;
-}
 
 /// The global node grid of A × B patches at depth K: cells (A·2^K) × (B·2^K), nodes one more each way.
 struct Grid {
@@ -487,7 +482,7 @@ std::vector<StateId> surface_states(const Automaton& automaton,
 /// level) hold at most `max_entries` doubles.
 void build_tables(const Automaton& automaton, std::span<const StateId> states, int max_depth,
                   std::size_t max_entries, MeshStencilTable& out) {
-  using RowMatrix = MeshStencilTable::RowMatrix;
+  using Table = MeshStencilTable::RowMatrix;
   const Graph& g = automaton.graph;
   const auto table_size = [&](int L) {
     const std::size_t m = (std::size_t{1} << L) + 1;
@@ -501,9 +496,9 @@ void build_tables(const Automaton& automaton, std::span<const StateId> states, i
   out.table_depth = L;
   auto& table = out.tables;
   auto& leaf = out.leaf_states;
-  table.assign(n, RowMatrix());
+  table.assign(n, Table());
   leaf.assign(n, {});
-  std::vector<RowMatrix> next(n);
+  std::vector<Table> next(n);
   std::vector<std::vector<std::uint32_t>> next_leaf(n);
   {
     std::array<std::vector<Eigen::RowVectorXd>, 4> corner;
@@ -518,14 +513,14 @@ void build_tables(const Automaton& automaton, std::span<const StateId> states, i
   for (int l = 1; l <= L; ++l) {
     const int h = 1 << (l - 1), m = 2 * h + 1;
     for (const StateId s : states) {
-      RowMatrix& T = next[s];
+      Table& T = next[s];
       T.resize(Eigen::Index{m} * m, g[s].size);
       std::vector<std::uint32_t>& S = next_leaf[s];
       S.assign(4 * static_cast<std::size_t>(h) * static_cast<std::size_t>(h), 0);
       int c = 0;
       for (auto [e, end] = out_edges(s, g); e != end; ++e, ++c) {
         const StateId child = target(*e, g);
-        const RowMatrix P = table[child] * g[*e].matrix;  // (h+1)² functionals on the parent's net
+        const Table P = table[child] * g[*e].matrix;  // (h+1)² functionals on the parent's net
         const int iu = c / 2, iv = c % 2;
         for (int i = 0; i <= h; ++i)
           for (int j = 0; j <= h; ++j) {

@@ -6,7 +6,7 @@
 #include "points_format.hpp"
 
 namespace cifs::io::detail {
-namespace {
+namespace json_text {
 
 void header(std::string& out, std::uint64_t, Eigen::Index, const PointsStyle&) {
   out += "{\"points\":[";
@@ -29,8 +29,8 @@ void footer(ChunkBuffer& out, std::uint64_t, const PointsStyle& style) {
   out.text += "}\n";
 }
 
-}  // namespace
+}  // namespace json_text
 
-const PointsFormat kJsonPoints{"json", 0, header, rows, footer};
+const PointsFormat kJsonPoints{"json", 0, json_text::header, json_text::rows, json_text::footer};
 
 }  // namespace cifs::io::detail

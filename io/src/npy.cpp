@@ -11,7 +11,7 @@
 #include "points_format.hpp"
 
 namespace cifs::io::detail {
-namespace {
+namespace npy {
 
 constexpr std::size_t kAlign = 64;
 constexpr std::size_t kCountDigits = 21;  // numpy's GROWTH_AXIS_MAX_DIGITS
@@ -58,8 +58,8 @@ std::uint64_t size(std::uint64_t count, Eigen::Index dim) {
   return kMagic.size() + 2 + dictionary(count, dim).size() + count * static_cast<std::uint64_t>(dim) * 8;
 }
 
-}  // namespace
+}  // namespace npy
 
-const PointsFormat kNpyPoints{"npy", 0, header, rows, footer, size};
+const PointsFormat kNpyPoints{"npy", 0, npy::header, npy::rows, npy::footer, npy::size};
 
 }  // namespace cifs::io::detail

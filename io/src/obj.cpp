@@ -40,16 +40,16 @@ void obj_vertices(ChunkBuffer& out, const Points& P, const char* tag = "v") {
 }
 
 // The point-set format: `v` lines, and one `l` line through them when they are a polyline.
-void points_header(std::string& out, std::uint64_t count, Eigen::Index, const PointsStyle& style) {
+void obj_header(std::string& out, std::uint64_t count, Eigen::Index, const PointsStyle& style) {
   out += std::string("# cifs ") + (style.polyline ? "polyline, " : "points, ") + std::to_string(count) +
          " points\n";
 }
 
-void points_rows(std::string& out, const Eigen::Ref<const Points>& rows, std::uint64_t) {
+void obj_rows(std::string& out, const Eigen::Ref<const Points>& rows, std::uint64_t) {
   obj_vertices(out, rows);
 }
 
-void points_footer(ChunkBuffer& out, std::uint64_t count, const PointsStyle& style) {
+void obj_footer(ChunkBuffer& out, std::uint64_t count, const PointsStyle& style) {
   if (!style.polyline || count < 2) return;
   out.text += "l";
   for (std::uint64_t i = 1; i <= count; ++i) {
@@ -427,7 +427,7 @@ class MeshReader {
 
 }  // namespace
 
-const detail::PointsFormat detail::kObjPoints{"obj", 3, points_header, points_rows, points_footer};
+const detail::PointsFormat detail::kObjPoints{"obj", 3, obj_header, obj_rows, obj_footer};
 
 void warn(const MeshReadOptions& options, const std::string& message) {
   if (options.warn) {

@@ -33,7 +33,7 @@ struct Vertex {
 enum class Kind { curve, surface, parameter_curve };
 
 /// The `cstype` in effect: the ones read, and the others, refused by the curv or surf that uses them.
-enum class Type { none, bspline, bezier, other };
+enum class CurveType { none, bspline, bezier, other };
 
 const char* keyword(Kind k) noexcept {
   return k == Kind::curve ? "curv" : k == Kind::surface ? "surf" : "curv2";
@@ -170,7 +170,7 @@ class ObjReader {
   detail::ObjPlace place_;
   const ShapeReadOptions& options_;
   std::vector<Vertex> vertices_;
-  Type type_ = Type::none;
+  CurveType type_ = CurveType::none;
   std::string type_name_;  // as written after cstype, for messages
   std::size_t cstype_line_ = 0;
   bool rational_ = false;
@@ -219,11 +219,11 @@ class ObjReader {
     if (t.size() != k + 1) syntax(place_.line, "cstype: expected cstype [rat] type");
     const std::string_view type = t[k];
     if (type == "bspline") {
-      type_ = Type::bspline;
+      type_ = CurveType::bspline;
     } else if (type == "bezier") {
-      type_ = Type::bezier;
+      type_ = CurveType::bezier;
     } else if (type == "cardinal" || type == "taylor" || type == "bmatrix") {
-      type_ = Type::other;  // refused by the curv or surf that uses it: curv2 trimming curves may
+      type_ = CurveType::other;  // refused by the curv or surf that uses it: curv2 trimming curves may
     } else {
       invalid(place_.line, "cstype: unknown curve and surface type " + quote(type));
     }
@@ -259,8 +259,8 @@ class ObjReader {
       open_ = std::move(e);
       return;
     }
-    if (type_ == Type::none) syntax(place_.line, std::string(kw) + " without a preceding cstype");
-    if (type_ == Type::other)
+    if (type_ == CurveType::none) syntax(place_.line, std::string(kw) + " without a preceding cstype");
+    if (type_ == CurveType::other)
       invalid(place_.line, std::string(kw) + ": cstype " + type_name_ + " (line " +
                                std::to_string(cstype_line_) +
                                ") is not supported: only bspline and bezier, rational or not, are read");
@@ -269,7 +269,7 @@ class ObjReader {
       syntax(place_.line,
              "surf needs deg du dv; the deg at line " + std::to_string(deg_line_) + " gives one degree");
     e.rational = rational_;
-    e.bezier = type_ == Type::bezier;
+    e.bezier = type_ == CurveType::bezier;
     e.degree = degree_;
     const std::size_t nrange = kind == Kind::curve ? 2 : 4;
     if (t.size() < 2 + nrange)

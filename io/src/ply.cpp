@@ -104,48 +104,48 @@ void ply_vertex_rows(PlyWriter& w, const Points& P, const Points* normals) {
 // ------------------------------------------------------------------------------------------------
 // Reading
 
-enum class Type { i8, u8, i16, u16, i32, u32, f32, f64 };
+enum class Scalar { i8, u8, i16, u16, i32, u32, f32, f64 };
 
-std::optional<Type> type_named(std::string_view name) {
-  static constexpr std::pair<std::string_view, Type> kTypes[] = {
-      {"char", Type::i8},   {"int8", Type::i8},     {"uchar", Type::u8},   {"uint8", Type::u8},
-      {"short", Type::i16}, {"int16", Type::i16},   {"ushort", Type::u16}, {"uint16", Type::u16},
-      {"int", Type::i32},   {"int32", Type::i32},   {"uint", Type::u32},   {"uint32", Type::u32},
-      {"float", Type::f32}, {"float32", Type::f32}, {"double", Type::f64}, {"float64", Type::f64}};
+std::optional<Scalar> type_named(std::string_view name) {
+  static constexpr std::pair<std::string_view, Scalar> kTypes[] = {
+      {"char", Scalar::i8},   {"int8", Scalar::i8},     {"uchar", Scalar::u8},   {"uint8", Scalar::u8},
+      {"short", Scalar::i16}, {"int16", Scalar::i16},   {"ushort", Scalar::u16}, {"uint16", Scalar::u16},
+      {"int", Scalar::i32},   {"int32", Scalar::i32},   {"uint", Scalar::u32},   {"uint32", Scalar::u32},
+      {"float", Scalar::f32}, {"float32", Scalar::f32}, {"double", Scalar::f64}, {"float64", Scalar::f64}};
   for (const auto& [n, t] : kTypes)
     if (n == name) return t;
   return std::nullopt;
 }
 
-std::size_t type_size(Type t) noexcept {
+std::size_t type_size(Scalar t) noexcept {
   switch (t) {
-    case Type::i8:
-    case Type::u8:
+    case Scalar::i8:
+    case Scalar::u8:
       return 1;
-    case Type::i16:
-    case Type::u16:
+    case Scalar::i16:
+    case Scalar::u16:
       return 2;
-    case Type::i32:
-    case Type::u32:
-    case Type::f32:
+    case Scalar::i32:
+    case Scalar::u32:
+    case Scalar::f32:
       return 4;
-    case Type::f64:
+    case Scalar::f64:
       return 8;
   }
   return 0;
 }
 
-bool is_integer(Type t) noexcept {
-  return t != Type::f32 && t != Type::f64;
+bool is_integer(Scalar t) noexcept {
+  return t != Scalar::f32 && t != Scalar::f64;
 }
 
 struct Property {
   std::string name;
-  Type type = Type::f64;
-  std::optional<Type> count;  // lists: the type of their length
+  Scalar type = Scalar::f64;
+  std::optional<Scalar> count;  // lists: the type of their length
 };
 
-struct Element {
+struct PlyElement {
   std::string name;
   std::size_t count = 0;
   std::vector<Property> properties;
@@ -155,7 +155,7 @@ enum class Encoding { ascii, little, big };
 
 struct Header {
   Encoding encoding = Encoding::ascii;
-  std::vector<Element> elements;
+  std::vector<PlyElement> elements;
   std::size_t body = 0;  // offset of the first data byte
 };
 
@@ -244,7 +244,7 @@ class BodyReader {
   BodyReader(std::string_view bytes, const Header& h, std::string where)
       : data_(bytes.substr(h.body)), encoding_(h.encoding), where_(std::move(where)) {}
 
-  void enter(const Element& e, std::size_t index) {
+  void enter(const PlyElement& e, std::size_t index) {
     element_ = &e;
     index_ = index;
   }
@@ -252,7 +252,7 @@ class BodyReader {
 
   /// Refuses a count that the rest of the data cannot hold (before anything is allocated for it):
   /// every value takes at least one byte in binary, and two (a digit and a separator) in ASCII.
-  void check_room(const Element& e) const {
+  void check_room(const PlyElement& e) const {
     std::size_t least = 0;
     for (const Property& p : e.properties)
       least += encoding_ == Encoding::ascii ? 1 : p.count ? type_size(*p.count) : type_size(p.type);
@@ -263,8 +263,8 @@ class BodyReader {
   }
 
   /// The next value as an integer (integer types) or as a double (float types).
-  double real(Type t) { return encoding_ == Encoding::ascii ? ascii_real(t) : binary(t); }
-  long long integer(Type t) {
+  double real(Scalar t) { return encoding_ == Encoding::ascii ? ascii_real(t) : binary(t); }
+  long long integer(Scalar t) {
     if (encoding_ == Encoding::ascii) return ascii_integer(t);
     return static_cast<long long>(binary(t));
   }
@@ -287,7 +287,7 @@ class BodyReader {
                   std::to_string(element_->count) + " (truncated file)");
   }
 
-  double binary(Type t) {
+  double binary(Scalar t) {
     const std::size_t n = type_size(t);
     if (data_.size() - pos_ < n) truncated();
     std::uint64_t v = 0;
@@ -297,21 +297,21 @@ class BodyReader {
     }
     pos_ += n;
     switch (t) {
-      case Type::i8:
+      case Scalar::i8:
         return static_cast<std::int8_t>(v);
-      case Type::u8:
+      case Scalar::u8:
         return static_cast<std::uint8_t>(v);
-      case Type::i16:
+      case Scalar::i16:
         return static_cast<std::int16_t>(v);
-      case Type::u16:
+      case Scalar::u16:
         return static_cast<std::uint16_t>(v);
-      case Type::i32:
+      case Scalar::i32:
         return static_cast<std::int32_t>(v);
-      case Type::u32:
+      case Scalar::u32:
         return static_cast<std::uint32_t>(v);
-      case Type::f32:
+      case Scalar::f32:
         return std::bit_cast<float>(static_cast<std::uint32_t>(v));
-      case Type::f64:
+      case Scalar::f64:
         return std::bit_cast<double>(v);
     }
     return 0;
@@ -333,7 +333,7 @@ class BodyReader {
     return data_.substr(start, pos_ - start);
   }
 
-  double ascii_real(Type t) {
+  double ascii_real(Scalar t) {
     if (is_integer(t)) return static_cast<double>(ascii_integer(t));
     const std::string_view s = token();
     double x = 0;
@@ -345,14 +345,14 @@ class BodyReader {
     return x;
   }
 
-  long long ascii_integer(Type t) {
+  long long ascii_integer(Scalar t) {
     const std::string_view s = token();
     long long x = 0;
     const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), x);
     if (ptr != s.data() + s.size() || ec != std::errc())
       throw IoError(place() + ": expected an integer, got '" + std::string(s.substr(0, 40)) + "'");
     const std::size_t bits = 8 * type_size(t);
-    const bool is_signed = t == Type::i8 || t == Type::i16 || t == Type::i32;
+    const bool is_signed = t == Scalar::i8 || t == Scalar::i16 || t == Scalar::i32;
     const long long lo = is_signed ? -(1LL << (bits - 1)) : 0;
     const long long hi = is_signed ? (1LL << (bits - 1)) - 1 : (1LL << bits) - 1;
     if (x < lo || x > hi)
@@ -364,12 +364,12 @@ class BodyReader {
   Encoding encoding_;
   std::string where_;
   std::size_t pos_ = 0;
-  const Element* element_ = nullptr;
+  const PlyElement* element_ = nullptr;
   std::size_t index_ = 0;
 };
 
 /// Index of the property called `name` (scalar unless `list`), or −1.
-int find_property(const Element& e, std::initializer_list<std::string_view> names, bool list) {
+int find_property(const PlyElement& e, std::initializer_list<std::string_view> names, bool list) {
   for (std::size_t k = 0; k < e.properties.size(); ++k)
     for (const std::string_view name : names)
       if (e.properties[k].name == name && e.properties[k].count.has_value() == list)
@@ -389,7 +389,7 @@ void skip_property(BodyReader& r, const Property& p) {
   for (long long k = 0; k < n; ++k) r.real(p.type);
 }
 
-void read_vertices(BodyReader& r, const Element& e, Mesh& mesh, const std::string& where) {
+void read_vertices(BodyReader& r, const PlyElement& e, Mesh& mesh, const std::string& where) {
   const int x = find_property(e, {"x"}, false), y = find_property(e, {"y"}, false),
             z = find_property(e, {"z"}, false);
   if (x < 0 || y < 0 || z < 0) throw IoError(where + ": element vertex has no x, y and z");
@@ -419,7 +419,7 @@ void read_vertices(BodyReader& r, const Element& e, Mesh& mesh, const std::strin
   }
 }
 
-void read_faces(BodyReader& r, const Element& e, Mesh& mesh, const std::string& where) {
+void read_faces(BodyReader& r, const PlyElement& e, Mesh& mesh, const std::string& where) {
   const int list = find_property(e, {"vertex_indices", "vertex_index"}, true);
   if (list < 0) throw IoError(where + ": element face has no list vertex_indices (or vertex_index)");
   const int state = find_property(e, {"state"}, false);
@@ -548,11 +548,11 @@ std::string point_cloud_header(std::uint64_t count) {
          std::to_string(count) + "\nproperty double x\nproperty double y\nproperty double z\nend_header\n";
 }
 
-void points_header(std::string& out, std::uint64_t count, Eigen::Index, const PointsStyle&) {
+void ply_header(std::string& out, std::uint64_t count, Eigen::Index, const PointsStyle&) {
   out += point_cloud_header(count);
 }
 
-void points_rows(std::string& out, const Eigen::Ref<const Points>& rows, std::uint64_t) {
+void ply_rows(std::string& out, const Eigen::Ref<const Points>& rows, std::uint64_t) {
   for (Eigen::Index i = 0; i < rows.rows(); ++i)
     for (Eigen::Index k = 0; k < 3; ++k) {
       const auto bits = std::bit_cast<std::uint64_t>(k < rows.cols() ? rows(i, k) : 0.0);
@@ -560,7 +560,7 @@ void points_rows(std::string& out, const Eigen::Ref<const Points>& rows, std::ui
     }
 }
 
-void points_footer(ChunkBuffer&, std::uint64_t, const PointsStyle&) {}
+void ply_footer(ChunkBuffer&, std::uint64_t, const PointsStyle&) {}
 
 std::uint64_t points_size(std::uint64_t count, Eigen::Index) {
   return point_cloud_header(count).size() + count * 24;
@@ -568,8 +568,7 @@ std::uint64_t points_size(std::uint64_t count, Eigen::Index) {
 
 }  // namespace
 
-const detail::PointsFormat detail::kPlyPoints{"ply",         3,          points_header, points_rows,
-                                              points_footer, points_size};
+const detail::PointsFormat detail::kPlyPoints{"ply", 3, ply_header, ply_rows, ply_footer, points_size};
 
 Mesh parse_mesh_ply(std::string_view bytes, std::string_view where) {
   const std::string w(where);
@@ -577,7 +576,7 @@ Mesh parse_mesh_ply(std::string_view bytes, std::string_view where) {
   BodyReader r(bytes, h, w);
   Mesh mesh;
   bool vertices = false, faces = false;
-  for (const Element& e : h.elements) {
+  for (const PlyElement& e : h.elements) {
     r.check_room(e);
     if (e.name == "vertex" && !vertices) {
       read_vertices(r, e, mesh, w);

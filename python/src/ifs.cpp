@@ -69,7 +69,7 @@ void bind_analysis(py::module_& m) {
   const auto release = py::call_guard<py::gil_scoped_release>();
   m.def("reachable_states", &ifs::reachable_states, py::arg("automaton"),
         "Ids of the states reachable from the initial entries (every state when there is none), sorted.");
-  m.def("validate", &ifs::validate, py::arg("automaton"),
+  m.def("validate", py::overload_cast<const automata::Automaton&>(&ifs::validate), py::arg("automaton"),
         "Raises InvalidInput unless every reachable state holds a point and has a transition, and every "
         "transition carries a finite `size(to) by size(from)` matrix whose rows sum to 1.");
   m.def("diameter", &ifs::diameter, py::arg("net"),

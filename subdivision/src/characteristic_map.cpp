@@ -27,8 +27,8 @@ using detail::corner_index;
 using detail::edge_between;
 using Vec2 = Eigen::Matrix<long double, 2, 1>;
 
-constexpr long double kPi = std::numbers::pi_v<long double>;
-constexpr int kDegree =
+constexpr long double kPiL = std::numbers::pi_v<long double>;
+constexpr int kMapDegree =
     4;  // patches from limit values: interpolated at the 5 × 5 or 15 dyadic points of two steps
 constexpr int kMaxSplits = 8;            // de Casteljau splits of one patch's Jacobian before it is undecided
 constexpr long double kMargin = 1e-12L;  // of the largest Jacobian coefficient: below it, no sign is claimed
@@ -238,7 +238,7 @@ std::optional<long double> swept_angle(const std::vector<Vec2>& b, int depth = 0
     lo = std::min(lo, a);
     hi = std::max(hi, a);
   }
-  if (inside && hi - lo < kPi - 1e-6L) return std::atan2(cross(b.front(), b.back()), b.front().dot(b.back()));
+  if (inside && hi - lo < kPiL - 1e-6L) return std::atan2(cross(b.front(), b.back()), b.front().dot(b.back()));
   if (depth == 40) return std::nullopt;
   const auto h = halves(b);
   const auto first = swept_angle(h[0], depth + 1), second = swept_angle(h[1], depth + 1);
@@ -397,39 +397,39 @@ std::vector<int> dyadic_grid(const MeshRefinement& r, std::span<const int> corne
   return grid;
 }
 
-/// Bernstein coefficients of degree kDegree from values at the dyadic points k/4: the inverse
+/// Bernstein coefficients of degree kMapDegree from values at the dyadic points k/4: the inverse
 /// collocation matrix, per direction (tensor) or over the 15 points (triangle).
 class Collocation {
  public:
-  static constexpr int kPoints = (kDegree + 1) * (kDegree + 2) / 2;  // on a triangle
-  using Line = Eigen::Matrix<long double, kDegree + 1, kDegree + 1>;
+  static constexpr int kPoints = (kMapDegree + 1) * (kMapDegree + 2) / 2;  // on a triangle
+  using Line = Eigen::Matrix<long double, kMapDegree + 1, kMapDegree + 1>;
   using Triangle = Eigen::Matrix<long double, kPoints, kPoints>;
 
   Collocation() {
     Line line;
-    for (int k = 0; k <= kDegree; ++k)
-      for (int i = 0; i <= kDegree; ++i) {
-        const long double t = static_cast<long double>(k) / kDegree;
-        line(k, i) = binomial(kDegree, i) * std::pow(t, i) * std::pow(1 - t, kDegree - i);
+    for (int k = 0; k <= kMapDegree; ++k)
+      for (int i = 0; i <= kMapDegree; ++i) {
+        const long double t = static_cast<long double>(k) / kMapDegree;
+        line(k, i) = binomial(kMapDegree, i) * std::pow(t, i) * std::pow(1 - t, kMapDegree - i);
       }
     line_inverse_ = line.inverse();
     Triangle triangle;
-    for (int i = 0; i <= kDegree; ++i)
-      for (int j = 0; i + j <= kDegree; ++j)
-        for (int a = 0; a <= kDegree; ++a)
-          for (int b = 0; a + b <= kDegree; ++b) {
-            const long double u = static_cast<long double>(i) / kDegree,
-                              v = static_cast<long double>(j) / kDegree;
-            triangle(tri(i, j, kDegree), tri(a, b, kDegree)) = multinomial(kDegree, a, b) * std::pow(u, a) *
+    for (int i = 0; i <= kMapDegree; ++i)
+      for (int j = 0; i + j <= kMapDegree; ++j)
+        for (int a = 0; a <= kMapDegree; ++a)
+          for (int b = 0; a + b <= kMapDegree; ++b) {
+            const long double u = static_cast<long double>(i) / kMapDegree,
+                              v = static_cast<long double>(j) / kMapDegree;
+            triangle(tri(i, j, kMapDegree), tri(a, b, kMapDegree)) = multinomial(kMapDegree, a, b) * std::pow(u, a) *
                                                                std::pow(v, b) *
-                                                               std::pow(1 - u - v, kDegree - a - b);
+                                                               std::pow(1 - u - v, kMapDegree - a - b);
           }
     triangle_inverse_ = triangle.inverse();
   }
 
-  /// `values` in the patch's coefficient order (tensor i (kDegree + 1) + j; triangle tri(i, j)).
+  /// `values` in the patch's coefficient order (tensor i (kMapDegree + 1) + j; triangle tri(i, j)).
   Bernstein<Vec2> patch(bool triangle, const Eigen::Matrix<long double, Eigen::Dynamic, 2>& values) const {
-    Bernstein<Vec2> out = make<Vec2>(triangle, kDegree);
+    Bernstein<Vec2> out = make<Vec2>(triangle, kMapDegree);
     for (int k = 0; k < 2; ++k) {
       Eigen::Matrix<long double, Eigen::Dynamic, 1> c;
       if (triangle) {
@@ -437,11 +437,11 @@ class Collocation {
       } else {
         const Eigen::Matrix<long double, Eigen::Dynamic, 1> column = values.col(k);
         const Line V =
-            Eigen::Map<const Eigen::Matrix<long double, kDegree + 1, kDegree + 1, Eigen::RowMajor>>(
+            Eigen::Map<const Eigen::Matrix<long double, kMapDegree + 1, kMapDegree + 1, Eigen::RowMajor>>(
                 column.data());
-        const Eigen::Matrix<long double, kDegree + 1, kDegree + 1, Eigen::RowMajor> C =
+        const Eigen::Matrix<long double, kMapDegree + 1, kMapDegree + 1, Eigen::RowMajor> C =
             line_inverse_ * V * line_inverse_.transpose();
-        c = Eigen::Map<const Eigen::Matrix<long double, (kDegree + 1) * (kDegree + 1), 1>>(C.data());
+        c = Eigen::Map<const Eigen::Matrix<long double, (kMapDegree + 1) * (kMapDegree + 1), 1>>(C.data());
       }
       for (Eigen::Index i = 0; i < c.size(); ++i) out.c[static_cast<std::size_t>(i)][k] = c(i);
     }
@@ -486,13 +486,13 @@ std::vector<Patch> limit_patches(MeshScheme scheme, const CharacteristicNet& net
     if (std::find(corners.begin(), corners.end(), net.local.centre) != corners.end()) continue;
     const std::vector<int> grid = dyadic_grid(r, corners, quads);
     Eigen::Matrix<long double, Eigen::Dynamic, 2> values(
-        quads ? (kDegree + 1) * (kDegree + 1) : Collocation::kPoints, 2);
+        quads ? (kMapDegree + 1) * (kMapDegree + 1) : Collocation::kPoints, 2);
     bool complete = true;
-    for (int i = 0; i <= kDegree && complete; ++i)
-      for (int j = 0; j <= (quads ? kDegree : kDegree - i) && complete; ++j) {
-        const auto x = limit_at(grid[flat(i, kDegree, j)]);
+    for (int i = 0; i <= kMapDegree && complete; ++i)
+      for (int j = 0; j <= (quads ? kMapDegree : kMapDegree - i) && complete; ++j) {
+        const auto x = limit_at(grid[flat(i, kMapDegree, j)]);
         complete = x.has_value();
-        if (complete) values.row(quads ? i * (kDegree + 1) + j : tri(i, j, kDegree)) = x->transpose();
+        if (complete) values.row(quads ? i * (kMapDegree + 1) + j : tri(i, j, kMapDegree)) = x->transpose();
       }
     if (complete)
       out.push_back(Patch{.bezier = collocation.patch(!quads, values),
@@ -621,7 +621,7 @@ C1Verdict bernstein_verdict(MeshScheme scheme, const CharacteristicNet& net) {
   out.margin /= scale;
   if (!out.regular) out.margin = 0;
   // The patches run round the inner boundary clockwise (they lie outside it).
-  const long double turns = -angle / (2 * kPi);
+  const long double turns = -angle / (2 * kPiL);
   out.winding = static_cast<int>(std::lround(turns));
   if (out.decided && std::abs(turns - static_cast<long double>(out.winding)) > 1e-6L)
     throw std::logic_error("characteristic map: the inner boundary does not close");
@@ -685,7 +685,7 @@ C1Verdict sampled_verdict(MeshScheme scheme, int n, const CharacteristicNet& net
   }
   const int orientation = negative > 0 ? -1 : 1;
   out.angle = open ? angle * static_cast<long double>(orientation) : 0;
-  out.winding = open ? 0 : static_cast<int>(std::lround(angle / (2 * kPi))) * orientation;
+  out.winding = open ? 0 : static_cast<int>(std::lround(angle / (2 * kPiL))) * orientation;
   return out;
 }
 
@@ -843,7 +843,7 @@ C1Verdict net_verdict(MeshScheme scheme, int valence, const CharacteristicNet& n
       net.local.refinement.levels.front().boundary_vertex[static_cast<std::size_t>(net.local.centre)] &&
       scheme != MeshScheme::doo_sabin;
   const std::string pieces = std::to_string(out.pieces) + (polynomial ? " patches" : " faces of the net");
-  const std::string degrees = number_text(static_cast<double>(out.angle * 180 / kPi), 4) + " degrees";
+  const std::string degrees = number_text(static_cast<double>(out.angle * 180 / kPiL), 4) + " degrees";
   if (!out.decided) {
     out.reason =
         "undecided: a patch's Jacobian or the boundary's winding stayed inconclusive after the splits";
@@ -859,12 +859,12 @@ C1Verdict net_verdict(MeshScheme scheme, int valence, const CharacteristicNet& n
   } else if (!open && out.winding != 1) {
     out.reason = "not C1: the characteristic map winds " + std::to_string(std::abs(out.winding)) +
                  " times around the centre (not injective)";
-  } else if (open && (out.angle <= 0 || out.angle >= 2 * kPi)) {
+  } else if (open && (out.angle <= 0 || out.angle >= 2 * kPiL)) {
     out.reason = "not C1: the sector's image spans " + degrees + ", outside (0, 360) (not injective)";
-  } else if (open && corner && concave && out.angle <= kPi) {
+  } else if (open && corner && concave && out.angle <= kPiL) {
     out.reason = "not C1 as a concave corner: the sector's image spans " + degrees +
                  " (a convex cone; a concave corner needs more than 180): the surface folds over";
-  } else if (open && corner && !concave && out.angle >= kPi) {
+  } else if (open && corner && !concave && out.angle >= kPiL) {
     out.reason = "not C1 as a convex corner: the sector's image spans " + degrees + " (at least 180)";
   } else {
     out.c1 = true;

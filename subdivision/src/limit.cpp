@@ -102,13 +102,6 @@ LimitMask smooth_mask(MeshScheme scheme, int n) {
   return m;
 }
 
-double edge_sharpness(const LevelFeatures& f, int e) {
-  return f.edge_sharpness.empty() ? 0.0 : f.edge_sharpness[static_cast<std::size_t>(e)];
-}
-double vertex_sharpness(const LevelFeatures& f, int v) {
-  return f.vertex_sharpness.empty() ? 0.0 : f.vertex_sharpness[static_cast<std::size_t>(v)];
-}
-
 /// The faces around v counter-clockwise — from the boundary, or at an interior vertex from
 /// vertex_faces' first (`smallest_first`: from the face of smallest index) — and the ring's vertices
 /// in the order the walk meets them, v first: (c, r_0, f_0, r_1, …) on quads, (c, r_0, r_1, …) on

@@ -265,14 +265,7 @@ double loop_beta(int n) {
   return (0.625 - c * c) / n;
 }
 
-/// The sharpness of an edge, of a vertex, and whether a face is a hole, at a level whose features
-/// may be empty (all smooth, no hole).
-double edge_sharpness(const LevelFeatures& L, std::size_t e) {
-  return L.edge_sharpness.empty() ? 0 : L.edge_sharpness[e];
-}
-double vertex_sharpness(const LevelFeatures& L, std::size_t v) {
-  return L.vertex_sharpness.empty() ? 0 : L.vertex_sharpness[v];
-}
+/// Whether a level's features are all smooth.
 bool smooth_level(const LevelFeatures& L) {
   return L.edge_sharpness.empty() && L.vertex_sharpness.empty();
 }

@@ -53,16 +53,6 @@
 namespace cifs::subdivision {
 namespace {
 
-double edge_sharpness(const LevelFeatures& f, int e) {
-  return f.edge_sharpness.empty() ? 0.0 : f.edge_sharpness[static_cast<std::size_t>(e)];
-}
-double vertex_sharpness(const LevelFeatures& f, int v) {
-  return f.vertex_sharpness.empty() ? 0.0 : f.vertex_sharpness[static_cast<std::size_t>(v)];
-}
-bool is_hole(const LevelFeatures& f, int g) {
-  return !f.holes.empty() && f.holes[static_cast<std::size_t>(g)] != 0;
-}
-
 int corner_of(std::span<const int> corners, int v) {
   return static_cast<int>(std::find(corners.begin(), corners.end(), v) - corners.begin());
 }

@@ -102,6 +102,9 @@ std::vector<std::pair<std::string, double>> constraint_residuals(const Bcifs& sy
 /// constraint_residuals exceeds `tolerance`.
 void check_admissible(const Bcifs& system, double tolerance = 1e-12);
 
+/// The cell a constraint reads: the source of the last factor of its left side.
+automata::StateId source_cell(const Bcifs& system, const Constraint& constraint);
+
 struct SolveOptions {
   /// Relative rank threshold of the pivoted QR of each component (|r_kk| ≤ threshold·|r_00|), in
   /// [0, 1) (InvalidInput otherwise).

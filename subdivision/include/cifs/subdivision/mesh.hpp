@@ -6,6 +6,7 @@
 #pragma once
 
 #include <Eigen/SparseCore>
+#include <concepts>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -49,6 +50,18 @@ struct LevelFeatures {
   std::vector<double> vertex_sharpness;  // per vertex
   std::vector<char> holes;               // per face
 };
+
+/// An edge's and a vertex's sharpness, and whether a face is a hole, at a level whose features may be
+/// empty (all smooth, no hole).
+inline double edge_sharpness(const LevelFeatures& f, std::integral auto e) {
+  return f.edge_sharpness.empty() ? 0.0 : f.edge_sharpness[static_cast<std::size_t>(e)];
+}
+inline double vertex_sharpness(const LevelFeatures& f, std::integral auto v) {
+  return f.vertex_sharpness.empty() ? 0.0 : f.vertex_sharpness[static_cast<std::size_t>(v)];
+}
+inline bool is_hole(const LevelFeatures& f, std::integral auto face) {
+  return !f.holes.empty() && f.holes[static_cast<std::size_t>(face)] != 0;
+}
 
 /// A refinement, topology only: `levels[0]` is the input's topology, `levels[k]` the mesh after k
 /// steps, `steps[k]` the weights from level k's vertices to level k + 1's, `features[k]` level k's
