@@ -21,9 +21,10 @@ bool is_image(const std::filesystem::path& file) {
 }
 
 // The page's only style. Each section's images are a grid of cards (thumbnails on white, captioned), each a
-// link to its viewer: an overlay shown by CSS alone while the page's address names it (:target), with the image
-// as large as the window allows, its caption, the file, and links to the previous and next image and back to
-// the card. Links are the whole interaction, so Tab, Shift+Tab and Enter reach everything (focus outlined).
+// link to its viewer: an overlay shown by CSS alone while the page's address names it (:target), with the
+// image as large as the window allows, its caption, the file, and links to the previous and next image and
+// back to the card. Links are the whole interaction, so Tab, Shift+Tab and Enter reach everything (focus
+// outlined).
 constexpr const char* kStyle =
     R"(body { font-family: sans-serif; margin: 1.5em; background: #eceff1; color: #1d2327; }
 h1 { font-size: 1.6em; }
@@ -117,8 +118,16 @@ std::string gallery_html(const std::vector<GallerySection>& sections, const std:
         std::string caption = name;
         if (i < s.captions.size() && !s.captions[i].empty()) caption += ": " + html_escape(s.captions[i]);
         const std::string k = std::to_string(images.size());
-        figures.append("<figure id=\"f").append(k).append("\"><a href=\"#v").append(k).append("\"><img src=\"");
-        figures.append(href).append("\" alt=\"").append(caption).append("\"></a><figcaption>").append(caption);
+        figures.append("<figure id=\"f")
+            .append(k)
+            .append("\"><a href=\"#v")
+            .append(k)
+            .append("\"><img src=\"");
+        figures.append(href)
+            .append("\" alt=\"")
+            .append(caption)
+            .append("\"></a><figcaption>")
+            .append(caption);
         figures += "</figcaption></figure>\n";
         images.push_back({href, std::move(caption)});
       } else {

@@ -456,7 +456,8 @@ struct CheckedListCaster : list_caster<Vector, Value> {
 };
 
 template <class Value>
-struct type_caster<std::vector<Value, std::allocator<Value>>> : CheckedListCaster<std::vector<Value>, Value> {};
+struct type_caster<std::vector<Value, std::allocator<Value>>> : CheckedListCaster<std::vector<Value>, Value> {
+};
 
 /// std::array<Value, N> from a sequence of exactly N items, checked as the lists above.
 template <class Value, std::size_t N>

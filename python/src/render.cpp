@@ -321,8 +321,8 @@ void bind_camera_projection(py::module_& m) {
       },
       py::arg("points"), py::kw_only(), py::arg("width") = f.width, py::arg("height") = f.height,
       py::arg("margin") = f.margin, py::arg("perspective").noconvert() = f.perspective,
-      py::arg("view_direction") = py::none(), py::arg("up") = tuple3(f.up),
-      py::arg("fov_y") = f.fov_y, py::arg("tight").noconvert() = f.tight,
+      py::arg("view_direction") = py::none(), py::arg("up") = tuple3(f.up), py::arg("fov_y") = f.fov_y,
+      py::arg("tight").noconvert() = f.tight,
       R"(A Camera that shows all of `points` (float64 (n, 2|3)) with a margin.
 
 Planar shapes (2 columns, or every z equal) get an orthographic top view (x right, y up) whose

@@ -72,8 +72,8 @@ struct type_caster<sd::Rational> {
       value = ratio(src.attr("numerator"), src.attr("denominator"));
       return true;
     }
-    return cifs::python::refuse(src, "expected " + std::string(cifs::python::kExactNumber) + ", got " + describe(src),
-                                {}, true);
+    return cifs::python::refuse(
+        src, "expected " + std::string(cifs::python::kExactNumber) + ", got " + describe(src), {}, true);
   }
 
   static handle cast(const sd::Rational& x, return_value_policy, handle) {
@@ -113,9 +113,9 @@ struct type_caster<sd::Polynomial> : CheckedListCaster<sd::Polynomial, sd::Ratio
       const Py_ssize_t n = PySequence_Size(src.ptr());
       if (n < 0) throw error_already_set();
       if (n > sd::kMaxMaskSize)
-        throw cifs::python::ArgumentError(src.ptr(), {},
-                                          std::to_string(n) + " coefficients exceed the limit of " +
-                                              std::to_string(sd::kMaxMaskSize));
+        throw cifs::python::ArgumentError(
+            src.ptr(), {},
+            std::to_string(n) + " coefficients exceed the limit of " + std::to_string(sd::kMaxMaskSize));
     }
     return CheckedListCaster<sd::Polynomial, sd::Rational>::load(src, convert);
   }

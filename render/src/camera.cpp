@@ -141,7 +141,9 @@ Eigen::Vector3d automatic_view_direction(const Points& points, const Eigen::Vect
   const Eigen::Vector3d k = (up / up.cwiseAbs().maxCoeff()).normalized();
   const auto spread = [&](const Eigen::Vector3d& d) { return d.dot(adjugate * d) / d.squaredNorm(); };
   Eigen::Vector3d best = d0;
-  double widest = 2 * spread(d0);
+  // Spreads at the rounding level do not count: a segment's covariance has rank 1 and every projection of
+  // it is a line, whatever rounding says.
+  double widest = std::max(2 * spread(d0), 1e-9 * C.trace() * C.trace());
   for (int step = 1; step < 16; ++step) {  // Rodrigues' rotation of d0 about k by step · 22.5°
     const double angle = step * std::numbers::pi / 8;
     const Eigen::Vector3d d =
@@ -243,8 +245,8 @@ Camera frame(const Points& points, const FramingOptions& options) {
     camera.up = {0, 1, 0};
     return camera;
   }
-  const Eigen::Vector3d v = options.view_direction ? *options.view_direction
-                                                   : automatic_view_direction(points, options.up);
+  const Eigen::Vector3d v =
+      options.view_direction ? *options.view_direction : automatic_view_direction(points, options.up);
   if (!v.allFinite() || !(v.cwiseAbs().maxCoeff() > 0))
     throw InvalidInput(v.allFinite() ? "the camera's view direction is zero; give a non-zero direction"
                                      : "the camera's view direction has a coordinate that is not finite");

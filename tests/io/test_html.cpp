@@ -61,7 +61,8 @@ TEST_CASE("gallery_html shows images, links the other files, escapes every text"
   }
   CHECK_THAT(page, Catch::Contains("<a href=\"hills.exr\">hills.exr</a>"));
   CHECK_THAT(page, Catch::Contains("<a href=\"hills.ply\">hills.ply</a>"));
-  CHECK(count_in_html(page, "href=") == 2 + 4 * 5);  // files; per image: thumbnail, previous, close, file, next
+  CHECK(count_in_html(page, "href=") ==
+        2 + 4 * 5);  // files; per image: thumbnail, previous, close, file, next
   CHECK_THAT(page, Catch::Contains("schemes/a.svg: Chaikin &lt;open&gt;</figcaption>"));
   // The grid, and the viewers numbered through the page: thumbnail k opens #v<k>, whose links wrap around.
   CHECK_THAT(page, Catch::Contains(".figures { display: grid;"));

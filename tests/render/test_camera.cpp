@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
-#include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
@@ -236,9 +236,9 @@ TEST_CASE("The automatic view direction faces a quarter cylinder and keeps the d
   const Eigen::Vector3d chosen = automatic_view_direction(quarter);
   double widest = 0;
   for (int step = 0; step < 16; ++step)
-    widest = std::max(widest, projected_spread(Eigen::AngleAxisd(step * std::numbers::pi / 8,
-                                                                 Eigen::Vector3d::UnitZ()) *
-                                               kDefaultViewDirection));
+    widest = std::max(
+        widest, projected_spread(Eigen::AngleAxisd(step * std::numbers::pi / 8, Eigen::Vector3d::UnitZ()) *
+                                 kDefaultViewDirection));
   CHECK(projected_spread(chosen) == Approx(widest).epsilon(1e-9));
   CHECK(widest > 2 * projected_spread(kDefaultViewDirection));
   CHECK(chosen.z() == Approx(kDefaultViewDirection.z()).epsilon(1e-12));  // the elevation kept

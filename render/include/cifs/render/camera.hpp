@@ -98,16 +98,18 @@ inline const Eigen::Vector3d kDefaultViewDirection{1.0, -1.6, 1.1};
 /// alike from every side (a cube, a sphere, a torus lying flat) keep it; a wall or a quarter cylinder, which
 /// the default saw edge-on, turns to face the camera. Points that are not finite, or an `up` that is zero or
 /// not finite, give the default (frame and view_transform refuse them).
-Eigen::Vector3d automatic_view_direction(const Points& points, const Eigen::Vector3d& up = {0, 0, 1});
+Eigen::Vector3d automatic_view_direction(const Points& points,
+                                         const Eigen::Vector3d& up = Eigen::Vector3d::UnitZ());
 
 /// A camera that shows all of `points` (`#P by 2` or `#P by 3`) with the margin.
 /// - Planar shapes (2 columns, or 3 with every z equal): an orthographic top view (eye above the
 ///   plane, looking down −z, x right and y up in the image); the bounding box is centred and fills
 ///   the image up to the margin in its tighter direction.
-/// - Other shapes, seen along `view_direction` (unset: automatic_view_direction): with `tight`, the closest camera whose image, less
-///   the margin, holds the points' projection, centred on it — perspective keeps fov_y and moves
-///   the eye along the view direction and across it (the largest eye depth that keeps every point
-///   inside the four shrunk frustum planes, then the projection's extent centred by bisection),
+/// - Other shapes, seen along `view_direction` (unset: automatic_view_direction): with `tight`, the
+///   closest camera whose image, less the margin, holds the points' projection, centred on it —
+///   perspective keeps fov_y and moves the eye along the view direction and across it (the largest
+///   eye depth that keeps every point inside the four shrunk frustum planes, then the projection's
+///   extent centred by bisection),
 ///   orthographic takes the projected box; the margin is met exactly in the tighter direction.
 ///   Without `tight` (or when the fit degenerates: no point in front of the eye) the bounding
 ///   sphere (centre of the box, radius of the farthest point) is centred and fits in the image minus
