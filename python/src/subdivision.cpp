@@ -84,7 +84,7 @@ struct type_caster<sd::Rational> {
  private:
   /// The type module.name (a new reference).
   static PyTypeObject* type(const char* module, const char* name) {
-    return reinterpret_cast<PyTypeObject*>(module_::import(module).attr(name).release().ptr());
+    return reinterpret_cast<PyTypeObject*>(object(module_::import(module).attr(name)).release().ptr());
   }
   static boost::multiprecision::cpp_int integer(handle index) {
     return boost::multiprecision::cpp_int(str(index).cast<std::string>());

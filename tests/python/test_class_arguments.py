@@ -294,7 +294,7 @@ class ExactNumberTest(unittest.TestCase):
             (lambda: sd.named_scheme("generalized-four-point", {"w": None}), r"^named_scheme: parameters\['w'\]: " + takes + "None$"),
             (lambda: sd.named_scheme("generalized-four-point", w=np.ones(2)), r"^named_scheme: w: " + takes + "an array of dtype"),
             (lambda: sd.named_scheme("four-point", [[0, 1], [1, 2]]),
-             r"^named_scheme: parameters: expected a dict or None, got list \[\[0, 1\], \[1, 2\]\]$"),
+             r"^named_scheme: parameters: expected a dict, got list \[\[0, 1\], \[1, 2\]\]$"),
             (lambda: sd.named_scheme("four-point", {1: 2}), r"^named_scheme: parameters\[1\]: expected a str, got int 1$"),
             (lambda: sd.make_scheme("x", [0.5, 1, 0.5], {2: 1}), r"^make_scheme: parameters\[2\]: expected a str, got int 2$"),
             (lambda: sd.Scheme("x", [0.5, 1, 0.5], {"w": b"x"}), r"^Scheme: parameters\['w'\]: " + takes + "bytes b'x'$"),

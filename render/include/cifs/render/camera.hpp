@@ -81,7 +81,7 @@ struct FramingOptions {
   bool perspective = true;
   /// 3-D shapes: direction from the shape's centre towards the eye (unset: automatic_view_direction),
   /// and the world's up.
-  std::optional<Eigen::Vector3d> view_direction;
+  std::optional<Eigen::Vector3d> view_direction = std::nullopt;
   Eigen::Vector3d up{0, 0, 1};
   double fov_y = 35;
   /// 3-D shapes: fit the points' projection (true) or only their bounding sphere (false).
