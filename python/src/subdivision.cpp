@@ -82,9 +82,9 @@ struct type_caster<sd::Rational> {
   }
 
  private:
-  /// The type module.name (a new reference).
-  static PyTypeObject* type(const char* module, const char* name) {
-    return reinterpret_cast<PyTypeObject*>(object(module_::import(module).attr(name)).release().ptr());
+  /// The type module.attribute (a new reference).
+  static PyTypeObject* type(const char* module, const char* attribute) {
+    return reinterpret_cast<PyTypeObject*>(object(module_::import(module).attr(attribute)).release().ptr());
   }
   static boost::multiprecision::cpp_int integer(handle index) {
     return boost::multiprecision::cpp_int(str(index).cast<std::string>());
