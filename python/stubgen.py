@@ -168,13 +168,20 @@ def property_stub(prop, name, namer, indent):
     return lines
 
 
+def numpy_array():
+    import numpy
+    return numpy.ndarray
+
+
 def class_stub(cls, namer):
-    bases = [b for b in cls.__bases__ if b.__module__.startswith("cifs")]
+    bases = [b for b in cls.__bases__ if b.__module__.startswith("cifs") or b is numpy_array()]
     base_text = ", ".join(namer(f"{b.__module__}.{b.__qualname__}") for b in bases)
     lines = [f"class {cls.__name__}{'(' + base_text + ')' if base_text else ''}:"]
     body = []
     if cls.__doc__ and not cls.__doc__.startswith(cls.__name__ + "("):
         body.append("    " + repr(inspect.cleandoc(cls.__doc__)))
+    for name, annotation in vars(cls).get("__annotations__", {}).items():  # a Python class's (ifs.Rows)
+        body.append(f"    {name}: {annotation}")
     for name, attr in vars(cls).items():
         if name.startswith("_") and name not in KEEP_DUNDERS:
             continue

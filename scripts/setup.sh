@@ -17,7 +17,7 @@ packages=(
   chromium  # headless browser of the gallery page's test (tests/gallery/test_index.py)
   libcpp-httplib-dev  # cifs view's HTTP server (MIT; Debian builds it as a shared library beside the header)
   libjs-three  # three.js r111 for cifs view's page, served from the machine and copied by --export (no CDN)
-  chromium-driver python3-selenium  # cifs view's browser test (tests/view/test_view.py)
+  chromium-driver python3-selenium  # the browser tests driven like a user: tests/view/test_view.py, tests/gallery/test_index.py
   libclang-rt-14-dev  # libFuzzer and the sanitizer runtimes of clang 14: scripts/fuzz.sh (the fuzz preset)
 )
 

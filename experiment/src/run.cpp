@@ -626,8 +626,9 @@ render::Camera make_camera(const io::CameraSpec& spec, const io::RenderSettings&
     const Eigen::Vector3d target =
         spec.target ? Eigen::Vector3d((*spec.target)[0], (*spec.target)[1], (*spec.target)[2])
                     : render::frame(extent, f).target;
-    f.view_direction = Eigen::Vector3d((*spec.eye)[0], (*spec.eye)[1], (*spec.eye)[2]) - target;
-    if (!f.view_direction.allFinite())
+    f.view_direction =
+        Eigen::Vector3d(Eigen::Vector3d((*spec.eye)[0], (*spec.eye)[1], (*spec.eye)[2]) - target);
+    if (!f.view_direction->allFinite())
       throw InvalidInput(
           "camera.eye: the eye is farther from the target than a double holds (coordinates up to " +
           number_text(

@@ -92,6 +92,86 @@ for _name in ("nurbs", "automata", "ifs", "subdivision", "render", "io", "verify
     _read_only_attributes(getattr(_cifs, _name))
 
 
+# --- Rows that know whether they are homogeneous --------------------------------------------------------------
+# ifs.cartesian divides rows (w·x, w) by their last column, and bare rows cannot say whether that column is a
+# weight or a 3-D curve's z: README's ifs.cartesian(ifs.attractor_points(…)) divided a non-rational curve's x
+# and y by its z (issue 32). The nets of a shape (automata.initial_nets) know, and so do the points made from
+# them (ifs.attractor_points, StencilTable.apply) and ifs.cartesian's result; ifs.cartesian refuses rows known
+# to be Cartesian. curve.attractor(depth) and surface.attractor(depth) stay the one route to a shape's points.
+class Rows(_numpy.ndarray):
+    """A float array of control-net or attractor rows that knows whether they are homogeneous `(w·x, w)` (the
+    nets of a rational shape and the points made from them) or Cartesian: `homogeneous` is True or False, None
+    when unknown. automata.initial_nets, ifs.attractor_points, StencilTable.apply and ifs.cartesian return them;
+    ifs.cartesian refuses rows known to be Cartesian. Otherwise a numpy array like any other (slices and
+    arithmetic keep the flag; numpy.asarray(rows) drops it)."""
+
+    homogeneous: "Optional[bool]" = None
+
+    def __array_finalize__(self, obj):
+        self.homogeneous = getattr(obj, "homogeneous", None)
+
+
+def _rows(array, homogeneous):
+    rows = array.view(Rows)
+    rows.homogeneous = homogeneous
+    return rows
+
+
+def _known(nets):
+    """True or False when every net knows and all agree, else None."""
+    flags = {getattr(net, "homogeneous", None) for net in nets}
+    return flags.pop() if len(flags) == 1 else None
+
+
+def _argument(args, kwargs, index, *names):
+    """The argument at `index`, or given by one of `names`."""
+    for name in names:
+        if name in kwargs:
+            return kwargs[name]
+    return args[index]
+
+
+def _wrapped(function, body):
+    """`body(function, *args, **kwargs)` with `function`'s name and docstring (whose signature lines the stubs
+    and the tests read)."""
+    def call(*args, **kwargs):
+        return body(function, *args, **kwargs)
+
+    call.__name__, call.__qualname__, call.__doc__ = function.__name__, function.__qualname__, function.__doc__
+    call.__wrapped__ = function
+    return call
+
+
+def _initial_nets(function, *args, **kwargs):
+    nets = function(*args, **kwargs)
+    rational = bool(_argument(args, kwargs, 1, "curve", "surface").rational)
+    return [_rows(net, rational) for net in nets]
+
+
+def _points_of_nets(nets_index):
+    def body(function, *args, **kwargs):
+        points = function(*args, **kwargs)
+        return _rows(points, _known(_argument(args, kwargs, nets_index, "nets")))
+    return body
+
+
+def _cartesian(function, *args, **kwargs):
+    rows = _argument(args, kwargs, 0, "homogeneous")
+    if isinstance(rows, Rows) and rows.homogeneous is False:
+        raise InvalidInput("cartesian: homogeneous: the rows are Cartesian already (the nets of a shape that is not "
+                           "rational, or points made from them); curve.attractor(depth) and surface.attractor(depth) "
+                           "give the Cartesian points of any shape")
+    return _rows(function(*args, **kwargs), False)
+
+
+ifs.Rows = Rows
+Rows.__module__ = "cifs.ifs"
+automata.initial_nets = _wrapped(automata.initial_nets, _initial_nets)
+ifs.attractor_points = _wrapped(ifs.attractor_points, _points_of_nets(1))
+ifs.StencilTable.apply = _wrapped(ifs.StencilTable.apply, _points_of_nets(1))
+ifs.cartesian = _wrapped(ifs.cartesian, _cartesian)
+
+
 # --- Notebook previews: _repr_png_ on images and shapes ---------------------------------------------------------
 def _png_bytes(image):
     """The PNG that render.preview_png writes for `image`, as bytes (None when it has nothing to show)."""

@@ -439,8 +439,8 @@ bool check_sequence(handle src) {
 // Lists (List[float], List[int], lists of arrays, of pairs, …): pybind11's list caster refused a string or a
 // wrong item with a TypeError listing the signatures, and took the rows of a 2-D array or the items of a
 // complex array one by one; here the items are checked and a refusal names the item ("knots[3]").
-template <class Value>
-struct type_caster<std::vector<Value, std::allocator<Value>>> : list_caster<std::vector<Value>, Value> {
+template <class Vector, class Value>
+struct CheckedListCaster : list_caster<Vector, Value> {
   bool load(handle src, bool convert) {
     if (!check_sequence<Value>(src)) return false;
     const auto items = reinterpret_borrow<sequence>(src);
@@ -453,6 +453,10 @@ struct type_caster<std::vector<Value, std::allocator<Value>>> : list_caster<std:
         return false;
     return true;
   }
+};
+
+template <class Value>
+struct type_caster<std::vector<Value, std::allocator<Value>>> : CheckedListCaster<std::vector<Value>, Value> {
 };
 
 /// std::array<Value, N> from a sequence of exactly N items, checked as the lists above.
@@ -485,6 +489,21 @@ struct type_caster<std::array<std::vector<double>, N>> : StrictArrayCaster<std::
 namespace cifs::python {
 
 namespace py = pybind11;
+
+/// `value`, read inside a function's body (a key or value of a dict argument), as T, checked as the argument
+/// casters check arguments: a refusal is the TypeError naming the parameter and the place holding `value`
+/// ("named_scheme: parameters[1]: expected a str, got int 1", checked_call), never pybind11's RuntimeError
+/// "Unable to cast Python instance". `expected` says what is taken: "a str".
+template <class T>
+T checked_cast(py::handle value, const std::string& expected) {
+  py::detail::make_caster<T> conv;
+  if (!conv.load(value, true)) {
+    const std::string what = "expected " + expected + ", got " + describe(value);
+    refuse(value, what, {}, true);
+    throw py::type_error(what);  // outside a checked call
+  }
+  return py::detail::cast_op<T>(std::move(conv));
+}
 
 /// A list of fixed-size index tuples as an integer array `(n, N)` (quads, segments, …).
 template <typename T, std::size_t N>

@@ -162,10 +162,11 @@ void bind_analysis(py::module_& m) {
 
 /// Attractors: Cartesian rows, the subdivision tree and its leaves.
 void bind_leaves(py::module_& m) {
-  m.def(
-      "cartesian", &ifs::cartesian, py::arg("homogeneous"),
-      "Homogeneous rows (w·x, w), float `(n, dim+1)` → Cartesian rows x, `(n, dim)`. Raises InvalidInput for "
-      "fewer than 2 columns or a zero weight.");
+  m.def("cartesian", &ifs::cartesian, py::arg("homogeneous"),
+        "Homogeneous rows (w·x, w), float `(n, dim+1)` → Cartesian rows x, `(n, dim)` (an ifs.Rows). Raises "
+        "InvalidInput for fewer than 2 columns, a zero weight, or rows known to be Cartesian (ifs.Rows: the "
+        "nets of a shape that is not rational and the points made from them; curve.attractor(depth) gives "
+        "the points of any curve).");
 
   py::class_<LeafView>(m, "Leaf", "A node of the subdivision tree, as handed to callbacks (copies).")
       .def_readonly("initial", &LeafView::initial,

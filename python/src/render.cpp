@@ -313,7 +313,7 @@ void bind_camera_projection(py::module_& m) {
         o.height = count_arg(height, "frame: height");
         o.margin = margin;
         o.perspective = perspective;
-        o.view_direction = vec3(view_direction, "frame: view_direction");
+        if (!view_direction.is_none()) o.view_direction = vec3(view_direction, "frame: view_direction");
         o.up = vec3(up, "frame: up");
         o.fov_y = fov_y;
         o.tight = tight;
@@ -321,14 +321,15 @@ void bind_camera_projection(py::module_& m) {
       },
       py::arg("points"), py::kw_only(), py::arg("width") = f.width, py::arg("height") = f.height,
       py::arg("margin") = f.margin, py::arg("perspective").noconvert() = f.perspective,
-      py::arg("view_direction") = tuple3(f.view_direction), py::arg("up") = tuple3(f.up),
-      py::arg("fov_y") = f.fov_y, py::arg("tight").noconvert() = f.tight,
+      py::arg("view_direction") = py::none(), py::arg("up") = tuple3(f.up), py::arg("fov_y") = f.fov_y,
+      py::arg("tight").noconvert() = f.tight,
       R"(A Camera that shows all of `points` (float64 (n, 2|3)) with a margin.
 
 Planar shapes (2 columns, or every z equal) get an orthographic top view (x right, y up) whose
 bounding box is centred and fills the image up to `margin` (fraction of the image per side) in its
 tighter direction. Other shapes are seen along `view_direction` (from the centre towards the eye,
-`up` the world's up), in perspective (fov_y degrees) or orthographic: with `tight` the points'
+`up` the world's up; None: (1, −1.6, 1.1) turned about `up` to the side where the points spread widest,
+C++ automatic_view_direction), in perspective (fov_y degrees) or orthographic: with `tight` the points'
 projection, centred, fills the image up to `margin` in its tighter direction; without it (the
 former framing) their bounding sphere fits.
 Raises InvalidInput for no points, non-finite points, a column count other than 2 or 3, a margin

@@ -2,6 +2,8 @@
 // cifs Python bindings — cifs.subdivision: schemes with exact masks (fractions.Fraction), refinement,
 // IFS matrices, analysis.
 #include <cmath>
+#include <map>
+#include <optional>
 #include <string>
 
 #include "arrays.hpp"
@@ -16,28 +18,41 @@
 
 namespace sd = cifs::subdivision;
 
+namespace cifs::python {
+/// What the exact-number parameters take, for messages.
+constexpr const char* kExactNumber = "an exact number (a Fraction, an int, a float or a str such as '1/16')";
+}  // namespace cifs::python
+
 // Rational ↔ fractions.Fraction. Accepted: Fraction, int (and numpy integers), str in parse_rational
 // syntax ("1/16", "0.0625"), and floats (Python and numpy): a float stands for the decimal it prints
 // as, its shortest round-trip text, as the CLI reads `--param w=0.1` — so 0.1 is 1/10, not
 // 3602879701896397/36028797018963968 (that exact binary value stays available as fractions.Fraction(x)).
+// Anything else (None, an array, a complex number, True) is refused as the argument casters of bindings.hpp
+// refuse, naming the parameter: "j_spline: s: expected an exact number (…), got an array of dtype …" (it
+// raised RuntimeError "Unexpected character encountered in input." for an array: issue 33).
 namespace pybind11::detail {
 template <>
 struct type_caster<sd::Rational> {
   PYBIND11_TYPE_CASTER(sd::Rational, const_name("fractions.Fraction"));
 
   bool load(handle src, bool /*convert*/) {
-    if (!src || PyBool_Check(src.ptr())) return false;
-    if (PyUnicode_Check(src.ptr())) {
-      value = sd::parse_rational(src.cast<std::string>(), "rational");
+    using cifs::python::describe;
+    // By the real type (PyObject_TypeCheck runs no __class__ of the value); the types are never released.
+    static auto* const floating = type("numpy", "floating");
+    static auto* const fraction = type("fractions", "Fraction");
+    if (!src) return false;
+    PyObject* p = src.ptr();
+    if (PyUnicode_Check(p)) {
+      value = sd::parse_rational(cifs::python::checked_cast<std::string>(src, "a str"), "rational");
       return true;
     }
-    if (PyFloat_Check(src.ptr()) || isinstance(src, module_::import("numpy").attr("floating"))) {
-      const auto x = reinterpret_steal<object>(PyNumber_Float(src.ptr()));
+    if (PyFloat_Check(p) || PyObject_TypeCheck(p, floating)) {
+      const auto x = reinterpret_steal<object>(PyNumber_Float(p));
       if (!x) throw error_already_set();
+      if (!std::isfinite(PyFloat_AsDouble(x.ptr())))
+        throw cifs::python::ArgumentError(p, {}, "expected a finite number, got " + describe(src));
       // str, not repr: numpy 2's repr of a scalar is "np.float64(0.1)"; str is the shortest text of its type.
       const std::string text = str(src).cast<std::string>();
-      if (!std::isfinite(x.cast<double>()))
-        throw cifs::InvalidInput("rational: " + text + " is not a finite number");
       try {
         value = sd::parse_rational(text, "rational");
       } catch (const cifs::InvalidInput&) {  // beyond the parser's exponent range (1e-310): the exact value
@@ -46,15 +61,19 @@ struct type_caster<sd::Rational> {
       }
       return true;
     }
-    if (PyIndex_Check(src.ptr())) {
-      value = sd::Rational(integer(src));
-      return true;
+    if (!PyBool_Check(p) && PyIndex_Check(p)) {  // an int, a numpy integer (an array has __index__ too)
+      if (const auto index = reinterpret_steal<object>(PyNumber_Index(p))) {
+        value = sd::Rational(integer(index));
+        return true;
+      }
+      PyErr_Clear();
     }
-    if (isinstance(src, module_::import("fractions").attr("Fraction"))) {
+    if (PyObject_TypeCheck(p, fraction)) {
       value = ratio(src.attr("numerator"), src.attr("denominator"));
       return true;
     }
-    return false;
+    return cifs::python::refuse(
+        src, "expected " + std::string(cifs::python::kExactNumber) + ", got " + describe(src), {}, true);
   }
 
   static handle cast(const sd::Rational& x, return_value_policy, handle) {
@@ -63,33 +82,42 @@ struct type_caster<sd::Rational> {
   }
 
  private:
-  static boost::multiprecision::cpp_int integer(handle i) {
-    return boost::multiprecision::cpp_int(
-        str(reinterpret_steal<object>(PyNumber_Index(i.ptr()))).cast<std::string>());
+  /// The type module.attribute (a new reference).
+  static PyTypeObject* type(const char* module, const char* attribute) {
+    return reinterpret_cast<PyTypeObject*>(object(module_::import(module).attr(attribute)).release().ptr());
   }
-  static sd::Rational ratio(handle p, handle q) { return sd::Rational(integer(p), integer(q)); }
+  static boost::multiprecision::cpp_int integer(handle index) {
+    return boost::multiprecision::cpp_int(str(index).cast<std::string>());
+  }
+  static sd::Rational ratio(handle p, handle q) {
+    return sd::Rational(integer(reinterpret_steal<object>(PyNumber_Index(p.ptr()))),
+                        integer(reinterpret_steal<object>(PyNumber_Index(q.ptr()))));
+  }
 };
 
 // A mask (list of Rationals): its length is checked before any coefficient is converted, so that
 // np.zeros(10**7) is refused at once (each conversion costs a microsecond or more: 22 s), and an
-// array of several dimensions is named as such instead of failing on its rows.
+// array of several dimensions is named as such instead of failing on its rows. The coefficients are read
+// as every list argument is (bindings.hpp): a refused one is named by its place, "mask[2]".
 template <>
-struct type_caster<sd::Polynomial> : list_caster<sd::Polynomial, sd::Rational> {
+struct type_caster<sd::Polynomial> : CheckedListCaster<sd::Polynomial, sd::Rational> {
   bool load(handle src, bool convert) {
     if (src && hasattr(src, "ndim") && hasattr(src, "shape")) {
       const auto ndim = src.attr("ndim").cast<ssize_t>();
       if (ndim != 1)
-        throw cifs::InvalidInput("mask: an array of " + std::to_string(ndim) +
-                                 " dimensions; give the coefficients as a list or a 1-D array");
+        throw cifs::python::ArgumentError(src.ptr(), {},
+                                          "an array of " + std::to_string(ndim) +
+                                              " dimensions; give the coefficients as a list or a 1-D array");
     }
     if (src && PySequence_Check(src.ptr()) && !PyUnicode_Check(src.ptr()) && !PyBytes_Check(src.ptr())) {
       const Py_ssize_t n = PySequence_Size(src.ptr());
       if (n < 0) throw error_already_set();
       if (n > sd::kMaxMaskSize)
-        throw cifs::InvalidInput("mask: " + std::to_string(n) + " coefficients exceed the limit of " +
-                                 std::to_string(sd::kMaxMaskSize));
+        throw cifs::python::ArgumentError(
+            src.ptr(), {},
+            std::to_string(n) + " coefficients exceed the limit of " + std::to_string(sd::kMaxMaskSize));
     }
-    return list_caster<sd::Polynomial, sd::Rational>::load(src, convert);
+    return CheckedListCaster<sd::Polynomial, sd::Rational>::load(src, convert);
   }
 };
 }  // namespace pybind11::detail
@@ -107,15 +135,15 @@ py::dict parameter_dict(const std::vector<sd::Parameter>& parameters) {
 std::vector<sd::Parameter> parameter_list(const py::dict& parameters) {
   std::vector<sd::Parameter> out;
   for (const auto& [key, value] : parameters)
-    out.push_back({key.cast<std::string>(), value.cast<sd::Rational>()});
+    out.push_back({checked_cast<std::string>(key, "a str"), checked_cast<sd::Rational>(value, kExactNumber)});
   return out;
 }
 
 /// A named scheme's parameter as the CLI text: strings unchanged (named_scheme parses them and
 /// names the scheme in its errors), numbers as their exact text.
 std::string parameter_text(const py::handle& value) {
-  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
-  return sd::to_string(value.cast<sd::Rational>());
+  if (py::isinstance<py::str>(value)) return checked_cast<std::string>(value, "a str");
+  return sd::to_string(checked_cast<sd::Rational>(value, kExactNumber));
 }
 
 void check_range(const char* where, const char* name, int value, int low, int high) {
@@ -236,16 +264,26 @@ void bind_subdivision_catalogue(py::module_& m) {
 
   m.def(
       "named_scheme",
-      [](const std::string& name, const py::object& parameters, const py::kwargs& kwargs) {
+      [](const std::string& name, const std::optional<py::dict>& parameters, const py::kwargs& kwargs) {
         std::map<std::string, std::string> given;
-        const auto add = [&](const py::handle& key, const py::handle& value) {
-          const auto k = key.cast<std::string>();
-          if (!given.emplace(k, parameter_text(value)).second)
+        // A value refused is named where it was given, "parameters['w']" or the keyword "w" (checked_call
+        // finds arguments by identity, which cannot tell the keyword w=None from parameters=None).
+        const auto add = [&](const py::handle& key, const py::handle& value, bool keyword) {
+          const auto k = checked_cast<std::string>(key, "a str");
+          std::string text;
+          try {
+            text = parameter_text(value);
+          } catch (const ArgumentError& e) {
+            const std::string where = keyword ? k : "parameters[" + std::string(py::repr(key)) + "]";
+            if (e.wrong_type) throw py::type_error("named_scheme: " + where + ": " + e.detail);
+            throw InvalidInput("named_scheme: " + where + ": " + e.detail);
+          }
+          if (!given.emplace(k, std::move(text)).second)
             throw InvalidInput("named_scheme: parameter '" + k + "' is given twice");
         };
-        if (!parameters.is_none())
-          for (const auto& [key, value] : parameters.cast<py::dict>()) add(key, value);
-        for (const auto& [key, value] : kwargs) add(key, value);
+        if (parameters)
+          for (const auto& [key, value] : *parameters) add(key, value, false);
+        for (const auto& [key, value] : kwargs) add(key, value, true);
         return sd::named_scheme(name, given);
       },
       py::arg("name"), py::arg("parameters") = py::none(),

@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -117,6 +118,44 @@ std::optional<Camera> tight_orthographic(const Points& points, const Eigen::Vect
 
 }  // namespace
 
+Eigen::Vector3d automatic_view_direction(const Points& points, const Eigen::Vector3d& up) {
+  const Eigen::Vector3d& d0 = kDefaultViewDirection;
+  if (points.cols() != 3 || points.rows() == 0 || !points.allFinite() || !up.allFinite() ||
+      !(up.cwiseAbs().maxCoeff() > 0))
+    return d0;
+  // The covariance about the mean, on coordinates scaled by the largest magnitude (no overflow near 1e308).
+  const double scale = std::max(points.cwiseAbs().maxCoeff(), std::numeric_limits<double>::min());
+  const Eigen::RowVector3d mean = points.colwise().mean() / scale;
+  Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    const Eigen::RowVector3d q = points.row(i) / scale - mean;
+    C += q.transpose() * q;
+  }
+  // adj(C) by cofactors (C may be singular: a wall's points lie in a plane).
+  Eigen::Matrix3d adjugate;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const int a = (j + 1) % 3, b = (j + 2) % 3, c = (i + 1) % 3, e = (i + 2) % 3;
+      adjugate(i, j) = C(a, c) * C(b, e) - C(a, e) * C(b, c);
+    }
+  const Eigen::Vector3d k = (up / up.cwiseAbs().maxCoeff()).normalized();
+  const auto spread = [&](const Eigen::Vector3d& d) { return d.dot(adjugate * d) / d.squaredNorm(); };
+  Eigen::Vector3d best = d0;
+  // Spreads at the rounding level do not count: a segment's covariance has rank 1 and every projection of
+  // it is a line, whatever rounding says.
+  double widest = std::max(2 * spread(d0), 1e-9 * C.trace() * C.trace());
+  for (int step = 1; step < 16; ++step) {  // Rodrigues' rotation of d0 about k by step · 22.5°
+    const double angle = step * std::numbers::pi / 8;
+    const Eigen::Vector3d d =
+        d0 * std::cos(angle) + k.cross(d0) * std::sin(angle) + k * k.dot(d0) * (1 - std::cos(angle));
+    if (const double s = spread(d); s > widest) {
+      best = d;
+      widest = s;
+    }
+  }
+  return best;
+}
+
 ViewTransform view_transform(const Camera& camera) {
   check_size(camera.width, camera.height);
   if (!camera.eye.allFinite() || !camera.target.allFinite() || !camera.up.allFinite())
@@ -206,7 +245,8 @@ Camera frame(const Points& points, const FramingOptions& options) {
     camera.up = {0, 1, 0};
     return camera;
   }
-  const Eigen::Vector3d& v = options.view_direction;
+  const Eigen::Vector3d v =
+      options.view_direction ? *options.view_direction : automatic_view_direction(points, options.up);
   if (!v.allFinite() || !(v.cwiseAbs().maxCoeff() > 0))
     throw InvalidInput(v.allFinite() ? "the camera's view direction is zero; give a non-zero direction"
                                      : "the camera's view direction has a coordinate that is not finite");

@@ -144,7 +144,8 @@ TEST_CASE("cifs gallery checks every experiment before it writes anything", "[cl
       "render": {"width": 16, "height": 16}, "outputs": {"png": "a.png"}})");
   file("gallery_examples/experiments/b.json",
        R"({"name": "b", "ifs": "sierpinski", "evaluation": {"depht": 3}})");
-  const auto out = scratch() / "gallery_out";
+  // Not test_frictions_cli's gallery_out: both run in one process, in one scratch folder.
+  const auto out = scratch() / "gallery_checked_out";
   check_error(cifs_cli("gallery " + out.string() + " --examples " + examples.string() + " --quiet"),
               "b.json: evaluation.depht: unknown member");
   CHECK(!std::filesystem::exists(out));

@@ -11,7 +11,8 @@ Rules (docs/design.md, "Code blocks in the docs"):
   before its fence; the report lists it with its reason.
 - Each markdown file's blocks run in order in a fresh copy of the source tree (so paths such as
   examples/… resolve as from the repository root and nothing is written into the repository), with
-  `build` the build tree, the CLI (`cifs`) on PATH and `python3` the build's interpreter.
+  `build` the build tree, the CLI (`cifs`) on PATH and `python3` the build's interpreter. Beside the
+  repository's files they may leave only what their commands name (and out/): a side effect there fails.
 - Without the Python module, python blocks and shell blocks naming build/python are skipped.
 """
 import argparse
@@ -228,6 +229,13 @@ def main() -> int:
             run_blocks(runnable, rel, cwd, work, shim, env, args, report)
         finally:  # the copy is in the build tree: its `build` link would make any recursive walk of it loop
             (cwd / "build").unlink()
+        # What a user pastes writes the files it names, and nothing else beside the repository's files: README's
+        # `render clover_fractal.json -o clover.exr --png clover.png` also left clover_fractal.svg there (issue 32).
+        named = "\n".join("\n".join(b.lines) for b in runnable)
+        left = sorted(n for n in set(os.listdir(cwd)) - set(os.listdir(source)) - {"out"} if n not in named)
+        if left:
+            report.failures.append((rel, f"its blocks left {', '.join(left)} in the folder they ran in, a file "
+                                         "no command names; write such outputs under out/ or name them"))
         sys.stdout.flush()
 
     for b in report.marked:

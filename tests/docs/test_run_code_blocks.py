@@ -44,6 +44,16 @@ class RunCodeBlocks(unittest.TestCase):
             links = [p for p in (build / "docs_blocks").rglob("*") if p.is_symlink()]
             self.assertEqual(links, [])
 
+    def test_files_no_command_names_fail(self):
+        """README's `render clover_fractal.json -o clover.exr --png clover.png` also wrote clover_fractal.svg into
+        the current folder (issue 32): a file left beside the repository's that no block names fails, naming it."""
+        status, out = self.run_on("```sh\necho a > named.txt\nmkdir -p out && echo b > out/any.txt\n```\n")
+        self.assertEqual(status, 0, out)
+        status, out = self.run_on("```sh\necho a > named.txt\nn=2; echo b > side$n.svg\n```\n")
+        self.assertEqual(status, 1, out)
+        self.assertIn("README.md: its blocks left side2.svg in the folder they ran in, a file no command names; "
+                      "write such outputs under out/ or name them", out)
+
     def test_a_failing_block_names_its_line_and_stderr(self):
         status, out = self.run_on("text\n\n```bash\ntrue\necho oops >&2; false\necho never\n```\n")
         self.assertEqual(status, 1, out)

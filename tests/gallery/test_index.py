@@ -10,9 +10,14 @@ script added (in a copy: the page itself has no script). The test fails unless
   link is relative, inside the gallery folder;
 - every image the gallery wrote (PNG, SVG, walked here) is shown, and every other file linked;
 - each experiment's name and description appear as text, not markup;
-- the check itself sees a broken image (a copy of the page with one missing image must fail it).
+- the check itself sees a broken image (a copy of the page with one missing image must fail it);
+- driven through chromedriver like a user (with --chromedriver): each section's images are a grid (several
+  cards side by side), every card has a caption naming its file, a click on a thumbnail shows the image
+  full size over the page (its own size, or as large as the window allows), and the
+  keyboard alone (Tab, Enter) opens a thumbnail, moves to the next image and closes the view.
 
-    tests/gallery/test_index.py --cli build/apps/cifs --examples examples --chromium chromium --work /tmp/g
+    tests/gallery/test_index.py --cli build/apps/cifs --examples examples --chromium chromium \
+        --chromedriver chromedriver --work /tmp/g
 """
 import argparse
 import html.parser
@@ -101,6 +106,101 @@ class PreText(html.parser.HTMLParser):
         self.inside = False
 
 
+def interact(args, index):
+    """Failures of the page driven like a user (see the module's docstring)."""
+    from selenium import webdriver
+    from selenium.webdriver.chrome.service import Service
+    from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.common.by import By
+    from selenium.webdriver.common.keys import Keys
+
+    failures = []
+    options = webdriver.ChromeOptions()
+    options.binary_location = shutil.which(args.chromium) or args.chromium
+    for flag in ("--headless=new", "--no-sandbox", "--disable-gpu", "--window-size=1200,900",
+                 "--disable-dev-shm-usage"):
+        options.add_argument(flag)
+    driver = webdriver.Chrome(service=Service(shutil.which(args.chromedriver) or args.chromedriver),
+                              options=options)
+    try:
+        driver.get(index.as_uri())
+        open_viewers = "return [...document.querySelectorAll('.viewer')].filter(v => getComputedStyle(v).display " \
+                       "!== 'none').map(v => v.id)"
+        # A grid: the scheme figures' section has cards side by side, all of one width.
+        grids = driver.find_elements(By.CSS_SELECTOR, ".figures")
+        if not grids or any(driver.execute_script("return getComputedStyle(arguments[0]).display", g) != "grid"
+                            for g in grids):
+            failures.append("the images are not laid out as a grid")
+        widest = max(grids, key=lambda g: len(g.find_elements(By.TAG_NAME, "figure")))
+        cards = widest.find_elements(By.TAG_NAME, "figure")
+        tops = [c.rect["y"] for c in cards]
+        if len(cards) < 4 or tops.count(tops[0]) < 3 or len({round(c.rect["width"]) for c in cards}) != 1:
+            failures.append(f"no grid of cards: {len(cards)} cards, {tops.count(tops[0])} in the first row")
+        # Captions: every card names its file.
+        for figure in driver.find_elements(By.TAG_NAME, "figure"):
+            caption = figure.find_element(By.TAG_NAME, "figcaption").text
+            src = urllib.parse.unquote(figure.find_element(By.TAG_NAME, "img").get_attribute("src"))
+            if not caption or not src.endswith(caption.split(": ")[0]):
+                failures.append(f"card {src}: caption {caption!r}")
+        # A click shows the image full size over the page (its own size, or as large as the window allows);
+        # "close" goes back.
+        first = driver.find_element(By.CSS_SELECTOR, "figure a")
+        first.click()
+        viewers = driver.execute_script(open_viewers)
+        if viewers != ["v0"]:
+            failures.append(f"a click on the first thumbnail shows the viewers {viewers}")
+        else:
+            viewer = driver.find_element(By.ID, "v0")
+            big = viewer.find_element(By.TAG_NAME, "img")
+            nw, nh, ww, wh = driver.execute_script(
+                "const i = arguments[0]; return [i.naturalWidth, i.naturalHeight, innerWidth, innerHeight]", big)
+            scale = min(1, 0.92 * ww / nw, 0.8 * wh / nh)
+            size = big.rect
+            if abs(size["width"] - nw * scale) > 2 or abs(size["height"] - nh * scale) > 2:
+                failures.append(f"the viewer shows {size['width']:.0f}×{size['height']:.0f} of a {nw}×{nh} image "
+                                f"in a {ww}×{wh} window (expected {nw * scale:.0f}×{nh * scale:.0f})")
+            viewer.find_element(By.CLASS_NAME, "close").click()
+            if driver.execute_script(open_viewers):
+                failures.append("'close' leaves a viewer open")
+        # The keyboard alone: Tab to the first thumbnail, Enter opens it, Tab to "next", Enter, Tab to "close",
+        # Enter.
+        driver.get(index.as_uri() + "#")
+
+        def press(key):
+            ActionChains(driver).send_keys(key).perform()
+
+        def tab_to(test, limit=40):
+            for _ in range(limit):
+                press(Keys.TAB)
+                if driver.execute_script(f"const a = document.activeElement; return {test};"):
+                    return True
+            return False
+        if not tab_to("a.parentElement && a.parentElement.tagName === 'FIGURE'"):
+            failures.append("Tab never reaches a thumbnail")
+        else:
+            press(Keys.ENTER)
+            opened = driver.execute_script(open_viewers)
+            if len(opened) != 1:
+                failures.append(f"Enter on a thumbnail shows the viewers {opened}")
+            elif not tab_to("a.classList.contains('next')", 6):
+                failures.append("Tab does not reach the viewer's 'next'")
+            else:
+                press(Keys.ENTER)
+                after = driver.execute_script(open_viewers)
+                expected = f"v{int(opened[0][1:]) + 1}"
+                if after != [expected]:
+                    failures.append(f"Enter on 'next' in {opened[0]} shows {after}, expected {expected}")
+                elif not tab_to("a.classList.contains('close')", 6):
+                    failures.append("Tab does not reach the viewer's 'close'")
+                else:
+                    press(Keys.ENTER)
+                    if driver.execute_script(open_viewers):
+                        failures.append("Enter on 'close' leaves a viewer open")
+    finally:
+        driver.quit()
+    return failures
+
+
 def local(url):
     assert url.startswith("file://"), url
     return Path(urllib.parse.unquote(urllib.parse.urlparse(url).path))
@@ -111,6 +211,7 @@ def main():
     ap.add_argument("--cli", required=True)
     ap.add_argument("--examples", required=True, type=Path)
     ap.add_argument("--chromium", required=True)
+    ap.add_argument("--chromedriver", help="with selenium: drive the page like a user")
     ap.add_argument("--work", required=True, type=Path)
     args = ap.parse_args()
     shutil.rmtree(args.work, ignore_errors=True)
@@ -178,10 +279,12 @@ def main():
     broken.write_text(page.replace('src="wave.png"', 'src="no_such.png"').replace("</body>",
                                                                                  CHECK_SCRIPT + "</body>"))
     bad = [i["src"] for i in browse(args, broken)["images"] if not i["ok"]]
-    if [Path(local(src)).name for src in bad] != ["no_such.png"]:
+    if {Path(local(src)).name for src in bad} != {"no_such.png"}:  # its thumbnail and its viewer
         failures.append(f"the check does not see a missing image: {bad}")
     checked.unlink()
     broken.unlink()
+    if args.chromedriver:
+        failures += interact(args, index)
 
     for f in failures:
         print("FAIL:", f)

@@ -52,16 +52,27 @@ TEST_CASE("gallery_html shows images, links the other files, escapes every text"
   CHECK_THAT(page, Catch::Contains("<h2>hills &lt;3</h2>"));
   CHECK_THAT(page, Catch::Contains("<p>A &quot;bicubic&quot; surface &amp; &lt;b&gt;its&lt;/b&gt; mesh</p>"));
   CHECK(page.find("<b>") == std::string::npos);
-  // Four images (PNG, SVG of either case), each also a link to itself; the EXR and PLY are links.
-  CHECK(count_in_html(page, "<img ") == 4);
+  // Four images (PNG, SVG of either case), each a captioned thumbnail and a viewer that links to the file;
+  // the EXR and PLY are links.
+  CHECK(count_in_html(page, "<img ") == 8);
   for (const char* src : {"hills.png", "hills%20mesh.SVG", "schemes/a.svg", "schemes/b.svg"}) {
-    CHECK(count_in_html(page, std::string("src=\"") + src + "\"") == 1);
+    CHECK(count_in_html(page, std::string("src=\"") + src + "\"") == 2);
     CHECK(count_in_html(page, std::string("href=\"") + src + "\"") == 1);
   }
   CHECK_THAT(page, Catch::Contains("<a href=\"hills.exr\">hills.exr</a>"));
   CHECK_THAT(page, Catch::Contains("<a href=\"hills.ply\">hills.ply</a>"));
-  CHECK(count_in_html(page, "href=") == 6);
+  CHECK(count_in_html(page, "href=") ==
+        2 + 4 * 5);  // files; per image: thumbnail, previous, close, file, next
   CHECK_THAT(page, Catch::Contains("schemes/a.svg: Chaikin &lt;open&gt;</figcaption>"));
+  // The grid, and the viewers numbered through the page: thumbnail k opens #v<k>, whose links wrap around.
+  CHECK_THAT(page, Catch::Contains(".figures { display: grid;"));
+  CHECK_THAT(page, Catch::Contains(".viewer:target { display: flex; }"));
+  CHECK_THAT(page, Catch::Contains("<figure id=\"f2\"><a href=\"#v2\"><img src=\"schemes/a.svg\""));
+  CHECK_THAT(page, Catch::Contains("<a class=\"previous\" href=\"#v3\">previous</a><a class=\"close\" "
+                                   "href=\"#f0\">close</a><a class=\"file\" href=\"hills.png\">the file</a>"
+                                   "<a class=\"next\" href=\"#v1\">next</a>"));
+  CHECK_THAT(page, Catch::Contains("<a class=\"next\" href=\"#v0\">next</a>"));
+  CHECK(count_in_html(page, "class=\"viewer\"") == 4);
   // A section without a description has no empty paragraph; self-contained: no script, no URL scheme.
   CHECK(count_in_html(page, "<p>") == 1);
   CHECK(page.find("<script") == std::string::npos);

@@ -269,5 +269,62 @@ class HostileObjectTest(unittest.TestCase):
                    r"^for_each_leaf_to_tolerance: callback: expected a callable, got None$")
 
 
+class ExactNumberTest(unittest.TestCase):
+    """cifs.subdivision's exact numbers (Fractions) refuse other values naming the parameter (issue 33, found by
+    test_hostile.py): an array raised RuntimeError "Unexpected character encountered in input.", and named_scheme
+    RuntimeError "Unable to cast Python instance" for a key or value it could not read."""
+
+    def check(self, call, error, pattern):
+        with self.assertRaises(Exception) as e:
+            call()
+        self.assertIs(type(e.exception), error, f"{type(e.exception).__name__}: {e.exception}")
+        self.assertRegex(str(e.exception), pattern)
+
+    def test_wrong_types_are_type_errors_naming_the_parameter(self):
+        sd = cifs.subdivision
+        takes = r"expected an exact number \(a Fraction, an int, a float or a str such as '1/16'\), got "
+        cases = [
+            (lambda: sd.j_spline(np.arange(3.0)), r"^j_spline: s: " + takes + r"an array of dtype float64 and shape \(3,\)$"),
+            (lambda: sd.j_spline(np.array(0.5)), r"^j_spline: s: " + takes + r"an array of dtype float64 and shape \(\)$"),
+            (lambda: sd.corner_cutting(0.25, None), r"^corner_cutting: b: " + takes + "None$"),
+            (lambda: sd.j_spline(True), r"^j_spline: s: " + takes + "bool True$"),
+            (lambda: sd.j_spline(1j), r"^j_spline: s: " + takes + r"complex 1j$"),
+            (lambda: sd.from_mask([0.5, 1, [0.5]]), r"^from_mask: mask\[2\]: " + takes + r"list \[0\.5\]$"),
+            (lambda: sd.from_mask([0.5, 1, None]), r"^from_mask: mask\[2\]: " + takes + "None$"),
+            (lambda: sd.named_scheme("generalized-four-point", {"w": None}), r"^named_scheme: parameters\['w'\]: " + takes + "None$"),
+            (lambda: sd.named_scheme("generalized-four-point", w=np.ones(2)), r"^named_scheme: w: " + takes + "an array of dtype"),
+            (lambda: sd.named_scheme("four-point", [[0, 1], [1, 2]]),
+             r"^named_scheme: parameters: expected a dict, got list \[\[0, 1\], \[1, 2\]\]$"),
+            (lambda: sd.named_scheme("four-point", {1: 2}), r"^named_scheme: parameters\[1\]: expected a str, got int 1$"),
+            (lambda: sd.make_scheme("x", [0.5, 1, 0.5], {2: 1}), r"^make_scheme: parameters\[2\]: expected a str, got int 2$"),
+            (lambda: sd.Scheme("x", [0.5, 1, 0.5], {"w": b"x"}), r"^Scheme: parameters\['w'\]: " + takes + "bytes b'x'$"),
+        ]
+        for call, pattern in cases:
+            with self.subTest(pattern=pattern):
+                self.check(call, TypeError, pattern)
+
+    def test_wrong_values_are_invalid_input_naming_the_parameter(self):
+        sd = cifs.subdivision
+        self.check(lambda: sd.j_spline(float("inf")), cifs.InvalidInput, r"^j_spline: s: expected a finite number, got float inf$")
+        self.check(lambda: sd.from_mask([0.5, float("nan"), 0.5]), cifs.InvalidInput,
+                   r"^from_mask: mask\[1\]: expected a finite number, got float nan$")
+        self.check(lambda: sd.named_scheme("generalized-four-point", w=float("nan")), cifs.InvalidInput,
+                   r"^named_scheme: w: expected a finite number, got float nan$")
+        self.check(lambda: sd.difference_mask(np.zeros((2, 2)), 1), cifs.InvalidInput,
+                   r"^difference_mask: a: an array of 2 dimensions; give the coefficients as a list or a 1-D array$")
+        self.check(lambda: sd.power_norm(np.zeros(600), 1), cifs.InvalidInput,
+                   r"^power_norm: c: 600 coefficients exceed the limit of 512$")
+
+    def test_exact_numbers_still_convert(self):
+        from fractions import Fraction
+        sd = cifs.subdivision
+        expected = sd.generalized_four_point(Fraction(1, 16)).mask
+        for w in (Fraction(1, 16), "1/16", 0.0625, np.float64(0.0625), np.float32(0.0625)):
+            self.assertEqual(sd.generalized_four_point(w).mask, expected, repr(w))
+        self.assertEqual(sd.j_spline(np.int64(1)).mask, sd.j_spline(1).mask)
+        self.assertEqual(sd.from_mask(np.array([1, 2, 1]) / 2).mask, [Fraction(1, 2), 1, Fraction(1, 2)])
+        self.assertEqual(sd.named_scheme("generalized-four-point", {"w": Fraction(1, 16)}).mask, expected)
+
+
 if __name__ == "__main__":
     unittest.main()

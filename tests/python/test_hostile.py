@@ -32,14 +32,12 @@ SKIPPED = {"experiment.run", "experiment.evaluate", "experiment.measure_dimensio
            "render.render_experiment", "ifs.chaos_game", "render.chaos_density"}
 
 
-# Findings of this test not fixed yet (29 Nov), tolerated so that anything else fails it; remove each once fixed.
-# The exact-number conversion of cifs.subdivision (python/src/subdivision.cpp, type_caster<Rational>) raises
-# RuntimeError for an array where a number is expected (issue 33 item 11 names the same message for from_mask),
-# and named_scheme's parameters dict RuntimeError "Unable to cast" for a value that is neither a string nor a
-# number ({'w': None}).
-KNOWN = {("subdivision.", "RuntimeError: Unexpected character encountered in input."),
-         # pybind11 names the types only without NDEBUG (the sanitize build): "…instance of type <…> to C++…"
-         ("subdivision.named_scheme", "RuntimeError: Unable to cast Python instance")}
+# Findings of this test not fixed yet, tolerated so that anything else fails it; remove each once fixed. Empty
+# since 29 Nov: the exact-number conversion of cifs.subdivision raised RuntimeError "Unexpected character
+# encountered in input." for an array, and named_scheme RuntimeError "Unable to cast Python instance" for a
+# parameters dict with a key that is not a str or a value that is not a number (test_class_arguments.py,
+# ExactNumberTest).
+KNOWN = set()
 
 
 def _extra_values(np):

@@ -206,6 +206,45 @@ class AttractorTest(unittest.TestCase):
         self.assertEqual(message(self, lambda: ifs.cartesian(np.array([[1.0, 0.0]]))),
                          "homogeneous point 0 has weight 0 (a point at infinity): it has no Cartesian coordinates")
 
+    def test_cartesian_refuses_rows_known_to_be_cartesian(self):
+        """Issue 32: README's ifs.cartesian(ifs.attractor_points(…)) divided a non-rational 3-D curve's x and y
+        by its z. The nets of a shape and the points made from them know whether they are homogeneous."""
+        knots = [0, 0, 0, 0, 1, 2, 4, 4, 4, 4]
+        xyz = np.array([[0, 0, 1], [1, 2, 2], [3, 3, 1], [4, 0, 3], [6, 1, 2], [7, 3, 1]], float)
+        breaks = [0, 1, 2, 4]
+        us = [a + (b - a) * j / 16 for a, b in zip(breaks[:-1], breaks[1:]) for j in range(16)] + [4]
+        plain = cifs.nurbs.Curve(3, knots, xyz)
+        a = automata.knot_automaton(plain)
+        nets = automata.initial_nets(a, plain)
+        self.assertEqual([net.homogeneous for net in nets], [False] * 3)
+        for rows in (ifs.attractor_points(a, nets, 4), ifs.stencil_table(a, 4).apply(nets)):
+            self.assertIs(rows.homogeneous, False)
+            assert_close(self, rows, plain.evaluate(us))  # the points themselves (de Boor)
+            self.assertEqual(message(self, lambda r=rows: ifs.cartesian(r)),
+                             "cartesian: homogeneous: the rows are Cartesian already (the nets of a shape that is "
+                             "not rational, or points made from them); curve.attractor(depth) and "
+                             "surface.attractor(depth) give the Cartesian points of any shape")
+            self.assertEqual(message(self, lambda r=rows: ifs.cartesian(homogeneous=r[1:])),
+                             message(self, lambda r=rows: ifs.cartesian(r)))  # slices keep the flag
+        rational = cifs.nurbs.Curve(3, knots, xyz[:, :2], weights=[1, 3, 0.5, 2, 1, 0.7])
+        a = automata.knot_automaton(rational)
+        nets = automata.initial_nets(a, rational)
+        H = ifs.attractor_points(a, nets, 4)
+        self.assertIs(H.homogeneous, True)
+        points = ifs.cartesian(H)
+        assert_close(self, points, rational.evaluate(us))
+        self.assertIs(points.homogeneous, False)  # divided once, never twice
+        self.assertIn("Cartesian already", message(self, lambda: ifs.cartesian(points)))
+        # Surfaces: the nets of tensor_automaton(surface) know too.
+        grid = np.array([[[i, j, (i * j) % 3] for j in range(3)] for i in range(3)], dtype=float)
+        for weights in (None, np.ones((3, 3)) + np.eye(3)):
+            surface = cifs.nurbs.Surface([2, 2], [[0, 0, 0, 1, 1, 1]] * 2, grid, weights=weights)
+            nets = automata.initial_nets(automata.tensor_automaton(surface), surface)
+            self.assertEqual({net.homogeneous for net in nets}, {weights is not None})
+        # Rows of unknown origin (made by hand, or nets that disagree) are taken as homogeneous, as before.
+        self.assertIsNone(ifs.attractor_points(chaikin(), [NET], 2).homogeneous)
+        np.testing.assert_array_equal(ifs.cartesian(np.asarray(H)), points)
+
     def test_for_each_leaf_gives_the_matrix_products_in_order(self):
         a = chaikin()
         leaves = []

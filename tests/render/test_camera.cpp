@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: MIT
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <catch2/catch.hpp>
@@ -195,4 +196,67 @@ TEST_CASE("Framing: 3-D shapes fill the image to the margin in the tighter direc
   const Camera c = frame(along, o);
   CHECK(c.eye.allFinite());
   CHECK(pixel_box(c, along)[0] == Approx(32));
+}
+
+TEST_CASE("The automatic view direction faces a quarter cylinder and keeps the default for a cube",
+          "[render][camera]") {
+  // Issue 32: the default direction (1, −1.6, 1.1) saw a quarter cylinder (x² + y² = 1, x, y ≥ 0,
+  // 0 ≤ z ≤ 1) nearly along its chord: a sliver of the frame.
+  Points quarter(33 * 9, 3);
+  for (int i = 0; i < 33; ++i)
+    for (int j = 0; j < 9; ++j) {
+      const double t = std::numbers::pi / 2 * i / 32;
+      quarter.row(i * 9 + j) << std::cos(t), std::sin(t), j / 8.0;
+    }
+  const auto covered = [&](const FramingOptions& o) {
+    const auto [left, right, top, bottom] = pixel_box(frame(quarter, o), quarter);
+    return (right - left) * (bottom - top) / static_cast<double>(o.width * o.height);
+  };
+  for (const bool perspective : {true, false}) {
+    INFO("perspective " << perspective);
+    FramingOptions o{.width = 400, .height = 300, .margin = 0.05, .perspective = perspective};
+    const double automatic = covered(o);
+    o.view_direction = kDefaultViewDirection;
+    const double fixed = covered(o);
+    INFO("covered: automatic " << automatic << ", default direction " << fixed);
+    CHECK(automatic > 0.5);
+    CHECK(fixed < 0.3);
+  }
+  // The direction chosen is the azimuth (about z, of 16) whose projection spreads the points widest,
+  // measured here by brute force: the determinant of the covariance of the projected points.
+  const auto projected_spread = [&](const Eigen::Vector3d& direction) {
+    const Eigen::Vector3d d = direction.normalized(), r = d.cross(Eigen::Vector3d::UnitZ()).normalized();
+    const Eigen::Vector3d u = r.cross(d);
+    Eigen::MatrixX2d q(quarter.rows(), 2);
+    q.col(0) = quarter * r;
+    q.col(1) = quarter * u;
+    q.rowwise() -= q.colwise().mean();
+    return (q.transpose() * q).determinant();
+  };
+  const Eigen::Vector3d chosen = automatic_view_direction(quarter);
+  double widest = 0;
+  for (int step = 0; step < 16; ++step)
+    widest = std::max(
+        widest, projected_spread(Eigen::AngleAxisd(step * std::numbers::pi / 8, Eigen::Vector3d::UnitZ()) *
+                                 kDefaultViewDirection));
+  CHECK(projected_spread(chosen) == Approx(widest).epsilon(1e-9));
+  CHECK(widest > 2 * projected_spread(kDefaultViewDirection));
+  CHECK(chosen.z() == Approx(kDefaultViewDirection.z()).epsilon(1e-12));  // the elevation kept
+  // A cube's surface looks alike from every side: the default, exactly.
+  Points cube(6 * 25, 3);
+  Eigen::Index n = 0;
+  for (int axis = 0; axis < 3; ++axis)
+    for (const double side : {-1.0, 1.0})
+      for (int i = 0; i < 5; ++i)
+        for (int j = 0; j < 5; ++j) {
+          Eigen::Vector3d p;
+          p[axis] = side;
+          p[(axis + 1) % 3] = -1 + i / 2.0;
+          p[(axis + 2) % 3] = -1 + j / 2.0;
+          cube.row(n++) = p.transpose();
+        }
+  CHECK(automatic_view_direction(cube) == kDefaultViewDirection);
+  // Nothing to measure: the default.
+  CHECK(automatic_view_direction(Points(0, 3)) == kDefaultViewDirection);
+  CHECK(automatic_view_direction(quarter, Eigen::Vector3d::Zero()) == kDefaultViewDirection);
 }

@@ -30,9 +30,11 @@ std::string html_escape(std::string_view text);
 std::string relative_href(const std::filesystem::path& file);
 
 /// A self-contained page (inline CSS, no script, nothing fetched from the network): per section its
-/// name, description, every image (PNG, SVG) as a thumbnail that links to the file, and a link to
-/// every other file (EXR, OBJ, PLY, JSON, DOT, …) by its name. Text is escaped (html_escape), links
-/// are relative (relative_href).
+/// name, description, its images (PNG, SVG) as a grid of captioned thumbnails, and a link to every other
+/// file (EXR, OBJ, PLY, JSON, DOT, …) by its name. A thumbnail opens its image full size over the page
+/// (a CSS :target viewer, `#v<k>` for the k-th image of the page) with links to the previous and next
+/// image, the file, and back to the thumbnail (`#f<k>`): links only, so the keyboard (Tab, Enter) reaches
+/// everything. Text is escaped (html_escape), links are relative (relative_href).
 std::string gallery_html(const std::vector<GallerySection>& sections, const std::string& title);
 
 }  // namespace cifs::io

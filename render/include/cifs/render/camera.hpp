@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <optional>
 
 #include "cifs/types.hpp"
 
@@ -78,22 +79,37 @@ struct FramingOptions {
   /// 3-D shapes: perspective (true) or orthographic (false). Planar shapes always get an
   /// orthographic top view.
   bool perspective = true;
-  /// 3-D shapes: direction from the shape's centre towards the eye, and the world's up.
-  Eigen::Vector3d view_direction{1.0, -1.6, 1.1};
+  /// 3-D shapes: direction from the shape's centre towards the eye (unset: automatic_view_direction),
+  /// and the world's up.
+  std::optional<Eigen::Vector3d> view_direction = std::nullopt;
   Eigen::Vector3d up{0, 0, 1};
   double fov_y = 35;
   /// 3-D shapes: fit the points' projection (true) or only their bounding sphere (false).
   bool tight = true;
 };
 
+/// The direction a 3-D shape is seen from by default: from the front right, 30° above the horizon (z up).
+inline const Eigen::Vector3d kDefaultViewDirection{1.0, -1.6, 1.1};
+
+/// The view direction of `points` (`#P by 3`) when none is given: kDefaultViewDirection turned about `up`
+/// to the one of 16 azimuths (steps of 22.5°, the elevation kept) that sees the points spread widest — the
+/// largest determinant of their covariance C projected on the image plane, which for a unit direction d is
+/// dᵀ·adj(C)·d. The default is kept unless another azimuth sees twice its determinant, so shapes that look
+/// alike from every side (a cube, a sphere, a torus lying flat) keep it; a wall or a quarter cylinder, which
+/// the default saw edge-on, turns to face the camera. Points that are not finite, or an `up` that is zero or
+/// not finite, give the default (frame and view_transform refuse them).
+Eigen::Vector3d automatic_view_direction(const Points& points,
+                                         const Eigen::Vector3d& up = Eigen::Vector3d::UnitZ());
+
 /// A camera that shows all of `points` (`#P by 2` or `#P by 3`) with the margin.
 /// - Planar shapes (2 columns, or 3 with every z equal): an orthographic top view (eye above the
 ///   plane, looking down −z, x right and y up in the image); the bounding box is centred and fills
 ///   the image up to the margin in its tighter direction.
-/// - Other shapes, seen along `view_direction`: with `tight`, the closest camera whose image, less
-///   the margin, holds the points' projection, centred on it — perspective keeps fov_y and moves
-///   the eye along the view direction and across it (the largest eye depth that keeps every point
-///   inside the four shrunk frustum planes, then the projection's extent centred by bisection),
+/// - Other shapes, seen along `view_direction` (unset: automatic_view_direction): with `tight`, the
+///   closest camera whose image, less the margin, holds the points' projection, centred on it —
+///   perspective keeps fov_y and moves the eye along the view direction and across it (the largest
+///   eye depth that keeps every point inside the four shrunk frustum planes, then the projection's
+///   extent centred by bisection),
 ///   orthographic takes the projected box; the margin is met exactly in the tighter direction.
 ///   Without `tight` (or when the fit degenerates: no point in front of the eye) the bounding
 ///   sphere (centre of the box, radius of the farthest point) is centred and fits in the image minus
