@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
 #include <nlohmann/json.hpp>
 
 #include "apps/cli_runner.hpp"
@@ -201,11 +205,44 @@ TEST_CASE("cifs limit: what is not built exits 2 with one line", "[cli][mesh][li
   const auto out = scratch() / "never_limit.ply";
   std::filesystem::remove(out);
   const std::string o = " -o " + out.string();
+  // Normals per sector are per face corner, which PLY cannot hold.
   check_error(cifs_cli("limit " + example("creased_box.obj") + " --scheme catmull-clark --normals" + o),
-              "is on a crease or a corner: the surface has a tangent plane per sector there");
+              "the mesh to write as PLY has normals per face corner");
   check_error(cifs_cli("limit " + example("cube.obj") + " --scheme doo-sabin" + o),
               "doo-sabin: limit points belong to faces");
   CHECK(!std::filesystem::exists(out));
+}
+
+TEST_CASE("cifs limit --normals on creases and corners: a normal per sector, OBJ f v//n", "[cli][mesh][limit]") {
+  // The creased box: its OBJ has more vn than v, and some vertex takes two normals (one per side of a
+  // crease); read back, the faces are the same. The normals themselves: test_mesh_limit_classes.cpp.
+  const auto out = scratch() / "box_normals.obj";
+  const Run run = cifs_cli("limit " + example("creased_box.obj") + " --scheme catmull-clark --normals -o " +
+                           out.string());
+  REQUIRE(run.status == 0);
+  CHECK_THAT(run.out, Catch::Contains("normals (per sector at creases and corners)"));
+  const std::string text = slurp(out);
+  std::size_t v = 0, vn = 0;
+  for (std::size_t at = 0; (at = text.find('\n', at)) != std::string::npos; ++at) {
+    v += text.compare(at + 1, 2, "v ") == 0 ? 1 : 0;
+    vn += text.compare(at + 1, 3, "vn ") == 0 ? 1 : 0;
+  }
+  CHECK(vn > v);
+  std::map<int, std::set<int>> normals_of;  // vertex → the normals its corners take
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    if (!line.starts_with("f ")) continue;
+    std::istringstream corners(line.substr(2));
+    for (std::string c; corners >> c;) {
+      const auto slash = c.find("//");
+      REQUIRE(slash != std::string::npos);
+      normals_of[std::stoi(c.substr(0, slash))].insert(std::stoi(c.substr(slash + 2)));
+    }
+  }
+  CHECK(std::any_of(normals_of.begin(), normals_of.end(), [](const auto& x) { return x.second.size() == 2; }));
+  const Mesh back = io::read_mesh(out);
+  const Mesh box = io::read_mesh(example("creased_box.obj"));
+  CHECK(back.face_vertices.size() == 4 * box.face_vertices.size());
 }
 
 TEST_CASE("cifs limit --at: the limit surface at points, as JSON", "[cli][mesh][limit]") {

@@ -563,15 +563,38 @@ class LimitTest(unittest.TestCase):
     def test_limits_follow_the_tags(self):
         # The creased box (creases infinite, 2 and 1, a corner, a hole): the limit from level 0 and from
         # level 2 agree on the old vertices (semi-sharp ones too: the sharpness still to spend is followed).
-        # Normals are refused on the creases, naming a vertex.
         path = EXAMPLES / "meshes" / "creased_box.obj"
         box = cifs.io.read_mesh(str(path))
         coarse, fine = sd.limit(box, "catmull-clark", 0), sd.limit(box, "catmull-clark", 2)
         n = box.vertices.shape[0]
         np.testing.assert_allclose(np.asarray(fine.vertices)[:n], coarse.vertices, rtol=0, atol=1e-13)
         self.assertEqual(len(fine.tags.holes), 16)  # the hole's grandchildren
-        with self.assertRaisesRegex(cifs.InvalidInput, r"vertex \d+ \(valence \d\) is on a crease or a corner"):
-            sd.limit(box, "catmull-clark", 1, normals=True)
+        self.assertEqual(coarse.normal_indices.shape, (0,))
+
+    def test_limit_normals_per_sector(self):
+        # On the creased box's creases and corners a normal per sector, per face corner (normal_indices):
+        # at every corner of every face but the hole the normal of limit_surface's du x dv there (where
+        # they span a plane), and more normals than vertices.
+        box = cifs.io.read_mesh(str(EXAMPLES / "meshes" / "creased_box.obj"))
+        limit = sd.limit(box, "catmull-clark", 0, normals=True)
+        corners = np.asarray(box.face_vertices)
+        indices = np.asarray(limit.normal_indices)
+        self.assertEqual(indices.shape, corners.shape)
+        normals = np.asarray(limit.normals)
+        self.assertGreater(len(normals), box.vertices.shape[0])
+        np.testing.assert_allclose(np.linalg.norm(normals, axis=1), 1, atol=1e-14)
+        faces = corners.reshape(-1, 4)
+        keep = [f for f in range(len(faces)) if f not in box.tags.holes]
+        f = np.repeat(keep, 4)
+        u = np.tile([0.0, 1.0, 1.0, 0.0], len(keep))
+        v = np.tile([0.0, 0.0, 1.0, 1.0], len(keep))
+        _, du, dv = sd.limit_surface(box, f.tolist(), u.tolist(), v.tolist())
+        cross = np.cross(du, dv)
+        spans = np.linalg.norm(cross, axis=1) > 1e-6 * np.linalg.norm(du, axis=1) * np.linalg.norm(dv, axis=1)
+        self.assertGreater(spans.sum(), len(f) // 2)
+        ours = normals[indices[(4 * f + np.tile(np.arange(4), len(keep)))]]
+        expected = cross[spans] / np.linalg.norm(cross[spans], axis=1)[:, None]
+        np.testing.assert_allclose(ours[spans], expected, rtol=0, atol=1e-12)
 
     def test_limit_surface_at_face_points(self):
         # At the corners of a once-refined cube's faces the surface is the limit of those vertices.
