@@ -2,14 +2,12 @@
 // cifs — limit stencils from the left eigenvectors of S_n (cifs/subdivision/limit.hpp).
 #include "cifs/subdivision/limit.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <Eigen/QR>
 #include <Eigen/SVD>
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <complex>
 #include <map>
 #include <numbers>
 #include <span>

@@ -16,14 +16,15 @@ std::vector<Sector> sectors_around(const MeshTopology& t, const MeshTags& tags) 
   const auto edges = vertex_edges(t, 0);
   const auto faces = vertex_faces(t, 0);
   const auto m = static_cast<int>(faces.size());
+  if (m == 0) return {};
   std::vector<char> sharp(edges.size(), 0);
   for (std::size_t k = 0; k < edges.size(); ++k) {
     const auto e = static_cast<std::size_t>(edges[k]);
     const int w = other_vertex(t, e, 0);
-    sharp[k] = is_boundary_edge(t, e) ||
-               std::any_of(tags.creases.begin(), tags.creases.end(), [&](const EdgeSharpness& c) {
-                 return c.sharpness > 0 && ((c.a == 0 && c.b == w) || (c.b == 0 && c.a == w));
-               });
+    sharp[k] = static_cast<char>(is_boundary_edge(t, e) ||
+                                 std::any_of(tags.creases.begin(), tags.creases.end(), [&](const EdgeSharpness& c) {
+                   return c.sharpness > 0 && ((c.a == 0 && c.b == w) || (c.b == 0 && c.a == w));
+                                 }));
   }
   // Face k lies between edges k and k + 1 (cifs/topology.hpp); a boundary vertex's edges 0 and m are
   // its boundary edges.
