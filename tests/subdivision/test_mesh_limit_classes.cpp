@@ -278,7 +278,7 @@ TEST_CASE("limits at high valence: poles of valence 64 and 360 converge to their
     }
 }
 
-TEST_CASE("limit normals: on the boundary and at darts from the one-sector spectrum; refused on creases",
+TEST_CASE("limit normals: on the boundary and at darts from the one-sector spectrum, per side on creases",
           "[subdivision][limit][classes]") {
   // Boundary and dart vertices have a tangent plane: the normal of deep refinement's limit points around
   // the vertex approaches ours as the ring shrinks.
@@ -318,9 +318,12 @@ TEST_CASE("limit normals: on the boundary and at darts from the one-sector spect
   m.tags.boundary = BoundaryRule::edge_only;
   CHECK_THROWS_WITH(limit_mesh(m, MeshScheme::catmull_clark, 0, {.normals = true}),
                     Contains("vertex 0 (valence 2) has no tangent plane that its spectrum proves"));
-  // A crease vertex has a tangent plane per side: refused, naming it.
-  CHECK_THROWS_WITH(limit_mesh(torus_of_classes(false), MeshScheme::catmull_clark, 0, {.normals = true}),
-                    Contains("is on a crease or a corner"));
+  // A crease vertex has a tangent plane per side: the six on the sharp ring take two normals each, per
+  // face corner (test "limit normals per sector" below checks them).
+  const Mesh torus = torus_of_classes(false);
+  const Mesh creased = limit_mesh(torus, MeshScheme::catmull_clark, 0, {.normals = true});
+  CHECK(creased.normals.rows() == torus.vertices.rows() + 6);
+  CHECK(creased.normal_indices.size() == torus.face_vertices.size());
 }
 
 TEST_CASE("limit normals at boundary vertices: given where the sector is C1, refused where it is not",
@@ -434,6 +437,7 @@ TEST_CASE("limit normals per sector: the limit of the refined faces' normals, at
     INFO(c.name);
     Mesh m = lifted(local_mesh(c.scheme, c.valence, c.options, 2));
     for (EdgeSharpness& e : m.tags.creases) e.sharpness = c.sharpness;
+    m.tags.boundary = BoundaryRule::edge_and_corner;  // the local mesh's own corners: no plane under edge_only
     const Mesh ours = limit_mesh(m, c.scheme, 0, {.normals = true});
     const MeshTopology t0 = build_topology(m);
     const auto faces = vertex_faces(t0, 0);
