@@ -123,7 +123,8 @@ void append(Mesh& into, const Mesh& more) {
     const Points mine = into.normals.rows() == 0 ? Points(0, 3) : into.normals;
     const auto offset = static_cast<int>(mine.rows());
     for (std::size_t k = 0; k < more.face_vertices.size(); ++k)
-      indices.push_back(offset + (more.normal_indices.empty() ? more.face_vertices[k] : more.normal_indices[k]));
+      indices.push_back(offset +
+                        (more.normal_indices.empty() ? more.face_vertices[k] : more.normal_indices[k]));
     Points n(mine.rows() + more.normals.rows(), 3);
     n << mine, more.normals;
     into.normals = std::move(n);
@@ -319,8 +320,9 @@ void check_mesh(const Mesh& mesh, std::string_view who) {
                          std::to_string(mesh.normals.cols()) + ", expected 3 columns");
     for (std::size_t k = 0; k < mesh.normal_indices.size(); ++k)
       if (const int i = mesh.normal_indices[k]; i < 0 || i >= mesh.normals.rows())
-        throw InvalidInput(w + ": the normal index of corner " + std::to_string(k) + " = " + std::to_string(i) +
-                           " is out of range (" + std::to_string(mesh.normals.rows()) + " normals)");
+        throw InvalidInput(w + ": the normal index of corner " + std::to_string(k) + " = " +
+                           std::to_string(i) + " is out of range (" + std::to_string(mesh.normals.rows()) +
+                           " normals)");
     check_rows(mesh.normals, who, "normals");
   } else if (mesh.normals.size() != 0) {
     if (mesh.normals.rows() != V || mesh.normals.cols() != 3)

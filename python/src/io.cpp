@@ -497,7 +497,8 @@ void bind_geometry_types(py::module_& m) {
       .def_property_readonly(
           "normal_indices", [](const Mesh& mesh) { return vector_array(mesh.normal_indices); },
           "Per face corner (1-D, parallel to face_vertices), the row of normals it takes; empty when normals "
-          "are per vertex. subdivision.limit(normals=True) gives them at crease and corner vertices (a normal "
+          "are per vertex. subdivision.limit(normals=True) gives them at crease and corner vertices (a "
+          "normal "
           "per sector).")
       .def_property_readonly(
           "states", [](const Mesh& mesh) { return vector_array(mesh.states); },

@@ -483,11 +483,11 @@ Points limit_normals(const MeshTopology& t, const LimitStencils& s, const LimitF
     return unit_normal(frame.tangent_u.row(v).transpose(), frame.tangent_v.row(v).transpose());
   };
   Eigen::Index rows = 0;
-  for (Eigen::Index v = 0; v < V; ++v) rows += std::max<Eigen::Index>(1, static_cast<Eigen::Index>(mask(v).sectors.size()));
+  for (Eigen::Index v = 0; v < V; ++v)
+    rows += std::max<Eigen::Index>(1, static_cast<Eigen::Index>(mask(v).sectors.size()));
   Points normals(rows, 3);
   if (rows == V) {
-    for (Eigen::Index v = 0; v < V; ++v)
-      normals.row(v) = vertex_normal(v);
+    for (Eigen::Index v = 0; v < V; ++v) normals.row(v) = vertex_normal(v);
     return normals;
   }
   indices.assign(t.face_vertices.size(), -1);
@@ -515,7 +515,8 @@ Points limit_normals(const MeshTopology& t, const LimitStencils& s, const LimitF
         w += sector.tangent_v[i] * x.row(column[i]).transpose();
       }
       normals.row(row) = unit_normal(u, w);
-      for (const int k : sector.faces) indices[corner(faces[static_cast<std::size_t>(k)])] = static_cast<int>(row);
+      for (const int k : sector.faces)
+        indices[corner(faces[static_cast<std::size_t>(k)])] = static_cast<int>(row);
       ++row;
     }
   }
@@ -547,13 +548,15 @@ Mesh limit_mesh(const Mesh& mesh, MeshScheme scheme, int levels, const LimitOpti
       const LimitMask& m = mask_of(v);
       const auto n = valence(last, static_cast<std::size_t>(v));
       if ((!m.tangent_u.empty() && m.sectors.empty()) || n == 0) continue;
-      const std::string where = who + ": vertex " + std::to_string(v) + " (valence " + std::to_string(n) + ")";
+      const std::string where =
+          who + ": vertex " + std::to_string(v) + " (valence " + std::to_string(n) + ")";
       for (const SectorMask& sector : m.sectors) {
         if (!sector.tangent_u.empty()) continue;
         std::string faces;
         for (const int k : sector.faces)
-          faces += (faces.empty() ? "" : ", ") +
-                   std::to_string(vertex_faces(last, static_cast<std::size_t>(v))[static_cast<std::size_t>(k)]);
+          faces +=
+              (faces.empty() ? "" : ", ") +
+              std::to_string(vertex_faces(last, static_cast<std::size_t>(v))[static_cast<std::size_t>(k)]);
         throw InvalidInput(where + ": its sector of face" + (sector.faces.size() > 1 ? "s " : " ") + faces +
                            " has no tangent plane that its spectrum proves (" + sector.refused +
                            "): no limit normal there (drop the normals)");

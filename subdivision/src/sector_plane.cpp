@@ -21,10 +21,11 @@ std::vector<Sector> sectors_around(const MeshTopology& t, const MeshTags& tags) 
   for (std::size_t k = 0; k < edges.size(); ++k) {
     const auto e = static_cast<std::size_t>(edges[k]);
     const int w = other_vertex(t, e, 0);
-    sharp[k] = static_cast<char>(is_boundary_edge(t, e) ||
-                                 std::any_of(tags.creases.begin(), tags.creases.end(), [&](const EdgeSharpness& c) {
-                   return c.sharpness > 0 && ((c.a == 0 && c.b == w) || (c.b == 0 && c.a == w));
-                                 }));
+    sharp[k] =
+        static_cast<char>(is_boundary_edge(t, e) ||
+                          std::any_of(tags.creases.begin(), tags.creases.end(), [&](const EdgeSharpness& c) {
+                            return c.sharpness > 0 && ((c.a == 0 && c.b == w) || (c.b == 0 && c.a == w));
+                          }));
   }
   // Face k lies between edges k and k + 1 (cifs/topology.hpp); a boundary vertex's edges 0 and m are
   // its boundary edges.
@@ -41,7 +42,8 @@ std::vector<Sector> sectors_around(const MeshTopology& t, const MeshTags& tags) 
   const int start = boundary ? 0 : static_cast<int>(std::find(sharp.begin(), sharp.end(), 1) - sharp.begin());
   for (int i = 0; i < m; ++i) {
     const int k = (start + i) % m;
-    if (i == 0 || sharp[static_cast<std::size_t>(k)] != 0) out.push_back(Sector{.faces = {}, .bounded = true});
+    if (i == 0 || sharp[static_cast<std::size_t>(k)] != 0)
+      out.push_back(Sector{.faces = {}, .bounded = true});
     out.back().faces.push_back(k);
   }
   return out;
@@ -81,7 +83,8 @@ SectorPlane sector_plane(const Eigen::MatrixXd& S, const MeshTopology& t, const 
   // The null space of B − λ when it has `dimension` dimensions; empty when λ is defective there (a
   // Jordan block: no pair of eigenvectors to span a plane).
   const auto null_space = [&](const Eigen::MatrixXd& B, double lambda, int dimension) {
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(B - lambda * Eigen::MatrixXd::Identity(N, N), Eigen::ComputeFullV);
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(B - lambda * Eigen::MatrixXd::Identity(N, N),
+                                                Eigen::ComputeFullV);
     const auto& sigma = svd.singularValues();
     if (sigma(N - dimension) > kTight * std::max(1.0, sigma(0))) return Eigen::MatrixXd();
     return Eigen::MatrixXd(svd.matrixV().rightCols(dimension));

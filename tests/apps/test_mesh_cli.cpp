@@ -4,10 +4,10 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 #include <string>
-#include <nlohmann/json.hpp>
 
 #include "apps/cli_runner.hpp"
 #include "cifs/files.hpp"
@@ -213,7 +213,8 @@ TEST_CASE("cifs limit: what is not built exits 2 with one line", "[cli][mesh][li
   CHECK(!std::filesystem::exists(out));
 }
 
-TEST_CASE("cifs limit --normals on creases and corners: a normal per sector, OBJ f v//n", "[cli][mesh][limit]") {
+TEST_CASE("cifs limit --normals on creases and corners: a normal per sector, OBJ f v//n",
+          "[cli][mesh][limit]") {
   // The creased box: its OBJ has more vn than v, and some vertex takes two normals (one per side of a
   // crease); read back, the faces are the same. The normals themselves: test_mesh_limit_classes.cpp.
   const auto out = scratch() / "box_normals.obj";
@@ -239,7 +240,8 @@ TEST_CASE("cifs limit --normals on creases and corners: a normal per sector, OBJ
       normals_of[std::stoi(c.substr(0, slash))].insert(std::stoi(c.substr(slash + 2)));
     }
   }
-  CHECK(std::any_of(normals_of.begin(), normals_of.end(), [](const auto& x) { return x.second.size() == 2; }));
+  CHECK(
+      std::any_of(normals_of.begin(), normals_of.end(), [](const auto& x) { return x.second.size() == 2; }));
   const Mesh back = io::read_mesh(out);
   const Mesh box = io::read_mesh(example("creased_box.obj"));
   CHECK(back.face_vertices.size() == 4 * box.face_vertices.size());

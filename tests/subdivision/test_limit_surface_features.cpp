@@ -594,9 +594,12 @@ TEST_CASE("the limit surface's partials at a vertex that is never a polynomial p
         const auto parent = [&](int g) {  // Catmull–Clark: a child per corner; Loop: 4 a face
           return c.scheme == MeshScheme::loop
                      ? g / 4
-                     : static_cast<int>(std::upper_bound(offsets.begin(), offsets.end(), g) - offsets.begin()) - 1;
+                     : static_cast<int>(std::upper_bound(offsets.begin(), offsets.end(), g) -
+                                        offsets.begin()) -
+                           1;
         };
-        const auto child = std::find_if(around.begin(), around.end(), [&](int g) { return parent(g) == q.face; });
+        const auto child =
+            std::find_if(around.begin(), around.end(), [&](int g) { return parent(g) == q.face; });
         REQUIRE(child != around.end());
         const auto position = static_cast<int>(child - around.begin());
         const auto sector = std::find_if(mask.sectors.begin(), mask.sectors.end(), [&](const SectorMask& x) {

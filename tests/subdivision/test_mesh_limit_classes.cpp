@@ -400,8 +400,9 @@ double angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 
 }  // namespace
 
-TEST_CASE("limit normals per sector: the limit of the refined faces' normals, at the rate of the sector's spectrum",
-          "[subdivision][limit][classes]") {
+TEST_CASE(
+    "limit normals per sector: the limit of the refined faces' normals, at the rate of the sector's spectrum",
+    "[subdivision][limit][classes]") {
   // At vertex 0 of lifted local meshes with creases (k faces on each side), corners and semi-sharp creases:
   // the normal limit_mesh gives each face corner at level 0 against the normal of that face's child at
   // the vertex after 4 … 7 steps of plain refinement. The error falls by |λ3|/λ2 a step, λ2 ≥ |λ3| the
@@ -437,7 +438,8 @@ TEST_CASE("limit normals per sector: the limit of the refined faces' normals, at
     INFO(c.name);
     Mesh m = lifted(local_mesh(c.scheme, c.valence, c.options, 2));
     for (EdgeSharpness& e : m.tags.creases) e.sharpness = c.sharpness;
-    m.tags.boundary = BoundaryRule::edge_and_corner;  // the local mesh's own corners: no plane under edge_only
+    m.tags.boundary =
+        BoundaryRule::edge_and_corner;  // the local mesh's own corners: no plane under edge_only
     const Mesh ours = limit_mesh(m, c.scheme, 0, {.normals = true});
     const MeshTopology t0 = build_topology(m);
     const auto faces = vertex_faces(t0, 0);
@@ -446,9 +448,8 @@ TEST_CASE("limit normals per sector: the limit of the refined faces' normals, at
     // The faces of each face's sector: those with the same normal row.
     const auto sector_size = [&](int g) {
       const Eigen::Vector3d n = corner_normal(ours, g, 0);
-      return static_cast<int>(std::count_if(faces.begin(), faces.end(), [&](int h) {
-        return (corner_normal(ours, h, 0) - n).norm() == 0;
-      }));
+      return static_cast<int>(std::count_if(
+          faces.begin(), faces.end(), [&](int h) { return (corner_normal(ours, h, 0) - n).norm() == 0; }));
     };
     const bool corner = c.options.corner || c.options.sharp.size() + (c.options.boundary ? 2 : 0) >= 3;
     std::vector<std::vector<double>> errors(faces.size());
@@ -461,7 +462,9 @@ TEST_CASE("limit normals per sector: the limit of the refined faces' normals, at
         for (int j = level; j >= 1; --j) {
           const std::vector<int>& offsets = r.levels[static_cast<std::size_t>(j - 1)].face_offsets;
           parent = c.scheme == cc && j == 1
-                       ? static_cast<int>(std::upper_bound(offsets.begin(), offsets.end(), parent) - offsets.begin()) - 1
+                       ? static_cast<int>(std::upper_bound(offsets.begin(), offsets.end(), parent) -
+                                          offsets.begin()) -
+                             1
                        : parent / 4;
         }
         const auto at = std::find(faces.begin(), faces.end(), parent);
@@ -496,7 +499,8 @@ TEST_CASE("limit normals at a boundary vertex with one face: Loop's osculating p
   // plane is the curve's osculating plane; the triangle has no inner vertex, and what lies beyond it
   // enters at ⅛ a step. Deep refinement shows that plane is the surface's: the refined vertices within
   // two edges of v leave it by max |n · (p − v)| / max |p − v| falling by ¼ a step ((⅛)/(½): in the plane
-  // to second order; a plane off by an angle would keep it at that angle). Catmull–Clark's face point enters at ¼ beside the curvature: no pair above the rest, refused.
+  // to second order; a plane off by an angle would keep it at that angle). Catmull–Clark's face point enters
+  // at ¼ beside the curvature: no pair above the rest, refused.
   const Mesh m = lifted(local_mesh(MeshScheme::loop, 2, {.boundary = true}, 3));
   const Mesh ours = limit_mesh(m, MeshScheme::loop, 0, {.normals = true});
   const Eigen::Vector3d n = ours.normals.row(0).transpose(), centre = ours.vertices.row(0).transpose();
