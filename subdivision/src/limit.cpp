@@ -35,7 +35,11 @@ LimitMask eigen_mask(MeshScheme scheme, int valence) {
     for (Eigen::Index i = 0; i < w.size(); ++i) out[static_cast<std::size_t>(i)] = static_cast<double>(w(i));
     return out;
   };
-  LimitMask out{.position = doubles(spectrum.limit_stencil), .tangent_u = {}, .tangent_v = {}};
+  LimitMask out{.position = doubles(spectrum.limit_stencil),
+                .tangent_u = {},
+                .tangent_v = {},
+                .refused = {},
+                .sectors = {}};
   const auto N = S.values.rows();
   const LongMatrix A = (S.values - spectrum.subdominant * LongMatrix::Identity(N, N)).transpose();
   const Eigen::JacobiSVD<LongMatrix> svd(A, Eigen::ComputeFullV);
@@ -71,7 +75,9 @@ LimitMask smooth_mask(MeshScheme scheme, int n) {
   const std::size_t size = quads ? 2 * static_cast<std::size_t>(n) + 1 : static_cast<std::size_t>(n) + 1;
   LimitMask m{.position = std::vector<double>(size),
               .tangent_u = std::vector<double>(size, 0.0),
-              .tangent_v = std::vector<double>(size, 0.0)};
+              .tangent_v = std::vector<double>(size, 0.0),
+              .refused = {},
+              .sectors = {}};
   const double step = 2 * std::numbers::pi / N;
   if (quads) {
     const double d = N * (N + 5);
@@ -307,7 +313,8 @@ LimitStencils limit_stencils(const MeshRefinement& r) {
   out.mask_of.reserve(V);
   out.columns.reserve(V * (scheme == MeshScheme::catmull_clark ? 9 : 7));
   // Kind 0 is "the vertex itself"; smooth masks by valence; stationary classes by their key.
-  out.masks.push_back(LimitMask{.position = {1.0}, .tangent_u = {}, .tangent_v = {}});
+  out.masks.push_back(
+      LimitMask{.position = {1.0}, .tangent_u = {}, .tangent_v = {}, .refused = {}, .sectors = {}});
   std::vector<int> smooth;
   std::map<std::vector<int>, int> classes;
   std::vector<int> faces, nb;
