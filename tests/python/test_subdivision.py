@@ -572,10 +572,16 @@ class LimitTest(unittest.TestCase):
         self.assertEqual(coarse.normal_indices.shape, (0,))
 
     def test_limit_normals_per_sector(self):
-        # On the creased box's creases and corners a normal per sector, per face corner (normal_indices):
-        # at every corner of every face but the hole the normal of limit_surface's du x dv there (where
-        # they span a plane), and more normals than vertices.
-        box = cifs.io.read_mesh(str(EXAMPLES / "meshes" / "creased_box.obj"))
+        # A grid with a sharp crease across: a normal per side at the crease's vertices, per face corner
+        # (normal_indices): at every corner of every face the normal of limit_surface's du x dv there
+        # (where they span a plane), and more normals than vertices. The creased box's crease turns at a
+        # corner of the box (a face alone between two crease edges of one smooth curve): refused there.
+        rows = [f"v {i} {j} {0.3 * np.sin(1.3 * i + 0.7 * j)}" for j in range(5) for i in range(6)]
+        rows += [f"f {j * 6 + i + 1} {j * 6 + i + 2} {j * 6 + i + 8} {j * 6 + i + 7}" for j in range(4) for i in range(5)]
+        rows += [f"t crease 2/1/0 {i} {i + 1} 10" for i in range(6, 11)] + ["t interpolateboundary 1/0/0 1"]
+        box = cifs.io.parse_mesh_obj("\n".join(rows) + "\n", strict=True)
+        with self.assertRaisesRegex(cifs.InvalidInput, r"vertex 0 \(valence 3\): its sector of face 0 has no tangent"):
+            sd.limit(cifs.io.read_mesh(str(EXAMPLES / "meshes" / "creased_box.obj")), "catmull-clark", 0, normals=True)
         limit = sd.limit(box, "catmull-clark", 0, normals=True)
         corners = np.asarray(box.face_vertices)
         indices = np.asarray(limit.normal_indices)
