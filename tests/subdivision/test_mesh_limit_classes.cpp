@@ -443,9 +443,9 @@ TEST_CASE(
                         Contains("leave the plane of its subdominant eigenvectors"));
   // A Catmull–Clark corner's sector of 2 faces: the inner edge's mode is ½ too (its block (r, f0 + f1) is
   // ((⅜, 1/16), (½, ¼)): ½ and ⅛), three eigenvalues ½ and no pair above the rest: refused.
-  Mesh corner = lifted(local_mesh(cc, 4, {.sharp = {0, 2}, .corner = true}, 2));
-  corner.tags.boundary = BoundaryRule::edge_and_corner;
-  CHECK_THROWS_WITH(limit_mesh(corner, cc, 0, {.normals = true}),
+  Mesh two_faces = lifted(local_mesh(cc, 4, {.sharp = {0, 2}, .corner = true}, 2));
+  two_faces.tags.boundary = BoundaryRule::edge_and_corner;
+  CHECK_THROWS_WITH(limit_mesh(two_faces, cc, 0, {.normals = true}),
                     Contains("vertex 0 (valence 4): its sector of faces") &&
                         Contains("no pair of real subdominant eigenvalues above the rest"));
   for (const Case& c : cases) {
