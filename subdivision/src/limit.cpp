@@ -560,13 +560,18 @@ Mesh limit_mesh(const Mesh& mesh, MeshScheme scheme, int levels, const LimitOpti
       for (const SectorMask& sector : m.sectors) {
         if (!sector.tangent_u.empty()) continue;
         std::string faces;
-        for (const int k : sector.faces)
+        for (const int k : sector.faces) {
+          if (!faces.empty()) faces += ", ";
           faces +=
-              (faces.empty() ? "" : ", ") +
               std::to_string(vertex_faces(last, static_cast<std::size_t>(v))[static_cast<std::size_t>(k)]);
-        throw InvalidInput(where + ": its sector of face" + (sector.faces.size() > 1 ? "s " : " ") + faces +
-                           " has no tangent plane that its spectrum proves (" + sector.refused +
-                           "): no limit normal there (drop the normals)");
+        }
+        std::string what = where;
+        what += sector.faces.size() > 1 ? ": its sector of faces " : ": its sector of face ";
+        what += faces;
+        what += " has no tangent plane that its spectrum proves (";
+        what += sector.refused;
+        what += "): no limit normal there (drop the normals)";
+        throw InvalidInput(what);
       }
       if (!m.sectors.empty()) continue;
       throw InvalidInput(
