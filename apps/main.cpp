@@ -365,7 +365,8 @@ void add_limit(CLI::App& app, Commands& c) {
       "--boundary", c.li.boundary,
       "Boundary rule, replacing the file's: edge (default: corners smoothed) or corner (kept)");
   limit_cmd->add_flag("--normals", c.li.normals,
-                      "Write unit limit normals (refused at crease and corner vertices between sectors)");
+                      "Write unit limit normals (at crease and corner vertices one per sector, per face "
+                      "corner: OBJ f v//n; PLY refuses them)");
   auto* at = limit_cmd
                  ->add_option("--at", c.li.at,
                               "The limit surface at points 'face,u,v;face,u,v…' (or a file of them, one a "

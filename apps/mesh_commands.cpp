@@ -278,8 +278,12 @@ std::string limit(const LimitCommandOptions& o) {
       },
       [&](const Mesh& surface) {
         return std::to_string(surface.vertices.rows()) + " limit points" +
-               (o.normals ? " with normals, " : ", ") + std::to_string(face_count(surface)) + " faces (" +
-               o.scheme + ", " + std::to_string(o.levels) + " levels)";
+               (!o.normals                       ? ", "
+                : surface.normal_indices.empty() ? " with normals, "
+                                                 : " with " + std::to_string(surface.normals.rows()) +
+                                                       " normals (per sector at creases and corners), ") +
+               std::to_string(face_count(surface)) + " faces (" + o.scheme + ", " + std::to_string(o.levels) +
+               " levels)";
       });
 }
 

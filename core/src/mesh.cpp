@@ -105,20 +105,37 @@ void append(Mesh& into, const Mesh& more) {
   }
   const int face_base = static_cast<int>(face_count(into));
   const Eigen::Index base = into.vertices.rows();
-  const bool normals =
-      (base == 0 || into.normals.rows() == base) && more.normals.rows() == more.vertices.rows();
+  // Normals survive when both meshes have them, per vertex or per corner (then per corner).
+  const auto per_vertex = [](const Mesh& m) {
+    return m.normal_indices.empty() && m.normals.rows() == m.vertices.rows();
+  };
+  const bool normals = (base == 0 || per_vertex(into) || !into.normal_indices.empty()) &&
+                       (per_vertex(more) || !more.normal_indices.empty());
+  const bool indexed = normals && (!into.normal_indices.empty() || !more.normal_indices.empty());
   const bool states = (face_count(into) == 0 || into.states.size() == face_count(into)) &&
                       more.states.size() == face_count(more);
   if (base == 0) into.vertices.resize(0, more.vertices.cols());
   Points vertices(base + more.vertices.rows(), more.vertices.cols());
   vertices << into.vertices, more.vertices;
   into.vertices = std::move(vertices);
-  if (normals) {
+  if (indexed) {  // before the corners are appended: into's own corners index its normals
+    std::vector<int> indices = into.normal_indices.empty() ? into.face_vertices : into.normal_indices;
+    const Points mine = into.normals.rows() == 0 ? Points(0, 3) : into.normals;
+    const auto offset = static_cast<int>(mine.rows());
+    for (std::size_t k = 0; k < more.face_vertices.size(); ++k)
+      indices.push_back(offset +
+                        (more.normal_indices.empty() ? more.face_vertices[k] : more.normal_indices[k]));
+    Points n(mine.rows() + more.normals.rows(), 3);
+    n << mine, more.normals;
+    into.normals = std::move(n);
+    into.normal_indices = std::move(indices);
+  } else if (normals) {
     Points n(into.vertices.rows(), 3);
     n << (base == 0 ? Points(0, 3) : into.normals), more.normals;
     into.normals = std::move(n);
   } else {
     into.normals.resize(0, 0);
+    into.normal_indices.clear();
   }
   const int corner_base = into.face_offsets.back();
   for (std::size_t f = 1; f < more.face_offsets.size(); ++f)
@@ -294,7 +311,20 @@ void check_mesh(const Mesh& mesh, std::string_view who) {
                            " vertices)");
     }
   }
-  if (mesh.normals.size() != 0) {
+  if (!mesh.normal_indices.empty()) {
+    if (mesh.normal_indices.size() != mesh.face_vertices.size())
+      throw InvalidInput(w + ": " + std::to_string(mesh.normal_indices.size()) + " normal indices for " +
+                         std::to_string(mesh.face_vertices.size()) + " face corners");
+    if (mesh.normals.cols() != 3)
+      throw InvalidInput(w + ": normals are " + std::to_string(mesh.normals.rows()) + " by " +
+                         std::to_string(mesh.normals.cols()) + ", expected 3 columns");
+    for (std::size_t k = 0; k < mesh.normal_indices.size(); ++k)
+      if (const int i = mesh.normal_indices[k]; i < 0 || i >= mesh.normals.rows())
+        throw InvalidInput(w + ": the normal index of corner " + std::to_string(k) + " = " +
+                           std::to_string(i) + " is out of range (" + std::to_string(mesh.normals.rows()) +
+                           " normals)");
+    check_rows(mesh.normals, who, "normals");
+  } else if (mesh.normals.size() != 0) {
     if (mesh.normals.rows() != V || mesh.normals.cols() != 3)
       throw InvalidInput(w + ": normals are " + std::to_string(mesh.normals.rows()) + " by " +
                          std::to_string(mesh.normals.cols()) + ", expected " + std::to_string(V) +

@@ -147,6 +147,7 @@ void write_quads(int blocks, int bu, int bv, Mesh& mesh) {
   }
   if (stream) stream_fence();
   mesh.normals.resize(0, 0);
+  mesh.normal_indices.clear();
 }
 
 /// Vertices allocated (not set) and the quads of the grid.
@@ -353,6 +354,7 @@ void surface_mesh(const nurbs::TensorAutomaton& t, std::span<const Points> nets,
   if (keep) {
     resize_huge(mesh.vertices, static_cast<Eigen::Index>(grid.vertices), D);
     mesh.normals.resize(0, 0);
+    mesh.normal_indices.clear();
   } else {
     allocate(grid, D, mesh);
   }
@@ -561,6 +563,7 @@ void emit_mesh(const MeshStencilTable& table, const Layout& layout, std::span<co
                     mesh.face_offsets.size() == layout.faces + 1 && mesh.states.size() == layout.faces;
   resize_huge(mesh.vertices, static_cast<Eigen::Index>(layout.vertices), C);
   mesh.normals.resize(0, 0);  // a reused mesh's normals belong to its old vertices
+  mesh.normal_indices.clear();
   if (!keep) {
     write_quads(layout.blocks, layout.block_u, layout.block_v, mesh);
     assign_huge(mesh.states, layout.faces, std::uint32_t{0});  // written block by block, out of order

@@ -467,7 +467,11 @@ void mesh_obj(const Mesh& mesh, ByteSink& sink) {
       const std::string v = std::to_string(mesh.face_vertices[static_cast<std::size_t>(k)] + 1);
       out.text += ' ' + v;
       if (uv) out.text += '/' + std::to_string(uv->indices[static_cast<std::size_t>(k)] + 1);
-      if (normals) out.text += (uv ? "/" : "//") + v;
+      if (normals)
+        out.text +=
+            (uv ? "/" : "//") + (mesh.normal_indices.empty()
+                                     ? v
+                                     : std::to_string(mesh.normal_indices[static_cast<std::size_t>(k)] + 1));
     }
     out.text += '\n';
     out.spill();

@@ -460,6 +460,13 @@ void read_faces(BodyReader& r, const PlyElement& e, Mesh& mesh, const std::strin
 
 void mesh_ply(const Mesh& mesh, PlyFormat format, ByteSink& sink) {
   check_mesh(mesh, "the mesh to write as PLY");
+  // Splitting the vertices would cut the surface apart along its creases; PLY readers would see sheets.
+  if (!mesh.normal_indices.empty())
+    throw InvalidInput(
+        "the mesh to write as PLY has normals per face corner (" + std::to_string(mesh.normals.rows()) +
+        " normals for " + std::to_string(mesh.vertices.rows()) +
+        " vertices: several at crease and corner vertices); PLY holds one per vertex: write OBJ, "
+        "or drop the normals");
   const Points* normals = mesh.normals.size() != 0 ? &mesh.normals : nullptr;
   // Holes are left out: PLY has no tags, and its readers would draw them.
   const std::vector<char> hole = hole_flags(mesh);

@@ -492,7 +492,14 @@ void bind_geometry_types(py::module_& m) {
           "Every face as a list of vertex indices.")
       .def_property_readonly(
           "normals", [](const Mesh& mesh) { return Points(mesh.normals); },
-          "Per-vertex normals (V, 3), or an empty (0, 0) array.")
+          "Normals: per vertex (V, 3) when normal_indices is empty, else the rows normal_indices picks; or "
+          "an empty (0, 0) array.")
+      .def_property_readonly(
+          "normal_indices", [](const Mesh& mesh) { return vector_array(mesh.normal_indices); },
+          "Per face corner (1-D, parallel to face_vertices), the row of normals it takes; empty when normals "
+          "are per vertex. subdivision.limit(normals=True) gives them at crease and corner vertices (a "
+          "normal "
+          "per sector).")
       .def_property_readonly(
           "states", [](const Mesh& mesh) { return vector_array(mesh.states); },
           "Per-face states (1-D, in face order), or empty.")

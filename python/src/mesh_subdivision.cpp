@@ -98,7 +98,9 @@ void bind_mesh_subdivision_meshes(py::module_& m) {
       py::arg("max_bytes") = kDefaultBytes,
       "The mesh after `levels` steps with every vertex on the limit surface (left eigenvectors of the local "
       "subdivision matrices; creases, corners, holes and boundaries followed exactly, any valence), and unit "
-      "limit normals when normals=True (not at crease and corner vertices between sectors; not Butterfly). "
+      "limit normals when normals=True: per vertex, or per face corner (mesh.normal_indices) when a vertex "
+      "lies between sectors (creases, corners: each corner its sector's normal); refused, naming the vertex, "
+      "where a sector's spectrum proves no tangent plane; not Butterfly. "
       "catmull-clark, loop, butterfly (interpolating: the vertices themselves), sqrt3.");
   m.def(
       "limit_surface",

@@ -250,11 +250,21 @@ Interpolation interpolate(const Scene& scene, const Primitive& p, const Eigen::V
 
 Scene build_scene(const Mesh& mesh, const ViewTransform& view) {
   const Points normals = mesh.normals.size() != 0 ? mesh.normals : vertex_normals(mesh);
+  // Normals per face corner (Mesh::normal_indices, two sides of a crease): a scene vertex per corner.
+  const bool per_corner = mesh.normals.size() != 0 && !mesh.normal_indices.empty();
   Scene scene;
-  scene.vertices.reserve(static_cast<std::size_t>(mesh.vertices.rows()));
-  for (Eigen::Index i = 0; i < mesh.vertices.rows(); ++i) {
-    const Eigen::Vector3d p = row3(mesh.vertices, i);
-    scene.vertices.push_back({p, row3(normals, i), view.project(p)});
+  if (per_corner) {
+    scene.vertices.reserve(mesh.face_vertices.size());
+    for (std::size_t k = 0; k < mesh.face_vertices.size(); ++k) {
+      const Eigen::Vector3d p = row3(mesh.vertices, mesh.face_vertices[k]);
+      scene.vertices.push_back({p, row3(normals, mesh.normal_indices[k]), view.project(p)});
+    }
+  } else {
+    scene.vertices.reserve(static_cast<std::size_t>(mesh.vertices.rows()));
+    for (Eigen::Index i = 0; i < mesh.vertices.rows(); ++i) {
+      const Eigen::Vector3d p = row3(mesh.vertices, i);
+      scene.vertices.push_back({p, row3(normals, i), view.project(p)});
+    }
   }
   const auto add_vertex = [&](const RasterVertex& a, const RasterVertex& b, double t) {
     const Eigen::Vector3d p = a.world + t * (b.world - a.world);
@@ -296,7 +306,9 @@ Scene build_scene(const Mesh& mesh, const ViewTransform& view) {
     if (hole[f] != 0) continue;
     const auto c = face(mesh, f);
     const std::uint32_t state = mesh.states.empty() ? 0u : mesh.states[f];
-    for (std::size_t i = 1; i + 1 < c.size(); ++i) add_triangle({c[0], c[i], c[i + 1]}, state);
+    const int first = mesh.face_offsets[f];
+    const auto at = [&](std::size_t i) { return per_corner ? first + static_cast<int>(i) : c[i]; };
+    for (std::size_t i = 1; i + 1 < c.size(); ++i) add_triangle({at(0), at(i), at(i + 1)}, state);
   }
   return scene;
 }

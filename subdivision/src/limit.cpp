@@ -2,14 +2,12 @@
 // cifs — limit stencils from the left eigenvectors of S_n (cifs/subdivision/limit.hpp).
 #include "cifs/subdivision/limit.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <Eigen/QR>
 #include <Eigen/SVD>
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <complex>
 #include <map>
 #include <numbers>
 #include <span>
@@ -23,6 +21,7 @@
 #include "cifs/memory.hpp"
 #include "cifs/subdivision/mesh_analysis.hpp"
 #include "local_mesh.hpp"
+#include "sector_plane.hpp"
 
 namespace cifs::subdivision {
 namespace {
@@ -36,7 +35,11 @@ LimitMask eigen_mask(MeshScheme scheme, int valence) {
     for (Eigen::Index i = 0; i < w.size(); ++i) out[static_cast<std::size_t>(i)] = static_cast<double>(w(i));
     return out;
   };
-  LimitMask out{.position = doubles(spectrum.limit_stencil), .tangent_u = {}, .tangent_v = {}};
+  LimitMask out{.position = doubles(spectrum.limit_stencil),
+                .tangent_u = {},
+                .tangent_v = {},
+                .refused = {},
+                .sectors = {}};
   const auto N = S.values.rows();
   const LongMatrix A = (S.values - spectrum.subdominant * LongMatrix::Identity(N, N)).transpose();
   const Eigen::JacobiSVD<LongMatrix> svd(A, Eigen::ComputeFullV);
@@ -72,7 +75,9 @@ LimitMask smooth_mask(MeshScheme scheme, int n) {
   const std::size_t size = quads ? 2 * static_cast<std::size_t>(n) + 1 : static_cast<std::size_t>(n) + 1;
   LimitMask m{.position = std::vector<double>(size),
               .tangent_u = std::vector<double>(size, 0.0),
-              .tangent_v = std::vector<double>(size, 0.0)};
+              .tangent_v = std::vector<double>(size, 0.0),
+              .refused = {},
+              .sectors = {}};
   const double step = 2 * std::numbers::pi / N;
   if (quads) {
     const double d = N * (N + 5);
@@ -217,24 +222,11 @@ std::vector<int> class_key(const Ring& ring, MeshScheme scheme) {
   return key;
 }
 
-/// The ring's sectors: its faces split by the sharp edges between two faces (a boundary vertex's
-/// boundary edges, and an interior vertex's single sharp edge — a dart — do not split).
-int sectors(const Ring& ring) {
-  int inner = 0;
-  for (const EdgeSharpness& c : ring.mesh.tags.creases) {
-    // On a boundary ring the first and last edge neighbours are the boundary edges' ends.
-    const bool boundary_edge =
-        ring.boundary && (c.b == ring.mesh.face_vertices[1] || c.b == ring.mesh.face_vertices.back());
-    inner += boundary_edge ? 0 : 1;
-  }
-  return ring.boundary ? inner + 1 : std::max(inner, 1);
-}
-
 /// The masks of a stationary ring's class from its one-step matrix S (child ring = S · ring): the left
-/// eigenvector of 1 (the position), and where the ring is one sector, the left eigenvectors of the
-/// two subdominant eigenvalues (the tangent plane), oriented on a planar embedding of the ring whose
-/// faces turn counter-clockwise. Multi-sector rings (creases, corners between sharp edges) have a
-/// tangent plane per sector: their tangents are left empty.
+/// eigenvector of 1 (the position), and per sector the tangent plane of S's block there
+/// (detail::sector_plane, the one evaluate_limit_surface's corners use): the mask's tangents when the ring
+/// is one sector, `sectors` otherwise. Sector faces are the ring's faces, which are the vertex's faces in
+/// vertex_faces order (cut_ring's walk), through every step (refine_ring keeps the order).
 LimitMask class_mask(const Ring& ring, MeshScheme scheme) {
   const auto N = static_cast<Eigen::Index>(ring.vertices.size());
   Points S = Points::Identity(N, N);
@@ -252,70 +244,27 @@ LimitMask class_mask(const Ring& ring, MeshScheme scheme) {
   LimitMask out;
   out.position.resize(static_cast<std::size_t>(N));
   for (Eigen::Index i = 0; i < N; ++i) out.position[static_cast<std::size_t>(i)] = static_cast<double>(l(i));
-  // Tangents: one sector only, and a dense eigenproblem of modest size (valence ≤ 128).
-  if (sectors(ring) != 1 || N > 257) return out;
-  const Eigen::EigenSolver<Eigen::MatrixXd> eigen(S.transpose(), false);
-  std::vector<std::complex<double>> values(eigen.eigenvalues().begin(), eigen.eigenvalues().end());
-  std::sort(values.begin(), values.end(), [](auto x, auto y) { return std::abs(x) > std::abs(y); });
-  if (values.size() < 3 || std::abs(values[0] - 1.0) > 1e-9) return out;
-  const std::complex<double> l1 = values[1], l2 = values[2];
-  const double l3 = values.size() > 3 ? std::abs(values[3]) : 0.0;  // a ring of three: nothing below
-  constexpr double kReal = 1e-9;
-  if (std::abs(l1.imag()) > kReal || std::abs(l2.imag()) > kReal || l2.real() <= l3 + kReal)
-    return out;  // no tangent plane from the spectrum: no pair of real subdominant eigenvalues above the rest
-  // The null space of S − λ (right eigenvectors) or of Sᵀ − λ (left), when it has `count` dimensions;
-  // empty when λ is defective there (a Jordan block: no pair of eigenvectors to span a plane).
-  const auto null_space = [&](const Eigen::MatrixXd& matrix, double lambda, int count) {
-    const Eigen::MatrixXd M = matrix - lambda * Eigen::MatrixXd::Identity(N, N);
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(M, Eigen::ComputeFullV);
-    const auto& sigma = svd.singularValues();
-    if (sigma(N - count) > 1e-9 * std::max(1.0, sigma(0))) return Eigen::MatrixXd();
-    return Eigen::MatrixXd(svd.matrixV().rightCols(count));
-  };
-  const auto eigenpair = [&](const Eigen::MatrixXd& matrix) {
-    Eigen::MatrixXd pair(N, 2);
-    if (std::abs(l1.real() - l2.real()) < 1e-9) return null_space(matrix, l1.real(), 2);
-    const Eigen::MatrixXd first = null_space(matrix, l1.real(), 1), second = null_space(matrix, l2.real(), 1);
-    if (first.size() == 0 || second.size() == 0) return Eigen::MatrixXd();
-    pair << first, second;
-    return pair;
-  };
-  Eigen::MatrixXd pair = eigenpair(S.transpose());
-  if (pair.size() == 0) return out;
-  // At a boundary the characteristic map (the right eigenvectors) must not send both boundary
-  // neighbours to the centre: when the inside's eigenvalues pass the curve's ½ (Catmull–Clark from 5
-  // faces, Loop from 7), both vanish on the boundary, whose curve leaves their plane — not C¹
-  // (docs/subdivision-surfaces.md, "The verdict per sector").
-  if (ring.boundary) {
-    const Eigen::MatrixXd right = eigenpair(S);
-    if (right.size() == 0) return out;
-    const auto first = ring.mesh.face_vertices[1], last = ring.mesh.face_vertices.back();
-    if (right.row(first).norm() <= 1e-9 * right.norm() && right.row(last).norm() <= 1e-9 * right.norm())
-      return out;
+  const MeshTopology t = build_topology(ring.mesh, "limit ring");
+  const Eigen::MatrixXd step = S;
+  const auto ring_faces = vertex_faces(t, 0);
+  for (const detail::Sector& sector : detail::sectors_around(t, ring.mesh.tags)) {
+    const detail::SectorPlane plane = detail::sector_plane(step, t, sector);
+    SectorMask mask;
+    for (const int k : sector.faces) mask.faces.push_back(ring_faces[static_cast<std::size_t>(k)]);
+    mask.refused = plane.refused;
+    if (plane.refused.empty())  // unit rows: only the plane matters, and sums stay far from overflow
+      for (int i = 0; i < 2; ++i) {
+        const Eigen::VectorXd w = plane.left.row(i).transpose().normalized();
+        (i == 0 ? mask.tangent_u : mask.tangent_v).assign(w.begin(), w.end());
+      }
+    out.sectors.push_back(std::move(mask));
   }
-  // A planar ring: v at 0, the edge neighbours on a circle (less than a half circle at the boundary) in walk
-  // order, a quad's far corner at the sum of its two edge neighbours.
-  const auto faces = static_cast<int>(face_count(ring.mesh));
-  const double span = ring.boundary ? std::numbers::pi / (faces + 1) : 2 * std::numbers::pi / faces;
-  std::vector<Eigen::Vector2d> p(static_cast<std::size_t>(N), Eigen::Vector2d::Zero());
-  for (int k = 0; k < faces; ++k) {
-    const auto corners = face(ring.mesh, static_cast<std::size_t>(k));
-    const Eigen::Vector2d a(std::cos(span * k), std::sin(span * k)),
-        c(std::cos(span * (k + 1)), std::sin(span * (k + 1)));
-    p[static_cast<std::size_t>(corners[1])] = a;
-    p[static_cast<std::size_t>(corners.back())] = c;
-    if (corners.size() == 4) p[static_cast<std::size_t>(corners[2])] = a + c;
+  if (out.sectors.size() == 1) {  // one sector: the vertex's own tangent plane
+    out.tangent_u = std::move(out.sectors[0].tangent_u);
+    out.tangent_v = std::move(out.sectors[0].tangent_v);
+    out.refused = std::move(out.sectors[0].refused);
+    out.sectors.clear();
   }
-  Eigen::Vector2d u = Eigen::Vector2d::Zero(), w = Eigen::Vector2d::Zero();
-  for (Eigen::Index i = 0; i < N; ++i) {
-    u += pair(i, 0) * p[static_cast<std::size_t>(i)];
-    w += pair(i, 1) * p[static_cast<std::size_t>(i)];
-  }
-  const double cross = u.x() * w.y() - u.y() * w.x();
-  if (std::abs(cross) <= 1e-9 * u.norm() * w.norm()) return out;  // the pair spans no plane
-  if (cross < 0) pair.col(1) *= -1;
-  out.tangent_u.assign(pair.col(0).begin(), pair.col(0).end());
-  out.tangent_v.assign(pair.col(1).begin(), pair.col(1).end());
   return out;
 }
 
@@ -357,7 +306,8 @@ LimitStencils limit_stencils(const MeshRefinement& r) {
   out.mask_of.reserve(V);
   out.columns.reserve(V * (scheme == MeshScheme::catmull_clark ? 9 : 7));
   // Kind 0 is "the vertex itself"; smooth masks by valence; stationary classes by their key.
-  out.masks.push_back(LimitMask{.position = {1.0}, .tangent_u = {}, .tangent_v = {}});
+  out.masks.push_back(
+      LimitMask{.position = {1.0}, .tangent_u = {}, .tangent_v = {}, .refused = {}, .sectors = {}});
   std::vector<int> smooth;
   std::map<std::vector<int>, int> classes;
   std::vector<int> faces, nb;
@@ -427,9 +377,16 @@ LimitStencils limit_stencils(const MeshRefinement& r) {
       mask = it->second;
       if (steps > 0) {  // this vertex's own masks: the class's, through the steps to its level
         const LimitMask& m = out.masks[static_cast<std::size_t>(mask)];
-        out.masks.push_back({.position = through(m.position, w),
-                             .tangent_u = through(m.tangent_u, w),
-                             .tangent_v = through(m.tangent_v, w)});
+        LimitMask own{.position = through(m.position, w),
+                      .tangent_u = through(m.tangent_u, w),
+                      .tangent_v = through(m.tangent_v, w),
+                      .refused = m.refused,
+                      .sectors = m.sectors};
+        for (SectorMask& sector : own.sectors) {
+          sector.tangent_u = through(sector.tangent_u, w);
+          sector.tangent_v = through(sector.tangent_v, w);
+        }
+        out.masks.push_back(std::move(own));
         mask = static_cast<int>(out.masks.size()) - 1;
       }
     }
@@ -505,6 +462,69 @@ LimitFrame evaluate_limit(const LimitStencils& stencils, const Points& vertices,
   return out;
 }
 
+namespace {
+
+/// Unit normals from tangents (0 where the surface is singular: the cross product vanishes).
+Eigen::RowVector3d unit_normal(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
+  const Eigen::Vector3d n = u.cross(v);
+  const double length = n.norm();
+  return (length > 0 ? Eigen::Vector3d(n / length) : n).transpose();
+}
+
+/// limit_mesh's normals: one per vertex, or, when a vertex is between sectors, one per vertex and sector
+/// with `indices` per face corner (each corner its sector's).
+Points limit_normals(const MeshTopology& t, const LimitStencils& s, const LimitFrame& frame, const Points& x,
+                     std::vector<int>& indices) {
+  const auto V = static_cast<Eigen::Index>(t.vertex_count);
+  const auto mask = [&](Eigen::Index v) -> const LimitMask& {
+    return s.masks[static_cast<std::size_t>(s.mask_of[static_cast<std::size_t>(v)])];
+  };
+  const auto vertex_normal = [&](Eigen::Index v) {
+    return unit_normal(frame.tangent_u.row(v).transpose(), frame.tangent_v.row(v).transpose());
+  };
+  Eigen::Index rows = 0;
+  for (Eigen::Index v = 0; v < V; ++v)
+    rows += std::max<Eigen::Index>(1, static_cast<Eigen::Index>(mask(v).sectors.size()));
+  Points normals(rows, 3);
+  if (rows == V) {
+    for (Eigen::Index v = 0; v < V; ++v) normals.row(v) = vertex_normal(v);
+    return normals;
+  }
+  indices.assign(t.face_vertices.size(), -1);
+  Eigen::Index row = 0;
+  for (Eigen::Index v = 0; v < V; ++v) {
+    const LimitMask& m = mask(v);
+    const auto faces = vertex_faces(t, static_cast<std::size_t>(v));
+    // The face corner of v in face g.
+    const auto corner = [&](int g) {
+      const auto begin = t.face_vertices.begin() + t.face_offsets[static_cast<std::size_t>(g)],
+                 end = t.face_vertices.begin() + t.face_offsets[static_cast<std::size_t>(g) + 1];
+      return static_cast<std::size_t>(std::find(begin, end, static_cast<int>(v)) - t.face_vertices.begin());
+    };
+    if (m.sectors.empty()) {
+      normals.row(row) = vertex_normal(v);
+      for (const int g : faces) indices[corner(g)] = static_cast<int>(row);
+      ++row;
+      continue;
+    }
+    const int* column = s.columns.data() + s.offsets[static_cast<std::size_t>(v)];
+    for (const SectorMask& sector : m.sectors) {
+      Eigen::Vector3d u = Eigen::Vector3d::Zero(), w = Eigen::Vector3d::Zero();
+      for (std::size_t i = 0; i < sector.tangent_u.size(); ++i) {
+        u += sector.tangent_u[i] * x.row(column[i]).transpose();
+        w += sector.tangent_v[i] * x.row(column[i]).transpose();
+      }
+      normals.row(row) = unit_normal(u, w);
+      for (const int k : sector.faces)
+        indices[corner(faces[static_cast<std::size_t>(k)])] = static_cast<int>(row);
+      ++row;
+    }
+  }
+  return normals;
+}
+
+}  // namespace
+
 Mesh limit_mesh(const Mesh& mesh, MeshScheme scheme, int levels, const LimitOptions& options) {
   const std::string who(scheme_name(scheme));
   const MeshRefinement r = refine_topology(mesh, scheme, levels, MeshOptions{.max_bytes = options.max_bytes});
@@ -520,30 +540,41 @@ Mesh limit_mesh(const Mesh& mesh, MeshScheme scheme, int levels, const LimitOpti
     throw InvalidInput(who + ": limit normals need 3-D vertices, not " +
                        std::to_string(mesh.vertices.cols()) + "-D");
   const LimitStencils stencils = limit_stencils(r);
+  const auto mask_of = [&](int v) -> const LimitMask& {
+    return stencils.masks[static_cast<std::size_t>(stencils.mask_of[static_cast<std::size_t>(v)])];
+  };
   if (options.normals)
     for (int v = 0; v < last.vertex_count; ++v) {
-      const LimitMask& m =
-          stencils.masks[static_cast<std::size_t>(stencils.mask_of[static_cast<std::size_t>(v)])];
-      if (!m.tangent_u.empty() || valence(last, static_cast<std::size_t>(v)) == 0) continue;
-      const LevelFeatures& f = r.features.back();
-      int sharp = 0;
-      for (const int e : vertex_edges(last, static_cast<std::size_t>(v)))
-        sharp += edge_sharpness(f, e) > 0 && !is_boundary_edge(last, static_cast<std::size_t>(e)) ? 1 : 0;
+      const LimitMask& m = mask_of(v);
+      const auto n = valence(last, static_cast<std::size_t>(v));
+      if ((!m.tangent_u.empty() && m.sectors.empty()) || n == 0) continue;
+      const std::string where =
+          who + ": vertex " + std::to_string(v) + " (valence " + std::to_string(n) + ")";
+      for (const SectorMask& sector : m.sectors) {
+        if (!sector.tangent_u.empty()) continue;
+        std::string faces;
+        for (const int k : sector.faces) {
+          if (!faces.empty()) faces += ", ";
+          faces +=
+              std::to_string(vertex_faces(last, static_cast<std::size_t>(v))[static_cast<std::size_t>(k)]);
+        }
+        std::string what = where;
+        what += sector.faces.size() > 1 ? ": its sector of faces " : ": its sector of face ";
+        what += faces;
+        what += " has no tangent plane that its spectrum proves (";
+        what += sector.refused;
+        what += "): no limit normal there (drop the normals)";
+        throw InvalidInput(what);
+      }
+      if (!m.sectors.empty()) continue;
       throw InvalidInput(
-          who + ": vertex " + std::to_string(v) + " (valence " +
-          std::to_string(valence(last, static_cast<std::size_t>(v))) + ") " +
-          (sharp > 1 || (sharp == 1 && last.boundary_vertex[static_cast<std::size_t>(v)] != 0)
-               ? "is on a crease or a corner: the surface has a tangent plane per sector there, and limit "
-                 "normals "
-                 "per sector are not built (drop the normals)"
-               : std::string(
-                     "has no tangent plane that its spectrum proves (no real subdominant pair above the "
-                     "rest, or a valence above 128): limit normals there are not built (drop the normals") +
-                     (r.tags.back().boundary == BoundaryRule::edge_only &&
-                              vertex_faces(last, static_cast<std::size_t>(v)).size() == 1
-                          ? "; or keep boundary vertices with one face as corners: boundary rule "
-                            "edge_and_corner)"
-                          : ")")));
+          where + " has no tangent plane that its spectrum proves (" +
+          (m.refused.empty() ? std::string("its limit has no tangent masks") : m.refused) +
+          "): no limit normal there (drop the normals" +
+          (r.tags.back().boundary == BoundaryRule::edge_only &&
+                   vertex_faces(last, static_cast<std::size_t>(v)).size() == 1
+               ? "; or keep boundary vertices with one face as corners: boundary rule edge_and_corner)"
+               : ")"));
     }
   // Normals do not depend on the scale: the frame is computed on the vertices scaled by a power of two
   // (exact) to magnitudes below 1, so tangents near ±1.8e308 stay finite; the positions scale back exactly.
@@ -553,21 +584,14 @@ Mesh limit_mesh(const Mesh& mesh, MeshScheme scheme, int levels, const LimitOpti
   // std::ldexp, not a product: the factor can be 2^1024, which is no double.
   const auto times_two_to = [](int e) { return [e](double x) { return std::ldexp(x, e); }; };
   const Points scaled = mesh.vertices.unaryExpr(times_two_to(-exponent));
-  const LimitFrame frame = evaluate_limit(stencils, apply(r, scaled), options.normals);
+  const Points level = apply(r, scaled);
+  const LimitFrame frame = evaluate_limit(stencils, level, options.normals);
   Mesh out;
   out.vertices = frame.positions.unaryExpr(times_two_to(exponent));
   out.face_offsets = last.face_offsets;
   out.face_vertices = last.face_vertices;
   out.tags = r.tags.back();  // holes stay holes; creases and corners as the last level holds them
-  if (options.normals) {
-    out.normals.resize(out.vertices.rows(), 3);
-    for (Eigen::Index i = 0; i < out.vertices.rows(); ++i) {
-      const Eigen::Vector3d u = frame.tangent_u.row(i).transpose(), v = frame.tangent_v.row(i).transpose();
-      const Eigen::Vector3d n = u.cross(v);
-      const double length = n.norm();  // 0 where the surface is singular: left 0
-      out.normals.row(i) = (length > 0 ? Eigen::Vector3d(n / length) : n).transpose();
-    }
-  }
+  if (options.normals) out.normals = limit_normals(last, stencils, frame, level, out.normal_indices);
   return out;
 }
 

@@ -25,16 +25,11 @@
 // a corner itself the value is its limit point (limit_stencils' route) and the partials are the face's
 // edges' parts in the tangent plane of the corner's sector (CornerTangents).
 #include <Eigen/Dense>
-#include <Eigen/Eigenvalues>
-#include <Eigen/SVD>
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <complex>
 #include <cstddef>
-#include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <deque>
 #include <map>
@@ -49,6 +44,7 @@
 #include "cifs/memory.hpp"
 #include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/rules.hpp"
+#include "sector_plane.hpp"
 
 namespace cifs::subdivision {
 namespace {
@@ -540,106 +536,34 @@ class SurfaceStates {
   }
 
  private:
-  /// The corner's sector in the state's mesh — its rows of the step (the vertex point, the edge and
-  /// face points of the sector) read nothing outside it — and that block's spectrum: 1 simple, then a
-  /// real pair above the rest (as limit_stencils asks of a one-sector ring, class_mask in limit.cpp,
-  /// here per sector), and where the sector is bounded by sharp or boundary edges the right
-  /// eigenvectors must not vanish at both of them (else the curves there leave the pair's plane: not
-  /// C¹). Refused otherwise, and where the face's two edges have parallel parts in the plane.
+  /// The tangent plane of the corner's sector (detail::sector_plane: the faces around it between sharp
+  /// edges, the face's among them) and the face's two edges' parts in it; refused where the sector has no
+  /// plane its spectrum proves, and where the face's two edges have parallel parts in the plane.
   CornerTangents corner_tangents(int s) {
     const State& x = expand(s);
     CornerTangents out;
     const MeshTopology t = build_topology(x.mesh, "limit surface state");
-    const auto edges = vertex_edges(t, 0);
     const auto faces = vertex_faces(t, 0);
-    const auto sharp = [&](std::size_t k) {  // edge k around the corner: a boundary or sharp edge
-      const auto e = static_cast<std::size_t>(edges[k % edges.size()]);
-      if (is_boundary_edge(t, e)) return true;
-      const int w = other_vertex(t, e, 0);
-      return std::any_of(x.mesh.tags.creases.begin(), x.mesh.tags.creases.end(), [&](const EdgeSharpness& c) {
-        return c.sharpness > 0 && ((c.a == 0 && c.b == w) || (c.b == 0 && c.a == w));
-      });
-    };
-    // Face k lies between edges k and k + 1 (cifs/topology.hpp): the sector is faces first … last.
-    const std::size_t m = faces.size();
-    std::size_t first = static_cast<std::size_t>(std::find(faces.begin(), faces.end(), 0) - faces.begin());
-    std::size_t last = first, count = 1;
-    while (count < m && !sharp(first)) first = (first + m - 1) % m, ++count;
-    while (count < m && !sharp(last + 1)) last = (last + 1) % m, ++count;
-    const bool bounded = sharp(first) && sharp(last + 1) && (count < m || t.boundary_vertex[0] != 0);
-    const auto refuse = [&](const std::string& why) {
-      out.refused = why;
+    const int position = static_cast<int>(std::find(faces.begin(), faces.end(), 0) - faces.begin());
+    const std::vector<Sector> sectors = sectors_around(t, x.mesh.tags);
+    const Sector& sector = *std::find_if(sectors.begin(), sectors.end(), [&](const Sector& c) {
+      return std::find(c.faces.begin(), c.faces.end(), position) != c.faces.end();
+    });
+    const SectorPlane plane = sector_plane(Eigen::MatrixXd(x.to_child[0]), t, sector);
+    if (!plane.refused.empty()) {
+      out.refused = plane.refused;
       return out;
-    };
-    // A sector of one face (a smooth corner, or a face between two sharp edges): the face's edges are
-    // the curves, its inside direction comes from beyond the corner's ring.
-    if (bounded && count == 1)
-      return refuse("the face is its corner's whole sector, between two boundary or sharp edges: not built");
-    std::vector<int> rows{0};
-    for (std::size_t i = 0; i < count; ++i)
-      for (const int w : face(t, static_cast<std::size_t>(faces[(first + i) % m])))
-        if (std::find(rows.begin(), rows.end(), w) == rows.end()) rows.push_back(w);
-    const Eigen::MatrixXd M(x.to_child[0]);
-    const auto N = static_cast<Eigen::Index>(rows.size());
-    const auto row = [&](Eigen::Index i) { return rows[static_cast<std::size_t>(i)]; };
-    Eigen::MatrixXd A(N, N);
-    for (Eigen::Index i = 0; i < N; ++i) {
-      for (Eigen::Index j = 0; j < N; ++j) A(i, j) = M(row(i), row(j));
-      if (std::abs(M.row(row(i)).cwiseAbs().sum() - A.row(i).cwiseAbs().sum()) > 1e-12)
-        throw std::logic_error("limit surface: a corner's sector reads outside it");
-    }
-    if (N > 257) return refuse("a sector of more than 128 faces (the eigenproblem is not run there)");
-    const Eigen::EigenSolver<Eigen::MatrixXd> eigen(A, false);
-    std::vector<std::complex<double>> values(eigen.eigenvalues().begin(), eigen.eigenvalues().end());
-    std::sort(values.begin(), values.end(), [](auto a, auto b) { return std::abs(a) > std::abs(b); });
-    constexpr double kTight = 1e-9;
-    if (values.size() < 3 || std::abs(values[0] - 1.0) > kTight || std::abs(values[1]) >= 1 - kTight)
-      return refuse("1 is not a simple eigenvalue of its sector");
-    const std::complex<double> l1 = values[1], l2 = values[2];
-    const double l3 = values.size() > 3 ? std::abs(values[3]) : 0.0;
-    if (std::abs(l1.imag()) > kTight || std::abs(l2.imag()) > kTight || l2.real() <= l3 + kTight)
-      return refuse("no pair of real subdominant eigenvalues above the rest in its sector");
-    const auto null_space = [&](const Eigen::MatrixXd& B, double lambda, int dimension) {
-      const Eigen::JacobiSVD<Eigen::MatrixXd> svd(B - lambda * Eigen::MatrixXd::Identity(N, N),
-                                                  Eigen::ComputeFullV);
-      const auto& sigma = svd.singularValues();
-      if (sigma(N - dimension) > kTight * std::max(1.0, sigma(0))) return Eigen::MatrixXd();
-      return Eigen::MatrixXd(svd.matrixV().rightCols(dimension));
-    };
-    const auto pair = [&](const Eigen::MatrixXd& B) {
-      if (std::abs(l1.real() - l2.real()) < kTight) return null_space(B, l1.real(), 2);
-      const Eigen::MatrixXd a = null_space(B, l1.real(), 1), b = null_space(B, l2.real(), 1);
-      if (a.size() == 0 || b.size() == 0) return Eigen::MatrixXd();
-      Eigen::MatrixXd both(N, 2);
-      both << a, b;
-      return both;
-    };
-    const Eigen::MatrixXd right = pair(A), left = pair(A.transpose());
-    if (right.size() == 0 || left.size() == 0) return refuse("its subdominant eigenvalue is defective");
-    const Eigen::Matrix2d gram = left.transpose() * right;
-    if (std::abs(gram.determinant()) <= kTight) return refuse("its subdominant eigenvectors are degenerate");
-    const Eigen::MatrixXd dual = left * gram.inverse().transpose();  // dualᵀ right = I
-    const auto at = [&](int vertex) {
-      return Eigen::RowVector2d(right.row(std::find(rows.begin(), rows.end(), vertex) - rows.begin()));
-    };
-    if (bounded) {
-      const int a = other_vertex(t, static_cast<std::size_t>(edges[first]), 0),
-                b = other_vertex(t, static_cast<std::size_t>(edges[(last + 1) % edges.size()]), 0);
-      if (at(a).norm() <= kTight * right.norm() && at(b).norm() <= kTight * right.norm())
-        return refuse(
-            "the curves bounding its sector leave the plane of its subdominant eigenvectors (not C¹)");
     }
     const auto n = static_cast<int>(face(t, 0).size());
-    out.along.row(0) = at(1);
-    out.along.row(1) = at(n - 1);
-    if (std::abs(out.along.determinant()) <= kTight * out.along.row(0).norm() * out.along.row(1).norm())
-      return refuse("the face's two edges have parallel parts in its tangent plane");
-    out.lambda = {l1.real(), l2.real()};
-    if (std::getenv("S3DEBUG"))
-      std::fprintf(stderr, "DBG sector %zu/%zu bounded %d N %ld l %.17g %.17g %.17g\n", count, m,
-                   bounded ? 1 : 0, (long)N, l1.real(), l2.real(), l3);
-    out.left = Eigen::MatrixXd::Zero(2, x.mesh.vertices.rows());
-    for (Eigen::Index i = 0; i < N; ++i) out.left.col(row(i)) = dual.row(i).transpose();
+    out.along.row(0) = plane.right.row(1);
+    out.along.row(1) = plane.right.row(n - 1);
+    constexpr double kTight = 1e-9;
+    if (std::abs(out.along.determinant()) <= kTight * out.along.row(0).norm() * out.along.row(1).norm()) {
+      out.refused = "the face's two edges have parallel parts in its tangent plane";
+      return out;
+    }
+    out.lambda = plane.lambda;
+    out.left = plane.left;
     return out;
   }
 

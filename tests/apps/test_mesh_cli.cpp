@@ -3,13 +3,18 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <string>
 
 #include "apps/cli_runner.hpp"
 #include "cifs/files.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/mesh.hpp"
+#include "subdivision/meshes.hpp"
 
 using namespace cifs;
 using namespace cifs_test;
@@ -19,6 +24,19 @@ namespace {
 
 std::string example(const std::string& name) {
   return std::string(CIFS_EXAMPLES_DIR) + "/meshes/" + name;
+}
+
+/// A wavy 5 × 4 grid of quads with an infinitely sharp crease across it (boundary corners kept), as an
+/// OBJ file in the scratch folder.
+std::string creased_grid() {
+  const auto path = scratch() / "creased_grid.obj";
+  if (!std::filesystem::exists(path)) {
+    Mesh grid = cifs_test::quad_grid(5, 4);
+    for (int i = 6; i < 11; ++i) grid.tags.creases.push_back({i, i + 1, kInfiniteSharpness});
+    grid.tags.boundary = BoundaryRule::edge_and_corner;
+    io::write(path, grid);
+  }
+  return path.string();
 }
 
 }  // namespace
@@ -201,11 +219,51 @@ TEST_CASE("cifs limit: what is not built exits 2 with one line", "[cli][mesh][li
   const auto out = scratch() / "never_limit.ply";
   std::filesystem::remove(out);
   const std::string o = " -o " + out.string();
+  // Normals per sector are per face corner, which PLY cannot hold; where a sector's spectrum proves no
+  // plane (the creased box's crease turns at a corner of the box: a face alone between two crease edges
+  // of one smooth curve) they are refused, naming the vertex.
+  check_error(cifs_cli("limit " + creased_grid() + " --scheme catmull-clark --normals" + o),
+              "the mesh to write as PLY has normals per face corner");
   check_error(cifs_cli("limit " + example("creased_box.obj") + " --scheme catmull-clark --normals" + o),
-              "is on a crease or a corner: the surface has a tangent plane per sector there");
+              "catmull-clark: vertex 0 (valence 3): its sector of face 0 has no tangent plane that its "
+              "spectrum proves");
   check_error(cifs_cli("limit " + example("cube.obj") + " --scheme doo-sabin" + o),
               "doo-sabin: limit points belong to faces");
   CHECK(!std::filesystem::exists(out));
+}
+
+TEST_CASE("cifs limit --normals on creases and corners: a normal per sector, OBJ f v//n",
+          "[cli][mesh][limit]") {
+  // A grid with a sharp crease across: its OBJ has more vn than v, and some vertex takes two normals (one
+  // per side of the crease); read back, the faces are the same. The normals themselves:
+  // test_mesh_limit_classes.cpp and test_limit_surface_features.cpp.
+  const auto out = scratch() / "grid_normals.obj";
+  const Run run =
+      cifs_cli("limit " + creased_grid() + " --scheme catmull-clark --normals -o " + out.string());
+  REQUIRE(run.status == 0);
+  CHECK_THAT(run.out, Catch::Contains("normals (per sector at creases and corners)"));
+  const std::string text = slurp(out);
+  std::size_t v = 0, vn = 0;
+  for (std::size_t at = 0; (at = text.find('\n', at)) != std::string::npos; ++at) {
+    v += text.compare(at + 1, 2, "v ") == 0 ? 1 : 0;
+    vn += text.compare(at + 1, 3, "vn ") == 0 ? 1 : 0;
+  }
+  CHECK(vn > v);
+  std::map<int, std::set<int>> normals_of;  // vertex → the normals its corners take
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    if (!line.starts_with("f ")) continue;
+    std::istringstream corners(line.substr(2));
+    for (std::string c; corners >> c;) {
+      const auto slash = c.find("//");
+      REQUIRE(slash != std::string::npos);
+      normals_of[std::stoi(c.substr(0, slash))].insert(std::stoi(c.substr(slash + 2)));
+    }
+  }
+  CHECK(
+      std::any_of(normals_of.begin(), normals_of.end(), [](const auto& x) { return x.second.size() == 2; }));
+  const Mesh back = io::read_mesh(out);
+  CHECK(back.face_vertices.size() == 4 * io::read_mesh(creased_grid()).face_vertices.size());
 }
 
 TEST_CASE("cifs limit --at: the limit surface at points, as JSON", "[cli][mesh][limit]") {

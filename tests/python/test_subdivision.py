@@ -563,15 +563,44 @@ class LimitTest(unittest.TestCase):
     def test_limits_follow_the_tags(self):
         # The creased box (creases infinite, 2 and 1, a corner, a hole): the limit from level 0 and from
         # level 2 agree on the old vertices (semi-sharp ones too: the sharpness still to spend is followed).
-        # Normals are refused on the creases, naming a vertex.
         path = EXAMPLES / "meshes" / "creased_box.obj"
         box = cifs.io.read_mesh(str(path))
         coarse, fine = sd.limit(box, "catmull-clark", 0), sd.limit(box, "catmull-clark", 2)
         n = box.vertices.shape[0]
         np.testing.assert_allclose(np.asarray(fine.vertices)[:n], coarse.vertices, rtol=0, atol=1e-13)
         self.assertEqual(len(fine.tags.holes), 16)  # the hole's grandchildren
-        with self.assertRaisesRegex(cifs.InvalidInput, r"vertex \d+ \(valence \d\) is on a crease or a corner"):
-            sd.limit(box, "catmull-clark", 1, normals=True)
+        self.assertEqual(coarse.normal_indices.shape, (0,))
+
+    def test_limit_normals_per_sector(self):
+        # A grid with a sharp crease across: a normal per side at the crease's vertices, per face corner
+        # (normal_indices): at every corner of every face the normal of limit_surface's du x dv there
+        # (where they span a plane), and more normals than vertices. The creased box's crease turns at a
+        # corner of the box (a face alone between two crease edges of one smooth curve): refused there.
+        rows = [f"v {i} {j} {0.3 * np.sin(1.3 * i + 0.7 * j)}" for j in range(5) for i in range(6)]
+        rows += [f"f {j * 6 + i + 1} {j * 6 + i + 2} {j * 6 + i + 8} {j * 6 + i + 7}" for j in range(4) for i in range(5)]
+        rows += [f"t crease 2/1/0 {i} {i + 1} 10" for i in range(6, 11)] + ["t interpolateboundary 1/0/0 1"]
+        box = cifs.io.parse_mesh_obj("\n".join(rows) + "\n", strict=True)
+        with self.assertRaisesRegex(cifs.InvalidInput, r"vertex 0 \(valence 3\): its sector of face 0 has no tangent"):
+            sd.limit(cifs.io.read_mesh(str(EXAMPLES / "meshes" / "creased_box.obj")), "catmull-clark", 0, normals=True)
+        limit = sd.limit(box, "catmull-clark", 0, normals=True)
+        corners = np.asarray(box.face_vertices)
+        indices = np.asarray(limit.normal_indices)
+        self.assertEqual(indices.shape, corners.shape)
+        normals = np.asarray(limit.normals)
+        self.assertGreater(len(normals), box.vertices.shape[0])
+        np.testing.assert_allclose(np.linalg.norm(normals, axis=1), 1, atol=1e-14)
+        faces = corners.reshape(-1, 4)
+        keep = [f for f in range(len(faces)) if f not in box.tags.holes]
+        f = np.repeat(keep, 4)
+        u = np.tile([0.0, 1.0, 1.0, 0.0], len(keep))
+        v = np.tile([0.0, 0.0, 1.0, 1.0], len(keep))
+        _, du, dv = sd.limit_surface(box, f.tolist(), u.tolist(), v.tolist())
+        cross = np.cross(du, dv)
+        spans = np.linalg.norm(cross, axis=1) > 1e-6 * np.linalg.norm(du, axis=1) * np.linalg.norm(dv, axis=1)
+        self.assertGreater(spans.sum(), len(f) // 2)
+        ours = normals[indices[(4 * f + np.tile(np.arange(4), len(keep)))]]
+        expected = cross[spans] / np.linalg.norm(cross[spans], axis=1)[:, None]
+        np.testing.assert_allclose(ours[spans], expected, rtol=0, atol=1e-12)
 
     def test_limit_surface_at_face_points(self):
         # At the corners of a once-refined cube's faces the surface is the limit of those vertices.

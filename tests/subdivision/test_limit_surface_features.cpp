@@ -536,7 +536,7 @@ TEST_CASE("the limit surface's partials at a vertex that is never a polynomial p
   // parallel (a regular patch's corner on a straight crease or boundary: parametric partials that span no
   // plane) have no normal to compare. Refusals name the point; none at the closed meshes' extraordinary
   // vertices nor at darts.
-  int irregular = 0, sectors = 0;
+  int irregular = 0, sectors = 0, per_sector = 0;
   for (const Case& c : corner_cases()) {
     INFO(c.name << ", " << scheme_name(c.scheme));
     const MeshRefinement r = refine_topology(c.mesh, c.scheme, 1);
@@ -586,6 +586,38 @@ TEST_CASE("the limit surface's partials at a vertex that is never a polynomial p
             valence(r.levels[1], static_cast<std::size_t>(vertex)) != (c.scheme == MeshScheme::loop ? 6 : 4);
         continue;
       }
+      // Between sectors: the normal of the sector of the face's child at the vertex (1e-12).
+      if (!mask.sectors.empty()) {
+        const MeshTopology& t1 = r.levels[1];
+        const auto around = vertex_faces(t1, static_cast<std::size_t>(vertex));
+        const std::vector<int>& offsets = r.levels[0].face_offsets;
+        const auto parent = [&](int g) {  // Catmull–Clark: a child per corner; Loop: 4 a face
+          return c.scheme == MeshScheme::loop
+                     ? g / 4
+                     : static_cast<int>(std::upper_bound(offsets.begin(), offsets.end(), g) -
+                                        offsets.begin()) -
+                           1;
+        };
+        const auto child =
+            std::find_if(around.begin(), around.end(), [&](int g) { return parent(g) == q.face; });
+        REQUIRE(child != around.end());
+        const auto position = static_cast<int>(child - around.begin());
+        const auto sector = std::find_if(mask.sectors.begin(), mask.sectors.end(), [&](const SectorMask& x) {
+          return std::find(x.faces.begin(), x.faces.end(), position) != x.faces.end();
+        });
+        REQUIRE(sector != mask.sectors.end());
+        REQUIRE(!sector->tangent_u.empty());  // the surface gave partials: the sector has its plane
+        const Points x1 = apply(r, c.mesh.vertices);
+        Eigen::Vector3d tu = Eigen::Vector3d::Zero(), tv = Eigen::Vector3d::Zero();
+        const int* column = stencils.columns.data() + stencils.offsets[static_cast<std::size_t>(vertex)];
+        for (std::size_t i = 0; i < sector->tangent_u.size(); ++i) {
+          tu += sector->tangent_u[i] * x1.row(column[i]).transpose();
+          tv += sector->tangent_v[i] * x1.row(column[i]).transpose();
+        }
+        CHECK((tu.cross(tv).normalized() - n).norm() <=
+              (c.mesh.tags.crease_method == CreaseMethod::chaikin ? 1e-7 : 1e-12));
+        ++per_sector;
+      }
       // Elsewhere (sectors of creases and corners) the distances e_j to the normals at 2^−j from the corner
       // fall geometrically (e_j ≈ c + A ρ^j): Aitken's extrapolation c = (e_8 e_16 − e_12²) / (e_8 − 2 e_12
       // + e_16) must vanish against e_8 (a wrong normal leaves c at its error). Not on the random tags,
@@ -605,6 +637,54 @@ TEST_CASE("the limit surface's partials at a vertex that is never a polynomial p
   }
   CHECK(irregular > 0);
   CHECK(sectors > 0);
+  CHECK(per_sector > 0);
+}
+
+TEST_CASE("limit normals per sector = OpenSubdiv Bfr's at regular crease vertices, a normal per side",
+          "[subdivision][limit][oracle]") {
+  // An infinitely sharp crease across a wavy grid: its inner vertices are regular crease vertices
+  // (Catmull–Clark valence 4, two faces a side; Loop valence 6, three), each side a regular crease patch
+  // that Bfr evaluates exactly. limit_mesh's normal at every face corner there is Bfr's du × dv at that
+  // corner (1e-12), and the two sides' normals differ.
+  for (const bool triangles : {false, true}) {
+    const MeshScheme scheme = triangles ? MeshScheme::loop : MeshScheme::catmull_clark;
+    INFO(scheme_name(scheme));
+    Mesh g = wavy_grid(5, 4, triangles);
+    for (int i = 6; i < 11; ++i) g.tags.creases.push_back({i, i + 1, kInfiniteSharpness});
+    g.tags.boundary = BoundaryRule::edge_and_corner;
+    const Mesh ours = limit_mesh(g, scheme, 0, {.normals = true});
+    REQUIRE(ours.normal_indices.size() == g.face_vertices.size());
+    std::vector<FacePoint> points;
+    std::vector<int> corners;  // into face_vertices
+    for (int f = 0; f < static_cast<int>(face_count(g)); ++f) {
+      const auto c = face(g, static_cast<std::size_t>(f));
+      for (std::size_t i = 0; i < c.size(); ++i) {
+        if (c[i] < 7 || c[i] > 10) continue;
+        static constexpr std::array<std::array<double, 2>, 4> kQuad{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
+        static constexpr std::array<std::array<double, 2>, 3> kTriangle{{{0, 0}, {1, 0}, {0, 1}}};
+        const auto uv = triangles ? kTriangle[i] : kQuad[i];
+        points.push_back({f, uv[0], uv[1]});
+        corners.push_back(g.face_offsets[static_cast<std::size_t>(f)] + static_cast<int>(i));
+      }
+    }
+    const auto [P, Du, Dv] = bfr(g, scheme, points);
+    double worst = 0, sides = 1;
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const auto i = static_cast<Eigen::Index>(k);
+      const Eigen::Vector3d a = Du.row(i).transpose(), b = Dv.row(i).transpose();
+      const int row = ours.normal_indices[static_cast<std::size_t>(corners[k])];
+      const Eigen::Vector3d n = ours.normals.row(row).transpose();
+      worst = std::max(worst, (a.cross(b).normalized() - n).norm());
+      // The other side's normal at the same vertex.
+      const int v = g.face_vertices[static_cast<std::size_t>(corners[k])];
+      for (std::size_t j = 0; j < g.face_vertices.size(); ++j)
+        if (g.face_vertices[j] == v && ours.normal_indices[j] != row)
+          sides = std::min(sides, (ours.normals.row(ours.normal_indices[j]).transpose() - n).norm());
+    }
+    CHECK(points.size() == (triangles ? 24u : 16u));
+    CHECK(worst <= 1e-12);
+    CHECK(sides > 1e-3);
+  }
 }
 
 TEST_CASE("the limit surface's partials at extraordinary vertices: along OpenSubdiv Bfr's",

@@ -96,8 +96,12 @@ struct Mesh {
   Points vertices;                   // `#V by dim` (3 for renderers and exporters)
   std::vector<int> face_offsets{0};  // `#F + 1`, starting at 0, non-decreasing
   std::vector<int> face_vertices;    // the corners of every face, face after face
-  /// Optional per-vertex normals: empty, or `#V by 3`.
+  /// Optional normals: empty, or `#V by 3` (per vertex) when normal_indices is empty, else any number of
+  /// rows that normal_indices picks from.
   Points normals;
+  /// Empty (normals per vertex), or parallel to face_vertices: corner k's normals row (OBJ's `f v//n`), for
+  /// surfaces with several normals at a vertex (limit normals at a crease: one per side).
+  std::vector<int> normal_indices;
   /// Optional per-face state (the automaton state that produced the face): empty or one per face.
   std::vector<std::uint32_t> states;
   /// Creases, corners, holes and the refinement options a production mesh carries.

@@ -103,9 +103,10 @@ struct SurfaceStyle {
 ///   triangle of the nearest sample, evaluated at the centroid of its samples. N is the
 ///   interpolated vertex normal, normalised, in world space, with the mesh's orientation (not
 ///   flipped towards the viewer).
-/// Vertex normals are `mesh.normals` when given, else vertex_normals; where the interpolated
-/// normal vanishes the face normal (of the fan triangle) is used. Throws InvalidInput for a bad mesh
-/// (check_mesh), samples_per_side outside 1 … 8, or an image of another size.
+/// Vertex normals are `mesh.normals` when given (per face corner through mesh.normal_indices), else
+/// vertex_normals; where the interpolated normal vanishes the face normal (of the fan triangle) is used.
+/// Throws InvalidInput for a bad mesh (check_mesh), samples_per_side outside 1 … 8, or an image of
+/// another size.
 void render_mesh(Image& image, const Camera& camera, const Mesh& mesh, const SurfaceStyle& style = {});
 
 struct PointStyle {

@@ -13,6 +13,7 @@
 #include <Eigen/Dense>
 #include <array>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "cifs/automata/automaton.hpp"
@@ -24,13 +25,29 @@
 
 namespace cifs::subdivision {
 
+/// The tangent masks of one sector of a vertex between sectors (a crease or corner vertex: its faces
+/// split by the sharp edges between two of them): `faces` are positions in vertex_faces(topology, v),
+/// counter-clockwise; `tangent_u`, `tangent_v` weigh the vertex's neighbourhood like LimitMask's, with
+/// tangent_u × tangent_v pointing to the side the sector's faces are counter-clockwise from. Both empty
+/// where the sector's spectrum proves no tangent plane, `refused` saying why.
+struct SectorMask {
+  std::vector<int> faces;
+  std::vector<double> tangent_u, tangent_v;
+  std::string refused;
+};
+
 /// Limit weights for one kind of vertex (a valence, interior or boundary), on its neighbourhood in
-/// mesh_analysis.hpp's numbering: `position` sums to 1; `tangent_u`, `tangent_v` sum to 0 (empty at
-/// boundary vertices, under Butterfly and at isolated vertices), ordered so that
-/// tangent_u × tangent_v points to the side the faces are counter-clockwise from. Their lengths are
-/// not derivatives of any parametrisation: use them for the tangent plane and the normal.
+/// mesh_analysis.hpp's numbering: `position` sums to 1; `tangent_u`, `tangent_v` sum to 0 (empty
+/// under Butterfly, at isolated vertices, at vertices between sectors and where no tangent plane is
+/// proved), ordered so that tangent_u × tangent_v points to the side the faces are counter-clockwise
+/// from. Their lengths are not derivatives of any parametrisation: use them for the tangent plane and
+/// the normal. `refused`: why a vertex of one sector has no tangents (else empty). `sectors`: at a
+/// vertex between sectors (Catmull–Clark and Loop), one per sector (the surface has a tangent plane
+/// per sector there); empty elsewhere.
 struct LimitMask {
   std::vector<double> position, tangent_u, tangent_v;
+  std::string refused;
+  std::vector<SectorMask> sectors;
 };
 
 /// Per vertex of a topology, its neighbourhood (the topology) and which mask weighs it (the
@@ -59,18 +76,23 @@ void evaluate_limit(const LimitStencils& stencils, const Points& vertices, Limit
 ///   the boundary, on or next to a sharp edge, a corner, a dart, next to a hole or a non-quad, semi-sharp
 ///   — is cut out with its one-ring and refined by the production rules until the ring is stationary
 ///   (its sharpness spent: at most ⌈s⌉ steps), where its class's matrix S gives the position (the left
-///   eigenvector of 1) and, when the ring is one sector (smooth, dart, boundary), the tangents (the left
-///   eigenvectors of the real subdominant pair, valence ≤ 128); its own masks are the class's through
-///   those steps: exact at any level, the sharpness still to spend included.
+///   eigenvector of 1) and the tangents of each sector (the faces between sharp or boundary edges; one
+///   sector at a dart, a boundary vertex without sharp edges, a smooth vertex): the left eigenvectors of
+///   the real subdominant pair of S's block on the sector (valence ≤ 128), where that block proves a
+///   plane (see SectorMask; refused, as evaluate_limit_surface refuses: no real pair above the rest, the
+///   bounding curves leaving the plane, a face alone between two edges that are one smooth curve). One
+///   sector: the mask's tangents; several (creases, corners): `sectors`. Its own masks are the class's
+///   through those steps: exact at any level, the sharpness still to spend included.
 /// - Butterfly and bilinear interpolate: every vertex is its own limit, with no tangents. √3: interior
 ///   vertices of valence 3 … 16, from the eigenvectors of local_matrix.
-/// Tangents are left empty on crease and corner vertices between sectors (a tangent plane per sector).
 /// InvalidInput naming the vertex for what is not built; Doo–Sabin's limit points belong to faces.
 LimitStencils limit_stencils(const MeshRefinement& refinement);
 
 /// The mesh's own tags give the features.
 struct LimitOptions {
-  bool normals = false;  // unit normals; refused at vertices without a tangent plane (creases, corners)
+  /// Unit normals: per vertex, or per face corner (Mesh::normal_indices) when a vertex is between sectors
+  /// (each corner takes its sector's); InvalidInput naming the vertex where a sector has no tangent plane.
+  bool normals = false;
   double max_bytes = 4.0 * (1ull << 30);
 };
 
