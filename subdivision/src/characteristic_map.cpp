@@ -238,7 +238,8 @@ std::optional<long double> swept_angle(const std::vector<Vec2>& b, int depth = 0
     lo = std::min(lo, a);
     hi = std::max(hi, a);
   }
-  if (inside && hi - lo < kPiL - 1e-6L) return std::atan2(cross(b.front(), b.back()), b.front().dot(b.back()));
+  if (inside && hi - lo < kPiL - 1e-6L)
+    return std::atan2(cross(b.front(), b.back()), b.front().dot(b.back()));
   if (depth == 40) return std::nullopt;
   const auto h = halves(b);
   const auto first = swept_angle(h[0], depth + 1), second = swept_angle(h[1], depth + 1);
@@ -420,9 +421,9 @@ class Collocation {
           for (int b = 0; a + b <= kMapDegree; ++b) {
             const long double u = static_cast<long double>(i) / kMapDegree,
                               v = static_cast<long double>(j) / kMapDegree;
-            triangle(tri(i, j, kMapDegree), tri(a, b, kMapDegree)) = multinomial(kMapDegree, a, b) * std::pow(u, a) *
-                                                               std::pow(v, b) *
-                                                               std::pow(1 - u - v, kMapDegree - a - b);
+            triangle(tri(i, j, kMapDegree), tri(a, b, kMapDegree)) = multinomial(kMapDegree, a, b) *
+                                                                     std::pow(u, a) * std::pow(v, b) *
+                                                                     std::pow(1 - u - v, kMapDegree - a - b);
           }
     triangle_inverse_ = triangle.inverse();
   }
