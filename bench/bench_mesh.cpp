@@ -490,9 +490,12 @@ const std::vector<sd::FacePoint>& surface_points(sd::MeshScheme scheme, bool cre
 /// Both sides write into outputs allocated once (Bfr's Evaluate writes into the caller's buffers;
 /// evaluate_limit_surface's overload reuses `out`): a fresh 72 MB output costs the kernel more time
 /// clearing its pages than the evaluation itself (docs/performance.md).
-void cifs_surface_case(benchmark::State& state, sd::MeshScheme scheme, bool creased) {
+/// `fresh`: a new output every call (72 MB, above glibc's mmap threshold: its page faults counted, as a
+/// one-shot caller pays them); else one output reused, its pages faulted in once.
+void cifs_surface_case(benchmark::State& state, sd::MeshScheme scheme, bool creased, bool fresh) {
   sd::SurfaceSample s;
   for (auto _ : state) {
+    if (fresh) s = {};
     sd::evaluate_limit_surface(surface_mesh(scheme, creased), scheme, surface_points(scheme, creased), s);
     benchmark::DoNotOptimize(s.dv.data());
   }
@@ -536,7 +539,7 @@ std::array<Points, 3> bfr_surface(const OpenSubdiv::Bfr::RefinerSurfaceFactory<>
 
 /// Bfr at its approximation level `state.range(0)` (2: its default, approximate near extraordinary
 /// vertices; 6: equal to the exact surface to 1e-12, see surface_cross_check).
-void osd_bfr_surface_case(benchmark::State& state, sd::MeshScheme scheme, bool creased) {
+void osd_bfr_surface_case(benchmark::State& state, sd::MeshScheme scheme, bool creased, bool fresh) {
   const Mesh& m = surface_mesh(scheme, creased);
   const auto refiner = cifs_test::osd_refiner(m, osd_type(scheme), 0);
   OpenSubdiv::Bfr::SurfaceFactory::Options options;
@@ -545,6 +548,7 @@ void osd_bfr_surface_case(benchmark::State& state, sd::MeshScheme scheme, bool c
   const OpenSubdiv::Bfr::RefinerSurfaceFactory<> factory(*refiner, options);
   std::array<Points, 3> out;
   for (auto _ : state) {
+    if (fresh) out = {};
     bfr_surface(factory, m, surface_points(scheme, creased), out);
     benchmark::DoNotOptimize(out[2].data());
   }
@@ -655,15 +659,19 @@ int main(int argc, char** argv) {
     surface_cross_check(scheme);
     creased_surface_cross_check(scheme);
     const std::string s(sd::scheme_name(scheme));
-    for (const bool creased : {false, true}) {
-      const std::string name = s + (creased ? "/surface_1M_creased_open/" : "/surface_1M/");
-      benchmark::RegisterBenchmark((name + "cifs").c_str(), cifs_surface_case, scheme, creased)
-          ->Unit(benchmark::kMillisecond);
-      benchmark::RegisterBenchmark((name + "osd_bfr_level").c_str(), osd_bfr_surface_case, scheme, creased)
-          ->Arg(2)
-          ->Arg(6)
-          ->Unit(benchmark::kMillisecond);
-    }
+    for (const bool creased : {false, true})
+      for (const bool fresh : {false, true}) {
+        const std::string name = s + (creased ? "/surface_1M_creased_open/" : "/surface_1M/");
+        const std::string output = fresh ? "_fresh_output" : "";
+        benchmark::RegisterBenchmark((name + "cifs" + output).c_str(), cifs_surface_case, scheme, creased,
+                                     fresh)
+            ->Unit(benchmark::kMillisecond);
+        benchmark::RegisterBenchmark((name + "osd_bfr_level" + output).c_str(), osd_bfr_surface_case, scheme,
+                                     creased, fresh)
+            ->Arg(2)
+            ->Arg(6)
+            ->Unit(benchmark::kMillisecond);
+      }
   }
   for (const auto scheme : {sd::MeshScheme::catmull_clark, sd::MeshScheme::loop}) {
     const std::string s(sd::scheme_name(scheme));
