@@ -62,6 +62,16 @@ def _who(display, fn):
     return ".".join(parts)
 
 
+class RaisesCheck:
+    """`check(call, error, pattern)`: the call raises exactly `error`, its message matching `pattern`."""
+
+    def check(self, call, error, pattern):
+        with self.assertRaises(Exception) as e:
+            call()
+        self.assertIs(type(e.exception), error, f"{type(e.exception).__name__}: {e.exception}")
+        self.assertRegex(str(e.exception), pattern)
+
+
 class ClassArgumentTest(unittest.TestCase):
     def test_every_class_parameter_is_named(self):
         with tempfile.TemporaryDirectory(prefix="cifs-class-arguments-") as scratch:
@@ -203,7 +213,7 @@ class ClassMessageTest(unittest.TestCase):
         self.assertEqual(cifs.render.view_transform(camera).cx, cifs.render.view_transform(cifs.render.Camera(width=8, height=8)).cx)
 
 
-class HostileObjectTest(unittest.TestCase):
+class HostileObjectTest(RaisesCheck, unittest.TestCase):
     """Arguments whose __class__, __repr__ or dict keys raise: the TypeError naming the parameter, never the
     object's own error, nor a SystemError for an exception left set ("returned a result with an exception set")."""
 
@@ -212,12 +222,6 @@ class HostileObjectTest(unittest.TestCase):
         self.automaton = cifs.automata.knot_automaton(curve)
         self.nets = cifs.automata.initial_nets(self.automaton, curve)
         self.system = cifs.ifs.curve_bcifs(curve)
-
-    def check(self, call, error, pattern):
-        with self.assertRaises(Exception) as e:
-            call()
-        self.assertIs(type(e.exception), error, f"{type(e.exception).__name__}: {e.exception}")
-        self.assertRegex(str(e.exception), pattern)
 
     def test_class_that_raises(self):
         class Spoof:  # isinstance() asks __class__, which raises; its repr is Python code, run afterwards
@@ -269,16 +273,10 @@ class HostileObjectTest(unittest.TestCase):
                    r"^for_each_leaf_to_tolerance: callback: expected a callable, got None$")
 
 
-class ExactNumberTest(unittest.TestCase):
+class ExactNumberTest(RaisesCheck, unittest.TestCase):
     """cifs.subdivision's exact numbers (Fractions) refuse other values naming the parameter (issue 33, found by
     test_hostile.py): an array raised RuntimeError "Unexpected character encountered in input.", and named_scheme
     RuntimeError "Unable to cast Python instance" for a key or value it could not read."""
-
-    def check(self, call, error, pattern):
-        with self.assertRaises(Exception) as e:
-            call()
-        self.assertIs(type(e.exception), error, f"{type(e.exception).__name__}: {e.exception}")
-        self.assertRegex(str(e.exception), pattern)
 
     def test_wrong_types_are_type_errors_naming_the_parameter(self):
         sd = cifs.subdivision
