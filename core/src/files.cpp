@@ -254,13 +254,6 @@ std::optional<fs::path> recorded_input(const struct stat& st) {
   return std::nullopt;
 }
 
-/// Half the physical memory: a file above it could not be held with what its parser makes of it.
-std::uint64_t largest_input() {
-  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
-  if (pages <= 0 || page <= 0) return std::uint64_t{1} << 34;
-  return static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) / 2;
-}
-
 /// "19.3", "0.00412", "79200": gigabytes with 3 significant digits, no exponent.
 std::string gigabytes(std::uint64_t bytes) {
   const double x = static_cast<double>(bytes) / 1e9;
@@ -268,6 +261,20 @@ std::string gigabytes(std::uint64_t bytes) {
 }
 
 }  // namespace
+
+// A file above half the memory could not be held with what its parser makes of it.
+std::uint64_t largest_input() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
+  if (pages <= 0 || page <= 0) return std::uint64_t{1} << 34;
+  return static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) / 2;
+}
+
+void check_decoded_size(const fs::path& path, std::string_view what, std::uint64_t bytes,
+                        std::uint64_t limit) {
+  if (bytes > limit)
+    throw IoError(path.string() + ": " + std::string(what) + ", " + gigabytes(bytes) + " GB, more than the " +
+                  gigabytes(limit) + " GB an input may hold");
+}
 
 std::string read_file(const fs::path& path) {
   const std::string name = path.string();

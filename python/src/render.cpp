@@ -488,9 +488,11 @@ string attributes. Row 0 is the top of the image; arrays are (height, width).)")
 The file is written under a temporary name and renamed into place. Raises InvalidInput for an empty
 image, an empty channel name or an attribute name reserved by OpenEXR; IoError (naming `path`)
 when the file cannot be written.)");
-  m.def("read_exr", &read_exr, py::arg("path"), py::call_guard<py::gil_scoped_release>(),
+  m.def("read_exr", &read_exr, py::arg("path"), py::arg("max_bytes") = largest_input(),
+        py::call_guard<py::gil_scoped_release>(),
         "Reads an OpenEXR file into an Image (HALF and FLOAT channels as float32, UINT `state` as the\n"
-        "state channel, string attributes). Raises IoError naming `path` when it is missing or unreadable.");
+        "state channel, string attributes). Raises IoError naming `path` when it is missing or unreadable,\n"
+        "or when its pixels would take more than `max_bytes` (default: half the memory).");
 }
 
 void bind_image(py::module_& m) {
@@ -710,17 +712,17 @@ void bind_png_files(py::module_& m) {
       "file cannot be written.");
   m.def(
       "read_png",
-      [](const std::filesystem::path& path, PixelFormat format) {
+      [](const std::filesystem::path& path, PixelFormat format, std::uint64_t max_bytes) {
         PngImage png;
         {
           py::gil_scoped_release release;
-          png = read_png(path, format);
+          png = read_png(path, format, max_bytes);
         }
         return pixel_array(png.pixels, png.width, png.height, channel_count(png.format));
       },
-      py::arg("path"), py::arg("format") = PixelFormat::rgba8,
+      py::arg("path"), py::arg("format") = PixelFormat::rgba8, py::arg("max_bytes") = largest_input(),
       "Reads any PNG as uint8 (height, width, 3|4) (PixelFormat.rgb8 or rgba8). Raises IoError naming "
-      "`path`.");
+      "`path`,\nalso when its pixels would take more than `max_bytes` (default: half the memory).");
 
   const ToneMapOptions t{};
   m.def(

@@ -8,11 +8,18 @@
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
 
+#include <algorithm>
+#include <array>
 #include <climits>
+#include <cstdint>
 #include <exception>
+#include <fstream>
+#include <optional>
+#include <string>
 
 #include "cifs/errors.hpp"
 #include "cifs/files.hpp"
+#include "cifs/format.hpp"
 #include "cifs/render/image.hpp"
 
 namespace cifs::render {
@@ -40,6 +47,64 @@ void check_image(const Image& image) {
   if (image.state && image.state->size() != n)
     throw InvalidInput("the EXR state channel holds " + std::to_string(image.state->size()) +
                        " values, expected " + std::to_string(n));
+}
+
+/// What the first header of an OpenEXR file claims, read before OpenEXR reads it: OpenEXR allocates what
+/// a header claims before it reads it (a string attribute of 2 GB, a line-offset table for a 10^9-line
+/// data window), so that a file of a hundred bytes could make it allocate and zero gigabytes.
+struct ExrClaims {
+  std::int64_t width = 0, height = 0, channels = 0;
+};
+
+/// Every header's attribute sizes checked against the file's length (IoError naming the attribute and
+/// both figures); the data window and channel count of the first header. Empty when the bytes do not
+/// follow OpenEXR's header layout: OpenEXR says what is wrong then.
+std::optional<ExrClaims> read_exr_claims(const std::filesystem::path& path) {
+  std::error_code ec;
+  const auto file_size = static_cast<std::int64_t>(std::filesystem::file_size(path, ec));
+  std::ifstream in(path, std::ios::binary);
+  if (!in || ec) return std::nullopt;
+  const auto read_exact = [&](void* out, std::streamsize n) { return !!in.read(static_cast<char*>(out), n); };
+  const auto read_name = [&](std::string& name) {  // NUL-terminated, at most 255 bytes (long names)
+    name.clear();
+    for (char c = 0; in.get(c);) {
+      if (c == '\0') return true;
+      if (name.size() == 255) return false;
+      name.push_back(c);
+    }
+    return false;
+  };
+  std::uint32_t magic = 0, version = 0;
+  if (!read_exact(&magic, 4) || !read_exact(&version, 4) || magic != 20000630u) return std::nullopt;
+  const bool multipart = (version & 0x1000u) != 0;  // headers follow one another, an empty one ends them
+  ExrClaims claims;
+  std::string name, type;
+  for (bool first = true;; first = false) {
+    while (read_name(name) && !name.empty()) {
+      std::int32_t size = 0;
+      if (!read_name(type) || !read_exact(&size, 4)) return std::nullopt;
+      const std::int64_t left = file_size - static_cast<std::int64_t>(in.tellg());
+      if (size < 0 || size > left)
+        throw IoError(path.string() + ": the header's attribute '" + excerpt(name) + "' claims " +
+                      std::to_string(size) + " bytes, " + std::to_string(left) + " are left in the file");
+      const std::int64_t end = static_cast<std::int64_t>(in.tellg()) + size;
+      if (first && name == "dataWindow" && type == "box2i" && size == 16) {
+        std::array<std::int32_t, 4> box{};  // min x, min y, max x, max y
+        if (!read_exact(box.data(), 16)) return std::nullopt;
+        claims.width = std::int64_t{box[2]} - box[0] + 1;
+        claims.height = std::int64_t{box[3]} - box[1] + 1;
+      } else if (first && name == "channels" && type == "chlist") {
+        // Per channel: its name, then 16 bytes (pixel type, linear flag, reserved, sampling).
+        for (std::string channel; in.tellg() < end && in.peek() != 0 && read_name(channel);
+             in.seekg(16, std::ios::cur))
+          ++claims.channels;
+      }
+      in.seekg(end, std::ios::beg);
+    }
+    if (!in || !name.empty()) return std::nullopt;
+    if (!multipart || in.peek() == 0) break;
+  }
+  return claims;
 }
 
 }  // namespace
@@ -90,16 +155,28 @@ void write_exr(const std::filesystem::path& path, const Image& image) {
   file.commit();
 }
 
-Image read_exr(const std::filesystem::path& path) {
+Image read_exr(const std::filesystem::path& path, std::uint64_t max_bytes) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw IoError(path.string() + ": no such file");
+  // A header of a few bytes may claim 10^9 × 10^9 pixels: refused before anything is allocated.
+  if (const std::optional<ExrClaims> claims = read_exr_claims(path);
+      claims && claims->width > 0 && claims->height > 0) {
+    const auto [width, height, channels] = *claims;
+    const double bytes = static_cast<double>(width) * static_cast<double>(height) *
+                         static_cast<double>(std::max<std::int64_t>(channels, 1)) * sizeof(float);
+    check_decoded_size(path,
+                       "the image is " + std::to_string(width) + " × " + std::to_string(height) +
+                           " pixels of " + std::to_string(channels) +
+                           (channels == 1 ? " channel" : " channels"),
+                       bytes < 1.8e19 ? static_cast<std::uint64_t>(bytes) : ~std::uint64_t{0}, max_bytes);
+  }
   try {
     Imf::InputFile in(path.c_str());
     const Imf::Header& header = in.header();
     const Imath::Box2i window = header.dataWindow();
     Image image;
-    image.width = static_cast<std::size_t>(window.max.x - window.min.x) + 1;
-    image.height = static_cast<std::size_t>(window.max.y - window.min.y) + 1;
+    image.width = static_cast<std::size_t>(std::int64_t{window.max.x} - window.min.x + 1);
+    image.height = static_cast<std::size_t>(std::int64_t{window.max.y} - window.min.y + 1);
     const std::size_t n = image.width * image.height;
     // Slice base pointers are addressed by absolute pixel coordinates: shift by the window origin.
     const auto origin = static_cast<std::ptrdiff_t>(window.min.x) +

@@ -68,7 +68,7 @@ void write_png(const std::filesystem::path& path, std::span<const std::uint8_t> 
   file.commit();
 }
 
-PngImage read_png(const std::filesystem::path& path, PixelFormat format) {
+PngImage read_png(const std::filesystem::path& path, PixelFormat format, std::uint64_t max_bytes) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw IoError(path.string() + ": no such file");
   png_image image;
@@ -77,6 +77,15 @@ PngImage read_png(const std::filesystem::path& path, PixelFormat format) {
   if (!png_image_begin_read_from_file(&image, path.c_str()))
     throw IoError(path.string() + ": cannot read PNG (" + image.message + ")");
   image.format = png_format(format);
+  try {
+    check_decoded_size(
+        path,
+        "the image is " + std::to_string(image.width) + " × " + std::to_string(image.height) + " pixels",
+        std::uint64_t{image.width} * image.height * channel_count(format), max_bytes);
+  } catch (const IoError&) {
+    png_image_free(&image);
+    throw;
+  }
   PngImage result;
   result.width = image.width;
   result.height = image.height;

@@ -3,7 +3,8 @@
 // render::read_png (anything else; RGBA on even sizes, RGB on odd ones). They take paths: the bytes
 // go to a scratch file first. Property: an image read writes (write_exr, write_png) and reads back
 // to the same size, channels, pixels (bit for bit: NaN, ±inf, −0 and subnormals included), state
-// and attributes.
+// and attributes. Work per input: images of at most 16 MB (the readers' `max_bytes`: a header of a few
+// bytes claiming 10^9 × 10^9 pixels is refused before anything is allocated).
 #include <unistd.h>
 #include <cstring>
 #include <filesystem>
@@ -22,6 +23,8 @@ const std::filesystem::path& scratch() {
   return fuzz::scratch("image");
 }
 
+constexpr std::uint64_t kMaxBytes = std::uint64_t{16} << 20;
+
 bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
 }
@@ -36,7 +39,7 @@ bool same(const render::Image& a, const render::Image& b) {
 }
 
 void exr_round_trip(const std::filesystem::path& input) {
-  const render::Image image = render::read_exr(input);
+  const render::Image image = render::read_exr(input, kMaxBytes);
   const std::filesystem::path again = scratch() / "again.exr";
   const render::Image back = fuzz::no_refusal(
       [&] {
@@ -48,7 +51,7 @@ void exr_round_trip(const std::filesystem::path& input) {
 }
 
 void png_round_trip(const std::filesystem::path& input, render::PixelFormat format) {
-  const render::PngImage image = render::read_png(input, format);
+  const render::PngImage image = render::read_png(input, format, kMaxBytes);
   const std::filesystem::path again = scratch() / "again.png";
   const render::PngImage back = fuzz::no_refusal(
       [&] {

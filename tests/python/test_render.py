@@ -253,6 +253,25 @@ class ImageTest(ScratchTestCase):
         # Refused before OpenEXR is called: the folder is a file.
         self.assertEqual(str(e.exception), f"{target}: {self.scratch / 'file'} is not a folder")
 
+    def test_read_exr_refuses_more_pixels_than_max_bytes(self):
+        path = self.scratch / "one.exr"
+        image = R.Image(3, 2)
+        image.channels["Y"] = np.ones((2, 3), dtype=np.float32)
+        R.write_exr(path, image)
+        self.assertEqual(R.read_exr(path, max_bytes=24).width, 3)  # 6 pixels, 1 channel of 4 bytes
+        with self.assertRaises(cifs.IoError) as e:
+            R.read_exr(path, max_bytes=23)
+        self.assertEqual(str(e.exception), f"{path}: the image is 3 × 2 pixels of 1 channel, 2.4e-08 GB, "
+                                           "more than the 2.3e-08 GB an input may hold")
+        with self.assertRaises(cifs.IoError) as e:
+            R.read_png(self.write_rgba(), max_bytes=15)
+        self.assertIn("the image is 2 × 2 pixels, 1.6e-08 GB", str(e.exception))
+
+    def write_rgba(self):
+        path = self.scratch / "p.png"
+        R.write_png(path, np.zeros((2, 2, 4), dtype=np.uint8))
+        return path
+
     def test_unwritable_exr_message_is_the_clis(self):
         folder = self.scratch / "out.exr"
         folder.mkdir()

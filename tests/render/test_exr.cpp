@@ -186,3 +186,88 @@ TEST_CASE("EXR: invalid images are refused before any file is made", "[render]")
   CHECK_THROWS_AS(write_exr(path, image), InvalidInput);
   CHECK(dir.names().empty());
 }
+
+namespace {
+
+std::string file_bytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+void put_file_bytes(const std::filesystem::path& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+void put_u32_big_endian(std::string& bytes, std::size_t at, std::uint32_t x) {
+  for (int i = 0; i < 4; ++i) bytes[at + static_cast<std::size_t>(i)] = static_cast<char>(x >> (24 - 8 * i));
+}
+
+// PNG's chunk checksum (ISO 3309 CRC-32), so that a patched header still reads as a valid chunk.
+std::uint32_t png_crc(std::string_view bytes) {
+  std::uint32_t c = 0xffffffffu;
+  for (const char ch : bytes) {
+    c ^= static_cast<unsigned char>(ch);
+    for (int k = 0; k < 8; ++k) c = (c & 1u) != 0 ? 0xedb88320u ^ (c >> 1) : c >> 1;
+  }
+  return c ^ 0xffffffffu;
+}
+
+}  // namespace
+
+TEST_CASE("EXR and PNG: a header claiming more pixels than memory holds is refused before allocating",
+          "[render][reliability]") {
+  // Issue 33 (the `image` fuzz harness spent its time here): a file of a few hundred bytes whose header
+  // claims 10^9 × 10^9 pixels made the reader allocate first (std::bad_alloc, or gigabytes zero-filled).
+  ScratchDir dir;
+  const auto exr = dir.path() / "huge.exr";
+  Image one;
+  one.width = one.height = 1;
+  one.channels["Y"] = {0.5f};
+  write_exr(exr, one);
+  std::string bytes = file_bytes(exr);
+  const std::string key("dataWindow\0box2i\0", 17);
+  const std::size_t at = bytes.find(key);
+  REQUIRE(at != std::string::npos);
+  const std::int32_t last = 999'999'999;  // the window's max corner (x, y): 10^9 × 10^9 pixels
+  std::memcpy(&bytes[at + key.size() + 4 + 8], &last, 4);
+  std::memcpy(&bytes[at + key.size() + 4 + 12], &last, 4);
+  put_file_bytes(exr, bytes);
+  CHECK_THROWS_MATCHES(
+      read_exr(exr), IoError, Catch::Matchers::Predicate<std::exception>([&](const std::exception& e) {
+        const std::string m = e.what();
+        return m.find("huge.exr: the image is 1000000000 × 1000000000 pixels of 1 channel, 4000000000 GB") !=
+                   std::string::npos &&
+               m.find("GB an input may hold") != std::string::npos;
+      }));
+  // A string attribute claiming 2 GB (OpenEXR made and zeroed the string before reading it).
+  one.attributes["comment"] = "x";
+  write_exr(exr, one);
+  bytes = file_bytes(exr);
+  const std::string comment("comment\0string\0", 15);
+  const std::size_t comment_at = bytes.find(comment);
+  REQUIRE(comment_at != std::string::npos);
+  const std::int32_t claimed = 2'000'000'000;
+  std::memcpy(&bytes[comment_at + comment.size()], &claimed, 4);
+  put_file_bytes(exr, bytes);
+  const auto left = bytes.size() - (comment_at + comment.size() + 4);
+  CHECK_THROWS_WITH(read_exr(exr), "" + exr.string() +
+                                       ": the header's attribute 'comment' claims 2000000000 bytes, " +
+                                       std::to_string(left) + " are left in the file");
+
+  // The limit is the caller's: one pixel of one float channel takes 4 bytes.
+  write_exr(dir.path() / "one.exr", one);
+  CHECK_THROWS_WITH(read_exr(dir.path() / "one.exr", 3), Catch::Contains("GB an input may hold"));
+  CHECK(read_exr(dir.path() / "one.exr", 4).channels.at("Y") == std::vector<float>{0.5f});
+
+  const auto png = dir.path() / "huge.png";
+  write_png(png, std::vector<std::uint8_t>(4, 255), 1, 1, PixelFormat::rgba8);
+  bytes = file_bytes(png);
+  REQUIRE(bytes.substr(12, 4) == "IHDR");
+  put_u32_big_endian(bytes, 16, 1'000'000);  // libpng's own limit on either side
+  put_u32_big_endian(bytes, 20, 1'000'000);
+  put_u32_big_endian(bytes, 29, png_crc(std::string_view(bytes).substr(12, 17)));
+  put_file_bytes(png, bytes);
+  CHECK_THROWS_WITH(read_png(png),
+                    Catch::Contains("huge.png: the image is 1000000 × 1000000 pixels, 4000 GB"));
+  CHECK_THROWS_AS(read_png(png, PixelFormat::rgb8), IoError);
+}

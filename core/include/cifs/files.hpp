@@ -32,6 +32,16 @@ inline constexpr std::string_view kTemporaryMarker = ".cifs-tmp.";
 /// recorded as an input of the run.
 std::string read_file(const std::filesystem::path& path);
 
+/// Half the physical memory: the most an input may hold, as a file (read_file) or as what a small file
+/// decodes to (an image's pixels).
+std::uint64_t largest_input();
+
+/// Refuses what `path` decodes to when it needs more than `limit` bytes, before it is allocated:
+/// IoError "big.exr: the image is 100001 × 100001 pixels of 1 channel, 40 GB, more than the 16.4 GB an
+/// input may hold" (`what` = "the image is 100001 × 100001 pixels of 1 channel").
+void check_decoded_size(const std::filesystem::path& path, std::string_view what, std::uint64_t bytes,
+                        std::uint64_t limit);
+
 /// The inputs of one run (a command of the CLI), for its whole lifetime: every file read_file reads
 /// meanwhile is recorded (device and inode), and every AtomicFile created meanwhile refuses a target
 /// that is one of them — by any name, hard link or symbolic link — so that no command overwrites what

@@ -12,6 +12,8 @@
 
 #include "cifs/files.hpp"
 
+#include "cifs/files.hpp"
+
 namespace cifs::render {
 
 /// A multi-channel image: every channel holds `width·height` values, row-major, row 0 at the top
@@ -42,7 +44,8 @@ void write_exr(AtomicFile& file, const Image& image);
 
 /// Reads an OpenEXR scan-line file back: every channel (HALF and FLOAT as float, a UINT channel
 /// named `state` into Image::state, other UINT channels as float) and every string attribute.
-/// Throws IoError naming `path` when the file is missing or not a readable OpenEXR image.
-Image read_exr(const std::filesystem::path& path);
+/// Throws IoError naming `path` when the file is missing or not a readable OpenEXR image, and — before
+/// any allocation — when its pixels would take more than `max_bytes` (default: half the memory).
+Image read_exr(const std::filesystem::path& path, std::uint64_t max_bytes = largest_input());
 
 }  // namespace cifs::render

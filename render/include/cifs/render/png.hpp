@@ -40,8 +40,10 @@ struct PngImage {
   std::vector<std::uint8_t> pixels;
 };
 
-/// Reads a PNG through libpng's simplified API. Throws IoError naming `path`.
-PngImage read_png(const std::filesystem::path& path, PixelFormat format = PixelFormat::rgba8);
+/// Reads a PNG through libpng's simplified API. Throws IoError naming `path`, also — before any
+/// allocation — when its pixels would take more than `max_bytes` (default: half the memory).
+PngImage read_png(const std::filesystem::path& path, PixelFormat format = PixelFormat::rgba8,
+                  std::uint64_t max_bytes = largest_input());
 
 using Rgb8 = std::array<std::uint8_t, 3>;
 
