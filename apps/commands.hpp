@@ -70,7 +70,7 @@ struct SubdivideOptions {
   bool factored = false;         // linear subdivision + averaging (catmull-clark, loop)
   bool strict = false;           // an OBJ tag cifs does not read is an error, not a warning
   bool quiet = false;            // no progress bar
-  std::filesystem::path output;  // .obj or .ply; empty: OBJ on stdout
+  std::filesystem::path output;  // .obj, .ply, .stl, .off or .vtp; empty: OBJ on stdout
 };
 std::string subdivide(const SubdivideOptions& options);
 
@@ -79,12 +79,13 @@ struct LimitCommandOptions {
   std::filesystem::path mesh;
   std::string scheme;
   int levels = 1;
-  std::string boundary;          // "" keeps the file's boundary rule
-  bool normals = false;          // unit limit normals (PLY nx ny nz, OBJ vn; with `at`, per point)
-  bool strict = false;           // an OBJ tag cifs does not read is an error, not a warning
-  std::filesystem::path output;  // .obj or .ply; empty: OBJ on stdout (with `at`: .json, or stdout)
-  std::string at;                // points "face,u,v;…" or a file of them: the limit surface there, as JSON
-  bool partials = false;         // with `at`: ∂/∂u, ∂/∂v too
+  std::string boundary;  // "" keeps the file's boundary rule
+  bool normals = false;  // unit limit normals (PLY nx ny nz, OBJ vn; with `at`, per point)
+  bool strict = false;   // an OBJ tag cifs does not read is an error, not a warning
+  std::filesystem::path
+      output;      // .obj, .ply, .stl, .off or .vtp; empty: OBJ on stdout (with `at`: .json, or stdout)
+  std::string at;  // points "face,u,v;…" or a file of them: the limit surface there, as JSON
+  bool partials = false;  // with `at`: ∂/∂u, ∂/∂v too
 };
 std::string limit(const LimitCommandOptions& options);
 

@@ -159,7 +159,9 @@ void add_info(CLI::App& app, Commands& c) {
       "info",
       "Degree, counts, domain and segments of a shape (of each shape of the file); counts, valences and "
       "topology of a mesh");
-  info_cmd->add_option("shape", c.info_shape, "Shape file (.json or .obj) or polygon mesh (.obj or .ply)")
+  info_cmd
+      ->add_option("shape", c.info_shape,
+                   "Shape file (.json or .obj) or polygon mesh (.obj, .ply, .stl or .off)")
       ->required();
   add_shape_selection(info_cmd, c.info_select);
   add_strict(info_cmd, c.info_strict);
@@ -309,7 +311,7 @@ void add_render(CLI::App& app, Commands& c) {
 void add_subdivide(CLI::App& app, Commands& c) {
   auto* subdivide_cmd = app.add_subcommand(
       "subdivide", "Subdivide a polygon mesh: Catmull-Clark, Loop, Doo-Sabin, Butterfly, sqrt3");
-  subdivide_cmd->add_option("mesh", c.su.mesh, "Polygon mesh (.obj or .ply)")->required();
+  subdivide_cmd->add_option("mesh", c.su.mesh, "Polygon mesh (.obj, .ply, .stl or .off)")->required();
   subdivide_cmd->add_option("--scheme", c.su.scheme, "catmull-clark, loop, doo-sabin, butterfly or sqrt3")
       ->required();
   subdivide_cmd->add_option("--levels", c.su.levels, "Subdivision steps (default 1)");
@@ -329,7 +331,9 @@ void add_subdivide(CLI::App& app, Commands& c) {
                           "Linear subdivision then averaging (catmull-clark on quads, loop); same result");
   add_strict(subdivide_cmd, c.su.strict);
   subdivide_cmd->add_flag("--quiet", c.su.quiet, "No progress bar");
-  subdivide_cmd->add_option("-o,--output", c.su.output, "Output mesh (.obj or .ply; default: OBJ on stdout)")
+  subdivide_cmd
+      ->add_option("-o,--output", c.su.output,
+                   "Output mesh (.obj, .ply, .stl, .off or .vtp; default: OBJ on stdout)")
       ->check(output_name);
   subdivide_cmd->callback([&] { c.result = cli::subdivide(c.su); });
 }
@@ -337,7 +341,7 @@ void add_subdivide(CLI::App& app, Commands& c) {
 void add_analyze(CLI::App& app, Commands& c) {
   auto* analyze_cmd = app.add_subcommand(
       "analyze", "Which points of a mesh are not smooth: every irregular vertex's class and C1 verdict");
-  analyze_cmd->add_option("mesh", c.an.mesh, "Polygon mesh (.obj or .ply)")->required();
+  analyze_cmd->add_option("mesh", c.an.mesh, "Polygon mesh (.obj, .ply, .stl or .off)")->required();
   analyze_cmd->add_option("--scheme", c.an.scheme, "catmull-clark or loop")->required();
   analyze_cmd->add_option("--format", c.an.format, "table (default) or json");
   analyze_cmd->add_option("--boundary", c.an.boundary,
@@ -357,7 +361,7 @@ void add_analyze(CLI::App& app, Commands& c) {
 void add_limit(CLI::App& app, Commands& c) {
   auto* limit_cmd = app.add_subcommand(
       "limit", "Limit points (and normals) of a subdivision surface: catmull-clark, loop, butterfly, sqrt3");
-  limit_cmd->add_option("mesh", c.li.mesh, "Polygon mesh (.obj or .ply)")->required();
+  limit_cmd->add_option("mesh", c.li.mesh, "Polygon mesh (.obj, .ply, .stl or .off)")->required();
   limit_cmd->add_option("--scheme", c.li.scheme, "catmull-clark, loop, butterfly or sqrt3")->required();
   auto* levels = limit_cmd->add_option("--levels", c.li.levels,
                                        "Subdivision steps before the vertices go to the limit (default 1)");
@@ -374,7 +378,9 @@ void add_limit(CLI::App& app, Commands& c) {
                  ->excludes(levels);
   limit_cmd->add_flag("--partials", c.li.partials, "With --at: the partials du, dv too")->needs(at);
   add_strict(limit_cmd, c.li.strict);
-  limit_cmd->add_option("-o,--output", c.li.output, "Output mesh (.obj or .ply; default: OBJ on stdout)")
+  limit_cmd
+      ->add_option("-o,--output", c.li.output,
+                   "Output mesh (.obj, .ply, .stl, .off or .vtp; default: OBJ on stdout)")
       ->check(output_name);
   add_quiet(limit_cmd, c.quiet);
   limit_cmd->callback([&] {
@@ -426,7 +432,9 @@ void add_gallery(CLI::App& app, Commands& c) {
 void add_view(CLI::App& app, Commands& c) {
   auto* view_cmd = app.add_subcommand(
       "view", "Explore a shape or mesh in the browser: a local web page (prints its URL), or --export DIR");
-  view_cmd->add_option("file", c.view_path, "Shape file (.json or .obj) or polygon mesh (.obj or .ply)")
+  view_cmd
+      ->add_option("file", c.view_path,
+                   "Shape file (.json or .obj) or polygon mesh (.obj, .ply, .stl or .off)")
       ->required();
   view_cmd->add_option("--host", c.view.host,
                        "Address to listen on (default 127.0.0.1; any other is reachable from the network)");

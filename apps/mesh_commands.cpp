@@ -16,6 +16,7 @@
 #include "cifs/files.hpp"
 #include "cifs/format.hpp"
 #include "cifs/io/io.hpp"
+#include "cifs/io/mesh_formats.hpp"
 #include "cifs/io/ply.hpp"
 #include "cifs/render/camera.hpp"
 #include "cifs/render/preview.hpp"
@@ -34,13 +35,16 @@ using nlohmann::json;
 
 /// Refused before the work: the output must be a mesh format the table writes. Its name.
 std::string mesh_output_format(const std::filesystem::path& output) {
-  std::string known;
+  std::vector<std::string> known;
   for (const io::Format& f : io::formats(io::Content::mesh)) {
     if (!f.write) continue;
     if (output.extension() == f.extension) return std::string(f.name);
-    known += (known.empty() ? "" : " or ") + std::string(f.extension);
+    known.emplace_back(f.extension);
   }
-  throw InvalidInput("-o " + output.string() + ": expected a " + known + " file name");
+  std::string list;
+  for (std::size_t i = 0; i < known.size(); ++i)
+    list += (i == 0 ? "" : i + 1 == known.size() ? " or " : ", ") + known[i];
+  throw InvalidInput("-o " + output.string() + ": expected a " + list + " file name");
 }
 
 }  // namespace
@@ -129,10 +133,9 @@ std::string mesh_to_mesh(const std::filesystem::path& input, const io::MeshReadO
   } catch (const InvalidInput& e) {
     throw InvalidInput(input.string() + ": " + e.what());
   }
-  if (format == "ply")
-    if (const std::string dropped = io::ply_leaves_out(result); !dropped.empty())
-      pending_warnings().push_back(output_path.string() + ": PLY holds no tags or UVs: " + dropped +
-                                   " are left out (write .obj to keep them)");
+  if (const std::string dropped = io::mesh_left_out(result, format); !dropped.empty())
+    pending_warnings().push_back(output_path.string() + ": the ." + format + " format does not hold " +
+                                 dropped + "; they are left out (write .obj to keep them)");
   if (!output) return io::encode(result, format);
   io::encode(result, format, *output);
   output->commit();

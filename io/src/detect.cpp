@@ -30,7 +30,8 @@ bool obj_mesh(std::string_view text) {
 
 Content detect(const std::filesystem::path& path) {
   const std::string extension = path.extension().string();
-  if (extension == ".ply") return Content::mesh;
+  if (extension == ".ply" || extension == ".stl" || extension == ".off" || extension == ".vtp")
+    return Content::mesh;
   if (extension != ".obj" && extension != ".json") return Content::shape;
   const std::string text = read_file(path);
   if (extension == ".obj") return obj_mesh(text) ? Content::mesh : Content::shape;

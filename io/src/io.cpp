@@ -11,6 +11,7 @@
 #include "cifs/files.hpp"
 #include "cifs/io/dot.hpp"
 #include "cifs/io/json.hpp"
+#include "cifs/io/mesh_formats.hpp"
 #include "cifs/io/obj.hpp"
 #include "cifs/io/ply.hpp"
 #include "cifs/io/svg.hpp"
@@ -37,6 +38,12 @@ T parse_at(std::string_view text, const std::filesystem::path& path) {
 
 Mesh parse_mesh_obj_at(std::string_view text, std::string_view where) {
   return parse_mesh_obj(text, where);
+}
+Mesh parse_mesh_stl_at(std::string_view text, std::string_view where) {
+  return parse_mesh_stl(text, where);
+}
+Mesh parse_mesh_off_at(std::string_view text, std::string_view where) {
+  return parse_mesh_off(text, where);
 }
 
 Shape parse_shape_json_at(std::string_view text, const std::filesystem::path& path) {
@@ -90,6 +97,9 @@ const Codec<Mesh> kMesh[] = {
      parse_at<Mesh, parse_mesh_obj_at>},
     {"ply", ".ply", [](const Mesh& m, ByteSink& out) { mesh_ply(m, PlyFormat::binary_little_endian, out); },
      parse_at<Mesh, parse_mesh_ply>, true},
+    {"stl", ".stl", mesh_stl, parse_at<Mesh, parse_mesh_stl_at>, true},
+    {"off", ".off", mesh_off, parse_at<Mesh, parse_mesh_off_at>},
+    {"vtp", ".vtp", mesh_vtp, nullptr, true},
 };
 const Codec<Segments> kSegments[] = {
     {"obj", ".obj", [](const Segments& s, ByteSink& out) { segments_obj(s, out); }},
@@ -386,8 +396,35 @@ Polygon read_polygon(const std::filesystem::path& path) {
   return read_as<Polygon>(path, Content::polygon);
 }
 Mesh read_mesh(const std::filesystem::path& path, const MeshReadOptions& options) {
+  // The readers that warn take the options; the table's readers use the defaults.
   if (path.extension() == ".obj") return parse_mesh_obj(read_file(path), path.string(), options);
+  if (path.extension() == ".stl") return parse_mesh_stl(read_file(path), path.string(), options);
+  if (path.extension() == ".off") return parse_mesh_off(read_file(path), path.string(), options);
   return read_as<Mesh>(path, Content::mesh);
+}
+
+std::string mesh_left_out(const Mesh& mesh, std::string_view format) {
+  if (format == "obj") return "";
+  std::vector<std::string> parts;
+  const auto count = [&](std::size_t n, const std::string& what) {
+    if (n > 0) parts.push_back(std::to_string(n) + " " + what + (n == 1 ? "" : "s"));
+  };
+  // No format but OBJ holds tags or face-varying channels.
+  count(mesh.tags.holes.size(), "hole face");
+  count(static_cast<std::size_t>(std::count_if(mesh.tags.creases.begin(), mesh.tags.creases.end(),
+                                               [](const EdgeSharpness& c) { return c.sharpness > 0; })),
+        "crease");
+  count(static_cast<std::size_t>(std::count_if(mesh.tags.corners.begin(), mesh.tags.corners.end(),
+                                               [](const VertexSharpness& c) { return c.sharpness > 0; })),
+        "corner");
+  for (const FaceVaryingChannel& c : mesh.face_varying)
+    parts.push_back("the face-varying channel '" + c.name + "'");
+  if (format == "stl" && mesh.normals.size() != 0) parts.emplace_back("the normals");
+  if ((format == "stl" || format == "off") && !mesh.states.empty()) parts.emplace_back("the face states");
+  std::string out;
+  for (std::size_t i = 0; i < parts.size(); ++i)
+    out += (i == 0 ? "" : i + 1 == parts.size() ? " and " : ", ") + parts[i];
+  return out;
 }
 nurbs::KnotAutomaton read_automaton(const std::filesystem::path& path) {
   return read_as<nurbs::KnotAutomaton>(path, Content::automaton);

@@ -496,26 +496,6 @@ void mesh_ply(const Mesh& mesh, PlyFormat format, ByteSink& sink) {
   w.finish();
 }
 
-std::string ply_leaves_out(const Mesh& mesh) {
-  std::vector<std::string> parts;
-  const auto count = [&](std::size_t n, const std::string& what) {
-    if (n > 0) parts.push_back(std::to_string(n) + " " + what + (n == 1 ? "" : "s"));
-  };
-  count(mesh.tags.holes.size(), "hole face");
-  count(static_cast<std::size_t>(std::count_if(mesh.tags.creases.begin(), mesh.tags.creases.end(),
-                                               [](const EdgeSharpness& c) { return c.sharpness > 0; })),
-        "crease");
-  count(static_cast<std::size_t>(std::count_if(mesh.tags.corners.begin(), mesh.tags.corners.end(),
-                                               [](const VertexSharpness& c) { return c.sharpness > 0; })),
-        "corner");
-  for (const FaceVaryingChannel& c : mesh.face_varying)
-    parts.push_back("the face-varying channel '" + c.name + "'");
-  std::string out;
-  for (std::size_t i = 0; i < parts.size(); ++i)
-    out += (i == 0 ? "" : i + 1 == parts.size() ? " and " : ", ") + parts[i];
-  return out;
-}
-
 std::string mesh_ply(const Mesh& mesh, PlyFormat format) {
   StringSink out;
   mesh_ply(mesh, format, out);

@@ -611,7 +611,8 @@ void bind_geometry_files(py::module_& m) {
         return io::read_mesh(path, {.strict = strict, .warn = {}});
       },
       Release(), py::arg("path"), py::kw_only(), py::arg("strict") = false,
-      "Reads a polygon mesh from a .obj or .ply file (checked with check_mesh), with its tags (Mesh.tags)\n"
+      "Reads a polygon mesh from a .obj, .ply, .stl or .off file (checked with check_mesh), with its tags "
+      "(Mesh.tags)\n"
       "and UVs (Mesh.face_varying) from OBJ. An unknown OBJ tag is a warning on stderr, or InvalidInput\n"
       "when strict.\n\n"
       "Raises IoError or InvalidInput naming the path and the line or element.");

@@ -26,6 +26,8 @@ std::string example(const std::string& name) {
   return std::string(CIFS_EXAMPLES_DIR) + "/meshes/" + name;
 }
 
+std::string tagged_grid_obj();  // below, beside the tagged-mesh tests
+
 /// A wavy 5 × 4 grid of quads with an infinitely sharp crease across it (boundary corners kept), as an
 /// OBJ file in the scratch folder.
 std::string creased_grid() {
@@ -81,6 +83,42 @@ TEST_CASE("cifs subdivide writes the library's refinement, OBJ or PLY, or OBJ on
   CHECK(kept.vertices.row(0) == grid.vertices.row(0));
 }
 
+TEST_CASE("cifs subdivide reads STL and OFF and writes STL, OFF and VTK PolyData", "[cli][mesh]") {
+  const Mesh cube = io::read_mesh(example("cube_triangles.obj"));
+  const auto stl = scratch() / "cube_in.stl", off = scratch() / "cube_in.off";
+  io::write(stl, cube);
+  io::write(off, cube);
+  const Mesh expected = subdivision::subdivide(cube, subdivision::MeshScheme::loop, 1);
+  for (const auto& in : {stl, off}) {
+    INFO(in.string());
+    // Welded back from the triangle soup (vertices numbered as they come), the STL cube subdivides as
+    // the OBJ one: the same points (its coordinates are floats: 0 and 1), the same number of faces.
+    const auto out = scratch() / "cube_out.off";
+    REQUIRE(cifs_cli("subdivide " + in.string() + " --scheme loop -o " + out.string()).status == 0);
+    const Mesh back = io::read_mesh(out);
+    const auto sorted_rows = [](const Points& p) {
+      std::vector<std::array<double, 3>> rows(static_cast<std::size_t>(p.rows()));
+      for (Eigen::Index i = 0; i < p.rows(); ++i)
+        rows[static_cast<std::size_t>(i)] = {p(i, 0), p(i, 1), p(i, 2)};
+      std::sort(rows.begin(), rows.end());
+      return rows;
+    };
+    CHECK(sorted_rows(back.vertices) == sorted_rows(expected.vertices));
+    CHECK(face_count(back) == face_count(expected));
+  }
+  const auto vtp = scratch() / "cube_out.vtp";
+  const Run r = cifs_cli("subdivide " + off.string() + " --scheme loop -o " + vtp.string());
+  REQUIRE(r.status == 0);
+  CHECK(read_file(vtp).find("<VTKFile type=\"PolyData\"") != std::string::npos);
+  // What a format cannot hold is said, not dropped in silence.
+  const auto tagged = scratch() / "tagged_out.stl";
+  const Run t = cifs_cli("subdivide " + file("tagged_for_stl.obj", tagged_grid_obj()) +
+                         " --scheme catmull-clark -o " + tagged.string());
+  REQUIRE(t.status == 0);
+  CHECK_THAT(t.err,
+             Catch::Contains("tagged_out.stl: the .stl format does not hold") && Catch::Contains("creases"));
+}
+
 TEST_CASE("cifs info on a polygon mesh: counts, valences, boundary, Euler characteristic, genus",
           "[cli][mesh]") {
   const json torus = json::parse(cifs_cli("info " + example("torus.obj")).out);
@@ -115,8 +153,8 @@ TEST_CASE("cifs subdivide: bad meshes and requests exit 2 with one line and writ
               "catmull-clark: 14 levels of 6 faces reach");
   check_error(cifs_cli("subdivide " + example("cube.obj") + " --scheme catmull-clark --boundary sharp" + o),
               "--boundary sharp: unknown boundary rule 'sharp' (none, edge, corner)");
-  check_error(cifs_cli("subdivide " + example("cube.obj") + " --scheme catmull-clark -o x.stl"),
-              "-o x.stl: expected a .obj or .ply file name");
+  check_error(cifs_cli("subdivide " + example("cube.obj") + " --scheme catmull-clark -o x.gltf"),
+              "-o x.gltf: expected a .obj, .ply, .stl, .off or .vtp file name");
   check_error(cifs_cli("subdivide " +
                        file("fan.obj",
                             "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 2 0 0\n"
@@ -445,7 +483,8 @@ TEST_CASE("cifs subdivide -o .ply says what PLY leaves out of a tagged mesh", "[
   const auto ply = scratch() / "tagged.ply", plain = scratch() / "plain.ply";
   const auto r = cifs_cli("subdivide " + in + " --scheme catmull-clark -o " + ply.string());
   REQUIRE(r.status == 0);
-  CHECK_THAT(r.err, Catch::StartsWith("cifs: warning: ") && Catch::Contains("PLY holds no tags or UVs") &&
+  CHECK_THAT(r.err, Catch::StartsWith("cifs: warning: ") &&
+                        Catch::Contains("tagged.ply: the .ply format does not hold") &&
                         Catch::Contains("hole faces") && Catch::Contains("creases") &&
                         Catch::Contains("face-varying channel 'uv'"));
   const auto quiet =

@@ -43,7 +43,7 @@ Mesh pentagon_and_triangle() {
 TEST_CASE("The format table: every content, its formats in order", "[io][dispatch]") {
   CHECK(table(Content::shape) == "json:.jsonrw obj:.objrw ");
   CHECK(table(Content::polygon) == "json:.jsonrw obj:.objw svg:.svgw ");
-  CHECK(table(Content::mesh) == "obj:.objrw ply:.plyrwb ");
+  CHECK(table(Content::mesh) == "obj:.objrw ply:.plyrwb stl:.stlrwb off:.offrw vtp:.vtpwb ");
   CHECK(table(Content::segments) == "obj:.objw ply:.plywb svg:.svgw ");
   CHECK(table(Content::automaton) == "json:.jsonrw svg:.svgw dot:.dotw ");
   CHECK(table(Content::bcifs) == "json:.jsonrw ");
@@ -52,7 +52,8 @@ TEST_CASE("The format table: every content, its formats in order", "[io][dispatc
   CHECK_THROWS_WITH(writable_format(Content::automaton, "png", "--format"),
                     "--format 'png': expected json, svg or dot");
   CHECK_THROWS_WITH(writable_format(Content::experiment, "json", "--format"), "--format 'json': expected ");
-  CHECK_THROWS_WITH(encode(pentagon_and_triangle(), "svg"), "format 'svg': expected obj or ply");
+  CHECK_THROWS_WITH(encode(pentagon_and_triangle(), "svg"),
+                    "format 'svg': expected obj, ply, stl, off or vtp");
 }
 
 TEST_CASE("write and read by extension: the bytes of encode, read back", "[io][dispatch]") {
@@ -118,17 +119,17 @@ TEST_CASE("write and read by extension: the bytes of encode, read back", "[io][d
 TEST_CASE("write and read refuse unknown extensions before touching the disk", "[io][dispatch]") {
   cifs_test::ScratchDir s("io");
   const Mesh m = pentagon_and_triangle();
-  CHECK_THROWS_WITH(write(s.path() / "m.stl", m),
-                    (s.path() / "m.stl").string() + ": a mesh is written as .obj or .ply");
-  CHECK_THROWS_AS(write(s.path() / "m.stl", m), InvalidInput);
+  CHECK_THROWS_WITH(write(s.path() / "m.gltf", m),
+                    (s.path() / "m.gltf").string() + ": a mesh is written as .obj, .ply, .stl, .off or .vtp");
+  CHECK_THROWS_AS(write(s.path() / "m.gltf", m), InvalidInput);
   CHECK_THROWS_WITH(write(s.path() / "s.dot", polyline_segments(m.vertices)),
                     (s.path() / "s.dot").string() + ": a segment set is written as .obj, .ply or .svg");
   CHECK_THROWS_WITH(write(s.path() / "a.obj", automata::Automaton{}),
                     (s.path() / "a.obj").string() + ": an automaton is written as .json, .svg or .dot");
   CHECK(std::filesystem::is_empty(s.path()));
-  CHECK_THROWS_WITH(read_mesh(s.path() / "m.stl"),
-                    (s.path() / "m.stl").string() + ": a mesh is read from .obj or .ply");
-  CHECK_THROWS_AS(read_mesh(s.path() / "m.stl"), IoError);
+  CHECK_THROWS_WITH(read_mesh(s.path() / "m.gltf"),
+                    (s.path() / "m.gltf").string() + ": a mesh is read from .obj, .ply, .stl or .off");
+  CHECK_THROWS_AS(read_mesh(s.path() / "m.gltf"), IoError);
   CHECK_THROWS_WITH(read_mesh(s.path() / "none.obj"), Contains("none.obj: cannot open"));
   // Content errors name the file and the line or element.
   write_file_atomically(s.path() / "bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");

@@ -328,10 +328,10 @@ class MeshFileTest(ScratchTestCase):
         self.assertTrue(str(caught.exception).startswith("e.obj: line 5: t vertexedit: unknown tag"))
 
     def test_bad_mesh_files(self):
-        stl = self.scratch / "m.stl"
+        gltf = self.scratch / "m.gltf"
         with self.assertRaises(cifs.IoError) as caught:
-            io.read_mesh(stl)
-        self.assertEqual(str(caught.exception), f"{stl}: a mesh is read from .obj or .ply")
+            io.read_mesh(gltf)
+        self.assertEqual(str(caught.exception), f"{gltf}: a mesh is read from .obj, .ply, .stl or .off")
         mesh = io.Mesh(pentagon_and_apex(), faces=[[0, 1, 2, 3, 4]])
         cut = self.scratch / "cut.ply"
         cut.write_bytes(io.mesh_ply(mesh, io.PlyFormat.binary_little_endian)[:-2])
@@ -349,7 +349,8 @@ class MeshFileTest(ScratchTestCase):
 class DispatchTest(ScratchTestCase):
     def test_format_table(self):
         self.assertEqual([(f.name, f.extension, f.read, f.write) for f in io.formats(io.Content.mesh)],
-                         [("obj", ".obj", True, True), ("ply", ".ply", True, True)])
+                         [("obj", ".obj", True, True), ("ply", ".ply", True, True), ("stl", ".stl", True, True),
+                          ("off", ".off", True, True), ("vtp", ".vtp", False, True)])
         self.assertEqual([f.name for f in io.formats(io.Content.automaton)], ["json", "svg", "dot"])
         self.assertEqual([f.name for f in io.formats(io.Content.segments) if f.write], ["obj", "ply", "svg"])
         self.assertTrue([f for f in io.formats(io.Content.mesh) if f.name == "ply"][0].binary)
@@ -368,11 +369,11 @@ class DispatchTest(ScratchTestCase):
         self.assertEqual(path.read_text(), io.polyline_obj(points, True))
         with self.assertRaises(cifs.InvalidInput) as caught:
             io.write(self.scratch / "m.svg", mesh)
-        self.assertEqual(str(caught.exception), f"{self.scratch / 'm.svg'}: a mesh is written as .obj or .ply")
+        self.assertEqual(str(caught.exception), f"{self.scratch / 'm.svg'}: a mesh is written as .obj, .ply, .stl, .off or .vtp")
         self.assertFalse((self.scratch / "m.svg").exists())
         with self.assertRaises(cifs.InvalidInput) as caught:
-            io.encode(mesh, "stl")
-        self.assertEqual(str(caught.exception), "format 'stl': expected obj or ply")
+            io.encode(mesh, "gltf")
+        self.assertEqual(str(caught.exception), "format 'gltf': expected obj, ply, stl, off or vtp")
 
     def test_automaton_files_are_the_clis(self):
         path = SHAPES / "wave.json"

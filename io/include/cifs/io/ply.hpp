@@ -19,11 +19,8 @@ enum class PlyFormat { ascii, binary_little_endian, binary_big_endian };
 /// corners —, plus uint state when the mesh has states). Binary files have the byte order their
 /// format names, whatever the host. PLY holds no tags or UVs: hole faces are left out (the surface
 /// without them, as renderers draw it); creases, corners, options and face-varying channels are not
-/// written (OBJ keeps them).
+/// written (OBJ keeps them; mesh_left_out says what is left out).
 std::string mesh_ply(const Mesh& mesh, PlyFormat format = PlyFormat::ascii);
-/// What mesh_ply leaves out of this mesh, in words for a warning ("4 hole faces, 12 creases and the
-/// face-varying channel 'uv'"), or "" when it keeps everything.
-std::string ply_leaves_out(const Mesh& mesh);
 void mesh_ply(const Mesh& mesh, PlyFormat format, ByteSink& out);  // the same bytes, a chunk at a time
 /// PLY: `element vertex` (double x y z; z = 0 for planar vertices) and `element edge` (int vertex1,
 /// int vertex2, plus uint state when present).
