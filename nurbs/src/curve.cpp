@@ -189,12 +189,36 @@ void de_boor(const Curve& c, double u, double* out, double* scratch) noexcept {
   detail::project(d + p * cols, dimension(c), c.rational, out);
 }
 
-/// Σ N_j(u) P_{span−p+j} for every parameter (all in the domain), projected into out (dim per row).
-/// Span search: the previous span as the hint (sorted input), or the bucket table when given.
-template <int Cols>
-void evaluate_rows(const Curve& c, std::span<const double> us, const detail::SpanTable* table, double* out,
-                   double* scratch) noexcept {
+/// The reciprocals of every span's knot intervals (blossom_reciprocals, detail::kReciprocals a span), for
+/// unordered parameters, whose span changes at every point; a span with a subnormal interval is marked.
+struct SpanReciprocals {
+  std::vector<double> inv;
+  std::vector<char> finite;
+};
+
+SpanReciprocals span_reciprocals(const Curve& c) {
   const int p = c.degree;
+  const auto n = static_cast<std::size_t>(c.P.rows());
+  SpanReciprocals r{std::vector<double>(n * detail::kReciprocals), std::vector<char>(n, 0)};
+  double local[2 * kMaxDegree];
+  for (int span = p; span < static_cast<int>(n); ++span) {
+    double* inv = r.inv.data() + static_cast<std::size_t>(span) * detail::kReciprocals;
+    const detail::SpanKnots knots = detail::span_knots(c, span, local);
+    detail::blossom_reciprocals(knots.t.data(), p, knots.span, inv);
+    r.finite[static_cast<std::size_t>(span)] =
+        static_cast<char>(std::all_of(inv, inv + p * (p + 1) / 2, [](double x) { return std::isfinite(x); }));
+  }
+  return r;
+}
+
+/// Σ N_j(u) P_{span−p+j} for every parameter (all in the domain), projected into out (dim per row).
+/// Span search: the previous span as the hint (sorted input), or the bucket table when given (then with
+/// every span's reciprocals). The basis functions take the span's reciprocals, computed when the span
+/// changes otherwise: every point of a span shares its divisors.
+template <int Cols, int Degree = 0>
+void evaluate_rows(const Curve& c, std::span<const double> us, const detail::SpanTable* table,
+                   const SpanReciprocals* reciprocals, double* out, double* scratch) noexcept {
+  const int p = Degree > 0 ? Degree : c.degree;  // a constant: the basis and sum loops unroll
   const int n = static_cast<int>(c.P.rows());
   const Eigen::Index cols = Cols > 0 ? Cols : c.P.cols();
   const int dim = dimension(c);
@@ -202,15 +226,29 @@ void evaluate_rows(const Curve& c, std::span<const double> us, const detail::Spa
   const double* P = c.P.data();
   double fixed[Cols > 0 ? Cols : 1];
   double* acc = Cols > 0 ? fixed : scratch;
-  double N[kMaxDegree + 1], local[2 * kMaxDegree];
-  int span = p;
-  detail::SpanKnots knots = detail::span_knots(c, span, local);
+  double N[kMaxDegree + 1], local[2 * kMaxDegree], own[detail::kReciprocals];
+  const double* inv = own;
+  int span = -1;
+  detail::SpanKnots knots;
+  bool finite = true;  // the span's reciprocals (none of its knot intervals subnormal)
   for (std::size_t i = 0; i < us.size(); ++i, out += dim) {
     const double u = us[i];
     const int previous = span;
-    span = table ? table->find(u) : detail::find_span(t, p, n, u, span);
-    if (span != previous) knots = detail::span_knots(c, span, local);
-    detail::basis(knots.t.data(), p, knots.span, u - knots.origin, N);
+    span = table ? table->find(u) : detail::find_span(t, p, n, u, std::max(span, p));
+    if (span != previous) {
+      knots = detail::span_knots(c, span, local);
+      if (reciprocals) {
+        inv = reciprocals->inv.data() + static_cast<std::size_t>(span) * detail::kReciprocals;
+        finite = reciprocals->finite[static_cast<std::size_t>(span)] != 0;
+      } else {
+        detail::blossom_reciprocals(knots.t.data(), p, knots.span, own);
+        finite = std::all_of(own, own + p * (p + 1) / 2, [](double x) { return std::isfinite(x); });
+      }
+    }
+    if (finite)
+      detail::basis(knots.t.data(), p, knots.span, inv, u - knots.origin, N);
+    else
+      detail::basis(knots.t.data(), p, knots.span, u - knots.origin, N);
     const double* base = P + (span - p) * cols;
     for (Eigen::Index k = 0; k < cols; ++k) acc[k] = N[0] * base[k];
     for (int r = 1; r <= p; ++r)
@@ -236,7 +274,7 @@ Point evaluate_basis(const Curve& c, double u) {
   Point out(dimension(c));
   detail::with_cols(c.P.cols(), [&](auto cols) {  // the batch kernel on one point
     std::vector<double> scratch = detail::scratch<cols>(c.P.cols());
-    evaluate_rows<cols>(c, std::span<const double>(&u, 1), nullptr, out.data(), scratch.data());
+    evaluate_rows<cols>(c, std::span<const double>(&u, 1), nullptr, nullptr, out.data(), scratch.data());
   });
   return out;
 }
@@ -252,11 +290,23 @@ Points evaluate(const Curve& c, std::span<const double> us) {
   Points out(static_cast<Eigen::Index>(us.size()), dimension(c));
   // Unordered input: the bucket table once the parameters outnumber the knots (it costs O(#knots)).
   std::optional<detail::SpanTable> table;
-  if (!scan.sorted && us.size() >= 8 * c.knots.size())
+  std::optional<SpanReciprocals> reciprocals;
+  if (!scan.sorted && us.size() >= 8 * c.knots.size()) {
     table.emplace(c.knots.data(), c.degree, static_cast<int>(c.P.rows()));
+    reciprocals = span_reciprocals(c);
+  }
   detail::with_cols(c.P.cols(), [&](auto cols) {
     std::vector<double> scratch = detail::scratch<cols>(c.P.cols());
-    evaluate_rows<cols>(c, us, table ? &*table : nullptr, out.data(), scratch.data());
+    const detail::SpanTable* t = table ? &*table : nullptr;
+    const SpanReciprocals* r = table ? &*reciprocals : nullptr;
+    switch (c.degree) {  // the common degrees with their loops unrolled
+      case 2:
+        return evaluate_rows<cols, 2>(c, us, t, r, out.data(), scratch.data());
+      case 3:
+        return evaluate_rows<cols, 3>(c, us, t, r, out.data(), scratch.data());
+      default:
+        return evaluate_rows<cols>(c, us, t, r, out.data(), scratch.data());
+    }
   });
   return out;
 }

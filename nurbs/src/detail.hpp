@@ -187,6 +187,29 @@ inline void basis(const double* t, int p, int span, double u, double* N) noexcep
   }
 }
 
+/// basis() with the span's reciprocals 1 / (t_{span+1+r} − t_{span+1−j+r}) at inv[j(j−1)/2 + r]
+/// (blossom_reciprocals): multiplications instead of the chain of divisions, for the many points a
+/// batch evaluates on one span. The divisor comes from the knots directly (one rounding) instead of
+/// (t_hi − u) + (u − t_lo); the results differ from basis() in the last bits only. The reciprocals
+/// must be finite: a span with a knot interval below DBL_MIN takes basis().
+inline void basis(const double* t, int p, int span, const double* inv, double u, double* N) noexcept {
+  double left[kMaxDegree + 1];
+  double right[kMaxDegree + 1];
+  N[0] = 1.0;
+  for (int j = 1; j <= p; ++j) {
+    left[j] = u - t[span + 1 - j];
+    right[j] = t[span + j] - u;
+    const double* level = inv + j * (j - 1) / 2;
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r) {
+      const double temp = N[r] * level[r];
+      N[r] = saved + right[r + 1] * temp;
+      saved = left[j - r] * temp;
+    }
+    N[j] = saved;
+  }
+}
+
 // ------------------------------------------------------------------------------------------------
 // Closed curves: knots relative to a span.
 //
