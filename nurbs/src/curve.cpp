@@ -8,6 +8,11 @@
 #include "cifs/errors.hpp"
 #include "detail.hpp"
 
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#include <immintrin.h>
+#define CIFS_CURVE_AVX 1
+#endif
+
 namespace cifs::nurbs {
 
 Curve make_curve(int degree, Knots knots, const Points& points, const Eigen::VectorXd& weights) {
@@ -211,6 +216,44 @@ SpanReciprocals span_reciprocals(const Curve& c) {
   return r;
 }
 
+#if defined(CIFS_CURVE_AVX)
+/// evaluate_rows' basis functions and sum for four points of one span at once, a point a lane (AVX,
+/// chosen at run time; the build targets baseline x86-64). The scalar code's multiplies and adds in its
+/// order, never fused: the same bits. `x` holds the four parameters relative to the span's origin; the
+/// four rows land in acc as acc[4k + lane].
+template <int Cols, int Degree>
+__attribute__((target("avx"))) void four_points(const double* t, int span, const double* inv, const double* x,
+                                                const double* base, double* acc) noexcept {
+  constexpr int p = Degree;
+  __m256d N[p + 1], left[p + 1], right[p + 1];
+  const __m256d u = _mm256_loadu_pd(x);
+  N[0] = _mm256_set1_pd(1.0);
+  for (int j = 1; j <= p; ++j) {
+    left[j] = _mm256_sub_pd(u, _mm256_set1_pd(t[span + 1 - j]));
+    right[j] = _mm256_sub_pd(_mm256_set1_pd(t[span + j]), u);
+    const double* level = inv + j * (j - 1) / 2;
+    __m256d saved = _mm256_setzero_pd();
+    for (int r = 0; r < j; ++r) {
+      const __m256d temp = _mm256_mul_pd(N[r], _mm256_set1_pd(level[r]));
+      N[r] = _mm256_add_pd(saved, _mm256_mul_pd(right[r + 1], temp));
+      saved = _mm256_mul_pd(left[j - r], temp);
+    }
+    N[j] = saved;
+  }
+  for (int k = 0; k < Cols; ++k) {
+    __m256d a = _mm256_mul_pd(N[0], _mm256_set1_pd(base[k]));
+    for (int r = 1; r <= p; ++r)
+      a = _mm256_add_pd(a, _mm256_mul_pd(N[r], _mm256_set1_pd(base[r * Cols + k])));
+    _mm256_storeu_pd(acc + 4 * k, a);
+  }
+}
+
+bool cpu_has_avx() noexcept {
+  static const bool has = __builtin_cpu_supports("avx");
+  return has;
+}
+#endif
+
 /// Σ N_j(u) P_{span−p+j} for every parameter (all in the domain), projected into out (dim per row).
 /// Span search: the previous span as the hint (sorted input), or the bucket table when given (then with
 /// every span's reciprocals). The basis functions take the span's reciprocals, computed when the span
@@ -231,6 +274,9 @@ void evaluate_rows(const Curve& c, std::span<const double> us, const detail::Spa
   int span = -1;
   detail::SpanKnots knots;
   bool finite = true;  // the span's reciprocals (none of its knot intervals subnormal)
+#if defined(CIFS_CURVE_AVX)
+  const bool fast = cpu_has_avx();
+#endif
   for (std::size_t i = 0; i < us.size(); ++i, out += dim) {
     const double u = us[i];
     const int previous = span;
@@ -245,6 +291,25 @@ void evaluate_rows(const Curve& c, std::span<const double> us, const detail::Spa
         finite = std::all_of(own, own + p * (p + 1) / 2, [](double x) { return std::isfinite(x); });
       }
     }
+#if defined(CIFS_CURVE_AVX)
+    // The next three points in this span too (sorted input, mostly): a point an AVX lane.
+    if constexpr (Cols > 0 && Degree > 0) {
+      const auto inside = [&](std::size_t k) { return us[k] >= t[span] && us[k] < t[span + 1]; };
+      if (finite && fast && i + 4 <= us.size() && inside(i + 3) && inside(i + 1) && inside(i + 2)) {
+        const double x[4] = {u - knots.origin, us[i + 1] - knots.origin, us[i + 2] - knots.origin,
+                             us[i + 3] - knots.origin};
+        double rows[4 * Cols];
+        four_points<Cols, Degree>(knots.t.data(), knots.span, inv, x, P + (span - p) * cols, rows);
+        for (int lane = 0; lane < 4; ++lane, out += dim) {
+          for (int k = 0; k < Cols; ++k) acc[k] = rows[4 * k + lane];
+          detail::project(acc, dim, c.rational, out);
+        }
+        i += 3;
+        out -= dim;  // the loop's increment writes the fourth
+        continue;
+      }
+    }
+#endif
     if (finite)
       detail::basis(knots.t.data(), p, knots.span, inv, u - knots.origin, N);
     else
@@ -289,6 +354,8 @@ Points evaluate(const Curve& c, std::span<const double> us) {
   }
   Points out(static_cast<Eigen::Index>(us.size()), dimension(c));
   // Unordered input: the bucket table once the parameters outnumber the knots (it costs O(#knots)).
+  // (Grouping the parameters by span first, for the AVX lanes, was tried: the scattered writes back
+  // cost twice what the lanes save, 43.8 against 20.8 ns a point.)
   std::optional<detail::SpanTable> table;
   std::optional<SpanReciprocals> reciprocals;
   if (!scan.sorted && us.size() >= 8 * c.knots.size()) {
