@@ -135,7 +135,7 @@ nurbs::Surface read_surface(const Reader& r, const json& s) {
 
 /// Runs a nurbs constructor for a geomdl entry at `path`, naming the entry's own members.
 template <class Make>
-auto build_geomdl(const Reader& r, const std::string& path, bool surface, Make&& make) {
+auto build_geomdl(const Reader& r, const std::string& path, bool surface, bool v6, Make&& make) {
   try {
     return make();
   } catch (const InvalidInput& e) {
@@ -145,8 +145,11 @@ auto build_geomdl(const Reader& r, const std::string& path, bool surface, Make&&
       msg = std::string(to) + msg.substr(from.size());
       return true;
     };
-    if (!(surface && (rename("knots[0]", "knotvector_u") || rename("knots[1]", "knotvector_v"))))
-      rename("knots", "knotvector") || rename("weights", "control_points.weights") ||
+    const bool named =
+        surface && (v6 ? rename("knots[0]", "knotvector[0]") || rename("knots[1]", "knotvector[1]")
+                       : rename("knots[0]", "knotvector_u") || rename("knots[1]", "knotvector_v"));
+    if (!named)
+      rename("knots", v6 ? "knotvector[0]" : "knotvector") || rename("weights", "control_points.weights") ||
           rename("points", "control_points.points");
     throw InvalidInput(r.where + ": " + path + "." + msg);
   }
@@ -183,38 +186,102 @@ void geomdl_net(const Reader& r, const json& e, const std::string& path,
   // change the shape.
 }
 
+// geomdl 6.x writes one list per parametric direction: "degree": [p] or [p_u, p_v], "knotvector": [[…]]
+// or [[…], […]], "size": [n] or [n_u, n_v], "delta" a list too; its surfaces list their points with u
+// varying fastest (point (i, j) at i + size_u·j, its ptmanager's default_find_index).
+
+/// A 6.x entry's per-direction list `key` of `directions` entries: the array at path.key.
+const json& geomdl6_list(const Reader& r, const json& e, const std::string& path, const char* key,
+                         std::size_t directions) {
+  const json& v = r.array(r.member(e, path, key), path + "." + key);
+  if (v.size() != directions)
+    r.fail(path + "." + key, std::to_string(v.size()) + " entries, expected " + std::to_string(directions) +
+                                 " (one per parametric direction)");
+  return v;
+}
+
+/// Whether a geomdl entry is in 6.x's layout (its degree a list).
+bool geomdl6(const json& e) {
+  return e.is_object() && e.contains("degree") && e["degree"].is_array();
+}
+
 nurbs::Curve geomdl_curve(const Reader& r, const json& e, const std::string& path) {
-  geomdl_entry(r, e, path,
-               {"type", "rational", "dimension", "degree", "knotvector", "control_points", "delta", "name",
-                "id", "reversed"});
+  const bool v6 = geomdl6(e);
+  if (v6)
+    geomdl_entry(r, e, path,
+                 {"type", "rational", "dimension", "degree", "knotvector", "size", "control_points", "delta",
+                  "name", "id", "reversed"});
+  else
+    geomdl_entry(r, e, path,
+                 {"type", "rational", "dimension", "degree", "knotvector", "control_points", "delta", "name",
+                  "id", "reversed"});
   std::vector<std::vector<double>> rows;
   std::vector<double> w;
   geomdl_net(r, e, path, rows, w);
-  const int degree = r.integer(r.member(e, path, "degree"), path + ".degree");
-  nurbs::Knots knots = r.numbers(r.member(e, path, "knotvector"), path + ".knotvector");
-  return build_geomdl(r, path, false, [&] {
+  int degree = 0;
+  nurbs::Knots knots;
+  if (v6) {
+    degree = r.integer(geomdl6_list(r, e, path, "degree", 1)[0], path + ".degree[0]");
+    knots = r.numbers(geomdl6_list(r, e, path, "knotvector", 1)[0], path + ".knotvector[0]");
+    const int size = r.integer(geomdl6_list(r, e, path, "size", 1)[0], path + ".size[0]");
+    if (size != static_cast<int>(rows.size()))
+      r.fail(path + ".size[0]", std::to_string(size) + ", but control_points.points holds " +
+                                    std::to_string(rows.size()) + " points");
+  } else {
+    degree = r.integer(r.member(e, path, "degree"), path + ".degree");
+    knots = r.numbers(r.member(e, path, "knotvector"), path + ".knotvector");
+  }
+  return build_geomdl(r, path, false, v6, [&] {
     return nurbs::make_curve(degree, std::move(knots), to_points(rows), to_vector(w));
   });
 }
 
 nurbs::Surface geomdl_surface(const Reader& r, const json& e, std::size_t index, const std::string& path,
                               const ShapeReadOptions& options) {
-  geomdl_entry(r, e, path,
-               {"type", "rational", "dimension", "degree_u", "degree_v", "knotvector_u", "knotvector_v",
-                "size_u", "size_v", "control_points", "delta", "name", "id", "reversed", "trims"});
+  const bool v6 = geomdl6(e);
+  if (v6)
+    geomdl_entry(r, e, path,
+                 {"type", "rational", "dimension", "degree", "knotvector", "size", "control_points", "delta",
+                  "name", "id", "reversed", "trims"});
+  else
+    geomdl_entry(r, e, path,
+                 {"type", "rational", "dimension", "degree_u", "degree_v", "knotvector_u", "knotvector_v",
+                  "size_u", "size_v", "control_points", "delta", "name", "id", "reversed", "trims"});
   std::vector<std::vector<double>> rows;
   std::vector<double> w;
   geomdl_net(r, e, path, rows, w);
-  const std::array<int, 2> degree{r.integer(r.member(e, path, "degree_u"), path + ".degree_u"),
-                                  r.integer(r.member(e, path, "degree_v"), path + ".degree_v")};
-  std::array<nurbs::Knots, 2> knots{r.numbers(r.member(e, path, "knotvector_u"), path + ".knotvector_u"),
-                                    r.numbers(r.member(e, path, "knotvector_v"), path + ".knotvector_v")};
-  const std::array<int, 2> size{r.integer(r.member(e, path, "size_u"), path + ".size_u"),
-                                r.integer(r.member(e, path, "size_v"), path + ".size_v")};
+  std::array<int, 2> degree{}, size{};
+  std::array<nurbs::Knots, 2> knots;
+  for (std::size_t d = 0; d < 2; ++d) {
+    const std::string suffix = d == 0 ? "_u" : "_v", at = "[" + std::to_string(d) + "]";
+    if (v6) {
+      degree[d] = r.integer(geomdl6_list(r, e, path, "degree", 2)[d], path + ".degree" + at);
+      knots[d] = r.numbers(geomdl6_list(r, e, path, "knotvector", 2)[d], path + ".knotvector" + at);
+      size[d] = r.integer(geomdl6_list(r, e, path, "size", 2)[d], path + ".size" + at);
+    } else {
+      degree[d] = r.integer(r.member(e, path, ("degree" + suffix).c_str()), path + ".degree" + suffix);
+      knots[d] = r.numbers(r.member(e, path, ("knotvector" + suffix).c_str()), path + ".knotvector" + suffix);
+      size[d] = r.integer(r.member(e, path, ("size" + suffix).c_str()), path + ".size" + suffix);
+    }
+  }
   if (size[0] < 1 || size[1] < 1 ||
       static_cast<long long>(size[0]) * size[1] != static_cast<long long>(rows.size()))
-    r.fail(path + ".control_points.points", std::to_string(rows.size()) + " points, size_u × size_v = " +
+    r.fail(path + ".control_points.points", std::to_string(rows.size()) + " points, " +
+                                                (v6 ? "size[0] × size[1] = " : "size_u × size_v = ") +
                                                 std::to_string(size[0]) + " × " + std::to_string(size[1]));
+  if (v6) {  // u varying fastest there; v fastest in cifs
+    std::vector<std::vector<double>> by_u(rows.size());
+    std::vector<double> w_by_u(w.size());
+    for (std::size_t i = 0; i < static_cast<std::size_t>(size[0]); ++i)
+      for (std::size_t j = 0; j < static_cast<std::size_t>(size[1]); ++j) {
+        const std::size_t from = i + static_cast<std::size_t>(size[0]) * j,
+                          to = i * static_cast<std::size_t>(size[1]) + j;
+        by_u[to] = std::move(rows[from]);
+        if (w.size() == rows.size()) w_by_u[to] = w[from];  // else refused below, by count
+      }
+    rows = std::move(by_u);
+    if (w.size() == rows.size()) w = std::move(w_by_u);
+  }
   if (e.contains("trims")) {
     if (!options.ignore_trim)
       r.fail(path + ".trims",
@@ -223,7 +290,7 @@ nurbs::Surface geomdl_surface(const Reader& r, const json& e, std::size_t index,
     warn(options, index,
          r.where + ": " + path + ".trims: the trim curves are ignored: the whole untrimmed surface is read");
   }
-  return build_geomdl(r, path, true, [&] {
+  return build_geomdl(r, path, true, v6, [&] {
     return nurbs::make_surface(degree, std::move(knots), {size[0], size[1]}, to_points(rows), to_vector(w));
   });
 }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "cifs/errors.hpp"
 #include "cifs/files.hpp"
@@ -340,4 +341,75 @@ TEST_CASE("geomdl JSON exports: several shapes, options and errors", "[io][json]
              Catch::Contains("shape.data[0].knotvector_v[2]: 1 is less than the previous knot 2"));
   CHECK_THAT(shape_error_of(R"({"shape": {"type": "curve", "data": [], "extra": 1}})"),
              Catch::Contains("shape.extra: unknown member"));
+}
+
+namespace {
+
+/// A geomdl 5.x export rewritten in 6.x's layout, as geomdl 6's export_dict_crv/_surf write it: every
+/// per-direction member a list, surface points and weights with u varying fastest (i + size_u·j).
+nlohmann::json geomdl6_of(const nlohmann::json& v5) {
+  nlohmann::json v6 = v5;
+  for (auto& e : v6["shape"]["data"]) {
+    if (e.contains("degree")) {  // a curve
+      e["degree"] = {e["degree"]};
+      e["knotvector"] = {e["knotvector"]};
+      e["size"] = {e["control_points"]["points"].size()};
+    } else {
+      const std::size_t nu = e["size_u"], nv = e["size_v"];
+      e["degree"] = {e["degree_u"], e["degree_v"]};
+      e["knotvector"] = {e["knotvector_u"], e["knotvector_v"]};
+      e["size"] = {nu, nv};
+      for (const char* key : {"degree_u", "degree_v", "knotvector_u", "knotvector_v", "size_u", "size_v"})
+        e.erase(key);
+      for (const char* key : {"points", "weights"}) {
+        if (!e["control_points"].contains(key)) continue;
+        const nlohmann::json v_fastest = e["control_points"][key];
+        nlohmann::json u_fastest = v_fastest;
+        for (std::size_t i = 0; i < nu; ++i)
+          for (std::size_t j = 0; j < nv; ++j) u_fastest[i + nu * j] = v_fastest[i * nv + j];
+        e["control_points"][key] = u_fastest;
+      }
+    }
+    if (e.contains("delta")) e["delta"] = {e["delta"]};
+  }
+  return v6;
+}
+
+}  // namespace
+
+TEST_CASE("geomdl 6.x JSON exports: lists per direction, u varying fastest, the same shapes as 5.x",
+          "[io][json]") {
+  for (const char* name : {"geomdl_curve.json", "geomdl_surface.json"}) {
+    INFO(name);
+    const std::string path = std::string(CIFS_SOURCE_DIR "/examples/shapes/") + name;
+    const nlohmann::json v6 = geomdl6_of(nlohmann::json::parse(read_file(path)));
+    const io::Shape a = io::read_shape(path), b = io::parse_shape_json(v6.dump(), "v6.json");
+    CHECK(io::to_json(a) == io::to_json(b));  // degree, knots, points and weights, all equal
+  }
+  // A surface whose two directions differ in size: the ordering shows.
+  const std::string grid = R"({"shape": {"type": "surface", "count": 1, "data": [{"type": "spline",
+      "rational": false, "dimension": 3, "degree": [1, 2], "knotvector": [[0, 0, 1, 1], [0, 0, 0, 1, 1, 1]],
+      "size": [2, 3], "delta": [0.1, 0.1],
+      "control_points": {"points": [[0, 0, 0], [1, 0, 0], [0, 1, 5], [1, 1, 5], [0, 2, 0], [1, 2, 9]]}}]}})";
+  const auto s = std::get<nurbs::Surface>(io::parse_shape_json(grid, "g6.json"));
+  CHECK(s.count == std::array<Eigen::Index, 2>{2, 3});
+  CHECK(nurbs::evaluate(s, 1, 1) == Point(Eigen::Vector3d(1, 2, 9)));  // (i, j) = (1, 2): entry 1 + 2·2
+  CHECK(nurbs::evaluate(s, 1, 0) == Point(Eigen::Vector3d(1, 0, 0)));  // (1, 0): entry 1
+  CHECK(nurbs::evaluate(s, 0, 1) == Point(Eigen::Vector3d(0, 2, 0)));  // (0, 2): entry 4
+  CHECK_THAT(
+      shape_error_of(R"({"shape": {"type": "curve", "data": [{"degree": [1, 1], "knotvector": [[0, 0, 1, 1]],
+      "size": [2], "control_points": {"points": [[0, 0], [2, 4]]}}]}})"),
+      Catch::Contains("shape.data[0].degree: 2 entries, expected 1 (one per parametric direction)"));
+  CHECK_THAT(
+      shape_error_of(R"({"shape": {"type": "curve", "data": [{"degree": [1], "knotvector": [[0, 0, 1, 1]],
+      "size": [3], "control_points": {"points": [[0, 0], [2, 4]]}}]}})"),
+      Catch::Contains("shape.data[0].size[0]: 3, but control_points.points holds 2 points"));
+  CHECK_THAT(
+      shape_error_of(R"({"shape": {"type": "curve", "data": [{"degree": [1], "knotvector": [[0, 0, 1]],
+      "size": [2], "control_points": {"points": [[0, 0], [2, 4]]}}]}})"),
+      Catch::Contains("shape.data[0].knotvector[0]: 3 knots given, 2 control points of degree 1 need 4"));
+  CHECK_THAT(shape_error_of(R"({"shape": {"type": "surface", "data": [{"degree": [1, 1],
+      "knotvector": [[0, 0, 1, 1], [0, 0, 1]], "size": [2, 2],
+      "control_points": {"points": [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 1]]}}]}})"),
+             Catch::Contains("shape.data[0].knotvector[1]:"));
 }
