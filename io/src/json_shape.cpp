@@ -253,16 +253,27 @@ nurbs::Surface geomdl_surface(const Reader& r, const json& e, std::size_t index,
   std::array<int, 2> degree{}, size{};
   std::array<nurbs::Knots, 2> knots;
   for (std::size_t d = 0; d < 2; ++d) {
-    const std::string suffix = d == 0 ? "_u" : "_v", at = "[" + std::to_string(d) + "]";
-    if (v6) {
-      degree[d] = r.integer(geomdl6_list(r, e, path, "degree", 2)[d], path + ".degree" + at);
-      knots[d] = r.numbers(geomdl6_list(r, e, path, "knotvector", 2)[d], path + ".knotvector" + at);
-      size[d] = r.integer(geomdl6_list(r, e, path, "size", 2)[d], path + ".size" + at);
-    } else {
-      degree[d] = r.integer(r.member(e, path, ("degree" + suffix).c_str()), path + ".degree" + suffix);
-      knots[d] = r.numbers(r.member(e, path, ("knotvector" + suffix).c_str()), path + ".knotvector" + suffix);
-      size[d] = r.integer(r.member(e, path, ("size" + suffix).c_str()), path + ".size" + suffix);
+    // 5.x: degree_u, knotvector_u, size_u and their _v; 6.x: degree[d], knotvector[d], size[d].
+    static constexpr std::array<std::array<const char*, 2>, 3> kMembers{
+        {{"degree_u", "degree_v"}, {"knotvector_u", "knotvector_v"}, {"size_u", "size_v"}}};
+    static constexpr std::array<const char*, 3> kLists{"degree", "knotvector", "size"};
+    std::array<const json*, 3> value{};
+    std::array<std::string, 3> where;
+    for (std::size_t m = 0; m < 3; ++m) {
+      where[m] = path;
+      where[m] += '.';
+      if (v6) {
+        value[m] = &geomdl6_list(r, e, path, kLists[m], 2)[d];
+        where[m] += kLists[m];
+        where[m] += d == 0 ? "[0]" : "[1]";
+      } else {
+        value[m] = &r.member(e, path, kMembers[m][d]);
+        where[m] += kMembers[m][d];
+      }
     }
+    degree[d] = r.integer(*value[0], where[0]);
+    knots[d] = r.numbers(*value[1], where[1]);
+    size[d] = r.integer(*value[2], where[2]);
   }
   if (size[0] < 1 || size[1] < 1 ||
       static_cast<long long>(size[0]) * size[1] != static_cast<long long>(rows.size()))

@@ -224,8 +224,8 @@ SpanReciprocals span_reciprocals(const Curve& c) {
 template <int Cols, int Degree>
 __attribute__((target("avx"))) void four_points(const double* t, int span, const double* inv, const double* x,
                                                 const double* base, double* acc) noexcept {
-  constexpr int p = Degree;
-  __m256d N[p + 1], left[p + 1], right[p + 1];
+  const int p = Degree;
+  __m256d N[Degree + 1], left[Degree + 1], right[Degree + 1];
   const __m256d u = _mm256_loadu_pd(x);
   N[0] = _mm256_set1_pd(1.0);
   for (int j = 1; j <= p; ++j) {
@@ -244,7 +244,7 @@ __attribute__((target("avx"))) void four_points(const double* t, int span, const
     __m256d a = _mm256_mul_pd(N[0], _mm256_set1_pd(base[k]));
     for (int r = 1; r <= p; ++r)
       a = _mm256_add_pd(a, _mm256_mul_pd(N[r], _mm256_set1_pd(base[r * Cols + k])));
-    _mm256_storeu_pd(acc + 4 * k, a);
+    _mm256_storeu_pd(acc + std::ptrdiff_t{4} * k, a);
   }
 }
 
