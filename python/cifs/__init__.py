@@ -221,6 +221,18 @@ def _surface_image(surface, width=_PREVIEW_SIZE[0], height=_PREVIEW_SIZE[1], sam
     return image
 
 
+def _mesh_image(mesh, width=_PREVIEW_SIZE[0], height=_PREVIEW_SIZE[1]):
+    """A small shaded preview render of a polygon mesh: every face as its fan, holes left out."""
+    camera = render.frame(mesh.vertices, width=width, height=height)
+    image = render.make_framebuffer(camera)
+    render.render_mesh(image, camera, mesh)
+    return image
+
+
+def _mesh_png(self):
+    return _png_bytes(_mesh_image(self))
+
+
 def _shape_png(self):
     image = _curve_image(self) if isinstance(self, nurbs.Curve) else _surface_image(self)
     return None if image is None else _png_bytes(image)
@@ -230,6 +242,12 @@ render.Image._repr_png_ = _png_bytes
 render.Image._repr_png_.__doc__ = "The image's preview_png as PNG bytes, shown by notebooks (None when empty)."
 nurbs.Curve._repr_png_ = _shape_png
 nurbs.Surface._repr_png_ = _shape_png
+io.Mesh._repr_png_ = _mesh_png
+_mesh_png.__doc__ = ("A small shaded preview render (320 by 240) of the mesh as PNG bytes, shown by notebooks: every\n"
+                     "face as its fan of triangles, holes left out.")
+# The automata that wrap one: drawn as it (Automaton._repr_svg_).
+subdivision.SurfaceAutomaton._repr_svg_ = lambda self: self.automaton._repr_svg_()
+automata.TensorAutomaton._repr_svg_ = lambda self: self.product._repr_svg_()
 _shape_png.__doc__ = ("A small preview render (320 by 240) as PNG bytes, shown by notebooks: curves of 2 or 3\n"
                       "dimensions over their control polygon, 3-D surfaces shaded; None for other dimensions.")
 

@@ -556,12 +556,12 @@ void bind_raster_surfaces(py::module_& m) {
          const py::object& color, const py::object& state_colors, double ambient, double diffuse,
          double specular, double shininess, bool headlight, const py::object& light_direction,
          int samples_per_side, std::int64_t threads) {
-        Points V = points_from(vertices, "render_mesh: vertices");
-        const auto tri = index_rows<3>(triangles, "render_mesh: triangles");
-        const auto quad = index_rows<4>(quads, "render_mesh: quads");
-        Points N;
-        if (!normals.is_none()) N = points_from(normals, "render_mesh: normals");
-        std::vector<std::uint32_t> S = states_from(states, "render_mesh: states");
+        // A cifs.io.Mesh as it is (any polygons, its normals, states and holes), or the arrays.
+        const bool whole = py::isinstance<Mesh>(vertices);
+        if (whole && !(triangles.is_none() && quads.is_none() && normals.is_none() && states.is_none()))
+          throw InvalidInput(
+              "render_mesh: a Mesh carries its faces, normals and states: give no triangles, quads, normals "
+              "or states with it");
         SurfaceStyle style;
         style.color = three(color, "render_mesh: color");
         if (!state_colors.is_none()) {
@@ -580,8 +580,18 @@ void bind_raster_surfaces(py::module_& m) {
         style.light_direction = vec3(light_direction, "render_mesh: light_direction");
         style.samples_per_side = samples_per_side;
         style.threads = threads_arg(threads, "render_mesh: threads");
-        const Mesh mesh =
-            mesh_from_tables(std::move(V), tri, quad, std::move(N), std::move(S), "render_mesh");
+        Mesh mesh;
+        if (whole) {
+          mesh = vertices.cast<Mesh>();
+        } else {
+          Points V = points_from(vertices, "render_mesh: vertices");
+          const auto tri = index_rows<3>(triangles, "render_mesh: triangles");
+          const auto quad = index_rows<4>(quads, "render_mesh: quads");
+          Points N;
+          if (!normals.is_none()) N = points_from(normals, "render_mesh: normals");
+          std::vector<std::uint32_t> S = states_from(states, "render_mesh: states");
+          mesh = mesh_from_tables(std::move(V), tri, quad, std::move(N), std::move(S), "render_mesh");
+        }
         py::gil_scoped_release release;
         render_mesh(image, camera, mesh, style);
       },
@@ -595,7 +605,9 @@ void bind_raster_surfaces(py::module_& m) {
       py::arg("samples_per_side") = ss.samples_per_side, py::arg("threads") = ss.threads,
       R"(Z-buffered, supersampled, Blinn–Phong shaded mesh rendering into `image` (in place).
 
-vertices: float64 (V, 3); triangles: integer (T, 3); quads: integer (Q, 4) (split along 0–2);
+vertices: float64 (V, 3), or a cifs.io.Mesh (any polygons, each drawn as its fan (0, i, i + 1), holes left
+out, its normals and states; then no triangles, quads, normals or states); triangles: integer (T, 3);
+quads: integer (Q, 4) (split along 0–2);
 normals: None or (V, 3); states: None or one per face (triangles first); color: linear RGB;
 state_colors: None or (k, 3), face f coloured state_colors[states[f] % k]; shading coefficients;
 headlight or a directional light towards `light_direction`; samples_per_side² samples per pixel

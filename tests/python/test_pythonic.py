@@ -16,6 +16,7 @@ import numpy as np
 
 import cifs
 from cifs import nurbs, render
+from support import EXAMPLES
 
 KNOTS = [0, 0, 0, 0, 1, 3, 3, 3, 3]
 POINTS = np.array([[0, 0], [1, 2], [2, -1], [4, 1], [5, 0]], dtype=float)
@@ -43,6 +44,11 @@ def rational_de_boor(degree, knots, points, weights, u):
 
 def png_size(data):
     """(width, height, colour type) of PNG bytes, after checking the signature and inflating every row."""
+    return png_pixels(data)[:3]
+
+
+def png_pixels(data):
+    """(width, height, colour type, the inflated rows) of PNG bytes, the signature and checksums checked."""
     assert data[:8] == b"\x89PNG\r\n\x1a\n", data[:8]
     pos, idat, header = 8, b"", None
     while pos < len(data):
@@ -56,8 +62,9 @@ def png_size(data):
         pos += 12 + length
     width, height, depth, colour = header[:4]
     channels = {2: 3, 6: 4, 0: 1, 4: 2}[colour]
-    assert len(zlib.decompress(idat)) == height * (1 + width * channels * depth // 8)
-    return width, height, colour
+    rows = zlib.decompress(idat)
+    assert len(rows) == height * (1 + width * channels * depth // 8)
+    return width, height, colour, rows
 
 
 class CurveMethodsTest(unittest.TestCase):
@@ -274,6 +281,44 @@ class ReprPngTest(unittest.TestCase):
         surface = nurbs.Surface((2, 2), ([0, 0, 0, 1, 2, 2, 2], [0, 0, 0, 1, 2, 2, 2]), net)
         self.assertEqual(png_size(surface._repr_png_())[:2], (320, 240))
         self.assertIsNone(nurbs.Curve(1, [0, 0, 1, 1], np.array([[0.0], [1.0]]))._repr_png_())  # 1-D: none
+
+
+    def test_mesh_any_polygons_and_holes(self):
+        # A cube whose top is a pentagon (an extra vertex on one top edge): every face drawn as its fan.
+        vertices = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0],
+                             [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1], [0.5, 0, 1]], dtype=float)
+        faces = [[0, 3, 2, 1], [4, 8, 5, 6, 7], [0, 1, 5, 8, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]]
+        mesh = cifs.io.Mesh(vertices, faces=faces)
+        width, height, _, pixels = png_pixels(mesh._repr_png_())
+        self.assertEqual((width, height), (320, 240))
+        # The same picture as the faces' fans given as triangles (the pentagon 4 8 5 6 7: three of them),
+        # shaded with the polygons' vertex normals.
+        fans = [[f[0], f[i], f[i + 1]] for f in faces for i in range(1, len(f) - 1)]
+        camera = render.frame(vertices, width=320, height=240)
+        image = render.make_framebuffer(camera)
+        normals = cifs.io.vertex_normals(mesh)
+        render.render_mesh(image, camera, vertices, triangles=np.array(fans), normals=normals)
+        self.assertEqual(png_pixels(image._repr_png_())[3], pixels)
+        # A hole is left out: another picture, that of the fans of the other faces.
+        holed = cifs.io.Mesh(vertices, faces=faces, tags=cifs.io.MeshTags(holes=[1]))
+        image = render.make_framebuffer(camera)
+        render.render_mesh(image, camera, vertices, triangles=np.array(fans[:2] + fans[5:]),
+                           normals=cifs.io.vertex_normals(holed))
+        self.assertEqual(png_pixels(holed._repr_png_())[3], png_pixels(image._repr_png_())[3])
+        self.assertNotEqual(png_pixels(holed._repr_png_())[3], pixels)
+        with self.assertRaisesRegex(cifs.InvalidInput, "a Mesh carries its faces"):
+            render.render_mesh(image, camera, mesh, triangles=np.array(fans))
+
+    def test_automata_wrapping_one_draw_it(self):
+        tet = cifs.subdivision.loop(cifs.io.read_mesh(str(EXAMPLES / "meshes" / "tetrahedron.obj")), 1)
+        s = cifs.subdivision.surface_automaton(tet, scheme="loop")
+        self.assertEqual(s._repr_svg_(), s.automaton._repr_svg_())
+        self.assertTrue(s._repr_svg_().lstrip().startswith("<"))
+        x, y = np.meshgrid(np.linspace(0, 1, 4), np.linspace(0, 1, 4), indexing="ij")
+        surface = nurbs.Surface((2, 2), ([0, 0, 0, 1, 2, 2, 2], [0, 0, 0, 1, 2, 2, 2]),
+                                np.stack([x, y, x * y], axis=2))
+        t = cifs.automata.tensor_automaton(surface)
+        self.assertEqual(t._repr_svg_(), t.product._repr_svg_())
 
 
 if __name__ == "__main__":
