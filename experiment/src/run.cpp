@@ -781,8 +781,11 @@ void check_geometry_outputs(const io::Experiment& e) {
     if (std::any_of(formats.begin(), formats.end(), writes)) continue;
     std::string upper = format, ours;
     for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    std::vector<std::string_view> names;
     for (const io::Format& f : formats)
-      if (f.write) ours += (ours.empty() ? "" : " or ") + std::string(f.name);
+      if (f.write) names.push_back(f.name);
+    for (std::size_t i = 0; i < names.size(); ++i)
+      ours += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + std::string(names[i]);
     const bool mesh = content == io::Content::mesh;
     std::string message = "outputs.";
     message += format + ": ";

@@ -203,7 +203,7 @@ TEST_CASE("Outputs and image paths are checked before any work", "[experiment]")
         "outputs.obj: a classic IFS gives a density, no geometry to export");
   CHECK(refused(R"({"shape": "../shapes/saddle.json", "evaluation": {"depth": 30},
       "outputs": {"png": "s.png", "svg": "s.svg"}})") ==
-        "outputs.svg: SVG is for curves; use obj or ply for surfaces");
+        "outputs.svg: SVG is for curves; use obj, ply, stl, off or vtp for surfaces");
   // The image files are OpenEXR and PNG: another extension is refused, not written with the wrong bytes.
   CHECK(refused(R"({"shape": "../shapes/wave.json", "outputs": {"exr": "w.png"}})") ==
         "outputs.exr: w.png: the image is OpenEXR, written as .exr");
