@@ -777,7 +777,11 @@ LocalRefinement refine_local(MeshScheme scheme, int n, const LocalOptions& optio
     if (valence(t1, static_cast<std::size_t>(v)) == n &&
         t1.boundary_vertex[static_cast<std::size_t>(v)] == t0.boundary_vertex[0])
       candidates.push_back(v);
-  out.child_centre = heaviest(stencils, candidates, 0);
+  // Catmull–Clark's and Loop's vertex points keep their vertices' indices; elsewhere the child
+  // weighing most on the centre (a concave corner's flattened edge points may weigh more than 1 on it).
+  out.child_centre = scheme == MeshScheme::catmull_clark || scheme == MeshScheme::loop
+                         ? 0
+                         : heaviest(stencils, candidates, 0);
   std::vector<int> ring;
   for (const int e : vertex_edges(t1, static_cast<std::size_t>(out.child_centre)))
     ring.push_back(other_vertex(t1, static_cast<std::size_t>(e), out.child_centre));
