@@ -415,8 +415,8 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
   }
   for (int e = 0; e < E; ++e) {
     const auto ue = static_cast<std::size_t>(e);
-    const auto [a, b] = t.edges[ue];
-    const auto [f0, f1] = t.edge_faces[ue];
+    const int a = t.edges[ue][0], b = t.edges[ue][1];  // not bindings: the lambdas below capture them
+    const int f0 = t.edge_faces[ue][0], f1 = t.edge_faces[ue][1];
     const auto size = [&](int f) {
       return f < 0 ? 0 : static_cast<int>(face(t, static_cast<std::size_t>(f)).size());
     };
