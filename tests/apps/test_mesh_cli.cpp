@@ -94,6 +94,11 @@ TEST_CASE("cifs subdivide and analyze --rules blz: Biermann-Levin-Zorin's rules"
                          " --scheme catmull-clark --levels 2 --rules blz -o " + out.string());
   REQUIRE(r.status == 0);
   CHECK(io::read_mesh(out).vertices == expected.vertices);
+  // The output carries the rule set (t rules): refining it once more is refining the fan 3 levels.
+  const auto again = scratch() / "blz_fan_again.obj";
+  REQUIRE(cifs_cli("subdivide " + out.string() + " --scheme catmull-clark -o " + again.string()).status == 0);
+  const Mesh three = subdivision::subdivide(fan, subdivision::MeshScheme::catmull_clark, 3);
+  CHECK((io::read_mesh(again).vertices - three.vertices).cwiseAbs().maxCoeff() < 1e-12);
   // analyze: the fan's centre, not C1 by default, C1 under blz.
   const auto centre = [&](const std::string& rules) {
     const Run a =
