@@ -73,6 +73,8 @@ json tags_info(const Mesh& mesh) {
           {"crease_method", option_name(mesh.tags.crease_method)},
           {"triangles", option_name(mesh.tags.triangles)},
           {"fvar_interpolation", option_name(mesh.tags.face_varying)},
+          {"rules", option_name(mesh.tags.rules)},
+          {"concave", mesh.tags.concave},
           {"face_varying", channels}};
 }
 

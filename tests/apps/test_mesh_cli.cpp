@@ -526,6 +526,14 @@ TEST_CASE("cifs info on a tagged mesh: creases, corners, holes, options, UV chan
   CHECK(info["boundary"] == "edge");
   CHECK(info["crease_method"] == "uniform");
   CHECK(info["fvar_interpolation"] == "all");
+  CHECK(info["rules"] == "opensubdiv");
+  CHECK(info["concave"] == json::array());
+  const json blz = json::parse(
+      cifs_cli("info " + file("blz_info.obj", tagged_grid_obj() + "t rules 0/0/1 blz\nt corner 1/1/0 0 10\n"
+                                                                  "t concave 1/0/0 0\n"))
+          .out);
+  CHECK(blz["rules"] == "blz");
+  CHECK(blz["concave"] == json::array({0}));
   CHECK(info["face_varying"] == json::array({{{"name", "uv"}, {"values", 26}, {"dimension", 2}}}));
   CHECK(info["manifold"] == true);
   CHECK(info["edges"] == 40);
