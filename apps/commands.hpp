@@ -66,7 +66,7 @@ struct SubdivideOptions {
   std::string scheme;  // subdivision::named_mesh_scheme
   int levels = 1;
   // Replace the file's tags when given ("" keeps them): option_name's spellings.
-  std::string boundary, crease_method, triangles, fvar_interpolation;
+  std::string boundary, crease_method, triangles, fvar_interpolation, rules;
   bool factored = false;         // linear subdivision + averaging (catmull-clark, loop)
   bool strict = false;           // an OBJ tag cifs does not read is an error, not a warning
   bool quiet = false;            // no progress bar
@@ -95,6 +95,7 @@ struct AnalyzeOptions {
   std::string scheme;
   std::string format = "table";  // table | json
   std::string boundary;          // "" keeps the file's boundary rule
+  std::string rules;             // "" keeps the file's rule set (opensubdiv, blz)
   bool strict = false;           // an OBJ tag cifs does not read is an error, not a warning
   std::filesystem::path png;     // optional: the surface (3 levels) with the irregular vertices marked
 };

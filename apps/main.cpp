@@ -278,6 +278,9 @@ void add_scheme(CLI::App& app, Commands& c) {
                        "Mesh schemes: the vertex infinitely sharp, on a --crease or a --boundary-valence");
   scheme_cmd->add_flag("--concave", c.sc.concave,
                        "Mesh schemes: the --corner's first sector is meant to span more than 180 degrees");
+  scheme_cmd->add_option("--rules", c.sc.rules,
+                         "Mesh schemes: crease, boundary and corner rules opensubdiv (default) or blz "
+                         "(Biermann-Levin-Zorin 2000: C1 at any valence; --concave corners flattened)");
   add_quiet(scheme_cmd, c.quiet);
   scheme_cmd->callback([&] {
     const cifs::render::Stage stage("scheme", c.quiet);
@@ -327,6 +330,9 @@ void add_subdivide(CLI::App& app, Commands& c) {
   subdivide_cmd->add_option(
       "--fvar-interpolation", c.su.fvar_interpolation,
       "Face-varying data (UVs): all (linear, default); the smooth modes are not built yet");
+  subdivide_cmd->add_option("--rules", c.su.rules,
+                            "Crease, boundary and corner rules opensubdiv (default) or blz "
+                            "(Biermann-Levin-Zorin 2000), replacing the file's");
   subdivide_cmd->add_flag("--factored", c.su.factored,
                           "Linear subdivision then averaging (catmull-clark on quads, loop); same result");
   add_strict(subdivide_cmd, c.su.strict);
@@ -346,6 +352,9 @@ void add_analyze(CLI::App& app, Commands& c) {
   analyze_cmd->add_option("--format", c.an.format, "table (default) or json");
   analyze_cmd->add_option("--boundary", c.an.boundary,
                           "Boundary rule, replacing the file's: edge (default) or corner");
+  analyze_cmd->add_option(
+      "--rules", c.an.rules,
+      "Crease, boundary and corner rules opensubdiv (default) or blz, replacing the file's");
   add_strict(analyze_cmd, c.an.strict);
   analyze_cmd
       ->add_option("--png", c.an.png,

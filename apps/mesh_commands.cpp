@@ -77,6 +77,8 @@ json tags_info(const Mesh& mesh) {
           {"crease_method", option_name(mesh.tags.crease_method)},
           {"triangles", option_name(mesh.tags.triangles)},
           {"fvar_interpolation", option_name(mesh.tags.face_varying)},
+          {"rules", option_name(mesh.tags.rules)},
+          {"concave", mesh.tags.concave},
           {"face_varying", channels}};
 }
 
@@ -145,7 +147,8 @@ std::string mesh_to_mesh(const std::filesystem::path& input, const io::MeshReadO
 /// The file's options replaced by the flags given ("" keeps the file's), a wrong name reported with
 /// its flag.
 TagOverrides tag_overrides(const std::string& boundary, const std::string& crease_method,
-                           const std::string& triangles, const std::string& fvar_interpolation) {
+                           const std::string& triangles, const std::string& fvar_interpolation,
+                           const std::string& rules = "") {
   const auto parse = [](const char* flag, const std::string& value, auto named) {
     using Option = decltype(named(value));
     if (value.empty()) return std::optional<Option>();
@@ -158,7 +161,8 @@ TagOverrides tag_overrides(const std::string& boundary, const std::string& creas
   return {.boundary = parse("--boundary", boundary, named_boundary_rule),
           .crease_method = parse("--crease-method", crease_method, named_crease_method),
           .triangles = parse("--triangles", triangles, named_triangle_rule),
-          .face_varying = parse("--fvar-interpolation", fvar_interpolation, named_face_varying_rule)};
+          .face_varying = parse("--fvar-interpolation", fvar_interpolation, named_face_varying_rule),
+          .rules = parse("--rules", rules, named_rule_set)};
 }
 
 }  // namespace
@@ -169,7 +173,7 @@ std::string subdivide(const SubdivideOptions& o) {
   const subdivision::MeshOptions options{
       .progress = [&bar](std::uint64_t done, std::uint64_t total) { bar(done, total); }};
   const TagOverrides overrides =
-      tag_overrides(o.boundary, o.crease_method, o.triangles, o.fvar_interpolation);
+      tag_overrides(o.boundary, o.crease_method, o.triangles, o.fvar_interpolation, o.rules);
   return mesh_to_mesh(
       o.mesh, {.strict = o.strict, .warn = {}}, o.output,
       [&](Mesh mesh) {
@@ -380,7 +384,7 @@ std::string analyze(const AnalyzeOptions& o) {
   if (o.format != "table" && o.format != "json")
     throw InvalidInput("--format '" + o.format + "': table or json for cifs analyze");
   Mesh mesh = io::read_mesh(o.mesh, {.strict = o.strict, .warn = {}});
-  apply(tag_overrides(o.boundary, "", "", ""), mesh.tags);
+  apply(tag_overrides(o.boundary, "", "", "", o.rules), mesh.tags);
   const subdivision::MeshSmoothness a = subdivision::analyze_mesh(mesh, scheme, o.mesh.string());
   if (!o.png.empty()) analysis_png(o.png, mesh, scheme, a);
   if (o.format == "json") {

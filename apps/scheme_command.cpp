@@ -28,6 +28,15 @@ namespace {
 
 namespace sd = cifs::subdivision;
 
+/// `--rules NAME`: opensubdiv or blz, the flag named in a refusal.
+RuleSet rules_flag(const std::string& name) {
+  try {
+    return named_rule_set(name);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput("--rules " + name + ": " + e.what());
+  }
+}
+
 /// `--boundary NAME` of a local analysis: edge or corner, the flag named in a refusal.
 sd::BoundaryRule boundary_flag(const std::string& name) {
   const sd::BoundaryRule rule = name == "none" ? sd::BoundaryRule::none : [&] {
@@ -211,7 +220,8 @@ std::vector<std::pair<int, sd::LocalOptions>> local_cases(const std::string& nam
                         .rule = o.boundary.empty() ? sd::BoundaryRule::edge_only : boundary_flag(o.boundary),
                         .sharp = {},
                         .corner = o.corner,
-                        .concave = o.concave};
+                        .concave = o.concave,
+                        .rules = o.rules.empty() ? RuleSet::opensubdiv : rules_flag(o.rules)};
   if (o.dart) base.sharp = {0};
   std::vector<std::pair<int, sd::LocalOptions>> out;
   if (boundary_faces) {
@@ -304,10 +314,11 @@ std::string scheme(const SchemeOptions& o) {
     throw InvalidInput(o.analyze ? "scheme: --analyze and --refine are exclusive"
                                  : "scheme: choose --analyze or --refine POLYGON.json (or --list)");
   if (!o.valence.empty() || !o.valences.empty() || !o.boundary.empty() || !o.boundary_valence.empty() ||
-      !o.crease.empty() || o.dart || o.corner || o.concave)
+      !o.crease.empty() || o.dart || o.corner || o.concave || !o.rules.empty())
     throw InvalidInput(
         "scheme " + o.name +
-        ": --valence, --valences, --boundary, --boundary-valence, --crease, --dart, --corner and --concave "
+        ": --valence, --valences, --boundary, --boundary-valence, --crease, --dart, --corner, --concave and "
+        "--rules "
         "are for the mesh schemes (catmull-clark, loop, "
         "doo-sabin, butterfly, sqrt3)");
   const sd::Scheme s = sd::named_scheme(o.name, parse_params(o.params));

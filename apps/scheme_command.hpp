@@ -29,6 +29,7 @@ struct SchemeOptions {
   bool dart = false;             // mesh schemes: one sharp edge (r_0)
   bool corner = false;           // mesh schemes: the vertex infinitely sharp (with --crease or a boundary)
   bool concave = false;          // a corner meant to span more than 180 degrees
+  std::string rules;             // "" or "opensubdiv": OpenSubdiv's; "blz": Biermann–Levin–Zorin's
 };
 
 /// The text for stdout; InvalidInput / IoError on bad input.

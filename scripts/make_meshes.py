@@ -59,6 +59,18 @@ def open_grid(n=6, m=4, triangles=False):
     return p, f
 
 
+def boundary_fan(k=6, triangles=False):
+    # Boundary vertex 0 with k faces over a half-disk: quads (0, r_i, f_i, r_i+1), or triangles
+    # (0, r_i, r_i+1); a gentle bump so that the surface is not flat.
+    step = math.pi / k
+    p = [(0.0, 0.0, 0.2)]
+    p += [(math.cos(i * step), math.sin(i * step), 0.1 * math.sin(2 * i * step)) for i in range(k + 1)]
+    if triangles:
+        return p, [(0, 1 + i, 2 + i) for i in range(k)]
+    p += [(1.6 * math.cos((i + 0.5) * step), 1.6 * math.sin((i + 0.5) * step), 0.0) for i in range(k)]
+    return p, [(0, 1 + i, k + 2 + i, 2 + i) for i in range(k)]
+
+
 def torus(n=12, m=8, triangles=False):
     p = []
     for j in range(m):
@@ -172,6 +184,10 @@ MESHES = {
     "open_grid_triangles": ("the open grid split into triangles", lambda: open_grid(triangles=True)),
     "torus": ("12 x 8 quads, genus 1, every vertex regular", torus),
     "torus_triangles": ("the torus split into triangles, valence 6", lambda: torus(triangles=True)),
+    "boundary_fan": ("6 quads around a boundary vertex (catmull-clark: not C1 there under OpenSubdiv's rules)",
+                     boundary_fan),
+    "boundary_fan_triangles": ("8 triangles around a boundary vertex (loop: not C1 there under OpenSubdiv's rules)",
+                               lambda: boundary_fan(8, triangles=True)),
     "rings": ("closed triangles, a pole and rings of 3, 7 and 5 vertices: valences 3 to 7", rings),
 }
 # Meshes with tags and UVs (tagged_obj).

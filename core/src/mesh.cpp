@@ -153,6 +153,7 @@ namespace {
 constexpr std::array<std::string_view, 3> kBoundaryNames{"none", "edge", "corner"};
 constexpr std::array<std::string_view, 2> kCreaseNames{"uniform", "chaikin"};
 constexpr std::array<std::string_view, 2> kTriangleNames{"catmark", "smooth"};
+constexpr std::array<std::string_view, 2> kRuleNames{"opensubdiv", "blz"};
 constexpr std::array<std::string_view, 6> kFaceVaryingNames{"none",      "corners-only", "corners+1",
                                                             "corners+2", "boundaries",   "all"};
 
@@ -180,6 +181,9 @@ std::string_view option_name(TriangleRule rule) noexcept {
 std::string_view option_name(FaceVaryingRule rule) noexcept {
   return kFaceVaryingNames[static_cast<std::size_t>(rule)];
 }
+std::string_view option_name(RuleSet rules) noexcept {
+  return kRuleNames[static_cast<std::size_t>(rules)];
+}
 BoundaryRule named_boundary_rule(std::string_view name) {
   return named<BoundaryRule>(name, kBoundaryNames, "boundary rule");
 }
@@ -193,7 +197,12 @@ FaceVaryingRule named_face_varying_rule(std::string_view name) {
   return named<FaceVaryingRule>(name, kFaceVaryingNames, "face-varying interpolation");
 }
 
+RuleSet named_rule_set(std::string_view name) {
+  return named<RuleSet>(name, kRuleNames, "rule set");
+}
+
 void apply(const TagOverrides& o, MeshTags& tags) {
+  if (o.rules) tags.rules = *o.rules;
   if (o.boundary) tags.boundary = *o.boundary;
   if (o.crease_method) tags.crease_method = *o.crease_method;
   if (o.triangles) tags.triangles = *o.triangles;

@@ -70,6 +70,7 @@ json local_json(const LocalMatrix& m, const LocalSpectrum& s) {
     j["boundary_rule"] = m.options.rule == subdivision::BoundaryRule::edge_only ? "edge" : "corner";
   if (!m.options.sharp.empty()) j["sharp_edges"] = m.options.sharp;
   if (m.options.concave) j["concave"] = true;
+  if (m.options.rules != RuleSet::opensubdiv) j["rules"] = std::string(option_name(m.options.rules));
   if (m.options.boundary || !m.options.sharp.empty() || m.options.corner)
     j["sector_faces"] = subdivision::sector_sizes(m.valence, m.options);
   j["steps"] = m.steps;

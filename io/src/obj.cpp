@@ -107,12 +107,20 @@ void obj_tags(ChunkBuffer& out, const MeshTags& tags) {
     out.text += "t creasemethod 0/0/1 " + std::string(option_name(tags.crease_method)) + '\n';
   if (tags.triangles != TriangleRule::catmark)
     out.text += "t smoothtriangles 0/0/1 " + std::string(option_name(tags.triangles)) + '\n';
+  // cifs's own (not OpenSubdiv's): Biermann–Levin–Zorin's rules and their concave corners.
+  if (tags.rules != RuleSet::opensubdiv)
+    out.text += "t rules 0/0/1 " + std::string(option_name(tags.rules)) + '\n';
+  if (!tags.concave.empty()) {
+    out.text += "t concave " + std::to_string(tags.concave.size()) + "/0/0";
+    for (const int v : tags.concave) out.text += ' ' + std::to_string(v);
+    out.text += '\n';
+  }
 }
 
 /// The tags cifs reads (OpenSubdiv's regression shapes: `t name ints/floats/strings arguments`).
 constexpr std::string_view kKnownTags =
     "crease, corner, hole, interpolateboundary, facevaryinginterpolateboundary, "
-    "facevaryingpropagatecorners, creasemethod, smoothtriangles";
+    "facevaryingpropagatecorners, creasemethod, smoothtriangles, rules, concave";
 
 /// One `t` line: its name and arguments, counts checked against its `ints/floats/strings` header.
 struct ObjTag {
@@ -365,6 +373,14 @@ class MeshReader {
       });
     } else if (tag.name == "smoothtriangles") {
       tags_.triangles = word(tag, named_triangle_rule);
+    } else if (tag.name == "rules") {
+      tags_.rules = word(tag, named_rule_set);
+    } else if (tag.name == "concave") {
+      expect(tag, -1, 0, 0);
+      for (const long long v : tag.ints) {
+        tags_.concave.push_back(vertex(v));
+        concave_lines_.push_back(line);
+      }
     } else {
       const std::string what = place_.at(line) + "t " + std::string(tag.name) + ": ";
       if (options_.strict)
@@ -403,6 +419,8 @@ class MeshReader {
     }
     for (std::size_t i = 0; i < tags_.corners.size(); ++i)
       vertex_range(tags_.corners[i].vertex, corner_lines_[i], "t corner");
+    for (std::size_t i = 0; i < tags_.concave.size(); ++i)
+      vertex_range(tags_.concave[i], concave_lines_[i], "t concave");
     for (std::size_t i = 0; i < tags_.holes.size(); ++i)
       if (static_cast<std::size_t>(tags_.holes[i]) >= face_count(mesh))
         place_.invalid(hole_lines_[i], "t hole: face " + std::to_string(tags_.holes[i]) +
@@ -419,7 +437,7 @@ class MeshReader {
   int textured_ = -1;  // unknown until the first corner: then 1 with vt, 0 without
   MeshTags tags_;
   bool propagate_corners_ = false;
-  std::vector<std::size_t> crease_lines_, corner_lines_, hole_lines_;
+  std::vector<std::size_t> crease_lines_, corner_lines_, hole_lines_, concave_lines_;
   std::map<std::pair<int, int>, std::size_t> crease_index_;
   std::map<int, std::size_t> corner_index_;
   std::set<int> hole_faces_;

@@ -86,7 +86,8 @@ MeshTags make_tags(const std::optional<std::vector<EdgeSharpness>>& creases,
                    const std::optional<std::vector<VertexSharpness>>& corners,
                    const std::optional<std::vector<int>>& holes, const std::string& boundary,
                    const std::string& crease_method, const std::string& triangles,
-                   const std::string& fvar_interpolation) {
+                   const std::string& fvar_interpolation, const std::string& rules,
+                   const std::optional<std::vector<int>>& concave) {
   MeshTags tags;
   tags.creases = creases.value_or(std::vector<EdgeSharpness>{});
   tags.corners = corners.value_or(std::vector<VertexSharpness>{});
@@ -95,6 +96,8 @@ MeshTags make_tags(const std::optional<std::vector<EdgeSharpness>>& creases,
   if (!crease_method.empty()) tags.crease_method = named_crease_method(crease_method);
   if (!triangles.empty()) tags.triangles = named_triangle_rule(triangles);
   if (!fvar_interpolation.empty()) tags.face_varying = named_face_varying_rule(fvar_interpolation);
+  if (!rules.empty()) tags.rules = named_rule_set(rules);
+  tags.concave = concave.value_or(std::vector<int>{});
   return tags;
 }
 
@@ -361,10 +364,13 @@ void bind_mesh_tags(py::module_& m) {
           py::init(&make_tags), py::kw_only(), py::arg("creases") = py::none(),
           py::arg("corners") = py::none(), py::arg("holes") = py::none(), py::arg("boundary") = "edge",
           py::arg("crease_method") = "uniform", py::arg("triangles") = "catmark",
-          py::arg("fvar_interpolation") = "all",
+          py::arg("fvar_interpolation") = "all", py::arg("rules") = "opensubdiv",
+          py::arg("concave") = py::none(),
           "creases: list of EdgeSharpness; corners: list of VertexSharpness; holes: face indices.\n"
           "boundary: edge, corner or none; crease_method: uniform or chaikin; triangles: catmark or smooth;\n"
           "fvar_interpolation: none, corners-only, corners+1, corners+2, boundaries or all.\n"
+          "rules: opensubdiv or blz (Biermann-Levin-Zorin 2000); concave: corner vertices (blz) whose\n"
+          "sectors span 3pi/2.\n"
           "Indices are checked with the mesh (Mesh(..., tags=...)).")
       .def_readonly("creases", &MeshTags::creases, "The sharp edges (list of EdgeSharpness).")
       .def_readonly("corners", &MeshTags::corners, "The sharp vertices (list of VertexSharpness).")
@@ -411,6 +417,12 @@ void bind_mesh_tags(py::module_& m) {
       .def_property_readonly(
           "triangles", [](const MeshTags& t) { return std::string(option_name(t.triangles)); },
           "Catmull-Clark next to triangles: catmark or smooth.")
+      .def_property_readonly(
+          "rules", [](const MeshTags& t) { return std::string(option_name(t.rules)); },
+          "Crease, boundary and corner rules: opensubdiv or blz.")
+      .def_property_readonly(
+          "concave", [](const MeshTags& t) { return vector_array(t.concave); },
+          "The concave corners' vertices (blz rules).")
       .def_property_readonly(
           "fvar_interpolation", [](const MeshTags& t) { return std::string(option_name(t.face_varying)); },
           "Face-varying linear interpolation: none, corners-only, corners+1, corners+2, boundaries or all.")

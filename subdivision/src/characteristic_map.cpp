@@ -892,7 +892,8 @@ C1Verdict sector_verdicts(const LocalMatrix& matrix, const C1Options& options) {
                          .rule = BoundaryRule::edge_only,
                          .sharp = {},
                          .corner = corner,
-                         .concave = corner && matrix.options.concave};
+                         .concave = corner && matrix.options.concave,
+                         .rules = matrix.options.rules};
     C1Verdict::Sector sector{.faces = sizes[i], .spectrum = {}, .verdict = {}};
     const LocalMatrix S = local_matrix(matrix.scheme, sizes[i] + 1, o);
     sector.spectrum = local_spectrum(S);

@@ -527,6 +527,12 @@ Points limit_normals(const MeshTopology& t, const LimitStencils& s, const LimitF
 
 Mesh limit_mesh(const Mesh& mesh, MeshScheme scheme, int levels, const LimitOptions& options) {
   const std::string who(scheme_name(scheme));
+  // The limit masks and the cut rings below are OpenSubdiv's rules: under BLZ's the vertices next to
+  // a crease or corner vertex have other limits (their edge points lean towards it).
+  if (mesh.tags.rules == RuleSet::blz)
+    throw InvalidInput(who +
+                       ": limits under the rule set 'blz' are not built (subdivide with --rules blz, "
+                       "or take the limit under the rule set 'opensubdiv')");
   const MeshRefinement r = refine_topology(mesh, scheme, levels, MeshOptions{.max_bytes = options.max_bytes});
   const MeshTopology& last = r.levels.back();
   if (options.normals && scheme == MeshScheme::butterfly)

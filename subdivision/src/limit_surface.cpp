@@ -164,6 +164,9 @@ SurfaceAutomaton surface_automaton(const Mesh& mesh, MeshScheme scheme) {
   // Its states are the smooth rules' patches: a tagged mesh would be taken for a smooth one.
   MeshTags features = mesh.tags;
   features.boundary = BoundaryRule::edge_only;  // boundaries are refused by the faces below
+  if (mesh.tags.rules == RuleSet::blz)
+    throw InvalidInput(std::string(scheme_name(scheme)) +
+                       " surface automaton: the rule set 'blz' is not built for the whole-surface automaton");
   if (const std::string feature = first_feature(features); !feature.empty())
     throw InvalidInput(std::string(scheme_name(scheme)) + " surface automaton: the mesh has " + feature +
                        ": crease, corner and hole patches are not built for the whole-surface automaton "

@@ -270,6 +270,93 @@ bool smooth_level(const LevelFeatures& L) {
   return L.edge_sharpness.empty() && L.vertex_sharpness.empty();
 }
 
+/// What Biermann–Levin–Zorin's rules (RuleSet::blz) change at a crease or corner vertex c, seen from
+/// one of its smooth edges (the edge point's one-sided rule) or one of its faces (Catmull–Clark's
+/// face point): the shift δ from the far end to c, and on a concave corner's sector the flatness s
+/// towards c + ½x₁(e0 − c) + ½x₂(ek − c).
+struct BlzSide {
+  int centre = -1;  // −1: c is not a crease or corner vertex
+  double shift = 0, flatness = 0, x1 = 0, x2 = 0;
+  int e0 = -1, ek = -1;
+};
+
+/// The BlzSide of every half of every edge (2e + (c == edges[e][1])) and of every face corner (the
+/// face's half-edges, Catmull–Clark), from the sectors of each crease or corner vertex: the faces
+/// between consecutive sharp edges (a boundary's edges are sharp). A corner with fewer than two sharp
+/// edges has no sectors and keeps the standard rules.
+struct BlzSides {
+  std::vector<BlzSide> edges, corners;
+};
+BlzSides blz_sides(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& L, const MeshTags& tags) {
+  BlzSides out;
+  out.edges.resize(2 * t.edges.size());
+  if (scheme == MeshScheme::catmull_clark) out.corners.resize(t.face_vertices.size());
+  std::vector<char> concave(static_cast<std::size_t>(t.vertex_count), 0);
+  for (const int v : tags.concave) concave[static_cast<std::size_t>(v)] = 1;
+  std::vector<int> sharp;
+  for (int v = 0; v < t.vertex_count; ++v) {
+    const auto uv = static_cast<std::size_t>(v);
+    const auto ring = ring_edges(t, v);
+    const auto faces = vertex_faces(t, uv);
+    const int n = static_cast<int>(ring.size());
+    sharp.clear();
+    for (int j = 0; j < n; ++j)
+      if (edge_sharpness(L, static_cast<std::size_t>(ring[static_cast<std::size_t>(j)])) > 0)
+        sharp.push_back(j);
+    const VertexRule rule = vertex_rule(vertex_sharpness(L, uv), static_cast<int>(sharp.size()));
+    if (concave[uv] && (rule != VertexRule::corner || sharp.size() < 2))
+      throw InvalidInput(std::string(scheme_name(scheme)) + ": vertex " + std::to_string(v) +
+                         " is tagged concave but is not a corner with two or more sharp edges here " +
+                         "(a concave corner must stay one: infinitely sharp)");
+    if ((rule != VertexRule::crease && rule != VertexRule::corner) || sharp.size() < 2) continue;
+    const bool open = on_boundary(t, v);
+    const double theta = blz_sector_angle(rule, concave[uv] != 0);
+    const double flatness = concave[uv] ? kBlzConcaveFlatness : 0.0;
+    const auto ring_at = [&](int j) { return ring[static_cast<std::size_t>(j % n)]; };
+    for (std::size_t p = 0; p + (open ? 1 : 0) < sharp.size(); ++p) {
+      const int a = sharp[p], b = p + 1 < sharp.size() ? sharp[p + 1] : sharp.front() + n;
+      const int k = b - a;
+      const double theta_k = theta / k;
+      const double shift = blz_edge_shift(scheme, std::cos(theta_k));
+      const int e0 = other_vertex(t, static_cast<std::size_t>(ring_at(a)), v);
+      const int ek = other_vertex(t, static_cast<std::size_t>(ring_at(b)), v);
+      // The subdominant eigenvectors at ring position i (edge i of the sector; its faces: i, i + 1).
+      const auto x1 = [&](int i) { return std::sin((k - i) * theta_k) / std::sin(theta); };
+      const auto x2 = [&](int i) { return std::sin(i * theta_k) / std::sin(theta); };
+      for (int i = 1; i < k; ++i) {
+        const int e = ring_at(a + i);
+        const auto ue = static_cast<std::size_t>(e);
+        out.edges[2 * ue + (t.edges[ue][0] == v ? 0 : 1)] = {
+            .centre = v, .shift = shift, .flatness = flatness, .x1 = x1(i), .x2 = x2(i), .e0 = e0, .ek = ek};
+      }
+      if (scheme != MeshScheme::catmull_clark || flatness == 0) continue;
+      for (int i = 0; i < k; ++i) {
+        const auto f = static_cast<std::size_t>(faces[static_cast<std::size_t>((a + i) % n)]);
+        const auto corners = face(t, f);
+        const auto h =
+            static_cast<std::size_t>(t.face_offsets[f]) +
+            static_cast<std::size_t>(std::find(corners.begin(), corners.end(), v) - corners.begin());
+        out.corners[h] = {.centre = v,
+                          .shift = 0,
+                          .flatness = flatness,
+                          .x1 = x1(i) + x1(i + 1),
+                          .x2 = x2(i) + x2(i + 1),
+                          .e0 = e0,
+                          .ek = ek};
+      }
+    }
+  }
+  return out;
+}
+
+/// Adds weight · (the flatness part of a BlzSide): s(c + ½x₁(e0 − c) + ½x₂(ek − c)).
+void add_flat(const BlzSide& b, double weight, RowWriter& row) {
+  const double w = weight * b.flatness;
+  row.add(b.centre, w * (1 - 0.5 * b.x1 - 0.5 * b.x2));
+  row.add(b.e0, w * 0.5 * b.x1);
+  row.add(b.ek, w * 0.5 * b.x2);
+}
+
 /// Catmull–Clark, Loop and bilinear (the primal schemes with OpenSubdiv's rules): a vertex point per
 /// vertex, an edge point per edge and, for the quad split, a face point per face, each from the
 /// rules' masks (cifs/subdivision/rules.hpp). `halves[2e + k]` receives the sharpness after the step
@@ -290,6 +377,9 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
   const bool smooth = smooth_level(L);
   halves.assign(smooth ? 0 : 2 * t.edges.size(), 0.0);
   std::vector<double> pe, ce;  // sharpness of a vertex's edges before and after the step
+  const BlzSides blz = tags.rules == RuleSet::blz && !smooth && scheme != MeshScheme::bilinear
+                           ? blz_sides(scheme, t, L, tags)
+                           : BlzSides{};
   for (int v = 0; v < V; ++v) {
     const auto ring = ring_edges(t, v);
     const auto faces = vertex_faces(t, static_cast<std::size_t>(v));
@@ -325,8 +415,8 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
   }
   for (int e = 0; e < E; ++e) {
     const auto ue = static_cast<std::size_t>(e);
-    const auto [a, b] = t.edges[ue];
-    const auto [f0, f1] = t.edge_faces[ue];
+    const int a = t.edges[ue][0], b = t.edges[ue][1];  // not bindings: the lambdas below capture them
+    const int f0 = t.edge_faces[ue][0], f1 = t.edge_faces[ue][1];
     const auto size = [&](int f) {
       return f < 0 ? 0 : static_cast<int>(face(t, static_cast<std::size_t>(f)).size());
     };
@@ -335,21 +425,59 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
                   {.sharpness = edge_sharpness(L, ue),
                    .child_sharpness = {smooth ? 0 : halves[2 * ue], smooth ? 0 : halves[2 * ue + 1]},
                    .face_sizes = {size(f0), size(f1)}});
-    if (m.face != 0)
-      for (const int f : {f0, f1}) {
-        if (f < 0) continue;
-        if (quads)
-          add_face_point(t, static_cast<std::size_t>(f), m.face, row);
-        else
-          row.add(opposite_corner(t, f, e), m.face);
+    const auto standard = [&](double w) {
+      if (m.face != 0)
+        for (const int f : {f0, f1}) {
+          if (f < 0) continue;
+          if (quads)
+            add_face_point(t, static_cast<std::size_t>(f), w * m.face, row);
+          else
+            row.add(opposite_corner(t, f, e), w * m.face);
+        }
+      row.add(a, w * m.end);
+      row.add(b, w * m.end);
+    };
+    // BLZ: the mean of the one-sided rules of the ends that are crease or corner vertices (as
+    // Subdivide 2.0 does; after one step no smooth edge joins two such vertices).
+    const BlzSide* sides[2] = {nullptr, nullptr};
+    int tagged = 0;
+    if (!blz.edges.empty() && edge_sharpness(L, ue) == 0)
+      for (int k = 0; k < 2; ++k)
+        if (blz.edges[2 * ue + static_cast<std::size_t>(k)].centre >= 0)
+          sides[tagged++] = &blz.edges[2 * ue + static_cast<std::size_t>(k)];
+    if (tagged == 0) {
+      standard(1);
+    } else {
+      for (int k = 0; k < tagged; ++k) {
+        const BlzSide& side = *sides[k];
+        const double w = 1.0 / tagged, keep = w * (1 - side.flatness);
+        standard(keep);
+        row.add(side.centre, keep * side.shift);
+        row.add(side.centre == a ? b : a, -keep * side.shift);
+        if (side.flatness > 0) add_flat(side, w, row);
       }
-    row.add(a, m.end);
-    row.add(b, m.end);
+    }
     row.finish();
   }
   if (quads)
     for (int f = 0; f < F; ++f) {
-      add_face_point(t, static_cast<std::size_t>(f), 1, row);
+      // BLZ: at concave corners, the mean of the face point flattened towards each.
+      int flattened = 0;
+      if (!blz.corners.empty())
+        for (int h = t.face_offsets[static_cast<std::size_t>(f)];
+             h < t.face_offsets[static_cast<std::size_t>(f) + 1]; ++h)
+          flattened += blz.corners[static_cast<std::size_t>(h)].centre >= 0 ? 1 : 0;
+      if (flattened == 0) {
+        add_face_point(t, static_cast<std::size_t>(f), 1, row);
+      } else {
+        for (int h = t.face_offsets[static_cast<std::size_t>(f)];
+             h < t.face_offsets[static_cast<std::size_t>(f) + 1]; ++h) {
+          const BlzSide& side = blz.corners[static_cast<std::size_t>(h)];
+          if (side.centre < 0) continue;
+          add_face_point(t, static_cast<std::size_t>(f), (1 - side.flatness) / flattened, row);
+          add_flat(side, 1.0 / flattened, row);
+        }
+      }
       row.finish();
     }
   return s;
@@ -680,6 +808,14 @@ void check_scheme_input(const MeshTopology& t, const Mesh& mesh, MeshScheme sche
         throw InvalidInput(
             who + ": face " + std::to_string(f) + " has " + std::to_string(face(t, f).size()) +
             " corners; this scheme runs on triangles (triangulate first, or use catmull-clark)");
+  if (mesh.tags.rules == RuleSet::blz && scheme != MeshScheme::catmull_clark && scheme != MeshScheme::loop)
+    throw InvalidInput(who + ": the rule set 'blz' is built for catmull-clark and loop only");
+  if (!mesh.tags.concave.empty() && mesh.tags.rules != RuleSet::blz)
+    throw InvalidInput(who + ": concave corners are a part of the rule set 'blz'; ask for it (--rules blz)");
+  for (const int v : mesh.tags.concave)
+    if (v < 0 || v >= t.vertex_count)
+      throw InvalidInput(who + ": concave corner " + std::to_string(v) + " is not a vertex (the mesh has " +
+                         std::to_string(t.vertex_count) + ")");
   if (!traits(scheme).sharpness)
     if (const std::string tag = first_feature(mesh.tags); !tag.empty())
       throw InvalidInput(who + ": the mesh has " + tag +
@@ -1128,6 +1264,9 @@ Mesh factored_subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const M
   if (!traits(scheme).factored)
     throw InvalidInput(who + ": the factored form exists for catmull-clark and loop");
   check_mesh(mesh, who);
+  if (mesh.tags.rules == RuleSet::blz)
+    throw InvalidInput(who + ": the factored form has OpenSubdiv's boundary rules only, not the rule set " +
+                       "'blz' (subdivide without --factored)");
   if (const std::string tag = first_feature(mesh.tags); !tag.empty())
     throw InvalidInput(who + ": the mesh has " + tag +
                        "; the factored form has only the smooth and boundary " +

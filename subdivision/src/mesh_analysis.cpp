@@ -45,6 +45,10 @@ void check_valence(MeshScheme scheme, int valence, const LocalOptions& o) {
     throw InvalidInput(who + ": sharp edges and corners are analysed for catmull-clark and loop only");
   if (o.concave && centre_rule(valence, o) != VertexRule::corner)
     throw InvalidInput(who + ": concave is said of a corner (a sharp vertex on a boundary or crease)");
+  if (o.rules == RuleSet::blz && scheme != MeshScheme::catmull_clark && scheme != MeshScheme::loop)
+    throw InvalidInput(who + ": the rule set 'blz' is built for catmull-clark and loop only");
+  if (o.rules == RuleSet::blz && o.concave && o.sharp.size() + (o.boundary ? 2 : 0) < 2)
+    throw InvalidInput(who + ": a concave corner of the rule set 'blz' needs two or more sharp edges");
   const int first = o.boundary ? 1 : 0, last = o.boundary ? valence - 2 : valence - 1;
   for (std::size_t i = 0; i < o.sharp.size(); ++i)
     if (o.sharp[i] < first || o.sharp[i] > last || (i > 0 && o.sharp[i] <= o.sharp[i - 1]))
@@ -156,9 +160,71 @@ bool sharp_centre(Dense<T>& S, int n, const LocalOptions& o, Neighbour r) {
   return rule == VertexRule::corner || rule == VertexRule::crease;
 }
 
-/// Catmull–Clark at a vertex of valence n (on the boundary: n − 1 faces).
+/// Biermann–Levin–Zorin at the centre (rules.hpp, RuleSet::blz), written as the paper writes it:
+/// for the smooth edge c r_j inside a sector of k faces spanning θ, θ_k = θ/k = 2πm/q and γ (the
+/// weight of r_j; c gets ¾ − γ); on a concave corner's sector the flatness s and the subdominant
+/// eigenvectors x₁ = sin((k − i)θ_k)/sin θ, x₂ = sin(iθ_k)/sin θ at ring position i (edge i of the
+/// sector; face i has x(i) + x(i + 1)), e0 = r_a and ek = r_b the sector's sharp edges' ends.
 template <class T>
-Dense<T> catmull_clark_rules(int n, const LocalOptions& o) {
+struct BlzSector {
+  bool on = false;
+  int a = 0, b = 0, i = 0, k = 0;
+  T gamma{}, flatness{}, x1_edge{}, x2_edge{}, x1_face{}, x2_face{};
+};
+
+/// The sector of ring edge j (smooth) at the centre under the blz rules; `on` false otherwise.
+template <class T, class Cos>
+BlzSector<T> blz_sector(MeshScheme scheme, int n, const LocalOptions& o, int j, Cos cos_of) {
+  BlzSector<T> out;
+  const VertexRule rule = centre_rule(n, o);
+  const std::vector<int> sharp = sharp_edges(n, o);
+  if (o.rules != RuleSet::blz || (rule != VertexRule::crease && rule != VertexRule::corner) ||
+      sharp.size() < 2)
+    return out;
+  // The last sharp edge at or before j (cyclically around an interior vertex) and the next one.
+  int a = sharp.back() - n, b = sharp.front();
+  for (const int x : sharp)
+    if (x <= j) a = x;
+  for (auto it = sharp.rbegin(); it != sharp.rend(); ++it)
+    if (*it > j) b = *it;
+  if (b <= j) b = sharp.front() + n;
+  out.on = true;
+  out.a = a;
+  out.b = b;
+  out.k = b - a;
+  out.i = j - a;
+  // θ_k = 2πm/q: crease π/k (m = 1, q = 2k), convex corner π/(2k) (1, 4k), concave 3π/(2k) (3, 4k).
+  const bool corner = rule == VertexRule::corner;
+  const int m = corner && o.concave ? 3 : 1, q = corner ? 4 * out.k : 2 * out.k;
+  const T one(1);
+  const T base = scheme == MeshScheme::loop ? T(one / 2) : T(3 * one / 8);
+  out.gamma = T(base - T(cos_of(m, q)) / 4);
+  if (!(corner && o.concave)) return out;
+  out.flatness = T(kBlzConcaveFlatness);
+  const auto sin_of = [&](int mm, int qq) { return cos_of(qq - 4 * mm, 4 * qq); };  // sin(2πmm/qq)
+  const T sin_theta = -one;                                                         // sin(3π/2)
+  const auto x1 = [&](int i) { return T(T(sin_of(m * (out.k - i), q)) / sin_theta); };
+  const auto x2 = [&](int i) { return T(T(sin_of(m * i, q)) / sin_theta); };
+  out.x1_edge = x1(out.i);
+  out.x2_edge = x2(out.i);
+  out.x1_face = T(x1(out.i) + x1(out.i + 1));
+  out.x2_face = T(x2(out.i) + x2(out.i + 1));
+  return out;
+}
+
+/// Row i := (1 − s)·row i + s(c + ½x₁(e0 − c) + ½x₂(ek − c)): the flatness of a concave sector.
+template <class T>
+void flatten(Dense<T>& S, int i, const T& s, const T& x1, const T& x2, int e0, int ek) {
+  const T keep = T(1) - s;
+  for (int col = 0; col < S.n; ++col) S(i, col) *= keep;
+  S(i, 0) += T(s * T(T(1) - x1 / 2 - x2 / 2));
+  S(i, e0) += T(s * x1 / 2);
+  S(i, ek) += T(s * x2 / 2);
+}
+
+/// Catmull–Clark at a vertex of valence n (on the boundary: n − 1 faces).
+template <class T, class Cos>
+Dense<T> catmull_clark_rules(int n, const LocalOptions& o, Cos cos_of) {
   const T one(1), half = one / 2, quarter = one / 4;
   const T nn(n);
   const int N = o.boundary ? 2 * n : 2 * n + 1;
@@ -183,12 +249,27 @@ Dense<T> catmull_clark_rules(int n, const LocalOptions& o) {
       S(r(j), r(j)) += half;
       continue;
     }
+    if (const auto blz = blz_sector<T>(MeshScheme::catmull_clark, n, o, j, cos_of); blz.on) {
+      // (¾ − γ)c + γ r_j + 1/16 on r_{j−1}, f_{j−1}, r_{j+1}, f_j.
+      S(r(j), 0) += T(3 * quarter - blz.gamma);
+      S(r(j), r(j)) += blz.gamma;
+      for (const int v : {r(j - 1), f(j - 1), r(j + 1), f(j)}) S(r(j), v) += T(quarter / 4);
+      continue;
+    }
     S(r(j), 0) += quarter;
     S(r(j), r(j)) += quarter;
     face_point(r(j), j - 1, quarter);
     face_point(r(j), j, quarter);
   }
   for (int j = 0; j < faces; ++j) face_point(f(j), j, one);
+  // A concave sector's flatness, on its edge points and on its face points (face j's sector is
+  // that of edge j, sharp or not).
+  for (int j = 0; j < n; ++j) {
+    const auto blz = blz_sector<T>(MeshScheme::catmull_clark, n, o, j, cos_of);
+    if (!blz.on || blz.flatness == T(0)) continue;
+    if (!is_sharp(n, o, j)) flatten(S, r(j), blz.flatness, blz.x1_edge, blz.x2_edge, r(blz.a), r(blz.b));
+    if (j < faces) flatten(S, f(j), blz.flatness, blz.x1_face, blz.x2_face, r(blz.a), r(blz.b));
+  }
   return S;
 }
 
@@ -211,10 +292,14 @@ Dense<T> loop_rules(int n, const LocalOptions& o, Cos cos_of) {
       S(r(j), r(j)) += half;
       continue;
     }
-    S(r(j), 0) += 3 * eighth;
-    S(r(j), r(j)) += 3 * eighth;
+    const auto blz = blz_sector<T>(MeshScheme::loop, n, o, j, cos_of);
+    const T gamma = blz.on ? blz.gamma : T(3 * eighth);  // (¾ − γ)c + γ r_j + ⅛(r_{j−1} + r_{j+1})
+    S(r(j), 0) += T(6 * eighth - gamma);
+    S(r(j), r(j)) += gamma;
     S(r(j), r(j - 1)) += eighth;
     S(r(j), r(j + 1)) += eighth;
+    if (blz.on && blz.flatness != T(0))
+      flatten(S, r(j), blz.flatness, blz.x1_edge, blz.x2_edge, r(blz.a), r(blz.b));
   }
   return S;
 }
@@ -319,7 +404,7 @@ template <class T, class Cos>
 Dense<T> rules(MeshScheme scheme, int n, const LocalOptions& o, Cos cos_of) {
   switch (scheme) {
     case MeshScheme::catmull_clark:
-      return catmull_clark_rules<T>(n, o);
+      return catmull_clark_rules<T>(n, o, cos_of);
     case MeshScheme::loop:
       return loop_rules<T>(n, o, cos_of);
     case MeshScheme::butterfly:
@@ -631,6 +716,8 @@ Mesh local_mesh(MeshScheme scheme, int valence, const LocalOptions& options, int
   // The sharp edges run out along their rays (vertex j + 1 … of the ray: r_j is vertex j + 1 on the
   // closed fan by construction, found by the walk below on either fan).
   m.tags.boundary = options.rule;
+  m.tags.rules = options.rules;
+  if (options.concave && options.rules == RuleSet::blz) m.tags.concave = {0};
   if (options.corner) m.tags.corners.push_back({0, kInfiniteSharpness});
   if (!options.sharp.empty()) {
     const MeshTopology t = build_topology(m, "local mesh");
@@ -690,7 +777,11 @@ LocalRefinement refine_local(MeshScheme scheme, int n, const LocalOptions& optio
     if (valence(t1, static_cast<std::size_t>(v)) == n &&
         t1.boundary_vertex[static_cast<std::size_t>(v)] == t0.boundary_vertex[0])
       candidates.push_back(v);
-  out.child_centre = heaviest(stencils, candidates, 0);
+  // Catmull–Clark's and Loop's vertex points keep their vertices' indices; elsewhere the child
+  // weighing most on the centre (a concave corner's flattened edge points may weigh more than 1 on it).
+  out.child_centre = scheme == MeshScheme::catmull_clark || scheme == MeshScheme::loop
+                         ? 0
+                         : heaviest(stencils, candidates, 0);
   std::vector<int> ring;
   for (const int e : vertex_edges(t1, static_cast<std::size_t>(out.child_centre)))
     ring.push_back(other_vertex(t1, static_cast<std::size_t>(e), out.child_centre));

@@ -42,6 +42,8 @@ std::optional<LocalOptions> local_class(const MeshTopology& t, const MeshTags& t
   const int n = static_cast<int>(ring.size());
   const bool boundary = t.boundary_vertex[static_cast<std::size_t>(v)] != 0;
   LocalOptions o{.boundary = boundary};
+  o.rules = tags.rules;
+  o.concave = std::find(tags.concave.begin(), tags.concave.end(), v) != tags.concave.end();
   semi_sharp = 0;
   for (int j = 0; j < n; ++j) {
     const int w = other_vertex(t, static_cast<std::size_t>(ring[static_cast<std::size_t>(j)]), v);
@@ -62,7 +64,7 @@ std::optional<LocalOptions> local_class(const MeshTopology& t, const MeshTags& t
     for (int& j : o.sharp) j -= first;
   }
   const int regular = traits(scheme).regular_valence;
-  const bool plain = o.sharp.empty() && !o.corner;
+  const bool plain = o.sharp.empty() && !o.corner && !o.concave;
   if (semi_sharp == 0) {
     if (plain && !boundary && n == regular) return std::nullopt;
     if (plain && boundary && n == regular / 2 + 1) return std::nullopt;
@@ -101,7 +103,7 @@ MeshSmoothness analyze_mesh(const Mesh& mesh, MeshScheme scheme, std::string_vie
   const std::vector<char> hole = hole_flags(mesh);
   MeshSmoothness out;
   out.scheme = scheme;
-  using Key = std::tuple<int, bool, std::vector<int>, bool>;
+  using Key = std::tuple<int, bool, std::vector<int>, bool, bool>;
   std::map<Key, std::pair<LocalSpectrum, C1Verdict>> cache;
   for (int v = 0; v < t.vertex_count; ++v) {
     const auto faces = vertex_faces(t, static_cast<std::size_t>(v));
@@ -117,7 +119,7 @@ MeshSmoothness analyze_mesh(const Mesh& mesh, MeshScheme scheme, std::string_vie
       continue;
     }
     const int n = static_cast<int>(vertex_edges(t, static_cast<std::size_t>(v)).size());
-    const Key key{n, o->boundary, o->sharp, o->corner};
+    const Key key{n, o->boundary, o->sharp, o->corner, o->concave};
     auto it = cache.find(key);
     if (it == cache.end()) {
       LocalMatrix S;

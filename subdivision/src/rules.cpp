@@ -238,4 +238,14 @@ EdgeMask edge_mask(MeshScheme scheme, TriangleRule triangles, const EdgeNeighbou
   return m;
 }
 
+double blz_edge_shift(MeshScheme scheme, double cos_theta_k) noexcept {
+  // Catmull–Clark: γ = ⅜ − ¼cos θ_k; Loop: γ = ½ − ¼cos θ_k; δ = ⅜ − γ.
+  return scheme == MeshScheme::loop ? 0.25 * cos_theta_k - 0.125 : 0.25 * cos_theta_k;
+}
+
+double blz_sector_angle(VertexRule rule, bool concave) noexcept {
+  if (rule != VertexRule::corner) return std::numbers::pi;
+  return concave ? 1.5 * std::numbers::pi : 0.5 * std::numbers::pi;
+}
+
 }  // namespace cifs::subdivision

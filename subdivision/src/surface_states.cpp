@@ -763,6 +763,10 @@ void evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::span<const
     throw InvalidInput("limit surface: " + std::string(scheme_name(scheme)) +
                        " is not built (catmull-clark and loop are)");
   const std::string who = std::string(scheme_name(scheme)) + " limit surface";
+  if (mesh.tags.rules == RuleSet::blz)
+    throw InvalidInput(who +
+                       ": the rule set 'blz' is not built for the limit surface (its patches are "
+                       "OpenSubdiv's rules'); subdivide with --rules blz instead");
   // Topology and tags only: the vertex data may have any number of columns.
   Mesh shape;
   shape.vertices = Points::Zero(mesh.vertices.rows(), 3);

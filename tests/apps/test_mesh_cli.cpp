@@ -119,6 +119,49 @@ TEST_CASE("cifs subdivide reads STL and OFF and writes STL, OFF and VTK PolyData
              Catch::Contains("tagged_out.stl: the .stl format does not hold") && Catch::Contains("creases"));
 }
 
+TEST_CASE("cifs subdivide and analyze --rules blz: Biermann-Levin-Zorin's rules", "[cli][mesh][blz]") {
+  // subdivide writes the library's refinement under the rule set, which differs from the default
+  // next to the extraordinary boundary vertex.
+  Mesh fan = io::read_mesh(example("boundary_fan.obj"));
+  const Mesh standard = subdivision::subdivide(fan, subdivision::MeshScheme::catmull_clark, 2);
+  fan.tags.rules = RuleSet::blz;
+  const Mesh expected = subdivision::subdivide(fan, subdivision::MeshScheme::catmull_clark, 2);
+  CHECK((expected.vertices - standard.vertices).cwiseAbs().maxCoeff() > 1e-3);
+  const auto out = scratch() / "blz_fan.obj";
+  const Run r = cifs_cli("subdivide " + example("boundary_fan.obj") +
+                         " --scheme catmull-clark --levels 2 --rules blz -o " + out.string());
+  REQUIRE(r.status == 0);
+  CHECK(io::read_mesh(out).vertices == expected.vertices);
+  // The output carries the rule set (t rules): refining it once more is refining the fan 3 levels.
+  const auto again = scratch() / "blz_fan_again.obj";
+  REQUIRE(cifs_cli("subdivide " + out.string() + " --scheme catmull-clark -o " + again.string()).status == 0);
+  const Mesh three = subdivision::subdivide(fan, subdivision::MeshScheme::catmull_clark, 3);
+  CHECK((io::read_mesh(again).vertices - three.vertices).cwiseAbs().maxCoeff() < 1e-12);
+  // analyze: the fan's centre, not C1 by default, C1 under blz.
+  const auto centre = [&](const std::string& rules) {
+    const Run a =
+        cifs_cli("analyze " + example("boundary_fan.obj") + " --scheme catmull-clark --format json" + rules);
+    REQUIRE(a.status == 0);
+    return json::parse(a.out)["vertices"][0];
+  };
+  CHECK(centre("")["c1"] == "no");
+  CHECK(centre(" --rules blz")["c1"] == "yes");
+  const auto none = scratch() / "blz_none.obj";
+  std::filesystem::remove(none);
+  check_error(cifs_cli("subdivide " + example("boundary_fan.obj") +
+                       " --scheme catmull-clark --rules zorin -o " + none.string()),
+              "--rules zorin: unknown rule set 'zorin' (opensubdiv, blz)");
+  check_error(cifs_cli("subdivide " + example("boundary_fan.obj") + " --scheme doo-sabin --rules blz -o " +
+                       none.string()),
+              "doo-sabin: the rule set 'blz' is built for catmull-clark and loop only");
+  check_error(cifs_cli("subdivide " + example("boundary_fan.obj") +
+                       " --scheme catmull-clark --factored --rules blz -o " + none.string()),
+              "not the rule set 'blz'");
+  CHECK_FALSE(std::filesystem::exists(none));
+  check_error(cifs_cli("analyze " + example("boundary_fan.obj") + " --scheme catmull-clark --rules zorin"),
+              "--rules zorin");
+}
+
 TEST_CASE("cifs info on a polygon mesh: counts, valences, boundary, Euler characteristic, genus",
           "[cli][mesh]") {
   const json torus = json::parse(cifs_cli("info " + example("torus.obj")).out);
@@ -522,6 +565,14 @@ TEST_CASE("cifs info on a tagged mesh: creases, corners, holes, options, UV chan
   CHECK(info["boundary"] == "edge");
   CHECK(info["crease_method"] == "uniform");
   CHECK(info["fvar_interpolation"] == "all");
+  CHECK(info["rules"] == "opensubdiv");
+  CHECK(info["concave"] == json::array());
+  const json blz = json::parse(
+      cifs_cli("info " + file("blz_info.obj", tagged_grid_obj() + "t rules 0/0/1 blz\nt corner 1/1/0 0 10\n"
+                                                                  "t concave 1/0/0 0\n"))
+          .out);
+  CHECK(blz["rules"] == "blz");
+  CHECK(blz["concave"] == json::array({0}));
   CHECK(info["face_varying"] == json::array({{{"name", "uv"}, {"values", 26}, {"dimension", 2}}}));
   CHECK(info["manifold"] == true);
   CHECK(info["edges"] == 40);

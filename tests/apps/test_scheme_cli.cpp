@@ -250,6 +250,33 @@ TEST_CASE("cifs scheme MESH-SCHEME --crease K | --dart | --corner | --boundary-v
   check_error(cifs_cli("scheme chaikin --analyze --dart"), "are for the mesh schemes");
 }
 
+TEST_CASE("cifs scheme MESH-SCHEME --rules blz --analyze: Biermann-Levin-Zorin's rules",
+          "[cli][mesh_analysis][blz]") {
+  // Catmull-Clark, a boundary vertex of 6 faces: not C1 under OpenSubdiv's rules, C1 under blz with
+  // the subdominant pair 1/2, 1/2.
+  CHECK(analyze("catmull-clark --boundary-valence 6")["c1"]["verdict"] == false);
+  const json blz = analyze("catmull-clark --boundary-valence 6 --rules blz");
+  CHECK(blz["rules"] == "blz");
+  CHECK(blz["c1"]["verdict"] == true);
+  CHECK(blz["subdominant"]["lambda1"].get<double>() == Approx(0.5).epsilon(1e-13));
+  CHECK(blz["subdominant"]["lambda2"].get<double>() == Approx(0.5).epsilon(1e-13));
+  CHECK_FALSE(analyze("loop --boundary-valence 6")["rules"].is_string());  // the default: not written
+  // A concave corner of 3 faces: undecided under OpenSubdiv's rules, C1 and spanning 270 degrees
+  // (Loop: the sector's eigenvectors are sin((3 - i)pi/2), sin(i pi/2): exactly the three quarters).
+  const json concave = analyze("loop --boundary-valence 3 --corner --concave --rules blz");
+  CHECK(concave["c1"]["verdict"] == true);
+  CHECK(concave["c1"]["sectors"][0]["c1"]["sector_angle_degrees"].get<double>() == Approx(270).epsilon(1e-9));
+  const Run table =
+      cifs_cli("scheme catmull-clark --boundary-valence 1-8 --rules blz --analyze --format table");
+  REQUIRE(table.status == 0);
+  CHECK_THAT(table.out, Catch::Contains("\n9   boundary  8         18    no     0.5              0.5"));
+  check_error(cifs_cli("scheme loop --boundary-valence 3 --rules zorin --analyze"),
+              "--rules zorin: unknown rule set 'zorin' (opensubdiv, blz)");
+  check_error(cifs_cli("scheme butterfly --valence 6 --rules blz --analyze"),
+              "butterfly: the rule set 'blz' is built for catmull-clark and loop only");
+  check_error(cifs_cli("scheme chaikin --analyze --rules blz"), "--rules are for the mesh schemes");
+}
+
 TEST_CASE("cifs analyze MESH --scheme S: which points are not smooth", "[cli][mesh_analysis]") {
   const std::string grid = std::string(CIFS_EXAMPLES_DIR) + "/meshes/open_grid.obj";
   const Run table = cifs_cli("analyze " + grid + " --scheme catmull-clark");

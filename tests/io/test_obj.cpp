@@ -308,6 +308,12 @@ TEST_CASE("OBJ tags as OpenSubdiv's shapes write them", "[io][obj][tags]") {
   const Mesh c = parse_mesh_obj(grid + "t creasemethod 0/0/1 chaikin\nt interpolateboundary 1/0/0 0\n", "m");
   CHECK(c.tags.crease_method == CreaseMethod::chaikin);
   CHECK(c.tags.boundary == BoundaryRule::none);
+  // cifs's own tags: Biermann–Levin–Zorin's rules and their concave corners, written back as read.
+  const Mesh blz = parse_mesh_obj(kQuad + "t rules 0/0/1 blz\nt concave 2/0/0 0 2\n", "m");
+  CHECK(blz.tags.rules == RuleSet::blz);
+  CHECK(blz.tags.concave == std::vector<int>{0, 2});
+  CHECK_THAT(mesh_obj(blz), Catch::Contains("t rules 0/0/1 blz\nt concave 2/0/0 0 2\n"));
+  CHECK_THAT(mesh_obj(parse_mesh_obj(kQuad, "m")), !Catch::Contains("t rules"));  // the default: not written
 }
 
 TEST_CASE("OBJ unknown tags: a warning naming the tag and line, an error when strict", "[io][obj][tags]") {
@@ -353,6 +359,10 @@ TEST_CASE("OBJ tags and UVs: bad input is a one-line error naming the file and t
         "m.obj: line 6: t facevaryinginterpolateboundary: 6 is not one of 0 to 5");
   CHECK(obj_error_of(kQuad + "t creasemethod 0/0/1 sharp\n") ==
         "m.obj: line 6: t creasemethod: expected normal or chaikin, got 'sharp'");
+  CHECK(obj_error_of(kQuad + "t rules 0/0/1 zorin\n") ==
+        "m.obj: line 6: t rules: unknown rule set 'zorin' (opensubdiv, blz)");
+  CHECK_THAT(obj_error_of(kQuad + "t concave 1/0/0 4\n"),
+             Catch::StartsWith("m.obj: line 6: t concave: vertex 4"));
   CHECK(obj_error_of(kQuad + "t smoothtriangles 1/0/0 1\n") ==
         "m.obj: line 6: t smoothtriangles: expected 0/0/1 arguments, got 1/0/0");
   CHECK(obj_error_of(kQuad + "t crease x/1/0 0 1 1\n") ==

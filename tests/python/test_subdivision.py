@@ -748,6 +748,40 @@ class LocalAnalysisTest(unittest.TestCase):
         with self.assertRaisesRegex(cifs.InvalidInput, "catmull-clark and loop only"):
             sd.analyze_mesh(mesh, "butterfly")
 
+    def test_blz_rules(self):
+        """Issue 29 §4: Biermann-Levin-Zorin's rules, rules='blz' in local_analysis and in MeshTags."""
+        standard = sd.local_analysis("catmull-clark", 7, boundary="edge")  # 6 faces
+        blz = sd.local_analysis("catmull-clark", 7, boundary="edge", rules="blz")
+        self.assertFalse(standard["c1"]["verdict"])
+        self.assertTrue(blz["c1"]["verdict"])
+        self.assertAlmostEqual(blz["lambda1"], 0.5, places=13)
+        self.assertAlmostEqual(blz["lambda2"], 0.5, places=13)
+        # Loop, a concave corner of 3 faces: exact weights; 1, 1/2, 1/2 and the flattened inner modes
+        # (1 - 1/2)(gamma + cos(j pi/3)/4), gamma = 1/2 - cos(pi/2)/4: 5/16 and 3/16.
+        concave = sd.local_analysis("loop", 4, boundary="edge", corner=True, concave=True, rules="blz")
+        self.assertIsNotNone(concave["exact"])
+        self.assertEqual(sum(concave["exact"][3]), 1)
+        assert_close(self, sorted(z.real for z in concave["eigenvalues"]), [3 / 16, 5 / 16, 0.5, 0.5, 1], 1e-13)
+        self.assertTrue(concave["c1"]["verdict"])
+        # A mesh: the rule set is a tag, as the crease method is.
+        fan = cifs.io.read_mesh(str(EXAMPLES / "meshes" / "boundary_fan.obj"))
+        tagged = cifs.io.Mesh(fan.vertices, faces=fan.faces, tags=cifs.io.MeshTags(rules="blz"))
+        self.assertEqual((fan.tags.rules, tagged.tags.rules), ("opensubdiv", "blz"))
+        a = sd.analyze_mesh(tagged, "catmull-clark")
+        self.assertEqual(a["vertices"][0]["vertex"], 0)
+        self.assertTrue(a["vertices"][0]["c1"])
+        self.assertFalse(sd.analyze_mesh(fan, "catmull-clark")["vertices"][0]["c1"])
+        self.assertEqual(a["summary"], cli("analyze", str(EXAMPLES / "meshes" / "boundary_fan.obj"), "--scheme",
+                                           "catmull-clark", "--rules", "blz").stdout.strip().splitlines()[-1])
+        refined = sd.subdivide(tagged, "catmull-clark", 2)
+        self.assertGreater(np.abs(refined.vertices - sd.subdivide(fan, "catmull-clark", 2).vertices).max(), 1e-3)
+        with self.assertRaisesRegex(cifs.InvalidInput, "unknown rule set 'zorin'"):
+            cifs.io.MeshTags(rules="zorin")
+        with self.assertRaisesRegex(cifs.InvalidInput, "unknown rule set 'zorin'"):
+            sd.local_analysis("loop", 4, boundary="edge", rules="zorin")
+        with self.assertRaisesRegex(cifs.InvalidInput, "limits under the rule set 'blz' are not built"):
+            sd.limit(tagged, "catmull-clark")
+
     def test_errors(self):
         with self.assertRaisesRegex(cifs.InvalidInput, "valence 2 is out of range"):
             sd.local_analysis("loop", 2)

@@ -38,18 +38,26 @@ enum class TriangleRule { catmark, smooth };
 /// FVarLinearInterpolation): nowhere, at corners only, corners plus 1 or 2 (also at seam junctions),
 /// along boundaries, or everywhere (`all`, OpenSubdiv's default: UVs follow the faces bilinearly).
 enum class FaceVaryingRule { none, corners_only, corners_plus1, corners_plus2, boundaries, all };
+/// The rules at creases, boundaries and corners of Catmull–Clark and Loop: OpenSubdiv's (`opensubdiv`,
+/// what files expect), or those of Biermann, Levin and Zorin 2000 (`blz`): the edge point of a smooth
+/// edge at a crease or corner vertex leans by the faces of its sector, which makes boundaries and
+/// creases of any valence C¹, and concave corners (MeshTags::concave) are flattened so that they do
+/// not fold (docs/subdivision-surfaces.md, "Biermann–Levin–Zorin rules").
+enum class RuleSet { opensubdiv, blz };
 
 /// The options' names as files, the CLI and Python spell them ("none", "edge", "corner"; "uniform",
 /// "chaikin"; "catmark", "smooth"; "none", "corners-only", "corners+1", "corners+2", "boundaries",
-/// "all"), and back: InvalidInput naming the choices for any other name.
+/// "all"; "opensubdiv", "blz"), and back: InvalidInput naming the choices for any other name.
 std::string_view option_name(BoundaryRule rule) noexcept;
 std::string_view option_name(CreaseMethod method) noexcept;
 std::string_view option_name(TriangleRule rule) noexcept;
 std::string_view option_name(FaceVaryingRule rule) noexcept;
+std::string_view option_name(RuleSet rules) noexcept;
 BoundaryRule named_boundary_rule(std::string_view name);
 CreaseMethod named_crease_method(std::string_view name);
 TriangleRule named_triangle_rule(std::string_view name);
 FaceVaryingRule named_face_varying_rule(std::string_view name);
+RuleSet named_rule_set(std::string_view name);
 
 /// A sharp edge, given by its two vertices (either order).
 struct EdgeSharpness {
@@ -72,6 +80,9 @@ struct MeshTags {
   CreaseMethod crease_method = CreaseMethod::uniform;
   TriangleRule triangles = TriangleRule::catmark;
   FaceVaryingRule face_varying = FaceVaryingRule::all;
+  RuleSet rules = RuleSet::opensubdiv;
+  /// Corners (by vertex) whose sectors are concave, for the `blz` rules: each sector spans 3π/2.
+  std::vector<int> concave;
 };
 
 /// The first tag that makes a mesh refine differently from a plain one, in words for messages ("a
@@ -116,6 +127,7 @@ struct TagOverrides {
   std::optional<CreaseMethod> crease_method;
   std::optional<TriangleRule> triangles;
   std::optional<FaceVaryingRule> face_varying;
+  std::optional<RuleSet> rules;
 };
 void apply(const TagOverrides& overrides, MeshTags& tags);
 

@@ -62,6 +62,9 @@ struct LocalOptions {
   /// A corner whose sectors are meant to span more than π together (Biermann, Levin, Zorin 2000):
   /// the verdict asks for a sector image angle above π instead of below.
   bool concave = false;
+  /// OpenSubdiv's rules or Biermann–Levin–Zorin's (rules.hpp; `concave` then flattens the corner's
+  /// sectors).
+  RuleSet rules = RuleSet::opensubdiv;
 };
 
 /// What the options make of the vertex: "interior", "dart", "boundary", "crease" or "corner" (the

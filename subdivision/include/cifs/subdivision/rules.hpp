@@ -101,4 +101,20 @@ struct EdgeMask {
 };
 EdgeMask edge_mask(MeshScheme scheme, TriangleRule triangles, const EdgeNeighbourhood& n);
 
+/// The rules of Biermann, Levin and Zorin 2000 ("Piecewise smooth subdivision surfaces with normal
+/// control"; RuleSet::blz, docs/subdivision-surfaces.md): at a crease or corner vertex c, the edge
+/// point of a smooth edge c r inside a sector of k faces that spans the angle θ weighs ¾ − γ on c and
+/// γ on r, the other weights as usual (⅛ on the two opposite corners for Loop, 1/16 on the other
+/// corners of the two quads for Catmull–Clark), with θ_k = θ/k and γ = ½ − ¼cos θ_k (Loop),
+/// ⅜ − ¼cos θ_k (Catmull–Clark): γ = ⅜, the standard rule, at a regular crease (θ_k = π/3 and
+/// π/2). This is the shift δ = ⅜ − γ from r to c that the standard edge point gets.
+double blz_edge_shift(MeshScheme scheme, double cos_theta_k) noexcept;
+/// θ: π for a crease or boundary sector, π/2 for a convex corner's, 3π/2 for a concave corner's.
+double blz_sector_angle(VertexRule rule, bool concave) noexcept;
+/// The flatness s of a concave corner's sector: its vertex, edge and face points p become
+/// (1 − s)p + s(c + ½x₁(e₀ − c) + ½x₂(e_k − c)), x₁, x₂ the subdominant eigenvectors' values at
+/// p (e₀, e_k the ends of the sector's sharp edges), which keeps λ = ½ and its eigenvectors and
+/// scales every other eigenvalue by 1 − s (the reference implementation's default, Subdivide 2.0).
+inline constexpr double kBlzConcaveFlatness = 0.5;
+
 }  // namespace cifs::subdivision
