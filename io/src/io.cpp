@@ -417,6 +417,9 @@ std::string mesh_left_out(const Mesh& mesh, std::string_view format) {
   count(static_cast<std::size_t>(std::count_if(mesh.tags.corners.begin(), mesh.tags.corners.end(),
                                                [](const VertexSharpness& c) { return c.sharpness > 0; })),
         "corner");
+  count(mesh.tags.concave.size(), "concave corner");
+  if (mesh.tags.rules != RuleSet::opensubdiv)
+    parts.push_back("the rule set '" + std::string(option_name(mesh.tags.rules)) + "'");
   for (const FaceVaryingChannel& c : mesh.face_varying)
     parts.push_back("the face-varying channel '" + c.name + "'");
   if (format == "stl" && mesh.normals.size() != 0) parts.emplace_back("the normals");

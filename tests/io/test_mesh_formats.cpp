@@ -240,4 +240,7 @@ TEST_CASE("VTK PolyData: the appended arrays decode to the mesh, offsets as the 
   CHECK(mesh_left_out(m, "vtp") == "1 hole face");
   CHECK(mesh_left_out(m, "stl") == "1 hole face, the normals and the face states");
   CHECK(mesh_left_out(m, "obj").empty());
+  m.tags.rules = RuleSet::blz;
+  m.tags.concave = {0};
+  CHECK(mesh_left_out(m, "ply") == "1 hole face, 1 concave corner and the rule set 'blz'");
 }
