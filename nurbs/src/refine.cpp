@@ -5,6 +5,7 @@
 #include <cassert>
 #include <cmath>
 #include <iterator>
+#include <span>
 
 #include "detail.hpp"
 #include "lines.hpp"
@@ -678,9 +679,9 @@ Curve clamped(const Curve& c) {
   const auto f = std::lower_bound(t.begin(), t.end(), dom.start) - t.begin();
   const auto l = std::upper_bound(t.begin(), t.end(), dom.end) - t.begin();
   const int first_mult = multiplicity(t, dom.start), last_mult = multiplicity(t, dom.end);
-  Knots knots(static_cast<std::size_t>(p + 1), dom.start);
+  Knots knots(static_cast<std::size_t>(p) + 1, dom.start);
   knots.insert(knots.end(), t.begin() + f + first_mult, t.begin() + l - last_mult);
-  knots.insert(knots.end(), static_cast<std::size_t>(p + 1), dom.end);
+  knots.insert(knots.end(), static_cast<std::size_t>(p) + 1, dom.end);
   const Eigen::Index first = f + first_mult - (p + 1);  // the point of N_{f−1} when the start had d copies
   const Eigen::Index count = static_cast<Eigen::Index>(knots.size()) - p - 1;
   return Curve{p, std::move(knots), d.P.middleRows(first, count), d.rational, false};
@@ -719,17 +720,59 @@ namespace detail {
 Reduction reduce_degree(const Curve& lines, Layout layout) {
   const Curve original = clamped(lines);
   const int p = original.degree;
-  // The pieces reduced and joined: where the curve is continuous (multiplicity ≤ d) the pieces' end
-  // points are its point there, so they share one point under a knot of multiplicity d − 1; where it
-  // jumps (d + 1) both stay, under d copies.
-  const std::vector<Curve> pieces = split_bezier(original);
-  std::vector<Points> rows;
+  std::vector<Curve> pieces = split_bezier(original);
+  for (Curve& piece : pieces) {
+    piece.P = reduce_bezier(piece.P);
+    piece.degree = p - 1;
+    piece.knots.erase(piece.knots.begin());
+    piece.knots.pop_back();
+  }
+  if (layout.rational)
+    for (const Curve& piece : pieces)
+      for (Eigen::Index k = layout.cols - 1; k < piece.P.cols(); k += layout.cols)
+        if (const double w = piece.P.col(k).minCoeff(); !(w > 0))
+          fail("a weight of the reduced pieces is ", w, ", not positive");
+  // The target knots: every value of the original with one copy less (a simple knot goes).
+  Knots target;
+  for (std::size_t i = 0; i < original.knots.size(); ++i)
+    if (i > 0 && original.knots[i] == original.knots[i - 1]) target.push_back(original.knots[i]);
+  // Proof of a candidate: elevated back, it is the original's degree on the original's knots but the simple
+  // ones; on the union of both knot vectors they are B-splines of one basis.
+  const auto bounded = [&](Curve reduced) {
+    const Curve back = refined_to_union(elevate_degree(reduced, 1), original.knots);
+    const Curve ref = refined_to_union(original, back.knots);
+    const double bound = deviation_bound(ref.P, back.P, p, layout);
+    return Reduction{std::move(reduced), bound};
+  };
+  // Two routes, the smaller proven bound kept. Blossoms: each point of the target knots is the blossom of
+  // the reduced piece under the widest interval of its support; exact when the pieces are one spline of
+  // the target's continuity (an elevated curve), with no chain of divisions.
+  Curve blossoms{p - 1, target, Points(static_cast<Eigen::Index>(target.size()) - p, lines.P.cols()), false,
+                 false};
+  for (Eigen::Index j = 0; j < blossoms.P.rows(); ++j) {
+    auto widest = static_cast<std::size_t>(j);  // the support: intervals j … j + d − 1 of the target
+    for (std::size_t k = widest + 1; k < static_cast<std::size_t>(j + p); ++k)
+      if (target[k + 1] - target[k] > target[widest + 1] - target[widest]) widest = k;
+    const auto piece = static_cast<std::size_t>(
+        std::upper_bound(pieces.begin(), pieces.end(), target[widest],
+                         [](double t, const Curve& c) { return t < c.knots.front(); }) -
+        pieces.begin() - 1);
+    const std::span<const double> args(target.data() + j + 1, static_cast<std::size_t>(p - 1));
+    blossoms.P.row(j) = blossom(pieces[piece], args, p - 1);
+  }
+  Reduction best = bounded(std::move(blossoms));
+  if (layout.rational)
+    for (Eigen::Index k = layout.cols - 1; k < best.curve.P.cols(); k += layout.cols)
+      if (!(best.curve.P.col(k).minCoeff() > 0)) best.deviation_bound = HUGE_VAL;
+  // Knot removal (Piegl–Tiller A5.11): the pieces joined at their common end points (where the curve jumps,
+  // multiplicity d + 1, both stay), then every interior breakpoint of multiplicity m back to m − 1 — it
+  // spreads what the pieces disagree by over the removal equations.
   Curve joined{p - 1, Knots(static_cast<std::size_t>(p), original.knots.front()), {}, false, false};
+  std::vector<Points> rows;
   Eigen::Index count = 0;
   for (std::size_t k = 0; k < pieces.size(); ++k) {
-    const Points Q = reduce_bezier(pieces[k].P);
     const bool jump = k > 0 && multiplicity(original.knots, pieces[k].knots.front()) > p;
-    rows.push_back(k == 0 || jump ? Q : Q.bottomRows(p - 1));
+    rows.push_back(k == 0 || jump ? pieces[k].P : pieces[k].P.bottomRows(p - 1));
     count += rows.back().rows();
     if (k > 0)
       joined.knots.insert(joined.knots.end(), static_cast<std::size_t>(jump ? p : p - 1),
@@ -741,26 +784,20 @@ Reduction reduce_degree(const Curve& lines, Layout layout) {
     joined.P.middleRows(at, Q.rows()) = Q;
     at += Q.rows();
   }
-  if (layout.rational)
-    for (Eigen::Index k = layout.cols - 1; k < joined.P.cols(); k += layout.cols)
-      if (const double w = joined.P.col(k).minCoeff(); !(w > 0))
-        fail("a weight of the reduced pieces is ", w, ", not positive");
-  // Every interior breakpoint of multiplicity m back to m − 1: d − m removals, whatever they cost (the
-  // bound below measures it).
   Curve cur = std::move(joined);
   for (const double u : breakpoints(original.knots, p)) {
     const int m = multiplicity(original.knots, u);
     if (u == original.knots.front() || u == original.knots.back() || m >= p) continue;
     const Removal removal = remove_knot(cur, u, p - m, HUGE_VAL, layout);
-    if (removal.removed < p - m)
-      fail("removing knot ", u, " of the reduced pieces makes a weight non-positive");
+    if (removal.removed < p - m) {  // a weight would become non-positive
+      if (best.deviation_bound == HUGE_VAL)
+        fail("removing knot ", u, " of the reduced pieces makes a weight non-positive");
+      return best;
+    }
     cur = removal.curve;
   }
-  // Proof: the reduced curve elevated back is the original's degree on the original's knots but the
-  // simple ones (a knot of multiplicity 1 is gone); on the union both are B-splines of one basis.
-  const Curve back = refined_to_union(elevate_degree(cur, 1), original.knots);
-  const Curve ref = refined_to_union(original, back.knots);
-  return Reduction{std::move(cur), deviation_bound(ref.P, back.P, p, layout)};
+  Reduction removed = bounded(std::move(cur));
+  return removed.deviation_bound < best.deviation_bound ? removed : best;
 }
 
 }  // namespace detail

@@ -545,12 +545,14 @@ void bind_refine(py::module_& m) {
                    ", deviation_bound=" + py::repr(py::float_(r.deviation_bound)).cast<std::string>() + ")";
           },
           "Short description.");
-  m.def("reduce_degree", py::overload_cast<const Curve&, double>(&reduce_degree), Release(), py::arg("curve"),
-        py::arg("tolerance"),
-        "Lowers the degree by one (each Bézier piece by the inverse of elevation, then every interior knot\n"
-        "back to one copy less): returns a Reduction whose bound is proven by elevating back.\n\n"
-        "Raises InvalidInput for a closed curve, degree 1, a bad tolerance, and when the bound exceeds the\n"
-        "tolerance (the message names both); reduce_degree(elevate_degree(c), t) is c.");
+  m.def(
+      "reduce_degree", py::overload_cast<const Curve&, double>(&reduce_degree), Release(), py::arg("curve"),
+      py::arg("tolerance"),
+      "Lowers the degree by one (each Bézier piece by the inverse of elevation, onto the knots with one\n"
+      "copy less: by blossoms or by knot removal, the smaller proven bound kept): returns a Reduction whose\n"
+      "bound is proven by elevating back.\n\n"
+      "Raises InvalidInput for a closed curve, degree 1, a bad tolerance, and when the bound exceeds the\n"
+      "tolerance (the message names both); reduce_degree(elevate_degree(c), t) is c.");
 }
 
 void bind_surface_operations(py::module_& m) {

@@ -76,11 +76,14 @@ struct Reduction {
 
 /// Degree reduction by one (The NURBS Book §5.6): each Bézier piece reduced by the inverse of degree
 /// elevation, solved from both ends (Piegl–Tiller eq. 5.41–5.42; odd degrees average the middle point),
-/// then every interior knot of multiplicity m brought back to m − 1 by knot removal, so that the
-/// continuity stays C^(d−m) and reduce_degree(elevate_degree(c)) is c. Unclamped curves come back
-/// clamped on the same domain. Rational curves are reduced in homogeneous coordinates. Throws
-/// InvalidInput for a closed curve, degree 1, a tolerance that is negative or NaN, a reduced weight that
-/// is not positive, and when the bound exceeds `tolerance` (the message names both).
+/// onto the knots with every multiplicity one less (a simple knot goes), so that the continuity C^(d−m)
+/// stays and reduce_degree(elevate_degree(c)) is c. Two routes, the smaller proven bound kept: each new
+/// point the blossom of the reduced piece under the widest interval of its support (exact for an
+/// elevated curve), or the pieces joined and every interior knot brought down by knot removal (which
+/// spreads what the pieces disagree by). Unclamped curves come back clamped on the same domain; rational
+/// curves are reduced in homogeneous coordinates. Throws InvalidInput for a closed curve, degree 1, a
+/// tolerance that is negative or NaN, a reduced weight that is not positive, and when the bound exceeds
+/// `tolerance` (the message names both).
 Reduction reduce_degree(const Curve& c, double tolerance);
 
 }  // namespace cifs::nurbs
