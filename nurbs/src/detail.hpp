@@ -362,6 +362,46 @@ inline Point blossom_row(const Curve& c, std::span<const double> args, int span)
 }
 
 // ------------------------------------------------------------------------------------------------
+// Knot maps.
+
+/// The knots of the same spline traversed backwards, t'_j = a + b − t_{N−1−j}, the domain's ends a and b
+/// kept exactly.
+inline Knots mirrored_knots(std::span<const double> t, Domain dom) {
+  const auto mirror = [&](double x) {
+    return x == dom.start ? dom.end : x == dom.end ? dom.start : dom.start + dom.end - x;
+  };
+  Knots out(t.size());
+  for (std::size_t j = 0; j < t.size(); ++j) out[j] = mirror(t[t.size() - 1 - j]);
+  return out;
+}
+
+/// The knots mapped by the increasing affine map that sends `dom` onto [start, end], the ends exactly.
+/// Each side of the domain is measured from its own end, and the inside is clamped to [start, end], so
+/// that the rounded map stays non-decreasing. Throws when two distinct knots round to one value or a
+/// knot overflows (the new scale has no double for it).
+inline Knots mapped_knots(std::span<const double> t, Domain dom, double start, double end) {
+  if (!std::isfinite(start) || !std::isfinite(end) || !(start < end))
+    fail("the new domain [", start, ", ", end, "] is not an interval of finite numbers");
+  const double scale = (end - start) / (dom.end - dom.start);
+  if (!std::isfinite(scale) || !(scale > 0))
+    fail("the map of [", dom.start, ", ", dom.end, "] onto [", start, ", ", end, "] has no finite scale");
+  Knots out(t.size());
+  for (std::size_t j = 0; j < t.size(); ++j) {
+    const double x = t[j];
+    out[j] = x == dom.start  ? start
+             : x == dom.end  ? end
+             : x < dom.start ? start + (x - dom.start) * scale
+             : x > dom.end   ? end + (x - dom.end) * scale
+                             : std::min(end, std::max(start, start + (x - dom.start) * scale));
+    if (!std::isfinite(out[j])) fail("knots[", j, "] = ", x, " maps to ", out[j]);
+    if (j > 0 && t[j - 1] < x && !(out[j - 1] < out[j]))
+      fail("knots[", j - 1, "] = ", t[j - 1], " and knots[", j, "] = ", x, " map to one value ", out[j],
+           ": the new domain is too small for them");
+  }
+  return out;
+}
+
+// ------------------------------------------------------------------------------------------------
 // Rows.
 
 /// A stored row → `dim` Cartesian coordinates (divided by w when rational).

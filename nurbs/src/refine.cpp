@@ -4,8 +4,11 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <iterator>
+#include <span>
 
 #include "detail.hpp"
+#include "lines.hpp"
 
 namespace cifs::nurbs {
 namespace {
@@ -431,21 +434,30 @@ std::array<Curve, 2> split(const Curve& c, double u) {
 
 Curve reverse(const Curve& c) {
   const Domain dom = domain(c);
-  const auto mirror = [&](double t) {  // a + b − t, the domain's ends exactly
-    return t == dom.start ? dom.end : t == dom.end ? dom.start : dom.start + dom.end - t;
-  };
   Curve out = c;
-  const auto N = c.knots.size();
-  for (std::size_t j = 0; j < N; ++j) out.knots[j] = mirror(c.knots[N - 1 - j]);
   out.P = c.P.colwise().reverse();
-  if (c.closed) {  // the periodic knots of the mirrored breakpoints (the same values up to rounding)
-    Knots b = defining_knots(c);
-    Knots mirrored(b.size());
-    for (std::size_t i = 0; i < b.size(); ++i) mirrored[i] = mirror(b[b.size() - 1 - i]);
-    out.knots = periodic_knots(mirrored, c.degree);
+  // Closed curves: the periodic knots of the mirrored breakpoints (the same values up to rounding).
+  out.knots = c.closed ? periodic_knots(detail::mirrored_knots(defining_knots(c), dom), c.degree)
+                       : detail::mirrored_knots(c.knots, dom);
+  validate(out);
+  return out;
+}
+
+Curve reparametrize(const Curve& c, double start, double end) {
+  Curve out = c;
+  try {
+    out.knots = c.closed
+                    ? periodic_knots(detail::mapped_knots(defining_knots(c), domain(c), start, end), c.degree)
+                    : detail::mapped_knots(c.knots, domain(c), start, end);
+  } catch (const InvalidInput& e) {
+    detail::fail("reparametrize: ", e.what());
   }
   validate(out);
   return out;
+}
+
+Curve normalize_knots(const Curve& c) {
+  return reparametrize(c, 0.0, 1.0);
 }
 
 Curve elevate_degree(const Curve& c, int times) {
@@ -507,12 +519,13 @@ Curve elevate_degree(const Curve& c, int times) {
 namespace {
 
 /// Removes one copy of the knot u (interior, present) from (U, P) of degree p into Q and returns the
-/// residual of the equation left over, in stored coordinates. Boehm's insertion of u into the
+/// residual of the equation left over, in stored coordinates: the largest over the row's points of
+/// `cols` coordinates. Boehm's insertion of u into the
 /// shorter vector V gives P_i = α_i Q_i + (1 − α_i) Q_{i−1}, α_i = (u − V_i)/(V_{i+p} − V_i), for i in
 /// [k−p+1, k−s+1] (k = r − 1, r the last copy of u, s its multiplicity), with Q_i = P_i before and
 /// Q_i = P_{i+1} after. α decreases with i: equations with α ≥ 1/2 are solved for Q_i from the left,
 /// the others for Q_{i−1} from the right, and the first one with α < 1/2 is the check.
-double remove_one(const Knots& U, const Points& P, int p, double u, Points& Q) {
+double remove_one(const Knots& U, const Points& P, int p, double u, Eigen::Index cols, Points& Q) {
   const int r = static_cast<int>(std::upper_bound(U.begin(), U.end(), u) - U.begin()) - 1;
   const int s = multiplicity(U, u);
   const int k = r - 1, lo = k - p + 1, hi = k - s + 1;  // equations lo..hi
@@ -538,28 +551,76 @@ double remove_one(const Knots& U, const Points& P, int p, double u, Points& Q) {
     Q.row(i - 1) = (P.row(i) - a * Q.row(i)) / (1 - a);
   }
   const double a = alpha(check);
-  return (P.row(check) - a * Q.row(check) - (1 - a) * Q.row(check - 1)).norm();
+  const Point residual = P.row(check) - a * Q.row(check) - (1 - a) * Q.row(check - 1);
+  double largest = 0;  // over the points of the row
+  for (Eigen::Index e = 0; e < residual.size(); e += cols)
+    largest = std::max(largest, residual.segment(e, cols).norm());
+  return largest;
 }
 
 }  // namespace
 
-Removal remove_knot(const Curve& c, double u, int times, double tolerance) {
-  if (c.closed) detail::fail("remove: knot removal on closed curves is not supported");
-  if (times < 0) detail::fail("remove: times = ", times, " is negative");
-  if (!(tolerance >= 0)) detail::fail("remove: tolerance ", tolerance, " must be non-negative");
-  const int p = c.degree;
-  const Domain dom = domain(c);
-  if (!(u > dom.start && u < dom.end))
-    detail::fail("remove: knot ", u, " is not interior to the domain (", dom.start, ", ", dom.end, ")");
-  const int s = multiplicity(c.knots, u);
-  if (s == 0) detail::fail("remove: ", u, " is not a knot");
-  times = std::min(times, s);
+namespace detail {
 
+double deviation_bound(const Points& from, const Points& to, int degree, Layout layout) {
+  const Eigen::Index cols = layout.cols, dim = cols - (layout.rational ? 1 : 0), n = from.rows();
+  double bound = 0;
+  if (!layout.rational) {
+    for (Eigen::Index r = 0; r < n; ++r)
+      for (Eigen::Index k = 0; k < from.cols(); k += cols)
+        bound = std::max(bound, (to.row(r).segment(k, dim) - from.row(r).segment(k, dim)).norm());
+    return bound;
+  }
+  // S_to − S_from = Σ B_i (ΔA_i − S_to·Δw_i) / w_from on the rows of a span's window (B ≥ 0, Σ B = 1), and
+  // S_to lies in the hull of the window's points x_j: |ΔA_i − S_to·Δw_i| ≤ |ΔA_i − c·Δw_i| + ρ·|Δw_i| for
+  // c the centre of their box and ρ their largest distance to it, or ≤ |ΔA_i| + max |x_j|·|Δw_i|.
+  const auto x = [&](Eigen::Index r, Eigen::Index k) -> Point {
+    return to.row(r).segment(k, dim) / to(r, k + dim);
+  };
+  for (Eigen::Index first = 0; first + degree < n; ++first) {
+    const Eigen::Index last = first + degree;
+    Point lo = x(first, 0), hi = lo;
+    double lightest = HUGE_VAL;
+    for (Eigen::Index r = first; r <= last; ++r)
+      for (Eigen::Index k = 0; k < from.cols(); k += cols) {
+        lo = lo.cwiseMin(x(r, k));
+        hi = hi.cwiseMax(x(r, k));
+        lightest = std::min(lightest, from(r, k + dim));
+      }
+    const Point c = 0.5 * (lo + hi);
+    double rho = 0, far = 0;
+    for (Eigen::Index r = first; r <= last; ++r)
+      for (Eigen::Index k = 0; k < from.cols(); k += cols) {
+        rho = std::max(rho, (x(r, k) - c).norm());
+        far = std::max(far, x(r, k).norm());
+      }
+    for (Eigen::Index r = first; r <= last; ++r)
+      for (Eigen::Index k = 0; k < from.cols(); k += cols) {
+        const Point dA = to.row(r).segment(k, dim) - from.row(r).segment(k, dim);
+        const double dw = std::abs(to(r, k + dim) - from(r, k + dim));
+        const double term =
+            std::min(dA.norm() + far * dw, (dA - c * (to(r, k + dim) - from(r, k + dim))).norm() + rho * dw);
+        bound = std::max(bound, term / lightest);
+      }
+  }
+  return bound;
+}
+
+Removal remove_knot(const Curve& lines, double u, int times, double tolerance, Layout layout) {
+  const Curve& c = lines;
+  const Eigen::Index cols = layout.cols, dim = cols - (layout.rational ? 1 : 0);
   // Homogeneous tolerance (Piegl–Tiller eq. 5.30) so that the Cartesian curve moves ≤ tolerance.
-  const Points cart = cartesian_points(c);
-  const Eigen::VectorXd w = weights(c);
-  const double max_norm = cart.rowwise().norm().maxCoeff();
-  const double tol_h = c.rational ? tolerance * w.minCoeff() / (1 + max_norm) : tolerance;
+  double tol_h = tolerance;
+  if (layout.rational) {
+    double largest = 0, lightest = HUGE_VAL;
+    for (Eigen::Index r = 0; r < c.P.rows(); ++r)
+      for (Eigen::Index k = 0; k < c.P.cols(); k += cols) {
+        const double w = c.P(r, k + dim);
+        largest = std::max(largest, c.P.row(r).segment(k, dim).norm() / w);
+        lightest = std::min(lightest, w);
+      }
+    tol_h = tolerance * lightest / (1 + largest);
+  }
 
   // One copy at a time (the equations of Piegl–Tiller A5.8), each solved from both ends and meeting
   // where α crosses 1/2, so that every division is by a weight ≥ 1/2. A5.8 meets in the middle of
@@ -569,28 +630,195 @@ Removal remove_knot(const Curve& c, double u, int times, double tolerance) {
   int t = 0;
   for (; t < times; ++t) {
     Points next;
-    if (remove_one(cur.knots, cur.P, p, u, next) > tol_h) break;
+    if (!(remove_one(cur.knots, cur.P, c.degree, u, cols, next) <= tol_h)) break;
     cur.knots.erase(std::upper_bound(cur.knots.begin(), cur.knots.end(), u) - 1);
     cur.P = std::move(next);
   }
   if (t == 0) return Removal{c, 0, 0.0};
   Removal result{std::move(cur), t, 0.0};
-  if (c.rational && !(result.curve.P.col(result.curve.P.cols() - 1).minCoeff() > 0))
-    return remove_knot(c, u, t - 1, tolerance);  // a weight went non-positive: not a valid curve
+  if (layout.rational)
+    for (Eigen::Index k = dim; k < c.P.cols(); k += cols)
+      if (!(result.curve.P.col(k).minCoeff() > 0))  // a weight went non-positive: not a valid curve
+        return remove_knot(c, u, t - 1, tolerance, layout);
 
   // Proof: re-insert the removed copies; the control-point differences bound the curve's motion.
-  const Curve back = insert_knot(result.curve, u, t);
-  const Points diff = back.P - c.P;
-  if (c.rational) {
-    const int dim = dimension(c);
-    const double dA = diff.leftCols(dim).rowwise().norm().maxCoeff();
-    const double dw = diff.col(dim).cwiseAbs().maxCoeff();
-    const double max_new = cartesian_points(result.curve).rowwise().norm().maxCoeff();
-    result.deviation_bound = (dA + max_new * dw) / w.minCoeff();
-  } else {
-    result.deviation_bound = diff.rowwise().norm().maxCoeff();
+  result.deviation_bound = deviation_bound(c.P, insert_knot(result.curve, u, t).P, c.degree, layout);
+  if (!(result.deviation_bound <= tolerance)) return remove_knot(c, u, t - 1, tolerance, layout);
+  return result;
+}
+
+}  // namespace detail
+
+Removal remove_knot(const Curve& c, double u, int times, double tolerance) {
+  if (c.closed) detail::fail("remove: knot removal on closed curves is not supported");
+  if (times < 0) detail::fail("remove: times = ", times, " is negative");
+  if (!(tolerance >= 0)) detail::fail("remove: tolerance ", tolerance, " must be non-negative");
+  const Domain dom = domain(c);
+  if (!(u > dom.start && u < dom.end))
+    detail::fail("remove: knot ", u, " is not interior to the domain (", dom.start, ", ", dom.end, ")");
+  const int s = multiplicity(c.knots, u);
+  if (s == 0) detail::fail("remove: ", u, " is not a knot");
+  Curve lines = c;
+  lines.rational = false;
+  Removal result = detail::remove_knot(lines, u, std::min(times, s), tolerance, {c.P.cols(), c.rational});
+  result.curve.rational = c.rational;
+  return result;
+}
+
+namespace {
+
+/// The same open curve with clamped ends: each end of the domain inserted up to multiplicity d, and the
+/// knots and points beyond it dropped.
+Curve clamped(const Curve& c) {
+  const int p = c.degree;
+  const Domain dom = domain(c);
+  Curve d = c;
+  for (const double end : {dom.start, dom.end})
+    if (const int has = multiplicity(d.knots, end); has < p) d = insert_knot(d, end, p - has);
+  const auto& t = d.knots;
+  const auto f = std::lower_bound(t.begin(), t.end(), dom.start) - t.begin();
+  const auto l = std::upper_bound(t.begin(), t.end(), dom.end) - t.begin();
+  const int first_mult = multiplicity(t, dom.start), last_mult = multiplicity(t, dom.end);
+  Knots knots(static_cast<std::size_t>(p) + 1, dom.start);
+  knots.insert(knots.end(), t.begin() + f + first_mult, t.begin() + l - last_mult);
+  knots.insert(knots.end(), static_cast<std::size_t>(p) + 1, dom.end);
+  const Eigen::Index first = f + first_mult - (p + 1);  // the point of N_{f−1} when the start had d copies
+  const Eigen::Index count = static_cast<Eigen::Index>(knots.size()) - p - 1;
+  return Curve{p, std::move(knots), d.P.middleRows(first, count), d.rational, false};
+}
+
+/// The Bézier points of degree d − 1 whose elevation is nearest the d + 1 points P when they are an
+/// elevation (then exactly): P_i = (i/d)·Q_{i−1} + (1 − i/d)·Q_i solved for Q_0..Q_r from the left and
+/// Q_{d−1}..Q_{r+1} from the right (r = ⌊(d − 1)/2⌋: every division by at least ½), the middle point
+/// of an odd degree the mean of both sides (Piegl–Tiller eq. 5.41–5.42). Q_0 = P_0 and Q_{d−1} = P_d.
+/// Written with integer factors, (d·P_i − i·Q_{i−1}) / (d − i), so that integer points stay exact.
+Points reduce_bezier(const Points& P) {
+  const auto d = static_cast<int>(P.rows()) - 1;
+  const int r = (d - 1) / 2;
+  Points Q(d, P.cols());
+  Q.row(0) = P.row(0);
+  for (int i = 1; i <= r; ++i) Q.row(i) = (d * P.row(i) - i * Q.row(i - 1)) / (d - i);
+  Q.row(d - 1) = P.row(d);
+  for (int i = d - 2; i > r; --i) Q.row(i) = (d * P.row(i + 1) - (d - i - 1) * Q.row(i + 1)) / (i + 1);
+  if (d % 2 == 1 && r > 0)  // Q_r from the right too, and the mean
+    Q.row(r) = 0.5 * (Q.row(r) + (d * P.row(r + 1) - (d - r - 1) * Q.row(r + 1)) / (r + 1));
+  return Q;
+}
+
+/// The curve refined to the union of its knots and `other`'s (the larger multiplicity of each value).
+Curve refined_to_union(const Curve& c, const Knots& other) {
+  std::vector<double> missing;
+  std::set_difference(other.begin(), other.end(), c.knots.begin(), c.knots.end(),
+                      std::back_inserter(missing));
+  return missing.empty() ? c : refine(c, missing);
+}
+
+}  // namespace
+
+namespace detail {
+
+Reduction reduce_degree(const Curve& lines, Layout layout) {
+  const Curve original = clamped(lines);
+  const int p = original.degree;
+  std::vector<Curve> pieces = split_bezier(original);
+  for (Curve& piece : pieces) {
+    piece.P = reduce_bezier(piece.P);
+    piece.degree = p - 1;
+    piece.knots.erase(piece.knots.begin());
+    piece.knots.pop_back();
   }
-  if (result.deviation_bound > tolerance) return remove_knot(c, u, t - 1, tolerance);
+  if (layout.rational)
+    for (const Curve& piece : pieces)
+      for (Eigen::Index k = layout.cols - 1; k < piece.P.cols(); k += layout.cols)
+        if (const double w = piece.P.col(k).minCoeff(); !(w > 0))
+          fail("a weight of the reduced pieces is ", w, ", not positive");
+  // The target knots: every value of the original with one copy less (a simple knot goes).
+  Knots target;
+  for (std::size_t i = 0; i < original.knots.size(); ++i)
+    if (i > 0 && original.knots[i] == original.knots[i - 1]) target.push_back(original.knots[i]);
+  // Proof of a candidate: elevated back, it is the original's degree on the original's knots but the simple
+  // ones; on the union of both knot vectors they are B-splines of one basis.
+  const auto bounded = [&](Curve reduced) {
+    const Curve back = refined_to_union(elevate_degree(reduced, 1), original.knots);
+    const Curve ref = refined_to_union(original, back.knots);
+    const double bound = deviation_bound(ref.P, back.P, p, layout);
+    return Reduction{std::move(reduced), bound};
+  };
+  // Two routes, the smaller proven bound kept. Blossoms: each point of the target knots is the blossom of
+  // the reduced piece under the widest interval of its support; exact when the pieces are one spline of
+  // the target's continuity (an elevated curve), with no chain of divisions.
+  Curve blossoms{p - 1, target, Points(static_cast<Eigen::Index>(target.size()) - p, lines.P.cols()), false,
+                 false};
+  for (Eigen::Index j = 0; j < blossoms.P.rows(); ++j) {
+    auto widest = static_cast<std::size_t>(j);  // the support: intervals j … j + d − 1 of the target
+    for (std::size_t k = widest + 1; k < static_cast<std::size_t>(j + p); ++k)
+      if (target[k + 1] - target[k] > target[widest + 1] - target[widest]) widest = k;
+    const auto piece = static_cast<std::size_t>(
+        std::upper_bound(pieces.begin(), pieces.end(), target[widest],
+                         [](double t, const Curve& c) { return t < c.knots.front(); }) -
+        pieces.begin() - 1);
+    const std::span<const double> args(target.data() + j + 1, static_cast<std::size_t>(p - 1));
+    blossoms.P.row(j) = blossom(pieces[piece], args, p - 1);
+  }
+  Reduction best = bounded(std::move(blossoms));
+  if (layout.rational)
+    for (Eigen::Index k = layout.cols - 1; k < best.curve.P.cols(); k += layout.cols)
+      if (!(best.curve.P.col(k).minCoeff() > 0)) best.deviation_bound = HUGE_VAL;
+  // Knot removal (Piegl–Tiller A5.11): the pieces joined at their common end points (where the curve jumps,
+  // multiplicity d + 1, both stay), then every interior breakpoint of multiplicity m back to m − 1 — it
+  // spreads what the pieces disagree by over the removal equations.
+  Curve joined{p - 1, Knots(static_cast<std::size_t>(p), original.knots.front()), {}, false, false};
+  std::vector<Points> rows;
+  Eigen::Index count = 0;
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    const bool jump = k > 0 && multiplicity(original.knots, pieces[k].knots.front()) > p;
+    rows.push_back(k == 0 || jump ? pieces[k].P : pieces[k].P.bottomRows(p - 1));
+    count += rows.back().rows();
+    if (k > 0)
+      joined.knots.insert(joined.knots.end(), static_cast<std::size_t>(jump ? p : p - 1),
+                          pieces[k].knots.front());
+  }
+  joined.knots.insert(joined.knots.end(), static_cast<std::size_t>(p), original.knots.back());
+  joined.P.resize(count, lines.P.cols());
+  for (Eigen::Index at = 0; const Points& Q : rows) {
+    joined.P.middleRows(at, Q.rows()) = Q;
+    at += Q.rows();
+  }
+  Curve cur = std::move(joined);
+  for (const double u : breakpoints(original.knots, p)) {
+    const int m = multiplicity(original.knots, u);
+    if (u == original.knots.front() || u == original.knots.back() || m >= p) continue;
+    const Removal removal = remove_knot(cur, u, p - m, HUGE_VAL, layout);
+    if (removal.removed < p - m) {  // a weight would become non-positive
+      if (best.deviation_bound == HUGE_VAL)
+        fail("removing knot ", u, " of the reduced pieces makes a weight non-positive");
+      return best;
+    }
+    cur = removal.curve;
+  }
+  Reduction removed = bounded(std::move(cur));
+  return removed.deviation_bound < best.deviation_bound ? removed : best;
+}
+
+}  // namespace detail
+
+Reduction reduce_degree(const Curve& c, double tolerance) {
+  if (c.closed) detail::fail("reduce_degree: a closed curve is not supported; cut it open first");
+  if (c.degree < 2) detail::fail("reduce_degree: degree ", c.degree, " cannot be reduced (the least is 1)");
+  if (!(tolerance >= 0)) detail::fail("reduce_degree: tolerance ", tolerance, " must be non-negative");
+  Curve lines = c;
+  lines.rational = false;
+  Reduction result;
+  try {
+    result = detail::reduce_degree(lines, {c.P.cols(), c.rational});
+  } catch (const InvalidInput& e) {
+    detail::fail("reduce_degree: ", e.what());
+  }
+  if (!(result.deviation_bound <= tolerance))
+    detail::fail("reduce_degree: the degree ", c.degree - 1, " curve is within ", result.deviation_bound,
+                 " of the curve, more than the tolerance ", tolerance);
+  result.curve.rational = c.rational;
+  validate(result.curve);
   return result;
 }
 

@@ -11,11 +11,19 @@
 #include "cifs/nurbs/refine.hpp"
 #include "cifs/row_combination.hpp"
 #include "detail.hpp"
+#include "lines.hpp"
 
 namespace cifs::nurbs {
 namespace {
 
 constexpr const char* kDirName[2] = {"u", "v"};
+
+/// The index of a direction (0 or 1); throws for any other value an enum can hold.
+std::size_t checked_direction(Direction dir) {
+  const int d = static_cast<int>(dir);
+  if (d != 0 && d != 1) detail::fail("direction ", d, " is neither u (0) nor v (1)");
+  return static_cast<std::size_t>(d);
+}
 
 double checked_parameter(const Surface& s, Direction dir, double t) {
   const Domain dom = domain(s, dir);
@@ -276,15 +284,49 @@ Points derivatives(const Surface& s, double u, double v, int order) {
   return S;
 }
 
+namespace {
+
+/// The size of the terms that make up the partial S_u (dir u) or S_v at (u, v) in the domain:
+/// Σ |N′_i(u)| M_j(v) (w_ij / w) |P_ij|. The computed partial carries a rounding of about ε times this (a
+/// pole's S_u is not exactly zero: ε·|P|, whatever |P − S|).
+double partial_scale(const Surface& s, double u, double v, Direction dir) {
+  const int p = s.degree[0], q = s.degree[1];
+  const int su = find_span(s.knots[0], p, u), sv = find_span(s.knots[1], q, v);
+  const Eigen::MatrixXd Du = basis_derivatives(s.knots[0], p, su, u, 1);
+  const Eigen::MatrixXd Dv = basis_derivatives(s.knots[1], q, sv, v, 1);
+  const int ku = dir == Direction::u ? 1 : 0, kv = 1 - ku;
+  double sum = 0, weight = 0;
+  for (int r = 0; r <= p; ++r)
+    for (int c = 0; c <= q; ++c) {
+      const auto row = s.P.row((su - p + r) * s.count[1] + (sv - q + c));
+      const double w = s.rational ? row(3) : 1.0;
+      weight += Du(0, r) * Dv(0, c) * w;
+      sum += std::abs(Du(ku, r) * Dv(kv, c)) * row.head(3).norm();  // w·|P|
+    }
+  return sum / weight;
+}
+
+/// S_u and S_v of a 3-D surface at (u, v) from its derivatives D (order ≥ 1, `order` as derivatives
+/// numbers rows), refused where the tangent plane is undefined: a partial below 1e-13 of the size of its
+/// terms (zero but for rounding: a pole, a collapsed edge), or partials parallel.
+std::array<Eigen::Vector3d, 2> tangent_partials(const Surface& s, double u, double v, const Points& D,
+                                                int order, const char* what) {
+  const Eigen::Vector3d Su = D.row(order + 1).transpose(), Sv = D.row(1).transpose();
+  const double n = Su.cross(Sv).norm();
+  if (!(n > 1e-14 * Su.norm() * Sv.norm()) || n == 0 ||
+      Su.norm() <= 1e-13 * partial_scale(s, u, v, Direction::u) ||
+      Sv.norm() <= 1e-13 * partial_scale(s, u, v, Direction::v))
+    detail::fail(what, " at (", u, ", ", v, "): the partial derivatives are parallel or zero");
+  return {Su, Sv};
+}
+
+}  // namespace
+
 Eigen::Vector3d normal(const Surface& s, double u, double v) {
   if (dimension(s) != 3) detail::fail("the surface is ", dimension(s), "-D; a normal needs a 3-D surface");
-  const Points D = derivatives(s, u, v, 1);
-  const Eigen::Vector3d Su = D.row(2).transpose(), Sv = D.row(1).transpose();  // rows (1,0) and (0,1)
-  const Eigen::Vector3d n = Su.cross(Sv);
-  if (!(n.norm() > 1e-14 * Su.norm() * Sv.norm()) || n.norm() == 0)
-    detail::fail("the surface normal is undefined at (", u, ", ", v,
-                 "): the partial derivatives are parallel or zero");
-  return n.normalized();
+  const auto [Su, Sv] =
+      tangent_partials(s, u, v, derivatives(s, u, v, 1), 1, "the surface normal is undefined");
+  return Su.cross(Sv).normalized();
 }
 
 Curve direction_curve(const Surface& s, Direction dir) {
@@ -308,6 +350,7 @@ namespace {
 Surface from_direction_curve(const Surface& s, Direction dir, const Curve& c) {
   const auto d = static_cast<std::size_t>(dir);
   Surface out = s;
+  out.degree[d] = c.degree;
   out.knots[d] = c.knots;
   out.count[d] = c.P.rows();
   const Eigen::Index nu = out.count[0], nv = out.count[1], cols = s.P.cols();
@@ -379,6 +422,129 @@ Surface refine_midpoints(const Surface& s) {
     for (std::size_t i = 0; i + 1 < b.size(); ++i) mid[i] = 0.5 * (b[i] + b[i + 1]);
     out = refine(out, dir, mid);
   }
+  return out;
+}
+
+SurfaceRemoval remove_knot(const Surface& s, Direction dir, double t, int times, double tolerance) {
+  const std::size_t d = checked_direction(dir);
+  const Domain dom = domain(s, dir);
+  if (times < 0) detail::fail("remove: times = ", times, " is negative");
+  if (!(tolerance >= 0)) detail::fail("remove: tolerance ", tolerance, " must be non-negative");
+  if (!(t > dom.start && t < dom.end))
+    detail::fail("remove: direction ", kDirName[d], ": knot ", t, " is not interior to the domain (",
+                 dom.start, ", ", dom.end, ")");
+  const int has = multiplicity(s.knots[d], t);
+  if (has == 0) detail::fail("remove: direction ", kDirName[d], ": ", t, " is not a knot");
+  const Removal r = detail::remove_knot(direction_curve(s, dir), t, std::min(times, has), tolerance,
+                                        {s.P.cols(), s.rational});
+  return {from_direction_curve(s, dir, r.curve), r.removed, r.deviation_bound};
+}
+
+Surface elevate_degree(const Surface& s, Direction dir, int times) {
+  const std::size_t d = checked_direction(dir);
+  try {
+    return from_direction_curve(s, dir, elevate_degree(direction_curve(s, dir), times));
+  } catch (const InvalidInput& e) {
+    detail::fail("direction ", kDirName[d], ": ", e.what());
+  }
+}
+
+SurfaceReduction reduce_degree(const Surface& s, Direction dir, double tolerance) {
+  const std::size_t d = checked_direction(dir);
+  const int degree = s.degree[d];
+  if (degree < 2)
+    detail::fail("reduce_degree: direction ", kDirName[d], ": degree ", degree,
+                 " cannot be reduced (the least is 1)");
+  if (!(tolerance >= 0)) detail::fail("reduce_degree: tolerance ", tolerance, " must be non-negative");
+  Reduction r;
+  try {
+    r = detail::reduce_degree(direction_curve(s, dir), {s.P.cols(), s.rational});
+  } catch (const InvalidInput& e) {
+    detail::fail("reduce_degree: direction ", kDirName[d], ": ", e.what());
+  }
+  if (!(r.deviation_bound <= tolerance))
+    detail::fail("reduce_degree: direction ", kDirName[d], ": the surface of degree ", degree - 1,
+                 " is within ", r.deviation_bound, " of the surface, more than the tolerance ", tolerance);
+  Surface out = from_direction_curve(s, dir, r.curve);
+  validate(out);
+  return {std::move(out), r.deviation_bound};
+}
+
+std::vector<Surface> split_bezier(const Surface& s) {
+  std::vector<Surface> patches;
+  for (const Curve& strip : split_bezier(direction_curve(s, Direction::u))) {
+    const Surface band = from_direction_curve(s, Direction::u, strip);
+    for (const Curve& piece : split_bezier(direction_curve(band, Direction::v)))
+      patches.push_back(from_direction_curve(band, Direction::v, piece));
+  }
+  return patches;
+}
+
+Surface reverse(const Surface& s, Direction dir) {
+  const std::size_t d = checked_direction(dir);
+  Surface out = s;
+  out.knots[d] = detail::mirrored_knots(s.knots[d], domain(s, dir));
+  const Eigen::Index nu = s.count[0], nv = s.count[1];
+  for (Eigen::Index i = 0; i < nu; ++i)
+    for (Eigen::Index j = 0; j < nv; ++j)
+      out.P.row(i * nv + j) = s.P.row(d == 0 ? (nu - 1 - i) * nv + j : i * nv + (nv - 1 - j));
+  return out;
+}
+
+Surface swap_uv(const Surface& s) {
+  const Eigen::Index nu = s.count[0], nv = s.count[1];
+  Surface out{{s.degree[1], s.degree[0]},
+              {s.knots[1], s.knots[0]},
+              {nv, nu},
+              Points(s.P.rows(), s.P.cols()),
+              s.rational};
+  for (Eigen::Index i = 0; i < nu; ++i)
+    for (Eigen::Index j = 0; j < nv; ++j) out.P.row(j * nu + i) = s.P.row(i * nv + j);
+  return out;
+}
+
+Surface reparametrize(const Surface& s, Direction dir, double start, double end) {
+  const std::size_t d = checked_direction(dir);
+  Surface out = s;
+  try {
+    out.knots[d] = detail::mapped_knots(s.knots[d], domain(s, dir), start, end);
+  } catch (const InvalidInput& e) {
+    detail::fail("reparametrize: direction ", kDirName[d], ": ", e.what());
+  }
+  validate(out);
+  return out;
+}
+
+Surface normalize_knots(const Surface& s) {
+  return reparametrize(reparametrize(s, Direction::u, 0.0, 1.0), Direction::v, 0.0, 1.0);
+}
+
+Curvature curvature(const Surface& s, double u, double v) {
+  if (dimension(s) != 3)
+    detail::fail("curvature: the surface is ", dimension(s), "-D; curvature needs a 3-D surface");
+  const Points D = derivatives(s, u, v, 2);  // row k·3 + l: ∂^{k+l} / ∂u^k ∂v^l
+  const auto [Su, Sv] = tangent_partials(s, u, v, D, 2, "curvature: the first fundamental form is singular");
+  const Eigen::Vector3d cross = Su.cross(Sv);
+  const double area = cross.norm();  // √(EG − F²)
+  Curvature out;
+  out.point = D.row(0).transpose();
+  out.normal = cross / area;
+  const Eigen::Vector3d& n = out.normal;
+  const double L = D.row(6).dot(n), M = D.row(4).dot(n), N = D.row(2).dot(n);
+  // The shape operator in the orthonormal tangent basis e1 = S_u/|S_u|, e2 = n × e1 is the symmetric
+  // [[a, b], [b, c]]: its eigenvalues need no H² − K, which cancels near an umbilic. e2 = (S_v − (F/E)·S_u)/h
+  // with h = |S_u × S_v|/|S_u|, so in parameters e1 = (1/|S_u|, 0) and e2 = (−F/(E·h), 1/h).
+  const double len = Su.norm(), E = Su.squaredNorm(), F = Su.dot(Sv), h = area / len;
+  const double du = -F / (E * h), dv = 1 / h;
+  const double a = L / E, b = (L * du + M * dv) / len, c = L * du * du + 2 * M * du * dv + N * dv * dv;
+  out.mean = 0.5 * (a + c);
+  out.gaussian = a * c - b * b;
+  const double half_gap = std::hypot(0.5 * (a - c), b);
+  out.principal = {out.mean + half_gap, out.mean - half_gap};
+  const double theta = 0.5 * std::atan2(2 * b, a - c);  // the eigenvector of the larger eigenvalue
+  const Eigen::Vector3d e1 = Su / len, e2 = n.cross(e1);
+  out.directions[0] = std::cos(theta) * e1 + std::sin(theta) * e2;
+  out.directions[1] = n.cross(out.directions[0]);
   return out;
 }
 

@@ -489,7 +489,7 @@ void bind_refine(py::module_& m) {
       "Raises InvalidInput as insert_knot.");
   m.def("refine_midpoints", py::overload_cast<const Curve&>(&refine_midpoints), Release(), py::arg("curve"),
         "Inserts the midpoint of every non-empty span (one knot-doubling step).");
-  m.def("split_bezier", &split_bezier, Release(), py::arg("curve"),
+  m.def("split_bezier", py::overload_cast<const Curve&>(&split_bezier), Release(), py::arg("curve"),
         "The polynomial pieces as clamped Bézier curves (list of Curve), one per segment, in order.");
   m.def(
       "split",
@@ -501,10 +501,11 @@ void bind_refine(py::module_& m) {
       "The open curve cut at u (strictly inside the domain): (left, right), on [start, u] and [u, end],\n"
       "each clamped at u and keeping the original parameters. Raises InvalidInput for a closed curve or u\n"
       "not strictly inside the domain.");
-  m.def("reverse", &reverse, py::arg("curve"),
+  m.def("reverse", py::overload_cast<const Curve&>(&reverse), py::arg("curve"),
         "The same curve traversed backwards: C'(a + b − u) = C(u) on the same domain [a, b]; closed curves\n"
         "stay closed.");
-  m.def("elevate_degree", &elevate_degree, Release(), py::arg("curve"), py::arg("times") = 1,
+  m.def("elevate_degree", py::overload_cast<const Curve&, int>(&elevate_degree), Release(), py::arg("curve"),
+        py::arg("times") = 1,
         "Raises the degree by `times`; the curve is unchanged.\n\n"
         "Raises InvalidInput for negative times or a degree above kMaxDegree.");
   py::class_<Removal>(m, "Removal", "Result of remove_knot.")
@@ -520,11 +521,118 @@ void bind_refine(py::module_& m) {
           },
           "Short description.");
   m.def(
-      "remove_knot", &remove_knot, Release(), py::arg("curve"), py::arg("u"), py::arg("times"),
-      py::arg("tolerance"),
+      "remove_knot", py::overload_cast<const Curve&, double, int, double>(&remove_knot), Release(),
+      py::arg("curve"), py::arg("u"), py::arg("times"), py::arg("tolerance"),
       "Removes up to `times` copies of the interior knot u while the curve moves by at most `tolerance`.\n\n"
       "Returns a Removal. Open curves only: raises InvalidInput for closed curves, knots that are not\n"
       "interior, negative times or tolerance.");
+  m.def(
+      "reparametrize", py::overload_cast<const Curve&, double, double>(&reparametrize), py::arg("curve"),
+      py::arg("start"), py::arg("end"),
+      "The same curve on the domain [start, end]: every knot mapped by the affine map of the domain onto it\n"
+      "(the ends exactly). Raises InvalidInput unless start < end are finite, or when two distinct knots\n"
+      "would round to one value.");
+  m.def("normalize_knots", py::overload_cast<const Curve&>(&normalize_knots), py::arg("curve"),
+        "The same curve on the domain [0, 1].");
+  py::class_<Reduction>(m, "Reduction", "Result of reduce_degree on a curve.")
+      .def_readonly("curve", &Reduction::curve, "The curve one degree lower.")
+      .def_readonly("deviation_bound", &Reduction::deviation_bound,
+                    "Proven bound on the distance between the reduced and the original curve.")
+      .def(
+          "__repr__",
+          [](const Reduction& r) {
+            return "Reduction(degree=" + std::to_string(r.curve.degree) +
+                   ", deviation_bound=" + py::repr(py::float_(r.deviation_bound)).cast<std::string>() + ")";
+          },
+          "Short description.");
+  m.def(
+      "reduce_degree", py::overload_cast<const Curve&, double>(&reduce_degree), Release(), py::arg("curve"),
+      py::arg("tolerance"),
+      "Lowers the degree by one (each Bézier piece by the inverse of elevation, onto the knots with one\n"
+      "copy less: by blossoms or by knot removal, the smaller proven bound kept): returns a Reduction whose\n"
+      "bound is proven by elevating back.\n\n"
+      "Raises InvalidInput for a closed curve, degree 1, a bad tolerance, and when the bound exceeds the\n"
+      "tolerance (the message names both); reduce_degree(elevate_degree(c), t) is c.");
+}
+
+void bind_surface_operations(py::module_& m) {
+  py::class_<SurfaceRemoval>(m, "SurfaceRemoval", "Result of remove_knot on a surface.")
+      .def_readonly("surface", &SurfaceRemoval::surface, "The surface after removal.")
+      .def_readonly("removed", &SurfaceRemoval::removed, "How many copies of the knot were removed.")
+      .def_readonly("deviation_bound", &SurfaceRemoval::deviation_bound,
+                    "Proven bound on the distance between the old and the new surface.")
+      .def(
+          "__repr__",
+          [](const SurfaceRemoval& r) {
+            return "SurfaceRemoval(removed=" + std::to_string(r.removed) +
+                   ", deviation_bound=" + py::repr(py::float_(r.deviation_bound)).cast<std::string>() + ")";
+          },
+          "Short description.");
+  m.def("remove_knot", py::overload_cast<const Surface&, Direction, double, int, double>(&remove_knot),
+        Release(), py::arg("surface"), py::arg("direction"), py::arg("t"), py::arg("times"),
+        py::arg("tolerance"),
+        "Removes up to `times` copies of the interior knot t of `direction` while the surface moves by at\n"
+        "most `tolerance` (every line of the net along it at once). Returns a SurfaceRemoval.");
+  m.def("elevate_degree", py::overload_cast<const Surface&, Direction, int>(&elevate_degree), Release(),
+        py::arg("surface"), py::arg("direction"), py::arg("times") = 1,
+        "Raises the degree of `direction` by `times`; the surface is unchanged.");
+  py::class_<SurfaceReduction>(m, "SurfaceReduction", "Result of reduce_degree on a surface.")
+      .def_readonly("surface", &SurfaceReduction::surface, "The surface one degree lower in the direction.")
+      .def_readonly("deviation_bound", &SurfaceReduction::deviation_bound,
+                    "Proven bound on the distance between the reduced and the original surface.")
+      .def(
+          "__repr__",
+          [](const SurfaceReduction& r) {
+            return "SurfaceReduction(degree=(" + std::to_string(r.surface.degree[0]) + ", " +
+                   std::to_string(r.surface.degree[1]) +
+                   "), deviation_bound=" + py::repr(py::float_(r.deviation_bound)).cast<std::string>() + ")";
+          },
+          "Short description.");
+  m.def("reduce_degree", py::overload_cast<const Surface&, Direction, double>(&reduce_degree), Release(),
+        py::arg("surface"), py::arg("direction"), py::arg("tolerance"),
+        "Lowers the degree of `direction` by one (the curve algorithm on every line of the net). Returns a\n"
+        "SurfaceReduction; raises InvalidInput when the bound exceeds the tolerance.");
+  m.def(
+      "split_bezier", py::overload_cast<const Surface&>(&split_bezier), Release(), py::arg("surface"),
+      "The Bézier patches (list of Surface): patch (a, b) of the a-th span of u and the b-th of v at index\n"
+      "a·(spans of v) + b.");
+  m.def("reverse", py::overload_cast<const Surface&, Direction>(&reverse), py::arg("surface"),
+        py::arg("direction"), "The same surface traversed backwards in `direction` (on the same domain).");
+  m.def("swap_uv", &swap_uv, py::arg("surface"),
+        "The same surface with u and v exchanged: S'(v, u) = S(u, v).");
+  m.def("reparametrize", py::overload_cast<const Surface&, Direction, double, double>(&reparametrize),
+        py::arg("surface"), py::arg("direction"), py::arg("start"), py::arg("end"),
+        "The same surface on [start, end] in `direction` (its knots mapped affinely, the ends exactly).");
+  m.def("normalize_knots", py::overload_cast<const Surface&>(&normalize_knots), py::arg("surface"),
+        "The same surface on [0, 1] × [0, 1].");
+  py::class_<Curvature>(
+      m, "Curvature",
+      "Curvatures of a 3-D surface at a point (curvature): positive where the surface bends\n"
+      "towards `normal`.")
+      .def_readonly("point", &Curvature::point, "S(u, v).")
+      .def_readonly("normal", &Curvature::normal, "The unit normal S_u × S_v / |S_u × S_v|.")
+      .def_readonly("gaussian", &Curvature::gaussian, "K = k1·k2 = (LN − M²) / (EG − F²).")
+      .def_readonly("mean", &Curvature::mean, "H = (k1 + k2) / 2 = (EN − 2FM + GL) / (2(EG − F²)).")
+      .def_property_readonly(
+          "principal", [](const Curvature& k) { return py::make_tuple(k.principal[0], k.principal[1]); },
+          "(k1, k2), k1 ≥ k2.")
+      .def_property_readonly(
+          "directions", [](const Curvature& k) { return py::make_tuple(k.directions[0], k.directions[1]); },
+          "The unit principal directions in space (of k1, then k2 = normal × the first); at an umbilic the\n"
+          "first is S_u's.")
+      .def(
+          "__repr__",
+          [](const Curvature& k) {
+            return "Curvature(gaussian=" + py::repr(py::float_(k.gaussian)).cast<std::string>() +
+                   ", mean=" + py::repr(py::float_(k.mean)).cast<std::string>() + ", principal=(" +
+                   py::repr(py::float_(k.principal[0])).cast<std::string>() + ", " +
+                   py::repr(py::float_(k.principal[1])).cast<std::string>() + "))";
+          },
+          "Short description.");
+  m.def("curvature", &curvature, py::arg("surface"), py::arg("u"), py::arg("v"),
+        "Gaussian, mean and principal curvatures and directions at (u, v), from the fundamental forms.\n\n"
+        "Raises InvalidInput outside the domain, for a surface that is not 3-D, and where the first\n"
+        "fundamental form is singular (a pole, a collapsed edge).");
 }
 
 void bind_surface(py::module_& m) {
@@ -706,6 +814,7 @@ void bind_surface(py::module_& m) {
         "The iso-parametric curve at parameter t of `direction`, running along the other one:\n"
         "iso_curve(s, Direction.u, t) evaluated at v is S(t, v), exactly. Raises InvalidInput outside the "
         "domain.");
+  bind_surface_operations(m);
 }
 
 void bind_doubling(py::module_& m) {

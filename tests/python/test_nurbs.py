@@ -636,5 +636,79 @@ class MeasureTest(unittest.TestCase):
         assert_close(self, second.evaluate(0.2, 0.7), surface.evaluate(0.2, 0.7), rel=1e-14)
 
 
+
+class SurfaceOperationsTest(unittest.TestCase):
+    """Operations on surfaces' nets, degree reduction and curvature through the bindings: against the
+    surface evaluated before, closed forms (z = xy, a sphere) and the refusals."""
+
+    def setUp(self):
+        grid = np.array([[[i, j, np.sin(i) * np.cos(j)] for j in range(5)] for i in range(6)], dtype=float)
+        self.surface = nurbs.interpolate_surface(grid, (3, 2))
+        self.samples = [(u, v) for u in (0.0, 0.27, 0.6, 1.0) for v in (0.0, 0.45, 0.8, 1.0)]
+
+    def assert_same(self, other, mapping=lambda u, v: (u, v)):
+        for u, v in self.samples:
+            assert_close(self, other.evaluate(*mapping(u, v)), self.surface.evaluate(u, v), rel=1e-13)
+
+    def test_net_operations_keep_the_surface(self):
+        U, V = nurbs.Direction.u, nurbs.Direction.v
+        self.assert_same(nurbs.swap_uv(self.surface), lambda u, v: (v, u))
+        self.assert_same(nurbs.reverse(self.surface, U), lambda u, v: (1 - u, v))
+        self.assert_same(nurbs.reparametrize(self.surface, V, 2, 6), lambda u, v: (u, 2 + 4 * v))
+        self.assert_same(nurbs.normalize_knots(nurbs.reparametrize(self.surface, U, -1, 3)))
+        self.assert_same(nurbs.elevate_degree(self.surface, V, 2))
+        removal = nurbs.remove_knot(nurbs.insert_knot(self.surface, U, 0.3, 2), U, 0.3, 2, 1e-12)
+        self.assertEqual(removal.removed, 2)
+        self.assertLessEqual(removal.deviation_bound, 1e-12)
+        self.assert_same(removal.surface)
+        back = nurbs.reduce_degree(nurbs.elevate_degree(self.surface, U), U, 1e-12)
+        self.assertEqual(back.surface.degree, self.surface.degree)
+        self.assert_same(back.surface)
+        patches = nurbs.split_bezier(self.surface)
+        self.assertEqual(len(patches), 3 * 3)
+        for patch in patches:
+            (u0, u1), (v0, v1) = patch.domain
+            u, v = 0.3 * u0 + 0.7 * u1, 0.6 * v0 + 0.4 * v1
+            assert_close(self, patch.evaluate(u, v), self.surface.evaluate(u, v), rel=1e-13)
+        with self.assertRaisesRegex(cifs.InvalidInput, "direction v: knot 0.5 would reach multiplicity"):
+            nurbs.insert_knot(self.surface, V, 0.5, 3)
+        with self.assertRaisesRegex(cifs.InvalidInput, "direction u: 0.25 is not a knot"):
+            nurbs.remove_knot(self.surface, U, 0.25, 1, 0.0)
+        with self.assertRaisesRegex(cifs.InvalidInput, r"reparametrize: direction v: the new domain \[1, 1\]"):
+            nurbs.reparametrize(self.surface, V, 1, 1)
+
+    def test_curve_degree_reduction(self):
+        cubic = nurbs.Curve(3, CUBIC_KNOTS, CUBIC_POINTS)
+        back = nurbs.reduce_degree(nurbs.elevate_degree(cubic), 1e-12)
+        self.assertEqual(back.curve.degree, 3)
+        np.testing.assert_array_equal(back.curve.knots, CUBIC_KNOTS)
+        np.testing.assert_allclose(back.curve.P, CUBIC_POINTS, atol=1e-12)
+        loose = nurbs.reduce_degree(cubic, float("inf"))
+        distance = max(np.linalg.norm(nurbs.evaluate(loose.curve, u) - nurbs.evaluate(cubic, u))
+                       for u in np.linspace(0, 4, 801))
+        self.assertLessEqual(distance, loose.deviation_bound)
+        with self.assertRaisesRegex(cifs.InvalidInput, "reduce_degree: the degree 2 curve is within .* more than"):
+            nurbs.reduce_degree(cubic, 0.5 * loose.deviation_bound)
+        with self.assertRaisesRegex(cifs.InvalidInput, "degree 1 cannot be reduced"):
+            nurbs.reduce_degree(nurbs.Curve(1, [0, 0, 1, 1], np.eye(2)), 1.0)
+        np.testing.assert_array_equal(nurbs.normalize_knots(cubic).knots, np.array(CUBIC_KNOTS) / 4)
+
+    def test_curvature_closed_forms(self):
+        saddle = nurbs.Surface((1, 1), ([-1, -1, 1, 1], [-1, -1, 1, 1]),
+                               np.array([[[-1, -1, 1], [-1, 1, -1]], [[1, -1, -1], [1, 1, 1]]], float))
+        k = nurbs.curvature(saddle, 0.0, 0.0)
+        self.assertEqual((k.gaussian, k.mean, k.principal), (-1.0, 0.0, (1.0, -1.0)))
+        np.testing.assert_allclose(k.directions[0], np.array([1, 1, 0]) / np.sqrt(2), atol=1e-15)
+        x, y = 0.3, -0.7
+        g = 1 + x * x + y * y
+        k = nurbs.curvature(saddle, x, y)
+        self.assertAlmostEqual(k.gaussian, -1 / g ** 2, delta=1e-15)
+        self.assertAlmostEqual(k.mean, -x * y / g ** 1.5, delta=1e-15)
+        with self.assertRaisesRegex(cifs.InvalidInput, "curvature: the surface is 2-D"):
+            nurbs.curvature(nurbs.Surface((1, 1), ([0, 0, 1, 1], [0, 0, 1, 1]), np.zeros((2, 2, 2))), 0.5, 0.5)
+        with self.assertRaisesRegex(cifs.InvalidInput, "parameter u"):
+            nurbs.curvature(saddle, 2.0, 0.0)
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -38,6 +38,15 @@ std::array<Curve, 2> split(const Curve& c, double u);
 /// exactly), control points in reverse order, so that `C'(a + b − u) = C(u)`. Closed curves stay closed.
 Curve reverse(const Curve& c);
 
+/// The same curve on the domain [start, end]: every knot mapped by the affine map that sends the domain
+/// onto it (the ends exactly; knots outside an unclamped domain too), so that C'(start + (u − a)·(end −
+/// start)/(b − a)) = C(u). Closed curves stay closed. Throws InvalidInput unless start < end are finite, or
+/// when two distinct knots would round to one value (the scale leaves no double between them).
+Curve reparametrize(const Curve& c, double start, double end);
+
+/// reparametrize(c, 0, 1).
+Curve normalize_knots(const Curve& c);
+
 /// Raises the degree by `times`; the curve is unchanged. Each knot value of the domain gains
 /// `times` in multiplicity; control points are blossoms of the raised degree.
 Curve elevate_degree(const Curve& c, int times = 1);
@@ -55,5 +64,26 @@ struct Removal {
 /// and meeting where α crosses ½; then a bound proven by re-inserting the removed knots.
 /// Open curves only: throws InvalidInput for closed curves and for knots that are not interior.
 Removal remove_knot(const Curve& c, double u, int times, double tolerance);
+
+/// Result of a degree reduction: the curve one degree lower and a proven bound on its distance to the
+/// original.
+struct Reduction {
+  Curve curve;
+  /// max over the domain of |reduced(u) − original(u)|, bounded by elevating the reduced curve back to
+  /// the original degree and comparing control points on a common knot vector (exact up to rounding).
+  double deviation_bound = 0;
+};
+
+/// Degree reduction by one (The NURBS Book §5.6): each Bézier piece reduced by the inverse of degree
+/// elevation, solved from both ends (Piegl–Tiller eq. 5.41–5.42; odd degrees average the middle point),
+/// onto the knots with every multiplicity one less (a simple knot goes), so that the continuity C^(d−m)
+/// stays and reduce_degree(elevate_degree(c)) is c. Two routes, the smaller proven bound kept: each new
+/// point the blossom of the reduced piece under the widest interval of its support (exact for an
+/// elevated curve), or the pieces joined and every interior knot brought down by knot removal (which
+/// spreads what the pieces disagree by). Unclamped curves come back clamped on the same domain; rational
+/// curves are reduced in homogeneous coordinates. Throws InvalidInput for a closed curve, degree 1, a
+/// tolerance that is negative or NaN, a reduced weight that is not positive, and when the bound exceeds
+/// `tolerance` (the message names both).
+Reduction reduce_degree(const Curve& c, double tolerance);
 
 }  // namespace cifs::nurbs
