@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <exception>
 #include <fstream>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -56,6 +57,32 @@ struct ExrClaims {
   std::int64_t width = 0, height = 0, channels = 0;
 };
 
+/// The attribute types of a fixed size in OpenEXR's layout (Imf's TypedAttribute<T>::readValueFrom).
+const std::map<std::string, std::int32_t, std::less<>> kFixedSizes = {{"box2i", 16},
+                                                                      {"box2f", 16},
+                                                                      {"compression", 1},
+                                                                      {"lineOrder", 1},
+                                                                      {"envmap", 1},
+                                                                      {"deepImageState", 1},
+                                                                      {"int", 4},
+                                                                      {"float", 4},
+                                                                      {"double", 8},
+                                                                      {"v2i", 8},
+                                                                      {"v2f", 8},
+                                                                      {"v2d", 16},
+                                                                      {"v3i", 12},
+                                                                      {"v3f", 12},
+                                                                      {"v3d", 24},
+                                                                      {"m33f", 36},
+                                                                      {"m33d", 72},
+                                                                      {"m44f", 64},
+                                                                      {"m44d", 128},
+                                                                      {"rational", 8},
+                                                                      {"timecode", 8},
+                                                                      {"keycode", 28},
+                                                                      {"chromaticities", 32},
+                                                                      {"tiledesc", 9}};
+
 /// Every header's attribute sizes checked against the file's length (IoError naming the attribute and
 /// both figures); the data window and channel count of the first header. Empty when the bytes do not
 /// follow OpenEXR's header layout: OpenEXR says what is wrong then.
@@ -88,16 +115,34 @@ std::optional<ExrClaims> read_exr_claims(const std::filesystem::path& path) {
         throw IoError(path.string() + ": the header's attribute '" + excerpt(name) + "' claims " +
                       std::to_string(size) + " bytes, " + std::to_string(left) + " are left in the file");
       const std::int64_t end = static_cast<std::int64_t>(in.tellg()) + size;
-      if (first && name == "dataWindow" && type == "box2i" && size == 16) {
+      // OpenEXR reads a known type's value by its own layout, not by the size: where the two disagree its
+      // reading and this one part ways (and it reads a later "size" as another attribute's), so they must
+      // agree here.
+      const auto refuse = [&](const std::string& what) {
+        throw IoError(path.string() + ": the header's attribute '" + excerpt(name) + "' (" + excerpt(type) +
+                      ") claims " + std::to_string(size) + " bytes, " + what);
+      };
+      if (const auto fixed = kFixedSizes.find(type); fixed != kFixedSizes.end() && fixed->second != size)
+        refuse("a " + type + " takes " + std::to_string(fixed->second));
+      if (type == "preview") {  // width, height, then 4 bytes a pixel
+        std::array<std::uint32_t, 2> wh{};
+        if (size < 8 || !read_exact(wh.data(), 8)) return std::nullopt;
+        if (std::uint64_t{wh[0]} * wh[1] * 4 + 8 != static_cast<std::uint64_t>(size))
+          refuse("its " + std::to_string(wh[0]) + " × " + std::to_string(wh[1]) + " pixels take " +
+                 std::to_string(std::uint64_t{wh[0]} * wh[1] * 4 + 8));
+      } else if (type == "chlist") {
+        // Per channel: its name, then 16 bytes (pixel type, linear flag, reserved, sampling); a NUL ends
+        // them.
+        for (std::string channel; in.peek() != 0 && read_name(channel); in.seekg(16, std::ios::cur))
+          claims.channels += first && name == "channels" ? 1 : 0;
+        if (!in || in.get() != 0) return std::nullopt;
+        if (const auto read = static_cast<std::int64_t>(in.tellg()); read != end)
+          refuse("its channel list takes " + std::to_string(read - (end - size)));
+      } else if (first && name == "dataWindow" && type == "box2i") {
         std::array<std::int32_t, 4> box{};  // min x, min y, max x, max y
         if (!read_exact(box.data(), 16)) return std::nullopt;
         claims.width = std::int64_t{box[2]} - box[0] + 1;
         claims.height = std::int64_t{box[3]} - box[1] + 1;
-      } else if (first && name == "channels" && type == "chlist") {
-        // Per channel: its name, then 16 bytes (pixel type, linear flag, reserved, sampling).
-        for (std::string channel; in.tellg() < end && in.peek() != 0 && read_name(channel);
-             in.seekg(16, std::ios::cur))
-          ++claims.channels;
       }
       in.seekg(end, std::ios::beg);
     }

@@ -254,6 +254,30 @@ TEST_CASE("EXR and PNG: a header claiming more pixels than memory holds is refus
                                        ": the header's attribute 'comment' claims 2000000000 bytes, " +
                                        std::to_string(left) + " are left in the file");
 
+  // A channel list whose size says more than its channels take: OpenEXR reads the list to its NUL and
+  // then the rest as further attributes (the image fuzz harness: one of them claimed 1.85 GB); refused.
+  write_exr(exr, one);
+  bytes = file_bytes(exr);
+  const std::string chlist("channels\0chlist\0", 16);
+  const std::size_t chlist_at = bytes.find(chlist);
+  REQUIRE(chlist_at != std::string::npos);
+  std::int32_t chlist_size = 0;
+  std::memcpy(&chlist_size, &bytes[chlist_at + chlist.size()], 4);
+  const std::int32_t more = chlist_size + 4;
+  std::memcpy(&bytes[chlist_at + chlist.size()], &more, 4);
+  put_file_bytes(exr, bytes);
+  CHECK_THROWS_WITH(read_exr(exr), exr.string() + ": the header's attribute 'channels' (chlist) claims " +
+                                       std::to_string(more) + " bytes, its channel list takes " +
+                                       std::to_string(chlist_size));
+  // A fixed-size type with another size: refused the same way.
+  write_exr(exr, one);
+  bytes = file_bytes(exr);
+  const std::string box("dataWindow\0box2i\0", 17);
+  const std::int32_t twenty = 20;
+  std::memcpy(&bytes[bytes.find(box) + box.size()], &twenty, 4);
+  put_file_bytes(exr, bytes);
+  CHECK_THROWS_WITH(read_exr(exr), Catch::Contains("'dataWindow' (box2i) claims 20 bytes, a box2i takes 16"));
+
   // The limit is the caller's: one pixel of one float channel takes 4 bytes.
   write_exr(dir.path() / "one.exr", one);
   CHECK_THROWS_WITH(read_exr(dir.path() / "one.exr", 3), Catch::Contains("GB an input may hold"));
