@@ -229,7 +229,12 @@ Image read_exr(const std::filesystem::path& path, std::uint64_t max_bytes) {
     Imf::FrameBuffer frame;
     for (auto it = header.channels().begin(); it != header.channels().end(); ++it) {
       const std::string name = it.name();
-      if (name == kStateChannel && it.channel().type == Imf::UINT) {
+      // What reads must write back: write_exr keeps the name for the UINT state channel.
+      if (name == kStateChannel && it.channel().type != Imf::UINT)
+        throw IoError(path.string() + ": the channel \"state\" holds " +
+                      (it.channel().type == Imf::HALF ? "HALF" : "FLOAT") +
+                      " values; cifs reads a channel of that name only as the UINT state channel");
+      if (name == kStateChannel) {
         image.state.emplace(n);
         frame.insert(name, Imf::Slice(Imf::UINT, reinterpret_cast<char*>(image.state->data() - origin),
                                       sizeof(std::uint32_t), image.width * sizeof(std::uint32_t)));
@@ -246,6 +251,8 @@ Image read_exr(const std::filesystem::path& path, std::uint64_t max_bytes) {
       if (const auto* text = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
         image.attributes[it.name()] = text->value();
     return image;
+  } catch (const IoError&) {
+    throw;
   } catch (const std::exception& e) {
     throw IoError(path.string() + ": cannot read OpenEXR (" + e.what() + ")");
   }

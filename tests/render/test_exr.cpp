@@ -278,6 +278,21 @@ TEST_CASE("EXR and PNG: a header claiming more pixels than memory holds is refus
   put_file_bytes(exr, bytes);
   CHECK_THROWS_WITH(read_exr(exr), Catch::Contains("'dataWindow' (box2i) claims 20 bytes, a box2i takes 16"));
 
+  // A FLOAT channel named "state", the name write_exr keeps for the UINT state channel: what reads must
+  // write back, so it is refused (libFuzzer: the round trip failed). Written as "stata", renamed in place.
+  Image stata;
+  stata.width = stata.height = 1;
+  stata.channels["stata"] = {0.5f};
+  write_exr(exr, stata);
+  bytes = file_bytes(exr);
+  const std::size_t name_at = bytes.find(std::string("stata\0", 6), bytes.find(chlist));
+  REQUIRE(name_at != std::string::npos);
+  bytes[name_at + 4] = 'e';
+  put_file_bytes(exr, bytes);
+  CHECK_THROWS_WITH(read_exr(exr), exr.string() +
+                                       ": the channel \"state\" holds FLOAT values; cifs reads a "
+                                       "channel of that name only as the UINT state channel");
+
   // The limit is the caller's: one pixel of one float channel takes 4 bytes.
   write_exr(dir.path() / "one.exr", one);
   CHECK_THROWS_WITH(read_exr(dir.path() / "one.exr", 3), Catch::Contains("GB an input may hold"));
