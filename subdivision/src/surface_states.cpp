@@ -945,7 +945,8 @@ namespace cifs::subdivision::detail {
 namespace {
 
 /// The class of corner v of a configuration (surface_states.hpp): "" where regular — 4 faces and no
-/// sharp edge, 2 faces on a boundary, 2 + 2 faces about a crease — else class and faces.
+/// sharp edge, 2 faces on a boundary, 2 + 2 faces about a crease — else class, faces and, where sharp edges
+/// part the faces, the place of the configuration's face 0 among them.
 std::string corner_class(const MeshTopology& t, const MeshTags& tags, int v) {
   const auto edges = vertex_edges(t, static_cast<std::size_t>(v));
   const auto n = static_cast<int>(vertex_faces(t, static_cast<std::size_t>(v)).size());
@@ -981,6 +982,12 @@ std::string corner_class(const MeshTopology& t, const MeshTags& tags, int v) {
     out = n == 2 ? "" : "B" + std::to_string(n);
   else if (const int a = sharp[1] - sharp[0]; a != 2 || n - a != 2)
     out = "K" + std::to_string(a) + "," + std::to_string(n - a);
+  // Sharp edges tell the faces apart: which one face 0 is, counted counter-clockwise from the first.
+  if (!out.empty() && !sharp.empty() && n > 1) {
+    const auto faces = vertex_faces(t, static_cast<std::size_t>(v));
+    const auto k = static_cast<int>(std::find(faces.begin(), faces.end(), 0) - faces.begin());
+    out += ":" + std::to_string((k - sharp[0] + n) % n);
+  }
   if (left > 0) out += "~" + number_text(left, 6);
   return out;
 }

@@ -19,8 +19,9 @@ namespace cifs::subdivision::detail {
 /// four quarters, in the quad layout, are found by refining it and enter `regular` the same way where
 /// they are polynomial. States are named by the class of their corners that are not regular (class,
 /// faces: "E5" extraordinary, "B3" boundary, "K2,3" crease with 2 and 3 faces on its sides, "D5"
-/// dart, "C1" corner; "~s" with sharpness s left to spend), the corner named alone when it is corner 0,
-/// all four "[E5|-|-|B3]" otherwise. InvalidInput naming the face for a face that is not a quad.
+/// dart, "C1" corner; ":p" where sharp edges part the faces, face 0 the p-th counter-clockwise from the
+/// first sharp edge; "~s" with sharpness s left to spend), the corner named alone when it is corner 0,
+/// all four "[E5|-|-|B3:1]" otherwise. InvalidInput naming the face for a face that is not a quad.
 void add_feature_faces(const Mesh& mesh, automata::StateId regular, SurfaceAutomaton& out);
 
 }  // namespace cifs::subdivision::detail

@@ -202,6 +202,15 @@ TEST_CASE("the surface automaton with features: states named by the class of the
   // An open grid under edge_only: its four corners are smooth boundary vertices of one face, each met
   // at corner 0 of its face and looping there.
   CHECK(names(quad_grid(4, 3)) == std::vector<std::string>{"B1", "regular"});
+  // A boundary vertex of 3 faces (a grid's boundary vertex with a face removed around it): one state per
+  // face around it, counted from the boundary edge.
+  Mesh notch = quad_grid(4, 3);
+  notch.face_vertices.erase(notch.face_vertices.begin() + 4 * 5, notch.face_vertices.begin() + 4 * 6);
+  notch.face_offsets.pop_back();
+  const std::vector<std::string> b3 = names(notch);
+  for (const char* b : {"B3:0", "B3:1", "B3:2"})
+    CHECK(std::any_of(b3.begin(), b3.end(),
+                      [&](const std::string& x) { return x.find(b) != std::string::npos; }));
   Mesh g = quad_grid(4, 3);
   g.tags.boundary = BoundaryRule::edge_and_corner;  // interpolated corners: regular corner patches
   CHECK(names(g) == std::vector<std::string>{"regular"});
@@ -209,7 +218,9 @@ TEST_CASE("the surface automaton with features: states named by the class of the
   Mesh t = torus(6, 5);
   t.tags.creases = {{0, 1, 10}, {1, 2, 10}};
   const std::vector<std::string> darts = names(t);
-  CHECK(std::count(darts.begin(), darts.end(), "D4") >= 1);
+  for (const char* dart : {"D4:0", "D4:1", "D4:2", "D4:3"})  // the dart's four faces, from its edge
+    CHECK(std::any_of(darts.begin(), darts.end(),
+                      [&](const std::string& x) { return x.find(dart) != std::string::npos; }));
   // A semi-sharp crease: states with sharpness left ("~"), spent after two steps.
   Mesh semi = torus(6, 5);
   semi.tags.creases = {{0, 1, 2}, {1, 2, 2}, {2, 3, 2}, {3, 4, 2}, {4, 5, 2}, {5, 0, 2}};
