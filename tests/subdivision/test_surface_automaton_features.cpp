@@ -152,6 +152,35 @@ TEST_CASE("the surface automaton with features: every node of its attractor mesh
   }
 }
 
+TEST_CASE("the surface automaton with features: refined vertices converge to its attractor's nodes",
+          "[subdivision][limit][features]") {
+  // The mesh refined 1 + k times (plain refinement, no limit stencils): every node of the attractor at depth
+  // 1 has a refined vertex within e_k, and e_k shrinks at least like λ^k, λ the largest subdominant
+  // eigenvalue of these meshes' vertices (0.41 at the cube's valence-3 corners: λ² ≈ 1/6; ¼ at regular
+  // crease and boundary vertices): by more than 3 every two levels.
+  const std::vector<Case> cases = feature_cases();
+  for (const char* name : {"creased cube, chaikin", "grid, boundary rule edge", "random tags, seed 2"}) {
+    const auto c = std::find_if(cases.begin(), cases.end(), [&](const Case& x) { return x.name == name; });
+    REQUIRE(c != cases.end());
+    INFO(c->name);
+    const Mesh attractor = surface_automaton_mesh(surface_automaton(c->mesh, MeshScheme::catmull_clark), 1);
+    std::vector<double> error;
+    for (const int k : {2, 4, 6}) {
+      const Mesh refined = subdivide(c->mesh, MeshScheme::catmull_clark, 1 + k);
+      double worst = 0;
+      for (Eigen::Index v = 0; v < attractor.vertices.rows(); ++v)
+        worst = std::max(
+            worst,
+            std::sqrt(
+                (refined.vertices.rowwise() - attractor.vertices.row(v)).rowwise().squaredNorm().minCoeff()));
+      error.push_back(worst);
+    }
+    CHECK(error[1] <= error[0] / 3);
+    CHECK(error[2] <= error[1] / 3);
+    CHECK(error[2] <= 1e-3 * scale_of(c->mesh));
+  }
+}
+
 TEST_CASE(
     "the surface automaton with features: regular boundary, crease and corner patches are B-spline "
     "patches of phantom points",
