@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cifs/errors.hpp"
+#include "cifs/ifs/chaos.hpp"
 #include "cifs/ifs/mesh.hpp"
 #include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/mesh.hpp"
@@ -178,6 +179,45 @@ TEST_CASE("the surface automaton with features: refined vertices converge to its
     CHECK(error[1] <= error[0] / 3);
     CHECK(error[2] <= error[1] / 3);
     CHECK(error[2] <= 1e-3 * scale_of(c->mesh));
+  }
+}
+
+TEST_CASE("the chaos game on the surface automaton with features lands on the limit surface at its addresses",
+          "[subdivision][limit][features]") {
+  // A chaos point is the corner (0, 0) of the node it stands on; its address holds the initial entry (integer
+  // part; holes have none) and the base-4 digits 2·iu + iv of the quarters, i.e. the dyadic (s, t) of that
+  // corner, turned to the face's (u, v) by corners[0]'s place.
+  const std::vector<Case> cases = feature_cases();
+  for (const char* name : {"creased cube", "grid, boundary rule corner, chaikin", "random tags, seed 1"}) {
+    const auto c = std::find_if(cases.begin(), cases.end(), [&](const Case& x) { return x.name == name; });
+    REQUIRE(c != cases.end());
+    INFO(c->name);
+    const SurfaceAutomaton s = surface_automaton(c->mesh, MeshScheme::catmull_clark);
+    const ifs::ChaosResult chaos = ifs::chaos_game(
+        s.automaton, s.nets, {.samples = 2000, .seed = 5, .restart_diameter = 1e-5, .record_address = true});
+    const MeshTopology t = build_topology(c->mesh);
+    std::vector<FacePoint> at;
+    for (const double address : chaos.address) {
+      const auto entry = static_cast<std::size_t>(std::floor(address));
+      double rest = address - static_cast<double>(entry), a = 0, b = 0, unit = 0.5;
+      for (int k = 0; k < 26 && rest > 0; ++k, unit /= 2) {
+        rest *= 4;
+        const int digit = static_cast<int>(std::floor(rest));
+        rest -= digit;
+        a += unit * (digit / 2);
+        b += unit * (digit % 2);
+      }
+      REQUIRE(rest == 0);
+      const int f = s.automaton.initial[entry].segment;
+      const auto corners = face(t, static_cast<std::size_t>(f));
+      const auto turn = static_cast<std::size_t>(
+          std::find(corners.begin(), corners.end(), s.corners[entry][0]) - corners.begin());
+      const std::array<std::array<double, 2>, 4> uv{{{a, b}, {1 - b, a}, {1 - a, 1 - b}, {b, 1 - a}}};
+      at.push_back({.face = f, .u = uv[turn][0], .v = uv[turn][1]});
+    }
+    const SurfaceSample expected =
+        evaluate_limit_surface(c->mesh, MeshScheme::catmull_clark, at, {.partials = false});
+    CHECK((chaos.points - expected.positions).cwiseAbs().maxCoeff() <= 1e-12 * scale_of(c->mesh));
   }
 }
 
