@@ -5,10 +5,13 @@
 // f) — independent of the surface automaton's child conventions.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <vector>
 
+#include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/mesh.hpp"
 
 namespace cifs_test {
@@ -82,6 +85,29 @@ inline std::vector<int> dyadic_triangle_vertices(const cifs::subdivision::MeshRe
     m = M;
   }
   return grid;
+}
+
+/// The face point of a quad surface automaton's chaos-game address: the initial entry (integer part) and the
+/// base-4 digits 2·iu + iv of the quarters, i.e. the dyadic (s, t) of the corner (0, 0) of the node a point
+/// stands on, turned to the face's (u, v) by the place of the entry's corners[0] among the face's corners.
+inline cifs::subdivision::FacePoint address_point(const cifs::subdivision::SurfaceAutomaton& s,
+                                                  const cifs::MeshTopology& t, double address) {
+  const auto entry = static_cast<std::size_t>(std::floor(address));
+  double rest = address - static_cast<double>(entry), a = 0, b = 0, unit = 0.5;
+  for (int k = 0; k < 26 && rest > 0; ++k, unit /= 2) {
+    rest *= 4;
+    const int digit = static_cast<int>(std::floor(rest));
+    rest -= digit;
+    a += unit * (digit / 2);
+    b += unit * (digit % 2);
+  }
+  REQUIRE(rest == 0);
+  const int f = s.automaton.initial[entry].segment;
+  const auto corners = cifs::face(t, static_cast<std::size_t>(f));
+  const auto turn = static_cast<std::size_t>(std::find(corners.begin(), corners.end(), s.corners[entry][0]) -
+                                             corners.begin());
+  const std::array<std::array<double, 2>, 4> uv{{{a, b}, {1 - b, a}, {1 - a, 1 - b}, {b, 1 - a}}};
+  return {.face = f, .u = uv[turn][0], .v = uv[turn][1]};
 }
 
 }  // namespace cifs_test

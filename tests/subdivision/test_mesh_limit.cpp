@@ -488,27 +488,7 @@ TEST_CASE("the chaos game on the surface automaton lands on the limit surface at
         s.automaton, s.nets, {.samples = 3000, .seed = 7, .restart_diameter = 1e-5, .record_address = true});
     const MeshTopology t = build_topology(m);
     std::vector<FacePoint> at;
-    for (const double address : chaos.address) {
-      const int f = static_cast<int>(std::floor(address));
-      double rest = address - f, a = 0, b = 0, unit = 0.5;
-      for (int k = 0; k < 26 && rest > 0; ++k, unit /= 2) {
-        rest *= 4;
-        const int digit = static_cast<int>(std::floor(rest));
-        rest -= digit;
-        a += unit * (digit / 2);
-        b += unit * (digit % 2);
-      }
-      REQUIRE(rest == 0);
-      // (s, t) → the face's (u, v): corners[0] is face corner `turn`.
-      const int turn = static_cast<int>(std::find(face(t, static_cast<std::size_t>(f)).begin(),
-                                                  face(t, static_cast<std::size_t>(f)).end(),
-                                                  s.corners[static_cast<std::size_t>(f)][0]) -
-                                        face(t, static_cast<std::size_t>(f)).begin());
-      const std::array<std::array<double, 2>, 4> uv{{{a, b}, {1 - b, a}, {1 - a, 1 - b}, {b, 1 - a}}};
-      at.push_back({.face = f,
-                    .u = uv[static_cast<std::size_t>(turn)][0],
-                    .v = uv[static_cast<std::size_t>(turn)][1]});
-    }
+    for (const double address : chaos.address) at.push_back(address_point(s, t, address));
     const SurfaceSample expected = evaluate_limit_surface(m, MeshScheme::catmull_clark, at);
     const double scale = m.vertices.cwiseAbs().maxCoeff();
     for (Eigen::Index p = 0; p < chaos.points.rows(); ++p) {

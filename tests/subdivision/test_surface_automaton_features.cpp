@@ -18,6 +18,7 @@
 #include "cifs/ifs/mesh.hpp"
 #include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/mesh.hpp"
+#include "subdivision/dyadic.hpp"
 #include "subdivision/meshes.hpp"
 
 using namespace cifs;
@@ -197,24 +198,7 @@ TEST_CASE("the chaos game on the surface automaton with features lands on the li
         s.automaton, s.nets, {.samples = 2000, .seed = 5, .restart_diameter = 1e-5, .record_address = true});
     const MeshTopology t = build_topology(c->mesh);
     std::vector<FacePoint> at;
-    for (const double address : chaos.address) {
-      const auto entry = static_cast<std::size_t>(std::floor(address));
-      double rest = address - static_cast<double>(entry), a = 0, b = 0, unit = 0.5;
-      for (int k = 0; k < 26 && rest > 0; ++k, unit /= 2) {
-        rest *= 4;
-        const int digit = static_cast<int>(std::floor(rest));
-        rest -= digit;
-        a += unit * (digit / 2);
-        b += unit * (digit % 2);
-      }
-      REQUIRE(rest == 0);
-      const int f = s.automaton.initial[entry].segment;
-      const auto corners = face(t, static_cast<std::size_t>(f));
-      const auto turn = static_cast<std::size_t>(
-          std::find(corners.begin(), corners.end(), s.corners[entry][0]) - corners.begin());
-      const std::array<std::array<double, 2>, 4> uv{{{a, b}, {1 - b, a}, {1 - a, 1 - b}, {b, 1 - a}}};
-      at.push_back({.face = f, .u = uv[turn][0], .v = uv[turn][1]});
-    }
+    for (const double address : chaos.address) at.push_back(address_point(s, t, address));
     const SurfaceSample expected =
         evaluate_limit_surface(c->mesh, MeshScheme::catmull_clark, at, {.partials = false});
     CHECK((chaos.points - expected.positions).cwiseAbs().maxCoeff() <= 1e-12 * scale_of(c->mesh));
