@@ -2,12 +2,14 @@
 // cifs Python bindings — cifs.nurbs: knot vectors, curves, refinement, surfaces, knot doubling.
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <utility>
 
 #include "arrays.hpp"
 #include "cifs/ifs/shape_attractor.hpp"
+#include "cifs/nurbs/construct.hpp"
 #include "cifs/nurbs/curve.hpp"
 #include "cifs/nurbs/doubling.hpp"
 #include "cifs/nurbs/fit.hpp"
@@ -1148,6 +1150,104 @@ void bind_measure(py::module_& m) {
       "the wrong size or a weight that would become ≤ 0.");
 }
 
+Eigen::Vector3d vector3_from(const DoubleArray& a, const char* where) {
+  const Eigen::VectorXd v = to_vector(a, where);
+  if (v.size() != 3)
+    throw InvalidInput(std::string(where) + ": " + std::to_string(v.size()) + " values, expected 3");
+  return v;
+}
+
+void bind_construct(py::module_& m) {
+  m.def("make_compatible", &make_compatible, Release(), py::arg("curves"),
+        "The curves (list of Curve) made compatible: clamped (closed ones opened at their seam), rational\n"
+        "when any is, raised to the largest degree, mapped onto the first curve's domain and refined to the\n"
+        "union of their knots. Each is the same point set on the affinely mapped parameters; all share\n"
+        "degree, knots and number of control points. Raises InvalidInput for no curve or a dimension\n"
+        "mismatch.");
+  m.def("ruled", &ruled, Release(), py::arg("a"), py::arg("b"),
+        "The ruled surface between curves a and b: linear in v on [0, 1], S(u, 0) = a(u) and S(u, 1) = b\n"
+        "on its parameter mapped onto a's domain (make_compatible).");
+  m.def(
+      "extrude",
+      [](const Curve& c, const DoubleArray& direction) {
+        return extrude(c, point_from(direction, "direction"));
+      },
+      py::arg("curve"), py::arg("direction"),
+      "The translational surface S(u, v) = C(u) + v·direction, v in [0, 1] (exact). Raises InvalidInput for\n"
+      "a direction of the wrong size, zero, not finite, or along a straight curve.");
+  m.def(
+      "revolve",
+      [](const Curve& profile, const DoubleArray& axis_point, const DoubleArray& axis_direction,
+         double angle) {
+        const Eigen::Vector3d o = vector3_from(axis_point, "axis_point"),
+                              a = vector3_from(axis_direction, "axis_direction");
+        const py::gil_scoped_release release;
+        return revolve(profile, o, a, angle);
+      },
+      py::arg("profile"), py::arg("axis_point"), py::arg("axis_direction"),
+      py::arg("angle") = 2 * std::numbers::pi,
+      "The surface of revolution of a 3-D profile (u) turned by angle in (0, 2π] about the axis (v in\n"
+      "[0, 1]): exact rational quadratic arcs of at most 90° (The NURBS Book A8.1); a full turn closes\n"
+      "exactly. Raises InvalidInput for a profile that is not 3-D or lies on the axis, a zero axis, or an\n"
+      "angle outside (0, 2π].");
+  m.def(
+      "loft",
+      [](const std::vector<Curve>& curves, int degree_v, const std::string& parametrization) {
+        LoftOptions o;
+        o.degree_v = degree_v;
+        o.parametrization = parametrization_named(parametrization);
+        const py::gil_scoped_release release;
+        return loft(curves, o);
+      },
+      py::arg("curves"), py::arg("degree_v") = 3, py::arg("parametrization") = "chord_length",
+      "The surface through the curves (skinning, The NURBS Book 10.3): made compatible, then every column\n"
+      "of control points interpolated across them (homogeneous when rational) at v-parameters averaged\n"
+      "over the columns (loft_parameters); v in [0, 1]. Raises InvalidInput for fewer than 2 curves or\n"
+      "degree_v outside 1 … len(curves) − 1.");
+  m.def(
+      "loft_parameters",
+      [](const std::vector<Curve>& curves, const std::string& parametrization) {
+        return vector_array(loft_parameters(curves, parametrization_named(parametrization)));
+      },
+      py::arg("curves"), py::arg("parametrization") = "chord_length",
+      "The v-parameter of each curve in loft(curves, …): its iso-curve there is that curve.");
+  py::class_<Sweep>(m, "Sweep", "Result of sweep: the surface and its deviation from the exact sweep.")
+      .def_readonly("surface", &Sweep::surface, "The swept surface (u: profile, v: trajectory's domain).")
+      .def_readonly(
+          "deviation", &Sweep::deviation,
+          "0 for the translational sweep (exact); for the skinned sweep the largest distance to the\n"
+          "profile carried by the frames over a sample (8 parameters between instances, 8 per profile\n"
+          "span): a measured figure, not a bound.")
+      .def(
+          "__repr__",
+          [](const Sweep& s) {
+            return "Sweep(degree=(" + std::to_string(s.surface.degree[0]) + ", " +
+                   std::to_string(s.surface.degree[1]) +
+                   "), deviation=" + py::repr(py::float_(s.deviation)).cast<std::string>() + ")";
+          },
+          "Short description.");
+  m.def(
+      "sweep",
+      [](const Curve& profile, const Curve& trajectory, int instances, int degree_v) {
+        SweepOptions o;
+        o.instances = instances;
+        o.degree_v = degree_v;
+        const py::gil_scoped_release release;
+        return sweep(profile, trajectory, o);
+      },
+      py::arg("profile"), py::arg("trajectory"), py::arg("instances") = 0, py::arg("degree_v") = 3,
+      "The profile (placed at the trajectory's start) swept along the trajectory; returns a Sweep.\n\n"
+      "instances=0: the translational sweep C(u) + T(v) − T(v0), exact. instances=N ≥ 2: the profile\n"
+      "carried by the trajectory's rotation-minimizing frames, skinned through N instances (degree_v ≤\n"
+      "N − 1): an approximation whose measured deviation is reported.");
+  m.def(
+      "rotation_minimizing_frames",
+      [](const Curve& c, int count, int steps) { return rotation_minimizing_frames(c, count, steps); },
+      Release(), py::arg("curve"), py::arg("count"), py::arg("steps") = 64,
+      "Rotation-minimizing frames of a 3-D curve at count equally spaced parameters (double reflection,\n"
+      "`steps` steps between them): (count, 6), the unit tangent then the unit reference vector.");
+}
+
 }  // namespace
 
 void bind_nurbs(py::module_& m) {
@@ -1158,6 +1258,7 @@ void bind_nurbs(py::module_& m) {
   bind_doubling(m);
   bind_fit(m);
   bind_measure(m);
+  bind_construct(m);
 }
 
 }  // namespace cifs::python
