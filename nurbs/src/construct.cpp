@@ -7,6 +7,7 @@
 #include <numbers>
 #include <string>
 
+#include "cifs/files.hpp"
 #include "cifs/nurbs/refine.hpp"
 #include "detail.hpp"
 
@@ -361,6 +362,15 @@ Sweep sweep(const Curve& profile, const Curve& trajectory, const SweepOptions& o
   if (dimension(profile) != 3)
     detail::fail("profile: dimension ", dimension(profile), ", a swept surface needs 3");
   check_degree_v(o.degree_v, static_cast<std::size_t>(o.instances), "sweep");
+  // The instances, their compatible copies, the flattened lines and the net: about four copies of the
+  // instances' rows (of at most the profile's rows plus two degrees after clamping).
+  const double bytes = 4.0 * o.instances * static_cast<double>(profile.P.rows() + 2 * profile.degree + 2) *
+                       static_cast<double>(profile.P.cols()) * sizeof(double);
+  if (bytes > static_cast<double>(largest_input()))
+    detail::fail("instances: ", o.instances, " instances of the profile need ",
+                 static_cast<long long>(bytes / 1e6), " MB, more than the ",
+                 static_cast<long long>(static_cast<double>(largest_input()) / 1e6),
+                 " MB (half the memory) a computation may take");
   constexpr int kSteps = 64, kSamples = 8;  // frame steps between instances; deviation samples among them
   const Points frames =
       rotation_minimizing_frames(trajectory, (o.instances - 1) * kSamples + 1, kSteps / kSamples);

@@ -1158,12 +1158,14 @@ Eigen::Vector3d vector3_from(const DoubleArray& a, const char* where) {
 }
 
 void bind_construct(py::module_& m) {
-  m.def("make_compatible", &make_compatible, Release(), py::arg("curves"),
-        "The curves (list of Curve) made compatible: clamped (closed ones opened at their seam), rational\n"
-        "when any is, raised to the largest degree, mapped onto the first curve's domain and refined to the\n"
-        "union of their knots. Each is the same point set on the affinely mapped parameters; all share\n"
-        "degree, knots and number of control points. Raises InvalidInput for no curve or a dimension\n"
-        "mismatch.");
+  m.def(
+      "make_compatible", [](const std::vector<Curve>& curves) { return make_compatible(curves); }, Release(),
+      py::arg("curves"),
+      "The curves (list of Curve) made compatible: clamped (closed ones opened at their seam), rational\n"
+      "when any is, raised to the largest degree, mapped onto the first curve's domain and refined to the\n"
+      "union of their knots. Each is the same point set on the affinely mapped parameters; all share\n"
+      "degree, knots and number of control points. Raises InvalidInput for no curve or a dimension\n"
+      "mismatch.");
   m.def("ruled", &ruled, Release(), py::arg("a"), py::arg("b"),
         "The ruled surface between curves a and b: linear in v on [0, 1], S(u, 0) = a(u) and S(u, 1) = b\n"
         "on its parameter mapped onto a's domain (make_compatible).");

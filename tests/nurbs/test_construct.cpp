@@ -462,6 +462,10 @@ TEST_CASE("construction refuses bad input in one line", "[nurbs][construct]") {
   CHECK_THROWS_WITH(sweep(line, line2), Contains("trajectory: dimension 2"));
   o.instances = 3;
   CHECK_THROWS_WITH(sweep(line, line, o), Contains("sweep: degree_v 3 is outside 1 … 2"));
+  o.instances = 1 << 30;
+  CHECK_THROWS_WITH(sweep(line, line, o), Contains("instances: 1073741824 instances of the profile need") &&
+                                              Contains("(half the memory)"));
+  o.instances = 3;
   Points point(2, 3);
   point << 1, 1, 1, 1, 1, 1;
   o.degree_v = 2;
