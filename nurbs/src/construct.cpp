@@ -364,7 +364,8 @@ Sweep sweep(const Curve& profile, const Curve& trajectory, const SweepOptions& o
   check_degree_v(o.degree_v, static_cast<std::size_t>(o.instances), "sweep");
   // The instances, their compatible copies, the flattened lines and the net: about four copies of the
   // instances' rows (of at most the profile's rows plus two degrees after clamping).
-  const double bytes = 4.0 * o.instances * static_cast<double>(profile.P.rows() + 2 * profile.degree + 2) *
+  const double bytes = 4.0 * o.instances *
+                       static_cast<double>(profile.P.rows() + 2 * Eigen::Index{profile.degree} + 2) *
                        static_cast<double>(profile.P.cols()) * sizeof(double);
   if (bytes > static_cast<double>(largest_input()))
     detail::fail("instances: ", o.instances, " instances of the profile need ",
