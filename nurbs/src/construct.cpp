@@ -217,23 +217,44 @@ Surface revolve(const Curve& profile, const Eigen::Vector3d& axis_point,
   return from_columns(shape, columns, 2, std::move(kv));
 }
 
+namespace {
+
+/// The v-parameters of compatible curves: for each column of control points (the i-th point of every
+/// curve) its cumulative chords (uniform: 1, centripetal: their square roots) over their total, averaged
+/// over the columns; a column whose points all coincide (a pole) is left out.
+std::vector<double> column_parameters(const std::vector<Curve>& c, Parametrization kind) {
+  const auto m = c.size();
+  std::vector<Points> cart;
+  for (const Curve& x : c) cart.push_back(cartesian_points(x));
+  std::vector<double> v(m, 0.0), u(m);
+  int columns = 0;
+  for (Eigen::Index i = 0; i < cart[0].rows(); ++i) {
+    u[0] = 0;
+    for (std::size_t k = 1; k < m; ++k) {
+      const double d = (cart[k].row(i) - cart[k - 1].row(i)).norm();
+      u[k] = u[k - 1] + (kind == Parametrization::uniform       ? 1.0
+                         : kind == Parametrization::centripetal ? std::sqrt(d)
+                                                                : d);
+    }
+    if (!(u[m - 1] > 0)) continue;
+    ++columns;
+    for (std::size_t k = 1; k < m; ++k) v[k] += u[k] / u[m - 1];
+  }
+  if (columns == 0) detail::fail("loft: the curves coincide (every column of control points is one point)");
+  for (std::size_t k = 1; k < m; ++k) {
+    v[k] = k + 1 == m ? 1.0 : v[k] / columns;
+    if (!(v[k] > v[k - 1]))
+      detail::fail("loft: curves[", k - 1, "] and curves[", k,
+                   "] coincide (equal compatible control points)");
+  }
+  return v;
+}
+
+}  // namespace
+
 std::vector<double> loft_parameters(std::span<const Curve> curves, Parametrization parametrization) {
   if (curves.size() < 2) detail::fail("curves: ", curves.size(), " given, a loft needs at least 2");
-  const std::vector<Curve> c = make_compatible(curves);
-  // The grid of Cartesian control points: point (i, k), i along the curves, k across them.
-  Grid g{Points(c[0].P.rows() * static_cast<Eigen::Index>(c.size()), dimension(c[0])),
-         {c[0].P.rows(), static_cast<Eigen::Index>(c.size())}};
-  for (std::size_t k = 0; k < c.size(); ++k) {
-    const Points cart = cartesian_points(c[k]);
-    for (Eigen::Index i = 0; i < cart.rows(); ++i)
-      g.points.row(i * g.count[1] + static_cast<Eigen::Index>(k)) = cart.row(i);
-  }
-  // grid_parameters checks both directions; the curves' own direction only needs one distinct point.
-  try {
-    return grid_parameters(g, parametrization)[1];
-  } catch (const InvalidInput& e) {
-    detail::fail("loft: ", e.what());
-  }
+  return column_parameters(make_compatible(curves), parametrization);
 }
 
 namespace {
@@ -269,7 +290,8 @@ void check_degree_v(int degree_v, std::size_t curves, std::string_view what) {
 Surface loft(std::span<const Curve> curves, const LoftOptions& o) {
   if (curves.size() < 2) detail::fail("curves: ", curves.size(), " given, a loft needs at least 2");
   check_degree_v(o.degree_v, curves.size(), "loft");
-  return skin(make_compatible(curves), loft_parameters(curves, o.parametrization), o.degree_v);
+  const std::vector<Curve> c = make_compatible(curves);
+  return skin(c, column_parameters(c, o.parametrization), o.degree_v);
 }
 
 Points rotation_minimizing_frames(const Curve& curve, int count, int steps) {

@@ -442,6 +442,13 @@ TEST_CASE("construction refuses bad input in one line", "[nurbs][construct]") {
   CHECK_THROWS_WITH(loft(std::span<const Curve>(&line, 1)), Contains("curves: 1 given"));
   const Curve two[2] = {line, line};
   CHECK_THROWS_WITH(loft(two, {}), Contains("loft: degree_v 3 is outside 1 … 1"));
+  CHECK_THROWS_WITH(loft(two, {1, Parametrization::chord_length}),
+                    Contains("loft: the curves coincide (every column of control points is one point)"));
+  Points up = seg;
+  up.col(0).array() += 1;
+  const Curve twice[3] = {line, line, make_curve(1, {0, 0, 1, 1}, up)};
+  CHECK_THROWS_WITH(loft(twice, {1, Parametrization::centripetal}),
+                    Contains("loft: curves[0] and curves[1] coincide (equal compatible control points)"));
   CHECK_THROWS_WITH(extrude(line, Point::Zero(3)), Contains("direction: the zero vector"));
   CHECK_THROWS_WITH(extrude(line, Point::Ones(2)), Contains("direction: 2 coordinates"));
   Point nan = Point::Ones(3);

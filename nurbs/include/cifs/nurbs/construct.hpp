@@ -42,17 +42,18 @@ Surface revolve(const Curve& profile, const Eigen::Vector3d& axis_point,
 struct LoftOptions {
   /// Degree across the curves (v): at most the number of curves − 1.
   int degree_v = 3;
-  /// How the curves get their v-parameters: those of each column of the compatible control points,
-  /// averaged over the columns (The NURBS Book eq. 10.8 for chord length).
+  /// How the curves get their v-parameters: those of each column of the compatible control points (the
+  /// i-th point of every curve), averaged over the columns; a column that is one point (a pole) is left
+  /// out (The NURBS Book eq. 10.8 for chord length).
   Parametrization parametrization = Parametrization::chord_length;
 };
 
 /// The surface through the curves (skinning, The NURBS Book §10.3): made compatible, then each column of
 /// control points (homogeneous for rational curves) interpolated through the v-parameters (averaged_knots,
 /// clamped on [0, 1]). The iso-curve at the k-th curve's v-parameter is that curve (make_compatible's
-/// parameters). Throws InvalidInput for fewer than 2 curves, degree_v outside 1 … curves − 1, columns
-/// whose points coincide on every column, and an interpolated weight that is not positive (rational
-/// curves whose weights differ too much).
+/// parameters). Throws InvalidInput for fewer than 2 curves, degree_v outside 1 … curves − 1, two
+/// consecutive curves that coincide (equal compatible control points), and an interpolated weight that
+/// is not positive (rational curves whose weights differ too much).
 Surface loft(std::span<const Curve> curves, const LoftOptions& options = {});
 
 /// The v-parameters that loft gives the curves (one per curve, from 0 to 1).
