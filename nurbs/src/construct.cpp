@@ -224,8 +224,8 @@ namespace {
 /// over the columns; a column whose points all coincide (a pole) is left out.
 std::vector<double> column_parameters(const std::vector<Curve>& c, Parametrization kind) {
   const auto m = c.size();
-  std::vector<Points> cart;
-  for (const Curve& x : c) cart.push_back(cartesian_points(x));
+  std::vector<Points> cart(m);
+  for (std::size_t k = 0; k < m; ++k) cart[k] = cartesian_points(c[k]);
   std::vector<double> v(m, 0.0), u(m);
   int columns = 0;
   for (Eigen::Index i = 0; i < cart[0].rows(); ++i) {
