@@ -17,6 +17,7 @@
 #include "cifs/nurbs/measure.hpp"
 #include "cifs/nurbs/refine.hpp"
 #include "cifs/nurbs/surface.hpp"
+#include "cifs/nurbs/volume.hpp"
 
 namespace cifs::python {
 namespace {
@@ -800,7 +801,8 @@ void bind_surface(py::module_& m) {
       "insert_knot.");
   m.def("refine_midpoints", py::overload_cast<const Surface&>(&refine_midpoints), Release(),
         py::arg("surface"), "Inserts the midpoint of every non-empty span in both directions.");
-  m.def("direction_curve", &direction_curve, py::arg("surface"), py::arg("direction"),
+  m.def("direction_curve", py::overload_cast<const Surface&, Direction>(&direction_curve), py::arg("surface"),
+        py::arg("direction"),
         "The curve of control lines along `direction`: each row of its points is a whole line of the net,\n"
         "flattened (stored coordinates).");
   m.def(
@@ -1250,6 +1252,67 @@ void bind_construct(py::module_& m) {
       "`steps` steps between them): (count, 6), the unit tangent then the unit reference vector.");
 }
 
+void bind_volume(py::module_& m) {
+  py::class_<Volume>(
+      m, "Volume",
+      "A trivariate tensor-product B-spline or NURBS volume (immutable). Control point (i, j, k) is row\n"
+      "(i·nv + j)·nw + k of P.")
+      .def(py::init([](std::array<int, 3> degree, std::array<Knots, 3> knots, const DoubleArray& points,
+                       const std::optional<DoubleArray>& weights) {
+             if (points.ndim() != 4)
+               throw InvalidInput("points: expected (nu, nv, nw, dim), got shape " + shape_text(points));
+             const std::array<Eigen::Index, 3> count{points.shape(0), points.shape(1), points.shape(2)};
+             const Points P =
+                 Eigen::Map<const Points>(points.data(), count[0] * count[1] * count[2], points.shape(3));
+             Eigen::VectorXd w;
+             if (weights) {
+               if (weights->size() != count[0] * count[1] * count[2])
+                 throw InvalidInput("weights: shape " + shape_text(*weights) + " does not match the " +
+                                    std::to_string(count[0]) + " by " + std::to_string(count[1]) + " by " +
+                                    std::to_string(count[2]) + " net");
+               w = Eigen::Map<const Eigen::VectorXd>(weights->data(), weights->size());
+             }
+             return make_volume(degree, std::move(knots), count, P, w);
+           }),
+           py::arg("degree"), py::arg("knots"), py::arg("points"), py::arg("weights") = py::none(),
+           "Validated volume (make_volume). degree: (p, q, r). knots: three knot vectors. points: (nu, nv,\n"
+           "nw, dim). weights: None or (nu, nv, nw) positive values. Raises InvalidInput for invalid input.")
+      .def_property_readonly(
+          "degree", [](const Volume& v) { return py::make_tuple(v.degree[0], v.degree[1], v.degree[2]); },
+          "Degrees (p, q, r).")
+      .def_property_readonly(
+          "knots",
+          [](const Volume& v) {
+            return py::make_tuple(vector_array(v.knots[0]), vector_array(v.knots[1]),
+                                  vector_array(v.knots[2]));
+          },
+          "The three knot vectors.")
+      .def_property_readonly(
+          "count", [](const Volume& v) { return py::make_tuple(v.count[0], v.count[1], v.count[2]); },
+          "(nu, nv, nw).")
+      .def_property_readonly(
+          "P", [](const Volume& v) { return Points(v.P); },
+          "Stored control rows ((nu·nv·nw), dim + rational): homogeneous (w·x, w) when rational.")
+      .def_readonly("rational", &Volume::rational, "Whether the volume has weights.")
+      .def_property_readonly(
+          "dimension", [](const Volume& v) { return dimension(v); }, "Cartesian dimension.")
+      .def(
+          "evaluate", [](const Volume& vol, double u, double v, double w) { return evaluate(vol, u, v, w); },
+          py::arg("u"), py::arg("v"), py::arg("w"),
+          "The volume point (Cartesian) at (u, v, w). Raises InvalidInput outside the domain.")
+      .def(
+          "__repr__",
+          [](const Volume& v) {
+            return "Volume(degree=(" + std::to_string(v.degree[0]) + ", " + std::to_string(v.degree[1]) +
+                   ", " + std::to_string(v.degree[2]) + "), count=(" + std::to_string(v.count[0]) + ", " +
+                   std::to_string(v.count[1]) + ", " + std::to_string(v.count[2]) +
+                   "), dimension=" + std::to_string(dimension(v)) + (v.rational ? ", rational" : "") + ")";
+          },
+          "Short description.");
+  m.def("insert_knot", py::overload_cast<const Volume&, int, double, int>(&insert_knot), py::arg("volume"),
+        py::arg("direction"), py::arg("t"), py::arg("times") = 1,
+        "Inserts t `times` times in direction 0 (u), 1 (v) or 2 (w) of a volume; the volume is unchanged.");
+}
 }  // namespace
 
 void bind_nurbs(py::module_& m) {
@@ -1261,6 +1324,7 @@ void bind_nurbs(py::module_& m) {
   bind_fit(m);
   bind_measure(m);
   bind_construct(m);
+  bind_volume(m);
 }
 
 }  // namespace cifs::python

@@ -121,5 +121,39 @@ class ConstructTest(unittest.TestCase):
             self.assertIn(message, str(caught.exception))
 
 
+class VolumeTest(unittest.TestCase):
+    def test_evaluate_is_the_triple_sum_and_insertion_keeps_it(self):
+        rng = np.random.default_rng(31)
+        degree = (2, 1, 3)
+        knots = ([0, 0, 0, 0.4, 1, 1, 1], [0, 0, 0.5, 1, 1], [0, 0, 0, 0, 1, 1, 1, 1])
+        points = rng.uniform(-1, 1, (4, 3, 4, 3))
+        weights = rng.uniform(0.5, 2, (4, 3, 4))
+        vol = nurbs.Volume(degree, knots, points, weights)
+        self.assertEqual(vol.count, (4, 3, 4))
+
+        def basis(d, t):  # every basis function of direction d at t, from the knot functions
+            span = nurbs.find_span(knots[d], degree[d], t)
+            full = np.zeros(len(knots[d]) - degree[d] - 1)
+            full[span - degree[d]:span + 1] = nurbs.basis_functions(knots[d], degree[d], span, t)
+            return full
+
+        for u, v, w in ((0, 0, 0), (0.3, 0.7, 0.2), (1, 0.5, 1), (0.4, 0.25, 0.9)):
+            N, M, L = basis(0, u), basis(1, v), basis(2, w)
+            homogeneous = np.einsum("i,j,k,ijkc->c", N, M, L, np.concatenate(
+                [points * weights[..., None], weights[..., None]], axis=3))
+            expected = homogeneous[:3] / homogeneous[3]
+            assert_close(self, vol.evaluate(u, v, w), expected, 1e-14)
+            for direction in (0, 1, 2):
+                finer = nurbs.insert_knot(vol, direction, 0.6, 1)
+                self.assertEqual(finer.count[direction], vol.count[direction] + 1)
+                assert_close(self, finer.evaluate(u, v, w), expected, 1e-14)
+        with self.assertRaises(cifs.InvalidInput) as caught:
+            nurbs.insert_knot(vol, 3, 0.5)
+        self.assertIn("direction 3 is not u (0), v (1) or w (2)", str(caught.exception))
+        with self.assertRaises(cifs.InvalidInput) as caught:
+            nurbs.Volume(degree, knots, points[0])
+        self.assertIn("points: expected (nu, nv, nw, dim)", str(caught.exception))
+
+
 if __name__ == "__main__":
     unittest.main()
