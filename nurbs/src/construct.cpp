@@ -297,8 +297,8 @@ Surface loft(std::span<const Curve> curves, const LoftOptions& o) {
 Points rotation_minimizing_frames(const Curve& curve, int count, int steps) {
   validate(curve);
   if (dimension(curve) != 3) detail::fail("trajectory: dimension ", dimension(curve), ", frames need 3");
-  if (count < 1 || steps < 1)
-    detail::fail("frames: count ", count, " and steps ", steps, " must be positive");
+  if (count < 1) detail::fail("count: ", count, " is not positive");
+  if (steps < 1) detail::fail("steps: ", steps, " is not positive");
   const Domain dom = domain(curve);
   const auto total = static_cast<long>(count - 1) * steps;
   const auto at = [&](long i) {
@@ -362,6 +362,7 @@ Sweep sweep(const Curve& profile, const Curve& trajectory, const SweepOptions& o
     detail::fail("trajectory: dimension ", dimension(trajectory), ", the profile has ", dimension(profile));
   if (o.instances < 0 || o.instances == 1)
     detail::fail("instances: ", o.instances, " is neither 0 (translational) nor at least 2");
+  if (o.degree_v < 1) detail::fail("degree_v: ", o.degree_v, " is not positive");
   const Domain dom_v = domain(trajectory);
   const Point start = evaluate(trajectory, dom_v.start);
   if (o.instances == 0) {

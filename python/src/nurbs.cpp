@@ -1262,6 +1262,12 @@ void bind_volume(py::module_& m) {
              if (points.ndim() != 4)
                throw InvalidInput("points: expected (nu, nv, nw, dim), got shape " + shape_text(points));
              const std::array<Eigen::Index, 3> count{points.shape(0), points.shape(1), points.shape(2)};
+             for (std::size_t d = 0; d < 3; ++d)
+               if (count[d] != control_count(knots[d], degree[d]))
+                 throw InvalidInput("points: shape " + shape_text(points) + " does not match the " +
+                                    std::to_string(control_count(knots[d], degree[d])) +
+                                    " control points of knots[" + std::to_string(d) + "] and degree[" +
+                                    std::to_string(d) + "]");
              const Points P =
                  Eigen::Map<const Points>(points.data(), count[0] * count[1] * count[2], points.shape(3));
              Eigen::VectorXd w;
