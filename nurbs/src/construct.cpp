@@ -126,7 +126,6 @@ std::vector<Curve> make_compatible(std::span<const Curve> curves) {
     Knots missing;
     std::set_difference(all.begin(), all.end(), c.knots.begin(), c.knots.end(), std::back_inserter(missing));
     if (!missing.empty()) c = refine(c, missing);
-    c.knots = all;  // the same values: refine inserted exactly these
   }
   return out;
 }
@@ -153,7 +152,9 @@ Surface extrude(const Curve& curve, const Point& direction) {
     const Point x = cart.row(i) - cart.row(0);
     off_line = std::max(off_line, (x - x.dot(unit) * unit).norm());
   }
-  if (!(off_line > 1e-14 * std::max(extent(cart), length)))
+  const double size = extent(cart);
+  if (!(size > 0)) detail::fail("curve: a single point (the surface has no area)");
+  if (!(off_line > 1e-14 * size))
     detail::fail("direction: parallel to the curve, which is straight along it (the surface has no area)");
   const Curve shape = opened(curve);
   return from_columns(shape, {shape.P, moved_rows(shape, direction)}, 1, {0, 0, 1, 1});

@@ -455,6 +455,11 @@ TEST_CASE("construction refuses bad input in one line", "[nurbs][construct]") {
   nan(1) = std::nan("");
   CHECK_THROWS_WITH(extrude(line, nan), Contains("direction: a coordinate is not finite"));
   CHECK_THROWS_WITH(extrude(line, Point(Eigen::RowVector3d(0, 0, 2))), Contains("parallel"));
+  CHECK_NOTHROW(extrude(line, Point(Eigen::RowVector3d(1e-10, 0, 1))));  // tilted by 1e-10: a thin surface
+  Points dot(2, 3);
+  dot << 1, 2, 3, 1, 2, 3;
+  CHECK_THROWS_WITH(extrude(make_curve(1, {0, 0, 1, 1}, dot), Point(Eigen::RowVector3d(0, 0, 1))),
+                    Contains("curve: a single point"));
   CHECK_THROWS_WITH(revolve(line, {0, 0, 0}, {0, 0, 0}, 1), Contains("axis_direction: the zero vector"));
   CHECK_THROWS_WITH(revolve(line, {0, 0, 0}, {0, 0, 1}, 0), Contains("angle: 0 is outside (0, 2π]"));
   CHECK_THROWS_WITH(revolve(line, {0, 0, 0}, {0, 0, 1}, 7), Contains("angle: 7 is outside"));
