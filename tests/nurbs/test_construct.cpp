@@ -367,8 +367,8 @@ TEST_CASE("sweep along a circle: the skinned instances approach the surface of r
         measured = std::max(measured, (evaluate(sw.surface, u, v).transpose() - exact).norm());
       }
     INFO("instances " << instances << " reported " << sw.deviation << " measured " << measured);
-    CHECK(sw.deviation <= 1.05 * measured);
-    CHECK(sw.deviation >= 0.8 * measured);
+    CHECK(sw.deviation <= 1.03 * measured);  // the two samples differ: 0.03 % to 0.6 % apart
+    CHECK(sw.deviation >= 0.97 * measured);
     if (last > 0) CHECK(sw.deviation < last / 8);  // cubic skinning: about h⁴
     last = sw.deviation;
     WARN("sweep along a quarter circle, " << instances << " instances: deviation " << sw.deviation);

@@ -26,7 +26,8 @@ Surface ruled(const Curve& a, const Curve& b);
 
 /// The translational surface `S(u, v) = C(u) + v·direction`, v ∈ [0, 1]; exact (rational curves too: each
 /// control point moved with its weight). Throws InvalidInput for a direction that is not finite, of the
-/// wrong size, zero, or parallel to a straight curve (a surface without area).
+/// wrong size, zero, or parallel to a straight curve (a surface without area: every control point within
+/// 1e-14 of the curve's size of the line along the direction), and for a curve that is one point.
 Surface extrude(const Curve& curve, const Point& direction);
 
 /// The surface of revolution of a 3-D profile about the axis through `axis_point` along `axis_direction`,
