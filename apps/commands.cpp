@@ -350,7 +350,17 @@ std::string info(const std::filesystem::path& path, const ShapeSelection& select
 }
 
 std::string automaton(const AutomatonOptions& o) {
-  io::writable_format(io::Content::automaton, o.format, "--format");
+  // The format: -o's extension, else --format (default json); the output checked before any work.
+  std::string format = o.format.empty() ? "json" : o.format;
+  std::optional<AtomicFile> output;
+  if (!o.output.empty()) {
+    format = io::format_of(o.output, io::Content::automaton).name;
+    if (!o.format.empty() && o.format != format)
+      throw InvalidInput("--format " + o.format + ": -o " + o.output.string() + " names " + format);
+  }
+  io::writable_format(io::Content::automaton, format, "--format");
+  if (!o.output.empty()) output.emplace(o.output, OutputOptions{.inputs = {o.shape}});
+  nurbs::KnotAutomaton a;
   if (io::detect(o.shape) == io::Content::mesh) {
     // A mesh: the surface automaton of its scheme (subdivision/limit.hpp), after `levels` steps.
     if (o.scheme.empty())
@@ -367,27 +377,32 @@ std::string automaton(const AutomatonOptions& o) {
     Mesh mesh = io::read_mesh(o.shape);
     if (o.levels > 0) mesh = subdivision::subdivide(mesh, scheme, o.levels);
     try {
-      return io::encode(subdivision::surface_automaton(mesh, scheme).automaton, o.format);
+      a = nurbs::without_knots(subdivision::surface_automaton(mesh, scheme).automaton);
     } catch (const InvalidInput& e) {
-      // Faces with several extraordinary corners part after a step: say it in the CLI's words.
+      // Faces with several extraordinary corners or more than four part after a step: say it in the CLI's
+      // words.
       std::string what = e.what();
       const std::string library = "(refine one level first)";
       if (const auto at = what.find(library); at != std::string::npos)
         throw InvalidInput(what.replace(at, library.size(), "(--levels 1 refines them apart)"));
       throw;
     }
+  } else {
+    if (!o.scheme.empty() || o.levels != 0)
+      throw InvalidInput(std::string(o.scheme.empty() ? "--levels" : "--scheme") + " applies to meshes; " +
+                         o.shape.string() + " is a shape");
+    const io::Shape shape = read_shape(o.shape, o.select);
+    // Curves: the knot-doubling automaton; surfaces: the tensor product of their two direction curves'.
+    const auto* c = std::get_if<nurbs::Curve>(&shape);
+    a = c ? nurbs::knot_automaton(*c)
+          : nurbs::without_knots(nurbs::tensor_automaton(std::get<nurbs::Surface>(shape)).product);
+    if (o.minimize) a = nurbs::minimize(a);
   }
-  if (!o.scheme.empty() || o.levels != 0)
-    throw InvalidInput(std::string(o.scheme.empty() ? "--levels" : "--scheme") + " applies to meshes; " +
-                       o.shape.string() + " is a shape");
-  const io::Shape shape = read_shape(o.shape, o.select);
-  // Curves: the knot-doubling automaton; surfaces: the tensor product of their two direction curves'.
-  const auto* c = std::get_if<nurbs::Curve>(&shape);
-  nurbs::KnotAutomaton a =
-      c ? nurbs::knot_automaton(*c)
-        : nurbs::without_knots(nurbs::tensor_automaton(std::get<nurbs::Surface>(shape)).product);
-  if (o.minimize) a = nurbs::minimize(a);
-  return io::encode(a, o.format);
+  if (!output) return io::encode(a, format);
+  io::encode(a, format, *output);
+  output->commit();
+  return "wrote " + o.output.string() + ": " + std::to_string(num_vertices(a.automaton.graph)) + " states, " +
+         std::to_string(a.automaton.initial.size()) + " initial entries\n";
 }
 
 namespace {

@@ -104,10 +104,11 @@ std::string analyze(const AnalyzeOptions& options);
 struct AutomatonOptions {
   std::filesystem::path shape;  // a shape, or a mesh (OBJ faces, PLY) with `scheme`
   ShapeSelection select;
-  std::string format = "json";  // a writable format of io::formats(Content::automaton)
+  std::string format;  // a writable format of io::formats(Content::automaton); empty: -o's, else json
   bool minimize = false;
-  std::string scheme;  // a mesh's: catmull-clark or loop (the surface automaton)
-  int levels = 0;      // a mesh's steps of refinement before its automaton is built
+  std::string scheme;            // a mesh's: catmull-clark or loop (the surface automaton)
+  int levels = 0;                // a mesh's steps of refinement before its automaton is built
+  std::filesystem::path output;  // its extension names the format; empty: stdout
 };
 std::string automaton(const AutomatonOptions& options);
 

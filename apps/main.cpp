@@ -182,11 +182,15 @@ void add_automaton(CLI::App& app, Commands& c) {
   automaton_cmd->add_option("shape", c.au.shape, "Shape file (.json or .obj), or a mesh (.obj, .ply)")
       ->required();
   automaton_cmd->add_option("--format", c.au.format, "json (default), dot or svg");
+  automaton_cmd
+      ->add_option("-o,--output", c.au.output,
+                   "Output file, its format from the extension (.json, .dot, .svg)")
+      ->check(output_name);
   automaton_cmd->add_flag("--minimize", c.au.minimize, "Merge states that no control net can tell apart");
   automaton_cmd->add_option(
       "--scheme", c.au.scheme,
-      "A mesh's scheme: catmull-clark or loop (its surface automaton: closed meshes whose "
-      "faces have at most one extraordinary corner)");
+      "A mesh's scheme: catmull-clark or loop (its surface automaton; catmull-clark with boundaries, "
+      "creases, corners and holes)");
   automaton_cmd->add_option("--levels", c.au.levels, "A mesh's steps of refinement first (default 0)");
   add_shape_selection(automaton_cmd, c.au.select);
   add_quiet(automaton_cmd, c.quiet);

@@ -36,6 +36,8 @@ std::string to_dot(const nurbs::KnotAutomaton& k) {
   for (automata::StateId s = 0; s < num_vertices(a.graph); ++s) {
     const automata::State& st = a.graph[s];
     std::string label = "s" + std::to_string(s);
+    // A name that says more than the id (a surface automaton's "E5", "B3"; a tensor pair's "(s0,s1)").
+    if (!st.name.empty() && st.name != label) label += "\\n" + dot_escape(st.name);
     if (s < k.windows.size() && !k.windows[s].empty()) {
       const nurbs::Window& window = k.windows[s];
       for (const double x : window)

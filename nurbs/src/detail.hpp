@@ -59,6 +59,22 @@ inline Points homogeneous(const Points& points, const Eigen::VectorXd& weights, 
 // the per-point accumulators are local arrays of known size, which the compiler keeps in registers;
 // Cols = 0 is the same code for any count, with the accumulators in caller memory.
 
+/// Calls f(std::integral_constant<int, P>{}) with P = degree for 1, 2 and 3, and 0 otherwise: the
+/// degrees whose kernels unroll (loops over p + 1 basis functions and a 2p + 1 band).
+template <class F>
+decltype(auto) with_degree(int degree, F&& f) {
+  switch (degree) {
+    case 1:
+      return f(std::integral_constant<int, 1>{});
+    case 2:
+      return f(std::integral_constant<int, 2>{});
+    case 3:
+      return f(std::integral_constant<int, 3>{});
+    default:
+      return f(std::integral_constant<int, 0>{});
+  }
+}
+
 /// Calls f(std::integral_constant<int, Cols>{}) with Cols = cols for 2, 3 and 4, and 0 otherwise.
 template <class F>
 decltype(auto) with_cols(Eigen::Index cols, F&& f) {
@@ -162,12 +178,15 @@ class SpanTable {
 };
 
 /// The d + 1 non-zero basis functions on `span` (Piegl–Tiller A2.2); inline so that batch loops see
-/// the degree loop. basis_functions calls it.
+/// the degree loop. basis_functions calls it. P > 0: the degree known at compile time (= p), loops
+/// unrolled.
+template <int P = 0>
 inline void basis(const double* t, int p, int span, double u, double* N) noexcept {
   double left[kMaxDegree + 1];
   double right[kMaxDegree + 1];
+  const int d = P > 0 ? P : p;
   N[0] = 1.0;
-  for (int j = 1; j <= p; ++j) {
+  for (int j = 1; j <= d; ++j) {
     left[j] = u - t[span + 1 - j];
     right[j] = t[span + j] - u;
     double saved = 0.0;

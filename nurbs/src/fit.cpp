@@ -236,68 +236,71 @@ void check_fit_degree(int degree, Eigen::Index needed, Eigen::Index given, std::
 /// r − p … r + p: the column of a row's own point is in its span's run, Schoenberg–Whitney) is filled,
 /// eliminated against the rows before it and its right-hand side forward-substituted while it is in
 /// cache; then one back substitution. False when a pivot is not clearly non-zero.
-template <int Cols>
+template <int Cols, int P>
 bool banded_interpolation(const Knots& t, int p, std::span<const double> params, const Points& Q,
                           const Point& d0, const Point& d1, Points& X) {
   const auto m = static_cast<Eigen::Index>(params.size());
   const bool s = d0.size() > 0, e = d1.size() > 0;
   const Eigen::Index n = m + s + e, cols = Cols > 0 ? Cols : Q.cols();
-  const int w = 2 * p + 1;
+  const int q = P > 0 ? P : p;  // fixed bounds unroll every loop below
+  const int w = 2 * q + 1;
   std::unique_ptr<double[]> band(new double[static_cast<std::size_t>(n * w)]);
   std::unique_ptr<double[]> inverse(new double[static_cast<std::size_t>(n)]);
   X.resize(n, cols);
   double* x = X.data();
   Eigen::Index row = 0;
-  int span = p;
+  int span = q;
+  const double* knots = t.data();
   const auto finish_row = [&](double size) {
-    double* a = band.get() + row * w;  // a[c − row + p] = A(row, c)
+    double* a = band.get() + row * w;  // a[c − row + q] = A(row, c)
     double* xr = x + row * cols;
-    for (Eigen::Index k = std::max<Eigen::Index>(0, row - p); k < row; ++k) {
-      const double l = a[k - row + p] * inverse[static_cast<std::size_t>(k)];
-      if (l == 0) continue;
-      const double* ak = band.get() + k * w;
-      for (Eigen::Index c = k + 1; c <= std::min(n - 1, k + p); ++c) a[c - row + p] -= l * ak[c - k + p];
-      const double* xk = x + k * cols;
+    // Rows before the first are skipped; columns past n − 1 are zeros of the band on both sides.
+    for (Eigen::Index i = std::min<Eigen::Index>(row, q); i > 0; --i) {  // row k = row − i
+      const double l = a[q - i] * inverse[static_cast<std::size_t>(row - i)];
+      const double* ak = band.get() + (row - i) * w;
+      for (int c = 1; c <= q; ++c) a[c - i + q] -= l * ak[c + q];
+      const double* xk = x + (row - i) * cols;
       for (Eigen::Index c = 0; c < cols; ++c) xr[c] -= l * xk[c];
     }
-    const double pivot = a[p];
+    const double pivot = a[q];
     if (!(std::abs(pivot) > 1e-12 * size)) return false;
     inverse[static_cast<std::size_t>(row++)] = 1 / pivot;
     return true;
   };
   const auto add_point = [&](Eigen::Index k) {
     const double u = params[static_cast<std::size_t>(k)];
-    span = detail::find_span(t.data(), p, static_cast<int>(n), u, span);  // sorted: the next span at most
+    // Sorted parameters: walk forward (averaged knots put a point one or two spans past the last).
+    while (span + 1 < n && knots[span + 1] <= u && knots[span + 1] < knots[n]) ++span;
     double* a = band.get() + row * w;
-    const Eigen::Index first = span - p;
-    if (first < row - p || span > row + p) return false;  // outside the band: not this solver's system
+    const Eigen::Index first = span - q;
+    if (first < row - q || span > row + q) return false;  // outside the band: not this solver's system
     std::fill_n(a, w, 0.0);
-    detail::basis(t.data(), p, span, u, a + (first - row + p));
+    detail::basis<P>(knots, q, span, u, a + (first - row + q));
     std::copy_n(Q.data() + k * cols, cols, x + row * cols);
     return finish_row(1.0);
   };
   const auto add_derivative = [&](Eigen::Index first, double h, const Point& D) {
     double* a = band.get() + row * w;
     std::fill_n(a, w, 0.0);
-    a[first - row + p] = -p / h;
-    a[first + 1 - row + p] = p / h;
+    a[first - row + q] = -q / h;
+    a[first + 1 - row + q] = q / h;
     std::copy_n(D.data(), cols, x + row * cols);
-    return finish_row(p / h);
+    return finish_row(q / h);
   };
   if (!add_point(0)) return false;
-  if (s && !add_derivative(0, t[static_cast<std::size_t>(p) + 1] - t[0], d0)) return false;
+  if (s && !add_derivative(0, t[static_cast<std::size_t>(q) + 1] - t[0], d0)) return false;
   for (Eigen::Index k = 1; k + 1 < m; ++k)
     if (!add_point(k)) return false;
   if (e &&
-      !add_derivative(n - 2, t[static_cast<std::size_t>(n + p)] - t[static_cast<std::size_t>(n - 1)], d1))
+      !add_derivative(n - 2, t[static_cast<std::size_t>(n + q)] - t[static_cast<std::size_t>(n - 1)], d1))
     return false;
   if (!add_point(m - 1)) return false;
   for (Eigen::Index r = n - 1; r >= 0; --r) {
     const double* a = band.get() + r * w;
     double* xr = x + r * cols;
-    for (Eigen::Index c = r + 1; c <= std::min(n - 1, r + p); ++c) {
+    for (Eigen::Index c = r + 1; c <= std::min(n - 1, r + q); ++c) {
       const double* xc = x + c * cols;
-      for (Eigen::Index d = 0; d < cols; ++d) xr[d] -= a[c - r + p] * xc[d];
+      for (Eigen::Index d = 0; d < cols; ++d) xr[d] -= a[c - r + q] * xc[d];
     }
     for (Eigen::Index d = 0; d < cols; ++d) xr[d] *= inverse[static_cast<std::size_t>(r)];
   }
@@ -311,7 +314,9 @@ Points interpolate_open(const Knots& t, int p, std::span<const double> params, c
                         const Point& d0, const Point& d1) {
   Points X;
   const bool banded = detail::with_cols(Q.cols(), [&](auto cols) {
-    return banded_interpolation<decltype(cols)::value>(t, p, params, Q, d0, d1, X);
+    return detail::with_degree(p, [&](auto degree) {
+      return banded_interpolation<decltype(cols)::value, decltype(degree)::value>(t, p, params, Q, d0, d1, X);
+    });
   });
   if (banded) return X;
   // A pivot too small (or rounding put a row out of the band): the general solver.
@@ -360,7 +365,7 @@ std::vector<double> line_parameters(const Points& points, Parametrization kind, 
     double length = 1.0;
     if (kind != Parametrization::uniform) {
       const double* a = P + k * dim;
-      const double* b = P + ((k + 1) % m) * dim;
+      const double* b = P + (k + 1 < m ? k + 1 : 0) * dim;
       double d2 = 0;
       for (Eigen::Index c = 0; c < dim; ++c) d2 += (b[c] - a[c]) * (b[c] - a[c]);
       const double d = std::sqrt(d2);
@@ -472,15 +477,20 @@ std::vector<double> fit_parameters(const Points& points, Parametrization kind, b
 Knots averaged_knots(std::span<const double> u, int degree, int extra, bool end_only) {
   // An end derivative is a second condition at its end's parameter (Hermite): the parameter counts
   // twice, then eq. 9.8 on the sequence (for two derivatives this is eq. 9.22).
-  std::vector<double> x(u.begin(), u.end());
-  if (extra == 2 || (extra == 1 && !end_only)) x.insert(x.begin(), u.front());
-  if (extra == 2 || (extra == 1 && end_only)) x.push_back(u.back());
+  const bool twice_first = extra == 2 || (extra == 1 && !end_only),
+             twice_last = extra == 2 || (extra == 1 && end_only);
+  const auto x = [&](int i) {  // the sequence with the repeated ends
+    if (twice_first) --i;
+    return u[static_cast<std::size_t>(std::clamp(i, 0, static_cast<int>(u.size()) - 1))];
+  };
   const int p = degree;
-  const auto n = static_cast<int>(x.size());  // control points
-  Knots t(static_cast<std::size_t>(p + 1), u.front());
+  const auto n = static_cast<int>(u.size()) + twice_first + twice_last;  // control points
+  Knots t;
+  t.reserve(static_cast<std::size_t>(n + p + 1));
+  t.assign(static_cast<std::size_t>(p + 1), u.front());
   for (int j = 1; j <= n - p - 1; ++j) {
     double sum = 0;
-    for (int i = j; i < j + p; ++i) sum += x[static_cast<std::size_t>(i)];
+    for (int i = j; i < j + p; ++i) sum += x(i);
     t.push_back(sum / p);
   }
   t.insert(t.end(), static_cast<std::size_t>(p) + 1, u.back());
@@ -522,11 +532,11 @@ Curve interpolate(const Points& points, const InterpolateOptions& o) {
       if (!d->allFinite()) detail::fail(which, ": a coordinate is not finite");
     }
   check_fit_degree(p, std::max<Eigen::Index>(2, p + 1 - s - e), points.rows(), "an interpolating curve");
-  const std::vector<double> u = fit_parameters(points, o.parametrization);
-  const Knots t = averaged_knots(u, p, s + e, e && !s);
-  Curve c{p, t, interpolate_open(t, p, u, points, o.start_derivative, o.end_derivative), false, false};
-  validate(c);
-  return c;
+  const std::vector<double> u = line_parameters(points, o.parametrization, false, false);  // points checked
+  Knots t = averaged_knots(u, p, s + e, e && !s);
+  Points P = interpolate_open(t, p, u, points, o.start_derivative, o.end_derivative);
+  validate_knots(t, p, P.rows());  // the control points are finite: the solvers refuse others
+  return Curve{p, std::move(t), std::move(P), false, false};
 }
 
 Curve interpolate(const Points& points, std::span<const double> u, int degree) {

@@ -158,9 +158,12 @@ void bind_mesh_subdivision_surfaces(py::module_& m) {
         return sd::surface_automaton(mesh, s);
       },
       py::arg("mesh"), py::kw_only(), py::arg("scheme") = "catmull-clark",
-      "The SurfaceAutomaton of a closed mesh, catmull-clark (quads) or loop (triangles), whose faces have at "
-      "most one extraordinary corner (one level of refinement gives that). cifs.ifs's attractor, tolerance "
-      "and chaos functions run on (s.automaton, s.nets).");
+      "The SurfaceAutomaton of a mesh: catmull-clark (quads) with its boundary, creases, corners and holes "
+      "(skipped), or a closed untagged mesh under loop (triangles) whose faces have at most one "
+      "extraordinary "
+      "corner (one level of refinement gives that). cifs.ifs's attractor, tolerance and chaos functions run "
+      "on "
+      "(s.automaton, s.nets).");
   m.def(
       "surface_automaton_mesh",
       [](const sd::SurfaceAutomaton& s, int depth, double max_bytes) {
@@ -192,7 +195,8 @@ void bind_mesh_subdivision_surfaces(py::module_& m) {
       py::arg("values") = py::none(),
       "A fractal Catmull–Clark surface with the mesh's topology: the regular state replaced by the uniform "
       "bicubic patch's BC-IFS, perturbed (cifs.ifs.perturb's amplitude, seed, values). Every face keeps the "
-      "smooth surface's boundary curves. Returns (SurfaceAutomaton, cifs.ifs.Perturbation).");
+      "smooth surface's boundary curves, the mesh's boundary and creases among them. Returns "
+      "(SurfaceAutomaton, cifs.ifs.Perturbation).");
 }
 
 /// One function per mesh scheme.

@@ -23,6 +23,7 @@
 #include "cifs/subdivision/limit.hpp"
 #include "limit_patches.hpp"
 #include "local_mesh.hpp"
+#include "surface_states.hpp"
 
 namespace cifs::subdivision {
 namespace {
@@ -55,8 +56,6 @@ int extraordinary_corner(const MeshTopology& t, MeshScheme scheme, int f) {
   int ev = -1, extraordinary = 0;
   for (std::size_t k = 0; k < sides; ++k) {
     const auto v = static_cast<std::size_t>(corners[k]);
-    if (t.boundary_vertex[v])
-      throw InvalidInput(where + ": touches the boundary; boundary patches are not built");
     if (valence(t, v) != regular) {
       ev = static_cast<int>(k);
       ++extraordinary;
@@ -81,12 +80,9 @@ std::array<const char*, 4> child_labels(MeshScheme scheme) {
   return {"C0", "C1", "C2", "M"};
 }
 
-/// The automaton of the given faces (initial entry i is faces[i], `segment` the face's index).
-SurfaceAutomaton build_automaton(const Mesh& mesh, const MeshTopology& t, MeshScheme scheme,
-                                 std::span<const int> faces) {
-  SurfaceAutomaton out;
-  out.scheme = scheme;
-  automata::Graph& g = out.automaton.graph;
+/// The state "regular": the uniform bicubic B-spline net (Catmull–Clark) or the regular box-spline
+/// patch's 12 points (Loop), its four children its own quarters.
+automata::StateId add_regular(MeshScheme scheme, automata::Graph& g) {
   const auto labels = child_labels(scheme);
   const ExtraordinaryPatch regular_patch = quads(scheme) ? ExtraordinaryPatch{} : loop_patch(6);
   const automata::StateId regular =
@@ -99,6 +95,17 @@ SurfaceAutomaton build_automaton(const Mesh& mesh, const MeshTopology& t, MeshSc
       M = c == 0 ? regular_patch.subdivide : regular_patch.regular[c - 1];
     add_edge(regular, regular, automata::Transition{labels[c], M}, g);
   }
+  return regular;
+}
+
+/// The automaton of the given faces (initial entry i is faces[i], `segment` the face's index).
+SurfaceAutomaton build_automaton(const Mesh& mesh, const MeshTopology& t, MeshScheme scheme,
+                                 std::span<const int> faces) {
+  SurfaceAutomaton out;
+  out.scheme = scheme;
+  automata::Graph& g = out.automaton.graph;
+  const auto labels = child_labels(scheme);
+  const automata::StateId regular = add_regular(scheme, g);
   std::map<int, automata::StateId> extraordinary;  // by valence
   const auto state_of = [&](int n) {
     if (const auto it = extraordinary.find(n); it != extraordinary.end()) return it->second;
@@ -161,20 +168,32 @@ void check_scheme(MeshScheme scheme) {
 
 SurfaceAutomaton surface_automaton(const Mesh& mesh, MeshScheme scheme) {
   check_scheme(scheme);
-  // Its states are the smooth rules' patches: a tagged mesh would be taken for a smooth one.
-  MeshTags features = mesh.tags;
-  features.boundary = BoundaryRule::edge_only;  // boundaries are refused by the faces below
+  const std::string who = std::string(scheme_name(scheme)) + " surface automaton";
   if (mesh.tags.rules == RuleSet::blz)
-    throw InvalidInput(std::string(scheme_name(scheme)) +
-                       " surface automaton: the rule set 'blz' is not built for the whole-surface automaton");
-  if (const std::string feature = first_feature(features); !feature.empty())
-    throw InvalidInput(std::string(scheme_name(scheme)) + " surface automaton: the mesh has " + feature +
-                       ": crease, corner and hole patches are not built for the whole-surface automaton "
-                       "(attractor meshes, fractal surfaces); evaluate_limit_surface takes them");
+    throw InvalidInput(who +
+                       ": the rule set 'blz' is not built for the whole-surface automaton (its patches "
+                       "are OpenSubdiv's rules')");
   const MeshTopology t = build_topology(mesh);
-  std::vector<int> faces(face_count(t));
-  std::iota(faces.begin(), faces.end(), 0);
-  return build_automaton(mesh, t, scheme, faces);
+  // A closed untagged mesh: the smooth rules' patches ("regular", "E<n>"). Otherwise (Catmull–Clark) the
+  // configurations evaluate_limit_surface descends, under the mesh's tags and boundary rule.
+  MeshTags smooth = mesh.tags;
+  smooth.boundary = BoundaryRule::edge_only;  // the boundary rule matters where there is a boundary
+  const std::string feature = first_feature(smooth);
+  const bool open =
+      std::any_of(t.boundary_vertex.begin(), t.boundary_vertex.end(), [](char b) { return b != 0; });
+  if (feature.empty() && !open) {
+    std::vector<int> faces(face_count(t));
+    std::iota(faces.begin(), faces.end(), 0);
+    return build_automaton(mesh, t, scheme, faces);
+  }
+  if (!quads(scheme))
+    throw InvalidInput(who + ": the mesh has " + (feature.empty() ? std::string("a boundary") : feature) +
+                       ": boundary, crease, corner and hole patches of the whole-surface automaton are built "
+                       "for catmull-clark only; evaluate_limit_surface takes them under loop");
+  SurfaceAutomaton out;
+  out.scheme = scheme;
+  detail::add_feature_faces(mesh, add_regular(scheme, out.automaton.graph), out);
+  return out;
 }
 
 namespace {

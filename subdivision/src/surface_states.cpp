@@ -39,12 +39,14 @@
 #include <utility>
 #include <vector>
 
+#include "cifs/automata/tensor.hpp"
 #include "cifs/errors.hpp"
 #include "cifs/format.hpp"
 #include "cifs/memory.hpp"
 #include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/rules.hpp"
 #include "sector_plane.hpp"
+#include "surface_states.hpp"
 
 namespace cifs::subdivision {
 namespace {
@@ -426,11 +428,13 @@ class SurfaceStates {
     std::vector<int> child;
     std::vector<Step> to_child;  // child's slots × this state's (sparse: a vertex of valence
                                  // n reads 2n + 1 slots of up to 2n + 8)
-    Eigen::RowVectorXd corner;   // the limit at corner 0 on the slots (empty until asked)
-    int polynomial = -1;         // unknown, 0, 1
-    Eigen::MatrixXd bezier;      // basis_size × slots when polynomial: Bernstein
-    Eigen::MatrixXd monomials;   // the same in the monomial basis
-    CornerTangents tangents;     // at corner 0 of a state that is its own child there (once asked)
+    std::vector<int> quarter;    // quarters(): a quad's children not turned
+    std::vector<Step> to_quarter;
+    Eigen::RowVectorXd corner;  // the limit at corner 0 on the slots (empty until asked)
+    int polynomial = -1;        // unknown, 0, 1
+    Eigen::MatrixXd bezier;     // basis_size × slots when polynomial: Bernstein
+    Eigen::MatrixXd monomials;  // the same in the monomial basis
+    CornerTangents tangents;    // at corner 0 of a state that is its own child there (once asked)
   };
 
   explicit SurfaceStates(MeshScheme scheme) : scheme_(scheme), quad_(quad_scheme(scheme)) {
@@ -483,34 +487,23 @@ class SurfaceStates {
   /// The state's children, made on first use.
   const State& expand(int s) {
     if (states_[static_cast<std::size_t>(s)].expanded) return at(s);
-    const MeshRefinement r = refine_topology(states_[static_cast<std::size_t>(s)].mesh, scheme_, 1);
-    const Stencils& step = r.steps[0];
-    const int slots = static_cast<int>(states_[static_cast<std::size_t>(s)].mesh.vertices.rows());
-    const int sides = states_[static_cast<std::size_t>(s)].sides;
-    std::vector<int> child;
-    std::vector<Step> to_child;
-    const int count = quad_ ? sides : 4;
-    for (int k = 0; k < count; ++k) {
-      // Catmull–Clark: face 0's corner k becomes child face k from the corner's vertex point; Loop: its
-      // corner triangles (from the corner) then the middle one (from the edge point of edge 1 → 2).
-      const int first = quad_ ? 0 : (k == 3 ? 1 : k);
-      Configuration c = configuration(r.levels[1], r.features[1], r.tags[1], k, first);
-      std::vector<Eigen::Triplet<double>> entries;
-      for (std::size_t i = 0; i < c.vertices.size(); ++i) {
-        const auto w = static_cast<std::size_t>(c.vertices[i]);
-        for (int q = step.offsets[w]; q < step.offsets[w + 1]; ++q)
-          entries.emplace_back(static_cast<int>(i), step.columns[static_cast<std::size_t>(q)],
-                               step.weights[static_cast<std::size_t>(q)]);
-      }
-      Step M(static_cast<Eigen::Index>(c.vertices.size()), slots);
-      M.setFromTriplets(entries.begin(), entries.end());
-      to_child.push_back(std::move(M));
-      child.push_back(state(std::move(c)));
-    }
+    auto [child, to_child] = children(s, false);
     State& x = states_[static_cast<std::size_t>(s)];
     x.child = std::move(child);
     x.to_child = std::move(to_child);
     x.expanded = true;
+    return x;
+  }
+
+  /// A quad state's quarters k = 0 … 3 (at corner k: (0, 0), (1, 0), (1, 1), (0, 1)) not turned: each
+  /// child face started at its corner at the quarter's (0, 0), so that its (s, t) is 2 (u, v) minus the
+  /// quarter's offset — the layout of the whole-surface automaton (ifs::patch_meshes). Made on first use.
+  const State& quarters(int s) {
+    if (!states_[static_cast<std::size_t>(s)].quarter.empty()) return at(s);
+    auto [child, to_child] = children(s, true);
+    State& x = states_[static_cast<std::size_t>(s)];
+    x.quarter = std::move(child);
+    x.to_quarter = std::move(to_child);
     return x;
   }
 
@@ -536,6 +529,36 @@ class SurfaceStates {
   }
 
  private:
+  /// The state's children after one step of the production refiner run on its configuration: Catmull–Clark's
+  /// face 0's corner k becomes child face k from the corner's vertex point (`unturned`: from its corner at
+  /// the quarter's (0, 0), (4 − k) mod 4); Loop's corner triangles (from the corner) then the middle one
+  /// (from the edge point of edge 1 → 2).
+  std::pair<std::vector<int>, std::vector<Step>> children(int s, bool unturned) {
+    const MeshRefinement r = refine_topology(states_[static_cast<std::size_t>(s)].mesh, scheme_, 1);
+    const Stencils& step = r.steps[0];
+    const int slots = static_cast<int>(states_[static_cast<std::size_t>(s)].mesh.vertices.rows());
+    const int sides = states_[static_cast<std::size_t>(s)].sides;
+    std::vector<int> child;
+    std::vector<Step> to_child;
+    const int count = quad_ ? sides : 4;
+    for (int k = 0; k < count; ++k) {
+      const int first = quad_ ? (unturned ? (4 - k) % 4 : 0) : (k == 3 ? 1 : k);
+      Configuration c = configuration(r.levels[1], r.features[1], r.tags[1], k, first);
+      std::vector<Eigen::Triplet<double>> entries;
+      for (std::size_t i = 0; i < c.vertices.size(); ++i) {
+        const auto w = static_cast<std::size_t>(c.vertices[i]);
+        for (int q = step.offsets[w]; q < step.offsets[w + 1]; ++q)
+          entries.emplace_back(static_cast<int>(i), step.columns[static_cast<std::size_t>(q)],
+                               step.weights[static_cast<std::size_t>(q)]);
+      }
+      Step M(static_cast<Eigen::Index>(c.vertices.size()), slots);
+      M.setFromTriplets(entries.begin(), entries.end());
+      to_child.push_back(std::move(M));
+      child.push_back(state(std::move(c)));
+    }
+    return {std::move(child), std::move(to_child)};
+  }
+
   /// The tangent plane of the corner's sector (detail::sector_plane: the faces around it between sharp
   /// edges, the face's among them) and the face's two edges' parts in it; refused where the sector has no
   /// plane its spectrum proves, and where the face's two edges have parallel parts in the plane.
@@ -917,3 +940,156 @@ void evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::span<const
 }
 
 }  // namespace cifs::subdivision
+
+namespace cifs::subdivision::detail {
+namespace {
+
+/// The class of corner v of a configuration (surface_states.hpp): "" where regular — 4 faces and no
+/// sharp edge, 2 faces on a boundary, 2 + 2 faces about a crease — else class, faces and, where sharp edges
+/// part the faces, the place of the configuration's face 0 among them.
+std::string corner_class(const MeshTopology& t, const MeshTags& tags, int v) {
+  const auto edges = vertex_edges(t, static_cast<std::size_t>(v));
+  const auto n = static_cast<int>(vertex_faces(t, static_cast<std::size_t>(v)).size());
+  std::vector<int> sharp;  // positions of the sharp edges in vertex_edges
+  double left = 0;         // the largest finite sharpness still to spend
+  for (std::size_t j = 0; j < edges.size(); ++j) {
+    const auto e = static_cast<std::size_t>(edges[j]);
+    if (is_boundary_edge(t, e)) {
+      sharp.push_back(static_cast<int>(j));
+      continue;
+    }
+    const int w = other_vertex(t, e, v);
+    for (const EdgeSharpness& c : tags.creases)
+      if (((c.a == v && c.b == w) || (c.a == w && c.b == v)) && c.sharpness > 0) {
+        sharp.push_back(static_cast<int>(j));
+        if (c.sharpness < kInfiniteSharpness) left = std::max(left, c.sharpness);
+      }
+  }
+  bool corner = false;
+  for (const VertexSharpness& c : tags.corners)
+    if (c.vertex == v && c.sharpness > 0) {
+      corner = true;
+      if (c.sharpness < kInfiniteSharpness) left = std::max(left, c.sharpness);
+    }
+  std::string out;
+  if (corner || sharp.size() > 2)
+    out = "C" + std::to_string(n);
+  else if (sharp.empty())
+    out = n == 4 ? "" : "E" + std::to_string(n);
+  else if (sharp.size() == 1)
+    out = "D" + std::to_string(n);
+  else if (t.boundary_vertex[static_cast<std::size_t>(v)] != 0)
+    out = n == 2 ? "" : "B" + std::to_string(n);
+  else if (const int a = sharp[1] - sharp[0]; a != 2 || n - a != 2)
+    out = "K" + std::to_string(a) + "," + std::to_string(n - a);
+  // Sharp edges tell the faces apart: which one face 0 is, counted counter-clockwise from the first.
+  if (!out.empty() && !sharp.empty() && n > 1) {
+    const auto faces = vertex_faces(t, static_cast<std::size_t>(v));
+    const auto k = static_cast<int>(std::find(faces.begin(), faces.end(), 0) - faces.begin());
+    out += ":" + std::to_string((k - sharp[0] + n) % n);
+  }
+  if (left > 0) out += "~" + number_text(left, 6);
+  return out;
+}
+
+/// A state's name from its corners' classes (surface_states.hpp).
+std::string state_name(const Mesh& configuration) {
+  const MeshTopology t = build_topology(configuration, "limit surface state");
+  std::array<std::string, 4> classes;
+  for (int k = 0; k < 4; ++k) classes[static_cast<std::size_t>(k)] = corner_class(t, configuration.tags, k);
+  if (classes[1].empty() && classes[2].empty() && classes[3].empty() && !classes[0].empty())
+    return classes[0];
+  std::string out = "[";
+  for (std::size_t k = 0; k < 4; ++k) out += (k > 0 ? "|" : "") + (classes[k].empty() ? "-" : classes[k]);
+  return out + "]";
+}
+
+/// The uniform bicubic B-spline net of a bicubic polynomial from its Bernstein coefficients (both indexed
+/// 4a + b, a along s): per direction P0 = 6b0 − 7b1 + 2b2, P1 = 2b1 − b2, P2 = 2b2 − b1, P3 = 6b3 + 2b1 −
+/// 7b2, the inverse of the B-spline's Bézier points (P0 + 4P1 + P2)/6, (4P1 + 2P2)/6, … — integers, exact.
+Eigen::MatrixXd bspline_from_bezier() {
+  Eigen::Matrix4d B;
+  B << 6, -7, 2, 0, 0, 2, -1, 0, 0, -1, 2, 0, 0, 2, -7, 6;
+  return automata::kron(B, B);
+}
+
+}  // namespace
+
+void add_feature_faces(const Mesh& mesh, automata::StateId regular, SurfaceAutomaton& out) {
+  const std::string who = "catmull-clark surface automaton";
+  Mesh shape;  // topology and tags only
+  shape.vertices = Points::Zero(mesh.vertices.rows(), 3);
+  shape.face_offsets = mesh.face_offsets;
+  shape.face_vertices = mesh.face_vertices;
+  shape.tags = mesh.tags;
+  const MeshRefinement r = refine_topology(shape, MeshScheme::catmull_clark, 0);
+  const MeshTopology& t = r.levels[0];
+  const LevelFeatures& features = r.features[0];
+  SurfaceStates states(MeshScheme::catmull_clark);
+  const Eigen::MatrixXd to_bspline = bspline_from_bezier();
+  automata::Graph& g = out.automaton.graph;
+  std::map<int, automata::StateId> node;  // configuration → automaton state
+  std::map<std::string, int> names;
+  std::vector<int> todo;
+  const auto enter = [&](int s) {
+    if (const auto it = node.find(s); it != node.end()) return it->second;
+    std::string name = state_name(states.at(s).mesh);
+    if (const int seen = names[name]++; seen > 0) name += "#" + std::to_string(seen + 1);
+    const automata::StateId id = add_vertex(
+        automata::State{
+            .size = static_cast<int>(states.at(s).mesh.vertices.rows()), .recurrent = false, .name = name},
+        g);
+    todo.push_back(s);
+    return node.emplace(s, id).first->second;
+  };
+  const Eigen::Index d = mesh.vertices.cols();
+  for (int f = 0; f < static_cast<int>(face_count(t)); ++f) {
+    if (is_hole(features, f)) continue;
+    const auto corners = face(t, static_cast<std::size_t>(f));
+    if (corners.size() != 4)
+      throw InvalidInput(who + ": face " + std::to_string(f) + ": not a quad (refine one level first)");
+    // A face whose patch is not a polynomial is turned so that its first irregular corner is at (0, 0): a
+    // corner that never becomes regular is then mostly met at its states' corner 0.
+    int first = 0;
+    Configuration c = configuration(t, features, r.tags[0], f, 0);
+    if (!states.polynomial(states.state(Configuration(c)))) {
+      const MeshTopology local = build_topology(c.mesh, "limit surface state");
+      while (first < 4 && corner_class(local, c.mesh.tags, first).empty()) ++first;
+      if (first % 4 != 0) c = configuration(t, features, r.tags[0], f, first % 4);
+      first %= 4;
+    }
+    Points rows(static_cast<Eigen::Index>(c.vertices.size()), d);
+    for (std::size_t i = 0; i < c.vertices.size(); ++i)
+      rows.row(static_cast<Eigen::Index>(i)) = mesh.vertices.row(c.vertices[i]);
+    const int s = states.state(std::move(c));
+    automata::StateId state = regular;
+    if (states.polynomial(s))
+      rows = (to_bspline * states.at(s).bezier * rows).eval();
+    else
+      state = enter(s);
+    out.automaton.initial.push_back(automata::Initial{.segment = f, .state = state});
+    out.nets.push_back(std::move(rows));
+    out.corners.push_back({corners[static_cast<std::size_t>(first)],
+                           corners[static_cast<std::size_t>((first + 1) % 4)],
+                           corners[static_cast<std::size_t>((first + 2) % 4)],
+                           corners[static_cast<std::size_t>((first + 3) % 4)]});
+  }
+  // Quarters in the quad layout: child 2·iu + iv is the quarter at corner 0, 3, 1, 2.
+  static constexpr std::array<int, 4> kCorner{0, 3, 1, 2};
+  static constexpr std::array<const char*, 4> kLabel{"GH", "GB", "DH", "DB"};
+  for (std::size_t next = 0; next < todo.size(); ++next) {  // breadth first: names numbered by depth
+    const int s = todo[next];
+    const automata::StateId from = node.at(s);
+    for (std::size_t c = 0; c < 4; ++c) {
+      const auto k = static_cast<std::size_t>(kCorner[c]);
+      const int y = states.quarters(s).quarter[k];
+      const Eigen::MatrixXd M(states.at(s).to_quarter[k]);
+      if (states.polynomial(y))
+        add_edge(from, regular, automata::Transition{kLabel[c], to_bspline * states.at(y).bezier * M}, g);
+      else
+        add_edge(from, enter(y), automata::Transition{kLabel[c], M}, g);
+    }
+  }
+}
+
+}  // namespace cifs::subdivision::detail

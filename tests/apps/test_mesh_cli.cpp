@@ -610,12 +610,46 @@ TEST_CASE("cifs automaton MESH --scheme S: the mesh's surface automaton, JSON, D
   check_error(cifs_cli("automaton " + example("cube.obj")), "is a mesh: give --scheme catmull-clark or loop");
   check_error(cifs_cli("automaton " + example("cube.obj") + " --scheme catmull-clark"),
               "4 extraordinary corners (--levels 1 refines them apart)");
-  check_error(cifs_cli("automaton " + example("open_grid.obj") + " --scheme catmull-clark"),
-              "touches the boundary; boundary patches are not built");
+  check_error(cifs_cli("automaton " + example("open_grid_triangles.obj") + " --scheme loop"),
+              "loop surface automaton: the mesh has a boundary");
   check_error(cifs_cli("automaton " + example("cube.obj") + " --scheme catmull-clark --minimize"),
               "--minimize applies to shapes");
   check_error(cifs_cli("automaton " + example("cube.obj") + " --scheme catmull-clark --levels 9"),
               "--levels 9: expected 0 to 8");
   check_error(cifs_cli("automaton " CIFS_EXAMPLES_DIR "/shapes/hills.json --scheme loop"),
               "--scheme applies to meshes");
+}
+
+TEST_CASE("cifs automaton MESH --scheme catmull-clark on boundaries, creases, corners and holes; -o OUT",
+          "[cli][mesh][automaton]") {
+  // The creased box (infinite, semi-sharp creases, a corner, a hole): the library's automaton, to stdout
+  // and to a file of each format; the format is the extension's.
+  const std::string box = example("creased_box.obj");
+  const Run json_run = cifs_cli("automaton " + box + " --scheme catmull-clark");
+  REQUIRE(json_run.status == 0);
+  const Mesh mesh = io::read_mesh(box);
+  const subdivision::SurfaceAutomaton library =
+      subdivision::surface_automaton(mesh, subdivision::MeshScheme::catmull_clark);
+  CHECK(json_run.out == io::encode(library.automaton, "json"));
+  CHECK(json::parse(json_run.out)["initial"].size() == library.nets.size());
+  for (const char* format : {"json", "dot", "svg"}) {
+    const auto out = scratch() / (std::string("box_automaton.") + format);
+    const Run written = cifs_cli("automaton " + box + " --scheme catmull-clark -o " + out.string());
+    REQUIRE(written.status == 0);
+    CHECK(written.out.starts_with("wrote " + out.string() + ": "));
+    CHECK(slurp(out) == io::encode(library.automaton, format));
+  }
+  // An open grid: its corners' boundary states, "B1".
+  const Run grid = cifs_cli("automaton " + example("open_grid.obj") + " --scheme catmull-clark --format dot");
+  REQUIRE(grid.status == 0);
+  CHECK(grid.out.find("B1") != std::string::npos);
+  // Refusals: one line, nothing written.
+  const auto refused = scratch() / "refused_automaton.json";
+  check_error(cifs_cli("automaton " + box + " --scheme catmull-clark -o " + (scratch() / "a.png").string()),
+              "a.png: an automaton is written as");
+  check_error(cifs_cli("automaton " + box + " --scheme catmull-clark --format dot -o " + refused.string()),
+              "--format dot: -o " + refused.string() + " names json");
+  check_error(cifs_cli("automaton " + example("cube.obj") + " --scheme catmull-clark -o " + refused.string()),
+              "(--levels 1 refines them apart)");
+  CHECK(!std::filesystem::exists(refused));
 }

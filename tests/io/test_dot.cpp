@@ -43,6 +43,11 @@ TEST_CASE("Automaton DOT: labels escaped, non-finite windows refused", "[io][dot
   add_vertex(k.automaton.graph);
   add_edge(0, 0, {"a\"b\\c\nd", Eigen::MatrixXd()}, k.automaton.graph);
   CHECK_THAT(to_dot(k), Catch::Contains("0->0 [label=\"a\\\"b\\\\c\\nd\"];\n"));
+  // A state's name beside its id (a surface automaton's "B3"), escaped like the labels; "s<id>" not twice.
+  k.automaton.graph[0].name = "B\"3";
+  CHECK_THAT(to_dot(k), Catch::Contains("0[label=\"s0\\nB\\\"3\"];\n"));
+  k.automaton.graph[0].name = "s0";
+  CHECK_THAT(to_dot(k), Catch::Contains("0[label=\"s0\"];\n"));
   k.windows = {{1, INFINITY, 1}};
   CHECK_THROWS_WITH(to_dot(k), Catch::Contains("state 0") && Catch::Contains("not a finite number"));
 }

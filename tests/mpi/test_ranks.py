@@ -41,6 +41,12 @@ EXPERIMENTS = {
 GEOMETRY = {"surface_depth": "ply", "curve_depth": "svg", "subdivision": "obj"}
 
 
+# More ranks than cores (--oversubscribe): a rank waiting in MPI_Reduce must give its core to the
+# ranks still rendering, not poll it (Open MPI polls by default: 9x the CPU of the render, and
+# the other tests running beside this one starve).
+os.environ["OMPI_MCA_mpi_yield_when_idle"] = "1"
+
+
 def mpirun(args, ranks):
     command = [args.mpirun, "-n", str(ranks), "--oversubscribe"]
     if os.geteuid() == 0:

@@ -408,13 +408,15 @@ TEST_CASE("Catmull–Clark at (face, u, v): points off the surface are refused, 
   const std::vector<FacePoint> fourth{{.face = 1, .u = 1.25, .v = 1.25}};
   CHECK_THROWS_WITH(evaluate_limit_surface(pyramid(), MeshScheme::catmull_clark, fourth),
                     Contains("outside the 3-gon's sub-faces"));
-  // The whole-surface automaton (attractor meshes, fractal surfaces) has the smooth patches only: a
-  // tagged mesh is refused, not taken for a smooth one.
-  Mesh creased = catmull_clark(cube(), 1);
+  // The whole-surface automaton (attractor meshes, fractal surfaces) reads the tags: a tagged mesh is
+  // not taken for a smooth one (its patches: test_surface_automaton_features.cpp).
+  const Mesh smooth = catmull_clark(cube(), 1);
+  Mesh creased = smooth;
   creased.tags.creases = {{0, 8, 10}};
-  CHECK_THROWS_WITH(
-      surface_automaton(creased, MeshScheme::catmull_clark),
-      Contains("the mesh has a crease (0 8, sharpness 10)") && Contains("evaluate_limit_surface takes them"));
+  const Mesh plain = surface_automaton_mesh(surface_automaton(smooth, MeshScheme::catmull_clark), 2);
+  const Mesh sharp = surface_automaton_mesh(surface_automaton(creased, MeshScheme::catmull_clark), 2);
+  REQUIRE(plain.vertices.rows() == sharp.vertices.rows());
+  CHECK((plain.vertices - sharp.vertices).cwiseAbs().maxCoeff() >= 1e-2);
 }
 
 namespace {

@@ -154,18 +154,18 @@ ExtraordinaryPatch loop_patch(int valence);
 /// ifs::patch_meshes for quads) runs on it unchanged.
 struct SurfaceAutomaton {
   MeshScheme scheme = MeshScheme::catmull_clark;
-  automata::Automaton automaton;  // initial entry i is face i
-  std::vector<Points> nets;       // per face
-  /// Per face: the mesh vertices at the patch's (s, t) = (0, 0), (1, 0), (1, 1), (0, 1) (triangles:
-  /// (0, 0), (1, 0), (0, 1), then −1), counter-clockwise like the face (an extraordinary corner at
-  /// (0, 0)). The patch's (s, t) is the face's (u, v) turned by one step per position of corners[0]
+  automata::Automaton automaton;  // an initial entry per face (its `segment`), holes skipped
+  std::vector<Points> nets;       // per initial entry
+  /// Per initial entry: the mesh vertices at the patch's (s, t) = (0, 0), (1, 0), (1, 1), (0, 1) (triangles:
+  /// (0, 0), (1, 0), (0, 1), then −1), counter-clockwise like the face (its first extraordinary or irregular
+  /// corner at (0, 0)). The patch's (s, t) is the face's (u, v) turned by one step per position of corners[0]
   /// among the face's corners.
   std::vector<std::array<int, 4>> corners;
 };
-/// The automaton of a closed mesh under Catmull–Clark (quads) or Loop (triangles) whose faces have
-/// at most one extraordinary corner (InvalidInput naming the face otherwise, and for other schemes;
-/// one level of refinement gives that), without tags (InvalidInput naming the first crease, corner or
-/// hole: those patches are built for evaluate_limit_surface, not for this whole-surface IFS).
+/// The automaton of a closed untagged mesh under Catmull–Clark (quads) or Loop (triangles) whose faces
+/// have at most one extraordinary corner (InvalidInput naming the face otherwise; one step of refinement
+/// gives that); under Catmull–Clark also of a mesh with a boundary or tags: quads, holes skipped, states of
+/// configurations (docs/subdivision-surfaces.md). InvalidInput for other schemes, blz, Loop with features.
 SurfaceAutomaton surface_automaton(const Mesh& mesh, MeshScheme scheme);
 
 /// The limit surface at any (face, u, v) of any mesh refine_topology takes under Catmull–Clark or
@@ -217,8 +217,8 @@ Mesh surface_automaton_mesh(const SurfaceAutomaton& surface, int depth, const if
 /// the BC-IFS of the uniform bicubic patch (ifs::surface_bcifs; its face cells, named "(x,y)"),
 /// perturbed by `options`. The patch's four sides lie on knot lines, so they keep the B-spline
 /// operators: every face keeps the smooth surface's boundary curves exactly and the surface stays
-/// closed, while the inside of every regular patch — around extraordinary vertices too, whose
-/// patches are rings of regular ones — turns fractal. The "E<n>" states are not perturbed.
+/// closed (the mesh's boundary and creases are such curves), while the inside of every regular patch —
+/// around irregular vertices too, whose patches are rings of regular ones — turns fractal.
 struct FractalSurface {
   SurfaceAutomaton surface;
   ifs::Perturbation perturbation;  // of the bicubic patch's BC-IFS: values, residual, contraction
