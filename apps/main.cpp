@@ -19,6 +19,7 @@
 #include "cifs/suggest.hpp"
 #include "cifs/view/server.hpp"
 #include "commands.hpp"
+#include "construct_command.hpp"
 #include "fit_command.hpp"
 #include "scheme_command.hpp"
 #include "world.hpp"
@@ -110,6 +111,7 @@ struct Commands {
   cli::AnalyzeOptions an;
   cli::DimensionOptions di;
   cli::FitOptions fi;
+  cli::ConstructOptions co;
   std::filesystem::path view_path, view_export;
   cifs::view::ServeOptions view;
   std::filesystem::path gallery_out = "out";
@@ -556,6 +558,33 @@ void add_fit(CLI::App& app, Commands& c) {
   });
 }
 
+void add_construct(CLI::App& app, Commands& c) {
+  auto* cmd = app.add_subcommand(
+      "construct", "A surface from curves: ruled A B, extrude C, revolve P, loft C1 C2 …, sweep P T");
+  cmd->add_option("kind", c.co.kind, "ruled, extrude, revolve, loft or sweep")->required();
+  cmd->add_option("curves", c.co.curves, "Curve files (.json or .obj), in order")->required();
+  cmd->add_option("--direction", c.co.direction,
+                  "extrude: the direction 'x,y,z' (the surface is C(u) + v·d)");
+  cmd->add_option("--axis-point", c.co.axis_point, "revolve: a point of the axis 'x,y,z' (default 0,0,0)");
+  cmd->add_option("--axis", c.co.axis, "revolve: the axis direction 'x,y,z' (default 0,0,1)");
+  cmd->add_option("--angle", c.co.angle, "revolve: the angle in degrees, (0, 360] (default 360)");
+  cmd->add_option(
+      "--degree-v", c.co.degree_v,
+      "loft, sweep with --instances: the degree across the curves (default 3, at most curves − 1)");
+  cmd->add_option("--parametrization", c.co.parametrization,
+                  "loft: the curves' v-parameters: uniform, chord_length (default) or centripetal");
+  cmd->add_option("--instances", c.co.instances,
+                  "sweep: 0 (default) the exact translational sweep; N ≥ 2 the profile carried by the "
+                  "trajectory's rotation-minimizing frames through N instances (approximate)");
+  cmd->add_option("-o,--output", c.co.output, "Shape file to write (.json or .obj); default: JSON on stdout")
+      ->check(output_name);
+  add_quiet(cmd, c.quiet);
+  cmd->callback([&] {
+    const cifs::render::Stage stage("construct", c.quiet);
+    c.result = cli::construct(c.co);
+  });
+}
+
 /// Parses and runs one command; everything it prints on stdout goes to `result`.
 int run(int argc, char** argv, std::string& result) {
   CLI::App app{"cifs — NURBS curves and surfaces as controlled iterated function systems"};
@@ -577,6 +606,7 @@ int run(int argc, char** argv, std::string& result) {
   add_analyze(app, c);
   add_dimension(app, c);
   add_fit(app, c);
+  add_construct(app, c);
   add_gallery(app, c);
   add_view(app, c);
 

@@ -383,6 +383,10 @@ inline Point blossom_row(const Curve& c, std::span<const double> args, int span)
 // ------------------------------------------------------------------------------------------------
 // Knot maps.
 
+/// The same open curve with clamped ends: each end of the domain inserted up to multiplicity d, and the
+/// knots and points beyond it dropped.
+Curve clamped(const Curve& c);
+
 /// The knots of the same spline traversed backwards, t'_j = a + b − t_{N−1−j}, the domain's ends a and b
 /// kept exactly.
 inline Knots mirrored_knots(std::span<const double> t, Domain dom) {

@@ -539,6 +539,24 @@ Curve interpolate(const Points& points, const InterpolateOptions& o) {
   return Curve{p, std::move(t), std::move(P), false, false};
 }
 
+Curve interpolate(const Points& points, std::span<const double> u, int degree) {
+  validate_degree(degree);
+  check_points(points, "points");
+  if (static_cast<Eigen::Index>(u.size()) != points.rows())
+    detail::fail("parameters: ", u.size(), " given for ", points.rows(), " points");
+  for (std::size_t k = 0; k < u.size(); ++k) {
+    if (!std::isfinite(u[k])) detail::fail("parameters[", k, "]: ", u[k], " is not finite");
+    if (k > 0 && !(u[k] > u[k - 1]))
+      detail::fail("parameters[", k, "]: ", u[k], " is not greater than parameters[", k - 1,
+                   "] = ", u[k - 1]);
+  }
+  check_fit_degree(degree, std::max<Eigen::Index>(2, degree + 1), points.rows(), "an interpolating curve");
+  const Knots t = averaged_knots(u, degree);
+  Curve c{degree, t, interpolate_open(t, degree, u, points, {}, {}), false, false};
+  validate(c);
+  return c;
+}
+
 CurveFit measure_fit(const Curve& c, const Points& Q, std::vector<double> u) {
   if (c.rational) detail::fail("curve: fit distances are measured for non-rational curves");
   if (static_cast<Eigen::Index>(u.size()) != Q.rows() || Q.cols() != dimension(c))

@@ -665,10 +665,8 @@ Removal remove_knot(const Curve& c, double u, int times, double tolerance) {
   return result;
 }
 
-namespace {
+namespace detail {
 
-/// The same open curve with clamped ends: each end of the domain inserted up to multiplicity d, and the
-/// knots and points beyond it dropped.
 Curve clamped(const Curve& c) {
   const int p = c.degree;
   const Domain dom = domain(c);
@@ -686,6 +684,10 @@ Curve clamped(const Curve& c) {
   const Eigen::Index count = static_cast<Eigen::Index>(knots.size()) - p - 1;
   return Curve{p, std::move(knots), d.P.middleRows(first, count), d.rational, false};
 }
+
+}  // namespace detail
+
+namespace {
 
 /// The Bézier points of degree d − 1 whose elevation is nearest the d + 1 points P when they are an
 /// elevation (then exactly): P_i = (i/d)·Q_{i−1} + (1 − i/d)·Q_i solved for Q_0..Q_r from the left and
@@ -718,7 +720,7 @@ Curve refined_to_union(const Curve& c, const Knots& other) {
 namespace detail {
 
 Reduction reduce_degree(const Curve& lines, Layout layout) {
-  const Curve original = clamped(lines);
+  const Curve original = detail::clamped(lines);
   const int p = original.degree;
   std::vector<Curve> pieces = split_bezier(original);
   for (Curve& piece : pieces) {

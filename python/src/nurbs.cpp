@@ -2,12 +2,14 @@
 // cifs Python bindings — cifs.nurbs: knot vectors, curves, refinement, surfaces, knot doubling.
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <utility>
 
 #include "arrays.hpp"
 #include "cifs/ifs/shape_attractor.hpp"
+#include "cifs/nurbs/construct.hpp"
 #include "cifs/nurbs/curve.hpp"
 #include "cifs/nurbs/doubling.hpp"
 #include "cifs/nurbs/fit.hpp"
@@ -15,6 +17,7 @@
 #include "cifs/nurbs/measure.hpp"
 #include "cifs/nurbs/refine.hpp"
 #include "cifs/nurbs/surface.hpp"
+#include "cifs/nurbs/volume.hpp"
 
 namespace cifs::python {
 namespace {
@@ -798,7 +801,8 @@ void bind_surface(py::module_& m) {
       "insert_knot.");
   m.def("refine_midpoints", py::overload_cast<const Surface&>(&refine_midpoints), Release(),
         py::arg("surface"), "Inserts the midpoint of every non-empty span in both directions.");
-  m.def("direction_curve", &direction_curve, py::arg("surface"), py::arg("direction"),
+  m.def("direction_curve", py::overload_cast<const Surface&, Direction>(&direction_curve), py::arg("surface"),
+        py::arg("direction"),
         "The curve of control lines along `direction`: each row of its points is a whole line of the net,\n"
         "flattened (stored coordinates).");
   m.def(
@@ -1148,6 +1152,173 @@ void bind_measure(py::module_& m) {
       "the wrong size or a weight that would become ≤ 0.");
 }
 
+Eigen::Vector3d vector3_from(const DoubleArray& a, const char* where) {
+  const Eigen::VectorXd v = to_vector(a, where);
+  if (v.size() != 3)
+    throw InvalidInput(std::string(where) + ": " + std::to_string(v.size()) + " values, expected 3");
+  return v;
+}
+
+void bind_construct(py::module_& m) {
+  m.def(
+      "make_compatible", [](const std::vector<Curve>& curves) { return make_compatible(curves); }, Release(),
+      py::arg("curves"),
+      "The curves (list of Curve) made compatible: clamped (closed ones opened at their seam), rational\n"
+      "when any is, raised to the largest degree, mapped onto the first curve's domain and refined to the\n"
+      "union of their knots. Each is the same point set on the affinely mapped parameters; all share\n"
+      "degree, knots and number of control points. Raises InvalidInput for no curve or a dimension\n"
+      "mismatch.");
+  m.def("ruled", &ruled, Release(), py::arg("a"), py::arg("b"),
+        "The ruled surface between curves a and b: linear in v on [0, 1], S(u, 0) = a(u) and S(u, 1) = b\n"
+        "on its parameter mapped onto a's domain (make_compatible).");
+  m.def(
+      "extrude",
+      [](const Curve& c, const DoubleArray& direction) {
+        return extrude(c, point_from(direction, "direction"));
+      },
+      py::arg("curve"), py::arg("direction"),
+      "The translational surface S(u, v) = C(u) + v·direction, v in [0, 1] (exact). Raises InvalidInput for\n"
+      "a direction of the wrong size, zero, not finite, or along a straight curve.");
+  m.def(
+      "revolve",
+      [](const Curve& profile, const DoubleArray& axis_point, const DoubleArray& axis_direction,
+         double angle) {
+        const Eigen::Vector3d o = vector3_from(axis_point, "axis_point"),
+                              a = vector3_from(axis_direction, "axis_direction");
+        const py::gil_scoped_release release;
+        return revolve(profile, o, a, angle);
+      },
+      py::arg("profile"), py::arg("axis_point"), py::arg("axis_direction"),
+      py::arg("angle") = 2 * std::numbers::pi,
+      "The surface of revolution of a 3-D profile (u) turned by angle in (0, 2π] about the axis (v in\n"
+      "[0, 1]): exact rational quadratic arcs of at most 90° (The NURBS Book A8.1); a full turn closes\n"
+      "exactly. Raises InvalidInput for a profile that is not 3-D or lies on the axis, a zero axis, or an\n"
+      "angle outside (0, 2π].");
+  m.def(
+      "loft",
+      [](const std::vector<Curve>& curves, int degree_v, const std::string& parametrization) {
+        LoftOptions o;
+        o.degree_v = degree_v;
+        o.parametrization = parametrization_named(parametrization);
+        const py::gil_scoped_release release;
+        return loft(curves, o);
+      },
+      py::arg("curves"), py::arg("degree_v") = 3, py::arg("parametrization") = "chord_length",
+      "The surface through the curves (skinning, The NURBS Book 10.3): made compatible, then every column\n"
+      "of control points interpolated across them (homogeneous when rational) at v-parameters averaged\n"
+      "over the columns (loft_parameters); v in [0, 1]. Raises InvalidInput for fewer than 2 curves or\n"
+      "degree_v outside 1 … len(curves) − 1.");
+  m.def(
+      "loft_parameters",
+      [](const std::vector<Curve>& curves, const std::string& parametrization) {
+        return vector_array(loft_parameters(curves, parametrization_named(parametrization)));
+      },
+      py::arg("curves"), py::arg("parametrization") = "chord_length",
+      "The v-parameter of each curve in loft(curves, …): its iso-curve there is that curve.");
+  py::class_<Sweep>(m, "Sweep", "Result of sweep: the surface and its deviation from the exact sweep.")
+      .def_readonly("surface", &Sweep::surface, "The swept surface (u: profile, v: trajectory's domain).")
+      .def_readonly(
+          "deviation", &Sweep::deviation,
+          "0 for the translational sweep (exact); for the skinned sweep the largest distance to the\n"
+          "profile carried by the frames over a sample (8 parameters between instances, 8 per profile\n"
+          "span): a measured figure, not a bound.")
+      .def(
+          "__repr__",
+          [](const Sweep& s) {
+            return "Sweep(degree=(" + std::to_string(s.surface.degree[0]) + ", " +
+                   std::to_string(s.surface.degree[1]) +
+                   "), deviation=" + py::repr(py::float_(s.deviation)).cast<std::string>() + ")";
+          },
+          "Short description.");
+  m.def(
+      "sweep",
+      [](const Curve& profile, const Curve& trajectory, int instances, int degree_v) {
+        SweepOptions o;
+        o.instances = instances;
+        o.degree_v = degree_v;
+        const py::gil_scoped_release release;
+        return sweep(profile, trajectory, o);
+      },
+      py::arg("profile"), py::arg("trajectory"), py::arg("instances") = 0, py::arg("degree_v") = 3,
+      "The profile (placed at the trajectory's start) swept along the trajectory; returns a Sweep.\n\n"
+      "instances=0: the translational sweep C(u) + T(v) − T(v0), exact. instances=N ≥ 2: the profile\n"
+      "carried by the trajectory's rotation-minimizing frames, skinned through N instances (degree_v ≤\n"
+      "N − 1): an approximation whose measured deviation is reported.");
+  m.def(
+      "rotation_minimizing_frames",
+      [](const Curve& c, int count, int steps) { return rotation_minimizing_frames(c, count, steps); },
+      Release(), py::arg("curve"), py::arg("count"), py::arg("steps") = 64,
+      "Rotation-minimizing frames of a 3-D curve at count equally spaced parameters (double reflection,\n"
+      "`steps` steps between them): (count, 6), the unit tangent then the unit reference vector.");
+}
+
+void bind_volume(py::module_& m) {
+  py::class_<Volume>(
+      m, "Volume",
+      "A trivariate tensor-product B-spline or NURBS volume (immutable). Control point (i, j, k) is row\n"
+      "(i·nv + j)·nw + k of P.")
+      .def(py::init([](std::array<int, 3> degree, std::array<Knots, 3> knots, const DoubleArray& points,
+                       const std::optional<DoubleArray>& weights) {
+             if (points.ndim() != 4)
+               throw InvalidInput("points: expected (nu, nv, nw, dim), got shape " + shape_text(points));
+             const std::array<Eigen::Index, 3> count{points.shape(0), points.shape(1), points.shape(2)};
+             for (std::size_t d = 0; d < 3; ++d)
+               if (count[d] != control_count(knots[d], degree[d]))
+                 throw InvalidInput("points: shape " + shape_text(points) + " does not match the " +
+                                    std::to_string(control_count(knots[d], degree[d])) +
+                                    " control points of knots[" + std::to_string(d) + "] and degree[" +
+                                    std::to_string(d) + "]");
+             const Points P =
+                 Eigen::Map<const Points>(points.data(), count[0] * count[1] * count[2], points.shape(3));
+             Eigen::VectorXd w;
+             if (weights) {
+               if (weights->size() != count[0] * count[1] * count[2])
+                 throw InvalidInput("weights: shape " + shape_text(*weights) + " does not match the " +
+                                    std::to_string(count[0]) + " by " + std::to_string(count[1]) + " by " +
+                                    std::to_string(count[2]) + " net");
+               w = Eigen::Map<const Eigen::VectorXd>(weights->data(), weights->size());
+             }
+             return make_volume(degree, std::move(knots), count, P, w);
+           }),
+           py::arg("degree"), py::arg("knots"), py::arg("points"), py::arg("weights") = py::none(),
+           "Validated volume (make_volume). degree: (p, q, r). knots: three knot vectors. points: (nu, nv,\n"
+           "nw, dim). weights: None or (nu, nv, nw) positive values. Raises InvalidInput for invalid input.")
+      .def_property_readonly(
+          "degree", [](const Volume& v) { return py::make_tuple(v.degree[0], v.degree[1], v.degree[2]); },
+          "Degrees (p, q, r).")
+      .def_property_readonly(
+          "knots",
+          [](const Volume& v) {
+            return py::make_tuple(vector_array(v.knots[0]), vector_array(v.knots[1]),
+                                  vector_array(v.knots[2]));
+          },
+          "The three knot vectors.")
+      .def_property_readonly(
+          "count", [](const Volume& v) { return py::make_tuple(v.count[0], v.count[1], v.count[2]); },
+          "(nu, nv, nw).")
+      .def_property_readonly(
+          "P", [](const Volume& v) { return Points(v.P); },
+          "Stored control rows ((nu·nv·nw), dim + rational): homogeneous (w·x, w) when rational.")
+      .def_readonly("rational", &Volume::rational, "Whether the volume has weights.")
+      .def_property_readonly(
+          "dimension", [](const Volume& v) { return dimension(v); }, "Cartesian dimension.")
+      .def(
+          "evaluate", [](const Volume& vol, double u, double v, double w) { return evaluate(vol, u, v, w); },
+          py::arg("u"), py::arg("v"), py::arg("w"),
+          "The volume point (Cartesian) at (u, v, w). Raises InvalidInput outside the domain.")
+      .def(
+          "__repr__",
+          [](const Volume& v) {
+            return "Volume(degree=(" + std::to_string(v.degree[0]) + ", " + std::to_string(v.degree[1]) +
+                   ", " + std::to_string(v.degree[2]) + "), count=(" + std::to_string(v.count[0]) + ", " +
+                   std::to_string(v.count[1]) + ", " + std::to_string(v.count[2]) +
+                   "), dimension=" + std::to_string(dimension(v)) + (v.rational ? ", rational" : "") + ")";
+          },
+          "Short description.");
+  m.def("insert_knot", py::overload_cast<const Volume&, int, double, int>(&insert_knot), py::arg("volume"),
+        py::arg("direction"), py::arg("t"), py::arg("times") = 1,
+        "Inserts t `times` times in direction 0 (u), 1 (v) or 2 (w) of a volume; the volume is unchanged.");
+}
 }  // namespace
 
 void bind_nurbs(py::module_& m) {
@@ -1158,6 +1329,8 @@ void bind_nurbs(py::module_& m) {
   bind_doubling(m);
   bind_fit(m);
   bind_measure(m);
+  bind_construct(m);
+  bind_volume(m);
 }
 
 }  // namespace cifs::python

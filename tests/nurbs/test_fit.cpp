@@ -193,6 +193,42 @@ TEST_CASE("interpolate equals the collocation system solved in exact rationals",
     }
 }
 
+TEST_CASE("interpolate at given parameters equals the exact rational interpolant", "[nurbs][fit]") {
+  // Parameters that are not the points' chords (0, 1/8, 3/8, 1/2, 7/8, 1): the exact system in rationals.
+  const std::vector<std::vector<int>> points{{0, 0}, {3, 4}, {8, 16}, {16, 1}, {9, 25}, {2, 2}};
+  const RationalVec u{Rational(0),    Rational(1, 8), Rational(3, 8),
+                      Rational(1, 2), Rational(7, 8), Rational(1)};
+  std::vector<double> ud;
+  for (const Rational& x : u) ud.push_back(x.convert_to<double>());
+  const Points Q = to_points(points);
+  for (int p = 1; p <= 5; ++p) {
+    CAPTURE(p);
+    RationalVec knots;
+    const auto exact = exact_interpolant(points, u, p, knots);
+    const Curve curve = interpolate(Q, ud, p);
+    REQUIRE(curve.knots.size() == knots.size());
+    for (std::size_t i = 0; i < knots.size(); ++i)
+      CHECK(std::abs(curve.knots[i] - knots[i].convert_to<double>()) <= 1e-15);
+    double scale = 0, worst = 0;
+    for (std::size_t i = 0; i < exact.size(); ++i)
+      for (std::size_t j = 0; j < exact[i].size(); ++j) {
+        const double x = exact[i][j].convert_to<double>();
+        scale = std::max(scale, std::abs(x));
+        worst = std::max(worst,
+                         std::abs(curve.P(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) - x));
+      }
+    CHECK(worst <= 1e-14 * scale);
+    CHECK(relative_miss(curve, Q, ud) <= 1e-14);
+  }
+  CHECK_THROWS_WITH(interpolate(Q, std::vector<double>{0, 1}, 1),
+                    Contains("parameters: 2 given for 6 points"));
+  CHECK_THROWS_WITH(interpolate(Q, std::vector<double>{0, 0.5, 0.5, 0.6, 0.7, 1}, 1),
+                    Contains("parameters[2]: 0.5 is not greater than parameters[1] = 0.5"));
+  CHECK_THROWS_WITH(interpolate(Q, std::vector<double>{0, 0.1, NAN, 0.6, 0.7, 1}, 1),
+                    Contains("parameters[2]: nan is not finite"));
+  CHECK_THROWS_WITH(interpolate(Q, ud, 6), Contains("needs at least 7 points, got 6"));
+}
+
 TEST_CASE("interpolate hits every point to 1e-14, open and closed, any degree", "[nurbs][fit]") {
   Rng rng(30);
   for (int trial = 0; trial < 120; ++trial) {

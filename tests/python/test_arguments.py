@@ -80,7 +80,16 @@ class _Plausible(_Samples):
         data = np.array([[0, 0], [1, 2], [2, 1], [3, 3], [4, 0], [5, 2]], dtype=float)  # distinct, 2-D
         on_curve = cifs.nurbs.evaluate(self.curve, np.linspace(0, 3, 6))
         grid = np.array([[[i, j, i * j % 3] for j in range(5)] for i in range(4)], dtype=float)
+        arc = np.array([[1, 0, 0], [2, 1, 1], [3, 0, 2]], dtype=float)
+        space = [cifs.nurbs.Curve(2, [0, 0, 0, 1, 1, 1], arc + [0, 0, z]) for z in (0, 3)]  # 3-D curves
         return {
+            "nurbs.make_compatible": {"curves": space}, "nurbs.loft": {"curves": space, "degree_v": 1},
+            "nurbs.loft_parameters": {"curves": space},
+            "nurbs.revolve": {"profile": space[0], "axis_point": [0.0, 0.0, 0.0], "axis_direction": [0.0, 0.0, 1.0]},
+            "nurbs.sweep": {"profile": space[0], "trajectory": space[1]},
+            "nurbs.rotation_minimizing_frames": {"curve": space[0], "count": 3},
+            "nurbs.Volume": {"degree": [1, 1, 1], "knots": [[0, 0, 0.5, 1, 1], [0, 0, 1, 1], [0, 0, 1, 1]],
+                             "points": np.zeros((3, 2, 2, 3))},
             "nurbs.interpolate": {"points": data}, "nurbs.fit_parameters": {"points": data},
             "nurbs.approximate": {"points": data, "control_points": 4},
             "nurbs.fit_distances": {"points": on_curve},

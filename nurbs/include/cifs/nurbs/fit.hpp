@@ -61,6 +61,11 @@ struct InterpolateOptions {
 /// points, a derivative of the wrong size, or a system that is singular.
 Curve interpolate(const Points& points, const InterpolateOptions& options = {});
 
+/// The curve of `degree` through the rows of `points` at the given parameters (one a row, finite and
+/// increasing): `C(ū_k) = Q_k`, clamped on [ū_0, ū_{m−1}] with averaged_knots. Throws InvalidInput for a
+/// count mismatch, parameters not finite or not increasing, or fewer than degree + 1 points.
+Curve interpolate(const Points& points, std::span<const double> parameters, int degree);
+
 /// What an approximation's tolerance measures.
 enum class FitMeasure {
   points,    // max_k |C(ū_k) − Q_k|: each data point's distance to the curve is at most this
