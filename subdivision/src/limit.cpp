@@ -139,7 +139,7 @@ void walk_ring(const MeshTopology& t, int v, bool smallest_first, std::vector<in
 /// outer edges, boundary edges of the cut, only move the outer vertices; holes leave the rules alone:
 /// they only keep faces out of the surface). Under Chaikin's crease method the half of a semi-sharp
 /// edge at its far end x decays with the other semi-sharp edges at x, so where x has one the cut also
-/// holds x's faces and edges (`far_end`): the ring of every later level then reads it through the
+/// holds x's faces and edges (add_far_ends): the ring of every later level reads it through the
 /// halves' halves. Those extra vertices come after the ring's, and never weigh on the ring's rows.
 struct Ring {
   Mesh mesh;
