@@ -10,6 +10,7 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <numeric>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -133,27 +134,116 @@ void walk_ring(const MeshTopology& t, int v, bool smallest_first, std::vector<in
 
 /// Vertex v's one-ring cut out of its level as a mesh of its own (vertex 0 = v, the others in
 /// walk_ring's order, faces in its order turned to start at v) with the sharpness of v and of its
-/// edges as tags. Nothing else is needed: the one-ring of v's child — its vertex point, the edge
-/// points of its edges, the face points of its faces — reads v's rule and its edges' alone (the outer
-/// edges, boundary edges of the cut, only move the outer vertices; holes leave the rules alone: they
-/// only keep faces out of the surface).
+/// edges as tags. The one-ring of v's child — its vertex point, the edge points of its edges, the face
+/// points of its faces — reads v's rule, its edges' sharpness and whether their halves stay sharp (the
+/// outer edges, boundary edges of the cut, only move the outer vertices; holes leave the rules alone:
+/// they only keep faces out of the surface). Under Chaikin's crease method the half of a semi-sharp
+/// edge at its far end x decays with the other semi-sharp edges at x, so where x has one the cut also
+/// holds x's faces and edges (add_far_ends): the ring of every later level reads it through the
+/// halves' halves. Those extra vertices come after the ring's, and never weigh on the ring's rows.
 struct Ring {
   Mesh mesh;
-  std::vector<int> vertices;  // the level's vertex of each ring vertex
+  std::vector<int> vertices;  // the level's vertex of each local vertex: the ring's, then the far ends'
+  std::size_t size = 0;       // the ring's vertices: v and its one-ring
   bool boundary = false;
 };
+
+bool semi_sharp(double s) {
+  return s > 0 && s < kInfiniteSharpness;
+}
+
+/// Whether Chaikin's rule at the far end x of v's edge e reads another edge there: e is semi-sharp and
+/// so is another edge at x.
+bool reads_far_end(const MeshTopology& t, const LevelFeatures& f, int v, int e) {
+  if (!semi_sharp(edge_sharpness(f, e))) return false;
+  const int x = other_vertex(t, static_cast<std::size_t>(e), v);
+  const auto edges = vertex_edges(t, static_cast<std::size_t>(x));
+  return std::any_of(edges.begin(), edges.end(),
+                     [&](int g) { return g != e && semi_sharp(edge_sharpness(f, g)); });
+}
+
+/// Adds the faces of the far ends `far` that are not v's (the cut's first faces, `ring_faces`) to the cut,
+/// and the far ends' edges' sharpness (those not `tagged` yet). Corners of the cut's faces are one vertex
+/// where the faces share an edge there (the ring's vertex where one of them is v's face), new otherwise:
+/// only the far ends' edges are read, and each far end's faces are one fan in the cut, whatever else a
+/// small mesh folds onto them.
+void add_far_ends(const MeshTopology& t, const LevelFeatures& f, std::span<const int> ring_faces,
+                  std::span<const int> far, Ring& ring, std::vector<int>& tagged) {
+  std::vector<int> cut(ring_faces.begin(), ring_faces.end());
+  for (const int x : far)
+    for (const int g : vertex_faces(t, static_cast<std::size_t>(x)))
+      if (std::find(cut.begin(), cut.end(), g) == cut.end()) cut.push_back(g);
+  const auto index_of = [&](int g) {
+    return static_cast<std::size_t>(std::find(cut.begin(), cut.end(), g) - cut.begin());
+  };
+  // Corner items (face j of the cut, its corner i in the face's own order), joined across shared edges.
+  std::vector<int> offset{0};
+  for (const int g : cut)
+    offset.push_back(offset.back() + static_cast<int>(face(t, static_cast<std::size_t>(g)).size()));
+  std::vector<int> parent(static_cast<std::size_t>(offset.back()));
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto find = [&](int i) {
+    while (parent[static_cast<std::size_t>(i)] != i)
+      i = parent[static_cast<std::size_t>(i)] =
+          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+    return i;
+  };
+  const auto item = [&](std::size_t j, int w) {  // the item of vertex w in face j of the cut
+    const auto corners = face(t, static_cast<std::size_t>(cut[j]));
+    return offset[j] + static_cast<int>(std::find(corners.begin(), corners.end(), w) - corners.begin());
+  };
+  for (std::size_t j = 0; j < cut.size(); ++j)
+    for (const int e : face_edges(t, static_cast<std::size_t>(cut[j]))) {
+      const auto& faces = t.edge_faces[static_cast<std::size_t>(e)];
+      const int h = faces[0] == cut[j] ? faces[1] : faces[0];
+      if (h < 0 || index_of(h) <= j || index_of(h) >= cut.size()) continue;
+      for (const int w : t.edges[static_cast<std::size_t>(e)])
+        parent[static_cast<std::size_t>(find(item(j, w)))] = find(item(index_of(h), w));
+    }
+  // A class with a corner of v's faces is that ring vertex; any other a new vertex.
+  std::vector<int> id(parent.size(), -1);
+  for (std::size_t j = 0; j < ring_faces.size(); ++j)
+    for (const int w : face(t, static_cast<std::size_t>(cut[j]))) {
+      const auto end = ring.vertices.begin() + static_cast<std::ptrdiff_t>(ring.size);
+      id[static_cast<std::size_t>(find(item(j, w)))] =
+          static_cast<int>(std::find(ring.vertices.begin(), end, w) - ring.vertices.begin());
+    }
+  const auto local = [&](std::size_t j, int w) {
+    int& i = id[static_cast<std::size_t>(find(item(j, w)))];
+    if (i < 0) {
+      i = static_cast<int>(ring.vertices.size());
+      ring.vertices.push_back(w);
+    }
+    return i;
+  };
+  Mesh& m = ring.mesh;
+  for (std::size_t j = ring_faces.size(); j < cut.size(); ++j) {
+    for (const int w : face(t, static_cast<std::size_t>(cut[j]))) m.face_vertices.push_back(local(j, w));
+    m.face_offsets.push_back(static_cast<int>(m.face_vertices.size()));
+  }
+  for (const int x : far)
+    for (const int e : vertex_edges(t, static_cast<std::size_t>(x)))
+      if (const double s = edge_sharpness(f, e);
+          s > 0 && std::find(tagged.begin(), tagged.end(), e) == tagged.end()) {
+        tagged.push_back(e);
+        const std::size_t j = index_of(t.edge_faces[static_cast<std::size_t>(e)][0]);
+        m.tags.creases.push_back({.a = local(j, x),
+                                  .b = local(j, other_vertex(t, static_cast<std::size_t>(e), x)),
+                                  .sharpness = s});
+      }
+}
 
 Ring cut_ring(const MeshTopology& t, const LevelFeatures& f, const MeshTags& options, int v,
               bool smallest_first) {
   Ring ring;
   std::vector<int> faces;
   walk_ring(t, v, smallest_first, faces, ring.vertices);
+  ring.size = ring.vertices.size();
   ring.boundary = t.boundary_vertex[static_cast<std::size_t>(v)] != 0;
   const auto local = [&](int w) {
     return static_cast<int>(std::find(ring.vertices.begin(), ring.vertices.end(), w) - ring.vertices.begin());
   };
   Mesh& m = ring.mesh;
-  m.vertices = Points::Zero(static_cast<Eigen::Index>(ring.vertices.size()), 3);
   for (std::size_t k = 0; k < faces.size(); ++k) {
     const auto corners = face(t, static_cast<std::size_t>(faces[k]));
     const auto at = static_cast<std::size_t>(std::find(corners.begin(), corners.end(), v) - corners.begin());
@@ -161,10 +251,20 @@ Ring cut_ring(const MeshTopology& t, const LevelFeatures& f, const MeshTags& opt
       m.face_vertices.push_back(local(corners[(at + i) % corners.size()]));
     m.face_offsets.push_back(static_cast<int>(m.face_vertices.size()));
   }
+  std::vector<int> tagged;
   for (const int e : vertex_edges(t, static_cast<std::size_t>(v)))
-    if (const double s = edge_sharpness(f, e); s > 0)
+    if (const double s = edge_sharpness(f, e); s > 0) {
+      tagged.push_back(e);
       m.tags.creases.push_back(
           {.a = 0, .b = local(other_vertex(t, static_cast<std::size_t>(e), v)), .sharpness = s});
+    }
+  if (options.crease_method == CreaseMethod::chaikin) {
+    std::vector<int> far;
+    for (const int e : vertex_edges(t, static_cast<std::size_t>(v)))
+      if (reads_far_end(t, f, v, e)) far.push_back(other_vertex(t, static_cast<std::size_t>(e), v));
+    if (!far.empty()) add_far_ends(t, f, faces, far, ring, tagged);
+  }
+  m.vertices = Points::Zero(static_cast<Eigen::Index>(ring.vertices.size()), 3);
   if (const double s = vertex_sharpness(f, v); s > 0) m.tags.corners.push_back({.vertex = 0, .sharpness = s});
   m.tags.crease_method = options.crease_method;
   m.tags.triangles = options.triangles;
@@ -280,12 +380,13 @@ bool featured(const MeshTopology& t, const LevelFeatures& f, MeshScheme scheme, 
   return false;
 }
 
-/// The weighted sum of rows of `w` by `mask` (a mask on the stationary ring, rows on the first).
-std::vector<double> through(const std::vector<double>& mask, const Points& w) {
+/// The weighted sum of rows of `w` by `mask` (a mask on the stationary ring, rows on the first cut), on
+/// the first `columns` columns (the first cut's ring: its far ends' columns weigh nothing on the ring).
+std::vector<double> through(const std::vector<double>& mask, const Points& w, std::size_t columns) {
   if (mask.empty()) return {};
-  std::vector<double> out(static_cast<std::size_t>(w.cols()), 0.0);
+  std::vector<double> out(columns, 0.0);
   for (Eigen::Index i = 0; i < w.rows(); ++i)
-    for (Eigen::Index j = 0; j < w.cols(); ++j)
+    for (Eigen::Index j = 0; j < static_cast<Eigen::Index>(columns); ++j)
       out[static_cast<std::size_t>(j)] += mask[static_cast<std::size_t>(i)] * w(i, j);
   return out;
 }
@@ -361,6 +462,7 @@ LimitStencils limit_stencils(const MeshRefinement& r) {
     } else {  // the ring route: refined until stationary, then its class's masks
       Ring ring = cut_ring(t, f, tags, v, false);
       nb = ring.vertices;
+      const std::size_t size = ring.size;
       Points w = Points::Identity(static_cast<Eigen::Index>(nb.size()), static_cast<Eigen::Index>(nb.size()));
       int steps = 0;
       for (; !stationary(ring, scheme); ++steps) {
@@ -377,15 +479,16 @@ LimitStencils limit_stencils(const MeshRefinement& r) {
       mask = it->second;
       if (steps > 0) {  // this vertex's own masks: the class's, through the steps to its level
         const LimitMask& m = out.masks[static_cast<std::size_t>(mask)];
-        LimitMask own{.position = through(m.position, w),
-                      .tangent_u = through(m.tangent_u, w),
-                      .tangent_v = through(m.tangent_v, w),
+        LimitMask own{.position = through(m.position, w, size),
+                      .tangent_u = through(m.tangent_u, w, size),
+                      .tangent_v = through(m.tangent_v, w, size),
                       .refused = m.refused,
                       .sectors = m.sectors};
         for (SectorMask& sector : own.sectors) {
-          sector.tangent_u = through(sector.tangent_u, w);
-          sector.tangent_v = through(sector.tangent_v, w);
+          sector.tangent_u = through(sector.tangent_u, w, size);
+          sector.tangent_v = through(sector.tangent_v, w, size);
         }
+        nb.resize(size);
         out.masks.push_back(std::move(own));
         mask = static_cast<int>(out.masks.size()) - 1;
       }

@@ -126,18 +126,16 @@ TEST_CASE("the surface automaton with features: its attractor is evaluate_limit_
 
 TEST_CASE("the surface automaton with features: every node of its attractor mesh is a refined vertex's limit",
           "[subdivision][limit][features]") {
-  // Independent route: limit_stencils (the production rules' local spectra) on the mesh refined two levels
-  // past the attractor's depth, where every finite sharpness of these meshes (≤ 4) is spent. (Two levels
-  // down, under Chaikin's method, limit_stencils misses a crease point of the random torus of seed 2
-  // by 3.9e-4 (the torus is 8 across): it cuts the vertex out with its one-ring, without the far ends whose
-  // semi-sharp edges the method reads; refinement converges to this automaton's value there.) Without holes
-  // the welded attractor has exactly the vertices and faces of the mesh refined `depth` times.
+  // Independent route: limit_stencils (the production rules' local spectra) on the mesh refined `depth`
+  // times, sharpness still to spend included (under Chaikin's method with the far ends of semi-sharp
+  // edges, whose other semi-sharp edges the method reads). Without holes the welded attractor has exactly
+  // the vertices and faces of that mesh.
   const int depth = 2;
   for (const Case& c : feature_cases()) {
     INFO(c.name);
     const SurfaceAutomaton s = surface_automaton(c.mesh, MeshScheme::catmull_clark);
     const Mesh attractor = surface_automaton_mesh(s, depth);
-    const Mesh limit = limit_mesh(c.mesh, MeshScheme::catmull_clark, depth + 2);
+    const Mesh limit = limit_mesh(c.mesh, MeshScheme::catmull_clark, depth);
     const bool holes = s.automaton.initial.size() < face_count(c.mesh);
     if (!holes) {
       const Mesh refined = subdivide(c.mesh, MeshScheme::catmull_clark, depth);

@@ -74,7 +74,9 @@ void evaluate_limit(const LimitStencils& stencils, const Points& vertices, Limit
 /// - Catmull–Clark and Loop, every vertex class and valence. A smooth interior vertex (regular faces
 ///   around it) takes the closed-form masks (smooth_mask in limit.cpp, any valence). Any other — on
 ///   the boundary, on or next to a sharp edge, a corner, a dart, next to a hole or a non-quad, semi-sharp
-///   — is cut out with its one-ring and refined by the production rules until the ring is stationary
+///   — is cut out with its one-ring (under Chaikin's crease method with the faces and edges of the far end
+///   of each semi-sharp edge that has another semi-sharp edge there: the edge's half at that end decays
+///   with it) and refined by the production rules until the ring is stationary
 ///   (its sharpness spent: at most ⌈s⌉ steps), where its class's matrix S gives the position (the left
 ///   eigenvector of 1) and the tangents of each sector (the faces between sharp or boundary edges; one
 ///   sector at a dart, a boundary vertex without sharp edges, a smooth vertex): the left eigenvectors of
