@@ -115,6 +115,22 @@ Points random_path(Rng& rng, Eigen::Index m, Eigen::Index dim) {
   return Q;
 }
 
+/// The curve's knots equal the exact ones to 1e-15, its control points the exact ones to 1e-14 of their size.
+void check_exact(const Curve& curve, const RationalVec& knots, const std::vector<RationalVec>& exact) {
+  REQUIRE(curve.knots.size() == knots.size());
+  for (std::size_t i = 0; i < knots.size(); ++i)
+    CHECK(std::abs(curve.knots[i] - knots[i].convert_to<double>()) <= 1e-15);
+  double scale = 0, worst = 0;
+  for (std::size_t i = 0; i < exact.size(); ++i)
+    for (std::size_t j = 0; j < exact[i].size(); ++j) {
+      const double x = exact[i][j].convert_to<double>();
+      scale = std::max(scale, std::abs(x));
+      worst =
+          std::max(worst, std::abs(curve.P(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) - x));
+    }
+  CHECK(worst <= 1e-14 * scale);
+}
+
 }  // namespace
 
 TEST_CASE("fit_parameters: uniform, chord length and centripetal", "[nurbs][fit]") {
@@ -175,18 +191,7 @@ TEST_CASE("interpolate equals the collocation system solved in exact rationals",
       options.parametrization = c.kind;
       const Points Q = to_points(c.points);
       const Curve curve = interpolate(Q, options);
-      REQUIRE(curve.knots.size() == knots.size());
-      for (std::size_t i = 0; i < knots.size(); ++i)
-        CHECK(std::abs(curve.knots[i] - knots[i].convert_to<double>()) <= 1e-15);
-      double scale = 0, worst = 0;
-      for (std::size_t i = 0; i < exact.size(); ++i)
-        for (std::size_t j = 0; j < exact[i].size(); ++j) {
-          const double x = exact[i][j].convert_to<double>();
-          scale = std::max(scale, std::abs(x));
-          worst = std::max(worst,
-                           std::abs(curve.P(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) - x));
-        }
-      CHECK(worst <= 1e-14 * scale);
+      check_exact(curve, knots, exact);
       std::vector<double> ud;
       for (const Rational& x : u) ud.push_back(x.convert_to<double>());
       CHECK(relative_miss(curve, Q, ud) <= 1e-14);
@@ -206,18 +211,7 @@ TEST_CASE("interpolate at given parameters equals the exact rational interpolant
     RationalVec knots;
     const auto exact = exact_interpolant(points, u, p, knots);
     const Curve curve = interpolate(Q, ud, p);
-    REQUIRE(curve.knots.size() == knots.size());
-    for (std::size_t i = 0; i < knots.size(); ++i)
-      CHECK(std::abs(curve.knots[i] - knots[i].convert_to<double>()) <= 1e-15);
-    double scale = 0, worst = 0;
-    for (std::size_t i = 0; i < exact.size(); ++i)
-      for (std::size_t j = 0; j < exact[i].size(); ++j) {
-        const double x = exact[i][j].convert_to<double>();
-        scale = std::max(scale, std::abs(x));
-        worst = std::max(worst,
-                         std::abs(curve.P(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) - x));
-      }
-    CHECK(worst <= 1e-14 * scale);
+    check_exact(curve, knots, exact);
     CHECK(relative_miss(curve, Q, ud) <= 1e-14);
   }
   CHECK_THROWS_WITH(interpolate(Q, std::vector<double>{0, 1}, 1),
