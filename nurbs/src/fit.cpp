@@ -486,8 +486,8 @@ Knots averaged_knots(std::span<const double> u, int degree, int extra, bool end_
   const int p = degree;
   const auto n = static_cast<int>(u.size()) + twice_first + twice_last;  // control points
   Knots t;
-  t.reserve(static_cast<std::size_t>(n + p + 1));
-  t.assign(static_cast<std::size_t>(p + 1), u.front());
+  t.reserve(static_cast<std::size_t>(n) + static_cast<std::size_t>(p) + 1);
+  t.assign(static_cast<std::size_t>(p) + 1, u.front());
   for (int j = 1; j <= n - p - 1; ++j) {
     double sum = 0;
     for (int i = j; i < j + p; ++i) sum += x(i);
