@@ -198,6 +198,17 @@ inline cifs::Mesh wavy_grid(int n, int m, bool triangles) {
 }
 
 /// Every edge of `m` as a vertex pair.
+/// The mesh with each face's corner list turned by f mod `ways` places, so that patches' (s, t) meet the
+/// faces' (u, v) in all four ways (quads; 3 for triangles).
+inline cifs::Mesh turned_faces(cifs::Mesh m, std::size_t ways = 4) {
+  for (std::size_t f = 0; f < cifs::face_count(m); ++f) {
+    const auto b = m.face_vertices.begin() + m.face_offsets[f],
+               e = m.face_vertices.begin() + m.face_offsets[f + 1];
+    std::rotate(b, b + static_cast<std::ptrdiff_t>(f % ways), e);
+  }
+  return m;
+}
+
 inline std::vector<std::array<int, 2>> edges_of(const cifs::Mesh& m) {
   const cifs::MeshTopology t = cifs::build_topology(m);
   return t.edges;

@@ -426,17 +426,9 @@ namespace {
 /// Each face's corner list is turned by f mod 4 places, so that the patches' (s, t) meet the
 /// faces' (u, v) in all four ways.
 std::vector<std::pair<const char*, Mesh>> automaton_meshes() {
-  const auto turned = [](Mesh m) {
-    for (std::size_t f = 0; f < face_count(m); ++f) {
-      const auto b = m.face_vertices.begin() + m.face_offsets[f],
-                 e = m.face_vertices.begin() + m.face_offsets[f + 1];
-      std::rotate(b, b + static_cast<std::ptrdiff_t>(f % 4), e);
-    }
-    return m;
-  };
-  return {{"cube", turned(catmull_clark(cube(), 1))},
-          {"pyramid", turned(catmull_clark(pyramid(), 2))},
-          {"bipyramid", turned(catmull_clark(bipyramid(), 2))}};
+  return {{"cube", turned_faces(catmull_clark(cube(), 1))},
+          {"pyramid", turned_faces(catmull_clark(pyramid(), 2))},
+          {"bipyramid", turned_faces(catmull_clark(bipyramid(), 2))}};
 }
 
 /// Index of the row of `P` nearest to `x`, and its distance.
@@ -545,19 +537,12 @@ namespace {
 /// regular faces; each face's corner list turned by f mod 3 places, so that the patches' (s, t)
 /// meet the faces' (u, v) in all three ways.
 std::vector<std::pair<const char*, Mesh>> loop_meshes() {
-  const auto turned = [](Mesh m) {
-    for (std::size_t f = 0; f < face_count(m); ++f) {
-      const auto b = m.face_vertices.begin() + m.face_offsets[f];
-      std::rotate(b, b + static_cast<std::ptrdiff_t>(f % 3), m.face_vertices.begin() + m.face_offsets[f + 1]);
-    }
-    return m;
-  };
-  return {{"tetrahedron (3)", turned(loop(tetrahedron(), 1))},
-          {"octahedron (4)", turned(loop(octahedron(), 1))},
-          {"bipyramid (4, 5)", turned(loop(bipyramid(), 1))},
-          {"bipyramid (4, 7)", turned(loop(bipyramid_of(7), 1))},
-          {"bipyramid (4, 8)", turned(loop(bipyramid_of(8), 1))},
-          {"torus (6)", turned(torus(6, 5, true))}};
+  return {{"tetrahedron (3)", turned_faces(loop(tetrahedron(), 1), 3)},
+          {"octahedron (4)", turned_faces(loop(octahedron(), 1), 3)},
+          {"bipyramid (4, 5)", turned_faces(loop(bipyramid(), 1), 3)},
+          {"bipyramid (4, 7)", turned_faces(loop(bipyramid_of(7), 1), 3)},
+          {"bipyramid (4, 8)", turned_faces(loop(bipyramid_of(8), 1), 3)},
+          {"torus (6)", turned_faces(torus(6, 5, true), 3)}};
 }
 
 }  // namespace

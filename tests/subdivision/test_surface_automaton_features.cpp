@@ -36,20 +36,12 @@ struct Case {
 /// Quad meshes with every feature the automaton takes; each face's corner list turned by f mod 4
 /// places, so that the patches' (s, t) meet the faces' (u, v) in all four ways.
 std::vector<Case> feature_cases() {
-  const auto turned = [](Mesh m) {
-    for (std::size_t f = 0; f < face_count(m); ++f) {
-      const auto b = m.face_vertices.begin() + m.face_offsets[f],
-                 e = m.face_vertices.begin() + m.face_offsets[f + 1];
-      std::rotate(b, b + static_cast<std::ptrdiff_t>(f % 4), e);
-    }
-    return m;
-  };
   std::vector<Case> out;
   for (const CreaseMethod method : {CreaseMethod::uniform, CreaseMethod::chaikin}) {
     const std::string suffix = method == CreaseMethod::chaikin ? ", chaikin" : "";
     Mesh m = creased_cube();
     m.tags.crease_method = method;
-    out.push_back({"creased cube" + suffix, turned(m)});
+    out.push_back({"creased cube" + suffix, turned_faces(m)});
     for (const BoundaryRule rule :
          {BoundaryRule::none, BoundaryRule::edge_only, BoundaryRule::edge_and_corner}) {
       Mesh g = wavy_grid(5, 4, false);
@@ -58,14 +50,14 @@ std::vector<Case> feature_cases() {
       g.tags.creases = {{7, 8, 2}, {8, 9, 2}, {9, 10, 0.5}, {1, 7, 1.5}, {14, 15, 10}, {15, 16, 10}};
       g.tags.corners = {{14, 10}};
       g.tags.crease_method = method;
-      out.push_back({"grid, boundary rule " + std::string(option_name(rule)) + suffix, turned(g)});
+      out.push_back({"grid, boundary rule " + std::string(option_name(rule)) + suffix, turned_faces(g)});
     }
   }
   Mesh darts = torus(6, 5);
   darts.tags.creases = {{0, 1, 10}, {1, 2, 10}};
-  out.push_back({"torus (darts)", turned(darts)});
+  out.push_back({"torus (darts)", turned_faces(darts)});
   Mesh open = quad_grid(4, 3);  // untagged, open: boundary states only
-  out.push_back({"open grid", turned(open)});
+  out.push_back({"open grid", turned_faces(open)});
   Mesh pyramid_once = catmull_clark(pyramid(), 1);  // valences 3 and 4, non-quads gone, two creases
   const auto edges = edges_of(pyramid_once);
   pyramid_once.tags.creases = {{edges[0][0], edges[0][1], 10}, {edges[5][0], edges[5][1], 2.5}};
@@ -74,7 +66,7 @@ std::vector<Case> feature_cases() {
     std::mt19937 rng(seed);
     Mesh m = seed % 2 == 0 ? torus(6, 5) : wavy_grid(4, 4, false);
     random_tags(m, rng, seed % 3 != 0);
-    out.push_back({"random tags, seed " + std::to_string(seed), turned(m)});
+    out.push_back({"random tags, seed " + std::to_string(seed), turned_faces(m)});
   }
   return out;
 }
