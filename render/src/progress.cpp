@@ -5,8 +5,13 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
+#include <string>
+
+#include "cifs/errors.hpp"
 
 namespace cifs::render {
 
@@ -37,15 +42,28 @@ void ProgressBar::operator()(std::uint64_t done, std::uint64_t total) {
   std::fflush(stderr);
 }
 
+std::chrono::milliseconds stage_delay() {
+  const char* text = std::getenv("CIFS_PROGRESS_AFTER");
+  if (text == nullptr) return std::chrono::seconds(1);
+  const std::string value(text);
+  char* end = nullptr;
+  const double seconds = std::strtod(value.c_str(), &end);
+  if (value.empty() || end != value.c_str() + value.size() || !(seconds >= 0 && seconds <= 3600))
+    throw InvalidInput("CIFS_PROGRESS_AFTER: '" + value.substr(0, 40) +
+                       "' is not a number of seconds from 0 to 3600");
+  return std::chrono::milliseconds(std::lround(seconds * 1000));
+}
+
 Stage::Stage(std::string label, bool quiet)
     : label_(std::move(label)),
       start_(std::chrono::steady_clock::now()),
       exceptions_(std::uncaught_exceptions()) {
   if (quiet || ::isatty(STDERR_FILENO) != 1) return;
-  ticker_ = std::thread([this] {
+  const auto delay = stage_delay();
+  ticker_ = std::thread([this, delay] {
     std::unique_lock lock(mutex_);
-    // Silent for the first second: short stages leave no line.
-    if (wake_.wait_until(lock, start_ + std::chrono::seconds(1), [this] { return stop_; })) return;
+    // Silent at first (a second): short stages leave no line.
+    if (wake_.wait_until(lock, start_ + delay, [this] { return stop_; })) return;
     do draw(false);
     while (!wake_.wait_for(lock, std::chrono::milliseconds(100), [this] { return stop_; }));
   });

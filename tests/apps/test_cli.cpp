@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The cifs command line, run as a user runs it: exit status, stdout and stderr.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cerrno>
 #include <cmath>
@@ -203,9 +204,16 @@ TEST_CASE("cifs attractor and eval -o: the file written as computed = standard o
     CHECK(slurp(path) == in_memory.out);
     CHECK(in_memory.out.size() > 100);
   };
-  // Stencil chunks of 2^16 points, several of them (3 · 2^16 + 1 points at depth 16).
+  // Stencil chunks of 2^16 points, several of them (3 · 2^16 + 1 points at depth 16). Under ASan (a few
+  // seconds a run) one text and one binary writer cross the chunks; Release runs all four.
+#if defined(__SANITIZE_ADDRESS__)
+  const std::vector<std::string> chunked{"json", "npy"};
+#else
+  const std::vector<std::string> chunked{"json", "obj", "npy", "ply"};
+#endif
   for (const std::string format : {"json", "obj", "npy", "ply"}) {
-    same("attractor " + rational + " --depth 16", format);
+    if (std::find(chunked.begin(), chunked.end(), format) != chunked.end())
+      same("attractor " + rational + " --depth 16", format);
     same("attractor " + closed + " --depth 9", format);
     same("attractor " + rational + " --piece-size 0.001", format);
   }

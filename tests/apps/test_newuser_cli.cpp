@@ -222,25 +222,28 @@ TEST_CASE("Every command takes --quiet and progress shows only on a terminal", "
     const Run r = cifs_cli(command + " --quiet");
     CHECK(r.err.find("--quiet") == std::string::npos);
   }
-  // A stage over a second (depth 9: about 4 s of CPU; under ASan + UBSan, 25 times slower, depth 7) shows its
-  // name and time on a terminal (script gives the command one), and nothing when stderr is a file.
-#if defined(__SANITIZE_ADDRESS__)
-  const std::string depth = " --depth 7";
-#else
-  const std::string depth = " --depth 9";
-#endif
-  const std::string slow = std::string(CIFS_CLI_PATH) + " check " + kHills + depth;
+  // A stage over CIFS_PROGRESS_AFTER seconds (1 without it) shows its name and time on a terminal (script
+  // gives the command one), and nothing when stderr is a file or with --quiet. 0 s: any stage shows.
+  const std::string slow =
+      "CIFS_PROGRESS_AFTER=0 " + std::string(CIFS_CLI_PATH) + " check " + kHills + " --depth 3";
   const auto log = scratch() / "tty.log";
-  const std::string tty = "script -qec '" + slow + " >/dev/null' " + log.string() + " >/dev/null 2>&1";
-  REQUIRE(std::system(tty.c_str()) == 0);
-  CHECK_THAT(slurp(log), Catch::Contains("check  done"));
-  const Run plain = cifs_cli("check " + kHills + depth);
+  const auto on_terminal = [&](const std::string& command) {
+    const std::string tty = "script -qec '" + command + " >/dev/null' " + log.string() + " >/dev/null 2>&1";
+    REQUIRE(std::system(tty.c_str()) == 0);
+    return slurp(log);
+  };
+  CHECK_THAT(on_terminal(slow), Catch::Contains("check  done"));
+  CHECK_THAT(on_terminal(slow + " --quiet"), !Catch::Contains("check  done") && !Catch::Contains("check …"));
+  // The default second: a check of milliseconds leaves no line.
+  CHECK_THAT(on_terminal(std::string(CIFS_CLI_PATH) + " check " + kHills + " --depth 3"),
+             !Catch::Contains("check  done") && !Catch::Contains("check …"));
+  const Run plain = cifs_cli("check " + kHills + " --depth 3", "", "CIFS_PROGRESS_AFTER=0 ");
   CHECK(plain.status == 0);
   CHECK(plain.err.empty());
-  const std::string quiet =
-      "script -qec '" + slow + " --quiet >/dev/null' " + log.string() + " >/dev/null 2>&1";
-  REQUIRE(std::system(quiet.c_str()) == 0);
-  CHECK_THAT(slurp(log), !Catch::Contains("check  done") && !Catch::Contains("check …"));
+  // A malformed delay is refused by name, on a terminal, where it would be read.
+  CHECK_THAT(on_terminal("CIFS_PROGRESS_AFTER=soon " + std::string(CIFS_CLI_PATH) + " check " + kHills +
+                         " 2>&1; true"),
+             Catch::Contains("CIFS_PROGRESS_AFTER: 'soon'"));
 }
 
 TEST_CASE("cifs render SHAPE or MESH: a look at the file with the default camera and style",

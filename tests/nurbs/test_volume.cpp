@@ -48,12 +48,18 @@ Point reference(const RandomVolume& r, double u, double v, double w) {
   for (std::size_t d = 0; d < 3; ++d)
     N[d] = ref_basis(x.knots[d], x.degree[d], at[d], at_end(x.knots[d], x.degree[d], at[d]));
   Eigen::Matrix<Real, 1, Eigen::Dynamic> sum = Eigen::Matrix<Real, 1, Eigen::Dynamic>::Zero(r.H.cols());
-  for (Eigen::Index i = 0; i < x.count[0]; ++i)
-    for (Eigen::Index j = 0; j < x.count[1]; ++j)
+  // Every term of the sum, the zero ones skipped (they add nothing; an Eigen row each under ASan).
+  for (Eigen::Index i = 0; i < x.count[0]; ++i) {
+    const Real ni = N[0][static_cast<std::size_t>(i)];
+    if (ni == 0) continue;
+    for (Eigen::Index j = 0; j < x.count[1]; ++j) {
+      const Real nij = ni * N[1][static_cast<std::size_t>(j)];
+      if (nij == 0) continue;
       for (Eigen::Index k = 0; k < x.count[2]; ++k)
-        sum += N[0][static_cast<std::size_t>(i)] * N[1][static_cast<std::size_t>(j)] *
-               N[2][static_cast<std::size_t>(k)] *
-               r.H.row((i * x.count[1] + j) * x.count[2] + k).cast<Real>();
+        if (const Real n = nij * N[2][static_cast<std::size_t>(k)]; n != 0)
+          sum += n * r.H.row((i * x.count[1] + j) * x.count[2] + k).cast<Real>();
+    }
+  }
   const Eigen::Index dim = dimension(x);
   if (!x.rational) return sum.cast<double>();
   return (sum.head(dim) / sum(dim)).cast<double>();

@@ -16,6 +16,10 @@ import numpy as np
 SOURCE_DIR = Path(os.environ.get("CIFS_SOURCE_DIR", Path(__file__).resolve().parents[2]))
 EXAMPLES = Path(os.environ.get("CIFS_EXAMPLES_DIR", SOURCE_DIR / "examples"))
 CLI = os.environ.get("CIFS_CLI", "")
+# A sanitized build (tests/CMakeLists.txt preloads the ASan runtime into the interpreter): calls run 10–30×
+# slower. Its run looks for memory errors, which a sample of the cases finds as well as all of them; the
+# Release run checks every case.
+SANITIZED = "asan" in os.environ.get("LD_PRELOAD", "")
 
 
 # Chaikin's scheme = the uniform quadratic B-spline: its two knot-doubling matrices (rows sum to 1).

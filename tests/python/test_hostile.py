@@ -19,7 +19,8 @@ import tempfile
 import time
 import unittest
 
-from test_robustness import SANITIZED, _hostile_values  # noqa: I100
+from support import SANITIZED
+from test_robustness import _hostile_values  # noqa: I100
 
 SEED = 33
 # Release: ~2,000 calls in a few seconds; sanitized builds run them 10–30 times slower.

@@ -12,7 +12,7 @@ import numpy as np
 
 import cifs
 from cifs import subdivision as sd
-from support import EXAMPLES, ScratchTestCase
+from support import EXAMPLES, SANITIZED, ScratchTestCase
 
 
 class ReliabilityTest(ScratchTestCase):
@@ -58,7 +58,7 @@ class ReliabilityTest(ScratchTestCase):
                 self.assertIn("point 1 coordinate 0 is not a finite number", str(raised.exception))
                 self.assertFalse(os.path.exists(path))
 
-    @unittest.skipIf("asan" in os.environ.get("LD_PRELOAD", ""),
+    @unittest.skipIf(SANITIZED,
                      "AddressSanitizer reserves more address space than the limit allows")
     def test_refused_allocation_is_named(self):
         # "MemoryError: std::bad_alloc" (7 calls of the audit): in a child with 3 GiB of address space.

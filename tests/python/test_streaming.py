@@ -3,7 +3,6 @@
 are computed. The files are read back by NumPy (`.npy`) and by a parser written here (PLY), and compared
 with de Boor's algorithm run in NumPy at the same parameters; memory is measured on the child process."""
 import json
-import os
 import subprocess
 import sys
 import time
@@ -11,9 +10,8 @@ import unittest
 
 import numpy as np
 
-from support import CLI, EXAMPLES, ScratchTestCase, cli
+from support import CLI, EXAMPLES, SANITIZED, ScratchTestCase, cli
 
-SANITIZED = "asan" in os.environ.get("LD_PRELOAD", "")
 
 
 def de_boor(curve, us):

@@ -30,11 +30,16 @@ class ProgressBar {
   std::chrono::steady_clock::time_point last_draw_;
 };
 
+/// How long a Stage stays silent: `CIFS_PROGRESS_AFTER` seconds when that variable is set (a number from
+/// 0 to 3600; 0 shows every stage), else one second. Throws InvalidInput naming the variable for any
+/// other value.
+std::chrono::milliseconds stage_delay();
+
 /// A stage whose amount of work is not counted (building a mesh, rasterising, writing an image):
-/// once it has run for a second, `label …  3.2 s` on stderr, redrawn every 100 ms by a thread of
-/// its own, and `label  done  3.4 s` when it ends (erased when it ends by an exception); a shorter stage
-/// prints nothing. Quiet and non-terminal as ProgressBar. Stages are not nested, nor drawn while a
-/// ProgressBar draws.
+/// once it has run for stage_delay() (a second), `label …  3.2 s` on stderr, redrawn every 100 ms by
+/// a thread of its own, and `label  done  3.4 s` when it ends (erased when it ends by an exception); a
+/// shorter stage prints nothing. Quiet and non-terminal as ProgressBar. Stages are not nested, nor
+/// drawn while a ProgressBar draws.
 class Stage {
  public:
   explicit Stage(std::string label, bool quiet = false);
