@@ -1080,8 +1080,8 @@ void add_product2(const double* f, int fm, int fn, const double* g, int gm, int 
       const double a = cf[static_cast<std::size_t>(i * (fn + 1) + j)];
       if (a == 0) continue;
       for (int k = 0; k <= gm; ++k) {
-        double* row = out + (i + k) * (N + 1) + j;
-        const double* b = cg.data() + k * (gn + 1);
+        double* row = out + std::ptrdiff_t{i + k} * (N + 1) + j;
+        const double* b = cg.data() + std::ptrdiff_t{k} * (gn + 1);
         for (int l = 0; l <= gn; ++l) row[l] += a * b[l];
       }
     }
@@ -1213,46 +1213,49 @@ void bernstein_derivatives(int p, double s, double* N) {
   }
 }
 
+/// The partial derivatives PatchEval gives, in its order: (k, l) = ∂^{k+l} / ∂s^k ∂t^l.
+constexpr int kPartials[6][2] = {{0, 0}, {1, 0}, {0, 1}, {2, 0}, {1, 1}, {0, 2}};
+
 /// A patch's Cartesian point and partial derivatives at (s, t): S, S_s, S_t, S_ss, S_st, S_tt (dim values
 /// each, at k·dim), by the quotient rule when rational.
 class PatchEval {
  public:
   explicit PatchEval(const PatchLayout& l)
       : l_(l),
-        Nu_(static_cast<std::size_t>(3 * (l.p + 1))),
-        Nv_(static_cast<std::size_t>(3 * (l.q + 1))),
-        T_(static_cast<std::size_t>(3 * (l.p + 1) * l.cols)),
-        H_(static_cast<std::size_t>(6 * l.cols)),
-        S_(static_cast<std::size_t>(6 * l.dim)) {}
+        nu_(static_cast<std::size_t>(3 * (l.p + 1))),
+        nv_(static_cast<std::size_t>(3 * (l.q + 1))),
+        t_(static_cast<std::size_t>(3 * (l.p + 1) * l.cols)),
+        h_(static_cast<std::size_t>(6 * l.cols)),
+        s_(static_cast<std::size_t>(6 * l.dim)) {}
 
   const double* operator()(const double* B, double s, double t) {
     const int p = l_.p, q = l_.q, d = l_.dim;
     const std::ptrdiff_t n = l_.cols;
-    bernstein_derivatives(p, s, Nu_.data());
-    bernstein_derivatives(q, t, Nv_.data());
+    bernstein_derivatives(p, s, nu_.data());
+    bernstein_derivatives(q, t, nv_.data());
     // T[l][i] = Σ_j Nv^(l)_j B_ij, then H(k, l) = Σ_i Nu^(k)_i T[l][i] for k + l ≤ 2.
-    std::fill(T_.begin(), T_.end(), 0.0);
+    std::fill(t_.begin(), t_.end(), 0.0);
     for (int lv = 0; lv <= 2; ++lv)
       for (int i = 0; i <= p; ++i) {
-        double* dst = T_.data() + (lv * (p + 1) + i) * n;
+        double* dst = t_.data() + (lv * (p + 1) + i) * n;
         for (int j = 0; j <= q; ++j) {
-          const double f = Nv_[static_cast<std::size_t>(lv * (q + 1) + j)];
+          const double f = nv_[static_cast<std::size_t>(lv * (q + 1) + j)];
           const double* src = B + (i * (q + 1) + j) * n;
           for (std::ptrdiff_t k = 0; k < n; ++k) dst[k] += f * src[k];
         }
       }
-    std::fill(H_.begin(), H_.end(), 0.0);
+    std::fill(h_.begin(), h_.end(), 0.0);
     for (int slot = 0; slot < 6; ++slot) {
-      const int ku = kOrders[slot][0], lv = kOrders[slot][1];
-      double* dst = H_.data() + slot * n;
+      const int ku = kPartials[slot][0], lv = kPartials[slot][1];
+      double* dst = h_.data() + slot * n;
       for (int i = 0; i <= p; ++i) {
-        const double f = Nu_[static_cast<std::size_t>(ku * (p + 1) + i)];
-        const double* src = T_.data() + (lv * (p + 1) + i) * n;
+        const double f = nu_[static_cast<std::size_t>(ku * (p + 1) + i)];
+        const double* src = t_.data() + (lv * (p + 1) + i) * n;
         for (std::ptrdiff_t k = 0; k < n; ++k) dst[k] += f * src[k];
       }
     }
-    double* S = S_.data();
-    const double* H = H_.data();
+    double* S = s_.data();
+    const double* H = h_.data();
     if (!l_.rational) {
       for (int slot = 0; slot < 6; ++slot) std::copy_n(H + slot * n, d, S + std::ptrdiff_t{slot} * d);
       return S;
@@ -1275,9 +1278,8 @@ class PatchEval {
   }
 
  private:
-  static constexpr int kOrders[6][2] = {{0, 0}, {1, 0}, {0, 1}, {2, 0}, {1, 1}, {0, 2}};
   PatchLayout l_;
-  std::vector<double> Nu_, Nv_, T_, H_, S_;
+  std::vector<double> nu_, nv_, t_, h_, s_;
 };
 
 /// A lower bound on the distance from q to the convex hull of `count` Cartesian points (dim values each):
@@ -1380,7 +1382,7 @@ void span_bezier_matrix(const double* t, int p, int k, double* M) {
   double args[kMaxDegree];
   for (int j = 0; j <= p; ++j) {
     for (int i = 0; i < p; ++i) args[i] = i < p - j ? t[k] : t[k + 1];
-    detail::blossom_weights_increasing(t, p, k, args, M + j * (p + 1));
+    detail::blossom_weights_increasing(t, p, k, args, M + std::ptrdiff_t{j} * (p + 1));
   }
 }
 
@@ -1491,7 +1493,7 @@ SurfaceClosestPoints closest_point(const Surface& s, const Point& q, double tole
       for (int r = 0; r <= p; ++r)
         for (int c = 0; c <= pq; ++c)
           detail::project(s.P.data() + ((pt.a - p + r) * nv + (pt.b - pq + c)) * l.cols, dim, s.rational,
-                          xs.data() + (r * (pq + 1) + c) * dim);
+                          xs.data() + std::ptrdiff_t{r * (pq + 1) + c} * dim);
       queue.push({hull_bound(xs.data(), (p + 1) * (pq + 1), dim, q), Kind::patch, ia * nb + ib});
     }
 
@@ -1508,8 +1510,9 @@ SurfaceClosestPoints closest_point(const Surface& s, const Point& q, double tole
   constexpr int kMaxDepth = 40;          // 2^-40 of a span: below rounding of the parameters
   constexpr std::size_t kMaxPieces = 20000;
   PatchEval eval(l);
-  const auto to_u = [&](const Patch& pt, double sl) { return sl >= 1 ? pt.u1 : pt.u0 + sl * (pt.u1 - pt.u0); };
-  const auto to_v = [&](const Patch& pt, double tl) { return tl >= 1 ? pt.v1 : pt.v0 + tl * (pt.v1 - pt.v0); };
+  // Local parameters to the domain's (lerp: exact at both ends, never beyond them).
+  const auto to_u = [&](const Patch& pt, double sl) { return std::lerp(pt.u0, pt.u1, sl); };
+  const auto to_v = [&](const Patch& pt, double tl) { return std::lerp(pt.v0, pt.v1, tl); };
   const auto patch_distance = [&](const Patch& pt, double sl, double tl) {
     return distance_to(eval(pt.B.data(), sl, tl));
   };
@@ -1764,7 +1767,7 @@ SurfaceClosestPoints closest_point(const Surface& s, const Point& q, double tole
     double spread = 0;
     for (const double a : {0.0, 0.25, 0.5, 0.75, 1.0})
       for (const double b : {0.0, 0.5, 1.0})
-        spread = std::max(spread, (evaluate(s, r[0] + a * (r[1] - r[0]), r[2] + b * (r[3] - r[2])) - first).norm());
+        spread = std::max(spread, (evaluate(s, std::lerp(r[0], r[1], a), std::lerp(r[2], r[3], b)) - first).norm());
     if (spread <= eq)
       candidates.push_back({r[0], r[2], (first - q).norm()});
     else
