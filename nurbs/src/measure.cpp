@@ -1453,33 +1453,40 @@ SurfaceClosestPoints closest_point(const Surface& s, const Point& q, double tole
   // Edges of the domain, and interior knot lines where the surface is not C¹ (multiplicity ≥ degree):
   // there a nearest point need not be a zero of F; the curve closest_point of the iso-curve finds it.
   struct Edge {
-    Curve c;
-    Direction dir;  // the iso-curve at `at` of this direction, running along the other
+    Direction dir;  // the iso-curve at `at` of this direction, running along the other (made when needed)
     double at;
   };
   std::vector<Edge> edges;
+  const Eigen::Index nv = s.count[1];
+  std::vector<double> xs;
   for (const Direction dir : {Direction::u, Direction::v}) {
     const auto d = static_cast<std::size_t>(dir);
     const Knots& t = s.knots[d];
+    const int degree = s.degree[d];
     const Domain dom = domain(s, dir);
     std::vector<double> lines{dom.start};
     for (std::size_t k = 0; k < t.size(); ++k)
-      if (t[k] > dom.start && t[k] < dom.end && t[k] != lines.back() &&
-          multiplicity(t, t[k]) >= s.degree[d])
+      if (t[k] > dom.start && t[k] < dom.end && t[k] != lines.back() && multiplicity(t, t[k]) >= degree)
         lines.push_back(t[k]);
     lines.push_back(dom.end);
-    for (const double at : lines) edges.push_back({iso_curve(s, dir, at), dir, at});
-  }
-  std::vector<double> xs;
-  for (std::size_t e = 0; e < edges.size(); ++e) {
-    const Curve& c = edges[e].c;
-    xs.resize(static_cast<std::size_t>(c.P.rows() * dim));
-    for (Eigen::Index i = 0; i < c.P.rows(); ++i)
-      detail::project(c.P.data() + i * c.P.cols(), dim, c.rational, xs.data() + i * dim);
-    queue.push({hull_bound(xs.data(), static_cast<int>(c.P.rows()), dim, q), Kind::edge, e});
+    // The iso-curve's control points are convex combinations of the degree + 1 lines of the net under its
+    // span (positive weights): the hull of those bounds it.
+    const Eigen::Index across = s.count[1 - d];
+    xs.resize(static_cast<std::size_t>((degree + 1) * across * dim));
+    for (const double at : lines) {
+      const int span = find_span(t, degree, at);
+      for (int r = 0; r <= degree; ++r)
+        for (Eigen::Index j = 0; j < across; ++j) {
+          const Eigen::Index i = span - degree + r;
+          const Eigen::Index row = dir == Direction::u ? i * nv + j : j * nv + i;
+          detail::project(s.P.data() + row * l.cols, dim, s.rational, xs.data() + (r * across + j) * dim);
+        }
+      edges.push_back({dir, at});
+      queue.push({hull_bound(xs.data(), static_cast<int>((degree + 1) * across), dim, q), Kind::edge,
+                  edges.size() - 1});
+    }
   }
   // The patches by the hull of their (p + 1)(q + 1) B-spline control points.
-  const Eigen::Index nv = s.count[1];
   xs.resize(static_cast<std::size_t>((p + 1) * (pq + 1) * dim));
   for (std::size_t ia = 0; ia < spans[0].size(); ++ia)
     for (std::size_t ib = 0; ib < nb; ++ib) {
@@ -1672,9 +1679,10 @@ SurfaceClosestPoints closest_point(const Surface& s, const Point& q, double tole
     if (top.bound > upper + eq) break;  // every other entry is farther
     if (top.kind == Kind::edge) {
       const Edge& e = edges[top.index];
+      const Curve c = iso_curve(s, e.dir, e.at);
       // The curve's own tolerance scaled so that it keeps every point within eq of its nearest.
-      const double tol = std::clamp(tolerance * size / size_of(e.c), 1e-15, 0.5);
-      const ClosestPoints cp = closest_point(e.c, q, tol);
+      const double tol = std::clamp(tolerance * size / size_of(c), 1e-15, 0.5);
+      const ClosestPoints cp = closest_point(c, q, tol);
       upper = std::min(upper, cp.distance);
       for (const double x : cp.parameters)
         found.push_back(e.dir == Direction::u ? Found{e.at, x, cp.distance} : Found{x, e.at, cp.distance});
