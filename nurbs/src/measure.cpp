@@ -1424,7 +1424,8 @@ SurfaceClosestPoints closest_point(const Surface& s, const Point& q, double tole
     int a = 0, b = 0;  // spans
     double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
     std::vector<double> B;
-    double ru = 0, rv = 0;  // rounding of the critical polynomials
+    double ru = 0, rv = 0;             // rounding of the critical polynomials
+    bool zero_u = false, zero_v = false;  // a critical polynomial vanishes on the patch (to its rounding)
   };
   std::vector<Patch> patches(spans[0].size() * nb);
 
@@ -1540,6 +1541,7 @@ SurfaceClosestPoints closest_point(const Surface& s, const Point& q, double tole
     sl = 0.5 * (pc.s0 + pc.s1);
     tl = 0.5 * (pc.t0 + pc.t1);
     const double slack_s = 1e-9 * (pc.s1 - pc.s0) + 1e-15, slack_t = 1e-9 * (pc.t1 - pc.t0) + 1e-15;
+    double last = HUGE_VAL;
     for (int it = 0; it < 64; ++it) {
       const double* S = eval(pt.B.data(), sl, tl);
       double F1 = 0, F2 = 0, J11 = 0, J12 = 0, J22 = 0;
@@ -1559,7 +1561,11 @@ SurfaceClosestPoints closest_point(const Surface& s, const Point& q, double tole
           ns >= pc.s0 - slack_s && ns <= pc.s1 + slack_s && nt >= pc.t0 - slack_t && nt <= pc.t1 + slack_t;
       sl = std::clamp(ns, pc.s0, pc.s1);
       tl = std::clamp(nt, pc.t0, pc.t1);
-      if (std::abs(ds) <= 1e-13 && std::abs(dt) <= 1e-13) return inside;
+      // Converged: a step below 1e-13 of the patch, or steps of rounding noise that stopped shrinking (a
+      // nearly degenerate minimum, q near a focal point, where F/J rounds to ~1e-12).
+      const double step = std::max(std::abs(ds), std::abs(dt));
+      if (step <= 1e-13 || (step <= 1e-9 && step > 0.5 * last)) return inside;
+      last = step;
     }
     return false;
   };
@@ -1617,7 +1623,9 @@ SurfaceClosestPoints closest_point(const Surface& s, const Point& q, double tole
       }
     const auto [u_lo, u_hi] = std::minmax_element(pc.gu.c.begin(), pc.gu.c.end());
     const auto [v_lo, v_hi] = std::minmax_element(pc.gv.c.begin(), pc.gv.c.end());
-    const bool zero_u = std::max(-*u_lo, *u_hi) <= pt.ru, zero_v = std::max(-*v_lo, *v_hi) <= pt.rv;
+    // Vanishing is decided on the whole patch (a polynomial that vanishes on a piece vanishes everywhere):
+    // a small piece near a zero line of g is within g's rounding without g vanishing.
+    const bool zero_u = pt.zero_u, zero_v = pt.zero_v;
     if (zero_u && zero_v) {  // every point critical: the distance is constant on the piece
       add_region(pt, pc.s0, pc.s1, pc.t0, pc.t1);
       return;
@@ -1723,6 +1731,11 @@ SurfaceClosestPoints closest_point(const Surface& s, const Point& q, double tole
       CriticalPair cr = surface_critical(pt.B.data(), l, q);
       pt.ru = 1e3 * kEps * *std::max_element(cr.mu.c.begin(), cr.mu.c.end());
       pt.rv = 1e3 * kEps * *std::max_element(cr.mv.c.begin(), cr.mv.c.end());
+      const auto small = [](const Bernstein2& g, double r) {
+        return std::all_of(g.c.begin(), g.c.end(), [&](double x) { return std::abs(x) <= r; });
+      };
+      pt.zero_u = small(cr.gu, pt.ru);
+      pt.zero_v = small(cr.gv, pt.rv);
       Piece root;
       root.patch = top.index;
       root.B = pt.B;

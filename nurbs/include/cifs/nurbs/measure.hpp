@@ -110,9 +110,9 @@ struct SurfaceClosestPoints {
 /// no direction is normal to both), else cut in four (de Casteljau in u and v). A piece on which one
 /// component vanishes (to its rounding) depends on one parameter only: its nearest lines are the roots of
 /// the other along an edge (a region); where both vanish the distance is constant (a region).
-/// Throws InvalidInput for q of the wrong size or not finite, a tolerance not in [1e-15, 1), a surface of
-/// degree 0 (not continuous), and a continuum of nearest points that no parameter line follows (more
-/// than 20000 pieces: a non-isolated set of critical points).
+/// Throws InvalidInput for q of the wrong size or not finite, a tolerance not in [1e-15, 1), and a
+/// continuum of nearest points that no parameter line follows (more than 20000 pieces: a non-isolated set
+/// of critical points).
 SurfaceClosestPoints closest_point(const Surface& s, const Point& q, double tolerance = 1e-12);
 
 /// Where a curve meets the hyperplane {x : normal·x = offset}.
