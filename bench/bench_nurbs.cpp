@@ -855,7 +855,8 @@ SurfaceProjectionCase make_surface_projection_case() {
     for (Eigen::Index j = 0; j < n; ++j)
       P.row(i * n + j) << kScale * (2.0 * static_cast<double>(i) / static_cast<double>(n - 1) - 1),
           kScale * (2.0 * static_cast<double>(j) / static_cast<double>(n - 1) - 1), height(rng);
-  std::array<nurbs::Knots, 2> knots{clamped_knots(n, kDegree, rng, 0.0, 1.0), clamped_knots(n, kDegree, rng, 0.0, 1.0)};
+  std::array<nurbs::Knots, 2> knots{clamped_knots(n, kDegree, rng, 0.0, 1.0),
+                                    clamped_knots(n, kDegree, rng, 0.0, 1.0)};
   pc.surface = nurbs::make_surface({kDegree, kDegree}, std::move(knots), {n, n}, P);
   std::uniform_real_distribution<double> coordinate(-1.5 * kScale, 1.5 * kScale);
   pc.points.resize(3 * kSurfaceProjections);

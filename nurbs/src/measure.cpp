@@ -1060,8 +1060,8 @@ struct Bernstein2 {
 
 /// out += factor·f·g in Bernstein form, coefficient (i, j) of the product times C(M, i)·C(N, j)
 /// (finish_products2 divides): f of degree (fm, fn), g of degree (gm, gn), out of degree (fm + gm, fn + gn).
-void add_product2(const double* f, int fm, int fn, const double* g, int gm, int gn, double factor, double* out,
-                  std::vector<double>& cf, std::vector<double>& cg) {
+void add_product2(const double* f, int fm, int fn, const double* g, int gm, int gn, double factor,
+                  double* out, std::vector<double>& cf, std::vector<double>& cg) {
   const int N = fn + gn;
   cf.resize(static_cast<std::size_t>((fm + 1) * (fn + 1)));
   cg.resize(static_cast<std::size_t>((gm + 1) * (gn + 1)));
@@ -1122,9 +1122,11 @@ CriticalPair surface_critical(const double* B, const PatchLayout& l, const Point
     for (int i = 0; i <= p; ++i)
       for (int j = 0; j <= r; ++j) w[static_cast<std::size_t>(i * (r + 1) + j)] = row(i, j)[d];
     for (int i = 0; i < p; ++i)
-      for (int j = 0; j <= r; ++j) wu[static_cast<std::size_t>(i * (r + 1) + j)] = p * (row(i + 1, j)[d] - row(i, j)[d]);
+      for (int j = 0; j <= r; ++j)
+        wu[static_cast<std::size_t>(i * (r + 1) + j)] = p * (row(i + 1, j)[d] - row(i, j)[d]);
     for (int i = 0; i <= p; ++i)
-      for (int j = 0; j < r; ++j) wv[static_cast<std::size_t>(i * r + j)] = r * (row(i, j + 1)[d] - row(i, j)[d]);
+      for (int j = 0; j < r; ++j)
+        wv[static_cast<std::size_t>(i * r + j)] = r * (row(i, j + 1)[d] - row(i, j)[d]);
   }
   for (int k = 0; k < d; ++k) {
     for (int i = 0; i <= p; ++i)
@@ -1186,7 +1188,8 @@ void split_half(const double* A, int m, int n, std::ptrdiff_t cols, int dir, dou
     return;
   }
   work.resize(static_cast<std::size_t>(line));
-  for (int i = 0; i <= m; ++i) bezier_split(A + i * line, n, cols, 0.5, L + i * line, R + i * line, work.data());
+  for (int i = 0; i <= m; ++i)
+    bezier_split(A + i * line, n, cols, 0.5, L + i * line, R + i * line, work.data());
 }
 
 /// The Bernstein basis of degree p at s and its first two derivatives: N[k·(p + 1) + i], k = 0, 1, 2.
@@ -1388,7 +1391,8 @@ void span_bezier_matrix(const double* t, int p, int k, double* M) {
 
 /// `count` consecutive stored rows to Cartesian points xs (dim values each).
 void project_rows(const double* rows, int count, const PatchLayout& l, double* xs) {
-  for (int j = 0; j < count; ++j) detail::project(rows + j * l.cols, l.dim, l.rational, xs + std::ptrdiff_t{j} * l.dim);
+  for (int j = 0; j < count; ++j)
+    detail::project(rows + j * l.cols, l.dim, l.rational, xs + std::ptrdiff_t{j} * l.dim);
 }
 
 }  // namespace
@@ -1417,14 +1421,15 @@ SurfaceClosestPoints closest_point(const Surface& s, const Point& q, double tole
   for (int d = 0; d < 2; ++d) {
     const Knots& t = s.knots[static_cast<std::size_t>(d)];
     for (int k = s.degree[static_cast<std::size_t>(d)]; k < s.count[static_cast<std::size_t>(d)]; ++k)
-      if (t[static_cast<std::size_t>(k)] < t[static_cast<std::size_t>(k) + 1]) spans[static_cast<std::size_t>(d)].push_back(k);
+      if (t[static_cast<std::size_t>(k)] < t[static_cast<std::size_t>(k) + 1])
+        spans[static_cast<std::size_t>(d)].push_back(k);
   }
   const std::size_t nb = spans[1].size();
   struct Patch {
     int a = 0, b = 0;  // spans
     double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
     std::vector<double> B;
-    double ru = 0, rv = 0;             // rounding of the critical polynomials
+    double ru = 0, rv = 0;                // rounding of the critical polynomials
     bool zero_u = false, zero_v = false;  // a critical polynomial vanishes on the patch (to its rounding)
   };
   std::vector<Patch> patches(spans[0].size() * nb);
@@ -1515,7 +1520,7 @@ SurfaceClosestPoints closest_point(const Surface& s, const Point& q, double tole
     Bernstein2 gu, gv;
   };
   std::vector<Piece> pieces;
-  constexpr int kMaxDepth = 40;          // 2^-40 of a span: below rounding of the parameters
+  constexpr int kMaxDepth = 40;  // 2^-40 of a span: below rounding of the parameters
   constexpr std::size_t kMaxPieces = 20000;
   PatchEval eval(l);
   // Local parameters to the domain's (lerp: exact at both ends, never beyond them).
@@ -1788,7 +1793,8 @@ SurfaceClosestPoints closest_point(const Surface& s, const Point& q, double tole
     double spread = 0;
     for (const double a : {0.0, 0.25, 0.5, 0.75, 1.0})
       for (const double b : {0.0, 0.5, 1.0})
-        spread = std::max(spread, (evaluate(s, std::lerp(r[0], r[1], a), std::lerp(r[2], r[3], b)) - first).norm());
+        spread = std::max(spread,
+                          (evaluate(s, std::lerp(r[0], r[1], a), std::lerp(r[2], r[3], b)) - first).norm());
     if (spread <= eq)
       candidates.push_back({r[0], r[2], (first - q).norm()});
     else

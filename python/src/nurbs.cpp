@@ -1121,7 +1121,8 @@ void bind_measure(py::module_& m) {
             for (const auto& x : r.regions) out.append(py::make_tuple(x[0], x[1], x[2], x[3]));
             return out;
           },
-          "Parameter rectangles (u0, u1, v0, v1) on which the surface stays at the distance (the centre of a\n"
+          "Parameter rectangles (u0, u1, v0, v1) on which the surface stays at the distance (the centre of "
+          "a\n"
           "sphere: the whole domain; a circle: u0 = u1 or v0 = v1).")
       .def(
           "__repr__",

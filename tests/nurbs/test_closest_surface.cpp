@@ -36,7 +36,8 @@ Surface cs_sphere(double r, const Eigen::Vector3d& c) {
   Points P(5, 3);
   P << 0, 0, -r, r, 0, -r, r, 0, 0, r, 0, r, 0, 0, r;
   P.rowwise() += c.transpose();
-  const Curve half = make_curve(2, {0, 0, 0, 0.5, 0.5, 1, 1, 1}, P, (Eigen::VectorXd(5) << 1, h, 1, h, 1).finished());
+  const Curve half =
+      make_curve(2, {0, 0, 0, 0.5, 0.5, 1, 1, 1}, P, (Eigen::VectorXd(5) << 1, h, 1, h, 1).finished());
   return revolve(half, c, Eigen::Vector3d(0, 0, 1), kTurn);
 }
 
@@ -45,8 +46,8 @@ Surface cs_sphere(double r, const Eigen::Vector3d& c) {
 Surface cs_torus(double R, double r) {
   const double h = std::sqrt(0.5);
   Points P(9, 3);
-  P << R + r, 0, 0, R + r, 0, r, R, 0, r, R - r, 0, r, R - r, 0, 0, R - r, 0, -r, R, 0, -r, R + r, 0, -r, R + r, 0,
-      0;
+  P << R + r, 0, 0, R + r, 0, r, R, 0, r, R - r, 0, r, R - r, 0, 0, R - r, 0, -r, R, 0, -r, R + r, 0, -r,
+      R + r, 0, 0;
   const Curve circle = make_curve(2, {0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1}, P,
                                   (Eigen::VectorXd(9) << 1, h, 1, h, 1, h, 1, h, 1).finished());
   return revolve(circle, Eigen::Vector3d::Zero(), Eigen::Vector3d(0, 0, 1), kTurn);
@@ -96,7 +97,8 @@ double cs_brute_force(const Surface& s, const Point& q, int g = 40, int starts =
     for (int j = 0; j <= g; ++j) {
       bool lowest = true;
       for (int a = std::max(0, i - 1); a <= std::min(g, i + 1); ++a)
-        for (int b = std::max(0, j - 1); b <= std::min(g, j + 1); ++b) lowest = lowest && at(i, j) <= at(a, b);
+        for (int b = std::max(0, j - 1); b <= std::min(g, j + 1); ++b)
+          lowest = lowest && at(i, j) <= at(a, b);
       if (lowest) minima.push_back({at(i, j), static_cast<double>(i), static_cast<double>(j)});
     }
   std::sort(minima.begin(), minima.end());
@@ -104,11 +106,13 @@ double cs_brute_force(const Surface& s, const Point& q, int g = 40, int starts =
   for (std::size_t k = 0; k < minima.size() && k < static_cast<std::size_t>(starts); ++k) {
     double u = du.start + minima[k][1] * hu, v = dv.start + minima[k][2] * hv, su = hu, sv = hv;
     double here = dist(u, v);
-    for (int it = 0; it < 2000 && (su > 1e-16 * (du.end - du.start) || sv > 1e-16 * (dv.end - dv.start)); ++it) {
+    for (int it = 0; it < 2000 && (su > 1e-16 * (du.end - du.start) || sv > 1e-16 * (dv.end - dv.start));
+         ++it) {
       double bu = u, bv = v, bd = here;
       for (int a = -2; a <= 2; ++a)
         for (int b = -2; b <= 2; ++b) {
-          const double cu = std::clamp(u + a * su, du.start, du.end), cv = std::clamp(v + b * sv, dv.start, dv.end);
+          const double cu = std::clamp(u + a * su, du.start, du.end),
+                       cv = std::clamp(v + b * sv, dv.start, dv.end);
           const double d = dist(cu, cv);
           if (d < bd) {
             bd = d;
@@ -148,8 +152,9 @@ TEST_CASE("closest_point on surfaces: spheres from revolve, distance | |q − c|
     const Surface s = cs_sphere(r, c);
     INFO("radius " << r);
     {  // points outside, inside and on the sphere: one nearest point, on the ray from the centre
-      for (const Eigen::Vector3d& dir : {Eigen::Vector3d(Eigen::Vector3d(1, 2, 2) / 3), Eigen::Vector3d(-0.6, 0, 0.8),
-                                        Eigen::Vector3d(0, 0.28, -0.96), Eigen::Vector3d(0, 0, 1)})
+      for (const Eigen::Vector3d& dir :
+           {Eigen::Vector3d(Eigen::Vector3d(1, 2, 2) / 3), Eigen::Vector3d(-0.6, 0, 0.8),
+            Eigen::Vector3d(0, 0.28, -0.96), Eigen::Vector3d(0, 0, 1)})
         for (const double rho : {0.0001, 0.3, 1.0, 1.7, 40.0}) {
           const Point q = (c + rho * r * dir).transpose();
           const SurfaceClosestPoints cp = closest_point(s, q);
@@ -195,7 +200,7 @@ TEST_CASE("closest_point on surfaces: tori and cylinders, circles of nearest poi
   }
   SECTION("the torus from points off its axis: √((ρ − R)² + z²) − r, one point") {
     for (const Eigen::Vector3d& x : {Eigen::Vector3d(4, 1, 0.5), Eigen::Vector3d(-1, 1.5, -0.2),
-                                    Eigen::Vector3d(0.1, -2.5, 3), Eigen::Vector3d(10, -7, 1)}) {
+                                     Eigen::Vector3d(0.1, -2.5, 3), Eigen::Vector3d(10, -7, 1)}) {
       const SurfaceClosestPoints cp = closest_point(torus, x.transpose());
       const double rho = std::hypot(x(0), x(1));
       INFO("q " << x.transpose());
@@ -290,7 +295,8 @@ TEST_CASE("closest_point on surfaces: random non-uniform rational surfaces again
       degree[d] = uniform_int(rng, 1, 3);
       count[d] = degree[d] + 1 + uniform_int(rng, 0, 3);
       // Creases too: interior knots up to the degree's multiplicity (a C⁰ line inside the domain).
-      knots[d] = random_knots(rng, degree[d], static_cast<int>(count[d]), coin(rng), degree[d], coin(rng) ? 0 : 3);
+      knots[d] =
+          random_knots(rng, degree[d], static_cast<int>(count[d]), coin(rng), degree[d], coin(rng) ? 0 : 3);
     }
     const Eigen::Index n = count[0] * count[1];
     Points P(n, 3);
@@ -305,8 +311,8 @@ TEST_CASE("closest_point on surfaces: random non-uniform rational surfaces again
       const Point q = cs_point(uniform(rng, -1.5, 1.5), uniform(rng, -1.5, 1.5), uniform(rng, -1.5, 1.5));
       const SurfaceClosestPoints cp = closest_point(s, q);
       const double brute = cs_brute_force(s, q);
-      INFO("trial " << trial << " degree " << degree[0] << "x" << degree[1] << " q " << q.transpose() << " cifs "
-                    << cp.distance << " brute " << brute);
+      INFO("trial " << trial << " degree " << degree[0] << "x" << degree[1] << " q " << q.transpose()
+                    << " cifs " << cp.distance << " brute " << brute);
       CHECK(cp.distance <= brute + 1e-12);  // never farther (size: coordinates in [−1, 1])
       CHECK(cp.distance >= brute - 1e-12);
       CHECK(cp.parameters.size() + cp.regions.size() >= 1);
