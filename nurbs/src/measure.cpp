@@ -1039,6 +1039,11 @@ Curve transform(const Curve& c, const Eigen::MatrixXd& matrix) {
 
 namespace {
 
+/// An index or count computed in int, as a size (the int arithmetic cannot overflow: degrees ≤ 64).
+std::size_t as_size(int i) {
+  return static_cast<std::size_t>(i);
+}
+
 /// A Bézier patch: (p + 1)·(q + 1) rows of `cols` stored coordinates (homogeneous (w·x, w) when
 /// rational), row i·(q + 1) + j with i along u; local parameters (s, t) ∈ [0, 1]².
 struct PatchLayout {
@@ -1055,7 +1060,7 @@ struct PatchLayout {
 struct Bernstein2 {
   int m = 0, n = 0;
   std::vector<double> c;
-  [[nodiscard]] std::size_t size() const { return static_cast<std::size_t>((m + 1) * (n + 1)); }
+  [[nodiscard]] std::size_t size() const { return as_size((m + 1) * (n + 1)); }
 };
 
 /// out += factor·f·g in Bernstein form, coefficient (i, j) of the product times C(M, i)·C(N, j)
@@ -1063,21 +1068,21 @@ struct Bernstein2 {
 void add_product2(const double* f, int fm, int fn, const double* g, int gm, int gn, double factor,
                   double* out, std::vector<double>& cf, std::vector<double>& cg) {
   const int N = fn + gn;
-  cf.resize(static_cast<std::size_t>((fm + 1) * (fn + 1)));
-  cg.resize(static_cast<std::size_t>((gm + 1) * (gn + 1)));
+  cf.resize(as_size((fm + 1) * (fn + 1)));
+  cg.resize(as_size((gm + 1) * (gn + 1)));
   for (int i = 0; i <= fm; ++i)
     for (int j = 0; j <= fn; ++j) {
-      const auto at = static_cast<std::size_t>(i * (fn + 1) + j);
+      const auto at = as_size(i * (fn + 1) + j);
       cf[at] = factor * binomial(fm, i) * binomial(fn, j) * f[at];
     }
   for (int k = 0; k <= gm; ++k)
     for (int l = 0; l <= gn; ++l) {
-      const auto at = static_cast<std::size_t>(k * (gn + 1) + l);
+      const auto at = as_size(k * (gn + 1) + l);
       cg[at] = binomial(gm, k) * binomial(gn, l) * g[at];
     }
   for (int i = 0; i <= fm; ++i)
     for (int j = 0; j <= fn; ++j) {
-      const double a = cf[static_cast<std::size_t>(i * (fn + 1) + j)];
+      const double a = cf[as_size(i * (fn + 1) + j)];
       if (a == 0) continue;
       for (int k = 0; k <= gm; ++k) {
         double* row = out + std::ptrdiff_t{i + k} * (N + 1) + j;
@@ -1111,7 +1116,7 @@ CriticalPair surface_critical(const double* B, const PatchLayout& l, const Point
   out.gv.c.assign(out.gv.size(), 0.0);
   out.mu = out.gu;
   out.mv = out.gv;
-  const auto np = static_cast<std::size_t>((p + 1) * (r + 1));
+  const auto np = as_size((p + 1) * (r + 1));
   std::vector<double> e(np), ea(np), w(np), cf, cg;
   std::vector<double> du(static_cast<std::size_t>(p * (r + 1))), dv(static_cast<std::size_t>((p + 1) * r));
   std::vector<double> dua(du.size()), dva(dv.size()), wu(du.size()), wv(dv.size()), a(np);
@@ -1120,18 +1125,16 @@ CriticalPair surface_critical(const double* B, const PatchLayout& l, const Point
   std::vector<double> vua, vva;
   if (l.rational) {
     for (int i = 0; i <= p; ++i)
-      for (int j = 0; j <= r; ++j) w[static_cast<std::size_t>(i * (r + 1) + j)] = row(i, j)[d];
+      for (int j = 0; j <= r; ++j) w[as_size(i * (r + 1) + j)] = row(i, j)[d];
     for (int i = 0; i < p; ++i)
-      for (int j = 0; j <= r; ++j)
-        wu[static_cast<std::size_t>(i * (r + 1) + j)] = p * (row(i + 1, j)[d] - row(i, j)[d]);
+      for (int j = 0; j <= r; ++j) wu[as_size(i * (r + 1) + j)] = p * (row(i + 1, j)[d] - row(i, j)[d]);
     for (int i = 0; i <= p; ++i)
-      for (int j = 0; j < r; ++j)
-        wv[static_cast<std::size_t>(i * r + j)] = r * (row(i, j + 1)[d] - row(i, j)[d]);
+      for (int j = 0; j < r; ++j) wv[as_size(i * r + j)] = r * (row(i, j + 1)[d] - row(i, j)[d]);
   }
   for (int k = 0; k < d; ++k) {
     for (int i = 0; i <= p; ++i)
       for (int j = 0; j <= r; ++j) {
-        const auto at = static_cast<std::size_t>(i * (r + 1) + j);
+        const auto at = as_size(i * (r + 1) + j);
         const double wij = l.rational ? w[at] : 1.0;
         a[at] = row(i, j)[k];
         e[at] = a[at] - q(k) * wij;
@@ -1139,13 +1142,13 @@ CriticalPair surface_critical(const double* B, const PatchLayout& l, const Point
       }
     for (int i = 0; i < p; ++i)
       for (int j = 0; j <= r; ++j) {
-        const auto at = static_cast<std::size_t>(i * (r + 1) + j);
+        const auto at = as_size(i * (r + 1) + j);
         du[at] = p * (row(i + 1, j)[k] - row(i, j)[k]);
         dua[at] = std::abs(du[at]);
       }
     for (int i = 0; i <= p; ++i)
       for (int j = 0; j < r; ++j) {
-        const auto at = static_cast<std::size_t>(i * r + j);
+        const auto at = as_size(i * r + j);
         dv[at] = r * (row(i, j + 1)[k] - row(i, j)[k]);
         dva[at] = std::abs(dv[at]);
       }
@@ -1227,7 +1230,7 @@ class PatchEval {
       : l_(l),
         nu_(static_cast<std::size_t>(3 * (l.p + 1))),
         nv_(static_cast<std::size_t>(3 * (l.q + 1))),
-        t_(static_cast<std::size_t>(3 * (l.p + 1) * l.cols)),
+        t_(static_cast<std::size_t>(std::ptrdiff_t{3} * (l.p + 1) * l.cols)),
         h_(static_cast<std::size_t>(6 * l.cols)),
         s_(static_cast<std::size_t>(6 * l.dim)) {}
 
@@ -1242,7 +1245,7 @@ class PatchEval {
       for (int i = 0; i <= p; ++i) {
         double* dst = t_.data() + (lv * (p + 1) + i) * n;
         for (int j = 0; j <= q; ++j) {
-          const double f = nv_[static_cast<std::size_t>(lv * (q + 1) + j)];
+          const double f = nv_[as_size(lv * (q + 1) + j)];
           const double* src = B + (i * (q + 1) + j) * n;
           for (std::ptrdiff_t k = 0; k < n; ++k) dst[k] += f * src[k];
         }
@@ -1252,7 +1255,7 @@ class PatchEval {
       const int ku = kPartials[slot][0], lv = kPartials[slot][1];
       double* dst = h_.data() + slot * n;
       for (int i = 0; i <= p; ++i) {
-        const double f = nu_[static_cast<std::size_t>(ku * (p + 1) + i)];
+        const double f = nu_[as_size(ku * (p + 1) + i)];
         const double* src = t_.data() + (lv * (p + 1) + i) * n;
         for (std::ptrdiff_t k = 0; k < n; ++k) dst[k] += f * src[k];
       }
@@ -1343,7 +1346,7 @@ bool box_angles(double x0, double x1, double y0, double y1, double& lo, double& 
 std::array<double, 4> gradient_box(const Bernstein2& g, double r) {
   double x0 = 0, x1 = 0, y0 = 0, y1 = 0;
   bool any_x = false, any_y = false;
-  const auto at = [&](int i, int j) { return g.c[static_cast<std::size_t>(i * (g.n + 1) + j)]; };
+  const auto at = [&](int i, int j) { return g.c[as_size(i * (g.n + 1) + j)]; };
   for (int i = 0; i < g.m; ++i)
     for (int j = 0; j <= g.n; ++j) {
       const double x = g.m * (at(i + 1, j) - at(i, j));
@@ -1493,7 +1496,7 @@ SurfaceClosestPoints closest_point(const Surface& s, const Point& q, double tole
     }
   }
   // The patches by the hull of their (p + 1)(q + 1) B-spline control points.
-  xs.resize(static_cast<std::size_t>((p + 1) * (pq + 1) * dim));
+  xs.resize(as_size((p + 1) * (pq + 1) * dim));
   for (std::size_t ia = 0; ia < spans[0].size(); ++ia)
     for (std::size_t ib = 0; ib < nb; ++ib) {
       Patch& pt = patches[ia * nb + ib];
@@ -1582,7 +1585,7 @@ SurfaceClosestPoints closest_point(const Surface& s, const Point& q, double tole
       detail::fail("closest point: the nearest points are not isolated near (u, v) = (",
                    to_u(patches[pc.patch], pc.s0), ", ", to_v(patches[pc.patch], pc.t0),
                    "): a curve of them that no parameter line follows");
-    xs.resize(static_cast<std::size_t>((p + 1) * (pq + 1) * dim));
+    xs.resize(as_size((p + 1) * (pq + 1) * dim));
     project_rows(pc.B.data(), (p + 1) * (pq + 1), l, xs.data());
     const double bound = hull_bound(xs.data(), (p + 1) * (pq + 1), dim, q);
     if (bound > upper + eq) return;
@@ -1671,7 +1674,7 @@ SurfaceClosestPoints closest_point(const Surface& s, const Point& q, double tole
     }
     std::vector<double> L, R;
     const auto quarter = [&](const double* A, int m, int n, std::ptrdiff_t cols, auto member) {
-      const auto total = static_cast<std::size_t>((m + 1) * (n + 1) * cols);
+      const auto total = static_cast<std::size_t>(std::ptrdiff_t{m + 1} * (n + 1) * cols);
       L.resize(total);
       R.resize(total);
       split_half(A, m, n, cols, 0, L.data(), R.data(), work);
@@ -1716,21 +1719,21 @@ SurfaceClosestPoints closest_point(const Surface& s, const Point& q, double tole
         for (int j = 0; j <= pq; ++j) {
           double* dst = T.data() + (r * (pq + 1) + j) * l.cols;
           for (int c = 0; c <= pq; ++c) {
-            const double f = Mv[static_cast<std::size_t>(j * (pq + 1) + c)];
+            const double f = Mv[as_size(j * (pq + 1) + c)];
             const double* src = s.P.data() + ((pt.a - p + r) * nv + (pt.b - pq + c)) * l.cols;
             for (std::ptrdiff_t k = 0; k < l.cols; ++k) dst[k] += f * src[k];
           }
         }
       for (int i = 0; i <= p; ++i)
         for (int r = 0; r <= p; ++r) {
-          const double f = Mu[static_cast<std::size_t>(i * (p + 1) + r)];
+          const double f = Mu[as_size(i * (p + 1) + r)];
           for (int j = 0; j <= pq; ++j) {
             double* dst = pt.B.data() + (i * (pq + 1) + j) * l.cols;
             const double* src = T.data() + (r * (pq + 1) + j) * l.cols;
             for (std::ptrdiff_t k = 0; k < l.cols; ++k) dst[k] += f * src[k];
           }
         }
-      xs.resize(static_cast<std::size_t>((p + 1) * (pq + 1) * dim));
+      xs.resize(as_size((p + 1) * (pq + 1) * dim));
       project_rows(pt.B.data(), (p + 1) * (pq + 1), l, xs.data());
       if (hull_bound(xs.data(), (p + 1) * (pq + 1), dim, q) > upper + eq) continue;  // the tighter hull
       CriticalPair cr = surface_critical(pt.B.data(), l, q);
