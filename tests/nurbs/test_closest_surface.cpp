@@ -89,7 +89,9 @@ double cs_brute_force(const Surface& s, const Point& q, int g = 40, int starts =
   };
   const double hu = (du.end - du.start) / g, hv = (dv.end - dv.start) / g;
   std::vector<double> grid(static_cast<std::size_t>((g + 1) * (g + 1)));
-  const auto at = [&](int i, int j) -> double& { return grid[static_cast<std::size_t>(i * (g + 1) + j)]; };
+  const auto at = [&](int i, int j) -> double& {
+    return grid[static_cast<std::size_t>(i) * static_cast<std::size_t>(g + 1) + static_cast<std::size_t>(j)];
+  };
   for (int i = 0; i <= g; ++i)
     for (int j = 0; j <= g; ++j) at(i, j) = dist(du.start + i * hu, dv.start + j * hv);
   std::vector<std::array<double, 3>> minima;  // distance, i, j
