@@ -837,7 +837,7 @@ int sisl_surface_closest(SISLSurf* s, const double* q, std::vector<std::array<do
   s1954(s, const_cast<double*>(q), 3, 1e-15, 1e-12 * kScale, &count, &par, &curves, &arcs, &status);
   require_sisl_ok(status, "s1954");
   uv.clear();
-  for (int k = 0; k < count; ++k) uv.push_back({par[2 * k + 1], par[2 * k]});
+  for (std::ptrdiff_t k = 0; k < count; ++k) uv.push_back({par[2 * k + 1], par[2 * k]});
   std::free(par);
   for (int k = 0; k < curves; ++k) freeIntcurve(arcs[k]);
   std::free(arcs);
