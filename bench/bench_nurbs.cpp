@@ -15,6 +15,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -809,6 +810,131 @@ void register_measure_benchmarks() {
 #endif
 }
 
+// ------------------------------------------------------------------------------------------------
+// Case 7: projections on a surface (issue 30 §2) — 10⁴ random points projected on a bicubic height field
+// of 10 × 10 control points on non-uniform knots: cifs closest_point against SISL s1954 (global: every
+// closest point, and curves of them). The cross-check runs on all of them: cifs must never be farther
+// than any point SISL returns.
+
+constexpr std::size_t kSurfaceProjections = 10000;
+constexpr Eigen::Index kProjectionNet = 10;
+
+struct SurfaceProjectionCase {
+  nurbs::Surface surface;
+  std::vector<double> points;  // kSurfaceProjections × 3 coordinates in [-1.5 kScale, 1.5 kScale]
+#ifdef CIFS_HAVE_SISL
+  SislSurfPtr sisl;
+#endif
+};
+
+#ifdef CIFS_HAVE_SISL
+/// SISL s1954 at q: the parameters of its closest points as cifs (u, v) pairs (SISL's first direction is
+/// cifs' v, see to_sisl), and its number of curves.
+int sisl_surface_closest(SISLSurf* s, const double* q, std::vector<std::array<double, 2>>& uv) {
+  int count = 0, curves = 0, status = 0;
+  double* par = nullptr;
+  SISLIntcurve** arcs = nullptr;
+  s1954(s, const_cast<double*>(q), 3, 1e-15, 1e-12 * kScale, &count, &par, &curves, &arcs, &status);
+  require_sisl_ok(status, "s1954");
+  uv.clear();
+  for (std::ptrdiff_t k = 0; k < count; ++k) uv.push_back({par[2 * k + 1], par[2 * k]});
+  std::free(par);
+  for (int k = 0; k < curves; ++k) freeIntcurve(arcs[k]);
+  std::free(arcs);
+  return curves;
+}
+#endif
+
+SurfaceProjectionCase make_surface_projection_case() {
+  std::mt19937_64 rng(31);
+  SurfaceProjectionCase pc;
+  std::uniform_real_distribution<double> height(-0.5 * kScale, 0.5 * kScale);
+  const Eigen::Index n = kProjectionNet;
+  Points P(n * n, 3);
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (Eigen::Index j = 0; j < n; ++j)
+      P.row(i * n + j) << kScale * (2.0 * static_cast<double>(i) / static_cast<double>(n - 1) - 1),
+          kScale * (2.0 * static_cast<double>(j) / static_cast<double>(n - 1) - 1), height(rng);
+  std::array<nurbs::Knots, 2> knots{clamped_knots(n, kDegree, rng, 0.0, 1.0),
+                                    clamped_knots(n, kDegree, rng, 0.0, 1.0)};
+  pc.surface = nurbs::make_surface({kDegree, kDegree}, std::move(knots), {n, n}, P);
+  std::uniform_real_distribution<double> coordinate(-1.5 * kScale, 1.5 * kScale);
+  pc.points.resize(3 * kSurfaceProjections);
+  for (double& x : pc.points) x = coordinate(rng);
+#ifdef CIFS_HAVE_SISL
+  pc.sisl = to_sisl(pc.surface);
+  const nurbs::Domain du = nurbs::domain(pc.surface, nurbs::Direction::u),
+                      dv = nurbs::domain(pc.surface, nurbs::Direction::v);
+  double worst = -HUGE_VAL;
+  int farther = 0, curves = 0;
+  std::vector<std::array<double, 2>> uv;
+  for (std::size_t i = 0; i < kSurfaceProjections; ++i) {
+    cifs::Point q(3);
+    q << pc.points[3 * i], pc.points[3 * i + 1], pc.points[3 * i + 2];
+    const nurbs::SurfaceClosestPoints cp = nurbs::closest_point(pc.surface, q);
+    curves += sisl_surface_closest(pc.sisl.get(), q.data(), uv);
+    double nearest = HUGE_VAL;
+    for (const auto& x : uv)
+      nearest = std::min(nearest, (nurbs::evaluate(pc.surface, std::clamp(x[0], du.start, du.end),
+                                                   std::clamp(x[1], dv.start, dv.end)) -
+                                   q)
+                                      .norm());
+    if (uv.empty()) continue;
+    worst = std::max(worst, cp.distance - nearest);
+    farther += nearest > cp.distance + 1e-9 * kScale;
+  }
+  if (!(worst <= kRelTol * kScale)) fail("cifs closest_point on a surface is farther than SISL s1954's");
+  std::fprintf(stderr, "cross-check ok: %-62s cifs − SISL ≤ %.1e; SISL farther on %d of %zu, %d curves\n",
+               "surface projections: cifs closest_point vs SISL s1954", worst, farther, kSurfaceProjections,
+               curves);
+#endif
+  return pc;
+}
+
+SurfaceProjectionCase& surface_projection_case() {
+  static SurfaceProjectionCase pc = make_surface_projection_case();
+  return pc;
+}
+
+void register_surface_projection_benchmarks() {
+  const auto add = [](const std::string& name, auto run) {
+    benchmark::RegisterBenchmark(name.c_str(),
+                                 [run](benchmark::State& state) {
+                                   SurfaceProjectionCase& pc = surface_projection_case();
+                                   run(state, pc);
+                                   report_rate(state, kSurfaceProjections, "per_item");
+                                 })
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1)
+        ->Repetitions(3)
+        ->ReportAggregatesOnly(false);
+  };
+  add("BM_project_surface_1e4/cifs", [](benchmark::State& state, SurfaceProjectionCase& pc) {
+    cifs::Point q(3);
+    for (auto _ : state) {
+      double sum = 0;
+      for (std::size_t i = 0; i < kSurfaceProjections; ++i) {
+        q << pc.points[3 * i], pc.points[3 * i + 1], pc.points[3 * i + 2];
+        sum += nurbs::closest_point(pc.surface, q).distance;
+      }
+      benchmark::DoNotOptimize(sum);
+    }
+  });
+#ifdef CIFS_HAVE_SISL
+  add("BM_project_surface_1e4/sisl_s1954", [](benchmark::State& state, SurfaceProjectionCase& pc) {
+    std::vector<std::array<double, 2>> uv;
+    for (auto _ : state) {
+      double sum = 0;
+      for (std::size_t i = 0; i < kSurfaceProjections; ++i) {
+        sisl_surface_closest(pc.sisl.get(), &pc.points[3 * i], uv);
+        sum += uv.empty() ? 0 : uv[0][0];
+      }
+      benchmark::DoNotOptimize(sum);
+    }
+  });
+#endif
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -817,6 +943,7 @@ int main(int argc, char** argv) {
   register_surface_benchmarks(false);
   register_surface_benchmarks(true);
   register_measure_benchmarks();
+  register_surface_projection_benchmarks();
   register_refine_benchmarks(1000, 1);
   register_refine_benchmarks(100000, 1);
   register_refine_benchmarks(10000, kDensePerSpan);

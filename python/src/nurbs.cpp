@@ -1101,6 +1101,49 @@ void bind_measure(py::module_& m) {
       "The points of the curve nearest to `point`, every one whose distance is within tolerance·size of\n"
       "the smallest (global: convex hulls of the Bézier pieces prune, Newton finishes). Raises\n"
       "InvalidInput for a point of the wrong size.");
+  py::class_<SurfaceClosestPoints>(m, "SurfaceClosestPoints",
+                                   "Every nearest point of a surface to a point (closest_point).")
+      .def_readonly("distance", &SurfaceClosestPoints::distance, "The smallest distance.")
+      .def_property_readonly(
+          "parameters",
+          [](const SurfaceClosestPoints& r) {
+            Eigen::MatrixXd uv(static_cast<Eigen::Index>(r.parameters.size()), 2);
+            for (std::size_t i = 0; i < r.parameters.size(); ++i)
+              uv.row(static_cast<Eigen::Index>(i)) << r.parameters[i][0], r.parameters[i][1];
+            return uv;
+          },
+          "(u, v) of the isolated nearest points, ascending in u then v (k, 2); a pole once.")
+      .def_readonly("points", &SurfaceClosestPoints::points, "Their surface points (k, dim).")
+      .def_property_readonly(
+          "regions",
+          [](const SurfaceClosestPoints& r) {
+            py::list out;
+            for (const auto& x : r.regions) out.append(py::make_tuple(x[0], x[1], x[2], x[3]));
+            return out;
+          },
+          "Parameter rectangles (u0, u1, v0, v1) on which the surface stays at the distance (the centre of "
+          "a\n"
+          "sphere: the whole domain; a circle: u0 = u1 or v0 = v1).")
+      .def(
+          "__repr__",
+          [](const SurfaceClosestPoints& r) {
+            return "SurfaceClosestPoints(distance=" + py::repr(py::float_(r.distance)).cast<std::string>() +
+                   ", parameters=" + std::to_string(r.parameters.size()) +
+                   ", regions=" + std::to_string(r.regions.size()) + ")";
+          },
+          "Short description.");
+  m.def(
+      "closest_point",
+      [](const Surface& s, const DoubleArray& point, double tolerance) {
+        const Point q = point_from(point, "point");
+        const py::gil_scoped_release release;
+        return closest_point(s, q, tolerance);
+      },
+      py::arg("surface"), py::arg("point"), py::arg("tolerance") = 1e-12,
+      "The points of the surface nearest to `point`, every one whose distance is within tolerance·size of\n"
+      "the smallest (global: the hulls of the Bézier patches prune, edges by the curve closest_point,\n"
+      "inside by Newton's method on pieces that hold one critical point at most). Raises InvalidInput for\n"
+      "a point of the wrong size or not finite.");
   m.def(
       "intersect_plane",
       [](const Curve& c, const DoubleArray& normal, double offset, double tolerance) {

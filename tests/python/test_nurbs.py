@@ -625,6 +625,30 @@ class MeasureTest(unittest.TestCase):
         with self.assertRaisesRegex(cifs.InvalidInput, "coordinates"):
             nurbs.closest_point(self.circle, [0, 0, 0])
 
+    def test_surface_closest_points(self):
+        # The sphere of radius 2 about (1, 0, 0): a half circle turned about the vertical axis through it.
+        h = np.sqrt(0.5)
+        half = nurbs.Curve(2, [0, 0, 0, .5, .5, 1, 1, 1],
+                           np.array([[1, 0, -2], [3, 0, -2], [3, 0, 0], [3, 0, 2], [1, 0, 2]], float),
+                           [1, h, 1, h, 1])
+        sphere = nurbs.revolve(half, [1, 0, 0], [0, 0, 1], 2 * np.pi)
+        near = nurbs.closest_point(sphere, [1, 3, 4])
+        self.assertAlmostEqual(near.distance, 3, delta=1e-12 * 5)  # |(0, 3, 4)| − 2
+        self.assertEqual(near.parameters.shape, (1, 2))
+        assert_close(self, near.points[0], np.array([1, 1.2, 1.6]), rel=1e-12)
+        assert_close(self, sphere.evaluate(*near.parameters[0]), near.points[0], rel=1e-14)
+        centre = nurbs.closest_point(sphere, [1, 0, 0])
+        self.assertEqual((centre.parameters.shape, centre.regions), ((0, 2), [(0.0, 1.0, 0.0, 1.0)]))
+        self.assertIn("regions=1", repr(centre))
+        pole = nurbs.closest_point(sphere, [1, 0, 7])  # above the north pole: one point
+        assert_close(self, pole.points, np.array([[1.0, 0, 2]]), rel=1e-12)
+        with self.assertRaisesRegex(cifs.InvalidInput, "2 coordinates, the surface 3"):
+            nurbs.closest_point(sphere, [0, 0])
+        with self.assertRaisesRegex(cifs.InvalidInput, "not finite"):
+            nurbs.closest_point(sphere, [0, np.nan, 0])
+        with self.assertRaisesRegex(cifs.InvalidInput, "tolerance"):
+            nurbs.closest_point(sphere, [0, 0, 0], tolerance=0)
+
     def test_surface_split_and_iso_curves(self):
         grid = np.array([[[i, j, np.sin(i) * np.cos(j)] for j in range(5)] for i in range(6)], dtype=float)
         surface = nurbs.interpolate_surface(grid, (3, 2))

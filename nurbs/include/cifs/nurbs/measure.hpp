@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // cifs — measuring curves: arc length and its inverse, Frenet frames, closest points, intersections with
-// hyperplanes and with other curves, tight bounding boxes, projective transforms.
+// hyperplanes and with other curves, tight bounding boxes, projective transforms; closest points on
+// surfaces.
 //
 // The global searches (closest point, intersections, bounding box) work on the Bézier pieces of the
 // curve's spans: a piece lies in the convex hull of its control points (projected when rational: the
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "cifs/nurbs/curve.hpp"
+#include "cifs/nurbs/surface.hpp"
 
 namespace cifs::nurbs {
 
@@ -80,6 +82,38 @@ struct ClosestPoints {
 /// the root finder of intersect_plane, so no minimum is missed where a span holds several.
 /// Throws InvalidInput for q of the wrong size or not finite, or a tolerance not in [1e-15, 1).
 ClosestPoints closest_point(const Curve& c, const Point& q, double tolerance = 1e-12);
+
+/// Every point of a surface nearest to a given point.
+struct SurfaceClosestPoints {
+  double distance = 0;
+  /// The (u, v) parameters of the isolated nearest points, ascending in u then v; `points` holds the
+  /// surface points, one row each. A collapsed edge (the pole of a sphere of revolution) is one point,
+  /// reported once.
+  std::vector<std::array<double, 2>> parameters;
+  Points points;
+  /// Parameter rectangles {u0, u1, v0, v1} on which the surface stays at the nearest distance: the whole
+  /// domain for the centre of a sphere; a segment (u0 = u1 or v0 = v1) for a circle, such as the inner
+  /// equator of a torus seen from its centre. Adjacent rectangles are merged; points inside are not
+  /// repeated in `parameters`.
+  std::vector<std::array<double, 4>> regions;
+};
+
+/// The points of the surface nearest to q (dim values), all of them whose distance is within
+/// `tolerance`·size of the smallest (size as for curves, on the control net). Global: a nearest point
+/// is either on an edge of the domain (or on an interior knot line where the surface is not C¹: a
+/// multiplicity ≥ the degree), where the curve closest_point of that iso-curve finds it, or inside,
+/// where it is a zero of F = ((S − q)·S_u, (S − q)·S_v). The Bézier patches are taken nearest first by
+/// the hull of their control points (projected when rational: weights > 0), dropped when that bound
+/// exceeds the best distance found; the two components of F (times w³ when rational) are Bézier
+/// polynomials, and a piece of a patch is dropped when one of them keeps a sign on it, solved by Newton's
+/// method kept inside it when their gradient cones show it holds at most one zero (Elber and Kim's test:
+/// no direction is normal to both), else cut in four (de Casteljau in u and v). A piece on which one
+/// component vanishes (to its rounding) depends on one parameter only: its nearest lines are the roots of
+/// the other along an edge (a region); where both vanish the distance is constant (a region).
+/// Throws InvalidInput for q of the wrong size or not finite, a tolerance not in [1e-15, 1), and a
+/// continuum of nearest points that no parameter line follows (more than 20000 pieces: a non-isolated set
+/// of critical points).
+SurfaceClosestPoints closest_point(const Surface& s, const Point& q, double tolerance = 1e-12);
 
 /// Where a curve meets the hyperplane {x : normal·x = offset}.
 struct PlaneIntersection {
