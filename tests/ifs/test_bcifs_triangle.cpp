@@ -62,22 +62,26 @@ TrianglePatch bezier_triangle(int degree) {
 }  // namespace
 
 TEST_CASE("triangle_bcifs: Bézier triangles, hand counts of the free coefficients", "[ifs][bcifs]") {
-  // Degree 1: every child point is a corner, on two sides of its child; the sides' G and D must keep
-  // the start ([1 0]) and take the midpoint ([½ ½]: the halves meet at one point), so nothing is free.
+  // Face cells by which of their sides and corners lie on the patch's sides: 15 reachable (T012, its
+  // corner children T02, T01, T12, the middle one Tc012 with its corners there, …, T inside), and the
+  // edge cells Eb, Eiab, Eia, Eib, Ei.
   const Bcifs linear = triangle_bcifs(bezier_triangle(1));
-  CHECK(num_vertices(linear.automaton.graph) == 10);  // 8 face cells, Eb, Ei
+  CHECK(num_vertices(linear.automaton.graph) == 20);
   CHECK(linear.automaton.graph[linear.automaton.initial.at(0).state].name == "T012");
   CHECK(ifs_test::max_residual(linear) <= 1e-15);
-  CHECK(admissible_space(linear).free.empty());
+  // Degree 1: every child point is a corner, on two sides of its child; a side's halves keep its ends,
+  // and meet at its midpoint when both ends are alike (symmetric under the reversal) — an inner edge
+  // with one end on the patch's sides (Eia, read backwards Eib) may be split at any (x, 1 − x): 1.
+  CHECK(admissible_space(linear).free.size() == 1);
   // Degree 2: the corners and the points on the parent's sides follow from the sides' operators; what
-  // is left is Ei's G row 1 (the new edge point of the first half, 3 entries summing to 1: 2), its
-  // midpoint row 2 (symmetric under the reversal, (b, 1 − 2b, b): 1) and, per face cell (8), the
-  // edge points inside it: 3 rows of 6 entries summing to 1, each shared by a corner child and the
-  // middle one (15): 3 + 8·15 = 123.
+  // is left is, per face cell (15), the 3 edge points created inside it, 6 entries summing to 1, each
+  // shared by a corner child and the middle one (15 × 3 × 5), and per inner edge cell the first half's
+  // edge point (G row 1: 2) and the midpoint (G row 2): Ei and Eiab symmetric (b, 1 − 2b, b) (1 each),
+  // Eia and Eib one shared midpoint (2): 3 + 3 + 2 + 2 + 2 = 12. 225 + 12 = 237.
   const Bcifs quadratic = triangle_bcifs(bezier_triangle(2));
   CHECK(ifs_test::max_residual(quadratic) <= 1e-15);
   const AdmissibleSpace space = admissible_space(quadratic);
-  CHECK(space.free.size() == 123);
+  CHECK(space.free.size() == 237);
   // The patch's sides (Eb) are fixed: no free coefficient names them.
   for (const std::string& name : free_names(quadratic, space)) CHECK(name.rfind("Eb/", 0) == std::string::npos);
 }
