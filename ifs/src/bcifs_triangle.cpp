@@ -68,26 +68,30 @@ void check_patch(const TrianglePatch& p) {
   for (std::size_t c = 0; c < 4; ++c)
     if (p.children[c].rows() != n || p.children[c].cols() != n)
       throw InvalidInput("triangle BC-IFS: child " + std::string(kFaceLabels[c]) + " is " +
-                         std::to_string(p.children[c].rows()) + " by " + std::to_string(p.children[c].cols()) +
-                         ", expected " + std::to_string(n) + " by " + std::to_string(n) + " like child C0");
+                         std::to_string(p.children[c].rows()) + " by " +
+                         std::to_string(p.children[c].cols()) + ", expected " + std::to_string(n) + " by " +
+                         std::to_string(n) + " like child C0");
   const std::size_t m = p.sides[0].size();
   if (m == 0) throw InvalidInput("triangle BC-IFS: side 0 has no rows");
   for (std::size_t k = 0; k < 3; ++k) {
     const auto& side = p.sides[k];
     const std::string where = "triangle BC-IFS: side " + std::to_string(k);
     if (side.size() != m)
-      throw InvalidInput(where + " has " + std::to_string(side.size()) + " rows, side 0 " + std::to_string(m));
+      throw InvalidInput(where + " has " + std::to_string(side.size()) + " rows, side 0 " +
+                         std::to_string(m));
     if (std::set<int>(side.begin(), side.end()).size() != m) throw InvalidInput(where + " repeats a row");
     for (const int r : side)
       if (r < 0 || r >= n)
-        throw InvalidInput(where + ": row " + std::to_string(r) + " is outside the net of " + std::to_string(n));
+        throw InvalidInput(where + ": row " + std::to_string(r) + " is outside the net of " +
+                           std::to_string(n));
   }
   if (p.reverse.size() != m) throw InvalidInput("triangle BC-IFS: reverse has the wrong length");
   for (std::size_t i = 0; i < m; ++i) {
     const int j = p.reverse[i];
-    if (j < 0 || static_cast<std::size_t>(j) >= m || p.reverse[static_cast<std::size_t>(j)] != static_cast<int>(i))
-      throw InvalidInput("triangle BC-IFS: reverse is not an involution of a side's rows (at " + std::to_string(i) +
-                         ")");
+    if (j < 0 || static_cast<std::size_t>(j) >= m ||
+        p.reverse[static_cast<std::size_t>(j)] != static_cast<int>(i))
+      throw InvalidInput("triangle BC-IFS: reverse is not an involution of a side's rows (at " +
+                         std::to_string(i) + ")");
   }
 }
 
@@ -101,7 +105,8 @@ Eigen::MatrixXd side_operator(const TrianglePatch& p, int c) {
   std::vector<bool> on(static_cast<std::size_t>(T.cols()), false);
   for (const int r : side) on[static_cast<std::size_t>(r)] = true;
   for (Eigen::Index i = 0; i < m; ++i) {
-    for (Eigen::Index j = 0; j < m; ++j) E(i, j) = T(side[static_cast<std::size_t>(i)], side[static_cast<std::size_t>(j)]);
+    for (Eigen::Index j = 0; j < m; ++j)
+      E(i, j) = T(side[static_cast<std::size_t>(i)], side[static_cast<std::size_t>(j)]);
     for (Eigen::Index col = 0; col < T.cols(); ++col)
       if (!on[static_cast<std::size_t>(col)] && T(side[static_cast<std::size_t>(i)], col) != 0)
         throw InvalidInput("triangle BC-IFS: child " + std::string(kFaceLabels[static_cast<std::size_t>(c)]) +
@@ -195,9 +200,11 @@ Bcifs triangle_bcifs(const TrianglePatch& patch) {
     for (int k = 0; k < 3; ++k)
       for (int r = 0; r < 2; ++r) {
         const auto& rows = patch.sides[static_cast<std::size_t>(k)];
-        BoundaryOperator op{"s" + std::to_string(k) + (r ? "r" : ""), faces.at(key), side_edge(key, k, r), {}};
+        BoundaryOperator op{
+            "s" + std::to_string(k) + (r ? "r" : ""), faces.at(key), side_edge(key, k, r), {}};
         for (int i = 0; i < m; ++i)
-          op.rows.push_back(rows[static_cast<std::size_t>(r ? patch.reverse[static_cast<std::size_t>(i)] : i)]);
+          op.rows.push_back(
+              rows[static_cast<std::size_t>(r ? patch.reverse[static_cast<std::size_t>(i)] : i)]);
         side_of[{key.sides, key.corners, k, r}] = static_cast<int>(sys.boundaries.size());
         sys.boundaries.push_back(std::move(op));
       }

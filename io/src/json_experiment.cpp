@@ -466,7 +466,8 @@ Experiment parse_experiment(std::string_view text, std::string_view where,
     // A subdivision surface is refined, not evaluated; Catmull–Clark's and Loop's can be perturbed as a
     // BC-IFS.
     if (doc.contains("perturbation")) {
-      if (e.mesh->scheme != subdivision::MeshScheme::catmull_clark && e.mesh->scheme != subdivision::MeshScheme::loop)
+      if (e.mesh->scheme != subdivision::MeshScheme::catmull_clark &&
+          e.mesh->scheme != subdivision::MeshScheme::loop)
         r.fail("perturbation", "fractal subdivision surfaces are built for catmull-clark and loop, not " +
                                    std::string(subdivision::scheme_name(e.mesh->scheme)));
       if (e.mesh->limit)

@@ -195,7 +195,8 @@ void bind_mesh_subdivision_surfaces(py::module_& m) {
       py::arg("values") = py::none(),
       "A fractal Catmull–Clark or Loop surface with the mesh's topology: the regular state replaced by the "
       "regular patch's BC-IFS (the uniform bicubic patch's, the quartic box-spline triangle's), perturbed "
-      "(cifs.ifs.perturb's amplitude, seed, values). Every face keeps the smooth surface's boundary curves, the "
+      "(cifs.ifs.perturb's amplitude, seed, values). Every face keeps the smooth surface's boundary curves, "
+      "the "
       "mesh's boundary and creases among them. Returns (SurfaceAutomaton, cifs.ifs.Perturbation).");
 }
 

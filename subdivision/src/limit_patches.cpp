@@ -229,18 +229,8 @@ using Lattice = std::array<int, 2>;
 /// from (1, 0), then the 3rd to 5th neighbours of (1, 0) and the 4th and 5th of (0, 1) counted from the
 /// corner (triangle_support's order; tests/subdivision/test_fractal_loop.cpp rebuilds the four
 /// children's matrices from Loop's rules on these points).
-constexpr std::array<Lattice, 12> kLoopNet{{{0, 0},
-                                            {1, 0},
-                                            {0, 1},
-                                            {-1, 1},
-                                            {-1, 0},
-                                            {0, -1},
-                                            {1, -1},
-                                            {2, -1},
-                                            {2, 0},
-                                            {1, 1},
-                                            {0, 2},
-                                            {-1, 2}}};
+constexpr std::array<Lattice, 12> kLoopNet{
+    {{0, 0}, {1, 0}, {0, 1}, {-1, 1}, {-1, 0}, {0, -1}, {1, -1}, {2, -1}, {2, 0}, {1, 1}, {0, 2}, {-1, 2}}};
 
 /// Lattice distance: the fewest edges between two vertices.
 int steps(Lattice a, Lattice b) {
@@ -258,7 +248,8 @@ int net_row(Lattice p) {
 
 ifs::TrianglePatch loop_triangle_patch() {
   const ExtraordinaryPatch regular = loop_patch(6);
-  ifs::TrianglePatch out{{regular.subdivide, regular.regular[0], regular.regular[1], regular.regular[2]}, {}, {}};
+  ifs::TrianglePatch out{
+      {regular.subdivide, regular.regular[0], regular.regular[1], regular.regular[2]}, {}, {}};
   // A point's box spline is positive inside the hexagon of lattice radius 2 around it and vanishes on
   // its border: side 0, from (0, 0) to (1, 0), reads the points within one step of one of its ends.
   std::vector<Lattice> side;
@@ -274,7 +265,8 @@ ifs::TrianglePatch loop_triangle_patch() {
   // Back at side 0: the triangle across it sees its points turned by a half turn about (½, 0).
   for (Lattice& p : side) p = {1 - p[0] - p[1], p[0]};
   for (const Lattice& p : side)
-    out.reverse.push_back(static_cast<int>(std::find(side.begin(), side.end(), Lattice{1 - p[0], -p[1]}) - side.begin()));
+    out.reverse.push_back(
+        static_cast<int>(std::find(side.begin(), side.end(), Lattice{1 - p[0], -p[1]}) - side.begin()));
   return out;
 }
 

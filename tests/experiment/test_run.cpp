@@ -267,8 +267,9 @@ TEST_CASE("A mesh experiment: the subdivision surface shaded, its control mesh o
   CHECK(behind == 0);
 }
 
-TEST_CASE("Mesh experiments: the limit surface with its normals, and the fractal Catmull–Clark and Loop surfaces",
-          "[experiment][mesh]") {
+TEST_CASE(
+    "Mesh experiments: the limit surface with its normals, and the fractal Catmull–Clark and Loop surfaces",
+    "[experiment][mesh]") {
   ScratchDir dir;
   // The limit surface: the library's limit mesh, normals included (PLY carries them).
   run_in(
@@ -318,7 +319,8 @@ TEST_CASE("Mesh experiments: the limit surface with its normals, and the fractal
   const Mesh ico = io::read_mesh(dir.path() / "i.obj");
   CHECK(face_count(ico) == 20 * 64);
   CHECK(euler_characteristic(build_topology(ico)) == 2);
-  CHECK(ico.vertices.rows() == subdivision::loop(io::read_mesh(CIFS_EXAMPLES_DIR "/meshes/icosahedron.obj"), 3).vertices.rows());
+  CHECK(ico.vertices.rows() ==
+        subdivision::loop(io::read_mesh(CIFS_EXAMPLES_DIR "/meshes/icosahedron.obj"), 3).vertices.rows());
   CHECK(covered(render::read_exr(dir.path() / "i.exr")) > 40 * 30 / 8);
 }
 

@@ -25,7 +25,7 @@ using Barycentric = Eigen::Vector3d;
 /// at its midpoints: each child's control points are blossom values at its corners.
 TrianglePatch bezier_triangle(int degree) {
   const Barycentric c0(1, 0, 0), c1(0, 1, 0), c2(0, 0, 1), m01 = (c0 + c1) / 2, m12 = (c1 + c2) / 2,
-                    m20 = (c2 + c0) / 2;
+                                                           m20 = (c2 + c0) / 2;
   const int n = degree == 1 ? 3 : 6;
   // The blossom's weights on the net at (x, y): Σ x_i y_i on corner i, x_i y_j + x_j y_i on edge ij.
   const auto blossom = [&](const Barycentric& x, const Barycentric& y) {
@@ -41,10 +41,12 @@ TrianglePatch bezier_triangle(int degree) {
   const auto child = [&](const Barycentric& a, const Barycentric& b, const Barycentric& c) {
     Eigen::MatrixXd M(n, n);
     const std::array<Barycentric, 3> corner{a, b, c};
-    for (int i = 0; i < 3; ++i) M.row(i) = blossom(corner[static_cast<std::size_t>(i)], corner[static_cast<std::size_t>(i)]);
+    for (int i = 0; i < 3; ++i)
+      M.row(i) = blossom(corner[static_cast<std::size_t>(i)], corner[static_cast<std::size_t>(i)]);
     if (degree == 2)
       for (int i = 0; i < 3; ++i)
-        M.row(3 + i) = blossom(corner[static_cast<std::size_t>(i)], corner[static_cast<std::size_t>((i + 1) % 3)]);
+        M.row(3 + i) =
+            blossom(corner[static_cast<std::size_t>(i)], corner[static_cast<std::size_t>((i + 1) % 3)]);
     return M;
   };
   TrianglePatch p;
@@ -83,7 +85,8 @@ TEST_CASE("triangle_bcifs: Bézier triangles, hand counts of the free coefficien
   const AdmissibleSpace space = admissible_space(quadratic);
   CHECK(space.free.size() == 237);
   // The patch's sides (Eb) are fixed: no free coefficient names them.
-  for (const std::string& name : free_names(quadratic, space)) CHECK(name.rfind("Eb/", 0) == std::string::npos);
+  for (const std::string& name : free_names(quadratic, space))
+    CHECK(name.rfind("Eb/", 0) == std::string::npos);
 }
 
 TEST_CASE("triangle_bcifs: a perturbed Bézier triangle keeps its sides and its children joined",
@@ -100,7 +103,8 @@ TEST_CASE("triangle_bcifs: a perturbed Bézier triangle keeps its sides and its 
   const automata::StateId root = p.system.automaton.initial.at(0).state;
   const TrianglePatch smooth = bezier_triangle(2);
   const Eigen::MatrixXd& C0 = g[transition_id(p.system.automaton, TransitionRef{root, 0})].matrix;
-  for (const int r : smooth.sides[0]) CHECK((C0.row(r) - smooth.children[0].row(r)).cwiseAbs().maxCoeff() <= 1e-14);
+  for (const int r : smooth.sides[0])
+    CHECK((C0.row(r) - smooth.children[0].row(r)).cwiseAbs().maxCoeff() <= 1e-14);
   // Inside, something moved.
   const automata::StateId inner = target(transition_id(p.system.automaton, TransitionRef{root, 3}), g);
   const Eigen::MatrixXd& M = g[transition_id(p.system.automaton, TransitionRef{inner, 0})].matrix;

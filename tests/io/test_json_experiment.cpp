@@ -205,7 +205,8 @@ TEST_CASE("Experiments: bad mesh sources are one line naming the file and the me
   one_line(
       experiment_error_of(
           R"({"mesh": "../meshes/tetrahedron.obj", "subdivision": {"scheme": "butterfly"}, "perturbation": {}})"),
-      "e.json: perturbation: fractal subdivision surfaces are built for catmull-clark and loop, not butterfly");
+      "e.json: perturbation: fractal subdivision surfaces are built for catmull-clark and loop, not "
+      "butterfly");
   CHECK(parse_experiment_text(
             R"({"mesh": "../meshes/tetrahedron.obj", "subdivision": {"scheme": "loop"}, "perturbation": {}})")
             .perturbation);

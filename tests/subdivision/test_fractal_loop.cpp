@@ -152,7 +152,9 @@ TEST_CASE("the regular Loop patch as a BC-IFS: its sides, their turns and revers
   }
   // Side k at x = i/side: from corner k to corner k + 1.
   const auto along = [&](std::size_t r, int k, int i) {
-    const int node = k == 0 ? loop_node(i, 0, side) : k == 1 ? loop_node(side - i, i, side) : loop_node(0, side - i, side);
+    const int node = k == 0   ? loop_node(i, 0, side)
+                     : k == 1 ? loop_node(side - i, i, side)
+                              : loop_node(0, side - i, side);
     return basis[r](node, 0);
   };
   for (int k = 0; k < 3; ++k) {
@@ -167,7 +169,8 @@ TEST_CASE("the regular Loop patch as a BC-IFS: its sides, their turns and revers
     for (std::size_t n = 0; n < rows.size(); ++n)
       for (int i = 0; i <= side; ++i) {
         const auto r = static_cast<std::size_t>(rows[n]), r0 = static_cast<std::size_t>(patch.sides[0][n]),
-                   back = static_cast<std::size_t>(patch.sides[0][static_cast<std::size_t>(patch.reverse[n])]);
+                   back =
+                       static_cast<std::size_t>(patch.sides[0][static_cast<std::size_t>(patch.reverse[n])]);
         // Turned by k thirds, side k's n-th point is side 0's; read from across, side 0's n-th is reverse[n].
         CHECK(std::abs(along(r, k, i) - along(r0, 0, i)) <= 1e-14);
         CHECK(std::abs(along(r0, 0, i) - along(back, 0, side - i)) <= 1e-14);
@@ -175,8 +178,9 @@ TEST_CASE("the regular Loop patch as a BC-IFS: its sides, their turns and revers
   }
 }
 
-TEST_CASE("the regular Loop patch as a BC-IFS: the box spline's matrices are admissible, one free coefficient",
-          "[subdivision][limit][fractal]") {
+TEST_CASE(
+    "the regular Loop patch as a BC-IFS: the box spline's matrices are admissible, one free coefficient",
+    "[subdivision][limit][fractal]") {
   const ifs::Bcifs system = ifs::triangle_bcifs(loop_triangle_patch());
   double worst = 0;
   for (const auto& [name, r] : ifs::constraint_residuals(system)) worst = std::max(worst, r);
@@ -253,5 +257,6 @@ TEST_CASE("fractal Loop: watertight, every face keeps the smooth boundary curves
 TEST_CASE("fractal surfaces: what is not built is refused", "[subdivision][limit][fractal]") {
   SurfaceAutomaton butterfly = surface_automaton(loop(tetrahedron(), 1), MeshScheme::loop);
   butterfly.scheme = MeshScheme::butterfly;
-  CHECK_THROWS_WITH(fractal_surface(butterfly, {}), Catch::Contains("fractal subdivision surfaces: butterfly is not built"));
+  CHECK_THROWS_WITH(fractal_surface(butterfly, {}),
+                    Catch::Contains("fractal subdivision surfaces: butterfly is not built"));
 }
