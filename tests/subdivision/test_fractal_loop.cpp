@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cifs/errors.hpp"
+#include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/bcifs_triangle.hpp"
 #include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/mesh.hpp"
@@ -89,6 +90,42 @@ Points loop_face_nodes(const SurfaceAutomaton& s, std::size_t f, int depth) {
   one.nets = {s.nets[f]};
   one.corners = {s.corners[f]};
   return surface_automaton_mesh(one, depth).vertices;
+}
+
+/// The largest distance between two leaves' corners at one grid node (i, j) of face f at `depth`, each
+/// leaf's corners computed from its own net (the fixed points of its corner children): zero when the
+/// face's pieces meet along every edge created inside it. surface_automaton_mesh computes each node
+/// once, so it would not see a crack there.
+double loop_inner_gap(const SurfaceAutomaton& s, std::size_t f, int depth) {
+  const automata::Graph& g = s.automaton.graph;
+  std::array<std::vector<Eigen::RowVectorXd>, 3> fixed;
+  for (std::size_t c = 0; c < 3; ++c)
+    fixed[c] = ifs::repeated_child_functionals(s.automaton, static_cast<int>(c));
+  std::map<std::array<int, 2>, Eigen::RowVectorXd> seen;
+  double gap = 0;
+  // As surface_automaton_mesh walks: a triangle's corner 0 at (i, j), corners 1 and 2 at ± h along i, j.
+  const auto visit = [&](const auto& self, automata::StateId state, const Points& net, int i, int j, int sign,
+                         int h) -> void {
+    if (h == 1) {
+      const std::array<std::array<int, 2>, 3> at{{{i, j}, {i + sign, j}, {i, j + sign}}};
+      for (std::size_t k = 0; k < 3; ++k) {
+        const Eigen::RowVectorXd p = fixed[k][state] * net;
+        const auto [it, fresh] = seen.emplace(at[k], p);
+        if (!fresh) gap = std::max(gap, (it->second - p).norm());
+      }
+      return;
+    }
+    const int half = h / 2;
+    const std::array<std::array<int, 3>, 4> child{{{i, j, sign},
+                                                   {i + sign * half, j, sign},
+                                                   {i, j + sign * half, sign},
+                                                   {i + sign * half, j + sign * half, -sign}}};
+    std::size_t k = 0;
+    for (auto [e, end] = out_edges(state, g); e != end; ++e, ++k)
+      self(self, target(*e, g), Points(g[*e].matrix * net), child[k][0], child[k][1], child[k][2], half);
+  };
+  visit(visit, s.automaton.initial[f].state, s.nets[f], 0, 0, 1, 1 << depth);
+  return gap;
 }
 
 int loop_node(int i, int j, int side) {
@@ -244,6 +281,11 @@ TEST_CASE("fractal Loop: watertight, every face keeps the smooth boundary curves
           }
         }
     }
+    // Inside each face too: the leaves meet on every edge the subdivision created.
+    double inner = 0;
+    for (std::size_t f = 0; f < rough.surface.nets.size(); ++f)
+      inner = std::max(inner, loop_inner_gap(rough.surface, f, depth));
+    CHECK(inner <= 1e-12 * scale);
     CHECK(compared > shared.size());  // every edge node twice, every vertex node at least three times
     CHECK(across <= 1e-12 * scale);
     CHECK(border <= 1e-12 * scale);
