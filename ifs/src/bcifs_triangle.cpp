@@ -22,6 +22,7 @@ constexpr std::array<const char*, 4> kFaceLabels{"C0", "C1", "C2", "M"};
 /// created inside, as the curve system's a/b flags do (docs/bcifs.md).
 struct FaceKey {
   int sides = 0, corners = 0;
+  // NOLINTNEXTLINE(modernize-use-nullptr): clang-tidy 14 flags the 0 of a defaulted <=>'s expansion.
   friend auto operator<=>(const FaceKey&, const FaceKey&) = default;
 };
 
@@ -176,6 +177,7 @@ Bcifs triangle_bcifs(const TrianglePatch& patch) {
     for (int k = 0; k < 3; ++k) side_edge(key, k, 0), side_edge(key, k, 1);
   // Every edge cell gets its halves; a half's cell may be new (its flags are its parent's start or end).
   std::vector<EdgeKey> order;
+  order.reserve(5);  // Eb and the four inner cells
   for (const auto& [key, e] : edges) order.push_back(key);
   for (std::size_t i = 0; i < order.size(); ++i) {
     const EdgeKey key = order[i];
@@ -229,7 +231,7 @@ Bcifs triangle_bcifs(const TrianglePatch& patch) {
         }
       }
       const int c = (k + 2) % 3;
-      sys.constraints.push_back(Constraint{name + ".M" + side,
+      sys.constraints.push_back(Constraint{(name + ".M").append(side),
                                            {b(child_key(key, 3), k, 0), transition_factor(F, 3)},
                                            {b(child_key(key, c), k, 1), transition_factor(F, c)}});
     }
