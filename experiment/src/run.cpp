@@ -233,9 +233,9 @@ Scene bcifs_scene(const io::Experiment& e, const RunOptions& o, RunReport& repor
   return scene;
 }
 
-/// A fractal Catmull–Clark surface (subdivision/limit.hpp, fractal_catmull_clark) at the resolution of
-/// `levels` steps: the surface automaton needs quads with at most one extraordinary corner, so the
-/// mesh is refined once or twice first and the attractor drawn at the remaining depth.
+/// A fractal Catmull–Clark or Loop surface (subdivision/limit.hpp, fractal_surface) at the resolution of
+/// `levels` steps: the surface automaton needs quads (triangles) with at most one extraordinary corner,
+/// so the mesh is refined once or twice first and the attractor drawn at the remaining depth.
 Mesh fractal_mesh(const io::MeshSource& m, const io::Perturbation& perturbation, const RunOptions& o,
                   RunReport& report) {
   const subdivision::MeshOptions options{.max_bytes = double(o.max_bytes)};
@@ -246,7 +246,7 @@ Mesh fractal_mesh(const io::MeshSource& m, const io::Perturbation& perturbation,
     const Mesh refined = subdivision::subdivide(m.mesh, m.scheme, first, options);
     subdivision::SurfaceAutomaton smooth;
     try {
-      smooth = subdivision::surface_automaton(refined, subdivision::MeshScheme::catmull_clark);
+      smooth = subdivision::surface_automaton(refined, m.scheme);
     } catch (const InvalidInput& error) {
       if (first == 1 &&
           std::string_view(error.what()).find("refine one level first") != std::string_view::npos)
@@ -255,7 +255,7 @@ Mesh fractal_mesh(const io::MeshSource& m, const io::Perturbation& perturbation,
     }
     subdivision::FractalSurface fractal;
     try {
-      fractal = subdivision::fractal_catmull_clark(smooth, perturb_options(perturbation));
+      fractal = subdivision::fractal_surface(smooth, perturb_options(perturbation));
     } catch (const InvalidInput& error) {
       throw InvalidInput("perturbation: " + std::string(error.what()));
     }

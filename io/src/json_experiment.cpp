@@ -463,10 +463,12 @@ Experiment parse_experiment(std::string_view text, std::string_view where,
   if (doc.contains("mesh")) {
     e.mesh = read_mesh_source(r, doc, base);
     e.inputs.push_back(e.mesh->path);
-    // A subdivision surface is refined, not evaluated; Catmull–Clark's can be perturbed as a BC-IFS.
+    // A subdivision surface is refined, not evaluated; Catmull–Clark's and Loop's can be perturbed as a
+    // BC-IFS.
     if (doc.contains("perturbation")) {
-      if (e.mesh->scheme != subdivision::MeshScheme::catmull_clark)
-        r.fail("perturbation", "fractal subdivision surfaces are built for catmull-clark, not " +
+      if (e.mesh->scheme != subdivision::MeshScheme::catmull_clark &&
+          e.mesh->scheme != subdivision::MeshScheme::loop)
+        r.fail("perturbation", "fractal subdivision surfaces are built for catmull-clark and loop, not " +
                                    std::string(subdivision::scheme_name(e.mesh->scheme)));
       if (e.mesh->limit)
         r.fail("perturbation", "a fractal surface has no limit normals (drop subdivision.limit)");

@@ -135,7 +135,7 @@ void bind_mesh_subdivision_meshes(py::module_& m) {
       "face are refused.");
 }
 
-/// Limit surfaces as automata, the fractal Catmull–Clark surface.
+/// Limit surfaces as automata, the fractal Catmull–Clark and Loop surfaces.
 void bind_mesh_subdivision_surfaces(py::module_& m) {
   py::class_<sd::SurfaceAutomaton>(
       m, "SurfaceAutomaton",
@@ -177,7 +177,7 @@ void bind_mesh_subdivision_surfaces(py::module_& m) {
       "The attractor at `depth` as one closed mesh (4^depth quads or triangles per face, shared nodes welded "
       "by the mesh's topology; Mesh.states the leaves' states).");
   m.def(
-      "fractal_catmull_clark",
+      "fractal_surface",
       [](const sd::SurfaceAutomaton& s, double amplitude, std::uint64_t seed,
          const std::optional<std::map<std::string, double>>& values) {
         ifs::PerturbOptions o;
@@ -187,16 +187,17 @@ void bind_mesh_subdivision_surfaces(py::module_& m) {
         sd::FractalSurface f;
         {
           py::gil_scoped_release release;  // the tuple below needs the GIL back
-          f = sd::fractal_catmull_clark(s, o);
+          f = sd::fractal_surface(s, o);
         }
         return py::make_tuple(std::move(f.surface), std::move(f.perturbation));
       },
       py::arg("surface"), py::kw_only(), py::arg("amplitude") = 0.0, py::arg("seed") = 1,
       py::arg("values") = py::none(),
-      "A fractal Catmull–Clark surface with the mesh's topology: the regular state replaced by the uniform "
-      "bicubic patch's BC-IFS, perturbed (cifs.ifs.perturb's amplitude, seed, values). Every face keeps the "
-      "smooth surface's boundary curves, the mesh's boundary and creases among them. Returns "
-      "(SurfaceAutomaton, cifs.ifs.Perturbation).");
+      "A fractal Catmull–Clark or Loop surface with the mesh's topology: the regular state replaced by the "
+      "regular patch's BC-IFS (the uniform bicubic patch's, the quartic box-spline triangle's), perturbed "
+      "(cifs.ifs.perturb's amplitude, seed, values). Every face keeps the smooth surface's boundary curves, "
+      "the "
+      "mesh's boundary and creases among them. Returns (SurfaceAutomaton, cifs.ifs.Perturbation).");
 }
 
 /// One function per mesh scheme.

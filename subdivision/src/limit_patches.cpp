@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
+#include <cstdlib>
 #include <map>
 #include <stdexcept>
 #include <vector>
@@ -217,6 +218,56 @@ ExtraordinaryPatch loop_patch(int n) {
        {std::pair{c, m01}, std::pair{m01, r0}, std::pair{m02, m12}, std::pair{m12, m02}})
     rows.push_back(triangle_support(t1, face_after(t1, first, second), first));
   return patch_from(MeshScheme::loop, n, local.stencils, triangle_support(t0, F, c), rows);
+}
+
+namespace {
+
+using Lattice = std::array<int, 2>;
+
+/// Where loop_patch(6)'s 12 points sit on the three-direction lattice of the patch's (s, t), corners
+/// (0, 0), (1, 0), (0, 1), neighbours ±(1, 0), ±(0, 1), ±(1, −1): the corner, its ring counter-clockwise
+/// from (1, 0), then the 3rd to 5th neighbours of (1, 0) and the 4th and 5th of (0, 1) counted from the
+/// corner (triangle_support's order; tests/subdivision/test_fractal_loop.cpp rebuilds the four
+/// children's matrices from Loop's rules on these points).
+constexpr std::array<Lattice, 12> kLoopNet{
+    {{0, 0}, {1, 0}, {0, 1}, {-1, 1}, {-1, 0}, {0, -1}, {1, -1}, {2, -1}, {2, 0}, {1, 1}, {0, 2}, {-1, 2}}};
+
+/// Lattice distance: the fewest edges between two vertices.
+int steps(Lattice a, Lattice b) {
+  const int s = a[0] - b[0], t = a[1] - b[1];
+  return std::max({std::abs(s), std::abs(t), std::abs(s + t)});
+}
+
+int net_row(Lattice p) {
+  const auto it = std::find(kLoopNet.begin(), kLoopNet.end(), p);
+  if (it == kLoopNet.end()) throw std::logic_error("loop patch: a turned point left the net");
+  return static_cast<int>(it - kLoopNet.begin());
+}
+
+}  // namespace
+
+ifs::TrianglePatch loop_triangle_patch() {
+  const ExtraordinaryPatch regular = loop_patch(6);
+  ifs::TrianglePatch out{
+      {regular.subdivide, regular.regular[0], regular.regular[1], regular.regular[2]}, {}, {}};
+  // A point's box spline is positive inside the hexagon of lattice radius 2 around it and vanishes on
+  // its border: side 0, from (0, 0) to (1, 0), reads the points within one step of one of its ends.
+  std::vector<Lattice> side;
+  for (const Lattice& p : kLoopNet)
+    if (std::min(steps(p, {0, 0}), steps(p, {1, 0})) <= 1) side.push_back(p);
+  // The third of a turn taking corner k to corner k + 1: (s, t) → (1 − s − t, s).
+  for (std::size_t k = 0; k < 3; ++k) {
+    for (Lattice& p : side) {
+      if (k > 0) p = {1 - p[0] - p[1], p[0]};
+      out.sides[k].push_back(net_row(p));
+    }
+  }
+  // Back at side 0: the triangle across it sees its points turned by a half turn about (½, 0).
+  for (Lattice& p : side) p = {1 - p[0] - p[1], p[0]};
+  for (const Lattice& p : side)
+    out.reverse.push_back(
+        static_cast<int>(std::find(side.begin(), side.end(), Lattice{1 - p[0], -p[1]}) - side.begin()));
+  return out;
 }
 
 }  // namespace cifs::subdivision

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // cifs — a subdivision surface's limit as one controlled IFS (Catmull–Clark and Loop), its
-// evaluation at any (face, u, v), its attractor meshes and its fractal version
+// evaluation at any (face, u, v), its attractor meshes and its fractal versions
 // (cifs/subdivision/limit.hpp).
 #include <Eigen/Dense>
 #include <algorithm>
@@ -18,6 +18,7 @@
 #include "cifs/format.hpp"
 #include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/bcifs_surface.hpp"
+#include "cifs/ifs/bcifs_triangle.hpp"
 #include "cifs/nurbs/surface.hpp"
 #include "cifs/nurbs/tensor_automaton.hpp"
 #include "cifs/subdivision/limit.hpp"
@@ -363,18 +364,26 @@ Mesh surface_automaton_mesh(const SurfaceAutomaton& surface, int depth, const if
   return out;
 }
 
-FractalSurface fractal_catmull_clark(const SurfaceAutomaton& smooth, const ifs::PerturbOptions& options) {
-  if (!quads(smooth.scheme))
-    throw InvalidInput(
-        "fractal subdivision surfaces: catmull-clark only (the BC-IFS of Loop's box spline is not built)");
-  // The uniform bicubic patch: 4 × 4 control points, knots 0 … 7, one patch whose sides all lie on knot
-  // lines.
+namespace {
+
+/// The BC-IFS of the scheme's regular patch: Catmull–Clark's uniform bicubic patch (4 × 4 control
+/// points, knots 0 … 7, one patch whose sides all lie on knot lines), Loop's box-spline triangle.
+ifs::Bcifs regular_patch_bcifs(MeshScheme scheme) {
+  if (!quads(scheme)) return ifs::triangle_bcifs(loop_triangle_patch());
   nurbs::Knots knots(8);
   for (std::size_t k = 0; k < knots.size(); ++k) knots[k] = static_cast<double>(k);
   const nurbs::Surface patch = nurbs::make_surface({3, 3}, {knots, knots}, {4, 4}, Points::Zero(16, 3));
-  const nurbs::TensorAutomaton tensor = nurbs::tensor_automaton(patch);
+  return ifs::surface_bcifs(nurbs::tensor_automaton(patch));
+}
+
+}  // namespace
+
+FractalSurface fractal_surface(const SurfaceAutomaton& smooth, const ifs::PerturbOptions& options) {
+  if (smooth.scheme != MeshScheme::catmull_clark && smooth.scheme != MeshScheme::loop)
+    throw InvalidInput("fractal subdivision surfaces: " + std::string(scheme_name(smooth.scheme)) +
+                       " is not built (catmull-clark and loop are)");
   FractalSurface out;
-  out.perturbation = ifs::perturb(ifs::surface_bcifs(tensor), options);
+  out.perturbation = ifs::perturb(regular_patch_bcifs(smooth.scheme), options);
   const automata::Automaton& cells = out.perturbation.system.automaton;
   // The new graph: the BC-IFS's cells, then the smooth automaton's extraordinary states with their
   // regular children led to the patch cell (the BC-IFS's one initial state).

@@ -267,8 +267,9 @@ TEST_CASE("A mesh experiment: the subdivision surface shaded, its control mesh o
   CHECK(behind == 0);
 }
 
-TEST_CASE("Mesh experiments: the limit surface with its normals, and the fractal Catmull–Clark surface",
-          "[experiment][mesh]") {
+TEST_CASE(
+    "Mesh experiments: the limit surface with its normals, and the fractal Catmull–Clark and Loop surfaces",
+    "[experiment][mesh]") {
   ScratchDir dir;
   // The limit surface: the library's limit mesh, normals included (PLY carries them).
   run_in(
@@ -308,6 +309,19 @@ TEST_CASE("Mesh experiments: the limit surface with its normals, and the fractal
   const Mesh open = io::read_mesh(dir.path() / "o.obj");
   CHECK(face_count(open) == face_count(grid) * 64);
   CHECK(euler_characteristic(build_topology(open)) == euler_characteristic(build_topology(grid)));
+  // Loop: the icosahedron refined once (one extraordinary corner per triangle), the attractor of the
+  // box-spline patch's perturbed BC-IFS 2 levels further: the faces of the mesh refined 3 times, closed.
+  const auto loop_report =
+      run_in(dir, R"({"mesh": "../meshes/icosahedron.obj", "subdivision": {"scheme": "loop", "levels": 3},
+      "perturbation": {"amplitude": 0.3, "seed": 2}, "render": {"width": 40, "height": 30}, "outputs": {"exr": "i.exr", "obj": "i.obj"}})");
+  CHECK(loop_report.free_coefficients > 0);
+  CHECK(loop_report.residual <= 1e-12);
+  const Mesh ico = io::read_mesh(dir.path() / "i.obj");
+  CHECK(face_count(ico) == 20 * 64);
+  CHECK(euler_characteristic(build_topology(ico)) == 2);
+  CHECK(ico.vertices.rows() ==
+        subdivision::loop(io::read_mesh(CIFS_EXAMPLES_DIR "/meshes/icosahedron.obj"), 3).vertices.rows());
+  CHECK(covered(render::read_exr(dir.path() / "i.exr")) > 40 * 30 / 8);
 }
 
 TEST_CASE("Mesh experiments: every scheme, boundaries, and what a mesh cannot do", "[experiment][mesh]") {

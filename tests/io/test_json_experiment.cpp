@@ -201,11 +201,15 @@ TEST_CASE("Experiments: bad mesh sources are one line naming the file and the me
   one_line(experiment_error_of(
                "{" + cube + R"(, "subdivision": {"scheme": "catmull-clark"}, "evaluation": {"depth": 2}})"),
            "e.json: evaluation: a mesh is refined by subdivision.levels");
-  // Fractal subdivision surfaces are Catmull–Clark's; limit surfaces Catmull–Clark's and Loop's.
+  // Fractal subdivision surfaces and limit surfaces are Catmull–Clark's and Loop's.
   one_line(
       experiment_error_of(
-          R"({"mesh": "../meshes/tetrahedron.obj", "subdivision": {"scheme": "loop"}, "perturbation": {}})"),
-      "e.json: perturbation: fractal subdivision surfaces are built for catmull-clark, not loop");
+          R"({"mesh": "../meshes/tetrahedron.obj", "subdivision": {"scheme": "butterfly"}, "perturbation": {}})"),
+      "e.json: perturbation: fractal subdivision surfaces are built for catmull-clark and loop, not "
+      "butterfly");
+  CHECK(parse_experiment_text(
+            R"({"mesh": "../meshes/tetrahedron.obj", "subdivision": {"scheme": "loop"}, "perturbation": {}})")
+            .perturbation);
   one_line(experiment_error_of(
                "{" + cube +
                R"(, "subdivision": {"scheme": "catmull-clark"}, "perturbation": {"keep_vertices": false}})"),

@@ -661,8 +661,16 @@ class LimitTest(unittest.TestCase):
         distance = np.linalg.norm(attractor[:, None, :] - refined[None, :, :], axis=2)
         self.assertLess(distance.min(axis=1).max(), 1e-12)
         self.assertLess(distance.min(axis=0).max(), 1e-12)
-        with self.assertRaisesRegex(cifs.InvalidInput, "catmull-clark only"):
-            sd.fractal_catmull_clark(s, amplitude=0.5, seed=3)
+        # The fractal Loop surface: the box-spline patch's BC-IFS perturbed; unperturbed, the same points.
+        same, _ = sd.fractal_surface(s)
+        np.testing.assert_allclose(np.asarray(sd.surface_automaton_mesh(same, 2).vertices), attractor, atol=1e-13)
+        rough, perturbation = sd.fractal_surface(s, amplitude=1.5, seed=3)
+        self.assertEqual(len(perturbation.values), 1)  # docs/bcifs.md, "Triangular patches"
+        self.assertLessEqual(perturbation.residual, 1e-12)
+        fractal = np.asarray(sd.surface_automaton_mesh(rough, 2).vertices)
+        corners = np.asarray(sd.limit(tet, "loop", 0).vertices)
+        self.assertLess(np.linalg.norm(fractal[:, None, :] - corners[None, :, :], axis=2).min(axis=0).max(), 1e-12)
+        self.assertGreater(np.abs(fractal - attractor).max(), 1e-3)
 
 
     def test_surface_automaton_attractor_and_fractal(self):
@@ -677,7 +685,7 @@ class LimitTest(unittest.TestCase):
         distance = np.linalg.norm(attractor[:, None, :] - limit[None, :, :], axis=2)
         self.assertLess(distance.min(axis=1).max(), 1e-12)
         self.assertLess(distance.min(axis=0).max(), 1e-12)
-        rough, perturbation = sd.fractal_catmull_clark(s, amplitude=0.5, seed=3)
+        rough, perturbation = sd.fractal_surface(s, amplitude=0.5, seed=3)
         self.assertEqual(len(perturbation.values), 8)
         self.assertLessEqual(perturbation.residual, 1e-12)
         fractal = np.asarray(sd.surface_automaton_mesh(rough, 2).vertices)

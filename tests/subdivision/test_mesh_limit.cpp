@@ -499,14 +499,14 @@ TEST_CASE("fractal Catmull–Clark: faces keep the smooth surface's boundary cur
   // No perturbation: the BC-IFS's bicubic cells are the B-spline's, the same surface.
   ifs::PerturbOptions perturb;
   perturb.amplitude = 0;
-  const FractalSurface same = fractal_catmull_clark(smooth, perturb);
+  const FractalSurface same = fractal_surface(smooth, perturb);
   const Mesh same_mesh = ifs::patch_meshes(same.surface.automaton, same.surface.nets, depth);
   const double scale = flat.vertices.cwiseAbs().maxCoeff();
   CHECK((same_mesh.vertices - flat.vertices).cwiseAbs().maxCoeff() <= 1e-13 * scale);
 
   perturb.amplitude = 0.3;
   perturb.seed = 5;
-  const FractalSurface rough = fractal_catmull_clark(smooth, perturb);
+  const FractalSurface rough = fractal_surface(smooth, perturb);
   CHECK(rough.perturbation.residual <= 1e-12);
   CHECK(!rough.perturbation.values.empty());
   const Mesh fractal = ifs::patch_meshes(rough.surface.automaton, rough.surface.nets, depth);
@@ -626,8 +626,6 @@ TEST_CASE("Loop at (face, u, v): points off the surface are refused, naming the 
   CHECK_THROWS_WITH(evaluate_limit_surface(holed, MeshScheme::loop, first), Contains("the face is a hole"));
   CHECK_THROWS_WITH(evaluate_limit_surface(tet1, MeshScheme::doo_sabin, first),
                     Contains("doo-sabin is not built"));
-  CHECK_THROWS_WITH(fractal_catmull_clark(surface_automaton(tet1, MeshScheme::loop), {}),
-                    Contains("catmull-clark only"));
 }
 
 TEST_CASE("Loop's surface automaton: its attractor mesh is the limit surface, its chaos game lands on it",

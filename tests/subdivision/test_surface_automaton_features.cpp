@@ -3,7 +3,7 @@
 // and semi-sharp creases under both crease methods, corners, darts, holes): its attractor against
 // evaluate_limit_surface at the same (face, u, v), against the limits of the refined vertices
 // (limit_mesh, an independent route), its regular nets against the bicubic B-spline of phantom points,
-// and its fractal version (fractal_catmull_clark): watertight, the feature curves kept.
+// and its fractal version (fractal_surface): watertight, the feature curves kept.
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
@@ -284,7 +284,7 @@ TEST_CASE("fractal Catmull–Clark with features: boundaries and creases kept, w
   ifs::PerturbOptions perturb;
   perturb.amplitude = 0.3;
   perturb.seed = 3;
-  const FractalSurface rough = fractal_catmull_clark(smooth, perturb);
+  const FractalSurface rough = fractal_surface(smooth, perturb);
   const Mesh fractal = ifs::patch_meshes(rough.surface.automaton, rough.surface.nets, depth);
   REQUIRE(fractal.vertices.rows() == flat.vertices.rows());
   // Every face's border (its boundary curves: the mesh's boundary, creases, and the curves between

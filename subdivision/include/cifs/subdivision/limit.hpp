@@ -18,6 +18,7 @@
 
 #include "cifs/automata/automaton.hpp"
 #include "cifs/ifs/bcifs.hpp"
+#include "cifs/ifs/bcifs_triangle.hpp"
 #include "cifs/ifs/mesh.hpp"
 #include "cifs/mesh.hpp"
 #include "cifs/subdivision/mesh.hpp"
@@ -145,6 +146,14 @@ struct ExtraordinaryPatch {
 ExtraordinaryPatch catmull_clark_patch(int valence);
 ExtraordinaryPatch loop_patch(int valence);
 
+/// The regular Loop patch (the quartic three-direction box spline of loop_patch(6)'s 12 points) in
+/// the layout of ifs::triangle_bcifs: its children C0, C1, C2, M (loop_patch(6)'s subdivide, regular[0
+/// … 2]); side k the 10 points whose box splines do not vanish on the side from corner k to k + 1 (all
+/// but the two beyond the opposite corner), read in the order of side 0's turned by k thirds of a turn;
+/// the reversal of a side's net by the half turn about its midpoint. Positions from the lattice of the
+/// patch (docs/bcifs.md, "Triangular patches").
+ifs::TrianglePatch loop_triangle_patch();
+
 /// A subdivision surface's limit as one controlled IFS: a patch per face of the mesh, four children
 /// per state. Catmull–Clark: state "regular" (the 16-point uniform bicubic B-spline net; children
 /// GH, GB, DH, DB by the tensor products of the cubic B-spline's G and D, as automata/tensor.hpp
@@ -215,16 +224,17 @@ void evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::span<const
 /// topology and computed by the first face that holds it.
 Mesh surface_automaton_mesh(const SurfaceAutomaton& surface, int depth, const ifs::MeshOptions& options = {});
 
-/// A fractal Catmull–Clark surface with the mesh's topology: the "regular" state is replaced by
-/// the BC-IFS of the uniform bicubic patch (ifs::surface_bcifs; its face cells, named "(x,y)"),
-/// perturbed by `options`. The patch's four sides lie on knot lines, so they keep the B-spline
-/// operators: every face keeps the smooth surface's boundary curves exactly and the surface stays
-/// closed (the mesh's boundary and creases are such curves), while the inside of every regular patch —
+/// A fractal subdivision surface with the mesh's topology: the "regular" state is replaced by the
+/// BC-IFS of the regular patch, perturbed by `options` — Catmull–Clark: the uniform bicubic patch's
+/// (ifs::surface_bcifs; its face cells, named "(x,y)"); Loop: the quartic box-spline patch's
+/// (ifs::triangle_bcifs(loop_triangle_patch()); face cells "T012" … "T"). The patch's sides keep their
+/// smooth operators (Catmull–Clark: they lie on knot lines; Loop: the edge cells "Eb"), so every face
+/// keeps the smooth surface's boundary curves exactly and the surface stays closed (the mesh's
+/// boundary and creases, Catmull–Clark, are such curves), while the inside of every regular patch —
 /// around irregular vertices too, whose patches are rings of regular ones — turns fractal.
 struct FractalSurface {
   SurfaceAutomaton surface;
-  ifs::Perturbation perturbation;  // of the bicubic patch's BC-IFS: values, residual, contraction
+  ifs::Perturbation perturbation;  // of the regular patch's BC-IFS: values, residual, contraction
 };
-/// InvalidInput for a Loop automaton (the box spline's BC-IFS is not built).
-FractalSurface fractal_catmull_clark(const SurfaceAutomaton& smooth, const ifs::PerturbOptions& options);
+FractalSurface fractal_surface(const SurfaceAutomaton& smooth, const ifs::PerturbOptions& options);
 }  // namespace cifs::subdivision
