@@ -3,6 +3,7 @@
 // the format's specification) and, for STL and OFF, by cifs's own reader.
 #include <bit>
 #include <catch2/catch.hpp>
+#include <Eigen/Geometry>
 #include <cstring>
 #include <string>
 
