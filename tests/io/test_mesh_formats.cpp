@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 // STL, OFF and VTK PolyData: each file read back by an independent route (the bytes decoded here, by
 // the format's specification) and, for STL and OFF, by cifs's own reader.
+#include <Eigen/Geometry>
 #include <bit>
 #include <catch2/catch.hpp>
-#include <Eigen/Geometry>
 #include <cstring>
 #include <string>
 
