@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake pkg-config
+  build-essential cmake ninja-build pkg-config  # Ninja: compiles start before the libraries they need are linked
   libeigen3-dev libboost-graph-dev libopenexr-dev catch2
   nlohmann-json3-dev libcli11-dev libpng-dev libbenchmark-dev
   python3-dev pybind11-dev python3-numpy python3-matplotlib  # the cifs Python package and its examples

@@ -212,10 +212,12 @@ TEST_CASE("Density previews take the experiment's colour, palette, gamma and exp
 
 TEST_CASE("Every command takes --quiet and progress shows only on a terminal", "[cli][newuser]") {
   const std::string mesh = CIFS_EXAMPLES_DIR "/meshes/cube.obj";
+  // Small work each (the default check and dimension take seconds, half a minute under ASan).
   for (const std::string& command : std::vector<std::string>{
-           "info " + kHills, "insert " + kHills + " --midpoints", "automaton " + kHills, "check " + kHills,
-           std::string("scheme --list"), "limit " + mesh + " --scheme catmull-clark",
-           std::string("dimension " CIFS_EXAMPLES_DIR "/experiments/sierpinski.json"),
+           "info " + kHills, "insert " + kHills + " --midpoints", "automaton " + kHills,
+           "check " + kHills + " --depth 3", std::string("scheme --list"),
+           "limit " + mesh + " --scheme catmull-clark",
+           std::string("dimension " CIFS_EXAMPLES_DIR "/experiments/sierpinski.json --depth 9"),
            "eval " + kHills + " --samples 3", "attractor " + kHills + " --depth 1",
            "subdivide " + mesh + " --scheme loop --levels 0"}) {
     INFO(command);

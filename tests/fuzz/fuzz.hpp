@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
 // cifs fuzzing harnesses (docs/reliability.md, "Fuzzing"): what every harness shares. A harness
-// defines LLVMFuzzerTestOneInput; it links with libFuzzer in the `fuzz` preset and with replay.cpp
-// (a plain main that feeds files) in every other build, where ctest replays the seeds and
-// tests/fuzz/regressions/ through it.
+// is declared with CIFS_FUZZ_HARNESS(NAME). In the `fuzz` preset (CIFS_LIBFUZZER) that is
+// LLVMFuzzerTestOneInput and each harness links with libFuzzer on its own; in every other build all
+// the harnesses link with replay.cpp into one executable, `fuzz_replay NAME …` (a plain main that
+// feeds files), through which ctest replays the seeds and tests/fuzz/regressions/: one link instead
+// of one per harness, each of which would pull in the whole library.
 #pragma once
 
 #include <unistd.h>
@@ -19,6 +21,12 @@
 #include "cifs/errors.hpp"
 
 namespace cifs::fuzz {
+
+/// A harness's entry: the bytes of one input; returns 0 (libFuzzer's convention).
+using Harness = int (*)(const std::uint8_t* data, std::size_t size);
+
+/// Records `harness` under `name` for the replay driver (replay.cpp); true, for a static initializer.
+bool register_harness(const char* name, Harness harness);
 
 /// This process's folder for a harness that writes files (`cifs_fuzz_HARNESS.PID`, made on the first
 /// call; libFuzzer leaves by exit, so it stays: inputs that crashed can be replayed against it).
@@ -75,3 +83,20 @@ auto no_refusal(F&& f, const char* what) {
 }
 
 }  // namespace cifs::fuzz
+
+/// `CIFS_FUZZ_HARNESS(NAME) { … }` defines the harness NAME, a body that sees `data` and `size`.
+#ifdef CIFS_LIBFUZZER
+#define CIFS_FUZZ_HARNESS(NAME)                                                       \
+  static int cifs_fuzz_##NAME(const std::uint8_t* data, std::size_t size);            \
+  /* NOLINTNEXTLINE(readability-identifier-naming): the name libFuzzer calls */       \
+  extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) { \
+    return cifs_fuzz_##NAME(data, size);                                              \
+  }                                                                                   \
+  static int cifs_fuzz_##NAME(const std::uint8_t* data, std::size_t size)
+#else
+#define CIFS_FUZZ_HARNESS(NAME)                                            \
+  static int cifs_fuzz_##NAME(const std::uint8_t* data, std::size_t size); \
+  [[maybe_unused]] static const bool cifs_fuzz_registered_##NAME =         \
+      cifs::fuzz::register_harness(#NAME, cifs_fuzz_##NAME);               \
+  static int cifs_fuzz_##NAME(const std::uint8_t* data, std::size_t size)
+#endif

@@ -4,8 +4,7 @@
 #include "cifs/io/json.hpp"
 #include "fuzz.hpp"
 
-// NOLINTNEXTLINE(readability-identifier-naming): the name libFuzzer calls
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+CIFS_FUZZ_HARNESS(automaton) {
   using namespace cifs;
   fuzz::refusals_allowed([&] {
     const std::string json = io::to_json(io::parse_automaton_json(fuzz::text(data, size), "fuzz.json"));

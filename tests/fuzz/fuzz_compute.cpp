@@ -171,8 +171,7 @@ void surface_operations(const nurbs::Surface& s, const Options& o) {
 
 }  // namespace
 
-// NOLINTNEXTLINE(readability-identifier-naming): the name libFuzzer calls
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+CIFS_FUZZ_HARNESS(compute) {
   if (size < kOptionBytes) return 0;
   Options o;
   o.operation = data[0] % 7;

@@ -65,8 +65,7 @@ void png_round_trip(const std::filesystem::path& input, render::PixelFormat form
 
 }  // namespace
 
-// NOLINTNEXTLINE(readability-identifier-naming): the name libFuzzer calls
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+CIFS_FUZZ_HARNESS(image) {
   const std::filesystem::path input = scratch() / "input";
   {
     std::ofstream out(input, std::ios::binary | std::ios::trunc);

@@ -43,8 +43,7 @@ void require_counts(const Mesh& result, const subdivision::MeshRefinement& r, co
 
 }  // namespace
 
-// NOLINTNEXTLINE(readability-identifier-naming): the name libFuzzer calls
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+CIFS_FUZZ_HARNESS(mesh_compute) {
   if (size < kOptionBytes) return 0;
   const MeshScheme scheme = kSchemes[data[0] % std::size(kSchemes)];
   const int operation = data[1] % 4;

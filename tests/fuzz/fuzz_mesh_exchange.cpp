@@ -23,8 +23,7 @@ std::string off(const cifs::Mesh& mesh) {
 
 }  // namespace
 
-// NOLINTNEXTLINE(readability-identifier-naming): the name libFuzzer calls
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+CIFS_FUZZ_HARNESS(mesh_exchange) {
   using namespace cifs;
   const std::string_view bytes = fuzz::text(data, size);
   fuzz::refusals_allowed([&] {

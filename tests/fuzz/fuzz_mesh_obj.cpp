@@ -4,8 +4,7 @@
 #include "cifs/io/obj.hpp"
 #include "fuzz.hpp"
 
-// NOLINTNEXTLINE(readability-identifier-naming): the name libFuzzer calls
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+CIFS_FUZZ_HARNESS(mesh_obj) {
   using namespace cifs;
   fuzz::refusals_allowed([&] {
     const std::string obj = io::mesh_obj(io::parse_mesh_obj(fuzz::text(data, size), "fuzz.obj"));

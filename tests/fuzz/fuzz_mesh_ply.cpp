@@ -4,8 +4,7 @@
 #include "cifs/io/ply.hpp"
 #include "fuzz.hpp"
 
-// NOLINTNEXTLINE(readability-identifier-naming): the name libFuzzer calls
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+CIFS_FUZZ_HARNESS(mesh_ply) {
   using namespace cifs;
   fuzz::refusals_allowed([&] {
     const Mesh mesh = io::parse_mesh_ply(fuzz::text(data, size), "fuzz.ply");

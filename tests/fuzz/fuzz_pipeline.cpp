@@ -31,8 +31,7 @@ const std::filesystem::path& scratch() {
 
 }  // namespace
 
-// NOLINTNEXTLINE(readability-identifier-naming): the name libFuzzer calls
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+CIFS_FUZZ_HARNESS(pipeline) {
   using namespace cifs;
   fuzz::refusals_allowed([&] {
     io::Experiment e =

@@ -8,8 +8,7 @@
 #include "cifs/subdivision/scheme.hpp"
 #include "fuzz.hpp"
 
-// NOLINTNEXTLINE(readability-identifier-naming): the name libFuzzer calls
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+CIFS_FUZZ_HARNESS(rational) {
   using namespace cifs;
   using subdivision::Rational;
   fuzz::refusals_allowed([&] {

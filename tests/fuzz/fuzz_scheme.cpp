@@ -25,8 +25,7 @@ int integer(const std::string& text) {
 
 }  // namespace
 
-// NOLINTNEXTLINE(readability-identifier-naming): the name libFuzzer calls
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+CIFS_FUZZ_HARNESS(scheme) {
   using namespace cifs;
   std::istringstream lines{std::string(fuzz::text(data, size))};
   cli::SchemeOptions o;

@@ -11,8 +11,7 @@
 #include "cifs/subdivision/scheme.hpp"
 #include "fuzz.hpp"
 
-// NOLINTNEXTLINE(readability-identifier-naming): the name libFuzzer calls
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+CIFS_FUZZ_HARNESS(symbol) {
   using namespace cifs;
   fuzz::refusals_allowed([&] {
     const subdivision::Polynomial p = subdivision::parse_symbol(fuzz::text(data, size));

@@ -134,8 +134,7 @@ void dot(const Points& numbers, int states, std::string_view labels) {
 
 }  // namespace
 
-// NOLINTNEXTLINE(readability-identifier-naming): the name libFuzzer calls
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+CIFS_FUZZ_HARNESS(writers) {
   if (size < kHeader) return 0;
   const int writer = data[0] % 8;
   const Eigen::Index dim = 1 + data[1] % 4;

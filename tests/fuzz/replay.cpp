@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// cifs fuzzing: the replay driver. Linked with one harness (instead of libFuzzer) it feeds every
-// file given, and every file of every folder given, to LLVMFuzzerTestOneInput in name order, and
+// cifs fuzzing: the replay driver. Linked with every harness (instead of libFuzzer) it feeds every
+// file given, and every file of every folder given, to the harness NAME in name order, and
 // fails when one takes more than --budget seconds of CPU time (hangs are bugs, docs/reliability.md;
 // CPU, not wall time: the test machine may be busy).
 // With --mutate SECONDS it fuzzes blind instead for that much CPU time: each input is a seed with 1–4
@@ -9,7 +9,7 @@
 // guides it — that is libFuzzer's job in scripts/fuzz.sh — but it runs in every sanitized build, so
 // CI fuzzes the computations behind each harness on every commit. The input under test is kept in
 // the --keep file (removed at the end): after a crash, it is the input that crashed.
-// Usage: fuzz_NAME_replay [--budget S] [--mutate S --keep FILE [--seed N] [--dict FILE]] FILE|FOLDER...
+// Usage: fuzz_replay NAME [--budget S] [--mutate S --keep FILE [--seed N] [--dict FILE]] FILE|FOLDER...
 #include <fcntl.h>
 #include <unistd.h>
 #include <algorithm>
@@ -20,16 +20,25 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <random>
 #include <string>
 #include <vector>
 
-// NOLINTNEXTLINE(readability-identifier-naming): the name libFuzzer calls
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size);
+#include "fuzz.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
+
+/// The harnesses linked in, by name (filled by their static initializers: a function's static, so
+/// that it exists before the first of them runs).
+std::map<std::string, cifs::fuzz::Harness>& harnesses() {
+  static std::map<std::string, cifs::fuzz::Harness> all;
+  return all;
+}
+
+cifs::fuzz::Harness harness = nullptr;  // the one under test
 
 std::string read_bytes(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
@@ -44,7 +53,7 @@ double cpu_seconds() {
 double run(const std::string& bytes) {
   const double start = cpu_seconds();
   // NOLINTNEXTLINE(cppcoreguidelines-pro-type-reinterpret-cast)
-  LLVMFuzzerTestOneInput(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+  harness(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
   return cpu_seconds() - start;
 }
 
@@ -147,12 +156,26 @@ class Mutator {
 
 }  // namespace
 
+bool cifs::fuzz::register_harness(const char* name, Harness entry) {
+  harnesses().emplace(name, entry);
+  return true;
+}
+
 int main(int argc, char** argv) {
+  const auto found =
+      argc > 1 ? harnesses().find(argv[1]) : harnesses().end();  // NOLINT(*-pointer-arithmetic)
+  if (found == harnesses().end()) {
+    std::string names;
+    for (const auto& [name, entry] : harnesses()) names += " " + name;
+    std::fprintf(stderr, "replay: the first argument names the harness, one of:%s\n", names.c_str());
+    return 2;
+  }
+  harness = found->second;
   double budget = 5, mutate = 0;
   std::uint64_t seed = 1;
   fs::path dictionary, keep;
   std::vector<fs::path> files;
-  for (int i = 1; i < argc; ++i) {
+  for (int i = 2; i < argc; ++i) {
     const std::string arg = argv[i];  // NOLINT(cppcoreguidelines-pro-bounds-pointer-arithmetic)
     const bool has_value = i + 1 < argc;
     if (arg == "--budget" && has_value) {

@@ -9,7 +9,7 @@ import numpy as np
 
 import cifs
 from cifs import automata, ifs
-from support import CHAIKIN_D, CHAIKIN_G, chaikin, EXAMPLES, assert_close, cli_json
+from support import CHAIKIN_D, CHAIKIN_G, SANITIZED, chaikin, EXAMPLES, assert_close, cli_json
 
 # Chaikin: the uniform quadratic B-spline segment split at its midpoint (halves G and D).
 G, D = CHAIKIN_G, CHAIKIN_D
@@ -496,9 +496,9 @@ class ExperimentDimensionTest(unittest.TestCase):
 
     def test_measure_dimension_is_the_cli_measurement(self):
         """The whole policy of `cifs dimension` (route, relaxation, coarser sample, cover, similarity)."""
-        # 2^18 points keep it seconds under the sanitizers (the default 2^21: a minute per side); levels of
-        # 200 boxes keep the fit strict.
-        budget, boxes = 2**18, 200
+        # 2^18 points (2^16 sanitized: ASan's 10–30×) keep it seconds (the default 2^21: a minute per side);
+        # levels of 200 boxes keep the fit strict.
+        budget, boxes = 2**(16 if SANITIZED else 18), 200
         cases = (("clover_fractal.json", {"max_points": budget, "min_boxes": boxes},
                   ("--max-points", budget, "--min-boxes", boxes)),
                  ("sierpinski.json", {"depth": 10}, ("--depth", 10)))

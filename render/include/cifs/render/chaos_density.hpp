@@ -27,7 +27,8 @@ struct ChaosDensityOptions {
   unsigned threads = 0;
   /// Depth of the sampled nodes; 0 picks the smallest depth at which every attractor piece is
   /// provably within `pixel_tolerance` pixels of its start point on screen (the deepest leaf of
-  /// ifs::for_each_leaf_to_tolerance), capped at 64.
+  /// ifs::for_each_leaf_to_tolerance), capped at 64 — or, when that search would visit more leaves
+  /// than `samples` (at least 2^12, at most 2^20), the deeper global bound of ifs::depth_for_tolerance.
   int depth = 0;
   double pixel_tolerance = 0.25;
   /// Nets hold homogeneous rows (w·x, w): points are divided by the last column. Needs an explicit
