@@ -373,7 +373,7 @@ TEST_CASE("fractal Catmull–Clark: the pieces of every face meet along the edge
   const std::vector<Case> cases = {{"cube (3)", turned_faces(catmull_clark(cube(), 1))},
                                    {"bipyramid (3, 4, 5)", turned_faces(catmull_clark(bipyramid(), 2))},
                                    {"grid with features", turned_faces(features)}};
-  const int depth = 4;
+  const int depth = 3;
   ifs::PerturbOptions perturb;
   perturb.amplitude = 0.3;
   perturb.seed = 3;
