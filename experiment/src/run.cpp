@@ -233,38 +233,52 @@ Scene bcifs_scene(const io::Experiment& e, const RunOptions& o, RunReport& repor
   return scene;
 }
 
-/// A fractal Catmull–Clark or Loop surface (subdivision/limit.hpp, fractal_surface) at the resolution of
-/// `levels` steps: the surface automaton needs quads (triangles) with at most one extraordinary corner,
-/// so the mesh is refined once or twice first and the attractor drawn at the remaining depth.
-Mesh fractal_mesh(const io::MeshSource& m, const io::Perturbation& perturbation, const RunOptions& o,
-                  RunReport& report) {
+/// A mesh source's surface automaton (subdivision/limit.hpp), fractal when `perturbation` is given
+/// (fractal_surface): the automaton needs quads (triangles) with at most one extraordinary corner, so
+/// the mesh is refined once or twice first, at most `budget` levels; `refined` gets the levels spent.
+subdivision::SurfaceAutomaton mesh_automaton(const io::MeshSource& m, const io::Perturbation* perturbation,
+                                             int budget, const RunOptions& o, RunReport& report,
+                                             int& refined) {
   const subdivision::MeshOptions options{.max_bytes = double(o.max_bytes)};
+  const std::string file = m.path.filename().string();
   for (int first = 1; first <= 2; ++first) {
-    if (m.levels < first)
-      throw InvalidInput("subdivision.levels: " + m.path.filename().string() + ": a fractal surface needs " +
+    if (budget < first)
+      throw InvalidInput("subdivision.levels: " + file + ": a fractal surface needs " +
                          std::to_string(first) + " level(s) or more here");
-    const Mesh refined = subdivision::subdivide(m.mesh, m.scheme, first, options);
+    const Mesh mesh = subdivision::subdivide(m.mesh, m.scheme, first, options);
     subdivision::SurfaceAutomaton smooth;
     try {
-      smooth = subdivision::surface_automaton(refined, m.scheme);
+      smooth = subdivision::surface_automaton(mesh, m.scheme);
     } catch (const InvalidInput& error) {
       if (first == 1 &&
           std::string_view(error.what()).find("refine one level first") != std::string_view::npos)
         continue;
-      throw InvalidInput("perturbation: " + m.path.filename().string() + ": " + error.what());
+      throw InvalidInput((perturbation ? "perturbation: " : "mesh: ") + file + ": " + error.what());
     }
+    refined = first;
+    if (!perturbation) return smooth;
     subdivision::FractalSurface fractal;
     try {
-      fractal = subdivision::fractal_surface(smooth, perturb_options(perturbation));
+      fractal = subdivision::fractal_surface(smooth, perturb_options(*perturbation));
     } catch (const InvalidInput& error) {
       throw InvalidInput("perturbation: " + std::string(error.what()));
     }
     note_perturbation(fractal.perturbation, report);
-    ifs::MeshOptions mo;
-    mo.max_bytes = o.max_bytes;
-    return subdivision::surface_automaton_mesh(fractal.surface, m.levels - first, mo);
+    return std::move(fractal.surface);
   }
-  throw std::logic_error("fractal_mesh: two levels leave no face with two extraordinary corners");
+  throw std::logic_error("mesh_automaton: two levels leave no face with two extraordinary corners");
+}
+
+/// A fractal Catmull–Clark or Loop surface at the resolution of `levels` steps: its automaton after
+/// one or two steps, drawn at the remaining depth.
+Mesh fractal_mesh(const io::MeshSource& m, const io::Perturbation& perturbation, const RunOptions& o,
+                  RunReport& report) {
+  int refined = 0;
+  const subdivision::SurfaceAutomaton surface =
+      mesh_automaton(m, &perturbation, m.levels, o, report, refined);
+  ifs::MeshOptions mo;
+  mo.max_bytes = o.max_bytes;
+  return subdivision::surface_automaton_mesh(surface, m.levels - refined, mo);
 }
 
 /// The subdivision surface of a polygon mesh (its limit surface, or its fractal version); its
@@ -1131,11 +1145,33 @@ RunReport run(const io::Experiment& e, const RunOptions& o) {
 
 namespace {
 
-/// evaluate and sample measure attractors; a subdivision surface is not one.
-void refuse_mesh(const io::Experiment& e) {
-  if (e.mesh)
-    throw InvalidInput("mesh: " + e.mesh->path.filename().string() +
-                       ": a subdivision surface has no attractor to evaluate or sample");
+/// evaluate and sample measure attractors: a Catmull–Clark or Loop surface is its surface automaton's
+/// (fractal when the file perturbs it), after the one or two levels of refinement the automaton needs.
+/// With `meshed`, its welded attractor mesh at `depth` below those levels (unset: the file's levels less
+/// them). Other schemes have no automaton: refused, naming the mesh.
+Scene mesh_attractor(const io::Experiment& e, bool meshed, std::optional<int> depth, const RunOptions& o,
+                     RunReport& report, std::string& kind) {
+  const io::MeshSource& m = *e.mesh;
+  const std::string scheme(subdivision::scheme_name(m.scheme)), file = m.path.filename().string();
+  if (m.scheme != subdivision::MeshScheme::catmull_clark && m.scheme != subdivision::MeshScheme::loop)
+    throw InvalidInput(
+        "mesh: " + file + ": a " + scheme +
+        " surface has no automaton to evaluate or sample (catmull-clark and loop surfaces have)");
+  int refined = 0;
+  subdivision::SurfaceAutomaton surface =
+      mesh_automaton(m, e.perturbation ? &*e.perturbation : nullptr, 2, o, report, refined);
+  kind = (e.perturbation ? "fractal " : "") + scheme + " surface of " + file + ", its automaton after " +
+         std::to_string(refined) + " level(s) of refinement";
+  Scene scene;
+  scene.depth = depth.value_or(std::max(m.levels - refined, 0));
+  if (meshed) {
+    ifs::MeshOptions mo;
+    mo.max_bytes = o.max_bytes;
+    scene.mesh = subdivision::surface_automaton_mesh(surface, scene.depth, mo);
+  }
+  scene.automaton = std::move(surface.automaton);
+  scene.nets = std::move(surface.nets);
+  return scene;
 }
 
 /// Diameter of a net's Cartesian points (homogeneous rows `(w·x, w)` when `rational`); infinite
@@ -1150,7 +1186,6 @@ double cartesian_diameter(const Points& net, bool rational) {
 }  // namespace
 
 Evaluation evaluate(const io::Experiment& experiment, std::optional<int> depth, const RunOptions& o) {
-  refuse_mesh(experiment);
   io::Experiment e = experiment;
   e.evaluation.mode = Mode::depth;
   if (depth) e.evaluation.depth = *depth;
@@ -1158,8 +1193,9 @@ Evaluation evaluate(const io::Experiment& experiment, std::optional<int> depth, 
     throw InvalidInput("the depth " + std::to_string(e.evaluation.depth) + " is negative; give a depth ≥ 0");
   RunReport report;
   Evaluation out;
-  Scene scene = make_scene(e, o, report, out.kind);
-  out.depth = e.evaluation.depth;
+  Scene scene =
+      e.mesh ? mesh_attractor(e, true, depth, o, report, out.kind) : make_scene(e, o, report, out.kind);
+  out.depth = e.mesh ? scene.depth : e.evaluation.depth;
   if (scene.mesh) {
     out.points = scene.mesh->vertices;
   } else if (scene.curves) {
@@ -1188,13 +1224,13 @@ Evaluation sample(const io::Experiment& experiment, const SampleOptions& options
                        (std::isfinite(options.tolerance) ? number_text(options.tolerance, 6) + " is negative"
                                                          : std::string("is not a finite number")) +
                        "; give a finite tolerance ≥ 0");
-  refuse_mesh(experiment);
   // Chaos mode builds the automaton and nets without evaluating them.
   io::Experiment e = experiment;
   e.evaluation.mode = Mode::chaos;
   RunReport report;
   Evaluation out;
-  Scene scene = make_scene(e, o, report, out.kind);
+  Scene scene =
+      e.mesh ? mesh_attractor(e, false, {}, o, report, out.kind) : make_scene(e, o, report, out.kind);
   ifs::ToleranceSampleOptions so;
   so.homogeneous = scene.rational;
   so.max_points = options.max_points;

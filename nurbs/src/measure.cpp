@@ -658,6 +658,10 @@ Frenet frenet_frame(const Curve& c, double u) {
 
 ClosestPoints closest_point(const Curve& c, const Point& q, double tolerance) {
   check_tolerance(tolerance);
+  // make_curve refuses degree 0; a curve made by hand with it would be read as spans of p + 1 = 1 point
+  // whose critical points are roots of a polynomial of degree 2p − 1 = −1 (it crashed).
+  if (c.degree < 1)
+    detail::fail("closest point: the curve has degree ", c.degree, "; degree 0 is not continuous");
   const Layout l = layout(c);
   if (q.size() != l.dim)
     detail::fail("closest point: the point has ", q.size(), " coordinates, the curve ", l.dim);

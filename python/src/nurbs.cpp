@@ -1122,8 +1122,7 @@ void bind_measure(py::module_& m) {
             return out;
           },
           "Parameter rectangles (u0, u1, v0, v1) on which the surface stays at the distance (the centre of "
-          "a\n"
-          "sphere: the whole domain; a circle: u0 = u1 or v0 = v1).")
+          "a sphere: the whole domain; a circle: u0 = u1 or v0 = v1).")
       .def(
           "__repr__",
           [](const SurfaceClosestPoints& r) {

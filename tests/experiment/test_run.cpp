@@ -361,9 +361,58 @@ TEST_CASE("Mesh experiments: every scheme, boundaries, and what a mesh cannot do
       "render": {"width": 8, "height": 8}, "outputs": {"exr": "c.exr", "svg": "c.svg"}})"),
                     Catch::Contains("outputs.svg: SVG is for curves"));
   CHECK_THROWS_WITH(experiment::evaluate(parse_named_experiment(
-                        R"({"mesh": "../meshes/tetrahedron.obj", "subdivision": {"scheme": "loop"}})")),
-                    "mesh: tetrahedron.obj: a subdivision surface has no attractor to evaluate or sample");
+                        R"({"mesh": "../meshes/tetrahedron.obj", "subdivision": {"scheme": "butterfly"}})")),
+                    "mesh: tetrahedron.obj: a butterfly surface has no automaton to evaluate or sample "
+                    "(catmull-clark and loop surfaces have)");
+  CHECK_THROWS_WITH(experiment::sample(parse_named_experiment(
+                        R"({"mesh": "../meshes/cube.obj", "subdivision": {"scheme": "doo-sabin"}})")),
+                    Catch::StartsWith("mesh: cube.obj: a doo-sabin surface has no automaton"));
   CHECK(empty.names().empty());
+}
+
+TEST_CASE(
+    "evaluate and sample a subdivision surface: its surface automaton's attractor, perturbed as the file "
+    "says",
+    "[experiment][dimension]") {
+  // What cifs dimension measures on a mesh experiment, against the automaton built here from the library's
+  // parts: the mesh refined once (every face then has one extraordinary corner at most), its surface
+  // automaton, perturbed with the file's amplitude and seed.
+  const io::Experiment e = parse_named_experiment(R"({"mesh": "../meshes/icosahedron.obj",
+      "subdivision": {"scheme": "loop", "levels": 4}, "perturbation": {"amplitude": 1.5, "seed": 3}})");
+  const Mesh ico = io::read_mesh(CIFS_EXAMPLES_DIR "/meshes/icosahedron.obj");
+  const subdivision::SurfaceAutomaton smooth =
+      subdivision::surface_automaton(subdivision::loop(ico, 1), subdivision::MeshScheme::loop);
+  ifs::PerturbOptions perturb;
+  perturb.amplitude = 1.5;
+  perturb.seed = 3;
+  const subdivision::FractalSurface rough = subdivision::fractal_surface(smooth, perturb);
+  const experiment::Evaluation ev = experiment::evaluate(e);
+  CHECK(ev.depth == 3);  // the file's 4 levels, one spent on the automaton
+  const Mesh expected = subdivision::surface_automaton_mesh(rough.surface, 3);
+  REQUIRE(ev.points.rows() == expected.vertices.rows());
+  const double scale = expected.vertices.cwiseAbs().maxCoeff();
+  CHECK((ev.points - expected.vertices).cwiseAbs().maxCoeff() <= 1e-12 * scale);
+  // The perturbed attractor, not the smooth surface nor the subdivided mesh.
+  const Mesh flat = subdivision::surface_automaton_mesh(smooth, 3);
+  CHECK((ev.points - flat.vertices).cwiseAbs().maxCoeff() >= 1e-3 * scale);
+  CHECK(ev.kind.find("fractal loop surface of icosahedron.obj") != std::string::npos);
+  CHECK(ev.resolution > 0);
+  // A tolerance sample of the same automaton: its points within the attractor's box (to the pieces' size).
+  const experiment::Evaluation s = experiment::sample(e, {.tolerance = 0.25});
+  CHECK(s.points.rows() > 0);
+  const Eigen::RowVectorXd lo = expected.vertices.colwise().minCoeff(),
+                           hi = expected.vertices.colwise().maxCoeff();
+  bool inside = true;
+  for (Eigen::Index p = 0; p < s.points.rows(); ++p)
+    inside = inside && (s.points.row(p).array() >= lo.array() - s.resolution).all() &&
+             (s.points.row(p).array() <= hi.array() + s.resolution).all();
+  CHECK(inside);
+  // Unperturbed: the smooth automaton (no BC-IFS), at an explicit depth.
+  io::Experiment plain = e;
+  plain.perturbation.reset();
+  const experiment::Evaluation smooth_ev = experiment::evaluate(plain, 2);
+  CHECK((smooth_ev.points - subdivision::surface_automaton_mesh(smooth, 2).vertices).cwiseAbs().maxCoeff() ==
+        0);
 }
 
 namespace {

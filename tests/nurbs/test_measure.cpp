@@ -353,6 +353,16 @@ TEST_CASE("closest_point: exact cases — circle centre, symmetric pairs, inside
     CHECK_THROWS_WITH(closest_point(rational_circle(), (Point(2) << 0, std::nan("")).finished()),
                       Contains("not finite"));
   }
+  SECTION("degree 0: no curve make_curve builds (test_curve.cpp), refused when made by hand") {
+    // Piecewise constant: its "closest point" would be a jump, not a curve point. Made by hand (Curve is
+    // plain data), it is refused as surfaces of degree 0 are, not answered from a layout of p = 0.
+    Curve steps;
+    steps.degree = 0;
+    steps.knots = {0, 1, 2};
+    steps.P = Points(2, 2);
+    steps.P << 0, 0, 3, 0;
+    CHECK_THROWS_WITH(closest_point(steps, (Point(2) << 2.9, 0).finished()), Contains("degree 0"));
+  }
 }
 
 TEST_CASE("closest_point: random curves against dense sampling refined by golden section",

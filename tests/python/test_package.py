@@ -60,6 +60,12 @@ class PackageTest(unittest.TestCase):
                             missing.append(f"cifs.{name}.{attr}.{member}")
         self.assertEqual(missing, [], "objects without a docstring")
 
+    def test_surface_closest_points_regions_docstring_reads_as_one_line(self):
+        """A stray "a\\n" between two C++ literals broke it inside "the centre of a sphere"."""
+        doc = cifs.nurbs.SurfaceClosestPoints.regions.__doc__
+        self.assertIn("(the centre of a sphere: the whole domain;", doc)
+        self.assertNotIn("\n", doc)
+
     def test_docs_name_every_public_object(self):
         text = (SOURCE_DIR / "docs" / "python.md").read_text()
         missing = [f"cifs.{name}.{attr}" for name in SUBMODULES for attr in vars(getattr(cifs, name))

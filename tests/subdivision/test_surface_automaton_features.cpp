@@ -3,17 +3,20 @@
 // and semi-sharp creases under both crease methods, corners, darts, holes): its attractor against
 // evaluate_limit_surface at the same (face, u, v), against the limits of the refined vertices
 // (limit_mesh, an independent route), its regular nets against the bicubic B-spline of phantom points,
-// and its fractal version (fractal_surface): watertight, the feature curves kept.
+// and its fractal version (fractal_surface): watertight, the feature curves kept, the pieces of every face
+// meeting inside it (each leaf's corners from its own net).
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <map>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "cifs/errors.hpp"
+#include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/chaos.hpp"
 #include "cifs/ifs/mesh.hpp"
 #include "cifs/subdivision/limit.hpp"
@@ -93,6 +96,41 @@ std::vector<FacePoint> block_points(const SurfaceAutomaton& s, const Mesh& m, in
 
 double scale_of(const Mesh& m) {
   return m.vertices.cwiseAbs().maxCoeff();
+}
+
+/// The largest distance between two leaves' corners at one grid node (I, J) of one face at `depth`, over
+/// every face, each leaf's corners computed from its own net (the fixed points of its corner children,
+/// corner (iu, iv) of child 2·iu + iv): zero when the faces' pieces meet along every edge created inside
+/// them. patch_meshes and surface_automaton_mesh compute each node once per face, so they would not see a
+/// crack there (the Loop counterpart is loop_inner_gap in test_fractal_loop.cpp: triangles, other children).
+double cc_inner_gap(const SurfaceAutomaton& s, int depth) {
+  const automata::Graph& g = s.automaton.graph;
+  std::array<std::vector<Eigen::RowVectorXd>, 4> fixed;
+  for (std::size_t c = 0; c < 4; ++c)
+    fixed[c] = ifs::repeated_child_functionals(s.automaton, static_cast<int>(c));
+  std::map<std::array<int, 2>, Eigen::RowVectorXd> seen;
+  double gap = 0;
+  // A square's corner (0, 0) at (I, J), side h; child 2·iu + iv at (I + iu·h/2, J + iv·h/2).
+  const auto visit = [&](const auto& self, automata::StateId state, const Points& net, int I, int J,
+                         int h) -> void {
+    if (h == 1) {
+      for (int k = 0; k < 4; ++k) {
+        const Eigen::RowVectorXd p = fixed[static_cast<std::size_t>(k)][state] * net;
+        const auto [it, fresh] = seen.emplace(std::array{I + k / 2, J + k % 2}, p);
+        if (!fresh) gap = std::max(gap, (it->second - p).norm());
+      }
+      return;
+    }
+    const int half = h / 2;
+    int k = 0;
+    for (auto [e, end] = out_edges(state, g); e != end; ++e, ++k)
+      self(self, target(*e, g), Points(g[*e].matrix * net), I + (k / 2) * half, J + (k % 2) * half, half);
+  };
+  for (std::size_t f = 0; f < s.nets.size(); ++f) {
+    seen.clear();
+    visit(visit, s.automaton.initial[f].state, s.nets[f], 0, 0, 1 << depth);
+  }
+  return gap;
 }
 
 }  // namespace
@@ -320,6 +358,42 @@ TEST_CASE("fractal Catmull–Clark with features: boundaries and creases kept, w
     solid.face_offsets.push_back(static_cast<int>(solid.face_vertices.size()));
   }
   CHECK(euler_characteristic(build_topology(welded)) == euler_characteristic(build_topology(solid)));
+}
+
+TEST_CASE("fractal Catmull–Clark: the pieces of every face meet along the edges created inside it",
+          "[subdivision][limit][features][fractal]") {
+  // The checks above compare nodes across faces and with the smooth surface, each node computed once per
+  // face: two sibling pieces that disagree along their shared side inside a face pass them. Here every
+  // leaf computes its own corners. Valence 3 (the cube), 3 and 5 (the bipyramid, refined twice: its
+  // triangles' centres and its poles), and boundaries, sharp and semi-sharp creases, a corner and a hole.
+  Mesh features = wavy_grid(5, 4, false);
+  features.tags.creases = {{7, 8, 10}, {8, 9, 10}, {9, 10, 10}, {14, 15, 1.5}};
+  features.tags.corners = {{20, 10}};
+  features.tags.holes = {13};
+  const std::vector<Case> cases = {{"cube (3)", turned_faces(catmull_clark(cube(), 1))},
+                                   {"bipyramid (3, 4, 5)", turned_faces(catmull_clark(bipyramid(), 2))},
+                                   {"grid with features", turned_faces(features)}};
+  const int depth = 3;
+  ifs::PerturbOptions perturb;
+  perturb.amplitude = 0.3;
+  perturb.seed = 3;
+  for (const Case& c : cases) {
+    INFO(c.name);
+    const FractalSurface rough =
+        fractal_surface(surface_automaton(c.mesh, MeshScheme::catmull_clark), perturb);
+    REQUIRE(!rough.perturbation.values.empty());
+    const double scale = scale_of(c.mesh);
+    CHECK(cc_inner_gap(rough.surface, depth) <= 1e-12 * scale);
+    // The check can fail: a crack planted inside every regular patch (child GH of the patch cell moves
+    // its corner point (3, 3), which only its sides inside the parent read) is seen.
+    SurfaceAutomaton cracked = rough.surface;
+    automata::Graph& g = cracked.automaton.graph;
+    const automata::StateId cell = rough.perturbation.system.automaton.initial.at(0).state;
+    Eigen::MatrixXd& M = g[*out_edges(cell, g).first].matrix;
+    M(15, 15) += 0.05;
+    M(15, 14) -= 0.05;
+    CHECK(cc_inner_gap(cracked, depth) >= 1e-4 * scale);
+  }
 }
 
 TEST_CASE("the surface automaton with features: what it refuses, one line naming it",

@@ -76,8 +76,12 @@ struct Evaluation {
 };
 
 /// Builds the source of `experiment` as `run` does (shape, perturbation) and evaluates it to
-/// `depth` (default: the file's evaluation.depth, whatever its mode). Nothing is rendered or
-/// written. Throws InvalidInput as run, and for a negative depth.
+/// `depth` (default: the file's evaluation.depth, whatever its mode). A Catmull–Clark or Loop mesh
+/// experiment is its surface automaton (the mesh refined once, or twice where a face keeps two
+/// extraordinary corners; fractal when the file perturbs it), `depth` counted below those levels
+/// (default: the file's subdivision.levels less them), the points its welded attractor mesh's vertices.
+/// Nothing is rendered or written. Throws InvalidInput as run, for a negative depth, and for a mesh
+/// under another scheme (no automaton).
 Evaluation evaluate(const io::Experiment& experiment, std::optional<int> depth = {},
                     const RunOptions& options = {});
 
@@ -92,8 +96,8 @@ struct SampleOptions {
 /// Builds the source of `experiment` as `run` does and samples its attractor to a tolerance
 /// (ifs::tolerance_sample): one attractor point per piece, every piece proven smaller than
 /// `resolution` = tolerance × extent; `depth` is the deepest piece. For any source (curve, surface,
-/// BC-IFS, classic IFS), whatever the file's evaluation mode. Throws InvalidInput as run, for a
-/// tolerance < 0 and as ifs::tolerance_sample.
+/// BC-IFS, classic IFS, a mesh's surface automaton as in evaluate), whatever the file's evaluation mode.
+/// Throws InvalidInput as run, for a tolerance < 0, as ifs::tolerance_sample, and as evaluate for meshes.
 Evaluation sample(const io::Experiment& experiment, const SampleOptions& options = {},
                   const RunOptions& run_options = {});
 
