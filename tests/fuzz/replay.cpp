@@ -38,8 +38,6 @@ std::map<std::string, cifs::fuzz::Harness>& harnesses() {
   return all;
 }
 
-cifs::fuzz::Harness harness = nullptr;  // the one under test
-
 std::string read_bytes(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -49,8 +47,8 @@ double cpu_seconds() {
   return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
 }
 
-/// Runs one input; its CPU seconds.
-double run(const std::string& bytes) {
+/// Runs one input through `harness`; its CPU seconds.
+double run(cifs::fuzz::Harness harness, const std::string& bytes) {
   const double start = cpu_seconds();
   // NOLINTNEXTLINE(cppcoreguidelines-pro-type-reinterpret-cast)
   harness(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
@@ -170,7 +168,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "replay: the first argument names the harness, one of:%s\n", names.c_str());
     return 2;
   }
-  harness = found->second;
+  const cifs::fuzz::Harness harness = found->second;
   double budget = 5, mutate = 0;
   std::uint64_t seed = 1;
   fs::path dictionary, keep;
@@ -210,7 +208,7 @@ int main(int argc, char** argv) {
   for (const fs::path& file : files) {
     seeds.push_back(read_bytes(file));
     if (mutate > 0) continue;  // fuzz.replay.NAME runs the seeds themselves
-    const double seconds = run(seeds.back());
+    const double seconds = run(harness, seeds.back());
     total += seconds;
     if (seconds > slowest) slowest = seconds, slowest_file = file;
     if (seconds > budget) {
@@ -245,7 +243,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "mutate: %s: cannot write\n", keep.c_str());
       return 2;
     }
-    const double seconds = run(input);
+    const double seconds = run(harness, input);
     ++count;
     if (seconds > budget) {
       std::fprintf(stderr, "mutate: input %zu (kept in %s) took %.2f s of CPU, above the budget of %.2f s\n",
