@@ -31,7 +31,8 @@
 #include "cifs/verify/check.hpp"
 #include "fuzz.hpp"
 
-namespace {
+// Named, not anonymous: the harnesses compile as unity batches (CIFS_UNITY), each in its own namespace.
+namespace fuzz_compute {
 
 using namespace cifs;
 
@@ -169,8 +170,6 @@ void surface_operations(const nurbs::Surface& s, const Options& o) {
   }
 }
 
-}  // namespace
-
 CIFS_FUZZ_HARNESS(compute) {
   if (size < kOptionBytes) return 0;
   Options o;
@@ -194,3 +193,5 @@ CIFS_FUZZ_HARNESS(compute) {
   });
   return 0;
 }
+
+}  // namespace fuzz_compute

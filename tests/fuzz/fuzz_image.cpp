@@ -15,7 +15,8 @@
 #include "cifs/render/png.hpp"
 #include "fuzz.hpp"
 
-namespace {
+// Named, not anonymous: the harnesses compile as unity batches (CIFS_UNITY), each in its own namespace.
+namespace fuzz_image {
 
 using namespace cifs;
 
@@ -63,8 +64,6 @@ void png_round_trip(const std::filesystem::path& input, render::PixelFormat form
                 "PNG round trip");
 }
 
-}  // namespace
-
 CIFS_FUZZ_HARNESS(image) {
   const std::filesystem::path input = scratch() / "input";
   {
@@ -82,3 +81,5 @@ CIFS_FUZZ_HARNESS(image) {
   });
   return 0;
 }
+
+}  // namespace fuzz_image

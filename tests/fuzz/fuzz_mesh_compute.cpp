@@ -24,7 +24,8 @@
 #include "cifs/subdivision/mesh_analysis.hpp"
 #include "fuzz.hpp"
 
-namespace {
+// Named, not anonymous: the harnesses compile as unity batches (CIFS_UNITY), each in its own namespace.
+namespace fuzz_mesh_compute {
 
 using namespace cifs;
 using subdivision::MeshScheme;
@@ -40,8 +41,6 @@ void require_counts(const Mesh& result, const subdivision::MeshRefinement& r, co
   fuzz::require(result.vertices.rows() == last.vertex_count && result.face_offsets == last.face_offsets,
                 what);
 }
-
-}  // namespace
 
 CIFS_FUZZ_HARNESS(mesh_compute) {
   if (size < kOptionBytes) return 0;
@@ -104,3 +103,5 @@ CIFS_FUZZ_HARNESS(mesh_compute) {
   });
   return 0;
 }
+
+}  // namespace fuzz_mesh_compute

@@ -5,7 +5,8 @@
 #include "cifs/io/mesh_formats.hpp"
 #include "fuzz.hpp"
 
-namespace {
+// Named, not anonymous: the harnesses compile as unity batches (CIFS_UNITY), each in its own namespace.
+namespace fuzz_mesh_exchange {
 
 const cifs::io::MeshReadOptions kQuiet{.warn = [](const std::string&) {}};
 
@@ -20,8 +21,6 @@ std::string off(const cifs::Mesh& mesh) {
   cifs::io::mesh_off(mesh, out);
   return std::move(out.bytes);
 }
-
-}  // namespace
 
 CIFS_FUZZ_HARNESS(mesh_exchange) {
   using namespace cifs;
@@ -38,3 +37,5 @@ CIFS_FUZZ_HARNESS(mesh_exchange) {
   });
   return 0;
 }
+
+}  // namespace fuzz_mesh_exchange

@@ -15,7 +15,8 @@
 #include "cifs/io/json.hpp"
 #include "fuzz.hpp"
 
-namespace {
+// Named, not anonymous: the harnesses compile as unity batches (CIFS_UNITY), each in its own namespace.
+namespace fuzz_pipeline {
 
 // The work per input (each seed within 1 s of CPU in Release, docs/reliability.md).
 constexpr int kSide = 32, kDepth = 5;
@@ -28,8 +29,6 @@ constexpr double kAmplitude = 0.5;
 const std::filesystem::path& scratch() {
   return cifs::fuzz::scratch("pipeline");
 }
-
-}  // namespace
 
 CIFS_FUZZ_HARNESS(pipeline) {
   using namespace cifs;
@@ -59,3 +58,5 @@ CIFS_FUZZ_HARNESS(pipeline) {
   });
   return 0;
 }
+
+}  // namespace fuzz_pipeline

@@ -13,7 +13,8 @@
 #include "fuzz.hpp"
 #include "scheme_command.hpp"
 
-namespace {
+// Named, not anonymous: the harnesses compile as unity batches (CIFS_UNITY), each in its own namespace.
+namespace fuzz_scheme {
 
 constexpr int kMaxPower = 8;
 
@@ -22,8 +23,6 @@ int integer(const std::string& text) {
   std::from_chars(text.data(), text.data() + text.size(), value);
   return value;
 }
-
-}  // namespace
 
 CIFS_FUZZ_HARNESS(scheme) {
   using namespace cifs;
@@ -51,3 +50,5 @@ CIFS_FUZZ_HARNESS(scheme) {
   fuzz::refusals_allowed([&] { cli::scheme(o); });
   return 0;
 }
+
+}  // namespace fuzz_scheme

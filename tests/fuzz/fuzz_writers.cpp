@@ -26,7 +26,8 @@
 #include "cifs/io/svg.hpp"
 #include "fuzz.hpp"
 
-namespace {
+// Named, not anonymous: the harnesses compile as unity batches (CIFS_UNITY), each in its own namespace.
+namespace fuzz_writers {
 
 using namespace cifs;
 
@@ -132,8 +133,6 @@ void dot(const Points& numbers, int states, std::string_view labels) {
   }
 }
 
-}  // namespace
-
 CIFS_FUZZ_HARNESS(writers) {
   if (size < kHeader) return 0;
   const int writer = data[0] % 8;
@@ -163,3 +162,5 @@ CIFS_FUZZ_HARNESS(writers) {
   });
   return 0;
 }
+
+}  // namespace fuzz_writers
