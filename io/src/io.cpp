@@ -81,7 +81,7 @@ void point_set(const PointSet& set, ByteSink& out) {
 
 // The table. Order matters where several formats are written at once (experiment outputs).
 const Codec<Shape> kShape[] = {
-    {"json", ".json", whole<Shape, to_json>, parse_shape_json_at},
+    {"json", ".json", [](const Shape& s, ByteSink& out) { write_json(s, out); }, parse_shape_json_at},
     {"obj", ".obj", whole<Shape, to_obj>, parse_one_obj_shape},
 };
 const Codec<Polygon> kPolygon[] = {

@@ -14,6 +14,7 @@
 #include <string_view>
 
 #include "cifs/automata/automaton.hpp"
+#include "cifs/files.hpp"
 #include "cifs/io/bcifs_file.hpp"
 #include "cifs/io/experiment.hpp"
 #include "cifs/io/polygon.hpp"
@@ -33,6 +34,8 @@ std::vector<Shape> parse_shapes_json(std::string_view text, std::string_view whe
 Shape parse_shape_json(std::string_view text, std::string_view where, const ShapeReadOptions& options = {});
 /// Round-trip precision: parse_shape_json reads it back bit for bit.
 std::string to_json(const Shape& shape);
+/// The same bytes, handed to `out` a chunk at a time (io::write: large shapes never whole in memory).
+void write_json(const Shape& shape, ByteSink& out);
 
 /// `{"polygon": {"points": [[x, y], ...], "closed": true}}`.
 Polygon parse_polygon_json(std::string_view text, std::string_view where);
