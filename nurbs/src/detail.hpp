@@ -165,8 +165,13 @@ class SpanTable {
   int find(double u) const noexcept {
     if (u >= t_[n_]) return find_span(t_, p_, n_, u);
     int k = first_[static_cast<std::size_t>((u - start_) * scale_)];
-    while (u >= t_[k + 1]) ++k;       // stops before n: u < t_n
-    while (k > p_ && u < t_[k]) --k;  // the bucket's rounding only
+    // A bucket holds one knot at most, mostly: a conditional add, no branch that random parameters
+    // mispredict. The loops run only for a bucket with more knots, or for the bucket's rounding.
+    k += static_cast<int>(u >= t_[k + 1]);
+    if (u >= t_[k + 1] || u < t_[k]) [[unlikely]] {
+      while (u >= t_[k + 1]) ++k;       // stops before n: u < t_n
+      while (k > p_ && u < t_[k]) --k;
+    }
     return k;
   }
 
@@ -427,8 +432,9 @@ inline Knots mapped_knots(std::span<const double> t, Domain dom, double start, d
 // ------------------------------------------------------------------------------------------------
 // Rows.
 
-/// A stored row → `dim` Cartesian coordinates (divided by w when rational).
-inline void project(const double* row, int dim, bool rational, double* out) noexcept {
+/// A stored row → `dim` Cartesian coordinates (divided by w when rational). Always inlined: batch
+/// kernels call it per point, and a call costs more than the copy.
+[[gnu::always_inline]] inline void project(const double* row, int dim, bool rational, double* out) noexcept {
   if (rational)
     for (int k = 0; k < dim; ++k) out[k] = row[k] / row[dim];
   else
