@@ -191,7 +191,7 @@ void de_boor(const Curve& c, double u, double* out, double* scratch) noexcept {
       double* dj = d + j * cols;
       for (Eigen::Index k = 0; k < cols; ++k) dj[k] = left * dj[k - cols] + right * dj[k];
     }
-  detail::project(d + p * cols, dimension(c), c.rational, out);
+  detail::project<Cols>(d + p * cols, dimension(c), c.rational, out);
 }
 
 /// Everything a point needs from its span, one block a span, for unordered parameters (whose span
@@ -236,6 +236,17 @@ SpanBlocks span_blocks(const Curve& c) {
     b.origin[s] = k.origin;
   }
   return b;
+}
+
+/// The four rows that lane_rows left in `rows` (coordinate k of lane l at 4k + l), projected into
+/// four consecutive rows of out.
+template <int Cols>
+inline void project_lanes(const double* rows, int dim, bool rational, double* out) noexcept {
+  for (int lane = 0; lane < 4; ++lane, out += dim) {
+    double row[Cols];
+    for (int k = 0; k < Cols; ++k) row[k] = rows[4 * k + lane];
+    detail::project<Cols>(row, dim, rational, out);
+  }
 }
 
 #if defined(CIFS_CURVE_AVX)
@@ -306,25 +317,44 @@ __attribute__((target("avx"))) void four_points(const double* t, int span, const
   lane_rows<Cols, Degree>(SharedSpan{t + span - Degree + 1, inv, base}, _mm256_loadu_pd(x), acc);
 }
 
-/// Four points of any four spans, from their span blocks: each block's values transposed into the
-/// lanes four at a time.
+/// evaluate_unordered's points from `i` on, four consecutive points a step, each lane with its own
+/// span: the lanes' span blocks transposed four doubles at a time, so that vector v[j] holds value j of
+/// every lane's block. Returns where it stopped: the end (fewer than four points left) or a group of
+/// four with a span whose reciprocals are not finite (a subnormal knot interval), for the caller to
+/// evaluate one at a time.
 template <int Cols, int Degree>
-__attribute__((target("avx"))) void four_spans(const double* const* block, const double* x,
-                                               double* acc) noexcept {
+__attribute__((target("avx"))) std::size_t four_spans(std::span<const double> us, const SpanBlocks& blocks,
+                                                      bool rational, double* out, std::size_t i) noexcept {
   constexpr int p = Degree, reciprocals = p * (p + 1) / 2;
   constexpr int stride = (2 * p + reciprocals + (p + 1) * Cols + 3) / 4 * 4;  // span_block_stride
-  __m256d v[stride];
-  for (int g = 0; g < stride; g += 4) {
-    const __m256d r0 = _mm256_loadu_pd(block[0] + g), r1 = _mm256_loadu_pd(block[1] + g);
-    const __m256d r2 = _mm256_loadu_pd(block[2] + g), r3 = _mm256_loadu_pd(block[3] + g);
-    const __m256d lo01 = _mm256_unpacklo_pd(r0, r1), hi01 = _mm256_unpackhi_pd(r0, r1);
-    const __m256d lo23 = _mm256_unpacklo_pd(r2, r3), hi23 = _mm256_unpackhi_pd(r2, r3);
-    v[g] = _mm256_permute2f128_pd(lo01, lo23, 0x20);
-    v[g + 1] = _mm256_permute2f128_pd(hi01, hi23, 0x20);
-    v[g + 2] = _mm256_permute2f128_pd(lo01, lo23, 0x31);
-    v[g + 3] = _mm256_permute2f128_pd(hi01, hi23, 0x31);
+  const int dim = Cols - static_cast<int>(rational);
+  for (; i + 4 <= us.size(); i += 4) {
+    const double* block[4];
+    double x[4];
+    char finite = 1;
+    for (std::size_t lane = 0; lane < 4; ++lane) {
+      const auto s = static_cast<std::size_t>(blocks.table.find(us[i + lane]));
+      block[lane] = blocks.block(static_cast<int>(s));
+      x[lane] = us[i + lane] - blocks.origin[s];
+      finite &= blocks.finite[s];
+    }
+    if (finite == 0) break;
+    __m256d v[stride];
+    for (int g = 0; g < stride; g += 4) {
+      const __m256d r0 = _mm256_loadu_pd(block[0] + g), r1 = _mm256_loadu_pd(block[1] + g);
+      const __m256d r2 = _mm256_loadu_pd(block[2] + g), r3 = _mm256_loadu_pd(block[3] + g);
+      const __m256d lo01 = _mm256_unpacklo_pd(r0, r1), hi01 = _mm256_unpackhi_pd(r0, r1);
+      const __m256d lo23 = _mm256_unpacklo_pd(r2, r3), hi23 = _mm256_unpackhi_pd(r2, r3);
+      v[g] = _mm256_permute2f128_pd(lo01, lo23, 0x20);
+      v[g + 1] = _mm256_permute2f128_pd(hi01, hi23, 0x20);
+      v[g + 2] = _mm256_permute2f128_pd(lo01, lo23, 0x31);
+      v[g + 3] = _mm256_permute2f128_pd(hi01, hi23, 0x31);
+    }
+    double rows[4 * Cols];
+    lane_rows<Cols, Degree>(SpanPerLane{v, 2 * p, 2 * p + reciprocals}, _mm256_loadu_pd(x), rows);
+    project_lanes<Cols>(rows, dim, rational, out + i * static_cast<std::size_t>(dim));
   }
-  lane_rows<Cols, Degree>(SpanPerLane{v, 2 * p, 2 * p + reciprocals}, _mm256_loadu_pd(x), acc);
+  return i;
 }
 
 bool cpu_has_avx() noexcept {
@@ -332,17 +362,6 @@ bool cpu_has_avx() noexcept {
   return has;
 }
 #endif
-
-/// The four rows that lane_rows left in `rows` (coordinate k of lane l at 4k + l), projected into
-/// four consecutive rows of out.
-template <int Cols>
-inline void project_lanes(const double* rows, int dim, bool rational, double* out) noexcept {
-  for (int lane = 0; lane < 4; ++lane, out += dim) {
-    double row[Cols];
-    for (int k = 0; k < Cols; ++k) row[k] = rows[4 * k + lane];
-    detail::project(row, dim, rational, out);
-  }
-}
 
 /// Σ_r N[r] · base[r·cols + k] for the p + 1 rows at `base`, in r order, projected into `out`.
 template <int Cols>
@@ -352,7 +371,7 @@ inline void sum_rows(const double* N, int p, const double* base, Eigen::Index co
   for (Eigen::Index k = 0; k < cols; ++k) acc[k] = N[0] * base[k];
   for (int r = 1; r <= p; ++r)
     for (Eigen::Index k = 0; k < cols; ++k) acc[k] += N[r] * base[r * cols + k];
-  detail::project(acc, dim, rational, out);
+  detail::project<Cols>(acc, dim, rational, out);
 }
 
 /// Σ N_j(u) P_{span−p+j} for every parameter (all in the domain), projected into out (dim per row).
@@ -436,23 +455,9 @@ void evaluate_unordered(const Curve& c, std::span<const double> us, const SpanBl
   std::size_t i = 0;
 #if defined(CIFS_CURVE_AVX)
   if constexpr (Cols > 0 && Degree > 0) {
-    for (; cpu_has_avx() && i + 4 <= us.size(); i += 4) {
-      const double* block[4];
-      double x[4];
-      char finite = 1;
-      for (std::size_t lane = 0; lane < 4; ++lane) {
-        const auto s = static_cast<std::size_t>(blocks.table.find(us[i + lane]));
-        block[lane] = blocks.block(static_cast<int>(s));
-        x[lane] = us[i + lane] - blocks.origin[s];
-        finite &= blocks.finite[s];
-      }
-      if (finite == 0) {  // a subnormal knot interval: these four one at a time, with divisions
-        for (std::size_t k = i; k < i + 4; ++k) one(k);
-        continue;
-      }
-      double rows[4 * Cols];
-      four_spans<Cols, Degree>(block, x, rows);
-      project_lanes<Cols>(rows, static_cast<int>(dim), c.rational, out + i * dim);
+    while (cpu_has_avx() && i + 4 <= us.size()) {
+      i = four_spans<Cols, Degree>(us, blocks, c.rational, out, i);
+      for (const std::size_t end = std::min(i + 4, us.size()); i < end; ++i) one(i);  // a subnormal interval
     }
   }
 #endif

@@ -441,6 +441,20 @@ inline Knots mapped_knots(std::span<const double> t, Domain dom, double start, d
     for (int k = 0; k < dim; ++k) out[k] = row[k];
 }
 
+/// project for a stored column count known at compile time (Cols > 0; then dim = Cols − rational):
+/// loops of fixed length, where a run-time `dim` made the copy a call to memcpy. Cols = 0: project.
+template <int Cols>
+[[gnu::always_inline]] inline void project(const double* row, int dim, bool rational, double* out) noexcept {
+  if constexpr (Cols > 0) {
+    if (rational)
+      for (int k = 0; k < Cols - 1; ++k) out[k] = row[k] / row[Cols - 1];
+    else
+      for (int k = 0; k < Cols; ++k) out[k] = row[k];
+  } else {
+    project(row, dim, rational, out);
+  }
+}
+
 /// Homogeneous derivatives `(order+1) by (dim+1)` → Cartesian derivatives by the quotient rule
 /// (Piegl–Tiller A4.2).
 inline Points rational_derivatives(const Points& H, int dim) {
