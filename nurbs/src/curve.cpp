@@ -238,27 +238,60 @@ SpanBlocks span_blocks(const Curve& c) {
   return b;
 }
 
-/// The four rows that lane_rows left in `rows` (coordinate k of lane l at 4k + l), projected into
-/// four consecutive rows of out.
-template <int Cols>
-inline void project_lanes(const double* rows, int dim, bool rational, double* out) noexcept {
-  for (int lane = 0; lane < 4; ++lane, out += dim) {
-    double row[Cols];
-    for (int k = 0; k < Cols; ++k) row[k] = rows[4 * k + lane];
-    detail::project<Cols>(row, dim, rational, out);
+#if defined(CIFS_CURVE_AVX)
+/// Four rows of D coordinates, coordinate k of row l in lane l of a[k], to D·4 consecutive doubles:
+/// the transposition in registers.
+template <int D>
+__attribute__((target("avx"), always_inline)) inline void store_rows(const __m256d* a, double* out) noexcept {
+  if constexpr (D == 1) {
+    _mm256_storeu_pd(out, a[0]);
+  } else if constexpr (D == 2) {
+    const __m256d lo = _mm256_unpacklo_pd(a[0], a[1]), hi = _mm256_unpackhi_pd(a[0], a[1]);  // x0 y0 x2 y2, x1 y1 x3 y3
+    _mm256_storeu_pd(out, _mm256_permute2f128_pd(lo, hi, 0x20));
+    _mm256_storeu_pd(out + 4, _mm256_permute2f128_pd(lo, hi, 0x31));
+  } else if constexpr (D == 3) {
+    const __m256d xy = _mm256_unpacklo_pd(a[0], a[1]);       // x0 y0 x2 y2
+    const __m256d zx = _mm256_shuffle_pd(a[2], a[0], 0b1010);  // z0 x1 z2 x3
+    const __m256d yz = _mm256_unpackhi_pd(a[1], a[2]);       // y1 z1 y3 z3
+    _mm256_storeu_pd(out, _mm256_permute2f128_pd(xy, zx, 0x20));  // x0 y0 z0 x1
+    _mm256_storeu_pd(out + 4, _mm256_blend_pd(yz, xy, 0b1100));   // y1 z1 x2 y2
+    _mm256_storeu_pd(out + 8, _mm256_permute2f128_pd(zx, yz, 0x31));  // z2 x3 y3 z3
+  } else {
+    static_assert(D == 4);
+    const __m256d lo01 = _mm256_unpacklo_pd(a[0], a[1]), hi01 = _mm256_unpackhi_pd(a[0], a[1]);
+    const __m256d lo23 = _mm256_unpacklo_pd(a[2], a[3]), hi23 = _mm256_unpackhi_pd(a[2], a[3]);
+    _mm256_storeu_pd(out, _mm256_permute2f128_pd(lo01, lo23, 0x20));
+    _mm256_storeu_pd(out + 4, _mm256_permute2f128_pd(hi01, hi23, 0x20));
+    _mm256_storeu_pd(out + 8, _mm256_permute2f128_pd(lo01, lo23, 0x31));
+    _mm256_storeu_pd(out + 12, _mm256_permute2f128_pd(hi01, hi23, 0x31));
   }
 }
 
-#if defined(CIFS_CURVE_AVX)
+/// The four stored rows in `acc` (coordinate k of lane l in lane l of acc[k]), projected as
+/// detail::project does (the same divisions), to four consecutive rows of out.
+template <int Cols>
+__attribute__((target("avx"), always_inline)) inline void store_lanes(const __m256d* acc, bool rational,
+                                                                      double* out) noexcept {
+  if constexpr (Cols > 1) {
+    if (rational) {
+      __m256d cartesian[Cols - 1];
+      for (int k = 0; k < Cols - 1; ++k) cartesian[k] = _mm256_div_pd(acc[k], acc[Cols - 1]);
+      store_rows<Cols - 1>(cartesian, out);
+      return;
+    }
+  }
+  store_rows<Cols>(acc, out);
+}
+
 /// The basis functions and the sum of evaluate_rows for four points, a point an AVX lane (chosen at
 /// run time; the build targets baseline x86-64). The scalar code's multiplies and adds in its order,
 /// never fused: the same bits. `in` gives each value of the lanes' span blocks as a vector, value i
 /// of lane l's block in lane l: in.knot(i) of its 2p knots, in.inv(i) of its reciprocals, in.row(i)
 /// of its (p + 1)·Cols coordinates. `u` holds the parameters relative to the spans' origins; the
-/// rows land in acc as acc[4k + lane].
+/// four projected rows land in out (store_lanes).
 template <int Cols, int Degree, class Lanes>
-__attribute__((target("avx"), always_inline)) inline void lane_rows(const Lanes& in, __m256d u,
-                                                                    double* acc) noexcept {
+__attribute__((target("avx"), always_inline)) inline void lane_rows(const Lanes& in, __m256d u, bool rational,
+                                                                    double* out) noexcept {
   const int p = Degree;
   __m256d N[Degree + 1], left[Degree + 1], right[Degree + 1];
   N[0] = _mm256_set1_pd(1.0);
@@ -274,11 +307,12 @@ __attribute__((target("avx"), always_inline)) inline void lane_rows(const Lanes&
     }
     N[j] = saved;
   }
+  __m256d acc[Cols];
   for (int k = 0; k < Cols; ++k) {
-    __m256d a = _mm256_mul_pd(N[0], in.row(k));
-    for (int r = 1; r <= p; ++r) a = _mm256_add_pd(a, _mm256_mul_pd(N[r], in.row(r * Cols + k)));
-    _mm256_storeu_pd(acc + std::ptrdiff_t{4} * k, a);
+    acc[k] = _mm256_mul_pd(N[0], in.row(k));
+    for (int r = 1; r <= p; ++r) acc[k] = _mm256_add_pd(acc[k], _mm256_mul_pd(N[r], in.row(r * Cols + k)));
   }
+  store_lanes<Cols>(acc, rational, out);
 }
 
 /// Lanes that share one span (sorted input, mostly): its values broadcast where they are used.
@@ -313,8 +347,8 @@ struct SpanPerLane {
 /// its origin.
 template <int Cols, int Degree>
 __attribute__((target("avx"))) void four_points(const double* t, int span, const double* inv, const double* x,
-                                                const double* base, double* acc) noexcept {
-  lane_rows<Cols, Degree>(SharedSpan{t + span - Degree + 1, inv, base}, _mm256_loadu_pd(x), acc);
+                                                const double* base, bool rational, double* out) noexcept {
+  lane_rows<Cols, Degree>(SharedSpan{t + span - Degree + 1, inv, base}, _mm256_loadu_pd(x), rational, out);
 }
 
 /// evaluate_unordered's points from `i` on, four consecutive points a step, each lane with its own
@@ -350,9 +384,8 @@ __attribute__((target("avx"))) std::size_t four_spans(std::span<const double> us
       v[g + 2] = _mm256_permute2f128_pd(lo01, lo23, 0x31);
       v[g + 3] = _mm256_permute2f128_pd(hi01, hi23, 0x31);
     }
-    double rows[4 * Cols];
-    lane_rows<Cols, Degree>(SpanPerLane{v, 2 * p, 2 * p + reciprocals}, _mm256_loadu_pd(x), rows);
-    project_lanes<Cols>(rows, dim, rational, out + i * static_cast<std::size_t>(dim));
+    lane_rows<Cols, Degree>(SpanPerLane{v, 2 * p, 2 * p + reciprocals}, _mm256_loadu_pd(x), rational,
+                            out + i * static_cast<std::size_t>(dim));
   }
   return i;
 }
@@ -411,9 +444,7 @@ void evaluate_rows(const Curve& c, std::span<const double> us, double* out, doub
       if (finite && fast && i + 4 <= us.size() && inside(i + 3) && inside(i + 1) && inside(i + 2)) {
         const double x[4] = {u - knots.origin, us[i + 1] - knots.origin, us[i + 2] - knots.origin,
                              us[i + 3] - knots.origin};
-        double rows[4 * Cols];
-        four_points<Cols, Degree>(knots.t.data(), knots.span, inv, x, P + (span - p) * cols, rows);
-        project_lanes<Cols>(rows, dim, c.rational, out);
+        four_points<Cols, Degree>(knots.t.data(), knots.span, inv, x, P + (span - p) * cols, c.rational, out);
         i += 3;
         out += 3 * dim;  // the loop's increment passes the fourth
         continue;
