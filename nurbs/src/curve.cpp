@@ -206,7 +206,9 @@ struct SpanBlocks {
   std::vector<double> data;
   std::vector<double> origin;
   std::vector<char> finite;
-  const double* block(int span) const noexcept { return data.data() + static_cast<std::size_t>(span) * stride; }
+  const double* block(int span) const noexcept {
+    return data.data() + static_cast<std::size_t>(span) * stride;
+  }
 };
 
 std::size_t span_block_stride(int p, Eigen::Index cols) noexcept {
@@ -226,12 +228,13 @@ SpanBlocks span_blocks(const Curve& c) {
   for (int span = p; span < n; ++span) {
     const auto s = static_cast<std::size_t>(span);
     double* knots = b.data.data() + s * stride;
-    double* inv = knots + 2 * p;
+    double* inv = knots + std::ptrdiff_t{2} * p;
     const detail::SpanKnots k = detail::span_knots(c, span, local);
     std::copy_n(k.t.data() + k.span - p + 1, 2 * p, knots);
     detail::blossom_reciprocals(knots, p, p - 1, inv);
     const int reciprocals = p * (p + 1) / 2;
-    b.finite[s] = static_cast<char>(std::all_of(inv, inv + reciprocals, [](double x) { return std::isfinite(x); }));
+    b.finite[s] =
+        static_cast<char>(std::all_of(inv, inv + reciprocals, [](double x) { return std::isfinite(x); }));
     std::copy_n(c.P.data() + (span - p) * cols, (p + 1) * cols, inv + reciprocals);
     b.origin[s] = k.origin;
   }
@@ -246,15 +249,16 @@ __attribute__((target("avx"), always_inline)) inline void store_rows(const __m25
   if constexpr (D == 1) {
     _mm256_storeu_pd(out, a[0]);
   } else if constexpr (D == 2) {
-    const __m256d lo = _mm256_unpacklo_pd(a[0], a[1]), hi = _mm256_unpackhi_pd(a[0], a[1]);  // x0 y0 x2 y2, x1 y1 x3 y3
+    const __m256d lo = _mm256_unpacklo_pd(a[0], a[1]);  // x0 y0 x2 y2
+    const __m256d hi = _mm256_unpackhi_pd(a[0], a[1]);  // x1 y1 x3 y3
     _mm256_storeu_pd(out, _mm256_permute2f128_pd(lo, hi, 0x20));
     _mm256_storeu_pd(out + 4, _mm256_permute2f128_pd(lo, hi, 0x31));
   } else if constexpr (D == 3) {
-    const __m256d xy = _mm256_unpacklo_pd(a[0], a[1]);       // x0 y0 x2 y2
-    const __m256d zx = _mm256_shuffle_pd(a[2], a[0], 0b1010);  // z0 x1 z2 x3
-    const __m256d yz = _mm256_unpackhi_pd(a[1], a[2]);       // y1 z1 y3 z3
-    _mm256_storeu_pd(out, _mm256_permute2f128_pd(xy, zx, 0x20));  // x0 y0 z0 x1
-    _mm256_storeu_pd(out + 4, _mm256_blend_pd(yz, xy, 0b1100));   // y1 z1 x2 y2
+    const __m256d xy = _mm256_unpacklo_pd(a[0], a[1]);                // x0 y0 x2 y2
+    const __m256d zx = _mm256_shuffle_pd(a[2], a[0], 0b1010);         // z0 x1 z2 x3
+    const __m256d yz = _mm256_unpackhi_pd(a[1], a[2]);                // y1 z1 y3 z3
+    _mm256_storeu_pd(out, _mm256_permute2f128_pd(xy, zx, 0x20));      // x0 y0 z0 x1
+    _mm256_storeu_pd(out + 4, _mm256_blend_pd(yz, xy, 0b1100));       // y1 z1 x2 y2
     _mm256_storeu_pd(out + 8, _mm256_permute2f128_pd(zx, yz, 0x31));  // z2 x3 y3 z3
   } else {
     static_assert(D == 4);
@@ -359,8 +363,8 @@ __attribute__((target("avx"))) void four_points(const double* t, int span, const
 template <int Cols, int Degree>
 __attribute__((target("avx"))) std::size_t four_spans(std::span<const double> us, const SpanBlocks& blocks,
                                                       bool rational, double* out, std::size_t i) noexcept {
-  constexpr int p = Degree, reciprocals = p * (p + 1) / 2;
-  constexpr int stride = (2 * p + reciprocals + (p + 1) * Cols + 3) / 4 * 4;  // span_block_stride
+  constexpr int kReciprocalsAt = 2 * Degree, kRowsAt = kReciprocalsAt + Degree * (Degree + 1) / 2;
+  constexpr int kStride = (kRowsAt + (Degree + 1) * Cols + 3) / 4 * 4;  // span_block_stride
   const int dim = Cols - static_cast<int>(rational);
   for (; i + 4 <= us.size(); i += 4) {
     const double* block[4];
@@ -373,8 +377,8 @@ __attribute__((target("avx"))) std::size_t four_spans(std::span<const double> us
       finite &= blocks.finite[s];
     }
     if (finite == 0) break;
-    __m256d v[stride];
-    for (int g = 0; g < stride; g += 4) {
+    __m256d v[kStride];
+    for (int g = 0; g < kStride; g += 4) {
       const __m256d r0 = _mm256_loadu_pd(block[0] + g), r1 = _mm256_loadu_pd(block[1] + g);
       const __m256d r2 = _mm256_loadu_pd(block[2] + g), r3 = _mm256_loadu_pd(block[3] + g);
       const __m256d lo01 = _mm256_unpacklo_pd(r0, r1), hi01 = _mm256_unpackhi_pd(r0, r1);
@@ -384,7 +388,7 @@ __attribute__((target("avx"))) std::size_t four_spans(std::span<const double> us
       v[g + 2] = _mm256_permute2f128_pd(lo01, lo23, 0x31);
       v[g + 3] = _mm256_permute2f128_pd(hi01, hi23, 0x31);
     }
-    lane_rows<Cols, Degree>(SpanPerLane{v, 2 * p, 2 * p + reciprocals}, _mm256_loadu_pd(x), rational,
+    lane_rows<Cols, Degree>(SpanPerLane{v, kReciprocalsAt, kRowsAt}, _mm256_loadu_pd(x), rational,
                             out + i * static_cast<std::size_t>(dim));
   }
   return i;
@@ -446,7 +450,7 @@ void evaluate_rows(const Curve& c, std::span<const double> us, double* out, doub
                              us[i + 3] - knots.origin};
         four_points<Cols, Degree>(knots.t.data(), knots.span, inv, x, P + (span - p) * cols, c.rational, out);
         i += 3;
-        out += 3 * dim;  // the loop's increment passes the fourth
+        out += std::ptrdiff_t{3} * dim;  // the loop's increment passes the fourth
         continue;
       }
     }
@@ -478,7 +482,7 @@ void evaluate_unordered(const Curve& c, std::span<const double> us, const SpanBl
     const double* block = blocks.block(span);
     const double x = us[i] - blocks.origin[s];
     if (blocks.finite[s] != 0)
-      detail::basis(block, p, p - 1, block + 2 * p, x, N);
+      detail::basis(block, p, p - 1, block + std::ptrdiff_t{2} * p, x, N);
     else
       detail::basis(block, p, p - 1, x, N);
     sum_rows<Cols>(N, p, block + rows_at, cols, acc, static_cast<int>(dim), c.rational, out + i * dim);
@@ -529,9 +533,11 @@ Points evaluate(const Curve& c, std::span<const double> us) {
   // Unordered input: the span blocks and their bucket table once the parameters outnumber the knots
   // (they cost O(#knots) to build) and the blocks take no more memory than the output.
   // (Grouping the parameters by span first, for the AVX lanes, was tried: the scattered writes back
-  // cost twice what the lanes save, 43.8 against 20.8 ns a point. Lanes with a span each, below, won.)
+  // cost twice what the lanes save, 43.8 against 20.8 ns a point. Lanes with a span each (four_spans)
+  // took their place.)
   std::optional<SpanBlocks> blocks;
-  const std::size_t block_doubles = span_block_stride(c.degree, c.P.cols()) * static_cast<std::size_t>(c.P.rows());
+  const std::size_t block_doubles =
+      span_block_stride(c.degree, c.P.cols()) * static_cast<std::size_t>(c.P.rows());
   if (!scan.sorted && us.size() >= 8 * c.knots.size() &&
       block_doubles <= us.size() * static_cast<std::size_t>(dimension(c)))
     blocks = span_blocks(c);

@@ -169,7 +169,7 @@ class SpanTable {
     // mispredict. The loops run only for a bucket with more knots, or for the bucket's rounding.
     k += static_cast<int>(u >= t_[k + 1]);
     if (u >= t_[k + 1] || u < t_[k]) [[unlikely]] {
-      while (u >= t_[k + 1]) ++k;       // stops before n: u < t_n
+      while (u >= t_[k + 1]) ++k;  // stops before n: u < t_n
       while (k > p_ && u < t_[k]) --k;
     }
     return k;
@@ -432,9 +432,8 @@ inline Knots mapped_knots(std::span<const double> t, Domain dom, double start, d
 // ------------------------------------------------------------------------------------------------
 // Rows.
 
-/// A stored row → `dim` Cartesian coordinates (divided by w when rational). Always inlined: batch
-/// kernels call it per point, and a call costs more than the copy.
-[[gnu::always_inline]] inline void project(const double* row, int dim, bool rational, double* out) noexcept {
+/// A stored row → `dim` Cartesian coordinates (divided by w when rational).
+inline void project(const double* row, int dim, bool rational, double* out) noexcept {
   if (rational)
     for (int k = 0; k < dim; ++k) out[k] = row[k] / row[dim];
   else

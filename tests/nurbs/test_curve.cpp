@@ -147,14 +147,16 @@ TEST_CASE("batch evaluation on unordered parameters: four points a step, a span 
           "[nurbs][curve][lanes]") {
   // Long shuffled batches take the span blocks (≥ 8 parameters per knot, blocks no larger than the
   // output), and for degrees 2 and 3 with 2–4 stored columns the AVX lanes: four consecutive
-  // parameters a step, each lane with its own span. Every degree 1–5, every kind, rational and not;
+  // parameters a step, each lane with its own span. Every degree 1–5, 1–4 dimensions (every column
+  // count the lanes store, rational rows divided in the lanes), every kind, rational and not;
   // the parameters include every knot, one ulp either side, and both ends. Against single-point
   // de Boor (another algorithm) to 1e-12, and evaluate_basis (the scalar basis form) to the last bit.
   for (int d = 1; d <= 5; ++d)
-    for (int dim = 1; dim <= 3; ++dim)
+    for (int dim = 1; dim <= 4; ++dim)
       for (const bool rational : {false, true})
         for (const Kind kind : {Kind::clamped, Kind::unclamped, Kind::closed}) {
-          Rng rng(static_cast<std::uint64_t>(9100 + 97 * d + 13 * dim + 3 * rational) + static_cast<std::uint64_t>(kind));
+          Rng rng(static_cast<std::uint64_t>(9100 + 97 * d + 13 * dim + 3 * rational) +
+                  static_cast<std::uint64_t>(kind));
           const RandomCurve r = random_curve(rng, d, dim, rational, kind, 20);
           INFO(r.what);
           std::vector<double> us = probe_parameters(rng, r.knots, d, 0);
