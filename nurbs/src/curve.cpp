@@ -191,61 +191,207 @@ void de_boor(const Curve& c, double u, double* out, double* scratch) noexcept {
       double* dj = d + j * cols;
       for (Eigen::Index k = 0; k < cols; ++k) dj[k] = left * dj[k - cols] + right * dj[k];
     }
-  detail::project(d + p * cols, dimension(c), c.rational, out);
+  detail::project<Cols>(d + p * cols, dimension(c), c.rational, out);
 }
 
-/// The reciprocals of every span's knot intervals (blossom_reciprocals, detail::kReciprocals a span), for
-/// unordered parameters, whose span changes at every point; a span with a subnormal interval is marked.
-struct SpanReciprocals {
-  std::vector<double> inv;
+/// Everything a point needs from its span, one block a span, for unordered parameters (whose span
+/// changes at almost every point, so that a span change is a pointer). The block of span s, `stride`
+/// doubles: the 2p knots t_{s−p+1 … s+p} of span_knots (relative to origin[s] around a closed curve's
+/// seam), the p(p + 1)/2 reciprocals of blossom_reciprocals, the p + 1 stored rows P_{s−p … s}, then
+/// zeros up to a multiple of 4 (the AVX lanes load groups of four). A span with a subnormal knot
+/// interval has infinite reciprocals and is marked.
+struct SpanBlocks {
+  detail::SpanTable table;
+  std::size_t stride;
+  std::vector<double> data;
+  std::vector<double> origin;
   std::vector<char> finite;
+  const double* block(int span) const noexcept {
+    return data.data() + static_cast<std::size_t>(span) * stride;
+  }
 };
 
-SpanReciprocals span_reciprocals(const Curve& c) {
+std::size_t span_block_stride(int p, Eigen::Index cols) noexcept {
+  const auto size = static_cast<std::size_t>(2 * p + p * (p + 1) / 2 + (p + 1) * cols);
+  return (size + 3) / 4 * 4;
+}
+
+SpanBlocks span_blocks(const Curve& c) {
   const int p = c.degree;
-  const auto n = static_cast<std::size_t>(c.P.rows());
-  SpanReciprocals r{std::vector<double>(n * detail::kReciprocals), std::vector<char>(n, 0)};
+  const int n = static_cast<int>(c.P.rows());
+  const Eigen::Index cols = c.P.cols();
+  const std::size_t stride = span_block_stride(p, cols);
+  const auto count = static_cast<std::size_t>(n);
+  SpanBlocks b{detail::SpanTable(c.knots.data(), p, n), stride, std::vector<double>(count * stride),
+               std::vector<double>(count), std::vector<char>(count, 0)};
   double local[2 * kMaxDegree];
-  for (int span = p; span < static_cast<int>(n); ++span) {
-    double* inv = r.inv.data() + static_cast<std::size_t>(span) * detail::kReciprocals;
-    const detail::SpanKnots knots = detail::span_knots(c, span, local);
-    detail::blossom_reciprocals(knots.t.data(), p, knots.span, inv);
-    r.finite[static_cast<std::size_t>(span)] =
-        static_cast<char>(std::all_of(inv, inv + p * (p + 1) / 2, [](double x) { return std::isfinite(x); }));
+  for (int span = p; span < n; ++span) {
+    const auto s = static_cast<std::size_t>(span);
+    double* knots = b.data.data() + s * stride;
+    double* inv = knots + std::ptrdiff_t{2} * p;
+    const detail::SpanKnots k = detail::span_knots(c, span, local);
+    std::copy_n(k.t.data() + k.span - p + 1, 2 * p, knots);
+    detail::blossom_reciprocals(knots, p, p - 1, inv);
+    const int reciprocals = p * (p + 1) / 2;
+    b.finite[s] =
+        static_cast<char>(std::all_of(inv, inv + reciprocals, [](double x) { return std::isfinite(x); }));
+    std::copy_n(c.P.data() + (span - p) * cols, (p + 1) * cols, inv + reciprocals);
+    b.origin[s] = k.origin;
   }
-  return r;
+  return b;
 }
 
 #if defined(CIFS_CURVE_AVX)
-/// evaluate_rows' basis functions and sum for four points of one span at once, a point a lane (AVX,
-/// chosen at run time; the build targets baseline x86-64). The scalar code's multiplies and adds in its
-/// order, never fused: the same bits. `x` holds the four parameters relative to the span's origin; the
-/// four rows land in acc as acc[4k + lane].
-template <int Cols, int Degree>
-__attribute__((target("avx"))) void four_points(const double* t, int span, const double* inv, const double* x,
-                                                const double* base, double* acc) noexcept {
+/// Four rows of D coordinates, coordinate k of row l in lane l of a[k], to D·4 consecutive doubles:
+/// the transposition in registers.
+template <int D>
+__attribute__((target("avx"), always_inline)) inline void store_rows(const __m256d* a, double* out) noexcept {
+  if constexpr (D == 1) {
+    _mm256_storeu_pd(out, a[0]);
+  } else if constexpr (D == 2) {
+    const __m256d lo = _mm256_unpacklo_pd(a[0], a[1]);  // x0 y0 x2 y2
+    const __m256d hi = _mm256_unpackhi_pd(a[0], a[1]);  // x1 y1 x3 y3
+    _mm256_storeu_pd(out, _mm256_permute2f128_pd(lo, hi, 0x20));
+    _mm256_storeu_pd(out + 4, _mm256_permute2f128_pd(lo, hi, 0x31));
+  } else if constexpr (D == 3) {
+    const __m256d xy = _mm256_unpacklo_pd(a[0], a[1]);                // x0 y0 x2 y2
+    const __m256d zx = _mm256_shuffle_pd(a[2], a[0], 0b1010);         // z0 x1 z2 x3
+    const __m256d yz = _mm256_unpackhi_pd(a[1], a[2]);                // y1 z1 y3 z3
+    _mm256_storeu_pd(out, _mm256_permute2f128_pd(xy, zx, 0x20));      // x0 y0 z0 x1
+    _mm256_storeu_pd(out + 4, _mm256_blend_pd(yz, xy, 0b1100));       // y1 z1 x2 y2
+    _mm256_storeu_pd(out + 8, _mm256_permute2f128_pd(zx, yz, 0x31));  // z2 x3 y3 z3
+  } else {
+    static_assert(D == 4);
+    const __m256d lo01 = _mm256_unpacklo_pd(a[0], a[1]), hi01 = _mm256_unpackhi_pd(a[0], a[1]);
+    const __m256d lo23 = _mm256_unpacklo_pd(a[2], a[3]), hi23 = _mm256_unpackhi_pd(a[2], a[3]);
+    _mm256_storeu_pd(out, _mm256_permute2f128_pd(lo01, lo23, 0x20));
+    _mm256_storeu_pd(out + 4, _mm256_permute2f128_pd(hi01, hi23, 0x20));
+    _mm256_storeu_pd(out + 8, _mm256_permute2f128_pd(lo01, lo23, 0x31));
+    _mm256_storeu_pd(out + 12, _mm256_permute2f128_pd(hi01, hi23, 0x31));
+  }
+}
+
+/// The four stored rows in `acc` (coordinate k of lane l in lane l of acc[k]), projected as
+/// detail::project does (the same divisions), to four consecutive rows of out.
+template <int Cols>
+__attribute__((target("avx"), always_inline)) inline void store_lanes(const __m256d* acc, bool rational,
+                                                                      double* out) noexcept {
+  if constexpr (Cols > 1) {
+    if (rational) {
+      __m256d cartesian[Cols - 1];
+      for (int k = 0; k < Cols - 1; ++k) cartesian[k] = _mm256_div_pd(acc[k], acc[Cols - 1]);
+      store_rows<Cols - 1>(cartesian, out);
+      return;
+    }
+  }
+  store_rows<Cols>(acc, out);
+}
+
+/// The basis functions and the sum of evaluate_rows for four points, a point an AVX lane (chosen at
+/// run time; the build targets baseline x86-64). The scalar code's multiplies and adds in its order,
+/// never fused: the same bits. `in` gives each value of the lanes' span blocks as a vector, value i
+/// of lane l's block in lane l: in.knot(i) of its 2p knots, in.inv(i) of its reciprocals, in.row(i)
+/// of its (p + 1)·Cols coordinates. `u` holds the parameters relative to the spans' origins; the
+/// four projected rows land in out (store_lanes).
+template <int Cols, int Degree, class Lanes>
+__attribute__((target("avx"), always_inline)) inline void lane_rows(const Lanes& in, __m256d u, bool rational,
+                                                                    double* out) noexcept {
   const int p = Degree;
   __m256d N[Degree + 1], left[Degree + 1], right[Degree + 1];
-  const __m256d u = _mm256_loadu_pd(x);
   N[0] = _mm256_set1_pd(1.0);
   for (int j = 1; j <= p; ++j) {
-    left[j] = _mm256_sub_pd(u, _mm256_set1_pd(t[span + 1 - j]));
-    right[j] = _mm256_sub_pd(_mm256_set1_pd(t[span + j]), u);
-    const double* level = inv + j * (j - 1) / 2;
+    left[j] = _mm256_sub_pd(u, in.knot(p - j));       // u − t_{span+1−j}
+    right[j] = _mm256_sub_pd(in.knot(p - 1 + j), u);  // t_{span+j} − u
+    const int level = j * (j - 1) / 2;
     __m256d saved = _mm256_setzero_pd();
     for (int r = 0; r < j; ++r) {
-      const __m256d temp = _mm256_mul_pd(N[r], _mm256_set1_pd(level[r]));
+      const __m256d temp = _mm256_mul_pd(N[r], in.inv(level + r));
       N[r] = _mm256_add_pd(saved, _mm256_mul_pd(right[r + 1], temp));
       saved = _mm256_mul_pd(left[j - r], temp);
     }
     N[j] = saved;
   }
+  __m256d acc[Cols];
   for (int k = 0; k < Cols; ++k) {
-    __m256d a = _mm256_mul_pd(N[0], _mm256_set1_pd(base[k]));
-    for (int r = 1; r <= p; ++r)
-      a = _mm256_add_pd(a, _mm256_mul_pd(N[r], _mm256_set1_pd(base[r * Cols + k])));
-    _mm256_storeu_pd(acc + std::ptrdiff_t{4} * k, a);
+    acc[k] = _mm256_mul_pd(N[0], in.row(k));
+    for (int r = 1; r <= p; ++r) acc[k] = _mm256_add_pd(acc[k], _mm256_mul_pd(N[r], in.row(r * Cols + k)));
   }
+  store_lanes<Cols>(acc, rational, out);
+}
+
+/// Lanes that share one span (sorted input, mostly): its values broadcast where they are used.
+struct SharedSpan {
+  const double* knots;  // the 2p knots t_{span−p+1 … span+p}
+  const double* inverse;
+  const double* base;
+  __attribute__((target("avx"), always_inline)) __m256d knot(int i) const noexcept {
+    return _mm256_set1_pd(knots[i]);
+  }
+  __attribute__((target("avx"), always_inline)) __m256d inv(int i) const noexcept {
+    return _mm256_set1_pd(inverse[i]);
+  }
+  __attribute__((target("avx"), always_inline)) __m256d row(int i) const noexcept {
+    return _mm256_set1_pd(base[i]);
+  }
+};
+
+/// Lanes with a span each (unordered input): their span blocks transposed, vector i = value i of
+/// every block.
+struct SpanPerLane {
+  const __m256d* v;
+  int reciprocals_at, rows_at;
+  __attribute__((target("avx"), always_inline)) __m256d knot(int i) const noexcept { return v[i]; }
+  __attribute__((target("avx"), always_inline)) __m256d inv(int i) const noexcept {
+    return v[reciprocals_at + i];
+  }
+  __attribute__((target("avx"), always_inline)) __m256d row(int i) const noexcept { return v[rows_at + i]; }
+};
+
+/// Four points of one span. `t` and `span` as from span_knots, `x` the four parameters relative to
+/// its origin.
+template <int Cols, int Degree>
+__attribute__((target("avx"))) void four_points(const double* t, int span, const double* inv, const double* x,
+                                                const double* base, bool rational, double* out) noexcept {
+  lane_rows<Cols, Degree>(SharedSpan{t + span - Degree + 1, inv, base}, _mm256_loadu_pd(x), rational, out);
+}
+
+/// evaluate_unordered's points from `i` on, four consecutive points a step, each lane with its own
+/// span: the lanes' span blocks transposed four doubles at a time, so that vector v[j] holds value j of
+/// every lane's block. Returns where it stopped: the end (fewer than four points left) or a group of
+/// four with a span whose reciprocals are not finite (a subnormal knot interval), for the caller to
+/// evaluate one at a time.
+template <int Cols, int Degree>
+__attribute__((target("avx"))) std::size_t four_spans(std::span<const double> us, const SpanBlocks& blocks,
+                                                      bool rational, double* out, std::size_t i) noexcept {
+  constexpr int kReciprocalsAt = 2 * Degree, kRowsAt = kReciprocalsAt + Degree * (Degree + 1) / 2;
+  constexpr int kStride = (kRowsAt + (Degree + 1) * Cols + 3) / 4 * 4;  // span_block_stride
+  const int dim = Cols - static_cast<int>(rational);
+  for (; i + 4 <= us.size(); i += 4) {
+    const double* block[4];
+    double x[4];
+    char finite = 1;
+    for (std::size_t lane = 0; lane < 4; ++lane) {
+      const auto s = static_cast<std::size_t>(blocks.table.find(us[i + lane]));
+      block[lane] = blocks.block(static_cast<int>(s));
+      x[lane] = us[i + lane] - blocks.origin[s];
+      finite &= blocks.finite[s];
+    }
+    if (finite == 0) break;
+    __m256d v[kStride];
+    for (int g = 0; g < kStride; g += 4) {
+      const __m256d r0 = _mm256_loadu_pd(block[0] + g), r1 = _mm256_loadu_pd(block[1] + g);
+      const __m256d r2 = _mm256_loadu_pd(block[2] + g), r3 = _mm256_loadu_pd(block[3] + g);
+      const __m256d lo01 = _mm256_unpacklo_pd(r0, r1), hi01 = _mm256_unpackhi_pd(r0, r1);
+      const __m256d lo23 = _mm256_unpacklo_pd(r2, r3), hi23 = _mm256_unpackhi_pd(r2, r3);
+      v[g] = _mm256_permute2f128_pd(lo01, lo23, 0x20);
+      v[g + 1] = _mm256_permute2f128_pd(hi01, hi23, 0x20);
+      v[g + 2] = _mm256_permute2f128_pd(lo01, lo23, 0x31);
+      v[g + 3] = _mm256_permute2f128_pd(hi01, hi23, 0x31);
+    }
+    lane_rows<Cols, Degree>(SpanPerLane{v, kReciprocalsAt, kRowsAt}, _mm256_loadu_pd(x), rational,
+                            out + i * static_cast<std::size_t>(dim));
+  }
+  return i;
 }
 
 bool cpu_has_avx() noexcept {
@@ -254,13 +400,23 @@ bool cpu_has_avx() noexcept {
 }
 #endif
 
+/// Σ_r N[r] · base[r·cols + k] for the p + 1 rows at `base`, in r order, projected into `out`.
+template <int Cols>
+inline void sum_rows(const double* N, int p, const double* base, Eigen::Index cols, double* acc, int dim,
+                     bool rational, double* out) noexcept {
+  if constexpr (Cols > 0) cols = Cols;
+  for (Eigen::Index k = 0; k < cols; ++k) acc[k] = N[0] * base[k];
+  for (int r = 1; r <= p; ++r)
+    for (Eigen::Index k = 0; k < cols; ++k) acc[k] += N[r] * base[r * cols + k];
+  detail::project<Cols>(acc, dim, rational, out);
+}
+
 /// Σ N_j(u) P_{span−p+j} for every parameter (all in the domain), projected into out (dim per row).
-/// Span search: the previous span as the hint (sorted input), or the bucket table when given (then with
-/// every span's reciprocals). The basis functions take the span's reciprocals, computed when the span
-/// changes otherwise: every point of a span shares its divisors.
+/// Span search: the previous span as the hint (sorted input), else a bisection. The basis functions
+/// take the span's reciprocals, computed when the span changes: every point of a span shares its
+/// divisors.
 template <int Cols, int Degree = 0>
-void evaluate_rows(const Curve& c, std::span<const double> us, const detail::SpanTable* table,
-                   const SpanReciprocals* reciprocals, double* out, double* scratch) noexcept {
+void evaluate_rows(const Curve& c, std::span<const double> us, double* out, double* scratch) noexcept {
   const int p = Degree > 0 ? Degree : c.degree;  // a constant: the basis and sum loops unroll
   const int n = static_cast<int>(c.P.rows());
   const Eigen::Index cols = Cols > 0 ? Cols : c.P.cols();
@@ -269,8 +425,7 @@ void evaluate_rows(const Curve& c, std::span<const double> us, const detail::Spa
   const double* P = c.P.data();
   double fixed[Cols > 0 ? Cols : 1];
   double* acc = Cols > 0 ? fixed : scratch;
-  double N[kMaxDegree + 1], local[2 * kMaxDegree], own[detail::kReciprocals];
-  const double* inv = own;
+  double N[kMaxDegree + 1], local[2 * kMaxDegree], inv[detail::kReciprocals];
   int span = -1;
   detail::SpanKnots knots;
   bool finite = true;  // the span's reciprocals (none of its knot intervals subnormal)
@@ -280,16 +435,11 @@ void evaluate_rows(const Curve& c, std::span<const double> us, const detail::Spa
   for (std::size_t i = 0; i < us.size(); ++i, out += dim) {
     const double u = us[i];
     const int previous = span;
-    span = table ? table->find(u) : detail::find_span(t, p, n, u, std::max(span, p));
+    span = detail::find_span(t, p, n, u, std::max(span, p));
     if (span != previous) {
       knots = detail::span_knots(c, span, local);
-      if (reciprocals) {
-        inv = reciprocals->inv.data() + static_cast<std::size_t>(span) * detail::kReciprocals;
-        finite = reciprocals->finite[static_cast<std::size_t>(span)] != 0;
-      } else {
-        detail::blossom_reciprocals(knots.t.data(), p, knots.span, own);
-        finite = std::all_of(own, own + p * (p + 1) / 2, [](double x) { return std::isfinite(x); });
-      }
+      detail::blossom_reciprocals(knots.t.data(), p, knots.span, inv);
+      finite = std::all_of(inv, inv + p * (p + 1) / 2, [](double x) { return std::isfinite(x); });
     }
 #if defined(CIFS_CURVE_AVX)
     // The next three points in this span too (sorted input, mostly): a point an AVX lane.
@@ -298,14 +448,9 @@ void evaluate_rows(const Curve& c, std::span<const double> us, const detail::Spa
       if (finite && fast && i + 4 <= us.size() && inside(i + 3) && inside(i + 1) && inside(i + 2)) {
         const double x[4] = {u - knots.origin, us[i + 1] - knots.origin, us[i + 2] - knots.origin,
                              us[i + 3] - knots.origin};
-        double rows[4 * Cols];
-        four_points<Cols, Degree>(knots.t.data(), knots.span, inv, x, P + (span - p) * cols, rows);
-        for (int lane = 0; lane < 4; ++lane, out += dim) {
-          for (int k = 0; k < Cols; ++k) acc[k] = rows[4 * k + lane];
-          detail::project(acc, dim, c.rational, out);
-        }
+        four_points<Cols, Degree>(knots.t.data(), knots.span, inv, x, P + (span - p) * cols, c.rational, out);
         i += 3;
-        out -= dim;  // the loop's increment writes the fourth
+        out += std::ptrdiff_t{3} * dim;  // the loop's increment passes the fourth
         continue;
       }
     }
@@ -314,12 +459,44 @@ void evaluate_rows(const Curve& c, std::span<const double> us, const detail::Spa
       detail::basis(knots.t.data(), p, knots.span, inv, u - knots.origin, N);
     else
       detail::basis(knots.t.data(), p, knots.span, u - knots.origin, N);
-    const double* base = P + (span - p) * cols;
-    for (Eigen::Index k = 0; k < cols; ++k) acc[k] = N[0] * base[k];
-    for (int r = 1; r <= p; ++r)
-      for (Eigen::Index k = 0; k < cols; ++k) acc[k] += N[r] * base[r * cols + k];
-    detail::project(acc, dim, c.rational, out);
+    sum_rows<Cols>(N, p, P + (span - p) * cols, cols, acc, dim, c.rational, out);
   }
+}
+
+/// evaluate_rows for unordered parameters, from the span blocks: the bucket table finds each span, and
+/// a span change is a pointer. With AVX, four consecutive points a step, a point a lane, each lane with
+/// its own span; the same bits as one point at a time.
+template <int Cols, int Degree = 0>
+void evaluate_unordered(const Curve& c, std::span<const double> us, const SpanBlocks& blocks, double* out,
+                        double* scratch) noexcept {
+  const int p = Degree > 0 ? Degree : c.degree;
+  const Eigen::Index cols = Cols > 0 ? Cols : c.P.cols();
+  const auto dim = static_cast<std::size_t>(dimension(c));
+  const int rows_at = 2 * p + p * (p + 1) / 2;  // in a block: 2p knots, the reciprocals, the rows
+  double fixed[Cols > 0 ? Cols : 1];
+  double* acc = Cols > 0 ? fixed : scratch;
+  const auto one = [&](std::size_t i) {
+    double N[kMaxDegree + 1];
+    const int span = blocks.table.find(us[i]);
+    const auto s = static_cast<std::size_t>(span);
+    const double* block = blocks.block(span);
+    const double x = us[i] - blocks.origin[s];
+    if (blocks.finite[s] != 0)
+      detail::basis(block, p, p - 1, block + std::ptrdiff_t{2} * p, x, N);
+    else
+      detail::basis(block, p, p - 1, x, N);
+    sum_rows<Cols>(N, p, block + rows_at, cols, acc, static_cast<int>(dim), c.rational, out + i * dim);
+  };
+  std::size_t i = 0;
+#if defined(CIFS_CURVE_AVX)
+  if constexpr (Cols > 0 && Degree > 0) {
+    while (cpu_has_avx() && i + 4 <= us.size()) {
+      i = four_spans<Cols, Degree>(us, blocks, c.rational, out, i);
+      for (const std::size_t end = std::min(i + 4, us.size()); i < end; ++i) one(i);  // a subnormal interval
+    }
+  }
+#endif
+  for (; i < us.size(); ++i) one(i);
 }
 
 }  // namespace
@@ -339,7 +516,7 @@ Point evaluate_basis(const Curve& c, double u) {
   Point out(dimension(c));
   detail::with_cols(c.P.cols(), [&](auto cols) {  // the batch kernel on one point
     std::vector<double> scratch = detail::scratch<cols>(c.P.cols());
-    evaluate_rows<cols>(c, std::span<const double>(&u, 1), nullptr, nullptr, out.data(), scratch.data());
+    evaluate_rows<cols>(c, std::span<const double>(&u, 1), out.data(), scratch.data());
   });
   return out;
 }
@@ -353,26 +530,29 @@ Points evaluate(const Curve& c, std::span<const double> us) {
     return evaluate(c, wrapped);
   }
   Points out(static_cast<Eigen::Index>(us.size()), dimension(c));
-  // Unordered input: the bucket table once the parameters outnumber the knots (it costs O(#knots)).
+  // Unordered input: the span blocks and their bucket table once the parameters outnumber the knots
+  // (they cost O(#knots) to build) and the blocks take no more memory than the output.
   // (Grouping the parameters by span first, for the AVX lanes, was tried: the scattered writes back
-  // cost twice what the lanes save, 43.8 against 20.8 ns a point.)
-  std::optional<detail::SpanTable> table;
-  std::optional<SpanReciprocals> reciprocals;
-  if (!scan.sorted && us.size() >= 8 * c.knots.size()) {
-    table.emplace(c.knots.data(), c.degree, static_cast<int>(c.P.rows()));
-    reciprocals = span_reciprocals(c);
-  }
+  // cost twice what the lanes save, 43.8 against 20.8 ns a point. Lanes with a span each (four_spans)
+  // took their place.)
+  std::optional<SpanBlocks> blocks;
+  const std::size_t block_doubles =
+      span_block_stride(c.degree, c.P.cols()) * static_cast<std::size_t>(c.P.rows());
+  if (!scan.sorted && us.size() >= 8 * c.knots.size() &&
+      block_doubles <= us.size() * static_cast<std::size_t>(dimension(c)))
+    blocks = span_blocks(c);
   detail::with_cols(c.P.cols(), [&](auto cols) {
     std::vector<double> scratch = detail::scratch<cols>(c.P.cols());
-    const detail::SpanTable* t = table ? &*table : nullptr;
-    const SpanReciprocals* r = table ? &*reciprocals : nullptr;
     switch (c.degree) {  // the common degrees with their loops unrolled
       case 2:
-        return evaluate_rows<cols, 2>(c, us, t, r, out.data(), scratch.data());
+        if (blocks) return evaluate_unordered<cols, 2>(c, us, *blocks, out.data(), scratch.data());
+        return evaluate_rows<cols, 2>(c, us, out.data(), scratch.data());
       case 3:
-        return evaluate_rows<cols, 3>(c, us, t, r, out.data(), scratch.data());
+        if (blocks) return evaluate_unordered<cols, 3>(c, us, *blocks, out.data(), scratch.data());
+        return evaluate_rows<cols, 3>(c, us, out.data(), scratch.data());
       default:
-        return evaluate_rows<cols>(c, us, t, r, out.data(), scratch.data());
+        if (blocks) return evaluate_unordered<cols>(c, us, *blocks, out.data(), scratch.data());
+        return evaluate_rows<cols>(c, us, out.data(), scratch.data());
     }
   });
   return out;

@@ -165,8 +165,13 @@ class SpanTable {
   int find(double u) const noexcept {
     if (u >= t_[n_]) return find_span(t_, p_, n_, u);
     int k = first_[static_cast<std::size_t>((u - start_) * scale_)];
-    while (u >= t_[k + 1]) ++k;       // stops before n: u < t_n
-    while (k > p_ && u < t_[k]) --k;  // the bucket's rounding only
+    // A bucket holds one knot at most, mostly: a conditional add, no branch that random parameters
+    // mispredict. The loops run only for a bucket with more knots, or for the bucket's rounding.
+    k += static_cast<int>(u >= t_[k + 1]);
+    if (u >= t_[k + 1] || u < t_[k]) [[unlikely]] {
+      while (u >= t_[k + 1]) ++k;  // stops before n: u < t_n
+      while (k > p_ && u < t_[k]) --k;
+    }
     return k;
   }
 
@@ -433,6 +438,20 @@ inline void project(const double* row, int dim, bool rational, double* out) noex
     for (int k = 0; k < dim; ++k) out[k] = row[k] / row[dim];
   else
     for (int k = 0; k < dim; ++k) out[k] = row[k];
+}
+
+/// project for a stored column count known at compile time (Cols > 0; then dim = Cols − rational):
+/// loops of fixed length, where a run-time `dim` made the copy a call to memcpy. Cols = 0: project.
+template <int Cols>
+[[gnu::always_inline]] inline void project(const double* row, int dim, bool rational, double* out) noexcept {
+  if constexpr (Cols > 0) {
+    if (rational)
+      for (int k = 0; k < Cols - 1; ++k) out[k] = row[k] / row[Cols - 1];
+    else
+      for (int k = 0; k < Cols; ++k) out[k] = row[k];
+  } else {
+    project(row, dim, rational, out);
+  }
 }
 
 /// Homogeneous derivatives `(order+1) by (dim+1)` → Cartesian derivatives by the quotient rule
