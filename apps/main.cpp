@@ -548,11 +548,30 @@ void add_fit(CLI::App& app, Commands& c) {
   fit_cmd->add_option(
       "--measure", c.fi.measure,
       "What --tolerance bounds: points (default) or polyline (the Hausdorff distance to the polyline)");
-  fit_cmd->add_flag("--closed", c.fi.closed, "A closed (periodic) interpolating curve");
+  fit_cmd->add_flag("--closed", c.fi.closed, "A closed (periodic) interpolating (or --fractal) curve");
+  fit_cmd->add_flag(
+      "--fractal", c.fi.fractal,
+      "Fit a fractal curve: a BC-IFS of the uniform B-spline of --control-points N whose free "
+      "coefficients and control points minimise the distance to the points (-o writes a BC-IFS file)");
+  fit_cmd->add_flag(
+      "--fixed-knot-points", c.fi.fixed_knot_points,
+      "--fractal: keep the operators at the knots (only the vertices subdivision creates move)");
+  fit_cmd->add_option("--depth", c.fi.depth,
+                      "--fractal: data parameters at multiples of 2^-D of a segment (default 30)");
+  fit_cmd->add_option("--iterations", c.fi.iterations,
+                      "--fractal: Levenberg–Marquardt iterations (default 100)");
+  fit_cmd->add_option(
+      "--min-holder", c.fi.min_holder,
+      "--fractal: keep the curve provably Hölder of at least this exponent in (0, 1] (default 0.25)");
   fit_cmd->add_option("-o,--output", c.fi.output,
                       "Shape file to write (.json or .obj); default: JSON on stdout");
   add_quiet(fit_cmd, c.quiet);
-  fit_cmd->callback([&] {
+  fit_cmd->callback([&c, fit_cmd] {
+    if (!c.fi.fractal)
+      for (const char* name : {"--fixed-knot-points", "--depth", "--iterations", "--min-holder"})
+        if (fit_cmd->count(name) > 0) throw cifs::InvalidInput(std::string(name) + " is for --fractal fits");
+    if (c.fi.fractal && fit_cmd->count("--measure") > 0)
+      throw cifs::InvalidInput("--measure is for --tolerance fits, not --fractal");
     const cifs::render::Stage stage("fit", c.quiet);
     c.result = cli::fit(c.fi);
   });

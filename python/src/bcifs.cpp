@@ -14,9 +14,11 @@
 #include "cifs/ifs/bcifs.hpp"
 #include "cifs/ifs/bcifs_curve.hpp"
 #include "cifs/ifs/bcifs_surface.hpp"
+#include "cifs/ifs/fractal_fit.hpp"
 #include "cifs/ifs/junction.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/io/json.hpp"
+#include "cifs/nurbs/fit.hpp"
 
 namespace ifs = cifs::ifs;
 
@@ -434,6 +436,87 @@ cifs.InvalidInput for nets that do not fit the entries, a negative depth, more t
 or a piece in a cell that is not an edge.)doc");
 }
 
+/// The fractal inverse problem (docs/fitting.md, "Fractal curves").
+void bind_fractal_fit(py::module_& m) {
+  py::class_<ifs::VertexHolder>(m, "VertexHolder",
+                                "Pointwise Hölder exponent at the points of one vertex class.")
+      .def_readonly("cell", &ifs::VertexHolder::cell, "The vertex cell's name.")
+      .def_readonly("exponent", &ifs::VertexHolder::exponent,
+                    "−log2 |λ|/k of its cycle product, capped at 1.")
+      .def("__repr__", [](const ifs::VertexHolder& h) {
+        return "VertexHolder(" + h.cell + ", " + py::repr(py::float_(h.exponent)).cast<std::string>() + ")";
+      });
+  py::class_<ifs::FractalFit>(m, "FractalFit",
+                              "Result of fit_fractal: the fitted BC-IFS, its nets and how well it fits.")
+      .def_readonly("system", &ifs::FractalFit::system, "The fitted cifs.ifs.Bcifs (free coefficients set).")
+      .def_readonly("nets", &ifs::FractalFit::nets, "Its control nets, one float64 array per segment.")
+      .def_property_readonly(
+          "file",
+          [](const ifs::FractalFit& f) {
+            return io::BcifsFile{f.system, f.nets};
+          },
+          "System and nets as a cifs.io.BcifsFile: cifs.io.write('fit.json', fit.file) writes a BC-IFS file.")
+      .def_readonly("control_points", &ifs::FractalFit::control_points,
+                    "The control points the nets are made of.")
+      .def_readonly("smooth", &ifs::FractalFit::smooth, "The least-squares uniform B-spline it started from.")
+      .def_readonly("parameters", &ifs::FractalFit::parameters, "The data parameters in [0, 1].")
+      .def_readonly("coefficients", &ifs::FractalFit::coefficients, "Every free coefficient and its value.")
+      .def_readonly("rms", &ifs::FractalFit::rms, "Root mean square of |A(u_k) − Q_k| over the data.")
+      .def_readonly("max_distance", &ifs::FractalFit::max_distance, "Largest |A(u_k) − Q_k|.")
+      .def_readonly("smooth_rms", &ifs::FractalFit::smooth_rms, "The same for the smooth start.")
+      .def_readonly("smooth_max_distance", &ifs::FractalFit::smooth_max_distance,
+                    "The same for the smooth start.")
+      .def_readonly("iterations", &ifs::FractalFit::iterations, "Levenberg–Marquardt iterations run.")
+      .def_readonly("contraction", &ifs::FractalFit::contraction,
+                    "The fitted system's contractivity witness.")
+      .def_readonly("holder_bound", &ifs::FractalFit::holder_bound,
+                    "Proven lower bound on the fitted curve's Hölder exponent (−log2(δ_8)/8).")
+      .def_readonly("holder", &ifs::FractalFit::holder,
+                    "Hölder exponent per vertex class (list of VertexHolder).")
+      .def_readonly("min_holder", &ifs::FractalFit::min_holder, "The smallest of them.")
+      .def_readonly("dimension", &ifs::FractalFit::dimension, "Box-counting dimension (NaN: not measured).")
+      .def_readonly("dimension_uncertainty", &ifs::FractalFit::dimension_uncertainty, "Its uncertainty.")
+      .def_readonly("dimension_note", &ifs::FractalFit::dimension_note, "Why no dimension, when none.")
+      .def("__repr__", [](const ifs::FractalFit& f) {
+        return "FractalFit(rms=" + py::repr(py::float_(f.rms)).cast<std::string>() +
+               ", smooth_rms=" + py::repr(py::float_(f.smooth_rms)).cast<std::string>() +
+               ", coefficients=" + std::to_string(f.coefficients.size()) + ")";
+      });
+  m.def(
+      "fit_fractal",
+      [](const py::object& points, Eigen::Index control_points, int degree,
+         const std::string& parametrization, bool closed, bool free_vertices, int depth, int max_iterations,
+         double min_holder, std::size_t dimension_points) {
+        ifs::FractalFitOptions o;
+        o.degree = degree;
+        o.control_points = control_points;
+        o.parametrization = nurbs::parametrization_named(parametrization);
+        o.closed = closed;
+        o.free_vertices = free_vertices;
+        o.depth = depth;
+        o.max_iterations = max_iterations;
+        o.min_holder = min_holder;
+        o.dimension_points = dimension_points;
+        const Points P = points_from(points, "points");
+        const py::gil_scoped_release release;
+        return ifs::fit_fractal(P, o);
+      },
+      py::arg("points"), py::kw_only(), py::arg("control_points"), py::arg("degree") = 3,
+      py::arg("parametrization") = "chord_length", py::arg("closed").noconvert() = false,
+      py::arg("free_vertices").noconvert() = true, py::arg("depth") = ifs::FractalFitOptions{}.depth,
+      py::arg("max_iterations") = ifs::FractalFitOptions{}.max_iterations,
+      py::arg("min_holder") = ifs::FractalFitOptions{}.min_holder,
+      py::arg("dimension_points") = ifs::FractalFitOptions{}.dimension_points,
+      R"doc(Fits a fractal curve to points (n, dim): the BC-IFS of the uniform B-spline of `control_points`
+control points whose free coefficients and control points minimise Σ|A(u_k) − Q_k|² (Guérin & Tosan 2005).
+
+Starts from the least-squares B-spline; Levenberg–Marquardt with exact derivatives, the control points
+projected out. free_vertices: the knot points' operators are free too. depth: data parameters rounded to
+2^-depth of a segment. min_holder: every step keeps the curve provably Hölder of at least this exponent
+(FractalFit.holder_bound; default 0.25, or the start's when lower). dimension_points: box-counting sample (0: none). Returns a FractalFit; write it with
+cifs.io.write(path, fit.file). Raises cifs.InvalidInput for bad input.)doc");
+}
+
 /// Uniform curves, products and junctions.
 void bind_bcifs_joining(py::module_& m) {
   m.def(
@@ -498,6 +581,7 @@ void bind_bcifs(py::module_& m) {
   bind_bcifs_builders(m);
   bind_bcifs_space(m);
   bind_bcifs_perturbation(m);
+  bind_fractal_fit(m);
   bind_bcifs_joining(m);
 }
 

@@ -84,3 +84,51 @@ TEST_CASE("cifs fit refuses bad input in one line, writing nothing", "[cli][fit]
   check_error(cifs_cli("fit " + three + " --degree 0"), "degree");
   CHECK(!std::filesystem::exists(out));
 }
+
+TEST_CASE("cifs fit --fractal writes a BC-IFS file whose experiment renders and measures", "[cli][fit]") {
+  // A Weierstrass-like graph (a = 0.6, b = 2): rough at every scale the data resolve.
+  std::string text;
+  for (int i = 0; i <= 256; ++i) {
+    const double x = i / 256.0;
+    double y = 0, a = 1;
+    for (int k = 0; k < 10; ++k, a *= 0.6) y += a * std::cos(std::ldexp(M_PI, k) * x);
+    text += std::to_string(x) + "," + std::to_string(0.3 * y) + "\n";
+  }
+  const std::string input = file("rough.csv", text);
+  const std::string out = (scratch() / "rough_fit.json").string();
+  const Run r =
+      cifs_cli("fit " + input + " --control-points 7 --fractal --parametrization uniform -o " + out);
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const auto summary = nlohmann::json::parse(r.out);
+  CHECK(summary["rms"].get<double>() < 0.8 * summary["smooth_rms"].get<double>());
+  CHECK(summary["holder_bound"].get<double>() >= 0.25);
+  CHECK(summary["free_coefficients"].get<int>() > 0);
+  // The file is a BC-IFS file: an experiment draws it and measures its dimension.
+  const std::string experiment =
+      file("rough_fit_experiment.json", R"({"automaton": ")" + out + R"(", "evaluation": {"depth": 8}})");
+  const Run dimension = cifs_cli("dimension " + experiment + " --max-points 65536");
+  INFO(dimension.err);
+  CHECK(dimension.status == 0);
+  // Without -o: the BC-IFS file on stdout.
+  const Run printed = cifs_cli("fit " + input + " --control-points 7 --fractal --iterations 3");
+  REQUIRE(printed.status == 0);
+  CHECK(nlohmann::json::parse(printed.out).contains("bcifs"));
+}
+
+TEST_CASE("cifs fit --fractal refuses what it does not take", "[cli][fit]") {
+  const std::string out = (scratch() / "never_fractal.json").string();
+  const std::string points = file("fractal_points.csv", "0 0\n1 1\n2 0\n3 1\n4 0\n5 1\n6 0\n7 2\n");
+  check_error(cifs_cli("fit " + points + " --fractal -o " + out), "--fractal needs --control-points N");
+  check_error(cifs_cli("fit " + points + " --fractal --tolerance 0.1 -o " + out), "not --tolerance");
+  check_error(cifs_cli("fit " + points + " --control-points 5 --depth 12 -o " + out),
+              "--depth is for --fractal");
+  check_error(cifs_cli("fit " + points + " --fractal --control-points 5 --measure polyline -o " + out),
+              "--measure is for --tolerance");
+  check_error(
+      cifs_cli("fit " + points + " --fractal --control-points 5 -o " + (scratch() / "f.obj").string()),
+      ".json");
+  check_error(cifs_cli("fit " + points + " --fractal --control-points 9 -o " + out),
+              "control_points 9 is outside 4 … 8");
+  CHECK(!std::filesystem::exists(out));
+}

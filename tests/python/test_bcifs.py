@@ -389,3 +389,36 @@ class NurbsSystemsTest(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class FractalFitTest(ScratchTestCase):
+    """cifs.ifs.fit_fractal: the attractor of a perturbed curve system is recovered from its own points
+    (made by edge_pieces), and the fit's file reads back to the same attractor."""
+
+    def test_recovers_a_perturbed_system_and_writes_it(self):
+        polygon = np.array([[i + 0.3 * np.sin(3 * i), np.cos(1.7 * i)] for i in range(7)], dtype=float)
+        curve = cifs.nurbs.uniform_bspline(polygon, 3, False)
+        truth = ifs.perturb(ifs.curve_bcifs(curve, free_vertices=True), amplitude=0.15, seed=5).system
+        nets = [polygon[i:i + 4] for i in range(4)]
+        pieces = ifs.edge_pieces(truth, nets, 5)
+        data = np.vstack([pieces.start, pieces.end[-1:]])
+        fit = ifs.fit_fractal(data, control_points=7, parametrization="uniform", dimension_points=0)
+        size = np.ptp(data, axis=0).max()
+        self.assertGreater(fit.smooth_rms, 1e-4 * size)
+        self.assertLess(fit.rms, 1e-11 * size)
+        self.assertGreaterEqual(fit.holder_bound, 0.25)
+        self.assertEqual(len(fit.coefficients), len(ifs.free_names(fit.system, ifs.admissible_space(fit.system))))
+        path = self.scratch / "fit.json"
+        cifs.io.write(path, fit.file)
+        back = cifs.io.read_bcifs(path)
+        again = ifs.edge_pieces(back.system, back.nets, 5)
+        assert_close(self, np.vstack([again.start, again.end[-1:]]), data, rel=1e-10)
+
+    def test_refuses_bad_input(self):
+        points = np.array([[i, (-1) ** i] for i in range(20)], dtype=float)
+        with self.assertRaisesRegex(cifs.InvalidInput, "control_points 3 is outside 4"):
+            ifs.fit_fractal(points, control_points=3)
+        with self.assertRaisesRegex(cifs.InvalidInput, "depth 0"):
+            ifs.fit_fractal(points, control_points=5, depth=0)
+        with self.assertRaisesRegex(cifs.InvalidInput, "min_holder 0 is not in"):
+            ifs.fit_fractal(points, control_points=5, min_holder=0)
