@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cerrno>
 #include <charconv>
@@ -26,6 +27,7 @@
 #include "cifs/ifs/dimension.hpp"
 #include "cifs/ifs/mesh.hpp"
 #include "cifs/ifs/sample.hpp"
+#include "cifs/io/bcifs_file.hpp"
 #include "cifs/io/html.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/io/json.hpp"
@@ -328,10 +330,35 @@ std::string polygon_info(const std::filesystem::path& path) {
 
 }  // namespace
 
+/// A BC-IFS file: its cells by dimension, transitions (free ones), boundaries, constraints and nets.
+std::string bcifs_info(const std::filesystem::path& path) {
+  const io::BcifsFile file = io::read_bcifs(path);
+  const auto& g = file.system.automaton.graph;
+  std::array<int, 3> cells{};
+  for (const int d : file.system.dimension)
+    ++cells.at(static_cast<std::size_t>(d));  // every cell, boundaries too
+  return json{{"type", "bcifs"},
+              {"cells", {{"vertices", cells[0]}, {"edges", cells[1]}, {"faces", cells[2]}}},
+              {"transitions", num_edges(g)},
+              {"free_transitions", file.system.free.size()},
+              {"boundaries", file.system.boundaries.size()},
+              {"constraints", file.system.constraints.size()},
+              {"initial", file.system.automaton.initial.size()},
+              {"dimension", file.nets.empty() ? 0 : file.nets.front().cols()}}
+             .dump(1) +
+         "\n";
+}
+
 std::string info(const std::filesystem::path& path, const ShapeSelection& select,
                  const io::MeshReadOptions& mesh) {
   const io::Content content = io::detect(path);
   if (content == io::Content::mesh) return mesh_info(path, mesh);
+  if (content == io::Content::bcifs) {
+    if (select.index || select.ignore_trim)
+      throw InvalidInput(path.string() +
+                         ": --index and --ignore-trim apply to shape files, not BC-IFS files");
+    return bcifs_info(path);
+  }
   if (content == io::Content::polygon) {
     if (select.index || select.ignore_trim)
       throw InvalidInput(path.string() + ": --index and --ignore-trim apply to shape files, not polygons");
@@ -757,9 +784,13 @@ namespace {}  // namespace
 
 namespace {
 
-/// The input as an experiment: a shape file (io::detect) is measured as an experiment of its shape.
+/// The input as an experiment: a shape file (io::detect) is measured as an experiment of its shape, a
+/// BC-IFS file as that of its automaton.
 io::Experiment dimension_input(const DimensionOptions& o) {
-  const bool shape = io::detect(o.input) != io::Content::experiment;
+  const io::Content content = io::detect(o.input);
+  if (content == io::Content::bcifs && !o.select.index && !o.select.ignore_trim)
+    return io::read_as_experiment(o.input);
+  const bool shape = content != io::Content::experiment;
   if (!shape && (o.select.index || o.select.ignore_trim))
     throw InvalidInput(o.input.string() +
                        ": --index and --ignore-trim apply to shape files, not experiments");

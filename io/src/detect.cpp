@@ -38,6 +38,7 @@ Content detect(const std::filesystem::path& path) {
   const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
   if (!j.is_object()) return Content::shape;  // the shape reader names what is wrong
   if (j.contains("polygon")) return Content::polygon;
+  if (j.contains("bcifs")) return Content::bcifs;
   if (j.contains("curve") || j.contains("surface") || (j.size() == 1 && j.contains("shape")))
     return Content::shape;
   return Content::experiment;

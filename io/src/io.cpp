@@ -457,10 +457,14 @@ Experiment read_as_experiment(const std::filesystem::path& path) {
         .limit = false};
   } else if (content == Content::shape) {
     e.shape = read_shape(path);
+  } else if (content == Content::bcifs) {
+    (void)read_bcifs(path);  // refused here, as every input before the first run
+    e.automaton = std::filesystem::absolute(path);
   } else {
-    throw InvalidInput(path.string() + ": " + std::string(content_name(content)) +
-                       ", not a shape, mesh or experiment; an experiment file renders it (\"polygon\": \"" +
-                       path.filename().string() + "\", docs/experiments.md)");
+    throw InvalidInput(
+        path.string() + ": " + std::string(content_name(content)) +
+        ", not a shape, mesh, BC-IFS or experiment file; an experiment file renders it (\"polygon\": \"" +
+        path.filename().string() + "\", docs/experiments.md)");
   }
   e.render.control_net = true;
   e.outputs.exr = e.name + ".exr";

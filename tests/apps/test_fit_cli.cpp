@@ -104,12 +104,23 @@ TEST_CASE("cifs fit --fractal writes a BC-IFS file whose experiment renders and 
   CHECK(summary["rms"].get<double>() < 0.8 * summary["smooth_rms"].get<double>());
   CHECK(summary["holder_bound"].get<double>() >= 0.25);
   CHECK(summary["free_coefficients"].get<int>() > 0);
-  // The file is a BC-IFS file: an experiment draws it and measures its dimension.
+  // The file is a BC-IFS file: cifs info describes it, render draws it, dimension measures it, directly
+  // and as an experiment's automaton.
+  const Run info = cifs_cli("info " + out);
+  REQUIRE(info.status == 0);
+  CHECK(nlohmann::json::parse(info.out)["type"] == "bcifs");
+  const std::string image = (scratch() / "rough_fit.exr").string();
+  const Run drawn = cifs_cli("render " + out + " -o " + image + " --quiet");
+  INFO(drawn.err);
+  CHECK(drawn.status == 0);
+  CHECK(std::filesystem::exists(image));
   const std::string experiment =
       file("rough_fit_experiment.json", R"({"automaton": ")" + out + R"(", "evaluation": {"depth": 8}})");
-  const Run dimension = cifs_cli("dimension " + experiment + " --max-points 65536");
-  INFO(dimension.err);
-  CHECK(dimension.status == 0);
+  for (const std::string& measured : {out, experiment}) {
+    const Run dimension = cifs_cli("dimension " + measured + " --max-points 65536");
+    INFO(dimension.err);
+    CHECK(dimension.status == 0);
+  }
   // Without -o: the BC-IFS file on stdout.
   const Run printed = cifs_cli("fit " + input + " --control-points 7 --fractal --iterations 3");
   REQUIRE(printed.status == 0);

@@ -112,7 +112,8 @@ BcifsFile read_bcifs(const std::filesystem::path& path);
 Experiment read_experiment(const std::filesystem::path& path);
 /// Any file `cifs render` takes as an experiment: an experiment file as read_experiment; a shape file (curve,
 /// surface) as the experiment of its shape; a polygon mesh as the experiment of its Catmull–Clark surface
-/// (Loop for a mesh of triangles) at 2 levels — each with the default evaluation, camera and style, the
+/// (Loop for a mesh of triangles) at 2 levels; a BC-IFS file as the experiment of its automaton — each with
+/// the default evaluation, camera and style, the
 /// control net drawn, and the outputs NAME.exr and NAME.png (NAME: the file's stem). InvalidInput for other
 /// contents.
 Experiment read_as_experiment(const std::filesystem::path& path);
