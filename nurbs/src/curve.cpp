@@ -5,13 +5,9 @@
 #include <cmath>
 #include <optional>
 
+#include "cifs/cpu.hpp"
 #include "cifs/errors.hpp"
 #include "detail.hpp"
-
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#include <immintrin.h>
-#define CIFS_CURVE_AVX 1
-#endif
 
 namespace cifs::nurbs {
 
@@ -241,7 +237,7 @@ SpanBlocks span_blocks(const Curve& c) {
   return b;
 }
 
-#if defined(CIFS_CURVE_AVX)
+#if defined(CIFS_X86_AVX)
 /// Four rows of D coordinates, coordinate k of row l in lane l of a[k], to D·4 consecutive doubles:
 /// the transposition in registers.
 template <int D>
@@ -394,10 +390,6 @@ __attribute__((target("avx"))) std::size_t four_spans(std::span<const double> us
   return i;
 }
 
-bool cpu_has_avx() noexcept {
-  static const bool has = __builtin_cpu_supports("avx");
-  return has;
-}
 #endif
 
 /// Σ_r N[r] · base[r·cols + k] for the p + 1 rows at `base`, in r order, projected into `out`.
@@ -429,7 +421,7 @@ void evaluate_rows(const Curve& c, std::span<const double> us, double* out, doub
   int span = -1;
   detail::SpanKnots knots;
   bool finite = true;  // the span's reciprocals (none of its knot intervals subnormal)
-#if defined(CIFS_CURVE_AVX)
+#if defined(CIFS_X86_AVX)
   const bool fast = cpu_has_avx();
 #endif
   for (std::size_t i = 0; i < us.size(); ++i, out += dim) {
@@ -441,7 +433,7 @@ void evaluate_rows(const Curve& c, std::span<const double> us, double* out, doub
       detail::blossom_reciprocals(knots.t.data(), p, knots.span, inv);
       finite = std::all_of(inv, inv + p * (p + 1) / 2, [](double x) { return std::isfinite(x); });
     }
-#if defined(CIFS_CURVE_AVX)
+#if defined(CIFS_X86_AVX)
     // The next three points in this span too (sorted input, mostly): a point an AVX lane.
     if constexpr (Cols > 0 && Degree > 0) {
       const auto inside = [&](std::size_t k) { return us[k] >= t[span] && us[k] < t[span + 1]; };
@@ -488,7 +480,7 @@ void evaluate_unordered(const Curve& c, std::span<const double> us, const SpanBl
     sum_rows<Cols>(N, p, block + rows_at, cols, acc, static_cast<int>(dim), c.rational, out + i * dim);
   };
   std::size_t i = 0;
-#if defined(CIFS_CURVE_AVX)
+#if defined(CIFS_X86_AVX)
   if constexpr (Cols > 0 && Degree > 0) {
     while (cpu_has_avx() && i + 4 <= us.size()) {
       i = four_spans<Cols, Degree>(us, blocks, c.rational, out, i);

@@ -38,8 +38,8 @@ std::vector<std::pair<const char*, cifs::RowCombination>> kernels(int terms) {
     if (T != terms) return;
     out.emplace_back("combine_rows<T>", cifs::detail::combine_rows<T>);
     out.emplace_back("combine_rows_stream<T>", cifs::detail::combine_rows_stream<T>);
-#if defined(CIFS_ROW_COMBINATION_AVX)
-    if (cifs::detail::cpu_has_avx())
+#if defined(CIFS_X86_AVX)
+    if (cifs::cpu_has_avx())
       out.emplace_back("combine_rows_stream_avx<T>", cifs::detail::combine_rows_stream_avx<T>);
 #endif
   };

@@ -13,10 +13,7 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#include <immintrin.h>
-#define CIFS_ROW_COMBINATION_AVX 1
-#endif
+#include "cifs/cpu.hpp"
 
 namespace cifs {
 
@@ -85,7 +82,7 @@ void combine_rows_stream(const double* f, int terms, const double* const* rows, 
 #endif
 }
 
-#if defined(CIFS_ROW_COMBINATION_AVX)
+#if defined(CIFS_X86_AVX)
 /// combine_rows_stream four doubles a step (AVX, chosen at run time where the CPU has it; the build
 /// targets baseline x86-64). Multiplies and adds, never fused, in combine_rows' order: the same bits.
 template <int Terms>
@@ -113,10 +110,6 @@ __attribute__((target("avx"))) void combine_rows_stream_avx(const double* f, int
   (void)terms;
 }
 
-inline bool cpu_has_avx() noexcept {
-  static const bool has = __builtin_cpu_supports("avx");
-  return has;
-}
 #endif
 
 }  // namespace detail
@@ -124,8 +117,8 @@ inline bool cpu_has_avx() noexcept {
 /// The combination for `terms` rows (2 … 6 unrolled), with streaming stores when `stream` (the caller
 /// then calls stream_fence after its last row).
 inline RowCombination row_combination(int terms, bool stream) noexcept {
-#if defined(CIFS_ROW_COMBINATION_AVX)
-  if (stream && detail::cpu_has_avx()) {
+#if defined(CIFS_X86_AVX)
+  if (stream && cpu_has_avx()) {
     switch (terms) {
       case 2:
         return detail::combine_rows_stream_avx<2>;
