@@ -56,6 +56,7 @@ std::string fit_fractal(const FitOptions& o) {
       {"closed", o.closed},
       {"free_coefficients", result.coefficients.size()},
       {"iterations", result.iterations},
+      {"reparametrizations", result.reparametrizations},
       {"rms", result.rms},
       {"max_distance", result.max_distance},
       {"smooth_rms", result.smooth_rms},

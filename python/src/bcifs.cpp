@@ -466,7 +466,9 @@ void bind_fractal_fit(py::module_& m) {
       .def_readonly("smooth_rms", &ifs::FractalFit::smooth_rms, "The same for the smooth start.")
       .def_readonly("smooth_max_distance", &ifs::FractalFit::smooth_max_distance,
                     "The same for the smooth start.")
-      .def_readonly("iterations", &ifs::FractalFit::iterations, "Levenberg–Marquardt iterations run.")
+      .def_readonly("iterations", &ifs::FractalFit::iterations,
+                    "Levenberg–Marquardt iterations run, all rounds.")
+      .def_readonly("reparametrizations", &ifs::FractalFit::reparametrizations, "Parameter corrections kept.")
       .def_readonly("contraction", &ifs::FractalFit::contraction,
                     "The fitted system's contractivity witness.")
       .def_readonly("holder_bound", &ifs::FractalFit::holder_bound,
@@ -486,7 +488,7 @@ void bind_fractal_fit(py::module_& m) {
       "fit_fractal",
       [](const py::object& points, Eigen::Index control_points, int degree,
          const std::string& parametrization, bool closed, bool free_vertices, int depth, int max_iterations,
-         double min_holder, std::size_t dimension_points) {
+         double min_holder, int reparametrizations, std::size_t dimension_points) {
         ifs::FractalFitOptions o;
         o.degree = degree;
         o.control_points = control_points;
@@ -496,6 +498,7 @@ void bind_fractal_fit(py::module_& m) {
         o.depth = depth;
         o.max_iterations = max_iterations;
         o.min_holder = min_holder;
+        o.reparametrizations = reparametrizations;
         o.dimension_points = dimension_points;
         const Points P = points_from(points, "points");
         const py::gil_scoped_release release;
@@ -506,6 +509,7 @@ void bind_fractal_fit(py::module_& m) {
       py::arg("free_vertices").noconvert() = true, py::arg("depth") = ifs::FractalFitOptions{}.depth,
       py::arg("max_iterations") = ifs::FractalFitOptions{}.max_iterations,
       py::arg("min_holder") = ifs::FractalFitOptions{}.min_holder,
+      py::arg("reparametrizations") = ifs::FractalFitOptions{}.reparametrizations,
       py::arg("dimension_points") = ifs::FractalFitOptions{}.dimension_points,
       R"doc(Fits a fractal curve to points (n, dim): the BC-IFS of the uniform B-spline of `control_points`
 control points whose free coefficients and control points minimise Σ|A(u_k) − Q_k|² (Guérin & Tosan 2005).
@@ -513,7 +517,9 @@ control points whose free coefficients and control points minimise Σ|A(u_k) −
 Starts from the least-squares B-spline; Levenberg–Marquardt with exact derivatives, the control points
 projected out. free_vertices: the knot points' operators are free too. depth: data parameters rounded to
 2^-depth of a segment. min_holder: every step keeps the curve provably Hölder of at least this exponent
-(FractalFit.holder_bound; default 0.25, or the start's when lower). dimension_points: box-counting sample (0: none). Returns a FractalFit; write it with
+(FractalFit.holder_bound; default 0.25, or the start's when lower). reparametrizations: rounds of
+parameter correction (each inner point moved to the closest attractor point between its neighbours').
+dimension_points: box-counting sample (0: none). Returns a FractalFit; write it with
 cifs.io.write(path, fit.file). Raises cifs.InvalidInput for bad input.)doc");
 }
 

@@ -42,6 +42,10 @@ struct FractalFitOptions {
   /// the data's parameters. The uniform B-spline's own bound (holder_bound at the start) is 1, 0.75,
   /// 0.61, 0.51, 0.43 for degrees 1 … 5; below min_holder, the start's bound is the floor instead.
   double min_holder = 0.25;
+  /// Rounds of parameter correction: each inner data point moves to the closest attractor point among
+  /// the dyadic parameters between its neighbours' (a grid 8× finer than the data), then the descent runs
+  /// again; a round that does not lower the sum of squares ends them. ≥ 0.
+  int reparametrizations = 3;
   /// Stop when an accepted step lowers the sum of squares by less than this fraction of it.
   double relative_decrease = 1e-10;
   /// Box-counting sample of the fitted attractor (points; 0: no dimension measured).
@@ -65,7 +69,7 @@ struct FractalFit {
   Points control_points;
   /// The least-squares uniform B-spline on the same knots and parameters: the starting point.
   nurbs::Curve smooth;
-  /// Data parameters ū_k in [0, 1] (as nurbs::fit_parameters).
+  /// Data parameters ū_k in [0, 1]: nurbs::fit_parameters', then as the corrections moved them.
   std::vector<double> parameters;
   /// Every free coefficient and its fitted value, in the order of the admissible space.
   std::vector<std::pair<std::string, double>> coefficients;
@@ -73,7 +77,8 @@ struct FractalFit {
   /// largest. The same for the smooth fit.
   double rms = 0, max_distance = 0;
   double smooth_rms = 0, smooth_max_distance = 0;
-  int iterations = 0;
+  int iterations = 0;          // Levenberg–Marquardt iterations, all rounds
+  int reparametrizations = 0;  // parameter corrections kept
   Contraction contraction;
   /// Proven lower bound on the Hölder exponent of the fitted curve, at every point: −log2(δ_8)/8, δ_8 the
   /// largest δ of the products along the paths of 8 levels.
