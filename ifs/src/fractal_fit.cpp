@@ -445,12 +445,17 @@ FractalFit fit_fractal(const Points& points, const FractalFitOptions& o) {
   const AdmissibleSpace space = admissible_space(system);
   const Model m = make_model(shape, knots, system, space);
   const nurbs::Domain dom = nurbs::domain(shape);
-  std::vector<Address> at;
+  // The addresses of parameters in [0, 1] of the domain.
+  const auto addresses = [&](std::span<const double> us) {
+    std::vector<Address> out;
+    out.reserve(us.size());
+    for (const double u : us)
+      out.push_back(address_of(dom.start + u * (dom.end - dom.start), knots, o.depth, o.closed));
+    return out;
+  };
+  std::vector<Address> at = addresses(fit.parameters);
   std::vector<int> per_segment(knots.intervals.size(), 0);
-  for (const double u : fit.parameters) {
-    at.push_back(address_of(dom.start + u * (dom.end - dom.start), knots, o.depth, o.closed));
-    ++per_segment[at.back().initial];
-  }
+  for (const Address& a : at) ++per_segment[a.initial];
   for (std::size_t s = 0; s < per_segment.size(); ++s)
     if (per_segment[s] == 0)
       throw InvalidInput("fractal fit: no data point falls in segment " + std::to_string(s) + " of " +
@@ -514,12 +519,11 @@ FractalFit fit_fractal(const Points& points, const FractalFitOptions& o) {
   const Index grid = segments << levels;
   for (int round = 0; round < o.reparametrizations && current->sum_squares > floor && data.rows() > 2;
        ++round) {
-    std::vector<Address> at_grid;
+    std::vector<double> grid_parameters(static_cast<std::size_t>(grid) + 1);
     for (Index g = 0; g <= grid; ++g)
-      at_grid.push_back(
-          address_of(dom.start + static_cast<double>(g) / static_cast<double>(grid) * (dom.end - dom.start),
-                     knots, o.depth, o.closed));
-    const Points on_grid = attractor_points(m, current->system, current->functionals, current->P, at_grid);
+      grid_parameters[static_cast<std::size_t>(g)] = static_cast<double>(g) / static_cast<double>(grid);
+    const Points on_grid =
+        attractor_points(m, current->system, current->functionals, current->P, addresses(grid_parameters));
     std::vector<double> moved = fit.parameters;
     for (Index k = 1; k + 1 < data.rows(); ++k) {
       const auto ks = static_cast<std::size_t>(k);
@@ -534,9 +538,7 @@ FractalFit fit_fractal(const Points& points, const FractalFitOptions& o) {
         }
       }
     }
-    std::vector<Address> at_moved;
-    for (const double u : moved)
-      at_moved.push_back(address_of(dom.start + u * (dom.end - dom.start), knots, o.depth, o.closed));
+    std::vector<Address> at_moved = addresses(moved);
     std::optional<Evaluation> next = evaluate_model(m, c, at_moved, data);
     if (!next || !(next->sum_squares < current->sum_squares))
       break;  // a segment left without data, or no gain
@@ -595,6 +597,7 @@ CurvePointDerivatives curve_point_derivatives(const nurbs::Curve& shape, const B
   const EdgeFunctionals functionals = edge_functionals(m, current);
   const Points P = nurbs::cartesian_points(shape);
   std::vector<Address> at;
+  at.reserve(parameters.size());
   for (const double t : parameters)
     at.push_back(address_of(nurbs::domain_parameter(shape, t), knots, depth, shape.closed));
   CurvePointDerivatives out;
