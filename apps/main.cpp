@@ -18,6 +18,9 @@
 #include "cifs/render/progress.hpp"
 #include "cifs/suggest.hpp"
 #include "cifs/view/server.hpp"
+#ifdef CIFS_HAVE_OCCT
+#include "cifs/occt/occt.hpp"
+#endif
 #include "commands.hpp"
 #include "construct_command.hpp"
 #include "fit_command.hpp"
@@ -98,6 +101,7 @@ struct Commands {
   bool quiet = false;   // commands without a bar of their own show a Stage
   cli::EvalOptions ev;
   cli::InsertOptions in;
+  cli::ConvertOptions cv;
   std::filesystem::path info_shape;
   cli::ShapeSelection info_select;
   bool info_strict = false;
@@ -154,6 +158,22 @@ void add_insert(CLI::App& app, Commands& c) {
 void add_strict(CLI::App* command, bool& strict) {
   command->add_flag("--strict", strict,
                     "An OBJ mesh tag cifs does not read (t vertexedit, ...) is an error, not a warning");
+}
+
+void add_convert(CLI::App& app, Commands& c) {
+  auto* cmd = app.add_subcommand(
+      "convert", "Write the curves and surfaces of a file in another format (by extension: .json, .obj, .step, "
+                 ".stp, .igs, .iges)");
+  cmd->add_option("input", c.cv.input, "Shape file (.json, .obj, .step, .stp, .igs or .iges)")->required();
+  cmd->add_option("output", c.cv.output, "Output file; STEP and IGES hold every shape, others one (--index)")
+      ->required()
+      ->check(output_name);
+  add_shape_selection(cmd, c.cv.select);
+  add_quiet(cmd, c.quiet);
+  cmd->callback([&] {
+    const cifs::render::Stage stage("convert", c.quiet);
+    c.result = cli::convert(c.cv);
+  });
 }
 
 void add_info(CLI::App& app, Commands& c) {
@@ -596,6 +616,7 @@ int run(int argc, char** argv, std::string& result) {
   add_eval(app, c);
   add_insert(app, c);
   add_info(app, c);
+  add_convert(app, c);
   add_automaton(app, c);
   add_attractor(app, c);
   add_check(app, c);
@@ -673,6 +694,9 @@ int main(int argc, char** argv) {
   int status = 0;
   cifs::cli::World world;
   try {
+#ifdef CIFS_HAVE_OCCT
+    cifs::occt::enable_cad_formats();  // .step, .stp, .igs, .iges through OpenCASCADE
+#endif
     world = cifs::cli::start_world(argc, argv);
     cifs::cli::world() = world;
     // Under mpirun every process runs the command: only render divides its work and writes once.
