@@ -374,7 +374,7 @@ std::string encode(const BcifsFile& file, std::string_view format) {
 }
 
 void write(const std::filesystem::path& path, const Shape& shape) {
-  if (cad_format(path)) cad_codec(path.string());  // "built without OpenCASCADE" before any file is made
+  if (cad_format(path)) return write(path, std::span<const Shape>(&shape, 1));  // messages name the path
   write_as(path, shape, Content::shape);
 }
 void write(const std::filesystem::path& path, std::span<const Shape> shapes) {
@@ -388,7 +388,11 @@ void write(const std::filesystem::path& path, std::span<const Shape> shapes) {
   const CadCodec& codec = cad_codec(path.string());
   format_of(path, Content::shape);  // the extensions written (.step, .stp, .iges, .igs)
   AtomicFile file(path);
-  file.write(codec.write(shapes, *cad));
+  try {
+    file.write(codec.write(shapes, *cad));
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(path.string() + ": " + e.what());
+  }
   file.commit();
 }
 void write(const std::filesystem::path& path, const Polygon& polygon) {

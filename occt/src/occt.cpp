@@ -104,7 +104,6 @@ void check_dimension(int dim, std::string_view what) {
 /// non-periodic unclamped B-spline of the same points.
 Handle(Geom_BSplineCurve) to_occt(const nurbs::Curve& c) {
   const int dim = nurbs::dimension(c);
-  check_dimension(dim, "a curve");
   const auto n = static_cast<int>(c.P.rows());
   TColgp_Array1OfPnt poles(1, n);
   TColStd_Array1OfReal weights(1, n);
@@ -121,7 +120,6 @@ Handle(Geom_BSplineCurve) to_occt(const nurbs::Curve& c) {
 
 Handle(Geom_BSplineSurface) to_occt(const nurbs::Surface& s) {
   const int dim = nurbs::dimension(s);
-  check_dimension(dim, "a surface");
   const auto nu = static_cast<int>(s.count[0]), nv = static_cast<int>(s.count[1]);
   TColgp_Array2OfPnt poles(1, nu, 1, nv);
   TColStd_Array2OfReal weights(1, nu, 1, nv);
@@ -284,10 +282,9 @@ bool untrimmed(const TopoDS_Face& face, double u0, double u1, double v0, double 
     if (pcurve.IsNull()) return false;
     while (auto trimmed = Handle(Geom2d_TrimmedCurve)::DownCast(pcurve)) pcurve = trimmed->BasisCurve();
     const gp_Pnt2d a = pcurve->Value(first), b = pcurve->Value(last), mid = pcurve->Value(0.5 * (first + last));
+    const Handle(Geom2d_BSplineCurve) spline = Handle(Geom2d_BSplineCurve)::DownCast(pcurve);
     const bool straight = !Handle(Geom2d_Line)::DownCast(pcurve).IsNull() ||
-                          (!Handle(Geom2d_BSplineCurve)::DownCast(pcurve).IsNull() &&
-                           Handle(Geom2d_BSplineCurve)::DownCast(pcurve)->Degree() == 1 &&
-                           Handle(Geom2d_BSplineCurve)::DownCast(pcurve)->NbPoles() == 2);
+                          (!spline.IsNull() && spline->Degree() == 1 && spline->NbPoles() == 2);
     if (!straight || !on_side(a, b) || !on_side(a, mid)) return false;
   }
   return true;
@@ -349,9 +346,18 @@ auto guarded(std::string_view where, F&& f) -> decltype(f()) {
   try {
     return f();
   } catch (const Standard_Failure& e) {
-    throw InvalidInput(std::string(where) + ": OpenCASCADE: " + e.DynamicType()->Name() +
+    throw InvalidInput(std::string(where) + ": OpenCASCADE refuses it: " + e.DynamicType()->Name() +
                        (e.GetMessageString() && *e.GetMessageString() ? std::string(": ") + e.GetMessageString() : ""));
   }
+}
+
+/// Shape `index` as OCCT's B-spline; what OCCT refuses (an interior knot of multiplicity degree + 1) is
+/// an InvalidInput naming the shape.
+template <class S>
+auto converted(const S& shape, std::size_t index) {
+  const std::string name = "shape " + std::to_string(index);
+  check_dimension(nurbs::dimension(shape), name);
+  return guarded(name, [&] { return to_occt(shape); });
 }
 
 void silence_messages() {
@@ -412,18 +418,20 @@ std::vector<io::Shape> read_cad(std::string_view bytes, const std::filesystem::p
 std::string write_cad(std::span<const io::Shape> shapes, io::CadFormat format) {
   silence_messages();
   const std::string what = format == io::CadFormat::step ? "STEP" : "IGES";
-  return guarded(what, [&] {
+  return guarded(what + " writer", [&] {
     std::ostringstream out;
     if (format == io::CadFormat::step) {
       // Faces and edges in one compound, written as is: surfaces as untrimmed faces, curves as a curve set.
       BRep_Builder builder;
       TopoDS_Compound compound;
       builder.MakeCompound(compound);
-      for (const io::Shape& shape : shapes) {
-        if (const auto* c = std::get_if<nurbs::Curve>(&shape))
-          builder.Add(compound, BRepBuilderAPI_MakeEdge(to_occt(*c)).Edge());
+      for (std::size_t i = 0; i < shapes.size(); ++i) {
+        if (const auto* c = std::get_if<nurbs::Curve>(&shapes[i]))
+          builder.Add(compound, BRepBuilderAPI_MakeEdge(converted(*c, i)).Edge());
         else
-          builder.Add(compound, BRepBuilderAPI_MakeFace(to_occt(std::get<nurbs::Surface>(shape)), Precision::Confusion()).Face());
+          builder.Add(compound, BRepBuilderAPI_MakeFace(converted(std::get<nurbs::Surface>(shapes[i]), i),
+                                                        Precision::Confusion())
+                                    .Face());
       }
       STEPControl_Writer writer;
       if (writer.Transfer(compound, STEPControl_AsIs) != IFSelect_RetDone)
@@ -436,11 +444,11 @@ std::string write_cad(std::span<const io::Shape> shapes, io::CadFormat format) {
     } else {
       IGESControl_Controller::Init();
       IGESControl_Writer writer("MM", 0);
-      for (const io::Shape& shape : shapes) {
-        if (const auto* c = std::get_if<nurbs::Curve>(&shape))
-          writer.AddGeom(to_occt(*c));
+      for (std::size_t i = 0; i < shapes.size(); ++i) {
+        if (const auto* c = std::get_if<nurbs::Curve>(&shapes[i]))
+          writer.AddGeom(converted(*c, i));
         else
-          writer.AddGeom(to_occt(std::get<nurbs::Surface>(shape)));
+          writer.AddGeom(converted(std::get<nurbs::Surface>(shapes[i]), i));
       }
       writer.ComputeModel();
       // IGESControl_Writer::Write, with every digit of the reals.
