@@ -162,8 +162,9 @@ void add_strict(CLI::App* command, bool& strict) {
 
 void add_convert(CLI::App& app, Commands& c) {
   auto* cmd = app.add_subcommand(
-      "convert", "Write the curves and surfaces of a file in another format (by extension: .json, .obj, .step, "
-                 ".stp, .igs, .iges)");
+      "convert",
+      "Write the curves and surfaces of a file in another format (by extension: .json, .obj, .step, "
+      ".stp, .igs, .iges)");
   cmd->add_option("input", c.cv.input, "Shape file (.json, .obj, .step, .stp, .igs or .iges)")->required();
   cmd->add_option("output", c.cv.output, "Output file; STEP and IGES hold every shape, others one (--index)")
       ->required()

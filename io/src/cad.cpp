@@ -33,9 +33,10 @@ void set_cad_codec(const CadCodec& codec) {
 const CadCodec& cad_codec(std::string_view where) {
   const CadCodec& codec = installed();
   if (codec.read == nullptr || codec.write == nullptr)
-    throw InvalidInput(std::string(where) +
-                       ": built without OpenCASCADE: STEP and IGES files need the cifs::occt component "
-                       "(install libocct-data-exchange-dev and configure with -DCIFS_OCCT=ON, docs/install.md)");
+    throw InvalidInput(
+        std::string(where) +
+        ": built without OpenCASCADE: STEP and IGES files need the cifs::occt component "
+        "(install libocct-data-exchange-dev and configure with -DCIFS_OCCT=ON, docs/install.md)");
   return codec;
 }
 

@@ -175,7 +175,7 @@ nurbs::Curve from_occt(const Geom_BSplineCurve& c) {
 }
 
 nurbs::Surface from_occt(Geom_BSplineSurface s) {  // by value: made non-periodic in place
-  if (s.IsUPeriodic()) s.SetUNotPeriodic();  // cifs has no closed surfaces: the clamped equivalent
+  if (s.IsUPeriodic()) s.SetUNotPeriodic();        // cifs has no closed surfaces: the clamped equivalent
   if (s.IsVPeriodic()) s.SetVNotPeriodic();
   const int nu = s.NbUPoles(), nv = s.NbVPoles();
   Points P(Eigen::Index{nu} * nv, 3);
@@ -188,12 +188,12 @@ nurbs::Surface from_occt(Geom_BSplineSurface s) {  // by value: made non-periodi
       P.row(row) << p.X(), p.Y(), p.Z();
       if (w.size() != 0) w(row) = s.Weight(i + 1, j + 1);
     }
-  return nurbs::make_surface({s.UDegree(), s.VDegree()}, {flat_knots(s.UKnotSequence()), flat_knots(s.VKnotSequence())},
-                             {nu, nv}, P, w);
+  return nurbs::make_surface({s.UDegree(), s.VDegree()},
+                             {flat_knots(s.UKnotSequence()), flat_knots(s.VKnotSequence())}, {nu, nv}, P, w);
 }
 
 /// The name of an OCCT geometry type in messages: "Geom_CylindricalSurface" → "a cylindrical surface".
-std::string geometry_name(const Handle(Standard_Transient)& g) {
+std::string geometry_name(const Handle(Standard_Transient) & g) {
   static const std::map<std::string, std::string, std::less<>> names = {
       {"Geom_CylindricalSurface", "a cylindrical surface"},
       {"Geom_ConicalSurface", "a conical surface"},
@@ -237,11 +237,13 @@ std::optional<nurbs::Curve> edge_curve(const TopoDS_Edge& edge, std::size_t numb
                                        const io::ShapeReadOptions& options, Skipped& skipped) {
   double first = 0, last = 0;
   Handle(Geom_Curve) curve = BRep_Tool::Curve(edge, first, last);  // with the edge's location applied
-  if (curve.IsNull()) return std::nullopt;                           // no 3-D curve: nothing to read
+  if (curve.IsNull()) return std::nullopt;                         // no 3-D curve: nothing to read
   while (auto trimmed = Handle(Geom_TrimmedCurve)::DownCast(curve)) curve = trimmed->BasisCurve();
   Handle(Geom_BSplineCurve) spline;
-  if (auto line = Handle(Geom_Line)::DownCast(curve)) return segment(line->Value(first), line->Value(last), first, last);
-  if (auto bezier = Handle(Geom_BezierCurve)::DownCast(curve)) spline = GeomConvert::CurveToBSplineCurve(bezier);
+  if (auto line = Handle(Geom_Line)::DownCast(curve))
+    return segment(line->Value(first), line->Value(last), first, last);
+  if (auto bezier = Handle(Geom_BezierCurve)::DownCast(curve))
+    spline = GeomConvert::CurveToBSplineCurve(bezier);
   if (auto bspline = Handle(Geom_BSplineCurve)::DownCast(curve))
     spline = Handle(Geom_BSplineCurve)::DownCast(bspline->Copy());
   if (spline.IsNull()) {
@@ -269,10 +271,13 @@ bool untrimmed(const TopoDS_Face& face, double u0, double u1, double v0, double 
   int wires = 0;
   for (TopExp_Explorer w(face, TopAbs_WIRE); w.More(); w.Next()) ++wires;
   if (wires != 1) return false;
-  const double tol = Precision::PConfusion() * std::max({1.0, std::abs(u0), std::abs(u1), std::abs(v0), std::abs(v1)});
+  const double tol =
+      Precision::PConfusion() * std::max({1.0, std::abs(u0), std::abs(u1), std::abs(v0), std::abs(v1)});
   const auto on_side = [&](const gp_Pnt2d& a, const gp_Pnt2d& b) {
-    const bool along_u = std::abs(a.Y() - b.Y()) <= tol && (std::abs(a.Y() - v0) <= tol || std::abs(a.Y() - v1) <= tol);
-    const bool along_v = std::abs(a.X() - b.X()) <= tol && (std::abs(a.X() - u0) <= tol || std::abs(a.X() - u1) <= tol);
+    const bool along_u =
+        std::abs(a.Y() - b.Y()) <= tol && (std::abs(a.Y() - v0) <= tol || std::abs(a.Y() - v1) <= tol);
+    const bool along_v =
+        std::abs(a.X() - b.X()) <= tol && (std::abs(a.X() - u0) <= tol || std::abs(a.X() - u1) <= tol);
     return along_u || along_v;
   };
   for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next()) {
@@ -281,7 +286,8 @@ bool untrimmed(const TopoDS_Face& face, double u0, double u1, double v0, double 
     Handle(Geom2d_Curve) pcurve = BRep_Tool::CurveOnSurface(edge, face, first, last);
     if (pcurve.IsNull()) return false;
     while (auto trimmed = Handle(Geom2d_TrimmedCurve)::DownCast(pcurve)) pcurve = trimmed->BasisCurve();
-    const gp_Pnt2d a = pcurve->Value(first), b = pcurve->Value(last), mid = pcurve->Value(0.5 * (first + last));
+    const gp_Pnt2d a = pcurve->Value(first), b = pcurve->Value(last),
+                   mid = pcurve->Value(0.5 * (first + last));
     const Handle(Geom2d_BSplineCurve) spline = Handle(Geom2d_BSplineCurve)::DownCast(pcurve);
     const bool straight = !Handle(Geom2d_Line)::DownCast(pcurve).IsNull() ||
                           (!spline.IsNull() && spline->Degree() == 1 && spline->NbPoles() == 2);
@@ -292,11 +298,12 @@ bool untrimmed(const TopoDS_Face& face, double u0, double u1, double v0, double 
 
 /// The surface of a face over its parameter rectangle; nothing (and a warning) for surfaces cifs does
 /// not read exactly. A trimmed face is refused unless options.ignore_trim.
-std::optional<nurbs::Surface> face_surface(const TopoDS_Face& face, std::size_t number, std::string_view where,
-                                           const io::ShapeReadOptions& options, Skipped& skipped,
-                                           std::size_t shape_index) {
+std::optional<nurbs::Surface> face_surface(const TopoDS_Face& face, std::size_t number,
+                                           std::string_view where, const io::ShapeReadOptions& options,
+                                           Skipped& skipped, std::size_t shape_index) {
   Handle(Geom_Surface) surface = BRep_Tool::Surface(face);  // with the face's location applied
-  while (auto trimmed = Handle(Geom_RectangularTrimmedSurface)::DownCast(surface)) surface = trimmed->BasisSurface();
+  while (auto trimmed = Handle(Geom_RectangularTrimmedSurface)::DownCast(surface))
+    surface = trimmed->BasisSurface();
   double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
   BRepTools::UVBounds(face, u0, u1, v0, v1);
   Handle(Geom_BSplineSurface) spline;
@@ -312,7 +319,8 @@ std::optional<nurbs::Surface> face_surface(const TopoDS_Face& face, std::size_t 
     uk(1) = u0, uk(2) = u1, vk(1) = v0, vk(2) = v1, mult(1) = 2, mult(2) = 2;
     spline = new Geom_BSplineSurface(corners, uk, vk, mult, mult, 1, 1);
   }
-  if (auto bezier = Handle(Geom_BezierSurface)::DownCast(surface)) spline = GeomConvert::SurfaceToBSplineSurface(bezier);
+  if (auto bezier = Handle(Geom_BezierSurface)::DownCast(surface))
+    spline = GeomConvert::SurfaceToBSplineSurface(bezier);
   if (auto bspline = Handle(Geom_BSplineSurface)::DownCast(surface))
     spline = Handle(Geom_BSplineSurface)::DownCast(bspline->Copy());
   if (spline.IsNull()) {
@@ -327,8 +335,11 @@ std::optional<nurbs::Surface> face_surface(const TopoDS_Face& face, std::size_t 
                            std::to_string(shape_index) + ")";
   if (!untrimmed(face, u0, u1, v0, v1)) {
     if (!options.ignore_trim)
-      throw InvalidInput(name + " is trimmed: trimmed surfaces are not supported; --ignore-trim (ignore_trim) reads the whole untrimmed surface");
-    io::warn(options, shape_index, name + " is trimmed: its trimming loops are ignored and the whole untrimmed surface is read");
+      throw InvalidInput(name +
+                         " is trimmed: trimmed surfaces are not supported; --ignore-trim (ignore_trim) reads "
+                         "the whole untrimmed surface");
+    io::warn(options, shape_index,
+             name + " is trimmed: its trimming loops are ignored and the whole untrimmed surface is read");
     return from_occt(*spline);
   }
   // Bounded by a rectangle inside the surface's domain: that part, cut exactly by knot insertion.
@@ -346,8 +357,9 @@ auto guarded(std::string_view where, F&& f) -> decltype(f()) {
   try {
     return f();
   } catch (const Standard_Failure& e) {
-    throw InvalidInput(std::string(where) + ": OpenCASCADE refuses it: " + e.DynamicType()->Name() +
-                       (e.GetMessageString() && *e.GetMessageString() ? std::string(": ") + e.GetMessageString() : ""));
+    throw InvalidInput(
+        std::string(where) + ": OpenCASCADE refuses it: " + e.DynamicType()->Name() +
+        (e.GetMessageString() && *e.GetMessageString() ? std::string(": ") + e.GetMessageString() : ""));
   }
 }
 
@@ -390,8 +402,8 @@ TopoDS_Shape read_brep(std::string_view bytes, const std::filesystem::path& path
 
 }  // namespace
 
-std::vector<io::Shape> read_cad(std::string_view bytes, const std::filesystem::path& path, io::CadFormat format,
-                                const io::ShapeReadOptions& options) {
+std::vector<io::Shape> read_cad(std::string_view bytes, const std::filesystem::path& path,
+                                io::CadFormat format, const io::ShapeReadOptions& options) {
   silence_messages();
   const std::string where = path.string();
   return guarded(where, [&] {

@@ -57,7 +57,8 @@ TEST_CASE("The format table: every content, its formats in order", "[io][dispatc
                     "format 'svg': expected obj, ply, stl, off or vtp");
 }
 
-TEST_CASE("STEP and IGES without the OpenCASCADE component: one clear refusal, nothing written", "[io][cad]") {
+TEST_CASE("STEP and IGES without the OpenCASCADE component: one clear refusal, nothing written",
+          "[io][cad]") {
   // cifs_tests never links cifs::occt: io's slot for it is empty here (tests/occt tests it filled).
   cifs_test::ScratchDir s("io_cad");
   CHECK(cad_format("a/part.STEP") == CadFormat::step);
@@ -70,11 +71,13 @@ TEST_CASE("STEP and IGES without the OpenCASCADE component: one clear refusal, n
   const Shape line = nurbs::make_curve(1, {0, 0, 1, 1}, P);
   for (const char* name : {"out.step", "out.igs"}) {
     const std::filesystem::path path = s.path() / name;
-    CHECK_THROWS_WITH(write(path, line), path.string() + ": built without OpenCASCADE: STEP and IGES files need the "
-                                                         "cifs::occt component (install libocct-data-exchange-dev and "
-                                                         "configure with -DCIFS_OCCT=ON, docs/install.md)");
+    CHECK_THROWS_WITH(write(path, line), path.string() +
+                                             ": built without OpenCASCADE: STEP and IGES files need the "
+                                             "cifs::occt component (install libocct-data-exchange-dev and "
+                                             "configure with -DCIFS_OCCT=ON, docs/install.md)");
     CHECK_THROWS_AS(encode(line, path.extension().string().substr(1)), InvalidInput);
-    CHECK_THROWS_WITH(read_shapes(path), Catch::Contains("built without OpenCASCADE"));  // before "cannot open"
+    CHECK_THROWS_WITH(read_shapes(path),
+                      Catch::Contains("built without OpenCASCADE"));  // before "cannot open"
   }
   CHECK(s.names().empty());
 }

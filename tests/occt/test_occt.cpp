@@ -31,10 +31,10 @@
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Wire.hxx>
-#include <gp_Circ.hxx>
-#include <gp_Pln.hxx>
 #include <catch2/catch.hpp>
 #include <fstream>
+#include <gp_Circ.hxx>
+#include <gp_Pln.hxx>
 #include <random>
 
 #include "cifs/errors.hpp"
@@ -107,7 +107,8 @@ std::vector<nurbs::Curve> occt_sample_curves(unsigned seed) {
   }
   // Closed, rational, with a double breakpoint.
   const nurbs::Knots breakpoints{0, 0.5, 1.25, 1.25, 2, 3.5};
-  out.push_back(nurbs::make_closed_curve(3, breakpoints, occt_random_points(rng, 5, 3), occt_random_weights(rng, 5)));
+  out.push_back(
+      nurbs::make_closed_curve(3, breakpoints, occt_random_points(rng, 5, 3), occt_random_weights(rng, 5)));
   return out;
 }
 
@@ -149,7 +150,8 @@ struct OcctParts {
 };
 OcctParts occt_parts(const TopoDS_Shape& shape) {
   OcctParts out;
-  for (TopExp_Explorer f(shape, TopAbs_FACE); f.More(); f.Next()) out.faces.push_back(TopoDS::Face(f.Current()));
+  for (TopExp_Explorer f(shape, TopAbs_FACE); f.More(); f.Next())
+    out.faces.push_back(TopoDS::Face(f.Current()));
   for (TopExp_Explorer e(shape, TopAbs_EDGE, TopAbs_FACE); e.More(); e.Next())
     out.edges.push_back(TopoDS::Edge(e.Current()));
   return out;
@@ -220,12 +222,13 @@ Handle(Geom_BSplineSurface) occt_built_surface(std::mt19937& rng) {
   TColStd_Array2OfReal weights(1, nu, 1, nv);
   for (int i = 1; i <= nu; ++i)
     for (int j = 1; j <= nv; ++j) {
-      poles(i, j) = gp_Pnt(i + occt_dyadic(rng, -1, 1) / 4, j + occt_dyadic(rng, -1, 1) / 4, occt_dyadic(rng, -3, 3));
+      poles(i, j) =
+          gp_Pnt(i + occt_dyadic(rng, -1, 1) / 4, j + occt_dyadic(rng, -1, 1) / 4, occt_dyadic(rng, -3, 3));
       weights(i, j) = occt_dyadic(rng, 1, 3) / 2;
     }
   TColStd_Array1OfReal uk(1, 3), vk(1, 3);
   TColStd_Array1OfInteger um(1, 3), vm(1, 3);
-  uk(1) = 0, uk(2) = 1.5, uk(3) = 4, um(1) = 3, um(2) = 2, um(3) = 3;  // degree 2, a double knot
+  uk(1) = 0, uk(2) = 1.5, uk(3) = 4, um(1) = 3, um(2) = 2, um(3) = 3;   // degree 2, a double knot
   vk(1) = -1, vk(2) = 0.5, vk(3) = 2, vm(1) = 3, vm(2) = 1, vm(3) = 3;  // degree 2
   return new Geom_BSplineSurface(poles, weights, uk, vk, um, vm, 2, 2);
 }
@@ -287,13 +290,14 @@ TEST_CASE("cifs reads what OpenCASCADE writes: rational, repeated knots, periodi
 
   for (const std::filesystem::path& path : {step, iges}) {
     INFO(path.filename());
-    const std::vector<io::Shape> shapes =
-        occt::read_cad(read_file(path), path, *io::cad_format(path), {.ignore_trim = false, .index = {}, .warn = {}});
+    const std::vector<io::Shape> shapes = occt::read_cad(read_file(path), path, *io::cad_format(path),
+                                                         {.ignore_trim = false, .index = {}, .warn = {}});
     REQUIRE(shapes.size() == 3);
     const auto& s = std::get<nurbs::Surface>(shapes[0]);
     CHECK(s.rational);
     for (double u : occt_samples({0, 4}, 9))
-      for (double v : occt_samples({-1, 2}, 9)) occt_require_same(surface->Value(u, v), nurbs::evaluate(s, u, v), 10);
+      for (double v : occt_samples({-1, 2}, 9))
+        occt_require_same(surface->Value(u, v), nurbs::evaluate(s, u, v), 10);
     const auto& c = std::get<nurbs::Curve>(shapes[1]);
     CHECK(c.rational);
     for (double u : occt_samples({0, 3}, 31)) occt_require_same(open->Value(u), nurbs::evaluate(c, u), 10);
@@ -303,15 +307,18 @@ TEST_CASE("cifs reads what OpenCASCADE writes: rational, repeated knots, periodi
       CHECK(closed.closed);
       CHECK(nurbs::distinct_count(closed) == 5);
     }
-    for (double u : occt_samples({0, 3}, 31)) occt_require_same(periodic->Value(u), nurbs::evaluate(closed, u), 10);
+    for (double u : occt_samples({0, 3}, 31))
+      occt_require_same(periodic->Value(u), nurbs::evaluate(closed, u), 10);
   }
 }
 
-TEST_CASE("STEP: a trimmed face is refused, or read whole with --ignore-trim; planes exact; cylinders reported",
-          "[occt][step]") {
+TEST_CASE(
+    "STEP: a trimmed face is refused, or read whole with --ignore-trim; planes exact; cylinders reported",
+    "[occt][step]") {
   occt_quiet();
   const gp_Pln plane(gp_Ax3(gp_Pnt(1, 2, 3), gp_Dir(0, 0, 1), gp_Dir(1, 0, 0)));
-  const TopoDS_Wire circle = BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(gp_Circ(plane.Position().Ax2(), 2)));
+  const TopoDS_Wire circle =
+      BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(gp_Circ(plane.Position().Ax2(), 2)));
   const TopoDS_Face disc = BRepBuilderAPI_MakeFace(plane, circle);
   const TopoDS_Face rectangle = BRepBuilderAPI_MakeFace(plane, -1, 3, 0.5, 2);
   const TopoDS_Face cylinder =
@@ -324,9 +331,8 @@ TEST_CASE("STEP: a trimmed face is refused, or read whole with --ignore-trim; pl
     return path;
   };
   std::vector<std::string> warnings;
-  const io::ShapeReadOptions collect{.ignore_trim = false, .index = {}, .warn = [&](const std::string& w) {
-                                       warnings.push_back(w);
-                                     }};
+  const io::ShapeReadOptions collect{
+      .ignore_trim = false, .index = {}, .warn = [&](const std::string& w) { warnings.push_back(w); }};
 
   // The disc: trimmed by a circle.
   const std::filesystem::path disc_path = write(disc, "disc.step");
@@ -334,7 +340,8 @@ TEST_CASE("STEP: a trimmed face is refused, or read whole with --ignore-trim; pl
                       Catch::Contains("face 0 (shape 0) is trimmed") && Catch::Contains("--ignore-trim"));
   io::ShapeReadOptions whole = collect;
   whole.ignore_trim = true;
-  const std::vector<io::Shape> read = occt::read_cad(read_file(disc_path), disc_path, io::CadFormat::step, whole);
+  const std::vector<io::Shape> read =
+      occt::read_cad(read_file(disc_path), disc_path, io::CadFormat::step, whole);
   REQUIRE(read.size() == 1);
   REQUIRE(warnings.size() == 1);
   CHECK_THAT(warnings[0], Catch::Contains("trimming loops are ignored"));
@@ -344,10 +351,12 @@ TEST_CASE("STEP: a trimmed face is refused, or read whole with --ignore-trim; pl
 
   // The rectangle: the plane itself as a bilinear patch, same parameters.
   const std::filesystem::path rect_path = write(rectangle, "rectangle.step");
-  const auto flat = std::get<nurbs::Surface>(occt::read_cad(read_file(rect_path), rect_path, io::CadFormat::step)[0]);
+  const auto flat =
+      std::get<nurbs::Surface>(occt::read_cad(read_file(rect_path), rect_path, io::CadFormat::step)[0]);
   const Handle(Geom_Plane) g = new Geom_Plane(plane);
   for (double u : occt_samples({-1, 3}, 5))
-    for (double v : occt_samples({0.5, 2}, 5)) occt_require_same(g->Value(u, v), nurbs::evaluate(flat, u, v), 4);
+    for (double v : occt_samples({0.5, 2}, 5))
+      occt_require_same(g->Value(u, v), nurbs::evaluate(flat, u, v), 4);
 
   // A cylinder beside the rectangle: reported and skipped; alone: nothing to read, said so.
   warnings.clear();
@@ -361,8 +370,9 @@ TEST_CASE("STEP: a trimmed face is refused, or read whole with --ignore-trim; pl
   REQUIRE(warnings.size() == 1);
   CHECK_THAT(warnings[0], Catch::Contains("face 0 is a cylindrical surface, not a B-spline: skipped"));
   const std::filesystem::path cyl_path = write(cylinder, "cylinder.step");
-  REQUIRE_THROWS_WITH(occt::read_cad(read_file(cyl_path), cyl_path, io::CadFormat::step, collect),
-                      Catch::Contains("holds no B-spline curve or surface (skipped: 1 × cylindrical surface)"));
+  REQUIRE_THROWS_WITH(
+      occt::read_cad(read_file(cyl_path), cyl_path, io::CadFormat::step, collect),
+      Catch::Contains("holds no B-spline curve or surface (skipped: 1 × cylindrical surface)"));
 }
 
 TEST_CASE("STEP and IGES: broken files and unwritable shapes are refused", "[occt][step][iges]") {

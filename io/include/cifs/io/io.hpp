@@ -103,7 +103,8 @@ Content detect(const std::filesystem::path& path);
 /// `.ply` (IoError "m.stl: a mesh is read from .obj or .ply"). IoError naming the path when it
 /// cannot be read; the format's errors otherwise.
 /// Shapes: every curve and surface of the file (OBJ: all elements; JSON: one, or every entry of a
-/// geomdl file; STEP and IGES, through cifs::occt: every B-spline curve and surface, cifs/io/cad.hpp), or the one `options.index` selects (required when the file holds several).
+/// geomdl file; STEP and IGES, through cifs::occt: every B-spline curve and surface, cifs/io/cad.hpp), or the
+/// one `options.index` selects (required when the file holds several).
 std::vector<Shape> read_shapes(const std::filesystem::path& path, const ShapeReadOptions& options = {});
 Shape read_shape(const std::filesystem::path& path, const ShapeReadOptions& options = {});
 Polygon read_polygon(const std::filesystem::path& path);

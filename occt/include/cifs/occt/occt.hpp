@@ -27,8 +27,8 @@ namespace cifs::occt {
 /// change the parametrization. A face trimmed by anything but its parameter rectangle is refused
 /// (InvalidInput naming it) unless options.ignore_trim: then its whole surface is read, with a warning.
 /// InvalidInput when the file does not parse or holds no curve or surface cifs reads.
-std::vector<io::Shape> read_cad(std::string_view bytes, const std::filesystem::path& path, io::CadFormat format,
-                                const io::ShapeReadOptions& options = {});
+std::vector<io::Shape> read_cad(std::string_view bytes, const std::filesystem::path& path,
+                                io::CadFormat format, const io::ShapeReadOptions& options = {});
 
 /// The bytes of a STEP (AP214, curves as a geometric curve set, surfaces as untrimmed faces) or IGES
 /// (entities 126 and 128) file holding `shapes`, reals written with 17 significant digits (OCCT's
