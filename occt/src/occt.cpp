@@ -254,12 +254,14 @@ std::optional<nurbs::Curve> edge_curve(const TopoDS_Edge& edge, std::size_t numb
                  ", not a B-spline: skipped (its B-spline form would change the parametrization)");
     return std::nullopt;
   }
-  // One whole period of a periodic curve: the closed curve. Else the edge's part, cut exactly.
-  const double period_tolerance = Precision::PConfusion();
-  if (spline->IsPeriodic() && std::abs(first - spline->FirstParameter()) <= period_tolerance &&
-      std::abs(last - spline->LastParameter()) <= period_tolerance)
+  // A periodic curve over its period: the closed curve. Over another range (at most a period, which
+  // may straddle the seam): OCCT cuts it there, exactly.
+  if (spline->IsPeriodic()) {
+    const double tol = Precision::PConfusion();
+    if (std::abs(first - spline->FirstParameter()) > tol || std::abs(last - spline->LastParameter()) > tol)
+      spline->Segment(first, last);
     return from_occt(*spline);
-  if (spline->IsPeriodic()) spline->SetNotPeriodic();
+  }
   if (first > spline->FirstParameter() || last < spline->LastParameter())
     spline->Segment(std::max(first, spline->FirstParameter()), std::min(last, spline->LastParameter()));
   return from_occt(*spline);

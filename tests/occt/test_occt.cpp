@@ -43,6 +43,9 @@
 #include "cifs/nurbs/surface.hpp"
 #include "cifs/occt/occt.hpp"
 #include "support/scratch.hpp"
+#ifdef CIFS_CLI_PATH
+#include "apps/cli_runner.hpp"
+#endif
 
 using namespace cifs;
 
@@ -275,6 +278,8 @@ TEST_CASE("cifs reads what OpenCASCADE writes: rational, repeated knots, periodi
   builder.Add(compound, BRepBuilderAPI_MakeFace(surface, Precision::Confusion()).Face());
   builder.Add(compound, BRepBuilderAPI_MakeEdge(open).Edge());
   builder.Add(compound, BRepBuilderAPI_MakeEdge(periodic).Edge());
+  builder.Add(compound, BRepBuilderAPI_MakeEdge(periodic, 0.25, 2).Edge());  // part of the period
+  builder.Add(compound, BRepBuilderAPI_MakeEdge(periodic, 1, 4).Edge());     // a period across the seam
 
   const std::filesystem::path step = occt_scratch() / "occt.step", iges = occt_scratch() / "occt.igs";
   STEPControl_Writer step_writer;
@@ -292,7 +297,8 @@ TEST_CASE("cifs reads what OpenCASCADE writes: rational, repeated knots, periodi
     INFO(path.filename());
     const std::vector<io::Shape> shapes = occt::read_cad(read_file(path), path, *io::cad_format(path),
                                                          {.ignore_trim = false, .index = {}, .warn = {}});
-    REQUIRE(shapes.size() == 3);
+    // STEP keeps the parts as trimmed curves of the periodic one; IGES (not given them) holds three.
+    REQUIRE(shapes.size() == (path == step ? 5U : 3U));
     const auto& s = std::get<nurbs::Surface>(shapes[0]);
     CHECK(s.rational);
     for (double u : occt_samples({0, 4}, 9))
@@ -309,6 +315,18 @@ TEST_CASE("cifs reads what OpenCASCADE writes: rational, repeated knots, periodi
     }
     for (double u : occt_samples({0, 3}, 31))
       occt_require_same(periodic->Value(u), nurbs::evaluate(closed, u), 10);
+    // Parts: [0.25, 2] of the period, and [1, 4] across the seam, same parameters.
+    if (path != step) continue;
+    for (const auto& [index, range] :
+         {std::pair{3, nurbs::Domain{0.25, 2}}, std::pair{4, nurbs::Domain{1, 4}}}) {
+      const auto& part = std::get<nurbs::Curve>(shapes[static_cast<std::size_t>(index)]);
+      CHECK(nurbs::domain(part).start == Approx(range.start));
+      CHECK(nurbs::domain(part).end == Approx(range.end));
+      for (double u : occt_samples(range, 31))
+        occt_require_same(
+            periodic->Value(u),
+            nurbs::evaluate(part, std::clamp(u, nurbs::domain(part).start, nurbs::domain(part).end)), 10);
+    }
   }
 }
 
@@ -345,6 +363,17 @@ TEST_CASE(
   REQUIRE(read.size() == 1);
   REQUIRE(warnings.size() == 1);
   CHECK_THAT(warnings[0], Catch::Contains("trimming loops are ignored"));
+#ifdef CIFS_CLI_PATH
+  // The CLI: one line and exit 2, naming the option; with it, the warning and exit 0.
+  const cifs_test::Run refused = cifs_test::cifs_cli("info " + disc_path.string());
+  CHECK(refused.status == 2);
+  CHECK(std::count(refused.err.begin(), refused.err.end(), '\n') == 1);
+  CHECK_THAT(refused.err, Catch::Contains("is trimmed") && Catch::Contains("--ignore-trim"));
+  const cifs_test::Run ignored = cifs_test::cifs_cli("info " + disc_path.string() + " --ignore-trim");
+  CHECK(ignored.status == 0);
+  CHECK_THAT(ignored.err,
+             Catch::Contains("cifs: warning: ") && Catch::Contains("trimming loops are ignored"));
+#endif
   const auto& square = std::get<nurbs::Surface>(read[0]);  // the plane over the circle's bounding square
   CHECK(nurbs::domain(square, nurbs::Direction::u).start == Approx(-2));
   CHECK(nurbs::domain(square, nurbs::Direction::u).end == Approx(2));
