@@ -18,12 +18,12 @@
 #include "cifs/render/progress.hpp"
 #include "cifs/suggest.hpp"
 #include "cifs/view/server.hpp"
-#ifdef CIFS_HAVE_OCCT
-#include "cifs/occt/occt.hpp"
-#endif
 #include "commands.hpp"
 #include "construct_command.hpp"
 #include "fit_command.hpp"
+#ifdef CIFS_HAVE_OCCT
+#include "occt_plugin.hpp"
+#endif
 #include "scheme_command.hpp"
 #include "world.hpp"
 
@@ -698,7 +698,7 @@ int main(int argc, char** argv) {
   cifs::cli::World world;
   try {
 #ifdef CIFS_HAVE_OCCT
-    cifs::occt::enable_cad_formats();  // .step, .stp, .igs, .iges through OpenCASCADE
+    cifs::cli::load_occt_on_demand();  // .step, .stp, .igs, .iges: OpenCASCADE opened when first needed
 #endif
     world = cifs::cli::start_world(argc, argv);
     cifs::cli::world() = world;

@@ -15,6 +15,11 @@ CadCodec& installed() {
   return codec;
 }
 
+CadCodec (*&loader())() {
+  static CadCodec (*function)() = nullptr;
+  return function;
+}
+
 }  // namespace
 
 std::optional<CadFormat> cad_format(const std::filesystem::path& path) {
@@ -30,8 +35,19 @@ void set_cad_codec(const CadCodec& codec) {
   installed() = codec;
 }
 
+void set_cad_loader(CadCodec (*function)()) {
+  loader() = function;
+}
+
 const CadCodec& cad_codec(std::string_view where) {
-  const CadCodec& codec = installed();
+  CadCodec& codec = installed();
+  if ((codec.read == nullptr || codec.write == nullptr) && loader() != nullptr) {
+    try {
+      codec = loader()();
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(std::string(where) + ": " + e.what());
+    }
+  }
   if (codec.read == nullptr || codec.write == nullptr)
     throw InvalidInput(
         std::string(where) +

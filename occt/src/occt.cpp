@@ -475,9 +475,13 @@ std::string write_cad(std::span<const io::Shape> shapes, io::CadFormat format) {
   });
 }
 
-void enable_cad_formats() {
+io::CadCodec cad_codec() {
   silence_messages();
-  io::set_cad_codec({.read = read_cad, .write = write_cad});
+  return {.read = read_cad, .write = write_cad};
+}
+
+void enable_cad_formats() {
+  io::set_cad_codec(cad_codec());
 }
 
 }  // namespace cifs::occt

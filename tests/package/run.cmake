@@ -43,6 +43,20 @@ if(CLI)
   message(STATUS "installed gallery from ${prefix_real}/share/cifs/examples:\n${out}")
 endif()
 
+# With OpenCASCADE, the installed CLI opens the prefix's plugin (lib/cifs/) for a STEP file.
+if(CLI AND OCCT)
+  run(${cli} convert ${prefix}/share/cifs/examples/shapes/hills.json ${WORK}/hills.step)
+  run(${cli} info ${WORK}/hills.step)
+  if(NOT out MATCHES "\"type\": \"surface\"")
+    message(FATAL_ERROR "the installed cifs did not read back its STEP file:\n${out}")
+  endif()
+  file(GLOB plugin ${prefix}/lib*/cifs/libcifs_occt_plugin.so ${prefix}/lib*/*/cifs/libcifs_occt_plugin.so)
+  if(NOT plugin)
+    message(FATAL_ERROR "the OpenCASCADE plugin is not installed under ${prefix}/lib…/cifs/")
+  endif()
+  message(STATUS "installed cifs read STEP through ${plugin}")
+endif()
+
 # Every libcifs_* an installed program loads comes from the prefix (RUNPATH relative to it).
 function(check_libraries executable)
   file(GET_RUNTIME_DEPENDENCIES EXECUTABLES ${executable} RESOLVED_DEPENDENCIES_VAR resolved

@@ -2,8 +2,9 @@
 // cifs — STEP (.step, .stp) and IGES (.igs, .iges) shape files. io knows their extensions (its format
 // table lists them) but not how to read or write them: that is OpenCASCADE's work, in the optional
 // component cifs::occt, which io never links (OCCT is LGPL and large). The component plugs its codec in
-// here (occt::enable_cad_formats(), called by the CLI and the Python package when they are built with
-// it); until then every STEP or IGES read or write is an InvalidInput "built without OpenCASCADE: …".
+// here (occt::enable_cad_formats(), called by the Python package when built with it; the CLI loads it as a
+// plugin when a STEP or IGES file is first met, set_cad_loader); until then every STEP or IGES read or
+// write is an InvalidInput "built without OpenCASCADE: …".
 #pragma once
 
 #include <filesystem>
@@ -35,8 +36,13 @@ struct CadCodec {
 /// Installs the codec for the whole process (not thread-safe against concurrent reads: call it first).
 void set_cad_codec(const CadCodec& codec);
 
-/// The installed codec; InvalidInput "`where`: built without OpenCASCADE: STEP and IGES files need the
-/// cifs::occt component (…)" when none is.
+/// Installs a function that supplies the codec the first time a STEP or IGES file is met: the CLI loads
+/// OpenCASCADE (a plugin, dlopen) only then, since loading its 20 libraries at every start costs 0.1 s
+/// of CPU per command. The loader throws InvalidInput when it cannot.
+void set_cad_loader(CadCodec (*loader)());
+
+/// The installed codec (from the loader, the first time, when one is set); InvalidInput "`where`: built
+/// without OpenCASCADE: STEP and IGES files need the cifs::occt component (…)" when there is none.
 const CadCodec& cad_codec(std::string_view where);
 
 }  // namespace cifs::io

@@ -38,9 +38,13 @@ std::vector<io::Shape> read_cad(std::string_view bytes, const std::filesystem::p
 /// degree + 1).
 std::string write_cad(std::span<const io::Shape> shapes, io::CadFormat format);
 
+/// read_cad and write_cad as io's codec, OpenCASCADE's message printers silenced (they write transfer
+/// statistics to standard output).
+io::CadCodec cad_codec();
+
 /// Plugs read_cad and write_cad into io (io::set_cad_codec): io::read_shapes, io::write … then take
-/// .step, .stp, .igs and .iges. Also silences OpenCASCADE's message printers, which write transfer
-/// statistics to standard output.
+/// .step, .stp, .igs and .iges (the Python package calls it; the CLI loads the plugin
+/// libcifs_occt_plugin.so, whose `cifs_occt_codec` returns cad_codec(), when it first needs it).
 void enable_cad_formats();
 
 }  // namespace cifs::occt
