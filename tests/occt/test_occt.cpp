@@ -331,7 +331,8 @@ TEST_CASE("cifs reads what OpenCASCADE writes: rational, repeated knots, periodi
 }
 
 TEST_CASE(
-    "STEP: a trimmed face is refused, or read whole with --ignore-trim; planes exact; cylinders reported",
+    "STEP: a trimmed face is refused or read whole with --ignore-trim, planes read exactly, cylinders "
+    "reported",
     "[occt][step]") {
   occt_quiet();
   const gp_Pln plane(gp_Ax3(gp_Pnt(1, 2, 3), gp_Dir(0, 0, 1), gp_Dir(1, 0, 0)));

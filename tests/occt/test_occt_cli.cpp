@@ -48,7 +48,7 @@ TEST_CASE("cifs convert: JSON to STEP and IGES and back, the same shape", "[occt
   }
 }
 
-TEST_CASE("cifs info and eval on a STEP file of several shapes; --index picks one", "[occt][cli]") {
+TEST_CASE("cifs info and eval on STEP and IGES files of several shapes: --index picks one", "[occt][cli]") {
   // The 2-D wave: written with z = 0, and said so.
   const auto step = scratch() / "wave.step";
   const cifs_test::Run first = cifs_cli("convert " + occt_cli_example("wave.json") + " " + step.string());
