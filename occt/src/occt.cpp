@@ -485,3 +485,8 @@ void enable_cad_formats() {
 }
 
 }  // namespace cifs::occt
+
+/// The plugin's entry (libcifs_occt_plugin.so, apps/occt_plugin.cpp): the codec, through a C name.
+extern "C" __attribute__((visibility("default"))) void cifs_occt_codec(cifs::io::CadCodec* codec) {
+  *codec = cifs::occt::cad_codec();
+}
