@@ -14,6 +14,8 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <span>
+#include <variant>
 
 #include "cifs/automata/automaton.hpp"
 #include "cifs/errors.hpp"
@@ -28,6 +30,7 @@
 #include "cifs/ifs/mesh.hpp"
 #include "cifs/ifs/sample.hpp"
 #include "cifs/io/bcifs_file.hpp"
+#include "cifs/io/cad.hpp"
 #include "cifs/io/html.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/io/json.hpp"
@@ -269,6 +272,22 @@ std::string insert(const InsertOptions& o) {
       naming_shape(o.shape, [&] { return nurbs::refine(std::get<nurbs::Surface>(shape), dir, o.knots); });
   if (o.midpoints) out = nurbs::refine_midpoints(out);
   return io::to_json(out);
+}
+
+std::string convert(const ConvertOptions& o) {
+  io::format_of(o.output, io::Content::shape);  // refuse the extension before the work
+  const bool cad = io::cad_format(o.output).has_value();
+  if (cad) io::cad_codec(o.output.string());  // "built without OpenCASCADE" before reading
+  const std::vector<io::Shape> shapes = read_shapes(o.input, o.select, !cad);
+  if (cad)
+    for (std::size_t i = 0; i < shapes.size(); ++i) {
+      const int dim = std::visit([](const auto& s) { return nurbs::dimension(s); }, shapes[i]);
+      if (dim < 3)
+        pending_warnings().push_back(o.output.string() + ": shape " + std::to_string(i) + " is " +
+                                     std::to_string(dim) + "-D: written with its missing coordinates 0");
+    }
+  io::write(o.output, std::span<const io::Shape>(shapes));
+  return "";
 }
 
 namespace {

@@ -44,6 +44,15 @@ struct EvalOptions {
 };
 std::string eval(const EvalOptions& options);
 
+struct ConvertOptions {
+  std::filesystem::path input, output;  // formats by extension (io::read_shapes, io::write)
+  ShapeSelection select;
+};
+/// Writes the shapes of `input` into `output`: a STEP or IGES output takes every shape of the input (or
+/// the one --index picks), any other format one. Warns when curves or surfaces of 1 or 2 dimensions get
+/// z = 0 in STEP or IGES. Prints nothing.
+std::string convert(const ConvertOptions& options);
+
 struct InsertOptions {
   std::filesystem::path shape;
   ShapeSelection select;

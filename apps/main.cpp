@@ -21,6 +21,9 @@
 #include "commands.hpp"
 #include "construct_command.hpp"
 #include "fit_command.hpp"
+#ifdef CIFS_HAVE_OCCT
+#include "occt_plugin.hpp"
+#endif
 #include "scheme_command.hpp"
 #include "world.hpp"
 
@@ -48,8 +51,9 @@ const CLI::Validator output_name(
 void add_shape_selection(CLI::App* command, cifs::cli::ShapeSelection& select) {
   command->add_option("--index", select.index,
                       "Which curve or surface of a file that holds several (0-based, in file order)");
-  command->add_flag("--ignore-trim", select.ignore_trim,
-                    "Read trimmed surfaces (OBJ trim/hole, geomdl trims) whole, with a warning");
+  command->add_flag(
+      "--ignore-trim", select.ignore_trim,
+      "Read trimmed surfaces (OBJ trim/hole, geomdl trims, STEP and IGES faces) whole, with a warning");
 }
 
 /// An option that was renamed: refused with its new name, so an old command line says what to change
@@ -98,6 +102,7 @@ struct Commands {
   bool quiet = false;   // commands without a bar of their own show a Stage
   cli::EvalOptions ev;
   cli::InsertOptions in;
+  cli::ConvertOptions cv;
   std::filesystem::path info_shape;
   cli::ShapeSelection info_select;
   bool info_strict = false;
@@ -121,7 +126,7 @@ struct Commands {
 void add_eval(CLI::App& app, Commands& c) {
   auto* eval_cmd =
       app.add_subcommand("eval", "Evaluate a curve or surface; prints {\"points\": [...]} or writes -o FILE");
-  eval_cmd->add_option("shape", c.ev.shape, "Shape file (.json or .obj)")->required();
+  eval_cmd->add_option("shape", c.ev.shape, "Shape file (.json, .obj, .step or .igs)")->required();
   eval_cmd->add_option("--at", c.ev.at, "Parameter U (curves) or U,V (surfaces); repeatable")
       ->allow_extra_args(false);
   eval_cmd->add_option("--samples", c.ev.samples,
@@ -137,7 +142,7 @@ void add_eval(CLI::App& app, Commands& c) {
 
 void add_insert(CLI::App& app, Commands& c) {
   auto* insert_cmd = app.add_subcommand("insert", "Insert knots; prints the refined shape as JSON");
-  insert_cmd->add_option("shape", c.in.shape, "Shape file (.json or .obj)")->required();
+  insert_cmd->add_option("shape", c.in.shape, "Shape file (.json, .obj, .step or .igs)")->required();
   insert_cmd->add_option("--knot", c.in.knots, "Knot to insert; repeatable")->allow_extra_args(false);
   insert_cmd->add_option("--dir", c.in.dir, "Surface direction: u or v");
   insert_cmd->add_flag("--midpoints", c.in.midpoints,
@@ -156,6 +161,23 @@ void add_strict(CLI::App* command, bool& strict) {
                     "An OBJ mesh tag cifs does not read (t vertexedit, ...) is an error, not a warning");
 }
 
+void add_convert(CLI::App& app, Commands& c) {
+  auto* cmd = app.add_subcommand(
+      "convert",
+      "Write the curves and surfaces of a file in another format (by extension: .json, .obj, .step, "
+      ".stp, .igs, .iges)");
+  cmd->add_option("input", c.cv.input, "Shape file (.json, .obj, .step, .stp, .igs or .iges)")->required();
+  cmd->add_option("output", c.cv.output, "Output file; STEP and IGES hold every shape, others one (--index)")
+      ->required()
+      ->check(output_name);
+  add_shape_selection(cmd, c.cv.select);
+  add_quiet(cmd, c.quiet);
+  cmd->callback([&] {
+    const cifs::render::Stage stage("convert", c.quiet);
+    c.result = cli::convert(c.cv);
+  });
+}
+
 void add_info(CLI::App& app, Commands& c) {
   auto* info_cmd = app.add_subcommand(
       "info",
@@ -163,7 +185,7 @@ void add_info(CLI::App& app, Commands& c) {
       "topology of a mesh");
   info_cmd
       ->add_option("shape", c.info_shape,
-                   "Shape file (.json or .obj) or polygon mesh (.obj, .ply, .stl or .off)")
+                   "Shape file (.json, .obj, .step or .igs) or polygon mesh (.obj, .ply, .stl or .off)")
       ->required();
   add_shape_selection(info_cmd, c.info_select);
   add_strict(info_cmd, c.info_strict);
@@ -179,7 +201,8 @@ void add_automaton(CLI::App& app, Commands& c) {
       app.add_subcommand("automaton",
                          "The knot-doubling automaton of a curve, the tensor-product automaton of a surface, "
                          "the surface automaton of a mesh under a scheme (JSON, DOT or SVG)");
-  automaton_cmd->add_option("shape", c.au.shape, "Shape file (.json or .obj), or a mesh (.obj, .ply)")
+  automaton_cmd
+      ->add_option("shape", c.au.shape, "Shape file (.json, .obj, .step or .igs), or a mesh (.obj, .ply)")
       ->required();
   automaton_cmd->add_option("--format", c.au.format, "json (default), dot or svg");
   automaton_cmd
@@ -205,7 +228,7 @@ void add_attractor(CLI::App& app, Commands& c) {
       "attractor",
       "The attractor of a curve's automaton (in curve order) or a surface's (its quad mesh, "
       "or points)");
-  attractor_cmd->add_option("shape", c.at.shape, "Shape file (.json or .obj)")->required();
+  attractor_cmd->add_option("shape", c.at.shape, "Shape file (.json, .obj, .step or .igs)")->required();
   attractor_cmd->add_option("--depth", c.at.depth, "2^K leaves per segment");
   attractor_cmd->add_option("--piece-size", c.at.piece_size,
                             "One point per piece, every piece proven smaller than E (its diameter)");
@@ -234,7 +257,7 @@ void add_attractor(CLI::App& app, Commands& c) {
 void add_check(CLI::App& app, Commands& c) {
   auto* check_cmd =
       app.add_subcommand("check", "Attractor vs knot insertion vs Cox-de Boor; exit 1 above tolerance");
-  check_cmd->add_option("shape", c.ch.shape, "Shape file (.json or .obj)")->required();
+  check_cmd->add_option("shape", c.ch.shape, "Shape file (.json, .obj, .step or .igs)")->required();
   check_cmd->add_option("--depth", c.ch.depth, "Depth K (2^K leaves per segment and direction; default 8)");
   check_cmd->add_option("--relative-tolerance", c.ch.relative_tolerance,
                         "Largest deviation relative to the largest control point (default 1e-12)");
@@ -449,7 +472,7 @@ void add_view(CLI::App& app, Commands& c) {
       "view", "Explore a shape or mesh in the browser: a local web page (prints its URL), or --export DIR");
   view_cmd
       ->add_option("file", c.view_path,
-                   "Shape file (.json or .obj) or polygon mesh (.obj, .ply, .stl or .off)")
+                   "Shape file (.json, .obj, .step or .igs) or polygon mesh (.obj, .ply, .stl or .off)")
       ->required();
   view_cmd->add_option("--host", c.view.host,
                        "Address to listen on (default 127.0.0.1; any other is reachable from the network)");
@@ -615,6 +638,7 @@ int run(int argc, char** argv, std::string& result) {
   add_eval(app, c);
   add_insert(app, c);
   add_info(app, c);
+  add_convert(app, c);
   add_automaton(app, c);
   add_attractor(app, c);
   add_check(app, c);
@@ -692,6 +716,9 @@ int main(int argc, char** argv) {
   int status = 0;
   cifs::cli::World world;
   try {
+#ifdef CIFS_HAVE_OCCT
+    cifs::cli::load_occt_on_demand();  // .step, .stp, .igs, .iges: OpenCASCADE opened when first needed
+#endif
     world = cifs::cli::start_world(argc, argv);
     cifs::cli::world() = world;
     // Under mpirun every process runs the command: only render divides its work and writes once.

@@ -18,6 +18,8 @@ packages=(
   libcpp-httplib-dev  # cifs view's HTTP server (MIT; Debian builds it as a shared library beside the header)
   libjs-three  # three.js r111 for cifs view's page, served from the machine and copied by --export (no CDN)
   chromium-driver python3-selenium  # the browser tests driven like a user: tests/view/test_view.py, tests/gallery/test_index.py
+  libocct-data-exchange-dev  # OpenCASCADE (LGPL, dynamic): STEP and IGES in the optional cifs::occt (-DCIFS_OCCT); 23 packages, 37 MB, 183 MB installed
+  libtbb-dev  # libtbb.so, which Debian's OpenCASCADE CMake package names without depending on it
   libclang-rt-14-dev  # libFuzzer and the sanitizer runtimes of clang 14: scripts/fuzz.sh (the fuzz preset)
 )
 

@@ -9,6 +9,7 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/files.hpp"
+#include "cifs/io/cad.hpp"
 #include "cifs/io/dot.hpp"
 #include "cifs/io/json.hpp"
 #include "cifs/io/mesh_formats.hpp"
@@ -54,6 +55,17 @@ Shape parse_one_obj_shape(std::string_view text, const std::filesystem::path& pa
   return select_shape(parse_obj(text, path.string()), {}, path.string());
 }
 
+/// STEP and IGES through the codec cifs::occt plugs in (cifs/io/cad.hpp): "built without OpenCASCADE"
+/// until it does.
+template <CadFormat F>
+void write_cad(const Shape& shape, ByteSink& out) {
+  out.write(cad_codec(F == CadFormat::step ? "STEP" : "IGES").write({&shape, 1}, F));
+}
+template <CadFormat F>
+Shape parse_one_cad(std::string_view text, const std::filesystem::path& path) {
+  return select_shape(cad_codec(path.string()).read(text, path, F, {}), {}, path.string());
+}
+
 Experiment parse_experiment_at(std::string_view text, const std::filesystem::path& path) {
   Experiment e = parse_experiment(text, path.filename().string(), path.parent_path());
   if (e.name.empty()) e.name = path.stem().string();
@@ -83,6 +95,10 @@ void point_set(const PointSet& set, ByteSink& out) {
 const Codec<Shape> kShape[] = {
     {"json", ".json", [](const Shape& s, ByteSink& out) { write_json(s, out); }, parse_shape_json_at},
     {"obj", ".obj", whole<Shape, to_obj>, parse_one_obj_shape},
+    {"step", ".step", write_cad<CadFormat::step>, parse_one_cad<CadFormat::step>},
+    {"stp", ".stp", write_cad<CadFormat::step>, parse_one_cad<CadFormat::step>},
+    {"iges", ".iges", write_cad<CadFormat::iges>, parse_one_cad<CadFormat::iges>},
+    {"igs", ".igs", write_cad<CadFormat::iges>, parse_one_cad<CadFormat::iges>},
 };
 const Codec<Polygon> kPolygon[] = {
     {"json", ".json", whole<Polygon, to_json>, parse_at<Polygon, parse_polygon_json>},
@@ -358,7 +374,26 @@ std::string encode(const BcifsFile& file, std::string_view format) {
 }
 
 void write(const std::filesystem::path& path, const Shape& shape) {
+  if (cad_format(path)) return write(path, std::span<const Shape>(&shape, 1));  // messages name the path
   write_as(path, shape, Content::shape);
+}
+void write(const std::filesystem::path& path, std::span<const Shape> shapes) {
+  const std::optional<CadFormat> cad = cad_format(path);
+  if (!cad) {
+    if (shapes.size() != 1)
+      throw InvalidInput(path.string() + ": " + std::to_string(shapes.size()) +
+                         " shapes: only STEP and IGES files hold several; choose one with --index N");
+    return write(path, shapes.front());
+  }
+  const CadCodec& codec = cad_codec(path.string());
+  format_of(path, Content::shape);  // the extensions written (.step, .stp, .iges, .igs)
+  AtomicFile file(path);
+  try {
+    file.write(codec.write(shapes, *cad));
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(path.string() + ": " + e.what());
+  }
+  file.commit();
 }
 void write(const std::filesystem::path& path, const Polygon& polygon) {
   write_as(path, polygon, Content::polygon);
@@ -385,6 +420,10 @@ void write(const std::filesystem::path& path, const BcifsFile& file) {
 
 std::vector<Shape> read_shapes(const std::filesystem::path& path, const ShapeReadOptions& options) {
   // The readers of the table, with the options: OBJ by extension, JSON otherwise.
+  if (const std::optional<CadFormat> cad = cad_format(path)) {
+    const CadCodec& codec = cad_codec(path.string());  // before reading: a build without it says so first
+    return codec.read(read_file(path), path, *cad, options);
+  }
   const std::string text = read_file(path);
   if (path.extension() == ".obj") return parse_obj(text, path.string(), options);
   return parse_shapes_json(text, path.string(), options);

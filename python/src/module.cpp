@@ -6,6 +6,9 @@
 
 #include "bindings.hpp"
 #include "cifs/errors.hpp"
+#ifdef CIFS_HAVE_OCCT
+#include "cifs/occt/occt.hpp"
+#endif
 
 namespace py = pybind11;
 using namespace cifs::python;
@@ -14,6 +17,9 @@ PYBIND11_MODULE(_cifs, m) {
   m.doc() =
       "cifs — NURBS curves and surfaces and subdivision schemes as controlled iterated function systems.";
   m.attr("__version__") = CIFS_VERSION;
+#ifdef CIFS_HAVE_OCCT
+  cifs::occt::enable_cad_formats();  // cifs.io.read_shape("part.step") …, through OpenCASCADE
+#endif
   py::register_exception<cifs::InvalidInput>(m, "InvalidInput", PyExc_ValueError);
   static const py::exception<cifs::IoError> io_error =
       py::register_exception<cifs::IoError>(m, "IoError", PyExc_OSError);

@@ -76,7 +76,7 @@ TEST_CASE("cifs fit refuses bad input in one line, writing nothing", "[cli][fit]
               "closed curves are interpolated");
   check_error(cifs_cli("fit " + three + " --parametrization chordal"), "parametrization 'chordal'");
   check_error(cifs_cli("fit " + three + " -o " + (scratch() / "x.svg").string()),
-              "a shape is written as .json or .obj");
+              "a shape is written as .json, .obj, .step, .stp, .iges or .igs");
   check_error(cifs_cli("fit " + file("word.csv", "0 0\n1 x\n")), "word.csv:2: 'x' is not a number");
   check_error(cifs_cli("fit " + file("ragged.csv", "0 0\n1 1 1\n")),
               "ragged.csv:2: 3 values, the first point has 2");

@@ -9,6 +9,7 @@
 #include "cifs/errors.hpp"
 #include "cifs/files.hpp"
 #include "cifs/ifs/bcifs_curve.hpp"
+#include "cifs/io/cad.hpp"
 #include "cifs/io/json.hpp"
 #include "cifs/io/obj.hpp"
 #include "cifs/nurbs/knot_automaton.hpp"
@@ -41,7 +42,7 @@ Mesh pentagon_and_triangle() {
 }  // namespace
 
 TEST_CASE("The format table: every content, its formats in order", "[io][dispatch]") {
-  CHECK(table(Content::shape) == "json:.jsonrw obj:.objrw ");
+  CHECK(table(Content::shape) == "json:.jsonrw obj:.objrw step:.steprw stp:.stprw iges:.igesrw igs:.igsrw ");
   CHECK(table(Content::polygon) == "json:.jsonrw obj:.objw svg:.svgw ");
   CHECK(table(Content::mesh) == "obj:.objrw ply:.plyrwb stl:.stlrwb off:.offrw vtp:.vtpwb ");
   CHECK(table(Content::segments) == "obj:.objw ply:.plywb svg:.svgw ");
@@ -54,6 +55,31 @@ TEST_CASE("The format table: every content, its formats in order", "[io][dispatc
   CHECK_THROWS_WITH(writable_format(Content::experiment, "json", "--format"), "--format 'json': expected ");
   CHECK_THROWS_WITH(encode(pentagon_and_triangle(), "svg"),
                     "format 'svg': expected obj, ply, stl, off or vtp");
+}
+
+TEST_CASE("STEP and IGES without the OpenCASCADE component: one clear refusal, nothing written",
+          "[io][cad]") {
+  // cifs_tests never links cifs::occt: io's slot for it is empty here (tests/occt tests it filled).
+  cifs_test::ScratchDir s("io_cad");
+  CHECK(cad_format("a/part.STEP") == CadFormat::step);
+  CHECK(cad_format("part.stp") == CadFormat::step);
+  CHECK(cad_format("part.Igs") == CadFormat::iges);
+  CHECK(cad_format("part.iges") == CadFormat::iges);
+  CHECK(!cad_format("part.json"));
+  Points P(2, 2);
+  P << 0, 0, 1, 1;
+  const Shape line = nurbs::make_curve(1, {0, 0, 1, 1}, P);
+  for (const char* name : {"out.step", "out.igs"}) {
+    const std::filesystem::path path = s.path() / name;
+    CHECK_THROWS_WITH(write(path, line), path.string() +
+                                             ": built without OpenCASCADE: STEP and IGES files need the "
+                                             "cifs::occt component (install libocct-data-exchange-dev and "
+                                             "configure with -DCIFS_OCCT=ON, docs/install.md)");
+    CHECK_THROWS_AS(encode(line, path.extension().string().substr(1)), InvalidInput);
+    CHECK_THROWS_WITH(read_shapes(path),
+                      Catch::Contains("built without OpenCASCADE"));  // before "cannot open"
+  }
+  CHECK(s.names().empty());
 }
 
 TEST_CASE("write and read by extension: the bytes of encode, read back", "[io][dispatch]") {

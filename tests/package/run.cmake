@@ -5,7 +5,7 @@
 # - shared libraries (SHARED): the installed cifs and the consumer resolve libcifs_* inside the prefix;
 # - tests/package in each MODE of its CMakeLists.txt, configured, built and run against the prefix.
 # Variables: BUILD (cifs build dir), SRC (this folder), WORK (scratch), SHARED (BUILD_SHARED_LIBS), CLI
-# (whether the build has the cifs CLI),
+# (whether the build has the cifs CLI), OCCT (whether it has the optional cifs::occt),
 # FLAGS (the cifs build's CMAKE_CXX_FLAGS: a sanitized cifs needs a sanitized consumer to link).
 file(REMOVE_RECURSE ${WORK})
 function(run)
@@ -43,6 +43,20 @@ if(CLI)
   message(STATUS "installed gallery from ${prefix_real}/share/cifs/examples:\n${out}")
 endif()
 
+# With OpenCASCADE, the installed CLI opens the prefix's plugin (lib/cifs/) for a STEP file.
+if(CLI AND OCCT)
+  run(${cli} convert ${prefix}/share/cifs/examples/shapes/hills.json ${WORK}/hills.step)
+  run(${cli} info ${WORK}/hills.step)
+  if(NOT out MATCHES "\"type\": \"surface\"")
+    message(FATAL_ERROR "the installed cifs did not read back its STEP file:\n${out}")
+  endif()
+  file(GLOB plugin ${prefix}/lib*/cifs/libcifs_occt_plugin.so ${prefix}/lib*/*/cifs/libcifs_occt_plugin.so)
+  if(NOT plugin)
+    message(FATAL_ERROR "the OpenCASCADE plugin is not installed under ${prefix}/lib…/cifs/")
+  endif()
+  message(STATUS "installed cifs read STEP through ${plugin}")
+endif()
+
 # Every libcifs_* an installed program loads comes from the prefix (RUNPATH relative to it).
 function(check_libraries executable)
   file(GET_RUNTIME_DEPENDENCIES EXECUTABLES ${executable} RESOLVED_DEPENDENCIES_VAR resolved
@@ -66,11 +80,17 @@ if(SHARED AND CLI)
   check_libraries(${cli})
 endif()
 
-foreach(mode all nurbs io unknown)
+# OCCT: whether cifs was built with the optional OpenCASCADE component.
+if(OCCT)
+  set(occt_mode occt)
+else()
+  set(occt_mode no_occt)
+endif()
+foreach(mode all nurbs io ${occt_mode} unknown)
   set(build ${WORK}/build_${mode})
   run(${CMAKE_COMMAND} -S ${SRC} -B ${build} -DMODE=${mode} -DCMAKE_PREFIX_PATH=${prefix}
       -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS=${FLAGS})
-  if(mode STREQUAL "unknown")
+  if(mode STREQUAL "unknown" OR mode STREQUAL "no_occt")
     continue()
   endif()
   run(${CMAKE_COMMAND} --build ${build})

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -78,6 +79,9 @@ Format format_of(const std::filesystem::path& path, Content content);
 /// extensions it is written in: "out.svg: a mesh is written as .obj or .ply". Nothing is created
 /// then.
 void write(const std::filesystem::path& path, const Shape& shape);
+/// Several shapes in one file: STEP and IGES hold any number (cifs/io/cad.hpp); any other format takes
+/// exactly one (InvalidInput otherwise, naming --index).
+void write(const std::filesystem::path& path, std::span<const Shape> shapes);
 void write(const std::filesystem::path& path, const Polygon& polygon);
 void write(const std::filesystem::path& path, const Mesh& mesh);
 void write(const std::filesystem::path& path, const Segments& segments);
@@ -99,7 +103,8 @@ Content detect(const std::filesystem::path& path);
 /// `.ply` (IoError "m.stl: a mesh is read from .obj or .ply"). IoError naming the path when it
 /// cannot be read; the format's errors otherwise.
 /// Shapes: every curve and surface of the file (OBJ: all elements; JSON: one, or every entry of a
-/// geomdl file), or the one `options.index` selects (required when the file holds several).
+/// geomdl file; STEP and IGES, through cifs::occt: every B-spline curve and surface, cifs/io/cad.hpp), or the
+/// one `options.index` selects (required when the file holds several).
 std::vector<Shape> read_shapes(const std::filesystem::path& path, const ShapeReadOptions& options = {});
 Shape read_shape(const std::filesystem::path& path, const ShapeReadOptions& options = {});
 Polygon read_polygon(const std::filesystem::path& path);
