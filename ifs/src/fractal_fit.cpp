@@ -444,6 +444,14 @@ FractalFit fit_fractal(const Points& points, const FractalFitOptions& o) {
   const Bcifs system = curve_bcifs(shape, {.free_vertices = o.free_vertices});
   const AdmissibleSpace space = admissible_space(system);
   const Model m = make_model(shape, knots, system, space);
+  // The Jacobian (#points·dim by #free) is the largest array: refused before any work when above the limit.
+  const double jacobian_bytes =
+      static_cast<double>(data.size()) * static_cast<double>(m.free()) * sizeof(double);
+  if (jacobian_bytes > static_cast<double>(o.max_bytes))
+    throw InvalidInput("fractal fit: " + std::to_string(data.rows()) + " points and " +
+                       std::to_string(m.free()) + " free coefficients need a Jacobian of " +
+                       number_text(jacobian_bytes / 1e9, 3) + " GB, above the limit of " +
+                       number_text(static_cast<double>(o.max_bytes) / 1e9, 3) + " GB; fit fewer points");
   const nurbs::Domain dom = nurbs::domain(shape);
   // The addresses of parameters in [0, 1] of the domain.
   const auto addresses = [&](std::span<const double> us) {

@@ -210,6 +210,8 @@ TEST_CASE("fractal fit: bad input is refused in one line", "[fractal_fit]") {
                     Catch::Contains("no data point falls in segment"));
   CHECK_THROWS_WITH(fit_fractal(data, {.degree = 0, .control_points = 5}), Catch::Contains("degree 0"));
   CHECK_THROWS_WITH(fit_fractal(data, {.control_points = 5, .depth = 60}), Catch::Contains("depth 60"));
+  CHECK_THROWS_WITH(fit_fractal(data, {.control_points = 5, .max_bytes = 1000}),
+                    Catch::Contains("need a Jacobian of") && Catch::Contains("fit fewer points"));
   Points bad = data;
   bad(4, 1) = std::nan("");
   CHECK_THROWS_AS(fit_fractal(bad, {.control_points = 5}), InvalidInput);

@@ -50,6 +50,8 @@ struct FractalFitOptions {
   double relative_decrease = 1e-10;
   /// Box-counting sample of the fitted attractor (points; 0: no dimension measured).
   std::size_t dimension_points = std::size_t{1} << 18;
+  /// Refuse (before any work) a fit whose Jacobian, #points·dim·#free doubles, would exceed this.
+  std::size_t max_bytes = std::size_t{1} << 30;
 };
 
 /// The pointwise Hölder exponent at the points of one vertex class: −log2 |λ|/k, λ the largest
