@@ -64,7 +64,6 @@ std::string fit_fractal(const FitOptions& o) {
       {"contraction", {{"delta", result.contraction.delta}, {"m", result.contraction.m}}},
       {"holder_bound", result.holder_bound},
       {"holder", holder},
-      {"min_holder", result.min_holder},
       {"dimension", number_or_null(result.dimension)},
       {"dimension_uncertainty", number_or_null(result.dimension_uncertainty)}};
   return summary.dump() + "\n";

@@ -79,9 +79,8 @@ const MatrixXd& matrix(const Bcifs& s, StateId from, int child) {
   return s.automaton.graph[s.automaton.graph.out[from][static_cast<std::size_t>(child)]].matrix;
 }
 
-/// ∂(x·T·y)/∂c for every free coefficient c, T the matrix of transition e: row `x` (1 by rows(T)) on the
-/// left; on the right either the identity (result nfree by cols(T)) or nothing is multiplied here.
-/// Adds Σ_u K(u, j)·x(row_u) at column col_u of row j of `out`.
+/// Adds ∂(x·T)/∂c_j to row j of `out` (nfree by cols(T)) for every free coefficient, T the matrix of
+/// transition e and x a row (1 by rows(T)): Σ_u K(u, j)·x(row_u) at column col_u.
 void add_left_derivative(const Model& m, TransitionId e, const RowVectorXd& x, MatrixXd& out) {
   for (const Index u : m.unknowns_of[e.index]) {
     const Coefficient& c = m.space->unknowns[static_cast<std::size_t>(u)];
@@ -569,7 +568,6 @@ FractalFit fit_fractal(const Points& points, const FractalFitOptions& o) {
   fit.contraction = contraction(fit.system.automaton);
   fit.holder_bound = holder_bound(fit.system.automaton);
   fit.holder = vertex_holder(fit.system);
-  for (const VertexHolder& h : fit.holder) fit.min_holder = std::min(fit.min_holder, h.exponent);
   fit.dimension = fit.dimension_uncertainty = std::numeric_limits<double>::quiet_NaN();
   if (o.dimension_points > 0) {
     // Box counting on the attractor's points at the deepest depth within the budget. No resolution is

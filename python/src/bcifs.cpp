@@ -475,7 +475,6 @@ void bind_fractal_fit(py::module_& m) {
                     "Proven lower bound on the fitted curve's Hölder exponent (−log2(δ_8)/8).")
       .def_readonly("holder", &ifs::FractalFit::holder,
                     "Hölder exponent per vertex class (list of VertexHolder).")
-      .def_readonly("min_holder", &ifs::FractalFit::min_holder, "The smallest of them.")
       .def_readonly("dimension", &ifs::FractalFit::dimension, "Box-counting dimension (NaN: not measured).")
       .def_readonly("dimension_uncertainty", &ifs::FractalFit::dimension_uncertainty, "Its uncertainty.")
       .def_readonly("dimension_note", &ifs::FractalFit::dimension_note, "Why no dimension, when none.")

@@ -85,9 +85,8 @@ struct FractalFit {
   /// Proven lower bound on the Hölder exponent of the fitted curve, at every point: −log2(δ_8)/8, δ_8 the
   /// largest δ of the products along the paths of 8 levels.
   double holder_bound = 0;
-  /// Per vertex class reached (its points' exponent, an upper bound of the curve's), and the smallest.
+  /// Per vertex class reached: its points' exponent, an upper bound of the curve's.
   std::vector<VertexHolder> holder;
-  double min_holder = 1;
   /// Box-counting dimension of the fitted attractor's points at the deepest depth within
   /// FractalFitOptions::dimension_points, and its uncertainty (the local slopes' drift; an estimate:
   /// no piece bound is used). NaN when not measured, `dimension_note` then says why.
