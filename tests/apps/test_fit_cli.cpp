@@ -121,6 +121,7 @@ TEST_CASE("cifs fit --fractal writes a BC-IFS file whose experiment renders and 
     INFO(dimension.err);
     CHECK(dimension.status == 0);
   }
+  check_error(cifs_cli("view " + out), "a BC-IFS file; cifs view shows shapes");
   // Without -o: the BC-IFS file on stdout.
   const Run printed = cifs_cli("fit " + input + " --control-points 7 --fractal --iterations 3");
   REQUIRE(printed.status == 0);

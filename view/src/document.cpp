@@ -96,6 +96,10 @@ Document open_document(const std::filesystem::path& path) {
       d.shape = io::read_shape(path);
       d.kind = std::holds_alternative<nurbs::Curve>(*d.shape) ? Kind::curve : Kind::surface;
       return d;
+    case io::Content::bcifs:
+      throw InvalidInput(path.string() +
+                         ": a BC-IFS file; cifs view shows shapes (curves, surfaces) and polygon meshes "
+                         "(cifs render draws a BC-IFS file)");
     default:
       throw InvalidInput(path.string() +
                          ": cifs view shows shapes (curves, surfaces) and polygon meshes; open the shape "
