@@ -470,7 +470,7 @@ std::string attractor_format(const AttractorOptions& o) {
   };
   std::string format = o.format.empty() ? "json" : o.format;
   if (!o.output.empty()) {
-    const std::string extension = o.output.extension().string();
+    const std::string extension = extension_of(o.output);
     if (extension.size() < 2 || std::find(names.begin(), names.end(), extension.substr(1)) == names.end())
       throw InvalidInput("-o " + o.output.string() + ": expected a " + listing(true) + " file name");
     if (!o.format.empty() && o.format != extension.substr(1))

@@ -38,7 +38,7 @@ std::string mesh_output_format(const std::filesystem::path& output) {
   std::vector<std::string> known;
   for (const io::Format& f : io::formats(io::Content::mesh)) {
     if (!f.write) continue;
-    if (output.extension() == f.extension) return std::string(f.name);
+    if (extension_of(output) == f.extension) return std::string(f.name);
     known.emplace_back(f.extension);
   }
   std::string list;
@@ -257,7 +257,7 @@ void append_row(std::string& out, std::string_view name, const Points& P, std::s
 /// `cifs limit MESH --at POINTS`: the limit surface at the points, as JSON — one point a line, streamed
 /// to the file a megabyte at a time (a million points with partials and normals: 450 MB of text).
 std::string limit_at(const LimitCommandOptions& o, subdivision::MeshScheme scheme) {
-  if (!o.output.empty() && o.output.extension() != ".json")
+  if (!o.output.empty() && extension_of(o.output) != ".json")
     throw InvalidInput("-o " + o.output.string() + ": expected a .json file name (--at writes JSON)");
   const std::vector<subdivision::FacePoint> points = face_points(o.at);
   std::optional<AtomicFile> output;

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <array>
+#include <cctype>
 #include <atomic>
 #include <cerrno>
 #include <csignal>
@@ -274,6 +275,12 @@ void check_decoded_size(const fs::path& path, std::string_view what, std::uint64
   if (bytes > limit)
     throw IoError(path.string() + ": " + std::string(what) + ", " + gigabytes(bytes) + " GB, more than the " +
                   gigabytes(limit) + " GB an input may hold");
+}
+
+std::string extension_of(const fs::path& path) {
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return extension;
 }
 
 std::string read_file(const fs::path& path) {

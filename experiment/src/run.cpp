@@ -771,7 +771,7 @@ std::optional<io::Content> geometry_content(const io::Experiment& e) {
 void check_image_extensions(const io::Experiment& e, const RunOptions& o) {
   const auto image = [](const std::filesystem::path& path, const std::string& label, const char* extension,
                         const char* what) {
-    if (!path.empty() && path.extension() != extension)
+    if (!path.empty() && extension_of(path) != extension)
       throw InvalidInput(label + ": " + path.string() + ": the " + what + ", written as " + extension);
   };
   image(o.exr.empty() ? e.outputs.exr : o.exr, o.exr.empty() ? "outputs.exr" : "the EXR path", ".exr",

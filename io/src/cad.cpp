@@ -2,10 +2,9 @@
 // cifs — the slot where the optional OpenCASCADE component plugs its STEP/IGES codec in (cifs/io/cad.hpp).
 #include "cifs/io/cad.hpp"
 
-#include <algorithm>
-#include <cctype>
 
 #include "cifs/errors.hpp"
+#include "cifs/files.hpp"
 
 namespace cifs::io {
 namespace {
@@ -23,9 +22,7 @@ CadCodec (*&loader())() {
 }  // namespace
 
 std::optional<CadFormat> cad_format(const std::filesystem::path& path) {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string extension = extension_of(path);
   if (extension == ".step" || extension == ".stp") return CadFormat::step;
   if (extension == ".igs" || extension == ".iges") return CadFormat::iges;
   return std::nullopt;

@@ -29,7 +29,7 @@ bool obj_mesh(std::string_view text) {
 }  // namespace
 
 Content detect(const std::filesystem::path& path) {
-  const std::string extension = path.extension().string();
+  const std::string extension = extension_of(path);
   if (extension == ".ply" || extension == ".stl" || extension == ".off" || extension == ".vtp")
     return Content::mesh;
   if (extension != ".obj" && extension != ".json") return Content::shape;

@@ -2,21 +2,19 @@
 // cifs — the gallery's index page.
 #include "cifs/io/html.hpp"
 
-#include <algorithm>
-#include <cctype>
 #include <cstddef>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "cifs/errors.hpp"
+#include "cifs/files.hpp"
 
 namespace cifs::io {
 namespace {
 
 bool is_image(const std::filesystem::path& file) {
-  std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = extension_of(file);
   return ext == ".png" || ext == ".svg";
 }
 

@@ -242,7 +242,7 @@ void write_as(const std::filesystem::path& path, const T& thing, Content content
 /// The reader of the path's extension, else JSON where JSON is the content's own format.
 template <class T>
 T read_as(const std::filesystem::path& path, Content content) {
-  const std::string extension = path.extension().string();
+  const std::string extension = extension_of(path);
   const Codec<T>* chosen = nullptr;
   for (const Codec<T>& c : table<T>())
     if (c.read && c.extension == extension) chosen = &c;
@@ -320,7 +320,7 @@ void encode(const nurbs::KnotAutomaton& automaton, std::string_view format, Byte
 Format format_of(const std::filesystem::path& path, Content content) {
   const std::vector<Format> all = formats(content);
   for (const Format& f : all)
-    if (f.write && f.extension == path.extension().string()) return f;
+    if (f.write && f.extension == extension_of(path)) return f;
   throw InvalidInput(path.string() + ": " + std::string(content_name(content)) + " is written as " +
                      listing(all, true, true));
 }
@@ -425,7 +425,7 @@ std::vector<Shape> read_shapes(const std::filesystem::path& path, const ShapeRea
     return codec.read(read_file(path), path, *cad, options);
   }
   const std::string text = read_file(path);
-  if (path.extension() == ".obj") return parse_obj(text, path.string(), options);
+  if (extension_of(path) == ".obj") return parse_obj(text, path.string(), options);
   return parse_shapes_json(text, path.string(), options);
 }
 Shape read_shape(const std::filesystem::path& path, const ShapeReadOptions& options) {
@@ -436,9 +436,10 @@ Polygon read_polygon(const std::filesystem::path& path) {
 }
 Mesh read_mesh(const std::filesystem::path& path, const MeshReadOptions& options) {
   // The readers that warn take the options; the table's readers use the defaults.
-  if (path.extension() == ".obj") return parse_mesh_obj(read_file(path), path.string(), options);
-  if (path.extension() == ".stl") return parse_mesh_stl(read_file(path), path.string(), options);
-  if (path.extension() == ".off") return parse_mesh_off(read_file(path), path.string(), options);
+  const std::string extension = extension_of(path);
+  if (extension == ".obj") return parse_mesh_obj(read_file(path), path.string(), options);
+  if (extension == ".stl") return parse_mesh_stl(read_file(path), path.string(), options);
+  if (extension == ".off") return parse_mesh_off(read_file(path), path.string(), options);
   return read_as<Mesh>(path, Content::mesh);
 }
 

@@ -184,7 +184,7 @@ Points parse_points_obj(const std::string& text, const std::string& where) {
 Points read_points(const std::filesystem::path& path) {
   const std::string text = read_file(path);
   const std::string where = path.string();
-  const std::string ext = path.extension().string();
+  const std::string ext = extension_of(path);
   if (ext == ".npy") return parse_npy(text, where);
   if (ext == ".json") return parse_points_json(text, where);
   if (ext == ".obj") return parse_points_obj(text, where);

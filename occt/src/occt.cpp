@@ -24,6 +24,7 @@
 #include <IGESControl_Controller.hxx>
 #include <IGESControl_Reader.hxx>
 #include <IGESControl_Writer.hxx>
+#include <IGESData_GlobalSection.hxx>
 #include <IGESData_IGESModel.hxx>
 #include <IGESData_IGESWriter.hxx>
 #include <IGESSelect_WorkLibrary.hxx>
@@ -32,12 +33,15 @@
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <Precision.hxx>
+#include <STEPConstruct_UnitContext.hxx>
 #include <STEPControl_Reader.hxx>
 #include <STEPControl_Writer.hxx>
 #include <Standard_Failure.hxx>
 #include <StepData_Protocol.hxx>
 #include <StepData_StepModel.hxx>
 #include <StepData_StepWriter.hxx>
+#include <StepGeom_GeomRepContextAndGlobUnitAssCtxAndGlobUncertaintyAssCtx.hxx>
+#include <StepRepr_GlobalUnitAssignedContext.hxx>
 #include <TColStd_Array1OfInteger.hxx>
 #include <TColStd_Array1OfReal.hxx>
 #include <TColStd_Array2OfReal.hxx>
@@ -382,13 +386,41 @@ void silence_messages() {
   (void)once;
 }
 
-TopoDS_Shape read_brep(std::string_view bytes, const std::filesystem::path& path, io::CadFormat format) {
+/// The length units of a STEP model's geometric contexts, in millimetres per unit (25.4 for inches).
+std::vector<double> step_length_units(const Interface_InterfaceModel& model) {
+  std::vector<double> units;
+  for (int i = 1; i <= model.NbEntities(); ++i) {
+    const auto context =
+        Handle(StepGeom_GeomRepContextAndGlobUnitAssCtxAndGlobUncertaintyAssCtx)::DownCast(model.Value(i));
+    if (context.IsNull()) continue;
+    STEPConstruct_UnitContext unit;
+    if (unit.ComputeFactors(context->GlobalUnitAssignedContext()) == 0 && unit.LengthDone() &&
+        std::find(units.begin(), units.end(), unit.LengthFactor()) == units.end())
+      units.push_back(unit.LengthFactor());
+  }
+  return units;
+}
+
+// OCCT converts lengths to millimetres by default. cifs keeps the numbers the file holds (in its own
+// length unit: no rescaling, so no rounding), by making the file's unit OCCT's "system" unit.
+TopoDS_Shape read_brep(std::string_view bytes, const std::filesystem::path& path, io::CadFormat format,
+                       const io::ShapeReadOptions& options) {
   const std::string where = path.string();
   if (format == io::CadFormat::step) {
     STEPControl_Reader reader;
     std::istringstream stream{std::string(bytes)};
     if (reader.ReadStream(where.c_str(), stream) != IFSelect_RetDone)
       throw InvalidInput(where + ": not a STEP file OpenCASCADE can read");
+    const std::vector<double> units = step_length_units(*reader.Model());
+    if (units.size() == 1) {
+      reader.SetSystemLengthUnit(units.front());
+    } else if (units.size() > 1) {
+      std::ostringstream list;
+      for (std::size_t i = 0; i < units.size(); ++i) list << (i ? ", " : "") << units[i] << " mm";
+      io::warn(options, options.index.value_or(0),
+               where + ": the file's parts use different length units (" + list.str() +
+                   "): every coordinate is converted to millimetres");
+    }
     reader.TransferRoots();
     return reader.OneShape();
   }
@@ -398,6 +430,10 @@ TopoDS_Shape read_brep(std::string_view bytes, const std::filesystem::path& path
   IGESControl_Reader reader;
   if (reader.ReadFile(where.c_str()) != IFSelect_RetDone || reader.Model()->NbEntities() == 0)
     throw InvalidInput(where + ": not an IGES file OpenCASCADE can read");
+  const Handle(IGESData_IGESModel) model = Handle(IGESData_IGESModel)::DownCast(reader.Model());
+  IGESData_GlobalSection global = model->GlobalSection();
+  global.SetCascadeUnit(global.UnitValue());  // UnitValue: the file's unit in millimetres
+  model->SetGlobalSection(global);
   reader.TransferRoots();
   return reader.OneShape();
 }
@@ -409,7 +445,7 @@ std::vector<io::Shape> read_cad(std::string_view bytes, const std::filesystem::p
   silence_messages();
   const std::string where = path.string();
   return guarded(where, [&] {
-    const TopoDS_Shape brep = read_brep(bytes, path, format);
+    const TopoDS_Shape brep = read_brep(bytes, path, format, options);
     std::vector<io::Shape> shapes;
     Skipped skipped;
     std::size_t number = 0;

@@ -92,3 +92,24 @@ TEST_CASE("A parameter or knot outside the domain names the shape file", "[cli][
               "cifs: " + kWave + ": parameter 7 is outside the domain");
   check_error(cifs_cli("insert " + kWave + " --knot 9"), "cifs: " + kWave + ": knot 9 is outside the domain");
 }
+
+TEST_CASE("Extensions are read in any case: .OBJ, .JSON, .PLY, .PNG", "[cli][frictions]") {
+  // Files from Windows tools often carry upper-case extensions; the format is the same.
+  const auto cube = scratch() / "CUBE.OBJ", ply = scratch() / "OUT.PLY";
+  std::filesystem::copy_file(kCube, cube, std::filesystem::copy_options::overwrite_existing);
+  const Run sub = cifs_cli("subdivide " + cube.string() + " --scheme catmull-clark --levels 1 -o " + ply.string());
+  INFO(sub.err);
+  REQUIRE(sub.status == 0);
+  CHECK(slurp(ply).rfind("ply\n", 0) == 0);
+  const auto wave = scratch() / "WAVE.JSON";
+  std::filesystem::copy_file(kWave, wave, std::filesystem::copy_options::overwrite_existing);
+  const Run info = cifs_cli("info " + wave.string());
+  INFO(info.err);
+  CHECK(info.status == 0);
+  CHECK_THAT(info.out, Catch::Contains("\"curve\""));
+  const std::string e = wave_experiment("upper.json", R"("png": "UPPER.PNG")");
+  const Run render = cifs_cli("render " + e + " --out-dir " + scratch().string() + " --quiet");
+  INFO(render.err);
+  CHECK(render.status == 0);
+  CHECK(std::filesystem::exists(scratch() / "UPPER.PNG"));
+}

@@ -33,9 +33,11 @@
 #include <TopoDS_Wire.hxx>
 #include <catch2/catch.hpp>
 #include <fstream>
+#include <gp.hxx>
 #include <gp_Circ.hxx>
 #include <gp_Pln.hxx>
 #include <random>
+#include <tuple>
 
 #include "cifs/errors.hpp"
 #include "cifs/files.hpp"
@@ -330,6 +332,53 @@ TEST_CASE("cifs reads what OpenCASCADE writes: rational, repeated knots, periodi
   }
 }
 
+TEST_CASE("STEP and IGES: coordinates are the numbers the file holds, in its own length unit",
+          "[occt][step][iges]") {
+  // OCCT's writers convert from millimetres to the unit asked (numbers / 25.4 for inches); OCCT's readers
+  // convert back to millimetres by default. cifs keeps the file's numbers: c·25.4 mm written in inches
+  // reads c (to an ulp of the writer's division), not c·25.4.
+  occt_quiet();
+  std::mt19937 rng(5);
+  TColgp_Array1OfPnt poles(1, 4);
+  std::vector<gp_Pnt> in_units;
+  for (int i = 1; i <= 4; ++i) {
+    in_units.emplace_back(occt_dyadic(rng, -5, 5), occt_dyadic(rng, -5, 5), occt_dyadic(rng, -5, 5));
+    poles(i) = in_units.back();
+  }
+  TColStd_Array1OfReal knots(1, 2);
+  TColStd_Array1OfInteger mults(1, 2);
+  knots(1) = 0, knots(2) = 1, mults(1) = 4, mults(2) = 4;
+  for (const auto& [unit, iges_unit, mm] : {std::tuple{"INCH", "IN", 25.4}, std::tuple{"M", "M", 1000.0},
+                                            std::tuple{"FT", "FT", 304.8}, std::tuple{"MM", "MM", 1.0}}) {
+    INFO(unit);
+    TColgp_Array1OfPnt scaled(1, 4);
+    for (int i = 1; i <= 4; ++i) scaled(i) = in_units[static_cast<std::size_t>(i - 1)].Scaled(gp::Origin(), mm);
+    const Handle(Geom_BSplineCurve) curve = new Geom_BSplineCurve(scaled, knots, mults, 3);
+    const std::filesystem::path step = occt_scratch() / (std::string("unit_") + unit + ".step"),
+                                iges = occt_scratch() / (std::string("unit_") + unit + ".igs");
+    Interface_Static::SetCVal("write.step.unit", unit);
+    STEPControl_Writer step_writer;
+    REQUIRE(step_writer.Transfer(BRepBuilderAPI_MakeEdge(curve).Edge(), STEPControl_AsIs) == IFSelect_RetDone);
+    REQUIRE(step_writer.Write(step.c_str()) == IFSelect_RetDone);
+    Interface_Static::SetCVal("write.step.unit", "MM");
+    IGESControl_Controller::Init();
+    IGESControl_Writer iges_writer(iges_unit, 0);
+    iges_writer.AddGeom(curve);
+    iges_writer.ComputeModel();
+    REQUIRE(iges_writer.Write(iges.c_str()));
+    for (const std::filesystem::path& path : {step, iges}) {
+      INFO(path.filename());
+      const std::vector<io::Shape> shapes = occt::read_cad(read_file(path), path, *io::cad_format(path),
+                                                           {.ignore_trim = false, .index = {}, .warn = {}});
+      REQUIRE(shapes.size() == 1);
+      const Points P = nurbs::cartesian_points(std::get<nurbs::Curve>(shapes[0]));
+      REQUIRE(P.rows() == 4);
+      for (int i = 0; i < 4; ++i)
+        occt_require_same(in_units[static_cast<std::size_t>(i)], P.row(i).transpose(), 5);
+    }
+  }
+}
+
 TEST_CASE(
     "STEP: a trimmed face is refused or read whole with --ignore-trim, planes read exactly, cylinders "
     "reported",
@@ -424,10 +473,10 @@ TEST_CASE("STEP and IGES: broken files and unwritable shapes are refused", "[occ
   REQUIRE_THROWS_WITH(occt::write_cad(four, io::CadFormat::step), Catch::Contains("4-D"));
 }
 
-TEST_CASE("io reads and writes .step and .igs once the component is plugged in", "[occt][io]") {
+TEST_CASE("io reads and writes .step and .igs (any case) once the component is plugged in", "[occt][io]") {
   occt::enable_cad_formats();
   const nurbs::Curve c = occt_sample_curves(5)[2];  // degree 3, rational
-  for (const char* name : {"io.step", "io.stp", "io.iges", "io.igs"}) {
+  for (const char* name : {"io.step", "io.stp", "io.iges", "io.igs", "upper.STEP", "upper.Igs"}) {
     INFO(name);
     const std::filesystem::path path = occt_scratch() / name;
     io::write(path, io::Shape(c));

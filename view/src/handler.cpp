@@ -216,7 +216,7 @@ Response save(Session& s, const Request& r) {
   const std::string name = body.at("name").get<std::string>();
   const std::filesystem::path path = in_folder(s, name, "/api/save");
   const Params params = parse_params(s.document, body, "/api/save");
-  const std::string ext = path.extension().string();
+  const std::string ext = extension_of(path);
   if (s.document.kind == Kind::mesh) {
     if (ext == ".obj" || ext == ".ply") {  // the refined mesh, as cifs subdivide writes it
       const Mesh control = edited_mesh(s.document, params);
@@ -299,9 +299,9 @@ Response render_image(const Session& s, const Request& r) {
   const std::string name = body.at("name").get<std::string>();
   const std::filesystem::path path = in_folder(s, name, "/api/render");
   io::Experiment e = as_experiment(s, parse_params(s.document, body, "/api/render"));
-  if (path.extension() == ".png")
+  if (extension_of(path) == ".png")
     e.outputs.png = path;
-  else if (path.extension() == ".exr")
+  else if (extension_of(path) == ".exr")
     e.outputs.exr = path;
   else
     throw InvalidInput(name + ": an image is rendered as .png or .exr");

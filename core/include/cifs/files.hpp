@@ -26,6 +26,10 @@ namespace cifs {
 /// leftover of a writer that was killed before it could clean up.
 inline constexpr std::string_view kTemporaryMarker = ".cifs-tmp.";
 
+/// The path's extension in lower case (".STEP" → ".step"): formats are chosen by it, and files from
+/// other systems often carry upper-case extensions.
+std::string extension_of(const std::filesystem::path& path);
+
 /// The whole file as bytes. IoError naming the path when it is not a regular file (a directory, a
 /// device such as /dev/zero, a FIFO: refused without waiting for a writer), holds more than half the
 /// physical memory (with both figures), or cannot be read. While a RunInputs lives, the file is
