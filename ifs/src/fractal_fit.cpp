@@ -190,20 +190,53 @@ const Functional& functional_of(const EdgeFunctionals& f, const Address& a, Stat
   return a.end ? f.end[cell] : f.start[cell];
 }
 
-/// The row a (1 by #control points) with A(ū) = a·P: ℓ·T_L⋯T_1 scattered onto the segment's columns.
-/// `left` receives ℓ·T_L⋯T_{i+1} for i = L … 1 (index i − 1), when given.
-void attractor_row(const Model& m, const Bcifs& s, const EdgeFunctionals& f, const Address& a,
-                   std::vector<StateId>& states, Eigen::SparseVector<double>& row,
-                   std::vector<RowVectorXd>* left) {
+/// A row of a cell's size: cells are at most degree + 1 ≤ 10 wide (make_model checks), so rows live on
+/// the stack — the walks below run 30 levels per data point and allocated at every level before.
+constexpr Index kMaxCell = 16;
+using CellRow = Eigen::Matrix<double, 1, Eigen::Dynamic, Eigen::RowMajor, 1, kMaxCell>;
+
+/// The walk down one address: its states, ℓ·T_L⋯T_{i+1} per level (`left`) and the nets N_i =
+/// T_i⋯T_1·N_0 (`nets`, when asked). Walks of sorted addresses share their leading digits: the states and
+/// nets above the first digit that differs from the previous walk's are kept, not recomputed.
+struct Walk {
+  std::size_t initial = std::numeric_limits<std::size_t>::max();
+  std::vector<int> word;
+  std::vector<StateId> states;
+  std::vector<CellRow> left;
+  std::vector<Points> nets;
+  Index nets_valid = 0;  // nets[0 … nets_valid) are those of the current word
+};
+
+/// Moves `w` to address a; returns the first level whose state changed (levels above it are shared).
+std::size_t walk_states(const Bcifs& s, const Address& a, Walk& w) {
   const auto& g = s.automaton.graph;
-  states.assign(1, s.automaton.initial[a.initial].state);
-  for (const int child : a.word)
-    states.push_back(target(g.out[states.back()][static_cast<std::size_t>(child)], g));
-  RowVectorXd x = functional_of(f, a, states.back()).value;
-  if (left) left->resize(a.word.size());
+  std::size_t same = 0;
+  if (w.initial == a.initial) {
+    const std::size_t common = std::min(w.word.size(), a.word.size());
+    while (same < common && w.word[same] == a.word[same]) ++same;
+  } else {
+    w.initial = a.initial;
+    w.states.assign(1, s.automaton.initial[a.initial].state);
+    w.nets_valid = 0;
+  }
+  w.word.assign(a.word.begin(), a.word.end());
+  w.states.resize(same + 1);
+  for (std::size_t i = same; i < a.word.size(); ++i)
+    w.states.push_back(target(g.out[w.states.back()][static_cast<std::size_t>(a.word[i])], g));
+  w.nets_valid = std::min<Index>(w.nets_valid, static_cast<Index>(same) + 1);
+  return same;
+}
+
+/// The row a (1 by #control points) with A(ū) = a·P: ℓ·T_L⋯T_1 scattered onto the segment's columns
+/// (`row` is overwritten). `w.left` receives ℓ·T_L⋯T_{i+1} for i = L … 1 (index i − 1).
+void attractor_row(const Model& m, const Bcifs& s, const EdgeFunctionals& f, const Address& a, Walk& w,
+                   Eigen::SparseVector<double>& row) {
+  walk_states(s, a, w);
+  CellRow x = functional_of(f, a, w.states.back()).value;
+  w.left.resize(a.word.size());
   for (std::size_t i = a.word.size(); i-- > 0;) {
-    if (left) (*left)[i] = x;
-    x = (x * matrix(s, states[i], a.word[i])).eval();
+    w.left[i] = x;
+    x.noalias() = w.left[i].lazyProduct(matrix(s, w.states[i], a.word[i]));  // tiny: no BLAS path
   }
   row.setZero();
   const auto& columns = m.columns[a.initial];
@@ -214,10 +247,10 @@ void attractor_row(const Model& m, const Bcifs& s, const EdgeFunctionals& f, con
 Points attractor_points(const Model& m, const Bcifs& s, const EdgeFunctionals& f, const Points& P,
                         const std::vector<Address>& at) {
   Points out(static_cast<Index>(at.size()), P.cols());
-  std::vector<StateId> states;
+  Walk w;
   Eigen::SparseVector<double> row(m.control_points);
   for (std::size_t k = 0; k < at.size(); ++k) {
-    attractor_row(m, s, f, at[k], states, row, nullptr);
+    attractor_row(m, s, f, at[k], w, row);
     out.row(static_cast<Index>(k)) = row.transpose() * P;
   }
   return out;
@@ -252,10 +285,11 @@ std::optional<Evaluation> evaluate_model(const Model& m, const Eigen::VectorXd& 
     return std::nullopt;  // a vertex operator without a single fixed point: no attractor point there
   }
   std::vector<Eigen::Triplet<double>> entries;
-  std::vector<StateId> states;
+  entries.reserve(at.size() * m.columns.front().size());
+  Walk w;
   Eigen::SparseVector<double> row(m.control_points);
   for (std::size_t k = 0; k < at.size(); ++k) {
-    attractor_row(m, e.system, e.functionals, at[k], states, row, nullptr);
+    attractor_row(m, e.system, e.functionals, at[k], w, row);
     for (Eigen::SparseVector<double>::InnerIterator it(row); it; ++it)
       entries.emplace_back(static_cast<Index>(k), it.index(), it.value());
   }
@@ -279,31 +313,41 @@ MatrixXd point_derivatives(const Model& m, const Bcifs& system, const EdgeFuncti
   const auto rows = static_cast<Index>(at.size());
   MatrixXd J = MatrixXd::Zero(rows * dim, m.free());  // row k·dim + d
   const auto& g = system.automaton.graph;
-  std::vector<StateId> states;
-  std::vector<RowVectorXd> left;
+  Walk w;
   Eigen::SparseVector<double> row(m.control_points);
-  std::vector<Points> nets;
+  MatrixXd block(dim, m.free());
   for (std::size_t k = 0; k < at.size(); ++k) {
     const Address& a = at[k];
-    attractor_row(m, system, functionals, a, states, row, &left);
-    const auto& columns = m.columns[a.initial];
-    nets.resize(a.word.size() + 1);
-    nets[0].resize(static_cast<Index>(columns.size()), dim);
-    for (std::size_t r = 0; r < columns.size(); ++r) nets[0].row(static_cast<Index>(r)) = P.row(columns[r]);
-    for (std::size_t i = 0; i < a.word.size(); ++i)
-      nets[i + 1] = matrix(system, states[i], a.word[i]) * nets[i];
-    auto block = J.middleRows(static_cast<Index>(k) * dim, dim);  // dim by nfree: transposed derivative
-    block.noalias() += (functional_of(functionals, a, states.back()).d * nets.back()).transpose();
+    attractor_row(m, system, functionals, a, w, row);
+    const auto levels = static_cast<Index>(a.word.size());
+    if (static_cast<Index>(w.nets.size()) < levels + 1) w.nets.resize(static_cast<std::size_t>(levels) + 1);
+    if (w.nets_valid == 0) {
+      const auto& columns = m.columns[a.initial];
+      w.nets[0].resize(static_cast<Index>(columns.size()), dim);
+      for (std::size_t r = 0; r < columns.size(); ++r)
+        w.nets[0].row(static_cast<Index>(r)) = P.row(columns[r]);
+      w.nets_valid = 1;
+    }
+    for (Index i = w.nets_valid - 1; i < levels; ++i) {
+      const auto iu = static_cast<std::size_t>(i);
+      w.nets[iu + 1].noalias() = matrix(system, w.states[iu], a.word[iu]).lazyProduct(w.nets[iu]);
+    }
+    w.nets_valid = levels + 1;
+    // dim by nfree, the transposed derivative: built contiguous, then copied into J's strided rows.
+    block.noalias() =
+        (functional_of(functionals, a, w.states.back()).d * w.nets[static_cast<std::size_t>(levels)])
+            .transpose();
     for (std::size_t i = 0; i < a.word.size(); ++i) {
-      const TransitionId t = g.out[states[i]][static_cast<std::size_t>(a.word[i])];
+      const TransitionId t = g.out[w.states[i]][static_cast<std::size_t>(a.word[i])];
       for (const Index u : m.unknowns_of[t.index]) {
         const Coefficient& c = m.space->unknowns[static_cast<std::size_t>(u)];
-        const double lr = left[i](c.row);
+        const double lr = w.left[i](c.row);
         if (lr == 0) continue;
         for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(m.K, u); it; ++it)
-          block.col(it.col()) += (it.value() * lr) * nets[i].row(c.col).transpose();
+          block.col(it.col()) += (it.value() * lr) * w.nets[i].row(c.col).transpose();
       }
     }
+    J.middleRows(static_cast<Index>(k) * dim, dim) = block;
   }
   return J;
 }
@@ -396,6 +440,11 @@ Model make_model(const nurbs::Curve& shape, const nurbs::KnotAutomaton& knots, c
   m.space = &space;
   m.K = space.K;
   m.control_points = nurbs::distinct_count(shape);
+  for (StateId st = 0; st < num_vertices(system.automaton.graph); ++st)
+    if (system.automaton.graph[st].size > kMaxCell)
+      throw InvalidInput("fractal fit: cell " + system.automaton.graph[st].name + " has " +
+                         std::to_string(system.automaton.graph[st].size) + " rows, more than the " +
+                         std::to_string(kMaxCell) + " the fit's walks hold");
   m.unknowns_of.resize(num_edges(system.automaton.graph));
   for (std::size_t u = 0; u < space.unknowns.size(); ++u)
     m.unknowns_of[transition_id(system.automaton, space.unknowns[u].transition).index].push_back(
