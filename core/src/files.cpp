@@ -9,8 +9,8 @@
 #include <unistd.h>
 
 #include <array>
-#include <cctype>
 #include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <csignal>
 #include <cstdint>

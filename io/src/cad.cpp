@@ -2,7 +2,6 @@
 // cifs — the slot where the optional OpenCASCADE component plugs its STEP/IGES codec in (cifs/io/cad.hpp).
 #include "cifs/io/cad.hpp"
 
-
 #include "cifs/errors.hpp"
 #include "cifs/files.hpp"
 

@@ -97,7 +97,8 @@ TEST_CASE("Extensions are read in any case: .OBJ, .JSON, .PLY, .PNG", "[cli][fri
   // Files from Windows tools often carry upper-case extensions; the format is the same.
   const auto cube = scratch() / "CUBE.OBJ", ply = scratch() / "OUT.PLY";
   std::filesystem::copy_file(kCube, cube, std::filesystem::copy_options::overwrite_existing);
-  const Run sub = cifs_cli("subdivide " + cube.string() + " --scheme catmull-clark --levels 1 -o " + ply.string());
+  const Run sub =
+      cifs_cli("subdivide " + cube.string() + " --scheme catmull-clark --levels 1 -o " + ply.string());
   INFO(sub.err);
   REQUIRE(sub.status == 0);
   CHECK(slurp(ply).rfind("ply\n", 0) == 0);

@@ -352,13 +352,15 @@ TEST_CASE("STEP and IGES: coordinates are the numbers the file holds, in its own
                                             std::tuple{"FT", "FT", 304.8}, std::tuple{"MM", "MM", 1.0}}) {
     INFO(unit);
     TColgp_Array1OfPnt scaled(1, 4);
-    for (int i = 1; i <= 4; ++i) scaled(i) = in_units[static_cast<std::size_t>(i - 1)].Scaled(gp::Origin(), mm);
+    for (int i = 1; i <= 4; ++i)
+      scaled(i) = in_units[static_cast<std::size_t>(i - 1)].Scaled(gp::Origin(), mm);
     const Handle(Geom_BSplineCurve) curve = new Geom_BSplineCurve(scaled, knots, mults, 3);
     const std::filesystem::path step = occt_scratch() / (std::string("unit_") + unit + ".step"),
                                 iges = occt_scratch() / (std::string("unit_") + unit + ".igs");
     Interface_Static::SetCVal("write.step.unit", unit);
     STEPControl_Writer step_writer;
-    REQUIRE(step_writer.Transfer(BRepBuilderAPI_MakeEdge(curve).Edge(), STEPControl_AsIs) == IFSelect_RetDone);
+    REQUIRE(step_writer.Transfer(BRepBuilderAPI_MakeEdge(curve).Edge(), STEPControl_AsIs) ==
+            IFSelect_RetDone);
     REQUIRE(step_writer.Write(step.c_str()) == IFSelect_RetDone);
     Interface_Static::SetCVal("write.step.unit", "MM");
     IGESControl_Controller::Init();
