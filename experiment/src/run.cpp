@@ -43,7 +43,7 @@
 namespace cifs::experiment {
 namespace {
 
-using Mode = io::Evaluation::Mode;
+using Mode = io::EvaluationSpec::Mode;
 
 /// What the evaluation produced, ready to frame, draw and export.
 struct Scene {
@@ -82,7 +82,7 @@ Points cartesian_if(const Points& P, bool rational) {
 /// Deterministic curve evaluation: the attractor points to a depth, or to a tolerance (a fraction of
 /// the nets' extent; leaf start points of the tolerance traversal, in curve order), as one polyline
 /// with per-piece states.
-Segments evaluate_curve(Scene& scene, const io::Evaluation& ev, bool closed, const RunOptions& o) {
+Segments evaluate_curve(Scene& scene, const io::EvaluationSpec& ev, bool closed, const RunOptions& o) {
   const bool depth = ev.mode == Mode::depth;
   const auto row_bytes = sizeof(double) * static_cast<std::size_t>(scene.nets.front().cols());
   ifs::Sample sample = ifs::sample_attractor(
@@ -102,7 +102,7 @@ Segments evaluate_curve(Scene& scene, const io::Evaluation& ev, bool closed, con
   return s;
 }
 
-ifs::PerturbOptions perturb_options(const io::Perturbation& p) {
+ifs::PerturbOptions perturb_options(const io::PerturbationSpec& p) {
   ifs::PerturbOptions po;
   po.amplitude = p.amplitude;
   po.seed = p.seed;
@@ -236,10 +236,10 @@ Scene bcifs_scene(const io::Experiment& e, const RunOptions& o, RunReport& repor
 /// A mesh source's surface automaton (subdivision/limit.hpp), fractal when `perturbation` is given
 /// (fractal_surface): the automaton needs quads (triangles) with at most one extraordinary corner, so
 /// the mesh is refined once or twice first, at most `budget` levels; `refined` gets the levels spent.
-subdivision::SurfaceAutomaton mesh_automaton(const io::MeshSource& m, const io::Perturbation* perturbation,
+subdivision::SurfaceAutomaton mesh_automaton(const io::MeshSource& m, const io::PerturbationSpec* perturbation,
                                              int budget, const RunOptions& o, RunReport& report,
                                              int& refined) {
-  const subdivision::MeshOptions options{.max_bytes = double(o.max_bytes)};
+  const subdivision::MeshOptions options{.max_bytes = o.max_bytes};
   const std::string file = m.path.filename().string();
   for (int first = 1; first <= 2; ++first) {
     if (budget < first)
@@ -271,7 +271,7 @@ subdivision::SurfaceAutomaton mesh_automaton(const io::MeshSource& m, const io::
 
 /// A fractal Catmull–Clark or Loop surface at the resolution of `levels` steps: its automaton after
 /// one or two steps, drawn at the remaining depth.
-Mesh fractal_mesh(const io::MeshSource& m, const io::Perturbation& perturbation, const RunOptions& o,
+Mesh fractal_mesh(const io::MeshSource& m, const io::PerturbationSpec& perturbation, const RunOptions& o,
                   RunReport& report) {
   int refined = 0;
   const subdivision::SurfaceAutomaton surface =
@@ -285,7 +285,7 @@ Mesh fractal_mesh(const io::MeshSource& m, const io::Perturbation& perturbation,
 /// control mesh is the mesh's edges.
 Scene mesh_scene(const io::MeshSource& m, const io::Experiment& e, const RunOptions& o, RunReport& report) {
   Scene scene;
-  const subdivision::MeshOptions options{.max_bytes = double(o.max_bytes)};
+  const subdivision::MeshOptions options{.max_bytes = o.max_bytes};
   try {
     if (e.perturbation) {
       scene.mesh = fractal_mesh(m, *e.perturbation, o, report);
@@ -294,7 +294,7 @@ Scene mesh_scene(const io::MeshSource& m, const io::Experiment& e, const RunOpti
       const bool closed =
           std::none_of(t.boundary_vertex.begin(), t.boundary_vertex.end(), [](auto b) { return b; });
       scene.mesh = subdivision::limit_mesh(m.mesh, m.scheme, m.levels,
-                                           {.normals = closed, .max_bytes = double(o.max_bytes)});
+                                           {.normals = closed, .max_bytes = o.max_bytes});
     } else {
       scene.mesh = subdivision::subdivide(m.mesh, m.scheme, m.levels, options);
     }
@@ -350,7 +350,7 @@ std::string scheme_text(const subdivision::Scheme& s) {
 
 /// The windows of `window` consecutive points of a polygon, or of window × window points of a
 /// grid (u-major, row i·window + j), u-major like product_bcifs' initial entries.
-std::vector<Points> scheme_windows(const io::JunctionSide& s, int window) {
+std::vector<Points> scheme_windows(const io::JunctionSideSpec& s, int window) {
   std::vector<Points> nets;
   if (s.columns == 0) {
     for (Eigen::Index k = 0; k + window <= s.points.rows(); ++k)
@@ -367,7 +367,7 @@ std::vector<Points> scheme_windows(const io::JunctionSide& s, int window) {
   return nets;
 }
 
-JunctionPart junction_part(const io::JunctionSide& s) {
+JunctionPart junction_part(const io::JunctionSideSpec& s) {
   JunctionPart part;
   if (s.scheme) {
     const int window = s.window == 0 ? subdivision::mask_degree(*s.scheme) : s.window;
@@ -483,7 +483,7 @@ void share_boundary_points(const JunctionPart& b, std::vector<Points>& nets, std
 /// Two shapes joined along a shared boundary (ifs::join: A keeps its matrices, B adapts), perturbed
 /// when asked, drawn each side in its own colour: curves as their pieces, surfaces as one quad mesh
 /// per side (ifs::quad_mesh; the two meshes meet on the junction but are not welded).
-Scene junction_scene(const io::Junction& junction, const io::Experiment& e, const RunOptions& o,
+Scene junction_scene(const io::JunctionSpec& junction, const io::Experiment& e, const RunOptions& o,
                      RunReport& report, std::string& kind) {
   JunctionPart a = junction_part(junction.a), b = junction_part(junction.b);
   const bool rational = a.rational || b.rational;
@@ -760,7 +760,7 @@ std::optional<io::Content> geometry_content(const io::Experiment& e) {
     return shape && std::holds_alternative<nurbs::Surface>(*shape);
   };
   if (e.junction) {
-    const io::JunctionSide& a = e.junction->a;  // both sides are curves or both surfaces (ifs::join)
+    const io::JunctionSideSpec& a = e.junction->a;  // both sides are curves or both surfaces (ifs::join)
     return (a.scheme ? a.columns > 0 : surface(a.shape)) ? io::Content::mesh : io::Content::segments;
   }
   return surface(e.shape) ? io::Content::mesh : io::Content::segments;  // BC-IFS files draw curves

@@ -155,7 +155,7 @@ MeshSource read_mesh_source(const Reader& r, const json& doc, const std::filesys
 
 /// A scheme side's control points: a polygon `[[x, y], …]` or a grid `[[[x, y, z], …], …]` (lines
 /// of constant v, u-major), with at least `window` points along each direction.
-void read_junction_points(const Reader& r, const json& v, const std::string& path, JunctionSide& s,
+void read_junction_points(const Reader& r, const json& v, const std::string& path, JunctionSideSpec& s,
                           int window) {
   r.array(v, path);
   if (v.empty()) r.fail(path, "no points");
@@ -188,13 +188,13 @@ void read_junction_points(const Reader& r, const json& v, const std::string& pat
 }
 
 /// `junction.a` / `junction.b`: a NURBS shape, or a named scheme on its control points.
-JunctionSide read_junction_side(const Reader& r, const json& v, const std::string& path,
+JunctionSideSpec read_junction_side(const Reader& r, const json& v, const std::string& path,
                                 const std::filesystem::path& base,
                                 std::vector<std::filesystem::path>& inputs) {
   r.object(v, path);
   r.only(v, path,
          {"shape", "scheme", "parameters", "points", "window", "layer", "free", "boundary", "color"});
-  JunctionSide s;
+  JunctionSideSpec s;
   if (int(v.contains("shape")) + int(v.contains("scheme")) != 1)
     r.fail(path, "expected exactly one of \"shape\" (a NURBS curve or surface) and \"scheme\"");
   bool surface = false;
@@ -249,21 +249,21 @@ JunctionSide read_junction_side(const Reader& r, const json& v, const std::strin
   return s;
 }
 
-bool is_surface(const JunctionSide& s) {
+bool is_surface(const JunctionSideSpec& s) {
   return s.shape ? std::holds_alternative<nurbs::Surface>(*s.shape) : s.columns > 0;
 }
 
 /// Cartesian coordinates of a side's points.
-Eigen::Index side_dimension(const JunctionSide& s) {
+Eigen::Index side_dimension(const JunctionSideSpec& s) {
   if (!s.shape) return s.points.cols();
   return std::visit([](const auto& shape) { return nurbs::cartesian_points(shape).cols(); }, *s.shape);
 }
 
-Junction read_junction(const Reader& r, const json& v, const std::filesystem::path& base,
+JunctionSpec read_junction(const Reader& r, const json& v, const std::filesystem::path& base,
                        std::vector<std::filesystem::path>& inputs) {
   r.object(v, "junction");
   r.only(v, "junction", {"a", "b"});
-  Junction j{read_junction_side(r, r.member(v, "junction", "a"), "junction.a", base, inputs),
+  JunctionSpec j{read_junction_side(r, r.member(v, "junction", "a"), "junction.a", base, inputs),
              read_junction_side(r, r.member(v, "junction", "b"), "junction.b", base, inputs)};
   if (is_surface(j.a) != is_surface(j.b))
     r.fail("junction", std::string("A is a ") + (is_surface(j.a) ? "surface" : "curve") + " and B a " +
@@ -274,10 +274,10 @@ Junction read_junction(const Reader& r, const json& v, const std::filesystem::pa
   return j;
 }
 
-Perturbation read_perturbation(const Reader& r, const json& v) {
+PerturbationSpec read_perturbation(const Reader& r, const json& v) {
   r.object(v, "perturbation");
   r.only(v, "perturbation", {"amplitude", "seed", "values", "keep_vertices"});
-  Perturbation p;
+  PerturbationSpec p;
   if (v.contains("amplitude")) {
     p.amplitude = r.number(v["amplitude"], "perturbation.amplitude");
     if (p.amplitude < 0) r.fail("perturbation.amplitude", "expected a number ≥ 0");
@@ -293,26 +293,26 @@ Perturbation read_perturbation(const Reader& r, const json& v) {
   return p;
 }
 
-Evaluation read_evaluation(const Reader& r, const json& v) {
+EvaluationSpec read_evaluation(const Reader& r, const json& v) {
   r.object(v, "evaluation");
   if (v.contains("tolerance"))
     r.fail("evaluation.tolerance",
            "is now \"relative_piece_size\" (every piece smaller than this fraction of "
            "the control nets' diameter)");
   r.only(v, "evaluation", {"depth", "relative_piece_size", "chaos", "seed"});
-  Evaluation e;
+  EvaluationSpec e;
   const int modes =
       int(v.contains("depth")) + int(v.contains("relative_piece_size")) + int(v.contains("chaos"));
   if (modes != 1)
     r.fail("evaluation", "expected exactly one of \"depth\", \"relative_piece_size\", \"chaos\"");
   if (v.contains("depth")) {
-    e.mode = Evaluation::Mode::depth;
+    e.mode = EvaluationSpec::Mode::depth;
     e.depth = bounded_integer(r, v["depth"], "evaluation.depth", 0, 30);
   } else if (v.contains("relative_piece_size")) {
-    e.mode = Evaluation::Mode::tolerance;
+    e.mode = EvaluationSpec::Mode::tolerance;
     e.tolerance = positive(r, v["relative_piece_size"], "evaluation.relative_piece_size");
   } else {
-    e.mode = Evaluation::Mode::chaos;
+    e.mode = EvaluationSpec::Mode::chaos;
     // Below 2^53, where the summed counts stay exact; each process draws fewer than 2^32 (cifs render
     // under mpirun divides them).
     e.samples = unsigned_integer(r, v["chaos"], "evaluation.chaos", (std::uint64_t{1} << 53) - 1);

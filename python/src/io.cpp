@@ -182,13 +182,13 @@ Segments make_segments(const DoubleArray& vertices, const py::object& segments,
   return out;
 }
 
-const char* mode_name(io::Evaluation::Mode mode) {
+const char* mode_name(io::EvaluationSpec::Mode mode) {
   switch (mode) {
-    case io::Evaluation::Mode::depth:
+    case io::EvaluationSpec::Mode::depth:
       return "depth";
-    case io::Evaluation::Mode::tolerance:
+    case io::EvaluationSpec::Mode::tolerance:
       return "tolerance";
-    case io::Evaluation::Mode::chaos:
+    case io::EvaluationSpec::Mode::chaos:
       return "chaos";
   }
   return "";

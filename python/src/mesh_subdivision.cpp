@@ -22,8 +22,8 @@ namespace {
 namespace sd = cifs::subdivision;
 
 sd::MeshOptions mesh_options(double max_bytes) {
-  if (!(max_bytes > 0)) throw InvalidInput("max_bytes must be positive");
-  return {.max_bytes = max_bytes};
+  if (!(max_bytes > 0 && max_bytes < 1.8e19)) throw InvalidInput("max_bytes must be positive");
+  return {.max_bytes = static_cast<std::size_t>(max_bytes)};
 }
 
 /// The mesh with its boundary rule replaced when `boundary` is given ("edge", "corner", "none").

@@ -996,12 +996,12 @@ MeshTopology checked_input(const Mesh& mesh, MeshScheme scheme, int levels, cons
     c = next_counts(scheme, c);
     const double level_bytes = 40 * c.corners + 190 * c.vertices;
     bytes = keep_levels ? bytes + level_bytes : level_bytes;
-    if (bytes > options.max_bytes || c.corners > INT_MAX)
+    if (bytes > static_cast<double>(options.max_bytes) || c.corners > INT_MAX)
       throw InvalidInput(who + ": " + std::to_string(levels) + " levels of " +
                          std::to_string(face_count(t0)) + " faces reach " + number_text(c.faces, 3) +
                          " faces and " + number_text(c.vertices, 3) + " vertices at level " +
                          std::to_string(level + 1) + ", about " + number_text(bytes, 3) + " bytes (limit " +
-                         number_text(options.max_bytes, 3) + "); ask for fewer levels");
+                         number_text(static_cast<double>(options.max_bytes), 3) + "); ask for fewer levels");
   }
   return t0;
 }

@@ -749,7 +749,7 @@ LocalRefinement refine_local(MeshScheme scheme, int n, const LocalOptions& optio
   LocalRefinement out;
   out.mesh = local_mesh(scheme, n, options, rings);
   const int steps = scheme == MeshScheme::sqrt3 ? 2 : 1;
-  out.refinement = refine_topology(out.mesh, scheme, steps, MeshOptions{.max_bytes = 1e9});
+  out.refinement = refine_topology(out.mesh, scheme, steps, MeshOptions{.max_bytes = 1'000'000'000});
   const MeshRefinement& r = out.refinement;
   out.stencils = steps == 1 ? r.steps.front() : stencil_table(r);
   const Stencils& stencils = out.stencils;

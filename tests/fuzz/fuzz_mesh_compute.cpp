@@ -32,7 +32,7 @@ using subdivision::MeshScheme;
 
 constexpr std::size_t kOptionBytes = 4;
 constexpr std::size_t kMaxFaces = 64;
-constexpr double kMaxBytes = 64.0 * (1 << 20);
+constexpr std::size_t kMaxBytes = std::size_t{64} << 20;
 constexpr MeshScheme kSchemes[] = {MeshScheme::catmull_clark, MeshScheme::loop,  MeshScheme::doo_sabin,
                                    MeshScheme::butterfly,     MeshScheme::sqrt3, MeshScheme::bilinear};
 

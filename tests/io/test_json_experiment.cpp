@@ -42,7 +42,7 @@ TEST_CASE("Experiments: every section read with its defaults", "[io][experiment]
   CHECK(e.perturbation->seed == 7);
   CHECK(e.perturbation->values.at("G[1,2]") == 0.25);
   CHECK(e.perturbation->keep_vertices);
-  CHECK(e.evaluation.mode == io::Evaluation::Mode::chaos);
+  CHECK(e.evaluation.mode == io::EvaluationSpec::Mode::chaos);
   CHECK(e.evaluation.samples == 1000);
   CHECK(e.evaluation.seed == 3);
   CHECK(e.camera.projection == io::CameraSpec::Projection::perspective);
@@ -63,7 +63,7 @@ TEST_CASE("Experiments: every section read with its defaults", "[io][experiment]
   const io::Experiment d = parse_experiment_text(R"({"ifs": "fern"})");
   REQUIRE(d.ifs);
   CHECK(d.ifs->name == "fern");
-  CHECK(d.evaluation.mode == io::Evaluation::Mode::depth);
+  CHECK(d.evaluation.mode == io::EvaluationSpec::Mode::depth);
   CHECK(d.camera.projection == io::CameraSpec::Projection::automatic);
   const io::Experiment m =
       parse_experiment_text(R"({"ifs": {"maps": [[0.5, 0, 0, 0.5, 0, 0], [0.5, 0, 0, 0.5, 0.5, 0, 2]]}})");

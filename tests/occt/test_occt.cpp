@@ -18,6 +18,7 @@
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <Precision.hxx>
+#include <STEPControl_Controller.hxx>
 #include <STEPControl_Reader.hxx>
 #include <STEPControl_Writer.hxx>
 #include <TColStd_Array1OfInteger.hxx>
@@ -357,7 +358,8 @@ TEST_CASE("STEP and IGES: coordinates are the numbers the file holds, in its own
     const Handle(Geom_BSplineCurve) curve = new Geom_BSplineCurve(scaled, knots, mults, 3);
     const std::filesystem::path step = occt_scratch() / (std::string("unit_") + unit + ".step"),
                                 iges = occt_scratch() / (std::string("unit_") + unit + ".igs");
-    Interface_Static::SetCVal("write.step.unit", unit);
+    STEPControl_Controller::Init();  // registers write.step.unit: before it, SetCVal does nothing
+    REQUIRE(Interface_Static::SetCVal("write.step.unit", unit));
     STEPControl_Writer step_writer;
     REQUIRE(step_writer.Transfer(BRepBuilderAPI_MakeEdge(curve).Edge(), STEPControl_AsIs) ==
             IFSelect_RetDone);
@@ -368,6 +370,7 @@ TEST_CASE("STEP and IGES: coordinates are the numbers the file holds, in its own
     iges_writer.AddGeom(curve);
     iges_writer.ComputeModel();
     REQUIRE(iges_writer.Write(iges.c_str()));
+    if (mm == 25.4) REQUIRE(read_file(step).find("'INCH'") != std::string::npos);  // the unit is declared
     for (const std::filesystem::path& path : {step, iges}) {
       INFO(path.filename());
       const std::vector<io::Shape> shapes = occt::read_cad(read_file(path), path, *io::cad_format(path),

@@ -255,7 +255,7 @@ void append_faces(const Mesh& mesh, std::vector<std::uint32_t>& triangles) {
 void mesh_geometry(const Document& document, const Params& params, const Limits& limits, Geometry& g) {
   const Mesh control = edited_mesh(document, params);
   subdivision::MeshOptions options;
-  options.max_bytes = 64.0 * static_cast<double>(limits.max_points);  // about 64 bytes per vertex
+  options.max_bytes = 64 * limits.max_points;  // about 64 bytes per vertex
   const Mesh refined =
       subdivision::subdivide(control, subdivision::named_mesh_scheme(params.scheme), params.levels, options);
   g.positions = xyz(refined.vertices);
@@ -290,7 +290,7 @@ void perturbed_geometry(const io::Shape& shape, const Params& params, const Limi
   io::Experiment e;
   e.shape = shape;
   e.evaluation.depth = params.depth;
-  e.perturbation = io::Perturbation{
+  e.perturbation = io::PerturbationSpec{
       .amplitude = params.amplitude, .seed = params.seed, .values = {}, .keep_vertices = true};
   experiment::RunOptions options;
   options.max_bytes = ifs::mesh_bytes(limits.max_points, 3, limits.max_points);

@@ -221,7 +221,7 @@ Response save(Session& s, const Request& r) {
     if (ext == ".obj" || ext == ".ply") {  // the refined mesh, as cifs subdivide writes it
       const Mesh control = edited_mesh(s.document, params);
       subdivision::MeshOptions options;
-      options.max_bytes = 64.0 * static_cast<double>(s.limits.max_points);
+      options.max_bytes = 64 * s.limits.max_points;
       if (params.levels < 0 || params.levels > s.limits.max_levels)
         throw InvalidInput("levels " + std::to_string(params.levels) + " is outside 0.." +
                            std::to_string(s.limits.max_levels));
@@ -267,7 +267,7 @@ io::Experiment as_experiment(const Session& s, const Params& params) {
     e.shape = edited_shape(s.document, params);
     e.evaluation.depth = params.depth;
     if (params.amplitude != 0)
-      e.perturbation = io::Perturbation{
+      e.perturbation = io::PerturbationSpec{
           .amplitude = params.amplitude, .seed = params.seed, .values = {}, .keep_vertices = true};
   }
   e.render.width = 1024;

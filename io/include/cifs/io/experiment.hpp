@@ -29,7 +29,7 @@ struct ClassicIfs {
 
 /// Free coefficients of the BC-IFS moved away from the NURBS (or file) values: uniform random
 /// offsets in [−amplitude, amplitude] from `seed`, then the explicit `values` by coefficient name.
-struct Perturbation {
+struct PerturbationSpec {
   double amplitude = 0;
   std::uint64_t seed = 1;
   std::map<std::string, double> values;
@@ -52,7 +52,7 @@ struct MeshSource {
 /// One side of a junction (docs/junctions.md): a NURBS curve or surface, or a uniform subdivision
 /// scheme on its control points (a polygon for a curve; a grid for the tensor-product surface of
 /// the scheme in u and v).
-struct JunctionSide {
+struct JunctionSideSpec {
   std::optional<Shape> shape;
   std::optional<subdivision::Scheme> scheme;
   Points points;              // scheme sides: the polygon, or the grid u-major (row i·columns + j)
@@ -70,11 +70,11 @@ struct JunctionSide {
 };
 
 /// Two shapes joined along a shared boundary (ifs::join): A keeps its matrices, B adapts.
-struct Junction {
-  JunctionSide a, b;
+struct JunctionSpec {
+  JunctionSideSpec a, b;
 };
 
-struct Evaluation {
+struct EvaluationSpec {
   enum class Mode { depth, tolerance, chaos };
   Mode mode = Mode::depth;
   int depth = 8;
@@ -132,9 +132,9 @@ struct Experiment {
   std::filesystem::path automaton;  // absolute (resolved against the experiment's folder)
   std::optional<ClassicIfs> ifs;
   std::optional<MeshSource> mesh;
-  std::optional<Junction> junction;
-  std::optional<Perturbation> perturbation;
-  Evaluation evaluation;
+  std::optional<JunctionSpec> junction;
+  std::optional<PerturbationSpec> perturbation;
+  EvaluationSpec evaluation;
   CameraSpec camera;
   RenderSettings render;
   Outputs outputs;

@@ -96,7 +96,7 @@ struct LimitOptions {
   /// Unit normals: per vertex, or per face corner (Mesh::normal_indices) when a vertex is between sectors
   /// (each corner takes its sector's); InvalidInput naming the vertex where a sector has no tangent plane.
   bool normals = false;
-  double max_bytes = 4.0 * (1ull << 30);
+  std::size_t max_bytes = std::size_t{4} << 30;
 };
 
 /// The mesh after `levels` steps with every vertex moved to its limit position (and `normals` set

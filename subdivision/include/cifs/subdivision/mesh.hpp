@@ -24,7 +24,7 @@ using cifs::BoundaryRule;
 
 struct MeshOptions {
   /// Refinements whose topology and weights would need more than this are refused before any work.
-  double max_bytes = 4.0 * (1ull << 30);
+  std::size_t max_bytes = std::size_t{4} << 30;
   /// Called after every level with (faces made so far, faces of all levels): a progress bar.
   std::function<void(std::uint64_t, std::uint64_t)> progress = nullptr;
 };
