@@ -89,4 +89,16 @@ inline std::array<int, 3> loop_node_key(const std::array<int, 4>& c, int i, int 
   return {-1, -1, 0};
 }
 
+/// The face's (u, v) at the patch's (s, t) of initial entry i: the patch's corners are the face's turned
+/// by the place of corners[0] among them, so the face's barycentric weights are the patch's turned.
+inline cifs::subdivision::FacePoint loop_face_point(const cifs::subdivision::SurfaceAutomaton& s, const cifs::MeshTopology& t, std::size_t i, double a, double b) {
+  const int f = s.automaton.initial[i].segment;
+  const auto corners = cifs::face(t, static_cast<std::size_t>(f));
+  const auto turn =
+      static_cast<int>(std::find(corners.begin(), corners.end(), s.corners[i][0]) - corners.begin());
+  const std::array<double, 3> patch{1 - a - b, a, b};  // at the patch's corners 0, 1, 2
+  const auto w = [&](int k) { return patch[static_cast<std::size_t>((k - turn + 3) % 3)]; };
+  return {.face = f, .u = w(1), .v = w(2)};
+}
+
 }  // namespace cifs_test
