@@ -1009,13 +1009,15 @@ int regular_valence(MeshScheme scheme) {
 std::string state_name(const Mesh& configuration, MeshScheme scheme) {
   const MeshTopology t = build_topology(configuration, "limit surface state");
   const auto sides = static_cast<int>(face(t, 0).size());
-  std::vector<std::string> classes;
-  for (int k = 0; k < sides; ++k) classes.push_back(corner_class(t, configuration.tags, k, regular_valence(scheme)));
+  std::vector<std::string> classes(static_cast<std::size_t>(sides));
+  for (int k = 0; k < sides; ++k)
+    classes[static_cast<std::size_t>(k)] = corner_class(t, configuration.tags, k, regular_valence(scheme));
   if (std::all_of(classes.begin() + 1, classes.end(), [](const std::string& c) { return c.empty(); }) &&
       !classes[0].empty())
     return classes[0];
   std::string out = "[";
-  for (std::size_t k = 0; k < classes.size(); ++k) out += (k > 0 ? "|" : "") + (classes[k].empty() ? "-" : classes[k]);
+  for (std::size_t k = 0; k < classes.size(); ++k)
+    out += (k > 0 ? "|" : "") + (classes[k].empty() ? "-" : classes[k]);
   return out + "]";
 }
 
@@ -1035,7 +1037,8 @@ Eigen::MatrixXd bspline_from_bezier() {
 Eigen::MatrixXd box_spline_bezier(const automata::Automaton& a, automata::StateId regular,
                                   const SurfaceStates& states) {
   std::array<Eigen::RowVectorXd, 3> fixed;
-  for (std::size_t c = 0; c < 3; ++c) fixed[c] = ifs::repeated_child_functionals(a, static_cast<int>(c))[regular];
+  for (std::size_t c = 0; c < 3; ++c)
+    fixed[c] = ifs::repeated_child_functionals(a, static_cast<int>(c))[regular];
   std::array<Eigen::MatrixXd, 4> child;
   std::size_t k = 0;
   for (auto [e, end] = out_edges(regular, a.graph); e != end; ++e) child.at(k++) = a.graph[*e].matrix;
@@ -1057,7 +1060,8 @@ Eigen::MatrixXd box_spline_bezier(const automata::Automaton& a, automata::StateI
 
 }  // namespace
 
-void add_feature_faces(const Mesh& mesh, MeshScheme scheme, automata::StateId regular, SurfaceAutomaton& out) {
+void add_feature_faces(const Mesh& mesh, MeshScheme scheme, automata::StateId regular,
+                       SurfaceAutomaton& out) {
   const std::string who = std::string(scheme_name(scheme)) + " surface automaton";
   const bool quad = quad_scheme(scheme);
   const int sides = quad ? 4 : 3;
@@ -1088,7 +1092,8 @@ void add_feature_faces(const Mesh& mesh, MeshScheme scheme, automata::StateId re
     if (!states.polynomial(s)) return {};
     const Eigen::MatrixXd& bezier = states.at(s).bezier;
     Eigen::MatrixXd net = to_net * bezier;
-    if (!quad && (box * net - bezier).cwiseAbs().maxCoeff() > 1e-11 * std::max(1.0, bezier.cwiseAbs().maxCoeff()))
+    if (!quad &&
+        (box * net - bezier).cwiseAbs().maxCoeff() > 1e-11 * std::max(1.0, bezier.cwiseAbs().maxCoeff()))
       return {};
     return net;
   };
@@ -1119,7 +1124,8 @@ void add_feature_faces(const Mesh& mesh, MeshScheme scheme, automata::StateId re
     Configuration c = configuration(t, features, r.tags[0], f, 0);
     if (!states.polynomial(states.state(Configuration(c)))) {
       const MeshTopology local = build_topology(c.mesh, "limit surface state");
-      while (first < sides && corner_class(local, c.mesh.tags, first, regular_valence(scheme)).empty()) ++first;
+      while (first < sides && corner_class(local, c.mesh.tags, first, regular_valence(scheme)).empty())
+        ++first;
       if (first % sides != 0) c = configuration(t, features, r.tags[0], f, first % sides);
       first %= sides;
     }
@@ -1142,8 +1148,8 @@ void add_feature_faces(const Mesh& mesh, MeshScheme scheme, automata::StateId re
   // Quarters in the automaton's layout: quads' child 2·iu + iv is the quarter at corner 0, 3, 1, 2;
   // triangles' children C0, C1, C2, M are the quarters in their order.
   const std::array<int, 4> place = quad ? std::array<int, 4>{0, 3, 1, 2} : std::array<int, 4>{0, 1, 2, 3};
-  const std::array<const char*, 4> label =
-      quad ? std::array<const char*, 4>{"GH", "GB", "DH", "DB"} : std::array<const char*, 4>{"C0", "C1", "C2", "M"};
+  const std::array<const char*, 4> label = quad ? std::array<const char*, 4>{"GH", "GB", "DH", "DB"}
+                                                : std::array<const char*, 4>{"C0", "C1", "C2", "M"};
   for (std::size_t next = 0; next < todo.size(); ++next) {  // breadth first: names numbered by depth
     const int s = todo[next];
     const automata::StateId from = node.at(s);

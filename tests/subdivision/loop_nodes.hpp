@@ -27,7 +27,8 @@ inline std::vector<cifs::Points> loop_face_nodes(const cifs::subdivision::Surfac
   const cifs::Points all = cifs::subdivision::surface_automaton_mesh(apart, depth).vertices;
   const Eigen::Index per = ((1 << depth) + 1) * ((1 << depth) + 2) / 2;
   std::vector<cifs::Points> out;
-  for (std::size_t f = 0; f < s.nets.size(); ++f) out.emplace_back(all.middleRows(static_cast<Eigen::Index>(f) * per, per));
+  for (std::size_t f = 0; f < s.nets.size(); ++f)
+    out.emplace_back(all.middleRows(static_cast<Eigen::Index>(f) * per, per));
   return out;
 }
 
@@ -43,8 +44,8 @@ inline double loop_inner_gap(const cifs::subdivision::SurfaceAutomaton& s, int d
   std::map<std::array<int, 2>, Eigen::RowVectorXd> seen;
   double gap = 0;
   // As surface_automaton_mesh walks: a triangle's corner 0 at (i, j), corners 1 and 2 at ± h along i, j.
-  const auto visit = [&](const auto& self, cifs::automata::StateId state, const cifs::Points& net, int i, int j,
-                         int sign, int h) -> void {
+  const auto visit = [&](const auto& self, cifs::automata::StateId state, const cifs::Points& net, int i,
+                         int j, int sign, int h) -> void {
     if (h == 1) {
       const std::array<std::array<int, 2>, 3> at{{{i, j}, {i + sign, j}, {i, j + sign}}};
       for (std::size_t k = 0; k < 3; ++k) {
@@ -61,7 +62,8 @@ inline double loop_inner_gap(const cifs::subdivision::SurfaceAutomaton& s, int d
                                                    {i + sign * half, j + sign * half, -sign}}};
     std::size_t k = 0;
     for (auto [e, end] = out_edges(state, g); e != end; ++e, ++k)
-      self(self, target(*e, g), cifs::Points(g[*e].matrix * net), child[k][0], child[k][1], child[k][2], half);
+      self(self, target(*e, g), cifs::Points(g[*e].matrix * net), child[k][0], child[k][1], child[k][2],
+           half);
   };
   for (std::size_t f = 0; f < s.nets.size(); ++f) {
     seen.clear();
@@ -91,7 +93,9 @@ inline std::array<int, 3> loop_node_key(const std::array<int, 4>& c, int i, int 
 
 /// The face's (u, v) at the patch's (s, t) of initial entry i: the patch's corners are the face's turned
 /// by the place of corners[0] among them, so the face's barycentric weights are the patch's turned.
-inline cifs::subdivision::FacePoint loop_face_point(const cifs::subdivision::SurfaceAutomaton& s, const cifs::MeshTopology& t, std::size_t i, double a, double b) {
+inline cifs::subdivision::FacePoint loop_face_point(const cifs::subdivision::SurfaceAutomaton& s,
+                                                    const cifs::MeshTopology& t, std::size_t i, double a,
+                                                    double b) {
   const int f = s.automaton.initial[i].segment;
   const auto corners = cifs::face(t, static_cast<std::size_t>(f));
   const auto turn =

@@ -741,7 +741,8 @@ TEST_CASE("the limit surface's normals: du × dv made unit, refused where the pa
                     Contains("normals need 3-D vertices, not 2-D"));
 }
 
-TEST_CASE("the Loop surface automaton with features against OpenSubdiv's Bfr", "[subdivision][limit][features]") {
+TEST_CASE("the Loop surface automaton with features against OpenSubdiv's Bfr",
+          "[subdivision][limit][features]") {
   // Where Bfr is exact — uniform creasing, infinitely sharp tags — its limit surface at the nodes of every
   // face's attractor (depth 3, each face from its own net): an open grid under both boundary rules, a sharp
   // crease across a grid, a sharp corner ending a crease with a hole beside it, closed semi-sharp creases
@@ -762,7 +763,8 @@ TEST_CASE("the Loop surface automaton with features against OpenSubdiv's Bfr", "
   cases.emplace_back("sharp corner and a hole", turned_faces(corner, 3));
   for (const double sharpness : {1.5, 2.0}) {  // a closed semi-sharp crease around a torus
     Mesh ring = torus(6, 4, true);
-    for (int i = 0; i < 6; ++i) ring.tags.creases.push_back({.a = i, .b = (i + 1) % 6, .sharpness = sharpness});
+    for (int i = 0; i < 6; ++i)
+      ring.tags.creases.push_back({.a = i, .b = (i + 1) % 6, .sharpness = sharpness});
     cases.emplace_back("semi-sharp crease " + std::to_string(sharpness), turned_faces(ring, 3));
   }
   const int depth = 3, side = 1 << depth;
@@ -776,13 +778,15 @@ TEST_CASE("the Loop surface automaton with features against OpenSubdiv's Bfr", "
     for (std::size_t i = 0; i < s.nets.size(); ++i)
       for (int a = 0; a <= side; ++a)
         for (int b = 0; a + b <= side; ++b) {
-          at.push_back(loop_face_point(s, t, i, static_cast<double>(a) / side, static_cast<double>(b) / side));
+          at.push_back(
+              loop_face_point(s, t, i, static_cast<double>(a) / side, static_cast<double>(b) / side));
           ours.emplace_back(nodes[i].row(loop_node(a, b, side)));
         }
     // Bfr walks the points face by face.
     std::vector<std::size_t> order(at.size());
     std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return at[x].face < at[y].face; });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t x, std::size_t y) { return at[x].face < at[y].face; });
     std::vector<FacePoint> sorted;
     for (const std::size_t k : order) sorted.push_back(at[k]);
     const std::array<Points, 3> theirs = bfr(m, MeshScheme::loop, sorted);

@@ -106,8 +106,9 @@ double loop_scale(const Mesh& m) {
 
 }  // namespace
 
-TEST_CASE("the Loop surface automaton with features: its attractor is evaluate_limit_surface at the same points",
-          "[subdivision][limit][features][loop]") {
+TEST_CASE(
+    "the Loop surface automaton with features: its attractor is evaluate_limit_surface at the same points",
+    "[subdivision][limit][features][loop]") {
   const int depth = 3, side = 1 << depth;
   for (const LoopFeatureCase& c : loop_feature_cases()) {
     INFO(c.name);
@@ -125,7 +126,8 @@ TEST_CASE("the Loop surface automaton with features: its attractor is evaluate_l
       const Points& own = face_nodes[i];
       for (int a = 0; a <= side; ++a)
         for (int b = 0; a + b <= side; ++b) {
-          at.push_back(loop_face_point(s, t, i, static_cast<double>(a) / side, static_cast<double>(b) / side));
+          at.push_back(
+              loop_face_point(s, t, i, static_cast<double>(a) / side, static_cast<double>(b) / side));
           nodes.row(row++) = own.row(loop_node(a, b, side));
         }
     }
@@ -135,8 +137,9 @@ TEST_CASE("the Loop surface automaton with features: its attractor is evaluate_l
   }
 }
 
-TEST_CASE("the Loop surface automaton with features: every node of its attractor mesh is a refined vertex's limit",
-          "[subdivision][limit][features][loop]") {
+TEST_CASE(
+    "the Loop surface automaton with features: every node of its attractor mesh is a refined vertex's limit",
+    "[subdivision][limit][features][loop]") {
   // limit_stencils on the mesh refined `depth` times (the production rules' local spectra, another route);
   // without holes the welded attractor has exactly the vertices and faces of that mesh.
   const int depth = 2;
@@ -164,8 +167,10 @@ TEST_CASE("the Loop surface automaton with features: every node of its attractor
   }
 }
 
-TEST_CASE("the Loop surface automaton with features: refined vertices converge to its attractor at the spectrum's rate",
-          "[subdivision][limit][features][loop]") {
+TEST_CASE(
+    "the Loop surface automaton with features: refined vertices converge to its attractor at the spectrum's "
+    "rate",
+    "[subdivision][limit][features][loop]") {
   // Plain refinement, no limit stencils: the vertex of level 1 + k at the dyadic point (i, j)/2 of each
   // face against the attractor's node there (each face alone at depth 1), e_k the largest distance. A
   // vertex's distance to its limit shrinks by the largest eigenvalue of its local subdivision matrix whose
@@ -177,11 +182,12 @@ TEST_CASE("the Loop surface automaton with features: refined vertices converge t
     const double a = 3.0 / 8 + std::cos(2 * std::numbers::pi / n) / 4;
     return a * a;
   };
-  for (const auto& [name, rho] : std::vector<std::pair<std::string, double>>{{"open grid, edge_and_corner", 0.25},
-                                                                             {"sharp crease", 0.25},
-                                                                             {"semi-sharp crease 2", 0.25},
-                                                                             {"corners", 0.25},
-                                                                             {"valence 7 next to a crease", centre(7)}}) {
+  for (const auto& [name, rho] :
+       std::vector<std::pair<std::string, double>>{{"open grid, edge_and_corner", 0.25},
+                                                   {"sharp crease", 0.25},
+                                                   {"semi-sharp crease 2", 0.25},
+                                                   {"corners", 0.25},
+                                                   {"valence 7 next to a crease", centre(7)}}) {
     const LoopFeatureCase& c = loop_case(cases, name);
     INFO(c.name);
     const SurfaceAutomaton s = surface_automaton(c.mesh, MeshScheme::loop);
@@ -199,20 +205,25 @@ TEST_CASE("the Loop surface automaton with features: refined vertices converge t
         for (int a = 0; a <= 2; ++a)
           for (int b = 0; a + b <= 2; ++b) {
             const FacePoint p = loop_face_point(s, t, i, a / 2.0, b / 2.0);
-            const int id = ids[static_cast<std::size_t>(std::lround(p.u * N) * (N + 1) + std::lround(p.v * N))];
+            const int id =
+                ids[static_cast<std::size_t>(std::lround(p.u * N) * (N + 1) + std::lround(p.v * N))];
             worst = std::max(worst, (refined.row(id) - own.row(loop_node(a, b, 2))).norm());
           }
       }
       error.push_back(worst);
     }
-    INFO("e_1, e_2, e_3: " << error[0] << ", " << error[1] << ", " << error[2] << "; predicted rate " << 1 / rho);
-    for (std::size_t k = 0; k + 1 < error.size(); ++k) CHECK(std::abs(error[k] / error[k + 1] - 1 / rho) <= 0.02 / rho);
+    INFO("e_1, e_2, e_3: " << error[0] << ", " << error[1] << ", " << error[2] << "; predicted rate "
+                           << 1 / rho);
+    for (std::size_t k = 0; k + 1 < error.size(); ++k)
+      CHECK(std::abs(error[k] / error[k + 1] - 1 / rho) <= 0.02 / rho);
     CHECK(error[2] <= 1e-2 * loop_scale(c.mesh));
   }
 }
 
-TEST_CASE("the Loop surface automaton with features: regular boundary patches are box-spline patches of phantom points",
-          "[subdivision][limit][features][loop]") {
+TEST_CASE(
+    "the Loop surface automaton with features: regular boundary patches are box-spline patches of phantom "
+    "points",
+    "[subdivision][limit][features][loop]") {
   // A 6 × 4 triangulated grid (directions (1, 0), (0, 1), (1, 1)) under edge_only, with an infinitely sharp
   // crease along row j = 2: every face away from the grid's corners is a box-spline patch of the half's
   // points extended by the point reflection through each boundary or crease edge's midpoint (the phantom
@@ -262,8 +273,18 @@ TEST_CASE("the Loop surface automaton with features: regular boundary patches ar
     const auto lattice = [&](int v) { return std::array<int, 2>{v % (n + 1), v / (n + 1)}; };
     const auto p0 = lattice(s.corners[e][0]), p1 = lattice(s.corners[e][1]), p2 = lattice(s.corners[e][2]);
     const std::array<int, 2> ds{p1[0] - p0[0], p1[1] - p0[1]}, dt{p2[0] - p0[0], p2[1] - p0[1]};
-    static constexpr std::array<std::array<int, 2>, 12> kPatch{
-        {{0, 0}, {1, 0}, {0, 1}, {-1, 1}, {-1, 0}, {0, -1}, {1, -1}, {2, -1}, {2, 0}, {1, 1}, {0, 2}, {-1, 2}}};
+    static constexpr std::array<std::array<int, 2>, 12> kPatch{{{0, 0},
+                                                                {1, 0},
+                                                                {0, 1},
+                                                                {-1, 1},
+                                                                {-1, 0},
+                                                                {0, -1},
+                                                                {1, -1},
+                                                                {2, -1},
+                                                                {2, 0},
+                                                                {1, 1},
+                                                                {0, 2},
+                                                                {-1, 2}}};
     Points phantom(12, 3);
     bool ok = true;
     for (std::size_t q = 0; q < 12; ++q) {
@@ -352,7 +373,8 @@ TEST_CASE("fractal Loop with features: boundaries and creases kept, watertight a
             inside = std::max(inside, (p - flat.row(loop_node(a, b, side))).norm());
             continue;
           }
-          at.push_back(loop_face_point(smooth, t, f, static_cast<double>(a) / side, static_cast<double>(b) / side));
+          at.push_back(
+              loop_face_point(smooth, t, f, static_cast<double>(a) / side, static_cast<double>(b) / side));
           border_nodes.push_back(p);
           const auto [it, fresh] = shared.emplace(key, p);
           if (!fresh) {
@@ -361,7 +383,8 @@ TEST_CASE("fractal Loop with features: boundaries and creases kept, watertight a
           }
         }
     }
-    const SurfaceSample limit = evaluate_limit_surface(c.mesh, MeshScheme::loop, at, {.partials = false, .normals = false});
+    const SurfaceSample limit =
+        evaluate_limit_surface(c.mesh, MeshScheme::loop, at, {.partials = false, .normals = false});
     double curves = 0;
     for (std::size_t k = 0; k < border_nodes.size(); ++k)
       curves = std::max(curves, (border_nodes[k] - limit.positions.row(static_cast<Eigen::Index>(k))).norm());
@@ -405,6 +428,6 @@ TEST_CASE("the Loop surface automaton with features: what it refuses, one line n
   CHECK_THROWS_AS(surface_automaton(quads, MeshScheme::loop), InvalidInput);
   Mesh blz = quad_grid(3, 3, true);
   blz.tags.rules = RuleSet::blz;
-  CHECK_THROWS_WITH(surface_automaton(blz, MeshScheme::loop), Contains("loop surface automaton") &&
-                                                                  Contains("the rule set 'blz' is not built"));
+  CHECK_THROWS_WITH(surface_automaton(blz, MeshScheme::loop),
+                    Contains("loop surface automaton") && Contains("the rule set 'blz' is not built"));
 }
