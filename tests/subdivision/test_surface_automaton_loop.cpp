@@ -185,7 +185,9 @@ TEST_CASE(
   for (const auto& [name, rho] :
        std::vector<std::pair<std::string, double>>{{"open grid, edge_and_corner", 0.25},
                                                    {"sharp crease", 0.25},
+                                                   {"semi-sharp crease 1.5", 0.25},
                                                    {"semi-sharp crease 2", 0.25},
+                                                   {"holes", 0.25},
                                                    {"corners", 0.25},
                                                    {"valence 7 next to a crease", centre(7)}}) {
     const LoopFeatureCase& c = loop_case(cases, name);
