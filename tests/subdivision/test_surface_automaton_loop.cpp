@@ -397,7 +397,7 @@ TEST_CASE("fractal Loop with features: boundaries and creases kept, watertight a
     CHECK(loop_inner_gap(rough.surface, depth) <= 1e-12 * scale);
     // The inside check can fail: a crack planted in the middle child of the patch cell (its corner point
     // moved: its corners are on its parent's inner edges, which every other check reads from the corner
-    // children) is seen there, and only there.
+    // children) is seen there.
     SurfaceAutomaton cracked = rough.surface;
     automata::Graph& g = cracked.automaton.graph;
     const automata::StateId cell = rough.perturbation.system.automaton.initial.at(0).state;
