@@ -121,11 +121,12 @@ def rings(sizes=(3, 7, 5)):
     return p, f
 
 
-def creased_box(n=3):
+def creased_box(n=3, triangles=False):
     """A box of n x n quads a side (vertices shared along its edges). Its 12 edges are creased: the
     bottom square infinitely sharp, the vertical edges sharpness 2, the top square 1 (semi-sharp:
     rounder); one top corner has vertex sharpness 3; the middle quad of the top is a hole; the UVs
-    are a 3 x 2 atlas of the six sides, so every box edge is a UV seam."""
+    are a 3 x 2 atlas of the six sides, so every box edge is a UV seam. `triangles`: each quad split
+    into two along its diagonal from corner (i, j) (the hole: both halves)."""
     index, points = {}, []
 
     def vertex(p):
@@ -144,9 +145,10 @@ def creased_box(n=3):
         uvs += [((col + 0.05 + 0.9 * i / n) / 3, (row + 0.05 + 0.9 * j / n) / 2) for j in range(n + 1) for i in range(n + 1)]
         for j in range(n):
             for i in range(n):
-                corners = ((i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1))
-                faces.append(tuple(vertex(tuple(o[a] + ci * u[a] + cj * v[a] for a in range(3))) for ci, cj in corners))
-                face_uvs.append(tuple(base + cj * (n + 1) + ci for ci, cj in corners))
+                quad = ((i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1))
+                for corners in ((quad[0], quad[1], quad[2]), (quad[0], quad[2], quad[3])) if triangles else (quad,):
+                    faces.append(tuple(vertex(tuple(o[a] + ci * u[a] + cj * v[a] for a in range(3))) for ci, cj in corners))
+                    face_uvs.append(tuple(base + cj * (n + 1) + ci for ci, cj in corners))
 
     def box_edge(axis, fixed, sharpness):
         # The n mesh edges along `axis`, the other two lattice coordinates `fixed` (in axis order).
@@ -161,7 +163,9 @@ def creased_box(n=3):
         for y in (0, n):
             creases += box_edge(2, (x, y), 2)
     tags = [f"t crease 2/1/0 {a} {b} {s}" for a, b, s in creases]
-    tags += [f"t corner 1/1/0 {index[(n, n, n)]} 3", f"t hole 1/0/0 {n * n + (n // 2) * n + n // 2}"]
+    tags += [f"t corner 1/1/0 {index[(n, n, n)]} 3"]
+    hole = n * n + (n // 2) * n + n // 2
+    tags += [f"t hole 1/0/0 {2 * hole + k}" for k in (0, 1)] if triangles else [f"t hole 1/0/0 {hole}"]
     return points, faces, uvs, face_uvs, tags
 
 
@@ -193,6 +197,8 @@ MESHES = {
 # Meshes with tags and UVs (tagged_obj).
 TAGGED = {
     "creased_box": ("a box of 3 x 3 quads a side: creases infinite, 2 and 1, a corner, a hole on top, UVs", creased_box),
+    "creased_box_triangles": ("the creased box with each quad split into two triangles (the hole: both)",
+                              lambda: creased_box(triangles=True)),
 }
 
 

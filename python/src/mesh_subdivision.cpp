@@ -158,11 +158,9 @@ void bind_mesh_subdivision_surfaces(py::module_& m) {
         return sd::surface_automaton(mesh, s);
       },
       py::arg("mesh"), py::kw_only(), py::arg("scheme") = "catmull-clark",
-      "The SurfaceAutomaton of a mesh: catmull-clark (quads) with its boundary, creases, corners and holes "
-      "(skipped), or a closed untagged mesh under loop (triangles) whose faces have at most one "
-      "extraordinary "
-      "corner (one level of refinement gives that). cifs.ifs's attractor, tolerance and chaos functions run "
-      "on "
+      "The SurfaceAutomaton of a mesh: catmull-clark (quads) or loop (triangles) with its boundary, creases, "
+      "corners and holes (skipped); a closed untagged mesh's faces need at most one extraordinary corner "
+      "(one level of refinement gives that). cifs.ifs's attractor, tolerance and chaos functions run on "
       "(s.automaton, s.nets).");
   m.def(
       "surface_automaton_mesh",

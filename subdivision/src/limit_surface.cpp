@@ -175,8 +175,8 @@ SurfaceAutomaton surface_automaton(const Mesh& mesh, MeshScheme scheme) {
                        ": the rule set 'blz' is not built for the whole-surface automaton (its patches "
                        "are OpenSubdiv's rules')");
   const MeshTopology t = build_topology(mesh);
-  // A closed untagged mesh: the smooth rules' patches ("regular", "E<n>"). Otherwise (Catmull–Clark) the
-  // configurations evaluate_limit_surface descends, under the mesh's tags and boundary rule.
+  // A closed untagged mesh: the smooth rules' patches ("regular", "E<n>"). Otherwise the configurations
+  // evaluate_limit_surface descends, under the mesh's tags and boundary rule.
   MeshTags smooth = mesh.tags;
   smooth.boundary = BoundaryRule::edge_only;  // the boundary rule matters where there is a boundary
   const std::string feature = first_feature(smooth);
@@ -187,13 +187,9 @@ SurfaceAutomaton surface_automaton(const Mesh& mesh, MeshScheme scheme) {
     std::iota(faces.begin(), faces.end(), 0);
     return build_automaton(mesh, t, scheme, faces);
   }
-  if (!quads(scheme))
-    throw InvalidInput(who + ": the mesh has " + (feature.empty() ? std::string("a boundary") : feature) +
-                       ": boundary, crease, corner and hole patches of the whole-surface automaton are built "
-                       "for catmull-clark only; evaluate_limit_surface takes them under loop");
   SurfaceAutomaton out;
   out.scheme = scheme;
-  detail::add_feature_faces(mesh, add_regular(scheme, out.automaton.graph), out);
+  detail::add_feature_faces(mesh, scheme, add_regular(scheme, out.automaton.graph), out);
   return out;
 }
 

@@ -42,6 +42,7 @@
 #include "cifs/automata/tensor.hpp"
 #include "cifs/errors.hpp"
 #include "cifs/format.hpp"
+#include "cifs/ifs/analysis.hpp"
 #include "cifs/memory.hpp"
 #include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/rules.hpp"
@@ -471,6 +472,9 @@ class SurfaceStates {
 
   [[nodiscard]] bool quad() const { return quad_; }
 
+  /// The Bernstein coefficients of the polynomial with the given values at the fit points (rows).
+  [[nodiscard]] Eigen::MatrixXd bezier_of(const Eigen::MatrixXd& values) const { return solve_ * values; }
+
   int state(Configuration&& c) {
     const auto [it, fresh] = index_.try_emplace(std::move(c.key), static_cast<int>(states_.size()));
     if (fresh) {
@@ -495,9 +499,12 @@ class SurfaceStates {
     return x;
   }
 
-  /// A quad state's quarters k = 0 … 3 (at corner k: (0, 0), (1, 0), (1, 1), (0, 1)) not turned: each
-  /// child face started at its corner at the quarter's (0, 0), so that its (s, t) is 2 (u, v) minus the
-  /// quarter's offset — the layout of the whole-surface automaton (ifs::patch_meshes). Made on first use.
+  /// A state's quarters not turned, the layout of the whole-surface automaton. Quads (ifs::patch_meshes):
+  /// k = 0 … 3 at corner k ((0, 0), (1, 0), (1, 1), (0, 1)), each child face started at its corner at the
+  /// quarter's (0, 0), so that its (s, t) is 2 (u, v) minus the quarter's offset. Triangles (the layout of
+  /// loop_patch and ifs::triangle_bcifs): k = 0, 1, 2 the corner triangles at (0, 0), (½, 0), (0, ½), their
+  /// (s, t) = 2 (u, v) minus that offset; k = 3 the middle one turned by a half turn, (1 − 2u, 1 − 2v).
+  /// Made on first use.
   const State& quarters(int s) {
     if (!states_[static_cast<std::size_t>(s)].quarter.empty()) return at(s);
     auto [child, to_child] = children(s, true);
@@ -531,7 +538,8 @@ class SurfaceStates {
  private:
   /// The state's children after one step of the production refiner run on its configuration: Catmull–Clark's
   /// face 0's corner k becomes child face k from the corner's vertex point (`unturned`: from its corner at
-  /// the quarter's (0, 0), (4 − k) mod 4); Loop's corner triangles (from the corner) then the middle one
+  /// the quarter's (0, 0), (4 − k) mod 4); Loop's corner triangles (from the corner; `unturned`: from their
+  /// first corner as split_triangles makes them, the one nearest the parent's (0, 0)) then the middle one
   /// (from the edge point of edge 1 → 2).
   std::pair<std::vector<int>, std::vector<Step>> children(int s, bool unturned) {
     const MeshRefinement r = refine_topology(states_[static_cast<std::size_t>(s)].mesh, scheme_, 1);
@@ -542,7 +550,7 @@ class SurfaceStates {
     std::vector<Step> to_child;
     const int count = quad_ ? sides : 4;
     for (int k = 0; k < count; ++k) {
-      const int first = quad_ ? (unturned ? (4 - k) % 4 : 0) : (k == 3 ? 1 : k);
+      const int first = quad_ ? (unturned ? (4 - k) % 4 : 0) : (k == 3 ? 1 : (unturned ? 0 : k));
       Configuration c = configuration(r.levels[1], r.features[1], r.tags[1], k, first);
       std::vector<Eigen::Triplet<double>> entries;
       for (std::size_t i = 0; i < c.vertices.size(); ++i) {
@@ -944,10 +952,10 @@ void evaluate_limit_surface(const Mesh& mesh, MeshScheme scheme, std::span<const
 namespace cifs::subdivision::detail {
 namespace {
 
-/// The class of corner v of a configuration (surface_states.hpp): "" where regular — 4 faces and no
-/// sharp edge, 2 faces on a boundary, 2 + 2 faces about a crease — else class, faces and, where sharp edges
-/// part the faces, the place of the configuration's face 0 among them.
-std::string corner_class(const MeshTopology& t, const MeshTags& tags, int v) {
+/// The class of corner v of a configuration (surface_states.hpp): "" where regular — R faces and no sharp
+/// edge (R = 4 for quads, 6 for triangles), R/2 on a boundary, R/2 + R/2 about a crease — else class,
+/// faces and, where sharp edges part the faces, the place of the configuration's face 0 among them.
+std::string corner_class(const MeshTopology& t, const MeshTags& tags, int v, int R) {
   const auto edges = vertex_edges(t, static_cast<std::size_t>(v));
   const auto n = static_cast<int>(vertex_faces(t, static_cast<std::size_t>(v)).size());
   std::vector<int> sharp;  // positions of the sharp edges in vertex_edges
@@ -975,12 +983,12 @@ std::string corner_class(const MeshTopology& t, const MeshTags& tags, int v) {
   if (corner || sharp.size() > 2)
     out = "C" + std::to_string(n);
   else if (sharp.empty())
-    out = n == 4 ? "" : "E" + std::to_string(n);
+    out = n == R ? "" : "E" + std::to_string(n);
   else if (sharp.size() == 1)
     out = "D" + std::to_string(n);
   else if (t.boundary_vertex[static_cast<std::size_t>(v)] != 0)
-    out = n == 2 ? "" : "B" + std::to_string(n);
-  else if (const int a = sharp[1] - sharp[0]; a != 2 || n - a != 2)
+    out = n == R / 2 ? "" : "B" + std::to_string(n);
+  else if (const int a = sharp[1] - sharp[0]; a != R / 2 || n - a != R / 2)
     out = "K" + std::to_string(a) + "," + std::to_string(n - a);
   // Sharp edges tell the faces apart: which one face 0 is, counted counter-clockwise from the first.
   if (!out.empty() && !sharp.empty() && n > 1) {
@@ -992,15 +1000,24 @@ std::string corner_class(const MeshTopology& t, const MeshTags& tags, int v) {
   return out;
 }
 
+/// Faces around a regular interior vertex.
+int regular_valence(MeshScheme scheme) {
+  return quad_scheme(scheme) ? 4 : 6;
+}
+
 /// A state's name from its corners' classes (surface_states.hpp).
-std::string state_name(const Mesh& configuration) {
+std::string state_name(const Mesh& configuration, MeshScheme scheme) {
   const MeshTopology t = build_topology(configuration, "limit surface state");
-  std::array<std::string, 4> classes;
-  for (int k = 0; k < 4; ++k) classes[static_cast<std::size_t>(k)] = corner_class(t, configuration.tags, k);
-  if (classes[1].empty() && classes[2].empty() && classes[3].empty() && !classes[0].empty())
+  const auto sides = static_cast<int>(face(t, 0).size());
+  std::vector<std::string> classes(static_cast<std::size_t>(sides));
+  for (int k = 0; k < sides; ++k)
+    classes[static_cast<std::size_t>(k)] = corner_class(t, configuration.tags, k, regular_valence(scheme));
+  if (std::all_of(classes.begin() + 1, classes.end(), [](const std::string& c) { return c.empty(); }) &&
+      !classes[0].empty())
     return classes[0];
   std::string out = "[";
-  for (std::size_t k = 0; k < 4; ++k) out += (k > 0 ? "|" : "") + (classes[k].empty() ? "-" : classes[k]);
+  for (std::size_t k = 0; k < classes.size(); ++k)
+    out += (k > 0 ? "|" : "") + (classes[k].empty() ? "-" : classes[k]);
   return out + "]";
 }
 
@@ -1013,27 +1030,79 @@ Eigen::MatrixXd bspline_from_bezier() {
   return automata::kron(B, B);
 }
 
+/// The Bernstein coefficients (15 × 12) of the regular Loop patch on its net: its values at the fit points
+/// found down the automaton's state `regular` (children C0, C1, C2, M at (2u, 2v), (2u − 1, 2v), (2u, 2v −
+/// 1), (1 − 2u, 1 − 2v); at a corner the fixed point of that corner's child), fitted. The box splines are
+/// independent on a triangle: 12 of the 15 quartics.
+Eigen::MatrixXd box_spline_bezier(const automata::Automaton& a, automata::StateId regular,
+                                  const SurfaceStates& states) {
+  std::array<Eigen::RowVectorXd, 3> fixed;
+  for (std::size_t c = 0; c < 3; ++c)
+    fixed[c] = ifs::repeated_child_functionals(a, static_cast<int>(c))[regular];
+  std::array<Eigen::MatrixXd, 4> child;
+  std::size_t k = 0;
+  for (auto [e, end] = out_edges(regular, a.graph); e != end; ++e) child.at(k++) = a.graph[*e].matrix;
+  const auto value = [&](const auto& self, double u, double v) -> Eigen::RowVectorXd {
+    if (u == 0 && v == 0) return fixed[0];
+    if (u == 1) return fixed[1];
+    if (v == 1) return fixed[2];
+    if (u >= 0.5) return self(self, 2 * u - 1, 2 * v) * child[1];
+    if (v >= 0.5) return self(self, 2 * u, 2 * v - 1) * child[2];
+    if (u + v < 0.5) return self(self, 2 * u, 2 * v) * child[0];
+    return self(self, 1 - 2 * u, 1 - 2 * v) * child[3];
+  };
+  const auto points = fit_points(false);
+  Eigen::MatrixXd values(static_cast<Eigen::Index>(points.size()), child[0].cols());
+  for (std::size_t p = 0; p < points.size(); ++p)
+    values.row(static_cast<Eigen::Index>(p)) = value(value, points[p][0] / 4.0, points[p][1] / 4.0);
+  return states.bezier_of(values);
+}
+
 }  // namespace
 
-void add_feature_faces(const Mesh& mesh, automata::StateId regular, SurfaceAutomaton& out) {
-  const std::string who = "catmull-clark surface automaton";
+void add_feature_faces(const Mesh& mesh, MeshScheme scheme, automata::StateId regular,
+                       SurfaceAutomaton& out) {
+  const std::string who = std::string(scheme_name(scheme)) + " surface automaton";
+  const bool quad = quad_scheme(scheme);
+  const int sides = quad ? 4 : 3;
   Mesh shape;  // topology and tags only
   shape.vertices = Points::Zero(mesh.vertices.rows(), 3);
   shape.face_offsets = mesh.face_offsets;
   shape.face_vertices = mesh.face_vertices;
   shape.tags = mesh.tags;
-  const MeshRefinement r = refine_topology(shape, MeshScheme::catmull_clark, 0);
+  const MeshRefinement r = refine_topology(shape, scheme, 0);
   const MeshTopology& t = r.levels[0];
   const LevelFeatures& features = r.features[0];
-  SurfaceStates states(MeshScheme::catmull_clark);
-  const Eigen::MatrixXd to_bspline = bspline_from_bezier();
+  SurfaceStates states(scheme);
   automata::Graph& g = out.automaton.graph;
+  // A polynomial patch as the regular state's net: Catmull–Clark's B-spline net of its Bernstein
+  // coefficients, exactly; Loop's box-spline net, where the quartic is one of the box splines' (the
+  // regular interior, boundary and crease patches: the net of phantom points) — proved here, to rounding:
+  // the net's quartic must give back the state's. Else (none known) the state is descended like the others.
+  Eigen::MatrixXd to_net, box;
+  if (quad) {
+    to_net = bspline_from_bezier();
+  } else {
+    box = box_spline_bezier(out.automaton, regular, states);
+    const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> solve(box);
+    if (solve.rank() != box.cols()) throw std::logic_error(who + ": the box splines are not independent");
+    to_net = solve.pseudoInverse();
+  }
+  const auto net_of = [&](int s) -> Eigen::MatrixXd {  // empty where the state is no regular patch
+    if (!states.polynomial(s)) return {};
+    const Eigen::MatrixXd& bezier = states.at(s).bezier;
+    Eigen::MatrixXd net = to_net * bezier;
+    if (!quad &&
+        (box * net - bezier).cwiseAbs().maxCoeff() > 1e-11 * std::max(1.0, bezier.cwiseAbs().maxCoeff()))
+      return {};
+    return net;
+  };
   std::map<int, automata::StateId> node;  // configuration → automaton state
   std::map<std::string, int> names;
   std::vector<int> todo;
   const auto enter = [&](int s) {
     if (const auto it = node.find(s); it != node.end()) return it->second;
-    std::string name = state_name(states.at(s).mesh);
+    std::string name = state_name(states.at(s).mesh, scheme);
     if (const int seen = names[name]++; seen > 0) name += "#" + std::to_string(seen + 1);
     const automata::StateId id = add_vertex(
         automata::State{
@@ -1046,48 +1115,52 @@ void add_feature_faces(const Mesh& mesh, automata::StateId regular, SurfaceAutom
   for (int f = 0; f < static_cast<int>(face_count(t)); ++f) {
     if (is_hole(features, f)) continue;
     const auto corners = face(t, static_cast<std::size_t>(f));
-    if (corners.size() != 4)
-      throw InvalidInput(who + ": face " + std::to_string(f) + ": not a quad (refine one level first)");
+    if (static_cast<int>(corners.size()) != sides)
+      throw InvalidInput(who + ": face " + std::to_string(f) + ": not a " +
+                         (quad ? "quad (refine one level first)" : "triangle (loop runs on triangles)"));
     // A face whose patch is not a polynomial is turned so that its first irregular corner is at (0, 0): a
     // corner that never becomes regular is then mostly met at its states' corner 0.
     int first = 0;
     Configuration c = configuration(t, features, r.tags[0], f, 0);
     if (!states.polynomial(states.state(Configuration(c)))) {
       const MeshTopology local = build_topology(c.mesh, "limit surface state");
-      while (first < 4 && corner_class(local, c.mesh.tags, first).empty()) ++first;
-      if (first % 4 != 0) c = configuration(t, features, r.tags[0], f, first % 4);
-      first %= 4;
+      while (first < sides && corner_class(local, c.mesh.tags, first, regular_valence(scheme)).empty())
+        ++first;
+      if (first % sides != 0) c = configuration(t, features, r.tags[0], f, first % sides);
+      first %= sides;
     }
     Points rows(static_cast<Eigen::Index>(c.vertices.size()), d);
     for (std::size_t i = 0; i < c.vertices.size(); ++i)
       rows.row(static_cast<Eigen::Index>(i)) = mesh.vertices.row(c.vertices[i]);
     const int s = states.state(std::move(c));
     automata::StateId state = regular;
-    if (states.polynomial(s))
-      rows = (to_bspline * states.at(s).bezier * rows).eval();
+    if (const Eigen::MatrixXd net = net_of(s); net.size() > 0)
+      rows = (net * rows).eval();
     else
       state = enter(s);
     out.automaton.initial.push_back(automata::Initial{.segment = f, .state = state});
     out.nets.push_back(std::move(rows));
-    out.corners.push_back({corners[static_cast<std::size_t>(first)],
-                           corners[static_cast<std::size_t>((first + 1) % 4)],
-                           corners[static_cast<std::size_t>((first + 2) % 4)],
-                           corners[static_cast<std::size_t>((first + 3) % 4)]});
+    std::array<int, 4> at{-1, -1, -1, -1};
+    for (int k = 0; k < sides; ++k)
+      at[static_cast<std::size_t>(k)] = corners[static_cast<std::size_t>((first + k) % sides)];
+    out.corners.push_back(at);
   }
-  // Quarters in the quad layout: child 2·iu + iv is the quarter at corner 0, 3, 1, 2.
-  static constexpr std::array<int, 4> kCorner{0, 3, 1, 2};
-  static constexpr std::array<const char*, 4> kLabel{"GH", "GB", "DH", "DB"};
+  // Quarters in the automaton's layout: quads' child 2·iu + iv is the quarter at corner 0, 3, 1, 2;
+  // triangles' children C0, C1, C2, M are the quarters in their order.
+  const std::array<int, 4> place = quad ? std::array<int, 4>{0, 3, 1, 2} : std::array<int, 4>{0, 1, 2, 3};
+  const std::array<const char*, 4> label = quad ? std::array<const char*, 4>{"GH", "GB", "DH", "DB"}
+                                                : std::array<const char*, 4>{"C0", "C1", "C2", "M"};
   for (std::size_t next = 0; next < todo.size(); ++next) {  // breadth first: names numbered by depth
     const int s = todo[next];
     const automata::StateId from = node.at(s);
     for (std::size_t c = 0; c < 4; ++c) {
-      const auto k = static_cast<std::size_t>(kCorner[c]);
+      const auto k = static_cast<std::size_t>(place[c]);
       const int y = states.quarters(s).quarter[k];
       const Eigen::MatrixXd M(states.at(s).to_quarter[k]);
-      if (states.polynomial(y))
-        add_edge(from, regular, automata::Transition{kLabel[c], to_bspline * states.at(y).bezier * M}, g);
+      if (const Eigen::MatrixXd net = net_of(y); net.size() > 0)
+        add_edge(from, regular, automata::Transition{label[c], net * M}, g);
       else
-        add_edge(from, enter(y), automata::Transition{kLabel[c], M}, g);
+        add_edge(from, enter(y), automata::Transition{label[c], M}, g);
     }
   }
 }

@@ -684,6 +684,27 @@ class LimitTest(unittest.TestCase):
         self.assertLess(np.linalg.norm(fractal[:, None, :] - corners[None, :, :], axis=2).min(axis=0).max(), 1e-12)
         self.assertGreater(np.abs(fractal - attractor).max(), 1e-3)
 
+    def test_loop_surface_automaton_with_features(self):
+        # Loop on the creased box split into triangles (sharp and semi-sharp creases, a corner, a hole of
+        # two triangles): every node of the attractor at depth 2 is a limit point of the mesh refined 2
+        # levels (the hole's faces have none); the fractal version keeps the mesh vertices' limit points.
+        box = cifs.io.read_mesh(str(EXAMPLES / "meshes" / "creased_box_triangles.obj"))
+        s = sd.surface_automaton(box, scheme="loop")
+        self.assertEqual(len(s.nets), len(box.face_vertices) // 3 - 2)
+        attractor = np.asarray(sd.surface_automaton_mesh(s, 2).vertices)
+        limit = np.asarray(sd.limit(box, "loop", 2).vertices)
+        distance = np.linalg.norm(attractor[:, None, :] - limit[None, :, :], axis=2)
+        self.assertLess(distance.min(axis=1).max(), 1e-12)
+        # Depth 3: at depth 2 the nodes of faces with an irregular corner are still on their regular
+        # quarters' sides, which the perturbation keeps.
+        rough, perturbation = sd.fractal_surface(s, amplitude=1.5, seed=3)
+        self.assertLessEqual(perturbation.residual, 1e-12)
+        fractal = np.asarray(sd.surface_automaton_mesh(rough, 3).vertices)
+        corners = np.asarray(sd.limit(box, "loop", 0).vertices)
+        self.assertLess(np.linalg.norm(fractal[:, None, :] - corners[None, :, :], axis=2).min(axis=0).max(), 1e-12)
+        smooth = np.asarray(sd.surface_automaton_mesh(s, 3).vertices)
+        self.assertEqual(fractal.shape, smooth.shape)
+        self.assertGreater(np.abs(fractal - smooth).max(), 1e-3)
 
     def test_surface_automaton_attractor_and_fractal(self):
         # The welded attractor at depth 2 holds exactly the limit points of the cube refined 2 more

@@ -18,6 +18,7 @@
 #include "cifs/ifs/bcifs_triangle.hpp"
 #include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/mesh.hpp"
+#include "subdivision/loop_nodes.hpp"
 #include "subdivision/mesh_compare.hpp"
 #include "subdivision/meshes.hpp"
 
@@ -78,73 +79,6 @@ Eigen::MatrixXd loop_child_from_lattice(LoopLattice origin, int sign) {
       M(static_cast<Eigen::Index>(i), it - kLoopPatchPoints.begin()) += weight;
     }
   return M;
-}
-
-/// One face's attractor at `depth` from its own net: node (i, j), i + j ≤ 2^depth, at row
-/// Σ_{i' < i} (2^depth − i' + 1) + j (surface_automaton_mesh's order for a face alone).
-Points loop_face_nodes(const SurfaceAutomaton& s, std::size_t f, int depth) {
-  SurfaceAutomaton one;
-  one.scheme = s.scheme;
-  one.automaton.graph = s.automaton.graph;
-  one.automaton.initial = {s.automaton.initial[f]};
-  one.nets = {s.nets[f]};
-  one.corners = {s.corners[f]};
-  return surface_automaton_mesh(one, depth).vertices;
-}
-
-/// The largest distance between two leaves' corners at one grid node (i, j) of face f at `depth`, each
-/// leaf's corners computed from its own net (the fixed points of its corner children): zero when the
-/// face's pieces meet along every edge created inside it. surface_automaton_mesh computes each node
-/// once, so it would not see a crack there.
-double loop_inner_gap(const SurfaceAutomaton& s, std::size_t f, int depth) {
-  const automata::Graph& g = s.automaton.graph;
-  std::array<std::vector<Eigen::RowVectorXd>, 3> fixed;
-  for (std::size_t c = 0; c < 3; ++c)
-    fixed[c] = ifs::repeated_child_functionals(s.automaton, static_cast<int>(c));
-  std::map<std::array<int, 2>, Eigen::RowVectorXd> seen;
-  double gap = 0;
-  // As surface_automaton_mesh walks: a triangle's corner 0 at (i, j), corners 1 and 2 at ± h along i, j.
-  const auto visit = [&](const auto& self, automata::StateId state, const Points& net, int i, int j, int sign,
-                         int h) -> void {
-    if (h == 1) {
-      const std::array<std::array<int, 2>, 3> at{{{i, j}, {i + sign, j}, {i, j + sign}}};
-      for (std::size_t k = 0; k < 3; ++k) {
-        const Eigen::RowVectorXd p = fixed[k][state] * net;
-        const auto [it, fresh] = seen.emplace(at[k], p);
-        if (!fresh) gap = std::max(gap, (it->second - p).norm());
-      }
-      return;
-    }
-    const int half = h / 2;
-    const std::array<std::array<int, 3>, 4> child{{{i, j, sign},
-                                                   {i + sign * half, j, sign},
-                                                   {i, j + sign * half, sign},
-                                                   {i + sign * half, j + sign * half, -sign}}};
-    std::size_t k = 0;
-    for (auto [e, end] = out_edges(state, g); e != end; ++e, ++k)
-      self(self, target(*e, g), Points(g[*e].matrix * net), child[k][0], child[k][1], child[k][2], half);
-  };
-  visit(visit, s.automaton.initial[f].state, s.nets[f], 0, 0, 1, 1 << depth);
-  return gap;
-}
-
-int loop_node(int i, int j, int side) {
-  return i * (side + 1) - i * (i - 1) / 2 + j;
-}
-
-/// The node (i, j) of face corners c as the mesh names it: a mesh vertex {v, −1, 0}, a point of a mesh
-/// edge {lower, higher, cells from lower}, or {−1, −1, 0} inside the face.
-std::array<int, 3> loop_node_key(const std::array<int, 4>& c, int i, int j, int side) {
-  const auto on_edge = [&](int a, int b, int at) {
-    return a < b ? std::array{a, b, at} : std::array{b, a, side - at};
-  };
-  if (i == 0 && j == 0) return {c[0], -1, 0};
-  if (i == side) return {c[1], -1, 0};
-  if (j == side) return {c[2], -1, 0};
-  if (j == 0) return on_edge(c[0], c[1], i);
-  if (i + j == side) return on_edge(c[1], c[2], j);
-  if (i == 0) return on_edge(c[0], c[2], j);
-  return {-1, -1, 0};
 }
 
 /// Closed triangle meshes with extraordinary vertices of valence 3, 4, 5, 7 (one per face after a
@@ -262,8 +196,10 @@ TEST_CASE("fractal Loop: watertight, every face keeps the smooth boundary curves
     std::map<std::array<int, 3>, Eigen::RowVectorXd> shared;
     double across = 0, border = 0, inside = 0;
     std::size_t compared = 0;
+    const std::vector<Points> rough_faces = loop_face_nodes(rough.surface, depth),
+                              smooth_faces = loop_face_nodes(smooth, depth);
     for (std::size_t f = 0; f < rough.surface.nets.size(); ++f) {
-      const Points ours = loop_face_nodes(rough.surface, f, depth), flat = loop_face_nodes(smooth, f, depth);
+      const Points &ours = rough_faces[f], &flat = smooth_faces[f];
       for (int i = 0; i <= side; ++i)
         for (int j = 0; i + j <= side; ++j) {
           const Eigen::RowVectorXd p = ours.row(loop_node(i, j, side));
@@ -282,10 +218,7 @@ TEST_CASE("fractal Loop: watertight, every face keeps the smooth boundary curves
         }
     }
     // Inside each face too: the leaves meet on every edge the subdivision created.
-    double inner = 0;
-    for (std::size_t f = 0; f < rough.surface.nets.size(); ++f)
-      inner = std::max(inner, loop_inner_gap(rough.surface, f, depth));
-    CHECK(inner <= 1e-12 * scale);
+    CHECK(loop_inner_gap(rough.surface, depth) <= 1e-12 * scale);
     CHECK(compared > shared.size());  // every edge node twice, every vertex node at least three times
     CHECK(across <= 1e-12 * scale);
     CHECK(border <= 1e-12 * scale);

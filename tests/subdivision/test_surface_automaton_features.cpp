@@ -402,9 +402,6 @@ TEST_CASE("the surface automaton with features: what it refuses, one line naming
   creased.tags.creases = {{0, 1, 10}};
   CHECK_THROWS_WITH(surface_automaton(creased, MeshScheme::catmull_clark),
                     Contains("catmull-clark surface automaton: face 1: not a quad (refine one level first)"));
-  CHECK_THROWS_WITH(
-      surface_automaton(wavy_grid(3, 3, true), MeshScheme::loop),
-      Contains("loop surface automaton: the mesh has a boundary") && Contains("catmull-clark only"));
   Mesh blz = quad_grid(3, 3);
   blz.tags.rules = RuleSet::blz;
   CHECK_THROWS_WITH(surface_automaton(blz, MeshScheme::catmull_clark),
