@@ -258,6 +258,12 @@ TEST_CASE("volume knot removal takes every line of the net at once and bounds th
     CHECK(back.removed == times);
     CHECK(back.volume.count == r.v.count);
     CHECK(back.deviation_bound <= 1e-9 * r.scale);
+    // `times` bounds the copies removed, even where more could go.
+    if (times > 1) {
+      const VolumeRemoval one = remove_knot(insert_knot(r.v, d, t, times), d, t, 1, 1e-9 * r.scale);
+      CHECK(one.removed == 1);
+      CHECK(multiplicity(one.volume.knots[sd], t) == times - 1);
+    }
     CHECK(volume_motion(
               rng, r, [&](double u, double v, double w) { return evaluate(back.volume, u, v, w); }) <= 1e-11);
     // A knot of random data: nothing goes at tolerance 0 (the volume is the same), everything at a tolerance
