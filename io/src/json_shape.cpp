@@ -392,9 +392,13 @@ nurbs::Volume geomdl_volume(const Reader& r, const json& e, const std::string& p
   for (std::size_t d = 0; d < 3; ++d)
     for (std::size_t m = 0; m < 3; ++m) {
       const std::string suffix = v6 ? "[" + std::to_string(d) + "]" : std::string("_") + "uvw"[d];
-      const std::string where = path + "." + kLists[m] + suffix;
-      const json& value = v6 ? geomdl6_list(r, e, path, kLists[m], 3)[d]
-                             : r.member(e, path, (std::string(kLists[m]) + suffix).c_str());
+      std::string member = kLists[m];
+      if (!v6) member += suffix;  // 5.x: degree_u …; 6.x: degree[0] …, an entry of the list "degree"
+      std::string where = path;
+      where += '.';
+      where += kLists[m];
+      where += suffix;
+      const json& value = v6 ? geomdl6_list(r, e, path, kLists[m], 3)[d] : r.member(e, path, member.c_str());
       if (m == 0) degree[d] = r.integer(value, where);
       if (m == 1) knots[d] = r.numbers(value, where);
       if (m == 2) size[d] = r.integer(value, where);
