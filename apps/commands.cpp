@@ -81,6 +81,18 @@ io::Shape read_shape(const std::filesystem::path& path, const ShapeSelection& se
   return std::move(read_shapes(path, select, true).front());
 }
 
+/// The volume of a volume file (a .json that io::is_volume_json says holds one), or nothing: volumes are
+/// not Shapes, so the commands that take them (info, eval) ask first.
+std::optional<nurbs::Volume> read_volume(const std::filesystem::path& path, const ShapeSelection& select) {
+  if (path.extension() != ".json") return std::nullopt;
+  const std::string text = read_file(path);
+  if (!io::is_volume_json(text)) return std::nullopt;
+  if (select.ignore_trim)
+    throw InvalidInput(path.string() + ": --ignore-trim applies to surfaces, not volumes");
+  return io::parse_volume_json(text, path.string(),
+                               {.ignore_trim = false, .index = select.index, .warn = {}});
+}
+
 /// Standard output as a sink: the bytes go out as they come, so a pipe or a redirected file takes
 /// any number of points in the memory of a chunk; a failed write stops the command at once.
 class StdoutSink final : public ByteSink {
@@ -243,12 +255,52 @@ std::string eval_surface(const nurbs::Surface& s, const EvalOptions& o) {
   return out.finish(o.output);
 }
 
+std::string eval_volume(const nurbs::Volume& vol, const EvalOptions& o) {
+  Points first(static_cast<Eigen::Index>(o.at.size()), nurbs::dimension(vol));
+  for (std::size_t i = 0; i < o.at.size(); ++i) {
+    const std::string& a = o.at[i];
+    const auto c1 = a.find(',');
+    const auto c2 = c1 == std::string::npos ? c1 : a.find(',', c1 + 1);
+    if (c2 == std::string::npos || a.find(',', c2 + 1) != std::string::npos)
+      throw InvalidInput("--at '" + a + "': a volume takes U,V,W");
+    const std::string_view text(a);
+    const double u = parse_number(text.substr(0, c1), "--at");
+    const double v = parse_number(text.substr(c1 + 1, c2 - c1 - 1), "--at");
+    const double w = parse_number(text.substr(c2 + 1), "--at");
+    first.row(static_cast<Eigen::Index>(i)) =
+        naming_shape(o.shape, [&] { return nurbs::evaluate(vol, u, v, w); });
+  }
+  const auto n = static_cast<std::int64_t>(o.samples);
+  if (n > (std::int64_t{1} << 20))  // N³ points would not fit a count, let alone a disk
+    throw InvalidInput("--samples " + std::to_string(n) + ": a volume's N×N×N grid takes N ≤ 1048576");
+  PointsOutput out(o.output, "json", static_cast<std::uint64_t>(first.rows() + n * n * n), first.cols(), {},
+                   "eval", o.quiet);
+  out.write(first);
+  std::array<nurbs::Domain, 3> dom{};
+  for (std::size_t d = 0; d < 3; ++d) dom[d] = nurbs::domain(vol.knots[d], vol.degree[d]);
+  // Row (a·N + b)·N + c at (u_a, v_b, w_c): for each u, pieces of whole v rows of N points (at least one row
+  // a chunk), so that memory stays bounded whatever N.
+  const auto ws = nurbs::uniform_parameters(dom[2], o.samples);
+  const std::int64_t rows = std::max<std::int64_t>(kChunkPoints / std::max<std::int64_t>(n, 1), 1);
+  for (std::int64_t a = 0; a < n; ++a) {
+    const auto u = nurbs::uniform_parameters(dom[0], o.samples, static_cast<int>(a), 1);
+    for (std::int64_t b = 0; b < n; b += rows) {
+      const std::int64_t k = std::min(rows, n - b);
+      out.write(nurbs::evaluate_grid(
+          vol, u, nurbs::uniform_parameters(dom[1], o.samples, static_cast<int>(b), static_cast<int>(k)),
+          ws));
+    }
+  }
+  return out.finish(o.output);
+}
+
 }  // namespace
 
 std::string eval(const EvalOptions& o) {
   if (o.samples < 0) throw InvalidInput("--samples " + std::to_string(o.samples) + ": must be non-negative");
   if (o.at.empty() && o.samples == 0) throw InvalidInput("eval: give --at U (repeatable) or --samples N");
   if (!o.output.empty()) io::format_of(o.output, io::Content::points);  // refused before any work
+  if (const auto vol = read_volume(o.shape, o.select)) return eval_volume(*vol, o);
   const io::Shape shape = read_shape(o.shape, o.select);
   if (const auto* c = std::get_if<nurbs::Curve>(&shape)) return eval_curve(*c, o);
   return eval_surface(std::get<nurbs::Surface>(shape), o);
@@ -382,6 +434,25 @@ std::string info(const std::filesystem::path& path, const ShapeSelection& select
     if (select.index || select.ignore_trim)
       throw InvalidInput(path.string() + ": --index and --ignore-trim apply to shape files, not polygons");
     return polygon_info(path);
+  }
+  if (const auto vol = read_volume(path, select)) {
+    json domains = json::array(), segments = json::array(), knots = json::array();
+    for (std::size_t d = 0; d < 3; ++d) {
+      const nurbs::Domain dom = nurbs::domain(vol->knots[d], vol->degree[d]);
+      domains.push_back({dom.start, dom.end});
+      segments.push_back(nurbs::breakpoints(vol->knots[d], vol->degree[d]).size() - 1);
+      knots.push_back(vol->knots[d].size());
+    }
+    return json{{"type", "volume"},
+                {"degree", vol->degree},
+                {"dimension", nurbs::dimension(*vol)},
+                {"control_points", vol->count},
+                {"knots", knots},
+                {"rational", vol->rational},
+                {"domain", domains},
+                {"segments", segments}}
+               .dump(1) +
+           "\n";
   }
   // Every shape of the file: one object, or an array of them with their index when there are several.
   const std::vector<io::Shape> shapes = read_shapes(path, select);

@@ -124,13 +124,13 @@ struct Commands {
 };
 
 void add_eval(CLI::App& app, Commands& c) {
-  auto* eval_cmd =
-      app.add_subcommand("eval", "Evaluate a curve or surface; prints {\"points\": [...]} or writes -o FILE");
+  auto* eval_cmd = app.add_subcommand(
+      "eval", "Evaluate a curve, surface or volume; prints {\"points\": [...]} or writes -o FILE");
   eval_cmd->add_option("shape", c.ev.shape, "Shape file (.json, .obj, .step or .igs)")->required();
-  eval_cmd->add_option("--at", c.ev.at, "Parameter U (curves) or U,V (surfaces); repeatable")
+  eval_cmd->add_option("--at", c.ev.at, "Parameter U (curves), U,V (surfaces) or U,V,W (volumes); repeatable")
       ->allow_extra_args(false);
   eval_cmd->add_option("--samples", c.ev.samples,
-                       "N parameters evenly spaced over the domain (surfaces: N×N grid)");
+                       "N parameters evenly spaced over the domain (surfaces: N×N grid, volumes: N×N×N)");
   eval_cmd
       ->add_option("-o,--output", c.ev.output,
                    "Write the points to a file as they are computed: .json, .npy, .ply or .obj")

@@ -15,4 +15,8 @@ std::string v_label(const std::string& label) {
   return label == "G" ? "H" : label == "D" ? "B" : label;
 }
 
+std::string w_label(const std::string& label) {
+  return label == "G" ? "A" : label == "D" ? "R" : label;
+}
+
 }  // namespace cifs::automata

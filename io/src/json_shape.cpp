@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// cifs — shape files as JSON (docs/formats.md): curves and surfaces, read and written; geomdl
+// cifs — shape files as JSON (docs/formats.md): curves, surfaces and volumes, read and written; geomdl
 // (NURBS-Python) exports, read.
 #include <algorithm>
 #include <cmath>
@@ -124,6 +124,70 @@ nurbs::Surface read_surface(const Reader& r, const json& s) {
                                           static_cast<Eigen::Index>(nv)};
   return r.build("surface", [&] {
     return nurbs::make_surface(degree, std::move(knots), count, to_points(rows), to_vector(w));
+  });
+}
+
+/// A volume's knot vectors and net, in the surface's layout with a third direction: "degree": [p, q, r],
+/// "knots": [[u], [v], [w]], "points": [[[point (i, j, k) for k] for j] for i], "weights" nested alike.
+nurbs::Volume read_volume(const Reader& r, const json& s) {
+  r.object(s, "volume");
+  r.only(s, "volume", {"degree", "knots", "points", "weights", "knot_convention"});
+  const json& deg = r.array(r.member(s, "volume", "degree"), "volume.degree");
+  if (deg.size() != 3) r.fail("volume.degree", "expected [du, dv, dw]");
+  const json& kn = r.array(r.member(s, "volume", "knots"), "volume.knots");
+  if (kn.size() != 3) r.fail("volume.knots", "expected [[u knots], [v knots], [w knots]]");
+  std::array<int, 3> degree{};
+  std::array<nurbs::Knots, 3> knots;
+  for (std::size_t d = 0; d < 3; ++d) {
+    degree[d] = r.integer(deg[d], "volume.degree[" + std::to_string(d) + "]");
+    knots[d] = r.numbers(kn[d], "volume.knots[" + std::to_string(d) + "]");
+  }
+  const Convention convention = read_convention(r, s, "volume");
+  // The net's shape: every slab i a nv by nw array, the first one's sizes the rule.
+  const json& net = r.array(r.member(s, "volume", "points"), "volume.points");
+  if (net.empty()) r.fail("volume.points", "no control points");
+  std::array<std::size_t, 3> n{net.size(), 0, 0};
+  const auto check_size = [&](const json& v, const std::string& path, std::size_t& size, const char* what) {
+    r.array(v, path);
+    if (size == 0) size = v.size();
+    if (v.size() != size || size == 0)
+      r.fail(path, std::to_string(v.size()) + " " + what + ", the first has " + std::to_string(size));
+  };
+  std::vector<std::vector<double>> rows;
+  for (std::size_t i = 0; i < net.size(); ++i) {
+    const std::string slab = "volume.points[" + std::to_string(i) + "]";
+    check_size(net[i], slab, n[1], "rows");
+    for (std::size_t j = 0; j < n[1]; ++j) {
+      const std::string row = slab + "[" + std::to_string(j) + "]";
+      check_size(net[i][j], row, n[2], "points");
+      r.points(net[i][j], row, rows);
+    }
+  }
+  std::vector<double> w;
+  if (s.contains("weights") && !s["weights"].is_null()) {
+    const json& wn = r.array(s["weights"], "volume.weights");
+    if (wn.size() != n[0])
+      r.fail("volume.weights", std::to_string(wn.size()) + " slabs, the net has " + std::to_string(n[0]));
+    for (std::size_t i = 0; i < n[0]; ++i) {
+      const std::string slab = "volume.weights[" + std::to_string(i) + "]";
+      if (r.array(wn[i], slab).size() != n[1])
+        r.fail(slab, std::to_string(wn[i].size()) + " rows, the net has " + std::to_string(n[1]));
+      for (std::size_t j = 0; j < n[1]; ++j) {
+        const std::string path = slab + "[" + std::to_string(j) + "]";
+        const std::vector<double> row = r.numbers(wn[i][j], path);
+        if (row.size() != n[2])
+          r.fail(path, std::to_string(row.size()) + " weights, the net has " + std::to_string(n[2]));
+        w.insert(w.end(), row.begin(), row.end());
+      }
+    }
+  }
+  for (std::size_t d = 0; d < 3; ++d)
+    knots[d] = full_knots(r, "volume.knots[" + std::to_string(d) + "]", std::move(knots[d]), n[d], degree[d],
+                          convention);
+  const std::array<Eigen::Index, 3> count{static_cast<Eigen::Index>(n[0]), static_cast<Eigen::Index>(n[1]),
+                                          static_cast<Eigen::Index>(n[2])};
+  return r.build("volume", [&] {
+    return nurbs::make_volume(degree, std::move(knots), count, to_points(rows), to_vector(w));
   });
 }
 
@@ -305,11 +369,84 @@ nurbs::Surface geomdl_surface(const Reader& r, const json& e, std::size_t index,
   });
 }
 
+/// A geomdl volume entry: 5.x's degree_u … size_w (points with v varying fastest, then u, then w: point
+/// (i, j, k) at j + size_v·(i + size_u·k), its VolumeEvaluator's flattening) or 6.x's lists of three (u
+/// fastest: i + size_u·(j + size_v·k), its default_find_index); stored (i·nv + j)·nw + k as cifs does.
+nurbs::Volume geomdl_volume(const Reader& r, const json& e, const std::string& path) {
+  const bool v6 = geomdl6(e);
+  if (v6)
+    geomdl_entry(r, e, path,
+                 {"type", "rational", "dimension", "degree", "knotvector", "size", "control_points", "delta",
+                  "name", "id", "reversed"});
+  else
+    geomdl_entry(
+        r, e, path,
+        {"type", "rational", "dimension", "degree_u", "degree_v", "degree_w", "knotvector_u", "knotvector_v",
+         "knotvector_w", "size_u", "size_v", "size_w", "control_points", "delta", "name", "id", "reversed"});
+  std::vector<std::vector<double>> rows;
+  std::vector<double> w;
+  geomdl_net(r, e, path, rows, w);
+  std::array<int, 3> degree{}, size{};
+  std::array<nurbs::Knots, 3> knots;
+  static constexpr std::array<const char*, 3> kLists{"degree", "knotvector", "size"};
+  for (std::size_t d = 0; d < 3; ++d)
+    for (std::size_t m = 0; m < 3; ++m) {
+      const std::string suffix = v6 ? "[" + std::to_string(d) + "]" : std::string("_") + "uvw"[d];
+      std::string member = kLists[m];
+      if (!v6) member += suffix;  // 5.x: degree_u …; 6.x: degree[0] …, an entry of the list "degree"
+      std::string where = path;
+      where += '.';
+      where += kLists[m];
+      where += suffix;
+      const json& value = v6 ? geomdl6_list(r, e, path, kLists[m], 3)[d] : r.member(e, path, member.c_str());
+      if (m == 0) degree[d] = r.integer(value, where);
+      if (m == 1) knots[d] = r.numbers(value, where);
+      if (m == 2) size[d] = r.integer(value, where);
+    }
+  if (size[0] < 1 || size[1] < 1 || size[2] < 1 ||
+      static_cast<long long>(size[0]) * size[1] * size[2] != static_cast<long long>(rows.size()))
+    r.fail(path + ".control_points.points",
+           std::to_string(rows.size()) + " points, " +
+               (v6 ? "size[0] × size[1] × size[2] = " : "size_u × size_v × size_w = ") +
+               std::to_string(size[0]) + " × " + std::to_string(size[1]) + " × " + std::to_string(size[2]));
+  const auto nu = static_cast<std::size_t>(size[0]), nv = static_cast<std::size_t>(size[1]),
+             nw = static_cast<std::size_t>(size[2]);
+  std::vector<std::vector<double>> ordered(rows.size());
+  std::vector<double> w_ordered(w.size());
+  for (std::size_t i = 0; i < nu; ++i)
+    for (std::size_t j = 0; j < nv; ++j)
+      for (std::size_t k = 0; k < nw; ++k) {
+        const std::size_t from = v6 ? i + nu * (j + nv * k) : j + nv * (i + nu * k),
+                          to = (i * nv + j) * nw + k;
+        ordered[to] = std::move(rows[from]);
+        if (w.size() == rows.size()) w_ordered[to] = w[from];  // else refused by count
+      }
+  if (w.size() == rows.size()) w = std::move(w_ordered);
+  try {
+    return nurbs::make_volume(degree, std::move(knots), {size[0], size[1], size[2]}, to_points(ordered),
+                              to_vector(w));
+  } catch (const InvalidInput& error) {
+    std::string msg = error.what();
+    for (std::size_t d = 0; d < 3; ++d) {
+      const std::string from = "knots[" + std::to_string(d) + "]";
+      if (msg.starts_with(from))
+        msg = (v6 ? "knotvector[" + std::to_string(d) + "]" : std::string("knotvector_") + "uvw"[d]) +
+              msg.substr(from.size());
+    }
+    if (msg.starts_with("weights")) msg = "control_points." + msg;
+    if (msg.starts_with("points")) msg = "control_points." + msg;
+    throw InvalidInput(r.where + ": " + path + "." + msg);
+  }
+}
+
 std::vector<Shape> read_geomdl(const Reader& r, const json& doc, const ShapeReadOptions& options) {
   const json& shape = r.object(doc["shape"], "shape");
   r.only(shape, "shape", {"type", "count", "data"});
   const std::string type = r.string(r.member(shape, "shape", "type"), "shape.type");
-  if (type == "volume") r.fail("shape.type", "volumes are not read: cifs reads curves and surfaces");
+  if (type == "volume")
+    r.fail("shape.type",
+           "a volume: read it as one (io::parse_volume_json, cifs.io.parse_volume_json; "
+           "cifs info and cifs eval take volume files)");
   if (type != "curve" && type != "surface")
     r.fail("shape.type", "'" + type + "': expected \"curve\" or \"surface\"");
   const json& data = r.array(r.member(shape, "shape", "data"), "shape.data");
@@ -335,6 +472,10 @@ std::vector<Shape> parse_shapes_json(std::string_view text, std::string_view whe
   const Reader r{std::string(where)};
   const json doc = parse_document(text, r.where);
   if (doc.is_object() && doc.size() == 1 && doc.contains("shape")) return read_geomdl(r, doc, options);
+  if (doc.is_object() && doc.size() == 1 && doc.contains("volume"))
+    throw InvalidInput(r.where +
+                       ": a volume: read it as one (io::parse_volume_json, cifs.io.parse_volume_json; "
+                       "cifs info and cifs eval take volume files)");
   r.only_beside(doc, {"curve", "surface"});
   if (!doc.is_object() || doc.size() != 1 || !(doc.contains("curve") || doc.contains("surface")))
     throw InvalidInput(
@@ -347,6 +488,47 @@ std::vector<Shape> parse_shapes_json(std::string_view text, std::string_view whe
 
 Shape parse_shape_json(std::string_view text, std::string_view where, const ShapeReadOptions& options) {
   return select_shape(parse_shapes_json(text, where, options), options, where);
+}
+
+bool is_volume_json(std::string_view text) {
+  const json doc = json::parse(text, nullptr, false);
+  if (!doc.is_object() || doc.size() != 1) return false;
+  if (doc.contains("volume")) return true;
+  const auto shape = doc.find("shape");
+  return shape != doc.end() && shape->is_object() && shape->contains("type") && (*shape)["type"] == "volume";
+}
+
+nurbs::Volume parse_volume_json(std::string_view text, std::string_view where,
+                                const ShapeReadOptions& options) {
+  const Reader r{std::string(where)};
+  const json doc = parse_document(text, r.where);
+  if (doc.is_object() && doc.size() == 1 && doc.contains("shape")) {
+    const json& shape = r.object(doc["shape"], "shape");
+    r.only(shape, "shape", {"type", "count", "data"});
+    const std::string type = r.string(r.member(shape, "shape", "type"), "shape.type");
+    if (type != "volume") r.fail("shape.type", "'" + type + "': expected \"volume\"");
+    const json& data = r.array(r.member(shape, "shape", "data"), "shape.data");
+    if (data.empty()) r.fail("shape.data", "no volume");
+    if (shape.contains("count") && r.integer(shape["count"], "shape.count") != static_cast<int>(data.size()))
+      r.fail("shape.count", shape["count"].dump() + ", but shape.data holds " + std::to_string(data.size()));
+    std::size_t index = options.index.value_or(0);
+    if (!options.index && data.size() > 1)
+      throw InvalidInput(r.where + ": holds " + std::to_string(data.size()) +
+                         " volumes: choose one with --index N, N from 0 to " +
+                         std::to_string(data.size() - 1));
+    if (index >= data.size())
+      throw InvalidInput(r.where + ": --index " + std::to_string(index) +
+                         " is out of range: the file holds " + std::to_string(data.size()) + " volumes");
+    return geomdl_volume(r, data[index], "shape.data[" + std::to_string(index) + "]");
+  }
+  r.only_beside(doc, {"volume"});
+  if (!doc.is_object() || doc.size() != 1 || !doc.contains("volume"))
+    throw InvalidInput(r.where +
+                       R"(: expected an object with one member, "volume" (or "shape", a geomdl export))");
+  if (options.index && *options.index != 0)
+    throw InvalidInput(r.where + ": --index " + std::to_string(*options.index) +
+                       " is out of range: the file holds 1 volume");
+  return read_volume(r, doc["volume"]);
 }
 
 namespace {
@@ -448,6 +630,62 @@ void write_json(const Shape& shape, ByteSink& sink) {
   }
   out.text += "\n  }\n}\n";
   out.flush();
+}
+
+void write_json(const nurbs::Volume& v, ByteSink& sink) {
+  ChunkBuffer out(sink);
+  bool first = true;
+  out.text += "{\n  \"volume\": {";
+  append_member(out, first, "degree");
+  out.text += "[" + std::to_string(v.degree[0]) + "," + std::to_string(v.degree[1]) + "," +
+              std::to_string(v.degree[2]) + "]";
+  append_member(out, first, "knots");
+  out.text += '[';
+  for (std::size_t d = 0; d < 3; ++d) {
+    if (d) out.text += ',';
+    append_numbers(out, v.knots[d].data(), v.knots[d].size());
+  }
+  out.text += ']';
+  // One line per (i, j) line of the net along w, the slabs i bracketed on their own lines.
+  const Eigen::Index nv = v.count[1], nw = v.count[2];
+  const int dim = nurbs::dimension(v);
+  Points P(v.P.rows(), dim);
+  for (Eigen::Index r = 0; r < v.P.rows(); ++r)
+    P.row(r) = v.rational ? Point(v.P.row(r).head(dim) / v.P(r, dim)) : Point(v.P.row(r));
+  append_member(out, first, "points");
+  out.text += '[';
+  for (Eigen::Index i = 0; i < v.count[0]; ++i) {
+    out.text += i ? ",\n      [" : "\n      [";
+    for (Eigen::Index j = 0; j < nv; ++j) {
+      out.text += j ? ",\n        " : "\n        ";
+      append_rows(out, P, (i * nv + j) * nw, nw);
+    }
+    out.text += "\n      ]";
+  }
+  out.text += "\n    ]";
+  if (v.rational) {
+    append_member(out, first, "weights");
+    out.text += '[';
+    for (Eigen::Index i = 0; i < v.count[0]; ++i) {
+      out.text += i ? ",[" : "[";
+      for (Eigen::Index j = 0; j < nv; ++j) {
+        if (j) out.text += ',';
+        const Eigen::VectorXd w = v.P.col(dim).segment((i * nv + j) * nw, nw);
+        append_numbers(out, w.data(), static_cast<std::size_t>(nw));
+      }
+      out.text += ']';
+      out.spill();
+    }
+    out.text += ']';
+  }
+  out.text += "\n  }\n}\n";
+  out.flush();
+}
+
+std::string to_json(const nurbs::Volume& volume) {
+  StringSink out;
+  write_json(volume, out);
+  return std::move(out.bytes);
 }
 
 std::string to_json(const Shape& shape) {

@@ -354,6 +354,13 @@ void bind_automata_functions(py::module_& m) {
       "row i·(q+1) + j = control point (span_u − p + i, span_v − q + j). Raises InvalidInput when the "
       "surface "
       "does not fit the automaton.");
+  m.def(
+      "initial_nets",
+      py::overload_cast<const nurbs::VolumeAutomaton&, const nurbs::Volume&>(&nurbs::initial_nets),
+      py::arg("automaton"), py::arg("volume"),
+      "Control net of every cell of tensor_automaton(volume): list of float64 `((p+1)(q+1)(r+1), cols)` "
+      "arrays, row (i·(q+1) + j)·(r+1) + k = control point (span_u − p + i, span_v − q + j, span_w − r + k). "
+      "Raises InvalidInput when the volume does not fit the automaton.");
   // The writers live in io (one file per format); bound here too, where Python users look for them.
   m.def("to_json", py::overload_cast<const KnotAutomaton&>(&io::to_json), py::arg("automaton"),
         "The automaton as the JSON text of `cifs automaton --format json` (states, transitions, initial);\n"
@@ -390,8 +397,37 @@ void bind_automata_tensor(py::module_& m) {
                std::to_string(t.patches.size()) + " patches)";
       });
 
-  m.def("tensor_automaton", &nurbs::tensor_automaton, py::arg("surface"),
-        py::call_guard<py::gil_scoped_release>(),
+  using nurbs::VolumeAutomaton;
+  py::class_<VolumeAutomaton>(
+      m, "VolumeAutomaton",
+      "The tensor-product automaton of a volume: triples of u, v and w knot-doubling states, transitions\n"
+      "GHA, GHR, GBA, GBR, DHA, DHR, DBA, DBR (u halves G/D, v halves H/B, w halves A/R) with the matrices\n"
+      "kron(kron(M_u, M_v), M_w).")
+      .def_property_readonly(
+          "product", [](const VolumeAutomaton& t) { return t.product; },
+          "The product automaton (Automaton, a copy): one initial entry per cell, w fastest.")
+      .def_property_readonly(
+          "factors",
+          [](const VolumeAutomaton& t) { return py::make_tuple(t.factors[0], t.factors[1], t.factors[2]); },
+          "The knot automata of the u, v and w direction curves (tuple of 3, copies).")
+      .def_property_readonly(
+          "factor_states", [](const VolumeAutomaton& t) { return index_array(t.factor_states); },
+          "Per product state, its (u, v, w) factor states: int array `(states, 3)`.")
+      .def_property_readonly(
+          "cells", [](const VolumeAutomaton& t) { return index_array(t.cells); },
+          "Per product initial entry, its (u, v, w) segments: int array `(cells, 3)`.")
+      .def("__repr__", [](const VolumeAutomaton& t) {
+        return "VolumeAutomaton(" + std::to_string(num_vertices(t.product.graph)) + " product states, " +
+               std::to_string(t.cells.size()) + " cells)";
+      });
+  m.def("tensor_automaton", py::overload_cast<const nurbs::Volume&>(&nurbs::tensor_automaton),
+        py::arg("volume"), py::call_guard<py::gil_scoped_release>(),
+        "The tensor-product automaton of a nurbs.Volume (from its knots alone); recurrent states marked.");
+  m.def("w_label", &automata::w_label, py::arg("label"),
+        "The w direction's name of a knot-doubling label: G → A (first half), D → R (second half); other "
+        "labels unchanged.");
+  m.def("tensor_automaton", py::overload_cast<const nurbs::Surface&>(&nurbs::tensor_automaton),
+        py::arg("surface"), py::call_guard<py::gil_scoped_release>(),
         "The tensor-product automaton of a nurbs.Surface (from its knots alone); recurrent states marked.");
   m.def("kron", &automata::kron, py::arg("A"), py::arg("B"),
         "kron(A, B): entry (i·B.rows + k, j·B.cols + l) = A[i, j]·B[k, l], one product per entry (float64 "

@@ -239,6 +239,24 @@ void bind_shapes(py::module_& m) {
   m.def("to_json", py::overload_cast<const io::Shape&>(&io::to_json), py::arg("shape"),
         "The shape file text (JSON) of a nurbs.Curve or nurbs.Surface; parse_shape_json reads it back.");
   m.def(
+      "parse_volume_json",
+      [](std::string_view text, std::string_view where, std::optional<std::size_t> index) {
+        return io::parse_volume_json(text, where, {.ignore_trim = false, .index = index, .warn = {}});
+      },
+      py::arg("text"), py::arg("where") = kDefaultWhere, py::kw_only(), py::arg("index") = py::none(),
+      "Parses {\"volume\": {...}} (docs/formats.md: points[i][j][k]) or a geomdl export of type \"volume\"\n"
+      "(`index` choosing among several). Returns a nurbs.Volume. Raises IoError (syntax) or InvalidInput.");
+  m.def(
+      "read_volume",
+      [](const std::filesystem::path& path, std::optional<std::size_t> index) {
+        return io::parse_volume_json(read_file(path), path.string(),
+                                     {.ignore_trim = false, .index = index, .warn = {}});
+      },
+      Release(), py::arg("path"), py::kw_only(), py::arg("index") = py::none(),
+      "Reads a volume file (JSON, as parse_volume_json). Raises IoError or InvalidInput naming the path.");
+  m.def("to_json", py::overload_cast<const nurbs::Volume&>(&io::to_json), py::arg("volume"),
+        "The volume file text (JSON) of a nurbs.Volume; parse_volume_json reads it back.");
+  m.def(
       "parse_obj",
       [options](std::string_view text, std::string_view where, bool ignore_trim) {
         return io::parse_obj(text, where, options(std::nullopt, ignore_trim));

@@ -1360,6 +1360,77 @@ void bind_volume(py::module_& m) {
   m.def("insert_knot", py::overload_cast<const Volume&, int, double, int>(&insert_knot), py::arg("volume"),
         py::arg("direction"), py::arg("t"), py::arg("times") = 1,
         "Inserts t `times` times in direction 0 (u), 1 (v) or 2 (w) of a volume; the volume is unchanged.");
+  m.def("evaluate", py::overload_cast<const Volume&, double, double, double>(&evaluate), py::arg("volume"),
+        py::arg("u"), py::arg("v"), py::arg("w"),
+        "Volume point at (u, v, w) (1-D array).\n\nRaises InvalidInput outside the domain.");
+  m.def(
+      "evaluate_grid",
+      [](const Volume& vol, const std::vector<double>& us, const std::vector<double>& vs,
+         const std::vector<double>& ws) {
+        const Points grid = evaluate_grid(vol, us, vs, ws);
+        py::array_t<double> out({static_cast<py::ssize_t>(us.size()), static_cast<py::ssize_t>(vs.size()),
+                                 static_cast<py::ssize_t>(ws.size()), static_cast<py::ssize_t>(grid.cols())});
+        std::copy(grid.data(), grid.data() + grid.size(), out.mutable_data());
+        return out;
+      },
+      py::arg("volume"), py::arg("us"), py::arg("vs"), py::arg("ws"),
+      "Points on the grid us × vs × ws: array (len(us), len(vs), len(ws), dim), [a, b, c] = V(us[a], vs[b],\n"
+      "ws[c]). Raises InvalidInput for parameters outside the domain, naming the direction.");
+  m.def("derivatives", py::overload_cast<const Volume&, double, double, double, int>(&derivatives),
+        py::arg("volume"), py::arg("u"), py::arg("v"), py::arg("w"), py::arg("order"),
+        "Partial derivatives ∂^{a+b+c}V/∂u^a∂v^b∂w^c for a + b + c ≤ order: array ((order+1)³, dim), row\n"
+        "(a·(order + 1) + b)·(order + 1) + c (rows with a + b + c > order are zero). Quotient rule when "
+        "rational.\n\n"
+        "Raises InvalidInput for an order outside 0 … kMaxDegree or (u, v, w) outside the domain.");
+  m.def("direction_curve", py::overload_cast<const Volume&, int>(&direction_curve), py::arg("volume"),
+        py::arg("direction"),
+        "The curve of control slabs along `direction` (0, 1, 2): each row of its points is a whole slab of\n"
+        "the net (the other two directions in order, flattened stored coordinates).");
+  m.def(
+      "refine",
+      [](const Volume& vol, int direction, const std::vector<double>& knots) {
+        return refine(vol, direction, knots);
+      },
+      Release(), py::arg("volume"), py::arg("direction"), py::arg("new_knots"),
+      "Inserts many knots in one direction (0, 1, 2) of a volume; the volume is unchanged.");
+  py::class_<VolumeRemoval>(m, "VolumeRemoval", "Result of remove_knot on a volume.")
+      .def_readonly("volume", &VolumeRemoval::volume, "The volume after removal.")
+      .def_readonly("removed", &VolumeRemoval::removed, "How many copies of the knot were removed.")
+      .def_readonly("deviation_bound", &VolumeRemoval::deviation_bound,
+                    "Proven bound on the distance between the old and the new volume.")
+      .def(
+          "__repr__",
+          [](const VolumeRemoval& r) {
+            return "VolumeRemoval(removed=" + std::to_string(r.removed) +
+                   ", deviation_bound=" + py::repr(py::float_(r.deviation_bound)).cast<std::string>() + ")";
+          },
+          "Short description.");
+  m.def("remove_knot", py::overload_cast<const Volume&, int, double, int, double>(&remove_knot), Release(),
+        py::arg("volume"), py::arg("direction"), py::arg("t"), py::arg("times"), py::arg("tolerance"),
+        "Removes up to `times` copies of the interior knot t of `direction` while the volume moves by at\n"
+        "most `tolerance` (every line of the net along it at once). Returns a VolumeRemoval.");
+  m.def("elevate_degree", py::overload_cast<const Volume&, int, int>(&elevate_degree), Release(),
+        py::arg("volume"), py::arg("direction"), py::arg("times") = 1,
+        "Raises the degree of `direction` by `times`; the volume is unchanged.");
+  m.def(
+      "split",
+      [](const Volume& vol, int direction, double t) {
+        auto parts = split(vol, direction, t);
+        return py::make_tuple(std::move(parts[0]), std::move(parts[1]));
+      },
+      py::arg("volume"), py::arg("direction"), py::arg("t"),
+      "The volume cut at t in `direction` (strictly inside its domain): (first, second), on [start, t] and\n"
+      "[t, end], each clamped at t and keeping the original parameters.");
+  m.def("iso_surface", &iso_surface, Release(), py::arg("volume"), py::arg("direction"), py::arg("t"),
+        "The Surface at parameter t of `direction`, in the other two directions in order: iso_surface(vol,\n"
+        "0, t) evaluated at (v, w) is V(t, v, w), exactly. Raises InvalidInput outside the domain.");
+  m.def("reverse", py::overload_cast<const Volume&, int>(&reverse), py::arg("volume"), py::arg("direction"),
+        "The same volume traversed backwards in `direction` (on the same domain).");
+  m.def("reparametrize", py::overload_cast<const Volume&, int, double, double>(&reparametrize),
+        py::arg("volume"), py::arg("direction"), py::arg("start"), py::arg("end"),
+        "The same volume on [start, end] in `direction` (its knots mapped affinely, the ends exactly).");
+  m.def("normalize_knots", py::overload_cast<const Volume&>(&normalize_knots), py::arg("volume"),
+        "The same volume on [0, 1]³.");
 }
 }  // namespace
 

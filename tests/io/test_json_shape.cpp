@@ -369,7 +369,7 @@ TEST_CASE("geomdl JSON exports: several shapes, options and errors", "[io][json]
   CHECK(nurbs::evaluate(s, 0, 1) == Point(Eigen::Vector3d(0, 1, 0)));
 
   CHECK_THAT(shape_error_of(R"({"shape": {"type": "volume", "data": []}})"),
-             Catch::Contains("shape.type: volumes are not read"));
+             Catch::Contains("shape.type: a volume: read it as one"));
   CHECK_THAT(shape_error_of(R"({"shape": {"type": "curve", "data": []}})"),
              Catch::Contains("shape.data: no curve"));
   CHECK_THAT(shape_error_of(geomdl_curves(kLine, R"("count": 3, )")),

@@ -96,6 +96,9 @@ class _Samples:
         self.automaton = automata.knot_automaton(self.curve)
         self.nets = automata.initial_nets(self.automaton, self.curve)
         self.tensor = automata.tensor_automaton(self.surface)
+        self.volume = nurbs.Volume([1, 1, 2], [[0, 0, 0.5, 1, 1], [0, 0, 1, 1], [0, 0, 0, 1, 1, 1]],
+                                   np.arange(3 * 2 * 3 * 3, dtype=float).reshape(3, 2, 3, 3) % 5)
+        self.volume_automaton = automata.tensor_automaton(self.volume)
         self.system = ifs.curve_bcifs(self.curve)
         self.space = ifs.admissible_space(self.system)
         self.scheme = subdivision.four_point()
@@ -115,6 +118,7 @@ class _Samples:
             "os.PathLike": os.path.join(scratch, "out.bin"), "fractions.Fraction": 0.25,
             "function": (lambda *a, **k: None), "Iterable": [(0, 0, 0.5)], "dict": {},
             "cifs._cifs.nurbs.Curve": self.curve, "cifs._cifs.nurbs.Surface": self.surface,
+            "cifs._cifs.nurbs.Volume": self.volume, "cifs._cifs.automata.VolumeAutomaton": self.volume_automaton,
             "cifs._cifs.nurbs.Half": nurbs.Half.G, "cifs._cifs.nurbs.Direction": nurbs.Direction(0),
             "cifs._cifs.automata.Automaton": self.automaton, "cifs._cifs.automata.TensorAutomaton": self.tensor,
             "cifs._cifs.ifs.Bcifs": self.system, "cifs._cifs.ifs.AdmissibleSpace": self.space,
@@ -184,6 +188,7 @@ def _instances(samples):
     return {
         "Curve": samples.curve, "Surface": samples.surface, "Automaton": samples.automaton.copy(),
         "TensorAutomaton": samples.tensor, "Bcifs": samples.system, "AdmissibleSpace": samples.space,
+        "Volume": samples.volume, "VolumeAutomaton": samples.volume_automaton,
         "Scheme": samples.scheme, "Camera": samples.camera, "Image": samples.image.copy(),
         "ImageChannels": samples.image.copy().channels, "Mesh": samples.mesh, "Segments": samples.segments,
         "Polygon": samples.polygon, "Bounds": cifs.render.Bounds(),

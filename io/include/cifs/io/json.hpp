@@ -20,6 +20,7 @@
 #include "cifs/io/polygon.hpp"
 #include "cifs/io/shape.hpp"
 #include "cifs/nurbs/knot_automaton.hpp"
+#include "cifs/nurbs/volume.hpp"
 #include "cifs/subdivision/analysis.hpp"
 #include "cifs/subdivision/mesh_analysis.hpp"
 
@@ -36,6 +37,19 @@ Shape parse_shape_json(std::string_view text, std::string_view where, const Shap
 std::string to_json(const Shape& shape);
 /// The same bytes, handed to `out` a chunk at a time (io::write: large shapes never whole in memory).
 void write_json(const Shape& shape, ByteSink& out);
+
+/// A trivariate volume: `{"volume": {"degree": [p, q, r], "knots": [[u], [v], [w]], "points": [[[x, …]]],
+/// "weights": [[[w]]]}}`, points[i][j][k] the control point (i, j, k) (the surface's layout with a third
+/// direction; knots in the standard or the Rhino convention), or a geomdl export of type "volume" (5.x or
+/// 6.x layout; `options.index` selects one entry of several). Errors name the JSON path.
+nurbs::Volume parse_volume_json(std::string_view text, std::string_view where,
+                                const ShapeReadOptions& options = {});
+/// Whether `text` is a volume file (`{"volume": …}`, or a geomdl `"shape"` of type "volume"), unvalidated:
+/// the commands that read shapes ask it first.
+bool is_volume_json(std::string_view text);
+/// Round-trip precision: parse_volume_json reads it back bit for bit.
+std::string to_json(const nurbs::Volume& volume);
+void write_json(const nurbs::Volume& volume, ByteSink& out);
 
 /// `{"polygon": {"points": [[x, y], ...], "closed": true}}`.
 Polygon parse_polygon_json(std::string_view text, std::string_view where);
