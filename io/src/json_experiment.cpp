@@ -189,8 +189,8 @@ void read_junction_points(const Reader& r, const json& v, const std::string& pat
 
 /// `junction.a` / `junction.b`: a NURBS shape, or a named scheme on its control points.
 JunctionSideSpec read_junction_side(const Reader& r, const json& v, const std::string& path,
-                                const std::filesystem::path& base,
-                                std::vector<std::filesystem::path>& inputs) {
+                                    const std::filesystem::path& base,
+                                    std::vector<std::filesystem::path>& inputs) {
   r.object(v, path);
   r.only(v, path,
          {"shape", "scheme", "parameters", "points", "window", "layer", "free", "boundary", "color"});
@@ -260,11 +260,11 @@ Eigen::Index side_dimension(const JunctionSideSpec& s) {
 }
 
 JunctionSpec read_junction(const Reader& r, const json& v, const std::filesystem::path& base,
-                       std::vector<std::filesystem::path>& inputs) {
+                           std::vector<std::filesystem::path>& inputs) {
   r.object(v, "junction");
   r.only(v, "junction", {"a", "b"});
   JunctionSpec j{read_junction_side(r, r.member(v, "junction", "a"), "junction.a", base, inputs),
-             read_junction_side(r, r.member(v, "junction", "b"), "junction.b", base, inputs)};
+                 read_junction_side(r, r.member(v, "junction", "b"), "junction.b", base, inputs)};
   if (is_surface(j.a) != is_surface(j.b))
     r.fail("junction", std::string("A is a ") + (is_surface(j.a) ? "surface" : "curve") + " and B a " +
                            (is_surface(j.b) ? "surface" : "curve") + ": join two curves or two surfaces");

@@ -460,7 +460,8 @@ class Collocation {
 std::vector<Patch> limit_patches(MeshScheme scheme, const CharacteristicNet& net) {
   const bool quads = scheme == MeshScheme::catmull_clark;
   const int regular = quads ? 4 : 6;
-  const MeshRefinement r = refine_topology(net.local.mesh, scheme, 2, MeshOptions{.max_bytes = 1'000'000'000});
+  const MeshRefinement r =
+      refine_topology(net.local.mesh, scheme, 2, MeshOptions{.max_bytes = 1'000'000'000});
   const Points X2 = apply(r, net.X);
   const std::vector<char> known2 = known_after(r.steps[1], known_after(r.steps[0], net.known));
   const MeshTopology& t2 = r.levels[2];
@@ -634,7 +635,8 @@ C1Verdict bernstein_verdict(MeshScheme scheme, const CharacteristicNet& net) {
 /// area and the winding of the ring round the centre there (its neighbours; Doo–Sabin: the centre
 /// face's corners, kept as face 0 by the F-faces coming first) — evidence only.
 C1Verdict sampled_verdict(MeshScheme scheme, int n, const CharacteristicNet& net, int levels) {
-  const MeshRefinement r = refine_topology(net.local.mesh, scheme, levels, MeshOptions{.max_bytes = 1'000'000'000});
+  const MeshRefinement r =
+      refine_topology(net.local.mesh, scheme, levels, MeshOptions{.max_bytes = 1'000'000'000});
   const Points X = apply(r, net.X);
   std::vector<char> known = net.known;
   for (const Stencils& s : r.steps) known = known_after(s, known);
@@ -708,7 +710,8 @@ LongMatrix live_eigenfunctions(MeshScheme scheme, int n, const LocalOptions& opt
                                const LongMatrix& basis) {
   const CharacteristicNet net = characteristic_net(
       scheme, n, options, std::vector<long double>(static_cast<std::size_t>(basis.cols()), lambda), basis);
-  const MeshRefinement r = refine_topology(net.local.mesh, scheme, 2, MeshOptions{.max_bytes = 1'000'000'000});
+  const MeshRefinement r =
+      refine_topology(net.local.mesh, scheme, 2, MeshOptions{.max_bytes = 1'000'000'000});
   const Points X = apply(r, net.X);
   const std::vector<char> known = known_after(r.steps[1], known_after(r.steps[0], net.known));
   const MeshTopology& t = r.levels[2];
