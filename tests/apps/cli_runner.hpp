@@ -13,6 +13,7 @@
 #include <sstream>
 #include <string>
 
+#include "support/sanitized.hpp"
 #include "support/scratch.hpp"
 
 namespace cifs_test {
@@ -52,12 +53,7 @@ inline Run cifs_cli(const std::string& args, const std::string& stdout_to = "",
 /// streamed before memory is exhausted; empty under AddressSanitizer, which reserves terabytes of
 /// address space for its shadow memory.
 inline std::string address_space_cap(int gib) {
-#if defined(__SANITIZE_ADDRESS__)
-  (void)gib;
-  return "";
-#else
-  return "ulimit -v " + std::to_string(gib * 1024 * 1024) + "; ";
-#endif
+  return kSanitized ? "" : "ulimit -v " + std::to_string(gib * 1024 * 1024) + "; ";
 }
 
 /// Writes `content` to a scratch file and returns its path.

@@ -124,7 +124,7 @@ TEST_CASE("cifs exits 1 with one line when stdout cannot be written", "[cli][std
            "insert " + shape + " --knot 0.5", "automaton " + shape + " --format dot",
            "attractor " + shape + " --depth 16", "scheme six-point --analyze", "scheme --list",
            "scheme chaikin --refine " + polygon, "subdivide " + mesh + " --scheme catmull-clark",
-           "info " + mesh, "dimension " + examples + "/experiments/sierpinski.json",
+           "info " + mesh, "dimension " + examples + "/experiments/sierpinski.json --depth 10",
            "render " + examples + "/experiments/wave.json -o " + (scratch() / "full.exr").string() +
                " --quiet",
            "--help", "eval --help", "--version"}) {
@@ -206,11 +206,9 @@ TEST_CASE("cifs attractor and eval -o: the file written as computed = standard o
   };
   // Stencil chunks of 2^16 points, several of them (3 · 2^16 + 1 points at depth 16). Under ASan (a few
   // seconds a run) one text and one binary writer cross the chunks; Release runs all four.
-#if defined(__SANITIZE_ADDRESS__)
-  const std::vector<std::string> chunked{"json", "npy"};
-#else
-  const std::vector<std::string> chunked{"json", "obj", "npy", "ply"};
-#endif
+  const std::vector<std::string> chunked = cifs_test::kSanitized
+                                               ? std::vector<std::string>{"json", "npy"}
+                                               : std::vector<std::string>{"json", "obj", "npy", "ply"};
   for (const std::string format : {"json", "obj", "npy", "ply"}) {
     if (std::find(chunked.begin(), chunked.end(), format) != chunked.end())
       same("attractor " + rational + " --depth 16", format);

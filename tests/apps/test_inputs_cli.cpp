@@ -26,11 +26,7 @@ double children_cpu_seconds() {
 
 /// `command` refused within `seconds` of CPU time (one line naming `needle`, exit status 2). CPU time,
 /// not wall time: the 2-core machine is shared with builds (a 0.01-s refusal took 2.5 s of wall time).
-#if defined(__SANITIZE_ADDRESS__)
-constexpr double kQuick = 20;  // ASan and UBSan slow the estimates about 25 times
-#else
-constexpr double kQuick = 1;
-#endif
+constexpr double kQuick = cifs_test::kSanitized ? 20 : 1;  // ASan and UBSan slow the estimates about 25 times
 void check_quick_error(const std::string& command, const std::string& needle, double seconds = kQuick) {
   INFO(command);
   const double before = children_cpu_seconds();

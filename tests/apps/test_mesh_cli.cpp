@@ -401,11 +401,7 @@ TEST_CASE("cifs limit --at: a million points are streamed, in memory well below 
   // The JSON was once built as a tree (1.75 GB of memory and 12.6 s for a million points with partials and
   // normals, 334 MB of text): under a 1 GiB address space that ran out of memory. Under ASan (no cap: its
   // shadow memory reserves terabytes) fewer points.
-#if defined(__SANITIZE_ADDRESS__)
-  const int count = 100000;
-#else
-  const int count = 1000000;
-#endif
+  const int count = cifs_test::kSanitized ? 100000 : 1000000;
   std::string text;
   for (int i = 0; i < count; ++i)
     text += std::to_string(i % 6) + "," + std::to_string((i % 997) / 996.0) + "," +

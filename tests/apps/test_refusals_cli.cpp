@@ -177,11 +177,7 @@ TEST_CASE("cifs: tolerance modes are bounded before the work, with the estimated
   };
   // Refused in 0.1 s in Release; ASan + UBSan make the estimate about 25× slower (saddle at 1e-4:
   // 1.9 s unloaded, 2.3 s on the loaded CI machine), and the bound is against minutes, not a speed.
-#if defined(__SANITIZE_ADDRESS__)
-  constexpr double kSeconds = 20;
-#else
-  constexpr double kSeconds = 2;
-#endif
+  constexpr double kSeconds = cifs_test::kSanitized ? 20 : 2;
   for (const auto& [command, needle] : cases) {
     const auto start = std::chrono::steady_clock::now();
     check_error(cifs_cli(command), needle);

@@ -7,6 +7,7 @@
 #include "cifs/errors.hpp"
 #include "cifs/mesh.hpp"
 #include "cifs/topology.hpp"
+#include "support/sanitized.hpp"
 
 using namespace cifs;
 
@@ -200,11 +201,8 @@ TEST_CASE("topology is linear in the valence: a double pyramid of one vertex of 
   const auto start = std::chrono::steady_clock::now();
   const MeshTopology t = build_topology(m, "pyramid");
   // 0.05 s in Release (the quadratic search: ~5 s); the sanitizers slow it about 20 times.
-#if defined(__SANITIZE_ADDRESS__)
-  CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 30);
-#else
-  CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 2);
-#endif
+  CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() <
+        (cifs_test::kSanitized ? 30 : 2));
   CHECK(t.edges.size() == static_cast<std::size_t>(3 * n));
   CHECK(vertex_faces(t, 0).size() == static_cast<std::size_t>(n));
   CHECK(vertex_edges(t, 1).size() == static_cast<std::size_t>(n));

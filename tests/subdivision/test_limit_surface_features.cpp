@@ -25,6 +25,7 @@
 #include "subdivision/loop_nodes.hpp"
 #include "subdivision/meshes.hpp"
 #include "subdivision/osd_refiner.hpp"
+#include "support/sanitized.hpp"
 
 using namespace cifs;
 using namespace cifs::subdivision;
@@ -539,7 +540,10 @@ TEST_CASE("the limit surface's partials at a vertex that is never a polynomial p
   // plane) have no normal to compare. Refusals name the point; none at the closed meshes' extraordinary
   // vertices nor at darts.
   int irregular = 0, sectors = 0, per_sector = 0;
-  for (const Case& c : corner_cases()) {
+  const std::vector<Case> cases = corner_cases();
+  for (std::size_t index = 0; index < cases.size(); ++index) {
+    if (skipped_when_sanitized(index, 2)) continue;
+    const Case& c = cases[index];
     INFO(c.name << ", " << scheme_name(c.scheme));
     const MeshRefinement r = refine_topology(c.mesh, c.scheme, 1);
     const LimitStencils stencils = limit_stencils(r);
