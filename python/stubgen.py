@@ -70,6 +70,10 @@ class Namer:
     def __init__(self, here):
         self.here = here
 
+    def parameter(self, annotation):
+        """A parameter's type: pybind11's `handle`/`object` take any object, which the function validates."""
+        return self(re.sub(r"\bhandle\b", "object", annotation))
+
     def __call__(self, annotation):
         t = re.sub(r"numpy\.ndarray\[numpy\.(\w+)(?:\[[^\]]*\])?(?:, flags\.\w+)*\]", r"numpy.typing.NDArray[numpy.\1]",
                    annotation)
@@ -110,7 +114,7 @@ def stub_def(name, params, result, namer, indent, method):
         if method and i == 0 and pname == "self":
             out.append("self")
             continue
-        text = f"{pname}: {namer(annotation.strip())}" if annotation.strip() else pname
+        text = f"{pname}: {namer.parameter(annotation.strip())}" if annotation.strip() else pname
         out.append(text + (" = ..." if default else ""))
     if method and (not out or out[0] != "self"):
         out.insert(0, "self")
@@ -145,32 +149,48 @@ def function_stub(obj, name, namer, indent="", method=False, static=False):
             lines += ([f"{indent}@overload"] if len(sigs) > 1 else []) + prefix
             lines.append(stub_def(name, params, result, namer, indent, method and not static))
         return lines
-    try:  # a Python function (cifs/__init__.py adds a few)
+    if name in ("__str__", "__repr__"):  # pybind11's enums give these no signature
+        return prefix + [f"{indent}def {name}(self) -> str: ..."]
+    try:  # a Python function (cifs/__init__.py adds a few): its annotations, when it has them
         sig = inspect.signature(obj)
+        shown = lambda a: a if isinstance(a, str) else inspect.formatannotation(a)  # noqa: E731
         params = [{p.VAR_POSITIONAL: "*", p.VAR_KEYWORD: "**"}.get(p.kind, "") + p.name +
+                  (f": {shown(p.annotation)}" if p.annotation is not p.empty else "") +
                   (" = ..." if p.default is not p.empty else "") for p in sig.parameters.values()]
-        return prefix + [f"{indent}def {name}({', '.join(params)}) -> Any: ..."]
+        result = shown(sig.return_annotation) if sig.return_annotation is not sig.empty else "Any"
+        return prefix + [f"{indent}def {name}({', '.join(params)}) -> {result}: ..."]
     except (TypeError, ValueError):
         return prefix + [f"{indent}def {name}(*args: Any, **kwargs: Any) -> Any: ..."]
 
 
+def accessor_signature(function):
+    """(parameter types, result type) of a property's getter or setter: "[name](arg0: T, …) -> R"."""
+    function = getattr(function, "__wrapped__", function)
+    doc = (getattr(function, "__doc__", None) or "").splitlines()
+    m = re.match(r"\w*\((.*)\) -> (.*)$", doc[0].strip()) if doc else None
+    if not m:
+        return [], "Any"
+    return [p.partition(":")[2].strip() for p in split_top(m.group(1))], m.group(2)
+
+
 def property_stub(prop, name, namer, indent):
-    getter = getattr(prop.fget, "__wrapped__", prop.fget)
-    result = "Any"
-    doc = (getattr(getter, "__doc__", None) or "").splitlines()
-    if doc:
-        m = re.match(r"\(.*\) -> (.*)$", doc[0].strip())
-        if m:
-            result = namer(m.group(1))
+    result = namer(accessor_signature(prop.fget)[1])
     lines = [f"{indent}@property", f"{indent}def {name}(self) -> {result}: ..."]
     if prop.fset is not None:
-        lines += [f"{indent}@{name}.setter", f"{indent}def {name}(self, value: Any) -> None: ..."]
+        params = accessor_signature(prop.fset)[0]
+        value = namer.parameter(params[1]) if len(params) == 2 and params[1] else result
+        lines += [f"{indent}@{name}.setter", f"{indent}def {name}(self, value: {value}) -> None: ..."]
     return lines
 
 
 def numpy_array():
     import numpy
     return numpy.ndarray
+
+
+def constructible(init):
+    """False for pybind11's placeholder __init__ of a class bound without a constructor."""
+    return not (getattr(init, "__doc__", None) or "").startswith("Initialize self.  See help(type(self))")
 
 
 def class_stub(cls, namer):
@@ -185,7 +205,11 @@ def class_stub(cls, namer):
     for name, attr in vars(cls).items():
         if name.startswith("_") and name not in KEEP_DUNDERS:
             continue
-        if isinstance(attr, property) and type(attr) is property:
+        if name == "__init__" and not constructible(attr):
+            continue  # not made from Python: functions return it
+        if isinstance(attr, type):
+            body += ["    " + line for line in class_stub(attr, namer)]  # a class's own enums
+        elif isinstance(attr, property) and type(attr) is property:
             body += property_stub(attr, name, namer, "    ")
         elif isinstance(attr, staticmethod):
             body += function_stub(attr.__func__, name, namer, "    ", static=True)

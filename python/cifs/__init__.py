@@ -173,7 +173,7 @@ ifs.cartesian = _wrapped(ifs.cartesian, _cartesian)
 
 
 # --- Notebook previews: _repr_png_ on images and shapes ---------------------------------------------------------
-def _png_bytes(image):
+def _png_bytes(image) -> "bytes | None":
     """The PNG that render.preview_png writes for `image`, as bytes (None when it has nothing to show)."""
     import os
     import tempfile
@@ -229,11 +229,11 @@ def _mesh_image(mesh, width=_PREVIEW_SIZE[0], height=_PREVIEW_SIZE[1]):
     return image
 
 
-def _mesh_png(self):
+def _mesh_png(self) -> "bytes | None":
     return _png_bytes(_mesh_image(self))
 
 
-def _shape_png(self):
+def _shape_png(self) -> "bytes | None":
     image = _curve_image(self) if isinstance(self, nurbs.Curve) else _surface_image(self)
     return None if image is None else _png_bytes(image)
 

@@ -450,12 +450,6 @@ void bind_fractal_fit(py::module_& m) {
                               "Result of fit_fractal: the fitted BC-IFS, its nets and how well it fits.")
       .def_readonly("system", &ifs::FractalFit::system, "The fitted cifs.ifs.Bcifs (free coefficients set).")
       .def_readonly("nets", &ifs::FractalFit::nets, "Its control nets, one float64 array per segment.")
-      .def_property_readonly(
-          "file",
-          [](const ifs::FractalFit& f) {
-            return io::BcifsFile{f.system, f.nets};
-          },
-          "System and nets as a cifs.io.BcifsFile: cifs.io.write('fit.json', fit.file) writes a BC-IFS file.")
       .def_readonly("control_points", &ifs::FractalFit::control_points,
                     "The control points the nets are made of.")
       .def_readonly("smooth", &ifs::FractalFit::smooth, "The least-squares uniform B-spline it started from.")
@@ -600,6 +594,12 @@ void bind_bcifs_io(py::module_& m) {
         return "BcifsFile(cells=" + std::to_string(num_vertices(f.system.automaton.graph)) +
                ", nets=" + std::to_string(f.nets.size()) + ")";
       });
+  // FractalFit.file is added here, once BcifsFile exists: its signature (docstring, stubs) names the
+  // Python type, not `cifs::io::BcifsFile`.
+  py::reinterpret_borrow<py::class_<ifs::FractalFit>>(py::type::of<ifs::FractalFit>())
+      .def_property_readonly(
+          "file", [](const ifs::FractalFit& f) { return io::BcifsFile{f.system, f.nets}; },
+          "System and nets as a cifs.io.BcifsFile: cifs.io.write('fit.json', fit.file) writes a BC-IFS file.");
   m.def("read_bcifs", &io::read_bcifs, py::arg("path"),
         "Reads a BC-IFS file (docs/formats.md) into a BcifsFile. Raises cifs.IoError (unreadable file, JSON "
         "syntax) or cifs.InvalidInput (content, with its JSON path).");

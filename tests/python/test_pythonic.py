@@ -7,6 +7,7 @@ import copy
 import inspect
 import os
 import pickle
+import re
 import struct
 import unittest
 import zlib
@@ -253,6 +254,23 @@ class StubsTest(unittest.TestCase):
         init = ast.parse((self.FOLDER / "__init__.pyi").read_text(encoding="utf-8"))
         names = {n.name for n in init.body if isinstance(n, ast.ClassDef)}
         self.assertEqual(names, {"InvalidInput", "IoError"})
+
+    def test_stubs_type_every_parameter_and_result(self):
+        """No `Any` (issue 32: `limit(mesh: Any) -> Any`, then `__init__(self, *args, **kwargs) -> Any` on the
+        classes that functions return, enums' names, setters' values and the notebook previews)."""
+        for name in ("nurbs", "automata", "ifs", "subdivision", "render", "io", "verify", "experiment"):
+            text = (self.FOLDER / f"{name}.pyi").read_text(encoding="utf-8")
+            self.assertEqual(re.findall(r".*\bAny\b.*", text), [], f"{name}.pyi")
+        automata_text = (self.FOLDER / "automata.pyi").read_text(encoding="utf-8")
+        state = automata_text[automata_text.index("class State:"):].split("\nclass ")[0]
+        self.assertNotIn("__init__", state)  # State() is refused: automata make their states
+        with self.assertRaisesRegex(TypeError, "No constructor defined"):
+            cifs.automata.State()
+        ifs_text = (self.FOLDER / "ifs.pyi").read_text(encoding="utf-8")
+        self.assertIn("    class Kind:\n", ifs_text)  # Factor.Kind, the type of Factor.kind
+        self.assertIn("def file(self) -> cifs.io.BcifsFile: ...", ifs_text)
+        render_text = (self.FOLDER / "render.pyi").read_text(encoding="utf-8")
+        self.assertIn("def eye(self, value: object) -> None: ...", render_text)
 
     def test_signatures_use_python_types(self):
         text = (self.FOLDER / "nurbs.pyi").read_text(encoding="utf-8")
