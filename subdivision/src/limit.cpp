@@ -410,6 +410,7 @@ LimitStencils limit_stencils(const MeshRefinement& r) {
   out.masks.push_back(
       LimitMask{.position = {1.0}, .tangent_u = {}, .tangent_v = {}, .refused = {}, .sectors = {}});
   std::vector<int> smooth;
+  int boundary_mask = -1;  // √3's, shared by its boundary vertices
   std::map<std::vector<int>, int> classes;
   std::vector<int> faces, nb;
   const bool rings = scheme == MeshScheme::catmull_clark || scheme == MeshScheme::loop;
@@ -432,11 +433,28 @@ LimitStencils limit_stencils(const MeshRefinement& r) {
       walk_ring(t, v, false, faces, nb);
       return distinct(t, v, faces, nb.size());
     };
-    if (!rings) {  // √3: interior vertices of valence 3 … 16, from the eigenvectors
-      if (t.boundary_vertex[static_cast<std::size_t>(v)] != 0)
-        throw InvalidInput(where() +
-                           " is on the boundary: limit points there are built for catmull-clark and "
-                           "loop only");
+    if (!rings && t.boundary_vertex[static_cast<std::size_t>(v)] != 0) {
+      // √3's boundary (Kobbelt 2000 §5) is the uniform cubic B-spline of the boundary polygon, refined
+      // ternarily every second step and kept in between: a boundary vertex's limit is (a + 4v + b)/6,
+      // a and b its neighbours along the boundary, at every level. The tangent across the boundary
+      // needs the spectrum of the boundary's two-step matrix: not built (no normals there).
+      nb.assign(1, v);
+      for (const int e : vertex_edges(t, static_cast<std::size_t>(v)))
+        if (is_boundary_edge(t, static_cast<std::size_t>(e)))
+          nb.push_back(other_vertex(t, static_cast<std::size_t>(e), v));
+      if (nb.size() != 3)
+        throw InvalidInput(where() + " is on " + std::to_string(nb.size() - 1) +
+                           " boundary edges: a limit point needs the boundary to pass once");
+      if (boundary_mask < 0) {
+        out.masks.push_back(LimitMask{.position = {4.0 / 6, 1.0 / 6, 1.0 / 6},
+                                      .tangent_u = {},
+                                      .tangent_v = {},
+                                      .refused = "the tangent across a sqrt3 boundary is not built",
+                                      .sectors = {}});
+        boundary_mask = static_cast<int>(out.masks.size()) - 1;
+      }
+      mask = boundary_mask;
+    } else if (!rings) {  // √3: interior vertices of valence 3 … 16, from the eigenvectors
       if (smooth.size() <= static_cast<std::size_t>(n)) smooth.resize(static_cast<std::size_t>(n) + 1, -1);
       if (smooth[static_cast<std::size_t>(n)] < 0) {
         try {

@@ -227,8 +227,9 @@ TEST_CASE("limit stencils: what is not built is refused, naming the vertex", "[s
                     Contains("butterfly: limit normals are not built"));
   CHECK_THROWS_WITH(limit_stencils(refine_topology(fan(17), MeshScheme::sqrt3, 0)),
                     Contains("sqrt3: vertex 0 (valence 17): valence 17 is out of range"));
-  CHECK_THROWS_WITH(limit_stencils(refine_topology(fan(5), MeshScheme::sqrt3, 0)),
-                    Contains("is on the boundary"));
+  CHECK_THROWS_WITH(limit_mesh(fan(5), MeshScheme::sqrt3, 0, {.normals = true}),
+                    Contains("sqrt3: vertex 6 (valence 3) has no tangent plane") &&
+                        Contains("the tangent across a sqrt3 boundary is not built"));
   // Positions on the boundary: the cubic B-spline limit (1, 4, 1)/6 of the boundary polygon.
   const Mesh grid = quad_grid(4, 3);
   const Mesh limit = limit_mesh(grid, MeshScheme::catmull_clark, 0);
@@ -236,6 +237,59 @@ TEST_CASE("limit stencils: what is not built is refused, naming the vertex", "[s
     const Eigen::RowVector3d expected =
         (grid.vertices.row(v - 1) + 4 * grid.vertices.row(v) + grid.vertices.row(v + 1)) / 6;
     CHECK((limit.vertices.row(v) - expected).norm() <= 1e-15 * expected.norm() + 1e-15);
+  }
+}
+
+TEST_CASE("√3 on open meshes: a boundary vertex's limit is the boundary's cubic B-spline at every level",
+          "[subdivision][limit]") {
+  // Kobbelt's boundary rule (2000, §5) keeps the boundary on odd steps and trisects it on even ones with
+  // the ternary cubic B-spline's masks: the boundary is that spline of the boundary polygon, and a boundary
+  // vertex's limit is (a + 4v + b)/6. Routes: the limits of a level's vertices are the same at every later
+  // level (vertices keep their index); the refined boundary vertices reach them by 1/9 every two steps
+  // (the ternary cubic's third eigenvalue: the second, 1/3, is the tangent's, 0 at a symmetric vertex),
+  // the interior ones too, by the valences' subdominant eigenvalues squared.
+  for (const auto& [name, m] : std::vector<std::pair<const char*, Mesh>>{
+           {"fan of 5 (boundary valences 3 and 4)", fan(5)}, {"triangulated grid", quad_grid(4, 3, true)}}) {
+    INFO(name);
+    const MeshTopology t = build_topology(m, name);
+    const MeshRefinement r = refine_topology(m, MeshScheme::sqrt3, 8);
+    std::vector<Points> data{m.vertices};
+    for (const Stencils& step : r.steps) data.push_back(apply(step, data.back()));
+    const Points limit = limit_mesh(m, MeshScheme::sqrt3, 0).vertices;
+    const double scale = m.vertices.cwiseAbs().maxCoeff();
+    int boundary = 0;
+    for (int v = 0; v < t.vertex_count; ++v) {
+      if (t.boundary_vertex[static_cast<std::size_t>(v)] == 0) continue;
+      ++boundary;
+      Eigen::RowVector3d expected = 4 * m.vertices.row(v);
+      for (const int e : vertex_edges(t, static_cast<std::size_t>(v)))
+        if (t.edge_faces[static_cast<std::size_t>(e)][1] < 0)
+          expected += m.vertices.row(other_vertex(t, static_cast<std::size_t>(e), v));
+      CHECK((limit.row(v) - expected / 6).norm() <= 1e-15 * scale);
+    }
+    CHECK(boundary > 5);
+    for (int level = 1; level <= 4; ++level) {
+      INFO("level " << level);
+      const LimitFrame later = evaluate_limit(limit_stencils(refine_topology(m, MeshScheme::sqrt3, level)),
+                                              data[static_cast<std::size_t>(level)], false);
+      CHECK((later.positions.topRows(limit.rows()) - limit).cwiseAbs().maxCoeff() <= 1e-13 * scale);
+    }
+    std::vector<double> on_boundary, inside;
+    for (std::size_t level = 0; level < data.size(); level += 2) {
+      double b = 0, i = 0;
+      for (int v = 0; v < t.vertex_count; ++v) {
+        double& worst = t.boundary_vertex[static_cast<std::size_t>(v)] != 0 ? b : i;
+        worst = std::max(worst, (data[level].row(v) - limit.row(v)).norm());
+      }
+      on_boundary.push_back(b);
+      inside.push_back(i);
+    }
+    for (std::size_t k = 1; k + 1 < on_boundary.size(); ++k) {
+      INFO("levels " << 2 * k << " and " << 2 * k + 2 << ": " << on_boundary[k] << ", "
+                     << on_boundary[k + 1]);
+      CHECK(std::abs(on_boundary[k] / on_boundary[k + 1] - 9) < 0.2);
+      CHECK(inside[k + 1] <= 0.25 * inside[k]);  // (4 − cos 2π/n)²/81 ≤ 0.21 up to valence 16
+    }
   }
 }
 
