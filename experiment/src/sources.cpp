@@ -219,9 +219,8 @@ Scene bcifs_scene(const io::Experiment& e, bool evaluate, const RunOptions& o, R
 /// A mesh source's surface automaton (subdivision/limit.hpp), fractal when `perturbation` is given
 /// (fractal_surface): the automaton needs quads (triangles) with at most one extraordinary corner, so
 /// the mesh is refined once or twice first, at most `budget` levels; `refined` gets the levels spent.
-subdivision::FractalSurface mesh_automaton(const io::MeshSource& m,
-                                             const io::PerturbationSpec* perturbation, int budget,
-                                             const RunOptions& o, RunReport& report, int& refined) {
+subdivision::FractalSurface mesh_automaton(const io::MeshSource& m, const io::PerturbationSpec* perturbation,
+                                           int budget, const RunOptions& o, RunReport& report, int& refined) {
   const subdivision::MeshOptions options{.max_bytes = o.max_bytes};
   const std::string file = m.path.filename().string();
   for (int first = 1; first <= 2; ++first) {
@@ -619,9 +618,10 @@ Scene mesh_attractor(const io::Experiment& e, bool meshed, std::optional<int> de
         "mesh: " + file + ": a " + scheme +
         " surface has no automaton to evaluate or sample (catmull-clark and loop surfaces have)");
   if (!meshed && e.perturbation && e.perturbation->fractal_curves)
-    throw InvalidInput("perturbation.fractal_curves: " + file +
-                       ": fractal crease and boundary curves are added to the attractor mesh, not to the automaton "
-                       "that the chaos game and the tolerance traversal sample (mesh it: cifs render, cifs attractor)");
+    throw InvalidInput(
+        "perturbation.fractal_curves: " + file +
+        ": fractal crease and boundary curves are added to the attractor mesh, not to the automaton "
+        "that the chaos game and the tolerance traversal sample (mesh it: cifs render, cifs attractor)");
   int refined = 0;
   subdivision::FractalSurface fractal =
       mesh_automaton(m, e.perturbation ? &*e.perturbation : nullptr, 2, o, report, refined);

@@ -183,7 +183,8 @@ void bind_mesh_subdivision_surfaces(py::module_& m) {
             return sd::feature_curve_nodes(f, edge, depth);
           },
           py::arg("edge"), py::arg("depth"),
-          "The perturbed curve's 2^depth + 1 nodes along a fractal edge (lower vertex, higher), from the lower "
+          "The perturbed curve's 2^depth + 1 nodes along a fractal edge (lower vertex, higher), from the "
+          "lower "
           "vertex.");
   m.def(
       "surface_automaton_mesh",
@@ -209,8 +210,8 @@ void bind_mesh_subdivision_surfaces(py::module_& m) {
   m.def(
       "fractal_surface",
       [](const sd::SurfaceAutomaton& s, double amplitude, std::uint64_t seed,
-         const std::optional<std::map<std::string, double>>& values, const std::optional<Mesh>& mesh, bool creases,
-         bool boundaries, double curve_amplitude, std::uint64_t curve_seed,
+         const std::optional<std::map<std::string, double>>& values, const std::optional<Mesh>& mesh,
+         bool creases, bool boundaries, double curve_amplitude, std::uint64_t curve_seed,
          const std::optional<std::map<std::string, double>>& curve_values) {
         ifs::PerturbOptions o;
         o.amplitude = amplitude;
@@ -220,8 +221,9 @@ void bind_mesh_subdivision_surfaces(py::module_& m) {
         if (curves && !mesh)
           throw InvalidInput("mesh: fractal creases and boundaries need the mesh the surface was built from");
         if (!curves && (mesh || curve_amplitude != 0 || curve_values))
-          throw InvalidInput("creases: mesh, curve_amplitude and curve_values serve fractal creases or boundaries "
-                             "(creases=True, boundaries=True)");
+          throw InvalidInput(
+              "creases: mesh, curve_amplitude and curve_values serve fractal creases or boundaries "
+              "(creases=True, boundaries=True)");
         if (!(curve_amplitude >= 0)) throw InvalidInput("curve_amplitude: expected a number ≥ 0");
         sd::FractalFeatureOptions features;
         features.creases = creases;
@@ -246,7 +248,8 @@ void bind_mesh_subdivision_surfaces(py::module_& m) {
       "(cifs.ifs.perturb's amplitude, seed, values). Every face keeps the smooth surface's boundary curves, "
       "the "
       "mesh's boundary and creases among them. Returns (SurfaceAutomaton, cifs.ifs.Perturbation). With "
-      "creases=True (the infinitely sharp creases) or boundaries=True (the boundary curves) and `mesh` (the mesh "
+      "creases=True (the infinitely sharp creases) or boundaries=True (the boundary curves) and `mesh` (the "
+      "mesh "
       "the surface was built from), those curves become fractal on their own — the uniform cubic segment's "
       "BC-IFS perturbed by curve_amplitude, curve_seed, curve_values — the surface watertight across them: "
       "returns (SurfaceAutomaton, cifs.ifs.Perturbation, FractalFeatures), the last for "

@@ -78,22 +78,23 @@ void check_same_mesh(const Mesh& mesh, const MeshTopology& t, const SurfaceAutom
   for (std::size_t k = 0; k < smooth.corners.size(); ++k) {
     const int f = smooth.automaton.initial[k].segment;
     if (f < 0 || static_cast<std::size_t>(f) >= face_count(t))
-      throw InvalidInput(who + ": entry " + std::to_string(k) + " is face " + std::to_string(f) + ", the mesh has " +
-                         std::to_string(face_count(t)) + " faces");
+      throw InvalidInput(who + ": entry " + std::to_string(k) + " is face " + std::to_string(f) +
+                         ", the mesh has " + std::to_string(face_count(t)) + " faces");
     const auto corners = face(t, static_cast<std::size_t>(f));
     for (const int c : smooth.corners[k])
       if (c >= 0 && std::find(corners.begin(), corners.end(), c) == corners.end())
-        throw InvalidInput(who + ": vertex " + std::to_string(c) + " is no corner of face " + std::to_string(f));
+        throw InvalidInput(who + ": vertex " + std::to_string(c) + " is no corner of face " +
+                           std::to_string(f));
     if (smooth.nets[k].cols() != mesh.vertices.cols())
-      throw InvalidInput(who + ": its nets have " + std::to_string(smooth.nets[k].cols()) + " columns, the mesh " +
-                         std::to_string(mesh.vertices.cols()));
+      throw InvalidInput(who + ": its nets have " + std::to_string(smooth.nets[k].cols()) +
+                         " columns, the mesh " + std::to_string(mesh.vertices.cols()));
   }
 }
 
 }  // namespace
 
-FractalSurface fractal_surface(const Mesh& mesh, const SurfaceAutomaton& smooth, const ifs::PerturbOptions& options,
-                               const FractalFeatureOptions& features) {
+FractalSurface fractal_surface(const Mesh& mesh, const SurfaceAutomaton& smooth,
+                               const ifs::PerturbOptions& options, const FractalFeatureOptions& features) {
   if (!features.creases && !features.boundaries) return fractal_surface(smooth, options);
   Mesh shape;  // topology and tags only
   shape.vertices = Points::Zero(mesh.vertices.rows(), 3);
@@ -117,7 +118,9 @@ FractalSurface fractal_surface(const Mesh& mesh, const SurfaceAutomaton& smooth,
     if (is_hole(f, faces[0]) && (boundary || is_hole(f, faces[1]))) continue;
     const int lo = std::min(t.edges[e][0], t.edges[e][1]), hi = std::max(t.edges[e][0], t.edges[e][1]);
     const FeatureVertex a = feature_vertex(t, f, r.tags[0], lo), b = feature_vertex(t, f, r.tags[0], hi);
-    const auto ends_curve = [](const FeatureVertex& v) { return !v.semi && (v.corner || v.sharp.size() == 2); };
+    const auto ends_curve = [](const FeatureVertex& v) {
+      return !v.semi && (v.corner || v.sharp.size() == 2);
+    };
     if (!ends_curve(a) || !ends_curve(b)) continue;
     Points net(4, mesh.vertices.cols());
     net.row(0) = beyond(mesh, t, a, lo, hi);
@@ -130,14 +133,17 @@ FractalSurface fractal_surface(const Mesh& mesh, const SurfaceAutomaton& smooth,
   const auto refuse = [&](const char* kind, int asked, const char* none) {
     const std::string who = std::string("fractal ") + kind + ": ";
     if (asked == 0) throw InvalidInput(who + none);
-    throw InvalidInput(who + "every one of the mesh's " + std::to_string(asked) +
-                       " edges ends at a dart or at a semi-sharp tag (or lies next to holes), where the smooth "
-                       "curve is no cubic B-spline of its polygon");
+    throw InvalidInput(
+        who + "every one of the mesh's " + std::to_string(asked) +
+        " edges ends at a dart or at a semi-sharp tag (or lies next to holes), where the smooth "
+        "curve is no cubic B-spline of its polygon");
   };
   if (features.creases && made_creases == 0)
-    refuse("creases", asked_creases,
-           "the mesh has no infinitely sharp crease (semi-sharp creases stay smooth: their sharpness runs out)");
-  if (features.boundaries && made_boundaries == 0) refuse("boundaries", asked_boundaries, "the mesh has no boundary");
+    refuse(
+        "creases", asked_creases,
+        "the mesh has no infinitely sharp crease (semi-sharp creases stay smooth: their sharpness runs out)");
+  if (features.boundaries && made_boundaries == 0)
+    refuse("boundaries", asked_boundaries, "the mesh has no boundary");
   // The curves first: their refusals come before the surface's perturbation (the longer work).
   FractalFeatures curves;
   curves.smooth = cubic_segment_bcifs();
@@ -155,9 +161,10 @@ FractalSurface fractal_surface(const Mesh& mesh, const SurfaceAutomaton& smooth,
 Points feature_curve_nodes(const FractalFeatures& features, std::array<int, 2> edge, int depth) {
   const auto it = features.nets.find(edge);
   if (it == features.nets.end())
-    throw InvalidInput("fractal features: the edge " + std::to_string(edge[0]) + " " + std::to_string(edge[1]) +
-                       " is no fractal feature edge (lower vertex first)");
-  const ifs::EdgePieces pieces = ifs::edge_pieces(features.perturbation.system, std::span(&it->second, 1), depth);
+    throw InvalidInput("fractal features: the edge " + std::to_string(edge[0]) + " " +
+                       std::to_string(edge[1]) + " is no fractal feature edge (lower vertex first)");
+  const ifs::EdgePieces pieces =
+      ifs::edge_pieces(features.perturbation.system, std::span(&it->second, 1), depth);
   Points out(pieces.start.rows() + 1, pieces.start.cols());
   out.topRows(pieces.start.rows()) = pieces.start;
   out.bottomRows(1) = pieces.end.bottomRows(1);
@@ -185,7 +192,8 @@ FeatureDisplacement::FeatureDisplacement(const FractalFeatures& features, int de
   }
 }
 
-void FeatureDisplacement::add(int from, int to, int at, double weight, Eigen::Ref<Eigen::RowVectorXd> p) const {
+void FeatureDisplacement::add(int from, int to, int at, double weight,
+                              Eigen::Ref<Eigen::RowVectorXd> p) const {
   const auto it = delta_.find(from < to ? std::array{from, to} : std::array{to, from});
   if (it == delta_.end()) return;
   p += weight * it->second.row(from < to ? at : side_ - at);
@@ -200,7 +208,8 @@ bool FeatureDisplacement::touches(const std::array<int, 4>& c, bool quad) const 
   return false;
 }
 
-void FeatureDisplacement::add_quad(const std::array<int, 4>& c, int I, int J, Eigen::Ref<Eigen::RowVectorXd> p) const {
+void FeatureDisplacement::add_quad(const std::array<int, 4>& c, int I, int J,
+                                   Eigen::Ref<Eigen::RowVectorXd> p) const {
   const double s = static_cast<double>(I) / side_, t = static_cast<double>(J) / side_;
   // The block's sides as surface_automaton_mesh names them: J = 0 from corner 0 to 1, I = side from 1
   // to 2, J = side from 3 to 2, I = 0 from 0 to 3.

@@ -392,7 +392,8 @@ Mesh surface_automaton_mesh(const FractalSurface& fractal, int depth, const ifs:
   if (depth < 0 || depth > 15)
     throw InvalidInput("fractal surface mesh: depth " + std::to_string(depth) + " is outside 0 … 15");
   if (options.homogeneous)
-    throw InvalidInput("fractal surface mesh: fractal feature curves are built for Cartesian nets, not homogeneous");
+    throw InvalidInput(
+        "fractal surface mesh: fractal feature curves are built for Cartesian nets, not homogeneous");
   const detail::FeatureDisplacement features(fractal.features, depth);
   return attractor_mesh(fractal.surface, depth, options, &features);
 }

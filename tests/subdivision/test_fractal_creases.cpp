@@ -48,10 +48,12 @@ double size_of_mesh_for_creases(const Mesh& m) {
 
 /// The crease chain's curve: the uniform cubic B-spline of its polygon, phantom points 2a − b beyond its
 /// corner ends, as one NURBS curve; its perturbed BC-IFS's nodes at `depth`, in order along the chain.
-Points chain_nodes(const Mesh& m, const std::vector<int>& chain, const ifs::PerturbOptions& perturb, int depth) {
+Points chain_nodes(const Mesh& m, const std::vector<int>& chain, const ifs::PerturbOptions& perturb,
+                   int depth) {
   const auto n = static_cast<Eigen::Index>(chain.size());
   Points control(n + 2, m.vertices.cols());
-  for (Eigen::Index k = 0; k < n; ++k) control.row(k + 1) = m.vertices.row(chain[static_cast<std::size_t>(k)]);
+  for (Eigen::Index k = 0; k < n; ++k)
+    control.row(k + 1) = m.vertices.row(chain[static_cast<std::size_t>(k)]);
   control.row(0) = 2 * control.row(1) - control.row(2);
   control.row(n + 1) = 2 * control.row(n) - control.row(n - 1);
   nurbs::Knots knots(static_cast<std::size_t>(n + 6));
@@ -78,7 +80,8 @@ Mesh face_block_for_creases(const FractalSurface& f, std::size_t k, int depth) {
 }
 
 /// The nodes of a face's block along its side from mesh vertex a to b (empty if ab is no side of it).
-Points side_nodes_for_creases(const Mesh& block, bool quad, const std::array<int, 4>& c, int a, int b, int side) {
+Points side_nodes_for_creases(const Mesh& block, bool quad, const std::array<int, 4>& c, int a, int b,
+                              int side) {
   const int n = quad ? 4 : 3;
   Points out(side + 1, block.vertices.cols());
   for (int k = 0; k < n; ++k) {
@@ -87,7 +90,8 @@ Points side_nodes_for_creases(const Mesh& block, bool quad, const std::array<int
     for (int at = 0; at <= side; ++at) {
       int I = 0, J = 0;  // quads: (I, J); triangles: (i, j)
       if (quad) {
-        const std::array<std::array<int, 2>, 4> place{{{at, 0}, {side, at}, {side - at, side}, {0, side - at}}};
+        const std::array<std::array<int, 2>, 4> place{
+            {{at, 0}, {side, at}, {side - at, side}, {0, side - at}}};
         I = place[static_cast<std::size_t>(k)][0], J = place[static_cast<std::size_t>(k)][1];
       } else {
         const std::array<std::array<int, 2>, 3> place{{{at, 0}, {side - at, at}, {0, side - at}}};
@@ -122,7 +126,8 @@ void check_fractal_creases(bool triangles) {
   const FractalSurface same = fractal_surface(m, smooth, rough, flat);
   REQUIRE(same.features.nets.size() == 6);  // the crease across; the edge to the dart stays smooth
   const Mesh rough_mesh = surface_automaton_mesh(same.surface, depth);
-  CHECK((surface_automaton_mesh(same, depth).vertices - rough_mesh.vertices).cwiseAbs().maxCoeff() <= 1e-12 * size);
+  CHECK((surface_automaton_mesh(same, depth).vertices - rough_mesh.vertices).cwiseAbs().maxCoeff() <=
+        1e-12 * size);
 
   // Surface amplitude 0, crease amplitude 0.4.
   const FractalSurface fractal = fractal_surface(m, smooth, none, creases);
@@ -131,7 +136,9 @@ void check_fractal_creases(bool triangles) {
   REQUIRE(welded.vertices.rows() == limit.vertices.rows());
   CHECK(euler_characteristic(build_topology(welded)) == euler_characteristic(build_topology(m)));
   // Faces not touching a fractal crease edge: every node is the smooth limit surface's.
-  const auto fractal_edge = [&](int a, int b) { return fractal.features.nets.contains({std::min(a, b), std::max(a, b)}); };
+  const auto fractal_edge = [&](int a, int b) {
+    return fractal.features.nets.contains({std::min(a, b), std::max(a, b)});
+  };
   const std::size_t cells = std::size_t{1} << (2 * depth);
   const std::size_t corners_per_cell = quad ? 4 : 3;
   double away = 0, beside = 0;
@@ -153,7 +160,8 @@ void check_fractal_creases(bool triangles) {
   // Both faces of every crease edge, each from its own net, have the nodes of the crease's own 1-D
   // BC-IFS along it (built here from the whole chain), read in the same direction.
   std::vector<Mesh> blocks;
-  for (std::size_t k = 0; k < fractal.surface.corners.size(); ++k) blocks.push_back(face_block_for_creases(fractal, k, depth));
+  for (std::size_t k = 0; k < fractal.surface.corners.size(); ++k)
+    blocks.push_back(face_block_for_creases(fractal, k, depth));
   double along = 0, moved = 0;
   int sides_seen = 0;
   for (const auto& chain : kCreaseChains) {
@@ -162,14 +170,16 @@ void check_fractal_creases(bool triangles) {
     moved = std::max(moved, (curve - smooth_curve).rowwise().norm().maxCoeff());
     for (std::size_t e = 0; e + 1 < chain.size(); ++e) {
       const Points expected = curve.middleRows(static_cast<Eigen::Index>(e) * side, side + 1);
-      CHECK((feature_curve_nodes(fractal.features, {std::min(chain[e], chain[e + 1]), std::max(chain[e], chain[e + 1])},
-                                 depth) -
-             (chain[e] < chain[e + 1] ? expected : Points(expected.colwise().reverse())))
-                .cwiseAbs()
-                .maxCoeff() <= 1e-12 * size);
+      CHECK(
+          (feature_curve_nodes(fractal.features,
+                               {std::min(chain[e], chain[e + 1]), std::max(chain[e], chain[e + 1])}, depth) -
+           (chain[e] < chain[e + 1] ? expected : Points(expected.colwise().reverse())))
+              .cwiseAbs()
+              .maxCoeff() <= 1e-12 * size);
       int faces = 0;
       for (std::size_t k = 0; k < blocks.size(); ++k) {
-        const Points nodes = side_nodes_for_creases(blocks[k], quad, fractal.surface.corners[k], chain[e], chain[e + 1], side);
+        const Points nodes =
+            side_nodes_for_creases(blocks[k], quad, fractal.surface.corners[k], chain[e], chain[e + 1], side);
         if (nodes.size() == 0) continue;
         ++faces;
         along = std::max(along, (nodes - expected).cwiseAbs().maxCoeff());
@@ -204,7 +214,8 @@ TEST_CASE("fractal creases: the crease curve's points have a box-counting dimens
   ifs::BoxCountingOptions boxes;
   boxes.min_boxes = 64;  // 3 segments × 2^12 points: scales of 64 … 3000 boxes
   const ifs::BoxCountingResult smooth = ifs::box_counting(chain_nodes(m, kCreaseChains[0], {}, 12), boxes);
-  const ifs::BoxCountingResult rough = ifs::box_counting(chain_nodes(m, kCreaseChains[0], perturb, 12), boxes);
+  const ifs::BoxCountingResult rough =
+      ifs::box_counting(chain_nodes(m, kCreaseChains[0], perturb, 12), boxes);
   INFO("smooth " << smooth.dimension << ", fractal " << rough.dimension << " ± " << rough.uncertainty);
   CHECK(smooth.dimension == Approx(1).margin(0.05));
   CHECK(rough.dimension > 1.2);
@@ -225,8 +236,9 @@ TEST_CASE("fractal creases: what they refuse, one line naming it", "[subdivision
   FractalFeatureOptions boundaries;
   boundaries.boundaries = true;
   const Mesh closed = catmull_clark(cube(), 1);
-  CHECK_THROWS_WITH(fractal_surface(closed, surface_automaton(closed, MeshScheme::catmull_clark), {}, boundaries),
-                    Contains("no boundary"));
+  CHECK_THROWS_WITH(
+      fractal_surface(closed, surface_automaton(closed, MeshScheme::catmull_clark), {}, boundaries),
+      Contains("no boundary"));
   const Mesh grid = creased_grid_for_fractal_creases(false);
   CHECK_THROWS_WITH(fractal_surface(closed, surface_automaton(grid, MeshScheme::catmull_clark), {}, creases),
                     Contains("not the surface automaton's"));

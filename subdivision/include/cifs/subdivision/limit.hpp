@@ -244,9 +244,9 @@ Mesh surface_automaton_mesh(const SurfaceAutomaton& surface, int depth, const if
 /// triangles: λ_c / (λ_a + λ_c) for the edge ab, c the third corner), so the displacement vanishes
 /// with its slope on the face's other sides and both faces of a crease meet on the perturbed curve.
 struct FractalFeatures {
-  ifs::Perturbation perturbation;                       // of the curve segment's BC-IFS
-  ifs::Bcifs smooth;                                    // the same system unperturbed
-  std::map<std::array<int, 2>, Points> nets;            // per fractal edge (lower, higher vertex): 4 × dim
+  ifs::Perturbation perturbation;             // of the curve segment's BC-IFS
+  ifs::Bcifs smooth;                          // the same system unperturbed
+  std::map<std::array<int, 2>, Points> nets;  // per fractal edge (lower, higher vertex): 4 × dim
 };
 
 /// Which feature curves become fractal. Infinitely sharp creases and boundary curves whose ends are
@@ -270,8 +270,8 @@ FractalSurface fractal_surface(const SurfaceAutomaton& smooth, const ifs::Pertur
 /// the creases and corners are). InvalidInput when a kind of curve is asked for and the mesh has none
 /// that can be made fractal (naming why: no infinitely sharp crease, no boundary, every one ending at a
 /// dart or a semi-sharp tag), when `mesh` is not `smooth`'s, or as ifs::perturb.
-FractalSurface fractal_surface(const Mesh& mesh, const SurfaceAutomaton& smooth, const ifs::PerturbOptions& options,
-                               const FractalFeatureOptions& features);
+FractalSurface fractal_surface(const Mesh& mesh, const SurfaceAutomaton& smooth,
+                               const ifs::PerturbOptions& options, const FractalFeatureOptions& features);
 
 /// The attractor of a fractal surface at `depth` as surface_automaton_mesh, with its fractal feature
 /// curves' displacements added face by face before the nodes are welded.
