@@ -205,6 +205,41 @@ TEST_CASE("fractal creases, Loop: the crease's own BC-IFS, watertight, the rest 
   check_fractal_creases(true);
 }
 
+TEST_CASE("fractal boundaries, Catmull–Clark: the boundary curve's own BC-IFS, the faces along it",
+          "[subdivision][fractal][creases]") {
+  // A 3 × 2 grid under edge_and_corner: four boundary chains between its corners, the first 0 … 3.
+  Mesh m = wavy_grid(3, 2, false);
+  m.tags.boundary = BoundaryRule::edge_and_corner;
+  m = turned_faces(m);
+  const double size = size_of_mesh_for_creases(m);
+  FractalFeatureOptions boundaries;
+  boundaries.boundaries = true;
+  boundaries.perturbation.amplitude = 0.8;
+  boundaries.perturbation.seed = 7;
+  const SurfaceAutomaton smooth = surface_automaton(m, MeshScheme::catmull_clark);
+  const FractalSurface fractal = fractal_surface(m, smooth, {}, boundaries);
+  CHECK(fractal.features.nets.size() == 10);  // every boundary edge
+  const int depth = 3, side = 1 << depth;
+  const std::vector<int> chain{0, 1, 2, 3};
+  const Points curve = chain_nodes(m, chain, boundaries.perturbation, depth);
+  CHECK((curve - chain_nodes(m, chain, {}, depth)).rowwise().norm().maxCoeff() >= 1e-3 * size);
+  double along = 0;
+  for (std::size_t k = 0; k < fractal.surface.corners.size(); ++k) {
+    const Mesh block = face_block_for_creases(fractal, k, depth);
+    for (std::size_t e = 0; e + 1 < chain.size(); ++e) {
+      const Points nodes =
+          side_nodes_for_creases(block, true, fractal.surface.corners[k], chain[e], chain[e + 1], side);
+      if (nodes.size() > 0)
+        along = std::max(
+            along,
+            (nodes - curve.middleRows(static_cast<Eigen::Index>(e) * side, side + 1)).cwiseAbs().maxCoeff());
+    }
+  }
+  CHECK(along <= 1e-12 * size);
+  CHECK(euler_characteristic(build_topology(surface_automaton_mesh(fractal, depth))) ==
+        euler_characteristic(build_topology(m)));
+}
+
 TEST_CASE("fractal creases: the crease curve's points have a box-counting dimension above 1",
           "[subdivision][fractal][creases]") {
   const Mesh m = creased_grid_for_fractal_creases(false);
