@@ -192,8 +192,7 @@ FeatureDisplacement::FeatureDisplacement(const FractalFeatures& features, int de
   }
 }
 
-void FeatureDisplacement::add(int from, int to, int at, double weight,
-                              Eigen::Ref<Eigen::RowVectorXd> p) const {
+void FeatureDisplacement::add(int from, int to, int at, double weight, Eigen::RowVectorXd& p) const {
   const auto it = delta_.find(from < to ? std::array{from, to} : std::array{to, from});
   if (it == delta_.end()) return;
   p += weight * it->second.row(from < to ? at : side_ - at);
@@ -208,8 +207,7 @@ bool FeatureDisplacement::touches(const std::array<int, 4>& c, bool quad) const 
   return false;
 }
 
-void FeatureDisplacement::add_quad(const std::array<int, 4>& c, int I, int J,
-                                   Eigen::Ref<Eigen::RowVectorXd> p) const {
+void FeatureDisplacement::add_quad(const std::array<int, 4>& c, int I, int J, Eigen::RowVectorXd& p) const {
   const double s = static_cast<double>(I) / side_, t = static_cast<double>(J) / side_;
   // The block's sides as surface_automaton_mesh names them: J = 0 from corner 0 to 1, I = side from 1
   // to 2, J = side from 3 to 2, I = 0 from 0 to 3.
@@ -220,7 +218,7 @@ void FeatureDisplacement::add_quad(const std::array<int, 4>& c, int I, int J,
 }
 
 void FeatureDisplacement::add_triangle(const std::array<int, 4>& c, int i, int j,
-                                       Eigen::Ref<Eigen::RowVectorXd> p) const {
+                                       Eigen::RowVectorXd& p) const {
   // Side ab, c the third corner: Δ at λ_b along it, weighted by φ(λ_c / (λ_a + λ_c)), which is 0 on the
   // side ab and 1 on the side bc; on the side ac Δ vanishes (λ_b = 0 is a mesh vertex).
   const int k = side_ - i - j;  // λ0·side

@@ -22,15 +22,15 @@ class FeatureDisplacement {
   bool touches(const std::array<int, 4>& corners, bool quad) const;
   /// Adds the displacement at node (I, J) of a quad face's (2^depth + 1)² block (I along s, corners
   /// at (0, 0), (side, 0), (side, side), (0, side)) to `p`.
-  void add_quad(const std::array<int, 4>& corners, int I, int J, Eigen::Ref<Eigen::RowVectorXd> p) const;
+  void add_quad(const std::array<int, 4>& corners, int I, int J, Eigen::RowVectorXd& p) const;
   /// Adds the displacement at node (i, j), i + j ≤ side, of a triangle (corners at (0, 0), (side, 0),
   /// (0, side)) to `p`.
-  void add_triangle(const std::array<int, 4>& corners, int i, int j, Eigen::Ref<Eigen::RowVectorXd> p) const;
+  void add_triangle(const std::array<int, 4>& corners, int i, int j, Eigen::RowVectorXd& p) const;
 
  private:
   /// Δ at `at` cells from `from` along the edge from `from` to `to`, times `weight`; nothing when the
   /// edge is not fractal.
-  void add(int from, int to, int at, double weight, Eigen::Ref<Eigen::RowVectorXd> p) const;
+  void add(int from, int to, int at, double weight, Eigen::RowVectorXd& p) const;
   int side_;
   std::map<std::array<int, 2>, Points> delta_;
 };

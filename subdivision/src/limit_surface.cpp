@@ -317,7 +317,8 @@ Mesh attractor_mesh(const SurfaceAutomaton& surface, int depth, const ifs::MeshO
       if (!features->touches(surface.corners[f], true)) continue;
       for (int I = 0; I <= side; ++I)
         for (int J = 0; J <= side; ++J) {
-          const auto v = static_cast<Eigen::Index>(f * static_cast<std::size_t>(block)) + I * row + J;
+          const auto v = static_cast<Eigen::Index>(f * static_cast<std::size_t>(block)) +
+                         static_cast<Eigen::Index>(I) * row + J;
           Eigen::RowVectorXd p = blocks.vertices.row(v);
           features->add_quad(surface.corners[f], I, J, p);
           blocks.vertices.row(v) = p;
