@@ -169,13 +169,25 @@ def creased_box(n=3, triangles=False):
     return points, faces, uvs, face_uvs, tags
 
 
+def creased_torus(n=12, m=8):
+    """The torus with two infinitely sharp creases: its outer equator (ring j = 0) and one meridian
+    (i = 0), crossing at vertex 0 (a corner: four sharp edges). Both crease polygons are curved, so a
+    fractal crease leaves them (a straight crease's fractal stays on its line). No UVs."""
+    points, faces = torus(n, m)
+    creases = [(i, (i + 1) % n) for i in range(n)] + [(j * n, ((j + 1) % m) * n) for j in range(m)]
+    return points, faces, [], [], [f"t crease 2/1/0 {a} {b} 10" for a, b in creases]
+
+
 def tagged_obj(name, comment, points, faces, uvs, face_uvs, tags):
     """OBJ with `vt` rows, `f v/vt` corners and `t` tag lines (0-based indices, as OpenSubdiv's shapes)."""
     lines = [f"# {name}: {comment}",
              f"# {len(points)} vertices, {len(faces)} faces, {len(uvs)} UVs, {len(tags)} tags (scripts/make_meshes.py)"]
     lines += ["v " + " ".join(repr(round(c, 12) + 0.0) for c in p) for p in points]
     lines += ["vt " + " ".join(repr(round(c, 12) + 0.0) for c in t) for t in uvs]
-    lines += ["f " + " ".join(f"{v + 1}/{t + 1}" for v, t in zip(f, ft)) for f, ft in zip(faces, face_uvs)]
+    if uvs:
+        lines += ["f " + " ".join(f"{v + 1}/{t + 1}" for v, t in zip(f, ft)) for f, ft in zip(faces, face_uvs)]
+    else:
+        lines += ["f " + " ".join(str(v + 1) for v in f) for f in faces]
     return "\n".join(lines + tags) + "\n"
 
 
@@ -199,6 +211,8 @@ TAGGED = {
     "creased_box": ("a box of 3 x 3 quads a side: creases infinite, 2 and 1, a corner, a hole on top, UVs", creased_box),
     "creased_box_triangles": ("the creased box with each quad split into two triangles (the hole: both)",
                               lambda: creased_box(triangles=True)),
+    "creased_torus": ("the 12 x 8 torus with an infinitely sharp equator and meridian crossing at a corner",
+                      creased_torus),
 }
 
 

@@ -219,9 +219,8 @@ Scene bcifs_scene(const io::Experiment& e, bool evaluate, const RunOptions& o, R
 /// A mesh source's surface automaton (subdivision/limit.hpp), fractal when `perturbation` is given
 /// (fractal_surface): the automaton needs quads (triangles) with at most one extraordinary corner, so
 /// the mesh is refined once or twice first, at most `budget` levels; `refined` gets the levels spent.
-subdivision::SurfaceAutomaton mesh_automaton(const io::MeshSource& m,
-                                             const io::PerturbationSpec* perturbation, int budget,
-                                             const RunOptions& o, RunReport& report, int& refined) {
+subdivision::FractalSurface mesh_automaton(const io::MeshSource& m, const io::PerturbationSpec* perturbation,
+                                           int budget, const RunOptions& o, RunReport& report, int& refined) {
   const subdivision::MeshOptions options{.max_bytes = o.max_bytes};
   const std::string file = m.path.filename().string();
   for (int first = 1; first <= 2; ++first) {
@@ -239,15 +238,29 @@ subdivision::SurfaceAutomaton mesh_automaton(const io::MeshSource& m,
       throw InvalidInput((perturbation ? "perturbation: " : "mesh: ") + file + ": " + error.what());
     }
     refined = first;
-    if (!perturbation) return smooth;
+    if (!perturbation) {
+      subdivision::FractalSurface plain;  // the smooth surface, no perturbation
+      plain.surface = std::move(smooth);
+      return plain;
+    }
     subdivision::FractalSurface fractal;
     try {
-      fractal = subdivision::fractal_surface(smooth, perturb_options(*perturbation));
+      subdivision::FractalFeatureOptions features;
+      if (const auto& c = perturbation->fractal_curves) {
+        features.creases = c->creases;
+        features.boundaries = c->boundaries;
+        features.perturbation = perturb_options({.amplitude = c->amplitude,
+                                                 .seed = c->seed,
+                                                 .values = c->values,
+                                                 .keep_vertices = true,
+                                                 .fractal_curves = std::nullopt});
+      }
+      fractal = subdivision::fractal_surface(mesh, smooth, perturb_options(*perturbation), features);
     } catch (const InvalidInput& error) {
       throw InvalidInput("perturbation: " + std::string(error.what()));
     }
     note_perturbation(fractal.perturbation, report);
-    return std::move(fractal.surface);
+    return fractal;
   }
   throw std::logic_error("mesh_automaton: two levels leave no face with two extraordinary corners");
 }
@@ -257,8 +270,7 @@ subdivision::SurfaceAutomaton mesh_automaton(const io::MeshSource& m,
 Mesh fractal_mesh(const io::MeshSource& m, const io::PerturbationSpec& perturbation, const RunOptions& o,
                   RunReport& report) {
   int refined = 0;
-  const subdivision::SurfaceAutomaton surface =
-      mesh_automaton(m, &perturbation, m.levels, o, report, refined);
+  const subdivision::FractalSurface surface = mesh_automaton(m, &perturbation, m.levels, o, report, refined);
   ifs::MeshOptions mo;
   mo.max_bytes = o.max_bytes;
   return subdivision::surface_automaton_mesh(surface, m.levels - refined, mo);
@@ -605,9 +617,15 @@ Scene mesh_attractor(const io::Experiment& e, bool meshed, std::optional<int> de
     throw InvalidInput(
         "mesh: " + file + ": a " + scheme +
         " surface has no automaton to evaluate or sample (catmull-clark and loop surfaces have)");
+  if (!meshed && e.perturbation && e.perturbation->fractal_curves)
+    throw InvalidInput(
+        "perturbation.fractal_curves: " + file +
+        ": fractal crease and boundary curves are added to the attractor mesh, not to the automaton "
+        "that the chaos game and the tolerance traversal sample (mesh it: cifs render, cifs attractor)");
   int refined = 0;
-  subdivision::SurfaceAutomaton surface =
+  subdivision::FractalSurface fractal =
       mesh_automaton(m, e.perturbation ? &*e.perturbation : nullptr, 2, o, report, refined);
+  subdivision::SurfaceAutomaton& surface = fractal.surface;
   kind = (e.perturbation ? "fractal " : "") + scheme + " surface of " + file + ", its automaton after " +
          std::to_string(refined) + " level(s) of refinement";
   Scene scene;
@@ -615,7 +633,7 @@ Scene mesh_attractor(const io::Experiment& e, bool meshed, std::optional<int> de
   if (meshed) {
     ifs::MeshOptions mo;
     mo.max_bytes = o.max_bytes;
-    scene.mesh = subdivision::surface_automaton_mesh(surface, scene.depth, mo);
+    scene.mesh = subdivision::surface_automaton_mesh(fractal, scene.depth, mo);
   }
   scene.automaton = std::move(surface.automaton);
   scene.nets = std::move(surface.nets);

@@ -276,7 +276,7 @@ JunctionSpec read_junction(const Reader& r, const json& v, const std::filesystem
 
 PerturbationSpec read_perturbation(const Reader& r, const json& v) {
   r.object(v, "perturbation");
-  r.only(v, "perturbation", {"amplitude", "seed", "values", "keep_vertices"});
+  r.only(v, "perturbation", {"amplitude", "seed", "values", "keep_vertices", "fractal_curves"});
   PerturbationSpec p;
   if (v.contains("amplitude")) {
     p.amplitude = r.number(v["amplitude"], "perturbation.amplitude");
@@ -290,7 +290,43 @@ PerturbationSpec read_perturbation(const Reader& r, const json& v) {
   }
   if (v.contains("keep_vertices"))
     p.keep_vertices = r.boolean(v["keep_vertices"], "perturbation.keep_vertices");
+  if (v.contains("fractal_curves")) {
+    const json& c = r.object(v["fractal_curves"], "perturbation.fractal_curves");
+    const std::string at = "perturbation.fractal_curves";
+    r.only(c, at, {"creases", "boundaries", "amplitude", "seed", "values"});
+    FractalCurvesSpec f;
+    if (c.contains("creases")) f.creases = r.boolean(c["creases"], at + ".creases");
+    if (c.contains("boundaries")) f.boundaries = r.boolean(c["boundaries"], at + ".boundaries");
+    if (!f.creases && !f.boundaries) r.fail(at, "neither creases nor boundaries: drop it");
+    if (c.contains("amplitude")) {
+      f.amplitude = r.number(c["amplitude"], at + ".amplitude");
+      if (f.amplitude < 0) r.fail(at + ".amplitude", "expected a number ≥ 0");
+    }
+    if (c.contains("seed")) f.seed = unsigned_integer(r, c["seed"], at + ".seed", UINT64_MAX);
+    if (c.contains("values")) {
+      const json& values = r.object(c["values"], at + ".values");
+      for (const auto& item : values.items())
+        f.values[item.key()] = r.number(item.value(), at + ".values." + item.key());
+    }
+    p.fractal_curves = std::move(f);
+  }
   return p;
+}
+
+/// The feature curves asked for must exist: an infinitely sharp crease, a boundary (which ones can be
+/// made fractal — not those ending at darts — is subdivision::fractal_surface's to say, when it runs).
+void check_fractal_curves(const Reader& r, const FractalCurvesSpec& f, const Mesh& mesh,
+                          const std::filesystem::path& path) {
+  const std::string file = path.filename().string();
+  if (f.creases && std::none_of(mesh.tags.creases.begin(), mesh.tags.creases.end(),
+                                [](const EdgeSharpness& c) { return c.sharpness >= kInfiniteSharpness; }))
+    r.fail("perturbation.fractal_curves.creases",
+           file + " has no infinitely sharp crease (sharpness ≥ 10; semi-sharp creases stay smooth)");
+  if (f.boundaries) {
+    const MeshTopology t = build_topology(mesh, file);
+    if (std::none_of(t.boundary_vertex.begin(), t.boundary_vertex.end(), [](char b) { return b != 0; }))
+      r.fail("perturbation.fractal_curves.boundaries", file + " is closed: it has no boundary");
+  }
 }
 
 EvaluationSpec read_evaluation(const Reader& r, const json& v) {
@@ -474,6 +510,8 @@ Experiment parse_experiment(std::string_view text, std::string_view where,
         r.fail("perturbation", "a fractal surface has no limit normals (drop subdivision.limit)");
       if (doc["perturbation"].is_object() && doc["perturbation"].contains("keep_vertices"))
         r.fail("perturbation.keep_vertices", "NURBS sources only: a mesh's face boundaries always stay");
+      const PerturbationSpec p = read_perturbation(r, doc["perturbation"]);
+      if (p.fractal_curves) check_fractal_curves(r, *p.fractal_curves, e.mesh->mesh, e.mesh->path);
     }
     if (doc.contains("evaluation")) r.fail("evaluation", "a mesh is refined by subdivision.levels");
   } else if (doc.contains("subdivision")) {
@@ -491,6 +529,8 @@ Experiment parse_experiment(std::string_view text, std::string_view where,
   if (doc.contains("perturbation")) {
     if (e.ifs) r.fail("perturbation", "a classic IFS has no constraints to perturb under");
     e.perturbation = read_perturbation(r, doc["perturbation"]);
+    if (e.perturbation->fractal_curves && !e.mesh)
+      r.fail("perturbation.fractal_curves", "mesh sources only (a mesh's creases and boundaries)");
   }
   if (doc.contains("evaluation")) e.evaluation = read_evaluation(r, doc["evaluation"]);
   if (doc.contains("camera")) e.camera = read_camera(r, doc["camera"]);

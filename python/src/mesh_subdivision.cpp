@@ -162,40 +162,98 @@ void bind_mesh_subdivision_surfaces(py::module_& m) {
       "corners and holes (skipped); a closed untagged mesh's faces need at most one extraordinary corner "
       "(one level of refinement gives that). cifs.ifs's attractor, tolerance and chaos functions run on "
       "(s.automaton, s.nets).");
+  py::class_<sd::FractalFeatures>(
+      m, "FractalFeatures",
+      "The fractal feature curves of a fractal surface (fractal_surface with creases or boundaries): the "
+      "perturbed BC-IFS of the uniform cubic segment every fractal edge shares, and the edges (lower vertex, "
+      "higher) with their 4-point nets. surface_automaton_mesh(surface, depth, features=...) adds them.")
+      .def_readonly("perturbation", &sd::FractalFeatures::perturbation,
+                    "The curve segment's perturbed BC-IFS (cifs.ifs.Perturbation).")
+      .def_property_readonly(
+          "edges",
+          [](const sd::FractalFeatures& f) {
+            std::vector<std::array<int, 2>> out;
+            for (const auto& item : f.nets) out.push_back(item.first);
+            return out;
+          },
+          "The fractal edges, each (lower vertex, higher vertex).")
+      .def(
+          "nodes",
+          [](const sd::FractalFeatures& f, const std::array<int, 2>& edge, int depth) {
+            return sd::feature_curve_nodes(f, edge, depth);
+          },
+          py::arg("edge"), py::arg("depth"),
+          "The perturbed curve's 2^depth + 1 nodes along a fractal edge (lower vertex, higher), from the "
+          "lower "
+          "vertex.");
   m.def(
       "surface_automaton_mesh",
-      [](const sd::SurfaceAutomaton& s, int depth, double max_bytes) {
+      [](const sd::SurfaceAutomaton& s, int depth, double max_bytes, const sd::FractalFeatures* features) {
         ifs::MeshOptions o;
         if (!(max_bytes > 0 && max_bytes < 1.8e19)) throw InvalidInput("max_bytes must be positive");
         o.max_bytes = static_cast<std::size_t>(max_bytes);
+        if (features == nullptr) {
+          py::gil_scoped_release release;
+          return sd::surface_automaton_mesh(s, depth, o);
+        }
+        sd::FractalSurface f;
+        f.surface = s;
+        f.features = *features;
         py::gil_scoped_release release;
-        return sd::surface_automaton_mesh(s, depth, o);
+        return sd::surface_automaton_mesh(f, depth, o);
       },
       py::arg("surface"), py::arg("depth"), py::kw_only(), py::arg("max_bytes") = kDefaultBytes,
+      py::arg("features") = py::none(),
       "The attractor at `depth` as one closed mesh (4^depth quads or triangles per face, shared nodes welded "
-      "by the mesh's topology; Mesh.states the leaves' states).");
+      "by the mesh's topology; Mesh.states the leaves' states); with `features` (FractalFeatures, from "
+      "fractal_surface) the fractal crease and boundary curves' displacements added face by face.");
   m.def(
       "fractal_surface",
       [](const sd::SurfaceAutomaton& s, double amplitude, std::uint64_t seed,
-         const std::optional<std::map<std::string, double>>& values) {
+         const std::optional<std::map<std::string, double>>& values, const std::optional<Mesh>& mesh,
+         bool creases, bool boundaries, double curve_amplitude, std::uint64_t curve_seed,
+         const std::optional<std::map<std::string, double>>& curve_values) {
         ifs::PerturbOptions o;
         o.amplitude = amplitude;
         o.seed = seed;
         o.values = values.value_or(std::map<std::string, double>{});
+        const bool curves = creases || boundaries;
+        if (curves && !mesh)
+          throw InvalidInput("mesh: fractal creases and boundaries need the mesh the surface was built from");
+        if (!curves && (mesh || curve_amplitude != 0 || curve_values))
+          throw InvalidInput(
+              "creases: mesh, curve_amplitude and curve_values serve fractal creases or boundaries "
+              "(creases=True, boundaries=True)");
+        if (!(curve_amplitude >= 0)) throw InvalidInput("curve_amplitude: expected a number ≥ 0");
+        sd::FractalFeatureOptions features;
+        features.creases = creases;
+        features.boundaries = boundaries;
+        features.perturbation.amplitude = curve_amplitude;
+        features.perturbation.seed = curve_seed;
+        features.perturbation.values = curve_values.value_or(std::map<std::string, double>{});
         sd::FractalSurface f;
         {
           py::gil_scoped_release release;  // the tuple below needs the GIL back
-          f = sd::fractal_surface(s, o);
+          f = curves ? sd::fractal_surface(*mesh, s, o, features) : sd::fractal_surface(s, o);
         }
-        return py::make_tuple(std::move(f.surface), std::move(f.perturbation));
+        if (!curves) return py::make_tuple(std::move(f.surface), std::move(f.perturbation));
+        return py::make_tuple(std::move(f.surface), std::move(f.perturbation), std::move(f.features));
       },
       py::arg("surface"), py::kw_only(), py::arg("amplitude") = 0.0, py::arg("seed") = 1,
-      py::arg("values") = py::none(),
+      py::arg("values") = py::none(), py::arg("mesh") = py::none(), py::arg("creases") = false,
+      py::arg("boundaries") = false, py::arg("curve_amplitude") = 0.0, py::arg("curve_seed") = 1,
+      py::arg("curve_values") = py::none(),
       "A fractal Catmull–Clark or Loop surface with the mesh's topology: the regular state replaced by the "
       "regular patch's BC-IFS (the uniform bicubic patch's, the quartic box-spline triangle's), perturbed "
       "(cifs.ifs.perturb's amplitude, seed, values). Every face keeps the smooth surface's boundary curves, "
       "the "
-      "mesh's boundary and creases among them. Returns (SurfaceAutomaton, cifs.ifs.Perturbation).");
+      "mesh's boundary and creases among them. Returns (SurfaceAutomaton, cifs.ifs.Perturbation). With "
+      "creases=True (the infinitely sharp creases) or boundaries=True (the boundary curves) and `mesh` (the "
+      "mesh "
+      "the surface was built from), those curves become fractal on their own — the uniform cubic segment's "
+      "BC-IFS perturbed by curve_amplitude, curve_seed, curve_values — the surface watertight across them: "
+      "returns (SurfaceAutomaton, cifs.ifs.Perturbation, FractalFeatures), the last for "
+      "surface_automaton_mesh(..., features=...).");
 }
 
 /// One function per mesh scheme.

@@ -22,6 +22,7 @@
 #include "cifs/nurbs/surface.hpp"
 #include "cifs/nurbs/tensor_automaton.hpp"
 #include "cifs/subdivision/limit.hpp"
+#include "fractal_features.hpp"
 #include "limit_patches.hpp"
 #include "local_mesh.hpp"
 #include "surface_states.hpp"
@@ -203,7 +204,8 @@ std::array<int, 3> edge_node(int from, int to, int at, int side) {
 
 /// Loop's attractor at `depth`: per face the nodes (i, j), i + j ≤ 2^depth, of the patch's
 /// triangle grid; a leaf's corners are the fixed points of its corner children repeated.
-Mesh triangle_mesh(const SurfaceAutomaton& surface, int depth, const ifs::MeshOptions& options) {
+Mesh triangle_mesh(const SurfaceAutomaton& surface, int depth, const ifs::MeshOptions& options,
+                   const detail::FeatureDisplacement* features) {
   if (depth < 0 || depth > 15)
     throw InvalidInput("loop limit surface mesh: depth " + std::to_string(depth) + " is outside 0 … 15");
   if (surface.nets.empty()) return {};
@@ -230,6 +232,7 @@ Mesh triangle_mesh(const SurfaceAutomaton& surface, int depth, const ifs::MeshOp
   states.reserve(cells);
   for (std::size_t f = 0; f < faces; ++f) {
     const auto& c = surface.corners[f];
+    const bool moved = features != nullptr && features->touches(c, false);
     // The face's nodes: shared ones by the mesh's topology, the others new.
     for (int i = 0; i <= side; ++i)
       for (int j = 0; i + j <= side; ++j) {
@@ -267,7 +270,11 @@ Mesh triangle_mesh(const SurfaceAutomaton& surface, int depth, const ifs::MeshOp
           const int node = node_of[static_cast<std::size_t>(at[k][0]) * static_cast<std::size_t>(side + 1) +
                                    static_cast<std::size_t>(at[k][1])];
           auto& row = rows[static_cast<std::size_t>(node)];
-          if (row.size() == 0) row = fixed[k][state] * net;
+          if (row.size() == 0) {
+            row = fixed[k][state] * net;
+            if (options.homogeneous) row /= row(row.size() - 1);
+            if (moved) features->add_triangle(c, at[k][0], at[k][1], row);
+          }
           corners.push_back(node);
         }
         states.push_back(static_cast<std::uint32_t>(state));
@@ -286,8 +293,6 @@ Mesh triangle_mesh(const SurfaceAutomaton& surface, int depth, const ifs::MeshOp
   }
   Points vertices(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(cols));
   for (std::size_t v = 0; v < rows.size(); ++v) vertices.row(static_cast<Eigen::Index>(v)) = rows[v];
-  if (options.homogeneous)
-    for (Eigen::Index v = 0; v < vertices.rows(); ++v) vertices.row(v) /= vertices(v, vertices.cols() - 1);
   Mesh out = uniform_mesh(std::move(vertices), std::move(corners), 3);
   out.states = std::move(states);
   return out;
@@ -295,13 +300,30 @@ Mesh triangle_mesh(const SurfaceAutomaton& surface, int depth, const ifs::MeshOp
 
 }  // namespace
 
-Mesh surface_automaton_mesh(const SurfaceAutomaton& surface, int depth, const ifs::MeshOptions& options) {
-  if (!quads(surface.scheme)) return triangle_mesh(surface, depth, options);
-  const Mesh blocks = ifs::patch_meshes(surface.automaton, surface.nets, depth, options);
+namespace {
+
+/// The attractor mesh, each face's nodes moved by its fractal feature curves first (`features` may
+/// be null).
+Mesh attractor_mesh(const SurfaceAutomaton& surface, int depth, const ifs::MeshOptions& options,
+                    const detail::FeatureDisplacement* features) {
+  if (!quads(surface.scheme)) return triangle_mesh(surface, depth, options, features);
+  Mesh blocks = ifs::patch_meshes(surface.automaton, surface.nets, depth, options);
   // Node (I, J) of face f's block is shared with its neighbours when it lies on the block's border:
   // a mesh vertex at a corner, else a point of a mesh edge, named by the edge's end vertices (lower
   // index first) and its distance from the lower one in cells. Each gets the first block's vertex.
   const int side = 1 << depth, row = side + 1, block = row * row;
+  if (features != nullptr)
+    for (std::size_t f = 0; f < surface.corners.size(); ++f) {
+      if (!features->touches(surface.corners[f], true)) continue;
+      for (int I = 0; I <= side; ++I)
+        for (int J = 0; J <= side; ++J) {
+          const auto v = static_cast<Eigen::Index>(f * static_cast<std::size_t>(block)) +
+                         static_cast<Eigen::Index>(I) * row + J;
+          Eigen::RowVectorXd p = blocks.vertices.row(v);
+          features->add_quad(surface.corners[f], I, J, p);
+          blocks.vertices.row(v) = p;
+        }
+    }
   std::map<std::array<int, 3>, int> shared;
   std::vector<int> index(static_cast<std::size_t>(blocks.vertices.rows()));
   int next = 0;
@@ -358,6 +380,23 @@ Mesh surface_automaton_mesh(const SurfaceAutomaton& surface, int depth, const if
   out = uniform_mesh(out.vertices, std::move(corners), 4);
   out.states = blocks.states;
   return out;
+}
+
+}  // namespace
+
+Mesh surface_automaton_mesh(const SurfaceAutomaton& surface, int depth, const ifs::MeshOptions& options) {
+  return attractor_mesh(surface, depth, options, nullptr);
+}
+
+Mesh surface_automaton_mesh(const FractalSurface& fractal, int depth, const ifs::MeshOptions& options) {
+  if (fractal.features.nets.empty()) return attractor_mesh(fractal.surface, depth, options, nullptr);
+  if (depth < 0 || depth > 15)
+    throw InvalidInput("fractal surface mesh: depth " + std::to_string(depth) + " is outside 0 … 15");
+  if (options.homogeneous)
+    throw InvalidInput(
+        "fractal surface mesh: fractal feature curves are built for Cartesian nets, not homogeneous");
+  const detail::FeatureDisplacement features(fractal.features, depth);
+  return attractor_mesh(fractal.surface, depth, options, &features);
 }
 
 namespace {

@@ -226,6 +226,34 @@ TEST_CASE("Experiments: bad mesh sources are one line naming the file and the me
             .mesh->limit);
   one_line(experiment_error_of(R"({"mesh": "../shapes/hills.json", "subdivision": {"scheme": "loop"}})"),
            "e.json: mesh: ");
+  // Fractal crease and boundary curves: members checked, the curves asked for must exist.
+  const std::string torus =
+      R"("mesh": "../meshes/creased_torus.obj", "subdivision": {"scheme": "catmull-clark"})";
+  const io::Experiment creases = parse_experiment_text(
+      "{" + torus +
+      R"(, "perturbation": {"fractal_curves": {"amplitude": 0.5, "seed": 4, "values": {"a": 1}}}})");
+  REQUIRE(creases.perturbation->fractal_curves);
+  CHECK(creases.perturbation->fractal_curves->creases);
+  CHECK_FALSE(creases.perturbation->fractal_curves->boundaries);
+  CHECK(creases.perturbation->fractal_curves->amplitude == 0.5);
+  CHECK(creases.perturbation->fractal_curves->seed == 4);
+  CHECK(creases.perturbation->fractal_curves->values.at("a") == 1);
+  one_line(experiment_error_of("{" + torus + R"(, "perturbation": {"fractal_curves": {"crease": true}}})"),
+           "e.json: perturbation.fractal_curves.crease: unknown member");
+  one_line(experiment_error_of("{" + torus + R"(, "perturbation": {"fractal_curves": {"creases": false}}})"),
+           "e.json: perturbation.fractal_curves: neither creases nor boundaries: drop it");
+  one_line(experiment_error_of("{" + torus + R"(, "perturbation": {"fractal_curves": {"amplitude": -1}}})"),
+           "e.json: perturbation.fractal_curves.amplitude: expected a number ≥ 0");
+  one_line(
+      experiment_error_of("{" + cube + R"(, "subdivision": {"scheme": "catmull-clark"}, )" +
+                          R"("perturbation": {"fractal_curves": {}}})"),
+      "e.json: perturbation.fractal_curves.creases: cube.obj has no infinitely sharp crease (sharpness ≥ 10; "
+      "semi-sharp creases stay smooth)");
+  one_line(
+      experiment_error_of("{" + torus + R"(, "perturbation": {"fractal_curves": {"boundaries": true}}})"),
+      "e.json: perturbation.fractal_curves.boundaries: creased_torus.obj is closed: it has no boundary");
+  one_line(experiment_error_of("{" + kCurveShape + R"(, "perturbation": {"fractal_curves": {}}})"),
+           "e.json: perturbation.fractal_curves: mesh sources only (a mesh's creases and boundaries)");
 }
 
 TEST_CASE("Experiments list every file they read, so that no output overwrites one", "[io][experiment]") {

@@ -684,6 +684,33 @@ class LimitTest(unittest.TestCase):
         self.assertLess(np.linalg.norm(fractal[:, None, :] - corners[None, :, :], axis=2).min(axis=0).max(), 1e-12)
         self.assertGreater(np.abs(fractal - attractor).max(), 1e-3)
 
+    def test_fractal_creases(self):
+        # The creased torus: its two infinitely sharp creases made fractal, the surface left smooth. Both faces
+        # of a crease edge meet on the crease curve's own nodes; faces away from the creases stay the limit
+        # surface's attractor; the curve options are refused without creases, creases without the mesh.
+        torus = cifs.io.read_mesh(str(EXAMPLES / "meshes" / "creased_torus.obj"))
+        s = sd.surface_automaton(torus)
+        rough, perturbation, features = sd.fractal_surface(s, mesh=torus, creases=True, curve_amplitude=0.8,
+                                                           curve_seed=7)
+        self.assertEqual(len(features.edges), 20)  # the equator's 12 and the meridian's 8
+        self.assertEqual(len(features.perturbation.values), 2)
+        smooth = np.asarray(sd.surface_automaton_mesh(rough, 3).vertices)
+        fractal = np.asarray(sd.surface_automaton_mesh(rough, 3, features=features).vertices)
+        self.assertEqual(smooth.shape, fractal.shape)
+        moved = np.linalg.norm(fractal - smooth, axis=1)
+        self.assertGreater(moved.max(), 1e-3)
+        self.assertGreater(np.count_nonzero(moved < 1e-12), len(moved) // 2)
+        nodes = np.asarray(features.nodes(features.edges[0], 3))
+        self.assertEqual(nodes.shape, (9, 3))
+        distance = np.linalg.norm(fractal[:, None, :] - nodes[None, :, :], axis=2)
+        self.assertLess(distance.min(axis=0).max(), 1e-12)  # the crease's nodes are the mesh's
+        with self.assertRaisesRegex(cifs.InvalidInput, "mesh"):
+            sd.fractal_surface(s, creases=True)
+        with self.assertRaisesRegex(cifs.InvalidInput, "creases"):
+            sd.fractal_surface(s, curve_amplitude=0.5)
+        with self.assertRaisesRegex(cifs.InvalidInput, "no boundary"):
+            sd.fractal_surface(s, mesh=torus, boundaries=True)
+
     def test_loop_surface_automaton_with_features(self):
         # Loop on the creased box split into triangles (sharp and semi-sharp creases, a corner, a hole of
         # two triangles): every node of the attractor at depth 2 is a limit point of the mesh refined 2

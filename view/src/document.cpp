@@ -290,8 +290,11 @@ void perturbed_geometry(const io::Shape& shape, const Params& params, const Limi
   io::Experiment e;
   e.shape = shape;
   e.evaluation.depth = params.depth;
-  e.perturbation = io::PerturbationSpec{
-      .amplitude = params.amplitude, .seed = params.seed, .values = {}, .keep_vertices = true};
+  e.perturbation = io::PerturbationSpec{.amplitude = params.amplitude,
+                                        .seed = params.seed,
+                                        .values = {},
+                                        .keep_vertices = true,
+                                        .fractal_curves = std::nullopt};
   experiment::RunOptions options;
   options.max_bytes = ifs::mesh_bytes(limits.max_points, 3, limits.max_points);
   const experiment::Evaluation ev = experiment::evaluate(e, params.depth, options);

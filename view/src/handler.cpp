@@ -267,8 +267,11 @@ io::Experiment as_experiment(const Session& s, const Params& params) {
     e.shape = edited_shape(s.document, params);
     e.evaluation.depth = params.depth;
     if (params.amplitude != 0)
-      e.perturbation = io::PerturbationSpec{
-          .amplitude = params.amplitude, .seed = params.seed, .values = {}, .keep_vertices = true};
+      e.perturbation = io::PerturbationSpec{.amplitude = params.amplitude,
+                                            .seed = params.seed,
+                                            .values = {},
+                                            .keep_vertices = true,
+                                            .fractal_curves = std::nullopt};
   }
   e.render.width = 1024;
   e.render.height = 768;

@@ -29,12 +29,23 @@ struct ClassicIfs {
 
 /// Free coefficients of the BC-IFS moved away from the NURBS (or file) values: uniform random
 /// offsets in [−amplitude, amplitude] from `seed`, then the explicit `values` by coefficient name.
+/// Mesh sources: which feature curves become fractal on their own, and their curve BC-IFS's
+/// perturbation (subdivision::FractalFeatureOptions; "fractal_curves" in the experiment file).
+struct FractalCurvesSpec {
+  bool creases = true;      // the infinitely sharp creases
+  bool boundaries = false;  // the boundary curves
+  double amplitude = 0;
+  std::uint64_t seed = 1;
+  std::map<std::string, double> values;
+};
+
 struct PerturbationSpec {
   double amplitude = 0;
   std::uint64_t seed = 1;
   std::map<std::string, double> values;
   /// NURBS sources: keep the vertex operators (knot points and end points stay on the NURBS).
   bool keep_vertices = true;
+  std::optional<FractalCurvesSpec> fractal_curves;  // mesh sources only
 };
 
 /// A polygon mesh and the subdivision scheme that refines it (docs/subdivision-surfaces.md). The

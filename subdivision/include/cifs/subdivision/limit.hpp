@@ -12,6 +12,7 @@
 
 #include <Eigen/Dense>
 #include <array>
+#include <map>
 #include <span>
 #include <string>
 #include <vector>
@@ -232,9 +233,52 @@ Mesh surface_automaton_mesh(const SurfaceAutomaton& surface, int depth, const if
 /// keeps the smooth surface's boundary curves exactly and the surface stays closed (the mesh's
 /// boundary and creases, Catmull–Clark, are such curves), while the inside of every regular patch —
 /// around irregular vertices too, whose patches are rings of regular ones — turns fractal.
+/// Fractal feature curves ("a smooth surface whose crease lines are fractal"): the mesh edges made
+/// fractal, each with the net of its segment of the feature curve — the uniform cubic B-spline of the
+/// crease (or boundary) polygon, a phantom point 2a − b beyond a corner a — from its lower vertex to
+/// its higher one, and the perturbed BC-IFS of that curve (ifs::curve_bcifs of the uniform cubic
+/// segment: 2 free coefficients, the midpoint vertex operator's centre row; knot points fixed, so every
+/// mesh vertex stays where it was). The attractor meshes (surface_automaton_mesh) add to each face
+/// touching such an edge the displacement φ·Δ: Δ the perturbed curve minus the smooth one along the
+/// edge, φ the blend 1 − 3d² + 2d³ of the distance d from the edge (quads: the other parameter;
+/// triangles: λ_c / (λ_a + λ_c) for the edge ab, c the third corner), so the displacement vanishes
+/// with its slope on the face's other sides and both faces of a crease meet on the perturbed curve.
+struct FractalFeatures {
+  ifs::Perturbation perturbation;             // of the curve segment's BC-IFS
+  ifs::Bcifs smooth;                          // the same system unperturbed
+  std::map<std::array<int, 2>, Points> nets;  // per fractal edge (lower, higher vertex): 4 × dim
+};
+
+/// Which feature curves become fractal. Infinitely sharp creases and boundary curves whose ends are
+/// crease, boundary or corner vertices (two or more sharp edges, or a corner tag): there the smooth
+/// surface's curve is the uniform cubic B-spline of the feature polygon, whatever the faces beside it.
+/// A curve stays smooth over an edge ending at a dart or at a vertex with a semi-sharp tag — and
+/// semi-sharp creases stay smooth: after their sharpness is spent they are no curves of their own.
+struct FractalFeatureOptions {
+  bool creases = false;     // the infinitely sharp creases
+  bool boundaries = false;  // the mesh's boundary curves (its boundary rule's, edge_only or edge_and_corner)
+  ifs::PerturbOptions perturbation;  // of the curves' BC-IFS: amplitude, seed, values by name
+};
+
 struct FractalSurface {
   SurfaceAutomaton surface;
   ifs::Perturbation perturbation;  // of the regular patch's BC-IFS: values, residual, contraction
+  FractalFeatures features;        // no nets: every feature curve stays the smooth surface's
 };
 FractalSurface fractal_surface(const SurfaceAutomaton& smooth, const ifs::PerturbOptions& options);
+/// The same with fractal feature curves: `mesh` is the mesh `smooth` was built from (its tags say where
+/// the creases and corners are). InvalidInput when a kind of curve is asked for and the mesh has none
+/// that can be made fractal (naming why: no infinitely sharp crease, no boundary, every one ending at a
+/// dart or a semi-sharp tag), when `mesh` is not `smooth`'s, or as ifs::perturb.
+FractalSurface fractal_surface(const Mesh& mesh, const SurfaceAutomaton& smooth,
+                               const ifs::PerturbOptions& options, const FractalFeatureOptions& features);
+
+/// The attractor of a fractal surface at `depth` as surface_automaton_mesh, with its fractal feature
+/// curves' displacements added face by face before the nodes are welded.
+Mesh surface_automaton_mesh(const FractalSurface& fractal, int depth, const ifs::MeshOptions& options = {});
+
+/// The nodes of a fractal feature edge (lower vertex, higher) at `depth`: 2^depth + 1 rows from the
+/// lower vertex, the perturbed curve's attractor (ifs::edge_pieces). InvalidInput for an edge that is
+/// not one.
+Points feature_curve_nodes(const FractalFeatures& features, std::array<int, 2> edge, int depth);
 }  // namespace cifs::subdivision
