@@ -7,6 +7,8 @@
 
 #include <string>
 
+#include "cifs/experiment/run.hpp"
+#include "cifs/io/io.hpp"
 #include "cifs/view/server.hpp"
 
 namespace {
@@ -73,6 +75,28 @@ void BM_view_amplitude_hills_depth7(benchmark::State& state) {
 void BM_view_amplitude_cubic_depth16(benchmark::State& state) {
   amplitude_edit(state, "cubic.json", 16, 0.1);
 }
+/// The same edits through experiment::evaluate (the runner: the BC-IFS built, solved and perturbed with every
+/// call), which the view called for every amplitude edit before the system was kept: the figure to compare
+/// with.
+void runner_amplitude(benchmark::State& state, const char* example, int depth, double amplitude) {
+  cifs::io::Experiment e;
+  e.shape = cifs::io::read_shape(std::string(CIFS_EXAMPLES_DIR) + "/shapes/" + example);
+  int k = 0;
+  for (auto _ : state) {
+    e.perturbation = cifs::io::PerturbationSpec{
+        .amplitude = amplitude * (1 + 1e-3 * (k++ % 16)), .seed = 1, .values = {}, .keep_vertices = true};
+    benchmark::DoNotOptimize(cifs::experiment::evaluate(e, depth).points.data());
+  }
+}
+void BM_runner_amplitude_hills_depth6(benchmark::State& state) {
+  runner_amplitude(state, "hills.json", 6, 0.05);
+}
+void BM_runner_amplitude_cubic_depth16(benchmark::State& state) {
+  runner_amplitude(state, "cubic.json", 16, 0.1);
+}
+BENCHMARK(BM_runner_amplitude_hills_depth6)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_runner_amplitude_cubic_depth16)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 BENCHMARK(BM_view_amplitude_hills_depth6)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_view_amplitude_hills_depth7)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_view_amplitude_cubic_depth16)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -91,6 +91,7 @@ def request(url, method, path, body=None, host=None):
 
 
 def bcifs_scenario(args, cifs, driver, work):
+    start = time.time()
     x = np.linspace(0, 1, 257)
     y = sum(0.6**k * np.cos(2**k * np.pi * x) for k in range(10))
     np.savetxt(work / "rough.csv", np.stack([x, 0.3 * y], axis=1), delimiter=",")
@@ -136,7 +137,8 @@ def bcifs_scenario(args, cifs, driver, work):
     if args.screenshots:
         driver.save_screenshot(str(Path(args.screenshots) / "view-bcifs-fit.png"))
     print(f"BC-IFS: {len(document['coefficients'])} coefficient sliders; {name} = {sent:.6f}: "
-          f"{state['pointCount']} points, the library's checksum; {state['contraction']}")
+          f"{state['pointCount']} points, the library's checksum; {state['contraction']} "
+          f"({time.time() - start:.1f} s with the fit)")
     return server
 
 

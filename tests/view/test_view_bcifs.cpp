@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // cifs view on BC-IFS and experiment files, and the perturbed shapes' interactive route: the geometry against
-// experiment::evaluate of the experiment with the same source, depth and perturbation (the runner, read from a
-// file the test writes), the coefficient ranges against ifs::contraction called apart, the request handler's
-// refusals (a value outside its range, a non-finite or unknown one, a non-contractive edit: 422) and save.
+// experiment::evaluate of the experiment with the same source, depth and perturbation (the runner, read from
+// a file the test writes), the coefficient ranges against ifs::contraction called apart, the request
+// handler's refusals (a value outside its range, a non-finite or unknown one, a non-contractive edit: 422)
+// and save.
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
@@ -86,7 +87,8 @@ TEST_CASE("view opens a BC-IFS file: its free coefficients by name, their ranges
     for (const double end : {r.low, r.high}) {
       Eigen::VectorXd c = values;
       c(static_cast<Eigen::Index>(j)) = end;
-      CHECK_NOTHROW(ifs::contraction(ifs::with_free_values(file.system, space, c).automaton, {.bound = false}));
+      CHECK_NOTHROW(
+          ifs::contraction(ifs::with_free_values(file.system, space, c).automaton, {.bound = false}));
     }
   }
   SECTION("a range ends where contractivity ends: a refused value within 2^-8 beyond it") {
@@ -123,10 +125,12 @@ TEST_CASE("view opens a BC-IFS file: its free coefficients by name, their ranges
     const view::CoefficientRange& r = d.coefficients[3];
     p.values = {{r.name, 0.5 * (r.value + r.high)}};
     const view::Geometry moved = view::geometry(d, p);
-    check_same_points(moved, runner_points(f.dir.path(),
-                                           {{"automaton", d.path.string()},
-                                            {"perturbation", {{"amplitude", 0}, {"values", {{r.name, 0.5 * (r.value + r.high)}}}}}},
-                                           5));
+    check_same_points(
+        moved, runner_points(
+                   f.dir.path(),
+                   {{"automaton", d.path.string()},
+                    {"perturbation", {{"amplitude", 0}, {"values", {{r.name, 0.5 * (r.value + r.high)}}}}}},
+                   5));
     CHECK(moved.checksum != smooth.checksum);
   }
 }
@@ -138,12 +142,12 @@ TEST_CASE("view handle on a BC-IFS file: values refused outside their ranges, 42
   const auto body = [](const nlohmann::json& params) { return nlohmann::json{{"params", params}}.dump(); };
   const view::Response ok = f.post("/api/geometry", body({{"depth", 4}, {"values", {{r.name, r.value}}}}));
   REQUIRE(ok.status == 200);
-  const auto document = nlohmann::json::parse(
-      view::handle(f.session, {.method = "GET",
-                               .target = "/api/document?token=" + f.session.token,
-                               .host = "127.0.0.1:8765",
-                               .body = {}})
-          .body);
+  const auto document =
+      nlohmann::json::parse(view::handle(f.session, {.method = "GET",
+                                                     .target = "/api/document?token=" + f.session.token,
+                                                     .host = "127.0.0.1:8765",
+                                                     .body = {}})
+                                .body);
   CHECK(document["kind"] == "bcifs");
   CHECK(document["coefficients"].size() == 10);
   CHECK(document["coefficients"][3]["name"] == r.name);
@@ -161,34 +165,37 @@ TEST_CASE("view handle on a BC-IFS file: values refused outside their ranges, 42
   CHECK(f.post("/api/geometry", R"({"params": {"values": {"E/G[1,0]": "0.5"}}})").status == 400);
   CHECK(f.post("/api/geometry", R"({"params": {"values": [0.5]}})").status == 400);
   CHECK(f.post("/api/geometry", body({{"depth", 21}})).status == 400);
-  // A random draw of amplitude 0.8 (seed 3) leaves the system non-contractive: 422, the library's δ in the line.
-  const view::Response refused = f.post("/api/geometry", body({{"depth", 4}, {"amplitude", 0.8}, {"seed", 3}}));
+  // A random draw of amplitude 0.8 (seed 3) leaves the system non-contractive: 422, the library's δ in the
+  // line.
+  const view::Response refused =
+      f.post("/api/geometry", body({{"depth", 4}, {"amplitude", 0.8}, {"seed", 3}}));
   CHECK(refused.status == 422);
   CHECK(refused.body.find("not contractive") != std::string::npos);
   CHECK(refused.body.find("δ = ") != std::string::npos);
   CHECK(f.post("/api/geometry", body({{"depth", 4}})).status == 200);  // still serving
 
   const double edited = 0.5 * (r.value + r.low);
-  const view::Response saved = f.post("/api/save", nlohmann::json{{"name", "tree-edited.json"},
-                                                                  {"params", {{"values", {{r.name, edited}}}}}}
-                                                        .dump());
+  const view::Response saved = f.post(
+      "/api/save",
+      nlohmann::json{{"name", "tree-edited.json"}, {"params", {{"values", {{r.name, edited}}}}}}.dump());
   REQUIRE(saved.status == 200);
   const io::BcifsFile back = io::read_bcifs(f.dir.path() / "tree-edited.json");
   const ifs::AdmissibleSpace space = ifs::admissible_space(back.system);
   CHECK(ifs::free_values(back.system, space)(3) == Approx(edited).epsilon(1e-12));
   CHECK(back.nets.size() == 1);
-  CHECK(f.post("/api/save", nlohmann::json{{"name", "x.json"}, {"params", {{"values", {{r.name, r.high + 1}}}}}}
-                                .dump())
+  CHECK(f.post("/api/save",
+               nlohmann::json{{"name", "x.json"}, {"params", {{"values", {{r.name, r.high + 1}}}}}}.dump())
             .status == 400);
   CHECK(!std::filesystem::exists(f.dir.path() / "x.json"));
 }
 
-TEST_CASE("view perturbed shapes: the system built once, an amplitude edit re-perturbs it, the runner's points",
-          "[view][view_bcifs]") {
+TEST_CASE(
+    "view perturbed shapes: the system built once, an amplitude edit re-perturbs it, the runner's points",
+    "[view][view_bcifs]") {
   cifs_test::ScratchDir dir;
   const auto shape_runner = [&](const std::string& shape, double amplitude, std::uint64_t seed, int depth) {
-    return runner_points(dir.path(),
-                         {{"shape", shape}, {"perturbation", {{"amplitude", amplitude}, {"seed", seed}}}}, depth);
+    return runner_points(
+        dir.path(), {{"shape", shape}, {"perturbation", {{"amplitude", amplitude}, {"seed", seed}}}}, depth);
   };
   SECTION("a curve") {
     const std::string path = kBcifsExamples + "/shapes/wave.json";
@@ -236,8 +243,9 @@ TEST_CASE("view perturbed shapes: the system built once, an amplitude edit re-pe
   }
 }
 
-TEST_CASE("view opens an experiment file: its source, depth and perturbation as the runner's; save writes it back",
-          "[view][view_bcifs]") {
+TEST_CASE(
+    "view opens an experiment file: its source, depth and perturbation as the runner's; save writes it back",
+    "[view][view_bcifs]") {
   cifs_test::ScratchDir dir;
   const std::filesystem::path file = dir.path() / "wave_fractal.json";
   const nlohmann::json experiment = {{"name", "wave-fractal"},
@@ -264,7 +272,8 @@ TEST_CASE("view opens an experiment file: its source, depth and perturbation as 
                                   .body = body.dump()});
   };
   const view::Response saved =
-      post("/api/save", {{"name", "wave-edited.json"}, {"params", {{"amplitude", 0.2}, {"seed", 9}, {"depth", 5}}}});
+      post("/api/save",
+           {{"name", "wave-edited.json"}, {"params", {{"amplitude", 0.2}, {"seed", 9}, {"depth", 5}}}});
   REQUIRE(saved.status == 200);
   const io::Experiment back = io::read_experiment(dir.path() / "wave-edited.json");
   REQUIRE(back.perturbation);

@@ -5,8 +5,8 @@
 
 #include <algorithm>
 #include <bit>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -129,7 +129,8 @@ std::shared_ptr<const PerturbableSystem> file_system(const std::filesystem::path
   return out;
 }
 
-ifs::PerturbOptions perturb_options(double amplitude, std::uint64_t seed, const std::map<std::string, double>& values) {
+ifs::PerturbOptions perturb_options(double amplitude, std::uint64_t seed,
+                                    const std::map<std::string, double>& values) {
   ifs::PerturbOptions o;
   o.amplitude = amplitude;
   o.seed = seed;
@@ -157,9 +158,11 @@ void add_coefficients(Document& d, const PerturbableSystem& system, const std::v
 CoefficientRange coefficient_range(const PerturbableSystem& system, const std::string& name,
                                    const ifs::PerturbOptions& base, const RangeOptions& options) {
   const ifs::Perturbation at = ifs::perturb(system.system, system.space, base);
-  const auto it = std::find_if(at.values.begin(), at.values.end(), [&](const auto& v) { return v.first == name; });
+  const auto it =
+      std::find_if(at.values.begin(), at.values.end(), [&](const auto& v) { return v.first == name; });
   if (it == at.values.end()) throw InvalidInput("\"" + name + "\" is not a free coefficient of the system");
-  CoefficientRange out{.name = name, .value = it->second, .low = it->second, .high = it->second, .capped = false};
+  CoefficientRange out{
+      .name = name, .value = it->second, .low = it->second, .high = it->second, .capped = false};
   const auto accepted = [&](double value) {
     ifs::PerturbOptions o = base;
     o.values[name] = value;
@@ -220,11 +223,12 @@ Document open_document(const std::filesystem::path& path, const Limits& limits) 
         d.kind = Kind::bcifs;
         d.bcifs = file_system(e.automaton);
       } else {
-        throw InvalidInput(path.string() + ": an experiment on " +
-                           (e.mesh       ? "a mesh"
-                            : e.junction ? "a junction"
-                                         : "a classic IFS") +
-                           "; cifs view shows experiments on a shape or a BC-IFS file (cifs render draws this one)");
+        throw InvalidInput(
+            path.string() + ": an experiment on " +
+            (e.mesh       ? "a mesh"
+             : e.junction ? "a junction"
+                          : "a classic IFS") +
+            "; cifs view shows experiments on a shape or a BC-IFS file (cifs render draws this one)");
       }
       d.experiment_text = read_file(path);
       if (e.perturbation) {
@@ -468,7 +472,8 @@ void check_values(const Document& d, const Params& params) {
 ifs::Perturbation perturbation(const PerturbableSystem& system, const Params& params) {
   if (!std::isfinite(params.amplitude) || params.amplitude < 0 || params.amplitude > 1)
     throw InvalidInput("amplitude " + number_text(params.amplitude, 6) + " is outside 0..1");
-  return ifs::perturb(system.system, system.space, perturb_options(params.amplitude, params.seed, params.values));
+  return ifs::perturb(system.system, system.space,
+                      perturb_options(params.amplitude, params.seed, params.values));
 }
 
 void note_contraction(const ifs::Contraction& c, Geometry& g) {
@@ -604,17 +609,18 @@ void append_bytes(std::string& out, const std::vector<T>& values) {
 }  // namespace
 
 std::string encode_geometry(const Geometry& g) {
-  const nlohmann::json header = {{"kind", kind_name(g.kind)},
-                                 {"positions", g.positions.size()},
-                                 {"closed", g.closed},
-                                 {"triangles", g.triangles.size()},
-                                 {"grid", g.grid},
-                                 {"states", g.states.size()},
-                                 {"net", g.net.size()},
-                                 {"net_lines", g.net_lines.size()},
-                                 {"pieces", g.pieces},
-                                 {"contraction", {{"m", g.contraction_length}, {"delta", g.contraction_delta}}},
-                                 {"checksum", g.checksum}};
+  const nlohmann::json header = {
+      {"kind", kind_name(g.kind)},
+      {"positions", g.positions.size()},
+      {"closed", g.closed},
+      {"triangles", g.triangles.size()},
+      {"grid", g.grid},
+      {"states", g.states.size()},
+      {"net", g.net.size()},
+      {"net_lines", g.net_lines.size()},
+      {"pieces", g.pieces},
+      {"contraction", {{"m", g.contraction_length}, {"delta", g.contraction_delta}}},
+      {"checksum", g.checksum}};
   std::string text = header.dump();
   text.resize((text.size() + 12 + 3) / 4 * 4 - 12, ' ');  // the arrays start on a 4-byte boundary
   std::string out = "CIFSVIEW";

@@ -151,7 +151,8 @@ Params parse_params(const Document& d, const json& body, std::string_view where)
     p.values.clear();  // the page sends every value it sets
     for (const auto& [name, value] : values.items()) {
       if (!value.is_number() || !std::isfinite(value.get<double>()))
-        throw Refusal{400, std::string(where) + ": values: " + name.substr(0, 80) + " is not a finite number"};
+        throw Refusal{400,
+                      std::string(where) + ": values: " + name.substr(0, 80) + " is not a finite number"};
       p.values[name] = value.get<double>();
     }
   }
@@ -187,8 +188,8 @@ Params parse_params(const Document& d, const json& body, std::string_view where)
 }
 
 json params_json(const Params& p) {
-  return {{"depth", p.depth}, {"scheme", p.scheme}, {"levels", p.levels},
-          {"amplitude", p.amplitude}, {"seed", p.seed}, {"values", p.values}};
+  return {{"depth", p.depth},         {"scheme", p.scheme}, {"levels", p.levels},
+          {"amplitude", p.amplitude}, {"seed", p.seed},     {"values", p.values}};
 }
 
 int shape_dimension(const Document& d) {
@@ -262,9 +263,11 @@ std::string edited_experiment(const Session& s, const Params& params, const std:
   if (!params.points.empty())
     throw InvalidInput("points: an experiment's control points are not edited here; open its shape");
   if (params.depth < 0 || params.depth > max_depth(s))
-    throw InvalidInput("depth " + std::to_string(params.depth) + " is outside 0.." + std::to_string(max_depth(s)));
+    throw InvalidInput("depth " + std::to_string(params.depth) + " is outside 0.." +
+                       std::to_string(max_depth(s)));
   nlohmann::ordered_json e = nlohmann::ordered_json::parse(d.experiment_text);
-  if (d.experiment->evaluation.mode == io::EvaluationSpec::Mode::depth) e["evaluation"]["depth"] = params.depth;
+  if (d.experiment->evaluation.mode == io::EvaluationSpec::Mode::depth)
+    e["evaluation"]["depth"] = params.depth;
   if (perturbed(d, params)) {
     auto& p = e["perturbation"];
     p["amplitude"] = params.amplitude;
@@ -334,7 +337,8 @@ io::Experiment as_experiment(const Session& s, const Params& params) {
       throw InvalidInput("depth " + std::to_string(params.depth) + " is outside 0.." +
                          std::to_string(max_depth(s)));
     if (!params.points.empty())
-      throw InvalidInput("points: the control points of " + d.path.filename().string() + " are not edited here");
+      throw InvalidInput("points: the control points of " + d.path.filename().string() +
+                         " are not edited here");
     io::Experiment e;
     if (d.experiment) {
       e = *d.experiment;

@@ -35,8 +35,8 @@ std::string_view kind_name(Kind kind) noexcept;
 struct PerturbableSystem {
   ifs::Bcifs system;
   ifs::AdmissibleSpace space;
-  std::vector<std::string> names;  // the free coefficients, in the order of space.free
-  std::vector<Points> nets;        // one per initial entry (homogeneous rows when rational)
+  std::vector<std::string> names;           // the free coefficients, in the order of space.free
+  std::vector<Points> nets;                 // one per initial entry (homogeneous rows when rational)
   std::vector<std::array<int, 2>> patches;  // surfaces: the grid place of each initial entry
   bool rational = false;
   bool closed = false;  // curves
@@ -56,9 +56,9 @@ struct CoefficientRange {
 };
 
 struct RangeOptions {
-  double reach = 4;           // searched up to this far from the value on each side
+  double reach = 4;              // searched up to this far from the value on each side
   double first_step = 1.0 / 64;  // the first probe's distance; doubled until a probe is refused
-  int bisections = 10;        // then the step between the last accepted and the first refused is halved
+  int bisections = 10;           // then the step between the last accepted and the first refused is halved
 };
 
 /// The interval of `name`'s values, around its value under `base` (the other coefficients as `base` sets
@@ -74,8 +74,8 @@ CoefficientRange coefficient_range(const PerturbableSystem& system, const std::s
 struct Document {
   std::filesystem::path path;
   Kind kind = Kind::curve;
-  std::optional<io::Shape> shape;  // curve, surface
-  Mesh mesh;                       // mesh
+  std::optional<io::Shape> shape;                  // curve, surface
+  Mesh mesh;                                       // mesh
   std::shared_ptr<const PerturbableSystem> bcifs;  // bcifs: the file's system
   /// An experiment file: the experiment as read, and its text (save writes it back with the edits).
   std::optional<io::Experiment> experiment;
