@@ -482,8 +482,10 @@ Response route(Session& s, const Request& r) {
     if (!body.contains("name") || !body.at("name").is_string())
       throw Refusal{400, path + ": name is missing"};
     Document d = open_document(in_folder(s, body.at("name").get<std::string>(), path), s.limits);
+    const std::scoped_lock evaluating(s.evaluating);  // the cache belongs to the geometry requests
     const std::scoped_lock lock(s.document_mutex);
     s.document = std::move(d);
+    s.cache = {};
     return json_response(document_json(s));
   }
   throw Refusal{404, r.method + " " + path + ": no such request"};
