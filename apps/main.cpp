@@ -468,11 +468,14 @@ void add_gallery(CLI::App& app, Commands& c) {
 }
 
 void add_view(CLI::App& app, Commands& c) {
-  auto* view_cmd = app.add_subcommand(
-      "view", "Explore a shape or mesh in the browser: a local web page (prints its URL), or --export DIR");
+  auto* view_cmd = app.add_subcommand("view",
+                                      "Explore a shape, mesh, BC-IFS or experiment in the browser: a local "
+                                      "web page (prints its URL), or --export DIR");
   view_cmd
-      ->add_option("file", c.view_path,
-                   "Shape file (.json, .obj, .step or .igs) or polygon mesh (.obj, .ply, .stl or .off)")
+      ->add_option(
+          "file", c.view_path,
+          "Shape file (.json, .obj, .step or .igs), polygon mesh (.obj, .ply, .stl or .off), BC-IFS file "
+          "or experiment file (.json)")
       ->required();
   view_cmd->add_option("--host", c.view.host,
                        "Address to listen on (default 127.0.0.1; any other is reachable from the network)");

@@ -7,6 +7,8 @@
 
 #include <string>
 
+#include "cifs/experiment/run.hpp"
+#include "cifs/io/io.hpp"
 #include "cifs/view/server.hpp"
 
 namespace {
@@ -40,6 +42,64 @@ void BM_view_edit_cubic_depth16(benchmark::State& state) {
 }
 BENCHMARK(BM_view_edit_hills_depth7)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_view_edit_cubic_depth16)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// The amplitude slider: the shape's BC-IFS perturbed (an experiment's "perturbation"), a new amplitude
+/// with every request, as a slider sends; the depth fixed.
+void amplitude_edit(benchmark::State& state, const char* example, int depth, double amplitude) {
+  cifs::view::Session session;
+  cifs::view::open_session(session, std::string(CIFS_EXAMPLES_DIR) + "/shapes/" + example, "127.0.0.1", 8765);
+  int k = 0;
+  std::size_t bytes = 0;
+  for (auto _ : state) {
+    const double a = amplitude * (1 + 1e-3 * (k++ % 16));  // a new value every time
+    const std::string body =
+        "{\"params\": {\"depth\": " + std::to_string(depth) + ", \"amplitude\": " + std::to_string(a) + "}}";
+    const cifs::view::Response r =
+        cifs::view::handle(session, {.method = "POST",
+                                     .target = "/api/geometry?token=" + session.token,
+                                     .host = "127.0.0.1:8765",
+                                     .body = body});
+    if (r.status != 200) state.SkipWithError(r.body.c_str());
+    bytes = r.body.size();
+    benchmark::DoNotOptimize(r.body.data());
+  }
+  state.counters["MB"] = static_cast<double>(bytes) / 1e6;
+}
+
+void BM_view_amplitude_hills_depth6(benchmark::State& state) {
+  amplitude_edit(state, "hills.json", 6, 0.05);
+}
+void BM_view_amplitude_hills_depth7(benchmark::State& state) {
+  amplitude_edit(state, "hills.json", 7, 0.05);
+}
+void BM_view_amplitude_cubic_depth16(benchmark::State& state) {
+  amplitude_edit(state, "cubic.json", 16, 0.1);
+}
+/// The same edits through experiment::evaluate (the runner: the BC-IFS built, solved and perturbed with every
+/// call), which the view called for every amplitude edit before the system was kept: the figure to compare
+/// with.
+void runner_amplitude(benchmark::State& state, const char* example, int depth, double amplitude) {
+  cifs::io::Experiment e;
+  e.shape = cifs::io::read_shape(std::string(CIFS_EXAMPLES_DIR) + "/shapes/" + example);
+  int k = 0;
+  for (auto _ : state) {
+    e.perturbation = cifs::io::PerturbationSpec{
+        .amplitude = amplitude * (1 + 1e-3 * (k++ % 16)), .seed = 1, .values = {}, .keep_vertices = true};
+    benchmark::DoNotOptimize(cifs::experiment::evaluate(e, depth).points.data());
+  }
+}
+void BM_runner_amplitude_hills_depth6(benchmark::State& state) {
+  runner_amplitude(state, "hills.json", 6, 0.05);
+}
+void BM_runner_amplitude_cubic_depth16(benchmark::State& state) {
+  runner_amplitude(state, "cubic.json", 16, 0.1);
+}
+BENCHMARK(BM_runner_amplitude_hills_depth6)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_runner_amplitude_cubic_depth16)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+BENCHMARK(BM_view_amplitude_hills_depth6)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_view_amplitude_hills_depth7)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_view_amplitude_cubic_depth16)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

@@ -498,11 +498,12 @@ Contraction contraction(const Automaton& automaton, const ContractionOptions& op
       break;
     }
     if (m == options.max_length) {
-      throw InvalidInput("not contractive: the " + std::to_string(m) + "-step products from " +
-                         detail::state_label(automaton, scan.worst_state) +
-                         " do not shrink nets (δ = " + number_text(scan.worst, 6) + " along the path " +
-                         detail::word_text(scan.worst_word) + "; no path length ≤ " + std::to_string(m) +
-                         " gives δ < 1)");
+      throw NotContractive("not contractive: the " + std::to_string(m) + "-step products from " +
+                               detail::state_label(automaton, scan.worst_state) +
+                               " do not shrink nets (δ = " + number_text(scan.worst, 6) + " along the path " +
+                               detail::word_text(scan.worst_word) + "; no path length ≤ " +
+                               std::to_string(m) + " gives δ < 1)",
+                           scan.worst, m);
     }
   }
   if (!options.tighten || !options.bound) return out;

@@ -16,6 +16,7 @@
 #include <map>
 #include <numeric>
 #include <set>
+#include <stdexcept>
 
 #include "cifs/errors.hpp"
 #include "cifs/format.hpp"
@@ -610,13 +611,25 @@ std::string name_list(const std::vector<std::string>& names) {
 
 }  // namespace
 
-Perturbation perturb(const Bcifs& sys, const PerturbOptions& options) {
-  if (!(options.amplitude >= 0) || !std::isfinite(options.amplitude))
+namespace {
+void check_amplitude(double amplitude) {
+  if (!(amplitude >= 0) || !std::isfinite(amplitude))
     throw InvalidInput("the perturbation amplitude " +
-                       (std::isfinite(options.amplitude) ? number_text(options.amplitude, 3) + " is negative"
-                                                         : std::string("is not a finite number")) +
+                       (std::isfinite(amplitude) ? number_text(amplitude, 3) + " is negative"
+                                                 : std::string("is not a finite number")) +
                        "; give a finite amplitude ≥ 0");
-  const AdmissibleSpace space = admissible_space(sys, options.solve);
+}
+}  // namespace
+
+Perturbation perturb(const Bcifs& sys, const PerturbOptions& options) {
+  check_amplitude(options.amplitude);
+  return perturb(sys, admissible_space(sys, options.solve), options);
+}
+
+Perturbation perturb(const Bcifs& sys, const AdmissibleSpace& space, const PerturbOptions& options) {
+  check_amplitude(options.amplitude);
+  if (space.unknowns.size() != static_cast<std::size_t>(space.K.rows()))
+    throw std::logic_error("perturb: the admissible space is not one admissible_space built");
   const auto names = free_names(sys, space);
   std::map<std::string, std::size_t> index;
   for (std::size_t j = 0; j < names.size(); ++j) index.emplace(names[j], j);
@@ -652,15 +665,16 @@ Perturbation perturb(const Bcifs& sys, const PerturbOptions& options) {
                        " (the system is ill-conditioned); lower the amplitude");
   try {
     out.contraction = contraction(out.system.automaton, options.contraction);
-  } catch (const InvalidInput& e) {
+  } catch (const NotContractive& e) {
     // Name what moved the coefficients: the random draw, the values set by name, or both.
     std::string cause;
     if (options.amplitude > 0)
       cause = "amplitude " + number_text(options.amplitude, 3) + ", seed " + std::to_string(options.seed);
     for (const auto& [name, value] : options.values)
       cause += (cause.empty() ? "" : ", ") + name + " = " + number_text(value, 3);
-    throw InvalidInput("the perturbed system is not contractive with " +
-                       (cause.empty() ? std::string("its current values") : cause) + ": " + e.what());
+    throw NotContractive("the perturbed system is not contractive with " +
+                             (cause.empty() ? std::string("its current values") : cause) + ": " + e.what(),
+                         e.delta, e.length);
   }
   return out;
 }

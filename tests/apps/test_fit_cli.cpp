@@ -121,7 +121,11 @@ TEST_CASE("cifs fit --fractal writes a BC-IFS file whose experiment renders and 
     INFO(dimension.err);
     CHECK(dimension.status == 0);
   }
-  check_error(cifs_cli("view " + out), "a BC-IFS file; cifs view shows shapes");
+  // cifs view opens it (its static page here: a served one runs until stopped).
+  const Run page = cifs_cli("view " + out + " --export " + (scratch() / "rough_fit_page").string());
+  INFO(page.err);
+  CHECK(page.status == 0);
+  CHECK(std::filesystem::exists(scratch() / "rough_fit_page" / "geometry.js"));
   // Without -o: the BC-IFS file on stdout.
   const Run printed = cifs_cli("fit " + input + " --control-points 7 --fractal --iterations 3");
   REQUIRE(printed.status == 0);

@@ -90,6 +90,58 @@ def request(url, method, path, body=None, host=None):
     return response.status, response.read().decode("utf-8", "replace")
 
 
+def bcifs_scenario(args, cifs, driver, work):
+    start = time.time()
+    x = np.linspace(0, 1, 257)
+    y = sum(0.6**k * np.cos(2**k * np.pi * x) for k in range(10))
+    np.savetxt(work / "rough.csv", np.stack([x, 0.3 * y], axis=1), delimiter=",")
+    fit = work / "rough_fit.json"
+    subprocess.run([args.cli, "fit", str(work / "rough.csv"), "--control-points", "6", "--fractal",
+                    "--parametrization", "uniform", "-o", str(fit)], check=True, capture_output=True)
+    server = subprocess.Popen([args.cli, "view", str(fit), "--port", "0"], stdout=subprocess.PIPE,
+                              stderr=subprocess.PIPE, text=True)
+    url = server.stdout.readline().strip()
+    if not url.startswith("http://127.0.0.1:"):
+        fail(f"cifs view {fit.name} printed {url!r}")
+    driver.get(url)
+    wait_for(driver, "window.cifsView && window.cifsView.ready", "the BC-IFS page")
+    state = driver.execute_script("return window.cifsView")
+    document = state["document"]
+    if state.get("error") or document["kind"] != "bcifs" or not document["coefficients"]:
+        fail(f"the BC-IFS page: {state.get('error')}, {document.get('kind')}")
+
+    def library(values):
+        experiment = work / "fit_experiment.json"
+        experiment.write_text(json.dumps({"automaton": str(fit), "evaluation": {"depth": depth},
+                                          "perturbation": {"amplitude": 0, "values": values},
+                                          "outputs": {"ply": "unused.ply"}}))
+        return fnv1a(np.asarray(cifs.experiment.evaluate(cifs.io.read_experiment(str(experiment)), depth).points))
+
+    depth = state["params"]["depth"]
+    coefficient = document["coefficients"][len(document["coefficients"]) // 2]
+    name = coefficient["name"]
+    value = coefficient["value"] + 0.5 * (coefficient["high"] - coefficient["value"])
+    driver.execute_script("const s = document.getElementById(arguments[0]); s.value = arguments[1];"
+                          "s.dispatchEvent(new Event('input'));", "coef:" + name, value)
+    old = state["checksum"]
+    state = settle(driver, old, "the geometry after a coefficient slider")
+    sent = state["params"]["values"][name]
+    expected = library({name: sent})
+    if state["checksum"] != expected:
+        fail(f"{name} = {sent}: the page holds {state['checksum']:08x}, the library {expected:08x}")
+    if not state["contractive"] or "δ =" not in state["contraction"]:
+        fail(f"the contractivity readout: {state['contraction']!r}")
+    errors = console_errors(driver)
+    if errors:
+        fail(f"console errors on the BC-IFS page: {errors}")
+    if args.screenshots:
+        driver.save_screenshot(str(Path(args.screenshots) / "view-bcifs-fit.png"))
+    print(f"BC-IFS: {len(document['coefficients'])} coefficient sliders; {name} = {sent:.6f}: "
+          f"{state['pointCount']} points, the library's checksum; {state['contraction']} "
+          f"({time.time() - start:.1f} s with the fit)")
+    return server
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--cli", required=True)
@@ -316,11 +368,19 @@ def main():
         if args.screenshots:
             driver.save_screenshot(str(Path(args.screenshots) / "view-wave-export.png"))
         print("export: loads from file://, the library's checksum, drawn")
+
+        # A fit's BC-IFS file (cifs fit --fractal): its free coefficients by name as sliders; one moved, the
+        # page holds the runner's geometry for that value (an experiment on the file, read and evaluated by
+        # the library through Python).
+        fit_server = bcifs_scenario(args, cifs, driver, work)
     finally:
         if driver:
             driver.quit()
         server.terminate()
         server.wait(timeout=10)
+        if "fit_server" in locals() and fit_server:
+            fit_server.terminate()
+            fit_server.wait(timeout=10)
     print("test_view: ok")
 
 

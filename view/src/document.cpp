@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -14,11 +15,17 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/experiment/run.hpp"
+#include "cifs/files.hpp"
+#include "cifs/format.hpp"
+#include "cifs/ifs/analysis.hpp"
+#include "cifs/ifs/bcifs_curve.hpp"
+#include "cifs/ifs/bcifs_surface.hpp"
 #include "cifs/ifs/mesh.hpp"
 #include "cifs/ifs/sample.hpp"
 #include "cifs/ifs/shape_attractor.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/nurbs/knot_automaton.hpp"
+#include "cifs/nurbs/tensor_automaton.hpp"
 #include "cifs/subdivision/mesh.hpp"
 #include "cifs/subdivision/rules.hpp"
 
@@ -80,11 +87,118 @@ std::string_view kind_name(Kind kind) noexcept {
       return "surface";
     case Kind::mesh:
       return "mesh";
+    case Kind::bcifs:
+      return "bcifs";
   }
   return "?";
 }
 
-Document open_document(const std::filesystem::path& path) {
+std::shared_ptr<const PerturbableSystem> shape_system(const io::Shape& shape, bool keep_vertices) {
+  auto out = std::make_shared<PerturbableSystem>();
+  if (const auto* c = std::get_if<nurbs::Curve>(&shape)) {
+    const nurbs::KnotAutomaton knots = nurbs::knot_automaton(*c);
+    out->system = ifs::curve_bcifs(*c, {.free_vertices = !keep_vertices});
+    out->nets = nurbs::initial_nets(knots, *c);  // the BC-IFS keeps the knot automaton's initial entries
+    out->rational = c->rational;
+    out->closed = c->closed;
+  } else {
+    const auto& s = std::get<nurbs::Surface>(shape);
+    const nurbs::TensorAutomaton ta = nurbs::tensor_automaton(s);
+    out->system = ifs::surface_bcifs(ta, {.free_knot_lines = !keep_vertices});
+    out->nets = nurbs::initial_nets(ta, s);
+    out->patches = ta.patches;
+    out->rational = s.rational;
+  }
+  out->space = ifs::admissible_space(out->system);
+  out->names = ifs::free_names(out->system, out->space);
+  return out;
+}
+
+namespace {
+
+/// A BC-IFS file's system, its nets given (the runner refuses a file without them).
+std::shared_ptr<const PerturbableSystem> file_system(const std::filesystem::path& path) {
+  io::BcifsFile file = io::read_bcifs(path);
+  if (file.nets.size() != file.system.automaton.initial.size())
+    throw InvalidInput(path.string() + ": the file gives no control nets for its initial states");
+  auto out = std::make_shared<PerturbableSystem>();
+  out->system = std::move(file.system);
+  out->nets = std::move(file.nets);
+  out->space = ifs::admissible_space(out->system);
+  out->names = ifs::free_names(out->system, out->space);
+  return out;
+}
+
+ifs::PerturbOptions perturb_options(double amplitude, std::uint64_t seed,
+                                    const std::map<std::string, double>& values) {
+  ifs::PerturbOptions o;
+  o.amplitude = amplitude;
+  o.seed = seed;
+  o.values = values;
+  o.contraction.bound = false;  // the runner's check: contractivity only (experiment::evaluate's perturb)
+  return o;
+}
+
+/// The sliders of a document: `names`' ranges around the file's perturbation, or the refusal of the file's
+/// own system (not contractive, say), which the page shows.
+void add_coefficients(Document& d, const PerturbableSystem& system, const std::vector<std::string>& names) {
+  const ifs::PerturbOptions base =
+      perturb_options(d.perturbation.amplitude, d.perturbation.seed, d.perturbation.values);
+  try {
+    (void)ifs::perturb(system.system, system.space, base);
+  } catch (const InvalidInput& e) {
+    d.refusal = e.what();
+    return;
+  }
+  for (const std::string& name : names) d.coefficients.push_back(coefficient_range(system, name, base));
+}
+
+}  // namespace
+
+CoefficientRange coefficient_range(const PerturbableSystem& system, const std::string& name,
+                                   const ifs::PerturbOptions& base, const RangeOptions& options) {
+  const ifs::Perturbation at = ifs::perturb(system.system, system.space, base);
+  const auto it =
+      std::find_if(at.values.begin(), at.values.end(), [&](const auto& v) { return v.first == name; });
+  if (it == at.values.end()) throw InvalidInput("\"" + name + "\" is not a free coefficient of the system");
+  CoefficientRange out{
+      .name = name, .value = it->second, .low = it->second, .high = it->second, .capped = false};
+  const auto accepted = [&](double value) {
+    ifs::PerturbOptions o = base;
+    o.values[name] = value;
+    try {
+      (void)ifs::perturb(system.system, system.space, o);
+      return true;
+    } catch (const InvalidInput&) {  // not contractive, or the constraints missed: what the runner refuses
+      return false;
+    }
+  };
+  for (const double sign : {-1.0, 1.0}) {
+    double good = 0, bad = 0, step = options.first_step;
+    for (;;) {
+      const double t = std::min(step, options.reach);
+      if (!accepted(out.value + sign * t)) {
+        bad = t;
+        break;
+      }
+      good = t;
+      if (t >= options.reach) break;
+      step *= 2;
+    }
+    if (bad == 0) {
+      out.capped = true;
+    } else {
+      for (int k = 0; k < options.bisections; ++k) {
+        const double mid = 0.5 * (good + bad);
+        (accepted(out.value + sign * mid) ? good : bad) = mid;
+      }
+    }
+    (sign < 0 ? out.low : out.high) = out.value + sign * good;
+  }
+  return out;
+}
+
+Document open_document(const std::filesystem::path& path, const Limits& limits) {
   Document d;
   d.path = path;
   switch (io::detect(path)) {
@@ -97,14 +211,49 @@ Document open_document(const std::filesystem::path& path) {
       d.kind = std::holds_alternative<nurbs::Curve>(*d.shape) ? Kind::curve : Kind::surface;
       return d;
     case io::Content::bcifs:
-      throw InvalidInput(path.string() +
-                         ": a BC-IFS file; cifs view shows shapes (curves, surfaces) and polygon meshes "
-                         "(cifs render draws a BC-IFS file)");
+      d.kind = Kind::bcifs;
+      d.bcifs = file_system(path);
+      break;
+    case io::Content::experiment: {
+      io::Experiment e = io::read_experiment(path);
+      if (e.shape) {
+        d.shape = e.shape;
+        d.kind = std::holds_alternative<nurbs::Curve>(*d.shape) ? Kind::curve : Kind::surface;
+      } else if (!e.automaton.empty()) {
+        d.kind = Kind::bcifs;
+        d.bcifs = file_system(e.automaton);
+      } else {
+        throw InvalidInput(
+            path.string() + ": an experiment on " +
+            (e.mesh       ? "a mesh"
+             : e.junction ? "a junction"
+                          : "a classic IFS") +
+            "; cifs view shows experiments on a shape or a BC-IFS file (cifs render draws this one)");
+      }
+      d.experiment_text = read_file(path);
+      if (e.perturbation) {
+        d.perturbation = *e.perturbation;
+        d.perturbed = true;
+      }
+      d.experiment = std::move(e);
+      break;
+    }
     default:
       throw InvalidInput(path.string() +
-                         ": cifs view shows shapes (curves, surfaces) and polygon meshes; open the shape "
-                         "this file names");
+                         ": cifs view shows shapes (curves, surfaces), polygon meshes, BC-IFS and experiment "
+                         "files; open the shape this file names");
   }
+  if (d.bcifs) {  // every free coefficient a slider (within max_sliders), with its range
+    if (d.bcifs->names.size() <= limits.max_sliders)
+      add_coefficients(d, *d.bcifs, d.bcifs->names);
+    else
+      add_coefficients(d, *d.bcifs, {});
+  } else if (d.perturbed && !d.perturbation.values.empty()) {  // a shape's experiment: the values it sets
+    std::vector<std::string> names;
+    for (const auto& [name, value] : d.perturbation.values) names.push_back(name);
+    add_coefficients(d, *shape_system(*d.shape, d.perturbation.keep_vertices), names);
+  }
+  return d;
 }
 
 Params default_params(const Document& document) {
@@ -117,6 +266,24 @@ Params default_params(const Document& document) {
     const double patches =
         static_cast<double>(s.count[0] - s.degree[0]) * static_cast<double>(s.count[1] - s.degree[1]);
     p.depth = std::clamp(static_cast<int>(std::lround(0.5 * std::log2(1e4 / std::max(1.0, patches)))), 0, 7);
+  } else if (document.kind == Kind::bcifs) {
+    // The deepest depth with at most 10^4 pieces: nodes counted per state, level by level.
+    const auto& a = document.bcifs->system.automaton;
+    std::vector<double> count(num_vertices(a.graph), 1.0), next(count.size());
+    const auto total = [&] {
+      double n = 0;
+      for (const auto& i : a.initial) n += count[i.state];
+      return n;
+    };
+    while (p.depth < 16) {
+      for (automata::StateId s = 0; s < count.size(); ++s) {
+        next[s] = 0;
+        for (auto [b, e] = out_edges(s, a.graph); b != e; ++b) next[s] += count[target(*b, a.graph)];
+      }
+      std::swap(count, next);
+      if (total() > 1e4) break;
+      ++p.depth;
+    }
   } else {
     const auto& o = document.mesh.face_offsets;
     bool triangles = true;
@@ -124,7 +291,18 @@ Params default_params(const Document& document) {
     p.scheme = triangles ? "loop" : "catmull-clark";
     p.levels = 1;
   }
+  if (document.experiment) {  // the file's depth (the view's limits apply) and perturbation
+    if (document.experiment->evaluation.mode == io::EvaluationSpec::Mode::depth)
+      p.depth = document.experiment->evaluation.depth;
+  }
+  p.amplitude = document.perturbation.amplitude;
+  p.seed = document.perturbation.seed;
+  p.values = document.perturbation.values;
   return p;
+}
+
+bool perturbed(const Document& document, const Params& params) {
+  return document.perturbed || params.amplitude != 0 || !params.values.empty();
 }
 
 io::Shape edited_shape(const Document& document, const Params& params) {
@@ -193,8 +371,9 @@ void curve_geometry(const nurbs::Curve& c, const Params& params, const Limits& l
   g.closed = c.closed;
 }
 
-void surface_geometry(const nurbs::Surface& s, const Params& params, const Limits& limits, Geometry& g) {
-  const Mesh mesh = ifs::attractor(s, params.depth, ifs::mesh_bytes(limits.max_points, 3, limits.max_points));
+/// A quad mesh of ifs::surface_mesh's (or quad_mesh's) grid layout as positions, a state per node and the
+/// grid's size.
+void grid_geometry(const Mesh& mesh, Geometry& g) {
   const auto n = static_cast<std::size_t>(mesh.vertices.rows());
   g.positions = xyz(mesh.vertices);
   const std::size_t faces = mesh.face_offsets.size() - 1;
@@ -215,6 +394,10 @@ void surface_geometry(const nurbs::Surface& s, const Params& params, const Limit
   if (std::size_t{rows} * cols != n || std::size_t{rows - 1} * (cols - 1) != faces)
     throw std::logic_error("view: the surface mesh is not ifs::surface_mesh's grid");
   g.grid = {rows, cols};
+}
+
+void surface_geometry(const nurbs::Surface& s, const Params& params, const Limits& limits, Geometry& g) {
+  grid_geometry(ifs::attractor(s, params.depth, ifs::mesh_bytes(limits.max_points, 3, limits.max_points)), g);
 }
 
 /// The control polygon (the distinct points of a closed curve) or the control grid, Cartesian.
@@ -275,59 +458,130 @@ void mesh_geometry(const Document& document, const Params& params, const Limits&
   for (const auto& [a, b] : edges) g.net_lines.insert(g.net_lines.end(), {a, b});
 }
 
-/// Non-empty knot intervals of one direction's domain: the patches along it.
-std::uint32_t spans(const nurbs::Knots& knots, int degree, Eigen::Index count) {
-  std::uint32_t n = 0;
-  for (auto i = static_cast<std::size_t>(degree); i < static_cast<std::size_t>(count); ++i)
-    n += knots[i + 1] > knots[i] ? 1U : 0U;
-  return n;
+/// Refuses a value outside its slider's range (coefficient_range) before any work.
+void check_values(const Document& d, const Params& params) {
+  for (const auto& [name, value] : params.values) {
+    if (!std::isfinite(value)) throw InvalidInput(name + ": the value is not a finite number");
+    for (const CoefficientRange& r : d.coefficients)
+      if (r.name == name && (value < r.low || value > r.high))
+        throw InvalidInput(name + " = " + number_text(value, 6) + " is outside its admissible range [" +
+                           number_text(r.low, 6) + ", " + number_text(r.high, 6) + "]");
+  }
 }
 
-/// The perturbed shape, as an experiment with a "perturbation" evaluates it (experiment::evaluate).
-void perturbed_geometry(const io::Shape& shape, const Params& params, const Limits& limits, Geometry& g) {
+ifs::Perturbation perturbation(const PerturbableSystem& system, const Params& params) {
   if (!std::isfinite(params.amplitude) || params.amplitude < 0 || params.amplitude > 1)
-    throw InvalidInput("amplitude " + std::to_string(params.amplitude) + " is outside 0..1");
-  io::Experiment e;
-  e.shape = shape;
-  e.evaluation.depth = params.depth;
-  e.perturbation = io::PerturbationSpec{.amplitude = params.amplitude,
-                                        .seed = params.seed,
-                                        .values = {},
-                                        .keep_vertices = true,
-                                        .fractal_curves = std::nullopt};
-  experiment::RunOptions options;
-  options.max_bytes = ifs::mesh_bytes(limits.max_points, 3, limits.max_points);
-  const experiment::Evaluation ev = experiment::evaluate(e, params.depth, options);
-  if (static_cast<std::size_t>(ev.points.rows()) > limits.max_points)
-    throw InvalidInput(std::to_string(ev.points.rows()) + " points, above the view's limit of " +
+    throw InvalidInput("amplitude " + number_text(params.amplitude, 6) + " is outside 0..1");
+  return ifs::perturb(system.system, system.space,
+                      perturb_options(params.amplitude, params.seed, params.values));
+}
+
+void note_contraction(const ifs::Contraction& c, Geometry& g) {
+  g.contraction_length = c.m;
+  g.contraction_delta = c.delta;
+}
+
+/// The key of a shape's perturbable system: the document and its moved points (bit for bit).
+std::string system_key(const Document& d, const Params& params) {
+  std::string key = d.path.string() + (d.perturbation.keep_vertices ? "|k" : "|f");
+  for (const PointEdit& e : params.points) {
+    key += "|" + std::to_string(e.index);
+    for (const double x : e.position) {
+      std::array<char, 32> text{};
+      std::snprintf(text.data(), text.size(), " %a", x);
+      key += text.data();
+    }
+  }
+  return key;
+}
+
+/// The perturbed shape, as experiment::evaluate evaluates an experiment with that "perturbation" (the
+/// runner's curve_scene and surface_scene: the same calls on the same system).
+void perturbed_geometry(const Document& d, const io::Shape& shape, const Params& params, const Limits& limits,
+                        SystemCache* cache, Geometry& g) {
+  std::shared_ptr<const PerturbableSystem> system;
+  const std::string key = system_key(d, params);
+  if (cache != nullptr && cache->system && cache->key == key) {
+    system = cache->system;
+  } else {
+    system = shape_system(shape, d.perturbation.keep_vertices);
+    if (cache != nullptr) *cache = {key, system};
+  }
+  const ifs::Perturbation p = perturbation(*system, params);
+  note_contraction(p.contraction, g);
+  if (std::holds_alternative<nurbs::Curve>(shape)) {
+    const ifs::Sample sample = ifs::sample_attractor(p.system.automaton, system->nets,
+                                                     {.depth = params.depth,
+                                                      .homogeneous = system->rational,
+                                                      .closed = system->closed,
+                                                      .states = true,
+                                                      .max_points = limits.max_points,
+                                                      .limit_hint = "; lower the depth"});
+    g.positions = xyz(sample.points);
+    g.states = sample.states;
+    if (!g.states.empty()) g.states.resize(static_cast<std::size_t>(sample.points.rows()), g.states.back());
+    g.closed = system->closed;
+    return;
+  }
+  ifs::MeshOptions mo;
+  mo.homogeneous = system->rational;
+  mo.max_bytes = ifs::mesh_bytes(limits.max_points, 3, limits.max_points);
+  grid_geometry(ifs::quad_mesh(p.system.automaton, system->nets, system->patches, params.depth, mo), g);
+}
+
+/// A BC-IFS file's attractor as the runner draws it (bcifs_scene): the pieces' end points at the depth.
+void bcifs_geometry(const Document& d, const Params& params, const Limits& limits, Geometry& g) {
+  const PerturbableSystem& system = *d.bcifs;
+  std::optional<ifs::Perturbation> p;
+  if (perturbed(d, params)) {
+    p = perturbation(system, params);
+    note_contraction(p->contraction, g);
+  } else {  // the file's matrices are the user's: an attractor exists only when they shrink nets
+    note_contraction(ifs::contraction(system.system.automaton, {.bound = false}), g);
+  }
+  const Eigen::Index cols = system.nets.front().cols();
+  const ifs::EdgePieces pieces =
+      ifs::edge_pieces(p ? p->system : system.system, system.nets, params.depth,
+                       limits.max_points * static_cast<std::size_t>(cols) * sizeof(double));
+  const Eigen::Index n = pieces.start.rows();
+  if (static_cast<std::size_t>(2 * n) > limits.max_points)
+    throw InvalidInput(std::to_string(2 * n) + " points, above the view's limit of " +
                        std::to_string(limits.max_points) + "; lower the depth");
-  g.positions = xyz(ev.points);
-  if (const auto* c = std::get_if<nurbs::Curve>(&shape)) {
-    g.closed = c->closed;
-  } else {  // quad_mesh's grid: the surface's patches, 2^depth cells each way
-    const auto& s = std::get<nurbs::Surface>(shape);
-    const std::uint32_t cells = 1U << params.depth;
-    g.grid = {spans(s.knots[0], s.degree[0], s.count[0]) * cells + 1,
-              spans(s.knots[1], s.degree[1], s.count[1]) * cells + 1};
-    if (std::size_t{g.grid[0]} * g.grid[1] != static_cast<std::size_t>(ev.points.rows()))
-      throw std::logic_error("view: the perturbed surface is not its patches' grid");
+  Points v(2 * n, cols);
+  v << pieces.start, pieces.end;
+  g.positions = xyz(v);
+  g.pieces = static_cast<std::uint32_t>(n);
+  g.states.reserve(2 * static_cast<std::size_t>(n));
+  for (int half = 0; half < 2; ++half)
+    for (const automata::StateId s : pieces.state) g.states.push_back(static_cast<std::uint32_t>(s));
+  // The control nets, each a polyline (the runner's control net).
+  for (const Points& N : system.nets) {
+    const auto first = static_cast<std::uint32_t>(g.net.size() / 3);
+    for (Eigen::Index i = 0; i < N.rows(); ++i) append_xyz(g.net, N.row(i));
+    for (std::uint32_t i = 0; i + 1 < static_cast<std::uint32_t>(N.rows()); ++i)
+      g.net_lines.insert(g.net_lines.end(), {first + i, first + i + 1});
   }
 }
 
 }  // namespace
 
-Geometry geometry(const Document& document, const Params& params, const Limits& limits) {
+Geometry geometry(const Document& document, const Params& params, const Limits& limits, SystemCache* cache) {
   Geometry g;
   g.kind = document.kind;
   if (document.kind == Kind::mesh) {
     check_range("levels", params.levels, limits.max_levels);
     mesh_geometry(document, params, limits, g);
+  } else if (document.kind == Kind::bcifs) {
+    check_range("depth", params.depth, limits.max_depth_bcifs);
+    check_values(document, params);
+    bcifs_geometry(document, params, limits, g);
   } else {
     const io::Shape shape = edited_shape(document, params);
     const auto* c = std::get_if<nurbs::Curve>(&shape);
     check_range("depth", params.depth, c != nullptr ? limits.max_depth_curve : limits.max_depth_surface);
-    if (params.amplitude != 0)
-      perturbed_geometry(shape, params, limits, g);
+    check_values(document, params);
+    if (perturbed(document, params))
+      perturbed_geometry(document, shape, params, limits, cache, g);
     else if (c != nullptr)
       curve_geometry(*c, params, limits, g);
     else
@@ -355,15 +609,18 @@ void append_bytes(std::string& out, const std::vector<T>& values) {
 }  // namespace
 
 std::string encode_geometry(const Geometry& g) {
-  const nlohmann::json header = {{"kind", kind_name(g.kind)},
-                                 {"positions", g.positions.size()},
-                                 {"closed", g.closed},
-                                 {"triangles", g.triangles.size()},
-                                 {"grid", g.grid},
-                                 {"states", g.states.size()},
-                                 {"net", g.net.size()},
-                                 {"net_lines", g.net_lines.size()},
-                                 {"checksum", g.checksum}};
+  const nlohmann::json header = {
+      {"kind", kind_name(g.kind)},
+      {"positions", g.positions.size()},
+      {"closed", g.closed},
+      {"triangles", g.triangles.size()},
+      {"grid", g.grid},
+      {"states", g.states.size()},
+      {"net", g.net.size()},
+      {"net_lines", g.net_lines.size()},
+      {"pieces", g.pieces},
+      {"contraction", {{"m", g.contraction_length}, {"delta", g.contraction_delta}}},
+      {"checksum", g.checksum}};
   std::string text = header.dump();
   text.resize((text.size() + 12 + 3) / 4 * 4 - 12, ' ');  // the arrays start on a 4-byte boundary
   std::string out = "CIFSVIEW";

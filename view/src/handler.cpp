@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <random>
 #include <string>
@@ -13,9 +14,12 @@
 #include "cifs/experiment/dimension.hpp"
 #include "cifs/experiment/run.hpp"
 #include "cifs/files.hpp"
+#include "cifs/ifs/analysis.hpp"
+#include "cifs/ifs/bcifs.hpp"
 #include "cifs/ifs/mesh.hpp"
 #include "cifs/ifs/shape_attractor.hpp"
 #include "cifs/io/io.hpp"
+#include "cifs/io/json.hpp"
 #include "cifs/io/svg.hpp"
 #include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/nurbs/tensor_automaton.hpp"
@@ -137,9 +141,21 @@ Params parse_params(const Document& d, const json& body, std::string_view where)
   if (!j.is_object()) throw Refusal{400, std::string(where) + ": params is not an object"};
   for (const auto& [key, value] : j.items())
     if (key != "depth" && key != "scheme" && key != "levels" && key != "points" && key != "amplitude" &&
-        key != "seed")
+        key != "seed" && key != "values")
       throw Refusal{400, std::string(where) + ": unknown parameter '" + key +
-                             "' (depth, scheme, levels, points, amplitude, seed)"};
+                             "' (depth, scheme, levels, points, amplitude, seed, values)"};
+  if (j.contains("values")) {
+    const json& values = j.at("values");
+    if (!values.is_object())
+      throw Refusal{400, std::string(where) + ": values is not an object (coefficient name: number)"};
+    p.values.clear();  // the page sends every value it sets
+    for (const auto& [name, value] : values.items()) {
+      if (!value.is_number() || !std::isfinite(value.get<double>()))
+        throw Refusal{400,
+                      std::string(where) + ": values: " + name.substr(0, 80) + " is not a finite number"};
+      p.values[name] = value.get<double>();
+    }
+  }
   if (j.contains("amplitude")) {
     if (!j.at("amplitude").is_number())
       throw Refusal{400, std::string(where) + ": amplitude is not a number"};
@@ -172,16 +188,28 @@ Params parse_params(const Document& d, const json& body, std::string_view where)
 }
 
 json params_json(const Params& p) {
-  return {{"depth", p.depth},
-          {"scheme", p.scheme},
-          {"levels", p.levels},
-          {"amplitude", p.amplitude},
-          {"seed", p.seed}};
+  return {{"depth", p.depth},         {"scheme", p.scheme}, {"levels", p.levels},
+          {"amplitude", p.amplitude}, {"seed", p.seed},     {"values", p.values}};
 }
 
 int shape_dimension(const Document& d) {
   if (d.kind == Kind::mesh) return static_cast<int>(d.mesh.vertices.cols());
+  if (d.kind == Kind::bcifs) return static_cast<int>(d.bcifs->nets.front().cols());
   return std::visit([](const auto& s) { return nurbs::dimension(s); }, *d.shape);
+}
+
+int max_depth(const Session& s) {
+  switch (s.document.kind) {
+    case Kind::curve:
+      return s.limits.max_depth_curve;
+    case Kind::surface:
+      return s.limits.max_depth_surface;
+    case Kind::bcifs:
+      return s.limits.max_depth_bcifs;
+    case Kind::mesh:
+      break;
+  }
+  return 0;
 }
 
 json document_json(const Session& s) {
@@ -197,16 +225,61 @@ json document_json(const Session& s) {
     j["schemes"] = schemes;
     j["ranges"] = {{"levels", {0, s.limits.max_levels}}};
   } else {
-    j["ranges"] = {
-        {"depth", {0, d.kind == Kind::curve ? s.limits.max_depth_curve : s.limits.max_depth_surface}},
-        {"amplitude", {0, 0.5}}};
+    j["ranges"] = {{"depth", {0, max_depth(s)}}, {"amplitude", {0, 0.5}}};
+    json coefficients = json::array();
+    for (const CoefficientRange& c : d.coefficients)
+      coefficients.push_back(
+          {{"name", c.name}, {"value", c.value}, {"low", c.low}, {"high", c.high}, {"capped", c.capped}});
+    j["coefficients"] = coefficients;
+    if (d.bcifs) j["free_coefficients"] = d.bcifs->names.size();
+    if (!d.refusal.empty()) j["refusal"] = d.refusal;
+    j["points_editable"] = !d.experiment && d.kind != Kind::bcifs;
+    if (d.experiment) j["experiment"] = true;
   }
   return j;
 }
 
 automata::Automaton document_automaton(const Document& d) {
+  if (d.kind == Kind::bcifs) return d.bcifs->system.automaton;
   if (const auto* c = std::get_if<nurbs::Curve>(&*d.shape)) return nurbs::knot_automaton(*c).automaton;
   return nurbs::tensor_automaton(std::get<nurbs::Surface>(*d.shape)).product;
+}
+
+/// A BC-IFS document's system with the edits: ifs::perturb's result when perturbed, else the file's.
+ifs::Bcifs edited_system(const Document& d, const Params& params) {
+  if (!perturbed(d, params)) return d.bcifs->system;
+  ifs::PerturbOptions o;
+  o.amplitude = params.amplitude;
+  o.seed = params.seed;
+  o.values = params.values;
+  o.contraction.bound = false;
+  return ifs::perturb(d.bcifs->system, d.bcifs->space, o).system;
+}
+
+/// The experiment file's text with the view's depth and perturbation (the rest as written), checked by
+/// the experiment reader before it is written.
+std::string edited_experiment(const Session& s, const Params& params, const std::string& name) {
+  const Document& d = s.document;
+  if (!params.points.empty())
+    throw InvalidInput("points: an experiment's control points are not edited here; open its shape");
+  if (params.depth < 0 || params.depth > max_depth(s))
+    throw InvalidInput("depth " + std::to_string(params.depth) + " is outside 0.." +
+                       std::to_string(max_depth(s)));
+  nlohmann::ordered_json e = nlohmann::ordered_json::parse(d.experiment_text);
+  if (d.experiment->evaluation.mode == io::EvaluationSpec::Mode::depth)
+    e["evaluation"]["depth"] = params.depth;
+  if (perturbed(d, params)) {
+    auto& p = e["perturbation"];
+    p["amplitude"] = params.amplitude;
+    p["seed"] = params.seed;
+    if (params.values.empty())
+      p.erase("values");
+    else
+      p["values"] = params.values;
+  }
+  std::string text = e.dump(2) + "\n";
+  (void)io::parse_experiment(text, name, s.folder);  // what cifs render will read
+  return text;
 }
 
 Response save(Session& s, const Request& r) {
@@ -230,6 +303,14 @@ Response save(Session& s, const Request& r) {
     } else {
       throw InvalidInput(name + ": a mesh is saved as .obj or .ply");
     }
+  } else if (ext == ".json" && s.document.experiment) {
+    write_file_atomically(path, edited_experiment(s, params, name));
+  } else if (ext == ".json" && s.document.kind == Kind::bcifs) {
+    // The edited system with its nets, as cifs fit --fractal writes one (the view's checks first).
+    Params check = params;  // the values' ranges and contractivity, at depth 0
+    check.depth = 0;
+    (void)geometry(s.document, check, s.limits);
+    io::write(path, io::BcifsFile{edited_system(s.document, params), s.document.bcifs->nets});
   } else if (ext == ".json") {
     io::write(path, edited_shape(s.document, params));
   } else if ((ext == ".obj" || ext == ".ply") && s.document.kind == Kind::surface) {
@@ -246,9 +327,41 @@ Response save(Session& s, const Request& r) {
   return json_response({{"written", name}});
 }
 
-/// The document with `params` as an experiment (the runner's input): the edited shape at the depth, or the
-/// edited mesh with its scheme and levels; `control_net` drawn.
+/// The document with `params` as an experiment (the runner's input): the edited shape at the depth, the
+/// BC-IFS file, the experiment file with the view's depth and perturbation, or the edited mesh with its
+/// scheme and levels; `control_net` drawn.
 io::Experiment as_experiment(const Session& s, const Params& params) {
+  const Document& d = s.document;
+  if (d.experiment || d.kind == Kind::bcifs) {
+    if (params.depth < 0 || params.depth > max_depth(s))
+      throw InvalidInput("depth " + std::to_string(params.depth) + " is outside 0.." +
+                         std::to_string(max_depth(s)));
+    if (!params.points.empty())
+      throw InvalidInput("points: the control points of " + d.path.filename().string() +
+                         " are not edited here");
+    io::Experiment e;
+    if (d.experiment) {
+      e = *d.experiment;
+      e.outputs = {};
+    } else {
+      e.name = d.path.stem().string();
+      e.automaton = std::filesystem::absolute(d.path);
+      e.inputs = {d.path};
+    }
+    e.evaluation.mode = io::EvaluationSpec::Mode::depth;
+    e.evaluation.depth = params.depth;
+    e.perturbation.reset();
+    if (perturbed(d, params))
+      e.perturbation = io::PerturbationSpec{.amplitude = params.amplitude,
+                                            .seed = params.seed,
+                                            .values = params.values,
+                                            .keep_vertices = d.perturbation.keep_vertices,
+                                            .fractal_curves = std::nullopt};
+    e.render.width = 1024;
+    e.render.height = 768;
+    e.render.control_net = true;
+    return e;
+  }
   io::Experiment e;
   e.name = s.document.path.stem().string();
   if (s.document.kind == Kind::mesh) {
@@ -266,10 +379,10 @@ io::Experiment as_experiment(const Session& s, const Params& params) {
       throw InvalidInput("depth " + std::to_string(params.depth) + " is outside 0.." + std::to_string(high));
     e.shape = edited_shape(s.document, params);
     e.evaluation.depth = params.depth;
-    if (params.amplitude != 0)
+    if (perturbed(d, params))
       e.perturbation = io::PerturbationSpec{.amplitude = params.amplitude,
                                             .seed = params.seed,
-                                            .values = {},
+                                            .values = params.values,
                                             .keep_vertices = true,
                                             .fractal_curves = std::nullopt};
   }
@@ -354,7 +467,7 @@ Response route(Session& s, const Request& r) {
     if (ticket != s.latest) return {204, "text/plain; charset=utf-8", ""};
     const std::scoped_lock lock(s.document_mutex);
     return {200, "application/octet-stream",
-            encode_geometry(geometry(s.document, parse_params(s.document, body, path), s.limits))};
+            encode_geometry(geometry(s.document, parse_params(s.document, body, path), s.limits, &s.cache))};
   }
   if (r.method == "POST" && path == "/api/save") {
     const std::scoped_lock lock(s.document_mutex);
@@ -372,9 +485,11 @@ Response route(Session& s, const Request& r) {
     const json body = parse_body(r, path);
     if (!body.contains("name") || !body.at("name").is_string())
       throw Refusal{400, path + ": name is missing"};
-    Document d = open_document(in_folder(s, body.at("name").get<std::string>(), path));
+    Document d = open_document(in_folder(s, body.at("name").get<std::string>(), path), s.limits);
+    const std::scoped_lock evaluating(s.evaluating);  // the cache belongs to the geometry requests
     const std::scoped_lock lock(s.document_mutex);
     s.document = std::move(d);
+    s.cache = {};
     return json_response(document_json(s));
   }
   throw Refusal{404, r.method + " " + path + ": no such request"};
@@ -394,7 +509,7 @@ std::string random_token() {
 }
 
 void open_session(Session& session, const std::filesystem::path& path, const std::string& host, int port) {
-  session.document = open_document(path);
+  session.document = open_document(path, session.limits);
   session.folder = std::filesystem::absolute(path).parent_path();
   session.token = random_token();
   const std::string p = ":" + std::to_string(port);
@@ -409,6 +524,8 @@ Response handle(Session& session, const Request& request) {
     return route(session, request);
   } catch (const Refusal& e) {
     return text(e.status, "cifs view: " + e.message);
+  } catch (const ifs::NotContractive& e) {  // the page shows it as the edit's contractivity, not a failure
+    return text(422, std::string("cifs view: ") + e.what());
   } catch (const InvalidInput& e) {
     return text(400, std::string("cifs view: ") + e.what());
   } catch (const IoError& e) {

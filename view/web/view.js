@@ -110,7 +110,12 @@
     states = g.states;
     colors = new THREE.BufferAttribute(new Float32Array(g.positions.length).fill(0.6), 3);
     geometry.setAttribute('color', colors);
-    if (g.header.kind === 'curve') {
+    if (g.header.pieces > 0) { // a BC-IFS: piece i is the segment from point i to point pieces + i
+      const n = g.header.pieces, index = new Uint32Array(2 * n);
+      for (let i = 0; i < n; ++i) { index[2 * i] = i; index[2 * i + 1] = n + i; }
+      geometry.setIndex(new THREE.BufferAttribute(index, 1));
+      shapeObject = new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ vertexColors: THREE.VertexColors }));
+    } else if (g.header.kind === 'curve') {
       shapeObject = new (g.header.closed ? THREE.LineLoop : THREE.Line)(geometry, new THREE.LineBasicMaterial({ vertexColors: THREE.VertexColors }));
     } else {
       geometry.setIndex(new THREE.BufferAttribute(g.header.grid[0] > 0 ? gridTriangles(g.header.grid) : g.triangles, 1));
@@ -143,7 +148,16 @@
     view.net = Array.from(g.net);
     view.pointCount = g.positions.length / 3;
     view.checksum = g.checksum;
+    const c = g.header.contraction;
+    contractivity(c && c.m > 0 ? 'contractive: δ = ' + c.delta.toFixed(6) + ' over ' + c.m + '-step paths' : '', false);
     draw();
+  }
+  /// The contractivity of the last edit: the runner's figure, or the library's refusal (status 422).
+  function contractivity(text, refused) {
+    $('contraction').textContent = text;
+    $('contraction').className = refused ? 'error' : '';
+    view.contractive = !refused;
+    view.contraction = text;
   }
 
   // --- requests ---
@@ -162,6 +176,13 @@
     try {
       const r = await fetch(api('geometry'), { method: 'POST', body: body(), signal: mine.signal });
       if (r.status === 204) return; // superseded by a newer edit
+      if (r.status === 422) { // not contractive: the geometry stays, the edit is shown as refused
+        const message = (await r.text()).trim();
+        contractivity(message.replace(/^cifs view: /, ''), true);
+        status('not contractive: the last contractive geometry is shown', true);
+        view.ready = true;
+        return;
+      }
       if (!r.ok) { status((await r.text()).trim(), true); view.ready = true; return; }
       const g = parse(await r.arrayBuffer());
       if (mine !== controller) return;
@@ -205,6 +226,7 @@
       $('panel').append(label, select);
     }
     if (doc.ranges.levels) slider('levels', doc.ranges.levels, params.levels);
+    if (doc.coefficients && doc.coefficients.length) coefficients();
     if (doc.ranges.amplitude) { // the shape's BC-IFS, its free coefficients perturbed (an experiment's "perturbation")
       slider('amplitude', doc.ranges.amplitude, params.amplitude, 0.005);
       const label = document.createElement('label');
@@ -214,9 +236,40 @@
       seed.addEventListener('change', () => { params.seed = Math.max(0, Math.floor(Number(seed.value))); refresh(false); });
       $('panel').append(label, seed);
     }
+    if (doc.refusal) contractivity(doc.refusal, true);
     const stem = doc.name.replace(/\.[^.]*$/, '');
     $('save-name').value = stem + '-edited.' + (doc.kind === 'mesh' ? 'obj' : 'json');
+    view.document = doc;
+    view.params = params;
     $('render-name').value = stem + '-edited.png';
+  }
+  /// The free coefficients by name, each a slider over its admissible range (docs/view.md).
+  function coefficients() {
+    const box = document.createElement('details');
+    box.open = true;
+    const summary = document.createElement('summary');
+    summary.textContent = doc.coefficients.length + ' free coefficients' +
+      (doc.free_coefficients > doc.coefficients.length ? ' (of ' + doc.free_coefficients + ')' : '');
+    box.append(summary);
+    for (const c of doc.coefficients) {
+      const value = c.name in params.values ? params.values[c.name] : c.value;
+      const label = document.createElement('label');
+      const show = (v) => { label.textContent = c.name + ' ' + Number(v).toPrecision(6) + '  [' + c.low.toPrecision(4) + ', ' + c.high.toPrecision(4) + ']'; };
+      show(value);
+      const input = document.createElement('input');
+      const step = (c.high - c.low) / 1000 || 1e-6;
+      Object.assign(input, { type: 'range', min: c.low, max: c.high, step, value, id: 'coef:' + c.name });
+      input.title = c.capped ? 'admissible range (an end is the search cap)' : 'admissible range: contractive at both ends';
+      input.addEventListener('input', () => {
+        // A range input rounds to its steps from min: the ends are sent as they are.
+        const v = Number(input.value);
+        params.values = Object.assign({}, params.values, { [c.name]: Math.min(c.high, Math.max(c.low, v)) });
+        show(v);
+        refresh(false);
+      });
+      box.append(label, input);
+    }
+    $('panel').append(box);
   }
   async function save() {
     const r = await fetch(api('save'), { method: 'POST', body: body({ name: $('save-name').value }) });
@@ -278,7 +331,7 @@
     return [r.left + ((p.x + 1) / 2) * r.width, r.top + ((1 - p.y) / 2) * r.height];
   };
   canvas.addEventListener('pointerdown', (event) => {
-    if (!netPoints || window.cifsBaked) return;
+    if (!netPoints || window.cifsBaked || doc.points_editable === false) return;
     // The nearest control point within 10 pixels.
     let best = -1, bestDistance = 10;
     const n = netPoints.geometry.getAttribute('position').count;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cifs/automata/automaton.hpp"
+#include "cifs/errors.hpp"
 #include "cifs/types.hpp"
 
 namespace cifs::ifs {
@@ -77,7 +78,17 @@ struct Contraction {
   int radius_length = 0;  // the k that gives `radius`
 };
 
-/// Finds the smallest m ≤ `max_length` with δ_m < 1. Throws InvalidInput naming the state and the
+/// What contraction (and perturb) throw for a system that does not shrink nets: an InvalidInput whose
+/// message names the state and path, with the figure itself for callers that show it (cifs view).
+class NotContractive : public InvalidInput {
+ public:
+  NotContractive(const std::string& what, double worst_delta, int path_length)
+      : InvalidInput(what), delta(worst_delta), length(path_length) {}
+  double delta;  // δ_m of the worst path of the longest length tried (≥ 1)
+  int length;    // that length m (ContractionOptions::max_length)
+};
+
+/// Finds the smallest m ≤ `max_length` with δ_m < 1. Throws NotContractive naming the state and the
 /// path that fails when there is none ("not contractive: the 8-step products from state 3 do not
 /// shrink nets (δ = 1 along the path 0 0 0 0 0 0 0 0 …)"), instead of letting iteration diverge.
 Contraction contraction(const automata::Automaton& automaton, const ContractionOptions& options = {});

@@ -161,6 +161,10 @@ struct Perturbation {
 /// ≤ 1e-12 and contractive (ifs::contraction), else InvalidInput saying why. Also throws for a
 /// negative or non-finite amplitude and for names in `values` that are not free coefficients.
 Perturbation perturb(const Bcifs& system, const PerturbOptions& options = {});
+/// The same with the system's admissible space solved already (admissible_space(system, options.solve)):
+/// an interactive edit of the amplitude, seed or values re-perturbs without solving the constraints again
+/// (cifs view). `space` must be that system's.
+Perturbation perturb(const Bcifs& system, const AdmissibleSpace& space, const PerturbOptions& options);
 
 /// Start and end functionals of every edge cell (dimension 1) reachable from the initial
 /// entries: ℓ_V·B where B is the cell's boundary operator "start" (or "end") and ℓ_V the fixed

@@ -1,40 +1,114 @@
 // SPDX-License-Identifier: MIT
-// cifs — what `cifs view` shows: a file opened as a document (a curve, a surface or a polygon mesh),
-// its editable parameters, and its geometry as the binary buffers the page draws, computed by the
-// library calls of `cifs attractor` and `cifs subdivide` (no second evaluator).
+// cifs — what `cifs view` shows: a file opened as a document (a curve, a surface, a polygon mesh, a BC-IFS
+// file, or an experiment file on one of them), its editable parameters, and its geometry as the binary
+// buffers the page draws, computed by the library calls of `cifs attractor`, `cifs subdivide` and the
+// experiment runner of `cifs render` (no second evaluator).
 #pragma once
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "cifs/ifs/bcifs.hpp"
+#include "cifs/io/experiment.hpp"
 #include "cifs/io/shape.hpp"
 #include "cifs/mesh.hpp"
 
 namespace cifs::view {
 
-enum class Kind { curve, surface, mesh };
+enum class Kind { curve, surface, mesh, bcifs };
 
-/// "curve", "surface", "mesh".
+/// "curve", "surface", "mesh", "bcifs".
 std::string_view kind_name(Kind kind) noexcept;
+
+/// A BC-IFS ready to be perturbed again and again: the system (a BC-IFS file's, or the one the experiment
+/// runner builds for a curve or surface: ifs::curve_bcifs, ifs::surface_bcifs), its admissible space solved
+/// once (the costly part: 0.25 s for the hills surface), its free coefficients' names and the nets of its
+/// initial entries. An edit of the amplitude, seed or values only re-perturbs (ifs::perturb with the space).
+struct PerturbableSystem {
+  ifs::Bcifs system;
+  ifs::AdmissibleSpace space;
+  std::vector<std::string> names;           // the free coefficients, in the order of space.free
+  std::vector<Points> nets;                 // one per initial entry (homogeneous rows when rational)
+  std::vector<std::array<int, 2>> patches;  // surfaces: the grid place of each initial entry
+  bool rational = false;
+  bool closed = false;  // curves
+};
+
+/// The BC-IFS the runner perturbs for `shape` (curve_scene, surface_scene of the experiment module):
+/// `keep_vertices` as an experiment's perturbation (knot points, knot lines kept).
+std::shared_ptr<const PerturbableSystem> shape_system(const io::Shape& shape, bool keep_vertices);
+
+/// A free coefficient on the page: its name, its value in the opened file (with the file's perturbation),
+/// and its admissible range: the interval around the value found by coefficient_range.
+struct CoefficientRange {
+  std::string name;
+  double value = 0;
+  double low = 0, high = 0;
+  bool capped = false;  // an end is the search's cap (value ± RangeOptions::reach), not a refusal
+};
+
+struct RangeOptions {
+  double reach = 4;              // searched up to this far from the value on each side
+  double first_step = 1.0 / 64;  // the first probe's distance; doubled until a probe is refused
+  int bisections = 10;           // then the step between the last accepted and the first refused is halved
+};
+
+/// The interval of `name`'s values, around its value under `base` (the other coefficients as `base` sets
+/// them), that ifs::perturb accepts — the runner's criterion: the constraints met to 1e-12 and the system
+/// contractive (ifs::contraction, paths up to 8 steps). Probes step away from the value doubling until one
+/// is refused, then bisect: both ends are accepted values, within step/2^bisections of a refused one
+/// (unless capped); the values between are not all probed. InvalidInput when `base` itself is refused.
+CoefficientRange coefficient_range(const PerturbableSystem& system, const std::string& name,
+                                   const ifs::PerturbOptions& base, const RangeOptions& options = {});
 
 /// An opened file: what it holds, as read (the edits live in Params, so the file's own data stays
 /// the reference).
 struct Document {
   std::filesystem::path path;
   Kind kind = Kind::curve;
-  std::optional<io::Shape> shape;  // curve, surface
-  Mesh mesh;                       // mesh
+  std::optional<io::Shape> shape;                  // curve, surface
+  Mesh mesh;                                       // mesh
+  std::shared_ptr<const PerturbableSystem> bcifs;  // bcifs: the file's system
+  /// An experiment file: the experiment as read, and its text (save writes it back with the edits).
+  std::optional<io::Experiment> experiment;
+  std::string experiment_text;
+  /// The perturbation the file gives (an experiment's "perturbation"; none: amplitude 0, seed 1). With
+  /// `perturbed`, the source goes through ifs::perturb even at amplitude 0 and no values, as the runner does.
+  io::PerturbationSpec perturbation;
+  bool perturbed = false;
+  /// The free coefficients shown as sliders, with their ranges (BC-IFS sources: every one, up to
+  /// Limits::max_sliders; shapes: those the experiment sets by name).
+  std::vector<CoefficientRange> coefficients;
+  /// The opened source's contractivity under the file's perturbation: empty when contractive, else the
+  /// library's refusal (the page shows it; every edit is checked again).
+  std::string refusal;
 };
 
-/// Reads `path` (io::detect decides what it holds). InvalidInput for what the view does not show yet
-/// (BC-IFS, experiment and polygon files), naming the file and what to open instead.
-Document open_document(const std::filesystem::path& path);
+/// The admissible ranges of the parameters (the page's sliders), and the size guards behind them.
+struct Limits {
+  int max_depth_curve = 20;
+  int max_depth_surface = 10;
+  int max_depth_bcifs = 20;
+  int max_levels = 6;
+  /// Refused before any work: more points than this (the browser has to hold them).
+  std::size_t max_points = std::size_t{1} << 22;
+  /// A BC-IFS with more free coefficients gets no sliders (their ranges cost ~40 perturbations each).
+  std::size_t max_sliders = 64;
+};
+
+/// Reads `path` (io::detect decides what it holds): a shape, a mesh, a BC-IFS file (with its nets), or an
+/// experiment whose source is a shape or a BC-IFS file. InvalidInput for what the view does not show yet
+/// (polygon files, experiments on meshes, junctions or classic IFS), naming the file and what to open
+/// instead, and for a BC-IFS file without nets.
+Document open_document(const std::filesystem::path& path, const Limits& limits = {});
 
 /// One control point moved: index into the Cartesian control net (the distinct points of a closed
 /// curve; surfaces: row i·nv + j) and its new Cartesian coordinates (as many as the shape's dimension).
@@ -53,15 +127,8 @@ struct Params {
   /// "perturbation": amplitude and seed, knot and end points kept), evaluated by experiment::evaluate.
   double amplitude = 0;
   std::uint64_t seed = 1;
-};
-
-/// The admissible ranges of the parameters (the page's sliders), and the size guards behind them.
-struct Limits {
-  int max_depth_curve = 20;
-  int max_depth_surface = 10;
-  int max_levels = 6;
-  /// Refused before any work: more points than this (the browser has to hold them).
-  std::size_t max_points = std::size_t{1} << 22;
+  /// Free coefficients set by name (an experiment's "values"): BC-IFS files, perturbed shapes.
+  std::map<std::string, double> values;
 };
 
 /// A depth giving about 10^4 points (curves) or 10^4 vertices (surfaces); one level for meshes, with
@@ -86,13 +153,35 @@ struct Geometry {
   std::vector<float> net;                // the (edited) control net's points, x, y, z
   std::vector<std::uint32_t> net_lines;  // the net's edges, index pairs
   std::uint32_t checksum = 0;            // geometry_checksum(positions)
+  /// BC-IFS: the positions are the start points of the `pieces` pieces, then their end points (piece i is
+  /// the segment from point i to point pieces + i: experiment::evaluate's points, the runner's segments).
+  std::uint32_t pieces = 0;
+  /// Perturbed sources and BC-IFS files: the runner's contractivity check (ifs::contraction, paths up to 8
+  /// steps): the path length m and δ_m < 1 it found; 0 when not checked (a NURBS shape).
+  int contraction_length = 0;
+  double contraction_delta = 0;
 };
 
-/// The geometry of the document with `params`: ifs::sample_attractor (curves, with the states of the
-/// pieces; the points of ifs::attractor), ifs::attractor (surfaces), subdivision::subdivide (meshes);
-/// with an amplitude, experiment::evaluate of the perturbed shape (no states), as `cifs render` evaluates it.
-/// InvalidInput (before any work) for a parameter out of `limits`, and as those calls.
-Geometry geometry(const Document& document, const Params& params, const Limits& limits = {});
+/// Whether `params` evaluate the document's source through ifs::perturb (as the runner does for an
+/// experiment with a "perturbation"): an amplitude, a value set by name, or the file's own perturbation.
+bool perturbed(const Document& document, const Params& params);
+
+/// The perturbable system of an edited shape, kept between requests (one per session): an amplitude, seed
+/// or value edit re-perturbs it (ifs::perturb with its solved space); a moved control point builds it again.
+struct SystemCache {
+  std::string key;  // the document and point edits it was built for
+  std::shared_ptr<const PerturbableSystem> system;
+};
+
+/// The geometry of the document with `params`, as experiment::evaluate computes it for the experiment with
+/// that source, depth and perturbation (the same library calls): ifs::sample_attractor (curves, with the
+/// states of the pieces; the points of ifs::attractor), ifs::attractor (surfaces), subdivision::subdivide
+/// (meshes); perturbed: ifs::perturb of the shape's BC-IFS (shape_system, kept in `cache`), then
+/// ifs::sample_attractor (curves) or ifs::quad_mesh (surfaces); BC-IFS files: ifs::perturb when perturbed,
+/// ifs::contraction, ifs::edge_pieces. InvalidInput (before any work) for a parameter out of `limits` or a
+/// value outside its coefficient's range, ifs::NotContractive for a non-contractive edit, and as those calls.
+Geometry geometry(const Document& document, const Params& params, const Limits& limits = {},
+                  SystemCache* cache = nullptr);
 
 /// FNV-1a (32-bit) taken a 32-bit word at a time over the float32 positions (h = (h ^ bits) · 16777619 from
 /// 2166136261): what the page computes on the buffer it received, and a test from the library's points.

@@ -41,6 +41,8 @@ struct Session {
   std::atomic<std::uint64_t> latest{0};
   std::mutex evaluating;
   std::mutex document_mutex;  // open replaces the document
+  /// A perturbed shape's BC-IFS and solved space, kept between geometry requests (under `evaluating`).
+  SystemCache cache;
 };
 
 /// A session for `path`: the document opened, a fresh random token, the hosts of `host`:`port`.
@@ -51,7 +53,8 @@ std::string random_token();
 
 /// Answers one request (routes: docs/view.md). Never throws: refusals are 4xx with a one-line
 /// "cifs view: <where>: <what>" body; 403 for a foreign Host or a missing token, 404 for an unknown
-/// path, 400 for bad JSON or parameters, 413 for a body above max_body.
+/// path, 400 for bad JSON or parameters, 413 for a body above max_body, 422 for an edit that makes the
+/// system non-contractive (the library's message, with δ).
 Response handle(Session& session, const Request& request);
 
 struct ServeOptions {

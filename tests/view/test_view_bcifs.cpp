@@ -1,0 +1,289 @@
+// SPDX-License-Identifier: MIT
+// cifs view on BC-IFS and experiment files, and the perturbed shapes' interactive route: the geometry against
+// experiment::evaluate of the experiment with the same source, depth and perturbation (the runner, read from
+// a file the test writes), the coefficient ranges against ifs::contraction called apart, the request
+// handler's refusals (a value outside its range, a non-finite or unknown one, a non-contractive edit: 422)
+// and save.
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "cifs/errors.hpp"
+#include "cifs/experiment/run.hpp"
+#include "cifs/ifs/analysis.hpp"
+#include "cifs/ifs/bcifs.hpp"
+#include "cifs/io/io.hpp"
+#include "cifs/view/server.hpp"
+#include "support/scratch.hpp"
+
+using namespace cifs;
+
+namespace {
+
+const std::string kBcifsExamples = CIFS_EXAMPLES_DIR;
+
+std::vector<float> bcifs_floats(const Points& points) {
+  std::vector<float> out;
+  for (Eigen::Index i = 0; i < points.rows(); ++i)
+    for (Eigen::Index k = 0; k < 3; ++k)
+      out.push_back(k < points.cols() ? static_cast<float>(points(i, k)) : 0.0F);
+  return out;
+}
+
+/// The runner's points for an experiment file written with this text (experiment::evaluate).
+Points runner_points(const std::filesystem::path& folder, const nlohmann::json& experiment, int depth) {
+  const std::filesystem::path file = folder / "runner.json";
+  std::ofstream(file) << experiment.dump();
+  return experiment::evaluate(io::read_experiment(file), depth).points;
+}
+
+/// Positions equal to the runner's points: float32 of the same doubles (the library's own calls), and to
+/// 1e-12 relative before the conversion where the points are given as doubles.
+void check_same_points(const view::Geometry& g, const Points& expected) {
+  REQUIRE(g.positions.size() == 3 * static_cast<std::size_t>(expected.rows()));
+  CHECK(g.positions == bcifs_floats(expected));
+}
+
+struct BcifsSession {
+  explicit BcifsSession(const std::string& example) {
+    const std::filesystem::path copy = dir.path() / std::filesystem::path(example).filename();
+    std::filesystem::copy_file(kBcifsExamples + "/" + example, copy);
+    view::open_session(session, copy, "127.0.0.1", 8765);
+  }
+  view::Response post(const std::string& path, const std::string& body) {
+    return view::handle(session, {.method = "POST",
+                                  .target = path + "?token=" + session.token,
+                                  .host = "127.0.0.1:8765",
+                                  .body = body});
+  }
+  cifs_test::ScratchDir dir;
+  view::Session session;
+};
+
+}  // namespace
+
+TEST_CASE("view opens a BC-IFS file: its free coefficients by name, their ranges, the runner's pieces",
+          "[view][view_bcifs]") {
+  BcifsSession f("automata/tree.json");
+  const view::Document& d = f.session.document;
+  REQUIRE(d.kind == view::Kind::bcifs);
+  const io::BcifsFile file = io::read_bcifs(d.path);
+  const ifs::AdmissibleSpace space = ifs::admissible_space(file.system);
+  const std::vector<std::string> names = ifs::free_names(file.system, space);
+  REQUIRE(d.coefficients.size() == names.size());  // 10: docs/bcifs.md's hand count
+  CHECK(names.size() == 10);
+  const Eigen::VectorXd values = ifs::free_values(file.system, space);
+  for (std::size_t j = 0; j < names.size(); ++j) {
+    const view::CoefficientRange& r = d.coefficients[j];
+    CHECK(r.name == names[j]);
+    CHECK(r.value == Approx(values(static_cast<Eigen::Index>(j))).epsilon(1e-12));
+    CHECK(r.low <= r.value);
+    CHECK(r.value <= r.high);
+    // Both ends contractive, by the library's check called here on the matrices set apart.
+    for (const double end : {r.low, r.high}) {
+      Eigen::VectorXd c = values;
+      c(static_cast<Eigen::Index>(j)) = end;
+      CHECK_NOTHROW(
+          ifs::contraction(ifs::with_free_values(file.system, space, c).automaton, {.bound = false}));
+    }
+  }
+  SECTION("a range ends where contractivity ends: a refused value within 2^-8 beyond it") {
+    std::size_t checked = 0;
+    for (std::size_t j = 0; j < names.size() && checked < 2; ++j) {
+      const view::CoefficientRange& r = d.coefficients[j];
+      if (r.capped) continue;
+      ++checked;
+      bool refused = false;
+      for (int k = 1; k <= 16 && !refused; ++k) {
+        Eigen::VectorXd c = values;
+        c(static_cast<Eigen::Index>(j)) = r.high + k * (1.0 / 4096);
+        try {
+          (void)ifs::contraction(ifs::with_free_values(file.system, space, c).automaton, {.bound = false});
+        } catch (const ifs::NotContractive&) {
+          refused = true;
+        }
+      }
+      CAPTURE(r.name, r.high);
+      CHECK(refused);
+    }
+    CHECK(checked > 0);
+  }
+  SECTION("the geometry is the runner's: the file as read, then a coefficient set by name") {
+    view::Params p = view::default_params(d);
+    CHECK(p.depth == 8);  // 3^8 = 6,561 pieces, at most 10^4
+    p.depth = 5;
+    const view::Geometry smooth = view::geometry(d, p);
+    check_same_points(smooth, runner_points(f.dir.path(), {{"automaton", d.path.string()}}, 5));
+    CHECK(smooth.pieces == 243);
+    CHECK(smooth.states.size() == 2 * 243);
+    CHECK(smooth.contraction_length > 0);
+    CHECK(smooth.contraction_delta < 1);
+    const view::CoefficientRange& r = d.coefficients[3];
+    p.values = {{r.name, 0.5 * (r.value + r.high)}};
+    const view::Geometry moved = view::geometry(d, p);
+    check_same_points(
+        moved, runner_points(
+                   f.dir.path(),
+                   {{"automaton", d.path.string()},
+                    {"perturbation", {{"amplitude", 0}, {"values", {{r.name, 0.5 * (r.value + r.high)}}}}}},
+                   5));
+    CHECK(moved.checksum != smooth.checksum);
+  }
+}
+
+TEST_CASE("view handle on a BC-IFS file: values refused outside their ranges, 422 when not contractive, save",
+          "[view][view_bcifs]") {
+  BcifsSession f("automata/tree.json");
+  const view::CoefficientRange r = f.session.document.coefficients[3];
+  const auto body = [](const nlohmann::json& params) { return nlohmann::json{{"params", params}}.dump(); };
+  const view::Response ok = f.post("/api/geometry", body({{"depth", 4}, {"values", {{r.name, r.value}}}}));
+  REQUIRE(ok.status == 200);
+  const auto document =
+      nlohmann::json::parse(view::handle(f.session, {.method = "GET",
+                                                     .target = "/api/document?token=" + f.session.token,
+                                                     .host = "127.0.0.1:8765",
+                                                     .body = {}})
+                                .body);
+  CHECK(document["kind"] == "bcifs");
+  CHECK(document["coefficients"].size() == 10);
+  CHECK(document["coefficients"][3]["name"] == r.name);
+
+  const view::Response outside =
+      f.post("/api/geometry", body({{"depth", 4}, {"values", {{r.name, r.high + 0.01}}}}));
+  CHECK(outside.status == 400);
+  CHECK(outside.body.starts_with("cifs view: " + r.name + " = "));
+  CHECK(outside.body.find("outside its admissible range") != std::string::npos);
+  CHECK(std::count(outside.body.begin(), outside.body.end(), '\n') == 1);
+  const view::Response unknown = f.post("/api/geometry", body({{"values", {{"E/Q[0,0]", 0.1}}}}));
+  CHECK(unknown.status == 400);
+  CHECK(unknown.body.find("E/Q[0,0]") != std::string::npos);
+  CHECK(f.post("/api/geometry", R"({"params": {"values": {"E/G[1,0]": 1e400}}})").status == 400);
+  CHECK(f.post("/api/geometry", R"({"params": {"values": {"E/G[1,0]": "0.5"}}})").status == 400);
+  CHECK(f.post("/api/geometry", R"({"params": {"values": [0.5]}})").status == 400);
+  CHECK(f.post("/api/geometry", body({{"depth", 21}})).status == 400);
+  // A random draw of amplitude 0.8 (seed 3) leaves the system non-contractive: 422, the library's δ in the
+  // line.
+  const view::Response refused =
+      f.post("/api/geometry", body({{"depth", 4}, {"amplitude", 0.8}, {"seed", 3}}));
+  CHECK(refused.status == 422);
+  CHECK(refused.body.find("not contractive") != std::string::npos);
+  CHECK(refused.body.find("δ = ") != std::string::npos);
+  CHECK(f.post("/api/geometry", body({{"depth", 4}})).status == 200);  // still serving
+
+  const double edited = 0.5 * (r.value + r.low);
+  const view::Response saved = f.post(
+      "/api/save",
+      nlohmann::json{{"name", "tree-edited.json"}, {"params", {{"values", {{r.name, edited}}}}}}.dump());
+  REQUIRE(saved.status == 200);
+  const io::BcifsFile back = io::read_bcifs(f.dir.path() / "tree-edited.json");
+  const ifs::AdmissibleSpace space = ifs::admissible_space(back.system);
+  CHECK(ifs::free_values(back.system, space)(3) == Approx(edited).epsilon(1e-12));
+  CHECK(back.nets.size() == 1);
+  CHECK(f.post("/api/save",
+               nlohmann::json{{"name", "x.json"}, {"params", {{"values", {{r.name, r.high + 1}}}}}}.dump())
+            .status == 400);
+  CHECK(!std::filesystem::exists(f.dir.path() / "x.json"));
+}
+
+TEST_CASE(
+    "view perturbed shapes: the system built once, an amplitude edit re-perturbs it, the runner's points",
+    "[view][view_bcifs]") {
+  cifs_test::ScratchDir dir;
+  const auto shape_runner = [&](const std::string& shape, double amplitude, std::uint64_t seed, int depth) {
+    return runner_points(
+        dir.path(), {{"shape", shape}, {"perturbation", {{"amplitude", amplitude}, {"seed", seed}}}}, depth);
+  };
+  SECTION("a curve") {
+    const std::string path = kBcifsExamples + "/shapes/wave.json";
+    const view::Document d = view::open_document(path);
+    view::SystemCache cache;
+    view::Params p = view::default_params(d);
+    p.depth = 7;
+    p.amplitude = 0.1;
+    p.seed = 7;
+    const view::Geometry a = view::geometry(d, p, {}, &cache);
+    check_same_points(a, shape_runner(path, 0.1, 7, 7));
+    CHECK(a.states.size() == a.positions.size() / 3);
+    const auto built = cache.system;
+    REQUIRE(built);
+    p.amplitude = 0.2;
+    p.seed = 8;
+    check_same_points(view::geometry(d, p, {}, &cache), shape_runner(path, 0.2, 8, 7));
+    CHECK(cache.system == built);  // re-perturbed, not built again
+    // A moved point: another shape, its system built again.
+    const auto& curve = std::get<nurbs::Curve>(*d.shape);
+    Points cartesian = nurbs::cartesian_points(curve);
+    cartesian(2, 0) += 0.25;
+    p.points = {{.index = 2, .position = {cartesian(2, 0), cartesian(2, 1)}}};
+    const nurbs::Curve moved = nurbs::make_curve(curve.degree, curve.knots, cartesian, nurbs::weights(curve));
+    const std::filesystem::path moved_file = dir.path() / "moved.json";
+    io::write(moved_file, io::Shape(moved));
+    check_same_points(view::geometry(d, p, {}, &cache), shape_runner(moved_file.string(), 0.2, 8, 7));
+    CHECK(cache.system != built);
+  }
+  SECTION("a rational surface (2 × 1 biquadratic patches: small, so that the test stays fast)") {
+    const std::string path = kBcifsExamples + "/shapes/saddle.json";
+    const view::Document d = view::open_document(path);
+    view::SystemCache cache;
+    view::Params p = view::default_params(d);
+    p.depth = 3;
+    p.amplitude = 0.05;
+    const view::Geometry a = view::geometry(d, p, {}, &cache);
+    check_same_points(a, shape_runner(path, 0.05, 1, 3));
+    REQUIRE(a.grid[0] * a.grid[1] == a.positions.size() / 3);
+    CHECK(a.states.size() == a.positions.size() / 3);
+    const auto built = cache.system;
+    p.seed = 2;
+    check_same_points(view::geometry(d, p, {}, &cache), shape_runner(path, 0.05, 2, 3));
+    CHECK(cache.system == built);
+  }
+}
+
+TEST_CASE(
+    "view opens an experiment file: its source, depth and perturbation as the runner's; save writes it back",
+    "[view][view_bcifs]") {
+  cifs_test::ScratchDir dir;
+  const std::filesystem::path file = dir.path() / "wave_fractal.json";
+  const nlohmann::json experiment = {{"name", "wave-fractal"},
+                                     {"shape", kBcifsExamples + "/shapes/wave.json"},
+                                     {"perturbation", {{"amplitude", 0.3}, {"seed", 7}}},
+                                     {"evaluation", {{"depth", 6}}},
+                                     {"render", {{"width", 300}, {"height", 200}}},
+                                     {"outputs", {{"png", "wave_fractal.png"}}}};
+  std::ofstream(file) << experiment.dump(2);
+  view::Session session;
+  view::open_session(session, file, "127.0.0.1", 8765);
+  const view::Document& d = session.document;
+  CHECK(d.kind == view::Kind::curve);
+  REQUIRE(d.experiment);
+  const view::Params p = view::default_params(d);
+  CHECK(p.depth == 6);
+  CHECK(p.amplitude == 0.3);
+  CHECK(p.seed == 7);
+  check_same_points(view::geometry(d, p), experiment::evaluate(io::read_experiment(file)).points);
+  const auto post = [&](const std::string& path, const nlohmann::json& body) {
+    return view::handle(session, {.method = "POST",
+                                  .target = path + "?token=" + session.token,
+                                  .host = "127.0.0.1:8765",
+                                  .body = body.dump()});
+  };
+  const view::Response saved =
+      post("/api/save",
+           {{"name", "wave-edited.json"}, {"params", {{"amplitude", 0.2}, {"seed", 9}, {"depth", 5}}}});
+  REQUIRE(saved.status == 200);
+  const io::Experiment back = io::read_experiment(dir.path() / "wave-edited.json");
+  REQUIRE(back.perturbation);
+  CHECK(back.perturbation->amplitude == 0.2);
+  CHECK(back.perturbation->seed == 9);
+  CHECK(back.evaluation.depth == 5);
+  CHECK(back.render.width == 300);  // the rest as written
+  CHECK(back.outputs.png == "wave_fractal.png");
+  CHECK(post("/api/save", {{"name", "x.json"}, {"params", {{"points", {{0, 1, 2}}}}}}).status == 400);
+  // Experiments on other sources are named and refused.
+  CHECK_THROWS_WITH(view::open_document(kBcifsExamples + "/experiments/fern.json"),
+                    Catch::Contains("an experiment on a classic IFS"));
+}
