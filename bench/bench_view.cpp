@@ -83,8 +83,11 @@ void runner_amplitude(benchmark::State& state, const char* example, int depth, d
   e.shape = cifs::io::read_shape(std::string(CIFS_EXAMPLES_DIR) + "/shapes/" + example);
   int k = 0;
   for (auto _ : state) {
-    e.perturbation = cifs::io::PerturbationSpec{
-        .amplitude = amplitude * (1 + 1e-3 * (k++ % 16)), .seed = 1, .values = {}, .keep_vertices = true};
+    e.perturbation = cifs::io::PerturbationSpec{.amplitude = amplitude * (1 + 1e-3 * (k++ % 16)),
+                                                .seed = 1,
+                                                .values = {},
+                                                .keep_vertices = true,
+                                                .fractal_curves = std::nullopt};
     benchmark::DoNotOptimize(cifs::experiment::evaluate(e, depth).points.data());
   }
 }
