@@ -598,8 +598,12 @@ void bind_bcifs_io(py::module_& m) {
   // Python type, not `cifs::io::BcifsFile`.
   py::reinterpret_borrow<py::class_<ifs::FractalFit>>(py::type::of<ifs::FractalFit>())
       .def_property_readonly(
-          "file", [](const ifs::FractalFit& f) { return io::BcifsFile{f.system, f.nets}; },
-          "System and nets as a cifs.io.BcifsFile: cifs.io.write('fit.json', fit.file) writes a BC-IFS file.");
+          "file",
+          [](const ifs::FractalFit& f) {
+            return io::BcifsFile{f.system, f.nets};
+          },
+          "System and nets as a cifs.io.BcifsFile: cifs.io.write('fit.json', fit.file) writes a BC-IFS "
+          "file.");
   m.def("read_bcifs", &io::read_bcifs, py::arg("path"),
         "Reads a BC-IFS file (docs/formats.md) into a BcifsFile. Raises cifs.IoError (unreadable file, JSON "
         "syntax) or cifs.InvalidInput (content, with its JSON path).");
