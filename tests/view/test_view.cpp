@@ -18,21 +18,13 @@
 #include "cifs/subdivision/mesh.hpp"
 #include "cifs/view/server.hpp"
 #include "support/scratch.hpp"
+#include "view/page_floats.hpp"
 
 using namespace cifs;
 
 namespace {
 
 const std::string kExamples = CIFS_EXAMPLES_DIR;
-
-/// The floats the page receives, from a library result computed apart.
-std::vector<float> as_floats(const Points& points) {
-  std::vector<float> out;
-  for (Eigen::Index i = 0; i < points.rows(); ++i)
-    for (Eigen::Index k = 0; k < 3; ++k)
-      out.push_back(k < points.cols() ? static_cast<float>(points(i, k)) : 0.0F);
-  return out;
-}
 
 /// A session on a copy of `example` in a scratch folder, answering Host "127.0.0.1:8765".
 struct Fixture {
@@ -75,11 +67,11 @@ TEST_CASE("view geometry is the library's: curves, surfaces, meshes", "[view]") 
     p.depth = 6;
     const view::Geometry g = view::geometry(d, p);
     const auto& curve = std::get<nurbs::Curve>(*d.shape);
-    CHECK(g.positions == as_floats(ifs::attractor(curve, 6)));
+    CHECK(g.positions == cifs_test::page_floats(ifs::attractor(curve, 6)));
     CHECK(g.states.size() == g.positions.size() / 3);
     CHECK(!g.closed);
     CHECK(g.checksum == view::geometry_checksum(g.positions));
-    CHECK(g.net == as_floats(nurbs::cartesian_points(curve)));
+    CHECK(g.net == cifs_test::page_floats(nurbs::cartesian_points(curve)));
   }
   SECTION("a moved control point: the curve made with that point, its weight kept") {
     const view::Document d = view::open_document(kExamples + "/shapes/wave.json");
@@ -92,7 +84,7 @@ TEST_CASE("view geometry is the library's: curves, surfaces, meshes", "[view]") 
     view::Params p = view::default_params(d);
     p.depth = 5;
     p.points = {{.index = 2, .position = moved}};
-    CHECK(view::geometry(d, p).positions == as_floats(ifs::attractor(by_hand, 5)));
+    CHECK(view::geometry(d, p).positions == cifs_test::page_floats(ifs::attractor(by_hand, 5)));
     p.points = {{.index = 99, .position = moved}};
     CHECK_THROWS_WITH(view::geometry(d, p), Catch::Contains("point 99") && Catch::Contains("control points"));
   }
@@ -103,7 +95,7 @@ TEST_CASE("view geometry is the library's: curves, surfaces, meshes", "[view]") 
     p.depth = 3;
     const view::Geometry g = view::geometry(d, p);
     const Mesh m = ifs::attractor(std::get<nurbs::Surface>(*d.shape), 3);
-    CHECK(g.positions == as_floats(m.vertices));
+    CHECK(g.positions == cifs_test::page_floats(m.vertices));
     CHECK(g.triangles.empty());  // the page makes them from the grid
     REQUIRE(g.grid[0] * g.grid[1] == g.positions.size() / 3);
     for (std::size_t f = 0; f < m.states.size(); ++f) {  // the grid's cells are the mesh's faces
@@ -126,7 +118,7 @@ TEST_CASE("view geometry is the library's: curves, surfaces, meshes", "[view]") 
     p.levels = 2;
     const view::Geometry g = view::geometry(d, p);
     const Mesh m = subdivision::catmull_clark(d.mesh, 2);
-    CHECK(g.positions == as_floats(m.vertices));
+    CHECK(g.positions == cifs_test::page_floats(m.vertices));
     CHECK(g.triangles.size() == 3 * 2 * (m.face_offsets.size() - 1));
     CHECK(g.net_lines.size() == 2 * 12);  // the cube's 12 edges, once each
   }

@@ -19,20 +19,13 @@
 #include "cifs/io/io.hpp"
 #include "cifs/view/server.hpp"
 #include "support/scratch.hpp"
+#include "view/page_floats.hpp"
 
 using namespace cifs;
 
 namespace {
 
 const std::string kBcifsExamples = CIFS_EXAMPLES_DIR;
-
-std::vector<float> bcifs_floats(const Points& points) {
-  std::vector<float> out;
-  for (Eigen::Index i = 0; i < points.rows(); ++i)
-    for (Eigen::Index k = 0; k < 3; ++k)
-      out.push_back(k < points.cols() ? static_cast<float>(points(i, k)) : 0.0F);
-  return out;
-}
 
 /// The runner's points for an experiment file written with this text (experiment::evaluate).
 Points runner_points(const std::filesystem::path& folder, const nlohmann::json& experiment, int depth) {
@@ -45,7 +38,7 @@ Points runner_points(const std::filesystem::path& folder, const nlohmann::json& 
 /// 1e-12 relative before the conversion where the points are given as doubles.
 void check_same_points(const view::Geometry& g, const Points& expected) {
   REQUIRE(g.positions.size() == 3 * static_cast<std::size_t>(expected.rows()));
-  CHECK(g.positions == bcifs_floats(expected));
+  CHECK(g.positions == cifs_test::page_floats(expected));
 }
 
 struct BcifsSession {
