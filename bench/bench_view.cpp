@@ -13,25 +13,32 @@
 
 namespace {
 
-void edit(benchmark::State& state, const char* example, int depth) {
+/// Geometry requests on a session of examples/shapes/`example`, the body of each from `body(k)` (a new edit
+/// every time, as a drag or a slider sends).
+template <class Body>
+void requests(benchmark::State& state, const char* example, Body body) {
   cifs::view::Session session;
   cifs::view::open_session(session, std::string(CIFS_EXAMPLES_DIR) + "/shapes/" + example, "127.0.0.1", 8765);
-  double x = 0.5;
+  int k = 0;
   std::size_t bytes = 0;
   for (auto _ : state) {
-    x += 1e-3;  // a new edit every time, as a drag sends
-    const std::string body = "{\"params\": {\"depth\": " + std::to_string(depth) + ", \"points\": [[2, " +
-                             std::to_string(x) + ", 0.5, 0.5]]}}";
     const cifs::view::Response r =
         cifs::view::handle(session, {.method = "POST",
                                      .target = "/api/geometry?token=" + session.token,
                                      .host = "127.0.0.1:8765",
-                                     .body = body});
+                                     .body = body(++k)});
     if (r.status != 200) state.SkipWithError(r.body.c_str());
     bytes = r.body.size();
     benchmark::DoNotOptimize(r.body.data());
   }
   state.counters["MB"] = static_cast<double>(bytes) / 1e6;
+}
+
+void edit(benchmark::State& state, const char* example, int depth) {
+  requests(state, example, [depth](int k) {
+    return "{\"params\": {\"depth\": " + std::to_string(depth) + ", \"points\": [[2, " +
+           std::to_string(0.5 + 1e-3 * k) + ", 0.5, 0.5]]}}";
+  });
 }
 
 void BM_view_edit_hills_depth7(benchmark::State& state) {
@@ -46,24 +53,10 @@ BENCHMARK(BM_view_edit_cubic_depth16)->Unit(benchmark::kMillisecond)->UseRealTim
 /// The amplitude slider: the shape's BC-IFS perturbed (an experiment's "perturbation"), a new amplitude
 /// with every request, as a slider sends; the depth fixed.
 void amplitude_edit(benchmark::State& state, const char* example, int depth, double amplitude) {
-  cifs::view::Session session;
-  cifs::view::open_session(session, std::string(CIFS_EXAMPLES_DIR) + "/shapes/" + example, "127.0.0.1", 8765);
-  int k = 0;
-  std::size_t bytes = 0;
-  for (auto _ : state) {
-    const double a = amplitude * (1 + 1e-3 * (k++ % 16));  // a new value every time
-    const std::string body =
-        "{\"params\": {\"depth\": " + std::to_string(depth) + ", \"amplitude\": " + std::to_string(a) + "}}";
-    const cifs::view::Response r =
-        cifs::view::handle(session, {.method = "POST",
-                                     .target = "/api/geometry?token=" + session.token,
-                                     .host = "127.0.0.1:8765",
-                                     .body = body});
-    if (r.status != 200) state.SkipWithError(r.body.c_str());
-    bytes = r.body.size();
-    benchmark::DoNotOptimize(r.body.data());
-  }
-  state.counters["MB"] = static_cast<double>(bytes) / 1e6;
+  requests(state, example, [depth, amplitude](int k) {
+    return "{\"params\": {\"depth\": " + std::to_string(depth) +
+           ", \"amplitude\": " + std::to_string(amplitude * (1 + 1e-3 * (k % 16))) + "}}";
+  });
 }
 
 void BM_view_amplitude_hills_depth6(benchmark::State& state) {

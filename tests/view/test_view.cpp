@@ -18,33 +18,13 @@
 #include "cifs/subdivision/mesh.hpp"
 #include "cifs/view/server.hpp"
 #include "support/scratch.hpp"
-#include "view/page_floats.hpp"
+#include "view/view_support.hpp"
 
 using namespace cifs;
 
 namespace {
 
 const std::string kExamples = CIFS_EXAMPLES_DIR;
-
-/// A session on a copy of `example` in a scratch folder, answering Host "127.0.0.1:8765".
-struct Fixture {
-  explicit Fixture(const std::string& example) {
-    const std::filesystem::path copy = dir.path() / std::filesystem::path(example).filename();
-    std::filesystem::copy_file(kExamples + "/" + example, copy);
-    view::open_session(session, copy, "127.0.0.1", 8765);
-  }
-  view::Response get(const std::string& target, const std::string& host = "127.0.0.1:8765") {
-    return view::handle(session, {.method = "GET", .target = target, .host = host, .body = {}});
-  }
-  view::Response post(const std::string& path, const std::string& body) {
-    return view::handle(session, {.method = "POST",
-                                  .target = path + "?token=" + session.token,
-                                  .host = "127.0.0.1:8765",
-                                  .body = body});
-  }
-  cifs_test::ScratchDir dir;
-  view::Session session;
-};
 
 }  // namespace
 
@@ -194,7 +174,7 @@ TEST_CASE("view encode_geometry: header, then the arrays on 4-byte boundaries", 
 }
 
 TEST_CASE("view handle: hostile requests refused with a 4xx, the session still answers", "[view]") {
-  Fixture f("shapes/hills.json");
+  cifs_test::ViewFixture f("shapes/hills.json");
   const std::string q = "?token=" + f.session.token;
   const auto good = [&] {
     const view::Response r = f.post("/api/geometry", R"({"params": {"depth": 2}})");
@@ -260,7 +240,7 @@ TEST_CASE("view handle: hostile requests refused with a 4xx, the session still a
 }
 
 TEST_CASE("view handle: save writes the edited shape into the folder, atomically", "[view]") {
-  Fixture f("shapes/cubic.json");
+  cifs_test::ViewFixture f("shapes/cubic.json");
   const view::Response r =
       f.post("/api/save", R"({"name": "edited.json", "params": {"points": [[1, 0.5, 0.5, 0.5]]}})");
   REQUIRE(r.status == 200);
@@ -271,7 +251,7 @@ TEST_CASE("view handle: save writes the edited shape into the folder, atomically
 }
 
 TEST_CASE("view handle: a geometry request overtaken while it waited is answered 204 unevaluated", "[view]") {
-  Fixture f("shapes/hills.json");
+  cifs_test::ViewFixture f("shapes/hills.json");
   view::Response first, second;
   {
     std::unique_lock hold(f.session.evaluating);  // an evaluation in progress
@@ -301,7 +281,7 @@ TEST_CASE("view export_page writes the page, its geometry and three.js", "[view]
 }
 
 TEST_CASE("view handle: the dimension readout and a render through the experiment runner", "[view]") {
-  Fixture f("shapes/hills.json");
+  cifs_test::ViewFixture f("shapes/hills.json");
   const view::Response d = f.post("/api/dimension", R"({"params": {"depth": 4}})");
   REQUIRE(d.status == 200);
   const auto m = nlohmann::json::parse(d.body);
@@ -315,7 +295,7 @@ TEST_CASE("view handle: the dimension readout and a render through the experimen
   CHECK(magic == "\x89PNG\r\n\x1a\n");
   CHECK(f.post("/api/render", R"({"name": "../hills.png"})").status == 403);
   CHECK(f.post("/api/render", R"({"name": "hills.svg"})").status == 400);
-  Fixture curve("shapes/cubic.json");
+  cifs_test::ViewFixture curve("shapes/cubic.json");
   const auto c = nlohmann::json::parse(curve.post("/api/dimension", R"({"params": {"depth": 10}})").body);
   CHECK(std::abs(c["dimension"].get<double>() - 1.0) <=
         3 * c["uncertainty"].get<double>());  // a smooth curve

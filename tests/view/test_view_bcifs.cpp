@@ -19,7 +19,7 @@
 #include "cifs/io/io.hpp"
 #include "cifs/view/server.hpp"
 #include "support/scratch.hpp"
-#include "view/page_floats.hpp"
+#include "view/view_support.hpp"
 
 using namespace cifs;
 
@@ -41,27 +41,11 @@ void check_same_points(const view::Geometry& g, const Points& expected) {
   CHECK(g.positions == cifs_test::page_floats(expected));
 }
 
-struct BcifsSession {
-  explicit BcifsSession(const std::string& example) {
-    const std::filesystem::path copy = dir.path() / std::filesystem::path(example).filename();
-    std::filesystem::copy_file(kBcifsExamples + "/" + example, copy);
-    view::open_session(session, copy, "127.0.0.1", 8765);
-  }
-  view::Response post(const std::string& path, const std::string& body) {
-    return view::handle(session, {.method = "POST",
-                                  .target = path + "?token=" + session.token,
-                                  .host = "127.0.0.1:8765",
-                                  .body = body});
-  }
-  cifs_test::ScratchDir dir;
-  view::Session session;
-};
-
 }  // namespace
 
 TEST_CASE("view opens a BC-IFS file: its free coefficients by name, their ranges, the runner's pieces",
           "[view][view_bcifs]") {
-  BcifsSession f("automata/tree.json");
+  cifs_test::ViewFixture f("automata/tree.json");
   const view::Document& d = f.session.document;
   REQUIRE(d.kind == view::Kind::bcifs);
   const io::BcifsFile file = io::read_bcifs(d.path);
@@ -130,7 +114,7 @@ TEST_CASE("view opens a BC-IFS file: its free coefficients by name, their ranges
 
 TEST_CASE("view handle on a BC-IFS file: values refused outside their ranges, 422 when not contractive, save",
           "[view][view_bcifs]") {
-  BcifsSession f("automata/tree.json");
+  cifs_test::ViewFixture f("automata/tree.json");
   const view::CoefficientRange r = f.session.document.coefficients[3];
   const auto body = [](const nlohmann::json& params) { return nlohmann::json{{"params", params}}.dump(); };
   const view::Response ok = f.post("/api/geometry", body({{"depth", 4}, {"values", {{r.name, r.value}}}}));
