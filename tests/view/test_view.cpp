@@ -239,14 +239,16 @@ TEST_CASE("view handle: hostile requests refused with a 4xx, the session still a
   good();
 }
 
-TEST_CASE("view handle: a session's edits write over its kept buffers, the bytes of a fresh session's", "[view]") {
+TEST_CASE("view handle: a session's edits write over its kept buffers, the bytes of a fresh session's",
+          "[view]") {
   // One session (its EditCache, surface mesh and Geometry kept between requests) through a sequence — another
   // point, another depth, the perturbed route at the same depth and back, another file of another kind —
   // against each request answered by a session opened afresh for it (nothing kept): the same bytes. The
   // first edit's positions are also ifs::attractor's of the surface moved by hand.
   cifs_test::ViewFixture f("shapes/saddle.json");
   for (const char* other : {"shapes/cubic.json", "meshes/cube.obj"})
-    std::filesystem::copy_file(kExamples + "/" + other, f.dir.path() / std::filesystem::path(other).filename());
+    std::filesystem::copy_file(kExamples + "/" + other,
+                               f.dir.path() / std::filesystem::path(other).filename());
   const auto same_as_fresh = [&](const nlohmann::json& params) {
     CAPTURE(f.session.document.path.filename().string(), params.dump());
     const std::string body = nlohmann::json{{"params", params}}.dump();
@@ -265,8 +267,8 @@ TEST_CASE("view handle: a session's edits write over its kept buffers, the bytes
   const auto& saddle = std::get<nurbs::Surface>(*f.session.document.shape);
   Points cartesian = nurbs::cartesian_points(saddle);
   cartesian.row(1) = Eigen::RowVector3d(0.25, 1.5, 0.75);
-  const nurbs::Surface by_hand = nurbs::make_surface(saddle.degree, saddle.knots, saddle.count, cartesian,
-                                                     nurbs::weights(saddle));
+  const nurbs::Surface by_hand =
+      nurbs::make_surface(saddle.degree, saddle.knots, saddle.count, cartesian, nurbs::weights(saddle));
   CHECK(f.session.geometry.positions == cifs_test::page_floats(ifs::attractor(by_hand, 3).vertices));
   same_as_fresh({{"depth", 3}, {"points", {{2, 0.5, 2, -0.25}}}});  // the mesh's faces kept
   same_as_fresh({{"depth", 4}});

@@ -420,27 +420,32 @@ const Automaton& cached_automaton(const Document& d, const Shape& shape, EditCac
 void curve_geometry(const Document& d, const nurbs::Curve& c, const Params& params, const Limits& limits,
                     EditCache* cache, Geometry& g) {
   std::optional<nurbs::KnotAutomaton> local;
-  const nurbs::KnotAutomaton& a = cached_automaton(d, c, cache, &EditCache::knots, local,
-                                                   [](const nurbs::Curve& x) { return nurbs::knot_automaton(x); });
+  const nurbs::KnotAutomaton& a = cached_automaton(
+      d, c, cache, &EditCache::knots, local, [](const nurbs::Curve& x) { return nurbs::knot_automaton(x); });
   // ifs::attractor's call, with the states of the pieces.
   sample_geometry(a.automaton, nurbs::initial_nets(a, c), params.depth, c.rational, c.closed, limits, g);
 }
 
-/// A quad mesh of ifs::surface_mesh's (or quad_mesh's) grid layout as positions, a state per node and the
-/// grid's size.
-void grid_geometry(const Mesh& mesh, Geometry& g) {
-  const auto n = static_cast<std::size_t>(mesh.vertices.rows());
-  set_xyz(g.positions, mesh.vertices);
+/// A state per node of a quad mesh of ifs::surface_mesh's (or quad_mesh's) grid layout.
+void node_states(const Mesh& mesh, std::vector<std::uint32_t>& states) {
   const std::size_t faces = mesh.face_offsets.size() - 1;
   constexpr std::uint32_t kUnset = 0xffffffffU;
-  g.states.assign(n, kUnset);
+  states.assign(static_cast<std::size_t>(mesh.vertices.rows()), kUnset);
   // Node (I, J) is computed by the leaf of cell (I, J), corner 0 of its quad; the last row and column
   // take a neighbouring leaf's state.
-  for (std::size_t f = 0; f < faces; ++f) g.states[mesh.face_vertices[4 * f]] = mesh.states[f];
+  for (std::size_t f = 0; f < faces; ++f) states[mesh.face_vertices[4 * f]] = mesh.states[f];
   for (std::size_t f = 0; f < faces; ++f)
     for (int k = 1; k < 4; ++k)
-      if (g.states[mesh.face_vertices[4 * f + k]] == kUnset)
-        g.states[mesh.face_vertices[4 * f + k]] = mesh.states[f];
+      if (states[mesh.face_vertices[4 * f + k]] == kUnset)
+        states[mesh.face_vertices[4 * f + k]] = mesh.states[f];
+}
+
+/// A quad mesh of ifs::surface_mesh's (or quad_mesh's) grid layout as positions and the grid's size (the
+/// states: node_states).
+void grid_geometry(const Mesh& mesh, Geometry& g) {
+  const auto n = static_cast<std::size_t>(mesh.vertices.rows());
+  const std::size_t faces = mesh.face_offsets.size() - 1;
+  set_xyz(g.positions, mesh.vertices);
   // The faces are the grid's cells (ifs::surface_mesh's layout: node (I, J) is vertex I·cols + J, face 0
   // has the corners 0, cols, cols + 1, 1): the page makes the triangles from the grid's size once per
   // depth, and the 6 indices per cell are not sent with every edit.
@@ -452,9 +457,9 @@ void grid_geometry(const Mesh& mesh, Geometry& g) {
 }
 
 /// Meshes a surface by `route` (ifs::surface_mesh or ifs::quad_mesh, called with the mesh and options)
-/// into the cache's mesh — its storage reused, its faces and states kept when the same route made them at
-/// the same depth for this document (they depend on the automaton's graph and the depth, not on the nets)
-/// — or into a fresh one, then writes the grid into g.
+/// into the cache's mesh — its storage reused, its faces and states (and the node states made from them)
+/// kept when the same route made them at the same depth for this document (they depend on the automaton's
+/// graph and the depth, not on the nets) — or into a fresh one, then writes the grid into g.
 template <class Route>
 void cached_grid(const Document& d, std::string_view route_name, int depth, ifs::MeshOptions options,
                  EditCache* cache, Geometry& g, Route route) {
@@ -462,14 +467,17 @@ void cached_grid(const Document& d, std::string_view route_name, int depth, ifs:
     Mesh mesh;
     route(mesh, options);
     grid_geometry(mesh, g);
+    node_states(mesh, g.states);
     return;
   }
   const std::string key = document_key(d) + "|" + std::string(route_name) + "|" + std::to_string(depth);
   options.keep_faces = cache->mesh_key == key;
   cache->mesh_key.clear();  // until the mesh is whole again (a refusal mid-way leaves vertices half written)
   route(cache->mesh, options);
+  if (!options.keep_faces) node_states(cache->mesh, cache->node_states);
   cache->mesh_key = key;
   grid_geometry(cache->mesh, g);
+  g.states = cache->node_states;  // into g's storage: a copy, no allocation at the same size
 }
 
 /// ifs::attractor's calls for a surface (its tensor automaton, nets and separable mesh).
@@ -725,8 +733,9 @@ std::string encode_geometry(const Geometry& g) {
   std::string out;
   // One allocation of the whole size, each part copied once (appending to a growing string copied the
   // megabytes already there at every reallocation, and resize zero-filled them before the copy).
-  out.reserve(12 + text.size() +
-              4 * (g.positions.size() + g.triangles.size() + g.states.size() + g.net.size() + g.net_lines.size()));
+  out.reserve(
+      12 + text.size() +
+      4 * (g.positions.size() + g.triangles.size() + g.states.size() + g.net.size() + g.net_lines.size()));
   out += "CIFSVIEW";
   const auto length = static_cast<std::uint32_t>(text.size());
   out.append(reinterpret_cast<const char*>(&length), 4);

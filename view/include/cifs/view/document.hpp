@@ -176,15 +176,17 @@ bool perturbed(const Document& document, const Params& params);
 /// - a perturbed shape's system: an amplitude, seed or value edit re-perturbs it (ifs::perturb with its
 ///   solved space); a moved control point builds it again;
 /// - the last surface mesh: its storage reused, and its faces and states kept (ifs::MeshOptions::
-///   keep_faces) when the route and depth are those they were made for.
+///   keep_faces), with the state per node made from them, when the route and depth are those they were
+///   made for.
 struct EditCache {
-  std::string automaton_key;                       // the document `knots` or `tensor` was built for
-  std::optional<nurbs::KnotAutomaton> knots;       // curves
-  std::optional<nurbs::TensorAutomaton> tensor;    // surfaces
-  std::string key;                                 // the document and point edits `system` was built for
+  std::string automaton_key;                     // the document `knots` or `tensor` was built for
+  std::optional<nurbs::KnotAutomaton> knots;     // curves
+  std::optional<nurbs::TensorAutomaton> tensor;  // surfaces
+  std::string key;                               // the document and point edits `system` was built for
   std::shared_ptr<const PerturbableSystem> system;
   std::string mesh_key;  // the document, route and depth of `mesh`'s faces; empty: none kept
   Mesh mesh;
+  std::vector<std::uint32_t> node_states;  // of `mesh`'s grid nodes (Geometry::states)
 };
 
 /// The geometry of the document with `params`, as experiment::evaluate computes it for the experiment with
