@@ -239,6 +239,50 @@ TEST_CASE("view handle: hostile requests refused with a 4xx, the session still a
   good();
 }
 
+TEST_CASE("view handle: a session's edits write over its kept buffers, the bytes of a fresh session's",
+          "[view]") {
+  // One session (its EditCache, surface mesh and Geometry kept between requests) through a sequence — another
+  // point, another depth, the perturbed route at the same depth and back, another file of another kind —
+  // against each request answered by a session opened afresh for it (nothing kept): the same bytes. The
+  // first edit's positions are also ifs::attractor's of the surface moved by hand.
+  cifs_test::ViewFixture f("shapes/saddle.json");
+  for (const char* other : {"shapes/cubic.json", "meshes/cube.obj"})
+    std::filesystem::copy_file(kExamples + "/" + other,
+                               f.dir.path() / std::filesystem::path(other).filename());
+  const auto same_as_fresh = [&](const nlohmann::json& params) {
+    CAPTURE(f.session.document.path.filename().string(), params.dump());
+    const std::string body = nlohmann::json{{"params", params}}.dump();
+    const view::Response kept = f.post("/api/geometry", body);
+    REQUIRE(kept.status == 200);
+    view::Session fresh;
+    view::open_session(fresh, f.session.document.path, "127.0.0.1", 8765);
+    const view::Response alone = view::handle(fresh, {.method = "POST",
+                                                      .target = "/api/geometry?token=" + fresh.token,
+                                                      .host = "127.0.0.1:8765",
+                                                      .body = body});
+    REQUIRE(alone.status == 200);
+    CHECK(kept.body == alone.body);
+  };
+  same_as_fresh({{"depth", 3}, {"points", {{1, 0.25, 1.5, 0.75}}}});
+  const auto& saddle = std::get<nurbs::Surface>(*f.session.document.shape);
+  Points cartesian = nurbs::cartesian_points(saddle);
+  cartesian.row(1) = Eigen::RowVector3d(0.25, 1.5, 0.75);
+  const nurbs::Surface by_hand =
+      nurbs::make_surface(saddle.degree, saddle.knots, saddle.count, cartesian, nurbs::weights(saddle));
+  CHECK(f.session.geometry.positions == cifs_test::page_floats(ifs::attractor(by_hand, 3).vertices));
+  same_as_fresh({{"depth", 3}, {"points", {{2, 0.5, 2, -0.25}}}});  // the mesh's faces kept
+  same_as_fresh({{"depth", 4}});
+  same_as_fresh({{"depth", 4}, {"amplitude", 0.05}});  // the generic route at the depth of the kept mesh
+  same_as_fresh({{"depth", 4}, {"points", {{1, 0.25, 1.5, 0.75}}}});
+  same_as_fresh({{"depth", 2}, {"amplitude", 0.05}, {"seed", 2}});
+  REQUIRE(f.post("/api/open", R"({"name": "cubic.json"})").status == 200);
+  same_as_fresh({{"depth", 6}});
+  same_as_fresh({{"depth", 6}, {"points", {{1, 1, 2.5, 0}}}});
+  same_as_fresh({{"depth", 5}, {"amplitude", 0.1}});
+  REQUIRE(f.post("/api/open", R"({"name": "cube.obj"})").status == 200);
+  same_as_fresh({{"levels", 1}});  // no states: a mesh after a curve
+}
+
 TEST_CASE("view handle: save writes the edited shape into the folder, atomically", "[view]") {
   cifs_test::ViewFixture f("shapes/cubic.json");
   const view::Response r =

@@ -177,7 +177,7 @@ TEST_CASE(
   SECTION("a curve") {
     const std::string path = kBcifsExamples + "/shapes/wave.json";
     const view::Document d = view::open_document(path);
-    view::SystemCache cache;
+    view::EditCache cache;
     view::Params p = view::default_params(d);
     p.depth = 7;
     p.amplitude = 0.1;
@@ -205,7 +205,7 @@ TEST_CASE(
   SECTION("a rational surface (2 × 1 biquadratic patches: small, so that the test stays fast)") {
     const std::string path = kBcifsExamples + "/shapes/saddle.json";
     const view::Document d = view::open_document(path);
-    view::SystemCache cache;
+    view::EditCache cache;
     view::Params p = view::default_params(d);
     p.depth = 3;
     p.amplitude = 0.05;

@@ -8,8 +8,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <variant>
 
@@ -22,7 +25,6 @@
 #include "cifs/ifs/bcifs_surface.hpp"
 #include "cifs/ifs/mesh.hpp"
 #include "cifs/ifs/sample.hpp"
-#include "cifs/ifs/shape_attractor.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/nurbs/tensor_automaton.hpp"
@@ -49,14 +51,23 @@ void append_xyz(std::vector<float>& out, const Eigen::Ref<const Eigen::RowVector
   for (Eigen::Index k = 0; k < 3; ++k) out.push_back(k < row.size() ? static_cast<float>(row(k)) : 0.0F);
 }
 
-/// The rows of `points` as float x, y, z (z = 0 for 2-D points), in one pass.
-std::vector<float> xyz(const Points& points) {
-  std::vector<float> out(3 * static_cast<std::size_t>(points.rows()), 0.0F);
-  const Eigen::Index dim = std::min<Eigen::Index>(points.cols(), 3);
-  float* o = out.data();
-  for (Eigen::Index i = 0; i < points.rows(); ++i, o += 3)
-    for (Eigen::Index k = 0; k < dim; ++k) o[k] = static_cast<float>(points(i, k));
-  return out;
+/// The rows as float x, y, z (z = 0 for 2-D rows) at `out`, in one pass.
+void write_xyz(const Eigen::Ref<const Points>& rows, float* out) {
+  if (rows.cols() == 3 && rows.outerStride() == 3) {  // contiguous x, y, z: one run, which vectorises
+    const double* in = rows.data();
+    for (Eigen::Index e = 0; e < 3 * rows.rows(); ++e) out[e] = static_cast<float>(in[e]);
+    return;
+  }
+  const Eigen::Index dim = std::min<Eigen::Index>(rows.cols(), 3);
+  for (Eigen::Index i = 0; i < rows.rows(); ++i, out += 3)
+    for (Eigen::Index k = 0; k < 3; ++k) out[k] = k < dim ? static_cast<float>(rows(i, k)) : 0.0F;
+}
+
+/// `positions` set to the points as float x, y, z: storage of the size is written over in place (an
+/// edit's buffer reused: no allocation, no zero fill).
+void set_xyz(std::vector<float>& positions, const Eigen::Ref<const Points>& points) {
+  positions.resize(3 * static_cast<std::size_t>(points.rows()));
+  write_xyz(points, positions.data());
 }
 
 /// Moves stored row `row` to the Cartesian `position`, keeping its weight.
@@ -353,39 +364,88 @@ void check_range(const std::string& who, int value, int high) {
                        " (the view's limit)");
 }
 
-void curve_geometry(const nurbs::Curve& c, const Params& params, const Limits& limits, Geometry& g) {
-  const nurbs::KnotAutomaton a = nurbs::knot_automaton(c);
-  const std::vector<Points> nets = nurbs::initial_nets(a, c);
-  // ifs::attractor's call, with the states of the pieces.
-  const ifs::Sample sample = ifs::sample_attractor(a.automaton, nets,
-                                                   {.depth = params.depth,
-                                                    .homogeneous = c.rational,
-                                                    .closed = c.closed,
-                                                    .states = true,
-                                                    .max_points = limits.max_points,
-                                                    .limit_hint = "; lower the depth"});
-  const auto n = static_cast<std::uint32_t>(sample.points.rows());
-  g.positions = xyz(sample.points);
-  g.states = sample.states;
-  if (!g.states.empty()) g.states.resize(n, g.states.back());  // the end point: its piece's
-  g.closed = c.closed;
+/// The attractor points at the depth with the states of their pieces (ifs::sample_attractor's, chunk by
+/// chunk: for_each_sample_chunk is its route) written as floats straight into g's buffers, with no
+/// whole sample of doubles between; the end point takes its piece's state.
+void sample_geometry(const automata::Automaton& automaton, std::span<const Points> nets, int depth,
+                     bool homogeneous, bool closed, const Limits& limits, Geometry& g) {
+  std::size_t n = 0, at = 0;
+  g.states.clear();
+  ifs::for_each_sample_chunk(
+      automaton, nets,
+      {.depth = depth,
+       .homogeneous = homogeneous,
+       .closed = closed,
+       .states = true,
+       .max_points = limits.max_points,
+       .limit_hint = "; lower the depth"},
+      std::size_t{1} << 16,
+      [&](std::size_t points, int) {
+        n = points;
+        g.positions.resize(3 * n);
+        g.states.reserve(n);
+      },
+      [&](const Eigen::Ref<const Points>& rows, std::span<const std::uint32_t> states) {
+        write_xyz(rows, g.positions.data() + 3 * at);
+        at += static_cast<std::size_t>(rows.rows());
+        g.states.insert(g.states.end(), states.begin(), states.end());
+      });
+  if (!g.states.empty()) g.states.resize(n, g.states.back());
+  g.closed = closed;
 }
 
-/// A quad mesh of ifs::surface_mesh's (or quad_mesh's) grid layout as positions, a state per node and the
-/// grid's size.
-void grid_geometry(const Mesh& mesh, Geometry& g) {
-  const auto n = static_cast<std::size_t>(mesh.vertices.rows());
-  g.positions = xyz(mesh.vertices);
+/// A key naming the document (its path and what the experiment keeps), for the cache's entries.
+std::string document_key(const Document& d) {
+  return d.path.string() + (d.perturbation.keep_vertices ? "|k" : "|f");
+}
+
+/// The automaton of the document's curve or surface: the cache's when built for this document (an edit
+/// moves control points, and knot_automaton and tensor_automaton read only the knots, the degree and
+/// the number of points), else built — into the cache when there is one, else into `local`.
+template <class Automaton, class Shape, class Build>
+const Automaton& cached_automaton(const Document& d, const Shape& shape, EditCache* cache,
+                                  std::optional<Automaton> EditCache::*slot, std::optional<Automaton>& local,
+                                  Build build) {
+  if (cache == nullptr) return local.emplace(build(shape));
+  if (cache->automaton_key != document_key(d) || !(cache->*slot)) {
+    cache->knots.reset();
+    cache->tensor.reset();
+    cache->automaton_key.clear();
+    (cache->*slot).emplace(build(shape));
+    cache->automaton_key = document_key(d);
+  }
+  return *(cache->*slot);
+}
+
+void curve_geometry(const Document& d, const nurbs::Curve& c, const Params& params, const Limits& limits,
+                    EditCache* cache, Geometry& g) {
+  std::optional<nurbs::KnotAutomaton> local;
+  const nurbs::KnotAutomaton& a = cached_automaton(
+      d, c, cache, &EditCache::knots, local, [](const nurbs::Curve& x) { return nurbs::knot_automaton(x); });
+  // ifs::attractor's call, with the states of the pieces.
+  sample_geometry(a.automaton, nurbs::initial_nets(a, c), params.depth, c.rational, c.closed, limits, g);
+}
+
+/// A state per node of a quad mesh of ifs::surface_mesh's (or quad_mesh's) grid layout.
+void node_states(const Mesh& mesh, std::vector<std::uint32_t>& states) {
   const std::size_t faces = mesh.face_offsets.size() - 1;
   constexpr std::uint32_t kUnset = 0xffffffffU;
-  g.states.assign(n, kUnset);
+  states.assign(static_cast<std::size_t>(mesh.vertices.rows()), kUnset);
   // Node (I, J) is computed by the leaf of cell (I, J), corner 0 of its quad; the last row and column
   // take a neighbouring leaf's state.
-  for (std::size_t f = 0; f < faces; ++f) g.states[mesh.face_vertices[4 * f]] = mesh.states[f];
+  for (std::size_t f = 0; f < faces; ++f) states[mesh.face_vertices[4 * f]] = mesh.states[f];
   for (std::size_t f = 0; f < faces; ++f)
     for (int k = 1; k < 4; ++k)
-      if (g.states[mesh.face_vertices[4 * f + k]] == kUnset)
-        g.states[mesh.face_vertices[4 * f + k]] = mesh.states[f];
+      if (states[mesh.face_vertices[4 * f + k]] == kUnset)
+        states[mesh.face_vertices[4 * f + k]] = mesh.states[f];
+}
+
+/// A quad mesh of ifs::surface_mesh's (or quad_mesh's) grid layout as positions and the grid's size (the
+/// states: node_states).
+void grid_geometry(const Mesh& mesh, Geometry& g) {
+  const auto n = static_cast<std::size_t>(mesh.vertices.rows());
+  const std::size_t faces = mesh.face_offsets.size() - 1;
+  set_xyz(g.positions, mesh.vertices);
   // The faces are the grid's cells (ifs::surface_mesh's layout: node (I, J) is vertex I·cols + J, face 0
   // has the corners 0, cols, cols + 1, 1): the page makes the triangles from the grid's size once per
   // depth, and the 6 indices per cell are not sent with every edit.
@@ -396,8 +456,44 @@ void grid_geometry(const Mesh& mesh, Geometry& g) {
   g.grid = {rows, cols};
 }
 
-void surface_geometry(const nurbs::Surface& s, const Params& params, const Limits& limits, Geometry& g) {
-  grid_geometry(ifs::attractor(s, params.depth, ifs::mesh_bytes(limits.max_points, 3, limits.max_points)), g);
+/// Meshes a surface by `route` (ifs::surface_mesh or ifs::quad_mesh, called with the mesh and options)
+/// into the cache's mesh — its storage reused, its faces and states (and the node states made from them)
+/// kept when the same route made them at the same depth for this document (they depend on the automaton's
+/// graph and the depth, not on the nets) — or into a fresh one, then writes the grid into g.
+template <class Route>
+void cached_grid(const Document& d, std::string_view route_name, int depth, ifs::MeshOptions options,
+                 EditCache* cache, Geometry& g, Route route) {
+  if (cache == nullptr) {
+    Mesh mesh;
+    route(mesh, options);
+    grid_geometry(mesh, g);
+    node_states(mesh, g.states);
+    return;
+  }
+  const std::string key = document_key(d) + "|" + std::string(route_name) + "|" + std::to_string(depth);
+  options.keep_faces = cache->mesh_key == key;
+  cache->mesh_key.clear();  // until the mesh is whole again (a refusal mid-way leaves vertices half written)
+  route(cache->mesh, options);
+  if (!options.keep_faces) node_states(cache->mesh, cache->node_states);
+  cache->mesh_key = key;
+  grid_geometry(cache->mesh, g);
+  g.states = cache->node_states;  // into g's storage: a copy, no allocation at the same size
+}
+
+/// ifs::attractor's calls for a surface (its tensor automaton, nets and separable mesh).
+void surface_geometry(const Document& d, const nurbs::Surface& s, const Params& params, const Limits& limits,
+                      EditCache* cache, Geometry& g) {
+  std::optional<nurbs::TensorAutomaton> local;
+  const nurbs::TensorAutomaton& a =
+      cached_automaton(d, s, cache, &EditCache::tensor, local,
+                       [](const nurbs::Surface& x) { return nurbs::tensor_automaton(x); });
+  const std::vector<Points> nets = nurbs::initial_nets(a, s);
+  ifs::MeshOptions options;
+  options.homogeneous = s.rational;
+  options.max_bytes = ifs::mesh_bytes(limits.max_points, 3, limits.max_points);
+  cached_grid(d, "separable", params.depth, options, cache, g, [&](Mesh& mesh, const ifs::MeshOptions& o) {
+    ifs::surface_mesh(a, nets, params.depth, mesh, o);
+  });
 }
 
 /// The control polygon (the distinct points of a closed curve) or the control grid, Cartesian.
@@ -441,7 +537,8 @@ void mesh_geometry(const Document& document, const Params& params, const Limits&
   options.max_bytes = 64 * limits.max_points;  // about 64 bytes per vertex
   const Mesh refined =
       subdivision::subdivide(control, subdivision::named_mesh_scheme(params.scheme), params.levels, options);
-  g.positions = xyz(refined.vertices);
+  set_xyz(g.positions, refined.vertices);
+  g.states.clear();  // a mesh's vertices have no automaton state
   append_faces(refined, g.triangles);
   for (Eigen::Index i = 0; i < control.vertices.rows(); ++i) append_xyz(g.net, control.vertices.row(i));
   std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;  // each edge once
@@ -483,7 +580,7 @@ void note_contraction(const ifs::Contraction& c, Geometry& g) {
 
 /// The key of a shape's perturbable system: the document and its moved points (bit for bit).
 std::string system_key(const Document& d, const Params& params) {
-  std::string key = d.path.string() + (d.perturbation.keep_vertices ? "|k" : "|f");
+  std::string key = document_key(d);
   for (const PointEdit& e : params.points) {
     key += "|" + std::to_string(e.index);
     for (const double x : e.position) {
@@ -498,35 +595,31 @@ std::string system_key(const Document& d, const Params& params) {
 /// The perturbed shape, as experiment::evaluate evaluates an experiment with that "perturbation" (the
 /// runner's curve_scene and surface_scene: the same calls on the same system).
 void perturbed_geometry(const Document& d, const io::Shape& shape, const Params& params, const Limits& limits,
-                        SystemCache* cache, Geometry& g) {
+                        EditCache* cache, Geometry& g) {
   std::shared_ptr<const PerturbableSystem> system;
   const std::string key = system_key(d, params);
   if (cache != nullptr && cache->system && cache->key == key) {
     system = cache->system;
   } else {
     system = shape_system(shape, d.perturbation.keep_vertices);
-    if (cache != nullptr) *cache = {key, system};
+    if (cache != nullptr) {
+      cache->key = key;
+      cache->system = system;
+    }
   }
   const ifs::Perturbation p = perturbation(*system, params);
   note_contraction(p.contraction, g);
   if (std::holds_alternative<nurbs::Curve>(shape)) {
-    const ifs::Sample sample = ifs::sample_attractor(p.system.automaton, system->nets,
-                                                     {.depth = params.depth,
-                                                      .homogeneous = system->rational,
-                                                      .closed = system->closed,
-                                                      .states = true,
-                                                      .max_points = limits.max_points,
-                                                      .limit_hint = "; lower the depth"});
-    g.positions = xyz(sample.points);
-    g.states = sample.states;
-    if (!g.states.empty()) g.states.resize(static_cast<std::size_t>(sample.points.rows()), g.states.back());
-    g.closed = system->closed;
+    sample_geometry(p.system.automaton, system->nets, params.depth, system->rational, system->closed, limits,
+                    g);
     return;
   }
   ifs::MeshOptions mo;
   mo.homogeneous = system->rational;
   mo.max_bytes = ifs::mesh_bytes(limits.max_points, 3, limits.max_points);
-  grid_geometry(ifs::quad_mesh(p.system.automaton, system->nets, system->patches, params.depth, mo), g);
+  cached_grid(d, "generic", params.depth, mo, cache, g, [&](Mesh& mesh, const ifs::MeshOptions& o) {
+    ifs::quad_mesh(p.system.automaton, system->nets, system->patches, params.depth, mesh, o);
+  });
 }
 
 /// A BC-IFS file's attractor as the runner draws it (bcifs_scene): the pieces' end points at the depth.
@@ -547,10 +640,11 @@ void bcifs_geometry(const Document& d, const Params& params, const Limits& limit
   if (static_cast<std::size_t>(2 * n) > limits.max_points)
     throw InvalidInput(std::to_string(2 * n) + " points, above the view's limit of " +
                        std::to_string(limits.max_points) + "; lower the depth");
-  Points v(2 * n, cols);
-  v << pieces.start, pieces.end;
-  g.positions = xyz(v);
+  g.positions.resize(6 * static_cast<std::size_t>(n));
+  write_xyz(pieces.start, g.positions.data());
+  write_xyz(pieces.end, g.positions.data() + 3 * n);
   g.pieces = static_cast<std::uint32_t>(n);
+  g.states.clear();
   g.states.reserve(2 * static_cast<std::size_t>(n));
   for (int half = 0; half < 2; ++half)
     for (const automata::StateId s : pieces.state) g.states.push_back(static_cast<std::uint32_t>(s));
@@ -565,9 +659,25 @@ void bcifs_geometry(const Document& d, const Params& params, const Limits& limit
 
 }  // namespace
 
-Geometry geometry(const Document& document, const Params& params, const Limits& limits, SystemCache* cache) {
+Geometry geometry(const Document& document, const Params& params, const Limits& limits, EditCache* cache) {
   Geometry g;
+  geometry(document, params, limits, cache, g);
+  return g;
+}
+
+void geometry(const Document& document, const Params& params, const Limits& limits, EditCache* cache,
+              Geometry& g) {
+  // Every field written: the large buffers (positions, states) by each route over their old storage,
+  // the rest reset here.
   g.kind = document.kind;
+  g.closed = false;
+  g.triangles.clear();
+  g.grid = {};
+  g.net.clear();
+  g.net_lines.clear();
+  g.pieces = 0;
+  g.contraction_length = 0;
+  g.contraction_delta = 0;
   if (document.kind == Kind::mesh) {
     check_range("levels", params.levels, limits.max_levels);
     mesh_geometry(document, params, limits, g);
@@ -583,13 +693,12 @@ Geometry geometry(const Document& document, const Params& params, const Limits& 
     if (perturbed(document, params))
       perturbed_geometry(document, shape, params, limits, cache, g);
     else if (c != nullptr)
-      curve_geometry(*c, params, limits, g);
+      curve_geometry(document, *c, params, limits, cache, g);
     else
-      surface_geometry(std::get<nurbs::Surface>(shape), params, limits, g);
+      surface_geometry(document, std::get<nurbs::Surface>(shape), params, limits, cache, g);
     append_net(shape, g);
   }
   g.checksum = geometry_checksum(g.positions);
-  return g;
 }
 
 std::uint32_t geometry_checksum(const std::vector<float>& positions) noexcept {
@@ -602,9 +711,7 @@ namespace {
 template <class T>
 void append_bytes(std::string& out, const std::vector<T>& values) {
   static_assert(std::endian::native == std::endian::little, "the wire format is little-endian");
-  const std::size_t at = out.size();
-  out.resize(at + values.size() * sizeof(T));
-  if (!values.empty()) std::memcpy(out.data() + at, values.data(), values.size() * sizeof(T));
+  out.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
 }
 }  // namespace
 
@@ -623,7 +730,13 @@ std::string encode_geometry(const Geometry& g) {
       {"checksum", g.checksum}};
   std::string text = header.dump();
   text.resize((text.size() + 12 + 3) / 4 * 4 - 12, ' ');  // the arrays start on a 4-byte boundary
-  std::string out = "CIFSVIEW";
+  std::string out;
+  // One allocation of the whole size, each part copied once (appending to a growing string copied the
+  // megabytes already there at every reallocation, and resize zero-filled them before the copy).
+  out.reserve(
+      12 + text.size() +
+      4 * (g.positions.size() + g.triangles.size() + g.states.size() + g.net.size() + g.net_lines.size()));
+  out += "CIFSVIEW";
   const auto length = static_cast<std::uint32_t>(text.size());
   out.append(reinterpret_cast<const char*>(&length), 4);
   out += text;

@@ -466,8 +466,8 @@ Response route(Session& s, const Request& r) {
     // Superseded by a newer edit: 204 (no content), which the page ignores.
     if (ticket != s.latest) return {204, "text/plain; charset=utf-8", ""};
     const std::scoped_lock lock(s.document_mutex);
-    return {200, "application/octet-stream",
-            encode_geometry(geometry(s.document, parse_params(s.document, body, path), s.limits, &s.cache))};
+    geometry(s.document, parse_params(s.document, body, path), s.limits, &s.cache, s.geometry);
+    return {200, "application/octet-stream", encode_geometry(s.geometry)};
   }
   if (r.method == "POST" && path == "/api/save") {
     const std::scoped_lock lock(s.document_mutex);

@@ -20,6 +20,8 @@
 #include "cifs/io/experiment.hpp"
 #include "cifs/io/shape.hpp"
 #include "cifs/mesh.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
+#include "cifs/nurbs/tensor_automaton.hpp"
 
 namespace cifs::view {
 
@@ -166,11 +168,25 @@ struct Geometry {
 /// experiment with a "perturbation"): an amplitude, a value set by name, or the file's own perturbation.
 bool perturbed(const Document& document, const Params& params);
 
-/// The perturbable system of an edited shape, kept between requests (one per session): an amplitude, seed
-/// or value edit re-perturbs it (ifs::perturb with its solved space); a moved control point builds it again.
-struct SystemCache {
-  std::string key;  // the document and point edits it was built for
+/// What a session keeps between geometry requests (one per session, for its one document: opening
+/// another file starts a new one), so that an edit redoes only what it changes and writes into memory
+/// already faulted in (fresh buffers of ~10 MB an edit — page faults and zero fills — were half of a
+/// control-point edit's time):
+/// - the shape's automaton: the view moves control points, never knots, so one serves every edit;
+/// - a perturbed shape's system: an amplitude, seed or value edit re-perturbs it (ifs::perturb with its
+///   solved space); a moved control point builds it again;
+/// - the last surface mesh: its storage reused, and its faces and states kept (ifs::MeshOptions::
+///   keep_faces), with the state per node made from them, when the route and depth are those they were
+///   made for.
+struct EditCache {
+  std::string automaton_key;                     // the document `knots` or `tensor` was built for
+  std::optional<nurbs::KnotAutomaton> knots;     // curves
+  std::optional<nurbs::TensorAutomaton> tensor;  // surfaces
+  std::string key;                               // the document and point edits `system` was built for
   std::shared_ptr<const PerturbableSystem> system;
+  std::string mesh_key;  // the document, route and depth of `mesh`'s faces; empty: none kept
+  Mesh mesh;
+  std::vector<std::uint32_t> node_states;  // of `mesh`'s grid nodes (Geometry::states)
 };
 
 /// The geometry of the document with `params`, as experiment::evaluate computes it for the experiment with
@@ -181,7 +197,11 @@ struct SystemCache {
 /// ifs::contraction, ifs::edge_pieces. InvalidInput (before any work) for a parameter out of `limits` or a
 /// value outside its coefficient's range, ifs::NotContractive for a non-contractive edit, and as those calls.
 Geometry geometry(const Document& document, const Params& params, const Limits& limits = {},
-                  SystemCache* cache = nullptr);
+                  EditCache* cache = nullptr);
+/// The same into `out`, every field written; its buffers' storage is reused (an edit at the same depth
+/// allocates nothing and zero-fills nothing: the positions are written over in place).
+void geometry(const Document& document, const Params& params, const Limits& limits, EditCache* cache,
+              Geometry& out);
 
 /// FNV-1a (32-bit) taken a 32-bit word at a time over the float32 positions (h = (h ^ bits) · 16777619 from
 /// 2166136261): what the page computes on the buffer it received, and a test from the library's points.

@@ -41,8 +41,10 @@ struct Session {
   std::atomic<std::uint64_t> latest{0};
   std::mutex evaluating;
   std::mutex document_mutex;  // open replaces the document
-  /// A perturbed shape's BC-IFS and solved space, kept between geometry requests (under `evaluating`).
-  SystemCache cache;
+  /// What geometry requests keep for the next one (under `evaluating`): the automaton, a perturbed
+  /// shape's system, the surface mesh, and the last geometry's buffers, written over by the next.
+  EditCache cache;
+  Geometry geometry;
 };
 
 /// A session for `path`: the document opened, a fresh random token, the hosts of `host`:`port`.
