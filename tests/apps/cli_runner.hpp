@@ -2,6 +2,7 @@
 // Runs the cifs command line as a user does (CIFS_CLI_PATH), capturing exit status, stdout and stderr.
 #pragma once
 
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -10,6 +11,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <string>
 
@@ -70,6 +72,36 @@ inline void check_error(const Run& r, const std::string& needle) {
   CHECK(r.out.empty());
   CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
   CHECK_THAT(r.err, Catch::StartsWith("cifs: ") && Catch::Contains(needle));
+}
+
+/// One stderr line, exit status 2 (check_error), the new wording, the old internal name gone, and no
+/// `name:` prefix at all after "cifs: ".
+inline void check_message(const Run& r, const std::string& wording, const std::string& old_name) {
+  check_error(r, wording);
+  INFO("stderr: " << r.err);
+  CHECK(r.err.find(old_name) == std::string::npos);
+  CHECK(!std::regex_search(r.err, std::regex("^cifs: [A-Za-z_]+: ")));
+}
+
+/// CPU seconds (user and system) of the children this process has waited for.
+inline double children_cpu_seconds() {
+  rusage usage{};
+  ::getrusage(RUSAGE_CHILDREN, &usage);
+  const auto seconds = [](const timeval& t) {
+    return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec);
+  };
+  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
+
+/// `command` refused within `seconds` of CPU time (one line naming `needle`, exit status 2). CPU time,
+/// not wall time: the 2-core machine is shared with builds (a 0.01-s refusal took 2.5 s of wall time).
+inline constexpr double kQuick = kSanitized ? 20 : 1;  // ASan and UBSan slow the estimates about 25 times
+inline void check_quick_error(const std::string& command, const std::string& needle,
+                              double seconds = kQuick) {
+  INFO(command);
+  const double before = children_cpu_seconds();
+  check_error(cifs_cli(command), needle);
+  CHECK(children_cpu_seconds() - before < seconds);
 }
 
 }  // namespace cifs_test

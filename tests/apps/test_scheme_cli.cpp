@@ -22,6 +22,10 @@ json analyze(const std::string& args) {
   return json::parse(r.out);
 }
 
+std::string polygon_json(const std::string& name, const std::string& points) {
+  return file(name, R"({"polygon": {"points": )" + points + R"(, "closed": false}})");
+}
+
 }  // namespace
 
 TEST_CASE("cifs scheme --analyze prints the published properties", "[cli][subdivision]") {
@@ -277,32 +281,50 @@ TEST_CASE("cifs scheme MESH-SCHEME --rules blz --analyze: Biermann-Levin-Zorin's
   check_error(cifs_cli("scheme chaikin --analyze --rules blz"), "--rules are for the mesh schemes");
 }
 
-TEST_CASE("cifs analyze MESH --scheme S: which points are not smooth", "[cli][mesh_analysis]") {
-  const std::string grid = std::string(CIFS_EXAMPLES_DIR) + "/meshes/open_grid.obj";
-  const Run table = cifs_cli("analyze " + grid + " --scheme catmull-clark");
-  REQUIRE(table.status == 0);
-  // The grid's four corners: one face each, the smooth boundary rule — the curve's ¼ and the face's
-  // form a Jordan block: undecided, said so; with the corner rule they are C1 corners.
-  CHECK_THAT(table.out,
-             Catch::Contains("catmull-clark: 35 vertices, 31 regular, 4 irregular: 0 C1, 0 not C1, "
-                             "4 undecided (1 local analysis)"));
-  const json corners = json::parse(cifs_cli("analyze " + grid +
-                                            " --scheme catmull-clark --boundary corner "
-                                            "--format json")
-                                       .out);
-  CHECK(corners["c1"] == 4);
-  CHECK(corners["vertices"][0]["class"] == "corner");
-  // --png: the surface with the four corners marked, written whole; nothing written when refused.
-  const auto png = scratch() / "analyze.png";
-  std::filesystem::remove(png);
-  REQUIRE(cifs_cli("analyze " + grid + " --scheme catmull-clark --png " + png.string()).status == 0);
-  std::ifstream in(png, std::ios::binary);
-  std::string signature(8, '\0');
-  in.read(signature.data(), 8);
-  CHECK(signature == "\x89PNG\r\n\x1a\n");
-  const auto refused = scratch() / "refused.png";
-  check_error(cifs_cli("analyze " + grid + " --scheme loop --png " + refused.string()),
-              "loop runs on triangles");
-  CHECK_FALSE(std::filesystem::exists(refused));
-  check_error(cifs_cli("analyze " + grid + " --scheme catmull-clark --format svg"), "--format 'svg'");
+TEST_CASE("cifs scheme refuses deeply nested symbols instead of overflowing the stack",
+          "[cli][reliability]") {
+  // The parser recursed per bracket and per sign: 5,000 brackets or 100,000 signs crashed it.
+  const std::string brackets = std::string(5000, '(') + "1+z" + std::string(5000, ')');
+  const std::string signs = std::string(100000, '-') + "(1+z)";
+  for (const std::string& symbol : {brackets, signs}) {
+    const Run r = cifs_cli("scheme symbol --param 'symbol=" + symbol + "' --analyze");
+    check_error(r, "nested within each other");
+    CHECK(r.err.size() < 300);  // the expression is not echoed whole
+  }
+}
+
+TEST_CASE("cifs scheme --refine near the largest doubles: the point, or a refusal naming the overflow",
+          "[cli][reliability]") {
+  // One four-point step on coordinates 1.7e308 printed inf (9/16·(b + c) overflowed before the
+  // negative weights), exit 0 (issue 33). The result fits a double: it is printed.
+  const std::string fits = file("big_polygon.json", R"({"polygon": {"points": [[1.7e308, 0], [1.7e308, 1],
+      [1.7e308, 2], [1.7e308, 3]], "closed": true}})");
+  const Run r = cifs_cli("scheme four-point --refine " + fits);
+  INFO(r.err);
+  CHECK(r.status == 0);
+  CHECK(r.out.find("inf") == std::string::npos);
+  // The edge point of (0, 1): x = 1.7e308 to a rounding (1.6999999999999997e+308), y = (9 − 5)/16.
+  CHECK(r.out.find("[1.6999999999999997e+308, 0.25]") != std::string::npos);
+  // The result does not fit (1.25 · 1.79e308): refused, naming the cause.
+  const std::string over = file("over_polygon.json", R"({"polygon": {"points": [[-1.79e308, 0], [1.79e308, 1],
+      [1.79e308, 2], [-1.79e308, 3]], "closed": true}})");
+  check_error(cifs_cli("scheme four-point --refine " + over), "refining the polygon overflows a double");
+}
+
+TEST_CASE("cifs scheme refuses a symbol beyond the largest mask at once", "[cli][reliability]") {
+  check_error(cifs_cli("scheme symbol --param 'symbol=(1+z)^1024' --analyze"),
+              "the power has degree 1024, above the largest mask (512 coefficients, degree 511)");
+}
+
+TEST_CASE("cifs scheme --refine names the polygon and the steps, not refine:",
+          "[cli][reliability][messages]") {
+  check_message(cifs_cli("scheme four-point --refine " + polygon_json("one_point.json", "[[0, 0]]")),
+                "an open polygon needs at least 2 points to refine, got 1", "refine:");
+  const std::string two = polygon_json("two_points.json", "[[0, 0], [1, 1]]");
+  check_message(cifs_cli("scheme four-point --refine " + two + " --steps 40"),
+                "40 refinement steps of 2 points exceed the limit of 50000000 points; refine fewer steps",
+                "refine:");
+  check_message(cifs_cli("scheme corner-cutting --param a=0.1 --param b=0.6 --ends reflect --refine " + two),
+                "the reflect end rule needs a symmetric mask (corner-cutting is not); use the keep rule",
+                "refine:");
 }
