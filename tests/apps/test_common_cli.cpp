@@ -109,7 +109,7 @@ pid_t spawn_cli(const std::vector<std::string>& args) {
 }
 
 /// `cifs render EXPERIMENT --out-dir DIR EXTRA`.
-Run render(const std::string& experiment, const fs::path& dir, const std::string& extra = "") {
+Run render_into(const std::string& experiment, const fs::path& dir, const std::string& extra = "") {
   return cifs_cli("render " + experiment + " --out-dir " + dir.string() + extra);
 }
 
@@ -377,24 +377,24 @@ TEST_CASE("cifs render writes all its outputs or none", "[cli][reliability][outp
   const std::string exp = cubic_experiment(dir, R"({"exr": "a.exr", "png": "a.png", "svg": "a.svg"})");
   const std::set<std::string> inputs{"cubic.json", "e.json"};
   // --png naming a folder: the EXR was left behind.
-  check_error(render(exp, dir, " --png " + dir.string()), dir.string() + ": is a directory");
+  check_error(render_into(exp, dir, " --png " + dir.string()), dir.string() + ": is a directory");
   CHECK(names(dir) == inputs);
   // A PNG into a folder where no file can be created: the EXR was left behind.
   const fs::path locked = unwritable_folder();
-  check_error(render(exp, dir, " --png " + (locked / "x.png").string()),
+  check_error(render_into(exp, dir, " --png " + (locked / "x.png").string()),
               (locked / "x.png").string() + ": cannot create a file in " + locked.string() + " (");
   CHECK(names(dir) == inputs);
   // An SVG path under a regular file: EXR and PNG were left behind.
   put_in(dir, "plain", "not a folder");
   const std::string under_file =
       cubic_experiment(dir, R"({"exr": "a.exr", "png": "a.png", "svg": "plain/a.svg"})");
-  check_error(render(under_file, dir), (dir / "plain").string() + " is not a folder");
+  check_error(render_into(under_file, dir), (dir / "plain").string() + " is not a folder");
   fs::remove(dir / "plain");
   CHECK(names(dir) == inputs);
   // A folder made for an output goes again when the run fails.
   const std::string made =
       cubic_experiment(dir, R"({"exr": "new/sub/a.exr", "png": "a.png", "svg": "a.svg"})");
-  check_error(render(made, dir, " --png " + dir.string()), ": is a directory");
+  check_error(render_into(made, dir, " --png " + dir.string()), ": is a directory");
   CHECK(names(dir) == inputs);
   // A PLY name that is a folder (a mesh experiment): EXR and PNG were left behind.
   put_in(dir, "cube.obj", slurp(CIFS_EXAMPLES_DIR "/meshes/cube.obj"));
@@ -402,12 +402,12 @@ TEST_CASE("cifs render writes all its outputs or none", "[cli][reliability][outp
       put_in(dir, "m.json", R"({"mesh": "cube.obj", "subdivision": {"scheme": "catmull-clark",
     "levels": 1}, "render": {"width": 16, "height": 16}, "outputs": {"exr": "m.exr", "png": "m.png", "ply": "m.ply"}})");
   fs::create_directory(dir / "m.ply");
-  check_error(render(mesh, dir), (dir / "m.ply").string() + ": is a directory");
+  check_error(render_into(mesh, dir), (dir / "m.ply").string() + ": is a directory");
   CHECK(names(dir) == std::set<std::string>{"cube.obj", "cubic.json", "e.json", "m.json", "m.ply"});
   CHECK(fs::is_empty(dir / "m.ply"));
   // And when everything can be written, everything is.
   fs::remove(dir / "m.ply");
-  REQUIRE(render(mesh, dir).status == 0);
+  REQUIRE(render_into(mesh, dir).status == 0);
   CHECK(head(dir / "m.exr", 4) == kExrMagic);
   CHECK(head(dir / "m.png", 4) == kPngMagic);
   CHECK(head(dir / "m.ply", 3) == "ply");
@@ -418,8 +418,8 @@ TEST_CASE("cifs render refuses an unusable output before the work", "[cli][relia
   const fs::path dir = folder("before_work");
   const std::string exp = long_experiment(dir);
   const auto start = std::chrono::steady_clock::now();
-  check_error(render(exp, dir, " --png " + dir.string()), ": is a directory");
-  check_error(render(exp, dir, " -o " + (dir / "missing/x.exr").string()), "does not exist");
+  check_error(render_into(exp, dir, " --png " + dir.string()), ": is a directory");
+  check_error(render_into(exp, dir, " -o " + (dir / "missing/x.exr").string()), "does not exist");
   CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(10));
   CHECK(names(dir) == std::set<std::string>{"big.json"});
 }
@@ -439,18 +439,19 @@ TEST_CASE("cifs never overwrites its inputs", "[cli][reliability][outputs]") {
   fs::remove(dir / "hard.json");
   // An output of the file equal to its shape: the shape was replaced by the SVG.
   const std::string onto_shape = cubic_experiment(dir, R"({"exr": "a.exr", "svg": "cubic.json"})", "s.json");
-  check_error(render(onto_shape, dir), input((dir / "cubic.json").string(), (dir / "cubic.json").string()));
+  check_error(render_into(onto_shape, dir),
+              input((dir / "cubic.json").string(), (dir / "cubic.json").string()));
   CHECK(slurp(dir / "cubic.json") == cubic_text);
   // The BC-IFS file of an automaton experiment, and the mesh of a subdivision experiment.
   put_in(dir, "tree.json", slurp(CIFS_EXAMPLES_DIR "/automata/tree.json"));
   const std::string tree = put_in(dir, "t.json", R"({"automaton": "tree.json", "evaluation": {"depth": 2},
     "render": {"width": 8, "height": 8}, "outputs": {"exr": "t.exr", "png": "tree.json"}})");
-  check_error(render(tree, dir), input((dir / "tree.json").string(), (dir / "tree.json").string()));
+  check_error(render_into(tree, dir), input((dir / "tree.json").string(), (dir / "tree.json").string()));
   put_in(dir, "cube.obj", slurp(CIFS_EXAMPLES_DIR "/meshes/cube.obj"));
   const std::string mesh =
       put_in(dir, "m.json", R"({"mesh": "cube.obj", "subdivision": {"scheme": "catmull-clark",
     "levels": 1}, "render": {"width": 8, "height": 8}, "outputs": {"exr": "m.exr", "obj": "cube.obj"}})");
-  check_error(render(mesh, dir), input((dir / "cube.obj").string(), (dir / "cube.obj").string()));
+  check_error(render_into(mesh, dir), input((dir / "cube.obj").string(), (dir / "cube.obj").string()));
   // subdivide -o onto its mesh, directly and through a symbolic link.
   const std::string cube = (dir / "cube.obj").string();
   check_error(cifs_cli("subdivide " + cube + " --scheme catmull-clark -o " + cube), input(cube, cube));
@@ -499,8 +500,8 @@ TEST_CASE("cifs writes through symbolic links and replaces only regular files",
               "fifo.obj: is a FIFO");
   // Two names of one file through a link are two outputs onto one file.
   const std::string twice = cubic_experiment(dir, R"({"exr": "real/image.exr", "png": "link.exr"})");
-  check_error(render(twice, dir), "outputs.png: " + (dir / "link.exr").string() +
-                                      " is also outputs.exr; give each output its own file");
+  check_error(render_into(twice, dir), "outputs.png: " + (dir / "link.exr").string() +
+                                           " is also outputs.exr; give each output its own file");
   CHECK(names(dir) == std::set<std::string>{"cubic.json", "dangling.png", "e.json", "fifo", "fifo.obj",
                                             "link.exr", "real"});
 }
@@ -533,6 +534,6 @@ TEST_CASE("SIGTERM and SIGINT during a render leave no temporary; the next run r
   CHECK(has_temporary(dir));
   const std::string small = put_in(dir, "small.json", R"({"ifs": "fern", "evaluation": {"chaos": 1000},
     "render": {"width": 8, "height": 8}, "outputs": {"png": "small.png"}})");
-  REQUIRE(render(small, dir).status == 0);
+  REQUIRE(render_into(small, dir).status == 0);
   CHECK(names(dir) == std::set<std::string>{"big.json", "small.json", "small.png"});
 }
