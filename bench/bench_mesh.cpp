@@ -4,7 +4,9 @@
 // (2.1 M quads out) and Loop to level 4 on a torus of 16384 triangles (4.2 M triangles out).
 //
 //   one_shot  faces and positions in, the refined mesh out (every library's whole job)
-//   topology  cifs refine_topology / OSD TopologyRefinerFactory + RefineUniform
+//   topology  cifs refine_topology without weights or last-level adjacency / OSD TopologyRefinerFactory +
+//             RefineUniform (fullTopologyInLastLevel false); topology_with_weights: everything kept for
+//             replay
 //   replay    positions only, topology prebuilt: cifs apply(refinement, P) level by level and
 //             apply(stencil_table(r), P, out) into a reused buffer / OSD's PrimvarRefiner level by
 //             level and its StencilTable (base → last level) UpdateValues into a reused buffer
@@ -308,7 +310,18 @@ void cifs_one_shot(benchmark::State& state, sd::MeshScheme scheme, bool with_cre
   counters(state, out);
 }
 
+/// Topology only, as OpenSubdiv's RefineUniform (no weights, the last level's faces only).
 void cifs_topology(benchmark::State& state, sd::MeshScheme scheme, bool with_creases) {
+  const Mesh& m = input(scheme, with_creases);
+  const sd::MeshOptions options{.weights = false, .last_level_adjacency = false};
+  for (auto _ : state) {
+    const sd::MeshRefinement r = sd::refine_topology(m, scheme, kLevels, options);
+    benchmark::DoNotOptimize(r.levels.back().face_vertices.data());
+  }
+}
+
+/// The refinement kept for replay: every level's adjacency and weights.
+void cifs_topology_with_weights(benchmark::State& state, sd::MeshScheme scheme, bool with_creases) {
   const Mesh& m = input(scheme, with_creases);
   for (auto _ : state) {
     const sd::MeshRefinement r = sd::refine_topology(m, scheme, kLevels);
@@ -696,6 +709,7 @@ int main(int argc, char** argv) {
 #endif
     pair("topology/cifs", cifs_topology);
     pair("topology/osd", osd_topology_case);
+    pair("topology_with_weights/cifs", cifs_topology_with_weights);
     reg("replay/cifs", cifs_replay);
     reg("replay/osd_primvar", osd_primvar_case);
     pair("replay/cifs_stencil_table", cifs_stencil_table);

@@ -310,7 +310,7 @@ void bind_mesh_subdivision_refinement(py::module_& m) {
           "scheme", [](const sd::MeshRefinement& r) { return std::string(sd::scheme_name(r.scheme)); },
           "The scheme's name.")
       .def_property_readonly(
-          "levels", [](const sd::MeshRefinement& r) { return static_cast<int>(r.steps.size()); },
+          "levels", [](const sd::MeshRefinement& r) { return static_cast<int>(r.levels.size()) - 1; },
           "Number of steps.")
       .def_property_readonly(
           "vertex_counts",
@@ -340,8 +340,8 @@ void bind_mesh_subdivision_refinement(py::module_& m) {
           "Stencils from the input's vertices straight to the last level's (the product of the steps).")
       .def("__repr__", [](const sd::MeshRefinement& r) {
         return "MeshRefinement(" + std::string(sd::scheme_name(r.scheme)) + ", " +
-               std::to_string(r.steps.size()) + " levels, " + std::to_string(r.levels.back().vertex_count) +
-               " vertices)";
+               std::to_string(r.levels.size() - 1) + " levels, " +
+               std::to_string(r.levels.back().vertex_count) + " vertices)";
       });
   m.def(
       "refine_topology",

@@ -394,6 +394,10 @@ std::vector<double> through(const std::vector<double>& mask, const Points& w, st
 }  // namespace
 
 LimitStencils limit_stencils(const MeshRefinement& r) {
+  if (r.features.size() != r.levels.size())
+    throw InvalidInput(
+        "limit_stencils: the refinement's last level has its faces only "
+        "(MeshOptions::last_level_adjacency = false)");
   const MeshScheme scheme = r.scheme;
   const MeshTopology& t = r.levels.back();
   const LevelFeatures& f = r.features.back();

@@ -22,13 +22,21 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
+/// Where a step's rows go: kept as weights (the default), applied to `input` as they are made
+/// (one-shot subdivision: no weights in memory), or dropped (topology only: the primal schemes do
+/// not even make them).
+struct RowSink {
+  const Points* input = nullptr;
+  bool drop = false;
+};
+
 struct Step {
   std::vector<int> face_offsets{0};
   std::vector<int> face_vertices;
   int vertex_count = 0;
-  Stencils stencils;              // the weights, unless `input` is set
-  const Points* input = nullptr;  // set: each row is applied to it as it is made, into `output`,
-  Points output;                  // and not kept (one-shot subdivision: no weights in memory)
+  RowSink sink;
+  Stencils stencils;  // the weights, when the sink keeps them
+  Points output;      // the rows applied to sink.input
 };
 
 /// out = Σ_k weights[k] · in row columns[k] (d columns): the one kernel of apply and of rows applied
@@ -56,17 +64,17 @@ inline void weighted_row(const double* in, Eigen::Index d, const int* columns, c
 }
 
 /// Makes one stencil row at a time; a column given twice is summed (face points expanded into
-/// corners meet the ring's own vertices), columns in order of first appearance. Rows go to the
-/// step's stencils, or straight onto its input (then `s.vertex_count` must be set before the writer
-/// is made).
+/// corners meet the ring's own vertices), columns in order of first appearance. Rows go where the
+/// step's sink says: its stencils, straight onto its input (then `s.vertex_count` must be set before
+/// the writer is made), or nowhere.
 class RowWriter {
  public:
   RowWriter(Step& s, int old_vertex_count)
       : s_(s),
         slot_(static_cast<std::size_t>(old_vertex_count)),
         row_of_(static_cast<std::size_t>(old_vertex_count), -1) {
-    if (s.input) {
-      s.output.resize(s.vertex_count, s.input->cols());
+    if (s.sink.input) {
+      s.output.resize(s.vertex_count, s.sink.input->cols());
       advise_huge_pages(s.output.data(), static_cast<std::size_t>(s.output.size()) * sizeof(double));
     }
   }
@@ -85,11 +93,11 @@ class RowWriter {
     weights_[count_++] = weight;
   }
   void finish() {
-    if (s_.input) {
-      const Eigen::Index d = s_.input->cols();
-      weighted_row(s_.input->data(), d, columns_.data(), weights_.data(), static_cast<int>(count_),
+    if (s_.sink.input) {
+      const Eigen::Index d = s_.sink.input->cols();
+      weighted_row(s_.sink.input->data(), d, columns_.data(), weights_.data(), static_cast<int>(count_),
                    s_.output.data() + d * row_);
-    } else {
+    } else if (!s_.sink.drop) {
       Stencils& out = s_.stencils;
       out.columns.insert(out.columns.end(), columns_.begin(),
                          columns_.begin() + static_cast<std::ptrdiff_t>(count_));
@@ -120,7 +128,7 @@ class RowWriter {
 /// Reserves a step's weights from its counts (growing them by doubling costs copies and page faults
 /// at these sizes).
 void reserve_rows(Step& s, std::size_t rows, std::size_t entries) {
-  if (s.input) return;
+  if (s.sink.input || s.sink.drop) return;
   reserve_huge(s.stencils.offsets, rows + 1);
   reserve_huge(s.stencils.columns, entries);
   reserve_huge(s.stencils.weights, entries);
@@ -362,22 +370,22 @@ void add_flat(const BlzSide& b, double weight, RowWriter& row) {
 /// rules' masks (cifs/subdivision/rules.hpp). `halves[2e + k]` receives the sharpness after the step
 /// of edge e's half at its end k (edges[e][k]); left empty on a smooth level.
 Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& L, const MeshTags& tags,
-                 const Points* input, std::vector<double>& halves) {
+                 RowSink sink, std::vector<double>& halves) {
   const bool quads = traits(scheme).split == Split::quads;
   const int V = t.vertex_count, E = static_cast<int>(t.edges.size()), F = static_cast<int>(face_count(t));
   Step s;
-  s.input = input;
+  s.sink = sink;
   s.vertex_count = V + E + (quads ? F : 0);  // vertex points, edge points, face points
   const std::size_t H = t.face_vertices.size();
   // Vertex rows: itself, n neighbours, the corners of n faces; edge rows: both faces' corners.
   reserve_rows(
       s, static_cast<std::size_t>(s.vertex_count),
       quads ? static_cast<std::size_t>(V) + 5 * H : static_cast<std::size_t>(V) + 6 * t.edges.size());
-  RowWriter row(s, t.vertex_count);
+  RowWriter row(s, s.sink.drop ? 0 : t.vertex_count);  // dropped rows are not made at all
   const bool smooth = smooth_level(L);
   halves.assign(smooth ? 0 : 2 * t.edges.size(), 0.0);
   std::vector<double> pe, ce;  // sharpness of a vertex's edges before and after the step
-  const BlzSides blz = tags.rules == RuleSet::blz && !smooth && scheme != MeshScheme::bilinear
+  const BlzSides blz = tags.rules == RuleSet::blz && !smooth && scheme != MeshScheme::bilinear && !s.sink.drop
                            ? blz_sides(scheme, t, L, tags)
                            : BlzSides{};
   for (int v = 0; v < V; ++v) {
@@ -401,8 +409,10 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
         n.sharpness = vertex_sharpness(L, static_cast<std::size_t>(v));
         n.child_sharpness = decremented_sharpness(n.sharpness);
       }
+      if (s.sink.drop) continue;
       m = vertex_mask(scheme, tags.crease_method, n);
     }
+    if (s.sink.drop) continue;
     if (m.face != 0)
       for (const int f : faces) add_face_point(t, static_cast<std::size_t>(f), m.face, row);
     if (m.edge != 0)
@@ -413,6 +423,7 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
     row.add(v, m.vertex);
     row.finish();
   }
+  if (s.sink.drop) return s;  // topology only: the halves are all the child tags need
   for (int e = 0; e < E; ++e) {
     const auto ue = static_cast<std::size_t>(e);
     const int a = t.edges[ue][0], b = t.edges[ue][1];  // not bindings: the lambdas below capture them
@@ -557,10 +568,10 @@ void butterfly_regular(const MeshTopology& t, int e, RowWriter& row) {
 /// stencil unless an end is an interior vertex of valence ≠ 6, whose ring stencil is then used
 /// (the mean of the two when both are). Boundary ends count as regular (OpenMesh's rule; ZSS's
 /// boundary tables are not implemented).
-Step butterfly_step(const MeshTopology& t, const Points* input) {
+Step butterfly_step(const MeshTopology& t, RowSink sink) {
   const int V = t.vertex_count, E = static_cast<int>(t.edges.size());
   Step s;
-  s.input = input;
+  s.sink = sink;
   s.vertex_count = V + E;
   RowWriter row(s, t.vertex_count);
   for (int v = 0; v < V; ++v) {  // interpolating: old vertices stay
@@ -597,10 +608,10 @@ Step butterfly_step(const MeshTopology& t, const Points* input) {
 /// trisected by (p_− + 16p_a + 10p_b)/27 and (10p_a + 16p_b + p_+)/27 in place of its face's
 /// centroid, and boundary vertices move to (4p_− + 19p + 4p_+)/27. After an even step every
 /// boundary face has exactly one boundary edge, which the odd step relies on.
-Step sqrt3_step(const MeshTopology& t, bool refine_boundary, const Points* input) {
+Step sqrt3_step(const MeshTopology& t, bool refine_boundary, RowSink sink) {
   const int V = t.vertex_count, F = static_cast<int>(face_count(t));
   Step s;
-  s.input = input;
+  s.sink = sink;
   s.vertex_count = V + F;  // and one more point per boundary face when it is trisected
   if (refine_boundary)
     for (std::size_t e = 0; e < t.edges.size(); ++e) s.vertex_count += is_boundary_edge(t, e) ? 1 : 0;
@@ -682,9 +693,9 @@ Step sqrt3_step(const MeshTopology& t, bool refine_boundary, const Points* input
 /// interior edge (a quad) and per interior vertex (its corner points around it). Boundary edges
 /// and vertices make no face, so the surface shrinks away from the boundary (CGAL's rule:
 /// corner points are the same at the boundary).
-Step doo_sabin_step(const MeshTopology& t, const Points* input) {
+Step doo_sabin_step(const MeshTopology& t, RowSink sink) {
   Step s;
-  s.input = input;
+  s.sink = sink;
   s.vertex_count = static_cast<int>(t.face_vertices.size());  // corner (f, i) → face_offsets[f] + i
   RowWriter row(s, t.vertex_count);
   for (std::size_t f = 0; f < face_count(t); ++f) {
@@ -757,24 +768,24 @@ void split_faces(MeshScheme scheme, const MeshTopology& t, Step& s) {
 }
 
 /// Step `level` (0 for the first) of a refinement: its rows and, unless `faces` is false for a
-/// scheme that splits_faces (then split_faces makes them), its child faces. With `input`, the rows
-/// are applied to it as they are made (Step::output) instead of kept. `halves` as primal_step.
+/// scheme that splits_faces (then split_faces makes them), its child faces. The rows go to `sink`
+/// (RowSink). `halves` as primal_step.
 Step step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& L, const MeshTags& tags, int level,
-          std::vector<double>& halves, const Points* input = nullptr, bool faces = true) {
+          std::vector<double>& halves, RowSink sink = {}, bool faces = true) {
   Step s;
   switch (scheme) {
     case MeshScheme::catmull_clark:
     case MeshScheme::loop:
     case MeshScheme::bilinear:
-      s = primal_step(scheme, t, L, tags, input, halves);
+      s = primal_step(scheme, t, L, tags, sink, halves);
       break;
     case MeshScheme::butterfly:
-      s = butterfly_step(t, input);
+      s = butterfly_step(t, sink);
       break;
     case MeshScheme::doo_sabin:
-      return doo_sabin_step(t, input);
+      return doo_sabin_step(t, sink);
     case MeshScheme::sqrt3:
-      return sqrt3_step(t, level % 2 == 1, input);
+      return sqrt3_step(t, level % 2 == 1, sink);
   }
   if (faces) split_faces(scheme, t, s);
   return s;
@@ -1051,16 +1062,35 @@ MeshRefinement refine_topology(const Mesh& mesh, MeshScheme scheme, int levels, 
   std::vector<double> halves;
   for (int level = 0; level < levels; ++level) {
     const MeshTopology& t = r.levels.back();
-    Step s = step(scheme, t, r.features.back(), r.tags.back(), level, halves);
-    r.steps.push_back(std::move(s.stencils));
+    Step s = step(scheme, t, r.features.back(), r.tags.back(), level, halves,
+                  {.input = nullptr, .drop = !options.weights});
+    if (options.weights) r.steps.push_back(std::move(s.stencils));
     r.tags.push_back(traits(scheme).sharpness
                          ? child_tags(scheme, t, r.features.back(), halves, r.tags.back())
                          : r.tags.back());
-    r.levels.push_back(child_topology(scheme, t, s, who));
-    r.features.push_back(level_features(r.levels.back(), r.tags.back(), scheme, who));
+    if (level + 1 == levels && !options.last_level_adjacency) {
+      MeshTopology faces;
+      faces.vertex_count = s.vertex_count;
+      faces.face_offsets = std::move(s.face_offsets);
+      faces.face_vertices = std::move(s.face_vertices);
+      r.levels.push_back(std::move(faces));
+    } else {
+      r.levels.push_back(child_topology(scheme, t, s, who));
+      r.features.push_back(level_features(r.levels.back(), r.tags.back(), scheme, who));
+    }
   }
   return r;
 }
+
+namespace {
+
+/// Refuses a refinement made without weights (MeshOptions::weights) for `what`, which replays them.
+void check_weights(const MeshRefinement& r, const std::string& what) {
+  if (r.steps.size() + 1 != r.levels.size())
+    throw InvalidInput(what + ": the refinement was made without its weights (MeshOptions::weights = false)");
+}
+
+}  // namespace
 
 void apply(const Stencils& step, const Points& vertices, Points& out) {
   const auto rows = static_cast<Eigen::Index>(row_count(step));
@@ -1083,6 +1113,7 @@ Points apply(const Stencils& step, const Points& vertices) {
 }
 
 Stencils stencil_table(const MeshRefinement& refinement) {
+  check_weights(refinement, "stencil_table");
   const int base = refinement.levels.front().vertex_count;
   Stencils table;  // identity on the base vertices
   for (int v = 0; v < base; ++v) {
@@ -1129,6 +1160,7 @@ Stencils stencil_table(const MeshRefinement& refinement) {
 }
 
 Points apply(const MeshRefinement& refinement, const Points& vertices) {
+  check_weights(refinement, "apply");
   if (vertices.rows() != refinement.levels.front().vertex_count)
     throw InvalidInput(std::to_string(vertices.rows()) + " vertex rows given for a refinement of a mesh of " +
                        std::to_string(refinement.levels.front().vertex_count) + " vertices");
@@ -1164,7 +1196,8 @@ Mesh subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOption
   std::vector<double> halves;
   for (int level = 0; level < levels; ++level) {
     const bool last = level + 1 == levels, split_last = last && splits_faces(scheme);
-    Step s = step(scheme, t, features, tags, level, halves, &out.vertices, !split_last);
+    Step s =
+        step(scheme, t, features, tags, level, halves, {.input = &out.vertices, .drop = false}, !split_last);
     out.vertices = std::move(s.output);
     s.output = Points();  // the parent's positions, swapped in by the move
     if (traits(scheme).sharpness) tags = child_tags(scheme, t, features, halves, tags);

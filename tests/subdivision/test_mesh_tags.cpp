@@ -230,3 +230,85 @@ TEST_CASE("bad tags are refused with one line naming them", "[subdivision][mesh]
   m.tags.face_varying = FaceVaryingRule::corners_only;
   refused(m, MeshScheme::catmull_clark, "face-varying interpolation other than 'all'");
 }
+
+namespace {
+
+void check_same_tags(const MeshTags& a, const MeshTags& b) {
+  REQUIRE(a.creases.size() == b.creases.size());
+  for (std::size_t i = 0; i < a.creases.size(); ++i) {
+    CHECK(a.creases[i].a == b.creases[i].a);
+    CHECK(a.creases[i].b == b.creases[i].b);
+    CHECK(a.creases[i].sharpness == b.creases[i].sharpness);
+  }
+  REQUIRE(a.corners.size() == b.corners.size());
+  for (std::size_t i = 0; i < a.corners.size(); ++i) {
+    CHECK(a.corners[i].vertex == b.corners[i].vertex);
+    CHECK(a.corners[i].sharpness == b.corners[i].sharpness);
+  }
+  CHECK(a.holes == b.holes);
+}
+
+void check_same_levels(const MeshTopology& a, const MeshTopology& b, bool adjacency) {
+  CHECK(a.vertex_count == b.vertex_count);
+  CHECK(a.face_offsets == b.face_offsets);
+  CHECK(a.face_vertices == b.face_vertices);
+  if (!adjacency) return;
+  CHECK(a.edges == b.edges);
+  CHECK(a.edge_faces == b.edge_faces);
+  CHECK(a.vertex_edge_list == b.vertex_edge_list);
+  CHECK(a.vertex_face_list == b.vertex_face_list);
+  CHECK(a.boundary_vertex == b.boundary_vertex);
+}
+
+/// refine_topology without weights and/or the last level's adjacency makes the same faces, tags and
+/// features as the full refinement (which the cases above check against OpenSubdiv), and refuses to
+/// replay what it did not keep.
+void check_topology_only(const Mesh& m, MeshScheme scheme, int levels) {
+  INFO(scheme_name(scheme) << ", " << levels << " levels");
+  const MeshRefinement full = refine_topology(m, scheme, levels);
+  for (const bool adjacency : {true, false}) {
+    const MeshRefinement r =
+        refine_topology(m, scheme, levels, MeshOptions{.weights = false, .last_level_adjacency = adjacency});
+    CHECK(r.steps.empty());
+    REQUIRE(r.levels.size() == full.levels.size());
+    REQUIRE(r.features.size() == full.features.size() - (adjacency || levels == 0 ? 0 : 1));
+    for (std::size_t k = 0; k < r.levels.size(); ++k) {
+      INFO("level " << k);
+      check_same_levels(r.levels[k], full.levels[k], adjacency || k + 1 < r.levels.size());
+      check_same_tags(r.tags[k], full.tags[k]);
+      if (k < r.features.size()) {
+        CHECK(r.features[k].edge_sharpness == full.features[k].edge_sharpness);
+        CHECK(r.features[k].vertex_sharpness == full.features[k].vertex_sharpness);
+        CHECK(r.features[k].holes == full.features[k].holes);
+      }
+    }
+    if (levels == 0) continue;  // nothing to replay
+    CHECK_THROWS_WITH(apply(r, m.vertices), Catch::Contains("without its weights"));
+    CHECK_THROWS_WITH(stencil_table(r), Catch::Contains("without its weights"));
+  }
+  const MeshRefinement faces_only =
+      refine_topology(m, scheme, levels, MeshOptions{.last_level_adjacency = false});
+  CHECK(faces_only.steps.size() == full.steps.size());
+  if (levels > 0) CHECK_THROWS_WITH(limit_stencils(faces_only), Catch::Contains("faces only"));
+}
+
+}  // namespace
+
+TEST_CASE("topology only (no weights, the last level's faces only) = the full refinement's topology and tags",
+          "[subdivision][mesh][creases]") {
+  for (unsigned seed = 1; seed <= 8; ++seed) {
+    std::mt19937 rng(seed);
+    const bool triangles = seed % 2 == 0;
+    Mesh m = seed % 4 < 2 ? torus(4, 3, triangles) : wavy_grid(3, 3, triangles);
+    random_tags(m, rng, seed % 3 != 0);
+    if (seed % 4 == 1) m.tags.crease_method = CreaseMethod::chaikin;
+    INFO("seed " << seed);
+    check_topology_only(m, MeshScheme::bilinear, 2);
+    if (seed == 5) m.tags.rules = RuleSet::blz;
+    check_topology_only(m, triangles ? MeshScheme::loop : MeshScheme::catmull_clark, 3);
+  }
+  check_topology_only(torus(4, 3, true), MeshScheme::butterfly, 2);
+  check_topology_only(wavy_grid(3, 3, true), MeshScheme::sqrt3, 3);
+  check_topology_only(torus(4, 3, false), MeshScheme::doo_sabin, 2);
+  check_topology_only(torus(4, 3, false), MeshScheme::catmull_clark, 0);
+}

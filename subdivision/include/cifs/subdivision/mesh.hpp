@@ -27,6 +27,13 @@ struct MeshOptions {
   std::size_t max_bytes = std::size_t{4} << 30;
   /// Called after every level with (faces made so far, faces of all levels): a progress bar.
   std::function<void(std::uint64_t, std::uint64_t)> progress = nullptr;
+  /// refine_topology only. `weights`: keep every step's weights (MeshRefinement::steps, which apply,
+  /// stencil_table and limit_stencils replay); false: topology only, as OpenSubdiv's RefineUniform —
+  /// the primal schemes do not even make the rows. `last_level_adjacency`: build the last level's
+  /// edges, rings and features; false: its faces only (OpenSubdiv's fullTopologyInLastLevel = false;
+  /// with 0 levels the input keeps everything).
+  bool weights = true;
+  bool last_level_adjacency = true;
 };
 
 /// Sparse weights, one row per new vertex: new vertex i = Σ weights[k] · old vertex columns[k],
@@ -67,7 +74,9 @@ inline bool is_hole(const LevelFeatures& f, std::integral auto face) {
 /// steps, `steps[k]` the weights from level k's vertices to level k + 1's, `features[k]` level k's
 /// sharpness and holes, `tags[k]` level k's tags as a mesh of that level carries them (creases and
 /// corners with their remaining sharpness, holes; the input's options): subdividing level k's mesh
-/// with `tags[k]` once equals step k.
+/// with `tags[k]` once equals step k. Without `options.weights`, `steps` is empty; without
+/// `options.last_level_adjacency`, `levels.back()` has its vertex count and faces only and
+/// `features` stops one level short (`tags.back()` still has the last level's creases and holes).
 struct MeshRefinement {
   MeshScheme scheme = MeshScheme::catmull_clark;
   MeshOptions options;
