@@ -395,9 +395,14 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
     if (!ring.empty()) {
       VertexNeighbourhood n;
       n.faces = static_cast<int>(faces.size());  // smooth level: no sharpness
-      if (!smooth) {
-        pe.clear();
-        for (const int e : ring) pe.push_back(edge_sharpness(L, static_cast<std::size_t>(e)));
+      pe.clear();
+      bool sharp_here = !smooth && vertex_sharpness(L, static_cast<std::size_t>(v)) > 0;
+      if (!smooth)
+        for (const int e : ring) {
+          pe.push_back(edge_sharpness(L, static_cast<std::size_t>(e)));
+          sharp_here = sharp_here || pe.back() > 0;
+        }
+      if (sharp_here) {  // else the smooth rule, as on a smooth level (same bits), and halves stay 0
         ce.resize(pe.size());
         child_edge_sharpness(tags.crease_method, pe, ce);
         for (std::size_t i = 0; i < ring.size(); ++i) {
