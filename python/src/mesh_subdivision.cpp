@@ -346,16 +346,21 @@ void bind_mesh_subdivision_refinement(py::module_& m) {
   m.def(
       "refine_topology",
       [](const Mesh& mesh, const std::string& scheme, int levels, const std::optional<std::string>& boundary,
-         double max_bytes) {
+         double max_bytes, bool weights, bool last_level_adjacency) {
         const sd::MeshScheme s = sd::named_mesh_scheme(scheme);
-        const sd::MeshOptions o = mesh_options(max_bytes);
+        sd::MeshOptions o = mesh_options(max_bytes);
+        o.weights = weights;
+        o.last_level_adjacency = last_level_adjacency;
         const Mesh tagged = with_boundary(mesh, boundary);
         py::gil_scoped_release release;
         return sd::refine_topology(tagged, s, levels, o);
       },
       py::arg("mesh"), py::arg("scheme"), py::arg("levels") = 1, py::kw_only(),
-      py::arg("boundary") = py::none(), py::arg("max_bytes") = kDefaultBytes,
-      "The refinement's topology and weights only; MeshRefinement.apply replays it on vertex data.");
+      py::arg("boundary") = py::none(), py::arg("max_bytes") = kDefaultBytes, py::arg("weights") = true,
+      py::arg("last_level_adjacency") = true,
+      "The refinement's topology and weights only; MeshRefinement.apply replays it on vertex data. "
+      "weights=False keeps no weights (topology only, as OpenSubdiv's RefineUniform: apply and "
+      "stencil_table refuse it); last_level_adjacency=False builds the last level's faces only.");
 }
 
 /// Local analysis at a vertex or face.

@@ -541,6 +541,14 @@ class MeshSubdivisionTest(ScratchTestCase):
         step = r.steps[0]
         sums = np.add.reduceat(step.weights, step.offsets[:-1])
         assert_close(self, sums, np.ones(step.rows), 1e-15)
+        # Topology only: the same faces, no weights to replay.
+        bare = sd.refine_topology(mesh, "catmull-clark", 2, weights=False, last_level_adjacency=False)
+        self.assertEqual((bare.levels, bare.vertex_counts, len(bare.steps)), (2, r.vertex_counts, 0))
+        for level in range(3):
+            for ours, full in zip(bare.faces(level), r.faces(level)):
+                np.testing.assert_array_equal(ours, full)
+        with self.assertRaisesRegex(cifs.InvalidInput, "without its weights"):
+            bare.apply(vertices)
 
     def test_errors(self):
         cube = cifs.io.Mesh(np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0],
