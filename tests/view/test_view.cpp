@@ -226,9 +226,10 @@ TEST_CASE("view handle: hostile requests refused with a 4xx, the session still a
     CHECK(f.post("/api/geometry", "[1, 2]").status == 400);
     CHECK(f.post("/api/geometry", R"({"params": {"depth": 1000000000000}})").status == 400);
     CHECK(f.post("/api/geometry", R"({"params": {"depth": "7"}})").status == 400);
-    CHECK(f.post("/api/geometry", R"({"params": {"dpeth": 7}})").body ==
-          "cifs view: /api/geometry: unknown parameter 'dpeth' (depth, scheme, levels, points, weights, knots, "
-          "amplitude, seed, values)\n");
+    CHECK(
+        f.post("/api/geometry", R"({"params": {"dpeth": 7}})").body ==
+        "cifs view: /api/geometry: unknown parameter 'dpeth' (depth, scheme, levels, points, weights, knots, "
+        "amplitude, seed, values)\n");
     CHECK(f.post("/api/geometry", R"({"params": {"depth": 11}})").status == 400);
     CHECK(f.post("/api/geometry", R"({"params": {"points": [[0, 1e400, 0, 0]]}})").status == 400);
     CHECK(f.post("/api/geometry", R"({"params": {"points": [[0, 1, 2]]}})").status ==
