@@ -487,6 +487,20 @@ TEST_CASE("view geometry with edited knots and weights: the library's shape edit
                                                        nurbs::cartesian_points(saddle), w);
     CHECK(view::geometry(h, q, {}, &cache).positions ==
           cifs_test::page_floats(ifs::attractor(by_hand, 3).vertices));
+    // A non-rational surface given a weight, through a cache built for it non-rational.
+    const view::Document hills = view::open_document(kExamples + "/shapes/hills.json");
+    const auto& smooth = std::get<nurbs::Surface>(*hills.shape);
+    view::Params r = view::default_params(hills);
+    r.depth = 2;
+    view::EditCache kept;
+    (void)view::geometry(hills, r, {}, &kept);
+    r.weights = {{.index = 24, .weight = 4}};
+    Eigen::VectorXd ones = Eigen::VectorXd::Ones(49);
+    ones(24) = 4;
+    const nurbs::Surface weighted =
+        nurbs::make_surface(smooth.degree, smooth.knots, smooth.count, nurbs::cartesian_points(smooth), ones);
+    CHECK(view::geometry(hills, r, {}, &kept).positions ==
+          cifs_test::page_floats(ifs::attractor(weighted, 2).vertices));
     q.amplitude = 0.05;  // the perturbed system of the edited shape, not of the file's
     const view::Geometry rough = view::geometry(h, q, {}, &cache);
     CHECK(rough.positions == view::geometry(h, q).positions);  // no cache: built for this request
@@ -536,6 +550,9 @@ TEST_CASE("view handle: knots and weights through the requests; save writes them
   check_view_refusal(f.post("/api/geometry", R"({"params": {"weights": [[2, "x"]]}})"), "[index, weight]");
   check_view_refusal(f.post("/api/geometry", R"({"params": {"weights": [[2, -1]]}})"), "point 2: weight -1");
   CHECK(f.post("/api/geometry", R"({"params": {"depth": 5}})").body == plain);
+  cifs_test::ViewFixture mesh("meshes/cube.obj");  // a mesh has neither
+  check_view_refusal(mesh.post("/api/geometry", R"({"params": {"weights": [[0, 2]]}})"),
+                     "knots, weights: those of cube.obj are not edited here");
   // The automaton drawn: the edited knots' (a uniform interior has fewer distinct windows).
   const std::string svg = f.get("/api/automaton.svg?token=" + f.session.token).body;
   const std::string uniform =

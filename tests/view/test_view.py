@@ -12,6 +12,8 @@ The server is started on a copy of examples/shapes/hills.json; the page must
 - survive hostile requests (bad JSON, a huge depth, a path outside the folder, a foreign Host header, no
   token), each refused with a 4xx, the page still answering edits afterwards;
 - and the exported page (--export DIR) opens from file:// with no server, no console error, pixels drawn.
+- open another file of the folder from the page's list (a broken one refused, the page unchanged), edit its
+  knots and a weight, each drawn as the library evaluates the edited file, a decreasing knot refused;
 Screenshots go to --screenshots (ctest: the build tree; `--screenshots docs/img` refreshes the docs' images).
 
     tests/view/test_view.py --cli build/apps/cifs --python build/python --examples examples --work /tmp/v
@@ -147,6 +149,8 @@ def open_and_knots_scenario(args, cifs, driver, work):
                                 .attractor(depth)))
     if state["checksum"] != expected:
         fail(f"weight 2.5 of point 2: the page holds {state['checksum']:08x}, the library {expected:08x}")
+    if args.screenshots:
+        driver.save_screenshot(str(Path(args.screenshots) / "view-wave-knots.png"))
     old = state["checksum"]
     set_field(driver, "knots-0", "0 0 0 0 3 1 3.5 6 6 6 6")
     wait_for(driver, "window.cifsView.ready && window.cifsView.refused", "the refused knots")

@@ -205,6 +205,9 @@ Params parse_params(const Document& d, const json& body, std::string_view where)
     p.knots.clear();
     for (const json& list : knots) p.knots.push_back(list.get<std::vector<double>>());
   }
+  if ((!p.knots.empty() || !p.weights.empty()) && (!d.shape || d.experiment))
+    throw Refusal{400, std::string(where) + ": knots, weights: those of " + d.path.filename().string() +
+                           " are not edited here (a curve's or surface's file's are: open the shape)"};
   return p;
 }
 

@@ -220,10 +220,11 @@
       if (e.name !== 'AbortError') { status(String(e.message || e), true); view.error = String(e); view.ready = true; }
     }
   }
+  const plural = (n, word) => n + ' ' + word + (n === 1 ? '' : 's');
   function readout() {
     $('readout').textContent = doc.kind + ', ' + doc.dimension + '-D\npoints   ' + view.pointCount +
-      '\nchecksum ' + (view.checksum >>> 0).toString(16).padStart(8, '0') + '\nedited   ' + edits.size + ' control points' +
-      (weights.size ? ', ' + weights.size + ' weights' : '') + (knots ? ', the knots' : '');
+      '\nchecksum ' + (view.checksum >>> 0).toString(16).padStart(8, '0') + '\nedited   ' + plural(edits.size, 'point') +
+      (weights.size ? ', ' + plural(weights.size, 'weight') : '') + (knots ? ', knots' : '');
   }
 
   // --- the panel ---
@@ -463,6 +464,7 @@
     edits.clear();
     weights.clear();
     knots = null;
+    $('dimension-readout').textContent = ''; // the last file's
     const select = $('file');
     select.textContent = '';
     for (const name of doc.files || [doc.name]) select.add(new Option(name, name, false, name === doc.name));
