@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "cifs/errors.hpp"
+#include "cifs/files.hpp"
 #include "cifs/ifs/shape_attractor.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/subdivision/mesh.hpp"
@@ -225,9 +226,10 @@ TEST_CASE("view handle: hostile requests refused with a 4xx, the session still a
     CHECK(f.post("/api/geometry", "[1, 2]").status == 400);
     CHECK(f.post("/api/geometry", R"({"params": {"depth": 1000000000000}})").status == 400);
     CHECK(f.post("/api/geometry", R"({"params": {"depth": "7"}})").status == 400);
-    CHECK(f.post("/api/geometry", R"({"params": {"dpeth": 7}})").body ==
-          "cifs view: /api/geometry: unknown parameter 'dpeth' (depth, scheme, levels, points, amplitude, "
-          "seed, values)\n");
+    CHECK(
+        f.post("/api/geometry", R"({"params": {"dpeth": 7}})").body ==
+        "cifs view: /api/geometry: unknown parameter 'dpeth' (depth, scheme, levels, points, weights, knots, "
+        "amplitude, seed, values)\n");
     CHECK(f.post("/api/geometry", R"({"params": {"depth": 11}})").status == 400);
     CHECK(f.post("/api/geometry", R"({"params": {"points": [[0, 1e400, 0, 0]]}})").status == 400);
     CHECK(f.post("/api/geometry", R"({"params": {"points": [[0, 1, 2]]}})").status ==
@@ -343,4 +345,237 @@ TEST_CASE("view handle: the dimension readout and a render through the experimen
   const auto c = nlohmann::json::parse(curve.post("/api/dimension", R"({"params": {"depth": 10}})").body);
   CHECK(std::abs(c["dimension"].get<double>() - 1.0) <=
         3 * c["uncertainty"].get<double>());  // a smooth curve
+}
+
+namespace {
+
+/// The body a session opened afresh on `path` (nothing kept) answers to a geometry request.
+std::string view_fresh_geometry(const std::filesystem::path& path, const std::string& body) {
+  view::Session fresh;
+  view::open_session(fresh, path, "127.0.0.1", 8765);
+  const view::Response r = view::handle(fresh, {.method = "POST",
+                                                .target = "/api/geometry?token=" + fresh.token,
+                                                .host = "127.0.0.1:8765",
+                                                .body = body});
+  REQUIRE(r.status == 200);
+  return r.body;
+}
+
+/// A refusal as the page shows it: a 4xx with one line "cifs view: …".
+void check_view_refusal(const view::Response& r, const std::string& needle) {
+  CAPTURE(r.status, r.body);
+  CHECK(r.status >= 400);
+  CHECK(r.status < 500);
+  CHECK(r.body.starts_with("cifs view: "));
+  CHECK(r.body.find('\n') == r.body.size() - 1);
+  CHECK(r.body.find(needle) != std::string::npos);
+}
+
+}  // namespace
+
+TEST_CASE("view handle: the folder's files to open from the page; a refused open keeps the shape", "[view]") {
+  cifs_test::ViewFixture f("shapes/hills.json");
+  const std::filesystem::path& dir = f.dir.path();
+  for (const char* other : {"shapes/cubic.json", "meshes/cube.obj"})
+    std::filesystem::copy_file(kExamples + "/" + other, dir / std::filesystem::path(other).filename());
+  std::filesystem::copy_file(kExamples + "/meshes/cube.obj", dir / "CUBE.OBJ");  // extensions in any case
+  for (const char* name : {"notes.txt", ".hidden.json", "50%.json"}) std::ofstream(dir / name) << "{}";
+  std::ofstream(dir / "bad.json") << R"({"curve": {"degree": 3, "knots": [0, 1], "points": [[0, 0]]}})";
+  std::filesystem::create_directory(dir / "folder.json");
+  cifs_test::ScratchDir elsewhere;
+  std::filesystem::copy_file(kExamples + "/shapes/cubic.json", elsewhere.path() / "away.json");
+  std::filesystem::create_symlink(elsewhere.path() / "away.json", dir / "away.json");  // out of the folder
+  std::filesystem::create_symlink(dir / "cubic.json", dir / "inside.json");            // a link within it
+  const auto document = [&] {
+    const view::Response r = f.get("/api/document?token=" + f.session.token);
+    REQUIRE(r.status == 200);
+    return nlohmann::json::parse(r.body);
+  };
+  // Plain names (no leading dot, no '%'), extensions cifs view reads, regular files in the folder, sorted.
+  CHECK(document()["files"] ==
+        nlohmann::json({"CUBE.OBJ", "bad.json", "cube.obj", "cubic.json", "hills.json", "inside.json"}));
+  const std::string before = f.post("/api/geometry", R"({"params": {"depth": 2}})").body;
+  REQUIRE(before.starts_with("CIFSVIEW"));
+  check_view_refusal(f.post("/api/open", R"({"name": "bad.json"})"), "bad.json");
+  check_view_refusal(f.post("/api/open", R"({"name": "notes.txt"})"), "notes.txt");
+  check_view_refusal(f.post("/api/open", R"({"name": "folder.json"})"), "folder.json");
+  check_view_refusal(f.post("/api/open", R"({"name": "away.json"})"), "links outside");
+  check_view_refusal(f.post("/api/open", R"({"name": "sub/cubic.json"})"), "not a plain file name");
+  check_view_refusal(f.post("/api/open", R"({"name": ".."})"), "not a plain file name");
+  check_view_refusal(f.post("/api/open", R"({"name": "../hills.json"})"), "not a plain file name");
+  check_view_refusal(f.post("/api/open", R"({"name": 7})"), "name is missing");
+  CHECK(document()["name"] == "hills.json");  // the shape shown stays, and answers as before
+  CHECK(f.post("/api/geometry", R"({"params": {"depth": 2}})").body == before);
+  const view::Response opened = f.post("/api/open", R"({"name": "inside.json"})");
+  REQUIRE(opened.status == 200);
+  CHECK(nlohmann::json::parse(opened.body)["kind"] == "curve");
+  CHECK(nlohmann::json::parse(opened.body)["files"] == document()["files"]);
+}
+
+TEST_CASE("view handle: open A, edit, open B, open A again: each answer a fresh session's", "[view]") {
+  // The session's kept automaton, system and mesh are dropped on open: A is read again (here rewritten in
+  // between, its knots kept and a control point moved, so that anything kept from the first A is stale).
+  cifs_test::ViewFixture f("shapes/saddle.json");
+  const std::filesystem::path a = f.session.document.path, b = f.dir.path() / "wave.json";
+  std::filesystem::copy_file(kExamples + "/shapes/wave.json", b);
+  const std::string edit = R"({"params": {"depth": 3, "amplitude": 0.05, "points": [[1, 0.25, 1.5, 0.75]]}})";
+  const std::string first = f.post("/api/geometry", edit).body;
+  CHECK(first == view_fresh_geometry(a, edit));
+  REQUIRE(f.post("/api/open", R"({"name": "wave.json"})").status == 200);
+  CHECK(f.post("/api/geometry", R"({"params": {"depth": 5}})").body ==
+        view_fresh_geometry(b, R"({"params": {"depth": 5}})"));
+  std::string text = read_file(a);
+  const std::size_t at = text.find("[1, 2, 0.5]");
+  REQUIRE(at != std::string::npos);
+  text.replace(at, 11, "[1, 2, 0.9]");
+  std::ofstream(a) << text;
+  REQUIRE(f.post("/api/open", R"({"name": "saddle.json"})").status == 200);
+  const std::string again = f.post("/api/geometry", edit).body;
+  CHECK(again == view_fresh_geometry(a, edit));
+  CHECK(again != first);
+}
+
+TEST_CASE("view geometry with edited knots and weights: the library's shape edited by hand", "[view]") {
+  const view::Document d = view::open_document(kExamples + "/shapes/wave.json");
+  const auto& wave = std::get<nurbs::Curve>(*d.shape);
+  view::Params p = view::default_params(d);
+  p.depth = 5;
+  view::EditCache cache;
+  const view::Geometry file = view::geometry(d, p, {}, &cache);  // the cache holds the file's automaton
+  SECTION("an open rational curve: new interior knots, a weight; the kept automaton is not reused") {
+    p.knots = {{0, 0, 0, 0, 2, 2.5, 3.5, 6, 6, 6, 6}};
+    p.weights = {{.index = 2, .weight = 2.5}};
+    Eigen::VectorXd w = nurbs::weights(wave);
+    w(2) = 2.5;
+    const nurbs::Curve by_hand = nurbs::make_curve(3, p.knots[0], nurbs::cartesian_points(wave), w);
+    const view::Geometry g = view::geometry(d, p, {}, &cache);
+    CHECK(g.positions == cifs_test::page_floats(ifs::attractor(by_hand, 5)));
+    CHECK(g.positions != file.positions);
+    CHECK(g.net == file.net);  // a weight moves no control point
+    p.weights.clear();         // the knots alone, through the same cache
+    CHECK(view::geometry(d, p, {}, &cache).positions ==
+          cifs_test::page_floats(ifs::attractor(
+              nurbs::make_curve(3, p.knots[0], nurbs::cartesian_points(wave), nurbs::weights(wave)), 5)));
+  }
+  SECTION("a closed curve: its breakpoints; a non-rational curve given a weight") {
+    const view::Document c = view::open_document(kExamples + "/shapes/closed_cubic.json");
+    const auto& closed = std::get<nurbs::Curve>(*c.shape);
+    view::Params q = view::default_params(c);
+    q.depth = 4;
+    (void)view::geometry(c, q, {}, &cache);
+    CHECK(view::shape_knots(*c.shape) == std::vector<std::vector<double>>{{0, 1, 2, 3.5, 4, 6}});
+    q.knots = {{0, 1.5, 2, 3, 4, 6}};
+    q.weights = {{.index = 0, .weight = 3}};  // a point the closed curve's stored rows repeat
+    const Eigen::VectorXd w = (Eigen::VectorXd(5) << 3, 1, 1, 1, 1).finished();
+    const nurbs::Curve by_hand = nurbs::make_closed_curve(3, q.knots[0], nurbs::cartesian_points(closed), w);
+    CHECK(view::geometry(c, q, {}, &cache).positions == cifs_test::page_floats(ifs::attractor(by_hand, 4)));
+    q.knots = {{0, 0, 0, 0, 0, 6}};  // the seam's multiplicity above degree + 1 (make_closed_curve's check)
+    CHECK_THROWS_WITH(view::geometry(c, q, {}, &cache),
+                      Catch::Contains("closed_cubic.json: knots") && Catch::Contains("multiplicity"));
+  }
+  SECTION("a surface: knots in u and v, a weight; the perturbed route too") {
+    const view::Document h = view::open_document(kExamples + "/shapes/saddle.json");
+    const auto& saddle = std::get<nurbs::Surface>(*h.shape);
+    view::Params q = view::default_params(h);
+    q.depth = 3;
+    (void)view::geometry(h, q, {}, &cache);
+    q.knots = {{0, 0, 0, 0.5, 2, 2, 2}, {0, 0, 0, 1, 1, 1}};
+    q.weights = {{.index = 0, .weight = 0.5}};
+    Eigen::VectorXd w = nurbs::weights(saddle);
+    w(0) = 0.5;
+    const nurbs::Surface by_hand = nurbs::make_surface(saddle.degree, {q.knots[0], q.knots[1]}, saddle.count,
+                                                       nurbs::cartesian_points(saddle), w);
+    CHECK(view::geometry(h, q, {}, &cache).positions ==
+          cifs_test::page_floats(ifs::attractor(by_hand, 3).vertices));
+    // A non-rational surface given a weight, through a cache built for it non-rational.
+    const view::Document hills = view::open_document(kExamples + "/shapes/hills.json");
+    const auto& smooth = std::get<nurbs::Surface>(*hills.shape);
+    view::Params r = view::default_params(hills);
+    r.depth = 2;
+    view::EditCache kept;
+    (void)view::geometry(hills, r, {}, &kept);
+    r.weights = {{.index = 24, .weight = 4}};
+    Eigen::VectorXd ones = Eigen::VectorXd::Ones(49);
+    ones(24) = 4;
+    const nurbs::Surface weighted =
+        nurbs::make_surface(smooth.degree, smooth.knots, smooth.count, nurbs::cartesian_points(smooth), ones);
+    CHECK(view::geometry(hills, r, {}, &kept).positions ==
+          cifs_test::page_floats(ifs::attractor(weighted, 2).vertices));
+    q.amplitude = 0.05;  // the perturbed system of the edited shape, not of the file's
+    const view::Geometry rough = view::geometry(h, q, {}, &cache);
+    CHECK(rough.positions == view::geometry(h, q).positions);  // no cache: built for this request
+    q.knots.clear();
+    CHECK(view::geometry(h, q, {}, &cache).positions != rough.positions);
+  }
+  SECTION("refused edits name the knot or the weight; nothing is kept from them") {
+    const auto refused = [&](view::Params bad, const std::string& needle) {
+      CHECK_THROWS_WITH(view::geometry(d, bad, {}, &cache), Catch::Contains(needle));
+      CHECK(view::geometry(d, p, {}, &cache).positions == file.positions);
+    };
+    view::Params bad = p;
+    bad.knots = {{0, 0, 0, 0, 3, 1, 3.5, 6, 6, 6, 6}};
+    refused(bad, "wave.json: knots[5]: 1 is less than the previous knot 3");
+    bad.knots = {{0, 0, 0, 0, 3, 3, 3, 3, 3, 6, 6}};
+    refused(bad, "has multiplicity 5 > degree + 1 = 4");
+    bad.knots = {{0, 0, 0, 0, 1, 3, 3.5, 6, 6, 6}};
+    refused(bad, "10 values, the file's 11");
+    bad.knots = {{0, 0, 0, 0, 1, 3, 3.5, 6, 6, 6, 6}, {0, 1}};
+    refused(bad, "2 lists for a curve");
+    bad.knots.clear();
+    bad.weights = {{.index = 1, .weight = 0}};
+    refused(bad, "point 1: weight 0 is not a positive finite number");
+    bad.weights = {{.index = 7, .weight = 1}};
+    refused(bad, "point 7: the curve has 7 control points");
+  }
+}
+
+TEST_CASE("view handle: knots and weights through the requests; save writes them, the automaton follows",
+          "[view]") {
+  cifs_test::ViewFixture f("shapes/wave.json");
+  const std::string edit =
+      R"({"params": {"depth": 5, "knots": [[0, 0, 0, 0, 2, 2.5, 3.5, 6, 6, 6, 6]], "weights": [[2, 2.5]]}})";
+  const std::string plain = f.post("/api/geometry", R"({"params": {"depth": 5}})").body;
+  const view::Response edited = f.post("/api/geometry", edit);
+  REQUIRE(edited.status == 200);
+  CHECK(edited.body == view_fresh_geometry(f.session.document.path, edit));
+  const auto doc = nlohmann::json::parse(f.get("/api/document?token=" + f.session.token).body);
+  CHECK(doc["knots"] == nlohmann::json::parse("[[0, 0, 0, 0, 1, 3, 3.5, 6, 6, 6, 6]]"));
+  CHECK(doc["weights"] == nlohmann::json::parse("[1, 2, 0.5, 1, 3, 1, 1]"));
+  CHECK(doc["degree"] == nlohmann::json::parse("[3]"));
+  // A refused knot edit: one line, and the next request answers as before it.
+  check_view_refusal(
+      f.post("/api/geometry", R"({"params": {"depth": 5, "knots": [[0, 0, 0, 0, 3, 1, 3.5, 6, 6, 6, 6]]}})"),
+      "knots[5]: 1 is less than the previous knot 3");
+  check_view_refusal(f.post("/api/geometry", R"({"params": {"knots": [0, 1, 2]}})"), "list of lists");
+  check_view_refusal(f.post("/api/geometry", R"({"params": {"weights": [[2, "x"]]}})"), "[index, weight]");
+  check_view_refusal(f.post("/api/geometry", R"({"params": {"weights": [[2, -1]]}})"), "point 2: weight -1");
+  CHECK(f.post("/api/geometry", R"({"params": {"depth": 5}})").body == plain);
+  cifs_test::ViewFixture mesh("meshes/cube.obj");  // a mesh has neither
+  check_view_refusal(mesh.post("/api/geometry", R"({"params": {"weights": [[0, 2]]}})"),
+                     "knots, weights: those of cube.obj are not edited here");
+  // The automaton drawn: the edited knots' (a uniform interior has fewer distinct windows).
+  const std::string svg = f.get("/api/automaton.svg?token=" + f.session.token).body;
+  const std::string uniform =
+      f.post("/api/automaton.svg", R"({"params": {"knots": [[0, 0, 0, 0, 1, 2, 3, 4, 4, 4, 4]]}})").body;
+  const auto states = [](const std::string& s) {
+    std::size_t n = 0;
+    for (std::size_t at = s.find("<circle"); at != std::string::npos; at = s.find("<circle", at + 1)) ++n;
+    return n;
+  };
+  const Eigen::Index expected =
+      nurbs::knot_automaton(nurbs::make_curve(3, {0, 0, 0, 0, 1, 2, 3, 4, 4, 4, 4}, Points::Zero(7, 2)))
+          .windows.size();
+  CHECK(states(uniform) == static_cast<std::size_t>(expected));
+  CHECK(states(uniform) != states(svg));
+  // Save writes the knots and weights; the file reads back as the shape edited by hand.
+  REQUIRE(
+      f.post(
+           "/api/save",
+           R"({"name": "wave-knots.json", "params": {"knots": [[0, 0, 0, 0, 2, 2.5, 3.5, 6, 6, 6, 6]], "weights": [[2, 2.5]]}})")
+          .status == 200);
+  const auto saved = std::get<nurbs::Curve>(io::read_shape(f.dir.path() / "wave-knots.json"));
+  CHECK(saved.knots == nurbs::Knots{0, 0, 0, 0, 2, 2.5, 3.5, 6, 6, 6, 6});
+  CHECK(nurbs::weights(saved) == (Eigen::VectorXd(7) << 1, 2, 2.5, 1, 3, 1, 1).finished());
+  CHECK(nurbs::cartesian_points(saved) ==
+        nurbs::cartesian_points(std::get<nurbs::Curve>(*f.session.document.shape)));
 }

@@ -316,11 +316,89 @@ bool perturbed(const Document& document, const Params& params) {
   return document.perturbed || params.amplitude != 0 || !params.values.empty();
 }
 
+std::vector<std::vector<double>> shape_knots(const io::Shape& shape) {
+  if (const auto* c = std::get_if<nurbs::Curve>(&shape)) return {nurbs::defining_knots(*c)};
+  const auto& s = std::get<nurbs::Surface>(shape);
+  return {s.knots[0], s.knots[1]};
+}
+
+namespace {
+
+/// The knot lists of `params` into the shape (as many values as the file's: the number of control points
+/// stays), each direction checked by the library's own validation.
+void set_knots(const Document& d, io::Shape& shape, const std::vector<std::vector<double>>& knots) {
+  if (knots.empty()) return;
+  const std::vector<std::vector<double>> file = shape_knots(shape);
+  if (knots.size() != file.size())
+    throw InvalidInput(where(d) + ": knots: " + std::to_string(knots.size()) + " lists for a " +
+                       (file.size() == 1 ? "curve (one list)" : "surface (two lists: u, v)"));
+  for (std::size_t k = 0; k < knots.size(); ++k)
+    if (knots[k].size() != file[k].size())
+      throw InvalidInput(where(d) + ": knots" + (file.size() == 1 ? "" : "[" + std::to_string(k) + "]") +
+                         ": " + std::to_string(knots[k].size()) + " values, the file's " +
+                         std::to_string(file[k].size()) + " (control points are not added or removed here)");
+  if (auto* c = std::get_if<nurbs::Curve>(&shape)) {
+    if (!c->closed) {
+      c->knots = knots[0];
+      nurbs::validate_knots(c->knots, c->degree, c->P.rows(), where(d) + ": knots");
+      return;
+    }
+    // A closed curve's knot vector is its breakpoints extended by the period: make_closed_curve's, which
+    // checks the breakpoints (the seam's multiplicity too). It reads the points only for their number: the
+    // stored rows go in as they are, so none is rounded through a division by its weight.
+    try {
+      c->knots = nurbs::make_closed_curve(c->degree, knots[0], c->P.topRows(nurbs::distinct_count(*c))).knots;
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(where(d) + ": " + e.what());
+    }
+    return;
+  }
+  auto& s = std::get<nurbs::Surface>(shape);
+  for (int k = 0; k < 2; ++k) {
+    s.knots[k] = knots[k];
+    nurbs::validate_knots(s.knots[k], s.degree[k], s.count[k],
+                          where(d) + ": knots[" + std::to_string(k) + "]");
+  }
+}
+
+/// Stored row `row` with weight `weight`, its Cartesian point kept (a non-rational shape made rational).
+void set_weight(Points& P, bool& rational, Eigen::Index row, double weight, const std::string& who) {
+  if (!(weight > 0) || !std::isfinite(weight))
+    throw InvalidInput(who + ": weight " + number_text(weight) + " is not a positive finite number");
+  if (!rational) {  // every row gets weight 1: its coordinates times 1, exact
+    P.conservativeResize(Eigen::NoChange, P.cols() + 1);
+    P.col(P.cols() - 1).setOnes();
+    rational = true;
+  }
+  const Eigen::Index dim = P.cols() - 1;
+  const double old = P(row, dim);
+  if (old == weight) return;
+  // The Cartesian point (as cartesian_points and a written file have it) times the new weight: what
+  // make_curve, and reading the saved file, make of that row.
+  const Eigen::RowVectorXd x = P.row(row).head(dim) / old;
+  P.row(row).head(dim) = x * weight;
+  P(row, dim) = weight;
+}
+
+}  // namespace
+
 io::Shape edited_shape(const Document& document, const Params& params) {
   if (!document.shape) throw InvalidInput(where(document) + ": not a shape");
   io::Shape shape = *document.shape;
+  set_knots(document, shape, params.knots);
   if (auto* c = std::get_if<nurbs::Curve>(&shape)) {
     const auto m = static_cast<std::size_t>(nurbs::distinct_count(*c));
+    for (const WeightEdit& e : params.weights) {
+      if (e.index >= m)
+        throw InvalidInput(point_who(document, e.index) + ": the curve has " + std::to_string(m) +
+                           " control points");
+      for (Eigen::Index r = static_cast<Eigen::Index>(e.index); r < c->P.rows();
+           r += static_cast<Eigen::Index>(m)) {
+        bool rational = c->rational;
+        set_weight(c->P, rational, r, e.weight, point_who(document, e.index));
+        c->rational = rational;
+      }
+    }
     for (const PointEdit& e : params.points) {
       if (e.index >= m)
         throw InvalidInput(point_who(document, e.index) + ": the curve has " + std::to_string(m) +
@@ -333,6 +411,12 @@ io::Shape edited_shape(const Document& document, const Params& params) {
   } else {
     auto& s = std::get<nurbs::Surface>(shape);
     const auto n = static_cast<std::size_t>(s.P.rows());
+    for (const WeightEdit& e : params.weights) {
+      if (e.index >= n)
+        throw InvalidInput(point_who(document, e.index) + ": the surface has " + std::to_string(n) +
+                           " control points");
+      set_weight(s.P, s.rational, static_cast<Eigen::Index>(e.index), e.weight, point_who(document, e.index));
+    }
     for (const PointEdit& e : params.points) {
       if (e.index >= n)
         throw InvalidInput(point_who(document, e.index) + ": the surface has " + std::to_string(n) +
@@ -399,20 +483,48 @@ std::string document_key(const Document& d) {
   return d.path.string() + (d.perturbation.keep_vertices ? "|k" : "|f");
 }
 
-/// The automaton of the document's curve or surface: the cache's when built for this document (an edit
-/// moves control points, and knot_automaton and tensor_automaton read only the knots, the degree and
-/// the number of points), else built — into the cache when there is one, else into `local`.
+/// The values, bit for bit (hexadecimal floating point), for a cache key.
+void append_key(std::string& key, std::span<const double> values) {
+  for (const double x : values) {
+    std::array<char, 32> text{};
+    std::snprintf(text.data(), text.size(), " %a", x);
+    key += text.data();
+  }
+  key += '|';
+}
+
+/// The key of the edited shape's automaton: the document and all that knot_automaton and tensor_automaton
+/// read — the degrees, the knots (a knot edit builds another automaton) and the numbers of points; not the
+/// points nor the weights, which the view's edits of points and weights change.
+std::string automaton_key(const Document& d, const io::Shape& shape) {
+  std::string key = document_key(d) + "|";
+  if (const auto* c = std::get_if<nurbs::Curve>(&shape)) {
+    key += std::to_string(c->degree) + (c->closed ? "c" : "o") + std::to_string(c->P.rows());
+    append_key(key, c->knots);
+    return key;
+  }
+  const auto& s = std::get<nurbs::Surface>(shape);
+  for (int k = 0; k < 2; ++k) {
+    key += std::to_string(s.degree[k]) + "," + std::to_string(s.count[k]);
+    append_key(key, s.knots[k]);
+  }
+  return key;
+}
+
+/// The automaton of the document's edited curve or surface: the cache's when built from the same knots
+/// (automaton_key), else built — into the cache when there is one, else into `local`.
 template <class Automaton, class Shape, class Build>
 const Automaton& cached_automaton(const Document& d, const Shape& shape, EditCache* cache,
                                   std::optional<Automaton> EditCache::*slot, std::optional<Automaton>& local,
                                   Build build) {
   if (cache == nullptr) return local.emplace(build(shape));
-  if (cache->automaton_key != document_key(d) || !(cache->*slot)) {
+  std::string key = automaton_key(d, shape);
+  if (cache->automaton_key != key || !(cache->*slot)) {
     cache->knots.reset();
     cache->tensor.reset();
     cache->automaton_key.clear();
     (cache->*slot).emplace(build(shape));
-    cache->automaton_key = document_key(d);
+    cache->automaton_key = std::move(key);
   }
   return *(cache->*slot);
 }
@@ -461,8 +573,8 @@ void grid_geometry(const Mesh& mesh, Geometry& g) {
 /// kept when the same route made them at the same depth for this document (they depend on the automaton's
 /// graph and the depth, not on the nets) — or into a fresh one, then writes the grid into g.
 template <class Route>
-void cached_grid(const Document& d, std::string_view route_name, int depth, ifs::MeshOptions options,
-                 EditCache* cache, Geometry& g, Route route) {
+void cached_grid(const Document& d, const io::Shape& shape, std::string_view route_name, int depth,
+                 ifs::MeshOptions options, EditCache* cache, Geometry& g, Route route) {
   if (cache == nullptr) {
     Mesh mesh;
     route(mesh, options);
@@ -470,7 +582,7 @@ void cached_grid(const Document& d, std::string_view route_name, int depth, ifs:
     node_states(mesh, g.states);
     return;
   }
-  const std::string key = document_key(d) + "|" + std::string(route_name) + "|" + std::to_string(depth);
+  const std::string key = automaton_key(d, shape) + std::string(route_name) + "|" + std::to_string(depth);
   options.keep_faces = cache->mesh_key == key;
   cache->mesh_key.clear();  // until the mesh is whole again (a refusal mid-way leaves vertices half written)
   route(cache->mesh, options);
@@ -491,7 +603,7 @@ void surface_geometry(const Document& d, const nurbs::Surface& s, const Params& 
   ifs::MeshOptions options;
   options.homogeneous = s.rational;
   options.max_bytes = ifs::mesh_bytes(limits.max_points, 3, limits.max_points);
-  cached_grid(d, "separable", params.depth, options, cache, g, [&](Mesh& mesh, const ifs::MeshOptions& o) {
+  cached_grid(d, s, "separable", params.depth, options, cache, g, [&](Mesh& mesh, const ifs::MeshOptions& o) {
     ifs::surface_mesh(a, nets, params.depth, mesh, o);
   });
 }
@@ -578,16 +690,21 @@ void note_contraction(const ifs::Contraction& c, Geometry& g) {
   g.contraction_delta = c.delta;
 }
 
-/// The key of a shape's perturbable system: the document and its moved points (bit for bit).
+/// The key of a shape's perturbable system: the document and its edits of points, weights and knots (bit for
+/// bit).
 std::string system_key(const Document& d, const Params& params) {
-  std::string key = document_key(d);
+  std::string key = document_key(d) + "|";
   for (const PointEdit& e : params.points) {
-    key += "|" + std::to_string(e.index);
-    for (const double x : e.position) {
-      std::array<char, 32> text{};
-      std::snprintf(text.data(), text.size(), " %a", x);
-      key += text.data();
-    }
+    key += "p" + std::to_string(e.index);
+    append_key(key, e.position);
+  }
+  for (const WeightEdit& e : params.weights) {
+    key += "w" + std::to_string(e.index);
+    append_key(key, std::span(&e.weight, 1));
+  }
+  for (const std::vector<double>& knots : params.knots) {
+    key += "k";
+    append_key(key, knots);
   }
   return key;
 }
@@ -617,7 +734,7 @@ void perturbed_geometry(const Document& d, const io::Shape& shape, const Params&
   ifs::MeshOptions mo;
   mo.homogeneous = system->rational;
   mo.max_bytes = ifs::mesh_bytes(limits.max_points, 3, limits.max_points);
-  cached_grid(d, "generic", params.depth, mo, cache, g, [&](Mesh& mesh, const ifs::MeshOptions& o) {
+  cached_grid(d, shape, "generic", params.depth, mo, cache, g, [&](Mesh& mesh, const ifs::MeshOptions& o) {
     ifs::quad_mesh(p.system.automaton, system->nets, system->patches, params.depth, mesh, o);
   });
 }

@@ -141,9 +141,9 @@ Params parse_params(const Document& d, const json& body, std::string_view where)
   if (!j.is_object()) throw Refusal{400, std::string(where) + ": params is not an object"};
   for (const auto& [key, value] : j.items())
     if (key != "depth" && key != "scheme" && key != "levels" && key != "points" && key != "amplitude" &&
-        key != "seed" && key != "values")
+        key != "seed" && key != "values" && key != "weights" && key != "knots")
       throw Refusal{400, std::string(where) + ": unknown parameter '" + key +
-                             "' (depth, scheme, levels, points, amplitude, seed, values)"};
+                             "' (depth, scheme, levels, points, weights, knots, amplitude, seed, values)"};
   if (j.contains("values")) {
     const json& values = j.at("values");
     if (!values.is_object())
@@ -184,6 +184,30 @@ Params parse_params(const Document& d, const json& body, std::string_view where)
       p.points.push_back(std::move(edit));
     }
   }
+  if (j.contains("weights")) {
+    const json& weights = j.at("weights");
+    if (!weights.is_array()) throw Refusal{400, std::string(where) + ": weights is not an array"};
+    for (const json& e : weights) {
+      if (!e.is_array() || e.size() != 2 || !e[0].is_number_unsigned() || !e[1].is_number())
+        throw Refusal{400, std::string(where) + ": each edit of weights is [index, weight]"};
+      p.weights.push_back({.index = e[0].get<std::size_t>(), .weight = e[1].get<double>()});
+    }
+  }
+  if (j.contains("knots")) {  // one list per direction; the library checks the values (edited_shape)
+    const json& knots = j.at("knots");
+    const auto numbers = [](const json& list) {
+      return list.is_array() &&
+             std::all_of(list.begin(), list.end(), [](const json& x) { return x.is_number(); });
+    };
+    if (!knots.is_array() || !std::all_of(knots.begin(), knots.end(), numbers))
+      throw Refusal{400,
+                    std::string(where) + ": knots is not a list of lists of numbers (one per direction)"};
+    p.knots.clear();
+    for (const json& list : knots) p.knots.push_back(list.get<std::vector<double>>());
+  }
+  if ((!p.knots.empty() || !p.weights.empty()) && (!d.shape || d.experiment))
+    throw Refusal{400, std::string(where) + ": knots, weights: those of " + d.path.filename().string() +
+                           " are not edited here (a curve's or surface's file's are: open the shape)"};
   return p;
 }
 
@@ -212,12 +236,57 @@ int max_depth(const Session& s) {
   return 0;
 }
 
+/// The files of the session's folder that the page may open: plain names (in_folder's rule) with an
+/// extension cifs view reads (.json, .obj, .ply, .stl, .off; STEP and IGES, read when cifs has OpenCASCADE),
+/// regular files or links to one inside the folder, sorted; at most Limits::max_files of them. What each
+/// holds is not read here: opening one that cifs view does not show is refused then, with the reason.
+std::vector<std::string> folder_files(const Session& s) {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (auto it = std::filesystem::directory_iterator(s.folder, ec);
+       !ec && it != std::filesystem::directory_iterator(); it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    const std::string ext = extension_of(it->path());
+    if (ext != ".json" && ext != ".obj" && ext != ".ply" && ext != ".stl" && ext != ".off" &&
+        ext != ".step" && ext != ".stp" && ext != ".igs" && ext != ".iges")
+      continue;
+    std::error_code regular;
+    if (!std::filesystem::is_regular_file(it->path(), regular)) continue;
+    try {
+      (void)in_folder(s, name, "files");
+    } catch (const Refusal&) {
+      continue;
+    }
+    names.push_back(name);
+  }
+  std::sort(names.begin(), names.end());
+  if (names.size() > s.limits.max_files) names.resize(s.limits.max_files);
+  return names;
+}
+
 json document_json(const Session& s) {
   const Document& d = s.document;
   json j = {{"name", d.path.filename().string()},
             {"kind", kind_name(d.kind)},
             {"dimension", shape_dimension(d)},
-            {"params", params_json(default_params(d))}};
+            {"params", params_json(default_params(d))},
+            {"files", folder_files(s)}};
+  if (d.shape) {  // the knots and weights the page edits (the distinct points of a closed curve)
+    j["knots"] = shape_knots(*d.shape);
+    std::vector<double> weights;
+    if (const auto* c = std::get_if<nurbs::Curve>(&*d.shape)) {
+      const Eigen::VectorXd w = nurbs::weights(*c);
+      weights.assign(w.data(), w.data() + w.size());
+      j["degree"] = {c->degree};
+      j["closed"] = c->closed;
+    } else {
+      const auto& surface = std::get<nurbs::Surface>(*d.shape);
+      const Eigen::VectorXd w = nurbs::weights(surface);
+      weights.assign(w.data(), w.data() + w.size());
+      j["degree"] = surface.degree;
+    }
+    j["weights"] = weights;
+  }
   if (d.kind == Kind::mesh) {
     json schemes = json::array();
     for (const char* name : {"catmull-clark", "loop", "doo-sabin", "butterfly", "sqrt3", "bilinear"})
@@ -239,10 +308,13 @@ json document_json(const Session& s) {
   return j;
 }
 
-automata::Automaton document_automaton(const Document& d) {
+/// The automaton drawn beside the geometry: the BC-IFS file's, or the knot or tensor automaton of the
+/// shape with the page's knots (`params`).
+automata::Automaton document_automaton(const Document& d, const Params& params) {
   if (d.kind == Kind::bcifs) return d.bcifs->system.automaton;
-  if (const auto* c = std::get_if<nurbs::Curve>(&*d.shape)) return nurbs::knot_automaton(*c).automaton;
-  return nurbs::tensor_automaton(std::get<nurbs::Surface>(*d.shape)).product;
+  const io::Shape shape = edited_shape(d, params);
+  if (const auto* c = std::get_if<nurbs::Curve>(&shape)) return nurbs::knot_automaton(*c).automaton;
+  return nurbs::tensor_automaton(std::get<nurbs::Surface>(shape)).product;
 }
 
 /// A BC-IFS document's system with the edits: ifs::perturb's result when perturbed, else the file's.
@@ -454,10 +526,13 @@ Response route(Session& s, const Request& r) {
     const std::scoped_lock lock(s.document_mutex);
     return json_response(document_json(s));
   }
-  if (r.method == "GET" && path == "/api/automaton.svg") {
+  if ((r.method == "GET" || r.method == "POST") && path == "/api/automaton.svg") {
+    // POST: the automaton of the shape with the body's knots (a knot edit changes it).
     const std::scoped_lock lock(s.document_mutex);
     if (s.document.kind == Kind::mesh) throw Refusal{404, path + ": a mesh has no automaton here"};
-    return {200, "image/svg+xml", io::to_svg(document_automaton(s.document))};
+    const Params params =
+        r.method == "GET" ? default_params(s.document) : parse_params(s.document, parse_body(r, path), path);
+    return {200, "image/svg+xml", io::to_svg(document_automaton(s.document, params))};
   }
   if (r.method == "POST" && path == "/api/geometry") {
     const json body = parse_body(r, path);

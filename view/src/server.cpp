@@ -78,6 +78,7 @@ void export_page(const std::filesystem::path& path, const std::filesystem::path&
   session.folder = std::filesystem::absolute(path).parent_path();
   session.token = random_token();
   session.hosts = {"export"};
+  session.limits.max_files = 0;  // a page to share does not list the folder's other files
   const Response description = handle(
       session,
       {.method = "GET", .target = "/api/document?token=" + session.token, .host = "export", .body = {}});

@@ -11,6 +11,8 @@
   let doc = null; // the document's description
   let params = null; // depth, scheme, levels
   const edits = new Map(); // point index -> coordinates
+  const weights = new Map(); // point index -> weight (accepted by the server)
+  let knots = null; // the knot lists accepted by the server (null: the file's)
   let controller = null; // the geometry request in flight
   let editStart = 0;
   let selected = -1; // the highlighted state
@@ -161,12 +163,23 @@
   }
 
   // --- requests ---
-  function body(extra) {
-    const points = [];
+  /// The request's params: the page's, with a candidate's knots or weights (not yet accepted) over them.
+  function requestParams(candidate) {
+    const points = [], w = new Map(weights);
     for (const [i, p] of edits) points.push([i, ...p]);
-    return JSON.stringify(Object.assign({ params: Object.assign({}, params, { points }) }, extra || {}));
+    if (candidate && candidate.weight) w.set(candidate.weight[0], candidate.weight[1]);
+    const extra = { points };
+    if (w.size) extra.weights = Array.from(w, ([i, x]) => [i, x]);
+    const k = candidate && candidate.knots ? candidate.knots : knots;
+    if (k) extra.knots = k;
+    return Object.assign({}, params, extra);
   }
-  async function refresh(frame) {
+  function body(extra) {
+    return JSON.stringify(Object.assign({ params: requestParams() }, extra || {}));
+  }
+  /// Asks for the geometry of the page's params; with a candidate (knots or a weight), the candidate is
+  /// kept only when the server accepts it (a refused one is shown, the last good geometry stays).
+  async function refresh(frame, candidate) {
     if (window.cifsBaked) return;
     if (controller) controller.abort();
     controller = new AbortController();
@@ -174,7 +187,7 @@
     editStart = performance.now();
     view.ready = false;
     try {
-      const r = await fetch(api('geometry'), { method: 'POST', body: body(), signal: mine.signal });
+      const r = await fetch(api('geometry'), { method: 'POST', body: JSON.stringify({ params: requestParams(candidate) }), signal: mine.signal });
       if (r.status === 204) return; // superseded by a newer edit
       if (r.status === 422) { // not contractive: the geometry stays, the edit is shown as refused
         const message = (await r.text()).trim();
@@ -183,9 +196,21 @@
         view.ready = true;
         return;
       }
-      if (!r.ok) { status((await r.text()).trim(), true); view.ready = true; return; }
+      if (!r.ok) {
+        const message = (await r.text()).trim();
+        status(message, true);
+        if (candidate) { view.refused = message; candidate.refused(message); }
+        view.ready = true;
+        return;
+      }
       const g = parse(await r.arrayBuffer());
       if (mine !== controller) return;
+      if (candidate) {
+        if (candidate.weight) weights.set(candidate.weight[0], candidate.weight[1]);
+        if (candidate.knots) { knots = candidate.knots; loadAutomaton(); }
+        candidate.accepted();
+        view.refused = null;
+      }
       show(g, frame);
       view.lastMs = performance.now() - editStart;
       status(view.pointCount + ' points, ' + view.lastMs.toFixed(0) + ' ms');
@@ -195,9 +220,11 @@
       if (e.name !== 'AbortError') { status(String(e.message || e), true); view.error = String(e); view.ready = true; }
     }
   }
+  const plural = (n, word) => n + ' ' + word + (n === 1 ? '' : 's');
   function readout() {
     $('readout').textContent = doc.kind + ', ' + doc.dimension + '-D\npoints   ' + view.pointCount +
-      '\nchecksum ' + (view.checksum >>> 0).toString(16).padStart(8, '0') + '\nedited   ' + edits.size + ' control points';
+      '\nchecksum ' + (view.checksum >>> 0).toString(16).padStart(8, '0') + '\nedited   ' + plural(edits.size, 'point') +
+      (weights.size ? ', ' + plural(weights.size, 'weight') : '') + (knots ? ', knots' : '');
   }
 
   // --- the panel ---
@@ -236,12 +263,60 @@
       seed.addEventListener('change', () => { params.seed = Math.max(0, Math.floor(Number(seed.value))); refresh(false); });
       $('panel').append(label, seed);
     }
+    knotPanel();
     if (doc.refusal) contractivity(doc.refusal, true);
     const stem = doc.name.replace(/\.[^.]*$/, '');
     $('save-name').value = stem + '-edited.' + (doc.kind === 'mesh' ? 'obj' : 'json');
     view.document = doc;
     view.params = params;
     $('render-name').value = stem + '-edited.png';
+  }
+  /// The knots (a text field per direction: numbers separated by spaces or commas) and the weight of one
+  /// control point (click a point of the net, or type its index). Each edit is a candidate, kept when the
+  /// library accepts it (nurbs::validate: non-decreasing, multiplicities at most degree + 1, …) and
+  /// shown in red with the server's message when not: the last good geometry stays.
+  function knotPanel() {
+    if (!doc.knots || doc.points_editable === false) return;
+    const box = document.createElement('details');
+    box.open = true;
+    const summary = document.createElement('summary');
+    summary.textContent = 'knots and weights (degree ' + doc.degree.join(', ') + ')';
+    box.append(summary);
+    const candidate = (input, edit) => Object.assign(edit, {
+      accepted: () => input.classList.remove('error'),
+      refused: () => input.classList.add('error'),
+    });
+    doc.knots.forEach((list, k) => {
+      const label = document.createElement('label');
+      label.textContent = doc.knots.length === 1 ? (doc.closed ? 'breakpoints (one period)' : 'knots') : 'knots in ' + 'uv'[k];
+      const input = document.createElement('input');
+      Object.assign(input, { type: 'text', id: 'knots-' + k, value: (knots || doc.knots)[k].join(' ') });
+      input.addEventListener('change', () => {
+        const values = input.value.trim().split(/[\s,]+/).map(Number);
+        const next = (knots || doc.knots).map((l, i) => (i === k ? values : l));
+        refresh(false, candidate(input, { knots: next }));
+      });
+      box.append(label, input);
+    });
+    const label = document.createElement('label');
+    label.textContent = 'weight of control point';
+    const row = document.createElement('div');
+    row.className = 'row';
+    const index = document.createElement('input');
+    Object.assign(index, { type: 'number', id: 'weight-index', min: 0, max: doc.weights.length - 1, step: 1, value: 0 });
+    const weight = document.createElement('input');
+    Object.assign(weight, { type: 'number', id: 'weight', min: 0, step: 0.1 });
+    const current = () => {
+      const i = Math.min(doc.weights.length - 1, Math.max(0, Math.floor(Number(index.value)) || 0));
+      return [i, weights.has(i) ? weights.get(i) : doc.weights[i]];
+    };
+    index.addEventListener('change', () => { weight.value = current()[1]; weight.classList.remove('error'); });
+    weight.addEventListener('change', () => refresh(false, candidate(weight, { weight: [current()[0], Number(weight.value)] })));
+    weight.value = current()[1];
+    view.selectPoint = (i) => { index.value = i; index.dispatchEvent(new Event('change')); };
+    row.append(index, weight);
+    box.append(label, row);
+    $('panel').append(box);
   }
   /// The free coefficients by name, each a slider over its admissible range (docs/view.md).
   function coefficients() {
@@ -298,6 +373,14 @@
   $('dimension').addEventListener('click', dimension);
 
   // --- the automaton: click a state to light up its pieces ---
+  /// The automaton of the shape with the page's knots (a knot edit changes it); none for a mesh.
+  function loadAutomaton() {
+    selected = -1;
+    view.selected = -1;
+    if (doc.kind === 'mesh') { $('automaton').textContent = ''; return; }
+    const init = knots ? { method: 'POST', body: body() } : {};
+    fetch(api('automaton.svg'), init).then((a) => a.text()).then(automaton);
+  }
   function automaton(svg) {
     $('automaton').innerHTML = svg;
     // io::to_svg draws one circle per state, in state order (names "s3", or "(s0,s1)" for a tensor product).
@@ -341,6 +424,7 @@
       if (d < bestDistance) { best = i; bestDistance = d; }
     }
     if (best < 0) return;
+    if (view.selectPoint) view.selectPoint(best);
     dragging = best;
     controls.enabled = false;
     const normal = new THREE.Vector3();
@@ -377,9 +461,45 @@
     document.title = 'cifs view: ' + doc.name;
     $('title').textContent = doc.name;
     params = Object.assign({}, doc.params);
+    edits.clear();
+    weights.clear();
+    knots = null;
+    $('dimension-readout').textContent = ''; // the last file's
+    const select = $('file');
+    select.textContent = '';
+    for (const name of doc.files || [doc.name]) select.add(new Option(name, name, false, name === doc.name));
     panel();
     resize();
   }
+  /// Another file of the folder: the server opens it (its session's kept geometry dropped) and answers its
+  /// document; a file it refuses leaves the page on the shape it shows, with the message.
+  async function openFile() {
+    const name = $('file').value;
+    if (controller) controller.abort();
+    view.ready = false;
+    status('opening ' + name + '…');
+    try {
+      const r = await fetch(api('open'), { method: 'POST', body: JSON.stringify({ name }) });
+      if (!r.ok) {
+        const message = (await r.text()).trim();
+        status(message, true);
+        view.refused = message;
+        $('file').value = doc.name;
+        view.ready = true;
+        return;
+      }
+      doc = await r.json();
+      view.refused = null;
+      contractivity('', false);
+      start();
+      loadAutomaton();
+      await refresh(true);
+    } catch (e) {
+      status(String(e.message || e), true);
+      view.ready = true;
+    }
+  }
+  $('file').addEventListener('change', openFile);
   async function load() {
     try {
       if (location.protocol === 'file:' || !token) { // the exported page: geometry.js holds everything
@@ -391,6 +511,7 @@
         doc = window.cifsBaked.document;
         start();
         $('files').style.display = 'none';
+        $('open').style.display = 'none';
         for (const input of $('panel').querySelectorAll('input, select')) input.disabled = true;
         if (window.cifsBaked.automaton) automaton(window.cifsBaked.automaton);
         show(parse(base64(window.cifsBaked.geometry)), true);
@@ -403,7 +524,7 @@
       if (!r.ok) throw new Error((await r.text()).trim());
       doc = await r.json();
       start();
-      if (doc.kind !== 'mesh') fetch(api('automaton.svg')).then((a) => a.text()).then(automaton);
+      loadAutomaton();
       await refresh(true);
     } catch (e) {
       status(String(e.message || e), true);

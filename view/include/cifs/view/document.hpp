@@ -104,6 +104,8 @@ struct Limits {
   std::size_t max_points = std::size_t{1} << 22;
   /// A BC-IFS with more free coefficients gets no sliders (their ranges cost ~40 perturbations each).
   std::size_t max_sliders = 64;
+  /// The files of the folder listed for opening from the page (sorted; the first ones).
+  std::size_t max_files = 1000;
 };
 
 /// Reads `path` (io::detect decides what it holds): a shape, a mesh, a BC-IFS file (with its nets), or an
@@ -119,12 +121,24 @@ struct PointEdit {
   std::vector<double> position;
 };
 
+/// One control point's weight changed: index as PointEdit's, the new weight (positive, finite). The point
+/// stays where it is (its Cartesian position); a non-rational shape becomes rational.
+struct WeightEdit {
+  std::size_t index = 0;
+  double weight = 1;
+};
+
 /// What the page may change. Defaults: default_params.
 struct Params {
-  int depth = 0;                  // curves, surfaces: the attractor's depth
-  std::string scheme;             // meshes: subdivision::named_mesh_scheme
-  int levels = 0;                 // meshes: subdivision steps
-  std::vector<PointEdit> points;  // curves, surfaces, meshes: moved control points (mesh: vertices)
+  int depth = 0;                    // curves, surfaces: the attractor's depth
+  std::string scheme;               // meshes: subdivision::named_mesh_scheme
+  int levels = 0;                   // meshes: subdivision steps
+  std::vector<PointEdit> points;    // curves, surfaces, meshes: moved control points (mesh: vertices)
+  std::vector<WeightEdit> weights;  // curves, surfaces: changed weights
+  /// Curves, surfaces: new knots, empty for the file's; else one list per direction (a surface: u, then
+  /// v), each of as many values as the file's: an open curve's knot vector, a closed curve's breakpoints
+  /// b_0 … b_m (nurbs::defining_knots). Validated by the library (nurbs::validate, make_closed_curve).
+  std::vector<std::vector<double>> knots;
   /// Curves, surfaces: above 0, the shape's BC-IFS with its free coefficients perturbed (as an experiment's
   /// "perturbation": amplitude and seed, knot and end points kept), evaluated by experiment::evaluate.
   double amplitude = 0;
@@ -137,7 +151,12 @@ struct Params {
 /// Catmull–Clark for meshes with a non-triangle face and Loop otherwise.
 Params default_params(const Document& document);
 
-/// The shape with the edits applied (validated again: InvalidInput naming the point for a bad edit).
+/// The knots the page shows and edits: one list per direction (a closed curve: its breakpoints).
+std::vector<std::vector<double>> shape_knots(const io::Shape& shape);
+
+/// The shape with the edits applied — knots, then weights, then points — and validated again by the
+/// library (InvalidInput naming the point, the weight or the knot of a bad edit). Rows not edited are
+/// kept bit for bit.
 io::Shape edited_shape(const Document& document, const Params& params);
 /// The mesh with the edits applied (before subdivision).
 Mesh edited_mesh(const Document& document, const Params& params);
@@ -171,20 +190,21 @@ bool perturbed(const Document& document, const Params& params);
 /// What a session keeps between geometry requests (one per session, for its one document: opening
 /// another file starts a new one), so that an edit redoes only what it changes and writes into memory
 /// already faulted in (fresh buffers of ~10 MB an edit — page faults and zero fills — were half of a
-/// control-point edit's time):
-/// - the shape's automaton: the view moves control points, never knots, so one serves every edit;
+/// control-point edit's time). Each entry is keyed on what it is made from, bit for bit:
+/// - the shape's automaton, made from the knots, degrees and numbers of points alone (knot_automaton,
+///   tensor_automaton): one serves every edit of points and weights; a knot edit builds it again;
 /// - a perturbed shape's system: an amplitude, seed or value edit re-perturbs it (ifs::perturb with its
-///   solved space); a moved control point builds it again;
+///   solved space); a moved control point, weight or knot builds it again;
 /// - the last surface mesh: its storage reused, and its faces and states kept (ifs::MeshOptions::
-///   keep_faces), with the state per node made from them, when the route and depth are those they were
-///   made for.
+///   keep_faces), with the state per node made from them, when the automaton, route and depth are those
+///   they were made for.
 struct EditCache {
-  std::string automaton_key;                     // the document `knots` or `tensor` was built for
+  std::string automaton_key;                     // the document and knots `knots` or `tensor` was built for
   std::optional<nurbs::KnotAutomaton> knots;     // curves
   std::optional<nurbs::TensorAutomaton> tensor;  // surfaces
-  std::string key;                               // the document and point edits `system` was built for
+  std::string key;  // the document and the edits of points, weights and knots `system` was built for
   std::shared_ptr<const PerturbableSystem> system;
-  std::string mesh_key;  // the document, route and depth of `mesh`'s faces; empty: none kept
+  std::string mesh_key;  // the automaton's key, the route and depth of `mesh`'s faces; empty: none kept
   Mesh mesh;
   std::vector<std::uint32_t> node_states;  // of `mesh`'s grid nodes (Geometry::states)
 };
