@@ -813,7 +813,7 @@ class LocalAnalysisTest(unittest.TestCase):
         self.assertEqual(a["analyses"], 2)
         self.assertEqual(a["summary"], cli("analyze", str(EXAMPLES / "meshes" / "open_grid_triangles.obj"),
                                            "--scheme", "loop").stdout.strip().splitlines()[-1])
-        with self.assertRaisesRegex(cifs.InvalidInput, "catmull-clark and loop only"):
+        with self.assertRaisesRegex(cifs.InvalidInput, "catmull-clark, loop and sqrt3 only"):
             sd.analyze_mesh(mesh, "butterfly")
 
     def test_blz_rules(self):
@@ -853,7 +853,7 @@ class LocalAnalysisTest(unittest.TestCase):
     def test_errors(self):
         with self.assertRaisesRegex(cifs.InvalidInput, "valence 2 is out of range"):
             sd.local_analysis("loop", 2)
-        with self.assertRaisesRegex(cifs.InvalidInput, "catmull-clark and loop only"):
+        with self.assertRaisesRegex(cifs.InvalidInput, "catmull-clark, loop and sqrt3 only"):
             sd.local_analysis("butterfly", 5, boundary="edge")
         with self.assertRaisesRegex(cifs.InvalidInput, "unknown boundary rule 'sharp'"):
             sd.local_analysis("loop", 4, boundary="sharp")

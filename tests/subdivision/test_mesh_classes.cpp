@@ -301,7 +301,7 @@ TEST_CASE("analyze_mesh: every irregular vertex, its class and verdict, each con
   CHECK(decayed.vertices[2].semi_sharp == 0);
   // Other schemes are refused with one line.
   CHECK_THROWS_WITH(analyze_mesh(classes_cube(), MeshScheme::doo_sabin),
-                    Contains("catmull-clark and loop only"));
+                    Contains("catmull-clark, loop and sqrt3 only"));
   CHECK_THROWS_WITH(analyze_mesh(classes_cube(), MeshScheme::loop),
                     Contains("loop runs on triangles; face 0 has 4"));
 }
