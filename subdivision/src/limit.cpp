@@ -85,8 +85,10 @@ LimitMask sqrt3_boundary_mask(int faces, bool odd) {
   Eigen::MatrixXd step(N, N);
   for (Eigen::Index i = 0; i < N; ++i)
     for (Eigen::Index j = 0; j < N; ++j)
-      step(nb[static_cast<std::size_t>(i)], nb[static_cast<std::size_t>(j)]) = static_cast<double>(S.values(i, j));
-  const detail::SectorPlane plane = detail::sector_plane(step, t, detail::sectors_around(t, fan.tags).front());
+      step(nb[static_cast<std::size_t>(i)], nb[static_cast<std::size_t>(j)]) =
+          static_cast<double>(S.values(i, j));
+  const detail::SectorPlane plane =
+      detail::sector_plane(step, t, detail::sectors_around(t, fan.tags).front());
   LongMatrix rows = LongMatrix::Zero(plane.refused.empty() ? 3 : 1, N);
   rows.row(0) = spectrum.limit_stencil.transpose();
   if (plane.refused.empty())
@@ -100,7 +102,10 @@ LimitMask sqrt3_boundary_mask(int faces, bool odd) {
     for (Eigen::Index j = 0; j < w.size(); ++j) out[static_cast<std::size_t>(j)] = static_cast<double>(w(j));
     return out;
   };
-  LimitMask out{.position = doubles(0, false), .tangent_u = {}, .tangent_v = {}, .refused = plane.refused,
+  LimitMask out{.position = doubles(0, false),
+                .tangent_u = {},
+                .tangent_v = {},
+                .refused = plane.refused,
                 .sectors = {}};
   if (plane.refused.empty()) {
     out.tangent_u = doubles(1, true);
@@ -458,7 +463,7 @@ LimitStencils limit_stencils(const MeshRefinement& r) {
   std::vector<int> smooth;
   int boundary_mask = -1;  // √3's position-only mask, where its ring is not a fan of distinct vertices
   std::map<std::pair<int, bool>, int> sqrt3_boundary;  // √3's boundary classes: (faces, odd level)
-  const bool odd_level = r.levels.size() % 2 == 0;      // levels.size() − 1 steps taken
+  const bool odd_level = r.levels.size() % 2 == 0;     // levels.size() − 1 steps taken
   std::map<std::vector<int>, int> classes;
   std::vector<int> faces, nb;
   const bool rings = scheme == MeshScheme::catmull_clark || scheme == MeshScheme::loop;

@@ -597,8 +597,7 @@ Mesh dual_mesh(const Mesh& primal) {
 namespace detail {
 
 LongMatrix sqrt3_boundary_step(int faces, bool trisect) {
-  if (faces < (trisect ? 2 : 1))
-    throw std::logic_error("sqrt3 boundary step: too few faces for the step");
+  if (faces < (trisect ? 2 : 1)) throw std::logic_error("sqrt3 boundary step: too few faces for the step");
   const Dense<Rational> M = sqrt3_boundary_rows<Rational>(faces, trisect);
   LongMatrix out(M.n, M.cols);
   for (int i = 0; i < M.n; ++i)

@@ -80,9 +80,9 @@ std::optional<LocalOptions> local_class(const MeshTopology& t, const MeshTags& t
 MeshSmoothness analyze_mesh(const Mesh& mesh, MeshScheme scheme, std::string_view who_view) {
   const std::string who(who_view);
   if (scheme != MeshScheme::catmull_clark && scheme != MeshScheme::loop && scheme != MeshScheme::sqrt3)
-    throw InvalidInput(who +
-                       ": the smoothness of a whole mesh is analysed for catmull-clark, loop and sqrt3 only, not " +
-                       std::string(scheme_name(scheme)));
+    throw InvalidInput(
+        who + ": the smoothness of a whole mesh is analysed for catmull-clark, loop and sqrt3 only, not " +
+        std::string(scheme_name(scheme)));
   check_mesh(mesh, who);
   if (mesh.tags.boundary == BoundaryRule::none)
     throw InvalidInput(who + ": the boundary rule 'none' is not analysed (its boundary faces are holes)");

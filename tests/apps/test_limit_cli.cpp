@@ -108,8 +108,8 @@ TEST_CASE("cifs limit --scheme sqrt3 --normals on an open mesh: boundary vertice
       CHECK((limit.normals.row(v) - Eigen::RowVector3d(0, 0, 1)).norm() < 1e-15);
   }
   const auto out = scratch() / "open_grid_sqrt3_limit.ply";
-  const Run run = cifs_cli("limit " + example("open_grid_triangles.obj") + " --scheme sqrt3 --normals --levels 2 -o " +
-                           out.string());
+  const Run run = cifs_cli("limit " + example("open_grid_triangles.obj") +
+                           " --scheme sqrt3 --normals --levels 2 -o " + out.string());
   REQUIRE(run.status == 0);
   const Mesh ours = subdivision::limit_mesh(io::read_mesh(example("open_grid_triangles.obj")),
                                             subdivision::MeshScheme::sqrt3, 2, {.normals = true});

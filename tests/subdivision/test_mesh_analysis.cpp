@@ -445,8 +445,9 @@ TEST_CASE("√3 boundary vertices: the ternary cubic B-spline's block and the in
     check_same_spectrum(spectrum.eigenvalues, expected, 1e-15L);
     // The limit position is the boundary curve's (r_0 + 4c + r_{n−1})/6.
     for (Eigen::Index i = 0; i <= n; ++i)
-      CHECK(std::abs(spectrum.limit_stencil(i) - (i == 0 ? 4.0L / 6 : i == 1 || i == n ? 1.0L / 6 : 0)) <
-            1e-16L);
+      CHECK(std::abs(spectrum.limit_stencil(i) - (i == 0             ? 4.0L / 6
+                                                  : i == 1 || i == n ? 1.0L / 6
+                                                                     : 0)) < 1e-16L);
     // Exactly: 1, ⅓ and 1/9 are eigenvalues at every k. ⅓ is double where the inside's mode m = k/3
     // is ⅓ too (k = 3, 6, 9 …). An odd m is symmetric about the sector's middle: two eigenvectors
     // (k = 3, the regular boundary: the curve's tangent and the inside's). An even m is antisymmetric
@@ -471,8 +472,9 @@ TEST_CASE("local matrices: bad valences are one-line InvalidInputs", "[subdivisi
                     Contains("boundary valence 17 is out of range; expected 2 to 16"));
   CHECK_THROWS_WITH(local_matrix(MeshScheme::butterfly, 4, {.boundary = true}),
                     Contains("boundary vertices are analysed for catmull-clark, loop and sqrt3 only"));
-  CHECK_THROWS_WITH(local_matrix(MeshScheme::sqrt3, 2, {.boundary = true, .rule = BoundaryRule::edge_and_corner}),
-                    Contains("sqrt3: the boundary has one rule under this scheme"));
+  CHECK_THROWS_WITH(
+      local_matrix(MeshScheme::sqrt3, 2, {.boundary = true, .rule = BoundaryRule::edge_and_corner}),
+      Contains("sqrt3: the boundary has one rule under this scheme"));
   CHECK_THROWS_WITH(local_matrix(MeshScheme::sqrt3, 17, {.boundary = true}),
                     Contains("boundary valence 17 is out of range; expected 2 to 16"));
   CHECK_THROWS_AS(refined_local_matrix(MeshScheme::doo_sabin, 1), InvalidInput);

@@ -642,19 +642,23 @@ Mesh sqrt3_cut_around_centre(const MeshTopology& t, const Points& x, int rings) 
     const int v = order[i];
     if (distance[static_cast<std::size_t>(v)] == rings) continue;
     for (const int e : vertex_edges(t, static_cast<std::size_t>(v)))
-      if (const int w = other_vertex(t, static_cast<std::size_t>(e), v); distance[static_cast<std::size_t>(w)] < 0) {
+      if (const int w = other_vertex(t, static_cast<std::size_t>(e), v);
+          distance[static_cast<std::size_t>(w)] < 0) {
         distance[static_cast<std::size_t>(w)] = distance[static_cast<std::size_t>(v)] + 1;
         order.push_back(w);
       }
   }
   std::vector<int> local(static_cast<std::size_t>(t.vertex_count), -1);
-  for (std::size_t i = 0; i < order.size(); ++i) local[static_cast<std::size_t>(order[i])] = static_cast<int>(i);
+  for (std::size_t i = 0; i < order.size(); ++i)
+    local[static_cast<std::size_t>(order[i])] = static_cast<int>(i);
   Mesh cut;
   cut.vertices.resize(static_cast<Eigen::Index>(order.size()), 3);
-  for (std::size_t i = 0; i < order.size(); ++i) cut.vertices.row(static_cast<Eigen::Index>(i)) = x.row(order[i]);
+  for (std::size_t i = 0; i < order.size(); ++i)
+    cut.vertices.row(static_cast<Eigen::Index>(i)) = x.row(order[i]);
   for (std::size_t f = 0; f < face_count(t); ++f) {
     const auto c = face(t, f);
-    if (!std::all_of(c.begin(), c.end(), [&](int v) { return local[static_cast<std::size_t>(v)] >= 0; })) continue;
+    if (!std::all_of(c.begin(), c.end(), [&](int v) { return local[static_cast<std::size_t>(v)] >= 0; }))
+      continue;
     for (const int v : c) cut.face_vertices.push_back(local[static_cast<std::size_t>(v)]);
     cut.face_offsets.push_back(static_cast<int>(cut.face_vertices.size()));
   }
@@ -663,8 +667,9 @@ Mesh sqrt3_cut_around_centre(const MeshTopology& t, const Points& x, int rings) 
 
 }  // namespace
 
-TEST_CASE("√3 limit normals at boundary vertices: the planes deep refinement approaches, at the spectrum's rates",
-          "[subdivision][limit][classes]") {
+TEST_CASE(
+    "√3 limit normals at boundary vertices: the planes deep refinement approaches, at the spectrum's rates",
+    "[subdivision][limit][classes]") {
   // Kobbelt's √3 at a boundary vertex of k faces (local_matrix over two steps; its spectrum, the boundary
   // curve's 1, ⅓, 1/9 and the inside's (2 + 2cos(πm/k))/9: test_mesh_analysis.cpp). limit_mesh's normal at
   // vertex 0 of a lifted local mesh against the production refiner, two steps at a time for 16 steps (cut
@@ -691,7 +696,8 @@ TEST_CASE("√3 limit normals at boundary vertices: the planes deep refinement a
     }
     const LocalSpectrum spectrum = local_spectrum(local_matrix(MeshScheme::sqrt3, k + 1, {.boundary = true}));
     const double mu = static_cast<double>(std::abs(spectrum.mu));
-    const double lambda1 = static_cast<double>(spectrum.subdominant), lambda2 = static_cast<double>(spectrum.second);
+    const double lambda1 = static_cast<double>(spectrum.subdominant),
+                 lambda2 = static_cast<double>(spectrum.second);
     std::vector<double> off, face_error;  // after 2, 4, …, 16 steps
     Mesh ring = m;
     for (int level = 2; level <= 16; level += 2) {
@@ -699,7 +705,8 @@ TEST_CASE("√3 limit normals at boundary vertices: the planes deep refinement a
       ring = sqrt3_cut_around_centre(r.levels[2], apply(r, ring.vertices), 6);  // √3 keeps vertex 0 at 0
       const MeshTopology cut = build_topology(ring);
       double worst = 0;
-      for (const int g : vertex_faces(cut, 0)) worst = std::max(worst, angle(face_normal(ring.vertices, cut, g), n));
+      for (const int g : vertex_faces(cut, 0))
+        worst = std::max(worst, angle(face_normal(ring.vertices, cut, g), n));
       face_error.push_back(worst);
       const Mesh two_rings = sqrt3_cut_around_centre(cut, ring.vertices, 2);
       double out_of_plane = 0, size = 0;
@@ -711,10 +718,10 @@ TEST_CASE("√3 limit normals at boundary vertices: the planes deep refinement a
       off.push_back(out_of_plane / size);
     }
     const double face_rate = face_error[7] / face_error[6], off_rate = off[7] / off[6];
-    INFO("face errors after 2, 8, 16 steps " << face_error[0] << " " << face_error[3] << " " << face_error[7]
-                                              << ", rate " << face_rate << " for " << mu / lambda2
-                                              << "; off the plane " << off[0] << " " << off[3] << " " << off[7]
-                                              << ", rate " << off_rate << " for " << mu / lambda1);
+    INFO("face errors after 2, 8, 16 steps "
+         << face_error[0] << " " << face_error[3] << " " << face_error[7] << ", rate " << face_rate << " for "
+         << mu / lambda2 << "; off the plane " << off[0] << " " << off[3] << " " << off[7] << ", rate "
+         << off_rate << " for " << mu / lambda1);
     CHECK(off[7] < 1e-2);
     if (k == 1) {
       CHECK(mu == 0);
