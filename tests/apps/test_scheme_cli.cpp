@@ -260,6 +260,8 @@ TEST_CASE("cifs scheme MESH-SCHEME --crease K | --dart | --corner | --boundary-v
               "--concave is said of a --corner");
   check_error(cifs_cli("scheme loop --boundary-valence 3 --valence 4 --analyze"), "--boundary-valence K");
   check_error(cifs_cli("scheme loop --boundary-valence 16 --analyze"), "boundary valence 17 is out of range");
+  check_error(cifs_cli("scheme sqrt3 --valence 2 --boundary corner --analyze"),
+              "sqrt3: the boundary has one rule under this scheme");
   check_error(cifs_cli("scheme sqrt3 --valence 6 --crease 3 --analyze"),
               "sharp edges and corners are analysed for catmull-clark and loop only");
   check_error(cifs_cli("scheme chaikin --analyze --dart"), "are for the mesh schemes");
