@@ -63,6 +63,57 @@ LimitMask eigen_mask(MeshScheme scheme, int valence) {
   return out;
 }
 
+/// √3 at a boundary vertex of `faces` faces (Kobbelt 2000 §5), on c, r_0 … r_faces (walk_ring's
+/// order): the left eigenvectors of the two-step matrix of the one-ring from an even level
+/// (local_matrix; the one-ring is invariant), through the trisecting step first at an odd level (where
+/// every boundary vertex has two faces or more and the even class one face fewer: l·B is a left
+/// eigenvector of A·B when l is one of B·A). The position is the boundary curve's (r_0 + 4c +
+/// r_faces)/6; the tangent plane detail::sector_plane's, as at the other schemes' boundaries: the
+/// curve's eigenvalue ⅓ and the inside's largest (2 + 2cos(π/k))/9 (k faces at the even level),
+/// refused where the spectrum proves none (from 6 faces: a Jordan block at 6, the inside's two leading
+/// eigenvectors vanishing on the boundary from 7).
+LimitMask sqrt3_boundary_mask(int faces, bool odd) {
+  const int even_faces = odd ? faces - 1 : faces;
+  const LocalOptions boundary{.boundary = true};
+  const LocalMatrix S = local_matrix(MeshScheme::sqrt3, even_faces + 1, boundary);
+  const LocalSpectrum spectrum = local_spectrum(S);
+  // sector_plane reads the topology of a fan of the class's faces: S in the fan's numbering.
+  const Mesh fan = local_mesh(MeshScheme::sqrt3, even_faces + 1, boundary, 1);
+  const MeshTopology t = build_topology(fan, "local mesh");
+  const std::vector<int> nb = detail::neighbourhood(t, MeshScheme::sqrt3, 0, 1, true);
+  const auto N = S.values.rows();
+  Eigen::MatrixXd step(N, N);
+  for (Eigen::Index i = 0; i < N; ++i)
+    for (Eigen::Index j = 0; j < N; ++j)
+      step(nb[static_cast<std::size_t>(i)], nb[static_cast<std::size_t>(j)]) =
+          static_cast<double>(S.values(i, j));
+  const detail::SectorPlane plane =
+      detail::sector_plane(step, t, detail::sectors_around(t, fan.tags).front());
+  LongMatrix rows = LongMatrix::Zero(plane.refused.empty() ? 3 : 1, N);
+  rows.row(0) = spectrum.limit_stencil.transpose();
+  if (plane.refused.empty())
+    for (Eigen::Index i = 0; i < 2; ++i)
+      for (Eigen::Index j = 0; j < N; ++j) rows(1 + i, j) = plane.left(i, nb[static_cast<std::size_t>(j)]);
+  if (odd) rows = (rows * detail::sqrt3_boundary_step(faces, true)).eval();
+  const auto doubles = [&](Eigen::Index i, bool unit) {
+    LongVector w = rows.row(i).transpose();
+    if (unit) w.normalize();  // only the plane matters
+    std::vector<double> out(static_cast<std::size_t>(w.size()));
+    for (Eigen::Index j = 0; j < w.size(); ++j) out[static_cast<std::size_t>(j)] = static_cast<double>(w(j));
+    return out;
+  };
+  LimitMask out{.position = doubles(0, false),
+                .tangent_u = {},
+                .tangent_v = {},
+                .refused = plane.refused,
+                .sectors = {}};
+  if (plane.refused.empty()) {
+    out.tangent_u = doubles(1, true);
+    out.tangent_v = doubles(2, true);
+  }
+  return out;
+}
+
 /// The closed-form masks at a smooth interior vertex of valence n, every n, on (c, r_j, f_j) for
 /// Catmull–Clark and (c, r_j) for Loop (mesh_analysis.hpp's numbering). Positions: Catmull–Clark
 /// (n² c + 4 Σ r_j + Σ f_j) / (n (n + 5)); Loop (ω c + Σ r_j) / (ω + n), ω = 3 / (8 β(n)). Tangents:
@@ -414,7 +465,9 @@ LimitStencils limit_stencils(const MeshRefinement& r) {
   out.masks.push_back(
       LimitMask{.position = {1.0}, .tangent_u = {}, .tangent_v = {}, .refused = {}, .sectors = {}});
   std::vector<int> smooth;
-  int boundary_mask = -1;  // √3's, shared by its boundary vertices
+  int boundary_mask = -1;  // √3's position-only mask, where its ring is not a fan of distinct vertices
+  std::map<std::pair<int, bool>, int> sqrt3_boundary;  // √3's boundary classes: (faces, odd level)
+  const bool odd_level = r.levels.size() % 2 == 0;     // levels.size() − 1 steps taken
   std::map<std::vector<int>, int> classes;
   std::vector<int> faces, nb;
   const bool rings = scheme == MeshScheme::catmull_clark || scheme == MeshScheme::loop;
@@ -440,8 +493,10 @@ LimitStencils limit_stencils(const MeshRefinement& r) {
     if (!rings && t.boundary_vertex[static_cast<std::size_t>(v)] != 0) {
       // √3's boundary (Kobbelt 2000 §5) is the uniform cubic B-spline of the boundary polygon, refined
       // ternarily every second step and kept in between: a boundary vertex's limit is (a + 4v + b)/6,
-      // a and b its neighbours along the boundary, at every level. The tangent across the boundary
-      // needs the spectrum of the boundary's two-step matrix: not built (no normals there).
+      // a and b its neighbours along the boundary, at every level. Its tangent plane comes from the
+      // two-step matrix of its one-ring (sqrt3_boundary_mask), a class per number of faces and level
+      // parity; a ring whose vertices are not distinct (a neighbour of valence 2 closing it) or of
+      // more than 15 faces keeps the position alone.
       nb.assign(1, v);
       for (const int e : vertex_edges(t, static_cast<std::size_t>(v)))
         if (is_boundary_edge(t, static_cast<std::size_t>(e)))
@@ -449,15 +504,31 @@ LimitStencils limit_stencils(const MeshRefinement& r) {
       if (nb.size() != 3)
         throw InvalidInput(where() + " is on " + std::to_string(nb.size() - 1) +
                            " boundary edges: a limit point needs the boundary to pass once");
-      if (boundary_mask < 0) {
-        out.masks.push_back(LimitMask{.position = {4.0 / 6, 1.0 / 6, 1.0 / 6},
-                                      .tangent_u = {},
-                                      .tangent_v = {},
-                                      .refused = "the tangent across a sqrt3 boundary is not built",
-                                      .sectors = {}});
-        boundary_mask = static_cast<int>(out.masks.size()) - 1;
+      const std::vector<int> along = nb;
+      walk_ring(t, v, false, faces, nb);
+      const int k = static_cast<int>(faces.size());
+      if (distinct(t, v, faces, nb.size()) && k >= (odd_level ? 2 : 1) &&
+          k + (odd_level ? 0 : 1) <= kMaxBoundaryValence) {
+        const auto [it, fresh] = sqrt3_boundary.try_emplace({k, odd_level}, -1);
+        if (fresh) {
+          out.masks.push_back(sqrt3_boundary_mask(k, odd_level));
+          it->second = static_cast<int>(out.masks.size()) - 1;
+        }
+        mask = it->second;
+      } else {
+        nb = along;
+        if (boundary_mask < 0) {
+          out.masks.push_back(LimitMask{
+              .position = {4.0 / 6, 1.0 / 6, 1.0 / 6},
+              .tangent_u = {},
+              .tangent_v = {},
+              .refused = "the tangent plane at a sqrt3 boundary vertex is built for 1 to 15 faces around "
+                         "distinct neighbours",
+              .sectors = {}});
+          boundary_mask = static_cast<int>(out.masks.size()) - 1;
+        }
+        mask = boundary_mask;
       }
-      mask = boundary_mask;
     } else if (!rings) {  // √3: interior vertices of valence 3 … 16, from the eigenvectors
       if (smooth.size() <= static_cast<std::size_t>(n)) smooth.resize(static_cast<std::size_t>(n) + 1, -1);
       if (smooth[static_cast<std::size_t>(n)] < 0) {

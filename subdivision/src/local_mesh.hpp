@@ -25,6 +25,13 @@ std::vector<int> neighbourhood(const MeshTopology& t, MeshScheme scheme, int cen
 void neighbourhood(const MeshTopology& t, MeshScheme scheme, int centre, int start, bool boundary,
                    std::vector<int>& out);
 
+/// One √3 step at a boundary vertex of `faces` faces: the rows of its child's ring (c first, then
+/// the ring from the boundary edge r_0 side) on c, r_0 … r_faces; `trisect` for the odd steps (1, 3,
+/// …, faces ≥ 2), which trisect the boundary (mesh_analysis.cpp's sqrt3_boundary_rows). Two steps from an
+/// even level are local_matrix(sqrt3, faces + 1, {.boundary = true}); limit masks at an odd level go
+/// through the trisecting step first.
+LongMatrix sqrt3_boundary_step(int faces, bool trisect);
+
 /// Weight of `column` in row `row` of the stencils.
 double weight(const Stencils& s, int row, int column);
 

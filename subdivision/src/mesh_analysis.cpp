@@ -57,8 +57,11 @@ void check_valence(MeshScheme scheme, int valence, const LocalOptions& o) {
                          " to " + std::to_string(last) +
                          (o.boundary ? " (the boundary edges are sharp anyway)" : ""));
   if (o.boundary) {
-    if (scheme != MeshScheme::catmull_clark && scheme != MeshScheme::loop)
-      throw InvalidInput(who + ": boundary vertices are analysed for catmull-clark and loop only");
+    if (scheme != MeshScheme::catmull_clark && scheme != MeshScheme::loop && scheme != MeshScheme::sqrt3)
+      throw InvalidInput(who + ": boundary vertices are analysed for catmull-clark, loop and sqrt3 only");
+    if (scheme == MeshScheme::sqrt3 && o.rule != BoundaryRule::edge_only)
+      throw InvalidInput(who + ": the boundary has one rule under this scheme (Kobbelt's ternary cubic " +
+                         "B-spline), the rule edge; a boundary vertex of one face is no corner");
     if (valence < kMinBoundaryValence || valence > kMaxBoundaryValence)
       throw InvalidInput(who + ": boundary valence " + std::to_string(valence) +
                          " is out of range; expected " + std::to_string(kMinBoundaryValence) + " to " +
@@ -100,26 +103,31 @@ long double long_cos(int m, int n) {
   return std::cos(2 * kPi * static_cast<long double>(m) / static_cast<long double>(n));
 }
 
+/// Row-major, n rows by `cols` columns (square unless asked: √3's one-step matrices at a boundary
+/// vertex change the ring's size).
 template <class T>
 struct Dense {
   int n = 0;
+  int cols = 0;
   std::vector<T> a;
-  explicit Dense(int size) : n(size), a(static_cast<std::size_t>(size * size), T(0)) {}
+  explicit Dense(int size) : Dense(size, size) {}
+  Dense(int rows, int columns)
+      : n(rows), cols(columns), a(static_cast<std::size_t>(rows) * static_cast<std::size_t>(columns), T(0)) {}
   T& operator()(int i, int j) {
-    return a[static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(j)];
+    return a[static_cast<std::size_t>(i) * static_cast<std::size_t>(cols) + static_cast<std::size_t>(j)];
   }
   const T& operator()(int i, int j) const {
-    return a[static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(j)];
+    return a[static_cast<std::size_t>(i) * static_cast<std::size_t>(cols) + static_cast<std::size_t>(j)];
   }
 };
 
 template <class T>
 Dense<T> product(const Dense<T>& A, const Dense<T>& B) {
-  Dense<T> C(A.n);
+  Dense<T> C(A.n, B.cols);
   for (int i = 0; i < A.n; ++i)
-    for (int k = 0; k < A.n; ++k) {
+    for (int k = 0; k < A.cols; ++k) {
       if (A(i, k) == 0) continue;
-      for (int j = 0; j < A.n; ++j) C(i, j) += A(i, k) * B(k, j);
+      for (int j = 0; j < B.cols; ++j) C(i, j) += A(i, k) * B(k, j);
     }
   return C;
 }
@@ -216,7 +224,7 @@ BlzSector<T> blz_sector(MeshScheme scheme, int n, const LocalOptions& o, int j, 
 template <class T>
 void flatten(Dense<T>& S, int i, const T& s, const T& x1, const T& x2, int e0, int ek) {
   const T keep = T(1) - s;
-  for (int col = 0; col < S.n; ++col) S(i, col) *= keep;
+  for (int col = 0; col < S.cols; ++col) S(i, col) *= keep;
   S(i, 0) += T(s * T(T(1) - x1 / 2 - x2 / 2));
   S(i, e0) += T(s * x1 / 2);
   S(i, ek) += T(s * x2 / 2);
@@ -370,6 +378,49 @@ Dense<T> sqrt3_rules(int n, Cos cos_of) {
   return product(one_step(-1), one_step(0));
 }
 
+/// One √3 step at a boundary vertex of `faces` faces (Kobbelt 2000 §5, as mesh.cpp's sqrt3_step), on
+/// c, r_0 … r_faces (c r_0 and c r_faces the boundary edges), into the child's ring, c first.
+/// Steps 0, 2, … (`trisect` false): c and the boundary stay, a centroid m_j per face; the child ring
+/// is r_0, m_0 … m_{faces−1}, r_faces (faces + 1 faces). Steps 1, 3, … (`trisect`; faces ≥ 2, every
+/// boundary face with one boundary edge, as after any even step): c → (4r_0 + 19c + 4r_faces)/27;
+/// the boundary faces are trisected, their points next to c (r_faces + 16c + 10r_0)/27 and its
+/// mirror, the faces between get their centroids; the child ring is t_0, g_1 … g_{faces−2},
+/// t_faces (faces − 1 faces). Both read c's one-ring only (the trisection's far points, which read
+/// two boundary vertices away, are not in c's child ring), so two steps map the ring onto itself.
+template <class T>
+Dense<T> sqrt3_boundary_rows(int faces, bool trisect) {
+  const T one(1), third = one / 3, d(27);
+  const int columns = faces + 2, last = faces + 1;  // r_j is column 1 + j
+  const auto centroid = [&](Dense<T>& M, int row, int j) {
+    for (const int v : {0, 1 + j, 2 + j}) M(row, v) += third;
+  };
+  if (!trisect) {
+    Dense<T> A(faces + 3, columns);
+    A(0, 0) = one;
+    A(1, 1) = one;
+    for (int j = 0; j < faces; ++j) centroid(A, 2 + j, j);
+    A(faces + 2, last) = one;
+    return A;
+  }
+  Dense<T> B(faces + 1, columns);
+  for (const auto& [row, next_to, beyond] : {std::array{1, 1, last}, std::array{faces, last, 1}}) {
+    B(row, 0) += T(16) / d;
+    B(row, next_to) += T(10) / d;
+    B(row, beyond) += one / d;
+  }
+  B(0, 0) = T(19) / d;
+  B(0, 1) = T(4) / d;
+  B(0, last) = T(4) / d;
+  for (int j = 1; j + 1 < faces; ++j) centroid(B, 1 + j, j);
+  return B;
+}
+
+/// Two √3 steps at a boundary vertex of valence n (n − 1 faces), from an even level: keep, then trisect.
+template <class T>
+Dense<T> sqrt3_boundary_rules(int n) {
+  return product(sqrt3_boundary_rows<T>(n, true), sqrt3_boundary_rows<T>(n - 1, false));
+}
+
 /// Doo–Sabin at an n-gon face.
 template <class T, class Cos>
 Dense<T> doo_sabin_rules(int n, Cos cos_of) {
@@ -410,7 +461,7 @@ Dense<T> rules(MeshScheme scheme, int n, const LocalOptions& o, Cos cos_of) {
     case MeshScheme::butterfly:
       return butterfly_rules<T>(n, cos_of);
     case MeshScheme::sqrt3:
-      return sqrt3_rules<T>(n, cos_of);
+      return o.boundary ? sqrt3_boundary_rules<T>(n) : sqrt3_rules<T>(n, cos_of);
     case MeshScheme::doo_sabin:
       return doo_sabin_rules<T>(n, cos_of);
     case MeshScheme::bilinear:  // refused by check_valence
@@ -544,6 +595,15 @@ Mesh dual_mesh(const Mesh& primal) {
 }  // namespace
 
 namespace detail {
+
+LongMatrix sqrt3_boundary_step(int faces, bool trisect) {
+  if (faces < (trisect ? 2 : 1)) throw std::logic_error("sqrt3 boundary step: too few faces for the step");
+  const Dense<Rational> M = sqrt3_boundary_rows<Rational>(faces, trisect);
+  LongMatrix out(M.n, M.cols);
+  for (int i = 0; i < M.n; ++i)
+    for (int j = 0; j < M.cols; ++j) out(i, j) = M(i, j).convert_to<long double>();
+  return out;
+}
 
 int wrap(int j, int n) {
   return ((j % n) + n) % n;

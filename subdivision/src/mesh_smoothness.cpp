@@ -56,8 +56,9 @@ std::optional<LocalOptions> local_class(const MeshTopology& t, const MeshTags& t
   }
   const double s = corner[static_cast<std::size_t>(v)];
   if (s > 0 && s < kInfiniteSharpness) semi_sharp = std::max(semi_sharp, s);
-  o.corner =
-      s >= kInfiniteSharpness || (boundary && n == 2 && tags.boundary == BoundaryRule::edge_and_corner);
+  // √3 has one boundary rule (Kobbelt's): a boundary vertex of one face is no corner there.
+  o.corner = s >= kInfiniteSharpness || (boundary && n == 2 && scheme != MeshScheme::sqrt3 &&
+                                         tags.boundary == BoundaryRule::edge_and_corner);
   // Interior: turn the ring so that the first sharp edge is r_0 (the class does not depend on it).
   if (!boundary && !o.sharp.empty()) {
     const int first = o.sharp.front();
@@ -78,18 +79,22 @@ std::optional<LocalOptions> local_class(const MeshTopology& t, const MeshTags& t
 
 MeshSmoothness analyze_mesh(const Mesh& mesh, MeshScheme scheme, std::string_view who_view) {
   const std::string who(who_view);
-  if (scheme != MeshScheme::catmull_clark && scheme != MeshScheme::loop)
-    throw InvalidInput(who +
-                       ": the smoothness of a whole mesh is analysed for catmull-clark and loop only, not " +
-                       std::string(scheme_name(scheme)));
+  if (scheme != MeshScheme::catmull_clark && scheme != MeshScheme::loop && scheme != MeshScheme::sqrt3)
+    throw InvalidInput(
+        who + ": the smoothness of a whole mesh is analysed for catmull-clark, loop and sqrt3 only, not " +
+        std::string(scheme_name(scheme)));
   check_mesh(mesh, who);
   if (mesh.tags.boundary == BoundaryRule::none)
     throw InvalidInput(who + ": the boundary rule 'none' is not analysed (its boundary faces are holes)");
-  if (scheme == MeshScheme::loop)
+  if (scheme == MeshScheme::sqrt3)
+    if (const std::string tag = first_feature(mesh.tags); !tag.empty())
+      throw InvalidInput(who + ": the mesh has " + tag +
+                         "; sqrt3 has no rules for creases, corners or holes (catmull-clark and loop have)");
+  if (scheme == MeshScheme::loop || scheme == MeshScheme::sqrt3)
     for (std::size_t f = 0; f < face_count(mesh); ++f)
       if (face(mesh, f).size() != 3)
-        throw InvalidInput(who + ": loop runs on triangles; face " + std::to_string(f) + " has " +
-                           std::to_string(face(mesh, f).size()) + " corners");
+        throw InvalidInput(who + ": " + std::string(scheme_name(scheme)) + " runs on triangles; face " +
+                           std::to_string(f) + " has " + std::to_string(face(mesh, f).size()) + " corners");
   const MeshTopology t = build_topology(mesh, who);
   std::map<std::uint64_t, double> sharpness;
   for (const EdgeSharpness& c : mesh.tags.creases)

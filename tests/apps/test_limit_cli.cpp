@@ -86,6 +86,35 @@ TEST_CASE("cifs limit: what is not built exits 2 with one line", "[cli][mesh][li
   CHECK(!std::filesystem::exists(out));
 }
 
+TEST_CASE("cifs limit --scheme sqrt3 --normals on an open mesh: boundary vertices take normals too",
+          "[cli][mesh][limit]") {
+  // √3's boundary normals come from the two-step boundary matrix (docs/subdivision-surfaces.md; against
+  // deep refinement in test_mesh_limit_classes.cpp). A planar grid's limit surface is its plane: every
+  // normal is +z (its faces counter-clockwise), boundary vertices of 1, 2 and 3 faces included, at an odd
+  // level (through the trisecting step). The wavy example grid, at an even level: the library's normals,
+  // written and read back.
+  const auto planar = scratch() / "planar_triangle_grid.obj";
+  Mesh grid = cifs_test::quad_grid(4, 3, true);
+  grid.vertices.col(2).setZero();
+  io::write(planar, grid);
+  const auto flat = scratch() / "planar_sqrt3_limit.ply";
+  REQUIRE(cifs_cli("limit " + planar.string() + " --scheme sqrt3 --normals --levels 1 -o " + flat.string())
+              .status == 0);
+  const Mesh limit = io::read_mesh(flat);
+  REQUIRE(limit.normals.rows() == limit.vertices.rows());
+  for (Eigen::Index v = 0; v < limit.normals.rows(); ++v)
+    CHECK((limit.normals.row(v) - Eigen::RowVector3d(0, 0, 1)).norm() < 1e-15);
+  const auto out = scratch() / "open_grid_sqrt3_limit.ply";
+  const Run run = cifs_cli("limit " + example("open_grid_triangles.obj") +
+                           " --scheme sqrt3 --normals --levels 2 -o " + out.string());
+  REQUIRE(run.status == 0);
+  const Mesh ours = subdivision::limit_mesh(io::read_mesh(example("open_grid_triangles.obj")),
+                                            subdivision::MeshScheme::sqrt3, 2, {.normals = true});
+  const Mesh back = io::read_mesh(out);
+  REQUIRE(back.normals.rows() == ours.normals.rows());
+  CHECK((back.normals - ours.normals).cwiseAbs().maxCoeff() < 1e-15);
+}
+
 TEST_CASE("cifs limit --normals on creases and corners: a normal per sector, OBJ f v//n",
           "[cli][mesh][limit]") {
   // A grid with a sharp crease across: its OBJ has more vn than v, and some vertex takes two normals (one

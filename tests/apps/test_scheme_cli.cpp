@@ -200,7 +200,7 @@ TEST_CASE("cifs scheme MESH-SCHEME: bad valences and options on one line, exit 2
   check_error(cifs_cli("scheme loop --valence 5 --analyze --format svg"), "--format 'svg'");
   check_error(cifs_cli("scheme loop --valence 5 --analyze --param w=1"), "take no parameters");
   check_error(cifs_cli("scheme butterfly --valence 5 --analyze --boundary edge"),
-              "boundary vertices are analysed for catmull-clark and loop only");
+              "boundary vertices are analysed for catmull-clark, loop and sqrt3 only");
   check_error(cifs_cli("scheme loop --valence 17 --analyze --boundary edge"),
               "boundary valence 17 is out of range");
   check_error(cifs_cli("scheme loop --valence 4 --analyze --boundary sideways"), "--boundary sideways");
@@ -235,6 +235,17 @@ TEST_CASE("cifs scheme MESH-SCHEME --crease K | --dart | --corner | --boundary-v
   CHECK_THAT(concave["c1"]["reason"].get<std::string>(), Catch::Contains("concave"));
   CHECK(analyze("catmull-clark --boundary-valence 1 --corner")["c1"]["verdict"] == true);
   CHECK(analyze("loop --valence 6 --crease all").size() == 5);
+  // √3 on the boundary: two steps (the boundary kept, then trisected), exact weights; 4 faces: the
+  // inside's (2 + 2cos(π/4))/9 leads the curve's ⅓, C1. From 7 faces the inside's two lead: not C1.
+  const json sqrt3 = analyze("sqrt3 --boundary-valence 4");
+  CHECK(sqrt3["steps"] == 2);
+  CHECK(sqrt3["exact"] == true);
+  CHECK(sqrt3["vertex"] == "boundary");
+  CHECK(sqrt3["subdominant"]["lambda1"].get<double>() ==
+        Approx((2 + 2 * std::cos(M_PI / 4)) / 9).epsilon(1e-15));
+  CHECK(sqrt3["subdominant"]["lambda2"].get<double>() == Approx(1.0 / 3).epsilon(1e-15));
+  CHECK(sqrt3["c1"]["verdict"] == true);
+  CHECK(analyze("sqrt3 --boundary-valence 7")["c1"]["verdict"] == false);
 
   const Run table = cifs_cli("scheme loop --boundary-valence 1-9 --analyze --format table");
   REQUIRE(table.status == 0);
@@ -249,6 +260,8 @@ TEST_CASE("cifs scheme MESH-SCHEME --crease K | --dart | --corner | --boundary-v
               "--concave is said of a --corner");
   check_error(cifs_cli("scheme loop --boundary-valence 3 --valence 4 --analyze"), "--boundary-valence K");
   check_error(cifs_cli("scheme loop --boundary-valence 16 --analyze"), "boundary valence 17 is out of range");
+  check_error(cifs_cli("scheme sqrt3 --valence 2 --boundary corner --analyze"),
+              "sqrt3: the boundary has one rule under this scheme");
   check_error(cifs_cli("scheme sqrt3 --valence 6 --crease 3 --analyze"),
               "sharp edges and corners are analysed for catmull-clark and loop only");
   check_error(cifs_cli("scheme chaikin --analyze --dart"), "are for the mesh schemes");

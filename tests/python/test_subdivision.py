@@ -580,6 +580,15 @@ class LimitTest(unittest.TestCase):
         with self.assertRaisesRegex(cifs.InvalidInput, "limit points belong to faces"):
             sd.limit(cube, "doo-sabin")
 
+    def test_sqrt3_boundary_normals(self):
+        # √3's boundary vertices take normals too (the two-step boundary matrix; proved against deep
+        # refinement in tests/subdivision/test_mesh_limit_classes.cpp): unit normals at every vertex of
+        # the open example grid, at an odd level.
+        path = str(EXAMPLES / "meshes" / "open_grid_triangles.obj")
+        limit = sd.limit(cifs.io.read_mesh(path), "sqrt3", 1, normals=True)
+        self.assertEqual(limit.normals.shape, limit.vertices.shape)
+        np.testing.assert_allclose(np.linalg.norm(limit.normals, axis=1), 1, atol=1e-15)
+
     def test_limits_follow_the_tags(self):
         # The creased box (creases infinite, 2 and 1, a corner, a hole): the limit from level 0 and from
         # level 2 agree on the old vertices (semi-sharp ones too: the sharpness still to spend is followed).
@@ -803,6 +812,12 @@ class LocalAnalysisTest(unittest.TestCase):
         self.assertEqual([s["faces"] for s in crease["c1"]["sectors"]], [2, 2])
         self.assertAlmostEqual(crease["c1"]["sectors"][0]["c1"]["angle"], math.pi, places=9)
         self.assertFalse(sd.local_analysis("loop", 8, boundary="edge")["c1"]["verdict"])
+        # √3's boundary (two steps, Kobbelt's rule; exact): C1 at 4 faces, not from 7.
+        sqrt3 = sd.local_analysis("sqrt3", 5, boundary="edge")
+        self.assertEqual(sqrt3["steps"], 2)
+        self.assertTrue(sqrt3["c1"]["verdict"], sqrt3["c1"]["reason"])
+        self.assertAlmostEqual(sqrt3["lambda1"], (2 + 2 * math.cos(math.pi / 4)) / 9, places=15)
+        self.assertFalse(sd.local_analysis("sqrt3", 8, boundary="edge")["c1"]["verdict"])
         self.assertTrue(sd.local_analysis("loop", 5, sharp=[0])["c1"]["verdict"])
         concave = sd.local_analysis("loop", 2, boundary="edge", corner=True, concave=True)
         self.assertIn("concave", concave["c1"]["reason"])
@@ -821,7 +836,7 @@ class LocalAnalysisTest(unittest.TestCase):
         self.assertEqual(a["analyses"], 2)
         self.assertEqual(a["summary"], cli("analyze", str(EXAMPLES / "meshes" / "open_grid_triangles.obj"),
                                            "--scheme", "loop").stdout.strip().splitlines()[-1])
-        with self.assertRaisesRegex(cifs.InvalidInput, "catmull-clark and loop only"):
+        with self.assertRaisesRegex(cifs.InvalidInput, "catmull-clark, loop and sqrt3 only"):
             sd.analyze_mesh(mesh, "butterfly")
 
     def test_blz_rules(self):
@@ -861,7 +876,7 @@ class LocalAnalysisTest(unittest.TestCase):
     def test_errors(self):
         with self.assertRaisesRegex(cifs.InvalidInput, "valence 2 is out of range"):
             sd.local_analysis("loop", 2)
-        with self.assertRaisesRegex(cifs.InvalidInput, "catmull-clark and loop only"):
+        with self.assertRaisesRegex(cifs.InvalidInput, "catmull-clark, loop and sqrt3 only"):
             sd.local_analysis("butterfly", 5, boundary="edge")
         with self.assertRaisesRegex(cifs.InvalidInput, "unknown boundary rule 'sharp'"):
             sd.local_analysis("loop", 4, boundary="sharp")

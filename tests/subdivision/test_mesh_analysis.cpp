@@ -3,6 +3,7 @@
 // one read off the general refinement, and the spectra equal what the Fourier blocks of the rules
 // give — derived here, by hand, from the rules as the papers state them, not from the code.
 #include "cifs/subdivision/mesh_analysis.hpp"
+#include "subdivision/rational.hpp"
 #include "subdivision/spectra.hpp"
 
 #include <catch2/catch.hpp>
@@ -13,6 +14,7 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "cifs/errors.hpp"
@@ -209,6 +211,11 @@ TEST_CASE("local matrices: the rules equal the general refinement, every scheme 
     for (int n = kMinBoundaryValence; n <= kMaxBoundaryValence; ++n)
       for (const BoundaryRule rule : {BoundaryRule::edge_only, BoundaryRule::edge_and_corner})
         compare(scheme, n, {.boundary = true, .rule = rule});
+  // √3 on the boundary (one rule, Kobbelt's): two steps from an even level, the boundary kept then
+  // trisected. The refinement reads nothing outside c's one-ring (refined_local_matrix refuses any
+  // weight outside it): the one-ring is invariant.
+  for (int n = kMinBoundaryValence; n <= kMaxBoundaryValence; ++n)
+    compare(MeshScheme::sqrt3, n, {.boundary = true});
 }
 
 TEST_CASE("local matrices are exact where the weights are rational, and affine",
@@ -356,14 +363,120 @@ TEST_CASE("boundary vertices: the boundary curve's block and the interior ring",
   }
 }
 
+namespace {
+
+/// The rank of an exact matrix (Gaussian elimination in rationals): a proof of an eigenvalue's
+/// geometric multiplicity, N − rank(S − λI), with no round-off.
+int sqrt3_exact_rank(std::vector<std::vector<Rational>> a) {
+  int rank = 0;
+  const std::size_t rows = a.size(), cols = rows == 0 ? 0 : a[0].size();
+  for (std::size_t col = 0; col < cols && static_cast<std::size_t>(rank) < rows; ++col) {
+    std::size_t pivot = static_cast<std::size_t>(rank);
+    while (pivot < rows && a[pivot][col] == 0) ++pivot;
+    if (pivot == rows) continue;
+    std::swap(a[pivot], a[static_cast<std::size_t>(rank)]);
+    const std::vector<Rational>& p = a[static_cast<std::size_t>(rank)];
+    for (std::size_t r = 0; r < rows; ++r) {
+      if (r == static_cast<std::size_t>(rank) || a[r][col] == 0) continue;
+      const Rational f = a[r][col] / p[col];
+      for (std::size_t c = col; c < cols; ++c) a[r][c] -= f * p[c];
+    }
+    ++rank;
+  }
+  return rank;
+}
+
+/// (S − λI)^power of an exact local matrix, as rows.
+std::vector<std::vector<Rational>> sqrt3_shifted_power(const RationalMatrix& S, const Rational& lambda,
+                                                       int power) {
+  const auto N = static_cast<std::size_t>(S.rows);
+  std::vector<std::vector<Rational>> A(N, std::vector<Rational>(N)), P(N, std::vector<Rational>(N));
+  for (std::size_t i = 0; i < N; ++i) {
+    P[i][i] = 1;
+    for (std::size_t j = 0; j < N; ++j)
+      A[i][j] = S(static_cast<int>(i), static_cast<int>(j)) - (i == j ? lambda : Rational(0));
+  }
+  for (int k = 0; k < power; ++k) {
+    std::vector<std::vector<Rational>> Q(N, std::vector<Rational>(N));
+    for (std::size_t i = 0; i < N; ++i)
+      for (std::size_t m = 0; m < N; ++m)
+        if (P[i][m] != 0)
+          for (std::size_t j = 0; j < N; ++j) Q[i][j] += P[i][m] * A[m][j];
+    P = std::move(Q);
+  }
+  return P;
+}
+
+}  // namespace
+
+TEST_CASE("√3 boundary vertices: the ternary cubic B-spline's block and the interior ring, exactly",
+          "[subdivision][mesh_analysis]") {
+  // Kobbelt 2000 §5, two steps from an even level (keep the boundary, then trisect it), derived by
+  // hand: c' = (4r_0 + 19c + 4r_{n−1})/27 and r'_0 = (16c + 10r_0 + r_{n−1})/27 (the trisection point
+  // next to c; r'_{n−1} its mirror) read the boundary only: the ternary cubic B-spline's block, 1, ⅓,
+  // 1/9. Inside, r'_j is the centroid of (c, m_{j−1}, m_j), m_j = (c + r_j + r_{j+1})/3 the level-1
+  // centroids: (5c + r_{j−1} + 2r_j + r_{j+1})/9; on r_1 … r_{n−2} (k = n − 1 faces) the tridiagonal
+  // (1, 2, 1)/9: (2 + 2cos(πm/k))/9, m = 1 … k − 1.
+  using cifs_test::q;
+  for (int n = kMinBoundaryValence; n <= kMaxBoundaryValence; ++n) {
+    const int k = n - 1;
+    INFO("boundary valence " << n << " (" << k << " faces)");
+    const LocalMatrix S = local_matrix(MeshScheme::sqrt3, n, {.boundary = true});
+    REQUIRE(S.exact);  // every weight is rational on the boundary
+    REQUIRE(S.steps == 2);
+    const RationalMatrix& E = *S.exact;
+    const auto expect_row = [&](int row, const std::vector<std::pair<int, Rational>>& weights) {
+      for (int j = 0; j <= n; ++j) {
+        Rational w = 0;
+        for (const auto& [column, value] : weights)
+          if (column == j) w += value;
+        INFO("row " << row << ", column " << j);
+        CHECK(E(row, j) == w);
+      }
+    };
+    expect_row(0, {{0, q(19, 27)}, {1, q(4, 27)}, {n, q(4, 27)}});
+    expect_row(1, {{0, q(16, 27)}, {1, q(10, 27)}, {n, q(1, 27)}});
+    expect_row(n, {{0, q(16, 27)}, {n, q(10, 27)}, {1, q(1, 27)}});
+    for (int j = 1; j + 1 < n; ++j)
+      expect_row(1 + j, {{0, q(5, 9)}, {j, q(1, 9)}, {1 + j, q(2, 9)}, {2 + j, q(1, 9)}});
+    std::vector<Complex> expected{1, 1.0L / 3, 1.0L / 9};
+    for (int m = 1; m < k; ++m) expected.emplace_back((2 + 2 * std::cos(kPi * m / k)) / 9);
+    const LocalSpectrum spectrum = local_spectrum(S);
+    check_same_spectrum(spectrum.eigenvalues, expected, 1e-15L);
+    // The limit position is the boundary curve's (r_0 + 4c + r_{n−1})/6.
+    for (Eigen::Index i = 0; i <= n; ++i)
+      CHECK(std::abs(spectrum.limit_stencil(i) - (i == 0             ? 4.0L / 6
+                                                  : i == 1 || i == n ? 1.0L / 6
+                                                                     : 0)) < 1e-16L);
+    // Exactly: 1, ⅓ and 1/9 are eigenvalues at every k. ⅓ is double where the inside's mode m = k/3
+    // is ⅓ too (k = 3, 6, 9 …). An odd m is symmetric about the sector's middle: two eigenvectors
+    // (k = 3, the regular boundary: the curve's tangent and the inside's). An even m is antisymmetric
+    // and feeds the curve's antisymmetric tangent mode (r'_1 and r'_{k−1} read r_0 and r_k with the
+    // same weight, so their difference reads r_0 − r_k): one eigenvector, a Jordan block (k = 6, 12).
+    const int N = n + 1;
+    for (const Rational& lambda : {q(1), q(1, 3), q(1, 9)})
+      CHECK(sqrt3_exact_rank(sqrt3_shifted_power(E, lambda, 1)) < N);
+    const int third = N - sqrt3_exact_rank(sqrt3_shifted_power(E, q(1, 3), 1));
+    const int third_squared = N - sqrt3_exact_rank(sqrt3_shifted_power(E, q(1, 3), 2));
+    const bool tie = k % 3 == 0, jordan = tie && (k / 3) % 2 == 0;
+    CHECK(third == (tie && !jordan ? 2 : 1));
+    CHECK(third_squared == (tie ? 2 : 1));
+  }
+}
+
 TEST_CASE("local matrices: bad valences are one-line InvalidInputs", "[subdivision][mesh_analysis]") {
   CHECK_THROWS_WITH(local_matrix(MeshScheme::loop, 2),
                     Contains("loop: valence 2 is out of range; expected 3 to 16"));
   CHECK_THROWS_WITH(local_matrix(MeshScheme::catmull_clark, 17), Contains("valence 17 is out of range"));
   CHECK_THROWS_WITH(local_matrix(MeshScheme::loop, 17, {.boundary = true}),
                     Contains("boundary valence 17 is out of range; expected 2 to 16"));
-  CHECK_THROWS_WITH(local_matrix(MeshScheme::sqrt3, 4, {.boundary = true}),
-                    Contains("boundary vertices are analysed for catmull-clark and loop only"));
+  CHECK_THROWS_WITH(local_matrix(MeshScheme::butterfly, 4, {.boundary = true}),
+                    Contains("boundary vertices are analysed for catmull-clark, loop and sqrt3 only"));
+  CHECK_THROWS_WITH(
+      local_matrix(MeshScheme::sqrt3, 2, {.boundary = true, .rule = BoundaryRule::edge_and_corner}),
+      Contains("sqrt3: the boundary has one rule under this scheme"));
+  CHECK_THROWS_WITH(local_matrix(MeshScheme::sqrt3, 17, {.boundary = true}),
+                    Contains("boundary valence 17 is out of range; expected 2 to 16"));
   CHECK_THROWS_AS(refined_local_matrix(MeshScheme::doo_sabin, 1), InvalidInput);
 }
 

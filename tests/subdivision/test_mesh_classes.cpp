@@ -13,6 +13,7 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/subdivision/mesh_analysis.hpp"
+#include "subdivision/meshes.hpp"
 #include "subdivision/spectra.hpp"
 #include "support/sanitized.hpp"
 
@@ -191,6 +192,33 @@ TEST_CASE("C1 verdicts per sector: smooth boundaries fail where two inner eigenv
       if (k >= 2) CHECK(std::abs(v.sectors[0].verdict.angle - std::numbers::pi_v<long double>) < 1e-9L);
     }
   }
+  // √3 over two steps (Kobbelt's boundary: kept, then trisected): the curve's ⅓ (its tangent) and
+  // 1/9 against the inside's (2 + 2cos(πm/k))/9, m = 1 … k − 1 (test_mesh_analysis.cpp). C1 at 1–5
+  // faces: k = 1 has the curve's ⅓ and 1/9 alone (its tangent and curvature: the osculating plane,
+  // no μ); at 2 the curve's ⅓ leads the inside's 2/9; at 3, the regular boundary, ⅓ is double; at 4
+  // and 5 the inside's m = 1 leads, vanishing on the boundary, and the curve's ⅓ follows. At 6 the
+  // inside's m = 2 is ⅓ too, a Jordan block with the curve's: undecided. From 7 faces it passes ⅓:
+  // both leading eigenvectors vanish on the boundary — not C1.
+  for (int k = 1; k <= 9; ++k) {
+    INFO("sqrt3, boundary vertex of " << k << " faces");
+    const LocalMatrix S = local_matrix(MeshScheme::sqrt3, k + 1, boundary());
+    const LocalSpectrum sp = local_spectrum(S);
+    const C1Verdict v = c1_verdict(S, sp);
+    REQUIRE(v.sectors.size() == 1);
+    if (k <= 5) {
+      CHECK(v.c1);
+      CHECK(v.method == "sampled");
+      if (k >= 2) CHECK(std::abs(v.sectors[0].verdict.angle - std::numbers::pi_v<long double>) < 1e-9L);
+    } else if (k == 6) {
+      CHECK_FALSE(v.c1);
+      CHECK_FALSE(v.decided);
+      CHECK_THAT(v.reason, Contains("a Jordan block"));
+    } else {
+      CHECK_FALSE(v.c1);
+      CHECK(sp.second > 1.0L / 3);
+      CHECK(v.sectors[0].verdict.through_centre);
+    }
+  }
   // Catmull–Clark: C1 at 2 and 3 faces; at 4 the inner block's second eigenvalue is the curve's ½
   // (undecided); from 5 faces on two inner eigenvalues pass ½ — not C1.
   for (int k = 2; k <= 9; ++k) {
@@ -301,7 +329,22 @@ TEST_CASE("analyze_mesh: every irregular vertex, its class and verdict, each con
   CHECK(decayed.vertices[2].semi_sharp == 0);
   // Other schemes are refused with one line.
   CHECK_THROWS_WITH(analyze_mesh(classes_cube(), MeshScheme::doo_sabin),
-                    Contains("catmull-clark and loop only"));
+                    Contains("catmull-clark, loop and sqrt3 only"));
+  // √3 (no tags, one boundary rule): a triangulated grid's irregular vertices are its corners, two of
+  // one face and two of two (the other boundary vertices have the regular three), both C1; under
+  // edge_and_corner the same (√3 keeps no corner). Tags are refused.
+  Mesh grid = cifs_test::quad_grid(4, 3, true);
+  for (const BoundaryRule rule : {BoundaryRule::edge_only, BoundaryRule::edge_and_corner}) {
+    grid.tags.boundary = rule;
+    const MeshSmoothness sqrt3 = analyze_mesh(grid, MeshScheme::sqrt3);
+    CHECK(sqrt3.vertices.size() == 4);
+    CHECK(sqrt3.c1 == 4);
+    CHECK(sqrt3.analyses == 2);
+    for (const VertexSmoothness& v : sqrt3.vertices) CHECK(v.vertex_class == "boundary");
+  }
+  grid.tags.creases = {{6, 7, kInfiniteSharpness}};
+  CHECK_THROWS_WITH(analyze_mesh(grid, MeshScheme::sqrt3),
+                    Contains("the mesh has a crease (6 7") && Contains("sqrt3 has no rules for creases"));
   CHECK_THROWS_WITH(analyze_mesh(classes_cube(), MeshScheme::loop),
                     Contains("loop runs on triangles; face 0 has 4"));
 }

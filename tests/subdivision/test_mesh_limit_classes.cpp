@@ -630,3 +630,117 @@ TEST_CASE("limit normals at a boundary vertex with one face: Loop's osculating p
   CHECK_THROWS_WITH(limit_mesh(quads, MeshScheme::catmull_clark, 0, {.normals = true}),
                     Contains("vertex 0 (valence 2) has no tangent plane that its spectrum proves"));
 }
+
+namespace {
+
+/// The faces of `t` whose corners all lie within `rings` edges of vertex 0, as a mesh of their own
+/// (vertex 0 first) with the positions `x`: what two √3 steps further need near vertex 0.
+Mesh sqrt3_cut_around_centre(const MeshTopology& t, const Points& x, int rings) {
+  std::vector<int> distance(static_cast<std::size_t>(t.vertex_count), -1), order{0};
+  distance[0] = 0;
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const int v = order[i];
+    if (distance[static_cast<std::size_t>(v)] == rings) continue;
+    for (const int e : vertex_edges(t, static_cast<std::size_t>(v)))
+      if (const int w = other_vertex(t, static_cast<std::size_t>(e), v);
+          distance[static_cast<std::size_t>(w)] < 0) {
+        distance[static_cast<std::size_t>(w)] = distance[static_cast<std::size_t>(v)] + 1;
+        order.push_back(w);
+      }
+  }
+  std::vector<int> local(static_cast<std::size_t>(t.vertex_count), -1);
+  for (std::size_t i = 0; i < order.size(); ++i)
+    local[static_cast<std::size_t>(order[i])] = static_cast<int>(i);
+  Mesh cut;
+  cut.vertices.resize(static_cast<Eigen::Index>(order.size()), 3);
+  for (std::size_t i = 0; i < order.size(); ++i)
+    cut.vertices.row(static_cast<Eigen::Index>(i)) = x.row(order[i]);
+  for (std::size_t f = 0; f < face_count(t); ++f) {
+    const auto c = face(t, f);
+    if (!std::all_of(c.begin(), c.end(), [&](int v) { return local[static_cast<std::size_t>(v)] >= 0; }))
+      continue;
+    for (const int v : c) cut.face_vertices.push_back(local[static_cast<std::size_t>(v)]);
+    cut.face_offsets.push_back(static_cast<int>(cut.face_vertices.size()));
+  }
+  return cut;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "√3 limit normals at boundary vertices: the planes deep refinement approaches, at the spectrum's rates",
+    "[subdivision][limit][classes]") {
+  // Kobbelt's √3 at a boundary vertex of k faces (local_matrix over two steps; its spectrum, the boundary
+  // curve's 1, ⅓, 1/9 and the inside's (2 + 2cos(πm/k))/9: test_mesh_analysis.cpp). limit_mesh's normal at
+  // vertex 0 of a lifted local mesh against the production refiner, two steps at a time for 16 steps (cut
+  // to six rings around the vertex after each pair: the rows there read nothing the cut lost):
+  // - the normals of the refined faces at the vertex approach ours by |μ|/λ2 every two steps (at most
+  //   that, within 10 %: the asymptotic rate; k = 1 has no μ in its one-ring, and its one face spans the
+  //   pair's plane at every level: equal to round-off);
+  // - the refined vertices within two edges of it — beyond the one-ring — leave our tangent plane by
+  //   max |n · (p − limit)| / max |p − limit|, falling by |μ|/λ1 (the ring's size goes as λ1): no
+  //   eigenvalue of the larger neighbourhood comes between. At k = 1 the rate is 1/9: the boundary curve's
+  //   fourth eigenvalue 1/27 over its tangent's ⅓, the plane the boundary curve's osculating plane.
+  // A plane off by an angle would keep both at that angle. The normals computed at levels 1–3 (odd levels
+  // go through the trisecting step) are level 0's. From 6 faces the spectrum proves no plane: refused.
+  for (int k = 1; k <= 5; ++k) {
+    INFO(k << " faces");
+    const Mesh m = lifted(local_mesh(MeshScheme::sqrt3, k + 1, {.boundary = true}, 3));
+    const Mesh ours = limit_mesh(m, MeshScheme::sqrt3, 0, {.normals = true});
+    const Eigen::Vector3d n = ours.normals.row(0).transpose(), centre = ours.vertices.row(0).transpose();
+    for (int level = 1; level <= 3; ++level) {
+      const Mesh later = limit_mesh(m, MeshScheme::sqrt3, level, {.normals = true});
+      INFO("level " << level);
+      CHECK((later.normals.topRows(m.vertices.rows()) - ours.normals).cwiseAbs().maxCoeff() < 1e-12);
+      CHECK((later.vertices.topRows(m.vertices.rows()) - ours.vertices).cwiseAbs().maxCoeff() < 1e-13);
+    }
+    const LocalSpectrum spectrum = local_spectrum(local_matrix(MeshScheme::sqrt3, k + 1, {.boundary = true}));
+    const double mu = static_cast<double>(std::abs(spectrum.mu));
+    const double lambda1 = static_cast<double>(spectrum.subdominant),
+                 lambda2 = static_cast<double>(spectrum.second);
+    std::vector<double> off, face_error;  // after 2, 4, …, 16 steps
+    Mesh ring = m;
+    for (int level = 2; level <= 16; level += 2) {
+      const MeshRefinement r = refine_topology(ring, MeshScheme::sqrt3, 2);
+      ring = sqrt3_cut_around_centre(r.levels[2], apply(r, ring.vertices), 6);  // √3 keeps vertex 0 at 0
+      const MeshTopology cut = build_topology(ring);
+      double worst = 0;
+      for (const int g : vertex_faces(cut, 0))
+        worst = std::max(worst, angle(face_normal(ring.vertices, cut, g), n));
+      face_error.push_back(worst);
+      const Mesh two_rings = sqrt3_cut_around_centre(cut, ring.vertices, 2);
+      double out_of_plane = 0, size = 0;
+      for (Eigen::Index i = 1; i < two_rings.vertices.rows(); ++i) {
+        const Eigen::Vector3d d = two_rings.vertices.row(i).transpose() - centre;
+        out_of_plane = std::max(out_of_plane, std::abs(n.dot(d)));
+        size = std::max(size, d.norm());
+      }
+      off.push_back(out_of_plane / size);
+    }
+    const double face_rate = face_error[7] / face_error[6], off_rate = off[7] / off[6];
+    INFO("face errors after 2, 8, 16 steps "
+         << face_error[0] << " " << face_error[3] << " " << face_error[7] << ", rate " << face_rate << " for "
+         << mu / lambda2 << "; off the plane " << off[0] << " " << off[3] << " " << off[7] << ", rate "
+         << off_rate << " for " << mu / lambda1);
+    CHECK(off[7] < 1e-2);
+    if (k == 1) {
+      CHECK(mu == 0);
+      for (int i = 0; i < 3; ++i) CHECK(face_error[static_cast<std::size_t>(i)] < 1e-12);
+      CHECK(std::abs(off_rate - 1.0 / 9) < 0.1 / 9);
+      continue;
+    }
+    CHECK(face_rate <= 1.1 * mu / lambda2);
+    CHECK(face_rate < 1);
+    CHECK(face_error[7] <= std::pow(std::min(1.1 * mu / lambda2, 0.95), 4) * face_error[3]);
+    CHECK(off_rate <= 1.1 * mu / lambda1);
+  }
+  for (const auto& [k, why] : {std::pair{6, "no pair of real subdominant eigenvalues above the rest"},
+                               std::pair{7, "leave the plane of its subdominant eigenvectors"}}) {
+    INFO(k << " faces");
+    const Mesh m = lifted(local_mesh(MeshScheme::sqrt3, k + 1, {.boundary = true}, 2));
+    CHECK_THROWS_WITH(limit_mesh(m, MeshScheme::sqrt3, 0, {.normals = true}),
+                      Contains("sqrt3: vertex 0 (valence " + std::to_string(k + 1) +
+                               ") has no tangent plane that its spectrum proves") &&
+                          Contains(why));
+  }
+}

@@ -12,7 +12,10 @@
 //   (opposite c in r_j's ring), q_j the corner across the edge r_j r_{j+1}: 3n + 1.
 // - √3, two steps (one step rotates the ring by half a sector): c, r_0 … r_{n−1}: n + 1. After
 //   one step the ring is the face centroids; after two, the centroid of the level-1 triangle
-//   (c¹, m_{j−1}, m_j) lies in the direction of r_j and takes its number.
+//   (c¹, m_{j−1}, m_j) lies in the direction of r_j and takes its number. On the boundary (c,
+//   r_0 … r_{n−1}, from an even level: the boundary kept, then trisected) r_0 and r_{n−1} become
+//   the trisection points next to c, and r_j the centroid of (c, m_{j−1}, m_j): the one-ring is
+//   invariant there too (the trisection points that read two boundary vertices away are not in it).
 // - Doo–Sabin, around a k-gon face (valence k): per corner g_i of the face, g_i, a_i, b_i, c_i:
 //   a_i, b_i the outer corners of the quad across the edge g_i g_{i+1} (a_i next to g_i), c_i the
 //   corner opposite g_i of the quad at g_i outside the two edge quads: 4k.
@@ -47,7 +50,8 @@ struct RationalMatrix {
 };
 
 /// Where the extraordinary vertex is and what is tagged there. Boundary vertices (valence = number
-/// of edges, 2 … 16: valence − 1 faces), infinitely sharp edges and corners are analysed for
+/// of edges, 2 … 16: valence − 1 faces) are analysed for Catmull–Clark, Loop and √3 (Kobbelt's
+/// boundary rule, the only one: `rule` must be edge_only); infinitely sharp edges and corners for
 /// Catmull–Clark and Loop only, with the rules OpenSubdiv uses (rules.hpp): `rule` at valence 2
 /// (one face); a sharp edge's point is its midpoint; the vertex follows the smooth rule with no or
 /// one sharp edge (a dart), the crease rule ¾c + ⅛(ends) with two (a boundary's edges count), and
@@ -88,8 +92,8 @@ struct LocalMatrix {
   LocalOptions options;
   int steps = 1;                    // subdivision steps S_n spans: 2 for √3, else 1
   std::vector<std::string> labels;  // "c", "r0", "f0", …: the numbering
-  /// The exact matrix when every weight is rational: always for Catmull–Clark; Loop, √3 and
-  /// Doo–Sabin when cos(2π/n) is rational (n = 3, 4, 6); Butterfly at n = 3, 4, 6.
+  /// The exact matrix when every weight is rational: always for Catmull–Clark and √3 boundary
+  /// vertices; Loop, √3 and Doo–Sabin when cos(2π/n) is rational (n = 3, 4, 6); Butterfly at n = 3, 4, 6.
   std::optional<RationalMatrix> exact;
   /// The same in long double (the exact one rounded; otherwise computed with long double cosines,
   /// every entry within 1e-18 of its true value).
@@ -97,7 +101,7 @@ struct LocalMatrix {
 };
 
 /// Route (a): S_n written from the scheme's rules in the numbering above. Throws InvalidInput for a
-/// valence out of range or a boundary vertex under Doo–Sabin, Butterfly or √3.
+/// valence out of range or a boundary vertex under Doo–Sabin or Butterfly.
 LocalMatrix local_matrix(MeshScheme scheme, int valence, const LocalOptions& options = {});
 
 /// The local mesh route (b) refines: the extraordinary vertex (Doo–Sabin: face) of the valence
@@ -239,9 +243,10 @@ struct MeshSmoothness {
 };
 
 /// The analysis of every vertex of a Catmull–Clark or Loop mesh with its tags (infinitely sharp creases
-/// and corners, the boundary rules edge and corner). Throws InvalidInput, one line naming the vertex or
-/// the tag, for what it does not analyse: another scheme, a non-manifold mesh, the boundary rule none,
-/// valences out of the local analysis's range, non-triangles under Loop. A vertex with semi-sharp tags
+/// and corners, the boundary rules edge and corner), or of a √3 mesh (no tags: its boundary has one
+/// rule). Throws InvalidInput, one line naming the vertex or the tag, for what it does not analyse:
+/// another scheme, a non-manifold mesh, the boundary rule none, tags under √3, valences out of the local
+/// analysis's range, non-triangles under Loop and √3. A vertex with semi-sharp tags
 /// is analysed as it is after ceil(s) levels (they have decayed; its reason says so) and is always
 /// listed. Catmull–Clark vertices next to non-quads are analysed as they
 /// are after one level (same valence and sectors, all quads). Holes change no rule (they leave faces out of
