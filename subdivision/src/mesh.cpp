@@ -388,6 +388,7 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
   const BlzSides blz = tags.rules == RuleSet::blz && !smooth && scheme != MeshScheme::bilinear && !s.sink.drop
                            ? blz_sides(scheme, t, L, tags)
                            : BlzSides{};
+  if (s.sink.drop && smooth) return s;  // topology only on a smooth level: nothing to compute
   for (int v = 0; v < V; ++v) {
     const auto ring = ring_edges(t, v);
     const auto faces = vertex_faces(t, static_cast<std::size_t>(v));
