@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <span>
 
+#include "cifs/errors.hpp"
 #include "cifs/subdivision/rules.hpp"
 
 namespace cifs::subdivision::detail {
@@ -176,6 +177,48 @@ double half_at(const MeshTopology& t, const std::vector<double>& halves, int e, 
 
 }  // namespace
 
+void check_channels(const Mesh& mesh, MeshScheme scheme, const std::string& who, bool non_manifold) {
+  if (mesh.face_varying.empty()) return;
+  const std::string channel = "face-varying channel '" + mesh.face_varying.front().name + "'";
+  if (traits(scheme).split == Split::dual || traits(scheme).split == Split::sqrt3)
+    throw InvalidInput(who + ": the mesh has a " + channel +
+                       "; this scheme does not split faces, so face-varying data has no rule under it " +
+                       "(catmull-clark, loop, bilinear and butterfly refine it; or drop the channel)");
+  if (mesh.tags.face_varying == FaceVaryingRule::all || scheme == MeshScheme::bilinear) return;
+  const std::string rule = "the " + channel + " asks for the face-varying rule '" +
+                           std::string(option_name(mesh.tags.face_varying)) + "'";
+  if (scheme == MeshScheme::butterfly)
+    throw InvalidInput(who + ": " + rule +
+                       "; butterfly interpolates face-varying data linearly only (--fvar-interpolation all)");
+  if (mesh.tags.rules == RuleSet::blz)
+    throw InvalidInput(who + ": " + rule + ", which is OpenSubdiv's and not built under the rule set 'blz' " +
+                       "(--fvar-interpolation all, or --rules opensubdiv)");
+  if (non_manifold)
+    throw InvalidInput(
+        who + ": the mesh is not manifold and " + rule +
+        "; non-manifold face-varying data is refined linearly only (--fvar-interpolation all)");
+}
+
+void check_limit_channels(const Mesh& mesh, MeshScheme scheme, const std::string& who) {
+  check_channels(mesh, scheme, who, false);
+  if (!mesh.face_varying.empty() && mesh.tags.face_varying != FaceVaryingRule::all &&
+      scheme != MeshScheme::bilinear)
+    throw InvalidInput(
+        who + ": the limit of face-varying channel '" + mesh.face_varying.front().name +
+        "' under the rule '" + std::string(option_name(mesh.tags.face_varying)) +
+        "' is not built (the values would be the last level's, not their limit); subdivide " +
+        "instead, or ask for the rule 'all' (--fvar-interpolation all: linear values are their " +
+        "own limit)");
+}
+
+FaceVaryingChannel linear_channel(const MeshRefinement& r, const FaceVaryingChannel& channel) {
+  ChannelLevel level = analyse_channel(r.levels.front(), r.features.front(), r.tags.front(), channel);
+  for (std::size_t k = 0; k + 1 < r.levels.size(); ++k)
+    level =
+        refine_channel(r.scheme, r.levels[k], r.features[k], {}, r.tags[k], level);  // linear: no sharpness
+  return std::move(level.channel);
+}
+
 ChannelLevel analyse_channel(const MeshTopology& t, const LevelFeatures& features, const MeshTags& tags,
                              FaceVaryingChannel channel) {
   const Options o = options_of(tags);
@@ -231,7 +274,7 @@ ChannelLevel refine_channel(MeshScheme scheme, const MeshTopology& t, const Leve
                             const ChannelLevel& level) {
   const Options o = options_of(tags);
   // OpenSubdiv interpolates linearly under `all` and for the bilinear scheme; Butterfly (interpolating,
-  // no OpenSubdiv counterpart) takes the rule `all` only (check_scheme_input).
+  // no OpenSubdiv counterpart) takes the rule `all` only (check_channels).
   const bool linear_all = tags.face_varying == FaceVaryingRule::all ||
                           (scheme != MeshScheme::catmull_clark && scheme != MeshScheme::loop);
   const bool quads = traits(scheme).split == Split::quads;

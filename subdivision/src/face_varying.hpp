@@ -4,6 +4,7 @@
 // Internal to the subdivision module.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "cifs/mesh.hpp"
@@ -29,6 +30,18 @@ struct ChannelLevel {
   FaceVaryingChannel channel;
   std::vector<ValueRule> rules;  // per face corner: the rule of its vertex's value there
 };
+
+/// Refuses (InvalidInput starting with `who`) face-varying channels a scheme has no rule for: any
+/// under Doo–Sabin and √3 (their faces are no split of the parent's), a rule other than `all` under
+/// Butterfly, the rule set `blz` or on a non-manifold mesh.
+void check_channels(const Mesh& mesh, MeshScheme scheme, const std::string& who, bool non_manifold);
+
+/// check_channels, and a rule other than `all` refused for limits: the limit of smoothly refined
+/// values is not built (linear values are their own limit).
+void check_limit_channels(const Mesh& mesh, MeshScheme scheme, const std::string& who);
+/// A channel at a refinement's last level, linearly (the rule `all`, or the bilinear scheme: what
+/// check_limit_channels lets through).
+FaceVaryingChannel linear_channel(const MeshRefinement& refinement, const FaceVaryingChannel& channel);
 
 /// The first level's state: the rule of every vertex value from the channel's seams, the level's
 /// sharpness (`features`) and the face-varying rule, boundary rule of `tags`.

@@ -839,25 +839,6 @@ void check_scheme_input(const MeshTopology& t, const Mesh& mesh, MeshScheme sche
       throw InvalidInput(who + ": the mesh has " + tag +
                          "; this scheme has no rules for creases, corners, holes " +
                          "or the boundary rule 'none' (catmull-clark, loop and bilinear have)");
-  if (!mesh.face_varying.empty()) {
-    const std::string channel = "face-varying channel '" + mesh.face_varying.front().name + "'";
-    if (traits(scheme).split == Split::dual || traits(scheme).split == Split::sqrt3)
-      throw InvalidInput(who + ": the mesh has a " + channel +
-                         "; this scheme does not split faces, so face-varying data has no rule under it " +
-                         "(catmull-clark, loop, bilinear and butterfly refine it; or drop the channel)");
-    const bool smooth_values =
-        mesh.tags.face_varying != FaceVaryingRule::all && scheme != MeshScheme::bilinear;
-    if (smooth_values && scheme == MeshScheme::butterfly)
-      throw InvalidInput(
-          who + ": the " + channel + " asks for the face-varying rule '" +
-          std::string(option_name(mesh.tags.face_varying)) +
-          "'; butterfly interpolates face-varying data linearly only (--fvar-interpolation all)");
-    if (smooth_values && mesh.tags.rules == RuleSet::blz)
-      throw InvalidInput(who + ": the " + channel + " asks for the face-varying rule '" +
-                         std::string(option_name(mesh.tags.face_varying)) +
-                         "', which is OpenSubdiv's and not built under the rule set 'blz' " +
-                         "(--fvar-interpolation all, or --rules opensubdiv)");
-  }
 }
 
 /// The features of a level from its tags, as OpenSubdiv's factory prepares its base level: boundary
