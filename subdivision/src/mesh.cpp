@@ -39,7 +39,7 @@ struct Step {
 };
 
 /// out = Σ_k weights[k] · in row columns[k] (d columns): the one kernel of apply and of rows applied
-/// as they are made, so both give the same bits.
+/// as they are made (the same bits, but where a one-shot quad split weighs face points made first).
 inline void weighted_row(const double* in, Eigen::Index d, const int* columns, const double* weights,
                          int count, double* out) {
   if (d == 3) {  // positions: the common case, kept in registers
@@ -62,6 +62,34 @@ inline void weighted_row(const double* in, Eigen::Index d, const int* columns, c
   }
 }
 
+/// The same over two sources: columns below `split` are rows of `in`, the others rows of `more`
+/// (column split + i is more's row i): one-shot rows that weigh child face points already made.
+inline void weighted_row(const double* in, const double* more, int split, Eigen::Index d, const int* columns,
+                         const double* weights, int count, double* out) {
+  const auto source = [&](int c) {
+    return c < split ? in + d * static_cast<std::ptrdiff_t>(c)
+                     : more + d * static_cast<std::ptrdiff_t>(c - split);
+  };
+  if (d == 3) {
+    double x = 0, y = 0, z = 0;
+    for (int k = 0; k < count; ++k) {
+      const double* p = source(columns[k]);
+      x += weights[k] * p[0];
+      y += weights[k] * p[1];
+      z += weights[k] * p[2];
+    }
+    out[0] = x;
+    out[1] = y;
+    out[2] = z;
+    return;
+  }
+  std::fill(out, out + d, 0.0);
+  for (int k = 0; k < count; ++k) {
+    const double* p = source(columns[k]);
+    for (Eigen::Index c = 0; c < d; ++c) out[c] += weights[k] * p[c];
+  }
+}
+
 /// Makes one stencil row at a time; a column given twice is summed (face points expanded into
 /// corners meet the ring's own vertices), columns in order of first appearance. Rows go where the
 /// step's sink says: its stencils, straight onto its input (then `s.vertex_count` must be set before
@@ -77,7 +105,7 @@ class RowWriter {
       advise_huge_pages(s.output.data(), static_cast<std::size_t>(s.output.size()) * sizeof(double));
     }
   }
-  void add(int column, double weight) {
+  [[gnu::always_inline]] void add(int column, double weight) {
     // A column seen before in this row is found through row_of_/slot_ in O(1).
     const auto c = static_cast<std::size_t>(column);
     if (row_of_[c] == row_) {
@@ -91,11 +119,37 @@ class RowWriter {
     columns_[count_] = column;
     weights_[count_++] = weight;
   }
+  /// One-shot quad split (rows applied to the input): the child face points — the step's last rows,
+  /// the centroids of the parent faces — are made first, and add_face_point then weighs a face's centre
+  /// as one column (old vertex count + face) instead of its corners: OpenSubdiv's order, which halves
+  /// the work of the vertex and edge rows.
+  void make_face_points(const MeshTopology& t) {
+    const auto F = static_cast<int>(face_count(t));
+    const Eigen::Index d = s_.sink.input->cols();
+    face_split_ = t.vertex_count;
+    faces_ = s_.output.data() + d * (s_.vertex_count - F);
+    slot_.resize(slot_.size() + static_cast<std::size_t>(F));
+    row_of_.resize(row_of_.size() + static_cast<std::size_t>(F), -1);
+    std::vector<double> weights;
+    for (int f = 0; f < F; ++f) {
+      const auto corners = face(t, static_cast<std::size_t>(f));
+      weights.assign(corners.size(), 1.0 / static_cast<double>(corners.size()));
+      weighted_row(s_.sink.input->data(), d, corners.data(), weights.data(), static_cast<int>(corners.size()),
+                   faces_ + d * f);
+    }
+  }
+  /// The column of face f's centre, or −1 when faces are weighed by their corners.
+  int face_column(std::size_t f) const { return faces_ ? face_split_ + static_cast<int>(f) : -1; }
+
   void finish() {
     if (s_.sink.input) {
       const Eigen::Index d = s_.sink.input->cols();
-      weighted_row(s_.sink.input->data(), d, columns_.data(), weights_.data(), static_cast<int>(count_),
-                   s_.output.data() + d * row_);
+      if (faces_)
+        weighted_row(s_.sink.input->data(), faces_, face_split_, d, columns_.data(), weights_.data(),
+                     static_cast<int>(count_), s_.output.data() + d * row_);
+      else
+        weighted_row(s_.sink.input->data(), d, columns_.data(), weights_.data(), static_cast<int>(count_),
+                     s_.output.data() + d * row_);
     } else if (!s_.sink.drop) {
       Stencils& out = s_.stencils;
       out.columns.insert(out.columns.end(), columns_.begin(),
@@ -122,6 +176,8 @@ class RowWriter {
   std::vector<std::size_t> slot_;     // per old vertex: its place in columns_ ...
   std::vector<Eigen::Index> row_of_;  // ... valid when it was added in this row
   Eigen::Index row_ = 0;
+  double* faces_ = nullptr;  // make_face_points: the child face points, columns from face_split_ on
+  int face_split_ = 0;
 };
 
 /// Reserves a step's weights from its counts (growing them by doubling costs copies and page faults
@@ -146,7 +202,12 @@ bool on_boundary(const MeshTopology& t, int v) {
   return t.boundary_vertex[static_cast<std::size_t>(v)] != 0;
 }
 
-void add_face_point(const MeshTopology& t, std::size_t f, double weight, RowWriter& row) {
+[[gnu::always_inline]] inline void add_face_point(const MeshTopology& t, std::size_t f, double weight,
+                                                  RowWriter& row) {
+  if (const int column = row.face_column(f); column >= 0) {
+    row.add(column, weight);
+    return;
+  }
   const auto corners = face(t, f);
   const double w = weight / static_cast<double>(corners.size());
   for (const int c : corners) row.add(c, w);
@@ -388,6 +449,8 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
                            ? blz_sides(scheme, t, L, tags)
                            : BlzSides{};
   if (s.sink.drop && smooth) return s;  // topology only on a smooth level: nothing to compute
+  const bool face_points_first = quads && s.sink.input && blz.corners.empty();
+  if (face_points_first) row.make_face_points(t);
   for (int v = 0; v < V; ++v) {
     const auto ring = ring_edges(t, v);
     const auto faces = vertex_faces(t, static_cast<std::size_t>(v));
@@ -475,7 +538,7 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
     }
     row.finish();
   }
-  if (quads)
+  if (quads && !face_points_first)
     for (int f = 0; f < F; ++f) {
       // BLZ: at concave corners, the mean of the face point flattened towards each.
       int flattened = 0;
@@ -1127,12 +1190,7 @@ Mesh subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOption
     t = checked_input(split->mesh, scheme, levels, options, false);
   }
   const Mesh& source = split ? split->mesh : mesh;
-  if (split && !source.face_varying.empty() && source.tags.face_varying != FaceVaryingRule::all &&
-      scheme != MeshScheme::bilinear)
-    throw InvalidInput(
-        who + ": the mesh is not manifold and has face-varying channel '" + source.face_varying.front().name +
-        "' under the rule '" + std::string(option_name(source.tags.face_varying)) +
-        "'; non-manifold face-varying data is refined linearly only (--fvar-interpolation all)");
+  detail::check_channels(source, scheme, who, split.has_value());
   detail::Representatives same;  // of the stand-in's vertices and edges, level by level
   if (split) same = detail::initial_representatives(t, std::move(split->representative));
   MeshTags tags = source.tags;

@@ -151,11 +151,14 @@ TEST_CASE("two levels at once = one level of one level; replay on new data = a f
     moved.col(0).array() += 0.5;
     Mesh other = m;
     other.vertices = moved;
-    CHECK((apply(r, moved) - subdivide(other, scheme, 2).vertices).cwiseAbs().maxCoeff() == 0);
+    // To round-off: a one-shot quad split weighs each face's centre once (OpenSubdiv's order), the
+    // replay its corners.
+    CHECK((apply(r, moved) - subdivide(other, scheme, 2).vertices).cwiseAbs().maxCoeff() <= 1e-15);
     Points wide(m.vertices.rows(), 5);
     wide << m.vertices, moved.leftCols(2);
     const Points applied = apply(r, wide);
-    CHECK(applied.leftCols(3) == once.vertices);
+    CHECK((applied.leftCols(3) - once.vertices).cwiseAbs().maxCoeff() <= 1e-15);
+    CHECK(applied.rightCols(2) == apply(r, moved).leftCols(2));  // columns are independent: same bits
   }
 }
 

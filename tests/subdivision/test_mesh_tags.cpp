@@ -303,6 +303,7 @@ TEST_CASE("bad tags are refused with one line naming them", "[subdivision][mesh]
   tri.face_varying = {uv};
   tri.face_varying[0].indices.assign(tri.face_vertices.size(), 0);
   refused(tri, MeshScheme::sqrt3, "this scheme does not split faces");
+  CHECK_NOTHROW(refine_topology(tri, MeshScheme::sqrt3, 1));  // the topology alone has no channels to refuse
   tri.tags.face_varying = FaceVaryingRule::corners_only;
   refused(tri, MeshScheme::butterfly, "butterfly interpolates face-varying data linearly only");
   m.tags.face_varying = FaceVaryingRule::corners_only;
