@@ -65,6 +65,7 @@
 #include "cifs/format.hpp"
 #include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/attractor.hpp"
+#include "cifs/ifs/failing_paths.hpp"
 #include "walk.hpp"
 
 namespace cifs::ifs {
@@ -330,6 +331,13 @@ double PieceBounds::chord_deviation(StateId state, const Points& net, const Poin
 
 namespace {
 
+/// The transition `child` of `s` (out-edge position).
+automata::TransitionId out_edge(const Graph& g, StateId s, std::size_t child) {
+  auto [b, e] = out_edges(s, g);
+  std::advance(b, static_cast<std::ptrdiff_t>(child));
+  return *b;
+}
+
 /// Per state t, bounds over the paths of `length` transitions from t: the largest δ of their
 /// products and the largest ∞-norm of the products of their prefixes (the empty one included, so ≥ 1).
 struct SuffixBounds {
@@ -396,6 +404,31 @@ struct PathScan {
     return true;
   }
 
+  /// Whether a scan that stops at the first failure would stop, settled by one path (a kept failing
+  /// path, FailingPaths): true when `path` starts at a state of `states` (sorted), fits the automaton,
+  /// its product — computed as `descend` computes it — has δ ≥ 1, and no bound can skip it: the bound at
+  /// its depth `length − h` node is ≥ 1, above any `worst` of a scan that has not stopped. Then the scan
+  /// reaches it or stops at an earlier failure. False says nothing: the scan must run.
+  bool fails_along(const std::vector<StateId>& states, const FailingPaths::Path& path) {
+    const Graph& g = automaton.graph;
+    if (!stop_at_first_failure || path.word.size() != static_cast<std::size_t>(length) ||
+        !std::binary_search(states.begin(), states.end(), path.state))
+      return false;
+    product.resize(static_cast<std::size_t>(length) + 1);
+    product[0] = Eigen::MatrixXd::Identity(g[path.state].size, g[path.state].size);
+    StateId s = path.state;
+    for (int k = 0; k < length; ++k) {
+      const auto& P = product[static_cast<std::size_t>(k)];
+      if (suffix && k == length - suffix->length && !(delta(P) * suffix->delta[s] >= 1)) return false;
+      const int child = path.word[static_cast<std::size_t>(k)];
+      if (child < 0 || static_cast<std::size_t>(child) >= out_degree(s, g)) return false;
+      const automata::TransitionId t = out_edge(g, s, static_cast<std::size_t>(child));
+      product[static_cast<std::size_t>(k) + 1].noalias() = g[t].matrix * P;
+      s = target(t, g);
+    }
+    return delta(product[static_cast<std::size_t>(length)]) >= 1;
+  }
+
   bool run(const std::vector<StateId>& states) {
     product.resize(static_cast<std::size_t>(length) + 1);
     word.assign(static_cast<std::size_t>(length), 0);
@@ -460,16 +493,13 @@ Eigen::RowVectorXd unit_fixed_point(const Eigen::MatrixXd& P, const std::string&
   return polished.allFinite() && residual(polished) <= std::max(residual(l), floor) ? polished : l;
 }
 
-/// The transition `child` of `s` (out-edge position).
-automata::TransitionId out_edge(const Graph& g, StateId s, std::size_t child) {
-  auto [b, e] = out_edges(s, g);
-  std::advance(b, static_cast<std::ptrdiff_t>(child));
-  return *b;
-}
-
 }  // namespace
 
-Contraction contraction(const Automaton& automaton, const ContractionOptions& options) {
+namespace {
+
+/// contraction, with the failing paths of earlier checks when `failing` is not null.
+Contraction check_contraction(const Automaton& automaton, const ContractionOptions& options,
+                              FailingPaths* failing) {
   validate(automaton);
   if (options.max_length < 1)
     throw InvalidInput("the contraction check's path length " + std::to_string(options.max_length) +
@@ -486,9 +516,19 @@ Contraction contraction(const Automaton& automaton, const ContractionOptions& op
     if (!suffix) suffix = suffix_bounds(automaton, states, kSuffixLength);
     return &*suffix;
   };
+  if (failing && failing->by_length.size() < static_cast<std::size_t>(options.max_length))
+    failing->by_length.resize(static_cast<std::size_t>(options.max_length));
   for (int m = 1; m <= options.max_length; ++m) {
     PathScan scan(automaton, m, m < options.max_length, bounds_for(m), options.bound);
+    // A kept failing path settles a length below the last one as its scan would (the last length is
+    // always scanned in full, for its δ or the message).
+    if (failing && scan.fails_along(states, failing->by_length[static_cast<std::size_t>(m) - 1])) {
+      ++failing->settled;
+      continue;
+    }
     const bool complete = scan.run(states);
+    if (failing && !complete)  // the path the scan stopped at
+      failing->by_length[static_cast<std::size_t>(m) - 1] = {scan.worst_state, scan.worst_word};
     if (complete && scan.worst < 1) {
       out.m = m;
       out.delta = scan.worst;
@@ -544,6 +584,16 @@ Contraction contraction(const Automaton& automaton, const ContractionOptions& op
     if (!improves) break;
   }
   return out;
+}
+
+}  // namespace
+
+Contraction contraction(const Automaton& automaton, const ContractionOptions& options) {
+  return check_contraction(automaton, options, nullptr);
+}
+
+Contraction contraction(const Automaton& automaton, const ContractionOptions& options, FailingPaths& failing) {
+  return check_contraction(automaton, options, &failing);
 }
 
 Eigen::RowVectorXd fixed_point(const Automaton& automaton, StateId state, std::span<const int> word) {
