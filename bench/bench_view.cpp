@@ -115,6 +115,19 @@ BENCHMARK(BM_runner_amplitude_cubic_depth16)->Unit(benchmark::kMillisecond)->Use
 /// checks a perturbed system), on the hills' BC-IFS perturbed at the benchmark's 16 amplitudes (made before
 /// the timing): from cold, and with the failing paths of the previous checks kept (ifs::FailingPaths, as a
 /// view session keeps them). Counters: the witness length m and the lengths a kept path settled, per check.
+/// The timed loop alone, apart for callgrind (--toggle-collect='*check_edits*'): the checks, the sum of their m.
+[[gnu::noinline]] double check_edits(benchmark::State& state, const std::vector<cifs::automata::Automaton>& edits,
+                                     cifs::ifs::FailingPaths* failing) {
+  const cifs::ifs::ContractionOptions check{.bound = false};
+  std::size_t k = 0;
+  double m = 0;
+  for (auto _ : state) {
+    const auto& a = edits[k++ % edits.size()];
+    m += (failing != nullptr ? cifs::ifs::contraction(a, check, *failing) : cifs::ifs::contraction(a, check)).m;
+  }
+  return m;
+}
+
 void contraction_check(benchmark::State& state, bool warm) {
   const auto system = cifs::view::shape_system(
       cifs::io::read_shape(std::string(CIFS_EXAMPLES_DIR) + "/shapes/hills.json"), true);
@@ -125,16 +138,10 @@ void contraction_check(benchmark::State& state, bool warm) {
     o.contraction.bound = false;
     edits.push_back(cifs::ifs::perturb(system->system, system->space, o).system.automaton);
   }
-  const cifs::ifs::ContractionOptions check{.bound = false};
   cifs::ifs::FailingPaths failing;
-  (void)cifs::ifs::contraction(edits.back(), check, failing);  // the previous edit
+  (void)cifs::ifs::contraction(edits.back(), {.bound = false}, failing);  // the previous edit
   failing.settled = 0;
-  std::size_t k = 0;
-  double m = 0;
-  for (auto _ : state) {
-    const auto& a = edits[k++ % edits.size()];
-    m += (warm ? cifs::ifs::contraction(a, check, failing) : cifs::ifs::contraction(a, check)).m;
-  }
+  const double m = check_edits(state, edits, warm ? &failing : nullptr);
   state.counters["m"] = benchmark::Counter(m, benchmark::Counter::kAvgIterations);
   state.counters["settled"] = benchmark::Counter(failing.settled, benchmark::Counter::kAvgIterations);
 }
