@@ -111,19 +111,22 @@ void BM_runner_amplitude_cubic_depth16(benchmark::State& state) {
 BENCHMARK(BM_runner_amplitude_hills_depth6)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_runner_amplitude_cubic_depth16)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-/// The contractivity check of those amplitude edits alone (ifs::contraction, contractivity only, as the runner
-/// checks a perturbed system), on the hills' BC-IFS perturbed at the benchmark's 16 amplitudes (made before
-/// the timing): from cold, and with the failing paths of the previous checks kept (ifs::FailingPaths, as a
-/// view session keeps them). Counters: the witness length m and the lengths a kept path settled, per check.
-/// The timed loop alone, apart for callgrind (--toggle-collect='*check_edits*'): the checks, the sum of their m.
-[[gnu::noinline]] double check_edits(benchmark::State& state, const std::vector<cifs::automata::Automaton>& edits,
+/// The contractivity check of those amplitude edits alone (ifs::contraction, contractivity only, as the
+/// runner checks a perturbed system), on the hills' BC-IFS perturbed at the benchmark's 16 amplitudes (made
+/// before the timing): from cold, and with the failing paths of the previous checks kept (ifs::FailingPaths,
+/// as a view session keeps them). Counters: the witness length m and the lengths a kept path settled, per
+/// check. The timed loop alone, apart for callgrind (--toggle-collect='*check_edits*'): the checks, the sum
+/// of their m.
+[[gnu::noinline]] double check_edits(benchmark::State& state,
+                                     const std::vector<cifs::automata::Automaton>& edits,
                                      cifs::ifs::FailingPaths* failing) {
   const cifs::ifs::ContractionOptions check{.bound = false};
   std::size_t k = 0;
   double m = 0;
   for (auto _ : state) {
     const auto& a = edits[k++ % edits.size()];
-    m += (failing != nullptr ? cifs::ifs::contraction(a, check, *failing) : cifs::ifs::contraction(a, check)).m;
+    m += (failing != nullptr ? cifs::ifs::contraction(a, check, *failing) : cifs::ifs::contraction(a, check))
+             .m;
   }
   return m;
 }

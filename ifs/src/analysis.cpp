@@ -341,9 +341,13 @@ automata::TransitionId out_edge(const Graph& g, StateId s, std::size_t child) {
 
 /// Per state t, bounds over the paths of `length` transitions from t: the largest δ of their
 /// products and the largest ∞-norm of the products of their prefixes (the empty one included, so ≥ 1).
+/// Also, per state, the δ and ∞-norm of each path of `length` from it, in the order a scan visits them: a
+/// scan of 2·length transitions bounds its nodes of depth `length`, whose products are those very paths'
+/// (the same products, computed the same way), and reads their δ here instead of making them again.
 struct SuffixBounds {
   int length = 0;
-  std::vector<double> delta, norm;  // by state
+  std::vector<double> delta, norm;                 // by state
+  std::vector<std::vector<double>> deltas, norms;  // by state, by path
 };
 
 /// Enumerates the paths of exactly `length` transitions from every reachable state, with the
@@ -370,6 +374,9 @@ struct PathScan {
   double A = 1, worst = 0;
   StateId worst_state = 0;
   std::vector<int> worst_word;
+  bool record = false;  // keep every path's δ and ∞-norm (SuffixBounds::deltas, norms)
+  std::vector<double> leaf_delta, leaf_norm;
+  std::size_t bounded = 0;  // the nodes of depth length − h met from the current start state
   // Work space: product and word per level.
   std::vector<Eigen::MatrixXd> product;
   std::vector<int> word;
@@ -382,6 +389,10 @@ struct PathScan {
     A = std::max(A, norm);
     if (k == length) {
       const double d = delta(P);
+      if (record) {
+        leaf_delta.push_back(d);
+        leaf_norm.push_back(norm);
+      }
       if (d > worst || worst_word.empty()) {
         worst = d;
         worst_state = from;
@@ -389,20 +400,35 @@ struct PathScan {
       }
       return !(stop_at_first_failure && d >= 1);
     }
-    if (suffix && k == length - suffix->length && !worst_word.empty()) {
-      const double norm_bound = norms ? norm * suffix->norm[s] : 1.0;
-      if (delta(P) * suffix->delta[s] <= worst && norm_bound <= A * (1 + 1e-12)) {
-        A = std::max(A, norm_bound);
-        return true;
-      }
-    }
+    if (suffix && k == length - suffix->length && skips(delta(P), norm, s)) return true;
+    // Children at depth h of a scan of 2h: their δ and norm are the suffix scan's, the product is made
+    // only for a child that is not skipped (which then decides as above, on the same numbers).
+    const bool known = suffix && k + 1 == suffix->length && length == 2 * suffix->length;
     int child = 0;
     for (auto [b, e] = out_edges(s, g); b != e; ++b, ++child) {
       word[static_cast<std::size_t>(k)] = child;
+      if (known) {
+        const std::size_t i = bounded++;
+        const double n = norms ? suffix->norms[from][i] : 1.0;
+        A = std::max(A, n);
+        if (skips(suffix->deltas[from][i], n, target(*b, g))) continue;
+      }
       product[static_cast<std::size_t>(k) + 1].noalias() = g[*b].matrix * P;
       if (!descend(from, target(*b, g), k + 1)) return false;
     }
     return true;
+  }
+
+  /// Whether the subtree below a node of depth length − h in state s, whose product has δ `d` and ∞-norm
+  /// `norm` (A already raised to it), is skipped: it cannot change `worst`, nor `A` beyond its bound.
+  bool skips(double d, double norm, StateId s) {
+    if (worst_word.empty()) return false;
+    const double norm_bound = norms ? norm * suffix->norm[s] : 1.0;
+    if (d * suffix->delta[s] <= worst && norm_bound <= A * (1 + 1e-12)) {
+      A = std::max(A, norm_bound);
+      return true;
+    }
+    return false;
   }
 
   /// Whether a scan that stops at the first failure would stop, settled by one path (a kept failing
@@ -436,6 +462,7 @@ struct PathScan {
     for (const StateId s : states) {
       const int n = automaton.graph[s].size;
       product[0] = Eigen::MatrixXd::Identity(n, n);
+      bounded = 0;
       if (!descend(s, s, 0)) return false;
     }
     return true;
@@ -445,14 +472,20 @@ struct PathScan {
 /// The suffix bounds of paths of `length` transitions from every state in `states` (exact maxima: one
 /// full scan per state, about 1/out-degree of the work of a scan one level longer).
 SuffixBounds suffix_bounds(const Automaton& automaton, const std::vector<StateId>& states, int length) {
+  const auto n = num_vertices(automaton.graph);
   SuffixBounds out{.length = length,
-                   .delta = std::vector<double>(num_vertices(automaton.graph), 0),
-                   .norm = std::vector<double>(num_vertices(automaton.graph), 1)};
+                   .delta = std::vector<double>(n, 0),
+                   .norm = std::vector<double>(n, 1),
+                   .deltas = std::vector<std::vector<double>>(n),
+                   .norms = std::vector<std::vector<double>>(n)};
   for (const StateId s : states) {
     PathScan scan(automaton, length, false);
+    scan.record = true;
     scan.run({s});
     out.delta[s] = scan.worst;
     out.norm[s] = scan.A;
+    out.deltas[s] = std::move(scan.leaf_delta);
+    out.norms[s] = std::move(scan.leaf_norm);
   }
   return out;
 }
@@ -596,7 +629,8 @@ Contraction contraction(const Automaton& automaton, const ContractionOptions& op
   return check_contraction(automaton, options, nullptr);
 }
 
-Contraction contraction(const Automaton& automaton, const ContractionOptions& options, FailingPaths& failing) {
+Contraction contraction(const Automaton& automaton, const ContractionOptions& options,
+                        FailingPaths& failing) {
   return check_contraction(automaton, options, &failing);
 }
 

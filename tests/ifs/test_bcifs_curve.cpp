@@ -267,8 +267,8 @@ std::string outcome(const automata::Automaton& a, const ContractionOptions& opti
   const auto bits = [](double x) { return std::to_string(std::bit_cast<std::uint64_t>(x)); };
   try {
     const Contraction c = failing != nullptr ? contraction(a, options, *failing) : contraction(a, options);
-    return "m " + std::to_string(c.m) + " δ " + bits(c.delta) + " A " + bits(c.A) + " radius " + bits(c.radius) +
-           " at " + std::to_string(c.radius_length);
+    return "m " + std::to_string(c.m) + " δ " + bits(c.delta) + " A " + bits(c.A) + " radius " +
+           bits(c.radius) + " at " + std::to_string(c.radius_length);
   } catch (const NotContractive& e) {
     return std::string(e.what()) + " δ " + bits(e.delta) + " length " + std::to_string(e.length);
   }

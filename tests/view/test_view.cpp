@@ -280,7 +280,8 @@ TEST_CASE("view handle: a session's edits write over its kept buffers, the bytes
   same_as_fresh({{"depth", 4}, {"amplitude", 0.05}});  // the generic route at the depth of the kept mesh
   same_as_fresh({{"depth", 4}, {"points", {{1, 0.25, 1.5, 0.75}}}});
   same_as_fresh({{"depth", 2}, {"amplitude", 0.05}, {"seed", 2}});
-  same_as_fresh({{"depth", 2}, {"amplitude", 0.08}, {"seed", 3}});  // the failing paths of the last edits kept
+  same_as_fresh(
+      {{"depth", 2}, {"amplitude", 0.08}, {"seed", 3}});  // the failing paths of the last edits kept
   REQUIRE(f.post("/api/open", R"({"name": "cubic.json"})").status == 200);
   same_as_fresh({{"depth", 6}});
   same_as_fresh({{"depth", 6}, {"points", {{1, 1, 2.5, 0}}}});
@@ -416,7 +417,8 @@ TEST_CASE("view handle: the folder's files to open from the page; a refused open
   CHECK(nlohmann::json::parse(opened.body)["files"] == document()["files"]);
 }
 
-TEST_CASE("view handle: the folder's list is what io reads: every listed file opens, no other does", "[view]") {
+TEST_CASE("view handle: the folder's list is what io reads: every listed file opens, no other does",
+          "[view]") {
   // A file per extension io writes a shape, a mesh, a segment set or a point set in (written by io::write;
   // STEP and IGES, which cifs_tests cannot write, as a stub): the page lists the files of exactly the
   // extensions of which a file opens, or is refused for the build's want of OpenCASCADE alone. A listed

@@ -174,7 +174,7 @@ CoefficientRange coefficient_range(const PerturbableSystem& system, const std::s
   if (it == at.values.end()) throw InvalidInput("\"" + name + "\" is not a free coefficient of the system");
   CoefficientRange out{
       .name = name, .value = it->second, .low = it->second, .high = it->second, .capped = false};
-  ifs::FailingPaths failing;  // the probes check one automaton with one coefficient moved: kept from probe to probe
+  ifs::FailingPaths failing;  // the probes check one automaton, one coefficient moved: kept between them
   const auto accepted = [&](double value) {
     ifs::PerturbOptions o = base;
     o.values[name] = value;
@@ -270,8 +270,9 @@ Document open_document(const std::filesystem::path& path, const Limits& limits) 
 
 std::vector<std::string_view> document_extensions() {
   std::vector<std::string_view> out;
+  // What open_document shows.
   for (const io::Content content :
-       {io::Content::shape, io::Content::mesh, io::Content::bcifs, io::Content::experiment})  // open_document's
+       {io::Content::shape, io::Content::mesh, io::Content::bcifs, io::Content::experiment})
     for (const io::Format& f : io::formats(content))
       if (f.read && std::find(out.begin(), out.end(), f.extension) == out.end()) out.push_back(f.extension);
   return out;

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // cifs — the contractivity check of a system checked before with other matrices (cifs view: every edit of a
 // perturbation checks a system whose matrices moved a little): the paths that failed the last check are
-// tried first. Apart from analysis.hpp and bcifs.hpp, which over a hundred sources include, for its few users.
+// tried first. A header of its own for its few users: analysis.hpp and bcifs.hpp are included by over a
+// hundred sources.
 #pragma once
 
 #include <vector>
