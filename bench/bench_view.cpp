@@ -7,8 +7,11 @@
 #include <sys/resource.h>
 
 #include <string>
+#include <vector>
 
 #include "cifs/experiment/run.hpp"
+#include "cifs/ifs/bcifs.hpp"
+#include "cifs/ifs/failing_paths.hpp"
 #include "cifs/io/io.hpp"
 #include "cifs/view/server.hpp"
 
@@ -107,6 +110,52 @@ void BM_runner_amplitude_cubic_depth16(benchmark::State& state) {
 }
 BENCHMARK(BM_runner_amplitude_hills_depth6)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_runner_amplitude_cubic_depth16)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// The contractivity check of those amplitude edits alone (ifs::contraction, contractivity only, as the
+/// runner checks a perturbed system), on the hills' BC-IFS perturbed at the benchmark's 16 amplitudes (made
+/// before the timing): from cold, and with the failing paths of the previous checks kept (ifs::FailingPaths,
+/// as a view session keeps them). Counters: the witness length m and the lengths a kept path settled, per
+/// check. The timed loop alone, apart for callgrind (--toggle-collect='*check_edits*'): the checks, the sum
+/// of their m.
+[[gnu::noinline]] double check_edits(benchmark::State& state,
+                                     const std::vector<cifs::automata::Automaton>& edits,
+                                     cifs::ifs::FailingPaths* failing) {
+  const cifs::ifs::ContractionOptions check{.bound = false};
+  std::size_t k = 0;
+  double m = 0;
+  for (auto _ : state) {
+    const auto& a = edits[k++ % edits.size()];
+    m += (failing != nullptr ? cifs::ifs::contraction(a, check, *failing) : cifs::ifs::contraction(a, check))
+             .m;
+  }
+  return m;
+}
+
+void contraction_check(benchmark::State& state, bool warm) {
+  const auto system = cifs::view::shape_system(
+      cifs::io::read_shape(std::string(CIFS_EXAMPLES_DIR) + "/shapes/hills.json"), true);
+  std::vector<cifs::automata::Automaton> edits;
+  for (int k = 0; k < 16; ++k) {
+    cifs::ifs::PerturbOptions o;
+    o.amplitude = 0.05 * (1 + 1e-3 * k);
+    o.contraction.bound = false;
+    edits.push_back(cifs::ifs::perturb(system->system, system->space, o).system.automaton);
+  }
+  cifs::ifs::FailingPaths failing;
+  (void)cifs::ifs::contraction(edits.back(), {.bound = false}, failing);  // the previous edit
+  failing.settled = 0;
+  const double m = check_edits(state, edits, warm ? &failing : nullptr);
+  state.counters["m"] = benchmark::Counter(m, benchmark::Counter::kAvgIterations);
+  state.counters["settled"] = benchmark::Counter(failing.settled, benchmark::Counter::kAvgIterations);
+}
+void BM_contraction_hills_cold(benchmark::State& state) {
+  contraction_check(state, false);
+}
+void BM_contraction_hills_warm(benchmark::State& state) {
+  contraction_check(state, true);
+}
+BENCHMARK(BM_contraction_hills_cold)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_contraction_hills_warm)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 BENCHMARK(BM_view_amplitude_hills_depth6)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_view_amplitude_hills_depth7)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -56,6 +56,7 @@
 #include <Eigen/LU>
 #include <Eigen/SVD>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -65,6 +66,7 @@
 #include "cifs/format.hpp"
 #include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/attractor.hpp"
+#include "cifs/ifs/failing_paths.hpp"
 #include "walk.hpp"
 
 namespace cifs::ifs {
@@ -330,11 +332,22 @@ double PieceBounds::chord_deviation(StateId state, const Points& net, const Poin
 
 namespace {
 
+/// The transition `child` of `s` (out-edge position).
+automata::TransitionId out_edge(const Graph& g, StateId s, std::size_t child) {
+  auto [b, e] = out_edges(s, g);
+  std::advance(b, static_cast<std::ptrdiff_t>(child));
+  return *b;
+}
+
 /// Per state t, bounds over the paths of `length` transitions from t: the largest δ of their
 /// products and the largest ∞-norm of the products of their prefixes (the empty one included, so ≥ 1).
+/// Also, per state, the δ and ∞-norm of each path of `length` from it, in the order a scan visits them: a
+/// scan of 2·length transitions bounds its nodes of depth `length`, whose products are those very paths'
+/// (the same products, computed the same way), and reads their δ here instead of making them again.
 struct SuffixBounds {
   int length = 0;
-  std::vector<double> delta, norm;  // by state
+  std::vector<double> delta, norm;                 // by state
+  std::vector<std::vector<double>> deltas, norms;  // by state, by path
 };
 
 /// Enumerates the paths of exactly `length` transitions from every reachable state, with the
@@ -361,6 +374,9 @@ struct PathScan {
   double A = 1, worst = 0;
   StateId worst_state = 0;
   std::vector<int> worst_word;
+  bool record = false;  // keep every path's δ and ∞-norm (SuffixBounds::deltas, norms)
+  std::vector<double> leaf_delta, leaf_norm;
+  std::size_t bounded = 0;  // the nodes of depth length − h met from the current start state
   // Work space: product and word per level.
   std::vector<Eigen::MatrixXd> product;
   std::vector<int> word;
@@ -373,6 +389,10 @@ struct PathScan {
     A = std::max(A, norm);
     if (k == length) {
       const double d = delta(P);
+      if (record) {
+        leaf_delta.push_back(d);
+        leaf_norm.push_back(norm);
+      }
       if (d > worst || worst_word.empty()) {
         worst = d;
         worst_state = from;
@@ -380,20 +400,60 @@ struct PathScan {
       }
       return !(stop_at_first_failure && d >= 1);
     }
-    if (suffix && k == length - suffix->length && !worst_word.empty()) {
-      const double norm_bound = norms ? norm * suffix->norm[s] : 1.0;
-      if (delta(P) * suffix->delta[s] <= worst && norm_bound <= A * (1 + 1e-12)) {
-        A = std::max(A, norm_bound);
-        return true;
-      }
-    }
+    if (suffix && k == length - suffix->length && skips(delta(P), norm, s)) return true;
+    // Children at depth h of a scan of 2h: their δ and norm are the suffix scan's, the product is made
+    // only for a child that is not skipped (which then decides as above, on the same numbers).
+    const bool known = suffix && k + 1 == suffix->length && length == 2 * suffix->length;
     int child = 0;
     for (auto [b, e] = out_edges(s, g); b != e; ++b, ++child) {
       word[static_cast<std::size_t>(k)] = child;
+      if (known) {
+        const std::size_t i = bounded++;
+        const double n = norms ? suffix->norms[from][i] : 1.0;
+        A = std::max(A, n);
+        if (skips(suffix->deltas[from][i], n, target(*b, g))) continue;
+      }
       product[static_cast<std::size_t>(k) + 1].noalias() = g[*b].matrix * P;
       if (!descend(from, target(*b, g), k + 1)) return false;
     }
     return true;
+  }
+
+  /// Whether the subtree below a node of depth length − h in state s, whose product has δ `d` and ∞-norm
+  /// `norm` (A already raised to it), is skipped: it cannot change `worst`, nor `A` beyond its bound.
+  bool skips(double d, double norm, StateId s) {
+    if (worst_word.empty()) return false;
+    const double norm_bound = norms ? norm * suffix->norm[s] : 1.0;
+    if (d * suffix->delta[s] <= worst && norm_bound <= A * (1 + 1e-12)) {
+      A = std::max(A, norm_bound);
+      return true;
+    }
+    return false;
+  }
+
+  /// Whether a scan that stops at the first failure would stop, settled by one path (a kept failing
+  /// path, FailingPaths): true when `path` starts at a state of `states` (sorted), fits the automaton,
+  /// its product — computed as `descend` computes it — has δ ≥ 1, and no bound can skip it: the bound at
+  /// its depth `length − h` node is ≥ 1, above any `worst` of a scan that has not stopped. Then the scan
+  /// reaches it or stops at an earlier failure. False says nothing: the scan must run.
+  bool fails_along(const std::vector<StateId>& states, const FailingPaths::Path& path) {
+    const Graph& g = automaton.graph;
+    if (!stop_at_first_failure || path.word.size() != static_cast<std::size_t>(length) ||
+        !std::binary_search(states.begin(), states.end(), path.state))
+      return false;
+    product.resize(static_cast<std::size_t>(length) + 1);
+    product[0] = Eigen::MatrixXd::Identity(g[path.state].size, g[path.state].size);
+    StateId s = path.state;
+    for (int k = 0; k < length; ++k) {
+      const auto& P = product[static_cast<std::size_t>(k)];
+      if (suffix && k == length - suffix->length && !(delta(P) * suffix->delta[s] >= 1)) return false;
+      const int child = path.word[static_cast<std::size_t>(k)];
+      if (child < 0 || static_cast<std::size_t>(child) >= out_degree(s, g)) return false;
+      const automata::TransitionId t = out_edge(g, s, static_cast<std::size_t>(child));
+      product[static_cast<std::size_t>(k) + 1].noalias() = g[t].matrix * P;
+      s = target(t, g);
+    }
+    return delta(product[static_cast<std::size_t>(length)]) >= 1;
   }
 
   bool run(const std::vector<StateId>& states) {
@@ -402,6 +462,7 @@ struct PathScan {
     for (const StateId s : states) {
       const int n = automaton.graph[s].size;
       product[0] = Eigen::MatrixXd::Identity(n, n);
+      bounded = 0;
       if (!descend(s, s, 0)) return false;
     }
     return true;
@@ -411,14 +472,20 @@ struct PathScan {
 /// The suffix bounds of paths of `length` transitions from every state in `states` (exact maxima: one
 /// full scan per state, about 1/out-degree of the work of a scan one level longer).
 SuffixBounds suffix_bounds(const Automaton& automaton, const std::vector<StateId>& states, int length) {
+  const auto n = num_vertices(automaton.graph);
   SuffixBounds out{.length = length,
-                   .delta = std::vector<double>(num_vertices(automaton.graph), 0),
-                   .norm = std::vector<double>(num_vertices(automaton.graph), 1)};
+                   .delta = std::vector<double>(n, 0),
+                   .norm = std::vector<double>(n, 1),
+                   .deltas = std::vector<std::vector<double>>(n),
+                   .norms = std::vector<std::vector<double>>(n)};
   for (const StateId s : states) {
     PathScan scan(automaton, length, false);
+    scan.record = true;
     scan.run({s});
     out.delta[s] = scan.worst;
     out.norm[s] = scan.A;
+    out.deltas[s] = std::move(scan.leaf_delta);
+    out.norms[s] = std::move(scan.leaf_norm);
   }
   return out;
 }
@@ -460,16 +527,13 @@ Eigen::RowVectorXd unit_fixed_point(const Eigen::MatrixXd& P, const std::string&
   return polished.allFinite() && residual(polished) <= std::max(residual(l), floor) ? polished : l;
 }
 
-/// The transition `child` of `s` (out-edge position).
-automata::TransitionId out_edge(const Graph& g, StateId s, std::size_t child) {
-  auto [b, e] = out_edges(s, g);
-  std::advance(b, static_cast<std::ptrdiff_t>(child));
-  return *b;
-}
-
 }  // namespace
 
-Contraction contraction(const Automaton& automaton, const ContractionOptions& options) {
+namespace {
+
+/// contraction, with the failing paths of earlier checks when `failing` is not null.
+Contraction check_contraction(const Automaton& automaton, const ContractionOptions& options,
+                              FailingPaths* failing) {
   validate(automaton);
   if (options.max_length < 1)
     throw InvalidInput("the contraction check's path length " + std::to_string(options.max_length) +
@@ -478,17 +542,30 @@ Contraction contraction(const Automaton& automaton, const ContractionOptions& op
   // Iterative deepening: the shortest m wins, and paths of length < max_length stop at the first
   // failing product (their A is not needed); the last length is scanned fully for the message.
   Contraction out;
-  // Scans longer than kSuffixLength transitions skip the subtrees that cannot change their result.
-  constexpr int kSuffixLength = 3;
-  std::optional<SuffixBounds> suffix;
+  // Scans longer than 3 transitions skip the subtrees that cannot change their result, by the bounds of
+  // suffixes of length h = min(m/2, 3). The suffixes cost d + d² + … + d^h products per state (d the
+  // out-degree) and the scan d + … + d^(m−h) to the nodes it bounds: h = 3 at m = 4 spent 84 products
+  // per state of the hills' surface on bounds for its 4 nodes of depth 1, most of a check (h = 2: 20).
+  std::array<std::optional<SuffixBounds>, 4> suffixes;  // by h
   const auto bounds_for = [&](int m) -> const SuffixBounds* {
-    if (m <= kSuffixLength) return nullptr;
-    if (!suffix) suffix = suffix_bounds(automaton, states, kSuffixLength);
+    if (m <= 3) return nullptr;
+    auto& suffix = suffixes[static_cast<std::size_t>(std::min(m / 2, 3))];
+    if (!suffix) suffix = suffix_bounds(automaton, states, std::min(m / 2, 3));
     return &*suffix;
   };
+  if (failing && failing->by_length.size() < static_cast<std::size_t>(options.max_length))
+    failing->by_length.resize(static_cast<std::size_t>(options.max_length));
   for (int m = 1; m <= options.max_length; ++m) {
     PathScan scan(automaton, m, m < options.max_length, bounds_for(m), options.bound);
+    // A kept failing path settles a length below the last one as its scan would (the last length is
+    // always scanned in full, for its δ or the message).
+    if (failing && scan.fails_along(states, failing->by_length[static_cast<std::size_t>(m) - 1])) {
+      ++failing->settled;
+      continue;
+    }
     const bool complete = scan.run(states);
+    if (failing && !complete)  // the path the scan stopped at
+      failing->by_length[static_cast<std::size_t>(m) - 1] = {scan.worst_state, scan.worst_word};
     if (complete && scan.worst < 1) {
       out.m = m;
       out.delta = scan.worst;
@@ -544,6 +621,17 @@ Contraction contraction(const Automaton& automaton, const ContractionOptions& op
     if (!improves) break;
   }
   return out;
+}
+
+}  // namespace
+
+Contraction contraction(const Automaton& automaton, const ContractionOptions& options) {
+  return check_contraction(automaton, options, nullptr);
+}
+
+Contraction contraction(const Automaton& automaton, const ContractionOptions& options,
+                        FailingPaths& failing) {
+  return check_contraction(automaton, options, &failing);
 }
 
 Eigen::RowVectorXd fixed_point(const Automaton& automaton, StateId state, std::span<const int> word) {

@@ -21,6 +21,7 @@
 #include "cifs/errors.hpp"
 #include "cifs/format.hpp"
 #include "cifs/ifs/attractor.hpp"
+#include "cifs/ifs/failing_paths.hpp"
 #include "cifs/random.hpp"
 #include "union_find.hpp"
 
@@ -626,7 +627,12 @@ Perturbation perturb(const Bcifs& sys, const PerturbOptions& options) {
   return perturb(sys, admissible_space(sys, options.solve), options);
 }
 
-Perturbation perturb(const Bcifs& sys, const AdmissibleSpace& space, const PerturbOptions& options) {
+namespace {
+
+/// perturb with the space solved; the contraction check with the failing paths of earlier ones when
+/// `failing` is not null.
+Perturbation perturb_in(const Bcifs& sys, const AdmissibleSpace& space, const PerturbOptions& options,
+                        FailingPaths* failing) {
   check_amplitude(options.amplitude);
   if (space.unknowns.size() != static_cast<std::size_t>(space.K.rows()))
     throw std::logic_error("perturb: the admissible space is not one admissible_space built");
@@ -664,7 +670,8 @@ Perturbation perturb(const Bcifs& sys, const AdmissibleSpace& space, const Pertu
     throw InvalidInput("the perturbed matrices miss the constraints by " + number_text(out.residual, 3) +
                        " (the system is ill-conditioned); lower the amplitude");
   try {
-    out.contraction = contraction(out.system.automaton, options.contraction);
+    out.contraction = failing != nullptr ? contraction(out.system.automaton, options.contraction, *failing)
+                                         : contraction(out.system.automaton, options.contraction);
   } catch (const NotContractive& e) {
     // Name what moved the coefficients: the random draw, the values set by name, or both.
     std::string cause;
@@ -677,6 +684,17 @@ Perturbation perturb(const Bcifs& sys, const AdmissibleSpace& space, const Pertu
                          e.delta, e.length);
   }
   return out;
+}
+
+}  // namespace
+
+Perturbation perturb(const Bcifs& sys, const AdmissibleSpace& space, const PerturbOptions& options) {
+  return perturb_in(sys, space, options, nullptr);
+}
+
+Perturbation perturb(const Bcifs& sys, const AdmissibleSpace& space, const PerturbOptions& options,
+                     FailingPaths& failing) {
+  return perturb_in(sys, space, options, &failing);
 }
 
 EndFunctionals edge_end_functionals(const Bcifs& sys) {

@@ -1,13 +1,18 @@
 // SPDX-License-Identifier: MIT
 #include "cifs/ifs/bcifs_curve.hpp"
 
+#include <bit>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdint>
+#include <set>
 #include <string>
 
 #include "cifs/errors.hpp"
 #include "cifs/ifs/attractor.hpp"
+#include "cifs/ifs/failing_paths.hpp"
 #include "cifs/nurbs/refine.hpp"
+#include "cifs/random.hpp"
 #include "ifs/bcifs_helpers.hpp"
 
 using namespace cifs;
@@ -251,4 +256,56 @@ TEST_CASE("contraction: skipping bounded subtrees gives the full scan's δ and A
     CHECK(std::isinf(proof.radius));
   }
   CHECK(longest >= 7);
+}
+
+namespace {
+
+/// Everything a contraction check answers, to the bit: m, δ, A, the radius and its length, or the refusal's
+/// message, δ and length.
+std::string outcome(const automata::Automaton& a, const ContractionOptions& options,
+                    FailingPaths* failing = nullptr) {
+  const auto bits = [](double x) { return std::to_string(std::bit_cast<std::uint64_t>(x)); };
+  try {
+    const Contraction c = failing != nullptr ? contraction(a, options, *failing) : contraction(a, options);
+    return "m " + std::to_string(c.m) + " δ " + bits(c.delta) + " A " + bits(c.A) + " radius " +
+           bits(c.radius) + " at " + std::to_string(c.radius_length);
+  } catch (const NotContractive& e) {
+    return std::string(e.what()) + " δ " + bits(e.delta) + " length " + std::to_string(e.length);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("contraction: failing paths kept from the last checks give the cold check's result, bit for bit",
+          "[bcifs][curve]") {
+  // cifs view's edits of a perturbation — the free coefficients of a perturbed cubic BC-IFS (18 states,
+  // witnesses of length 3 to 8) drawn again and again, some beyond contractivity — each checked from cold and
+  // with the paths the previous checks kept (ifs::FailingPaths), both for contractivity alone (the view's
+  // check) and with the bound: the same answer to the last bit, refusals included; and the kept paths do
+  // settle lengths (the warm route is taken, not only the scans).
+  const Bcifs system = curve_bcifs(nurbs::make_curve(3, {0, 0, 0, 0, 1, 2, 4, 4, 4, 4}, polygon(6)));
+  const AdmissibleSpace space = admissible_space(system);
+  const Eigen::VectorXd start = free_values(system, space);
+  Random random(31);
+  FailingPaths proof, bound;  // kept across the edits, one per kind of check
+  std::set<std::string> kinds;
+  int below = 0;  // lengths below the witness m, over the contractive checks
+  for (int edit = 0; edit < 60; ++edit) {
+    const double amplitude = 0.6 * random.uniform();
+    Eigen::VectorXd c = start;
+    for (Eigen::Index j = 0; j < c.size(); ++j) c(j) += amplitude * random.symmetric();
+    const automata::Automaton a = with_free_values(system, space, c).automaton;
+    INFO("edit " << edit << ", amplitude " << amplitude);
+    const std::string cold = outcome(a, {.tighten = false, .bound = false});
+    CHECK(outcome(a, {.tighten = false, .bound = false}, &proof) == cold);
+    CHECK(outcome(a, {}, &bound) == outcome(a, {}));
+    const bool contractive = cold.starts_with("m ");
+    kinds.insert(contractive ? cold.substr(0, cold.find(' ', 2)) : "refused");
+    if (contractive) below += std::stoi(cold.substr(2)) - 1;
+  }
+  INFO(below << " lengths below m, " << proof.settled << " settled by kept paths");
+  CHECK(kinds.count("refused") == 1);
+  CHECK(kinds.size() >= 4);  // and witnesses of three lengths or more
+  CHECK(proof.settled >= below / 2);
+  CHECK(bound.settled >= below / 2);
 }

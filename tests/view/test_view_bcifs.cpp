@@ -7,7 +7,9 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -66,6 +68,18 @@ TEST_CASE("view opens a BC-IFS file: its free coefficients by name, their ranges
       c(static_cast<Eigen::Index>(j)) = end;
       CHECK_NOTHROW(
           ifs::contraction(ifs::with_free_values(file.system, space, c).automaton, {.bound = false}));
+    }
+  }
+  SECTION("the ranges found with the kept failing paths are those found without, to the bit") {
+    // open_document probes every range with one ifs::FailingPaths; here each is probed from cold.
+    ifs::PerturbOptions base;
+    base.contraction.bound = false;
+    for (const view::CoefficientRange& r : d.coefficients) {
+      const view::CoefficientRange cold = view::coefficient_range(*d.bcifs, r.name, base);
+      CAPTURE(r.name);
+      CHECK(std::bit_cast<std::uint64_t>(cold.low) == std::bit_cast<std::uint64_t>(r.low));
+      CHECK(std::bit_cast<std::uint64_t>(cold.high) == std::bit_cast<std::uint64_t>(r.high));
+      CHECK(cold.capped == r.capped);
     }
   }
   SECTION("a range ends where contractivity ends: a refused value within 2^-8 beyond it") {

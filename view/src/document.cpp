@@ -174,11 +174,12 @@ CoefficientRange coefficient_range(const PerturbableSystem& system, const std::s
   if (it == at.values.end()) throw InvalidInput("\"" + name + "\" is not a free coefficient of the system");
   CoefficientRange out{
       .name = name, .value = it->second, .low = it->second, .high = it->second, .capped = false};
+  ifs::FailingPaths failing;  // the probes check one automaton, one coefficient moved: kept between them
   const auto accepted = [&](double value) {
     ifs::PerturbOptions o = base;
     o.values[name] = value;
     try {
-      (void)ifs::perturb(system.system, system.space, o);
+      (void)ifs::perturb(system.system, system.space, o, failing);
       return true;
     } catch (const InvalidInput&) {  // not contractive, or the constraints missed: what the runner refuses
       return false;
@@ -265,6 +266,16 @@ Document open_document(const std::filesystem::path& path, const Limits& limits) 
     add_coefficients(d, *shape_system(*d.shape, d.perturbation.keep_vertices), names);
   }
   return d;
+}
+
+std::vector<std::string_view> document_extensions() {
+  std::vector<std::string_view> out;
+  // What open_document shows.
+  for (const io::Content content :
+       {io::Content::shape, io::Content::mesh, io::Content::bcifs, io::Content::experiment})
+    for (const io::Format& f : io::formats(content))
+      if (f.read && std::find(out.begin(), out.end(), f.extension) == out.end()) out.push_back(f.extension);
+  return out;
 }
 
 Params default_params(const Document& document) {
@@ -678,11 +689,14 @@ void check_values(const Document& d, const Params& params) {
   }
 }
 
-ifs::Perturbation perturbation(const PerturbableSystem& system, const Params& params) {
+/// The perturbed system of an edit, its contractivity checked with the failing paths the session kept
+/// (`cache`, if any): the same result as without, sooner.
+ifs::Perturbation perturbation(const PerturbableSystem& system, const Params& params, EditCache* cache) {
   if (!std::isfinite(params.amplitude) || params.amplitude < 0 || params.amplitude > 1)
     throw InvalidInput("amplitude " + number_text(params.amplitude, 6) + " is outside 0..1");
-  return ifs::perturb(system.system, system.space,
-                      perturb_options(params.amplitude, params.seed, params.values));
+  const ifs::PerturbOptions o = perturb_options(params.amplitude, params.seed, params.values);
+  return cache != nullptr ? ifs::perturb(system.system, system.space, o, cache->failing)
+                          : ifs::perturb(system.system, system.space, o);
 }
 
 void note_contraction(const ifs::Contraction& c, Geometry& g) {
@@ -724,7 +738,7 @@ void perturbed_geometry(const Document& d, const io::Shape& shape, const Params&
       cache->system = system;
     }
   }
-  const ifs::Perturbation p = perturbation(*system, params);
+  const ifs::Perturbation p = perturbation(*system, params, cache);
   note_contraction(p.contraction, g);
   if (std::holds_alternative<nurbs::Curve>(shape)) {
     sample_geometry(p.system.automaton, system->nets, params.depth, system->rational, system->closed, limits,
@@ -740,11 +754,12 @@ void perturbed_geometry(const Document& d, const io::Shape& shape, const Params&
 }
 
 /// A BC-IFS file's attractor as the runner draws it (bcifs_scene): the pieces' end points at the depth.
-void bcifs_geometry(const Document& d, const Params& params, const Limits& limits, Geometry& g) {
+void bcifs_geometry(const Document& d, const Params& params, const Limits& limits, EditCache* cache,
+                    Geometry& g) {
   const PerturbableSystem& system = *d.bcifs;
   std::optional<ifs::Perturbation> p;
   if (perturbed(d, params)) {
-    p = perturbation(system, params);
+    p = perturbation(system, params, cache);
     note_contraction(p->contraction, g);
   } else {  // the file's matrices are the user's: an attractor exists only when they shrink nets
     note_contraction(ifs::contraction(system.system.automaton, {.bound = false}), g);
@@ -801,7 +816,7 @@ void geometry(const Document& document, const Params& params, const Limits& limi
   } else if (document.kind == Kind::bcifs) {
     check_range("depth", params.depth, limits.max_depth_bcifs);
     check_values(document, params);
-    bcifs_geometry(document, params, limits, g);
+    bcifs_geometry(document, params, limits, cache, g);
   } else {
     const io::Shape shape = edited_shape(document, params);
     const auto* c = std::get_if<nurbs::Curve>(&shape);

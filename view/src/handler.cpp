@@ -237,18 +237,17 @@ int max_depth(const Session& s) {
 }
 
 /// The files of the session's folder that the page may open: plain names (in_folder's rule) with an
-/// extension cifs view reads (.json, .obj, .ply, .stl, .off; STEP and IGES, read when cifs has OpenCASCADE),
-/// regular files or links to one inside the folder, sorted; at most Limits::max_files of them. What each
-/// holds is not read here: opening one that cifs view does not show is refused then, with the reason.
+/// extension cifs view reads (document_extensions: io's format table), regular files or links to one inside
+/// the folder, sorted; at most Limits::max_files of them. What each holds is not read here: opening one that
+/// cifs view does not show is refused then, with the reason.
 std::vector<std::string> folder_files(const Session& s) {
+  const std::vector<std::string_view> extensions = document_extensions();
   std::vector<std::string> names;
   std::error_code ec;
   for (auto it = std::filesystem::directory_iterator(s.folder, ec);
        !ec && it != std::filesystem::directory_iterator(); it.increment(ec)) {
     const std::string name = it->path().filename().string();
-    const std::string ext = extension_of(it->path());
-    if (ext != ".json" && ext != ".obj" && ext != ".ply" && ext != ".stl" && ext != ".off" &&
-        ext != ".step" && ext != ".stp" && ext != ".igs" && ext != ".iges")
+    if (std::find(extensions.begin(), extensions.end(), extension_of(it->path())) == extensions.end())
       continue;
     std::error_code regular;
     if (!std::filesystem::is_regular_file(it->path(), regular)) continue;

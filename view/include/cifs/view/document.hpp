@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "cifs/ifs/bcifs.hpp"
+#include "cifs/ifs/failing_paths.hpp"
 #include "cifs/io/experiment.hpp"
 #include "cifs/io/shape.hpp"
 #include "cifs/mesh.hpp"
@@ -114,6 +115,11 @@ struct Limits {
 /// instead, and for a BC-IFS file without nets.
 Document open_document(const std::filesystem::path& path, const Limits& limits = {});
 
+/// The extensions of the files open_document reads, each once, in the order of io's format table: those of
+/// the formats (io::formats) that read what it shows — shapes, meshes, BC-IFS and experiment files —, so that
+/// a format added to io is offered on the page (the folder's files) and one io only writes (.vtp) is not.
+std::vector<std::string_view> document_extensions();
+
 /// One control point moved: index into the Cartesian control net (the distinct points of a closed
 /// curve; surfaces: row i·nv + j) and its new Cartesian coordinates (as many as the shape's dimension).
 struct PointEdit {
@@ -197,7 +203,10 @@ bool perturbed(const Document& document, const Params& params);
 ///   solved space); a moved control point, weight or knot builds it again;
 /// - the last surface mesh: its storage reused, and its faces and states kept (ifs::MeshOptions::
 ///   keep_faces), with the state per node made from them, when the automaton, route and depth are those
-///   they were made for.
+///   they were made for;
+/// - the paths that failed the last contractivity checks of a perturbed system (ifs::FailingPaths), tried
+///   first by the next one: they settle the path lengths below the witness without a scan, the verdict
+///   and (m, δ) unchanged. Hints only, never keyed: a path that no longer fits is ignored.
 struct EditCache {
   std::string automaton_key;                     // the document and knots `knots` or `tensor` was built for
   std::optional<nurbs::KnotAutomaton> knots;     // curves
@@ -207,6 +216,7 @@ struct EditCache {
   std::string mesh_key;  // the automaton's key, the route and depth of `mesh`'s faces; empty: none kept
   Mesh mesh;
   std::vector<std::uint32_t> node_states;  // of `mesh`'s grid nodes (Geometry::states)
+  ifs::FailingPaths failing;
 };
 
 /// The geometry of the document with `params`, as experiment::evaluate computes it for the experiment with
