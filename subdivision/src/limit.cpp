@@ -442,6 +442,169 @@ std::vector<double> through(const std::vector<double>& mask, const Points& w, st
   return out;
 }
 
+// ------------------------------------------------------------------------------------------------
+// Butterfly: interpolating, so the position is the vertex; the tangent plane at an interior vertex
+// comes from the left eigenvectors of its S_n for λ1 = ½ (docs/subdivision-surfaces.md, "Limit
+// points and normals").
+
+/// The tangent masks at an interior vertex of valence n ≥ 3 on the neighbourhood S_n acts on, valid
+/// wherever every neighbour is an interior vertex of valence 6 (butterfly_stationary). n ≠ 6: the edge
+/// points next to c read c and its ring only (ZSS's stencils), so (c, r_0 … r_{n−1}) is invariant and
+/// its circulant's Fourier mode ±1 (½ at every n) gives cos(2πj/n), sin(2πj/n) on r_j — Loop's masks.
+/// n = 6: the 10-point stencils couple the two rings, (c, r_j, p_j, q_j) (mesh_analysis.hpp's order);
+/// mode 1 of l·S = ½l solved by hand gives a_j = cos(jπ/3) on r_j, a_j/16 on p_j, −(a_j + a_{j+1})/6
+/// on q_j (and the same with sines), 0 on c. tests/subdivision/test_mesh_limit.cpp checks both against
+/// local_matrix, n = 6 in exact rationals.
+LimitMask butterfly_mask(int n) {
+  const bool regular = n == 6;
+  const auto size = static_cast<std::size_t>(regular ? 3 * n + 1 : n + 1);
+  LimitMask m{.position = std::vector<double>(size, 0.0),
+              .tangent_u = std::vector<double>(size, 0.0),
+              .tangent_v = std::vector<double>(size, 0.0),
+              .refused = {},
+              .sectors = {}};
+  m.position[0] = 1;
+  const double step = 2 * std::numbers::pi / n;
+  for (int j = 0; j < n; ++j) {
+    const double cu = std::cos(step * j), su = std::sin(step * j);
+    if (!regular) {
+      m.tangent_u[1 + static_cast<std::size_t>(j)] = cu;
+      m.tangent_v[1 + static_cast<std::size_t>(j)] = su;
+      continue;
+    }
+    const auto r = 1 + 3 * static_cast<std::size_t>(j), p = r + 1, q = r + 2;
+    m.tangent_u[r] = cu;
+    m.tangent_v[r] = su;
+    m.tangent_u[p] = cu / 16;
+    m.tangent_v[p] = su / 16;
+    m.tangent_u[q] = -(cu + std::cos(step * (j + 1))) / 6;
+    m.tangent_v[q] = -(su + std::sin(step * (j + 1))) / 6;
+  }
+  return m;
+}
+
+/// Whether S_n of butterfly_mask maps v's neighbourhood at this level to its neighbourhood at the
+/// next: v interior and every neighbour interior of valence 6 (then every edge point v's neighbourhood
+/// needs is ZSS's stencil of v or the 10-point one with its wings in place). From the first step on
+/// this holds at every interior vertex: its neighbours are edge points of interior edges.
+bool butterfly_stationary(const MeshTopology& t, int v) {
+  if (t.boundary_vertex[static_cast<std::size_t>(v)] != 0) return false;
+  for (const int e : vertex_edges(t, static_cast<std::size_t>(v))) {
+    const int w = other_vertex(t, static_cast<std::size_t>(e), v);
+    if (t.boundary_vertex[static_cast<std::size_t>(w)] != 0 || valence(t, static_cast<std::size_t>(w)) != 6)
+      return false;
+  }
+  return true;
+}
+
+/// The faces touching v or one of its neighbours, cut out as a mesh of their own: vertex 0 = v, then
+/// its neighbours (walk_ring's order), then the other corners, one vertex per fan of cut faces around
+/// them (corners of cut faces across a shared edge are one vertex), so that the cut is a manifold
+/// whatever a small mesh folds onto it. v and its neighbours keep every face, edge and boundary edge
+/// they have: the edge points of v's edges and of its neighbours' edges to each other — all v's child
+/// neighbourhood reads — are the level's. `global`: each cut vertex's vertex of the level.
+struct Cut {
+  Mesh mesh;
+  std::vector<int> global;
+};
+
+Cut cut_two_rings(const MeshTopology& t, int v) {
+  std::vector<int> faces, core;
+  walk_ring(t, v, false, faces, core);
+  std::vector<int> cut;
+  for (const int w : core)
+    for (const int g : vertex_faces(t, static_cast<std::size_t>(w)))
+      if (std::find(cut.begin(), cut.end(), g) == cut.end()) cut.push_back(g);
+  std::vector<int> offset{0};  // corner items: face j of the cut, its corner i
+  for (const int g : cut)
+    offset.push_back(offset.back() + static_cast<int>(face(t, static_cast<std::size_t>(g)).size()));
+  std::vector<int> parent(static_cast<std::size_t>(offset.back()));
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto find = [&](int i) {
+    while (parent[static_cast<std::size_t>(i)] != i)
+      i = parent[static_cast<std::size_t>(i)] =
+          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+    return i;
+  };
+  const auto item = [&](std::size_t j, int w) {
+    const auto corners = face(t, static_cast<std::size_t>(cut[j]));
+    return offset[j] + static_cast<int>(std::find(corners.begin(), corners.end(), w) - corners.begin());
+  };
+  const auto index_of = [&](int g) {
+    return static_cast<std::size_t>(std::find(cut.begin(), cut.end(), g) - cut.begin());
+  };
+  for (std::size_t j = 0; j < cut.size(); ++j)
+    for (const int e : face_edges(t, static_cast<std::size_t>(cut[j]))) {
+      const auto& [f0, f1] = t.edge_faces[static_cast<std::size_t>(e)];
+      const int h = f0 == cut[j] ? f1 : f0;
+      if (h < 0 || index_of(h) >= cut.size()) continue;
+      for (const int w : t.edges[static_cast<std::size_t>(e)])
+        parent[static_cast<std::size_t>(find(item(j, w)))] = find(item(index_of(h), w));
+    }
+  Cut out;
+  std::vector<int> id(parent.size(), -1);
+  const auto local = [&](std::size_t j, int w) {
+    int& i = id[static_cast<std::size_t>(find(item(j, w)))];
+    if (i < 0) {
+      i = static_cast<int>(out.global.size());
+      out.global.push_back(w);
+    }
+    return i;
+  };
+  for (const int w : core)  // v and its neighbours first, each from one of its faces
+    (void)local(index_of(vertex_faces(t, static_cast<std::size_t>(w)).front()), w);
+  for (std::size_t j = 0; j < cut.size(); ++j) {
+    for (const int w : face(t, static_cast<std::size_t>(cut[j]))) out.mesh.face_vertices.push_back(local(j, w));
+    out.mesh.face_offsets.push_back(static_cast<int>(out.mesh.face_vertices.size()));
+  }
+  out.mesh.vertices = Points::Zero(static_cast<Eigen::Index>(out.global.size()), 3);
+  return out;
+}
+
+/// The masks of an interior vertex v of valence n that is not butterfly_stationary (next to an
+/// extraordinary or boundary vertex, which happens before the first step and, at any level, next to the
+/// boundary): its cut refined once by the production refiner gives the rows of its child neighbourhood,
+/// where S_n holds (v is interior, its child's neighbours are edge points of interior edges); the masks
+/// are `stationary`'s (butterfly_mask(n)) through those rows, over λ1 = ½ so that they equal the child's.
+/// `columns` receives the level's vertices they weigh, v first.
+LimitMask butterfly_through_step(const MeshTopology& t, int v, int n, const LimitMask& stationary,
+                                 std::vector<int>& columns) {
+  const Cut cut = cut_two_rings(t, v);
+  const MeshRefinement r = refine_topology(cut.mesh, MeshScheme::butterfly, 1);
+  const MeshTopology& child = r.levels[1];
+  std::vector<int> faces, slots;  // v's child is vertex 0: vertex points come first
+  if (n == 6)
+    detail::neighbourhood(child, MeshScheme::butterfly, 0,
+                          other_vertex(child, static_cast<std::size_t>(vertex_edges(child, 0).front()), 0),
+                          false, slots);
+  else
+    walk_ring(child, 0, false, faces, slots);
+  const auto N = static_cast<Eigen::Index>(cut.global.size());
+  const Points rows = apply(r.steps[0], Points::Identity(N, N));
+  columns.clear();
+  std::vector<int> column_of(static_cast<std::size_t>(N));  // cut vertex → position in `columns`
+  for (Eigen::Index i = 0; i < N; ++i) {
+    const int g = cut.global[static_cast<std::size_t>(i)];
+    const auto at = std::find(columns.begin(), columns.end(), g);
+    column_of[static_cast<std::size_t>(i)] = static_cast<int>(at - columns.begin());
+    if (at == columns.end()) columns.push_back(g);
+  }
+  LimitMask out{.position = std::vector<double>(columns.size(), 0.0),
+                .tangent_u = std::vector<double>(columns.size(), 0.0),
+                .tangent_v = std::vector<double>(columns.size(), 0.0),
+                .refused = {},
+                .sectors = {}};
+  out.position[0] = 1;
+  for (std::size_t s = 0; s < slots.size(); ++s)
+    for (Eigen::Index i = 0; i < N; ++i) {
+      const double w = 2 * rows(slots[s], i);
+      if (w == 0) continue;
+      out.tangent_u[static_cast<std::size_t>(column_of[static_cast<std::size_t>(i)])] += w * stationary.tangent_u[s];
+      out.tangent_v[static_cast<std::size_t>(column_of[static_cast<std::size_t>(i)])] += w * stationary.tangent_v[s];
+    }
+  return out;
+}
+
 }  // namespace
 
 LimitStencils limit_stencils(const MeshRefinement& r) {
@@ -469,6 +632,7 @@ LimitStencils limit_stencils(const MeshRefinement& r) {
   std::map<std::pair<int, bool>, int> sqrt3_boundary;  // √3's boundary classes: (faces, odd level)
   const bool odd_level = r.levels.size() % 2 == 0;     // levels.size() − 1 steps taken
   std::map<std::vector<int>, int> classes;
+  std::map<bool, int> butterfly_refused;  // Butterfly's position-only masks: on the boundary or not
   std::vector<int> faces, nb;
   const bool rings = scheme == MeshScheme::catmull_clark || scheme == MeshScheme::loop;
   for (int v = 0; v < t.vertex_count; ++v) {
@@ -476,7 +640,49 @@ LimitStencils limit_stencils(const MeshRefinement& r) {
     const auto where = [&] {
       return who + ": vertex " + std::to_string(v) + " (valence " + std::to_string(n) + ")";
     };
-    // Isolated vertices stay where they are; Butterfly and bilinear interpolate: the vertex is its limit.
+    // Butterfly interpolates: the vertex is its limit; the tangents of an interior vertex from S_n.
+    if (scheme == MeshScheme::butterfly && n > 0) {
+      int mask = -1;
+      const bool boundary = t.boundary_vertex[static_cast<std::size_t>(v)] != 0;
+      if (boundary || n < 3) {
+        const auto [it, fresh] = butterfly_refused.try_emplace(boundary, -1);
+        if (fresh) {
+          out.masks.push_back(
+              LimitMask{.position = {1.0},
+                        .tangent_u = {},
+                        .tangent_v = {},
+                        .refused = boundary ? "on the boundary: butterfly limit normals are built at interior "
+                                              "vertices only"
+                                            : "an interior vertex of two faces, which has no tangent plane",
+                        .sectors = {}});
+          it->second = static_cast<int>(out.masks.size()) - 1;
+        }
+        mask = it->second;
+        nb.assign(1, v);
+      } else {
+        if (smooth.size() <= static_cast<std::size_t>(n)) smooth.resize(static_cast<std::size_t>(n) + 1, -1);
+        if (smooth[static_cast<std::size_t>(n)] < 0) {
+          out.masks.push_back(butterfly_mask(n));
+          smooth[static_cast<std::size_t>(n)] = static_cast<int>(out.masks.size()) - 1;
+        }
+        mask = smooth[static_cast<std::size_t>(n)];
+        if (!butterfly_stationary(t, v)) {
+          out.masks.push_back(butterfly_through_step(t, v, n, out.masks[static_cast<std::size_t>(mask)], nb));
+          mask = static_cast<int>(out.masks.size()) - 1;
+        } else if (n == 6) {
+          detail::neighbourhood(
+              t, scheme, v, other_vertex(t, static_cast<std::size_t>(vertex_edges(t, static_cast<std::size_t>(v))[0]), v),
+              false, nb);
+        } else {
+          walk_ring(t, v, false, faces, nb);
+        }
+      }
+      out.columns.insert(out.columns.end(), nb.begin(), nb.end());
+      out.offsets.push_back(static_cast<int>(out.columns.size()));
+      out.mask_of.push_back(mask);
+      continue;
+    }
+    // Isolated vertices stay where they are; bilinear interpolates: the vertex is its limit.
     if (n == 0 || traits(scheme).interpolating) {
       out.columns.push_back(v);
       out.offsets.push_back(static_cast<int>(out.columns.size()));
@@ -731,10 +937,6 @@ Mesh limit_mesh(const Mesh& mesh, MeshScheme scheme, int levels, const LimitOpti
                        "or take the limit under the rule set 'opensubdiv')");
   const MeshRefinement r = refine_topology(mesh, scheme, levels, MeshOptions{.max_bytes = options.max_bytes});
   const MeshTopology& last = r.levels.back();
-  if (options.normals && scheme == MeshScheme::butterfly)
-    throw InvalidInput(
-        "butterfly: limit normals are not built (next to an extraordinary vertex the invariant neighbourhood "
-        "is not the regular one)");
   if (options.normals && scheme == MeshScheme::bilinear)
     throw InvalidInput(
         "bilinear: the limit surface is the refined mesh, with no normal at its vertices (only C0)");
@@ -769,6 +971,7 @@ Mesh limit_mesh(const Mesh& mesh, MeshScheme scheme, int levels, const LimitOpti
         throw InvalidInput(what);
       }
       if (!m.sectors.empty()) continue;
+      if (scheme == MeshScheme::butterfly) throw InvalidInput(where + " is " + m.refused + " (drop the normals)");
       throw InvalidInput(
           where + " has no tangent plane that its spectrum proves (" +
           (m.refused.empty() ? std::string("its limit has no tangent masks") : m.refused) +
