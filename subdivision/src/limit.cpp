@@ -497,111 +497,51 @@ bool butterfly_stationary(const MeshTopology& t, int v) {
   return true;
 }
 
-/// The faces touching v or one of its neighbours, cut out as a mesh of their own: vertex 0 = v, then
-/// its neighbours (walk_ring's order), then the other corners, one vertex per fan of cut faces around
-/// them (corners of cut faces across a shared edge are one vertex), so that the cut is a manifold
-/// whatever a small mesh folds onto it. v and its neighbours keep every face, edge and boundary edge
-/// they have: the edge points of v's edges and of its neighbours' edges to each other — all v's child
-/// neighbourhood reads — are the level's. `global`: each cut vertex's vertex of the level.
-struct Cut {
-  Mesh mesh;
-  std::vector<int> global;
-};
-
-Cut cut_two_rings(const MeshTopology& t, int v) {
-  std::vector<int> faces, core;
-  walk_ring(t, v, false, faces, core);
-  std::vector<int> cut;
-  for (const int w : core)
-    for (const int g : vertex_faces(t, static_cast<std::size_t>(w)))
-      if (std::find(cut.begin(), cut.end(), g) == cut.end()) cut.push_back(g);
-  std::vector<int> offset{0};  // corner items: face j of the cut, its corner i
-  for (const int g : cut)
-    offset.push_back(offset.back() + static_cast<int>(face(t, static_cast<std::size_t>(g)).size()));
-  std::vector<int> parent(static_cast<std::size_t>(offset.back()));
-  std::iota(parent.begin(), parent.end(), 0);
-  const auto find = [&](int i) {
-    while (parent[static_cast<std::size_t>(i)] != i)
-      i = parent[static_cast<std::size_t>(i)] =
-          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
-    return i;
-  };
-  const auto item = [&](std::size_t j, int w) {
-    const auto corners = face(t, static_cast<std::size_t>(cut[j]));
-    return offset[j] + static_cast<int>(std::find(corners.begin(), corners.end(), w) - corners.begin());
-  };
-  const auto index_of = [&](int g) {
-    return static_cast<std::size_t>(std::find(cut.begin(), cut.end(), g) - cut.begin());
-  };
-  for (std::size_t j = 0; j < cut.size(); ++j)
-    for (const int e : face_edges(t, static_cast<std::size_t>(cut[j]))) {
-      const auto& [f0, f1] = t.edge_faces[static_cast<std::size_t>(e)];
-      const int h = f0 == cut[j] ? f1 : f0;
-      if (h < 0 || index_of(h) >= cut.size()) continue;
-      for (const int w : t.edges[static_cast<std::size_t>(e)])
-        parent[static_cast<std::size_t>(find(item(j, w)))] = find(item(index_of(h), w));
-    }
-  Cut out;
-  std::vector<int> id(parent.size(), -1);
-  const auto local = [&](std::size_t j, int w) {
-    int& i = id[static_cast<std::size_t>(find(item(j, w)))];
-    if (i < 0) {
-      i = static_cast<int>(out.global.size());
-      out.global.push_back(w);
-    }
-    return i;
-  };
-  for (const int w : core)  // v and its neighbours first, each from one of its faces
-    (void)local(index_of(vertex_faces(t, static_cast<std::size_t>(w)).front()), w);
-  for (std::size_t j = 0; j < cut.size(); ++j) {
-    for (const int w : face(t, static_cast<std::size_t>(cut[j]))) out.mesh.face_vertices.push_back(local(j, w));
-    out.mesh.face_offsets.push_back(static_cast<int>(out.mesh.face_vertices.size()));
-  }
-  out.mesh.vertices = Points::Zero(static_cast<Eigen::Index>(out.global.size()), 3);
-  return out;
-}
-
 /// The masks of an interior vertex v of valence n that is not butterfly_stationary (next to an
-/// extraordinary or boundary vertex, which happens before the first step and, at any level, next to the
-/// boundary): its cut refined once by the production refiner gives the rows of its child neighbourhood,
-/// where S_n holds (v is interior, its child's neighbours are edge points of interior edges); the masks
-/// are `stationary`'s (butterfly_mask(n)) through those rows, over λ1 = ½ so that they equal the child's.
-/// `columns` receives the level's vertices they weigh, v first.
+/// extraordinary or boundary vertex: before the first step, and next to the boundary at any level): one
+/// production step maps its neighbourhood onto its child's, where S_n holds (v is interior, its child's
+/// neighbours are edge points of interior edges). The child's neighbourhood in `stationary`'s order: c
+/// (v stays), then per sector j (walk_ring's order, counter-clockwise) the edge point of v r_j, and at
+/// n = 6 also r_j itself (p_j) and the edge point of r_j r_{j+1} (q_j); each row is the step's own
+/// (detail::butterfly_edge_stencil). The masks are `stationary`'s through those rows, over λ1 = ½ so
+/// that they equal the child's. `columns` receives the level's vertices they weigh, v first.
 LimitMask butterfly_through_step(const MeshTopology& t, int v, int n, const LimitMask& stationary,
                                  std::vector<int>& columns) {
-  const Cut cut = cut_two_rings(t, v);
-  const MeshRefinement r = refine_topology(cut.mesh, MeshScheme::butterfly, 1);
-  const MeshTopology& child = r.levels[1];
-  std::vector<int> faces, slots;  // v's child is vertex 0: vertex points come first
-  if (n == 6)
-    detail::neighbourhood(child, MeshScheme::butterfly, 0,
-                          other_vertex(child, static_cast<std::size_t>(vertex_edges(child, 0).front()), 0),
-                          false, slots);
-  else
-    walk_ring(child, 0, false, faces, slots);
-  const auto N = static_cast<Eigen::Index>(cut.global.size());
-  const Points rows = apply(r.steps[0], Points::Identity(N, N));
-  columns.clear();
-  std::vector<int> column_of(static_cast<std::size_t>(N));  // cut vertex → position in `columns`
-  for (Eigen::Index i = 0; i < N; ++i) {
-    const int g = cut.global[static_cast<std::size_t>(i)];
-    const auto at = std::find(columns.begin(), columns.end(), g);
-    column_of[static_cast<std::size_t>(i)] = static_cast<int>(at - columns.begin());
-    if (at == columns.end()) columns.push_back(g);
+  std::vector<int> faces, ring;
+  walk_ring(t, v, false, faces, ring);
+  columns.assign(1, v);
+  std::vector<double> u(1, 0.0), w(1, 0.0);
+  const auto add = [&](int column, double weight, std::size_t slot) {
+    const auto at = static_cast<std::size_t>(std::find(columns.begin(), columns.end(), column) - columns.begin());
+    if (at == columns.size()) {
+      columns.push_back(column);
+      u.push_back(0.0);
+      w.push_back(0.0);
+    }
+    u[at] += 2 * weight * stationary.tangent_u[slot];
+    w[at] += 2 * weight * stationary.tangent_v[slot];
+  };
+  std::vector<std::pair<int, double>> row;
+  const auto add_edge_point = [&](int a, int b, std::size_t slot) {
+    row.clear();
+    detail::butterfly_edge_stencil(t, find_edge(t, a, b), row);
+    for (const auto& [column, weight] : row) add(column, weight, slot);
+  };
+  const bool regular = n == 6;
+  for (int j = 0; j < n; ++j) {
+    const int r = ring[1 + static_cast<std::size_t>(j)], next = ring[1 + static_cast<std::size_t>((j + 1) % n)];
+    const auto slot = regular ? 1 + 3 * static_cast<std::size_t>(j) : 1 + static_cast<std::size_t>(j);
+    add_edge_point(v, r, slot);
+    if (!regular) continue;
+    add(r, 1.0, slot + 1);
+    add_edge_point(r, next, slot + 2);
   }
   LimitMask out{.position = std::vector<double>(columns.size(), 0.0),
-                .tangent_u = std::vector<double>(columns.size(), 0.0),
-                .tangent_v = std::vector<double>(columns.size(), 0.0),
+                .tangent_u = std::move(u),
+                .tangent_v = std::move(w),
                 .refused = {},
                 .sectors = {}};
   out.position[0] = 1;
-  for (std::size_t s = 0; s < slots.size(); ++s)
-    for (Eigen::Index i = 0; i < N; ++i) {
-      const double w = 2 * rows(slots[s], i);
-      if (w == 0) continue;
-      out.tangent_u[static_cast<std::size_t>(column_of[static_cast<std::size_t>(i)])] += w * stationary.tangent_u[s];
-      out.tangent_v[static_cast<std::size_t>(column_of[static_cast<std::size_t>(i)])] += w * stationary.tangent_v[s];
-    }
   return out;
 }
 

@@ -92,8 +92,8 @@ void evaluate_limit(const LimitStencils& stencils, const Points& vertices, Limit
 ///   (valence ≥ 3) take the tangents of the left eigenvectors of S_n for λ1 = ½, closed forms at every
 ///   valence (butterfly_mask in limit.cpp): on S_n's neighbourhood where every neighbour is an interior
 ///   vertex of valence 6 (at every interior vertex from the first step on), otherwise — next to an
-///   extraordinary or boundary vertex — through the rows of one production step of the vertex's cut
-///   (the faces touching its one-ring), after which S_n holds. Its boundary vertices have no tangents
+///   extraordinary or boundary vertex — through the step's own rows of its child's neighbourhood,
+///   where S_n holds. Its boundary vertices have no tangents
 ///   (`refused`). √3: interior vertices of valence 3 … 16, from the eigenvectors of local_matrix.
 /// InvalidInput naming the vertex for what is not built; Doo–Sabin's limit points belong to faces.
 LimitStencils limit_stencils(const MeshRefinement& refinement);
