@@ -512,7 +512,8 @@ LimitMask butterfly_through_step(const MeshTopology& t, int v, int n, const Limi
   columns.assign(1, v);
   std::vector<double> u(1, 0.0), w(1, 0.0);
   const auto add = [&](int column, double weight, std::size_t slot) {
-    const auto at = static_cast<std::size_t>(std::find(columns.begin(), columns.end(), column) - columns.begin());
+    const auto at =
+        static_cast<std::size_t>(std::find(columns.begin(), columns.end(), column) - columns.begin());
     if (at == columns.size()) {
       columns.push_back(column);
       u.push_back(0.0);
@@ -529,7 +530,8 @@ LimitMask butterfly_through_step(const MeshTopology& t, int v, int n, const Limi
   };
   const bool regular = n == 6;
   for (int j = 0; j < n; ++j) {
-    const int r = ring[1 + static_cast<std::size_t>(j)], next = ring[1 + static_cast<std::size_t>((j + 1) % n)];
+    const int r = ring[1 + static_cast<std::size_t>(j)],
+              next = ring[1 + static_cast<std::size_t>((j + 1) % n)];
     const auto slot = regular ? 1 + 3 * static_cast<std::size_t>(j) : 1 + static_cast<std::size_t>(j);
     add_edge_point(v, r, slot);
     if (!regular) continue;
@@ -587,14 +589,14 @@ LimitStencils limit_stencils(const MeshRefinement& r) {
       if (boundary || n < 3) {
         const auto [it, fresh] = butterfly_refused.try_emplace(boundary, -1);
         if (fresh) {
-          out.masks.push_back(
-              LimitMask{.position = {1.0},
-                        .tangent_u = {},
-                        .tangent_v = {},
-                        .refused = boundary ? "on the boundary: butterfly limit normals are built at interior "
-                                              "vertices only"
-                                            : "an interior vertex of two faces, which has no tangent plane",
-                        .sectors = {}});
+          out.masks.push_back(LimitMask{
+              .position = {1.0},
+              .tangent_u = {},
+              .tangent_v = {},
+              .refused = boundary ? "on the boundary: butterfly limit normals are built at interior "
+                                    "vertices only"
+                                  : "an interior vertex of two faces, which has no tangent plane",
+              .sectors = {}});
           it->second = static_cast<int>(out.masks.size()) - 1;
         }
         mask = it->second;
@@ -611,7 +613,8 @@ LimitStencils limit_stencils(const MeshRefinement& r) {
           mask = static_cast<int>(out.masks.size()) - 1;
         } else if (n == 6) {
           detail::neighbourhood(
-              t, scheme, v, other_vertex(t, static_cast<std::size_t>(vertex_edges(t, static_cast<std::size_t>(v))[0]), v),
+              t, scheme, v,
+              other_vertex(t, static_cast<std::size_t>(vertex_edges(t, static_cast<std::size_t>(v))[0]), v),
               false, nb);
         } else {
           walk_ring(t, v, false, faces, nb);
@@ -911,7 +914,8 @@ Mesh limit_mesh(const Mesh& mesh, MeshScheme scheme, int levels, const LimitOpti
         throw InvalidInput(what);
       }
       if (!m.sectors.empty()) continue;
-      if (scheme == MeshScheme::butterfly) throw InvalidInput(where + " is " + m.refused + " (drop the normals)");
+      if (scheme == MeshScheme::butterfly)
+        throw InvalidInput(where + " is " + m.refused + " (drop the normals)");
       throw InvalidInput(
           where + " has no tangent plane that its spectrum proves (" +
           (m.refused.empty() ? std::string("its limit has no tangent masks") : m.refused) +

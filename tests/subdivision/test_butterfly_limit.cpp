@@ -56,7 +56,8 @@ double face_normal_error(const MeshTopology& t, const Points& x, int v, const Ei
   double out = 0;
   for (const int f : vertex_faces(t, static_cast<std::size_t>(v))) {
     const auto c = face(t, static_cast<std::size_t>(f));
-    const Eigen::Vector3d a = x.row(c[0]).transpose(), b = x.row(c[1]).transpose(), d = x.row(c[2]).transpose();
+    const Eigen::Vector3d a = x.row(c[0]).transpose(), b = x.row(c[1]).transpose(),
+                          d = x.row(c[2]).transpose();
     out = std::max(out, ((b - a).cross(d - a).normalized().transpose() - normal).norm());
   }
   return out;
@@ -77,7 +78,7 @@ TEST_CASE("butterfly's tangent masks are the left eigenvectors of S_n for its su
   // the pair's plane, as cos and sin do): l·S_6 = ½·l in rationals, entry by entry.
   const LocalMatrix S6 = local_matrix(MeshScheme::butterfly, 6);
   REQUIRE(S6.exact);
-  const std::array<Rational, 6> cosine{Rational(1), Rational(1, 2), Rational(-1, 2),
+  const std::array<Rational, 6> cosine{Rational(1),  Rational(1, 2),  Rational(-1, 2),
                                        Rational(-1), Rational(-1, 2), Rational(1, 2)};
   for (const int shift : {0, 2}) {
     std::vector<Rational> l(19, Rational(0));
@@ -121,8 +122,8 @@ TEST_CASE("butterfly limit normals are the limit of the refined faces' normals, 
   // faces around the same vertex after up to 6 steps of the production refiner. Their error e_k falls by
   // r = |μ|/λ1 of the vertex's S_n a step (½ at every valence: the test above): the last ratio within
   // 0.05 of r. At n = 6 μ = ¼ is defective (k·¼^k), so x_k = e_k / r^k grows linearly instead of
-  // settling: its second difference vanishes (within 10 % of x at the last level; 5 % here). A wrong normal stalls
-  // at its own error: the ratio goes to 1, x grows like 2^k and its second difference is x/4.
+  // settling: its second difference vanishes (within 10 % of x at the last level; 5 % here). A wrong normal
+  // stalls at its own error: the ratio goes to 1, x grows like 2^k and its second difference is x/4.
   const Mesh mesh = mixed_valences();
   const MeshRefinement deep = refine_topology(mesh, MeshScheme::butterfly, 6);
   std::vector<Points> data{mesh.vertices};
@@ -169,7 +170,8 @@ TEST_CASE("butterfly limit normals: the same at every level, exact on planes, co
       for (Eigen::Index v = 0; v < base.positions.rows(); ++v) {
         INFO("level " << first << " against " << level << ", vertex " << v);
         CHECK(finer.positions.row(v) == base.positions.row(v));
-        CHECK((frame_normal(finer.tangent_u, finer.tangent_v, v) - frame_normal(base.tangent_u, base.tangent_v, v))
+        CHECK((frame_normal(finer.tangent_u, finer.tangent_v, v) -
+               frame_normal(base.tangent_u, base.tangent_v, v))
                   .norm() <= 1e-13);
       }
     }
@@ -231,7 +233,8 @@ TEST_CASE("butterfly limit normals point out of convex shapes; boundary vertices
   }
   // Without normals an open mesh is fine: every vertex is its own limit.
   CHECK(limit_mesh(fan(5), MeshScheme::butterfly, 1).vertices == butterfly(fan(5), 1).vertices);
-  CHECK_THROWS_WITH(limit_mesh(fan(5), MeshScheme::butterfly, 0, {.normals = true}),
-                    "butterfly: vertex 6 (valence 3) is on the boundary: butterfly limit normals are built at "
-                    "interior vertices only (drop the normals)");
+  CHECK_THROWS_WITH(
+      limit_mesh(fan(5), MeshScheme::butterfly, 0, {.normals = true}),
+      "butterfly: vertex 6 (valence 3) is on the boundary: butterfly limit normals are built at "
+      "interior vertices only (drop the normals)");
 }

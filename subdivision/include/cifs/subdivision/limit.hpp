@@ -42,11 +42,11 @@ struct SectorMask {
 /// mesh_analysis.hpp's numbering (Butterfly's vertices next to an extraordinary or boundary vertex:
 /// whatever the level's vertices their masks weigh): `position` sums to 1; `tangent_u`, `tangent_v`
 /// sum to 0 (empty under bilinear, at isolated vertices, at Butterfly's boundary vertices, at vertices
-/// between sectors and where no tangent plane is proved), ordered so that tangent_u × tangent_v points to the side the faces are counter-clockwise
-/// from. Their lengths are not derivatives of any parametrisation: use them for the tangent plane and
-/// the normal. `refused`: why a vertex of one sector has no tangents (else empty). `sectors`: at a
-/// vertex between sectors (Catmull–Clark and Loop), one per sector (the surface has a tangent plane
-/// per sector there); empty elsewhere.
+/// between sectors and where no tangent plane is proved), ordered so that tangent_u × tangent_v
+/// points to the side the faces are counter-clockwise from. Their lengths are not derivatives of any
+/// parametrisation: use them for the tangent plane and the normal. `refused`: why a vertex of one
+/// sector has no tangents (else empty). `sectors`: at a vertex between sectors (Catmull–Clark and
+/// Loop), one per sector (the surface has a tangent plane per sector there); empty elsewhere.
 struct LimitMask {
   std::vector<double> position, tangent_u, tangent_v;
   std::string refused;
