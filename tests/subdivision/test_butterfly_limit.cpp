@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -94,16 +95,12 @@ TEST_CASE("butterfly's tangent masks are the left eigenvectors of S_n for its su
       CHECK(sum == l[static_cast<std::size_t>(col)] / 2);
     }
   }
-  // n ≠ 6: cos(2πj/n), sin(2πj/n) on r_j and 0 elsewhere, valences 3 … 16 (long double); ½ is the
-  // subdominant pair above μ = ¼ (the rate the convergence test below expects).
+  // n ≠ 6: cos(2πj/n), sin(2πj/n) on r_j and 0 elsewhere, valences 3 … 16 (long double). (½ is the
+  // subdominant pair above μ = ¼ at every valence: test_mesh_analysis.cpp.)
   for (int n = 3; n <= 16; ++n) {
     if (n == 6) continue;
     INFO("valence " << n);
     const LocalMatrix S = local_matrix(MeshScheme::butterfly, n);
-    const LocalSpectrum spectrum = local_spectrum(S);
-    CHECK(std::abs(spectrum.subdominant - 0.5L) < 1e-15L);
-    CHECK(spectrum.subdominant_pair);
-    CHECK(std::abs(std::abs(spectrum.mu) - 0.25L) < 1e-12L);
     for (const bool sine : {false, true}) {
       LongVector l = LongVector::Zero(3 * n + 1);
       for (int j = 0; j < n; ++j) {
@@ -129,13 +126,17 @@ TEST_CASE("butterfly limit normals are the limit of the refined faces' normals, 
   std::vector<Points> data{mesh.vertices};
   for (const Stencils& s : deep.steps) data.push_back(apply(s, data.back()));
   std::vector<int> valences;
+  std::map<int, double> rates;  // |μ|/λ1 by valence
   for (const int level : {0, 1}) {
     const LimitFrame f = frame_at(mesh, level);
     for (Eigen::Index v = 0; v < f.positions.rows(); ++v) {
       const int n = valence(deep.levels[static_cast<std::size_t>(level)], static_cast<std::size_t>(v));
       INFO("level " << level << ", vertex " << v << " (valence " << n << ")");
-      const LocalSpectrum spectrum = local_spectrum(local_matrix(MeshScheme::butterfly, n));
-      const auto rate = static_cast<double>(std::abs(spectrum.mu) / spectrum.subdominant);
+      if (!rates.contains(n)) {
+        const LocalSpectrum spectrum = local_spectrum(local_matrix(MeshScheme::butterfly, n));
+        rates[n] = static_cast<double>(std::abs(spectrum.mu) / spectrum.subdominant);
+      }
+      const double rate = rates[n];
       const Eigen::RowVector3d ours = frame_normal(f.tangent_u, f.tangent_v, v);
       std::vector<double> error;
       for (std::size_t k = static_cast<std::size_t>(level); k < data.size(); ++k)
