@@ -886,7 +886,10 @@ Mesh limit_mesh(const Mesh& mesh, MeshScheme scheme, int levels, const LimitOpti
   if (options.normals && mesh.vertices.cols() != 3)
     throw InvalidInput(who + ": limit normals need 3-D vertices, not " +
                        std::to_string(mesh.vertices.cols()) + "-D");
-  const LimitStencils stencils = limit_stencils(r);
+  // An interpolating scheme's limit points are the level's vertices: its stencils are for the normals
+  // (and for data that are not finite, which evaluate_limit refuses).
+  const bool stencils_needed = options.normals || !traits(scheme).interpolating || !mesh.vertices.allFinite();
+  const LimitStencils stencils = stencils_needed ? limit_stencils(r) : LimitStencils{};
   const auto mask_of = [&](int v) -> const LimitMask& {
     return stencils.masks[static_cast<std::size_t>(stencils.mask_of[static_cast<std::size_t>(v)])];
   };
@@ -934,9 +937,9 @@ Mesh limit_mesh(const Mesh& mesh, MeshScheme scheme, int levels, const LimitOpti
   const auto times_two_to = [](int e) { return [e](double x) { return std::ldexp(x, e); }; };
   const Points scaled = mesh.vertices.unaryExpr(times_two_to(-exponent));
   const Points level = apply(r, scaled);
-  const LimitFrame frame = evaluate_limit(stencils, level, options.normals);
+  const LimitFrame frame = stencils_needed ? evaluate_limit(stencils, level, options.normals) : LimitFrame{};
   Mesh out;
-  out.vertices = frame.positions.unaryExpr(times_two_to(exponent));
+  out.vertices = (stencils_needed ? frame.positions : level).unaryExpr(times_two_to(exponent));
   out.face_offsets = last.face_offsets;
   out.face_vertices = last.face_vertices;
   out.tags = r.tags.back();  // holes stay holes; creases and corners as the last level holds them
