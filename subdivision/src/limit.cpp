@@ -21,6 +21,7 @@
 #include "cifs/format.hpp"
 #include "cifs/memory.hpp"
 #include "cifs/subdivision/mesh_analysis.hpp"
+#include "face_varying.hpp"
 #include "local_mesh.hpp"
 #include "sector_plane.hpp"
 
@@ -878,6 +879,7 @@ Mesh limit_mesh(const Mesh& mesh, MeshScheme scheme, int levels, const LimitOpti
     throw InvalidInput(who +
                        ": limits under the rule set 'blz' are not built (subdivide with --rules blz, "
                        "or take the limit under the rule set 'opensubdiv')");
+  detail::check_limit_channels(mesh, scheme, who);
   const MeshRefinement r = refine_topology(mesh, scheme, levels, MeshOptions{.max_bytes = options.max_bytes});
   const MeshTopology& last = r.levels.back();
   if (options.normals && scheme == MeshScheme::bilinear)
@@ -943,6 +945,8 @@ Mesh limit_mesh(const Mesh& mesh, MeshScheme scheme, int levels, const LimitOpti
   out.face_offsets = last.face_offsets;
   out.face_vertices = last.face_vertices;
   out.tags = r.tags.back();  // holes stay holes; creases and corners as the last level holds them
+  for (const FaceVaryingChannel& c : mesh.face_varying)
+    out.face_varying.push_back(detail::linear_channel(r, c));
   if (options.normals) out.normals = limit_normals(last, stencils, frame, level, out.normal_indices);
   return out;
 }

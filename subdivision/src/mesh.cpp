@@ -15,13 +15,12 @@
 #include "cifs/errors.hpp"
 #include "cifs/format.hpp"
 #include "cifs/memory.hpp"
+#include "face_varying.hpp"
 #include "local_mesh.hpp"
 #include "non_manifold.hpp"
 
 namespace cifs::subdivision {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 /// Where a step's rows go: kept as weights (the default), applied to `input` as they are made
 /// (one-shot subdivision: no weights in memory), or dropped (topology only: the primal schemes do
@@ -270,7 +269,7 @@ std::vector<int> triangle_split_twins(const MeshTopology& t) {
 /// Loop's β(n) = (1/n)(5/8 − (3/8 + ¼cos(2π/n))²); the seed's α_n = (40 − (3 + 2cos(2π/n))²)/64 is
 /// n·β(n) written over 64.
 double loop_beta(int n) {
-  const double c = 0.375 + 0.25 * std::cos(2 * kPi / n);
+  const double c = 0.375 + 0.25 * std::cos(2 * std::numbers::pi / n);
   return (0.625 - c * c) / n;
 }
 
@@ -542,7 +541,7 @@ void butterfly_extraordinary(int centre, const std::vector<int>& ring, double sc
     else if (k == 4)
       s = j == 0 ? 0.375 : (j == 2 ? -0.125 : 0.0);
     else
-      s = (0.25 + std::cos(2 * kPi * j / k) + 0.5 * std::cos(4 * kPi * j / k)) / k;
+      s = (0.25 + std::cos(2 * std::numbers::pi * j / k) + 0.5 * std::cos(4 * std::numbers::pi * j / k)) / k;
     row.add(ring[static_cast<std::size_t>(j)], s * scale);
   }
 }
@@ -641,7 +640,8 @@ Step sqrt3_step(const MeshTopology& t, bool refine_boundary, RowSink sink) {
       row.add(other_vertex(t, static_cast<std::size_t>(ring.front()), v), 4.0 / 27);
       row.add(other_vertex(t, static_cast<std::size_t>(ring.back()), v), 4.0 / 27);
     } else {
-      const double n = static_cast<double>(ring.size()), alpha = (4 - 2 * std::cos(2 * kPi / n)) / 9;
+      const double n = static_cast<double>(ring.size()),
+                   alpha = (4 - 2 * std::cos(2 * std::numbers::pi / n)) / 9;
       row.add(v, 1 - alpha);
       for (const int e : ring) row.add(other_vertex(t, static_cast<std::size_t>(e), v), alpha / n);
     }
@@ -721,7 +721,8 @@ Step doo_sabin_step(const MeshTopology& t, RowSink sink) {
     for (std::size_t i = 0; i < k; ++i) {
       for (std::size_t m = 0; m < k; ++m)
         row.add(corners[(i + m) % k],
-                (m == 0 ? 0.25 : 0.0) + (3 + 2 * std::cos(2 * kPi * static_cast<double>(m) / kd)) / (4 * kd));
+                (m == 0 ? 0.25 : 0.0) +
+                    (3 + 2 * std::cos(2 * std::numbers::pi * static_cast<double>(m) / kd)) / (4 * kd));
       row.finish();
     }
   }
@@ -848,11 +849,6 @@ void check_scheme_input(const MeshTopology& t, const Mesh& mesh, MeshScheme sche
       throw InvalidInput(who + ": the mesh has " + tag +
                          "; this scheme has no rules for creases, corners, holes " +
                          "or the boundary rule 'none' (catmull-clark, loop and bilinear have)");
-  if (!mesh.face_varying.empty() && mesh.tags.face_varying != FaceVaryingRule::all)
-    throw InvalidInput(
-        who + ": face-varying channel '" + mesh.face_varying.front().name +
-        "' asks for face-varying interpolation other than 'all' (linear everywhere), which is " +
-        "not built yet; ask for 'all' (--fvar-interpolation all) or drop the channel");
 }
 
 /// The features of a level from its tags, as OpenSubdiv's factory prepares its base level: boundary
@@ -939,64 +935,6 @@ MeshTags child_tags(MeshScheme scheme, const MeshTopology& t, const LevelFeature
         for (int h = t.face_offsets[f]; h < t.face_offsets[f + 1]; ++h) out.holes.push_back(h);
       else
         for (int k = 0; k < 4; ++k) out.holes.push_back(4 * static_cast<int>(f) + k);
-    }
-  }
-  return out;
-}
-
-/// A face-varying channel after one step of the quad or triangle split, interpolated linearly (the
-/// face-varying rule `all`): the parent values, then a value per face-varying edge (an edge whose two
-/// faces give it the same two values is one edge; across a seam, two), then (quads) one per face;
-/// child corners in the order split_polygons and split_triangles make the faces.
-FaceVaryingChannel refine_channel(const MeshTopology& t, Split split, const FaceVaryingChannel& c) {
-  const std::size_t H = t.face_vertices.size();
-  const auto next_corner = [&](std::size_t f, std::size_t h) {
-    return h + 1 == static_cast<std::size_t>(t.face_offsets[f + 1])
-               ? static_cast<std::size_t>(t.face_offsets[f])
-               : h + 1;
-  };
-  std::vector<int> edge_value(H, -1);
-  std::vector<std::array<int, 2>> edge_ends;
-  const int base = static_cast<int>(c.values.rows());
-  for (std::size_t f = 0; f < face_count(t); ++f)
-    for (auto h = static_cast<std::size_t>(t.face_offsets[f]);
-         h < static_cast<std::size_t>(t.face_offsets[f + 1]); ++h) {
-      if (edge_value[h] >= 0) continue;
-      const std::size_t n = next_corner(f, h);
-      edge_value[h] = base + static_cast<int>(edge_ends.size());
-      edge_ends.push_back({c.indices[h], c.indices[n]});
-      const Across a = across(t, static_cast<int>(f), static_cast<int>(h));
-      if (a.face < 0) continue;
-      const auto g = static_cast<std::size_t>(a.half_edge);
-      if (c.indices[g] == c.indices[n] &&
-          c.indices[next_corner(static_cast<std::size_t>(a.face), g)] == c.indices[h])
-        edge_value[g] = edge_value[h];
-    }
-  const bool quads = split == Split::quads;
-  FaceVaryingChannel out;
-  out.name = c.name;
-  out.values.resize(base + static_cast<Eigen::Index>(edge_ends.size()) +
-                        (quads ? static_cast<Eigen::Index>(face_count(t)) : 0),
-                    c.values.cols());
-  out.values.topRows(base) = c.values;
-  for (std::size_t k = 0; k < edge_ends.size(); ++k)
-    out.values.row(base + static_cast<Eigen::Index>(k)) =
-        0.5 * (c.values.row(edge_ends[k][0]) + c.values.row(edge_ends[k][1]));
-  const int face_base = base + static_cast<int>(edge_ends.size());
-  for (std::size_t f = 0; f < face_count(t); ++f) {
-    const auto b = static_cast<std::size_t>(t.face_offsets[f]), k = face(t, f).size();
-    if (quads) {
-      Eigen::RowVectorXd centre = Eigen::RowVectorXd::Zero(c.values.cols());
-      for (std::size_t i = 0; i < k; ++i) centre += c.values.row(c.indices[b + i]);
-      out.values.row(face_base + static_cast<Eigen::Index>(f)) = centre / static_cast<double>(k);
-      for (std::size_t i = 0; i < k; ++i)
-        out.indices.insert(out.indices.end(),
-                           {c.indices[b + i], edge_value[b + i], face_base + static_cast<int>(f),
-                            edge_value[b + (i + k - 1) % k]});
-    } else {
-      const int c0 = c.indices[b], c1 = c.indices[b + 1], c2 = c.indices[b + 2];
-      const int ab = edge_value[b], bc = edge_value[b + 1], ca = edge_value[b + 2];
-      out.indices.insert(out.indices.end(), {c0, ab, ca, ab, c1, bc, ca, bc, c2, ab, bc, ca});
     }
   }
   return out;
@@ -1199,6 +1137,12 @@ Mesh subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOption
     t = checked_input(split->mesh, scheme, levels, options, false);
   }
   const Mesh& source = split ? split->mesh : mesh;
+  if (split && !source.face_varying.empty() && source.tags.face_varying != FaceVaryingRule::all &&
+      scheme != MeshScheme::bilinear)
+    throw InvalidInput(
+        who + ": the mesh is not manifold and has face-varying channel '" + source.face_varying.front().name +
+        "' under the rule '" + std::string(option_name(source.tags.face_varying)) +
+        "'; non-manifold face-varying data is refined linearly only (--fvar-interpolation all)");
   detail::Representatives same;  // of the stand-in's vertices and edges, level by level
   if (split) same = detail::initial_representatives(t, std::move(split->representative));
   MeshTags tags = source.tags;
@@ -1208,7 +1152,9 @@ Mesh subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOption
   out.vertices = source.vertices;
   out.face_offsets = source.face_offsets;
   out.face_vertices = source.face_vertices;
-  out.face_varying = source.face_varying;
+  std::vector<detail::ChannelLevel> channels;
+  for (const FaceVaryingChannel& c : source.face_varying)
+    channels.push_back(detail::analyse_channel(t, features, tags, c));
   std::vector<double> halves;
   for (int level = 0; level < levels; ++level) {
     const bool last = level + 1 == levels, split_last = last && splits_faces(scheme);
@@ -1216,10 +1162,10 @@ Mesh subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOption
         step(scheme, t, features, tags, level, halves, {.input = &out.vertices, .drop = false}, !split_last);
     out.vertices = std::move(s.output);
     s.output = Points();  // the parent's positions, swapped in by the move
+    for (detail::ChannelLevel& c : channels) c = detail::refine_channel(scheme, t, features, halves, tags, c);
     if (traits(scheme).sharpness) tags = child_tags(scheme, t, features, halves, tags);
     std::vector<int> child_vertices;
     if (split) child_vertices = detail::child_vertex_representatives(t, same, s.vertex_count);
-    for (FaceVaryingChannel& c : out.face_varying) c = refine_channel(t, traits(scheme).split, c);
     if (split_last) {
       // Only the faces are left to make, from the parent's faces and face_edges: free its rings
       // and edge lists first, so that they, the parent's positions and the whole output never
@@ -1244,6 +1190,7 @@ Mesh subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOption
     progress.level_done(level);
   }
   out.tags = std::move(tags);
+  for (detail::ChannelLevel& c : channels) out.face_varying.push_back(std::move(c.channel));
   return split ? detail::merge_copies(std::move(out), same.vertex) : out;
 }
 

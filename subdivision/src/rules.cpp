@@ -72,9 +72,8 @@ VertexMask rule_mask(MeshScheme scheme, VertexRule rule, int faces, std::span<co
   return m;
 }
 
-/// The weight of the parent rule's mask when a vertex's rule changes during the step (OpenSubdiv's
-/// ComputeFractionalWeightAtVertex): the mean sharpness of what turns smooth, at most 1 (in single
-/// precision, as sharpness is held).
+}  // namespace
+
 double fractional_weight(CreaseMethod method, const VertexNeighbourhood& n) noexcept {
   int count = 0;
   float sum = 0;
@@ -95,8 +94,6 @@ double fractional_weight(CreaseMethod method, const VertexNeighbourhood& n) noex
   const float w = sum / static_cast<float>(count);
   return w > 1 ? 1.0 : w;
 }
-
-}  // namespace
 
 std::span<const SchemeTraits> mesh_schemes() noexcept {
   return kSchemes;

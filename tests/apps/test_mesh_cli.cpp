@@ -215,6 +215,12 @@ TEST_CASE("cifs subdivide: bad meshes and requests exit 2 with one line and writ
               "nan.obj");
   check_error(cifs_cli("subdivide " + example("open_grid.obj") + " --scheme butterfly" + o),
               "butterfly: face 0 has 4 corners");
+  check_error(cifs_cli("subdivide " +
+                       file("uv_quad.obj",
+                            "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                            "f 1/1 2/2 3/3 4/4\n") +
+                       " --scheme doo-sabin" + o),
+              "doo-sabin: the mesh has a face-varying channel 'uv'; this scheme does not split faces");
   CHECK(!std::filesystem::exists(out));
 }
 
@@ -263,6 +269,21 @@ TEST_CASE("cifs subdivide keeps tags and UVs: refining its output once equals re
   REQUIRE(b.face_varying.size() == 1);
   CHECK(a.face_varying[0].indices == b.face_varying[0].indices);
   CHECK((a.face_varying[0].values - b.face_varying[0].values).cwiseAbs().maxCoeff() <= 1e-12);
+  // A smooth face-varying rule from the command line: the library's UVs, and the rule written back.
+  const auto smooth_uv = scratch() / "smooth_uv.obj";
+  REQUIRE(cifs_cli("subdivide " + in +
+                   " --scheme catmull-clark --levels 2 --fvar-interpolation corners-only -o " +
+                   smooth_uv.string())
+              .status == 0);
+  Mesh tagged = io::read_mesh(in);
+  tagged.tags.face_varying = FaceVaryingRule::corners_only;
+  const Mesh expected = subdivision::subdivide(tagged, subdivision::MeshScheme::catmull_clark, 2),
+             got = io::read_mesh(smooth_uv);
+  CHECK(got.tags.face_varying == FaceVaryingRule::corners_only);
+  REQUIRE(got.face_varying.size() == 1);
+  CHECK(got.face_varying[0].indices == expected.face_varying[0].indices);
+  CHECK((got.face_varying[0].values - expected.face_varying[0].values).cwiseAbs().maxCoeff() <= 1e-15);
+  CHECK((got.face_varying[0].values - b.face_varying[0].values).cwiseAbs().maxCoeff() > 1e-3);  // not linear
 }
 
 TEST_CASE("cifs subdivide -o .ply says what PLY leaves out of a tagged mesh", "[cli][mesh][tags]") {

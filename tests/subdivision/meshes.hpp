@@ -237,4 +237,53 @@ inline void random_tags(cifs::Mesh& m, std::mt19937& rng, bool holes) {
   m.tags.crease_method = coin(rng) ? cifs::CreaseMethod::chaikin : cifs::CreaseMethod::uniform;
 }
 
+/// A channel with seams along random edges (about one in four): around each vertex every run of faces
+/// between seams (and the boundary) gets its own value — a dart where a seam ends inside the mesh,
+/// three or more values where seams meet — and now and then two runs of a vertex share one value
+/// (a value on faces that do not touch). Values: the vertex's (x, y) moved by the run's offset.
+inline cifs::FaceVaryingChannel random_seams(const cifs::Mesh& m, std::mt19937& rng) {
+  const cifs::MeshTopology t = cifs::build_topology(m);
+  std::uniform_int_distribution<int> quarter(0, 3), tenth(0, 9);
+  std::uniform_real_distribution<double> offset(-0.3, 0.3);
+  std::vector<char> seam(t.edges.size());
+  for (char& s : seam) s = quarter(rng) == 0 ? 1 : 0;
+  cifs::FaceVaryingChannel c;
+  c.indices.assign(m.face_vertices.size(), -1);
+  std::vector<std::array<double, 2>> values;
+  for (int v = 0; v < t.vertex_count; ++v) {
+    const auto edges = vertex_edges(t, static_cast<std::size_t>(v));
+    const auto faces = vertex_faces(t, static_cast<std::size_t>(v));
+    const bool boundary = t.boundary_vertex[static_cast<std::size_t>(v)] != 0;
+    const int first_value = static_cast<int>(values.size());
+    int current = -1;
+    for (std::size_t k = 0; k < faces.size(); ++k) {
+      if (current < 0 || seam[static_cast<std::size_t>(edges[k])] != 0 || (boundary && k == 0)) {
+        if (current >= first_value + 1 && tenth(rng) == 0) {
+          current = first_value;  // back to the vertex's first value
+        } else {
+          current = static_cast<int>(values.size());
+          values.push_back({m.vertices(v, 0) + offset(rng), m.vertices(v, 1) + offset(rng)});
+        }
+      }
+      const auto f = static_cast<std::size_t>(faces[k]);
+      for (int h = m.face_offsets[f]; h < m.face_offsets[f + 1]; ++h)
+        if (m.face_vertices[static_cast<std::size_t>(h)] == v)
+          c.indices[static_cast<std::size_t>(h)] = current;
+    }
+    // An interior ring whose last run reaches its first across an edge that is not a seam: one run.
+    if (!boundary && !faces.empty() && seam[static_cast<std::size_t>(edges[0])] == 0 &&
+        current != first_value) {
+      for (const int f : faces)
+        for (int h = m.face_offsets[static_cast<std::size_t>(f)];
+             h < m.face_offsets[static_cast<std::size_t>(f) + 1]; ++h)
+          if (c.indices[static_cast<std::size_t>(h)] == current)
+            c.indices[static_cast<std::size_t>(h)] = first_value;
+    }
+  }
+  c.values.resize(static_cast<Eigen::Index>(values.size()), 2);
+  for (std::size_t i = 0; i < values.size(); ++i)
+    c.values.row(static_cast<Eigen::Index>(i)) << values[i][0], values[i][1];
+  return c;
+}
+
 }  // namespace cifs_test

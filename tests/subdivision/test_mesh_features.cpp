@@ -11,6 +11,7 @@
 #include <map>
 #include <numbers>
 #include <random>
+#include <set>
 
 #include "cifs/subdivision/mesh.hpp"
 #include "subdivision/mesh_compare.hpp"
@@ -310,4 +311,93 @@ TEST_CASE("face-varying UVs (linear everywhere) = OpenSubdiv's InterpolateFaceVa
   Mesh b = torus(6, 5);
   b.face_varying.push_back(lattice_uvs(b, 6, 5, true));
   check_against_osd(b, MeshScheme::bilinear, 2);
+}
+
+TEST_CASE(
+    "face-varying interpolation rules (none, corners only, corners+1, corners+2, boundaries, all) = "
+    "OpenSubdiv's InterpolateFaceVarying: seams, darts, junctions, semi-sharp creases, boundaries",
+    "[subdivision][mesh][oracle][uv]") {
+  for (const FaceVaryingRule rule :
+       {FaceVaryingRule::none, FaceVaryingRule::corners_only, FaceVaryingRule::corners_plus1,
+        FaceVaryingRule::corners_plus2, FaceVaryingRule::boundaries, FaceVaryingRule::all}) {
+    INFO("face-varying rule " << option_name(rule));
+    for (const bool triangles : {false, true}) {
+      const MeshScheme scheme = triangles ? MeshScheme::loop : MeshScheme::catmull_clark;
+      // The lattice's seams: two loops crossing at one vertex of four values, on a torus with creases.
+      Mesh m = torus(6, 5, triangles);
+      m.face_varying.push_back(lattice_uvs(m, 6, 5, true));
+      m.tags.creases = {{0, 1, 2}, {1, 2, 0.5}, {0, 6, 10}};
+      m.tags.face_varying = rule;
+      check_against_osd(m, scheme, 3);
+      // Random seams under random creases, corners, holes, boundary rules and crease methods.
+      for (unsigned seed = 1; seed <= 12; ++seed) {
+        std::mt19937 rng(seed);
+        Mesh r = seed % 2 == 0 ? torus(6, 5, triangles) : wavy_grid(4, 4, triangles);
+        if (seed % 3 != 0) random_tags(r, rng, seed % 4 == 1);
+        r.face_varying.push_back(random_seams(r, rng));
+        r.tags.face_varying = rule;
+        INFO("seed " << seed);
+        check_against_osd(r, scheme, 3);
+      }
+    }
+    Mesh b = wavy_grid(3, 3, false);  // bilinear: linear whatever the rule
+    std::mt19937 rng(7);
+    b.face_varying.push_back(random_seams(b, rng));
+    b.tags.face_varying = rule;
+    check_against_osd(b, MeshScheme::bilinear, 2);
+  }
+}
+
+TEST_CASE(
+    "a value on faces that do not touch is a corner whatever the faces' order (OpenSubdiv's depends on it)",
+    "[subdivision][mesh][oracle][uv]") {
+  // A 2 × 2 grid whose middle vertex has the values A B A B around it. OpenSubdiv lists a vertex's
+  // values in ring order and misses the repeat of the second one after the first (Vtr::FVarLevel):
+  // A B A B makes A a corner (faces that do not touch) but B two values, each a crease under `none`;
+  // listing the faces from a B face swaps the two. cifs takes both as corners, in any order.
+  const auto grid = [](bool from_b) {
+    Mesh m = quad_grid(2, 2);
+    FaceVaryingChannel c;
+    c.values.resize(10, 2);
+    for (int v = 0; v < 9; ++v) c.values.row(v) << 0.5 * (v % 3) + 0.01 * v * v, 0.5 * (v / 3) - 0.02 * v;
+    c.values.row(9) << 0.3, 0.9;  // B
+    c.indices = m.face_vertices;
+    for (const std::size_t f : {1, 2})  // faces 1 and 2 (lower right, upper left) give vertex 4 the value B
+      for (int h = m.face_offsets[f]; h < m.face_offsets[f + 1]; ++h)
+        if (c.indices[static_cast<std::size_t>(h)] == 4) c.indices[static_cast<std::size_t>(h)] = 9;
+    m.face_varying = {c};
+    m.tags.face_varying = FaceVaryingRule::none;
+    if (from_b) {  // faces listed from face 1: the same mesh
+      std::vector<int> offsets{0}, corners, indices;
+      for (const std::size_t f : {1, 2, 3, 0})
+        for (int h = m.face_offsets[f]; h < m.face_offsets[f + 1]; ++h) {
+          corners.push_back(m.face_vertices[static_cast<std::size_t>(h)]);
+          indices.push_back(c.indices[static_cast<std::size_t>(h)]);
+          if (h + 1 == m.face_offsets[f + 1]) offsets.push_back(static_cast<int>(corners.size()));
+        }
+      m.face_offsets = offsets;
+      m.face_vertices = corners;
+      m.face_varying[0].indices = indices;
+    }
+    return m;
+  };
+  // The values at the corners sitting on the middle vertex, after one level.
+  const auto middle_values = [](const Mesh& r) {
+    std::set<std::pair<double, double>> out;
+    for (std::size_t k = 0; k < r.face_vertices.size(); ++k) {
+      const auto v = static_cast<Eigen::Index>(r.face_vertices[k]);
+      if ((r.vertices.row(v).head<2>() - Eigen::RowVector2d(1, 1)).norm() < 1e-12)
+        out.emplace(r.face_varying[0].values(r.face_varying[0].indices[k], 0),
+                    r.face_varying[0].values(r.face_varying[0].indices[k], 1));
+    }
+    return out;
+  };
+  for (const bool from_b : {false, true}) {
+    const Mesh m = grid(from_b);
+    const std::pair a{m.face_varying[0].values(4, 0), m.face_varying[0].values(4, 1)}, b{0.3, 0.9};
+    CHECK(middle_values(subdivide(m, MeshScheme::catmull_clark, 1)) == std::set{a, b});  // both stay
+    const auto osd = middle_values(osd_features(m, MeshScheme::catmull_clark, 1));
+    CHECK(osd.size() == 3);  // one value kept, the other split in two creases
+    CHECK(osd.count(from_b ? b : a) == 1);
+  }
 }

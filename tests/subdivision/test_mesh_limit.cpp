@@ -12,6 +12,8 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <random>
+#include <set>
 #include <vector>
 
 #include "cifs/errors.hpp"
@@ -760,4 +762,30 @@ TEST_CASE("Loop's surface automaton: its attractor mesh is the limit surface, it
       CHECK((chaos.points.row(p) - expected.positions.row(p)).norm() <= 1e-12 * scale);
     }
   }
+}
+
+TEST_CASE("limit meshes carry UVs under the rule 'all', which are their own limit; other rules are refused",
+          "[subdivision][limit][uv]") {
+  Mesh m = torus(6, 5);
+  std::mt19937 rng(5);
+  m.face_varying = {random_seams(m, rng)};
+  const Mesh limit = limit_mesh(m, MeshScheme::catmull_clark, 2),
+             deep = subdivide(m, MeshScheme::catmull_clark, 4);
+  REQUIRE(limit.face_varying.size() == 1);
+  // Each level-2 vertex's values (a vertex point keeps its vertex's index): two levels more leave them.
+  const auto values_at = [&](const Mesh& x) {
+    std::vector<std::set<std::pair<double, double>>> out(static_cast<std::size_t>(limit.vertices.rows()));
+    const FaceVaryingChannel& c = x.face_varying.at(0);
+    for (std::size_t k = 0; k < x.face_vertices.size(); ++k)
+      if (const auto v = static_cast<std::size_t>(x.face_vertices[k]); v < out.size())
+        out[v].emplace(c.values(c.indices[k], 0), c.values(c.indices[k], 1));
+    return out;
+  };
+  CHECK(values_at(limit) == values_at(deep));
+  CHECK(std::any_of(values_at(limit).begin(), values_at(limit).end(),
+                    [](const auto& s) { return s.size() > 1; }));
+  m.tags.face_varying = FaceVaryingRule::corners_only;
+  CHECK_THROWS_WITH(
+      limit_mesh(m, MeshScheme::catmull_clark, 2),
+      Catch::Contains("the limit of face-varying channel 'uv' under the rule 'corners-only' is not built"));
 }

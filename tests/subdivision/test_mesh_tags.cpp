@@ -163,6 +163,76 @@ TEST_CASE(
   }
 }
 
+TEST_CASE(
+    "a face-varying seam loop refines as the cubic B-spline of each side's values (smooth rules), "
+    "as their midpoints under 'boundaries'",
+    "[subdivision][mesh][uv]") {
+  // A torus whose channel has one seam, the closed loop of column 0: random values, and the faces
+  // of column 7 give the loop's vertices other random values.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> noise(-0.2, 0.2);
+  for (const bool triangles : {false, true}) {
+    Mesh m = torus(8, 6, triangles);
+    FaceVaryingChannel c;
+    c.values.resize(48 + 6, 2);
+    for (int v = 0; v < 54; ++v) c.values.row(v) << (v % 8) / 8.0 + noise(rng), (v / 8) / 6.0 + noise(rng);
+    for (std::size_t f = 0; f < face_count(m); ++f) {
+      const auto corners = face(m, f);
+      const bool past = std::any_of(corners.begin(), corners.end(), [](int v) { return v % 8 == 7; });
+      for (const int v : corners) c.indices.push_back(past && v % 8 == 0 ? 48 + v / 8 : v);
+    }
+    m.face_varying = {c};
+    const MeshScheme scheme = triangles ? MeshScheme::loop : MeshScheme::catmull_clark;
+    for (const FaceVaryingRule rule :
+         {FaceVaryingRule::none, FaceVaryingRule::corners_only, FaceVaryingRule::corners_plus1,
+          FaceVaryingRule::corners_plus2, FaceVaryingRule::boundaries}) {
+      m.tags.face_varying = rule;
+      for (const bool other_side : {false, true}) {
+        Points ring(6, 2);
+        for (int j = 0; j < 6; ++j) ring.row(j) = c.values.row(other_side ? 48 + j : 8 * j);
+        nurbs::Curve curve = nurbs::uniform_bspline(ring, rule == FaceVaryingRule::boundaries ? 1 : 3, true);
+        for (int levels = 1; levels <= 3; ++levels) {
+          curve = nurbs::refine_midpoints(curve);
+          const FaceVaryingChannel refined = subdivide(m, scheme, levels).face_varying.at(0);
+          double worst = 0;
+          for (Eigen::Index k = 0; k < static_cast<Eigen::Index>(nurbs::distinct_count(curve)); ++k) {
+            double best = std::numeric_limits<double>::infinity();
+            for (Eigen::Index v = 0; v < refined.values.rows(); ++v)
+              best = std::min(best, (refined.values.row(v) - curve.P.row(k)).cwiseAbs().maxCoeff());
+            worst = std::max(worst, best);
+          }
+          INFO(scheme_name(scheme) << ", rule " << option_name(rule) << ", side " << other_side << ", level "
+                                   << levels);
+          CHECK(worst <= 1e-14);
+        }
+      }
+    }
+  }
+}
+
+TEST_CASE("face-varying rules: refining twice equals refining two levels (no semi-sharp feature)",
+          "[subdivision][mesh][uv]") {
+  for (const FaceVaryingRule rule :
+       {FaceVaryingRule::none, FaceVaryingRule::corners_only, FaceVaryingRule::corners_plus1,
+        FaceVaryingRule::corners_plus2, FaceVaryingRule::boundaries})
+    for (const bool triangles : {false, true})
+      for (unsigned seed = 1; seed <= 4; ++seed) {
+        std::mt19937 rng(seed);
+        Mesh m = seed % 2 == 0 ? torus(6, 5, triangles) : wavy_grid(4, 4, triangles);
+        m.face_varying = {random_seams(m, rng)};
+        m.tags.creases = {{0, 1, kInfiniteSharpness}, {1, 2, kInfiniteSharpness}};
+        m.tags.corners = {{7, kInfiniteSharpness}};
+        m.tags.boundary = static_cast<BoundaryRule>(seed % 3);
+        m.tags.face_varying = rule;
+        const MeshScheme scheme = triangles ? MeshScheme::loop : MeshScheme::catmull_clark;
+        INFO(scheme_name(scheme) << ", rule " << option_name(rule) << ", seed " << seed);
+        const Mesh once = subdivide(subdivide(m, scheme, 1), scheme, 1), at_once = subdivide(m, scheme, 2);
+        REQUIRE(once.face_varying.size() == 1);
+        CHECK(once.face_varying[0].indices == at_once.face_varying[0].indices);
+        CHECK(tags_max_difference(once.face_varying[0].values, at_once.face_varying[0].values) <= 1e-15);
+      }
+}
+
 TEST_CASE("creased subdivision is affine invariant and counts follow the formulas",
           "[subdivision][mesh][creases]") {
   Eigen::Matrix3d A;
@@ -227,8 +297,17 @@ TEST_CASE("bad tags are refused with one line naming them", "[subdivision][mesh]
   m.face_varying[0].indices.pop_back();
   refused(m, MeshScheme::catmull_clark, "23 corner indices for 24 face corners");
   m.face_varying[0].indices.assign(m.face_vertices.size(), 0);
+  refused(m, MeshScheme::doo_sabin,
+          "doo-sabin: the mesh has a face-varying channel 'uv'; this scheme does not split");
+  Mesh tri = tetrahedron();
+  tri.face_varying = {uv};
+  tri.face_varying[0].indices.assign(tri.face_vertices.size(), 0);
+  refused(tri, MeshScheme::sqrt3, "this scheme does not split faces");
+  tri.tags.face_varying = FaceVaryingRule::corners_only;
+  refused(tri, MeshScheme::butterfly, "butterfly interpolates face-varying data linearly only");
   m.tags.face_varying = FaceVaryingRule::corners_only;
-  refused(m, MeshScheme::catmull_clark, "face-varying interpolation other than 'all'");
+  m.tags.rules = RuleSet::blz;
+  refused(m, MeshScheme::catmull_clark, "not built under the rule set 'blz'");
 }
 
 namespace {

@@ -85,6 +85,11 @@ struct VertexMask {
 /// one edge: the parent rule's mask, blended with the child rule's when the step changes the rule
 /// (OpenSubdiv's ComputeVertexVertexMask and ComputeFractionalWeightAtVertex).
 VertexMask vertex_mask(MeshScheme scheme, CreaseMethod method, const VertexNeighbourhood& n);
+/// The weight of the parent rule's mask when a vertex's rule changes during the step (OpenSubdiv's
+/// ComputeFractionalWeightAtVertex): the mean sharpness of what turns smooth — the vertex and the
+/// edges of `n` — at most 1, in single precision as sharpness is held. The face-varying rules take
+/// it over a part of the ring (the edges inside one value's span).
+double fractional_weight(CreaseMethod method, const VertexNeighbourhood& n) noexcept;
 
 /// An edge's neighbourhood: its sharpness, that of its two halves after the step, and the sizes of its
 /// (one or two) faces.
