@@ -100,8 +100,8 @@ void bind_mesh_subdivision_meshes(py::module_& m) {
       "subdivision matrices; creases, corners, holes and boundaries followed exactly, any valence), and unit "
       "limit normals when normals=True: per vertex, or per face corner (mesh.normal_indices) when a vertex "
       "lies between sectors (creases, corners: each corner its sector's normal); refused, naming the vertex, "
-      "where a sector's spectrum proves no tangent plane; not Butterfly. "
-      "catmull-clark, loop, butterfly (interpolating: the vertices themselves), sqrt3.");
+      "where a sector's spectrum proves no tangent plane. catmull-clark, loop, butterfly (interpolating: the "
+      "vertices themselves; normals at interior vertices), sqrt3.");
   m.def(
       "limit_surface",
       [](const Mesh& mesh, const std::vector<int>& faces, const std::vector<double>& u,

@@ -443,6 +443,111 @@ std::vector<double> through(const std::vector<double>& mask, const Points& w, st
   return out;
 }
 
+// ------------------------------------------------------------------------------------------------
+// Butterfly: interpolating, so the position is the vertex; the tangent plane at an interior vertex
+// comes from the left eigenvectors of its S_n for λ1 = ½ (docs/subdivision-surfaces.md, "Limit
+// points and normals").
+
+/// The tangent masks at an interior vertex of valence n ≥ 3 on the neighbourhood S_n acts on, valid
+/// wherever every neighbour is an interior vertex of valence 6 (butterfly_stationary). n ≠ 6: the edge
+/// points next to c read c and its ring only (ZSS's stencils), so (c, r_0 … r_{n−1}) is invariant and
+/// its circulant's Fourier mode ±1 (½ at every n) gives cos(2πj/n), sin(2πj/n) on r_j — Loop's masks.
+/// n = 6: the 10-point stencils couple the two rings, (c, r_j, p_j, q_j) (mesh_analysis.hpp's order);
+/// mode 1 of l·S = ½l solved by hand gives a_j = cos(jπ/3) on r_j, a_j/16 on p_j, −(a_j + a_{j+1})/6
+/// on q_j (and the same with sines), 0 on c. tests/subdivision/test_mesh_limit.cpp checks both against
+/// local_matrix, n = 6 in exact rationals.
+LimitMask butterfly_mask(int n) {
+  const bool regular = n == 6;
+  const auto size = static_cast<std::size_t>(regular ? 3 * n + 1 : n + 1);
+  LimitMask m{.position = std::vector<double>(size, 0.0),
+              .tangent_u = std::vector<double>(size, 0.0),
+              .tangent_v = std::vector<double>(size, 0.0),
+              .refused = {},
+              .sectors = {}};
+  m.position[0] = 1;
+  const double step = 2 * std::numbers::pi / n;
+  for (int j = 0; j < n; ++j) {
+    const double cu = std::cos(step * j), su = std::sin(step * j);
+    if (!regular) {
+      m.tangent_u[1 + static_cast<std::size_t>(j)] = cu;
+      m.tangent_v[1 + static_cast<std::size_t>(j)] = su;
+      continue;
+    }
+    const auto r = 1 + 3 * static_cast<std::size_t>(j), p = r + 1, q = r + 2;
+    m.tangent_u[r] = cu;
+    m.tangent_v[r] = su;
+    m.tangent_u[p] = cu / 16;
+    m.tangent_v[p] = su / 16;
+    m.tangent_u[q] = -(cu + std::cos(step * (j + 1))) / 6;
+    m.tangent_v[q] = -(su + std::sin(step * (j + 1))) / 6;
+  }
+  return m;
+}
+
+/// Whether S_n of butterfly_mask maps v's neighbourhood at this level to its neighbourhood at the
+/// next: v interior and every neighbour interior of valence 6 (then every edge point v's neighbourhood
+/// needs is ZSS's stencil of v or the 10-point one with its wings in place). From the first step on
+/// this holds at every interior vertex: its neighbours are edge points of interior edges.
+bool butterfly_stationary(const MeshTopology& t, int v) {
+  if (t.boundary_vertex[static_cast<std::size_t>(v)] != 0) return false;
+  for (const int e : vertex_edges(t, static_cast<std::size_t>(v))) {
+    const int w = other_vertex(t, static_cast<std::size_t>(e), v);
+    if (t.boundary_vertex[static_cast<std::size_t>(w)] != 0 || valence(t, static_cast<std::size_t>(w)) != 6)
+      return false;
+  }
+  return true;
+}
+
+/// The masks of an interior vertex v of valence n that is not butterfly_stationary (next to an
+/// extraordinary or boundary vertex: before the first step, and next to the boundary at any level): one
+/// production step maps its neighbourhood onto its child's, where S_n holds (v is interior, its child's
+/// neighbours are edge points of interior edges). The child's neighbourhood in `stationary`'s order: c
+/// (v stays), then per sector j (walk_ring's order, counter-clockwise) the edge point of v r_j, and at
+/// n = 6 also r_j itself (p_j) and the edge point of r_j r_{j+1} (q_j); each row is the step's own
+/// (detail::butterfly_edge_stencil). The masks are `stationary`'s through those rows, over λ1 = ½ so
+/// that they equal the child's. `columns` receives the level's vertices they weigh, v first.
+LimitMask butterfly_through_step(const MeshTopology& t, int v, int n, const LimitMask& stationary,
+                                 std::vector<int>& columns) {
+  std::vector<int> faces, ring;
+  walk_ring(t, v, false, faces, ring);
+  columns.assign(1, v);
+  std::vector<double> u(1, 0.0), w(1, 0.0);
+  const auto add = [&](int column, double weight, std::size_t slot) {
+    const auto at =
+        static_cast<std::size_t>(std::find(columns.begin(), columns.end(), column) - columns.begin());
+    if (at == columns.size()) {
+      columns.push_back(column);
+      u.push_back(0.0);
+      w.push_back(0.0);
+    }
+    u[at] += 2 * weight * stationary.tangent_u[slot];
+    w[at] += 2 * weight * stationary.tangent_v[slot];
+  };
+  std::vector<std::pair<int, double>> row;
+  const auto add_edge_point = [&](int a, int b, std::size_t slot) {
+    row.clear();
+    detail::butterfly_edge_stencil(t, find_edge(t, a, b), row);
+    for (const auto& [column, weight] : row) add(column, weight, slot);
+  };
+  const bool regular = n == 6;
+  for (int j = 0; j < n; ++j) {
+    const int r = ring[1 + static_cast<std::size_t>(j)],
+              next = ring[1 + static_cast<std::size_t>((j + 1) % n)];
+    const auto slot = regular ? 1 + 3 * static_cast<std::size_t>(j) : 1 + static_cast<std::size_t>(j);
+    add_edge_point(v, r, slot);
+    if (!regular) continue;
+    add(r, 1.0, slot + 1);
+    add_edge_point(r, next, slot + 2);
+  }
+  LimitMask out{.position = std::vector<double>(columns.size(), 0.0),
+                .tangent_u = std::move(u),
+                .tangent_v = std::move(w),
+                .refused = {},
+                .sectors = {}};
+  out.position[0] = 1;
+  return out;
+}
+
 }  // namespace
 
 LimitStencils limit_stencils(const MeshRefinement& r) {
@@ -470,6 +575,7 @@ LimitStencils limit_stencils(const MeshRefinement& r) {
   std::map<std::pair<int, bool>, int> sqrt3_boundary;  // √3's boundary classes: (faces, odd level)
   const bool odd_level = r.levels.size() % 2 == 0;     // levels.size() − 1 steps taken
   std::map<std::vector<int>, int> classes;
+  std::map<bool, int> butterfly_refused;  // Butterfly's position-only masks: on the boundary or not
   std::vector<int> faces, nb;
   const bool rings = scheme == MeshScheme::catmull_clark || scheme == MeshScheme::loop;
   for (int v = 0; v < t.vertex_count; ++v) {
@@ -477,7 +583,50 @@ LimitStencils limit_stencils(const MeshRefinement& r) {
     const auto where = [&] {
       return who + ": vertex " + std::to_string(v) + " (valence " + std::to_string(n) + ")";
     };
-    // Isolated vertices stay where they are; Butterfly and bilinear interpolate: the vertex is its limit.
+    // Butterfly interpolates: the vertex is its limit; the tangents of an interior vertex from S_n.
+    if (scheme == MeshScheme::butterfly && n > 0) {
+      int mask = -1;
+      const bool boundary = t.boundary_vertex[static_cast<std::size_t>(v)] != 0;
+      if (boundary || n < 3) {
+        const auto [it, fresh] = butterfly_refused.try_emplace(boundary, -1);
+        if (fresh) {
+          out.masks.push_back(LimitMask{
+              .position = {1.0},
+              .tangent_u = {},
+              .tangent_v = {},
+              .refused = boundary ? "on the boundary: butterfly limit normals are built at interior "
+                                    "vertices only"
+                                  : "an interior vertex of two faces, which has no tangent plane",
+              .sectors = {}});
+          it->second = static_cast<int>(out.masks.size()) - 1;
+        }
+        mask = it->second;
+        nb.assign(1, v);
+      } else {
+        if (smooth.size() <= static_cast<std::size_t>(n)) smooth.resize(static_cast<std::size_t>(n) + 1, -1);
+        if (smooth[static_cast<std::size_t>(n)] < 0) {
+          out.masks.push_back(butterfly_mask(n));
+          smooth[static_cast<std::size_t>(n)] = static_cast<int>(out.masks.size()) - 1;
+        }
+        mask = smooth[static_cast<std::size_t>(n)];
+        if (!butterfly_stationary(t, v)) {
+          out.masks.push_back(butterfly_through_step(t, v, n, out.masks[static_cast<std::size_t>(mask)], nb));
+          mask = static_cast<int>(out.masks.size()) - 1;
+        } else if (n == 6) {
+          detail::neighbourhood(
+              t, scheme, v,
+              other_vertex(t, static_cast<std::size_t>(vertex_edges(t, static_cast<std::size_t>(v))[0]), v),
+              false, nb);
+        } else {
+          walk_ring(t, v, false, faces, nb);
+        }
+      }
+      out.columns.insert(out.columns.end(), nb.begin(), nb.end());
+      out.offsets.push_back(static_cast<int>(out.columns.size()));
+      out.mask_of.push_back(mask);
+      continue;
+    }
+    // Isolated vertices stay where they are; bilinear interpolates: the vertex is its limit.
     if (n == 0 || traits(scheme).interpolating) {
       out.columns.push_back(v);
       out.offsets.push_back(static_cast<int>(out.columns.size()));
@@ -733,17 +882,16 @@ Mesh limit_mesh(const Mesh& mesh, MeshScheme scheme, int levels, const LimitOpti
   detail::check_limit_channels(mesh, scheme, who);
   const MeshRefinement r = refine_topology(mesh, scheme, levels, MeshOptions{.max_bytes = options.max_bytes});
   const MeshTopology& last = r.levels.back();
-  if (options.normals && scheme == MeshScheme::butterfly)
-    throw InvalidInput(
-        "butterfly: limit normals are not built (next to an extraordinary vertex the invariant neighbourhood "
-        "is not the regular one)");
   if (options.normals && scheme == MeshScheme::bilinear)
     throw InvalidInput(
         "bilinear: the limit surface is the refined mesh, with no normal at its vertices (only C0)");
   if (options.normals && mesh.vertices.cols() != 3)
     throw InvalidInput(who + ": limit normals need 3-D vertices, not " +
                        std::to_string(mesh.vertices.cols()) + "-D");
-  const LimitStencils stencils = limit_stencils(r);
+  // An interpolating scheme's limit points are the level's vertices: its stencils are for the normals
+  // (and for data that are not finite, which evaluate_limit refuses).
+  const bool stencils_needed = options.normals || !traits(scheme).interpolating || !mesh.vertices.allFinite();
+  const LimitStencils stencils = stencils_needed ? limit_stencils(r) : LimitStencils{};
   const auto mask_of = [&](int v) -> const LimitMask& {
     return stencils.masks[static_cast<std::size_t>(stencils.mask_of[static_cast<std::size_t>(v)])];
   };
@@ -771,6 +919,8 @@ Mesh limit_mesh(const Mesh& mesh, MeshScheme scheme, int levels, const LimitOpti
         throw InvalidInput(what);
       }
       if (!m.sectors.empty()) continue;
+      if (scheme == MeshScheme::butterfly)
+        throw InvalidInput(where + " is " + m.refused + " (drop the normals)");
       throw InvalidInput(
           where + " has no tangent plane that its spectrum proves (" +
           (m.refused.empty() ? std::string("its limit has no tangent masks") : m.refused) +
@@ -789,9 +939,9 @@ Mesh limit_mesh(const Mesh& mesh, MeshScheme scheme, int levels, const LimitOpti
   const auto times_two_to = [](int e) { return [e](double x) { return std::ldexp(x, e); }; };
   const Points scaled = mesh.vertices.unaryExpr(times_two_to(-exponent));
   const Points level = apply(r, scaled);
-  const LimitFrame frame = evaluate_limit(stencils, level, options.normals);
+  const LimitFrame frame = stencils_needed ? evaluate_limit(stencils, level, options.normals) : LimitFrame{};
   Mesh out;
-  out.vertices = frame.positions.unaryExpr(times_two_to(exponent));
+  out.vertices = (stencils_needed ? frame.positions : level).unaryExpr(times_two_to(exponent));
   out.face_offsets = last.face_offsets;
   out.face_vertices = last.face_vertices;
   out.tags = r.tags.back();  // holes stay holes; creases and corners as the last level holds them

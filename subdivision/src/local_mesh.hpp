@@ -3,6 +3,7 @@
 // matching it with its refinement; shared by the local matrices and the characteristic maps.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "cifs/subdivision/mesh.hpp"
@@ -31,6 +32,10 @@ void neighbourhood(const MeshTopology& t, MeshScheme scheme, int centre, int sta
 /// even level are local_matrix(sqrt3, faces + 1, {.boundary = true}); limit masks at an odd level go
 /// through the trisecting step first.
 LongMatrix sqrt3_boundary_step(int faces, bool trisect);
+
+/// Butterfly's edge point of `edge` (mesh.cpp's rule, the one its step uses) appended to `out` as
+/// (vertex, weight) pairs; a vertex may come more than once (its weights add up).
+void butterfly_edge_stencil(const MeshTopology& t, int edge, std::vector<std::pair<int, double>>& out);
 
 /// Weight of `column` in row `row` of the stencils.
 double weight(const Stencils& s, int row, int column);

@@ -16,6 +16,7 @@
 #include "cifs/format.hpp"
 #include "cifs/memory.hpp"
 #include "face_varying.hpp"
+#include "local_mesh.hpp"
 #include "non_manifold.hpp"
 
 namespace cifs::subdivision {
@@ -592,7 +593,8 @@ int boundary_neighbour(const MeshTopology& t, int v, int e) {
 /// centre and s_j on ring vertex j (j = 0 the edge's other end). The seed writes s_j without the
 /// 1/k and mixes n and k; k = 3: 5/12, −1/12, −1/12; k = 4: 3/8, 0, −1/8, 0;
 /// k ≥ 5: s_j = (1/k)(¼ + cos(2πj/k) + ½cos(4πj/k)).
-void butterfly_extraordinary(int centre, const std::vector<int>& ring, double scale, RowWriter& row) {
+template <class Row>
+void butterfly_extraordinary(int centre, const std::vector<int>& ring, double scale, Row& row) {
   const int k = static_cast<int>(ring.size());
   row.add(centre, 0.75 * scale);
   for (int j = 0; j < k; ++j) {
@@ -610,7 +612,8 @@ void butterfly_extraordinary(int centre, const std::vector<int>& ring, double sc
 /// The 10-point stencil of edge a–b (w = 1/16): ends ½, the opposite corners o of the two faces
 /// ⅛, and −1/16 on each wing — the far corner of the triangle across edge (x, o), x ∈ {a, b}. A
 /// wing missing at the boundary is the reflection x + o − (the other end), as OpenMesh does.
-void butterfly_regular(const MeshTopology& t, int e, RowWriter& row) {
+template <class Row>
+void butterfly_regular(const MeshTopology& t, int e, Row& row) {
   const auto [a, b] = t.edges[static_cast<std::size_t>(e)];
   row.add(a, 0.5);
   row.add(b, 0.5);
@@ -632,37 +635,44 @@ void butterfly_regular(const MeshTopology& t, int e, RowWriter& row) {
   }
 }
 
-/// Edge points: the 4-point rule (−1, 9, 9, −1)/16 along boundary edges; inside, the 10-point
-/// stencil unless an end is an interior vertex of valence ≠ 6, whose ring stencil is then used
-/// (the mean of the two when both are). Boundary ends count as regular (OpenMesh's rule; ZSS's
-/// boundary tables are not implemented).
+/// The edge point of edge e: the 4-point rule (−1, 9, 9, −1)/16 along boundary edges; inside, the
+/// 10-point stencil unless an end is an interior vertex of valence ≠ 6, whose ring stencil is then
+/// used (the mean of the two when both are). Boundary ends count as regular (OpenMesh's rule; ZSS's
+/// boundary tables are not implemented). The one rule of the step and of the limit's first step
+/// (detail::butterfly_edge_stencil).
+template <class Row>
+void butterfly_edge_point(const MeshTopology& t, int e, Row& row) {
+  const auto extraordinary = [&](int v) {
+    return !on_boundary(t, v) && valence(t, static_cast<std::size_t>(v)) != 6;
+  };
+  const auto [a, b] = t.edges[static_cast<std::size_t>(e)];
+  if (is_boundary_edge(t, static_cast<std::size_t>(e))) {
+    row.add(a, 0.5625);
+    row.add(b, 0.5625);
+    row.add(boundary_neighbour(t, a, e), -0.0625);
+    row.add(boundary_neighbour(t, b, e), -0.0625);
+  } else if (!extraordinary(a) && !extraordinary(b)) {
+    butterfly_regular(t, e, row);
+  } else {
+    const double scale = extraordinary(a) && extraordinary(b) ? 0.5 : 1;
+    if (extraordinary(a)) butterfly_extraordinary(a, ring_from(t, a, e), scale, row);
+    if (extraordinary(b)) butterfly_extraordinary(b, ring_from(t, b, e), scale, row);
+  }
+}
+
+/// Old vertices stay (interpolating); an edge point per edge (butterfly_edge_point).
 Step butterfly_step(const MeshTopology& t, RowSink sink) {
   const int V = t.vertex_count, E = static_cast<int>(t.edges.size());
   Step s;
   s.sink = sink;
   s.vertex_count = V + E;
   RowWriter row(s, t.vertex_count);
-  for (int v = 0; v < V; ++v) {  // interpolating: old vertices stay
+  for (int v = 0; v < V; ++v) {
     row.add(v, 1);
     row.finish();
   }
-  const auto extraordinary = [&](int v) {
-    return !on_boundary(t, v) && valence(t, static_cast<std::size_t>(v)) != 6;
-  };
   for (int e = 0; e < E; ++e) {
-    const auto [a, b] = t.edges[static_cast<std::size_t>(e)];
-    if (is_boundary_edge(t, static_cast<std::size_t>(e))) {
-      row.add(a, 0.5625);
-      row.add(b, 0.5625);
-      row.add(boundary_neighbour(t, a, e), -0.0625);
-      row.add(boundary_neighbour(t, b, e), -0.0625);
-    } else if (!extraordinary(a) && !extraordinary(b)) {
-      butterfly_regular(t, e, row);
-    } else {
-      const double scale = extraordinary(a) && extraordinary(b) ? 0.5 : 1;
-      if (extraordinary(a)) butterfly_extraordinary(a, ring_from(t, a, e), scale, row);
-      if (extraordinary(b)) butterfly_extraordinary(b, ring_from(t, b, e), scale, row);
-    }
+    butterfly_edge_point(t, e, row);
     row.finish();
   }
   return s;
@@ -1370,5 +1380,17 @@ Eigen::SparseMatrix<double, Eigen::RowMajor> subdivision_matrix(const Stencils& 
   S.setFromTriplets(entries.begin(), entries.end());
   return S;
 }
+
+namespace detail {
+
+void butterfly_edge_stencil(const MeshTopology& t, int edge, std::vector<std::pair<int, double>>& out) {
+  struct Append {
+    std::vector<std::pair<int, double>>& out;
+    void add(int column, double weight) { out.emplace_back(column, weight); }
+  } row{out};
+  butterfly_edge_point(t, edge, row);
+}
+
+}  // namespace detail
 
 }  // namespace cifs::subdivision

@@ -115,6 +115,27 @@ TEST_CASE("cifs limit --scheme sqrt3 --normals on an open mesh: boundary vertice
   CHECK((back.normals - ours.normals).cwiseAbs().maxCoeff() < 1e-15);
 }
 
+TEST_CASE("cifs limit --scheme butterfly --normals: interior vertices, boundary ones refused in one line",
+          "[cli][mesh][limit]") {
+  // Butterfly interpolates: the limit points are the refined vertices; the normals are the library's
+  // (against deep refinement in tests/subdivision/test_butterfly_limit.cpp), written and read back.
+  const auto out = scratch() / "torus_butterfly_limit.ply";
+  const Run run = cifs_cli("limit " + example("torus_triangles.obj") +
+                           " --scheme butterfly --normals --levels 1 -o " + out.string());
+  REQUIRE(run.status == 0);
+  const Mesh torus = io::read_mesh(example("torus_triangles.obj"));
+  const Mesh back = io::read_mesh(out);
+  CHECK(back.vertices == subdivision::butterfly(torus, 1).vertices);
+  const Mesh ours = subdivision::limit_mesh(torus, subdivision::MeshScheme::butterfly, 1, {.normals = true});
+  REQUIRE(back.normals.rows() == back.vertices.rows());
+  CHECK((back.normals - ours.normals).cwiseAbs().maxCoeff() < 1e-15);
+  check_error(
+      cifs_cli("limit " + example("open_grid_triangles.obj") + " --scheme butterfly --normals -o " +
+               out.string()),
+      "butterfly: vertex 0 (valence 3) is on the boundary: butterfly limit normals are built at interior "
+      "vertices only (drop the normals)");
+}
+
 TEST_CASE("cifs limit --normals on creases and corners: a normal per sector, OBJ f v//n",
           "[cli][mesh][limit]") {
   // A grid with a sharp crease across: its OBJ has more vn than v, and some vertex takes two normals (one

@@ -589,6 +589,22 @@ class LimitTest(unittest.TestCase):
         self.assertEqual(limit.normals.shape, limit.vertices.shape)
         np.testing.assert_allclose(np.linalg.norm(limit.normals, axis=1), 1, atol=1e-15)
 
+    def test_butterfly_normals(self):
+        # Butterfly interpolates (the limit points are the refined vertices) and its interior vertices take
+        # normals (the left eigenvectors of S_n; against deep refinement in
+        # tests/subdivision/test_butterfly_limit.cpp): the icosahedron's point out of it, at levels 0 and 1.
+        ico = cifs.io.read_mesh(str(EXAMPLES / "meshes" / "icosahedron.obj"))
+        for level in (0, 1):
+            limit = sd.limit(ico, "butterfly", level, normals=True)
+            np.testing.assert_array_equal(limit.vertices, sd.butterfly(ico, level).vertices)
+            normals, points = np.asarray(limit.normals), np.asarray(limit.vertices)
+            np.testing.assert_allclose(np.linalg.norm(normals, axis=1), 1, atol=1e-15)
+            self.assertTrue(np.all(np.sum(normals * (points - points.mean(axis=0)), axis=1) > 0))
+        grid = cifs.io.read_mesh(str(EXAMPLES / "meshes" / "open_grid_triangles.obj"))
+        with self.assertRaisesRegex(cifs.InvalidInput, "is on the boundary: butterfly limit normals are built at "
+                                    "interior vertices only"):
+            sd.limit(grid, "butterfly", 0, normals=True)
+
     def test_limits_follow_the_tags(self):
         # The creased box (creases infinite, 2 and 1, a corner, a hole): the limit from level 0 and from
         # level 2 agree on the old vertices (semi-sharp ones too: the sharpness still to spend is followed).

@@ -222,11 +222,9 @@ TEST_CASE("regular Catmull–Clark limit points and normals are the bicubic surf
 TEST_CASE("limit stencils: what is not built is refused, naming the vertex", "[subdivision][limit]") {
   CHECK_THROWS_WITH(limit_stencils(refine_topology(cube(), MeshScheme::doo_sabin, 0)),
                     Contains("doo-sabin: limit points belong to faces"));
-  // Butterfly interpolates: every vertex is its own limit; its tangents are not built.
+  // Butterfly interpolates: every vertex is its own limit (its normals: test_butterfly_limit.cpp).
   const Mesh b = limit_mesh(bipyramid(), MeshScheme::butterfly, 2);
   CHECK(b.vertices == butterfly(bipyramid(), 2).vertices);
-  CHECK_THROWS_WITH(limit_mesh(bipyramid(), MeshScheme::butterfly, 1, {.normals = true}),
-                    Contains("butterfly: limit normals are not built"));
   CHECK_THROWS_WITH(limit_stencils(refine_topology(fan(17), MeshScheme::sqrt3, 0)),
                     Contains("sqrt3: vertex 0 (valence 17): valence 17 is out of range"));
   // √3's boundary vertices of 6 faces and more have no plane their spectrum proves

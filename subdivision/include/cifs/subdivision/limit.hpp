@@ -39,13 +39,14 @@ struct SectorMask {
 };
 
 /// Limit weights for one kind of vertex (a valence, interior or boundary), on its neighbourhood in
-/// mesh_analysis.hpp's numbering: `position` sums to 1; `tangent_u`, `tangent_v` sum to 0 (empty
-/// under Butterfly, at isolated vertices, at vertices between sectors and where no tangent plane is
-/// proved), ordered so that tangent_u × tangent_v points to the side the faces are counter-clockwise
-/// from. Their lengths are not derivatives of any parametrisation: use them for the tangent plane and
-/// the normal. `refused`: why a vertex of one sector has no tangents (else empty). `sectors`: at a
-/// vertex between sectors (Catmull–Clark and Loop), one per sector (the surface has a tangent plane
-/// per sector there); empty elsewhere.
+/// mesh_analysis.hpp's numbering (Butterfly's vertices next to an extraordinary or boundary vertex:
+/// whatever the level's vertices their masks weigh): `position` sums to 1; `tangent_u`, `tangent_v`
+/// sum to 0 (empty under bilinear, at isolated vertices, at Butterfly's boundary vertices, at vertices
+/// between sectors and where no tangent plane is proved), ordered so that tangent_u × tangent_v
+/// points to the side the faces are counter-clockwise from. Their lengths are not derivatives of any
+/// parametrisation: use them for the tangent plane and the normal. `refused`: why a vertex of one
+/// sector has no tangents (else empty). `sectors`: at a vertex between sectors (Catmull–Clark and
+/// Loop), one per sector (the surface has a tangent plane per sector there); empty elsewhere.
 struct LimitMask {
   std::vector<double> position, tangent_u, tangent_v;
   std::string refused;
@@ -87,8 +88,13 @@ void evaluate_limit(const LimitStencils& stencils, const Points& vertices, Limit
 ///   bounding curves leaving the plane, a face alone between two edges that are one smooth curve). One
 ///   sector: the mask's tangents; several (creases, corners): `sectors`. Its own masks are the class's
 ///   through those steps: exact at any level, the sharpness still to spend included.
-/// - Butterfly and bilinear interpolate: every vertex is its own limit, with no tangents. √3: interior
-///   vertices of valence 3 … 16, from the eigenvectors of local_matrix.
+/// - Butterfly and bilinear interpolate: every vertex is its own limit. Butterfly's interior vertices
+///   (valence ≥ 3) take the tangents of the left eigenvectors of S_n for λ1 = ½, closed forms at every
+///   valence (butterfly_mask in limit.cpp): on S_n's neighbourhood where every neighbour is an interior
+///   vertex of valence 6 (at every interior vertex from the first step on), otherwise — next to an
+///   extraordinary or boundary vertex — through the step's own rows of its child's neighbourhood,
+///   where S_n holds. Its boundary vertices have no tangents
+///   (`refused`). √3: interior vertices of valence 3 … 16, from the eigenvectors of local_matrix.
 /// InvalidInput naming the vertex for what is not built; Doo–Sabin's limit points belong to faces.
 LimitStencils limit_stencils(const MeshRefinement& refinement);
 
