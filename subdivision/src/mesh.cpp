@@ -39,14 +39,16 @@ struct Step {
   Points output;      // the rows applied to sink.input
 };
 
-/// out = Σ_k weights[k] · in row columns[k] (d columns): the one kernel of apply and of rows applied
-/// as they are made (the same bits, but where a one-shot quad split weighs face points made first).
-inline void weighted_row(const double* in, Eigen::Index d, const int* columns, const double* weights,
-                         int count, double* out) {
+/// out = Σ_k weights[k] · row(columns[k]) (d columns), row(c) pointing at a source row: the one kernel
+/// of apply and of rows applied as they are made (the same bits, but where a one-shot quad split
+/// weighs face points made first).
+template <class Row>
+inline void weighted_row(Row row, Eigen::Index d, const int* columns, const double* weights, int count,
+                         double* out) {
   if (d == 3) {  // positions: the common case, kept in registers
     double x = 0, y = 0, z = 0;
     for (int k = 0; k < count; ++k) {
-      const double* p = in + 3 * static_cast<std::ptrdiff_t>(columns[k]);
+      const double* p = row(columns[k]);
       x += weights[k] * p[0];
       y += weights[k] * p[1];
       z += weights[k] * p[2];
@@ -58,37 +60,26 @@ inline void weighted_row(const double* in, Eigen::Index d, const int* columns, c
   }
   std::fill(out, out + d, 0.0);
   for (int k = 0; k < count; ++k) {
-    const double* p = in + d * static_cast<std::ptrdiff_t>(columns[k]);
+    const double* p = row(columns[k]);
     for (Eigen::Index c = 0; c < d; ++c) out[c] += weights[k] * p[c];
   }
 }
-
-/// The same over two sources: columns below `split` are rows of `in`, the others rows of `more`
-/// (column split + i is more's row i): one-shot rows that weigh child face points already made.
+/// Over one source, `in`.
+inline void weighted_row(const double* in, Eigen::Index d, const int* columns, const double* weights,
+                         int count, double* out) {
+  weighted_row([in, d](int c) { return in + d * static_cast<std::ptrdiff_t>(c); }, d, columns, weights, count,
+               out);
+}
+/// Over two: columns below `split` are rows of `in`, the others rows of `more` (column split + i is
+/// more's row i): one-shot rows that weigh child face points already made.
 inline void weighted_row(const double* in, const double* more, int split, Eigen::Index d, const int* columns,
                          const double* weights, int count, double* out) {
-  const auto source = [&](int c) {
-    return c < split ? in + d * static_cast<std::ptrdiff_t>(c)
-                     : more + d * static_cast<std::ptrdiff_t>(c - split);
-  };
-  if (d == 3) {
-    double x = 0, y = 0, z = 0;
-    for (int k = 0; k < count; ++k) {
-      const double* p = source(columns[k]);
-      x += weights[k] * p[0];
-      y += weights[k] * p[1];
-      z += weights[k] * p[2];
-    }
-    out[0] = x;
-    out[1] = y;
-    out[2] = z;
-    return;
-  }
-  std::fill(out, out + d, 0.0);
-  for (int k = 0; k < count; ++k) {
-    const double* p = source(columns[k]);
-    for (Eigen::Index c = 0; c < d; ++c) out[c] += weights[k] * p[c];
-  }
+  weighted_row(
+      [=](int c) {
+        return c < split ? in + d * static_cast<std::ptrdiff_t>(c)
+                         : more + d * static_cast<std::ptrdiff_t>(c - split);
+      },
+      d, columns, weights, count, out);
 }
 
 /// Makes one stencil row at a time; a column given twice is summed (face points expanded into
