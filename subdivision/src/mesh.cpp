@@ -113,8 +113,8 @@ class RowWriter {
   }
   /// One-shot quad split (rows applied to the input): the child face points — the step's last rows,
   /// the centroids of the parent faces — are made first, and add_face_point then weighs a face's centre
-  /// as one column (old vertex count + face) instead of its corners: OpenSubdiv's order, which halves
-  /// the work of the vertex and edge rows.
+  /// as one column (old vertex count + face) instead of its corners: OpenSubdiv's order, with fewer
+  /// columns per vertex and edge row (a fifth of a creased Catmull–Clark one-shot's instructions).
   void make_face_points(const MeshTopology& t) {
     const auto F = static_cast<int>(face_count(t));
     const Eigen::Index d = s_.sink.input->cols();
