@@ -454,7 +454,7 @@ std::vector<double> through(const std::vector<double>& mask, const Points& w, st
 /// its circulant's Fourier mode ±1 (½ at every n) gives cos(2πj/n), sin(2πj/n) on r_j — Loop's masks.
 /// n = 6: the 10-point stencils couple the two rings, (c, r_j, p_j, q_j) (mesh_analysis.hpp's order);
 /// mode 1 of l·S = ½l solved by hand gives a_j = cos(jπ/3) on r_j, a_j/16 on p_j, −(a_j + a_{j+1})/6
-/// on q_j (and the same with sines), 0 on c. tests/subdivision/test_mesh_limit.cpp checks both against
+/// on q_j (and the same with sines), 0 on c. tests/subdivision/test_butterfly_limit.cpp checks both against
 /// local_matrix, n = 6 in exact rationals.
 LimitMask butterfly_mask(int n) {
   const bool regular = n == 6;
