@@ -7,9 +7,11 @@
 #include <array>
 #include <climits>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 #include "cifs/errors.hpp"
@@ -39,16 +41,13 @@ struct Step {
   Points output;      // the rows applied to sink.input
 };
 
-/// out = Σ_k weights[k] · row(columns[k]) (d columns), row(c) pointing at a source row: the one kernel
-/// of apply and of rows applied as they are made (the same bits, but where a one-shot quad split
-/// weighs face points made first).
-template <class Row>
-inline void weighted_row(Row row, Eigen::Index d, const int* columns, const double* weights, int count,
-                         double* out) {
+/// out = Σ_k weights[k] · in(columns[k]) (d columns): the kernel of apply.
+inline void weighted_row(const double* in, Eigen::Index d, const int* columns, const double* weights,
+                         int count, double* out) {
   if (d == 3) {  // positions: the common case, kept in registers
     double x = 0, y = 0, z = 0;
     for (int k = 0; k < count; ++k) {
-      const double* p = row(columns[k]);
+      const double* p = in + 3 * static_cast<std::ptrdiff_t>(columns[k]);
       x += weights[k] * p[0];
       y += weights[k] * p[1];
       z += weights[k] * p[2];
@@ -60,43 +59,29 @@ inline void weighted_row(Row row, Eigen::Index d, const int* columns, const doub
   }
   std::fill(out, out + d, 0.0);
   for (int k = 0; k < count; ++k) {
-    const double* p = row(columns[k]);
+    const double* p = in + d * static_cast<std::ptrdiff_t>(columns[k]);
     for (Eigen::Index c = 0; c < d; ++c) out[c] += weights[k] * p[c];
   }
 }
-/// Over one source, `in`.
-inline void weighted_row(const double* in, Eigen::Index d, const int* columns, const double* weights,
-                         int count, double* out) {
-  weighted_row([in, d](int c) { return in + d * static_cast<std::ptrdiff_t>(c); }, d, columns, weights, count,
-               out);
-}
-/// Over two: columns below `split` are rows of `in`, the others rows of `more` (column split + i is
-/// more's row i): one-shot rows that weigh child face points already made.
-inline void weighted_row(const double* in, const double* more, int split, Eigen::Index d, const int* columns,
-                         const double* weights, int count, double* out) {
-  weighted_row(
-      [=](int c) {
-        return c < split ? in + d * static_cast<std::ptrdiff_t>(c)
-                         : more + d * static_cast<std::ptrdiff_t>(c - split);
-      },
-      d, columns, weights, count, out);
+
+/// Adds face f's centroid, weighted, as its corners.
+template <class Writer>
+[[gnu::always_inline]] inline void add_corners(const MeshTopology& t, std::size_t f, double weight,
+                                               Writer& row) {
+  const auto corners = face(t, f);
+  const double w = weight / static_cast<double>(corners.size());
+  for (const int c : corners) row.add(c, w);
 }
 
-/// Makes one stencil row at a time; a column given twice is summed (face points expanded into
-/// corners meet the ring's own vertices), columns in order of first appearance. Rows go where the
-/// step's sink says: its stencils, straight onto its input (then `s.vertex_count` must be set before
-/// the writer is made), or nowhere.
+/// Makes one stencil row at a time, kept as the step's weights (or dropped: topology only); a column
+/// given twice is summed (face points expanded into corners meet the ring's own vertices), columns in
+/// order of first appearance.
 class RowWriter {
  public:
   RowWriter(Step& s, int old_vertex_count)
       : s_(s),
         slot_(static_cast<std::size_t>(old_vertex_count)),
-        row_of_(static_cast<std::size_t>(old_vertex_count), -1) {
-    if (s.sink.input) {
-      s.output.resize(s.vertex_count, s.sink.input->cols());
-      advise_huge_pages(s.output.data(), static_cast<std::size_t>(s.output.size()) * sizeof(double));
-    }
-  }
+        row_of_(static_cast<std::size_t>(old_vertex_count), -1) {}
   [[gnu::always_inline]] void add(int column, double weight) {
     // A column seen before in this row is found through row_of_/slot_ in O(1).
     const auto c = static_cast<std::size_t>(column);
@@ -111,38 +96,12 @@ class RowWriter {
     columns_[count_] = column;
     weights_[count_++] = weight;
   }
-  /// One-shot quad split (rows applied to the input): the child face points — the step's last rows,
-  /// the centroids of the parent faces — are made first, and add_face_point then weighs a face's centre
-  /// as one column (old vertex count + face) instead of its corners: OpenSubdiv's order, with fewer
-  /// columns per vertex and edge row (a fifth of a creased Catmull–Clark one-shot's instructions).
-  void make_face_points(const MeshTopology& t) {
-    const auto F = static_cast<int>(face_count(t));
-    const Eigen::Index d = s_.sink.input->cols();
-    face_split_ = t.vertex_count;
-    faces_ = s_.output.data() + d * (s_.vertex_count - F);
-    slot_.resize(slot_.size() + static_cast<std::size_t>(F));
-    row_of_.resize(row_of_.size() + static_cast<std::size_t>(F), -1);
-    std::vector<double> weights;
-    for (int f = 0; f < F; ++f) {
-      const auto corners = face(t, static_cast<std::size_t>(f));
-      weights.assign(corners.size(), 1.0 / static_cast<double>(corners.size()));
-      weighted_row(s_.sink.input->data(), d, corners.data(), weights.data(), static_cast<int>(corners.size()),
-                   faces_ + d * f);
-    }
+  /// The centroid of parent face f, weighted: its corners (stencils are over the parent's vertices).
+  void add_face_point(const MeshTopology& t, std::size_t f, double weight) {
+    add_corners(t, f, weight, *this);
   }
-  /// The column of face f's centre, or −1 when faces are weighed by their corners.
-  int face_column(std::size_t f) const { return faces_ ? face_split_ + static_cast<int>(f) : -1; }
-
   void finish() {
-    if (s_.sink.input) {
-      const Eigen::Index d = s_.sink.input->cols();
-      if (faces_)
-        weighted_row(s_.sink.input->data(), faces_, face_split_, d, columns_.data(), weights_.data(),
-                     static_cast<int>(count_), s_.output.data() + d * row_);
-      else
-        weighted_row(s_.sink.input->data(), d, columns_.data(), weights_.data(), static_cast<int>(count_),
-                     s_.output.data() + d * row_);
-    } else if (!s_.sink.drop) {
+    if (!s_.sink.drop) {
       Stencils& out = s_.stencils;
       out.columns.insert(out.columns.end(), columns_.begin(),
                          columns_.begin() + static_cast<std::ptrdiff_t>(count_));
@@ -168,8 +127,77 @@ class RowWriter {
   std::vector<std::size_t> slot_;     // per old vertex: its place in columns_ ...
   std::vector<Eigen::Index> row_of_;  // ... valid when it was added in this row
   Eigen::Index row_ = 0;
-  double* faces_ = nullptr;  // make_face_points: the child face points, columns from face_split_ on
-  int face_split_ = 0;
+};
+
+/// Applies each row to the step's input as it is made (one-shot subdivision: no weights in memory,
+/// no columns kept; a column given twice adds twice). Same rows as RowWriter's, summed in another
+/// order: the same points to round-off.
+class PointWriter {
+ public:
+  /// `s.vertex_count` is set: the output is sized from it.
+  PointWriter(Step& s, int /*old_vertex_count*/) : in_(s.sink.input->data()), d_(s.sink.input->cols()) {
+    s.output.resize(s.vertex_count, d_);
+    advise_huge_pages(s.output.data(), static_cast<std::size_t>(s.output.size()) * sizeof(double));
+    out_ = s.output.data();
+    rows_ = s.vertex_count;
+    if (d_ != 3) sum_.assign(static_cast<std::size_t>(d_), 0.0);
+  }
+  [[gnu::always_inline]] void add(int column, double weight) {
+    add_point(in_ + d_ * static_cast<std::ptrdiff_t>(column), weight);
+  }
+  /// Quad split: the child face points — the step's last rows, the centroids of the parent faces —
+  /// made first, so that add_face_point weighs a face's centre as one point, not its corners
+  /// (OpenSubdiv's order; a fifth of a creased Catmull–Clark one-shot's instructions, with RowWriter).
+  void make_face_points(const MeshTopology& t) {
+    const auto F = static_cast<Eigen::Index>(face_count(t));
+    double* const faces = out_ + d_ * (rows_ - F);
+    const Eigen::Index row = row_;
+    row_ = rows_ - F;
+    for (Eigen::Index f = 0; f < F; ++f) {
+      add_corners(t, static_cast<std::size_t>(f), 1, *this);
+      finish();
+    }
+    row_ = row;
+    faces_ = faces;
+  }
+  /// The centroid of parent face f, weighted: the child face point when made first, else its corners.
+  [[gnu::always_inline]] void add_face_point(const MeshTopology& t, std::size_t f, double weight) {
+    if (faces_)
+      add_point(faces_ + d_ * static_cast<std::ptrdiff_t>(f), weight);
+    else
+      add_corners(t, f, weight, *this);
+  }
+  [[gnu::always_inline]] void finish() {
+    double* out = out_ + d_ * row_++;
+    if (d_ == 3) {
+      out[0] = x_;
+      out[1] = y_;
+      out[2] = z_;
+      x_ = y_ = z_ = 0;
+      return;
+    }
+    std::copy(sum_.begin(), sum_.end(), out);
+    std::fill(sum_.begin(), sum_.end(), 0.0);
+  }
+
+ private:
+  [[gnu::always_inline]] void add_point(const double* p, double weight) {
+    if (d_ == 3) {  // positions: the common case
+      x_ += weight * p[0];
+      y_ += weight * p[1];
+      z_ += weight * p[2];
+      return;
+    }
+    for (Eigen::Index c = 0; c < d_; ++c) sum_[static_cast<std::size_t>(c)] += weight * p[c];
+  }
+
+  const double* in_;
+  Eigen::Index d_;
+  double* out_ = nullptr;
+  Eigen::Index rows_ = 0, row_ = 0;
+  double* faces_ = nullptr;  // make_face_points: the child face points
+  double x_ = 0, y_ = 0, z_ = 0;
+  std::vector<double> sum_;  // d ≠ 3
 };
 
 /// Reserves a step's weights from its counts (growing them by doubling costs copies and page faults
@@ -192,17 +220,6 @@ std::span<const int> ring_edges(const MeshTopology& t, int v) {
 
 bool on_boundary(const MeshTopology& t, int v) {
   return t.boundary_vertex[static_cast<std::size_t>(v)] != 0;
-}
-
-[[gnu::always_inline]] inline void add_face_point(const MeshTopology& t, std::size_t f, double weight,
-                                                  RowWriter& row) {
-  if (const int column = row.face_column(f); column >= 0) {
-    row.add(column, weight);
-    return;
-  }
-  const auto corners = face(t, f);
-  const double w = weight / static_cast<double>(corners.size());
-  for (const int c : corners) row.add(c, w);
 }
 
 /// Across half-edge h (corner h of face f): the face on the other side and its half-edge running
@@ -228,14 +245,22 @@ void split_polygons(const MeshTopology& t, Step& s) {
   // Face points come after the V + E vertex and edge points (s.vertex_count is set: the edge list
   // may be gone, see subdivide).
   const int V = t.vertex_count, E = s.vertex_count - V - static_cast<int>(face_count(t));
-  reserve_huge(s.face_offsets, t.face_vertices.size() + 1);
-  reserve_huge(s.face_vertices, 4 * t.face_vertices.size());
+  const std::size_t H = t.face_vertices.size();
+  // Written in place (add_face's inserts cost a third of the split).
+  assign_huge(s.face_offsets, H + 1, 0);
+  for (std::size_t h = 0; h <= H; ++h) s.face_offsets[h] = static_cast<int>(4 * h);
+  assign_huge(s.face_vertices, 4 * H, 0);
+  int* out = s.face_vertices.data();
   for (int f = 0; f < static_cast<int>(face_count(t)); ++f) {
     const auto corners = face(t, static_cast<std::size_t>(f));
     const auto edges = face_edges(t, static_cast<std::size_t>(f));
     const std::size_t k = corners.size();
-    for (std::size_t i = 0; i < k; ++i)
-      add_face(s, {corners[i], V + edges[i], V + E + f, V + edges[(i + k - 1) % k]});
+    for (std::size_t i = 0; i < k; ++i, out += 4) {
+      out[0] = corners[i];
+      out[1] = V + edges[i];
+      out[2] = V + E + f;
+      out[3] = V + edges[i == 0 ? k - 1 : i - 1];
+    }
   }
 }
 
@@ -267,29 +292,29 @@ std::vector<int> polygon_split_twins(const MeshTopology& t) {
   return twins;
 }
 
-/// The corner of triangle f that is not on edge e.
-int opposite_corner(const MeshTopology& t, int f, int e) {
-  const auto corners = face(t, static_cast<std::size_t>(f));
+/// The corner of triangle f that is not on edge e: the corners' sum less the edge's ends.
+inline int opposite_corner(const MeshTopology& t, int f, int e) {
+  const int* c = t.face_vertices.data() + t.face_offsets[static_cast<std::size_t>(f)];
   const auto [a, b] = t.edges[static_cast<std::size_t>(e)];
-  for (const int c : corners)
-    if (c != a && c != b) return c;
-  return corners[0];  // unreachable on a manifold triangle
+  return static_cast<int>(std::int64_t{c[0]} + c[1] + c[2] - a - b);
 }
 
 /// Loop and Butterfly split every triangle in four at its edge points (vertex points first):
 /// triangle f becomes children 4f … 4f + 3, the corner triangles then the middle one.
 void split_triangles(const MeshTopology& t, Step& s) {
   const int V = t.vertex_count;
-  reserve_huge(s.face_offsets, 4 * face_count(t) + 1);
-  reserve_huge(s.face_vertices, 12 * face_count(t));
-  for (std::size_t f = 0; f < face_count(t); ++f) {
-    const auto c = face(t, f);
-    const auto e = face_edges(t, f);  // e[i] joins c[i] → c[i + 1]
+  const std::size_t F = face_count(t);
+  // Written in place (inserts cost Loop's topology-only refinement a third).
+  assign_huge(s.face_offsets, 4 * F + 1, 0);
+  for (std::size_t f = 0; f <= 4 * F; ++f) s.face_offsets[f] = static_cast<int>(3 * f);
+  assign_huge(s.face_vertices, 12 * F, 0);
+  int* out = s.face_vertices.data();
+  for (std::size_t f = 0; f < F; ++f, out += 12) {
+    const int* c = t.face_vertices.data() + 3 * f;
+    const int* e = t.face_edges.data() + 3 * f;  // e[i] joins c[i] → c[i + 1]
     const int ab = V + e[0], bc = V + e[1], ca = V + e[2];
-    // The four children in one insert (four short inserts cost Loop's topology-only refinement 29 %).
     const std::array<int, 12> children{c[0], ab, ca, ab, c[1], bc, ca, bc, c[2], ab, bc, ca};
-    s.face_vertices.insert(s.face_vertices.end(), children.begin(), children.end());
-    for (int k = 1; k <= 4; ++k) s.face_offsets.push_back(s.face_offsets.back() + 3);
+    std::copy(children.begin(), children.end(), out);
   }
 }
 
@@ -410,7 +435,8 @@ BlzSides blz_sides(MeshScheme scheme, const MeshTopology& t, const LevelFeatures
 }
 
 /// Adds weight · (the flatness part of a BlzSide): s(c + ½x₁(e0 − c) + ½x₂(ek − c)).
-void add_flat(const BlzSide& b, double weight, RowWriter& row) {
+template <class Writer>
+void add_flat(const BlzSide& b, double weight, Writer& row) {
   const double w = weight * b.flatness;
   row.add(b.centre, w * (1 - 0.5 * b.x1 - 0.5 * b.x2));
   row.add(b.e0, w * 0.5 * b.x1);
@@ -421,6 +447,7 @@ void add_flat(const BlzSide& b, double weight, RowWriter& row) {
 /// vertex, an edge point per edge and, for the quad split, a face point per face, each from the
 /// rules' masks (cifs/subdivision/rules.hpp). `halves[2e + k]` receives the sharpness after the step
 /// of edge e's half at its end k (edges[e][k]); left empty on a smooth level.
+template <class Writer>
 Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& L, const MeshTags& tags,
                  RowSink sink, std::vector<double>& halves) {
   const bool quads = traits(scheme).split == Split::quads;
@@ -433,16 +460,24 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
   reserve_rows(
       s, static_cast<std::size_t>(s.vertex_count),
       quads ? static_cast<std::size_t>(V) + 5 * H : static_cast<std::size_t>(V) + 6 * t.edges.size());
-  RowWriter row(s, s.sink.drop ? 0 : t.vertex_count);  // dropped rows are not made at all
+  Writer row(s, s.sink.drop ? 0 : t.vertex_count);  // dropped rows are not made at all
   const bool smooth = smooth_level(L);
   halves.assign(smooth ? 0 : 2 * t.edges.size(), 0.0);
   std::vector<double> pe, ce;  // sharpness of a vertex's edges before and after the step
+  // The smooth rule depends on the face count alone: computed once per count.
+  std::vector<std::optional<VertexMask>> smooth_masks;
+  const auto smooth_mask = [&](const VertexNeighbourhood& n) -> const VertexMask& {
+    const auto k = static_cast<std::size_t>(n.faces);
+    if (k >= smooth_masks.size()) smooth_masks.resize(k + 1);
+    if (!smooth_masks[k]) smooth_masks[k] = vertex_mask(scheme, tags.crease_method, n);
+    return *smooth_masks[k];
+  };
   const BlzSides blz = tags.rules == RuleSet::blz && !smooth && scheme != MeshScheme::bilinear && !s.sink.drop
                            ? blz_sides(scheme, t, L, tags)
                            : BlzSides{};
   if (s.sink.drop && smooth) return s;  // topology only on a smooth level: nothing to compute
-  const bool face_points_first = quads && s.sink.input && blz.corners.empty();
-  if (face_points_first) row.make_face_points(t);
+  if constexpr (std::is_same_v<Writer, PointWriter>)
+    if (quads) row.make_face_points(t);  // BLZ's flattened ones are made again below
   for (int v = 0; v < V; ++v) {
     const auto ring = ring_edges(t, v);
     const auto faces = vertex_faces(t, static_cast<std::size_t>(v));
@@ -470,11 +505,11 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
         n.child_sharpness = decremented_sharpness(n.sharpness);
       }
       if (s.sink.drop) continue;
-      m = vertex_mask(scheme, tags.crease_method, n);
+      m = sharp_here ? vertex_mask(scheme, tags.crease_method, n) : smooth_mask(n);
     }
     if (s.sink.drop) continue;
     if (m.face != 0)
-      for (const int f : faces) add_face_point(t, static_cast<std::size_t>(f), m.face, row);
+      for (const int f : faces) row.add_face_point(t, static_cast<std::size_t>(f), m.face);
     if (m.edge != 0)
       for (const int e : ring) row.add(other_vertex(t, static_cast<std::size_t>(e), v), m.edge);
     if (m.crease_ends[0] >= 0)
@@ -484,27 +519,37 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
     row.finish();
   }
   if (s.sink.drop) return s;  // topology only: the halves are all the child tags need
+  EdgeNeighbourhood last_edge{.face_sizes = {-1, -1}};  // matches no edge
+  EdgeMask last_edge_mask;
   for (int e = 0; e < E; ++e) {
     const auto ue = static_cast<std::size_t>(e);
     const int a = t.edges[ue][0], b = t.edges[ue][1];  // not bindings: the lambdas below capture them
     const int f0 = t.edge_faces[ue][0], f1 = t.edge_faces[ue][1];
     const auto size = [&](int f) {
-      return f < 0 ? 0 : static_cast<int>(face(t, static_cast<std::size_t>(f)).size());
+      return f < 0 ? 0
+                   : t.face_offsets[static_cast<std::size_t>(f) + 1] -
+                         t.face_offsets[static_cast<std::size_t>(f)];
     };
-    const EdgeMask m =
-        edge_mask(scheme, tags.triangles,
-                  {.sharpness = edge_sharpness(L, ue),
-                   .child_sharpness = {smooth ? 0 : halves[2 * ue], smooth ? 0 : halves[2 * ue + 1]},
-                   .face_sizes = {size(f0), size(f1)}});
+    const EdgeNeighbourhood n{
+        .sharpness = edge_sharpness(L, ue),
+        .child_sharpness = {smooth ? 0 : halves[2 * ue], smooth ? 0 : halves[2 * ue + 1]},
+        .face_sizes = {size(f0), size(f1)}};
+    if (!(n == last_edge)) {  // neighbouring edges mostly share theirs: the mask is kept
+      last_edge = n;
+      last_edge_mask = edge_mask(scheme, tags.triangles, n);
+    }
+    const EdgeMask& m = last_edge_mask;
+    const auto add_face = [&](int f, double w) {
+      if (quads)
+        row.add_face_point(t, static_cast<std::size_t>(f), w);
+      else
+        row.add(opposite_corner(t, f, e), w);
+    };
     const auto standard = [&](double w) {
-      if (m.face != 0)
-        for (const int f : {f0, f1}) {
-          if (f < 0) continue;
-          if (quads)
-            add_face_point(t, static_cast<std::size_t>(f), w * m.face, row);
-          else
-            row.add(opposite_corner(t, f, e), w * m.face);
-        }
+      if (m.face != 0) {
+        add_face(f0, w * m.face);
+        if (f1 >= 0) add_face(f1, w * m.face);
+      }
       row.add(a, w * m.end);
       row.add(b, w * m.end);
     };
@@ -530,7 +575,7 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
     }
     row.finish();
   }
-  if (quads && !face_points_first)
+  if (quads && !(std::is_same_v<Writer, PointWriter> && blz.corners.empty()))
     for (int f = 0; f < F; ++f) {
       // BLZ: at concave corners, the mean of the face point flattened towards each.
       int flattened = 0;
@@ -539,13 +584,13 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
              h < t.face_offsets[static_cast<std::size_t>(f) + 1]; ++h)
           flattened += blz.corners[static_cast<std::size_t>(h)].centre >= 0 ? 1 : 0;
       if (flattened == 0) {
-        add_face_point(t, static_cast<std::size_t>(f), 1, row);
+        row.add_face_point(t, static_cast<std::size_t>(f), 1);
       } else {
         for (int h = t.face_offsets[static_cast<std::size_t>(f)];
              h < t.face_offsets[static_cast<std::size_t>(f) + 1]; ++h) {
           const BlzSide& side = blz.corners[static_cast<std::size_t>(h)];
           if (side.centre < 0) continue;
-          add_face_point(t, static_cast<std::size_t>(f), (1 - side.flatness) / flattened, row);
+          row.add_face_point(t, static_cast<std::size_t>(f), (1 - side.flatness) / flattened);
           add_flat(side, 1.0 / flattened, row);
         }
       }
@@ -652,12 +697,13 @@ void butterfly_edge_point(const MeshTopology& t, int e, Row& row) {
 }
 
 /// Old vertices stay (interpolating); an edge point per edge (butterfly_edge_point).
+template <class Writer>
 Step butterfly_step(const MeshTopology& t, RowSink sink) {
   const int V = t.vertex_count, E = static_cast<int>(t.edges.size());
   Step s;
   s.sink = sink;
   s.vertex_count = V + E;
-  RowWriter row(s, t.vertex_count);
+  Writer row(s, t.vertex_count);
   for (int v = 0; v < V; ++v) {
     row.add(v, 1);
     row.finish();
@@ -677,6 +723,7 @@ Step butterfly_step(const MeshTopology& t, RowSink sink) {
 /// trisected by (p_− + 16p_a + 10p_b)/27 and (10p_a + 16p_b + p_+)/27 in place of its face's
 /// centroid, and boundary vertices move to (4p_− + 19p + 4p_+)/27. After an even step every
 /// boundary face has exactly one boundary edge, which the odd step relies on.
+template <class Writer>
 Step sqrt3_step(const MeshTopology& t, bool refine_boundary, RowSink sink) {
   const int V = t.vertex_count, F = static_cast<int>(face_count(t));
   Step s;
@@ -684,7 +731,7 @@ Step sqrt3_step(const MeshTopology& t, bool refine_boundary, RowSink sink) {
   s.vertex_count = V + F;  // and one more point per boundary face when it is trisected
   if (refine_boundary)
     for (std::size_t e = 0; e < t.edges.size(); ++e) s.vertex_count += is_boundary_edge(t, e) ? 1 : 0;
-  RowWriter row(s, t.vertex_count);
+  Writer row(s, t.vertex_count);
   for (int v = 0; v < V; ++v) {
     const auto ring = ring_edges(t, v);
     if (ring.empty() || (on_boundary(t, v) && !refine_boundary)) {
@@ -713,7 +760,7 @@ Step sqrt3_step(const MeshTopology& t, bool refine_boundary, RowSink sink) {
       for (std::size_t i = 0; i < 3; ++i)
         if (is_boundary_edge(t, static_cast<std::size_t>(edges[i]))) split = i;
     if (split == 3) {
-      add_face_point(t, static_cast<std::size_t>(f), 1, row);
+      row.add_face_point(t, static_cast<std::size_t>(f), 1);
       row.finish();
       for (std::size_t i = 0; i < 3; ++i) apex[static_cast<std::size_t>(base) + i] = next;
       ++next;
@@ -763,11 +810,12 @@ Step sqrt3_step(const MeshTopology& t, bool refine_boundary, RowSink sink) {
 /// interior edge (a quad) and per interior vertex (its corner points around it). Boundary edges
 /// and vertices make no face, so the surface shrinks away from the boundary (CGAL's rule:
 /// corner points are the same at the boundary).
+template <class Writer>
 Step doo_sabin_step(const MeshTopology& t, RowSink sink) {
   Step s;
   s.sink = sink;
   s.vertex_count = static_cast<int>(t.face_vertices.size());  // corner (f, i) → face_offsets[f] + i
-  RowWriter row(s, t.vertex_count);
+  Writer row(s, t.vertex_count);
   for (std::size_t f = 0; f < face_count(t); ++f) {
     const auto corners = face(t, f);
     const std::size_t k = corners.size();
@@ -838,27 +886,33 @@ void split_faces(MeshScheme scheme, const MeshTopology& t, Step& s) {
     split_triangles(t, s);
 }
 
-/// Step `level` (0 for the first) of a refinement: its rows and, unless `faces` is false for a
-/// scheme that splits_faces (then split_faces makes them), its child faces. The rows go to `sink`
-/// (RowSink). `halves` as primal_step.
-Step step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& L, const MeshTags& tags, int level,
-          std::vector<double>& halves, RowSink sink = {}, bool faces = true) {
-  Step s;
+/// The rows of step `level` of a scheme, made by Writer.
+template <class Writer>
+Step rows_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& L, const MeshTags& tags,
+               int level, std::vector<double>& halves, RowSink sink) {
   switch (scheme) {
     case MeshScheme::catmull_clark:
     case MeshScheme::loop:
     case MeshScheme::bilinear:
-      s = primal_step(scheme, t, L, tags, sink, halves);
-      break;
+      return primal_step<Writer>(scheme, t, L, tags, sink, halves);
     case MeshScheme::butterfly:
-      s = butterfly_step(t, sink);
-      break;
+      return butterfly_step<Writer>(t, sink);
     case MeshScheme::doo_sabin:
-      return doo_sabin_step(t, sink);
+      return doo_sabin_step<Writer>(t, sink);
     case MeshScheme::sqrt3:
-      return sqrt3_step(t, level % 2 == 1, sink);
+      return sqrt3_step<Writer>(t, level % 2 == 1, sink);
   }
-  if (faces) split_faces(scheme, t, s);
+  return {};
+}
+
+/// Step `level` (0 for the first) of a refinement: its rows — applied to sink.input when given
+/// (PointWriter), else kept or dropped (RowWriter) — and, unless `faces` is false for a scheme that
+/// splits_faces (then split_faces makes them), its child faces. `halves` as primal_step.
+Step step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& L, const MeshTags& tags, int level,
+          std::vector<double>& halves, RowSink sink = {}, bool faces = true) {
+  Step s = sink.input ? rows_step<PointWriter>(scheme, t, L, tags, level, halves, sink)
+                      : rows_step<RowWriter>(scheme, t, L, tags, level, halves, sink);
+  if (faces && splits_faces(scheme)) split_faces(scheme, t, s);
   return s;
 }
 
@@ -1240,7 +1294,8 @@ Mesh subdivide(const Mesh& mesh, MeshScheme scheme, int levels, const MeshOption
   }
   out.tags = std::move(tags);
   for (detail::ChannelLevel& c : channels) out.face_varying.push_back(std::move(c.channel));
-  return split ? detail::merge_copies(std::move(out), same.vertex) : out;
+  if (split) return detail::merge_copies(std::move(out), same.vertex);
+  return out;  // moved: the conditional expression copied the whole mesh
 }
 
 namespace {

@@ -597,7 +597,8 @@ class LimitTest(unittest.TestCase):
         ico = cifs.io.read_mesh(str(EXAMPLES / "meshes" / "icosahedron.obj"))
         for level in (0, 1):
             limit = sd.limit(ico, "butterfly", level, normals=True)
-            np.testing.assert_array_equal(limit.vertices, sd.butterfly(ico, level).vertices)
+            # To round-off: the limit replays the weights, butterfly() applies the rules as it makes them.
+            np.testing.assert_allclose(limit.vertices, sd.butterfly(ico, level).vertices, rtol=0, atol=1e-15)
             normals, points = np.asarray(limit.normals), np.asarray(limit.vertices)
             np.testing.assert_allclose(np.linalg.norm(normals, axis=1), 1, atol=1e-15)
             self.assertTrue(np.all(np.sum(normals * (points - points.mean(axis=0)), axis=1) > 0))

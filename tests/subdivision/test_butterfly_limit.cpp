@@ -233,7 +233,10 @@ TEST_CASE("butterfly limit normals point out of convex shapes; boundary vertices
     }
   }
   // Without normals an open mesh is fine: every vertex is its own limit.
-  CHECK(limit_mesh(fan(5), MeshScheme::butterfly, 1).vertices == butterfly(fan(5), 1).vertices);
+  // (To round-off: limit_mesh replays the weights, butterfly applies the rules as it makes them.)
+  CHECK((limit_mesh(fan(5), MeshScheme::butterfly, 1).vertices - butterfly(fan(5), 1).vertices)
+            .cwiseAbs()
+            .maxCoeff() <= 1e-15);
   CHECK_THROWS_WITH(
       limit_mesh(fan(5), MeshScheme::butterfly, 0, {.normals = true}),
       "butterfly: vertex 6 (valence 3) is on the boundary: butterfly limit normals are built at "

@@ -151,8 +151,8 @@ TEST_CASE("two levels at once = one level of one level; replay on new data = a f
     moved.col(0).array() += 0.5;
     Mesh other = m;
     other.vertices = moved;
-    // To round-off: a one-shot quad split weighs each face's centre once (OpenSubdiv's order), the
-    // replay its corners.
+    // To round-off: the one-shot applies each rule as it is made (a quad split's face centres once,
+    // OpenSubdiv's order), the replay sums a row's weights per column first.
     CHECK((apply(r, moved) - subdivide(other, scheme, 2).vertices).cwiseAbs().maxCoeff() <= 1e-15);
     Points wide(m.vertices.rows(), 5);
     wide << m.vertices, moved.leftCols(2);

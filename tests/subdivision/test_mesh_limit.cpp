@@ -224,7 +224,8 @@ TEST_CASE("limit stencils: what is not built is refused, naming the vertex", "[s
                     Contains("doo-sabin: limit points belong to faces"));
   // Butterfly interpolates: every vertex is its own limit (its normals: test_butterfly_limit.cpp).
   const Mesh b = limit_mesh(bipyramid(), MeshScheme::butterfly, 2);
-  CHECK(b.vertices == butterfly(bipyramid(), 2).vertices);
+  CHECK((b.vertices - butterfly(bipyramid(), 2).vertices).cwiseAbs().maxCoeff() <=
+        1e-15);  // replay vs one-shot
   CHECK_THROWS_WITH(limit_stencils(refine_topology(fan(17), MeshScheme::sqrt3, 0)),
                     Contains("sqrt3: vertex 0 (valence 17): valence 17 is out of range"));
   // √3's boundary vertices of 6 faces and more have no plane their spectrum proves

@@ -97,6 +97,7 @@ struct EdgeNeighbourhood {
   double sharpness = 0;
   std::array<double, 2> child_sharpness{0, 0};
   std::array<int, 2> face_sizes{0, 0};  // 0: no second face
+  bool operator==(const EdgeNeighbourhood&) const = default;
 };
 /// An edge point's weights: `end` on each end, `face` on each face — its centre for Catmull–Clark,
 /// its corner opposite the edge for Loop (OpenSubdiv's ComputeEdgeVertexMask: the smooth mask, the
