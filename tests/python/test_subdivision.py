@@ -601,9 +601,10 @@ class LimitTest(unittest.TestCase):
             normals, points = np.asarray(limit.normals), np.asarray(limit.vertices)
             np.testing.assert_allclose(np.linalg.norm(normals, axis=1), 1, atol=1e-15)
             self.assertTrue(np.all(np.sum(normals * (points - points.mean(axis=0)), axis=1) > 0))
+        # Boundary vertices take normals where the boundary rule is C1 (2 and 3 faces); vertex 6 has one face.
         grid = cifs.io.read_mesh(str(EXAMPLES / "meshes" / "open_grid_triangles.obj"))
-        with self.assertRaisesRegex(cifs.InvalidInput, "is on the boundary: butterfly limit normals are built at "
-                                    "interior vertices only"):
+        with self.assertRaisesRegex(cifs.InvalidInput, r"vertex 6 \(valence 2\) is on the boundary with 1 face "
+                                    r"\(lambda1 = 0.5, lambda2 = 0.25\), where the local analysis finds undecided"):
             sd.limit(grid, "butterfly", 0, normals=True)
 
     def test_limits_follow_the_tags(self):
