@@ -701,9 +701,9 @@ constexpr long double kSpectralTolerance = 1e-12L;
 /// The eigenfunctions of an eigenspace (the columns of `basis`, eigenvalue `lambda`) at a boundary
 /// vertex: their limit values at every vertex two steps down whose limit is the regular one (an
 /// interior vertex of the regular valence, or a boundary vertex of the regular boundary valence:
-/// the boundary curve's (1, 4, 1)/6; Butterfly: every vertex, its own limit), off the centre. An eigenvector whose eigenfunction is 0 —
-/// its limit values all vanish — does not shape the surface (the third ½ of a regular corner:
-/// c stays, the two curves are straight in the characteristic map, and the quad between them
+/// the boundary curve's (1, 4, 1)/6; Butterfly: every vertex, its own limit), off the centre. An eigenvector
+/// whose eigenfunction is 0 — its limit values all vanish — does not shape the surface (the third ½ of a
+/// regular corner: c stays, the two curves are straight in the characteristic map, and the quad between them
 /// reproduces the plane). Returns the live combinations: the basis times the right singular
 /// vectors of the limit values above 1e-9 (the net is scaled to 1).
 LongMatrix live_eigenfunctions(MeshScheme scheme, int n, const LocalOptions& options, long double lambda,

@@ -497,7 +497,8 @@ LimitMask butterfly_boundary_mask(int faces) {
   const auto N = S.values.rows();
   // Refused: the position alone, on c; otherwise the masks on the neighbourhood (c first).
   LimitMask out{.position = {1.0}, .tangent_u = {}, .tangent_v = {}, .refused = {}, .sectors = {}};
-  const std::string where = "on the boundary with " + std::to_string(faces) + (faces == 1 ? " face" : " faces") +
+  const std::string where = "on the boundary with " + std::to_string(faces) +
+                            (faces == 1 ? " face" : " faces") +
                             " (lambda1 = " + number_text(static_cast<double>(spectrum.subdominant), 6) +
                             ", lambda2 = " + number_text(static_cast<double>(spectrum.second), 6) + "), ";
   if (const C1Verdict verdict = c1_verdict(S, spectrum); !verdict.c1) {
@@ -525,7 +526,8 @@ LimitMask butterfly_boundary_mask(int faces) {
   Eigen::Matrix<long double, 2, 2> uv = Eigen::Matrix<long double, 2, 2>::Zero();
   for (Eigen::Index i = 0; i < N; ++i)
     for (Eigen::Index d = 0; d < 2; ++d)
-      uv.col(d) += left.row(i).transpose() * static_cast<long double>(fan.vertices(nb[static_cast<std::size_t>(i)], d));
+      uv.col(d) += left.row(i).transpose() *
+                   static_cast<long double>(fan.vertices(nb[static_cast<std::size_t>(i)], d));
   if (uv.determinant() < 0) left.col(1) *= -1;
   out.position.resize(static_cast<std::size_t>(N), 0.0);
   for (Eigen::Index i = 0; i < 2; ++i) {
@@ -631,7 +633,7 @@ LimitStencils limit_stencils(const MeshRefinement& r) {
   std::map<std::pair<int, bool>, int> sqrt3_boundary;  // √3's boundary classes: (faces, odd level)
   const bool odd_level = r.levels.size() % 2 == 0;     // levels.size() − 1 steps taken
   std::map<std::vector<int>, int> classes;
-  int butterfly_two_faces = -1;         // Butterfly's position-only mask at an interior vertex of valence 2
+  int butterfly_two_faces = -1;           // Butterfly's position-only mask at an interior vertex of valence 2
   std::map<int, int> butterfly_boundary;  // Butterfly's boundary masks by number of faces
   std::vector<int> faces, nb;
   const bool rings = scheme == MeshScheme::catmull_clark || scheme == MeshScheme::loop;
@@ -664,11 +666,12 @@ LimitStencils limit_stencils(const MeshRefinement& r) {
         }
       } else if (n < 3) {
         if (butterfly_two_faces < 0) {
-          out.masks.push_back(LimitMask{.position = {1.0},
-                                        .tangent_u = {},
-                                        .tangent_v = {},
-                                        .refused = "an interior vertex of two faces, which has no tangent plane",
-                                        .sectors = {}});
+          out.masks.push_back(
+              LimitMask{.position = {1.0},
+                        .tangent_u = {},
+                        .tangent_v = {},
+                        .refused = "an interior vertex of two faces, which has no tangent plane",
+                        .sectors = {}});
           butterfly_two_faces = static_cast<int>(out.masks.size()) - 1;
         }
         mask = butterfly_two_faces;

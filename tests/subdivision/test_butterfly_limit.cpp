@@ -265,8 +265,8 @@ TEST_CASE("butterfly boundary normals (2 and 3 faces) are the limit of the refin
       const std::size_t faces = vertex_faces(t, static_cast<std::size_t>(v)).size();
       INFO("level " << level << ", vertex " << v << " (" << faces << " faces)");
       ++seen[faces];
-      const LocalSpectrum spectrum =
-          local_spectrum(local_matrix(MeshScheme::butterfly, static_cast<int>(faces) + 1, {.boundary = true}));
+      const LocalSpectrum spectrum = local_spectrum(
+          local_matrix(MeshScheme::butterfly, static_cast<int>(faces) + 1, {.boundary = true}));
       const double rate = static_cast<double>(std::abs(spectrum.mu) / spectrum.second);
       const Eigen::RowVector3d ours = frame_normal(f.tangent_u, f.tangent_v, v);
       std::vector<double> error;
@@ -276,8 +276,8 @@ TEST_CASE("butterfly boundary normals (2 and 3 faces) are the limit of the refin
       CHECK(error[K] < error[K - 1]);
       CHECK(error[K - 1] < error[K - 2]);
       // μ = ¼ is multiple at 2 and 3 faces (k·r^k, the ratio nears r from above as (k + 1)/k does):
-      // x_k = e_k / r^k settles or grows linearly, its second difference vanishes (within 10 % of x; the
-      // largest seen is 1 %); a wrong normal stalls at its error, x grows like r^−k, the difference ≥ x/5.
+      // x_k = e_k / r^k settles or grows linearly, its second difference vanishes (within 10 % of x); a
+      // wrong normal stalls at its error, x grows like r^−k, the difference ≥ x/5.
       const auto x = [&](std::size_t k) { return error[k] / std::pow(rate, static_cast<double>(k)); };
       CHECK(std::abs(x(K) - 2 * x(K - 1) + x(K - 2)) <= 0.1 * x(K));
     }
@@ -292,7 +292,8 @@ TEST_CASE("butterfly boundary normals (2 and 3 faces) are the limit of the refin
     const LimitFrame finer = frame_at(mesh, level);
     for (Eigen::Index v = 0; v < base.positions.rows(); ++v) {
       INFO("level " << level << ", vertex " << v);
-      CHECK((frame_normal(finer.tangent_u, finer.tangent_v, v) - frame_normal(base.tangent_u, base.tangent_v, v))
+      CHECK((frame_normal(finer.tangent_u, finer.tangent_v, v) -
+             frame_normal(base.tangent_u, base.tangent_v, v))
                 .norm() <= 1e-13);
       CHECK(frame_normal(finer.tangent_u, finer.tangent_v, v).z() > 0.5);
     }
@@ -302,7 +303,8 @@ TEST_CASE("butterfly boundary normals (2 and 3 faces) are the limit of the refin
   const MeshRefinement r = refine_topology(mesh, MeshScheme::butterfly, 0);
   const LimitStencils s = limit_stencils(r);
   const LimitFrame f = evaluate_limit(s, mesh.vertices);
-  const LimitFrame g = evaluate_limit(s, (mesh.vertices * A.transpose()).rowwise() + Eigen::RowVector3d(3, -2, 5));
+  const LimitFrame g =
+      evaluate_limit(s, (mesh.vertices * A.transpose()).rowwise() + Eigen::RowVector3d(3, -2, 5));
   const double scale = f.tangent_u.cwiseAbs().maxCoeff();
   CHECK((g.tangent_u - f.tangent_u * A.transpose()).cwiseAbs().maxCoeff() <= 1e-13 * scale);
   CHECK((g.tangent_v - f.tangent_v * A.transpose()).cwiseAbs().maxCoeff() <= 1e-13 * scale);

@@ -368,7 +368,6 @@ TEST_CASE("boundary vertices: the boundary curve's block and the interior ring",
   }
 }
 
-
 TEST_CASE("√3 boundary vertices: the ternary cubic B-spline's block and the interior ring, exactly",
           "[subdivision][mesh_analysis]") {
   // Kobbelt 2000 §5, two steps from an even level (keep the boundary, then trisect it), derived by
@@ -430,8 +429,9 @@ TEST_CASE("local matrices: bad valences are one-line InvalidInputs", "[subdivisi
   CHECK_THROWS_WITH(local_matrix(MeshScheme::catmull_clark, 17), Contains("valence 17 is out of range"));
   CHECK_THROWS_WITH(local_matrix(MeshScheme::loop, 17, {.boundary = true}),
                     Contains("boundary valence 17 is out of range; expected 2 to 16"));
-  CHECK_THROWS_WITH(local_matrix(MeshScheme::doo_sabin, 4, {.boundary = true}),
-                    Contains("boundary vertices are analysed for catmull-clark, loop, butterfly and sqrt3 only"));
+  CHECK_THROWS_WITH(
+      local_matrix(MeshScheme::doo_sabin, 4, {.boundary = true}),
+      Contains("boundary vertices are analysed for catmull-clark, loop, butterfly and sqrt3 only"));
   CHECK_THROWS_WITH(
       local_matrix(MeshScheme::butterfly, 2, {.boundary = true, .rule = BoundaryRule::edge_and_corner}),
       Contains("butterfly: the boundary has one rule under this scheme (the 4-point curve)"));
