@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <mutex>
 #include <numbers>
 #include <numeric>
 #include <span>
@@ -490,7 +491,7 @@ LimitMask butterfly_mask(int n) {
 /// tangents the left eigenvectors of λ1 and λ2 (the 4-point curve's ½ and the inside's; sector_plane
 /// takes one-ring sectors only) where the local analysis finds the vertex C1 (c1_verdict: 2 and 3
 /// faces, a non-defective pair); elsewhere refused with the verdict's reason and the two eigenvalues.
-LimitMask butterfly_boundary_mask(int faces) {
+LimitMask butterfly_boundary_class(int faces) {
   const LocalOptions boundary{.boundary = true};
   const LocalMatrix S = local_matrix(MeshScheme::butterfly, faces + 1, boundary);
   const LocalSpectrum spectrum = local_spectrum(S);
@@ -536,6 +537,20 @@ LimitMask butterfly_boundary_mask(int faces) {
     for (Eigen::Index j = 0; j < N; ++j) mask.push_back(static_cast<double>(w(j)));
   }
   return out;
+}
+
+/// butterfly_boundary_class, computed once per number of faces (the local analysis, sampled, takes tens of
+/// milliseconds; it is the same for every mesh) and kept.
+LimitMask butterfly_boundary_mask(int faces) {
+  static std::mutex lock;
+  static std::map<int, LimitMask> known;
+  {
+    const std::lock_guard<std::mutex> hold(lock);
+    if (const auto it = known.find(faces); it != known.end()) return it->second;
+  }
+  LimitMask out = butterfly_boundary_class(faces);
+  const std::lock_guard<std::mutex> hold(lock);
+  return known.try_emplace(faces, std::move(out)).first->second;
 }
 
 /// Whether S_n of butterfly_mask maps v's neighbourhood at this level to its neighbourhood at the

@@ -85,9 +85,9 @@ TEST_CASE("butterfly's tangent masks are the left eigenvectors of S_n for its su
     std::vector<Rational> l(19, Rational(0));
     const auto a = [&](int j) { return cosine[static_cast<std::size_t>(((j + shift) % 6 + 6) % 6)]; };
     for (int j = 0; j < 6; ++j) {
-      l[static_cast<std::size_t>(1 + 3 * j)] = a(j);
-      l[static_cast<std::size_t>(2 + 3 * j)] = a(j) / 16;
-      l[static_cast<std::size_t>(3 + 3 * j)] = -(a(j) + a(j + 1)) / 6;
+      l[1 + 3 * static_cast<std::size_t>(j)] = a(j);
+      l[2 + 3 * static_cast<std::size_t>(j)] = a(j) / 16;
+      l[3 + 3 * static_cast<std::size_t>(j)] = -(a(j) + a(j + 1)) / 6;
     }
     for (int col = 0; col < 19; ++col) {
       Rational sum(0);
