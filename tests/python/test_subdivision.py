@@ -836,6 +836,9 @@ class LocalAnalysisTest(unittest.TestCase):
         self.assertTrue(sqrt3["c1"]["verdict"], sqrt3["c1"]["reason"])
         self.assertAlmostEqual(sqrt3["lambda1"], (2 + 2 * math.cos(math.pi / 4)) / 9, places=15)
         self.assertFalse(sd.local_analysis("sqrt3", 8, boundary="edge")["c1"]["verdict"])
+        # Butterfly's boundary rule (4-point curve, reflected wings): C1 at 2 and 3 faces, not at 4.
+        self.assertTrue(sd.local_analysis("butterfly", 4, boundary="edge")["c1"]["verdict"])
+        self.assertFalse(sd.local_analysis("butterfly", 5, boundary="edge")["c1"]["verdict"])
         self.assertTrue(sd.local_analysis("loop", 5, sharp=[0])["c1"]["verdict"])
         concave = sd.local_analysis("loop", 2, boundary="edge", corner=True, concave=True)
         self.assertIn("concave", concave["c1"]["reason"])
@@ -894,7 +897,7 @@ class LocalAnalysisTest(unittest.TestCase):
     def test_errors(self):
         with self.assertRaisesRegex(cifs.InvalidInput, "valence 2 is out of range"):
             sd.local_analysis("loop", 2)
-        with self.assertRaisesRegex(cifs.InvalidInput, "catmull-clark, loop and sqrt3 only"):
-            sd.local_analysis("butterfly", 5, boundary="edge")
+        with self.assertRaisesRegex(cifs.InvalidInput, "catmull-clark, loop, butterfly and sqrt3 only"):
+            sd.local_analysis("doo-sabin", 5, boundary="edge")
         with self.assertRaisesRegex(cifs.InvalidInput, "unknown boundary rule 'sharp'"):
             sd.local_analysis("loop", 4, boundary="sharp")

@@ -58,6 +58,9 @@ TEST_CASE("butterfly boundary vertices: the 4-point curve's tangent and the Jord
       for (int i = 0; i < N; ++i) lS += tangent[static_cast<std::size_t>(i)] * E(i, j);
       CHECK(lS == q(1, 2) * tangent[static_cast<std::size_t>(j)]);
     }
+    // The 4-point scheme's ¼ and ⅛ are eigenvalues at every k too.
+    CHECK(exact_rank(shifted_power(E, q(1, 4), 1)) < N);
+    CHECK(exact_rank(shifted_power(E, q(1, 8), 1)) < N);
     // ½: the curve's alone at k = 1, 2, 4, 5, 7, 8 (geometric and algebraic multiplicity 1); the
     // curve's and the inside's at k = 3 (the regular boundary: two eigenvectors) and at k = 6 (one
     // eigenvector: a Jordan block, the inside's ½ coupled to the curve's tangent).

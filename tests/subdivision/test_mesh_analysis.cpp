@@ -64,6 +64,7 @@ std::vector<Complex> loop_spectrum(int n) {
 /// f̄' = ¼ c + ½ r̄ + ¼ f̄.
 std::vector<Complex> catmull_clark_spectrum(int n) {
   std::vector<Complex> out;
+  out.reserve(2 * static_cast<std::size_t>(n) + 1);
   Eigen::Matrix<long double, 3, 3> zero;
   const long double nd = n;
   zero << (4 * nd - 7) / (4 * nd), 3 / (2 * nd), 1 / (4 * nd), 3.0L / 8, 0.5L, 1.0L / 8, 0.25L, 0.5L, 0.25L;

@@ -169,7 +169,8 @@ LocalSpectrum local_spectrum(const LocalMatrix& matrix);
 /// rows of a sector's vertices (c, its two sharp edges' points, the points inside it) read nothing
 /// from the other sectors, so each sector is the boundary vertex of as many faces under the same
 /// centre rule, analysed on its own: λ0 = 1 simple, λ1 ≥ λ2 real and positive (equal or not: a
-/// boundary's curve gives ½, its inside another value), |λ3| < λ2, and the characteristic map of the
+/// boundary's curve gives ½, its inside another value; equal with one eigenvector, a Jordan block, is
+/// undecided), |λ3| < λ2, and the characteristic map of the
 /// eigenvectors of λ1 and λ2 regular on the sector and injective — its inner boundary, from one
 /// sharp edge to the other, sweeps an angle in (0, 2π) without passing through 0 (it does when
 /// both eigenvectors vanish on the sharp edges: the sector's curves then shrink faster than its
