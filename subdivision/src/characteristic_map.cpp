@@ -701,9 +701,9 @@ constexpr long double kSpectralTolerance = 1e-12L;
 /// The eigenfunctions of an eigenspace (the columns of `basis`, eigenvalue `lambda`) at a boundary
 /// vertex: their limit values at every vertex two steps down whose limit is the regular one (an
 /// interior vertex of the regular valence, or a boundary vertex of the regular boundary valence:
-/// the boundary curve's (1, 4, 1)/6), off the centre. An eigenvector whose eigenfunction is 0 —
-/// its limit values all vanish — does not shape the surface (the third ½ of a regular corner:
-/// c stays, the two curves are straight in the characteristic map, and the quad between them
+/// the boundary curve's (1, 4, 1)/6; Butterfly: every vertex, its own limit), off the centre. An eigenvector
+/// whose eigenfunction is 0 — its limit values all vanish — does not shape the surface (the third ½ of a
+/// regular corner: c stays, the two curves are straight in the characteristic map, and the quad between them
 /// reproduces the plane). Returns the live combinations: the basis times the right singular
 /// vectors of the limit values above 1e-9 (the net is scaled to 1).
 LongMatrix live_eigenfunctions(MeshScheme scheme, int n, const LocalOptions& options, long double lambda,
@@ -723,7 +723,9 @@ LongMatrix live_eigenfunctions(MeshScheme scheme, int n, const LocalOptions& opt
     const auto ring = vertex_edges(t, static_cast<std::size_t>(v));
     const auto around = [&](std::size_t e) { return other_vertex(t, static_cast<std::size_t>(ring[e]), v); };
     std::vector<std::pair<int, long double>> weights;
-    if (t.boundary_vertex[static_cast<std::size_t>(v)]) {
+    if (scheme == MeshScheme::butterfly) {  // interpolating: every vertex is its own limit
+      weights = {{v, 1.0L}};
+    } else if (t.boundary_vertex[static_cast<std::size_t>(v)]) {
       if (static_cast<int>(ring.size()) != regular / 2 + 1) continue;
       weights = {{v, 4.0L / 6}, {around(0), 1.0L / 6}, {around(ring.size() - 1), 1.0L / 6}};
     } else {
@@ -833,6 +835,17 @@ std::optional<C1Verdict> shared_subdominant(const LocalMatrix& S, LocalSpectrum&
   return std::nullopt;
 }
 
+/// λ1 = λ2 with one eigenvector (a Jordan block: Butterfly's ½ at a boundary vertex of 6 faces, the
+/// curve's tangent and the inside's): local_spectrum's basis is then not two eigenvectors (its residual
+/// shows it), and the characteristic map of a generalized eigenvector is not tested.
+C1Verdict defective_subdominant(const LocalSpectrum& spectrum) {
+  C1Verdict out;
+  out.decided = false;
+  out.reason = "undecided: lambda1 = lambda2 = " + number_text(static_cast<double>(spectrum.subdominant), 3) +
+               " is defective (a Jordan block): its eigenfunctions are not tested";
+  return out;
+}
+
 /// The verdict of a characteristic net (the reason included); `corner`/`concave`: the sector angle
 /// asked of a corner sector.
 C1Verdict net_verdict(MeshScheme scheme, int valence, const CharacteristicNet& net, const C1Options& options,
@@ -863,7 +876,7 @@ C1Verdict net_verdict(MeshScheme scheme, int valence, const CharacteristicNet& n
   } else if (!open && out.winding != 1) {
     out.reason = "not C1: the characteristic map winds " + std::to_string(std::abs(out.winding)) +
                  " times around the centre (not injective)";
-  } else if (open && (out.angle <= 0 || out.angle >= 2 * kPiL)) {
+  } else if (open && (out.angle <= 1e-9L || out.angle >= 2 * kPiL)) {  // 0: the ring goes out and back
     out.reason = "not C1: the sector's image spans " + degrees + ", outside (0, 360) (not injective)";
   } else if (open && corner && concave && out.angle <= kPiL) {
     out.reason = "not C1 as a concave corner: the sector's image spans " + degrees +
@@ -903,6 +916,8 @@ C1Verdict sector_verdicts(const LocalMatrix& matrix, const C1Options& options) {
     auto failure = spectral_failure(sector.spectrum, false);
     if (failure && sector.spectrum.dominant_simple && !sector.spectrum.gap)
       failure = shared_subdominant(S, sector.spectrum);
+    if (!failure && sector.spectrum.residual > kSpectralTolerance)
+      failure = defective_subdominant(sector.spectrum);
     if (failure) {
       sector.verdict = std::move(*failure);
     } else {

@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <mutex>
 #include <numbers>
 #include <numeric>
 #include <span>
@@ -484,6 +485,74 @@ LimitMask butterfly_mask(int n) {
   return m;
 }
 
+/// The masks at a boundary vertex of `faces` faces on mesh_analysis.hpp's boundary neighbourhood (c, r_j,
+/// p_j, q_j), valid wherever the production step there is local_matrix's — from the first step on at
+/// every boundary vertex (butterfly_through_step carries them back one step). The position is c; the
+/// tangents the left eigenvectors of λ1 and λ2 (the 4-point curve's ½ and the inside's; sector_plane
+/// takes one-ring sectors only) where the local analysis finds the vertex C1 (c1_verdict: 2 and 3
+/// faces, a non-defective pair); elsewhere refused with the verdict's reason and the two eigenvalues.
+LimitMask butterfly_boundary_class(int faces) {
+  const LocalOptions boundary{.boundary = true};
+  const LocalMatrix S = local_matrix(MeshScheme::butterfly, faces + 1, boundary);
+  const LocalSpectrum spectrum = local_spectrum(S);
+  const auto N = S.values.rows();
+  // Refused: the position alone, on c; otherwise the masks on the neighbourhood (c first).
+  LimitMask out{.position = {1.0}, .tangent_u = {}, .tangent_v = {}, .refused = {}, .sectors = {}};
+  const std::string where = "on the boundary with " + std::to_string(faces) +
+                            (faces == 1 ? " face" : " faces") +
+                            " (lambda1 = " + number_text(static_cast<double>(spectrum.subdominant), 6) +
+                            ", lambda2 = " + number_text(static_cast<double>(spectrum.second), 6) + "), ";
+  if (const C1Verdict verdict = c1_verdict(S, spectrum); !verdict.c1) {
+    out.refused = where + "where the local analysis finds " + verdict.sectors.front().verdict.reason;
+    return out;
+  }
+  // The left eigenvectors (kernels of Sᵀ − λ), oriented like the faces: on the fan's planar positions
+  // (counter-clockwise), l_1·x × l_2·x points up.
+  const LongMatrix I = LongMatrix::Identity(N, N);
+  const auto left_kernel = [&](long double lambda, Eigen::Index count) {
+    return LongMatrix(Eigen::JacobiSVD<LongMatrix>(S.values.transpose() - lambda * I, Eigen::ComputeFullV)
+                          .matrixV()
+                          .rightCols(count));
+  };
+  LongMatrix left(N, 2);
+  if (spectrum.subdominant_pair) {
+    left = left_kernel(spectrum.subdominant, 2);
+  } else {
+    left.col(0) = left_kernel(spectrum.subdominant, 1);
+    left.col(1) = left_kernel(spectrum.second, 1);
+  }
+  const Mesh fan = local_mesh(MeshScheme::butterfly, faces + 1, boundary, 2);
+  const std::vector<int> nb =
+      detail::neighbourhood(build_topology(fan, "local mesh"), MeshScheme::butterfly, 0, 1, true);
+  Eigen::Matrix<long double, 2, 2> uv = Eigen::Matrix<long double, 2, 2>::Zero();
+  for (Eigen::Index i = 0; i < N; ++i)
+    for (Eigen::Index d = 0; d < 2; ++d)
+      uv.col(d) += left.row(i).transpose() *
+                   static_cast<long double>(fan.vertices(nb[static_cast<std::size_t>(i)], d));
+  if (uv.determinant() < 0) left.col(1) *= -1;
+  out.position.resize(static_cast<std::size_t>(N), 0.0);
+  for (Eigen::Index i = 0; i < 2; ++i) {
+    const LongVector w = left.col(i).normalized();  // only the plane matters
+    std::vector<double>& mask = i == 0 ? out.tangent_u : out.tangent_v;
+    for (Eigen::Index j = 0; j < N; ++j) mask.push_back(static_cast<double>(w(j)));
+  }
+  return out;
+}
+
+/// butterfly_boundary_class, computed once per number of faces (the local analysis, sampled, takes tens of
+/// milliseconds; it is the same for every mesh) and kept.
+LimitMask butterfly_boundary_mask(int faces) {
+  static std::mutex lock;
+  static std::map<int, LimitMask> known;
+  {
+    const std::lock_guard<std::mutex> hold(lock);
+    if (const auto it = known.find(faces); it != known.end()) return it->second;
+  }
+  LimitMask out = butterfly_boundary_class(faces);
+  const std::lock_guard<std::mutex> hold(lock);
+  return known.try_emplace(faces, std::move(out)).first->second;
+}
+
 /// Whether S_n of butterfly_mask maps v's neighbourhood at this level to its neighbourhood at the
 /// next: v interior and every neighbour interior of valence 6 (then every edge point v's neighbourhood
 /// needs is ZSS's stencil of v or the 10-point one with its wings in place). From the first step on
@@ -499,19 +568,22 @@ bool butterfly_stationary(const MeshTopology& t, int v) {
 }
 
 /// The masks of an interior vertex v of valence n that is not butterfly_stationary (next to an
-/// extraordinary or boundary vertex: before the first step, and next to the boundary at any level): one
-/// production step maps its neighbourhood onto its child's, where S_n holds (v is interior, its child's
-/// neighbours are edge points of interior edges). The child's neighbourhood in `stationary`'s order: c
-/// (v stays), then per sector j (walk_ring's order, counter-clockwise) the edge point of v r_j, and at
-/// n = 6 also r_j itself (p_j) and the edge point of r_j r_{j+1} (q_j); each row is the step's own
-/// (detail::butterfly_edge_stencil). The masks are `stationary`'s through those rows, over λ1 = ½ so
-/// that they equal the child's. `columns` receives the level's vertices they weigh, v first.
+/// extraordinary or boundary vertex: before the first step, and next to the boundary at any level), or
+/// of a boundary vertex (n edges) at any level: one production step maps its neighbourhood onto its
+/// child's, where S_n holds (the child's neighbours are edge points: of interior edges, valence 6, or of
+/// boundary edges, three faces). The child's neighbourhood in `stationary`'s order: c (v stays), then per
+/// sector j (walk_ring's order, counter-clockwise from the boundary) the edge point of v r_j, and at
+/// n = 6 or on the boundary also r_j itself (p_j) and, but past the last face, the edge point of
+/// r_j r_{j+1} (q_j); each row is the step's own (detail::butterfly_edge_stencil). The masks are
+/// `stationary`'s through those rows, over ½ (λ1 inside; on the boundary only the plane matters).
+/// `columns` receives the level's vertices they weigh, v first.
 LimitMask butterfly_through_step(const MeshTopology& t, int v, int n, const LimitMask& stationary,
                                  std::vector<int>& columns) {
   std::vector<int> faces, ring;
   walk_ring(t, v, false, faces, ring);
   columns.assign(1, v);
-  std::vector<double> u(1, 0.0), w(1, 0.0);
+  // v's child is v: its weight carries over (0 inside, where c's weight is 0; not on the boundary).
+  std::vector<double> u(1, 2 * stationary.tangent_u[0]), w(1, 2 * stationary.tangent_v[0]);
   const auto add = [&](int column, double weight, std::size_t slot) {
     const auto at =
         static_cast<std::size_t>(std::find(columns.begin(), columns.end(), column) - columns.begin());
@@ -529,15 +601,16 @@ LimitMask butterfly_through_step(const MeshTopology& t, int v, int n, const Limi
     detail::butterfly_edge_stencil(t, find_edge(t, a, b), row);
     for (const auto& [column, weight] : row) add(column, weight, slot);
   };
-  const bool regular = n == 6;
+  const bool boundary = t.boundary_vertex[static_cast<std::size_t>(v)] != 0;
+  const bool two_rings = n == 6 || boundary;
   for (int j = 0; j < n; ++j) {
     const int r = ring[1 + static_cast<std::size_t>(j)],
               next = ring[1 + static_cast<std::size_t>((j + 1) % n)];
-    const auto slot = regular ? 1 + 3 * static_cast<std::size_t>(j) : 1 + static_cast<std::size_t>(j);
+    const auto slot = two_rings ? 1 + 3 * static_cast<std::size_t>(j) : 1 + static_cast<std::size_t>(j);
     add_edge_point(v, r, slot);
-    if (!regular) continue;
+    if (!two_rings) continue;
     add(r, 1.0, slot + 1);
-    add_edge_point(r, next, slot + 2);
+    if (static_cast<std::size_t>(j) < faces.size()) add_edge_point(r, next, slot + 2);
   }
   LimitMask out{.position = std::vector<double>(columns.size(), 0.0),
                 .tangent_u = std::move(u),
@@ -575,7 +648,8 @@ LimitStencils limit_stencils(const MeshRefinement& r) {
   std::map<std::pair<int, bool>, int> sqrt3_boundary;  // √3's boundary classes: (faces, odd level)
   const bool odd_level = r.levels.size() % 2 == 0;     // levels.size() − 1 steps taken
   std::map<std::vector<int>, int> classes;
-  std::map<bool, int> butterfly_refused;  // Butterfly's position-only masks: on the boundary or not
+  int butterfly_two_faces = -1;           // Butterfly's position-only mask at an interior vertex of valence 2
+  std::map<int, int> butterfly_boundary;  // Butterfly's boundary masks by number of faces
   std::vector<int> faces, nb;
   const bool rings = scheme == MeshScheme::catmull_clark || scheme == MeshScheme::loop;
   for (int v = 0; v < t.vertex_count; ++v) {
@@ -587,20 +661,35 @@ LimitStencils limit_stencils(const MeshRefinement& r) {
     if (scheme == MeshScheme::butterfly && n > 0) {
       int mask = -1;
       const bool boundary = t.boundary_vertex[static_cast<std::size_t>(v)] != 0;
-      if (boundary || n < 3) {
-        const auto [it, fresh] = butterfly_refused.try_emplace(boundary, -1);
+      if (boundary) {
+        if (n > kMaxBoundaryValence)
+          throw InvalidInput(where() + " is on the boundary with " + std::to_string(n - 1) +
+                             " faces: butterfly limits are built for 1 to " +
+                             std::to_string(kMaxBoundaryValence - 1) + " faces at a boundary vertex");
+        const auto [it, fresh] = butterfly_boundary.try_emplace(n - 1, -1);
         if (fresh) {
-          out.masks.push_back(LimitMask{
-              .position = {1.0},
-              .tangent_u = {},
-              .tangent_v = {},
-              .refused = boundary ? "on the boundary: butterfly limit normals are built at interior "
-                                    "vertices only"
-                                  : "an interior vertex of two faces, which has no tangent plane",
-              .sectors = {}});
+          out.masks.push_back(butterfly_boundary_mask(n - 1));
           it->second = static_cast<int>(out.masks.size()) - 1;
         }
-        mask = it->second;
+        if (out.masks[static_cast<std::size_t>(it->second)].refused.empty()) {
+          out.masks.push_back(
+              butterfly_through_step(t, v, n, out.masks[static_cast<std::size_t>(it->second)], nb));
+          mask = static_cast<int>(out.masks.size()) - 1;
+        } else {  // the position alone
+          mask = it->second;
+          nb.assign(1, v);
+        }
+      } else if (n < 3) {
+        if (butterfly_two_faces < 0) {
+          out.masks.push_back(
+              LimitMask{.position = {1.0},
+                        .tangent_u = {},
+                        .tangent_v = {},
+                        .refused = "an interior vertex of two faces, which has no tangent plane",
+                        .sectors = {}});
+          butterfly_two_faces = static_cast<int>(out.masks.size()) - 1;
+        }
+        mask = butterfly_two_faces;
         nb.assign(1, v);
       } else {
         if (smooth.size() <= static_cast<std::size_t>(n)) smooth.resize(static_cast<std::size_t>(n) + 1, -1);

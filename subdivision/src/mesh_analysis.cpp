@@ -57,11 +57,15 @@ void check_valence(MeshScheme scheme, int valence, const LocalOptions& o) {
                          " to " + std::to_string(last) +
                          (o.boundary ? " (the boundary edges are sharp anyway)" : ""));
   if (o.boundary) {
-    if (scheme != MeshScheme::catmull_clark && scheme != MeshScheme::loop && scheme != MeshScheme::sqrt3)
-      throw InvalidInput(who + ": boundary vertices are analysed for catmull-clark, loop and sqrt3 only");
+    if (scheme == MeshScheme::doo_sabin)
+      throw InvalidInput(
+          who + ": boundary vertices are analysed for catmull-clark, loop, butterfly and sqrt3 only");
     if (scheme == MeshScheme::sqrt3 && o.rule != BoundaryRule::edge_only)
       throw InvalidInput(who + ": the boundary has one rule under this scheme (Kobbelt's ternary cubic " +
                          "B-spline), the rule edge; a boundary vertex of one face is no corner");
+    if (scheme == MeshScheme::butterfly && o.rule != BoundaryRule::edge_only)
+      throw InvalidInput(who + ": the boundary has one rule under this scheme (the 4-point curve), the " +
+                         "rule edge; a boundary vertex of one face is no corner");
     if (valence < kMinBoundaryValence || valence > kMaxBoundaryValence)
       throw InvalidInput(who + ": boundary valence " + std::to_string(valence) +
                          " is out of range; expected " + std::to_string(kMinBoundaryValence) + " to " +
@@ -355,6 +359,62 @@ Dense<T> butterfly_rules(int n, Cos cos_of) {
   return S;
 }
 
+/// The modified Butterfly at a boundary vertex of valence n (n − 1 faces) under mesh.cpp's rule: the
+/// 4-point rule (−1, 9, 9, −1)/16 on the boundary edges c r_0 and c r_{n−1} (its far points: the
+/// other boundary edge's end and p_j, r_j's next boundary vertex); inside, the 10-point stencil
+/// whatever n (a boundary end counts as regular), a wing across a boundary edge reflected: the wing
+/// across (x, o) in the face of edge x z becomes x + o − z. Every weight is rational.
+template <class T>
+Dense<T> butterfly_boundary_rules(int n) {
+  const T one(1), half = one / 2, eighth = one / 8, sixteenth = one / 16;
+  const int faces = n - 1;
+  Dense<T> S(3 * n);
+  const auto r = [&](int j) { return 1 + 3 * j; };
+  const auto p = [&](int j) { return 2 + 3 * j; };
+  const auto q = [&](int j) { return 3 + 3 * j; };
+  // Edge x z, its face's third corner o; the wing across (x, o) is `wing`, or missing (−1).
+  const auto wing = [&](int row, int x, int o, int z, int beyond) {
+    if (beyond >= 0) {
+      S(row, beyond) -= sixteenth;
+    } else {
+      S(row, x) -= sixteenth;
+      S(row, o) -= sixteenth;
+      S(row, z) += sixteenth;
+    }
+  };
+  // r_m for m inside the fan, −1 past its boundary edges (the wing across c r_m's neighbour is missing).
+  const auto ring = [&](int m) { return m >= 0 && m <= faces ? r(m) : -1; };
+  S(0, 0) = one;  // interpolating: old vertices stay (c, and r_j becomes p_j)
+  for (int j = 0; j < n; ++j) S(p(j), r(j)) = one;
+  for (const auto& [j, other] : {std::pair{0, faces}, std::pair{faces, 0}}) {
+    S(r(j), 0) += 9 * sixteenth;
+    S(r(j), r(j)) += 9 * sixteenth;
+    S(r(j), r(other)) -= sixteenth;
+    S(r(j), p(j)) -= sixteenth;
+  }
+  for (int j = 1; j < faces; ++j) {  // interior edge c r_j: faces j − 1 (o = r_{j−1}) and j (o = r_{j+1})
+    S(r(j), 0) += half;
+    S(r(j), r(j)) += half;
+    S(r(j), r(j - 1)) += eighth;
+    S(r(j), r(j + 1)) += eighth;
+    wing(r(j), 0, r(j - 1), r(j), j - 1 > 0 ? ring(j - 2) : -1);
+    wing(r(j), 0, r(j + 1), r(j), j + 1 < faces ? ring(j + 2) : -1);
+    S(r(j), q(j - 1)) -= sixteenth;
+    S(r(j), q(j)) -= sixteenth;
+  }
+  for (int j = 0; j < faces; ++j) {  // edge r_j r_{j+1}: opposite corners c and q_j
+    S(q(j), r(j)) += half;
+    S(q(j), r(j + 1)) += half;
+    S(q(j), 0) += eighth;
+    S(q(j), q(j)) += eighth;
+    wing(q(j), r(j), 0, r(j + 1), j > 0 ? ring(j - 1) : -1);
+    wing(q(j), r(j + 1), 0, r(j), j + 1 < faces ? ring(j + 2) : -1);
+    S(q(j), p(j)) -= sixteenth;
+    S(q(j), p(j + 1)) -= sixteenth;
+  }
+  return S;
+}
+
 /// Two steps of √3 at a vertex of valence n (one step leaves a ring of face points).
 template <class T, class Cos>
 Dense<T> sqrt3_rules(int n, Cos cos_of) {
@@ -459,7 +519,7 @@ Dense<T> rules(MeshScheme scheme, int n, const LocalOptions& o, Cos cos_of) {
     case MeshScheme::loop:
       return loop_rules<T>(n, o, cos_of);
     case MeshScheme::butterfly:
-      return butterfly_rules<T>(n, cos_of);
+      return o.boundary ? butterfly_boundary_rules<T>(n) : butterfly_rules<T>(n, cos_of);
     case MeshScheme::sqrt3:
       return o.boundary ? sqrt3_boundary_rules<T>(n) : sqrt3_rules<T>(n, cos_of);
     case MeshScheme::doo_sabin:
@@ -501,7 +561,7 @@ std::vector<std::string> labels(MeshScheme scheme, int n, const LocalOptions& o)
     if (scheme == MeshScheme::catmull_clark && (!o.boundary || j < n - 1)) add("f", j);
     if (scheme == MeshScheme::butterfly) {
       add("p", j);
-      add("q", j);
+      if (!o.boundary || j < n - 1) add("q", j);
     }
   }
   return out;
@@ -676,14 +736,17 @@ void neighbourhood(const MeshTopology& t, MeshScheme scheme, int centre, int sta
     if (scheme == MeshScheme::catmull_clark && j < F)
       out.push_back(corner(t, face_j(j), corner_index(t, face_j(j), centre) + 2));
     if (scheme == MeshScheme::butterfly) {
+      // p_j: opposite c in r_j's ring; at a boundary r_j (four edges), its other boundary neighbour.
       const int rj = r(j);
       const auto rj_ring = vertex_edges(t, static_cast<std::size_t>(rj));
       const int to_centre = edge_between(t, rj, centre);
       const auto at = std::find(rj_ring.begin(), rj_ring.end(), to_centre) - rj_ring.begin();
-      if (rj_ring.size() != 6 || t.boundary_vertex[static_cast<std::size_t>(rj)])
+      const bool rim = t.boundary_vertex[static_cast<std::size_t>(rj)];
+      if (rj_ring.size() != (rim ? 4U : 6U))
         throw std::logic_error("local mesh: a ring vertex is not regular");
-      out.push_back(
-          other_vertex(t, static_cast<std::size_t>(rj_ring[static_cast<std::size_t>((at + 3) % 6)]), rj));
+      const int beyond = rim ? (at == 0 ? 3 : 0) : static_cast<int>((at + 3) % 6);
+      out.push_back(other_vertex(t, static_cast<std::size_t>(rj_ring[static_cast<std::size_t>(beyond)]), rj));
+      if (j >= F) continue;
       const int across = face_across(t, edge_between(t, rj, r(j + 1)), face_j(j));
       out.push_back(corner(t, across, corner_index(t, across, rj) + 1));
     }

@@ -115,7 +115,7 @@ TEST_CASE("cifs limit --scheme sqrt3 --normals on an open mesh: boundary vertice
   CHECK((back.normals - ours.normals).cwiseAbs().maxCoeff() < 1e-15);
 }
 
-TEST_CASE("cifs limit --scheme butterfly --normals: interior vertices, boundary ones refused in one line",
+TEST_CASE("cifs limit --scheme butterfly --normals: boundary vertices not proved C1 refused in one line",
           "[cli][mesh][limit]") {
   // Butterfly interpolates: the limit points are the refined vertices; the normals are the library's
   // (against deep refinement in tests/subdivision/test_butterfly_limit.cpp), written and read back.
@@ -132,8 +132,8 @@ TEST_CASE("cifs limit --scheme butterfly --normals: interior vertices, boundary 
   check_error(
       cifs_cli("limit " + example("open_grid_triangles.obj") + " --scheme butterfly --normals -o " +
                out.string()),
-      "butterfly: vertex 0 (valence 3) is on the boundary: butterfly limit normals are built at interior "
-      "vertices only (drop the normals)");
+      "butterfly: vertex 6 (valence 2) is on the boundary with 1 face (lambda1 = 0.5, lambda2 = 0.25), where "
+      "the local analysis finds undecided: lambda2 = 0.25 is defective (a Jordan block)");
 }
 
 TEST_CASE("cifs limit --normals on creases and corners: a normal per sector, OBJ f v//n",

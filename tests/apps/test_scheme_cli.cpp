@@ -199,8 +199,10 @@ TEST_CASE("cifs scheme MESH-SCHEME: bad valences and options on one line, exit 2
   check_error(cifs_cli("scheme loop --valence 5 --analyze --refine x.json"), "cifs subdivide");
   check_error(cifs_cli("scheme loop --valence 5 --analyze --format svg"), "--format 'svg'");
   check_error(cifs_cli("scheme loop --valence 5 --analyze --param w=1"), "take no parameters");
-  check_error(cifs_cli("scheme butterfly --valence 5 --analyze --boundary edge"),
-              "boundary vertices are analysed for catmull-clark, loop and sqrt3 only");
+  check_error(cifs_cli("scheme doo-sabin --valence 5 --analyze --boundary edge"),
+              "boundary vertices are analysed for catmull-clark, loop, butterfly and sqrt3 only");
+  check_error(cifs_cli("scheme butterfly --valence 2 --analyze --boundary corner"),
+              "butterfly: the boundary has one rule under this scheme (the 4-point curve)");
   check_error(cifs_cli("scheme loop --valence 17 --analyze --boundary edge"),
               "boundary valence 17 is out of range");
   check_error(cifs_cli("scheme loop --valence 4 --analyze --boundary sideways"), "--boundary sideways");
@@ -246,6 +248,9 @@ TEST_CASE("cifs scheme MESH-SCHEME --crease K | --dart | --corner | --boundary-v
   CHECK(sqrt3["subdominant"]["lambda2"].get<double>() == Approx(1.0 / 3).epsilon(1e-15));
   CHECK(sqrt3["c1"]["verdict"] == true);
   CHECK(analyze("sqrt3 --boundary-valence 7")["c1"]["verdict"] == false);
+  // Butterfly (the 4-point curve, reflected wings inside): C1 at 2 and 3 faces, not at 4.
+  CHECK(analyze("butterfly --boundary-valence 3")["c1"]["verdict"] == true);
+  CHECK(analyze("butterfly --boundary-valence 4")["c1"]["verdict"] == false);
 
   const Run table = cifs_cli("scheme loop --boundary-valence 1-9 --analyze --format table");
   REQUIRE(table.status == 0);

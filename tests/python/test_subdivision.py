@@ -602,9 +602,10 @@ class LimitTest(unittest.TestCase):
             normals, points = np.asarray(limit.normals), np.asarray(limit.vertices)
             np.testing.assert_allclose(np.linalg.norm(normals, axis=1), 1, atol=1e-15)
             self.assertTrue(np.all(np.sum(normals * (points - points.mean(axis=0)), axis=1) > 0))
+        # Boundary vertices take normals where the boundary rule is C1 (2 and 3 faces); vertex 6 has one face.
         grid = cifs.io.read_mesh(str(EXAMPLES / "meshes" / "open_grid_triangles.obj"))
-        with self.assertRaisesRegex(cifs.InvalidInput, "is on the boundary: butterfly limit normals are built at "
-                                    "interior vertices only"):
+        with self.assertRaisesRegex(cifs.InvalidInput, r"vertex 6 \(valence 2\) is on the boundary with 1 face "
+                                    r"\(lambda1 = 0.5, lambda2 = 0.25\), where the local analysis finds undecided"):
             sd.limit(grid, "butterfly", 0, normals=True)
 
     def test_limits_follow_the_tags(self):
@@ -836,6 +837,9 @@ class LocalAnalysisTest(unittest.TestCase):
         self.assertTrue(sqrt3["c1"]["verdict"], sqrt3["c1"]["reason"])
         self.assertAlmostEqual(sqrt3["lambda1"], (2 + 2 * math.cos(math.pi / 4)) / 9, places=15)
         self.assertFalse(sd.local_analysis("sqrt3", 8, boundary="edge")["c1"]["verdict"])
+        # Butterfly's boundary rule (4-point curve, reflected wings): C1 at 2 and 3 faces, not at 4.
+        self.assertTrue(sd.local_analysis("butterfly", 4, boundary="edge")["c1"]["verdict"])
+        self.assertFalse(sd.local_analysis("butterfly", 5, boundary="edge")["c1"]["verdict"])
         self.assertTrue(sd.local_analysis("loop", 5, sharp=[0])["c1"]["verdict"])
         concave = sd.local_analysis("loop", 2, boundary="edge", corner=True, concave=True)
         self.assertIn("concave", concave["c1"]["reason"])
@@ -894,7 +898,7 @@ class LocalAnalysisTest(unittest.TestCase):
     def test_errors(self):
         with self.assertRaisesRegex(cifs.InvalidInput, "valence 2 is out of range"):
             sd.local_analysis("loop", 2)
-        with self.assertRaisesRegex(cifs.InvalidInput, "catmull-clark, loop and sqrt3 only"):
-            sd.local_analysis("butterfly", 5, boundary="edge")
+        with self.assertRaisesRegex(cifs.InvalidInput, "catmull-clark, loop, butterfly and sqrt3 only"):
+            sd.local_analysis("doo-sabin", 5, boundary="edge")
         with self.assertRaisesRegex(cifs.InvalidInput, "unknown boundary rule 'sharp'"):
             sd.local_analysis("loop", 4, boundary="sharp")

@@ -23,6 +23,8 @@ using namespace cifs;
 using namespace cifs::subdivision;
 using Catch::Matchers::Contains;
 using cifs_test::check_same_spectrum;
+using cifs_test::exact_rank;
+using cifs_test::shifted_power;
 
 namespace {
 
@@ -62,6 +64,7 @@ std::vector<Complex> loop_spectrum(int n) {
 /// f̄' = ¼ c + ½ r̄ + ¼ f̄.
 std::vector<Complex> catmull_clark_spectrum(int n) {
   std::vector<Complex> out;
+  out.reserve(2 * static_cast<std::size_t>(n) + 1);
   Eigen::Matrix<long double, 3, 3> zero;
   const long double nd = n;
   zero << (4 * nd - 7) / (4 * nd), 3 / (2 * nd), 1 / (4 * nd), 3.0L / 8, 0.5L, 1.0L / 8, 0.25L, 0.5L, 0.25L;
@@ -216,6 +219,9 @@ TEST_CASE("local matrices: the rules equal the general refinement, every scheme 
   // weight outside it): the one-ring is invariant.
   for (int n = kMinBoundaryValence; n <= kMaxBoundaryValence; ++n)
     compare(MeshScheme::sqrt3, n, {.boundary = true});
+  // Butterfly on the boundary (mesh.cpp's rule: the 4-point curve, reflected wings inside).
+  for (int n = kMinBoundaryValence; n <= kMaxBoundaryValence; ++n)
+    compare(MeshScheme::butterfly, n, {.boundary = true});
 }
 
 TEST_CASE("local matrices are exact where the weights are rational, and affine",
@@ -363,52 +369,6 @@ TEST_CASE("boundary vertices: the boundary curve's block and the interior ring",
   }
 }
 
-namespace {
-
-/// The rank of an exact matrix (Gaussian elimination in rationals): a proof of an eigenvalue's
-/// geometric multiplicity, N − rank(S − λI), with no round-off.
-int sqrt3_exact_rank(std::vector<std::vector<Rational>> a) {
-  int rank = 0;
-  const std::size_t rows = a.size(), cols = rows == 0 ? 0 : a[0].size();
-  for (std::size_t col = 0; col < cols && static_cast<std::size_t>(rank) < rows; ++col) {
-    std::size_t pivot = static_cast<std::size_t>(rank);
-    while (pivot < rows && a[pivot][col] == 0) ++pivot;
-    if (pivot == rows) continue;
-    std::swap(a[pivot], a[static_cast<std::size_t>(rank)]);
-    const std::vector<Rational>& p = a[static_cast<std::size_t>(rank)];
-    for (std::size_t r = 0; r < rows; ++r) {
-      if (r == static_cast<std::size_t>(rank) || a[r][col] == 0) continue;
-      const Rational f = a[r][col] / p[col];
-      for (std::size_t c = col; c < cols; ++c) a[r][c] -= f * p[c];
-    }
-    ++rank;
-  }
-  return rank;
-}
-
-/// (S − λI)^power of an exact local matrix, as rows.
-std::vector<std::vector<Rational>> sqrt3_shifted_power(const RationalMatrix& S, const Rational& lambda,
-                                                       int power) {
-  const auto N = static_cast<std::size_t>(S.rows);
-  std::vector<std::vector<Rational>> A(N, std::vector<Rational>(N)), P(N, std::vector<Rational>(N));
-  for (std::size_t i = 0; i < N; ++i) {
-    P[i][i] = 1;
-    for (std::size_t j = 0; j < N; ++j)
-      A[i][j] = S(static_cast<int>(i), static_cast<int>(j)) - (i == j ? lambda : Rational(0));
-  }
-  for (int k = 0; k < power; ++k) {
-    std::vector<std::vector<Rational>> Q(N, std::vector<Rational>(N));
-    for (std::size_t i = 0; i < N; ++i)
-      for (std::size_t m = 0; m < N; ++m)
-        if (P[i][m] != 0)
-          for (std::size_t j = 0; j < N; ++j) Q[i][j] += P[i][m] * A[m][j];
-    P = std::move(Q);
-  }
-  return P;
-}
-
-}  // namespace
-
 TEST_CASE("√3 boundary vertices: the ternary cubic B-spline's block and the interior ring, exactly",
           "[subdivision][mesh_analysis]") {
   // Kobbelt 2000 §5, two steps from an even level (keep the boundary, then trisect it), derived by
@@ -455,9 +415,9 @@ TEST_CASE("√3 boundary vertices: the ternary cubic B-spline's block and the in
     // same weight, so their difference reads r_0 − r_k): one eigenvector, a Jordan block (k = 6, 12).
     const int N = n + 1;
     for (const Rational& lambda : {q(1), q(1, 3), q(1, 9)})
-      CHECK(sqrt3_exact_rank(sqrt3_shifted_power(E, lambda, 1)) < N);
-    const int third = N - sqrt3_exact_rank(sqrt3_shifted_power(E, q(1, 3), 1));
-    const int third_squared = N - sqrt3_exact_rank(sqrt3_shifted_power(E, q(1, 3), 2));
+      CHECK(exact_rank(shifted_power(E, lambda, 1)) < N);
+    const int third = N - exact_rank(shifted_power(E, q(1, 3), 1));
+    const int third_squared = N - exact_rank(shifted_power(E, q(1, 3), 2));
     const bool tie = k % 3 == 0, jordan = tie && (k / 3) % 2 == 0;
     CHECK(third == (tie && !jordan ? 2 : 1));
     CHECK(third_squared == (tie ? 2 : 1));
@@ -470,8 +430,12 @@ TEST_CASE("local matrices: bad valences are one-line InvalidInputs", "[subdivisi
   CHECK_THROWS_WITH(local_matrix(MeshScheme::catmull_clark, 17), Contains("valence 17 is out of range"));
   CHECK_THROWS_WITH(local_matrix(MeshScheme::loop, 17, {.boundary = true}),
                     Contains("boundary valence 17 is out of range; expected 2 to 16"));
-  CHECK_THROWS_WITH(local_matrix(MeshScheme::butterfly, 4, {.boundary = true}),
-                    Contains("boundary vertices are analysed for catmull-clark, loop and sqrt3 only"));
+  CHECK_THROWS_WITH(
+      local_matrix(MeshScheme::doo_sabin, 4, {.boundary = true}),
+      Contains("boundary vertices are analysed for catmull-clark, loop, butterfly and sqrt3 only"));
+  CHECK_THROWS_WITH(
+      local_matrix(MeshScheme::butterfly, 2, {.boundary = true, .rule = BoundaryRule::edge_and_corner}),
+      Contains("butterfly: the boundary has one rule under this scheme (the 4-point curve)"));
   CHECK_THROWS_WITH(
       local_matrix(MeshScheme::sqrt3, 2, {.boundary = true, .rule = BoundaryRule::edge_and_corner}),
       Contains("sqrt3: the boundary has one rule under this scheme"));

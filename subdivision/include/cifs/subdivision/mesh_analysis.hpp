@@ -9,7 +9,8 @@
 //   the boundary c, r_0, f_0, …, f_{n−2}, r_{n−1} (n edges, n − 1 quads): 2n.
 // - Loop: c, r_0 … r_{n−1}: n + 1, on the boundary too.
 // - Modified Butterfly (two rings): c, then r_j, p_j, q_j per sector, p_j the vertex beyond r_j
-//   (opposite c in r_j's ring), q_j the corner across the edge r_j r_{j+1}: 3n + 1.
+//   (opposite c in r_j's ring), q_j the corner across the edge r_j r_{j+1}: 3n + 1; on the boundary
+//   (n edges, n − 1 faces) p_0 and p_{n−1} are the next boundary vertices and q_j runs to n − 2: 3n.
 // - √3, two steps (one step rotates the ring by half a sector): c, r_0 … r_{n−1}: n + 1. After
 //   one step the ring is the face centroids; after two, the centroid of the level-1 triangle
 //   (c¹, m_{j−1}, m_j) lies in the direction of r_j and takes its number. On the boundary (c,
@@ -50,8 +51,9 @@ struct RationalMatrix {
 };
 
 /// Where the extraordinary vertex is and what is tagged there. Boundary vertices (valence = number
-/// of edges, 2 … 16: valence − 1 faces) are analysed for Catmull–Clark, Loop and √3 (Kobbelt's
-/// boundary rule, the only one: `rule` must be edge_only); infinitely sharp edges and corners for
+/// of edges, 2 … 16: valence − 1 faces) are analysed for Catmull–Clark, Loop, Butterfly (mesh.cpp's
+/// rule: the 4-point curve, reflected wings) and √3 (Kobbelt's boundary rule); Butterfly and √3 have
+/// one boundary rule (`rule` must be edge_only); infinitely sharp edges and corners for
 /// Catmull–Clark and Loop only, with the rules OpenSubdiv uses (rules.hpp): `rule` at valence 2
 /// (one face); a sharp edge's point is its midpoint; the vertex follows the smooth rule with no or
 /// one sharp edge (a dart), the crease rule ¾c + ⅛(ends) with two (a boundary's edges count), and
@@ -93,7 +95,8 @@ struct LocalMatrix {
   int steps = 1;                    // subdivision steps S_n spans: 2 for √3, else 1
   std::vector<std::string> labels;  // "c", "r0", "f0", …: the numbering
   /// The exact matrix when every weight is rational: always for Catmull–Clark and √3 boundary
-  /// vertices; Loop, √3 and Doo–Sabin when cos(2π/n) is rational (n = 3, 4, 6); Butterfly at n = 3, 4, 6.
+  /// vertices; Loop, √3 and Doo–Sabin when cos(2π/n) is rational (n = 3, 4, 6); Butterfly at n = 3, 4, 6
+  /// and on the boundary.
   std::optional<RationalMatrix> exact;
   /// The same in long double (the exact one rounded; otherwise computed with long double cosines,
   /// every entry within 1e-18 of its true value).
@@ -101,7 +104,7 @@ struct LocalMatrix {
 };
 
 /// Route (a): S_n written from the scheme's rules in the numbering above. Throws InvalidInput for a
-/// valence out of range or a boundary vertex under Doo–Sabin or Butterfly.
+/// valence out of range or a boundary vertex under Doo–Sabin.
 LocalMatrix local_matrix(MeshScheme scheme, int valence, const LocalOptions& options = {});
 
 /// The local mesh route (b) refines: the extraordinary vertex (Doo–Sabin: face) of the valence
@@ -166,7 +169,8 @@ LocalSpectrum local_spectrum(const LocalMatrix& matrix);
 /// rows of a sector's vertices (c, its two sharp edges' points, the points inside it) read nothing
 /// from the other sectors, so each sector is the boundary vertex of as many faces under the same
 /// centre rule, analysed on its own: λ0 = 1 simple, λ1 ≥ λ2 real and positive (equal or not: a
-/// boundary's curve gives ½, its inside another value), |λ3| < λ2, and the characteristic map of the
+/// boundary's curve gives ½, its inside another value; equal with one eigenvector, a Jordan block, is
+/// undecided), |λ3| < λ2, and the characteristic map of the
 /// eigenvectors of λ1 and λ2 regular on the sector and injective — its inner boundary, from one
 /// sharp edge to the other, sweeps an angle in (0, 2π) without passing through 0 (it does when
 /// both eigenvectors vanish on the sharp edges: the sector's curves then shrink faster than its
