@@ -485,14 +485,14 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
     if (!ring.empty()) {
       VertexNeighbourhood n;
       n.faces = static_cast<int>(faces.size());  // smooth level: no sharpness
-      pe.clear();
       bool sharp_here = !smooth && vertex_sharpness(L, static_cast<std::size_t>(v)) > 0;
       if (!smooth)
-        for (const int e : ring) {
-          pe.push_back(edge_sharpness(L, static_cast<std::size_t>(e)));
-          sharp_here = sharp_here || pe.back() > 0;
-        }
+        sharp_here = sharp_here || std::any_of(ring.begin(), ring.end(), [&](int e) {
+                       return edge_sharpness(L, static_cast<std::size_t>(e)) > 0;
+                     });
       if (sharp_here) {  // else the smooth rule, as on a smooth level (same bits), and halves stay 0
+        pe.clear();
+        for (const int e : ring) pe.push_back(edge_sharpness(L, static_cast<std::size_t>(e)));
         ce.resize(pe.size());
         child_edge_sharpness(tags.crease_method, pe, ce);
         for (std::size_t i = 0; i < ring.size(); ++i) {
@@ -1025,7 +1025,9 @@ MeshTags child_tags(MeshScheme scheme, const MeshTopology& t, const LevelFeature
   const int V = t.vertex_count;
   if (!halves.empty())
     for (std::size_t e = 0; e < t.edges.size(); ++e) {
-      if (is_boundary_edge(t, e) && tags.boundary != BoundaryRule::none) continue;
+      if ((halves[2 * e] <= 0 && halves[2 * e + 1] <= 0) ||
+          (is_boundary_edge(t, e) && tags.boundary != BoundaryRule::none))
+        continue;
       const int mid = V + static_cast<int>(e);
       if (halves[2 * e] > 0) out.creases.push_back({t.edges[e][0], mid, halves[2 * e]});
       if (halves[2 * e + 1] > 0) out.creases.push_back({mid, t.edges[e][1], halves[2 * e + 1]});
