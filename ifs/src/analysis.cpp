@@ -413,7 +413,7 @@ struct PathScan {
         A = std::max(A, n);
         if (skips(suffix->deltas[from][i], n, target(*b, g))) continue;
       }
-      product[static_cast<std::size_t>(k) + 1].noalias() = g[*b].matrix * P;
+      times(g[*b].matrix, k, product);
       if (!descend(from, target(*b, g), k + 1)) return false;
     }
     return true;
@@ -450,10 +450,20 @@ struct PathScan {
       const int child = path.word[static_cast<std::size_t>(k)];
       if (child < 0 || static_cast<std::size_t>(child) >= out_degree(s, g)) return false;
       const automata::TransitionId t = out_edge(g, s, static_cast<std::size_t>(child));
-      product[static_cast<std::size_t>(k) + 1].noalias() = g[t].matrix * P;
+      times(g[t].matrix, k, product);
       s = target(t, g);
     }
     return delta(product[static_cast<std::size_t>(length)]) >= 1;
+  }
+
+  /// product[k + 1] = M · product[k]; at k = 0 (the identity) M itself: the value of M · I, whose terms
+  /// but one are ±0 (exact, up to the sign of a zero, which no δ or norm reads), without the product.
+  static void times(const Eigen::MatrixXd& M, int k, std::vector<Eigen::MatrixXd>& product) {
+    auto& next = product[static_cast<std::size_t>(k) + 1];
+    if (k == 0)
+      next = M;
+    else
+      next.noalias() = M * product[static_cast<std::size_t>(k)];
   }
 
   bool run(const std::vector<StateId>& states) {
@@ -730,6 +740,11 @@ std::vector<Eigen::RowVectorXd> repeated_child_functionals(const Automaton& auto
       throw InvalidInput("child " + std::to_string(child) +
                          " does not exist: " + detail::state_label(automaton, s) + " has " +
                          std::to_string(out_degree(s, g)) + " children");
+  return detail::repeated_child_functionals_unchecked(automaton, child);
+}
+
+std::vector<Eigen::RowVectorXd> detail::repeated_child_functionals_unchecked(const Automaton& automaton,
+                                                                             int child) {
   return chain_functionals(
       automaton, [&](StateId) { return static_cast<std::size_t>(child); }, "child-" + std::to_string(child));
 }
