@@ -680,6 +680,13 @@ Perturbation perturb_in(const Bcifs& sys, const AdmissibleSpace& space, const Pe
   if (!(out.residual <= 1e-12))
     throw InvalidInput("the perturbed matrices miss the constraints by " + number_text(out.residual, 3) +
                        " (the system is ill-conditioned); lower the amplitude");
+  if (options.check_contraction) check_contractive(out, options, failing);
+  return out;
+}
+
+}  // namespace
+
+void check_contractive(Perturbation& out, const PerturbOptions& options, FailingPaths* failing) {
   try {
     out.contraction = failing != nullptr ? contraction(out.system.automaton, options.contraction, *failing)
                                          : contraction(out.system.automaton, options.contraction);
@@ -694,10 +701,7 @@ Perturbation perturb_in(const Bcifs& sys, const AdmissibleSpace& space, const Pe
                              (cause.empty() ? std::string("its current values") : cause) + ": " + e.what(),
                          e.delta, e.length);
   }
-  return out;
 }
-
-}  // namespace
 
 Perturbation perturb(const Bcifs& sys, const AdmissibleSpace& space, const PerturbOptions& options) {
   return perturb_in(sys, space, options, nullptr);
