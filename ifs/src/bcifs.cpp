@@ -24,6 +24,7 @@
 #include "cifs/ifs/failing_paths.hpp"
 #include "cifs/random.hpp"
 #include "union_find.hpp"
+#include "walk.hpp"
 
 namespace cifs::ifs {
 
@@ -68,13 +69,14 @@ Eigen::MatrixXd factor_matrix(const Bcifs& sys, const Factor& f) {
 /// the cost: constraint_residuals checks every perturbed system of an interactive edit (cifs view).
 Eigen::MatrixXd product(const Bcifs& sys, std::span<const Factor> factors, int size) {
   if (factors.empty()) return Eigen::MatrixXd::Identity(size, size);
-  Eigen::MatrixXd P = factor_matrix(sys, factors.back());
+  Eigen::MatrixXd P = factor_matrix(sys, factors.back()), next;
   for (auto it = factors.rbegin() + 1; it != factors.rend(); ++it) {
     if (it->kind == Factor::Kind::boundary) {
       const auto& rows = sys.boundaries[static_cast<std::size_t>(it->boundary)].rows;
       P = P(rows, Eigen::all).eval();
     } else {
-      P = (sys.automaton.graph[transition_id(sys.automaton, it->transition)].matrix * P).eval();
+      detail::multiply(sys.automaton.graph[transition_id(sys.automaton, it->transition)].matrix, P, next);
+      std::swap(P, next);
     }
   }
   return P;
