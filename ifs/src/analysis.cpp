@@ -256,6 +256,25 @@ __attribute__((target("avx"))) double largest_distance_avx(const Eigen::MatrixXd
 __attribute__((target("avx"))) void multiply_avx(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
                                                  Eigen::MatrixXd& C) noexcept {
   const Eigen::Index n = A.rows(), depth = A.cols();
+  if (n == 16) {  // a column of C in four registers, each column of A read once per column of C
+    for (Eigen::Index j = 0; j < B.cols(); ++j) {
+      __m256d s0 = _mm256_setzero_pd(), s1 = s0, s2 = s0, s3 = s0;
+      for (Eigen::Index k = 0; k < depth; ++k) {
+        const double* a = A.data() + k * 16;
+        const __m256d b = _mm256_set1_pd(B(k, j));
+        s0 = _mm256_add_pd(s0, _mm256_mul_pd(_mm256_loadu_pd(a), b));
+        s1 = _mm256_add_pd(s1, _mm256_mul_pd(_mm256_loadu_pd(a + 4), b));
+        s2 = _mm256_add_pd(s2, _mm256_mul_pd(_mm256_loadu_pd(a + 8), b));
+        s3 = _mm256_add_pd(s3, _mm256_mul_pd(_mm256_loadu_pd(a + 12), b));
+      }
+      double* c = C.data() + j * 16;
+      _mm256_storeu_pd(c, s0);
+      _mm256_storeu_pd(c + 4, s1);
+      _mm256_storeu_pd(c + 8, s2);
+      _mm256_storeu_pd(c + 12, s3);
+    }
+    return;
+  }
   for (Eigen::Index j = 0; j < B.cols(); ++j)
     for (Eigen::Index i = 0; i < n; i += 4) {
       __m256d sum = _mm256_setzero_pd();
