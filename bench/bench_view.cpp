@@ -166,9 +166,18 @@ BENCHMARK(BM_contraction_hills_warm)->Unit(benchmark::kMillisecond)->UseRealTime
 
 // The CPU column counts every thread's (an amplitude edit checks contractivity on a second one); the time,
 // the latency.
-BENCHMARK(BM_view_amplitude_hills_depth6)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
-BENCHMARK(BM_view_amplitude_hills_depth7)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
-BENCHMARK(BM_view_amplitude_cubic_depth16)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
+BENCHMARK(BM_view_amplitude_hills_depth6)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MeasureProcessCPUTime();
+BENCHMARK(BM_view_amplitude_hills_depth7)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MeasureProcessCPUTime();
+BENCHMARK(BM_view_amplitude_cubic_depth16)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MeasureProcessCPUTime();
 
 }  // namespace
 

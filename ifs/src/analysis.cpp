@@ -279,7 +279,8 @@ __attribute__((target("avx"))) void multiply_avx(const Eigen::MatrixXd& A, const
     for (Eigen::Index i = 0; i < n; i += 4) {
       __m256d sum = _mm256_setzero_pd();
       for (Eigen::Index k = 0; k < depth; ++k)
-        sum = _mm256_add_pd(sum, _mm256_mul_pd(_mm256_loadu_pd(A.data() + k * n + i), _mm256_set1_pd(B(k, j))));
+        sum =
+            _mm256_add_pd(sum, _mm256_mul_pd(_mm256_loadu_pd(A.data() + k * n + i), _mm256_set1_pd(B(k, j))));
       _mm256_storeu_pd(C.data() + j * n + i, sum);
     }
 }

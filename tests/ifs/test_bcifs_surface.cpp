@@ -274,10 +274,9 @@ namespace {
 /// A side of a constraint as the dense product F_0·F_1⋯F_k · I, boundaries as selection matrices: the
 /// definition, which constraint_residuals computes by picking rows instead.
 Eigen::MatrixXd dense_side(const Bcifs& sys, const std::vector<Factor>& side) {
-  const automata::StateId source =
-      side.back().kind == Factor::Kind::boundary
-          ? sys.boundaries[static_cast<std::size_t>(side.back().boundary)].cell
-          : side.back().transition.from;
+  const automata::StateId source = side.back().kind == Factor::Kind::boundary
+                                       ? sys.boundaries[static_cast<std::size_t>(side.back().boundary)].cell
+                                       : side.back().transition.from;
   const int size = sys.automaton.graph[source].size;
   Eigen::MatrixXd P = Eigen::MatrixXd::Identity(size, size);
   for (auto it = side.rbegin(); it != side.rend(); ++it)

@@ -281,8 +281,9 @@ TEST_CASE(
                     Catch::Contains("an experiment on a classic IFS"));
 }
 
-TEST_CASE("view perturbed edits: a session's fast path gives the cold evaluation's bytes and the runner's points",
-          "[view][view_bcifs]") {
+TEST_CASE(
+    "view perturbed edits: a session's fast path gives the cold evaluation's bytes and the runner's points",
+    "[view][view_bcifs]") {
   // Random amplitude and seed edits through one session (the kept system, surface mesh and failing paths,
   // the contractivity checked beside the evaluation) against a cold evaluation of each (no cache) and the
   // runner's points (experiment::evaluate: the system built, solved and perturbed from the file); a refused
@@ -290,7 +291,8 @@ TEST_CASE("view perturbed edits: a session's fast path gives the cold evaluation
   cifs_test::ScratchDir dir;
   std::mt19937_64 random(2026);
   int refusals = 0;
-  for (const auto& [file, depth, top] : {std::tuple{"wave.json", 6, 0.8}, std::tuple{"saddle.json", 3, 0.3}}) {
+  for (const auto& [file, depth, top] :
+       {std::tuple{"wave.json", 6, 0.8}, std::tuple{"saddle.json", 3, 0.3}}) {
     const std::string path = kBcifsExamples + "/shapes/" + file;
     INFO(path);
     const view::Document d = view::open_document(path);
@@ -322,10 +324,11 @@ TEST_CASE("view perturbed edits: a session's fast path gives the cold evaluation
       ++accepted;
       CHECK(view::encode_geometry(fast) == view::encode_geometry(cold));
       CHECK(fast.contraction_length > 0);
-      check_same_points(fast,
-                        runner_points(dir.path(),
-                                      {{"shape", path}, {"perturbation", {{"amplitude", p.amplitude}, {"seed", p.seed}}}},
-                                      depth));
+      check_same_points(
+          fast,
+          runner_points(dir.path(),
+                        {{"shape", path}, {"perturbation", {{"amplitude", p.amplitude}, {"seed", p.seed}}}},
+                        depth));
     }
     CHECK(accepted > 0);
     refusals += refused;

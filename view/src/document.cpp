@@ -701,8 +701,8 @@ void note_contraction(const ifs::Contraction& c, Geometry& g) {
 /// would: the constraints', then the check's (a system that is not contractive is not shown, whatever its
 /// evaluation did), then the evaluation's.
 template <class Evaluate>
-void perturbed_evaluation(const PerturbableSystem& system, const Params& params, EditCache* cache, Geometry& g,
-                          Evaluate evaluate) {
+void perturbed_evaluation(const PerturbableSystem& system, const Params& params, EditCache* cache,
+                          Geometry& g, Evaluate evaluate) {
   if (!std::isfinite(params.amplitude) || params.amplitude < 0 || params.amplitude > 1)
     throw InvalidInput("amplitude " + number_text(params.amplitude, 6) + " is outside 0..1");
   ifs::PerturbOptions o = perturb_options(params.amplitude, params.seed, params.values);
@@ -757,8 +757,8 @@ void perturbed_geometry(const Document& d, const io::Shape& shape, const Params&
   }
   perturbed_evaluation(*system, params, cache, g, [&](const ifs::Bcifs& perturbed) {
     if (std::holds_alternative<nurbs::Curve>(shape)) {
-      sample_geometry(perturbed.automaton, system->nets, params.depth, system->rational, system->closed, limits,
-                      g);
+      sample_geometry(perturbed.automaton, system->nets, params.depth, system->rational, system->closed,
+                      limits, g);
       return;
     }
     ifs::MeshOptions mo;

@@ -162,8 +162,9 @@ struct Perturbation {
 };
 
 /// Perturbs the free coefficients, solves the dependent ones and checks the result: residual
-/// ≤ 1e-12 and contractive (ifs::contraction; unless check_contraction is off), else InvalidInput saying why. Also throws for a
-/// negative or non-finite amplitude and for names in `values` that are not free coefficients.
+/// ≤ 1e-12 and contractive (ifs::contraction; unless check_contraction is off), else InvalidInput saying why.
+/// Also throws for a negative or non-finite amplitude and for names in `values` that are not free
+/// coefficients.
 Perturbation perturb(const Bcifs& system, const PerturbOptions& options = {});
 /// The same with the system's admissible space solved already (admissible_space(system, options.solve)):
 /// an interactive edit of the amplitude, seed or values re-perturbs without solving the constraints again
