@@ -62,6 +62,7 @@
 #include <limits>
 #include <optional>
 
+#include "cifs/cpu.hpp"
 #include "cifs/errors.hpp"
 #include "cifs/format.hpp"
 #include "cifs/ifs/analysis.hpp"
@@ -223,10 +224,88 @@ double nets_diameter(std::span<const Points> nets, bool homogeneous) {
   return extent;
 }
 
+#if defined(CIFS_X86_AVX)
+namespace {
+
+/// The largest ‖T_i − T_j‖₁ over pairs of columns of T, whose rows are a multiple of 4, four entries at a
+/// time with AVX: each sum in the order of Eigen's SSE2 sum of a vector, which the generic loop of delta
+/// gets — four partial sums over the entries k ≡ 0, 1, 2, 3 (mod 4), then (s0 + s2) + (s1 + s3) —, so δ
+/// is the same double either way (tests/ifs/test_analysis.cpp). A third of a contractivity check's
+/// instructions went to δ of 16 × 16 products.
+__attribute__((target("avx"))) double largest_distance_avx(const Eigen::MatrixXd& T) noexcept {
+  const Eigen::Index n = T.rows();
+  const __m256d sign = _mm256_set1_pd(-0.0);  // |x|: x with the sign bit cleared
+  double best = 0;
+  for (Eigen::Index i = 0; i < T.cols(); ++i)
+    for (Eigen::Index j = i + 1; j < T.cols(); ++j) {
+      const double *a = T.col(i).data(), *b = T.col(j).data();
+      __m256d sum = _mm256_andnot_pd(sign, _mm256_sub_pd(_mm256_loadu_pd(a), _mm256_loadu_pd(b)));
+      for (Eigen::Index k = 4; k < n; k += 4)
+        sum = _mm256_add_pd(
+            sum, _mm256_andnot_pd(sign, _mm256_sub_pd(_mm256_loadu_pd(a + k), _mm256_loadu_pd(b + k))));
+      const __m128d half = _mm_add_pd(_mm256_castpd256_pd128(sum), _mm256_extractf128_pd(sum, 1));
+      best = std::max(best, _mm_cvtsd_f64(_mm_add_sd(half, _mm_unpackhi_pd(half, half))));
+    }
+  return best;
+}
+
+/// C = A·B, A's rows a multiple of 4, with AVX: four rows of a column of C at a time, each entry summed
+/// over k in order from 0 by a product and an addition (no fused multiply-add), the doubles of Eigen's
+/// product in this build (the residual and δ tests compare with it), without its packing of both
+/// operands, which took a third of a 16 × 16 product.
+__attribute__((target("avx"))) void multiply_avx(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
+                                                 Eigen::MatrixXd& C) noexcept {
+  const Eigen::Index n = A.rows(), depth = A.cols();
+  if (n == 16) {  // a column of C in four registers, each column of A read once per column of C
+    for (Eigen::Index j = 0; j < B.cols(); ++j) {
+      __m256d s0 = _mm256_setzero_pd(), s1 = s0, s2 = s0, s3 = s0;
+      for (Eigen::Index k = 0; k < depth; ++k) {
+        const double* a = A.data() + k * 16;
+        const __m256d b = _mm256_set1_pd(B(k, j));
+        s0 = _mm256_add_pd(s0, _mm256_mul_pd(_mm256_loadu_pd(a), b));
+        s1 = _mm256_add_pd(s1, _mm256_mul_pd(_mm256_loadu_pd(a + 4), b));
+        s2 = _mm256_add_pd(s2, _mm256_mul_pd(_mm256_loadu_pd(a + 8), b));
+        s3 = _mm256_add_pd(s3, _mm256_mul_pd(_mm256_loadu_pd(a + 12), b));
+      }
+      double* c = C.data() + j * 16;
+      _mm256_storeu_pd(c, s0);
+      _mm256_storeu_pd(c + 4, s1);
+      _mm256_storeu_pd(c + 8, s2);
+      _mm256_storeu_pd(c + 12, s3);
+    }
+    return;
+  }
+  for (Eigen::Index j = 0; j < B.cols(); ++j)
+    for (Eigen::Index i = 0; i < n; i += 4) {
+      __m256d sum = _mm256_setzero_pd();
+      for (Eigen::Index k = 0; k < depth; ++k)
+        sum =
+            _mm256_add_pd(sum, _mm256_mul_pd(_mm256_loadu_pd(A.data() + k * n + i), _mm256_set1_pd(B(k, j))));
+      _mm256_storeu_pd(C.data() + j * n + i, sum);
+    }
+}
+
+}  // namespace
+#endif
+
+void detail::multiply(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, Eigen::MatrixXd& C) {
+#if defined(CIFS_X86_AVX)
+  if (A.rows() % 4 == 0 && cpu_has_avx()) {
+    C.resize(A.rows(), B.cols());
+    multiply_avx(A, B, C);
+    return;
+  }
+#endif
+  C.noalias() = A * B;
+}
+
 double delta(const Eigen::MatrixXd& M) noexcept {
   // Rows as contiguous columns: the pairs loop vectorises (strided rows made δ of 65 × 65 products
   // as slow as the products themselves).
   const Eigen::MatrixXd T = M.transpose();
+#if defined(CIFS_X86_AVX)
+  if (T.rows() % 4 == 0 && T.rows() > 0 && cpu_has_avx()) return largest_distance_avx(T) / 2;
+#endif
   double best = 0;
   for (Eigen::Index i = 0; i < T.cols(); ++i)
     for (Eigen::Index j = i + 1; j < T.cols(); ++j)
@@ -413,7 +492,7 @@ struct PathScan {
         A = std::max(A, n);
         if (skips(suffix->deltas[from][i], n, target(*b, g))) continue;
       }
-      product[static_cast<std::size_t>(k) + 1].noalias() = g[*b].matrix * P;
+      times(g[*b].matrix, k, product);
       if (!descend(from, target(*b, g), k + 1)) return false;
     }
     return true;
@@ -450,10 +529,20 @@ struct PathScan {
       const int child = path.word[static_cast<std::size_t>(k)];
       if (child < 0 || static_cast<std::size_t>(child) >= out_degree(s, g)) return false;
       const automata::TransitionId t = out_edge(g, s, static_cast<std::size_t>(child));
-      product[static_cast<std::size_t>(k) + 1].noalias() = g[t].matrix * P;
+      times(g[t].matrix, k, product);
       s = target(t, g);
     }
     return delta(product[static_cast<std::size_t>(length)]) >= 1;
+  }
+
+  /// product[k + 1] = M · product[k]; at k = 0 (the identity) M itself: the value of M · I, whose terms
+  /// but one are ±0 (exact, up to the sign of a zero, which no δ or norm reads), without the product.
+  static void times(const Eigen::MatrixXd& M, int k, std::vector<Eigen::MatrixXd>& product) {
+    auto& next = product[static_cast<std::size_t>(k) + 1];
+    if (k == 0)
+      next = M;
+    else
+      detail::multiply(M, product[static_cast<std::size_t>(k)], next);
   }
 
   bool run(const std::vector<StateId>& states) {
@@ -730,6 +819,11 @@ std::vector<Eigen::RowVectorXd> repeated_child_functionals(const Automaton& auto
       throw InvalidInput("child " + std::to_string(child) +
                          " does not exist: " + detail::state_label(automaton, s) + " has " +
                          std::to_string(out_degree(s, g)) + " children");
+  return detail::repeated_child_functionals_unchecked(automaton, child);
+}
+
+std::vector<Eigen::RowVectorXd> detail::repeated_child_functionals_unchecked(const Automaton& automaton,
+                                                                             int child) {
   return chain_functionals(
       automaton, [&](StateId) { return static_cast<std::size_t>(child); }, "child-" + std::to_string(child));
 }

@@ -505,7 +505,7 @@ void build_tables(const Automaton& automaton, std::span<const StateId> states, i
   {
     std::array<std::vector<Eigen::RowVectorXd>, 4> corner;
     for (int k = 0; k < 4; ++k)
-      corner[static_cast<std::size_t>(k)] = repeated_child_functionals(automaton, k);
+      corner[static_cast<std::size_t>(k)] = detail::repeated_child_functionals_unchecked(automaton, k);
     for (const StateId s : states) {
       table[s].resize(4, g[s].size);
       for (std::size_t k = 0; k < 4; ++k) table[s].row(static_cast<Eigen::Index>(k)) = corner[k][s];

@@ -24,6 +24,16 @@ std::string state_label(const Automaton& automaton, StateId state);
 /// "0 1 1" for a word of child indices; "(empty)" when empty.
 std::string word_text(std::span<const int> word);
 
+/// C = A·B (C neither A nor B), the doubles of `C.noalias() = A * B`: with AVX where the CPU has it and A's
+/// rows are a multiple of 4 (the 16 × 16 products of a surface's contractivity check and constraint
+/// residuals, which cifs view makes for every edit of a perturbation), else by Eigen.
+void multiply(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, Eigen::MatrixXd& C);
+
+/// repeated_child_functionals of an automaton validated already whose reachable states all have the child:
+/// the mesh tables check both once for their four corners (a validation reads every matrix, ~4 M
+/// instructions for a perturbed bicubic surface's, and an interactive edit meshes a new one every time).
+std::vector<Eigen::RowVectorXd> repeated_child_functionals_unchecked(const Automaton& automaton, int child);
+
 /// Depth-first walk over the nodes of the subdivision tree up to `max_depth`, one net per level.
 /// `visit(initial, state, net, depth, word)` is called for every node in order (initial entries
 /// in order, children in out-edge order) and returns whether to descend below it; nodes at

@@ -2,6 +2,7 @@
 #include "cifs/ifs/analysis.hpp"
 
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <random>
 
 #include "cifs/errors.hpp"
@@ -47,6 +48,76 @@ TEST_CASE("delta and diameter", "[ifs]") {
     const Eigen::MatrixXd M = random_contraction(4, 3, 0.9, rng);
     const Points N = random_points(3, 3, rng);
     CHECK(diameter(M * N) <= delta(M) * diameter(N) * (1 + 1e-12));
+  }
+}
+
+TEST_CASE("delta is the largest ½‖M_i − M_j‖₁ summed as Eigen sums a vector, bit for bit, every shape",
+          "[ifs]") {
+  // delta takes the rows four entries at a time with AVX where the CPU has it (the 16 × 16 products of a
+  // surface's contractivity check): the same doubles as Eigen's sum of each difference of rows, on entries
+  // of scales from 1e-8 to 1e8, where another order of the sums would round otherwise.
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> unit(-1, 1), scale(-8, 8);
+  int differs_from_sequential = 0;
+  for (const Eigen::Index rows : {1, 2, 3, 5, 16}) {
+    for (Eigen::Index cols = 1; cols <= 20; ++cols) {
+      for (int trial = 0; trial < 4; ++trial) {
+        Eigen::MatrixXd M(rows, cols);
+        for (Eigen::Index i = 0; i < M.size(); ++i) M(i) = unit(rng) * std::pow(10.0, scale(rng));
+        double expected = 0, sequential = 0;
+        for (Eigen::Index i = 0; i < rows; ++i)
+          for (Eigen::Index j = i + 1; j < rows; ++j) {
+            const Eigen::RowVectorXd d = M.row(i) - M.row(j);
+            expected = std::max(expected, d.cwiseAbs().sum());
+            double s = 0;
+            for (Eigen::Index k = 0; k < cols; ++k) s += std::abs(d(k));
+            sequential = std::max(sequential, s);
+          }
+        INFO(rows << " × " << cols);
+        CHECK(delta(M) == expected / 2);
+        differs_from_sequential += expected != sequential ? 1 : 0;
+      }
+    }
+  }
+  CHECK(differs_from_sequential > 0);  // the order matters on these entries: the test can tell
+}
+
+TEST_CASE("contraction's δ is the largest δ of every path's full product, bit for bit", "[ifs]") {
+  // The scans make their 4k × 4k products with AVX where the CPU has it: the same doubles as Eigen's
+  // products. One state, three transitions of random rows summing to 1 (not contractive: the last length is
+  // scanned in full and its δ is the refusal's), states of 4 and 16 points.
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(-0.8, 1.0);
+  for (const int n : {4, 16}) {
+    Automaton a;
+    const StateId s = add_state(a, n, "s");
+    for (int t = 0; t < 3; ++t) {
+      Eigen::MatrixXd M(n, n);
+      for (Eigen::Index i = 0; i < M.size(); ++i) M(i) = u(rng);
+      M.col(n - 1) += Eigen::VectorXd::Ones(n) - M.rowwise().sum();  // rows sum to 1 (to rounding)
+      add_transition(a, s, s, M, std::to_string(t));
+    }
+    add_initial(a, s);
+    for (const int length : {2, 3}) {
+      double brute = 0;  // every path's product from the identity, by Eigen
+      for (int w = 0; w < (1 << (2 * length)); ++w) {
+        Eigen::MatrixXd P = Eigen::MatrixXd::Identity(n, n);
+        bool valid = true;
+        for (int k = 0; k < length; ++k) {
+          const int child = (w >> (2 * k)) & 3;
+          valid = valid && child < 3;
+          if (valid) P = (a.graph[*std::next(out_edges(s, a.graph).first, child)].matrix * P).eval();
+        }
+        if (valid) brute = std::max(brute, delta(P));
+      }
+      INFO(n << " points, length " << length);
+      try {
+        (void)contraction(a, {.max_length = length});
+        FAIL("contractive");
+      } catch (const NotContractive& e) {
+        CHECK(e.delta == brute);
+      }
+    }
   }
 }
 

@@ -268,3 +268,77 @@ TEST_CASE("surface_bcifs: free_knot_lines frees the knot lines too", "[ifs][bcif
   }
   CHECK(on_lines > 1e-4);  // the knot lines move (joined: quad_mesh shares their vertices)
 }
+
+namespace {
+
+/// A side of a constraint as the dense product F_0·F_1⋯F_k · I, boundaries as selection matrices: the
+/// definition, which constraint_residuals computes by picking rows instead.
+Eigen::MatrixXd dense_side(const Bcifs& sys, const std::vector<Factor>& side) {
+  const automata::StateId source = side.back().kind == Factor::Kind::boundary
+                                       ? sys.boundaries[static_cast<std::size_t>(side.back().boundary)].cell
+                                       : side.back().transition.from;
+  const int size = sys.automaton.graph[source].size;
+  Eigen::MatrixXd P = Eigen::MatrixXd::Identity(size, size);
+  for (auto it = side.rbegin(); it != side.rend(); ++it)
+    P = ((it->kind == Factor::Kind::boundary
+              ? selection_matrix(sys, it->boundary)
+              : Eigen::MatrixXd(sys.automaton.graph[transition_id(sys.automaton, it->transition)].matrix)) *
+         P)
+            .eval();
+  return P;
+}
+
+/// The largest δ over every path of `length` transitions from a reachable state, each product made from the
+/// identity by full products (no branch and bound, no kept paths).
+double brute_delta(const automata::Automaton& a, int length) {
+  double worst = 0;
+  const auto walk = [&](auto&& self, automata::StateId s, const Eigen::MatrixXd& P, int k) -> void {
+    if (k == length) {
+      worst = std::max(worst, delta(P));
+      return;
+    }
+    for (auto [b, e] = out_edges(s, a.graph); b != e; ++b)
+      self(self, target(*b, a.graph), (a.graph[*b].matrix * P).eval(), k + 1);
+  };
+  for (const automata::StateId s : reachable_states(a))
+    walk(walk, s, Eigen::MatrixXd::Identity(a.graph[s].size, a.graph[s].size), 0);
+  return worst;
+}
+
+}  // namespace
+
+TEST_CASE("perturbed surfaces: residuals and δ of the shortcut products are the dense products', bit for bit",
+          "[ifs][bcifs][surface]") {
+  // constraint_residuals picks rows for a boundary and starts from the last factor, the contractivity scans
+  // start from the first matrix instead of M·I (cifs view checks every edit of an amplitude): the same
+  // doubles as the products by selection matrices and the identity.
+  for (const auto& [name, s] : sample_surfaces()) {
+    INFO(name);
+    const auto ta = nurbs::tensor_automaton(s);
+    const Bcifs sys = surface_bcifs(ta);
+    if (num_vertices(sys.automaton.graph) > 200) continue;  // the non-uniform bicubic: 281 states, slow
+    const AdmissibleSpace space = admissible_space(sys);
+    for (const double amplitude : {0.01, 0.03}) {
+      PerturbOptions po;
+      po.amplitude = amplitude;
+      po.seed = 5;
+      po.contraction.bound = false;
+      const Perturbation p = perturb(sys, space, po);
+      const auto residuals = constraint_residuals(p.system);
+      REQUIRE(residuals.size() == p.system.constraints.size() + p.system.free.size());
+      for (std::size_t c = 0; c < p.system.constraints.size(); ++c) {
+        const Eigen::MatrixXd L = dense_side(p.system, p.system.constraints[c].left),
+                              R = dense_side(p.system, p.system.constraints[c].right);
+        const double scale = std::max({1.0, L.cwiseAbs().maxCoeff(), R.cwiseAbs().maxCoeff()});
+        CHECK(residuals[c].second == (L - R).cwiseAbs().maxCoeff() / scale);
+      }
+      // δ_m and m against every path's full product: lengths below m fail somewhere, m does not (where
+      // the paths are few: the test stays cheap).
+      const Contraction c = p.contraction;
+      if (reachable_states(p.system.automaton).size() << (2 * c.m) > 2000) continue;
+      CHECK(c.delta == brute_delta(p.system.automaton, c.m));
+      if (c.m > 1) CHECK(brute_delta(p.system.automaton, c.m - 1) >= 1);
+      CHECK(contraction(p.system.automaton).delta == c.delta);  // the bounds (A) on: the same δ
+    }
+  }
+}

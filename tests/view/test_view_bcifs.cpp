@@ -12,7 +12,9 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <string>
+#include <tuple>
 
 #include "cifs/errors.hpp"
 #include "cifs/experiment/run.hpp"
@@ -277,4 +279,59 @@ TEST_CASE(
   // Experiments on other sources are named and refused.
   CHECK_THROWS_WITH(view::open_document(kBcifsExamples + "/experiments/fern.json"),
                     Catch::Contains("an experiment on a classic IFS"));
+}
+
+TEST_CASE(
+    "view perturbed edits: a session's fast path gives the cold evaluation's bytes and the runner's points",
+    "[view][view_bcifs]") {
+  // Random amplitude and seed edits through one session (the kept system, surface mesh and failing paths,
+  // the contractivity checked beside the evaluation) against a cold evaluation of each (no cache) and the
+  // runner's points (experiment::evaluate: the system built, solved and perturbed from the file); a refused
+  // edit is refused alike, with the same message.
+  cifs_test::ScratchDir dir;
+  std::mt19937_64 random(2026);
+  int refusals = 0;
+  for (const auto& [file, depth, top] :
+       {std::tuple{"wave.json", 6, 0.8}, std::tuple{"saddle.json", 3, 0.3}}) {
+    const std::string path = kBcifsExamples + "/shapes/" + file;
+    INFO(path);
+    const view::Document d = view::open_document(path);
+    view::EditCache cache;
+    view::Params p = view::default_params(d);
+    p.depth = depth;
+    int accepted = 0, refused = 0;
+    for (int edit = 0; edit < 8; ++edit) {
+      p.amplitude = std::uniform_real_distribution<double>(0, top)(random);
+      p.seed = random() % 4 + 1;
+      INFO("amplitude " << p.amplitude << ", seed " << p.seed);
+      std::string fast_refusal, cold_refusal;
+      view::Geometry fast, cold;
+      try {
+        fast = view::geometry(d, p, {}, &cache);
+      } catch (const InvalidInput& e) {
+        fast_refusal = e.what();
+      }
+      try {
+        cold = view::geometry(d, p);
+      } catch (const InvalidInput& e) {
+        cold_refusal = e.what();
+      }
+      CHECK(fast_refusal == cold_refusal);
+      if (!fast_refusal.empty()) {
+        ++refused;
+        continue;
+      }
+      ++accepted;
+      CHECK(view::encode_geometry(fast) == view::encode_geometry(cold));
+      CHECK(fast.contraction_length > 0);
+      check_same_points(
+          fast,
+          runner_points(dir.path(),
+                        {{"shape", path}, {"perturbation", {{"amplitude", p.amplitude}, {"seed", p.seed}}}},
+                        depth));
+    }
+    CHECK(accepted > 0);
+    refusals += refused;
+  }
+  CHECK(refusals > 0);  // the curve's amplitudes reach systems that are not contractive
 }

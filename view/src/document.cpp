@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <future>
 #include <optional>
 #include <span>
 #include <stdexcept>
@@ -689,19 +690,35 @@ void check_values(const Document& d, const Params& params) {
   }
 }
 
-/// The perturbed system of an edit, its contractivity checked with the failing paths the session kept
-/// (`cache`, if any): the same result as without, sooner.
-ifs::Perturbation perturbation(const PerturbableSystem& system, const Params& params, EditCache* cache) {
-  if (!std::isfinite(params.amplitude) || params.amplitude < 0 || params.amplitude > 1)
-    throw InvalidInput("amplitude " + number_text(params.amplitude, 6) + " is outside 0..1");
-  const ifs::PerturbOptions o = perturb_options(params.amplitude, params.seed, params.values);
-  return cache != nullptr ? ifs::perturb(system.system, system.space, o, cache->failing)
-                          : ifs::perturb(system.system, system.space, o);
-}
-
 void note_contraction(const ifs::Contraction& c, Geometry& g) {
   g.contraction_length = c.m;
   g.contraction_delta = c.delta;
+}
+
+/// The perturbed system of an edit (ifs::perturb), evaluated by `evaluate(system)` while its contractivity
+/// is checked on another thread — the two halves of an edit's work, one per core —, with the failing paths
+/// the session kept (`cache`, if any: the same result as without, sooner). Refusals come as perturb's
+/// would: the constraints', then the check's (a system that is not contractive is not shown, whatever its
+/// evaluation did), then the evaluation's.
+template <class Evaluate>
+void perturbed_evaluation(const PerturbableSystem& system, const Params& params, EditCache* cache,
+                          Geometry& g, Evaluate evaluate) {
+  if (!std::isfinite(params.amplitude) || params.amplitude < 0 || params.amplitude > 1)
+    throw InvalidInput("amplitude " + number_text(params.amplitude, 6) + " is outside 0..1");
+  ifs::PerturbOptions o = perturb_options(params.amplitude, params.seed, params.values);
+  o.check_contraction = false;
+  ifs::Perturbation p = ifs::perturb(system.system, system.space, o);
+  std::future<void> check = std::async(std::launch::async, [&] {
+    ifs::check_contractive(p, o, cache != nullptr ? &cache->failing : nullptr);
+  });
+  try {
+    evaluate(std::as_const(p.system));
+  } catch (...) {
+    check.get();  // its refusal first
+    throw;
+  }
+  check.get();
+  note_contraction(p.contraction, g);
 }
 
 /// The key of a shape's perturbable system: the document and its edits of points, weights and knots (bit for
@@ -738,18 +755,18 @@ void perturbed_geometry(const Document& d, const io::Shape& shape, const Params&
       cache->system = system;
     }
   }
-  const ifs::Perturbation p = perturbation(*system, params, cache);
-  note_contraction(p.contraction, g);
-  if (std::holds_alternative<nurbs::Curve>(shape)) {
-    sample_geometry(p.system.automaton, system->nets, params.depth, system->rational, system->closed, limits,
-                    g);
-    return;
-  }
-  ifs::MeshOptions mo;
-  mo.homogeneous = system->rational;
-  mo.max_bytes = ifs::mesh_bytes(limits.max_points, 3, limits.max_points);
-  cached_grid(d, shape, "generic", params.depth, mo, cache, g, [&](Mesh& mesh, const ifs::MeshOptions& o) {
-    ifs::quad_mesh(p.system.automaton, system->nets, system->patches, params.depth, mesh, o);
+  perturbed_evaluation(*system, params, cache, g, [&](const ifs::Bcifs& perturbed) {
+    if (std::holds_alternative<nurbs::Curve>(shape)) {
+      sample_geometry(perturbed.automaton, system->nets, params.depth, system->rational, system->closed,
+                      limits, g);
+      return;
+    }
+    ifs::MeshOptions mo;
+    mo.homogeneous = system->rational;
+    mo.max_bytes = ifs::mesh_bytes(limits.max_points, 3, limits.max_points);
+    cached_grid(d, shape, "generic", params.depth, mo, cache, g, [&](Mesh& mesh, const ifs::MeshOptions& o) {
+      ifs::quad_mesh(perturbed.automaton, system->nets, system->patches, params.depth, mesh, o);
+    });
   });
 }
 
@@ -757,29 +774,30 @@ void perturbed_geometry(const Document& d, const io::Shape& shape, const Params&
 void bcifs_geometry(const Document& d, const Params& params, const Limits& limits, EditCache* cache,
                     Geometry& g) {
   const PerturbableSystem& system = *d.bcifs;
-  std::optional<ifs::Perturbation> p;
+  const auto pieces_of = [&](const ifs::Bcifs& drawn) {
+    const Eigen::Index cols = system.nets.front().cols();
+    const ifs::EdgePieces pieces =
+        ifs::edge_pieces(drawn, system.nets, params.depth,
+                         limits.max_points * static_cast<std::size_t>(cols) * sizeof(double));
+    const Eigen::Index n = pieces.start.rows();
+    if (static_cast<std::size_t>(2 * n) > limits.max_points)
+      throw InvalidInput(std::to_string(2 * n) + " points, above the view's limit of " +
+                         std::to_string(limits.max_points) + "; lower the depth");
+    g.positions.resize(6 * static_cast<std::size_t>(n));
+    write_xyz(pieces.start, g.positions.data());
+    write_xyz(pieces.end, g.positions.data() + 3 * n);
+    g.pieces = static_cast<std::uint32_t>(n);
+    g.states.clear();
+    g.states.reserve(2 * static_cast<std::size_t>(n));
+    for (int half = 0; half < 2; ++half)
+      for (const automata::StateId s : pieces.state) g.states.push_back(static_cast<std::uint32_t>(s));
+  };
   if (perturbed(d, params)) {
-    p = perturbation(system, params, cache);
-    note_contraction(p->contraction, g);
+    perturbed_evaluation(system, params, cache, g, pieces_of);
   } else {  // the file's matrices are the user's: an attractor exists only when they shrink nets
     note_contraction(ifs::contraction(system.system.automaton, {.bound = false}), g);
+    pieces_of(system.system);
   }
-  const Eigen::Index cols = system.nets.front().cols();
-  const ifs::EdgePieces pieces =
-      ifs::edge_pieces(p ? p->system : system.system, system.nets, params.depth,
-                       limits.max_points * static_cast<std::size_t>(cols) * sizeof(double));
-  const Eigen::Index n = pieces.start.rows();
-  if (static_cast<std::size_t>(2 * n) > limits.max_points)
-    throw InvalidInput(std::to_string(2 * n) + " points, above the view's limit of " +
-                       std::to_string(limits.max_points) + "; lower the depth");
-  g.positions.resize(6 * static_cast<std::size_t>(n));
-  write_xyz(pieces.start, g.positions.data());
-  write_xyz(pieces.end, g.positions.data() + 3 * n);
-  g.pieces = static_cast<std::uint32_t>(n);
-  g.states.clear();
-  g.states.reserve(2 * static_cast<std::size_t>(n));
-  for (int half = 0; half < 2; ++half)
-    for (const automata::StateId s : pieces.state) g.states.push_back(static_cast<std::uint32_t>(s));
   // The control nets, each a polyline (the runner's control net).
   for (const Points& N : system.nets) {
     const auto first = static_cast<std::uint32_t>(g.net.size() / 3);

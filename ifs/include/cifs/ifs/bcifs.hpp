@@ -146,6 +146,10 @@ struct PerturbOptions {
   std::map<std::string, double> values;
   SolveOptions solve;
   ContractionOptions contraction;
+  /// Off: perturb stops after the residual, `contraction` of the result left at {} for the caller to check
+  /// with check_contractive(Perturbation&, …) (failing_paths.hpp) — cifs view evaluates the system
+  /// meanwhile on another thread, and shows it only when the check passes.
+  bool check_contraction = true;
 };
 
 struct Perturbation {
@@ -158,8 +162,9 @@ struct Perturbation {
 };
 
 /// Perturbs the free coefficients, solves the dependent ones and checks the result: residual
-/// ≤ 1e-12 and contractive (ifs::contraction), else InvalidInput saying why. Also throws for a
-/// negative or non-finite amplitude and for names in `values` that are not free coefficients.
+/// ≤ 1e-12 and contractive (ifs::contraction; unless check_contraction is off), else InvalidInput saying why.
+/// Also throws for a negative or non-finite amplitude and for names in `values` that are not free
+/// coefficients.
 Perturbation perturb(const Bcifs& system, const PerturbOptions& options = {});
 /// The same with the system's admissible space solved already (admissible_space(system, options.solve)):
 /// an interactive edit of the amplitude, seed or values re-perturbs without solving the constraints again
