@@ -971,8 +971,11 @@ LevelFeatures level_features(const MeshTopology& t, const MeshTags& tags, MeshSc
   if (tags.creases.empty() && tags.corners.empty() && tags.holes.empty() && !boundary)
     return L;  // a plain closed level: smooth rules everywhere, nothing to allocate
   const std::size_t V = static_cast<std::size_t>(t.vertex_count), E = t.edges.size(), F = face_count(t);
-  std::vector<double> es(E, 0), vs(V, 0);
-  std::vector<char> holes(F, 0);
+  std::vector<double> es, vs;
+  std::vector<char> holes;
+  assign_huge(es, E, 0.0);
+  assign_huge(vs, V, 0.0);
+  assign_huge(holes, F, char{0});
   if (!tags.creases.empty()) {
     for (std::size_t i = 0; i < tags.creases.size(); ++i) {
       const EdgeSharpness& c = tags.creases[i];
@@ -1032,11 +1035,14 @@ MeshTags child_tags(MeshScheme scheme, const MeshTopology& t, const LevelFeature
       if (halves[2 * e] > 0) out.creases.push_back({t.edges[e][0], mid, halves[2 * e]});
       if (halves[2 * e + 1] > 0) out.creases.push_back({mid, t.edges[e][1], halves[2 * e + 1]});
     }
-  for (std::size_t v = 0; v < L.vertex_sharpness.size(); ++v)
-    if (const double s = decremented_sharpness(L.vertex_sharpness[v]); s > 0 && vertex_faces(t, v).size() > 0)
-      if (!(tags.boundary == BoundaryRule::edge_and_corner && vertex_faces(t, v).size() == 1 &&
-            vertex_edges(t, v).size() == 2))  // made sharp again by the boundary rule
-        out.corners.push_back({static_cast<int>(v), s});
+  for (std::size_t v = 0; v < L.vertex_sharpness.size(); ++v) {
+    if (L.vertex_sharpness[v] <= 0) continue;  // most vertices
+    const double s = decremented_sharpness(L.vertex_sharpness[v]);
+    if (s > 0 && vertex_faces(t, v).size() > 0 &&
+        !(tags.boundary == BoundaryRule::edge_and_corner && vertex_faces(t, v).size() == 1 &&
+          vertex_edges(t, v).size() == 2))  // made sharp again by the boundary rule
+      out.corners.push_back({static_cast<int>(v), s});
+  }
   if (!L.holes.empty()) {
     const bool quads = traits(scheme).split == Split::quads;
     for (std::size_t f = 0; f < face_count(t); ++f) {
