@@ -246,7 +246,7 @@ void split_polygons(const MeshTopology& t, Step& s) {
   // may be gone, see subdivide).
   const int V = t.vertex_count, E = s.vertex_count - V - static_cast<int>(face_count(t));
   const std::size_t H = t.face_vertices.size();
-  // Written in place (add_face's inserts cost a third of the split).
+  // Written in place (add_face's inserts were half of the split's instructions).
   assign_huge(s.face_offsets, H + 1, 0);
   for (std::size_t h = 0; h <= H; ++h) s.face_offsets[h] = static_cast<int>(4 * h);
   assign_huge(s.face_vertices, 4 * H, 0);
