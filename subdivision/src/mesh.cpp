@@ -304,7 +304,7 @@ inline int opposite_corner(const MeshTopology& t, int f, int e) {
 void split_triangles(const MeshTopology& t, Step& s) {
   const int V = t.vertex_count;
   const std::size_t F = face_count(t);
-  // Written in place: no vector inserts (four short ones per triangle were 29 % of Loop's topology-only work).
+  // Written in place: no vector inserts (four per triangle were 29 % of Loop's topology-only work).
   assign_huge(s.face_offsets, 4 * F + 1, 0);
   for (std::size_t f = 0; f <= 4 * F; ++f) s.face_offsets[f] = static_cast<int>(3 * f);
   assign_huge(s.face_vertices, 12 * F, 0);
