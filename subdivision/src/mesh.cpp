@@ -78,6 +78,7 @@ template <class Writer>
 /// order of first appearance.
 class RowWriter {
  public:
+  static constexpr bool applies = false;
   RowWriter(Step& s, int old_vertex_count)
       : s_(s),
         slot_(static_cast<std::size_t>(old_vertex_count)),
@@ -131,26 +132,26 @@ class RowWriter {
 
 /// Applies each row to the step's input as it is made (one-shot subdivision: no weights in memory,
 /// no columns kept; a column given twice adds twice). Same rows as RowWriter's, summed in another
-/// order: the same points to round-off.
+/// order: the same points to round-off. The input is 3-D positions (subdivide's check_mesh).
 class PointWriter {
  public:
+  static constexpr bool applies = true;
   /// `s.vertex_count` is set: the output is sized from it.
-  PointWriter(Step& s, int /*old_vertex_count*/) : in_(s.sink.input->data()), d_(s.sink.input->cols()) {
-    s.output.resize(s.vertex_count, d_);
+  PointWriter(Step& s, int /*old_vertex_count*/) : in_(s.sink.input->data()) {
+    s.output.resize(s.vertex_count, 3);
     advise_huge_pages(s.output.data(), static_cast<std::size_t>(s.output.size()) * sizeof(double));
     out_ = s.output.data();
     rows_ = s.vertex_count;
-    if (d_ != 3) sum_.assign(static_cast<std::size_t>(d_), 0.0);
   }
   [[gnu::always_inline]] void add(int column, double weight) {
-    add_point(in_ + d_ * static_cast<std::ptrdiff_t>(column), weight);
+    add_point(in_ + 3 * static_cast<std::ptrdiff_t>(column), weight);
   }
   /// Quad split: the child face points — the step's last rows, the centroids of the parent faces —
   /// made first, so that add_face_point weighs a face's centre as one point, not its corners
   /// (OpenSubdiv's order; a fifth of a creased Catmull–Clark one-shot's instructions, with RowWriter).
   void make_face_points(const MeshTopology& t) {
     const auto F = static_cast<Eigen::Index>(face_count(t));
-    double* const faces = out_ + d_ * (rows_ - F);
+    double* const faces = out_ + 3 * (rows_ - F);
     const Eigen::Index row = row_;
     row_ = rows_ - F;
     for (Eigen::Index f = 0; f < F; ++f) {
@@ -163,41 +164,30 @@ class PointWriter {
   /// The centroid of parent face f, weighted: the child face point when made first, else its corners.
   [[gnu::always_inline]] void add_face_point(const MeshTopology& t, std::size_t f, double weight) {
     if (faces_)
-      add_point(faces_ + d_ * static_cast<std::ptrdiff_t>(f), weight);
+      add_point(faces_ + 3 * static_cast<std::ptrdiff_t>(f), weight);
     else
       add_corners(t, f, weight, *this);
   }
   [[gnu::always_inline]] void finish() {
-    double* out = out_ + d_ * row_++;
-    if (d_ == 3) {
-      out[0] = x_;
-      out[1] = y_;
-      out[2] = z_;
-      x_ = y_ = z_ = 0;
-      return;
-    }
-    std::copy(sum_.begin(), sum_.end(), out);
-    std::fill(sum_.begin(), sum_.end(), 0.0);
+    double* out = out_ + 3 * row_++;
+    out[0] = x_;
+    out[1] = y_;
+    out[2] = z_;
+    x_ = y_ = z_ = 0;
   }
 
  private:
   [[gnu::always_inline]] void add_point(const double* p, double weight) {
-    if (d_ == 3) {  // positions: the common case
-      x_ += weight * p[0];
-      y_ += weight * p[1];
-      z_ += weight * p[2];
-      return;
-    }
-    for (Eigen::Index c = 0; c < d_; ++c) sum_[static_cast<std::size_t>(c)] += weight * p[c];
+    x_ += weight * p[0];
+    y_ += weight * p[1];
+    z_ += weight * p[2];
   }
 
   const double* in_;
-  Eigen::Index d_;
   double* out_ = nullptr;
   Eigen::Index rows_ = 0, row_ = 0;
   double* faces_ = nullptr;  // make_face_points: the child face points
   double x_ = 0, y_ = 0, z_ = 0;
-  std::vector<double> sum_;  // d ≠ 3
 };
 
 /// Reserves a step's weights from its counts (growing them by doubling costs copies and page faults
@@ -476,7 +466,7 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
                            ? blz_sides(scheme, t, L, tags)
                            : BlzSides{};
   if (s.sink.drop && smooth) return s;  // topology only on a smooth level: nothing to compute
-  if constexpr (std::is_same_v<Writer, PointWriter>)
+  if constexpr (Writer::applies)
     if (quads) row.make_face_points(t);  // BLZ's flattened ones are made again below
   for (int v = 0; v < V; ++v) {
     const auto ring = ring_edges(t, v);
@@ -575,7 +565,7 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
     }
     row.finish();
   }
-  if (quads && !(std::is_same_v<Writer, PointWriter> && blz.corners.empty()))
+  if (quads && !(Writer::applies && blz.corners.empty()))
     for (int f = 0; f < F; ++f) {
       // BLZ: at concave corners, the mean of the face point flattened towards each.
       int flattened = 0;
