@@ -78,7 +78,7 @@ template <class Writer>
 /// order of first appearance.
 class RowWriter {
  public:
-  static constexpr bool applies = false;
+  static constexpr bool kApplies = false;
   RowWriter(Step& s, int old_vertex_count)
       : s_(s),
         slot_(static_cast<std::size_t>(old_vertex_count)),
@@ -135,7 +135,7 @@ class RowWriter {
 /// order: the same points to round-off. The input is 3-D positions (subdivide's check_mesh).
 class PointWriter {
  public:
-  static constexpr bool applies = true;
+  static constexpr bool kApplies = true;
   /// `s.vertex_count` is set: the output is sized from it.
   PointWriter(Step& s, int /*old_vertex_count*/) : in_(s.sink.input->data()) {
     s.output.resize(s.vertex_count, 3);
@@ -466,7 +466,7 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
                            ? blz_sides(scheme, t, L, tags)
                            : BlzSides{};
   if (s.sink.drop && smooth) return s;  // topology only on a smooth level: nothing to compute
-  if constexpr (Writer::applies)
+  if constexpr (Writer::kApplies)
     if (quads) row.make_face_points(t);  // BLZ's flattened ones are made again below
   for (int v = 0; v < V; ++v) {
     const auto ring = ring_edges(t, v);
@@ -565,7 +565,7 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
     }
     row.finish();
   }
-  if (quads && !(Writer::applies && blz.corners.empty()))
+  if (quads && !(Writer::kApplies && blz.corners.empty()))
     for (int f = 0; f < F; ++f) {
       // BLZ: at concave corners, the mean of the face point flattened towards each.
       int flattened = 0;
