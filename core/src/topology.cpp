@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <climits>
+#include <cstdint>
 #include <string>
 
 #include "cifs/errors.hpp"
@@ -61,44 +62,63 @@ MeshTopology build_topology(std::span<const int> face_offsets, std::span<const i
 
 namespace {
 
+/// Which face half-edge h is in, and where that face starts and ends in face_vertices: looked up for
+/// any polygons (Polygons) or computed when every face has K corners (Uniform<4>: the quad split's
+/// children, whose lookups were a tenth of a Catmull–Clark one-shot's instructions; Uniform<3>: the
+/// triangle split's).
+struct Polygons {
+  std::span<const int> offsets;
+  std::vector<int> face;  // per half-edge
+  explicit Polygons(std::span<const int> face_offsets) : offsets(face_offsets) {
+    assign_huge(face, static_cast<std::size_t>(face_offsets.back()), 0);
+    for (std::size_t f = 0; f + 1 < offsets.size(); ++f)
+      std::fill(face.begin() + offsets[f], face.begin() + offsets[f + 1], static_cast<int>(f));
+  }
+  int face_of(std::size_t h) const { return face[h]; }
+  std::size_t first(std::size_t h) const {
+    return static_cast<std::size_t>(offsets[static_cast<std::size_t>(face[h])]);
+  }
+  std::size_t last(std::size_t h) const {
+    return static_cast<std::size_t>(offsets[static_cast<std::size_t>(face[h]) + 1]) - 1;
+  }
+};
+
+template <std::size_t K>
+struct Uniform {
+  static int face_of(std::size_t h) { return static_cast<int>(h / K); }
+  static std::size_t first(std::size_t h) { return h - h % K; }
+  static std::size_t last(std::size_t h) { return h - h % K + K - 1; }
+};
+
 /// Edges and rings from faces whose half-edges are paired (`twin[h]`, −1 on the boundary): the
 /// part shared by build_topology and assemble_topology. Throws unless the faces around every vertex
 /// form one fan.
-void assemble(MeshTopology& t, std::span<const int> twin, const std::string& who) {
-  const std::span<const int> face_offsets(t.face_offsets), face_vertices(t.face_vertices);
-  const std::size_t F = face_offsets.size() - 1, H = face_vertices.size();
+template <class Faces>
+void assemble(MeshTopology& t, std::span<const int> twin, const Faces& faces, const std::string& who) {
+  const std::span<const int> face_vertices(t.face_vertices);
+  const std::size_t H = face_vertices.size();
   const auto V = static_cast<std::size_t>(t.vertex_count);
-
-  // Half-edge h is corner h of face_vertices going to the next corner of its face.
-  std::vector<int> face_of;
-  assign_huge(face_of, H, 0);
-  for (std::size_t f = 0; f < F; ++f)
-    std::fill(face_of.begin() + face_offsets[f], face_of.begin() + face_offsets[f + 1], static_cast<int>(f));
-  const auto first = [&](std::size_t h) { return face_offsets[static_cast<std::size_t>(face_of[h])]; };
-  const auto last = [&](std::size_t h) { return face_offsets[static_cast<std::size_t>(face_of[h]) + 1] - 1; };
 
   // Edges in order of first appearance: a half-edge starts one unless its twin came first (twin is
   // an involution). Counted, then written in place (push_back's checks cost a fifth of the pass).
+  // (Unsigned: −1 is above every half-edge, and the loop vectorises; H < 2^31, check_faces.)
   std::size_t E = 0;
-  for (std::size_t h = 0; h < H; ++h) E += twin[h] < 0 || static_cast<std::size_t>(twin[h]) > h ? 1 : 0;
+  for (std::size_t h = 0; h < H; ++h)
+    E += static_cast<std::uint32_t>(twin[h]) > static_cast<std::uint32_t>(h);
   assign_huge(t.face_edges, H, -1);
   assign_huge(t.edges, E, std::array<int, 2>{});
   assign_huge(t.edge_faces, E, std::array<int, 2>{});
   int e = 0;
-  for (std::size_t f = 0; f < F; ++f) {
-    const auto b = static_cast<std::size_t>(face_offsets[f]),
-               end = static_cast<std::size_t>(face_offsets[f + 1]);
-    for (std::size_t h = b; h < end; ++h) {
-      if (t.face_edges[h] >= 0) continue;
-      t.face_edges[h] = e;
-      const std::size_t next = h + 1 < end ? h + 1 : b;
-      t.edges[static_cast<std::size_t>(e)] = {face_vertices[h], face_vertices[next]};
-      const int g = twin[h];
-      t.edge_faces[static_cast<std::size_t>(e)] = {static_cast<int>(f),
-                                                   g >= 0 ? face_of[static_cast<std::size_t>(g)] : -1};
-      if (g >= 0) t.face_edges[static_cast<std::size_t>(g)] = e;
-      ++e;
-    }
+  for (std::size_t h = 0; h < H; ++h) {
+    if (t.face_edges[h] >= 0) continue;
+    t.face_edges[h] = e;
+    const std::size_t next = h == faces.last(h) ? faces.first(h) : h + 1;
+    t.edges[static_cast<std::size_t>(e)] = {face_vertices[h], face_vertices[next]};
+    const int g = twin[h];
+    t.edge_faces[static_cast<std::size_t>(e)] = {faces.face_of(h),
+                                                 g >= 0 ? faces.face_of(static_cast<std::size_t>(g)) : -1};
+    if (g >= 0) t.face_edges[static_cast<std::size_t>(g)] = e;
+    ++e;
   }
 
   // Where every vertex's walk starts: its outgoing half-edge on the boundary (no face before it),
@@ -129,28 +149,44 @@ void assemble(MeshTopology& t, std::span<const int> twin, const std::string& who
     const int degree = t.vertex_offsets_faces[v + 1] - t.vertex_offsets_faces[v];
     auto edge = static_cast<std::size_t>(t.vertex_offsets_edges[v]);
     auto slot = static_cast<std::size_t>(t.vertex_offsets_faces[v]);
-    int faces = 0;
+    int count = 0;
     for (int h = start[v]; h >= 0;) {
-      if (faces == degree) {  // more faces around v than leave it: not one fan (guards the arrays)
-        ++faces;
+      if (count == degree) {  // more faces around v than leave it: not one fan (guards the arrays)
+        ++count;
         break;
       }
       const auto u = static_cast<std::size_t>(h);
       t.vertex_edge_list[edge++] = t.face_edges[u];
-      t.vertex_face_list[slot++] = face_of[u];
-      ++faces;
-      const int entering = h > first(u) ? h - 1 : last(u);
-      h = twin[static_cast<std::size_t>(entering)];
+      t.vertex_face_list[slot++] = faces.face_of(u);
+      ++count;
+      const std::size_t entering = u == faces.first(u) ? faces.last(u) : u - 1;
+      h = twin[entering];
       if (h < 0)  // the ring ends on a boundary edge: it is the last edge
-        t.vertex_edge_list[edge] = t.face_edges[static_cast<std::size_t>(entering)];
+        t.vertex_edge_list[edge] = t.face_edges[entering];
       if (h == start[v]) break;
     }
-    if (faces != degree) {
+    if (count != degree) {
       throw InvalidInput(who + ": vertex " + std::to_string(v) + " is not manifold: its " +
                          std::to_string(degree) + " faces do not form one fan around it (" +
-                         std::to_string(faces) + " are reached walking around it)");
+                         std::to_string(count) + " are reached walking around it)");
     }
   }
+}
+
+/// assemble over the faces' shape: all triangles or all quads by arithmetic, else looked up.
+void assemble(MeshTopology& t, std::span<const int> twin, const std::string& who) {
+  const std::span<const int> offsets(t.face_offsets);
+  const auto all = [&](int k) {
+    for (std::size_t f = 0; f + 1 < offsets.size(); ++f)
+      if (offsets[f + 1] - offsets[f] != k) return false;
+    return true;
+  };
+  if (all(4))
+    assemble(t, twin, Uniform<4>{}, who);
+  else if (all(3))
+    assemble(t, twin, Uniform<3>{}, who);
+  else
+    assemble(t, twin, Polygons(offsets), who);
 }
 
 /// twin[h] for every half-edge h (−1 on the boundary), found by searching the half-edges leaving

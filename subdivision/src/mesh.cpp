@@ -75,7 +75,8 @@ template <class Writer>
 
 /// Makes one stencil row at a time, kept as the step's weights (or dropped: topology only); a column
 /// given twice is summed (face points expanded into corners meet the ring's own vertices), columns in
-/// order of first appearance.
+/// order of first appearance. A step's writers share one protocol: `auto&& row = out.row();`, then
+/// row.add / row.add_face_point, then `out.finish(row)`, which starts the next row.
 class RowWriter {
  public:
   static constexpr bool kApplies = false;
@@ -101,7 +102,9 @@ class RowWriter {
   void add_face_point(const MeshTopology& t, std::size_t f, double weight) {
     add_corners(t, f, weight, *this);
   }
-  void finish() {
+  /// The row being made: this writer itself (its columns live here between rows).
+  RowWriter& row() { return *this; }
+  void finish(RowWriter& /*row*/) {
     if (!s_.sink.drop) {
       Stencils& out = s_.stencils;
       out.columns.insert(out.columns.end(), columns_.begin(),
@@ -136,6 +139,30 @@ class RowWriter {
 class PointWriter {
  public:
   static constexpr bool kApplies = true;
+  /// One point being summed. A value on the step's stack, not a member: its sums stay in registers
+  /// (members of a writer whose address the step's lambdas hold went through memory on every term:
+  /// a sixth of a Catmull–Clark one-shot's instructions).
+  struct Row {
+    const double* in;
+    const double* faces;  // make_face_points: the child face points
+    double x = 0, y = 0, z = 0;
+    [[gnu::always_inline]] void add(int column, double weight) {
+      add_point(in + 3 * static_cast<std::ptrdiff_t>(column), weight);
+    }
+    /// The centroid of parent face f, weighted: the child face point when made first, else its corners.
+    [[gnu::always_inline]] void add_face_point(const MeshTopology& t, std::size_t f, double weight) {
+      if (faces)
+        add_point(faces + 3 * static_cast<std::ptrdiff_t>(f), weight);
+      else
+        add_corners(t, f, weight, *this);
+    }
+    [[gnu::always_inline]] void add_point(const double* p, double weight) {
+      x += weight * p[0];
+      y += weight * p[1];
+      z += weight * p[2];
+    }
+  };
+
   /// `s.vertex_count` is set: the output is sized from it.
   PointWriter(Step& s, int /*old_vertex_count*/) : in_(s.sink.input->data()) {
     s.output.resize(s.vertex_count, 3);
@@ -143,51 +170,36 @@ class PointWriter {
     out_ = s.output.data();
     rows_ = s.vertex_count;
   }
-  [[gnu::always_inline]] void add(int column, double weight) {
-    add_point(in_ + 3 * static_cast<std::ptrdiff_t>(column), weight);
+  [[gnu::always_inline]] Row row() const { return {.in = in_, .faces = faces_}; }
+  /// Writes the point and starts the next one in `r`.
+  [[gnu::always_inline]] void finish(Row& r) {
+    double* out = out_ + 3 * row_++;
+    out[0] = r.x;
+    out[1] = r.y;
+    out[2] = r.z;
+    r.x = r.y = r.z = 0;
   }
   /// Quad split: the child face points — the step's last rows, the centroids of the parent faces —
   /// made first, so that add_face_point weighs a face's centre as one point, not its corners
   /// (OpenSubdiv's order; a fifth of a creased Catmull–Clark one-shot's instructions, with RowWriter).
   void make_face_points(const MeshTopology& t) {
     const auto F = static_cast<Eigen::Index>(face_count(t));
-    double* const faces = out_ + 3 * (rows_ - F);
-    const Eigen::Index row = row_;
+    const Eigen::Index row_before = row_;
     row_ = rows_ - F;
     for (Eigen::Index f = 0; f < F; ++f) {
-      add_corners(t, static_cast<std::size_t>(f), 1, *this);
-      finish();
+      Row r = row();
+      add_corners(t, static_cast<std::size_t>(f), 1, r);
+      finish(r);
     }
-    row_ = row;
-    faces_ = faces;
-  }
-  /// The centroid of parent face f, weighted: the child face point when made first, else its corners.
-  [[gnu::always_inline]] void add_face_point(const MeshTopology& t, std::size_t f, double weight) {
-    if (faces_)
-      add_point(faces_ + 3 * static_cast<std::ptrdiff_t>(f), weight);
-    else
-      add_corners(t, f, weight, *this);
-  }
-  [[gnu::always_inline]] void finish() {
-    double* out = out_ + 3 * row_++;
-    out[0] = x_;
-    out[1] = y_;
-    out[2] = z_;
-    x_ = y_ = z_ = 0;
+    row_ = row_before;
+    faces_ = out_ + 3 * (rows_ - F);
   }
 
  private:
-  [[gnu::always_inline]] void add_point(const double* p, double weight) {
-    x_ += weight * p[0];
-    y_ += weight * p[1];
-    z_ += weight * p[2];
-  }
-
   const double* in_;
   double* out_ = nullptr;
   Eigen::Index rows_ = 0, row_ = 0;
-  double* faces_ = nullptr;  // make_face_points: the child face points
-  double x_ = 0, y_ = 0, z_ = 0;
+  const double* faces_ = nullptr;  // make_face_points: the child face points
 };
 
 /// Reserves a step's weights from its counts (growing them by doubling costs copies and page faults
@@ -212,20 +224,24 @@ bool on_boundary(const MeshTopology& t, int v) {
   return t.boundary_vertex[static_cast<std::size_t>(v)] != 0;
 }
 
-/// Across half-edge h (corner h of face f): the face on the other side and its half-edge running
-/// the other way, or {−1, −1} on the boundary.
-struct Across {
-  int face, half_edge;
-};
-Across across(const MeshTopology& t, int f, int h) {
-  const int e = t.face_edges[static_cast<std::size_t>(h)];
-  const auto [f0, f1] = t.edge_faces[static_cast<std::size_t>(e)];
-  const int g = f0 == f ? f1 : f0;
-  if (g >= 0)
-    for (int q = t.face_offsets[static_cast<std::size_t>(g)];
-         q < t.face_offsets[static_cast<std::size_t>(g) + 1]; ++q)
-      if (t.face_edges[static_cast<std::size_t>(q)] == e) return {g, q};
-  return {-1, -1};
+/// The half-edge across each half-edge — running the other way, in the face on the other side of its
+/// edge — or −1 on the boundary: two passes over the corners (a search of the other face per
+/// half-edge was a twentieth of a Catmull–Clark one-shot).
+std::vector<int> half_edges_across(const MeshTopology& t) {
+  const std::size_t H = t.face_vertices.size();
+  // A half-edge runs along its edge (side 0, in edge_faces[e][0]) or against it (side 1).
+  const auto side = [&](std::size_t h) {
+    return t.face_vertices[h] == t.edges[static_cast<std::size_t>(t.face_edges[h])][0] ? 0 : 1;
+  };
+  std::vector<std::array<int, 2>> sides;
+  assign_huge(sides, t.edges.size(), std::array<int, 2>{-1, -1});
+  for (std::size_t h = 0; h < H; ++h)
+    sides[static_cast<std::size_t>(t.face_edges[h])][side(h)] = static_cast<int>(h);
+  std::vector<int> across;
+  assign_huge(across, H, -1);
+  for (std::size_t h = 0; h < H; ++h)
+    across[h] = sides[static_cast<std::size_t>(t.face_edges[h])][1 - side(h)];
+  return across;
 }
 
 /// Catmull–Clark's split (vertex points, then edge points, then face points): face f's corner i
@@ -244,46 +260,49 @@ void split_polygons(const MeshTopology& t, Step& s) {
   for (int f = 0; f < static_cast<int>(face_count(t)); ++f) {
     const auto corners = face(t, static_cast<std::size_t>(f));
     const auto edges = face_edges(t, static_cast<std::size_t>(f));
-    const std::size_t k = corners.size();
-    for (std::size_t i = 0; i < k; ++i, out += 4) {
+    int before = edges.back();  // edge i − 1
+    for (std::size_t i = 0; i < corners.size(); ++i, out += 4) {
       out[0] = corners[i];
       out[1] = V + edges[i];
       out[2] = V + E + f;
-      out[3] = V + edges[i == 0 ? k - 1 : i - 1];
+      out[3] = V + before;
+      before = edges[i];
     }
   }
 }
 
 /// The pairing of split_polygons' child half-edges (4h … 4h + 3 in the quad of parent half-edge h).
 std::vector<int> polygon_split_twins(const MeshTopology& t) {
+  const std::vector<int> across = half_edges_across(t);
   std::vector<int> twins;
   assign_huge(twins, 4 * t.face_vertices.size(), 0);
   for (int f = 0; f < static_cast<int>(face_count(t)); ++f) {
     const int base = t.face_offsets[static_cast<std::size_t>(f)],
-              k = t.face_offsets[static_cast<std::size_t>(f) + 1] - base;
-    for (int i = 0; i < k; ++i) {
-      const int h = base + i, next = base + (i + 1) % k, prev = base + (i + k - 1) % k;
+              end = t.face_offsets[static_cast<std::size_t>(f) + 1];
+    for (int h = base; h < end; ++h) {
+      const int next = h + 1 < end ? h + 1 : base, prev = h > base ? h - 1 : end - 1;
       int* twin = twins.data() + 4 * static_cast<std::ptrdiff_t>(h);
       // Vertex i → edge point: across the edge, the quad of the corner after the twin ends with
       // edge point → vertex i. Edge point i − 1 → vertex i: the quad of the previous edge's twin.
-      if (const Across a = across(t, f, h); a.face >= 0) {
-        const int b = t.face_offsets[static_cast<std::size_t>(a.face)],
-                  n = t.face_offsets[static_cast<std::size_t>(a.face) + 1] - b;
-        twin[0] = 4 * (b + (a.half_edge - b + 1) % n) + 3;
+      if (const int a = across[static_cast<std::size_t>(h)]; a >= 0) {
+        const auto [f0, f1] =
+            t.edge_faces[static_cast<std::size_t>(t.face_edges[static_cast<std::size_t>(h)])];
+        const auto g = static_cast<std::size_t>(f0 == f ? f1 : f0);  // f itself if f meets itself here
+        twin[0] = 4 * (a + 1 < t.face_offsets[g + 1] ? a + 1 : t.face_offsets[g]) + 3;
       } else {
         twin[0] = -1;
       }
       twin[1] = 4 * next + 2;  // edge point i → face point, and back in the next quad
       twin[2] = 4 * prev + 1;
-      const Across a = across(t, f, prev);
-      twin[3] = a.face >= 0 ? 4 * a.half_edge : -1;
+      const int a = across[static_cast<std::size_t>(prev)];
+      twin[3] = a >= 0 ? 4 * a : -1;
     }
   }
   return twins;
 }
 
 /// The corner of triangle f that is not on edge e: the corners' sum less the edge's ends.
-inline int opposite_corner(const MeshTopology& t, int f, int e) {
+[[gnu::always_inline]] inline int opposite_corner(const MeshTopology& t, int f, int e) {
   const int* c = t.face_vertices.data() + t.face_offsets[static_cast<std::size_t>(f)];
   const auto [a, b] = t.edges[static_cast<std::size_t>(e)];
   return static_cast<int>(std::int64_t{c[0]} + c[1] + c[2] - a - b);
@@ -310,6 +329,7 @@ void split_triangles(const MeshTopology& t, Step& s) {
 
 /// The pairing of split_triangles' child half-edges (12f … 12f + 11 for triangle f).
 std::vector<int> triangle_split_twins(const MeshTopology& t) {
+  const std::vector<int> across = half_edges_across(t);
   std::vector<int> twins;
   assign_huge(twins, 4 * t.face_vertices.size(), 0);
   for (int f = 0; f < static_cast<int>(face_count(t)); ++f) {
@@ -319,8 +339,8 @@ std::vector<int> triangle_split_twins(const MeshTopology& t) {
     // Corner i → edge point i is child half-edge 4i; edge point i → corner i + 1 is
     // 3((i + 1) mod 3) + i. Across parent edge i (corner j of triangle g) they pair with g's.
     for (int i = 0; i < 3; ++i) {
-      const Across a = across(t, f, 3 * f + i);
-      const int g = a.face, j = a.half_edge - 3 * g;
+      const int a = across[static_cast<std::size_t>(3 * f + i)];
+      const int g = a >= 0 ? a / 3 : -1, j = a - 3 * g;
       twin(4 * i) = g >= 0 ? 12 * g + 3 * ((j + 1) % 3) + j : -1;
       twin(3 * ((i + 1) % 3) + i) = g >= 0 ? 12 * g + 4 * j : -1;
     }
@@ -450,9 +470,20 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
   reserve_rows(
       s, static_cast<std::size_t>(s.vertex_count),
       quads ? static_cast<std::size_t>(V) + 5 * H : static_cast<std::size_t>(V) + 6 * t.edges.size());
-  Writer row(s, s.sink.drop ? 0 : t.vertex_count);  // dropped rows are not made at all
+  Writer out(s, s.sink.drop ? 0 : t.vertex_count);  // dropped rows are not made at all
   const bool smooth = smooth_level(L);
   halves.assign(smooth ? 0 : 2 * t.edges.size(), 0.0);
+  // Vertices with a sharp edge or a sharpness of their own: flagged from the edges once (a search of
+  // every vertex's ring cost more than the creased vertices' rules).
+  std::vector<char> sharp_vertex;
+  if (!smooth) {
+    sharp_vertex.assign(static_cast<std::size_t>(V), 0);
+    for (std::size_t e = 0; e < L.edge_sharpness.size(); ++e)
+      if (L.edge_sharpness[e] > 0)
+        for (const int x : t.edges[e]) sharp_vertex[static_cast<std::size_t>(x)] = 1;
+    for (std::size_t v = 0; v < L.vertex_sharpness.size(); ++v)
+      if (L.vertex_sharpness[v] > 0) sharp_vertex[v] = 1;
+  }
   std::vector<double> pe, ce;  // sharpness of a vertex's edges before and after the step
   // The smooth rule depends on the face count alone: computed once per count.
   std::vector<std::optional<VertexMask>> smooth_masks;
@@ -467,19 +498,16 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
                            : BlzSides{};
   if (s.sink.drop && smooth) return s;  // topology only on a smooth level: nothing to compute
   if constexpr (Writer::kApplies)
-    if (quads) row.make_face_points(t);  // BLZ's flattened ones are made again below
+    if (quads) out.make_face_points(t);  // BLZ's flattened ones are made again below
   for (int v = 0; v < V; ++v) {
+    auto&& row = out.row();
     const auto ring = ring_edges(t, v);
     const auto faces = vertex_faces(t, static_cast<std::size_t>(v));
     VertexMask m;  // a vertex without faces stays
     if (!ring.empty()) {
       VertexNeighbourhood n;
       n.faces = static_cast<int>(faces.size());  // smooth level: no sharpness
-      bool sharp_here = !smooth && vertex_sharpness(L, static_cast<std::size_t>(v)) > 0;
-      if (!smooth)
-        sharp_here = sharp_here || std::any_of(ring.begin(), ring.end(), [&](int e) {
-                       return edge_sharpness(L, static_cast<std::size_t>(e)) > 0;
-                     });
+      const bool sharp_here = !smooth && sharp_vertex[static_cast<std::size_t>(v)] != 0;
       if (sharp_here) {  // else the smooth rule, as on a smooth level (same bits), and halves stay 0
         pe.clear();
         for (const int e : ring) pe.push_back(edge_sharpness(L, static_cast<std::size_t>(e)));
@@ -506,12 +534,13 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
       for (const int k : m.crease_ends)
         row.add(other_vertex(t, static_cast<std::size_t>(ring[static_cast<std::size_t>(k)]), v), m.crease);
     row.add(v, m.vertex);
-    row.finish();
+    out.finish(row);
   }
   if (s.sink.drop) return s;  // topology only: the halves are all the child tags need
   EdgeNeighbourhood last_edge{.face_sizes = {-1, -1}};  // matches no edge
   EdgeMask last_edge_mask;
   for (int e = 0; e < E; ++e) {
+    auto&& row = out.row();
     const auto ue = static_cast<std::size_t>(e);
     const int a = t.edges[ue][0], b = t.edges[ue][1];  // not bindings: the lambdas below capture them
     const int f0 = t.edge_faces[ue][0], f1 = t.edge_faces[ue][1];
@@ -529,13 +558,13 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
       last_edge_mask = edge_mask(scheme, tags.triangles, n);
     }
     const EdgeMask& m = last_edge_mask;
-    const auto add_face = [&](int f, double w) {
+    const auto add_face = [&](int f, double w) __attribute__((always_inline)) {
       if (quads)
         row.add_face_point(t, static_cast<std::size_t>(f), w);
       else
         row.add(opposite_corner(t, f, e), w);
     };
-    const auto standard = [&](double w) {
+    const auto standard = [&](double w) __attribute__((always_inline)) {
       if (m.face != 0) {
         add_face(f0, w * m.face);
         if (f1 >= 0) add_face(f1, w * m.face);
@@ -563,10 +592,11 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
         if (side.flatness > 0) add_flat(side, w, row);
       }
     }
-    row.finish();
+    out.finish(row);
   }
   if (quads && !(Writer::kApplies && blz.corners.empty()))
     for (int f = 0; f < F; ++f) {
+      auto&& row = out.row();
       // BLZ: at concave corners, the mean of the face point flattened towards each.
       int flattened = 0;
       if (!blz.corners.empty())
@@ -584,7 +614,7 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
           add_flat(side, 1.0 / flattened, row);
         }
       }
-      row.finish();
+      out.finish(row);
     }
   return s;
 }
@@ -693,14 +723,15 @@ Step butterfly_step(const MeshTopology& t, RowSink sink) {
   Step s;
   s.sink = sink;
   s.vertex_count = V + E;
-  Writer row(s, t.vertex_count);
+  Writer out(s, t.vertex_count);
+  auto&& row = out.row();
   for (int v = 0; v < V; ++v) {
     row.add(v, 1);
-    row.finish();
+    out.finish(row);
   }
   for (int e = 0; e < E; ++e) {
     butterfly_edge_point(t, e, row);
-    row.finish();
+    out.finish(row);
   }
   return s;
 }
@@ -721,7 +752,8 @@ Step sqrt3_step(const MeshTopology& t, bool refine_boundary, RowSink sink) {
   s.vertex_count = V + F;  // and one more point per boundary face when it is trisected
   if (refine_boundary)
     for (std::size_t e = 0; e < t.edges.size(); ++e) s.vertex_count += is_boundary_edge(t, e) ? 1 : 0;
-  Writer row(s, t.vertex_count);
+  Writer out(s, t.vertex_count);
+  auto&& row = out.row();
   for (int v = 0; v < V; ++v) {
     const auto ring = ring_edges(t, v);
     if (ring.empty() || (on_boundary(t, v) && !refine_boundary)) {
@@ -736,7 +768,7 @@ Step sqrt3_step(const MeshTopology& t, bool refine_boundary, RowSink sink) {
       row.add(v, 1 - alpha);
       for (const int e : ring) row.add(other_vertex(t, static_cast<std::size_t>(e), v), alpha / n);
     }
-    row.finish();
+    out.finish(row);
   }
   // apex[corner slot of edge i in face f]: the new vertex that edge i's flip joins on f's side.
   std::vector<int> apex(t.face_vertices.size());
@@ -751,7 +783,7 @@ Step sqrt3_step(const MeshTopology& t, bool refine_boundary, RowSink sink) {
         if (is_boundary_edge(t, static_cast<std::size_t>(edges[i]))) split = i;
     if (split == 3) {
       row.add_face_point(t, static_cast<std::size_t>(f), 1);
-      row.finish();
+      out.finish(row);
       for (std::size_t i = 0; i < 3; ++i) apex[static_cast<std::size_t>(base) + i] = next;
       ++next;
       continue;
@@ -761,11 +793,11 @@ Step sqrt3_step(const MeshTopology& t, bool refine_boundary, RowSink sink) {
     row.add(before, 1.0 / 27);
     row.add(a, 16.0 / 27);
     row.add(b, 10.0 / 27);
-    row.finish();
+    out.finish(row);
     row.add(a, 10.0 / 27);
     row.add(b, 16.0 / 27);
     row.add(after, 1.0 / 27);
-    row.finish();
+    out.finish(row);
     // Edge b → o meets the point near b, edge o → a the point near a.
     apex[static_cast<std::size_t>(base) + (split + 1) % 3] = next + 1;
     apex[static_cast<std::size_t>(base) + (split + 2) % 3] = next;
@@ -805,7 +837,8 @@ Step doo_sabin_step(const MeshTopology& t, RowSink sink) {
   Step s;
   s.sink = sink;
   s.vertex_count = static_cast<int>(t.face_vertices.size());  // corner (f, i) → face_offsets[f] + i
-  Writer row(s, t.vertex_count);
+  Writer out(s, t.vertex_count);
+  auto&& row = out.row();
   for (std::size_t f = 0; f < face_count(t); ++f) {
     const auto corners = face(t, f);
     const std::size_t k = corners.size();
@@ -815,7 +848,7 @@ Step doo_sabin_step(const MeshTopology& t, RowSink sink) {
         row.add(corners[(i + m) % k],
                 (m == 0 ? 0.25 : 0.0) +
                     (3 + 2 * std::cos(2 * std::numbers::pi * static_cast<double>(m) / kd)) / (4 * kd));
-      row.finish();
+      out.finish(row);
     }
   }
   const auto point = [&](int f, int v) {
@@ -1018,7 +1051,8 @@ MeshTags child_tags(MeshScheme scheme, const MeshTopology& t, const LevelFeature
   const int V = t.vertex_count;
   if (!halves.empty())
     for (std::size_t e = 0; e < t.edges.size(); ++e) {
-      if ((halves[2 * e] <= 0 && halves[2 * e + 1] <= 0) ||
+      // A smooth edge's halves are smooth (the one load most edges need).
+      if (edge_sharpness(L, e) <= 0 || (halves[2 * e] <= 0 && halves[2 * e + 1] <= 0) ||
           (is_boundary_edge(t, e) && tags.boundary != BoundaryRule::none))
         continue;
       const int mid = V + static_cast<int>(e);
