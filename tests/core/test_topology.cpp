@@ -89,7 +89,111 @@ void check_rotation(const MeshTopology& t) {
   }
 }
 
+/// The topology as the header documents it, by brute-force search over the corners (no twins, no
+/// walk): edges in order of first appearance; around each vertex, the boundary edge leaving it first
+/// (else its first corner's outgoing edge), then face k's incoming edge leads to face k + 1.
+MeshTopology reference_topology(const Mesh& m) {
+  MeshTopology t;
+  t.vertex_count = static_cast<int>(m.vertices.rows());
+  t.face_offsets = m.face_offsets;
+  t.face_vertices = m.face_vertices;
+  const std::size_t H = t.face_vertices.size();
+  std::vector<int> face_of(H), next(H), prev(H);
+  for (std::size_t f = 0; f + 1 < t.face_offsets.size(); ++f) {
+    const int b = t.face_offsets[f], e = t.face_offsets[f + 1];
+    for (int h = b; h < e; ++h) {
+      face_of[static_cast<std::size_t>(h)] = static_cast<int>(f);
+      next[static_cast<std::size_t>(h)] = h + 1 < e ? h + 1 : b;
+      prev[static_cast<std::size_t>(h)] = h > b ? h - 1 : e - 1;
+    }
+  }
+  const auto from = [&](int h) { return t.face_vertices[static_cast<std::size_t>(h)]; };
+  const auto to = [&](int h) { return from(next[static_cast<std::size_t>(h)]); };
+  const auto twin = [&](int h) {
+    for (int g = 0; g < static_cast<int>(H); ++g)
+      if (from(g) == to(h) && to(g) == from(h)) return g;
+    return -1;
+  };
+  t.face_edges.assign(H, -1);
+  for (int h = 0; h < static_cast<int>(H); ++h) {
+    if (t.face_edges[static_cast<std::size_t>(h)] >= 0) continue;
+    const int g = twin(h);
+    t.face_edges[static_cast<std::size_t>(h)] = static_cast<int>(t.edges.size());
+    if (g >= 0) t.face_edges[static_cast<std::size_t>(g)] = static_cast<int>(t.edges.size());
+    t.edges.push_back({from(h), to(h)});
+    t.edge_faces.push_back(
+        {face_of[static_cast<std::size_t>(h)], g >= 0 ? face_of[static_cast<std::size_t>(g)] : -1});
+  }
+  t.boundary_vertex.assign(static_cast<std::size_t>(t.vertex_count), 0);
+  for (int v = 0; v < t.vertex_count; ++v) {
+    int start = -1;
+    for (int h = 0; h < static_cast<int>(H); ++h)
+      if (from(h) == v && (start < 0 || (twin(h) < 0 && twin(start) >= 0))) start = h;
+    for (int h = start, count = 0; h >= 0 && count < 1000; ++count) {
+      t.vertex_edge_list.push_back(t.face_edges[static_cast<std::size_t>(h)]);
+      t.vertex_face_list.push_back(face_of[static_cast<std::size_t>(h)]);
+      const int entering = prev[static_cast<std::size_t>(h)];
+      h = twin(entering);
+      if (h < 0) {
+        t.vertex_edge_list.push_back(t.face_edges[static_cast<std::size_t>(entering)]);
+        t.boundary_vertex[static_cast<std::size_t>(v)] = 1;
+      }
+      if (h == start) break;
+    }
+    t.vertex_offsets_edges.push_back(static_cast<int>(t.vertex_edge_list.size()));
+    t.vertex_offsets_faces.push_back(static_cast<int>(t.vertex_face_list.size()));
+  }
+  return t;
+}
+
+/// Each quad split in two triangles.
+Mesh triangulated(const Mesh& quads) {
+  Mesh m;
+  m.vertices = quads.vertices;
+  for (std::size_t f = 0; f + 1 < quads.face_offsets.size(); ++f) {
+    const int* c = quads.face_vertices.data() + quads.face_offsets[f];
+    add_face(m, {c[0], c[1], c[2]});
+    add_face(m, {c[0], c[2], c[3]});
+  }
+  return m;
+}
+
 }  // namespace
+
+TEST_CASE("topology of all-quad, all-triangle and mixed meshes = the documented one, searched by brute force",
+          "[core][topology]") {
+  // build_topology computes a corner's face on all-quad and all-triangle meshes and looks it up on
+  // others: each route against the definition.
+  Mesh holed = grid(4, 3);  // a hole inside: a second boundary loop
+  holed.face_offsets = {0};
+  holed.face_vertices.clear();
+  const Mesh g = grid(4, 3);
+  for (std::size_t f = 0; f + 1 < g.face_offsets.size(); ++f)
+    if (f != 4)
+      add_face(holed, std::vector<int>(g.face_vertices.begin() + g.face_offsets[f],
+                                       g.face_vertices.begin() + g.face_offsets[f + 1]));
+  const std::vector<std::pair<const char*, Mesh>> meshes{
+      {"cube", topology_cube()},
+      {"torus", topology_torus(3, 5)},
+      {"grid", grid(3, 2)},
+      {"grid with a hole", holed},
+      {"triangulated torus", triangulated(topology_torus(4, 3))},
+      {"triangulated grid with a hole", triangulated(holed)},
+      {"tetrahedron", faces_mesh(4, {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}})},
+      {"mixed", faces_mesh(7, {{0, 1, 2, 3, 4}, {1, 0, 5}, {2, 1, 5, 6}, {3, 2, 6}})}};
+  for (const auto& [name, mesh] : meshes) {
+    INFO(name);
+    const MeshTopology a = build_topology(mesh), b = reference_topology(mesh);
+    CHECK(a.face_edges == b.face_edges);
+    CHECK(a.edges == b.edges);
+    CHECK(a.edge_faces == b.edge_faces);
+    CHECK(a.vertex_offsets_edges == b.vertex_offsets_edges);
+    CHECK(a.vertex_edge_list == b.vertex_edge_list);
+    CHECK(a.vertex_offsets_faces == b.vertex_offsets_faces);
+    CHECK(a.vertex_face_list == b.vertex_face_list);
+    CHECK(a.boundary_vertex == b.boundary_vertex);
+  }
+}
 
 TEST_CASE("topology of closed meshes: counts, Euler characteristic, rotations", "[core][topology]") {
   SECTION("cube") {
