@@ -224,23 +224,28 @@ bool on_boundary(const MeshTopology& t, int v) {
   return t.boundary_vertex[static_cast<std::size_t>(v)] != 0;
 }
 
-/// The half-edge across each half-edge — running the other way, in the face on the other side of its
-/// edge — or −1 on the boundary: two passes over the corners (a search of the other face per
-/// half-edge was a twentieth of a Catmull–Clark one-shot).
-std::vector<int> half_edges_across(const MeshTopology& t) {
-  const std::size_t H = t.face_vertices.size();
-  // A half-edge runs along its edge (side 0, in edge_faces[e][0]) or against it (side 1).
-  const auto side = [&](std::size_t h) {
-    return t.face_vertices[h] == t.edges[static_cast<std::size_t>(t.face_edges[h])][0] ? 0 : 1;
-  };
+/// The two half-edges of every edge: {the one running along it (in edge_faces[e][0]), the one running
+/// against it (−1 on the boundary)}; and which of the two half-edge h is.
+int side_of(const MeshTopology& t, std::size_t h) {
+  return t.face_vertices[h] == t.edges[static_cast<std::size_t>(t.face_edges[h])][0] ? 0 : 1;
+}
+std::vector<std::array<int, 2>> edge_sides(const MeshTopology& t) {
   std::vector<std::array<int, 2>> sides;
   assign_huge(sides, t.edges.size(), std::array<int, 2>{-1, -1});
-  for (std::size_t h = 0; h < H; ++h)
-    sides[static_cast<std::size_t>(t.face_edges[h])][side(h)] = static_cast<int>(h);
+  for (std::size_t h = 0; h < t.face_vertices.size(); ++h)
+    sides[static_cast<std::size_t>(t.face_edges[h])][side_of(t, h)] = static_cast<int>(h);
+  return sides;
+}
+
+/// The half-edge across each half-edge — running the other way, in the face on the other side of its
+/// edge — or −1 on the boundary (a search of the other face per half-edge was a twentieth of a
+/// Catmull–Clark one-shot).
+std::vector<int> half_edges_across(const MeshTopology& t) {
+  const std::vector<std::array<int, 2>> sides = edge_sides(t);
   std::vector<int> across;
-  assign_huge(across, H, -1);
-  for (std::size_t h = 0; h < H; ++h)
-    across[h] = sides[static_cast<std::size_t>(t.face_edges[h])][1 - side(h)];
+  assign_huge(across, t.face_vertices.size(), -1);
+  for (std::size_t h = 0; h < across.size(); ++h)
+    across[h] = sides[static_cast<std::size_t>(t.face_edges[h])][1 - side_of(t, h)];
   return across;
 }
 
@@ -271,34 +276,150 @@ void split_polygons(const MeshTopology& t, Step& s) {
   }
 }
 
-/// The pairing of split_polygons' child half-edges (4h … 4h + 3 in the quad of parent half-edge h).
-std::vector<int> polygon_split_twins(const MeshTopology& t) {
-  const std::vector<int> across = half_edges_across(t);
-  std::vector<int> twins;
-  assign_huge(twins, 4 * t.face_vertices.size(), 0);
-  for (int f = 0; f < static_cast<int>(face_count(t)); ++f) {
-    const int base = t.face_offsets[static_cast<std::size_t>(f)],
-              end = t.face_offsets[static_cast<std::size_t>(f) + 1];
-    for (int h = base; h < end; ++h) {
-      const int next = h + 1 < end ? h + 1 : base, prev = h > base ? h - 1 : end - 1;
-      int* twin = twins.data() + 4 * static_cast<std::ptrdiff_t>(h);
+/// The adjacency of split_polygons' child faces, by formula from the parent's: what assemble_topology
+/// finds from the child faces and their pairing, to the entry (edges in order of first appearance,
+/// rings from the same start; test_mesh.cpp), without its passes over the child half-edges (a
+/// quarter of a Catmull–Clark one-shot's instructions). The quad of parent half-edge h (corner i of
+/// face f) is child face h: (vertex i, edge point i, face point, edge point i − 1), child half-edges
+/// 4h … 4h + 3.
+MeshTopology quad_split_topology(const MeshTopology& p, Step& s) {
+  const int V = p.vertex_count, E = static_cast<int>(p.edges.size()), F = static_cast<int>(face_count(p));
+  const std::size_t H = p.face_vertices.size();
+  const std::vector<std::array<int, 2>> sides = edge_sides(p);
+  MeshTopology t;
+  t.vertex_count = s.vertex_count;
+  t.face_offsets = std::move(s.face_offsets);
+  t.face_vertices = std::move(s.face_vertices);
+  const int* corners = t.face_vertices.data();
+
+  // Edges: each parent edge in two, an edge from each edge point i to the face point. A child
+  // half-edge starts an edge unless its twin came first (as assemble numbers them).
+  assign_huge(t.face_edges, 4 * H, -1);
+  assign_huge(t.edges, 2 * static_cast<std::size_t>(E) + H, std::array<int, 2>{});
+  assign_huge(t.edge_faces, t.edges.size(), std::array<int, 2>{});
+  int* const fe = t.face_edges.data();
+  int e = 0;
+  for (int f = 0; f < F; ++f) {
+    const int b = p.face_offsets[static_cast<std::size_t>(f)],
+              end = p.face_offsets[static_cast<std::size_t>(f) + 1];
+    for (int h = b; h < end; ++h) {
+      const int next = h + 1 < end ? h + 1 : b, prev = h > b ? h - 1 : end - 1;
+      const auto across = [&](int x) {
+        const auto ux = static_cast<std::size_t>(x);
+        const auto ex = static_cast<std::size_t>(p.face_edges[ux]);
+        const int side = side_of(p, ux);
+        return std::pair{sides[ex][1 - side], p.edge_faces[ex][1 - side]};  // half-edge, its face
+      };
       // Vertex i → edge point: across the edge, the quad of the corner after the twin ends with
       // edge point → vertex i. Edge point i − 1 → vertex i: the quad of the previous edge's twin.
-      if (const int a = across[static_cast<std::size_t>(h)]; a >= 0) {
-        const auto [f0, f1] =
-            t.edge_faces[static_cast<std::size_t>(t.face_edges[static_cast<std::size_t>(h)])];
-        const auto g = static_cast<std::size_t>(f0 == f ? f1 : f0);  // f itself if f meets itself here
-        twin[0] = 4 * (a + 1 < t.face_offsets[g + 1] ? a + 1 : t.face_offsets[g]) + 3;
-      } else {
-        twin[0] = -1;
+      const auto [a, g] = across(h);
+      const int a_next = a < 0 ? -1
+                               : (a + 1 < p.face_offsets[static_cast<std::size_t>(g) + 1]
+                                      ? a + 1
+                                      : p.face_offsets[static_cast<std::size_t>(g)]);
+      const int before = across(prev).first;
+      const std::array<int, 4> twin{a < 0 ? -1 : 4 * a_next + 3, 4 * next + 2, 4 * prev + 1,
+                                    before < 0 ? -1 : 4 * before};
+      for (int j = 0; j < 4; ++j) {
+        const int x = 4 * h + j, y = twin[static_cast<std::size_t>(j)];
+        if (y >= 0 && y < x) {
+          fe[x] = fe[y];
+          continue;
+        }
+        fe[x] = e;
+        t.edges[static_cast<std::size_t>(e)] = {corners[x], corners[4 * h + (j + 1) % 4]};
+        t.edge_faces[static_cast<std::size_t>(e)] = {h, y < 0 ? -1 : y / 4};
+        ++e;
       }
-      twin[1] = 4 * next + 2;  // edge point i → face point, and back in the next quad
-      twin[2] = 4 * prev + 1;
-      const int a = across[static_cast<std::size_t>(prev)];
-      twin[3] = a >= 0 ? 4 * a : -1;
     }
   }
-  return twins;
+
+  // Rings, counter-clockwise, each from where assemble's walk starts (the outgoing boundary
+  // half-edge, else the first outgoing one). A vertex point's is its parent vertex's, face by face;
+  // an edge point has 4 faces (2 on the boundary); a face point one per corner of its face.
+  const auto Vc = static_cast<std::size_t>(t.vertex_count);
+  assign_huge(t.vertex_offsets_faces, Vc + 1, 0);
+  assign_huge(t.vertex_offsets_edges, Vc + 1, 0);
+  assign_huge(t.boundary_vertex, Vc, char{0});
+  for (std::size_t v = 0; v < static_cast<std::size_t>(V); ++v) {
+    t.vertex_offsets_faces[v + 1] = p.vertex_offsets_faces[v + 1];
+    t.vertex_offsets_edges[v + 1] = p.vertex_offsets_edges[v + 1];
+    t.boundary_vertex[v] = p.boundary_vertex[v];
+  }
+  for (std::size_t x = 0; x < static_cast<std::size_t>(E); ++x) {
+    const bool open = is_boundary_edge(p, x);
+    const std::size_t v = static_cast<std::size_t>(V) + x;
+    t.vertex_offsets_faces[v + 1] = t.vertex_offsets_faces[v] + (open ? 2 : 4);
+    t.vertex_offsets_edges[v + 1] = t.vertex_offsets_edges[v] + (open ? 3 : 4);
+    t.boundary_vertex[v] = open ? 1 : 0;
+  }
+  for (std::size_t f = 0; f < static_cast<std::size_t>(F); ++f) {
+    const std::size_t v = static_cast<std::size_t>(V + E) + f;
+    const int k = p.face_offsets[f + 1] - p.face_offsets[f];
+    t.vertex_offsets_faces[v + 1] = t.vertex_offsets_faces[v] + k;
+    t.vertex_offsets_edges[v + 1] = t.vertex_offsets_edges[v] + k;
+  }
+  assign_huge(t.vertex_face_list, static_cast<std::size_t>(t.vertex_offsets_faces[Vc]), 0);
+  assign_huge(t.vertex_edge_list, static_cast<std::size_t>(t.vertex_offsets_edges[Vc]), 0);
+  int* const faces = t.vertex_face_list.data();
+  int* const ring = t.vertex_edge_list.data();
+  const auto next_in_face = [&](int h, int f) {
+    return h + 1 < p.face_offsets[static_cast<std::size_t>(f) + 1]
+               ? h + 1
+               : p.face_offsets[static_cast<std::size_t>(f)];
+  };
+  for (int v = 0; v < V; ++v) {  // vertex points: face k of v's ring is child face h_k
+    const auto uv = static_cast<std::size_t>(v);
+    const auto pe = vertex_edges(p, uv);
+    const std::size_t n = vertex_faces(p, uv).size();
+    int* fo = faces + t.vertex_offsets_faces[uv];
+    int* eo = ring + t.vertex_offsets_edges[uv];
+    int h = -1;
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto x = static_cast<std::size_t>(pe[k]);  // leaves v in face k
+      h = sides[x][p.edges[x][0] == v ? 0 : 1];
+      fo[k] = h;
+      eo[k] = fe[4 * h];
+    }
+    if (pe.size() > n) eo[n] = fe[4 * h + 3];  // the boundary edge entering v, in the last face
+  }
+  for (int x = 0; x < E; ++x) {  // edge points
+    const auto ux = static_cast<std::size_t>(x);
+    const auto v = static_cast<std::size_t>(V + x);
+    int* fo = faces + t.vertex_offsets_faces[v];
+    int* eo = ring + t.vertex_offsets_edges[v];
+    const int s0 = sides[ux][0], n0 = next_in_face(s0, p.edge_faces[ux][0]);
+    if (is_boundary_edge(p, ux)) {  // from the boundary half towards edges[x][1]
+      fo[0] = n0;
+      fo[1] = s0;
+      eo[0] = fe[4 * n0 + 3];
+      eo[1] = fe[4 * s0 + 1];
+      eo[2] = fe[4 * s0];
+      continue;
+    }
+    const int s1 = sides[ux][1], n1 = next_in_face(s1, p.edge_faces[ux][1]);
+    // Around the edge point: child faces s0, n1, s1, n0, leaving it by half-edges 4s0 + 1, 4n1 + 3,
+    // 4s1 + 1, 4n0 + 3; from the lowest of these.
+    const std::array<int, 4> around{s0, n1, s1, n0};
+    const std::array<int, 4> leaving{4 * s0 + 1, 4 * n1 + 3, 4 * s1 + 1, 4 * n0 + 3};
+    const auto first =
+        static_cast<std::size_t>(std::min_element(leaving.begin(), leaving.end()) - leaving.begin());
+    for (std::size_t k = 0; k < 4; ++k) {
+      fo[k] = around[(first + k) % 4];
+      eo[k] = fe[leaving[(first + k) % 4]];
+    }
+  }
+  for (int f = 0; f < F; ++f) {  // face points: child faces in the order of the corners
+    const auto v = static_cast<std::size_t>(V + E + f);
+    int* fo = faces + t.vertex_offsets_faces[v];
+    int* eo = ring + t.vertex_offsets_edges[v];
+    for (int h = p.face_offsets[static_cast<std::size_t>(f)], k = 0;
+         h < p.face_offsets[static_cast<std::size_t>(f) + 1]; ++h, ++k) {
+      fo[k] = h;
+      eo[k] = fe[4 * h + 2];
+    }
+  }
+  return t;
 }
 
 /// The corner of triangle f that is not on edge e: the corners' sum less the edge's ends.
@@ -882,8 +1003,7 @@ MeshTopology child_topology(MeshScheme scheme, const MeshTopology& parent, Step&
   std::vector<int> twins;
   switch (traits(scheme).split) {
     case Split::quads:
-      twins = polygon_split_twins(parent);
-      break;
+      return quad_split_topology(parent, s);
     case Split::triangles:
       twins = triangle_split_twins(parent);
       break;
