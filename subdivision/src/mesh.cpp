@@ -658,6 +658,7 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
     out.finish(row);
   }
   if (s.sink.drop) return s;  // topology only: the halves are all the child tags need
+  const bool triangle_sizes = scheme == MeshScheme::catmull_clark && tags.triangles == TriangleRule::smooth;
   EdgeNeighbourhood last_edge{.face_sizes = {-1, -1}};  // matches no edge
   EdgeMask last_edge_mask;
   for (int e = 0; e < E; ++e) {
@@ -665,10 +666,13 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
     const auto ue = static_cast<std::size_t>(e);
     const int a = t.edges[ue][0], b = t.edges[ue][1];  // not bindings: the lambdas below capture them
     const int f0 = t.edge_faces[ue][0], f1 = t.edge_faces[ue][1];
+    // The masks read whether a face is there and, under the smooth triangle rule alone, whether it
+    // is a triangle: other sizes are not looked up (4 stands for any).
     const auto size = [&](int f) {
-      return f < 0 ? 0
-                   : t.face_offsets[static_cast<std::size_t>(f) + 1] -
-                         t.face_offsets[static_cast<std::size_t>(f)];
+      return f < 0             ? 0
+             : !triangle_sizes ? 4
+                               : t.face_offsets[static_cast<std::size_t>(f) + 1] -
+                                     t.face_offsets[static_cast<std::size_t>(f)];
     };
     const EdgeNeighbourhood n{
         .sharpness = edge_sharpness(L, ue),
@@ -1132,7 +1136,7 @@ LevelFeatures level_features(const MeshTopology& t, const MeshTags& tags, MeshSc
   for (const VertexSharpness& c : tags.corners)
     vs[static_cast<std::size_t>(c.vertex)] = held_sharpness(c.sharpness);
   for (const int f : tags.holes) holes[static_cast<std::size_t>(f)] = 1;
-  if (tags.boundary == BoundaryRule::none && scheme != MeshScheme::bilinear)
+  if (boundary && tags.boundary == BoundaryRule::none && scheme != MeshScheme::bilinear)
     for (std::size_t v = 0; v < V; ++v) {
       if (!t.boundary_vertex[v]) continue;
       const auto ring = vertex_edges(t, v);
@@ -1142,9 +1146,10 @@ LevelFeatures level_features(const MeshTopology& t, const MeshTags& tags, MeshSc
           }))
         for (const int f : vertex_faces(t, v)) holes[static_cast<std::size_t>(f)] = 1;
     }
-  for (std::size_t e = 0; e < E; ++e)
-    if (is_boundary_edge(t, e)) es[e] = kInfiniteSharpness;
-  if (tags.boundary == BoundaryRule::edge_and_corner)
+  if (boundary)
+    for (std::size_t e = 0; e < E; ++e)
+      if (is_boundary_edge(t, e)) es[e] = kInfiniteSharpness;
+  if (boundary && tags.boundary == BoundaryRule::edge_and_corner)
     for (std::size_t v = 0; v < V; ++v)
       if (vertex_faces(t, v).size() == 1 && vertex_edges(t, v).size() == 2) vs[v] = kInfiniteSharpness;
   const auto any = [](const auto& x) {
