@@ -237,18 +237,6 @@ std::vector<std::array<int, 2>> edge_sides(const MeshTopology& t) {
   return sides;
 }
 
-/// The half-edge across each half-edge — running the other way, in the face on the other side of its
-/// edge — or −1 on the boundary (a search of the other face per half-edge was a twentieth of a
-/// Catmull–Clark one-shot).
-std::vector<int> half_edges_across(const MeshTopology& t) {
-  const std::vector<std::array<int, 2>> sides = edge_sides(t);
-  std::vector<int> across;
-  assign_huge(across, t.face_vertices.size(), -1);
-  for (std::size_t h = 0; h < across.size(); ++h)
-    across[h] = sides[static_cast<std::size_t>(t.face_edges[h])][1 - side_of(t, h)];
-  return across;
-}
-
 /// Catmull–Clark's split (vertex points, then edge points, then face points): face f's corner i
 /// becomes the quad (vertex i, edge i, face, edge i − 1), counter-clockwise; the quad of parent
 /// half-edge h is child face h.
@@ -448,30 +436,136 @@ void split_triangles(const MeshTopology& t, Step& s) {
   }
 }
 
-/// The pairing of split_triangles' child half-edges (12f … 12f + 11 for triangle f).
-std::vector<int> triangle_split_twins(const MeshTopology& t) {
-  const std::vector<int> across = half_edges_across(t);
-  std::vector<int> twins;
-  assign_huge(twins, 4 * t.face_vertices.size(), 0);
-  for (int f = 0; f < static_cast<int>(face_count(t)); ++f) {
-    const auto twin = [&, base = 12 * static_cast<std::size_t>(f)](int k) -> int& {
-      return twins[base + static_cast<std::size_t>(k)];
-    };
-    // Corner i → edge point i is child half-edge 4i; edge point i → corner i + 1 is
-    // 3((i + 1) mod 3) + i. Across parent edge i (corner j of triangle g) they pair with g's.
+/// The adjacency of split_triangles' child faces by formula from the parent's, as quad_split_topology.
+/// Triangle f's children 4f … 4f + 2 are its corners' (c_i, e_i, e_{i−1}) with c_i as corner i, 4f + 3
+/// the middle one (e_0, e_1, e_2) (e_i the edge point of edge i, c_i → c_{i+1}); child half-edge
+/// 12f + 3k + m runs from corner m of child k to its next corner.
+MeshTopology triangle_split_topology(const MeshTopology& p, Step& s) {
+  const int V = p.vertex_count, E = static_cast<int>(p.edges.size()), F = static_cast<int>(face_count(p));
+  const std::vector<std::array<int, 2>> sides = edge_sides(p);
+  MeshTopology t;
+  t.vertex_count = s.vertex_count;
+  t.face_offsets = std::move(s.face_offsets);
+  t.face_vertices = std::move(s.face_vertices);
+  const int* corners = t.face_vertices.data();
+  // Across parent edge i of f: the corner j of triangle g where the twin starts (g < 0: boundary).
+  const auto across = [&](int f, int i) {
+    const auto h = static_cast<std::size_t>(3 * f + i);
+    const auto x = static_cast<std::size_t>(p.face_edges[h]);
+    const int a = sides[x][1 - side_of(p, h)];
+    return a < 0 ? std::pair{-1, 0} : std::pair{a / 3, a % 3};
+  };
+
+  // Edges: each parent edge in two, three inside each triangle (the middle child's sides).
+  assign_huge(t.face_edges, 12 * static_cast<std::size_t>(F), -1);
+  assign_huge(t.edges, 2 * static_cast<std::size_t>(E) + 3 * static_cast<std::size_t>(F),
+              std::array<int, 2>{});
+  assign_huge(t.edge_faces, t.edges.size(), std::array<int, 2>{});
+  int* const fe = t.face_edges.data();
+  int e = 0;
+  for (int f = 0; f < F; ++f) {
+    std::array<int, 12> twin{};
+    // Corner i → edge point i is 12f + 4i; edge point i → corner i + 1 is 12f + 3((i + 1) mod 3) + i.
+    // Across parent edge i (corner j of triangle g) they pair with g's.
     for (int i = 0; i < 3; ++i) {
-      const int a = across[static_cast<std::size_t>(3 * f + i)];
-      const int g = a >= 0 ? a / 3 : -1, j = a - 3 * g;
-      twin(4 * i) = g >= 0 ? 12 * g + 3 * ((j + 1) % 3) + j : -1;
-      twin(3 * ((i + 1) % 3) + i) = g >= 0 ? 12 * g + 4 * j : -1;
+      const auto [g, j] = across(f, i);
+      twin[static_cast<std::size_t>(4 * i)] = g < 0 ? -1 : 12 * g + 3 * ((j + 1) % 3) + j;
+      twin[static_cast<std::size_t>(3 * ((i + 1) % 3) + i)] = g < 0 ? -1 : 12 * g + 4 * j;
     }
     for (const auto& [x, y] :
          {std::pair{1, 11}, std::pair{5, 9}, std::pair{6, 10}}) {  // the middle one's sides
-      twin(x) = 12 * f + y;
-      twin(y) = 12 * f + x;
+      twin[static_cast<std::size_t>(x)] = 12 * f + y;
+      twin[static_cast<std::size_t>(y)] = 12 * f + x;
+    }
+    for (int k = 0; k < 12; ++k) {
+      const int x = 12 * f + k, y = twin[static_cast<std::size_t>(k)];
+      if (y >= 0 && y < x) {
+        fe[x] = fe[y];
+        continue;
+      }
+      fe[x] = e;
+      t.edges[static_cast<std::size_t>(e)] = {corners[x], corners[x - k % 3 + (k % 3 + 1) % 3]};
+      t.edge_faces[static_cast<std::size_t>(e)] = {x / 3, y < 0 ? -1 : y / 3};
+      ++e;
     }
   }
-  return twins;
+
+  // Rings (counter-clockwise, from assemble's starts): a vertex point's is its parent vertex's, child
+  // by child; an edge point has 6 faces (3 on the boundary).
+  const auto Vc = static_cast<std::size_t>(t.vertex_count);
+  assign_huge(t.vertex_offsets_faces, Vc + 1, 0);
+  assign_huge(t.vertex_offsets_edges, Vc + 1, 0);
+  assign_huge(t.boundary_vertex, Vc, char{0});
+  for (std::size_t v = 0; v < static_cast<std::size_t>(V); ++v) {
+    t.vertex_offsets_faces[v + 1] = p.vertex_offsets_faces[v + 1];
+    t.vertex_offsets_edges[v + 1] = p.vertex_offsets_edges[v + 1];
+    t.boundary_vertex[v] = p.boundary_vertex[v];
+  }
+  for (std::size_t x = 0; x < static_cast<std::size_t>(E); ++x) {
+    const bool open = is_boundary_edge(p, x);
+    const std::size_t v = static_cast<std::size_t>(V) + x;
+    t.vertex_offsets_faces[v + 1] = t.vertex_offsets_faces[v] + (open ? 3 : 6);
+    t.vertex_offsets_edges[v + 1] = t.vertex_offsets_edges[v] + (open ? 4 : 6);
+    t.boundary_vertex[v] = open ? 1 : 0;
+  }
+  assign_huge(t.vertex_face_list, static_cast<std::size_t>(t.vertex_offsets_faces[Vc]), 0);
+  assign_huge(t.vertex_edge_list, static_cast<std::size_t>(t.vertex_offsets_edges[Vc]), 0);
+  int* const faces = t.vertex_face_list.data();
+  int* const ring = t.vertex_edge_list.data();
+  for (int v = 0; v < V; ++v) {  // vertex points: corner i of parent face f becomes child 4f + i
+    const auto uv = static_cast<std::size_t>(v);
+    const auto pe = vertex_edges(p, uv);
+    const std::size_t n = vertex_faces(p, uv).size();
+    int* fo = faces + t.vertex_offsets_faces[uv];
+    int* eo = ring + t.vertex_offsets_edges[uv];
+    int f = 0, i = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto x = static_cast<std::size_t>(pe[k]);  // leaves v in face k
+      const int h = sides[x][p.edges[x][0] == v ? 0 : 1];
+      f = h / 3;
+      i = h % 3;
+      fo[k] = 4 * f + i;
+      eo[k] = fe[12 * f + 4 * i];
+    }
+    if (pe.size() > n) eo[n] = fe[12 * f + 3 * i + (i + 2) % 3];  // edge point i − 1 → c_i: the boundary
+  }
+  // Around edge point i of triangle f, counter-clockwise: child i + 1 (leaving by e_i → c_{i+1}), the
+  // middle child (e_i → e_{i+1}), child i (e_i → e_{i−1}); then the same in the triangle across.
+  const auto fan = [](int f, int i, int* fo, int* leaving) {
+    const int next = (i + 1) % 3;
+    fo[0] = 4 * f + next;
+    leaving[0] = 12 * f + 3 * next + i;  // e_i is corner i of child i + 1
+    fo[1] = 4 * f + 3;
+    leaving[1] = 12 * f + 9 + i;
+    fo[2] = 4 * f + i;
+    leaving[2] = 12 * f + 3 * i + next;  // e_i is corner i + 1 of child i
+  };
+  for (int x = 0; x < E; ++x) {
+    const auto ux = static_cast<std::size_t>(x);
+    const auto v = static_cast<std::size_t>(V + x);
+    int* fo = faces + t.vertex_offsets_faces[v];
+    int* eo = ring + t.vertex_offsets_edges[v];
+    const int s0 = sides[ux][0];
+    std::array<int, 6> around{}, leaving{};
+    fan(s0 / 3, s0 % 3, around.data(), leaving.data());
+    if (is_boundary_edge(p, ux)) {  // from the boundary half towards edges[x][1]; c_i → e_i last
+      for (std::size_t k = 0; k < 3; ++k) {
+        fo[k] = around[k];
+        eo[k] = fe[leaving[k]];
+      }
+      eo[3] = fe[12 * (s0 / 3) + 4 * (s0 % 3)];
+      continue;
+    }
+    const int s1 = sides[ux][1];
+    fan(s1 / 3, s1 % 3, around.data() + 3, leaving.data() + 3);
+    const auto first =
+        static_cast<std::size_t>(std::min_element(leaving.begin(), leaving.end()) - leaving.begin());
+    for (std::size_t k = 0; k < 6; ++k) {
+      fo[k] = around[(first + k) % 6];
+      eo[k] = fe[leaving[(first + k) % 6]];
+    }
+  }
+  return t;
 }
 
 /// Loop's β(n) = (1/n)(5/8 − (3/8 + ¼cos(2π/n))²); the seed's α_n = (40 − (3 + 2cos(2π/n))²)/64 is
@@ -1001,21 +1095,19 @@ Step doo_sabin_step(const MeshTopology& t, RowSink sink) {
   return s;
 }
 
-/// The adjacency of a step's child faces (taken over from it): paired by construction where the
-/// split is the quad or the triangle split, searched otherwise.
+/// The adjacency of a step's child faces (taken over from it): by formula from the parent's for the
+/// quad and the triangle split, searched otherwise.
 MeshTopology child_topology(MeshScheme scheme, const MeshTopology& parent, Step& s, const std::string& who) {
-  std::vector<int> twins;
   switch (traits(scheme).split) {
     case Split::quads:
       return quad_split_topology(parent, s);
     case Split::triangles:
-      twins = triangle_split_twins(parent);
-      break;
+      return triangle_split_topology(parent, s);
     case Split::dual:
     case Split::sqrt3:
-      return build_topology(std::move(s.face_offsets), std::move(s.face_vertices), s.vertex_count, who);
+      break;
   }
-  return assemble_topology(std::move(s.face_offsets), std::move(s.face_vertices), twins, s.vertex_count);
+  return build_topology(std::move(s.face_offsets), std::move(s.face_vertices), s.vertex_count, who);
 }
 
 /// Whether a scheme's child faces are a split of the parent's faces alone, made after the rows
