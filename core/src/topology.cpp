@@ -91,7 +91,7 @@ struct Uniform {
 };
 
 /// Edges and rings from faces whose half-edges are paired (`twin[h]`, −1 on the boundary): the
-/// part shared by build_topology and assemble_topology. Throws unless the faces around every vertex
+/// part of build_topology after the twins are found. Throws unless the faces around every vertex
 /// form one fan.
 template <class Faces>
 void assemble(MeshTopology& t, std::span<const int> twin, const Faces& faces, const std::string& who) {
@@ -271,16 +271,6 @@ MeshTopology build_topology(std::vector<int> offsets, std::vector<int> corners, 
   t.face_offsets = std::move(offsets);
   t.face_vertices = std::move(corners);
   assemble(t, twin, who);
-  return t;
-}
-
-MeshTopology assemble_topology(std::vector<int> face_offsets, std::vector<int> face_vertices,
-                               std::span<const int> twins, int vertex_count) {
-  MeshTopology t;
-  t.vertex_count = vertex_count;
-  t.face_offsets = std::move(face_offsets);
-  t.face_vertices = std::move(face_vertices);
-  assemble(t, twins, "refined mesh");
   return t;
 }
 

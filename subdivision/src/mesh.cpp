@@ -264,8 +264,8 @@ void split_polygons(const MeshTopology& t, Step& s) {
   }
 }
 
-/// The adjacency of split_polygons' child faces, by formula from the parent's: what assemble_topology
-/// finds from the child faces and their pairing, to the entry (edges in order of first appearance,
+/// The adjacency of split_polygons' child faces, by formula from the parent's: what build_topology
+/// finds from the child faces by search, to the entry (edges in order of first appearance,
 /// rings from the same start; test_mesh.cpp), without its passes over the child half-edges (a
 /// quarter of a Catmull–Clark one-shot's instructions). The quad of parent half-edge h (corner i of
 /// face f) is child face h: (vertex i, edge point i, face point, edge point i − 1), child half-edges

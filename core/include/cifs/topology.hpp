@@ -103,12 +103,6 @@ MeshTopology build_topology(std::vector<int> face_offsets, std::vector<int> face
 inline MeshTopology build_topology(const Mesh& mesh, std::string_view who = "mesh") {
   return build_topology(mesh.face_offsets, mesh.face_vertices, static_cast<int>(mesh.vertices.rows()), who);
 }
-/// The same topology as build_topology, from faces whose half-edges are already paired: `twins[h]`
-/// is the half-edge running the other way along corner h's edge, −1 on the boundary. A refinement
-/// step knows the pairing by construction, so nothing is searched and the faces are not checked:
-/// this is for faces made by the library from a valid topology, never for outside data.
-MeshTopology assemble_topology(std::vector<int> face_offsets, std::vector<int> face_vertices,
-                               std::span<const int> twins, int vertex_count);
 
 /// Boundary loops: each a closed list of vertices along boundary edges, in the direction of the
 /// faces (the face is on the left). Loops start at their smallest vertex; loops in order of it.
