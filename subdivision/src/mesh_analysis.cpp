@@ -801,6 +801,35 @@ LocalMatrix local_matrix(MeshScheme scheme, int valence, const LocalOptions& opt
   return out;
 }
 
+LocalMatrix doo_sabin_boundary_matrix(const std::vector<char>& inner) {
+  const int k = static_cast<int>(inner.size());
+  const LocalMatrix whole = local_matrix(MeshScheme::doo_sabin, k);
+  const auto interior = [&](int i) { return inner[static_cast<std::size_t>(wrap(i, k))] != 0; };
+  std::vector<int> keep;
+  for (int i = 0; i < k; ++i) {
+    keep.push_back(4 * i);
+    if (interior(i) || interior(i + 1)) keep.insert(keep.end(), {4 * i + 1, 4 * i + 2});
+    if (interior(i)) keep.push_back(4 * i + 3);
+  }
+  LocalMatrix out = whole;
+  out.options.boundary = true;
+  const auto N = static_cast<int>(keep.size());
+  out.labels.clear();
+  out.values.resize(N, N);
+  for (int i = 0; i < N; ++i) {
+    out.labels.push_back(whole.labels[static_cast<std::size_t>(keep[static_cast<std::size_t>(i)])]);
+    for (int j = 0; j < N; ++j)
+      out.values(i, j) = whole.values(keep[static_cast<std::size_t>(i)], keep[static_cast<std::size_t>(j)]);
+  }
+  if (whole.exact) {
+    out.exact = RationalMatrix{.rows = N, .cols = N, .entries = {}};
+    for (int i = 0; i < N; ++i)
+      for (int j = 0; j < N; ++j)
+        out.exact->entries.push_back((*whole.exact)(keep[static_cast<std::size_t>(i)], keep[static_cast<std::size_t>(j)]));
+  }
+  return out;
+}
+
 std::string vertex_class(int valence, const LocalOptions& options) {
   switch (centre_rule(valence, options)) {
     case VertexRule::smooth:
