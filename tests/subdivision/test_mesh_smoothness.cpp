@@ -156,3 +156,199 @@ TEST_CASE("butterfly verdicts by deep refinement: the normals at a C1 vertex con
     CHECK((spread.back() < 0.2 * spread.front()) == c1);
   }
 }
+
+namespace mesh_smoothness_test {
+
+/// An n × n grid of quads without the listed faces (by (i, j)): corners of the surface where the
+/// boundary turns, and pinches where two removed faces touch a face at opposite corners.
+Mesh cut_grid(int n, const std::vector<std::array<int, 2>>& removed) {
+  const Mesh full = cifs_test::quad_grid(n, n);
+  std::vector<std::array<double, 3>> p;
+  for (Eigen::Index v = 0; v < full.vertices.rows(); ++v)
+    p.push_back({full.vertices(v, 0), full.vertices(v, 1), full.vertices(v, 2)});
+  std::vector<std::vector<int>> f;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      if (std::find(removed.begin(), removed.end(), std::array{i, j}) == removed.end()) {
+        const auto c = face(full, static_cast<std::size_t>(j * n + i));
+        f.emplace_back(c.begin(), c.end());
+      }
+  return make_mesh(p, f);
+}
+
+}  // namespace mesh_smoothness_test
+
+TEST_CASE("analyze_mesh under doo-sabin: face centres and interior vertices' faces, closed meshes",
+          "[subdivision][mesh_analysis][doo_sabin]") {
+  // A cube: every vertex becomes a triangle after one step (valence 3), the faces are quads.
+  const MeshSmoothness cube = analyze_mesh(cifs_test::cube(), MeshScheme::doo_sabin);
+  CHECK(cube.vertices.size() == 8);
+  CHECK(cube.regular == 6);
+  CHECK(cube.analyses == 1);
+  for (const VertexSmoothness& v : cube.vertices) {
+    CHECK(v.face == -1);
+    CHECK(v.vertex_class == "vertex");
+    CHECK(v.valence == 3);
+    CHECK(v.verdict.method == "bernstein");
+    CHECK(v.verdict.c1);
+  }
+  // A square pyramid: four triangles (face centres), the base's corners valence 3, the apex 4.
+  const Mesh pyramid = cifs_test::pyramid();
+  const MeshSmoothness a = analyze_mesh(pyramid, MeshScheme::doo_sabin);
+  const LocalMatrix S3 = local_matrix(MeshScheme::doo_sabin, 3);
+  const LocalSpectrum sp3 = local_spectrum(S3);
+  int faces = 0, vertices = 0;
+  for (const VertexSmoothness& v : a.vertices) {
+    (v.face >= 0 ? faces : vertices) += 1;
+    if (v.face >= 0) CHECK(face(pyramid, static_cast<std::size_t>(v.face)).size() == 3U);
+    if (v.face < 0) CHECK(v.vertex < 4);
+    CHECK(v.valence == 3);
+    CHECK(v.lambda1 == sp3.subdominant);
+    CHECK(v.verdict.c1 == c1_verdict(S3, sp3).c1);
+  }
+  CHECK(faces == 4);
+  CHECK(vertices == 4);
+  CHECK(a.regular == 2);  // the base quad and the apex
+  CHECK(a.summary ==
+        "doo-sabin: 5 faces and 5 vertices, 2 regular points, 8 irregular: 8 C1, 0 not C1, 0 undecided "
+        "(1 local analysis)");
+}
+
+TEST_CASE("analyze_mesh under doo-sabin: faces at the boundary are the interior k-gon restricted",
+          "[subdivision][mesh_analysis][doo_sabin]") {
+  // A 4 × 4 grid without faces (0, 0) and (2, 2): convex corners (one interior corner), a concave one
+  // (three), a pinch (two opposite) and the grid's own corners; classes checked against the interior
+  // corners counted here (a grid vertex is interior when four faces meet there).
+  for (const auto& removed : {std::vector<std::array<int, 2>>{}, {{0, 0}}, {{0, 0}, {2, 2}}}) {
+    const Mesh g = cut_grid(4, removed);
+    const std::vector<int> around = faces_per_vertex(g);
+    const MeshSmoothness a = analyze_mesh(g, MeshScheme::doo_sabin);
+    std::map<int, const VertexSmoothness*> listed;
+    for (const VertexSmoothness& v : a.vertices) listed[v.face] = &v;
+    int off = 0;
+    for (std::size_t f = 0; f < face_count(g); ++f) {
+      const auto c = face(g, f);
+      std::array<bool, 4> inner{};
+      for (std::size_t i = 0; i < 4; ++i) inner[i] = around[static_cast<std::size_t>(c[i])] == 4;
+      const int m = static_cast<int>(std::count(inner.begin(), inner.end(), true));
+      int runs = 0;
+      for (std::size_t i = 0; i < 4; ++i) runs += inner[i] && !inner[(i + 3) % 4] ? 1 : 0;
+      INFO("face " << f << ": " << m << " interior corners, " << runs << " runs");
+      off += m == 0 ? 1 : 0;
+      const bool regular = m == 0 || m == 4 || (m == 2 && runs == 1);
+      REQUIRE(listed.count(static_cast<int>(f)) == (regular ? 0U : 1U));
+      if (regular) continue;
+      const VertexSmoothness& v = *listed[static_cast<int>(f)];
+      CHECK(v.vertex_class == "boundary");
+      CHECK(v.verdict.decided);
+      CHECK(v.verdict.c1 == (runs == 1));
+      if (runs == 1) {
+        CHECK(std::abs(v.verdict.angle - std::numbers::pi_v<long double> * m / 2) < 1e-15L);
+        CHECK_THAT(v.verdict.reason, Contains(std::to_string(90 * m) + ".0 degrees"));
+      } else {
+        CHECK_THAT(v.verdict.reason, Contains("pinches"));
+      }
+      CHECK(std::abs(v.lambda1 - 0.5L) < 1e-15L);
+      CHECK(std::abs(v.lambda2 - 0.5L) < 1e-15L);
+    }
+    CHECK(a.isolated == off + static_cast<int>(std::count(around.begin(), around.end(), 0)));
+  }
+}
+
+TEST_CASE("doo-sabin at the boundary: the principal submatrix is closed and its spectrum exact",
+          "[subdivision][mesh_analysis][doo_sabin]") {
+  // Interior corners by mask, k = 3, 4, 6 (rational weights): every kept row weighs nothing outside
+  // the kept columns of the whole k-gon's matrix (so the submatrix is the refinement there), and the
+  // spectrum is the k-gon's own block 1, ½, ½, ¼ (k − 3 times), then ¼ and ⅛ per kept edge quad and
+  // 1/16 per kept corner quad — proved by ranks: rank((S − λ)^m) = N − m for each claimed λ of
+  // multiplicity m, the m's summing to N.
+  const std::vector<std::pair<int, std::vector<int>>> cases{
+      {3, {1, 3}}, {4, {1, 3, 5, 7}}, {6, {1, 3, 5, 7, 11, 21, 31}}};  // each class up to rotation
+  for (const auto& [k, masks] : cases)
+    for (const int mask : masks) {
+      std::vector<char> inner(static_cast<std::size_t>(k));
+      for (int i = 0; i < k; ++i) inner[static_cast<std::size_t>(i)] = (mask >> i) & 1 ? 1 : 0;
+      INFO(k << "-gon, interior corners mask " << mask);
+      const LocalMatrix S = doo_sabin_boundary_matrix(inner);
+      const LocalMatrix whole = local_matrix(MeshScheme::doo_sabin, k);
+      REQUIRE(S.exact);
+      const int N = S.exact->rows;
+      std::vector<int> kept;
+      for (const std::string& label : S.labels)
+        kept.push_back(static_cast<int>(std::find(whole.labels.begin(), whole.labels.end(), label) -
+                                        whole.labels.begin()));
+      for (const int i : kept)
+        for (int j = 0; j < whole.exact->cols; ++j)
+          if (std::find(kept.begin(), kept.end(), j) == kept.end()) CHECK((*whole.exact)(i, j) == 0);
+      int edges = 0, corners = 0;
+      for (int i = 0; i < k; ++i) {
+        const bool here = inner[static_cast<std::size_t>(i)] != 0,
+                   next = inner[static_cast<std::size_t>((i + 1) % k)] != 0;
+        edges += here || next ? 1 : 0;
+        corners += here ? 1 : 0;
+      }
+      const std::map<Rational, int> claimed{
+          {q(1), 1}, {q(1, 2), 2}, {q(1, 4), k - 3 + edges}, {q(1, 8), edges}, {q(1, 16), corners}};
+      int total = 0;
+      for (const auto& [lambda, m] : claimed) {
+        if (m == 0) continue;
+        total += m;
+        CHECK(cifs_test::exact_rank(cifs_test::shifted_power(*S.exact, lambda, m)) == N - m);
+      }
+      CHECK(total == N);
+    }
+}
+
+TEST_CASE("doo-sabin at the boundary: the cut surface is part of the whole one; a pinch stays a pinch",
+          "[subdivision][mesh_analysis][doo_sabin]") {
+  // The reason the verdicts are the interior k-gon's restricted: every point of the cut grid's
+  // refinement is a point of the whole grid's (same positions), three levels down.
+  const Mesh whole = cut_grid(4, {}), cut = cut_grid(4, {{0, 0}, {2, 2}});
+  const Mesh W = subdivide(whole, MeshScheme::doo_sabin, 3), C = subdivide(cut, MeshScheme::doo_sabin, 3);
+  std::vector<std::array<double, 3>> points;
+  for (Eigen::Index v = 0; v < W.vertices.rows(); ++v)
+    points.push_back({W.vertices(v, 0), W.vertices(v, 1), W.vertices(v, 2)});
+  std::sort(points.begin(), points.end());
+  for (Eigen::Index v = 0; v < C.vertices.rows(); ++v) {
+    const std::array<double, 3> x{C.vertices(v, 0), C.vertices(v, 1), C.vertices(v, 2)};
+    const auto it = std::lower_bound(points.begin(), points.end(), std::array{x[0] - 1e-12, x[1], x[2]});
+    bool found = false;
+    for (auto j = it; j != points.end() && (*j)[0] <= x[0] + 1e-12 && !found; ++j)
+      found = std::abs((*j)[1] - x[1]) < 1e-12 && std::abs((*j)[2] - x[2]) < 1e-12;
+    CHECK(found);
+  }
+  // Face (1, 1) — face 4 of the cut grid — keeps its index level to level (the F-faces come first) and
+  // its corners 0 and 2 stay on the boundary, 1 and 3 inside: the boundary reaches its centre from two
+  // sides at every level.
+  const auto pinched = [&](const Mesh& m) {
+    const MeshTopology t = build_topology(m, "test");
+    std::vector<char> on;
+    for (const int c : face(t, 4)) on.push_back(t.boundary_vertex[static_cast<std::size_t>(c)]);
+    return on == std::vector<char>{1, 0, 1, 0};
+  };
+  CHECK(pinched(cut));
+  CHECK(pinched(C));
+  CHECK_FALSE(analyze_mesh(cut, MeshScheme::doo_sabin).vertices.empty());
+}
+
+TEST_CASE("analyze_mesh under doo-sabin refuses what has no analysis, naming the face or vertex",
+          "[subdivision][mesh_analysis][doo_sabin]") {
+  CHECK_THROWS_WITH(analyze_mesh(cifs_test::bipyramid_of(17), MeshScheme::doo_sabin),
+                    Contains("vertex 17: doo-sabin: valence 17 is out of range"));
+  // A prism over a 17-gon: the 17-gons' corners are interior (valence 3), so face 0 is analysed.
+  std::vector<std::array<double, 3>> p;
+  std::vector<std::vector<int>> f(2);
+  for (int i = 0; i < 17; ++i) {
+    const double a = 2 * std::numbers::pi * i / 17;
+    p.push_back({std::cos(a), std::sin(a), 0});
+    p.push_back({std::cos(a), std::sin(a), 1});
+    f[0].insert(f[0].begin(), 2 * i);
+    f[1].push_back(2 * i + 1);
+    f.push_back({2 * i, (2 * i + 2) % 34, (2 * i + 3) % 34, 2 * i + 1});
+  }
+  CHECK_THROWS_WITH(analyze_mesh(make_mesh(p, f), MeshScheme::doo_sabin),
+                    Contains("face 0: doo-sabin: valence 17 is out of range"));
+  Mesh tagged = cifs_test::cube();
+  tagged.tags.corners = {{0, kInfiniteSharpness}};
+  CHECK_THROWS_WITH(analyze_mesh(tagged, MeshScheme::doo_sabin), Contains("doo-sabin has no rules for creases"));
+}
