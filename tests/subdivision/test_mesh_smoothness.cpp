@@ -11,6 +11,7 @@
 #include <numbers>
 #include <random>
 #include <set>
+#include <span>
 #include <vector>
 
 #include "cifs/errors.hpp"
@@ -41,6 +42,20 @@ Mesh open_fan(int k, unsigned seed = 5) {
     if (j > 0) f.push_back({0, j, j + 1});
   }
   return make_mesh(p, f);
+}
+
+/// Two meshes side by side (b's vertices after a's).
+Mesh disjoint_union(const Mesh& a, const Mesh& b) {
+  Mesh out = a;
+  const auto shift = static_cast<int>(a.vertices.rows());
+  out.vertices.conservativeResize(a.vertices.rows() + b.vertices.rows(), 3);
+  out.vertices.bottomRows(b.vertices.rows()) = b.vertices;
+  for (std::size_t f = 0; f < face_count(b); ++f) {
+    std::vector<int> c(face(b, f).begin(), face(b, f).end());
+    for (int& v : c) v += shift;
+    add_face(out, std::span<const int>(c));
+  }
+  return out;
 }
 
 /// The faces of each vertex, counted here (independently of the topology code).
@@ -106,6 +121,12 @@ TEST_CASE("analyze_mesh under butterfly: every irregular vertex with the verdict
     const std::set<int> classes{faces.begin(), faces.end()};
     CHECK(a.analyses == static_cast<int>(classes.size()) - static_cast<int>(classes.count(3)));
   }
+  // A boundary vertex and interior ones of the same valence (5) in one mesh: each keeps its own
+  // class's verdict (not C1 at 4 faces, C1 inside).
+  const Mesh both = disjoint_union(open_fan(4), cifs_test::bipyramid_of(5));
+  const MeshSmoothness ab = analyze_mesh(both, MeshScheme::butterfly);
+  for (const VertexSmoothness& v : ab.vertices)
+    if (v.valence == 5) CHECK(v.verdict.c1 == (v.vertex >= 6));
   // Interior: ZSS's stencils at valences 3 … 8 (bipyramid apexes; the equator has valence 4), C1.
   for (int k = 3; k <= 8; ++k) {
     const Mesh b = cifs_test::bipyramid_of(k);
