@@ -8,8 +8,8 @@
 #include <functional>
 #include <iomanip>
 #include <map>
-#include <numbers>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string_view>
@@ -445,11 +445,10 @@ std::string analyze(const AnalyzeOptions& o) {
     << "C1\n";
   for (const subdivision::VertexSmoothness& v : a.vertices)
     s << std::setw(9) << (v.face >= 0 ? "f" + std::to_string(v.face) : std::to_string(v.vertex))
-      << std::setw(10) << v.vertex_class << std::setw(8) << v.valence
-      << std::setw(9) << sectors_text(v.sectors) << std::setw(11) << number(v.lambda1) << std::setw(11)
-      << number(v.lambda2) << std::setw(11) << (v.curvature_ratio ? number(*v.curvature_ratio) : "-")
-      << verdict_word(v.verdict) << (v.verdict.c1 && v.semi_sharp == 0 ? "" : ": " + v.verdict.reason)
-      << "\n";
+      << std::setw(10) << v.vertex_class << std::setw(8) << v.valence << std::setw(9)
+      << sectors_text(v.sectors) << std::setw(11) << number(v.lambda1) << std::setw(11) << number(v.lambda2)
+      << std::setw(11) << (v.curvature_ratio ? number(*v.curvature_ratio) : "-") << verdict_word(v.verdict)
+      << (v.verdict.c1 && v.semi_sharp == 0 ? "" : ": " + v.verdict.reason) << "\n";
   s << a.summary << "\n";
   return s.str();
 }

@@ -825,7 +825,8 @@ LocalMatrix doo_sabin_boundary_matrix(const std::vector<char>& inner) {
     out.exact = RationalMatrix{.rows = N, .cols = N, .entries = {}};
     for (int i = 0; i < N; ++i)
       for (int j = 0; j < N; ++j)
-        out.exact->entries.push_back((*whole.exact)(keep[static_cast<std::size_t>(i)], keep[static_cast<std::size_t>(j)]));
+        out.exact->entries.push_back(
+            (*whole.exact)(keep[static_cast<std::size_t>(i)], keep[static_cast<std::size_t>(j)]));
   }
   return out;
 }

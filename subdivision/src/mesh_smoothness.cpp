@@ -152,7 +152,8 @@ MeshSmoothness analyze_doo_sabin(const MeshTopology& t, const std::string& who) 
       throw InvalidInput(who + ": " + element + ": " + e.what());
     }
   };
-  const auto add = [&](int vertex, int face_index, int k, const char* type, const Analysis& a, C1Verdict verdict) {
+  const auto add = [&](int vertex, int face_index, int k, const char* type, const Analysis& a,
+                       C1Verdict verdict) {
     VertexSmoothness r;
     r.vertex = vertex;
     r.face = face_index;
@@ -192,7 +193,8 @@ MeshSmoothness analyze_doo_sabin(const MeshTopology& t, const std::string& who) 
       auto it = touching.find(key);
       if (it == touching.end()) {
         LocalSpectrum spectrum = local_spectrum(doo_sabin_boundary_matrix(key));
-        it = touching.emplace(key, Analysis{std::move(spectrum), doo_sabin_boundary_verdict(whole.second, key)})
+        it = touching
+                 .emplace(key, Analysis{std::move(spectrum), doo_sabin_boundary_verdict(whole.second, key)})
                  .first;
       }
       add(-1, static_cast<int>(f), k, "boundary", it->second, it->second.second);
@@ -215,14 +217,14 @@ MeshSmoothness analyze_doo_sabin(const MeshTopology& t, const std::string& who) 
   }
   out.analyses = static_cast<int>(interior.size() + touching.size());
   out.isolated += off_surface;
-  out.summary = "doo-sabin: " + std::to_string(face_count(t)) + " faces and " + std::to_string(t.vertex_count) +
-                " vertices, " + std::to_string(out.regular) + " regular points, " +
-                std::to_string(out.vertices.size()) + " irregular: " + std::to_string(out.c1) + " C1, " +
-                std::to_string(out.not_c1) + " not C1, " + std::to_string(out.undecided) + " undecided (" +
-                std::to_string(out.analyses) + (out.analyses == 1 ? " local analysis" : " local analyses") +
-                ")" + (off_surface > 0 ? ", " + std::to_string(off_surface) + " faces off the surface" : "") +
-                (out.isolated > off_surface ? ", " + std::to_string(out.isolated - off_surface) + " in no face"
-                                            : "");
+  out.summary =
+      "doo-sabin: " + std::to_string(face_count(t)) + " faces and " + std::to_string(t.vertex_count) +
+      " vertices, " + std::to_string(out.regular) + " regular points, " +
+      std::to_string(out.vertices.size()) + " irregular: " + std::to_string(out.c1) + " C1, " +
+      std::to_string(out.not_c1) + " not C1, " + std::to_string(out.undecided) + " undecided (" +
+      std::to_string(out.analyses) + (out.analyses == 1 ? " local analysis" : " local analyses") + ")" +
+      (off_surface > 0 ? ", " + std::to_string(off_surface) + " faces off the surface" : "") +
+      (out.isolated > off_surface ? ", " + std::to_string(out.isolated - off_surface) + " in no face" : "");
   return out;
 }
 

@@ -459,8 +459,9 @@ TEST_CASE("cifs analyze MESH --scheme S: which points are not smooth", "[cli][me
   const std::string fan = std::string(CIFS_EXAMPLES_DIR) + "/meshes/boundary_fan_triangles.obj";
   const Run butterfly = cifs_cli("analyze " + fan + " --scheme butterfly");
   REQUIRE(butterfly.status == 0);
-  CHECK_THAT(butterfly.out, Catch::Contains("butterfly: 10 vertices, 0 regular, 10 irregular: 7 C1, 1 not C1, "
-                                            "2 undecided (3 local analyses)"));
+  CHECK_THAT(butterfly.out,
+             Catch::Contains("butterfly: 10 vertices, 0 regular, 10 irregular: 7 C1, 1 not C1, "
+                             "2 undecided (3 local analyses)"));
   // Doo–Sabin: points are face centres — the grid's corner faces, one interior corner each: C1 corners
   // of the surface, 90 degrees —, marked on the PNG at their centroids.
   const json dual = json::parse(cifs_cli("analyze " + grid + " --scheme doo-sabin --format json").out);

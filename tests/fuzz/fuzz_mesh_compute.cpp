@@ -100,9 +100,9 @@ CIFS_FUZZ_HARNESS(mesh_compute) {
           points += static_cast<int>(face_count(t)) -
                     static_cast<int>(std::count(t.boundary_vertex.begin(), t.boundary_vertex.end(), 1));
         }
-        fuzz::require(a.regular + a.isolated + listed == points &&
-                          a.c1 + a.not_c1 + a.undecided == listed,
-                      "analyze: every vertex (Doo–Sabin: point) counted once, every listed one has a verdict");
+        fuzz::require(
+            a.regular + a.isolated + listed == points && a.c1 + a.not_c1 + a.undecided == listed,
+            "analyze: every vertex (Doo–Sabin: point) counted once, every listed one has a verdict");
         for (const subdivision::VertexSmoothness& v : a.vertices)
           fuzz::require(
               std::isfinite(static_cast<double>(v.lambda1)) && std::isfinite(static_cast<double>(v.lambda2)),
