@@ -164,8 +164,9 @@ TEST_CASE("butterfly verdicts by deep refinement: the normals at a C1 vertex con
   for (const int k : {2, 4, 5, 7}) {
     INFO(k << " faces");
     const Mesh fan = open_fan(k);
-    const bool c1 = analyze_mesh(fan, MeshScheme::butterfly).vertices.front().verdict.c1;
-    REQUIRE(analyze_mesh(fan, MeshScheme::butterfly).vertices.front().vertex == 0);
+    const VertexSmoothness centre = analyze_mesh(fan, MeshScheme::butterfly).vertices.front();
+    REQUIRE(centre.vertex == 0);
+    const bool c1 = centre.verdict.c1;
     std::vector<double> spread;
     Mesh level = subdivide(fan, MeshScheme::butterfly, 3);
     for (int l = 3; l <= 7; ++l) {
@@ -175,6 +176,13 @@ TEST_CASE("butterfly verdicts by deep refinement: the normals at a C1 vertex con
     UNSCOPED_INFO("spread (degrees) " << spread[0] * 180 / std::numbers::pi << " … "
                                       << spread.back() * 180 / std::numbers::pi);
     CHECK((spread.back() < 0.2 * spread.front()) == c1);
+    if (!c1) continue;
+    // At the rate the spectrum predicts: |mu|/lambda2 a level (approached from above).
+    REQUIRE(centre.curvature_ratio);  // lambda2²/|mu|
+    const double rate = static_cast<double>(centre.lambda2 / *centre.curvature_ratio),
+                 last = spread[4] / spread[3];
+    CHECK(last > rate);
+    CHECK(last < rate + 0.05);
   }
 }
 
