@@ -152,8 +152,7 @@ MeshSmoothness analyze_doo_sabin(const MeshTopology& t, const std::string& who) 
       throw InvalidInput(who + ": " + element + ": " + e.what());
     }
   };
-  const auto add = [&](int vertex, int face_index, int k, const char* type, const Analysis& a,
-                       C1Verdict verdict) {
+  const auto add = [&](int vertex, int face_index, int k, const char* type, const Analysis& a) {
     VertexSmoothness r;
     r.vertex = vertex;
     r.face = face_index;
@@ -162,7 +161,7 @@ MeshSmoothness analyze_doo_sabin(const MeshTopology& t, const std::string& who) 
     r.lambda1 = a.first.subdominant;
     r.lambda2 = a.first.second;
     r.curvature_ratio = a.first.curvature_ratio;
-    r.verdict = std::move(verdict);
+    r.verdict = a.second;
     r.verdict.sectors.clear();
     (r.verdict.c1 ? out.c1 : r.verdict.decided ? out.not_c1 : out.undecided) += 1;
     out.vertices.push_back(std::move(r));
@@ -182,8 +181,7 @@ MeshSmoothness analyze_doo_sabin(const MeshTopology& t, const std::string& who) 
       if (k == 4) {
         ++out.regular;
       } else {
-        const Analysis& a = interior_analysis(k, element);
-        add(-1, static_cast<int>(f), k, "face", a, a.second);
+        add(-1, static_cast<int>(f), k, "face", interior_analysis(k, element));
       }
     } else if (const std::vector<char> key = least_rotation(inner);
                k == 4 && key == std::vector<char>{0, 0, 1, 1}) {
@@ -197,7 +195,7 @@ MeshSmoothness analyze_doo_sabin(const MeshTopology& t, const std::string& who) 
                  .emplace(key, Analysis{std::move(spectrum), doo_sabin_boundary_verdict(whole.second, key)})
                  .first;
       }
-      add(-1, static_cast<int>(f), k, "boundary", it->second, it->second.second);
+      add(-1, static_cast<int>(f), k, "boundary", it->second);
     }
   }
   for (int v = 0; v < t.vertex_count; ++v) {
@@ -212,8 +210,7 @@ MeshSmoothness analyze_doo_sabin(const MeshTopology& t, const std::string& who) 
       ++out.regular;
       continue;
     }
-    const Analysis& a = interior_analysis(n, "vertex " + std::to_string(v));
-    add(v, -1, n, "vertex", a, a.second);
+    add(v, -1, n, "vertex", interior_analysis(n, "vertex " + std::to_string(v)));
   }
   out.analyses = static_cast<int>(interior.size() + touching.size());
   out.isolated += off_surface;
