@@ -58,8 +58,10 @@ void check_valence(MeshScheme scheme, int valence, const LocalOptions& o) {
                          (o.boundary ? " (the boundary edges are sharp anyway)" : ""));
   if (o.boundary) {
     if (scheme == MeshScheme::doo_sabin)
-      throw InvalidInput(
-          who + ": boundary vertices are analysed for catmull-clark, loop, butterfly and sqrt3 only");
+      throw InvalidInput(who +
+                         ": boundary vertices are analysed for catmull-clark, loop, butterfly and sqrt3 only "
+                         "(doo-sabin's make no face; its points at the boundary are centres of faces, which "
+                         "cifs analyze MESH --scheme doo-sabin reports)");
     if (scheme == MeshScheme::sqrt3 && o.rule != BoundaryRule::edge_only)
       throw InvalidInput(who + ": the boundary has one rule under this scheme (Kobbelt's ternary cubic " +
                          "B-spline), the rule edge; a boundary vertex of one face is no corner");
