@@ -20,6 +20,7 @@
 #include "cifs/topology.hpp"
 #include "subdivision/meshes.hpp"
 #include "subdivision/rational.hpp"
+#include "subdivision/spectra.hpp"
 #include "support/sanitized.hpp"
 
 using namespace cifs;
@@ -333,6 +334,29 @@ TEST_CASE("doo-sabin at the boundary: the principal submatrix is closed and its 
         CHECK(cifs_test::exact_rank(cifs_test::shifted_power(*S.exact, lambda, m)) == N - m);
       }
       CHECK(total == N);
+    }
+}
+
+TEST_CASE("doo-sabin at the boundary: the same spectrum where the weights have irrational cosines",
+          "[subdivision][mesh_analysis][doo_sabin]") {
+  // k = 5, 7, 8 in long double: the k-gon's block, then ¼, ⅛ per kept edge quad, 1/16 per corner quad.
+  for (const int k : {5, 7, 8})
+    for (const int mask : {1, 3, 5}) {
+      std::vector<char> inner(static_cast<std::size_t>(k));
+      int edges = 0, corners = 0;
+      for (int i = 0; i < k; ++i) inner[static_cast<std::size_t>(i)] = (mask >> i) & 1 ? 1 : 0;
+      for (int i = 0; i < k; ++i) {
+        edges += inner[static_cast<std::size_t>(i)] || inner[static_cast<std::size_t>((i + 1) % k)] ? 1 : 0;
+        corners += inner[static_cast<std::size_t>(i)];
+      }
+      INFO(k << "-gon, interior corners mask " << mask);
+      const LocalMatrix S = doo_sabin_boundary_matrix(inner);
+      CHECK_FALSE(S.exact);
+      std::vector<std::complex<long double>> expected{1.0L, 0.5L, 0.5L};
+      expected.insert(expected.end(), static_cast<std::size_t>(k - 3 + edges), 0.25L);
+      expected.insert(expected.end(), static_cast<std::size_t>(edges), 0.125L);
+      expected.insert(expected.end(), static_cast<std::size_t>(corners), 0.0625L);
+      cifs_test::check_same_spectrum(local_spectrum(S).eigenvalues, expected, 1e-12L);
     }
 }
 
