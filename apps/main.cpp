@@ -377,7 +377,8 @@ void add_analyze(CLI::App& app, Commands& c) {
   auto* analyze_cmd = app.add_subcommand(
       "analyze", "Which points of a mesh are not smooth: every irregular vertex's class and C1 verdict");
   analyze_cmd->add_option("mesh", c.an.mesh, "Polygon mesh (.obj, .ply, .stl or .off)")->required();
-  analyze_cmd->add_option("--scheme", c.an.scheme, "catmull-clark or loop")->required();
+  analyze_cmd->add_option("--scheme", c.an.scheme, "catmull-clark, loop, sqrt3, butterfly or doo-sabin")
+      ->required();
   analyze_cmd->add_option("--format", c.an.format, "table (default) or json");
   analyze_cmd->add_option("--boundary", c.an.boundary,
                           "Boundary rule, replacing the file's: edge (default) or corner");

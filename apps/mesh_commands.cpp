@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <iomanip>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string_view>
@@ -336,6 +338,33 @@ std::string verdict_word(const subdivision::C1Verdict& v) {
   return v.c1 ? "yes" : v.decided ? "no" : "undecided";
 }
 
+/// Where to mark an analysed point: the vertex's point three levels down (vertex points keep their
+/// index); Doo–Sabin: the limit point, a face's centroid — of the vertex's face after one step for a
+/// vertex (the centroid of its corner points; α's columns sum to 1 round the face).
+Eigen::RowVector3d marked_point(const Mesh& mesh, subdivision::MeshScheme scheme, const Mesh& surface,
+                                const subdivision::VertexSmoothness& v) {
+  if (scheme != subdivision::MeshScheme::doo_sabin) return surface.vertices.row(v.vertex);
+  Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
+  int count = 0;
+  for (std::size_t f = 0; f < face_count(mesh); ++f) {
+    const auto corners = face(mesh, f);
+    const auto k = static_cast<int>(corners.size());
+    const auto at = std::find(corners.begin(), corners.end(), v.vertex);
+    if (v.face >= 0 ? static_cast<int>(f) != v.face : at == corners.end()) continue;
+    if (v.face >= 0) {  // the centroid
+      for (const int c : corners) sum += mesh.vertices.row(c);
+      count += k;
+      continue;
+    }
+    const auto i = static_cast<int>(at - corners.begin());
+    for (int m = 0; m < k; ++m)
+      sum += ((m == 0 ? 0.25 : 0.0) + (3 + 2 * std::cos(2 * std::numbers::pi * m / k)) / (4 * k)) *
+             mesh.vertices.row(corners[static_cast<std::size_t>((i + m) % k)]);
+    ++count;
+  }
+  return sum / count;
+}
+
 /// The surface three levels down, shaded, with a cross at each irregular vertex (vertex points keep
 /// their index: the level-3 point is next to the limit) coloured by its verdict; written atomically.
 void analysis_png(const std::filesystem::path& path, const Mesh& mesh, subdivision::MeshScheme scheme,
@@ -356,7 +385,7 @@ void analysis_png(const std::filesystem::path& path, const Mesh& mesh, subdivisi
     marks.vertices.resize(0, 3);
     for (const subdivision::VertexSmoothness& v : a.vertices) {
       if ((v.verdict.c1 ? 0 : v.verdict.decided ? 1 : 2) != kind) continue;
-      const Eigen::RowVector3d p = surface.vertices.row(v.vertex);
+      const Eigen::RowVector3d p = marked_point(mesh, scheme, surface, v);
       for (int axis = 0; axis < 3; ++axis) {
         Eigen::RowVector3d d = Eigen::RowVector3d::Zero();
         d(axis) = arm;
@@ -391,6 +420,7 @@ std::string analyze(const AnalyzeOptions& o) {
     json vertices = json::array();
     for (const subdivision::VertexSmoothness& v : a.vertices)
       vertices.push_back({{"vertex", v.vertex},
+                          {"face", v.face},
                           {"class", v.vertex_class},
                           {"valence", v.valence},
                           {"sector_faces", v.sectors},
@@ -414,11 +444,11 @@ std::string analyze(const AnalyzeOptions& o) {
     << "l2^2/|mu|"
     << "C1\n";
   for (const subdivision::VertexSmoothness& v : a.vertices)
-    s << std::setw(9) << v.vertex << std::setw(10) << v.vertex_class << std::setw(8) << v.valence
-      << std::setw(9) << sectors_text(v.sectors) << std::setw(11) << number(v.lambda1) << std::setw(11)
-      << number(v.lambda2) << std::setw(11) << (v.curvature_ratio ? number(*v.curvature_ratio) : "-")
-      << verdict_word(v.verdict) << (v.verdict.c1 && v.semi_sharp == 0 ? "" : ": " + v.verdict.reason)
-      << "\n";
+    s << std::setw(9) << (v.face >= 0 ? "f" + std::to_string(v.face) : std::to_string(v.vertex))
+      << std::setw(10) << v.vertex_class << std::setw(8) << v.valence << std::setw(9)
+      << sectors_text(v.sectors) << std::setw(11) << number(v.lambda1) << std::setw(11) << number(v.lambda2)
+      << std::setw(11) << (v.curvature_ratio ? number(*v.curvature_ratio) : "-") << verdict_word(v.verdict)
+      << (v.verdict.c1 && v.semi_sharp == 0 ? "" : ": " + v.verdict.reason) << "\n";
   s << a.summary << "\n";
   return s.str();
 }

@@ -466,6 +466,7 @@ void bind_mesh_subdivision_analysis(py::module_& m) {
         for (const sd::VertexSmoothness& v : a.vertices) {
           py::dict d;
           d["vertex"] = v.vertex;
+          d["face"] = v.face;
           d["class"] = v.vertex_class;
           d["valence"] = v.valence;
           d["sector_faces"] = v.sectors;
@@ -495,7 +496,8 @@ void bind_mesh_subdivision_analysis(py::module_& m) {
       },
       py::arg("mesh"), py::arg("scheme"),
       "Which points of the mesh are not smooth: every irregular vertex (extraordinary, boundary, crease, "
-      "dart, corner) of a catmull-clark or loop mesh with its class, valence, sector faces, lambda1, "
+      "dart, corner) of a catmull-clark, loop, sqrt3 or butterfly mesh — doo-sabin: every irregular face "
+      "centre (face, vertex -1) and interior vertex's face — with its class, valence, sector faces, lambda1, "
       "lambda2, curvature_ratio and C1 verdict (True, False, or None when undecided) with its reason; "
       "counts and a summary line (docs/subdivision-surfaces.md).");
 }

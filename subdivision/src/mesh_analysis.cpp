@@ -58,8 +58,10 @@ void check_valence(MeshScheme scheme, int valence, const LocalOptions& o) {
                          (o.boundary ? " (the boundary edges are sharp anyway)" : ""));
   if (o.boundary) {
     if (scheme == MeshScheme::doo_sabin)
-      throw InvalidInput(
-          who + ": boundary vertices are analysed for catmull-clark, loop, butterfly and sqrt3 only");
+      throw InvalidInput(who +
+                         ": boundary vertices are analysed for catmull-clark, loop, butterfly and sqrt3 only "
+                         "(doo-sabin's make no face; its points at the boundary are centres of faces, which "
+                         "cifs analyze MESH --scheme doo-sabin reports)");
     if (scheme == MeshScheme::sqrt3 && o.rule != BoundaryRule::edge_only)
       throw InvalidInput(who + ": the boundary has one rule under this scheme (Kobbelt's ternary cubic " +
                          "B-spline), the rule edge; a boundary vertex of one face is no corner");
@@ -798,6 +800,36 @@ LocalMatrix local_matrix(MeshScheme scheme, int valence, const LocalOptions& opt
   const Dense<long double> S = rules<long double>(scheme, valence, options, long_cos);
   out.values = Eigen::Map<const Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
       S.a.data(), S.n, S.n);
+  return out;
+}
+
+LocalMatrix doo_sabin_boundary_matrix(const std::vector<char>& inner) {
+  const int k = static_cast<int>(inner.size());
+  const LocalMatrix whole = local_matrix(MeshScheme::doo_sabin, k);
+  const auto interior = [&](int i) { return inner[static_cast<std::size_t>(wrap(i, k))] != 0; };
+  std::vector<int> keep;
+  for (int i = 0; i < k; ++i) {
+    keep.push_back(4 * i);
+    if (interior(i) || interior(i + 1)) keep.insert(keep.end(), {4 * i + 1, 4 * i + 2});
+    if (interior(i)) keep.push_back(4 * i + 3);
+  }
+  LocalMatrix out = whole;
+  out.options.boundary = true;
+  const auto N = static_cast<int>(keep.size());
+  out.labels.clear();
+  out.values.resize(N, N);
+  for (int i = 0; i < N; ++i) {
+    out.labels.push_back(whole.labels[static_cast<std::size_t>(keep[static_cast<std::size_t>(i)])]);
+    for (int j = 0; j < N; ++j)
+      out.values(i, j) = whole.values(keep[static_cast<std::size_t>(i)], keep[static_cast<std::size_t>(j)]);
+  }
+  if (whole.exact) {
+    out.exact = RationalMatrix{.rows = N, .cols = N, .entries = {}};
+    for (int i = 0; i < N; ++i)
+      for (int j = 0; j < N; ++j)
+        out.exact->entries.push_back(
+            (*whole.exact)(keep[static_cast<std::size_t>(i)], keep[static_cast<std::size_t>(j)]));
+  }
   return out;
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <numbers>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -56,9 +57,10 @@ std::optional<LocalOptions> local_class(const MeshTopology& t, const MeshTags& t
   }
   const double s = corner[static_cast<std::size_t>(v)];
   if (s > 0 && s < kInfiniteSharpness) semi_sharp = std::max(semi_sharp, s);
-  // √3 has one boundary rule (Kobbelt's): a boundary vertex of one face is no corner there.
-  o.corner = s >= kInfiniteSharpness || (boundary && n == 2 && scheme != MeshScheme::sqrt3 &&
-                                         tags.boundary == BoundaryRule::edge_and_corner);
+  // √3 and Butterfly have one boundary rule each: a boundary vertex of one face is no corner there.
+  const bool one_rule = scheme == MeshScheme::sqrt3 || scheme == MeshScheme::butterfly;
+  o.corner = s >= kInfiniteSharpness ||
+             (boundary && n == 2 && !one_rule && tags.boundary == BoundaryRule::edge_and_corner);
   // Interior: turn the ring so that the first sharp edge is r_0 (the class does not depend on it).
   if (!boundary && !o.sharp.empty()) {
     const int first = o.sharp.front();
@@ -75,27 +77,175 @@ std::optional<LocalOptions> local_class(const MeshTopology& t, const MeshTags& t
   return o;
 }
 
+using Analysis = std::pair<LocalSpectrum, C1Verdict>;
+
+Analysis analysis_of(const LocalMatrix& S) {
+  LocalSpectrum spectrum = local_spectrum(S);
+  C1Verdict verdict = c1_verdict(S, spectrum);
+  return {std::move(spectrum), std::move(verdict)};
+}
+
+std::string degrees_text(int m, int k) {
+  const double d = 360.0 * m / k;
+  std::string t = std::to_string(std::round(d * 10) / 10);
+  return t.substr(0, t.find('.') + 2) + " degrees";
+}
+
+/// A Doo–Sabin face touching the boundary, `inner[i]` whether corner i is an interior vertex. The
+/// surface near the face's centre is made of the patches of its interior corners only (a boundary
+/// vertex makes no face), and a corner point reads its own face alone, so those patches and their
+/// characteristic map are the interior k-gon's restricted to them (doo_sabin_boundary_matrix):
+/// regular and injective where the k-gon's is. By the map's k-fold symmetry a run of m interior
+/// corners spans 360m/k degrees; two runs or more are sectors that touch at the centre only.
+C1Verdict doo_sabin_boundary_verdict(const C1Verdict& interior, const std::vector<char>& inner) {
+  const int k = static_cast<int>(inner.size());
+  int m = 0, runs = 0;
+  for (int i = 0; i < k; ++i) {
+    m += inner[static_cast<std::size_t>(i)];
+    runs += inner[static_cast<std::size_t>(i)] && !inner[static_cast<std::size_t>((i + k - 1) % k)] ? 1 : 0;
+  }
+  C1Verdict out = interior;
+  out.sectors.clear();
+  const std::string gon = std::to_string(k) + "-gon's";
+  if (!interior.c1) {
+    out.reason = "the interior " + gon + " verdict: " + interior.reason;
+    return out;
+  }
+  if (runs > 1) {
+    out.c1 = false;
+    out.reason = "not C1: the surface pinches — " + std::to_string(runs) +
+                 " sectors (runs of interior corners) touch at the face's centre only; each is C1 on its own";
+    return out;
+  }
+  out.angle = 2 * std::numbers::pi_v<long double> * m / k;
+  out.reason = "C1 on one sector: the interior " + gon + " characteristic map (" + interior.method +
+               ") restricted to the patches of its " + std::to_string(m) + " interior corner" +
+               (m == 1 ? "" : "s") + ", spanning " + degrees_text(m, k);
+  return out;
+}
+
+/// The interior corners of face f turned to their least rotation (the class does not depend on
+/// where the face starts).
+std::vector<char> least_rotation(std::vector<char> inner) {
+  std::vector<char> best = inner;
+  for (std::size_t i = 1; i < inner.size(); ++i) {
+    std::rotate(inner.begin(), inner.begin() + 1, inner.end());
+    best = std::min(best, inner);
+  }
+  return best;
+}
+
+/// Doo–Sabin (dual): every face's descendants shrink to its centroid and an interior vertex becomes a
+/// face after one step, so the points that can be irregular are the centres of faces (k ≠ 4 corners,
+/// or touching the boundary otherwise than along one edge) and of interior vertices' faces (valence ≠ 4).
+MeshSmoothness analyze_doo_sabin(const MeshTopology& t, const std::string& who) {
+  MeshSmoothness out;
+  out.scheme = MeshScheme::doo_sabin;
+  std::map<int, Analysis> interior;
+  std::map<std::vector<char>, Analysis> touching;
+  const auto interior_analysis = [&](int k, const std::string& element) -> const Analysis& {
+    auto it = interior.find(k);
+    if (it != interior.end()) return it->second;
+    try {
+      return interior.emplace(k, analysis_of(local_matrix(MeshScheme::doo_sabin, k))).first->second;
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(who + ": " + element + ": " + e.what());
+    }
+  };
+  const auto add = [&](int vertex, int face_index, int k, const char* type, const Analysis& a) {
+    VertexSmoothness r;
+    r.vertex = vertex;
+    r.face = face_index;
+    r.valence = k;
+    r.vertex_class = type;
+    r.lambda1 = a.first.subdominant;
+    r.lambda2 = a.first.second;
+    r.curvature_ratio = a.first.curvature_ratio;
+    r.verdict = a.second;
+    r.verdict.sectors.clear();
+    (r.verdict.c1 ? out.c1 : r.verdict.decided ? out.not_c1 : out.undecided) += 1;
+    out.vertices.push_back(std::move(r));
+  };
+  int off_surface = 0;
+  for (std::size_t f = 0; f < face_count(t); ++f) {
+    const auto corners = face(t, f);
+    const int k = static_cast<int>(corners.size());
+    std::vector<char> inner(corners.size());
+    for (std::size_t i = 0; i < corners.size(); ++i)
+      inner[i] = t.boundary_vertex[static_cast<std::size_t>(corners[i])] == 0 ? 1 : 0;
+    const int m = static_cast<int>(std::count(inner.begin(), inner.end(), 1));
+    const std::string element = "face " + std::to_string(f);
+    if (m == 0) {
+      ++off_surface;
+    } else if (m == k) {
+      if (k == 4) {
+        ++out.regular;
+      } else {
+        add(-1, static_cast<int>(f), k, "face", interior_analysis(k, element));
+      }
+    } else if (const std::vector<char> key = least_rotation(inner);
+               k == 4 && key == std::vector<char>{0, 0, 1, 1}) {
+      ++out.regular;  // along one edge of the boundary: the half-plane's biquadratic spline
+    } else {
+      const Analysis& whole = interior_analysis(k, element);
+      auto it = touching.find(key);
+      if (it == touching.end()) {
+        LocalSpectrum spectrum = local_spectrum(doo_sabin_boundary_matrix(key));
+        it = touching
+                 .emplace(key, Analysis{std::move(spectrum), doo_sabin_boundary_verdict(whole.second, key)})
+                 .first;
+      }
+      add(-1, static_cast<int>(f), k, "boundary", it->second);
+    }
+  }
+  for (int v = 0; v < t.vertex_count; ++v) {
+    const auto faces = vertex_faces(t, static_cast<std::size_t>(v));
+    if (faces.empty()) {
+      ++out.isolated;
+      continue;
+    }
+    if (t.boundary_vertex[static_cast<std::size_t>(v)]) continue;  // makes no face
+    const int n = static_cast<int>(faces.size());
+    if (n == 4) {
+      ++out.regular;
+      continue;
+    }
+    add(v, -1, n, "vertex", interior_analysis(n, "vertex " + std::to_string(v)));
+  }
+  out.analyses = static_cast<int>(interior.size() + touching.size());
+  out.isolated += off_surface;
+  out.summary =
+      "doo-sabin: " + std::to_string(face_count(t)) + " faces and " + std::to_string(t.vertex_count) +
+      " vertices, " + std::to_string(out.regular) + " regular points, " +
+      std::to_string(out.vertices.size()) + " irregular: " + std::to_string(out.c1) + " C1, " +
+      std::to_string(out.not_c1) + " not C1, " + std::to_string(out.undecided) + " undecided (" +
+      std::to_string(out.analyses) + (out.analyses == 1 ? " local analysis" : " local analyses") + ")" +
+      (off_surface > 0 ? ", " + std::to_string(off_surface) + " faces off the surface" : "") +
+      (out.isolated > off_surface ? ", " + std::to_string(out.isolated - off_surface) + " in no face" : "");
+  return out;
+}
+
 }  // namespace
 
 MeshSmoothness analyze_mesh(const Mesh& mesh, MeshScheme scheme, std::string_view who_view) {
   const std::string who(who_view);
-  if (scheme != MeshScheme::catmull_clark && scheme != MeshScheme::loop && scheme != MeshScheme::sqrt3)
-    throw InvalidInput(
-        who + ": the smoothness of a whole mesh is analysed for catmull-clark, loop and sqrt3 only, not " +
-        std::string(scheme_name(scheme)));
+  if (scheme == MeshScheme::bilinear)
+    throw InvalidInput(who + ": bilinear's limit surface is the refined mesh itself (C0 at every vertex); " +
+                       "there is nothing to analyse");
   check_mesh(mesh, who);
   if (mesh.tags.boundary == BoundaryRule::none)
     throw InvalidInput(who + ": the boundary rule 'none' is not analysed (its boundary faces are holes)");
-  if (scheme == MeshScheme::sqrt3)
+  if (scheme != MeshScheme::catmull_clark && scheme != MeshScheme::loop)
     if (const std::string tag = first_feature(mesh.tags); !tag.empty())
-      throw InvalidInput(who + ": the mesh has " + tag +
-                         "; sqrt3 has no rules for creases, corners or holes (catmull-clark and loop have)");
-  if (scheme == MeshScheme::loop || scheme == MeshScheme::sqrt3)
+      throw InvalidInput(who + ": the mesh has " + tag + "; " + std::string(scheme_name(scheme)) +
+                         " has no rules for creases, corners or holes (catmull-clark and loop have)");
+  if (scheme == MeshScheme::loop || scheme == MeshScheme::sqrt3 || scheme == MeshScheme::butterfly)
     for (std::size_t f = 0; f < face_count(mesh); ++f)
       if (face(mesh, f).size() != 3)
         throw InvalidInput(who + ": " + std::string(scheme_name(scheme)) + " runs on triangles; face " +
                            std::to_string(f) + " has " + std::to_string(face(mesh, f).size()) + " corners");
   const MeshTopology t = build_topology(mesh, who);
+  if (scheme == MeshScheme::doo_sabin) return analyze_doo_sabin(t, who);
   std::map<std::uint64_t, double> sharpness;
   for (const EdgeSharpness& c : mesh.tags.creases)
     sharpness[edge_key(c.a, c.b)] = held_sharpness(c.sharpness);
@@ -109,7 +259,7 @@ MeshSmoothness analyze_mesh(const Mesh& mesh, MeshScheme scheme, std::string_vie
   MeshSmoothness out;
   out.scheme = scheme;
   using Key = std::tuple<int, bool, std::vector<int>, bool, bool>;
-  std::map<Key, std::pair<LocalSpectrum, C1Verdict>> cache;
+  std::map<Key, Analysis> cache;
   for (int v = 0; v < t.vertex_count; ++v) {
     const auto faces = vertex_faces(t, static_cast<std::size_t>(v));
     if (std::all_of(faces.begin(), faces.end(),
@@ -133,9 +283,7 @@ MeshSmoothness analyze_mesh(const Mesh& mesh, MeshScheme scheme, std::string_vie
       } catch (const InvalidInput& e) {
         throw InvalidInput(who + ": vertex " + std::to_string(v) + ": " + e.what());
       }
-      LocalSpectrum spectrum = local_spectrum(S);
-      C1Verdict verdict = c1_verdict(S, spectrum);
-      it = cache.emplace(key, std::pair{std::move(spectrum), std::move(verdict)}).first;
+      it = cache.emplace(key, analysis_of(S)).first;
     }
     const auto& [spectrum, verdict] = it->second;
     VertexSmoothness r{.vertex = v,

@@ -454,4 +454,23 @@ TEST_CASE("cifs analyze MESH --scheme S: which points are not smooth", "[cli][me
               "loop runs on triangles");
   CHECK_FALSE(std::filesystem::exists(refused));
   check_error(cifs_cli("analyze " + grid + " --scheme catmull-clark --format svg"), "--format 'svg'");
+
+  // Butterfly: the 8-triangle boundary fan's centre is not C1 (its boundary rule: C1 at 2 and 3 faces).
+  const std::string fan = std::string(CIFS_EXAMPLES_DIR) + "/meshes/boundary_fan_triangles.obj";
+  const Run butterfly = cifs_cli("analyze " + fan + " --scheme butterfly");
+  REQUIRE(butterfly.status == 0);
+  CHECK_THAT(butterfly.out,
+             Catch::Contains("butterfly: 10 vertices, 0 regular, 10 irregular: 7 C1, 1 not C1, "
+                             "2 undecided (3 local analyses)"));
+  // Doo–Sabin: points are face centres — the grid's corner faces, one interior corner each: C1 corners
+  // of the surface, 90 degrees —, marked on the PNG at their centroids.
+  const json dual = json::parse(cifs_cli("analyze " + grid + " --scheme doo-sabin --format json").out);
+  REQUIRE(dual["vertices"].size() == 4);
+  CHECK(dual["vertices"][0]["vertex"] == -1);
+  CHECK(dual["vertices"][0]["face"] == 0);
+  CHECK(dual["vertices"][0]["class"] == "boundary");
+  CHECK(dual["c1"] == 4);
+  std::filesystem::remove(png);
+  REQUIRE(cifs_cli("analyze " + grid + " --scheme doo-sabin --png " + png.string()).status == 0);
+  CHECK(std::filesystem::file_size(png) > 1000);
 }

@@ -15,6 +15,7 @@
 // docs/reliability.md), and has the vertex and face counts of the refinement's last level
 // (refine_topology, the one source of truth for the topology). The work per input is bounded:
 // ≤ 64 faces, ≤ 2 levels, 64 MB.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -22,6 +23,7 @@
 #include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/mesh.hpp"
 #include "cifs/subdivision/mesh_analysis.hpp"
+#include "cifs/topology.hpp"
 #include "fuzz.hpp"
 
 // Named, not anonymous: the harnesses compile as unity batches (CIFS_UNITY), each in its own namespace.
@@ -91,9 +93,16 @@ CIFS_FUZZ_HARNESS(mesh_compute) {
       default: {  // cifs analyze
         const subdivision::MeshSmoothness a = subdivision::analyze_mesh(mesh, scheme, "fuzz.obj");
         const int listed = static_cast<int>(a.vertices.size());
-        fuzz::require(a.regular + a.isolated + listed == mesh.vertices.rows() &&
-                          a.c1 + a.not_c1 + a.undecided == listed,
-                      "analyze: every vertex counted once, every listed one has a verdict");
+        // Doo–Sabin counts points: each face, each vertex but the boundary ones (they make no face).
+        int points = static_cast<int>(mesh.vertices.rows());
+        if (scheme == MeshScheme::doo_sabin) {
+          const MeshTopology t = build_topology(mesh, "fuzz.obj");
+          points += static_cast<int>(face_count(t)) -
+                    static_cast<int>(std::count(t.boundary_vertex.begin(), t.boundary_vertex.end(), 1));
+        }
+        fuzz::require(
+            a.regular + a.isolated + listed == points && a.c1 + a.not_c1 + a.undecided == listed,
+            "analyze: every vertex (Doo–Sabin: point) counted once, every listed one has a verdict");
         for (const subdivision::VertexSmoothness& v : a.vertices)
           fuzz::require(
               std::isfinite(static_cast<double>(v.lambda1)) && std::isfinite(static_cast<double>(v.lambda2)),

@@ -858,8 +858,19 @@ class LocalAnalysisTest(unittest.TestCase):
         self.assertEqual(a["analyses"], 2)
         self.assertEqual(a["summary"], cli("analyze", str(EXAMPLES / "meshes" / "open_grid_triangles.obj"),
                                            "--scheme", "loop").stdout.strip().splitlines()[-1])
-        with self.assertRaisesRegex(cifs.InvalidInput, "catmull-clark, loop and sqrt3 only"):
-            sd.analyze_mesh(mesh, "butterfly")
+        # Butterfly: the same vertices; its boundary rule is C1 at 2 and 3 faces only, so the grid's
+        # corners (1 and 2 faces) are undecided and C1.
+        b = sd.analyze_mesh(mesh, "butterfly")
+        self.assertEqual(sorted((v["sector_faces"][0], v["c1"]) for v in b["vertices"]),
+                         [(1, None), (1, None), (2, True), (2, True)])
+        self.assertEqual(b["summary"], cli("analyze", str(EXAMPLES / "meshes" / "open_grid_triangles.obj"),
+                                           "--scheme", "butterfly").stdout.strip().splitlines()[-1])
+        # Doo-Sabin: points are face centres (vertex -1) and interior vertices' faces.
+        cube = sd.analyze_mesh(cifs.io.read_mesh(str(EXAMPLES / "meshes" / "cube.obj")), "doo-sabin")
+        self.assertEqual([(v["vertex"], v["face"], v["valence"], v["c1"]) for v in cube["vertices"]],
+                         [(v, -1, 3, True) for v in range(8)])
+        with self.assertRaisesRegex(cifs.InvalidInput, "nothing to analyse"):
+            sd.analyze_mesh(mesh, "bilinear")
 
     def test_blz_rules(self):
         """Issue 29 §4: Biermann-Levin-Zorin's rules, rules='blz' in local_analysis and in MeshTags."""

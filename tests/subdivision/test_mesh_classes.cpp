@@ -328,8 +328,7 @@ TEST_CASE("analyze_mesh: every irregular vertex, its class and verdict, each con
       Contains("semi-sharp (s = 1.5): analysed after 2 levels, class interior from then on; C1, proved"));
   CHECK(decayed.vertices[2].semi_sharp == 0);
   // Other schemes are refused with one line.
-  CHECK_THROWS_WITH(analyze_mesh(classes_cube(), MeshScheme::doo_sabin),
-                    Contains("catmull-clark, loop and sqrt3 only"));
+  CHECK_THROWS_WITH(analyze_mesh(classes_cube(), MeshScheme::bilinear), Contains("nothing to analyse"));
   // √3 (no tags, one boundary rule): a triangulated grid's irregular vertices are its corners, two of
   // one face and two of two (the other boundary vertices have the regular three), both C1; under
   // edge_and_corner the same (√3 keeps no corner). Tags are refused.

@@ -221,8 +221,11 @@ C1Verdict c1_verdict(const LocalMatrix& matrix, const LocalSpectrum& spectrum, c
 /// regular grid's (an extraordinary interior vertex, a boundary vertex of other than the regular
 /// number of faces, a crease with irregular sides, any dart or corner) and its local analysis.
 struct VertexSmoothness {
-  int vertex = 0;
-  int valence = 0;           // edges
+  int vertex = 0;  // −1 for a Doo–Sabin face's centre
+  /// Doo–Sabin: the face whose centre the point is (−1 for a vertex: the centre of the face the
+  /// vertex becomes after one step).
+  int face = -1;
+  int valence = 0;           // edges (Doo–Sabin: the face's corners, the vertex's faces)
   LocalOptions options;      // its class as the local analysis sees it (sharp edges rotated to start at 0)
   std::string vertex_class;  // vertex_class(valence, options)
   std::vector<int> sectors;  // faces per sector
@@ -235,7 +238,10 @@ struct VertexSmoothness {
 };
 
 /// Every irregular vertex of a mesh, by index, and the counts: regular vertices (not listed), vertices in
-/// no face or only in holes (not on the surface), and the verdicts. `analyses`: the distinct (class, valence,
+/// no face or only in holes (not on the surface), and the verdicts. Doo–Sabin counts points — a face's
+/// centre, an interior vertex's (its face's after one step) — and `isolated` the faces off the surface
+/// (every corner on the boundary) and the vertices in no face; boundary vertices make no face there,
+/// so no point of their own, and are not counted. `analyses`: the distinct (class, valence,
 /// sectors) configurations analysed — each once, whatever the number of its vertices.
 struct MeshSmoothness {
   MeshScheme scheme = MeshScheme::catmull_clark;
@@ -247,15 +253,25 @@ struct MeshSmoothness {
 };
 
 /// The analysis of every vertex of a Catmull–Clark or Loop mesh with its tags (infinitely sharp creases
-/// and corners, the boundary rules edge and corner), or of a √3 mesh (no tags: its boundary has one
-/// rule). Throws InvalidInput, one line naming the vertex or the tag, for what it does not analyse:
-/// another scheme, a non-manifold mesh, the boundary rule none, tags under √3, valences out of the local
-/// analysis's range, non-triangles under Loop and √3. A vertex with semi-sharp tags
+/// and corners, the boundary rules edge and corner), or of a √3 or modified Butterfly mesh (no tags:
+/// their boundaries have one rule each); of every face and interior vertex of a Doo–Sabin mesh (no
+/// tags; its boundary rule: boundary edges and vertices make no face). Throws InvalidInput, one line
+/// naming the vertex, face or tag, for what it does not analyse: bilinear, a non-manifold mesh, the
+/// boundary rule none, tags under √3, Butterfly and Doo–Sabin, valences (faces, corners) out of the
+/// local analysis's range, non-triangles under Loop, √3 and Butterfly. A vertex with semi-sharp tags
 /// is analysed as it is after ceil(s) levels (they have decayed; its reason says so) and is always
 /// listed. Catmull–Clark vertices next to non-quads are analysed as they
 /// are after one level (same valence and sectors, all quads). Holes change no rule (they leave faces out of
 /// the surface only): the vertices around them are analysed as they are.
 MeshSmoothness analyze_mesh(const Mesh& mesh, MeshScheme scheme, std::string_view who = "mesh");
+
+/// Doo–Sabin at a k-gon face touching the boundary under mesh.cpp's rule (boundary edges and vertices
+/// make no face), `inner[i]` whether corner g_i is an interior vertex: the principal submatrix of
+/// local_matrix(doo_sabin, k) on g_0 … g_{k−1}, a_i and b_i where an end of edge g_i g_{i+1} is
+/// interior, c_i where g_i is. Every corner point reads its own face alone, so these rows read these
+/// columns only (an edge quad between two boundary corners, which may or may not exist, is left out:
+/// it carries no patch near the centre). Exact where local_matrix is; `options.boundary` is set.
+LocalMatrix doo_sabin_boundary_matrix(const std::vector<char>& inner);
 
 /// The regularity and winding test alone, on any pair of eigenvectors of S_n for `lambda` (N by 2,
 /// the numbering above): e.g. a higher Fourier mode's pair, whose map winds more than once.
