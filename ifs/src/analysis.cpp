@@ -285,6 +285,38 @@ __attribute__((target("avx"))) void multiply_avx(const Eigen::MatrixXd& A, const
     }
 }
 
+/// multiply_net's four-row blocks with AVX: rows i … i + 3 of a column of A in one register, the sums as
+/// multiply_net_scalar's (a product and an addition per term, no fused multiply-add: the same doubles).
+template <int Cols>
+__attribute__((target("avx"))) void multiply_net_avx(const double* A, Eigen::Index r, Eigen::Index n,
+                                                     const double* N, double* out) noexcept {
+  constexpr int split = Cols < 4 ? Cols / 2 * 2 : 0;
+  const Eigen::Index peeled = n / 8 * 8;
+  for (Eigen::Index i = 0; i + 4 <= r; i += 4) {
+    __m256d even[Cols], odd[Cols];
+    for (int c = 0; c < Cols; ++c) even[c] = odd[c] = _mm256_setzero_pd();
+    Eigen::Index k = 0;
+    for (; k < peeled; k += 2) {
+      const __m256d a0 = _mm256_loadu_pd(A + k * r + i), a1 = _mm256_loadu_pd(A + (k + 1) * r + i);
+      for (int c = 0; c < Cols; ++c) {
+        even[c] = _mm256_add_pd(even[c], _mm256_mul_pd(a0, _mm256_set1_pd(N[k * Cols + c])));
+        __m256d& second = c < split ? odd[c] : even[c];
+        second = _mm256_add_pd(second, _mm256_mul_pd(a1, _mm256_set1_pd(N[(k + 1) * Cols + c])));
+      }
+    }
+    for (int c = 0; c < split; ++c) even[c] = _mm256_add_pd(even[c], odd[c]);
+    for (; k < n; ++k) {
+      const __m256d a = _mm256_loadu_pd(A + k * r + i);
+      for (int c = 0; c < Cols; ++c)
+        even[c] = _mm256_add_pd(even[c], _mm256_mul_pd(a, _mm256_set1_pd(N[k * Cols + c])));
+    }
+    alignas(32) double column[Cols][4];
+    for (int c = 0; c < Cols; ++c) _mm256_store_pd(column[c], even[c]);
+    for (int q = 0; q < 4; ++q)
+      for (int c = 0; c < Cols; ++c) out[(i + q) * Cols + c] = column[c][q];
+  }
+}
+
 }  // namespace
 #endif
 
@@ -296,6 +328,72 @@ void detail::multiply(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, Eigen:
     return;
   }
 #endif
+  C.noalias() = A * B;
+}
+
+namespace {
+
+/// out (r × Cols, row-major) = A (r × n) · N (n × Cols, row-major), the doubles of Eigen 3.4's product in
+/// this build (SSE2), which sums in three orders (tests/ifs/test_analysis.cpp compares shapes up to
+/// 47 × 47 with it): below 20 of r + n + Cols, Eigen's coefficient-wise product, each entry from its
+/// first term in k order; else its blocked product on the transposed problem (no blocking below 48),
+/// each entry from +0 in k order, but for the first two columns when Cols is 2 or 3 in rows of whole
+/// groups of four, which its one-packet kernel sums in two accumulators — even and odd k over the first
+/// 8·⌊n/8⌋ terms —, added, then the other terms in order. Rows from `first_row` on.
+template <int Cols>
+void multiply_net_scalar(const double* A, Eigen::Index r, Eigen::Index n, const double* N, double* out,
+                         Eigen::Index first_row) noexcept {
+  const bool coefficient_wise = r + n + Cols < 20;
+  constexpr int split = Cols < 4 ? Cols / 2 * 2 : 0;
+  const Eigen::Index peeled = n / 8 * 8, groups = r / 4 * 4;
+  for (Eigen::Index i = first_row; i < r; ++i)
+    for (int c = 0; c < Cols; ++c) {
+      double sum = coefficient_wise ? A[i] * N[c] : 0;
+      Eigen::Index k = coefficient_wise ? 1 : 0;
+      if (!coefficient_wise && c < split && i < groups) {
+        double odd = 0;
+        for (; k < peeled; k += 2) {
+          sum += A[k * r + i] * N[k * Cols + c];
+          odd += A[(k + 1) * r + i] * N[(k + 1) * Cols + c];
+        }
+        sum += odd;
+      }
+      for (; k < n; ++k) sum += A[k * r + i] * N[k * Cols + c];
+      out[i * Cols + c] = sum;
+    }
+}
+
+template <int Cols>
+void multiply_net(const Eigen::MatrixXd& A, const Points& B, Points& C) {
+  const Eigen::Index r = A.rows(), n = A.cols();
+  Eigen::Index done = 0;
+#if defined(CIFS_X86_AVX)
+  if (r + n + Cols >= 20 && cpu_has_avx()) {
+    multiply_net_avx<Cols>(A.data(), r, n, B.data(), C.data());
+    done = r / 4 * 4;
+  }
+#endif
+  multiply_net_scalar<Cols>(A.data(), r, n, B.data(), C.data(), done);
+}
+
+}  // namespace
+
+void detail::multiply(const Eigen::MatrixXd& A, const Points& B, Points& C) {
+  C.resize(A.rows(), B.cols());
+  if (A.rows() < 48 && A.cols() < 48 && A.cols() > 0) {
+    switch (B.cols()) {
+      case 1:
+        return multiply_net<1>(A, B, C);
+      case 2:
+        return multiply_net<2>(A, B, C);
+      case 3:
+        return multiply_net<3>(A, B, C);
+      case 4:
+        return multiply_net<4>(A, B, C);
+      default:
+        break;
+    }
+  }
   C.noalias() = A * B;
 }
 
