@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "cifs/ifs/analysis.hpp"
 
+#include <Eigen/SVD>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
@@ -251,6 +252,47 @@ TEST_CASE("Fixed points of words: Chaikin G^inf, D^inf, (GD)^inf against Cox-de 
   const Eigen::RowVectorXd start =
       fixed_point(q, 1, std::vector<int>{0}) * (q.graph[edge(0, 1, q.graph).first].matrix * Q);
   CHECK((start - quadratic_reference(Q, 0.5, 2, 3, 0)).cwiseAbs().maxCoeff() <= 1e-12 * scale_of(Q));
+}
+
+TEST_CASE("a fixed point is refused exactly when the SVD finds K = I − P + 1·1ᵀ singular", "[ifs]") {
+  // fixed_point skips the SVD when a bound from the LU shows K well conditioned: the verdicts must be the
+  // SVD's (σ_min ≤ 1e-12·n·σ_max: refused), here computed by the test, on products whose second
+  // eigenvalue 1 − ε comes near 1 — ε from 0.1 (the bound suffices) through 1e-8 (it does not: the SVD
+  // accepts) to 1e-13 and 0 (the SVD refuses) —, for 2 points and 16 (a random stochastic block beside).
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> u(0, 1);
+  int accepted = 0, refused = 0;
+  for (const int n : {2, 16}) {
+    for (int e = 1; e <= 17; ++e) {
+      const double eps = e == 17 ? 0 : std::pow(10.0, -e);
+      Eigen::MatrixXd P = Eigen::MatrixXd::Zero(n, n);
+      P(0, 0) = 1;  // eigenvalues 1 and 1 − ε from the first two rows, the block's (|λ| < 1) besides
+      P(1, 0) = eps;
+      P(1, 1) = 1 - eps;
+      for (int i = 2; i < n; ++i) {
+        for (int j = 0; j < n; ++j) P(i, j) = u(rng);
+        P.row(i) /= P.row(i).sum();
+      }
+      Automaton a;
+      const StateId s = add_state(a, n, "s");
+      add_transition(a, s, s, P, "P");
+      add_initial(a, s);
+      const Eigen::MatrixXd K = Eigen::MatrixXd::Identity(n, n) - P + Eigen::MatrixXd::Ones(n, n);
+      const Eigen::VectorXd sv = Eigen::JacobiSVD<Eigen::MatrixXd>(K).singularValues();
+      const bool singular = !(sv(n - 1) > 1e-12 * n * sv(0));
+      INFO(n << " points, ε = " << eps << ", σ ratio " << sv(n - 1) / sv(0));
+      if (singular) {
+        CHECK_THROWS_WITH(fixed_point(a, s, std::vector<int>{0}), Catch::Contains("1 is not a simple eigenvalue"));
+        ++refused;
+      } else {
+        const Eigen::RowVectorXd l = fixed_point(a, s, std::vector<int>{0});
+        CHECK((l * P - l).cwiseAbs().maxCoeff() <= 1e-9);
+        ++accepted;
+      }
+    }
+  }
+  CHECK(accepted >= 16);  // both verdicts occur
+  CHECK(refused >= 6);
 }
 
 TEST_CASE("End functionals give the ends of every piece", "[ifs]") {
