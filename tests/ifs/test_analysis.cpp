@@ -282,7 +282,8 @@ TEST_CASE("a fixed point is refused exactly when the SVD finds K = I − P + 1·
       const bool singular = !(sv(n - 1) > 1e-12 * n * sv(0));
       INFO(n << " points, ε = " << eps << ", σ ratio " << sv(n - 1) / sv(0));
       if (singular) {
-        CHECK_THROWS_WITH(fixed_point(a, s, std::vector<int>{0}), Catch::Contains("1 is not a simple eigenvalue"));
+        CHECK_THROWS_WITH(fixed_point(a, s, std::vector<int>{0}),
+                          Catch::Contains("1 is not a simple eigenvalue"));
         ++refused;
       } else {
         const Eigen::RowVectorXd l = fixed_point(a, s, std::vector<int>{0});
