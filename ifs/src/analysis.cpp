@@ -318,6 +318,36 @@ __attribute__((target("avx"))) void multiply_net_avx(const double* A, Eigen::Ind
 }
 
 }  // namespace
+
+__attribute__((target("avx"))) void detail::emit_avx(const double* f, Eigen::Index rows, Eigen::Index n,
+                                                     const Points& N, double* out) noexcept {
+  const Eigen::Index C = N.cols();
+  const __m256i lanes = _mm256_set_epi64x(C == 4 ? -1 : 0, -1, -1, -1);
+  const double* p = N.data();
+  Eigen::Index r = 0;
+  // Four points at a time share each row of the net (one load for four products).
+  for (; r + 4 <= rows; r += 4, f += 4 * n, out += 4 * C) {
+    __m256d s0 = _mm256_setzero_pd(), s1 = s0, s2 = s0, s3 = s0;
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const __m256d q = _mm256_maskload_pd(p + k * C, lanes);
+      s0 = _mm256_add_pd(s0, _mm256_mul_pd(_mm256_broadcast_sd(f + k), q));
+      s1 = _mm256_add_pd(s1, _mm256_mul_pd(_mm256_broadcast_sd(f + n + k), q));
+      s2 = _mm256_add_pd(s2, _mm256_mul_pd(_mm256_broadcast_sd(f + 2 * n + k), q));
+      s3 = _mm256_add_pd(s3, _mm256_mul_pd(_mm256_broadcast_sd(f + 3 * n + k), q));
+    }
+    _mm256_maskstore_pd(out, lanes, s0);
+    _mm256_maskstore_pd(out + C, lanes, s1);
+    _mm256_maskstore_pd(out + 2 * C, lanes, s2);
+    _mm256_maskstore_pd(out + 3 * C, lanes, s3);
+  }
+  for (; r < rows; ++r, f += n, out += C) {
+    __m256d sum = _mm256_setzero_pd();
+    for (Eigen::Index k = 0; k < n; ++k)
+      sum =
+          _mm256_add_pd(sum, _mm256_mul_pd(_mm256_broadcast_sd(f + k), _mm256_maskload_pd(p + k * C, lanes)));
+    _mm256_maskstore_pd(out, lanes, sum);
+  }
+}
 #endif
 
 void detail::multiply(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, Eigen::MatrixXd& C) {
