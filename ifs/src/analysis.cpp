@@ -290,7 +290,7 @@ __attribute__((target("avx"))) void multiply_avx(const Eigen::MatrixXd& A, const
 template <int Cols>
 __attribute__((target("avx"))) void multiply_net_avx(const double* A, Eigen::Index r, Eigen::Index n,
                                                      const double* N, double* out) noexcept {
-  constexpr int split = Cols < 4 ? Cols / 2 * 2 : 0;
+  constexpr int kSplit = Cols < 4 ? Cols / 2 * 2 : 0;
   const Eigen::Index peeled = n / 8 * 8;
   for (Eigen::Index i = 0; i + 4 <= r; i += 4) {
     __m256d even[Cols], odd[Cols];
@@ -300,11 +300,11 @@ __attribute__((target("avx"))) void multiply_net_avx(const double* A, Eigen::Ind
       const __m256d a0 = _mm256_loadu_pd(A + k * r + i), a1 = _mm256_loadu_pd(A + (k + 1) * r + i);
       for (int c = 0; c < Cols; ++c) {
         even[c] = _mm256_add_pd(even[c], _mm256_mul_pd(a0, _mm256_set1_pd(N[k * Cols + c])));
-        __m256d& second = c < split ? odd[c] : even[c];
+        __m256d& second = c < kSplit ? odd[c] : even[c];
         second = _mm256_add_pd(second, _mm256_mul_pd(a1, _mm256_set1_pd(N[(k + 1) * Cols + c])));
       }
     }
-    for (int c = 0; c < split; ++c) even[c] = _mm256_add_pd(even[c], odd[c]);
+    for (int c = 0; c < kSplit; ++c) even[c] = _mm256_add_pd(even[c], odd[c]);
     for (; k < n; ++k) {
       const __m256d a = _mm256_loadu_pd(A + k * r + i);
       for (int c = 0; c < Cols; ++c)
@@ -374,13 +374,13 @@ template <int Cols>
 void multiply_net_scalar(const double* A, Eigen::Index r, Eigen::Index n, const double* N, double* out,
                          Eigen::Index first_row) noexcept {
   const bool coefficient_wise = r + n + Cols < 20;
-  constexpr int split = Cols < 4 ? Cols / 2 * 2 : 0;
+  constexpr int kSplit = Cols < 4 ? Cols / 2 * 2 : 0;
   const Eigen::Index peeled = n / 8 * 8, groups = r / 4 * 4;
   for (Eigen::Index i = first_row; i < r; ++i)
     for (int c = 0; c < Cols; ++c) {
       double sum = coefficient_wise ? A[i] * N[c] : 0;
       Eigen::Index k = coefficient_wise ? 1 : 0;
-      if (!coefficient_wise && c < split && i < groups) {
+      if (!coefficient_wise && c < kSplit && i < groups) {
         double odd = 0;
         for (; k < peeled; k += 2) {
           sum += A[k * r + i] * N[k * Cols + c];
