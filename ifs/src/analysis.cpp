@@ -285,7 +285,69 @@ __attribute__((target("avx"))) void multiply_avx(const Eigen::MatrixXd& A, const
     }
 }
 
+/// multiply_net's four-row blocks with AVX: rows i … i + 3 of a column of A in one register, the sums as
+/// multiply_net_scalar's (a product and an addition per term, no fused multiply-add: the same doubles).
+template <int Cols>
+__attribute__((target("avx"))) void multiply_net_avx(const double* A, Eigen::Index r, Eigen::Index n,
+                                                     const double* N, double* out) noexcept {
+  constexpr int kSplit = Cols < 4 ? Cols / 2 * 2 : 0;
+  const Eigen::Index peeled = n / 8 * 8;
+  for (Eigen::Index i = 0; i + 4 <= r; i += 4) {
+    __m256d even[Cols], odd[Cols];
+    for (int c = 0; c < Cols; ++c) even[c] = odd[c] = _mm256_setzero_pd();
+    Eigen::Index k = 0;
+    for (; k < peeled; k += 2) {
+      const __m256d a0 = _mm256_loadu_pd(A + k * r + i), a1 = _mm256_loadu_pd(A + (k + 1) * r + i);
+      for (int c = 0; c < Cols; ++c) {
+        even[c] = _mm256_add_pd(even[c], _mm256_mul_pd(a0, _mm256_set1_pd(N[k * Cols + c])));
+        __m256d& second = c < kSplit ? odd[c] : even[c];
+        second = _mm256_add_pd(second, _mm256_mul_pd(a1, _mm256_set1_pd(N[(k + 1) * Cols + c])));
+      }
+    }
+    for (int c = 0; c < kSplit; ++c) even[c] = _mm256_add_pd(even[c], odd[c]);
+    for (; k < n; ++k) {
+      const __m256d a = _mm256_loadu_pd(A + k * r + i);
+      for (int c = 0; c < Cols; ++c)
+        even[c] = _mm256_add_pd(even[c], _mm256_mul_pd(a, _mm256_set1_pd(N[k * Cols + c])));
+    }
+    alignas(32) double column[Cols][4];
+    for (int c = 0; c < Cols; ++c) _mm256_store_pd(column[c], even[c]);
+    for (int q = 0; q < 4; ++q)
+      for (int c = 0; c < Cols; ++c) out[(i + q) * Cols + c] = column[c][q];
+  }
+}
+
 }  // namespace
+
+__attribute__((target("avx"))) void detail::emit_avx(const double* f, Eigen::Index rows, Eigen::Index n,
+                                                     const Points& N, double* out) noexcept {
+  const Eigen::Index C = N.cols();
+  const __m256i lanes = _mm256_set_epi64x(C == 4 ? -1 : 0, -1, -1, -1);
+  const double* p = N.data();
+  Eigen::Index r = 0;
+  // Four points at a time share each row of the net (one load for four products).
+  for (; r + 4 <= rows; r += 4, f += 4 * n, out += 4 * C) {
+    __m256d s0 = _mm256_setzero_pd(), s1 = s0, s2 = s0, s3 = s0;
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const __m256d q = _mm256_maskload_pd(p + k * C, lanes);
+      s0 = _mm256_add_pd(s0, _mm256_mul_pd(_mm256_broadcast_sd(f + k), q));
+      s1 = _mm256_add_pd(s1, _mm256_mul_pd(_mm256_broadcast_sd(f + n + k), q));
+      s2 = _mm256_add_pd(s2, _mm256_mul_pd(_mm256_broadcast_sd(f + 2 * n + k), q));
+      s3 = _mm256_add_pd(s3, _mm256_mul_pd(_mm256_broadcast_sd(f + 3 * n + k), q));
+    }
+    _mm256_maskstore_pd(out, lanes, s0);
+    _mm256_maskstore_pd(out + C, lanes, s1);
+    _mm256_maskstore_pd(out + 2 * C, lanes, s2);
+    _mm256_maskstore_pd(out + 3 * C, lanes, s3);
+  }
+  for (; r < rows; ++r, f += n, out += C) {
+    __m256d sum = _mm256_setzero_pd();
+    for (Eigen::Index k = 0; k < n; ++k)
+      sum =
+          _mm256_add_pd(sum, _mm256_mul_pd(_mm256_broadcast_sd(f + k), _mm256_maskload_pd(p + k * C, lanes)));
+    _mm256_maskstore_pd(out, lanes, sum);
+  }
+}
 #endif
 
 void detail::multiply(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, Eigen::MatrixXd& C) {
@@ -296,6 +358,72 @@ void detail::multiply(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, Eigen:
     return;
   }
 #endif
+  C.noalias() = A * B;
+}
+
+namespace {
+
+/// out (r × Cols, row-major) = A (r × n) · N (n × Cols, row-major), the doubles of Eigen 3.4's product in
+/// this build (SSE2), which sums in three orders (tests/ifs/test_analysis.cpp compares shapes up to
+/// 47 × 47 with it): below 20 of r + n + Cols, Eigen's coefficient-wise product, each entry from its
+/// first term in k order; else its blocked product on the transposed problem (no blocking below 48),
+/// each entry from +0 in k order, but for the first two columns when Cols is 2 or 3 in rows of whole
+/// groups of four, which its one-packet kernel sums in two accumulators — even and odd k over the first
+/// 8·⌊n/8⌋ terms —, added, then the other terms in order. Rows from `first_row` on.
+template <int Cols>
+void multiply_net_scalar(const double* A, Eigen::Index r, Eigen::Index n, const double* N, double* out,
+                         Eigen::Index first_row) noexcept {
+  const bool coefficient_wise = r + n + Cols < 20;
+  constexpr int kSplit = Cols < 4 ? Cols / 2 * 2 : 0;
+  const Eigen::Index peeled = n / 8 * 8, groups = r / 4 * 4;
+  for (Eigen::Index i = first_row; i < r; ++i)
+    for (int c = 0; c < Cols; ++c) {
+      double sum = coefficient_wise ? A[i] * N[c] : 0;
+      Eigen::Index k = coefficient_wise ? 1 : 0;
+      if (!coefficient_wise && c < kSplit && i < groups) {
+        double odd = 0;
+        for (; k < peeled; k += 2) {
+          sum += A[k * r + i] * N[k * Cols + c];
+          odd += A[(k + 1) * r + i] * N[(k + 1) * Cols + c];
+        }
+        sum += odd;
+      }
+      for (; k < n; ++k) sum += A[k * r + i] * N[k * Cols + c];
+      out[i * Cols + c] = sum;
+    }
+}
+
+template <int Cols>
+void multiply_net(const Eigen::MatrixXd& A, const Points& B, Points& C) {
+  const Eigen::Index r = A.rows(), n = A.cols();
+  Eigen::Index done = 0;
+#if defined(CIFS_X86_AVX)
+  if (r + n + Cols >= 20 && cpu_has_avx()) {
+    multiply_net_avx<Cols>(A.data(), r, n, B.data(), C.data());
+    done = r / 4 * 4;
+  }
+#endif
+  multiply_net_scalar<Cols>(A.data(), r, n, B.data(), C.data(), done);
+}
+
+}  // namespace
+
+void detail::multiply(const Eigen::MatrixXd& A, const Points& B, Points& C) {
+  C.resize(A.rows(), B.cols());
+  if (A.rows() < 48 && A.cols() < 48 && A.cols() > 0) {
+    switch (B.cols()) {
+      case 1:
+        return multiply_net<1>(A, B, C);
+      case 2:
+        return multiply_net<2>(A, B, C);
+      case 3:
+        return multiply_net<3>(A, B, C);
+      case 4:
+        return multiply_net<4>(A, B, C);
+      default:
+        break;
+    }
+  }
   C.noalias() = A * B;
 }
 
@@ -585,19 +713,36 @@ SuffixBounds suffix_bounds(const Automaton& automaton, const std::vector<StateId
 /// (I − P)x = 0, x ∥ 1 and x = 0; conversely a second eigenvector or a Jordan chain y with
 /// (I − P)y = 1 gives a kernel vector. Then ℓ = 1ᵀ·K⁻¹ satisfies ℓ(I − P) + (ℓ·1)1ᵀ = 1ᵀ; times 1
 /// gives ℓ·1 = 1, hence ℓ(I − P) = 0.
+///
+/// K counts as singular when its singular values give σ_min ≤ 1e-12·n·σ_max. An SVD took 90 % of the
+/// instructions of a fixed point (the corner functionals of a mesh: a hundred per edit of the hills), so
+/// it is made only when a cheaper sufficient condition fails: with X the inverse of Kᵀ from its LU (which
+/// the solve below uses anyway) and R = I − X·Kᵀ, ‖R‖_F ≤ ½ gives ‖K⁻¹‖₂ ≤ ‖X‖₂ / (1 − ‖R‖₂) ≤ 2‖X‖_F,
+/// so κ₂(K) ≤ 2‖K‖_F‖X‖_F; at most 2·10⁶ (R's rounding, ~n·ε·κ, moves the 2 by less than 1 %) the SVD's
+/// σ_min/σ_max, which it computes to ~n·ε·κ relative error, is above 4·10⁻⁷ > 1e-12·n for every
+/// n < 10⁵: the same verdict, which the SVD still gives whenever the condition fails.
 Eigen::RowVectorXd unit_fixed_point(const Eigen::MatrixXd& P, const std::string& context) {
   const Eigen::Index n = P.rows();
   const Eigen::MatrixXd K = Eigen::MatrixXd::Identity(n, n) - P + Eigen::MatrixXd::Ones(n, n);
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(K);
-  const auto& sv = svd.singularValues();
-  if (!(sv(n - 1) > 1e-12 * static_cast<double>(n) * sv(0))) {
+  const auto lu = K.transpose().fullPivLu();
+  const auto well_conditioned = [&] {
+    if (n >= 100000 || !lu.isInvertible()) return false;
+    const Eigen::MatrixXd X = lu.inverse();
+    const double residual = (Eigen::MatrixXd::Identity(n, n) - X * K.transpose()).norm();
+    return residual <= 0.5 && 2 * K.norm() * X.norm() <= 2e6;
+  };
+  const auto singular_by_svd = [&] {
+    const Eigen::VectorXd sv = Eigen::JacobiSVD<Eigen::MatrixXd>(K).singularValues();
+    return !(sv(n - 1) > 1e-12 * static_cast<double>(n) * sv(0));
+  };
+  if (!well_conditioned() && singular_by_svd()) {
     std::string msg = context + ": 1 is not a simple eigenvalue of the product (eigenvalues";
     for (const auto& z : eigenvalues(P))
       msg += ' ' + number_text(z.real(), 6) + (z.imag() >= 0 ? "+" : "") + number_text(z.imag(), 6) + 'i';
     throw InvalidInput(msg + "), so its fixed point is not unique");
   }
   // ℓᵀ solves Kᵀ·ℓᵀ = 1.
-  Eigen::RowVectorXd l = K.transpose().fullPivLu().solve(Eigen::VectorXd::Ones(n)).transpose();
+  Eigen::RowVectorXd l = lu.solve(Eigen::VectorXd::Ones(n)).transpose();
   l /= l.sum();  // Σℓ = 1 already up to rounding; make it exact to the last bit or so
   // Polish by ℓ ← ℓ·P: the solve leaves eps-sized entries where ℓ is exactly 0 (a B-spline's basis
   // function vanishing at the end of its piece), and for rational shapes such an entry multiplies a

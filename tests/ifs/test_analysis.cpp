@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "cifs/ifs/analysis.hpp"
 
+#include <Eigen/SVD>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include "cifs/errors.hpp"
@@ -79,6 +81,51 @@ TEST_CASE("delta is the largest ½‖M_i − M_j‖₁ summed as Eigen sums a ve
       }
     }
   }
+  CHECK(differs_from_sequential > 0);  // the order matters on these entries: the test can tell
+}
+
+TEST_CASE("a walk's child nets are Eigen's products, bit for bit, every shape below 48", "[ifs]") {
+  // The walks (for_each_leaf, the meshes, the attractors) make each child net by their own kernel (AVX
+  // where the CPU has it), in the order of Eigen's product, which is not one order (its blocked product sums
+  // two columns of a net of 2 or 3 in two accumulators): nets of 1 to 4 columns, maps of 1 to 47 rows and
+  // columns, entries of scales from 1e-8 to 1e8, where another order rounds otherwise. Two states: the root
+  // of n points, its child of r points (an r × n map, then an r × r loop: depth 2 too).
+  std::mt19937_64 rng(47);
+  std::uniform_real_distribution<double> unit(-1, 1), scale(-8, 8);
+  const auto random = [&](Eigen::Index rows, Eigen::Index cols) {
+    Eigen::MatrixXd M(rows, cols);
+    for (Eigen::Index i = 0; i < M.size(); ++i) M(i) = unit(rng) * std::pow(10.0, scale(rng));
+    return M;
+  };
+  int differs_from_sequential = 0;
+  for (Eigen::Index n = 1; n < 48; n += n < 20 ? 1 : 9)
+    for (const Eigen::Index r : {Eigen::Index{1}, Eigen::Index{3}, Eigen::Index{4}, Eigen::Index{9}, n,
+                                 Eigen::Index{16}, Eigen::Index{47}})
+      for (Eigen::Index C = 1; C <= 4; ++C) {
+        Automaton a;
+        const StateId root = add_state(a, static_cast<int>(n), "root");
+        const StateId child = add_state(a, static_cast<int>(r), "child");
+        Eigen::MatrixXd M = random(r, n), L = random(r, r);
+        for (Eigen::MatrixXd* X : {&M, &L})  // rows that sum to 1 (to rounding), as validate asks
+          for (int twice = 0; twice < 2; ++twice)
+            X->col(X->cols() - 1) += Eigen::VectorXd::Ones(r) - X->rowwise().sum();
+        add_transition(a, root, child, M, "M");
+        add_transition(a, child, child, L, "L");
+        add_initial(a, root);
+        const Points N = random(n, C);
+        const Points first = M * N, second = L * first;  // Eigen's
+        std::vector<Points> leaves;
+        for_each_leaf(a, std::span(&N, 1), 2, [&](const Leaf& leaf) { leaves.push_back(leaf.net); });
+        INFO(r << " × " << n << " by " << n << " × " << C);
+        REQUIRE(leaves.size() == 1);
+        CHECK(std::memcmp(leaves[0].data(), second.data(), sizeof(double) * second.size()) == 0);
+        for (Eigen::Index i = 0; i < r; ++i)
+          for (Eigen::Index c = 0; c < C; ++c) {
+            double sum = 0;
+            for (Eigen::Index k = 0; k < n; ++k) sum += M(i, k) * N(k, c);
+            differs_from_sequential += sum != first(i, c) ? 1 : 0;
+          }
+      }
   CHECK(differs_from_sequential > 0);  // the order matters on these entries: the test can tell
 }
 
@@ -205,6 +252,48 @@ TEST_CASE("Fixed points of words: Chaikin G^inf, D^inf, (GD)^inf against Cox-de 
   const Eigen::RowVectorXd start =
       fixed_point(q, 1, std::vector<int>{0}) * (q.graph[edge(0, 1, q.graph).first].matrix * Q);
   CHECK((start - quadratic_reference(Q, 0.5, 2, 3, 0)).cwiseAbs().maxCoeff() <= 1e-12 * scale_of(Q));
+}
+
+TEST_CASE("a fixed point is refused exactly when the SVD finds K = I − P + 1·1ᵀ singular", "[ifs]") {
+  // fixed_point skips the SVD when a bound from the LU shows K well conditioned: the verdicts must be the
+  // SVD's (σ_min ≤ 1e-12·n·σ_max: refused), here computed by the test, on products whose second
+  // eigenvalue 1 − ε comes near 1 — ε from 0.1 (the bound suffices) through 1e-8 (it does not: the SVD
+  // accepts) to 1e-13 and 0 (the SVD refuses) —, for 2 points and 16 (a random stochastic block beside).
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> u(0, 1);
+  int accepted = 0, refused = 0;
+  for (const int n : {2, 16}) {
+    for (int e = 1; e <= 17; ++e) {
+      const double eps = e == 17 ? 0 : std::pow(10.0, -e);
+      Eigen::MatrixXd P = Eigen::MatrixXd::Zero(n, n);
+      P(0, 0) = 1;  // eigenvalues 1 and 1 − ε from the first two rows, the block's (|λ| < 1) besides
+      P(1, 0) = eps;
+      P(1, 1) = 1 - eps;
+      for (int i = 2; i < n; ++i) {
+        for (int j = 0; j < n; ++j) P(i, j) = u(rng);
+        P.row(i) /= P.row(i).sum();
+      }
+      Automaton a;
+      const StateId s = add_state(a, n, "s");
+      add_transition(a, s, s, P, "P");
+      add_initial(a, s);
+      const Eigen::MatrixXd K = Eigen::MatrixXd::Identity(n, n) - P + Eigen::MatrixXd::Ones(n, n);
+      const Eigen::VectorXd sv = Eigen::JacobiSVD<Eigen::MatrixXd>(K).singularValues();
+      const bool singular = !(sv(n - 1) > 1e-12 * n * sv(0));
+      INFO(n << " points, ε = " << eps << ", σ ratio " << sv(n - 1) / sv(0));
+      if (singular) {
+        CHECK_THROWS_WITH(fixed_point(a, s, std::vector<int>{0}),
+                          Catch::Contains("1 is not a simple eigenvalue"));
+        ++refused;
+      } else {
+        const Eigen::RowVectorXd l = fixed_point(a, s, std::vector<int>{0});
+        CHECK((l * P - l).cwiseAbs().maxCoeff() <= 1e-9);
+        ++accepted;
+      }
+    }
+  }
+  CHECK(accepted >= 16);  // both verdicts occur
+  CHECK(refused >= 6);
 }
 
 TEST_CASE("End functionals give the ends of every piece", "[ifs]") {

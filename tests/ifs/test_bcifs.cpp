@@ -147,6 +147,37 @@ TEST_CASE("BC-IFS validation and admissibility messages", "[bcifs]") {
     tree.boundaries[1].rows = {3};
     CHECK_THROWS_WITH(validate(tree), Catch::Contains("outside the cell's 3 rows"));
   }
+  SECTION("each refusal names the first offender, in full") {
+    // validate is on the path of every interactive edit of a perturbation, made cheap: the messages and
+    // which offender they name must stay what they were (the first in order).
+    Bcifs labels = tree;
+    labels.automaton.graph[transition_id(labels.automaton, {0, 2})].label = "G";
+    CHECK_THROWS_WITH(validate(labels),
+                      "BC-IFS: cell E has two transitions labelled \"G\" (labels name the transitions)");
+    Bcifs names = tree;
+    names.boundaries.push_back({"end", 0, 1, {1}});
+    names.boundaries.push_back({"start", 0, 1, {1}});
+    CHECK_THROWS_WITH(validate(names),
+                      "BC-IFS: boundaries[2] (\"end\"): cell E has two boundaries of that name");
+    Bcifs repeated = tree;
+    repeated.automaton = {};
+    const StateId E = add_state(repeated.automaton, 3, "E"), V = add_state(repeated.automaton, 2, "V");
+    for (const char* label : {"G", "D", "B"})
+      add_transition(repeated.automaton, E, E,
+                     tree.automaton.graph[transition_id(tree.automaton, {0, 0})].matrix, label);
+    add_transition(repeated.automaton, V, V, Eigen::MatrixXd::Identity(2, 2), "V");
+    repeated.boundaries = {{"start", E, V, {0, 1}}, {"end", E, V, {2, 2}}};
+    CHECK_THROWS_WITH(validate(repeated),
+                      "BC-IFS: boundaries[1] (\"end\"): row 2 is repeated or outside the cell's 3 rows");
+    Bcifs missing = tree;
+    missing.boundaries[1].boundary = 7;
+    CHECK_THROWS_WITH(validate(missing),
+                      "BC-IFS: boundaries[1] (\"end\"): names a state that does not exist");
+    Bcifs empty = tree;
+    empty.constraints[3].right.clear();
+    CHECK_THROWS_WITH(validate(empty), "BC-IFS: constraint \"branch\": the right side is empty");
+    CHECK_NOTHROW(validate(tree));
+  }
   SECTION("inconsistent constraints") {
     // D's last row must be e2 ("end") and also e0: no solution.
     tree.constraints.push_back(

@@ -695,22 +695,30 @@ void note_contraction(const ifs::Contraction& c, Geometry& g) {
   g.contraction_delta = c.delta;
 }
 
-/// The perturbed system of an edit (ifs::perturb), evaluated by `evaluate(system)` while its contractivity
-/// is checked on another thread — the two halves of an edit's work, one per core —, with the failing paths
-/// the session kept (`cache`, if any: the same result as without, sooner). Refusals come as perturb's
-/// would: the constraints', then the check's (a system that is not contractive is not shown, whatever its
-/// evaluation did), then the evaluation's.
+/// The perturbed system of an edit (ifs::perturb), its constraint residuals checked and then the system
+/// evaluated by `evaluate(system)` while its contractivity is checked on another thread — the two halves
+/// of an edit's work, one per core —, with the failing paths the session kept (`cache`, if any: the same
+/// result as without, sooner). The two threads share the perturbation: the check reads its system and
+/// writes its `contraction` (and the cache's failing paths), this thread reads the system and writes its
+/// `residual` (and the cache's mesh). Refusals come as perturb's would: the constraints', then the check's
+/// (a system that is not contractive is not shown, whatever its evaluation did), then the evaluation's.
 template <class Evaluate>
 void perturbed_evaluation(const PerturbableSystem& system, const Params& params, EditCache* cache,
                           Geometry& g, Evaluate evaluate) {
   if (!std::isfinite(params.amplitude) || params.amplitude < 0 || params.amplitude > 1)
     throw InvalidInput("amplitude " + number_text(params.amplitude, 6) + " is outside 0..1");
   ifs::PerturbOptions o = perturb_options(params.amplitude, params.seed, params.values);
-  o.check_contraction = false;
+  o.check = false;
   ifs::Perturbation p = ifs::perturb(system.system, system.space, o);
   std::future<void> check = std::async(std::launch::async, [&] {
     ifs::check_contractive(p, o, cache != nullptr ? &cache->failing : nullptr);
   });
+  try {
+    ifs::check_residual(p);
+  } catch (...) {
+    check.wait();  // the constraints' refusal first: the check's outcome is not shown
+    throw;
+  }
   try {
     evaluate(std::as_const(p.system));
   } catch (...) {

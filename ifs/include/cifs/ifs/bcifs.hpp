@@ -146,10 +146,11 @@ struct PerturbOptions {
   std::map<std::string, double> values;
   SolveOptions solve;
   ContractionOptions contraction;
-  /// Off: perturb stops after the residual, `contraction` of the result left at {} for the caller to check
-  /// with check_contractive(Perturbation&, …) (failing_paths.hpp) — cifs view evaluates the system
-  /// meanwhile on another thread, and shows it only when the check passes.
-  bool check_contraction = true;
+  /// Off: perturb returns the perturbed system unchecked (`residual` 0, `contraction` {}) for the caller to
+  /// check with check_residual(Perturbation&) and check_contractive(Perturbation&, …) (failing_paths.hpp),
+  /// refusing as perturb would in that order — cifs view runs the contractivity check on another thread
+  /// beside the residuals and the evaluation, and shows the system only when both checks pass.
+  bool check = true;
 };
 
 struct Perturbation {
@@ -161,8 +162,8 @@ struct Perturbation {
   Contraction contraction;
 };
 
-/// Perturbs the free coefficients, solves the dependent ones and checks the result: residual
-/// ≤ 1e-12 and contractive (ifs::contraction; unless check_contraction is off), else InvalidInput saying why.
+/// Perturbs the free coefficients, solves the dependent ones and checks the result (unless `check` is off):
+/// residual ≤ 1e-12 and contractive (ifs::contraction), else InvalidInput saying why.
 /// Also throws for a negative or non-finite amplitude and for names in `values` that are not free
 /// coefficients.
 Perturbation perturb(const Bcifs& system, const PerturbOptions& options = {});
@@ -170,6 +171,10 @@ Perturbation perturb(const Bcifs& system, const PerturbOptions& options = {});
 /// an interactive edit of the amplitude, seed or values re-perturbs without solving the constraints again
 /// (cifs view). `space` must be that system's.
 Perturbation perturb(const Bcifs& system, const AdmissibleSpace& space, const PerturbOptions& options);
+
+/// The residual check perturb makes: sets `perturbation.residual` to the largest constraint_residuals of its
+/// system, or throws InvalidInput as perturb does when it is above 1e-12.
+void check_residual(Perturbation& perturbation);
 
 /// Start and end functionals of every edge cell (dimension 1) reachable from the initial
 /// entries: ℓ_V·B where B is the cell's boundary operator "start" (or "end") and ℓ_V the fixed

@@ -37,7 +37,7 @@ Contraction contraction(const automata::Automaton& automaton, const ContractionO
 Perturbation perturb(const Bcifs& system, const AdmissibleSpace& space, const PerturbOptions& options,
                      FailingPaths& failing);
 
-/// The contractivity check perturb makes (`options` those perturb was given, check_contraction off):
+/// The contractivity check perturb makes (`options` those perturb was given, `check` off):
 /// sets `perturbation.contraction`, or throws NotContractive naming the amplitude, seed and values as
 /// perturb does. `failing` (may be null) as in contraction.
 void check_contractive(Perturbation& perturbation, const PerturbOptions& options, FailingPaths* failing);
