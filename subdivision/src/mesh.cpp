@@ -362,18 +362,18 @@ MeshTopology quad_split_topology(const MeshTopology& p, Step& s) {
     const std::size_t n = vertex_faces(p, uv).size();
     int* fo = faces + t.vertex_offsets_faces[uv];
     int* eo = ring + t.vertex_offsets_edges[uv];
-    int h = -1;
+    std::ptrdiff_t h = -1;
     for (std::size_t k = 0; k < n; ++k) {
       const auto x = static_cast<std::size_t>(pe[k]);  // leaves v in face k
       h = sides[x][p.edges[x][0] == v ? 0 : 1];
-      fo[k] = h;
+      fo[k] = static_cast<int>(h);
       eo[k] = fe[4 * h];
     }
     if (pe.size() > n) eo[n] = fe[4 * h + 3];  // the boundary edge entering v, in the last face
   }
   for (int x = 0; x < E; ++x) {  // edge points
     const auto ux = static_cast<std::size_t>(x);
-    const auto v = static_cast<std::size_t>(V + x);
+    const auto v = static_cast<std::size_t>(V) + ux;
     int* fo = faces + t.vertex_offsets_faces[v];
     int* eo = ring + t.vertex_offsets_edges[v];
     const int s0 = sides[ux][0], n0 = next_in_face(s0, p.edge_faces[ux][0]);
@@ -382,7 +382,7 @@ MeshTopology quad_split_topology(const MeshTopology& p, Step& s) {
       fo[1] = s0;
       eo[0] = fe[4 * n0 + 3];
       eo[1] = fe[4 * s0 + 1];
-      eo[2] = fe[4 * s0];
+      eo[2] = fe[4 * static_cast<std::ptrdiff_t>(s0)];
       continue;
     }
     const int s1 = sides[ux][1], n1 = next_in_face(s1, p.edge_faces[ux][1]);
@@ -398,7 +398,7 @@ MeshTopology quad_split_topology(const MeshTopology& p, Step& s) {
     }
   }
   for (int f = 0; f < F; ++f) {  // face points: child faces in the order of the corners
-    const auto v = static_cast<std::size_t>(V + E + f);
+    const auto v = static_cast<std::size_t>(V) + static_cast<std::size_t>(E) + static_cast<std::size_t>(f);
     int* fo = faces + t.vertex_offsets_faces[v];
     int* eo = ring + t.vertex_offsets_edges[v];
     for (int h = p.face_offsets[static_cast<std::size_t>(f)], k = 0;
@@ -450,7 +450,7 @@ MeshTopology triangle_split_topology(const MeshTopology& p, Step& s) {
   const int* corners = t.face_vertices.data();
   // Across parent edge i of f: the corner j of triangle g where the twin starts (g < 0: boundary).
   const auto across = [&](int f, int i) {
-    const auto h = static_cast<std::size_t>(3 * f + i);
+    const auto h = 3 * static_cast<std::size_t>(f) + static_cast<std::size_t>(i);
     const auto x = static_cast<std::size_t>(p.face_edges[h]);
     const int a = sides[x][1 - side_of(p, h)];
     return a < 0 ? std::pair{-1, 0} : std::pair{a / 3, a % 3};
@@ -469,8 +469,9 @@ MeshTopology triangle_split_topology(const MeshTopology& p, Step& s) {
     // Across parent edge i (corner j of triangle g) they pair with g's.
     for (int i = 0; i < 3; ++i) {
       const auto [g, j] = across(f, i);
-      twin[static_cast<std::size_t>(4 * i)] = g < 0 ? -1 : 12 * g + 3 * ((j + 1) % 3) + j;
-      twin[static_cast<std::size_t>(3 * ((i + 1) % 3) + i)] = g < 0 ? -1 : 12 * g + 4 * j;
+      const auto ui = static_cast<std::size_t>(i);
+      twin[4 * ui] = g < 0 ? -1 : 12 * g + 3 * ((j + 1) % 3) + j;
+      twin[3 * ((ui + 1) % 3) + ui] = g < 0 ? -1 : 12 * g + 4 * j;
     }
     for (const auto& [x, y] :
          {std::pair{1, 11}, std::pair{5, 9}, std::pair{6, 10}}) {  // the middle one's sides
@@ -542,7 +543,7 @@ MeshTopology triangle_split_topology(const MeshTopology& p, Step& s) {
   };
   for (int x = 0; x < E; ++x) {
     const auto ux = static_cast<std::size_t>(x);
-    const auto v = static_cast<std::size_t>(V + x);
+    const auto v = static_cast<std::size_t>(V) + ux;
     int* fo = faces + t.vertex_offsets_faces[v];
     int* eo = ring + t.vertex_offsets_edges[v];
     const int s0 = sides[ux][0];
