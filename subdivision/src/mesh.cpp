@@ -264,6 +264,39 @@ void split_polygons(const MeshTopology& t, Step& s) {
   }
 }
 
+/// The ring offsets and boundary flags of a split's child (then its ring arrays, sized): vertex points
+/// keep their parent vertex's ring; an edge point has `faces` faces inside, `boundary_faces` and one more
+/// edge on the boundary; face points (with_face_points) one face and edge per corner of their face.
+void size_split_rings(const MeshTopology& p, MeshTopology& t, int faces, int boundary_faces,
+                      bool with_face_points) {
+  const auto V = static_cast<std::size_t>(p.vertex_count), E = p.edges.size();
+  const auto Vc = static_cast<std::size_t>(t.vertex_count);
+  assign_huge(t.vertex_offsets_faces, Vc + 1, 0);
+  assign_huge(t.vertex_offsets_edges, Vc + 1, 0);
+  assign_huge(t.boundary_vertex, Vc, char{0});
+  for (std::size_t v = 0; v < V; ++v) {
+    t.vertex_offsets_faces[v + 1] = p.vertex_offsets_faces[v + 1];
+    t.vertex_offsets_edges[v + 1] = p.vertex_offsets_edges[v + 1];
+    t.boundary_vertex[v] = p.boundary_vertex[v];
+  }
+  for (std::size_t x = 0; x < E; ++x) {
+    const bool open = is_boundary_edge(p, x);
+    const std::size_t v = V + x;
+    t.vertex_offsets_faces[v + 1] = t.vertex_offsets_faces[v] + (open ? boundary_faces : faces);
+    t.vertex_offsets_edges[v + 1] = t.vertex_offsets_edges[v] + (open ? boundary_faces + 1 : faces);
+    t.boundary_vertex[v] = open ? 1 : 0;
+  }
+  if (with_face_points)
+    for (std::size_t f = 0; f < face_count(p); ++f) {
+      const std::size_t v = V + E + f;
+      const int k = p.face_offsets[f + 1] - p.face_offsets[f];
+      t.vertex_offsets_faces[v + 1] = t.vertex_offsets_faces[v] + k;
+      t.vertex_offsets_edges[v + 1] = t.vertex_offsets_edges[v] + k;
+    }
+  assign_huge(t.vertex_face_list, static_cast<std::size_t>(t.vertex_offsets_faces[Vc]), 0);
+  assign_huge(t.vertex_edge_list, static_cast<std::size_t>(t.vertex_offsets_edges[Vc]), 0);
+}
+
 /// The adjacency of split_polygons' child faces, by formula from the parent's: what build_topology
 /// finds from the child faces by search, to the entry (edges in order of first appearance,
 /// rings from the same start; test_mesh.cpp), without its passes over the child half-edges (a
@@ -325,30 +358,7 @@ MeshTopology quad_split_topology(const MeshTopology& p, Step& s) {
   // Rings, counter-clockwise, each from where assemble's walk starts (the outgoing boundary
   // half-edge, else the first outgoing one). A vertex point's is its parent vertex's, face by face;
   // an edge point has 4 faces (2 on the boundary); a face point one per corner of its face.
-  const auto Vc = static_cast<std::size_t>(t.vertex_count);
-  assign_huge(t.vertex_offsets_faces, Vc + 1, 0);
-  assign_huge(t.vertex_offsets_edges, Vc + 1, 0);
-  assign_huge(t.boundary_vertex, Vc, char{0});
-  for (std::size_t v = 0; v < static_cast<std::size_t>(V); ++v) {
-    t.vertex_offsets_faces[v + 1] = p.vertex_offsets_faces[v + 1];
-    t.vertex_offsets_edges[v + 1] = p.vertex_offsets_edges[v + 1];
-    t.boundary_vertex[v] = p.boundary_vertex[v];
-  }
-  for (std::size_t x = 0; x < static_cast<std::size_t>(E); ++x) {
-    const bool open = is_boundary_edge(p, x);
-    const std::size_t v = static_cast<std::size_t>(V) + x;
-    t.vertex_offsets_faces[v + 1] = t.vertex_offsets_faces[v] + (open ? 2 : 4);
-    t.vertex_offsets_edges[v + 1] = t.vertex_offsets_edges[v] + (open ? 3 : 4);
-    t.boundary_vertex[v] = open ? 1 : 0;
-  }
-  for (std::size_t f = 0; f < static_cast<std::size_t>(F); ++f) {
-    const std::size_t v = static_cast<std::size_t>(V + E) + f;
-    const int k = p.face_offsets[f + 1] - p.face_offsets[f];
-    t.vertex_offsets_faces[v + 1] = t.vertex_offsets_faces[v] + k;
-    t.vertex_offsets_edges[v + 1] = t.vertex_offsets_edges[v] + k;
-  }
-  assign_huge(t.vertex_face_list, static_cast<std::size_t>(t.vertex_offsets_faces[Vc]), 0);
-  assign_huge(t.vertex_edge_list, static_cast<std::size_t>(t.vertex_offsets_edges[Vc]), 0);
+  size_split_rings(p, t, 4, 2, true);
   int* const faces = t.vertex_face_list.data();
   int* const ring = t.vertex_edge_list.data();
   const auto next_in_face = [&](int h, int f) {
@@ -493,24 +503,7 @@ MeshTopology triangle_split_topology(const MeshTopology& p, Step& s) {
 
   // Rings (counter-clockwise, from assemble's starts): a vertex point's is its parent vertex's, child
   // by child; an edge point has 6 faces (3 on the boundary).
-  const auto Vc = static_cast<std::size_t>(t.vertex_count);
-  assign_huge(t.vertex_offsets_faces, Vc + 1, 0);
-  assign_huge(t.vertex_offsets_edges, Vc + 1, 0);
-  assign_huge(t.boundary_vertex, Vc, char{0});
-  for (std::size_t v = 0; v < static_cast<std::size_t>(V); ++v) {
-    t.vertex_offsets_faces[v + 1] = p.vertex_offsets_faces[v + 1];
-    t.vertex_offsets_edges[v + 1] = p.vertex_offsets_edges[v + 1];
-    t.boundary_vertex[v] = p.boundary_vertex[v];
-  }
-  for (std::size_t x = 0; x < static_cast<std::size_t>(E); ++x) {
-    const bool open = is_boundary_edge(p, x);
-    const std::size_t v = static_cast<std::size_t>(V) + x;
-    t.vertex_offsets_faces[v + 1] = t.vertex_offsets_faces[v] + (open ? 3 : 6);
-    t.vertex_offsets_edges[v + 1] = t.vertex_offsets_edges[v] + (open ? 4 : 6);
-    t.boundary_vertex[v] = open ? 1 : 0;
-  }
-  assign_huge(t.vertex_face_list, static_cast<std::size_t>(t.vertex_offsets_faces[Vc]), 0);
-  assign_huge(t.vertex_edge_list, static_cast<std::size_t>(t.vertex_offsets_edges[Vc]), 0);
+  size_split_rings(p, t, 6, 3, false);
   int* const faces = t.vertex_face_list.data();
   int* const ring = t.vertex_edge_list.data();
   for (int v = 0; v < V; ++v) {  // vertex points: corner i of parent face f becomes child 4f + i
