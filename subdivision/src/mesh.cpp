@@ -264,6 +264,22 @@ void split_polygons(const MeshTopology& t, Step& s) {
   }
 }
 
+/// Child half-edge x of a split (faces of K corners; y its twin, −1 on the boundary): the next edge e
+/// unless its twin came first — edges in order of first appearance, as build_topology numbers them.
+template <int K>
+void number_half_edge(MeshTopology& t, int x, int y, int& e) {
+  const auto ux = static_cast<std::size_t>(x);
+  if (y >= 0 && y < x) {
+    t.face_edges[ux] = t.face_edges[static_cast<std::size_t>(y)];
+    return;
+  }
+  t.face_edges[ux] = e;
+  const std::size_t first = ux - ux % K;
+  t.edges[static_cast<std::size_t>(e)] = {t.face_vertices[ux], t.face_vertices[first + (ux - first + 1) % K]};
+  t.edge_faces[static_cast<std::size_t>(e)] = {x / K, y < 0 ? -1 : y / K};
+  ++e;
+}
+
 /// The ring offsets and boundary flags of a split's child (then its ring arrays, sized): vertex points
 /// keep their parent vertex's ring; an edge point has `faces` faces inside, `boundary_faces` and one more
 /// edge on the boundary; face points (with_face_points) one face and edge per corner of their face.
@@ -311,10 +327,8 @@ MeshTopology quad_split_topology(const MeshTopology& p, Step& s) {
   t.vertex_count = s.vertex_count;
   t.face_offsets = std::move(s.face_offsets);
   t.face_vertices = std::move(s.face_vertices);
-  const int* corners = t.face_vertices.data();
 
-  // Edges: each parent edge in two, an edge from each edge point i to the face point. A child
-  // half-edge starts an edge unless its twin came first (as assemble numbers them).
+  // Edges: each parent edge in two, an edge from each edge point i to the face point.
   assign_huge(t.face_edges, 4 * H, -1);
   assign_huge(t.edges, 2 * static_cast<std::size_t>(E) + H, std::array<int, 2>{});
   assign_huge(t.edge_faces, t.edges.size(), std::array<int, 2>{});
@@ -341,17 +355,7 @@ MeshTopology quad_split_topology(const MeshTopology& p, Step& s) {
       const int before = across(prev).first;
       const std::array<int, 4> twin{a < 0 ? -1 : 4 * a_next + 3, 4 * next + 2, 4 * prev + 1,
                                     before < 0 ? -1 : 4 * before};
-      for (int j = 0; j < 4; ++j) {
-        const int x = 4 * h + j, y = twin[static_cast<std::size_t>(j)];
-        if (y >= 0 && y < x) {
-          fe[x] = fe[y];
-          continue;
-        }
-        fe[x] = e;
-        t.edges[static_cast<std::size_t>(e)] = {corners[x], corners[4 * h + (j + 1) % 4]};
-        t.edge_faces[static_cast<std::size_t>(e)] = {h, y < 0 ? -1 : y / 4};
-        ++e;
-      }
+      for (int j = 0; j < 4; ++j) number_half_edge<4>(t, 4 * h + j, twin[static_cast<std::size_t>(j)], e);
     }
   }
 
@@ -457,7 +461,6 @@ MeshTopology triangle_split_topology(const MeshTopology& p, Step& s) {
   t.vertex_count = s.vertex_count;
   t.face_offsets = std::move(s.face_offsets);
   t.face_vertices = std::move(s.face_vertices);
-  const int* corners = t.face_vertices.data();
   // Across parent edge i of f: the corner j of triangle g where the twin starts (g < 0: boundary).
   const auto across = [&](int f, int i) {
     const auto h = 3 * static_cast<std::size_t>(f) + static_cast<std::size_t>(i);
@@ -488,17 +491,7 @@ MeshTopology triangle_split_topology(const MeshTopology& p, Step& s) {
       twin[static_cast<std::size_t>(x)] = 12 * f + y;
       twin[static_cast<std::size_t>(y)] = 12 * f + x;
     }
-    for (int k = 0; k < 12; ++k) {
-      const int x = 12 * f + k, y = twin[static_cast<std::size_t>(k)];
-      if (y >= 0 && y < x) {
-        fe[x] = fe[y];
-        continue;
-      }
-      fe[x] = e;
-      t.edges[static_cast<std::size_t>(e)] = {corners[x], corners[x - k % 3 + (k % 3 + 1) % 3]};
-      t.edge_faces[static_cast<std::size_t>(e)] = {x / 3, y < 0 ? -1 : y / 3};
-      ++e;
-    }
+    for (int k = 0; k < 12; ++k) number_half_edge<3>(t, 12 * f + k, twin[static_cast<std::size_t>(k)], e);
   }
 
   // Rings (counter-clockwise, from assemble's starts): a vertex point's is its parent vertex's, child

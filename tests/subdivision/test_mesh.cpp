@@ -13,6 +13,7 @@
 #include "cifs/topology.hpp"
 #include "subdivision/mesh_compare.hpp"
 #include "subdivision/meshes.hpp"
+#include "support/same_topology.hpp"
 
 using namespace cifs;
 using namespace cifs::subdivision;
@@ -284,16 +285,6 @@ TEST_CASE("the factored forms (linear subdivision, then averaging) equal the mas
 TEST_CASE("child topology paired by construction = the one searched from its faces", "[subdivision][mesh]") {
   // Catmull–Clark and the triangle split (Loop, Butterfly) pair the child half-edges by
   // construction; build_topology finds the same pairing by search, with every order the same.
-  const auto same = [](const MeshTopology& a, const MeshTopology& b) {
-    CHECK(a.face_edges == b.face_edges);
-    CHECK(a.edges == b.edges);
-    CHECK(a.edge_faces == b.edge_faces);
-    CHECK(a.vertex_offsets_edges == b.vertex_offsets_edges);
-    CHECK(a.vertex_edge_list == b.vertex_edge_list);
-    CHECK(a.vertex_offsets_faces == b.vertex_offsets_faces);
-    CHECK(a.vertex_face_list == b.vertex_face_list);
-    CHECK(a.boundary_vertex == b.boundary_vertex);
-  };
   using Named = std::vector<std::pair<const char*, Mesh>>;
   const Named polygons{
       {"cube", cube()}, {"pyramid", pyramid()}, {"grid", quad_grid(3, 4)}, {"torus", torus(4, 5)}};
@@ -309,8 +300,9 @@ TEST_CASE("child topology paired by construction = the one searched from its fac
       for (std::size_t level = 1; level < r.levels.size(); ++level) {
         INFO("level " << level);
         const MeshTopology& t = r.levels[level];
-        same(t, build_topology(std::span<const int>(t.face_offsets), std::span<const int>(t.face_vertices),
-                               t.vertex_count));
+        cifs_test::check_same_topology(
+            t, build_topology(std::span<const int>(t.face_offsets), std::span<const int>(t.face_vertices),
+                              t.vertex_count));
       }
     }
   }
