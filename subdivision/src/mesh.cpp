@@ -359,7 +359,7 @@ MeshTopology quad_split_topology(const MeshTopology& p, Step& s) {
     }
   }
 
-  // Rings, counter-clockwise, each from where assemble's walk starts (the outgoing boundary
+  // Rings, counter-clockwise, each from where build_topology's walk starts (the outgoing boundary
   // half-edge, else the first outgoing one). A vertex point's is its parent vertex's, face by face;
   // an edge point has 4 faces (2 on the boundary); a face point one per corner of its face.
   size_split_rings(p, t, 4, 2, true);
@@ -494,7 +494,7 @@ MeshTopology triangle_split_topology(const MeshTopology& p, Step& s) {
     for (int k = 0; k < 12; ++k) number_half_edge<3>(t, 12 * f + k, twin[static_cast<std::size_t>(k)], e);
   }
 
-  // Rings (counter-clockwise, from assemble's starts): a vertex point's is its parent vertex's, child
+  // Rings (counter-clockwise, from build_topology's starts): a vertex point's is its parent vertex's, child
   // by child; an edge point has 6 faces (3 on the boundary).
   size_split_rings(p, t, 6, 3, false);
   int* const faces = t.vertex_face_list.data();
