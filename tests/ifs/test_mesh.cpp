@@ -4,6 +4,7 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <random>
 #include <set>
 
 #include "cifs/errors.hpp"
@@ -44,6 +45,22 @@ double node_parameter(const std::vector<double>& b, int I, int depth) {
   const int a = std::min(I / side, static_cast<int>(b.size()) - 2);
   return b[static_cast<std::size_t>(a)] +
          (b[static_cast<std::size_t>(a) + 1] - b[static_cast<std::size_t>(a)]) * (I - a * side) / side;
+}
+
+/// Two states of 4 and 9 points ("four", "nine"), four children each (GH, GB, DH, DB) alternating their
+/// targets, random contractive affine maps; no initial state yet.
+automata::Automaton two_state_automaton(std::mt19937_64& rng) {
+  automata::Automaton a;
+  const StateId s0 = ifs_test::add_state(a, 4, "four"), s1 = ifs_test::add_state(a, 9, "nine");
+  const char* labels[4] = {"GH", "GB", "DH", "DB"};
+  for (const StateId from : {s0, s1})
+    for (int c = 0; c < 4; ++c) {
+      const StateId to = (c + static_cast<int>(from)) % 2 ? s1 : s0;
+      ifs_test::add_transition(a, from, to,
+                               ifs_test::random_contraction(a.graph[to].size, a.graph[from].size, 0.6, rng),
+                               labels[c]);
+    }
+  return a;
 }
 
 }  // namespace
@@ -304,17 +321,8 @@ TEST_CASE("Quad meshes are watertight disks", "[ifs][mesh]") {
 
 TEST_CASE("quad_mesh on a perturbed (non-Kronecker) automaton: corners of the leaf nets", "[ifs][mesh]") {
   std::mt19937_64 rng(17);
-  // Two states of 4 and 9 points, four children each, random contractive affine maps.
-  automata::Automaton a;
-  const StateId s0 = ifs_test::add_state(a, 4, "four"), s1 = ifs_test::add_state(a, 9, "nine");
-  const char* labels[4] = {"GH", "GB", "DH", "DB"};
-  for (const StateId from : {s0, s1})
-    for (int c = 0; c < 4; ++c) {
-      const StateId to = (c + static_cast<int>(from)) % 2 ? s1 : s0;
-      ifs_test::add_transition(a, from, to,
-                               ifs_test::random_contraction(a.graph[to].size, a.graph[from].size, 0.6, rng),
-                               labels[c]);
-    }
+  automata::Automaton a = two_state_automaton(rng);
+  const StateId s0 = 0, s1 = 1;
   ifs_test::add_initial(a, s0, 0);
   ifs_test::add_initial(a, s1, 1);
   ifs_test::add_initial(a, s0, 2);
@@ -429,16 +437,8 @@ TEST_CASE("apply_table: each vertex is its table row times its net, summed in or
   // fast and the cold routes of cifs view compare. Tables of depth 2 applied at depth 2 (the nets are the
   // initial ones), states of 4 and 9 points, nets of 1 to 6 columns with entries from 1e-8 to 1e8.
   std::mt19937_64 rng(29);
-  automata::Automaton a;
-  const StateId s0 = ifs_test::add_state(a, 4, "four"), s1 = ifs_test::add_state(a, 9, "nine");
-  const char* labels[4] = {"GH", "GB", "DH", "DB"};
-  for (const StateId from : {s0, s1})
-    for (int c = 0; c < 4; ++c) {
-      const StateId to = (c + static_cast<int>(from)) % 2 ? s1 : s0;
-      ifs_test::add_transition(a, from, to,
-                               ifs_test::random_contraction(a.graph[to].size, a.graph[from].size, 0.6, rng),
-                               labels[c]);
-    }
+  automata::Automaton a = two_state_automaton(rng);
+  const StateId s0 = 0, s1 = 1;
   ifs_test::add_initial(a, s0);
   ifs_test::add_initial(a, s1);
   const int depth = 2, m = (1 << depth) + 1;
