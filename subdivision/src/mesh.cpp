@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <numbers>
 #include <optional>
+#include <span>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -825,17 +826,6 @@ Step primal_step(MeshScheme scheme, const MeshTopology& t, const LevelFeatures& 
   return s;
 }
 
-/// The vertices around interior vertex v in counter-clockwise order, starting at the other end of edge e.
-std::vector<int> ring_from(const MeshTopology& t, int v, int e) {
-  const auto ring = ring_edges(t, v);
-  const std::size_t n = ring.size();
-  const std::size_t start = static_cast<std::size_t>(std::find(ring.begin(), ring.end(), e) - ring.begin());
-  std::vector<int> out(n);
-  for (std::size_t j = 0; j < n; ++j)
-    out[j] = other_vertex(t, static_cast<std::size_t>(ring[(start + j) % n]), v);
-  return out;
-}
-
 /// The edge of face f joining x and y.
 int edge_between(const MeshTopology& t, int f, int x, int y) {
   for (const int e : face_edges(t, static_cast<std::size_t>(f))) {
@@ -851,23 +841,124 @@ int boundary_neighbour(const MeshTopology& t, int v, int e) {
   return other_vertex(t, static_cast<std::size_t>(ring.front() == e ? ring.back() : ring.front()), v);
 }
 
+/// The size of a ring (Butterfly) or face (Doo–Sabin) from which a one-shot step sums its dense stencils
+/// (every point of the ring or face weighs on every other: k² terms, 46 s at valence 50,000) through
+/// their low-rank form: O(k). Below it the direct sums, in the kept rows' order, cost no more.
+constexpr int kRankFormFrom = 16;
+
 /// Zorin–Schröder–Sweldens' stencil for an edge point next to a vertex of valence k ≠ 6: ¾ on the
 /// centre and s_j on ring vertex j (j = 0 the edge's other end). The seed writes s_j without the
 /// 1/k and mixes n and k; k = 3: 5/12, −1/12, −1/12; k = 4: 3/8, 0, −1/8, 0;
 /// k ≥ 5: s_j = (1/k)(¼ + cos(2πj/k) + ½cos(4πj/k)).
+double butterfly_ring_weight(int k, int j) {
+  if (k == 3) return j == 0 ? 5.0 / 12 : -1.0 / 12;
+  if (k == 4) return j == 0 ? 0.375 : (j == 2 ? -0.125 : 0.0);
+  return (0.25 + std::cos(2 * std::numbers::pi * j / k) + 0.5 * std::cos(4 * std::numbers::pi * j / k)) / k;
+}
+
+/// The rings of the interior vertices of valence k ≠ 6 (ZSS's extraordinary ends) with their weights
+/// s_j, and each of their edges' place in its ring, by edge: an edge point reads its places in order
+/// instead of searching a ring (k searches of a ring of k edges, and k² cosines, were quadratic in the
+/// valence: 46 s at valence 50,000). A one-shot step also keeps five sums per ring of kRankFormFrom or
+/// more (`moments`): s_j is of rank 5 in (edge, ring vertex), so each edge point costs O(1), not O(k).
+struct ButterflyRings {
+  struct Ring {
+    int centre, offset, size;  // vertices[offset … offset + size): counter-clockwise, as ring_edges
+  };
+  struct Place {
+    int edge, ring, index;  // edge is ring_edges(centre)[index]
+  };
+  std::vector<Ring> rings;
+  std::vector<int> vertices;
+  std::vector<double> weights;  // s_j of each ring, j = 0 … size − 1
+  std::vector<Place> places;    // sorted by edge: two at most per edge
+  /// Per ring of kRankFormFrom or more: Σ d_m, Σ cos(mθ) d_m, Σ sin(mθ) d_m, Σ cos(2mθ) d_m, Σ sin(2mθ) d_m,
+  /// where θ = 2π/k and d_m = p_m − centre (relative: the sums cancel less), 3 coordinates each.
+  std::vector<std::array<double, 15>> moments;
+};
+
+/// An end whose edges take ZSS's ring stencil: interior, valence ≠ 6.
+bool butterfly_extraordinary(const MeshTopology& t, int v) {
+  return !on_boundary(t, v) && valence(t, static_cast<std::size_t>(v)) != 6;
+}
+
+/// The rings of `centres` (butterfly_extraordinary vertices).
+ButterflyRings butterfly_rings(const MeshTopology& t, std::span<const int> centres) {
+  ButterflyRings r;
+  for (const int v : centres) {
+    const auto ring = ring_edges(t, v);
+    const int k = static_cast<int>(ring.size()), ring_id = static_cast<int>(r.rings.size());
+    r.rings.push_back({.centre = v, .offset = static_cast<int>(r.vertices.size()), .size = k});
+    for (int m = 0; m < k; ++m) {
+      const int e = ring[static_cast<std::size_t>(m)];
+      r.vertices.push_back(other_vertex(t, static_cast<std::size_t>(e), v));
+      r.weights.push_back(butterfly_ring_weight(k, m));
+      r.places.push_back({.edge = e, .ring = ring_id, .index = m});
+    }
+  }
+  std::sort(r.places.begin(), r.places.end(), [](const auto& x, const auto& y) {
+    return x.edge != y.edge ? x.edge < y.edge : x.ring < y.ring;
+  });
+  return r;
+}
+
+/// The rings of every extraordinary vertex of the level.
+ButterflyRings butterfly_rings(const MeshTopology& t) {
+  std::vector<int> centres;
+  for (int v = 0; v < t.vertex_count; ++v)
+    if (butterfly_extraordinary(t, v)) centres.push_back(v);
+  return butterfly_rings(t, centres);
+}
+
+/// Fills r.moments from the level's 3-D positions (one-shot steps).
+void add_moments(ButterflyRings& r, const double* in) {
+  r.moments.resize(r.rings.size());
+  for (std::size_t g = 0; g < r.rings.size(); ++g) {
+    const auto& ring = r.rings[g];
+    auto& mu = r.moments[g];
+    mu.fill(0.0);
+    if (ring.size < kRankFormFrom) continue;
+    const double* c = in + 3 * static_cast<std::ptrdiff_t>(ring.centre);
+    for (int m = 0; m < ring.size; ++m) {
+      const double* p =
+          in + 3 * static_cast<std::ptrdiff_t>(r.vertices[static_cast<std::size_t>(ring.offset + m)]);
+      const double a = 2 * std::numbers::pi * m / ring.size;
+      const std::array<double, 5> f{1.0, std::cos(a), std::sin(a), std::cos(2 * a), std::sin(2 * a)};
+      for (int q = 0; q < 5; ++q)
+        for (int x = 0; x < 3; ++x)
+          mu[static_cast<std::size_t>(3 * q + x)] += f[static_cast<std::size_t>(q)] * (p[x] - c[x]);
+    }
+  }
+}
+
+/// The ring stencil of the edge at `place`, weighted by `scale` (½ when both ends are extraordinary).
+/// With moments (a one-shot step, rings of kRankFormFrom or more): cos((m − i)θ) = cos mθ cos iθ + sin mθ sin
+/// iθ turns Σ_m s_{m−i} d_m into the ring's five sums, so the point is centre + (1/k)(¼Σd + cos iθ·C₁ + sin
+/// iθ·S₁ + ½(cos 2iθ·C₂ + sin 2iθ·S₂)) (¾ + Σ s_j = 1).
 template <class Row>
-void butterfly_extraordinary(int centre, const std::vector<int>& ring, double scale, Row& row) {
-  const int k = static_cast<int>(ring.size());
-  row.add(centre, 0.75 * scale);
+void add_ring_stencil(const ButterflyRings& r, const ButterflyRings::Place& place, double scale, Row& row) {
+  const auto& ring = r.rings[static_cast<std::size_t>(place.ring)];
+  const int k = ring.size, i = place.index;
+  if constexpr (requires(Row & x, const double* p) { x.add_point(p, 1.0); }) {
+    if (!r.moments.empty() && k >= kRankFormFrom) {
+      const auto& mu = r.moments[static_cast<std::size_t>(place.ring)];
+      const double a = 2 * std::numbers::pi * i / k;
+      const std::array<double, 5> f{0.25, std::cos(a), std::sin(a), 0.5 * std::cos(2 * a),
+                                    0.5 * std::sin(2 * a)};
+      std::array<double, 3> sum{};
+      for (int q = 0; q < 5; ++q)
+        for (int x = 0; x < 3; ++x)
+          sum[static_cast<std::size_t>(x)] +=
+              f[static_cast<std::size_t>(q)] * mu[static_cast<std::size_t>(3 * q + x)];
+      row.add(ring.centre, scale);
+      row.add_point(sum.data(), scale / k);
+      return;
+    }
+  }
+  row.add(ring.centre, 0.75 * scale);
   for (int j = 0; j < k; ++j) {
-    double s;
-    if (k == 3)
-      s = j == 0 ? 5.0 / 12 : -1.0 / 12;
-    else if (k == 4)
-      s = j == 0 ? 0.375 : (j == 2 ? -0.125 : 0.0);
-    else
-      s = (0.25 + std::cos(2 * std::numbers::pi * j / k) + 0.5 * std::cos(4 * std::numbers::pi * j / k)) / k;
-    row.add(ring[static_cast<std::size_t>(j)], s * scale);
+    const auto m = static_cast<std::size_t>(ring.offset + (i + j) % k);
+    row.add(r.vertices[m], r.weights[static_cast<std::size_t>(ring.offset + j)] * scale);
   }
 }
 
@@ -898,27 +989,24 @@ void butterfly_regular(const MeshTopology& t, int e, Row& row) {
 }
 
 /// The edge point of edge e: the 4-point rule (−1, 9, 9, −1)/16 along boundary edges; inside, the
-/// 10-point stencil unless an end is an interior vertex of valence ≠ 6, whose ring stencil is then
-/// used (the mean of the two when both are). Boundary ends count as regular (OpenMesh's rule; ZSS's
-/// boundary tables are not implemented). The one rule of the step and of the limit's first step
-/// (detail::butterfly_edge_stencil).
+/// 10-point stencil unless an end is an interior vertex of valence ≠ 6 (its place in `rings`:
+/// `places`, none, one or two), whose ring stencil is then used (the mean of the two when both are).
+/// Boundary ends count as regular (OpenMesh's rule; ZSS's boundary tables are not implemented). The one
+/// rule of the step and of the limit's first step (detail::butterfly_edge_stencil).
 template <class Row>
-void butterfly_edge_point(const MeshTopology& t, int e, Row& row) {
-  const auto extraordinary = [&](int v) {
-    return !on_boundary(t, v) && valence(t, static_cast<std::size_t>(v)) != 6;
-  };
+void butterfly_edge_point(const MeshTopology& t, int e, const ButterflyRings& rings,
+                          std::span<const ButterflyRings::Place> places, Row& row) {
   const auto [a, b] = t.edges[static_cast<std::size_t>(e)];
   if (is_boundary_edge(t, static_cast<std::size_t>(e))) {
     row.add(a, 0.5625);
     row.add(b, 0.5625);
     row.add(boundary_neighbour(t, a, e), -0.0625);
     row.add(boundary_neighbour(t, b, e), -0.0625);
-  } else if (!extraordinary(a) && !extraordinary(b)) {
+  } else if (places.empty()) {
     butterfly_regular(t, e, row);
   } else {
-    const double scale = extraordinary(a) && extraordinary(b) ? 0.5 : 1;
-    if (extraordinary(a)) butterfly_extraordinary(a, ring_from(t, a, e), scale, row);
-    if (extraordinary(b)) butterfly_extraordinary(b, ring_from(t, b, e), scale, row);
+    const double scale = places.size() == 2 ? 0.5 : 1;
+    for (const auto& place : places) add_ring_stencil(rings, place, scale, row);
   }
 }
 
@@ -929,14 +1017,19 @@ Step butterfly_step(const MeshTopology& t, RowSink sink) {
   Step s;
   s.sink = sink;
   s.vertex_count = V + E;
+  ButterflyRings rings = butterfly_rings(t);
+  if constexpr (Writer::kApplies) add_moments(rings, sink.input->data());
   Writer out(s, t.vertex_count);
   auto&& row = out.row();
   for (int v = 0; v < V; ++v) {
     row.add(v, 1);
     out.finish(row);
   }
+  auto place = rings.places.begin();
   for (int e = 0; e < E; ++e) {
-    butterfly_edge_point(t, e, row);
+    const auto first = place;
+    while (place != rings.places.end() && place->edge == e) ++place;
+    butterfly_edge_point(t, e, rings, {first, place}, row);
     out.finish(row);
   }
   return s;
@@ -1033,6 +1126,39 @@ Step sqrt3_step(const MeshTopology& t, bool refine_boundary, RowSink sink) {
   return s;
 }
 
+/// A Doo–Sabin face of k ≥ kRankFormFrom corners in a one-shot step. α_m = ¼δ_m + (3 + 2cos mθ)/(4k),
+/// θ = 2π/k, and cos((j − i)θ) = cos jθ cos iθ + sin jθ sin iθ: with d_j = p_j − p_0 (relative: the
+/// sums cancel less), corner point i = ¾p_0 + ¼p_i + (3Σd + 2(cos iθ·Σcos jθ d_j + sin iθ·Σsin jθ d_j))/(4k).
+template <class Writer, class Row>
+void doo_sabin_large_face(std::span<const int> corners, Writer& out, Row& row) {
+  const int k = static_cast<int>(corners.size());
+  const auto point = [&](int i) {
+    return row.in + 3 * static_cast<std::ptrdiff_t>(corners[static_cast<std::size_t>(i)]);
+  };
+  std::array<double, 9> mu{};  // Σd, Σcos jθ d_j, Σsin jθ d_j
+  for (int j = 0; j < k; ++j) {
+    const double a = 2 * std::numbers::pi * j / k;
+    const std::array<double, 3> f{1.0, std::cos(a), std::sin(a)};
+    for (int q = 0; q < 3; ++q)
+      for (int x = 0; x < 3; ++x)
+        mu[static_cast<std::size_t>(3 * q + x)] +=
+            f[static_cast<std::size_t>(q)] * (point(j)[x] - point(0)[x]);
+  }
+  for (int i = 0; i < k; ++i) {
+    const double a = 2 * std::numbers::pi * i / k;
+    const std::array<double, 3> f{3.0, 2 * std::cos(a), 2 * std::sin(a)};
+    std::array<double, 3> sum{};
+    for (int q = 0; q < 3; ++q)
+      for (int x = 0; x < 3; ++x)
+        sum[static_cast<std::size_t>(x)] +=
+            f[static_cast<std::size_t>(q)] * mu[static_cast<std::size_t>(3 * q + x)];
+    row.add(corners[0], 0.75);
+    row.add(corners[static_cast<std::size_t>(i)], 0.25);
+    row.add_point(sum.data(), 0.25 / k);
+    out.finish(row);
+  }
+}
+
 /// Doo–Sabin: a new point for every corner of every face, Σ_j α_{j−i} v_j with
 /// α_0 = ¼ + 5/(4k), α_m = (3 + 2cos(2πm/k))/(4k); then a face per face (its corner points), per
 /// interior edge (a quad) and per interior vertex (its corner points around it). Boundary edges
@@ -1045,22 +1171,34 @@ Step doo_sabin_step(const MeshTopology& t, RowSink sink) {
   s.vertex_count = static_cast<int>(t.face_vertices.size());  // corner (f, i) → face_offsets[f] + i
   Writer out(s, t.vertex_count);
   auto&& row = out.row();
+  std::vector<double> alpha;  // α_m of the last face size
   for (std::size_t f = 0; f < face_count(t); ++f) {
     const auto corners = face(t, f);
-    const std::size_t k = corners.size();
-    const double kd = static_cast<double>(k);
-    for (std::size_t i = 0; i < k; ++i) {
-      for (std::size_t m = 0; m < k; ++m)
-        row.add(corners[(i + m) % k],
-                (m == 0 ? 0.25 : 0.0) +
-                    (3 + 2 * std::cos(2 * std::numbers::pi * static_cast<double>(m) / kd)) / (4 * kd));
+    const int k = static_cast<int>(corners.size());
+    if (alpha.size() != corners.size()) {
+      alpha.resize(corners.size());
+      for (int m = 0; m < k; ++m)
+        alpha[static_cast<std::size_t>(m)] =
+            (m == 0 ? 0.25 : 0.0) + (3 + 2 * std::cos(2 * std::numbers::pi * m / k)) / (4 * k);
+    }
+    if constexpr (Writer::kApplies) {
+      if (k >= kRankFormFrom) {  // α is ¼δ plus rank 3: each corner point in O(1), not O(k)
+        doo_sabin_large_face(corners, out, row);
+        continue;
+      }
+    }
+    for (int i = 0; i < k; ++i) {
+      for (int m = 0; m < k; ++m)
+        row.add(corners[static_cast<std::size_t>((i + m) % k)], alpha[static_cast<std::size_t>(m)]);
       out.finish(row);
     }
   }
-  const auto point = [&](int f, int v) {
-    const auto corners = face(t, static_cast<std::size_t>(f));
-    const auto i = std::find(corners.begin(), corners.end(), v) - corners.begin();
-    return t.face_offsets[static_cast<std::size_t>(f)] + static_cast<int>(i);
+  // Child corner points by half-edge: corner h of the parent is child point h.
+  const std::vector<std::array<int, 2>> sides = edge_sides(t);
+  const auto next = [&](int h, int f) {
+    return h + 1 == t.face_offsets[static_cast<std::size_t>(f) + 1]
+               ? t.face_offsets[static_cast<std::size_t>(f)]
+               : h + 1;
   };
   for (std::size_t f = 0; f < face_count(t); ++f) {  // F-faces
     const int begin = t.face_offsets[f], end = t.face_offsets[f + 1];
@@ -1068,15 +1206,17 @@ Step doo_sabin_step(const MeshTopology& t, RowSink sink) {
     s.face_offsets.push_back(static_cast<int>(s.face_vertices.size()));
   }
   for (std::size_t e = 0; e < t.edges.size(); ++e) {  // E-faces: f0 on the left of a → b
-    const auto [a, b] = t.edges[e];
     const auto [f0, f1] = t.edge_faces[e];
     if (f1 < 0) continue;
-    add_face(s, {point(f1, a), point(f1, b), point(f0, b), point(f0, a)});
+    const int along = sides[e][0], against = sides[e][1];  // a → b in f0, b → a in f1
+    add_face(s, {next(against, f1), against, next(along, f0), along});
   }
   for (int v = 0; v < t.vertex_count; ++v) {  // V-faces, counter-clockwise around v
-    const auto faces = vertex_faces(t, static_cast<std::size_t>(v));
-    if (faces.empty() || on_boundary(t, v)) continue;
-    for (const int f : faces) s.face_vertices.push_back(point(f, v));
+    if (vertex_faces(t, static_cast<std::size_t>(v)).empty() || on_boundary(t, v)) continue;
+    // Face j around v lies after edge j, v's outgoing edge in it: its corner at v is that half-edge.
+    for (const int e : ring_edges(t, v))
+      s.face_vertices.push_back(
+          sides[static_cast<std::size_t>(e)][t.edges[static_cast<std::size_t>(e)][0] == v ? 0 : 1]);
     s.face_offsets.push_back(static_cast<int>(s.face_vertices.size()));
   }
   return s;
@@ -1300,17 +1440,39 @@ MeshTopology checked_input(const Mesh& mesh, MeshScheme scheme, int levels, cons
   check_scheme_input(t0, mesh, scheme);
   Counts c{static_cast<double>(t0.vertex_count), static_cast<double>(t0.edges.size()),
            static_cast<double>(face_count(t0)), static_cast<double>(t0.face_vertices.size())};
+  // Dense stencils take k² weights: Butterfly's at a vertex of valence k ≠ 6 (k ring stencils of k
+  // entries), Doo–Sabin's at a k-gon (and, from the second level, at a vertex of valence k: its face);
+  // k keeps at every level. A few large ones can outweigh the mesh; one-shot steps keep none.
+  double dense_entries = 0;
+  if (keep_levels && options.weights) {
+    const auto dense = [](double k) { return k >= kRankFormFrom ? k * k : 0.0; };
+    if (scheme == MeshScheme::butterfly)
+      for (int v = 0; v < t0.vertex_count; ++v)
+        if (butterfly_extraordinary(t0, v)) dense_entries += dense(valence(t0, static_cast<std::size_t>(v)));
+    if (scheme == MeshScheme::doo_sabin) {
+      for (std::size_t f = 0; f < face_count(t0); ++f)
+        dense_entries += dense(static_cast<double>(face(t0, f).size()));
+      for (int v = 0; v < t0.vertex_count; ++v)
+        if (!on_boundary(t0, v)) dense_entries += dense(valence(t0, static_cast<std::size_t>(v)));
+    }
+  }
   double bytes = 0;
   for (int level = 0; level < levels; ++level) {
     c = next_counts(scheme, c);
-    const double level_bytes = 40 * c.corners + 190 * c.vertices;
+    const double level_bytes = 40 * c.corners + 190 * c.vertices + 12 * dense_entries;
     bytes = keep_levels ? bytes + level_bytes : level_bytes;
     if (bytes > static_cast<double>(options.max_bytes) || c.corners > INT_MAX)
-      throw InvalidInput(who + ": " + std::to_string(levels) + " levels of " +
+      throw InvalidInput(who + ": " + std::to_string(levels) + (levels == 1 ? " level of " : " levels of ") +
                          std::to_string(face_count(t0)) + " faces reach " + number_text(c.faces, 3) +
                          " faces and " + number_text(c.vertices, 3) + " vertices at level " +
                          std::to_string(level + 1) + ", about " + number_text(bytes, 3) + " bytes (limit " +
-                         number_text(static_cast<double>(options.max_bytes), 3) + "); ask for fewer levels");
+                         number_text(static_cast<double>(options.max_bytes), 3) + ")" +
+                         (dense_entries > 0 ? ", " + number_text(12 * dense_entries * (level + 1), 3) +
+                                                  " of them the weights of faces or vertices of " +
+                                                  std::to_string(kRankFormFrom) +
+                                                  " or more sides (k² each; subdivide keeps none)"
+                                            : std::string()) +
+                         (dense_entries > 0 && level == 0 ? "" : "; ask for fewer levels"));
   }
   return t0;
 }
@@ -1670,7 +1832,15 @@ void butterfly_edge_stencil(const MeshTopology& t, int edge, std::vector<std::pa
     std::vector<std::pair<int, double>>& out;
     void add(int column, double weight) { out.emplace_back(column, weight); }
   } row{out};
-  butterfly_edge_point(t, edge, row);
+  const auto [a, b] = t.edges[static_cast<std::size_t>(edge)];
+  std::vector<int> centres;
+  for (const int v : {a, b})
+    if (butterfly_extraordinary(t, v)) centres.push_back(v);
+  const ButterflyRings rings = butterfly_rings(t, centres);
+  std::vector<ButterflyRings::Place> places;
+  for (const auto& place : rings.places)
+    if (place.edge == edge) places.push_back(place);
+  butterfly_edge_point(t, edge, rings, places, row);
 }
 
 }  // namespace detail

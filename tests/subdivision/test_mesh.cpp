@@ -5,6 +5,7 @@
 #include "cifs/subdivision/mesh.hpp"
 
 #include <catch2/catch.hpp>
+#include <chrono>
 
 #include "cifs/errors.hpp"
 #include "cifs/nurbs/surface.hpp"
@@ -14,6 +15,7 @@
 #include "subdivision/mesh_compare.hpp"
 #include "subdivision/meshes.hpp"
 #include "support/same_topology.hpp"
+#include "support/sanitized.hpp"
 
 using namespace cifs;
 using namespace cifs::subdivision;
@@ -223,6 +225,118 @@ TEST_CASE("Loop's β is the seed's α_n/n, and the Butterfly stencils are ZSS's"
     for (int k = s.offsets[static_cast<std::size_t>(v)]; k < s.offsets[static_cast<std::size_t>(v) + 1]; ++k)
       CHECK(s.weights[static_cast<std::size_t>(k)] ==
             Approx(s.columns[static_cast<std::size_t>(k)] == v ? 1 - alpha : alpha / n).epsilon(1e-14));
+  }
+}
+
+TEST_CASE("Butterfly is linear in the valence: ring sums = ZSS's stencils written out",
+          "[subdivision][mesh]") {
+  // Each edge at a vertex of valence k took a k-point stencil, k² terms and cosines in all (46 s at
+  // valence 50,000, issue 33). The one-shot sums each ring five ways once (s_j is of rank 5); here its
+  // edge points against the stencils written out term by term, in long double. s_j = s_{k−j}: the
+  // direction around a vertex does not matter, only where the ring starts.
+  const auto s = [](int k, int j) -> long double {
+    if (k == 4) return j == 0 ? 0.375L : (j == 2 ? -0.125L : 0.0L);
+    const long double a = 2 * std::numbers::pi_v<long double> * j / k;
+    return (0.25L + std::cos(a) + 0.5L * std::cos(2 * a)) / k;
+  };
+  for (const int k : {5, 7, 12, 40, 60000}) {
+    INFO("valence " << k);
+    const Mesh m = bipyramid_of(k);  // apexes k (above) and k + 1 (below) of valence k; equator valence 4
+    const auto start = std::chrono::steady_clock::now();
+    const Mesh once = butterfly(m, 1);
+    if (k == 60000)  // 0.1 s in Release (the k² stencils: ~60 s); the sanitizers slow it about 20 times
+      CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() <
+            (cifs_test::kSanitized ? 30 : 3));
+    const MeshTopology t = build_topology(m);
+    const auto p = [&](int v) { return m.vertices.row(v).cast<long double>().eval(); };
+    const auto apex = [&](int a, int i) {  // ¾a + Σ_j s_j p_{i+j}: a's stencil for its edge to i
+      Eigen::Matrix<long double, 1, 3> sum = 0.75L * p(a);
+      for (int j = 0; j < k; ++j) sum += s(k, j) * p((i + j) % k);
+      return sum;
+    };
+    double worst = 0;
+    for (int i = 0; i < k; i += std::max(1, k / 10)) {
+      const int next = (i + 1) % k, previous = (i + k - 1) % k;
+      // Equator vertex i (valence 4) from the apex a: a, a neighbour, the other apex, a neighbour.
+      for (const int a : {k, k + 1}) {
+        const auto equator = 0.75L * p(i) + 0.375L * p(a) - 0.125L * p(a == k ? k + 1 : k);
+        const auto expected = (0.5L * (apex(a, i) + equator)).eval();
+        const int e = find_edge(t, a, i);
+        worst = std::max(
+            worst, static_cast<double>((once.vertices.row(k + 2 + e).cast<long double>() - expected).norm()));
+      }
+      // Along the equator: each end's stencil starts at the other end, −⅛ across from it.
+      const auto expected = (0.5L * ((0.75L * p(i) + 0.375L * p(next) - 0.125L * p(previous)) +
+                                     (0.75L * p(next) + 0.375L * p(i) - 0.125L * p((i + 2) % k))))
+                                .eval();
+      const int e = find_edge(t, i, next);
+      worst = std::max(
+          worst, static_cast<double>((once.vertices.row(k + 2 + e).cast<long double>() - expected).norm()));
+    }
+    CHECK(worst <= 1e-14 * m.vertices.cwiseAbs().maxCoeff());
+    if (k <= 40) {  // the kept weights (k² at each apex) replay the same points
+      const MeshRefinement r = refine_topology(m, MeshScheme::butterfly, 2);
+      CHECK((apply(r, m.vertices) - butterfly(m, 2).vertices).cwiseAbs().maxCoeff() <=
+            1e-14 * m.vertices.cwiseAbs().maxCoeff());
+    } else {  // refused before any work, saying why
+      MeshOptions options;
+      options.max_bytes = std::size_t{1} << 30;
+      CHECK_THROWS_WITH(refine_topology(m, MeshScheme::butterfly, 1, options),
+                        Contains("of them the weights of faces or vertices of 16 or more sides"));
+    }
+  }
+}
+
+TEST_CASE("Doo–Sabin is linear in the face size: rank-3 sums = the rule written out", "[subdivision][mesh]") {
+  // A k-gon's corner points each weigh all k corners (k² terms, 52 s for two levels around a vertex of
+  // valence 50,000); the one-shot sums a large face three ways once. A prism over a k-gon, against
+  // Σ_m α_m p_{i+m}, α_m = ¼δ_m + (3 + 2cos(2πm/k))/(4k), in long double.
+  for (const int k : {5, 15, 16, 40, 60000}) {
+    INFO("k = " << k);
+    std::vector<std::array<double, 3>> p;
+    for (int i = 0; i < 2 * k; ++i) {
+      const double a = 2 * std::numbers::pi * (i % k) / k;
+      p.push_back({std::cos(a) * (1 + 0.3 * std::sin(7.0 * i)), std::sin(a), i < k ? 0.01 * (i % 3) : 1.0});
+    }
+    std::vector<std::vector<int>> faces(2);
+    for (int i = 0; i < k; ++i) {
+      faces[0].push_back(k - 1 - i);  // the bottom, seen from below
+      faces[1].push_back(k + i);
+      faces.push_back({i, (i + 1) % k, k + (i + 1) % k, k + i});
+    }
+    const Mesh m = make_mesh(p, faces);
+    const auto start = std::chrono::steady_clock::now();
+    const Mesh once = doo_sabin(m, 1);
+    if (k == 60000)  // 0.1 s in Release (the k² sums: ~60 s); the sanitizers slow it about 20 times
+      CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() <
+            (cifs_test::kSanitized ? 30 : 3));
+    double worst = 0;
+    for (int f = 0; f < 2; ++f)
+      for (int i = 0; i < k; i += std::max(1, k / 10)) {
+        Eigen::Matrix<long double, 1, 3> expected = Eigen::Matrix<long double, 1, 3>::Zero();
+        for (int j = 0; j < k; ++j) {
+          const long double alpha = (j == 0 ? 0.25L : 0.0L) +
+                                    (3 + 2 * std::cos(2 * std::numbers::pi_v<long double> * j / k)) / (4 * k);
+          expected +=
+              alpha *
+              m.vertices.row(faces[static_cast<std::size_t>(f)][static_cast<std::size_t>((i + j) % k)])
+                  .cast<long double>();
+        }
+        const int child = m.face_offsets[static_cast<std::size_t>(f)] + i;  // corner (f, i)
+        worst = std::max(
+            worst, static_cast<double>((once.vertices.row(child).cast<long double>() - expected).norm()));
+      }
+    CHECK(worst <= 1e-14 * m.vertices.cwiseAbs().maxCoeff());
+    if (k <= 40) {  // the kept weights (k² a cap) replay the same points
+      const MeshRefinement r = refine_topology(m, MeshScheme::doo_sabin, 2);
+      CHECK((apply(r, m.vertices) - doo_sabin(m, 2).vertices).cwiseAbs().maxCoeff() <=
+            1e-14 * m.vertices.cwiseAbs().maxCoeff());
+    } else {  // refused before any work, saying why
+      MeshOptions options;
+      options.max_bytes = std::size_t{1} << 30;
+      CHECK_THROWS_WITH(refine_topology(m, MeshScheme::doo_sabin, 1, options),
+                        Contains("of them the weights of faces or vertices of 16 or more sides"));
+    }
   }
 }
 
