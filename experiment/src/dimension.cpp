@@ -218,7 +218,10 @@ DimensionMeasurement dimension_measure(const io::Experiment& e, const DimensionO
   } else if (o.depth) {
     m = measure_depth(e, *o.depth, bo, user_levels);
   } else {
-    m.sample = sample(e, {.tolerance = o.relative_piece_size.value_or(0), .max_points = o.max_points});
+    m.sample = sample(e, {.tolerance = o.relative_piece_size.value_or(0),
+                          .max_points = o.max_points,
+                          .tolerance_name = "--relative-piece-size",
+                          .limit_hint = "; raise --relative-piece-size or --max-points"});
     m.route = "tolerance";
     m.resolution = m.sample.resolution;
     ifs::BoxCountingOptions so = bo;

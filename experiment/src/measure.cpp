@@ -79,6 +79,10 @@ Evaluation sample(const io::Experiment& experiment, const SampleOptions& options
   so.homogeneous = scene.rational;
   so.max_points = options.max_points;
   so.epsilon = options.tolerance * ifs::nets_diameter(scene.nets, scene.rational);
+  so.tolerance_name = options.tolerance_name;
+  const std::string given = std::string(options.tolerance_name) + " " + number_text(options.tolerance, 6);
+  so.tolerance_text = given;
+  so.limit_hint = options.limit_hint;
   if (options.tolerance > 0 && !(so.epsilon > 0))
     throw InvalidInput(
         "the tolerance is relative to the size of the control nets, which are single points; give a depth "

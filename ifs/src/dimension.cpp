@@ -95,15 +95,19 @@ ToleranceSample tolerance_sample(const automata::Automaton& a, std::span<const P
   std::size_t n = 0;
   std::vector<CoverCount> cover;
   if (o.epsilon > 0) {
-    const std::string name = std::string(o.tolerance_name) + " " + number_text(o.epsilon, 6);
+    const std::string name = o.tolerance_text.empty()
+                                 ? std::string(o.tolerance_name) + " " + number_text(o.epsilon, 6)
+                                 : std::string(o.tolerance_text);
+    const std::string hint = o.limit_hint.empty()
+                                 ? "; raise " + std::string(o.tolerance_name) + " or the point limit"
+                                 : std::string(o.limit_hint);
     if (const double about = clearly_above(to); about > 0)
-      throw InvalidInput(name + " needs about " + number_text(about, 6) +
-                         " points (estimated from coarser tolerances), more than " +
-                         std::to_string(o.max_points) + "; raise " + std::string(o.tolerance_name));
+      throw InvalidInput(name + " needs about " + number_text(about, 3) +
+                         " points (estimated from coarser tolerances), more than the limit of " +
+                         std::to_string(o.max_points) + hint);
     n = count_leaves(a, nets, to, o.max_points);
     if (n > o.max_points)
-      throw InvalidInput(name + " needs more than " + std::to_string(o.max_points) + " points; raise " +
-                         std::string(o.tolerance_name) + " or the point limit");
+      throw InvalidInput(name + " needs more than " + std::to_string(o.max_points) + " points" + hint);
   } else {
     // The largest power-of-2 fraction of the nets' extent within the point budget.
     const double extent = nets_diameter(nets, o.homogeneous);

@@ -113,9 +113,16 @@ TEST_CASE("cifs dimension: tolerance samples by default", "[cli][dimension]") {
   CHECK(std::abs(dim("experiments/koch.json --max-points 1048576") - std::log(4.0) / std::log(3.0)) < 0.01);
   CHECK(std::abs(dim("shapes/wave.json --max-points 1048576") - 1) < 0.02);  // rational: Cartesian bound
   CHECK(dim("experiments/clover_fractal.json --max-points 1048576") >= 1);
+  check_error(
+      cifs_cli("dimension " CIFS_EXAMPLES_DIR
+               "/experiments/koch.json --relative-piece-size 1e-9 --max-points 1000"),
+      "--relative-piece-size 1e-09 needs more than 1000 points; raise --relative-piece-size or --max-points");
+  // Named as given, not as the absolute piece size it was scaled to (the estimate's refusal too).
   check_error(cifs_cli("dimension " CIFS_EXAMPLES_DIR
-                       "/experiments/koch.json --relative-piece-size 1e-9 --max-points 1000"),
-              "needs more than 1000 points");
+                       "/shapes/cubic.json --relative-piece-size 1e-7 --max-points 50000000"),
+              "--relative-piece-size 1e-07 needs about 5.53e+07 points (estimated from coarser tolerances), "
+              "more than the "
+              "limit of 50000000; raise --relative-piece-size or --max-points");
 }
 
 TEST_CASE("cifs dimension: the default route chooses itself and reports an uncertainty", "[cli][dimension]") {

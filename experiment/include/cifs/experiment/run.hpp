@@ -91,6 +91,10 @@ struct SampleOptions {
   double tolerance = 0;
   /// Refuse (before allocating it) a sample of more points.
   std::size_t max_points = std::size_t{1} << 21;
+  /// How refusals name the tolerance (`--relative-piece-size`, say) and what they advise above
+  /// max_points (empty: raise the tolerance or the point limit).
+  std::string_view tolerance_name = "tolerance";
+  std::string_view limit_hint = {};
 };
 
 /// Builds the source of `experiment` as `run` does and samples its attractor to a tolerance

@@ -120,6 +120,11 @@ struct ToleranceSampleOptions {
   int max_depth = 64;
   /// How refusals name epsilon (a CLI option, say).
   std::string_view tolerance_name = "tolerance";
+  /// The tolerance as its user gave it, for refusals (empty: tolerance_name and epsilon): a relative
+  /// piece size is not the absolute epsilon it was scaled to.
+  std::string_view tolerance_text = {};
+  /// What refusals of a sample above max_points advise (empty: raise the tolerance or the point limit).
+  std::string_view limit_hint = {};
 };
 
 /// Samples the attractor to a tolerance (for_each_leaf_to_tolerance with PieceBounds): one point
