@@ -8,6 +8,8 @@
 #include <climits>
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "cifs/errors.hpp"
 #include "cifs/memory.hpp"
@@ -32,22 +34,36 @@ void check_faces(std::span<const int> offsets, std::span<const int> corners, int
   if (corners.size() > static_cast<std::size_t>(INT_MAX / 2))
     throw InvalidInput(who + ": " + std::to_string(corners.size()) +
                        " corners, more than 32-bit indices hold");
+  std::vector<std::pair<std::ptrdiff_t, std::size_t>> seen;  // per vertex: the last large face and its corner
   for (std::size_t f = 0; f + 1 < offsets.size(); ++f) {
     const int size = offsets[f + 1] - offsets[f];
     if (size < 3)
       throw InvalidInput(who + ": face " + std::to_string(f) + " has " + std::to_string(std::max(size, 0)) +
                          " vertices, a face needs at least 3");
     const auto face = corners.subspan(static_cast<std::size_t>(offsets[f]), static_cast<std::size_t>(size));
+    // Small faces compare their corners pairwise; a large one marks them per vertex (pairwise, a
+    // 60,000-gon took a second).
+    const bool large = face.size() > 32;
+    if (large && seen.empty()) seen.assign(static_cast<std::size_t>(vertex_count), {-1, 0});
     for (std::size_t i = 0; i < face.size(); ++i) {
       if (face[i] < 0 || face[i] >= vertex_count)
         throw InvalidInput(who + ": face " + std::to_string(f) + " corner " + std::to_string(i) +
                            " is vertex " + std::to_string(face[i]) + ", out of range (" +
                            std::to_string(vertex_count) + " vertices)");
-      for (std::size_t j = 0; j < i; ++j)
-        if (face[j] == face[i])
-          throw InvalidInput(who + ": face " + std::to_string(f) + " repeats vertex " +
-                             std::to_string(face[i]) + " (corners " + std::to_string(j) + " and " +
-                             std::to_string(i) + ")");
+      std::size_t j = i;
+      if (large) {
+        auto& [face_seen, corner] = seen[static_cast<std::size_t>(face[i])];
+        if (face_seen == static_cast<std::ptrdiff_t>(f)) j = corner;
+        face_seen = static_cast<std::ptrdiff_t>(f);
+        corner = i;
+      } else {
+        j = static_cast<std::size_t>(
+            std::find(face.begin(), face.begin() + static_cast<std::ptrdiff_t>(i), face[i]) - face.begin());
+      }
+      if (j < i)
+        throw InvalidInput(who + ": face " + std::to_string(f) + " repeats vertex " +
+                           std::to_string(face[i]) + " (corners " + std::to_string(j) + " and " +
+                           std::to_string(i) + ")");
     }
   }
 }

@@ -279,6 +279,19 @@ TEST_CASE("topology refuses what is not an oriented manifold, naming the element
       "vertex 0 is not manifold");
   fails(faces_mesh(3, {{0, 1}}), "face 0 has 2 vertices");
   fails(faces_mesh(3, {{0, 1, 1}}), "face 0 repeats vertex 1");
+  // Large faces mark their corners per vertex instead of comparing them pairwise: same message, and a
+  // vertex of an earlier large face is no repeat.
+  std::vector<int> big(40), other(40);
+  for (int i = 0; i < 40; ++i) big[static_cast<std::size_t>(i)] = other[static_cast<std::size_t>(i)] = i;
+  std::reverse(other.begin(), other.end());
+  big[37] = 5;
+  fails(faces_mesh(40, {other, big}), "face 1 repeats vertex 5 (corners 5 and 37)");
+  big[37] = 37;
+  big[38] = 37;
+  fails(faces_mesh(40, {other, big}), "face 1 repeats vertex 37 (corners 37 and 38)");
+  big[38] = 38;
+  CHECK(build_topology(faces_mesh(40, {other, big})).edges.size() ==
+        40);  // two faces glued: one disc each side
   fails(faces_mesh(3, {{0, 1, 7}}), "face 0 corner 2 is vertex 7, out of range (3 vertices)");
   fails(faces_mesh(3, {{0, -1, 2}}), "out of range");
 }

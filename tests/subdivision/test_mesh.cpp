@@ -259,7 +259,8 @@ TEST_CASE("Butterfly is linear in the valence: ring sums = ZSS's stencils writte
       const int next = (i + 1) % k, previous = (i + k - 1) % k;
       // Equator vertex i (valence 4) from the apex a: a, a neighbour, the other apex, a neighbour.
       for (const int a : {k, k + 1}) {
-        const auto equator = 0.75L * p(i) + 0.375L * p(a) - 0.125L * p(a == k ? k + 1 : k);
+        const Eigen::Matrix<long double, 1, 3> equator =
+            0.75L * p(i) + 0.375L * p(a) - 0.125L * p(a == k ? k + 1 : k);
         const auto expected = (0.5L * (apex(a, i) + equator)).eval();
         const int e = find_edge(t, a, i);
         worst = std::max(
