@@ -227,26 +227,64 @@ double nets_diameter(std::span<const Points> nets, bool homogeneous) {
 #if defined(CIFS_X86_AVX)
 namespace {
 
-/// The largest ‖T_i − T_j‖₁ over pairs of columns of T, whose rows are a multiple of 4, four entries at a
-/// time with AVX: each sum in the order of Eigen's SSE2 sum of a vector, which the generic loop of delta
-/// gets — four partial sums over the entries k ≡ 0, 1, 2, 3 (mod 4), then (s0 + s2) + (s1 + s3) —, so δ
-/// is the same double either way (tests/ifs/test_analysis.cpp). A third of a contractivity check's
-/// instructions went to δ of 16 × 16 products.
-__attribute__((target("avx"))) double largest_distance_avx(const Eigen::MatrixXd& T) noexcept {
-  const Eigen::Index n = T.rows();
-  const __m256d sign = _mm256_set1_pd(-0.0);  // |x|: x with the sign bit cleared
-  double best = 0;
-  for (Eigen::Index i = 0; i < T.cols(); ++i)
-    for (Eigen::Index j = i + 1; j < T.cols(); ++j) {
-      const double *a = T.col(i).data(), *b = T.col(j).data();
-      __m256d sum = _mm256_andnot_pd(sign, _mm256_sub_pd(_mm256_loadu_pd(a), _mm256_loadu_pd(b)));
-      for (Eigen::Index k = 4; k < n; k += 4)
-        sum = _mm256_add_pd(
-            sum, _mm256_andnot_pd(sign, _mm256_sub_pd(_mm256_loadu_pd(a + k), _mm256_loadu_pd(b + k))));
-      const __m128d half = _mm_add_pd(_mm256_castpd256_pd128(sum), _mm256_extractf128_pd(sum, 1));
-      best = std::max(best, _mm_cvtsd_f64(_mm_add_sd(half, _mm_unpackhi_pd(half, half))));
+/// |a_k − b_k| for a broadcast entry a_k of one row and four entries b_k of four rows (lanes not in `lanes`
+/// are not read, and count 0).
+__attribute__((target("avx"), always_inline)) inline __m256d row_distances(const double* a, const double* b,
+                                                                           __m256i lanes) noexcept {
+  return _mm256_andnot_pd(_mm256_set1_pd(-0.0),  // |x|: x with the sign bit cleared
+                          _mm256_sub_pd(_mm256_broadcast_sd(a), _mm256_maskload_pd(b, lanes)));
+}
+
+/// Lane by lane, the larger of `best` and the sum (s0 + s2) + (s1 + s3) of four partial sums, as
+/// std::max(best, sum): a sum that is NaN (a NaN entry) leaves `best` as it was. Lanes not in `lanes` count
+/// 0.
+__attribute__((target("avx"), always_inline)) inline __m256d larger(__m256d best, __m256d s0, __m256d s1,
+                                                                    __m256d s2, __m256d s3,
+                                                                    __m256i lanes) noexcept {
+  const __m256d sum = _mm256_add_pd(_mm256_add_pd(s0, s2), _mm256_add_pd(s1, s3));
+  return _mm256_max_pd(_mm256_and_pd(sum, _mm256_castsi256_pd(lanes)), best);
+}
+
+/// The largest ‖M_i − M_j‖₁ over pairs of rows of M, whose columns are a multiple of 4, with AVX: rows i and
+/// i + 1 against four rows j at a time (one per lane, read down M's contiguous columns: no transpose, each
+/// load serving both rows), each sum in the order of Eigen's SSE2 sum of a vector, which the generic loop of
+/// delta gets — four partial sums over the entries k ≡ 0, 1, 2, 3 (mod 4), then (s0 + s2) + (s1 + s3) —, so
+/// δ is the same double either way (tests/ifs/test_analysis.cpp). The blocks of rows j start at a multiple
+/// of 4, so a block may hold rows j ≤ i + 1: their sums are those of pairs met elsewhere (|a − b| = |b − a|,
+/// summed in the same order) or 0, and the largest is unchanged; lanes beyond the last row count 0. δ of
+/// 16 × 16 products was half of a contractivity check's instructions, its transpose a fifth of that.
+__attribute__((target("avx"))) double largest_distance_avx(const Eigen::MatrixXd& M) noexcept {
+  const Eigen::Index n = M.rows(), cols = M.cols();
+  __m256d best = _mm256_setzero_pd();
+  for (Eigen::Index i = 0; i + 1 < n; i += 2) {
+    const double* a = M.data() + i;  // a[k * n]: M(i, k), a[k * n + 1]: M(i + 1, k) (when i + 1 < n)
+    for (Eigen::Index j = (i + 1) / 4 * 4; j < n; j += 4) {
+      const __m256i lanes = _mm256_set_epi64x(j + 3 < n ? -1 : 0, j + 2 < n ? -1 : 0, j + 1 < n ? -1 : 0, -1);
+      const double* b = M.data() + j;  // b[k * n + q]: M(j + q, k)
+      __m256d s0 = row_distances(a, b, lanes), s1 = row_distances(a + n, b + n, lanes),
+              s2 = row_distances(a + 2 * n, b + 2 * n, lanes),
+              s3 = row_distances(a + 3 * n, b + 3 * n, lanes);
+      __m256d t0 = row_distances(a + 1, b, lanes), t1 = row_distances(a + 1 + n, b + n, lanes),
+              t2 = row_distances(a + 1 + 2 * n, b + 2 * n, lanes),
+              t3 = row_distances(a + 1 + 3 * n, b + 3 * n, lanes);
+      for (Eigen::Index k = 4; k < cols; k += 4) {
+        const double *x = a + k * n, *y = b + k * n;
+        s0 = _mm256_add_pd(s0, row_distances(x, y, lanes));
+        t0 = _mm256_add_pd(t0, row_distances(x + 1, y, lanes));
+        s1 = _mm256_add_pd(s1, row_distances(x + n, y + n, lanes));
+        t1 = _mm256_add_pd(t1, row_distances(x + 1 + n, y + n, lanes));
+        s2 = _mm256_add_pd(s2, row_distances(x + 2 * n, y + 2 * n, lanes));
+        t2 = _mm256_add_pd(t2, row_distances(x + 1 + 2 * n, y + 2 * n, lanes));
+        s3 = _mm256_add_pd(s3, row_distances(x + 3 * n, y + 3 * n, lanes));
+        t3 = _mm256_add_pd(t3, row_distances(x + 1 + 3 * n, y + 3 * n, lanes));
+      }
+      best = larger(best, s0, s1, s2, s3, lanes);
+      best = larger(best, t0, t1, t2, t3, lanes);
     }
-  return best;
+  }
+  alignas(32) double lane[4];
+  _mm256_store_pd(lane, best);
+  return std::max(std::max(lane[0], lane[1]), std::max(lane[2], lane[3]));
 }
 
 /// C = A·B, A's rows a multiple of 4, with AVX: four rows of a column of C at a time, each entry summed
@@ -428,12 +466,12 @@ void detail::multiply(const Eigen::MatrixXd& A, const Points& B, Points& C) {
 }
 
 double delta(const Eigen::MatrixXd& M) noexcept {
+#if defined(CIFS_X86_AVX)
+  if (M.cols() % 4 == 0 && M.cols() > 0 && cpu_has_avx()) return largest_distance_avx(M) / 2;
+#endif
   // Rows as contiguous columns: the pairs loop vectorises (strided rows made δ of 65 × 65 products
   // as slow as the products themselves).
   const Eigen::MatrixXd T = M.transpose();
-#if defined(CIFS_X86_AVX)
-  if (T.rows() % 4 == 0 && T.rows() > 0 && cpu_has_avx()) return largest_distance_avx(T) / 2;
-#endif
   double best = 0;
   for (Eigen::Index i = 0; i < T.cols(); ++i)
     for (Eigen::Index j = i + 1; j < T.cols(); ++j)
@@ -555,6 +593,7 @@ struct SuffixBounds {
   int length = 0;
   std::vector<double> delta, norm;                 // by state
   std::vector<std::vector<double>> deltas, norms;  // by state, by path
+  std::vector<std::vector<double>> step;           // by state, by out-edge: δ of the transition's matrix
 };
 
 /// Enumerates the paths of exactly `length` transitions from every reachable state, with the
@@ -583,13 +622,14 @@ struct PathScan {
   std::vector<int> worst_word;
   bool record = false;  // keep every path's δ and ∞-norm (SuffixBounds::deltas, norms)
   std::vector<double> leaf_delta, leaf_norm;
-  std::size_t bounded = 0;  // the nodes of depth length − h met from the current start state
+  std::size_t met = 0;  // the nodes of depth length − h met from the current start state
   // Work space: product and word per level.
   std::vector<Eigen::MatrixXd> product;
   std::vector<int> word;
 
-  // Returns false to abandon the scan (a failure found and stop_at_first_failure).
-  bool descend(StateId from, StateId s, int k) {
+  // Returns false to abandon the scan (a failure found and stop_at_first_failure). `bounded`: a node of depth
+  // length − h whose skip was decided (not skipped) by its parent, on the δ and norm it would compute.
+  bool descend(StateId from, StateId s, int k, bool bounded = false) {
     const Graph& g = automaton.graph;
     const auto& P = product[static_cast<std::size_t>(k)];
     const double norm = norms ? P.cwiseAbs().rowwise().sum().maxCoeff() : 1.0;
@@ -607,21 +647,27 @@ struct PathScan {
       }
       return !(stop_at_first_failure && d >= 1);
     }
-    if (suffix && k == length - suffix->length && skips(delta(P), norm, s)) return true;
+    if (suffix && k == length - suffix->length && !bounded && skips(delta(P), norm, s)) return true;
+    // The parent of leaves: a leaf's δ is at most δ(M)·δ(P) (M its transition; submultiplicative, as the
+    // subtrees' bounds), so a leaf whose bound is within the worst found cannot change it: its product and δ
+    // are not made. Without norms only (a skipped leaf would not raise A), and not when recording.
+    const double leaves =
+        suffix && !norms && !record && k + 1 == length && !worst_word.empty() ? delta(P) : -1;
     // Children at depth h of a scan of 2h: their δ and norm are the suffix scan's, the product is made
-    // only for a child that is not skipped (which then decides as above, on the same numbers).
+    // only for a child that is not skipped (whose δ is then not made again: skips would answer the same).
     const bool known = suffix && k + 1 == suffix->length && length == 2 * suffix->length;
     int child = 0;
     for (auto [b, e] = out_edges(s, g); b != e; ++b, ++child) {
       word[static_cast<std::size_t>(k)] = child;
+      if (leaves >= 0 && leaves * suffix->step[s][static_cast<std::size_t>(child)] <= worst) continue;
       if (known) {
-        const std::size_t i = bounded++;
+        const std::size_t i = met++;
         const double n = norms ? suffix->norms[from][i] : 1.0;
         A = std::max(A, n);
         if (skips(suffix->deltas[from][i], n, target(*b, g))) continue;
       }
       times(g[*b].matrix, k, product);
-      if (!descend(from, target(*b, g), k + 1)) return false;
+      if (!descend(from, target(*b, g), k + 1, known)) return false;
     }
     return true;
   }
@@ -679,7 +725,7 @@ struct PathScan {
     for (const StateId s : states) {
       const int n = automaton.graph[s].size;
       product[0] = Eigen::MatrixXd::Identity(n, n);
-      bounded = 0;
+      met = 0;
       if (!descend(s, s, 0)) return false;
     }
     return true;
@@ -687,22 +733,27 @@ struct PathScan {
 };
 
 /// The suffix bounds of paths of `length` transitions from every state in `states` (exact maxima: one
-/// full scan per state, about 1/out-degree of the work of a scan one level longer).
-SuffixBounds suffix_bounds(const Automaton& automaton, const std::vector<StateId>& states, int length) {
+/// full scan per state, about 1/out-degree of the work of a scan one level longer); the norms only
+/// `with_norms` (the scans they bound track A: ContractionOptions::bound), else 1.
+SuffixBounds suffix_bounds(const Automaton& automaton, const std::vector<StateId>& states, int length,
+                           bool with_norms) {
   const auto n = num_vertices(automaton.graph);
   SuffixBounds out{.length = length,
                    .delta = std::vector<double>(n, 0),
                    .norm = std::vector<double>(n, 1),
                    .deltas = std::vector<std::vector<double>>(n),
-                   .norms = std::vector<std::vector<double>>(n)};
+                   .norms = std::vector<std::vector<double>>(n),
+                   .step = std::vector<std::vector<double>>(n)};
   for (const StateId s : states) {
-    PathScan scan(automaton, length, false);
+    PathScan scan(automaton, length, false, nullptr, with_norms);
     scan.record = true;
     scan.run({s});
     out.delta[s] = scan.worst;
     out.norm[s] = scan.A;
     out.deltas[s] = std::move(scan.leaf_delta);
     out.norms[s] = std::move(scan.leaf_norm);
+    for (auto [b, e] = out_edges(s, automaton.graph); b != e; ++b)
+      out.step[s].push_back(delta(automaton.graph[*b].matrix));
   }
   return out;
 }
@@ -784,7 +835,7 @@ Contraction check_contraction(const Automaton& automaton, const ContractionOptio
   const auto bounds_for = [&](int m) -> const SuffixBounds* {
     if (m <= 3) return nullptr;
     auto& suffix = suffixes[static_cast<std::size_t>(std::min(m / 2, 3))];
-    if (!suffix) suffix = suffix_bounds(automaton, states, std::min(m / 2, 3));
+    if (!suffix) suffix = suffix_bounds(automaton, states, std::min(m / 2, 3), options.bound);
     return &*suffix;
   };
   if (failing && failing->by_length.size() < static_cast<std::size_t>(options.max_length))

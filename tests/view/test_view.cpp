@@ -229,10 +229,9 @@ TEST_CASE("view handle: hostile requests refused with a 4xx, the session still a
     CHECK(f.post("/api/geometry", "[1, 2]").status == 400);
     CHECK(f.post("/api/geometry", R"({"params": {"depth": 1000000000000}})").status == 400);
     CHECK(f.post("/api/geometry", R"({"params": {"depth": "7"}})").status == 400);
-    CHECK(
-        f.post("/api/geometry", R"({"params": {"dpeth": 7}})").body ==
-        "cifs view: /api/geometry: unknown parameter 'dpeth' (depth, scheme, levels, points, weights, knots, "
-        "amplitude, seed, values)\n");
+    CHECK(f.post("/api/geometry", R"({"params": {"dpeth": 7}})").body ==
+          "cifs view: /api/geometry: unknown parameter 'dpeth' (depth, scheme, levels, points, weights, "
+          "knots, nets, amplitude, seed, values)\n");
     CHECK(f.post("/api/geometry", R"({"params": {"depth": 11}})").status == 400);
     CHECK(f.post("/api/geometry", R"({"params": {"points": [[0, 1e400, 0, 0]]}})").status == 400);
     CHECK(f.post("/api/geometry", R"({"params": {"points": [[0, 1, 2]]}})").status ==
@@ -604,7 +603,7 @@ TEST_CASE("view handle: knots and weights through the requests; save writes them
   CHECK(f.post("/api/geometry", R"({"params": {"depth": 5}})").body == plain);
   cifs_test::ViewFixture mesh("meshes/cube.obj");  // a mesh has neither
   check_view_refusal(mesh.post("/api/geometry", R"({"params": {"weights": [[0, 2]]}})"),
-                     "knots, weights: those of cube.obj are not edited here");
+                     "knots, weights: cube.obj has none");
   // The automaton drawn: the edited knots' (a uniform interior has fewer distinct windows).
   const std::string svg = f.get("/api/automaton.svg?token=" + f.session.token).body;
   const std::string uniform =

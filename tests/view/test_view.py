@@ -231,7 +231,86 @@ def bcifs_scenario(args, cifs, driver, work):
     print(f"BC-IFS: {len(document['coefficients'])} coefficient sliders; {name} = {sent:.6f}: "
           f"{state['pointCount']} points, the library's checksum; {state['contraction']} "
           f"({time.time() - start:.1f} s with the fit)")
+    net_drag_scenario(args, cifs, driver, work, fit, url, {name: sent}, depth)
     return server
+
+
+def net_drag_scenario(args, cifs, driver, work, fit, url, values, depth):
+    """A point of the fit's nets dragged: the point the fit repeats in the neighbouring segments' nets (their
+    windows overlap) moves with its copies, and the page holds the library's evaluation of the file with that
+    edit, made here from the fit's JSON and the page's request; save writes it; a request that pulls a joined
+    point apart is refused, the page still answering."""
+    original = json.loads(fit.read_text())
+    nets = [entry["net"] for entry in original["bcifs"]["initial"]]
+    # The first point with a copy in a later net: the page picks the first of coincident points.
+    net, index = next((n, i) for n, rows in enumerate(nets) for i, row in enumerate(rows)
+                      if any(row in later for later in nets[n + 1:]))
+    flat = sum(len(rows) for rows in nets[:net]) + index
+    state = driver.execute_script("return window.cifsView")
+    x, y = driver.execute_script(f"return window.cifsView.screenOf({flat})")
+    canvas = driver.find_element("id", "canvas")
+    rect = driver.execute_script("return arguments[0].getBoundingClientRect()", canvas)
+    from selenium.webdriver.common.action_chains import ActionChains
+    ActionChains(driver).move_to_element_with_offset(
+        canvas, int(round(x - rect["left"] - rect["width"] / 2)), int(round(y - rect["top"] - rect["height"] / 2))) \
+        .click_and_hold().move_by_offset(15, -25).move_by_offset(15, -25).release().perform()
+    state = settle(driver, state["checksum"], "the geometry after a net drag")
+    wait_for(driver, "window.cifsView.ready", "the last net edit")
+    time.sleep(0.5)
+    state = driver.execute_script("return window.cifsView")
+    edits = state["sent"]["nets"]
+    if len(edits) != 1 or edits[0][:2] != [net, index]:
+        fail(f"the page sent {edits} for a drag of net {net} point {index}")
+    position = edits[0][2:]
+    # The library's geometry of the edited file: the point and its copies in the other nets moved.
+    edited = json.loads(fit.read_text())
+    old_row = nets[net][index]
+    copies = 0
+    for n, entry in enumerate(edited["bcifs"]["initial"]):
+        for i, row in enumerate(entry["net"]):
+            if (n, i) == (net, index) or (n != net and row == old_row):
+                entry["net"][i] = position
+                copies += 1
+    expected_file = work / "fit_net_edited.json"
+    expected_file.write_text(json.dumps(edited))
+    experiment = work / "fit_net_experiment.json"
+    experiment.write_text(json.dumps({"automaton": str(expected_file), "evaluation": {"depth": depth},
+                                      "perturbation": {"amplitude": 0, "values": values},
+                                      "outputs": {"ply": "unused.ply"}}))
+    expected = fnv1a(np.asarray(cifs.experiment.evaluate(cifs.io.read_experiment(str(experiment)), depth).points))
+    if copies < 2 or state["checksum"] != expected:
+        fail(f"net {net} point {index} dragged to {position} ({copies} copies): the page holds "
+             f"{state['checksum']:08x}, the library {expected:08x}")
+    # Save: the edited nets, read back by cifs info.
+    driver.find_element("id", "save-name").clear()
+    driver.find_element("id", "save-name").send_keys("rough_fit-nets.json")
+    driver.execute_script("window.cifsView.saved = null")
+    driver.find_element("id", "save").click()
+    wait_for(driver, "window.cifsView.saved", "the save of the edited nets")
+    saved = work / "rough_fit-nets.json"
+    info = subprocess.run([args.cli, "info", str(saved)], capture_output=True, text=True)
+    saved_nets = [entry["net"] for entry in json.loads(saved.read_text())["bcifs"]["initial"]]
+    if info.returncode != 0 or saved_nets != [entry["net"] for entry in edited["bcifs"]["initial"]]:
+        fail(f"the saved nets: cifs info {info.returncode} {info.stderr!r}")
+    # Two positions for one joined point: refused; the page still draws the library's geometry.
+    token = urllib.parse.parse_qs(urllib.parse.urlsplit(url).query)["token"][0]
+    copy = next((n, i) for n, rows in enumerate(nets) for i, row in enumerate(rows) if n != net and row == old_row)
+    apart = {"params": {"values": values, "nets": [[net, index] + position, list(copy) + [0.0] * len(position)]}}
+    status, text = request(url, "POST", "/api/geometry?token=" + token, json.dumps(apart))
+    if status != 400 or "are one point of the file's nets" not in text:
+        fail(f"a joined point pulled apart: {status} {text!r}")
+    old = state["checksum"]
+    set_field(driver, "depth", depth - 1, "input")
+    state = settle(driver, old, "the geometry after the refused net edit")
+    experiment.write_text(json.dumps({"automaton": str(saved), "evaluation": {"depth": depth - 1},
+                                      "outputs": {"ply": "unused.ply"}}))
+    expected = fnv1a(np.asarray(cifs.experiment.evaluate(cifs.io.read_experiment(str(experiment)), depth - 1).points))
+    if state["checksum"] != expected:
+        fail(f"after the refused edit: the page holds {state['checksum']:08x}, the saved file {expected:08x}")
+    if console_errors(driver):
+        fail(f"console errors after the net drag: {console_errors(driver)}")
+    print(f"nets: net {net} point {index} dragged with its {copies - 1} copies: the library's checksum; saved, "
+          f"cifs info reads it; a joined point pulled apart refused ({text.strip()[:60]}…)")
 
 
 def main():

@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -15,12 +16,17 @@
 #include <random>
 #include <string>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 #include "cifs/errors.hpp"
 #include "cifs/experiment/run.hpp"
 #include "cifs/ifs/analysis.hpp"
 #include "cifs/ifs/bcifs.hpp"
+#include "cifs/ifs/bcifs_curve.hpp"
 #include "cifs/io/io.hpp"
+#include "cifs/nurbs/curve.hpp"
+#include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/view/server.hpp"
 #include "support/scratch.hpp"
 #include "view/view_support.hpp"
@@ -275,7 +281,23 @@ TEST_CASE(
   CHECK(back.evaluation.depth == 5);
   CHECK(back.render.width == 300);  // the rest as written
   CHECK(back.outputs.png == "wave_fractal.png");
-  CHECK(post("/api/save", {{"name", "x.json"}, {"params", {{"points", {{0, 1, 2}}}}}}).status == 400);
+  // A moved control point: the experiment saved with its shape inline (the edited shape, as make_curve builds
+  // it by hand here), and the runner's points of the saved file are those the view shows.
+  const view::Response with_point =
+      post("/api/save", {{"name", "wave-moved.json"}, {"params", {{"depth", 6}, {"points", {{0, 1, 2}}}}}});
+  REQUIRE(with_point.status == 200);
+  const io::Experiment back_moved = io::read_experiment(dir.path() / "wave-moved.json");
+  const auto& file_curve = std::get<nurbs::Curve>(*d.shape);
+  Points cartesian = nurbs::cartesian_points(file_curve);
+  cartesian.row(0) << 1, 2;
+  const nurbs::Curve by_hand =
+      nurbs::make_curve(file_curve.degree, file_curve.knots, cartesian, nurbs::weights(file_curve));
+  REQUIRE(back_moved.shape);
+  CHECK(std::get<nurbs::Curve>(*back_moved.shape).P == by_hand.P);
+  view::Params moved = p;
+  moved.points = {{.index = 0, .position = {1, 2}}};
+  check_same_points(view::geometry(d, moved), experiment::evaluate(back_moved).points);
+  CHECK(back_moved.perturbation->amplitude == 0.3);
   // Experiments on other sources are named and refused.
   CHECK_THROWS_WITH(view::open_document(kBcifsExamples + "/experiments/fern.json"),
                     Catch::Contains("an experiment on a classic IFS"));
@@ -334,4 +356,120 @@ TEST_CASE(
     refusals += refused;
   }
   CHECK(refusals > 0);  // the curve's amplitudes reach systems that are not contractive
+}
+
+TEST_CASE(
+    "view BC-IFS nets: a moved point and its copies in the other nets give the runner's pieces of the "
+    "edited file; refusals; save",
+    "[view][view_bcifs]") {
+  // A file of several nets, joined where neighbouring pieces' windows overlap, as cifs fit --fractal writes
+  // one: the BC-IFS of cubic.json (3 segments: control point 2 is row 2, 1, 0 of nets 0, 1, 2) with the
+  // knot automaton's nets.
+  cifs_test::ScratchDir dir;
+  const auto curve = std::get<nurbs::Curve>(io::read_shape(kBcifsExamples + "/shapes/cubic.json"));
+  const ifs::Bcifs system = ifs::curve_bcifs(curve);
+  const std::vector<Points> nets = nurbs::initial_nets(nurbs::knot_automaton(curve), curve);
+  REQUIRE(nets.size() == 3);
+  const std::filesystem::path file = dir.path() / "cubic_bcifs.json";
+  io::write(file, io::BcifsFile{system, nets});
+  view::Session session;
+  view::open_session(session, file, "127.0.0.1", 8765);
+  const view::Document& d = session.document;
+  REQUIRE(d.kind == view::Kind::bcifs);
+  const auto post = [&](const std::string& path, const nlohmann::json& body) {
+    return view::handle(session, {.method = "POST",
+                                  .target = path + "?token=" + session.token,
+                                  .host = "127.0.0.1:8765",
+                                  .body = body.dump()});
+  };
+  const auto params = [](const nlohmann::json& edits) {
+    return nlohmann::json{{"depth", 5}, {"nets", edits}};
+  };
+
+  // The expected nets: those of the curve with control point 2 moved (the knot automaton's windows of the
+  // edited polygon), and the runner's pieces of a file holding them beside the same system.
+  Points polygon = curve.P;
+  polygon.row(2) << 2.5, 3.75, -1.0;
+  const nurbs::Curve moved = nurbs::make_curve(curve.degree, curve.knots, polygon);
+  const std::vector<Points> expected = nurbs::initial_nets(nurbs::knot_automaton(moved), moved);
+  REQUIRE(expected[1].row(1) == polygon.row(2));
+  const std::filesystem::path edited_file = dir.path() / "expected.json";
+  io::write(edited_file, io::BcifsFile{system, expected});
+  const Points runner = runner_points(dir.path(), {{"automaton", edited_file.string()}}, 5);
+
+  view::Params p = view::default_params(d);
+  p.depth = 5;
+  const view::Geometry before = view::geometry(d, p);
+  {  // each of the point's three copies, dragged, moves all three: the runner's pieces of the edited file
+    for (const auto& [net, index] : {std::pair{0, 2}, std::pair{1, 1}, std::pair{2, 0}}) {
+      p.nets = {{.net = std::size_t(net), .index = std::size_t(index), .position = {2.5, 3.75, -1.0}}};
+      CHECK(view::edited_nets(d, p) == expected);
+      const view::Geometry g = view::geometry(d, p);
+      check_same_points(g, runner);
+      CHECK(g.checksum != before.checksum);
+      std::vector<float> drawn;
+      for (const Points& n : expected) {
+        const std::vector<float> rows = cifs_test::page_floats(n);
+        drawn.insert(drawn.end(), rows.begin(), rows.end());
+      }
+      CHECK(g.net == drawn);
+      // The matrices are not read: the contractivity is the file's, to the bit.
+      CHECK(g.contraction_length == before.contraction_length);
+      CHECK(g.contraction_delta == before.contraction_delta);
+    }
+    // Through the handler: the bytes of the same geometry.
+    const view::Response r = post("/api/geometry", {{"params", params({{1, 1, 2.5, 3.75, -1.0}})}});
+    REQUIRE(r.status == 200);
+    CHECK(r.body == view::encode_geometry(view::geometry(d, p)));
+  }
+  {  // refusals, one line each, and the server keeps serving
+    const auto refused = [&](const nlohmann::json& body, const std::string& says) {
+      const view::Response r = post("/api/geometry", body);
+      CAPTURE(body.dump(), r.body);
+      CHECK(r.status == 400);
+      CHECK(r.body.find(says) != std::string::npos);
+      CHECK(std::count(r.body.begin(), r.body.end(), '\n') == 1);
+    };
+    // Two positions for one joined point would pull the pieces apart.
+    refused({{"params", params({{0, 2, 2.5, 3.75, -1}, {2, 0, 2.5, 3.75, -2}})}},
+            "cubic_bcifs.json: net 2 point 0 and net 0 point 2 are one point of the file's nets");
+    refused({{"params", params({{3, 0, 1, 2, 3}})}}, "net 3 point 0: the file has 3 control nets");
+    refused({{"params", params({{1, 4, 1, 2, 3}})}}, "net 1 point 4: the net has 4 points");
+    refused({{"params", params({{1, 1, 1, 2}})}}, "net 1 point 1: 2 coordinates for a 3-D point");
+    refused({{"params", params({{1, 1, "1", 2, 3}})}}, "each edit of nets is [net, index, x, y(, z)]");
+    refused({{"params", params({{-1, 1, 1, 2, 3}})}}, "each edit of nets is");
+    refused({{"params", {{"points", {{1, 1, 2, 3}}}}}},
+            "points: a BC-IFS file's control points are edited as nets");
+    CHECK(view::handle(session, {.method = "POST",
+                                 .target = "/api/geometry?token=" + session.token,
+                                 .host = "127.0.0.1:8765",
+                                 .body = R"({"params": {"nets": [[1, 1, 1e400, 2, 3]]}})"})
+              .status == 400);
+    const view::Response render =
+        post("/api/render", {{"name", "x.png"}, {"params", params({{1, 1, 1, 2, 3}})}});
+    CHECK(render.status == 400);
+    CHECK(render.body.find("save the edited nets") != std::string::npos);
+    // The same position twice for one point is one edit.
+    CHECK(
+        post("/api/geometry", {{"params", params({{0, 2, 2.5, 3.75, -1}, {1, 1, 2.5, 3.75, -1}})}}).status ==
+        200);
+    p.nets = {{.net = 0, .index = 2, .position = {1, std::nan(""), 0}}};
+    CHECK_THROWS_WITH(view::edited_nets(d, p),
+                      Catch::Contains("net 0 point 2: a coordinate is not a finite"));
+    // A shape's file has no nets.
+    cifs_test::ViewFixture wave("shapes/wave.json");
+    const view::Response shape =
+        wave.post("/api/geometry", nlohmann::json{{"params", params({{0, 0, 1, 2}})}}.dump());
+    CHECK(shape.status == 400);
+    CHECK(shape.body.find("has no BC-IFS nets") != std::string::npos);
+  }
+  {  // save writes the edited nets beside the file's matrices
+    const view::Response saved =
+        post("/api/save", {{"name", "cubic-edited.json"}, {"params", params({{2, 0, 2.5, 3.75, -1.0}})}});
+    REQUIRE(saved.status == 200);
+    const io::BcifsFile back = io::read_bcifs(dir.path() / "cubic-edited.json");
+    CHECK(back.nets == expected);
+    const ifs::AdmissibleSpace space = ifs::admissible_space(back.system);
+    CHECK(ifs::free_values(back.system, space) == ifs::free_values(system, space));
+  }
 }

@@ -454,6 +454,55 @@ Mesh edited_mesh(const Document& document, const Params& params) {
 
 namespace {
 
+/// Rows equal bit for bit (a copy of the same point, not two points that happen to be close).
+bool same_row(const Points& a, Eigen::Index i, const Points& b, Eigen::Index j) {
+  for (Eigen::Index k = 0; k < a.cols(); ++k)
+    if (std::bit_cast<std::uint64_t>(a(i, k)) != std::bit_cast<std::uint64_t>(b(j, k))) return false;
+  return true;
+}
+
+std::string net_point(std::size_t net, std::size_t index) {
+  return "net " + std::to_string(net) + " point " + std::to_string(index);
+}
+
+}  // namespace
+
+std::vector<Points> edited_nets(const Document& document, const Params& params) {
+  if (!document.bcifs) throw InvalidInput(where(document) + ": not a BC-IFS file");
+  const std::vector<Points>& file = document.bcifs->nets;
+  std::vector<Points> nets = file;
+  // The edit that placed each row (net, point): a second one may not move the same point elsewhere.
+  std::map<std::pair<std::size_t, Eigen::Index>, std::size_t> placed;
+  for (std::size_t e = 0; e < params.nets.size(); ++e) {
+    const NetEdit& edit = params.nets[e];
+    const std::string who = where(document) + ": " + net_point(edit.net, edit.index);
+    if (edit.net >= file.size())
+      throw InvalidInput(who + ": the file has " + std::to_string(file.size()) + " control nets");
+    const Points& net = file[edit.net];
+    if (edit.index >= static_cast<std::size_t>(net.rows()))
+      throw InvalidInput(who + ": the net has " + std::to_string(net.rows()) + " points");
+    const auto row = static_cast<Eigen::Index>(edit.index);
+    Points moved = net.row(row);
+    move_row(moved, 0, false, edit.position, who);  // checks the coordinates: as many as the columns, finite
+    const Eigen::RowVectorXd position = moved.row(0);
+    // The point and its copies in the other nets.
+    for (std::size_t m = 0; m < file.size(); ++m)
+      for (Eigen::Index j = 0; j < file[m].rows(); ++j) {
+        if (m == edit.net ? j != row : !same_row(net, row, file[m], j)) continue;
+        const auto [at, fresh] = placed.try_emplace({m, j}, e);
+        if (!fresh && nets[m].row(j) != position)
+          throw InvalidInput(
+              who + " and " + net_point(params.nets[at->second].net, params.nets[at->second].index) +
+              " are one point of the file's nets (the pieces join there): two positions given");
+        nets[m].row(j) = position;
+      }
+  }
+  ifs::check_nets(document.bcifs->system.automaton, nets, "view");
+  return nets;
+}
+
+namespace {
+
 void check_range(const std::string& who, int value, int high) {
   if (value < 0 || value > high)
     throw InvalidInput(who + " " + std::to_string(value) + " is outside 0.." + std::to_string(high) +
@@ -782,11 +831,12 @@ void perturbed_geometry(const Document& d, const io::Shape& shape, const Params&
 void bcifs_geometry(const Document& d, const Params& params, const Limits& limits, EditCache* cache,
                     Geometry& g) {
   const PerturbableSystem& system = *d.bcifs;
+  const std::vector<Points> edited = params.nets.empty() ? std::vector<Points>() : edited_nets(d, params);
+  const std::vector<Points>& nets = params.nets.empty() ? system.nets : edited;
   const auto pieces_of = [&](const ifs::Bcifs& drawn) {
-    const Eigen::Index cols = system.nets.front().cols();
-    const ifs::EdgePieces pieces =
-        ifs::edge_pieces(drawn, system.nets, params.depth,
-                         limits.max_points * static_cast<std::size_t>(cols) * sizeof(double));
+    const Eigen::Index cols = nets.front().cols();
+    const ifs::EdgePieces pieces = ifs::edge_pieces(
+        drawn, nets, params.depth, limits.max_points * static_cast<std::size_t>(cols) * sizeof(double));
     const Eigen::Index n = pieces.start.rows();
     if (static_cast<std::size_t>(2 * n) > limits.max_points)
       throw InvalidInput(std::to_string(2 * n) + " points, above the view's limit of " +
@@ -807,7 +857,7 @@ void bcifs_geometry(const Document& d, const Params& params, const Limits& limit
     pieces_of(system.system);
   }
   // The control nets, each a polyline (the runner's control net).
-  for (const Points& N : system.nets) {
+  for (const Points& N : nets) {
     const auto first = static_cast<std::uint32_t>(g.net.size() / 3);
     for (Eigen::Index i = 0; i < N.rows(); ++i) append_xyz(g.net, N.row(i));
     for (std::uint32_t i = 0; i + 1 < static_cast<std::uint32_t>(N.rows()); ++i)

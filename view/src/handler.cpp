@@ -141,9 +141,10 @@ Params parse_params(const Document& d, const json& body, std::string_view where)
   if (!j.is_object()) throw Refusal{400, std::string(where) + ": params is not an object"};
   for (const auto& [key, value] : j.items())
     if (key != "depth" && key != "scheme" && key != "levels" && key != "points" && key != "amplitude" &&
-        key != "seed" && key != "values" && key != "weights" && key != "knots")
-      throw Refusal{400, std::string(where) + ": unknown parameter '" + key +
-                             "' (depth, scheme, levels, points, weights, knots, amplitude, seed, values)"};
+        key != "seed" && key != "values" && key != "weights" && key != "knots" && key != "nets")
+      throw Refusal{400,
+                    std::string(where) + ": unknown parameter '" + key +
+                        "' (depth, scheme, levels, points, weights, knots, nets, amplitude, seed, values)"};
   if (j.contains("values")) {
     const json& values = j.at("values");
     if (!values.is_object())
@@ -205,9 +206,31 @@ Params parse_params(const Document& d, const json& body, std::string_view where)
     p.knots.clear();
     for (const json& list : knots) p.knots.push_back(list.get<std::vector<double>>());
   }
-  if ((!p.knots.empty() || !p.weights.empty()) && (!d.shape || d.experiment))
-    throw Refusal{400, std::string(where) + ": knots, weights: those of " + d.path.filename().string() +
-                           " are not edited here (a curve's or surface's file's are: open the shape)"};
+  if (j.contains("nets")) {  // a BC-IFS file's nets; edited_nets checks the net, point and coordinates
+    const json& nets = j.at("nets");
+    if (!nets.is_array()) throw Refusal{400, std::string(where) + ": nets is not an array"};
+    for (const json& e : nets) {
+      if (!e.is_array() || e.size() < 3 || e.size() > 10 || !e[0].is_number_unsigned() ||
+          !e[1].is_number_unsigned() ||
+          !std::all_of(e.begin() + 2, e.end(), [](const json& x) { return x.is_number(); }))
+        throw Refusal{400, std::string(where) + ": each edit of nets is [net, index, x, y(, z)]"};
+      NetEdit edit{.net = e[0].get<std::size_t>(), .index = e[1].get<std::size_t>(), .position = {}};
+      for (auto x = e.begin() + 2; x != e.end(); ++x) edit.position.push_back(x->get<double>());
+      p.nets.push_back(std::move(edit));
+    }
+  }
+  if (!p.nets.empty() && (d.kind != Kind::bcifs || d.experiment))
+    throw Refusal{400, std::string(where) + ": nets: " + d.path.filename().string() +
+                           (d.experiment ? " is an experiment: open the BC-IFS file it names to edit its nets"
+                                         : " has no BC-IFS nets (its control points are edited as points)")};
+  if (!p.points.empty() && d.kind == Kind::bcifs)
+    throw Refusal{400, std::string(where) +
+                           ": points: a BC-IFS file's control points are edited as nets "
+                           "([net, index, x, y(, z)])"};
+  if ((!p.knots.empty() || !p.weights.empty()) && !d.shape)
+    throw Refusal{400,
+                  std::string(where) + ": knots, weights: " + d.path.filename().string() +
+                      " has none (a curve's or surface's, or those of an experiment on one, are edited)"};
   return p;
 }
 
@@ -299,9 +322,17 @@ json document_json(const Session& s) {
       coefficients.push_back(
           {{"name", c.name}, {"value", c.value}, {"low", c.low}, {"high", c.high}, {"capped", c.capped}});
     j["coefficients"] = coefficients;
-    if (d.bcifs) j["free_coefficients"] = d.bcifs->names.size();
+    if (d.bcifs) {
+      j["free_coefficients"] = d.bcifs->names.size();
+      std::vector<Eigen::Index> sizes;  // the page's net buffer holds the nets one after another
+      for (const Points& net : d.bcifs->nets) sizes.push_back(net.rows());
+      j["nets"] = sizes;
+    }
     if (!d.refusal.empty()) j["refusal"] = d.refusal;
-    j["points_editable"] = !d.experiment && d.kind != Kind::bcifs;
+    // A BC-IFS file's nets are dragged in the plane or in space (other column counts are not drawn as such);
+    // an experiment on a BC-IFS file names the file that holds them.
+    j["points_editable"] =
+        d.kind != Kind::bcifs || (!d.experiment && (shape_dimension(d) == 2 || shape_dimension(d) == 3));
     if (d.experiment) j["experiment"] = true;
   }
   return j;
@@ -327,18 +358,18 @@ ifs::Bcifs edited_system(const Document& d, const Params& params) {
   return ifs::perturb(d.bcifs->system, d.bcifs->space, o).system;
 }
 
-/// The experiment file's text with the view's depth and perturbation (the rest as written), checked by
-/// the experiment reader before it is written.
+/// The experiment file's text with the view's depth and perturbation, and its shape inline when its points,
+/// weights or knots were edited (the rest as written), checked by the experiment reader before it is written.
 std::string edited_experiment(const Session& s, const Params& params, const std::string& name) {
   const Document& d = s.document;
-  if (!params.points.empty())
-    throw InvalidInput("points: an experiment's control points are not edited here; open its shape");
   if (params.depth < 0 || params.depth > max_depth(s))
     throw InvalidInput("depth " + std::to_string(params.depth) + " is outside 0.." +
                        std::to_string(max_depth(s)));
   nlohmann::ordered_json e = nlohmann::ordered_json::parse(d.experiment_text);
   if (d.experiment->evaluation.mode == io::EvaluationSpec::Mode::depth)
     e["evaluation"]["depth"] = params.depth;
+  if (!params.points.empty() || !params.weights.empty() || !params.knots.empty())
+    e["shape"] = nlohmann::ordered_json::parse(io::to_json(edited_shape(d, params)));
   if (perturbed(d, params)) {
     auto& p = e["perturbation"];
     p["amplitude"] = params.amplitude;
@@ -381,7 +412,7 @@ Response save(Session& s, const Request& r) {
     Params check = params;  // the values' ranges and contractivity, at depth 0
     check.depth = 0;
     (void)geometry(s.document, check, s.limits);
-    io::write(path, io::BcifsFile{edited_system(s.document, params), s.document.bcifs->nets});
+    io::write(path, io::BcifsFile{edited_system(s.document, params), edited_nets(s.document, params)});
   } else if (ext == ".json") {
     io::write(path, edited_shape(s.document, params));
   } else if ((ext == ".obj" || ext == ".ply") && s.document.kind == Kind::surface) {
@@ -407,13 +438,14 @@ io::Experiment as_experiment(const Session& s, const Params& params) {
     if (params.depth < 0 || params.depth > max_depth(s))
       throw InvalidInput("depth " + std::to_string(params.depth) + " is outside 0.." +
                          std::to_string(max_depth(s)));
-    if (!params.points.empty())
-      throw InvalidInput("points: the control points of " + d.path.filename().string() +
-                         " are not edited here");
+    if (!params.nets.empty())  // the runner reads the nets from the file
+      throw InvalidInput("nets: render and dimension read " + d.path.filename().string() +
+                         " as written; save the edited nets and open the saved file");
     io::Experiment e;
     if (d.experiment) {
       e = *d.experiment;
       e.outputs = {};
+      if (d.shape) e.shape = edited_shape(d, params);
     } else {
       e.name = d.path.stem().string();
       e.automaton = std::filesystem::absolute(d.path);

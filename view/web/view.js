@@ -10,7 +10,7 @@
   const $ = (id) => document.getElementById(id);
   let doc = null; // the document's description
   let params = null; // depth, scheme, levels
-  const edits = new Map(); // point index -> coordinates
+  const edits = new Map(); // point index (a BC-IFS: into its nets one after another) -> coordinates
   const weights = new Map(); // point index -> weight (accepted by the server)
   let knots = null; // the knot lists accepted by the server (null: the file's)
   let controller = null; // the geometry request in flight
@@ -165,14 +165,21 @@
   // --- requests ---
   /// The request's params: the page's, with a candidate's knots or weights (not yet accepted) over them.
   function requestParams(candidate) {
-    const points = [], w = new Map(weights);
-    for (const [i, p] of edits) points.push([i, ...p]);
+    const points = [], nets = [], w = new Map(weights);
+    for (const [i, p] of edits) if (doc.nets) nets.push([...netOf(i), ...p]); else points.push([i, ...p]);
     if (candidate && candidate.weight) w.set(candidate.weight[0], candidate.weight[1]);
     const extra = { points };
+    if (nets.length) extra.nets = nets;
     if (w.size) extra.weights = Array.from(w, ([i, x]) => [i, x]);
     const k = candidate && candidate.knots ? candidate.knots : knots;
     if (k) extra.knots = k;
     return Object.assign({}, params, extra);
+  }
+  /// Point i of a BC-IFS's drawn nets (view::Geometry::net: the nets one after another) as [net, index].
+  function netOf(i) {
+    let n = 0;
+    while (i >= doc.nets[n]) i -= doc.nets[n++];
+    return [n, i];
   }
   function body(extra) {
     return JSON.stringify(Object.assign({ params: requestParams() }, extra || {}));
@@ -187,7 +194,9 @@
     editStart = performance.now();
     view.ready = false;
     try {
-      const r = await fetch(api('geometry'), { method: 'POST', body: JSON.stringify({ params: requestParams(candidate) }), signal: mine.signal });
+      const sent = requestParams(candidate);
+      view.sent = sent; // what the page asked for (tests rebuild it through the library)
+      const r = await fetch(api('geometry'), { method: 'POST', body: JSON.stringify({ params: sent }), signal: mine.signal });
       if (r.status === 204) return; // superseded by a newer edit
       if (r.status === 422) { // not contractive: the geometry stays, the edit is shown as refused
         const message = (await r.text()).trim();

@@ -134,6 +134,14 @@ struct WeightEdit {
   double weight = 1;
 };
 
+/// One point of a BC-IFS file's control nets moved: net `net` (the initial entry's, in the file's order), its
+/// row `index`, and the row's new coordinates (as many as the nets' columns).
+struct NetEdit {
+  std::size_t net = 0;
+  std::size_t index = 0;
+  std::vector<double> position;
+};
+
 /// What the page may change. Defaults: default_params.
 struct Params {
   int depth = 0;                    // curves, surfaces: the attractor's depth
@@ -141,6 +149,7 @@ struct Params {
   int levels = 0;                   // meshes: subdivision steps
   std::vector<PointEdit> points;    // curves, surfaces, meshes: moved control points (mesh: vertices)
   std::vector<WeightEdit> weights;  // curves, surfaces: changed weights
+  std::vector<NetEdit> nets;        // BC-IFS files: moved points of the control nets (edited_nets)
   /// Curves, surfaces: new knots, empty for the file's; else one list per direction (a surface: u, then
   /// v), each of as many values as the file's: an open curve's knot vector, a closed curve's breakpoints
   /// b_0 … b_m (nurbs::defining_knots). Validated by the library (nurbs::validate, make_closed_curve).
@@ -164,6 +173,14 @@ std::vector<std::vector<double>> shape_knots(const io::Shape& shape);
 /// library (InvalidInput naming the point, the weight or the knot of a bad edit). Rows not edited are
 /// kept bit for bit.
 io::Shape edited_shape(const Document& document, const Params& params);
+/// A BC-IFS file's control nets with the edits of `params.nets` applied, checked by the library
+/// (ifs::check_nets). The nets join where the file repeats a point in several nets, bit for bit (the overlap
+/// of neighbouring pieces' windows, as nurbs::initial_nets and cifs fit --fractal write them): an edit moves
+/// the point and its copies in the other nets, so the pieces stay joined. InvalidInput naming the net and
+/// point for a net or point the file does not have, coordinates that are not finite or not as many as the
+/// nets' columns, and two edits that give one joined point two positions (they would pull a junction apart).
+/// The matrices are not read: an edit of the nets cannot change the system's contractivity.
+std::vector<Points> edited_nets(const Document& document, const Params& params);
 /// The mesh with the edits applied (before subdivision).
 Mesh edited_mesh(const Document& document, const Params& params);
 
