@@ -964,7 +964,39 @@ C1Verdict characteristic_map_verdict(MeshScheme scheme, int valence, long double
   return net_verdict(scheme, valence, net, options, polynomial, false, false);
 }
 
+C1Verdict doo_sabin_boundary_verdict(const C1Verdict& interior, const std::vector<char>& interior_corners) {
+  const std::vector<int> runs = sector_sizes(static_cast<int>(interior_corners.size()),
+                                             {.boundary = true, .interior_corners = interior_corners});
+  const int k = static_cast<int>(interior_corners.size());
+  C1Verdict out = interior;
+  out.sectors.clear();
+  const std::string gon = std::to_string(k) + "-gon's";
+  if (!interior.c1) {
+    out.reason = "the interior " + gon + " verdict: " + interior.reason;
+    return out;
+  }
+  if (runs.size() != 1) {
+    out.c1 = false;
+    out.reason = "not C1: the surface pinches — " + std::to_string(runs.size()) +
+                 " sectors (runs of interior corners) touch at the face's centre only; each is C1 on its own";
+    return out;
+  }
+  const int m = runs.front();
+  std::string degrees = std::to_string(std::round(3600.0 * m / k) / 10);  // one decimal
+  degrees = degrees.substr(0, degrees.find('.') + 2) + " degrees";
+  out.angle = 2 * std::numbers::pi_v<long double> * m / k;
+  out.reason = "C1 on one sector: the interior " + gon + " characteristic map (" + interior.method +
+               ") restricted to the patches of its " + std::to_string(m) + " interior corner" +
+               (m == 1 ? "" : "s") + ", spanning " + degrees;
+  return out;
+}
+
 C1Verdict c1_verdict(const LocalMatrix& matrix, const LocalSpectrum& spectrum, const C1Options& options) {
+  if (matrix.scheme == MeshScheme::doo_sabin && matrix.options.boundary) {
+    const LocalMatrix whole = local_matrix(MeshScheme::doo_sabin, matrix.valence);
+    return doo_sabin_boundary_verdict(c1_verdict(whole, local_spectrum(whole), options),
+                                      matrix.options.interior_corners);
+  }
   const std::string type = vertex_class(matrix.valence, matrix.options);
   if (type == "interior" && !matrix.options.boundary) {
     if (auto failure = spectral_failure(spectrum, true)) return *failure;
