@@ -68,6 +68,19 @@ TEST_CASE("butterfly boundary vertices: the 4-point curve's tangent and the Jord
     const int half_squared = N - exact_rank(shifted_power(E, q(1, 2), 2));
     CHECK(half == (k == 3 ? 2 : 1));
     CHECK(half_squared == (k == 3 || k == 6 ? 2 : 1));
+    // At 6 faces every vector of the Jordan block's space ker((S − ½)²) — the eigenvector v and the
+    // generalized w, which the limit follows as ½^k(k v + w) — vanishes at the middle neighbour r3:
+    // the unit row of r3 lies in the row space of (S − ½)² (the rank does not grow), exactly.
+    if (k == 6) {
+      auto rows = shifted_power(E, q(1, 2), 2);
+      const int rank = exact_rank(rows);
+      for (const char* name : {"r3", "r2"}) {
+        auto with_unit = rows;
+        with_unit.emplace_back(static_cast<std::size_t>(N), Rational(0));
+        with_unit.back()[static_cast<std::size_t>(at(S, name))] = 1;
+        CHECK(exact_rank(with_unit) == rank + (std::string(name) == "r3" ? 0 : 1));
+      }
+    }
     // ¼ at one face: twice, one eigenvector (a Jordan block).
     if (k == 1) {
       CHECK(N - exact_rank(shifted_power(E, q(1, 4), 1)) == 1);
@@ -92,7 +105,7 @@ TEST_CASE("butterfly boundary vertices: C1 at 2 and 3 faces only (1 to 8)",
       {3, true, true, 0.5L, 0.5L, "sector image spans 180 degrees"},
       {4, false, true, 0.5L, 0.469042L, "sends a vertex next to the centre to the centre"},
       {5, false, true, 0.506676L, 0.5L, "Jacobian takes both signs"},
-      {6, false, false, 0.5L, 0.5L, "lambda1 = lambda2 = 0.5 is defective (a Jordan block)"},
+      {6, false, true, 0.5L, 0.5L, "(w, v) sends r3 to the centre"},
       {7, false, true, 0.501978L, 0.5L, "spans 540 degrees"},
       {8, false, true, 0.506961L, 0.5L, "spans 540 degrees"},
   };
