@@ -216,8 +216,9 @@ std::string local_table(const std::vector<sd::LocalMatrix>& matrices,
 std::vector<std::pair<int, sd::LocalOptions>> doo_sabin_boundary_cases(const SchemeOptions& o) {
   if (!o.valence.empty() || !o.valences.empty() || !o.boundary.empty() || !o.crease.empty() || o.dart ||
       (!o.interior_corners.empty() && !o.boundary_valence.empty()))
-    throw InvalidInput("scheme doo-sabin: a face touching the boundary is --boundary-valence K (its corners) "
-                       "or --interior-corners PATTERN, nothing else");
+    throw InvalidInput(
+        "scheme doo-sabin: a face touching the boundary is --boundary-valence K (its corners) "
+        "or --interior-corners PATTERN, nothing else");
   std::vector<std::vector<char>> patterns;
   if (!o.interior_corners.empty()) {
     std::vector<char> inner;
@@ -259,7 +260,8 @@ std::vector<std::pair<int, sd::LocalOptions>> local_cases(const std::string& nam
   if (name == "doo-sabin" && (!o.boundary_valence.empty() || !o.interior_corners.empty()))
     return doo_sabin_boundary_cases(o);
   if (!o.interior_corners.empty())
-    throw InvalidInput("scheme " + name + ": --interior-corners is said of a doo-sabin face touching the boundary");
+    throw InvalidInput("scheme " + name +
+                       ": --interior-corners is said of a doo-sabin face touching the boundary");
   const bool boundary_faces = !o.boundary_valence.empty();
   if (boundary_faces == (!o.valence.empty() || !o.valences.empty()) ||
       (!o.valence.empty() && !o.valences.empty()))

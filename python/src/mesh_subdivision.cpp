@@ -370,7 +370,8 @@ void bind_mesh_subdivision_analysis(py::module_& m) {
       [](const std::string& scheme, int valence, const std::optional<std::string>& boundary,
          const std::vector<int>& sharp, bool corner, bool concave, const std::string& rules,
          const std::vector<int>& interior_corners) {
-        if (std::any_of(interior_corners.begin(), interior_corners.end(), [](int c) { return c != 0 && c != 1; }))
+        if (std::any_of(interior_corners.begin(), interior_corners.end(),
+                        [](int c) { return c != 0 && c != 1; }))
           throw InvalidInput("local_analysis: interior_corners: 1 (interior) or 0 (boundary) per corner");
         const sd::LocalOptions o{
             .boundary = boundary.has_value() || !interior_corners.empty(),

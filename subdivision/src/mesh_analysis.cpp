@@ -792,12 +792,14 @@ int heaviest(const Stencils& s, const std::vector<int>& candidates, int column) 
 LocalMatrix local_matrix(MeshScheme scheme, int valence, const LocalOptions& options) {
   if (scheme == MeshScheme::doo_sabin && options.boundary && !options.interior_corners.empty()) {
     if (!options.sharp.empty() || options.corner || options.concave || options.rules != RuleSet::opensubdiv)
-      throw InvalidInput("doo-sabin: sharp edges, corners and rule sets are analysed for catmull-clark and loop "
-                         "only");
+      throw InvalidInput(
+          "doo-sabin: sharp edges, corners and rule sets are analysed for catmull-clark and loop "
+          "only");
     if (static_cast<int>(options.interior_corners.size()) != valence)
-      throw InvalidInput("doo-sabin: a face of " + std::to_string(valence) + " corners touching the boundary needs " +
-                         std::to_string(valence) + " interior-corner flags; " +
-                         std::to_string(options.interior_corners.size()) + " given");
+      throw InvalidInput("doo-sabin: a face of " + std::to_string(valence) +
+                         " corners touching the boundary needs " + std::to_string(valence) +
+                         " interior-corner flags; " + std::to_string(options.interior_corners.size()) +
+                         " given");
     return doo_sabin_boundary_matrix(options.interior_corners);
   }
   check_valence(scheme, valence, options);

@@ -199,9 +199,10 @@ TEST_CASE("cifs scheme MESH-SCHEME: bad valences and options on one line, exit 2
   check_error(cifs_cli("scheme loop --valence 5 --analyze --refine x.json"), "cifs subdivide");
   check_error(cifs_cli("scheme loop --valence 5 --analyze --format svg"), "--format 'svg'");
   check_error(cifs_cli("scheme loop --valence 5 --analyze --param w=1"), "take no parameters");
-  check_error(cifs_cli("scheme doo-sabin --valence 5 --analyze --boundary edge"),
-              "doo-sabin: boundary vertices make no face; a face touching the boundary is analysed from which "
-              "of its corners are interior");
+  check_error(
+      cifs_cli("scheme doo-sabin --valence 5 --analyze --boundary edge"),
+      "doo-sabin: boundary vertices make no face; a face touching the boundary is analysed from which "
+      "of its corners are interior");
   check_error(cifs_cli("scheme butterfly --valence 2 --analyze --boundary corner"),
               "butterfly: the boundary has one rule under this scheme (the 4-point curve)");
   check_error(cifs_cli("scheme loop --valence 17 --analyze --boundary edge"),
@@ -309,9 +310,10 @@ TEST_CASE("cifs scheme doo-sabin --boundary-valence K | --interior-corners PATTE
 
   check_error(cifs_cli("scheme doo-sabin --interior-corners 10x0 --analyze"),
               "--interior-corners '10x0': expected 1 (interior) or 0 (boundary) per corner");
-  check_error(cifs_cli("scheme doo-sabin --interior-corners 1111 --analyze"),
-              "doo-sabin: a face touching the boundary has an interior corner and a boundary one; every one of "
-              "the 4 is interior");
+  check_error(
+      cifs_cli("scheme doo-sabin --interior-corners 1111 --analyze"),
+      "doo-sabin: a face touching the boundary has an interior corner and a boundary one; every one of "
+      "the 4 is interior");
   check_error(cifs_cli("scheme doo-sabin --interior-corners 0000 --analyze"), "none of the 4 is interior");
   check_error(cifs_cli("scheme doo-sabin --interior-corners 10 --analyze"), "valence 2 is out of range");
   check_error(cifs_cli("scheme doo-sabin --boundary-valence 2 --analyze"),
@@ -350,7 +352,8 @@ TEST_CASE("cifs scheme MESH-SCHEME --rules blz --analyze: Biermann-Levin-Zorin's
               "--rules zorin: unknown rule set 'zorin' (opensubdiv, blz)");
   check_error(cifs_cli("scheme butterfly --valence 6 --rules blz --analyze"),
               "butterfly: the rule set 'blz' is built for catmull-clark and loop only");
-  check_error(cifs_cli("scheme chaikin --analyze --rules blz"), "--rules and --interior-corners are for the mesh schemes");
+  check_error(cifs_cli("scheme chaikin --analyze --rules blz"),
+              "--rules and --interior-corners are for the mesh schemes");
 }
 
 TEST_CASE("cifs scheme refuses deeply nested symbols instead of overflowing the stack",

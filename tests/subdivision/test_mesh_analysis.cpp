@@ -438,8 +438,9 @@ TEST_CASE("local matrices: bad valences are one-line InvalidInputs", "[subdivisi
                              "flags; 3 given"));
   CHECK_THROWS_WITH(local_matrix(MeshScheme::loop, 4, {.interior_corners = {1, 0, 0, 0}}),
                     Contains("loop: interior corners are said of a doo-sabin face touching the boundary"));
-  CHECK_THROWS_WITH(refined_local_matrix(MeshScheme::doo_sabin, 4, {.boundary = true, .interior_corners = {1, 0, 0, 0}}),
-                    Contains("doo-sabin: boundary vertices make no face"));
+  CHECK_THROWS_WITH(
+      refined_local_matrix(MeshScheme::doo_sabin, 4, {.boundary = true, .interior_corners = {1, 0, 0, 0}}),
+      Contains("doo-sabin: boundary vertices make no face"));
   CHECK_THROWS_WITH(
       local_matrix(MeshScheme::butterfly, 2, {.boundary = true, .rule = BoundaryRule::edge_and_corner}),
       Contains("butterfly: the boundary has one rule under this scheme (the 4-point curve)"));

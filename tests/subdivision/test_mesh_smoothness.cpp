@@ -287,8 +287,9 @@ TEST_CASE("analyze_mesh under doo-sabin: faces at the boundary are the interior 
       CHECK(std::abs(v.lambda1 - 0.5L) < 1e-15L);
       CHECK(std::abs(v.lambda2 - 0.5L) < 1e-15L);
       // The class taken directly (`cifs scheme doo-sabin --interior-corners …`): the same verdict.
-      const LocalMatrix S = local_matrix(MeshScheme::doo_sabin, 4,
-                                         {.boundary = true, .interior_corners = {inner[0], inner[1], inner[2], inner[3]}});
+      const LocalMatrix S =
+          local_matrix(MeshScheme::doo_sabin, 4,
+                       {.boundary = true, .interior_corners = {inner[0], inner[1], inner[2], inner[3]}});
       const C1Verdict direct = c1_verdict(S, local_spectrum(S));
       CHECK(direct.c1 == v.verdict.c1);
       CHECK(direct.angle == v.verdict.angle);

@@ -111,8 +111,7 @@ TEST_CASE("√3 (Kobbelt 2000): the local matrix is the paper's step twice, turn
       for (int j = 0; j <= n; ++j) one_matrix(i, j) = A[at(i)][at(j)];
     const Eigen::EigenSolver<LongMatrix> one(one_matrix, false);
     std::vector<std::complex<long double>> expected{1, 2.0L / 3 - kobbelt_alpha(n)};
-    for (int l = 1; l < n; ++l)
-      expected.push_back((1.0L + std::polar(1.0L, 2 * kPi * l / n)) / 3.0L);
+    for (int l = 1; l < n; ++l) expected.push_back((1.0L + std::polar(1.0L, 2 * kPi * l / n)) / 3.0L);
     std::vector<bool> used(expected.size(), false);
     for (Eigen::Index i = 0; i <= n; ++i) {
       const std::complex<long double> z = one.eigenvalues()(i);
@@ -137,8 +136,8 @@ TEST_CASE("√3 (Kobbelt 2000): λ1, μ and λ1²/|μ| in closed form, relative 
     const LocalSpectrum s = local_spectrum(local_matrix(MeshScheme::sqrt3, n));
     const long double lambda1 = two_step_eigenvalue(n, 1);
     // μ: the centre's λ1² up to n = 6 (at n = 3 mode 2 is mode −1, λ1 itself), mode 2 from n = 7 on.
-    const long double mu = n == 3 ? two_step_eigenvalue(n, 0)
-                                  : std::max(two_step_eigenvalue(n, 0), two_step_eigenvalue(n, 2));
+    const long double mu =
+        n == 3 ? two_step_eigenvalue(n, 0) : std::max(two_step_eigenvalue(n, 0), two_step_eigenvalue(n, 2));
     CHECK(std::abs(s.subdominant / lambda1 - 1) < 1e-15L);
     CHECK(std::abs(s.second / lambda1 - 1) < 1e-15L);
     CHECK(std::abs(std::abs(s.mu) / mu - 1) < 1e-14L);
