@@ -921,7 +921,7 @@ class LocalAnalysisTest(unittest.TestCase):
     def test_errors(self):
         with self.assertRaisesRegex(cifs.InvalidInput, "valence 2 is out of range"):
             sd.local_analysis("loop", 2)
-        with self.assertRaisesRegex(cifs.InvalidInput, "catmull-clark, loop, butterfly and sqrt3 only"):
+        with self.assertRaisesRegex(cifs.InvalidInput, "doo-sabin: boundary vertices make no face"):
             sd.local_analysis("doo-sabin", 5, boundary="edge")
         with self.assertRaisesRegex(cifs.InvalidInput, "unknown boundary rule 'sharp'"):
             sd.local_analysis("loop", 4, boundary="sharp")
