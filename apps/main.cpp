@@ -307,6 +307,10 @@ void add_scheme(CLI::App& app, Commands& c) {
                        "Mesh schemes: the vertex infinitely sharp, on a --crease or a --boundary-valence");
   scheme_cmd->add_flag("--concave", c.sc.concave,
                        "Mesh schemes: the --corner's first sector is meant to span more than 180 degrees");
+  scheme_cmd->add_option(
+      "--interior-corners", c.sc.interior_corners,
+      "doo-sabin: a face touching the boundary, 1 (interior) or 0 (boundary) per corner, "
+      "e.g. 1010 (--boundary-valence K: every run of 1 to K - 1 interior corners of a K-gon)");
   scheme_cmd->add_option("--rules", c.sc.rules,
                          "Mesh schemes: crease, boundary and corner rules opensubdiv (default) or blz "
                          "(Biermann-Levin-Zorin 2000: C1 at any valence; --concave corners flattened)");

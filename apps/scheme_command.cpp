@@ -146,10 +146,13 @@ std::string local_table(const std::vector<sd::LocalMatrix>& matrices,
   const bool tagged = std::any_of(matrices.begin(), matrices.end(), [](const sd::LocalMatrix& m) {
     return m.options.boundary || !m.options.sharp.empty() || m.options.corner;
   });
+  const bool doo_sabin = first.scheme == sd::MeshScheme::doo_sabin;
   std::ostringstream s;
   s << "# " << sd::scheme_name(first.scheme) << ", "
-    << (tagged ? std::string("tagged and boundary vertices (sectors: faces between sharp edges)")
-               : std::string(first.scheme == sd::MeshScheme::doo_sabin ? "k-gon faces" : "interior vertices"))
+    << (tagged && doo_sabin ? std::string("k-gon faces touching the boundary (class: interior corners, "
+                                          "1 = interior; sectors: their runs)")
+        : tagged            ? std::string("tagged and boundary vertices (sectors: faces between sharp edges)")
+                            : std::string(doo_sabin ? "k-gon faces" : "interior vertices"))
     << ", S_n over " << first.steps << (first.steps == 1 ? " step" : " steps") << "\n";
   s << std::left << std::setw(4) << "n";
   if (tagged) s << std::setw(10) << "class" << std::setw(10) << "sectors";
@@ -167,8 +170,12 @@ std::string local_table(const std::vector<sd::LocalMatrix>& matrices,
       std::string sectors;
       for (const int k : sd::sector_sizes(matrices[i].valence, matrices[i].options))
         sectors += (sectors.empty() ? "" : ",") + std::to_string(k);
-      s << std::setw(10) << sd::vertex_class(matrices[i].valence, matrices[i].options) << std::setw(10)
-        << sectors;
+      std::string type = sd::vertex_class(matrices[i].valence, matrices[i].options);
+      if (!matrices[i].options.interior_corners.empty()) {
+        type.clear();
+        for (const char c : matrices[i].options.interior_corners) type += c != 0 ? '1' : '0';
+      }
+      s << std::setw(10) << type << std::setw(10) << sectors;
     }
     s << std::setw(6) << matrices[i].values.rows() << std::setw(7) << (matrices[i].exact ? "yes" : "no")
       << std::setw(17) << number_text(static_cast<double>(sp.subdominant), 12) << std::setw(17)
@@ -179,7 +186,13 @@ std::string local_table(const std::vector<sd::LocalMatrix>& matrices,
     if (!verdicts.empty()) {
       const sd::C1Verdict& v = verdicts[i];
       s << (v.c1 ? "yes" : v.decided ? "no" : "undecided");
-      if (!v.sectors.empty()) {
+      if (!matrices[i].options.interior_corners.empty()) {
+        s << " (" << (v.method == "bernstein" ? "proved" : "sampled") << " on the interior k-gon"
+          << (v.c1 ? "; sector angle " +
+                         number_text(static_cast<double>(v.angle * 180 / std::numbers::pi_v<long double>), 4)
+                   : ": " + v.reason)
+          << ")";
+      } else if (!v.sectors.empty()) {
         s << " (sampled; sector angles";
         for (const sd::C1Verdict::Sector& sector : v.sectors)
           s << " "
@@ -198,8 +211,57 @@ std::string local_table(const std::vector<sd::LocalMatrix>& matrices,
   return s.str();
 }
 
+/// Doo–Sabin faces touching the boundary: `--interior-corners PATTERN` (one face), or every run of
+/// 1 … K − 1 interior corners of each K-gon of `--boundary-valence`.
+std::vector<std::pair<int, sd::LocalOptions>> doo_sabin_boundary_cases(const SchemeOptions& o) {
+  if (!o.valence.empty() || !o.valences.empty() || !o.boundary.empty() || !o.crease.empty() || o.dart ||
+      (!o.interior_corners.empty() && !o.boundary_valence.empty()))
+    throw InvalidInput(
+        "scheme doo-sabin: a face touching the boundary is --boundary-valence K (its corners) "
+        "or --interior-corners PATTERN, nothing else");
+  std::vector<std::vector<char>> patterns;
+  if (!o.interior_corners.empty()) {
+    std::vector<char> inner;
+    for (const char c : o.interior_corners) {
+      if (c != '0' && c != '1')
+        throw InvalidInput("--interior-corners '" + o.interior_corners +
+                           "': expected 1 (interior) or 0 (boundary) per corner, e.g. 1100");
+      inner.push_back(c == '1' ? 1 : 0);
+    }
+    patterns.push_back(std::move(inner));
+  } else {
+    for (const int k : parse_valences(o.boundary_valence, "--boundary-valence")) {
+      if (k < sd::kMinValence || k > sd::kMaxValence)
+        throw InvalidInput("--boundary-valence " + std::to_string(k) + ": doo-sabin's faces have " +
+                           std::to_string(sd::kMinValence) + " to " + std::to_string(sd::kMaxValence) +
+                           " corners here");
+      for (int m = 1; m < k; ++m) {
+        std::vector<char> inner(static_cast<std::size_t>(k), 0);
+        std::fill_n(inner.begin(), m, 1);
+        patterns.push_back(std::move(inner));
+      }
+    }
+  }
+  std::vector<std::pair<int, sd::LocalOptions>> out;
+  for (std::vector<char>& inner : patterns) {
+    const int k = static_cast<int>(inner.size());
+    out.emplace_back(k, sd::LocalOptions{.boundary = true,
+                                         .sharp = {},
+                                         .corner = o.corner,
+                                         .concave = o.concave,
+                                         .rules = o.rules.empty() ? RuleSet::opensubdiv : rules_flag(o.rules),
+                                         .interior_corners = std::move(inner)});
+  }
+  return out;
+}
+
 /// The (valence, options) pairs the flags ask for, in the order given.
 std::vector<std::pair<int, sd::LocalOptions>> local_cases(const std::string& name, const SchemeOptions& o) {
+  if (name == "doo-sabin" && (!o.boundary_valence.empty() || !o.interior_corners.empty()))
+    return doo_sabin_boundary_cases(o);
+  if (!o.interior_corners.empty())
+    throw InvalidInput("scheme " + name +
+                       ": --interior-corners is said of a doo-sabin face touching the boundary");
   const bool boundary_faces = !o.boundary_valence.empty();
   if (boundary_faces == (!o.valence.empty() || !o.valences.empty()) ||
       (!o.valence.empty() && !o.valences.empty()))
@@ -314,11 +376,11 @@ std::string scheme(const SchemeOptions& o) {
     throw InvalidInput(o.analyze ? "scheme: --analyze and --refine are exclusive"
                                  : "scheme: choose --analyze or --refine POLYGON.json (or --list)");
   if (!o.valence.empty() || !o.valences.empty() || !o.boundary.empty() || !o.boundary_valence.empty() ||
-      !o.crease.empty() || o.dart || o.corner || o.concave || !o.rules.empty())
+      !o.crease.empty() || o.dart || o.corner || o.concave || !o.rules.empty() || !o.interior_corners.empty())
     throw InvalidInput(
         "scheme " + o.name +
-        ": --valence, --valences, --boundary, --boundary-valence, --crease, --dart, --corner, --concave and "
-        "--rules "
+        ": --valence, --valences, --boundary, --boundary-valence, --crease, --dart, --corner, --concave, "
+        "--rules and --interior-corners "
         "are for the mesh schemes (catmull-clark, loop, "
         "doo-sabin, butterfly, sqrt3)");
   const sd::Scheme s = sd::named_scheme(o.name, parse_params(o.params));

@@ -30,6 +30,7 @@ struct SchemeOptions {
   bool corner = false;           // mesh schemes: the vertex infinitely sharp (with --crease or a boundary)
   bool concave = false;          // a corner meant to span more than 180 degrees
   std::string rules;             // "" or "opensubdiv": OpenSubdiv's; "blz": Biermann–Levin–Zorin's
+  std::string interior_corners;  // doo-sabin: "1100": a face touching the boundary, corner by corner
 };
 
 /// The text for stdout; InvalidInput / IoError on bad input.

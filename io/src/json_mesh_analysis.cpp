@@ -66,13 +66,19 @@ json local_json(const LocalMatrix& m, const LocalSpectrum& s) {
   j["scheme"] = std::string(subdivision::scheme_name(m.scheme));
   j["valence"] = m.valence;
   j["vertex"] = subdivision::vertex_class(m.valence, m.options);
-  if (m.options.boundary)
+  if (m.options.boundary && m.options.interior_corners.empty())
     j["boundary_rule"] = m.options.rule == subdivision::BoundaryRule::edge_only ? "edge" : "corner";
   if (!m.options.sharp.empty()) j["sharp_edges"] = m.options.sharp;
   if (m.options.concave) j["concave"] = true;
   if (m.options.rules != RuleSet::opensubdiv) j["rules"] = std::string(option_name(m.options.rules));
-  if (m.options.boundary || !m.options.sharp.empty() || m.options.corner)
+  if (!m.options.interior_corners.empty()) {  // Doo–Sabin: a face touching the boundary
+    json corners = json::array();
+    for (const char c : m.options.interior_corners) corners.push_back(c != 0 ? 1 : 0);
+    j["interior_corners"] = corners;
+    j["sector_corners"] = subdivision::sector_sizes(m.valence, m.options);
+  } else if (m.options.boundary || !m.options.sharp.empty() || m.options.corner) {
     j["sector_faces"] = subdivision::sector_sizes(m.valence, m.options);
+  }
   j["steps"] = m.steps;
   j["neighbourhood"] = m.labels;
   j["exact"] = m.exact.has_value();

@@ -368,14 +368,19 @@ void bind_mesh_subdivision_analysis(py::module_& m) {
   m.def(
       "local_analysis",
       [](const std::string& scheme, int valence, const std::optional<std::string>& boundary,
-         const std::vector<int>& sharp, bool corner, bool concave, const std::string& rules) {
+         const std::vector<int>& sharp, bool corner, bool concave, const std::string& rules,
+         const std::vector<int>& interior_corners) {
+        if (std::any_of(interior_corners.begin(), interior_corners.end(),
+                        [](int c) { return c != 0 && c != 1; }))
+          throw InvalidInput("local_analysis: interior_corners: 1 (interior) or 0 (boundary) per corner");
         const sd::LocalOptions o{
-            .boundary = boundary.has_value(),
+            .boundary = boundary.has_value() || !interior_corners.empty(),
             .rule = boundary ? cifs::named_boundary_rule(*boundary) : sd::BoundaryRule::edge_only,
             .sharp = sharp,
             .corner = corner,
             .concave = concave,
-            .rules = cifs::named_rule_set(rules)};
+            .rules = cifs::named_rule_set(rules),
+            .interior_corners = std::vector<char>(interior_corners.begin(), interior_corners.end())};
         const sd::LocalMatrix S = sd::local_matrix(sd::named_mesh_scheme(scheme), valence, o);
         const sd::LocalSpectrum sp = sd::local_spectrum(S);
         const auto complex_of = [](const std::complex<long double>& z) {
@@ -443,11 +448,12 @@ void bind_mesh_subdivision_analysis(py::module_& m) {
       },
       py::arg("scheme"), py::arg("valence"), py::kw_only(), py::arg("boundary") = py::none(),
       py::arg("sharp") = std::vector<int>{}, py::arg("corner") = false, py::arg("concave") = false,
-      py::arg("rules") = "opensubdiv",
+      py::arg("rules") = "opensubdiv", py::arg("interior_corners") = std::vector<int>{},
       "The local subdivision matrix S_n at a vertex of this valence (doo-sabin: an n-gon face; "
       "boundary='edge'|'corner': a boundary vertex of valence - 1 faces; sharp: the infinitely sharp "
       "edges c r_j by j; corner: c infinitely sharp; concave: a corner meant to span more than 180 "
-      "degrees; rules='opensubdiv'|'blz' (Biermann-Levin-Zorin 2000) — catmull-clark and loop) and its "
+      "degrees; rules='opensubdiv'|'blz' (Biermann-Levin-Zorin 2000) — catmull-clark and loop; "
+      "interior_corners: doo-sabin's n-gon face touching the boundary, 1 (interior) or 0 per corner) and its "
       "spectrum and C1 verdict (per sector at tagged and "
       "boundary vertices), as a dict: vertex (its class), c1, "
       "labels, steps, matrix, exact (Fractions or None), eigenvalues by modulus, dominant_simple, "

@@ -837,12 +837,39 @@ std::optional<C1Verdict> shared_subdominant(const LocalMatrix& S, LocalSpectrum&
 
 /// λ1 = λ2 with one eigenvector (a Jordan block: Butterfly's ½ at a boundary vertex of 6 faces, the
 /// curve's tangent and the inside's): local_spectrum's basis is then not two eigenvectors (its residual
-/// shows it), and the characteristic map of a generalized eigenvector is not tested.
-C1Verdict defective_subdominant(const LocalSpectrum& spectrum) {
+/// shows it). With v the eigenvector and w a generalized one ((S − λ)w = v), S^k x = λ^k(kγv + γw + βv)
+/// + o(λ^k) for data x (γ, β vectors): the points lie in the plane of γ and β at the coordinates
+/// (kv + w, v) — a shear of (w, v) growing with k, which keeps its Jacobian —, so the map (w, v) decides
+/// like a characteristic map. Butterfly interpolates (control values are limit values): a neighbour where
+/// both vanish maps to the centre at every level, not injective — not C1 (6 faces: the middle neighbour,
+/// both being antisymmetric; deep refinement in docs/subdivision-surfaces.md). The rest stays undecided
+/// (the net of a generalized eigenvector is not built).
+C1Verdict defective_subdominant(const LocalMatrix& S, const LocalSpectrum& spectrum) {
   C1Verdict out;
   out.decided = false;
-  out.reason = "undecided: lambda1 = lambda2 = " + number_text(static_cast<double>(spectrum.subdominant), 3) +
+  const long double lambda = spectrum.subdominant;
+  out.reason = "undecided: lambda1 = lambda2 = " + number_text(static_cast<double>(lambda), 3) +
                " is defective (a Jordan block): its eigenfunctions are not tested";
+  if (S.scheme != MeshScheme::butterfly) return out;
+  const auto N = S.values.rows();
+  const LongMatrix A = S.values - lambda * LongMatrix::Identity(N, N);
+  const Eigen::JacobiSVD<LongMatrix> svd(A, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const LongVector v = svd.matrixV().col(N - 1);
+  const LongVector w = svd.solve(v);
+  const auto& sigma = svd.singularValues();
+  if (sigma(N - 2) < 1e-9L || (A * w - v).cwiseAbs().maxCoeff() > 1e-9L) return out;  // not one 2-block
+  const long double scale = std::max(v.cwiseAbs().maxCoeff(), w.cwiseAbs().maxCoeff());
+  for (Eigen::Index i = 1; i < N; ++i)
+    if (std::abs(v(i)) < 1e-12L * scale && std::abs(w(i) - w(0)) < 1e-12L * scale) {
+      out.decided = true;
+      out.spectral = true;
+      out.through_centre = true;
+      out.reason = "not C1: lambda1 = lambda2 = " + number_text(static_cast<double>(lambda), 3) +
+                   " is a Jordan block, the limit follows lambda^k (k v + w) (v its eigenvector, w a "
+                   "generalized one), and (w, v) sends " +
+                   S.labels[static_cast<std::size_t>(i)] + " to the centre (not injective)";
+      return out;
+    }
   return out;
 }
 
@@ -917,7 +944,7 @@ C1Verdict sector_verdicts(const LocalMatrix& matrix, const C1Options& options) {
     if (failure && sector.spectrum.dominant_simple && !sector.spectrum.gap)
       failure = shared_subdominant(S, sector.spectrum);
     if (!failure && sector.spectrum.residual > kSpectralTolerance)
-      failure = defective_subdominant(sector.spectrum);
+      failure = defective_subdominant(S, sector.spectrum);
     if (failure) {
       sector.verdict = std::move(*failure);
     } else {
@@ -964,7 +991,39 @@ C1Verdict characteristic_map_verdict(MeshScheme scheme, int valence, long double
   return net_verdict(scheme, valence, net, options, polynomial, false, false);
 }
 
+C1Verdict doo_sabin_boundary_verdict(const C1Verdict& interior, const std::vector<char>& interior_corners) {
+  const std::vector<int> runs = sector_sizes(static_cast<int>(interior_corners.size()),
+                                             {.boundary = true, .interior_corners = interior_corners});
+  const int k = static_cast<int>(interior_corners.size());
+  C1Verdict out = interior;
+  out.sectors.clear();
+  const std::string gon = std::to_string(k) + "-gon's";
+  if (!interior.c1) {
+    out.reason = "the interior " + gon + " verdict: " + interior.reason;
+    return out;
+  }
+  if (runs.size() != 1) {
+    out.c1 = false;
+    out.reason = "not C1: the surface pinches — " + std::to_string(runs.size()) +
+                 " sectors (runs of interior corners) touch at the face's centre only; each is C1 on its own";
+    return out;
+  }
+  const int m = runs.front();
+  std::string degrees = std::to_string(std::round(3600.0 * m / k) / 10);  // one decimal
+  degrees = degrees.substr(0, degrees.find('.') + 2) + " degrees";
+  out.angle = 2 * std::numbers::pi_v<long double> * m / k;
+  out.reason = "C1 on one sector: the interior " + gon + " characteristic map (" + interior.method +
+               ") restricted to the patches of its " + std::to_string(m) + " interior corner" +
+               (m == 1 ? "" : "s") + ", spanning " + degrees;
+  return out;
+}
+
 C1Verdict c1_verdict(const LocalMatrix& matrix, const LocalSpectrum& spectrum, const C1Options& options) {
+  if (matrix.scheme == MeshScheme::doo_sabin && matrix.options.boundary) {
+    const LocalMatrix whole = local_matrix(MeshScheme::doo_sabin, matrix.valence);
+    return doo_sabin_boundary_verdict(c1_verdict(whole, local_spectrum(whole), options),
+                                      matrix.options.interior_corners);
+  }
   const std::string type = vertex_class(matrix.valence, matrix.options);
   if (type == "interior" && !matrix.options.boundary) {
     if (auto failure = spectral_failure(spectrum, true)) return *failure;

@@ -56,12 +56,14 @@ void check_valence(MeshScheme scheme, int valence, const LocalOptions& o) {
                          " is out of place; expected increasing edge numbers " + std::to_string(first) +
                          " to " + std::to_string(last) +
                          (o.boundary ? " (the boundary edges are sharp anyway)" : ""));
+  if (!o.interior_corners.empty() && !(scheme == MeshScheme::doo_sabin && o.boundary))
+    throw InvalidInput(who + ": interior corners are said of a doo-sabin face touching the boundary");
   if (o.boundary) {
     if (scheme == MeshScheme::doo_sabin)
       throw InvalidInput(who +
-                         ": boundary vertices are analysed for catmull-clark, loop, butterfly and sqrt3 only "
-                         "(doo-sabin's make no face; its points at the boundary are centres of faces, which "
-                         "cifs analyze MESH --scheme doo-sabin reports)");
+                         ": boundary vertices make no face; a face touching the boundary is analysed from "
+                         "which of its corners are interior (interior_corners; cifs scheme doo-sabin "
+                         "--boundary-valence K or --interior-corners PATTERN)");
     if (scheme == MeshScheme::sqrt3 && o.rule != BoundaryRule::edge_only)
       throw InvalidInput(who + ": the boundary has one rule under this scheme (Kobbelt's ternary cubic " +
                          "B-spline), the rule edge; a boundary vertex of one face is no corner");
@@ -788,6 +790,18 @@ int heaviest(const Stencils& s, const std::vector<int>& candidates, int column) 
 }  // namespace detail
 
 LocalMatrix local_matrix(MeshScheme scheme, int valence, const LocalOptions& options) {
+  if (scheme == MeshScheme::doo_sabin && options.boundary && !options.interior_corners.empty()) {
+    if (!options.sharp.empty() || options.corner || options.concave || options.rules != RuleSet::opensubdiv)
+      throw InvalidInput(
+          "doo-sabin: sharp edges, corners and rule sets are analysed for catmull-clark and loop "
+          "only");
+    if (static_cast<int>(options.interior_corners.size()) != valence)
+      throw InvalidInput("doo-sabin: a face of " + std::to_string(valence) +
+                         " corners touching the boundary needs " + std::to_string(valence) +
+                         " interior-corner flags; " + std::to_string(options.interior_corners.size()) +
+                         " given");
+    return doo_sabin_boundary_matrix(options.interior_corners);
+  }
   check_valence(scheme, valence, options);
   LocalMatrix out = empty_matrix(scheme, valence, options);
   if (const auto exact = exact_rules(scheme, valence, options)) {
@@ -805,6 +819,11 @@ LocalMatrix local_matrix(MeshScheme scheme, int valence, const LocalOptions& opt
 
 LocalMatrix doo_sabin_boundary_matrix(const std::vector<char>& inner) {
   const int k = static_cast<int>(inner.size());
+  const auto interior_count = std::count_if(inner.begin(), inner.end(), [](char c) { return c != 0; });
+  if (k >= kMinValence && k <= kMaxValence && (interior_count == 0 || interior_count == k))
+    throw InvalidInput("doo-sabin: a face touching the boundary has an interior corner and a boundary one; " +
+                       std::string(interior_count == 0 ? "none" : "every one") + " of the " +
+                       std::to_string(k) + " is interior");
   const LocalMatrix whole = local_matrix(MeshScheme::doo_sabin, k);
   const auto interior = [&](int i) { return inner[static_cast<std::size_t>(wrap(i, k))] != 0; };
   std::vector<int> keep;
@@ -815,6 +834,8 @@ LocalMatrix doo_sabin_boundary_matrix(const std::vector<char>& inner) {
   }
   LocalMatrix out = whole;
   out.options.boundary = true;
+  out.options.interior_corners.clear();
+  for (const char c : inner) out.options.interior_corners.push_back(c != 0 ? 1 : 0);
   const auto N = static_cast<int>(keep.size());
   out.labels.clear();
   out.values.resize(N, N);
@@ -848,6 +869,18 @@ std::string vertex_class(int valence, const LocalOptions& options) {
 }
 
 std::vector<int> sector_sizes(int valence, const LocalOptions& options) {
+  if (!options.interior_corners.empty()) {  // Doo–Sabin: the runs of interior corners
+    const std::vector<char>& inner = options.interior_corners;
+    const auto k = inner.size();
+    std::vector<int> runs;
+    for (std::size_t i = 0; i < k; ++i)
+      if (inner[i] != 0 && inner[(i + k - 1) % k] == 0) {
+        int m = 0;
+        while (inner[(i + static_cast<std::size_t>(m)) % k] != 0) ++m;
+        runs.push_back(m);
+      }
+    return runs;
+  }
   const std::vector<int> sharp = sharp_edges(valence, options);
   if (sharp.size() < 2 && !options.boundary) return {valence};
   std::vector<int> out;

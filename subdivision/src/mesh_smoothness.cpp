@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
-#include <numbers>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -83,45 +82,6 @@ Analysis analysis_of(const LocalMatrix& S) {
   LocalSpectrum spectrum = local_spectrum(S);
   C1Verdict verdict = c1_verdict(S, spectrum);
   return {std::move(spectrum), std::move(verdict)};
-}
-
-std::string degrees_text(int m, int k) {
-  const double d = 360.0 * m / k;
-  std::string t = std::to_string(std::round(d * 10) / 10);
-  return t.substr(0, t.find('.') + 2) + " degrees";
-}
-
-/// A Doo–Sabin face touching the boundary, `inner[i]` whether corner i is an interior vertex. The
-/// surface near the face's centre is made of the patches of its interior corners only (a boundary
-/// vertex makes no face), and a corner point reads its own face alone, so those patches and their
-/// characteristic map are the interior k-gon's restricted to them (doo_sabin_boundary_matrix):
-/// regular and injective where the k-gon's is. By the map's k-fold symmetry a run of m interior
-/// corners spans 360m/k degrees; two runs or more are sectors that touch at the centre only.
-C1Verdict doo_sabin_boundary_verdict(const C1Verdict& interior, const std::vector<char>& inner) {
-  const int k = static_cast<int>(inner.size());
-  int m = 0, runs = 0;
-  for (int i = 0; i < k; ++i) {
-    m += inner[static_cast<std::size_t>(i)];
-    runs += inner[static_cast<std::size_t>(i)] && !inner[static_cast<std::size_t>((i + k - 1) % k)] ? 1 : 0;
-  }
-  C1Verdict out = interior;
-  out.sectors.clear();
-  const std::string gon = std::to_string(k) + "-gon's";
-  if (!interior.c1) {
-    out.reason = "the interior " + gon + " verdict: " + interior.reason;
-    return out;
-  }
-  if (runs > 1) {
-    out.c1 = false;
-    out.reason = "not C1: the surface pinches — " + std::to_string(runs) +
-                 " sectors (runs of interior corners) touch at the face's centre only; each is C1 on its own";
-    return out;
-  }
-  out.angle = 2 * std::numbers::pi_v<long double> * m / k;
-  out.reason = "C1 on one sector: the interior " + gon + " characteristic map (" + interior.method +
-               ") restricted to the patches of its " + std::to_string(m) + " interior corner" +
-               (m == 1 ? "" : "s") + ", spanning " + degrees_text(m, k);
-  return out;
 }
 
 /// The interior corners of face f turned to their least rotation (the class does not depend on

@@ -199,8 +199,10 @@ TEST_CASE("cifs scheme MESH-SCHEME: bad valences and options on one line, exit 2
   check_error(cifs_cli("scheme loop --valence 5 --analyze --refine x.json"), "cifs subdivide");
   check_error(cifs_cli("scheme loop --valence 5 --analyze --format svg"), "--format 'svg'");
   check_error(cifs_cli("scheme loop --valence 5 --analyze --param w=1"), "take no parameters");
-  check_error(cifs_cli("scheme doo-sabin --valence 5 --analyze --boundary edge"),
-              "boundary vertices are analysed for catmull-clark, loop, butterfly and sqrt3 only");
+  check_error(
+      cifs_cli("scheme doo-sabin --valence 5 --analyze --boundary edge"),
+      "doo-sabin: boundary vertices make no face; a face touching the boundary is analysed from which "
+      "of its corners are interior");
   check_error(cifs_cli("scheme butterfly --valence 2 --analyze --boundary corner"),
               "butterfly: the boundary has one rule under this scheme (the 4-point curve)");
   check_error(cifs_cli("scheme loop --valence 17 --analyze --boundary edge"),
@@ -272,6 +274,60 @@ TEST_CASE("cifs scheme MESH-SCHEME --crease K | --dart | --corner | --boundary-v
   check_error(cifs_cli("scheme chaikin --analyze --dart"), "are for the mesh schemes");
 }
 
+TEST_CASE("cifs scheme doo-sabin --boundary-valence K | --interior-corners PATTERN --analyze",
+          "[cli][mesh_analysis]") {
+  // A run of m interior corners of a k-gon: the interior k-gon's characteristic map on their patches,
+  // spanning 360 m / k degrees; the spectrum the k-gon's 1, ½, ½, ¼ …
+  const json hexagon = analyze("doo-sabin --interior-corners 111000");
+  CHECK(hexagon["valence"] == 6);
+  CHECK(hexagon["vertex"] == "boundary");
+  CHECK(hexagon["interior_corners"] == json::array({1, 1, 1, 0, 0, 0}));
+  CHECK(hexagon["sector_corners"] == json::array({3}));
+  CHECK(hexagon["exact"] == true);
+  CHECK(hexagon["neighbourhood"].size() == 17);  // 6 corners, 4 edge quads (a, b), 3 corner quads
+  CHECK(hexagon["subdominant"]["lambda1"].get<double>() == Approx(0.5).epsilon(1e-15));
+  CHECK(hexagon["mu"][0].get<double>() == Approx(0.25).epsilon(1e-15));
+  CHECK(hexagon["c1"]["verdict"] == true);
+  CHECK(hexagon["c1"]["sector_angle_degrees"].get<double>() == Approx(180).epsilon(1e-12));
+  const json pinch = analyze("doo-sabin --interior-corners 1010");
+  CHECK(pinch["sector_corners"] == json::array({1, 1}));
+  CHECK(pinch["c1"]["verdict"] == false);
+  CHECK_THAT(pinch["c1"]["reason"].get<std::string>(), Catch::Contains("pinches"));
+  // --boundary-valence K: every run of 1 … K − 1 interior corners of a K-gon, as an array.
+  const json pentagons = analyze("doo-sabin --boundary-valence 5");
+  REQUIRE(pentagons.size() == 4);
+  for (int m = 1; m <= 4; ++m) {
+    const json& p = pentagons[static_cast<std::size_t>(m - 1)];
+    CHECK(p["sector_corners"] == json::array({m}));
+    CHECK(p["exact"] == false);  // cos(2π/5)
+    CHECK(p["c1"]["sector_angle_degrees"].get<double>() == Approx(72.0 * m).epsilon(1e-12));
+  }
+  const Run table = cifs_cli("scheme doo-sabin --boundary-valence 3-5 --analyze --format table");
+  REQUIRE(table.status == 0);
+  CHECK(std::count(table.out.begin(), table.out.end(), '\n') == 2 + 2 + 3 + 4);  // title, header, rows
+  CHECK_THAT(table.out, Catch::Contains("\n4   1100      2         12    yes    0.5"));
+  CHECK_THAT(table.out, Catch::Contains("sector angle 270"));
+
+  check_error(cifs_cli("scheme doo-sabin --interior-corners 10x0 --analyze"),
+              "--interior-corners '10x0': expected 1 (interior) or 0 (boundary) per corner");
+  check_error(
+      cifs_cli("scheme doo-sabin --interior-corners 1111 --analyze"),
+      "doo-sabin: a face touching the boundary has an interior corner and a boundary one; every one of "
+      "the 4 is interior");
+  check_error(cifs_cli("scheme doo-sabin --interior-corners 0000 --analyze"), "none of the 4 is interior");
+  check_error(cifs_cli("scheme doo-sabin --interior-corners 10 --analyze"), "valence 2 is out of range");
+  check_error(cifs_cli("scheme doo-sabin --boundary-valence 2 --analyze"),
+              "--boundary-valence 2: doo-sabin's faces have 3 to 16 corners here");
+  check_error(cifs_cli("scheme doo-sabin --boundary-valence 17 --analyze"), "--boundary-valence 17");
+  check_error(cifs_cli("scheme doo-sabin --boundary-valence 4 --interior-corners 1100 --analyze"),
+              "is --boundary-valence K (its corners) or --interior-corners PATTERN, nothing else");
+  check_error(cifs_cli("scheme doo-sabin --boundary-valence 4 --corner --analyze"),
+              "doo-sabin: sharp edges, corners and rule sets are analysed for catmull-clark and loop only");
+  check_error(cifs_cli("scheme loop --interior-corners 110 --analyze"),
+              "--interior-corners is said of a doo-sabin face touching the boundary");
+  check_error(cifs_cli("scheme chaikin --analyze --interior-corners 110"), "are for the mesh schemes");
+}
+
 TEST_CASE("cifs scheme MESH-SCHEME --rules blz --analyze: Biermann-Levin-Zorin's rules",
           "[cli][mesh_analysis][blz]") {
   // Catmull-Clark, a boundary vertex of 6 faces: not C1 under OpenSubdiv's rules, C1 under blz with
@@ -296,7 +352,8 @@ TEST_CASE("cifs scheme MESH-SCHEME --rules blz --analyze: Biermann-Levin-Zorin's
               "--rules zorin: unknown rule set 'zorin' (opensubdiv, blz)");
   check_error(cifs_cli("scheme butterfly --valence 6 --rules blz --analyze"),
               "butterfly: the rule set 'blz' is built for catmull-clark and loop only");
-  check_error(cifs_cli("scheme chaikin --analyze --rules blz"), "--rules are for the mesh schemes");
+  check_error(cifs_cli("scheme chaikin --analyze --rules blz"),
+              "--rules and --interior-corners are for the mesh schemes");
 }
 
 TEST_CASE("cifs scheme refuses deeply nested symbols instead of overflowing the stack",

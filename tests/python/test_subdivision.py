@@ -845,6 +845,18 @@ class LocalAnalysisTest(unittest.TestCase):
         self.assertIn("concave", concave["c1"]["reason"])
         with self.assertRaisesRegex(cifs.InvalidInput, "sharp edge 6 is out of place"):
             sd.local_analysis("loop", 6, sharp=[0, 6])
+        # Doo-Sabin's faces touching the boundary: the interior k-gon's map on the interior corners'
+        # patches, a run of m of k corners spanning 360 m / k degrees; two runs pinch.
+        hexagon = sd.local_analysis("doo-sabin", 6, interior_corners=[1, 1, 1, 0, 0, 0])
+        self.assertEqual(hexagon["vertex"], "boundary")
+        self.assertTrue(hexagon["c1"]["verdict"], hexagon["c1"]["reason"])
+        self.assertAlmostEqual(hexagon["c1"]["angle"], math.pi, places=12)
+        self.assertEqual(len(hexagon["labels"]), 6 + 2 * 4 + 3)  # corners, 4 edge quads, 3 corner quads
+        self.assertFalse(sd.local_analysis("doo-sabin", 4, interior_corners=[1, 0, 1, 0])["c1"]["verdict"])
+        with self.assertRaisesRegex(cifs.InvalidInput, "every one of the 4 is interior"):
+            sd.local_analysis("doo-sabin", 4, interior_corners=[1, 1, 1, 1])
+        with self.assertRaisesRegex(cifs.InvalidInput, "1 \\(interior\\) or 0"):
+            sd.local_analysis("doo-sabin", 4, interior_corners=[1, 2, 0, 0])
 
     def test_analyze_mesh(self):
         """Issue 29 §5: which points of a mesh are not smooth (the CLI's cifs analyze, the same library call)."""
@@ -909,7 +921,7 @@ class LocalAnalysisTest(unittest.TestCase):
     def test_errors(self):
         with self.assertRaisesRegex(cifs.InvalidInput, "valence 2 is out of range"):
             sd.local_analysis("loop", 2)
-        with self.assertRaisesRegex(cifs.InvalidInput, "catmull-clark, loop, butterfly and sqrt3 only"):
+        with self.assertRaisesRegex(cifs.InvalidInput, "doo-sabin: boundary vertices make no face"):
             sd.local_analysis("doo-sabin", 5, boundary="edge")
         with self.assertRaisesRegex(cifs.InvalidInput, "unknown boundary rule 'sharp'"):
             sd.local_analysis("loop", 4, boundary="sharp")

@@ -5,6 +5,12 @@
 // in test_mesh_analysis.cpp), its Jordan structure and the C1 verdict per number of faces.
 #include <catch2/catch.hpp>
 
+#include <Eigen/Geometry>
+#include <Eigen/SVD>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -68,6 +74,19 @@ TEST_CASE("butterfly boundary vertices: the 4-point curve's tangent and the Jord
     const int half_squared = N - exact_rank(shifted_power(E, q(1, 2), 2));
     CHECK(half == (k == 3 ? 2 : 1));
     CHECK(half_squared == (k == 3 || k == 6 ? 2 : 1));
+    // At 6 faces every vector of the Jordan block's space ker((S − ½)²) — the eigenvector v and the
+    // generalized w, which the limit follows as ½^k(k v + w) — vanishes at the middle neighbour r3:
+    // the unit row of r3 lies in the row space of (S − ½)² (the rank does not grow), exactly.
+    if (k == 6) {
+      auto rows = shifted_power(E, q(1, 2), 2);
+      const int rank = exact_rank(rows);
+      for (const char* name : {"r3", "r2"}) {
+        auto with_unit = rows;
+        with_unit.emplace_back(static_cast<std::size_t>(N), Rational(0));
+        with_unit.back()[static_cast<std::size_t>(at(S, name))] = 1;
+        CHECK(exact_rank(with_unit) == rank + (std::string(name) == "r3" ? 0 : 1));
+      }
+    }
     // ¼ at one face: twice, one eigenvector (a Jordan block).
     if (k == 1) {
       CHECK(N - exact_rank(shifted_power(E, q(1, 4), 1)) == 1);
@@ -92,7 +111,7 @@ TEST_CASE("butterfly boundary vertices: C1 at 2 and 3 faces only (1 to 8)",
       {3, true, true, 0.5L, 0.5L, "sector image spans 180 degrees"},
       {4, false, true, 0.5L, 0.469042L, "sends a vertex next to the centre to the centre"},
       {5, false, true, 0.506676L, 0.5L, "Jacobian takes both signs"},
-      {6, false, false, 0.5L, 0.5L, "lambda1 = lambda2 = 0.5 is defective (a Jordan block)"},
+      {6, false, true, 0.5L, 0.5L, "(w, v) sends r3 to the centre"},
       {7, false, true, 0.501978L, 0.5L, "spans 540 degrees"},
       {8, false, true, 0.506961L, 0.5L, "spans 540 degrees"},
   };
@@ -107,5 +126,132 @@ TEST_CASE("butterfly boundary vertices: C1 at 2 and 3 faces only (1 to 8)",
     CHECK(verdict.decided == e.decided);
     REQUIRE(verdict.sectors.size() == 1);
     CHECK_THAT(verdict.sectors[0].verdict.reason, Contains(e.reason));
+  }
+}
+
+namespace {
+
+using Integer = boost::multiprecision::cpp_int;
+using Vec3 = Eigen::Matrix<long double, 3, 1>;
+
+/// The neighbourhood after k steps, exactly: 16S has integer weights, so (16S)^k X is an integer net
+/// (16^k times the points), with no round-off however small the modes.
+struct ExactNet {
+  std::vector<std::vector<Integer>> S16;  // 16 S
+  std::vector<std::array<Integer, 3>> X;
+  void step() {
+    std::vector<std::array<Integer, 3>> Y(X.size());
+    for (std::size_t i = 0; i < X.size(); ++i)
+      for (std::size_t j = 0; j < X.size(); ++j)
+        if (S16[i][j] != 0)
+          for (std::size_t c = 0; c < 3; ++c) Y[i][c] += S16[i][j] * X[j][c];
+    X = std::move(Y);
+  }
+  /// The unit normal of the triangle (a, b, c): the exact cross product, rounded once.
+  Vec3 normal(int a, int b, int c) const {
+    std::array<Integer, 3> u, v, n;
+    for (std::size_t k = 0; k < 3; ++k) {
+      u[k] = X[static_cast<std::size_t>(b)][k] - X[static_cast<std::size_t>(a)][k];
+      v[k] = X[static_cast<std::size_t>(c)][k] - X[static_cast<std::size_t>(a)][k];
+    }
+    n = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    Integer big = 0;
+    for (const Integer& x : n) big = std::max(big, x < 0 ? Integer(-x) : x);
+    const unsigned shift = big == 0                               ? 0
+                           : static_cast<unsigned>(msb(big)) > 60 ? static_cast<unsigned>(msb(big)) - 60
+                                                                  : 0;
+    Vec3 out;
+    for (std::size_t k = 0; k < 3; ++k)
+      out(static_cast<Eigen::Index>(k)) = static_cast<long double>(n[k] >> shift);  // sign kept by cpp_int
+    return out.normalized();
+  }
+};
+
+ExactNet exact_net(const LocalMatrix& S) {
+  ExactNet net;
+  const int N = S.exact->rows;
+  net.S16.assign(static_cast<std::size_t>(N), std::vector<Integer>(static_cast<std::size_t>(N)));
+  for (int i = 0; i < N; ++i)
+    for (int j = 0; j < N; ++j) {
+      const Rational w = (*S.exact)(i, j) * 16;
+      REQUIRE(denominator(w) == 1);
+      net.S16[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = numerator(w);
+    }
+  for (int i = 0; i < N; ++i)  // generic integer data
+    net.X.push_back({Integer((7 * i + 3) % 23 - 11), Integer((5 * i * i + 1) % 19 - 9),
+                     Integer((3 * i * i + 2 * i) % 17 - 8)});
+  return net;
+}
+
+/// The faces at the centre and the ones across its ring's edges: (c, r_j, r_{j+1}), (r_j, q_j, r_{j+1}).
+std::vector<std::array<int, 3>> faces_near_centre(const LocalMatrix& S, int faces) {
+  std::vector<std::array<int, 3>> out;
+  for (int j = 0; j < faces; ++j) {
+    const std::string a = "r" + std::to_string(j), b = "r" + std::to_string(j + 1);
+    out.push_back({at(S, "c"), at(S, a), at(S, b)});
+    out.push_back({at(S, a), at(S, "q" + std::to_string(j)), at(S, b)});
+  }
+  return out;
+}
+
+long double degrees_between(const Vec3& a, const Vec3& b) {
+  return std::acos(std::clamp(a.dot(b), -1.0L, 1.0L)) * 180 / std::numbers::pi_v<long double>;
+}
+
+}  // namespace
+
+TEST_CASE("butterfly boundary Jordan blocks by deep refinement, exactly: 1 face converges like 1/k, 6 fold",
+          "[subdivision][mesh_analysis][butterfly]") {
+  // One face: ¼ is the 4-point curve's own Jordan block; S^k x = ½^k a v1 + ¼^k((kγ + β)v + γw) + …, so
+  // the normals tend to a × γ (a the curve's tangent, γ read by the left eigenvector of ¼) like 1/k:
+  // angle·k levels off, and the angle is not geometric.
+  {
+    const LocalMatrix S = local_matrix(MeshScheme::butterfly, 2, {.boundary = true});
+    ExactNet net = exact_net(S);
+    const auto N = S.values.rows();
+    const auto left = [&](long double lambda) {
+      const Eigen::JacobiSVD<LongMatrix> svd((S.values - lambda * LongMatrix::Identity(N, N)).transpose(),
+                                             Eigen::ComputeFullV);
+      return LongVector(svd.matrixV().col(N - 1));
+    };
+    const auto data = [&](const LongVector& l) {
+      Vec3 out = Vec3::Zero();
+      for (Eigen::Index i = 0; i < N; ++i)
+        for (Eigen::Index c = 0; c < 3; ++c)
+          out(c) += l(i) *
+                    static_cast<long double>(net.X[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)]);
+      return out;
+    };
+    const Vec3 limit = data(left(0.5L)).cross(data(left(0.25L))).normalized();
+    std::vector<long double> scaled;  // largest angle to the limit normal, times k
+    for (int k = 1; k <= 64; ++k) {
+      net.step();
+      if (k != 16 && k != 32 && k != 64) continue;
+      long double worst = 0;
+      for (const auto& [a, b, c] : faces_near_centre(S, 1))
+        worst = std::max(worst, std::min(degrees_between(net.normal(a, b, c), limit),
+                                         180 - degrees_between(net.normal(a, b, c), limit)));
+      scaled.push_back(worst * k);
+    }
+    CHECK(scaled[2] == Approx(scaled[1]).epsilon(0.02));
+    CHECK(scaled[1] == Approx(scaled[0]).epsilon(0.02));
+    CHECK(scaled[2] / 64 < 0.3L);  // degrees, at level 64 (16.7 / 64 here)
+  }
+  // Six faces: λ1 = λ2 = ½ with one eigenvector; (w, v) folds at r3. Deep down, faces at the centre
+  // point opposite ways (180° apart): no tangent plane, at any level.
+  {
+    const LocalMatrix S = local_matrix(MeshScheme::butterfly, 7, {.boundary = true});
+    ExactNet net = exact_net(S);
+    for (int k = 1; k <= 128; ++k) {
+      net.step();
+      if (k != 64 && k != 128) continue;
+      long double spread = 0;
+      const auto faces = faces_near_centre(S, 6);
+      for (const auto& [a, b, c] : faces)
+        for (const auto& [d, e, f] : faces)
+          spread = std::max(spread, degrees_between(net.normal(a, b, c), net.normal(d, e, f)));
+      INFO("level " << k);
+      CHECK(spread > 170);
+    }
   }
 }

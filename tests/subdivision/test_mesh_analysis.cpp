@@ -430,9 +430,17 @@ TEST_CASE("local matrices: bad valences are one-line InvalidInputs", "[subdivisi
   CHECK_THROWS_WITH(local_matrix(MeshScheme::catmull_clark, 17), Contains("valence 17 is out of range"));
   CHECK_THROWS_WITH(local_matrix(MeshScheme::loop, 17, {.boundary = true}),
                     Contains("boundary valence 17 is out of range; expected 2 to 16"));
+  CHECK_THROWS_WITH(local_matrix(MeshScheme::doo_sabin, 4, {.boundary = true}),
+                    Contains("doo-sabin: boundary vertices make no face; a face touching the boundary is "
+                             "analysed from which of its corners are interior"));
+  CHECK_THROWS_WITH(local_matrix(MeshScheme::doo_sabin, 4, {.boundary = true, .interior_corners = {1, 0, 0}}),
+                    Contains("doo-sabin: a face of 4 corners touching the boundary needs 4 interior-corner "
+                             "flags; 3 given"));
+  CHECK_THROWS_WITH(local_matrix(MeshScheme::loop, 4, {.interior_corners = {1, 0, 0, 0}}),
+                    Contains("loop: interior corners are said of a doo-sabin face touching the boundary"));
   CHECK_THROWS_WITH(
-      local_matrix(MeshScheme::doo_sabin, 4, {.boundary = true}),
-      Contains("boundary vertices are analysed for catmull-clark, loop, butterfly and sqrt3 only"));
+      refined_local_matrix(MeshScheme::doo_sabin, 4, {.boundary = true, .interior_corners = {1, 0, 0, 0}}),
+      Contains("doo-sabin: boundary vertices make no face"));
   CHECK_THROWS_WITH(
       local_matrix(MeshScheme::butterfly, 2, {.boundary = true, .rule = BoundaryRule::edge_and_corner}),
       Contains("butterfly: the boundary has one rule under this scheme (the 4-point curve)"));

@@ -92,9 +92,9 @@ TEST_CASE("analyze_mesh under butterfly: every irregular vertex with the verdict
           "[subdivision][mesh_analysis][butterfly]") {
   // Boundary fans of 1 … 8 faces: the centre is a boundary vertex of k faces, the rim's two ends have
   // one face, the others two. The verdicts of the boundary rule (docs: C1 at 2 and 3 faces only,
-  // undecided at 1 and 6 — Jordan blocks —, not C1 at 4, 5, 7 and 8).
-  const std::map<int, const char*> expected{{1, "undecided"}, {2, "C1"},        {3, "C1"},     {4, "not C1"},
-                                            {5, "not C1"},    {6, "undecided"}, {7, "not C1"}, {8, "not C1"}};
+  // undecided at 1 — a Jordan block —, not C1 at 4 … 8).
+  const std::map<int, const char*> expected{{1, "undecided"}, {2, "C1"},     {3, "C1"},     {4, "not C1"},
+                                            {5, "not C1"},    {6, "not C1"}, {7, "not C1"}, {8, "not C1"}};
   const auto word = [](const C1Verdict& v) { return v.c1 ? "C1" : v.decided ? "not C1" : "undecided"; };
   for (int k = 1; k <= 8; ++k) {
     if (cifs_test::skipped_when_sanitized(static_cast<std::size_t>(k - 1))) continue;  // k = 1, 4, 7
@@ -286,6 +286,14 @@ TEST_CASE("analyze_mesh under doo-sabin: faces at the boundary are the interior 
       }
       CHECK(std::abs(v.lambda1 - 0.5L) < 1e-15L);
       CHECK(std::abs(v.lambda2 - 0.5L) < 1e-15L);
+      // The class taken directly (`cifs scheme doo-sabin --interior-corners …`): the same verdict.
+      const LocalMatrix S =
+          local_matrix(MeshScheme::doo_sabin, 4,
+                       {.boundary = true, .interior_corners = {inner[0], inner[1], inner[2], inner[3]}});
+      const C1Verdict direct = c1_verdict(S, local_spectrum(S));
+      CHECK(direct.c1 == v.verdict.c1);
+      CHECK(direct.angle == v.verdict.angle);
+      CHECK(sector_sizes(4, S.options).size() == static_cast<std::size_t>(runs));
     }
     CHECK(a.isolated == off + static_cast<int>(std::count(around.begin(), around.end(), 0)));
   }

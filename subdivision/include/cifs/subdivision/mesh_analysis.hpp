@@ -71,14 +71,18 @@ struct LocalOptions {
   /// OpenSubdiv's rules or Biermann–Levin–Zorin's (rules.hpp; `concave` then flattens the corner's
   /// sectors).
   RuleSet rules = RuleSet::opensubdiv;
+  /// Doo–Sabin at a k-gon face touching the boundary (`boundary` set; k = the valence): whether each
+  /// corner g_i is an interior vertex, at least one of them and not all (doo_sabin_boundary_matrix).
+  std::vector<char> interior_corners{};
 };
 
 /// What the options make of the vertex: "interior", "dart", "boundary", "crease" or "corner" (the
-/// vertex rule; "boundary" for the crease rule along a boundary).
+/// vertex rule; "boundary" for the crease rule along a boundary, and for a Doo–Sabin face touching it).
 std::string vertex_class(int valence, const LocalOptions& options);
 
 /// The faces of each sector between consecutive sharp edges (boundary edges included),
-/// counter-clockwise from r_0; a smooth or dart vertex has one sector of all its faces.
+/// counter-clockwise from r_0; a smooth or dart vertex has one sector of all its faces. A Doo–Sabin
+/// face touching the boundary: its runs of interior corners (each a sector of the surface), from g_0.
 std::vector<int> sector_sizes(int valence, const LocalOptions& options);
 
 /// Valences analysed: interior 3 … 16 (Doo–Sabin: the face's corners), boundary 2 … 16 (1 … 15 faces).
@@ -103,8 +107,9 @@ struct LocalMatrix {
   LongMatrix values;
 };
 
-/// Route (a): S_n written from the scheme's rules in the numbering above. Throws InvalidInput for a
-/// valence out of range or a boundary vertex under Doo–Sabin.
+/// Route (a): S_n written from the scheme's rules in the numbering above (a Doo–Sabin face touching the
+/// boundary: doo_sabin_boundary_matrix of `options.interior_corners`). Throws InvalidInput for a
+/// valence out of range or interior corners that do not fit it.
 LocalMatrix local_matrix(MeshScheme scheme, int valence, const LocalOptions& options = {});
 
 /// The local mesh route (b) refines: the extraordinary vertex (Doo–Sabin: face) of the valence
@@ -270,8 +275,18 @@ MeshSmoothness analyze_mesh(const Mesh& mesh, MeshScheme scheme, std::string_vie
 /// local_matrix(doo_sabin, k) on g_0 … g_{k−1}, a_i and b_i where an end of edge g_i g_{i+1} is
 /// interior, c_i where g_i is. Every corner point reads its own face alone, so these rows read these
 /// columns only (an edge quad between two boundary corners, which may or may not exist, is left out:
-/// it carries no patch near the centre). Exact where local_matrix is; `options.boundary` is set.
+/// it carries no patch near the centre). Exact where local_matrix is; `options.boundary` and
+/// `options.interior_corners` are set. Throws InvalidInput unless 3 ≤ k ≤ 16 and some corner but not
+/// every one is interior.
 LocalMatrix doo_sabin_boundary_matrix(const std::vector<char>& inner);
+
+/// The verdict at a Doo–Sabin face touching the boundary, from the interior k-gon's (`interior`) and its
+/// interior corners: the surface near the centre is made of the patches of the interior corners only,
+/// and their characteristic map is the k-gon's restricted to them — regular and injective where the
+/// k-gon's is. By the map's k-fold symmetry a run of m interior corners spans 360m/k degrees (`angle`):
+/// C1 on that sector; two runs or more touch at the centre only (a pinch): not C1. `c1_verdict` of a
+/// doo_sabin_boundary_matrix computes the interior verdict and calls this.
+C1Verdict doo_sabin_boundary_verdict(const C1Verdict& interior, const std::vector<char>& interior_corners);
 
 /// The regularity and winding test alone, on any pair of eigenvectors of S_n for `lambda` (N by 2,
 /// the numbering above): e.g. a higher Fourier mode's pair, whose map winds more than once.
