@@ -175,7 +175,7 @@ Scene surface_scene(const nurbs::Surface& s, const io::Experiment& e, bool evalu
 }
 
 Scene bcifs_scene(const io::Experiment& e, bool evaluate, const RunOptions& o, RunReport& report) {
-  io::BcifsFile file = io::read_bcifs(e.automaton);
+  io::BcifsFile file = e.bcifs ? *e.bcifs : io::read_bcifs(e.automaton);
   if (file.nets.size() != file.system.automaton.initial.size())
     throw InvalidInput(e.automaton.string() + ": the file gives no control nets for its initial states");
   Scene scene;

@@ -60,32 +60,58 @@ std::string factor_text(const Bcifs& sys, const Factor& f) {
   return transition_name(sys.automaton, f.transition);
 }
 
-Eigen::MatrixXd factor_matrix(const Bcifs& sys, const Factor& f) {
-  if (f.kind == Factor::Kind::boundary) return selection_matrix(sys, f.boundary);
-  return sys.automaton.graph[transition_id(sys.automaton, f.transition)].matrix;
-}
-
-/// Product of factors [first, last) (identity of `size` when empty). A boundary factor picks rows and the
-/// last factor starts the product, with the values the products by a selection matrix and by the identity
-/// give (one term x·1, the others ±0: exact for finite entries, up to the sign of a zero), at a fraction of
-/// the cost: constraint_residuals checks every perturbed system of an interactive edit (cifs view).
-Eigen::MatrixXd product(const Bcifs& sys, std::span<const Factor> factors, int size) {
-  if (factors.empty()) return Eigen::MatrixXd::Identity(size, size);
-  Eigen::MatrixXd P = factor_matrix(sys, factors.back()), next;
-  for (auto it = factors.rbegin() + 1; it != factors.rend(); ++it) {
-    if (it->kind == Factor::Kind::boundary) {
-      const auto& rows = sys.boundaries[static_cast<std::size_t>(it->boundary)].rows;
-      P = P(rows, Eigen::all).eval();
-    } else {
-      detail::multiply(sys.automaton.graph[transition_id(sys.automaton, it->transition)].matrix, P, next);
-      std::swap(P, next);
-    }
-  }
-  return P;
-}
-
 int cell_size(const Bcifs& sys, StateId s) {
   return sys.automaton.graph[s].size;
+}
+
+/// Two matrices a product of factors alternates between; kept from one product to the next, they keep their
+/// storage while the shapes repeat (Eigen reallocates on a change of size only).
+using ProductBuffers = std::array<Eigen::MatrixXd, 2>;
+
+const Eigen::MatrixXd& transition_matrix(const Bcifs& sys, TransitionRef ref) {
+  return sys.automaton.graph[transition_id(sys.automaton, ref)].matrix;
+}
+
+/// Product of factors [first, last) (identity of `size` when empty): one of `buffers`, or the matrix of a
+/// lone transition itself. A boundary factor picks rows, a transition M before a last boundary B places
+/// M's columns (M·B), and the last factor starts the product, with the values the products by a selection
+/// matrix and by the identity give (one term x·1, the others ±0: exact for finite entries, up to the sign
+/// of a zero), at a fraction of the cost: constraint_residuals checks every perturbed system of an
+/// interactive edit (cifs view), with no allocation once its buffers have the sizes of the constraints.
+const Eigen::MatrixXd& product(const Bcifs& sys, std::span<const Factor> factors, int size,
+                               ProductBuffers& buffers) {
+  if (factors.empty()) return buffers[0] = Eigen::MatrixXd::Identity(size, size);
+  const Factor& last = factors.back();
+  auto it = factors.rbegin() + 1;
+  const Eigen::MatrixXd* P = &buffers[0];
+  if (last.kind == Factor::Kind::transition) {
+    P = &transition_matrix(sys, last.transition);
+  } else if (it == factors.rend() || it->kind == Factor::Kind::boundary) {
+    buffers[0] = selection_matrix(sys, last.boundary);
+  } else {
+    const auto& b = sys.boundaries[static_cast<std::size_t>(last.boundary)];
+    const Eigen::MatrixXd& M = transition_matrix(sys, it++->transition);
+    buffers[0].setZero(M.rows(), cell_size(sys, b.cell));
+    for (std::size_t i = 0; i < b.rows.size(); ++i)
+      buffers[0].col(b.rows[i]) = M.col(static_cast<Eigen::Index>(i));
+  }
+  for (; it != factors.rend(); ++it) {
+    Eigen::MatrixXd& next = P == &buffers[0] ? buffers[1] : buffers[0];
+    if (it->kind == Factor::Kind::boundary) {
+      const auto& rows = sys.boundaries[static_cast<std::size_t>(it->boundary)].rows;
+      next.resize(static_cast<Eigen::Index>(rows.size()), P->cols());
+      for (std::size_t i = 0; i < rows.size(); ++i) next.row(static_cast<Eigen::Index>(i)) = P->row(rows[i]);
+    } else {
+      detail::multiply(transition_matrix(sys, it->transition), *P, next);
+    }
+    P = &next;
+  }
+  return *P;
+}
+
+Eigen::MatrixXd product(const Bcifs& sys, std::span<const Factor> factors, int size) {
+  ProductBuffers buffers;
+  return product(sys, factors, size, buffers);
 }
 
 /// Position of the free transition on a side, or -1.
@@ -227,9 +253,11 @@ std::string coefficient_name(const Automaton& a, const Coefficient& c) {
 std::vector<std::pair<std::string, double>> constraint_residuals(const Bcifs& sys) {
   validate(sys);
   std::vector<std::pair<std::string, double>> out;
+  ProductBuffers left, right;
   for (const Constraint& c : sys.constraints) {
     const int source = cell_size(sys, factor_cells(sys, c.left.back()).first);
-    const Eigen::MatrixXd L = product(sys, c.left, source), R = product(sys, c.right, source);
+    const Eigen::MatrixXd& L = product(sys, c.left, source, left);
+    const Eigen::MatrixXd& R = product(sys, c.right, source, right);
     const double scale = std::max({1.0, L.cwiseAbs().maxCoeff(), R.cwiseAbs().maxCoeff()});
     out.emplace_back(c.name, (L - R).cwiseAbs().maxCoeff() / scale);
   }

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <random>
 #include <string>
 #include <tuple>
@@ -445,10 +446,6 @@ TEST_CASE(
                                  .host = "127.0.0.1:8765",
                                  .body = R"({"params": {"nets": [[1, 1, 1e400, 2, 3]]}})"})
               .status == 400);
-    const view::Response render =
-        post("/api/render", {{"name", "x.png"}, {"params", params({{1, 1, 1, 2, 3}})}});
-    CHECK(render.status == 400);
-    CHECK(render.body.find("save the edited nets") != std::string::npos);
     // The same position twice for one point is one edit.
     CHECK(
         post("/api/geometry", {{"params", params({{0, 2, 2.5, 3.75, -1}, {1, 1, 2.5, 3.75, -1}})}}).status ==
@@ -471,5 +468,31 @@ TEST_CASE(
     CHECK(back.nets == expected);
     const ifs::AdmissibleSpace space = ifs::admissible_space(back.system);
     CHECK(ifs::free_values(back.system, space) == ifs::free_values(system, space));
+  }
+  {  // render and the dimension readout with moved nets (and a perturbation): what a session opened on the
+     // file holding those nets answers without them — the runner reads the edited nets from memory
+    view::Session saved;
+    view::open_session(saved, edited_file, "127.0.0.1", 8765);
+    const auto ask = [](view::Session& s, const std::string& path, const nlohmann::json& body) {
+      return view::handle(s, {.method = "POST",
+                              .target = path + "?token=" + s.token,
+                              .host = "127.0.0.1:8765",
+                              .body = body.dump()});
+    };
+    nlohmann::json moved_params = params({{1, 1, 2.5, 3.75, -1.0}});
+    moved_params["amplitude"] = 0.01;
+    const nlohmann::json plain_params = {{"depth", 5}, {"amplitude", 0.01}};
+    const view::Response dimension = post("/api/dimension", {{"params", moved_params}});
+    REQUIRE(dimension.status == 200);
+    CHECK(dimension.body == ask(saved, "/api/dimension", {{"params", plain_params}}).body);
+    CHECK(dimension.body != post("/api/dimension", {{"params", plain_params}}).body);  // the nets do count
+    REQUIRE(post("/api/render", {{"name", "moved.png"}, {"params", moved_params}}).status == 200);
+    REQUIRE(ask(saved, "/api/render", {{"name", "saved.png"}, {"params", plain_params}}).status == 200);
+    const auto bytes = [&](const std::string& name) {
+      std::ifstream in(dir.path() / name, std::ios::binary);
+      return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    CHECK(bytes("moved.png").size() > 1000);
+    CHECK(bytes("moved.png") == bytes("saved.png"));
   }
 }

@@ -438,9 +438,6 @@ io::Experiment as_experiment(const Session& s, const Params& params) {
     if (params.depth < 0 || params.depth > max_depth(s))
       throw InvalidInput("depth " + std::to_string(params.depth) + " is outside 0.." +
                          std::to_string(max_depth(s)));
-    if (!params.nets.empty())  // the runner reads the nets from the file
-      throw InvalidInput("nets: render and dimension read " + d.path.filename().string() +
-                         " as written; save the edited nets and open the saved file");
     io::Experiment e;
     if (d.experiment) {
       e = *d.experiment;
@@ -450,6 +447,12 @@ io::Experiment as_experiment(const Session& s, const Params& params) {
       e.name = d.path.stem().string();
       e.automaton = std::filesystem::absolute(d.path);
       e.inputs = {d.path};
+    }
+    // Moved nets go to the runner in memory beside the file's system, which it perturbs as it would the
+    // saved file's.
+    if (!params.nets.empty()) {
+      std::vector<Points> nets = edited_nets(d, params);  // first: it refuses a document without nets
+      e.bcifs = io::BcifsFile{d.bcifs->system, std::move(nets)};
     }
     e.evaluation.mode = io::EvaluationSpec::Mode::depth;
     e.evaluation.depth = params.depth;

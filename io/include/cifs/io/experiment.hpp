@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "cifs/io/bcifs_file.hpp"
 #include "cifs/io/shape.hpp"
 #include "cifs/mesh.hpp"
 #include "cifs/subdivision/mesh.hpp"
@@ -141,6 +142,9 @@ struct Experiment {
   /// junction of two shapes.
   std::optional<Shape> shape;
   std::filesystem::path automaton;  // absolute (resolved against the experiment's folder)
+  /// The BC-IFS file's content when it is given in memory (cifs view's moved nets): read instead of the
+  /// file `automaton` names, which still names the source. Not written with the experiment.
+  std::optional<BcifsFile> bcifs;
   std::optional<ClassicIfs> ifs;
   std::optional<MeshSource> mesh;
   std::optional<JunctionSpec> junction;
