@@ -582,6 +582,17 @@ LimitMask butterfly_through_step(const MeshTopology& t, int v, int n, const Limi
   std::vector<int> faces, ring;
   walk_ring(t, v, false, faces, ring);
   columns.assign(1, v);
+  // A ring that repeats a vertex (a mesh folded onto itself: two faces on the same three vertices) has
+  // no fan of distinct neighbours for the masks: the position alone, which Butterfly interpolates.
+  bool fan = ring.size() == 1 + static_cast<std::size_t>(n);
+  for (std::size_t j = 0; fan && j < faces.size(); ++j)
+    fan = find_edge(t, ring[1 + j], ring[1 + (j + 1) % static_cast<std::size_t>(n)]) >= 0;
+  if (!fan)
+    return LimitMask{.position = {1.0},
+                     .tangent_u = {},
+                     .tangent_v = {},
+                     .refused = "a vertex whose one-ring repeats a vertex (the mesh folds onto itself there)",
+                     .sectors = {}};
   // v's child is v: its weight carries over (0 inside, where c's weight is 0; not on the boundary).
   std::vector<double> u(1, 2 * stationary.tangent_u[0]), w(1, 2 * stationary.tangent_v[0]);
   const auto add = [&](int column, double weight, std::size_t slot) {

@@ -863,7 +863,8 @@ double butterfly_ring_weight(int k, int j) {
 /// more (`moments`): s_j is of rank 5 in (edge, ring vertex), so each edge point costs O(1), not O(k).
 struct ButterflyRings {
   struct Ring {
-    int centre, offset, size;  // vertices[offset … offset + size): counter-clockwise, as ring_edges
+    int centre, size;
+    std::size_t offset;  // vertices[offset … offset + size): counter-clockwise, as ring_edges
   };
   struct Place {
     int edge, ring, index;  // edge is ring_edges(centre)[index]
@@ -888,7 +889,7 @@ ButterflyRings butterfly_rings(const MeshTopology& t, std::span<const int> centr
   for (const int v : centres) {
     const auto ring = ring_edges(t, v);
     const int k = static_cast<int>(ring.size()), ring_id = static_cast<int>(r.rings.size());
-    r.rings.push_back({.centre = v, .offset = static_cast<int>(r.vertices.size()), .size = k});
+    r.rings.push_back({.centre = v, .size = k, .offset = r.vertices.size()});
     for (int m = 0; m < k; ++m) {
       const int e = ring[static_cast<std::size_t>(m)];
       r.vertices.push_back(other_vertex(t, static_cast<std::size_t>(e), v));
@@ -921,12 +922,11 @@ void add_moments(ButterflyRings& r, const double* in) {
     const double* c = in + 3 * static_cast<std::ptrdiff_t>(ring.centre);
     for (int m = 0; m < ring.size; ++m) {
       const double* p =
-          in + 3 * static_cast<std::ptrdiff_t>(r.vertices[static_cast<std::size_t>(ring.offset + m)]);
+          in + 3 * static_cast<std::ptrdiff_t>(r.vertices[ring.offset + static_cast<std::size_t>(m)]);
       const double a = 2 * std::numbers::pi * m / ring.size;
       const std::array<double, 5> f{1.0, std::cos(a), std::sin(a), std::cos(2 * a), std::sin(2 * a)};
-      for (int q = 0; q < 5; ++q)
-        for (int x = 0; x < 3; ++x)
-          mu[static_cast<std::size_t>(3 * q + x)] += f[static_cast<std::size_t>(q)] * (p[x] - c[x]);
+      for (std::size_t q = 0; q < 5; ++q)
+        for (std::size_t x = 0; x < 3; ++x) mu[3 * q + x] += f[q] * (p[x] - c[x]);
     }
   }
 }
@@ -946,10 +946,8 @@ void add_ring_stencil(const ButterflyRings& r, const ButterflyRings::Place& plac
       const std::array<double, 5> f{0.25, std::cos(a), std::sin(a), 0.5 * std::cos(2 * a),
                                     0.5 * std::sin(2 * a)};
       std::array<double, 3> sum{};
-      for (int q = 0; q < 5; ++q)
-        for (int x = 0; x < 3; ++x)
-          sum[static_cast<std::size_t>(x)] +=
-              f[static_cast<std::size_t>(q)] * mu[static_cast<std::size_t>(3 * q + x)];
+      for (std::size_t q = 0; q < 5; ++q)
+        for (std::size_t x = 0; x < 3; ++x) sum[x] += f[q] * mu[3 * q + x];
       row.add(ring.centre, scale);
       row.add_point(sum.data(), scale / k);
       return;
@@ -957,8 +955,8 @@ void add_ring_stencil(const ButterflyRings& r, const ButterflyRings::Place& plac
   }
   row.add(ring.centre, 0.75 * scale);
   for (int j = 0; j < k; ++j) {
-    const auto m = static_cast<std::size_t>(ring.offset + (i + j) % k);
-    row.add(r.vertices[m], r.weights[static_cast<std::size_t>(ring.offset + j)] * scale);
+    const std::size_t m = ring.offset + static_cast<std::size_t>((i + j) % k);
+    row.add(r.vertices[m], r.weights[ring.offset + static_cast<std::size_t>(j)] * scale);
   }
 }
 
@@ -1139,19 +1137,15 @@ void doo_sabin_large_face(std::span<const int> corners, Writer& out, Row& row) {
   for (int j = 0; j < k; ++j) {
     const double a = 2 * std::numbers::pi * j / k;
     const std::array<double, 3> f{1.0, std::cos(a), std::sin(a)};
-    for (int q = 0; q < 3; ++q)
-      for (int x = 0; x < 3; ++x)
-        mu[static_cast<std::size_t>(3 * q + x)] +=
-            f[static_cast<std::size_t>(q)] * (point(j)[x] - point(0)[x]);
+    for (std::size_t q = 0; q < 3; ++q)
+      for (std::size_t x = 0; x < 3; ++x) mu[3 * q + x] += f[q] * (point(j)[x] - point(0)[x]);
   }
   for (int i = 0; i < k; ++i) {
     const double a = 2 * std::numbers::pi * i / k;
     const std::array<double, 3> f{3.0, 2 * std::cos(a), 2 * std::sin(a)};
     std::array<double, 3> sum{};
-    for (int q = 0; q < 3; ++q)
-      for (int x = 0; x < 3; ++x)
-        sum[static_cast<std::size_t>(x)] +=
-            f[static_cast<std::size_t>(q)] * mu[static_cast<std::size_t>(3 * q + x)];
+    for (std::size_t q = 0; q < 3; ++q)
+      for (std::size_t x = 0; x < 3; ++x) sum[x] += f[q] * mu[3 * q + x];
     row.add(corners[0], 0.75);
     row.add(corners[static_cast<std::size_t>(i)], 0.25);
     row.add_point(sum.data(), 0.25 / k);

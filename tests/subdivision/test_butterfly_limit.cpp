@@ -239,6 +239,13 @@ TEST_CASE("butterfly limit normals point out of convex shapes; boundary vertices
   CHECK((limit_mesh(fan(5), MeshScheme::butterfly, 1).vertices - butterfly(fan(5), 1).vertices)
             .cwiseAbs()
             .maxCoeff() <= 1e-15);
+  // A mesh folded onto itself (two triangles on the same three vertices): after two levels some rings
+  // repeat a vertex, and their masks read a ring edge that is not there (found by fuzz_mesh_compute,
+  // tests/fuzz/regressions/mesh_compute/butterfly_folded_ring.bin). Those vertices are their own limit.
+  const Mesh folded = make_mesh({{1, 1, 1}, {11, 1, -1}, {-1, -1, 1}}, {{0, 2, 1}, {0, 1, 2}});
+  CHECK((limit_mesh(folded, MeshScheme::butterfly, 2).vertices - butterfly(folded, 2).vertices)
+            .cwiseAbs()
+            .maxCoeff() <= 1e-14);
   // A boundary vertex of 4 faces (vertex 0 of the local mesh) is not C1 under butterfly's boundary rule.
   CHECK_THROWS_WITH(
       limit_mesh(local_mesh(MeshScheme::butterfly, 5, {.boundary = true}, 2), MeshScheme::butterfly, 0,
