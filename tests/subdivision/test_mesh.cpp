@@ -43,6 +43,21 @@ Points tensor_refine(const Scheme& scheme, const Points& grid, int n, int m) {
   return out;
 }
 
+/// A scheme's dense stencils (k² weights at a vertex of valence k or a k-gon), kept: for small k they replay
+/// the one-shot's points; for large k a refinement keeping them is refused before any work, saying why.
+void check_kept_weights(const Mesh& m, MeshScheme scheme, int k) {
+  if (k <= 40) {
+    const MeshRefinement r = refine_topology(m, scheme, 2);
+    CHECK((apply(r, m.vertices) - subdivide(m, scheme, 2).vertices).cwiseAbs().maxCoeff() <=
+          1e-14 * m.vertices.cwiseAbs().maxCoeff());
+  } else {
+    MeshOptions options;
+    options.max_bytes = std::size_t{1} << 30;
+    CHECK_THROWS_WITH(refine_topology(m, scheme, 1, options),
+                      Contains("of them the weights of faces or vertices of 16 or more sides"));
+  }
+}
+
 /// A mesh that every scheme takes: closed triangles.
 Mesh closed_triangles() {
   return bipyramid();
@@ -275,16 +290,7 @@ TEST_CASE("Butterfly is linear in the valence: ring sums = ZSS's stencils writte
           worst, static_cast<double>((once.vertices.row(k + 2 + e).cast<long double>() - expected).norm()));
     }
     CHECK(worst <= 1e-14 * m.vertices.cwiseAbs().maxCoeff());
-    if (k <= 40) {  // the kept weights (k² at each apex) replay the same points
-      const MeshRefinement r = refine_topology(m, MeshScheme::butterfly, 2);
-      CHECK((apply(r, m.vertices) - butterfly(m, 2).vertices).cwiseAbs().maxCoeff() <=
-            1e-14 * m.vertices.cwiseAbs().maxCoeff());
-    } else {  // refused before any work, saying why
-      MeshOptions options;
-      options.max_bytes = std::size_t{1} << 30;
-      CHECK_THROWS_WITH(refine_topology(m, MeshScheme::butterfly, 1, options),
-                        Contains("of them the weights of faces or vertices of 16 or more sides"));
-    }
+    check_kept_weights(m, MeshScheme::butterfly, k);
   }
 }
 
@@ -328,16 +334,7 @@ TEST_CASE("Doo–Sabin is linear in the face size: rank-3 sums = the rule writte
             worst, static_cast<double>((once.vertices.row(child).cast<long double>() - expected).norm()));
       }
     CHECK(worst <= 1e-14 * m.vertices.cwiseAbs().maxCoeff());
-    if (k <= 40) {  // the kept weights (k² a cap) replay the same points
-      const MeshRefinement r = refine_topology(m, MeshScheme::doo_sabin, 2);
-      CHECK((apply(r, m.vertices) - doo_sabin(m, 2).vertices).cwiseAbs().maxCoeff() <=
-            1e-14 * m.vertices.cwiseAbs().maxCoeff());
-    } else {  // refused before any work, saying why
-      MeshOptions options;
-      options.max_bytes = std::size_t{1} << 30;
-      CHECK_THROWS_WITH(refine_topology(m, MeshScheme::doo_sabin, 1, options),
-                        Contains("of them the weights of faces or vertices of 16 or more sides"));
-    }
+    check_kept_weights(m, MeshScheme::doo_sabin, k);
   }
 }
 
