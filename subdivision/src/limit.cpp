@@ -584,10 +584,7 @@ LimitMask butterfly_through_step(const MeshTopology& t, int v, int n, const Limi
   columns.assign(1, v);
   // A ring that repeats a vertex (a mesh folded onto itself: two faces on the same three vertices) has
   // no fan of distinct neighbours for the masks: the position alone, which Butterfly interpolates.
-  bool fan = ring.size() == 1 + static_cast<std::size_t>(n);
-  for (std::size_t j = 0; fan && j < faces.size(); ++j)
-    fan = find_edge(t, ring[1 + j], ring[1 + (j + 1) % static_cast<std::size_t>(n)]) >= 0;
-  if (!fan)
+  if (!distinct(t, v, faces, ring.size()))
     return LimitMask{.position = {1.0},
                      .tangent_u = {},
                      .tangent_v = {},
