@@ -206,11 +206,7 @@ class Parser {
         fail("the power has degree " + std::to_string(static_cast<long>(base.c.size() - 1) * e) +
              ", above the largest mask (" + std::to_string(kMaxMaskSize) + " coefficients, degree " +
              std::to_string(kMaxMaskSize - 1) + ")");
-      Laurent r{0, {Rational(1)}};
-      for (long k = e; k > 0; k >>= 1) {  // by squaring: log2(e) products (e products took seconds)
-        if ((k & 1) != 0) r = times(r, base);
-        if (k > 1) base = times(base, base);
-      }
+      const Laurent r = normalised({base.low * e, detail::power(base.c, static_cast<int>(e))});
       check_size(detail::bits(r.c), start, "power", 1);
       return r;
     }

@@ -205,6 +205,28 @@ TEST_CASE("named_scheme reads text parameters and defaults", "[subdivision]") {
     if (spec.name != "mask" && spec.name != "symbol") CHECK_NOTHROW(named_scheme(spec.name, {}));
 }
 
+TEST_CASE("powers in symbols equal their products expanded term by term", "[subdivision]") {
+  // Powers are taken on integers over one denominator and reduced once (parse_symbol; lane_riesenfeld is
+  // checked against binomials above);
+  // here each power is the product of its factors one at a time, every coefficient a reduced rational.
+  const auto naive_power = [](const Polynomial& p, int e) {
+    Polynomial r{Rational(1)};
+    for (int k = 0; k < e; ++k) {
+      Polynomial next(r.size() + p.size() - 1, Rational(0));
+      for (std::size_t i = 0; i < r.size(); ++i)
+        for (std::size_t j = 0; j < p.size(); ++j) next[i + j] += r[i] * p[j];
+      r = std::move(next);
+    }
+    return r;
+  };
+  const Polynomial mixed{q(1, 3), q(-2, 7), q(1, 5)};
+  for (int e : {0, 1, 2, 3, 7, 16, 33})
+    CHECK(parse_symbol("(1/3 - 2z/7 + z^2/5)^" + std::to_string(e)) == naive_power(mixed, e));
+  const Polynomial tenth{q(-1, 10), 1};
+  CHECK(parse_symbol("z(-.1+z)^268") == naive_power(tenth, 268));
+  CHECK(parse_symbol("(-1/10+z)^3(-1/10+z)^4") == naive_power(tenth, 7));
+}
+
 TEST_CASE("symbols beyond the largest mask are refused before they are expanded",
           "[subdivision][reliability]") {
   // (1+z)^1024 was expanded exactly (17 s) and only then refused for its 1025 coefficients.
