@@ -40,12 +40,18 @@ const CLI::Validator seed_text(
     },
     "SEED");
 
-/// An output option given an empty name (`-o ''`) wrote to standard output as if it were left out.
-const CLI::Validator output_name(
-    [](std::string& text) -> std::string {
-      return text.empty() ? "an empty file name; name a file, or leave the option out" : std::string();
-    },
-    "FILE");
+/// Every option that takes a value refuses an empty one: `-o ''` wrote to standard output and
+/// `--interior-corners ''` analysed the default case, each as if the option were left out.
+void refuse_empty_values(CLI::App& app) {
+  const CLI::Validator non_empty(
+      [](std::string& text) -> std::string {
+        return text.empty() ? "an empty value; give one, or leave the option out" : std::string();
+      },
+      "");
+  for (CLI::Option* option : app.get_options())
+    if (option->get_type_size_max() > 0) option->check(non_empty);
+  for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) refuse_empty_values(*command);
+}
 
 /// `--index N` and `--ignore-trim` of the commands that read a shape file.
 void add_shape_selection(CLI::App* command, cifs::cli::ShapeSelection& select) {
@@ -131,10 +137,8 @@ void add_eval(CLI::App& app, Commands& c) {
       ->allow_extra_args(false);
   eval_cmd->add_option("--samples", c.ev.samples,
                        "N parameters evenly spaced over the domain (surfaces: N×N grid, volumes: N×N×N)");
-  eval_cmd
-      ->add_option("-o,--output", c.ev.output,
-                   "Write the points to a file as they are computed: .json, .npy, .ply or .obj")
-      ->check(output_name);
+  eval_cmd->add_option("-o,--output", c.ev.output,
+                       "Write the points to a file as they are computed: .json, .npy, .ply or .obj");
   eval_cmd->add_flag("--quiet", c.ev.quiet, "No progress bar (-o)");
   add_shape_selection(eval_cmd, c.ev.select);
   eval_cmd->callback([&] { c.result = cli::eval(c.ev); });
@@ -168,8 +172,7 @@ void add_convert(CLI::App& app, Commands& c) {
       ".stp, .igs, .iges)");
   cmd->add_option("input", c.cv.input, "Shape file (.json, .obj, .step, .stp, .igs or .iges)")->required();
   cmd->add_option("output", c.cv.output, "Output file; STEP and IGES hold every shape, others one (--index)")
-      ->required()
-      ->check(output_name);
+      ->required();
   add_shape_selection(cmd, c.cv.select);
   add_quiet(cmd, c.quiet);
   cmd->callback([&] {
@@ -205,10 +208,8 @@ void add_automaton(CLI::App& app, Commands& c) {
       ->add_option("shape", c.au.shape, "Shape file (.json, .obj, .step or .igs), or a mesh (.obj, .ply)")
       ->required();
   automaton_cmd->add_option("--format", c.au.format, "json (default), dot or svg");
-  automaton_cmd
-      ->add_option("-o,--output", c.au.output,
-                   "Output file, its format from the extension (.json, .dot, .svg)")
-      ->check(output_name);
+  automaton_cmd->add_option("-o,--output", c.au.output,
+                            "Output file, its format from the extension (.json, .dot, .svg)");
   automaton_cmd->add_flag("--minimize", c.au.minimize, "Merge states that no control net can tell apart");
   automaton_cmd->add_option(
       "--scheme", c.au.scheme,
@@ -244,11 +245,9 @@ void add_attractor(CLI::App& app, Commands& c) {
   attractor_cmd->add_option(
       "--format", c.at.format,
       "json (default), npy, ply, obj or svg (surfaces at a depth: ply and obj the mesh)");
-  attractor_cmd
-      ->add_option(
-          "-o,--output", c.at.output,
-          "Output file, its format from the extension (.json, .npy, .ply, .obj: written as computed; .svg)")
-      ->check(output_name);
+  attractor_cmd->add_option(
+      "-o,--output", c.at.output,
+      "Output file, its format from the extension (.json, .npy, .ply, .obj: written as computed; .svg)");
   attractor_cmd->add_flag("--quiet", c.at.quiet, "No progress on the terminal");
   add_shape_selection(attractor_cmd, c.at.select);
   attractor_cmd->callback([&] { c.result = cli::attractor(c.at); });
@@ -329,10 +328,8 @@ void add_render(CLI::App& app, Commands& c) {
                    "Experiment files (docs/experiments.md), run in order; a shape or mesh file: a look at it "
                    "with the default camera")
       ->required();
-  render_cmd->add_option("-o,--output", c.re.exr, "OpenEXR image (default: the file's outputs.exr)")
-      ->check(output_name);
-  render_cmd->add_option("--png", c.re.png, "PNG preview (default: the file's outputs.png)")
-      ->check(output_name);
+  render_cmd->add_option("-o,--output", c.re.exr, "OpenEXR image (default: the file's outputs.exr)");
+  render_cmd->add_option("--png", c.re.png, "PNG preview (default: the file's outputs.png)");
   render_cmd->add_option(
       "--out-dir", c.re.out_dir,
       "Folder of the file's other outputs (default: the folder of -o, else the current one)");
@@ -370,10 +367,8 @@ void add_subdivide(CLI::App& app, Commands& c) {
                           "Linear subdivision then averaging (catmull-clark on quads, loop); same result");
   add_strict(subdivide_cmd, c.su.strict);
   subdivide_cmd->add_flag("--quiet", c.su.quiet, "No progress bar");
-  subdivide_cmd
-      ->add_option("-o,--output", c.su.output,
-                   "Output mesh (.obj, .ply, .stl, .off or .vtp; default: OBJ on stdout)")
-      ->check(output_name);
+  subdivide_cmd->add_option("-o,--output", c.su.output,
+                            "Output mesh (.obj, .ply, .stl, .off or .vtp; default: OBJ on stdout)");
   subdivide_cmd->callback([&] { c.result = cli::subdivide(c.su); });
 }
 
@@ -390,11 +385,10 @@ void add_analyze(CLI::App& app, Commands& c) {
       "--rules", c.an.rules,
       "Crease, boundary and corner rules opensubdiv (default) or blz, replacing the file's");
   add_strict(analyze_cmd, c.an.strict);
-  analyze_cmd
-      ->add_option("--png", c.an.png,
-                   "Also write the surface (3 levels) as PNG with the irregular vertices marked: green C1, "
-                   "red not C1, orange undecided")
-      ->check(output_name);
+  analyze_cmd->add_option(
+      "--png", c.an.png,
+      "Also write the surface (3 levels) as PNG with the irregular vertices marked: green C1, "
+      "red not C1, orange undecided");
   analyze_cmd->callback([&] {
     const cifs::render::Stage stage("analyze", c.quiet);
     c.result = cli::analyze(c.an);
@@ -421,10 +415,8 @@ void add_limit(CLI::App& app, Commands& c) {
                  ->excludes(levels);
   limit_cmd->add_flag("--partials", c.li.partials, "With --at: the partials du, dv too")->needs(at);
   add_strict(limit_cmd, c.li.strict);
-  limit_cmd
-      ->add_option("-o,--output", c.li.output,
-                   "Output mesh (.obj, .ply, .stl, .off or .vtp; default: OBJ on stdout)")
-      ->check(output_name);
+  limit_cmd->add_option("-o,--output", c.li.output,
+                        "Output mesh (.obj, .ply, .stl, .off or .vtp; default: OBJ on stdout)");
   add_quiet(limit_cmd, c.quiet);
   limit_cmd->callback([&] {
     const cifs::render::Stage stage("limit", c.quiet);
@@ -486,10 +478,8 @@ void add_view(CLI::App& app, Commands& c) {
                        "Address to listen on (default 127.0.0.1; any other is reachable from the network)");
   view_cmd->add_option("--port", c.view.port, "Port (default 8765; 0: any free port)");
   view_cmd->add_flag("--open", c.view.open, "Open the page with xdg-open");
-  view_cmd
-      ->add_option("--export", c.view_export,
-                   "Write a self-contained static page (geometry baked in, three.js copied) into DIR")
-      ->check(output_name);
+  view_cmd->add_option("--export", c.view_export,
+                       "Write a self-contained static page (geometry baked in, three.js copied) into DIR");
   view_cmd->callback([&] {
     if (!c.view_export.empty()) {
       cifs::view::export_page(c.view_path, c.view_export);
@@ -626,8 +616,7 @@ void add_construct(CLI::App& app, Commands& c) {
   cmd->add_option("--instances", c.co.instances,
                   "sweep: 0 (default) the exact translational sweep; N ≥ 2 the profile carried by the "
                   "trajectory's rotation-minimizing frames through N instances (approximate)");
-  cmd->add_option("-o,--output", c.co.output, "Shape file to write (.json or .obj); default: JSON on stdout")
-      ->check(output_name);
+  cmd->add_option("-o,--output", c.co.output, "Shape file to write (.json or .obj); default: JSON on stdout");
   add_quiet(cmd, c.quiet);
   cmd->callback([&] {
     const cifs::render::Stage stage("construct", c.quiet);
@@ -660,6 +649,7 @@ int run(int argc, char** argv, std::string& result) {
   add_construct(app, c);
   add_gallery(app, c);
   add_view(app, c);
+  refuse_empty_values(app);
 
   try {
     const std::string first = argc > 1 ? argv[1] : "-";

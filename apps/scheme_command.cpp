@@ -224,10 +224,15 @@ std::vector<std::pair<int, sd::LocalOptions>> doo_sabin_boundary_cases(const Sch
     std::vector<char> inner;
     for (const char c : o.interior_corners) {
       if (c != '0' && c != '1')
-        throw InvalidInput("--interior-corners '" + o.interior_corners +
+        throw InvalidInput("--interior-corners '" + excerpt(o.interior_corners) +
                            "': expected 1 (interior) or 0 (boundary) per corner, e.g. 1100");
       inner.push_back(c == '1' ? 1 : 0);
     }
+    if (inner.size() < std::size_t{sd::kMinValence} || inner.size() > std::size_t{sd::kMaxValence})
+      throw InvalidInput("--interior-corners '" + excerpt(o.interior_corners) + "': a face of " +
+                         std::to_string(inner.size()) + " corners; doo-sabin's faces have " +
+                         std::to_string(sd::kMinValence) + " to " + std::to_string(sd::kMaxValence) +
+                         " corners here");
     patterns.push_back(std::move(inner));
   } else {
     for (const int k : parse_valences(o.boundary_valence, "--boundary-valence")) {
@@ -318,9 +323,10 @@ std::vector<std::pair<int, sd::LocalOptions>> local_cases(const std::string& nam
 std::string analyze_mesh_scheme(sd::MeshScheme scheme, const SchemeOptions& o) {
   const std::string name(sd::scheme_name(scheme));
   if (!o.analyze || !o.refine.empty())
-    throw InvalidInput("scheme " + name +
-                       ": a mesh scheme takes --analyze with --valence N or --valences A..B " +
-                       "(to refine a mesh: cifs subdivide MESH --scheme " + name + ")");
+    throw InvalidInput(
+        "scheme " + name +
+        ": a mesh scheme takes --analyze with --valence N, --valences A..B or --boundary-valence K " +
+        "(to refine a mesh: cifs subdivide MESH --scheme " + name + ")");
   if (!o.params.empty())
     throw InvalidInput("scheme " + name + ": --param: the mesh schemes take no parameters");
   if (o.format != "json" && o.format != "table")

@@ -221,7 +221,7 @@ TEST_CASE("cifs refuses an empty output name", "[cli][reliability]") {
        {"eval " + shape + " --samples 3", "attractor " + shape + " --depth 2",
         "subdivide " + mesh + " --scheme catmull-clark", "limit " + mesh + " --scheme catmull-clark"}) {
     INFO(command);
-    check_error(cifs_cli(command + " -o ''"), "empty file name");
+    check_error(cifs_cli(command + " -o ''"), "an empty value");
   }
 }
 

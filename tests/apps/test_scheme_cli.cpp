@@ -315,7 +315,15 @@ TEST_CASE("cifs scheme doo-sabin --boundary-valence K | --interior-corners PATTE
       "doo-sabin: a face touching the boundary has an interior corner and a boundary one; every one of "
       "the 4 is interior");
   check_error(cifs_cli("scheme doo-sabin --interior-corners 0000 --analyze"), "none of the 4 is interior");
-  check_error(cifs_cli("scheme doo-sabin --interior-corners 10 --analyze"), "valence 2 is out of range");
+  check_error(cifs_cli("scheme doo-sabin --interior-corners 10 --analyze"),
+              "--interior-corners '10': a face of 2 corners; doo-sabin's faces have 3 to 16 corners here");
+  check_error(cifs_cli("scheme doo-sabin --interior-corners " + std::string(3000, '1') + " --analyze"),
+              "(3000 characters)': a face of 3000 corners");
+  // An empty pattern analysed the default case, as if the option were left out.
+  check_error(cifs_cli("scheme doo-sabin --interior-corners '' --analyze"),
+              "--interior-corners: an empty value");
+  check_error(cifs_cli("scheme doo-sabin --boundary-valence 4"),
+              "takes --analyze with --valence N, --valences A..B or --boundary-valence K");
   check_error(cifs_cli("scheme doo-sabin --boundary-valence 2 --analyze"),
               "--boundary-valence 2: doo-sabin's faces have 3 to 16 corners here");
   check_error(cifs_cli("scheme doo-sabin --boundary-valence 17 --analyze"), "--boundary-valence 17");
