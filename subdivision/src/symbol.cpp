@@ -90,7 +90,20 @@ class Parser {
       skip();
       if (i_ < s_.size() && (s_[i_] == '+' || s_[i_] == '-')) {
         const int sign = s_[i_++] == '+' ? 1 : -1;
-        add(p, term(), sign);
+        const std::size_t at = i_;
+        const Laurent q = term();
+        // Like a product's: "(z^1024)^1024 + 1" held a million coefficients (0.5 s) for a mask refused later.
+        if (!p.c.empty() && !q.c.empty()) {
+          const long span =
+              std::max(p.low + static_cast<long>(p.c.size()), q.low + static_cast<long>(q.c.size())) -
+              std::min(p.low, q.low);
+          if (span > kMaxMaskSize) {
+            i_ = at;
+            fail("the sum spans " + std::to_string(span) + " powers of z, above the largest mask (" +
+                 std::to_string(kMaxMaskSize) + " coefficients)");
+          }
+        }
+        add(p, q, sign);
       } else {
         return p;
       }

@@ -234,6 +234,11 @@ TEST_CASE("symbols beyond the largest mask are refused before they are expanded"
                     Catch::Contains("the power has degree 1024, above the largest mask"));
   CHECK_THROWS_WITH(from_symbol("(1+z)^300*(1+z)^300"), Catch::Contains("the product has 601 coefficients"));
   CHECK(from_symbol("(1+z)^511/2^510").mask.size() == 512);  // the largest mask is still accepted
+  // Sums likewise: "(z^1024)^1024 + 1" made a million coefficients before the mask was refused.
+  CHECK_THROWS_WITH(parse_symbol("(z^1024)^1024+1"), Catch::Contains("the sum spans 1048577 powers of z"));
+  CHECK_THROWS_WITH(parse_symbol("z^512-1"), Catch::Contains("the sum spans 513 powers of z"));
+  CHECK(parse_symbol("z^511-1").size() == 512);
+  CHECK(parse_symbol("z^600-z^600+1") == Polynomial{1});
 }
 
 TEST_CASE("symbols whose numbers grow beyond the exact numbers read are refused before they are computed",
