@@ -21,7 +21,8 @@ std::string pair_text(int a, int b) {
   return "(" + std::to_string(a) + ", " + std::to_string(b) + ")";
 }
 
-/// Checks the face arrays themselves: offsets, sizes, indices, no repeated corner.
+}  // namespace
+
 void check_faces(std::span<const int> offsets, std::span<const int> corners, int vertex_count,
                  const std::string& who) {
   if (vertex_count < 0) throw InvalidInput(who + ": negative vertex count");
@@ -67,8 +68,6 @@ void check_faces(std::span<const int> offsets, std::span<const int> corners, int
     }
   }
 }
-
-}  // namespace
 
 MeshTopology build_topology(std::span<const int> face_offsets, std::span<const int> face_vertices,
                             int vertex_count, std::string_view who) {

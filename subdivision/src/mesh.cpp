@@ -1304,6 +1304,15 @@ void check_scheme_input(const MeshTopology& t, const Mesh& mesh, MeshScheme sche
         throw InvalidInput(
             who + ": face " + std::to_string(f) + " has " + std::to_string(face(t, f).size()) +
             " corners; this scheme runs on triangles (triangulate first, or use catmull-clark)");
+  // Doo–Sabin makes a face of n corners for each interior vertex of valence n: at valence 2 a face of two
+  // corners, which neither the next level's check nor a mesh file takes (it was refused as "face 21 has
+  // 2 vertices" of a level the user never saw, or by the writer).
+  if (scheme == MeshScheme::doo_sabin)
+    for (int v = 0; v < t.vertex_count; ++v)
+      if (t.boundary_vertex[static_cast<std::size_t>(v)] == 0 && valence(t, static_cast<std::size_t>(v)) == 2)
+        throw InvalidInput(who + ": vertex " + std::to_string(v) +
+                           " is inside the mesh on two faces only: its vertex face would have 2 corners "
+                           "(remove the vertex, joining its two edges, or use catmull-clark)");
   if (mesh.tags.rules == RuleSet::blz && scheme != MeshScheme::catmull_clark && scheme != MeshScheme::loop)
     throw InvalidInput(who + ": the rule set 'blz' is built for catmull-clark and loop only");
   if (!mesh.tags.concave.empty() && mesh.tags.rules != RuleSet::blz)
@@ -1436,10 +1445,15 @@ MeshTopology checked_input(const Mesh& mesh, MeshScheme scheme, int levels, cons
            static_cast<double>(face_count(t0)), static_cast<double>(t0.face_vertices.size())};
   // Dense stencils take k² weights: Butterfly's at a vertex of valence k ≠ 6 (k ring stencils of k
   // entries), Doo–Sabin's at a k-gon (and, from the second level, at a vertex of valence k: its face);
-  // k keeps at every level. A few large ones can outweigh the mesh; one-shot steps keep none.
-  double dense_entries = 0;
+  // k keeps at every level. Catmull–Clark's at a k-gon, on the first level only (its k edge points and
+  // k vertex points each weigh the k corners of its face point; then every face is a quad). A few large
+  // ones can outweigh the mesh; one-shot steps keep none.
+  double dense_entries = 0, dense_first = 0;
   if (keep_levels && options.weights) {
     const auto dense = [](double k) { return k >= kRankFormFrom ? k * k : 0.0; };
+    if (scheme == MeshScheme::catmull_clark)
+      for (std::size_t f = 0; f < face_count(t0); ++f)
+        dense_first += 2 * dense(static_cast<double>(face(t0, f).size()));
     if (scheme == MeshScheme::butterfly)
       for (int v = 0; v < t0.vertex_count; ++v)
         if (butterfly_extraordinary(t0, v)) dense_entries += dense(valence(t0, static_cast<std::size_t>(v)));
@@ -1450,23 +1464,25 @@ MeshTopology checked_input(const Mesh& mesh, MeshScheme scheme, int levels, cons
         if (!on_boundary(t0, v)) dense_entries += dense(valence(t0, static_cast<std::size_t>(v)));
     }
   }
-  double bytes = 0;
+  double bytes = 0, dense_bytes = 0;
   for (int level = 0; level < levels; ++level) {
     c = next_counts(scheme, c);
-    const double level_bytes = 40 * c.corners + 190 * c.vertices + 12 * dense_entries;
+    const double level_dense = 12 * (dense_entries + (level == 0 ? dense_first : 0));
+    const double level_bytes = 40 * c.corners + 190 * c.vertices + level_dense;
     bytes = keep_levels ? bytes + level_bytes : level_bytes;
+    dense_bytes += level_dense;
     if (bytes > static_cast<double>(options.max_bytes) || c.corners > INT_MAX)
-      throw InvalidInput(who + ": " + std::to_string(levels) + (levels == 1 ? " level of " : " levels of ") +
-                         std::to_string(face_count(t0)) + " faces reach " + number_text(c.faces, 3) +
-                         " faces and " + number_text(c.vertices, 3) + " vertices at level " +
-                         std::to_string(level + 1) + ", about " + number_text(bytes, 3) + " bytes (limit " +
-                         number_text(static_cast<double>(options.max_bytes), 3) + ")" +
-                         (dense_entries > 0 ? ", " + number_text(12 * dense_entries * (level + 1), 3) +
-                                                  " of them the weights of faces or vertices of " +
-                                                  std::to_string(kRankFormFrom) +
-                                                  " or more sides (k² each; subdivide keeps none)"
-                                            : std::string()) +
-                         (dense_entries > 0 && level == 0 ? "" : "; ask for fewer levels"));
+      throw InvalidInput(
+          who + ": " + std::to_string(levels) + (levels == 1 ? " level of " : " levels of ") +
+          std::to_string(face_count(t0)) + " faces reach " + number_text(c.faces, 3) + " faces and " +
+          number_text(c.vertices, 3) + " vertices at level " + std::to_string(level + 1) + ", about " +
+          number_text(bytes, 3) + " bytes (limit " + number_text(static_cast<double>(options.max_bytes), 3) +
+          ")" +
+          (dense_bytes > 0
+               ? ", " + number_text(dense_bytes, 3) + " of them the weights of faces or vertices of " +
+                     std::to_string(kRankFormFrom) + " or more sides (k² each or more; subdivide keeps none)"
+               : std::string()) +
+          (dense_bytes > 0 && level == 0 ? "" : "; ask for fewer levels"));
   }
   return t0;
 }

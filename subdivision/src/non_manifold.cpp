@@ -37,14 +37,7 @@ std::optional<ManifoldSplit> split_non_manifold(const Mesh& mesh, const std::str
       next[static_cast<std::size_t>(h)] = h + 1 < mesh.face_offsets[f + 1] ? h + 1 : mesh.face_offsets[f];
       face_of[static_cast<std::size_t>(h)] = static_cast<int>(f);
     }
-  for (std::size_t f = 0; f < F; ++f) {
-    const auto corners = face(mesh, f);
-    for (std::size_t i = 0; i < corners.size(); ++i)
-      if (std::find(corners.begin(), corners.begin() + static_cast<std::ptrdiff_t>(i), corners[i]) !=
-          corners.begin() + static_cast<std::ptrdiff_t>(i))
-        throw InvalidInput(who + ": face " + std::to_string(f) + " repeats vertex " +
-                           std::to_string(corners[i]) + "; faces with degenerate edges are not refined");
-  }
+  check_faces(mesh.face_offsets, mesh.face_vertices, V, who);  // a repeated corner would break the fans
   const auto from = [&](std::size_t h) { return mesh.face_vertices[h]; };
   const auto to = [&](std::size_t h) { return mesh.face_vertices[static_cast<std::size_t>(next[h])]; };
   // Half-edges grouped by their undirected edge.

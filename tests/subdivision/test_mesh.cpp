@@ -9,6 +9,7 @@
 
 #include "cifs/errors.hpp"
 #include "cifs/nurbs/surface.hpp"
+#include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/refine.hpp"
 #include "cifs/subdivision/scheme.hpp"
 #include "cifs/topology.hpp"
@@ -335,6 +336,59 @@ TEST_CASE("Doo–Sabin is linear in the face size: rank-3 sums = the rule writte
       }
     CHECK(worst <= 1e-14 * m.vertices.cwiseAbs().maxCoeff());
     check_kept_weights(m, MeshScheme::doo_sabin, k);
+  }
+}
+
+TEST_CASE("Doo–Sabin refuses an interior vertex of valence 2 before the work",
+          "[subdivision][mesh][reliability]") {
+  // A box with a vertex on a bottom edge (vertex 1: a hexagon and a pentagon around it): its Doo–Sabin
+  // vertex face has 2 corners, which the next level's check refused as a face of a level never shown.
+  const Mesh box = make_mesh(
+      {{0, 0, 0},
+       {1, 0, 0},
+       {2, 0, 0},
+       {2, 1, 0},
+       {1, 1, 0},
+       {0, 1, 0},
+       {0, 0, 1},
+       {2, 0, 1},
+       {2, 1, 1},
+       {0, 1, 1}},
+      {{0, 5, 4, 3, 2, 1}, {6, 7, 8, 9}, {0, 1, 2, 7, 6}, {2, 3, 8, 7}, {3, 4, 5, 9, 8}, {5, 0, 6, 9}});
+  for (const int levels : {1, 2})
+    CHECK_THROWS_WITH(
+        subdivide(box, MeshScheme::doo_sabin, levels),
+        Contains("doo-sabin: vertex 1 is inside the mesh on two faces only: its vertex face would "
+                 "have 2 corners"));
+  CHECK(subdivide(box, MeshScheme::catmull_clark, 1).vertices.rows() ==
+        10 + 14 + 6);  // V + E + F, E from Euler
+}
+
+TEST_CASE("Catmull–Clark keeps a large face's k² weights only when they fit",
+          "[subdivision][mesh][reliability]") {
+  // Kept (refine_topology, cifs limit), the edge and vertex points around a k-gon each weigh its k corners
+  // (its face point's): two faces of 100,000 corners ran past 8 GB; one-shot subdivide keeps none.
+  for (const int k : {40, 60000}) {
+    INFO("k = " << k);
+    std::vector<std::array<double, 3>> p;
+    std::vector<std::vector<int>> faces(2);
+    for (int i = 0; i < k; ++i) {
+      const double a = 2 * std::numbers::pi * i / k;
+      p.push_back({std::cos(a), std::sin(a), 0.01 * (i % 3)});
+      faces[0].push_back(i);
+      faces[1].push_back(k - 1 - i);  // a pillow: every vertex of valence 2
+    }
+    const Mesh m = make_mesh(p, faces);
+    const auto start = std::chrono::steady_clock::now();
+    check_kept_weights(m, MeshScheme::catmull_clark, k);
+    if (k > 40) {
+      CHECK_THROWS_WITH(
+          limit_mesh(m, MeshScheme::catmull_clark, 1, LimitOptions{.max_bytes = std::size_t{1} << 30}),
+          Contains("of them the weights of faces or vertices of 16 or more sides"));
+      CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() <
+            (cifs_test::kSanitized ? 10 : 1));
+      CHECK(subdivide(m, MeshScheme::catmull_clark, 1).vertices.rows() == 2 * k + 2);  // one-shot: linear
+    }
   }
 }
 

@@ -9,6 +9,7 @@
 #include <map>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -95,6 +96,10 @@ inline int find_edge(const MeshTopology& t, int a, int b) noexcept {
 /// range, without a repeated vertex; every edge has one or two faces, and two faces use it in
 /// opposite directions (consistent orientation); the faces around every vertex form one fan (no
 /// two cones meeting at a vertex). Errors start with `who`.
+/// Checks the face arrays alone, in time linear in the corners: offsets from 0 to the corner count,
+/// faces of 3 corners or more, vertex indices in range, no vertex twice in a face. Errors start with `who`.
+void check_faces(std::span<const int> offsets, std::span<const int> corners, int vertex_count,
+                 const std::string& who);
 MeshTopology build_topology(std::span<const int> face_offsets, std::span<const int> face_vertices,
                             int vertex_count, std::string_view who = "mesh");
 /// The same, taking the face arrays over (no copy: the refinement passes each level's faces on).
