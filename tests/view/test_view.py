@@ -223,6 +223,8 @@ def experiments_scenario(args, cifs, driver, work):
     levels = state["params"]["levels"]
     if state["checksum"] != evaluated("cube_fractal.json", {}):
         fail(f"cube_fractal.json at {levels} levels: {state['checksum']:08x}, not the library's")
+    if args.screenshots:
+        driver.save_screenshot(str(Path(args.screenshots) / "view-cube-fractal.png"))
     state = move("levels", levels - 1, state["checksum"], "the cube's levels slider")
     subdivision = dict(mesh["subdivision"], levels=levels - 1)
     if state["checksum"] != evaluated("cube_fractal.json", {"subdivision": subdivision}):
@@ -237,8 +239,6 @@ def experiments_scenario(args, cifs, driver, work):
     info = subprocess.run([args.cli, "info", str(work / "cube_fractal-edited.json")], capture_output=True, text=True)
     if info.returncode != 0:
         fail(f"cifs info cannot read the saved experiment: {info.stderr}")
-    if args.screenshots:
-        driver.save_screenshot(str(Path(args.screenshots) / "view-cube-fractal.png"))
     print(f"subdivision: levels {levels} and {levels - 1}, amplitude 0.3, the library's checksums; saved")
 
     old = state["checksum"]
@@ -250,6 +250,8 @@ def experiments_scenario(args, cifs, driver, work):
     state = move("depth", depth - 2, state["checksum"], "the koch depth slider")
     if state["pointCount"] != 4 ** (depth - 2):
         fail(f"koch.json at depth {depth - 2}: {state['pointCount']} points")
+    if args.screenshots:
+        driver.save_screenshot(str(Path(args.screenshots) / "view-koch.png"))
     driver.execute_script("window.cifsView.rendered = null")
     driver.find_element(By.ID, "render").click()
     wait_for(driver, "window.cifsView.rendered", "the koch render")

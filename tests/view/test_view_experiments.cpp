@@ -86,16 +86,28 @@ TEST_CASE("view experiments on a mesh: the runner's refined, limit and fractal m
     io::Experiment e = read_with("subdivision_cube_fractal.json", 3);
     e.perturbation->amplitude = 0.5;
     CHECK(g.positions == cifs_test::page_floats(experiment::evaluate(e).points));
-    CHECK(g.states.size() == g.positions.size() / 3);  // the automaton's states, per vertex
+    CHECK(g.states.empty());  // drawn in one colour, as the runner draws a mesh
     p.amplitude = 0.3;
     p.seed = 5;
     e.perturbation->amplitude = 0.3;
     e.perturbation->seed = 5;
     CHECK(view::geometry(d, p).positions == cifs_test::page_floats(experiment::evaluate(e).points));
+    p.amplitude = 1.9;  // the slider's top: 1, or twice the file's amplitude
+    CHECK_THROWS_WITH(view::geometry(d, p), "amplitude 1.9 is outside 0..1.8");
+    p.amplitude = 0.3;
     p.levels = 0;  // the runner's refusal, as cifs render gives it
     CHECK_THROWS_WITH(view::geometry(d, p), Catch::Contains("needs 1 level(s) or more"));
     p.levels = 7;
     CHECK_THROWS_WITH(view::geometry(d, p), "levels 7 is outside 0..6 (the view's limit)");
+  }
+  SECTION("a fractal Loop surface at its file's amplitude (1.5, above 1)") {
+    const view::Document d = view::open_document(experiment_path("subdivision_icosahedron_fractal.json"));
+    view::Params p = view::default_params(d);
+    CHECK(p.amplitude == 1.5);
+    p.levels = 2;
+    CHECK(view::geometry(d, p).positions ==
+          cifs_test::page_floats(
+              experiment::evaluate(read_with("subdivision_icosahedron_fractal.json", 2)).points));
   }
 }
 

@@ -313,6 +313,12 @@ int max_depth(const Document& document, const Limits& limits) {
   return 0;
 }
 
+double max_amplitude(const Document& document) {
+  if (document.kind == Kind::subdivision || document.kind == Kind::junction)
+    return std::max(1.0, 2 * document.perturbation.amplitude);
+  return 1;
+}
+
 Params default_params(const Document& document) {
   Params p;
   if (document.kind == Kind::curve) {
@@ -935,8 +941,9 @@ void ifs_geometry(const Document& d, const Params& params, const Limits& limits,
 /// An experiment on a mesh or a junction: the runner's scene (experiment::draw) at the page's levels or
 /// depth.
 void drawing_geometry(const Document& d, const Params& params, const Limits& limits, Geometry& g) {
-  if (!std::isfinite(params.amplitude) || params.amplitude < 0 || params.amplitude > 1)
-    throw InvalidInput("amplitude " + number_text(params.amplitude, 6) + " is outside 0..1");
+  if (!std::isfinite(params.amplitude) || params.amplitude < 0 || params.amplitude > max_amplitude(d))
+    throw InvalidInput("amplitude " + number_text(params.amplitude, 6) + " is outside 0.." +
+                       number_text(max_amplitude(d), 6));
   experiment::RunOptions options;
   options.max_bytes = 64 * limits.max_points;  // about 64 bytes per vertex, as for meshes
   const experiment::Drawing drawing = experiment::draw(
@@ -946,7 +953,9 @@ void drawing_geometry(const Document& d, const Params& params, const Limits& lim
     const Mesh& mesh = *drawing.mesh;
     set_xyz(g.positions, mesh.vertices);
     append_faces(mesh, g.triangles);
-    if (!mesh.states.empty()) {  // a vertex takes the state of a face around it (the sides meet, unwelded)
+    // The runner colours a junction's faces by their state's side (a mesh source: one colour, no states):
+    // a vertex takes the state of a face around it (the sides meet, unwelded).
+    if (!drawing.state_colors.empty()) {
       g.states.assign(static_cast<std::size_t>(mesh.vertices.rows()), 0);
       for (std::size_t f = 0; f + 1 < mesh.face_offsets.size(); ++f)
         for (int k = mesh.face_offsets[f]; k < mesh.face_offsets[f + 1]; ++k)

@@ -328,7 +328,7 @@ json document_json(const Session& s) {
                                       d.experiment->mesh->scheme == subdivision::MeshScheme::loop));
     j["ranges"] = d.kind == Kind::subdivision ? json{{"levels", {0, s.limits.max_levels}}}
                                               : json{{"depth", {0, max_depth(s)}}};
-    if (fractal) j["ranges"]["amplitude"] = {0, 1};
+    if (fractal) j["ranges"]["amplitude"] = {0, max_amplitude(d)};
     j["points_editable"] = false;
     j["automaton"] = false;
     j["experiment"] = true;

@@ -220,6 +220,10 @@ struct Geometry {
 /// (#maps)^depth points are within Limits::max_points); 0 for meshes.
 int max_depth(const Document& document, const Limits& limits);
 
+/// The amplitude slider's top: 1, and for an experiment on a mesh or a junction twice the file's amplitude
+/// when that is more (the Loop examples perturb by 1.5; the runner refuses what is not contractive).
+double max_amplitude(const Document& document);
+
 /// Whether `params` evaluate the document's source through ifs::perturb (as the runner does for an
 /// experiment with a "perturbation"): an amplitude, a value set by name, or the file's own perturbation.
 bool perturbed(const Document& document, const Params& params);
