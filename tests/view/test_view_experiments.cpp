@@ -100,6 +100,14 @@ TEST_CASE("view experiments on a mesh: the runner's refined, limit and fractal m
     p.levels = 7;
     CHECK_THROWS_WITH(view::geometry(d, p), "levels 7 is outside 0..6 (the view's limit)");
   }
+  SECTION("fractal crease lines (perturbation.fractal_curves), the surface smooth") {
+    const view::Document d = view::open_document(experiment_path("subdivision_torus_fractal_creases.json"));
+    view::Params p = view::default_params(d);
+    p.levels = 2;
+    CHECK(view::geometry(d, p).positions ==
+          cifs_test::page_floats(
+              experiment::evaluate(read_with("subdivision_torus_fractal_creases.json", 2)).points));
+  }
   SECTION("a fractal Loop surface at its file's amplitude (1.5, above 1)") {
     const view::Document d = view::open_document(experiment_path("subdivision_icosahedron_fractal.json"));
     view::Params p = view::default_params(d);
@@ -265,6 +273,11 @@ TEST_CASE("view handle: experiments on a mesh, a junction, a classic IFS — doc
     } else {
       CHECK(back.evaluation.depth == nlohmann::json::parse(c.params)["depth"]);
     }
+    // Render: the runner on the same experiment.
+    const view::Response rendered =
+        post("/api/render", std::string(R"({"name": "r.png", "params": )") + c.params + "}");
+    CHECK(rendered.status == 200);
+    CHECK(std::filesystem::file_size(dir.path() / "r.png") > 1000);
     // The saved file's runner geometry is the page's.
     const view::Document reopened = view::open_document(dir.path() / "saved.json");
     CHECK(view::geometry(reopened, view::default_params(reopened)).checksum == s.geometry.checksum);
@@ -280,11 +293,4 @@ TEST_CASE("view handle: experiments on a mesh, a junction, a classic IFS — doc
               .status == 404);
     CHECK(post("/api/geometry", params).status == 200);
   }
-}
-
-TEST_CASE("view handle: an experiment on a classic IFS renders through the runner", "[view]") {
-  cifs_test::ViewFixture f("experiments/sierpinski.json");
-  const view::Response r = f.post("/api/render", R"({"name": "s.png", "params": {"depth": 5}})");
-  REQUIRE(r.status == 200);
-  CHECK(std::filesystem::file_size(f.dir.path() / "s.png") > 1000);
 }
