@@ -186,7 +186,7 @@ def experiments_scenario(args, cifs, driver, work):
     """Experiments the runner draws from its own scene, opened from the page's list: a junction of two curves
     and a fractal Catmull–Clark cube, each holding experiment.evaluate's points (the library through Python)
     at the file's depth or levels and after the slider moves; a classic IFS (koch) drawn as the points of its
-    Hutchinson measure, one per word of `depth` maps (their equality with the library's: the C++ tests)."""
+    Hutchinson measure at the depth, the library's render.hutchinson_points."""
     from selenium.webdriver.common.by import By
 
     def move(slider, value, old, what):
@@ -245,11 +245,14 @@ def experiments_scenario(args, cifs, driver, work):
     set_field(driver, "file", "koch.json")
     state = settle(driver, old, "the opened koch curve")
     depth = state["params"]["depth"]
-    if state["pointCount"] != 4 ** depth or driver.execute_script(PIXELS) < 200:
-        fail(f"koch.json at depth {depth}: {state['pointCount']} points, not 4^{depth}, or not drawn")
+
+    def koch(depth):
+        return fnv1a(np.asarray(cifs.render.hutchinson_points(cifs.ifs.named_ifs("koch"), depth)[0]))
+    if state["checksum"] != koch(depth) or driver.execute_script(PIXELS) < 200:
+        fail(f"koch.json at depth {depth}: {state['checksum']:08x}, not the library's, or not drawn")
     state = move("depth", depth - 2, state["checksum"], "the koch depth slider")
-    if state["pointCount"] != 4 ** (depth - 2):
-        fail(f"koch.json at depth {depth - 2}: {state['pointCount']} points")
+    if state["checksum"] != koch(depth - 2) or state["pointCount"] != 4 ** (depth - 2):
+        fail(f"koch.json at depth {depth - 2}: {state['checksum']:08x}, not the library's")
     if args.screenshots:
         driver.save_screenshot(str(Path(args.screenshots) / "view-koch.png"))
     driver.execute_script("window.cifsView.rendered = null")
@@ -260,7 +263,7 @@ def experiments_scenario(args, cifs, driver, work):
     errors = console_errors(driver)
     if errors:
         fail(f"console errors on the experiments: {errors}")
-    print(f"classic IFS: koch at depths {depth} and {depth - 2}, 4^depth points; rendered")
+    print(f"classic IFS: koch at depths {depth} and {depth - 2}, the library's checksums; rendered")
 
 
 def bcifs_scenario(args, cifs, driver, work):
