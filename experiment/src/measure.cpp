@@ -81,6 +81,7 @@ Drawing draw(const io::Experiment& experiment, std::optional<int> depth, const R
   out.curves = std::move(scene.curves);
   if (scene.control) out.control = std::move(*scene.control);
   out.state_colors.assign(scene.state_colors.begin(), scene.state_colors.end());
+  out.automaton = std::move(scene.automaton);
   out.maps = std::move(scene.maps);
   out.free_coefficients = report.free_coefficients;
   out.residual = report.residual;

@@ -211,6 +211,13 @@ def experiments_scenario(args, cifs, driver, work):
     state = move("depth", depth - 3, state["checksum"], "the junction's depth slider")
     if state["checksum"] != evaluated("junction_curves.json", {"evaluation": {"depth": depth - 3}}):
         fail(f"junction_curves.json at depth {depth - 3}: {state['checksum']:08x}, not the library's")
+    # Its automaton beside it: a state clicked lights up its pieces (a second click deselects).
+    wait_for(driver, "document.querySelectorAll('#automaton circle').length > 1", "the junction's automaton")
+    click = "document.querySelectorAll('#automaton circle')[1].dispatchEvent(new MouseEvent('click'))"
+    driver.execute_script(click)
+    if driver.execute_script("return window.cifsView.selected") != 1:
+        fail("clicking state 1 of the junction's automaton did not select it")
+    driver.execute_script(click)
     if args.screenshots:
         move("depth", depth, state["checksum"], "the junction at the file's depth")
         driver.save_screenshot(str(Path(args.screenshots) / "view-junction.png"))

@@ -212,6 +212,10 @@ TEST_CASE("view classic IFS: the points of the Hutchinson measure at the depth, 
   CHECK(view::max_depth(d, {}) == 11);  // 4^11 = 2^22
   p.depth = 12;
   CHECK_THROWS_WITH(view::geometry(d, p), "depth 12 is outside 0..11 (the view's limit)");
+  p.depth = 2;
+  p.amplitude = 0.1;
+  CHECK_THROWS_WITH(view::geometry(d, p),
+                    Catch::Contains("koch.json: a classic IFS has no free coefficients"));
   CHECK_THROWS_WITH(render::hutchinson_points(maps, 5, 1000),
                     Catch::Contains("more than 1000; lower the depth"));
   // A chaos-game file (fern.json) opens at the deepest depth with at most 10^5 points.
@@ -253,7 +257,7 @@ TEST_CASE("view handle: experiments on a mesh, a junction, a classic IFS — doc
     const auto j = nlohmann::json::parse(doc.body);
     CHECK(j["kind"] == c.kind);
     CHECK(j["points_editable"] == false);
-    CHECK(j["automaton"] == false);
+    CHECK(j["automaton"] == (c.kind == std::string("junction")));
     CHECK(j["ranges"].contains(c.range));
     const std::string params = std::string(R"({"params": )") + c.params + "}";
     const view::Response r = post("/api/geometry", params);
@@ -286,11 +290,13 @@ TEST_CASE("view handle: experiments on a mesh, a junction, a classic IFS — doc
     CHECK(points.status == 400);
     CHECK(points.body.find("its points are not edited here") != std::string::npos);
     CHECK(post("/api/geometry", R"({"params": {"depth": 99, "levels": 99}})").status == 400);
-    CHECK(view::handle(s, {.method = "GET",
-                           .target = "/api/automaton.svg?token=" + s.token,
-                           .host = "127.0.0.1:8765",
-                           .body = {}})
-              .status == 404);
+    // The automaton beside the geometry: a junction's (its states are the pieces'), no other.
+    const view::Response svg = view::handle(s, {.method = "GET",
+                                                .target = "/api/automaton.svg?token=" + s.token,
+                                                .host = "127.0.0.1:8765",
+                                                .body = {}});
+    CHECK(svg.status == (c.kind == std::string("junction") ? 200 : 404));
+    if (svg.status == 200) CHECK(svg.body.find("B:") != std::string::npos);  // both sides' states
     CHECK(post("/api/geometry", params).status == 200);
   }
 }

@@ -931,6 +931,8 @@ io::Experiment experiment_with(const Document& d, const Params& params) {
 /// A classic IFS: the points of its Hutchinson measure at the depth (what the runner bins), each with the
 /// map applied last.
 void ifs_geometry(const Document& d, const Params& params, const Limits& limits, Geometry& g) {
+  if (perturbed(d, params))
+    throw InvalidInput(where(d) + ": a classic IFS has no free coefficients to perturb (amplitude, values)");
   const experiment::Drawing drawing = experiment::draw(*d.experiment, params.depth);
   const render::HutchinsonPoints h =
       render::hutchinson_points(drawing.maps, static_cast<unsigned>(params.depth), limits.max_points);

@@ -330,7 +330,7 @@ json document_json(const Session& s) {
                                               : json{{"depth", {0, max_depth(s)}}};
     if (fractal) j["ranges"]["amplitude"] = {0, max_amplitude(d)};
     j["points_editable"] = false;
-    j["automaton"] = false;
+    j["automaton"] = d.kind == Kind::junction;  // its states are the pieces' (a mesh's and an IFS's are not)
     j["experiment"] = true;
   } else if (d.kind == Kind::mesh) {
     json schemes = json::array();
@@ -365,6 +365,11 @@ json document_json(const Session& s) {
 /// shape with the page's knots (`params`).
 automata::Automaton document_automaton(const Document& d, const Params& params) {
   if (d.kind == Kind::bcifs) return d.bcifs->system.automaton;
+  if (d.kind == Kind::junction) {  // the joined automaton: a perturbation changes its matrices, not its graph
+    io::Experiment e = *d.experiment;
+    e.perturbation.reset();
+    return experiment::draw(e, 0).automaton;
+  }
   const io::Shape shape = edited_shape(d, params);
   if (const auto* c = std::get_if<nurbs::Curve>(&shape)) return nurbs::knot_automaton(*c).automaton;
   return nurbs::tensor_automaton(std::get<nurbs::Surface>(shape)).product;
@@ -599,7 +604,7 @@ Response route(Session& s, const Request& r) {
   if ((r.method == "GET" || r.method == "POST") && path == "/api/automaton.svg") {
     // POST: the automaton of the shape with the body's knots (a knot edit changes it).
     const std::scoped_lock lock(s.document_mutex);
-    if (s.document.kind != Kind::curve && s.document.kind != Kind::surface && s.document.kind != Kind::bcifs)
+    if (s.document.kind == Kind::mesh || s.document.kind == Kind::subdivision || s.document.kind == Kind::ifs)
       throw Refusal{404, path + ": a " + std::string(kind_name(s.document.kind)) + " has no automaton here"};
     const Params params =
         r.method == "GET" ? default_params(s.document) : parse_params(s.document, parse_body(r, path), path);

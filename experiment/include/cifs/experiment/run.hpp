@@ -100,6 +100,7 @@ struct Drawing {
   Segments control;  // the control polygon, net or mesh (none for a classic IFS)
   /// Junctions: the colour of every automaton state (its side's, the file's `color`); else empty.
   std::vector<std::array<double, 3>> state_colors;
+  automata::Automaton automaton;  // the (perturbed) automaton whose states `mesh` and `curves` give
   /// A classic IFS: its maps, drawn by run as their Hutchinson measure at the depth
   /// (render::hutchinson_measure; its points: render::hutchinson_points).
   std::vector<ifs::AffineMap> maps;
