@@ -74,17 +74,15 @@ Drawing draw(const io::Experiment& experiment, std::optional<int> depth, const R
   if (evaluated < 0)
     throw InvalidInput("the depth " + std::to_string(evaluated) + " is negative; give a depth ≥ 0");
   RunReport report;
+  std::string kind;
+  Scene scene = detail::build_source(e, o, report, kind, Geometry::evaluated);
   Drawing out;
-  Scene scene = detail::build_source(e, o, report, out.kind, Geometry::evaluated);
-  out.depth = scene.maps.empty() ? scene.depth : e.evaluation.depth;
   out.mesh = std::move(scene.mesh);
   out.curves = std::move(scene.curves);
   if (scene.control) out.control = std::move(*scene.control);
   out.state_colors.assign(scene.state_colors.begin(), scene.state_colors.end());
   out.automaton = std::move(scene.automaton);
   out.maps = std::move(scene.maps);
-  out.free_coefficients = report.free_coefficients;
-  out.residual = report.residual;
   return out;
 }
 

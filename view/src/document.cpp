@@ -352,6 +352,7 @@ Params default_params(const Document& document) {
     p.scheme = subdivision::scheme_name(m.scheme);
     p.levels = std::min(m.levels, Limits{}.max_levels);
   } else if (document.kind == Kind::junction || document.kind == Kind::ifs) {
+    // Unless the file evaluates to a depth (below): a chaos game's file.
     p.depth = document.kind == Kind::junction ? 5 : ifs_depth(*document.experiment->ifs, 1e5);
   } else {
     const auto& o = document.mesh.face_offsets;
@@ -360,8 +361,9 @@ Params default_params(const Document& document) {
     p.scheme = triangles ? "loop" : "catmull-clark";
     p.levels = 1;
   }
-  if (document.experiment && document.kind != Kind::subdivision) {  // the file's depth (the view's limits
-    if (document.experiment->evaluation.mode == io::EvaluationSpec::Mode::depth)  // apply) and perturbation
+  // An experiment's own depth (a mesh's levels: above) and perturbation; the view's limits apply.
+  if (document.experiment && document.kind != Kind::subdivision) {
+    if (document.experiment->evaluation.mode == io::EvaluationSpec::Mode::depth)
       p.depth = document.experiment->evaluation.depth;
     if (document.kind == Kind::junction || document.kind == Kind::ifs)
       p.depth = std::min(p.depth, max_depth(document, {}));
@@ -957,7 +959,7 @@ void drawing_geometry(const Document& d, const Params& params, const Limits& lim
     append_faces(mesh, g.triangles);
     // The runner colours a junction's faces by their state's side (a mesh source: one colour, no states):
     // a vertex takes the state of a face around it (the sides meet, unwelded).
-    if (!drawing.state_colors.empty()) {
+    if (!drawing.state_colors.empty() && mesh.states.size() + 1 == mesh.face_offsets.size()) {
       g.states.assign(static_cast<std::size_t>(mesh.vertices.rows()), 0);
       for (std::size_t f = 0; f + 1 < mesh.face_offsets.size(); ++f)
         for (int k = mesh.face_offsets[f]; k < mesh.face_offsets[f + 1]; ++k)

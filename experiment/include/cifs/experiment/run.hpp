@@ -90,8 +90,6 @@ Evaluation evaluate(const io::Experiment& experiment, std::optional<int> depth =
 /// What `run` draws of an experiment's source evaluated to a depth (cifs view shows it): the geometry of the
 /// runner's scene, before any framing, drawing or writing.
 struct Drawing {
-  std::string kind;  // "junction of a … and a …", "catmull-clark subdivision of cube.obj", …
-  int depth = 0;     // the depth evaluated (meshes: the levels)
   /// Surfaces, meshes (refined, limit or fractal: Experiment::mesh as run refines it) and junctions of
   /// surfaces (one quad mesh per side, appended), with a state per face when the automaton gives one.
   std::optional<Mesh> mesh;
@@ -104,8 +102,6 @@ struct Drawing {
   /// A classic IFS: its maps, drawn by run as their Hutchinson measure at the depth
   /// (render::hutchinson_measure; its points: render::hutchinson_points).
   std::vector<ifs::AffineMap> maps;
-  std::size_t free_coefficients = 0;
-  double residual = 0;  // the largest constraint residual after perturbation (or the junction's)
 };
 
 /// The runner's scene of `experiment` evaluated to `depth` (default: the file's evaluation.depth, whatever
