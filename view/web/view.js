@@ -73,7 +73,8 @@
   }
 
   // --- drawing ---
-  /// The colour of state s (golden-ratio hues), the selected state's orange and the others faded.
+  /// The colour of state s (the runner's when the geometry gives them: a junction's sides; else golden-ratio
+  /// hues), the selected state's orange and the others faded.
   function stateColor(s) {
     const c = s < stateColors.length ? new THREE.Color().fromArray(stateColors[s]).convertLinearToSRGB()
       : new THREE.Color().setHSL(((s * 0.618034) % 1 + 1) % 1, 0.55, 0.55);
