@@ -40,6 +40,7 @@
 #include "cifs/render/progress.hpp"
 #include "cifs/subdivision/limit.hpp"
 #include "cifs/subdivision/mesh.hpp"
+#include "cifs/subdivision/rules.hpp"
 #include "cifs/verify/check.hpp"
 #include "scheme_command.hpp"
 
@@ -420,10 +421,57 @@ std::string bcifs_info(const std::filesystem::path& path) {
          "\n";
 }
 
+/// An experiment file, read as cifs render reads it (its inputs too): its source, evaluation, perturbation
+/// and outputs (what cifs view saves is read back by this).
+std::string experiment_info(const std::filesystem::path& path) {
+  const io::Experiment e = io::read_experiment(path);
+  json source;
+  if (e.shape) {
+    source = {{"type", std::holds_alternative<nurbs::Curve>(*e.shape) ? "curve" : "surface"}};
+  } else if (!e.automaton.empty()) {
+    source = {{"type", "bcifs"}, {"file", e.automaton.filename().string()}};
+  } else if (e.mesh) {
+    source = {{"type", "mesh"},
+              {"file", e.mesh->path.filename().string()},
+              {"scheme", subdivision::scheme_name(e.mesh->scheme)},
+              {"levels", e.mesh->levels},
+              {"limit", e.mesh->limit}};
+  } else if (e.junction) {
+    source = {{"type", "junction"}, {"a", e.junction->a.boundary}, {"b", e.junction->b.boundary}};
+  } else {
+    source = {{"type", "ifs"}, {"maps", e.ifs->name.empty() ? json(e.ifs->maps.size()) : json(e.ifs->name)}};
+  }
+  json out = {{"type", "experiment"}, {"name", e.name}, {"source", source}};
+  if (!e.mesh) {
+    const io::EvaluationSpec& v = e.evaluation;
+    out["evaluation"] = v.mode == io::EvaluationSpec::Mode::depth ? json{{"depth", v.depth}}
+                        : v.mode == io::EvaluationSpec::Mode::tolerance
+                            ? json{{"relative_piece_size", v.tolerance}}
+                            : json{{"chaos", v.samples}};
+  }
+  if (e.perturbation)
+    out["perturbation"] = {{"amplitude", e.perturbation->amplitude},
+                           {"seed", e.perturbation->seed},
+                           {"values", e.perturbation->values.size()},
+                           {"fractal_curves", e.perturbation->fractal_curves.has_value()}};
+  json outputs = json::array();
+  if (!e.outputs.exr.empty()) outputs.push_back("exr");
+  if (!e.outputs.png.empty()) outputs.push_back("png");
+  for (const auto& [format, file] : e.outputs.geometry) outputs.push_back(format);
+  for (const auto& [format, file] : e.outputs.automaton) outputs.push_back("automaton_" + format);
+  out["outputs"] = outputs;
+  return out.dump(1) + "\n";
+}
+
 std::string info(const std::filesystem::path& path, const ShapeSelection& select,
                  const io::MeshReadOptions& mesh) {
   const io::Content content = io::detect(path);
   if (content == io::Content::mesh) return mesh_info(path, mesh);
+  if (content == io::Content::experiment) {
+    if (select.index || select.ignore_trim)
+      throw InvalidInput(path.string() + ": --index and --ignore-trim apply to shape files, not experiments");
+    return experiment_info(path);
+  }
   if (content == io::Content::bcifs) {
     if (select.index || select.ignore_trim)
       throw InvalidInput(path.string() +

@@ -185,10 +185,11 @@ void add_info(CLI::App& app, Commands& c) {
   auto* info_cmd = app.add_subcommand(
       "info",
       "Degree, counts, domain and segments of a shape (of each shape of the file); counts, valences and "
-      "topology of a mesh");
+      "topology of a mesh; the source, evaluation and outputs of an experiment");
   info_cmd
       ->add_option("shape", c.info_shape,
-                   "Shape file (.json, .obj, .step or .igs) or polygon mesh (.obj, .ply, .stl or .off)")
+                   "Shape file (.json, .obj, .step or .igs), polygon mesh (.obj, .ply, .stl or .off), BC-IFS "
+                   "or experiment file")
       ->required();
   add_shape_selection(info_cmd, c.info_select);
   add_strict(info_cmd, c.info_strict);

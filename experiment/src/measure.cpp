@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // cifs — an experiment's attractor for measurement (cifs dimension, Python): evaluated to a depth, or
-// sampled to a tolerance, from the source run builds (scene.hpp); nothing drawn or written.
+// sampled to a tolerance, from the source run builds (scene.hpp); and that source's geometry as run draws
+// it (cifs view); nothing drawn or written.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -62,6 +63,26 @@ Evaluation evaluate(const io::Experiment& experiment, std::optional<int> depth, 
   out.nets = std::move(scene.nets);
   out.maps = std::move(scene.maps);
   out.rational = scene.rational;
+  return out;
+}
+
+Drawing draw(const io::Experiment& experiment, std::optional<int> depth, const RunOptions& o) {
+  io::Experiment e = experiment;
+  e.evaluation.mode = io::EvaluationSpec::Mode::depth;
+  int& evaluated = e.mesh ? e.mesh->levels : e.evaluation.depth;
+  if (depth) evaluated = *depth;
+  if (evaluated < 0)
+    throw InvalidInput("the depth " + std::to_string(evaluated) + " is negative; give a depth ≥ 0");
+  RunReport report;
+  std::string kind;
+  Scene scene = detail::build_source(e, o, report, kind, Geometry::evaluated);
+  Drawing out;
+  out.mesh = std::move(scene.mesh);
+  out.curves = std::move(scene.curves);
+  if (scene.control) out.control = std::move(*scene.control);
+  out.state_colors.assign(scene.state_colors.begin(), scene.state_colors.end());
+  out.automaton = std::move(scene.automaton);
+  out.maps = std::move(scene.maps);
   return out;
 }
 

@@ -922,6 +922,26 @@ contraction, an empty image, empty bounds, samples ≥ 2³², or negative counts
 bounds.y_max) summing to the mass inside the bounds. Every word of k maps carries the product of
 its probabilities, placed at the word's image of the measure's barycentre. Raises InvalidInput for
 invalid maps, an empty image, empty bounds, a negative depth or more than 2²⁸ points.)");
+  m.def(
+      "hutchinson_points",
+      [](const std::vector<AffineMap>& maps, std::int64_t depth, std::int64_t max_points) {
+        const auto k = threads_arg(depth, "hutchinson_points: depth");
+        const auto limit = count_arg(max_points, "hutchinson_points: max_points");
+        HutchinsonPoints words;
+        {
+          py::gil_scoped_release release;
+          words = hutchinson_points(maps, k, limit);
+        }
+        const auto n = static_cast<py::ssize_t>(words.mass.size());
+        return py::make_tuple(py::cast(std::move(words.points)), py::array_t<double>(n, words.mass.data()),
+                              py::array_t<std::uint32_t>(n, words.map.data()));
+      },
+      py::arg("maps"), py::arg("depth"), py::kw_only(), py::arg("max_points") = std::int64_t{1} << 22,
+      R"(The points that hutchinson_measure bins, in its walk's order: (points, mass, map) — float64 (n, 2) images
+of the measure's barycentre under every word of `depth` maps of non-zero probability, float64 (n,) the
+words' masses, uint32 (n,) the map applied last (the top-level piece holding the point). What cifs view
+draws of a classic IFS. Raises InvalidInput as hutchinson_measure, and before any work when
+(#maps)^depth exceeds max_points.)");
 }
 
 }  // namespace

@@ -328,29 +328,25 @@ Bounds estimate_bounds(std::span<const AffineMap> maps, double margin, std::uint
           cy + dy * (0.5 + margin)};
 }
 
-std::vector<double> hutchinson_measure(std::span<const AffineMap> maps, unsigned depth, std::size_t width,
-                                       std::size_t height, const Bounds& bounds) {
-  const Prepared p = prepare(maps);
-  check_grid(width, height, bounds);
-  const double words = std::pow(static_cast<double>(p.maps.size()), depth);
-  if (words > static_cast<double>(std::uint64_t{1} << 28))
-    throw InvalidInput("the measure at depth " + std::to_string(depth) + " needs " +
-                       std::to_string(p.maps.size()) + "^" + std::to_string(depth) +
-                       " points, more than 2^28; lower the depth");
-  const Grid grid(width, height, bounds);
-  std::vector<double> mass(width * height, 0.0);
-  // Depth-first over the words: memory O(depth), and a fixed visiting order, so the sums are
-  // reproducible.
-  const auto descend = [&](auto&& self, double x, double y, double weight, unsigned level) -> void {
+namespace {
+
+/// The walk of the depth-k Hutchinson measure: `leaf(x, y, mass, map)` for every word of k maps of non-zero
+/// probability, at the image of the measure's barycentre under the word, with the word's mass and the map
+/// applied last (the top-level piece w_map(A) the point lies in; 0 at depth 0). Depth-first: memory
+/// O(depth), and a fixed visiting order, so sums over it are reproducible.
+template <class Leaf>
+void hutchinson_walk(const Prepared& p, unsigned depth, Leaf&& leaf) {
+  const auto descend = [&](auto&& self, double x, double y, double weight, unsigned level,
+                           std::uint32_t last) -> void {
     if (level == depth) {
-      const std::size_t at = grid.index(x, y);
-      if (at != SIZE_MAX) mass[at] += weight;
+      leaf(x, y, weight, last);
       return;
     }
     for (std::size_t k = 0; k < p.maps.size(); ++k) {
       if (p.probability[k] == 0) continue;
       const Linear& m = p.maps[k];
-      self(self, m.a * x + m.b * y + m.e, m.c * x + m.d * y + m.f, weight * p.probability[k], level + 1);
+      self(self, m.a * x + m.b * y + m.e, m.c * x + m.d * y + m.f, weight * p.probability[k], level + 1,
+           static_cast<std::uint32_t>(k));
     }
   };
   // Start at the barycentre x̄ of the invariant measure μ: x̄ = Σ p_k·w_k(x̄) (μ is invariant and
@@ -363,8 +359,55 @@ std::vector<double> hutchinson_measure(std::span<const AffineMap> maps, unsigned
     sa += q * m.a, sb += q * m.b, sc += q * m.c, sd += q * m.d, se += q * m.e, sf += q * m.f;
   }
   const double det = (1 - sa) * (1 - sd) - sb * sc;
-  descend(descend, ((1 - sd) * se + sb * sf) / det, (sc * se + (1 - sa) * sf) / det, 1.0, 0);
+  descend(descend, ((1 - sd) * se + sb * sf) / det, (sc * se + (1 - sa) * sf) / det, 1.0, 0, 0);
+}
+
+/// Refuses, before any work, a measure of more than `limit` points (#maps^depth counts the words of
+/// zero probability too: a bound).
+void check_words(const Prepared& p, unsigned depth, double limit, const std::string& limit_text) {
+  const double words = std::pow(static_cast<double>(p.maps.size()), depth);
+  if (words > limit)
+    throw InvalidInput("the measure at depth " + std::to_string(depth) + " needs " +
+                       std::to_string(p.maps.size()) + "^" + std::to_string(depth) + " points, more than " +
+                       limit_text + "; lower the depth");
+}
+
+}  // namespace
+
+std::vector<double> hutchinson_measure(std::span<const AffineMap> maps, unsigned depth, std::size_t width,
+                                       std::size_t height, const Bounds& bounds) {
+  const Prepared p = prepare(maps);
+  check_grid(width, height, bounds);
+  check_words(p, depth, static_cast<double>(std::uint64_t{1} << 28), "2^28");
+  const Grid grid(width, height, bounds);
+  std::vector<double> mass(width * height, 0.0);
+  hutchinson_walk(p, depth, [&](double x, double y, double weight, std::uint32_t) {
+    const std::size_t at = grid.index(x, y);
+    if (at != SIZE_MAX) mass[at] += weight;
+  });
   return mass;
+}
+
+HutchinsonPoints hutchinson_points(std::span<const AffineMap> maps, unsigned depth, std::size_t max_points) {
+  const Prepared p = prepare(maps);
+  check_words(p, depth, static_cast<double>(max_points), std::to_string(max_points));
+  HutchinsonPoints out;
+  const auto n = static_cast<std::size_t>(
+      std::pow(static_cast<double>(
+                   std::count_if(p.probability.begin(), p.probability.end(), [](double q) { return q > 0; })),
+               depth));
+  out.points.resize(static_cast<Eigen::Index>(n), 2);
+  out.mass.reserve(n);
+  out.map.reserve(n);
+  Eigen::Index at = 0;
+  hutchinson_walk(p, depth, [&](double x, double y, double weight, std::uint32_t map) {
+    out.points(at, 0) = x;
+    out.points(at, 1) = y;
+    ++at;
+    out.mass.push_back(weight);
+    out.map.push_back(map);
+  });
+  return out;
 }
 
 }  // namespace cifs::render

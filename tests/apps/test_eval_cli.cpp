@@ -296,6 +296,29 @@ TEST_CASE("cifs info describes a control polygon", "[cli][newuser]") {
   CHECK(info["length"].get<double>() == Approx(14 * std::sin(std::numbers::pi / 7)).epsilon(1e-12));
 }
 
+TEST_CASE("cifs info describes an experiment file: source, evaluation, perturbation, outputs", "[cli]") {
+  const Run mesh = cifs_cli("info " CIFS_EXAMPLES_DIR "/experiments/subdivision_cube_fractal.json");
+  INFO(mesh.err);
+  REQUIRE(mesh.status == 0);
+  const json m = json::parse(mesh.out);
+  CHECK(m["type"] == "experiment");
+  CHECK(m["source"] == json{{"type", "mesh"},
+                            {"file", "cube.obj"},
+                            {"scheme", "catmull-clark"},
+                            {"levels", 5},
+                            {"limit", false}});
+  CHECK(!m.contains("evaluation"));  // a mesh is refined, not evaluated
+  CHECK(m["perturbation"]["amplitude"] == 0.9);
+  CHECK(m["outputs"] == json{"exr", "png", "obj"});
+  const json fern = json::parse(cifs_cli("info " CIFS_EXAMPLES_DIR "/experiments/fern.json").out);
+  CHECK(fern["source"] == json{{"type", "ifs"}, {"maps", "fern"}});
+  CHECK(fern["evaluation"] == json{{"chaos", 33554432}});
+  const json junction =
+      json::parse(cifs_cli("info " CIFS_EXAMPLES_DIR "/experiments/junction_curves.json").out);
+  CHECK(junction["source"] == json{{"type", "junction"}, {"a", "end"}, {"b", "start"}});
+  CHECK(junction["evaluation"] == json{{"depth", 8}});
+}
+
 TEST_CASE("A parameter or knot outside the domain names the shape file", "[cli][frictions][messages]") {
   const std::string hills = kExamplesDir + "/shapes/hills.json";
   check_error(cifs_cli("eval " + hills + " --at -0.5,0.5"),

@@ -598,6 +598,31 @@ class PointIfsTest(ScratchTestCase):
                     expected[15 - j, i] = 3.0 ** -k  # row 0 at y_max
         assert_close(self, mass, expected, what="Hutchinson masses")
 
+    def test_hutchinson_points_are_what_hutchinson_measure_bins(self):
+        # The right-angled Sierpinski triangle: depth-k points at the centres of mass of the dyadic squares
+        # (i, j) with i & j = 0, mass 3^-k each, in the walk's order (word k1 … kk, k1 applied first), each
+        # with the map applied last.
+        half = [cifs.ifs.AffineMap(a=0.5, d=0.5, e=e, f=f, probability=1) for e, f in ((0, 0), (0.5, 0), (0, 0.5))]
+        k = 3
+        points, mass, last = R.hutchinson_points(half, k)
+        self.assertEqual((points.shape, mass.shape, last.dtype), ((27, 2), (27,), np.uint32))
+        self.assertTrue(np.all(mass == 3.0 ** -k))
+        centre = np.array([1 / 3, 1 / 3])  # the barycentre of the measure: x = (x + e·3) / 2 averaged
+        for i in range(27):
+            x = centre.copy()
+            word = (i // 9, i // 3 % 3, i % 3)
+            for m in word:
+                x = 0.5 * x + [(0, 0), (0.5, 0), (0, 0.5)][m]
+            assert_close(self, points[i], x, what=f"point {i}")
+            self.assertEqual(last[i], word[-1])
+        # Binned with their masses: hutchinson_measure's grid (no point on a pixel edge here).
+        binned, _, _ = np.histogram2d(points[:, 1], points[:, 0], bins=8, range=[[0, 1], [0, 1]], weights=mass)
+        measure = R.hutchinson_measure(half, k, 8, 8, R.Bounds(x_min=0, x_max=1, y_min=0, y_max=1))
+        assert_close(self, measure, binned[::-1], what="binned points")
+        with self.assertRaises(cifs.InvalidInput) as e:
+            R.hutchinson_points(half, 7, max_points=1000)
+        self.assertIn("more than 1000; lower the depth", str(e.exception))
+
     def test_point_ifs_errors(self):
         maps = cifs.ifs.sierpinski_triangle()
         for call, message in [

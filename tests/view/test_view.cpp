@@ -113,8 +113,8 @@ TEST_CASE("view geometry is the library's: curves, surfaces, meshes", "[view]") 
     CHECK_THROWS_WITH(view::geometry(d, p), "depth 40 is outside 0..10 (the view's limit)");
     p.depth = 9;  // within the range, above the point budget
     CHECK_THROWS_AS(view::geometry(d, p, {.max_points = 100000}), InvalidInput);
-    CHECK_THROWS_WITH(view::open_document(kExamples + "/experiments/koch.json"),
-                      Catch::Contains("koch.json: an experiment on a classic IFS"));
+    CHECK_THROWS_WITH(view::open_document(kExamples + "/shapes/hepta.json"),
+                      Catch::Contains("hepta.json: cifs view shows shapes"));
   }
 }
 

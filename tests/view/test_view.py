@@ -182,6 +182,97 @@ def open_and_knots_scenario(args, cifs, driver, work):
           f"refused ({state['refused']}); saved, cifs info reads it")
 
 
+def experiments_scenario(args, cifs, driver, work):
+    """Experiments the runner draws from its own scene, opened from the page's list: a junction of two curves
+    and a fractal Catmull–Clark cube, each holding experiment.evaluate's points (the library through Python)
+    at the file's depth or levels and after the slider moves; a classic IFS (koch) drawn as the points of its
+    Hutchinson measure at the depth, the library's render.hutchinson_points."""
+    from selenium.webdriver.common.by import By
+
+    def move(slider, value, old, what):
+        driver.execute_script(f"const s = document.getElementById('{slider}'); s.value = {value};"
+                              "s.dispatchEvent(new Event('input'));")
+        return settle(driver, old, what)
+
+    def evaluated(name, changes):
+        """The library's points of the experiment file with `changes` (top-level members replaced)."""
+        data = json.loads((work / name).read_text())
+        data.update(changes)
+        (work / ("expected_" + name)).write_text(json.dumps(data))
+        return fnv1a(np.asarray(cifs.experiment.evaluate(cifs.io.read_experiment(str(work / ("expected_" + name))))
+                                .points))
+
+    old = driver.execute_script("return window.cifsView.checksum")
+    set_field(driver, "file", "junction_curves.json")
+    state = settle(driver, old, "the opened junction")
+    depth = state["params"]["depth"]
+    if state["checksum"] != evaluated("junction_curves.json", {}) or driver.execute_script(PIXELS) < 500:
+        fail(f"junction_curves.json at depth {depth}: {state['checksum']:08x}, not the library's, or not drawn")
+    state = move("depth", depth - 3, state["checksum"], "the junction's depth slider")
+    if state["checksum"] != evaluated("junction_curves.json", {"evaluation": {"depth": depth - 3}}):
+        fail(f"junction_curves.json at depth {depth - 3}: {state['checksum']:08x}, not the library's")
+    # Its automaton beside it: a state clicked lights up its pieces (a second click deselects).
+    wait_for(driver, "document.querySelectorAll('#automaton circle').length > 1", "the junction's automaton")
+    click = "document.querySelectorAll('#automaton circle')[1].dispatchEvent(new MouseEvent('click'))"
+    driver.execute_script(click)
+    if driver.execute_script("return window.cifsView.selected") != 1:
+        fail("clicking state 1 of the junction's automaton did not select it")
+    driver.execute_script(click)
+    if args.screenshots:
+        move("depth", depth, state["checksum"], "the junction at the file's depth")
+        driver.save_screenshot(str(Path(args.screenshots) / "view-junction.png"))
+    print(f"junction: both sides at depths {depth} and {depth - 3}, the library's checksums")
+
+    old = state["checksum"]
+    set_field(driver, "file", "cube_fractal.json")
+    state = settle(driver, old, "the opened fractal cube")
+    mesh = json.loads((work / "cube_fractal.json").read_text())
+    levels = state["params"]["levels"]
+    if state["checksum"] != evaluated("cube_fractal.json", {}):
+        fail(f"cube_fractal.json at {levels} levels: {state['checksum']:08x}, not the library's")
+    if args.screenshots:
+        driver.save_screenshot(str(Path(args.screenshots) / "view-cube-fractal.png"))
+    state = move("levels", levels - 1, state["checksum"], "the cube's levels slider")
+    subdivision = dict(mesh["subdivision"], levels=levels - 1)
+    if state["checksum"] != evaluated("cube_fractal.json", {"subdivision": subdivision}):
+        fail(f"cube_fractal.json at {levels - 1} levels: {state['checksum']:08x}, not the library's")
+    state = move("amplitude", 0.3, state["checksum"], "the cube's amplitude slider")
+    perturbation = dict(mesh["perturbation"], amplitude=0.3)
+    if state["checksum"] != evaluated("cube_fractal.json", {"subdivision": subdivision, "perturbation": perturbation}):
+        fail(f"cube_fractal.json at amplitude 0.3: {state['checksum']:08x}, not the library's")
+    driver.execute_script("window.cifsView.saved = null")
+    driver.find_element(By.ID, "save").click()
+    wait_for(driver, "window.cifsView.saved", "the cube's save")
+    info = subprocess.run([args.cli, "info", str(work / "cube_fractal-edited.json")], capture_output=True, text=True)
+    if info.returncode != 0:
+        fail(f"cifs info cannot read the saved experiment: {info.stderr}")
+    print(f"subdivision: levels {levels} and {levels - 1}, amplitude 0.3, the library's checksums; saved")
+
+    old = state["checksum"]
+    set_field(driver, "file", "koch.json")
+    state = settle(driver, old, "the opened koch curve")
+    depth = state["params"]["depth"]
+
+    def koch(depth):
+        return fnv1a(np.asarray(cifs.render.hutchinson_points(cifs.ifs.named_ifs("koch"), depth)[0]))
+    if state["checksum"] != koch(depth) or driver.execute_script(PIXELS) < 200:
+        fail(f"koch.json at depth {depth}: {state['checksum']:08x}, not the library's, or not drawn")
+    state = move("depth", depth - 2, state["checksum"], "the koch depth slider")
+    if state["checksum"] != koch(depth - 2) or state["pointCount"] != 4 ** (depth - 2):
+        fail(f"koch.json at depth {depth - 2}: {state['checksum']:08x}, not the library's")
+    if args.screenshots:
+        driver.save_screenshot(str(Path(args.screenshots) / "view-koch.png"))
+    driver.execute_script("window.cifsView.rendered = null")
+    driver.find_element(By.ID, "render").click()
+    wait_for(driver, "window.cifsView.rendered", "the koch render")
+    if (work / "koch-edited.png").read_bytes()[:8] != b"\x89PNG\r\n\x1a\n":
+        fail("the koch render wrote no PNG")
+    errors = console_errors(driver)
+    if errors:
+        fail(f"console errors on the experiments: {errors}")
+    print(f"classic IFS: koch at depths {depth} and {depth - 2}, the library's checksums; rendered")
+
+
 def bcifs_scenario(args, cifs, driver, work):
     start = time.time()
     x = np.linspace(0, 1, 257)
@@ -341,6 +432,14 @@ def main():
     shutil.copy(Path(args.examples) / "shapes" / "hills.json", shape)
     shutil.copy(Path(args.examples) / "shapes" / "wave.json", work / "wave.json")  # opened from the page
     (work / "broken.json").write_text('{"curve": {"degree": 3}}')
+    # Experiments on a junction, a mesh (its path made absolute: the file is copied) and a classic IFS.
+    for name in ("junction_curves.json", "koch.json"):
+        shutil.copy(Path(args.examples) / "experiments" / name, work / name)
+    cube = json.loads((Path(args.examples) / "experiments" / "subdivision_cube_fractal.json").read_text())
+    cube["mesh"] = str((Path(args.examples) / "meshes" / "cube.obj").resolve())
+    cube["subdivision"]["levels"] = 4
+    cube["perturbation"]["amplitude"] = 0.5  # (0.9, the file's, takes 0.3 s an edit to check contractive)
+    (work / "cube_fractal.json").write_text(json.dumps(cube))
     original = cifs.io.read_shape(str(shape))
 
     server = subprocess.Popen([args.cli, "view", str(shape), "--port", "0"], stdout=subprocess.PIPE,
@@ -513,6 +612,7 @@ def main():
         if args.screenshots:
             driver.save_screenshot(str(Path(args.screenshots) / "view-hills.png"))
         open_and_knots_scenario(args, cifs, driver, work)
+        experiments_scenario(args, cifs, driver, work)
 
         # The exported page, from file:// (a curve: the automaton beside it).
         exported = work / "export"

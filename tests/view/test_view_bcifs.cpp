@@ -299,9 +299,6 @@ TEST_CASE(
   moved.points = {{.index = 0, .position = {1, 2}}};
   check_same_points(view::geometry(d, moved), experiment::evaluate(back_moved).points);
   CHECK(back_moved.perturbation->amplitude == 0.3);
-  // Experiments on other sources are named and refused.
-  CHECK_THROWS_WITH(view::open_document(kBcifsExamples + "/experiments/fern.json"),
-                    Catch::Contains("an experiment on a classic IFS"));
 }
 
 TEST_CASE(

@@ -29,6 +29,7 @@
 #include "cifs/io/io.hpp"
 #include "cifs/nurbs/knot_automaton.hpp"
 #include "cifs/nurbs/tensor_automaton.hpp"
+#include "cifs/render/point_ifs.hpp"
 #include "cifs/subdivision/mesh.hpp"
 #include "cifs/subdivision/rules.hpp"
 
@@ -101,6 +102,12 @@ std::string_view kind_name(Kind kind) noexcept {
       return "mesh";
     case Kind::bcifs:
       return "bcifs";
+    case Kind::subdivision:
+      return "subdivision";
+    case Kind::junction:
+      return "junction";
+    case Kind::ifs:
+      return "ifs";
   }
   return "?";
 }
@@ -235,13 +242,8 @@ Document open_document(const std::filesystem::path& path, const Limits& limits) 
       } else if (!e.automaton.empty()) {
         d.kind = Kind::bcifs;
         d.bcifs = file_system(e.automaton);
-      } else {
-        throw InvalidInput(
-            path.string() + ": an experiment on " +
-            (e.mesh       ? "a mesh"
-             : e.junction ? "a junction"
-                          : "a classic IFS") +
-            "; cifs view shows experiments on a shape or a BC-IFS file (cifs render draws this one)");
+      } else {  // drawn by the runner's scene (experiment::draw)
+        d.kind = e.mesh ? Kind::subdivision : e.junction ? Kind::junction : Kind::ifs;
       }
       d.experiment_text = read_file(path);
       if (e.perturbation) {
@@ -279,6 +281,44 @@ std::vector<std::string_view> document_extensions() {
   return out;
 }
 
+namespace {
+
+/// The deepest depth whose (#maps)^depth points are at most `points` (hutchinson_points' count).
+int ifs_depth(const io::ClassicIfs& ifs, double points) {
+  const auto maps = static_cast<double>(ifs.name.empty() ? ifs.maps.size() : ifs::named_ifs(ifs.name).size());
+  if (maps <= 1) return 30;
+  int depth = 0;
+  while (depth < 30 && std::pow(maps, depth + 1) <= points) ++depth;
+  return depth;
+}
+
+}  // namespace
+
+int max_depth(const Document& document, const Limits& limits) {
+  switch (document.kind) {
+    case Kind::curve:
+      return limits.max_depth_curve;
+    case Kind::surface:
+      return limits.max_depth_surface;
+    case Kind::bcifs:
+      return limits.max_depth_bcifs;
+    case Kind::junction:
+      return limits.max_depth_junction;
+    case Kind::ifs:
+      return ifs_depth(*document.experiment->ifs, static_cast<double>(limits.max_points));
+    case Kind::mesh:
+    case Kind::subdivision:
+      break;
+  }
+  return 0;
+}
+
+double max_amplitude(const Document& document) {
+  if (document.kind == Kind::subdivision || document.kind == Kind::junction)
+    return std::max(1.0, 2 * document.perturbation.amplitude);
+  return 1;
+}
+
 Params default_params(const Document& document) {
   Params p;
   if (document.kind == Kind::curve) {
@@ -307,6 +347,13 @@ Params default_params(const Document& document) {
       if (total() > 1e4) break;
       ++p.depth;
     }
+  } else if (document.kind == Kind::subdivision) {
+    const io::MeshSource& m = *document.experiment->mesh;
+    p.scheme = subdivision::scheme_name(m.scheme);
+    p.levels = std::min(m.levels, Limits{}.max_levels);
+  } else if (document.kind == Kind::junction || document.kind == Kind::ifs) {
+    // Unless the file evaluates to a depth (below): a chaos game's file.
+    p.depth = document.kind == Kind::junction ? 5 : ifs_depth(*document.experiment->ifs, 1e5);
   } else {
     const auto& o = document.mesh.face_offsets;
     bool triangles = true;
@@ -314,9 +361,12 @@ Params default_params(const Document& document) {
     p.scheme = triangles ? "loop" : "catmull-clark";
     p.levels = 1;
   }
-  if (document.experiment) {  // the file's depth (the view's limits apply) and perturbation
+  // An experiment's own depth (a mesh's levels: above) and perturbation; the view's limits apply.
+  if (document.experiment && document.kind != Kind::subdivision) {
     if (document.experiment->evaluation.mode == io::EvaluationSpec::Mode::depth)
       p.depth = document.experiment->evaluation.depth;
+    if (document.kind == Kind::junction || document.kind == Kind::ifs)
+      p.depth = std::min(p.depth, max_depth(document, {}));
   }
   p.amplitude = document.perturbation.amplitude;
   p.seed = document.perturbation.seed;
@@ -865,6 +915,76 @@ void bcifs_geometry(const Document& d, const Params& params, const Limits& limit
   }
 }
 
+/// The experiment of a document drawn by the runner, with the page's perturbation (the file's own members,
+/// fractal_curves and keep_vertices, kept).
+io::Experiment experiment_with(const Document& d, const Params& params) {
+  io::Experiment e = *d.experiment;
+  e.perturbation.reset();
+  if (perturbed(d, params)) {
+    io::PerturbationSpec spec = d.perturbation;
+    spec.amplitude = params.amplitude;
+    spec.seed = params.seed;
+    spec.values = params.values;
+    e.perturbation = std::move(spec);
+  }
+  return e;
+}
+
+/// A classic IFS: the points of its Hutchinson measure at the depth (what the runner bins), each with the
+/// map applied last.
+void ifs_geometry(const Document& d, const Params& params, const Limits& limits, Geometry& g) {
+  if (perturbed(d, params))
+    throw InvalidInput(where(d) + ": a classic IFS has no free coefficients to perturb (amplitude, values)");
+  const experiment::Drawing drawing = experiment::draw(*d.experiment, params.depth);
+  const render::HutchinsonPoints h =
+      render::hutchinson_points(drawing.maps, static_cast<unsigned>(params.depth), limits.max_points);
+  set_xyz(g.positions, h.points);
+  g.states = h.map;
+}
+
+/// An experiment on a mesh or a junction: the runner's scene (experiment::draw) at the page's levels or
+/// depth.
+void drawing_geometry(const Document& d, const Params& params, const Limits& limits, Geometry& g) {
+  if (!std::isfinite(params.amplitude) || params.amplitude < 0 || params.amplitude > max_amplitude(d))
+    throw InvalidInput("amplitude " + number_text(params.amplitude, 6) + " is outside 0.." +
+                       number_text(max_amplitude(d), 6));
+  experiment::RunOptions options;
+  options.max_bytes = 64 * limits.max_points;  // about 64 bytes per vertex, as for meshes
+  const experiment::Drawing drawing = experiment::draw(
+      experiment_with(d, params), d.kind == Kind::subdivision ? params.levels : params.depth, options);
+  g.states.clear();
+  if (drawing.mesh) {
+    const Mesh& mesh = *drawing.mesh;
+    set_xyz(g.positions, mesh.vertices);
+    append_faces(mesh, g.triangles);
+    // The runner colours a junction's faces by their state's side (a mesh source: one colour, no states):
+    // a vertex takes the state of a face around it (the sides meet, unwelded).
+    if (!drawing.state_colors.empty() && mesh.states.size() + 1 == mesh.face_offsets.size()) {
+      g.states.assign(static_cast<std::size_t>(mesh.vertices.rows()), 0);
+      for (std::size_t f = 0; f + 1 < mesh.face_offsets.size(); ++f)
+        for (int k = mesh.face_offsets[f]; k < mesh.face_offsets[f + 1]; ++k)
+          g.states[static_cast<std::size_t>(mesh.face_vertices[k])] = mesh.states[f];
+    }
+  } else {  // a junction's curves: segment i joins point i to point n + i (the runner's pieces)
+    const Segments& s = *drawing.curves;
+    const auto n = static_cast<std::uint32_t>(s.segments.size());
+    for (std::uint32_t i = 0; i < n; ++i)
+      if (s.segments[i][0] != static_cast<int>(i) || s.segments[i][1] != static_cast<int>(n + i))
+        throw std::logic_error("view: the runner's segments are not pieces");
+    set_xyz(g.positions, s.vertices);
+    g.pieces = n;
+    for (int half = 0; half < 2; ++half) g.states.insert(g.states.end(), s.states.begin(), s.states.end());
+  }
+  if (g.positions.size() / 3 > limits.max_points)
+    throw InvalidInput(std::to_string(g.positions.size() / 3) + " points, above the view's limit of " +
+                       std::to_string(limits.max_points) + "; lower the depth");
+  g.state_colors = drawing.state_colors;
+  for (Eigen::Index i = 0; i < drawing.control.vertices.rows(); ++i)
+    append_xyz(g.net, drawing.control.vertices.row(i));
+  for (const auto& [a, b] : drawing.control.segments)
+    g.net_lines.insert(g.net_lines.end(), {static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b)});
+}
+
 }  // namespace
 
 Geometry geometry(const Document& document, const Params& params, const Limits& limits, EditCache* cache) {
@@ -886,7 +1006,17 @@ void geometry(const Document& document, const Params& params, const Limits& limi
   g.pieces = 0;
   g.contraction_length = 0;
   g.contraction_delta = 0;
-  if (document.kind == Kind::mesh) {
+  g.state_colors.clear();
+  if (document.kind == Kind::subdivision) {
+    check_range("levels", params.levels, limits.max_levels);
+    drawing_geometry(document, params, limits, g);
+  } else if (document.kind == Kind::junction || document.kind == Kind::ifs) {
+    check_range("depth", params.depth, max_depth(document, limits));
+    if (document.kind == Kind::ifs)
+      ifs_geometry(document, params, limits, g);
+    else
+      drawing_geometry(document, params, limits, g);
+  } else if (document.kind == Kind::mesh) {
     check_range("levels", params.levels, limits.max_levels);
     mesh_geometry(document, params, limits, g);
   } else if (document.kind == Kind::bcifs) {
@@ -934,6 +1064,7 @@ std::string encode_geometry(const Geometry& g) {
       {"net", g.net.size()},
       {"net_lines", g.net_lines.size()},
       {"pieces", g.pieces},
+      {"state_colors", g.state_colors},
       {"contraction", {{"m", g.contraction_length}, {"delta", g.contraction_delta}}},
       {"checksum", g.checksum}};
   std::string text = header.dump();

@@ -223,6 +223,10 @@ Params parse_params(const Document& d, const json& body, std::string_view where)
     throw Refusal{400, std::string(where) + ": nets: " + d.path.filename().string() +
                            (d.experiment ? " is an experiment: open the BC-IFS file it names to edit its nets"
                                          : " has no BC-IFS nets (its control points are edited as points)")};
+  if (!p.points.empty() && (d.kind == Kind::subdivision || d.kind == Kind::junction || d.kind == Kind::ifs))
+    throw Refusal{400, std::string(where) + ": points: " + d.path.filename().string() +
+                           " is an experiment on a " + std::string(kind_name(d.kind)) +
+                           ": its points are not edited here"};
   if (!p.points.empty() && d.kind == Kind::bcifs)
     throw Refusal{400, std::string(where) +
                            ": points: a BC-IFS file's control points are edited as nets "
@@ -240,23 +244,29 @@ json params_json(const Params& p) {
 }
 
 int shape_dimension(const Document& d) {
-  if (d.kind == Kind::mesh) return static_cast<int>(d.mesh.vertices.cols());
-  if (d.kind == Kind::bcifs) return static_cast<int>(d.bcifs->nets.front().cols());
+  switch (d.kind) {
+    case Kind::mesh:
+      return static_cast<int>(d.mesh.vertices.cols());
+    case Kind::bcifs:
+      return static_cast<int>(d.bcifs->nets.front().cols());
+    case Kind::subdivision:
+      return static_cast<int>(d.experiment->mesh->mesh.vertices.cols());
+    case Kind::ifs:
+      return 2;
+    case Kind::junction: {  // both sides have A's dimension (join checks it)
+      const io::JunctionSideSpec& a = d.experiment->junction->a;
+      if (a.shape) return std::visit([](const auto& s) { return nurbs::dimension(s); }, *a.shape);
+      return static_cast<int>(a.points.cols());
+    }
+    case Kind::curve:
+    case Kind::surface:
+      break;
+  }
   return std::visit([](const auto& s) { return nurbs::dimension(s); }, *d.shape);
 }
 
 int max_depth(const Session& s) {
-  switch (s.document.kind) {
-    case Kind::curve:
-      return s.limits.max_depth_curve;
-    case Kind::surface:
-      return s.limits.max_depth_surface;
-    case Kind::bcifs:
-      return s.limits.max_depth_bcifs;
-    case Kind::mesh:
-      break;
-  }
-  return 0;
+  return view::max_depth(s.document, s.limits);
 }
 
 /// The files of the session's folder that the page may open: plain names (in_folder's rule) with an
@@ -309,7 +319,20 @@ json document_json(const Session& s) {
     }
     j["weights"] = weights;
   }
-  if (d.kind == Kind::mesh) {
+  if (d.kind == Kind::subdivision || d.kind == Kind::junction || d.kind == Kind::ifs) {
+    // Drawn by the runner's scene: its levels or depth, and the perturbation where the runner takes one
+    // (a junction; a Catmull–Clark or Loop mesh: its fractal surface).
+    const bool fractal =
+        d.kind == Kind::junction || (d.kind == Kind::subdivision &&
+                                     (d.experiment->mesh->scheme == subdivision::MeshScheme::catmull_clark ||
+                                      d.experiment->mesh->scheme == subdivision::MeshScheme::loop));
+    j["ranges"] = d.kind == Kind::subdivision ? json{{"levels", {0, s.limits.max_levels}}}
+                                              : json{{"depth", {0, max_depth(s)}}};
+    if (fractal) j["ranges"]["amplitude"] = {0, max_amplitude(d)};
+    j["points_editable"] = false;
+    j["automaton"] = d.kind == Kind::junction;  // its states are the pieces' (a mesh's and an IFS's are not)
+    j["experiment"] = true;
+  } else if (d.kind == Kind::mesh) {
     json schemes = json::array();
     for (const char* name : {"catmull-clark", "loop", "doo-sabin", "butterfly", "sqrt3", "bilinear"})
       schemes.push_back(name);
@@ -342,6 +365,11 @@ json document_json(const Session& s) {
 /// shape with the page's knots (`params`).
 automata::Automaton document_automaton(const Document& d, const Params& params) {
   if (d.kind == Kind::bcifs) return d.bcifs->system.automaton;
+  if (d.kind == Kind::junction) {  // the joined automaton: a perturbation changes its matrices, not its graph
+    io::Experiment e = *d.experiment;
+    e.perturbation.reset();
+    return experiment::draw(e, 0).automaton;
+  }
   const io::Shape shape = edited_shape(d, params);
   if (const auto* c = std::get_if<nurbs::Curve>(&shape)) return nurbs::knot_automaton(*c).automaton;
   return nurbs::tensor_automaton(std::get<nurbs::Surface>(shape)).product;
@@ -366,8 +394,14 @@ std::string edited_experiment(const Session& s, const Params& params, const std:
     throw InvalidInput("depth " + std::to_string(params.depth) + " is outside 0.." +
                        std::to_string(max_depth(s)));
   nlohmann::ordered_json e = nlohmann::ordered_json::parse(d.experiment_text);
-  if (d.experiment->evaluation.mode == io::EvaluationSpec::Mode::depth)
+  if (d.kind == Kind::subdivision) {  // a mesh is refined, not evaluated: its levels
+    if (params.levels < 0 || params.levels > s.limits.max_levels)
+      throw InvalidInput("levels " + std::to_string(params.levels) + " is outside 0.." +
+                         std::to_string(s.limits.max_levels));
+    e["subdivision"]["levels"] = params.levels;
+  } else if (d.experiment->evaluation.mode == io::EvaluationSpec::Mode::depth) {
     e["evaluation"]["depth"] = params.depth;
+  }
   if (!params.points.empty() || !params.weights.empty() || !params.knots.empty())
     e["shape"] = nlohmann::ordered_json::parse(io::to_json(edited_shape(d, params)));
   if (perturbed(d, params)) {
@@ -454,15 +488,22 @@ io::Experiment as_experiment(const Session& s, const Params& params) {
       std::vector<Points> nets = edited_nets(d, params);  // first: it refuses a document without nets
       e.bcifs = io::BcifsFile{d.bcifs->system, std::move(nets)};
     }
-    e.evaluation.mode = io::EvaluationSpec::Mode::depth;
-    e.evaluation.depth = params.depth;
+    if (e.mesh) {  // refined, not evaluated
+      if (params.levels < 0 || params.levels > s.limits.max_levels)
+        throw InvalidInput("levels " + std::to_string(params.levels) + " is outside 0.." +
+                           std::to_string(s.limits.max_levels));
+      e.mesh->levels = params.levels;
+    } else {
+      e.evaluation.mode = io::EvaluationSpec::Mode::depth;
+      e.evaluation.depth = params.depth;
+    }
     e.perturbation.reset();
     if (perturbed(d, params))
       e.perturbation = io::PerturbationSpec{.amplitude = params.amplitude,
                                             .seed = params.seed,
                                             .values = params.values,
                                             .keep_vertices = d.perturbation.keep_vertices,
-                                            .fractal_curves = std::nullopt};
+                                            .fractal_curves = d.perturbation.fractal_curves};
     e.render.width = 1024;
     e.render.height = 768;
     e.render.control_net = true;
@@ -563,7 +604,8 @@ Response route(Session& s, const Request& r) {
   if ((r.method == "GET" || r.method == "POST") && path == "/api/automaton.svg") {
     // POST: the automaton of the shape with the body's knots (a knot edit changes it).
     const std::scoped_lock lock(s.document_mutex);
-    if (s.document.kind == Kind::mesh) throw Refusal{404, path + ": a mesh has no automaton here"};
+    if (s.document.kind == Kind::mesh || s.document.kind == Kind::subdivision || s.document.kind == Kind::ifs)
+      throw Refusal{404, path + ": a " + std::string(kind_name(s.document.kind)) + " has no automaton here"};
     const Params params =
         r.method == "GET" ? default_params(s.document) : parse_params(s.document, parse_body(r, path), path);
     return {200, "image/svg+xml", io::to_svg(document_automaton(s.document, params))};

@@ -83,13 +83,11 @@ void export_page(const std::filesystem::path& path, const std::filesystem::path&
       session,
       {.method = "GET", .target = "/api/document?token=" + session.token, .host = "export", .body = {}});
   if (description.status != 200) throw InvalidInput(description.body);
-  std::string svg;
-  if (document.kind != Kind::mesh)
-    svg = handle(session, {.method = "GET",
-                           .target = "/api/automaton.svg?token=" + session.token,
-                           .host = "export",
-                           .body = {}})
-              .body;
+  // The automaton beside the geometry; none for a mesh or an experiment the runner draws (404).
+  const Response automaton = handle(
+      session,
+      {.method = "GET", .target = "/api/automaton.svg?token=" + session.token, .host = "export", .body = {}});
+  const std::string svg = automaton.status == 200 ? automaton.body : "";
   const std::string bytes = encode_geometry(g);
   static constexpr char kBase64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string b64;

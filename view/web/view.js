@@ -16,6 +16,7 @@
   let controller = null; // the geometry request in flight
   let editStart = 0;
   let selected = -1; // the highlighted state
+  let stateColors = []; // a junction's colour per state (the runner's: each side its own), else empty
 
   // --- three.js scene ---
   const canvas = $('canvas');
@@ -72,9 +73,11 @@
   }
 
   // --- drawing ---
-  /// The colour of state s (golden-ratio hues), the selected state's orange and the others faded.
+  /// The colour of state s (the runner's when the geometry gives them: a junction's sides; else golden-ratio
+  /// hues), the selected state's orange and the others faded.
   function stateColor(s) {
-    const c = new THREE.Color().setHSL(((s * 0.618034) % 1 + 1) % 1, 0.55, 0.55);
+    const c = s < stateColors.length ? new THREE.Color().fromArray(stateColors[s]).convertLinearToSRGB()
+      : new THREE.Color().setHSL(((s * 0.618034) % 1 + 1) % 1, 0.55, 0.55);
     if (selected >= 0) { if (s === selected) c.setRGB(1, 0.55, 0); else c.lerp(new THREE.Color(0xdddddd), 0.75); }
     return c;
   }
@@ -110,6 +113,7 @@
     const geometry = new THREE.BufferGeometry();
     geometry.setAttribute('position', new THREE.BufferAttribute(g.positions, 3));
     states = g.states;
+    stateColors = g.header.state_colors || [];
     colors = new THREE.BufferAttribute(new Float32Array(g.positions.length).fill(0.6), 3);
     geometry.setAttribute('color', colors);
     if (g.header.pieces > 0) { // a BC-IFS: piece i is the segment from point i to point pieces + i
@@ -117,6 +121,8 @@
       for (let i = 0; i < n; ++i) { index[2 * i] = i; index[2 * i + 1] = n + i; }
       geometry.setIndex(new THREE.BufferAttribute(index, 1));
       shapeObject = new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ vertexColors: THREE.VertexColors }));
+    } else if (g.header.kind === 'ifs') {
+      shapeObject = pointCloud(geometry);
     } else if (g.header.kind === 'curve') {
       shapeObject = new (g.header.closed ? THREE.LineLoop : THREE.Line)(geometry, new THREE.LineBasicMaterial({ vertexColors: THREE.VertexColors }));
     } else {
@@ -153,6 +159,10 @@
     const c = g.header.contraction;
     contractivity(c && c.m > 0 ? 'contractive: δ = ' + c.delta.toFixed(6) + ' over ' + c.m + '-step paths' : '', false);
     draw();
+  }
+  /// A classic IFS: the points of its Hutchinson measure, each coloured by the map applied last.
+  function pointCloud(geometry) {
+    return new THREE.Points(geometry, new THREE.PointsMaterial({ vertexColors: THREE.VertexColors, size: 2, sizeAttenuation: false }));
   }
   /// The contractivity of the last edit: the runner's figure, or the library's refusal (status 422).
   function contractivity(text, refused) {
@@ -386,7 +396,7 @@
   function loadAutomaton() {
     selected = -1;
     view.selected = -1;
-    if (doc.kind === 'mesh') { $('automaton').textContent = ''; return; }
+    if (doc.kind === 'mesh' || doc.automaton === false) { $('automaton').textContent = ''; return; }
     const init = knots ? { method: 'POST', body: body() } : {};
     fetch(api('automaton.svg'), init).then((a) => a.text()).then(automaton);
   }

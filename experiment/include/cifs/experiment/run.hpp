@@ -3,6 +3,7 @@
 // file or classic IFS), perturb its free coefficients, evaluate the attractor, render and export.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -12,6 +13,7 @@
 #include "cifs/automata/automaton.hpp"
 #include "cifs/ifs/affine.hpp"
 #include "cifs/io/experiment.hpp"
+#include "cifs/mesh.hpp"
 #include "cifs/render/partial.hpp"
 #include "cifs/types.hpp"
 
@@ -84,6 +86,29 @@ struct Evaluation {
 /// under another scheme (no automaton).
 Evaluation evaluate(const io::Experiment& experiment, std::optional<int> depth = {},
                     const RunOptions& options = {});
+
+/// What `run` draws of an experiment's source evaluated to a depth (cifs view shows it): the geometry of the
+/// runner's scene, before any framing, drawing or writing.
+struct Drawing {
+  /// Surfaces, meshes (refined, limit or fractal: Experiment::mesh as run refines it) and junctions of
+  /// surfaces (one quad mesh per side, appended), with a state per face when the automaton gives one.
+  std::optional<Mesh> mesh;
+  /// Curves, BC-IFS pieces and junctions of curves: the segments, a state per segment.
+  std::optional<Segments> curves;
+  Segments control;  // the control polygon, net or mesh (none for a classic IFS)
+  /// Junctions: the colour of every automaton state (its side's, the file's `color`); else empty.
+  std::vector<std::array<double, 3>> state_colors;
+  automata::Automaton automaton;  // the (perturbed) automaton whose states `mesh` and `curves` give
+  /// A classic IFS: its maps, drawn by run as their Hutchinson measure at the depth
+  /// (render::hutchinson_measure; its points: render::hutchinson_points).
+  std::vector<ifs::AffineMap> maps;
+};
+
+/// The runner's scene of `experiment` evaluated to `depth` (default: the file's evaluation.depth, whatever
+/// its mode; a mesh source: its subdivision.levels, which `depth` replaces), as run draws it: the same
+/// calls, the same doubles.
+/// Throws InvalidInput as run, and for a negative depth.
+Drawing draw(const io::Experiment& experiment, std::optional<int> depth = {}, const RunOptions& options = {});
 
 struct SampleOptions {
   /// Piece diameter relative to the extent (diameter) of the Cartesian initial nets; 0: the

@@ -11,6 +11,7 @@
 
 #include "cifs/ifs/affine.hpp"
 #include "cifs/render/part.hpp"
+#include "cifs/types.hpp"
 
 namespace cifs::render {
 
@@ -87,5 +88,17 @@ Histogram chaos_game_histogram(std::span<const AffineMap> maps, const ChaosHisto
 /// attractor. Cost: (#maps)^depth points; throws InvalidInput beyond 2²⁸ points.
 std::vector<double> hutchinson_measure(std::span<const AffineMap> maps, unsigned depth, std::size_t width,
                                        std::size_t height, const Bounds& bounds);
+
+/// The points that hutchinson_measure bins, in the order of its walk: the image of the measure's barycentre
+/// under every word of `depth` maps of non-zero probability, with the word's mass (the product of its maps'
+/// normalised probabilities) and the map applied last (the top-level piece w_map(A) that holds the point;
+/// 0 at depth 0). What cifs view draws of a classic IFS. Throws InvalidInput as hutchinson_measure, and
+/// before any work when (#maps)^depth exceeds `max_points`.
+struct HutchinsonPoints {
+  Points points;                   // n by 2
+  std::vector<double> mass;        // per point, summing to 1
+  std::vector<std::uint32_t> map;  // per point
+};
+HutchinsonPoints hutchinson_points(std::span<const AffineMap> maps, unsigned depth, std::size_t max_points);
 
 }  // namespace cifs::render

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // cifs — what `cifs view` shows: a file opened as a document (a curve, a surface, a polygon mesh, a BC-IFS
-// file, or an experiment file on one of them), its editable parameters, and its geometry as the binary
+// file, or an experiment file on any source), its editable parameters, and its geometry as the binary
 // buffers the page draws, computed by the library calls of `cifs attractor`, `cifs subdivide` and the
 // experiment runner of `cifs render` (no second evaluator).
 #pragma once
@@ -26,9 +26,11 @@
 
 namespace cifs::view {
 
-enum class Kind { curve, surface, mesh, bcifs };
+/// What a document shows. The last three are experiments drawn by the runner's own scene (experiment::draw):
+/// on a polygon mesh (`subdivision`), a junction of two shapes, a classic IFS.
+enum class Kind { curve, surface, mesh, bcifs, subdivision, junction, ifs };
 
-/// "curve", "surface", "mesh", "bcifs".
+/// "curve", "surface", "mesh", "bcifs", "subdivision", "junction", "ifs".
 std::string_view kind_name(Kind kind) noexcept;
 
 /// A BC-IFS ready to be perturbed again and again: the system (a BC-IFS file's, or the one the experiment
@@ -100,8 +102,10 @@ struct Limits {
   int max_depth_curve = 20;
   int max_depth_surface = 10;
   int max_depth_bcifs = 20;
+  int max_depth_junction = 12;
   int max_levels = 6;
-  /// Refused before any work: more points than this (the browser has to hold them).
+  /// Refused before any work: more points than this (the browser has to hold them); a classic IFS's
+  /// depth slider stops at the deepest depth within it.
   std::size_t max_points = std::size_t{1} << 22;
   /// A BC-IFS with more free coefficients gets no sliders (their ranges cost ~40 perturbations each).
   std::size_t max_sliders = 64;
@@ -110,9 +114,9 @@ struct Limits {
 };
 
 /// Reads `path` (io::detect decides what it holds): a shape, a mesh, a BC-IFS file (with its nets), or an
-/// experiment whose source is a shape or a BC-IFS file. InvalidInput for what the view does not show yet
-/// (polygon files, experiments on meshes, junctions or classic IFS), naming the file and what to open
-/// instead, and for a BC-IFS file without nets.
+/// experiment (on a shape, a BC-IFS file, a mesh, a junction or a classic IFS). InvalidInput for what the
+/// view does not show (polygon files), naming the file and what to open instead, and for a BC-IFS file
+/// without nets.
 Document open_document(const std::filesystem::path& path, const Limits& limits = {});
 
 /// The extensions of the files open_document reads, each once, in the order of io's format table: those of
@@ -163,7 +167,9 @@ struct Params {
 };
 
 /// A depth giving about 10^4 points (curves) or 10^4 vertices (surfaces); one level for meshes, with
-/// Catmull–Clark for meshes with a non-triangle face and Loop otherwise.
+/// Catmull–Clark for meshes with a non-triangle face and Loop otherwise. An experiment: its file's depth (a
+/// mesh source: its levels, its scheme) and perturbation, within the view's limits; a classic IFS evaluated
+/// by the chaos game: the deepest depth with at most 10^5 points.
 Params default_params(const Document& document);
 
 /// The knots the page shows and edits: one list per direction (a closed curve: its breakpoints).
@@ -200,11 +206,23 @@ struct Geometry {
   /// BC-IFS: the positions are the start points of the `pieces` pieces, then their end points (piece i is
   /// the segment from point i to point pieces + i: experiment::evaluate's points, the runner's segments).
   std::uint32_t pieces = 0;
+  /// Junctions: the colour of every automaton state (its side's, as the runner draws it; linear RGB), which
+  /// the page uses for `states` instead of its own palette. Classic IFS: `states` is the map applied last
+  /// (the top-level piece), coloured by the page.
+  std::vector<std::array<double, 3>> state_colors;
   /// Perturbed sources and BC-IFS files: the runner's contractivity check (ifs::contraction, paths up to 8
   /// steps): the path length m and δ_m < 1 it found; 0 when not checked (a NURBS shape).
   int contraction_length = 0;
   double contraction_delta = 0;
 };
+
+/// The depth slider's top: the view's limit for the document's kind (a classic IFS: the deepest depth whose
+/// (#maps)^depth points are within Limits::max_points); 0 for meshes.
+int max_depth(const Document& document, const Limits& limits);
+
+/// The amplitude slider's top: 1, and for an experiment on a mesh or a junction twice the file's amplitude
+/// when that is more (the Loop examples perturb by 1.5; the runner refuses what is not contractive).
+double max_amplitude(const Document& document);
 
 /// Whether `params` evaluate the document's source through ifs::perturb (as the runner does for an
 /// experiment with a "perturbation"): an amplitude, a value set by name, or the file's own perturbation.
@@ -241,8 +259,12 @@ struct EditCache {
 /// states of the pieces; the points of ifs::attractor), ifs::attractor (surfaces), subdivision::subdivide
 /// (meshes); perturbed: ifs::perturb of the shape's BC-IFS (shape_system, kept in `cache`), then
 /// ifs::sample_attractor (curves) or ifs::quad_mesh (surfaces); BC-IFS files: ifs::perturb when perturbed,
-/// ifs::contraction, ifs::edge_pieces. InvalidInput (before any work) for a parameter out of `limits` or a
-/// value outside its coefficient's range, ifs::NotContractive for a non-contractive edit, and as those calls.
+/// ifs::contraction, ifs::edge_pieces. Experiments on a mesh, a junction or a classic IFS: experiment::draw
+/// of the experiment with the page's levels or depth and perturbation (the runner's scene: the refined,
+/// limit or fractal mesh; each side's pieces or quad mesh, with its colour per state), a classic IFS's
+/// points render::hutchinson_points at the depth (what run bins), a state per point: the map applied last.
+/// InvalidInput (before any work) for a parameter out of `limits` or a value outside its coefficient's range,
+/// ifs::NotContractive for a non-contractive edit, and as those calls.
 Geometry geometry(const Document& document, const Params& params, const Limits& limits = {},
                   EditCache* cache = nullptr);
 /// The same into `out`, every field written; its buffers' storage is reused (an edit at the same depth
