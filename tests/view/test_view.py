@@ -62,6 +62,8 @@ def settle(driver, old_checksum, what):
     return driver.execute_script("return window.cifsView")
 
 
+AMPLITUDE = ("const s = document.getElementById('amplitude'); s.value = arguments[0];"
+             "s.dispatchEvent(new Event('input'));")
 PHASES = [("answer", "fetch to the response's headers (cifs answering)"), ("body", "the body received"),
           ("parse", "header and views"), ("checksum", "checksum"), ("index", "triangles"),
           ("normals", "normals"), ("colours", "colours"), ("objects", "objects"), ("render", "render call"),
@@ -95,7 +97,8 @@ def timed_edits(driver, edit, values, what):
         if key in median:
             steps.append(f"{key} {median[key] - last:.1f}")
             last = median[key]
-    print(f"{what}: {state['pointCount']} points, {median['bytes'] / 1e6:.2f} MB, edit to drawn median "
+    webgl = "software WebGL, no multisampling" if state["software"] else "WebGL on a GPU"
+    print(f"{what} ({webgl}): {state['pointCount']} points, {median['bytes'] / 1e6:.2f} MB, edit to drawn median "
           f"{median['drawn']:.1f} ms over {len(timings)} edits (min {min(t['drawn'] for t in timings):.1f}, "
           f"max {max(t['drawn'] for t in timings):.1f}); ms per phase: " + ", ".join(steps))
     return state
@@ -229,9 +232,8 @@ def curve_timing_scenario(cifs, driver, work):
     state = settle(driver, old, "the opened cubic.json")
     set_field(driver, "depth", 16, "input")
     state = settle(driver, state["checksum"], "the cubic at depth 16")
-    slide = "const s = document.getElementById('amplitude'); s.value = arguments[0]; s.dispatchEvent(new Event('input'));"
     amplitudes = [0.065, 0.07, 0.075, 0.08, 0.085, 0.09, 0.095, 0.1]
-    state = timed_edits(driver, slide, amplitudes, "cubic amplitude edits at depth 16")
+    state = timed_edits(driver, AMPLITUDE, amplitudes, "cubic amplitude edits at depth 16")
     experiment = work / "cubic_experiment.json"
     experiment.write_text(json.dumps({"shape": str(work / "cubic.json"), "evaluation": {"depth": 16},
                                       "perturbation": {"amplitude": amplitudes[-1], "seed": 1},
@@ -318,6 +320,8 @@ def net_drag_scenario(args, cifs, driver, work, fit, url, values, depth):
     wait_for(driver, "window.cifsView.ready", "the last net edit")
     time.sleep(0.5)
     state = driver.execute_script("return window.cifsView")
+    if args.screenshots:
+        driver.save_screenshot(str(Path(args.screenshots) / "view-bcifs-net-drag.png"))
     edits = state["sent"]["nets"]
     if len(edits) != 1 or edits[0][:2] != [net, index]:
         fail(f"the page sent {edits} for a drag of net {net} point {index}")
@@ -451,7 +455,7 @@ def main():
         expected = fnv1a(np.asarray(original.attractor(depth + 1).vertices))
         if state["checksum"] != expected:
             fail(f"after the slider: the page holds {state['checksum']:08x}, the library {expected:08x}")
-        print(f"slider: depth {depth + 1}, {state['pointCount']} points in {state['lastMs']:.0f} ms (edit to drawn)")
+        print(f"slider: depth {depth + 1}, {state['pointCount']} points in {state['lastMs']:.0f} ms (edit to draw call)")
 
         # Drag control point 24 (inside the 7×7 net) by 40 pixels.
         index = 24
@@ -564,19 +568,19 @@ def main():
         expected = fnv1a(np.asarray(edited.attractor(7).vertices))
         if state["checksum"] != expected:
             fail(f"depth 7: the page holds {state['checksum']:08x}, the library {expected:08x}")
-        print(f"depth 7: {state['pointCount']} points, edit to drawn in {state['lastMs']:.0f} ms")
+        print(f"depth 7: {state['pointCount']} points, edit to draw call in {state['lastMs']:.0f} ms")
         # The target (≤ 50 ms from a slider edit to the drawn geometry, 10⁵ points and more): amplitude
         # edits at depth 7, timed by the page's marks; the last one is the library's.
-        slide = "const s = document.getElementById('amplitude'); s.value = arguments[0]; s.dispatchEvent(new Event('input'));"
         amplitudes = [0.01, 0.015, 0.02, 0.025, 0.03, 0.035, 0.04, 0.045]
-        state = timed_edits(driver, slide, amplitudes, "hills amplitude edits at depth 7")
+        state = timed_edits(driver, AMPLITUDE, amplitudes, "hills amplitude edits at depth 7")
         perturbed.write_text(json.dumps({"shape": str(saved), "evaluation": {"depth": 7},
                                          "perturbation": {"amplitude": amplitudes[-1], "seed": 1},
                                          "outputs": {"ply": "unused.ply"}}))
         expected = fnv1a(np.asarray(cifs.experiment.evaluate(cifs.io.read_experiment(str(perturbed)), 7).points))
         if state["checksum"] != expected:
-            fail(f"amplitude {amplitudes[-1]} at depth 7: the page holds {state['checksum']:08x}, the library {expected:08x}")
-        driver.execute_script(slide, 0)
+            fail(f"amplitude {amplitudes[-1]} at depth 7: the page holds {state['checksum']:08x}, "
+                 f"the library {expected:08x}")
+        driver.execute_script(AMPLITUDE, 0)
         state = settle(driver, state["checksum"], "the smooth depth-7 geometry again")
         driver.execute_script("const s = document.getElementById('depth'); s.value = 5;"
                               "s.dispatchEvent(new Event('input'));")

@@ -176,7 +176,10 @@
   function normals(geometry, header) {
     if (header.grid[0] === 0) { geometry.computeVertexNormals(); return; }
     let normal = geometry.getAttribute('normal');
-    if (!normal) geometry.setAttribute('normal', (normal = new THREE.BufferAttribute(new Float32Array(geometry.getAttribute('position').count * 3), 3)));
+    if (!normal) {
+      normal = new THREE.BufferAttribute(new Float32Array(geometry.getAttribute('position').count * 3), 3);
+      geometry.setAttribute('normal', normal);
+    }
     gridNormals(geometry.getAttribute('position').array, header.grid, normal.array);
     normal.needsUpdate = true;
   }
@@ -193,7 +196,8 @@
       geometry.setIndex(new THREE.BufferAttribute(index, 1));
       shapeObject = new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ vertexColors: THREE.VertexColors }));
     } else if (g.header.kind === 'curve') {
-      shapeObject = new (g.header.closed ? THREE.LineLoop : THREE.Line)(geometry, new THREE.LineBasicMaterial({ vertexColors: THREE.VertexColors }));
+      shapeObject = new (g.header.closed ? THREE.LineLoop : THREE.Line)(geometry,
+        new THREE.LineBasicMaterial({ vertexColors: THREE.VertexColors }));
     } else {
       geometry.setIndex(new THREE.BufferAttribute(g.header.grid[0] > 0 ? gridTriangles(g.header.grid) : g.triangles, 1));
       mark('index');
@@ -209,15 +213,15 @@
     scene.add(shapeObject);
   }
   /// The shape of g into the shown object's buffers (the same kind and sizes): the positions are the
-  /// response's own array; the index stays (a grid's, a BC-IFS's) or takes the new triangles (a mesh's);
-  /// the colours are made again only when the states changed.
+  /// response's own array; the index stays (a grid's, a BC-IFS's) or takes a mesh's new triangles; the
+  /// colours are made again only when the states changed. Only what changed is uploaded.
   function update(g) {
     const geometry = shapeObject.geometry;
     const position = geometry.getAttribute('position');
     position.array = g.positions;
     position.needsUpdate = true;
-    if (shapeObject.isMesh && g.header.grid[0] === 0) { // triangles sent with the positions
-      const index = geometry.getIndex();
+    const index = geometry.getIndex();
+    if (shapeObject.isMesh && g.header.grid[0] === 0 && !equal(index.array, g.triangles)) { // a mesh's, sent
       index.array = g.triangles;
       index.needsUpdate = true;
     }
