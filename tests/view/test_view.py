@@ -244,6 +244,32 @@ def curve_timing_scenario(cifs, driver, work):
              f"the library {expected:08x}")
 
 
+def mesh_scenario(cifs, driver, work):
+    """A triangle mesh opened from the list, its scheme switched Loop → Butterfly → Loop (the same sizes: the
+    page updates the shown buffers in place, a mesh's triangles sent with its positions): each time the
+    library's subdivided mesh, its normals three.js's, the picture changed."""
+    mesh = cifs.io.read_mesh(str(work / "icosahedron.obj"))
+    old = driver.execute_script("return window.cifsView.checksum")
+    set_field(driver, "file", "icosahedron.obj")
+    state = settle(driver, old, "the opened icosahedron.obj")
+    levels = state["params"]["levels"]
+    for scheme in ("loop", "butterfly", "loop"):
+        expected = fnv1a(np.asarray(getattr(cifs.subdivision, scheme)(mesh, levels).vertices))
+        if state["params"]["scheme"] != scheme:
+            picture = driver.execute_script(PIXELS, "sum")
+            set_field(driver, "scheme", scheme)
+            state = settle(driver, state["checksum"], f"the {scheme} mesh")
+            if driver.execute_script(PIXELS, "sum") == picture:
+                fail(f"the {scheme} mesh: the picture did not change")
+        shown = driver.execute_script("return window.cifsView.inspect()")
+        if state["checksum"] != expected or shown["checksum"] != expected or shown["normalsDiffer"] != 0:
+            fail(f"icosahedron.obj, {scheme} at {levels} levels: the page holds {state['checksum']:08x}, shows "
+                 f"{shown['checksum']:08x} ({shown['normalsDiffer']} normal coordinates not three.js's), the "
+                 f"library {expected:08x}")
+    print(f"mesh: icosahedron.obj, Loop, Butterfly, Loop at {levels} levels, {state['pointCount']} points: the "
+          "library's, updated in place")
+
+
 def bcifs_scenario(args, cifs, driver, work):
     start = time.time()
     x = np.linspace(0, 1, 257)
@@ -405,6 +431,7 @@ def main():
     shutil.copy(Path(args.examples) / "shapes" / "hills.json", shape)
     shutil.copy(Path(args.examples) / "shapes" / "wave.json", work / "wave.json")  # opened from the page
     shutil.copy(Path(args.examples) / "shapes" / "cubic.json", work / "cubic.json")  # timed at depth 16
+    shutil.copy(Path(args.examples) / "meshes" / "icosahedron.obj", work / "icosahedron.obj")
     (work / "broken.json").write_text('{"curve": {"degree": 3}}')
     original = cifs.io.read_shape(str(shape))
 
@@ -435,6 +462,8 @@ def main():
         state = driver.execute_script("return window.cifsView")
         if state.get("error"):
             fail("the page reports " + state["error"])
+        if not state["software"]:  # --use-angle=swiftshader: the page must draw without multisampling
+            fail("the page did not take SwiftShader for a software WebGL")
         errors = console_errors(driver)
         if errors:
             fail(f"console errors on load: {errors}")
@@ -592,6 +621,7 @@ def main():
             driver.save_screenshot(str(Path(args.screenshots) / "view-hills.png"))
         open_and_knots_scenario(args, cifs, driver, work)
         curve_timing_scenario(cifs, driver, work)
+        mesh_scenario(cifs, driver, work)
 
         # The exported page, from file:// (a curve: the automaton beside it).
         exported = work / "export"
