@@ -133,24 +133,31 @@
   /// The vertex normals of a grid triangulated as gridTriangles does, in one pass over its cells: three.js's
   /// computeVertexNormals (each triangle's cross product added to its corners in index order, the sums
   /// normalised) with the same operations in the same order, so the same floats, without its per-triangle
-  /// index reads and Vector3 copies.
+  /// index reads and Vector3 copies; a cell's left corners are the last cell's right ones.
   function gridNormals(p, [rows, cols], n) {
     n.fill(0);
-    const add = (v, x, y, z) => { n[v] += x; n[v + 1] += y; n[v + 2] += z; };
-    for (let i = 0; i + 1 < rows; ++i)
-      for (let j = 0; j + 1 < cols; ++j) {
-        const a = 3 * (i * cols + j), b = a + 3 * cols, c = b + 3, d = a + 3;
+    for (let i = 0; i + 1 < rows; ++i) {
+      // the cell's corners a (i, j), b (i + 1, j), c (i + 1, j + 1), d (i, j + 1)
+      let a = 3 * i * cols, b = a + 3 * cols;
+      let ax = p[a], ay = p[a + 1], az = p[a + 2], bx = p[b], by = p[b + 1], bz = p[b + 2];
+      for (let j = 0; j + 1 < cols; ++j, a += 3, b += 3) {
+        const c = b + 3, d = a + 3;
+        const cx = p[c], cy = p[c + 1], cz = p[c + 2], dx = p[d], dy = p[d + 1], dz = p[d + 2];
         // (a, b, c): (c - b) × (a - b)
-        let ux = p[c] - p[b], uy = p[c + 1] - p[b + 1], uz = p[c + 2] - p[b + 2];
-        let wx = p[a] - p[b], wy = p[a + 1] - p[b + 1], wz = p[a + 2] - p[b + 2];
+        let ux = cx - bx, uy = cy - by, uz = cz - bz, wx = ax - bx, wy = ay - by, wz = az - bz;
         let x = uy * wz - uz * wy, y = uz * wx - ux * wz, z = ux * wy - uy * wx;
-        add(a, x, y, z); add(b, x, y, z); add(c, x, y, z);
+        n[a] += x; n[a + 1] += y; n[a + 2] += z;
+        n[b] += x; n[b + 1] += y; n[b + 2] += z;
+        n[c] += x; n[c + 1] += y; n[c + 2] += z;
         // (a, c, d): (d - c) × (a - c)
-        ux = p[d] - p[c]; uy = p[d + 1] - p[c + 1]; uz = p[d + 2] - p[c + 2];
-        wx = p[a] - p[c]; wy = p[a + 1] - p[c + 1]; wz = p[a + 2] - p[c + 2];
+        ux = dx - cx; uy = dy - cy; uz = dz - cz; wx = ax - cx; wy = ay - cy; wz = az - cz;
         x = uy * wz - uz * wy; y = uz * wx - ux * wz; z = ux * wy - uy * wx;
-        add(a, x, y, z); add(c, x, y, z); add(d, x, y, z);
+        n[a] += x; n[a + 1] += y; n[a + 2] += z;
+        n[c] += x; n[c + 1] += y; n[c + 2] += z;
+        n[d] += x; n[d + 1] += y; n[d + 2] += z;
+        ax = dx; ay = dy; az = dz; bx = cx; by = cy; bz = cz;
       }
+    }
     for (let v = 0; v < n.length; v += 3) {
       const x = n[v], y = n[v + 1], z = n[v + 2], s = 1 / (Math.sqrt(x * x + y * y + z * z) || 1);
       n[v] = x * s; n[v + 1] = y * s; n[v + 2] = z * s;
