@@ -12,6 +12,8 @@ The server is started on a copy of examples/shapes/hills.json; the page must
 - survive hostile requests (bad JSON, a huge depth, a path outside the folder, a foreign Host header, no
   token), each refused with a 4xx, the page still answering edits afterwards;
 - and the exported page (--export DIR) opens from file:// with no server, no console error, pixels drawn.
+- time 7 amplitude edits of the hills at depth 7 and of cubic.json at depth 16 to the drawn picture by phase
+  (printed), each holding the library's positions and three.js's normals; a mesh's scheme switched in place;
 - open another file of the folder from the page's list (a broken one refused, the page unchanged), edit its
   knots and a weight, each drawn as the library evaluates the edited file, a decreasing knot refused;
 Screenshots go to --screenshots (ctest: the build tree; `--screenshots docs/img` refreshes the docs' images).
@@ -64,10 +66,10 @@ def settle(driver, old_checksum, what):
 
 AMPLITUDE = ("const s = document.getElementById('amplitude'); s.value = arguments[0];"
              "s.dispatchEvent(new Event('input'));")
-PHASES = [("answer", "fetch to the response's headers (cifs answering)"), ("body", "the body received"),
-          ("parse", "header and views"), ("checksum", "checksum"), ("index", "triangles"),
-          ("normals", "normals"), ("colours", "colours"), ("objects", "objects"), ("render", "render call"),
-          ("drawn", "GPU done")]
+# The page's phases of an edit in order (view.js marks their ends): the response's headers (cifs answered),
+# its body received, the header and views, the checksum, the triangles, normals, colours, the other objects,
+# the draw call returned, the GPU done (syncDraw).
+PHASES = ["answer", "body", "parse", "checksum", "index", "normals", "colours", "objects", "render", "drawn"]
 
 
 def timed_edits(driver, edit, values, what):
@@ -93,7 +95,7 @@ def timed_edits(driver, edit, values, what):
     timings = timings[1:]
     median = {k: float(np.median([t[k] for t in timings])) for k in timings[0]}
     steps, last = [], 0.0
-    for key, _ in PHASES:
+    for key in PHASES:
         if key in median:
             steps.append(f"{key} {median[key] - last:.1f}")
             last = median[key]
@@ -484,7 +486,8 @@ def main():
         expected = fnv1a(np.asarray(original.attractor(depth + 1).vertices))
         if state["checksum"] != expected:
             fail(f"after the slider: the page holds {state['checksum']:08x}, the library {expected:08x}")
-        print(f"slider: depth {depth + 1}, {state['pointCount']} points in {state['lastMs']:.0f} ms (edit to draw call)")
+        print(f"slider: depth {depth + 1}, {state['pointCount']} points in {state['lastMs']:.0f} ms "
+              "(edit to draw call)")
 
         # Drag control point 24 (inside the 7×7 net) by 40 pixels.
         index = 24

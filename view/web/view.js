@@ -97,9 +97,11 @@
     if (selected >= 0) { if (s === selected) c.setRGB(1, 0.55, 0); else c.lerp(new THREE.Color(0xdddddd), 0.75); }
     return c;
   }
+  let colouredFor = -1; // the selected state of the colours
   /// The vertex colours of the states, each state's colour made once (a few states, many vertices).
   function recolor(redraw = true) {
     if (!colors || !states || states.length === 0) return;
+    colouredFor = selected;
     const a = colors.array, palette = [];
     for (let i = 0, k = 0; i < states.length; ++i, k += 3) {
       const s = states[i];
@@ -221,7 +223,7 @@
   }
   /// The shape of g into the shown object's buffers (the same kind and sizes): the positions are the
   /// response's own array; the index stays (a grid's, a BC-IFS's) or takes a mesh's new triangles; the
-  /// colours are made again only when the states changed. Only what changed is uploaded.
+  /// colours are made again only when the states or the selected state changed. Only what changed is uploaded.
   function update(g) {
     const geometry = shapeObject.geometry;
     const position = geometry.getAttribute('position');
@@ -235,7 +237,7 @@
     mark('index');
     if (shapeObject.isMesh) normals(geometry, g.header);
     mark('normals');
-    const changed = !equal(states, g.states);
+    const changed = !equal(states, g.states) || colouredFor !== selected;
     states = g.states;
     if (changed) recolor(false);
     mark('colours');
