@@ -99,6 +99,7 @@ def timed_edits(driver, edit, values, what):
         if key in median:
             steps.append(f"{key} {median[key] - last:.1f}")
             last = median[key]
+    steps[0] += f" (cifs {median['cifs']:.1f})"  # the server's Server-Timing
     webgl = "software WebGL, no multisampling" if state["software"] else "WebGL on a GPU"
     print(f"{what} ({webgl}): {state['pointCount']} points, {median['bytes'] / 1e6:.2f} MB, edit to drawn median "
           f"{median['drawn']:.1f} ms over {len(timings)} edits (min {min(t['drawn'] for t in timings):.1f}, "

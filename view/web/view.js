@@ -343,6 +343,7 @@
         view.ready = true;
         return;
       }
+      const cifs = /dur=([\d.]+)/.exec(r.headers.get('Server-Timing') || ''); // the server's time (server.cpp)
       const buffer = await r.arrayBuffer();
       mark('body');
       const g = parse(buffer);
@@ -357,6 +358,7 @@
       view.lastMs = performance.now() - begun;
       view.timing = Object.fromEntries(Object.entries(phases).map(([phase, t]) => [phase, t - begun]));
       view.timing.bytes = buffer.byteLength;
+      if (cifs) view.timing.cifs = Number(cifs[1]);
       status(view.pointCount + ' points, ' + view.lastMs.toFixed(0) + ' ms');
       readout();
       view.ready = true;
