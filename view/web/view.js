@@ -4,7 +4,12 @@
 // draws the library's answer. Nothing is evaluated here.
 'use strict';
 (function () {
-  const view = (window.cifsView = { ready: false, checksum: null, pointCount: 0, lastMs: 0, net: [], error: null });
+  // timing: the last edit's phases, ms from the edit to the end of each (docs/view.md); syncDraw (tests): wait
+  // for the GPU to draw (a pixel read back), so that the last phase ends with the picture, not the commands.
+  const view = (window.cifsView = { ready: false, checksum: null, pointCount: 0, lastMs: 0, net: [], error: null,
+    timing: null, syncDraw: false });
+  let marks = {}; // the current edit's performance.now() at the end of each phase
+  const mark = (phase) => { marks[phase] = performance.now(); };
   const token = new URLSearchParams(location.search).get('token') || '';
   const api = (name) => 'api/' + name + '?token=' + encodeURIComponent(token);
   const $ = (id) => document.getElementById(id);
@@ -14,13 +19,25 @@
   const weights = new Map(); // point index -> weight (accepted by the server)
   let knots = null; // the knot lists accepted by the server (null: the file's)
   let controller = null; // the geometry request in flight
-  let editStart = 0;
   let selected = -1; // the highlighted state
   let stateColors = []; // a junction's colour per state (the runner's: each side its own), else empty
 
   // --- three.js scene ---
   const canvas = $('canvas');
-  const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+  /// Whether WebGL draws in software (SwiftShader, llvmpipe: no GPU), where 4× multisampling makes a draw
+  /// about three times as long (docs/view.md): antialiasing is for a GPU.
+  function softwareWebGL() {
+    const gl = document.createElement('canvas').getContext('webgl');
+    if (!gl) return false;
+    let name = gl.getParameter(gl.RENDERER); // Firefox: the driver's; Chromium: "WebKit WebGL"
+    const info = /^WebKit/.test(name) && gl.getExtension('WEBGL_debug_renderer_info');
+    if (info) name = gl.getParameter(info.UNMASKED_RENDERER_WEBGL);
+    const lose = gl.getExtension('WEBGL_lose_context');
+    if (lose) lose.loseContext();
+    return /SwiftShader|llvmpipe|softpipe|software/i.test(name);
+  }
+  view.software = softwareWebGL();
+  const renderer = new THREE.WebGLRenderer({ canvas, antialias: !view.software, preserveDrawingBuffer: true });
   renderer.setPixelRatio(window.devicePixelRatio || 1);
   const scene = new THREE.Scene();
   scene.background = new THREE.Color(0xf7f7f5);
@@ -67,7 +84,9 @@
     g.states = take(Uint32Array, header.states);
     g.net = take(Float32Array, header.net);
     g.netLines = take(Uint32Array, header.net_lines);
+    mark('parse');
     g.checksum = fnv1a(new Uint32Array(g.positions.buffer, g.positions.byteOffset, g.positions.length));
+    mark('checksum');
     if (g.checksum !== header.checksum) throw new Error('the geometry arrived damaged (checksum)');
     return g;
   }
@@ -81,16 +100,24 @@
     if (selected >= 0) { if (s === selected) c.setRGB(1, 0.55, 0); else c.lerp(new THREE.Color(0xdddddd), 0.75); }
     return c;
   }
-  function recolor() {
+  let colouredFor = -1; // the selected state of the colours
+  /// The vertex colours of the states, each state's colour made once (a few states, many vertices).
+  function recolor(redraw = true) {
     if (!colors || !states || states.length === 0) return;
-    const a = colors.array, palette = new Map();
-    for (let i = 0; i < states.length; ++i) {
-      let c = palette.get(states[i]);
-      if (!c) palette.set(states[i], (c = stateColor(states[i])));
-      a[3 * i] = c.r; a[3 * i + 1] = c.g; a[3 * i + 2] = c.b;
+    colouredFor = selected;
+    const a = colors.array, palette = [];
+    for (let i = 0, k = 0; i < states.length; ++i, k += 3) {
+      const s = states[i];
+      const c = palette[s] || (palette[s] = stateColor(s));
+      a[k] = c.r; a[k + 1] = c.g; a[k + 2] = c.b;
     }
     colors.needsUpdate = true;
-    draw();
+    if (redraw) draw();
+  }
+  function equal(a, b) {
+    if (a.length !== b.length) return false;
+    for (let i = 0; i < a.length; ++i) if (a[i] !== b[i]) return false;
+    return true;
   }
   let gridCache = { key: '', index: null };
   /// The two triangles of each cell of a rows × cols grid (view::Geometry::grid), made once per size.
@@ -108,12 +135,71 @@
     gridCache = { key, index };
     return index;
   }
-  function show(g, frame) {
-    for (const o of [shapeObject, netPoints, netLines]) if (o) { scene.remove(o); o.geometry.dispose(); }
+  /// The vertex normals of a grid triangulated as gridTriangles does, in one pass over its cells: three.js's
+  /// computeVertexNormals (each triangle's cross product added to its corners in index order, the sums
+  /// normalised) with the same operations in the same order, so the same floats, without its per-triangle
+  /// index reads and Vector3 copies; a cell's left corners are the last cell's right ones.
+  function gridNormals(p, [rows, cols], n) {
+    n.fill(0);
+    for (let i = 0; i + 1 < rows; ++i) {
+      // the cell's corners a (i, j), b (i + 1, j), c (i + 1, j + 1), d (i, j + 1)
+      let a = 3 * i * cols, b = a + 3 * cols;
+      let ax = p[a], ay = p[a + 1], az = p[a + 2], bx = p[b], by = p[b + 1], bz = p[b + 2];
+      for (let j = 0; j + 1 < cols; ++j, a += 3, b += 3) {
+        const c = b + 3, d = a + 3;
+        const cx = p[c], cy = p[c + 1], cz = p[c + 2], dx = p[d], dy = p[d + 1], dz = p[d + 2];
+        // (a, b, c): (c - b) × (a - b)
+        let ux = cx - bx, uy = cy - by, uz = cz - bz, wx = ax - bx, wy = ay - by, wz = az - bz;
+        let x = uy * wz - uz * wy, y = uz * wx - ux * wz, z = ux * wy - uy * wx;
+        n[a] += x; n[a + 1] += y; n[a + 2] += z;
+        n[b] += x; n[b + 1] += y; n[b + 2] += z;
+        n[c] += x; n[c + 1] += y; n[c + 2] += z;
+        // (a, c, d): (d - c) × (a - c)
+        ux = dx - cx; uy = dy - cy; uz = dz - cz; wx = ax - cx; wy = ay - cy; wz = az - cz;
+        x = uy * wz - uz * wy; y = uz * wx - ux * wz; z = ux * wy - uy * wx;
+        n[a] += x; n[a + 1] += y; n[a + 2] += z;
+        n[c] += x; n[c + 1] += y; n[c + 2] += z;
+        n[d] += x; n[d + 1] += y; n[d + 2] += z;
+        ax = dx; ay = dy; az = dz; bx = cx; by = cy; bz = cz;
+      }
+    }
+    for (let v = 0; v < n.length; v += 3) {
+      const x = n[v], y = n[v + 1], z = n[v + 2], s = 1 / (Math.sqrt(x * x + y * y + z * z) || 1);
+      n[v] = x * s; n[v + 1] = y * s; n[v + 2] = z * s;
+    }
+  }
+  /// Tests: what the shown object holds — the checksum of its position buffer, and for a surface how many of
+  /// its normal coordinates differ from three.js's computeVertexNormals on the same buffers.
+  view.inspect = () => {
+    const geometry = shapeObject.geometry, positions = geometry.getAttribute('position').array;
+    const shown = { checksum: fnv1a(new Uint32Array(positions.buffer, positions.byteOffset, positions.length)) };
+    if (shapeObject.isMesh) {
+      const copy = new THREE.BufferGeometry();
+      copy.setAttribute('position', geometry.getAttribute('position'));
+      copy.setIndex(geometry.getIndex());
+      copy.computeVertexNormals();
+      const ours = geometry.getAttribute('normal').array, theirs = copy.getAttribute('normal').array;
+      shown.normalsDiffer = 0;
+      for (let i = 0; i < ours.length; ++i) if (!Object.is(ours[i], theirs[i])) ++shown.normalsDiffer;
+    }
+    return shown;
+  };
+  /// The shape's normals, into its normal attribute (made at the first call).
+  function normals(geometry, header) {
+    if (header.grid[0] === 0) { geometry.computeVertexNormals(); return; }
+    let normal = geometry.getAttribute('normal');
+    if (!normal) {
+      normal = new THREE.BufferAttribute(new Float32Array(geometry.getAttribute('position').count * 3), 3);
+      geometry.setAttribute('normal', normal);
+    }
+    gridNormals(geometry.getAttribute('position').array, header.grid, normal.array);
+    normal.needsUpdate = true;
+  }
+  /// A new object for the shape of g (its kind or size changed).
+  function build(g) {
+    if (shapeObject) { scene.remove(shapeObject); shapeObject.geometry.dispose(); shapeObject.material.dispose(); }
     const geometry = new THREE.BufferGeometry();
     geometry.setAttribute('position', new THREE.BufferAttribute(g.positions, 3));
-    states = g.states;
-    stateColors = g.header.state_colors || [];
     colors = new THREE.BufferAttribute(new Float32Array(g.positions.length).fill(0.6), 3);
     geometry.setAttribute('color', colors);
     if (g.header.pieces > 0) { // a BC-IFS: piece i is the segment from point i to point pieces + i
@@ -124,15 +210,52 @@
     } else if (g.header.kind === 'ifs') {
       shapeObject = pointCloud(geometry);
     } else if (g.header.kind === 'curve') {
-      shapeObject = new (g.header.closed ? THREE.LineLoop : THREE.Line)(geometry, new THREE.LineBasicMaterial({ vertexColors: THREE.VertexColors }));
+      shapeObject = new (g.header.closed ? THREE.LineLoop : THREE.Line)(geometry,
+        new THREE.LineBasicMaterial({ vertexColors: THREE.VertexColors }));
     } else {
       geometry.setIndex(new THREE.BufferAttribute(g.header.grid[0] > 0 ? gridTriangles(g.header.grid) : g.triangles, 1));
-      geometry.computeVertexNormals();
+      mark('index');
+      normals(geometry, g.header);
+      mark('normals');
       shapeObject = new THREE.Mesh(geometry, new THREE.MeshPhongMaterial({
         vertexColors: THREE.VertexColors, side: THREE.DoubleSide, shininess: 20 }));
     }
-    recolor();
+    shapeObject.frustumCulled = false; // the whole shape is in view (no bounding sphere made per edit)
+    states = g.states;
+    recolor(false);
+    mark('colours');
     scene.add(shapeObject);
+  }
+  /// The shape of g into the shown object's buffers (the same kind and sizes): the positions are the
+  /// response's own array; the index stays (a grid's, a BC-IFS's) or takes a mesh's new triangles; the
+  /// colours are made again only when the states or the selected state changed. Only what changed is uploaded.
+  function update(g) {
+    const geometry = shapeObject.geometry;
+    const position = geometry.getAttribute('position');
+    position.array = g.positions;
+    position.needsUpdate = true;
+    const index = geometry.getIndex();
+    if (shapeObject.isMesh && g.header.grid[0] === 0 && !equal(index.array, g.triangles)) { // a mesh's, sent
+      index.array = g.triangles;
+      index.needsUpdate = true;
+    }
+    mark('index');
+    if (shapeObject.isMesh) normals(geometry, g.header);
+    mark('normals');
+    const changed = !equal(states, g.states) || colouredFor !== selected;
+    states = g.states;
+    if (changed) recolor(false);
+    mark('colours');
+  }
+  let shapeKey = '';
+  function show(g, frame) {
+    const h = g.header;
+    stateColors = h.state_colors || [];
+    const key = [h.kind, h.pieces, h.closed, h.grid, g.positions.length, g.triangles.length, g.states.length].join();
+    if (shapeObject && key === shapeKey) update(g); else build(g);
+    shapeKey = key;
+    for (const o of [netPoints, netLines]) if (o) { scene.remove(o); o.geometry.dispose(); }
+    const geometry = shapeObject.geometry;
     const netGeometry = new THREE.BufferGeometry();
     netGeometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(g.net), 3));
     netPoints = new THREE.Points(netGeometry, new THREE.PointsMaterial({ color: 0xc02020, size: 8, sizeAttenuation: false }));
@@ -158,7 +281,14 @@
     view.checksum = g.checksum;
     const c = g.header.contraction;
     contractivity(c && c.m > 0 ? 'contractive: δ = ' + c.delta.toFixed(6) + ' over ' + c.m + '-step paths' : '', false);
+    mark('objects');
     draw();
+    mark('render');
+    if (view.syncDraw) {
+      const gl = renderer.getContext();
+      gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
+      mark('drawn');
+    }
   }
   /// A classic IFS: the points of its Hutchinson measure, each coloured by the map applied last.
   function pointCloud(geometry) {
@@ -201,12 +331,13 @@
     if (controller) controller.abort();
     controller = new AbortController();
     const mine = controller;
-    editStart = performance.now();
+    const begun = performance.now(), phases = (marks = {});
     view.ready = false;
     try {
       const sent = requestParams(candidate);
       view.sent = sent; // what the page asked for (tests rebuild it through the library)
       const r = await fetch(api('geometry'), { method: 'POST', body: JSON.stringify({ params: sent }), signal: mine.signal });
+      mark('answer');
       if (r.status === 204) return; // superseded by a newer edit
       if (r.status === 422) { // not contractive: the geometry stays, the edit is shown as refused
         const message = (await r.text()).trim();
@@ -222,7 +353,10 @@
         view.ready = true;
         return;
       }
-      const g = parse(await r.arrayBuffer());
+      const cifs = /dur=([\d.]+)/.exec(r.headers.get('Server-Timing') || ''); // the server's time (server.cpp)
+      const buffer = await r.arrayBuffer();
+      mark('body');
+      const g = parse(buffer);
       if (mine !== controller) return;
       if (candidate) {
         if (candidate.weight) weights.set(candidate.weight[0], candidate.weight[1]);
@@ -231,7 +365,10 @@
         view.refused = null;
       }
       show(g, frame);
-      view.lastMs = performance.now() - editStart;
+      view.lastMs = performance.now() - begun;
+      view.timing = Object.fromEntries(Object.entries(phases).map(([phase, t]) => [phase, t - begun]));
+      view.timing.bytes = buffer.byteLength;
+      if (cifs) view.timing.cifs = Number(cifs[1]);
       status(view.pointCount + ' points, ' + view.lastMs.toFixed(0) + ' ms');
       readout();
       view.ready = true;
