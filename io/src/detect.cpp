@@ -39,7 +39,8 @@ Content detect(const std::filesystem::path& path) {
   if (!j.is_object()) return Content::shape;  // the shape reader names what is wrong
   if (j.contains("polygon")) return Content::polygon;
   if (j.contains("bcifs")) return Content::bcifs;
-  if (j.contains("curve") || j.contains("surface") || (j.size() == 1 && j.contains("shape")))
+  if (j.contains("curve") || j.contains("surface") || j.contains("volume") ||
+      (j.size() == 1 && j.contains("shape")))
     return Content::shape;
   return Content::experiment;
 }

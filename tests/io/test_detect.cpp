@@ -29,5 +29,7 @@ TEST_CASE("io::detect tells meshes, shapes, polygons and experiments apart", "[i
   CHECK(io::detect(write("f.obj", "v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\n  f 1 2 3\r\n")) == io::Content::mesh);
   CHECK(io::detect(write("p.obj", "v 0 0 0\nv 1 0 0\n")) == io::Content::shape);  // no faces
   CHECK(io::detect(write("bad.json", "{not json")) == io::Content::shape);        // its reader says why
+  // A trivariate volume is a shape (cifs info read it as an experiment once experiments had an info).
+  CHECK(io::detect(write("v.json", R"({"volume": {"degree": [1, 1, 1]}})")) == io::Content::shape);
   CHECK_THROWS_AS(io::detect(dir.path() / "missing.json"), IoError);
 }
