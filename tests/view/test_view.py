@@ -107,6 +107,16 @@ def timed_edits(driver, edit, values, what):
     return state
 
 
+def perturbed_checksum(cifs, work, shape, depth, amplitude):
+    """The library's checksum of `shape` perturbed by `amplitude` (seed 1) at `depth`: the experiment that the
+    page's amplitude slider stands for."""
+    experiment = work / "perturbed.json"
+    experiment.write_text(json.dumps({"shape": str(shape), "evaluation": {"depth": depth},
+                                      "perturbation": {"amplitude": amplitude, "seed": 1},
+                                      "outputs": {"ply": "unused.ply"}}))
+    return fnv1a(np.asarray(cifs.experiment.evaluate(cifs.io.read_experiment(str(experiment)), depth).points))
+
+
 def console_errors(driver):
     return [e for e in driver.get_log("browser") if e["level"] == "SEVERE"]
 
@@ -328,11 +338,7 @@ def curve_timing_scenario(cifs, driver, work):
     state = settle(driver, state["checksum"], "the cubic at depth 16")
     amplitudes = [0.065, 0.07, 0.075, 0.08, 0.085, 0.09, 0.095, 0.1]
     state = timed_edits(driver, AMPLITUDE, amplitudes, "cubic amplitude edits at depth 16")
-    experiment = work / "cubic_experiment.json"
-    experiment.write_text(json.dumps({"shape": str(work / "cubic.json"), "evaluation": {"depth": 16},
-                                      "perturbation": {"amplitude": amplitudes[-1], "seed": 1},
-                                      "outputs": {"ply": "unused.ply"}}))
-    expected = fnv1a(np.asarray(cifs.experiment.evaluate(cifs.io.read_experiment(str(experiment)), 16).points))
+    expected = perturbed_checksum(cifs, work, work / "cubic.json", 16, amplitudes[-1])
     if state["checksum"] != expected:
         fail(f"cubic, amplitude {amplitudes[-1]} at depth 16: the page holds {state['checksum']:08x}, "
              f"the library {expected:08x}")
@@ -637,12 +643,7 @@ def main():
         driver.execute_script("const s = document.getElementById('amplitude'); s.value = 0.05;"
                               "s.dispatchEvent(new Event('input'));")
         state = settle(driver, old, "the perturbed geometry")
-        perturbed = work / "perturbed.json"
-        perturbed.write_text(json.dumps({"shape": str(saved), "evaluation": {"depth": depth + 1},
-                                         "perturbation": {"amplitude": 0.05, "seed": 1},
-                                         "outputs": {"ply": "unused.ply"}}))
-        points = np.asarray(cifs.experiment.evaluate(cifs.io.read_experiment(str(perturbed)), depth + 1).points)
-        expected = fnv1a(points)
+        expected = perturbed_checksum(cifs, work, saved, depth + 1, 0.05)
         if state["checksum"] != expected:
             fail(f"amplitude 0.05: the page holds {state['checksum']:08x}, the library {expected:08x}")
         if args.screenshots:
@@ -651,7 +652,7 @@ def main():
         driver.execute_script("const s = document.getElementById('amplitude'); s.value = 0;"
                               "s.dispatchEvent(new Event('input'));")
         state = settle(driver, old, "the smooth geometry again")
-        print(f"amplitude 0.05: the perturbed surface, {len(points)} points, as the experiment evaluates it")
+        print(f"amplitude 0.05: the perturbed surface, {state['pointCount']} points, as the experiment evaluates it")
 
         # The dimension readout and a render through the experiment runner.
         driver.find_element(By.ID, "dimension").click()
@@ -705,10 +706,7 @@ def main():
         # edits at depth 7, timed by the page's marks; the last one is the library's.
         amplitudes = [0.01, 0.015, 0.02, 0.025, 0.03, 0.035, 0.04, 0.045]
         state = timed_edits(driver, AMPLITUDE, amplitudes, "hills amplitude edits at depth 7")
-        perturbed.write_text(json.dumps({"shape": str(saved), "evaluation": {"depth": 7},
-                                         "perturbation": {"amplitude": amplitudes[-1], "seed": 1},
-                                         "outputs": {"ply": "unused.ply"}}))
-        expected = fnv1a(np.asarray(cifs.experiment.evaluate(cifs.io.read_experiment(str(perturbed)), 7).points))
+        expected = perturbed_checksum(cifs, work, saved, 7, amplitudes[-1])
         if state["checksum"] != expected:
             fail(f"amplitude {amplitudes[-1]} at depth 7: the page holds {state['checksum']:08x}, "
                  f"the library {expected:08x}")
