@@ -219,7 +219,7 @@ class Parser {
         fail("the power has degree " + std::to_string(static_cast<long>(base.c.size() - 1) * e) +
              ", above the largest mask (" + std::to_string(kMaxMaskSize) + " coefficients, degree " +
              std::to_string(kMaxMaskSize - 1) + ")");
-      const Laurent r = normalised({base.low * e, detail::power(base.c, static_cast<int>(e))});
+      Laurent r = normalised({base.low * e, detail::power(base.c, static_cast<int>(e))});
       check_size(detail::bits(r.c), start, "power", 1);
       return r;
     }
